@@ -1,0 +1,12 @@
+# Turns each GLSL file into a C string named sl_glsl_<basename>.
+separate_arguments(_files UNIX_COMMAND "${FILES}")
+set(_out "/* generated from the GLSL sources: do not edit */\n")
+foreach(_f IN LISTS _files)
+  get_filename_component(_name "${_f}" NAME_WE)
+  file(READ "${_f}" _src)
+  string(REPLACE "\\" "\\\\" _src "${_src}")
+  string(REPLACE "\"" "\\\"" _src "${_src}")
+  string(REPLACE "\n" "\\n\"\n\"" _src "${_src}")
+  string(APPEND _out "const char sl_glsl_${_name}[] = \"${_src}\";\n")
+endforeach()
+file(WRITE "${OUT}" "${_out}")

@@ -1,0 +1,62 @@
+/*
+ * config.h — experiment files (YAML, read with libcyaml against a schema):
+ * parse, then validate with defaults filled in, then hand the run a plain
+ * struct. Touches no GL and no Embree, so `shadowlab validate` is cheap.
+ *
+ * Every error names the file, the line and the key (dotted path, e.g.
+ * methods[1].self_shadow): libcyaml's own backtrace gives the line of type
+ * errors; a position index built with libyaml gives it for unknown keys and
+ * for values that fail our checks.
+ *
+ * Schema (all keys but scene, map_sizes and methods optional):
+ *   name: default              # experiment name, output folder under results/
+ *   scene: primitives          # a built-in scene (shadowlab list scenes)
+ *   viewpoints: [side, with]   # default: all of the scene's
+ *   viewports: [{width: 1024, height: 1024}]      # default 1024 x 1024
+ *   map_sizes: [1024, 2048]    # powers of two, 64 .. 16384
+ *   contours: [2, 4, 6]        # even thicknesses in pixels; the whole image is always added
+ *   methods:                   # the same method may appear under several labels
+ *     - {label: nsm, method: nsm, self_shadow: front_faces}
+ *   outputs: {overlays: true, overlay_contour: 2}
+ *   threads: 0                 # 0 = every core
+ */
+#ifndef SL_CONFIG_H
+#define SL_CONFIG_H
+#include "method.h"
+#include "sl_error.h"
+
+#define SL_CFG_MAX 16
+
+struct sl_config_method {
+    char                     label[48];
+    const struct sl_method  *method;
+    struct sl_method_params  params;
+};
+
+struct sl_config {
+    char path[512];
+    unsigned long long hash;          /* FNV-1a of the file's bytes */
+    char name[64];
+    char scene[64];
+    int  nviewpoints;                 /* 0 = all of the scene's */
+    char viewpoints[SL_CFG_MAX][32];
+    int  nviewports;
+    int  viewport_w[SL_CFG_MAX], viewport_h[SL_CFG_MAX];
+    int  nmaps;
+    int  maps[SL_CFG_MAX];
+    int  nregions;                    /* contours then 0 (whole image) */
+    int  regions[SL_CFG_MAX];
+    int  nmethods;
+    struct sl_config_method methods[SL_CFG_MAX];
+    int  overlays;
+    int  overlay_contour;
+    int  threads;                     /* resolved: >= 1 */
+};
+
+/* Parse and validate; on failure d names file, line and key. */
+enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_diag *d);
+
+/* Write the filled-in config (every default explicit) as YAML. */
+void sl_config_write(const struct sl_config *c, FILE *f);
+
+#endif

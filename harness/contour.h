@@ -1,0 +1,31 @@
+/*
+ * contour.h — contours of a method's own result image (never of the truth),
+ * after Moderno 2011: the pixels on both sides of a change of state (a 2-px
+ * thick line), dilated once (4 px) and twice (6 px).
+ *
+ * Neighbourhood: 4-connected (left, right, up, down) both for finding a change
+ * and for each dilation, so a straight axis-aligned boundary gives exactly
+ * 2, 4 and 6 pixels across, and the even width keeps the contour unbiased
+ * ("roughly 50/50 shadow/light pixels", Moderno 3.1.2).
+ * States: 0 = background, which never enters a contour and never makes one
+ * (an object's silhouette against the sky is not a shadow boundary); any
+ * other value is a state, and PnFL pixels carry the shadow state, as they
+ * are dark in the method's image (the terminator of a lit surface is a
+ * lit/shadow change like any other).
+ */
+#ifndef SL_CONTOUR_H
+#define SL_CONTOUR_H
+#include <stdint.h>
+
+/* band[i] = 0 outside every contour; k >= 1: in the contour of thickness 2k
+ * and every thicker one (k = 1 the change itself, k = 2 after one dilation,
+ * ...). dilations >= 0. */
+void sl_contour_bands(int w, int h, const uint8_t *state, int dilations, uint8_t *band);
+
+/* Is pixel band b inside the contour of `thickness` pixels (0 = whole image)? */
+static inline int sl_in_contour(uint8_t b, int thickness)
+{
+    return thickness == 0 || (b != 0 && 2 * (int)b <= thickness);
+}
+
+#endif

@@ -1,0 +1,64 @@
+/*
+ * figures.h — the numbers of one (view, map size, method): per region (the
+ * 2, 4 and 6 px contours and the whole image) the pixel counts of Morais 2015
+ * Table 7 and Moderno 2011 Tables 5, 17 and 18.
+ *
+ * Counting rules: background pixels are counted once, apart, and enter no
+ * region. PnFL pixels are in every count of pixels and of shadow (the method
+ * shadows them by definition and is always right there), so that
+ * light + shadow + uncertain = pixels in the region, as in the seeds' tables.
+ * "correct"/"incorrect" compare the verdict with the truth.
+ * Does not: format or write (run.c does).
+ */
+#ifndef SL_FIGURES_H
+#define SL_FIGURES_H
+#include <stdint.h>
+#include "method.h"
+#include "view.h"
+
+#define SL_MAX_REGIONS 8
+
+/* name, what it counts, the figure its percentage is taken of ("" = none) */
+#define SL_FIGURES(X)                                                              \
+    X(pixels,           "pixels in the region (not background)",      "")         \
+    X(pfl,              "pixels facing the light",                    "pixels")   \
+    X(pnfl,             "pixels not facing the light",                "pixels")   \
+    X(light,            "pixels the method puts in light",            "pixels")   \
+    X(shadow,           "pixels the method puts in shadow (with PnFL)", "pixels") \
+    X(uncertain,        "pixels the method leaves undecided",         "pixels")   \
+    X(light_correct,    "in light, lit in truth",                     "light")    \
+    X(light_incorrect,  "in light, shadowed in truth (wrongly lit)",  "light")    \
+    X(shadow_correct,   "in shadow, shadowed in truth",               "shadow")   \
+    X(shadow_incorrect, "in shadow, lit in truth (wrongly shadowed)", "shadow")   \
+    X(wrong,            "wrong pixels (both kinds)",                  "pixels")   \
+    X(wrong_caught,     "wrong pixels of the whole image inside this region", "wrong_image")
+
+enum sl_figure {
+#define SL_FIG_ENUM(name, text, of) SL_FIG_##name,
+    SL_FIGURES(SL_FIG_ENUM)
+#undef SL_FIG_ENUM
+    SL_FIG_COUNT
+};
+
+const char *sl_figure_name(enum sl_figure f);
+const char *sl_figure_text(enum sl_figure f);
+const char *sl_figure_of(enum sl_figure f);
+
+struct sl_region_figures {
+    int      thickness;                 /* 0 = whole image */
+    uint64_t n[SL_FIG_COUNT];
+    double   pct[SL_FIG_COUNT];         /* of the base figure; NAN when none */
+};
+
+struct sl_figures {
+    uint64_t background;
+    uint64_t wrong_image;               /* wrong pixels in the whole image */
+    int      nregions;
+    struct sl_region_figures r[SL_MAX_REGIONS];
+};
+
+/* thickness[] lists the regions (0 = whole image), at most SL_MAX_REGIONS. */
+void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, const uint8_t *band,
+                        const int *thickness, int nregions, struct sl_figures *out);
+
+#endif

@@ -1,0 +1,73 @@
+/*
+ * frame.h — the light frame: one fitted light frustum per view and the
+ * shadow-map layers rendered for it at one map size.
+ *
+ * Layers are rendered only when a requested method needs them (the union of
+ * the methods' `needs` bits), once, and shared by every method that reads
+ * them. Texel (i, j) is at index j * size + i, j = 0 the bottom row.
+ *
+ * Owns: layer arrays (sl_frame_free). Does not: know which method reads what.
+ */
+#ifndef SL_FRAME_H
+#define SL_FRAME_H
+#include <stdint.h>
+#include <cglm/cglm.h>
+
+enum sl_layer_id {
+    SL_LAYER_DEPTH_ID = 0,      /* nearest surface, both faces: depth + id */
+    SL_LAYER_DEPTH_ID_BACK,     /* front faces culled (Moderno 2011): depth + id */
+    SL_LAYER_COUNT
+};
+#define SL_NEED(layer) (1u << (layer))
+
+/* The light's orthographic box in light view space: x, y across the light,
+ * depth = distance along the light direction (positive away from the light). */
+struct sl_light_box {
+    mat4  view, proj, vp;       /* vp = proj * view, depth in [0, 1] (zero-to-one clip) */
+    float lo[3], hi[3];         /* x, y, depth */
+    uint32_t n_receivers;       /* pixels the box was fitted to */
+    uint32_t n_casters;         /* triangles that can shadow them */
+};
+
+struct sl_depth_layer {
+    float    *depth;            /* size*size window depth in [0,1], 1 = empty */
+    uint32_t *id;               /* triangle + 1, 0 = empty */
+    double    ms_render, ms_readback;
+};
+
+struct sl_light_frame {
+    int   size;
+    float dir[3];               /* direction the light travels */
+    struct sl_light_box box;
+    float texel_world;          /* world units across one texel (the larger side) */
+    float depth_range;          /* world units of depth from 0 to 1 */
+    unsigned have;              /* SL_NEED bits of the layers rendered */
+    struct sl_depth_layer layer[SL_LAYER_COUNT];
+};
+
+/* Project a world point into the frame: texel coordinates in [0, size) (not
+ * clamped; u, v may fall outside for points outside the box) and depth. */
+static inline void sl_frame_project(const struct sl_light_frame *f, const float p[3],
+                                    float *u, float *v, float *z)
+{
+    vec4 w = {p[0], p[1], p[2], 1.0f}, c;
+    glm_mat4_mulv((vec4 *)f->box.vp, w, c);
+    *u = (c[0] * 0.5f + 0.5f) * (float)f->size;
+    *v = (c[1] * 0.5f + 0.5f) * (float)f->size;
+    *z = c[2];
+}
+
+/* Texel index of texel coordinates, clamped to the map. */
+static inline uint32_t sl_frame_texel(const struct sl_light_frame *f, float u, float v)
+{
+    int i = (int)floorf(u), j = (int)floorf(v);
+    if (i < 0) i = 0;
+    if (j < 0) j = 0;
+    if (i >= f->size) i = f->size - 1;
+    if (j >= f->size) j = f->size - 1;
+    return (uint32_t)j * (uint32_t)f->size + (uint32_t)i;
+}
+
+void sl_frame_free(struct sl_light_frame *f);
+
+#endif

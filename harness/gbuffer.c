@@ -1,0 +1,170 @@
+/*
+ * gbuffer.c — camera pass and pixel classification.
+ * Invariant: every non-background pixel has a triangle id, a world position
+ * and a unit normal; its class depends on that normal and the light only.
+ */
+#include "gbuffer.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "util.h"
+
+extern const char sl_glsl_gbuffer_vs[];
+extern const char sl_glsl_gbuffer_fs[];
+
+void sl_view_free(struct sl_view *v)
+{
+    if (!v)
+        return;
+    free(v->pos);
+    free(v->nrm);
+    free(v->tri);
+    free(v->cls);
+    free(v->truth);
+    memset(v, 0, sizeof *v);
+}
+
+void sl_camera_matrices(const struct sl_viewpoint *vp, float aspect, mat4 view, mat4 proj)
+{
+    vec3 eye, dir, up;
+    glm_vec3_copy((float *)vp->pos, eye);
+    glm_vec3_copy((float *)vp->dir, dir);
+    glm_vec3_copy((float *)vp->up, up);
+    glm_look(eye, dir, up, view);
+    glm_perspective(glm_rad(vp->fov_deg), aspect, vp->znear, vp->zfar, proj);
+}
+
+enum sl_err sl_gbuffer_init(struct sl_gbuffer_pass *p, const struct sl_scene *s, struct sl_diag *d)
+{
+    memset(p, 0, sizeof *p);
+    p->prog = sl_gl_program(sl_glsl_gbuffer_vs, NULL, sl_glsl_gbuffer_fs, d);
+    if (!p->prog)
+        return SL_E_GL;
+    float *n4 = sl_calloc((size_t)s->nt * 4, sizeof(float));
+    if (!n4)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "face normal buffer");
+    for (uint32_t t = 0; t < s->nt; t++)
+        memcpy(n4 + 4 * (size_t)t, s->fn + 3 * (size_t)t, 3 * sizeof(float));
+    glCreateBuffers(1, &p->normals);
+    glNamedBufferStorage(p->normals, (GLsizeiptr)s->nt * 4 * sizeof(float), n4, 0);
+    free(n4);
+    return sl_gl_check("gbuffer init", d);
+}
+
+void sl_gbuffer_free(struct sl_gbuffer_pass *p)
+{
+    if (p->prog) glDeleteProgram(p->prog);
+    if (p->normals) glDeleteBuffers(1, &p->normals);
+    memset(p, 0, sizeof *p);
+}
+
+enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_gl_mesh *m,
+                              const struct sl_scene *s, int vp, int w, int h,
+                              struct sl_view *v, double *ms_render, double *ms_readback,
+                              struct sl_diag *d)
+{
+    memset(v, 0, sizeof *v);
+    v->w = w;
+    v->h = h;
+    v->vp = vp;
+    size_t n = (size_t)w * (size_t)h;
+    float *rgba_pos = sl_calloc(n * 4, sizeof(float));
+    float *rgba_nrm = sl_calloc(n * 4, sizeof(float));
+    v->pos = sl_calloc(n * 3, sizeof(float));
+    v->nrm = sl_calloc(n * 3, sizeof(float));
+    v->tri = sl_calloc(n, sizeof(uint32_t));
+    v->cls = sl_calloc(n, 1);
+    v->truth = sl_calloc(n, 1);
+    if (!rgba_pos || !rgba_nrm || !v->pos || !v->nrm || !v->tri || !v->cls || !v->truth) {
+        free(rgba_pos);
+        free(rgba_nrm);
+        sl_view_free(v);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "G-buffer %dx%d", w, h);
+    }
+    sl_camera_matrices(&s->vp[vp], (float)w / (float)h, v->view, v->proj);
+    mat4 vpm;
+    glm_mat4_mul(v->proj, v->view, vpm);
+
+    double t0 = sl_now();
+    GLuint fbo, tex[3], depth;
+    glCreateFramebuffers(1, &fbo);
+    glCreateTextures(GL_TEXTURE_2D, 3, tex);
+    glTextureStorage2D(tex[0], 1, GL_RGBA32F, w, h);
+    glTextureStorage2D(tex[1], 1, GL_RGBA32F, w, h);
+    glTextureStorage2D(tex[2], 1, GL_R32UI, w, h);
+    glCreateRenderbuffers(1, &depth);
+    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, w, h);
+    for (int i = 0; i < 3; i++)
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + (GLenum)i, tex[i], 0);
+    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(fbo, 3, bufs);
+    enum sl_err e = SL_OK;
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "G-buffer framebuffer incomplete");
+    if (!e) {
+        const float zero4[4] = {0, 0, 0, 0};
+        const GLuint zero_u[4] = {0, 0, 0, 0};
+        const float one = 1.0f;
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glViewport(0, 0, w, h);
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_CULL_FACE);   /* back faces are seen only where the mesh is open */
+        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero4);
+        glClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero4);
+        glClearNamedFramebufferuiv(fbo, GL_COLOR, 2, zero_u);
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+        glUseProgram(p->prog);
+        glUniformMatrix4fv(glGetUniformLocation(p->prog, "u_vp"), 1, GL_FALSE, (const float *)vpm);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, p->normals);
+        glBindVertexArray(m->vao);
+        glDrawElements(GL_TRIANGLES, m->count, GL_UNSIGNED_INT, NULL);
+        glFinish();
+        double t1 = sl_now();
+        glGetTextureImage(tex[0], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba_pos);
+        glGetTextureImage(tex[1], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba_nrm);
+        glGetTextureImage(tex[2], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), v->tri);
+        double t2 = sl_now();
+        if (ms_render) *ms_render = 1e3 * (t1 - t0);
+        if (ms_readback) *ms_readback = 1e3 * (t2 - t1);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        e = sl_gl_check("G-buffer pass", d);
+    }
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(3, tex);
+    glDeleteRenderbuffers(1, &depth);
+
+    if (!e) {
+        const float *L = s->light_dir;
+        for (size_t i = 0; i < n; i++) {
+            for (int k = 0; k < 3; k++) {
+                v->pos[3 * i + k] = rgba_pos[4 * i + k];
+                v->nrm[3 * i + k] = rgba_nrm[4 * i + k];
+            }
+            if (v->tri[i] == 0) {
+                v->cls[i] = SL_C_BACKGROUND;
+                v->truth[i] = SL_T_BACKGROUND;
+                v->n_background++;
+                continue;
+            }
+            /* toward the light is -L */
+            float ndl = -(v->nrm[3 * i] * L[0] + v->nrm[3 * i + 1] * L[1] + v->nrm[3 * i + 2] * L[2]);
+            if (ndl > 0.0f) {
+                v->cls[i] = SL_C_PFL;
+                v->truth[i] = SL_T_LIT;   /* until truth.c traces it */
+                v->n_pfl++;
+            } else {
+                v->cls[i] = SL_C_PNFL;
+                v->truth[i] = SL_T_PNFL;
+                v->n_pnfl++;
+            }
+        }
+    }
+    free(rgba_pos);
+    free(rgba_nrm);
+    if (e)
+        sl_view_free(v);
+    return e;
+}

@@ -1,0 +1,35 @@
+/*
+ * gbuffer.h — the camera G-buffer pass: world position (RGBA32F), face normal
+ * (RGBA32F, from a per-triangle storage buffer indexed by gl_PrimitiveID and
+ * turned toward the camera), triangle id + 1 (R32UI, 0 = background) and a
+ * 32-bit float depth buffer; read back into an sl_view, then every pixel
+ * classified as background, PnFL or PFL against the scene's light.
+ *
+ * Does not: decide lit or shadowed (truth.c does for the reference, methods
+ * for themselves).
+ */
+#ifndef SL_GBUFFER_H
+#define SL_GBUFFER_H
+#include "glctx.h"
+#include "view.h"
+
+struct sl_gbuffer_pass {
+    GLuint prog;
+    GLuint normals;          /* SSBO of face normals, 4 floats per triangle */
+};
+
+enum sl_err sl_gbuffer_init(struct sl_gbuffer_pass *p, const struct sl_scene *s, struct sl_diag *d);
+void        sl_gbuffer_free(struct sl_gbuffer_pass *p);
+
+/* Render viewpoint vp at w x h and fill v (pos, nrm, tri, cls; truth set to
+ * SL_T_BACKGROUND / SL_T_PNFL, and SL_T_LIT for PFL pixels until truth.c
+ * traces them). Times in ms go to *ms_render and *ms_readback when not NULL. */
+enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_gl_mesh *m,
+                              const struct sl_scene *s, int vp, int w, int h,
+                              struct sl_view *v, double *ms_render, double *ms_readback,
+                              struct sl_diag *d);
+
+/* Camera matrices of a viewpoint at an aspect ratio. */
+void sl_camera_matrices(const struct sl_viewpoint *vp, float aspect, mat4 view, mat4 proj);
+
+#endif

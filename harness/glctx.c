@@ -1,0 +1,145 @@
+/*
+ * glctx.c — OSMesa context and GL helpers.
+ * Invariant: a 4.5 core context or a clear SL_E_GL (OSMesa returns NULL for
+ * 4.6 on Mesa 22.3, so 4.5 is asked for exactly).
+ */
+#include "glctx.h"
+#include <stdio.h>
+#include <string.h>
+#include "util.h"
+
+#define SL_GL_DEF(type, name) type sl_##name;
+SL_GL_FUNCS(SL_GL_DEF)
+#undef SL_GL_DEF
+
+const char *sl_glfn_load(void)
+{
+#define SL_GL_LOAD(type, name)                                    \
+    {                                                             \
+        OSMESAproc p_ = OSMesaGetProcAddress(#name);              \
+        if (!p_)                                                  \
+            return #name;                                         \
+        memcpy(&sl_##name, &p_, sizeof p_);                       \
+    }
+    SL_GL_FUNCS(SL_GL_LOAD)
+#undef SL_GL_LOAD
+    return NULL;
+}
+
+enum sl_err sl_gl_init(struct sl_gl *g, struct sl_diag *d)
+{
+    memset(g, 0, sizeof *g);
+    const int attribs[] = {
+        OSMESA_FORMAT, OSMESA_RGBA,
+        OSMESA_DEPTH_BITS, 0,
+        OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+        OSMESA_CONTEXT_MAJOR_VERSION, 4,
+        OSMESA_CONTEXT_MINOR_VERSION, 5,
+        0,
+    };
+    g->ctx = OSMesaCreateContextAttribs(attribs, NULL);
+    if (!g->ctx)
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "OSMesa could not create a 4.5 core context");
+    if (!OSMesaMakeCurrent(g->ctx, g->pixel, GL_UNSIGNED_BYTE, 1, 1)) {
+        OSMesaDestroyContext(g->ctx);
+        g->ctx = NULL;
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "OSMesaMakeCurrent failed");
+    }
+    const char *missing = sl_glfn_load();
+    if (missing) {
+        OSMesaDestroyContext(g->ctx);
+        g->ctx = NULL;
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "OSMesa lacks %s", missing);
+    }
+    snprintf(g->renderer, sizeof g->renderer, "%s", (const char *)glGetString(GL_RENDERER));
+    snprintf(g->version, sizeof g->version, "%s", (const char *)glGetString(GL_VERSION));
+    return SL_OK;
+}
+
+void sl_gl_free(struct sl_gl *g)
+{
+    if (g && g->ctx) {
+        OSMesaDestroyContext(g->ctx);
+        g->ctx = NULL;
+    }
+}
+
+static GLuint compile(GLenum type, const char *src, struct sl_diag *d)
+{
+    GLuint s = glCreateShader(type);
+    glShaderSource(s, 1, &src, NULL);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[400];
+        glGetShaderInfoLog(s, sizeof log, NULL, log);
+        glDeleteShader(s);
+        sl_fail(d, SL_E_GL, NULL, 0, NULL, "shader compile: %s", log);
+        return 0;
+    }
+    return s;
+}
+
+GLuint sl_gl_program(const char *vs, const char *gs, const char *fs, struct sl_diag *d)
+{
+    GLuint sh[3] = {0, 0, 0};
+    sh[0] = compile(GL_VERTEX_SHADER, vs, d);
+    if (gs)
+        sh[1] = compile(GL_GEOMETRY_SHADER, gs, d);
+    sh[2] = compile(GL_FRAGMENT_SHADER, fs, d);
+    GLuint p = 0;
+    if (sh[0] && (!gs || sh[1]) && sh[2]) {
+        p = glCreateProgram();
+        for (int i = 0; i < 3; i++)
+            if (sh[i])
+                glAttachShader(p, sh[i]);
+        glLinkProgram(p);
+        GLint ok = 0;
+        glGetProgramiv(p, GL_LINK_STATUS, &ok);
+        if (!ok) {
+            char log[400];
+            glGetProgramInfoLog(p, sizeof log, NULL, log);
+            sl_fail(d, SL_E_GL, NULL, 0, NULL, "program link: %s", log);
+            glDeleteProgram(p);
+            p = 0;
+        }
+    }
+    for (int i = 0; i < 3; i++)
+        if (sh[i])
+            glDeleteShader(sh[i]);
+    return p;
+}
+
+enum sl_err sl_gl_check(const char *what, struct sl_diag *d)
+{
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR)
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "%s: GL error 0x%04x", what, e);
+    return SL_OK;
+}
+
+enum sl_err sl_gl_mesh_upload(struct sl_gl_mesh *m, const struct sl_scene *s, struct sl_diag *d)
+{
+    memset(m, 0, sizeof *m);
+    glCreateVertexArrays(1, &m->vao);
+    glCreateBuffers(1, &m->vbo);
+    glCreateBuffers(1, &m->ebo);
+    glNamedBufferStorage(m->vbo, (GLsizeiptr)s->nv * 3 * sizeof(float), s->pos, 0);
+    glNamedBufferStorage(m->ebo, (GLsizeiptr)s->nt * 3 * sizeof(uint32_t), s->idx, 0);
+    glVertexArrayVertexBuffer(m->vao, 0, m->vbo, 0, 3 * sizeof(float));
+    glVertexArrayElementBuffer(m->vao, m->ebo);
+    glEnableVertexArrayAttrib(m->vao, 0);
+    glVertexArrayAttribFormat(m->vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(m->vao, 0, 0);
+    m->count = (GLsizei)(s->nt * 3);
+    return sl_gl_check("mesh upload", d);
+}
+
+void sl_gl_mesh_free(struct sl_gl_mesh *m)
+{
+    if (m->vao) glDeleteVertexArrays(1, &m->vao);
+    if (m->vbo) glDeleteBuffers(1, &m->vbo);
+    if (m->ebo) glDeleteBuffers(1, &m->ebo);
+    memset(m, 0, sizeof *m);
+}

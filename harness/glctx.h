@@ -1,0 +1,44 @@
+/*
+ * glctx.h — the OpenGL 4.5 core context (OSMesa, no window) and the scene's
+ * GL buffers.
+ *
+ * Owns: the OSMesa context (one per process; all passes render into their own
+ * framebuffer objects, never into the OSMesa buffer), the scene's vertex and
+ * index buffers (uploaded once per scene).
+ * Does not: decide what to render (gbuffer.c, shadowmap.c do), or read back.
+ * GL entry points come from libOSMesa itself (GL_GLEXT_PROTOTYPES): libepoxy
+ * aborts under OSMesa, and OSMesa exports every gl* symbol.
+ */
+#ifndef SL_GLCTX_H
+#define SL_GLCTX_H
+#include <GL/osmesa.h>
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include "glfn.h"
+#include "scene.h"
+#include "sl_error.h"
+
+struct sl_gl {
+    OSMesaContext ctx;
+    unsigned char pixel[4];   /* the 1x1 OSMesa surface we make current */
+    char renderer[128];
+    char version[128];
+};
+
+enum sl_err sl_gl_init(struct sl_gl *g, struct sl_diag *d);
+void        sl_gl_free(struct sl_gl *g);
+
+/* Link a program from sources (gs may be NULL); 0 and diag on failure. */
+GLuint sl_gl_program(const char *vs, const char *gs, const char *fs, struct sl_diag *d);
+
+/* glGetError after a pass, as an sl_err naming the pass. */
+enum sl_err sl_gl_check(const char *what, struct sl_diag *d);
+
+struct sl_gl_mesh {
+    GLuint vao, vbo, ebo;
+    GLsizei count;            /* indices */
+};
+enum sl_err sl_gl_mesh_upload(struct sl_gl_mesh *m, const struct sl_scene *s, struct sl_diag *d);
+void        sl_gl_mesh_free(struct sl_gl_mesh *m);
+
+#endif

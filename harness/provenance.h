@@ -1,0 +1,28 @@
+/*
+ * provenance.h — where a number came from: git SHA (built in), host, CPU
+ * model and instruction set (llvmpipe and Embree pick code paths by ISA, so
+ * results can differ between CPUs), GL renderer, Embree version, threads,
+ * UTC time. Written beside every result.
+ */
+#ifndef SL_PROVENANCE_H
+#define SL_PROVENANCE_H
+#include <stdio.h>
+
+struct sl_provenance {
+    char git_sha[48];
+    char time_utc[32];
+    char host[64];
+    char cpu[128];
+    char isa[64];
+    char gl_renderer[128];
+    char gl_version[128];
+    char embree[32];
+    int  threads;
+    char lp_threads[16];     /* LP_NUM_THREADS as set, or "" */
+};
+
+void sl_provenance_fill(struct sl_provenance *p);
+/* "key: value" lines, each prefixed by `prefix` (e.g. "# "). */
+void sl_provenance_write(const struct sl_provenance *p, FILE *f, const char *prefix);
+
+#endif

@@ -1,0 +1,106 @@
+/*
+ * raytri.c — see raytri.h. Edges count as inside (closed triangles), so a ray
+ * through a shared edge hits at least one of the two triangles.
+ */
+#include "raytri.h"
+#include <math.h>
+
+#define SUB(r, a, b) do { (r)[0] = (a)[0] - (b)[0]; (r)[1] = (a)[1] - (b)[1]; (r)[2] = (a)[2] - (b)[2]; } while (0)
+#define CROSS(r, a, b) do { (r)[0] = (a)[1] * (b)[2] - (a)[2] * (b)[1]; \
+                            (r)[1] = (a)[2] * (b)[0] - (a)[0] * (b)[2]; \
+                            (r)[2] = (a)[0] * (b)[1] - (a)[1] * (b)[0]; } while (0)
+#define DOT(a, b) ((a)[0] * (b)[0] + (a)[1] * (b)[1] + (a)[2] * (b)[2])
+
+int sl_ray_tri_d(const double o[3], const double dir[3], const double a[3], const double b[3],
+                 const double c[3], double tmin, double *t)
+{
+    double e1[3], e2[3], pv[3], tv[3], qv[3];
+    SUB(e1, b, a);
+    SUB(e2, c, a);
+    CROSS(pv, dir, e2);
+    double det = DOT(e1, pv);
+    if (det == 0.0)
+        return 0;
+    double inv = 1.0 / det;
+    SUB(tv, o, a);
+    double u = DOT(tv, pv) * inv;
+    if (u < 0.0 || u > 1.0)
+        return 0;
+    CROSS(qv, tv, e1);
+    double v = DOT(dir, qv) * inv;
+    if (v < 0.0 || u + v > 1.0)
+        return 0;
+    double tt = DOT(e2, qv) * inv;
+    if (!(tt > tmin))
+        return 0;
+    *t = tt;
+    return 1;
+}
+
+int sl_ray_tri_f(const float o[3], const float dir[3], const float a[3], const float b[3],
+                 const float c[3], float tmin, float *t)
+{
+    float e1[3], e2[3], pv[3], tv[3], qv[3];
+    SUB(e1, b, a);
+    SUB(e2, c, a);
+    CROSS(pv, dir, e2);
+    float det = DOT(e1, pv);
+    if (det == 0.0f)
+        return 0;
+    float inv = 1.0f / det;
+    SUB(tv, o, a);
+    float u = DOT(tv, pv) * inv;
+    if (u < 0.0f || u > 1.0f)
+        return 0;
+    CROSS(qv, tv, e1);
+    float v = DOT(dir, qv) * inv;
+    if (v < 0.0f || u + v > 1.0f)
+        return 0;
+    float tt = DOT(e2, qv) * inv;
+    if (!(tt > tmin))
+        return 0;
+    *t = tt;
+    return 1;
+}
+
+static double seg_dist(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3];
+    SUB(ab, b, a);
+    SUB(ap, p, a);
+    double l2 = DOT(ab, ab);
+    double s = l2 > 0.0 ? DOT(ap, ab) / l2 : 0.0;
+    if (s < 0.0) s = 0.0;
+    if (s > 1.0) s = 1.0;
+    double q[3] = {a[0] + s * ab[0] - p[0], a[1] + s * ab[1] - p[1], a[2] + s * ab[2] - p[2]};
+    return sqrt(DOT(q, q));
+}
+
+double sl_point_tri_edge_dist_d(const double p[3], const double a[3], const double b[3],
+                                const double c[3])
+{
+    return fmin(seg_dist(p, a, b), fmin(seg_dist(p, b, c), seg_dist(p, c, a)));
+}
+
+double sl_point_tri_dist_d(const double p[3], const double a[3], const double b[3],
+                           const double c[3])
+{
+    double e1[3], e2[3], n[3], ap[3];
+    SUB(e1, b, a);
+    SUB(e2, c, a);
+    CROSS(n, e1, e2);
+    double nn = DOT(n, n);
+    SUB(ap, p, a);
+    double h = DOT(ap, n) / nn;
+    double q[3] = {p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]};
+    double plane = fabs(h) * sqrt(nn);
+    /* inside test of the projection by barycentric signs */
+    double c0[3], c1[3], c2[3], qa[3], qb[3], qc[3], ba[3], cb[3], ac[3];
+    SUB(qa, q, a); SUB(qb, q, b); SUB(qc, q, c);
+    SUB(ba, b, a); SUB(cb, c, b); SUB(ac, a, c);
+    CROSS(c0, ba, qa); CROSS(c1, cb, qb); CROSS(c2, ac, qc);
+    if (DOT(c0, n) >= 0.0 && DOT(c1, n) >= 0.0 && DOT(c2, n) >= 0.0)
+        return plane;
+    double e = sl_point_tri_edge_dist_d(q, a, b, c);
+    return sqrt(plane * plane + e * e);
+}

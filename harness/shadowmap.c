@@ -1,0 +1,124 @@
+/*
+ * shadowmap.c — see shadowmap.h.
+ * Invariants: depth is written in zero-to-one clip space (glClipControl), so
+ * window depth is the orthographic depth itself with full float precision near
+ * 0 and no [-1,1] -> [0,1] remap; a texel holds the triangle covering its
+ * centre (GL's rasterisation rule), which is what the seeds' analysis assumes.
+ */
+#include "shadowmap.h"
+#include <stdlib.h>
+#include <string.h>
+#include "util.h"
+
+extern const char sl_glsl_depth_id_vs[];
+extern const char sl_glsl_depth_id_fs[];
+
+void sl_frame_free(struct sl_light_frame *f)
+{
+    if (!f)
+        return;
+    for (int i = 0; i < SL_LAYER_COUNT; i++) {
+        free(f->layer[i].depth);
+        free(f->layer[i].id);
+    }
+    memset(f, 0, sizeof *f);
+}
+
+enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
+{
+    memset(p, 0, sizeof *p);
+    p->prog_depth_id = sl_gl_program(sl_glsl_depth_id_vs, NULL, sl_glsl_depth_id_fs, d);
+    return p->prog_depth_id ? SL_OK : SL_E_GL;
+}
+
+void sl_shadowmap_free(struct sl_shadowmap_pass *p)
+{
+    if (p->prog_depth_id)
+        glDeleteProgram(p->prog_depth_id);
+    memset(p, 0, sizeof *p);
+}
+
+static enum sl_err render_depth_id(const struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
+                                   struct sl_light_frame *f, int cull_front,
+                                   struct sl_depth_layer *out, struct sl_diag *d)
+{
+    int S = f->size;
+    size_t n = (size_t)S * (size_t)S;
+    out->depth = sl_calloc(n, sizeof(float));
+    out->id = sl_calloc(n, sizeof(uint32_t));
+    if (!out->depth || !out->id)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shadow map %dx%d", S, S);
+    double t0 = sl_now();
+    GLuint fbo, tex[2];
+    glCreateFramebuffers(1, &fbo);
+    glCreateTextures(GL_TEXTURE_2D, 2, tex);
+    glTextureStorage2D(tex[0], 1, GL_DEPTH_COMPONENT32F, S, S);
+    glTextureStorage2D(tex[1], 1, GL_R32UI, S, S);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, tex[0], 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex[1], 0);
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    enum sl_err e = SL_OK;
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "shadow-map framebuffer incomplete");
+    if (!e) {
+        const GLuint zero_u[4] = {0, 0, 0, 0};
+        const float one = 1.0f;
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glViewport(0, 0, S, S);
+        glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        if (cull_front) {
+            glEnable(GL_CULL_FACE);
+            glCullFace(GL_FRONT);
+            glFrontFace(GL_CCW);
+        } else {
+            glDisable(GL_CULL_FACE);
+        }
+        glClearNamedFramebufferuiv(fbo, GL_COLOR, 0, zero_u);
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+        glUseProgram(p->prog_depth_id);
+        glUniformMatrix4fv(glGetUniformLocation(p->prog_depth_id, "u_vp"), 1, GL_FALSE,
+                           (const float *)f->box.vp);
+        glBindVertexArray(m->vao);
+        glDrawElements(GL_TRIANGLES, m->count, GL_UNSIGNED_INT, NULL);
+        glFinish();
+        double t1 = sl_now();
+        glGetTextureImage(tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), out->depth);
+        glGetTextureImage(tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), out->id);
+        double t2 = sl_now();
+        out->ms_render = 1e3 * (t1 - t0);
+        out->ms_readback = 1e3 * (t2 - t1);
+        glDisable(GL_CULL_FACE);
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        e = sl_gl_check("shadow-map pass", d);
+    }
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(2, tex);
+    return e;
+}
+
+enum sl_err sl_shadowmap_render(const struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
+                                struct sl_light_frame *f, unsigned needs, struct sl_diag *d)
+{
+    for (int l = 0; l < SL_LAYER_COUNT; l++) {
+        if (!(needs & SL_NEED(l)) || (f->have & SL_NEED(l)))
+            continue;
+        enum sl_err e = SL_OK;
+        switch ((enum sl_layer_id)l) {
+        case SL_LAYER_DEPTH_ID:
+            e = render_depth_id(p, m, f, 0, &f->layer[l], d);
+            break;
+        case SL_LAYER_DEPTH_ID_BACK:
+            e = render_depth_id(p, m, f, 1, &f->layer[l], d);
+            break;
+        case SL_LAYER_COUNT:
+            break;
+        }
+        if (e)
+            return e;
+        f->have |= SL_NEED(l);
+    }
+    return SL_OK;
+}

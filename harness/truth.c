@@ -1,0 +1,188 @@
+/*
+ * truth.c — Embree ground truth.
+ *
+ * Self-intersection policy, and why: a PFL pixel lies on its own triangle and
+ * the shadow ray leaves that triangle's plane on its front side (the PFL test
+ * uses the same face normal), so the own triangle can only be "hit" at t ~ 0
+ * through rounding of the GL-interpolated position: the filter rejects it by
+ * id, whatever t. A neighbouring triangle sharing an edge with the pixel's
+ * triangle can also be grazed at t ~ 0 when the pixel sits on that edge; a
+ * tnear of 2^-16 (1.5e-5) relative to the coordinates (128 float ulps, above
+ * GL's interpolation error, far below any feature of our scenes: 7.6e-4
+ * units at 50 units from the origin) skips those. No other offset is applied:
+ * the origin is not pushed along the normal, so contact shadows stay exact.
+ * tests/test_truth.c checks this policy against a double-precision brute
+ * force over every triangle.
+ */
+#include "truth.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <omp.h>
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+#endif
+#include "util.h"
+
+void sl_rt_thread_init(void)
+{
+#if defined(__SSE__) || defined(__x86_64__)
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+#endif
+}
+
+float sl_rt_tnear(const float p[3])
+{
+    float m = fmaxf(fabsf(p[0]), fmaxf(fabsf(p[1]), fabsf(p[2])));
+    return m * 0x1p-16f + 0x1p-24f;
+}
+
+/* Embree's RTCRayN_id / RTCHitN_primID accessors are C++ only; these read the
+ * same SOA layout that rtcore_ray.h defines (id is the 11th ray field, primID
+ * the 6th hit field, N lanes each). */
+static unsigned rayn_id(const struct RTCRayN *r, unsigned N, unsigned i)
+{
+    return ((const unsigned *)r)[10 * N + i];
+}
+static unsigned hitn_prim(const struct RTCHitN *h, unsigned N, unsigned i)
+{
+    return ((const unsigned *)h)[5 * N + i];
+}
+
+/* Reject the hit when it is the ray's own triangle (ray.id = triangle + 1). */
+static void own_triangle_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    for (unsigned i = 0; i < args->N; i++) {
+        if (args->valid[i] != -1)
+            continue;
+        unsigned prim = hitn_prim(args->hit, args->N, i);
+        unsigned own = rayn_id(args->ray, args->N, i);
+        if (prim + 1u == own)
+            args->valid[i] = 0;
+    }
+}
+
+enum sl_err sl_rt_build(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
+                        struct sl_diag *d)
+{
+    memset(rt, 0, sizeof *rt);
+    rt->threads = threads;
+    char cfg[64];
+    snprintf(cfg, sizeof cfg, "threads=%d", threads);
+    double t0 = sl_now();
+    rt->device = rtcNewDevice(cfg);
+    if (!rt->device)
+        return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "rtcNewDevice failed (error %d)",
+                       (int)rtcGetDeviceError(NULL));
+    snprintf(rt->version, sizeof rt->version, "%d.%d.%d",
+             (int)rtcGetDeviceProperty(rt->device, RTC_DEVICE_PROPERTY_VERSION_MAJOR),
+             (int)rtcGetDeviceProperty(rt->device, RTC_DEVICE_PROPERTY_VERSION_MINOR),
+             (int)rtcGetDeviceProperty(rt->device, RTC_DEVICE_PROPERTY_VERSION_PATCH));
+    rt->scene = rtcNewScene(rt->device);
+    rtcSetSceneFlags(rt->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(rt->scene, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = rtcNewGeometry(rt->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    /* Embree-allocated buffers carry the padding its SIMD loads need. */
+    float *vb = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                        3 * sizeof(float), s->nv);
+    unsigned *ib = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                           3 * sizeof(unsigned), s->nt);
+    if (!vb || !ib) {
+        rtcReleaseGeometry(g);
+        sl_rt_free(rt);
+        return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "Embree buffers for %u triangles", s->nt);
+    }
+    memcpy(vb, s->pos, (size_t)s->nv * 3 * sizeof(float));
+    memcpy(ib, s->idx, (size_t)s->nt * 3 * sizeof(unsigned));
+    if (own_filter)
+        rtcSetGeometryOccludedFilterFunction(g, own_triangle_filter);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(rt->scene, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(rt->scene);
+    rt->ms_build = 1e3 * (sl_now() - t0);
+    enum RTCError err = rtcGetDeviceError(rt->device);
+    if (err != RTC_ERROR_NONE) {
+        sl_rt_free(rt);
+        return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "Embree scene build failed (error %d)", (int)err);
+    }
+    return SL_OK;
+}
+
+void sl_rt_free(struct sl_rt *rt)
+{
+    if (rt->scene) rtcReleaseScene(rt->scene);
+    if (rt->device) rtcReleaseDevice(rt->device);
+    memset(rt, 0, sizeof *rt);
+}
+
+enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, struct sl_view *v,
+                           struct sl_truth_stats *st, struct sl_diag *d)
+{
+    const int W = v->w, H = v->h;
+    const int tx = (W + 3) / 4, ty = (H + 3) / 4;
+    const float lx = -s->light_dir[0], ly = -s->light_dir[1], lz = -s->light_dir[2];
+    uint64_t rays = 0;
+    double t0 = sl_now();
+    /* 4x4 tiles as 16-ray packets; packets are independent, so the result
+     * does not depend on the thread count or schedule. */
+#pragma omp parallel num_threads(rt->threads) reduction(+ : rays)
+    {
+        sl_rt_thread_init();
+        struct RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+#pragma omp for schedule(dynamic, 4)
+        for (int t = 0; t < tx * ty; t++) {
+            int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
+            struct RTCRay16 r;
+            int valid[16];
+            size_t pix[16];
+            for (int k = 0; k < 16; k++) {
+                int x = x0 + (k & 3), y = y0 + (k >> 2);
+                valid[k] = 0;
+                if (x >= W || y >= H)
+                    continue;
+                size_t i = (size_t)y * (size_t)W + (size_t)x;
+                pix[k] = i;
+                if (v->cls[i] != SL_C_PFL)
+                    continue;
+                const float *p = v->pos + 3 * i;
+                valid[k] = -1;
+                r.org_x[k] = p[0];
+                r.org_y[k] = p[1];
+                r.org_z[k] = p[2];
+                r.tnear[k] = sl_rt_tnear(p);
+                r.dir_x[k] = lx;
+                r.dir_y[k] = ly;
+                r.dir_z[k] = lz;
+                r.time[k] = 0.0f;
+                r.tfar[k] = INFINITY;
+                r.mask[k] = 0xffffffffu;
+                r.id[k] = v->tri[i];
+                r.flags[k] = 0;
+                rays++;
+            }
+            rtcOccluded16(valid, rt->scene, &ctx, &r);
+            for (int k = 0; k < 16; k++)
+                if (valid[k])
+                    v->truth[pix[k]] = (r.tfar[k] == -INFINITY) ? SL_T_SHADOW : SL_T_LIT;
+        }
+    }
+    size_t n = (size_t)W * (size_t)H;
+    v->n_lit = v->n_shadow = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (v->truth[i] == SL_T_LIT) v->n_lit++;
+        else if (v->truth[i] == SL_T_SHADOW) v->n_shadow++;
+    }
+    if (st) {
+        st->rays = rays;
+        st->ms_trace = 1e3 * (sl_now() - t0);
+    }
+    enum RTCError err = rtcGetDeviceError(rt->device);
+    if (err != RTC_ERROR_NONE)
+        return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "Embree trace failed (error %d)", (int)err);
+    return SL_OK;
+}

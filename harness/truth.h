@@ -1,0 +1,49 @@
+/*
+ * truth.h — the exact answer: Embree 3, one shadow ray per PFL pixel.
+ *
+ * Owns: the Embree device and BVH of a scene (built once per scene, robust
+ * flag, high build quality). Does not: render, or know about methods; methods
+ * that trace (raytrace, csm, chain) use sl_rt_occluded16 on the same BVH.
+ *
+ * Self-intersection: each ray carries the id of the pixel's own triangle
+ * (ray.id) and an occlusion filter rejects hits on it; the ray also starts a
+ * small distance off the surface (tnear, see sl_rt_tnear). See truth.c.
+ */
+#ifndef SL_TRUTH_H
+#define SL_TRUTH_H
+#include <stdint.h>
+#include <embree3/rtcore.h>
+#include "scene.h"
+#include "view.h"
+
+struct sl_rt {
+    RTCDevice device;
+    RTCScene  scene;
+    int       threads;
+    double    ms_build;
+    char      version[32];
+};
+
+enum sl_err sl_rt_build(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
+                        struct sl_diag *d);
+void        sl_rt_free(struct sl_rt *rt);
+
+/* Distance along the ray at which shadow rays start: 2^-16 (about 1.5e-5) of
+ * the origin's largest coordinate magnitude, plus 2^-24 absolute. */
+float sl_rt_tnear(const float p[3]);
+
+struct sl_truth_stats {
+    uint64_t rays;
+    double   ms_trace;
+};
+
+/* Trace every PFL pixel of v toward the light; fills v->truth with
+ * SL_T_LIT / SL_T_SHADOW and v->n_lit / n_shadow. */
+enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, struct sl_view *v,
+                           struct sl_truth_stats *st, struct sl_diag *d);
+
+/* Turn on flush-to-zero / denormals-are-zero in the calling thread (Embree's
+ * advice; tracing threads call it). */
+void sl_rt_thread_init(void);
+
+#endif

@@ -1,0 +1,147 @@
+/*
+ * util.c — error strings, diagnostics, clock, atomic files.
+ * Invariant: nothing here prints; callers get an id and an sl_diag.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "util.h"
+#include <errno.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+static const char *const sl_err_text[] = {
+#define SL_ERR_TEXT(id, text) text,
+    SL_ERRORS(SL_ERR_TEXT)
+#undef SL_ERR_TEXT
+};
+
+const char *sl_err_str(enum sl_err e)
+{
+    return (e >= 0 && e < SL_ERR_COUNT) ? sl_err_text[e] : "unknown error";
+}
+
+enum sl_err sl_fail(struct sl_diag *d, enum sl_err e, const char *file, int line,
+                    const char *key, const char *fmt, ...)
+{
+    if (!d)
+        return e;
+    memset(d, 0, sizeof *d);
+    if (file)
+        snprintf(d->file, sizeof d->file, "%s", file);
+    d->line = line;
+    if (key)
+        snprintf(d->key, sizeof d->key, "%s", key);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(d->msg, sizeof d->msg, fmt, ap);
+    va_end(ap);
+    return e;
+}
+
+void sl_diag_format(const struct sl_diag *d, enum sl_err e, char *buf, size_t n)
+{
+    size_t k = 0;
+    buf[0] = '\0';
+    if (d->file[0])
+        k += (size_t)snprintf(buf + k, n - k, "%s:", d->file);
+    if (d->line > 0 && k < n)
+        k += (size_t)snprintf(buf + k, n - k, "%d:", d->line);
+    if (k && k < n)
+        k += (size_t)snprintf(buf + k, n - k, " ");
+    if (d->key[0] && k < n)
+        k += (size_t)snprintf(buf + k, n - k, "'%s': ", d->key);
+    if (k < n)
+        snprintf(buf + k, n - k, "%s (%s)", d->msg[0] ? d->msg : sl_err_str(e), sl_err_str(e));
+}
+
+double sl_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void *sl_calloc(size_t n, size_t size)
+{
+    if (size && n > SIZE_MAX / size)
+        return NULL;
+    return calloc(n ? n : 1, size ? size : 1);
+}
+
+enum sl_err sl_mkdirs(const char *path, struct sl_diag *d)
+{
+    char buf[1024];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "path too long");
+    for (char *p = buf + 1; ; p++) {
+        if (*p == '/' || *p == '\0') {
+            char c = *p;
+            *p = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot create directory %s: %s",
+                               buf, strerror(errno));
+            *p = c;
+            if (c == '\0')
+                break;
+        }
+    }
+    struct stat st;
+    if (stat(buf, &st) != 0 || !S_ISDIR(st.st_mode))
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "not a directory");
+    if (access(buf, W_OK | X_OK) != 0)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "directory not writable: %s", strerror(errno));
+    return SL_OK;
+}
+
+enum sl_err sl_out_open(struct sl_outfile *o, const char *path, struct sl_diag *d)
+{
+    memset(o, 0, sizeof *o);
+    snprintf(o->path, sizeof o->path, "%s", path);
+    snprintf(o->tmp, sizeof o->tmp, "%s.tmp", path);
+    o->f = fopen(o->tmp, "wb");
+    if (!o->f)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+    return SL_OK;
+}
+
+enum sl_err sl_out_commit(struct sl_outfile *o, struct sl_diag *d)
+{
+    int bad = ferror(o->f);
+    if (fclose(o->f) != 0)
+        bad = 1;
+    o->f = NULL;
+    if (bad || rename(o->tmp, o->path) != 0) {
+        remove(o->tmp);
+        return sl_fail(d, SL_E_OUTPUT, o->path, 0, NULL, "write failed: %s", strerror(errno));
+    }
+    return SL_OK;
+}
+
+void sl_out_abort(struct sl_outfile *o)
+{
+    if (o->f) {
+        fclose(o->f);
+        o->f = NULL;
+        remove(o->tmp);
+    }
+}
+
+enum sl_err sl_hash_file(const char *path, unsigned long long *out, struct sl_diag *d)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot open: %s", strerror(errno));
+    uint64_t h = 1469598103934665603ull;
+    int c;
+    while ((c = fgetc(f)) != EOF) {
+        h ^= (uint64_t)(unsigned char)c;
+        h *= 1099511628211ull;
+    }
+    fclose(f);
+    *out = h;
+    return SL_OK;
+}

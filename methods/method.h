@@ -1,0 +1,116 @@
+/*
+ * method.h — the plugin face of a shadow method.
+ *
+ * A method reads the view (G-buffer: positions, normals, triangle ids, and
+ * which pixels are PnFL/background — never the truth) and the light frame
+ * layers it asked for in `needs`, and writes one verdict per pixel with how it
+ * was decided, plus its cost counters. It never renders what the frame
+ * builder renders, never talks to the store, returns an error id, never exits.
+ *
+ * Methods are const values in the plain table of registry.c.
+ */
+#ifndef SL_METHOD_H
+#define SL_METHOD_H
+#include <stdint.h>
+#include "frame.h"
+#include "scene.h"
+#include "sl_error.h"
+#include "view.h"
+
+struct sl_rt;
+
+enum sl_verdict {
+    SL_V_NONE      = 0,   /* background */
+    SL_V_LIT       = 1,
+    SL_V_SHADOW    = 2,
+    SL_V_UNCERTAIN = 3,   /* left for a ray tracer */
+};
+
+#define SL_HOWS(X)                                     \
+    X(SL_HOW_NONE,     "none")      /* background */   \
+    X(SL_HOW_PNFL,     "pnfl")      /* faces away */   \
+    X(SL_HOW_MAP,      "map")                          \
+    X(SL_HOW_HINT,     "hint")                         \
+    X(SL_HOW_CONFIRM,  "confirm")                      \
+    X(SL_HOW_CORRECT,  "correct")                      \
+    X(SL_HOW_TRACED,   "traced")                       \
+    X(SL_HOW_FALLBACK, "fallback")
+enum sl_how {
+#define SL_HOW_ENUM(id, text) id,
+    SL_HOWS(SL_HOW_ENUM)
+#undef SL_HOW_ENUM
+    SL_HOW_COUNT
+};
+
+struct sl_verdicts {
+    int      w, h;
+    uint8_t *v;      /* enum sl_verdict */
+    uint8_t *how;    /* enum sl_how */
+};
+
+/* Machine-independent counts beside wall time. */
+struct sl_cost {
+    double   ms_method;     /* the method's own per-pixel work */
+    uint64_t lookups;       /* shadow-map texel reads */
+    uint64_t rays;          /* shadow rays handed to Embree */
+    uint64_t tri_tests;     /* ray-triangle tests outside Embree */
+};
+
+/* Self-shadow policies of the depth comparison (nsm). */
+#define SL_SELF_SHADOW(X)                                        \
+    X(SL_SELF_NONE,        "none")                               \
+    X(SL_SELF_CONSTANT,    "constant")     /* depth bias */      \
+    X(SL_SELF_SLOPE,       "slope")        /* slope-scaled */    \
+    X(SL_SELF_FRONT_FACES, "front_faces")  /* Moderno 2011 */    \
+    X(SL_SELF_TRIANGLE_ID, "triangle_id")  /* Hertel 2009 */
+enum sl_self_shadow {
+#define SL_SELF_ENUM(id, text) id,
+    SL_SELF_SHADOW(SL_SELF_ENUM)
+#undef SL_SELF_ENUM
+    SL_SELF_COUNT
+};
+const char *sl_self_shadow_name(enum sl_self_shadow s);
+int         sl_self_shadow_parse(const char *name);   /* -1 if unknown */
+
+/*
+ * Parameters of one labelled method entry. Zero means "the method's default"
+ * (sl_method_defaults fills them in); `set` has a bit per key the config gave,
+ * so a method can reject keys it does not read.
+ */
+#define SL_PARAM_SELF_SHADOW (1u << 0)
+#define SL_PARAM_BIAS        (1u << 1)
+#define SL_PARAM_SLOPE       (1u << 2)
+struct sl_method_params {
+    unsigned set;
+    int      self_shadow;   /* enum sl_self_shadow */
+    float    bias;          /* world units */
+    float    slope;         /* texels of depth per unit of tan(angle) */
+};
+
+struct sl_method_args {
+    const struct sl_scene         *scene;
+    const struct sl_view          *view;     /* truth field must not be read */
+    const struct sl_light_frame   *frame;
+    const struct sl_method_params *params;
+    const struct sl_rt            *rt;       /* for methods that trace */
+    int                            threads;
+};
+
+struct sl_method {
+    const char *name;          /* config key */
+    const char *summary;
+    unsigned    params_ok;     /* SL_PARAM_* bits it reads */
+    /* Layers the method reads, given its parameters. */
+    unsigned (*needs)(const struct sl_method_params *p);
+    /* Fill defaults for unset keys and check values; on return `set` holds
+     * exactly the keys the method reads with these parameters. */
+    enum sl_err (*configure)(struct sl_method_params *p, struct sl_diag *d);
+    enum sl_err (*run)(const struct sl_method_args *a, struct sl_verdicts *out,
+                       struct sl_cost *c, struct sl_diag *d);
+};
+
+const struct sl_method *sl_method_find(const char *name);
+int                     sl_method_count(void);
+const struct sl_method *sl_method_at(int i);
+
+#endif

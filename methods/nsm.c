@@ -1,0 +1,135 @@
+/*
+ * nsm.c — normal shadow mapping: one nearest-texel depth comparison per PFL
+ * pixel, PnFL pixels shadowed by definition.
+ *
+ * The lookup runs on the CPU over the G-buffer positions read back from GL:
+ * the same float math a fragment shader would do (project, take the texel
+ * whose square holds the point, compare depths), but deterministic across
+ * thread counts and shared with every later method that reads texels.
+ *
+ * Self-shadow policies (parameter self_shadow):
+ * - front_faces (default: what Moderno 2011 used, "front face culling to
+ *   prevent self shadowing"): the map holds back faces only; no bias.
+ * - none: plain comparison, lit iff depth <= stored depth.
+ * - constant: lit iff depth - bias * texel <= stored, bias in texels
+ *   (multiples of one texel's world size; default 1).
+ * - slope: offset = texel * (bias + slope * min(tan a, 10)) with a the angle
+ *   between the normal and the light (defaults bias 0, slope 1): a plane
+ *   tilted by a changes depth by texel * tan a across one texel, and the
+ *   stored sample is at most half a texel diagonal away; the clamp keeps
+ *   grazing receivers from pushing shadows off their casters entirely.
+ * - triangle_id (Hertel 2009): lit when the texel stores the pixel's own
+ *   triangle, otherwise the plain comparison.
+ * Biases are expressed in texels so that a config keeps its meaning across
+ * scene scales and map sizes.
+ */
+#include <math.h>
+#include <omp.h>
+#include "method.h"
+#include "util.h"
+
+static int policy_of(const struct sl_method_params *p)
+{
+    return p->self_shadow;
+}
+
+static unsigned nsm_needs(const struct sl_method_params *p)
+{
+    return policy_of(p) == SL_SELF_FRONT_FACES ? SL_NEED(SL_LAYER_DEPTH_ID_BACK)
+                                               : SL_NEED(SL_LAYER_DEPTH_ID);
+}
+
+static enum sl_err nsm_configure(struct sl_method_params *p, struct sl_diag *d)
+{
+    if (!(p->set & SL_PARAM_SELF_SHADOW))
+        p->self_shadow = SL_SELF_FRONT_FACES;
+    if (p->self_shadow < 0 || p->self_shadow >= SL_SELF_COUNT)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "self_shadow", "unknown self-shadow policy");
+    int uses_bias = p->self_shadow == SL_SELF_CONSTANT || p->self_shadow == SL_SELF_SLOPE;
+    int uses_slope = p->self_shadow == SL_SELF_SLOPE;
+    if ((p->set & SL_PARAM_BIAS) && !uses_bias)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "bias",
+                       "bias applies to self_shadow constant or slope, not %s",
+                       sl_self_shadow_name(p->self_shadow));
+    if ((p->set & SL_PARAM_SLOPE) && !uses_slope)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "slope",
+                       "slope applies to self_shadow slope, not %s",
+                       sl_self_shadow_name(p->self_shadow));
+    if (!(p->set & SL_PARAM_BIAS))
+        p->bias = p->self_shadow == SL_SELF_CONSTANT ? 1.0f : 0.0f;
+    if (!(p->set & SL_PARAM_SLOPE))
+        p->slope = uses_slope ? 1.0f : 0.0f;
+    /* the filled-in parameters are exactly the keys this policy reads */
+    p->set = SL_PARAM_SELF_SHADOW | (uses_bias ? SL_PARAM_BIAS : 0u) | (uses_slope ? SL_PARAM_SLOPE : 0u);
+    if (!(p->bias >= 0.0f && p->bias <= 1000.0f))
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "bias", "bias must be in [0, 1000] texels");
+    if (!(p->slope >= 0.0f && p->slope <= 1000.0f))
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "slope", "slope must be in [0, 1000]");
+    return SL_OK;
+}
+
+static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *out,
+                           struct sl_cost *c, struct sl_diag *d)
+{
+    const struct sl_view *v = a->view;
+    const struct sl_light_frame *f = a->frame;
+    const int policy = policy_of(a->params);
+    const enum sl_layer_id L = policy == SL_SELF_FRONT_FACES ? SL_LAYER_DEPTH_ID_BACK
+                                                             : SL_LAYER_DEPTH_ID;
+    if (!(f->have & SL_NEED(L)))
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "nsm: layer %d not rendered", (int)L);
+    const float *depth = f->layer[L].depth;
+    const uint32_t *id = f->layer[L].id;
+    /* offsets in window depth units: world units / depth range */
+    const float texel_z = f->texel_world / f->depth_range;
+    const float bias = (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE)
+                           ? a->params->bias * texel_z : 0.0f;
+    const float slope = policy == SL_SELF_SLOPE ? a->params->slope * texel_z : 0.0f;
+    const float *Ld = a->scene->light_dir;
+    const long n = (long)v->w * v->h;
+    uint64_t lookups = 0;
+    double t0 = sl_now();
+#pragma omp parallel for num_threads(a->threads) schedule(static) reduction(+ : lookups)
+    for (long i = 0; i < n; i++) {
+        if (v->cls[i] == SL_C_BACKGROUND) {
+            out->v[i] = SL_V_NONE;
+            out->how[i] = SL_HOW_NONE;
+            continue;
+        }
+        if (v->cls[i] == SL_C_PNFL) {
+            out->v[i] = SL_V_SHADOW;
+            out->how[i] = SL_HOW_PNFL;
+            continue;
+        }
+        float u, w, z;
+        sl_frame_project(f, v->pos + 3 * i, &u, &w, &z);
+        uint32_t k = sl_frame_texel(f, u, w);
+        lookups++;
+        float off = bias;
+        if (slope > 0.0f) {
+            const float *nn = v->nrm + 3 * i;
+            float cosa = -(nn[0] * Ld[0] + nn[1] * Ld[1] + nn[2] * Ld[2]);
+            float tana = sqrtf(fmaxf(0.0f, 1.0f - cosa * cosa)) / cosa;
+            off += slope * fminf(tana, 10.0f);
+        }
+        int lit;
+        if (policy == SL_SELF_TRIANGLE_ID && id[k] == v->tri[i])
+            lit = 1;
+        else
+            lit = z - off <= depth[k];
+        out->v[i] = lit ? SL_V_LIT : SL_V_SHADOW;
+        out->how[i] = SL_HOW_MAP;
+    }
+    c->ms_method += 1e3 * (sl_now() - t0);
+    c->lookups += lookups;
+    return SL_OK;
+}
+
+const struct sl_method sl_method_nsm = {
+    .name = "nsm",
+    .summary = "normal shadow mapping (self_shadow: front_faces|none|constant|slope|triangle_id)",
+    .params_ok = SL_PARAM_SELF_SHADOW | SL_PARAM_BIAS | SL_PARAM_SLOPE,
+    .needs = nsm_needs,
+    .configure = nsm_configure,
+    .run = nsm_run,
+};

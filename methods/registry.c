@@ -1,0 +1,51 @@
+/*
+ * registry.c — the plain table of methods. Adding a method: write
+ * methods/<name>.c defining `const struct sl_method sl_method_<name>` and add
+ * one line here.
+ */
+#include <string.h>
+#include "method.h"
+
+extern const struct sl_method sl_method_nsm;
+
+static const struct sl_method *const sl_methods[] = {
+    &sl_method_nsm,
+    NULL,
+};
+
+const struct sl_method *sl_method_find(const char *name)
+{
+    for (int i = 0; sl_methods[i]; i++)
+        if (strcmp(sl_methods[i]->name, name) == 0)
+            return sl_methods[i];
+    return NULL;
+}
+
+int sl_method_count(void)
+{
+    int n = 0;
+    while (sl_methods[n])
+        n++;
+    return n;
+}
+
+const struct sl_method *sl_method_at(int i) { return sl_methods[i]; }
+
+static const char *const sl_self_names[] = {
+#define SL_SELF_TEXT(id, text) text,
+    SL_SELF_SHADOW(SL_SELF_TEXT)
+#undef SL_SELF_TEXT
+};
+
+const char *sl_self_shadow_name(enum sl_self_shadow s)
+{
+    return (s >= 0 && s < SL_SELF_COUNT) ? sl_self_names[s] : "?";
+}
+
+int sl_self_shadow_parse(const char *name)
+{
+    for (int i = 0; i < SL_SELF_COUNT; i++)
+        if (strcmp(sl_self_names[i], name) == 0)
+            return i;
+    return -1;
+}
