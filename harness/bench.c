@@ -153,8 +153,16 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_diag *d)
                 tp[r] = pl;
             }
         }
-        /* both must agree on every ray: same rays, same BVH, the filter only
-         * removes own-triangle hits, which the tnear already avoids here */
+        /* the same rays must give the same answers: count the plain loop's
+         * occluded rays against the truth's shadowed pixels */
+        uint64_t plain_occ = 0;
+        for (int t = 0; t < pk.n; t++)
+            for (int k = 0; k < 16; k++)
+                plain_occ += pk.valid[t][k] && pk.r[t].tfar[k] == -INFINITY;
+        if (plain_occ != v.n_shadow)
+            fprintf(out, "note: %s: plain loop %llu occluded, truth %llu shadowed (own-triangle hits "
+                         "the filter rejects)\n", s.vp[vp].name, (unsigned long long)plain_occ,
+                    (unsigned long long)v.n_shadow);
         double mt = median(tt, reps), mpl = median(tp, reps);
         fprintf(out, "| %s | %dx%d | %llu | %.2f | %.1f | %.2f | %.1f | %.2f |\n", s.vp[vp].name, W, H,
                 (unsigned long long)rays, 1e3 * mt, rays / mt * 1e-6, 1e3 * mpl, pk.rays / mpl * 1e-6,

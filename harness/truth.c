@@ -33,12 +33,6 @@ void sl_rt_thread_init(void)
 #endif
 }
 
-float sl_rt_tnear(const float p[3])
-{
-    float m = fmaxf(fabsf(p[0]), fmaxf(fabsf(p[1]), fabsf(p[2])));
-    return m * 0x1p-16f + 0x1p-24f;
-}
-
 /* Embree's RTCRayN_id / RTCHitN_primID accessors are C++ only; these read the
  * same SOA layout that rtcore_ray.h defines (id is the 11th ray field, primID
  * the 6th hit field, N lanes each). */
@@ -124,11 +118,11 @@ enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, str
     const int W = v->w, H = v->h;
     const int tx = (W + 3) / 4, ty = (H + 3) / 4;
     const float lx = -s->light_dir[0], ly = -s->light_dir[1], lz = -s->light_dir[2];
-    uint64_t rays = 0;
+    uint64_t rays = 0, lit = 0, shadow = 0;
     double t0 = sl_now();
     /* 4x4 tiles as 16-ray packets; packets are independent, so the result
      * does not depend on the thread count or schedule. */
-#pragma omp parallel num_threads(rt->threads) reduction(+ : rays)
+#pragma omp parallel num_threads(rt->threads) reduction(+ : rays, lit, shadow)
     {
         sl_rt_thread_init();
         struct RTCIntersectContext ctx;
@@ -136,47 +130,53 @@ enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, str
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 #pragma omp for schedule(dynamic, 4)
         for (int t = 0; t < tx * ty; t++) {
-            int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
+            const int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
+            const int nx = W - x0 < 4 ? W - x0 : 4, ny = H - y0 < 4 ? H - y0 : 4;
             struct RTCRay16 r;
-            int valid[16];
-            size_t pix[16];
-            for (int k = 0; k < 16; k++) {
-                int x = x0 + (k & 3), y = y0 + (k >> 2);
-                valid[k] = 0;
-                if (x >= W || y >= H)
-                    continue;
-                size_t i = (size_t)y * (size_t)W + (size_t)x;
-                pix[k] = i;
-                if (v->cls[i] != SL_C_PFL)
-                    continue;
-                const float *p = v->pos + 3 * i;
-                valid[k] = -1;
-                r.org_x[k] = p[0];
-                r.org_y[k] = p[1];
-                r.org_z[k] = p[2];
-                r.tnear[k] = sl_rt_tnear(p);
-                r.dir_x[k] = lx;
-                r.dir_y[k] = ly;
-                r.dir_z[k] = lz;
-                r.time[k] = 0.0f;
-                r.tfar[k] = INFINITY;
-                r.mask[k] = 0xffffffffu;
-                r.id[k] = v->tri[i];
-                r.flags[k] = 0;
-                rays++;
+            int valid[16] = {0};
+            int any = 0;
+            for (int row = 0; row < ny; row++) {
+                const size_t base = (size_t)(y0 + row) * (size_t)W + (size_t)x0;
+                for (int col = 0; col < nx; col++) {
+                    const size_t i = base + (size_t)col;
+                    const int k = row * 4 + col;
+                    const float *p = v->pos + 3 * i;
+                    r.org_x[k] = p[0];
+                    r.org_y[k] = p[1];
+                    r.org_z[k] = p[2];
+                    r.tnear[k] = sl_rt_tnear(p);
+                    r.dir_x[k] = lx;
+                    r.dir_y[k] = ly;
+                    r.dir_z[k] = lz;
+                    r.time[k] = 0.0f;
+                    r.tfar[k] = INFINITY;
+                    r.mask[k] = 0xffffffffu;
+                    r.id[k] = v->tri[i];
+                    r.flags[k] = 0;
+                    valid[k] = v->cls[i] == SL_C_PFL ? -1 : 0;
+                    any |= valid[k];
+                }
             }
+            if (!any)
+                continue;
             rtcOccluded16(valid, rt->scene, &ctx, &r);
-            for (int k = 0; k < 16; k++)
-                if (valid[k])
-                    v->truth[pix[k]] = (r.tfar[k] == -INFINITY) ? SL_T_SHADOW : SL_T_LIT;
+            for (int row = 0; row < ny; row++) {
+                const size_t base = (size_t)(y0 + row) * (size_t)W + (size_t)x0;
+                for (int col = 0; col < nx; col++) {
+                    const int k = row * 4 + col;
+                    if (!valid[k])
+                        continue;
+                    const int occluded = r.tfar[k] == -INFINITY;
+                    v->truth[base + (size_t)col] = occluded ? SL_T_SHADOW : SL_T_LIT;
+                    shadow += (uint64_t)occluded;
+                    lit += (uint64_t)!occluded;
+                    rays++;
+                }
+            }
         }
     }
-    size_t n = (size_t)W * (size_t)H;
-    v->n_lit = v->n_shadow = 0;
-    for (size_t i = 0; i < n; i++) {
-        if (v->truth[i] == SL_T_LIT) v->n_lit++;
-        else if (v->truth[i] == SL_T_SHADOW) v->n_shadow++;
-    }
+    v->n_lit = lit;
+    v->n_shadow = shadow;
     if (st) {
         st->rays = rays;
         st->ms_trace = 1e3 * (sl_now() - t0);
