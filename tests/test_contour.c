@@ -1,0 +1,112 @@
+/* contour::* — contour widths and neighbourhood on synthetic result images. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include <cmocka.h>
+#include "contour.h"
+
+#define W 32
+#define H 16
+
+/* count of pixels in row y inside the contour of thickness t */
+static int row_count(const uint8_t *band, int y, int t)
+{
+    int n = 0;
+    for (int x = 0; x < W; x++)
+        n += band[y * W + x] && sl_in_contour(band[y * W + x], t);
+    return n;
+}
+
+static void contour_vertical_edge_widths(void **st)
+{
+    (void)st;
+    uint8_t s[W * H], b[W * H];
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            s[y * W + x] = x < 16 ? 1 : 2;   /* lit | shadow */
+    sl_contour_bands(W, H, s, 2, b);
+    for (int y = 0; y < H; y++) {
+        assert_int_equal(row_count(b, y, 2), 2);
+        assert_int_equal(row_count(b, y, 4), 4);
+        assert_int_equal(row_count(b, y, 6), 6);
+    }
+    /* balanced: as many lit as shadowed pixels on each side */
+    assert_int_equal(b[5 * W + 15], 1);
+    assert_int_equal(b[5 * W + 16], 1);
+    assert_int_equal(b[5 * W + 14], 2);
+    assert_int_equal(b[5 * W + 17], 2);
+    assert_int_equal(b[5 * W + 13], 3);
+    assert_int_equal(b[5 * W + 18], 3);
+    assert_int_equal(b[5 * W + 12], 0);
+}
+
+static void contour_uniform_image_has_none(void **st)
+{
+    (void)st;
+    uint8_t s[W * H], b[W * H];
+    memset(s, 2, sizeof s);
+    sl_contour_bands(W, H, s, 2, b);
+    for (int i = 0; i < W * H; i++)
+        assert_int_equal(b[i], 0);
+}
+
+static void contour_background_never_enters(void **st)
+{
+    (void)st;
+    uint8_t s[W * H], b[W * H];
+    /* left third background, then lit, then shadow */
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            s[y * W + x] = x < 10 ? 0 : (x < 20 ? 1 : 2);
+    sl_contour_bands(W, H, s, 4, b);
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < 10; x++)
+            assert_int_equal(b[y * W + x], 0);
+        /* the silhouette lit|background makes no contour */
+        assert_int_equal(b[y * W + 10], 0);
+        /* the lit|shadow change at 19|20 does, dilated up to 5 bands */
+        assert_int_equal(b[y * W + 19], 1);
+        assert_int_equal(b[y * W + 15], 5);
+        assert_int_equal(b[y * W + 14], 0);
+    }
+}
+
+static void contour_single_pixel_diamond(void **st)
+{
+    (void)st;
+    uint8_t s[W * H], b[W * H];
+    memset(s, 1, sizeof s);
+    s[8 * W + 16] = 2;     /* one shadowed pixel */
+    sl_contour_bands(W, H, s, 1, b);
+    int n1 = 0, n2 = 0;
+    for (int i = 0; i < W * H; i++) {
+        n1 += b[i] == 1;
+        n2 += b[i] == 2;
+    }
+    assert_int_equal(n1, 5);     /* the pixel and its 4 neighbours */
+    assert_int_equal(n2, 8);     /* the 4-neighbour ring around that cross */
+}
+
+static void contour_whole_image_region(void **st)
+{
+    (void)st;
+    assert_true(sl_in_contour(0, 0));
+    assert_false(sl_in_contour(0, 2));
+    assert_true(sl_in_contour(1, 2));
+    assert_false(sl_in_contour(2, 2));
+    assert_true(sl_in_contour(3, 6));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(contour_vertical_edge_widths),
+        cmocka_unit_test(contour_uniform_image_has_none),
+        cmocka_unit_test(contour_background_never_enters),
+        cmocka_unit_test(contour_single_pixel_diamond),
+        cmocka_unit_test(contour_whole_image_region),
+    };
+    return cmocka_run_group_tests_name("contour", tests, NULL, NULL);
+}

@@ -1,0 +1,81 @@
+/* raytri::* — the reference ray-triangle tests and distances. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include "raytri.h"
+
+static const double A[3] = {0, 0, 0}, B[3] = {1, 0, 0}, C[3] = {0, 1, 0};
+
+static void raytri_hit_inside(void **st)
+{
+    (void)st;
+    double o[3] = {0.25, 0.25, 5}, d[3] = {0, 0, -1}, t = -1;
+    assert_int_equal(sl_ray_tri_d(o, d, A, B, C, 0.0, &t), 1);
+    assert_true(fabs(t - 5.0) < 1e-12);
+    /* from below, facing the back: no culling */
+    double o2[3] = {0.25, 0.25, -2}, d2[3] = {0, 0, 1};
+    assert_int_equal(sl_ray_tri_d(o2, d2, A, B, C, 0.0, &t), 1);
+    assert_true(fabs(t - 2.0) < 1e-12);
+}
+
+static void raytri_miss_outside_and_behind(void **st)
+{
+    (void)st;
+    double t;
+    double o[3] = {0.75, 0.75, 5}, d[3] = {0, 0, -1};
+    assert_int_equal(sl_ray_tri_d(o, d, A, B, C, 0.0, &t), 0);      /* beyond the hypotenuse */
+    double o2[3] = {0.25, 0.25, 5}, d2[3] = {0, 0, 1};
+    assert_int_equal(sl_ray_tri_d(o2, d2, A, B, C, 0.0, &t), 0);    /* triangle behind */
+    double o3[3] = {0.25, 0.25, 1}, d3[3] = {1, 0, 0};
+    assert_int_equal(sl_ray_tri_d(o3, d3, A, B, C, 0.0, &t), 0);    /* parallel */
+}
+
+static void raytri_edges_closed_and_tmin(void **st)
+{
+    (void)st;
+    double t;
+    double o[3] = {0.5, 0.5, 3}, d[3] = {0, 0, -1};                  /* exactly on the hypotenuse */
+    assert_int_equal(sl_ray_tri_d(o, d, A, B, C, 0.0, &t), 1);
+    double o2[3] = {0.25, 0.25, 0.5};
+    assert_int_equal(sl_ray_tri_d(o2, d, A, B, C, 0.5, &t), 0);     /* t == tmin is not a hit */
+    assert_int_equal(sl_ray_tri_d(o2, d, A, B, C, 0.49, &t), 1);
+}
+
+static void raytri_float_agrees(void **st)
+{
+    (void)st;
+    const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0};
+    float t;
+    float o[3] = {0.2f, 0.3f, 2}, d[3] = {0, 0, -1};
+    assert_int_equal(sl_ray_tri_f(o, d, a, b, c, 0.0f, &t), 1);
+    assert_true(fabsf(t - 2.0f) < 1e-6f);
+    float o2[3] = {0.6f, 0.6f, 2};
+    assert_int_equal(sl_ray_tri_f(o2, d, a, b, c, 0.0f, &t), 0);
+}
+
+static void raytri_distances(void **st)
+{
+    (void)st;
+    double p[3] = {0.25, 0.25, 2};
+    assert_true(fabs(sl_point_tri_dist_d(p, A, B, C) - 2.0) < 1e-12);
+    double q[3] = {2, 0, 0};                      /* 1 beyond vertex B along x */
+    assert_true(fabs(sl_point_tri_dist_d(q, A, B, C) - 1.0) < 1e-12);
+    double r[3] = {0.25, -0.5, 0};                /* 0.5 below edge AB */
+    assert_true(fabs(sl_point_tri_dist_d(r, A, B, C) - 0.5) < 1e-12);
+    double s[3] = {0.25, 0.1, 0};                 /* inside, 0.1 from AB */
+    assert_true(fabs(sl_point_tri_edge_dist_d(s, A, B, C) - 0.1) < 1e-12);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(raytri_hit_inside),
+        cmocka_unit_test(raytri_miss_outside_and_behind),
+        cmocka_unit_test(raytri_edges_closed_and_tmin),
+        cmocka_unit_test(raytri_float_agrees),
+        cmocka_unit_test(raytri_distances),
+    };
+    return cmocka_run_group_tests_name("raytri", tests, NULL, NULL);
+}

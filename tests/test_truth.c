@@ -1,0 +1,165 @@
+/*
+ * truth::* — the Embree truth against a brute-force test of every triangle in
+ * double precision, pixel by pixel.
+ *
+ * The reference uses the same rays (origin = the G-buffer position, toward the
+ * light, from the same tnear) and the same own-triangle rule, but exact
+ * arithmetic on every triangle. Where the two disagree, the ray must pass
+ * within EPS_REL of a triangle's boundary (the hit point's distance to the
+ * nearest edge of the triangle the reference hit, or the smallest distance
+ * from the ray's plane crossing to a triangle it missed) — a tie that float
+ * rounding may break either way. Anything farther is a real error.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include "fixture.h"
+#include "raytri.h"
+
+/* relative to the scene's extent: 1e-5 of 600 units is 6e-3 (primitives) */
+#define EPS_REL 1e-5
+
+struct check { long pfl, agree, explained, unexplained; double worst; };
+
+static void ld(const float *p, double *o) { o[0] = p[0]; o[1] = p[1]; o[2] = p[2]; }
+
+static void brute_force(const struct sl_scene *s, const struct sl_view *v, struct check *c)
+{
+    double ext = 0;
+    for (int k = 0; k < 3; k++)
+        ext = fmax(ext, (double)s->hi[k] - s->lo[k]);
+    double eps = EPS_REL * ext;
+    double L[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]};
+    memset(c, 0, sizeof *c);
+    size_t n = (size_t)v->w * v->h;
+    for (size_t i = 0; i < n; i++) {
+        if (v->cls[i] != SL_C_PFL)
+            continue;
+        c->pfl++;
+        double o[3];
+        ld(v->pos + 3 * i, o);
+        double tmin = sl_rt_tnear(v->pos + 3 * i);
+        int hit = 0;
+        double margin = INFINITY;   /* how close the decision was */
+        for (uint32_t t = 0; t < s->nt; t++) {
+            if (t + 1 == v->tri[i])
+                continue;
+            double a[3], b[3], cc[3], th;
+            ld(s->pos + 3 * s->idx[3 * t], a);
+            ld(s->pos + 3 * s->idx[3 * t + 1], b);
+            ld(s->pos + 3 * s->idx[3 * t + 2], cc);
+            if (sl_ray_tri_d(o, L, a, b, cc, tmin, &th)) {
+                hit = 1;
+                double q[3] = {o[0] + th * L[0], o[1] + th * L[1], o[2] + th * L[2]};
+                margin = fmin(margin, sl_point_tri_edge_dist_d(q, a, b, cc));
+            }
+        }
+        int embree_shadow = v->truth[i] == SL_T_SHADOW;
+        if (hit == embree_shadow) {
+            c->agree++;
+            continue;
+        }
+        if (!hit) {
+            /* Embree found an occluder the reference missed: how near did the
+             * ray pass to any triangle in front of the point? */
+            for (uint32_t t = 0; t < s->nt; t++) {
+                if (t + 1 == v->tri[i])
+                    continue;
+                double a[3], b[3], cc[3], nrm[3], e1[3], e2[3];
+                ld(s->pos + 3 * s->idx[3 * t], a);
+                ld(s->pos + 3 * s->idx[3 * t + 1], b);
+                ld(s->pos + 3 * s->idx[3 * t + 2], cc);
+                for (int k = 0; k < 3; k++) { e1[k] = b[k] - a[k]; e2[k] = cc[k] - a[k]; }
+                nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
+                nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
+                nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+                double den = nrm[0] * L[0] + nrm[1] * L[1] + nrm[2] * L[2];
+                if (den == 0.0)
+                    continue;
+                double th = (nrm[0] * (a[0] - o[0]) + nrm[1] * (a[1] - o[1]) + nrm[2] * (a[2] - o[2])) / den;
+                if (th <= 0.0)
+                    continue;
+                double q[3] = {o[0] + th * L[0], o[1] + th * L[1], o[2] + th * L[2]};
+                margin = fmin(margin, sl_point_tri_dist_d(q, a, b, cc));
+            }
+        }
+        if (margin <= eps)
+            c->explained++;
+        else {
+            c->unexplained++;
+            if (c->unexplained <= 5)
+                fprintf(stderr, "pixel %zu (tri %u): embree %s, reference %s, margin %g\n", i,
+                        v->tri[i] - 1, embree_shadow ? "shadow" : "lit", hit ? "shadow" : "lit", margin);
+        }
+        c->worst = fmax(c->worst, margin);
+    }
+}
+
+static void run_scene(const char *scene, int size, long *pfl_out)
+{
+    struct fixture f;
+    assert_true(fixture_open(&f, scene, 2));
+    long pfl = 0;
+    for (int vp = 0; vp < f.scene.nvp; vp++) {
+        struct sl_view v;
+        assert_true(fixture_view(&f, vp, size, size, &v));
+        struct check c;
+        brute_force(&f.scene, &v, &c);
+        printf("truth::%s/%s %dx%d: %ld PFL, %ld agree, %ld disagree within eps (worst margin %g), %ld unexplained\n",
+               scene, f.scene.vp[vp].name, size, size, c.pfl, c.agree, c.explained, c.worst, c.unexplained);
+        assert_int_equal(c.unexplained, 0);
+        /* the comparison means something: there are shadows and light */
+        assert_true(v.n_shadow > 100 && v.n_lit > 100);
+        /* disagreements, if any, are a vanishing share */
+        assert_true(c.explained * 10000 <= c.pfl);
+        pfl += c.pfl;
+        sl_view_free(&v);
+    }
+    fixture_close(&f);
+    *pfl_out = pfl;
+}
+
+static void truth_blocks_matches_brute_force(void **st)
+{
+    (void)st;
+    long pfl;
+    run_scene("blocks", 256, &pfl);
+    assert_true(pfl > 10000);
+}
+
+static void truth_primitives_matches_brute_force(void **st)
+{
+    (void)st;
+    long pfl;
+    run_scene("primitives", 256, &pfl);
+    assert_true(pfl > 10000);
+}
+
+/* Same answer with 1 and 2 tracing threads, pixel for pixel. */
+static void truth_thread_count_invariant(void **st)
+{
+    (void)st;
+    struct fixture f1, f2;
+    assert_true(fixture_open(&f1, "primitives", 1));
+    assert_true(fixture_open(&f2, "primitives", 2));
+    struct sl_view a, b;
+    assert_true(fixture_view(&f1, 0, 256, 256, &a));
+    assert_true(fixture_view(&f2, 0, 256, 256, &b));
+    assert_memory_equal(a.truth, b.truth, (size_t)256 * 256);
+    sl_view_free(&a);
+    sl_view_free(&b);
+    fixture_close(&f2);
+    fixture_close(&f1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(truth_blocks_matches_brute_force),
+        cmocka_unit_test(truth_primitives_matches_brute_force),
+        cmocka_unit_test(truth_thread_count_invariant),
+    };
+    return cmocka_run_group_tests_name("truth", tests, NULL, NULL);
+}
