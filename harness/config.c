@@ -448,8 +448,12 @@ enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_di
     if (ce != CYAML_OK) {
         char key[96] = "";
         int line = 0;
-        /* outermost first: libcyaml prints the innermost frame first */
-        for (int i = lg.ntrace - 1; i >= 0; i--) {
+        const char *missing = "Missing required mapping field: ";
+        int is_missing = strncmp(lg.first, missing, strlen(missing)) == 0;
+        /* outermost first: libcyaml prints the innermost frame first; for a
+         * missing field the innermost frame is the last field it did read,
+         * a sibling, so the path stops at the parent mapping */
+        for (int i = lg.ntrace - 1; i >= (is_missing ? 1 : 0); i--) {
             const char *t = lg.trace[i];
             if (!t[0])
                 continue;
@@ -465,6 +469,11 @@ enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_di
             snprintf(key, sizeof key, "%s", pe ? pe->path : k);
             line = pe ? pe->line : line;
             e = sl_fail(d, SL_E_CONFIG, path, line, key, "unknown key '%s'", k);
+        } else if (is_missing) {
+            size_t k = strlen(key);
+            snprintf(key + k, sizeof key - k, "%s%s", k ? "." : "", lg.first + strlen(missing));
+            line = lg.ntrace > 1 ? lg.trace_line[1] : 0;
+            e = sl_fail(d, SL_E_CONFIG, path, line, key, "missing required key");
         } else {
             e = sl_fail(d, SL_E_CONFIG, path, line, key[0] ? key : NULL, "%s",
                         lg.first[0] ? lg.first : cyaml_strerror(ce));

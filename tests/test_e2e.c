@@ -1,0 +1,234 @@
+/*
+ * e2e::* — the default experiment end to end, its files, and invariants of
+ * its figures; the self-shadow policies on one view; determinism.
+ */
+#define _DEFAULT_SOURCE
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <cmocka.h>
+#include "config.h"
+#include "image.h"
+#include "run.h"
+
+static char tmpdir[] = "/tmp/shadowlab-e2e-XXXXXX";
+
+static int exists(const char *dir, const char *name)
+{
+    char p[1400];
+    struct stat st;
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    return stat(p, &st) == 0 && st.st_size > 0;
+}
+
+static void check_counts(const struct sl_config *c, const struct sl_run_result *r)
+{
+    for (int i = 0; i < r->ncells; i++) {
+        const struct sl_cell *cl = &r->cells[i];
+        uint64_t W = (uint64_t)c->viewport_w[cl->viewport], H = (uint64_t)c->viewport_h[cl->viewport];
+        assert_int_equal(cl->n_pfl + cl->n_pnfl + cl->n_background, W * H);
+        assert_int_equal(cl->n_truth_lit + cl->n_truth_shadow, cl->n_pfl);
+        assert_int_equal(cl->fig.background, cl->n_background);
+        for (int k = 0; k < cl->fig.nregions; k++) {
+            const uint64_t *n = cl->fig.r[k].n;
+            assert_int_equal(n[SL_FIG_pfl] + n[SL_FIG_pnfl], n[SL_FIG_pixels]);
+            assert_int_equal(n[SL_FIG_light] + n[SL_FIG_shadow] + n[SL_FIG_uncertain], n[SL_FIG_pixels]);
+            assert_int_equal(n[SL_FIG_light_correct] + n[SL_FIG_light_incorrect], n[SL_FIG_light]);
+            assert_int_equal(n[SL_FIG_shadow_correct] + n[SL_FIG_shadow_incorrect], n[SL_FIG_shadow]);
+            assert_int_equal(n[SL_FIG_light_incorrect] + n[SL_FIG_shadow_incorrect], n[SL_FIG_wrong]);
+            assert_true(n[SL_FIG_wrong_caught] <= cl->fig.wrong_image);
+            if (k > 0 && cl->fig.r[k].thickness != 0)   /* thicker contours hold more */
+                assert_true(n[SL_FIG_pixels] >= cl->fig.r[k - 1].n[SL_FIG_pixels]);
+        }
+        const struct sl_region_figures *img = &cl->fig.r[cl->fig.nregions - 1];
+        assert_int_equal(img->thickness, 0);
+        assert_int_equal(img->n[SL_FIG_pixels] + cl->n_background, W * H);
+        assert_int_equal(img->n[SL_FIG_pfl], cl->n_pfl);
+        assert_int_equal(img->n[SL_FIG_wrong], cl->fig.wrong_image);
+        assert_int_equal(cl->cost.lookups, cl->n_pfl);
+    }
+}
+
+static void e2e_default_experiment(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    struct sl_diag d;
+    assert_int_equal(sl_config_load("configs/default.yaml", &c, &d), SL_OK);
+    struct sl_run_opts o = {.out_root = tmpdir, .table_out = NULL, .write_files = 1};
+    struct sl_run_result r;
+    enum sl_err e = sl_run(&c, &o, &r, &d);
+    if (e)
+        fprintf(stderr, "%s\n", d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(r.ncells, 3 * 2);
+    check_counts(&c, &r);
+    for (int i = 0; i < r.ncells; i++) {
+        /* with front faces culled, wrong pixels are a few percent of the
+         * shadowed ones at most (1.1-1.7% measured; no bias gives ~170%) */
+        const struct sl_cell *cl = &r.cells[i];
+        const struct sl_region_figures *img = &cl->fig.r[cl->fig.nregions - 1];
+        assert_true(cl->fig.wrong_image * 100 < 3 * (cl->n_truth_shadow + cl->n_pnfl));
+        assert_true(img->n[SL_FIG_shadow] > 0);
+    }
+
+    for (int vp = 0; vp < 3; vp++) {
+        const struct sl_cell *m1024 = &r.cells[vp * 2], *m2048 = &r.cells[vp * 2 + 1];
+        assert_int_equal(c.maps[m1024->map], 1024);
+        assert_int_equal(c.maps[m2048->map], 2048);
+        const struct sl_figures *a = &m1024->fig, *b = &m2048->fig;
+        printf("e2e::default %s: wrong %llu (1024²) -> %llu (2048²); caught in 2/4/6 px: "
+               "%.2f%% %.2f%% %.2f%% (1024²), %.2f%% %.2f%% %.2f%% (2048²)\n",
+               m1024->viewpoint, (unsigned long long)a->wrong_image, (unsigned long long)b->wrong_image,
+               a->r[0].pct[SL_FIG_wrong_caught], a->r[1].pct[SL_FIG_wrong_caught],
+               a->r[2].pct[SL_FIG_wrong_caught], b->r[0].pct[SL_FIG_wrong_caught],
+               b->r[1].pct[SL_FIG_wrong_caught], b->r[2].pct[SL_FIG_wrong_caught]);
+        /* aliasing falls with map resolution */
+        assert_true(a->wrong_image > 0);
+        assert_true(b->wrong_image < a->wrong_image);
+        /* the share of wrong pixels inside the 6-px contour is reported */
+        assert_int_equal(a->r[2].thickness, 6);
+        assert_false(isnan(a->r[2].pct[SL_FIG_wrong_caught]));
+        assert_true(a->r[2].pct[SL_FIG_wrong_caught] >= a->r[0].pct[SL_FIG_wrong_caught]);
+        assert_true(a->r[2].pct[SL_FIG_wrong_caught] <= 100.0);
+    }
+
+    /* files */
+    char dir[1200];
+    snprintf(dir, sizeof dir, "%s/default", tmpdir);
+    const char *files[] = {"figures.csv", "costs.csv", "table.md", "config.yaml", "run.yaml"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++)
+        assert_true(exists(dir, files[i]));
+    char png[1400];
+    snprintf(png, sizeof png, "%s/overlays/primitives-side-1024x1024-1024-nsm.png", dir);
+    int w, h;
+    unsigned char *rgb;
+    assert_int_equal(sl_image_read_rgb8(png, &w, &h, &rgb, &d), SL_OK);
+    assert_int_equal(w, 1024);
+    assert_int_equal(h, 1024);
+    long green = 0, grey = 0, wrong = 0;
+    for (long i = 0; i < (long)w * h; i++) {
+        const unsigned char *p = rgb + 3 * i;
+        green += p[0] == 0 && p[1] == 200 && p[2] == 0;
+        grey += p[0] == p[1] && p[1] == p[2] && p[0] > 0;
+        wrong += (p[0] == 230 && p[1] == 0) || (p[0] == 255 && p[1] == 230) || (p[2] == 255 && p[1] == 60);
+    }
+    free(rgb);
+    /* the overlay's coloured pixels are the figures' own: contour and errors */
+    const struct sl_region_figures *c2 = &r.cells[0].fig.r[0];
+    assert_int_equal(green + wrong, (long)(c2->n[SL_FIG_pixels] - c2->n[SL_FIG_wrong]) + (long)r.cells[0].fig.wrong_image);
+    assert_int_equal(wrong, (long)r.cells[0].fig.wrong_image);
+    assert_true(grey > w * h / 2);
+    /* no staging folders left behind */
+    char cmd[1400];
+    snprintf(cmd, sizeof cmd, "ls -A %s | grep -q partial", tmpdir);
+    assert_int_not_equal(system(cmd), 0);
+    sl_run_result_free(&r);
+}
+
+static int write_config(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return 0;
+    fputs(text, f);
+    fclose(f);
+    return 1;
+}
+
+/* The self-shadow policies do what they claim on the side view. */
+static void e2e_self_shadow_policies(void **st)
+{
+    (void)st;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/policies.yaml", tmpdir);
+    assert_true(write_config(path,
+        "scene: primitives\nviewpoints: [side]\nviewports: [{width: 512, height: 512}]\n"
+        "map_sizes: [1024]\nmethods:\n"
+        "  - {label: ff, method: nsm, self_shadow: front_faces}\n"
+        "  - {label: none, method: nsm, self_shadow: none}\n"
+        "  - {label: const, method: nsm, self_shadow: constant, bias: 1.5}\n"
+        "  - {label: slope, method: nsm, self_shadow: slope}\n"
+        "  - {label: id, method: nsm, self_shadow: triangle_id}\n"));
+    struct sl_config c;
+    struct sl_diag d;
+    assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    struct sl_run_opts o = {.write_files = 0};
+    struct sl_run_result r;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(r.ncells, 5);
+    check_counts(&c, &r);
+    uint64_t w[5], ws[5];
+    for (int i = 0; i < 5; i++) {
+        const struct sl_region_figures *img = &r.cells[i].fig.r[r.cells[i].fig.nregions - 1];
+        w[i] = r.cells[i].fig.wrong_image;
+        ws[i] = img->n[SL_FIG_shadow_incorrect];
+        printf("e2e::policy %-6s wrong %6llu (wrongly shadowed %6llu, wrongly lit %6llu)\n", c.methods[i].label,
+               (unsigned long long)w[i], (unsigned long long)ws[i],
+               (unsigned long long)img->n[SL_FIG_light_incorrect]);
+    }
+    /* no bias: self-shadowing acne, wrongly shadowed pixels everywhere */
+    assert_true(ws[1] > 10 * ws[0]);
+    /* every remedy removes most of it */
+    assert_true(ws[2] * 4 < ws[1]);
+    assert_true(ws[3] * 4 < ws[1]);
+    assert_true(ws[4] * 4 < ws[1]);
+    sl_run_result_free(&r);
+}
+
+/* Same figures on a second run and with one thread instead of two. */
+static void e2e_deterministic(void **st)
+{
+    (void)st;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/det.yaml", tmpdir);
+    assert_true(write_config(path,
+        "scene: primitives\nviewpoints: [against]\nviewports: [{width: 384, height: 256}]\n"
+        "map_sizes: [512, 2048]\nmethods: [{method: nsm}]\nthreads: 2\n"));
+    struct sl_config c;
+    struct sl_diag d;
+    assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    struct sl_run_opts o = {.write_files = 0};
+    struct sl_run_result a, b, t1;
+    assert_int_equal(sl_run(&c, &o, &a, &d), SL_OK);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    c.threads = 1;
+    assert_int_equal(sl_run(&c, &o, &t1, &d), SL_OK);
+    for (int i = 0; i < a.ncells; i++) {
+        assert_memory_equal(a.cells[i].fig.r, b.cells[i].fig.r, sizeof a.cells[i].fig.r);
+        assert_memory_equal(a.cells[i].fig.r, t1.cells[i].fig.r, sizeof a.cells[i].fig.r);
+    }
+    sl_run_result_free(&a);
+    sl_run_result_free(&b);
+    sl_run_result_free(&t1);
+}
+
+static int setup(void **st)
+{
+    (void)st;
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    char cmd[200];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(e2e_default_experiment),
+        cmocka_unit_test(e2e_self_shadow_policies),
+        cmocka_unit_test(e2e_deterministic),
+    };
+    return cmocka_run_group_tests_name("e2e", tests, setup, teardown);
+}
