@@ -132,8 +132,10 @@ enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, str
         for (int t = 0; t < tx * ty; t++) {
             const int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
             const int nx = W - x0 < 4 ? W - x0 : 4, ny = H - y0 < 4 ? H - y0 : 4;
-            struct RTCRay16 r;
-            int valid[16] = {0};
+            /* Embree loads the packet and its mask with 64-byte aligned
+             * vector loads */
+            _Alignas(64) struct RTCRay16 r;
+            _Alignas(64) int valid[16] = {0};
             int any = 0;
             for (int row = 0; row < ny; row++) {
                 const size_t base = (size_t)(y0 + row) * (size_t)W + (size_t)x0;
