@@ -14,6 +14,7 @@
 #include <string.h>
 #include <omp.h>
 #include "gbuffer.h"
+#include "provenance.h"
 #include "glctx.h"
 #include "run.h"
 #include "truth.h"
@@ -120,7 +121,7 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_diag *d)
         (e = sl_rt_build(&plain, &s, c.threads, 0, d)))
         goto out;
     fprintf(out, "# shadowlab bench: %s, scene %s, git %s, %d threads, Embree %s, %s\n\n", cfg_path,
-            c.scene, SL_GIT_SHA, c.threads, rt.version, gl.renderer);
+            c.scene, sl_git_sha(), c.threads, rt.version, gl.renderer);
     fprintf(out, "## Truth pass vs a plain rtcOccluded16 loop over the same rays (median of %d, after a warm-up)\n\n", reps);
     fprintf(out, "| viewpoint | viewport | rays | truth ms | truth Mrays/s | plain ms | plain Mrays/s | ratio |\n");
     fprintf(out, "|---|---|---:|---:|---:|---:|---:|---:|\n");

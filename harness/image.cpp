@@ -1,5 +1,6 @@
 // image.cpp — thin OpenImageIO wrapper behind image.h. C++ stays here.
 #include "image.h"
+#include "provenance.h"
 #include <OpenImageIO/imageio.h>
 #include <cstdio>
 #include <cstdlib>
@@ -27,7 +28,7 @@ extern "C" enum sl_err sl_image_write_rgb8(const char *path, int w, int h,
     if (!out)
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "no image writer: %s", OIIO::geterror().c_str());
     ImageSpec spec(w, h, 3, TypeDesc::UINT8);
-    spec.attribute("Software", "shadowlab " SL_GIT_SHA);
+    spec.attribute("Software", std::string("shadowlab ") + sl_git_sha());
     if (!out->open(tmp, spec))
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "cannot write: %s", out->geterror().c_str());
     // bottom-up rows: start at the last row and walk with a negative stride

@@ -9,6 +9,7 @@
 #include "bench.h"
 #include "config.h"
 #include "method.h"
+#include "provenance.h"
 #include "run.h"
 #include "scene.h"
 #include "util.h"
@@ -109,7 +110,7 @@ int main(int argc, char **argv)
         return usage_error("list: methods or scenes");
     }
     if (strcmp(cmd, "version") == 0) {
-        printf("shadowlab %s\n", SL_GIT_SHA);
+        printf("shadowlab %s\n", sl_git_sha());
         return 0;
     }
     if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {

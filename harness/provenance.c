@@ -21,7 +21,7 @@ void sl_provenance_fill(struct sl_provenance *p)
     memcpy(p->gl_version, gl_v, sizeof gl_v);
     memcpy(p->embree, emb, sizeof emb);
     p->threads = threads;
-    snprintf(p->git_sha, sizeof p->git_sha, "%s", SL_GIT_SHA);
+    snprintf(p->git_sha, sizeof p->git_sha, "%s", sl_git_sha());
     time_t now = time(NULL);
     struct tm tm;
     gmtime_r(&now, &tm);

@@ -7,6 +7,9 @@
 #ifndef SL_PROVENANCE_H
 #define SL_PROVENANCE_H
 #include <stdio.h>
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 struct sl_provenance {
     char git_sha[48];
@@ -21,8 +24,15 @@ struct sl_provenance {
     char lp_threads[16];     /* LP_NUM_THREADS as set, or "" */
 };
 
+/* The git SHA of the source this binary was built from (generated at build
+ * time; "-dirty" when tracked files had uncommitted changes). */
+const char *sl_git_sha(void);
+
 void sl_provenance_fill(struct sl_provenance *p);
 /* "key: value" lines, each prefixed by `prefix` (e.g. "# "). */
 void sl_provenance_write(const struct sl_provenance *p, FILE *f, const char *prefix);
 
+#ifdef __cplusplus
+}
+#endif
 #endif

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# scripts/setup.sh — one command from a fresh Debian 12 machine to results.
+#
+#   scripts/setup.sh run [CONFIG]   install, build, run an experiment (default: configs/default.yaml)
+#   scripts/setup.sh test           install, build, run the whole test suite through ctest
+#   scripts/setup.sh build          install and build only
+#
+# Installs only the Debian packages that are missing (as root, or through sudo).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Every package shadowlab needs, by name.
+PACKAGES=(
+  build-essential cmake pkg-config git
+  libosmesa6-dev        # OpenGL 4.5 core without a window (llvmpipe)
+  libembree-dev         # ray tracing: the ground truth
+  libopenimageio-dev    # images (overlays)
+  libopenexr-dev        # OpenImageIO's CMake package asks for OpenEXR
+  libcglm-dev           # vector math
+  libcyaml-dev libyaml-dev  # configs
+  libcmocka-dev         # unit tests
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build build -j "$jobs"
+
+case "${1:-run}" in
+  run)   shift || true; exec build/shadowlab run "${1:-configs/default.yaml}" ;;
+  test)  cd build && exec ctest --output-on-failure -j "$jobs" ;;
+  build) ;;
+  *)     echo "usage: scripts/setup.sh run [CONFIG] | test | build" >&2; exit 2 ;;
+esac
