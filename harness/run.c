@@ -175,6 +175,33 @@ static void write_markdown(FILE *f, const struct sl_config *c, const struct sl_r
     fprintf(f, "\nTotal %.0f ms (scene %.1f ms, BVH %.1f ms).\n", res->ms_total, res->ms_scene, res->ms_bvh);
 }
 
+static void write_figures_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    write_csv_header(f);
+    for (int i = 0; i < res->ncells; i++)
+        write_csv_cell(f, c, res, &res->cells[i]);
+}
+
+static void write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    write_costs_header(f);
+    for (int i = 0; i < res->ncells; i++)
+        write_costs_cell(f, c, res, &res->cells[i]);
+}
+
+static void write_config_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    fprintf(f, "# from %s (hash %016llx), git %s\n", c->path, c->hash, res->prov.git_sha);
+    sl_config_write(c, f);
+}
+
+static void write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    fprintf(f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
+    sl_provenance_write(&res->prov, f, "");
+    fprintf(f, "ms_total: %.1f\n", res->ms_total);
+}
+
 /* ---- the run ---- */
 
 struct run_ctx {
@@ -367,45 +394,26 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         goto out;
 
     {
-        struct sl_outfile f;
-        char path[1300];
-        snprintf(path, sizeof path, "%s/figures.csv", stage);
-        if ((e = sl_out_open(&f, path, d)))
-            goto out;
-        write_csv_header(f.f);
-        for (int i = 0; i < res->ncells; i++)
-            write_csv_cell(f.f, c, res, &res->cells[i]);
-        if ((e = sl_out_commit(&f, d)))
-            goto out;
-        snprintf(path, sizeof path, "%s/costs.csv", stage);
-        if ((e = sl_out_open(&f, path, d)))
-            goto out;
-        write_costs_header(f.f);
-        for (int i = 0; i < res->ncells; i++)
-            write_costs_cell(f.f, c, res, &res->cells[i]);
-        if ((e = sl_out_commit(&f, d)))
-            goto out;
-        snprintf(path, sizeof path, "%s/table.md", stage);
-        if ((e = sl_out_open(&f, path, d)))
-            goto out;
-        write_markdown(f.f, c, res);
-        if ((e = sl_out_commit(&f, d)))
-            goto out;
-        snprintf(path, sizeof path, "%s/config.yaml", stage);
-        if ((e = sl_out_open(&f, path, d)))
-            goto out;
-        fprintf(f.f, "# from %s (hash %016llx), git %s\n", c->path, c->hash, res->prov.git_sha);
-        sl_config_write(c, f.f);
-        if ((e = sl_out_commit(&f, d)))
-            goto out;
-        snprintf(path, sizeof path, "%s/run.yaml", stage);
-        if ((e = sl_out_open(&f, path, d)))
-            goto out;
-        fprintf(f.f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
-        sl_provenance_write(&res->prov, f.f, "");
-        fprintf(f.f, "ms_total: %.1f\n", res->ms_total);
-        if ((e = sl_out_commit(&f, d)))
-            goto out;
+        static const struct {
+            const char *name;
+            void (*write)(FILE *, const struct sl_config *, const struct sl_run_result *);
+        } files[] = {
+            {"figures.csv", write_figures_csv},
+            {"costs.csv", write_costs_csv},
+            {"table.md", write_markdown},
+            {"config.yaml", write_config_yaml},
+            {"run.yaml", write_run_yaml},
+        };
+        for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
+            struct sl_outfile f;
+            char path[1300];
+            snprintf(path, sizeof path, "%s/%s", stage, files[k].name);
+            if ((e = sl_out_open(&f, path, d)))
+                goto out;
+            files[k].write(f.f, c, res);
+            if ((e = sl_out_commit(&f, d)))
+                goto out;
+        }
     }
     /* swap the finished folder into place */
     {

@@ -16,6 +16,7 @@ PACKAGES=(
   libembree-dev         # ray tracing: the ground truth
   libopenimageio-dev    # images (overlays)
   libopenexr-dev        # OpenImageIO's CMake package asks for OpenEXR
+  openimageio-tools     # ... and checks that its tools (iconvert, ...) exist
   libcglm-dev           # vector math
   libcyaml-dev libyaml-dev  # configs
   libcmocka-dev         # unit tests
