@@ -77,14 +77,14 @@ static void write_csv_cell(FILE *f, const struct sl_config *c, const struct sl_r
                 fprintf(f, ",");
             else
                 fprintf(f, "%.4f,", g->pct[k]);
-            fprintf(f, "%s,%s,%016llx,%s %s\n", sl_figure_of((enum sl_figure)k), res->prov.git_sha,
-                    c->hash, res->prov.host, res->prov.isa);
+            fprintf(f, "%s,%s,%016llx,\"%s/%s/%s\"\n", sl_figure_of((enum sl_figure)k), res->prov.git_sha,
+                    c->hash, res->prov.host, res->prov.cpu, res->prov.isa);
         }
     }
-    fprintf(f, "%s,%s,%dx%d,%d,%s,%s,image,background,%llu,,,%s,%016llx,%s %s\n", c->scene,
+    fprintf(f, "%s,%s,%dx%d,%d,%s,%s,image,background,%llu,,,%s,%016llx,\"%s/%s/%s\"\n", c->scene,
             cell->viewpoint, c->viewport_w[cell->viewport], c->viewport_h[cell->viewport],
             c->maps[cell->map], m->method->name, m->label, (unsigned long long)cell->fig.background,
-            res->prov.git_sha, c->hash, res->prov.host, res->prov.isa);
+            res->prov.git_sha, c->hash, res->prov.host, res->prov.cpu, res->prov.isa);
 }
 
 static void write_costs_header(FILE *f)
@@ -99,13 +99,13 @@ static void write_costs_cell(FILE *f, const struct sl_config *c, const struct sl
 {
     const struct sl_stage_ms *s = &cell->ms;
     fprintf(f, "%s,%s,%dx%d,%d,%s,%.3f,%.3f,%.3f,%llu,%.3f,%.3f,%.3f,%.3f,%llu,%llu,%llu,%.3f,%.3f,%.3f,"
-               "%s,%016llx,%s %s\n",
+               "%s,%016llx,\"%s/%s/%s\"\n",
             c->scene, cell->viewpoint, c->viewport_w[cell->viewport], c->viewport_h[cell->viewport],
             c->maps[cell->map], c->methods[cell->method].label, s->gbuffer_render, s->gbuffer_readback,
             s->truth, (unsigned long long)cell->truth_rays, s->fit, s->map_render, s->map_readback,
             s->method, (unsigned long long)cell->cost.lookups, (unsigned long long)cell->cost.rays,
             (unsigned long long)cell->cost.tri_tests, s->contours, s->figures, s->overlay,
-            res->prov.git_sha, c->hash, res->prov.host, res->prov.isa);
+            res->prov.git_sha, c->hash, res->prov.host, res->prov.cpu, res->prov.isa);
 }
 
 static void md_cell(FILE *f, const struct sl_region_figures *g, int k)

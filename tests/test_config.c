@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
+#include "sl_test.h"
 #include "config.h"
 
 static void config_default_loads(void **st)
@@ -103,10 +104,10 @@ static void config_syntax_error_has_line(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(config_default_loads),
-        cmocka_unit_test(config_written_reads_back),
-        cmocka_unit_test(config_bad_inputs),
-        cmocka_unit_test(config_syntax_error_has_line),
+        SL_CASE(config, default_loads),
+        SL_CASE(config, written_reads_back),
+        SL_CASE(config, bad_inputs),
+        SL_CASE(config, syntax_error_has_line),
     };
     return cmocka_run_group_tests_name("config", tests, NULL, NULL);
 }

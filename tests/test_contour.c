@@ -5,6 +5,7 @@
 #include <stdint.h>
 #include <string.h>
 #include <cmocka.h>
+#include "sl_test.h"
 #include "contour.h"
 
 #define W 32
@@ -102,11 +103,11 @@ static void contour_whole_image_region(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(contour_vertical_edge_widths),
-        cmocka_unit_test(contour_uniform_image_has_none),
-        cmocka_unit_test(contour_background_never_enters),
-        cmocka_unit_test(contour_single_pixel_diamond),
-        cmocka_unit_test(contour_whole_image_region),
+        SL_CASE(contour, vertical_edge_widths),
+        SL_CASE(contour, uniform_image_has_none),
+        SL_CASE(contour, background_never_enters),
+        SL_CASE(contour, single_pixel_diamond),
+        SL_CASE(contour, whole_image_region),
     };
     return cmocka_run_group_tests_name("contour", tests, NULL, NULL);
 }

@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include "sl_test.h"
 #include "config.h"
 #include "image.h"
 #include "run.h"
@@ -226,9 +227,9 @@ static int teardown(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(e2e_default_experiment),
-        cmocka_unit_test(e2e_self_shadow_policies),
-        cmocka_unit_test(e2e_deterministic),
+        SL_CASE(e2e, default_experiment),
+        SL_CASE(e2e, self_shadow_policies),
+        SL_CASE(e2e, deterministic),
     };
     return cmocka_run_group_tests_name("e2e", tests, setup, teardown);
 }

@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include "sl_test.h"
 #include "fixture.h"
 #include "lightfit.h"
 #include "raytri.h"
@@ -120,8 +121,8 @@ static void lightfit_primitives_occluders_inside(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(lightfit_synthetic),
-        cmocka_unit_test(lightfit_primitives_occluders_inside),
+        SL_CASE(lightfit, synthetic),
+        SL_CASE(lightfit, primitives_occluders_inside),
     };
     return cmocka_run_group_tests_name("lightfit", tests, NULL, NULL);
 }

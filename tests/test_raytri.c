@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include "sl_test.h"
 #include "raytri.h"
 
 static const double A[3] = {0, 0, 0}, B[3] = {1, 0, 0}, C[3] = {0, 1, 0};
@@ -71,11 +72,11 @@ static void raytri_distances(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(raytri_hit_inside),
-        cmocka_unit_test(raytri_miss_outside_and_behind),
-        cmocka_unit_test(raytri_edges_closed_and_tmin),
-        cmocka_unit_test(raytri_float_agrees),
-        cmocka_unit_test(raytri_distances),
+        SL_CASE(raytri, hit_inside),
+        SL_CASE(raytri, miss_outside_and_behind),
+        SL_CASE(raytri, edges_closed_and_tmin),
+        SL_CASE(raytri, float_agrees),
+        SL_CASE(raytri, distances),
     };
     return cmocka_run_group_tests_name("raytri", tests, NULL, NULL);
 }

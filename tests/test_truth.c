@@ -15,6 +15,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include "sl_test.h"
 #include "fixture.h"
 #include "raytri.h"
 
@@ -157,9 +158,9 @@ static void truth_thread_count_invariant(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(truth_blocks_matches_brute_force),
-        cmocka_unit_test(truth_primitives_matches_brute_force),
-        cmocka_unit_test(truth_thread_count_invariant),
+        SL_CASE(truth, blocks_matches_brute_force),
+        SL_CASE(truth, primitives_matches_brute_force),
+        SL_CASE(truth, thread_count_invariant),
     };
     return cmocka_run_group_tests_name("truth", tests, NULL, NULL);
 }
