@@ -34,7 +34,7 @@ for f in tests/bad/*.yaml; do
   check "run $(basename "$f")" 2 "$pat" -- "$bin" run "$f" --out "$tmp/results"
   check "validate $(basename "$f")" 2 "$pat" -- "$bin" validate "$f"
 done
-check "missing config" 2 "no_such\.yaml: cannot read config" -- "$bin" run tests/bad/no_such.yaml --out "$tmp/results"
+check "missing config" 2 "no_such\.yaml: cannot read: No such file" -- "$bin" run tests/bad/no_such.yaml --out "$tmp/results"
 check "unknown command" 2 "unknown command" -- "$bin" frobnicate
 check "run without config" 2 "missing CONFIG" -- "$bin" run
 check "list nonsense" 2 "list: methods or scenes" -- "$bin" list trees
