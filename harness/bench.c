@@ -17,6 +17,7 @@
 #include "provenance.h"
 #include "glctx.h"
 #include "run.h"
+#include "scenefile.h"
 #include "truth.h"
 #include "util.h"
 
@@ -114,22 +115,23 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_diag *d)
     struct sl_gl_mesh mesh = {0};
     struct sl_gbuffer_pass gp = {0};
     struct sl_rt rt = {0}, plain = {0};
-    if ((e = sl_scene_build(c.scene, &s, d)))
+    if ((e = sl_scene_load(c.scenes[0].path, &s, d)))
         return e;
     if ((e = sl_gl_init(&gl, d)) || (e = sl_gl_mesh_upload(&mesh, &s, d)) ||
         (e = sl_gbuffer_init(&gp, &s, d)) || (e = sl_rt_build(&rt, &s, c.threads, 1, d)) ||
         (e = sl_rt_build(&plain, &s, c.threads, 0, d)))
         goto out;
     fprintf(out, "# shadowlab bench: %s, scene %s, git %s, %d threads, Embree %s, %s\n\n", cfg_path,
-            c.scene, sl_git_sha(), c.threads, rt.version, gl.renderer);
+            s.name, sl_git_sha(), c.threads, rt.version, gl.renderer);
     fprintf(out, "## Truth pass vs a plain rtcOccluded16 loop over the same rays (median of %d, after a warm-up)\n\n", reps);
     fprintf(out, "| viewpoint | viewport | rays | truth ms | truth Mrays/s | plain ms | plain Mrays/s | ratio |\n");
     fprintf(out, "|---|---|---:|---:|---:|---:|---:|---:|\n");
-    int nvp = c.nviewpoints ? c.nviewpoints : s.nvp;
+    /* the first scene of the config, all its configured viewpoints */
+    int nvp = c.scenes[0].nviewpoints;
     double sum_truth = 0, sum_plain = 0;
     uint64_t sum_rays = 0;
     for (int vi = 0; vi < nvp && !e; vi++) {
-        int vp = c.nviewpoints ? sl_scene_find_viewpoint(&s, c.viewpoints[vi]) : vi;
+        int vp = sl_scene_find_viewpoint(&s, c.scenes[0].viewpoints[vi]);
         int W = c.viewport_w[0], H = c.viewport_h[0];
         struct sl_view v;
         if ((e = sl_gbuffer_render(&gp, &mesh, &s, vp, W, H, &v, NULL, NULL, d)))
@@ -194,7 +196,7 @@ out:
         return e;
 
     /* stage times of one whole run of the config (warm: GL programs compiled above) */
-    struct sl_run_opts ro = {.out_root = NULL, .table_out = NULL, .write_files = 0};
+    struct sl_run_opts ro = {.out_root = NULL, .table_out = NULL, .write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result res;
     if ((e = sl_run(&c, &ro, &res, d)))
         return e;
@@ -205,7 +207,7 @@ out:
         const struct sl_cell *cl = &res.cells[i];
         const struct sl_stage_ms *m = &cl->ms;
         fprintf(out, "| %s | %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f |\n",
-                cl->viewpoint, c.maps[cl->map], c.methods[cl->method].label, m->gbuffer_render,
+                cl->viewpoint, c.maps[cl->key.map], c.methods[cl->key.method].label, m->gbuffer_render,
                 m->gbuffer_readback, m->truth, m->fit, m->map_render, m->map_readback, m->method,
                 m->contours, m->figures);
     }

@@ -16,6 +16,7 @@
 #include <unistd.h>
 #include <yaml.h>
 #include "scene.h"
+#include "scenefile.h"
 #include "util.h"
 #include "yamlfile.h"
 
@@ -29,16 +30,23 @@ struct raw_method {
     float *bias;
     float *slope;
 };
-struct raw_outputs { bool *overlays; unsigned *overlay_contour; };
-struct raw_config {
-    char *name;
+struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bool *exr; };
+struct raw_scene_ref {
     char *scene;
     char **viewpoints; unsigned viewpoints_count;
+};
+struct raw_reps { unsigned *warmup; unsigned *runs; };
+struct raw_config {
+    char *name;
+    struct raw_scene_ref *scenes; unsigned scenes_count;
     struct raw_viewport *viewports; unsigned viewports_count;
     unsigned *map_sizes; unsigned map_sizes_count;
     unsigned *contours; unsigned contours_count;
     struct raw_method *methods; unsigned methods_count;
     struct raw_outputs *outputs;
+    struct raw_reps *repetitions;
+    unsigned *seed;
+    char *store;
     unsigned *threads;
 };
 
@@ -67,16 +75,31 @@ static const cyaml_schema_field_t method_fields[] = {
 static const cyaml_schema_value_t method_schema = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, struct raw_method, method_fields),
 };
+static const cyaml_schema_field_t scene_ref_fields[] = {
+    CYAML_FIELD_STRING_PTR("scene", CYAML_FLAG_POINTER, struct raw_scene_ref, scene, 1, 255),
+    CYAML_FIELD_SEQUENCE("viewpoints", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
+                         viewpoints, &str_schema, 1, SL_MAX_VIEWPOINTS),
+    CYAML_FIELD_END,
+};
+static const cyaml_schema_value_t scene_ref_schema = {
+    CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, struct raw_scene_ref, scene_ref_fields),
+};
+static const cyaml_schema_field_t reps_fields[] = {
+    CYAML_FIELD_UINT_PTR("warmup", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_reps, warmup),
+    CYAML_FIELD_UINT_PTR("runs", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_reps, runs),
+    CYAML_FIELD_END,
+};
 static const cyaml_schema_field_t outputs_fields[] = {
+    CYAML_FIELD_BOOL_PTR("tables", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, tables),
     CYAML_FIELD_BOOL_PTR("overlays", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, overlays),
+    CYAML_FIELD_BOOL_PTR("exr", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, exr),
     CYAML_FIELD_UINT_PTR("overlay_contour", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, overlay_contour),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_field_t config_fields[] = {
     CYAML_FIELD_STRING_PTR("name", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, name, 1, 63),
-    CYAML_FIELD_STRING_PTR("scene", CYAML_FLAG_POINTER, struct raw_config, scene, 1, 63),
-    CYAML_FIELD_SEQUENCE("viewpoints", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
-                         viewpoints, &str_schema, 1, SL_CFG_MAX),
+    CYAML_FIELD_SEQUENCE("scenes", CYAML_FLAG_POINTER, struct raw_config, scenes, &scene_ref_schema,
+                         1, SL_CFG_MAX),
     CYAML_FIELD_SEQUENCE("viewports", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
                          viewports, &viewport_schema, 1, SL_CFG_MAX),
     CYAML_FIELD_SEQUENCE("map_sizes", CYAML_FLAG_POINTER, struct raw_config, map_sizes, &uint_schema,
@@ -87,6 +110,10 @@ static const cyaml_schema_field_t config_fields[] = {
                          1, SL_CFG_MAX),
     CYAML_FIELD_MAPPING_PTR("outputs", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
                             outputs, outputs_fields),
+    CYAML_FIELD_MAPPING_PTR("repetitions", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
+                            repetitions, reps_fields),
+    CYAML_FIELD_UINT_PTR("seed", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, seed),
+    CYAML_FIELD_STRING_PTR("store", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, store, 1, 511),
     CYAML_FIELD_UINT_PTR("threads", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, threads),
     CYAML_FIELD_END,
 };
@@ -106,31 +133,65 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
               *p == '-' || *p == '_' || *p == '.') || c->name[0] == '.')
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "name", "'%s': use letters, digits, '-', '_' and '.' only", c->name);
 
-    snprintf(c->scene, sizeof c->scene, "%s", r->scene);
-    struct sl_scene s;
-    struct sl_diag sd;
-    if (sl_scene_build(c->scene, &s, &sd) != SL_OK) {
-        char known[256] = "";
-        for (int i = 0; i < sl_scene_count(); i++)
-            snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", i ? ", " : "",
-                     sl_scene_name(i));
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "scene", "unknown scene '%s' (known: %s)", c->scene, known);
-    }
-    c->nviewpoints = (int)r->viewpoints_count;
-    for (unsigned i = 0; i < r->viewpoints_count; i++) {
-        snprintf(key, sizeof key, "viewpoints[%u]", i);
-        if (sl_scene_find_viewpoint(&s, r->viewpoints[i]) < 0) {
-            char known[256] = "";
-            for (int k = 0; k < s.nvp; k++)
-                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "",
-                         s.vp[k].name);
-            sl_scene_free(&s);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has no viewpoint '%s' (it has: %s)",
-                       c->scene, r->viewpoints[i], known);
+    char cfg_dir[512];
+    snprintf(cfg_dir, sizeof cfg_dir, "%s", file);
+    char *slash = strrchr(cfg_dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(cfg_dir, sizeof cfg_dir, ".");
+    for (unsigned si = 0; si < r->scenes_count; si++) {
+        const struct raw_scene_ref *rs = &r->scenes[si];
+        struct sl_config_scene *cs = &c->scenes[si];
+        snprintf(cs->ref, sizeof cs->ref, "%s", rs->scene);
+        snprintf(key, sizeof key, "scenes[%u].scene", si);
+        struct sl_diag sd;
+        /* a name resolves in the scenes folder; a path relative to this file */
+        if (sl_scene_resolve(rs->scene, cfg_dir, cs->path, sizeof cs->path, &sd) != SL_OK) {
+            char names[64][64], descr[64][160], known[512] = "";
+            int n = sl_scene_list(names, descr, 64);
+            for (int i = 0; i < n; i++)
+                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", i ? ", " : "", names[i]);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown scene '%s' (known: %s)", rs->scene, known);
         }
-        snprintf(c->viewpoints[i], sizeof c->viewpoints[i], "%s", r->viewpoints[i]);
+        struct sl_scene s;
+        if (sl_scene_load(cs->path, &s, &sd) != SL_OK) {
+            /* the scene file's own error names its file, line and key */
+            *d = sd;
+            return SL_E_SCENE;
+        }
+        snprintf(cs->name, sizeof cs->name, "%s", s.name);
+        cs->nviewpoints = (int)rs->viewpoints_count;
+        for (unsigned i = 0; i < rs->viewpoints_count; i++) {
+            snprintf(key, sizeof key, "scenes[%u].viewpoints[%u]", si, i);
+            if (sl_scene_find_viewpoint(&s, rs->viewpoints[i]) < 0) {
+                char known[256] = "";
+                for (int k = 0; k < s.nvp; k++)
+                    snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "",
+                             s.vp[k].name);
+                sl_scene_free(&s);
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has no viewpoint '%s' (it has: %s)",
+                                   rs->scene, rs->viewpoints[i], known);
+            }
+            snprintf(cs->viewpoints[i], sizeof cs->viewpoints[i], "%s", rs->viewpoints[i]);
+        }
+        if (!cs->nviewpoints) {
+            cs->nviewpoints = s.nvp;
+            for (int k = 0; k < s.nvp; k++)
+                snprintf(cs->viewpoints[k], sizeof cs->viewpoints[k], "%s", s.vp[k].name);
+        }
+        if (s.light.type != SL_LIGHT_DIRECTIONAL) {
+            sl_scene_free(&s);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                               "scene '%s' has a non-directional light: the hard-shadow passes handle "
+                               "directional lights only so far", rs->scene);
+        }
+        sl_scene_free(&s);
+        for (unsigned k = 0; k < si; k++)
+            if (strcmp(c->scenes[k].path, cs->path) == 0)
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' listed twice", rs->scene);
     }
-    sl_scene_free(&s);
+    c->nscenes = (int)r->scenes_count;
 
     if (r->viewports_count == 0) {
         c->nviewports = 1;
@@ -233,7 +294,17 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
     }
     c->nmethods = (int)r->methods_count;
 
+    c->tables = r->outputs && r->outputs->tables ? *r->outputs->tables : 1;
     c->overlays = r->outputs && r->outputs->overlays ? *r->outputs->overlays : 1;
+    c->exr = r->outputs && r->outputs->exr ? *r->outputs->exr : 0;
+    c->warmup = r->repetitions && r->repetitions->warmup ? (int)*r->repetitions->warmup : 0;
+    c->runs = r->repetitions && r->repetitions->runs ? (int)*r->repetitions->runs : 1;
+    if (c->warmup > 100)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.warmup", "warmup %d: at most 100", c->warmup);
+    if (c->runs < 1 || c->runs > 1000)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.runs", "runs %d: must be 1..1000", c->runs);
+    c->seed = r->seed ? *r->seed : 1u;
+    snprintf(c->store, sizeof c->store, "%s", r->store ? r->store : "");
     c->overlay_contour = c->regions[0];
     if (r->outputs && r->outputs->overlay_contour) {
         unsigned t = *r->outputs->overlay_contour;
@@ -271,11 +342,13 @@ enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_di
 void sl_config_write(const struct sl_config *c, FILE *f)
 {
     fprintf(f, "# filled-in config: every default explicit\n");
-    fprintf(f, "name: %s\nscene: %s\n", c->name, c->scene);
-    fprintf(f, "viewpoints: [");
-    for (int i = 0; i < c->nviewpoints; i++)
-        fprintf(f, "%s%s", i ? ", " : "", c->viewpoints[i]);
-    fprintf(f, "]%s\n", c->nviewpoints ? "" : "   # all of the scene's");
+    fprintf(f, "name: %s\nscenes:\n", c->name);
+    for (int s = 0; s < c->nscenes; s++) {
+        fprintf(f, "  - {scene: %s, viewpoints: [", c->scenes[s].ref);
+        for (int i = 0; i < c->scenes[s].nviewpoints; i++)
+            fprintf(f, "%s%s", i ? ", " : "", c->scenes[s].viewpoints[i]);
+        fprintf(f, "]}\n");
+    }
     fprintf(f, "viewports:\n");
     for (int i = 0; i < c->nviewports; i++)
         fprintf(f, "  - {width: %d, height: %d}\n", c->viewport_w[i], c->viewport_h[i]);
@@ -297,7 +370,11 @@ void sl_config_write(const struct sl_config *c, FILE *f)
             fprintf(f, ", slope: %g", (double)p->slope);
         fprintf(f, "}\n");
     }
-    fprintf(f, "outputs: {overlays: %s, overlay_contour: %d}\n", c->overlays ? "true" : "false",
-            c->overlay_contour);
+    fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",
+            c->tables ? "true" : "false", c->overlays ? "true" : "false", c->overlay_contour,
+            c->exr ? "true" : "false");
+    fprintf(f, "repetitions: {warmup: %d, runs: %d}\nseed: %u\n", c->warmup, c->runs, c->seed);
+    if (c->store[0])
+        fprintf(f, "store: %s\n", c->store);
     fprintf(f, "threads: %d\n", c->threads);
 }

@@ -10,19 +10,23 @@
  *
  * Schema (all keys but scene, map_sizes and methods optional):
  *   name: default              # experiment name, output folder under results/
- *   scene: primitives          # a built-in scene (shadowlab list scenes)
- *   viewpoints: [side, with]   # default: all of the scene's
+ *   scenes:                    # scene files by name (scenes/) or path (relative to this file)
+ *     - {scene: primitives, viewpoints: [side, with]}   # default: all of the scene's viewpoints
  *   viewports: [{width: 1024, height: 1024}]      # default 1024 x 1024
  *   map_sizes: [1024, 2048]    # powers of two, 64 .. 16384
  *   contours: [2, 4, 6]        # even thicknesses in pixels; the whole image is always added
  *   methods:                   # the same method may appear under several labels
  *     - {label: nsm, method: nsm, self_shadow: front_faces}
- *   outputs: {overlays: true, overlay_contour: 2}
+ *   outputs: {tables: true, overlays: true, overlay_contour: 2, exr: false}
+ *   repetitions: {warmup: 0, runs: 1}   # timed runs of each cell's method; median kept
+ *   seed: 1                    # for anything random
+ *   store: results/shadowlab.db   # default: <output root>/shadowlab.db
  *   threads: 0                 # 0 = every core
  */
 #ifndef SL_CONFIG_H
 #define SL_CONFIG_H
 #include "method.h"
+#include "scene.h"
 #include "sl_error.h"
 
 #define SL_CFG_MAX 16
@@ -33,13 +37,20 @@ struct sl_config_method {
     struct sl_method_params  params;
 };
 
+struct sl_config_scene {
+    char ref[256];                    /* as written */
+    char path[1024];                  /* resolved scene file */
+    char name[64];                    /* the scene's own name */
+    int  nviewpoints;                 /* resolved: never 0 */
+    char viewpoints[SL_MAX_VIEWPOINTS][32];
+};
+
 struct sl_config {
     char path[512];
     unsigned long long hash;          /* FNV-1a of the file's bytes */
     char name[64];
-    char scene[64];
-    int  nviewpoints;                 /* 0 = all of the scene's */
-    char viewpoints[SL_CFG_MAX][32];
+    int  nscenes;
+    struct sl_config_scene scenes[SL_CFG_MAX];
     int  nviewports;
     int  viewport_w[SL_CFG_MAX], viewport_h[SL_CFG_MAX];
     int  nmaps;
@@ -48,8 +59,11 @@ struct sl_config {
     int  regions[SL_CFG_MAX];
     int  nmethods;
     struct sl_config_method methods[SL_CFG_MAX];
-    int  overlays;
+    int  tables, overlays, exr;
     int  overlay_contour;
+    int  warmup, runs;                /* repetitions for timing */
+    unsigned seed;
+    char store[512];                  /* "" = <output root>/shadowlab.db */
     int  threads;                     /* resolved: >= 1 */
 };
 

@@ -185,3 +185,407 @@ void sl_gen_box(struct sl_mesh *m, const float lo[3], const float hi[3])
         sl_mesh_tri(m, v[f[i][0]], v[f[i][2]], v[f[i][3]]);
     }
 }
+
+/* ------------------------------------------------------------------------
+ * Scene props for Moderno 2011's "Bench", "Trees" and "Flowers" scenes.
+ * Units are metres (a ~100-unit scene is a small park). Random placement
+ * comes from gen_rng (PCG32), never rand(): the same seed gives the same
+ * bytes on one machine; a different seed a different mesh.
+ * ------------------------------------------------------------------------ */
+
+struct gen_rng { uint64_t s; };
+
+static uint32_t gen_rng_u32(struct gen_rng *r)
+{
+    uint64_t old = r->s;
+    r->s = old * 6364136223846793005ull + 1442695040888963407ull;
+    uint32_t x = (uint32_t)(((old >> 18) ^ old) >> 27), rot = (uint32_t)(old >> 59);
+    return (x >> rot) | (x << ((32u - rot) & 31u));
+}
+
+static void gen_rng_seed(struct gen_rng *r, uint32_t seed, uint32_t stream)
+{
+    /* splitmix64 of (seed, stream), so nearby seeds start far apart */
+    uint64_t z = ((uint64_t)stream << 32 | seed) + 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    r->s = z ^ (z >> 31);
+    gen_rng_u32(r);
+}
+
+/* uniform in [a, b) */
+static double gen_rng_range(struct gen_rng *r, double a, double b)
+{
+    return a + (b - a) * ((double)(gen_rng_u32(r) >> 8) * (1.0 / 16777216.0));
+}
+
+static uint32_t vtx_d(struct sl_mesh *m, const double p[3])
+{
+    return sl_mesh_vertex(m, (float)p[0], (float)p[1], (float)p[2]);
+}
+
+/* Triangle wound so that its normal (of the float positions) has a positive
+ * component along `toward`: the generators below say which way a face
+ * looks and let this pick the winding. */
+static void tri_facing(struct sl_mesh *m, uint32_t a, uint32_t b, uint32_t c, const double toward[3])
+{
+    if (m->oom)
+        return;
+    const float *pa = m->pos + 3 * (size_t)a, *pb = m->pos + 3 * (size_t)b, *pc = m->pos + 3 * (size_t)c;
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = (double)pb[k] - pa[k];
+        e2[k] = (double)pc[k] - pa[k];
+    }
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0]};
+    if (n[0] * toward[0] + n[1] * toward[1] + n[2] * toward[2] >= 0.0)
+        sl_mesh_tri(m, a, b, c);
+    else
+        sl_mesh_tri(m, a, c, b);
+}
+
+/* Planar convex quad a-b-c-d (in order around it) as two triangles facing
+ * `toward`. */
+static void quad_facing(struct sl_mesh *m, uint32_t a, uint32_t b, uint32_t c, uint32_t d,
+                        const double toward[3])
+{
+    tri_facing(m, a, b, c, toward);
+    tri_facing(m, a, c, d, toward);
+}
+
+/* Box with centre c, right-handed unit axes ax[0..2] and half extents he:
+ * 12 triangles, the same corner order and faces as sl_gen_box. */
+static void gen_obox(struct sl_mesh *m, const double c[3], const double ax[3][3], const double he[3])
+{
+    uint32_t v[8];
+    for (int i = 0; i < 8; i++) {
+        double p[3];
+        for (int k = 0; k < 3; k++)
+            p[k] = c[k] + ((i & 1) ? he[0] : -he[0]) * ax[0][k] + ((i & 2) ? he[1] : -he[1]) * ax[1][k] +
+                   ((i & 4) ? he[2] : -he[2]) * ax[2][k];
+        v[i] = vtx_d(m, p);
+    }
+    static const int f[6][4] = {
+        {0, 4, 6, 2}, {1, 3, 7, 5},
+        {0, 1, 5, 4}, {2, 6, 7, 3},
+        {0, 2, 3, 1}, {4, 5, 7, 6},
+    };
+    for (int i = 0; i < 6; i++) {
+        sl_mesh_tri(m, v[f[i][0]], v[f[i][1]], v[f[i][2]]);
+        sl_mesh_tri(m, v[f[i][0]], v[f[i][2]], v[f[i][3]]);
+    }
+}
+
+static void gen_abox(struct sl_mesh *m, double x0, double y0, double z0, double x1, double y1, double z1)
+{
+    const float lo[3] = {(float)x0, (float)y0, (float)z0}, hi[3] = {(float)x1, (float)y1, (float)z1};
+    sl_gen_box(m, lo, hi);
+}
+
+/* Closed cone standing on y0, apex at y0 + h: n side triangles and n base
+ * triangles (one centre vertex, no zero-area fan), 2n in all. */
+void sl_gen_cone(struct sl_mesh *m, float cx, float y0, float cz, float r, float h, int n)
+{
+    uint32_t bc = sl_mesh_vertex(m, cx, y0, cz);
+    uint32_t apex = sl_mesh_vertex(m, cx, y0 + h, cz);
+    uint32_t base = m->nv;
+    for (int i = 0; i < n; i++) {
+        double ph = 2.0 * SL_PI * i / n;
+        sl_mesh_vertex(m, cx + (float)(r * cos(ph)), y0, cz - (float)(r * sin(ph)));
+    }
+    uint32_t N = (uint32_t)n;
+    for (uint32_t i = 0; i < N; i++) {
+        uint32_t b0 = base + i, b1 = base + (i + 1) % N;
+        sl_mesh_tri(m, b0, b1, apex);
+        sl_mesh_tri(m, bc, b1, b0);
+    }
+}
+
+#define SL_TREE_TRUNK_SIDES 16
+#define SL_TREE_LEAVES      960
+
+/*
+ * Tree of total height `height`: a trunk (closed cylinder, 16 sides, radius
+ * 0.035 height, 0.62 height tall) and a crown of 960 single leaf triangles
+ * scattered through an ellipsoid (radii 0.30/0.28/0.30 height, centred at
+ * 0.66 height) with random orientations. Leaves are open, one triangle each,
+ * and meant to be rendered two-sided; their winding is random. Each leaf is
+ * near-equilateral with a circumradius of 0.05..0.08 height (edges of
+ * 0.7..1.1 units for an 8-unit tree: many texels of a shadow map over a
+ * 100-unit scene).
+ * Triangles: 4 * 16 + 960 = 1024.
+ */
+void sl_gen_tree(struct sl_mesh *m, float cx, float y0, float cz, float height, uint32_t seed)
+{
+    double H = height;
+    sl_gen_cylinder(m, cx, y0, cz, (float)(0.035 * H), (float)(0.62 * H), SL_TREE_TRUNK_SIDES);
+    struct gen_rng r;
+    gen_rng_seed(&r, seed, 1);
+    const double ctr[3] = {cx, y0 + 0.66 * H, cz}, rad[3] = {0.30 * H, 0.28 * H, 0.30 * H};
+    for (int l = 0; l < SL_TREE_LEAVES; l++) {
+        double p[3], n[3], len2;
+        do {
+            for (int k = 0; k < 3; k++)
+                p[k] = gen_rng_range(&r, -1.0, 1.0);
+        } while (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > 1.0);
+        do {
+            for (int k = 0; k < 3; k++)
+                n[k] = gen_rng_range(&r, -1.0, 1.0);
+            len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        } while (len2 > 1.0 || len2 < 0.01);
+        double ln = sqrt(len2);
+        for (int k = 0; k < 3; k++) {
+            p[k] = ctr[k] + p[k] * rad[k];
+            n[k] /= ln;
+        }
+        /* u: any unit vector across n; v = n x u */
+        double h[3] = {0, 0, 0};
+        h[fabs(n[0]) < 0.6 ? 0 : 1] = 1.0;
+        double u[3] = {n[1] * h[2] - n[2] * h[1], n[2] * h[0] - n[0] * h[2], n[0] * h[1] - n[1] * h[0]};
+        double lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        for (int k = 0; k < 3; k++)
+            u[k] /= lu;
+        double v[3] = {n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]};
+        double s = H * gen_rng_range(&r, 0.05, 0.08), th0 = gen_rng_range(&r, 0.0, 2.0 * SL_PI);
+        uint32_t vi[3];
+        for (int c = 0; c < 3; c++) {
+            /* corners 120 degrees apart, +-0.3 rad: never thinner than ~85 degrees apart */
+            double th = th0 + c * (2.0 * SL_PI / 3.0) + gen_rng_range(&r, -0.3, 0.3);
+            double q[3];
+            for (int k = 0; k < 3; k++)
+                q[k] = p[k] + s * (cos(th) * u[k] + sin(th) * v[k]);
+            vi[c] = vtx_d(m, q);
+        }
+        sl_mesh_tri(m, vi[0], vi[1], vi[2]);
+    }
+}
+
+#define SL_FLOWER_STEM_SEGS  6
+#define SL_FLOWER_PETALS     8
+#define SL_FLOWER_TRIS       (SL_FLOWER_STEM_SEGS * 6 + 4 + SL_FLOWER_PETALS * 3)
+
+/* Ring of 3 stem vertices around the point a, angle offset ph, radius rs. */
+static uint32_t stem_ring(struct sl_mesh *m, const double a[3], double ph, double rs)
+{
+    uint32_t first = m->nv;
+    for (int k = 0; k < 3; k++) {
+        double an = ph + k * (2.0 * SL_PI / 3.0);
+        double p[3] = {a[0] + rs * cos(an), a[1], a[2] - rs * sin(an)};
+        vtx_d(m, p);
+    }
+    return first;
+}
+
+/*
+ * Bed of `count` flowers planted at y0 in the width (x) by depth (z)
+ * rectangle centred at (cx, cz), positions uniform (a margin of 6 cm keeps
+ * the blossoms inside). Each flower is made of tiny triangles, far below a
+ * shadow-map texel of a 100-unit scene (~0.1 unit at 1024^2):
+ * - stem: an open triangular prism of radius 4-6 mm, 0.22-0.38 tall (from
+ *   1 cm below y0), leaning up to 4 cm, in 6 segments: 36 triangles;
+ * - two stem leaves, 5 cm diamonds of 2 triangles: 4 triangles;
+ * - blossom: a low cone of 8 triangles (radius 1.2 cm) and 8 petals of 2
+ *   triangles, 3-4.5 cm long and 1.4-2.2 cm wide, tilted up: 24 triangles.
+ * Leaves and petals face up (+y) and are meant to be two-sided.
+ * Triangles: 64 * count. Areas are ~5e-5 to ~3e-4 square units.
+ */
+void sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width, float depth,
+                    int count, uint32_t seed)
+{
+    static const double up[3] = {0.0, 1.0, 0.0};
+    struct gen_rng r;
+    gen_rng_seed(&r, seed, 2);
+    double mx = width > 0.24f ? 0.06 : 0.25 * width, mz = depth > 0.24f ? 0.06 : 0.25 * depth;
+    for (int f = 0; f < count; f++) {
+        double b[3] = {cx + gen_rng_range(&r, -0.5, 0.5) * (width - 2.0 * mx), y0 - 0.01,
+                       cz + gen_rng_range(&r, -0.5, 0.5) * (depth - 2.0 * mz)};
+        double hs = gen_rng_range(&r, 0.22, 0.38), rs = gen_rng_range(&r, 0.004, 0.006);
+        double lean[2] = {gen_rng_range(&r, -0.04, 0.04), gen_rng_range(&r, -0.04, 0.04)};
+        double ph = gen_rng_range(&r, 0.0, 2.0 * SL_PI);
+        double top[3] = {b[0] + lean[0], b[1] + hs, b[2] + lean[1]};
+
+        /* stem: rings j = 0..SEGS, sides wound like sl_gen_cylinder's */
+        uint32_t ring[SL_FLOWER_STEM_SEGS + 1];
+        for (int j = 0; j <= SL_FLOWER_STEM_SEGS; j++) {
+            double t = (double)j / SL_FLOWER_STEM_SEGS, a[3];
+            for (int k = 0; k < 3; k++)
+                a[k] = b[k] + t * (top[k] - b[k]);
+            ring[j] = stem_ring(m, a, ph, rs);
+        }
+        for (int j = 0; j < SL_FLOWER_STEM_SEGS; j++)
+            for (uint32_t k = 0; k < 3; k++) {
+                uint32_t b0 = ring[j] + k, b1 = ring[j] + (k + 1) % 3;
+                uint32_t t0 = ring[j + 1] + k, t1 = ring[j + 1] + (k + 1) % 3;
+                sl_mesh_tri(m, b0, b1, t1);
+                sl_mesh_tri(m, b0, t1, t0);
+            }
+
+        /* two leaves on opposite sides, at 35% and 60% of the stem */
+        double la = gen_rng_range(&r, 0.0, 2.0 * SL_PI);
+        for (int l = 0; l < 2; l++) {
+            double t = l ? 0.60 : 0.35, dir[2] = {cos(la + l * SL_PI), -sin(la + l * SL_PI)};
+            double L = gen_rng_range(&r, 0.04, 0.055), W = gen_rng_range(&r, 0.012, 0.018);
+            double q[3], s1[3], s2[3], tip[3];
+            for (int k = 0; k < 3; k++)
+                q[k] = b[k] + t * (top[k] - b[k]);
+            tip[0] = q[0] + L * dir[0];
+            tip[1] = q[1] + 0.35 * L;
+            tip[2] = q[2] + L * dir[1];
+            s1[0] = q[0] + 0.5 * L * dir[0] + 0.5 * W * dir[1];
+            s1[1] = q[1] + 0.15 * L;
+            s1[2] = q[2] + 0.5 * L * dir[1] - 0.5 * W * dir[0];
+            s2[0] = q[0] + 0.5 * L * dir[0] - 0.5 * W * dir[1];
+            s2[1] = q[1] + 0.15 * L;
+            s2[2] = q[2] + 0.5 * L * dir[1] + 0.5 * W * dir[0];
+            uint32_t vq = vtx_d(m, q), v1 = vtx_d(m, s1), vt = vtx_d(m, tip), v2 = vtx_d(m, s2);
+            quad_facing(m, vq, v1, vt, v2, up);
+        }
+
+        /* blossom: centre cone, then petals from its rim */
+        double rc = 0.012, ph0 = gen_rng_range(&r, 0.0, 2.0 * SL_PI);
+        double cpt[3] = {top[0], top[1] + 0.004, top[2]};
+        uint32_t vc = vtx_d(m, cpt), rim = m->nv;
+        for (int i = 0; i < SL_FLOWER_PETALS; i++) {
+            double an = ph0 + i * (2.0 * SL_PI / SL_FLOWER_PETALS);
+            double p[3] = {top[0] + rc * cos(an), top[1], top[2] - rc * sin(an)};
+            vtx_d(m, p);
+        }
+        for (uint32_t i = 0; i < SL_FLOWER_PETALS; i++)
+            tri_facing(m, vc, rim + i, rim + (i + 1) % SL_FLOWER_PETALS, up);
+        for (int i = 0; i < SL_FLOWER_PETALS; i++) {
+            double an = ph0 + i * (2.0 * SL_PI / SL_FLOWER_PETALS);
+            double d[2] = {cos(an), -sin(an)}, pp[2] = {-d[1], d[0]};
+            double L = gen_rng_range(&r, 0.03, 0.045), W = gen_rng_range(&r, 0.014, 0.022);
+            double lift = gen_rng_range(&r, 0.1, 0.5);   /* tip rises lift * L */
+            if (m->oom)
+                return;
+            /* copied: vtx_d below may move m->pos */
+            const float *in = m->pos + 3 * (size_t)(rim + (uint32_t)i);
+            double o[3] = {in[0], in[1], in[2]}, s1[3], s2[3], tip[3];
+            tip[0] = o[0] + L * d[0];
+            tip[1] = o[1] + lift * L;
+            tip[2] = o[2] + L * d[1];
+            for (int sgn = 0; sgn < 2; sgn++) {
+                double *s = sgn ? s2 : s1, w = sgn ? -0.5 * W : 0.5 * W;
+                s[0] = o[0] + 0.5 * L * d[0] + w * pp[0];
+                s[1] = o[1] + 0.5 * lift * L;
+                s[2] = o[2] + 0.5 * L * d[1] + w * pp[1];
+            }
+            uint32_t v1 = vtx_d(m, s1), vt = vtx_d(m, tip), v2 = vtx_d(m, s2);
+            quad_facing(m, rim + (uint32_t)i, v1, vt, v2, up);
+        }
+    }
+}
+
+/*
+ * Park bench `length` long (x), centred at (cx, cz), standing on y0, seat
+ * front toward +z; metres (seat 0.42-0.455 high, back to ~0.85). Every part
+ * is a closed box, and parts overlap rather than touch, so no two boxes share
+ * a corner and welding never joins them:
+ *   5 seat slats, 2 seat rails, 4 legs, 2 back posts and 3 back slats
+ *   (leaning back 12 degrees), 2 arm supports, 2 arm rests = 20 boxes.
+ * The seed moves slats by a few millimetres (a weathered bench).
+ * Triangles: 20 * 12 = 240. Meant for length >= 0.8.
+ */
+void sl_gen_bench(struct sl_mesh *m, float cx, float y0, float cz, float length, uint32_t seed)
+{
+    struct gen_rng r;
+    gen_rng_seed(&r, seed, 3);
+    double X = cx, Y = y0, Z = cz, hx = 0.5 * length, xs = hx - 0.18;
+    for (int i = 0; i < 5; i++) {                    /* seat slats */
+        double zc = Z + 0.1875 - 0.085 * i + gen_rng_range(&r, -0.004, 0.004);
+        double hz = 0.0325 + gen_rng_range(&r, -0.002, 0.002), dy = gen_rng_range(&r, -0.003, 0.003);
+        gen_abox(m, X - hx, Y + 0.42 + dy, zc - hz, X + hx, Y + 0.455 + dy, zc + hz);
+    }
+    for (int s = -1; s <= 1; s += 2) {               /* seat rails and legs */
+        double x = X + s * xs;
+        gen_abox(m, x - 0.025, Y + 0.37, Z - 0.22, x + 0.025, Y + 0.425, Z + 0.24);
+        gen_abox(m, x - 0.03, Y, Z + 0.16, x + 0.03, Y + 0.39, Z + 0.22);
+        gen_abox(m, x - 0.03, Y, Z - 0.20, x + 0.03, Y + 0.39, Z - 0.14);
+    }
+    const double al = 12.0 * SL_PI / 180.0;
+    const double ax[3][3] = {{1, 0, 0}, {0, cos(al), -sin(al)}, {0, sin(al), cos(al)}};
+    for (int s = -1; s <= 1; s += 2) {               /* back posts */
+        double c[3] = {X + s * xs, Y + 0.36 + 0.26 * ax[1][1], Z - 0.17 + 0.26 * ax[1][2]};
+        const double he[3] = {0.025, 0.26, 0.025};
+        gen_obox(m, c, ax, he);
+    }
+    for (int i = 0; i < 3; i++) {                    /* back slats, 3 mm into the posts */
+        double along = 0.22 + 0.1 * i + gen_rng_range(&r, -0.004, 0.004);
+        double off = 0.025 + 0.0125 - 0.003;
+        double c[3];
+        for (int k = 0; k < 3; k++)
+            c[k] = (k == 0 ? X : k == 1 ? Y + 0.36 : Z - 0.17) + along * ax[1][k] + off * ax[2][k];
+        const double he[3] = {hx - 0.02, 0.04, 0.0125};
+        gen_obox(m, c, ax, he);
+    }
+    for (int s = -1; s <= 1; s += 2) {               /* arm supports and rests */
+        double x = X + s * (hx - 0.04);
+        gen_abox(m, x - 0.02, Y + 0.40, Z + 0.15, x + 0.02, Y + 0.64, Z + 0.19);
+        gen_abox(m, x - 0.03, Y + 0.62, Z - 0.16, x + 0.03, Y + 0.66, Z + 0.22);
+    }
+}
+
+/*
+ * Street lamp `height` tall standing at (cx, y0, cz), all closed solids that
+ * overlap instead of touching:
+ *   base  cylinder r 0.04 h, 0.06 h tall, 16 sides          64
+ *   pole  cylinder r 0.012 h from 0.03 h to 0.93 h, 16 sides 64
+ *   head  box 0.10 h wide, 0.88 h .. 0.96 h                  12
+ *   roof  cone r 0.08 h, from 0.955 h, 0.05 h tall, 16 sides 32
+ * Triangles: 172.
+ */
+void sl_gen_lamp(struct sl_mesh *m, float cx, float y0, float cz, float height)
+{
+    double H = height;
+    sl_gen_cylinder(m, cx, y0, cz, (float)(0.04 * H), (float)(0.06 * H), 16);
+    sl_gen_cylinder(m, cx, y0 + (float)(0.03 * H), cz, (float)(0.012 * H), (float)(0.90 * H), 16);
+    gen_abox(m, cx - 0.05 * H, y0 + 0.88 * H, cz - 0.05 * H, cx + 0.05 * H, y0 + 0.96 * H, cz + 0.05 * H);
+    sl_gen_cone(m, cx, y0 + (float)(0.955 * H), cz, (float)(0.08 * H), (float)(0.05 * H), 16);
+}
+
+/*
+ * Open-top planter w (x) by d (z) by h, on y0, as ONE closed watertight
+ * solid: outer walls and bottom, a rim of wall thickness t = 0.08 min(w, d),
+ * inner walls, and the inner floor at soil level y0 + 0.8 h (the planter is
+ * filled with soil, whose surface that floor is). One solid rather than five
+ * wall boxes: boxes meeting at corners would either overlap with coplanar
+ * faces (z-fighting in every shadow map) or share corners, which welding
+ * turns into edges of four triangles.
+ * 16 vertices; triangles: 2 (bottom) + 8 (outer) + 8 (rim) + 8 (inner)
+ * + 2 (soil) = 28. Returns the soil height, where flowers are planted
+ * (sl_gen_flowers over the (w - 2t) by (d - 2t) bed).
+ */
+float sl_gen_flower_box(struct sl_mesh *m, float cx, float y0, float cz, float w, float d, float h)
+{
+    double t = 0.08 * (w < d ? w : d), ys = y0 + 0.8 * h, yt = (double)y0 + h;
+    double ox[2] = {cx - 0.5 * w, cx + 0.5 * w}, oz[2] = {cz - 0.5 * d, cz + 0.5 * d};
+    double ix[2] = {ox[0] + t, ox[1] - t}, iz[2] = {oz[0] + t, oz[1] - t};
+    /* corners in order around the rectangle: (x0,z0) (x1,z0) (x1,z1) (x0,z1) */
+    static const int cxi[4] = {0, 1, 1, 0}, czi[4] = {0, 0, 1, 1};
+    uint32_t ob[4], ot[4], it[4], ib[4];
+    for (int i = 0; i < 4; i++) {
+        double p[3] = {ox[cxi[i]], y0, oz[czi[i]]};
+        ob[i] = vtx_d(m, p);
+        p[1] = yt;
+        ot[i] = vtx_d(m, p);
+        double q[3] = {ix[cxi[i]], yt, iz[czi[i]]};
+        it[i] = vtx_d(m, q);
+        q[1] = ys;
+        ib[i] = vtx_d(m, q);
+    }
+    static const double down[3] = {0, -1, 0}, up[3] = {0, 1, 0};
+    /* outward normals of the sides, side i runs from corner i to i+1 */
+    static const double side_n[4][3] = {{0, 0, -1}, {1, 0, 0}, {0, 0, 1}, {-1, 0, 0}};
+    quad_facing(m, ob[0], ob[1], ob[2], ob[3], down);
+    for (int i = 0; i < 4; i++) {
+        int j = (i + 1) % 4;
+        const double in_n[3] = {-side_n[i][0], -side_n[i][1], -side_n[i][2]};
+        quad_facing(m, ob[i], ob[j], ot[j], ot[i], side_n[i]);   /* outer wall */
+        quad_facing(m, ot[i], ot[j], it[j], it[i], up);          /* rim */
+        quad_facing(m, it[i], it[j], ib[j], ib[i], in_n);        /* inner wall, faces the soil */
+    }
+    quad_facing(m, ib[0], ib[1], ib[2], ib[3], up);
+    return (float)ys;
+}

@@ -12,15 +12,44 @@
 #include "provenance.h"
 #include "run.h"
 #include "scene.h"
+#include "scenefile.h"
+#include "store.h"
+#include "table.h"
 #include "util.h"
 
 static const char usage[] =
-    "usage: shadowlab <command> ...\n"
-    "  run CONFIG [--out DIR]     run an experiment; results under DIR/<name>/ (default results/)\n"
-    "  validate FILE              check a config without touching GL or Embree\n"
+    "usage: shadowlab <command> [--help] ...\n"
+    "  run CONFIG [options]       run an experiment (shadowlab run --help)\n"
+    "  validate FILE              check a config or a scene file without GL or Embree\n"
+    "  table DB [options]         regenerate tables from a results store\n"
     "  bench [CONFIG] [--reps N]  truth pass vs a plain Embree loop, and stage times\n"
     "  list methods|scenes        what can be named in a config\n"
-    "  version                    print the git SHA this binary was built from\n";
+    "  version                    the git SHA this binary was built from\n";
+
+static const char usage_run[] =
+    "usage: shadowlab run CONFIG [--out DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
+    "  --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
+    "  --cells A:B   compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
+    "  --resume      skip cells the results store already holds for this config\n"
+    "  --db FILE     results store (default: the config's 'store', else DIR/shadowlab.db)\n"
+    "  --no-cache    trace the truth even when DIR/cache holds it\n";
+
+static const char usage_validate[] =
+    "usage: shadowlab validate FILE\n"
+    "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
+    "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
+
+static const char usage_table[] =
+    "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
+    "                          [--map N] [--run ID]\n"
+    "  Renders the latest stored cell of each key, filtered, as thesis-style tables.\n";
+
+static const char usage_bench[] =
+    "usage: shadowlab bench [CONFIG] [--reps N]\n"
+    "  The truth pass against a plain Embree rtcOccluded16 loop over the same rays (first scene\n"
+    "  of CONFIG, default configs/default.yaml), then the stage times of one run of CONFIG.\n";
+
+static const char usage_list[] = "usage: shadowlab list methods|scenes\n";
 
 static int fail(enum sl_err e, const struct sl_diag *d)
 {
@@ -30,85 +59,238 @@ static int fail(enum sl_err e, const struct sl_diag *d)
     return 2;
 }
 
-static int usage_error(const char *msg)
+static int usage_error(const char *msg, const char *text)
 {
-    fprintf(stderr, "shadowlab: %s\n%s", msg, usage);
+    fprintf(stderr, "shadowlab: %s\n%s", msg, text);
     return 2;
+}
+
+static int wants_help(int argc, char **argv)
+{
+    for (int i = 2; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
+            return 1;
+    return 0;
+}
+
+/* "A:B" -> [A, B); "A:" -> [A, end) */
+static int parse_cells(const char *s, int *a, int *b)
+{
+    char *end;
+    long x = strtol(s, &end, 10);
+    if (end == s || *end != ':' || x < 0)
+        return 0;
+    const char *t = end + 1;
+    long y = 0;
+    if (*t) {
+        y = strtol(t, &end, 10);
+        if (end == t || *end || y <= x)
+            return 0;
+    }
+    *a = (int)x;
+    *b = (int)y;
+    return 1;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    const char *cfg = NULL;
+    struct sl_run_opts o = {.table_out = stdout, .write_files = 1, .progress = 1};
+    int no_cache = 0;
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+            o.out_root = argv[++i];
+        else if (strcmp(argv[i], "--db") == 0 && i + 1 < argc)
+            o.store = argv[++i];
+        else if (strcmp(argv[i], "--cells") == 0 && i + 1 < argc) {
+            if (!parse_cells(argv[++i], &o.first, &o.last))
+                return usage_error("run: --cells wants A:B with 0 <= A < B (or A:)", usage_run);
+        } else if (strcmp(argv[i], "--resume") == 0)
+            o.resume = 1;
+        else if (strcmp(argv[i], "--no-cache") == 0)
+            no_cache = 1;
+        else if (argv[i][0] == '-')
+            return usage_error("run: unknown option", usage_run);
+        else if (!cfg)
+            cfg = argv[i];
+        else
+            return usage_error("run: one config at a time", usage_run);
+    }
+    if (!cfg)
+        return usage_error("run: missing CONFIG", usage_run);
+    if (no_cache)
+        o.cache_dir = "";
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct sl_config c;
+    enum sl_err e = sl_config_load(cfg, &c, &d);
+    if (e)
+        return fail(e, &d);
+    struct sl_run_result r;
+    e = sl_run(&c, &o, &r, &d);
+    sl_run_result_free(&r);
+    return e ? fail(e, &d) : 0;
+}
+
+/* A scene file has a top-level meshes, light or base key; a config has not. */
+static int looks_like_scene(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 0;
+    char line[512];
+    int scene = 0;
+    while (!scene && fgets(line, sizeof line, f))
+        scene = strncmp(line, "meshes:", 7) == 0 || strncmp(line, "light:", 6) == 0 ||
+                strncmp(line, "base:", 5) == 0;
+    fclose(f);
+    return scene;
+}
+
+static int cmd_validate(int argc, char **argv)
+{
+    if (argc != 3)
+        return usage_error("validate: one FILE", usage_validate);
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    if (looks_like_scene(argv[2])) {
+        struct sl_scene s;
+        enum sl_err e = sl_scene_load(argv[2], &s, &d);
+        if (e)
+            return fail(e, &d);
+        printf("%s: ok: scene '%s', %u triangles, %u vertices, %d mesh(es), %d viewpoint(s)\n", argv[2],
+               s.name, s.nt, s.nv, s.nranges, s.nvp);
+        sl_scene_free(&s);
+        return 0;
+    }
+    struct sl_config c;
+    enum sl_err e = sl_config_load(argv[2], &c, &d);
+    if (e)
+        return fail(e, &d);
+    printf("%s: ok: %d scene(s), %d cell(s)\n", argv[2], c.nscenes, sl_plan_count(&c));
+    sl_config_write(&c, stdout);
+    return 0;
+}
+
+static int cmd_table(int argc, char **argv)
+{
+    const char *db = NULL;
+    struct sl_store_filter f = {0};
+    int fmt = SL_TABLE_MD;
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--format") == 0 && v) {
+            fmt = sl_table_format_parse(v);
+            if (fmt < 0)
+                return usage_error("table: --format md, csv or latex", usage_table);
+            i++;
+        } else if (strcmp(a, "--scene") == 0 && v) {
+            f.scene = v; i++;
+        } else if (strcmp(a, "--viewpoint") == 0 && v) {
+            f.viewpoint = v; i++;
+        } else if (strcmp(a, "--label") == 0 && v) {
+            f.label = v; i++;
+        } else if (strcmp(a, "--map") == 0 && v) {
+            f.map_size = atoi(v); i++;
+        } else if (strcmp(a, "--run") == 0 && v) {
+            f.run_id = atoll(v); i++;
+        } else if (a[0] == '-') {
+            return usage_error("table: unknown option", usage_table);
+        } else if (!db) {
+            db = a;
+        } else {
+            return usage_error("table: one DB", usage_table);
+        }
+    }
+    if (!db)
+        return usage_error("table: missing DB", usage_table);
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    FILE *probe = fopen(db, "rb");
+    if (!probe) {
+        sl_fail(&d, SL_E_IO, db, 0, NULL, "cannot read the results store");
+        return fail(SL_E_IO, &d);
+    }
+    fclose(probe);
+    struct sl_store *st = NULL;
+    struct sl_table_cell *cells = NULL;
+    int n = 0;
+    enum sl_err e = sl_store_open(db, &st, &d);
+    if (!e)
+        e = sl_store_query(st, &f, &cells, &n, &d);
+    if (!e && n == 0)
+        e = sl_fail(&d, SL_E_USAGE, db, 0, NULL, "no stored cell matches");
+    if (!e)
+        e = sl_table_write(stdout, (enum sl_table_format)fmt, db, cells, n, &d);
+    free(cells);
+    sl_store_close(st);
+    return e ? fail(e, &d) : 0;
+}
+
+static int cmd_bench(int argc, char **argv)
+{
+    struct sl_bench_opts o = {.config = NULL, .reps = 0, .out = stdout};
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) {
+            o.reps = atoi(argv[++i]);
+            if (o.reps < 1 || o.reps > 1000)
+                return usage_error("bench: --reps must be 1..1000", usage_bench);
+        } else if (argv[i][0] == '-') {
+            return usage_error("bench: unknown option", usage_bench);
+        } else {
+            o.config = argv[i];
+        }
+    }
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_bench(&o, &d);
+    return e ? fail(e, &d) : 0;
+}
+
+static int cmd_list(int argc, char **argv)
+{
+    if (argc == 3 && strcmp(argv[2], "methods") == 0) {
+        for (int i = 0; i < sl_method_count(); i++)
+            printf("%-12s %s\n", sl_method_at(i)->name, sl_method_at(i)->summary);
+        return 0;
+    }
+    if (argc == 3 && strcmp(argv[2], "scenes") == 0) {
+        static char names[256][64], descr[256][160];
+        int n = sl_scene_list(names, descr, 256);
+        for (int i = 0; i < n; i++)
+            printf("%-12s %s\n", names[i], descr[i]);
+        if (n == 0)
+            fprintf(stderr, "shadowlab: no scene files in %s\n", sl_scenes_dir());
+        return 0;
+    }
+    return usage_error("list: methods or scenes", usage_list);
 }
 
 int main(int argc, char **argv)
 {
     if (argc < 2)
-        return usage_error("missing command");
+        return usage_error("missing command", usage);
     const char *cmd = argv[1];
-    struct sl_diag d;
-    memset(&d, 0, sizeof d);
-
-    if (strcmp(cmd, "run") == 0) {
-        const char *cfg = NULL, *out = NULL;
-        for (int i = 2; i < argc; i++) {
-            if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-                out = argv[++i];
-            else if (argv[i][0] == '-')
-                return usage_error("run: unknown option");
-            else if (!cfg)
-                cfg = argv[i];
-            else
-                return usage_error("run: one config at a time");
-        }
-        if (!cfg)
-            return usage_error("run: missing CONFIG");
-        struct sl_config c;
-        enum sl_err e = sl_config_load(cfg, &c, &d);
-        if (e)
-            return fail(e, &d);
-        struct sl_run_opts o = {.out_root = out, .table_out = stdout, .write_files = 1};
-        struct sl_run_result r;
-        e = sl_run(&c, &o, &r, &d);
-        sl_run_result_free(&r);
-        return e ? fail(e, &d) : 0;
-    }
-    if (strcmp(cmd, "validate") == 0) {
-        if (argc != 3)
-            return usage_error("validate: one FILE");
-        struct sl_config c;
-        enum sl_err e = sl_config_load(argv[2], &c, &d);
-        if (e)
-            return fail(e, &d);
-        printf("%s: ok (%d viewpoint(s), %d viewport(s), %d map size(s), %d method(s))\n", argv[2],
-               c.nviewpoints, c.nviewports, c.nmaps, c.nmethods);
-        sl_config_write(&c, stdout);
-        return 0;
-    }
-    if (strcmp(cmd, "bench") == 0) {
-        struct sl_bench_opts o = {.config = NULL, .reps = 0, .out = stdout};
-        for (int i = 2; i < argc; i++) {
-            if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) {
-                o.reps = atoi(argv[++i]);
-                if (o.reps < 1 || o.reps > 1000)
-                    return usage_error("bench: --reps must be 1..1000");
-            } else if (argv[i][0] == '-') {
-                return usage_error("bench: unknown option");
-            } else {
-                o.config = argv[i];
+    static const struct {
+        const char *name;
+        int (*fn)(int, char **);
+        const char *help;
+    } verbs[] = {
+        {"run", cmd_run, usage_run},
+        {"validate", cmd_validate, usage_validate},
+        {"table", cmd_table, usage_table},
+        {"bench", cmd_bench, usage_bench},
+        {"list", cmd_list, usage_list},
+    };
+    for (size_t i = 0; i < sizeof verbs / sizeof verbs[0]; i++)
+        if (strcmp(cmd, verbs[i].name) == 0) {
+            if (wants_help(argc, argv)) {
+                fputs(verbs[i].help, stdout);
+                return 0;
             }
+            return verbs[i].fn(argc, argv);
         }
-        enum sl_err e = sl_bench(&o, &d);
-        return e ? fail(e, &d) : 0;
-    }
-    if (strcmp(cmd, "list") == 0) {
-        if (argc == 3 && strcmp(argv[2], "methods") == 0) {
-            for (int i = 0; i < sl_method_count(); i++)
-                printf("%-12s %s\n", sl_method_at(i)->name, sl_method_at(i)->summary);
-            return 0;
-        }
-        if (argc == 3 && strcmp(argv[2], "scenes") == 0) {
-            for (int i = 0; i < sl_scene_count(); i++)
-                printf("%-12s %s\n", sl_scene_name(i), sl_scene_summary(i));
-            return 0;
-        }
-        return usage_error("list: methods or scenes");
-    }
     if (strcmp(cmd, "version") == 0) {
         printf("shadowlab %s\n", sl_git_sha());
         return 0;
@@ -117,5 +299,5 @@ int main(int argc, char **argv)
         fputs(usage, stdout);
         return 0;
     }
-    return usage_error("unknown command");
+    return usage_error("unknown command", usage);
 }

@@ -1,13 +1,16 @@
 /*
  * run.c — see run.h.
  *
- * Order of work, each arrow computed once and shared downstream:
- * scene -> GL mesh + Embree BVH; per viewport x viewpoint: G-buffer -> truth
- * -> light fit; per map size: the union of the methods' layers; per method:
- * verdicts -> contours of its own image -> figures -> overlay.
+ * Invariants: cells are visited in sweep order, so the cells sharing a scene,
+ * a view and a map size are contiguous and each shared stage is computed once
+ * for them (the caches below hold the current scene, view and frame); the
+ * layers rendered for a (view, map size) are the union of what the methods of
+ * the selected cells in that group declare; methods see the view without
+ * its truth.
  */
 #define _XOPEN_SOURCE 700
 #include "run.h"
+#include <errno.h>
 #include <ftw.h>
 #include <math.h>
 #include <stdlib.h>
@@ -21,8 +24,15 @@
 #include "lightfit.h"
 #include "overlay.h"
 #include "shadowmap.h"
+#include "scenefile.h"
+#include "store.h"
+#include "table.h"
 #include "truth.h"
 #include "util.h"
+
+/* Bump when anything that determines the truth changes (tnear, filter, PFL
+ * rule), so cached truths of older code are never read. */
+#define SL_TRUTH_VERSION "truth-v1 own-triangle-filter tnear=2^-16|p|+2^-24 face-normal-pfl"
 
 void sl_run_result_free(struct sl_run_result *r)
 {
@@ -30,6 +40,33 @@ void sl_run_result_free(struct sl_run_result *r)
         return;
     free(r->cells);
     memset(r, 0, sizeof *r);
+}
+
+int sl_plan_count(const struct sl_config *c)
+{
+    int n = 0;
+    for (int s = 0; s < c->nscenes; s++)
+        n += c->nviewports * c->scenes[s].nviewpoints * c->nmaps * c->nmethods;
+    return n;
+}
+
+void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k)
+{
+    memset(k, 0, sizeof *k);
+    for (int s = 0; s < c->nscenes; s++) {
+        int per = c->nviewports * c->scenes[s].nviewpoints * c->nmaps * c->nmethods;
+        if (index < per) {
+            k->scene = s;
+            k->method = index % c->nmethods;
+            index /= c->nmethods;
+            k->map = index % c->nmaps;
+            index /= c->nmaps;
+            k->vp = index % c->scenes[s].nviewpoints;
+            k->viewport = index / c->scenes[s].nviewpoints;
+            return;
+        }
+        index -= per;
+    }
 }
 
 static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw)
@@ -43,193 +80,474 @@ static void rm_tree(const char *path)
     nftw(path, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
 }
 
-static const char *region_name(int t, char *buf, size_t n)
+/* ---- outputs ---- */
+
+static void machine_of(const struct sl_provenance *p, char *out, size_t n)
 {
-    if (t == 0)
-        snprintf(buf, n, "image");
-    else
-        snprintf(buf, n, "%dpx", t);
-    return buf;
+    snprintf(out, n, "%s/%s/%s", p->host, p->cpu, p->isa);
 }
 
-/* ---- writers ---- */
-
-static void write_csv_header(FILE *f)
+static void table_cells_of(const struct sl_config *c, const struct sl_run_result *res,
+                           struct sl_table_cell *tc)
 {
-    fprintf(f, "scene,viewpoint,viewport,map_size,method,label,region,figure,count,percent,percent_of,"
-               "git_sha,config_hash,machine\n");
-}
-
-static void write_csv_cell(FILE *f, const struct sl_config *c, const struct sl_run_result *res,
-                           const struct sl_cell *cell)
-{
-    const struct sl_config_method *m = &c->methods[cell->method];
-    for (int r = 0; r < cell->fig.nregions; r++) {
-        const struct sl_region_figures *g = &cell->fig.r[r];
-        char rn[16];
-        region_name(g->thickness, rn, sizeof rn);
-        for (int k = 0; k < SL_FIG_COUNT; k++) {
-            fprintf(f, "%s,%s,%dx%d,%d,%s,%s,%s,%s,%llu,", c->scene, cell->viewpoint,
-                    c->viewport_w[cell->viewport], c->viewport_h[cell->viewport], c->maps[cell->map],
-                    m->method->name, m->label, rn, sl_figure_name((enum sl_figure)k),
-                    (unsigned long long)g->n[k]);
-            if (isnan(g->pct[k]))
-                fprintf(f, ",");
-            else
-                fprintf(f, "%.4f,", g->pct[k]);
-            fprintf(f, "%s,%s,%016llx,\"%s/%s/%s\"\n", sl_figure_of((enum sl_figure)k), res->prov.git_sha,
-                    c->hash, res->prov.host, res->prov.cpu, res->prov.isa);
-        }
-    }
-    fprintf(f, "%s,%s,%dx%d,%d,%s,%s,image,background,%llu,,,%s,%016llx,\"%s/%s/%s\"\n", c->scene,
-            cell->viewpoint, c->viewport_w[cell->viewport], c->viewport_h[cell->viewport],
-            c->maps[cell->map], m->method->name, m->label, (unsigned long long)cell->fig.background,
-            res->prov.git_sha, c->hash, res->prov.host, res->prov.cpu, res->prov.isa);
-}
-
-static void write_costs_header(FILE *f)
-{
-    fprintf(f, "scene,viewpoint,viewport,map_size,label,ms_gbuffer_render,ms_gbuffer_readback,"
-               "ms_truth,truth_rays,ms_fit,ms_map_render,ms_map_readback,ms_method,lookups,rays,"
-               "tri_tests,ms_contours,ms_figures,ms_overlay,git_sha,config_hash,machine\n");
-}
-
-static void write_costs_cell(FILE *f, const struct sl_config *c, const struct sl_run_result *res,
-                             const struct sl_cell *cell)
-{
-    const struct sl_stage_ms *s = &cell->ms;
-    fprintf(f, "%s,%s,%dx%d,%d,%s,%.3f,%.3f,%.3f,%llu,%.3f,%.3f,%.3f,%.3f,%llu,%llu,%llu,%.3f,%.3f,%.3f,"
-               "%s,%016llx,\"%s/%s/%s\"\n",
-            c->scene, cell->viewpoint, c->viewport_w[cell->viewport], c->viewport_h[cell->viewport],
-            c->maps[cell->map], c->methods[cell->method].label, s->gbuffer_render, s->gbuffer_readback,
-            s->truth, (unsigned long long)cell->truth_rays, s->fit, s->map_render, s->map_readback,
-            s->method, (unsigned long long)cell->cost.lookups, (unsigned long long)cell->cost.rays,
-            (unsigned long long)cell->cost.tri_tests, s->contours, s->figures, s->overlay,
-            res->prov.git_sha, c->hash, res->prov.host, res->prov.cpu, res->prov.isa);
-}
-
-static void md_cell(FILE *f, const struct sl_region_figures *g, int k)
-{
-    if (isnan(g->pct[k]))
-        fprintf(f, " %llu |", (unsigned long long)g->n[k]);
-    else
-        fprintf(f, " %llu (%.2f%%) |", (unsigned long long)g->n[k], g->pct[k]);
-}
-
-/* One table per (viewport, viewpoint, method): rows are figures, columns are
- * map size x region (Moderno 2011 Tables 17/18 and Morais 2015 Table 7 in one). */
-static void write_markdown(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    fprintf(f, "# shadowlab: %s\n\n", c->name);
-    fprintf(f, "scene `%s`, config `%s` (hash %016llx), git %s, %s (%s, %s), %s, Embree %s, %d threads, %s\n\n",
-            c->scene, c->path, c->hash, res->prov.git_sha, res->prov.host, res->prov.cpu, res->prov.isa,
-            res->prov.gl_renderer, res->prov.embree, res->prov.threads, res->prov.time_utc);
-    fprintf(f, "Percentages: PFL, PnFL, light, shadow, wrong of the region's pixels; correct/incorrect "
-               "of the method's light or shadow pixels; wrong caught of all wrong pixels of the image. "
-               "Background pixels enter no region; PnFL pixels count as shadow.\n\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *first = &res->cells[i];
-        if (first->map != 0)
-            continue;
-        const struct sl_config_method *m = &c->methods[first->method];
-        fprintf(f, "## %s / %s / %dx%d / %s\n\n", c->scene, first->viewpoint,
-                c->viewport_w[first->viewport], c->viewport_h[first->viewport], m->label);
-        fprintf(f, "PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.\n\n",
-                (unsigned long long)first->n_pfl, (unsigned long long)first->n_pnfl,
-                (unsigned long long)first->n_background, (unsigned long long)first->n_truth_lit,
-                (unsigned long long)first->n_truth_shadow);
-        fprintf(f, "| figure |");
-        for (int mp = 0; mp < c->nmaps; mp++)
-            for (int r = 0; r < c->nregions; r++) {
-                char rn[16];
-                fprintf(f, " %d² %s |", c->maps[mp], region_name(c->regions[r], rn, sizeof rn));
-            }
-        fprintf(f, "\n|---|");
-        for (int k = 0; k < c->nmaps * c->nregions; k++)
-            fprintf(f, "---:|");
-        fprintf(f, "\n");
-        for (int k = 0; k < SL_FIG_COUNT; k++) {
-            fprintf(f, "| %s |", sl_figure_name((enum sl_figure)k));
-            for (int mp = 0; mp < c->nmaps; mp++) {
-                /* cells of this view and method are laid out map-major */
-                const struct sl_cell *cell = first + mp * c->nmethods;
-                for (int r = 0; r < cell->fig.nregions; r++)
-                    md_cell(f, &cell->fig.r[r], k);
-            }
-            fprintf(f, "\n");
-        }
-        fprintf(f, "\n");
-    }
-    fprintf(f, "## Cost per cell (ms; G-buffer and truth are shared by the cells of a view)\n\n");
-    fprintf(f, "| viewpoint | map | label | G-buffer | truth | rays | fit | map render | readback | method | lookups | contours | figures | overlay |\n");
-    fprintf(f, "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
-        const struct sl_stage_ms *s = &cl->ms;
-        fprintf(f, "| %s | %d | %s | %.1f | %.1f | %llu | %.1f | %.1f | %.1f | %.1f | %llu | %.1f | %.1f | %.1f |\n",
-                cl->viewpoint, c->maps[cl->map], c->methods[cl->method].label,
-                s->gbuffer_render + s->gbuffer_readback, s->truth, (unsigned long long)cl->truth_rays,
-                s->fit, s->map_render, s->map_readback, s->method, (unsigned long long)cl->cost.lookups,
-                s->contours, s->figures, s->overlay);
+        struct sl_table_cell *t = &tc[i];
+        memset(t, 0, sizeof *t);
+        snprintf(t->scene, sizeof t->scene, "%s", cl->scene);
+        snprintf(t->viewpoint, sizeof t->viewpoint, "%s", cl->viewpoint);
+        snprintf(t->method, sizeof t->method, "%s", c->methods[cl->key.method].method->name);
+        snprintf(t->label, sizeof t->label, "%s", c->methods[cl->key.method].label);
+        t->vw = c->viewport_w[cl->key.viewport];
+        t->vh = c->viewport_h[cl->key.viewport];
+        t->map_size = c->maps[cl->key.map];
+        t->n_pfl = cl->n_pfl;
+        t->n_pnfl = cl->n_pnfl;
+        t->n_background = cl->n_background;
+        t->n_truth_lit = cl->n_truth_lit;
+        t->n_truth_shadow = cl->n_truth_shadow;
+        t->fig = cl->fig;
+        snprintf(t->git_sha, sizeof t->git_sha, "%s", res->prov.git_sha);
+        snprintf(t->config_hash, sizeof t->config_hash, "%016llx", c->hash);
+        machine_of(&res->prov, t->machine, sizeof t->machine);
     }
-    fprintf(f, "\nTotal %.0f ms (scene %.1f ms, BVH %.1f ms).\n", res->ms_total, res->ms_scene, res->ms_bvh);
 }
 
-static void write_figures_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+static enum sl_err write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
+                                const struct sl_run_result *res, struct sl_diag *d)
 {
-    write_csv_header(f);
-    for (int i = 0; i < res->ncells; i++)
-        write_csv_cell(f, c, res, &res->cells[i]);
+    struct sl_table_cell *tc = sl_calloc((size_t)(res->ncells ? res->ncells : 1), sizeof *tc);
+    if (!tc)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "table cells");
+    table_cells_of(c, res, tc);
+    char title[256];
+    snprintf(title, sizeof title, "shadowlab: %s", c->name);
+    enum sl_err e = sl_table_write(f, fmt, title, tc, res->ncells, d);
+    free(tc);
+    return e;
 }
 
 static void write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
 {
-    write_costs_header(f);
-    for (int i = 0; i < res->ncells; i++)
-        write_costs_cell(f, c, res, &res->cells[i]);
+    char machine[300];
+    machine_of(&res->prov, machine, sizeof machine);
+    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,ms_gbuffer_render,ms_gbuffer_readback,"
+               "ms_truth,truth_cached,truth_rays,ms_fit,ms_map_render,ms_map_readback,ms_method,"
+               "ms_method_min,ms_method_max,runs,lookups,rays,tri_tests,ms_contours,ms_figures,"
+               "ms_overlay,git_sha,config_hash,machine\n");
+    for (int i = 0; i < res->ncells; i++) {
+        const struct sl_cell *cl = &res->cells[i];
+        const struct sl_stage_ms *s = &cl->ms;
+        fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,"
+                   "%llu,%llu,%llu,%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n",
+                cl->index, cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
+                c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label,
+                s->gbuffer_render, s->gbuffer_readback, s->truth, cl->truth_cached,
+                (unsigned long long)cl->truth_rays, s->fit, s->map_render, s->map_readback, s->method,
+                s->method_min, s->method_max, c->runs, (unsigned long long)cl->cost.lookups,
+                (unsigned long long)cl->cost.rays, (unsigned long long)cl->cost.tri_tests, s->contours,
+                s->figures, s->overlay, res->prov.git_sha, c->hash, machine);
+    }
 }
 
-static void write_config_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+static void write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
 {
-    fprintf(f, "# from %s (hash %016llx), git %s\n", c->path, c->hash, res->prov.git_sha);
-    sl_config_write(c, f);
+    fprintf(f, "\n## Cost per cell (ms; G-buffer and truth are shared by the cells of a view)\n\n");
+    fprintf(f, "| cell | scene | viewpoint | map | label | G-buffer | truth | fit | map render | readback "
+               "| method (median of %d) | lookups | contours | figures | overlay |\n", c->runs);
+    fprintf(f, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (int i = 0; i < res->ncells; i++) {
+        const struct sl_cell *cl = &res->cells[i];
+        const struct sl_stage_ms *s = &cl->ms;
+        fprintf(f, "| %d | %s | %s | %d | %s | %.1f | %.1f%s | %.1f | %.1f | %.1f | %.1f | %llu | %.1f | %.1f | %.1f |\n",
+                cl->index, cl->scene, cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label,
+                s->gbuffer_render + s->gbuffer_readback, s->truth, cl->truth_cached ? " (cached)" : "", s->fit,
+                s->map_render, s->map_readback, s->method, (unsigned long long)cl->cost.lookups,
+                s->contours, s->figures, s->overlay);
+    }
+    fprintf(f, "\nTotal %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.\n",
+            res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
 }
 
 static void write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
 {
     fprintf(f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
     sl_provenance_write(&res->prov, f, "");
-    fprintf(f, "ms_total: %.1f\n", res->ms_total);
+    fprintf(f, "cells_computed: %d\ncells_skipped: %d\nms_total: %.1f\n", res->ncells, res->skipped,
+            res->ms_total);
+}
+
+/* ---- truth cache ---- */
+
+static unsigned long long truth_key(const struct sl_scene *s, const struct sl_viewpoint *vp, int w, int h,
+                                    const struct sl_gl *gl, const struct sl_rt *rt)
+{
+    unsigned long long k = SL_FNV_SEED;
+    k = sl_fnv1a(k, SL_TRUTH_VERSION, strlen(SL_TRUTH_VERSION));
+    k = sl_fnv1a(k, s->pos, (size_t)s->nv * 3 * sizeof(float));
+    k = sl_fnv1a(k, s->idx, (size_t)s->nt * 3 * sizeof(uint32_t));
+    k = sl_fnv1a(k, &s->light, sizeof s->light);
+    k = sl_fnv1a(k, vp, sizeof *vp);
+    k = sl_fnv1a(k, &w, sizeof w);
+    k = sl_fnv1a(k, &h, sizeof h);
+    /* the G-buffer positions come from GL: another renderer, another truth */
+    k = sl_fnv1a(k, gl->renderer, strlen(gl->renderer));
+    k = sl_fnv1a(k, gl->version, strlen(gl->version));
+    k = sl_fnv1a(k, rt->version, strlen(rt->version));
+    return k;
+}
+
+static const char truth_magic[8] = {'S', 'L', 'T', 'R', 'U', 'T', 'H', '1'};
+
+/* 1 and v->truth filled when a valid cache entry exists and agrees with the
+ * view's classes; 0 otherwise (then the truth is traced). */
+static int truth_cache_read(const char *dir, unsigned long long key, struct sl_view *v)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/truth-%016llx.bin", dir, key);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    char magic[8];
+    int32_t wh[2];
+    size_t n = (size_t)v->w * (size_t)v->h;
+    uint8_t *buf = malloc(n);
+    int ok = buf && fread(magic, 1, 8, f) == 8 && memcmp(magic, truth_magic, 8) == 0 &&
+             fread(wh, sizeof wh, 1, f) == 1 && wh[0] == v->w && wh[1] == v->h && fread(buf, 1, n, f) == n;
+    fclose(f);
+    uint64_t lit = 0, shadow = 0;
+    for (size_t i = 0; ok && i < n; i++) {
+        uint8_t t = buf[i], c = v->cls[i];
+        ok = (c == SL_C_BACKGROUND && t == SL_T_BACKGROUND) || (c == SL_C_PNFL && t == SL_T_PNFL) ||
+             (c == SL_C_PFL && (t == SL_T_LIT || t == SL_T_SHADOW));
+        lit += t == SL_T_LIT;
+        shadow += t == SL_T_SHADOW;
+    }
+    if (ok) {
+        memcpy(v->truth, buf, n);
+        v->n_lit = lit;
+        v->n_shadow = shadow;
+    }
+    free(buf);
+    return ok;
+}
+
+static void truth_cache_write(const char *dir, unsigned long long key, const struct sl_view *v)
+{
+    char path[1200], tmp[1300];
+    snprintf(path, sizeof path, "%s/truth-%016llx.bin", dir, key);
+    snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid());
+    FILE *f = fopen(tmp, "wb");
+    if (!f)
+        return;   /* a cache that cannot be written is only a lost speed-up */
+    int32_t wh[2] = {v->w, v->h};
+    size_t n = (size_t)v->w * (size_t)v->h;
+    int ok = fwrite(truth_magic, 1, 8, f) == 8 && fwrite(wh, sizeof wh, 1, f) == 1 &&
+             fwrite(v->truth, 1, n, f) == n;
+    ok = (fclose(f) == 0) && ok;
+    if (!ok || rename(tmp, path) != 0)
+        remove(tmp);
 }
 
 /* ---- the run ---- */
 
 struct run_ctx {
     struct sl_gl gl;
+    struct sl_rt rt;
+    /* current scene */
+    int scene_i;
+    struct sl_scene scene;
     struct sl_gl_mesh mesh;
     struct sl_gbuffer_pass gpass;
     struct sl_shadowmap_pass spass;
-    struct sl_rt rt;
-    struct sl_scene scene;
+    /* current view */
+    int view_scene, view_vp, view_viewport;
+    struct sl_view view;
+    struct sl_light_box box;
+    struct sl_stage_ms vms;
+    int truth_cached;
+    uint64_t truth_rays;
+    /* current frame */
+    int frame_map;
+    struct sl_light_frame frame;
+    /* per-pixel scratch */
+    int W, H;
     uint8_t *state, *band, *rgb;
     struct sl_verdicts vd;
 };
 
+static void drop_frame(struct run_ctx *x)
+{
+    sl_frame_free(&x->frame);
+    x->frame_map = -1;
+}
+
+static void drop_view(struct run_ctx *x)
+{
+    drop_frame(x);
+    sl_view_free(&x->view);
+    x->view_scene = x->view_vp = x->view_viewport = -1;
+}
+
+static void drop_scene(struct run_ctx *x)
+{
+    drop_view(x);
+    sl_rt_free(&x->rt);
+    if (x->gl.ctx) {
+        sl_gbuffer_free(&x->gpass);
+        sl_gl_mesh_free(&x->mesh);
+    }
+    sl_scene_free(&x->scene);
+    x->scene_i = -1;
+}
+
 static void ctx_free(struct run_ctx *x)
 {
+    drop_scene(x);
     free(x->state);
     free(x->band);
     free(x->rgb);
     free(x->vd.v);
     free(x->vd.how);
-    sl_rt_free(&x->rt);
     if (x->gl.ctx) {
         sl_shadowmap_free(&x->spass);
-        sl_gbuffer_free(&x->gpass);
-        sl_gl_mesh_free(&x->mesh);
         sl_gl_free(&x->gl);
     }
-    sl_scene_free(&x->scene);
+}
+
+static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, int si,
+                                struct sl_run_result *res, struct sl_diag *d)
+{
+    if (x->scene_i == si)
+        return SL_OK;
+    drop_scene(x);
+    double t0 = sl_now();
+    enum sl_err e = sl_scene_load(c->scenes[si].path, &x->scene, d);
+    if (e)
+        return e;
+    res->ms_scene += 1e3 * (sl_now() - t0);
+    if ((e = sl_gl_mesh_upload(&x->mesh, &x->scene, d)) || (e = sl_gbuffer_init(&x->gpass, &x->scene, d)) ||
+        (e = sl_rt_build(&x->rt, &x->scene, c->threads, 1, d)))
+        return e;
+    res->ms_bvh += x->rt.ms_build;
+    res->passes.scenes++;
+    x->scene_i = si;
+    return SL_OK;
+}
+
+static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_diag *d)
+{
+    if (x->W == W && x->H == H)
+        return SL_OK;
+    size_t npx = (size_t)W * (size_t)H;
+    free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how);
+    x->state = sl_calloc(npx, 1);
+    x->band = sl_calloc(npx, 1);
+    x->rgb = sl_calloc(npx, 3);
+    x->vd.v = sl_calloc(npx, 1);
+    x->vd.how = sl_calloc(npx, 1);
+    x->W = x->vd.w = W;
+    x->H = x->vd.h = H;
+    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how) {
+        x->W = x->H = 0;
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "per-pixel buffers %dx%d", W, H);
+    }
+    return SL_OK;
+}
+
+static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                               const char *cache_dir, struct sl_run_result *res, struct sl_diag *d)
+{
+    if (x->view_scene == k->scene && x->view_vp == k->vp && x->view_viewport == k->viewport)
+        return SL_OK;
+    drop_view(x);
+    int W = c->viewport_w[k->viewport], H = c->viewport_h[k->viewport];
+    int vp = sl_scene_find_viewpoint(&x->scene, c->scenes[k->scene].viewpoints[k->vp]);
+    if (vp < 0)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "viewpoint vanished from the scene");
+    memset(&x->vms, 0, sizeof x->vms);
+    enum sl_err e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &x->view,
+                                      &x->vms.gbuffer_render, &x->vms.gbuffer_readback, d);
+    if (e)
+        return e;
+    res->passes.gbuffers++;
+    double t0 = sl_now();
+    unsigned long long key = truth_key(&x->scene, &x->scene.vp[vp], W, H, &x->gl, &x->rt);
+    x->truth_cached = cache_dir && cache_dir[0] && truth_cache_read(cache_dir, key, &x->view);
+    x->truth_rays = 0;
+    if (x->truth_cached) {
+        res->passes.truths_cached++;
+        x->vms.truth = 1e3 * (sl_now() - t0);
+    } else {
+        struct sl_truth_stats ts;
+        if ((e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d)))
+            return e;
+        res->passes.truths_traced++;
+        x->vms.truth = ts.ms_trace;
+        x->truth_rays = ts.rays;
+        if (cache_dir && cache_dir[0])
+            truth_cache_write(cache_dir, key, &x->view);
+    }
+    t0 = sl_now();
+    sl_light_fit(&x->scene, &x->view, &x->box);
+    x->vms.fit = 1e3 * (sl_now() - t0);
+    x->view_scene = k->scene;
+    x->view_vp = k->vp;
+    x->view_viewport = k->viewport;
+    return SL_OK;
+}
+
+/* The layers wanted by the selected cells of the (view, map) group that
+ * starts at cell `from` (the group's cells are contiguous in sweep order),
+ * leaving out cells a resumed run will skip. */
+static unsigned group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
+{
+    struct sl_cell_key k0, k;
+    sl_plan_cell(c, from, &k0);
+    unsigned needs = 0;
+    for (int i = from; i < last; i++) {
+        sl_plan_cell(c, i, &k);
+        if (k.scene != k0.scene || k.viewport != k0.viewport || k.vp != k0.vp || k.map != k0.map)
+            break;
+        const struct sl_config_scene *cs = &c->scenes[k.scene];
+        if (resume && sl_store_has_cell(st, c->hash, cs->name, cs->viewpoints[k.vp], c->viewport_w[k.viewport],
+                                        c->viewport_h[k.viewport], c->maps[k.map], c->methods[k.method].label))
+            continue;
+        needs |= c->methods[k.method].method->needs(&c->methods[k.method].params);
+    }
+    return needs;
+}
+
+static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                                unsigned needs, struct sl_run_result *res, struct sl_diag *d)
+{
+    if (x->frame_map == k->map && (x->frame.have & needs) == needs)
+        return SL_OK;
+    if (x->frame_map != k->map) {
+        drop_frame(x);
+        memset(&x->frame, 0, sizeof x->frame);
+        x->frame.size = c->maps[k->map];
+        memcpy(x->frame.dir, x->scene.light_dir, sizeof x->frame.dir);
+        x->frame.box = x->box;
+        x->frame.texel_world = fmaxf(x->box.hi[0] - x->box.lo[0], x->box.hi[1] - x->box.lo[1]) /
+                               (float)x->frame.size;
+        x->frame.depth_range = x->box.hi[2] - x->box.lo[2];
+        x->frame_map = k->map;
+    }
+    unsigned before = x->frame.have;
+    enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, needs, d);
+    for (int l = 0; l < SL_LAYER_COUNT; l++)
+        if ((x->frame.have & ~before) & SL_NEED(l))
+            res->passes.layers[l]++;
+    return e;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                            struct sl_cell *cell, const char *ovdir, struct sl_run_result *res,
+                            struct sl_diag *d)
+{
+    const struct sl_config_method *cm = &c->methods[k->method];
+    int W = c->viewport_w[k->viewport], H = c->viewport_h[k->viewport];
+    size_t npx = (size_t)W * (size_t)H;
+    cell->key = *k;
+    snprintf(cell->scene, sizeof cell->scene, "%s", x->scene.name);
+    snprintf(cell->viewpoint, sizeof cell->viewpoint, "%s", c->scenes[k->scene].viewpoints[k->vp]);
+    cell->ms = x->vms;
+    cell->truth_cached = x->truth_cached;
+    cell->truth_rays = x->truth_rays;
+    cell->n_pfl = x->view.n_pfl;
+    cell->n_pnfl = x->view.n_pnfl;
+    cell->n_background = x->view.n_background;
+    cell->n_truth_lit = x->view.n_lit;
+    cell->n_truth_shadow = x->view.n_shadow;
+    unsigned mneeds = cm->method->needs(&cm->params);
+    for (int l = 0; l < SL_LAYER_COUNT; l++)
+        if (mneeds & SL_NEED(l)) {
+            cell->ms.map_render += x->frame.layer[l].ms_render;
+            cell->ms.map_readback += x->frame.layer[l].ms_readback;
+        }
+    /* methods get the view without its truth */
+    struct sl_view mview = x->view;
+    mview.truth = NULL;
+    struct sl_method_args a = {
+        .scene = &x->scene, .view = &mview, .frame = &x->frame, .params = &cm->params,
+        .rt = &x->rt, .threads = c->threads,
+    };
+    int reps = c->warmup + c->runs;
+    double times[1100];
+    enum sl_err e = SL_OK;
+    for (int r = 0; r < reps && !e; r++) {
+        struct sl_cost cost = {0};
+        e = cm->method->run(&a, &x->vd, &cost, d);
+        res->passes.method_runs++;
+        if (r >= c->warmup)
+            times[r - c->warmup] = cost.ms_method;
+        cell->cost = cost;   /* counters are the same every run */
+    }
+    if (e)
+        return e;
+    qsort(times, (size_t)c->runs, sizeof times[0], cmp_double);
+    cell->ms.method = c->runs % 2 ? times[c->runs / 2] : 0.5 * (times[c->runs / 2 - 1] + times[c->runs / 2]);
+    cell->ms.method_min = times[0];
+    cell->ms.method_max = times[c->runs - 1];
+    cell->cost.ms_method = cell->ms.method;
+
+    double t0 = sl_now();
+    for (size_t i = 0; i < npx; i++)
+        x->state[i] = x->vd.v[i];   /* 0 background, else the verdict */
+    /* regions are the increasing contours, then 0 (whole image) */
+    int maxt = c->regions[c->nregions - 2];
+    sl_contour_bands(W, H, x->state, maxt / 2 - 1, x->band);
+    cell->ms.contours = 1e3 * (sl_now() - t0);
+    t0 = sl_now();
+    sl_figures_compute(&x->view, &x->vd, x->band, c->regions, c->nregions, &cell->fig);
+    cell->ms.figures = 1e3 * (sl_now() - t0);
+    if (ovdir) {
+        t0 = sl_now();
+        char path[1400];
+        snprintf(path, sizeof path, "%s/%s-%s-%dx%d-%d-%s.png", ovdir, cell->scene, cell->viewpoint, W, H,
+                 c->maps[k->map], cm->label);
+        sl_overlay_build(&x->view, x->scene.light_dir, &x->vd, x->band, c->overlay_contour, x->rgb);
+        e = sl_image_write_rgb8(path, W, H, x->rgb, d);
+        cell->ms.overlay = 1e3 * (sl_now() - t0);
+    }
+    return e;
+}
+
+static enum sl_err store_cell(struct sl_store *st, int64_t run_id, const struct sl_config *c,
+                              const struct sl_cell *cl, struct sl_diag *d)
+{
+    const struct sl_config_method *cm = &c->methods[cl->key.method];
+    struct sl_store_cell sc = {
+        .scene = cl->scene, .viewpoint = cl->viewpoint, .method = cm->method->name, .label = cm->label,
+        .vw = c->viewport_w[cl->key.viewport], .vh = c->viewport_h[cl->key.viewport],
+        .map_size = c->maps[cl->key.map], .cell_index = cl->index,
+        .n_pfl = cl->n_pfl, .n_pnfl = cl->n_pnfl, .n_background = cl->n_background,
+        .n_truth_lit = cl->n_truth_lit, .n_truth_shadow = cl->n_truth_shadow, .truth_rays = cl->truth_rays,
+        .fig = &cl->fig, .cost = &cl->cost,
+        .ms_gbuffer_render = cl->ms.gbuffer_render, .ms_gbuffer_readback = cl->ms.gbuffer_readback,
+        .ms_truth = cl->ms.truth, .ms_fit = cl->ms.fit, .ms_map_render = cl->ms.map_render,
+        .ms_map_readback = cl->ms.map_readback, .ms_method = cl->ms.method,
+        .ms_contours = cl->ms.contours, .ms_figures = cl->ms.figures, .ms_overlay = cl->ms.overlay,
+    };
+    return sl_store_put_cell(st, run_id, c->hash, &sc, d);
+}
+
+static void progress(int done, int total, const struct sl_cell *cl, const struct sl_config *c, double t_start)
+{
+    double el = sl_now() - t_start;
+    double eta = done ? el * (double)(total - done) / (double)done : 0.0;
+    fprintf(stderr, "\r[%d/%d] %s/%s %d² %-16s %6.1fs elapsed, ~%.0fs left   ", done, total, cl->scene,
+            cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label, el, eta);
+    if (done == total)
+        fputc('\n', stderr);
+    fflush(stderr);
 }
 
 enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struct sl_run_result *res,
@@ -238,7 +556,26 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     memset(res, 0, sizeof *res);
     double t_start = sl_now();
     const char *root = o->out_root ? o->out_root : "results";
-    char stage[1100] = "", final[1100] = "", ovdir[1200] = "";
+    int total = sl_plan_count(c);
+    int first = o->first > 0 ? o->first : 0;
+    int last = o->last > 0 ? o->last : total;
+    if (first >= total || last > total || first >= last)
+        return sl_fail(d, SL_E_USAGE, c->path, 0, "--cells", "cells %d:%d outside the sweep of %d cells",
+                       first, last, total);
+    char stage[1100] = "", final[1100] = "", ovdir[1200] = "", store_path[1100] = "", cache[1100] = "";
+    if (o->store)
+        snprintf(store_path, sizeof store_path, "%s", o->store);
+    else if (c->store[0])
+        snprintf(store_path, sizeof store_path, "%s", c->store);
+    else if (o->write_files)
+        snprintf(store_path, sizeof store_path, "%s/shadowlab.db", root);
+    if (o->cache_dir)
+        snprintf(cache, sizeof cache, "%s", o->cache_dir);
+    else if (o->write_files)
+        snprintf(cache, sizeof cache, "%s/cache", root);
+    if (o->resume && !store_path[0])
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--resume", "--resume needs a results store");
+
     enum sl_err e = SL_OK;
     if (o->write_files) {
         /* fail on an unwritable output before any GL or Embree work */
@@ -256,191 +593,127 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         snprintf(res->out_dir, sizeof res->out_dir, "%s", final);
     }
+    if (cache[0] && sl_mkdirs(cache, NULL) != SL_OK)
+        cache[0] = '\0';   /* no cache is only slower */
 
     struct run_ctx x;
     memset(&x, 0, sizeof x);
-    double t0 = sl_now();
-    if ((e = sl_scene_build(c->scene, &x.scene, d)))
+    x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = -1;
+    struct sl_store *st = NULL;
+    int64_t run_id = 0;
+    int show = o->progress && isatty(2);
+    if ((e = sl_gl_init(&x.gl, d)) || (e = sl_shadowmap_init(&x.spass, d)))
         goto out;
-    res->ms_scene = 1e3 * (sl_now() - t0);
-    if ((e = sl_gl_init(&x.gl, d)) || (e = sl_gl_mesh_upload(&x.mesh, &x.scene, d)) ||
-        (e = sl_gbuffer_init(&x.gpass, &x.scene, d)) || (e = sl_shadowmap_init(&x.spass, d)))
-        goto out;
-    if ((e = sl_rt_build(&x.rt, &x.scene, c->threads, 1, d)))
-        goto out;
-    res->ms_bvh = x.rt.ms_build;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
     snprintf(res->prov.gl_version, sizeof res->prov.gl_version, "%s", x.gl.version);
-    snprintf(res->prov.embree, sizeof res->prov.embree, "%s", x.rt.version);
+    snprintf(res->prov.embree, sizeof res->prov.embree, "%d.%d.%d", RTC_VERSION_MAJOR, RTC_VERSION_MINOR,
+             RTC_VERSION_PATCH);
     res->prov.threads = c->threads;
     sl_provenance_fill(&res->prov);
+    if (store_path[0]) {
+        if ((e = sl_store_open(store_path, &st, d)) ||
+            (e = sl_store_begin_run(st, &res->prov, c->path, c->hash, &run_id, d)))
+            goto out;
+    }
 
-    int nvp = c->nviewpoints ? c->nviewpoints : x.scene.nvp;
-    int vp_index[SL_MAX_VIEWPOINTS];
-    for (int i = 0; i < nvp; i++)
-        vp_index[i] = c->nviewpoints ? sl_scene_find_viewpoint(&x.scene, c->viewpoints[i]) : i;
-    res->ncells = c->nviewports * nvp * c->nmaps * c->nmethods;
-    res->cells = sl_calloc((size_t)res->ncells, sizeof *res->cells);
+    res->cells = sl_calloc((size_t)(last - first), sizeof *res->cells);
     if (!res->cells) {
         e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cell table");
         goto out;
     }
-    unsigned needs = 0;
-    for (int m = 0; m < c->nmethods; m++)
-        needs |= c->methods[m].method->needs(&c->methods[m].params);
-
-    int cell_i = 0;
-    for (int vw = 0; vw < c->nviewports && !e; vw++) {
-        int W = c->viewport_w[vw], H = c->viewport_h[vw];
-        size_t npx = (size_t)W * (size_t)H;
-        free(x.state); free(x.band); free(x.rgb); free(x.vd.v); free(x.vd.how);
-        x.state = sl_calloc(npx, 1);
-        x.band = sl_calloc(npx, 1);
-        x.rgb = sl_calloc(npx, 3);
-        x.vd.v = sl_calloc(npx, 1);
-        x.vd.how = sl_calloc(npx, 1);
-        x.vd.w = W;
-        x.vd.h = H;
-        if (!x.state || !x.band || !x.rgb || !x.vd.v || !x.vd.how) {
-            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "per-pixel buffers %dx%d", W, H);
+    for (int idx = first; idx < last && !e; idx++) {
+        struct sl_cell_key k;
+        sl_plan_cell(c, idx, &k);
+        if (o->resume) {
+            const struct sl_config_scene *cs = &c->scenes[k.scene];
+            if (sl_store_has_cell(st, c->hash, cs->name, cs->viewpoints[k.vp], c->viewport_w[k.viewport],
+                                  c->viewport_h[k.viewport], c->maps[k.map], c->methods[k.method].label)) {
+                res->skipped++;
+                continue;
+            }
+        }
+        if ((e = ensure_scene(&x, c, k.scene, res, d)) ||
+            (e = ensure_buffers(&x, c->viewport_w[k.viewport], c->viewport_h[k.viewport], d)) ||
+            (e = ensure_view(&x, c, &k, cache, res, d)) ||
+            (e = ensure_frame(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d)))
             break;
-        }
-        for (int vi = 0; vi < nvp && !e; vi++) {
-            struct sl_view view;
-            struct sl_stage_ms vms = {0};
-            if ((e = sl_gbuffer_render(&x.gpass, &x.mesh, &x.scene, vp_index[vi], W, H, &view,
-                                       &vms.gbuffer_render, &vms.gbuffer_readback, d)))
-                break;
-            struct sl_truth_stats ts;
-            if ((e = sl_truth_trace(&x.rt, &x.scene, &view, &ts, d))) {
-                sl_view_free(&view);
-                break;
-            }
-            vms.truth = ts.ms_trace;
-            t0 = sl_now();
-            struct sl_light_box box;
-            sl_light_fit(&x.scene, &view, &box);
-            vms.fit = 1e3 * (sl_now() - t0);
-            /* methods get the view without its truth */
-            struct sl_view mview = view;
-            mview.truth = NULL;
-            for (int mp = 0; mp < c->nmaps && !e; mp++) {
-                struct sl_light_frame frame;
-                memset(&frame, 0, sizeof frame);
-                frame.size = c->maps[mp];
-                memcpy(frame.dir, x.scene.light_dir, sizeof frame.dir);
-                frame.box = box;
-                frame.texel_world = fmaxf(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1]) / (float)frame.size;
-                frame.depth_range = box.hi[2] - box.lo[2];
-                if ((e = sl_shadowmap_render(&x.spass, &x.mesh, &frame, needs, d))) {
-                    sl_frame_free(&frame);
-                    break;
-                }
-                for (int m = 0; m < c->nmethods && !e; m++) {
-                    const struct sl_config_method *cm = &c->methods[m];
-                    struct sl_cell *cell = &res->cells[cell_i++];
-                    cell->vp = vp_index[vi];
-                    cell->viewport = vw;
-                    cell->map = mp;
-                    cell->method = m;
-                    snprintf(cell->viewpoint, sizeof cell->viewpoint, "%s", x.scene.vp[vp_index[vi]].name);
-                    cell->ms = vms;
-                    cell->truth_rays = ts.rays;
-                    cell->n_pfl = view.n_pfl;
-                    cell->n_pnfl = view.n_pnfl;
-                    cell->n_background = view.n_background;
-                    cell->n_truth_lit = view.n_lit;
-                    cell->n_truth_shadow = view.n_shadow;
-                    unsigned mneeds = cm->method->needs(&cm->params);
-                    for (int l = 0; l < SL_LAYER_COUNT; l++)
-                        if (mneeds & SL_NEED(l)) {
-                            cell->ms.map_render += frame.layer[l].ms_render;
-                            cell->ms.map_readback += frame.layer[l].ms_readback;
-                        }
-                    struct sl_method_args a = {
-                        .scene = &x.scene, .view = &mview, .frame = &frame, .params = &cm->params,
-                        .rt = &x.rt, .threads = c->threads,
-                    };
-                    if ((e = cm->method->run(&a, &x.vd, &cell->cost, d)))
-                        break;
-                    cell->ms.method = cell->cost.ms_method;
-                    t0 = sl_now();
-                    for (size_t i = 0; i < npx; i++)
-                        x.state[i] = x.vd.v[i];   /* 0 background, else the verdict */
-                    /* regions are the increasing contours, then 0 (whole image) */
-                    int maxt = c->regions[c->nregions - 2];
-                    sl_contour_bands(W, H, x.state, maxt / 2 - 1, x.band);
-                    cell->ms.contours = 1e3 * (sl_now() - t0);
-                    t0 = sl_now();
-                    sl_figures_compute(&view, &x.vd, x.band, c->regions, c->nregions, &cell->fig);
-                    cell->ms.figures = 1e3 * (sl_now() - t0);
-                    if (o->write_files && c->overlays) {
-                        t0 = sl_now();
-                        char path[1400];
-                        snprintf(path, sizeof path, "%s/%s-%s-%dx%d-%d-%s.png", ovdir, c->scene,
-                                 cell->viewpoint, W, H, c->maps[mp], cm->label);
-                        sl_overlay_build(&view, x.scene.light_dir, &x.vd, x.band, c->overlay_contour, x.rgb);
-                        e = sl_image_write_rgb8(path, W, H, x.rgb, d);
-                        cell->ms.overlay = 1e3 * (sl_now() - t0);
-                    }
-                }
-                sl_frame_free(&frame);
-            }
-            sl_view_free(&view);
-        }
+        struct sl_cell *cell = &res->cells[res->ncells];
+        cell->index = idx;
+        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? ovdir : NULL, res, d)))
+            break;
+        if (st && (e = store_cell(st, run_id, c, cell, d)))
+            break;
+        res->ncells++;
+        if (show)
+            progress(res->ncells + res->skipped, last - first, cell, c, t_start);
     }
     res->ms_total = 1e3 * (sl_now() - t_start);
     if (e || !o->write_files)
         goto out;
 
     {
-        static const struct {
-            const char *name;
-            void (*write)(FILE *, const struct sl_config *, const struct sl_run_result *);
-        } files[] = {
-            {"figures.csv", write_figures_csv},
-            {"costs.csv", write_costs_csv},
-            {"table.md", write_markdown},
-            {"config.yaml", write_config_yaml},
-            {"run.yaml", write_run_yaml},
+        struct { const char *name; int kind; } files[] = {
+            {"figures.csv", 0}, {"table.md", 1}, {"table.tex", 2}, {"costs.csv", 3},
+            {"config.yaml", 4}, {"run.yaml", 5},
         };
-        for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) {
-            struct sl_outfile f;
+        for (size_t f = 0; f < sizeof files / sizeof files[0] && !e; f++) {
+            if (!c->tables && files[f].kind <= 2)
+                continue;
+            struct sl_outfile of;
             char path[1300];
-            snprintf(path, sizeof path, "%s/%s", stage, files[k].name);
-            if ((e = sl_out_open(&f, path, d)))
-                goto out;
-            files[k].write(f.f, c, res);
-            if ((e = sl_out_commit(&f, d)))
-                goto out;
+            snprintf(path, sizeof path, "%s/%s", stage, files[f].name);
+            if ((e = sl_out_open(&of, path, d)))
+                break;
+            switch (files[f].kind) {
+            case 0: e = write_tables(of.f, SL_TABLE_CSV, c, res, d); break;
+            case 1:
+                e = write_tables(of.f, SL_TABLE_MD, c, res, d);
+                write_costs_md(of.f, c, res);
+                break;
+            case 2: e = write_tables(of.f, SL_TABLE_LATEX, c, res, d); break;
+            case 3: write_costs_csv(of.f, c, res); break;
+            case 4:
+                fprintf(of.f, "# from %s (hash %016llx), git %s\n", c->path, c->hash, res->prov.git_sha);
+                sl_config_write(c, of.f);
+                break;
+            case 5: write_run_yaml(of.f, c, res); break;
+            }
+            if (e)
+                sl_out_abort(&of);
+            else
+                e = sl_out_commit(&of, d);
         }
+        if (e)
+            goto out;
     }
     /* swap the finished folder into place */
     {
         char old[1200];
         snprintf(old, sizeof old, "%s/.%s.old-%ld", root, c->name, (long)getpid());
-        struct stat st;
-        int had = stat(final, &st) == 0;
+        struct stat sb;
+        int had = stat(final, &sb) == 0;
         if (had && rename(final, old) != 0) {
-            e = sl_fail(d, SL_E_OUTPUT, final, 0, NULL, "cannot replace the previous results");
+            e = sl_fail(d, SL_E_OUTPUT, final, 0, NULL, "cannot replace the previous results: %s", strerror(errno));
             goto out;
         }
         if (rename(stage, final) != 0) {
             if (had)
                 rename(old, final);
-            e = sl_fail(d, SL_E_OUTPUT, final, 0, NULL, "cannot move results into place");
+            e = sl_fail(d, SL_E_OUTPUT, final, 0, NULL, "cannot move results into place: %s", strerror(errno));
             goto out;
         }
         if (had)
             rm_tree(old);
     }
-    if (o->table_out) {
-        write_markdown(o->table_out, c, res);
-        fprintf(o->table_out, "\nwritten to %s/\n", final);
+    if (o->table_out && c->tables) {
+        e = write_tables(o->table_out, SL_TABLE_MD, c, res, d);
+        write_costs_md(o->table_out, c, res);
+        fprintf(o->table_out, "\nwritten to %s/%s%s\n", final, store_path[0] ? " and " : "", store_path);
     }
 out:
     if (e && stage[0])
         rm_tree(stage);
+    sl_store_close(st);
     ctx_free(&x);
     return e;
 }

@@ -1,51 +1,92 @@
 /*
- * run.h — the experiment driver: expands a validated config into cells
- * (viewport x viewpoint x map size x method label), computes each shared
- * stage once (G-buffer and truth per view, light fit per view, each layer once
- * per map size), runs the methods, and writes the figures, tables, costs and
- * overlays.
+ * run.h — the experiment driver.
  *
- * Output: <out_root>/<name>/{figures.csv, costs.csv, table.md, config.yaml,
- * run.yaml, overlays/<cell>.png}. Everything is written into a hidden staging
- * folder first and renamed into place at the end, so a failed or killed run
- * leaves nothing half-written under the final name.
+ * A config expands to a sweep of independent cells, in this order:
+ * scene x viewport x viewpoint x map size x method label. Each cell has an
+ * index (sl_plan_cell), so `--cells A:B` can split a sweep across machines.
+ *
+ * Each shared stage is computed once for the cells that need it: the scene
+ * (GL mesh, BVH) per scene; the G-buffer, the truth (or its on-disk cache)
+ * and the light fit per view; each shadow-map layer once per (view, map
+ * size), and only the layers the methods of the selected cells declare.
+ * sl_run_result.passes counts what was computed, so tests can prove it.
+ *
+ * Output: <out_root>/<name>/{figures.csv, costs.csv, table.md, table.tex,
+ * config.yaml, run.yaml, overlays/<cell>.png} for the cells this invocation
+ * computed, written into a hidden staging folder and renamed into place at
+ * the end; and, when a store is used, one transaction per cell in SQLite,
+ * so a killed run leaves no partial cell and `--resume` redoes only the
+ * missing ones (`shadowlab table` renders everything stored).
  */
 #ifndef SL_RUN_H
 #define SL_RUN_H
 #include <stdio.h>
 #include "config.h"
 #include "figures.h"
+#include "frame.h"
 #include "provenance.h"
+
+struct sl_cell_key {
+    int scene;      /* index into config scenes */
+    int viewport;   /* index into config viewports */
+    int vp;         /* index into that scene's config viewpoints */
+    int map;        /* index into config map sizes */
+    int method;     /* index into config methods */
+};
+
+int  sl_plan_count(const struct sl_config *c);
+void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k);
 
 struct sl_run_opts {
     const char *out_root;   /* NULL = "results" */
     FILE       *table_out;  /* Markdown tables echoed here; NULL = none */
     int         write_files;/* 0 = compute only (tests, bench) */
+    int         first, last;/* cells [first, last); last <= 0 = to the end */
+    int         resume;     /* skip cells the store already holds */
+    const char *store;      /* database path; NULL = config's, else <out_root>/shadowlab.db
+                             * when write_files; "" = no store */
+    const char *cache_dir;  /* truth cache; NULL = <out_root>/cache when write_files; "" = none */
+    int         progress;   /* a progress line on stderr when it is a terminal */
 };
 
 /* Wall times of the stages of one cell, ms; view stages are shared by every
- * cell of the view and reported with each. */
+ * cell of the view and reported with each. The method time is the median
+ * of the config's timed runs, with their min and max. */
 struct sl_stage_ms {
     double gbuffer_render, gbuffer_readback, truth, fit;
     double map_render, map_readback;
-    double method, contours, figures, overlay;
+    double method, method_min, method_max, contours, figures, overlay;
 };
 
 struct sl_cell {
-    int vp, viewport, map, method;     /* indices into the config / scene */
+    int index;                         /* in the sweep */
+    struct sl_cell_key key;
+    char scene[64];
     char viewpoint[32];
     struct sl_figures  fig;
     struct sl_cost     cost;
     struct sl_stage_ms ms;
+    int      truth_cached;
     uint64_t truth_rays;
     uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
+};
+
+/* What was computed, to prove nothing is computed twice or needlessly. */
+struct sl_pass_counts {
+    int scenes;                        /* scenes loaded (GL upload + BVH) */
+    int gbuffers;                      /* G-buffer passes */
+    int truths_traced, truths_cached;  /* truth passes traced / read from cache */
+    int layers[SL_LAYER_COUNT];        /* shadow-map layer renders */
+    int method_runs;                   /* method invocations, repetitions included */
 };
 
 struct sl_run_result {
     struct sl_provenance prov;
     char   out_dir[1024];
-    int    ncells;
+    int    ncells;                     /* computed by this invocation */
     struct sl_cell *cells;
+    int    skipped;                    /* already in the store (--resume) */
+    struct sl_pass_counts passes;
     double ms_total, ms_scene, ms_bvh;
 };
 

@@ -4,10 +4,13 @@
  * Embree), per-triangle unit face normals, the bounding box, one directional
  * light and the named viewpoints.
  *
+ * Each mesh of the scene file is one contiguous range of triangles, welded
+ * on its own (so adjacency follows each object's real connectivity and never
+ * joins two objects that merely touch), and is one- or two-sided.
+ *
  * Owns: its arrays (sl_scene_free releases everything; NULL-safe).
  * Does not: touch GL or Embree (gl buffers and BVHs are built from it by
- * glctx.c and truth.c), read files (the YAML scene loader is a later module;
- * for now scenes are built by name from procedural generators, see gen.c).
+ * glctx.c and truth.c). Scene files are read by scenefile.c.
  */
 #ifndef SL_SCENE_H
 #define SL_SCENE_H
@@ -25,15 +28,44 @@ struct sl_viewpoint {
     float znear, zfar;
 };
 
+enum sl_light_type {
+    SL_LIGHT_DIRECTIONAL = 0,
+    SL_LIGHT_SPOT,
+    SL_LIGHT_POINT,
+    SL_LIGHT_AREA,     /* rectangle: centre, normal, up, size */
+};
+
+struct sl_light {
+    int   type;        /* enum sl_light_type */
+    float dir[3];      /* directional, spot: unit direction the light travels */
+    float pos[3];      /* spot, point; area: centre */
+    float fov_deg;     /* spot: full cone angle */
+    float normal[3];   /* area: unit, the side that emits */
+    float up[3];       /* area: unit, in the light's plane */
+    float size[2];     /* area: width (across up x normal), height (along up) */
+};
+
+#define SL_MESH_NAME 48
+struct sl_mesh_range {
+    char     name[SL_MESH_NAME];
+    uint32_t first, count;    /* triangles [first, first + count) */
+    int      two_sided;       /* leaves: never culled, shadowed from both sides */
+};
+
 struct sl_scene {
     char      name[64];
+    char      path[512];      /* scene file, "" for scenes made in code */
+    char      description[160];
+    struct sl_light light;
+    struct sl_mesh_range *ranges;
+    int       nranges;
     float    *pos;    /* 3 * nv */
     uint32_t  nv;
     uint32_t *idx;    /* 3 * nt */
     uint32_t  nt;
     float    *fn;     /* 3 * nt, unit face normals (counter-clockwise front) */
     float     lo[3], hi[3];
-    float     light_dir[3];   /* unit direction the light travels */
+    float     light_dir[3];   /* = light.dir: unit direction the light travels */
     struct sl_viewpoint vp[SL_MAX_VIEWPOINTS];
     int       nvp;
 };
@@ -57,16 +89,26 @@ void sl_gen_torus(struct sl_mesh *m, float cx, float cy, float cz, float R, floa
 void sl_gen_cylinder(struct sl_mesh *m, float cx, float y0, float cz, float r, float h, int n);
 void sl_gen_pyramid(struct sl_mesh *m, float cx, float y0, float cz, float base, float h);
 void sl_gen_box(struct sl_mesh *m, const float lo[3], const float hi[3]);
+/* Props of the Bench, Trees and Flowers scenes (metres; gen.c says each
+ * one's shape). Triangle counts: cone 2n; tree 1024 (64 trunk + 960 open
+ * leaves, two-sided); flowers 64 * count (tiny, two-sided petals and
+ * leaves); bench 240 (20 closed boxes); lamp 172; flower box 28 (one closed
+ * hollow solid; returns the soil height y0 + 0.8 h). Seeded ones give the
+ * same mesh for the same seed. */
+void  sl_gen_cone(struct sl_mesh *m, float cx, float y0, float cz, float r, float h, int n);
+void  sl_gen_tree(struct sl_mesh *m, float cx, float y0, float cz, float height, uint32_t seed);
+void  sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width, float depth,
+                     int count, uint32_t seed);
+void  sl_gen_bench(struct sl_mesh *m, float cx, float y0, float cz, float length, uint32_t seed);
+void  sl_gen_lamp(struct sl_mesh *m, float cx, float y0, float cz, float height);
+float sl_gen_flower_box(struct sl_mesh *m, float cx, float y0, float cz, float w, float d, float h);
 
 /* Scene from a mesh: copies arrays, computes face normals and bounds;
  * degenerate (zero-area) triangles are rejected with SL_E_SCENE. */
 enum sl_err sl_scene_from_mesh(struct sl_scene *s, const struct sl_mesh *m, struct sl_diag *d);
 
-/* Built-in scenes by name ("primitives", "quad-test", ...). */
-enum sl_err sl_scene_build(const char *name, struct sl_scene *out, struct sl_diag *d);
-int         sl_scene_count(void);
-const char *sl_scene_name(int i);
-const char *sl_scene_summary(int i);
+/* A scene by name (a file in the scenes folder) or by path (scenefile.h). */
+enum sl_err sl_scene_build(const char *ref, struct sl_scene *out, struct sl_diag *d);
 int         sl_scene_find_viewpoint(const struct sl_scene *s, const char *name);
 
 void sl_scene_free(struct sl_scene *s);

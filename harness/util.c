@@ -130,6 +130,16 @@ void sl_out_abort(struct sl_outfile *o)
     }
 }
 
+unsigned long long sl_fnv1a(unsigned long long h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++) {
+        h ^= b[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
 enum sl_err sl_hash_file(const char *path, unsigned long long *out, struct sl_diag *d)
 {
     FILE *f = fopen(path, "rb");

@@ -23,6 +23,10 @@ enum sl_err sl_out_open(struct sl_outfile *o, const char *path, struct sl_diag *
 enum sl_err sl_out_commit(struct sl_outfile *o, struct sl_diag *d);
 void        sl_out_abort(struct sl_outfile *o);
 
+/* FNV-1a 64: start with SL_FNV_SEED, feed bytes. */
+#define SL_FNV_SEED 1469598103934665603ull
+unsigned long long sl_fnv1a(unsigned long long h, const void *p, size_t n);
+
 /* FNV-1a 64 over a file's bytes (config hash written beside results). */
 enum sl_err sl_hash_file(const char *path, unsigned long long *out, struct sl_diag *d);
 

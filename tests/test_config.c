@@ -17,8 +17,12 @@ static void config_default_loads(void **st)
     struct sl_config c;
     struct sl_diag d;
     assert_int_equal(sl_config_load("configs/default.yaml", &c, &d), SL_OK);
-    assert_string_equal(c.scene, "primitives");
-    assert_int_equal(c.nviewpoints, 3);
+    assert_int_equal(c.nscenes, 1);
+    assert_string_equal(c.scenes[0].name, "primitives");
+    assert_int_equal(c.scenes[0].nviewpoints, 3);
+    assert_string_equal(c.scenes[0].viewpoints[2], "against");
+    assert_int_equal(c.runs, 1);
+    assert_int_equal(c.warmup, 0);
     assert_int_equal(c.nmaps, 2);
     assert_int_equal(c.maps[0], 1024);
     assert_int_equal(c.maps[1], 2048);
@@ -45,7 +49,8 @@ static void config_written_reads_back(void **st)
     fclose(f);
     assert_int_equal(sl_config_load(path, &b, &d), SL_OK);
     remove(path);
-    assert_string_equal(a.scene, b.scene);
+    assert_string_equal(a.scenes[0].path, b.scenes[0].path);
+    assert_int_equal(a.scenes[0].nviewpoints, b.scenes[0].nviewpoints);
     assert_int_equal(a.nmaps, b.nmaps);
     assert_int_equal(a.nregions, b.nregions);
     assert_int_equal(a.nmethods, b.nmethods);
@@ -58,9 +63,9 @@ static const struct bad_case bad_cases[] = {
     {"tests/bad/unknown_key.yaml", SL_E_CONFIG, 5, "contour", "unknown key"},
     {"tests/bad/wrong_type.yaml", SL_E_CONFIG, 2, "map_sizes[1]", "big"},
     {"tests/bad/unknown_method.yaml", SL_E_CONFIG, 7, "methods[1].method", "perfect_shadows"},
-    {"tests/bad/unknown_scene.yaml", SL_E_CONFIG, 2, "scene", "cathedral"},
+    {"tests/bad/unknown_scene.yaml", SL_E_CONFIG, 2, "scenes[0].scene", "cathedral"},
     {"tests/bad/bad_map_size.yaml", SL_E_CONFIG, 4, "map_sizes[1]", "power of two"},
-    {"tests/bad/unknown_viewpoint.yaml", SL_E_CONFIG, 2, "viewpoints[1]", "behind"},
+    {"tests/bad/unknown_viewpoint.yaml", SL_E_CONFIG, 2, "scenes[0].viewpoints[1]", "behind"},
     {"tests/bad/bad_param.yaml", SL_E_CONFIG, 7, "methods[0].bias", "front_faces"},
     {"tests/bad/unknown_policy.yaml", SL_E_CONFIG, 6, "methods[0].self_shadow", "magic"},
     {"tests/bad/duplicate_label.yaml", SL_E_CONFIG, 5, "methods[1].label", "used twice"},

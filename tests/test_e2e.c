@@ -32,7 +32,7 @@ static void check_counts(const struct sl_config *c, const struct sl_run_result *
 {
     for (int i = 0; i < r->ncells; i++) {
         const struct sl_cell *cl = &r->cells[i];
-        uint64_t W = (uint64_t)c->viewport_w[cl->viewport], H = (uint64_t)c->viewport_h[cl->viewport];
+        uint64_t W = (uint64_t)c->viewport_w[cl->key.viewport], H = (uint64_t)c->viewport_h[cl->key.viewport];
         assert_int_equal(cl->n_pfl + cl->n_pnfl + cl->n_background, W * H);
         assert_int_equal(cl->n_truth_lit + cl->n_truth_shadow, cl->n_pfl);
         assert_int_equal(cl->fig.background, cl->n_background);
@@ -81,8 +81,8 @@ static void e2e_default_experiment(void **st)
 
     for (int vp = 0; vp < 3; vp++) {
         const struct sl_cell *m1024 = &r.cells[vp * 2], *m2048 = &r.cells[vp * 2 + 1];
-        assert_int_equal(c.maps[m1024->map], 1024);
-        assert_int_equal(c.maps[m2048->map], 2048);
+        assert_int_equal(c.maps[m1024->key.map], 1024);
+        assert_int_equal(c.maps[m2048->key.map], 2048);
         const struct sl_figures *a = &m1024->fig, *b = &m2048->fig;
         printf("e2e::default %s: wrong %llu (1024²) -> %llu (2048²); caught in 2/4/6 px: "
                "%.2f%% %.2f%% %.2f%% (1024²), %.2f%% %.2f%% %.2f%% (2048²)\n",
@@ -150,7 +150,7 @@ static void e2e_self_shadow_policies(void **st)
     char path[1200];
     snprintf(path, sizeof path, "%s/policies.yaml", tmpdir);
     assert_true(write_config(path,
-        "scene: primitives\nviewpoints: [side]\nviewports: [{width: 512, height: 512}]\n"
+        "scenes: [{scene: primitives, viewpoints: [side]}]\nviewports: [{width: 512, height: 512}]\n"
         "map_sizes: [1024]\nmethods:\n"
         "  - {label: ff, method: nsm, self_shadow: front_faces}\n"
         "  - {label: none, method: nsm, self_shadow: none}\n"
@@ -190,7 +190,7 @@ static void e2e_deterministic(void **st)
     char path[1200];
     snprintf(path, sizeof path, "%s/det.yaml", tmpdir);
     assert_true(write_config(path,
-        "scene: primitives\nviewpoints: [against]\nviewports: [{width: 384, height: 256}]\n"
+        "scenes: [{scene: primitives, viewpoints: [against]}]\nviewports: [{width: 384, height: 256}]\n"
         "map_sizes: [512, 2048]\nmethods: [{method: nsm}]\nthreads: 2\n"));
     struct sl_config c;
     struct sl_diag d;

@@ -1,0 +1,41 @@
+/*
+ * meshio.h — triangle meshes from model files, through assimp's C API
+ * (OBJ, PLY, glTF/GLB, COLLADA, STL, ... whatever the installed assimp reads).
+ *
+ * A file's meshes (all nodes, with their node transforms) are triangulated,
+ * transformed by `xform` (column-major 4x4, cglm layout; NULL = identity) and
+ * appended to `m` as one welded indexed mesh: vertices with bit-identical
+ * positions after the transform become one vertex, so edge and vertex
+ * adjacency see the real connectivity. Points and lines are skipped.
+ * Zero-area triangles (after welding) are dropped and counted.
+ *
+ * Errors (SL_E_SCENE, with d->file = path and a one-line reason): missing or
+ * unreadable file, a format assimp does not read, a truncated or corrupt
+ * file, a non-finite coordinate, a file with no triangle, a file whose
+ * triangles all have zero area. On error `m` is left as it was.
+ * Does not: touch GL or Embree, or know about scenes.
+ */
+#ifndef SL_MESHIO_H
+#define SL_MESHIO_H
+#include <stdint.h>
+#include "scene.h"
+#include "sl_error.h"
+
+struct sl_mesh_load_stats {
+    uint32_t meshes;            /* assimp meshes read */
+    uint32_t triangles;         /* appended */
+    uint32_t vertices;          /* appended, after welding */
+    uint32_t degenerate;        /* zero-area triangles dropped */
+    uint32_t skipped_prims;     /* points and lines skipped */
+};
+
+enum sl_err sl_mesh_load_file(struct sl_mesh *m, const char *path, const float xform[16],
+                              struct sl_mesh_load_stats *st, struct sl_diag *d);
+
+/* Weld vertices of m with bit-identical positions (all of m, in place) and
+ * drop triangles that become degenerate (two equal indices) or have zero
+ * area; returns the number of triangles dropped. Order of the remaining
+ * triangles is kept. */
+uint32_t sl_mesh_weld(struct sl_mesh *m);
+
+#endif

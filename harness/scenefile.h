@@ -1,0 +1,48 @@
+/*
+ * scenefile.h — scene files (YAML in scenes/): meshes from procedural
+ * generators or model files (through meshio.c), each with a transform and
+ * two-sidedness; one light (directional; spot and point with a position;
+ * rectangular area lights with a size); named viewpoints.
+ *
+ * Parse, validate (every error names file, line and key), then build. No GL,
+ * no Embree: `shadowlab validate` loads scenes fully.
+ *
+ *   name: primitives                     # defaults to the file's base name
+ *   description: "..."
+ *   base: bench                          # optional: take light and meshes of another scene file
+ *   light: {type: directional, direction: [0.53, -0.38, 0.76]}
+ *   meshes:
+ *     - {name: ground, generator: plane, center: [0, 0, 0], size: 600, grid: 16}
+ *     - {name: spider, file: /usr/share/assimp/models/OBJ/spider.obj,
+ *        transform: {translate: [0, 0, 0], rotate: [0, 90, 0], scale: [0.1, 0.1, 0.1]},
+ *        two_sided: false}
+ *   viewpoints:
+ *     - {name: side, position: [35, 50, -43], direction: [-1, -1.2, 1],
+ *        up: [0, 1, 0], fov: 60, near: 20, far: 250}
+ *
+ * Transforms: scale, then rotate about x, y, z (degrees, in that order), then
+ * translate. Model paths are relative to the scene file unless absolute.
+ * A scene is named by a path (with '/' or ending in .yaml, relative to the
+ * referring file) or by a name looked up in the scenes folder:
+ * $SHADOWLAB_SCENES if set, else the source tree's scenes/.
+ */
+#ifndef SL_SCENEFILE_H
+#define SL_SCENEFILE_H
+#include <stddef.h>
+#include "scene.h"
+#include "sl_error.h"
+
+const char *sl_scenes_dir(void);
+
+/* Resolve `ref` to a readable file path. rel_dir: folder of the referring
+ * file (NULL = current folder). */
+enum sl_err sl_scene_resolve(const char *ref, const char *rel_dir, char *path, size_t n,
+                             struct sl_diag *d);
+
+enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag *d);
+
+/* Scene files in the scenes folder: names (file base names) and
+ * descriptions; returns how many (at most max). */
+int sl_scene_list(char (*names)[64], char (*descr)[160], int max);
+
+#endif

@@ -1,0 +1,807 @@
+/*
+ * store.c — see store.h.
+ *
+ * Invariants:
+ * - A cell row and all its figure rows are written in one BEGIN IMMEDIATE ...
+ *   COMMIT; any failure in between rolls back, so a reader (or a process
+ *   killed half-way) never sees a cell without its figures.
+ * - Counts are uint64 in C and signed 64-bit in SQLite: a count that does not
+ *   fit is bound as -1, which the CHECK (... >= 0) constraints refuse, so it
+ *   fails the transaction instead of wrapping.
+ * - NaN percentages are stored as NULL and read back as NAN.
+ * - A database is ours only if its user_version is SL_STORE_VERSION and its
+ *   tables are exactly the ones below (compared ignoring white space); an
+ *   empty file is initialised. Anything else is refused before it is touched
+ *   (no WAL switch, no schema), so a wrong path never damages another file.
+ * - The figure CHECK lists the names of figures.h: adding a figure there
+ *   changes the schema text, and old databases are refused at open instead of
+ *   failing at the first put. Bump SL_STORE_VERSION with such a change.
+ * Nothing here prints; errors name the database file and carry sqlite's text.
+ */
+#include "store.h"
+#include <math.h>
+#include <sqlite3.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "util.h"
+
+#define SL_STORE_VERSION 1
+#define SL_STORE_BUSY_MS 10000
+
+/* ---- schema ---- */
+
+#define SL_HEX16_CHECK(col) \
+    "CHECK (length(" col ") = 16 AND " col " NOT GLOB '*[^0-9a-f]*')"
+#define SL_FIG_SQL_NAME(name, text, of) "'" #name "', "
+
+static const char sql_runs[] =
+    "CREATE TABLE runs (\n"
+    "  run_id         INTEGER PRIMARY KEY,\n"
+    "  time_utc       TEXT NOT NULL,\n"
+    "  git_sha        TEXT NOT NULL,\n"
+    "  config_path    TEXT NOT NULL,\n"
+    "  config_hash    TEXT NOT NULL " SL_HEX16_CHECK("config_hash") ",\n"
+    "  host           TEXT NOT NULL,\n"
+    "  cpu            TEXT NOT NULL,\n"
+    "  isa            TEXT NOT NULL,\n"
+    "  gl_renderer    TEXT NOT NULL,\n"
+    "  gl_version     TEXT NOT NULL,\n"
+    "  embree         TEXT NOT NULL,\n"
+    "  threads        INTEGER NOT NULL,\n"
+    "  lp_num_threads TEXT NOT NULL\n"
+    ")";
+
+static const char sql_cells[] =
+    "CREATE TABLE cells (\n"
+    "  cell_id        INTEGER PRIMARY KEY,\n"
+    "  run_id         INTEGER NOT NULL REFERENCES runs (run_id),\n"
+    "  config_hash    TEXT NOT NULL " SL_HEX16_CHECK("config_hash") ",\n"
+    "  scene          TEXT NOT NULL,\n"
+    "  viewpoint      TEXT NOT NULL,\n"
+    "  viewport       TEXT NOT NULL,\n"
+    "  vw             INTEGER NOT NULL CHECK (vw > 0),\n"
+    "  vh             INTEGER NOT NULL CHECK (vh > 0),\n"
+    "  map_size       INTEGER NOT NULL CHECK (map_size > 0),\n"
+    "  method         TEXT NOT NULL,\n"
+    "  label          TEXT NOT NULL,\n"
+    "  cell_index     INTEGER NOT NULL,\n"
+    "  n_pfl          INTEGER NOT NULL CHECK (n_pfl >= 0),\n"
+    "  n_pnfl         INTEGER NOT NULL CHECK (n_pnfl >= 0),\n"
+    "  n_background   INTEGER NOT NULL CHECK (n_background >= 0),\n"
+    "  n_truth_lit    INTEGER NOT NULL CHECK (n_truth_lit >= 0),\n"
+    "  n_truth_shadow INTEGER NOT NULL CHECK (n_truth_shadow >= 0),\n"
+    "  n_wrong_image  INTEGER NOT NULL CHECK (n_wrong_image >= 0),\n"
+    "  truth_rays     INTEGER NOT NULL CHECK (truth_rays >= 0),\n"
+    "  lookups        INTEGER CHECK (lookups >= 0),\n"
+    "  rays           INTEGER CHECK (rays >= 0),\n"
+    "  tri_tests      INTEGER CHECK (tri_tests >= 0),\n"
+    "  ms_gbuffer_render   REAL,\n"
+    "  ms_gbuffer_readback REAL,\n"
+    "  ms_truth            REAL,\n"
+    "  ms_fit              REAL,\n"
+    "  ms_map_render       REAL,\n"
+    "  ms_map_readback     REAL,\n"
+    "  ms_method           REAL,\n"
+    "  ms_contours         REAL,\n"
+    "  ms_figures          REAL,\n"
+    "  ms_overlay          REAL,\n"
+    "  CHECK (viewport = vw || 'x' || vh)\n"
+    ")";
+
+static const char sql_figures[] =
+    "CREATE TABLE figures (\n"
+    "  cell_id    INTEGER NOT NULL REFERENCES cells (cell_id),\n"
+    "  scene      TEXT NOT NULL,\n"
+    "  viewpoint  TEXT NOT NULL,\n"
+    "  viewport   TEXT NOT NULL,\n"
+    "  map_size   INTEGER NOT NULL,\n"
+    "  label      TEXT NOT NULL,\n"
+    "  region     TEXT NOT NULL CHECK (region = 'image' OR region GLOB '[1-9]px'\n"
+    "               OR region GLOB '[1-9][0-9]px' OR region GLOB '[1-9][0-9][0-9]px'),\n"
+    "  figure     TEXT NOT NULL CHECK (figure IN (" SL_FIGURES(SL_FIG_SQL_NAME) "'background')),\n"
+    "  count      INTEGER NOT NULL CHECK (count >= 0),\n"
+    "  percent    REAL,\n"
+    "  percent_of TEXT,\n"
+    "  UNIQUE (cell_id, region, figure)\n"
+    ")";
+
+static const struct { const char *name, *sql; } sl_tables[] = {
+    {"runs", sql_runs},
+    {"cells", sql_cells},
+    {"figures", sql_figures},
+};
+
+/* resume lookup; latest-per-key query; per-run filter; ad-hoc figure queries */
+static const char *const sl_indexes[] = {
+    "CREATE INDEX cells_resume ON cells (config_hash, scene, viewpoint, vw, vh, map_size, label)",
+    "CREATE INDEX cells_key ON cells (scene, viewpoint, vw, vh, map_size, label, run_id)",
+    "CREATE INDEX cells_run ON cells (run_id)",
+    "CREATE INDEX figures_key ON figures (scene, viewpoint, viewport, map_size, label, figure, region)",
+};
+
+/* ---- statements kept for the life of the store ---- */
+
+static const char sql_ins_run[] =
+    "INSERT INTO runs (time_utc, git_sha, config_path, config_hash, host, cpu, isa, gl_renderer, "
+    "gl_version, embree, threads, lp_num_threads) VALUES (?,?,?,?,?,?,?,?,?,?,?,?)";
+
+static const char sql_ins_cell[] =
+    "INSERT INTO cells (run_id, config_hash, scene, viewpoint, viewport, vw, vh, map_size, method, "
+    "label, cell_index, n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow, n_wrong_image, "
+    "truth_rays, lookups, rays, tri_tests, ms_gbuffer_render, ms_gbuffer_readback, ms_truth, ms_fit, "
+    "ms_map_render, ms_map_readback, ms_method, ms_contours, ms_figures, ms_overlay) "
+    "VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
+
+static const char sql_ins_fig[] =
+    "INSERT INTO figures (cell_id, scene, viewpoint, viewport, map_size, label, region, figure, "
+    "count, percent, percent_of) VALUES (?,?,?,?,?,?,?,?,?,?,?)";
+
+static const char sql_has_cell[] =
+    "SELECT EXISTS (SELECT 1 FROM cells WHERE config_hash = ?1 AND scene = ?2 AND viewpoint = ?3 "
+    "AND vw = ?4 AND vh = ?5 AND map_size = ?6 AND label = ?7)";
+
+/* Latest cell per key: highest run, then highest cell id within the run.
+ * Filters are on key columns, so filtering before ranking does not change
+ * which cell of a key is the latest. Ordered by scene, then sweep order. */
+static const char sql_query_cells[] =
+    "WITH latest AS (\n"
+    "  SELECT c.*, row_number() OVER (PARTITION BY scene, viewpoint, vw, vh, map_size, label\n"
+    "                                 ORDER BY run_id DESC, cell_id DESC) AS rn\n"
+    "  FROM cells c\n"
+    "  WHERE (?1 IS NULL OR scene = ?1) AND (?2 IS NULL OR viewpoint = ?2)\n"
+    "    AND (?3 IS NULL OR label = ?3) AND (?4 = 0 OR map_size = ?4) AND (?5 = 0 OR run_id = ?5))\n"
+    "SELECT l.cell_id, l.scene, l.viewpoint, l.method, l.label, l.vw, l.vh, l.map_size,\n"
+    "       l.n_pfl, l.n_pnfl, l.n_background, l.n_truth_lit, l.n_truth_shadow, l.n_wrong_image,\n"
+    "       l.config_hash, r.git_sha, r.host, r.cpu, r.isa\n"
+    "FROM latest l JOIN runs r ON r.run_id = l.run_id\n"
+    "WHERE l.rn = 1\n"
+    "ORDER BY l.scene, l.cell_index, l.run_id, l.cell_id";
+
+/* regions as figures.c orders them: contours ascending, whole image last */
+static const char sql_query_figs[] =
+    "SELECT region, figure, count, percent FROM figures WHERE cell_id = ?1 "
+    "ORDER BY region = 'image', CAST(region AS INTEGER), figure";
+
+enum {
+    ST_BEGIN, ST_COMMIT, ST_ROLLBACK, ST_INS_RUN, ST_INS_CELL, ST_INS_FIG, ST_HAS_CELL,
+    ST_QUERY_CELLS, ST_QUERY_FIGS, ST_COUNT
+};
+static const char *const sl_stmt_sql[ST_COUNT] = {
+    [ST_BEGIN] = "BEGIN IMMEDIATE",
+    [ST_COMMIT] = "COMMIT",
+    [ST_ROLLBACK] = "ROLLBACK",
+    [ST_INS_RUN] = sql_ins_run,
+    [ST_INS_CELL] = sql_ins_cell,
+    [ST_INS_FIG] = sql_ins_fig,
+    [ST_HAS_CELL] = sql_has_cell,
+    [ST_QUERY_CELLS] = sql_query_cells,
+    [ST_QUERY_FIGS] = sql_query_figs,
+};
+
+struct sl_store {
+    sqlite3      *db;
+    sqlite3_stmt *st[ST_COUNT];
+    char         *path;
+};
+
+/* ---- helpers ---- */
+
+/* SL_E_IO naming the database, with the context and sqlite's message. */
+static enum sl_err db_fail(const struct sl_store *s, struct sl_diag *d, const char *key,
+                           const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+static enum sl_err db_fail(const struct sl_store *s, struct sl_diag *d, const char *key,
+                           const char *fmt, ...)
+{
+    char what[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    return sl_fail(d, SL_E_IO, s->path, 0, key, "%s: %s", what,
+                   s->db ? sqlite3_errmsg(s->db) : "no database handle");
+}
+
+static sqlite3_int64 to_i64(uint64_t v)
+{
+    /* out of range -> -1, which the >= 0 CHECKs refuse */
+    return v > (uint64_t)INT64_MAX ? -1 : (sqlite3_int64)v;
+}
+
+/* Binds parameters in order and remembers the first failure. */
+struct binder {
+    sqlite3_stmt *st;
+    int           i, rc;
+};
+
+static void b_text(struct binder *b, const char *v)
+{
+    if (b->rc == SQLITE_OK)
+        b->rc = sqlite3_bind_text(b->st, b->i, v ? v : "", -1, SQLITE_STATIC);
+    b->i++;
+}
+
+static void b_text_or_null(struct binder *b, const char *v)
+{
+    if (b->rc == SQLITE_OK)
+        b->rc = (v && v[0]) ? sqlite3_bind_text(b->st, b->i, v, -1, SQLITE_STATIC)
+                            : sqlite3_bind_null(b->st, b->i);
+    b->i++;
+}
+
+static void b_int(struct binder *b, sqlite3_int64 v)
+{
+    if (b->rc == SQLITE_OK)
+        b->rc = sqlite3_bind_int64(b->st, b->i, v);
+    b->i++;
+}
+
+static void b_u64(struct binder *b, uint64_t v) { b_int(b, to_i64(v)); }
+
+static void b_u64_opt(struct binder *b, const uint64_t *v)
+{
+    if (v)
+        b_u64(b, *v);
+    else {
+        if (b->rc == SQLITE_OK)
+            b->rc = sqlite3_bind_null(b->st, b->i);
+        b->i++;
+    }
+}
+
+static void b_real(struct binder *b, double v)
+{
+    if (b->rc == SQLITE_OK)
+        b->rc = isnan(v) ? sqlite3_bind_null(b->st, b->i) : sqlite3_bind_double(b->st, b->i, v);
+    b->i++;
+}
+
+/* SQLITE_OK when every parameter was bound without error. */
+static int b_done(const struct binder *b)
+{
+    if (b->rc != SQLITE_OK)
+        return b->rc;
+    return b->i - 1 == sqlite3_bind_parameter_count(b->st) ? SQLITE_OK : SQLITE_RANGE;
+}
+
+static void st_clear(sqlite3_stmt *st)
+{
+    sqlite3_reset(st);
+    sqlite3_clear_bindings(st);
+}
+
+/* Step a statement that returns no row; SQLITE_DONE on success. The error
+ * message stays readable through sqlite3_errmsg until the next call. */
+static int st_exec(sqlite3_stmt *st)
+{
+    int rc = sqlite3_step(st);
+    return rc == SQLITE_ROW ? SQLITE_DONE : rc;
+}
+
+static void region_name(int t, char *buf, size_t n)
+{
+    if (t == 0)
+        snprintf(buf, n, "image");
+    else
+        snprintf(buf, n, "%dpx", t);
+}
+
+/* Thickness of a region name, -1 if not one. */
+static int region_thickness(const char *r)
+{
+    if (!r)
+        return -1;
+    if (strcmp(r, "image") == 0)
+        return 0;
+    int t = 0, k = 0;
+    while (r[k] >= '0' && r[k] <= '9' && t < 100000)
+        t = 10 * t + (r[k++] - '0');
+    return (k > 0 && t > 0 && strcmp(r + k, "px") == 0) ? t : -1;
+}
+
+/* a == b ignoring white space (sqlite_master keeps the CREATE text, but may
+ * normalise spacing around its first keywords) */
+static int same_sql(const char *a, const char *b)
+{
+    for (;;) {
+        while (*a == ' ' || *a == '\n' || *a == '\t' || *a == '\r')
+            a++;
+        while (*b == ' ' || *b == '\n' || *b == '\t' || *b == '\r')
+            b++;
+        if (*a != *b)
+            return 0;
+        if (!*a)
+            return 1;
+        a++;
+        b++;
+    }
+}
+
+/* One-shot integer query; SQLITE_OK and *out on success. */
+static int query_int(sqlite3 *db, const char *sql, sqlite3_int64 *out)
+{
+    sqlite3_stmt *st = NULL;
+    int rc = sqlite3_prepare_v2(db, sql, -1, &st, NULL);
+    if (rc == SQLITE_OK) {
+        rc = sqlite3_step(st);
+        if (rc == SQLITE_ROW) {
+            *out = sqlite3_column_int64(st, 0);
+            rc = SQLITE_OK;
+        } else if (rc == SQLITE_DONE) {
+            rc = SQLITE_ERROR;
+        }
+    }
+    sqlite3_finalize(st);
+    return rc;
+}
+
+/* ---- open / close ---- */
+
+static enum sl_err create_schema(struct sl_store *s, struct sl_diag *d)
+{
+    for (size_t i = 0; i < sizeof sl_tables / sizeof sl_tables[0]; i++)
+        if (sqlite3_exec(s->db, sl_tables[i].sql, NULL, NULL, NULL) != SQLITE_OK)
+            return db_fail(s, d, NULL, "cannot create table %s", sl_tables[i].name);
+    for (size_t i = 0; i < sizeof sl_indexes / sizeof sl_indexes[0]; i++)
+        if (sqlite3_exec(s->db, sl_indexes[i], NULL, NULL, NULL) != SQLITE_OK)
+            return db_fail(s, d, NULL, "cannot create index");
+    char v[64];
+    snprintf(v, sizeof v, "PRAGMA user_version = %d", SL_STORE_VERSION);
+    if (sqlite3_exec(s->db, v, NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot set the schema version");
+    return SL_OK;
+}
+
+/* An empty database becomes a version-1 store; a concurrent creator is
+ * serialised by BEGIN IMMEDIATE and the re-check inside it. */
+static enum sl_err init_if_empty(struct sl_store *s, struct sl_diag *d)
+{
+    if (sqlite3_exec(s->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot start creating the schema");
+    sqlite3_int64 ver = -1, nobj = -1;
+    enum sl_err e = SL_OK;
+    if (query_int(s->db, "PRAGMA user_version", &ver) != SQLITE_OK ||
+        query_int(s->db, "SELECT count(*) FROM sqlite_master", &nobj) != SQLITE_OK)
+        e = db_fail(s, d, NULL, "cannot read the schema");
+    else if (ver == 0 && nobj == 0)
+        e = create_schema(s, d);
+    if (e == SL_OK && sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
+        e = db_fail(s, d, NULL, "cannot commit the schema");
+    if (e != SL_OK)
+        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+    return e;
+}
+
+static enum sl_err check_schema(struct sl_store *s, struct sl_diag *d)
+{
+    sqlite3_stmt *st = NULL;
+    if (sqlite3_prepare_v2(s->db, "SELECT sql FROM sqlite_master WHERE type = 'table' AND name = ?1",
+                           -1, &st, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot read the schema");
+    enum sl_err e = SL_OK;
+    for (size_t i = 0; i < sizeof sl_tables / sizeof sl_tables[0] && !e; i++) {
+        sqlite3_bind_text(st, 1, sl_tables[i].name, -1, SQLITE_STATIC);
+        int rc = sqlite3_step(st);
+        if (rc == SQLITE_ROW) {
+            const char *sql = (const char *)sqlite3_column_text(st, 0);
+            if (!sql || !same_sql(sql, sl_tables[i].sql))
+                e = sl_fail(d, SL_E_IO, s->path, 0, sl_tables[i].name,
+                            "table differs from schema version %d of this build (a store written by "
+                            "another build of the same version?)", SL_STORE_VERSION);
+        } else if (rc == SQLITE_DONE) {
+            e = sl_fail(d, SL_E_IO, s->path, 0, sl_tables[i].name,
+                        "table missing from a schema version %d store", SL_STORE_VERSION);
+        } else {
+            e = db_fail(s, d, NULL, "cannot read the schema");
+        }
+        sqlite3_reset(st);
+    }
+    sqlite3_finalize(st);
+    return e;
+}
+
+static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
+{
+    sqlite3_busy_timeout(s->db, SL_STORE_BUSY_MS);
+    sqlite3_int64 ver = -1, nobj = -1;
+    int rc = query_int(s->db, "PRAGMA user_version", &ver);
+    if (rc == SQLITE_NOTADB)
+        return sl_fail(d, SL_E_IO, s->path, 0, NULL,
+                       "not a shadowlab results store: %s", sqlite3_errmsg(s->db));
+    if (rc != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot read the schema version");
+    if (ver == 0) {
+        if (query_int(s->db, "SELECT count(*) FROM sqlite_master", &nobj) != SQLITE_OK)
+            return db_fail(s, d, NULL, "cannot read the schema");
+        if (nobj != 0)
+            return sl_fail(d, SL_E_IO, s->path, 0, NULL,
+                           "an SQLite database but not a shadowlab results store (user_version 0, "
+                           "%lld schema objects); refusing to touch it", (long long)nobj);
+    } else if (ver != SL_STORE_VERSION) {
+        return sl_fail(d, SL_E_IO, s->path, 0, NULL,
+                       "results store of schema version %lld; this build reads version %d",
+                       (long long)ver, SL_STORE_VERSION);
+    }
+    /* ours (or empty) from here on: WAL lets readers run beside a writing run */
+    sqlite3_int64 ignore = 0;
+    (void)query_int(s->db, "PRAGMA journal_mode = WAL", &ignore);
+    if (sqlite3_exec(s->db, "PRAGMA foreign_keys = ON", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot enable foreign keys");
+    enum sl_err e;
+    if (ver == 0 && (e = init_if_empty(s, d)))
+        return e;
+    if ((e = check_schema(s, d)))
+        return e;
+    for (int i = 0; i < ST_COUNT; i++)
+        if (sqlite3_prepare_v3(s->db, sl_stmt_sql[i], -1, SQLITE_PREPARE_PERSISTENT, &s->st[i], NULL) !=
+            SQLITE_OK)
+            return db_fail(s, d, NULL, "cannot prepare statement %d", i);
+    return SL_OK;
+}
+
+enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_diag *d)
+{
+    if (!out)
+        return sl_fail(d, SL_E_USAGE, path, 0, NULL, "sl_store_open: no output pointer");
+    *out = NULL;
+    if (!path || !path[0])
+        return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "results store: empty path");
+    struct sl_store *s = sl_calloc(1, sizeof *s);
+    size_t n = strlen(path) + 1;
+    char *p = s ? sl_calloc(n, 1) : NULL;
+    if (!p) {
+        free(s);
+        return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "results store handle");
+    }
+    memcpy(p, path, n);
+    s->path = p;
+    int rc = sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL);
+    enum sl_err e = rc == SQLITE_OK ? store_setup(s, d) : db_fail(s, d, NULL, "cannot open");
+    if (e) {
+        sl_store_close(s);
+        return e;
+    }
+    *out = s;
+    return SL_OK;
+}
+
+void sl_store_close(struct sl_store *s)
+{
+    if (!s)
+        return;
+    for (int i = 0; i < ST_COUNT; i++)
+        sqlite3_finalize(s->st[i]);
+    sqlite3_close(s->db);
+    free(s->path);
+    free(s);
+}
+
+/* ---- writing ---- */
+
+enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p,
+                               const char *config_path, unsigned long long config_hash,
+                               int64_t *run_id, struct sl_diag *d)
+{
+    if (!s || !p || !run_id)
+        return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_begin_run: missing argument");
+    char hash[24];
+    snprintf(hash, sizeof hash, "%016llx", config_hash);
+    sqlite3_stmt *st = s->st[ST_INS_RUN];
+    struct binder b = {st, 1, SQLITE_OK};
+    b_text(&b, p->time_utc);
+    b_text(&b, p->git_sha);
+    b_text(&b, config_path);
+    b_text(&b, hash);
+    b_text(&b, p->host);
+    b_text(&b, p->cpu);
+    b_text(&b, p->isa);
+    b_text(&b, p->gl_renderer);
+    b_text(&b, p->gl_version);
+    b_text(&b, p->embree);
+    b_int(&b, p->threads);
+    b_text(&b, p->lp_threads);
+    enum sl_err e = SL_OK;
+    if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
+        e = db_fail(s, d, NULL, "cannot record the run");
+    else
+        *run_id = sqlite3_last_insert_rowid(s->db);
+    st_clear(st);
+    return e;
+}
+
+static enum sl_err put_figure(struct sl_store *s, sqlite3_int64 cell_id, const struct sl_store_cell *c,
+                              const char *viewport, const char *region, const char *figure,
+                              uint64_t count, double pct, const char *of, const char *key,
+                              struct sl_diag *d)
+{
+    sqlite3_stmt *st = s->st[ST_INS_FIG];
+    struct binder b = {st, 1, SQLITE_OK};
+    b_int(&b, cell_id);
+    b_text(&b, c->scene);
+    b_text(&b, c->viewpoint);
+    b_text(&b, viewport);
+    b_int(&b, c->map_size);
+    b_text(&b, c->label);
+    b_text(&b, region);
+    b_text(&b, figure);
+    b_u64(&b, count);
+    b_real(&b, pct);
+    b_text_or_null(&b, of);
+    enum sl_err e = SL_OK;
+    if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
+        e = db_fail(s, d, key, "cannot store figure %s of region %s", figure, region);
+    st_clear(st);
+    return e;
+}
+
+static enum sl_err put_cell_row(struct sl_store *s, int64_t run_id, const char *hash,
+                                const struct sl_store_cell *c, const char *viewport, const char *key,
+                                sqlite3_int64 *cell_id, struct sl_diag *d)
+{
+    sqlite3_stmt *st = s->st[ST_INS_CELL];
+    struct binder b = {st, 1, SQLITE_OK};
+    b_int(&b, run_id);
+    b_text(&b, hash);
+    b_text(&b, c->scene);
+    b_text(&b, c->viewpoint);
+    b_text(&b, viewport);
+    b_int(&b, c->vw);
+    b_int(&b, c->vh);
+    b_int(&b, c->map_size);
+    b_text(&b, c->method);
+    b_text(&b, c->label);
+    b_int(&b, c->cell_index);
+    b_u64(&b, c->n_pfl);
+    b_u64(&b, c->n_pnfl);
+    b_u64(&b, c->n_background);
+    b_u64(&b, c->n_truth_lit);
+    b_u64(&b, c->n_truth_shadow);
+    b_u64(&b, c->fig->wrong_image);
+    b_u64(&b, c->truth_rays);
+    b_u64_opt(&b, c->cost ? &c->cost->lookups : NULL);
+    b_u64_opt(&b, c->cost ? &c->cost->rays : NULL);
+    b_u64_opt(&b, c->cost ? &c->cost->tri_tests : NULL);
+    b_real(&b, c->ms_gbuffer_render);
+    b_real(&b, c->ms_gbuffer_readback);
+    b_real(&b, c->ms_truth);
+    b_real(&b, c->ms_fit);
+    b_real(&b, c->ms_map_render);
+    b_real(&b, c->ms_map_readback);
+    b_real(&b, c->ms_method);
+    b_real(&b, c->ms_contours);
+    b_real(&b, c->ms_figures);
+    b_real(&b, c->ms_overlay);
+    enum sl_err e = SL_OK;
+    if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
+        e = db_fail(s, d, key, "cannot store the cell");
+    else
+        *cell_id = sqlite3_last_insert_rowid(s->db);
+    st_clear(st);
+    return e;
+}
+
+enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long long config_hash,
+                              const struct sl_store_cell *c, struct sl_diag *d)
+{
+    if (!s || !c || !c->fig || !c->scene || !c->viewpoint || !c->method || !c->label)
+        return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_put_cell: missing argument");
+    const struct sl_figures *fig = c->fig;
+    char key[96], viewport[32], hash[24];
+    snprintf(key, sizeof key, "%s/%s/%dx%d/%d/%s", c->scene, c->viewpoint, c->vw, c->vh, c->map_size,
+             c->label);
+    if (fig->nregions < 0 || fig->nregions > SL_MAX_REGIONS)
+        return sl_fail(d, SL_E_USAGE, s->path, 0, key, "cell has %d regions (at most %d)", fig->nregions,
+                       SL_MAX_REGIONS);
+    snprintf(viewport, sizeof viewport, "%dx%d", c->vw, c->vh);
+    snprintf(hash, sizeof hash, "%016llx", config_hash);
+
+    sqlite3_stmt *begin = s->st[ST_BEGIN];
+    int rc = st_exec(begin);
+    sqlite3_reset(begin);
+    if (rc != SQLITE_DONE)
+        return db_fail(s, d, key, "cannot start the cell's transaction");
+
+    sqlite3_int64 cell_id = 0;
+    enum sl_err e = put_cell_row(s, run_id, hash, c, viewport, key, &cell_id, d);
+    for (int r = 0; r < fig->nregions && !e; r++) {
+        const struct sl_region_figures *g = &fig->r[r];
+        char region[16];
+        region_name(g->thickness, region, sizeof region);
+        for (int k = 0; k < SL_FIG_COUNT && !e; k++)
+            e = put_figure(s, cell_id, c, viewport, region, sl_figure_name((enum sl_figure)k), g->n[k],
+                           g->pct[k], sl_figure_of((enum sl_figure)k), key, d);
+    }
+    if (!e)
+        e = put_figure(s, cell_id, c, viewport, "image", "background", fig->background, NAN, NULL, key, d);
+    if (!e) {
+        sqlite3_stmt *commit = s->st[ST_COMMIT];
+        rc = st_exec(commit);
+        sqlite3_reset(commit);
+        if (rc != SQLITE_DONE)
+            e = db_fail(s, d, key, "cannot commit the cell");
+    }
+    if (e && !sqlite3_get_autocommit(s->db)) {
+        /* the diag already holds the first error; rolling back keeps no part of the cell */
+        sqlite3_stmt *rb = s->st[ST_ROLLBACK];
+        sqlite3_step(rb);
+        sqlite3_reset(rb);
+    }
+    return e;
+}
+
+/* ---- reading ---- */
+
+int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const char *scene,
+                      const char *viewpoint, int vw, int vh, int map_size, const char *label)
+{
+    if (!s || !scene || !viewpoint || !label)
+        return 0;
+    char hash[24];
+    snprintf(hash, sizeof hash, "%016llx", config_hash);
+    sqlite3_stmt *st = s->st[ST_HAS_CELL];
+    struct binder b = {st, 1, SQLITE_OK};
+    b_text(&b, hash);
+    b_text(&b, scene);
+    b_text(&b, viewpoint);
+    b_int(&b, vw);
+    b_int(&b, vh);
+    b_int(&b, map_size);
+    b_text(&b, label);
+    /* an error reads as "not stored": the cell is recomputed and the put
+     * reports the error */
+    int found = b_done(&b) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0);
+    st_clear(st);
+    return found;
+}
+
+static void col_text(sqlite3_stmt *st, int i, char *buf, size_t n)
+{
+    const unsigned char *t = sqlite3_column_text(st, i);
+    snprintf(buf, n, "%s", t ? (const char *)t : "");
+}
+
+static uint64_t col_u64(sqlite3_stmt *st, int i)
+{
+    sqlite3_int64 v = sqlite3_column_int64(st, i);
+    return v < 0 ? 0 : (uint64_t)v;
+}
+
+/* Figures of one cell into c->fig (c->fig.wrong_image is already set). */
+static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struct sl_table_cell *c,
+                                struct sl_diag *d)
+{
+    sqlite3_stmt *st = s->st[ST_QUERY_FIGS];
+    struct sl_figures *f = &c->fig;
+    enum sl_err e = SL_OK;
+    int rc = SQLITE_DONE;
+    if (sqlite3_bind_int64(st, 1, cell_id) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot read the figures of cell %lld", (long long)cell_id);
+    while (!e && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        const char *region = (const char *)sqlite3_column_text(st, 0);
+        const char *figure = (const char *)sqlite3_column_text(st, 1);
+        uint64_t count = col_u64(st, 2);
+        double pct = sqlite3_column_type(st, 3) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 3);
+        if (figure && strcmp(figure, "background") == 0) {
+            f->background = count;
+            continue;
+        }
+        int t = region_thickness(region), k = 0;
+        while (k < SL_FIG_COUNT && (!figure || strcmp(figure, sl_figure_name((enum sl_figure)k)) != 0))
+            k++;
+        if (t < 0 || k == SL_FIG_COUNT) {
+            e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "cell %lld: unknown region '%s' or figure '%s'",
+                        (long long)cell_id, region ? region : "", figure ? figure : "");
+            break;
+        }
+        /* rows come grouped by region in output order */
+        if (f->nregions == 0 || f->r[f->nregions - 1].thickness != t) {
+            if (f->nregions == SL_MAX_REGIONS) {
+                e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "cell %lld has more than %d regions",
+                            (long long)cell_id, SL_MAX_REGIONS);
+                break;
+            }
+            struct sl_region_figures *g = &f->r[f->nregions++];
+            g->thickness = t;
+            for (int j = 0; j < SL_FIG_COUNT; j++)
+                g->pct[j] = NAN;
+        }
+        f->r[f->nregions - 1].n[k] = count;
+        f->r[f->nregions - 1].pct[k] = pct;
+    }
+    if (!e && rc != SQLITE_DONE)
+        e = db_fail(s, d, NULL, "cannot read the figures of cell %lld", (long long)cell_id);
+    st_clear(st);
+    return e;
+}
+
+enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
+                           struct sl_table_cell **out, int *n, struct sl_diag *d)
+{
+    if (!out || !n)
+        return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_query: no output pointer");
+    *out = NULL;
+    *n = 0;
+    if (!s)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_store_query: no store");
+    static const struct sl_store_filter any = {0};
+    if (!f)
+        f = &any;
+    sqlite3_stmt *st = s->st[ST_QUERY_CELLS];
+    struct binder b = {st, 1, SQLITE_OK};
+    b_text_or_null(&b, f->scene);
+    b_text_or_null(&b, f->viewpoint);
+    b_text_or_null(&b, f->label);
+    b_int(&b, f->map_size);
+    b_int(&b, f->run_id);
+    if (b_done(&b) != SQLITE_OK) {
+        st_clear(st);
+        return db_fail(s, d, NULL, "cannot query cells");
+    }
+    struct sl_table_cell *cells = NULL;
+    int count = 0, cap = 0, rc = SQLITE_DONE;
+    enum sl_err e = SL_OK;
+    while (!e && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        if (count == cap) {
+            int ncap = cap ? 2 * cap : 16;
+            struct sl_table_cell *nc = realloc(cells, (size_t)ncap * sizeof *nc);
+            if (!nc) {
+                e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "%d cells", ncap);
+                break;
+            }
+            cells = nc;
+            cap = ncap;
+        }
+        struct sl_table_cell *c = &cells[count++];
+        memset(c, 0, sizeof *c);
+        sqlite3_int64 cell_id = sqlite3_column_int64(st, 0);
+        col_text(st, 1, c->scene, sizeof c->scene);
+        col_text(st, 2, c->viewpoint, sizeof c->viewpoint);
+        col_text(st, 3, c->method, sizeof c->method);
+        col_text(st, 4, c->label, sizeof c->label);
+        c->vw = sqlite3_column_int(st, 5);
+        c->vh = sqlite3_column_int(st, 6);
+        c->map_size = sqlite3_column_int(st, 7);
+        c->n_pfl = col_u64(st, 8);
+        c->n_pnfl = col_u64(st, 9);
+        c->n_background = col_u64(st, 10);
+        c->n_truth_lit = col_u64(st, 11);
+        c->n_truth_shadow = col_u64(st, 12);
+        c->fig.wrong_image = col_u64(st, 13);
+        col_text(st, 14, c->config_hash, sizeof c->config_hash);
+        col_text(st, 15, c->git_sha, sizeof c->git_sha);
+        const char *host = (const char *)sqlite3_column_text(st, 16);
+        const char *cpu = (const char *)sqlite3_column_text(st, 17);
+        const char *isa = (const char *)sqlite3_column_text(st, 18);
+        snprintf(c->machine, sizeof c->machine, "%s/%s/%s", host ? host : "", cpu ? cpu : "",
+                 isa ? isa : "");
+        e = load_figures(s, cell_id, c, d);
+    }
+    if (!e && rc != SQLITE_DONE)
+        e = db_fail(s, d, NULL, "cannot query cells");
+    st_clear(st);
+    if (e) {
+        free(cells);
+        return e;
+    }
+    *out = cells;
+    *n = count;
+    return SL_OK;
+}
+
+long sl_store_count(struct sl_store *s, const char *table)
+{
+    static const char *const sql[][2] = {
+        {"runs", "SELECT count(*) FROM runs"},
+        {"cells", "SELECT count(*) FROM cells"},
+        {"figures", "SELECT count(*) FROM figures"},
+    };
+    if (!s || !table)
+        return -1;
+    for (size_t i = 0; i < sizeof sql / sizeof sql[0]; i++)
+        if (strcmp(table, sql[i][0]) == 0) {
+            sqlite3_int64 v = -1;
+            return query_int(s->db, sql[i][1], &v) == SQLITE_OK ? (long)v : -1;
+        }
+    return -1;
+}

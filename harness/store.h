@@ -1,0 +1,69 @@
+/*
+ * store.h — the results store: SQLite (results/shadowlab.db by default).
+ *
+ * Every run appends a run row (time, git SHA, config path and hash, host, CPU,
+ * ISA, GL renderer and version, Embree version, thread counts). Every cell
+ * appends a cell row (its key, counts and costs) and one row per figure keyed
+ * by (scene, viewpoint, viewport, map size, method label, region, figure), in
+ * ONE transaction, so a killed run leaves no partial cell. A cell is
+ * identified across runs by the config hash and its key; `--resume` asks
+ * sl_store_has_cell and skips what is there.
+ *
+ * Owns: the sqlite3 handle (sl_store_close). Does not: compute or format
+ * (table.c formats what sl_store_query returns).
+ * Schema versioned with PRAGMA user_version; a database of another version is
+ * refused with SL_E_IO naming the file.
+ */
+#ifndef SL_STORE_H
+#define SL_STORE_H
+#include <stdint.h>
+#include "method.h"
+#include "provenance.h"
+#include "table.h"
+
+struct sl_store;
+
+/* Key and content of one cell. */
+struct sl_store_cell {
+    const char *scene, *viewpoint, *method, *label;
+    int         vw, vh, map_size;
+    int         cell_index;                 /* index in the config's sweep */
+    uint64_t    n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow, truth_rays;
+    const struct sl_figures *fig;
+    const struct sl_cost    *cost;
+    /* stage wall times, ms (names as in costs.csv) */
+    double ms_gbuffer_render, ms_gbuffer_readback, ms_truth, ms_fit, ms_map_render,
+           ms_map_readback, ms_method, ms_contours, ms_figures, ms_overlay;
+};
+
+/* Open or create the database at path. Its folder must exist: the caller
+ * makes it (sl_mkdirs); the store creates no folders. */
+enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_diag *d);
+void        sl_store_close(struct sl_store *s);   /* NULL-safe */
+
+enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p,
+                               const char *config_path, unsigned long long config_hash,
+                               int64_t *run_id, struct sl_diag *d);
+
+/* 1 if a cell with this config hash and key is stored (by any run), else 0. */
+int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const char *scene,
+                      const char *viewpoint, int vw, int vh, int map_size, const char *label);
+
+/* Append one cell and all its figures in one transaction. */
+enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long long config_hash,
+                              const struct sl_store_cell *c, struct sl_diag *d);
+
+/* Cells for tables: filters may be NULL / 0 for "any"; when a key was stored
+ * several times, the latest run's cell wins. *out is malloc'ed. */
+struct sl_store_filter {
+    const char *scene, *viewpoint, *label;
+    int         map_size;
+    int64_t     run_id;                     /* 0 = all runs */
+};
+enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
+                           struct sl_table_cell **out, int *n, struct sl_diag *d);
+
+/* Number of rows in a table ("runs", "cells", "figures"); -1 on error (tests). */
+long sl_store_count(struct sl_store *s, const char *table);
+
+#endif

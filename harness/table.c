@@ -1,0 +1,420 @@
+/*
+ * table.c — see table.h.
+ *
+ * Invariants: every format walks the cells in one order, computed once:
+ * groups of (scene, viewpoint, viewport, label) in order of first appearance,
+ * map sizes ascending inside a group (two cells of one group with the same map
+ * size are refused: a table cannot show both). Regions keep the cell's own
+ * order (figures.c: contours ascending, whole image last). A percentage that
+ * is NaN has no base and is printed as the count alone (CSV: empty).
+ * Nothing here prints to stdout/stderr or reads files; it writes to `out`.
+ */
+#include "table.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "util.h"
+
+int sl_table_format_parse(const char *name)
+{
+    static const struct { const char *name; enum sl_table_format fmt; } formats[] = {
+        {"md", SL_TABLE_MD},
+        {"csv", SL_TABLE_CSV},
+        {"latex", SL_TABLE_LATEX},
+        {NULL, SL_TABLE_MD},
+    };
+    for (int i = 0; name && formats[i].name; i++)
+        if (strcmp(name, formats[i].name) == 0)
+            return (int)formats[i].fmt;
+    return -1;
+}
+
+/* ---- order ---- */
+
+static int same_table(const struct sl_table_cell *a, const struct sl_table_cell *b)
+{
+    return a->vw == b->vw && a->vh == b->vh && strcmp(a->scene, b->scene) == 0 &&
+           strcmp(a->viewpoint, b->viewpoint) == 0 && strcmp(a->label, b->label) == 0;
+}
+
+static void region_name(int t, char *buf, size_t n)
+{
+    if (t == 0)
+        snprintf(buf, n, "image");
+    else
+        snprintf(buf, n, "%dpx", t);
+}
+
+/* The cells of one table, by index into the caller's array. */
+struct group {
+    const int *idx;
+    int        n;
+};
+
+struct layout {
+    int          *order;    /* all cell indices, table by table */
+    struct group *groups;
+    int           ngroups;
+};
+
+static void layout_free(struct layout *l)
+{
+    free(l->order);
+    free(l->groups);
+}
+
+static enum sl_err layout_build(const struct sl_table_cell *cells, int ncells, struct layout *l,
+                                struct sl_diag *d)
+{
+    memset(l, 0, sizeof *l);
+    int *gid = sl_calloc((size_t)ncells, sizeof *gid);
+    l->order = sl_calloc((size_t)ncells, sizeof *l->order);
+    l->groups = sl_calloc((size_t)ncells, sizeof *l->groups);
+    if (!gid || !l->order || !l->groups) {
+        free(gid);
+        layout_free(l);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "table layout of %d cells", ncells);
+    }
+    for (int i = 0; i < ncells; i++) {
+        gid[i] = -1;
+        for (int j = 0; j < i && gid[i] < 0; j++)
+            if (same_table(&cells[i], &cells[j]))
+                gid[i] = gid[j];
+        if (gid[i] < 0)
+            gid[i] = l->ngroups++;
+    }
+    int pos = 0;
+    enum sl_err e = SL_OK;
+    for (int g = 0; g < l->ngroups && !e; g++) {
+        int start = pos;
+        for (int i = 0; i < ncells; i++)
+            if (gid[i] == g) {
+                /* insertion keeps equal map sizes in input order; they are refused below */
+                int k = pos++;
+                while (k > start && cells[l->order[k - 1]].map_size > cells[i].map_size) {
+                    l->order[k] = l->order[k - 1];
+                    k--;
+                }
+                l->order[k] = i;
+            }
+        l->groups[g].idx = l->order + start;
+        l->groups[g].n = pos - start;
+        for (int k = start + 1; k < pos && !e; k++) {
+            const struct sl_table_cell *a = &cells[l->order[k - 1]], *b = &cells[l->order[k]];
+            if (a->map_size == b->map_size) {
+                char key[96];
+                snprintf(key, sizeof key, "%s/%s/%dx%d/%s", b->scene, b->viewpoint, b->vw, b->vh, b->label);
+                e = sl_fail(d, SL_E_USAGE, NULL, 0, key, "two cells with map size %d in one table",
+                            b->map_size);
+            }
+        }
+    }
+    for (int i = 0; i < ncells && !e; i++)
+        if (cells[i].fig.nregions < 0 || cells[i].fig.nregions > SL_MAX_REGIONS)
+            e = sl_fail(d, SL_E_USAGE, NULL, 0, cells[i].label, "cell with %d regions (at most %d)",
+                        cells[i].fig.nregions, SL_MAX_REGIONS);
+    free(gid);
+    if (e)
+        layout_free(l);
+    return e;
+}
+
+/* 1 if every cell of the group has the provenance of the first. */
+static int same_provenance(const struct sl_table_cell *cells, const struct group *g)
+{
+    const struct sl_table_cell *a = &cells[g->idx[0]];
+    for (int k = 1; k < g->n; k++) {
+        const struct sl_table_cell *b = &cells[g->idx[k]];
+        if (strcmp(a->git_sha, b->git_sha) || strcmp(a->config_hash, b->config_hash) ||
+            strcmp(a->machine, b->machine) || strcmp(a->method, b->method))
+            return 0;
+    }
+    return 1;
+}
+
+/* ---- Markdown ---- */
+
+static const char md_note[] =
+    "Percentages: PFL, PnFL, light, shadow, uncertain, wrong of the region's pixels; "
+    "correct/incorrect of the method's light or shadow pixels; wrong caught of all wrong pixels of "
+    "the image. Background pixels enter no region; PnFL pixels count as shadow.\n\n";
+
+static void md_provenance(FILE *f, const struct sl_table_cell *c)
+{
+    fprintf(f, "method `%s`; git `%s`, config `%s`, machine `%s`", c->method, c->git_sha, c->config_hash,
+            c->machine);
+}
+
+static void md_table(FILE *f, const struct sl_table_cell *cells, const struct group *g)
+{
+    const struct sl_table_cell *c0 = &cells[g->idx[0]];
+    fprintf(f, "## %s / %s / %dx%d / %s\n\n", c0->scene, c0->viewpoint, c0->vw, c0->vh, c0->label);
+    fprintf(f, "PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.\n\n",
+            (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
+            (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
+            (unsigned long long)c0->n_truth_shadow);
+    fprintf(f, "| figure |");
+    int ncols = 0;
+    for (int k = 0; k < g->n; k++) {
+        const struct sl_table_cell *c = &cells[g->idx[k]];
+        for (int r = 0; r < c->fig.nregions; r++, ncols++) {
+            char rn[16];
+            region_name(c->fig.r[r].thickness, rn, sizeof rn);
+            fprintf(f, " %d² %s |", c->map_size, rn);
+        }
+    }
+    fprintf(f, "\n|---|");
+    for (int k = 0; k < ncols; k++)
+        fprintf(f, "---:|");
+    fprintf(f, "\n");
+    for (int fi = 0; fi < SL_FIG_COUNT; fi++) {
+        fprintf(f, "| %s |", sl_figure_name((enum sl_figure)fi));
+        for (int k = 0; k < g->n; k++) {
+            const struct sl_table_cell *c = &cells[g->idx[k]];
+            for (int r = 0; r < c->fig.nregions; r++) {
+                const struct sl_region_figures *rg = &c->fig.r[r];
+                if (isnan(rg->pct[fi]))
+                    fprintf(f, " %llu |", (unsigned long long)rg->n[fi]);
+                else
+                    fprintf(f, " %llu (%.2f%%) |", (unsigned long long)rg->n[fi], rg->pct[fi]);
+            }
+        }
+        fprintf(f, "\n");
+    }
+    fprintf(f, "\n");
+    if (same_provenance(cells, g)) {
+        md_provenance(f, c0);
+        fprintf(f, "\n\n");
+    } else {
+        for (int k = 0; k < g->n; k++) {
+            const struct sl_table_cell *c = &cells[g->idx[k]];
+            fprintf(f, "- %d²: ", c->map_size);
+            md_provenance(f, c);
+            fprintf(f, "\n");
+        }
+        fprintf(f, "\n");
+    }
+}
+
+/* ---- CSV ---- */
+
+/* RFC 4180: quote a field holding a comma, quote or line break; double quotes. */
+static void csv_field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* scene,viewpoint,viewport,map_size,method,label, */
+static void csv_key(FILE *f, const struct sl_table_cell *c)
+{
+    csv_field(f, c->scene);
+    fputc(',', f);
+    csv_field(f, c->viewpoint);
+    fprintf(f, ",%dx%d,%d,", c->vw, c->vh, c->map_size);
+    csv_field(f, c->method);
+    fputc(',', f);
+    csv_field(f, c->label);
+    fputc(',', f);
+}
+
+/* ,git_sha,config_hash,machine\n */
+static void csv_provenance(FILE *f, const struct sl_table_cell *c)
+{
+    fputc(',', f);
+    csv_field(f, c->git_sha);
+    fputc(',', f);
+    csv_field(f, c->config_hash);
+    fputc(',', f);
+    csv_field(f, c->machine);
+    fputc('\n', f);
+}
+
+static void csv_cell(FILE *f, const struct sl_table_cell *c)
+{
+    for (int r = 0; r < c->fig.nregions; r++) {
+        const struct sl_region_figures *g = &c->fig.r[r];
+        char rn[16];
+        region_name(g->thickness, rn, sizeof rn);
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            csv_key(f, c);
+            fprintf(f, "%s,%s,%llu,", rn, sl_figure_name((enum sl_figure)k), (unsigned long long)g->n[k]);
+            if (!isnan(g->pct[k]))
+                fprintf(f, "%.4f", g->pct[k]);
+            fprintf(f, ",%s", sl_figure_of((enum sl_figure)k));
+            csv_provenance(f, c);
+        }
+    }
+    csv_key(f, c);
+    fprintf(f, "image,background,%llu,,", (unsigned long long)c->fig.background);
+    csv_provenance(f, c);
+}
+
+/* ---- LaTeX ---- */
+
+static void tex(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        switch (*s) {
+        case '_': case '%': case '&': case '#': case '$': case '{': case '}':
+            fputc('\\', f);
+            fputc(*s, f);
+            break;
+        case '\\': fputs("\\textbackslash{}", f); break;
+        case '~':  fputs("\\textasciitilde{}", f); break;
+        case '^':  fputs("\\textasciicircum{}", f); break;
+        default:   fputc(*s, f);
+        }
+    }
+}
+
+/* \label keys: letters, digits and '-' only */
+static void tex_key(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        char ch = *s;
+        int ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9');
+        fputc(ok ? ch : '-', f);
+    }
+}
+
+static void tex_provenance(FILE *f, const struct sl_table_cell *c)
+{
+    fputs("method \\texttt{", f);
+    tex(f, c->method);
+    fputs("}; git \\texttt{", f);
+    tex(f, c->git_sha);
+    fputs("}, config \\texttt{", f);
+    tex(f, c->config_hash);
+    fputs("}, machine ", f);
+    tex(f, c->machine);
+}
+
+static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct group *g)
+{
+    const struct sl_table_cell *c0 = &cells[g->idx[0]];
+    int ncols = 0;
+    for (int k = 0; k < g->n; k++)
+        ncols += cells[g->idx[k]].fig.nregions;
+    fputs("\\begin{table}[htbp]\n\\centering\n\\caption{", f);
+    tex(f, c0->scene);
+    fputs(" / ", f);
+    tex(f, c0->viewpoint);
+    fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
+    tex(f, c0->label);
+    fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.}\n",
+            (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
+            (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
+            (unsigned long long)c0->n_truth_shadow);
+    fputs("\\label{tab:", f);
+    tex_key(f, c0->scene);
+    fputc('-', f);
+    tex_key(f, c0->viewpoint);
+    fprintf(f, "-%dx%d-", c0->vw, c0->vh);
+    tex_key(f, c0->label);
+    fputs("}\n\\begin{tabular}{l", f);
+    for (int k = 0; k < ncols; k++)
+        fputc('r', f);
+    fputs("}\n\\toprule\n", f);
+    /* map sizes over their regions */
+    for (int k = 0; k < g->n; k++) {
+        const struct sl_table_cell *c = &cells[g->idx[k]];
+        fprintf(f, " & \\multicolumn{%d}{c}{$%d^2$}", c->fig.nregions, c->map_size);
+    }
+    fputs(" \\\\\n", f);
+    for (int k = 0, col = 2; k < g->n; k++) {
+        int nr = cells[g->idx[k]].fig.nregions;
+        if (nr > 0)
+            fprintf(f, "%s\\cmidrule(lr){%d-%d}", k ? " " : "", col, col + nr - 1);
+        col += nr;
+    }
+    fputs("\nfigure", f);
+    for (int k = 0; k < g->n; k++) {
+        const struct sl_table_cell *c = &cells[g->idx[k]];
+        for (int r = 0; r < c->fig.nregions; r++) {
+            char rn[16];
+            region_name(c->fig.r[r].thickness, rn, sizeof rn);
+            fprintf(f, " & %s", rn);
+        }
+    }
+    fputs(" \\\\\n\\midrule\n", f);
+    for (int fi = 0; fi < SL_FIG_COUNT; fi++) {
+        tex(f, sl_figure_name((enum sl_figure)fi));
+        for (int k = 0; k < g->n; k++) {
+            const struct sl_table_cell *c = &cells[g->idx[k]];
+            for (int r = 0; r < c->fig.nregions; r++) {
+                const struct sl_region_figures *rg = &c->fig.r[r];
+                if (isnan(rg->pct[fi]))
+                    fprintf(f, " & %llu", (unsigned long long)rg->n[fi]);
+                else
+                    fprintf(f, " & %llu (%.2f\\%%)", (unsigned long long)rg->n[fi], rg->pct[fi]);
+            }
+        }
+        fputs(" \\\\\n", f);
+    }
+    fputs("\\bottomrule\n\\end{tabular}\n\n\\smallskip\n{\\footnotesize ", f);
+    if (same_provenance(cells, g)) {
+        tex_provenance(f, c0);
+    } else {
+        for (int k = 0; k < g->n; k++) {
+            const struct sl_table_cell *c = &cells[g->idx[k]];
+            fprintf(f, "%s$%d^2$: ", k ? "\\\\\n" : "", c->map_size);
+            tex_provenance(f, c);
+        }
+    }
+    fputs("\\par}\n\\end{table}\n\n", f);
+}
+
+/* ---- entry ---- */
+
+enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *title,
+                           const struct sl_table_cell *cells, int ncells, struct sl_diag *d)
+{
+    if (!out || ncells < 0 || (ncells > 0 && !cells))
+        return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_table_write: bad arguments");
+    if (fmt != SL_TABLE_MD && fmt != SL_TABLE_CSV && fmt != SL_TABLE_LATEX)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "unknown table format %d (md, csv, latex)", (int)fmt);
+    struct layout l;
+    enum sl_err e = layout_build(cells, ncells, &l, d);
+    if (e)
+        return e;
+    switch (fmt) {
+    case SL_TABLE_MD:
+        if (title)
+            fprintf(out, "# %s\n\n", title);
+        fputs(md_note, out);
+        for (int g = 0; g < l.ngroups; g++)
+            md_table(out, cells, &l.groups[g]);
+        break;
+    case SL_TABLE_CSV:
+        fputs("scene,viewpoint,viewport,map_size,method,label,region,figure,count,percent,percent_of,"
+              "git_sha,config_hash,machine\n", out);
+        for (int i = 0; i < ncells; i++)
+            csv_cell(out, &cells[l.order[i]]);
+        break;
+    case SL_TABLE_LATEX:
+        fputs("% shadowlab tables; needs \\usepackage{booktabs}\n", out);
+        if (title) {
+            fputs("\\section*{", out);
+            tex(out, title);
+            fputs("}\n", out);
+        }
+        fputs("\n", out);
+        for (int g = 0; g < l.ngroups; g++)
+            latex_table(out, cells, &l.groups[g]);
+        break;
+    }
+    layout_free(&l);
+    if (ferror(out) || fflush(out) != 0)
+        return sl_fail(d, SL_E_IO, NULL, 0, NULL, "writing the tables failed");
+    return SL_OK;
+}

@@ -1,0 +1,40 @@
+/*
+ * table.h — thesis-style tables from cells of figures, in Markdown, CSV or
+ * LaTeX (booktabs). One renderer serves `shadowlab run` (table.md, from the
+ * cells in memory) and `shadowlab table` (from the results store), so the
+ * two can never disagree.
+ *
+ * Layout: one table per (scene, viewpoint, viewport, label); rows are the
+ * figures of figures.h (count, and percentage of its base where it has one);
+ * columns are map size x region, map sizes ascending, regions in the order of
+ * the cells (contours ascending, whole image last). This puts Morais 2015
+ * Table 7 (light/shadow correct/incorrect) and Moderno 2011 Tables 17/18
+ * (wrong pixels and the share caught per contour) in one place.
+ * CSV is the long form: one line per (cell, region, figure).
+ * Does not: read files or the database.
+ */
+#ifndef SL_TABLE_H
+#define SL_TABLE_H
+#include <stdint.h>
+#include <stdio.h>
+#include "figures.h"
+#include "sl_error.h"
+
+enum sl_table_format { SL_TABLE_MD = 0, SL_TABLE_CSV, SL_TABLE_LATEX };
+int sl_table_format_parse(const char *name);     /* -1 if unknown: md, csv, latex */
+
+struct sl_table_cell {
+    char     scene[64], viewpoint[32], method[32], label[48];
+    int      vw, vh, map_size;
+    uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
+    struct sl_figures fig;
+    /* provenance of the numbers, printed under each table and in CSV rows */
+    char     git_sha[48], config_hash[24], machine[256];
+};
+
+/* Render cells (any order; grouped and sorted by the renderer). `title` heads
+ * the output (Markdown/LaTeX), NULL for none. */
+enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *title,
+                           const struct sl_table_cell *cells, int ncells, struct sl_diag *d);
+
+#endif

@@ -1,0 +1,2 @@
+/* adjacency::* — being written */
+int main(void) { return 0; }

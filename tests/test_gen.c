@@ -1,0 +1,2 @@
+/* gen::* — being written */
+int main(void) { return 0; }

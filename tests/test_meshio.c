@@ -1,0 +1,2 @@
+/* meshio::* — being written */
+int main(void) { return 0; }

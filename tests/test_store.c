@@ -1,0 +1,527 @@
+/* store::* — the SQLite results store: round trip of every count and
+ * percentage, resume lookups, latest-run-wins, atomic cells, refusal of files
+ * that are not a store of this version. Each test uses its own temp folder. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <math.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "store.h"
+
+#define HASH_A 0x0123456789abcdefull
+#define HASH_B 0xfedcba9876543210ull
+
+struct tmp {
+    char dir[64];
+    char db[128];
+};
+
+static void tmp_make(struct tmp *t)
+{
+    snprintf(t->dir, sizeof t->dir, "/tmp/sl_store_XXXXXX");
+    assert_non_null(mkdtemp(t->dir));
+    snprintf(t->db, sizeof t->db, "%s/shadowlab.db", t->dir);
+}
+
+static void tmp_remove(struct tmp *t)
+{
+    static const char *const suffix[] = {"", "-wal", "-shm", "-journal"};
+    char p[160];
+    for (size_t i = 0; i < sizeof suffix / sizeof suffix[0]; i++) {
+        snprintf(p, sizeof p, "%s%s", t->db, suffix[i]);
+        unlink(p);
+    }
+    rmdir(t->dir);
+}
+
+/* Figures where every count differs (base + 100 r + k) and every percentage
+ * differs; pixels (no base) and uncertain of region 1 are NaN. */
+static void make_fig(struct sl_figures *f, uint64_t base, const int *thick, int nreg)
+{
+    memset(f, 0, sizeof *f);
+    f->nregions = nreg;
+    f->background = base + 7777;
+    f->wrong_image = base + 999;
+    for (int r = 0; r < nreg; r++) {
+        f->r[r].thickness = thick[r];
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            f->r[r].n[k] = base + 100u * (uint64_t)r + (uint64_t)k;
+            f->r[r].pct[k] = (double)(r * SL_FIG_COUNT + k) + 0.125 + (double)base / 1024.0;
+        }
+        f->r[r].pct[SL_FIG_pixels] = NAN;
+    }
+    if (nreg > 1)
+        f->r[1].pct[SL_FIG_uncertain] = NAN;
+}
+
+static struct sl_store_cell make_cell(const char *vp, int map, const char *label, const struct sl_figures *f,
+                                      const struct sl_cost *cost, uint64_t base)
+{
+    struct sl_store_cell c = {
+        .scene = "prim_s", .viewpoint = vp, .method = "nsm", .label = label,
+        .vw = 640, .vh = 480, .map_size = map, .cell_index = map / 1024,
+        .n_pfl = base + 1, .n_pnfl = base + 2, .n_background = base + 3,
+        .n_truth_lit = base + 4, .n_truth_shadow = base + 5, .truth_rays = base + 6,
+        .fig = f, .cost = cost,
+        .ms_gbuffer_render = 1.5, .ms_truth = 2.25, .ms_method = 3.125, .ms_overlay = NAN,
+    };
+    return c;
+}
+
+static void fill_prov(struct sl_provenance *p, const char *sha)
+{
+    memset(p, 0, sizeof *p);
+    snprintf(p->git_sha, sizeof p->git_sha, "%s", sha);
+    snprintf(p->time_utc, sizeof p->time_utc, "2024-01-02T03:04:05Z");
+    snprintf(p->host, sizeof p->host, "hostA");
+    snprintf(p->cpu, sizeof p->cpu, "CPU, Model \"X\"");
+    snprintf(p->isa, sizeof p->isa, "x86_64-avx2+fma");
+    snprintf(p->gl_renderer, sizeof p->gl_renderer, "llvmpipe");
+    snprintf(p->gl_version, sizeof p->gl_version, "4.5");
+    snprintf(p->embree, sizeof p->embree, "3.13.5");
+    p->threads = 2;
+}
+
+static const struct sl_table_cell *find(const struct sl_table_cell *cells, int n, const char *vp, int map)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(cells[i].viewpoint, vp) == 0 && cells[i].map_size == map)
+            return &cells[i];
+    return NULL;
+}
+
+static void assert_same_fig(const struct sl_figures *got, const struct sl_figures *want)
+{
+    assert_int_equal(got->nregions, want->nregions);
+    assert_int_equal(got->background, want->background);
+    assert_int_equal(got->wrong_image, want->wrong_image);
+    for (int r = 0; r < want->nregions; r++) {
+        assert_int_equal(got->r[r].thickness, want->r[r].thickness);
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            assert_int_equal(got->r[r].n[k], want->r[r].n[k]);
+            if (isnan(want->r[r].pct[k]))
+                assert_true(isnan(got->r[r].pct[k]));
+            else
+                assert_true(got->r[r].pct[k] == want->r[r].pct[k]);   /* REAL is a double: exact */
+        }
+    }
+}
+
+static void assert_cell(const struct sl_table_cell *c, uint64_t base, const struct sl_figures *f,
+                        const char *sha)
+{
+    assert_non_null(c);
+    assert_string_equal(c->scene, "prim_s");
+    assert_string_equal(c->method, "nsm");
+    assert_string_equal(c->label, "nsm_a");
+    assert_int_equal(c->vw, 640);
+    assert_int_equal(c->vh, 480);
+    assert_int_equal(c->n_pfl, base + 1);
+    assert_int_equal(c->n_pnfl, base + 2);
+    assert_int_equal(c->n_background, base + 3);
+    assert_int_equal(c->n_truth_lit, base + 4);
+    assert_int_equal(c->n_truth_shadow, base + 5);
+    assert_string_equal(c->git_sha, sha);
+    assert_string_equal(c->config_hash, "0123456789abcdef");
+    assert_string_equal(c->machine, "hostA/CPU, Model \"X\"/x86_64-avx2+fma");
+    assert_same_fig(&c->fig, f);
+}
+
+/* 10 px sorts before 2 px as text: the store must order by thickness */
+static const int thick4[] = {2, 4, 10, 0};
+static const int thick3[] = {2, 6, 0};
+
+static void store_round_trip(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p;
+    fill_prov(&p, "abc1234");
+    int64_t run1 = 0;
+    assert_int_equal(sl_store_begin_run(s, &p, "configs/x.yaml", HASH_A, &run1, &d), SL_OK);
+    assert_true(run1 > 0);
+
+    struct sl_figures f1, f2;
+    make_fig(&f1, 1000, thick4, 4);
+    make_fig(&f2, 3000, thick3, 3);
+    struct sl_cost cost = {.lookups = 11, .rays = 12, .tri_tests = 13};
+    struct sl_store_cell c1 = make_cell("side", 1024, "nsm_a", &f1, &cost, 1000);
+    struct sl_store_cell c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
+    assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
+    assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c2, &d), SL_OK);
+
+    assert_int_equal(sl_store_count(s, "runs"), 1);
+    assert_int_equal(sl_store_count(s, "cells"), 2);
+    assert_int_equal(sl_store_count(s, "figures"), (4 * SL_FIG_COUNT + 1) + (3 * SL_FIG_COUNT + 1));
+    assert_int_equal(sl_store_count(s, "sqlite_master"), -1);
+
+    struct sl_table_cell *cells = NULL;
+    int n = -1;
+    assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 2);
+    assert_cell(find(cells, n, "side", 1024), 1000, &f1, "abc1234");
+    assert_cell(find(cells, n, "side", 2048), 3000, &f2, "abc1234");
+    /* sweep order (cell_index 1, then 2) */
+    assert_int_equal(cells[0].map_size, 1024);
+    free(cells);
+
+    /* what other tools see in SQL: NaN as NULL, regions by name */
+    sqlite3 *raw = NULL;
+    assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
+    sqlite3_stmt *q = NULL;
+    assert_int_equal(sqlite3_prepare_v2(raw,
+                                        "SELECT (SELECT count(*) FROM figures WHERE percent IS NULL), "
+                                        "(SELECT count FROM figures WHERE map_size = 1024 AND region = '10px' "
+                                        "AND figure = 'wrong'), "
+                                        "(SELECT count FROM figures WHERE map_size = 2048 AND figure = 'background'), "
+                                        "(SELECT viewport FROM cells WHERE map_size = 2048), "
+                                        "(SELECT config_hash FROM runs)",
+                                        -1, &q, NULL),
+                     SQLITE_OK);
+    assert_int_equal(sqlite3_step(q), SQLITE_ROW);
+    /* pixels of every region, uncertain of region 1, background: (4+1+1) + (3+1+1) */
+    assert_int_equal(sqlite3_column_int(q, 0), 11);
+    assert_int_equal(sqlite3_column_int(q, 1), 1000 + 200 + SL_FIG_wrong);
+    assert_int_equal(sqlite3_column_int(q, 2), 3000 + 7777);
+    assert_string_equal((const char *)sqlite3_column_text(q, 3), "640x480");
+    assert_string_equal((const char *)sqlite3_column_text(q, 4), "0123456789abcdef");
+    sqlite3_finalize(q);
+    sqlite3_close(raw);
+
+    /* survives closing: a fresh handle reads the same */
+    sl_store_close(s);
+    s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 2);
+    assert_cell(find(cells, n, "side", 2048), 3000, &f2, "abc1234");
+    free(cells);
+    sl_store_close(s);
+    tmp_remove(&t);
+}
+
+static void store_has_cell_matches_key_and_hash(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p;
+    fill_prov(&p, "abc1234");
+    int64_t run = 0;
+    assert_int_equal(sl_store_begin_run(s, &p, "c.yaml", HASH_A, &run, &d), SL_OK);
+    struct sl_figures f;
+    make_fig(&f, 5, thick3, 3);
+    struct sl_store_cell c = make_cell("side", 1024, "nsm_a", &f, NULL, 5);
+    assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "side", 640, 480, 1024, "nsm_a"));
+    assert_int_equal(sl_store_put_cell(s, run, HASH_A, &c, &d), SL_OK);
+    assert_true(sl_store_has_cell(s, HASH_A, "prim_s", "side", 640, 480, 1024, "nsm_a"));
+    assert_false(sl_store_has_cell(s, HASH_B, "prim_s", "side", 640, 480, 1024, "nsm_a"));
+    assert_false(sl_store_has_cell(s, HASH_A, "other", "side", 640, 480, 1024, "nsm_a"));
+    assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "with", 640, 480, 1024, "nsm_a"));
+    assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "side", 480, 640, 1024, "nsm_a"));
+    assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "side", 640, 480, 2048, "nsm_a"));
+    assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "side", 640, 480, 1024, "nsm_b"));
+    sl_store_close(s);
+    tmp_remove(&t);
+}
+
+static void store_latest_run_wins(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p1, p2;
+    fill_prov(&p1, "abc1234");
+    fill_prov(&p2, "def5678");
+    int64_t run1 = 0, run2 = 0;
+    assert_int_equal(sl_store_begin_run(s, &p1, "c.yaml", HASH_A, &run1, &d), SL_OK);
+    struct sl_figures f1, f2, f3;
+    make_fig(&f1, 1000, thick4, 4);
+    make_fig(&f2, 3000, thick3, 3);
+    make_fig(&f3, 5000, thick4, 4);
+    struct sl_store_cell c1 = make_cell("side", 1024, "nsm_a", &f1, NULL, 1000);
+    struct sl_store_cell c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
+    assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
+    assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c2, &d), SL_OK);
+    assert_int_equal(sl_store_begin_run(s, &p2, "c.yaml", HASH_A, &run2, &d), SL_OK);
+    assert_true(run2 > run1);
+    struct sl_store_cell c3 = make_cell("side", 1024, "nsm_a", &f3, NULL, 5000);  /* c1's key */
+    assert_int_equal(sl_store_put_cell(s, run2, HASH_A, &c3, &d), SL_OK);
+    assert_int_equal(sl_store_count(s, "runs"), 2);
+    assert_int_equal(sl_store_count(s, "cells"), 3);
+
+    struct sl_table_cell *cells = NULL;
+    int n = 0;
+    assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 2);
+    assert_cell(find(cells, n, "side", 1024), 5000, &f3, "def5678");
+    assert_cell(find(cells, n, "side", 2048), 3000, &f2, "abc1234");
+    free(cells);
+
+    /* restricted to the first run, its own cell of that key comes back */
+    struct sl_store_filter only1 = {.run_id = run1};
+    assert_int_equal(sl_store_query(s, &only1, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 2);
+    assert_cell(find(cells, n, "side", 1024), 1000, &f1, "abc1234");
+    free(cells);
+
+    struct sl_store_filter map2048 = {.map_size = 2048};
+    assert_int_equal(sl_store_query(s, &map2048, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 1);
+    assert_int_equal(cells[0].map_size, 2048);
+    free(cells);
+
+    struct sl_store_filter none = {.viewpoint = "against", .scene = "prim_s"};
+    assert_int_equal(sl_store_query(s, &none, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 0);
+    free(cells);
+    sl_store_close(s);
+    tmp_remove(&t);
+}
+
+/* A count that does not fit SQLite's signed 64 bits fails the last region's
+ * last figure row, after the cell row and 47 figure rows went in: the whole
+ * cell must be gone, and the store must be usable afterwards. */
+static void store_failed_put_leaves_no_cell(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p;
+    fill_prov(&p, "abc1234");
+    int64_t run = 0;
+    assert_int_equal(sl_store_begin_run(s, &p, "c.yaml", HASH_A, &run, &d), SL_OK);
+    struct sl_figures good, bad;
+    make_fig(&good, 10, thick3, 3);
+    make_fig(&bad, 20, thick4, 4);
+    bad.r[3].n[SL_FIG_COUNT - 1] = UINT64_MAX;
+    struct sl_store_cell cg = make_cell("side", 1024, "nsm_a", &good, NULL, 10);
+    struct sl_store_cell cb = make_cell("with", 1024, "nsm_a", &bad, NULL, 20);
+    assert_int_equal(sl_store_put_cell(s, run, HASH_A, &cg, &d), SL_OK);
+
+    memset(&d, 0, sizeof d);
+    assert_int_equal(sl_store_put_cell(s, run, HASH_A, &cb, &d), SL_E_IO);
+    assert_string_equal(d.file, t.db);
+    assert_non_null(strstr(d.msg, "CHECK constraint failed"));
+    assert_non_null(strstr(d.msg, "wrong_caught of region image"));
+    assert_int_equal(sl_store_count(s, "cells"), 1);
+    assert_int_equal(sl_store_count(s, "figures"), 3 * SL_FIG_COUNT + 1);
+    assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "with", 640, 480, 1024, "nsm_a"));
+
+    /* no transaction left open: the next put commits */
+    bad.r[3].n[SL_FIG_COUNT - 1] = 42;
+    assert_int_equal(sl_store_put_cell(s, run, HASH_A, &cb, &d), SL_OK);
+    assert_int_equal(sl_store_count(s, "cells"), 2);
+    assert_int_equal(sl_store_count(s, "figures"), 3 * SL_FIG_COUNT + 1 + 4 * SL_FIG_COUNT + 1);
+    sl_store_close(s);
+    tmp_remove(&t);
+}
+
+/* The database itself refuses the last row of a cell (a trigger another
+ * connection installed, standing in for a full disk or a constraint of a
+ * newer schema): the cell row must be rolled back too. */
+static void store_refused_last_row_rolls_back(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p;
+    fill_prov(&p, "abc1234");
+    int64_t run = 0;
+    assert_int_equal(sl_store_begin_run(s, &p, "c.yaml", HASH_A, &run, &d), SL_OK);
+
+    sqlite3 *raw = NULL;
+    assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(raw,
+                                  "CREATE TRIGGER refuse BEFORE INSERT ON figures "
+                                  "WHEN NEW.figure = 'background' BEGIN SELECT RAISE(ABORT, 'disk on fire'); END",
+                                  NULL, NULL, NULL),
+                     SQLITE_OK);
+    sqlite3_close(raw);
+
+    struct sl_figures f;
+    make_fig(&f, 10, thick3, 3);
+    struct sl_store_cell c = make_cell("side", 1024, "nsm_a", &f, NULL, 10);
+    assert_int_equal(sl_store_put_cell(s, run, HASH_A, &c, &d), SL_E_IO);
+    assert_string_equal(d.file, t.db);
+    assert_non_null(strstr(d.msg, "disk on fire"));
+    assert_string_equal(d.key, "prim_s/side/640x480/1024/nsm_a");
+    assert_int_equal(sl_store_count(s, "cells"), 0);
+    assert_int_equal(sl_store_count(s, "figures"), 0);
+    sl_store_close(s);
+    tmp_remove(&t);
+}
+
+static void store_unknown_run_is_refused(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_figures f;
+    make_fig(&f, 10, thick3, 3);
+    struct sl_store_cell c = make_cell("side", 1024, "nsm_a", &f, NULL, 10);
+    assert_int_equal(sl_store_put_cell(s, 77, HASH_A, &c, &d), SL_E_IO);
+    assert_non_null(strstr(d.msg, "FOREIGN KEY"));
+    assert_int_equal(sl_store_count(s, "cells"), 0);
+    c.fig = NULL;
+    assert_int_equal(sl_store_put_cell(s, 77, HASH_A, &c, &d), SL_E_USAGE);
+    sl_store_close(s);
+    tmp_remove(&t);
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static void store_refuses_non_database(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    const char *text = "scene,viewpoint\nprimitives,side\n";
+    write_file(t.db, text);
+    struct sl_diag d;
+    struct sl_store *s = (struct sl_store *)&d;   /* must be reset to NULL */
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_E_IO);
+    assert_null(s);
+    assert_string_equal(d.file, t.db);
+    assert_non_null(strstr(d.msg, "not a database"));
+    /* left untouched */
+    char buf[128] = "";
+    FILE *f = fopen(t.db, "rb");
+    assert_non_null(f);
+    size_t got = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    assert_int_equal(got, strlen(text));
+    assert_string_equal(buf, text);
+    tmp_remove(&t);
+}
+
+static void raw_exec(const char *path, const char *sql)
+{
+    sqlite3 *raw = NULL;
+    assert_int_equal(sqlite3_open(path, &raw), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(raw, sql, NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(raw);
+}
+
+static void store_refuses_other_version(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    raw_exec(t.db, "CREATE TABLE runs (x); PRAGMA user_version = 7");
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_E_IO);
+    assert_null(s);
+    assert_string_equal(d.file, t.db);
+    assert_non_null(strstr(d.msg, "schema version 7"));
+    tmp_remove(&t);
+
+    /* someone else's database (user_version 0 but not empty) */
+    tmp_make(&t);
+    raw_exec(t.db, "CREATE TABLE notes (x)");
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_E_IO);
+    assert_non_null(strstr(d.msg, "not a shadowlab results store"));
+    tmp_remove(&t);
+
+    /* the right version number over different tables */
+    tmp_make(&t);
+    raw_exec(t.db, "CREATE TABLE runs (x); CREATE TABLE cells (y); CREATE TABLE figures (z); "
+                   "PRAGMA user_version = 1");
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_E_IO);
+    assert_string_equal(d.key, "runs");
+    assert_non_null(strstr(d.msg, "differs"));
+    tmp_remove(&t);
+}
+
+/* A new store is version 1, in WAL mode, and an empty file becomes one. */
+static void store_new_file_is_version_1_wal(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    write_file(t.db, "");
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    sqlite3 *raw = NULL;
+    assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
+    sqlite3_stmt *q = NULL;
+    assert_int_equal(sqlite3_prepare_v2(raw, "PRAGMA user_version", -1, &q, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_step(q), SQLITE_ROW);
+    assert_int_equal(sqlite3_column_int(q, 0), 1);
+    sqlite3_finalize(q);
+    assert_int_equal(sqlite3_prepare_v2(raw, "PRAGMA journal_mode", -1, &q, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_step(q), SQLITE_ROW);
+    assert_string_equal((const char *)sqlite3_column_text(q, 0), "wal");
+    sqlite3_finalize(q);
+    sqlite3_close(raw);
+    sl_store_close(s);
+    /* reopening an existing store checks and accepts it */
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    assert_int_equal(sl_store_count(s, "runs"), 0);
+    sl_store_close(s);
+    sl_store_close(NULL);
+    tmp_remove(&t);
+}
+
+static void store_missing_folder_is_an_error(void **st)
+{
+    (void)st;
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open("/nonexistent-sl-dir/x/shadowlab.db", &s, &d), SL_E_IO);
+    assert_null(s);
+    assert_string_equal(d.file, "/nonexistent-sl-dir/x/shadowlab.db");
+    assert_non_null(strstr(d.msg, "unable to open"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(store, round_trip),
+        SL_CASE(store, has_cell_matches_key_and_hash),
+        SL_CASE(store, latest_run_wins),
+        SL_CASE(store, failed_put_leaves_no_cell),
+        SL_CASE(store, refused_last_row_rolls_back),
+        SL_CASE(store, unknown_run_is_refused),
+        SL_CASE(store, refuses_non_database),
+        SL_CASE(store, refuses_other_version),
+        SL_CASE(store, new_file_is_version_1_wal),
+        SL_CASE(store, missing_folder_is_an_error),
+    };
+    return cmocka_run_group_tests_name("store", tests, NULL, NULL);
+}

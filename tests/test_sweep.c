@@ -1,0 +1,218 @@
+/*
+ * sweep::* — a config as a sweep of addressable cells; each shared stage
+ * computed once (counted); the truth cache; --cells and --resume against an
+ * uninterrupted run.
+ */
+#define _DEFAULT_SOURCE
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "config.h"
+#include "run.h"
+#include "store.h"
+
+static char tmpdir[] = "/tmp/shadowlab-sweep-XXXXXX";
+
+static void load(const char *text, struct sl_config *c)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/c.yaml", tmpdir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+    struct sl_diag d;
+    enum sl_err e = sl_config_load(path, c, &d);
+    if (e)
+        fprintf(stderr, "%s:%d %s %s\n", d.file, d.line, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+}
+
+static const char *two_scenes =
+    "scenes:\n  - {scene: primitives, viewpoints: [side, with]}\n  - {scene: blocks}\n"
+    "viewports: [{width: 96, height: 64}, {width: 64, height: 64}]\nmap_sizes: [256, 512]\n"
+    "methods:\n  - {label: ff, method: nsm}\n  - {label: none, method: nsm, self_shadow: none}\n"
+    "  - {label: ff2, method: nsm, self_shadow: front_faces}\n";
+
+static void sweep_plan_order(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    load(two_scenes, &c);
+    /* (2 + 1 viewpoints) x 2 viewports x 2 maps x 3 methods */
+    assert_int_equal(sl_plan_count(&c), 3 * 2 * 2 * 3);
+    struct sl_cell_key k;
+    sl_plan_cell(&c, 0, &k);
+    assert_int_equal(k.scene + k.viewport + k.vp + k.map + k.method, 0);
+    sl_plan_cell(&c, 1, &k);                      /* method varies fastest */
+    assert_int_equal(k.method, 1);
+    sl_plan_cell(&c, 3, &k);                      /* then the map size */
+    assert_int_equal(k.map, 1);
+    assert_int_equal(k.method, 0);
+    sl_plan_cell(&c, 6, &k);                      /* then the viewpoint */
+    assert_int_equal(k.vp, 1);
+    assert_int_equal(k.map, 0);
+    sl_plan_cell(&c, 12, &k);                     /* then the viewport */
+    assert_int_equal(k.viewport, 1);
+    assert_int_equal(k.vp, 0);
+    sl_plan_cell(&c, 24, &k);                     /* then the scene */
+    assert_int_equal(k.scene, 1);
+    assert_int_equal(k.viewport, 0);
+    sl_plan_cell(&c, 35, &k);
+    assert_int_equal(k.scene, 1);
+    assert_int_equal(k.viewport, 1);
+    assert_int_equal(k.map, 1);
+    assert_int_equal(k.method, 2);
+}
+
+/* Every stage once: per view one G-buffer and one truth, per (view, map)
+ * each layer once however many methods read it, no layer nobody reads. */
+static void sweep_each_pass_once(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    load(two_scenes, &c);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result r;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(r.ncells, 36);
+    assert_int_equal(r.passes.scenes, 2);
+    assert_int_equal(r.passes.gbuffers, 6);         /* 3 viewpoints x 2 viewports */
+    assert_int_equal(r.passes.truths_traced, 6);
+    assert_int_equal(r.passes.truths_cached, 0);
+    assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID_BACK], 12);   /* ff and ff2 share it */
+    assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID], 12);        /* none */
+    assert_int_equal(r.passes.method_runs, 36);
+    sl_run_result_free(&r);
+
+    /* only the front-face methods of one (view, map): no plain depth layer */
+    o.first = 0;
+    o.last = 1;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(r.ncells, 1);
+    assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID], 0);
+    assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID_BACK], 1);
+    assert_int_equal(r.passes.gbuffers, 1);
+    sl_run_result_free(&r);
+}
+
+/* A second run reads every truth from the cache, and gets the same figures. */
+static void sweep_truth_cache(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    load("scenes: [{scene: primitives}]\nviewports: [{width: 128, height: 96}]\nmap_sizes: [512]\n"
+         "methods: [{method: nsm}]\n", &c);
+    char cache[300];
+    snprintf(cache, sizeof cache, "%s/cache", tmpdir);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = cache};
+    struct sl_run_result a, b;
+    struct sl_diag d;
+    char cmd[400];
+    snprintf(cmd, sizeof cmd, "mkdir -p %s", cache);
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(sl_run(&c, &o, &a, &d), SL_OK);
+    assert_int_equal(a.passes.truths_traced, 3);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.truths_traced, 0);
+    assert_int_equal(b.passes.truths_cached, 3);
+    assert_int_equal(b.passes.gbuffers, 3);          /* methods still need the G-buffer */
+    for (int i = 0; i < a.ncells; i++) {
+        assert_int_equal(a.cells[i].n_truth_shadow, b.cells[i].n_truth_shadow);
+        assert_memory_equal(a.cells[i].fig.r, b.cells[i].fig.r, sizeof a.cells[i].fig.r);
+    }
+    /* a different viewport is a different truth: traced, not read */
+    c.viewport_w[0] = 120;
+    sl_run_result_free(&b);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.truths_traced, 3);
+    sl_run_result_free(&a);
+    sl_run_result_free(&b);
+}
+
+/* Cells 0..4, then --resume: the store ends with the cells of one
+ * uninterrupted run, figure for figure. */
+static void sweep_cells_then_resume(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    load("scenes: [{scene: primitives, viewpoints: [side, against]}]\n"
+         "viewports: [{width: 128, height: 128}]\nmap_sizes: [256, 1024]\n"
+         "methods: [{label: a, method: nsm}, {label: b, method: nsm, self_shadow: slope}]\n", &c);
+    char db1[300], db2[300];
+    snprintf(db1, sizeof db1, "%s/split.db", tmpdir);
+    snprintf(db2, sizeof db2, "%s/whole.db", tmpdir);
+    struct sl_diag d;
+    struct sl_run_result r;
+    struct sl_run_opts o = {.write_files = 0, .store = db1, .cache_dir = "", .first = 0, .last = 5};
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(r.ncells, 5);
+    sl_run_result_free(&r);
+    struct sl_run_opts res = {.write_files = 0, .store = db1, .cache_dir = "", .resume = 1};
+    assert_int_equal(sl_run(&c, &res, &r, &d), SL_OK);
+    assert_int_equal(r.skipped, 5);
+    assert_int_equal(r.ncells, 3);
+    sl_run_result_free(&r);
+    struct sl_run_opts whole = {.write_files = 0, .store = db2, .cache_dir = ""};
+    assert_int_equal(sl_run(&c, &whole, &r, &d), SL_OK);
+    sl_run_result_free(&r);
+
+    struct sl_store *s1, *s2;
+    assert_int_equal(sl_store_open(db1, &s1, &d), SL_OK);
+    assert_int_equal(sl_store_open(db2, &s2, &d), SL_OK);
+    assert_int_equal(sl_store_count(s1, "cells"), 8);
+    assert_int_equal(sl_store_count(s1, "figures"), sl_store_count(s2, "figures"));
+    struct sl_store_filter f = {0};
+    struct sl_table_cell *a, *b;
+    int na, nb;
+    assert_int_equal(sl_store_query(s1, &f, &a, &na, &d), SL_OK);
+    assert_int_equal(sl_store_query(s2, &f, &b, &nb, &d), SL_OK);
+    assert_int_equal(na, 8);
+    assert_int_equal(nb, 8);
+    for (int i = 0; i < na; i++) {
+        int found = 0;
+        for (int k = 0; k < nb; k++)
+            if (!strcmp(a[i].viewpoint, b[k].viewpoint) && !strcmp(a[i].label, b[k].label) &&
+                a[i].map_size == b[k].map_size) {
+                found = 1;
+                for (int g = 0; g < a[i].fig.nregions; g++)
+                    assert_memory_equal(a[i].fig.r[g].n, b[k].fig.r[g].n, sizeof a[i].fig.r[g].n);
+            }
+        assert_true(found);
+    }
+    free(a);
+    free(b);
+    sl_store_close(s1);
+    sl_store_close(s2);
+}
+
+static int setup(void **st)
+{
+    (void)st;
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    char cmd[200];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(sweep, plan_order),
+        SL_CASE(sweep, each_pass_once),
+        SL_CASE(sweep, truth_cache),
+        SL_CASE(sweep, cells_then_resume),
+    };
+    return cmocka_run_group_tests_name("sweep", tests, setup, teardown);
+}

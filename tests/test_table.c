@@ -1,0 +1,239 @@
+/* table::* — the Markdown, CSV and LaTeX renderers on a known set of cells:
+ * exact rows, grouping and order from cells given out of order, CSV quoting,
+ * LaTeX escaping, refused duplicates. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "table.h"
+
+/* Regions 2 px and image; n = base + 10 r + k, pct = 10 r + k + 0.25, pixels
+ * without a percentage. */
+static struct sl_table_cell make(const char *vp, int map, uint64_t base, const char *machine)
+{
+    struct sl_table_cell c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.scene, sizeof c.scene, "prim_s");
+    snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
+    snprintf(c.method, sizeof c.method, "nsm");
+    snprintf(c.label, sizeof c.label, "nsm_a");
+    c.vw = 64;
+    c.vh = 32;
+    c.map_size = map;
+    c.n_pfl = 11;
+    c.n_pnfl = 22;
+    c.n_background = 33;
+    c.n_truth_lit = 44;
+    c.n_truth_shadow = 55;
+    c.fig.nregions = 2;
+    c.fig.background = base + 7777;
+    c.fig.wrong_image = base + 99;
+    c.fig.r[0].thickness = 2;
+    c.fig.r[1].thickness = 0;
+    for (int r = 0; r < 2; r++)
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            c.fig.r[r].n[k] = base + 10u * (uint64_t)r + (uint64_t)k;
+            c.fig.r[r].pct[k] = k == SL_FIG_pixels ? NAN : 10.0 * r + k + 0.25;
+        }
+    snprintf(c.git_sha, sizeof c.git_sha, "abc1234");
+    snprintf(c.config_hash, sizeof c.config_hash, "0123456789abcdef");
+    snprintf(c.machine, sizeof c.machine, "%s", machine);
+    return c;
+}
+
+/* A 2048 and a 1024 of "side", a 1024 of "with" between them. */
+static int three_cells(struct sl_table_cell *c)
+{
+    c[0] = make("side", 2048, 2000, "h/c/i");
+    c[1] = make("with", 1024, 500, "h,1/\"c\"/i");
+    c[2] = make("side", 1024, 1000, "h/c/i");
+    return 3;
+}
+
+/* noinline: GCC -O3 otherwise takes the returned heap buffer for the address
+ * of the local that open_memstream filled (-Wdangling-pointer) */
+static __attribute__((noinline)) char *render(enum sl_table_format fmt, const char *title,
+                                              const struct sl_table_cell *c, int n, enum sl_err want)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    struct sl_diag d;
+    assert_int_equal(sl_table_write(f, fmt, title, c, n, &d), want);
+    fclose(f);
+    return buf;
+}
+
+static int count_of(const char *s, const char *what)
+{
+    int n = 0;
+    for (const char *p = strstr(s, what); p; p = strstr(p + 1, what))
+        n++;
+    return n;
+}
+
+static void assert_before(const char *s, const char *a, const char *b)
+{
+    const char *pa = strstr(s, a), *pb = strstr(s, b);
+    assert_non_null(pa);
+    assert_non_null(pb);
+    assert_true(pa < pb);
+}
+
+static void table_markdown_rows(void **st)
+{
+    (void)st;
+    struct sl_table_cell c[3];
+    int n = three_cells(c);
+    char *md = render(SL_TABLE_MD, "shadowlab: test", c, n, SL_OK);
+    assert_true(strncmp(md, "# shadowlab: test\n\n", 19) == 0);
+    assert_non_null(strstr(md, "## prim_s / side / 64x32 / nsm_a\n\n"
+                               "PFL 11, PnFL 22, background 33; truth: 44 PFL lit, 55 PFL shadowed.\n\n"
+                               "| figure | 1024² 2px | 1024² image | 2048² 2px | 2048² image |\n"
+                               "|---|---:|---:|---:|---:|\n"
+                               "| pixels | 1000 | 1010 | 2000 | 2010 |\n"
+                               "| pfl | 1001 (1.25%) | 1011 (11.25%) | 2001 (1.25%) | 2011 (11.25%) |\n"));
+    assert_non_null(strstr(md, "\n| light_correct | 1006 (6.25%) | 1016 (16.25%) | 2006 (6.25%) | 2016 (16.25%) |\n"));
+    assert_non_null(strstr(md, "\n| wrong_caught | 1011 (11.25%) | 1021 (21.25%) | 2011 (11.25%) | 2021 (21.25%) |\n\n"
+                               "method `nsm`; git `abc1234`, config `0123456789abcdef`, machine `h/c/i`\n"));
+    assert_non_null(strstr(md, "## prim_s / with / 64x32 / nsm_a\n\n"));
+    assert_non_null(strstr(md, "| figure | 1024² 2px | 1024² image |\n"));
+    /* two tables, "side" first (first appearance), each with every figure */
+    assert_int_equal(count_of(md, "\n## "), 2);
+    assert_before(md, "## prim_s / side", "## prim_s / with");
+    assert_int_equal(count_of(md, "| shadow_incorrect |"), 2);
+    free(md);
+}
+
+static void table_markdown_mixed_provenance(void **st)
+{
+    (void)st;
+    struct sl_table_cell c[2] = {make("side", 1024, 1000, "h/c/i"), make("side", 2048, 2000, "h/c/i")};
+    snprintf(c[1].git_sha, sizeof c[1].git_sha, "def5678");
+    char *md = render(SL_TABLE_MD, NULL, c, 2, SL_OK);
+    assert_true(strncmp(md, "Percentages:", 12) == 0);
+    assert_non_null(strstr(md, "- 1024²: method `nsm`; git `abc1234`, config `0123456789abcdef`, machine `h/c/i`\n"
+                               "- 2048²: method `nsm`; git `def5678`,"));
+    free(md);
+}
+
+static void table_csv_long_form(void **st)
+{
+    (void)st;
+    struct sl_table_cell c[3];
+    int n = three_cells(c);
+    char *csv = render(SL_TABLE_CSV, "ignored", c, n, SL_OK);
+    const char *header = "scene,viewpoint,viewport,map_size,method,label,region,figure,count,percent,percent_of,"
+                         "git_sha,config_hash,machine\n";
+    assert_true(strncmp(csv, header, strlen(header)) == 0);
+    /* the first data line is side/1024 (its table first, map sizes ascending) */
+    const char *first = "prim_s,side,64x32,1024,nsm,nsm_a,2px,pixels,1000,,,abc1234,0123456789abcdef,h/c/i\n";
+    assert_true(strncmp(csv + strlen(header), first, strlen(first)) == 0);
+    assert_non_null(strstr(csv, "\nprim_s,side,64x32,1024,nsm,nsm_a,2px,light_correct,1006,6.2500,light,"
+                                "abc1234,0123456789abcdef,h/c/i\n"));
+    assert_non_null(strstr(csv, "\nprim_s,side,64x32,2048,nsm,nsm_a,image,wrong_caught,2021,21.2500,wrong_image,"
+                                "abc1234,0123456789abcdef,h/c/i\n"));
+    assert_non_null(strstr(csv, "\nprim_s,side,64x32,2048,nsm,nsm_a,image,background,9777,,,"
+                                "abc1234,0123456789abcdef,h/c/i\n"));
+    /* a machine with a comma and quotes is quoted, quotes doubled */
+    assert_non_null(strstr(csv, "\nprim_s,with,64x32,1024,nsm,nsm_a,image,background,8277,,,"
+                                "abc1234,0123456789abcdef,\"h,1/\"\"c\"\"/i\"\n"));
+    assert_before(csv, "prim_s,side,64x32,1024,", "prim_s,side,64x32,2048,");
+    assert_before(csv, "prim_s,side,64x32,2048,", "prim_s,with,64x32,1024,");
+    /* header + per cell 2 regions x figures + background */
+    assert_int_equal(count_of(csv, "\n"), 1 + 3 * (2 * SL_FIG_COUNT + 1));
+    free(csv);
+}
+
+static void table_latex_booktabs(void **st)
+{
+    (void)st;
+    struct sl_table_cell c[3];
+    int n = three_cells(c);
+    snprintf(c[0].machine, sizeof c[0].machine, "a&b#c$d{e}f%%g_h~^\\");
+    snprintf(c[2].machine, sizeof c[2].machine, "a&b#c$d{e}f%%g_h~^\\");
+    char *tex = render(SL_TABLE_LATEX, "Primitives 50%", c, n, SL_OK);
+    assert_non_null(strstr(tex, "\\section*{Primitives 50\\%}\n"));
+    assert_non_null(strstr(tex, "\\caption{prim\\_s / side / 64$\\times$32 / nsm\\_a. PFL 11, PnFL 22, "
+                                "background 33; truth: 44 PFL lit, 55 PFL shadowed.}\n"
+                                "\\label{tab:prim-s-side-64x32-nsm-a}\n"
+                                "\\begin{tabular}{lrrrr}\n\\toprule\n"
+                                " & \\multicolumn{2}{c}{$1024^2$} & \\multicolumn{2}{c}{$2048^2$} \\\\\n"
+                                "\\cmidrule(lr){2-3} \\cmidrule(lr){4-5}\n"
+                                "figure & 2px & image & 2px & image \\\\\n\\midrule\n"
+                                "pixels & 1000 & 1010 & 2000 & 2010 \\\\\n"));
+    assert_non_null(strstr(tex, "\nlight\\_correct & 1006 (6.25\\%) & 1016 (16.25\\%) & 2006 (6.25\\%) & "
+                                "2016 (16.25\\%) \\\\\n"));
+    assert_non_null(strstr(tex, "\nwrong\\_caught & 1011 (11.25\\%) & 1021 (21.25\\%) & 2011 (11.25\\%) & "
+                                "2021 (21.25\\%) \\\\\n\\bottomrule\n\\end{tabular}\n"));
+    assert_non_null(strstr(tex, "{\\footnotesize method \\texttt{nsm}; git \\texttt{abc1234}, config "
+                                "\\texttt{0123456789abcdef}, machine "
+                                "a\\&b\\#c\\$d\\{e\\}f\\%g\\_h\\textasciitilde{}\\textasciicircum{}"
+                                "\\textbackslash{}\\par}\n\\end{table}\n"));
+    assert_int_equal(count_of(tex, "\\begin{table}"), 2);
+    assert_int_equal(count_of(tex, "\\end{table}"), 2);
+    assert_int_equal(count_of(tex, "\\toprule"), 2);
+    assert_int_equal(count_of(tex, "\\bottomrule"), 2);
+    assert_before(tex, "{prim\\_s / side /", "{prim\\_s / with /");
+    /* no unescaped percent sign in a table row: every % is \% */
+    assert_null(strstr(tex, "25%"));
+    free(tex);
+}
+
+static void table_duplicate_map_refused(void **st)
+{
+    (void)st;
+    struct sl_table_cell c[2] = {make("side", 1024, 1000, "m"), make("side", 1024, 2000, "m")};
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    struct sl_diag d;
+    assert_int_equal(sl_table_write(f, SL_TABLE_MD, NULL, c, 2, &d), SL_E_USAGE);
+    assert_string_equal(d.key, "prim_s/side/64x32/nsm_a");
+    assert_non_null(strstr(d.msg, "map size 1024"));
+    fclose(f);
+    free(buf);
+    /* a different label is a different table, not a duplicate */
+    snprintf(c[1].label, sizeof c[1].label, "nsm_b");
+    char *md = render(SL_TABLE_MD, NULL, c, 2, SL_OK);
+    assert_int_equal(count_of(md, "## prim_s / side / 64x32 / "), 2);
+    free(md);
+}
+
+static void table_empty_and_formats(void **st)
+{
+    (void)st;
+    char *md = render(SL_TABLE_MD, "empty", NULL, 0, SL_OK);
+    assert_true(strncmp(md, "# empty\n\n", 9) == 0);
+    assert_null(strstr(md, "## "));
+    free(md);
+    assert_int_equal(sl_table_format_parse("md"), SL_TABLE_MD);
+    assert_int_equal(sl_table_format_parse("csv"), SL_TABLE_CSV);
+    assert_int_equal(sl_table_format_parse("latex"), SL_TABLE_LATEX);
+    assert_int_equal(sl_table_format_parse("tex"), -1);
+    assert_int_equal(sl_table_format_parse(NULL), -1);
+    char *bad = render((enum sl_table_format)7, NULL, NULL, 0, SL_E_USAGE);
+    free(bad);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(table, markdown_rows),
+        SL_CASE(table, markdown_mixed_provenance),
+        SL_CASE(table, csv_long_form),
+        SL_CASE(table, latex_booktabs),
+        SL_CASE(table, duplicate_map_refused),
+        SL_CASE(table, empty_and_formats),
+    };
+    return cmocka_run_group_tests_name("table", tests, NULL, NULL);
+}
