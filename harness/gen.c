@@ -379,8 +379,8 @@ static uint32_t stem_ring(struct sl_mesh *m, const double a[3], double ph, doubl
 
 /*
  * Bed of `count` flowers planted at y0 in the width (x) by depth (z)
- * rectangle centred at (cx, cz), positions uniform (a margin of 6 cm keeps
- * the blossoms inside). Each flower is made of tiny triangles, far below a
+ * rectangle centred at (cx, cz), positions uniform (a margin of 10 cm keeps
+ * every flower inside when the bed is wider and deeper than 0.4). Each flower is made of tiny triangles, far below a
  * shadow-map texel of a 100-unit scene (~0.1 unit at 1024^2):
  * - stem: an open triangular prism of radius 4-6 mm, 0.22-0.38 tall (from
  *   1 cm below y0), leaning up to 4 cm, in 6 segments: 36 triangles;
@@ -396,7 +396,8 @@ void sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width
     static const double up[3] = {0.0, 1.0, 0.0};
     struct gen_rng r;
     gen_rng_seed(&r, seed, 2);
-    double mx = width > 0.24f ? 0.06 : 0.25 * width, mz = depth > 0.24f ? 0.06 : 0.25 * depth;
+    /* reach from the stem base: lean 4 cm + blossom 1.2 + petal 4.5 cm */
+    double mx = width > 0.4f ? 0.1 : 0.25 * width, mz = depth > 0.4f ? 0.1 : 0.25 * depth;
     for (int f = 0; f < count; f++) {
         double b[3] = {cx + gen_rng_range(&r, -0.5, 0.5) * (width - 2.0 * mx), y0 - 0.01,
                        cz + gen_rng_range(&r, -0.5, 0.5) * (depth - 2.0 * mz)};

@@ -5,6 +5,7 @@
  */
 #include "glctx.h"
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "util.h"
 
@@ -133,6 +134,21 @@ enum sl_err sl_gl_mesh_upload(struct sl_gl_mesh *m, const struct sl_scene *s, st
     glVertexArrayAttribFormat(m->vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(m->vao, 0, 0);
     m->count = (GLsizei)(s->nt * 3);
+    m->runs = calloc((size_t)(s->nranges > 0 ? s->nranges : 1), sizeof *m->runs);
+    if (!m->runs)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "draw runs");
+    if (s->nranges == 0) {
+        m->runs[0].count = s->nt;
+        m->nruns = 1;
+    }
+    for (int i = 0; i < s->nranges; i++) {
+        const struct sl_mesh_range *r = &s->ranges[i];
+        struct sl_gl_run *last = m->nruns ? &m->runs[m->nruns - 1] : NULL;
+        if (last && last->two_sided == r->two_sided && last->first + last->count == r->first)
+            last->count += r->count;
+        else
+            m->runs[m->nruns++] = (struct sl_gl_run){r->first, r->count, r->two_sided};
+    }
     return sl_gl_check("mesh upload", d);
 }
 
@@ -141,5 +157,6 @@ void sl_gl_mesh_free(struct sl_gl_mesh *m)
     if (m->vao) glDeleteVertexArrays(1, &m->vao);
     if (m->vbo) glDeleteBuffers(1, &m->vbo);
     if (m->ebo) glDeleteBuffers(1, &m->ebo);
+    free(m->runs);
     memset(m, 0, sizeof *m);
 }

@@ -34,9 +34,16 @@ GLuint sl_gl_program(const char *vs, const char *gs, const char *fs, struct sl_d
 /* glGetError after a pass, as an sl_err naming the pass. */
 enum sl_err sl_gl_check(const char *what, struct sl_diag *d);
 
+/* Runs of triangles drawn with the same face culling: one-sided meshes may
+ * be culled, two-sided ones (leaves) never are. Consecutive scene meshes of
+ * the same sidedness are merged into one run. */
+struct sl_gl_run { uint32_t first, count; int two_sided; };
+
 struct sl_gl_mesh {
     GLuint vao, vbo, ebo;
     GLsizei count;            /* indices */
+    struct sl_gl_run *runs;
+    int nruns;
 };
 enum sl_err sl_gl_mesh_upload(struct sl_gl_mesh *m, const struct sl_scene *s, struct sl_diag *d);
 void        sl_gl_mesh_free(struct sl_gl_mesh *m);

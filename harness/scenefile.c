@@ -489,9 +489,9 @@ static enum sl_err read_light(const struct raw_light *l, const char *file, const
     for (int k = 0; k < 6; k++) {
         snprintf(key, sizeof key, "light.%s", names[k]);
         if (given[k] && !(takes[t] & (1u << k)))
-            return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "a %s light takes no '%s'", types[t], names[k]);
+            return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "light type '%s' takes no '%s'", types[t], names[k]);
         if (!given[k] && (takes[t] & (1u << k)))
-            return sl_yaml_bad(d, SL_E_SCENE, file, pos, "light", "a %s light needs '%s'", types[t], names[k]);
+            return sl_yaml_bad(d, SL_E_SCENE, file, pos, "light", "light type '%s' needs '%s'", types[t], names[k]);
     }
     if (l->direction && !unit3(l->direction, out->dir))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, "light.direction", "direction must be finite and non-zero");

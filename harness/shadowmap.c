@@ -68,20 +68,26 @@ static enum sl_err render_depth_id(const struct sl_shadowmap_pass *p, const stru
         glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
-        if (cull_front) {
-            glEnable(GL_CULL_FACE);
-            glCullFace(GL_FRONT);
-            glFrontFace(GL_CCW);
-        } else {
-            glDisable(GL_CULL_FACE);
-        }
+        glCullFace(GL_FRONT);
+        glFrontFace(GL_CCW);
         glClearNamedFramebufferuiv(fbo, GL_COLOR, 0, zero_u);
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
         glUseProgram(p->prog_depth_id);
         glUniformMatrix4fv(glGetUniformLocation(p->prog_depth_id, "u_vp"), 1, GL_FALSE,
                            (const float *)f->box.vp);
+        GLint first_loc = glGetUniformLocation(p->prog_depth_id, "u_first");
         glBindVertexArray(m->vao);
-        glDrawElements(GL_TRIANGLES, m->count, GL_UNSIGNED_INT, NULL);
+        /* two-sided meshes (leaves) are never culled: culling the side that
+         * faces the light would remove the leaf from the map altogether */
+        for (int r = 0; r < m->nruns; r++) {
+            if (cull_front && !m->runs[r].two_sided)
+                glEnable(GL_CULL_FACE);
+            else
+                glDisable(GL_CULL_FACE);
+            glUniform1ui(first_loc, m->runs[r].first);
+            glDrawElements(GL_TRIANGLES, (GLsizei)(3 * m->runs[r].count), GL_UNSIGNED_INT,
+                           (const void *)((size_t)m->runs[r].first * 3 * sizeof(uint32_t)));
+        }
         glFinish();
         double t1 = sl_now();
         glGetTextureImage(tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), out->depth);

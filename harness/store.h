@@ -45,7 +45,9 @@ enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p
                                const char *config_path, unsigned long long config_hash,
                                int64_t *run_id, struct sl_diag *d);
 
-/* 1 if a cell with this config hash and key is stored (by any run), else 0. */
+/* 1 if a cell with this config hash and key is stored (by any run), else 0
+ * (also on a database error: the cell is then recomputed and its put reports
+ * the error). */
 int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const char *scene,
                       const char *viewpoint, int vw, int vh, int map_size, const char *label);
 
@@ -54,7 +56,11 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
                               const struct sl_store_cell *c, struct sl_diag *d);
 
 /* Cells for tables: filters may be NULL / 0 for "any"; when a key was stored
- * several times, the latest run's cell wins. *out is malloc'ed. */
+ * several times, the latest run's cell wins (with run_id set: the latest of
+ * that run). Ordered by scene, then the config's sweep order (cell_index).
+ * Each cell's regions come back as figures.c orders them (contours ascending,
+ * whole image last), NULL percentages as NAN, machine as "host/cpu/isa" of
+ * its run. *out is malloc'ed (free), NULL when *n is 0 or on error. */
 struct sl_store_filter {
     const char *scene, *viewpoint, *label;
     int         map_size;

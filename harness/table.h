@@ -33,7 +33,9 @@ struct sl_table_cell {
 };
 
 /* Render cells (any order; grouped and sorted by the renderer). `title` heads
- * the output (Markdown/LaTeX), NULL for none. */
+ * the output (Markdown/LaTeX), NULL for none. Two cells of one table with the
+ * same map size are refused (SL_E_USAGE, key names the table); a failed write
+ * to `out` is SL_E_IO. */
 enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *title,
                            const struct sl_table_cell *cells, int ncells, struct sl_diag *d);
 

@@ -207,9 +207,15 @@ enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, v
         return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "position index");
     pos_build(path, ix);
     cyaml_err_t ce = cyaml_load_file(path, cfg, schema, (cyaml_data_t **)out, NULL);
-    if (ce == CYAML_OK) {
+    if (ce == CYAML_OK && *out) {
         *pos = ix;
         return SL_OK;
+    }
+    if (ce == CYAML_OK) {
+        /* an empty document loads as nothing at all */
+        free(ix->e);
+        free(ix);
+        return sl_fail(d, kind, path, 0, NULL, "empty file: no YAML mapping");
     }
     *out = NULL;
     enum sl_err e;

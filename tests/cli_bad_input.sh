@@ -25,19 +25,35 @@ check() { # name expected_rc stderr_pattern -- command...
   pass=$((pass + 1))
 }
 
-# each bad config: file and line named, exit 2, nothing written
-for f in tests/bad/*.yaml; do
-  case $(basename "$f") in
-    syntax.yaml|missing_methods.yaml) pat="^shadowlab: $f:" ;;
-    *) pat="^shadowlab: $f:[0-9]+: '" ;;
+# every bad input in the corpus: its expected first line, exit 2, nothing written
+listed=$(grep -v '^#' tests/bad/expect.tsv | cut -f1 | sort)
+present=$(find tests/bad -name '*.yaml' | sort)
+if [ "$listed" != "$present" ]; then
+  echo "FAIL corpus: tests/bad/expect.tsv and the files under tests/bad/ differ:"
+  diff <(echo "$listed") <(echo "$present")
+  fail=$((fail + 1))
+fi
+while IFS=$'\t' read -r f pat; do
+  case $f in '#'*|'') continue ;; esac
+  check "validate $f" 2 "^shadowlab: $pat" -- "$bin" validate "$f"
+  case $f in
+    tests/bad/scenes/*) ;;
+    *) check "run $f" 2 "^shadowlab: $pat" -- "$bin" run "$f" --out "$tmp/results" ;;
   esac
-  check "run $(basename "$f")" 2 "$pat" -- "$bin" run "$f" --out "$tmp/results"
-  check "validate $(basename "$f")" 2 "$pat" -- "$bin" validate "$f"
-done
+done < tests/bad/expect.tsv
 check "missing config" 2 "no_such\.yaml: cannot read: No such file" -- "$bin" run tests/bad/no_such.yaml --out "$tmp/results"
 check "unknown command" 2 "unknown command" -- "$bin" frobnicate
 check "run without config" 2 "missing CONFIG" -- "$bin" run
 check "list nonsense" 2 "list: methods or scenes" -- "$bin" list trees
+check "a folder as config" 2 "tests/bad.*(cannot read|Is a directory|invalid config)" -- "$bin" validate tests/bad
+check "bad --cells" 2 "--cells wants A:B" -- "$bin" run configs/default.yaml --cells 5:2 --out "$tmp/results"
+check "--cells beyond the sweep" 2 "outside the sweep of 6 cells" -- "$bin" run configs/default.yaml --cells 10:20 --out "$tmp/results"
+check "table of a missing store" 2 "no_such\.db: cannot read the results store" -- "$bin" table "$tmp/no_such.db"
+check "table of a non-database" 2 "expect\.tsv" -- "$bin" table tests/bad/expect.tsv
+for verb in run validate table bench list; do
+  check "$verb --help" 0 "" -- "$bin" "$verb" --help
+  grep -q "^usage: shadowlab $verb" "$tmp/out" || { echo "FAIL $verb --help prints no usage"; fail=$((fail + 1)); }
+done
 
 # an output directory that cannot be made: under a regular file, and in /proc
 touch "$tmp/plainfile"

@@ -1,2 +1,449 @@
-/* meshio::* — being written */
-int main(void) { return 0; }
+/* meshio::* — model files through assimp into welded meshes, and the weld.
+ *
+ * Real third-party models come from Debian's assimp-testmodels
+ * (/usr/share/assimp/models); the bad inputs are hand-made in tests/models/.
+ * Counts asserted here were measured with assimp 5.2 and are properties of
+ * the files (triangles, distinct positions, zero-area triangles). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include "sl_test.h"
+#include "adjacency.h"
+#include "meshio.h"
+
+#define MODELS "/usr/share/assimp/models"
+
+/* ----------------------------------------------------------------- helpers */
+
+static double tri_area(const struct sl_mesh *m, uint32_t t)
+{
+    const float *a = m->pos + 3 * (size_t)m->idx[3 * t], *b = m->pos + 3 * (size_t)m->idx[3 * t + 1],
+                *c = m->pos + 3 * (size_t)m->idx[3 * t + 2];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = (double)b[k] - a[k];
+        e2[k] = (double)c[k] - a[k];
+    }
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+static const float *g_pos;   /* for cmp_pos */
+
+static int cmp_pos(const void *a, const void *b)
+{
+    const float *p = g_pos + 3 * (size_t)*(const uint32_t *)a, *q = g_pos + 3 * (size_t)*(const uint32_t *)b;
+    return memcmp(p, q, 3 * sizeof(float));
+}
+
+/* Every index in range, no repeated index, no zero-area triangle, and no two
+ * vertices with the same position (what "welded" means). */
+static void assert_welded_clean(const struct sl_mesh *m)
+{
+    for (uint32_t t = 0; t < m->nt; t++) {
+        const uint32_t *ix = m->idx + 3 * (size_t)t;
+        assert_true(ix[0] < m->nv && ix[1] < m->nv && ix[2] < m->nv);
+        assert_true(ix[0] != ix[1] && ix[1] != ix[2] && ix[0] != ix[2]);
+        assert_true(tri_area(m, t) > 0.0);
+    }
+    uint32_t *ord = malloc((m->nv + 1) * sizeof *ord);
+    assert_non_null(ord);
+    for (uint32_t i = 0; i < m->nv; i++)
+        ord[i] = i;
+    g_pos = m->pos;
+    qsort(ord, m->nv, sizeof *ord, cmp_pos);
+    for (uint32_t i = 1; i < m->nv; i++)
+        assert_int_not_equal(cmp_pos(&ord[i - 1], &ord[i]), 0);
+    free(ord);
+}
+
+static void mesh_bounds(const struct sl_mesh *m, uint32_t v0, float lo[3], float hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (uint32_t i = v0; i < m->nv; i++)
+        for (int k = 0; k < 3; k++) {
+            float x = m->pos[3 * (size_t)i + k];
+            if (x < lo[k]) lo[k] = x;
+            if (x > hi[k]) hi[k] = x;
+        }
+}
+
+static struct sl_scene scene_of(const struct sl_mesh *m)
+{
+    struct sl_scene s;
+    memset(&s, 0, sizeof s);
+    s.pos = m->pos;
+    s.nv = m->nv;
+    s.idx = m->idx;
+    s.nt = m->nt;
+    return s;
+}
+
+static void load_ok(struct sl_mesh *m, const char *path, struct sl_mesh_load_stats *st)
+{
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_mesh_load_file(m, path, NULL, st, &d);
+    if (e)
+        fprintf(stderr, "%s: %s\n", path, d.msg);
+    assert_int_equal(e, SL_OK);
+}
+
+/* Vertices assimp hands over after JoinIdenticalVertices, counted once per
+ * node instance (what our loader would append without its own weld). */
+static uint32_t assimp_instanced_vertices(const char *path)
+{
+    const struct aiScene *s = aiImportFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                     aiProcess_SortByPType);
+    assert_non_null(s);
+    uint32_t n = 0;
+    const struct aiNode *stack[256];
+    int top = 0;
+    stack[top++] = s->mRootNode;
+    while (top) {
+        const struct aiNode *nd = stack[--top];
+        for (unsigned i = 0; i < nd->mNumMeshes; i++)
+            n += s->mMeshes[nd->mMeshes[i]]->mNumVertices;
+        for (unsigned i = 0; i < nd->mNumChildren; i++) {
+            assert_true(top < 256);
+            stack[top++] = nd->mChildren[i];
+        }
+    }
+    aiReleaseImport(s);
+    return n;
+}
+
+/* ---------------------------------------------------------------- the weld */
+
+/* Two unit quads side by side in z = 0, each with its own 4 vertices (the
+ * two on x = 1 duplicated), one written with -0.0. */
+static void two_quads(struct sl_mesh *m)
+{
+    memset(m, 0, sizeof *m);
+    sl_mesh_vertex(m, 0, 0, 0);
+    sl_mesh_vertex(m, 1, 0, 0);
+    sl_mesh_vertex(m, 1, 1, 0);
+    sl_mesh_vertex(m, 0, 1, 0);
+    sl_mesh_tri(m, 0, 1, 2);
+    sl_mesh_tri(m, 0, 2, 3);
+    sl_mesh_vertex(m, 1, 0, -0.0f);   /* = vertex 1 once -0 is +0 */
+    sl_mesh_vertex(m, 2, 0, 0);
+    sl_mesh_vertex(m, 2, 1, 0);
+    sl_mesh_vertex(m, 1, 1, 0);       /* = vertex 2 */
+    sl_mesh_tri(m, 4, 5, 6);
+    sl_mesh_tri(m, 4, 6, 7);
+}
+
+static void meshio_weld_two_quads(void **st)
+{
+    (void)st;
+    struct sl_mesh m;
+    two_quads(&m);
+    assert_int_equal(m.nv, 8);
+    assert_int_equal(sl_mesh_weld(&m), 0);
+    assert_int_equal(m.nv, 6);
+    assert_int_equal(m.nt, 4);
+    /* first occurrences keep their place; 4,5,6,7 -> 1,4,5,2 */
+    static const uint32_t want[12] = {0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2};
+    assert_memory_equal(m.idx, want, sizeof want);
+    assert_true(m.pos[3 * 4 + 0] == 2.0f && m.pos[3 * 5 + 0] == 2.0f && m.pos[3 * 5 + 1] == 1.0f);
+    assert_false(signbit(m.pos[3 * 1 + 2]));
+    assert_welded_clean(&m);
+
+    /* the shared edge (1,0,0)-(1,1,0) is now one edge of triangles 0 and 2 */
+    struct sl_scene s = scene_of(&m);
+    struct sl_adjacency a;
+    struct sl_diag d;
+    assert_int_equal(sl_adjacency_build(&s, &a, &d), SL_OK);
+    assert_int_equal(a.edge[3 * 0 + 1], 3);     /* tri 0 = (0,1,2), edge 1 = 1->2 */
+    assert_int_equal(a.edge[3 * 3 + 2], 0);     /* tri 3 = (1,5,2), edge 2 = 2->1 */
+    assert_int_equal(a.opposite[3 * 0 + 1], 5);
+    assert_int_equal(a.opposite[3 * 3 + 2], 0);
+    assert_int_equal(a.open_edges, 6);
+    assert_int_equal(a.nonmanifold_edges, 0);
+    sl_adjacency_free(&a);
+
+    /* idempotent */
+    uint32_t idx_before[12];
+    memcpy(idx_before, m.idx, sizeof idx_before);
+    assert_int_equal(sl_mesh_weld(&m), 0);
+    assert_int_equal(m.nv, 6);
+    assert_memory_equal(m.idx, idx_before, sizeof idx_before);
+    sl_mesh_free(&m);
+}
+
+static void meshio_weld_drops_degenerate_keeps_order(void **st)
+{
+    (void)st;
+    struct sl_mesh m = {0};
+    uint32_t a = sl_mesh_vertex(&m, 0, 0, 0), b = sl_mesh_vertex(&m, 1, 0, 0);
+    uint32_t c = sl_mesh_vertex(&m, 0, 1, 0), e = sl_mesh_vertex(&m, 2, 0, 0);
+    uint32_t a2 = sl_mesh_vertex(&m, 0, 0, 0);                      /* same place as a */
+    uint32_t f = sl_mesh_vertex(&m, 0, 0, 1);
+    sl_mesh_tri(&m, a, b, c);      /* kept */
+    sl_mesh_tri(&m, a, a2, b);     /* repeated position -> repeated index */
+    sl_mesh_tri(&m, a, b, e);      /* collinear: zero area */
+    sl_mesh_tri(&m, c, b, f);      /* kept */
+    sl_mesh_tri(&m, b, b, c);      /* repeated index */
+    sl_mesh_tri(&m, a, f, 99);     /* indexes a missing vertex */
+    sl_mesh_tri(&m, f, c, a2);     /* kept, a2 -> a */
+    assert_int_equal(sl_mesh_weld(&m), 4);
+    assert_int_equal(m.nt, 3);
+    assert_int_equal(m.nv, 5);
+    const uint32_t want[9] = {0, 1, 2, 2, 1, 4, 4, 2, 0};   /* f became vertex 4 */
+    assert_memory_equal(m.idx, want, sizeof want);
+    assert_welded_clean(&m);
+    sl_mesh_free(&m);
+
+    struct sl_mesh empty = {0};
+    assert_int_equal(sl_mesh_weld(&empty), 0);
+    assert_int_equal(sl_mesh_weld(NULL), 0);
+}
+
+/* ----------------------------------------------------------- real models */
+
+static void meshio_spider_obj(void **st)
+{
+    (void)st;
+    const char *p = MODELS "/OBJ/spider.obj";
+    struct sl_mesh m = {0};
+    struct sl_mesh_load_stats s;
+    load_ok(&m, p, &s);
+    assert_int_equal(s.meshes, 19);
+    assert_int_equal(s.triangles, 1312);
+    assert_int_equal(s.degenerate, 56);        /* 1368 read, 56 with zero area */
+    assert_int_equal(s.vertices, 722);
+    assert_int_equal(s.skipped_prims, 0);
+    assert_int_equal(m.nt, 1312);
+    assert_int_equal(m.nv, 722);
+    /* assimp's own join keeps 946 (normals and texture seams split them) */
+    uint32_t raw = assimp_instanced_vertices(p);
+    assert_int_equal(raw, 946);
+    assert_true(m.nv < raw);
+    assert_welded_clean(&m);
+    float lo[3], hi[3];
+    mesh_bounds(&m, 0, lo, hi);
+    assert_true(fabsf(lo[0] + 92.6552f) < 1e-3f && fabsf(hi[1] - 37.504f) < 1e-3f);
+
+    /* the same spider as binary and ASCII STL: same triangles and vertices */
+    const char *stl[2] = {MODELS "/STL/Spider_binary.stl", MODELS "/STL/Spider_ascii.stl"};
+    for (int i = 0; i < 2; i++) {
+        struct sl_mesh ms = {0};
+        load_ok(&ms, stl[i], &s);
+        assert_int_equal(s.triangles, 1312);
+        assert_int_equal(s.vertices, 722);
+        assert_int_equal(s.degenerate, 56);
+        assert_true(assimp_instanced_vertices(stl[i]) > 3800);   /* STL: a soup */
+        assert_welded_clean(&ms);
+        struct sl_scene sc = scene_of(&ms);
+        struct sl_adjacency a;
+        struct sl_diag d;
+        assert_int_equal(sl_adjacency_build(&sc, &a, &d), SL_OK);
+        assert_int_equal(a.open_edges, 72);
+        assert_int_equal(a.nonmanifold_edges, 0);
+        sl_adjacency_free(&a);
+        sl_mesh_free(&ms);
+    }
+    sl_mesh_free(&m);
+}
+
+static void meshio_engine_glb_node_transforms(void **st)
+{
+    (void)st;
+    const char *p = MODELS "/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+    struct sl_mesh m = {0};
+    struct sl_mesh_load_stats s;
+    load_ok(&m, p, &s);
+    assert_int_equal(s.meshes, 115);            /* node instances of 29 meshes */
+    assert_int_equal(s.triangles, 110336);
+    assert_int_equal(s.degenerate, 11160);
+    assert_int_equal(s.vertices, 60040);
+    uint32_t raw = assimp_instanced_vertices(p);
+    assert_true(m.nv < raw);
+    assert_welded_clean(&m);
+
+    /* our node walk must put every part where assimp's own
+     * PreTransformVertices puts it: compare the bounds */
+    const struct aiScene *sc = aiImportFile(p, aiProcess_Triangulate | aiProcess_PreTransformVertices);
+    assert_non_null(sc);
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (unsigned i = 0; i < sc->mNumMeshes; i++)
+        for (unsigned v = 0; v < sc->mMeshes[i]->mNumVertices; v++) {
+            const struct aiVector3D *q = &sc->mMeshes[i]->mVertices[v];
+            float c[3] = {q->x, q->y, q->z};
+            for (int k = 0; k < 3; k++) {
+                if (c[k] < lo[k]) lo[k] = c[k];
+                if (c[k] > hi[k]) hi[k] = c[k];
+            }
+        }
+    aiReleaseImport(sc);
+    float ml[3], mh[3];
+    mesh_bounds(&m, 0, ml, mh);
+    for (int k = 0; k < 3; k++) {
+        assert_true(fabsf(ml[k] - lo[k]) < 1e-3f);
+        assert_true(fabsf(mh[k] - hi[k]) < 1e-3f);
+    }
+    /* and the box is not the untransformed one: the engine is 743 wide */
+    assert_true(fabsf(mh[0] - ml[0] - 743.384f) < 0.01f);
+    sl_mesh_free(&m);
+}
+
+static void meshio_stl_and_ply(void **st)
+{
+    (void)st;
+    struct sl_mesh_load_stats s;
+    struct sl_diag d;
+    struct sl_adjacency a;
+
+    /* a sphere with a hole: 9 boundary edges around it */
+    struct sl_mesh m = {0};
+    load_ok(&m, MODELS "/STL/sphereWithHole.stl", &s);
+    assert_int_equal(s.triangles, 285);
+    assert_int_equal(s.vertices, 146);
+    assert_true(assimp_instanced_vertices(MODELS "/STL/sphereWithHole.stl") == 855);
+    struct sl_scene sc = scene_of(&m);
+    assert_int_equal(sl_adjacency_build(&sc, &a, &d), SL_OK);
+    assert_int_equal(a.open_edges, 9);
+    assert_int_equal(a.nonmanifold_edges, 0);
+    sl_adjacency_free(&a);
+    sl_mesh_free(&m);
+
+    /* binary PLY cube (quads): 12 triangles, 8 corners, closed */
+    load_ok(&m, MODELS "/PLY/cube_binary.ply", &s);
+    assert_int_equal(s.triangles, 12);
+    assert_int_equal(s.vertices, 8);
+    sc = scene_of(&m);
+    assert_int_equal(sl_adjacency_build(&sc, &a, &d), SL_OK);
+    assert_int_equal(a.open_edges, 0);
+    sl_adjacency_free(&a);
+    sl_mesh_free(&m);
+
+    /* ASCII PLY of Wuson */
+    load_ok(&m, MODELS "/PLY/Wuson.ply", &s);
+    assert_int_equal(s.triangles, 3732);
+    assert_int_equal(s.vertices, 2117);
+    assert_int_equal(s.degenerate, 0);
+    assert_welded_clean(&m);
+    sl_mesh_free(&m);
+
+    /* points and lines are skipped and counted, triangles kept */
+    load_ok(&m, MODELS "/OBJ/testmixed.obj", &s);
+    assert_int_equal(s.triangles, 12);
+    assert_int_equal(s.skipped_prims, 42);
+    sl_mesh_free(&m);
+}
+
+static void meshio_xform_and_append(void **st)
+{
+    (void)st;
+    const char *p = MODELS "/PLY/cube_binary.ply";   /* unit cube [0,1]^3 */
+    struct sl_mesh m = {0};
+    struct sl_mesh_load_stats s;
+    struct sl_diag d;
+    load_ok(&m, p, &s);
+    /* column-major: scale 2, then translate (10, -3, 5) */
+    const float X[16] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 10, -3, 5, 1};
+    assert_int_equal(sl_mesh_load_file(&m, p, X, &s, &d), SL_OK);
+    /* appended after the first cube, indices offset, not welded across calls */
+    assert_int_equal(m.nv, 16);
+    assert_int_equal(m.nt, 24);
+    for (uint32_t i = 36; i < 72; i++)
+        assert_true(m.idx[i] >= 8 && m.idx[i] < 16);
+    float lo[3], hi[3];
+    mesh_bounds(&m, 8, lo, hi);
+    assert_true(lo[0] == 10.0f && lo[1] == -3.0f && lo[2] == 5.0f);
+    assert_true(hi[0] == 12.0f && hi[1] == -1.0f && hi[2] == 7.0f);
+    mesh_bounds(&m, 0, lo, hi);
+    assert_true(lo[0] == 0.0f && hi[0] == 12.0f);
+    /* a rotation of 90 degrees about y keeps the winding outward: positive volume */
+    const float R[16] = {0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1};
+    struct sl_mesh r = {0};
+    assert_int_equal(sl_mesh_load_file(&r, p, R, &s, &d), SL_OK);
+    double vol = 0;
+    for (uint32_t t = 0; t < r.nt; t++) {
+        const float *a = r.pos + 3 * r.idx[3 * t], *b = r.pos + 3 * r.idx[3 * t + 1], *c = r.pos + 3 * r.idx[3 * t + 2];
+        vol += (a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) - a[1] * ((double)b[0] * c[2] - (double)b[2] * c[0]) +
+                a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0])) / 6.0;
+    }
+    assert_true(fabs(fabs(vol) - 1.0) < 1e-6);
+    sl_mesh_free(&r);
+    sl_mesh_free(&m);
+}
+
+/* ------------------------------------------------------------- bad input */
+
+struct bad_case { const char *path; const float *xform; const char *msg; };
+
+static void meshio_bad_files_fail_and_leave_mesh(void **st)
+{
+    (void)st;
+    static const float inf_x[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, INFINITY};
+    static const float huge_x[16] = {1e38f, 0, 0, 0, 0, 1e38f, 0, 0, 0, 0, 1e38f, 0, 0, 0, 0, 1};
+    const struct bad_case cases[] = {
+        {"tests/models/empty.obj", NULL, "no triangles"},
+        {"tests/models/lines_only.obj", NULL, "no triangles"},
+        {MODELS "/OBJ/testpoints.obj", NULL, "no triangles"},
+        {"tests/models/nan_vertex.obj", NULL, "non-finite vertex"},
+        {"tests/models/zero_area.obj", NULL, "only zero-area triangles"},
+        {"tests/models/truncated_binary.ply", NULL, "corrupt file"},
+        {"tests/models/truncated_binary.stl", NULL, "STL"},
+        {"tests/models/not_a_model.xyz", NULL, "No suitable reader"},
+        {"tests/models/does_not_exist.obj", NULL, "cannot open"},
+        {"tests/models", NULL, "cannot read"},
+        {MODELS "/PLY/cube_binary.ply", inf_x, "non-finite transform"},
+        /* finite file and transform whose product overflows float */
+        {MODELS "/OBJ/spider.obj", huge_x, "non-finite vertex"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        struct sl_mesh m = {0};
+        const float lo[3] = {0, 0, 0}, hi[3] = {1, 2, 3};
+        sl_gen_box(&m, lo, hi);
+        uint32_t nv = m.nv, nt = m.nt;
+        float pos[24];
+        uint32_t idx[36];
+        memcpy(pos, m.pos, sizeof pos);
+        memcpy(idx, m.idx, sizeof idx);
+        struct sl_mesh_load_stats s;
+        memset(&s, 0xab, sizeof s);
+        struct sl_diag d;
+        memset(&d, 0, sizeof d);
+        enum sl_err e = sl_mesh_load_file(&m, cases[i].path, cases[i].xform, &s, &d);
+        if (e != SL_E_SCENE || !strstr(d.msg, cases[i].msg))
+            fprintf(stderr, "case %s: err %d msg '%s'\n", cases[i].path, e, d.msg);
+        assert_int_equal(e, SL_E_SCENE);
+        assert_non_null(strstr(d.msg, cases[i].msg));
+        assert_string_equal(d.file, cases[i].path);
+        assert_int_equal(m.nv, nv);
+        assert_int_equal(m.nt, nt);
+        assert_memory_equal(m.pos, pos, sizeof pos);
+        assert_memory_equal(m.idx, idx, sizeof idx);
+        assert_int_equal(s.triangles, 0xabababab);   /* stats untouched */
+        sl_mesh_free(&m);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(meshio, weld_two_quads),
+        SL_CASE(meshio, weld_drops_degenerate_keeps_order),
+        SL_CASE(meshio, spider_obj),
+        SL_CASE(meshio, engine_glb_node_transforms),
+        SL_CASE(meshio, stl_and_ply),
+        SL_CASE(meshio, xform_and_append),
+        SL_CASE(meshio, bad_files_fail_and_leave_mesh),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -11,6 +11,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
@@ -376,6 +379,73 @@ static void store_refused_last_row_rolls_back(void **st)
     tmp_remove(&t);
 }
 
+static void sleep_ms(long ms)
+{
+    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
+    nanosleep(&ts, NULL);
+}
+
+/* A writer killed with SIGKILL while putting cells in a loop: every cell
+ * that is there has all its figure rows, and no figure row lacks its cell. */
+static void store_killed_writer_leaves_whole_cells(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p;
+    fill_prov(&p, "abc1234");
+    int64_t run = 0;
+    assert_int_equal(sl_store_begin_run(s, &p, "c.yaml", HASH_A, &run, &d), SL_OK);
+    sl_store_close(s);
+
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        struct sl_store *w = NULL;
+        if (sl_store_open(t.db, &w, NULL) != SL_OK)
+            _exit(3);
+        struct sl_figures f;
+        make_fig(&f, 10, thick4, 4);
+        for (int i = 1;; i++) {
+            struct sl_store_cell c = make_cell("side", 64 * i, "nsm_a", &f, NULL, 10);
+            if (sl_store_put_cell(w, run, HASH_A, &c, NULL) != SL_OK)
+                _exit(4);
+        }
+    }
+    /* let it commit some cells, then kill it wherever it is */
+    long cells = 0;
+    for (int tries = 0; tries < 2000 && cells < 20; tries++) {
+        sleep_ms(2);
+        assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+        cells = sl_store_count(s, "cells");
+        sl_store_close(s);
+    }
+    sleep_ms(3);
+    kill(pid, SIGKILL);
+    int status = 0;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFSIGNALED(status));   /* killed, not failed (exit 3 or 4) */
+
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    cells = sl_store_count(s, "cells");
+    assert_true(cells >= 20);
+    assert_int_equal(sl_store_count(s, "figures"), cells * (4 * SL_FIG_COUNT + 1));
+    struct sl_table_cell *out = NULL;
+    int n = 0;
+    assert_int_equal(sl_store_query(s, NULL, &out, &n, &d), SL_OK);
+    assert_int_equal(n, cells);
+    struct sl_figures want;
+    make_fig(&want, 10, thick4, 4);
+    for (int i = 0; i < n; i++)
+        assert_same_fig(&out[i].fig, &want);
+    free(out);
+    sl_store_close(s);
+    tmp_remove(&t);
+}
+
 static void store_unknown_run_is_refused(void **st)
 {
     (void)st;
@@ -517,6 +587,7 @@ int main(void)
         SL_CASE(store, latest_run_wins),
         SL_CASE(store, failed_put_leaves_no_cell),
         SL_CASE(store, refused_last_row_rolls_back),
+        SL_CASE(store, killed_writer_leaves_whole_cells),
         SL_CASE(store, unknown_run_is_refused),
         SL_CASE(store, refuses_non_database),
         SL_CASE(store, refuses_other_version),
