@@ -25,7 +25,7 @@ struct half { uint64_t key; uint32_t he; uint32_t pad; };
  * id) is the tie order, so runs list their triangles ascending. */
 static int sort_halves(struct half **pa, size_t n)
 {
-    struct half *a = *pa, *b = malloc(n * sizeof *b);
+    struct half *a = *pa, *b = malloc((n ? n : 1) * sizeof *b);
     size_t *cnt = malloc(65536 * sizeof *cnt);
     if (!b || !cnt) {
         free(b);

@@ -14,6 +14,16 @@ extern "C" {
 enum sl_err sl_image_write_rgb8(const char *path, int w, int h, const unsigned char *rgb_bottom_up,
                                 struct sl_diag *d);
 
+/* Write per-pixel integer layers (e.g. truth, verdict, how, contour) as the
+ * UINT channels of one OpenEXR file, named as given; rows bottom-up. */
+enum sl_err sl_image_write_layers(const char *path, int w, int h, int nlayers, const char *const *names,
+                                  const unsigned char *const *layers, struct sl_diag *d);
+
+/* Read back channel `name` of such a file as 32-bit integers, rows bottom-up
+ * (tests); *out malloc'ed. */
+enum sl_err sl_image_read_layer(const char *path, const char *name, int *w, int *h, unsigned **out,
+                                struct sl_diag *d);
+
 /* Read back an 8-bit RGB image (for tests); *rgb malloc'ed, rows top-down. */
 enum sl_err sl_image_read_rgb8(const char *path, int *w, int *h, unsigned char **rgb,
                                struct sl_diag *d);

@@ -6,6 +6,8 @@
  *   every face index is checked against its mesh's vertex count, node mesh
  *   references against the scene's mesh count, and the node tree is walked
  *   with an explicit depth limit (no recursion a hostile file can exhaust).
+ *   assimp's own post-processing only runs on a scene whose pointers, face
+ *   indices and coordinates passed these checks (see sl_mesh_load_file).
  * - A file is built into a private mesh, checked and welded there, and only
  *   appended to the caller's mesh when everything succeeded, so an error
  *   leaves the caller's mesh exactly as it was (same counts, same bytes).
@@ -222,7 +224,7 @@ static enum sl_err append_mesh(struct load_ctx *c, const struct aiMesh *am, cons
     }
     if (am->mNumVertices)
         memset(c->vmap, 0, (size_t)am->mNumVertices * sizeof *c->vmap);
-    c->st.meshes++;
+    c->st.meshes++;   /* per node instance: a mesh placed by two nodes counts twice */
     for (unsigned f = 0; f < am->mNumFaces; f++) {
         const struct aiFace *face = &am->mFaces[f];
         if (face->mNumIndices != 3) {

@@ -449,8 +449,8 @@ static int cmp_double(const void *a, const void *b)
 }
 
 static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
-                            struct sl_cell *cell, const char *ovdir, struct sl_run_result *res,
-                            struct sl_diag *d)
+                            struct sl_cell *cell, const char *ovdir, const char *exrdir,
+                            struct sl_run_result *res, struct sl_diag *d)
 {
     const struct sl_config_method *cm = &c->methods[k->method];
     int W = c->viewport_w[k->viewport], H = c->viewport_h[k->viewport];
@@ -517,6 +517,17 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         e = sl_image_write_rgb8(path, W, H, x->rgb, d);
         cell->ms.overlay = 1e3 * (sl_now() - t0);
     }
+    if (exrdir && !e) {
+        /* the per-pixel layers behind the figures, for anyone who wants to
+         * recount: truth (enum sl_truth), verdict (enum sl_verdict), how
+         * (enum sl_how) and contour band (k: inside the 2k-px contour) */
+        char path[1400];
+        snprintf(path, sizeof path, "%s/%s-%s-%dx%d-%d-%s.exr", exrdir, cell->scene, cell->viewpoint, W, H,
+                 c->maps[k->map], cm->label);
+        static const char *const names[] = {"truth", "verdict", "how", "contour"};
+        const unsigned char *layers[] = {x->view.truth, x->vd.v, x->vd.how, x->band};
+        e = sl_image_write_layers(path, W, H, 4, names, layers, d);
+    }
     return e;
 }
 
@@ -562,7 +573,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (first >= total || last > total || first >= last)
         return sl_fail(d, SL_E_USAGE, c->path, 0, "--cells", "cells %d:%d outside the sweep of %d cells",
                        first, last, total);
-    char stage[1100] = "", final[1100] = "", ovdir[1200] = "", store_path[1100] = "", cache[1100] = "";
+    char stage[1100] = "", final[1100] = "", ovdir[1200] = "", exrdir[1200] = "", store_path[1100] = "",
+         cache[1100] = "";
     if (o->store)
         snprintf(store_path, sizeof store_path, "%s", o->store);
     else if (c->store[0])
@@ -587,7 +599,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         if ((e = sl_mkdirs(stage, d)))
             return e;
         snprintf(ovdir, sizeof ovdir, "%s/overlays", stage);
-        if (c->overlays && (e = sl_mkdirs(ovdir, d))) {
+        snprintf(exrdir, sizeof exrdir, "%s/exr", stage);
+        if ((c->overlays && (e = sl_mkdirs(ovdir, d))) || (c->exr && (e = sl_mkdirs(exrdir, d)))) {
             rm_tree(stage);
             return e;
         }
@@ -639,7 +652,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             break;
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;
-        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? ovdir : NULL, res, d)))
+        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? ovdir : NULL,
+                          o->write_files && c->exr ? exrdir : NULL, res, d)))
             break;
         if (st && (e = store_cell(st, run_id, c, cell, d)))
             break;

@@ -12,7 +12,8 @@
  * sl_run_result.passes counts what was computed, so tests can prove it.
  *
  * Output: <out_root>/<name>/{figures.csv, costs.csv, table.md, table.tex,
- * config.yaml, run.yaml, overlays/<cell>.png} for the cells this invocation
+ * config.yaml, run.yaml, overlays/<cell>.png, exr/<cell>.exr (when asked)} for
+ * the cells this invocation
  * computed, written into a hidden staging folder and renamed into place at
  * the end; and, when a store is used, one transaction per cell in SQLite,
  * so a killed run leaves no partial cell and `--resume` redoes only the

@@ -16,6 +16,8 @@
 #include "sl_test.h"
 #include "config.h"
 #include "image.h"
+#include "method.h"
+#include "view.h"
 #include "run.h"
 
 static char tmpdir[] = "/tmp/shadowlab-e2e-XXXXXX";
@@ -210,6 +212,49 @@ static void e2e_deterministic(void **st)
     sl_run_result_free(&t1);
 }
 
+/* The EXR layers hold the very pixels the figures count. */
+static void e2e_exr_layers(void **st)
+{
+    (void)st;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/exr.yaml", tmpdir);
+    assert_true(write_config(path,
+        "name: exr\nscenes: [{scene: blocks}]\nviewports: [{width: 96, height: 64}]\n"
+        "map_sizes: [256]\nmethods: [{method: nsm}]\noutputs: {exr: true, overlays: false}\n"));
+    struct sl_config c;
+    struct sl_diag d;
+    assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    struct sl_run_opts o = {.out_root = tmpdir, .write_files = 1, .store = "", .cache_dir = ""};
+    struct sl_run_result r;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    snprintf(path, sizeof path, "%s/exr/exr/blocks-above-96x64-256-nsm.exr", tmpdir);
+    unsigned *truth, *verdict, *contour;
+    int w, h;
+    assert_int_equal(sl_image_read_layer(path, "truth", &w, &h, &truth, &d), SL_OK);
+    assert_int_equal(w, 96);
+    assert_int_equal(h, 64);
+    assert_int_equal(sl_image_read_layer(path, "verdict", &w, &h, &verdict, &d), SL_OK);
+    assert_int_equal(sl_image_read_layer(path, "contour", &w, &h, &contour, &d), SL_OK);
+    uint64_t lit = 0, wrong = 0, bg = 0, in2 = 0;
+    for (int i = 0; i < w * h; i++) {
+        lit += verdict[i] == SL_V_LIT;
+        bg += truth[i] == SL_T_BACKGROUND;
+        wrong += (verdict[i] == SL_V_LIT && truth[i] == SL_T_SHADOW) ||
+                 (verdict[i] == SL_V_SHADOW && truth[i] == SL_T_LIT);
+        in2 += contour[i] == 1;
+    }
+    const struct sl_figures *f = &r.cells[0].fig;
+    assert_int_equal(lit, f->r[f->nregions - 1].n[SL_FIG_light]);
+    assert_int_equal(bg, f->background);
+    assert_int_equal(wrong, f->wrong_image);
+    assert_int_equal(in2, f->r[0].n[SL_FIG_pixels]);
+    assert_true(lit > 0 && bg > 0);
+    free(truth);
+    free(verdict);
+    free(contour);
+    sl_run_result_free(&r);
+}
+
 static int setup(void **st)
 {
     (void)st;
@@ -230,6 +275,7 @@ int main(void)
         SL_CASE(e2e, default_experiment),
         SL_CASE(e2e, self_shadow_policies),
         SL_CASE(e2e, deterministic),
+        SL_CASE(e2e, exr_layers),
     };
     return cmocka_run_group_tests_name("e2e", tests, setup, teardown);
 }
