@@ -17,6 +17,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "adjacency.h"
 #include "contour.h"
 #include "gbuffer.h"
 #include "glctx.h"
@@ -257,6 +258,8 @@ struct run_ctx {
     /* current scene */
     int scene_i;
     struct sl_scene scene;
+    struct sl_adjacency adj;
+    int have_adj;
     struct sl_gl_mesh mesh;
     struct sl_gbuffer_pass gpass;
     struct sl_shadowmap_pass spass;
@@ -293,6 +296,9 @@ static void drop_scene(struct run_ctx *x)
 {
     drop_view(x);
     sl_rt_free(&x->rt);
+    if (x->have_adj)
+        sl_adjacency_free(&x->adj);
+    x->have_adj = 0;
     if (x->gl.ctx) {
         sl_gbuffer_free(&x->gpass);
         sl_gl_mesh_free(&x->mesh);
@@ -331,6 +337,15 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
         return e;
     res->ms_bvh += x->rt.ms_build;
     res->passes.scenes++;
+    unsigned needs = 0;
+    for (int m = 0; m < c->nmethods; m++)
+        needs |= c->methods[m].method->needs(&c->methods[m].params);
+    if (needs & SL_NEED_ADJACENCY) {
+        if ((e = sl_adjacency_build(&x->scene, &x->adj, d)))
+            return e;
+        x->have_adj = 1;
+        res->passes.adjacency++;
+    }
     x->scene_i = si;
     return SL_OK;
 }
@@ -421,6 +436,7 @@ static unsigned group_needs(const struct sl_config *c, int from, int last, struc
 static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
                                 unsigned needs, struct sl_run_result *res, struct sl_diag *d)
 {
+    needs &= (1u << SL_LAYER_COUNT) - 1u;   /* the frame's layers; adjacency is per scene */
     if (x->frame_map == k->map && (x->frame.have & needs) == needs)
         return SL_OK;
     if (x->frame_map != k->map) {
@@ -477,7 +493,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     mview.truth = NULL;
     struct sl_method_args a = {
         .scene = &x->scene, .view = &mview, .frame = &x->frame, .params = &cm->params,
-        .rt = &x->rt, .threads = c->threads,
+        .rt = &x->rt, .adj = x->have_adj ? &x->adj : NULL, .threads = c->threads,
     };
     int reps = c->warmup + c->runs;
     double times[1100];

@@ -75,6 +75,7 @@ struct sl_cell {
 /* What was computed, to prove nothing is computed twice or needlessly. */
 struct sl_pass_counts {
     int scenes;                        /* scenes loaded (GL upload + BVH) */
+    int adjacency;                     /* adjacency tables built (only when a method needs them) */
     int gbuffers;                      /* G-buffer passes */
     int truths_traced, truths_cached;  /* truth passes traced / read from cache */
     int layers[SL_LAYER_COUNT];        /* shadow-map layer renders */

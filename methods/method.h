@@ -18,6 +18,11 @@
 #include "view.h"
 
 struct sl_rt;
+struct sl_adjacency;
+
+/* Beyond the frame layers (SL_NEED(layer) bits of frame.h), a method may need
+ * the scene's edge and vertex adjacency, built once per scene on demand. */
+#define SL_NEED_ADJACENCY (1u << 16)
 
 enum sl_verdict {
     SL_V_NONE      = 0,   /* background */
@@ -93,6 +98,7 @@ struct sl_method_args {
     const struct sl_light_frame   *frame;
     const struct sl_method_params *params;
     const struct sl_rt            *rt;       /* for methods that trace */
+    const struct sl_adjacency     *adj;      /* when needs has SL_NEED_ADJACENCY, else NULL */
     int                            threads;
 };
 

@@ -83,6 +83,7 @@ static void sweep_each_pass_once(void **st)
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
     assert_int_equal(r.ncells, 36);
     assert_int_equal(r.passes.scenes, 2);
+    assert_int_equal(r.passes.adjacency, 0);        /* no method here reads adjacency */
     assert_int_equal(r.passes.gbuffers, 6);         /* 3 viewpoints x 2 viewports */
     assert_int_equal(r.passes.truths_traced, 6);
     assert_int_equal(r.passes.truths_cached, 0);
