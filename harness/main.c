@@ -158,8 +158,10 @@ static int cmd_validate(int argc, char **argv)
         enum sl_err e = sl_scene_load(argv[2], &s, &d);
         if (e)
             return fail(e, &d);
-        printf("%s: ok: scene '%s', %u triangles, %u vertices, %d mesh(es), %d viewpoint(s)\n", argv[2],
-               s.name, s.nt, s.nv, s.nranges, s.nvp);
+        printf("%s: ok: scene '%s', %u triangles, %u vertices, %d mesh(es), %d viewpoint(s), "
+               "bounds (%g, %g, %g) .. (%g, %g, %g)\n", argv[2], s.name, s.nt, s.nv, s.nranges, s.nvp,
+               (double)s.lo[0], (double)s.lo[1], (double)s.lo[2], (double)s.hi[0], (double)s.hi[1],
+               (double)s.hi[2]);
         sl_scene_free(&s);
         return 0;
     }

@@ -173,6 +173,13 @@ static void g_sphere(struct sl_mesh *m, const struct gen_args *a) { sl_gen_spher
 static void g_torus(struct sl_mesh *m, const struct gen_args *a) { sl_gen_torus(m, a->c[0], a->c[1], a->c[2], a->major, a->minor, (int)a->segments, (int)a->rings); }
 static void g_cylinder(struct sl_mesh *m, const struct gen_args *a) { sl_gen_cylinder(m, a->c[0], a->c[1], a->c[2], a->radius, a->height, (int)a->segments); }
 static void g_pyramid(struct sl_mesh *m, const struct gen_args *a) { sl_gen_pyramid(m, a->c[0], a->c[1], a->c[2], a->base, a->height); }
+static void g_cone(struct sl_mesh *m, const struct gen_args *a) { sl_gen_cone(m, a->c[0], a->c[1], a->c[2], a->radius, a->height, (int)a->segments); }
+static void g_tree(struct sl_mesh *m, const struct gen_args *a) { sl_gen_tree(m, a->c[0], a->c[1], a->c[2], a->height, a->seed); }
+static void g_flowers(struct sl_mesh *m, const struct gen_args *a) { sl_gen_flowers(m, a->c[0], a->c[1], a->c[2], a->width, a->depth, (int)a->count, a->seed); }
+static void g_bench(struct sl_mesh *m, const struct gen_args *a) { sl_gen_bench(m, a->c[0], a->c[1], a->c[2], a->length, a->seed); }
+static void g_lamp(struct sl_mesh *m, const struct gen_args *a) { sl_gen_lamp(m, a->c[0], a->c[1], a->c[2], a->height); }
+/* the soil height it returns is y0 + 0.8 height: place flowers there */
+static void g_flower_box(struct sl_mesh *m, const struct gen_args *a) { (void)sl_gen_flower_box(m, a->c[0], a->c[1], a->c[2], a->width, a->depth, a->height); }
 
 /* required params, optional params (with their defaults in gen_defaults) */
 static const struct generator {
@@ -186,6 +193,12 @@ static const struct generator {
     {"torus", P_MAJOR | P_MINOR, P_CENTER | P_SEGMENTS | P_RINGS, g_torus},
     {"cylinder", P_RADIUS | P_HEIGHT, P_CENTER | P_SEGMENTS, g_cylinder},
     {"pyramid", P_BASE | P_HEIGHT, P_CENTER, g_pyramid},
+    {"cone", P_RADIUS | P_HEIGHT, P_CENTER | P_SEGMENTS, g_cone},
+    {"tree", P_HEIGHT, P_CENTER | P_SEED, g_tree},
+    {"flowers", P_WIDTH | P_DEPTH | P_COUNT, P_CENTER | P_SEED, g_flowers},
+    {"bench", P_LENGTH, P_CENTER | P_SEED, g_bench},
+    {"lamp", P_HEIGHT, P_CENTER, g_lamp},
+    {"flower_box", P_WIDTH | P_DEPTH | P_HEIGHT, P_CENTER, g_flower_box},
     {NULL, 0, 0, NULL},
 };
 

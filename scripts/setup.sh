@@ -19,6 +19,9 @@ PACKAGES=(
   openimageio-tools     # ... and checks that its tools (iconvert, ...) exist
   libcglm-dev           # vector math
   libcyaml-dev libyaml-dev  # configs
+  libassimp-dev         # model files
+  assimp-testmodels     # third-party models the model scenes and tests load
+  libsqlite3-dev        # results store
   libcmocka-dev         # unit tests
 )
 
