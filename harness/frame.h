@@ -16,6 +16,9 @@
 enum sl_layer_id {
     SL_LAYER_DEPTH_ID = 0,      /* nearest surface, both faces: depth + id */
     SL_LAYER_DEPTH_ID_BACK,     /* front faces culled (Moderno 2011): depth + id */
+    SL_LAYER_BGSM,              /* conservative: every triangle touching a texel, its lowest depth there */
+    SL_LAYER_BGSM2,             /* the same without the triangle BGSM stored at the texel (needs BGSM) */
+    SL_LAYER_SGSM,              /* triangles covering the whole texel, their highest depth there */
     SL_LAYER_COUNT
 };
 #define SL_NEED(layer) (1u << (layer))
@@ -33,7 +36,15 @@ struct sl_depth_layer {
     float    *depth;            /* size*size window depth in [0,1], 1 = empty */
     uint32_t *id;               /* triangle + 1, 0 = empty */
     double    ms_render, ms_readback;
+    uint64_t  gs_prims;         /* primitives the geometry shader emitted (GL query; 0 without GS) */
+    uint64_t  fragments;        /* fragment shader invocations (GL query) */
 };
+
+/* Margins of the conservative layers, shared by the shaders (uniforms) and
+ * the methods that read them; see methods/conservative.c for why each is
+ * large enough. */
+#define SL_CONS_EPS_TEXELS (1.0 / 128.0)      /* coverage margin, texels */
+#define SL_CONS_EPS_DEPTH  (0x1p-18)          /* depth margin, window depth units */
 
 struct sl_light_frame {
     int   size;

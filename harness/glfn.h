@@ -32,7 +32,12 @@
     X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, glVertexArrayAttribBinding)     \
     X(PFNGLVERTEXARRAYATTRIBFORMATPROC, glVertexArrayAttribFormat)       \
     X(PFNGLVERTEXARRAYELEMENTBUFFERPROC, glVertexArrayElementBuffer)     \
-    X(PFNGLVERTEXARRAYVERTEXBUFFERPROC, glVertexArrayVertexBuffer)
+    X(PFNGLVERTEXARRAYVERTEXBUFFERPROC, glVertexArrayVertexBuffer)      \
+    X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)               \
+    X(PFNGLUNIFORM1DPROC, glUniform1d)                                   \
+    X(PFNGLBINDTEXTUREUNITPROC, glBindTextureUnit)                       \
+    X(PFNGLTEXTURESUBIMAGE2DPROC, glTextureSubImage2D)                   \
+    X(PFNGLTEXTUREPARAMETERIPROC, glTextureParameteri)
 
 #define SL_GL_DECL(type, name) extern type sl_##name;
 SL_GL_FUNCS(SL_GL_DECL)
@@ -60,6 +65,11 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glVertexArrayAttribFormat sl_glVertexArrayAttribFormat
 #define glVertexArrayElementBuffer sl_glVertexArrayElementBuffer
 #define glVertexArrayVertexBuffer sl_glVertexArrayVertexBuffer
+#define glGetQueryObjectui64v sl_glGetQueryObjectui64v
+#define glUniform1d sl_glUniform1d
+#define glBindTextureUnit sl_glBindTextureUnit
+#define glTextureSubImage2D sl_glTextureSubImage2D
+#define glTextureParameteri sl_glTextureParameteri
 
 /* Returns the name of the first entry point not found, or NULL. */
 const char *sl_glfn_load(void);

@@ -458,6 +458,58 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
     return e;
 }
 
+/* Every PFL pixel against the guarantee the method declares. */
+static void check_exact(const struct run_ctx *x, const struct sl_method *m, struct sl_cell *cell)
+{
+    const struct sl_view *v = &x->view;
+    for (int y = 0; y < v->h; y++)
+        for (int xx = 0; xx < v->w; xx++) {
+            size_t i = (size_t)y * (size_t)v->w + (size_t)xx;
+            if (v->cls[i] != SL_C_PFL)
+                continue;
+            int bad = ((m->exact & SL_EXACT_LIT) && x->vd.v[i] == SL_V_LIT && v->truth[i] != SL_T_LIT) ||
+                      ((m->exact & SL_EXACT_SHADOW) && x->vd.v[i] == SL_V_SHADOW && v->truth[i] != SL_T_SHADOW);
+            if (!bad)
+                continue;
+            if (cell->violations < SL_MAX_VIOLATIONS) {
+                struct sl_violation *o = &cell->violation[cell->violations];
+                memset(o, 0, sizeof *o);
+                o->x = xx;
+                o->y = y;
+                o->truth = v->truth[i];
+                o->verdict = x->vd.v[i];
+                o->how = x->vd.how[i];
+                o->own_tri = v->tri[i];
+                float u, w, z;
+                sl_frame_project(&x->frame, v->pos + 3 * i, &u, &w, &z);
+                uint32_t k = sl_frame_texel(&x->frame, u, w);
+                o->tx = (int)(k % (uint32_t)x->frame.size);
+                o->ty = (int)(k / (uint32_t)x->frame.size);
+                for (int l = 0; l < SL_LAYER_COUNT; l++)
+                    if (x->frame.have & SL_NEED(l))
+                        o->layer_tri[l] = x->frame.layer[l].id[k];
+            }
+            cell->violations++;
+        }
+}
+
+static void report_violations(const struct sl_config *c, const struct sl_cell *cl)
+{
+    static const char *const layer_names[SL_LAYER_COUNT] = {"depth", "depth_back", "bgsm", "bgsm2", "sgsm"};
+    fprintf(stderr, "shadowlab: VIOLATION: %s/%s %dx%d map %d '%s': %llu pixel(s) break its exactness\n",
+            cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
+            c->maps[cl->key.map], c->methods[cl->key.method].label, (unsigned long long)cl->violations);
+    for (uint64_t k = 0; k < cl->violations && k < SL_MAX_VIOLATIONS; k++) {
+        const struct sl_violation *o = &cl->violation[k];
+        fprintf(stderr, "  pixel (%d, %d): truth %d, verdict %d, how %d, own triangle %u, texel (%d, %d):",
+                o->x, o->y, o->truth, o->verdict, o->how, o->own_tri ? o->own_tri - 1 : 0, o->tx, o->ty);
+        for (int l = 0; l < SL_LAYER_COUNT; l++)
+            if (o->layer_tri[l])
+                fprintf(stderr, " %s triangle %u", layer_names[l], o->layer_tri[l] - 1);
+        fputc('\n', stderr);
+    }
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -524,6 +576,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     t0 = sl_now();
     sl_figures_compute(&x->view, &x->vd, x->band, c->regions, c->nregions, &cell->fig);
     cell->ms.figures = 1e3 * (sl_now() - t0);
+    if (cm->method->exact)
+        check_exact(x, cm->method, cell);
     if (ovdir) {
         t0 = sl_now();
         char path[1400];
@@ -671,6 +725,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? ovdir : NULL,
                           o->write_files && c->exr ? exrdir : NULL, res, d)))
             break;
+        if (cell->violations)
+            report_violations(c, cell);
         if (st && (e = store_cell(st, run_id, c, cell, d)))
             break;
         res->ncells++;

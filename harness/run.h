@@ -59,6 +59,17 @@ struct sl_stage_ms {
     double method, method_min, method_max, contours, figures, overlay;
 };
 
+/* A pixel where a method broke the guarantee it declares (method.h
+ * SL_EXACT_*): where, what, and which triangles its texel holds. */
+struct sl_violation {
+    int      x, y;                     /* pixel, y = 0 the bottom row */
+    uint8_t  truth, verdict, how;
+    uint32_t own_tri;                  /* triangle + 1 the pixel lies on */
+    int      tx, ty;                   /* its texel */
+    uint32_t layer_tri[SL_LAYER_COUNT];/* triangle + 1 each rendered layer holds there, 0 none */
+};
+#define SL_MAX_VIOLATIONS 4
+
 struct sl_cell {
     int index;                         /* in the sweep */
     struct sl_cell_key key;
@@ -70,6 +81,8 @@ struct sl_cell {
     int      truth_cached;
     uint64_t truth_rays;
     uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
+    uint64_t violations;               /* of the method's declared exactness; must be 0 */
+    struct sl_violation violation[SL_MAX_VIOLATIONS];
 };
 
 /* What was computed, to prove nothing is computed twice or needlessly. */

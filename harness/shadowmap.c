@@ -12,6 +12,18 @@
 
 extern const char sl_glsl_depth_id_vs[];
 extern const char sl_glsl_depth_id_fs[];
+extern const char sl_glsl_cons_gs[];
+extern const char sl_glsl_cons_fs[];
+
+#ifndef GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB
+#define GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB 0x82F3
+#endif
+#ifndef GL_FRAGMENT_SHADER_INVOCATIONS_ARB
+#define GL_FRAGMENT_SHADER_INVOCATIONS_ARB 0x82F4
+#endif
+
+/* How a layer is drawn. */
+enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM };
 
 void sl_frame_free(struct sl_light_frame *f)
 {
@@ -28,20 +40,28 @@ enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
 {
     memset(p, 0, sizeof *p);
     p->prog_depth_id = sl_gl_program(sl_glsl_depth_id_vs, NULL, sl_glsl_depth_id_fs, d);
-    return p->prog_depth_id ? SL_OK : SL_E_GL;
+    if (!p->prog_depth_id)
+        return SL_E_GL;
+    p->prog_cons = sl_gl_program(sl_glsl_depth_id_vs, sl_glsl_cons_gs, sl_glsl_cons_fs, d);
+    return p->prog_cons ? SL_OK : SL_E_GL;
 }
 
 void sl_shadowmap_free(struct sl_shadowmap_pass *p)
 {
     if (p->prog_depth_id)
         glDeleteProgram(p->prog_depth_id);
+    if (p->prog_cons)
+        glDeleteProgram(p->prog_cons);
     memset(p, 0, sizeof *p);
 }
 
-static enum sl_err render_depth_id(const struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
-                                   struct sl_light_frame *f, int cull_front,
-                                   struct sl_depth_layer *out, struct sl_diag *d)
+static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
+                                struct sl_light_frame *f, enum kind kind,
+                                struct sl_depth_layer *out, struct sl_diag *d)
 {
+    const int cull_front = kind == K_DEPTH_BACK;
+    const int cons = kind >= K_BGSM;
+    const GLuint prog = cons ? p->prog_cons : p->prog_depth_id;
     int S = f->size;
     size_t n = (size_t)S * (size_t)S;
     out->depth = sl_calloc(n, sizeof(float));
@@ -72,13 +92,41 @@ static enum sl_err render_depth_id(const struct sl_shadowmap_pass *p, const stru
         glFrontFace(GL_CCW);
         glClearNamedFramebufferuiv(fbo, GL_COLOR, 0, zero_u);
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
-        glUseProgram(p->prog_depth_id);
-        glUniformMatrix4fv(glGetUniformLocation(p->prog_depth_id, "u_vp"), 1, GL_FALSE,
-                           (const float *)f->box.vp);
-        GLint first_loc = glGetUniformLocation(p->prog_depth_id, "u_first");
+        glUseProgram(prog);
+        glUniformMatrix4fv(glGetUniformLocation(prog, "u_vp"), 1, GL_FALSE, (const float *)f->box.vp);
+        GLint first_loc = glGetUniformLocation(prog, "u_first");
+        GLuint first_ids = 0;
+        if (cons) {
+            /* lambda: Morais 2015 eq. 21 with eta = 1, the half texel
+             * diagonal, grown by the coverage margin on both counts */
+            glUniform1f(glGetUniformLocation(prog, "u_size"), (float)S);
+            glUniform1f(glGetUniformLocation(prog, "u_lambda"),
+                        (float)(0.70710678 * (1.0 + 1.0 / 1024.0) + 2.0 * SL_CONS_EPS_TEXELS));
+            glUniform1i(glGetUniformLocation(prog, "u_mode"), kind - K_BGSM);
+            glUniform1d(glGetUniformLocation(prog, "u_eps"), SL_CONS_EPS_TEXELS);
+            glUniform1d(glGetUniformLocation(prog, "u_zeps"), SL_CONS_EPS_DEPTH);
+            if (kind == K_BGSM2) {
+                /* the second layer leaves out, per texel, the triangle the
+                 * first one stored there */
+                const struct sl_depth_layer *b = &f->layer[SL_LAYER_BGSM];
+                glCreateTextures(GL_TEXTURE_2D, 1, &first_ids);
+                glTextureStorage2D(first_ids, 1, GL_R32UI, S, S);
+                /* an integer texture with a mipmap filter is incomplete and
+                 * reads as zero: nearest only */
+                glTextureParameteri(first_ids, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+                glTextureParameteri(first_ids, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+                glTextureSubImage2D(first_ids, 0, 0, 0, S, S, GL_RED_INTEGER, GL_UNSIGNED_INT, b->id);
+                glBindTextureUnit(0, first_ids);
+            }
+        }
+        GLuint q[2];
+        glGenQueries(2, q);
+        glBeginQuery(GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB, q[0]);
+        glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q[1]);
         glBindVertexArray(m->vao);
         /* two-sided meshes (leaves) are never culled: culling the side that
-         * faces the light would remove the leaf from the map altogether */
+         * faces the light would remove the leaf from the map altogether; the
+         * conservative layers cull nothing (see methods/conservative.c) */
         for (int r = 0; r < m->nruns; r++) {
             if (cull_front && !m->runs[r].two_sided)
                 glEnable(GL_CULL_FACE);
@@ -88,8 +136,18 @@ static enum sl_err render_depth_id(const struct sl_shadowmap_pass *p, const stru
             glDrawElements(GL_TRIANGLES, (GLsizei)(3 * m->runs[r].count), GL_UNSIGNED_INT,
                            (const void *)((size_t)m->runs[r].first * 3 * sizeof(uint32_t)));
         }
+        glEndQuery(GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB);
+        glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
         glFinish();
         double t1 = sl_now();
+        GLuint64 prims = 0, frags = 0;
+        glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &prims);
+        glGetQueryObjectui64v(q[1], GL_QUERY_RESULT, &frags);
+        glDeleteQueries(2, q);
+        out->gs_prims = cons ? (uint64_t)prims : 0;
+        out->fragments = (uint64_t)frags;
+        if (first_ids)
+            glDeleteTextures(1, &first_ids);
         glGetTextureImage(tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), out->depth);
         glGetTextureImage(tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), out->id);
         double t2 = sl_now();
@@ -114,10 +172,22 @@ enum sl_err sl_shadowmap_render(const struct sl_shadowmap_pass *p, const struct 
         enum sl_err e = SL_OK;
         switch ((enum sl_layer_id)l) {
         case SL_LAYER_DEPTH_ID:
-            e = render_depth_id(p, m, f, 0, &f->layer[l], d);
+            e = render_layer(p, m, f, K_DEPTH, &f->layer[l], d);
             break;
         case SL_LAYER_DEPTH_ID_BACK:
-            e = render_depth_id(p, m, f, 1, &f->layer[l], d);
+            e = render_layer(p, m, f, K_DEPTH_BACK, &f->layer[l], d);
+            break;
+        case SL_LAYER_BGSM:
+            e = render_layer(p, m, f, K_BGSM, &f->layer[l], d);
+            break;
+        case SL_LAYER_BGSM2:
+            /* reads the first layer's ids */
+            if (!(f->have & SL_NEED(SL_LAYER_BGSM)))
+                return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "BGSM2 asked for without BGSM");
+            e = render_layer(p, m, f, K_BGSM2, &f->layer[l], d);
+            break;
+        case SL_LAYER_SGSM:
+            e = render_layer(p, m, f, K_SGSM, &f->layer[l], d);
             break;
         case SL_LAYER_COUNT:
             break;

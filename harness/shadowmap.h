@@ -13,6 +13,7 @@
 
 struct sl_shadowmap_pass {
     GLuint prog_depth_id;
+    GLuint prog_cons;         /* conservative layers: geometry shader + exact per-texel tests */
 };
 
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d);

@@ -112,17 +112,19 @@ void sl_rt_free(struct sl_rt *rt)
     memset(rt, 0, sizeof *rt);
 }
 
-enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, struct sl_view *v,
-                           struct sl_truth_stats *st, struct sl_diag *d)
+enum sl_err sl_rt_trace(const struct sl_rt *rt, const struct sl_scene *s, const struct sl_view *v,
+                        const uint8_t *select, uint8_t *out, uint64_t *rays_out, uint64_t *shadow_out,
+                        struct sl_diag *d)
 {
     const int W = v->w, H = v->h;
     const int tx = (W + 3) / 4, ty = (H + 3) / 4;
     const float lx = -s->light_dir[0], ly = -s->light_dir[1], lz = -s->light_dir[2];
-    uint64_t rays = 0, lit = 0, shadow = 0;
-    double t0 = sl_now();
+    uint64_t rays = 0, shadow = 0;
     /* 4x4 tiles as 16-ray packets; packets are independent, so the result
-     * does not depend on the thread count or schedule. */
-#pragma omp parallel num_threads(rt->threads) reduction(+ : rays, lit, shadow)
+     * does not depend on the thread count or schedule, nor on which other
+     * pixels are traced with it: a method tracing a subset gets, ray for ray,
+     * the truth's answer. */
+#pragma omp parallel num_threads(rt->threads) reduction(+ : rays, shadow)
     {
         sl_rt_thread_init();
         struct RTCIntersectContext ctx;
@@ -155,7 +157,7 @@ enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, str
                     r.mask[k] = 0xffffffffu;
                     r.id[k] = v->tri[i];
                     r.flags[k] = 0;
-                    valid[k] = v->cls[i] == SL_C_PFL ? -1 : 0;
+                    valid[k] = (v->cls[i] == SL_C_PFL && (!select || select[i])) ? -1 : 0;
                     any |= valid[k];
                 }
             }
@@ -169,22 +171,34 @@ enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, str
                     if (!valid[k])
                         continue;
                     const int occluded = r.tfar[k] == -INFINITY;
-                    v->truth[base + (size_t)col] = occluded ? SL_T_SHADOW : SL_T_LIT;
+                    out[base + (size_t)col] = occluded ? SL_T_SHADOW : SL_T_LIT;
                     shadow += (uint64_t)occluded;
-                    lit += (uint64_t)!occluded;
                     rays++;
                 }
             }
         }
     }
-    v->n_lit = lit;
+    if (rays_out)
+        *rays_out = rays;
+    if (shadow_out)
+        *shadow_out = shadow;
+    enum RTCError err = rtcGetDeviceError(rt->device);
+    if (err != RTC_ERROR_NONE)
+        return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "Embree trace failed (error %d)", (int)err);
+    return SL_OK;
+}
+
+enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, struct sl_view *v,
+                           struct sl_truth_stats *st, struct sl_diag *d)
+{
+    double t0 = sl_now();
+    uint64_t rays = 0, shadow = 0;
+    enum sl_err e = sl_rt_trace(rt, s, v, NULL, v->truth, &rays, &shadow, d);
+    v->n_lit = rays - shadow;
     v->n_shadow = shadow;
     if (st) {
         st->rays = rays;
         st->ms_trace = 1e3 * (sl_now() - t0);
     }
-    enum RTCError err = rtcGetDeviceError(rt->device);
-    if (err != RTC_ERROR_NONE)
-        return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "Embree trace failed (error %d)", (int)err);
-    return SL_OK;
+    return e;
 }

@@ -51,6 +51,14 @@ struct sl_truth_stats {
 enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, struct sl_view *v,
                            struct sl_truth_stats *st, struct sl_diag *d);
 
+/* Trace the PFL pixels of v that `select` marks (NULL = all) toward the
+ * light, writing SL_T_SHADOW or SL_T_LIT into out[i] for each traced pixel
+ * (others untouched): the very rays of the truth, so a method that traces
+ * a pixel gets the truth's answer for it. Counts of rays and occluded rays. */
+enum sl_err sl_rt_trace(const struct sl_rt *rt, const struct sl_scene *s, const struct sl_view *v,
+                        const uint8_t *select, uint8_t *out, uint64_t *rays, uint64_t *shadow,
+                        struct sl_diag *d);
+
 /* Turn on flush-to-zero / denormals-are-zero in the calling thread (Embree's
  * advice; tracing threads call it). */
 void sl_rt_thread_init(void);

@@ -55,7 +55,8 @@ struct sl_verdicts {
 
 /* Machine-independent counts beside wall time. */
 struct sl_cost {
-    double   ms_method;     /* the method's own per-pixel work */
+    double   ms_method;     /* the method's own per-pixel work (its ray step included) */
+    double   ms_trace;      /* of which: the ray step */
     uint64_t lookups;       /* shadow-map texel reads */
     uint64_t rays;          /* shadow rays handed to Embree */
     uint64_t tri_tests;     /* ray-triangle tests outside Embree */
@@ -102,9 +103,15 @@ struct sl_method_args {
     int                            threads;
 };
 
+/* What a method guarantees by construction; the driver checks it on every
+ * cell and reports each violation (a violation is a bug). */
+#define SL_EXACT_LIT    (1u << 0)   /* a PFL pixel it calls lit is lit in truth */
+#define SL_EXACT_SHADOW (1u << 1)   /* a PFL pixel it calls shadowed is shadowed in truth */
+
 struct sl_method {
     const char *name;          /* config key */
     const char *summary;
+    unsigned    exact;         /* SL_EXACT_* */
     unsigned    params_ok;     /* SL_PARAM_* bits it reads */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);

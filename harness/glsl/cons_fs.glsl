@@ -1,0 +1,80 @@
+#version 450 core
+// The exact per-texel decisions of the conservative layers, in double
+// precision. The texel is the square [i, i+1] x [j, j+1] in window space.
+//
+// u_mode 0 (BGSM) and 1 (BGSM, second layer): keep the texel if the square
+// and the triangle overlap (separating axes: the box axes and the three edge
+// normals, each with a margin of u_eps texels in the triangle's favour); the
+// depth written is a lower bound of the triangle's depth over the square:
+// the minimum of its plane over the four corners (the plane is linear, so
+// that is its minimum over the square), never below the triangle's nearest
+// vertex (which bounds steep, nearly edge-on planes), minus u_zeps.
+// Mode 1 drops the triangle stored by mode 0 at this texel, so the second
+// layer holds the nearest of all the others.
+// u_mode 2 (SGSM): keep the texel only if the whole square lies inside the
+// triangle by at least u_eps texels; the depth written is an upper bound of
+// the triangle's depth over the square (maximum of the plane over the corners,
+// never beyond its farthest vertex), plus u_zeps.
+// All three write the triangle's id; the depth test keeps the smallest value.
+uniform int u_mode;
+uniform double u_eps;
+uniform double u_zeps;
+layout(binding = 0) uniform usampler2D u_first_ids;   // mode 1: the ids of mode 0
+flat in vec3 g_v0;
+flat in vec3 g_v1;
+flat in vec3 g_v2;
+flat in uint g_tri;
+layout(location = 0) out uint o_tri;
+
+void main()
+{
+    ivec2 t = ivec2(gl_FragCoord.xy);
+    if (u_mode == 1 && texelFetch(u_first_ids, t, 0).r == g_tri)
+        discard;
+    dvec3 v[3] = dvec3[3](dvec3(g_v0), dvec3(g_v1), dvec3(g_v2));
+    dvec2 c[4] = dvec2[4](dvec2(t), dvec2(t) + dvec2(1, 0), dvec2(t) + dvec2(0, 1), dvec2(t) + dvec2(1, 1));
+    double area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+    double s = area >= 0.0 ? 1.0 : -1.0;
+    // box axes
+    dvec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)), hi = max(v[0].xy, max(v[1].xy, v[2].xy));
+    if (u_mode != 2 && (hi.x < double(t.x) - u_eps || lo.x > double(t.x + 1) + u_eps ||
+                        hi.y < double(t.y) - u_eps || lo.y > double(t.y + 1) + u_eps))
+        discard;
+    // edge axes: signed distance of each corner outside edge i, in texels
+    for (int i = 0; i < 3; i++) {
+        dvec2 a = v[i].xy, b = v[(i + 1) % 3].xy;
+        dvec2 e = b - a;
+        double len = length(e);
+        if (len == 0.0)
+            continue;                      // a degenerate edge separates nothing
+        dvec2 n = s * dvec2(e.y, -e.x) / len;
+        double dmin = 1e300, dmax = -1e300;
+        for (int k = 0; k < 4; k++) {
+            double dist = dot(n, c[k] - a);
+            dmin = min(dmin, dist);
+            dmax = max(dmax, dist);
+        }
+        if (u_mode != 2 && dmin > u_eps)
+            discard;                       // the whole square is outside this edge
+        if (u_mode == 2 && (dmax > -u_eps || abs(area) < 1e-12))
+            discard;                       // some of the square is not surely inside
+    }
+    // depth bounds from the plane through the three vertices
+    double zlo = min(v[0].z, min(v[1].z, v[2].z)), zhi = max(v[0].z, max(v[1].z, v[2].z));
+    double z = u_mode == 2 ? zhi : zlo;
+    if (abs(area) > 1e-12) {
+        // z = v0.z + gx (x - v0.x) + gy (y - v0.y)
+        double gx = ((v[1].z - v[0].z) * (v[2].y - v[0].y) - (v[2].z - v[0].z) * (v[1].y - v[0].y)) / area;
+        double gy = ((v[2].z - v[0].z) * (v[1].x - v[0].x) - (v[1].z - v[0].z) * (v[2].x - v[0].x)) / area;
+        double pmin = 1e300, pmax = -1e300;
+        for (int k = 0; k < 4; k++) {
+            double pz = v[0].z + gx * (c[k].x - v[0].x) + gy * (c[k].y - v[0].y);
+            pmin = min(pmin, pz);
+            pmax = max(pmax, pz);
+        }
+        z = u_mode == 2 ? min(pmax, zhi) : max(pmin, zlo);
+    }
+    z = u_mode == 2 ? z + u_zeps : z - u_zeps;
+    gl_FragDepth = float(clamp(z, 0.0, 1.0));
+    o_tri = g_tri;
+}

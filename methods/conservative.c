@@ -1,0 +1,227 @@
+/*
+ * conservative.c — conservative shadow maps, exact by construction:
+ * bgsm (a pixel it calls lit is lit), sgsm (a pixel it calls shadowed is
+ * shadowed) and csm (both, the rest traced: its image is the truth).
+ * After Morais 2015 (BGSM, SGSM, CSMa) and Hertel et al. 2009.
+ *
+ * The layers (harness/glsl/cons_*.glsl) store per texel a bound on depth:
+ * BGSM the lowest depth over the texel of every triangle that touches it
+ * (and BGSM2 the same without the triangle BGSM kept there); SGSM the
+ * highest depth over the texel of any triangle that covers all of it. Why
+ * the answers are exact, and the choices that make them so:
+ *
+ * - Coverage is decided per texel by an exact square-triangle test in double
+ *   precision, with a margin of SL_CONS_EPS_TEXELS (1/128 texel) in the
+ *   conservative direction. Float rounding of a point's or a vertex's map
+ *   position is below 2e-3 texels even on 16384^2 maps, so a triangle that
+ *   touches the pixel's light ray touches the texel the CPU computes for the
+ *   pixel (BGSM), and a texel SGSM calls covered has the pixel's ray inside
+ *   the triangle by a margin Embree resolves (SGSM).
+ * - Depth is conservative over the whole texel, not only at its centre: the
+ *   plane's minimum (maximum) over the texel's corners, clamped by the
+ *   triangle's nearest (farthest) vertex, so steep, nearly edge-on triangles
+ *   never produce extreme values; then SL_CONS_EPS_DEPTH (2^-18) further in
+ *   the conservative direction, some thirty times the float error of a depth.
+ * - Nothing is culled in these layers: Embree culls nothing, and an open
+ *   one-sided surface facing the light is a real occluder.
+ * - The receiver's own triangle is in the map, and nearest at its own texel
+ *   wherever nothing else is above it. Policy: when BGSM's triangle at the
+ *   texel is the pixel's own (the truth ignores it: the own-triangle filter
+ *   of harness/truth.c), or a ray-triangle test in double precision shows
+ *   the pixel's ray missing it by a margin (1e-5 of the coordinates, far
+ *   above float error; or crossing its plane before half of tnear, where
+ *   Embree does not look), the second layer decides instead. A coplanar
+ *   neighbour (ground grids) is handled by the same test. Anything less sure
+ *   leaves the pixel undecided, never wrongly lit.
+ * - SGSM's triangle must be in front of the pixel by more than twice the
+ *   truth's tnear (plus 2^-20), so Embree, which starts rays at tnear, meets
+ *   it too.
+ * csm traces its undecided pixels with the truth's own rays
+ * (sl_rt_trace), so its image equals the truth pixel for pixel.
+ */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include "method.h"
+#include "raytri.h"
+#include "truth.h"
+#include "util.h"
+
+/* 1 when the pixel's shadow ray surely misses triangle t (or cannot reach
+ * it within Embree's [tnear, inf)), 0 when it may hit. */
+static int surely_misses(const struct sl_scene *s, const float p[3], uint32_t t)
+{
+    const uint32_t *ix = s->idx + 3 * (size_t)t;
+    double a[3], b[3], c[3], o[3], dir[3], n[3], e1[3], e2[3];
+    double mag = 0.0;
+    for (int k = 0; k < 3; k++) {
+        a[k] = s->pos[3 * ix[0] + k];
+        b[k] = s->pos[3 * ix[1] + k];
+        c[k] = s->pos[3 * ix[2] + k];
+        o[k] = p[k];
+        dir[k] = -(double)s->light_dir[k];
+        e1[k] = b[k] - a[k];
+        e2[k] = c[k] - a[k];
+        mag = fmax(mag, fmax(fabs(o[k]), fmax(fabs(a[k]), fmax(fabs(b[k]), fabs(c[k])))));
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double den = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]) / nn;
+    if (fabs(den) < 1e-9)
+        return 0;                           /* grazing: too close to call */
+    double num = (n[0] * (a[0] - o[0]) + n[1] * (a[1] - o[1]) + n[2] * (a[2] - o[2])) / nn;
+    double th = num / den;
+    if (th < 0.5 * (double)sl_rt_tnear(p))
+        return 1;                           /* behind, or before Embree starts looking */
+    double q[3] = {o[0] + th * dir[0], o[1] + th * dir[1], o[2] + th * dir[2]};
+    return sl_point_tri_dist_d(q, a, b, c) > 1e-5 * (mag + 1.0);
+}
+
+enum { V_LIT = 1, V_SHADOW = 2 };
+
+/* What the layers say of one PFL pixel: V_LIT if BGSM proves it lit,
+ * V_SHADOW if SGSM proves it shadowed, 0 if neither; tests counted. */
+static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int use_sgsm,
+                  uint64_t *lookups, uint64_t *tests)
+{
+    const struct sl_light_frame *f = a->frame;
+    const struct sl_view *v = a->view;
+    const float *p = v->pos + 3 * i;
+    float u, w, z;
+    sl_frame_project(f, p, &u, &w, &z);
+    uint32_t k = sl_frame_texel(f, u, w);
+    int r = 0;
+    if (use_sgsm) {
+        const struct sl_depth_layer *sg = &f->layer[SL_LAYER_SGSM];
+        (*lookups)++;
+        float m = 2.0f * sl_rt_tnear(p) / f->depth_range + 0x1p-20f;
+        if (sg->id[k] && sg->id[k] != v->tri[i] && sg->depth[k] < z - m)
+            r |= V_SHADOW;
+    }
+    if (use_bgsm) {
+        const struct sl_depth_layer *b1 = &f->layer[SL_LAYER_BGSM], *b2 = &f->layer[SL_LAYER_BGSM2];
+        (*lookups)++;
+        if (b1->depth[k] > z) {
+            r |= V_LIT;
+        } else if (b1->id[k]) {
+            int skip = b1->id[k] == v->tri[i];
+            if (!skip) {
+                (*tests)++;
+                skip = surely_misses(a->scene, p, b1->id[k] - 1);
+            }
+            if (skip) {
+                (*lookups)++;
+                if (b2->depth[k] > z)
+                    r |= V_LIT;
+            }
+        }
+    }
+    return r;
+}
+
+enum mode { M_BGSM, M_SGSM, M_CSM };
+
+static enum sl_err run_mode(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
+                            enum mode mode, struct sl_diag *d)
+{
+    const struct sl_view *v = a->view;
+    const long n = (long)v->w * v->h;
+    uint8_t *undecided = NULL, *traced = NULL;
+    if (mode == M_CSM) {
+        undecided = sl_calloc((size_t)n, 1);
+        traced = sl_calloc((size_t)n, 1);
+        if (!undecided || !traced) {
+            free(undecided);
+            free(traced);
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "csm masks");
+        }
+    }
+    uint64_t lookups = 0, tests = 0, conflicts = 0;
+    double t0 = sl_now();
+#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests, conflicts)
+    for (long i = 0; i < n; i++) {
+        if (v->cls[i] == SL_C_BACKGROUND) {
+            out->v[i] = SL_V_NONE;
+            out->how[i] = SL_HOW_NONE;
+            continue;
+        }
+        if (v->cls[i] == SL_C_PNFL) {
+            out->v[i] = SL_V_SHADOW;
+            out->how[i] = SL_HOW_PNFL;
+            continue;
+        }
+        int r = decide(a, (size_t)i, mode != M_SGSM, mode != M_BGSM, &lookups, &tests);
+        out->how[i] = SL_HOW_MAP;
+        if (r == (V_LIT | V_SHADOW)) {
+            conflicts++;       /* impossible if both layers are right; trace it */
+            r = 0;
+        }
+        if (r == V_LIT)
+            out->v[i] = SL_V_LIT;
+        else if (r == V_SHADOW)
+            out->v[i] = SL_V_SHADOW;
+        else if (mode == M_BGSM)
+            out->v[i] = SL_V_SHADOW;            /* not proved lit */
+        else if (mode == M_SGSM)
+            out->v[i] = SL_V_LIT;               /* not proved shadowed */
+        else {
+            out->v[i] = SL_V_UNCERTAIN;
+            undecided[i] = 1;
+        }
+    }
+    c->ms_method += 1e3 * (sl_now() - t0);
+    c->lookups += lookups;
+    c->tri_tests += tests;
+    enum sl_err e = SL_OK;
+    if (mode == M_CSM) {
+        double t1 = sl_now();
+        uint64_t rays = 0;
+        e = sl_rt_trace(a->rt, a->scene, v, undecided, traced, &rays, NULL, d);
+        for (long i = 0; !e && i < n; i++)
+            if (undecided[i]) {
+                out->v[i] = traced[i] == SL_T_SHADOW ? SL_V_SHADOW : SL_V_LIT;
+                out->how[i] = SL_HOW_TRACED;
+            }
+        c->rays += rays;
+        c->ms_trace += 1e3 * (sl_now() - t1);
+        c->ms_method += 1e3 * (sl_now() - t1);
+    }
+    if (!e && conflicts)
+        e = sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL,
+                    "%llu pixels proved both lit and shadowed: a conservative layer is wrong",
+                    (unsigned long long)conflicts);
+    free(undecided);
+    free(traced);
+    return e;
+}
+
+static unsigned needs_bgsm(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_BGSM) | SL_NEED(SL_LAYER_BGSM2); }
+static unsigned needs_sgsm(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_SGSM); }
+static unsigned needs_csm(const struct sl_method_params *p) { return needs_bgsm(p) | needs_sgsm(p); }
+
+static enum sl_err configure_none(struct sl_method_params *p, struct sl_diag *d)
+{
+    (void)d;
+    p->set = 0;
+    return SL_OK;
+}
+
+static enum sl_err run_bgsm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_BGSM, d); }
+static enum sl_err run_sgsm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_SGSM, d); }
+static enum sl_err run_csm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_CSM, d); }
+
+const struct sl_method sl_method_bgsm = {
+    .name = "bgsm", .summary = "big-triangle (conservative) shadow map: its lit pixels are lit in truth",
+    .exact = SL_EXACT_LIT, .needs = needs_bgsm, .configure = configure_none, .run = run_bgsm,
+};
+const struct sl_method sl_method_sgsm = {
+    .name = "sgsm", .summary = "small-triangle shadow map: its shadowed pixels are shadowed in truth",
+    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm, .configure = configure_none, .run = run_sgsm,
+};
+const struct sl_method sl_method_csm = {
+    .name = "csm", .summary = "CSMa: lit by BGSM, shadowed by SGSM, the rest traced (Morais 2015)",
+    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm, .configure = configure_none, .run = run_csm,
+};
