@@ -19,6 +19,7 @@ enum sl_layer_id {
     SL_LAYER_BGSM,              /* conservative: every triangle touching a texel, its lowest depth there */
     SL_LAYER_BGSM2,             /* the same without the triangle BGSM stored at the texel (needs BGSM) */
     SL_LAYER_SGSM,              /* triangles covering the whole texel, their highest depth there */
+    SL_LAYER_SGSM_ADJ,          /* the same, a triangle extended across edges to away-facing neighbours */
     SL_LAYER_COUNT
 };
 #define SL_NEED(layer) (1u << (layer))

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "adjacency.h"
 #include "util.h"
 
 #define SL_GL_DEF(type, name) type sl_##name;
@@ -152,8 +153,34 @@ enum sl_err sl_gl_mesh_upload(struct sl_gl_mesh *m, const struct sl_scene *s, st
     return sl_gl_check("mesh upload", d);
 }
 
+enum sl_err sl_gl_mesh_upload_adjacency(struct sl_gl_mesh *m, const struct sl_scene *s,
+                                        const struct sl_adjacency *a, struct sl_diag *d)
+{
+    uint32_t *ix = malloc((size_t)s->nt * 6 * sizeof(uint32_t));
+    if (!ix)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "adjacency indices");
+    for (uint32_t t = 0; t < s->nt; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = s->idx[3 * t + k], o = a->opposite[3 * t + k];
+            ix[6 * t + 2 * k] = v;
+            ix[6 * t + 2 * k + 1] = (o == SL_ADJ_NONE || o == SL_ADJ_MULTI) ? v : o;
+        }
+    glCreateVertexArrays(1, &m->vao_adj);
+    glCreateBuffers(1, &m->ebo_adj);
+    glNamedBufferStorage(m->ebo_adj, (GLsizeiptr)s->nt * 6 * sizeof(uint32_t), ix, 0);
+    free(ix);
+    glVertexArrayVertexBuffer(m->vao_adj, 0, m->vbo, 0, 3 * sizeof(float));
+    glVertexArrayElementBuffer(m->vao_adj, m->ebo_adj);
+    glEnableVertexArrayAttrib(m->vao_adj, 0);
+    glVertexArrayAttribFormat(m->vao_adj, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(m->vao_adj, 0, 0);
+    return sl_gl_check("adjacency upload", d);
+}
+
 void sl_gl_mesh_free(struct sl_gl_mesh *m)
 {
+    if (m->vao_adj) glDeleteVertexArrays(1, &m->vao_adj);
+    if (m->ebo_adj) glDeleteBuffers(1, &m->ebo_adj);
     if (m->vao) glDeleteVertexArrays(1, &m->vao);
     if (m->vbo) glDeleteBuffers(1, &m->vbo);
     if (m->ebo) glDeleteBuffers(1, &m->ebo);

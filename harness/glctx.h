@@ -42,10 +42,18 @@ struct sl_gl_run { uint32_t first, count; int two_sided; };
 struct sl_gl_mesh {
     GLuint vao, vbo, ebo;
     GLsizei count;            /* indices */
+    GLuint vao_adj, ebo_adj;  /* GL_TRIANGLES_ADJACENCY indices, 6 per triangle, when uploaded */
     struct sl_gl_run *runs;
     int nruns;
 };
 enum sl_err sl_gl_mesh_upload(struct sl_gl_mesh *m, const struct sl_scene *s, struct sl_diag *d);
 void        sl_gl_mesh_free(struct sl_gl_mesh *m);
+
+struct sl_adjacency;
+/* The GL_TRIANGLES_ADJACENCY index buffer from the scene's edge adjacency:
+ * per triangle v0, opposite(v0 v1), v1, opposite(v1 v2), v2, opposite(v2 v0);
+ * an open or non-manifold edge repeats its first vertex ("no neighbour"). */
+enum sl_err sl_gl_mesh_upload_adjacency(struct sl_gl_mesh *m, const struct sl_scene *s,
+                                        const struct sl_adjacency *a, struct sl_diag *d);
 
 #endif

@@ -344,6 +344,8 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
         if ((e = sl_adjacency_build(&x->scene, &x->adj, d)))
             return e;
         x->have_adj = 1;
+        if ((e = sl_gl_mesh_upload_adjacency(&x->mesh, &x->scene, &x->adj, d)))
+            return e;
         res->passes.adjacency++;
     }
     x->scene_i = si;
@@ -495,7 +497,8 @@ static void check_exact(const struct run_ctx *x, const struct sl_method *m, stru
 
 static void report_violations(const struct sl_config *c, const struct sl_cell *cl)
 {
-    static const char *const layer_names[SL_LAYER_COUNT] = {"depth", "depth_back", "bgsm", "bgsm2", "sgsm"};
+    static const char *const layer_names[SL_LAYER_COUNT] = {"depth", "depth_back", "bgsm", "bgsm2", "sgsm",
+                                                            "sgsm_adj"};
     fprintf(stderr, "shadowlab: VIOLATION: %s/%s %dx%d map %d '%s': %llu pixel(s) break its exactness\n",
             cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
             c->maps[cl->key.map], c->methods[cl->key.method].label, (unsigned long long)cl->violations);

@@ -14,6 +14,7 @@ extern const char sl_glsl_depth_id_vs[];
 extern const char sl_glsl_depth_id_fs[];
 extern const char sl_glsl_cons_gs[];
 extern const char sl_glsl_cons_fs[];
+extern const char sl_glsl_cons_adj_gs[];
 
 #ifndef GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB
 #define GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB 0x82F3
@@ -23,7 +24,7 @@ extern const char sl_glsl_cons_fs[];
 #endif
 
 /* How a layer is drawn. */
-enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM };
+enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM, K_SGSM_ADJ };
 
 void sl_frame_free(struct sl_light_frame *f)
 {
@@ -43,7 +44,10 @@ enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
     if (!p->prog_depth_id)
         return SL_E_GL;
     p->prog_cons = sl_gl_program(sl_glsl_depth_id_vs, sl_glsl_cons_gs, sl_glsl_cons_fs, d);
-    return p->prog_cons ? SL_OK : SL_E_GL;
+    if (!p->prog_cons)
+        return SL_E_GL;
+    p->prog_cons_adj = sl_gl_program(sl_glsl_depth_id_vs, sl_glsl_cons_adj_gs, sl_glsl_cons_fs, d);
+    return p->prog_cons_adj ? SL_OK : SL_E_GL;
 }
 
 void sl_shadowmap_free(struct sl_shadowmap_pass *p)
@@ -52,6 +56,8 @@ void sl_shadowmap_free(struct sl_shadowmap_pass *p)
         glDeleteProgram(p->prog_depth_id);
     if (p->prog_cons)
         glDeleteProgram(p->prog_cons);
+    if (p->prog_cons_adj)
+        glDeleteProgram(p->prog_cons_adj);
     memset(p, 0, sizeof *p);
 }
 
@@ -61,7 +67,9 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
 {
     const int cull_front = kind == K_DEPTH_BACK;
     const int cons = kind >= K_BGSM;
-    const GLuint prog = cons ? p->prog_cons : p->prog_depth_id;
+    const GLuint prog = kind == K_SGSM_ADJ ? p->prog_cons_adj : cons ? p->prog_cons : p->prog_depth_id;
+    if (kind == K_SGSM_ADJ && !m->vao_adj)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "SGSM with adjacency without adjacency indices");
     int S = f->size;
     size_t n = (size_t)S * (size_t)S;
     out->depth = sl_calloc(n, sizeof(float));
@@ -100,7 +108,7 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
             /* lambda: Morais 2015 eq. 21 with eta = 1, the half texel
              * diagonal, grown by the coverage margin on both counts */
             glUniform1f(glGetUniformLocation(prog, "u_size"), (float)S);
-            glUniform1f(glGetUniformLocation(prog, "u_lambda"),
+            glUniform1f(glGetUniformLocation(prog, "u_lambda"),  /* -1 (unused) in the adjacency GS */
                         (float)(0.70710678 * (1.0 + 1.0 / 1024.0) + 2.0 * SL_CONS_EPS_TEXELS));
             glUniform1i(glGetUniformLocation(prog, "u_mode"), kind - K_BGSM);
             glUniform1d(glGetUniformLocation(prog, "u_eps"), SL_CONS_EPS_TEXELS);
@@ -123,7 +131,7 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
         glGenQueries(2, q);
         glBeginQuery(GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB, q[0]);
         glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q[1]);
-        glBindVertexArray(m->vao);
+        glBindVertexArray(kind == K_SGSM_ADJ ? m->vao_adj : m->vao);
         /* two-sided meshes (leaves) are never culled: culling the side that
          * faces the light would remove the leaf from the map altogether; the
          * conservative layers cull nothing (see methods/conservative.c) */
@@ -133,8 +141,12 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
             else
                 glDisable(GL_CULL_FACE);
             glUniform1ui(first_loc, m->runs[r].first);
-            glDrawElements(GL_TRIANGLES, (GLsizei)(3 * m->runs[r].count), GL_UNSIGNED_INT,
-                           (const void *)((size_t)m->runs[r].first * 3 * sizeof(uint32_t)));
+            if (kind == K_SGSM_ADJ)
+                glDrawElements(GL_TRIANGLES_ADJACENCY, (GLsizei)(6 * m->runs[r].count), GL_UNSIGNED_INT,
+                               (const void *)((size_t)m->runs[r].first * 6 * sizeof(uint32_t)));
+            else
+                glDrawElements(GL_TRIANGLES, (GLsizei)(3 * m->runs[r].count), GL_UNSIGNED_INT,
+                               (const void *)((size_t)m->runs[r].first * 3 * sizeof(uint32_t)));
         }
         glEndQuery(GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB);
         glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
@@ -188,6 +200,9 @@ enum sl_err sl_shadowmap_render(const struct sl_shadowmap_pass *p, const struct 
             break;
         case SL_LAYER_SGSM:
             e = render_layer(p, m, f, K_SGSM, &f->layer[l], d);
+            break;
+        case SL_LAYER_SGSM_ADJ:
+            e = render_layer(p, m, f, K_SGSM_ADJ, &f->layer[l], d);
             break;
         case SL_LAYER_COUNT:
             break;

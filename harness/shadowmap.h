@@ -14,6 +14,7 @@
 struct sl_shadowmap_pass {
     GLuint prog_depth_id;
     GLuint prog_cons;         /* conservative layers: geometry shader + exact per-texel tests */
+    GLuint prog_cons_adj;     /* SGSM with adjacency: GL_TRIANGLES_ADJACENCY input */
 };
 
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d);

@@ -85,7 +85,7 @@ enum { V_LIT = 1, V_SHADOW = 2 };
 /* What the layers say of one PFL pixel: V_LIT if BGSM proves it lit,
  * V_SHADOW if SGSM proves it shadowed, 0 if neither; tests counted. */
 static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int use_sgsm,
-                  uint64_t *lookups, uint64_t *tests)
+                  enum sl_layer_id sgsm_layer, uint64_t *lookups, uint64_t *tests)
 {
     const struct sl_light_frame *f = a->frame;
     const struct sl_view *v = a->view;
@@ -95,7 +95,7 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
     uint32_t k = sl_frame_texel(f, u, w);
     int r = 0;
     if (use_sgsm) {
-        const struct sl_depth_layer *sg = &f->layer[SL_LAYER_SGSM];
+        const struct sl_depth_layer *sg = &f->layer[sgsm_layer];
         (*lookups)++;
         float m = 2.0f * sl_rt_tnear(p) / f->depth_range + 0x1p-20f;
         if (sg->id[k] && sg->id[k] != v->tri[i] && sg->depth[k] < z - m)
@@ -125,7 +125,7 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
 enum mode { M_BGSM, M_SGSM, M_CSM };
 
 static enum sl_err run_mode(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
-                            enum mode mode, struct sl_diag *d)
+                            enum mode mode, enum sl_layer_id sgsm_layer, struct sl_diag *d)
 {
     const struct sl_view *v = a->view;
     const long n = (long)v->w * v->h;
@@ -153,7 +153,7 @@ static enum sl_err run_mode(const struct sl_method_args *a, struct sl_verdicts *
             out->how[i] = SL_HOW_PNFL;
             continue;
         }
-        int r = decide(a, (size_t)i, mode != M_SGSM, mode != M_BGSM, &lookups, &tests);
+        int r = decide(a, (size_t)i, mode != M_SGSM, mode != M_BGSM, sgsm_layer, &lookups, &tests);
         out->how[i] = SL_HOW_MAP;
         if (r == (V_LIT | V_SHADOW)) {
             conflicts++;       /* impossible if both layers are right; trace it */
@@ -200,7 +200,9 @@ static enum sl_err run_mode(const struct sl_method_args *a, struct sl_verdicts *
 
 static unsigned needs_bgsm(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_BGSM) | SL_NEED(SL_LAYER_BGSM2); }
 static unsigned needs_sgsm(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_SGSM); }
+static unsigned needs_sgsm_adj(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_SGSM_ADJ) | SL_NEED_ADJACENCY; }
 static unsigned needs_csm(const struct sl_method_params *p) { return needs_bgsm(p) | needs_sgsm(p); }
+static unsigned needs_csm_adj(const struct sl_method_params *p) { return needs_bgsm(p) | needs_sgsm_adj(p); }
 
 static enum sl_err configure_none(struct sl_method_params *p, struct sl_diag *d)
 {
@@ -209,9 +211,11 @@ static enum sl_err configure_none(struct sl_method_params *p, struct sl_diag *d)
     return SL_OK;
 }
 
-static enum sl_err run_bgsm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_BGSM, d); }
-static enum sl_err run_sgsm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_SGSM, d); }
-static enum sl_err run_csm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_CSM, d); }
+static enum sl_err run_bgsm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_BGSM, SL_LAYER_SGSM, d); }
+static enum sl_err run_sgsm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_SGSM, SL_LAYER_SGSM, d); }
+static enum sl_err run_sgsm_adj(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_SGSM, SL_LAYER_SGSM_ADJ, d); }
+static enum sl_err run_csm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_CSM, SL_LAYER_SGSM, d); }
+static enum sl_err run_csm_adj(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_CSM, SL_LAYER_SGSM_ADJ, d); }
 
 const struct sl_method sl_method_bgsm = {
     .name = "bgsm", .summary = "big-triangle (conservative) shadow map: its lit pixels are lit in truth",
@@ -221,7 +225,15 @@ const struct sl_method sl_method_sgsm = {
     .name = "sgsm", .summary = "small-triangle shadow map: its shadowed pixels are shadowed in truth",
     .exact = SL_EXACT_SHADOW, .needs = needs_sgsm, .configure = configure_none, .run = run_sgsm,
 };
+const struct sl_method sl_method_sgsm_adj = {
+    .name = "sgsm_adj", .summary = "SGSM keeping edges between away-facing neighbours (Morais 2015 ch. 4)",
+    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm_adj, .configure = configure_none, .run = run_sgsm_adj,
+};
 const struct sl_method sl_method_csm = {
     .name = "csm", .summary = "CSMa: lit by BGSM, shadowed by SGSM, the rest traced (Morais 2015)",
     .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm, .configure = configure_none, .run = run_csm,
+};
+const struct sl_method sl_method_csm_adj = {
+    .name = "csm_adj", .summary = "CSMA: lit by BGSM, shadowed by SGSM with adjacency, the rest traced",
+    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm_adj, .configure = configure_none, .run = run_csm_adj,
 };

@@ -10,13 +10,17 @@ extern const struct sl_method sl_method_nsm;
 extern const struct sl_method sl_method_bgsm;
 extern const struct sl_method sl_method_sgsm;
 extern const struct sl_method sl_method_csm;
+extern const struct sl_method sl_method_sgsm_adj;
+extern const struct sl_method sl_method_csm_adj;
 extern const struct sl_method sl_method_raytrace;
 
 static const struct sl_method *const sl_methods[] = {
     &sl_method_nsm,
     &sl_method_bgsm,
     &sl_method_sgsm,
+    &sl_method_sgsm_adj,
     &sl_method_csm,
+    &sl_method_csm_adj,
     &sl_method_raytrace,
     NULL,
 };

@@ -23,6 +23,11 @@ flat out vec3 g_v0;
 flat out vec3 g_v1;
 flat out vec3 g_v2;
 flat out uint g_tri;
+flat out vec3 g_n0;            // unused here: sgsm_adj's neighbours (cons_adj_gs.glsl)
+flat out vec3 g_n1;
+flat out vec3 g_n2;
+flat out uint g_keep;
+uniform int u_mode;
 
 vec3 win(vec4 c) { return vec3((c.xy * 0.5 + 0.5) * u_size, c.z); }
 
@@ -39,11 +44,21 @@ void main()
     g_v1 = v[1];
     g_v2 = v[2];
     g_tri = u_first + uint(gl_PrimitiveIDIn) + 1u;
+    g_n0 = g_n1 = g_n2 = vec3(0.0);
+    g_keep = 0u;
     // every emitted vertex at the nearest depth of the triangle, clamped into
     // the box: clipping must never cut a fragment we want (cons_fs writes the
     // real conservative depth)
     float z = clamp(min(v[0].z, min(v[1].z, v[2].z)), 0.0, 1.0);
     float area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+    if (u_mode == 2) {
+        // SGSM keeps only texels wholly inside the triangle, whose centres
+        // the triangle itself covers: no enlargement
+        for (int i = 0; i < 3; i++)
+            emit(v[i].xy, z);
+        EndPrimitive();
+        return;
+    }
     bool fallback = abs(area) < 1e-6;
     vec2 n[3];
     if (!fallback) {

@@ -1,0 +1,59 @@
+#version 450 core
+// SGSM with adjacency (Morais 2015, chapter 4), fed GL_TRIANGLES_ADJACENCY:
+// gl_in[0, 2, 4] is the triangle, gl_in[1, 3, 5] the vertex opposite edges
+// (0,2), (2,4), (4,0) in the neighbour across them, or a repeat of the
+// edge's first vertex where there is no neighbour (or more than one).
+// An edge stays in place when the triangle and that neighbour both face
+// away from the light ("in shadow"); a missing neighbour counts as lit.
+// Morais moves the other edges inwards and emits 1, 1, 2 or 4 triangles for
+// 0..3 kept edges; here the exact per-texel test of cons_fs.glsl (mode 3)
+// does the shrinking, so the triangle is emitted as it is: a texel wholly
+// inside the triangle and its kept neighbours has its centre in one of
+// them, and each rasterises itself.
+layout(triangles_adjacency) in;
+layout(triangle_strip, max_vertices = 3) out;
+uniform float u_size;
+uniform uint u_first;
+flat out vec3 g_v0;
+flat out vec3 g_v1;
+flat out vec3 g_v2;
+flat out uint g_tri;
+flat out vec3 g_n0;
+flat out vec3 g_n1;
+flat out vec3 g_n2;
+flat out uint g_keep;
+
+vec3 win(vec4 c) { return vec3((c.xy * 0.5 + 0.5) * u_size, c.z); }
+
+float area2(vec3 a, vec3 b, vec3 c) { return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y); }
+
+void main()
+{
+    vec3 v[3] = vec3[3](win(gl_in[0].gl_Position), win(gl_in[2].gl_Position), win(gl_in[4].gl_Position));
+    vec3 o[3] = vec3[3](win(gl_in[1].gl_Position), win(gl_in[3].gl_Position), win(gl_in[5].gl_Position));
+    g_v0 = v[0];
+    g_v1 = v[1];
+    g_v2 = v[2];
+    g_n0 = o[0];
+    g_n1 = o[1];
+    g_n2 = o[2];
+    g_tri = u_first + uint(gl_PrimitiveIDIn) + 1u;
+    // seen from the light (window space, counter-clockwise = front), a
+    // triangle faces away from the light when its signed area is negative
+    bool away = area2(v[0], v[1], v[2]) < 0.0;
+    uint keep = 0u;
+    for (int i = 0; i < 3; i++) {
+        vec3 a = v[i], b = v[(i + 1) % 3];
+        bool exists = o[i] != a && o[i] != b;
+        // the neighbour winds b -> a -> opposite
+        if (away && exists && area2(b, a, o[i]) < 0.0)
+            keep |= 1u << i;
+    }
+    g_keep = keep;
+    float z = clamp(min(v[0].z, min(v[1].z, v[2].z)), 0.0, 1.0);
+    for (int i = 0; i < 3; i++) {
+        gl_Position = vec4(v[i].xy / u_size * 2.0 - 1.0, z, 1.0);
+        EmitVertex();
+    }
+    EndPrimitive();
+}
