@@ -63,6 +63,10 @@ void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, c
                 c[SL_FIG_uncertain]++;
             }
             c[SL_FIG_wrong] += (uint64_t)wrong;
+            if (vd->how[i] == SL_HOW_TRACED) {
+                c[SL_FIG_traced]++;
+                c[SL_FIG_traced_shadow] += (uint64_t)(t == SL_T_SHADOW);
+            }
         }
     }
     for (int r = 0; r < nregions; r++) {

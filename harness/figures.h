@@ -31,7 +31,9 @@
     X(shadow_correct,   "in shadow, shadowed in truth",               "shadow")   \
     X(shadow_incorrect, "in shadow, lit in truth (wrongly shadowed)", "shadow")   \
     X(wrong,            "wrong pixels (both kinds)",                  "pixels")   \
-    X(wrong_caught,     "wrong pixels of the whole image inside this region", "wrong_image")
+    X(wrong_caught,     "wrong pixels of the whole image inside this region", "wrong_image") \
+    X(traced,           "pixels decided by a shadow ray (uncertain to the maps)", "pixels") \
+    X(traced_shadow,    "of those, shadowed in truth",                "traced")
 
 enum sl_figure {
 #define SL_FIG_ENUM(name, text, of) SL_FIG_##name,

@@ -134,19 +134,20 @@ static void write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_
     machine_of(&res->prov, machine, sizeof machine);
     fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,ms_gbuffer_render,ms_gbuffer_readback,"
                "ms_truth,truth_cached,truth_rays,ms_fit,ms_map_render,ms_map_readback,ms_method,"
-               "ms_method_min,ms_method_max,runs,lookups,rays,tri_tests,ms_contours,ms_figures,"
-               "ms_overlay,git_sha,config_hash,machine\n");
+               "ms_method_min,ms_method_max,runs,ms_ray_step,lookups,rays,tri_tests,gs_prims,fragments,"
+               "ms_contours,ms_figures,ms_overlay,git_sha,config_hash,machine\n");
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
         const struct sl_stage_ms *s = &cl->ms;
-        fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,"
-                   "%llu,%llu,%llu,%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n",
+        fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%.3f,"
+                   "%llu,%llu,%llu,%llu,%llu,%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n",
                 cl->index, cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
                 c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label,
                 s->gbuffer_render, s->gbuffer_readback, s->truth, cl->truth_cached,
                 (unsigned long long)cl->truth_rays, s->fit, s->map_render, s->map_readback, s->method,
-                s->method_min, s->method_max, c->runs, (unsigned long long)cl->cost.lookups,
-                (unsigned long long)cl->cost.rays, (unsigned long long)cl->cost.tri_tests, s->contours,
+                s->method_min, s->method_max, c->runs, cl->cost.ms_trace, (unsigned long long)cl->cost.lookups,
+                (unsigned long long)cl->cost.rays, (unsigned long long)cl->cost.tri_tests,
+                (unsigned long long)cl->gs_prims, (unsigned long long)cl->fragments, s->contours,
                 s->figures, s->overlay, res->prov.git_sha, c->hash, machine);
     }
 }
@@ -155,16 +156,17 @@ static void write_costs_md(FILE *f, const struct sl_config *c, const struct sl_r
 {
     fprintf(f, "\n## Cost per cell (ms; G-buffer and truth are shared by the cells of a view)\n\n");
     fprintf(f, "| cell | scene | viewpoint | map | label | G-buffer | truth | fit | map render | readback "
-               "| method (median of %d) | lookups | contours | figures | overlay |\n", c->runs);
-    fprintf(f, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+               "| method (median of %d) | of which rays | rays | lookups | ray-tri tests | GS prims | contours | figures | overlay |\n", c->runs);
+    fprintf(f, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
         const struct sl_stage_ms *s = &cl->ms;
-        fprintf(f, "| %d | %s | %s | %d | %s | %.1f | %.1f%s | %.1f | %.1f | %.1f | %.1f | %llu | %.1f | %.1f | %.1f |\n",
+        fprintf(f, "| %d | %s | %s | %d | %s | %.1f | %.1f%s | %.1f | %.1f | %.1f | %.1f | %.1f | %llu | %llu | %llu | %llu | %.1f | %.1f | %.1f |\n",
                 cl->index, cl->scene, cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label,
                 s->gbuffer_render + s->gbuffer_readback, s->truth, cl->truth_cached ? " (cached)" : "", s->fit,
-                s->map_render, s->map_readback, s->method, (unsigned long long)cl->cost.lookups,
-                s->contours, s->figures, s->overlay);
+                s->map_render, s->map_readback, s->method, cl->cost.ms_trace, (unsigned long long)cl->cost.rays,
+                (unsigned long long)cl->cost.lookups, (unsigned long long)cl->cost.tri_tests,
+                (unsigned long long)cl->gs_prims, s->contours, s->figures, s->overlay);
     }
     fprintf(f, "\nTotal %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.\n",
             res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
@@ -542,6 +544,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         if (mneeds & SL_NEED(l)) {
             cell->ms.map_render += x->frame.layer[l].ms_render;
             cell->ms.map_readback += x->frame.layer[l].ms_readback;
+            cell->gs_prims += x->frame.layer[l].gs_prims;
+            cell->fragments += x->frame.layer[l].fragments;
         }
     /* methods get the view without its truth */
     struct sl_view mview = x->view;

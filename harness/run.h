@@ -78,6 +78,7 @@ struct sl_cell {
     struct sl_figures  fig;
     struct sl_cost     cost;
     struct sl_stage_ms ms;
+    uint64_t gs_prims, fragments;      /* of the layers the method reads (GL queries) */
     int      truth_cached;
     uint64_t truth_rays;
     uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;

@@ -27,7 +27,7 @@
 #include <string.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 1
+#define SL_STORE_VERSION 2   /* 2: figures traced, traced_shadow */
 #define SL_STORE_BUSY_MS 10000
 
 /* ---- schema ---- */

@@ -102,7 +102,8 @@ static void table_markdown_rows(void **st)
                                "| pixels | 1000 | 1010 | 2000 | 2010 |\n"
                                "| pfl | 1001 (1.25%) | 1011 (11.25%) | 2001 (1.25%) | 2011 (11.25%) |\n"));
     assert_non_null(strstr(md, "\n| light_correct | 1006 (6.25%) | 1016 (16.25%) | 2006 (6.25%) | 2016 (16.25%) |\n"));
-    assert_non_null(strstr(md, "\n| wrong_caught | 1011 (11.25%) | 1021 (21.25%) | 2011 (11.25%) | 2021 (21.25%) |\n\n"
+    assert_non_null(strstr(md, "\n| wrong_caught | 1011 (11.25%) | 1021 (21.25%) | 2011 (11.25%) | 2021 (21.25%) |\n"));
+    assert_non_null(strstr(md, "\n| traced_shadow | 1013 (13.25%) | 1023 (23.25%) | 2013 (13.25%) | 2023 (23.25%) |\n\n"
                                "method `nsm`; git `abc1234`, config `0123456789abcdef`, machine `h/c/i`\n"));
     assert_non_null(strstr(md, "## prim_s / with / 64x32 / nsm_a\n\n"));
     assert_non_null(strstr(md, "| figure | 1024² 2px | 1024² image |\n"));
@@ -173,7 +174,9 @@ static void table_latex_booktabs(void **st)
     assert_non_null(strstr(tex, "\nlight\\_correct & 1006 (6.25\\%) & 1016 (16.25\\%) & 2006 (6.25\\%) & "
                                 "2016 (16.25\\%) \\\\\n"));
     assert_non_null(strstr(tex, "\nwrong\\_caught & 1011 (11.25\\%) & 1021 (21.25\\%) & 2011 (11.25\\%) & "
-                                "2021 (21.25\\%) \\\\\n\\bottomrule\n\\end{tabular}\n"));
+                                "2021 (21.25\\%) \\\\\n"));
+    assert_non_null(strstr(tex, "\ntraced\\_shadow & 1013 (13.25\\%) & 1023 (23.25\\%) & 2013 (13.25\\%) & "
+                                "2023 (23.25\\%) \\\\\n\\bottomrule\n\\end{tabular}\n"));
     assert_non_null(strstr(tex, "{\\footnotesize method \\texttt{nsm}; git \\texttt{abc1234}, config "
                                 "\\texttt{0123456789abcdef}, machine "
                                 "a\\&b\\#c\\$d\\{e\\}f\\%g\\_h\\textasciitilde{}\\textasciicircum{}"
