@@ -20,6 +20,7 @@ enum sl_layer_id {
     SL_LAYER_BGSM2,             /* the same without the triangle BGSM stored at the texel (needs BGSM) */
     SL_LAYER_SGSM,              /* triangles covering the whole texel, their highest depth there */
     SL_LAYER_SGSM_ADJ,          /* the same, a triangle extended across edges to away-facing neighbours */
+    SL_LAYER_HERTEL,            /* BGSM's layer with Hertel's "fully covered" mark (SL_HERTEL_FULL in id) */
     SL_LAYER_COUNT
 };
 #define SL_NEED(layer) (1u << (layer))
@@ -40,6 +41,9 @@ struct sl_depth_layer {
     uint64_t  gs_prims;         /* primitives the geometry shader emitted (GL query; 0 without GS) */
     uint64_t  fragments;        /* fragment shader invocations (GL query) */
 };
+
+/* Hertel's layer marks a texel wholly inside its stored triangle. */
+#define SL_HERTEL_FULL 0x80000000u
 
 /* Margins of the conservative layers, shared by the shaders (uniforms) and
  * the methods that read them; see methods/conservative.c for why each is

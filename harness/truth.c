@@ -116,6 +116,13 @@ enum sl_err sl_rt_trace(const struct sl_rt *rt, const struct sl_scene *s, const 
                         const uint8_t *select, uint8_t *out, uint64_t *rays_out, uint64_t *shadow_out,
                         struct sl_diag *d)
 {
+    return sl_rt_trace_until(rt, s, v, select, NULL, out, rays_out, shadow_out, d);
+}
+
+enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, const struct sl_view *v,
+                              const uint8_t *select, const float *tfar, uint8_t *out, uint64_t *rays_out,
+                              uint64_t *shadow_out, struct sl_diag *d)
+{
     const int W = v->w, H = v->h;
     const int tx = (W + 3) / 4, ty = (H + 3) / 4;
     const float lx = -s->light_dir[0], ly = -s->light_dir[1], lz = -s->light_dir[2];
@@ -153,7 +160,7 @@ enum sl_err sl_rt_trace(const struct sl_rt *rt, const struct sl_scene *s, const 
                     r.dir_y[k] = ly;
                     r.dir_z[k] = lz;
                     r.time[k] = 0.0f;
-                    r.tfar[k] = INFINITY;
+                    r.tfar[k] = tfar ? tfar[i] : INFINITY;
                     r.mask[k] = 0xffffffffu;
                     r.id[k] = v->tri[i];
                     r.flags[k] = 0;

@@ -59,6 +59,13 @@ enum sl_err sl_rt_trace(const struct sl_rt *rt, const struct sl_scene *s, const 
                         const uint8_t *select, uint8_t *out, uint64_t *rays, uint64_t *shadow,
                         struct sl_diag *d);
 
+/* The same with a per-pixel end of ray (tfar[i], world units; NULL =
+ * infinity): Hertel's RT_opt, where nothing can occlude beyond a known
+ * distance and shorter rays are cheaper. */
+enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, const struct sl_view *v,
+                              const uint8_t *select, const float *tfar, uint8_t *out, uint64_t *rays,
+                              uint64_t *shadow, struct sl_diag *d);
+
 /* Turn on flush-to-zero / denormals-are-zero in the calling thread (Embree's
  * advice; tracing threads call it). */
 void sl_rt_thread_init(void);

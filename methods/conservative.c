@@ -53,31 +53,8 @@
 static int surely_misses(const struct sl_scene *s, const float p[3], uint32_t t)
 {
     const uint32_t *ix = s->idx + 3 * (size_t)t;
-    double a[3], b[3], c[3], o[3], dir[3], n[3], e1[3], e2[3];
-    double mag = 0.0;
-    for (int k = 0; k < 3; k++) {
-        a[k] = s->pos[3 * ix[0] + k];
-        b[k] = s->pos[3 * ix[1] + k];
-        c[k] = s->pos[3 * ix[2] + k];
-        o[k] = p[k];
-        dir[k] = -(double)s->light_dir[k];
-        e1[k] = b[k] - a[k];
-        e2[k] = c[k] - a[k];
-        mag = fmax(mag, fmax(fabs(o[k]), fmax(fabs(a[k]), fmax(fabs(b[k]), fabs(c[k])))));
-    }
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    double den = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]) / nn;
-    if (fabs(den) < 1e-9)
-        return 0;                           /* grazing: too close to call */
-    double num = (n[0] * (a[0] - o[0]) + n[1] * (a[1] - o[1]) + n[2] * (a[2] - o[2])) / nn;
-    double th = num / den;
-    if (th < 0.5 * (double)sl_rt_tnear(p))
-        return 1;                           /* behind, or before Embree starts looking */
-    double q[3] = {o[0] + th * dir[0], o[1] + th * dir[1], o[2] + th * dir[2]};
-    return sl_point_tri_dist_d(q, a, b, c) > 1e-5 * (mag + 1.0);
+    return sl_shadow_ray_tri_sure(p, s->light_dir, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
+                                  s->pos + 3 * ix[2]) < 0;
 }
 
 enum { V_LIT = 1, V_SHADOW = 2 };

@@ -12,6 +12,7 @@ extern const struct sl_method sl_method_sgsm;
 extern const struct sl_method sl_method_csm;
 extern const struct sl_method sl_method_sgsm_adj;
 extern const struct sl_method sl_method_csm_adj;
+extern const struct sl_method sl_method_hertel;
 extern const struct sl_method sl_method_raytrace;
 
 static const struct sl_method *const sl_methods[] = {
@@ -21,6 +22,7 @@ static const struct sl_method *const sl_methods[] = {
     &sl_method_sgsm_adj,
     &sl_method_csm,
     &sl_method_csm_adj,
+    &sl_method_hertel,
     &sl_method_raytrace,
     NULL,
 };

@@ -57,14 +57,14 @@ static void conservative_invariants_on_every_scene(void **st)
              "  - {scene: spider}\n  - {scene: %s/tests/scenes/slivers.yaml}\n"
              "viewports: [{width: 192, height: 160}]\nmap_sizes: [256, 2048]\n"
              "methods:\n  - {method: bgsm}\n  - {method: sgsm}\n  - {method: sgsm_adj}\n"
-             "  - {method: csm}\n  - {method: csm_adj}\n", cwd);
+             "  - {method: csm}\n  - {method: csm_adj}\n  - {method: hertel}\n", cwd);
     struct sl_config c;
     load(text, &c);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result r;
     struct sl_diag d;
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
-    assert_int_equal(r.ncells, (3 + 3 + 3 + 3 + 2 + 1) * 2 * 5);
+    assert_int_equal(r.ncells, (3 + 3 + 3 + 3 + 2 + 1) * 2 * 6);
     uint64_t violations = 0, traced_csm = 0, traced_adj = 0, pfl = 0;
     for (int i = 0; i < r.ncells; i++) {
         const struct sl_cell *cl = &r.cells[i];
@@ -74,7 +74,7 @@ static void conservative_invariants_on_every_scene(void **st)
             assert_int_equal(img->n[SL_FIG_light_incorrect], 0);
         if (label_is(&c, cl, "sgsm") || label_is(&c, cl, "sgsm_adj"))
             assert_int_equal(img->n[SL_FIG_shadow_incorrect], 0);
-        if (label_is(&c, cl, "csm") || label_is(&c, cl, "csm_adj")) {
+        if (label_is(&c, cl, "csm") || label_is(&c, cl, "csm_adj") || label_is(&c, cl, "hertel")) {
             assert_int_equal(cl->fig.wrong_image, 0);                 /* the truth, pixel for pixel */
             assert_int_equal(img->n[SL_FIG_uncertain], 0);
             assert_int_equal(cl->cost.rays, img->n[SL_FIG_traced]);

@@ -15,7 +15,9 @@
 // triangle by at least u_eps texels; the depth written is an upper bound of
 // the triangle's depth over the square (maximum of the plane over the corners,
 // never beyond its farthest vertex), plus u_zeps.
-// All three write the triangle's id; the depth test keeps the smallest value.
+// u_mode 4 (Hertel 2009): as mode 0, and the id carries SL_HERTEL_FULL
+// (the top bit) when the whole square lies inside the triangle by u_eps.
+// All write the triangle's id; the depth test keeps the smallest value.
 uniform int u_mode;
 uniform double u_eps;
 uniform double u_zeps;
@@ -133,6 +135,7 @@ void main()
                         hi.y < double(t.y) - u_eps || lo.y > double(t.y + 1) + u_eps))
         discard;
     // edge axes: signed distance of each corner outside edge i, in texels
+    bool full = abs(area) >= 1e-12;
     for (int i = 0; i < 3; i++) {
         dvec2 a = v[i].xy, b = v[(i + 1) % 3].xy;
         dvec2 e = b - a;
@@ -148,6 +151,7 @@ void main()
         }
         if (u_mode != 2 && dmin > u_eps)
             discard;                       // the whole square is outside this edge
+        full = full && dmax <= -u_eps;
         if (u_mode == 2 && (dmax > -u_eps || abs(area) < 1e-12))
             discard;                       // some of the square is not surely inside
     }
@@ -168,5 +172,5 @@ void main()
     }
     z = u_mode == 2 ? z + u_zeps : z - u_zeps;
     gl_FragDepth = float(clamp(z, 0.0, 1.0));
-    o_tri = g_tri;
+    o_tri = (u_mode == 4 && full) ? (g_tri | 0x80000000u) : g_tri;
 }

@@ -51,7 +51,7 @@ void main()
     // real conservative depth)
     float z = clamp(min(v[0].z, min(v[1].z, v[2].z)), 0.0, 1.0);
     float area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
-    if (u_mode == 2) {
+    if (u_mode == 2 || u_mode == 3) {
         // SGSM keeps only texels wholly inside the triangle, whose centres
         // the triangle itself covers: no enlargement
         for (int i = 0; i < 3; i++)
