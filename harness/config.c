@@ -29,6 +29,9 @@ struct raw_method {
     char  *self_shadow;
     float *bias;
     float *slope;
+    unsigned *texels;
+    unsigned *level;
+    char  *finish;
 };
 struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bool *exr; };
 struct raw_scene_ref {
@@ -70,6 +73,9 @@ static const cyaml_schema_field_t method_fields[] = {
     CYAML_FIELD_STRING_PTR("self_shadow", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, self_shadow, 1, 63),
     CYAML_FIELD_FLOAT_PTR("bias", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, bias),
     CYAML_FIELD_FLOAT_PTR("slope", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, slope),
+    CYAML_FIELD_UINT_PTR("texels", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, texels),
+    CYAML_FIELD_UINT_PTR("level", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, level),
+    CYAML_FIELD_STRING_PTR("finish", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, finish, 1, 15),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t method_schema = {
@@ -271,8 +277,27 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             p->set |= SL_PARAM_SLOPE;
             p->slope = *rm->slope;
         }
+        if (rm->texels) {
+            p->set |= SL_PARAM_TEXELS;
+            p->texels = (int)*rm->texels;
+        }
+        if (rm->level) {
+            p->set |= SL_PARAM_LEVEL;
+            p->level = (int)*rm->level;
+        }
+        if (rm->finish) {
+            p->set |= SL_PARAM_FINISH;
+            snprintf(key, sizeof key, "methods[%u].finish", i);
+            if (strcmp(rm->finish, "trace") == 0)
+                p->finish = 0;
+            else if (strcmp(rm->finish, "lit") == 0)
+                p->finish = 1;
+            else
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "finish '%s': trace or lit", rm->finish);
+        }
         static const struct { unsigned bit; const char *name; } pk[] = {
             {SL_PARAM_SELF_SHADOW, "self_shadow"}, {SL_PARAM_BIAS, "bias"}, {SL_PARAM_SLOPE, "slope"},
+            {SL_PARAM_TEXELS, "texels"}, {SL_PARAM_LEVEL, "level"}, {SL_PARAM_FINISH, "finish"},
         };
         for (size_t k = 0; k < sizeof pk / sizeof pk[0]; k++)
             if ((p->set & pk[k].bit) && !(cm->method->params_ok & pk[k].bit)) {
@@ -368,6 +393,12 @@ void sl_config_write(const struct sl_config *c, FILE *f)
             fprintf(f, ", bias: %g", (double)p->bias);
         if (p->set & SL_PARAM_SLOPE)
             fprintf(f, ", slope: %g", (double)p->slope);
+        if (p->set & SL_PARAM_TEXELS)
+            fprintf(f, ", texels: %d", p->texels);
+        if (p->set & SL_PARAM_LEVEL)
+            fprintf(f, ", level: %d", p->level);
+        if (p->set & SL_PARAM_FINISH)
+            fprintf(f, ", finish: %s", p->finish ? "lit" : "trace");
         fprintf(f, "}\n");
     }
     fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",

@@ -67,6 +67,21 @@ void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, c
                 c[SL_FIG_traced]++;
                 c[SL_FIG_traced_shadow] += (uint64_t)(t == SL_T_SHADOW);
             }
+            if (vd->how[i] == SL_HOW_HINT) {
+                c[SL_FIG_hinted]++;
+                c[SL_FIG_hinted_wrong] += (uint64_t)wrong;
+            }
+            c[SL_FIG_confirmed] += (uint64_t)(vd->how[i] == SL_HOW_CONFIRM);
+            c[SL_FIG_corrected] += (uint64_t)(vd->how[i] == SL_HOW_CORRECT);
+            if (vd->has_base && t != SL_T_PNFL && (verdict == SL_V_LIT || verdict == SL_V_SHADOW)) {
+                uint8_t b = vd->base[i];
+                if (b == verdict)
+                    c[wrong ? SL_FIG_kept_wrong : SL_FIG_kept_right]++;
+                else if (b == SL_V_LIT)
+                    c[wrong ? SL_FIG_broken_ls : SL_FIG_fixed_ls]++;
+                else if (b == SL_V_SHADOW)
+                    c[wrong ? SL_FIG_broken_sl : SL_FIG_fixed_sl]++;
+            }
         }
     }
     for (int r = 0; r < nregions; r++) {

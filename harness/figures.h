@@ -33,7 +33,17 @@
     X(wrong,            "wrong pixels (both kinds)",                  "pixels")   \
     X(wrong_caught,     "wrong pixels of the whole image inside this region", "wrong_image") \
     X(traced,           "pixels decided by a shadow ray (uncertain to the maps)", "pixels") \
-    X(traced_shadow,    "of those, shadowed in truth",                "traced")
+    X(traced_shadow,    "of those, shadowed in truth",                "traced")   \
+    X(hinted,           "pixels given a coherence hint",              "pixels")   \
+    X(hinted_wrong,     "of those, hinted wrongly",                   "hinted")   \
+    X(confirmed,        "shadow confirmed by a ray-triangle hit",     "pixels")   \
+    X(corrected,        "lit turned shadowed by a ray-triangle hit",  "pixels")   \
+    X(fixed_ls,         "vs NSM: L->S, now right (corrected)",        "pixels")   \
+    X(broken_ls,        "vs NSM: L->S, now wrong (turned bad)",       "pixels")   \
+    X(fixed_sl,         "vs NSM: S->L, now right (corrected)",        "pixels")   \
+    X(broken_sl,        "vs NSM: S->L, now wrong (turned bad)",       "pixels")   \
+    X(kept_right,       "vs NSM: unchanged and right (maintained correct)", "pixels") \
+    X(kept_wrong,       "vs NSM: unchanged and wrong (maintained incorrect)", "pixels")
 
 enum sl_figure {
 #define SL_FIG_ENUM(name, text, of) SL_FIG_##name,

@@ -317,6 +317,7 @@ static void ctx_free(struct run_ctx *x)
     free(x->rgb);
     free(x->vd.v);
     free(x->vd.how);
+    free(x->vd.base);
     if (x->gl.ctx) {
         sl_shadowmap_free(&x->spass);
         sl_gl_free(&x->gl);
@@ -359,7 +360,8 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     if (x->W == W && x->H == H)
         return SL_OK;
     size_t npx = (size_t)W * (size_t)H;
-    free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how);
+    free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
+    x->vd.base = sl_calloc(npx, 1);
     x->state = sl_calloc(npx, 1);
     x->band = sl_calloc(npx, 1);
     x->rgb = sl_calloc(npx, 3);
@@ -367,7 +369,7 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     x->vd.how = sl_calloc(npx, 1);
     x->W = x->vd.w = W;
     x->H = x->vd.h = H;
-    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how) {
+    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how || !x->vd.base) {
         x->W = x->H = 0;
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "per-pixel buffers %dx%d", W, H);
     }
@@ -471,8 +473,12 @@ static void check_exact(const struct run_ctx *x, const struct sl_method *m, stru
             size_t i = (size_t)y * (size_t)v->w + (size_t)xx;
             if (v->cls[i] != SL_C_PFL)
                 continue;
+            uint8_t how = x->vd.how[i];
+            int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CORRECT || how == SL_HOW_TRACED;
+            int right = (x->vd.v[i] == SL_V_LIT) == (v->truth[i] == SL_T_LIT);
             int bad = ((m->exact & SL_EXACT_LIT) && x->vd.v[i] == SL_V_LIT && v->truth[i] != SL_T_LIT) ||
-                      ((m->exact & SL_EXACT_SHADOW) && x->vd.v[i] == SL_V_SHADOW && v->truth[i] != SL_T_SHADOW);
+                      ((m->exact & SL_EXACT_SHADOW) && x->vd.v[i] == SL_V_SHADOW && v->truth[i] != SL_T_SHADOW) ||
+                      ((m->exact & SL_EXACT_PROVED) && proved && !right);
             if (!bad)
                 continue;
             if (cell->violations < SL_MAX_VIOLATIONS) {
@@ -559,6 +565,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     enum sl_err e = SL_OK;
     for (int r = 0; r < reps && !e; r++) {
         struct sl_cost cost = {0};
+        x->vd.has_base = 0;
         e = cm->method->run(&a, &x->vd, &cost, d);
         res->passes.method_runs++;
         if (r >= c->warmup)

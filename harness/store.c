@@ -27,7 +27,7 @@
 #include <string.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 2   /* 2: figures traced, traced_shadow */
+#define SL_STORE_VERSION 3   /* 2: figures traced, traced_shadow; 3: hints, confirmations, changes vs NSM */
 #define SL_STORE_BUSY_MS 10000
 
 /* ---- schema ---- */
@@ -804,4 +804,9 @@ long sl_store_count(struct sl_store *s, const char *table)
             return query_int(s->db, sql[i][1], &v) == SQLITE_OK ? (long)v : -1;
         }
     return -1;
+}
+
+int sl_store_version(void)
+{
+    return SL_STORE_VERSION;
 }

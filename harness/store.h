@@ -69,6 +69,9 @@ struct sl_store_filter {
 enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
                            struct sl_table_cell **out, int *n, struct sl_diag *d);
 
+/* The schema version this build reads and writes (PRAGMA user_version). */
+int sl_store_version(void);
+
 /* Number of rows in a table ("runs", "cells", "figures"); -1 on error (tests). */
 long sl_store_count(struct sl_store *s, const char *table);
 

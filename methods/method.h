@@ -51,6 +51,8 @@ struct sl_verdicts {
     int      w, h;
     uint8_t *v;      /* enum sl_verdict */
     uint8_t *how;    /* enum sl_how */
+    uint8_t *base;   /* the verdict of the method this one refines (NSM), when has_base */
+    int      has_base;
 };
 
 /* Machine-independent counts beside wall time. */
@@ -86,11 +88,17 @@ int         sl_self_shadow_parse(const char *name);   /* -1 if unknown */
 #define SL_PARAM_SELF_SHADOW (1u << 0)
 #define SL_PARAM_BIAS        (1u << 1)
 #define SL_PARAM_SLOPE       (1u << 2)
+#define SL_PARAM_TEXELS      (1u << 3)
+#define SL_PARAM_LEVEL       (1u << 4)
+#define SL_PARAM_FINISH      (1u << 5)
 struct sl_method_params {
     unsigned set;
     int      self_shadow;   /* enum sl_self_shadow */
     float    bias;          /* world units */
     float    slope;         /* texels of depth per unit of tan(angle) */
+    int      texels;        /* coherence, neighbours: 4 or 9 */
+    int      level;         /* adjacency: 1 (edge) or 2 (vertex) */
+    int      finish;        /* chain: 0 trace the pixels left, 1 leave them lit */
 };
 
 struct sl_method_args {
@@ -107,6 +115,7 @@ struct sl_method_args {
  * cell and reports each violation (a violation is a bug). */
 #define SL_EXACT_LIT    (1u << 0)   /* a PFL pixel it calls lit is lit in truth */
 #define SL_EXACT_SHADOW (1u << 1)   /* a PFL pixel it calls shadowed is shadowed in truth */
+#define SL_EXACT_PROVED (1u << 2)   /* a pixel it confirms, corrects or traces agrees with the truth */
 
 struct sl_method {
     const char *name;          /* config key */

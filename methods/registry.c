@@ -13,10 +13,20 @@ extern const struct sl_method sl_method_csm;
 extern const struct sl_method sl_method_sgsm_adj;
 extern const struct sl_method sl_method_csm_adj;
 extern const struct sl_method sl_method_hertel;
+extern const struct sl_method sl_method_coherence;
+extern const struct sl_method sl_method_texel;
+extern const struct sl_method sl_method_neighbours;
+extern const struct sl_method sl_method_adjacency;
+extern const struct sl_method sl_method_chain;
 extern const struct sl_method sl_method_raytrace;
 
 static const struct sl_method *const sl_methods[] = {
     &sl_method_nsm,
+    &sl_method_coherence,
+    &sl_method_texel,
+    &sl_method_neighbours,
+    &sl_method_adjacency,
+    &sl_method_chain,
     &sl_method_bgsm,
     &sl_method_sgsm,
     &sl_method_sgsm_adj,

@@ -1,0 +1,320 @@
+/*
+ * moderno.c — Moderno 2011, "Shadow Mapping and Ray-Tracing": how far the
+ * shadow map's own information (depths and the ids of the triangles it
+ * stores) confirms or corrects a pixel with a handful of ray-triangle tests.
+ *
+ * All read the front-face-culled depth + id layer of normal shadow mapping
+ * (the thesis's map) and start from its verdict (kept in verdicts.base, so
+ * the figures count corrected / turned bad / maintained against NSM):
+ * - coherence (texels 4 or 9): the pixel's depth test against the 2x2 texels
+ *   of its bilinear footprint or the 3x3 around its texel; all agree: a hint
+ *   (may be wrong); otherwise undecided.
+ * - texel: a ray against the triangle stored in the texel: a hit shadows the
+ *   pixel (confirms NSM's shadow, or corrects its light: Figure 19).
+ * - neighbours (texels 4 or 9): the same against the triangles of the texel
+ *   and its 3 neighbours toward the pixel's quadrant, or all 8 neighbours.
+ * - adjacency (level 1 or 2): the stored triangle and its edge-adjacent (1)
+ *   or vertex-adjacent (2) triangles.
+ * - chain (finish trace or lit): coherence(4) -> neighbours(9) ->
+ *   adjacency(2) for pixels the map shadows -> the rest traced with Embree,
+ *   or left lit.
+ * Standalone, a method that finds no intersection leaves the pixel lit
+ * (sections 4.5-4.7); in the chain it stays undecided.
+ *
+ * A "hit" is a sure one (sl_shadow_ray_tri_sure): the ray crosses the
+ * triangle inside by a margin and beyond twice the truth's tnear, so Embree
+ * meets it too: a confirmation or a correction is never wrong (the driver
+ * checks it, SL_EXACT_PROVED). Rays that graze a triangle's edge count as
+ * no hit, the side that can only leave a pixel undecided.
+ */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include "adjacency.h"
+#include "method.h"
+#include "raytri.h"
+#include "truth.h"
+#include "util.h"
+
+enum kind { K_COHERENCE, K_TEXEL, K_NEIGHBOURS, K_ADJACENCY, K_CHAIN };
+
+static unsigned needs_map(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_DEPTH_ID_BACK); }
+static unsigned needs_adj(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_DEPTH_ID_BACK) | SL_NEED_ADJACENCY; }
+
+static enum sl_err conf_texels(struct sl_method_params *p, struct sl_diag *d)
+{
+    if (!(p->set & SL_PARAM_TEXELS))
+        p->texels = 4;
+    if (p->texels != 4 && p->texels != 9)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "texels", "texels must be 4 or 9");
+    p->set = SL_PARAM_TEXELS;
+    return SL_OK;
+}
+
+static enum sl_err conf_level(struct sl_method_params *p, struct sl_diag *d)
+{
+    if (!(p->set & SL_PARAM_LEVEL))
+        p->level = 2;
+    if (p->level != 1 && p->level != 2)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "level", "level must be 1 (edges) or 2 (vertices)");
+    p->set = SL_PARAM_LEVEL;
+    return SL_OK;
+}
+
+static enum sl_err conf_none(struct sl_method_params *p, struct sl_diag *d)
+{
+    (void)d;
+    p->set = 0;
+    return SL_OK;
+}
+
+static enum sl_err conf_chain(struct sl_method_params *p, struct sl_diag *d)
+{
+    (void)d;
+    if (!(p->set & SL_PARAM_FINISH))
+        p->finish = 0;
+    p->set = SL_PARAM_FINISH;
+    return SL_OK;
+}
+
+struct ctx {
+    const struct sl_method_args *a;
+    const struct sl_depth_layer *L;
+    int S;
+};
+
+static int lit_at(const struct ctx *c, int tx, int ty, float z)
+{
+    if (tx < 0) tx = 0;
+    if (ty < 0) ty = 0;
+    if (tx >= c->S) tx = c->S - 1;
+    if (ty >= c->S) ty = c->S - 1;
+    return z <= c->L->depth[(size_t)ty * (size_t)c->S + (size_t)tx];
+}
+
+/* 1 all lit, 2 all shadowed, 0 not coherent. */
+static int coherence(const struct ctx *c, float u, float v, float z, int texels, uint64_t *lookups)
+{
+    int x0, y0, n;
+    if (texels == 4) {             /* the bilinear footprint */
+        x0 = (int)floorf(u - 0.5f);
+        y0 = (int)floorf(v - 0.5f);
+        n = 2;
+    } else {
+        x0 = (int)floorf(u) - 1;
+        y0 = (int)floorf(v) - 1;
+        n = 3;
+    }
+    int lit = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++)
+            lit += lit_at(c, x0 + i, y0 + j, z);
+    *lookups += (uint64_t)(n * n);
+    return lit == n * n ? 1 : lit == 0 ? 2 : 0;
+}
+
+static int sure_hit(const struct ctx *c, const float p[3], uint32_t tri_plus1, uint32_t own, uint64_t *tests)
+{
+    if (!tri_plus1 || tri_plus1 == own)
+        return 0;
+    const struct sl_scene *s = c->a->scene;
+    const uint32_t *ix = s->idx + 3 * (size_t)(tri_plus1 - 1);
+    (*tests)++;
+    return sl_shadow_ray_tri_sure(p, s->light_dir, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
+                                  s->pos + 3 * ix[2]) > 0;
+}
+
+/* Triangles of the texel and its neighbours: 4 toward the pixel's quadrant or 9. */
+static int neighbours_hit(const struct ctx *c, const float p[3], float u, float v, int texels, uint32_t own,
+                          uint64_t *lookups, uint64_t *tests)
+{
+    int tx = (int)floorf(u), ty = (int)floorf(v);
+    int x0 = tx - 1, y0 = ty - 1, n = 3;
+    if (texels == 4) {
+        x0 = (u - (float)tx < 0.5f) ? tx - 1 : tx;
+        y0 = (v - (float)ty < 0.5f) ? ty - 1 : ty;
+        n = 2;
+    }
+    uint32_t seen[9];
+    int nseen = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int x = x0 + i, y = y0 + j;
+            if (x < 0 || y < 0 || x >= c->S || y >= c->S)
+                continue;
+            (*lookups)++;
+            uint32_t id = c->L->id[(size_t)y * (size_t)c->S + (size_t)x];
+            int dup = 0;
+            for (int k = 0; k < nseen; k++)
+                dup |= seen[k] == id;
+            if (dup)
+                continue;
+            seen[nseen++] = id;
+            if (sure_hit(c, p, id, own, tests))
+                return 1;
+        }
+    return 0;
+}
+
+static int adjacency_hit(const struct ctx *c, const float p[3], uint32_t stored, int level, uint32_t own,
+                         uint64_t *tests)
+{
+    if (!stored)
+        return 0;
+    if (sure_hit(c, p, stored, own, tests))
+        return 1;
+    const struct sl_adjacency *adj = c->a->adj;
+    uint32_t t = stored - 1;
+    if (level == 1) {
+        for (int k = 0; k < 3; k++) {
+            uint32_t nb = adj->edge[3 * (size_t)t + (size_t)k];
+            if (nb != SL_ADJ_NONE && nb != SL_ADJ_MULTI && sure_hit(c, p, nb + 1, own, tests))
+                return 1;
+        }
+        return 0;
+    }
+    for (uint32_t k = adj->vtx_off[t]; k < adj->vtx_off[t + 1]; k++)
+        if (sure_hit(c, p, adj->vtx_tris[k] + 1, own, tests))
+            return 1;
+    return 0;
+}
+
+static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *cost,
+                            enum kind kind, struct sl_diag *d)
+{
+    const struct sl_view *v = a->view;
+    const struct sl_light_frame *f = a->frame;
+    if (!(f->have & SL_NEED(SL_LAYER_DEPTH_ID_BACK)))
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: the shadow map was not rendered");
+    if ((kind == K_ADJACENCY || kind == K_CHAIN) && !a->adj)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: no adjacency");
+    struct ctx c = {.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size};
+    const long n = (long)v->w * v->h;
+    const struct sl_method_params *prm = a->params;
+    uint8_t *left = NULL, *traced = NULL;
+    if (kind == K_CHAIN && prm->finish == 0) {
+        left = sl_calloc((size_t)n, 1);
+        traced = sl_calloc((size_t)n, 1);
+        if (!left || !traced) {
+            free(left);
+            free(traced);
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain masks");
+        }
+    }
+    out->has_base = 1;
+    uint64_t lookups = 0, tests = 0;
+    double t0 = sl_now();
+#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
+    for (long i = 0; i < n; i++) {
+        if (v->cls[i] == SL_C_BACKGROUND) {
+            out->v[i] = out->base[i] = SL_V_NONE;
+            out->how[i] = SL_HOW_NONE;
+            continue;
+        }
+        if (v->cls[i] == SL_C_PNFL) {
+            out->v[i] = out->base[i] = SL_V_SHADOW;
+            out->how[i] = SL_HOW_PNFL;
+            continue;
+        }
+        const float *p = v->pos + 3 * i;
+        float u, w, z;
+        sl_frame_project(f, p, &u, &w, &z);
+        uint32_t k = sl_frame_texel(f, u, w);
+        lookups++;
+        uint8_t nsm = z <= c.L->depth[k] ? SL_V_LIT : SL_V_SHADOW;
+        out->base[i] = nsm;
+        const uint32_t own = v->tri[i];
+        int hit = 0, coh = 0;
+        switch (kind) {
+        case K_COHERENCE:
+            coh = coherence(&c, u, w, z, prm->texels, &lookups);
+            out->v[i] = coh == 1 ? SL_V_LIT : coh == 2 ? SL_V_SHADOW : SL_V_UNCERTAIN;
+            out->how[i] = coh ? SL_HOW_HINT : SL_HOW_NONE;
+            continue;
+        case K_TEXEL:
+            hit = sure_hit(&c, p, c.L->id[k], own, &tests);
+            break;
+        case K_NEIGHBOURS:
+            hit = neighbours_hit(&c, p, u, w, prm->texels, own, &lookups, &tests);
+            break;
+        case K_ADJACENCY:
+            hit = adjacency_hit(&c, p, c.L->id[k], prm->level, own, &tests);
+            break;
+        case K_CHAIN:
+            coh = coherence(&c, u, w, z, 4, &lookups);
+            if (coh) {
+                out->v[i] = coh == 1 ? SL_V_LIT : SL_V_SHADOW;
+                out->how[i] = SL_HOW_HINT;
+                continue;
+            }
+            hit = neighbours_hit(&c, p, u, w, 9, own, &lookups, &tests);
+            if (!hit && nsm == SL_V_SHADOW)
+                hit = adjacency_hit(&c, p, c.L->id[k], 2, own, &tests);
+            if (!hit) {
+                out->v[i] = SL_V_LIT;
+                out->how[i] = SL_HOW_FALLBACK;
+                if (left)
+                    left[i] = 1;
+                continue;
+            }
+            break;
+        }
+        if (hit) {
+            out->v[i] = SL_V_SHADOW;
+            out->how[i] = nsm == SL_V_SHADOW ? SL_HOW_CONFIRM : SL_HOW_CORRECT;
+        } else {
+            out->v[i] = SL_V_LIT;           /* standalone: no intersection, lit */
+            out->how[i] = SL_HOW_FALLBACK;
+        }
+    }
+    cost->ms_method += 1e3 * (sl_now() - t0);
+    cost->lookups += lookups;
+    cost->tri_tests += tests;
+    enum sl_err e = SL_OK;
+    if (left) {
+        double t1 = sl_now();
+        uint64_t rays = 0;
+        e = sl_rt_trace(a->rt, a->scene, v, left, traced, &rays, NULL, d);
+        for (long i = 0; !e && i < n; i++)
+            if (left[i]) {
+                out->v[i] = traced[i] == SL_T_SHADOW ? SL_V_SHADOW : SL_V_LIT;
+                out->how[i] = SL_HOW_TRACED;
+            }
+        cost->rays += rays;
+        cost->ms_trace += 1e3 * (sl_now() - t1);
+        cost->ms_method += 1e3 * (sl_now() - t1);
+    }
+    free(left);
+    free(traced);
+    return e;
+}
+
+static enum sl_err run_coherence(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_COHERENCE, d); }
+static enum sl_err run_texel(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_TEXEL, d); }
+static enum sl_err run_neighbours(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_NEIGHBOURS, d); }
+static enum sl_err run_adjacency(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_ADJACENCY, d); }
+static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_CHAIN, d); }
+
+const struct sl_method sl_method_coherence = {
+    .name = "coherence", .summary = "texel coherence, 4 or 9 texels (Moderno 2011): hints, may be wrong",
+    .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels, .run = run_coherence,
+};
+const struct sl_method sl_method_texel = {
+    .name = "texel", .summary = "a ray against the texel's stored triangle (Moderno 2011)",
+    .exact = SL_EXACT_PROVED, .needs = needs_map, .configure = conf_none, .run = run_texel,
+};
+const struct sl_method sl_method_neighbours = {
+    .name = "neighbours", .summary = "rays against the triangles of 4 or 9 texels (Moderno 2011)",
+    .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels,
+    .run = run_neighbours,
+};
+const struct sl_method sl_method_adjacency = {
+    .name = "adjacency", .summary = "rays against the stored triangle and its edge (1) or vertex (2) neighbours",
+    .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_LEVEL, .needs = needs_adj, .configure = conf_level,
+    .run = run_adjacency,
+};
+const struct sl_method sl_method_chain = {
+    .name = "chain", .summary = "coherence(4) -> neighbours(9) -> adjacency(2) -> traced or lit (Moderno 2011)",
+    .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_FINISH, .needs = needs_adj, .configure = conf_chain,
+    .run = run_chain,
+};
