@@ -106,30 +106,15 @@ static enum sl_err run_mode(const struct sl_method_args *a, struct sl_verdicts *
 {
     const struct sl_view *v = a->view;
     const long n = (long)v->w * v->h;
-    uint8_t *undecided = NULL, *traced = NULL;
-    if (mode == M_CSM) {
-        undecided = sl_calloc((size_t)n, 1);
-        traced = sl_calloc((size_t)n, 1);
-        if (!undecided || !traced) {
-            free(undecided);
-            free(traced);
-            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "csm masks");
-        }
-    }
+    uint8_t *undecided = NULL;
+    if (mode == M_CSM && !(undecided = sl_calloc((size_t)n, 1)))
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "csm mask");
     uint64_t lookups = 0, tests = 0, conflicts = 0;
     double t0 = sl_now();
 #pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests, conflicts)
     for (long i = 0; i < n; i++) {
-        if (v->cls[i] == SL_C_BACKGROUND) {
-            out->v[i] = SL_V_NONE;
-            out->how[i] = SL_HOW_NONE;
+        if (sl_verdict_fixed(v, (size_t)i, out))
             continue;
-        }
-        if (v->cls[i] == SL_C_PNFL) {
-            out->v[i] = SL_V_SHADOW;
-            out->how[i] = SL_HOW_PNFL;
-            continue;
-        }
         int r = decide(a, (size_t)i, mode != M_SGSM, mode != M_BGSM, sgsm_layer, &lookups, &tests);
         out->how[i] = SL_HOW_MAP;
         if (r == (V_LIT | V_SHADOW)) {
@@ -153,25 +138,13 @@ static enum sl_err run_mode(const struct sl_method_args *a, struct sl_verdicts *
     c->lookups += lookups;
     c->tri_tests += tests;
     enum sl_err e = SL_OK;
-    if (mode == M_CSM) {
-        double t1 = sl_now();
-        uint64_t rays = 0;
-        e = sl_rt_trace(a->rt, a->scene, v, undecided, traced, &rays, NULL, d);
-        for (long i = 0; !e && i < n; i++)
-            if (undecided[i]) {
-                out->v[i] = traced[i] == SL_T_SHADOW ? SL_V_SHADOW : SL_V_LIT;
-                out->how[i] = SL_HOW_TRACED;
-            }
-        c->rays += rays;
-        c->ms_trace += 1e3 * (sl_now() - t1);
-        c->ms_method += 1e3 * (sl_now() - t1);
-    }
+    if (mode == M_CSM)
+        e = sl_method_trace_left(a, undecided, NULL, out, c, d);
     if (!e && conflicts)
         e = sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL,
                     "%llu pixels proved both lit and shadowed: a conservative layer is wrong",
                     (unsigned long long)conflicts);
     free(undecided);
-    free(traced);
     return e;
 }
 

@@ -50,11 +50,10 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
     const struct sl_depth_layer *L = &f->layer[SL_LAYER_HERTEL];
     const struct sl_scene *s = a->scene;
     const long n = (long)v->w * v->h;
-    uint8_t *undecided = sl_calloc((size_t)n, 1), *traced = sl_calloc((size_t)n, 1);
+    uint8_t *undecided = sl_calloc((size_t)n, 1);
     float *tfar = sl_calloc((size_t)n, sizeof(float));
-    if (!undecided || !traced || !tfar) {
+    if (!undecided || !tfar) {
         free(undecided);
-        free(traced);
         free(tfar);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "hertel buffers");
     }
@@ -62,16 +61,8 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
     double t0 = sl_now();
 #pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
     for (long i = 0; i < n; i++) {
-        if (v->cls[i] == SL_C_BACKGROUND) {
-            out->v[i] = SL_V_NONE;
-            out->how[i] = SL_HOW_NONE;
+        if (sl_verdict_fixed(v, (size_t)i, out))
             continue;
-        }
-        if (v->cls[i] == SL_C_PNFL) {
-            out->v[i] = SL_V_SHADOW;
-            out->how[i] = SL_HOW_PNFL;
-            continue;
-        }
         const float *p = v->pos + 3 * i;
         float u, w, z;
         sl_frame_project(f, p, &u, &w, &z);
@@ -102,19 +93,8 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
     c->ms_method += 1e3 * (sl_now() - t0);
     c->lookups += lookups;
     c->tri_tests += tests;
-    double t1 = sl_now();
-    uint64_t rays = 0;
-    enum sl_err e = sl_rt_trace_until(a->rt, s, v, undecided, tfar, traced, &rays, NULL, d);
-    for (long i = 0; !e && i < n; i++)
-        if (undecided[i]) {
-            out->v[i] = traced[i] == SL_T_SHADOW ? SL_V_SHADOW : SL_V_LIT;
-            out->how[i] = SL_HOW_TRACED;
-        }
-    c->rays += rays;
-    c->ms_trace += 1e3 * (sl_now() - t1);
-    c->ms_method += 1e3 * (sl_now() - t1);
+    enum sl_err e = sl_method_trace_left(a, undecided, tfar, out, c, d);
     free(undecided);
-    free(traced);
     free(tfar);
     return e;
 }

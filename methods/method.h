@@ -131,6 +131,31 @@ struct sl_method {
                        struct sl_cost *c, struct sl_diag *d);
 };
 
+/* Helpers the methods share (common.c). */
+
+/* Background and PnFL pixels get their fixed verdicts (none; shadow by
+ * definition); returns 1 for them, 0 for a PFL pixel the method decides. */
+static inline int sl_verdict_fixed(const struct sl_view *v, size_t i, struct sl_verdicts *out)
+{
+    if (v->cls[i] == SL_C_BACKGROUND) {
+        out->v[i] = SL_V_NONE;
+        out->how[i] = SL_HOW_NONE;
+        return 1;
+    }
+    if (v->cls[i] == SL_C_PNFL) {
+        out->v[i] = SL_V_SHADOW;
+        out->how[i] = SL_HOW_PNFL;
+        return 1;
+    }
+    return 0;
+}
+
+/* Trace the pixels `left` marks with the truth's own rays (up to tfar[i]
+ * world units when tfar is not NULL) and give them the answer, how =
+ * SL_HOW_TRACED; rays and time go to the cost (ms_trace, and ms_method). */
+enum sl_err sl_method_trace_left(const struct sl_method_args *a, const uint8_t *left, const float *tfar,
+                                 struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d);
+
 const struct sl_method *sl_method_find(const char *name);
 int                     sl_method_count(void);
 const struct sl_method *sl_method_at(int i);

@@ -191,29 +191,16 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
     struct ctx c = {.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size};
     const long n = (long)v->w * v->h;
     const struct sl_method_params *prm = a->params;
-    uint8_t *left = NULL, *traced = NULL;
-    if (kind == K_CHAIN && prm->finish == 0) {
-        left = sl_calloc((size_t)n, 1);
-        traced = sl_calloc((size_t)n, 1);
-        if (!left || !traced) {
-            free(left);
-            free(traced);
-            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain masks");
-        }
-    }
+    uint8_t *left = NULL;
+    if (kind == K_CHAIN && prm->finish == 0 && !(left = sl_calloc((size_t)n, 1)))
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain mask");
     out->has_base = 1;
     uint64_t lookups = 0, tests = 0;
     double t0 = sl_now();
 #pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
     for (long i = 0; i < n; i++) {
-        if (v->cls[i] == SL_C_BACKGROUND) {
-            out->v[i] = out->base[i] = SL_V_NONE;
-            out->how[i] = SL_HOW_NONE;
-            continue;
-        }
-        if (v->cls[i] == SL_C_PNFL) {
-            out->v[i] = out->base[i] = SL_V_SHADOW;
-            out->how[i] = SL_HOW_PNFL;
+        if (sl_verdict_fixed(v, (size_t)i, out)) {
+            out->base[i] = out->v[i];
             continue;
         }
         const float *p = v->pos + 3 * i;
@@ -270,22 +257,8 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
     cost->ms_method += 1e3 * (sl_now() - t0);
     cost->lookups += lookups;
     cost->tri_tests += tests;
-    enum sl_err e = SL_OK;
-    if (left) {
-        double t1 = sl_now();
-        uint64_t rays = 0;
-        e = sl_rt_trace(a->rt, a->scene, v, left, traced, &rays, NULL, d);
-        for (long i = 0; !e && i < n; i++)
-            if (left[i]) {
-                out->v[i] = traced[i] == SL_T_SHADOW ? SL_V_SHADOW : SL_V_LIT;
-                out->how[i] = SL_HOW_TRACED;
-            }
-        cost->rays += rays;
-        cost->ms_trace += 1e3 * (sl_now() - t1);
-        cost->ms_method += 1e3 * (sl_now() - t1);
-    }
+    enum sl_err e = left ? sl_method_trace_left(a, left, NULL, out, cost, d) : SL_OK;
     free(left);
-    free(traced);
     return e;
 }
 

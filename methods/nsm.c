@@ -91,16 +91,8 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
     double t0 = sl_now();
 #pragma omp parallel for num_threads(a->threads) schedule(static) reduction(+ : lookups)
     for (long i = 0; i < n; i++) {
-        if (v->cls[i] == SL_C_BACKGROUND) {
-            out->v[i] = SL_V_NONE;
-            out->how[i] = SL_HOW_NONE;
+        if (sl_verdict_fixed(v, (size_t)i, out))
             continue;
-        }
-        if (v->cls[i] == SL_C_PNFL) {
-            out->v[i] = SL_V_SHADOW;
-            out->how[i] = SL_HOW_PNFL;
-            continue;
-        }
         float u, w, z;
         sl_frame_project(f, v->pos + 3 * i, &u, &w, &z);
         uint32_t k = sl_frame_texel(f, u, w);

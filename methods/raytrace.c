@@ -4,7 +4,6 @@
  * image is the truth; what it measures is what exactness costs without any
  * shadow map.
  */
-#include <stdlib.h>
 #include "method.h"
 #include "truth.h"
 #include "util.h"
@@ -23,30 +22,9 @@ static enum sl_err rt_run(const struct sl_method_args *a, struct sl_verdicts *ou
 {
     const struct sl_view *v = a->view;
     size_t n = (size_t)v->w * (size_t)v->h;
-    uint8_t *traced = sl_calloc(n, 1);
-    if (!traced)
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "raytrace buffer");
-    double t0 = sl_now();
-    uint64_t rays = 0;
-    enum sl_err e = sl_rt_trace(a->rt, a->scene, v, NULL, traced, &rays, NULL, d);
-    for (size_t i = 0; !e && i < n; i++) {
-        if (v->cls[i] == SL_C_BACKGROUND) {
-            out->v[i] = SL_V_NONE;
-            out->how[i] = SL_HOW_NONE;
-        } else if (v->cls[i] == SL_C_PNFL) {
-            out->v[i] = SL_V_SHADOW;
-            out->how[i] = SL_HOW_PNFL;
-        } else {
-            out->v[i] = traced[i] == SL_T_SHADOW ? SL_V_SHADOW : SL_V_LIT;
-            out->how[i] = SL_HOW_TRACED;
-        }
-    }
-    double ms = 1e3 * (sl_now() - t0);
-    c->ms_method += ms;
-    c->ms_trace += ms;
-    c->rays += rays;
-    free(traced);
-    return e;
+    for (size_t i = 0; i < n; i++)
+        sl_verdict_fixed(v, i, out);
+    return sl_method_trace_left(a, NULL, NULL, out, c, d);
 }
 
 const struct sl_method sl_method_raytrace = {
