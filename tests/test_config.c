@@ -1,4 +1,3 @@
-#define _DEFAULT_SOURCE
 /* config::* — experiment files: the default loads with every default filled,
  * and each bad file yields its error id, line and key. */
 #include <setjmp.h>

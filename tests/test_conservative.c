@@ -1,4 +1,3 @@
-#define _DEFAULT_SOURCE
 /*
  * conservative::* — the conservative shadow maps are exact by construction:
  * bgsm lit => lit, sgsm / sgsm_adj shadow => shadow, csm and csm_adj equal
@@ -24,22 +23,6 @@
 #include "run.h"
 #include "shadowmap.h"
 
-static char tmpdir[] = "/tmp/shadowlab-cons-XXXXXX";
-
-static void load(const char *text, struct sl_config *c)
-{
-    char path[256];
-    snprintf(path, sizeof path, "%s/c.yaml", tmpdir);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-    struct sl_diag d;
-    enum sl_err e = sl_config_load(path, c, &d);
-    if (e)
-        fprintf(stderr, "%s:%d %s %s\n", d.file, d.line, d.key, d.msg);
-    assert_int_equal(e, SL_OK);
-}
 
 static int label_is(const struct sl_config *c, const struct sl_cell *cl, const char *label)
 {
@@ -59,7 +42,7 @@ static void conservative_invariants_on_every_scene(void **st)
              "methods:\n  - {method: bgsm}\n  - {method: sgsm}\n  - {method: sgsm_adj}\n"
              "  - {method: csm}\n  - {method: csm_adj}\n  - {method: hertel}\n", cwd);
     struct sl_config c;
-    load(text, &c);
+    sl_test_config("c.yaml", text, &c);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result r;
     struct sl_diag d;
@@ -265,7 +248,7 @@ static void conservative_adjacency_cases(void **st)
              "map_sizes: [512, 2048]\nmethods:\n  - {method: sgsm}\n  - {method: sgsm_adj}\n"
              "  - {method: csm}\n  - {method: csm_adj}\n", cwd);
     struct sl_config c;
-    load(text, &c);
+    sl_test_config("c.yaml", text, &c);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result r;
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
@@ -288,19 +271,7 @@ static void conservative_adjacency_cases(void **st)
     sl_run_result_free(&r);
 }
 
-static int setup(void **st)
-{
-    (void)st;
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
 
-static int teardown(void **st)
-{
-    (void)st;
-    char cmd[200];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
-}
 
 int main(void)
 {
@@ -309,5 +280,5 @@ int main(void)
         SL_CASE(conservative, slivers_stay_finite_and_near),
         SL_CASE(conservative, adjacency_cases),
     };
-    return cmocka_run_group_tests_name("conservative", tests, setup, teardown);
+    return cmocka_run_group_tests_name("conservative", tests, sl_test_setup, sl_test_teardown);
 }

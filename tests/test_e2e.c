@@ -2,7 +2,6 @@
  * e2e::* — the default experiment end to end, its files, and invariants of
  * its figures; the self-shadow policies on one view; determinism.
  */
-#define _DEFAULT_SOURCE
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -19,8 +18,6 @@
 #include "method.h"
 #include "view.h"
 #include "run.h"
-
-static char tmpdir[] = "/tmp/shadowlab-e2e-XXXXXX";
 
 static int exists(const char *dir, const char *name)
 {
@@ -64,7 +61,7 @@ static void e2e_default_experiment(void **st)
     struct sl_config c;
     struct sl_diag d;
     assert_int_equal(sl_config_load("configs/default.yaml", &c, &d), SL_OK);
-    struct sl_run_opts o = {.out_root = tmpdir, .table_out = NULL, .write_files = 1};
+    struct sl_run_opts o = {.out_root = sl_test_dir, .table_out = NULL, .write_files = 1};
     struct sl_run_result r;
     enum sl_err e = sl_run(&c, &o, &r, &d);
     if (e)
@@ -104,7 +101,7 @@ static void e2e_default_experiment(void **st)
 
     /* files */
     char dir[1200];
-    snprintf(dir, sizeof dir, "%s/default", tmpdir);
+    snprintf(dir, sizeof dir, "%s/default", sl_test_dir);
     const char *files[] = {"figures.csv", "costs.csv", "table.md", "config.yaml", "run.yaml"};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++)
         assert_true(exists(dir, files[i]));
@@ -130,7 +127,7 @@ static void e2e_default_experiment(void **st)
     assert_true(grey > w * h / 2);
     /* no staging folders left behind */
     char cmd[1400];
-    snprintf(cmd, sizeof cmd, "ls -A %s | grep -q partial", tmpdir);
+    snprintf(cmd, sizeof cmd, "ls -A %s | grep -q partial", sl_test_dir);
     assert_int_not_equal(system(cmd), 0);
     sl_run_result_free(&r);
 }
@@ -150,7 +147,7 @@ static void e2e_self_shadow_policies(void **st)
 {
     (void)st;
     char path[1200];
-    snprintf(path, sizeof path, "%s/policies.yaml", tmpdir);
+    snprintf(path, sizeof path, "%s/policies.yaml", sl_test_dir);
     assert_true(write_config(path,
         "scenes: [{scene: primitives, viewpoints: [side]}]\nviewports: [{width: 512, height: 512}]\n"
         "map_sizes: [1024]\nmethods:\n"
@@ -190,7 +187,7 @@ static void e2e_deterministic(void **st)
 {
     (void)st;
     char path[1200];
-    snprintf(path, sizeof path, "%s/det.yaml", tmpdir);
+    snprintf(path, sizeof path, "%s/det.yaml", sl_test_dir);
     assert_true(write_config(path,
         "scenes: [{scene: primitives, viewpoints: [against]}]\nviewports: [{width: 384, height: 256}]\n"
         "map_sizes: [512, 2048]\nmethods: [{method: nsm}]\nthreads: 2\n"));
@@ -217,17 +214,17 @@ static void e2e_exr_layers(void **st)
 {
     (void)st;
     char path[1200];
-    snprintf(path, sizeof path, "%s/exr.yaml", tmpdir);
+    snprintf(path, sizeof path, "%s/exr.yaml", sl_test_dir);
     assert_true(write_config(path,
         "name: exr\nscenes: [{scene: blocks}]\nviewports: [{width: 96, height: 64}]\n"
         "map_sizes: [256]\nmethods: [{method: nsm}]\noutputs: {exr: true, overlays: false}\n"));
     struct sl_config c;
     struct sl_diag d;
     assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
-    struct sl_run_opts o = {.out_root = tmpdir, .write_files = 1, .store = "", .cache_dir = ""};
+    struct sl_run_opts o = {.out_root = sl_test_dir, .write_files = 1, .store = "", .cache_dir = ""};
     struct sl_run_result r;
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
-    snprintf(path, sizeof path, "%s/exr/exr/blocks-above-96x64-256-nsm.exr", tmpdir);
+    snprintf(path, sizeof path, "%s/exr/exr/blocks-above-96x64-256-nsm.exr", sl_test_dir);
     unsigned *truth, *verdict, *contour;
     int w, h;
     assert_int_equal(sl_image_read_layer(path, "truth", &w, &h, &truth, &d), SL_OK);
@@ -264,7 +261,7 @@ static void e2e_two_sided_leaf(void **st)
      * path (ctest runs the tests from the source tree) */
     char cwd[900], path[1200], text[2048];
     assert_non_null(getcwd(cwd, sizeof cwd));
-    snprintf(path, sizeof path, "%s/leaf.yaml", tmpdir);
+    snprintf(path, sizeof path, "%s/leaf.yaml", sl_test_dir);
     uint64_t wrong[2], shadow[2];
     for (int one = 0; one < 2; one++) {
         snprintf(text, sizeof text,
@@ -295,19 +292,7 @@ static void e2e_two_sided_leaf(void **st)
     assert_true(wrong[1] * 10 > shadow[1] * 9);      /* one-sided: the shadow is lost */
 }
 
-static int setup(void **st)
-{
-    (void)st;
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
 
-static int teardown(void **st)
-{
-    (void)st;
-    char cmd[200];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
-}
 
 int main(void)
 {
@@ -318,5 +303,5 @@ int main(void)
         SL_CASE(e2e, exr_layers),
         SL_CASE(e2e, two_sided_leaf),
     };
-    return cmocka_run_group_tests_name("e2e", tests, setup, teardown);
+    return cmocka_run_group_tests_name("e2e", tests, sl_test_setup, sl_test_teardown);
 }

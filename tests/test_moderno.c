@@ -5,7 +5,6 @@
  * least what edge adjacency does, on every view; the chain that traces
  * what is left errs only where a hint erred.
  */
-#define _DEFAULT_SOURCE
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -17,8 +16,6 @@
 #include "config.h"
 #include "run.h"
 
-static char tmpdir[] = "/tmp/shadowlab-moderno-XXXXXX";
-
 static uint64_t img(const struct sl_cell *c, enum sl_figure f)
 {
     return c->fig.r[c->fig.nregions - 1].n[f];
@@ -27,20 +24,14 @@ static uint64_t img(const struct sl_cell *c, enum sl_figure f)
 static void moderno_proofs_never_wrong(void **st)
 {
     (void)st;
-    char path[256];
-    snprintf(path, sizeof path, "%s/c.yaml", tmpdir);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs("scenes: [{scene: primitives}, {scene: bench}, {scene: trees}, {scene: flowers}]\n"
+    struct sl_config c;
+    struct sl_diag d;
+    sl_test_config("c.yaml", "scenes: [{scene: primitives}, {scene: bench}, {scene: trees}, {scene: flowers}]\n"
           "viewports: [{width: 256, height: 192}]\nmap_sizes: [1024, 2048]\nmethods:\n"
           "  - {label: texel, method: texel}\n"
           "  - {label: nb4, method: neighbours, texels: 4}\n  - {label: nb9, method: neighbours, texels: 9}\n"
           "  - {label: adj1, method: adjacency, level: 1}\n  - {label: adj2, method: adjacency, level: 2}\n"
-          "  - {label: chain, method: chain, finish: trace}\n", f);
-    fclose(f);
-    struct sl_config c;
-    struct sl_diag d;
-    assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+          "  - {label: chain, method: chain, finish: trace}\n", &c);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result r;
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
@@ -72,24 +63,12 @@ static void moderno_proofs_never_wrong(void **st)
     sl_run_result_free(&r);
 }
 
-static int setup(void **st)
-{
-    (void)st;
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
 
-static int teardown(void **st)
-{
-    (void)st;
-    char cmd[200];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
-}
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(moderno, proofs_never_wrong),
     };
-    return cmocka_run_group_tests_name("moderno", tests, setup, teardown);
+    return cmocka_run_group_tests_name("moderno", tests, sl_test_setup, sl_test_teardown);
 }

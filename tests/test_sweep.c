@@ -3,7 +3,6 @@
  * computed once (counted); the truth cache; --cells and --resume against an
  * uninterrupted run.
  */
-#define _DEFAULT_SOURCE
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -16,22 +15,6 @@
 #include "run.h"
 #include "store.h"
 
-static char tmpdir[] = "/tmp/shadowlab-sweep-XXXXXX";
-
-static void load(const char *text, struct sl_config *c)
-{
-    char path[256];
-    snprintf(path, sizeof path, "%s/c.yaml", tmpdir);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-    struct sl_diag d;
-    enum sl_err e = sl_config_load(path, c, &d);
-    if (e)
-        fprintf(stderr, "%s:%d %s %s\n", d.file, d.line, d.key, d.msg);
-    assert_int_equal(e, SL_OK);
-}
 
 static const char *two_scenes =
     "scenes:\n  - {scene: primitives, viewpoints: [side, with]}\n  - {scene: blocks}\n"
@@ -43,7 +26,7 @@ static void sweep_plan_order(void **st)
 {
     (void)st;
     struct sl_config c;
-    load(two_scenes, &c);
+    sl_test_config("c.yaml", two_scenes, &c);
     /* (2 + 1 viewpoints) x 2 viewports x 2 maps x 3 methods */
     assert_int_equal(sl_plan_count(&c), 3 * 2 * 2 * 3);
     struct sl_cell_key k;
@@ -76,7 +59,7 @@ static void sweep_each_pass_once(void **st)
 {
     (void)st;
     struct sl_config c;
-    load(two_scenes, &c);
+    sl_test_config("c.yaml", two_scenes, &c);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result r;
     struct sl_diag d;
@@ -108,10 +91,10 @@ static void sweep_truth_cache(void **st)
 {
     (void)st;
     struct sl_config c;
-    load("scenes: [{scene: primitives}]\nviewports: [{width: 128, height: 96}]\nmap_sizes: [512]\n"
+    sl_test_config("c.yaml", "scenes: [{scene: primitives}]\nviewports: [{width: 128, height: 96}]\nmap_sizes: [512]\n"
          "methods: [{method: nsm}]\n", &c);
     char cache[300];
-    snprintf(cache, sizeof cache, "%s/cache", tmpdir);
+    snprintf(cache, sizeof cache, "%s/cache", sl_test_dir);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = cache};
     struct sl_run_result a, b;
     struct sl_diag d;
@@ -143,12 +126,12 @@ static void sweep_cells_then_resume(void **st)
 {
     (void)st;
     struct sl_config c;
-    load("scenes: [{scene: primitives, viewpoints: [side, against]}]\n"
+    sl_test_config("c.yaml", "scenes: [{scene: primitives, viewpoints: [side, against]}]\n"
          "viewports: [{width: 128, height: 128}]\nmap_sizes: [256, 1024]\n"
          "methods: [{label: a, method: nsm}, {label: b, method: nsm, self_shadow: slope}]\n", &c);
     char db1[300], db2[300];
-    snprintf(db1, sizeof db1, "%s/split.db", tmpdir);
-    snprintf(db2, sizeof db2, "%s/whole.db", tmpdir);
+    snprintf(db1, sizeof db1, "%s/split.db", sl_test_dir);
+    snprintf(db2, sizeof db2, "%s/whole.db", sl_test_dir);
     struct sl_diag d;
     struct sl_run_result r;
     struct sl_run_opts o = {.write_files = 0, .store = db1, .cache_dir = "", .first = 0, .last = 5};
@@ -193,19 +176,7 @@ static void sweep_cells_then_resume(void **st)
     sl_store_close(s2);
 }
 
-static int setup(void **st)
-{
-    (void)st;
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
 
-static int teardown(void **st)
-{
-    (void)st;
-    char cmd[200];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd) == 0 ? 0 : -1;
-}
 
 int main(void)
 {
@@ -215,5 +186,5 @@ int main(void)
         SL_CASE(sweep, truth_cache),
         SL_CASE(sweep, cells_then_resume),
     };
-    return cmocka_run_group_tests_name("sweep", tests, setup, teardown);
+    return cmocka_run_group_tests_name("sweep", tests, sl_test_setup, sl_test_teardown);
 }
