@@ -37,6 +37,7 @@
     X(hinted,           "pixels given a coherence hint",              "pixels")   \
     X(hinted_wrong,     "of those, hinted wrongly",                   "hinted")   \
     X(confirmed,        "shadow confirmed by a ray-triangle hit",     "pixels")   \
+    X(confirmed_adj,    "of those, in the chain's adjacency step",    "confirmed") \
     X(corrected,        "lit turned shadowed by a ray-triangle hit",  "pixels")   \
     X(fixed_ls,         "vs NSM: L->S, now right (corrected)",        "pixels")   \
     X(broken_ls,        "vs NSM: L->S, now wrong (turned bad)",       "pixels")   \

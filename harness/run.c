@@ -474,7 +474,8 @@ static void check_exact(const struct run_ctx *x, const struct sl_method *m, stru
             if (v->cls[i] != SL_C_PFL)
                 continue;
             uint8_t how = x->vd.how[i];
-            int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CORRECT || how == SL_HOW_TRACED;
+            int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || how == SL_HOW_CORRECT ||
+                         how == SL_HOW_TRACED;
             int right = (x->vd.v[i] == SL_V_LIT) == (v->truth[i] == SL_T_LIT);
             int bad = ((m->exact & SL_EXACT_LIT) && x->vd.v[i] == SL_V_LIT && v->truth[i] != SL_T_LIT) ||
                       ((m->exact & SL_EXACT_SHADOW) && x->vd.v[i] == SL_V_SHADOW && v->truth[i] != SL_T_SHADOW) ||

@@ -37,6 +37,7 @@ enum sl_verdict {
     X(SL_HOW_MAP,      "map")                          \
     X(SL_HOW_HINT,     "hint")                         \
     X(SL_HOW_CONFIRM,  "confirm")                      \
+    X(SL_HOW_CONFIRM_ADJ, "confirm_adj") /* the chain's adjacency step */ \
     X(SL_HOW_CORRECT,  "correct")                      \
     X(SL_HOW_TRACED,   "traced")                       \
     X(SL_HOW_FALLBACK, "fallback")

@@ -235,8 +235,11 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
                 continue;
             }
             hit = neighbours_hit(&c, p, u, w, 9, own, &lookups, &tests);
-            if (!hit && nsm == SL_V_SHADOW)
-                hit = adjacency_hit(&c, p, c.L->id[k], 2, own, &tests);
+            if (!hit && nsm == SL_V_SHADOW && adjacency_hit(&c, p, c.L->id[k], 2, own, &tests)) {
+                out->v[i] = SL_V_SHADOW;            /* nsm shadowed it: a confirmation */
+                out->how[i] = SL_HOW_CONFIRM_ADJ;
+                continue;
+            }
             if (!hit) {
                 out->v[i] = SL_V_LIT;
                 out->how[i] = SL_HOW_FALLBACK;

@@ -36,7 +36,7 @@ static void moderno_proofs_never_wrong(void **st)
     struct sl_run_result r;
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
     assert_int_equal(r.ncells, 12 * 2 * 6);
-    uint64_t proofs = 0, corrections = 0;
+    uint64_t proofs = 0, corrections = 0, adj_step = 0;
     for (int i = 0; i < r.ncells; i += 6) {
         const struct sl_cell *tx = &r.cells[i], *n4 = &r.cells[i + 1], *n9 = &r.cells[i + 2],
                              *a1 = &r.cells[i + 3], *a2 = &r.cells[i + 4], *ch = &r.cells[i + 5];
@@ -54,12 +54,19 @@ static void moderno_proofs_never_wrong(void **st)
         assert_true(l2 >= l1 && l1 >= pt);
         /* the traced chain is wrong only where a hint was */
         assert_int_equal(ch->fig.wrong_image, img(ch, SL_FIG_hinted_wrong));
+        /* its steps: hints, neighbour proofs, adjacency proofs, rays cover
+         * every PFL pixel once */
+        assert_int_equal(img(ch, SL_FIG_hinted) + img(ch, SL_FIG_confirmed) + img(ch, SL_FIG_corrected) +
+                             img(ch, SL_FIG_traced), ch->n_pfl);
+        adj_step += img(ch, SL_FIG_confirmed_adj);
         /* corrections are only ever L->S, never turning a right pixel bad */
         assert_int_equal(img(n9, SL_FIG_broken_ls), 0);
     }
     printf("moderno::proofs: %llu confirmations and corrections (%llu corrections), none wrong\n",
            (unsigned long long)proofs, (unsigned long long)corrections);
     assert_true(proofs > 1000 && corrections > 0);
+    assert_true(adj_step > 0);      /* the adjacency step confirms what neighbours could not */
+    printf("moderno::proofs: the chain's adjacency step confirmed %llu pixels\n", (unsigned long long)adj_step);
     sl_run_result_free(&r);
 }
 
