@@ -3,7 +3,8 @@
  * correction is never wrong (only coherence hints may be), on all four
  * scenes; 9 neighbours confirm at least what 4 do and vertex adjacency at
  * least what edge adjacency does, on every view; the chain that traces
- * what is left errs only where a hint erred.
+ * what is left errs only where a hint erred; and each method on the
+ * constructed cases of the thesis's Figures 16, 19, 22 and 29.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -13,8 +14,13 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "adjacency.h"
 #include "config.h"
+#include "fixture.h"
+#include <cglm/clipspace/ortho_rh_zo.h>
+#include "lightfit.h"
 #include "run.h"
+#include "shadowmap.h"
 
 static uint64_t img(const struct sl_cell *c, enum sl_figure f)
 {
@@ -72,10 +78,211 @@ static void moderno_proofs_never_wrong(void **st)
 
 
 
+/* A constructed case: the scene, its view and truth, and the shadow map
+ * rendered over [-8, 8]^2 of world x, z in 16 texels (light straight down),
+ * so that texel centres sit on half units: the figures' geometry is placed
+ * against that grid. */
+struct fig {
+    struct fixture f;
+    struct sl_view v, mv;
+    struct sl_shadowmap_pass sp;
+    struct sl_light_frame fr;
+    struct sl_adjacency adj;
+    struct sl_verdicts vd;
+};
+
+static void fig_open(struct fig *g, const char *scene)
+{
+    memset(g, 0, sizeof *g);
+    assert_true(fixture_open(&g->f, scene, 1));
+    assert_true(fixture_view(&g->f, 0, 256, 256, &g->v));
+    g->mv = g->v;
+    g->mv.truth = NULL;
+    struct sl_diag d;
+    assert_int_equal(sl_shadowmap_init(&g->sp, &d), SL_OK);
+    g->fr.size = 16;
+    memcpy(g->fr.dir, g->f.scene.light_dir, sizeof g->fr.dir);
+    sl_light_view(g->f.scene.light_dir, g->fr.box.view);
+    glm_ortho_rh_zo(-8, 8, -8, 8, -20, 20, g->fr.box.proj);
+    glm_mat4_mul(g->fr.box.proj, g->fr.box.view, g->fr.box.vp);
+    g->fr.texel_world = 1.0f;
+    g->fr.depth_range = 40.0f;
+    assert_int_equal(sl_shadowmap_render(&g->sp, &g->f.mesh, &g->fr, SL_NEED(SL_LAYER_DEPTH_ID_BACK), &d), SL_OK);
+    assert_int_equal(sl_adjacency_build(&g->f.scene, &g->adj, &d), SL_OK);
+    size_t n = (size_t)g->v.w * (size_t)g->v.h;
+    g->vd.w = g->v.w;
+    g->vd.h = g->v.h;
+    g->vd.v = calloc(n, 1);
+    g->vd.how = calloc(n, 1);
+    g->vd.base = calloc(n, 1);
+}
+
+static void fig_run(struct fig *g, const char *method, int key, int value)
+{
+    const struct sl_method *m = sl_method_find(method);
+    assert_non_null(m);
+    struct sl_method_params p;
+    memset(&p, 0, sizeof p);
+    if (key == SL_PARAM_TEXELS) { p.set = key; p.texels = value; }
+    if (key == SL_PARAM_LEVEL) { p.set = key; p.level = value; }
+    struct sl_diag d;
+    assert_int_equal(m->configure(&p, &d), SL_OK);
+    struct sl_method_args a = {.scene = &g->f.scene, .view = &g->mv, .frame = &g->fr, .params = &p,
+                               .rt = &g->f.rt, .adj = &g->adj, .threads = 1};
+    struct sl_cost c = {0};
+    g->vd.has_base = 0;
+    assert_int_equal(m->run(&a, &g->vd, &c, &d), SL_OK);
+}
+
+/* Over the PFL pixels whose world position lies in the box [lo, hi]: how
+ * many there are, and how many have verdict `v` and how `how` (-1 = any). */
+static int fig_count(const struct fig *g, const float lo[3], const float hi[3], int v, int how, int *total)
+{
+    int n = 0, t = 0;
+    for (int i = 0; i < g->v.w * g->v.h; i++) {
+        const float *p = g->v.pos + 3 * i;
+        if (g->v.cls[i] != SL_C_PFL || p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] ||
+            p[2] < lo[2] || p[2] > hi[2])
+            continue;
+        t++;
+        n += g->vd.v[i] == v && (how < 0 || g->vd.how[i] == how);
+    }
+    *total = t;
+    return n;
+}
+
+static int fig_truth(const struct fig *g, const float lo[3], const float hi[3], int truth)
+{
+    int n = 0;
+    for (int i = 0; i < g->v.w * g->v.h; i++) {
+        const float *p = g->v.pos + 3 * i;
+        if (g->v.cls[i] == SL_C_PFL && p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] &&
+            p[2] >= lo[2] && p[2] <= hi[2])
+            n += g->v.truth[i] == truth;
+    }
+    return n;
+}
+
+static void fig_close(struct fig *g)
+{
+    free(g->vd.v);
+    free(g->vd.how);
+    free(g->vd.base);
+    sl_adjacency_free(&g->adj);
+    sl_frame_free(&g->fr);
+    sl_shadowmap_free(&g->sp);
+    sl_view_free(&g->v);
+    fixture_close(&g->f);
+}
+
+/* every pixel of the region has verdict v (how, -1 = any) */
+#define ALL(g, lo, hi, v, how)                                      \
+    do {                                                            \
+        int total_, n_ = fig_count(g, lo, hi, v, how, &total_);     \
+        assert_true(total_ > 20);                                   \
+        assert_int_equal(n_, total_);                               \
+    } while (0)
+
+/* Figure 16: a triangle that covers no texel centre is in no texel: the
+ * ground it shades is lit by the map, and nothing stored can prove it. */
+static void moderno_figure16_no_texel_centre(void **st)
+{
+    (void)st;
+    struct fig g;
+    fig_open(&g, "tests/scenes/fig16.yaml");
+    const float lo[3] = {0.1f, -0.01f, 0.1f}, hi[3] = {0.2f, 0.01f, 0.2f};
+    int total;
+    fig_count(&g, lo, hi, SL_V_LIT, -1, &total);
+    assert_int_equal(fig_truth(&g, lo, hi, SL_T_SHADOW), total);     /* shadowed in truth */
+    for (size_t k = 0; k < 16 * 16; k++)
+        assert_int_equal(g.fr.layer[SL_LAYER_DEPTH_ID_BACK].id[k], 0);   /* stored nowhere */
+    fig_run(&g, "nsm", 0, 0);
+    ALL(&g, lo, hi, SL_V_LIT, SL_HOW_MAP);
+    fig_run(&g, "texel", 0, 0);
+    ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
+    fig_run(&g, "neighbours", SL_PARAM_TEXELS, 9);
+    ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
+    fig_close(&g);
+}
+
+/* Figure 19: the receiver is nearer the light than the stored triangle at
+ * the texel centre, so the map lights it, yet the triangle is above it where
+ * it is: the single-texel test corrects it to shadow. */
+static void moderno_figure19_lit_but_shadowed(void **st)
+{
+    (void)st;
+    struct fig g;
+    fig_open(&g, "tests/scenes/fig19.yaml");
+    const float lo[3] = {0.05f, 2.99f, 0.4f}, hi[3] = {0.15f, 3.01f, 0.6f};
+    int total;
+    fig_count(&g, lo, hi, SL_V_LIT, -1, &total);
+    assert_true(total > 20);
+    assert_int_equal(fig_truth(&g, lo, hi, SL_T_SHADOW), total);
+    fig_run(&g, "nsm", 0, 0);
+    ALL(&g, lo, hi, SL_V_LIT, SL_HOW_MAP);
+    fig_run(&g, "texel", 0, 0);
+    ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CORRECT);
+    fig_close(&g);
+}
+
+/* Figure 22: the occluder is stored only in the neighbouring texel; the
+ * neighbour tests find it (4 toward the pixel's quadrant, and 9), the
+ * single-texel test cannot. */
+static void moderno_figure22_neighbour_texel(void **st)
+{
+    (void)st;
+    struct fig g;
+    fig_open(&g, "tests/scenes/fig22.yaml");
+    const float lo[3] = {0.75f, -0.01f, 0.11f}, hi[3] = {0.95f, 0.01f, 0.18f};
+    int total;
+    fig_count(&g, lo, hi, SL_V_LIT, -1, &total);
+    assert_true(total > 20);
+    assert_int_equal(fig_truth(&g, lo, hi, SL_T_SHADOW), total);
+    fig_run(&g, "nsm", 0, 0);
+    ALL(&g, lo, hi, SL_V_LIT, SL_HOW_MAP);
+    fig_run(&g, "texel", 0, 0);
+    ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
+    fig_run(&g, "neighbours", SL_PARAM_TEXELS, 4);
+    ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CORRECT);
+    fig_run(&g, "neighbours", SL_PARAM_TEXELS, 9);
+    ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CORRECT);
+    fig_close(&g);
+}
+
+/* Figure 29: the texel stores a triangle the pixel's ray misses; its
+ * edge-adjacent neighbour, in no texel of its own, is what shades the pixel:
+ * only the adjacency test confirms the map's shadow. */
+static void moderno_figure29_adjacent_geometry(void **st)
+{
+    (void)st;
+    struct fig g;
+    fig_open(&g, "tests/scenes/fig29.yaml");
+    const float lo[3] = {0.35f, -0.01f, 0.17f}, hi[3] = {0.5f, 0.01f, 0.26f};
+    int total;
+    fig_count(&g, lo, hi, SL_V_LIT, -1, &total);
+    assert_true(total > 20);
+    assert_int_equal(fig_truth(&g, lo, hi, SL_T_SHADOW), total);
+    fig_run(&g, "nsm", 0, 0);
+    ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_MAP);
+    fig_run(&g, "texel", 0, 0);
+    ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
+    fig_run(&g, "neighbours", SL_PARAM_TEXELS, 9);
+    ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
+    fig_run(&g, "adjacency", SL_PARAM_LEVEL, 1);
+    ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CONFIRM);
+    fig_run(&g, "adjacency", SL_PARAM_LEVEL, 2);
+    ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CONFIRM);
+    fig_close(&g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(moderno, proofs_never_wrong),
+        SL_CASE(moderno, figure16_no_texel_centre),
+        SL_CASE(moderno, figure19_lit_but_shadowed),
+        SL_CASE(moderno, figure22_neighbour_texel),
+        SL_CASE(moderno, figure29_adjacent_geometry),
     };
     return cmocka_run_group_tests_name("moderno", tests, sl_test_setup, sl_test_teardown);
 }
