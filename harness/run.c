@@ -172,6 +172,68 @@ static void write_costs_md(FILE *f, const struct sl_config *c, const struct sl_r
             res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
 }
 
+/* Texel coherence's undecided pixels by pattern (Moderno 2011 Tables 20/22). */
+static void write_patterns_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,texels,region,shadowed_texels,pixels,"
+               "shadowed_in_truth,git_sha,config_hash\n");
+    for (int i = 0; i < res->ncells; i++) {
+        const struct sl_cell *cl = &res->cells[i];
+        if (!cl->has_patterns)
+            continue;
+        int n = c->methods[cl->key.method].params.texels;
+        for (int r = 0; r < cl->fig.nregions; r++)
+            for (int k = 0; k <= n; k++) {
+                char rn[16];
+                if (cl->fig.r[r].thickness)
+                    snprintf(rn, sizeof rn, "%dpx", cl->fig.r[r].thickness);
+                else
+                    snprintf(rn, sizeof rn, "image");
+                fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d,%s,%d,%llu,%llu,%s,%016llx\n", cl->index, cl->scene,
+                        cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
+                        c->maps[cl->key.map], c->methods[cl->key.method].label, n, rn, k,
+                        (unsigned long long)cl->pattern[r][k][0], (unsigned long long)cl->pattern[r][k][1],
+                        res->prov.git_sha, c->hash);
+            }
+    }
+}
+
+static void write_patterns_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    int any = 0;
+    for (int i = 0; i < res->ncells; i++)
+        any |= res->cells[i].has_patterns;
+    if (!any)
+        return;
+    fprintf(f, "\n## Texel coherence: undecided pixels by how many texels say shadow "
+               "(pixels, of which shadowed in truth)\n\n");
+    fprintf(f, "| cell | scene | viewpoint | map | label | region | 1 | 2 | 3 | 4 | 5 | 6 | 7 | 8 |\n");
+    fprintf(f, "|---:|---|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (int i = 0; i < res->ncells; i++) {
+        const struct sl_cell *cl = &res->cells[i];
+        if (!cl->has_patterns)
+            continue;
+        int n = c->methods[cl->key.method].params.texels;
+        for (int r = 0; r < cl->fig.nregions; r++) {
+            char rn[16];
+            if (cl->fig.r[r].thickness)
+                snprintf(rn, sizeof rn, "%d px", cl->fig.r[r].thickness);
+            else
+                snprintf(rn, sizeof rn, "image");
+            fprintf(f, "| %d | %s | %s | %d | %s | %s |", cl->index, cl->scene, cl->viewpoint,
+                    c->maps[cl->key.map], c->methods[cl->key.method].label, rn);
+            for (int k = 1; k <= 8; k++) {
+                if (k < n)
+                    fprintf(f, " %llu (%llu) |", (unsigned long long)cl->pattern[r][k][0],
+                            (unsigned long long)cl->pattern[r][k][1]);
+                else
+                    fprintf(f, " |");
+            }
+            fprintf(f, "\n");
+        }
+    }
+}
+
 static void write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
 {
     fprintf(f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
@@ -318,6 +380,7 @@ static void ctx_free(struct run_ctx *x)
     free(x->vd.v);
     free(x->vd.how);
     free(x->vd.base);
+    free(x->vd.detail);
     if (x->gl.ctx) {
         sl_shadowmap_free(&x->spass);
         sl_gl_free(&x->gl);
@@ -361,7 +424,9 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
         return SL_OK;
     size_t npx = (size_t)W * (size_t)H;
     free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
+    free(x->vd.detail);
     x->vd.base = sl_calloc(npx, 1);
+    x->vd.detail = sl_calloc(npx, 1);
     x->state = sl_calloc(npx, 1);
     x->band = sl_calloc(npx, 1);
     x->rgb = sl_calloc(npx, 3);
@@ -369,7 +434,7 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     x->vd.how = sl_calloc(npx, 1);
     x->W = x->vd.w = W;
     x->H = x->vd.h = H;
-    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how || !x->vd.base) {
+    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how || !x->vd.base || !x->vd.detail) {
         x->W = x->H = 0;
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "per-pixel buffers %dx%d", W, H);
     }
@@ -567,6 +632,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     for (int r = 0; r < reps && !e; r++) {
         struct sl_cost cost = {0};
         x->vd.has_base = 0;
+        x->vd.has_detail = 0;
         e = cm->method->run(&a, &x->vd, &cost, d);
         res->passes.method_runs++;
         if (r >= c->warmup)
@@ -593,6 +659,19 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     cell->ms.figures = 1e3 * (sl_now() - t0);
     if (cm->method->exact)
         check_exact(x, cm->method, cell);
+    if (x->vd.has_detail) {
+        cell->has_patterns = 1;
+        for (size_t i = 0; i < npx; i++) {
+            if (x->view.cls[i] != SL_C_PFL)
+                continue;
+            uint8_t k = x->vd.detail[i] < 10 ? x->vd.detail[i] : 9;
+            for (int r = 0; r < cell->fig.nregions; r++)
+                if (sl_in_contour(x->band[i], cell->fig.r[r].thickness)) {
+                    cell->pattern[r][k][0]++;
+                    cell->pattern[r][k][1] += x->view.truth[i] == SL_T_SHADOW;
+                }
+        }
+    }
     if (ovdir) {
         t0 = sl_now();
         char path[1400];
@@ -755,7 +834,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     {
         struct { const char *name; int kind; } files[] = {
             {"figures.csv", 0}, {"table.md", 1}, {"table.tex", 2}, {"costs.csv", 3},
-            {"config.yaml", 4}, {"run.yaml", 5},
+            {"config.yaml", 4}, {"run.yaml", 5}, {"patterns.csv", 6},
         };
         for (size_t f = 0; f < sizeof files / sizeof files[0] && !e; f++) {
             if (!c->tables && files[f].kind <= 2)
@@ -770,6 +849,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             case 1:
                 e = write_tables(of.f, SL_TABLE_MD, c, res, d);
                 write_costs_md(of.f, c, res);
+                write_patterns_md(of.f, c, res);
                 break;
             case 2: e = write_tables(of.f, SL_TABLE_LATEX, c, res, d); break;
             case 3: write_costs_csv(of.f, c, res); break;
@@ -778,6 +858,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
                 sl_config_write(c, of.f);
                 break;
             case 5: write_run_yaml(of.f, c, res); break;
+            case 6: write_patterns_csv(of.f, c, res); break;
             }
             if (e)
                 sl_out_abort(&of);
@@ -809,6 +890,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (o->table_out && c->tables) {
         e = write_tables(o->table_out, SL_TABLE_MD, c, res, d);
         write_costs_md(o->table_out, c, res);
+        write_patterns_md(o->table_out, c, res);
         fprintf(o->table_out, "\nwritten to %s/%s%s\n", final, store_path[0] ? " and " : "", store_path);
     }
 out:

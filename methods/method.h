@@ -54,6 +54,8 @@ struct sl_verdicts {
     uint8_t *how;    /* enum sl_how */
     uint8_t *base;   /* the verdict of the method this one refines (NSM), when has_base */
     int      has_base;
+    uint8_t *detail; /* coherence: how many of the texels tested say shadow, when has_detail */
+    int      has_detail;
 };
 
 /* Machine-independent counts beside wall time. */

@@ -92,8 +92,9 @@ static int lit_at(const struct ctx *c, int tx, int ty, float z)
     return z <= c->L->depth[(size_t)ty * (size_t)c->S + (size_t)tx];
 }
 
-/* 1 all lit, 2 all shadowed, 0 not coherent. */
-static int coherence(const struct ctx *c, float u, float v, float z, int texels, uint64_t *lookups)
+/* 1 all lit, 2 all shadowed, 0 not coherent; *shadowed = how many say shadow. */
+static int coherence(const struct ctx *c, float u, float v, float z, int texels, uint64_t *lookups,
+                     int *shadowed)
 {
     int x0, y0, n;
     if (texels == 4) {             /* the bilinear footprint */
@@ -110,6 +111,7 @@ static int coherence(const struct ctx *c, float u, float v, float z, int texels,
         for (int i = 0; i < n; i++)
             lit += lit_at(c, x0 + i, y0 + j, z);
     *lookups += (uint64_t)(n * n);
+    *shadowed = n * n - lit;
     return lit == n * n ? 1 : lit == 0 ? 2 : 0;
 }
 
@@ -195,6 +197,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
     if (kind == K_CHAIN && prm->finish == 0 && !(left = sl_calloc((size_t)n, 1)))
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain mask");
     out->has_base = 1;
+    out->has_detail = kind == K_COHERENCE;
     uint64_t lookups = 0, tests = 0;
     double t0 = sl_now();
 #pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
@@ -211,12 +214,13 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         uint8_t nsm = z <= c.L->depth[k] ? SL_V_LIT : SL_V_SHADOW;
         out->base[i] = nsm;
         const uint32_t own = v->tri[i];
-        int hit = 0, coh = 0;
+        int hit = 0, coh = 0, shadowed = 0;
         switch (kind) {
         case K_COHERENCE:
-            coh = coherence(&c, u, w, z, prm->texels, &lookups);
+            coh = coherence(&c, u, w, z, prm->texels, &lookups, &shadowed);
             out->v[i] = coh == 1 ? SL_V_LIT : coh == 2 ? SL_V_SHADOW : SL_V_UNCERTAIN;
             out->how[i] = coh ? SL_HOW_HINT : SL_HOW_NONE;
+            out->detail[i] = (uint8_t)shadowed;
             continue;
         case K_TEXEL:
             hit = sure_hit(&c, p, c.L->id[k], own, &tests);
@@ -228,7 +232,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             hit = adjacency_hit(&c, p, c.L->id[k], prm->level, own, &tests);
             break;
         case K_CHAIN:
-            coh = coherence(&c, u, w, z, 4, &lookups);
+            coh = coherence(&c, u, w, z, 4, &lookups, &shadowed);
             if (coh) {
                 out->v[i] = coh == 1 ? SL_V_LIT : SL_V_SHADOW;
                 out->how[i] = SL_HOW_HINT;

@@ -78,6 +78,49 @@ static void moderno_proofs_never_wrong(void **st)
 
 
 
+/* Texel coherence's patterns add up: every PFL pixel once, the two ends are
+ * the hints (all lit, all shadow), the middle the undecided; and the more a
+ * pattern leans to shadow, the larger the share shadowed in truth. */
+static void moderno_coherence_patterns(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    struct sl_diag d;
+    sl_test_config("coh.yaml", "scenes: [{scene: primitives}, {scene: bench}]\n"
+                   "viewports: [{width: 256, height: 256}]\nmap_sizes: [1024]\nmethods:\n"
+                   "  - {label: c4, method: coherence, texels: 4}\n  - {label: c9, method: coherence, texels: 9}\n", &c);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result r;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    uint64_t lean[2][2] = {{0, 0}, {0, 0}};     /* [mostly lit / mostly shadow][pixels, truth shadow] */
+    for (int i = 0; i < r.ncells; i++) {
+        const struct sl_cell *cl = &r.cells[i];
+        assert_true(cl->has_patterns);
+        int n = c.methods[cl->key.method].params.texels;
+        int g = cl->fig.nregions - 1;
+        const struct sl_region_figures *f = &cl->fig.r[g];
+        uint64_t all = 0, mid = 0;
+        for (int k = 0; k <= n; k++) {
+            all += cl->pattern[g][k][0];
+            if (k > 0 && k < n)
+                mid += cl->pattern[g][k][0];
+            if (k > 0 && k < n && 2 * k != n) {
+                lean[2 * k > n][0] += cl->pattern[g][k][0];
+                lean[2 * k > n][1] += cl->pattern[g][k][1];
+            }
+        }
+        assert_int_equal(all, cl->n_pfl);
+        assert_int_equal(mid, f->n[SL_FIG_uncertain]);
+        assert_int_equal(cl->pattern[g][0][0] + cl->pattern[g][n][0], f->n[SL_FIG_hinted]);
+    }
+    printf("moderno::coherence_patterns: undecided leaning lit %llu (%llu shadowed), leaning shadow %llu (%llu shadowed)\n",
+           (unsigned long long)lean[0][0], (unsigned long long)lean[0][1], (unsigned long long)lean[1][0],
+           (unsigned long long)lean[1][1]);
+    assert_true(lean[0][0] > 0 && lean[1][0] > 0);
+    assert_true(lean[1][1] * lean[0][0] > lean[0][1] * lean[1][0]);
+    sl_run_result_free(&r);
+}
+
 /* A constructed case: the scene, its view and truth, and the shadow map
  * rendered over [-8, 8]^2 of world x, z in 16 texels (light straight down),
  * so that texel centres sit on half units: the figures' geometry is placed
@@ -279,6 +322,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(moderno, proofs_never_wrong),
+        SL_CASE(moderno, coherence_patterns),
         SL_CASE(moderno, figure16_no_texel_centre),
         SL_CASE(moderno, figure19_lit_but_shadowed),
         SL_CASE(moderno, figure22_neighbour_texel),
