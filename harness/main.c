@@ -14,6 +14,7 @@
 #include "scene.h"
 #include "scenefile.h"
 #include "store.h"
+#include "summary.h"
 #include "table.h"
 #include "util.h"
 
@@ -42,7 +43,11 @@ static const char usage_validate[] =
 static const char usage_table[] =
     "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
     "                          [--map N] [--run ID]\n"
-    "  Renders the latest stored cell of each key, filtered, as thesis-style tables.\n";
+    "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
+    "                           [--average-case SCENE/VIEWPOINT/N[/MAP]]]\n"
+    "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
+    "  --summary, the average, best and worst per map size of one figure's percentage over\n"
+    "  the cells of one label (as the theses' summary tables), md or csv.\n";
 
 static const char usage_bench[] =
     "usage: shadowlab bench [CONFIG] [--reps N]\n"
@@ -179,6 +184,9 @@ static int cmd_table(int argc, char **argv)
     const char *db = NULL;
     struct sl_store_filter f = {0};
     int fmt = SL_TABLE_MD;
+    struct sl_summary_opts so = {.figure = -1, .region = -1};
+    const char *summary = NULL;
+    char avg_scene[64] = "", avg_vp[32] = "";
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -197,6 +205,21 @@ static int cmd_table(int argc, char **argv)
             f.map_size = atoi(v); i++;
         } else if (strcmp(a, "--run") == 0 && v) {
             f.run_id = atoll(v); i++;
+        } else if (strcmp(a, "--summary") == 0 && v) {
+            summary = v; i++;
+        } else if (strcmp(a, "--region") == 0 && v) {
+            so.region = !strcmp(v, "image") ? 0 : !strcmp(v, "contours") ? -1 : atoi(v);
+            if (so.region < -1 || (so.region > 0 && so.region % 2))
+                return usage_error("table: --region N (even), image or contours", usage_table);
+            i++;
+        } else if (strcmp(a, "--lower-is-better") == 0) {
+            so.lower_is_better = 1;
+        } else if (strcmp(a, "--average-case") == 0 && v) {
+            if (sscanf(v, "%63[^/]/%31[^/]/%d/%d", avg_scene, avg_vp, &so.avg_region, &so.avg_map) < 3)
+                return usage_error("table: --average-case SCENE/VIEWPOINT/N[/MAP]", usage_table);
+            so.avg_scene = avg_scene;
+            so.avg_viewpoint = avg_vp;
+            i++;
         } else if (a[0] == '-') {
             return usage_error("table: unknown option", usage_table);
         } else if (!db) {
@@ -223,8 +246,17 @@ static int cmd_table(int argc, char **argv)
         e = sl_store_query(st, &f, &cells, &n, &d);
     if (!e && n == 0)
         e = sl_fail(&d, SL_E_USAGE, db, 0, NULL, "no stored cell matches");
-    if (!e)
+    if (!e && summary) {
+        for (int k = 0; k < SL_FIG_COUNT; k++)
+            if (!strcmp(sl_figure_name((enum sl_figure)k), summary))
+                so.figure = k;
+        if (so.figure < 0)
+            e = sl_fail(&d, SL_E_USAGE, NULL, 0, "--summary", "unknown figure '%s'", summary);
+        else
+            e = sl_summary_write(stdout, (enum sl_table_format)fmt, cells, n, &so, &d);
+    } else if (!e) {
         e = sl_table_write(stdout, (enum sl_table_format)fmt, db, cells, n, &d);
+    }
     free(cells);
     sl_store_close(st);
     return e ? fail(e, &d) : 0;

@@ -12,6 +12,7 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "summary.h"
 #include "table.h"
 
 /* Regions 2 px and image; n = base + 10 r + k, pct = 10 r + k + 0.25, pixels
@@ -248,9 +249,71 @@ static void table_empty_and_formats(void **st)
     free(bad);
 }
 
+/* Summary rows: the average over every (cell, contour), and per map the
+ * cells with the highest and lowest percentage, and the named average case. */
+static void table_summary_rows(void **st)
+{
+    (void)st;
+    struct sl_table_cell c[4];
+    memset(c, 0, sizeof c);
+    const char *vps[4] = {"side", "with", "side", "with"};
+    const int maps[4] = {1024, 1024, 2048, 2048};
+    const double v[4][2] = {{90, 95}, {60, 80}, {99, 100}, {70, 85}};   /* 2px, 4px */
+    for (int i = 0; i < 4; i++) {
+        snprintf(c[i].scene, sizeof c[i].scene, "%s", i % 2 ? "bench" : "prim");
+        snprintf(c[i].viewpoint, sizeof c[i].viewpoint, "%s", vps[i]);
+        snprintf(c[i].label, sizeof c[i].label, "nsm");
+        c[i].map_size = maps[i];
+        c[i].fig.nregions = 3;
+        c[i].fig.r[0].thickness = 2;
+        c[i].fig.r[1].thickness = 4;
+        c[i].fig.r[2].thickness = 0;
+        for (int r = 0; r < 3; r++)
+            for (int k = 0; k < SL_FIG_COUNT; k++)
+                c[i].fig.r[r].pct[k] = NAN;
+        c[i].fig.r[0].pct[SL_FIG_wrong_caught] = v[i][0];
+        c[i].fig.r[1].pct[SL_FIG_wrong_caught] = v[i][1];
+        c[i].fig.r[2].pct[SL_FIG_wrong_caught] = 100.0;     /* the whole image: not a contour */
+    }
+    struct sl_summary_opts o = {.figure = SL_FIG_wrong_caught, .region = -1, .avg_scene = "bench",
+                                .avg_viewpoint = "with", .avg_region = 2, .avg_map = 2048};
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    struct sl_diag d;
+    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_OK);
+    fclose(f);
+    assert_non_null(strstr(buf, "wrong_caught,nsm,average,,,,,84.8750\n"));     /* (90+95+60+80+99+100+70+85)/8 */
+    assert_non_null(strstr(buf, "wrong_caught,nsm,best,1024,prim,side,4px,95.0000\n"));
+    assert_non_null(strstr(buf, "wrong_caught,nsm,worst,1024,bench,with,2px,60.0000\n"));
+    assert_non_null(strstr(buf, "wrong_caught,nsm,best,2048,prim,side,4px,100.0000\n"));
+    assert_non_null(strstr(buf, "wrong_caught,nsm,worst,2048,bench,with,2px,70.0000\n"));
+    assert_non_null(strstr(buf, "wrong_caught,nsm,average case,2048,bench,with,2px,70.0000\n"));
+    free(buf);
+    /* lower is better swaps best and worst */
+    o.lower_is_better = 1;
+    f = open_memstream(&buf, &len);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_OK);
+    fclose(f);
+    assert_non_null(strstr(buf, "wrong_caught,nsm,best,1024,bench,with,2px,60.0000\n"));
+    free(buf);
+    /* one label at a time; a count is no percentage */
+    snprintf(c[3].label, sizeof c[3].label, "other");
+    f = open_memstream(&buf, &len);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_E_USAGE);
+    fclose(f);
+    free(buf);
+    o.figure = SL_FIG_pixels;
+    f = open_memstream(&buf, &len);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 3, &o, &d), SL_E_USAGE);
+    fclose(f);
+    free(buf);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        SL_CASE(table, summary_rows),
         SL_CASE(table, markdown_rows),
         SL_CASE(table, markdown_mixed_provenance),
         SL_CASE(table, csv_long_form),
