@@ -44,7 +44,8 @@
     X(fixed_sl,         "vs NSM: S->L, now right (corrected)",        "pixels")   \
     X(broken_sl,        "vs NSM: S->L, now wrong (turned bad)",       "pixels")   \
     X(kept_right,       "vs NSM: unchanged and right (maintained correct)", "pixels") \
-    X(kept_wrong,       "vs NSM: unchanged and wrong (maintained incorrect)", "pixels")
+    X(kept_wrong,       "vs NSM: unchanged and wrong (maintained incorrect)", "pixels") \
+    X(ray_tri_tests,    "ray-triangle tests outside Embree spent on these pixels", "")
 
 enum sl_figure {
 #define SL_FIG_ENUM(name, text, of) SL_FIG_##name,

@@ -381,6 +381,7 @@ static void ctx_free(struct run_ctx *x)
     free(x->vd.how);
     free(x->vd.base);
     free(x->vd.detail);
+    free(x->vd.tests);
     if (x->gl.ctx) {
         sl_shadowmap_free(&x->spass);
         sl_gl_free(&x->gl);
@@ -425,6 +426,8 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     size_t npx = (size_t)W * (size_t)H;
     free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
     free(x->vd.detail);
+    free(x->vd.tests);
+    x->vd.tests = sl_calloc(npx, 1);
     x->vd.base = sl_calloc(npx, 1);
     x->vd.detail = sl_calloc(npx, 1);
     x->state = sl_calloc(npx, 1);
@@ -434,7 +437,7 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     x->vd.how = sl_calloc(npx, 1);
     x->W = x->vd.w = W;
     x->H = x->vd.h = H;
-    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how || !x->vd.base || !x->vd.detail) {
+    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how || !x->vd.base || !x->vd.detail || !x->vd.tests) {
         x->W = x->H = 0;
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "per-pixel buffers %dx%d", W, H);
     }
@@ -633,6 +636,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         struct sl_cost cost = {0};
         x->vd.has_base = 0;
         x->vd.has_detail = 0;
+        memset(x->vd.tests, 0, npx);
         e = cm->method->run(&a, &x->vd, &cost, d);
         res->passes.method_runs++;
         if (r >= c->warmup)

@@ -115,7 +115,9 @@ static enum sl_err run_mode(const struct sl_method_args *a, struct sl_verdicts *
     for (long i = 0; i < n; i++) {
         if (sl_verdict_fixed(v, (size_t)i, out))
             continue;
+        const uint64_t tests_before = tests;
         int r = decide(a, (size_t)i, mode != M_SGSM, mode != M_BGSM, sgsm_layer, &lookups, &tests);
+        out->tests[i] = (uint8_t)(tests - tests_before);      /* at most one per pixel */
         out->how[i] = SL_HOW_MAP;
         if (r == (V_LIT | V_SHADOW)) {
             conflicts++;       /* impossible if both layers are right; trace it */

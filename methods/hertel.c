@@ -77,6 +77,7 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
         if (id != v->tri[i]) {
             const uint32_t *ix = s->idx + 3 * (size_t)(id - 1);
             tests++;
+            out->tests[i] = 1;
             if (sl_shadow_ray_tri_sure(p, s->light_dir, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
                                        s->pos + 3 * ix[2]) > 0) {
                 out->v[i] = SL_V_SHADOW;

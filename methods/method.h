@@ -56,6 +56,7 @@ struct sl_verdicts {
     int      has_base;
     uint8_t *detail; /* coherence: how many of the texels tested say shadow, when has_detail */
     int      has_detail;
+    uint8_t *tests;  /* ray-triangle tests spent on each pixel (saturating at 255), zeroed before a run */
 };
 
 /* Machine-independent counts beside wall time. */

@@ -211,6 +211,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         sl_frame_project(f, p, &u, &w, &z);
         uint32_t k = sl_frame_texel(f, u, w);
         lookups++;
+        const uint64_t tests_before = tests;
         uint8_t nsm = z <= c.L->depth[k] ? SL_V_LIT : SL_V_SHADOW;
         out->base[i] = nsm;
         const uint32_t own = v->tri[i];
@@ -242,17 +243,20 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             if (!hit && nsm == SL_V_SHADOW && adjacency_hit(&c, p, c.L->id[k], 2, own, &tests)) {
                 out->v[i] = SL_V_SHADOW;            /* nsm shadowed it: a confirmation */
                 out->how[i] = SL_HOW_CONFIRM_ADJ;
+                out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
                 continue;
             }
             if (!hit) {
                 out->v[i] = SL_V_LIT;
                 out->how[i] = SL_HOW_FALLBACK;
+                out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
                 if (left)
                     left[i] = 1;
                 continue;
             }
             break;
         }
+        out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
         if (hit) {
             out->v[i] = SL_V_SHADOW;
             out->how[i] = nsm == SL_V_SHADOW ? SL_HOW_CONFIRM : SL_HOW_CORRECT;

@@ -158,6 +158,8 @@ static void fig_open(struct fig *g, const char *scene)
     g->vd.v = calloc(n, 1);
     g->vd.how = calloc(n, 1);
     g->vd.base = calloc(n, 1);
+    g->vd.detail = calloc(n, 1);
+    g->vd.tests = calloc(n, 1);
 }
 
 static void fig_run(struct fig *g, const char *method, int key, int value)
@@ -211,6 +213,8 @@ static void fig_close(struct fig *g)
     free(g->vd.v);
     free(g->vd.how);
     free(g->vd.base);
+    free(g->vd.detail);
+    free(g->vd.tests);
     sl_adjacency_free(&g->adj);
     sl_frame_free(&g->fr);
     sl_shadowmap_free(&g->sp);
@@ -313,6 +317,12 @@ static void moderno_figure29_adjacent_geometry(void **st)
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
     fig_run(&g, "adjacency", SL_PARAM_LEVEL, 1);
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CONFIRM);
+    for (int i = 0; i < g.v.w * g.v.h; i++) {                  /* under the second triangle: */
+        const float *p = g.v.pos + 3 * i;                       /* the stored one missed, its neighbour hit */
+        if (g.v.cls[i] == SL_C_PFL && p[0] >= lo[0] && p[0] <= hi[0] && p[2] >= lo[2] && p[2] <= hi[2] &&
+            p[1] >= lo[1] && p[1] <= hi[1])
+            assert_true(g.vd.tests[i] >= 2);
+    }
     fig_run(&g, "adjacency", SL_PARAM_LEVEL, 2);
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CONFIRM);
     fig_close(&g);
