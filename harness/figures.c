@@ -75,6 +75,14 @@ void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, c
             c[SL_FIG_confirmed_adj] += (uint64_t)(vd->how[i] == SL_HOW_CONFIRM_ADJ);
             c[SL_FIG_ray_tri_tests] += vd->tests[i];
             c[SL_FIG_corrected] += (uint64_t)(vd->how[i] == SL_HOW_CORRECT);
+            if (vd->has_base && t != SL_T_PNFL) {
+                int bl = vd->base[i] == SL_V_LIT;
+                c[bl ? SL_FIG_nsm_light : SL_FIG_nsm_shadow]++;
+                if (vd->how[i] == SL_HOW_HINT) {
+                    c[bl ? SL_FIG_hinted_light : SL_FIG_hinted_shadow]++;
+                    c[bl ? SL_FIG_hinted_light_wrong : SL_FIG_hinted_shadow_wrong] += (uint64_t)wrong;
+                }
+            }
             if (vd->has_base && t != SL_T_PNFL && (verdict == SL_V_LIT || verdict == SL_V_SHADOW)) {
                 uint8_t b = vd->base[i];
                 if (b == verdict)

@@ -36,6 +36,12 @@
     X(traced_shadow,    "of those, shadowed in truth",                "traced")   \
     X(hinted,           "pixels given a coherence hint",              "pixels")   \
     X(hinted_wrong,     "of those, hinted wrongly",                   "hinted")   \
+    X(nsm_light,        "pixels NSM puts in light (PFL)",             "pixels")   \
+    X(nsm_shadow,       "pixels NSM puts in shadow (PFL)",            "pixels")   \
+    X(hinted_light,     "NSM-lit pixels hinted (Moderno Tables 7, 19)", "nsm_light") \
+    X(hinted_light_wrong, "NSM-lit pixels hinted wrongly",            "nsm_light") \
+    X(hinted_shadow,    "NSM-shadowed pixels hinted",                 "nsm_shadow") \
+    X(hinted_shadow_wrong, "NSM-shadowed pixels hinted wrongly",      "nsm_shadow") \
     X(confirmed,        "shadow confirmed by a ray-triangle hit",     "pixels")   \
     X(confirmed_adj,    "of those, in the chain's adjacency step",    "confirmed") \
     X(corrected,        "lit turned shadowed by a ray-triangle hit",  "pixels")   \

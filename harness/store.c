@@ -27,7 +27,7 @@
 #include <string.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 5   /* 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests */
+#define SL_STORE_VERSION 6   /* 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
 #define SL_STORE_BUSY_MS 10000
 
 /* ---- schema ---- */

@@ -112,6 +112,13 @@ static void moderno_coherence_patterns(void **st)
         assert_int_equal(all, cl->n_pfl);
         assert_int_equal(mid, f->n[SL_FIG_uncertain]);
         assert_int_equal(cl->pattern[g][0][0] + cl->pattern[g][n][0], f->n[SL_FIG_hinted]);
+        /* hints split by NSM's verdict add up, and NSM's two sides make the PFL pixels */
+        assert_int_equal(f->n[SL_FIG_hinted_light] + f->n[SL_FIG_hinted_shadow], f->n[SL_FIG_hinted]);
+        assert_int_equal(f->n[SL_FIG_hinted_light_wrong] + f->n[SL_FIG_hinted_shadow_wrong], f->n[SL_FIG_hinted_wrong]);
+        assert_int_equal(f->n[SL_FIG_nsm_light] + f->n[SL_FIG_nsm_shadow], cl->n_pfl);
+        /* the footprint holds the pixel's own texel: all lit means NSM lights it */
+        assert_true(cl->pattern[g][0][0] == f->n[SL_FIG_hinted_light]);
+        assert_true(cl->pattern[g][n][0] == f->n[SL_FIG_hinted_shadow]);
     }
     printf("moderno::coherence_patterns: undecided leaning lit %llu (%llu shadowed), leaning shadow %llu (%llu shadowed)\n",
            (unsigned long long)lean[0][0], (unsigned long long)lean[0][1], (unsigned long long)lean[1][0],
