@@ -134,18 +134,19 @@ static void write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_
     machine_of(&res->prov, machine, sizeof machine);
     fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,ms_gbuffer_render,ms_gbuffer_readback,"
                "ms_truth,truth_cached,truth_rays,ms_fit,ms_map_render,ms_map_readback,ms_method,"
-               "ms_method_min,ms_method_max,runs,ms_ray_step,lookups,rays,tri_tests,gs_prims,fragments,"
-               "ms_contours,ms_figures,ms_overlay,git_sha,config_hash,machine\n");
+               "ms_method_min,ms_method_max,runs,ms_ray_step,ms_step1,ms_step2,ms_step3,ms_step4,lookups,rays,"
+               "tri_tests,gs_prims,fragments,ms_contours,ms_figures,ms_overlay,git_sha,config_hash,machine\n");
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
         const struct sl_stage_ms *s = &cl->ms;
         fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%.3f,"
-                   "%llu,%llu,%llu,%llu,%llu,%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n",
+                   "%.3f,%.3f,%.3f,%.3f,%llu,%llu,%llu,%llu,%llu,%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n",
                 cl->index, cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
                 c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label,
                 s->gbuffer_render, s->gbuffer_readback, s->truth, cl->truth_cached,
                 (unsigned long long)cl->truth_rays, s->fit, s->map_render, s->map_readback, s->method,
-                s->method_min, s->method_max, c->runs, cl->cost.ms_trace, (unsigned long long)cl->cost.lookups,
+                s->method_min, s->method_max, c->runs, cl->cost.ms_trace, cl->cost.ms_step[0],
+                cl->cost.ms_step[1], cl->cost.ms_step[2], cl->cost.ms_step[3], (unsigned long long)cl->cost.lookups,
                 (unsigned long long)cl->cost.rays, (unsigned long long)cl->cost.tri_tests,
                 (unsigned long long)cl->gs_prims, (unsigned long long)cl->fragments, s->contours,
                 s->figures, s->overlay, res->prov.git_sha, c->hash, machine);

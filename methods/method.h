@@ -63,6 +63,7 @@ struct sl_verdicts {
 struct sl_cost {
     double   ms_method;     /* the method's own per-pixel work (its ray step included) */
     double   ms_trace;      /* of which: the ray step */
+    double   ms_step[4];    /* a chain's steps (coherence, neighbours, adjacency, the rest) */
     uint64_t lookups;       /* shadow-map texel reads */
     uint64_t rays;          /* shadow rays handed to Embree */
     uint64_t tri_tests;     /* ray-triangle tests outside Embree */

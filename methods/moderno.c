@@ -36,7 +36,7 @@
 #include "truth.h"
 #include "util.h"
 
-enum kind { K_COHERENCE, K_TEXEL, K_NEIGHBOURS, K_ADJACENCY, K_CHAIN };
+enum kind { K_COHERENCE, K_TEXEL, K_NEIGHBOURS, K_ADJACENCY };
 
 static unsigned needs_map(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_DEPTH_ID_BACK); }
 static unsigned needs_adj(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_DEPTH_ID_BACK) | SL_NEED_ADJACENCY; }
@@ -188,14 +188,11 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
     const struct sl_light_frame *f = a->frame;
     if (!(f->have & SL_NEED(SL_LAYER_DEPTH_ID_BACK)))
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: the shadow map was not rendered");
-    if ((kind == K_ADJACENCY || kind == K_CHAIN) && !a->adj)
+    if (kind == K_ADJACENCY && !a->adj)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: no adjacency");
     struct ctx c = {.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size};
     const long n = (long)v->w * v->h;
     const struct sl_method_params *prm = a->params;
-    uint8_t *left = NULL;
-    if (kind == K_CHAIN && prm->finish == 0 && !(left = sl_calloc((size_t)n, 1)))
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain mask");
     out->has_base = 1;
     out->has_detail = kind == K_COHERENCE;
     uint64_t lookups = 0, tests = 0;
@@ -232,29 +229,6 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         case K_ADJACENCY:
             hit = adjacency_hit(&c, p, c.L->id[k], prm->level, own, &tests);
             break;
-        case K_CHAIN:
-            coh = coherence(&c, u, w, z, 4, &lookups, &shadowed);
-            if (coh) {
-                out->v[i] = coh == 1 ? SL_V_LIT : SL_V_SHADOW;
-                out->how[i] = SL_HOW_HINT;
-                continue;
-            }
-            hit = neighbours_hit(&c, p, u, w, 9, own, &lookups, &tests);
-            if (!hit && nsm == SL_V_SHADOW && adjacency_hit(&c, p, c.L->id[k], 2, own, &tests)) {
-                out->v[i] = SL_V_SHADOW;            /* nsm shadowed it: a confirmation */
-                out->how[i] = SL_HOW_CONFIRM_ADJ;
-                out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
-                continue;
-            }
-            if (!hit) {
-                out->v[i] = SL_V_LIT;
-                out->how[i] = SL_HOW_FALLBACK;
-                out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
-                if (left)
-                    left[i] = 1;
-                continue;
-            }
-            break;
         }
         out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
         if (hit) {
@@ -268,8 +242,90 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
     cost->ms_method += 1e3 * (sl_now() - t0);
     cost->lookups += lookups;
     cost->tri_tests += tests;
-    enum sl_err e = left ? sl_method_trace_left(a, left, NULL, out, cost, d) : SL_OK;
-    free(left);
+    return SL_OK;
+}
+
+static uint8_t clamp255(uint64_t x) { return (uint8_t)(x > 255 ? 255 : x); }
+
+/* The chain, one timed pass per step over the pixels the steps before left
+ * undecided (stage[i]: 1 after coherence, 2 after neighbours, 3 after
+ * adjacency): so that each step's time and rays come out apart. */
+static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_verdicts *out,
+                                   struct sl_cost *cost, struct sl_diag *d)
+{
+    const struct sl_view *v = a->view;
+    const struct sl_light_frame *f = a->frame;
+    if (!(f->have & SL_NEED(SL_LAYER_DEPTH_ID_BACK)) || !a->adj)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "chain: no shadow map or no adjacency");
+    struct ctx c = {.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size};
+    const long n = (long)v->w * v->h;
+    uint8_t *stage = sl_calloc((size_t)n, 1);
+    if (!stage)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain stages");
+    out->has_base = 1;
+    uint64_t lookups = 0, tests = 0;
+    for (int step = 0; step < 3; step++) {
+        double t0 = sl_now();
+#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
+        for (long i = 0; i < n; i++) {
+            if (step == 0 && sl_verdict_fixed(v, (size_t)i, out)) {
+                out->base[i] = out->v[i];
+                continue;
+            }
+            if (step > 0 && stage[i] != step)
+                continue;
+            const float *p = v->pos + 3 * i;
+            float u, w, z;
+            sl_frame_project(f, p, &u, &w, &z);
+            uint32_t k = sl_frame_texel(f, u, w);
+            const uint64_t before = tests;
+            if (step == 0) {                    /* NSM, then coherence over 4 texels */
+                lookups++;
+                out->base[i] = z <= c.L->depth[k] ? SL_V_LIT : SL_V_SHADOW;
+                int shadowed, coh = coherence(&c, u, w, z, 4, &lookups, &shadowed);
+                if (coh) {
+                    out->v[i] = coh == 1 ? SL_V_LIT : SL_V_SHADOW;
+                    out->how[i] = SL_HOW_HINT;
+                } else {
+                    stage[i] = 1;
+                }
+                continue;
+            }
+            if (step == 1 && neighbours_hit(&c, p, u, w, 9, v->tri[i], &lookups, &tests)) {
+                out->v[i] = SL_V_SHADOW;
+                out->how[i] = out->base[i] == SL_V_SHADOW ? SL_HOW_CONFIRM : SL_HOW_CORRECT;
+            } else if (step == 2 && out->base[i] == SL_V_SHADOW &&
+                       adjacency_hit(&c, p, c.L->id[k], 2, v->tri[i], &tests)) {
+                out->v[i] = SL_V_SHADOW;        /* the map shadowed it: a confirmation */
+                out->how[i] = SL_HOW_CONFIRM_ADJ;
+            } else {
+                stage[i] = (uint8_t)(step + 1);
+            }
+            out->tests[i] = clamp255(out->tests[i] + tests - before);
+        }
+        cost->ms_step[step] = 1e3 * (sl_now() - t0);
+        cost->ms_method += cost->ms_step[step];
+    }
+    cost->lookups += lookups;
+    cost->tri_tests += tests;
+    /* what is left: traced, or left lit */
+    double t0 = sl_now();
+    enum sl_err e = SL_OK;
+    for (long i = 0; i < n; i++)
+        if (stage[i] == 3) {
+            out->v[i] = SL_V_LIT;
+            out->how[i] = SL_HOW_FALLBACK;
+        }
+    if (a->params->finish == 0) {
+        for (long i = 0; i < n; i++)
+            stage[i] = stage[i] == 3;
+        double ms_method = cost->ms_method;
+        e = sl_method_trace_left(a, stage, NULL, out, cost, d);
+        cost->ms_method = ms_method;        /* added below with the step */
+    }
+    cost->ms_step[3] = 1e3 * (sl_now() - t0);
+    cost->ms_method += cost->ms_step[3];
+    free(stage);
     return e;
 }
 
@@ -277,7 +333,7 @@ static enum sl_err run_coherence(const struct sl_method_args *a, struct sl_verdi
 static enum sl_err run_texel(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_TEXEL, d); }
 static enum sl_err run_neighbours(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_NEIGHBOURS, d); }
 static enum sl_err run_adjacency(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_ADJACENCY, d); }
-static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_CHAIN, d); }
+static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_chain_steps(a, o, c, d); }
 
 const struct sl_method sl_method_coherence = {
     .name = "coherence", .summary = "texel coherence, 4 or 9 texels (Moderno 2011): hints, may be wrong",
