@@ -16,11 +16,11 @@
 enum sl_layer_id {
     SL_LAYER_DEPTH_ID = 0,      /* nearest surface, both faces: depth + id */
     SL_LAYER_DEPTH_ID_BACK,     /* front faces culled (Moderno 2011): depth + id */
-    SL_LAYER_BGSM,              /* conservative: every triangle touching a texel, its lowest depth there */
+    SL_LAYER_BGSM,              /* conservative: every triangle touching a texel, its lowest depth there;
+                                 * the id carries SL_FULL when the triangle covers the whole texel */
     SL_LAYER_BGSM2,             /* the same without the triangle BGSM stored at the texel (needs BGSM) */
     SL_LAYER_SGSM,              /* triangles covering the whole texel, their highest depth there */
     SL_LAYER_SGSM_ADJ,          /* the same, a triangle extended across edges to away-facing neighbours */
-    SL_LAYER_HERTEL,            /* BGSM's layer with Hertel's "fully covered" mark (SL_HERTEL_FULL in id) */
     SL_LAYER_COUNT
 };
 #define SL_NEED(layer) (1u << (layer))
@@ -42,8 +42,9 @@ struct sl_depth_layer {
     uint64_t  fragments;        /* fragment shader invocations (GL query) */
 };
 
-/* Hertel's layer marks a texel wholly inside its stored triangle. */
-#define SL_HERTEL_FULL 0x80000000u
+/* BGSM marks a texel wholly inside its stored triangle (Hertel's "fully
+ * covered"): readers of its ids mask it off. */
+#define SL_FULL 0x80000000u
 
 /* Margins of the conservative layers, shared by the shaders (uniforms) and
  * the methods that read them; see methods/conservative.c for why each is

@@ -567,7 +567,7 @@ static void check_exact(const struct run_ctx *x, const struct sl_method *m, stru
                 o->ty = (int)(k / (uint32_t)x->frame.size);
                 for (int l = 0; l < SL_LAYER_COUNT; l++)
                     if (x->frame.have & SL_NEED(l))
-                        o->layer_tri[l] = x->frame.layer[l].id[k] & ~SL_HERTEL_FULL;
+                        o->layer_tri[l] = x->frame.layer[l].id[k] & ~SL_FULL;
             }
             cell->violations++;
         }
@@ -576,7 +576,7 @@ static void check_exact(const struct run_ctx *x, const struct sl_method *m, stru
 static void report_violations(const struct sl_config *c, const struct sl_cell *cl)
 {
     static const char *const layer_names[SL_LAYER_COUNT] = {"depth", "depth_back", "bgsm", "bgsm2", "sgsm",
-                                                            "sgsm_adj", "hertel"};
+                                                            "sgsm_adj"};
     fprintf(stderr, "shadowlab: VIOLATION: %s/%s %dx%d map %d '%s': %llu pixel(s) break its exactness\n",
             cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
             c->maps[cl->key.map], c->methods[cl->key.method].label, (unsigned long long)cl->violations);

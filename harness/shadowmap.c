@@ -24,7 +24,7 @@ extern const char sl_glsl_cons_adj_gs[];
 #endif
 
 /* How a layer is drawn. */
-enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM, K_SGSM_ADJ, K_HERTEL };
+enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM, K_SGSM_ADJ };
 
 void sl_frame_free(struct sl_light_frame *f)
 {
@@ -203,9 +203,6 @@ enum sl_err sl_shadowmap_render(const struct sl_shadowmap_pass *p, const struct 
             break;
         case SL_LAYER_SGSM_ADJ:
             e = render_layer(p, m, f, K_SGSM_ADJ, &f->layer[l], d);
-            break;
-        case SL_LAYER_HERTEL:
-            e = render_layer(p, m, f, K_HERTEL, &f->layer[l], d);
             break;
         case SL_LAYER_COUNT:
             break;

@@ -81,13 +81,14 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
     if (use_bgsm) {
         const struct sl_depth_layer *b1 = &f->layer[SL_LAYER_BGSM], *b2 = &f->layer[SL_LAYER_BGSM2];
         (*lookups)++;
+        const uint32_t id1 = b1->id[k] & ~SL_FULL;
         if (b1->depth[k] > z) {
             r |= V_LIT;
-        } else if (b1->id[k]) {
-            int skip = b1->id[k] == v->tri[i];
+        } else if (id1) {
+            int skip = id1 == v->tri[i];
             if (!skip) {
                 (*tests)++;
-                skip = surely_misses(a->scene, p, b1->id[k] - 1);
+                skip = surely_misses(a->scene, p, id1 - 1);
             }
             if (skip) {
                 (*lookups)++;

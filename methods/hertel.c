@@ -5,7 +5,7 @@
  * Their pipeline, and where ours differs:
  * - A conservative shadow map holds per texel the nearest conservative depth
  *   and the id of its triangle, with a mark for texels the triangle covers
- *   fully (SL_LAYER_HERTEL; the enlargement and the per-texel tests are
+ *   fully (BGSM's layer, shared with bgsm and csm; the enlargement and the per-texel tests are
  *   those of the other conservative layers, see conservative.c: the edges
  *   move by half the texel diagonal plus a margin rather than Hertel's full
  *   diagonal, and the exact square test in the fragment shader stands for
@@ -33,7 +33,7 @@
 #include "truth.h"
 #include "util.h"
 
-static unsigned h_needs(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_HERTEL); }
+static unsigned h_needs(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_BGSM); }
 
 static enum sl_err h_configure(struct sl_method_params *p, struct sl_diag *d)
 {
@@ -47,7 +47,7 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
 {
     const struct sl_view *v = a->view;
     const struct sl_light_frame *f = a->frame;
-    const struct sl_depth_layer *L = &f->layer[SL_LAYER_HERTEL];
+    const struct sl_depth_layer *L = &f->layer[SL_LAYER_BGSM];
     const struct sl_scene *s = a->scene;
     const long n = (long)v->w * v->h;
     uint8_t *undecided = sl_calloc((size_t)n, 1);
@@ -68,7 +68,7 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
         sl_frame_project(f, p, &u, &w, &z);
         uint32_t k = sl_frame_texel(f, u, w);
         lookups++;
-        uint32_t id = L->id[k] & ~SL_HERTEL_FULL;
+        uint32_t id = L->id[k] & ~SL_FULL;
         out->how[i] = SL_HOW_MAP;
         if (!id || L->depth[k] > z) {
             out->v[i] = SL_V_LIT;

@@ -15,8 +15,8 @@
 // triangle by at least u_eps texels; the depth written is an upper bound of
 // the triangle's depth over the square (maximum of the plane over the corners,
 // never beyond its farthest vertex), plus u_zeps.
-// u_mode 4 (Hertel 2009): as mode 0, and the id carries SL_HERTEL_FULL
-// (the top bit) when the whole square lies inside the triangle by u_eps.
+// Mode 0 also marks the id with SL_FULL (the top bit) when the whole square
+// lies inside the triangle by u_eps (Hertel 2009's "fully covered").
 // All write the triangle's id; the depth test keeps the smallest value.
 uniform int u_mode;
 uniform double u_eps;
@@ -70,7 +70,7 @@ double plane_max(dvec3 a, dvec3 b, dvec3 c, dvec2 q[4])
 void main()
 {
     ivec2 t = ivec2(gl_FragCoord.xy);
-    if (u_mode == 1 && texelFetch(u_first_ids, t, 0).r == g_tri)
+    if (u_mode == 1 && (texelFetch(u_first_ids, t, 0).r & 0x7fffffffu) == g_tri)
         discard;
     dvec3 v[3] = dvec3[3](dvec3(g_v0), dvec3(g_v1), dvec3(g_v2));
     if (u_mode == 3) {
@@ -172,5 +172,5 @@ void main()
     }
     z = u_mode == 2 ? z + u_zeps : z - u_zeps;
     gl_FragDepth = float(clamp(z, 0.0, 1.0));
-    o_tri = (u_mode == 4 && full) ? (g_tri | 0x80000000u) : g_tri;
+    o_tri = (u_mode == 0 && full) ? (g_tri | 0x80000000u) : g_tri;
 }
