@@ -71,20 +71,12 @@ static void float_bits(const float *p, uint32_t k[3])
     memcpy(k, p, 3 * sizeof(float));
 }
 
-/* Same arithmetic as sl_scene_from_mesh: the weld must drop exactly what the
+/* The scene's own test (sl_tri_normal_d): the weld drops exactly what the
  * scene would reject. */
 static int tri_has_area(const float *a, const float *b, const float *c)
 {
-    double e1[3], e2[3], n[3];
-    for (int k = 0; k < 3; k++) {
-        e1[k] = (double)b[k] - a[k];
-        e2[k] = (double)c[k] - a[k];
-    }
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    return len > 0.0;
+    double n[3];
+    return sl_tri_normal_d(a, b, c, n) > 0.0;
 }
 
 /*

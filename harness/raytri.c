@@ -37,32 +37,6 @@ int sl_ray_tri_d(const double o[3], const double dir[3], const double a[3], cons
     return 1;
 }
 
-int sl_ray_tri_f(const float o[3], const float dir[3], const float a[3], const float b[3],
-                 const float c[3], float tmin, float *t)
-{
-    float e1[3], e2[3], pv[3], tv[3], qv[3];
-    SUB(e1, b, a);
-    SUB(e2, c, a);
-    CROSS(pv, dir, e2);
-    float det = DOT(e1, pv);
-    if (det == 0.0f)
-        return 0;
-    float inv = 1.0f / det;
-    SUB(tv, o, a);
-    float u = DOT(tv, pv) * inv;
-    if (u < 0.0f || u > 1.0f)
-        return 0;
-    CROSS(qv, tv, e1);
-    float v = DOT(dir, qv) * inv;
-    if (v < 0.0f || u + v > 1.0f)
-        return 0;
-    float tt = DOT(e2, qv) * inv;
-    if (!(tt > tmin))
-        return 0;
-    *t = tt;
-    return 1;
-}
-
 static double seg_dist(const double p[3], const double a[3], const double b[3])
 {
     double ab[3], ap[3];

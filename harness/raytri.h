@@ -1,8 +1,8 @@
 /*
  * raytri.h — ray-triangle tests outside Embree: the double-precision reference
- * the truth is checked against, and the float test methods use to confirm a
- * shadow against a stored triangle (one "ray-triangle test" in the cost
- * counters).
+ * the truth is checked against, and the sure/unsure shadow-ray test methods
+ * use to confirm a shadow against a stored triangle (one "ray-triangle test"
+ * in the cost counters).
  */
 #ifndef SL_RAYTRI_H
 #define SL_RAYTRI_H
@@ -11,10 +11,6 @@
  * closed triangle abc (edges included) with t > tmin; culls no side. */
 int sl_ray_tri_d(const double o[3], const double dir[3], const double a[3], const double b[3],
                  const double c[3], double tmin, double *t);
-
-/* Float version with the same semantics. */
-int sl_ray_tri_f(const float o[3], const float dir[3], const float a[3], const float b[3],
-                 const float c[3], float tmin, float *t);
 
 /* Distance from point p to the closed triangle abc (0 inside), in double. */
 double sl_point_tri_dist_d(const double p[3], const double a[3], const double b[3],

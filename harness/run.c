@@ -245,22 +245,27 @@ static void write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_r
 
 /* ---- truth cache ---- */
 
-static unsigned long long truth_key(const struct sl_scene *s, const struct sl_viewpoint *vp, int w, int h,
-                                    const struct sl_gl *gl, const struct sl_rt *rt)
+/* What a scene's truths depend on besides the view: hashed once per scene
+ * (the geometry is the bulk of it). */
+static unsigned long long scene_key(const struct sl_scene *s, const struct sl_gl *gl, const struct sl_rt *rt)
 {
     unsigned long long k = SL_FNV_SEED;
     k = sl_fnv1a(k, SL_TRUTH_VERSION, strlen(SL_TRUTH_VERSION));
     k = sl_fnv1a(k, s->pos, (size_t)s->nv * 3 * sizeof(float));
     k = sl_fnv1a(k, s->idx, (size_t)s->nt * 3 * sizeof(uint32_t));
     k = sl_fnv1a(k, &s->light, sizeof s->light);
-    k = sl_fnv1a(k, vp, sizeof *vp);
-    k = sl_fnv1a(k, &w, sizeof w);
-    k = sl_fnv1a(k, &h, sizeof h);
     /* the G-buffer positions come from GL: another renderer, another truth */
     k = sl_fnv1a(k, gl->renderer, strlen(gl->renderer));
     k = sl_fnv1a(k, gl->version, strlen(gl->version));
     k = sl_fnv1a(k, rt->version, strlen(rt->version));
     return k;
+}
+
+static unsigned long long truth_key(unsigned long long scene, const struct sl_viewpoint *vp, int w, int h)
+{
+    unsigned long long k = sl_fnv1a(scene, vp, sizeof *vp);
+    k = sl_fnv1a(k, &w, sizeof w);
+    return sl_fnv1a(k, &h, sizeof h);
 }
 
 static const char truth_magic[8] = {'S', 'L', 'T', 'R', 'U', 'T', 'H', '1'};
@@ -323,6 +328,7 @@ struct run_ctx {
     /* current scene */
     int scene_i;
     struct sl_scene scene;
+    unsigned long long scene_key;      /* truth cache key of the scene */
     struct sl_adjacency adj;
     int have_adj;
     struct sl_gl_mesh mesh;
@@ -405,6 +411,7 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
         return e;
     res->ms_bvh += x->rt.ms_build;
     res->passes.scenes++;
+    x->scene_key = scene_key(&x->scene, &x->gl, &x->rt);
     unsigned needs = 0;
     for (int m = 0; m < c->nmethods; m++)
         needs |= c->methods[m].method->needs(&c->methods[m].params);
@@ -462,7 +469,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         return e;
     res->passes.gbuffers++;
     double t0 = sl_now();
-    unsigned long long key = truth_key(&x->scene, &x->scene.vp[vp], W, H, &x->gl, &x->rt);
+    unsigned long long key = truth_key(x->scene_key, &x->scene.vp[vp], W, H);
     x->truth_cached = cache_dir && cache_dir[0] && truth_cache_read(cache_dir, key, &x->view);
     x->truth_rays = 0;
     if (x->truth_cached) {

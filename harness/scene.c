@@ -23,6 +23,19 @@ void sl_scene_free(struct sl_scene *s)
     memset(s, 0, sizeof *s);
 }
 
+double sl_tri_normal_d(const float a[3], const float b[3], const float c[3], double n[3])
+{
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = (double)b[k] - a[k];
+        e2[k] = (double)c[k] - a[k];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    return sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
 enum sl_err sl_scene_from_mesh(struct sl_scene *s, const struct sl_mesh *m, struct sl_diag *d)
 {
     if (m->oom)
@@ -50,16 +63,8 @@ enum sl_err sl_scene_from_mesh(struct sl_scene *s, const struct sl_mesh *m, stru
         const uint32_t *ix = s->idx + 3 * t;
         if (ix[0] >= s->nv || ix[1] >= s->nv || ix[2] >= s->nv)
             return sl_fail(d, SL_E_SCENE, NULL, 0, NULL, "triangle %u indexes a missing vertex", t);
-        const float *a = s->pos + 3 * ix[0], *b = s->pos + 3 * ix[1], *c = s->pos + 3 * ix[2];
-        double e1[3], e2[3], n[3];
-        for (int k = 0; k < 3; k++) {
-            e1[k] = (double)b[k] - a[k];
-            e2[k] = (double)c[k] - a[k];
-        }
-        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double n[3];
+        double len = sl_tri_normal_d(s->pos + 3 * ix[0], s->pos + 3 * ix[1], s->pos + 3 * ix[2], n);
         if (!(len > 0.0))
             return sl_fail(d, SL_E_SCENE, NULL, 0, NULL, "triangle %u has zero area", t);
         for (int k = 0; k < 3; k++)

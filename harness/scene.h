@@ -103,6 +103,11 @@ void  sl_gen_bench(struct sl_mesh *m, float cx, float y0, float cz, float length
 void  sl_gen_lamp(struct sl_mesh *m, float cx, float y0, float cz, float height);
 float sl_gen_flower_box(struct sl_mesh *m, float cx, float y0, float cz, float w, float d, float h);
 
+/* The unnormalised normal (b - a) x (c - a) of a triangle in double; returns
+ * its length (twice the area), 0 for a zero-area triangle. The scene and the
+ * weld share it, so the weld drops exactly the triangles a scene rejects. */
+double sl_tri_normal_d(const float a[3], const float b[3], const float c[3], double n[3]);
+
 /* Scene from a mesh: copies arrays, computes face normals and bounds;
  * degenerate (zero-area) triangles are rejected with SL_E_SCENE. */
 enum sl_err sl_scene_from_mesh(struct sl_scene *s, const struct sl_mesh *m, struct sl_diag *d);

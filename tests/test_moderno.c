@@ -215,6 +215,15 @@ static int fig_truth(const struct fig *g, const float lo[3], const float hi[3], 
     return n;
 }
 
+/* The case's premise: the region holds enough PFL pixels, all shadowed in truth. */
+static void fig_all_shadowed(const struct fig *g, const float lo[3], const float hi[3])
+{
+    int total;
+    fig_count(g, lo, hi, SL_V_LIT, -1, &total);
+    assert_true(total > 20);
+    assert_int_equal(fig_truth(g, lo, hi, SL_T_SHADOW), total);
+}
+
 static void fig_close(struct fig *g)
 {
     free(g->vd.v);
@@ -245,9 +254,7 @@ static void moderno_figure16_no_texel_centre(void **st)
     struct fig g;
     fig_open(&g, "tests/scenes/fig16.yaml");
     const float lo[3] = {0.1f, -0.01f, 0.1f}, hi[3] = {0.2f, 0.01f, 0.2f};
-    int total;
-    fig_count(&g, lo, hi, SL_V_LIT, -1, &total);
-    assert_int_equal(fig_truth(&g, lo, hi, SL_T_SHADOW), total);     /* shadowed in truth */
+    fig_all_shadowed(&g, lo, hi);
     for (size_t k = 0; k < 16 * 16; k++)
         assert_int_equal(g.fr.layer[SL_LAYER_DEPTH_ID_BACK].id[k], 0);   /* stored nowhere */
     fig_run(&g, "nsm", 0, 0);
@@ -268,10 +275,7 @@ static void moderno_figure19_lit_but_shadowed(void **st)
     struct fig g;
     fig_open(&g, "tests/scenes/fig19.yaml");
     const float lo[3] = {0.05f, 2.99f, 0.4f}, hi[3] = {0.15f, 3.01f, 0.6f};
-    int total;
-    fig_count(&g, lo, hi, SL_V_LIT, -1, &total);
-    assert_true(total > 20);
-    assert_int_equal(fig_truth(&g, lo, hi, SL_T_SHADOW), total);
+    fig_all_shadowed(&g, lo, hi);
     fig_run(&g, "nsm", 0, 0);
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_MAP);
     fig_run(&g, "texel", 0, 0);
@@ -288,10 +292,7 @@ static void moderno_figure22_neighbour_texel(void **st)
     struct fig g;
     fig_open(&g, "tests/scenes/fig22.yaml");
     const float lo[3] = {0.75f, -0.01f, 0.11f}, hi[3] = {0.95f, 0.01f, 0.18f};
-    int total;
-    fig_count(&g, lo, hi, SL_V_LIT, -1, &total);
-    assert_true(total > 20);
-    assert_int_equal(fig_truth(&g, lo, hi, SL_T_SHADOW), total);
+    fig_all_shadowed(&g, lo, hi);
     fig_run(&g, "nsm", 0, 0);
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_MAP);
     fig_run(&g, "texel", 0, 0);
@@ -312,10 +313,7 @@ static void moderno_figure29_adjacent_geometry(void **st)
     struct fig g;
     fig_open(&g, "tests/scenes/fig29.yaml");
     const float lo[3] = {0.35f, -0.01f, 0.17f}, hi[3] = {0.5f, 0.01f, 0.26f};
-    int total;
-    fig_count(&g, lo, hi, SL_V_LIT, -1, &total);
-    assert_true(total > 20);
-    assert_int_equal(fig_truth(&g, lo, hi, SL_T_SHADOW), total);
+    fig_all_shadowed(&g, lo, hi);
     fig_run(&g, "nsm", 0, 0);
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_MAP);
     fig_run(&g, "texel", 0, 0);

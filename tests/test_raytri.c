@@ -44,18 +44,6 @@ static void raytri_edges_closed_and_tmin(void **st)
     assert_int_equal(sl_ray_tri_d(o2, d, A, B, C, 0.49, &t), 1);
 }
 
-static void raytri_float_agrees(void **st)
-{
-    (void)st;
-    const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0};
-    float t;
-    float o[3] = {0.2f, 0.3f, 2}, d[3] = {0, 0, -1};
-    assert_int_equal(sl_ray_tri_f(o, d, a, b, c, 0.0f, &t), 1);
-    assert_true(fabsf(t - 2.0f) < 1e-6f);
-    float o2[3] = {0.6f, 0.6f, 2};
-    assert_int_equal(sl_ray_tri_f(o2, d, a, b, c, 0.0f, &t), 0);
-}
-
 static void raytri_distances(void **st)
 {
     (void)st;
@@ -75,7 +63,6 @@ int main(void)
         SL_CASE(raytri, hit_inside),
         SL_CASE(raytri, miss_outside_and_behind),
         SL_CASE(raytri, edges_closed_and_tmin),
-        SL_CASE(raytri, float_agrees),
         SL_CASE(raytri, distances),
     };
     return cmocka_run_group_tests_name("raytri", tests, NULL, NULL);
