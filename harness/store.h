@@ -62,12 +62,27 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
  * whole image last), NULL percentages as NAN, machine as "host/cpu/isa" of
  * its run. *out is malloc'ed (free), NULL when *n is 0 or on error. */
 struct sl_store_filter {
+    const char *study;                      /* the config's name */
     const char *scene, *viewpoint, *label;
     int         map_size;
     int64_t     run_id;                     /* 0 = all runs */
 };
 enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
                            struct sl_table_cell **out, int *n, struct sl_diag *d);
+
+/* One run (one invocation of `shadowlab run`): where its numbers came from. */
+struct sl_store_run {
+    int64_t run_id;
+    struct sl_provenance prov;              /* git SHA, time, host, CPU, ISA, GL, Embree, threads */
+    char    study[64];                      /* the config's name */
+    char    config_path[512];
+    char    config_hash[24];
+    char   *config_text;                    /* the filled-in config, as written beside the results */
+    int     ncells;                         /* cells this run stored */
+};
+/* Every run, oldest first. Free with sl_store_runs_free. */
+enum sl_err sl_store_runs(struct sl_store *s, struct sl_store_run **out, int *n, struct sl_diag *d);
+void        sl_store_runs_free(struct sl_store_run *r, int n);   /* NULL-safe */
 
 /* The schema version this build reads and writes (PRAGMA user_version). */
 int sl_store_version(void);
