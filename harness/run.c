@@ -881,7 +881,9 @@ static void carry_files(const char *from, const char *to, const char *sub)
     mkdir(dst, 0777);
     struct dirent *e;
     while ((e = readdir(dir))) {
-        if (e->d_name[0] == '.')
+        /* a killed run may have left a half-written image under its
+         * temporary name (image.cpp writes name.tmp.ext, then renames) */
+        if (e->d_name[0] == '.' || strstr(e->d_name, ".tmp."))
             continue;
         char a[1800], b[1800];
         snprintf(a, sizeof a, "%s/%s", src, e->d_name);
