@@ -207,8 +207,8 @@ out:
         const struct sl_cell *cl = &res.cells[i];
         const struct sl_stage_ms *m = &cl->ms;
         fprintf(out, "| %s | %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f |\n",
-                cl->viewpoint, c.maps[cl->key.map], c.methods[cl->key.method].label, m->gbuffer_render,
-                m->gbuffer_readback, m->truth, m->fit, m->map_render, m->map_readback, m->method,
+                cl->viewpoint, c.maps[cl->key.map], c.methods[cl->key.method].label, m->gbuffer_render[SL_MED],
+                m->gbuffer_readback, m->truth[SL_MED], m->fit, m->map_render[SL_MED], m->map_readback, m->method[SL_MED],
                 m->contours, m->figures);
     }
     fprintf(out, "\nwhole run: %.0f ms (scene %.1f ms, BVH %.1f ms)\n", res.ms_total, res.ms_scene, res.ms_bvh);

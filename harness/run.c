@@ -10,8 +10,10 @@
  */
 #define _XOPEN_SOURCE 700
 #include "run.h"
+#include <dirent.h>
 #include <errno.h>
 #include <ftw.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -88,6 +90,43 @@ static void machine_of(const struct sl_provenance *p, char *out, size_t n)
     snprintf(out, n, "%s/%s/%s", p->host, p->cpu, p->isa);
 }
 
+/* A cell's counters and times as the store and the tables carry them. */
+static void costs_of(const struct sl_config *c, const struct sl_cell *cl, struct sl_table_costs *k)
+{
+    memset(k, 0, sizeof *k);
+    const struct sl_stage_ms *s = &cl->ms;
+    k->runs = c->runs;
+    k->truth_rays = cl->truth_rays;
+    k->lookups = cl->cost.lookups;
+    k->rays = cl->cost.rays;
+    k->tri_tests = cl->cost.tri_tests;
+    k->gs_prims = cl->gs_prims;
+    k->fragments = cl->fragments;
+    k->violations = cl->violations;
+    for (int j = 0; j < 3; j++) {
+        k->gbuffer_render[j] = s->gbuffer_render[j];
+        k->truth[j] = s->truth[j];
+        k->map_render[j] = s->map_render[j];
+        k->method[j] = s->method[j];
+    }
+    k->gbuffer_readback = s->gbuffer_readback;
+    k->fit = s->fit;
+    k->map_readback = s->map_readback;
+    k->ray_step = cl->cost.ms_trace;
+    for (int j = 0; j < 4; j++)
+        k->step[j] = cl->cost.ms_step[j];
+    k->contours = s->contours;
+    k->figures = s->figures;
+    k->overlay = s->overlay;
+}
+
+/* The overlay's file name inside the run's overlays/ folder. */
+static void overlay_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n)
+{
+    snprintf(out, n, "%s-%s-%dx%d-%d-%s.png", cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
+             c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label);
+}
+
 static void table_cells_of(const struct sl_config *c, const struct sl_run_result *res,
                            struct sl_table_cell *tc)
 {
@@ -108,6 +147,13 @@ static void table_cells_of(const struct sl_config *c, const struct sl_run_result
         t->n_truth_lit = cl->n_truth_lit;
         t->n_truth_shadow = cl->n_truth_shadow;
         t->fig = cl->fig;
+        costs_of(c, cl, &t->cost);
+        snprintf(t->study, sizeof t->study, "%s", c->name);
+        if (c->overlays) {
+            char name[400];
+            overlay_name(c, cl, name, sizeof name);
+            snprintf(t->overlay, sizeof t->overlay, "overlays/%s", name);
+        }
         snprintf(t->git_sha, sizeof t->git_sha, "%s", res->prov.git_sha);
         snprintf(t->config_hash, sizeof t->config_hash, "%016llx", c->hash);
         machine_of(&res->prov, t->machine, sizeof t->machine);
@@ -132,24 +178,31 @@ static void write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_
 {
     char machine[300];
     machine_of(&res->prov, machine, sizeof machine);
-    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,ms_gbuffer_render,ms_gbuffer_readback,"
-               "ms_truth,truth_cached,truth_rays,ms_fit,ms_map_render,ms_map_readback,ms_method,"
-               "ms_method_min,ms_method_max,runs,ms_ray_step,ms_step1,ms_step2,ms_step3,ms_step4,lookups,rays,"
-               "tri_tests,gs_prims,fragments,ms_contours,ms_figures,ms_overlay,git_sha,config_hash,machine\n");
+    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,runs,ms_gbuffer_render,ms_gbuffer_render_min,"
+               "ms_gbuffer_render_max,ms_gbuffer_readback,ms_truth,ms_truth_min,ms_truth_max,truth_cached,"
+               "truth_rays,ms_fit,ms_map_render,ms_map_render_min,ms_map_render_max,ms_map_readback,ms_method,"
+               "ms_method_min,ms_method_max,ms_ray_step,ms_step1,ms_step2,ms_step3,ms_step4,lookups,rays,"
+               "tri_tests,gs_prims,fragments,violations,ms_contours,ms_figures,ms_overlay,git_sha,config_hash,"
+               "machine\n");
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
-        const struct sl_stage_ms *s = &cl->ms;
-        fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%.3f,%.3f,%.3f,%d,%llu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%.3f,"
-                   "%.3f,%.3f,%.3f,%.3f,%llu,%llu,%llu,%llu,%llu,%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n",
-                cl->index, cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
-                c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label,
-                s->gbuffer_render, s->gbuffer_readback, s->truth, cl->truth_cached,
-                (unsigned long long)cl->truth_rays, s->fit, s->map_render, s->map_readback, s->method,
-                s->method_min, s->method_max, c->runs, cl->cost.ms_trace, cl->cost.ms_step[0],
-                cl->cost.ms_step[1], cl->cost.ms_step[2], cl->cost.ms_step[3], (unsigned long long)cl->cost.lookups,
-                (unsigned long long)cl->cost.rays, (unsigned long long)cl->cost.tri_tests,
-                (unsigned long long)cl->gs_prims, (unsigned long long)cl->fragments, s->contours,
-                s->figures, s->overlay, res->prov.git_sha, c->hash, machine);
+        struct sl_table_costs k;
+        costs_of(c, cl, &k);
+        fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d", cl->index, cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
+                c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label, k.runs);
+        fprintf(f, ",%.3f,%.3f,%.3f,%.3f", k.gbuffer_render[SL_MED], k.gbuffer_render[SL_MIN],
+                k.gbuffer_render[SL_MAX], k.gbuffer_readback);
+        fprintf(f, ",%.3f,%.3f,%.3f,%d,%llu,%.3f", k.truth[SL_MED], k.truth[SL_MIN], k.truth[SL_MAX],
+                cl->truth_cached, (unsigned long long)k.truth_rays, k.fit);
+        fprintf(f, ",%.3f,%.3f,%.3f,%.3f", k.map_render[SL_MED], k.map_render[SL_MIN], k.map_render[SL_MAX],
+                k.map_readback);
+        fprintf(f, ",%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", k.method[SL_MED], k.method[SL_MIN],
+                k.method[SL_MAX], k.ray_step, k.step[0], k.step[1], k.step[2], k.step[3]);
+        fprintf(f, ",%llu,%llu,%llu,%llu,%llu,%llu", (unsigned long long)k.lookups, (unsigned long long)k.rays,
+                (unsigned long long)k.tri_tests, (unsigned long long)k.gs_prims,
+                (unsigned long long)k.fragments, (unsigned long long)k.violations);
+        fprintf(f, ",%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n", k.contours, k.figures, k.overlay, res->prov.git_sha,
+                c->hash, machine);
     }
 }
 
@@ -164,8 +217,9 @@ static void write_costs_md(FILE *f, const struct sl_config *c, const struct sl_r
         const struct sl_stage_ms *s = &cl->ms;
         fprintf(f, "| %d | %s | %s | %d | %s | %.1f | %.1f%s | %.1f | %.1f | %.1f | %.1f | %.1f | %llu | %llu | %llu | %llu | %.1f | %.1f | %.1f |\n",
                 cl->index, cl->scene, cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label,
-                s->gbuffer_render + s->gbuffer_readback, s->truth, cl->truth_cached ? " (cached)" : "", s->fit,
-                s->map_render, s->map_readback, s->method, cl->cost.ms_trace, (unsigned long long)cl->cost.rays,
+                s->gbuffer_render[SL_MED] + s->gbuffer_readback, s->truth[SL_MED], cl->truth_cached ? " (cached)" : "",
+                s->fit, s->map_render[SL_MED], s->map_readback, s->method[SL_MED], cl->cost.ms_trace,
+                (unsigned long long)cl->cost.rays,
                 (unsigned long long)cl->cost.lookups, (unsigned long long)cl->cost.tri_tests,
                 (unsigned long long)cl->gs_prims, s->contours, s->figures, s->overlay);
     }
@@ -322,6 +376,26 @@ static void truth_cache_write(const char *dir, unsigned long long key, const str
 
 /* ---- the run ---- */
 
+/* Repetitions of a timed stage: the config's warm-up runs, then its timed
+ * runs; the stage's real computation is repetition 0, so a config with one
+ * run and no warm-up times each stage once and repeats nothing. */
+#define SL_MAX_REPS 1100   /* config: warm-up <= 100, runs <= 1000 */
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* {median, min, max} of n >= 1 times (sorted in place). */
+static void med_min_max(double *t, int n, double out[3])
+{
+    qsort(t, (size_t)n, sizeof t[0], cmp_double);
+    out[SL_MED] = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+    out[SL_MIN] = t[0];
+    out[SL_MAX] = t[n - 1];
+}
+
 struct run_ctx {
     struct sl_gl gl;
     struct sl_rt rt;
@@ -344,6 +418,7 @@ struct run_ctx {
     /* current frame */
     int frame_map;
     struct sl_light_frame frame;
+    double layer_ms[SL_LAYER_COUNT][3];   /* render time of each layer: median, min, max */
     /* per-pixel scratch */
     int W, H;
     uint8_t *state, *band, *rgb;
@@ -463,24 +538,39 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
     if (vp < 0)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "viewpoint vanished from the scene");
     memset(&x->vms, 0, sizeof x->vms);
-    enum sl_err e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &x->view,
-                                      &x->vms.gbuffer_render, &x->vms.gbuffer_readback, d);
+    int reps = c->warmup + c->runs;
+    double times[SL_MAX_REPS];
+    enum sl_err e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &x->view, &times[0],
+                                      &x->vms.gbuffer_readback, d);
     if (e)
         return e;
     res->passes.gbuffers++;
+    for (int r = 1; r < reps; r++) {
+        /* the same pass again, timed only */
+        struct sl_view again;
+        e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &again, &times[r], NULL, d);
+        sl_view_free(&again);
+        if (e)
+            return e;
+    }
+    med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
     double t0 = sl_now();
     unsigned long long key = truth_key(x->scene_key, &x->scene.vp[vp], W, H);
     x->truth_cached = cache_dir && cache_dir[0] && truth_cache_read(cache_dir, key, &x->view);
     x->truth_rays = 0;
     if (x->truth_cached) {
         res->passes.truths_cached++;
-        x->vms.truth = 1e3 * (sl_now() - t0);
+        x->vms.truth[SL_MED] = x->vms.truth[SL_MIN] = x->vms.truth[SL_MAX] = 1e3 * (sl_now() - t0);
     } else {
         struct sl_truth_stats ts;
-        if ((e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d)))
-            return e;
+        for (int r = 0; r < reps; r++) {
+            /* repetitions trace the same rays into the same answer */
+            if ((e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d)))
+                return e;
+            times[r] = ts.ms_trace;
+        }
+        med_min_max(times + c->warmup, c->runs, x->vms.truth);
         res->passes.truths_traced++;
-        x->vms.truth = ts.ms_trace;
         x->truth_rays = ts.rays;
         if (cache_dir && cache_dir[0])
             truth_cache_write(cache_dir, key, &x->view);
@@ -534,9 +624,27 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
     }
     unsigned before = x->frame.have;
     enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, needs, d);
-    for (int l = 0; l < SL_LAYER_COUNT; l++)
-        if ((x->frame.have & ~before) & SL_NEED(l))
-            res->passes.layers[l]++;
+    int reps = c->warmup + c->runs;
+    for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
+        if (!((x->frame.have & ~before) & SL_NEED(l)))
+            continue;
+        res->passes.layers[l]++;
+        double times[SL_MAX_REPS];
+        times[0] = x->frame.layer[l].ms_render;
+        for (int r = 1; r < reps && !e; r++) {
+            /* the same layer again into a scratch copy of the frame (which
+             * shares the other layers, e.g. BGSM for BGSM2), timed only */
+            struct sl_light_frame again = x->frame;
+            again.have &= ~SL_NEED(l);
+            memset(&again.layer[l], 0, sizeof again.layer[l]);
+            e = sl_shadowmap_render(&x->spass, &x->mesh, &again, SL_NEED(l), d);
+            times[r] = again.layer[l].ms_render;
+            free(again.layer[l].depth);
+            free(again.layer[l].id);
+        }
+        if (!e)
+            med_min_max(times + c->warmup, c->runs, x->layer_ms[l]);
+    }
     return e;
 }
 
@@ -598,12 +706,6 @@ static void report_violations(const struct sl_config *c, const struct sl_cell *c
     }
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
                             struct sl_cell *cell, const char *ovdir, const char *exrdir,
                             struct sl_run_result *res, struct sl_diag *d)
@@ -625,7 +727,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     unsigned mneeds = cm->method->needs(&cm->params);
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         if (mneeds & SL_NEED(l)) {
-            cell->ms.map_render += x->frame.layer[l].ms_render;
+            for (int j = 0; j < 3; j++)
+                cell->ms.map_render[j] += x->layer_ms[l][j];
             cell->ms.map_readback += x->frame.layer[l].ms_readback;
             cell->gs_prims += x->frame.layer[l].gs_prims;
             cell->fragments += x->frame.layer[l].fragments;
@@ -638,7 +741,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .rt = &x->rt, .adj = x->have_adj ? &x->adj : NULL, .threads = c->threads,
     };
     int reps = c->warmup + c->runs;
-    double times[1100];
+    double times[SL_MAX_REPS];
     enum sl_err e = SL_OK;
     for (int r = 0; r < reps && !e; r++) {
         struct sl_cost cost = {0};
@@ -653,11 +756,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     }
     if (e)
         return e;
-    qsort(times, (size_t)c->runs, sizeof times[0], cmp_double);
-    cell->ms.method = c->runs % 2 ? times[c->runs / 2] : 0.5 * (times[c->runs / 2 - 1] + times[c->runs / 2]);
-    cell->ms.method_min = times[0];
-    cell->ms.method_max = times[c->runs - 1];
-    cell->cost.ms_method = cell->ms.method;
+    med_min_max(times, c->runs, cell->ms.method);
+    cell->cost.ms_method = cell->ms.method[SL_MED];
 
     double t0 = sl_now();
     for (size_t i = 0; i < npx; i++)
@@ -686,9 +786,9 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     }
     if (ovdir) {
         t0 = sl_now();
-        char path[1400];
-        snprintf(path, sizeof path, "%s/%s-%s-%dx%d-%d-%s.png", ovdir, cell->scene, cell->viewpoint, W, H,
-                 c->maps[k->map], cm->label);
+        char name[400], path[1600];
+        overlay_name(c, cell, name, sizeof name);
+        snprintf(path, sizeof path, "%s/%s", ovdir, name);
         sl_overlay_build(&x->view, x->scene.light_dir, &x->vd, x->band, c->overlay_contour, x->rgb);
         e = sl_image_write_rgb8(path, W, H, x->rgb, d);
         cell->ms.overlay = 1e3 * (sl_now() - t0);
@@ -707,23 +807,129 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     return e;
 }
 
+/* The overlay's path as the store keeps it: relative to the database's
+ * folder when the results folder lies under it (the usual layout,
+ * results/shadowlab.db beside results/<name>/), else absolute. The file is in
+ * place once the run ends (the staging folder is renamed then). */
+static void overlay_store_path(const char *store_path, const char *final, const char *name, char *out,
+                               size_t n)
+{
+    char dbdir[PATH_MAX], fin[PATH_MAX], tmp[1200];
+    snprintf(tmp, sizeof tmp, "%s", store_path);
+    char *slash = strrchr(tmp, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(tmp, sizeof tmp, ".");
+    if (!realpath(tmp, dbdir) || !realpath(final, fin)) {
+        /* the results folder does not exist yet on a first run: resolve its parent */
+        char parent[1200];
+        snprintf(parent, sizeof parent, "%s", final);
+        char *ps = strrchr(parent, '/');
+        const char *base = ps ? ps + 1 : final;
+        if (ps)
+            *ps = '\0';
+        else
+            snprintf(parent, sizeof parent, ".");
+        char rp[PATH_MAX];
+        if (!realpath(tmp, dbdir) || !realpath(parent, rp)) {
+            snprintf(out, n, "%s/overlays/%s", final, name);
+            return;
+        }
+        snprintf(fin, sizeof fin, "%.*s/%s", (int)(sizeof fin - 300), rp, base);
+    }
+    size_t k = strlen(dbdir);
+    if (strncmp(fin, dbdir, k) == 0 && fin[k] == '/')
+        snprintf(out, n, "%s/overlays/%s", fin + k + 1, name);
+    else
+        snprintf(out, n, "%s/overlays/%s", fin, name);
+}
+
 static enum sl_err store_cell(struct sl_store *st, int64_t run_id, const struct sl_config *c,
-                              const struct sl_cell *cl, struct sl_diag *d)
+                              const struct sl_cell *cl, const char *store_path, const char *final,
+                              struct sl_diag *d)
 {
     const struct sl_config_method *cm = &c->methods[cl->key.method];
+    struct sl_table_costs k;
+    costs_of(c, cl, &k);
+    char overlay[1500] = "";
+    if (final && final[0] && c->overlays) {
+        char name[400];
+        overlay_name(c, cl, name, sizeof name);
+        overlay_store_path(store_path, final, name, overlay, sizeof overlay);
+    }
     struct sl_store_cell sc = {
         .scene = cl->scene, .viewpoint = cl->viewpoint, .method = cm->method->name, .label = cm->label,
         .vw = c->viewport_w[cl->key.viewport], .vh = c->viewport_h[cl->key.viewport],
         .map_size = c->maps[cl->key.map], .cell_index = cl->index,
         .n_pfl = cl->n_pfl, .n_pnfl = cl->n_pnfl, .n_background = cl->n_background,
-        .n_truth_lit = cl->n_truth_lit, .n_truth_shadow = cl->n_truth_shadow, .truth_rays = cl->truth_rays,
-        .fig = &cl->fig, .cost = &cl->cost,
-        .ms_gbuffer_render = cl->ms.gbuffer_render, .ms_gbuffer_readback = cl->ms.gbuffer_readback,
-        .ms_truth = cl->ms.truth, .ms_fit = cl->ms.fit, .ms_map_render = cl->ms.map_render,
-        .ms_map_readback = cl->ms.map_readback, .ms_method = cl->ms.method,
-        .ms_contours = cl->ms.contours, .ms_figures = cl->ms.figures, .ms_overlay = cl->ms.overlay,
+        .n_truth_lit = cl->n_truth_lit, .n_truth_shadow = cl->n_truth_shadow,
+        .fig = &cl->fig, .costs = &k, .overlay = overlay,
     };
     return sl_store_put_cell(st, run_id, c->hash, &sc, d);
+}
+
+/* Move the files of <from>/<sub> into <to>/<sub> where <to> has no file of that name. */
+static void carry_files(const char *from, const char *to, const char *sub)
+{
+    char src[1400], dst[1400];
+    snprintf(src, sizeof src, "%s/%s", from, sub);
+    DIR *dir = opendir(src);
+    if (!dir)
+        return;
+    snprintf(dst, sizeof dst, "%s/%s", to, sub);
+    mkdir(dst, 0777);
+    struct dirent *e;
+    while ((e = readdir(dir))) {
+        if (e->d_name[0] == '.')
+            continue;
+        char a[1800], b[1800];
+        snprintf(a, sizeof a, "%s/%s", src, e->d_name);
+        snprintf(b, sizeof b, "%s/%s", dst, e->d_name);
+        if (access(b, F_OK) != 0)
+            rename(a, b);
+    }
+    closedir(dir);
+}
+
+static void carry_previous(const char *root, const char *name, const char *final, const char *stage)
+{
+    carry_files(final, stage, "overlays");
+    carry_files(final, stage, "exr");
+    DIR *dir = opendir(root);
+    if (!dir)
+        return;
+    char prefix[200], own[1200];
+    snprintf(prefix, sizeof prefix, ".%s.partial-", name);
+    struct dirent *e;
+    while ((e = readdir(dir))) {
+        if (strncmp(e->d_name, prefix, strlen(prefix)) != 0)
+            continue;
+        snprintf(own, sizeof own, "%s/%s", root, e->d_name);
+        if (strcmp(own, stage) == 0)
+            continue;
+        carry_files(own, stage, "overlays");
+        carry_files(own, stage, "exr");
+        rm_tree(own);   /* a killed run's leftovers: its cells are in the store */
+    }
+    closedir(dir);
+}
+
+/* A run row carrying the filled-in config, so a number in the store can be
+ * reproduced from the store alone. */
+static enum sl_err begin_run(struct sl_store *st, const struct sl_config *c, const struct sl_provenance *p,
+                             int64_t *run_id, struct sl_diag *d)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "config text");
+    sl_config_write(c, f);
+    fclose(f);
+    enum sl_err e = sl_store_begin_run(st, p, c->name, c->path, c->hash, text, run_id, d);
+    free(text);
+    return e;
 }
 
 static void progress(int done, int total, const struct sl_cell *cl, const struct sl_config *c, double t_start)
@@ -801,8 +1007,9 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     sl_provenance_fill(&res->prov);
     if (store_path[0]) {
         if ((e = sl_store_open(store_path, &st, d)) ||
-            (e = sl_store_begin_run(st, &res->prov, c->path, c->hash, &run_id, d)))
+            (e = begin_run(st, c, &res->prov, &run_id, d)))
             goto out;
+        snprintf(res->store_path, sizeof res->store_path, "%s", store_path);
     }
 
     res->cells = sl_calloc((size_t)(last - first), sizeof *res->cells);
@@ -833,7 +1040,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             break;
         if (cell->violations)
             report_violations(c, cell);
-        if (st && (e = store_cell(st, run_id, c, cell, d)))
+        if (st && (e = store_cell(st, run_id, c, cell, store_path, o->write_files ? final : NULL, d)))
             break;
         res->ncells++;
         if (show)
@@ -880,6 +1087,12 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         if (e)
             goto out;
     }
+    /* a resumed run computed only the missing cells: the overlays and EXR
+     * files of the cells it skipped come from the previous results folder, or
+     * from the staging folder of a run that was killed, so what the store
+     * points at is in place */
+    if (o->resume)
+        carry_previous(root, c->name, final, stage);
     /* swap the finished folder into place */
     {
         char old[1200];

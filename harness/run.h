@@ -26,6 +26,7 @@
 #include "figures.h"
 #include "frame.h"
 #include "provenance.h"
+#include "table.h"
 
 struct sl_cell_key {
     int scene;      /* index into config scenes */
@@ -51,12 +52,15 @@ struct sl_run_opts {
 };
 
 /* Wall times of the stages of one cell, ms; view stages are shared by every
- * cell of the view and reported with each. The method time is the median
- * of the config's timed runs, with their min and max. */
+ * cell of the view and reported with each. The G-buffer render, the truth
+ * (when traced, not cached), each shadow-map layer render and the method are
+ * repeated as the config says (warm-up + runs): each keeps the median of the
+ * timed runs with their min and max. The layers the method reads add up
+ * (sum of medians, of mins, of maxes). The rest is timed once. */
 struct sl_stage_ms {
-    double gbuffer_render, gbuffer_readback, truth, fit;
-    double map_render, map_readback;
-    double method, method_min, method_max, contours, figures, overlay;
+    double gbuffer_render[3], gbuffer_readback, truth[3], fit;   /* [SL_MED], [SL_MIN], [SL_MAX] */
+    double map_render[3], map_readback;
+    double method[3], contours, figures, overlay;
 };
 
 /* A pixel where a method broke the guarantee it declares (method.h
@@ -107,6 +111,7 @@ struct sl_run_result {
     int    ncells;                     /* computed by this invocation */
     struct sl_cell *cells;
     int    skipped;                    /* already in the store (--resume) */
+    char   store_path[1100];           /* the database written, "" none */
     struct sl_pass_counts passes;
     double ms_total, ms_scene, ms_bvh;
 };

@@ -18,6 +18,7 @@
  *   failing at the first put. Bump SL_STORE_VERSION with such a change.
  * Nothing here prints; errors name the database file and carry sqlite's text.
  */
+#define _XOPEN_SOURCE 700
 #include "store.h"
 #include <math.h>
 #include <sqlite3.h>
@@ -27,7 +28,7 @@
 #include <string.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 6   /* 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
+#define SL_STORE_VERSION 7   /* 7: study, config text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
 #define SL_STORE_BUSY_MS 10000
 
 /* ---- schema ---- */
@@ -36,13 +37,46 @@
     "CHECK (length(" col ") = 16 AND " col " NOT GLOB '*[^0-9a-f]*')"
 #define SL_FIG_SQL_NAME(name, text, of) "'" #name "', "
 
+/* Stage times of a cell, ms: column name and where it lives in
+ * struct sl_table_costs. One list for the schema, the insert and the query. */
+#define SL_MS_COLUMNS(X)                                                        \
+    X(ms_gbuffer_render, gbuffer_render[SL_MED])                               \
+    X(ms_gbuffer_render_min, gbuffer_render[SL_MIN])                           \
+    X(ms_gbuffer_render_max, gbuffer_render[SL_MAX])                           \
+    X(ms_gbuffer_readback, gbuffer_readback)                                   \
+    X(ms_truth, truth[SL_MED])                                                 \
+    X(ms_truth_min, truth[SL_MIN])                                             \
+    X(ms_truth_max, truth[SL_MAX])                                             \
+    X(ms_fit, fit)                                                             \
+    X(ms_map_render, map_render[SL_MED])                                       \
+    X(ms_map_render_min, map_render[SL_MIN])                                   \
+    X(ms_map_render_max, map_render[SL_MAX])                                   \
+    X(ms_map_readback, map_readback)                                           \
+    X(ms_method, method[SL_MED])                                               \
+    X(ms_method_min, method[SL_MIN])                                           \
+    X(ms_method_max, method[SL_MAX])                                           \
+    X(ms_ray_step, ray_step)                                                   \
+    X(ms_step1, step[0])                                                       \
+    X(ms_step2, step[1])                                                       \
+    X(ms_step3, step[2])                                                       \
+    X(ms_step4, step[3])                                                       \
+    X(ms_contours, contours)                                                   \
+    X(ms_figures, figures)                                                     \
+    X(ms_overlay, overlay)
+#define SL_MS_SQL_COL(col, field) "  " #col " REAL,\n"
+#define SL_MS_SQL_NAME(col, field) ", " #col
+#define SL_MS_SQL_L_NAME(col, field) ", l." #col
+#define SL_MS_SQL_PARAM(col, field) ",?"
+
 static const char sql_runs[] =
     "CREATE TABLE runs (\n"
     "  run_id         INTEGER PRIMARY KEY,\n"
     "  time_utc       TEXT NOT NULL,\n"
     "  git_sha        TEXT NOT NULL,\n"
+    "  study          TEXT NOT NULL,\n"
     "  config_path    TEXT NOT NULL,\n"
     "  config_hash    TEXT NOT NULL " SL_HEX16_CHECK("config_hash") ",\n"
+    "  config_text    TEXT NOT NULL,\n"
     "  host           TEXT NOT NULL,\n"
     "  cpu            TEXT NOT NULL,\n"
     "  isa            TEXT NOT NULL,\n"
@@ -74,19 +108,15 @@ static const char sql_cells[] =
     "  n_truth_shadow INTEGER NOT NULL CHECK (n_truth_shadow >= 0),\n"
     "  n_wrong_image  INTEGER NOT NULL CHECK (n_wrong_image >= 0),\n"
     "  truth_rays     INTEGER NOT NULL CHECK (truth_rays >= 0),\n"
-    "  lookups        INTEGER CHECK (lookups >= 0),\n"
-    "  rays           INTEGER CHECK (rays >= 0),\n"
-    "  tri_tests      INTEGER CHECK (tri_tests >= 0),\n"
-    "  ms_gbuffer_render   REAL,\n"
-    "  ms_gbuffer_readback REAL,\n"
-    "  ms_truth            REAL,\n"
-    "  ms_fit              REAL,\n"
-    "  ms_map_render       REAL,\n"
-    "  ms_map_readback     REAL,\n"
-    "  ms_method           REAL,\n"
-    "  ms_contours         REAL,\n"
-    "  ms_figures          REAL,\n"
-    "  ms_overlay          REAL,\n"
+    "  runs           INTEGER NOT NULL CHECK (runs >= 0),\n"
+    "  lookups        INTEGER NOT NULL CHECK (lookups >= 0),\n"
+    "  rays           INTEGER NOT NULL CHECK (rays >= 0),\n"
+    "  tri_tests      INTEGER NOT NULL CHECK (tri_tests >= 0),\n"
+    "  gs_prims       INTEGER NOT NULL CHECK (gs_prims >= 0),\n"
+    "  fragments      INTEGER NOT NULL CHECK (fragments >= 0),\n"
+    "  violations     INTEGER NOT NULL CHECK (violations >= 0),\n"
+    SL_MS_COLUMNS(SL_MS_SQL_COL)
+    "  overlay        TEXT,\n"
     "  CHECK (viewport = vw || 'x' || vh)\n"
     ")";
 
@@ -124,15 +154,14 @@ static const char *const sl_indexes[] = {
 /* ---- statements kept for the life of the store ---- */
 
 static const char sql_ins_run[] =
-    "INSERT INTO runs (time_utc, git_sha, config_path, config_hash, host, cpu, isa, gl_renderer, "
-    "gl_version, embree, threads, lp_num_threads) VALUES (?,?,?,?,?,?,?,?,?,?,?,?)";
+    "INSERT INTO runs (time_utc, git_sha, study, config_path, config_hash, config_text, host, cpu, isa, "
+    "gl_renderer, gl_version, embree, threads, lp_num_threads) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
 
 static const char sql_ins_cell[] =
     "INSERT INTO cells (run_id, config_hash, scene, viewpoint, viewport, vw, vh, map_size, method, "
     "label, cell_index, n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow, n_wrong_image, "
-    "truth_rays, lookups, rays, tri_tests, ms_gbuffer_render, ms_gbuffer_readback, ms_truth, ms_fit, "
-    "ms_map_render, ms_map_readback, ms_method, ms_contours, ms_figures, ms_overlay) "
-    "VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
+    "truth_rays, runs, lookups, rays, tri_tests, gs_prims, fragments, violations" SL_MS_COLUMNS(SL_MS_SQL_NAME)
+    ", overlay) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?" SL_MS_COLUMNS(SL_MS_SQL_PARAM) ",?)";
 
 static const char sql_ins_fig[] =
     "INSERT INTO figures (cell_id, scene, viewpoint, viewport, map_size, label, region, figure, "
@@ -151,13 +180,22 @@ static const char sql_query_cells[] =
     "                                 ORDER BY run_id DESC, cell_id DESC) AS rn\n"
     "  FROM cells c\n"
     "  WHERE (?1 IS NULL OR scene = ?1) AND (?2 IS NULL OR viewpoint = ?2)\n"
-    "    AND (?3 IS NULL OR label = ?3) AND (?4 = 0 OR map_size = ?4) AND (?5 = 0 OR run_id = ?5))\n"
+    "    AND (?3 IS NULL OR label = ?3) AND (?4 = 0 OR map_size = ?4) AND (?5 = 0 OR run_id = ?5)\n"
+    "    AND (?6 IS NULL OR run_id IN (SELECT run_id FROM runs WHERE study = ?6)))\n"
     "SELECT l.cell_id, l.scene, l.viewpoint, l.method, l.label, l.vw, l.vh, l.map_size,\n"
     "       l.n_pfl, l.n_pnfl, l.n_background, l.n_truth_lit, l.n_truth_shadow, l.n_wrong_image,\n"
-    "       l.config_hash, r.git_sha, r.host, r.cpu, r.isa\n"
+    "       l.config_hash, r.git_sha, r.host, r.cpu, r.isa, r.study, l.run_id, l.overlay,\n"
+    "       l.truth_rays, l.runs, l.lookups, l.rays, l.tri_tests, l.gs_prims, l.fragments, l.violations\n"
+    "       " SL_MS_COLUMNS(SL_MS_SQL_L_NAME) "\n"
     "FROM latest l JOIN runs r ON r.run_id = l.run_id\n"
     "WHERE l.rn = 1\n"
     "ORDER BY l.scene, l.cell_index, l.run_id, l.cell_id";
+
+static const char sql_query_runs[] =
+    "SELECT r.run_id, r.time_utc, r.git_sha, r.study, r.config_path, r.config_hash, r.config_text,\n"
+    "       r.host, r.cpu, r.isa, r.gl_renderer, r.gl_version, r.embree, r.threads, r.lp_num_threads,\n"
+    "       (SELECT count(*) FROM cells c WHERE c.run_id = r.run_id)\n"
+    "FROM runs r ORDER BY r.run_id";
 
 /* regions as figures.c orders them: contours ascending, whole image last */
 static const char sql_query_figs[] =
@@ -166,7 +204,7 @@ static const char sql_query_figs[] =
 
 enum {
     ST_BEGIN, ST_COMMIT, ST_ROLLBACK, ST_INS_RUN, ST_INS_CELL, ST_INS_FIG, ST_HAS_CELL,
-    ST_QUERY_CELLS, ST_QUERY_FIGS, ST_COUNT
+    ST_QUERY_CELLS, ST_QUERY_FIGS, ST_QUERY_RUNS, ST_COUNT
 };
 static const char *const sl_stmt_sql[ST_COUNT] = {
     [ST_BEGIN] = "BEGIN IMMEDIATE",
@@ -178,6 +216,7 @@ static const char *const sl_stmt_sql[ST_COUNT] = {
     [ST_HAS_CELL] = sql_has_cell,
     [ST_QUERY_CELLS] = sql_query_cells,
     [ST_QUERY_FIGS] = sql_query_figs,
+    [ST_QUERY_RUNS] = sql_query_runs,
 };
 
 struct sl_store {
@@ -238,17 +277,6 @@ static void b_int(struct binder *b, sqlite3_int64 v)
 }
 
 static void b_u64(struct binder *b, uint64_t v) { b_int(b, to_i64(v)); }
-
-static void b_u64_opt(struct binder *b, const uint64_t *v)
-{
-    if (v)
-        b_u64(b, *v);
-    else {
-        if (b->rc == SQLITE_OK)
-            b->rc = sqlite3_bind_null(b->st, b->i);
-        b->i++;
-    }
-}
 
 static void b_real(struct binder *b, double v)
 {
@@ -479,9 +507,9 @@ void sl_store_close(struct sl_store *s)
 
 /* ---- writing ---- */
 
-enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p,
+enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p, const char *study,
                                const char *config_path, unsigned long long config_hash,
-                               int64_t *run_id, struct sl_diag *d)
+                               const char *config_text, int64_t *run_id, struct sl_diag *d)
 {
     if (!s || !p || !run_id)
         return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_begin_run: missing argument");
@@ -491,8 +519,10 @@ enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p
     struct binder b = {st, 1, SQLITE_OK};
     b_text(&b, p->time_utc);
     b_text(&b, p->git_sha);
+    b_text(&b, study);
     b_text(&b, config_path);
     b_text(&b, hash);
+    b_text(&b, config_text);
     b_text(&b, p->host);
     b_text(&b, p->cpu);
     b_text(&b, p->isa);
@@ -558,20 +588,20 @@ static enum sl_err put_cell_row(struct sl_store *s, int64_t run_id, const char *
     b_u64(&b, c->n_truth_lit);
     b_u64(&b, c->n_truth_shadow);
     b_u64(&b, c->fig->wrong_image);
-    b_u64(&b, c->truth_rays);
-    b_u64_opt(&b, c->cost ? &c->cost->lookups : NULL);
-    b_u64_opt(&b, c->cost ? &c->cost->rays : NULL);
-    b_u64_opt(&b, c->cost ? &c->cost->tri_tests : NULL);
-    b_real(&b, c->ms_gbuffer_render);
-    b_real(&b, c->ms_gbuffer_readback);
-    b_real(&b, c->ms_truth);
-    b_real(&b, c->ms_fit);
-    b_real(&b, c->ms_map_render);
-    b_real(&b, c->ms_map_readback);
-    b_real(&b, c->ms_method);
-    b_real(&b, c->ms_contours);
-    b_real(&b, c->ms_figures);
-    b_real(&b, c->ms_overlay);
+    static const struct sl_table_costs unknown;
+    const struct sl_table_costs *k = c->costs ? c->costs : &unknown;
+    b_u64(&b, k->truth_rays);
+    b_int(&b, k->runs);
+    b_u64(&b, k->lookups);
+    b_u64(&b, k->rays);
+    b_u64(&b, k->tri_tests);
+    b_u64(&b, k->gs_prims);
+    b_u64(&b, k->fragments);
+    b_u64(&b, k->violations);
+#define SL_MS_BIND(col, field) b_real(&b, c->costs ? k->field : NAN);
+    SL_MS_COLUMNS(SL_MS_BIND)
+#undef SL_MS_BIND
+    b_text_or_null(&b, c->overlay);
     enum sl_err e = SL_OK;
     if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
         e = db_fail(s, d, key, "cannot store the cell");
@@ -734,6 +764,7 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
     b_text_or_null(&b, f->label);
     b_int(&b, f->map_size);
     b_int(&b, f->run_id);
+    b_text_or_null(&b, f->study);
     if (b_done(&b) != SQLITE_OK) {
         st_clear(st);
         return db_fail(s, d, NULL, "cannot query cells");
@@ -775,6 +806,24 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
         const char *isa = (const char *)sqlite3_column_text(st, 18);
         snprintf(c->machine, sizeof c->machine, "%s/%s/%s", host ? host : "", cpu ? cpu : "",
                  isa ? isa : "");
+        col_text(st, 19, c->study, sizeof c->study);
+        c->run_id = sqlite3_column_int64(st, 20);
+        col_text(st, 21, c->overlay, sizeof c->overlay);
+        struct sl_table_costs *k = &c->cost;
+        int i = 22;
+        k->truth_rays = col_u64(st, i++);
+        k->runs = sqlite3_column_int(st, i++);
+        k->lookups = col_u64(st, i++);
+        k->rays = col_u64(st, i++);
+        k->tri_tests = col_u64(st, i++);
+        k->gs_prims = col_u64(st, i++);
+        k->fragments = col_u64(st, i++);
+        k->violations = col_u64(st, i++);
+#define SL_MS_READ(col, field)                                                              \
+        k->field = sqlite3_column_type(st, i) == SQLITE_NULL ? NAN : sqlite3_column_double(st, i); \
+        i++;
+        SL_MS_COLUMNS(SL_MS_READ)
+#undef SL_MS_READ
         e = load_figures(s, cell_id, c, d);
     }
     if (!e && rc != SQLITE_DONE)
@@ -787,6 +836,73 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
     *out = cells;
     *n = count;
     return SL_OK;
+}
+
+enum sl_err sl_store_runs(struct sl_store *s, struct sl_store_run **out, int *n, struct sl_diag *d)
+{
+    if (!s || !out || !n)
+        return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_runs: missing argument");
+    *out = NULL;
+    *n = 0;
+    sqlite3_stmt *st = s->st[ST_QUERY_RUNS];
+    struct sl_store_run *runs = NULL;
+    int count = 0, cap = 0, rc;
+    enum sl_err e = SL_OK;
+    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+        if (count == cap) {
+            int ncap = cap ? 2 * cap : 8;
+            struct sl_store_run *nr = realloc(runs, (size_t)ncap * sizeof *nr);
+            if (!nr) {
+                e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "%d runs", ncap);
+                break;
+            }
+            runs = nr;
+            cap = ncap;
+        }
+        struct sl_store_run *r = &runs[count++];
+        memset(r, 0, sizeof *r);
+        int i = 0;
+        r->run_id = sqlite3_column_int64(st, i++);
+        col_text(st, i++, r->prov.time_utc, sizeof r->prov.time_utc);
+        col_text(st, i++, r->prov.git_sha, sizeof r->prov.git_sha);
+        col_text(st, i++, r->study, sizeof r->study);
+        col_text(st, i++, r->config_path, sizeof r->config_path);
+        col_text(st, i++, r->config_hash, sizeof r->config_hash);
+        const unsigned char *text = sqlite3_column_text(st, i++);
+        col_text(st, i++, r->prov.host, sizeof r->prov.host);
+        col_text(st, i++, r->prov.cpu, sizeof r->prov.cpu);
+        col_text(st, i++, r->prov.isa, sizeof r->prov.isa);
+        col_text(st, i++, r->prov.gl_renderer, sizeof r->prov.gl_renderer);
+        col_text(st, i++, r->prov.gl_version, sizeof r->prov.gl_version);
+        col_text(st, i++, r->prov.embree, sizeof r->prov.embree);
+        r->prov.threads = sqlite3_column_int(st, i++);
+        col_text(st, i++, r->prov.lp_threads, sizeof r->prov.lp_threads);
+        r->ncells = sqlite3_column_int(st, i++);
+        r->config_text = strdup(text ? (const char *)text : "");
+        if (!r->config_text) {
+            e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "config text of run %lld", (long long)r->run_id);
+            break;
+        }
+    }
+    if (!e && rc != SQLITE_DONE)
+        e = db_fail(s, d, NULL, "cannot list the runs");
+    st_clear(st);
+    if (e) {
+        sl_store_runs_free(runs, count);
+        return e;
+    }
+    *out = runs;
+    *n = count;
+    return SL_OK;
+}
+
+void sl_store_runs_free(struct sl_store_run *r, int n)
+{
+    if (!r)
+        return;
+    for (int i = 0; i < n; i++)
+        free(r[i].config_text);
+    free(r);
 }
 
 long sl_store_count(struct sl_store *s, const char *table)

@@ -28,12 +28,10 @@ struct sl_store_cell {
     const char *scene, *viewpoint, *method, *label;
     int         vw, vh, map_size;
     int         cell_index;                 /* index in the config's sweep */
-    uint64_t    n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow, truth_rays;
-    const struct sl_figures *fig;
-    const struct sl_cost    *cost;
-    /* stage wall times, ms (names as in costs.csv) */
-    double ms_gbuffer_render, ms_gbuffer_readback, ms_truth, ms_fit, ms_map_render,
-           ms_map_readback, ms_method, ms_contours, ms_figures, ms_overlay;
+    uint64_t    n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
+    const struct sl_figures     *fig;
+    const struct sl_table_costs *costs;     /* counters and stage times; NULL = unknown */
+    const char *overlay;                    /* overlay PNG relative to the database's folder; NULL/"" none */
 };
 
 /* Open or create the database at path. Its folder must exist: the caller
@@ -41,9 +39,10 @@ struct sl_store_cell {
 enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_diag *d);
 void        sl_store_close(struct sl_store *s);   /* NULL-safe */
 
-enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p,
+/* study: the config's name; config_text: the filled-in config (may be NULL). */
+enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p, const char *study,
                                const char *config_path, unsigned long long config_hash,
-                               int64_t *run_id, struct sl_diag *d);
+                               const char *config_text, int64_t *run_id, struct sl_diag *d);
 
 /* 1 if a cell with this config hash and key is stored (by any run), else 0
  * (also on a database error: the cell is then recomputed and its put reports

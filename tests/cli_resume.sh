@@ -16,6 +16,7 @@ methods:
   - {label: ff, method: nsm}
   - {label: slope, method: nsm, self_shadow: slope}
   - {label: id, method: nsm, self_shadow: triangle_id}
+outputs: {overlays: true}
 YAML
 cells() { "$bin" table "$1" --format csv 2>/dev/null | tail -n +2 | cut -d, -f1-6 | sort -u | wc -l; }
 
@@ -40,6 +41,10 @@ rows=$("$bin" table "$tmp/a/shadowlab.db" --format csv | tail -n +2 | wc -l)
 "$bin" run "$tmp/sweep.yaml" --out "$tmp/a" --resume --no-cache >"$tmp/resume.out" 2>&1 || { cat "$tmp/resume.out"; exit 1; }
 grep -q "$((36 - stored)) cell(s) computed, $stored already stored" "$tmp/resume.out" ||
   { echo "FAIL resume did not skip exactly the stored cells:"; tail -3 "$tmp/resume.out"; exit 1; }
+# the overlays of the cells stored before the kill were carried over from its staging folder
+n=$(ls "$tmp/a/sweep/overlays" | wc -l)
+[ "$n" -eq 36 ] || { echo "FAIL $n overlays after the resume, want 36"; exit 1; }
+ls -a "$tmp/a" | grep -q partial && { echo "FAIL the killed run's staging folder is left behind"; exit 1; }
 "$bin" run "$tmp/sweep.yaml" --out "$tmp/b" --no-cache >/dev/null 2>&1 || exit 1
 "$bin" table "$tmp/a/shadowlab.db" --format csv | sort >"$tmp/a.csv"
 "$bin" table "$tmp/b/shadowlab.db" --format csv | sort >"$tmp/b.csv"

@@ -66,15 +66,14 @@ static void make_fig(struct sl_figures *f, uint64_t base, const int *thick, int 
 }
 
 static struct sl_store_cell make_cell(const char *vp, int map, const char *label, const struct sl_figures *f,
-                                      const struct sl_cost *cost, uint64_t base)
+                                      const struct sl_table_costs *cost, uint64_t base)
 {
     struct sl_store_cell c = {
         .scene = "prim_s", .viewpoint = vp, .method = "nsm", .label = label,
         .vw = 640, .vh = 480, .map_size = map, .cell_index = map / 1024,
         .n_pfl = base + 1, .n_pnfl = base + 2, .n_background = base + 3,
-        .n_truth_lit = base + 4, .n_truth_shadow = base + 5, .truth_rays = base + 6,
-        .fig = f, .cost = cost,
-        .ms_gbuffer_render = 1.5, .ms_truth = 2.25, .ms_method = 3.125, .ms_overlay = NAN,
+        .n_truth_lit = base + 4, .n_truth_shadow = base + 5,
+        .fig = f, .costs = cost, .overlay = cost ? "study_s/overlays/a.png" : NULL,
     };
     return c;
 }
@@ -153,13 +152,18 @@ static void store_round_trip(void **st)
     struct sl_provenance p;
     fill_prov(&p, "abc1234");
     int64_t run1 = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "configs/x.yaml", HASH_A, &run1, &d), SL_OK);
+    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "configs/x.yaml", HASH_A, "name: study_s\n", &run1, &d), SL_OK);
     assert_true(run1 > 0);
 
     struct sl_figures f1, f2;
     make_fig(&f1, 1000, thick4, 4);
     make_fig(&f2, 3000, thick3, 3);
-    struct sl_cost cost = {.lookups = 11, .rays = 12, .tri_tests = 13};
+    struct sl_table_costs cost = {.runs = 5, .truth_rays = 10, .lookups = 11, .rays = 12, .tri_tests = 13,
+                                  .gs_prims = 14, .fragments = 15, .violations = 0,
+                                  .gbuffer_render = {1.5, 1.25, 2.0}, .truth = {2.25, 2.0, 3.0},
+                                  .map_render = {4.5, 4.0, 5.0}, .method = {3.125, 3.0, 3.5},
+                                  .gbuffer_readback = 0.5, .fit = 0.75, .map_readback = 0.875, .ray_step = 1.0,
+                                  .step = {0.1, 0.2, 0.3, 0.4}, .contours = 6.0, .figures = 7.0, .overlay = NAN};
     struct sl_store_cell c1 = make_cell("side", 1024, "nsm_a", &f1, &cost, 1000);
     struct sl_store_cell c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
@@ -178,7 +182,51 @@ static void store_round_trip(void **st)
     assert_cell(find(cells, n, "side", 2048), 3000, &f2, "abc1234");
     /* sweep order (cell_index 1, then 2) */
     assert_int_equal(cells[0].map_size, 1024);
+    /* costs, study, overlay and run come back as stored; unknown costs as zero counts and NaN times */
+    const struct sl_table_costs *k = &cells[0].cost;
+    assert_int_equal(k->runs, 5);
+    assert_int_equal(k->truth_rays, 10);
+    assert_int_equal(k->lookups, 11);
+    assert_int_equal(k->rays, 12);
+    assert_int_equal(k->tri_tests, 13);
+    assert_int_equal(k->gs_prims, 14);
+    assert_int_equal(k->fragments, 15);
+    assert_true(k->gbuffer_render[SL_MIN] == 1.25 && k->truth[SL_MAX] == 3.0 && k->map_render[SL_MED] == 4.5);
+    assert_true(k->method[SL_MED] == 3.125 && k->method[SL_MIN] == 3.0 && k->method[SL_MAX] == 3.5);
+    assert_true(k->gbuffer_readback == 0.5 && k->fit == 0.75 && k->map_readback == 0.875 && k->ray_step == 1.0);
+    assert_true(k->step[0] == 0.1 && k->step[3] == 0.4 && k->contours == 6.0 && k->figures == 7.0);
+    assert_true(isnan(k->overlay));
+    assert_string_equal(cells[0].study, "study_s");
+    assert_string_equal(cells[0].overlay, "study_s/overlays/a.png");
+    assert_int_equal(cells[0].run_id, run1);
+    assert_string_equal(cells[1].overlay, "");
+    assert_int_equal(cells[1].cost.rays, 0);
+    assert_true(isnan(cells[1].cost.method[SL_MED]));
     free(cells);
+
+    /* the study filter */
+    struct sl_store_filter other = {.study = "other"}, same = {.study = "study_s"};
+    assert_int_equal(sl_store_query(s, &other, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 0);
+    assert_int_equal(sl_store_query(s, &same, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 2);
+    free(cells);
+
+    /* the runs, with their provenance and config text */
+    struct sl_store_run *runs = NULL;
+    assert_int_equal(sl_store_runs(s, &runs, &n, &d), SL_OK);
+    assert_int_equal(n, 1);
+    assert_int_equal(runs[0].run_id, run1);
+    assert_int_equal(runs[0].ncells, 2);
+    assert_string_equal(runs[0].study, "study_s");
+    assert_string_equal(runs[0].config_path, "configs/x.yaml");
+    assert_string_equal(runs[0].config_hash, "0123456789abcdef");
+    assert_string_equal(runs[0].config_text, "name: study_s\n");
+    assert_string_equal(runs[0].prov.git_sha, "abc1234");
+    assert_string_equal(runs[0].prov.isa, "x86_64-avx2+fma");
+    assert_string_equal(runs[0].prov.embree, "3.13.5");
+    assert_int_equal(runs[0].prov.threads, 2);
+    sl_store_runs_free(runs, n);
 
     /* what other tools see in SQL: NaN as NULL, regions by name */
     sqlite3 *raw = NULL;
@@ -226,7 +274,7 @@ static void store_has_cell_matches_key_and_hash(void **st)
     struct sl_provenance p;
     fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "c.yaml", HASH_A, &run, &d), SL_OK);
+    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
     struct sl_figures f;
     make_fig(&f, 5, thick3, 3);
     struct sl_store_cell c = make_cell("side", 1024, "nsm_a", &f, NULL, 5);
@@ -255,7 +303,7 @@ static void store_latest_run_wins(void **st)
     fill_prov(&p1, "abc1234");
     fill_prov(&p2, "def5678");
     int64_t run1 = 0, run2 = 0;
-    assert_int_equal(sl_store_begin_run(s, &p1, "c.yaml", HASH_A, &run1, &d), SL_OK);
+    assert_int_equal(sl_store_begin_run(s, &p1, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run1, &d), SL_OK);
     struct sl_figures f1, f2, f3;
     make_fig(&f1, 1000, thick4, 4);
     make_fig(&f2, 3000, thick3, 3);
@@ -264,7 +312,7 @@ static void store_latest_run_wins(void **st)
     struct sl_store_cell c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c2, &d), SL_OK);
-    assert_int_equal(sl_store_begin_run(s, &p2, "c.yaml", HASH_A, &run2, &d), SL_OK);
+    assert_int_equal(sl_store_begin_run(s, &p2, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run2, &d), SL_OK);
     assert_true(run2 > run1);
     struct sl_store_cell c3 = make_cell("side", 1024, "nsm_a", &f3, NULL, 5000);  /* c1's key */
     assert_int_equal(sl_store_put_cell(s, run2, HASH_A, &c3, &d), SL_OK);
@@ -314,7 +362,7 @@ static void store_failed_put_leaves_no_cell(void **st)
     struct sl_provenance p;
     fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "c.yaml", HASH_A, &run, &d), SL_OK);
+    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
     struct sl_figures good, bad;
     make_fig(&good, 10, thick3, 3);
     make_fig(&bad, 20, thick4, 4);
@@ -357,7 +405,7 @@ static void store_refused_last_row_rolls_back(void **st)
     struct sl_provenance p;
     fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "c.yaml", HASH_A, &run, &d), SL_OK);
+    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
 
     sqlite3 *raw = NULL;
     assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
@@ -400,7 +448,7 @@ static void store_killed_writer_leaves_whole_cells(void **st)
     struct sl_provenance p;
     fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "c.yaml", HASH_A, &run, &d), SL_OK);
+    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
     sl_store_close(s);
 
     pid_t pid = fork();

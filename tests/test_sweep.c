@@ -86,6 +86,50 @@ static void sweep_each_pass_once(void **st)
     sl_run_result_free(&r);
 }
 
+/* Repetitions time each stage again but compute it once: the pass counts
+ * and the figures are those of a single run; each repeated stage keeps
+ * min <= median <= max over its timed runs. */
+static void sweep_repetitions(void **st)
+{
+    (void)st;
+    static const char *cfg =
+        "scenes: [{scene: primitives, viewpoints: [side]}]\nviewports: [{width: 96, height: 64}]\n"
+        "map_sizes: [256]\nmethods:\n  - {label: ff, method: nsm}\n  - {label: b, method: bgsm}\n"
+        "  - {label: c, method: csm}\n";
+    char text[600];
+    struct sl_config one, rep;
+    sl_test_config("one.yaml", cfg, &one);
+    snprintf(text, sizeof text, "%srepetitions: {warmup: 1, runs: 4}\n", cfg);
+    sl_test_config("rep.yaml", text, &rep);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result a, b;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&one, &o, &a, &d), SL_OK);
+    assert_int_equal(sl_run(&rep, &o, &b, &d), SL_OK);
+    assert_int_equal(b.ncells, 3);
+    assert_int_equal(b.passes.gbuffers, a.passes.gbuffers);
+    assert_int_equal(b.passes.truths_traced, a.passes.truths_traced);
+    assert_memory_equal(b.passes.layers, a.passes.layers, sizeof a.passes.layers);
+    assert_int_equal(a.passes.method_runs, 3);
+    assert_int_equal(b.passes.method_runs, 3 * 5);
+    for (int i = 0; i < b.ncells; i++) {
+        const struct sl_stage_ms *m = &b.cells[i].ms;
+        const double *t[] = {m->gbuffer_render, m->truth, m->map_render, m->method};
+        for (int k = 0; k < 4; k++) {
+            assert_true(t[k][SL_MIN] > 0.0);
+            assert_true(t[k][SL_MIN] <= t[k][SL_MED] && t[k][SL_MED] <= t[k][SL_MAX]);
+        }
+        /* a single run has nothing to spread */
+        const struct sl_stage_ms *s = &a.cells[i].ms;
+        assert_true(s->map_render[SL_MIN] == s->map_render[SL_MAX]);
+        assert_int_equal(b.cells[i].truth_rays, a.cells[i].truth_rays);
+        assert_int_equal(b.cells[i].gs_prims, a.cells[i].gs_prims);
+        assert_memory_equal(b.cells[i].fig.r, a.cells[i].fig.r, sizeof a.cells[i].fig.r);
+    }
+    sl_run_result_free(&a);
+    sl_run_result_free(&b);
+}
+
 /* A second run reads every truth from the cache, and gets the same figures. */
 static void sweep_truth_cache(void **st)
 {
@@ -183,6 +227,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         SL_CASE(sweep, plan_order),
         SL_CASE(sweep, each_pass_once),
+        SL_CASE(sweep, repetitions),
         SL_CASE(sweep, truth_cache),
         SL_CASE(sweep, cells_then_resume),
     };
