@@ -530,7 +530,7 @@ void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int
 
 static void html_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
 {
-    fputs("<div class=\"tab\"><table>\n<caption>", f);
+    fputs(t->wrap ? "<div class=\"tab\"><table class=\"wrap\">\n<caption>" : "<div class=\"tab\"><table>\n<caption>", f);
     html_text(f, t->title);
     fputs("</caption>\n<thead>\n", f);
     if (t->ngroups) {

@@ -33,7 +33,7 @@ static const char css[] =
     "table{border-collapse:collapse;font-size:12.5px;font-variant-numeric:tabular-nums}"
     "caption{caption-side:top;text-align:left;font-weight:600;padding:.3em 0}"
     "th,td{padding:.2em .6em;text-align:right;white-space:nowrap}"
-    "th.k,td.k{text-align:left}thead tr:last-child th{border-bottom:1.5px solid #333}"
+    "th.k,td.k{text-align:left}table.wrap td{white-space:normal;min-width:5em}thead tr:last-child th{border-bottom:1.5px solid #333}"
     "thead tr:first-child th{border-top:2px solid #333}th.grp{border-bottom:1px solid #999;text-align:center}"
     "tbody tr:last-child td{border-bottom:2px solid #333}tr.blk td{border-top:1px solid #ccc}"
     "tbody tr:hover td{background:#f5f8ff}"
@@ -311,6 +311,7 @@ static enum sl_err section_provenance(struct sl_report_doc *doc, const struct sl
     }
     struct sl_report_tab t;
     sl_report_tab_init(&t, "provenance-runs", 12, 12, "Runs in the results store");
+    t.wrap = 1;
     static const char *const heads[] = {"run", "study", "time (UTC)", "git SHA", "config", "config hash", "host",
                                         "CPU", "ISA", "GL renderer", "Embree", "threads"};
     for (int k = 0; k < 12; k++)

@@ -22,6 +22,7 @@
  */
 #ifndef SL_REPORT_H
 #define SL_REPORT_H
+#include <stddef.h>
 #include <stdint.h>
 #include "sl_error.h"
 #include "store.h"
@@ -45,10 +46,11 @@ struct sl_report_input {
     const char                 *source_dir;   /* folder overlay paths are relative to */
 };
 
-/* Read the store and write the report. SL_E_IO for a missing, empty or
- * foreign database; SL_E_USAGE when it holds no results or gnuplot is not
- * installed (key "gnuplot"); SL_E_OUTPUT when DIR cannot be written. */
-enum sl_err sl_report_write(const struct sl_report_opts *o, struct sl_diag *d);
+/* Read the store and write the report; the folder written goes to dir (n
+ * bytes, may be NULL). SL_E_IO for a missing, empty or foreign database;
+ * SL_E_USAGE when it holds no results or gnuplot is not installed (key
+ * "gnuplot"); SL_E_OUTPUT when the folder cannot be written. */
+enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir, size_t n, struct sl_diag *d);
 
 /* Write the report of cells already in memory into out_dir. */
 enum sl_err sl_report_build(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
@@ -63,7 +65,9 @@ struct sl_report_point {
     int    map_size;
     int    ncells;
     double wrong_pct;      /* wrong pixels, % of the non-background pixels (whole image) */
-    double ms;             /* the method's median time per cell, ms */
+    double ms;             /* the method's time per cell, ms: ms_layers + ms_step */
+    double ms_layers;      /* rendering the shadow-map layers it reads (median of repetitions) */
+    double ms_step;        /* its per-pixel step, ray step included (median of repetitions) */
     double rays_per_px;    /* shadow rays per non-background pixel */
     int    front_ms;       /* on the Pareto front of (ms, wrong_pct) */
     int    front_rays;     /* on the Pareto front of (rays_per_px, wrong_pct) */

@@ -49,6 +49,7 @@ struct sl_report_tab {
     char  title[320];
     char  note[1024];       /* printed under the table */
     int   ncols, nkeys;     /* the first nkeys columns are keys (left aligned) */
+    int   wrap;             /* HTML: long cells may wrap (text tables) */
     char *head[SL_REPORT_MAXCOLS];
     int   ngroups;          /* optional row above the header: spans over columns */
     char  group[SL_REPORT_MAXCOLS][64];

@@ -13,8 +13,10 @@
 #include "report_int.h"
 #include "util.h"
 
-enum sl_err sl_report_write(const struct sl_report_opts *o, struct sl_diag *d)
+enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir_out, size_t n, struct sl_diag *d)
 {
+    if (dir_out && n)
+        dir_out[0] = '\0';
     if (!o || !o->db || !o->db[0])
         return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "missing RESULTS_DB");
     struct stat st;
@@ -82,6 +84,8 @@ enum sl_err sl_report_write(const struct sl_report_opts *o, struct sl_diag *d)
         struct sl_report_input in = {all, nall, runs, nruns, o->db, dir};
         e = sl_report_build(&in, outdir, gp, d);
     }
+    if (!e && dir_out)
+        snprintf(dir_out, n, "%s", outdir);
     free(all);
     sl_store_runs_free(runs, nruns);
     sl_store_close(s);

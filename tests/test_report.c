@@ -141,15 +141,18 @@ static void report_points(void **st)
     assert_int_equal(p[0].map_size, 512);
     assert_int_equal(p[0].ncells, 2);
     assert_true(fabs(p[0].wrong_pct - 100.0 * (40.0 + 60.0) / 2.0 / 2000.0) < 1e-9);   /* 2.5 % */
-    assert_true(fabs(p[0].ms - 2.0) < 1e-9);
+    /* time = layers (2 ms each, cell()) + step */
+    assert_true(fabs(p[0].ms_step - 2.0) < 1e-9);
+    assert_true(fabs(p[0].ms_layers - 2.0) < 1e-9);
+    assert_true(fabs(p[0].ms - 4.0) < 1e-9);
     assert_int_equal(p[1].map_size, 1024);
     assert_true(fabs(p[1].wrong_pct - 1.0) < 1e-9);
-    assert_true(fabs(p[1].ms - 4.0) < 1e-9);
+    assert_true(fabs(p[1].ms - 6.0) < 1e-9);
     assert_string_equal(p[2].label, "b");
     assert_int_equal(p[2].map_size, 512);
     assert_true(fabs(p[2].rays_per_px - 2.0) < 1e-9);
     assert_true(fabs(p[3].rays_per_px - 1.0) < 1e-9);
-    /* time front: a 512 (2 ms, 2.5 %), a 1024 (4 ms, 1 %), b 512 (50 ms, 0 %); b 1024 (60 ms, 0 %) is beaten */
+    /* time front: a 512 (4 ms, 2.5 %), a 1024 (6 ms, 1 %), b 512 (52 ms, 0 %); b 1024 (62 ms, 0 %) is beaten */
     assert_int_equal(p[0].front_ms, 1);
     assert_int_equal(p[1].front_ms, 1);
     assert_int_equal(p[2].front_ms, 1);
