@@ -7,6 +7,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "config.h"
 #include <cyaml/cyaml.h>
+#include "figures.h"
 #include <errno.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -111,7 +112,7 @@ static const cyaml_schema_field_t config_fields[] = {
     CYAML_FIELD_SEQUENCE("map_sizes", CYAML_FLAG_POINTER, struct raw_config, map_sizes, &uint_schema,
                          1, SL_CFG_MAX),
     CYAML_FIELD_SEQUENCE("contours", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
-                         contours, &uint_schema, 1, SL_CFG_MAX - 1),
+                         contours, &uint_schema, 1, SL_MAX_REGIONS - 1),   /* + the whole image */
     CYAML_FIELD_SEQUENCE("methods", CYAML_FLAG_POINTER, struct raw_config, methods, &method_schema,
                          1, SL_CFG_MAX),
     CYAML_FIELD_MAPPING_PTR("outputs", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,

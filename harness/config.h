@@ -29,7 +29,7 @@
 #include "scene.h"
 #include "sl_error.h"
 
-#define SL_CFG_MAX 16
+#define SL_CFG_MAX 32
 
 struct sl_config_method {
     char                     label[48];

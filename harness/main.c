@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bench.h"
+#include "check.h"
 #include "config.h"
 #include "method.h"
 #include "provenance.h"
@@ -25,6 +26,7 @@ static const char usage[] =
     "  validate FILE              check a config or a scene file without GL or Embree\n"
     "  table DB [options]         regenerate tables from a results store\n"
     "  report DB [--out DIR]      HTML and Markdown report of a results store (needs gnuplot)\n"
+    "  check DB --baseline FILE   compare a results store with a committed baseline (exit 1 if outside)\n"
     "  bench [CONFIG] [--reps N]  truth pass vs a plain Embree loop, and stage times\n"
     "  list methods|scenes        what can be named in a config\n"
     "  version                    the git SHA this binary was built from\n";
@@ -57,6 +59,17 @@ static const char usage_report[] =
     "  tables of every study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
     "  (gnuplot, SVG), costs, the error overlays and the provenance of every run.\n"
     "  --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n";
+
+static const char usage_check[] =
+    "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
+    "  Compares the latest stored cell of each key with the baseline FILE: violations of a\n"
+    "  method's exactness always exactly; every count exactly when the store was measured on\n"
+    "  the baseline's machine; otherwise each class of figure within the baseline's tolerance\n"
+    "  (percentage points). Prints what moved and by how much; exit 1 when anything is outside\n"
+    "  tolerance or a baseline cell is missing, 2 on bad input.\n"
+    "  --study NAME  only cells of that config name\n"
+    "  --rows N      show at most N moved values (default 200)\n"
+    "  --update      write FILE from DB instead (keeps FILE's tolerances): a deliberate refresh\n";
 
 static const char usage_bench[] =
     "usage: shadowlab bench [CONFIG] [--reps N]\n"
@@ -250,7 +263,7 @@ static int cmd_table(int argc, char **argv)
     struct sl_store *st = NULL;
     struct sl_table_cell *cells = NULL;
     int n = 0;
-    enum sl_err e = sl_store_open(db, &st, &d);
+    enum sl_err e = sl_store_open_existing(db, &st, &d);
     if (!e)
         e = sl_store_query(st, &f, &cells, &n, &d);
     if (!e && n == 0)
@@ -294,6 +307,49 @@ static int cmd_report(int argc, char **argv)
         return fail(e, &d);
     printf("report: %s/report.html, %s/report.md\n", dir, dir);
     return 0;
+}
+
+static int cmd_check(int argc, char **argv)
+{
+    const char *db = NULL, *baseline = NULL;
+    struct sl_check_opts o = {0};
+    int update = 0;
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "--baseline") == 0 && i + 1 < argc)
+            baseline = argv[++i];
+        else if (strcmp(argv[i], "--study") == 0 && i + 1 < argc)
+            o.study = argv[++i];
+        else if (strcmp(argv[i], "--rows") == 0 && i + 1 < argc) {
+            char *end;
+            long v = strtol(argv[++i], &end, 10);
+            if (*end || v < 1 || v > 1000000)
+                return usage_error("check: --rows wants a positive number", usage_check);
+            o.max_rows = (int)v;
+        } else if (strcmp(argv[i], "--update") == 0)
+            update = 1;
+        else if (argv[i][0] == '-')
+            return usage_error("check: unknown option", usage_check);
+        else if (!db)
+            db = argv[i];
+        else
+            return usage_error("check: one results store at a time", usage_check);
+    }
+    if (!db || !baseline)
+        return usage_error("check: wants DB and --baseline FILE", usage_check);
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    if (update) {
+        enum sl_err e = sl_check_write_baseline(db, baseline, o.study, &d);
+        if (e)
+            return fail(e, &d);
+        fprintf(stderr, "shadowlab: wrote %s from %s\n", baseline, db);
+        return 0;
+    }
+    struct sl_check_result r;
+    enum sl_err e = sl_check(db, baseline, &o, stdout, &r, &d);
+    if (e)
+        return fail(e, &d);
+    return r.failed || r.missing ? 1 : 0;
 }
 
 static int cmd_bench(int argc, char **argv)
@@ -349,6 +405,7 @@ int main(int argc, char **argv)
         {"validate", cmd_validate, usage_validate},
         {"table", cmd_table, usage_table},
         {"report", cmd_report, usage_report},
+        {"check", cmd_check, usage_check},
         {"bench", cmd_bench, usage_bench},
         {"list", cmd_list, usage_list},
     };

@@ -26,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include "util.h"
 
 #define SL_STORE_VERSION 7   /* 7: study, config text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
@@ -492,6 +493,14 @@ enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_dia
     }
     *out = s;
     return SL_OK;
+}
+
+enum sl_err sl_store_open_existing(const char *path, struct sl_store **out, struct sl_diag *d)
+{
+    struct stat sb;
+    if (!path || stat(path, &sb) != 0 || !S_ISREG(sb.st_mode))
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "no results store here (run `shadowlab run CONFIG` first)");
+    return sl_store_open(path, out, d);
 }
 
 void sl_store_close(struct sl_store *s)

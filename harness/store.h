@@ -37,6 +37,9 @@ struct sl_store_cell {
 /* Open or create the database at path. Its folder must exist: the caller
  * makes it (sl_mkdirs); the store creates no folders. */
 enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_diag *d);
+/* The same for readers (table, check, report): a missing file is SL_E_IO
+ * naming it, never a new empty store. */
+enum sl_err sl_store_open_existing(const char *path, struct sl_store **out, struct sl_diag *d);
 void        sl_store_close(struct sl_store *s);   /* NULL-safe */
 
 /* study: the config's name; config_text: the filled-in config (may be NULL). */

@@ -1,0 +1,616 @@
+/*
+ * check.c — see check.h.
+ *
+ * The baseline's figure lists come from the X-macro of figures.h, so a
+ * baseline written before a figure was added or renamed is refused with the
+ * line of the cell that lacks it (refresh the baseline deliberately, see the
+ * README). Every comparison is of integers or of shares computed the same
+ * way on both sides, so a store compared with its own baseline moves nothing.
+ */
+#define _XOPEN_SOURCE 700
+#include "check.h"
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cyaml/cyaml.h>
+#include "figures.h"
+#include "store.h"
+#include "table.h"
+#include "util.h"
+#include "yamlfile.h"
+
+#define SL_BASELINE_VERSION 1
+
+static const char *const class_name[SL_CC_COUNT] = {
+#define SL_CC_NAME(name, tol, text) #name,
+    SL_CHECK_CLASSES(SL_CC_NAME)
+#undef SL_CC_NAME
+};
+static const double class_tol[SL_CC_COUNT] = {
+#define SL_CC_TOL(name, tol, text) tol,
+    SL_CHECK_CLASSES(SL_CC_TOL)
+#undef SL_CC_TOL
+};
+static const char *const class_text[SL_CC_COUNT] = {
+#define SL_CC_TEXT(name, tol, text) text,
+    SL_CHECK_CLASSES(SL_CC_TEXT)
+#undef SL_CC_TEXT
+};
+
+/* The class of each figure of figures.h. */
+static enum sl_check_class figure_class(enum sl_figure f)
+{
+    switch (f) {
+    case SL_FIG_pixels: case SL_FIG_pfl: case SL_FIG_pnfl:
+        return SL_CC_view;
+    case SL_FIG_light_incorrect: case SL_FIG_shadow_incorrect: case SL_FIG_wrong: case SL_FIG_wrong_caught:
+    case SL_FIG_kept_wrong: case SL_FIG_broken_ls: case SL_FIG_broken_sl: case SL_FIG_hinted_wrong:
+    case SL_FIG_hinted_light_wrong: case SL_FIG_hinted_shadow_wrong:
+        return SL_CC_error;
+    case SL_FIG_ray_tri_tests:
+        return SL_CC_cost;
+    default:
+        return SL_CC_decision;
+    }
+}
+
+/* The counters of a cell, by name: where they live and their class. */
+#define BL_COUNTERS(X)                                   \
+    X(n_pfl, view)                                       \
+    X(n_pnfl, view)                                      \
+    X(n_background, view)                                \
+    X(n_truth_lit, view)                                 \
+    X(n_truth_shadow, view)                              \
+    X(wrong_image, error)                                \
+    X(truth_rays, cost)                                  \
+    X(lookups, cost)                                     \
+    X(rays, cost)                                        \
+    X(tri_tests, cost)                                   \
+    X(gs_prims, cost)                                    \
+    X(fragments, cost)                                   \
+    X(violations, invariant)
+
+enum {
+#define BL_CNT_ENUM(name, cls) BL_C_##name,
+    BL_COUNTERS(BL_CNT_ENUM)
+#undef BL_CNT_ENUM
+    BL_C_COUNT
+};
+
+/* ---- the baseline file's schema ---- */
+
+struct bl_machine { char *cpu, *isa, *gl_renderer, *gl_version, *embree; };
+struct bl_tol {
+#define BL_TOL_MEMBER(name, tol, text) double *name;
+    SL_CHECK_CLASSES(BL_TOL_MEMBER)
+#undef BL_TOL_MEMBER
+};
+struct bl_counters {
+#define BL_CNT_MEMBER(name, cls) uint64_t name;
+    BL_COUNTERS(BL_CNT_MEMBER)
+#undef BL_CNT_MEMBER
+};
+struct bl_figs {
+#define BL_FIG_MEMBER(name, text, of) uint64_t *name; unsigned name##_count;
+    SL_FIGURES(BL_FIG_MEMBER)
+#undef BL_FIG_MEMBER
+};
+struct bl_cell {
+    char *cell;
+    struct bl_counters *counters;
+    char **regions;
+    unsigned regions_count;
+    struct bl_figs *figures;
+};
+struct bl_file {
+    unsigned version;
+    char *study, *config, *config_hash, *git_sha, *measured, *counts;
+    struct bl_machine *machine;
+    struct bl_tol *tolerances;
+    struct bl_cell *cells;
+    unsigned cells_count;
+};
+
+static const cyaml_schema_value_t str_schema = {CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 1, 255)};
+static const cyaml_schema_value_t u64_schema = {CYAML_VALUE_UINT(CYAML_FLAG_DEFAULT, uint64_t)};
+
+static const cyaml_schema_field_t machine_fields[] = {
+    CYAML_FIELD_STRING_PTR("cpu", CYAML_FLAG_POINTER, struct bl_machine, cpu, 0, 255),
+    CYAML_FIELD_STRING_PTR("isa", CYAML_FLAG_POINTER, struct bl_machine, isa, 0, 255),
+    CYAML_FIELD_STRING_PTR("gl_renderer", CYAML_FLAG_POINTER, struct bl_machine, gl_renderer, 0, 255),
+    CYAML_FIELD_STRING_PTR("gl_version", CYAML_FLAG_POINTER, struct bl_machine, gl_version, 0, 255),
+    CYAML_FIELD_STRING_PTR("embree", CYAML_FLAG_POINTER, struct bl_machine, embree, 0, 255),
+    CYAML_FIELD_END
+};
+static const cyaml_schema_field_t tol_fields[] = {
+#define BL_TOL_FIELD(name, tol, text) \
+    CYAML_FIELD_FLOAT_PTR(#name, CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_tol, name),
+    SL_CHECK_CLASSES(BL_TOL_FIELD)
+#undef BL_TOL_FIELD
+    CYAML_FIELD_END
+};
+static const cyaml_schema_field_t counter_fields[] = {
+#define BL_CNT_FIELD(name, cls) CYAML_FIELD_UINT(#name, CYAML_FLAG_DEFAULT, struct bl_counters, name),
+    BL_COUNTERS(BL_CNT_FIELD)
+#undef BL_CNT_FIELD
+    CYAML_FIELD_END
+};
+static const cyaml_schema_field_t fig_fields[] = {
+#define BL_FIG_FIELD(name, text, of) \
+    CYAML_FIELD_SEQUENCE(#name, CYAML_FLAG_POINTER | CYAML_FLAG_FLOW, struct bl_figs, name, &u64_schema, 1, SL_MAX_REGIONS),
+    SL_FIGURES(BL_FIG_FIELD)
+#undef BL_FIG_FIELD
+    CYAML_FIELD_END
+};
+static const cyaml_schema_field_t cell_fields[] = {
+    CYAML_FIELD_STRING_PTR("cell", CYAML_FLAG_POINTER, struct bl_cell, cell, 1, 255),
+    CYAML_FIELD_MAPPING_PTR("counters", CYAML_FLAG_POINTER, struct bl_cell, counters, counter_fields),
+    CYAML_FIELD_SEQUENCE("regions", CYAML_FLAG_POINTER, struct bl_cell, regions, &str_schema, 1, SL_MAX_REGIONS),
+    CYAML_FIELD_MAPPING_PTR("figures", CYAML_FLAG_POINTER, struct bl_cell, figures, fig_fields),
+    CYAML_FIELD_END
+};
+static const cyaml_schema_value_t cell_schema = {
+    CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, struct bl_cell, cell_fields),
+};
+static const cyaml_schema_field_t file_fields[] = {
+    CYAML_FIELD_UINT("shadowlab_baseline", CYAML_FLAG_DEFAULT, struct bl_file, version),
+    CYAML_FIELD_STRING_PTR("study", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_file, study, 0, 255),
+    CYAML_FIELD_STRING_PTR("config", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_file, config, 0, 1023),
+    CYAML_FIELD_STRING_PTR("config_hash", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_file, config_hash, 0, 63),
+    CYAML_FIELD_STRING_PTR("git_sha", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_file, git_sha, 0, 63),
+    CYAML_FIELD_STRING_PTR("measured", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_file, measured, 0, 63),
+    CYAML_FIELD_MAPPING_PTR("machine", CYAML_FLAG_POINTER, struct bl_file, machine, machine_fields),
+    CYAML_FIELD_MAPPING_PTR("tolerances", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_file, tolerances,
+                            tol_fields),
+    CYAML_FIELD_STRING_PTR("counts", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_file, counts, 1, 31),
+    CYAML_FIELD_SEQUENCE("cells", CYAML_FLAG_POINTER, struct bl_file, cells, &cell_schema, 0, CYAML_UNLIMITED),
+    CYAML_FIELD_END
+};
+static const cyaml_schema_value_t file_schema = {
+    CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, struct bl_file, file_fields),
+};
+
+static const uint64_t *bl_fig(const struct bl_figs *f, int k, unsigned *n)
+{
+    switch ((enum sl_figure)k) {
+#define BL_FIG_CASE(name, text, of) case SL_FIG_##name: *n = f->name##_count; return f->name;
+        SL_FIGURES(BL_FIG_CASE)
+#undef BL_FIG_CASE
+    case SL_FIG_COUNT:
+        break;
+    }
+    *n = 0;
+    return NULL;
+}
+
+static uint64_t bl_counter(const struct bl_counters *c, int k)
+{
+    const uint64_t v[BL_C_COUNT] = {
+#define BL_CNT_VAL(name, cls) c->name,
+        BL_COUNTERS(BL_CNT_VAL)
+#undef BL_CNT_VAL
+    };
+    return v[k];
+}
+
+static const char *const counter_name[BL_C_COUNT] = {
+#define BL_CNT_NAME(name, cls) #name,
+    BL_COUNTERS(BL_CNT_NAME)
+#undef BL_CNT_NAME
+};
+static const enum sl_check_class counter_class[BL_C_COUNT] = {
+#define BL_CNT_CLS(name, cls) SL_CC_##cls,
+    BL_COUNTERS(BL_CNT_CLS)
+#undef BL_CNT_CLS
+};
+
+/* The same counters of a stored cell. */
+static uint64_t cell_counter(const struct sl_table_cell *c, int k)
+{
+    const uint64_t v[BL_C_COUNT] = {
+        [BL_C_n_pfl] = c->n_pfl, [BL_C_n_pnfl] = c->n_pnfl, [BL_C_n_background] = c->n_background,
+        [BL_C_n_truth_lit] = c->n_truth_lit, [BL_C_n_truth_shadow] = c->n_truth_shadow,
+        [BL_C_wrong_image] = c->fig.wrong_image, [BL_C_truth_rays] = c->cost.truth_rays,
+        [BL_C_lookups] = c->cost.lookups, [BL_C_rays] = c->cost.rays, [BL_C_tri_tests] = c->cost.tri_tests,
+        [BL_C_gs_prims] = c->cost.gs_prims, [BL_C_fragments] = c->cost.fragments,
+        [BL_C_violations] = c->cost.violations,
+    };
+    return v[k];
+}
+
+static void cell_key(const struct sl_table_cell *c, char *out, size_t n)
+{
+    snprintf(out, n, "%s/%s/%dx%d/%d/%s", c->scene, c->viewpoint, c->vw, c->vh, c->map_size, c->label);
+}
+
+static void region_name(int t, char *out, size_t n)
+{
+    if (t == 0)
+        snprintf(out, n, "image");
+    else
+        snprintf(out, n, "%dpx", t);
+}
+
+/* ---- comparing ---- */
+
+struct cmp {
+    FILE *out;
+    const struct sl_check_opts *o;
+    struct sl_check_result *r;
+    double tol[SL_CC_COUNT];
+    int exact;
+    int rows, max_rows;
+    long hidden;
+};
+
+/* One value: baseline a, now b; `share_of` the denominators that turn counts
+ * into percentage points (0: relative to a, the cost rule). */
+static void compare(struct cmp *m, const char *key, const char *region, const char *what,
+                    enum sl_check_class cls, uint64_t a, uint64_t b, double den_a, double den_b)
+{
+    m->r->compared++;
+    if (a == b)
+        return;
+    m->r->moved++;
+    double moved, tol = m->tol[cls];
+    const char *unit;
+    if (cls == SL_CC_cost) {
+        moved = 100.0 * ((double)b - (double)a) / (a ? (double)a : 1.0);
+        unit = "%";
+    } else {
+        double pa = den_a > 0 ? 100.0 * (double)a / den_a : 0.0;
+        double pb = den_b > 0 ? 100.0 * (double)b / den_b : 0.0;
+        moved = pb - pa;
+        unit = "pp";
+    }
+    int bad = m->exact || cls == SL_CC_invariant || fabs(moved) > tol + 1e-12;
+    if (bad)
+        m->r->failed++;
+    if (m->rows >= m->max_rows) {
+        m->hidden++;
+        return;
+    }
+    if (m->rows++ == 0)
+        fprintf(m->out, "| cell | region | figure | class | baseline | now | moved | tolerance | |\n"
+                        "|---|---|---|---|---:|---:|---:|---:|---|\n");
+    char tolbuf[32];
+    if (m->exact || cls == SL_CC_invariant)
+        snprintf(tolbuf, sizeof tolbuf, "exact");
+    else
+        snprintf(tolbuf, sizeof tolbuf, "%g %s", tol, unit);
+    fprintf(m->out, "| %s | %s | %s | %s | %llu | %llu | %+.4f %s | %s | %s |\n", key, region, what,
+            class_name[cls], (unsigned long long)a, (unsigned long long)b, moved, unit, tolbuf,
+            bad ? "**FAIL**" : "ok");
+}
+
+static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl_yaml_pos *pos, unsigned ci,
+                                const struct bl_cell *b, const struct sl_table_cell *c, struct sl_diag *d)
+{
+    char key[64];
+    double img_b = (double)c->vw * (double)c->vh;
+    double img_a = (double)(b->counters->n_pfl + b->counters->n_pnfl + b->counters->n_background);
+    for (int k = 0; k < BL_C_COUNT; k++)
+        compare(m, b->cell, "cell", counter_name[k], counter_class[k], bl_counter(b->counters, k),
+                cell_counter(c, k), img_a, img_b);
+    /* regions, matched by name */
+    for (unsigned r = 0; r < b->regions_count; r++) {
+        int found = -1;
+        char name[16];
+        for (int j = 0; j < c->fig.nregions && found < 0; j++) {
+            region_name(c->fig.r[j].thickness, name, sizeof name);
+            if (strcmp(name, b->regions[r]) == 0)
+                found = j;
+        }
+        if (found < 0) {
+            m->r->failed++;
+            fprintf(m->out, "| %s | %s | (region) | view | present | missing | | exact | **FAIL** |\n", b->cell,
+                    b->regions[r]);
+            continue;
+        }
+        const struct sl_region_figures *g = &c->fig.r[found];
+        unsigned n;
+        const uint64_t *pix = bl_fig(b->figures, SL_FIG_pixels, &n);
+        double den_a = r < n ? (double)pix[r] : 0.0, den_b = (double)g->n[SL_FIG_pixels];
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            const uint64_t *v = bl_fig(b->figures, k, &n);
+            if (n != b->regions_count) {
+                snprintf(key, sizeof key, "cells[%u].figures.%s", ci, sl_figure_name((enum sl_figure)k));
+                return sl_yaml_bad(d, SL_E_BASELINE, file, pos, key, "%u values for %u regions", n,
+                                   b->regions_count);
+            }
+            enum sl_check_class cls = figure_class((enum sl_figure)k);
+            if (cls == SL_CC_view)
+                compare(m, b->cell, b->regions[r], sl_figure_name((enum sl_figure)k), cls, v[r], g->n[k], img_a,
+                        img_b);
+            else
+                compare(m, b->cell, b->regions[r], sl_figure_name((enum sl_figure)k), cls, v[r], g->n[k], den_a,
+                        den_b);
+        }
+    }
+    return SL_OK;
+}
+
+/* Every run behind the compared cells was measured on the baseline's machine. */
+static int same_machine(const struct bl_machine *bm, const struct sl_store_run *runs, int nruns,
+                        const struct sl_table_cell *cells, int ncells)
+{
+    for (int i = 0; i < ncells; i++) {
+        const struct sl_store_run *run = NULL;
+        for (int j = 0; j < nruns && !run; j++)
+            if (runs[j].run_id == cells[i].run_id)
+                run = &runs[j];
+        if (!run || strcmp(run->prov.cpu, bm->cpu) || strcmp(run->prov.isa, bm->isa) ||
+            strcmp(run->prov.gl_renderer, bm->gl_renderer) || strcmp(run->prov.gl_version, bm->gl_version) ||
+            strcmp(run->prov.embree, bm->embree))
+            return 0;
+    }
+    return 1;
+}
+
+static enum sl_err load_store(const char *db, const char *study, struct sl_table_cell **cells, int *n,
+                              struct sl_store_run **runs, int *nruns, struct sl_diag *d)
+{
+    struct sl_store *s = NULL;
+    enum sl_err e = sl_store_open_existing(db, &s, d);
+    struct sl_store_filter f = {.study = study};
+    if (!e)
+        e = sl_store_query(s, &f, cells, n, d);
+    if (!e && (e = sl_store_runs(s, runs, nruns, d))) {
+        free(*cells);
+        *cells = NULL;
+    }
+    sl_store_close(s);
+    if (!e && *n == 0) {
+        free(*cells);
+        sl_store_runs_free(*runs, *nruns);
+        *cells = NULL;
+        *runs = NULL;
+        e = sl_fail(d, SL_E_USAGE, db, 0, study ? "--study" : NULL, "no cells%s%s in the store",
+                    study ? " of study " : "", study ? study : "");
+    }
+    return e;
+}
+
+enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check_opts *o, FILE *out,
+                     struct sl_check_result *r, struct sl_diag *d)
+{
+    static const struct sl_check_opts none;
+    if (!o)
+        o = &none;
+    memset(r, 0, sizeof *r);
+    struct bl_file *b = NULL;
+    struct sl_yaml_pos *pos = NULL;
+    enum sl_err e = sl_yaml_load(baseline, &file_schema, (void **)&b, &pos, SL_E_BASELINE, d);
+    if (e)
+        return e;
+    struct sl_table_cell *cells = NULL;
+    struct sl_store_run *runs = NULL;
+    int n = 0, nruns = 0;
+    struct cmp m = {.out = out, .o = o, .r = r, .max_rows = o->max_rows > 0 ? o->max_rows : 200};
+    if (b->version != SL_BASELINE_VERSION) {
+        e = sl_yaml_bad(d, SL_E_BASELINE, baseline, pos, "shadowlab_baseline", "version %u: this build reads %d",
+                        b->version, SL_BASELINE_VERSION);
+        goto done;
+    }
+    for (int k = 0; k < SL_CC_COUNT; k++)
+        m.tol[k] = class_tol[k];
+    if (b->tolerances) {
+        const double *t[SL_CC_COUNT] = {
+#define BL_TOL_PTR(name, tol, text) b->tolerances->name,
+            SL_CHECK_CLASSES(BL_TOL_PTR)
+#undef BL_TOL_PTR
+        };
+        for (int k = 0; k < SL_CC_COUNT; k++)
+            if (t[k]) {
+                char key[64];
+                snprintf(key, sizeof key, "tolerances.%s", class_name[k]);
+                if (!(*t[k] >= 0.0 && *t[k] <= 100.0)) {
+                    e = sl_yaml_bad(d, SL_E_BASELINE, baseline, pos, key, "%g: a tolerance is 0..100", *t[k]);
+                    goto done;
+                }
+                if (k == SL_CC_invariant && *t[k] != 0.0) {
+                    e = sl_yaml_bad(d, SL_E_BASELINE, baseline, pos, key, "invariants are exact: 0 only");
+                    goto done;
+                }
+                m.tol[k] = *t[k];
+            }
+    }
+    const char *counts = b->counts ? b->counts : "same_machine";
+    if (strcmp(counts, "same_machine") && strcmp(counts, "exact") && strcmp(counts, "tolerance")) {
+        e = sl_yaml_bad(d, SL_E_BASELINE, baseline, pos, "counts", "'%s': same_machine, exact or tolerance", counts);
+        goto done;
+    }
+    if ((e = load_store(db, o->study, &cells, &n, &runs, &nruns, d)))
+        goto done;
+    m.exact = strcmp(counts, "exact") == 0 ||
+              (strcmp(counts, "same_machine") == 0 && same_machine(b->machine, runs, nruns, cells, n));
+    r->exact_counts = m.exact;
+    r->cells = (int)b->cells_count;
+
+    char *seen = calloc((size_t)n + 1, 1);
+    if (!seen) {
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "check");
+        goto done;
+    }
+    fprintf(out, "## shadowlab check: %s against %s\n\n", db, baseline);
+    for (unsigned i = 0; i < b->cells_count && !e; i++) {
+        const struct bl_cell *bc = &b->cells[i];
+        int found = -1;
+        char key[256];
+        for (int j = 0; j < n && found < 0; j++) {
+            cell_key(&cells[j], key, sizeof key);
+            if (strcmp(key, bc->cell) == 0)
+                found = j;
+        }
+        if (found < 0) {
+            r->missing++;
+            fprintf(out, "| %s | | (cell) | | present | missing | | | **FAIL** |\n", bc->cell);
+            continue;
+        }
+        seen[found] = 1;
+        e = compare_cell(&m, baseline, pos, i, bc, &cells[found], d);
+    }
+    if (!e) {
+        if (m.hidden)
+            fprintf(out, "\n... and %ld more moved values not shown\n", m.hidden);
+        for (int j = 0; j < n; j++)
+            if (!seen[j]) {
+                char key[256];
+                cell_key(&cells[j], key, sizeof key);
+                if (r->extra++ == 0)
+                    fprintf(out, "\nCells in the store that the baseline does not have (not compared):\n");
+                fprintf(out, "- %s\n", key);
+            }
+        fprintf(out, "\n%ld values of %d cells compared: %ld moved, %ld outside tolerance, %d cell(s) missing.\n",
+                r->compared, r->cells, r->moved, r->failed, r->missing);
+        if (m.exact)
+            fprintf(out, "Counts compared exactly (%s).\n",
+                    strcmp(counts, "exact") == 0 ? "the baseline says counts: exact"
+                                                 : "same CPU, ISA, GL renderer and Embree as the baseline");
+        else
+            fprintf(out, "Counts compared within the tolerances (%s):\n",
+                    strcmp(counts, "tolerance") == 0 ? "the baseline says counts: tolerance"
+                                                     : "measured on another machine than the baseline");
+        if (!m.exact)
+            for (int k = 0; k < SL_CC_COUNT; k++)
+                fprintf(out, "- %s: %g — %s\n", class_name[k], m.tol[k], class_text[k]);
+    }
+    free(seen);
+done:
+    free(cells);
+    sl_store_runs_free(runs, nruns);
+    sl_yaml_free(&file_schema, b, pos);
+    return e;
+}
+
+/* ---- writing a baseline ---- */
+
+/* A YAML double-quoted scalar. */
+static void yq(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\')
+            fputc('\\', f);
+        if ((unsigned char)*s >= 0x20)
+            fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const char *study,
+                                    struct sl_diag *d)
+{
+    /* keep the tolerances and count mode of the file being replaced */
+    double tol[SL_CC_COUNT];
+    int tol_set[SL_CC_COUNT] = {0};
+    char counts[32] = "";
+    for (int k = 0; k < SL_CC_COUNT; k++)
+        tol[k] = class_tol[k];
+    FILE *probe = fopen(baseline, "r");
+    if (probe) {
+        fclose(probe);
+        struct bl_file *old = NULL;
+        struct sl_yaml_pos *pos = NULL;
+        enum sl_err e = sl_yaml_load(baseline, &file_schema, (void **)&old, &pos, SL_E_BASELINE, d);
+        if (e)
+            return e;
+        if (old->tolerances) {
+            const double *t[SL_CC_COUNT] = {
+#define BL_TOL_PTR(name, tol, text) old->tolerances->name,
+                SL_CHECK_CLASSES(BL_TOL_PTR)
+#undef BL_TOL_PTR
+            };
+            for (int k = 0; k < SL_CC_COUNT; k++)
+                if (t[k]) {
+                    tol[k] = *t[k];
+                    tol_set[k] = 1;
+                }
+        }
+        if (old->counts)
+            snprintf(counts, sizeof counts, "%s", old->counts);
+        sl_yaml_free(&file_schema, old, pos);
+    }
+
+    struct sl_table_cell *cells = NULL;
+    struct sl_store_run *runs = NULL;
+    int n = 0, nruns = 0;
+    enum sl_err e = load_store(db, study, &cells, &n, &runs, &nruns, d);
+    if (e)
+        return e;
+    /* the machine, SHA and config of the latest run behind these cells */
+    const struct sl_store_run *run = NULL;
+    for (int j = 0; j < nruns; j++)
+        for (int i = 0; i < n; i++)
+            if (runs[j].run_id == cells[i].run_id)
+                run = &runs[j];
+    struct sl_outfile of;
+    if (!run) {
+        e = sl_fail(d, SL_E_INTERNAL, db, 0, NULL, "cells without their run");
+        goto done;
+    }
+    if ((e = sl_out_open(&of, baseline, d)))
+        goto done;
+    FILE *f = of.f;
+    fprintf(f, "# shadowlab baseline: the figures and counters of every cell of a results store,\n"
+               "# compared by `shadowlab check DB --baseline THIS_FILE`. Written by\n"
+               "# `shadowlab check DB --baseline THIS_FILE --update`: refresh it deliberately\n"
+               "# (README, \"Refreshing a baseline\"), never to make a failing check pass.\n");
+    fprintf(f, "shadowlab_baseline: %d\n", SL_BASELINE_VERSION);
+    fprintf(f, "study: ");
+    yq(f, run->study);
+    fprintf(f, "\nconfig: ");
+    yq(f, run->config_path);
+    fprintf(f, "\nconfig_hash: ");
+    yq(f, run->config_hash);
+    fprintf(f, "\ngit_sha: ");
+    yq(f, run->prov.git_sha);
+    fprintf(f, "\nmeasured: ");
+    yq(f, run->prov.time_utc);
+    fprintf(f, "\nmachine:\n  cpu: ");
+    yq(f, run->prov.cpu);
+    fprintf(f, "\n  isa: ");
+    yq(f, run->prov.isa);
+    fprintf(f, "\n  gl_renderer: ");
+    yq(f, run->prov.gl_renderer);
+    fprintf(f, "\n  gl_version: ");
+    yq(f, run->prov.gl_version);
+    fprintf(f, "\n  embree: ");
+    yq(f, run->prov.embree);
+    fprintf(f, "\n# same_machine: counts exact on the machine above, else within the tolerances;\n"
+               "# exact: always exact; tolerance: always within the tolerances\n");
+    fprintf(f, "counts: %s\n", counts[0] ? counts : "same_machine");
+    fprintf(f, "tolerances:\n");
+    for (int k = 0; k < SL_CC_COUNT; k++)
+        fprintf(f, "  %s: %g   # %s%s\n", class_name[k], tol[k], class_text[k], tol_set[k] ? "" : " [default]");
+    fprintf(f, "cells:\n");
+    for (int i = 0; i < n; i++) {
+        const struct sl_table_cell *c = &cells[i];
+        char key[256];
+        cell_key(c, key, sizeof key);
+        fprintf(f, "  - cell: ");
+        yq(f, key);
+        fprintf(f, "\n    counters: {");
+        for (int k = 0; k < BL_C_COUNT; k++)
+            fprintf(f, "%s%s: %llu", k ? ", " : "", counter_name[k], (unsigned long long)cell_counter(c, k));
+        fprintf(f, "}\n    regions: [");
+        for (int r = 0; r < c->fig.nregions; r++) {
+            char name[16];
+            region_name(c->fig.r[r].thickness, name, sizeof name);
+            fprintf(f, "%s%s", r ? ", " : "", name);
+        }
+        fprintf(f, "]\n    figures:\n");
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            fprintf(f, "      %s: [", sl_figure_name((enum sl_figure)k));
+            for (int r = 0; r < c->fig.nregions; r++)
+                fprintf(f, "%s%llu", r ? ", " : "", (unsigned long long)c->fig.r[r].n[k]);
+            fprintf(f, "]\n");
+        }
+    }
+    e = sl_out_commit(&of, d);
+done:
+    free(cells);
+    sl_store_runs_free(runs, nruns);
+    return e;
+}

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# cli::check — `shadowlab check` against baselines written with --update and
+# then edited: a store equals its own baseline (exit 0, nothing moved); a
+# figure moved beyond its class tolerance fails (exit 1) and is named; a move
+# within tolerance passes when counts are not exact; a violation fails at any
+# tolerance; a missing cell fails; a bad baseline is exit 2 naming file and line.
+set -u
+bin=${1:?usage: cli_check.sh path/to/shadowlab}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0
+fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+cat >"$tmp/c.yaml" <<'YAML'
+name: checkme
+scenes: [{scene: primitives, viewpoints: [side]}]
+viewports: [{width: 128, height: 128}]
+map_sizes: [256]
+methods:
+  - {label: nsm, method: nsm}
+  - {label: csm, method: csm}
+outputs: {overlays: false}
+YAML
+"$bin" run "$tmp/c.yaml" --out "$tmp/r" --no-cache >/dev/null 2>&1 || { echo "FAIL run"; exit 1; }
+db=$tmp/r/shadowlab.db
+"$bin" check "$db" --baseline "$tmp/b.yaml" --update 2>/dev/null || { echo "FAIL --update"; exit 1; }
+grep -q '^  - cell: "primitives/side/128x128/256/nsm"' "$tmp/b.yaml" || fail "baseline lacks the nsm cell"
+
+out=$("$bin" check "$db" --baseline "$tmp/b.yaml"); rc=$?
+[ $rc -eq 0 ] || fail "a store against its own baseline: exit $rc"
+echo "$out" | grep -q " 0 moved, 0 outside tolerance, 0 cell(s) missing" || fail "own baseline moved: $out"
+echo "$out" | grep -q "Counts compared exactly" || fail "same machine, counts not exact"
+
+# the nsm cell's whole-image wrong count (last value of its 'wrong' list) + 50
+awk 'BEGIN{c=0} /cell: "primitives\/side\/128x128\/256\/nsm"/{c=1} c && /^      wrong: /{sub(/\]$/,""); n=split($0,a,", "); a[n]+=50; s=a[1]; for(i=2;i<=n;i++) s=s", "a[i]; print s"]"; c=0; next} {print}' \
+  "$tmp/b.yaml" >"$tmp/moved.yaml"
+cmp -s "$tmp/b.yaml" "$tmp/moved.yaml" && fail "the edit did not change the baseline"
+out=$("$bin" check "$db" --baseline "$tmp/moved.yaml"); rc=$?
+[ $rc -eq 1 ] || fail "50 wrong pixels moved: exit $rc, want 1"
+echo "$out" | grep -q '| primitives/side/128x128/256/nsm | image | wrong | error | .* | \*\*FAIL\*\* |' ||
+  fail "the moved figure is not named: $out"
+
+# the same move is within a 5 pp tolerance when counts are compared by tolerance
+sed -e 's/^counts: same_machine/counts: tolerance/' -e 's/^  error: .*/  error: 5/' "$tmp/moved.yaml" >"$tmp/loose.yaml"
+out=$("$bin" check "$db" --baseline "$tmp/loose.yaml"); rc=$?
+[ $rc -eq 0 ] || fail "a move within tolerance: exit $rc, want 0: $out"
+echo "$out" | grep -q '| wrong | error | .* | ok |' || fail "a move within tolerance is not listed as ok"
+
+# a violation fails whatever the tolerances
+sed -e 's/violations: 0}/violations: 1}/' "$tmp/loose.yaml" >"$tmp/viol.yaml"
+"$bin" check "$db" --baseline "$tmp/viol.yaml" >"$tmp/viol.out"; rc=$?
+[ $rc -eq 1 ] || fail "a violation: exit $rc, want 1"
+grep -q '| violations | invariant | 1 | 0 | .* | exact | \*\*FAIL\*\* |' "$tmp/viol.out" || fail "violation row missing"
+
+# a baseline cell the store lacks
+sed -e 's#primitives/side/128x128/256/csm#primitives/side/128x128/512/csm#' "$tmp/b.yaml" >"$tmp/missing.yaml"
+out=$("$bin" check "$db" --baseline "$tmp/missing.yaml"); rc=$?
+[ $rc -eq 1 ] || fail "a missing cell: exit $rc, want 1"
+echo "$out" | grep -q "1 cell(s) missing" || fail "missing cell not counted"
+echo "$out" | grep -q "^- primitives/side/128x128/256/csm" || fail "the store's extra cell is not listed"
+
+# bad baselines: exit 2, file and line
+sed -e 's/^      traced: .*/      tracedd: [1, 2, 3, 4]/' "$tmp/b.yaml" >"$tmp/badkey.yaml"
+err=$("$bin" check "$db" --baseline "$tmp/badkey.yaml" 2>&1 >/dev/null); rc=$?
+[ $rc -eq 2 ] || fail "unknown figure: exit $rc, want 2"
+echo "$err" | grep -q "badkey.yaml:[0-9]" || fail "unknown figure: no file:line in '$err'"
+sed -e 's/^  error: .*/  error: -1/' "$tmp/b.yaml" >"$tmp/badtol.yaml"
+err=$("$bin" check "$db" --baseline "$tmp/badtol.yaml" 2>&1 >/dev/null); rc=$?
+[ $rc -eq 2 ] || fail "negative tolerance: exit $rc, want 2"
+echo "$err" | grep -q "badtol.yaml:[0-9]*: 'tolerances.error'" || fail "negative tolerance: '$err'"
+err=$("$bin" check "$tmp/nope.db" --baseline "$tmp/b.yaml" 2>&1 >/dev/null); rc=$?
+[ $rc -eq 2 ] || fail "no store: exit $rc, want 2"
+echo "$err" | grep -q "nope.db: no results store" || fail "no store: '$err'"
+[ -e "$tmp/nope.db" ] && fail "check created a store"
+
+# --update keeps the tolerances it replaces
+"$bin" check "$db" --baseline "$tmp/loose.yaml" --update 2>/dev/null || fail "--update over an edited file"
+grep -q '^  error: 5 ' "$tmp/loose.yaml" || fail "--update lost the tolerance"
+grep -q '^counts: tolerance' "$tmp/loose.yaml" || fail "--update lost the count mode"
+
+[ $fails -eq 0 ] && echo "cli::check passed" || exit 1
