@@ -51,7 +51,7 @@ enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir_out, size_
     struct sl_store_run *runs = NULL;
     struct sl_table_cell *all = NULL;
     int nruns = 0, nall = 0;
-    e = sl_store_open(o->db, &s, d);
+    e = sl_store_open_existing(o->db, &s, d);
     if (!e)
         e = sl_store_runs(s, &runs, &nruns, d);
     /* one query per study: the latest cell of a key wins within its study only */
