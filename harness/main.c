@@ -11,6 +11,7 @@
 #include "config.h"
 #include "method.h"
 #include "provenance.h"
+#include "report.h"
 #include "run.h"
 #include "scene.h"
 #include "scenefile.h"
@@ -24,6 +25,7 @@ static const char usage[] =
     "  run CONFIG [options]       run an experiment (shadowlab run --help)\n"
     "  validate FILE              check a config or a scene file without GL or Embree\n"
     "  table DB [options]         regenerate tables from a results store\n"
+    "  report DB [--out DIR]      HTML and Markdown report of a results store (needs gnuplot)\n"
     "  check DB --baseline FILE   compare a results store with a committed baseline (exit 1 if outside)\n"
     "  bench [CONFIG] [--reps N]  truth pass vs a plain Embree loop, and stage times\n"
     "  list methods|scenes        what can be named in a config\n"
@@ -50,6 +52,13 @@ static const char usage_table[] =
     "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
     "  --summary, the average, best and worst per map size of one figure's percentage over\n"
     "  the cells of one label (as the theses' summary tables), md or csv.\n";
+
+static const char usage_report[] =
+    "usage: shadowlab report RESULTS_DB [--out DIR]\n"
+    "  Writes DIR/report.html (self-contained, offline) and DIR/report.md with the thesis-style\n"
+    "  tables of every study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
+    "  (gnuplot, SVG), costs, the error overlays and the provenance of every run.\n"
+    "  --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n";
 
 static const char usage_check[] =
     "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
@@ -275,6 +284,31 @@ static int cmd_table(int argc, char **argv)
     return e ? fail(e, &d) : 0;
 }
 
+static int cmd_report(int argc, char **argv)
+{
+    struct sl_report_opts o = {0};
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+            o.out_dir = argv[++i];
+        else if (argv[i][0] == '-')
+            return usage_error("report: unknown option", usage_report);
+        else if (!o.db)
+            o.db = argv[i];
+        else
+            return usage_error("report: one RESULTS_DB", usage_report);
+    }
+    if (!o.db)
+        return usage_error("report: missing RESULTS_DB", usage_report);
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    char dir[1100];
+    enum sl_err e = sl_report_write(&o, dir, sizeof dir, &d);
+    if (e)
+        return fail(e, &d);
+    printf("report: %s/report.html, %s/report.md\n", dir, dir);
+    return 0;
+}
+
 static int cmd_check(int argc, char **argv)
 {
     const char *db = NULL, *baseline = NULL;
@@ -370,6 +404,7 @@ int main(int argc, char **argv)
         {"run", cmd_run, usage_run},
         {"validate", cmd_validate, usage_validate},
         {"table", cmd_table, usage_table},
+        {"report", cmd_report, usage_report},
         {"check", cmd_check, usage_check},
         {"bench", cmd_bench, usage_bench},
         {"list", cmd_list, usage_list},

@@ -23,6 +23,8 @@ PACKAGES=(
   assimp-testmodels     # third-party models the model scenes and tests load
   libsqlite3-dev        # results store
   libcmocka-dev         # unit tests
+  gnuplot-nox           # the report's plots (shadowlab report)
+  chromium              # the report's rendering test (cli::report)
 )
 
 missing=()

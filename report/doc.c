@@ -1,0 +1,697 @@
+/*
+ * doc.c — the staging folder, the table grid and the two pages (see
+ * report_int.h).
+ *
+ * Invariants:
+ * - Every file of the report is registered with sl_report_out_path before
+ *   it is written, so commit moves exactly those files and abort removes
+ *   exactly those (never anything it did not write: no recursive deletes).
+ * - Registered paths are relative, made of [A-Za-z0-9._-] and '/', and never
+ *   start with '.' or contain "..": a cell's names cannot escape the folder.
+ * - Text reaches a page only through the escapers here (html_text, md_text,
+ *   tex_text), so a label or path can never break a page or a table.
+ * - Write errors on the pages are found by ferror at the end (report.c).
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "report_int.h"
+#include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include "util.h"
+
+/* ---- out ---- */
+
+void sl_report_slug(const char *s, char *buf, size_t n)
+{
+    size_t k = 0;
+    for (; s && *s && k + 1 < n; s++) {
+        char c = *s;
+        int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+                 c == '-' || c == '.';
+        buf[k++] = ok ? c : '-';
+    }
+    if (k > 0 && buf[0] == '.')
+        buf[0] = '-';
+    if (k == 0 && n > 1)
+        buf[k++] = '-';
+    if (n)
+        buf[k < n ? k : n - 1] = '\0';
+}
+
+static int rel_ok(const char *rel)
+{
+    if (!rel || !rel[0] || rel[0] == '/' || rel[0] == '.' || strstr(rel, "..") || strstr(rel, "//"))
+        return 0;
+    for (const char *p = rel; *p; p++) {
+        char c = *p;
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+              c == '-' || c == '.' || c == '/'))
+            return 0;
+    }
+    return rel[strlen(rel) - 1] != '/';
+}
+
+/* mkdir -p of the folder part of path (quiet: the caller reports) */
+static int make_parent(const char *path)
+{
+    char buf[1400];
+    snprintf(buf, sizeof buf, "%s", path);
+    char *slash = strrchr(buf, '/');
+    if (!slash)
+        return 0;
+    *slash = '\0';
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return -1;
+            *p = '/';
+        }
+    return (mkdir(buf, 0777) != 0 && errno != EEXIST) ? -1 : 0;
+}
+
+enum sl_err sl_report_out_begin(struct sl_report_out *o, const char *dir, struct sl_diag *d)
+{
+    memset(o, 0, sizeof *o);
+    if (!dir || !dir[0])
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--out", "empty output folder");
+    if (snprintf(o->dir, sizeof o->dir, "%s", dir) >= (int)sizeof o->dir)
+        return sl_fail(d, SL_E_OUTPUT, dir, 0, NULL, "path too long");
+    size_t len = strlen(o->dir);
+    while (len > 1 && o->dir[len - 1] == '/')
+        o->dir[--len] = '\0';
+    enum sl_err e = sl_mkdirs(o->dir, d);
+    if (e)
+        return e;
+    snprintf(o->stage, sizeof o->stage, "%s/.staging-%ld", o->dir, (long)getpid());
+    if (mkdir(o->stage, 0777) != 0)
+        return sl_fail(d, SL_E_OUTPUT, o->stage, 0, NULL, "cannot create the staging folder: %s", strerror(errno));
+    return SL_OK;
+}
+
+int sl_report_out_has(const struct sl_report_out *o, const char *rel)
+{
+    for (int i = 0; i < o->n; i++)
+        if (strcmp(o->files[i].rel, rel) == 0)
+            return 1;
+    return 0;
+}
+
+enum sl_err sl_report_out_path(struct sl_report_out *o, const char *rel, int keep, char *path, size_t n,
+                               struct sl_diag *d)
+{
+    if (!rel_ok(rel))
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, rel, "not a report file name");
+    if (sl_report_out_has(o, rel))
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, rel, "report file written twice");
+    if (snprintf(path, n, "%s/%s", o->stage, rel) >= (int)n)
+        return sl_fail(d, SL_E_OUTPUT, o->dir, 0, rel, "path too long");
+    if (o->n == o->cap) {
+        int cap = o->cap ? 2 * o->cap : 64;
+        struct sl_report_file *f = realloc(o->files, (size_t)cap * sizeof *f);
+        if (!f)
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, rel, "report file list");
+        o->files = f;
+        o->cap = cap;
+    }
+    char *copy = strdup(rel);
+    if (!copy)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, rel, "report file list");
+    o->files[o->n++] = (struct sl_report_file){copy, keep};
+    if (make_parent(path) != 0)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot create its folder: %s", strerror(errno));
+    return SL_OK;
+}
+
+/* rmdir the folders of rel inside root, deepest first; non-empty ones stay */
+static void remove_parents(const char *root, const char *rel)
+{
+    char buf[1400];
+    snprintf(buf, sizeof buf, "%s/%s", root, rel);
+    size_t rootlen = strlen(root);
+    for (;;) {
+        char *slash = strrchr(buf, '/');
+        if (!slash || (size_t)(slash - buf) <= rootlen)
+            break;
+        *slash = '\0';
+        rmdir(buf);
+    }
+}
+
+static void out_free(struct sl_report_out *o)
+{
+    for (int i = 0; i < o->n; i++)
+        free(o->files[i].rel);
+    free(o->files);
+    o->files = NULL;
+    o->n = o->cap = 0;
+}
+
+enum sl_err sl_report_out_commit(struct sl_report_out *o, struct sl_diag *d)
+{
+    char from[1400], to[1400];
+    enum sl_err e = SL_OK;
+    /* staged files exist: checked before anything moves */
+    for (int i = 0; i < o->n && !e; i++) {
+        struct stat st;
+        snprintf(from, sizeof from, "%s/%s", o->stage, o->files[i].rel);
+        if (o->files[i].keep && stat(from, &st) != 0)
+            e = sl_fail(d, SL_E_INTERNAL, from, 0, NULL, "a registered report file was not written");
+    }
+    /* pass 0: scratch removed, files moved; pass 1: the pages (keep > 1), last */
+    for (int pass = 0; pass < 2 && !e; pass++)
+        for (int i = 0; i < o->n && !e; i++) {
+            int keep = o->files[i].keep;
+            if ((pass == 0) != (keep <= 1))
+                continue;
+            snprintf(from, sizeof from, "%s/%s", o->stage, o->files[i].rel);
+            if (!keep) {
+                remove(from);
+                continue;
+            }
+            snprintf(to, sizeof to, "%s/%s", o->dir, o->files[i].rel);
+            if (make_parent(to) != 0 || rename(from, to) != 0)
+                e = sl_fail(d, SL_E_OUTPUT, to, 0, NULL, "cannot move into place: %s", strerror(errno));
+        }
+    if (e) {
+        sl_report_out_abort(o);
+        return e;
+    }
+    for (int i = o->n - 1; i >= 0; i--)
+        remove_parents(o->stage, o->files[i].rel);
+    rmdir(o->stage);
+    out_free(o);
+    return SL_OK;
+}
+
+void sl_report_out_abort(struct sl_report_out *o)
+{
+    char p[1400], tmp[1410];
+    for (int i = o->n - 1; i >= 0; i--) {
+        snprintf(p, sizeof p, "%s/%s", o->stage, o->files[i].rel);
+        snprintf(tmp, sizeof tmp, "%s.tmp", p);
+        remove(p);
+        remove(tmp);
+        remove_parents(o->stage, o->files[i].rel);
+    }
+    if (o->stage[0])
+        rmdir(o->stage);
+    out_free(o);
+}
+
+/* ---- tab ---- */
+
+static char *vformat(const char *fmt, va_list ap)
+{
+    va_list aq;
+    va_copy(aq, ap);
+    int len = vsnprintf(NULL, 0, fmt, aq);
+    va_end(aq);
+    if (len < 0)
+        return NULL;
+    char *s = malloc((size_t)len + 1);
+    if (s)
+        vsnprintf(s, (size_t)len + 1, fmt, ap);
+    return s;
+}
+
+void sl_report_tab_init(struct sl_report_tab *t, const char *id, int ncols, int nkeys, const char *fmt, ...)
+{
+    memset(t, 0, sizeof *t);
+    sl_report_slug(id, t->id, sizeof t->id);
+    t->ncols = ncols < 1 ? 1 : ncols > SL_REPORT_MAXCOLS ? SL_REPORT_MAXCOLS : ncols;
+    t->oom = ncols != t->ncols;
+    t->nkeys = nkeys;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(t->title, sizeof t->title, fmt, ap);
+    va_end(ap);
+}
+
+void sl_report_tab_head(struct sl_report_tab *t, int col, const char *fmt, ...)
+{
+    if (col < 0 || col >= t->ncols)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    free(t->head[col]);
+    t->head[col] = vformat(fmt, ap);
+    va_end(ap);
+    t->oom |= !t->head[col];
+}
+
+void sl_report_tab_group(struct sl_report_tab *t, int span, const char *fmt, ...)
+{
+    if (t->ngroups >= SL_REPORT_MAXCOLS)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(t->group[t->ngroups], sizeof t->group[0], fmt, ap);
+    va_end(ap);
+    t->span[t->ngroups++] = span;
+}
+
+void sl_report_tab_row(struct sl_report_tab *t, int block)
+{
+    if (t->oom)
+        return;
+    if (t->nrows == t->cap) {
+        int cap = t->cap ? 2 * t->cap : 16;
+        char **c = realloc(t->cell, (size_t)cap * (size_t)t->ncols * sizeof *c);
+        if (!c) {
+            t->oom = 1;
+            return;
+        }
+        t->cell = c;
+        unsigned char *r = realloc(t->rule, (size_t)cap);
+        if (!r) {
+            t->oom = 1;
+            return;
+        }
+        t->rule = r;
+        t->cap = cap;
+    }
+    for (int k = 0; k < t->ncols; k++)
+        t->cell[(size_t)t->nrows * (size_t)t->ncols + (size_t)k] = NULL;
+    t->rule[t->nrows] = (unsigned char)(block && t->nrows > 0);
+    t->nrows++;
+}
+
+void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
+{
+    if (t->oom || t->nrows == 0 || col < 0 || col >= t->ncols)
+        return;
+    char **slot = &t->cell[(size_t)(t->nrows - 1) * (size_t)t->ncols + (size_t)col];
+    va_list ap;
+    va_start(ap, fmt);
+    free(*slot);
+    *slot = vformat(fmt, ap);
+    va_end(ap);
+    t->oom |= !*slot;
+}
+
+void sl_report_tab_free(struct sl_report_tab *t)
+{
+    for (int k = 0; k < SL_REPORT_MAXCOLS; k++)
+        free(t->head[k]);
+    for (size_t i = 0; t->cell && i < (size_t)t->nrows * (size_t)t->ncols; i++)
+        free(t->cell[i]);
+    free(t->cell);
+    free(t->rule);
+    memset(t, 0, sizeof *t);
+}
+
+static const char *tab_at(const struct sl_report_tab *t, int r, int c)
+{
+    const char *s = t->cell[(size_t)r * (size_t)t->ncols + (size_t)c];
+    return s ? s : "";
+}
+
+/* ---- escapers ---- */
+
+static void html_text(FILE *f, const char *s)
+{
+    for (; s && *s; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        case '\'': fputs("&#39;", f); break;
+        default: fputc(*s, f);
+        }
+    }
+}
+
+/* CommonMark: backslash-escape the punctuation that could start markup */
+static void md_text(FILE *f, const char *s)
+{
+    for (; s && *s; s++) {
+        if (strchr("\\`*_[]<>|#!", *s))
+            fputc('\\', f);
+        if (*s == '\n')
+            fputc(' ', f);
+        else
+            fputc(*s, f);
+    }
+}
+
+/* LaTeX: the ten specials, and the few non-ASCII signs the report writes */
+static void tex_text(FILE *f, const char *s)
+{
+    for (; s && *s; s++) {
+        const unsigned char *u = (const unsigned char *)s;
+        if (u[0] == 0xC2 && u[1] == 0xB2) {            /* ² */
+            fputs("\\textsuperscript{2}", f);
+            s++;
+        } else if (u[0] == 0xC3 && u[1] == 0x97) {     /* × */
+            fputs("$\\times$", f);
+            s++;
+        } else if (u[0] == 0xE2 && u[1] == 0x80 && u[2] == 0x93) { /* – */
+            fputs("--", f);
+            s += 2;
+        } else if (u[0] == 0xE2 && u[1] == 0x86 && u[2] == 0x92) { /* → */
+            fputs("$\\to$", f);
+            s += 2;
+        } else {
+            switch (*s) {
+            case '_': case '%': case '&': case '#': case '$': case '{': case '}':
+                fputc('\\', f);
+                fputc(*s, f);
+                break;
+            case '\\': fputs("\\textbackslash{}", f); break;
+            case '~':  fputs("\\textasciitilde{}", f); break;
+            case '^':  fputs("\\textasciicircum{}", f); break;
+            case '<':  fputs("\\textless{}", f); break;
+            case '>':  fputs("\\textgreater{}", f); break;
+            default:   fputc(*s, f);
+            }
+        }
+    }
+}
+
+/* ---- doc ---- */
+
+void sl_report_doc_heading(struct sl_report_doc *doc, int level, const char *anchor, const char *fmt, ...)
+{
+    char text[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    if (level < 1)
+        level = 1;
+    if (level > 4)
+        level = 4;
+    fprintf(doc->html, "<h%d", level);
+    if (anchor && anchor[0]) {
+        fputs(" id=\"", doc->html);
+        html_text(doc->html, anchor);
+        fputc('"', doc->html);
+    }
+    fputc('>', doc->html);
+    html_text(doc->html, text);
+    fprintf(doc->html, "</h%d>\n", level);
+    if (anchor && anchor[0])
+        fprintf(doc->md, "<a id=\"%s\"></a>\n\n", anchor);   /* anchors are slugs: nothing to escape */
+    for (int i = 0; i < level; i++)
+        fputc('#', doc->md);
+    fputc(' ', doc->md);
+    md_text(doc->md, text);
+    fputs("\n\n", doc->md);
+}
+
+void sl_report_doc_para(struct sl_report_doc *doc, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    char *text = vformat(fmt, ap);
+    va_end(ap);
+    fputs("<p>", doc->html);
+    html_text(doc->html, text ? text : "(out of memory)");
+    fputs("</p>\n", doc->html);
+    md_text(doc->md, text ? text : "(out of memory)");
+    fputs("\n\n", doc->md);
+    free(text);
+}
+
+void sl_report_doc_links(struct sl_report_doc *doc, const char *prefix, const char *const *rel,
+                         const char *const *text, int n)
+{
+    fputs("<p>", doc->html);
+    if (prefix) {
+        html_text(doc->html, prefix);
+        md_text(doc->md, prefix);
+    }
+    for (int i = 0; i < n; i++) {
+        fputs(i ? ", " : (prefix ? " " : ""), doc->html);
+        fputs("<a href=\"", doc->html);
+        html_text(doc->html, rel[i]);
+        fputs("\">", doc->html);
+        html_text(doc->html, text[i]);
+        fputs("</a>", doc->html);
+        fputs(i ? ", [" : (prefix ? " [" : "["), doc->md);
+        md_text(doc->md, text[i]);
+        fprintf(doc->md, "](%s)", rel[i]);   /* rel is a checked file name */
+    }
+    fputs("</p>\n", doc->html);
+    fputs("\n\n", doc->md);
+}
+
+void sl_report_doc_link(struct sl_report_doc *doc, const char *rel, const char *text)
+{
+    sl_report_doc_links(doc, NULL, &rel, &text, 1);
+}
+
+void sl_report_doc_image(struct sl_report_doc *doc, const char *rel, const char *caption)
+{
+    fputs("<figure><img src=\"", doc->html);
+    html_text(doc->html, rel);
+    fputs("\" alt=\"", doc->html);
+    html_text(doc->html, caption);
+    fputs("\"><figcaption>", doc->html);
+    html_text(doc->html, caption);
+    fputs("</figcaption></figure>\n", doc->html);
+    fputs("![", doc->md);
+    md_text(doc->md, caption);
+    fprintf(doc->md, "](%s)\n\n", rel);
+    md_text(doc->md, caption);
+    fputs("\n\n", doc->md);
+}
+
+void sl_report_doc_gallery(struct sl_report_doc *doc, const char *const *rel, const char *const *caption, int n)
+{
+    fputs("<div class=\"gallery\">\n", doc->html);
+    for (int i = 0; i < n; i++) {
+        fputs("<figure><a href=\"", doc->html);
+        html_text(doc->html, rel[i]);
+        fputs("\"><img loading=\"lazy\" src=\"", doc->html);
+        html_text(doc->html, rel[i]);
+        fputs("\" alt=\"", doc->html);
+        html_text(doc->html, caption[i]);
+        fputs("\"></a><figcaption>", doc->html);
+        html_text(doc->html, caption[i]);
+        fputs("</figcaption></figure>\n", doc->html);
+        fputs("- ![", doc->md);
+        md_text(doc->md, caption[i]);
+        fprintf(doc->md, "](%s) ", rel[i]);
+        md_text(doc->md, caption[i]);
+        fputc('\n', doc->md);
+    }
+    fputs("</div>\n", doc->html);
+    fputc('\n', doc->md);
+}
+
+void sl_report_doc_details(struct sl_report_doc *doc, const char *summary, const char *text)
+{
+    fputs("<details><summary>", doc->html);
+    html_text(doc->html, summary);
+    fputs("</summary><pre>", doc->html);
+    html_text(doc->html, text);
+    fputs("</pre></details>\n", doc->html);
+    md_text(doc->md, summary);
+    /* a fence longer than any run of backticks in the text */
+    int run = 0, longest = 0;
+    for (const char *p = text; p && *p; p++) {
+        run = *p == '`' ? run + 1 : 0;
+        if (run > longest)
+            longest = run;
+    }
+    int fence = longest < 3 ? 3 : longest + 1;
+    fputs(":\n\n", doc->md);
+    for (int i = 0; i < fence; i++)
+        fputc('`', doc->md);
+    fputs("yaml\n", doc->md);
+    fputs(text ? text : "", doc->md);
+    if (text && text[0] && text[strlen(text) - 1] != '\n')
+        fputc('\n', doc->md);
+    for (int i = 0; i < fence; i++)
+        fputc('`', doc->md);
+    fputs("\n\n", doc->md);
+}
+
+void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int n)
+{
+    fputs("<ul>\n", doc->html);
+    for (int i = 0; i < n; i++) {
+        fputs("<li>", doc->html);
+        html_text(doc->html, items[i]);
+        fputs("</li>\n", doc->html);
+        fputs("- ", doc->md);
+        md_text(doc->md, items[i]);
+        fputc('\n', doc->md);
+    }
+    fputs("</ul>\n", doc->html);
+    fputc('\n', doc->md);
+}
+
+static void html_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
+{
+    fputs(t->wrap ? "<div class=\"tab\"><table class=\"wrap\">\n<caption>" : "<div class=\"tab\"><table>\n<caption>", f);
+    html_text(f, t->title);
+    fputs("</caption>\n<thead>\n", f);
+    if (t->ngroups) {
+        fputs("<tr>", f);
+        for (int g = 0; g < t->ngroups; g++) {
+            fprintf(f, "<th colspan=\"%d\"%s>", t->span[g], t->group[g][0] ? " class=\"grp\"" : "");
+            html_text(f, t->group[g]);
+            fputs("</th>", f);
+        }
+        fputs("</tr>\n", f);
+    }
+    fputs("<tr>", f);
+    for (int c = 0; c < t->ncols; c++) {
+        fputs(c < t->nkeys ? "<th class=\"k\">" : "<th>", f);
+        html_text(f, t->head[c] ? t->head[c] : "");
+        fputs("</th>", f);
+    }
+    fputs("</tr>\n</thead>\n<tbody>\n", f);
+    for (int r = 0; r < t->nrows; r++) {
+        fputs(t->rule[r] ? "<tr class=\"blk\">" : "<tr>", f);
+        for (int c = 0; c < t->ncols; c++) {
+            fputs(c < t->nkeys ? "<td class=\"k\">" : "<td>", f);
+            html_text(f, tab_at(t, r, c));
+            fputs("</td>", f);
+        }
+        fputs("</tr>\n", f);
+    }
+    fputs("</tbody>\n</table>\n<p class=\"note\">", f);
+    if (t->note[0]) {
+        html_text(f, t->note);
+        fputc(' ', f);
+    }
+    fputs("<a href=\"", f);
+    html_text(f, texrel);
+    fputs("\">LaTeX</a></p></div>\n", f);
+}
+
+static void md_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
+{
+    fputs("**", f);
+    md_text(f, t->title);
+    fputs("**\n\n|", f);
+    /* Markdown has no spanning cells: the group goes in front of its columns' heads */
+    int g = 0, left = t->ngroups ? t->span[0] : 0;
+    for (int c = 0; c < t->ncols; c++) {
+        fputc(' ', f);
+        if (t->ngroups && g < t->ngroups && t->group[g][0]) {
+            md_text(f, t->group[g]);
+            fputc(' ', f);
+        }
+        md_text(f, t->head[c] ? t->head[c] : "");
+        fputs(" |", f);
+        if (t->ngroups && --left == 0 && ++g < t->ngroups)
+            left = t->span[g];
+    }
+    fputs("\n|", f);
+    for (int c = 0; c < t->ncols; c++)
+        fputs(c < t->nkeys ? "---|" : "---:|", f);
+    fputc('\n', f);
+    for (int r = 0; r < t->nrows; r++) {
+        fputc('|', f);
+        for (int c = 0; c < t->ncols; c++) {
+            fputc(' ', f);
+            md_text(f, tab_at(t, r, c));
+            fputs(" |", f);
+        }
+        fputc('\n', f);
+    }
+    fputc('\n', f);
+    if (t->note[0]) {
+        md_text(f, t->note);
+        fputc(' ', f);
+    }
+    fprintf(f, "[LaTeX](%s)\n\n", texrel);
+}
+
+static void tex_table(FILE *f, const struct sl_report_tab *t)
+{
+    int longtab = t->nrows > 40;
+    fputs("% shadowlab report table; needs \\usepackage{booktabs}", f);
+    fputs(longtab ? " and \\usepackage{longtable}\n" : "\n", f);
+    char spec[SL_REPORT_MAXCOLS + 1];
+    for (int c = 0; c < t->ncols; c++)
+        spec[c] = c < t->nkeys ? 'l' : 'r';
+    spec[t->ncols] = '\0';
+    if (longtab)
+        fprintf(f, "{\\footnotesize\n\\begin{longtable}{%s}\n\\caption{", spec);
+    else
+        fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\caption{", f);
+    tex_text(f, t->title);
+    fprintf(f, "}\n\\label{tab:%s}", t->id);
+    fputs(longtab ? "\\\\\n" : "\n", f);
+    if (!longtab)
+        fprintf(f, "\\begin{tabular}{%s}\n", spec);
+    fputs("\\toprule\n", f);
+    if (t->ngroups) {
+        for (int g = 0; g < t->ngroups; g++) {
+            fprintf(f, "%s\\multicolumn{%d}{c}{", g ? " & " : "", t->span[g]);
+            tex_text(f, t->group[g]);
+            fputc('}', f);
+        }
+        fputs(" \\\\\n", f);
+        for (int g = 0, col = 1; g < t->ngroups; g++) {
+            if (t->group[g][0])
+                fprintf(f, "\\cmidrule(lr){%d-%d}", col, col + t->span[g] - 1);
+            col += t->span[g];
+        }
+        fputc('\n', f);
+    }
+    for (int c = 0; c < t->ncols; c++) {
+        if (c)
+            fputs(" & ", f);
+        tex_text(f, t->head[c] ? t->head[c] : "");
+    }
+    fputs(" \\\\\n\\midrule\n", f);
+    if (longtab)
+        fputs("\\endhead\n\\bottomrule\n\\endlastfoot\n", f);
+    for (int r = 0; r < t->nrows; r++) {
+        if (t->rule[r])
+            fputs("\\addlinespace\n", f);
+        for (int c = 0; c < t->ncols; c++) {
+            if (c)
+                fputs(" & ", f);
+            tex_text(f, tab_at(t, r, c));
+        }
+        fputs(" \\\\\n", f);
+    }
+    if (longtab) {
+        fputs("\\end{longtable}\n", f);
+    } else {
+        fputs("\\bottomrule\n\\end{tabular}\n", f);
+    }
+    if (t->note[0]) {
+        fputs("\n\\smallskip\n{\\scriptsize ", f);
+        tex_text(f, t->note);
+        fputs("\\par}\n", f);
+    }
+    fputs(longtab ? "}\n" : "\\end{table}\n", f);
+}
+
+enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_report_tab *t, struct sl_diag *d)
+{
+    if (t->oom)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, t->id, "report table");
+    char rel[200], path[1400];
+    snprintf(rel, sizeof rel, "tex/%s.tex", t->id);
+    /* two tables may share an id (slugs fold names): number the later ones */
+    for (int k = 2; sl_report_out_has(doc->out, rel); k++)
+        snprintf(rel, sizeof rel, "tex/%s-%d.tex", t->id, k);
+    enum sl_err e = sl_report_out_path(doc->out, rel, 1, path, sizeof path, d);
+    if (e)
+        return e;
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+    tex_table(f, t);
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "write failed");
+    html_table(doc->html, t, rel);
+    md_table(doc->md, t, rel);
+    doc->ntables++;
+    return SL_OK;
+}

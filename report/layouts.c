@@ -1,0 +1,788 @@
+/*
+ * layouts.c — the thesis tables and the cost section of one study.
+ *
+ * Which layout a method gets (the choice the report makes per family):
+ * - Moderno 2011 (nsm, coherence, texel, neighbours, adjacency, chain): the
+ *   thesis measures everything inside contours of 2/4/6 px and the whole
+ *   image, and against NSM; its tables are the summaries over the study
+ *   (Tables 5-15: average, best and worst per map size, average case), and
+ *   per view the errors caught per contour (Tables 17/18), the hints (Table
+ *   19) and the changes against NSM (Table 23).
+ * - Morais 2015 (nsm, bgsm, sgsm, sgsm_adj, csm, csm_adj, hertel,
+ *   raytrace): the thesis counts the whole image, per view and map size,
+ *   light/shadow correct/incorrect and the uncertain pixels with PFL/PnFL
+ *   (Table 7 and its siblings), and times the shadow-map rendering and the
+ *   ray step per viewport and map size (Tables 25/26).
+ * - nsm is in both: a study whose other methods are Morais's gets Morais's
+ *   tables, one with Moderno's (or with nsm alone) Moderno's, one with both
+ *   families gets both. Methods of neither family appear in the full
+ *   figure tables (report.c) and in the plots and costs only.
+ * Values are printed as the seeds print them: "count (percent%)" with the
+ * percentage of figures.h's base, or "count of base (percent%)".
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "report_int.h"
+#include "util.h"
+
+int sl_report_is_moderno(const char *m)
+{
+    static const char *const names[] = {"nsm", "coherence", "texel", "neighbours", "adjacency", "chain", NULL};
+    for (int i = 0; names[i]; i++)
+        if (strcmp(m, names[i]) == 0)
+            return 1;
+    return 0;
+}
+
+int sl_report_is_morais(const char *m)
+{
+    static const char *const names[] = {"nsm", "bgsm", "sgsm", "sgsm_adj", "csm", "csm_adj", "hertel",
+                                        "raytrace", NULL};
+    for (int i = 0; names[i]; i++)
+        if (strcmp(m, names[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* ---- study keys ---- */
+
+void sl_report_region_name(int t, char *buf, size_t n)
+{
+    if (t == 0)
+        snprintf(buf, n, "image");
+    else
+        snprintf(buf, n, "%d px", t);
+}
+
+int sl_report_region(const struct sl_table_cell *c, int thickness)
+{
+    for (int r = 0; r < c->fig.nregions && r < SL_MAX_REGIONS; r++)
+        if (c->fig.r[r].thickness == thickness)
+            return r;
+    return -1;
+}
+
+static int same_view(const struct sl_report_view *v, const struct sl_table_cell *c)
+{
+    return v->vw == c->vw && v->vh == c->vh && strcmp(v->scene, c->scene) == 0 &&
+           strcmp(v->viewpoint, c->viewpoint) == 0;
+}
+
+enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
+{
+    s->nviews = s->nscenes = s->nlabels = s->nmaps = s->nregions = 0;
+    int has_image = 0, moderno_only = 0, morais_only = 0;
+    for (int i = 0; i < s->n; i++) {
+        const struct sl_table_cell *c = &s->cells[i];
+        int k;
+        for (k = 0; k < s->nviews && !same_view(&s->views[k], c); k++)
+            ;
+        if (k == s->nviews) {
+            if (k == (int)(sizeof s->views / sizeof s->views[0]))
+                return sl_fail(d, SL_E_USAGE, NULL, 0, s->name, "more than %d views in one study", k);
+            struct sl_report_view *v = &s->views[s->nviews++];
+            snprintf(v->scene, sizeof v->scene, "%s", c->scene);
+            snprintf(v->viewpoint, sizeof v->viewpoint, "%s", c->viewpoint);
+            v->vw = c->vw;
+            v->vh = c->vh;
+        }
+        for (k = 0; k < s->nscenes && strcmp(s->scenes[k], c->scene) != 0; k++)
+            ;
+        if (k == s->nscenes) {
+            if (k == SL_REPORT_MAXKEYS)
+                return sl_fail(d, SL_E_USAGE, NULL, 0, s->name, "more than %d scenes in one study", k);
+            snprintf(s->scenes[s->nscenes++], sizeof s->scenes[0], "%s", c->scene);
+        }
+        for (k = 0; k < s->nlabels && strcmp(s->labels[k], c->label) != 0; k++)
+            ;
+        if (k == s->nlabels) {
+            if (k == SL_REPORT_MAXKEYS)
+                return sl_fail(d, SL_E_USAGE, NULL, 0, s->name, "more than %d method labels in one study", k);
+            snprintf(s->labels[k], sizeof s->labels[0], "%s", c->label);
+            snprintf(s->methods[k], sizeof s->methods[0], "%s", c->method);
+            s->nlabels++;
+            moderno_only |= sl_report_is_moderno(c->method) && !sl_report_is_morais(c->method);
+            morais_only |= sl_report_is_morais(c->method) && !sl_report_is_moderno(c->method);
+        }
+        for (k = 0; k < s->nmaps && s->maps[k] != c->map_size; k++)
+            ;
+        if (k == s->nmaps) {
+            if (k == SL_REPORT_MAXKEYS)
+                return sl_fail(d, SL_E_USAGE, NULL, 0, s->name, "more than %d map sizes in one study", k);
+            int j = s->nmaps++;
+            while (j > 0 && s->maps[j - 1] > c->map_size) {
+                s->maps[j] = s->maps[j - 1];
+                j--;
+            }
+            s->maps[j] = c->map_size;
+        }
+        for (int r = 0; r < c->fig.nregions && r < SL_MAX_REGIONS; r++) {
+            int t = c->fig.r[r].thickness;
+            if (t == 0) {
+                has_image = 1;
+                continue;
+            }
+            for (k = 0; k < s->nregions && s->regions[k] != t; k++)
+                ;
+            if (k == s->nregions && s->nregions < SL_MAX_REGIONS - 1) {
+                int j = s->nregions++;
+                while (j > 0 && s->regions[j - 1] > t) {
+                    s->regions[j] = s->regions[j - 1];
+                    j--;
+                }
+                s->regions[j] = t;
+            }
+        }
+    }
+    if (has_image)
+        s->regions[s->nregions++] = 0;
+    s->morais = morais_only;
+    s->moderno = moderno_only || !morais_only;
+    return SL_OK;
+}
+
+const struct sl_table_cell *sl_report_study_cell(const struct sl_report_study *s, const struct sl_report_view *v,
+                                                 const char *label, int map_size)
+{
+    for (int i = 0; i < s->n; i++) {
+        const struct sl_table_cell *c = &s->cells[i];
+        if (c->map_size == map_size && same_view(v, c) && strcmp(c->label, label) == 0)
+            return c;
+    }
+    return NULL;
+}
+
+/* ---- value formats ---- */
+
+static void fmt_np(char *buf, size_t n, uint64_t v, double pct)
+{
+    if (isnan(pct))
+        snprintf(buf, n, "%llu", (unsigned long long)v);
+    else
+        snprintf(buf, n, "%llu (%.2f%%)", (unsigned long long)v, pct);
+}
+
+static void fmt_of(char *buf, size_t n, uint64_t v, uint64_t base)
+{
+    if (base == 0)
+        snprintf(buf, n, "%llu of 0", (unsigned long long)v);
+    else
+        snprintf(buf, n, "%llu of %llu (%.2f%%)", (unsigned long long)v, (unsigned long long)base,
+                 100.0 * (double)v / (double)base);
+}
+
+static void fmt_ms(char *buf, size_t n, double ms)
+{
+    if (!(ms > 0.0))
+        snprintf(buf, n, "–");
+    else if (ms < 10.0)
+        snprintf(buf, n, "%.2f", ms);
+    else if (ms < 1000.0)
+        snprintf(buf, n, "%.1f", ms);
+    else
+        snprintf(buf, n, "%.0f", ms);
+}
+
+static void fmt_count(char *buf, size_t n, double v)
+{
+    if (v >= 1e9)
+        snprintf(buf, n, "%.2fG", v / 1e9);
+    else if (v >= 1e6)
+        snprintf(buf, n, "%.2fM", v / 1e6);
+    else if (v >= 1e4)
+        snprintf(buf, n, "%.1fk", v / 1e3);
+    else
+        snprintf(buf, n, "%.0f", v);
+}
+
+static int label_is(const struct sl_report_study *s, int l, int (*family)(const char *))
+{
+    return family(s->methods[l]);
+}
+
+/* 1 if a cell of the label has figure f > 0 in some region */
+static int label_has(const struct sl_report_study *s, int l, enum sl_figure f)
+{
+    for (int i = 0; i < s->n; i++)
+        if (strcmp(s->cells[i].label, s->labels[l]) == 0)
+            for (int r = 0; r < s->cells[i].fig.nregions && r < SL_MAX_REGIONS; r++)
+                if (s->cells[i].fig.r[r].n[f] > 0)
+                    return 1;
+    return 0;
+}
+
+static void view_title(const struct sl_report_view *v, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s / %s / %d×%d", v->scene, v->viewpoint, v->vw, v->vh);
+}
+
+static void view_id(const struct sl_report_study *s, const struct sl_report_view *v, const char *what, char *buf,
+                    size_t n)
+{
+    snprintf(buf, n, "%s-%s-%s-%s-%dx%d", s->slug, what, v->scene, v->viewpoint, v->vw, v->vh);
+}
+
+/* ---- Moderno 2011: summaries (Tables 5-15) ---- */
+
+struct pick { const struct sl_table_cell *cell; int region; double v; };
+
+static void pick_text(const struct pick *p, char *buf, size_t n)
+{
+    if (!p->cell) {
+        snprintf(buf, n, "–");
+        return;
+    }
+    char rn[16];
+    sl_report_region_name(p->region, rn, sizeof rn);
+    snprintf(buf, n, "%.2f (%s/%s, %s)", p->v, p->cell->scene, p->cell->viewpoint, rn);
+}
+
+static const struct {
+    enum sl_figure fig;
+    int lower_is_better, always;
+    const char *title;
+} moderno_summaries[] = {
+    {SL_FIG_wrong_caught, 0, 1, "Errors caught inside the contour, % of the image's wrong pixels (Moderno 2011 Table 5)"},
+    {SL_FIG_wrong, 1, 1, "Wrong pixels, % of the contour's pixels (Moderno 2011 Tables 6, 9-11, 14-15)"},
+    {SL_FIG_hinted, 0, 0, "Pixels hinted by texel coherence, % of the contour's pixels (Moderno 2011 Tables 7-8)"},
+    {SL_FIG_confirmed, 0, 0, "Shadow confirmed by a ray-triangle hit, % of the contour's pixels (Moderno 2011 Tables 12-13)"},
+    {SL_FIG_corrected, 0, 0, "Lit turned shadowed by a ray-triangle hit, % of the contour's pixels"},
+};
+
+static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_report_study *s, int which,
+                                   struct sl_diag *d)
+{
+    enum sl_figure f = moderno_summaries[which].fig;
+    int lower = moderno_summaries[which].lower_is_better;
+    int nmaps = s->nmaps > 10 ? 10 : s->nmaps;
+    /* contours only, as the thesis; a study without contours summarises the image */
+    int contours = s->nregions > 0 && s->regions[0] != 0;
+    /* the thesis's average case: Bench, "with" viewpoint, 2 px contour */
+    int has_avgcase = 0;
+    for (int i = 0; i < s->n && !has_avgcase; i++)
+        has_avgcase = !strcmp(s->cells[i].scene, "bench") && !strcmp(s->cells[i].viewpoint, "with") &&
+                      sl_report_region(&s->cells[i], 2) >= 0;
+    int nrows = 0;
+    for (int l = 0; l < s->nlabels; l++)
+        nrows += label_is(s, l, sl_report_is_moderno) && (moderno_summaries[which].always || label_has(s, l, f));
+    if (nrows == 0)
+        return SL_OK;
+    struct sl_report_tab t;
+    char id[160];
+    snprintf(id, sizeof id, "%s-summary-%s", s->slug, sl_figure_name(f));
+    sl_report_tab_init(&t, id, 2 + 2 * nmaps + has_avgcase, 1, "%s", moderno_summaries[which].title);
+    sl_report_tab_group(&t, 2, "%s", "");
+    for (int k = 0; k < nmaps; k++)
+        sl_report_tab_group(&t, 2, "%d²", s->maps[k]);
+    if (has_avgcase)
+        sl_report_tab_group(&t, 1, "%s", "");
+    sl_report_tab_head(&t, 0, "method");
+    sl_report_tab_head(&t, 1, "average");
+    for (int k = 0; k < nmaps; k++) {
+        sl_report_tab_head(&t, 2 + 2 * k, "best");
+        sl_report_tab_head(&t, 3 + 2 * k, "worst");
+    }
+    if (has_avgcase)
+        sl_report_tab_head(&t, 2 + 2 * nmaps, "average case (bench/with, 2 px)");
+    for (int l = 0; l < s->nlabels; l++) {
+        if (!label_is(s, l, sl_report_is_moderno) || !(moderno_summaries[which].always || label_has(s, l, f)))
+            continue;
+        struct pick best[10], worst[10], avgcase = {NULL, 0, NAN};
+        memset(best, 0, sizeof best);
+        memset(worst, 0, sizeof worst);
+        double sum = 0.0;
+        long count = 0;
+        for (int i = 0; i < s->n; i++) {
+            const struct sl_table_cell *c = &s->cells[i];
+            if (strcmp(c->label, s->labels[l]) != 0)
+                continue;
+            int k = 0;
+            while (k < nmaps && s->maps[k] != c->map_size)
+                k++;
+            for (int r = 0; r < c->fig.nregions && r < SL_MAX_REGIONS; r++) {
+                int th = c->fig.r[r].thickness;
+                double v = c->fig.r[r].pct[f];
+                if (!strcmp(c->scene, "bench") && !strcmp(c->viewpoint, "with") && th == 2 && !avgcase.cell &&
+                    !isnan(v))
+                    avgcase = (struct pick){c, th, v};
+                if ((contours ? th == 0 : th != 0) || isnan(v))
+                    continue;
+                sum += v;
+                count++;
+                if (k == nmaps)
+                    continue;
+                if (!best[k].cell || (lower ? v < best[k].v : v > best[k].v))
+                    best[k] = (struct pick){c, th, v};
+                if (!worst[k].cell || (lower ? v > worst[k].v : v < worst[k].v))
+                    worst[k] = (struct pick){c, th, v};
+            }
+        }
+        char buf[160];
+        sl_report_tab_row(&t, 0);
+        sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+        if (count)
+            sl_report_tab_cell(&t, 1, "%.2f", sum / (double)count);
+        else
+            sl_report_tab_cell(&t, 1, "–");
+        for (int k = 0; k < nmaps; k++) {
+            pick_text(&best[k], buf, sizeof buf);
+            sl_report_tab_cell(&t, 2 + 2 * k, "%s", buf);
+            pick_text(&worst[k], buf, sizeof buf);
+            sl_report_tab_cell(&t, 3 + 2 * k, "%s", buf);
+        }
+        if (has_avgcase) {
+            pick_text(&avgcase, buf, sizeof buf);
+            sl_report_tab_cell(&t, 2 + 2 * nmaps, "%s", buf);
+        }
+    }
+    snprintf(t.note, sizeof t.note,
+             "Average over every (cell, %s) value of the label; best and worst name the cell's scene/viewpoint "
+             "and %s. %s.", contours ? "contour" : "region", contours ? "contour" : "region",
+             lower ? "Lower is better" : "Higher is better");
+    enum sl_err e = sl_report_doc_table(doc, &t, d);
+    sl_report_tab_free(&t);
+    return e;
+}
+
+/* ---- Moderno 2011: per view ---- */
+
+/* Rows label x map x region for the labels `want` accepts; fill(t, cell, region index, col0). */
+typedef void (*row_fill)(struct sl_report_tab *t, const struct sl_table_cell *c, int r);
+
+static int view_rows(struct sl_report_tab *t, const struct sl_report_study *s, const struct sl_report_view *v,
+                     int (*want)(const struct sl_report_study *, int), row_fill fill)
+{
+    int rows = 0;
+    for (int l = 0; l < s->nlabels; l++) {
+        if (!want(s, l))
+            continue;
+        int first_of_label = 1;
+        for (int k = 0; k < s->nmaps; k++) {
+            const struct sl_table_cell *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
+            if (!c)
+                continue;
+            for (int r = 0; r < c->fig.nregions && r < SL_MAX_REGIONS; r++) {
+                char rn[16];
+                sl_report_region_name(c->fig.r[r].thickness, rn, sizeof rn);
+                sl_report_tab_row(t, first_of_label);
+                if (first_of_label)
+                    sl_report_tab_cell(t, 0, "%s", s->labels[l]);
+                if (r == 0)
+                    sl_report_tab_cell(t, 1, "%d²", c->map_size);
+                sl_report_tab_cell(t, 2, "%s", rn);
+                fill(t, c, r);
+                first_of_label = 0;
+                rows++;
+            }
+        }
+    }
+    return rows;
+}
+
+static int want_moderno(const struct sl_report_study *s, int l)
+{
+    return sl_report_is_moderno(s->methods[l]);
+}
+
+static int want_vs_nsm(const struct sl_report_study *s, int l)
+{
+    if (!sl_report_is_moderno(s->methods[l]))
+        return 0;
+    return label_has(s, l, SL_FIG_fixed_ls) || label_has(s, l, SL_FIG_fixed_sl) ||
+           label_has(s, l, SL_FIG_broken_ls) || label_has(s, l, SL_FIG_broken_sl) ||
+           label_has(s, l, SL_FIG_kept_right) || label_has(s, l, SL_FIG_kept_wrong);
+}
+
+static int want_hints(const struct sl_report_study *s, int l)
+{
+    return sl_report_is_moderno(s->methods[l]) && label_has(s, l, SL_FIG_hinted);
+}
+
+static void fill_errors(struct sl_report_tab *t, const struct sl_table_cell *c, int r)
+{
+    const struct sl_region_figures *g = &c->fig.r[r];
+    char buf[96];
+    fmt_of(buf, sizeof buf, g->n[SL_FIG_wrong_caught], c->fig.wrong_image);
+    sl_report_tab_cell(t, 3, "%s", buf);
+    fmt_of(buf, sizeof buf, g->n[SL_FIG_light_incorrect], g->n[SL_FIG_light]);
+    sl_report_tab_cell(t, 4, "%s", buf);
+    fmt_of(buf, sizeof buf, g->n[SL_FIG_shadow_incorrect], g->n[SL_FIG_shadow]);
+    sl_report_tab_cell(t, 5, "%s", buf);
+    fmt_of(buf, sizeof buf, g->n[SL_FIG_wrong], g->n[SL_FIG_pixels]);
+    sl_report_tab_cell(t, 6, "%s", buf);
+}
+
+static void fill_vs_nsm(struct sl_report_tab *t, const struct sl_table_cell *c, int r)
+{
+    static const enum sl_figure cols[] = {SL_FIG_fixed_ls, SL_FIG_fixed_sl, SL_FIG_broken_ls, SL_FIG_broken_sl,
+                                          SL_FIG_kept_right, SL_FIG_kept_wrong};
+    for (int k = 0; k < 6; k++)
+        sl_report_tab_cell(t, 3 + k, "%llu", (unsigned long long)c->fig.r[r].n[cols[k]]);
+}
+
+static void fill_hints(struct sl_report_tab *t, const struct sl_table_cell *c, int r)
+{
+    const uint64_t *n = c->fig.r[r].n;
+    char buf[96];
+    uint64_t base[2] = {n[SL_FIG_nsm_light], n[SL_FIG_nsm_shadow]};
+    uint64_t hinted[2] = {n[SL_FIG_hinted_light], n[SL_FIG_hinted_shadow]};
+    uint64_t wrong[2] = {n[SL_FIG_hinted_light_wrong], n[SL_FIG_hinted_shadow_wrong]};
+    for (int k = 0; k < 2; k++) {
+        fmt_of(buf, sizeof buf, hinted[k], base[k]);
+        sl_report_tab_cell(t, 3 + 3 * k, "%s", buf);
+        fmt_of(buf, sizeof buf, wrong[k], base[k]);
+        sl_report_tab_cell(t, 4 + 3 * k, "%s", buf);
+        fmt_of(buf, sizeof buf, base[k] > hinted[k] ? base[k] - hinted[k] : 0, base[k]);
+        sl_report_tab_cell(t, 5 + 3 * k, "%s", buf);
+    }
+}
+
+static void key_heads(struct sl_report_tab *t)
+{
+    sl_report_tab_head(t, 0, "method");
+    sl_report_tab_head(t, 1, "map");
+    sl_report_tab_head(t, 2, "region");
+}
+
+static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_report_study *s,
+                                const struct sl_report_view *v, struct sl_diag *d)
+{
+    char vt[160], id[160];
+    view_title(v, vt, sizeof vt);
+    enum sl_err e = SL_OK;
+    struct sl_report_tab t;
+
+    view_id(s, v, "errors", id, sizeof id);
+    sl_report_tab_init(&t, id, 7, 3, "%s: wrong pixels by contour (Moderno 2011 Tables 17/18)", vt);
+    key_heads(&t);
+    sl_report_tab_head(&t, 3, "caught (of the image's wrong)");
+    sl_report_tab_head(&t, 4, "wrongly lit (of light)");
+    sl_report_tab_head(&t, 5, "wrongly shadowed (of shadow)");
+    sl_report_tab_head(&t, 6, "wrong (of pixels)");
+    snprintf(t.note, sizeof t.note, "Contours from each method's own result image; PnFL pixels count as shadow.");
+    if (view_rows(&t, s, v, want_moderno, fill_errors))
+        e = sl_report_doc_table(doc, &t, d);
+    sl_report_tab_free(&t);
+
+    if (!e) {
+        view_id(s, v, "hints", id, sizeof id);
+        sl_report_tab_init(&t, id, 9, 3, "%s: texel coherence hints of NSM's light and shadow (Moderno 2011 Table 19)", vt);
+        key_heads(&t);
+        sl_report_tab_group(&t, 3, "%s", "");
+        sl_report_tab_group(&t, 3, "NSM light");
+        sl_report_tab_group(&t, 3, "NSM shadow");
+        for (int k = 0; k < 2; k++) {
+            sl_report_tab_head(&t, 3 + 3 * k, "hinted");
+            sl_report_tab_head(&t, 4 + 3 * k, "wrongly hinted");
+            sl_report_tab_head(&t, 5 + 3 * k, "undecided");
+        }
+        snprintf(t.note, sizeof t.note, "Percentages of NSM's PFL pixels in light (shadow) in the region.");
+        if (view_rows(&t, s, v, want_hints, fill_hints))
+            e = sl_report_doc_table(doc, &t, d);
+        sl_report_tab_free(&t);
+    }
+
+    if (!e) {
+        view_id(s, v, "vs-nsm", id, sizeof id);
+        sl_report_tab_init(&t, id, 9, 3, "%s: pixel changes against NSM (Moderno 2011 Table 23)", vt);
+        key_heads(&t);
+        sl_report_tab_group(&t, 3, "%s", "");
+        sl_report_tab_group(&t, 2, "corrected");
+        sl_report_tab_group(&t, 2, "turned bad");
+        sl_report_tab_group(&t, 2, "maintained");
+        sl_report_tab_head(&t, 3, "L→S");
+        sl_report_tab_head(&t, 4, "S→L");
+        sl_report_tab_head(&t, 5, "L→S");
+        sl_report_tab_head(&t, 6, "S→L");
+        sl_report_tab_head(&t, 7, "correct");
+        sl_report_tab_head(&t, 8, "incorrect");
+        snprintf(t.note, sizeof t.note,
+                 "PFL pixels; L→S: NSM put it in light, the method in shadow. Maintained: the same verdict as NSM.");
+        if (view_rows(&t, s, v, want_vs_nsm, fill_vs_nsm))
+            e = sl_report_doc_table(doc, &t, d);
+        sl_report_tab_free(&t);
+    }
+    return e;
+}
+
+enum sl_err sl_report_moderno(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
+{
+    enum sl_err e = SL_OK;
+    for (size_t w = 0; w < sizeof moderno_summaries / sizeof moderno_summaries[0] && !e; w++)
+        e = moderno_summary(doc, s, (int)w, d);
+    for (int v = 0; v < s->nviews && !e; v++)
+        e = moderno_view(doc, s, &s->views[v], d);
+    return e;
+}
+
+/* ---- Morais 2015: Table 7 per view, Tables 25/26 per scene and viewpoint ---- */
+
+static enum sl_err morais_view(struct sl_report_doc *doc, const struct sl_report_study *s,
+                               const struct sl_report_view *v, struct sl_diag *d)
+{
+    static const struct { enum sl_figure f; const char *name; } rows[] = {
+        {SL_FIG_light, "pixels in light"},
+        {SL_FIG_shadow, "pixels in shadow"},
+        {SL_FIG_uncertain, "uncertain"},
+        {SL_FIG_light_correct, "light – correct"},
+        {SL_FIG_light_incorrect, "light – incorrect"},
+        {SL_FIG_shadow_correct, "shadow – correct"},
+        {SL_FIG_shadow_incorrect, "shadow – incorrect"},
+    };
+    int nmaps = s->nmaps > SL_REPORT_MAXCOLS - 2 ? SL_REPORT_MAXCOLS - 2 : s->nmaps;
+    char vt[160], id[160], buf[96];
+    view_title(v, vt, sizeof vt);
+    view_id(s, v, "table7", id, sizeof id);
+    struct sl_report_tab t;
+    sl_report_tab_init(&t, id, 2 + nmaps, 2, "%s: pixels per method and shadow-map size (Morais 2015 Table 7)", vt);
+    sl_report_tab_group(&t, 2, "%s", "");
+    sl_report_tab_group(&t, nmaps, "shadow map size");
+    sl_report_tab_head(&t, 0, "method");
+    sl_report_tab_head(&t, 1, "pixel type");
+    for (int k = 0; k < nmaps; k++)
+        sl_report_tab_head(&t, 2 + k, "%d²", s->maps[k]);
+    /* PFL and PnFL do not depend on the method: from the first cell of each map size */
+    for (int p = 0; p < 2; p++) {
+        sl_report_tab_row(&t, 0);
+        if (p == 0)
+            sl_report_tab_cell(&t, 0, "(view)");
+        sl_report_tab_cell(&t, 1, p ? "PnFL" : "PFL");
+        for (int k = 0; k < nmaps; k++)
+            for (int l = 0; l < s->nlabels; l++) {
+                const struct sl_table_cell *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
+                int r = c ? sl_report_region(c, 0) : -1;
+                if (r < 0)
+                    continue;
+                enum sl_figure f = p ? SL_FIG_pnfl : SL_FIG_pfl;
+                fmt_np(buf, sizeof buf, c->fig.r[r].n[f], c->fig.r[r].pct[f]);
+                sl_report_tab_cell(&t, 2 + k, "%s", buf);
+                break;
+            }
+    }
+    int any = 0;
+    for (int l = 0; l < s->nlabels; l++) {
+        if (!sl_report_is_morais(s->methods[l]))
+            continue;
+        int has = 0;
+        for (int k = 0; k < nmaps; k++)
+            has |= sl_report_study_cell(s, v, s->labels[l], s->maps[k]) != NULL;
+        if (!has)
+            continue;
+        any = 1;
+        for (size_t q = 0; q < sizeof rows / sizeof rows[0]; q++) {
+            sl_report_tab_row(&t, q == 0);
+            if (q == 0)
+                sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+            sl_report_tab_cell(&t, 1, "%s", rows[q].name);
+            for (int k = 0; k < nmaps; k++) {
+                const struct sl_table_cell *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
+                int r = c ? sl_report_region(c, 0) : -1;
+                if (r < 0)
+                    continue;
+                fmt_np(buf, sizeof buf, c->fig.r[r].n[rows[q].f], c->fig.r[r].pct[rows[q].f]);
+                sl_report_tab_cell(&t, 2 + k, "%s", buf);
+            }
+        }
+    }
+    snprintf(t.note, sizeof t.note,
+             "Whole image, background excluded. Light, shadow and uncertain: %% of the pixels (PnFL count as "
+             "shadow); correct/incorrect: %% of the method's light or shadow pixels.");
+    enum sl_err e = any ? sl_report_doc_table(doc, &t, d) : SL_OK;
+    sl_report_tab_free(&t);
+    return e;
+}
+
+/* Tables 25/26: rows viewport x map size, a column per Morais label; `stage` 0 map render, 1 method */
+static enum sl_err morais_times(struct sl_report_doc *doc, const struct sl_report_study *s, const char *scene,
+                                const char *viewpoint, int stage, struct sl_diag *d)
+{
+    int cols[SL_REPORT_MAXCOLS], ncols = 0;
+    for (int l = 0; l < s->nlabels && ncols < SL_REPORT_MAXCOLS - 2; l++)
+        if (sl_report_is_morais(s->methods[l]))
+            cols[ncols++] = l;
+    if (ncols == 0)
+        return SL_OK;
+    char id[160];
+    snprintf(id, sizeof id, "%s-%s-%s-%s", s->slug, stage ? "table26" : "table25", scene, viewpoint);
+    struct sl_report_tab t;
+    sl_report_tab_init(&t, id, 2 + ncols, 2, "%s / %s: %s, ms (Morais 2015 Table %s)", scene, viewpoint,
+                       stage ? "the method's per-pixel step, ray step included"
+                             : "shadow-map rendering of the layers the method reads",
+                       stage ? "26" : "25");
+    sl_report_tab_group(&t, 2, "%s", "");
+    sl_report_tab_group(&t, ncols, "execution time (ms, median)");
+    sl_report_tab_head(&t, 0, "viewport");
+    sl_report_tab_head(&t, 1, "map");
+    for (int k = 0; k < ncols; k++)
+        sl_report_tab_head(&t, 2 + k, "%s", s->labels[cols[k]]);
+    int runs = 0;
+    for (int v = 0; v < s->nviews; v++) {
+        const struct sl_report_view *vw = &s->views[v];
+        if (strcmp(vw->scene, scene) || strcmp(vw->viewpoint, viewpoint))
+            continue;
+        for (int m = 0; m < s->nmaps; m++) {
+            sl_report_tab_row(&t, m == 0);
+            if (m == 0)
+                sl_report_tab_cell(&t, 0, "%d×%d", vw->vw, vw->vh);
+            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
+            for (int k = 0; k < ncols; k++) {
+                const struct sl_table_cell *c = sl_report_study_cell(s, vw, s->labels[cols[k]], s->maps[m]);
+                char buf[32];
+                fmt_ms(buf, sizeof buf, c ? (stage ? c->cost.method[SL_MED] : c->cost.map_render[SL_MED]) : 0.0);
+                sl_report_tab_cell(&t, 2 + k, "%s", buf);
+                if (c && c->cost.runs > runs)
+                    runs = c->cost.runs;
+            }
+        }
+    }
+    snprintf(t.note, sizeof t.note, "Medians over %d timed repetition(s) per cell on this machine (CPU: llvmpipe "
+             "and Embree); – where the method has no such stage or no time was stored.", runs);
+    enum sl_err e = sl_report_doc_table(doc, &t, d);
+    sl_report_tab_free(&t);
+    return e;
+}
+
+enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
+{
+    enum sl_err e = SL_OK;
+    for (int v = 0; v < s->nviews && !e; v++)
+        e = morais_view(doc, s, &s->views[v], d);
+    /* timing tables per (scene, viewpoint), in order of first appearance */
+    for (int v = 0; v < s->nviews && !e; v++) {
+        int seen = 0;
+        for (int u = 0; u < v && !seen; u++)
+            seen = !strcmp(s->views[u].scene, s->views[v].scene) &&
+                   !strcmp(s->views[u].viewpoint, s->views[v].viewpoint);
+        if (seen)
+            continue;
+        e = morais_times(doc, s, s->views[v].scene, s->views[v].viewpoint, 0, d);
+        if (!e)
+            e = morais_times(doc, s, s->views[v].scene, s->views[v].viewpoint, 1, d);
+    }
+    return e;
+}
+
+/* ---- costs ---- */
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* median of v[0..n) (sorted in place); NAN when n is 0 */
+static double median(double *v, int n)
+{
+    if (n == 0)
+        return NAN;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void fmt_range(char *buf, size_t n, double med, double lo, double hi)
+{
+    char a[32], b[32], c[32];
+    fmt_ms(a, sizeof a, med);
+    if (!(med > 0.0)) {
+        snprintf(buf, n, "–");
+        return;
+    }
+    fmt_ms(b, sizeof b, lo);
+    fmt_ms(c, sizeof c, hi);
+    snprintf(buf, n, "%s [%s–%s]", a, b, c);
+}
+
+enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
+{
+    double *meth = sl_calloc((size_t)s->n + 1, sizeof *meth);
+    double *map = sl_calloc((size_t)s->n + 1, sizeof *map);
+    if (!meth || !map) {
+        free(meth);
+        free(map);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "cost table");
+    }
+    char id[160];
+    snprintf(id, sizeof id, "%s-costs", s->slug);
+    struct sl_report_tab t;
+    sl_report_tab_init(&t, id, 11, 2, "%s: cost per method and map size", s->name);
+    static const char *const heads[] = {"method", "map", "cells", "method ms: median [min–max]",
+                                        "map render ms: median [min–max]", "rays", "rays / pixel",
+                                        "ray-tri tests", "lookups", "GS prims", "fragments"};
+    for (int k = 0; k < 11; k++)
+        sl_report_tab_head(&t, k, "%s", heads[k]);
+    int runs = 0;
+    for (int l = 0; l < s->nlabels; l++)
+        for (int m = 0; m < s->nmaps; m++) {
+            int n = 0, nmap = 0, cells = 0;
+            double lo = INFINITY, hi = 0.0, mlo = INFINITY, mhi = 0.0;
+            double rays = 0.0, px = 0.0, tests = 0.0, lookups = 0.0, gs = 0.0, frags = 0.0;
+            for (int i = 0; i < s->n; i++) {
+                const struct sl_table_cell *c = &s->cells[i];
+                if (c->map_size != s->maps[m] || strcmp(c->label, s->labels[l]) != 0)
+                    continue;
+                const struct sl_table_costs *k = &c->cost;
+                if (k->method[SL_MED] > 0.0) {
+                    meth[n++] = k->method[SL_MED];
+                    lo = fmin(lo, k->method[SL_MIN] > 0.0 ? k->method[SL_MIN] : k->method[SL_MED]);
+                    hi = fmax(hi, fmax(k->method[SL_MAX], k->method[SL_MED]));
+                }
+                if (k->map_render[SL_MED] > 0.0) {
+                    map[nmap++] = k->map_render[SL_MED];
+                    mlo = fmin(mlo, k->map_render[SL_MIN] > 0.0 ? k->map_render[SL_MIN] : k->map_render[SL_MED]);
+                    mhi = fmax(mhi, fmax(k->map_render[SL_MAX], k->map_render[SL_MED]));
+                }
+                int r = sl_report_region(c, 0);
+                px += r >= 0 ? (double)c->fig.r[r].n[SL_FIG_pixels] : (double)c->n_pfl + (double)c->n_pnfl;
+                rays += (double)k->rays;
+                tests += (double)k->tri_tests;
+                lookups += (double)k->lookups;
+                gs += (double)k->gs_prims;
+                frags += (double)k->fragments;
+                if (k->runs > runs)
+                    runs = k->runs;
+                cells++;
+            }
+            if (cells == 0)
+                continue;
+            char buf[96];
+            sl_report_tab_row(&t, m == 0);
+            if (m == 0)
+                sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
+            sl_report_tab_cell(&t, 2, "%d", cells);
+            fmt_range(buf, sizeof buf, median(meth, n), lo, hi);
+            sl_report_tab_cell(&t, 3, "%s", buf);
+            fmt_range(buf, sizeof buf, median(map, nmap), mlo, mhi);
+            sl_report_tab_cell(&t, 4, "%s", buf);
+            fmt_count(buf, sizeof buf, rays / cells);
+            sl_report_tab_cell(&t, 5, "%s", buf);
+            sl_report_tab_cell(&t, 6, "%.3f", px > 0.0 ? rays / px : 0.0);
+            fmt_count(buf, sizeof buf, tests / cells);
+            sl_report_tab_cell(&t, 7, "%s", buf);
+            fmt_count(buf, sizeof buf, lookups / cells);
+            sl_report_tab_cell(&t, 8, "%s", buf);
+            fmt_count(buf, sizeof buf, gs / cells);
+            sl_report_tab_cell(&t, 9, "%s", buf);
+            fmt_count(buf, sizeof buf, frags / cells);
+            sl_report_tab_cell(&t, 10, "%s", buf);
+        }
+    free(meth);
+    free(map);
+    snprintf(t.note, sizeof t.note,
+             "Times: the median over the cells (scenes, viewpoints, viewports) of each cell's median over %d "
+             "timed repetition(s), in brackets the lowest and highest single repetition. Counters: mean per cell "
+             "(rays / pixel: over all non-background pixels). GS prims and fragments are GL query counts of the "
+             "layers the method reads.", runs);
+    enum sl_err e = sl_report_doc_table(doc, &t, d);
+    sl_report_tab_free(&t);
+    if (!e)
+        sl_report_doc_para(doc,
+                           "These times come from one CPU-only machine: OpenGL runs on llvmpipe and the rays on "
+                           "Embree, so rasterisation is slow and rays are cheap compared with a GPU. The "
+                           "machine-independent counters (shadow rays, ray-triangle tests, map lookups, "
+                           "geometry-shader primitives, fragments) let a reader carry the comparison to a GPU, "
+                           "where the balance between raster and ray cost differs: weigh each counter with that "
+                           "GPU's cost per ray, per test and per fragment.");
+    return e;
+}

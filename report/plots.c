@@ -1,0 +1,564 @@
+/*
+ * plots.c — the report's figures, drawn by gnuplot from data computed here:
+ * the chain's steps per scene (Moderno 2011 Figures 31/32) and wrong pixels
+ * against cost with the Pareto front (see report.h).
+ *
+ * Invariants:
+ * - gnuplot gets one script on its stdin (popen) with the data inline as
+ *   datablocks, writes one SVG into the staging folder, and its stderr goes
+ *   to a scratch log there, so nothing of it reaches our stdout/stderr; a
+ *   failed plot names the script's first error line.
+ * - Every number in a plot is also printed in a table beside it, so the
+ *   Markdown page and a reader without SVG see the same data.
+ * - Strings reach gnuplot only through gp_quote/gp_datum: no label or path
+ *   can end a string or inject a command.
+ * - SIGPIPE (gnuplot dying mid-script) is ignored for the write and restored.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include "report_int.h"
+#include "util.h"
+
+/* ---- Pareto and points (public, unit-tested) ---- */
+
+int sl_report_pareto(const double *x, const double *y, int n, unsigned char *front)
+{
+    int count = 0;
+    for (int i = 0; i < n; i++) {
+        int on = !isnan(x[i]) && !isnan(y[i]);
+        for (int j = 0; j < n && on; j++) {
+            if (j == i || isnan(x[j]) || isnan(y[j]))
+                continue;
+            if (x[j] <= x[i] && y[j] <= y[i] && (x[j] < x[i] || y[j] < y[i]))
+                on = 0;
+        }
+        front[i] = (unsigned char)on;
+        count += on;
+    }
+    return count;
+}
+
+enum sl_err sl_report_points(const struct sl_table_cell *cells, int ncells, struct sl_report_point **out, int *n,
+                             struct sl_diag *d)
+{
+    *out = NULL;
+    *n = 0;
+    if (ncells <= 0)
+        return SL_OK;
+    struct sl_report_point *p = sl_calloc((size_t)ncells, sizeof *p);
+    double *sum_w = sl_calloc((size_t)ncells, sizeof *sum_w);
+    int *nw = sl_calloc((size_t)ncells, sizeof *nw);
+    if (!p || !sum_w || !nw) {
+        free(p);
+        free(sum_w);
+        free(nw);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "plot points");
+    }
+    int np = 0;
+    /* labels in order of first appearance, then map sizes ascending */
+    for (int i = 0; i < ncells; i++) {
+        const struct sl_table_cell *c = &cells[i];
+        int k = 0;
+        while (k < np && !(p[k].map_size == c->map_size && strcmp(p[k].label, c->label) == 0))
+            k++;
+        if (k == np) {
+            int at = np;
+            int first = -1, last = -1;
+            for (int j = 0; j < np; j++)
+                if (strcmp(p[j].label, c->label) == 0) {
+                    if (first < 0)
+                        first = j;
+                    last = j;
+                }
+            if (first >= 0) {
+                at = last + 1;
+                while (at > first && p[at - 1].map_size > c->map_size)
+                    at--;
+            }
+            memmove(&p[at + 1], &p[at], (size_t)(np - at) * sizeof *p);
+            memmove(&sum_w[at + 1], &sum_w[at], (size_t)(np - at) * sizeof *sum_w);
+            memmove(&nw[at + 1], &nw[at], (size_t)(np - at) * sizeof *nw);
+            memset(&p[at], 0, sizeof *p);
+            sum_w[at] = 0.0;
+            nw[at] = 0;
+            snprintf(p[at].label, sizeof p[at].label, "%s", c->label);
+            snprintf(p[at].method, sizeof p[at].method, "%s", c->method);
+            p[at].map_size = c->map_size;
+            np++;
+            k = at;
+        }
+        struct sl_report_point *q = &p[k];
+        q->ncells++;
+        q->ms_layers += c->cost.map_render[SL_MED];
+        q->ms_step += c->cost.method[SL_MED];
+        int r = sl_report_region(c, 0);
+        double px = r >= 0 ? (double)c->fig.r[r].n[SL_FIG_pixels] : 0.0;
+        if (px > 0.0) {
+            sum_w[k] += 100.0 * (double)c->fig.r[r].n[SL_FIG_wrong] / px;
+            nw[k]++;
+            q->rays_per_px += (double)c->cost.rays / px;
+        }
+    }
+    double *x = sl_calloc((size_t)np, sizeof *x), *y = sl_calloc((size_t)np, sizeof *y);
+    unsigned char *f = sl_calloc((size_t)np, 1);
+    if (!x || !y || !f) {
+        free(p);
+        free(sum_w);
+        free(nw);
+        free(x);
+        free(y);
+        free(f);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "plot points");
+    }
+    for (int k = 0; k < np; k++) {
+        p[k].ms_layers /= p[k].ncells;
+        p[k].ms_step /= p[k].ncells;
+        /* a method's cost is its own layers and its step: NSM's map counts, as does raytrace's rays */
+        p[k].ms = p[k].ms_layers + p[k].ms_step;
+        p[k].wrong_pct = nw[k] ? sum_w[k] / nw[k] : NAN;
+        p[k].rays_per_px = nw[k] ? p[k].rays_per_px / nw[k] : NAN;
+    }
+    for (int k = 0; k < np; k++) {
+        x[k] = p[k].ms > 0.0 ? p[k].ms : NAN;   /* no time stored: not a point of the time front */
+        y[k] = p[k].wrong_pct;
+    }
+    sl_report_pareto(x, y, np, f);
+    for (int k = 0; k < np; k++) {
+        p[k].front_ms = f[k];
+        x[k] = p[k].rays_per_px;
+    }
+    sl_report_pareto(x, y, np, f);
+    for (int k = 0; k < np; k++)
+        p[k].front_rays = f[k];
+    free(sum_w);
+    free(nw);
+    free(x);
+    free(y);
+    free(f);
+    *out = p;
+    *n = np;
+    return SL_OK;
+}
+
+/* ---- gnuplot ---- */
+
+enum sl_err sl_report_gnuplot_find(const char *want, char *path, size_t n, struct sl_diag *d)
+{
+    if (!want || !want[0])
+        want = "gnuplot";
+    if (strchr(want, '/')) {
+        if (access(want, X_OK) == 0) {
+            snprintf(path, n, "%s", want);
+            return SL_OK;
+        }
+    } else {
+        const char *env = getenv("PATH");
+        char dirs[4096];
+        snprintf(dirs, sizeof dirs, "%s", env ? env : "/usr/bin:/bin");
+        char *save = NULL;
+        for (char *dir = strtok_r(dirs, ":", &save); dir; dir = strtok_r(NULL, ":", &save)) {
+            char cand[4200];
+            struct stat st;
+            snprintf(cand, sizeof cand, "%s/%s", dir[0] ? dir : ".", want);
+            if (stat(cand, &st) == 0 && S_ISREG(st.st_mode) && access(cand, X_OK) == 0) {
+                snprintf(path, n, "%s", cand);
+                return SL_OK;
+            }
+        }
+    }
+    return sl_fail(d, SL_E_USAGE, NULL, 0, "gnuplot",
+                   "gnuplot is not installed (no '%s' in PATH); the report draws its plots with it: install "
+                   "it (Debian: apt-get install gnuplot-nox)", want);
+}
+
+/* A gnuplot single-quoted string: '' stands for ' */
+static void gp_quote(FILE *f, const char *s)
+{
+    fputc('\'', f);
+    for (; s && *s; s++) {
+        if (*s == '\'')
+            fputc('\'', f);
+        if (*s != '\n' && *s != '\r')
+            fputc(*s, f);
+    }
+    fputc('\'', f);
+}
+
+/* a datablock string field: double quotes, no quote, backslash or line break inside */
+static void gp_datum(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; s && *s; s++)
+        fputc((*s == '"' || *s == '\\' || *s == '\n' || *s == '\r') ? '_' : *s, f);
+    fputc('"', f);
+}
+
+/* A POSIX shell single-quoted word */
+static void sh_quote(char *buf, size_t n, const char *s)
+{
+    size_t k = 0;
+    if (k + 1 < n)
+        buf[k++] = '\'';
+    for (; *s && k + 5 < n; s++) {
+        if (*s == '\'') {
+            memcpy(buf + k, "'\\''", 4);
+            k += 4;
+        } else {
+            buf[k++] = *s;
+        }
+    }
+    if (k + 1 < n)
+        buf[k++] = '\'';
+    buf[k] = '\0';
+}
+
+/* Run gnuplot on `body` with an SVG terminal writing rel (registered here). */
+static enum sl_err gp_run(struct sl_report_doc *doc, const char *gnuplot, const char *rel, int w, int h,
+                          const char *body, struct sl_diag *d)
+{
+    char svg[1400], logrel[300], log[1400];
+    enum sl_err e = sl_report_out_path(doc->out, rel, 1, svg, sizeof svg, d);
+    snprintf(logrel, sizeof logrel, "%s.log", rel);
+    if (!e)
+        e = sl_report_out_path(doc->out, logrel, 0, log, sizeof log, d);
+    if (e)
+        return e;
+    char qexe[4400], qlog[2900], cmd[7400];
+    sh_quote(qexe, sizeof qexe, gnuplot);
+    sh_quote(qlog, sizeof qlog, log);
+    snprintf(cmd, sizeof cmd, "%s >%s 2>&1", qexe, qlog);
+
+    struct sigaction ign = {0}, old;
+    ign.sa_handler = SIG_IGN;
+    sigemptyset(&ign.sa_mask);
+    sigaction(SIGPIPE, &ign, &old);
+    fflush(NULL);
+    FILE *gp = popen(cmd, "w");
+    int status = -1;
+    if (gp) {
+        fprintf(gp, "set terminal svg size %d,%d dynamic noenhanced font 'sans,11' background '#ffffff'\n", w, h);
+        fputs("set encoding utf8\nset output ", gp);
+        gp_quote(gp, svg);
+        fputc('\n', gp);
+        fputs(body, gp);
+        fputs("\nunset output\nexit\n", gp);
+        status = pclose(gp);
+    }
+    sigaction(SIGPIPE, &old, NULL);
+    if (!gp)
+        return sl_fail(d, SL_E_IO, gnuplot, 0, "gnuplot", "cannot start gnuplot: %s", strerror(errno));
+    struct stat st;
+    int ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0 && stat(svg, &st) == 0 && st.st_size > 0;
+    if (!ok) {
+        char first[300] = "";
+        FILE *lf = fopen(log, "r");
+        if (lf) {
+            char line[300];
+            while (fgets(line, sizeof line, lf))
+                if (strstr(line, "rror") || !first[0]) {
+                    snprintf(first, sizeof first, "%s", line);
+                    if (strstr(line, "rror"))
+                        break;
+                }
+            fclose(lf);
+        }
+        first[strcspn(first, "\r\n")] = '\0';
+        return sl_fail(d, SL_E_IO, gnuplot, 0, rel, "gnuplot failed on this plot (status %d): %s", status,
+                       first[0] ? first : "no message");
+    }
+    return SL_OK;
+}
+
+/* ---- Moderno Figures 31/32: the chain's steps per scene ---- */
+
+enum { ST_HINT_OK, ST_HINT_BAD, ST_CONFIRM, ST_CONFIRM_ADJ, ST_CORRECT, ST_TRACED, ST_LEFT, ST_N };
+static const struct { const char *name, *color; } steps[ST_N] = {
+    [ST_HINT_OK] = {"hinted (right)", "#4a90d9"},
+    [ST_HINT_BAD] = {"hinted (wrong)", "#d62728"},
+    [ST_CONFIRM] = {"confirmed (neighbours)", "#1b7f3b"},
+    [ST_CONFIRM_ADJ] = {"confirmed (adjacency)", "#ff8c00"},
+    [ST_CORRECT] = {"corrected", "#8fd18f"},
+    [ST_TRACED] = {"traced", "#8e44ad"},
+    [ST_LEFT] = {"left (map or fallback)", "#f2d13c"},
+};
+
+/* shares (% of PFL) of the chain's steps, summed over the scene's views */
+static int chain_shares(const struct sl_report_study *s, const char *scene, const char *label, int map, int region,
+                        double share[ST_N], uint64_t *pfl_out)
+{
+    uint64_t n[SL_FIG_COUNT];
+    memset(n, 0, sizeof n);
+    int found = 0;
+    for (int i = 0; i < s->n; i++) {
+        const struct sl_table_cell *c = &s->cells[i];
+        if (c->map_size != map || strcmp(c->scene, scene) || strcmp(c->label, label))
+            continue;
+        int r = sl_report_region(c, region);
+        if (r < 0)
+            continue;
+        for (int k = 0; k < SL_FIG_COUNT; k++)
+            n[k] += c->fig.r[r].n[k];
+        found = 1;
+    }
+    if (!found || n[SL_FIG_pfl] == 0)
+        return 0;
+    double pfl = (double)n[SL_FIG_pfl];
+    double v[ST_N];
+    v[ST_HINT_BAD] = (double)n[SL_FIG_hinted_wrong];
+    v[ST_HINT_OK] = (double)n[SL_FIG_hinted] - v[ST_HINT_BAD];
+    v[ST_CONFIRM_ADJ] = (double)n[SL_FIG_confirmed_adj];
+    v[ST_CONFIRM] = (double)n[SL_FIG_confirmed] - v[ST_CONFIRM_ADJ];
+    v[ST_CORRECT] = (double)n[SL_FIG_corrected];
+    v[ST_TRACED] = (double)n[SL_FIG_traced];
+    double used = 0.0;
+    for (int k = 0; k < ST_LEFT; k++)
+        used += v[k];
+    v[ST_LEFT] = pfl > used ? pfl - used : 0.0;
+    for (int k = 0; k < ST_N; k++)
+        share[k] = 100.0 * v[k] / pfl;
+    *pfl_out = n[SL_FIG_pfl];
+    return 1;
+}
+
+enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                                 struct sl_diag *d)
+{
+    int chains[SL_REPORT_MAXKEYS], nchains = 0;
+    for (int l = 0; l < s->nlabels; l++)
+        if (strcmp(s->methods[l], "chain") == 0)
+            chains[nchains++] = l;
+    if (nchains == 0) {
+        sl_report_doc_para(doc, "No cell of this study ran the chain: Moderno's Figures 31/32 are not drawn.");
+        return SL_OK;
+    }
+    sl_report_doc_para(doc,
+                       "Share of the region's PFL pixels each step of the chain decides (Moderno 2011 Figures "
+                       "31/32), per chain variant, map size and region, pooled over the scene's viewpoints and "
+                       "viewports: hinted by texel coherence (right or wrong), shadow confirmed by a neighbour "
+                       "texel's or an adjacent triangle's hit, lit corrected to shadow, traced, and left to the "
+                       "map's verdict or the fallback.");
+    enum sl_err e = SL_OK;
+    for (int sc = 0; sc < s->nscenes && !e; sc++) {
+        const char *scene = s->scenes[sc];
+        char *body = NULL;
+        size_t blen = 0;
+        FILE *m = open_memstream(&body, &blen);
+        if (!m)
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, scene, "plot script");
+        char id[160], slug[64];
+        sl_report_slug(scene, slug, sizeof slug);
+        snprintf(id, sizeof id, "%s-chain-%s", s->slug, slug);
+        struct sl_report_tab t;
+        sl_report_tab_init(&t, id, 3 + ST_N, 3, "%s / %s: pixels decided by each step of the chain, %% of PFL",
+                           s->name, scene);
+        sl_report_tab_head(&t, 0, "method");
+        sl_report_tab_head(&t, 1, "map");
+        sl_report_tab_head(&t, 2, "region (PFL)");
+        for (int k = 0; k < ST_N; k++)
+            sl_report_tab_head(&t, 3 + k, "%s", steps[k].name);
+        fputs("$d << EOD\n", m);
+        int bars = 0;
+        for (int q = 0; q < nchains; q++)
+            for (int k = 0; k < s->nmaps; k++)
+                for (int r = 0; r < s->nregions; r++) {
+                    double share[ST_N];
+                    uint64_t pfl = 0;
+                    if (!chain_shares(s, scene, s->labels[chains[q]], s->maps[k], s->regions[r], share, &pfl))
+                        continue;
+                    char rn[16], name[128];
+                    sl_report_region_name(s->regions[r], rn, sizeof rn);
+                    snprintf(name, sizeof name, "%s %d² %s", s->labels[chains[q]], s->maps[k], rn);
+                    gp_datum(m, name);
+                    for (int j = 0; j < ST_N; j++)
+                        fprintf(m, " %.4f", share[j]);
+                    fputc('\n', m);
+                    sl_report_tab_row(&t, r == 0);
+                    sl_report_tab_cell(&t, 0, "%s", s->labels[chains[q]]);
+                    sl_report_tab_cell(&t, 1, "%d²", s->maps[k]);
+                    sl_report_tab_cell(&t, 2, "%s (%llu)", rn, (unsigned long long)pfl);
+                    for (int j = 0; j < ST_N; j++)
+                        sl_report_tab_cell(&t, 3 + j, "%.2f", share[j]);
+                    bars++;
+                }
+        fputs("EOD\n", m);
+        fputs("set style data histograms\nset style histogram rowstacked\n"
+              "set style fill solid 1.0 border rgb '#444444'\nset boxwidth 0.8 relative\n"
+              "set yrange [0:100]\nset ylabel 'share of the region''s PFL pixels (%)'\n"
+              "set key outside right top\nset xtics rotate by -40 scale 0\nset grid ytics\n"
+              "set border 3\nset tics nomirror\nset title ", m);
+        char title[200];
+        snprintf(title, sizeof title, "%s / %s: the chain's steps (Moderno 2011 Figures 31/32)", s->name, scene);
+        gp_quote(m, title);
+        fputs("\nplot ", m);
+        for (int j = 0; j < ST_N; j++) {
+            fprintf(m, "%s using %d%s title ", j ? ", ''" : "$d", j + 2, j ? "" : ":xtic(1)");
+            gp_quote(m, steps[j].name);
+            fprintf(m, " lc rgb '%s'", steps[j].color);
+        }
+        fputc('\n', m);
+        int bad = ferror(m);
+        fclose(m);
+        if (bad || !body) {
+            free(body);
+            sl_report_tab_free(&t);
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, scene, "plot script");
+        }
+        if (bars > 0) {
+            char rel[200];
+            snprintf(rel, sizeof rel, "plots/%s.svg", id);
+            int w = 420 + 34 * bars;
+            e = gp_run(doc, gnuplot, rel, w > 1400 ? 1400 : w, 520, body, d);
+            if (!e) {
+                sl_report_doc_image(doc, rel, title);
+                e = sl_report_doc_table(doc, &t, d);
+            }
+        }
+        free(body);
+        sl_report_tab_free(&t);
+    }
+    return e;
+}
+
+/* ---- accuracy against cost ---- */
+
+static int cmp_x(const void *a, const void *b)
+{
+    const double *p = a, *q = b;
+    return (p[0] > q[0]) - (p[0] < q[0]);
+}
+
+/* One scatter of (x, wrong %) with its front; which: 0 time, 1 rays per pixel */
+static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                                 const struct sl_report_point *p, int np, int which, struct sl_diag *d)
+{
+    char *body = NULL;
+    size_t blen = 0;
+    FILE *m = open_memstream(&body, &blen);
+    double *front = sl_calloc((size_t)np * 2 + 2, sizeof *front);
+    if (!m || !front) {
+        if (m)
+            fclose(m);
+        free(body);
+        free(front);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
+    }
+    double lo = INFINITY, hi = 0.0;
+    int npts = 0, nfront = 0;
+    fputs("$all << EOD\n", m);
+    for (int k = 0; k < np; k++) {
+        double x = which ? p[k].rays_per_px : p[k].ms;
+        if (isnan(x) || isnan(p[k].wrong_pct) || (which == 0 && !(x > 0.0)))
+            continue;
+        char name[96];
+        snprintf(name, sizeof name, "%s %d²", p[k].label, p[k].map_size);
+        fprintf(m, "%.6g %.6g ", x, p[k].wrong_pct);
+        gp_datum(m, name);
+        fputc('\n', m);
+        lo = fmin(lo, x);
+        hi = fmax(hi, x);
+        npts++;
+        if (which ? p[k].front_rays : p[k].front_ms) {
+            front[2 * nfront] = x;
+            front[2 * nfront + 1] = p[k].wrong_pct;
+            nfront++;
+        }
+    }
+    fputs("EOD\n$front << EOD\n", m);
+    qsort(front, (size_t)nfront, 2 * sizeof *front, cmp_x);
+    for (int k = 0; k < nfront; k++)
+        fprintf(m, "%.6g %.6g\n", front[2 * k], front[2 * k + 1]);
+    fputs("EOD\n", m);
+    free(front);
+    int logx = which == 0 && lo > 0.0 && hi / lo >= 20.0;
+    char title[200];
+    snprintf(title, sizeof title, "%s: wrong pixels against %s", s->name,
+             which ? "shadow rays per pixel" : "method time");
+    fputs("set title ", m);
+    gp_quote(m, title);
+    fprintf(m, "\nset xlabel '%s'\n", which ? "shadow rays per non-background pixel (mean over views)"
+                                            : "method time per cell, ms: its shadow-map layers + its per-pixel step "
+                                              "(medians, mean over views)");
+    fputs("set ylabel 'wrong pixels, % of non-background (mean over views)'\n"
+          "set grid\nset key top right box opaque\nset border 3\nset tics nomirror\nset yrange [0:*]\n"
+          "set offsets graph 0.05, graph 0.15, graph 0.08, 0\n",
+          m);
+    if (logx)
+        fputs("set logscale x\n", m);
+    fputs("plot $all using 1:2 with points pt 7 ps 1.1 lc rgb '#4477aa' title 'method × map size', "
+          "$all using 1:2:3 with labels offset char 0.6,0.6 left font ',8' tc rgb '#333333' notitle, "
+          "$front using 1:2 with steps lw 2 lc rgb '#cc3311' title 'Pareto front', "
+          "$front using 1:2 with points pt 6 ps 2 lw 2 lc rgb '#cc3311' notitle\n", m);
+    int bad = ferror(m);
+    fclose(m);
+    if (bad || !body) {
+        free(body);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
+    }
+    enum sl_err e = SL_OK;
+    if (npts == 0) {
+        sl_report_doc_para(doc, "No cell of this study has a %s stored: that plot is not drawn.",
+                           which ? "ray count" : "method time");
+    } else {
+        char rel[200];
+        snprintf(rel, sizeof rel, "plots/%s-accuracy-%s.svg", s->slug, which ? "rays" : "time");
+        e = gp_run(doc, gnuplot, rel, 860, 560, body, d);
+        if (!e)
+            sl_report_doc_image(doc, rel, title);
+    }
+    free(body);
+    return e;
+}
+
+enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_report_study *s,
+                                    const char *gnuplot, struct sl_diag *d)
+{
+    struct sl_report_point *p = NULL;
+    int np = 0;
+    enum sl_err e = sl_report_points(s->cells, s->n, &p, &np, d);
+    if (e)
+        return e;
+    sl_report_doc_para(doc,
+                       "One point per method label and shadow-map size: the mean over the study's scenes, "
+                       "viewpoints and viewports of the wrong pixels (whole image) and of the cost. A method's "
+                       "time is the rendering of the shadow-map layers it reads plus its per-pixel step (ray "
+                       "step included), each the median of the timed repetitions, so a map-only method and a "
+                       "ray tracer are charged alike. The Pareto front joins the points no other point beats in "
+                       "both cost and wrong pixels.");
+    e = accuracy_plot(doc, s, gnuplot, p, np, 0, d);
+    if (!e)
+        e = accuracy_plot(doc, s, gnuplot, p, np, 1, d);
+    if (!e) {
+        char id[160];
+        snprintf(id, sizeof id, "%s-accuracy", s->slug);
+        struct sl_report_tab t;
+        sl_report_tab_init(&t, id, 10, 2, "%s: wrong pixels against cost, with the Pareto fronts", s->name);
+        static const char *const heads[] = {"method", "map", "cells", "wrong %", "layers ms", "step ms",
+                                            "method ms", "rays / pixel", "front (time)", "front (rays)"};
+        for (int k = 0; k < 10; k++)
+            sl_report_tab_head(&t, k, "%s", heads[k]);
+        for (int k = 0; k < np; k++) {
+            sl_report_tab_row(&t, k == 0 || strcmp(p[k].label, p[k - 1].label) != 0);
+            sl_report_tab_cell(&t, 0, "%s", p[k].label);
+            sl_report_tab_cell(&t, 1, "%d²", p[k].map_size);
+            sl_report_tab_cell(&t, 2, "%d", p[k].ncells);
+            sl_report_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
+            sl_report_tab_cell(&t, 4, "%.3f", p[k].ms_layers);
+            sl_report_tab_cell(&t, 5, "%.3f", p[k].ms_step);
+            sl_report_tab_cell(&t, 6, "%.3f", p[k].ms);
+            sl_report_tab_cell(&t, 7, "%.4f", p[k].rays_per_px);
+            sl_report_tab_cell(&t, 8, "%s", p[k].front_ms ? "yes" : "");
+            sl_report_tab_cell(&t, 9, "%s", p[k].front_rays ? "yes" : "");
+        }
+        e = sl_report_doc_table(doc, &t, d);
+        sl_report_tab_free(&t);
+    }
+    free(p);
+    return e;
+}

@@ -1,0 +1,492 @@
+/*
+ * report.c — see report.h. Reads the store, groups the cells by study and
+ * writes the page section by section (doc.c, layouts.c, plots.c).
+ *
+ * Invariants:
+ * - Nothing is written before the input is known good: a missing, empty or
+ *   foreign database, a store without cells and a missing gnuplot are
+ *   refused before the staging folder exists.
+ * - The pages are registered last-moved (SL_REPORT_PAGE), so the folder never
+ *   holds a report.html whose images are not there yet.
+ * - Overlays are read from the database's folder and copied; one that is not
+ *   there is listed on the page, never an error (runs with overlays: false
+ *   store none, and results folders get pruned).
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include "provenance.h"
+#include "report_int.h"
+#include "util.h"
+
+static const char css[] =
+    "body{font:14px/1.45 system-ui,-apple-system,'Segoe UI',Roboto,'DejaVu Sans',sans-serif;color:#1d1d1f;"
+    "background:#fff;margin:0 auto;max-width:1200px;padding:1.5em 2em}"
+    "h1{font-size:1.7em;border-bottom:2px solid #333;padding-bottom:.2em}"
+    "h2{font-size:1.35em;margin-top:2.2em;border-bottom:1px solid #999;padding-bottom:.15em}"
+    "h3{font-size:1.12em;margin-top:1.8em}h4{font-size:1em}"
+    "nav{background:#f3f4f6;border:1px solid #ddd;padding:.4em 1em;margin:1em 0}"
+    ".tab{overflow-x:auto;margin:1em 0 1.6em}"
+    "table{border-collapse:collapse;font-size:12.5px;font-variant-numeric:tabular-nums}"
+    "caption{caption-side:top;text-align:left;font-weight:600;padding:.3em 0}"
+    "th,td{padding:.2em .6em;text-align:right;white-space:nowrap}"
+    "th.k,td.k{text-align:left}table.wrap td{white-space:normal;min-width:5em}thead tr:last-child th{border-bottom:1.5px solid #333}"
+    "thead tr:first-child th{border-top:2px solid #333}th.grp{border-bottom:1px solid #999;text-align:center}"
+    "tbody tr:last-child td{border-bottom:2px solid #333}tr.blk td{border-top:1px solid #ccc}"
+    "tbody tr:hover td{background:#f5f8ff}"
+    ".note{font-size:12px;color:#555;margin:.3em 0}"
+    "figure{margin:1em 0}figure img{max-width:100%;height:auto;border:1px solid #ddd}"
+    "figcaption{font-size:12px;color:#555}"
+    ".gallery{display:grid;grid-template-columns:repeat(auto-fill,minmax(230px,1fr));gap:12px}"
+    ".gallery figure{margin:0}.gallery img{width:100%;image-rendering:pixelated}"
+    "details{margin:.4em 0}summary{cursor:pointer}"
+    "pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;overflow-x:auto;font-size:12px}"
+    "footer{margin-top:3em;font-size:12px;color:#666;border-top:1px solid #ccc;padding-top:.5em}";
+
+#define SL_REPORT_PAGE 2   /* keep value of the two pages: moved after every other file */
+
+/* ---- overlays ---- */
+
+static enum sl_err copy_file(const char *from, const char *to, int *missing, char *why, size_t nwhy,
+                             struct sl_diag *d)
+{
+    *missing = 0;
+    FILE *in = fopen(from, "rb");
+    if (!in) {
+        *missing = 1;
+        snprintf(why, nwhy, "%s", strerror(errno));
+        return SL_OK;
+    }
+    FILE *out = fopen(to, "wb");
+    if (!out) {
+        fclose(in);
+        return sl_fail(d, SL_E_OUTPUT, to, 0, NULL, "cannot write: %s", strerror(errno));
+    }
+    char buf[65536];
+    size_t got;
+    int bad = 0;
+    while ((got = fread(buf, 1, sizeof buf, in)) > 0)
+        if (fwrite(buf, 1, got, out) != got)
+            bad = 1;
+    int rbad = ferror(in);
+    fclose(in);
+    if (fclose(out) != 0 || bad)
+        return sl_fail(d, SL_E_OUTPUT, to, 0, NULL, "write failed");
+    if (rbad)
+        return sl_fail(d, SL_E_IO, from, 0, NULL, "read error while copying the overlay");
+    return SL_OK;
+}
+
+static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_report_study *s,
+                                    const char *source_dir, struct sl_diag *d)
+{
+    int n = 0, none = 0;
+    for (int i = 0; i < s->n; i++)
+        if (s->cells[i].overlay[0])
+            n++;
+        else
+            none++;
+    if (n == 0) {
+        sl_report_doc_para(doc, "No cell of this study stored an error overlay (the config's outputs.overlays "
+                                "was off, or the store predates overlay paths).");
+        return SL_OK;
+    }
+    sl_report_doc_para(doc,
+                       "The error overlays the runs wrote (Moderno 2011's colours): contour green, wrongly lit "
+                       "red and wrongly shadowed yellow inside the contour, any wrong pixel outside it blue, "
+                       "undecided pixels purple, over a grey render shaded by the method's own verdicts.");
+    char **rel = sl_calloc((size_t)n, sizeof *rel), **cap = sl_calloc((size_t)n, sizeof *cap);
+    char **miss = sl_calloc((size_t)n, sizeof *miss);
+    if (!rel || !cap || !miss) {
+        free(rel);
+        free(cap);
+        free(miss);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "overlay list");
+    }
+    int nshown = 0, nmiss = 0;
+    enum sl_err e = SL_OK;
+    for (int i = 0; i < s->n && !e; i++) {
+        const struct sl_table_cell *c = &s->cells[i];
+        if (!c->overlay[0])
+            continue;
+        char src[1600], r[400], sc[64], vp[32], lb[48], path[1400], why[128] = "";
+        if (c->overlay[0] == '/' || !source_dir || !source_dir[0])
+            snprintf(src, sizeof src, "%s", c->overlay);
+        else
+            snprintf(src, sizeof src, "%s/%s", source_dir, c->overlay);
+        sl_report_slug(c->scene, sc, sizeof sc);
+        sl_report_slug(c->viewpoint, vp, sizeof vp);
+        sl_report_slug(c->label, lb, sizeof lb);
+        snprintf(r, sizeof r, "overlays/%s/%s-%s-%dx%d-%d-%s.png", s->slug, sc, vp, c->vw, c->vh, c->map_size, lb);
+        char caption[300];
+        snprintf(caption, sizeof caption, "%s / %s / %d×%d / %d² / %s", c->scene, c->viewpoint, c->vw, c->vh,
+                 c->map_size, c->label);
+        struct stat st;
+        int missing = 1;
+        if (stat(src, &st) != 0)
+            snprintf(why, sizeof why, "%s", strerror(errno));
+        else if (!S_ISREG(st.st_mode))
+            snprintf(why, sizeof why, "not a file");
+        else
+            missing = 0;
+        if (!missing && !(e = sl_report_out_path(doc->out, r, 1, path, sizeof path, d)))
+            e = copy_file(src, path, &missing, why, sizeof why, d);
+        if (e)
+            break;
+        if (missing) {
+            char line[2000];
+            snprintf(line, sizeof line, "%s: %s (%s)", caption, c->overlay, why);
+            miss[nmiss] = strdup(line);
+            if (!miss[nmiss])
+                e = sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "overlay list");
+            else
+                nmiss++;
+            continue;
+        }
+        rel[nshown] = strdup(r);
+        cap[nshown] = strdup(caption);
+        if (!rel[nshown] || !cap[nshown]) {
+            free(rel[nshown]);
+            free(cap[nshown]);
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "overlay list");
+        } else {
+            nshown++;
+        }
+    }
+    if (!e) {
+        if (nshown)
+            sl_report_doc_gallery(doc, (const char *const *)rel, (const char *const *)cap, nshown);
+        if (nmiss) {
+            sl_report_doc_para(doc, "%d overlay(s) recorded in the store but missing from %s:", nmiss,
+                               source_dir && source_dir[0] ? source_dir : "the database's folder");
+            sl_report_doc_list(doc, (const char *const *)miss, nmiss);
+        }
+        if (none)
+            sl_report_doc_para(doc, "%d cell(s) of this study stored no overlay.", none);
+    }
+    for (int k = 0; k < nshown; k++) {
+        free(rel[k]);
+        free(cap[k]);
+    }
+    for (int k = 0; k < nmiss; k++)
+        free(miss[k]);
+    free(rel);
+    free(cap);
+    free(miss);
+    return e;
+}
+
+/* ---- the full figure tables of a study (table.c), linked ---- */
+
+static enum sl_err section_all_figures(struct sl_report_doc *doc, const struct sl_report_study *s,
+                                       struct sl_diag *d)
+{
+    static const struct { enum sl_table_format fmt; const char *ext, *name; } forms[] = {
+        {SL_TABLE_MD, "md", "Markdown"}, {SL_TABLE_CSV, "csv", "CSV"}, {SL_TABLE_LATEX, "tex", "LaTeX"}};
+    char rels[3][200];
+    const char *rel[3], *text[3];
+    for (int k = 0; k < 3; k++) {
+        char path[1400];
+        snprintf(rels[k], sizeof rels[k], "data/%s-figures.%s", s->slug, forms[k].ext);
+        enum sl_err e = sl_report_out_path(doc->out, rels[k], 1, path, sizeof path, d);
+        if (e)
+            return e;
+        FILE *f = fopen(path, "w");
+        if (!f)
+            return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+        e = sl_table_write(f, forms[k].fmt, s->name, s->cells, s->n, d);
+        if (fclose(f) != 0 && !e)
+            e = sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "write failed");
+        if (e)
+            return e;
+        rel[k] = rels[k];
+        text[k] = forms[k].name;
+    }
+    sl_report_doc_links(doc, "Every figure of every cell (figures.h), one table per scene, viewpoint, viewport "
+                             "and method, with each cell's git SHA, config hash and machine:", rel, text, 3);
+    return SL_OK;
+}
+
+/* ---- one study ---- */
+
+static void join_names(char *buf, size_t n, const char (*names)[64], int count)
+{
+    size_t k = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < count && k < n; i++)
+        k += (size_t)snprintf(buf + k, n - k, "%s%s", i ? ", " : "", names[i]);
+}
+
+static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_study *s, const char *gnuplot,
+                                 const char *source_dir, struct sl_diag *d)
+{
+    char anchor[96], scenes[1024] = "", labels[2048] = "", maps[512] = "", runs[512] = "", other[512] = "";
+    snprintf(anchor, sizeof anchor, "study-%s", s->slug);
+    sl_report_doc_heading(doc, 2, anchor, "Study %s", s->name);
+    join_names(scenes, sizeof scenes, (const char (*)[64])s->scenes, s->nscenes);
+    size_t k = 0, ko = 0;
+    for (int l = 0; l < s->nlabels; l++) {
+        k += (size_t)snprintf(labels + k, k < sizeof labels ? sizeof labels - k : 0, "%s%s (%s)", l ? ", " : "",
+                              s->labels[l], s->methods[l]);
+        if (!sl_report_is_moderno(s->methods[l]) && !sl_report_is_morais(s->methods[l]))
+            ko += (size_t)snprintf(other + ko, ko < sizeof other ? sizeof other - ko : 0, "%s%s", ko ? ", " : "",
+                                   s->labels[l]);
+        if (k >= sizeof labels || ko >= sizeof other)
+            break;
+    }
+    k = 0;
+    for (int m = 0; m < s->nmaps && k < sizeof maps; m++)
+        k += (size_t)snprintf(maps + k, sizeof maps - k, "%s%d²", m ? ", " : "", s->maps[m]);
+    int64_t seen[64];
+    int nseen = 0;
+    k = 0;
+    for (int i = 0; i < s->n; i++) {
+        int j = 0;
+        while (j < nseen && seen[j] != s->cells[i].run_id)
+            j++;
+        if (j == nseen && nseen < 64 && k < sizeof runs) {
+            seen[nseen++] = s->cells[i].run_id;
+            k += (size_t)snprintf(runs + k, sizeof runs - k, "%s%lld", j ? ", " : "", (long long)s->cells[i].run_id);
+        }
+    }
+    sl_report_doc_para(doc, "%d cell(s) from run(s) %s; %d view(s) of the scene(s) %s; shadow maps %s; methods %s.",
+                       s->n, runs, s->nviews, scenes, maps, labels);
+    sl_report_doc_para(doc, "Layout: %s.%s%s%s",
+                       s->moderno && s->morais ? "both theses' tables, Moderno 2011's for its methods and "
+                                                 "Morais 2015's for its own (nsm is in both)"
+                       : s->morais             ? "Morais 2015's tables (its methods: whole image, light/shadow "
+                                                 "correct/incorrect and uncertain per map size)"
+                                               : "Moderno 2011's tables (its methods: errors by contour, hints, "
+                                                 "changes against NSM)",
+                       other[0] ? " Methods of neither thesis (" : "", other, other[0] ? ") appear in the "
+                       "figure tables, the plots and the costs only." : "");
+    enum sl_err e = SL_OK;
+    if (s->moderno) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: tables in Moderno 2011's layout", s->name);
+        e = sl_report_moderno(doc, s, d);
+    }
+    if (!e && s->morais) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: tables in Morais 2015's layout", s->name);
+        e = sl_report_morais(doc, s, d);
+    }
+    if (!e) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: the chain's steps per scene", s->name);
+        e = sl_report_plot_chain(doc, s, gnuplot, d);
+    }
+    if (!e) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: wrong pixels against cost", s->name);
+        e = sl_report_plot_accuracy(doc, s, gnuplot, d);
+    }
+    if (!e) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: cost", s->name);
+        e = sl_report_costs(doc, s, d);
+    }
+    if (!e) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: error overlays", s->name);
+        e = section_overlays(doc, s, source_dir, d);
+    }
+    if (!e) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: all figures", s->name);
+        e = section_all_figures(doc, s, d);
+    }
+    return e;
+}
+
+/* ---- provenance ---- */
+
+static enum sl_err section_provenance(struct sl_report_doc *doc, const struct sl_report_input *in,
+                                      struct sl_diag *d)
+{
+    sl_report_doc_heading(doc, 2, "provenance", "Provenance");
+    sl_report_doc_para(doc,
+                       "Every number above comes from a cell stored by one of these runs (the run ids in each "
+                       "study's summary; each cell's git SHA, config hash and machine are in the figure tables). "
+                       "Each run's filled-in config follows the table.");
+    if (in->nruns == 0) {
+        sl_report_doc_para(doc, "The store lists no runs.");
+        return SL_OK;
+    }
+    struct sl_report_tab t;
+    sl_report_tab_init(&t, "provenance-runs", 12, 12, "Runs in the results store");
+    t.wrap = 1;
+    static const char *const heads[] = {"run", "study", "time (UTC)", "git SHA", "config", "config hash", "host",
+                                        "CPU", "ISA", "GL renderer", "Embree", "threads"};
+    for (int k = 0; k < 12; k++)
+        sl_report_tab_head(&t, k, "%s", heads[k]);
+    for (int i = 0; i < in->nruns; i++) {
+        const struct sl_store_run *r = &in->runs[i];
+        sl_report_tab_row(&t, 0);
+        sl_report_tab_cell(&t, 0, "%lld (%d cells)", (long long)r->run_id, r->ncells);
+        sl_report_tab_cell(&t, 1, "%s", r->study);
+        sl_report_tab_cell(&t, 2, "%s", r->prov.time_utc);
+        sl_report_tab_cell(&t, 3, "%s", r->prov.git_sha);
+        sl_report_tab_cell(&t, 4, "%s", r->config_path);
+        sl_report_tab_cell(&t, 5, "%s", r->config_hash);
+        sl_report_tab_cell(&t, 6, "%s", r->prov.host);
+        sl_report_tab_cell(&t, 7, "%s", r->prov.cpu);
+        sl_report_tab_cell(&t, 8, "%s", r->prov.isa);
+        sl_report_tab_cell(&t, 9, "%s (%s)", r->prov.gl_renderer, r->prov.gl_version);
+        sl_report_tab_cell(&t, 10, "%s", r->prov.embree);
+        sl_report_tab_cell(&t, 11, "%d (LP_NUM_THREADS %s)", r->prov.threads,
+                           r->prov.lp_threads[0] ? r->prov.lp_threads : "unset");
+    }
+    enum sl_err e = sl_report_doc_table(doc, &t, d);
+    sl_report_tab_free(&t);
+    for (int i = 0; i < in->nruns && !e; i++) {
+        const struct sl_store_run *r = &in->runs[i];
+        char summary[800];
+        snprintf(summary, sizeof summary, "Run %lld: config %s (hash %s)", (long long)r->run_id, r->config_path,
+                 r->config_hash);
+        if (r->config_text && r->config_text[0])
+            sl_report_doc_details(doc, summary, r->config_text);
+        else
+            sl_report_doc_para(doc, "%s: the config text was not stored.", summary);
+    }
+    return e;
+}
+
+/* ---- pages ---- */
+
+static void page_begin(struct sl_report_doc *doc, const struct sl_report_input *in, int nstudies)
+{
+    fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+          "<title>shadowlab report</title>\n<style>", doc->html);
+    fputs(css, doc->html);
+    fputs("</style>\n</head>\n<body>\n", doc->html);
+    sl_report_doc_heading(doc, 1, "top", "shadowlab report");
+    sl_report_doc_para(doc,
+                       "Shadow-map errors against an Embree ray-traced truth, pixel by pixel: %d cell(s) of %d "
+                       "study(ies) from %d run(s)%s%s.",
+                       in->ncells, nstudies, in->nruns, in->source && in->source[0] ? " in " : "",
+                       in->source ? in->source : "");
+}
+
+static void page_end(struct sl_report_doc *doc, const struct sl_report_input *in)
+{
+    char when[32] = "";
+    time_t now = time(NULL);
+    struct tm tm;
+    if (gmtime_r(&now, &tm))
+        strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    fputs("<footer>", doc->html);
+    fprintf(doc->md, "---\n\n");
+    sl_report_doc_para(doc, "Written by shadowlab %s at %s from %s. Offline page: no network, no scripts.",
+                       sl_git_sha(), when, in->source && in->source[0] ? in->source : "cells in memory");
+    fputs("</footer>\n</body>\n</html>\n", doc->html);
+}
+
+static enum sl_err open_page(struct sl_report_out *o, const char *rel, FILE **f, struct sl_diag *d)
+{
+    char path[1400];
+    enum sl_err e = sl_report_out_path(o, rel, SL_REPORT_PAGE, path, sizeof path, d);
+    if (e)
+        return e;
+    *f = fopen(path, "w");
+    if (!*f)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+    return SL_OK;
+}
+
+enum sl_err sl_report_build(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
+                            struct sl_diag *d)
+{
+    if (!in || in->ncells < 0 || (in->ncells > 0 && !in->cells) || in->nruns < 0 || (in->nruns > 0 && !in->runs))
+        return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_report_build: bad arguments");
+    if (in->ncells == 0)
+        return sl_fail(d, SL_E_USAGE, in->source, 0, NULL, "no stored cell: nothing to report");
+    char gp[1024];
+    enum sl_err e = sl_report_gnuplot_find(gnuplot, gp, sizeof gp, d);
+    if (e)
+        return e;
+
+    /* studies in order of first appearance; each study's cells contiguous, in input order */
+    struct sl_table_cell *cells = sl_calloc((size_t)in->ncells, sizeof *cells);
+    struct sl_report_study *studies = sl_calloc((size_t)in->ncells, sizeof *studies);
+    if (!cells || !studies) {
+        free(cells);
+        free(studies);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "%d cells", in->ncells);
+    }
+    int nstudies = 0, pos = 0;
+    for (int i = 0; i < in->ncells; i++) {
+        int seen = 0;
+        for (int j = 0; j < i && !seen; j++)
+            seen = strcmp(in->cells[j].study, in->cells[i].study) == 0;
+        if (seen)
+            continue;
+        struct sl_report_study *s = &studies[nstudies++];
+        snprintf(s->name, sizeof s->name, "%s", in->cells[i].study[0] ? in->cells[i].study : "(unnamed)");
+        sl_report_slug(in->cells[i].study[0] ? in->cells[i].study : "unnamed", s->slug, sizeof s->slug);
+        s->cells = cells + pos;
+        for (int j = i; j < in->ncells; j++)
+            if (strcmp(in->cells[j].study, in->cells[i].study) == 0)
+                cells[pos++] = in->cells[j];
+        s->n = (int)(cells + pos - s->cells);
+    }
+    for (int k = 0; k < nstudies && !e; k++)
+        e = sl_report_study_keys(&studies[k], d);
+    /* two studies whose names fold to one slug get numbered anchors and files */
+    for (int k = 1; k < nstudies; k++)
+        for (int j = 0; j < k; j++)
+            if (strcmp(studies[k].slug, studies[j].slug) == 0) {
+                char t[64];
+                snprintf(t, sizeof t, "%.50s-%d", studies[k].slug, k + 1);
+                snprintf(studies[k].slug, sizeof studies[k].slug, "%s", t);
+            }
+
+    struct sl_report_out out;
+    memset(&out, 0, sizeof out);
+    struct sl_report_doc doc = {NULL, NULL, &out, 0};
+    if (!e)
+        e = sl_report_out_begin(&out, out_dir, d);
+    if (!e)
+        e = open_page(&out, "report.md", &doc.md, d);
+    if (!e)
+        e = open_page(&out, "report.html", &doc.html, d);
+    if (!e) {
+        page_begin(&doc, in, nstudies);
+        const char *rel[SL_REPORT_MAXKEYS + 1], *text[SL_REPORT_MAXKEYS + 1];
+        char anchors[SL_REPORT_MAXKEYS + 1][80], names[SL_REPORT_MAXKEYS + 1][80];
+        int nl = 0;
+        for (int k = 0; k < nstudies && nl < SL_REPORT_MAXKEYS; k++, nl++) {
+            snprintf(anchors[nl], sizeof anchors[nl], "#study-%s", studies[k].slug);
+            snprintf(names[nl], sizeof names[nl], "%s", studies[k].name);
+            rel[nl] = anchors[nl];
+            text[nl] = names[nl];
+        }
+        snprintf(anchors[nl], sizeof anchors[nl], "#provenance");
+        snprintf(names[nl], sizeof names[nl], "provenance");
+        rel[nl] = anchors[nl];
+        text[nl] = names[nl];
+        nl++;
+        fputs("<nav>", doc.html);
+        sl_report_doc_links(&doc, "Contents:", rel, text, nl);
+        fputs("</nav>\n", doc.html);
+    }
+    for (int k = 0; k < nstudies && !e; k++)
+        e = section_study(&doc, &studies[k], gp, in->source_dir, d);
+    if (!e)
+        e = section_provenance(&doc, in, d);
+    if (!e)
+        page_end(&doc, in);
+    for (int k = 0; k < 2; k++) {
+        FILE **f = k ? &doc.html : &doc.md;
+        if (!*f)
+            continue;
+        int bad = ferror(*f);
+        if ((fclose(*f) != 0 || bad) && !e)
+            e = sl_fail(d, SL_E_OUTPUT, out.dir, 0, k ? "report.html" : "report.md", "write failed");
+        *f = NULL;
+    }
+    if (!e)
+        e = sl_report_out_commit(&out, d);
+    else
+        sl_report_out_abort(&out);
+    free(cells);
+    free(studies);
+    return e;
+}

@@ -1,0 +1,88 @@
+/*
+ * report.h — `shadowlab report RESULTS_DB`: one self-contained page
+ * (report.html, inline CSS, no network) and its Markdown twin (report.md)
+ * from the results store, with the files they reference beside them:
+ *   - per study (config name): thesis-style tables in the layout of the
+ *     thesis whose methods the cells ran (Moderno 2011 Tables 5-23, Morais
+ *     2015 Table 7 and Tables 25/26), each also as a booktabs .tex file;
+ *   - the chain's steps per scene as stacked bars (Moderno Figures 31/32) and
+ *     wrong pixels against method time and rays per pixel with the Pareto
+ *     front marked, drawn by gnuplot (SVG);
+ *   - a cost section (times, rays, ray-triangle tests, GS primitives,
+ *     fragments), the error overlays the runs wrote (copied), and the
+ *     provenance of every run (git SHA, config and its hash, machine).
+ *
+ * Output is staged in DIR/.staging-<pid>/ and moved into DIR file by file
+ * (each rename atomic) only when everything was written, report.md and
+ * report.html last; a failure removes what it staged and leaves DIR as it was.
+ *
+ * Owns: nothing after return. Does not: run experiments, write to the store,
+ * print (errors come back as an id and an sl_diag), or fetch anything from
+ * the network. gnuplot is the one outside program it runs (popen).
+ */
+#ifndef SL_REPORT_H
+#define SL_REPORT_H
+#include <stddef.h>
+#include <stdint.h>
+#include "sl_error.h"
+#include "store.h"
+#include "table.h"
+
+/* Zero means the default. */
+struct sl_report_opts {
+    const char *db;        /* the results store (required) */
+    const char *out_dir;   /* NULL: <db folder>/report */
+    const char *gnuplot;   /* NULL: "gnuplot" searched in PATH */
+};
+
+/* What a report holds, read from the store or given by a test. Overlay paths
+ * of the cells are relative to source_dir. */
+struct sl_report_input {
+    const struct sl_table_cell *cells;
+    int                         ncells;
+    const struct sl_store_run  *runs;
+    int                         nruns;
+    const char                 *source;       /* shown as the report's source ("" allowed) */
+    const char                 *source_dir;   /* folder overlay paths are relative to */
+};
+
+/* Read the store and write the report; the folder written goes to dir (n
+ * bytes, may be NULL). SL_E_IO for a missing, empty or foreign database;
+ * SL_E_USAGE when it holds no results or gnuplot is not installed (key
+ * "gnuplot"); SL_E_OUTPUT when the folder cannot be written. */
+enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir, size_t n, struct sl_diag *d);
+
+/* Write the report of cells already in memory into out_dir. */
+enum sl_err sl_report_build(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
+                            struct sl_diag *d);
+
+/* ---- the accuracy-vs-cost data, exposed for its unit test ---- */
+
+/* One point per (study, label, map size): means over the label's cells of
+ * that map size (scenes, viewpoints, viewports). */
+struct sl_report_point {
+    char   label[48], method[32];
+    int    map_size;
+    int    ncells;
+    double wrong_pct;      /* wrong pixels, % of the non-background pixels (whole image) */
+    double ms;             /* the method's time per cell, ms: ms_layers + ms_step */
+    double ms_layers;      /* rendering the shadow-map layers it reads (median of repetitions) */
+    double ms_step;        /* its per-pixel step, ray step included (median of repetitions) */
+    double rays_per_px;    /* shadow rays per non-background pixel */
+    int    front_ms;       /* on the Pareto front of (ms, wrong_pct) */
+    int    front_rays;     /* on the Pareto front of (rays_per_px, wrong_pct) */
+};
+
+/* Points of the cells (callers pass one study), labels in order of first
+ * appearance, map sizes ascending within a label; both fronts marked.
+ * *out is malloc'ed (free), NULL when *n is 0. */
+enum sl_err sl_report_points(const struct sl_table_cell *cells, int ncells, struct sl_report_point **out,
+                             int *n, struct sl_diag *d);
+
+/* Pareto front of points (x[i], y[i]), both lower-is-better: front[i] = 1
+ * when no other point is <= in both and < in one. Equal points are all on
+ * the front; NaN points never are and dominate nothing. Returns the number
+ * on the front. */
+int sl_report_pareto(const double *x, const double *y, int n, unsigned char *front);
+
+#endif

@@ -1,0 +1,144 @@
+/*
+ * report_int.h — the report's parts, shared by the files of report/ only:
+ *   out    the staging folder and the list of files to move into place
+ *   tab    a table as a grid of strings, rendered three ways (HTML,
+ *          Markdown, booktabs LaTeX) so the three can never disagree
+ *   doc    the two pages written in step (HTML and Markdown)
+ *   study  one config's cells and the keys they span
+ * and the sections: layouts.c (thesis tables, costs), plots.c (gnuplot).
+ * Nothing here prints; every fallible call returns an sl_err.
+ */
+#ifndef SL_REPORT_INT_H
+#define SL_REPORT_INT_H
+#include <stdio.h>
+#include "report.h"
+
+/* ---- out ---- */
+
+struct sl_report_file {
+    char *rel;      /* path inside the report folder */
+    int   keep;     /* 0: scratch, removed at commit; 1: moved into place; 2: moved after every 1 */
+};
+
+struct sl_report_out {
+    char  dir[1024];
+    char  stage[1100];
+    struct sl_report_file *files;
+    int   n, cap;
+};
+
+enum sl_err sl_report_out_begin(struct sl_report_out *o, const char *dir, struct sl_diag *d);
+/* Register rel (made of [A-Za-z0-9._-] and '/') and give its staging path,
+ * making its folders. Registering a rel twice is SL_E_INTERNAL. */
+enum sl_err sl_report_out_path(struct sl_report_out *o, const char *rel, int keep, char *path, size_t n,
+                               struct sl_diag *d);
+/* 1 if rel is registered. */
+int         sl_report_out_has(const struct sl_report_out *o, const char *rel);
+enum sl_err sl_report_out_commit(struct sl_report_out *o, struct sl_diag *d);
+void        sl_report_out_abort(struct sl_report_out *o);   /* also frees */
+
+/* "a b/c" -> "a-b-c": letters, digits, '.', '_' and '-' only. */
+void sl_report_slug(const char *s, char *buf, size_t n);
+
+/* ---- tab ---- */
+
+#define SL_REPORT_MAXCOLS 24
+
+struct sl_report_tab {
+    char  id[160];          /* file stem of the .tex (a slug) */
+    char  title[320];
+    char  note[1024];       /* printed under the table */
+    int   ncols, nkeys;     /* the first nkeys columns are keys (left aligned) */
+    int   wrap;             /* HTML: long cells may wrap (text tables) */
+    char *head[SL_REPORT_MAXCOLS];
+    int   ngroups;          /* optional row above the header: spans over columns */
+    char  group[SL_REPORT_MAXCOLS][64];
+    int   span[SL_REPORT_MAXCOLS];
+    int   nrows, cap;
+    char **cell;            /* nrows * ncols; NULL = empty */
+    unsigned char *rule;    /* 1: a block starts at this row */
+    int   oom;
+};
+
+void sl_report_tab_init(struct sl_report_tab *t, const char *id, int ncols, int nkeys, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+void sl_report_tab_head(struct sl_report_tab *t, int col, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+void sl_report_tab_group(struct sl_report_tab *t, int span, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+void sl_report_tab_row(struct sl_report_tab *t, int block);   /* block: a rule before it */
+void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+void sl_report_tab_free(struct sl_report_tab *t);
+
+/* ---- doc ---- */
+
+struct sl_report_doc {
+    FILE *html, *md;
+    struct sl_report_out *out;
+    int   ntables;
+};
+
+void sl_report_doc_heading(struct sl_report_doc *doc, int level, const char *anchor, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+void sl_report_doc_para(struct sl_report_doc *doc, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+/* "text" linking to rel, as a paragraph of its own */
+void sl_report_doc_link(struct sl_report_doc *doc, const char *rel, const char *text);
+/* Links in one paragraph: rel[i] named text[i]; prefix before them. */
+void sl_report_doc_links(struct sl_report_doc *doc, const char *prefix, const char *const *rel,
+                         const char *const *text, int n);
+void sl_report_doc_image(struct sl_report_doc *doc, const char *rel, const char *caption);
+/* A gallery of small images with captions (HTML grid, Markdown list). */
+void sl_report_doc_gallery(struct sl_report_doc *doc, const char *const *rel, const char *const *caption, int n);
+void sl_report_doc_details(struct sl_report_doc *doc, const char *summary, const char *text);
+void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int n);
+/* The table in both pages, its .tex in tex/<id>.tex linked under it. */
+enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_report_tab *t, struct sl_diag *d);
+
+/* ---- study ---- */
+
+#define SL_REPORT_MAXKEYS 64
+
+struct sl_report_view { char scene[64], viewpoint[32]; int vw, vh; };
+
+struct sl_report_study {
+    char  name[64], slug[64];
+    const struct sl_table_cell *cells;   /* the study's cells (not owned) */
+    int   n;
+    struct sl_report_view views[256];    /* scene x viewpoint x viewport, in order of first appearance */
+    int   nviews;
+    char  scenes[SL_REPORT_MAXKEYS][64];
+    int   nscenes;
+    char  labels[SL_REPORT_MAXKEYS][48], methods[SL_REPORT_MAXKEYS][32];
+    int   nlabels;
+    int   maps[SL_REPORT_MAXKEYS], nmaps;          /* ascending */
+    int   regions[SL_MAX_REGIONS], nregions;       /* contours ascending, whole image (0) last */
+    int   moderno, morais;                         /* layouts chosen for it */
+};
+
+/* Fill the keys of s from its cells; SL_E_USAGE when they exceed the limits. */
+enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d);
+/* The study's cell of a key, NULL if none. */
+const struct sl_table_cell *sl_report_study_cell(const struct sl_report_study *s, const struct sl_report_view *v,
+                                                 const char *label, int map_size);
+/* Index of a region of thickness t in the cell, -1 if it has none. */
+int sl_report_region(const struct sl_table_cell *c, int thickness);
+void sl_report_region_name(int thickness, char *buf, size_t n);
+
+/* layouts.c */
+enum sl_err sl_report_moderno(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+/* 1 if the method belongs to the layout (Moderno: coherence ... chain; Morais: bgsm ... raytrace; nsm both) */
+int sl_report_is_moderno(const char *method);
+int sl_report_is_morais(const char *method);
+
+/* plots.c */
+enum sl_err sl_report_gnuplot_find(const char *want, char *path, size_t n, struct sl_diag *d);
+enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                                 struct sl_diag *d);
+enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_report_study *s,
+                                    const char *gnuplot, struct sl_diag *d);
+
+#endif

@@ -1,0 +1,124 @@
+#!/usr/bin/env bash
+# cli::report — `shadowlab report` end to end: run a tiny study of both
+# theses' methods (with the chain, overlays on), write the report, render
+# report.html with headless Chromium and check the screenshot is not blank
+# (OpenImageIO stats), that every file the HTML and the Markdown reference
+# exists, that each table has its .tex, that the page needs no network; then
+# the refusals: missing, empty, foreign and cell-less databases, no gnuplot,
+# and a failing gnuplot, which must leave the earlier report untouched.
+# Skips (77) only when Chromium is not installed.
+set -u
+bin=${1:?usage: cli_report.sh path/to/shadowlab}
+chromium=$(command -v chromium || command -v chromium-browser || true)
+if [ -z "$chromium" ]; then
+  echo "SKIP chromium is not installed (Debian: apt-get install chromium)"; exit 77
+fi
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0; passes=0
+ok()   { passes=$((passes + 1)); }
+fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+
+cat >"$tmp/mini.yaml" <<'YAML'
+name: mini
+scenes:
+  - {scene: primitives, viewpoints: [side, with]}
+viewports: [{width: 96, height: 96}]
+map_sizes: [256, 512]
+contours: [2, 4]
+methods:
+  - {label: nsm, method: nsm, self_shadow: front_faces}
+  - {label: coherence4, method: coherence, texels: 4}
+  - {label: chain, method: chain, finish: trace}
+  - {label: chain_lit, method: chain, finish: lit}
+  - {label: csm_adj, method: csm_adj}
+  - {label: raytrace, method: raytrace}
+outputs: {tables: true, overlays: true, overlay_contour: 2}
+repetitions: {warmup: 0, runs: 2}
+YAML
+"$bin" run "$tmp/mini.yaml" --out "$tmp/res" --no-cache >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; echo "FAIL run"; exit 1; }
+db="$tmp/res/shadowlab.db"
+# one overlay recorded but gone: listed on the page, not an error
+gone=$(ls "$tmp"/res/mini/overlays/*.png | head -1)
+rm -f "$gone"
+
+# ---- the report, in the default folder ----
+if "$bin" report "$db" >"$tmp/report.out" 2>&1; then ok; else cat "$tmp/report.out"; fail "report exited $?"; fi
+rep="$tmp/res/report"
+html="$rep/report.html"; md="$rep/report.md"
+[ -s "$html" ] && [ -s "$md" ] && ok || fail "report.html or report.md missing"
+grep -q "$(basename "$gone")" "$html" && ok || fail "the missing overlay is not listed"
+ls -a "$rep" | grep -q staging && fail "a staging folder was left" || ok
+
+# every local reference exists (HTML src/href, Markdown links and images)
+refs=$(grep -o -E '(src|href)="[^"#][^"]*"' "$html" | sed -E 's/^(src|href)="//; s/"$//' | sort -u)
+n=0
+for r in $refs; do
+  n=$((n + 1))
+  case "$r" in *://*) fail "external reference $r"; continue ;; esac
+  [ -s "$rep/$r" ] || fail "report.html references $r, which is not there"
+done
+[ "$n" -ge 40 ] && ok || fail "only $n references in report.html"
+for r in $(grep -o -E '\]\([^)#][^)]*\)' "$md" | sed -E 's/^\]\(//; s/\)$//' | sort -u); do
+  [ -s "$rep/$r" ] || fail "report.md references $r, which is not there"
+done
+grep -q 'plots/mini-chain-primitives.svg' "$html" && ok || fail "no chain plot"
+grep -q 'plots/mini-accuracy-time.svg' "$html" && grep -q 'plots/mini-accuracy-rays.svg' "$html" && ok || fail "no accuracy plots"
+grep -q 'overlays/mini/' "$html" && ok || fail "no overlay shown"
+# one LaTeX file per table
+ntab=$(grep -c -E '<table[ >]' "$html"); ntex=$(grep -o 'href="tex/[^"]*"' "$html" | sort -u | wc -l)
+[ "$ntab" -gt 10 ] && [ "$ntab" -eq "$ntex" ] && ok || fail "$ntab tables but $ntex .tex links"
+grep -q '\\toprule' "$rep"/tex/mini-costs.tex && ok || fail "tex is not booktabs"
+# self-contained: no scripts, no stylesheet links, no remote fonts
+grep -q -i -E '<script|<link |@import|url\(|https?://' "$html" && fail "the page reaches outside itself" || ok
+for want in 'Moderno 2011 Table 5' 'Moderno 2011 Tables 17/18' 'Moderno 2011 Table 23' 'Morais 2015 Table 7' \
+            'Morais 2015 Table 25' 'Pareto front' 'carry the comparison to a GPU' 'Run 1: config' 'llvmpipe'; do
+  grep -q "$want" "$html" && ok || fail "no '$want' in the page"
+done
+
+# ---- headless Chromium renders it ----
+shot="$tmp/shot.png"
+timeout 120 "$chromium" --headless=new --no-sandbox --disable-gpu --hide-scrollbars \
+  --user-data-dir="$tmp/chrome" --screenshot="$shot" --window-size=1280,2000 "file://$html" >"$tmp/chrome.out" 2>&1
+if [ -s "$shot" ]; then ok; else cat "$tmp/chrome.out"; fail "chromium wrote no screenshot"; fi
+stats=$( (oiiotool --stats "$shot" || iinfo --stats "$shot") 2>/dev/null)
+sd=$(echo "$stats" | sed -n 's/.*StdDev: *//p' | head -1 | tr ' ' '\n' | grep -E '^[0-9.]+$' | sort -g | tail -1)
+if [ -n "$sd" ] && awk -v s="$sd" 'BEGIN { exit !(s > 5.0) }'; then ok; else echo "$stats"; fail "blank screenshot (stddev ${sd:-?})"; fi
+echo "$stats" | grep -q 'Constant: Yes' && fail "screenshot is one colour" || ok
+
+# ---- --out elsewhere ----
+"$bin" report "$db" --out "$tmp/elsewhere" >/dev/null 2>&1 && [ -s "$tmp/elsewhere/report.html" ] && ok ||
+  fail "report --out"
+
+# ---- refusals: exit 2, one line naming the problem, nothing written ----
+refuse() {  # refuse WHAT EXPECTED_TEXT command...
+  local what=$1 text=$2; shift 2
+  "$@" >"$tmp/r.out" 2>"$tmp/r.err"; local rc=$?
+  if [ "$rc" -ne 2 ]; then fail "$what: exit $rc, wanted 2"; return; fi
+  [ "$(wc -l <"$tmp/r.err")" -eq 1 ] || { fail "$what: not one line:"; cat "$tmp/r.err"; return; }
+  grep -q -i -- "$text" "$tmp/r.err" && ok || { fail "$what: message lacks '$text':"; cat "$tmp/r.err"; }
+}
+refuse "missing db" "no such results store" "$bin" report "$tmp/nope.db" --out "$tmp/x1"
+: >"$tmp/empty.db"
+refuse "empty file" "empty file" "$bin" report "$tmp/empty.db" --out "$tmp/x2"
+echo "not a database" >"$tmp/text.db"
+refuse "foreign file" "text.db" "$bin" report "$tmp/text.db" --out "$tmp/x3"
+: >"$tmp/store.db"
+"$bin" table "$tmp/store.db" >/dev/null 2>&1   # initialises an empty store
+refuse "store without cells" "no cells" "$bin" report "$tmp/store.db" --out "$tmp/x4"
+refuse "no gnuplot" "gnuplot" env PATH=/nonexistent "$bin" report "$db" --out "$tmp/x5"
+for x in x1 x2 x3 x4 x5; do [ -e "$tmp/$x" ] && fail "refused report $x still wrote $tmp/$x"; done
+"$bin" report >/dev/null 2>"$tmp/r.err"; rc=$?
+[ "$rc" -eq 2 ] && head -1 "$tmp/r.err" | grep -q "missing RESULTS_DB" && ok || fail "usage: exit $rc"
+
+# a gnuplot that fails: error, and the report already there is untouched
+mkdir -p "$tmp/fakebin"
+printf '#!/bin/sh\ncat >/dev/null\necho "line 1: fake error" >&2\nexit 1\n' >"$tmp/fakebin/gnuplot"
+chmod +x "$tmp/fakebin/gnuplot"
+before=$(cd "$rep" && find . -type f | sort | xargs md5sum)
+refuse "failing gnuplot" "gnuplot failed" env PATH="$tmp/fakebin:$PATH" "$bin" report "$db"
+after=$(cd "$rep" && find . -type f | sort | xargs md5sum)
+[ "$before" = "$after" ] && ok || fail "a failed report changed the earlier one"
+
+echo "$passes passed, $fails failed"
+[ "$fails" -eq 0 ]

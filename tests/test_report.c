@@ -1,0 +1,346 @@
+/* report::* — the report generator on cells built here (no store, no GL):
+ * the Pareto front and the accuracy-vs-cost points on known values, a whole
+ * report of Moderno, Morais and chain cells (every file it references is
+ * there, overlays copied or listed missing, no staging left), and the
+ * refusals: no gnuplot, a failing gnuplot (nothing half-written), no cells. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "report.h"
+
+/* ---- Pareto ---- */
+
+static void report_pareto(void **st)
+{
+    (void)st;
+    /* lower is better in both */
+    const double x[] = {1, 2, 3, 4, 2, NAN, 5, 1, 0.5};
+    const double y[] = {5, 3, 4, 1, 3, 0, 5, 6, NAN};
+    const unsigned char want[] = {1, 1, 0, 1, 1, 0, 0, 0, 0};
+    unsigned char front[9];
+    int n = sl_report_pareto(x, y, 9, front);
+    for (int i = 0; i < 9; i++)
+        assert_int_equal(front[i], want[i]);
+    assert_int_equal(n, 4);
+    /* one point is its own front; none is empty */
+    assert_int_equal(sl_report_pareto(x, y, 1, front), 1);
+    assert_int_equal(front[0], 1);
+    assert_int_equal(sl_report_pareto(x, y, 0, front), 0);
+}
+
+/* ---- cells ---- */
+
+/* A cell with regions 2 px and image, figures consistent with figures.h:
+ * pixels = pfl + pnfl = light + shadow + uncertain. */
+static struct sl_table_cell cell(const char *study, const char *scene, const char *vp, const char *label,
+                                 const char *method, int map, uint64_t wrong, double ms, uint64_t rays)
+{
+    struct sl_table_cell c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.study, sizeof c.study, "%s", study);
+    snprintf(c.scene, sizeof c.scene, "%s", scene);
+    snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
+    snprintf(c.label, sizeof c.label, "%s", label);
+    snprintf(c.method, sizeof c.method, "%s", method);
+    c.vw = 64;
+    c.vh = 32;
+    c.map_size = map;
+    c.run_id = 1;
+    c.n_pfl = 1800;
+    c.n_pnfl = 200;
+    c.n_background = 48;
+    c.fig.background = 48;
+    c.fig.wrong_image = wrong;
+    c.fig.nregions = 2;
+    for (int r = 0; r < 2; r++) {
+        struct sl_region_figures *g = &c.fig.r[r];
+        uint64_t scale = r ? 1 : 4;   /* the contour holds a quarter of the image */
+        g->thickness = r ? 0 : 2;
+        g->n[SL_FIG_pixels] = 2000 / scale;
+        g->n[SL_FIG_pfl] = 1800 / scale;
+        g->n[SL_FIG_pnfl] = 200 / scale;
+        g->n[SL_FIG_light] = 1000 / scale;
+        g->n[SL_FIG_shadow] = 900 / scale;
+        g->n[SL_FIG_uncertain] = 100 / scale;
+        g->n[SL_FIG_wrong] = r ? wrong : wrong / 2;
+        g->n[SL_FIG_light_incorrect] = g->n[SL_FIG_wrong] / 2;
+        g->n[SL_FIG_light_correct] = g->n[SL_FIG_light] - g->n[SL_FIG_light_incorrect];
+        g->n[SL_FIG_shadow_incorrect] = g->n[SL_FIG_wrong] - g->n[SL_FIG_light_incorrect];
+        g->n[SL_FIG_shadow_correct] = g->n[SL_FIG_shadow] - g->n[SL_FIG_shadow_incorrect];
+        g->n[SL_FIG_wrong_caught] = g->n[SL_FIG_wrong];
+        if (!strcmp(method, "chain") || !strcmp(method, "coherence")) {
+            g->n[SL_FIG_hinted] = 300 / scale;
+            g->n[SL_FIG_hinted_wrong] = 10 / scale;
+            g->n[SL_FIG_nsm_light] = 1000 / scale;
+            g->n[SL_FIG_nsm_shadow] = 800 / scale;
+            g->n[SL_FIG_hinted_light] = 200 / scale;
+            g->n[SL_FIG_hinted_shadow] = 100 / scale;
+        }
+        if (!strcmp(method, "chain")) {
+            g->n[SL_FIG_confirmed] = 400 / scale;
+            g->n[SL_FIG_confirmed_adj] = 100 / scale;
+            g->n[SL_FIG_corrected] = 80 / scale;
+            g->n[SL_FIG_traced] = 200 / scale;
+            g->n[SL_FIG_fixed_ls] = 20 / scale;
+            g->n[SL_FIG_kept_right] = 1500 / scale;
+        }
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            const char *of = sl_figure_of((enum sl_figure)k);
+            double base = NAN;
+            if (!strcmp(of, "wrong_image"))
+                base = (double)wrong;
+            for (int b = 0; b < SL_FIG_COUNT; b++)
+                if (of[0] && !strcmp(of, sl_figure_name((enum sl_figure)b)))
+                    base = (double)g->n[b];
+            g->pct[k] = base > 0 ? 100.0 * (double)g->n[k] / base : NAN;
+        }
+    }
+    c.cost.runs = 3;
+    c.cost.method[SL_MED] = ms;
+    c.cost.method[SL_MIN] = 0.9 * ms;
+    c.cost.method[SL_MAX] = 1.2 * ms;
+    c.cost.map_render[SL_MED] = 2.0;
+    c.cost.map_render[SL_MIN] = 1.5;
+    c.cost.map_render[SL_MAX] = 3.0;
+    c.cost.rays = rays;
+    c.cost.tri_tests = 7 * rays;
+    c.cost.gs_prims = 1234;
+    c.cost.fragments = 56789;
+    snprintf(c.git_sha, sizeof c.git_sha, "abc1234");
+    snprintf(c.config_hash, sizeof c.config_hash, "0123456789abcdef");
+    snprintf(c.machine, sizeof c.machine, "host/cpu/isa");
+    return c;
+}
+
+static void report_points(void **st)
+{
+    (void)st;
+    struct sl_table_cell c[5];
+    /* a: 1024 given before 512; two views at 512 */
+    c[0] = cell("s", "sc", "v1", "a", "nsm", 1024, 20, 4.0, 0);
+    c[1] = cell("s", "sc", "v1", "a", "nsm", 512, 40, 1.0, 0);
+    c[2] = cell("s", "sc", "v2", "a", "nsm", 512, 60, 3.0, 0);
+    c[3] = cell("s", "sc", "v1", "b", "raytrace", 512, 0, 50.0, 4000);
+    c[4] = cell("s", "sc", "v1", "b", "raytrace", 1024, 0, 60.0, 2000);
+    struct sl_report_point *p = NULL;
+    int n = 0;
+    struct sl_diag d;
+    assert_int_equal(sl_report_points(c, 5, &p, &n, &d), SL_OK);
+    assert_int_equal(n, 4);
+    assert_string_equal(p[0].label, "a");
+    assert_int_equal(p[0].map_size, 512);
+    assert_int_equal(p[0].ncells, 2);
+    assert_true(fabs(p[0].wrong_pct - 100.0 * (40.0 + 60.0) / 2.0 / 2000.0) < 1e-9);   /* 2.5 % */
+    /* time = layers (2 ms each, cell()) + step */
+    assert_true(fabs(p[0].ms_step - 2.0) < 1e-9);
+    assert_true(fabs(p[0].ms_layers - 2.0) < 1e-9);
+    assert_true(fabs(p[0].ms - 4.0) < 1e-9);
+    assert_int_equal(p[1].map_size, 1024);
+    assert_true(fabs(p[1].wrong_pct - 1.0) < 1e-9);
+    assert_true(fabs(p[1].ms - 6.0) < 1e-9);
+    assert_string_equal(p[2].label, "b");
+    assert_int_equal(p[2].map_size, 512);
+    assert_true(fabs(p[2].rays_per_px - 2.0) < 1e-9);
+    assert_true(fabs(p[3].rays_per_px - 1.0) < 1e-9);
+    /* time front: a 512 (4 ms, 2.5 %), a 1024 (6 ms, 1 %), b 512 (52 ms, 0 %); b 1024 (62 ms, 0 %) is beaten */
+    assert_int_equal(p[0].front_ms, 1);
+    assert_int_equal(p[1].front_ms, 1);
+    assert_int_equal(p[2].front_ms, 1);
+    assert_int_equal(p[3].front_ms, 0);
+    /* rays front: a 512 and a 1024 tie at 0 rays: only a 1024 (fewer wrong); b 1024 (1 ray/px, 0 %) */
+    assert_int_equal(p[0].front_rays, 0);
+    assert_int_equal(p[1].front_rays, 1);
+    assert_int_equal(p[2].front_rays, 0);
+    assert_int_equal(p[3].front_rays, 1);
+    free(p);
+}
+
+/* ---- whole report ---- */
+
+static int exists(const char *dir, const char *rel)
+{
+    char p[1400];
+    struct stat st;
+    snprintf(p, sizeof p, "%s/%s", dir, rel);
+    return stat(p, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = malloc((size_t)n + 1);
+    if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
+        free(s);
+        s = NULL;
+    }
+    if (s)
+        s[n] = '\0';
+    fclose(f);
+    return s;
+}
+
+/* every src="..." and href="..." that is not an anchor names a file of dir */
+static int count_refs(const char *html, const char *dir, int *missing)
+{
+    int n = 0;
+    *missing = 0;
+    const char *keys[] = {"src=\"", "href=\""};
+    for (int k = 0; k < 2; k++)
+        for (const char *p = strstr(html, keys[k]); p; p = strstr(p + 1, keys[k])) {
+            const char *v = p + strlen(keys[k]);
+            const char *end = strchr(v, '"');
+            if (!end || *v == '#')
+                continue;
+            char rel[600];
+            snprintf(rel, sizeof rel, "%.*s", (int)(end - v), v);
+            n++;
+            if (!exists(dir, rel)) {
+                fprintf(stderr, "missing: %s\n", rel);
+                (*missing)++;
+            }
+        }
+    return n;
+}
+
+static int build_cells(struct sl_table_cell *c)
+{
+    int n = 0;
+    const char *vps[] = {"side", "with"};
+    const int maps[] = {512, 1024};
+    for (int v = 0; v < 2; v++)
+        for (int m = 0; m < 2; m++) {
+            c[n++] = cell("moderno-mini", "bench", vps[v], "nsm", "nsm", maps[m], 40 - 10 * m, 1.0, 0);
+            c[n++] = cell("moderno-mini", "bench", vps[v], "coherence4", "coherence", maps[m], 30, 2.0, 0);
+            c[n++] = cell("moderno-mini", "bench", vps[v], "chain", "chain", maps[m], 4, 9.0, 300);
+            c[n++] = cell("morais-mini", "trees", vps[v], "nsm", "nsm", maps[m], 50, 1.0, 0);
+            c[n++] = cell("morais-mini", "trees", vps[v], "csm_adj", "csm_adj", maps[m], 0, 6.0, 500);
+            c[n++] = cell("morais-mini", "trees", vps[v], "raytrace", "raytrace", maps[m], 0, 40.0, 2000);
+        }
+    return n;
+}
+
+static void report_build(void **st)
+{
+    (void)st;
+    char src[300], out[300];
+    snprintf(src, sizeof src, "%s/src", sl_test_dir);
+    snprintf(out, sizeof out, "%s/out with space", sl_test_dir);
+    assert_int_equal(mkdir(src, 0777), 0);
+    /* one overlay there, one recorded but missing */
+    char ov[400];
+    snprintf(ov, sizeof ov, "%s/ov.png", src);
+    FILE *f = fopen(ov, "wb");
+    assert_non_null(f);
+    fputs("\x89PNG not really", f);
+    fclose(f);
+    static struct sl_table_cell c[32];
+    int n = build_cells(c);
+    snprintf(c[0].overlay, sizeof c[0].overlay, "ov.png");
+    snprintf(c[1].overlay, sizeof c[1].overlay, "gone/ov2.png");
+    struct sl_store_run runs[2];
+    memset(runs, 0, sizeof runs);
+    runs[0].run_id = 1;
+    snprintf(runs[0].study, sizeof runs[0].study, "moderno-mini");
+    snprintf(runs[0].config_path, sizeof runs[0].config_path, "configs/x.yaml");
+    snprintf(runs[0].config_hash, sizeof runs[0].config_hash, "0123456789abcdef");
+    snprintf(runs[0].prov.git_sha, sizeof runs[0].prov.git_sha, "abc1234");
+    runs[0].config_text = "name: moderno-mini\n# <b>not html</b> & ```fence```\n";
+    runs[0].ncells = 12;
+    runs[1] = runs[0];
+    runs[1].run_id = 2;
+    runs[1].config_text = NULL;
+    struct sl_report_input in = {c, n, runs, 2, "test cells", src};
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_report_build(&in, out, NULL, &d);
+    if (e)
+        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_true(exists(out, "report.html"));
+    assert_true(exists(out, "report.md"));
+    assert_true(exists(out, "overlays/moderno-mini/bench-side-64x32-512-nsm.png"));
+    assert_true(exists(out, "plots/moderno-mini-chain-bench.svg"));
+    assert_true(exists(out, "plots/moderno-mini-accuracy-time.svg"));
+    assert_true(exists(out, "plots/morais-mini-accuracy-rays.svg"));
+    assert_true(exists(out, "tex/morais-mini-table7-trees-side-64x32.tex"));
+    assert_true(exists(out, "tex/moderno-mini-vs-nsm-bench-side-64x32.tex"));
+    assert_true(exists(out, "data/morais-mini-figures.csv"));
+    char path[600];
+    snprintf(path, sizeof path, "%s/report.html", out);
+    char *html = slurp(path);
+    assert_non_null(html);
+    int missing = 0;
+    int refs = count_refs(html, out, &missing);
+    assert_true(refs > 20);
+    assert_int_equal(missing, 0);
+    assert_non_null(strstr(html, "gone/ov2.png"));                 /* listed as missing */
+    assert_non_null(strstr(html, "&lt;b&gt;not html&lt;/b&gt;"));  /* config text escaped */
+    assert_non_null(strstr(html, "Morais 2015 Table 7"));
+    assert_non_null(strstr(html, "Moderno 2011 Table 23"));
+    assert_non_null(strstr(html, "carry the comparison to a GPU"));
+    assert_null(strstr(html, "http://"));
+    assert_null(strstr(html, "https://"));
+    free(html);
+    snprintf(path, sizeof path, "%s/report.md", out);
+    char *md = slurp(path);
+    assert_non_null(md);
+    assert_non_null(strstr(md, "](plots/moderno-mini-chain-bench.svg)"));
+    assert_non_null(strstr(md, "````yaml"));   /* the fence outgrows the text's ``` */
+    free(md);
+    /* no staging folder left */
+    char cmd[700];
+    snprintf(cmd, sizeof cmd, "test -z \"$(ls -A '%s' | grep staging)\"", out);
+    assert_int_equal(system(cmd), 0);
+
+    /* a gnuplot that fails leaves the earlier report whole and no staging */
+    struct stat before, after;
+    snprintf(path, sizeof path, "%s/report.html", out);
+    assert_int_equal(stat(path, &before), 0);
+    c[2].fig.r[0].n[SL_FIG_pixels] = 1;   /* a changed report, were it written */
+    e = sl_report_build(&in, out, "/bin/false", &d);
+    assert_int_equal(e, SL_E_IO);
+    assert_string_equal(d.key, "plots/moderno-mini-chain-bench.svg");
+    assert_int_equal(stat(path, &after), 0);
+    assert_int_equal(before.st_mtime, after.st_mtime);
+    assert_int_equal(before.st_size, after.st_size);
+    assert_int_equal(system(cmd), 0);
+
+    /* no gnuplot: refused before anything is written */
+    char fresh[400];
+    snprintf(fresh, sizeof fresh, "%s/never", sl_test_dir);
+    e = sl_report_build(&in, fresh, "/nonexistent/gnuplot", &d);
+    assert_int_equal(e, SL_E_USAGE);
+    assert_string_equal(d.key, "gnuplot");
+    assert_non_null(strstr(d.msg, "gnuplot"));
+    assert_int_equal(access(fresh, F_OK), -1);
+
+    /* no cells */
+    in.ncells = 0;
+    assert_int_equal(sl_report_build(&in, fresh, NULL, &d), SL_E_USAGE);
+    assert_int_equal(access(fresh, F_OK), -1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(report, pareto),
+        SL_CASE(report, points),
+        SL_CASE(report, build),
+    };
+    return cmocka_run_group_tests_name("report", tests, sl_test_setup, sl_test_teardown);
+}
