@@ -38,6 +38,7 @@ struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bo
 struct raw_scene_ref {
     char *scene;
     char **viewpoints; unsigned viewpoints_count;
+    unsigned *map_sizes; unsigned map_sizes_count;
 };
 struct raw_reps { unsigned *warmup; unsigned *runs; };
 struct raw_config {
@@ -86,6 +87,8 @@ static const cyaml_schema_field_t scene_ref_fields[] = {
     CYAML_FIELD_STRING_PTR("scene", CYAML_FLAG_POINTER, struct raw_scene_ref, scene, 1, 255),
     CYAML_FIELD_SEQUENCE("viewpoints", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
                          viewpoints, &str_schema, 1, SL_MAX_VIEWPOINTS),
+    CYAML_FIELD_SEQUENCE("map_sizes", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
+                         map_sizes, &uint_schema, 1, SL_CFG_MAX),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t scene_ref_schema = {
@@ -219,9 +222,37 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         unsigned m = r->map_sizes[i];
         if (!is_pow2(m) || m < 64 || m > 16384)
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "map size %u: must be a power of two in 64..16384", m);
+        for (unsigned k = 0; k < i; k++)
+            if (r->map_sizes[k] == m)
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "map size %u listed twice", m);
         c->maps[i] = (int)m;
     }
-    c->nmaps = (int)r->map_sizes_count;
+    c->nmaps = (int)r->map_sizes_count;   /* distinct powers of two 64..16384: at most 9 */
+    /* a scene may have map sizes of its own (e.g. one scene at 16384² in a
+     * sweep at 512²): c->maps is then the union, and each scene's mask says
+     * which of them it is swept at */
+    for (unsigned si = 0; si < r->scenes_count; si++) {
+        const struct raw_scene_ref *rs = &r->scenes[si];
+        struct sl_config_scene *cs = &c->scenes[si];
+        cs->map_mask = rs->map_sizes_count ? 0u : (1u << c->nmaps) - 1u;
+        for (unsigned i = 0; i < rs->map_sizes_count; i++) {
+            snprintf(key, sizeof key, "scenes[%u].map_sizes[%u]", si, i);
+            unsigned m = rs->map_sizes[i];
+            if (!is_pow2(m) || m < 64 || m > 16384)
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "map size %u: must be a power of two in 64..16384", m);
+            int k = 0;
+            while (k < c->nmaps && c->maps[k] != (int)m)
+                k++;
+            if (k == c->nmaps) {
+                if (c->nmaps == SL_CFG_MAX)
+                    return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "more than %d map sizes in all", SL_CFG_MAX);
+                c->maps[c->nmaps++] = (int)m;
+            }
+            if (cs->map_mask & (1u << k))
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "map size %u listed twice", m);
+            cs->map_mask |= 1u << k;
+        }
+    }
 
     static const unsigned default_contours[] = {2, 4, 6};
     const unsigned *ct = r->contours_count ? r->contours : default_contours;
@@ -373,6 +404,10 @@ void sl_config_write(const struct sl_config *c, FILE *f)
         fprintf(f, "  - {scene: %s, viewpoints: [", c->scenes[s].ref);
         for (int i = 0; i < c->scenes[s].nviewpoints; i++)
             fprintf(f, "%s%s", i ? ", " : "", c->scenes[s].viewpoints[i]);
+        fprintf(f, "], map_sizes: [");
+        for (int i = 0, k = 0; i < c->nmaps; i++)
+            if (c->scenes[s].map_mask & (1u << i))
+                fprintf(f, "%s%d", k++ ? ", " : "", c->maps[i]);
         fprintf(f, "]}\n");
     }
     fprintf(f, "viewports:\n");

@@ -43,6 +43,7 @@ struct sl_config_scene {
     char name[64];                    /* the scene's own name */
     int  nviewpoints;                 /* resolved: never 0 */
     char viewpoints[SL_MAX_VIEWPOINTS][32];
+    unsigned map_mask;                /* bit i: swept at map size maps[i] */
 };
 
 struct sl_config {

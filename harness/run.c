@@ -45,11 +45,19 @@ void sl_run_result_free(struct sl_run_result *r)
     memset(r, 0, sizeof *r);
 }
 
+static int popcount(unsigned m)
+{
+    int n = 0;
+    for (; m; m &= m - 1)
+        n++;
+    return n;
+}
+
 int sl_plan_count(const struct sl_config *c)
 {
     int n = 0;
     for (int s = 0; s < c->nscenes; s++)
-        n += c->nviewports * c->scenes[s].nviewpoints * c->nmaps * c->nmethods;
+        n += c->nviewports * c->scenes[s].nviewpoints * popcount(c->scenes[s].map_mask) * c->nmethods;
     return n;
 }
 
@@ -57,13 +65,17 @@ void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k)
 {
     memset(k, 0, sizeof *k);
     for (int s = 0; s < c->nscenes; s++) {
-        int per = c->nviewports * c->scenes[s].nviewpoints * c->nmaps * c->nmethods;
+        unsigned mask = c->scenes[s].map_mask;
+        int nm = popcount(mask);
+        int per = c->nviewports * c->scenes[s].nviewpoints * nm * c->nmethods;
         if (index < per) {
             k->scene = s;
             k->method = index % c->nmethods;
             index /= c->nmethods;
-            k->map = index % c->nmaps;
-            index /= c->nmaps;
+            int j = index % nm;           /* the j-th map size this scene is swept at */
+            for (k->map = 0; !(mask & (1u << k->map)) || j-- > 0; k->map++)
+                ;
+            index /= nm;
             k->vp = index % c->scenes[s].nviewpoints;
             k->viewport = index / c->scenes[s].nviewpoints;
             return;

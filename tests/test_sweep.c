@@ -53,6 +53,46 @@ static void sweep_plan_order(void **st)
     assert_int_equal(k.method, 2);
 }
 
+/* A scene with map sizes of its own: swept at those only, the others at the
+ * config's; the union is the config's list of map sizes. */
+static void sweep_scene_map_sizes(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("c.yaml",
+                   "scenes:\n  - {scene: primitives, viewpoints: [side, with]}\n"
+                   "  - {scene: blocks, map_sizes: [1024, 256, 8192]}\n"
+                   "viewports: [{width: 64, height: 64}]\nmap_sizes: [256, 512]\n"
+                   "methods: [{label: a, method: nsm}, {label: b, method: nsm, self_shadow: none}]\n", &c);
+    assert_int_equal(c.nmaps, 4);
+    assert_int_equal(c.maps[2], 1024);
+    assert_int_equal(c.maps[3], 8192);
+    assert_int_equal(c.scenes[0].map_mask, 0x3u);
+    assert_int_equal(c.scenes[1].map_mask, 0x1u | 0x4u | 0x8u);
+    /* 2 viewpoints x 2 maps x 2 methods, then 1 x 3 x 2 */
+    assert_int_equal(sl_plan_count(&c), 8 + 6);
+    struct sl_cell_key k;
+    int seen[4] = {0};
+    for (int i = 0; i < sl_plan_count(&c); i++) {
+        sl_plan_cell(&c, i, &k);
+        assert_true(c.scenes[k.scene].map_mask & (1u << k.map));
+        if (k.scene == 1)
+            seen[k.map]++;
+    }
+    assert_int_equal(seen[0], 2);
+    assert_int_equal(seen[1], 0);
+    assert_int_equal(seen[2], 2);
+    assert_int_equal(seen[3], 2);
+    sl_plan_cell(&c, 8, &k);                      /* blocks, its first map size (256), method a */
+    assert_int_equal(k.scene, 1);
+    assert_int_equal(k.map, 0);
+    sl_plan_cell(&c, 10, &k);                     /* then 1024 */
+    assert_int_equal(k.map, 2);
+    sl_plan_cell(&c, 13, &k);                     /* 8192, method b */
+    assert_int_equal(k.map, 3);
+    assert_int_equal(k.method, 1);
+}
+
 /* Every stage once: per view one G-buffer and one truth, per (view, map)
  * each layer once however many methods read it, no layer nobody reads. */
 static void sweep_each_pass_once(void **st)
@@ -226,6 +266,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(sweep, plan_order),
+        SL_CASE(sweep, scene_map_sizes),
         SL_CASE(sweep, each_pass_once),
         SL_CASE(sweep, repetitions),
         SL_CASE(sweep, truth_cache),
