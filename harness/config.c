@@ -39,6 +39,7 @@ struct raw_scene_ref {
     char *scene;
     char **viewpoints; unsigned viewpoints_count;
     unsigned *map_sizes; unsigned map_sizes_count;
+    char **methods; unsigned methods_count;
 };
 struct raw_reps { unsigned *warmup; unsigned *runs; };
 struct raw_config {
@@ -89,6 +90,8 @@ static const cyaml_schema_field_t scene_ref_fields[] = {
                          viewpoints, &str_schema, 1, SL_MAX_VIEWPOINTS),
     CYAML_FIELD_SEQUENCE("map_sizes", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
                          map_sizes, &uint_schema, 1, SL_CFG_MAX),
+    CYAML_FIELD_SEQUENCE("methods", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
+                         methods, &str_schema, 1, SL_CFG_MAX),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t scene_ref_schema = {
@@ -350,6 +353,25 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         }
     }
     c->nmethods = (int)r->methods_count;
+    /* a scene may run a subset of the method labels (e.g. only the cheap ones
+     * at 16384²) */
+    for (unsigned si = 0; si < r->scenes_count; si++) {
+        const struct raw_scene_ref *rs = &r->scenes[si];
+        struct sl_config_scene *cs = &c->scenes[si];
+        cs->method_mask = rs->methods_count ? 0u : (c->nmethods == 32 ? ~0u : (1u << c->nmethods) - 1u);
+        for (unsigned i = 0; i < rs->methods_count; i++) {
+            snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
+            int k = 0;
+            while (k < c->nmethods && strcmp(c->methods[k].label, rs->methods[i]) != 0)
+                k++;
+            if (k == c->nmethods)
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "no method labelled '%s' in this config",
+                                   rs->methods[i]);
+            if (cs->method_mask & (1u << k))
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s' listed twice", rs->methods[i]);
+            cs->method_mask |= 1u << k;
+        }
+    }
 
     c->tables = r->outputs && r->outputs->tables ? *r->outputs->tables : 1;
     c->overlays = r->outputs && r->outputs->overlays ? *r->outputs->overlays : 1;
@@ -408,6 +430,10 @@ void sl_config_write(const struct sl_config *c, FILE *f)
         for (int i = 0, k = 0; i < c->nmaps; i++)
             if (c->scenes[s].map_mask & (1u << i))
                 fprintf(f, "%s%d", k++ ? ", " : "", c->maps[i]);
+        fprintf(f, "], methods: [");
+        for (int i = 0, k = 0; i < c->nmethods; i++)
+            if (c->scenes[s].method_mask & (1u << i))
+                fprintf(f, "%s%s", k++ ? ", " : "", c->methods[i].label);
         fprintf(f, "]}\n");
     }
     fprintf(f, "viewports:\n");

@@ -44,6 +44,7 @@ struct sl_config_scene {
     int  nviewpoints;                 /* resolved: never 0 */
     char viewpoints[SL_MAX_VIEWPOINTS][32];
     unsigned map_mask;                /* bit i: swept at map size maps[i] */
+    unsigned method_mask;             /* bit i: runs methods[i] */
 };
 
 struct sl_config {

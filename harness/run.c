@@ -53,11 +53,21 @@ static int popcount(unsigned m)
     return n;
 }
 
+/* The j-th set bit of mask (j < popcount(mask)). */
+static int nth_bit(unsigned mask, int j)
+{
+    int b = 0;
+    while (!(mask & (1u << b)) || j-- > 0)
+        b++;
+    return b;
+}
+
 int sl_plan_count(const struct sl_config *c)
 {
     int n = 0;
     for (int s = 0; s < c->nscenes; s++)
-        n += c->nviewports * c->scenes[s].nviewpoints * popcount(c->scenes[s].map_mask) * c->nmethods;
+        n += c->nviewports * c->scenes[s].nviewpoints * popcount(c->scenes[s].map_mask) *
+             popcount(c->scenes[s].method_mask);
     return n;
 }
 
@@ -65,19 +75,17 @@ void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k)
 {
     memset(k, 0, sizeof *k);
     for (int s = 0; s < c->nscenes; s++) {
-        unsigned mask = c->scenes[s].map_mask;
-        int nm = popcount(mask);
-        int per = c->nviewports * c->scenes[s].nviewpoints * nm * c->nmethods;
+        const struct sl_config_scene *cs = &c->scenes[s];
+        int nm = popcount(cs->map_mask), nl = popcount(cs->method_mask);
+        int per = c->nviewports * cs->nviewpoints * nm * nl;
         if (index < per) {
             k->scene = s;
-            k->method = index % c->nmethods;
-            index /= c->nmethods;
-            int j = index % nm;           /* the j-th map size this scene is swept at */
-            for (k->map = 0; !(mask & (1u << k->map)) || j-- > 0; k->map++)
-                ;
+            k->method = nth_bit(cs->method_mask, index % nl);
+            index /= nl;
+            k->map = nth_bit(cs->map_mask, index % nm);
             index /= nm;
-            k->vp = index % c->scenes[s].nviewpoints;
-            k->viewport = index / c->scenes[s].nviewpoints;
+            k->vp = index % cs->nviewpoints;
+            k->viewport = index / cs->nviewpoints;
             return;
         }
         index -= per;
@@ -501,7 +509,8 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
     x->scene_key = scene_key(&x->scene, &x->gl, &x->rt);
     unsigned needs = 0;
     for (int m = 0; m < c->nmethods; m++)
-        needs |= c->methods[m].method->needs(&c->methods[m].params);
+        if (c->scenes[si].method_mask & (1u << m))
+            needs |= c->methods[m].method->needs(&c->methods[m].params);
     if (needs & SL_NEED_ADJACENCY) {
         if ((e = sl_adjacency_build(&x->scene, &x->adj, d)))
             return e;

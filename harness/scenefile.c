@@ -236,7 +236,9 @@ enum sl_err sl_scene_resolve(const char *ref, const char *rel_dir, char *path, s
                              struct sl_diag *d)
 {
     size_t len = strlen(ref);
-    int is_path = strchr(ref, '/') || (len > 5 && strcmp(ref + len - 5, ".yaml") == 0);
+    /* a path ends in .yaml or starts with / or .; anything else is a name in
+     * the scenes folder, which may have sub-folders (hard/grazing_89) */
+    int is_path = ref[0] == '/' || ref[0] == '.' || (len > 5 && strcmp(ref + len - 5, ".yaml") == 0);
     if (is_path) {
         if (ref[0] == '/' || !rel_dir)
             snprintf(path, n, "%s", ref);
@@ -245,7 +247,7 @@ enum sl_err sl_scene_resolve(const char *ref, const char *rel_dir, char *path, s
     } else {
         for (const char *p = ref; *p; p++)
             if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-                  *p == '-' || *p == '_'))
+                  *p == '-' || *p == '_' || (*p == '/' && p[1] && p[1] != '/' && p[1] != '.')))
                 return sl_fail(d, SL_E_SCENE, NULL, 0, "scene", "'%s' is neither a scene name nor a path", ref);
         snprintf(path, n, "%s/%s.yaml", sl_scenes_dir(), ref);
     }

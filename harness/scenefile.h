@@ -22,8 +22,9 @@
  *
  * Transforms: scale, then rotate about x, y, z (degrees, in that order), then
  * translate. Model paths are relative to the scene file unless absolute.
- * A scene is named by a path (with '/' or ending in .yaml, relative to the
- * referring file) or by a name looked up in the scenes folder:
+ * A scene is named by a path (ending in .yaml or starting with / or ., relative
+ * to the referring file) or by a name looked up in the scenes folder, which
+ * may name a sub-folder (hard/grazing_89 is scenes/hard/grazing_89.yaml):
  * $SHADOWLAB_SCENES if set, else the source tree's scenes/.
  */
 #ifndef SL_SCENEFILE_H

@@ -91,6 +91,31 @@ static void sweep_scene_map_sizes(void **st)
     sl_plan_cell(&c, 13, &k);                     /* 8192, method b */
     assert_int_equal(k.map, 3);
     assert_int_equal(k.method, 1);
+
+    /* a subset of the labels for one scene */
+    sl_test_config("m.yaml",
+                   "scenes:\n  - {scene: primitives, viewpoints: [side]}\n"
+                   "  - {scene: blocks, map_sizes: [1024], methods: [c, a]}\n"
+                   "viewports: [{width: 64, height: 64}]\nmap_sizes: [256]\n"
+                   "methods: [{label: a, method: nsm}, {label: b, method: bgsm}, {label: c, method: texel}]\n", &c);
+    assert_int_equal(c.scenes[0].method_mask, 0x7u);
+    assert_int_equal(c.scenes[1].method_mask, 0x5u);
+    assert_int_equal(sl_plan_count(&c), 3 + 2);
+    sl_plan_cell(&c, 3, &k);
+    assert_int_equal(k.scene, 1);
+    assert_int_equal(k.method, 0);
+    assert_int_equal(c.maps[k.map], 1024);
+    sl_plan_cell(&c, 4, &k);
+    assert_int_equal(k.method, 2);
+    /* and the sweep runs exactly those cells, with no BGSM layer for blocks */
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = "", .first = 3};
+    struct sl_run_result r;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(r.ncells, 2);
+    assert_int_equal(r.passes.layers[SL_LAYER_BGSM], 0);
+    assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID_BACK], 1);
+    sl_run_result_free(&r);
 }
 
 /* Every stage once: per view one G-buffer and one truth, per (view, map)
