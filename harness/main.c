@@ -187,8 +187,8 @@ static int cmd_validate(int argc, char **argv)
             return fail(e, &d);
         printf("%s: ok: scene '%s', %u triangles, %u vertices, %d mesh(es), %d viewpoint(s), "
                "bounds (%g, %g, %g) .. (%g, %g, %g)\n", argv[2], s.name, s.nt, s.nv, s.nranges, s.nvp,
-               (double)s.lo[0], (double)s.lo[1], (double)s.lo[2], (double)s.hi[0], (double)s.hi[1],
-               (double)s.hi[2]);
+               s.origin[0] + s.lo[0], s.origin[1] + s.lo[1], s.origin[2] + s.lo[2], s.origin[0] + s.hi[0],
+               s.origin[1] + s.hi[1], s.origin[2] + s.hi[2]);
         sl_scene_free(&s);
         return 0;
     }

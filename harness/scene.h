@@ -68,6 +68,8 @@ struct sl_scene {
     float     light_dir[3];   /* = light.dir: unit direction the light travels */
     struct sl_viewpoint vp[SL_MAX_VIEWPOINTS];
     int       nvp;
+    double    origin[3];      /* world position of the scene's local origin: scene files are
+                               * moved there (scenefile.c, rebase), positions above are local */
 };
 
 /* Growing mesh used by the generators; appended into a scene. */

@@ -381,9 +381,14 @@ static enum sl_err gen_args_of(const struct generator *g, const struct raw_mesh 
 
 /* ---- building ---- */
 
+/* Meshes are appended with their entry's linear transform applied, but not
+ * its translation: that is kept per range in double (shift) and added only
+ * when the scene is moved to its local frame (rebase), so a scene placed 1e5
+ * units from the origin loses no precision to float sums at 1e5. */
 struct build {
     struct sl_mesh all;
     struct sl_mesh_range *ranges;
+    struct shift { double t[3]; uint32_t v0, nv; } *shift;   /* per range: translation, its vertices */
     int nranges, cap;
 };
 
@@ -398,6 +403,9 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
     enum sl_err e = entry_xform(r->transform, file, pos, i, x, d);
     if (e)
         return e;
+    /* the translation waits for the rebase (struct build) */
+    const double shift[3] = {x[3][0], x[3][1], x[3][2]};
+    x[3][0] = x[3][1] = x[3][2] = 0.0f;
     struct sl_mesh m = {0};
     if (r->generator) {
         const struct generator *g = generators;
@@ -456,13 +464,19 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
     if (b->nranges == b->cap) {
         int cap = b->cap ? 2 * b->cap : 16;
         void *p = realloc(b->ranges, (size_t)cap * sizeof *b->ranges);
-        if (!p) {
+        if (p)
+            b->ranges = p;
+        void *q = p ? realloc(b->shift, (size_t)cap * sizeof *b->shift) : NULL;
+        if (!q) {
             sl_mesh_free(&m);
             return sl_fail(d, SL_E_NOMEM, file, 0, NULL, "mesh ranges");
         }
-        b->ranges = p;
+        b->shift = q;
         b->cap = cap;
     }
+    memcpy(b->shift[b->nranges].t, shift, sizeof shift);
+    b->shift[b->nranges].v0 = b->all.nv;
+    b->shift[b->nranges].nv = m.nv;
     struct sl_mesh_range *rg = &b->ranges[b->nranges++];
     memset(rg, 0, sizeof *rg);
     if (r->name)
@@ -626,6 +640,38 @@ static enum sl_err load_into(const char *path, struct build *b, struct sl_light 
     return e;
 }
 
+/* Move the scene to its local frame: the origin is the centre of its
+ * bounds (in double, in world units), and every position — vertices (with
+ * their entry's translation), viewpoints, the light's position — becomes
+ * relative to it. Shadows do not depend on where the world's origin is, but
+ * float precision does: 1e5 units out, floats are 0.0078 apart and a camera
+ * matrix built there moves edges by a pixel; in the local frame the scene is
+ * computed as if it were at the origin (tests/test_hard.c: a scene 1e5 away
+ * gives the same counts as its twin at the origin). */
+static void rebase(struct build *b, struct sl_scene *out, struct sl_light *light)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int r = 0; r < b->nranges; r++)
+        for (uint32_t v = b->shift[r].v0; v < b->shift[r].v0 + b->shift[r].nv; v++)
+            for (int k = 0; k < 3; k++) {
+                double w = (double)b->all.pos[3 * v + k] + b->shift[r].t[k];
+                lo[k] = w < lo[k] ? w : lo[k];
+                hi[k] = w > hi[k] ? w : hi[k];
+            }
+    for (int k = 0; k < 3; k++)
+        out->origin[k] = isfinite(lo[k]) ? 0.5 * (lo[k] + hi[k]) : 0.0;
+    for (int r = 0; r < b->nranges; r++)
+        for (uint32_t v = b->shift[r].v0; v < b->shift[r].v0 + b->shift[r].nv; v++)
+            for (int k = 0; k < 3; k++)
+                b->all.pos[3 * v + k] =
+                    (float)((double)b->all.pos[3 * v + k] + b->shift[r].t[k] - out->origin[k]);
+    for (int i = 0; i < out->nvp; i++)
+        for (int k = 0; k < 3; k++)
+            out->vp[i].pos[k] = (float)((double)out->vp[i].pos[k] - out->origin[k]);
+    for (int k = 0; k < 3; k++)
+        light->pos[k] = (float)((double)light->pos[k] - out->origin[k]);
+}
+
 enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag *d)
 {
     memset(out, 0, sizeof *out);
@@ -635,8 +681,11 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     memset(&light, 0, sizeof light);
     int have_light = 0;
     enum sl_err e = load_into(path, &b, &light, &have_light, out, 0, d);
-    if (!e)
+    if (!e) {
+        rebase(&b, out, &light);
         e = sl_scene_from_mesh(out, &b.all, d);
+    }
+    free(b.shift);
     sl_mesh_free(&b.all);
     if (e) {
         free(b.ranges);

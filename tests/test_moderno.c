@@ -186,13 +186,22 @@ static void fig_run(struct fig *g, const char *method, int key, int value)
     assert_int_equal(m->run(&a, &g->vd, &c, &d), SL_OK);
 }
 
+/* Pixel i's position in the scene file's coordinates (the scene is loaded
+ * into a frame centred on its bounds: scene.origin). */
+static void world_of(const struct fig *g, int i, float p[3])
+{
+    for (int k = 0; k < 3; k++)
+        p[k] = (float)((double)g->v.pos[3 * i + k] + g->f.scene.origin[k]);
+}
+
 /* Over the PFL pixels whose world position lies in the box [lo, hi]: how
  * many there are, and how many have verdict `v` and how `how` (-1 = any). */
 static int fig_count(const struct fig *g, const float lo[3], const float hi[3], int v, int how, int *total)
 {
     int n = 0, t = 0;
     for (int i = 0; i < g->v.w * g->v.h; i++) {
-        const float *p = g->v.pos + 3 * i;
+        float p[3];
+        world_of(g, i, p);
         if (g->v.cls[i] != SL_C_PFL || p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] ||
             p[2] < lo[2] || p[2] > hi[2])
             continue;
@@ -207,7 +216,8 @@ static int fig_truth(const struct fig *g, const float lo[3], const float hi[3], 
 {
     int n = 0;
     for (int i = 0; i < g->v.w * g->v.h; i++) {
-        const float *p = g->v.pos + 3 * i;
+        float p[3];
+        world_of(g, i, p);
         if (g->v.cls[i] == SL_C_PFL && p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] &&
             p[2] >= lo[2] && p[2] <= hi[2])
             n += g->v.truth[i] == truth;
