@@ -439,6 +439,7 @@ struct run_ctx {
     int frame_map;
     struct sl_light_frame frame;
     double layer_ms[SL_LAYER_COUNT][3];   /* render time of each layer: median, min, max */
+    uint64_t view_bad, layer_bad[SL_LAYER_COUNT];   /* values that are not finite or out of range */
     /* per-pixel scratch */
     int W, H;
     uint8_t *state, *band, *rgb;
@@ -548,6 +549,29 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     return SL_OK;
 }
 
+/* G-buffer values that are not finite (positions, normals of non-background
+ * pixels). A hard case must never produce one (tests/test_hard.c). */
+static uint64_t view_bad(const struct sl_view *v)
+{
+    uint64_t n = 0;
+    size_t np = (size_t)v->w * (size_t)v->h;
+    for (size_t i = 0; i < np; i++)
+        if (v->cls[i] != SL_C_BACKGROUND)
+            for (int k = 0; k < 3; k++)
+                n += !isfinite(v->pos[3 * i + k]) + !isfinite(v->nrm[3 * i + k]);
+    return n;
+}
+
+/* Shadow-map depths outside [0, 1] or not finite. */
+static uint64_t layer_bad(const struct sl_depth_layer *l, int size)
+{
+    uint64_t n = 0;
+    size_t nt = (size_t)size * (size_t)size;
+    for (size_t i = 0; i < nt; i++)
+        n += !(l->depth[i] >= 0.0f && l->depth[i] <= 1.0f);
+    return n;
+}
+
 static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
                                const char *cache_dir, struct sl_run_result *res, struct sl_diag *d)
 {
@@ -599,6 +623,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
     t0 = sl_now();
     sl_light_fit(&x->scene, &x->view, &x->box);
     x->vms.fit = 1e3 * (sl_now() - t0);
+    x->view_bad = view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
     x->view_viewport = k->viewport;
@@ -650,6 +675,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         if (!((x->frame.have & ~before) & SL_NEED(l)))
             continue;
         res->passes.layers[l]++;
+        x->layer_bad[l] = layer_bad(&x->frame.layer[l], x->frame.size);
         double times[SL_MAX_REPS];
         times[0] = x->frame.layer[l].ms_render;
         for (int r = 1; r < reps && !e; r++) {
@@ -740,6 +766,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     cell->ms = x->vms;
     cell->truth_cached = x->truth_cached;
     cell->truth_rays = x->truth_rays;
+    cell->nonfinite = x->view_bad;
     cell->n_pfl = x->view.n_pfl;
     cell->n_pnfl = x->view.n_pnfl;
     cell->n_background = x->view.n_background;
@@ -750,6 +777,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         if (mneeds & SL_NEED(l)) {
             for (int j = 0; j < 3; j++)
                 cell->ms.map_render[j] += x->layer_ms[l][j];
+            cell->nonfinite += x->layer_bad[l];
             cell->ms.map_readback += x->frame.layer[l].ms_readback;
             cell->gs_prims += x->frame.layer[l].gs_prims;
             cell->fragments += x->frame.layer[l].fragments;
@@ -1063,6 +1091,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             break;
         if (cell->violations)
             report_violations(c, cell);
+        if (cell->nonfinite)
+            fprintf(stderr, "shadowlab: NON-FINITE: %s/%s map %d '%s': %llu G-buffer or shadow-map value(s) "
+                            "not finite or out of range\n", cell->scene, cell->viewpoint, c->maps[k.map],
+                    c->methods[k.method].label, (unsigned long long)cell->nonfinite);
         if (st && (e = store_cell(st, run_id, c, cell, store_path, o->write_files ? final : NULL, d)))
             break;
         res->ncells++;

@@ -87,6 +87,8 @@ struct sl_cell {
     uint64_t truth_rays;
     uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
     uint64_t violations;               /* of the method's declared exactness; must be 0 */
+    uint64_t nonfinite;                /* G-buffer values not finite, depths of the layers it reads
+                                        * outside [0, 1]; must be 0 */
     /* texel coherence (Moderno 2011 Tables 20/22): per region, PFL pixels by
      * how many of the tested texels say shadow, and of those how many are
      * shadowed in truth; has_patterns when the method reports it */
