@@ -484,7 +484,7 @@ out:
     sl_frame_free(&f);
     sl_view_free(&v);
     sl_adjacency_free(&adj);
-    if (sp.prog_depth_id || sp.prog_cons || sp.prog_cons_adj)
+    if (sp.prog_depth_id)
         sl_shadowmap_free(&sp);
     free(depth);
     free(id);
