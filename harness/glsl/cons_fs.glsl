@@ -96,12 +96,12 @@ double plane_max(ivec2 t, vec3 a, dvec2 g, bool has_plane, double zhi)
 void main()
 {
     ivec2 t = ivec2(gl_FragCoord.xy);
-#if SL_MODE == 1
-    if ((texelFetch(u_first_ids, t, 0).r & 0x7fffffffu) == g_tri)
-        discard;
-#endif
     dvec3 zs = dvec3(g_v0.z, g_v1.z, g_v2.z);
     double zlo = min(zs.x, min(zs.y, zs.z)), zhi = max(zs.x, max(zs.y, zs.z));
+    // One discard, at the end: on llvmpipe each discard statement costs
+    // (measured: a second, early one for the box test nearly doubled the
+    // time of BGSM), and an early one saves nothing (see above).
+    bool drop = false;
 #if SL_MODE == 3
     // SGSM with adjacency: the square must lie inside the triangle and,
     // across each kept edge, inside the neighbour: inside the half-planes
@@ -111,71 +111,78 @@ void main()
     // inside that neighbour's other two edges), so the pixel's ray meets
     // one of them; both are in front of the pixel when the larger of
     // their highest depths over the square is.
-    if ((g_flags & 2u) == 0u)
-        discard;
     vec3 v[3] = vec3[3](g_v0, g_v1, g_v2);
-    vec3 o[3] = vec3[3](g_n0, g_n1, g_n2);
     dvec2 e[3] = dvec2[3](g_e0, g_e1, g_e2);
-    dvec2 na[3] = dvec2[3](g_na0, g_na1, g_na2);
-    dvec2 nb[3] = dvec2[3](g_nb0, g_nb1, g_nb2);
-    dvec2 ng[3] = dvec2[3](g_ngrad0, g_ngrad1, g_ngrad2);
     double zmax = plane_max(t, v[0], g_grad, (g_flags & 1u) != 0u, zhi);
     // wholly inside the triangle itself: as plain SGSM, so this layer
     // proves at least every texel SGSM proves
     bool inside = true, across = true;
-    double zn = zmax;
     for (int i = 0; i < 3; i++) {
         bool in_edge = dist_max(t, v[i], e[i]) <= -u_eps;
         inside = inside && in_edge;
-        if ((g_keep & (1u << i)) == 0u) {
-            across = across && in_edge;
-            continue;
-        }
-        // the neighbour runs b -> a -> opposite
-        vec3 a = v[i], b = v[(i + 1) % 3];
-        across = across && (g_flags & (4u << i)) != 0u && dist_max(t, a, na[i]) <= -u_eps &&
-                 dist_max(t, o[i], nb[i]) <= -u_eps;
-        double nzhi = max(double(b.z), max(double(a.z), double(o[i].z)));
-        zn = max(zn, plane_max(t, b, ng[i], (g_flags & (32u << i)) != 0u, nzhi));
+        across = across && (in_edge || (g_keep & (1u << i)) != 0u);
     }
-    if (!inside && !across)
-        discard;
-    gl_FragDepth = float(clamp((inside ? zmax : zn) + u_zeps, 0.0, 1.0));
-    o_tri = g_tri;
+    // across each kept edge (the neighbour runs b -> a -> opposite): a
+    // loop over the kept edges only, since a loop, unlike an if, ends when
+    // no fragment of the batch needs another round (most triangles keep
+    // none and pay one masked round)
+    double zn = zmax;
+    for (uint k = g_keep; k != 0u; k &= k - 1u) {
+        int i = findLSB(k);
+        vec3 a = i == 0 ? g_v0 : i == 1 ? g_v1 : g_v2;
+        vec3 b = i == 0 ? g_v1 : i == 1 ? g_v2 : g_v0;
+        vec3 o = i == 0 ? g_n0 : i == 1 ? g_n1 : g_n2;
+        dvec2 na = i == 0 ? g_na0 : i == 1 ? g_na1 : g_na2;
+        dvec2 nb = i == 0 ? g_nb0 : i == 1 ? g_nb1 : g_nb2;
+        dvec2 ng = i == 0 ? g_ngrad0 : i == 1 ? g_ngrad1 : g_ngrad2;
+        across = across && (g_flags & (4u << i)) != 0u && dist_max(t, a, na) <= -u_eps &&
+                 dist_max(t, o, nb) <= -u_eps;
+        double nzhi = max(double(b.z), max(double(a.z), double(o.z)));
+        zn = max(zn, plane_max(t, b, ng, (g_flags & (32u << i)) != 0u, nzhi));
+    }
+    drop = (g_flags & 2u) == 0u || (!inside && !across);
+    double z = (inside ? zmax : zn) + u_zeps;
 #else
-    // box axes
-    dvec2 lo = dvec2(min(g_v0.xy, min(g_v1.xy, g_v2.xy))), hi = dvec2(max(g_v0.xy, max(g_v1.xy, g_v2.xy)));
+    vec3 v[3] = vec3[3](g_v0, g_v1, g_v2);
 #if SL_MODE != 2
-    if (hi.x < double(t.x) - u_eps || lo.x > double(t.x + 1) + u_eps ||
-        hi.y < double(t.y) - u_eps || lo.y > double(t.y + 1) + u_eps)
-        discard;
+    // box axes; the vertices, t - eps and t + 1 + eps are exact in float
+    // (eps = 1/128, t < 2^17), so float decides as double would
+    vec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)), hi = max(v[0].xy, max(v[1].xy, v[2].xy));
+    float feps = float(u_eps);
+    drop = hi.x < float(t.x) - feps || lo.x > float(t.x + 1) + feps ||
+           hi.y < float(t.y) - feps || lo.y > float(t.y + 1) + feps;
+#endif
+#if SL_MODE == 1
+    drop = drop || (texelFetch(u_first_ids, t, 0).r & 0x7fffffffu) == g_tri;
 #endif
     // edge axes: signed distances of the corners outside each edge, in texels
-    vec3 v[3] = vec3[3](g_v0, g_v1, g_v2);
     dvec2 e[3] = dvec2[3](g_e0, g_e1, g_e2);
-    bool full = (g_flags & 2u) != 0u, outside = false;
+    bool full = (g_flags & 2u) != 0u;
     for (int i = 0; i < 3; i++) {
         // a zero-length edge (normal 0) separates nothing and leaves a
         // triangle of zero area, which is never full
-        outside = outside || dist_min(t, v[i], e[i]) > u_eps;   // the whole square is outside this edge
+#if SL_MODE != 2
+        drop = drop || dist_min(t, v[i], e[i]) > u_eps;   // the whole square is outside this edge
+#endif
+#if SL_MODE != 1
         full = full && dist_max(t, v[i], e[i]) <= -u_eps;
+#endif
     }
 #if SL_MODE == 2
-    if (!full)
-        discard;                           // some of the square is not surely inside
+    drop = !full;                          // some of the square is not surely inside
     double z = plane_max(t, v[0], g_grad, (g_flags & 1u) != 0u, zhi) + u_zeps;
 #else
-    if (outside)
-        discard;
     // lowest depth of the plane over the square, never below zlo
     double z = (g_flags & 1u) != 0u ? max(plane_at(v[0], g_grad, corner(t, g_grad, 1.0)), zlo) : zlo;
     z -= u_zeps;
 #endif
+#endif
+    if (drop)
+        discard;
     gl_FragDepth = float(clamp(z, 0.0, 1.0));
 #if SL_MODE == 0
     o_tri = full ? (g_tri | 0x80000000u) : g_tri;
 #else
     o_tri = g_tri;
-#endif
 #endif
 }

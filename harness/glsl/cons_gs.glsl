@@ -8,11 +8,11 @@
 // small margin), so that every texel the triangle touches has its centre
 // inside the enlarged triangle. The corner of two moved edges lies
 // u_lambda / cos(phi / 2) from the original vertex (phi: angle between the
-// edge normals); at a sharp vertex that runs off towards infinity, so when
-// 1 + dot(n0, n1) < 0.1 (a vertex angle under about 26 degrees) or the
-// triangle has (almost) no area in the map, we fall back to its bounding box
-// grown by u_lambda: still a superset of every texel centre within u_lambda
-// of the triangle, hence still conservative, and never far from it.
+// edge normals); at a sharp vertex that runs off towards infinity, so the
+// triangle's bounding box grown by u_lambda is emitted instead when it is
+// smaller, when a vertex is very sharp, or when the triangle has (almost)
+// no area in the map: still a superset of every texel centre within
+// u_lambda of the triangle, hence still conservative.
 // Which texels really count is decided exactly per texel in cons_fs.glsl,
 // from the set-up computed here once per triangle (cons_setup.glsl).
 // SL_MODE (shadowmap.c defines it, one program per layer): 0 BGSM, 1 BGSM's
@@ -65,29 +65,39 @@ void main()
     for (int i = 0; i < 3; i++)
         emit(v[i].xy, z);
 #else
+    // The enlarged triangle, its corners in double (the miter's 1 / (1 +
+    // dot(a, b)) amplifies the error of the normals, which double makes
+    // negligible; only the final rounding to float remains, as for any
+    // vertex), or the grown bounding box: whichever has the smaller area,
+    // and the box whenever a vertex is sharper than about 2.6 degrees
+    // (1 + dot < 1e-3), where the corner runs off (up to 45 lambda here).
+    vec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)) - vec2(u_lambda);
+    vec2 hi = max(v[0].xy, max(v[1].xy, v[2].xy)) + vec2(u_lambda);
     bool fallback = abs(area) < 1e-6;
-    vec2 n[3];
+    vec2 w[3];
     if (!fallback) {
-        float s = area > 0.0 ? 1.0 : -1.0;        // outward normals for either winding
+        dvec2 n[3];
         for (int i = 0; i < 3; i++) {
-            vec2 e = v[(i + 1) % 3].xy - v[i].xy;
-            n[i] = normalize(s * vec2(e.y, -e.x));
+            dvec2 e = dvec2(v[(i + 1) % 3].xy) - dvec2(v[i].xy);
+            n[i] = normalize(double(area > 0.0 ? 1.0 : -1.0) * dvec2(e.y, -e.x));  // outward, either winding
         }
-        for (int i = 0; i < 3; i++)
-            fallback = fallback || (1.0 + dot(n[(i + 2) % 3], n[i]) < 0.1);
+        for (int i = 0; i < 3; i++) {
+            dvec2 a = n[(i + 2) % 3], b = n[i];     // the normals of the two edges at vertex i
+            double c = 1.0 + dot(a, b);
+            fallback = fallback || c < 1e-3;
+            w[i] = vec2(dvec2(v[i].xy) + double(u_lambda) * (a + b) / max(c, 1e-3));
+        }
+        float tri = abs((w[1].x - w[0].x) * (w[2].y - w[0].y) - (w[2].x - w[0].x) * (w[1].y - w[0].y));
+        fallback = fallback || (hi.x - lo.x) * (hi.y - lo.y) < 0.5 * tri;
     }
     if (fallback) {
-        vec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)) - vec2(u_lambda);
-        vec2 hi = max(v[0].xy, max(v[1].xy, v[2].xy)) + vec2(u_lambda);
         emit(vec2(lo.x, lo.y), z);
         emit(vec2(hi.x, lo.y), z);
         emit(vec2(lo.x, hi.y), z);
         emit(vec2(hi.x, hi.y), z);
     } else {
-        for (int i = 0; i < 3; i++) {
-            vec2 a = n[(i + 2) % 3], b = n[i];      // the normals of the two edges at vertex i
-            emit(v[i].xy + u_lambda * (a + b) / (1.0 + dot(a, b)), z);
-        }
+        for (int i = 0; i < 3; i++)
+            emit(w[i], z);
     }
 #endif
     EndPrimitive();
