@@ -34,7 +34,9 @@
 // corners its gradient's signs pick.
 uniform double u_eps;
 uniform double u_zeps;
-layout(binding = 0) uniform usampler2D u_first_ids;   // mode 1: the ids of mode 0
+#if SL_MODE == 1
+layout(binding = 0, r32ui) readonly uniform uimage2D u_first_ids;   // the ids of mode 0
+#endif
 flat in vec3 g_v0;
 flat in vec3 g_v1;
 flat in vec3 g_v2;
@@ -153,7 +155,7 @@ void main()
            hi.y < float(t.y) - feps || lo.y > float(t.y + 1) + feps;
 #endif
 #if SL_MODE == 1
-    drop = drop || (texelFetch(u_first_ids, t, 0).r & 0x7fffffffu) == g_tri;
+    drop = drop || (imageLoad(u_first_ids, t).r & 0x7fffffffu) == g_tri;
 #endif
     // edge axes: signed distances of the corners outside each edge, in texels
     dvec2 e[3] = dvec2[3](g_e0, g_e1, g_e2);
