@@ -102,7 +102,8 @@ void main()
     double zlo = min(zs.x, min(zs.y, zs.z)), zhi = max(zs.x, max(zs.y, zs.z));
     // One discard, at the end: on llvmpipe each discard statement costs
     // (measured: a second, early one for the box test nearly doubled the
-    // time of BGSM), and an early one saves nothing (see above).
+    // time of BGSM), and an early one saves nothing, since the rest of the
+    // shader runs anyway, masked.
     bool drop = false;
 #if SL_MODE == 3
     // SGSM with adjacency: the square must lie inside the triangle and,
