@@ -1,25 +1,88 @@
 /*
  * bench.c — see bench.h.
  *
- * The plain loop is what anyone would write with Embree alone: rays prepared
- * in advance as 4x4 packets, a scene with the same flags and build quality but
- * no filter function, rtcOccluded16 over the packets on the same threads. The
- * truth pass does more per ray (reads the G-buffer, skips non-PFL pixels,
- * rejects the own triangle in a filter, writes the classification), and its
- * time is measured end to end.
+ * Truth: the plain loop is what anyone would write with Embree alone: rays
+ * prepared in advance as 4x4 packets, a scene with the same flags and build
+ * quality but no filter function, rtcOccluded16 over the packets on the same
+ * threads. The truth pass does more per ray (reads the G-buffer, skips
+ * non-PFL pixels, rejects the own triangle in a filter, writes the
+ * classification), and its time is measured end to end.
+ *
+ * Layers: each repetition renders the plain raster and then the layer, one
+ * after the other, so drift of a shared VM hits both; a layer is rendered by
+ * shadowmap.c itself (the code the studies run), from scratch each time
+ * (BGSM2 reads the BGSM ids rendered before it, as in a run). The plain
+ * raster's timer brackets the same work as shadowmap.c's: framebuffer and
+ * textures created, cleared, drawn, glFinish; the readback of depth and ids
+ * apart. The G-buffer is timed by gbuffer.c, its fragment count by a query
+ * around the call.
+ *
+ * Studies run last, after this file's GL context and BVHs are freed: sl_run
+ * makes its own (one OSMesa context at a time).
  */
 #include "bench.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <omp.h>
+#include "adjacency.h"
 #include "gbuffer.h"
-#include "provenance.h"
 #include "glctx.h"
+#include "lightfit.h"
+#include "provenance.h"
 #include "run.h"
 #include "scenefile.h"
+#include "shadowmap.h"
 #include "truth.h"
 #include "util.h"
+
+extern const char sl_glsl_depth_id_vs[];
+extern const char sl_glsl_bench_plain_fs[];
+
+#ifndef GL_FRAGMENT_SHADER_INVOCATIONS_ARB
+#define GL_FRAGMENT_SHADER_INVOCATIONS_ARB 0x82F4
+#endif
+
+#define TARGET_TRUTH_RATIO   0.8     /* truth rays/s over the plain loop's, at least */
+#define TARGET_RASTER_RATIO  2.0     /* a pass's render time over the plain raster's, at most */
+#define TARGET_MODERNO_S     60.0
+#define TARGET_MORAIS_S      300.0
+#define TARGET_RSS_MIB       2048.0
+
+static const char *const stage_names[SL_BENCH_NSTAGES] = {
+#define SL_BENCH_NAME(id, name) name,
+    SL_BENCH_STAGES(SL_BENCH_NAME)
+#undef SL_BENCH_NAME
+};
+
+static const char *const layer_names[SL_LAYER_COUNT] = {
+    "depth_id", "depth_id_back", "bgsm", "bgsm2", "sgsm", "sgsm_adj",
+};
+
+enum sl_err sl_bench_parse_stages(const char *list, unsigned *out, struct sl_diag *d)
+{
+    *out = 0;
+    const char *p = list;
+    while (*p) {
+        size_t n = strcspn(p, ",");
+        int found = 0;
+        for (int i = 0; i < SL_BENCH_NSTAGES; i++)
+            if (strlen(stage_names[i]) == n && strncmp(p, stage_names[i], n) == 0) {
+                *out |= 1u << i;
+                found = 1;
+            }
+        if (!found)
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "--only",
+                           "unknown stage '%.*s' (known: truth, layers, moderno, morais)", (int)n, p);
+        p += n;
+        if (*p == ',')
+            p++;
+    }
+    if (!*out)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--only", "no stage named");
+    return SL_OK;
+}
 
 static int cmp_d(const void *a, const void *b)
 {
@@ -32,6 +95,30 @@ static double median(double *v, int n)
     qsort(v, (size_t)n, sizeof *v, cmp_d);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+static struct sl_bench_row *add_row(struct sl_bench_result *res, const char *stage, const char *unit,
+                                    double value, double plain, double target, enum sl_bench_cmp cmp)
+{
+    if (res->nrows >= (int)(sizeof res->rows / sizeof res->rows[0]))
+        return NULL;
+    struct sl_bench_row *r = &res->rows[res->nrows++];
+    memset(r, 0, sizeof *r);
+    snprintf(r->stage, sizeof r->stage, "%s", stage);
+    snprintf(r->unit, sizeof r->unit, "%s", unit);
+    r->value = value;
+    r->plain = plain;
+    r->target = target;
+    r->cmp = cmp;
+    if (plain > 0) {
+        /* rates: ours over plain (higher is better); times: ours over plain */
+        r->ratio = value / plain;
+    }
+    double x = plain > 0 ? r->ratio : value;
+    r->pass = cmp == SL_BENCH_AT_LEAST ? x >= target : x <= target;
+    return r;
+}
+
+/* ---- truth against a plain rtcOccluded16 loop -------------------------- */
 
 struct packets { struct RTCRay16 *r; int (*valid)[16]; int n; uint64_t rays; };
 
@@ -100,118 +187,541 @@ static double plain_loop(const struct sl_rt *rt, struct packets *p)
     return sl_now() - t0;
 }
 
-enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_diag *d)
-{
-    const char *cfg_path = o->config ? o->config : "configs/default.yaml";
-    int reps = o->reps > 0 ? o->reps : 7;
-    FILE *out = o->out ? o->out : stdout;
-    struct sl_config c;
-    enum sl_err e = sl_config_load(cfg_path, &c, d);
-    if (e)
-        return e;
-
+/* What the truth and layer stages work on. */
+struct bench_ctx {
     struct sl_scene s;
-    struct sl_gl gl = {0};
-    struct sl_gl_mesh mesh = {0};
-    struct sl_gbuffer_pass gp = {0};
+    int nvp;
+    int vp[SL_MAX_VIEWPOINTS];
+    int W, H, S, threads, reps;
+    struct sl_gl gl;
+    struct sl_gl_mesh mesh;
+    struct sl_gbuffer_pass gp;
+    FILE *out;
+};
+
+static enum sl_err bench_truth(struct bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
+{
     struct sl_rt rt = {0}, plain = {0};
-    if ((e = sl_scene_load(c.scenes[0].path, &s, d)))
+    enum sl_err e;
+    if ((e = sl_rt_build(&rt, &x->s, x->threads, 1, d)) || (e = sl_rt_build(&plain, &x->s, x->threads, 0, d))) {
+        sl_rt_free(&rt);
         return e;
-    if ((e = sl_gl_init(&gl, d)) || (e = sl_gl_mesh_upload(&mesh, &s, d)) ||
-        (e = sl_gbuffer_init(&gp, &s, d)) || (e = sl_rt_build(&rt, &s, c.threads, 1, d)) ||
-        (e = sl_rt_build(&plain, &s, c.threads, 0, d)))
-        goto out;
-    fprintf(out, "# shadowlab bench: %s, scene %s, git %s, %d threads, Embree %s, %s\n\n", cfg_path,
-            s.name, sl_git_sha(), c.threads, rt.version, gl.renderer);
-    fprintf(out, "## Truth pass vs a plain rtcOccluded16 loop over the same rays (median of %d, after a warm-up)\n\n", reps);
+    }
+    FILE *out = x->out;
+    int reps = x->reps;
+    fprintf(out, "## Truth pass vs a plain rtcOccluded16 loop over the same rays (%s, median of %d after a "
+                 "warm-up, Embree %s)\n\n", x->s.name, reps, rt.version);
     fprintf(out, "| viewpoint | viewport | rays | truth ms | truth Mrays/s | plain ms | plain Mrays/s | ratio |\n");
     fprintf(out, "|---|---|---:|---:|---:|---:|---:|---:|\n");
-    /* the first scene of the config, all its configured viewpoints */
-    int nvp = c.scenes[0].nviewpoints;
     double sum_truth = 0, sum_plain = 0;
     uint64_t sum_rays = 0;
-    for (int vi = 0; vi < nvp && !e; vi++) {
-        int vp = sl_scene_find_viewpoint(&s, c.scenes[0].viewpoints[vi]);
-        int W = c.viewport_w[0], H = c.viewport_h[0];
+    char notes[128] = "";
+    for (int vi = 0; vi < x->nvp && !e; vi++) {
+        int vp = x->vp[vi];
         struct sl_view v;
-        if ((e = sl_gbuffer_render(&gp, &mesh, &s, vp, W, H, &v, NULL, NULL, d)))
+        if ((e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, x->W, x->H, &v, NULL, NULL, d)))
             break;
         struct packets pk = {0};
-        if (!build_packets(&v, &pk)) {
-            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "ray packets");
-            sl_view_free(&v);
-            break;
-        }
         double *tt = calloc((size_t)reps, sizeof *tt), *tp = calloc((size_t)reps, sizeof *tp);
+        if (!build_packets(&v, &pk) || !tt || !tp) {
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "ray packets");
+        }
         uint64_t rays = 0;
         for (int r = -1; r < reps && !e; r++) {
             /* the truth pass reclassifies from the G-buffer each time */
             struct sl_truth_stats ts;
-            e = sl_truth_trace(&rt, &s, &v, &ts, d);
+            e = sl_truth_trace(&rt, &x->s, &v, &ts, d);
             rays = ts.rays;
-            reset_packets(&v, &s, &pk);
+            reset_packets(&v, &x->s, &pk);
             double pl = plain_loop(&plain, &pk);
             if (r >= 0) {
                 tt[r] = ts.ms_trace * 1e-3;
                 tp[r] = pl;
             }
         }
-        /* the same rays must give the same answers: count the plain loop's
-         * occluded rays against the truth's shadowed pixels */
-        uint64_t plain_occ = 0;
-        for (int t = 0; t < pk.n; t++)
-            for (int k = 0; k < 16; k++)
-                plain_occ += pk.valid[t][k] && pk.r[t].tfar[k] == -INFINITY;
-        if (plain_occ != v.n_shadow)
-            fprintf(out, "note: %s: plain loop %llu occluded, truth %llu shadowed (own-triangle hits "
-                         "the filter rejects)\n", s.vp[vp].name, (unsigned long long)plain_occ,
-                    (unsigned long long)v.n_shadow);
-        double mt = median(tt, reps), mpl = median(tp, reps);
-        fprintf(out, "| %s | %dx%d | %llu | %.2f | %.1f | %.2f | %.1f | %.2f |\n", s.vp[vp].name, W, H,
-                (unsigned long long)rays, 1e3 * mt, rays / mt * 1e-6, 1e3 * mpl, pk.rays / mpl * 1e-6,
-                (rays / mt) / (pk.rays / mpl));
-        sum_truth += mt;
-        sum_plain += mpl;
-        sum_rays += rays;
+        if (!e) {
+            /* the same rays must give the same answers: count the plain
+             * loop's occluded rays against the truth's shadowed pixels */
+            uint64_t plain_occ = 0;
+            for (int t = 0; t < pk.n; t++)
+                for (int k = 0; k < 16; k++)
+                    plain_occ += pk.valid[t][k] && pk.r[t].tfar[k] == -INFINITY;
+            if (plain_occ != v.n_shadow) {
+                size_t len = strlen(notes);
+                snprintf(notes + len, sizeof notes - len, "%s%s: plain +%lld occluded", len ? "; " : "",
+                         x->s.vp[vp].name, (long long)plain_occ - (long long)v.n_shadow);
+            }
+            double mt = median(tt, reps), mpl = median(tp, reps);
+            fprintf(out, "| %s | %dx%d | %llu | %.2f | %.1f | %.2f | %.1f | %.2f |\n", x->s.vp[vp].name, x->W,
+                    x->H, (unsigned long long)rays, 1e3 * mt, rays / mt * 1e-6, 1e3 * mpl,
+                    pk.rays / mpl * 1e-6, (rays / mt) / (pk.rays / mpl));
+            sum_truth += mt;
+            sum_plain += mpl;
+            sum_rays += rays;
+        }
         free(tt);
         free(tp);
         free(pk.r);
         free(pk.valid);
         sl_view_free(&v);
     }
-    if (!e)
+    if (!e) {
         fprintf(out, "| **all** | | %llu | %.2f | %.1f | %.2f | %.1f | **%.2f** |\n\n",
                 (unsigned long long)sum_rays, 1e3 * sum_truth, sum_rays / sum_truth * 1e-6,
                 1e3 * sum_plain, sum_rays / sum_plain * 1e-6, sum_plain / sum_truth);
-out:
+        if (notes[0])
+            fprintf(out, "Occluded rays the plain loop counts beyond the truth's shadowed pixels (rays "
+                         "crossing their own triangle beyond tnear, which the truth's filter rejects): %s\n\n",
+                    notes);
+        struct sl_bench_row *row = add_row(res, "truth", "Mrays/s", sum_rays / sum_truth * 1e-6,
+                                           sum_rays / sum_plain * 1e-6, TARGET_TRUTH_RATIO, SL_BENCH_AT_LEAST);
+        if (row) {
+            snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d", x->s.name, x->nvp, x->W, x->H);
+            snprintf(row->note, sizeof row->note, "%llu rays", (unsigned long long)sum_rays);
+        }
+    }
     sl_rt_free(&plain);
     sl_rt_free(&rt);
-    if (gl.ctx) {
-        sl_gbuffer_free(&gp);
-        sl_gl_mesh_free(&mesh);
-        sl_gl_free(&gl);
+    return e;
+}
+
+/* ---- layers and the G-buffer against a plain raster --------------------- */
+
+struct raster_ms { double render, readback; uint64_t fragments; };
+
+/* The plain raster: depth32F + R32UI, trivial shaders, one draw of the
+ * whole mesh, nothing culled; timed as shadowmap.c times a layer. */
+static enum sl_err plain_raster(GLuint prog, const struct sl_gl_mesh *m, const mat4 vp, int w, int h,
+                                int zero_to_one, float *depth, uint32_t *id, struct raster_ms *r,
+                                struct sl_diag *d)
+{
+    size_t n = (size_t)w * (size_t)h;
+    double t0 = sl_now();
+    GLuint fbo, tex[2], q;
+    glCreateFramebuffers(1, &fbo);
+    glCreateTextures(GL_TEXTURE_2D, 2, tex);
+    glTextureStorage2D(tex[0], 1, GL_DEPTH_COMPONENT32F, w, h);
+    glTextureStorage2D(tex[1], 1, GL_R32UI, w, h);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, tex[0], 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex[1], 0);
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    enum sl_err e = SL_OK;
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "plain raster framebuffer incomplete");
+    if (!e) {
+        const GLuint zero_u[4] = {0, 0, 0, 0};
+        const float one = 1.0f;
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glViewport(0, 0, w, h);
+        glClipControl(GL_LOWER_LEFT, zero_to_one ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_CULL_FACE);
+        glClearNamedFramebufferuiv(fbo, GL_COLOR, 0, zero_u);
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+        glUseProgram(prog);
+        glUniformMatrix4fv(glGetUniformLocation(prog, "u_vp"), 1, GL_FALSE, (const float *)vp);
+        glGenQueries(1, &q);
+        glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q);
+        glBindVertexArray(m->vao);
+        glDrawElements(GL_TRIANGLES, m->count, GL_UNSIGNED_INT, NULL);
+        glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+        glFinish();
+        double t1 = sl_now();
+        GLuint64 frags = 0;
+        glGetQueryObjectui64v(q, GL_QUERY_RESULT, &frags);
+        glDeleteQueries(1, &q);
+        glGetTextureImage(tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), depth);
+        glGetTextureImage(tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), id);
+        double t2 = sl_now();
+        r->render = 1e3 * (t1 - t0);
+        r->readback = 1e3 * (t2 - t1);
+        r->fragments = (uint64_t)frags;
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        e = sl_gl_check("plain raster", d);
     }
-    sl_scene_free(&s);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(2, tex);
+    return e;
+}
+
+/* Medians of one pass and its plain counterpart over the repetitions. */
+struct pair_ms {
+    double *render, *readback, *p_render, *p_readback;
+    uint64_t gs_prims, fragments, p_fragments;
+};
+
+static void layer_row(struct sl_bench_result *res, FILE *out, const char *stage, const char *name,
+                      struct pair_ms *t, int reps)
+{
+    double mr = median(t->render, reps), mb = median(t->readback, reps);
+    double pr = median(t->p_render, reps), pb = median(t->p_readback, reps);
+    fprintf(out, "| %s | %.2f | %.2f | %.2f | %.2f | **%.2f** | %llu | %llu | %llu | %.2f |\n", name, mr, pr,
+            mb, pb, mr / pr, (unsigned long long)t->gs_prims, (unsigned long long)t->fragments,
+            (unsigned long long)t->p_fragments, t->p_fragments ? (double)t->fragments / (double)t->p_fragments : 0.0);
+    struct sl_bench_row *row = add_row(res, stage, "ms", mr, pr, TARGET_RASTER_RATIO, SL_BENCH_AT_MOST);
+    if (row) {
+        snprintf(row->name, sizeof row->name, "%s", name);
+        row->gs_prims = t->gs_prims;
+        row->fragments = t->fragments;
+        row->plain_fragments = t->p_fragments;
+        snprintf(row->note, sizeof row->note, "readback %.2f ms, plain %.2f ms", mb, pb);
+    }
+}
+
+static enum sl_err bench_layers(struct bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
+{
+    FILE *out = x->out;
+    int reps = x->reps, W = x->W, H = x->H, S = x->S, vp = x->vp[0];
+    size_t nmax = (size_t)(W * H > S * S ? W * H : S * S);
+    struct sl_shadowmap_pass sp = {0};
+    struct sl_adjacency adj = {0};
+    struct sl_light_frame f;
+    memset(&f, 0, sizeof f);
+    struct sl_view v;
+    memset(&v, 0, sizeof v);
+    GLuint prog = 0;
+    float *depth = sl_calloc(nmax, sizeof(float));
+    uint32_t *id = sl_calloc(nmax, sizeof(uint32_t));
+    double *buf = sl_calloc((size_t)reps * 4, sizeof(double));
+    struct pair_ms t = {buf, buf + reps, buf + 2 * reps, buf + 3 * reps, 0, 0, 0};
+    enum sl_err e = SL_OK;
+    if (!depth || !id || !buf) {
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "plain raster buffers");
+        goto out;
+    }
+    if ((e = sl_shadowmap_init(&sp, d)) || (e = sl_adjacency_build(&x->s, &adj, d)) ||
+        (e = sl_gl_mesh_upload_adjacency(&x->mesh, &x->s, &adj, d)))
+        goto out;
+    prog = sl_gl_program(sl_glsl_depth_id_vs, NULL, sl_glsl_bench_plain_fs, d);
+    if (!prog) {
+        e = SL_E_GL;
+        goto out;
+    }
+    fprintf(out, "## Passes vs a plain raster of the same mesh, size and matrix (%s, %u triangles, viewpoint %s; "
+                 "median of %d after a warm-up)\n\n", x->s.name, x->s.nt, x->s.vp[vp].name, reps);
+    fprintf(out, "Plain raster: depth32F + R32UI, the layers' vertex shader, a fragment shader writing "
+                 "gl_PrimitiveID + 1, no geometry shader, one draw, nothing culled. Render = framebuffer "
+                 "+ clear + draw + glFinish; readback of depth and ids apart. Fragments: fragment shader "
+                 "invocations (GL query), before any discard.\n\n");
+    fprintf(out, "| pass | render ms | plain ms | readback ms | plain readback ms | ratio | GS prims | "
+                 "fragments | plain fragments | fragment ratio |\n");
+    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+
+    /* the G-buffer at the viewport, against a plain raster with the camera */
+    mat4 cam;
+    for (int r = -1; r < reps && !e; r++) {
+        struct raster_ms pm;
+        sl_view_free(&v);
+        double mr = 0, mb = 0;
+        GLuint q;
+        glGenQueries(1, &q);
+        glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q);
+        e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, W, H, &v, &mr, &mb, d);
+        glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+        GLuint64 frags = 0;
+        glGetQueryObjectui64v(q, GL_QUERY_RESULT, &frags);
+        glDeleteQueries(1, &q);
+        if (e)
+            break;
+        glm_mat4_mul(v.proj, v.view, cam);
+        if ((e = plain_raster(prog, &x->mesh, cam, W, H, 0, depth, id, &pm, d)))
+            break;
+        if (r >= 0) {
+            t.render[r] = mr;
+            t.readback[r] = mb;
+            t.p_render[r] = pm.render;
+            t.p_readback[r] = pm.readback;
+        }
+        t.fragments = (uint64_t)frags;
+        t.p_fragments = pm.fragments;
+    }
+    if (e)
+        goto out;
+    char name[64];
+    snprintf(name, sizeof name, "gbuffer %dx%d", W, H);
+    t.gs_prims = 0;
+    layer_row(res, out, "gbuffer", name, &t, reps);
+
+    /* the light frame of that view, as run.c fits it */
+    f.size = S;
+    memcpy(f.dir, x->s.light_dir, sizeof f.dir);
+    sl_light_fit(&x->s, &v, &f.box);
+    f.texel_world = fmaxf(f.box.hi[0] - f.box.lo[0], f.box.hi[1] - f.box.lo[1]) / (float)S;
+    f.depth_range = f.box.hi[2] - f.box.lo[2];
+    for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
+        for (int r = -1; r < reps && !e; r++) {
+            struct raster_ms pm;
+            if ((e = plain_raster(prog, &x->mesh, f.box.vp, S, S, 1, depth, id, &pm, d)))
+                break;
+            free(f.layer[l].depth);
+            free(f.layer[l].id);
+            memset(&f.layer[l], 0, sizeof f.layer[l]);
+            f.have &= ~SL_NEED(l);
+            if ((e = sl_shadowmap_render(&sp, &x->mesh, &f, SL_NEED(l), d)))
+                break;
+            if (r >= 0) {
+                t.render[r] = f.layer[l].ms_render;
+                t.readback[r] = f.layer[l].ms_readback;
+                t.p_render[r] = pm.render;
+                t.p_readback[r] = pm.readback;
+            }
+            t.gs_prims = f.layer[l].gs_prims;
+            t.fragments = f.layer[l].fragments;
+            t.p_fragments = pm.fragments;
+        }
+        if (e)
+            break;
+        snprintf(name, sizeof name, "%s %d²", layer_names[l], S);
+        layer_row(res, out, "layer", name, &t, reps);
+    }
+    if (!e)
+        fputc('\n', out);
+out:
+    if (prog)
+        glDeleteProgram(prog);
+    sl_frame_free(&f);
+    sl_view_free(&v);
+    sl_adjacency_free(&adj);
+    if (sp.prog_depth_id)
+        sl_shadowmap_free(&sp);
+    free(depth);
+    free(id);
+    free(buf);
+    return e;
+}
+
+/* ---- whole studies -------------------------------------------------------- */
+
+static enum sl_err bench_study(const char *path, const char *label, double target_s, FILE *out,
+                               struct sl_bench_result *res, struct sl_diag *d)
+{
+    struct sl_config c;
+    enum sl_err e = sl_config_load(path, &c, d);
     if (e)
         return e;
-
-    /* stage times of one whole run of the config (warm: GL programs compiled above) */
     struct sl_run_opts ro = {.out_root = NULL, .table_out = NULL, .write_files = 0, .store = "", .cache_dir = ""};
-    struct sl_run_result res;
-    if ((e = sl_run(&c, &ro, &res, d)))
+    struct sl_run_result rr;
+    double t0 = sl_now();
+    if ((e = sl_run(&c, &ro, &rr, d)))
         return e;
-    fprintf(out, "## Stage times of one run of %s (ms, no files written)\n\n", cfg_path);
-    fprintf(out, "| viewpoint | map | label | G-buffer render | readback | truth | fit | map render | map readback | method | contours | figures |\n");
-    fprintf(out, "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (int i = 0; i < res.ncells; i++) {
-        const struct sl_cell *cl = &res.cells[i];
-        const struct sl_stage_ms *m = &cl->ms;
-        fprintf(out, "| %s | %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f |\n",
-                cl->viewpoint, c.maps[cl->key.map], c.methods[cl->key.method].label, m->gbuffer_render[SL_MED],
-                m->gbuffer_readback, m->truth[SL_MED], m->fit, m->map_render[SL_MED], m->map_readback, m->method[SL_MED],
-                m->contours, m->figures);
+    double wall = sl_now() - t0;
+    uint64_t viol = 0, rays = 0;
+    double ms_method = 0;
+    for (int i = 0; i < rr.ncells; i++) {
+        const struct sl_cell_key *k = &rr.cells[i].key, *p = i ? &rr.cells[i - 1].key : NULL;
+        viol += rr.cells[i].violations;
+        /* a view's truth is reported with each of its (contiguous) cells */
+        if (!p || p->scene != k->scene || p->viewport != k->viewport || p->vp != k->vp)
+            rays += rr.cells[i].truth_rays;
+        ms_method += rr.cells[i].ms.method[SL_MED];
     }
-    fprintf(out, "\nwhole run: %.0f ms (scene %.1f ms, BVH %.1f ms)\n", res.ms_total, res.ms_scene, res.ms_bvh);
-    sl_run_result_free(&res);
+    int layers = 0;
+    for (int l = 0; l < SL_LAYER_COUNT; l++)
+        layers += rr.passes.layers[l];
+    fprintf(out, "## Study %s (%s): %d cells, %.1f s\n\n", c.name, path, rr.ncells, wall);
+    fprintf(out, "No files, no store, no truth cache; %d threads. Scenes loaded %d (load %.0f ms, BVH %.0f ms), "
+                 "G-buffers %d, truths traced %d (%llu rays), layer renders %d",
+            c.threads, rr.passes.scenes, rr.ms_scene, rr.ms_bvh, rr.passes.gbuffers, rr.passes.truths_traced,
+            (unsigned long long)rays, layers);
+    for (int l = 0, first = 1; l < SL_LAYER_COUNT; l++)
+        if (rr.passes.layers[l]) {
+            fprintf(out, "%s%s %d", first ? " (" : ", ", layer_names[l], rr.passes.layers[l]);
+            first = 0;
+        }
+    fprintf(out, "%s, method runs %d (their median times summed: %.0f ms); exactness violations: %llu.\n\n",
+            layers ? ")" : "", rr.passes.method_runs, ms_method, (unsigned long long)viol);
+    struct sl_bench_row *row = add_row(res, "study", "s", wall, 0, target_s, SL_BENCH_AT_MOST);
+    if (row)
+        snprintf(row->name, sizeof row->name, "%s, %d cells, wall", label, rr.ncells);
+    /* not a speed, but a fast layer that loses exactness is no gain */
+    row = add_row(res, "study", "pixels", (double)viol, 0, 0, SL_BENCH_AT_MOST);
+    if (row)
+        snprintf(row->name, sizeof row->name, "%s, exactness violations", label);
+    sl_run_result_free(&rr);
     return SL_OK;
+}
+
+/* ---- output ---------------------------------------------------------------- */
+
+static void target_text(const struct sl_bench_row *r, char *buf, size_t n)
+{
+    const char *op = r->cmp == SL_BENCH_AT_LEAST ? "≥" : "≤";
+    if (r->plain > 0)
+        snprintf(buf, n, "ratio %s %g", op, r->target);
+    else
+        snprintf(buf, n, "%s %g %s", op, r->target, r->unit);
+}
+
+static void write_summary(const struct sl_bench_result *res, FILE *out)
+{
+    fprintf(out, "## Summary\n\n");
+    fprintf(out, "| stage | measurement | unit | value | plain | ratio | target | result |\n");
+    fprintf(out, "|---|---|---|---:|---:|---:|---|---|\n");
+    for (int i = 0; i < res->nrows; i++) {
+        const struct sl_bench_row *r = &res->rows[i];
+        char tgt[48], plain[32] = "", ratio[32] = "";
+        target_text(r, tgt, sizeof tgt);
+        if (r->plain > 0) {
+            snprintf(plain, sizeof plain, "%.2f", r->plain);
+            snprintf(ratio, sizeof ratio, "%.2f", r->ratio);
+        }
+        fprintf(out, "| %s | %s | %s | %.2f | %s | %s | %s | %s |\n", r->stage, r->name, r->unit, r->value, plain,
+                ratio, tgt, r->pass ? "PASS" : "**MISS**");
+    }
+    fputc('\n', out);
+}
+
+static enum sl_err write_csv(const struct sl_bench_result *res, const char *path, struct sl_diag *d)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot write the CSV");
+    fprintf(f, "git_sha,stage,name,unit,value,plain,ratio,target,cmp,result,gs_prims,fragments,plain_fragments,note\n");
+    for (int i = 0; i < res->nrows; i++) {
+        const struct sl_bench_row *r = &res->rows[i];
+        fprintf(f, "%s,%s,\"%s\",%s,%.6g,%.6g,%.6g,%g,%s,%s,%llu,%llu,%llu,\"%s\"\n", sl_git_sha(), r->stage,
+                r->name, r->unit, r->value, r->plain, r->ratio, r->target,
+                r->cmp == SL_BENCH_AT_LEAST ? "at_least" : "at_most", r->pass ? "PASS" : "MISS",
+                (unsigned long long)r->gs_prims, (unsigned long long)r->fragments,
+                (unsigned long long)r->plain_fragments, r->note);
+    }
+    return fclose(f) == 0 ? SL_OK : sl_fail(d, SL_E_IO, path, 0, NULL, "cannot write the CSV");
+}
+
+/* ---- the driver -------------------------------------------------------------- */
+
+/* Other work on a shared machine skews every time: say how busy it was. */
+static void loadavg(char *buf, size_t n)
+{
+    snprintf(buf, n, "unknown");
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (!f)
+        return;
+    double a, b, c;
+    if (fscanf(f, "%lf %lf %lf", &a, &b, &c) == 3)
+        snprintf(buf, n, "%.2f %.2f %.2f", a, b, c);
+    fclose(f);
+}
+
+static enum sl_err setup(const struct sl_bench_opts *o, struct bench_ctx *x, struct sl_diag *d)
+{
+    struct sl_config c;
+    int have_cfg = o->config != NULL;
+    enum sl_err e;
+    if (have_cfg && (e = sl_config_load(o->config, &c, d)))
+        return e;
+    const char *ref = o->scene ? o->scene : have_cfg ? c.scenes[0].path : "bench";
+    if ((e = sl_scene_build(ref, &x->s, d)))
+        return e;
+    x->nvp = 0;
+    if (have_cfg && !o->scene) {
+        for (int i = 0; i < c.scenes[0].nviewpoints; i++) {
+            int vp = sl_scene_find_viewpoint(&x->s, c.scenes[0].viewpoints[i]);
+            if (vp >= 0)
+                x->vp[x->nvp++] = vp;
+        }
+    } else {
+        for (int i = 0; i < x->s.nvp; i++)
+            x->vp[x->nvp++] = i;
+    }
+    if (x->nvp == 0)
+        return sl_fail(d, SL_E_SCENE, x->s.path, 0, NULL, "scene %s has no viewpoint", x->s.name);
+    x->W = o->width > 0 ? o->width : have_cfg ? c.viewport_w[0] : 1024;
+    x->H = o->height > 0 ? o->height : have_cfg ? c.viewport_h[0] : 1024;
+    x->S = o->map > 0 ? o->map : 2048;
+    x->threads = have_cfg ? c.threads : omp_get_num_procs();
+    x->reps = o->reps > 0 ? o->reps : 7;
+    return SL_OK;
+}
+
+enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_out, struct sl_diag *d)
+{
+    unsigned stages = o->stages ? o->stages : SL_BENCH_ALL;
+    FILE *out = o->out ? o->out : stdout;
+    struct sl_bench_result *res = sl_calloc(1, sizeof *res);
+    if (!res)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "bench rows");
+    struct bench_ctx x;
+    memset(&x, 0, sizeof x);
+    x.out = out;
+    enum sl_err e = SL_OK;
+    int need_scene = (stages & (SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS))) != 0;
+
+    /* provenance first: a short-lived context for the renderer's name */
+    struct sl_provenance prov;
+    memset(&prov, 0, sizeof prov);
+    if ((e = sl_gl_init(&x.gl, d)))
+        goto done;
+    snprintf(prov.gl_renderer, sizeof prov.gl_renderer, "%s", x.gl.renderer);
+    snprintf(prov.gl_version, sizeof prov.gl_version, "%s", x.gl.version);
+    sl_gl_free(&x.gl);
+    snprintf(prov.embree, sizeof prov.embree, "%d.%d.%d", RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH);
+    prov.threads = omp_get_num_procs();
+    sl_provenance_fill(&prov);
+    fprintf(out, "# shadowlab bench\n\n```\n");
+    sl_provenance_write(&prov, out, "");
+    fprintf(out, "stages:");
+    for (int i = 0; i < SL_BENCH_NSTAGES; i++)
+        if (stages & (1u << i))
+            fprintf(out, " %s", stage_names[i]);
+    char la[64];
+    loadavg(la, sizeof la);
+    fprintf(out, "\nload average at start: %s\n```\n\n", la);
+    fflush(out);
+
+    if (need_scene) {
+        if ((e = setup(o, &x, d)) || (e = sl_gl_init(&x.gl, d)) || (e = sl_gl_mesh_upload(&x.mesh, &x.s, d)) ||
+            (e = sl_gbuffer_init(&x.gp, &x.s, d)))
+            goto done;
+        if (stages & SL_BENCH_STAGE(TRUTH))
+            e = bench_truth(&x, res, d);
+        fflush(out);
+        if (!e && (stages & SL_BENCH_STAGE(LAYERS)))
+            e = bench_layers(&x, res, d);
+        fflush(out);
+        sl_gbuffer_free(&x.gp);
+        sl_gl_mesh_free(&x.mesh);
+        sl_gl_free(&x.gl);
+        if (e)
+            goto done;
+    }
+    if (stages & SL_BENCH_STAGE(MODERNO)) {
+        e = bench_study(o->moderno ? o->moderno : "configs/moderno-2011.yaml", "moderno-2011", TARGET_MODERNO_S,
+                        out, res, d);
+        fflush(out);
+        if (e)
+            goto done;
+    }
+    if (stages & SL_BENCH_STAGE(MORAIS)) {
+        e = bench_study(o->morais ? o->morais : "configs/morais-2015.yaml", "morais-2015", TARGET_MORAIS_S, out,
+                        res, d);
+        fflush(out);
+        if (e)
+            goto done;
+    }
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    struct sl_bench_row *row = add_row(res, "memory", "MiB", ru.ru_maxrss / 1024.0, 0, TARGET_RSS_MIB,
+                                       SL_BENCH_AT_MOST);
+    if (row)
+        snprintf(row->name, sizeof row->name, "peak RSS after all stages");
+    write_summary(res, out);
+    loadavg(la, sizeof la);
+    fprintf(out, "load average at the end: %s\n\n", la);
+    if (o->csv)
+        e = write_csv(res, o->csv, d);
+done:
+    if (x.gl.ctx) {
+        sl_gbuffer_free(&x.gp);
+        sl_gl_mesh_free(&x.mesh);
+        sl_gl_free(&x.gl);
+    }
+    if (need_scene)
+        sl_scene_free(&x.s);
+    if (res_out && !e)
+        *res_out = *res;
+    free(res);
+    return e;
 }

@@ -1,19 +1,89 @@
 /*
- * bench.h — `shadowlab bench`: the truth pass against a plain Embree
- * rtcOccluded16 loop over the very same rays, and the stage times of one run
- * of a config. A benchmark, not a test: it prints figures, it asserts nothing.
+ * bench.h — `shadowlab bench`: each stage of the harness against the plain
+ * thing anyone would write for the same job, and the whole studies end to
+ * end, each with its target (issue 6):
+ *
+ * - truth: the truth pass against a plain Embree rtcOccluded16 loop over the
+ *   very same rays (target: at least 0.8x its rays/s);
+ * - layers: every shadow-map layer shadowmap.c renders, and the G-buffer,
+ *   against a plain raster of the same mesh at the same size and matrix
+ *   (depth + one uint, trivial fragment shader, no geometry shader), timed
+ *   the same way: render + glFinish, readback apart (target: within 2x);
+ *   with the GL counters (GS primitives, fragment shader invocations) so the
+ *   comparison carries to a GPU;
+ * - moderno, morais: configs/moderno-2011.yaml and configs/morais-2015.yaml
+ *   through sl_run, no files, no store, no truth cache (targets: 60 s and
+ *   300 s of wall time);
+ * - peak RSS of the process after all of it (target: under 2 GiB).
+ *
+ * A benchmark, not a test: a missed target is reported (MISS), not an
+ * error; only a stage that fails to run returns one. Prints Markdown (and
+ * optionally CSV); the rows are also returned for tests.
+ * Owns: its own GL context and BVHs for the truth and layer stages (freed
+ * before the studies, which make their own). Does not: write results files.
  */
 #ifndef SL_BENCH_H
 #define SL_BENCH_H
+#include <stdint.h>
 #include <stdio.h>
 #include "config.h"
 
+/* Stages, selectable by name (sl_bench_parse_stages). */
+#define SL_BENCH_STAGES(X)   \
+    X(TRUTH,   "truth")      \
+    X(LAYERS,  "layers")     \
+    X(MODERNO, "moderno")    \
+    X(MORAIS,  "morais")
+
+enum sl_bench_stage_bit {
+#define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,
+    SL_BENCH_STAGES(SL_BENCH_BIT)
+#undef SL_BENCH_BIT
+    SL_BENCH_NSTAGES
+};
+#define SL_BENCH_STAGE(id) (1u << SL_BENCH_BIT_##id)
+#define SL_BENCH_ALL ((1u << SL_BENCH_NSTAGES) - 1u)
+
 struct sl_bench_opts {
-    const char *config;    /* NULL = configs/default.yaml */
-    int reps;              /* timed repetitions (after one warm-up); 0 = 7 */
-    FILE *out;
+    const char *config;    /* scene, viewpoints, viewport and threads of the truth and layer
+                            * stages from its first scene; NULL = the defaults below */
+    unsigned    stages;    /* SL_BENCH_STAGE bits; 0 = all */
+    int         reps;      /* timed repetitions (after one warm-up); 0 = 7 */
+    const char *scene;     /* NULL = the config's first scene, else "bench" (54,200 triangles) */
+    int         width, height; /* viewport; 0 = the config's first, else 1024x1024 */
+    int         map;       /* shadow-map size of the layer stage; 0 = 2048 */
+    const char *moderno;   /* study configs; NULL = configs/moderno-2011.yaml, */
+    const char *morais;    /*                      configs/morais-2015.yaml */
+    const char *csv;       /* also write the rows here as CSV; NULL = no */
+    FILE       *out;       /* Markdown; NULL = stdout */
 };
 
-enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_diag *d);
+enum sl_bench_cmp { SL_BENCH_AT_LEAST, SL_BENCH_AT_MOST };
+
+/* One measurement against its target. `plain` is the plain counterpart's
+ * value (0 = none); the target applies to `ratio` when there is one, else
+ * to `value`. */
+struct sl_bench_row {
+    char     stage[16];    /* truth, gbuffer, layer, study, memory */
+    char     name[64];     /* what was measured */
+    char     unit[16];
+    double   value, plain, ratio;
+    double   target;
+    enum sl_bench_cmp cmp;
+    int      pass;
+    uint64_t gs_prims, fragments, plain_fragments;   /* GL counters (layers, G-buffer) */
+    char     note[128];
+};
+
+struct sl_bench_result {
+    int nrows;
+    struct sl_bench_row rows[48];
+};
+
+/* "truth,layers" -> bits; SL_E_USAGE naming the unknown one otherwise. */
+enum sl_err sl_bench_parse_stages(const char *list, unsigned *out, struct sl_diag *d);
+
+/* res may be NULL. */
+enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res, struct sl_diag *d);
 
 #endif

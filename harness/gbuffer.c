@@ -12,6 +12,9 @@
 extern const char sl_glsl_gbuffer_vs[];
 extern const char sl_glsl_gbuffer_fs[];
 
+/* The id's top bit: the camera sees the triangle's back (gbuffer_fs.glsl). */
+#define SL_BACK_FACING 0x80000000u
+
 void sl_view_free(struct sl_view *v)
 {
     if (!v)
@@ -37,24 +40,16 @@ void sl_camera_matrices(const struct sl_viewpoint *vp, float aspect, mat4 view, 
 enum sl_err sl_gbuffer_init(struct sl_gbuffer_pass *p, const struct sl_scene *s, struct sl_diag *d)
 {
     memset(p, 0, sizeof *p);
+    if (s->nt >= SL_BACK_FACING)
+        return sl_fail(d, SL_E_SCENE, s->path, 0, NULL, "%u triangles: the G-buffer's ids hold at most 2^31 - 1",
+                       s->nt);
     p->prog = sl_gl_program(sl_glsl_gbuffer_vs, NULL, sl_glsl_gbuffer_fs, d);
-    if (!p->prog)
-        return SL_E_GL;
-    float *n4 = sl_calloc((size_t)s->nt * 4, sizeof(float));
-    if (!n4)
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "face normal buffer");
-    for (uint32_t t = 0; t < s->nt; t++)
-        memcpy(n4 + 4 * (size_t)t, s->fn + 3 * (size_t)t, 3 * sizeof(float));
-    glCreateBuffers(1, &p->normals);
-    glNamedBufferStorage(p->normals, (GLsizeiptr)s->nt * 4 * sizeof(float), n4, 0);
-    free(n4);
-    return sl_gl_check("gbuffer init", d);
+    return p->prog ? SL_OK : SL_E_GL;
 }
 
 void sl_gbuffer_free(struct sl_gbuffer_pass *p)
 {
     if (p->prog) glDeleteProgram(p->prog);
-    if (p->normals) glDeleteBuffers(1, &p->normals);
     memset(p, 0, sizeof *p);
 }
 
@@ -69,15 +64,13 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
     v->vp = vp;
     size_t n = (size_t)w * (size_t)h;
     float *rgba_pos = sl_calloc(n * 4, sizeof(float));
-    float *rgba_nrm = sl_calloc(n * 4, sizeof(float));
     v->pos = sl_calloc(n * 3, sizeof(float));
     v->nrm = sl_calloc(n * 3, sizeof(float));
     v->tri = sl_calloc(n, sizeof(uint32_t));
     v->cls = sl_calloc(n, 1);
     v->truth = sl_calloc(n, 1);
-    if (!rgba_pos || !rgba_nrm || !v->pos || !v->nrm || !v->tri || !v->cls || !v->truth) {
+    if (!rgba_pos || !v->pos || !v->nrm || !v->tri || !v->cls || !v->truth) {
         free(rgba_pos);
-        free(rgba_nrm);
         sl_view_free(v);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "G-buffer %dx%d", w, h);
     }
@@ -86,19 +79,18 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
     glm_mat4_mul(v->proj, v->view, vpm);
 
     double t0 = sl_now();
-    GLuint fbo, tex[3], depth;
+    GLuint fbo, tex[2], depth;
     glCreateFramebuffers(1, &fbo);
-    glCreateTextures(GL_TEXTURE_2D, 3, tex);
+    glCreateTextures(GL_TEXTURE_2D, 2, tex);
     glTextureStorage2D(tex[0], 1, GL_RGBA32F, w, h);
-    glTextureStorage2D(tex[1], 1, GL_RGBA32F, w, h);
-    glTextureStorage2D(tex[2], 1, GL_R32UI, w, h);
+    glTextureStorage2D(tex[1], 1, GL_R32UI, w, h);
     glCreateRenderbuffers(1, &depth);
     glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, w, h);
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 2; i++)
         glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + (GLenum)i, tex[i], 0);
     glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(fbo, 3, bufs);
+    const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo, 2, bufs);
     enum sl_err e = SL_OK;
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "G-buffer framebuffer incomplete");
@@ -113,19 +105,16 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
         glDepthFunc(GL_LESS);
         glDisable(GL_CULL_FACE);   /* back faces are seen only where the mesh is open */
         glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero4);
-        glClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero4);
-        glClearNamedFramebufferuiv(fbo, GL_COLOR, 2, zero_u);
+        glClearNamedFramebufferuiv(fbo, GL_COLOR, 1, zero_u);
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
         glUseProgram(p->prog);
         glUniformMatrix4fv(glGetUniformLocation(p->prog, "u_vp"), 1, GL_FALSE, (const float *)vpm);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, p->normals);
         glBindVertexArray(m->vao);
         glDrawElements(GL_TRIANGLES, m->count, GL_UNSIGNED_INT, NULL);
         glFinish();
         double t1 = sl_now();
         glGetTextureImage(tex[0], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba_pos);
-        glGetTextureImage(tex[1], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba_nrm);
-        glGetTextureImage(tex[2], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), v->tri);
+        glGetTextureImage(tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), v->tri);
         double t2 = sl_now();
         if (ms_render) *ms_render = 1e3 * (t1 - t0);
         if (ms_readback) *ms_readback = 1e3 * (t2 - t1);
@@ -133,16 +122,23 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
         e = sl_gl_check("G-buffer pass", d);
     }
     glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(3, tex);
+    glDeleteTextures(2, tex);
     glDeleteRenderbuffers(1, &depth);
 
     if (!e) {
         const float *L = s->light_dir;
         for (size_t i = 0; i < n; i++) {
-            for (int k = 0; k < 3; k++) {
+            for (int k = 0; k < 3; k++)
                 v->pos[3 * i + k] = rgba_pos[4 * i + k];
-                v->nrm[3 * i + k] = rgba_nrm[4 * i + k];
+            /* the face normal, negated (exactly) where the back is seen */
+            uint32_t id = v->tri[i] & ~SL_BACK_FACING;
+            if (id) {
+                const float *fn = s->fn + 3 * (size_t)(id - 1);
+                float sg = (v->tri[i] & SL_BACK_FACING) ? -1.0f : 1.0f;
+                for (int k = 0; k < 3; k++)
+                    v->nrm[3 * i + k] = sg * fn[k];
             }
+            v->tri[i] = id;
             if (v->tri[i] == 0) {
                 v->cls[i] = SL_C_BACKGROUND;
                 v->truth[i] = SL_T_BACKGROUND;
@@ -163,7 +159,6 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
         }
     }
     free(rgba_pos);
-    free(rgba_nrm);
     if (e)
         sl_view_free(v);
     return e;

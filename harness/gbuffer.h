@@ -1,9 +1,10 @@
 /*
- * gbuffer.h — the camera G-buffer pass: world position (RGBA32F), face normal
- * (RGBA32F, from a per-triangle storage buffer indexed by gl_PrimitiveID and
- * turned toward the camera), triangle id + 1 (R32UI, 0 = background) and a
- * 32-bit float depth buffer; read back into an sl_view, then every pixel
- * classified as background, PnFL or PFL against the scene's light.
+ * gbuffer.h — the camera G-buffer pass: world position (RGBA32F), triangle
+ * id + 1 (R32UI, 0 = background; the top bit marks a back face seen) and a
+ * 32-bit float depth buffer; read back into an sl_view with the face normal
+ * of each pixel's triangle turned toward the camera (by that bit), then
+ * every pixel classified as background, PnFL or PFL against the scene's
+ * light.
  *
  * Does not: decide lit or shadowed (truth.c does for the reference, methods
  * for themselves).
@@ -15,7 +16,6 @@
 
 struct sl_gbuffer_pass {
     GLuint prog;
-    GLuint normals;          /* SSBO of face normals, 4 floats per triangle */
 };
 
 enum sl_err sl_gbuffer_init(struct sl_gbuffer_pass *p, const struct sl_scene *s, struct sl_diag *d);

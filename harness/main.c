@@ -27,7 +27,7 @@ static const char usage[] =
     "  table DB [options]         regenerate tables from a results store\n"
     "  report DB [--out DIR]      HTML and Markdown report of a results store (needs gnuplot)\n"
     "  check DB --baseline FILE   compare a results store with a committed baseline (exit 1 if outside)\n"
-    "  bench [CONFIG] [--reps N]  truth pass vs a plain Embree loop, and stage times\n"
+    "  bench [CONFIG] [options]   every stage against its plain counterpart, the studies, their targets\n"
     "  list methods|scenes        what can be named in a config\n"
     "  version                    the git SHA this binary was built from\n";
 
@@ -72,9 +72,21 @@ static const char usage_check[] =
     "  --update      write FILE from DB instead (keeps FILE's tolerances): a deliberate refresh\n";
 
 static const char usage_bench[] =
-    "usage: shadowlab bench [CONFIG] [--reps N]\n"
-    "  The truth pass against a plain Embree rtcOccluded16 loop over the same rays (first scene\n"
-    "  of CONFIG, default configs/default.yaml), then the stage times of one run of CONFIG.\n";
+    "usage: shadowlab bench [CONFIG] [--only LIST] [--reps N] [--scene S] [--viewport WxH] [--map N]\n"
+    "                       [--csv FILE]\n"
+    "  Each measurement against its target (issue 6), as a Markdown table with PASS/MISS:\n"
+    "    truth    the truth pass vs a plain Embree rtcOccluded16 loop over the same rays (>= 0.8x)\n"
+    "    layers   the G-buffer and every shadow-map layer vs a plain raster of the same mesh, size\n"
+    "             and matrix, with GL counters (render time within 2x)\n"
+    "    moderno  configs/moderno-2011.yaml end to end, no files, no cache (< 60 s)\n"
+    "    morais   configs/morais-2015.yaml end to end, no files, no cache (< 300 s; about 4 min)\n"
+    "  and the peak RSS after all of it (< 2 GiB). A missed target exits 0; a failure exits 2.\n"
+    "  --only LIST     comma-separated stages (default all); `--only truth,layers` is the quick mode\n"
+    "  --reps N        timed repetitions after one warm-up (default 7)\n"
+    "  --scene S       scene of the truth and layer stages (default: CONFIG's first scene, else bench)\n"
+    "  --viewport WxH  their viewport (default: CONFIG's first, else 1024x1024)\n"
+    "  --map N         the layers' map size (default 2048)\n"
+    "  --csv FILE      also write the summary rows as CSV\n";
 
 static const char usage_list[] = "usage: shadowlab list methods|scenes\n";
 
@@ -355,20 +367,40 @@ static int cmd_check(int argc, char **argv)
 static int cmd_bench(int argc, char **argv)
 {
     struct sl_bench_opts o = {.config = NULL, .reps = 0, .out = stdout};
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
     for (int i = 2; i < argc; i++) {
-        if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) {
+        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--reps") == 0 && val) {
             o.reps = atoi(argv[++i]);
             if (o.reps < 1 || o.reps > 1000)
                 return usage_error("bench: --reps must be 1..1000", usage_bench);
-        } else if (argv[i][0] == '-') {
-            return usage_error("bench: unknown option", usage_bench);
+        } else if (strcmp(a, "--only") == 0 && val) {
+            enum sl_err e = sl_bench_parse_stages(argv[++i], &o.stages, &d);
+            if (e)
+                return usage_error(d.msg, usage_bench);
+        } else if (strcmp(a, "--scene") == 0 && val) {
+            o.scene = argv[++i];
+        } else if (strcmp(a, "--viewport") == 0 && val) {
+            char tail;
+            if (sscanf(argv[++i], "%dx%d%c", &o.width, &o.height, &tail) != 2 || o.width < 1 || o.height < 1 ||
+                o.width > 16384 || o.height > 16384)
+                return usage_error("bench: --viewport wants WxH, 1..16384 each", usage_bench);
+        } else if (strcmp(a, "--map") == 0 && val) {
+            o.map = atoi(argv[++i]);
+            if (o.map < 16 || o.map > 16384)
+                return usage_error("bench: --map must be 16..16384", usage_bench);
+        } else if (strcmp(a, "--csv") == 0 && val) {
+            o.csv = argv[++i];
+        } else if (a[0] == '-') {
+            return usage_error("bench: unknown option or missing value", usage_bench);
+        } else if (!o.config) {
+            o.config = a;
         } else {
-            o.config = argv[i];
+            return usage_error("bench: one CONFIG at most", usage_bench);
         }
     }
-    struct sl_diag d;
-    memset(&d, 0, sizeof d);
-    enum sl_err e = sl_bench(&o, &d);
+    enum sl_err e = sl_bench(&o, NULL, &d);
     return e ? fail(e, &d) : 0;
 }
 

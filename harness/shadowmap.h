@@ -13,8 +13,11 @@
 
 struct sl_shadowmap_pass {
     GLuint prog_depth_id;
-    GLuint prog_cons;         /* conservative layers: geometry shader + exact per-texel tests */
-    GLuint prog_cons_adj;     /* SGSM with adjacency: GL_TRIANGLES_ADJACENCY input */
+    /* conservative layers, one program each (BGSM, BGSM2, SGSM: geometry
+     * shader + exact per-texel tests; SGSM with adjacency:
+     * GL_TRIANGLES_ADJACENCY input), specialised so that no layer pays for
+     * another's code */
+    GLuint prog_cons[4];
 };
 
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d);

@@ -22,6 +22,20 @@ flat out vec3 g_n0;
 flat out vec3 g_n1;
 flat out vec3 g_n2;
 flat out uint g_keep;
+flat out dvec2 g_e0;       // the triangle's outward unit edge normals (cons_setup.glsl)
+flat out dvec2 g_e1;
+flat out dvec2 g_e2;
+flat out dvec2 g_grad;     // its depth plane gradient
+flat out dvec2 g_na0;      // kept edge i: the neighbour's edge normals a -> opposite, opposite -> b
+flat out dvec2 g_nb0;
+flat out dvec2 g_na1;
+flat out dvec2 g_nb1;
+flat out dvec2 g_na2;
+flat out dvec2 g_nb2;
+flat out dvec2 g_ngrad0;   // kept edge i: the neighbour's depth plane gradient (from b)
+flat out dvec2 g_ngrad1;
+flat out dvec2 g_ngrad2;
+flat out uint g_flags;     // bits 0, 1: the triangle's |area| > 1e-12, >= 1e-12; 2 + i, 5 + i: the same of neighbour i
 
 vec3 win(vec4 c) { return vec3((c.xy * 0.5 + 0.5) * u_size, c.z); }
 
@@ -50,6 +64,33 @@ void main()
             keep |= 1u << i;
     }
     g_keep = keep;
+    // the per-texel test's set-up: the triangle, then each kept neighbour,
+    // which runs b -> a -> opposite (cons_fs.glsl, mode 3)
+    double ta = cons_area(v[0], v[1], v[2]);
+    double st = ta > 0.0 ? 1.0 : -1.0;
+    g_e0 = cons_edge_normal(v[0], v[1], st);
+    g_e1 = cons_edge_normal(v[1], v[2], st);
+    g_e2 = cons_edge_normal(v[2], v[0], st);
+    g_grad = cons_plane_grad(v[0], v[1], v[2], ta);
+    uint flags = (abs(ta) > 1e-12 ? 1u : 0u) | (abs(ta) >= 1e-12 ? 2u : 0u);
+    dvec2 na[3], nb[3], ng[3];
+    for (int i = 0; i < 3; i++) {
+        na[i] = nb[i] = ng[i] = dvec2(0.0);
+        if ((keep & (1u << i)) == 0u)
+            continue;
+        vec3 a = v[i], b = v[(i + 1) % 3];
+        double narea = cons_area(b, a, o[i]);
+        double sn = narea > 0.0 ? 1.0 : -1.0;
+        na[i] = cons_edge_normal(a, o[i], sn);
+        nb[i] = cons_edge_normal(o[i], b, sn);
+        ng[i] = cons_plane_grad(b, a, o[i], narea);
+        flags |= (abs(narea) > 1e-12 ? 1u : 0u) << (5 + i);
+        flags |= (abs(narea) >= 1e-12 ? 1u : 0u) << (2 + i);
+    }
+    g_na0 = na[0]; g_nb0 = nb[0]; g_ngrad0 = ng[0];
+    g_na1 = na[1]; g_nb1 = nb[1]; g_ngrad1 = ng[1];
+    g_na2 = na[2]; g_nb2 = nb[2]; g_ngrad2 = ng[2];
+    g_flags = flags;
     float z = clamp(min(v[0].z, min(v[1].z, v[2].z)), 0.0, 1.0);
     for (int i = 0; i < 3; i++) {
         gl_Position = vec4(v[i].xy / u_size * 2.0 - 1.0, z, 1.0);

@@ -2,7 +2,7 @@
 // The exact per-texel decisions of the conservative layers, in double
 // precision. The texel is the square [i, i+1] x [j, j+1] in window space.
 //
-// u_mode 0 (BGSM) and 1 (BGSM, second layer): keep the texel if the square
+// SL_MODE 0 (BGSM) and 1 (BGSM, second layer): keep the texel if the square
 // and the triangle overlap (separating axes: the box axes and the three edge
 // normals, each with a margin of u_eps texels in the triangle's favour); the
 // depth written is a lower bound of the triangle's depth over the square:
@@ -11,166 +11,181 @@
 // vertex (which bounds steep, nearly edge-on planes), minus u_zeps.
 // Mode 1 drops the triangle stored by mode 0 at this texel, so the second
 // layer holds the nearest of all the others.
-// u_mode 2 (SGSM): keep the texel only if the whole square lies inside the
+// SL_MODE 2 (SGSM): keep the texel only if the whole square lies inside the
 // triangle by at least u_eps texels; the depth written is an upper bound of
 // the triangle's depth over the square (maximum of the plane over the corners,
 // never beyond its farthest vertex), plus u_zeps.
 // Mode 0 also marks the id with SL_FULL (the top bit) when the whole square
 // lies inside the triangle by u_eps (Hertel 2009's "fully covered").
 // All write the triangle's id; the depth test keeps the smallest value.
-uniform int u_mode;
+//
+// SL_MODE is defined by shadowmap.c, one program per layer, and the
+// per-triangle quantities come from the geometry shader (cons_setup.glsl):
+// llvmpipe executes every instruction of a fragment shader on every
+// fragment (branches are masks), so code for the other layers, or per-
+// triangle work redone per texel, would cost on every fragment.
+//
+// Distances: for an edge from a with outward unit normal n, the corners'
+// signed distances outside it are dot(n, q - a) over the four corners q;
+// their minimum and maximum are those of the corners the normal's signs
+// pick (dmin: the corner at t + (n.x < 0, n.y < 0), dmax: the opposite), so
+// each is one dot product, evaluated as the per-texel test always did.
+// Likewise the plane's minimum and maximum over the square are at the
+// corners its gradient's signs pick.
 uniform double u_eps;
 uniform double u_zeps;
-layout(binding = 0) uniform usampler2D u_first_ids;   // mode 1: the ids of mode 0
+#if SL_MODE == 1
+layout(binding = 0, r32ui) readonly uniform uimage2D u_first_ids;   // the ids of mode 0
+#endif
 flat in vec3 g_v0;
 flat in vec3 g_v1;
 flat in vec3 g_v2;
 flat in uint g_tri;
-flat in vec3 g_n0;      // mode 3: the vertex of the neighbour across edge i opposite to it
+flat in dvec2 g_e0;     // outward unit normal of edge v_i -> v_i+1 (0: zero length)
+flat in dvec2 g_e1;
+flat in dvec2 g_e2;
+flat in dvec2 g_grad;   // depth plane gradient (from v0)
+flat in uint g_flags;   // bit 0: |area| > 1e-12; bit 1: |area| >= 1e-12 (mode 3: bits 2 + i, 5 + i the same per neighbour)
+#if SL_MODE == 3
+flat in vec3 g_n0;      // the vertex of the neighbour across edge i opposite to it
 flat in vec3 g_n1;
 flat in vec3 g_n2;
-flat in uint g_keep;    // mode 3: bit i set when edge i stays in place (its neighbour takes over)
+flat in uint g_keep;    // bit i set when edge i stays in place (its neighbour takes over)
+flat in dvec2 g_na0;    // kept edge i: the neighbour's edge normals a -> opposite, opposite -> b
+flat in dvec2 g_nb0;
+flat in dvec2 g_na1;
+flat in dvec2 g_nb1;
+flat in dvec2 g_na2;
+flat in dvec2 g_nb2;
+flat in dvec2 g_ngrad0; // kept edge i: the neighbour's depth plane gradient (from b)
+flat in dvec2 g_ngrad1;
+flat in dvec2 g_ngrad2;
+#endif
 layout(location = 0) out uint o_tri;
 
-// signed distances of the square's corners outside the line a->b, with the
-// outward side given by s (the sign of the polygon's area)
-void corner_dist(dvec2 a, dvec2 b, double s, dvec2 c[4], out double dmin, out double dmax, out bool ok)
+// The corner of texel t at which dot(n, q) is smallest (sgn = 1) or
+// largest (sgn = -1).
+dvec2 corner(ivec2 t, dvec2 n, double sgn)
 {
-    dvec2 e = b - a;
-    double len = length(e);
-    ok = len > 0.0;
-    dmin = 1e300;
-    dmax = -1e300;
-    if (!ok)
-        return;
-    dvec2 n = s * dvec2(e.y, -e.x) / len;
-    for (int k = 0; k < 4; k++) {
-        double dist = dot(n, c[k] - a);
-        dmin = min(dmin, dist);
-        dmax = max(dmax, dist);
-    }
+    return dvec2(t) + dvec2(sgn * n.x < 0.0 ? 1.0 : 0.0, sgn * n.y < 0.0 ? 1.0 : 0.0);
 }
 
-// highest depth of the plane through a, b, c over the square, never beyond
-// the farthest of the three
-double plane_max(dvec3 a, dvec3 b, dvec3 c, dvec2 q[4])
+// Lowest signed distance of the texel's corners outside the edge through a.
+double dist_min(ivec2 t, vec3 a, dvec2 n)
 {
-    double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-    double zhi = max(a.z, max(b.z, c.z));
-    if (abs(area) <= 1e-12)
-        return zhi;
-    double gx = ((b.z - a.z) * (c.y - a.y) - (c.z - a.z) * (b.y - a.y)) / area;
-    double gy = ((c.z - a.z) * (b.x - a.x) - (b.z - a.z) * (c.x - a.x)) / area;
-    double pmax = -1e300;
-    for (int k = 0; k < 4; k++)
-        pmax = max(pmax, a.z + gx * (q[k].x - a.x) + gy * (q[k].y - a.y));
-    return min(pmax, zhi);
+    return dot(n, corner(t, n, 1.0) - dvec2(a.xy));
+}
+
+// Highest.
+double dist_max(ivec2 t, vec3 a, dvec2 n)
+{
+    return dot(n, corner(t, n, -1.0) - dvec2(a.xy));
+}
+
+// Depth of the plane through a with gradient g at corner q.
+double plane_at(vec3 a, dvec2 g, dvec2 q)
+{
+    return double(a.z) + g.x * (q.x - double(a.x)) + g.y * (q.y - double(a.y));
+}
+
+// Highest depth of the plane over the texel, never beyond zhi; zhi when the
+// plane is degenerate.
+double plane_max(ivec2 t, vec3 a, dvec2 g, bool has_plane, double zhi)
+{
+    return has_plane ? min(plane_at(a, g, corner(t, g, -1.0)), zhi) : zhi;
 }
 
 void main()
 {
     ivec2 t = ivec2(gl_FragCoord.xy);
-    if (u_mode == 1 && (texelFetch(u_first_ids, t, 0).r & 0x7fffffffu) == g_tri)
-        discard;
-    dvec3 v[3] = dvec3[3](dvec3(g_v0), dvec3(g_v1), dvec3(g_v2));
-    if (u_mode == 3) {
-        // SGSM with adjacency: the square must lie inside the triangle and,
-        // across each kept edge, inside the neighbour: inside the half-planes
-        // of the triangle's other edges and of each kept neighbour's two
-        // other edges. Every point of such a square is in the triangle or in
-        // a neighbour (a point outside the triangle is beyond a kept edge and
-        // inside that neighbour's other two edges), so the pixel's ray meets
-        // one of them; both are in front of the pixel when the larger of
-        // their highest depths over the square is.
-        dvec2 q[4] = dvec2[4](dvec2(t), dvec2(t) + dvec2(1, 0), dvec2(t) + dvec2(0, 1), dvec2(t) + dvec2(1, 1));
-        dvec3 nb[3] = dvec3[3](dvec3(g_n0), dvec3(g_n1), dvec3(g_n2));
-        double ta = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
-        if (abs(ta) < 1e-12)
-            discard;
-        double st = ta > 0.0 ? 1.0 : -1.0;
-        double zmax = plane_max(v[0], v[1], v[2], q);
-        // wholly inside the triangle itself: as plain SGSM, so this layer
-        // proves at least every texel SGSM proves
-        bool inside = true;
-        for (int i = 0; i < 3; i++) {
-            double dmin, dmax;
-            bool ok;
-            corner_dist(v[i].xy, v[(i + 1) % 3].xy, st, q, dmin, dmax, ok);
-            inside = inside && ok && dmax <= -u_eps;
-        }
-        for (int i = 0; i < 3 && !inside; i++) {
-            dvec3 a = v[i], b = v[(i + 1) % 3];
-            double dmin, dmax;
-            bool ok;
-            if ((g_keep & (1u << i)) == 0u) {
-                corner_dist(a.xy, b.xy, st, q, dmin, dmax, ok);
-                if (!ok || dmax > -u_eps)
-                    discard;
-                continue;
-            }
-            // the neighbour runs b -> a -> opposite
-            dvec3 o = nb[i];
-            double na = (a.x - b.x) * (o.y - b.y) - (o.x - b.x) * (a.y - b.y);
-            if (abs(na) < 1e-12)
-                discard;
-            double sn = na > 0.0 ? 1.0 : -1.0;
-            corner_dist(a.xy, o.xy, sn, q, dmin, dmax, ok);
-            if (!ok || dmax > -u_eps)
-                discard;
-            corner_dist(o.xy, b.xy, sn, q, dmin, dmax, ok);
-            if (!ok || dmax > -u_eps)
-                discard;
-            zmax = max(zmax, plane_max(b, a, o, q));
-        }
-        gl_FragDepth = float(clamp(zmax + u_zeps, 0.0, 1.0));
-        o_tri = g_tri;
-        return;
-    }
-    dvec2 c[4] = dvec2[4](dvec2(t), dvec2(t) + dvec2(1, 0), dvec2(t) + dvec2(0, 1), dvec2(t) + dvec2(1, 1));
-    double area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
-    double s = area >= 0.0 ? 1.0 : -1.0;
-    // box axes
-    dvec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)), hi = max(v[0].xy, max(v[1].xy, v[2].xy));
-    if (u_mode != 2 && (hi.x < double(t.x) - u_eps || lo.x > double(t.x + 1) + u_eps ||
-                        hi.y < double(t.y) - u_eps || lo.y > double(t.y + 1) + u_eps))
-        discard;
-    // edge axes: signed distance of each corner outside edge i, in texels
-    bool full = abs(area) >= 1e-12;
+    dvec3 zs = dvec3(g_v0.z, g_v1.z, g_v2.z);
+    double zlo = min(zs.x, min(zs.y, zs.z)), zhi = max(zs.x, max(zs.y, zs.z));
+    // One discard, at the end: on llvmpipe each discard statement costs
+    // (measured: a second, early one for the box test nearly doubled the
+    // time of BGSM), and an early one saves nothing, since the rest of the
+    // shader runs anyway, masked.
+    bool drop = false;
+#if SL_MODE == 3
+    // SGSM with adjacency: the square must lie inside the triangle and,
+    // across each kept edge, inside the neighbour: inside the half-planes
+    // of the triangle's other edges and of each kept neighbour's two
+    // other edges. Every point of such a square is in the triangle or in
+    // a neighbour (a point outside the triangle is beyond a kept edge and
+    // inside that neighbour's other two edges), so the pixel's ray meets
+    // one of them; both are in front of the pixel when the larger of
+    // their highest depths over the square is.
+    vec3 v[3] = vec3[3](g_v0, g_v1, g_v2);
+    dvec2 e[3] = dvec2[3](g_e0, g_e1, g_e2);
+    double zmax = plane_max(t, v[0], g_grad, (g_flags & 1u) != 0u, zhi);
+    // wholly inside the triangle itself: as plain SGSM, so this layer
+    // proves at least every texel SGSM proves
+    bool inside = true, across = true;
     for (int i = 0; i < 3; i++) {
-        dvec2 a = v[i].xy, b = v[(i + 1) % 3].xy;
-        dvec2 e = b - a;
-        double len = length(e);
-        if (len == 0.0)
-            continue;                      // a degenerate edge separates nothing
-        dvec2 n = s * dvec2(e.y, -e.x) / len;
-        double dmin = 1e300, dmax = -1e300;
-        for (int k = 0; k < 4; k++) {
-            double dist = dot(n, c[k] - a);
-            dmin = min(dmin, dist);
-            dmax = max(dmax, dist);
-        }
-        if (u_mode != 2 && dmin > u_eps)
-            discard;                       // the whole square is outside this edge
-        full = full && dmax <= -u_eps;
-        if (u_mode == 2 && (dmax > -u_eps || abs(area) < 1e-12))
-            discard;                       // some of the square is not surely inside
+        bool in_edge = dist_max(t, v[i], e[i]) <= -u_eps;
+        inside = inside && in_edge;
+        across = across && (in_edge || (g_keep & (1u << i)) != 0u);
     }
-    // depth bounds from the plane through the three vertices
-    double zlo = min(v[0].z, min(v[1].z, v[2].z)), zhi = max(v[0].z, max(v[1].z, v[2].z));
-    double z = u_mode == 2 ? zhi : zlo;
-    if (abs(area) > 1e-12) {
-        // z = v0.z + gx (x - v0.x) + gy (y - v0.y)
-        double gx = ((v[1].z - v[0].z) * (v[2].y - v[0].y) - (v[2].z - v[0].z) * (v[1].y - v[0].y)) / area;
-        double gy = ((v[2].z - v[0].z) * (v[1].x - v[0].x) - (v[1].z - v[0].z) * (v[2].x - v[0].x)) / area;
-        double pmin = 1e300, pmax = -1e300;
-        for (int k = 0; k < 4; k++) {
-            double pz = v[0].z + gx * (c[k].x - v[0].x) + gy * (c[k].y - v[0].y);
-            pmin = min(pmin, pz);
-            pmax = max(pmax, pz);
-        }
-        z = u_mode == 2 ? min(pmax, zhi) : max(pmin, zlo);
+    // across each kept edge (the neighbour runs b -> a -> opposite): a
+    // loop over the kept edges only, since a loop, unlike an if, ends when
+    // no fragment of the batch needs another round (most triangles keep
+    // none and pay one masked round)
+    double zn = zmax;
+    for (uint k = g_keep; k != 0u; k &= k - 1u) {
+        int i = findLSB(k);
+        vec3 a = i == 0 ? g_v0 : i == 1 ? g_v1 : g_v2;
+        vec3 b = i == 0 ? g_v1 : i == 1 ? g_v2 : g_v0;
+        vec3 o = i == 0 ? g_n0 : i == 1 ? g_n1 : g_n2;
+        dvec2 na = i == 0 ? g_na0 : i == 1 ? g_na1 : g_na2;
+        dvec2 nb = i == 0 ? g_nb0 : i == 1 ? g_nb1 : g_nb2;
+        dvec2 ng = i == 0 ? g_ngrad0 : i == 1 ? g_ngrad1 : g_ngrad2;
+        across = across && (g_flags & (4u << i)) != 0u && dist_max(t, a, na) <= -u_eps &&
+                 dist_max(t, o, nb) <= -u_eps;
+        double nzhi = max(double(b.z), max(double(a.z), double(o.z)));
+        zn = max(zn, plane_max(t, b, ng, (g_flags & (32u << i)) != 0u, nzhi));
     }
-    z = u_mode == 2 ? z + u_zeps : z - u_zeps;
+    drop = (g_flags & 2u) == 0u || (!inside && !across);
+    double z = (inside ? zmax : zn) + u_zeps;
+#else
+    vec3 v[3] = vec3[3](g_v0, g_v1, g_v2);
+#if SL_MODE != 2
+    // box axes; the vertices, t - eps and t + 1 + eps are exact in float
+    // (eps = 1/128, t < 2^17), so float decides as double would
+    vec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)), hi = max(v[0].xy, max(v[1].xy, v[2].xy));
+    float feps = float(u_eps);
+    drop = hi.x < float(t.x) - feps || lo.x > float(t.x + 1) + feps ||
+           hi.y < float(t.y) - feps || lo.y > float(t.y + 1) + feps;
+#endif
+#if SL_MODE == 1
+    drop = drop || (imageLoad(u_first_ids, t).r & 0x7fffffffu) == g_tri;
+#endif
+    // edge axes: signed distances of the corners outside each edge, in texels
+    dvec2 e[3] = dvec2[3](g_e0, g_e1, g_e2);
+    bool full = (g_flags & 2u) != 0u;
+    for (int i = 0; i < 3; i++) {
+        // a zero-length edge (normal 0) separates nothing and leaves a
+        // triangle of zero area, which is never full
+#if SL_MODE != 2
+        drop = drop || dist_min(t, v[i], e[i]) > u_eps;   // the whole square is outside this edge
+#endif
+#if SL_MODE != 1
+        full = full && dist_max(t, v[i], e[i]) <= -u_eps;
+#endif
+    }
+#if SL_MODE == 2
+    drop = !full;                          // some of the square is not surely inside
+    double z = plane_max(t, v[0], g_grad, (g_flags & 1u) != 0u, zhi) + u_zeps;
+#else
+    // lowest depth of the plane over the square, never below zlo
+    double z = (g_flags & 1u) != 0u ? max(plane_at(v[0], g_grad, corner(t, g_grad, 1.0)), zlo) : zlo;
+    z -= u_zeps;
+#endif
+#endif
+    if (drop)
+        discard;
     gl_FragDepth = float(clamp(z, 0.0, 1.0));
-    o_tri = (u_mode == 0 && full) ? (g_tri | 0x80000000u) : g_tri;
+#if SL_MODE == 0
+    o_tri = full ? (g_tri | 0x80000000u) : g_tri;
+#else
+    o_tri = g_tri;
+#endif
 }

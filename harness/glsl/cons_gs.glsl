@@ -8,26 +8,29 @@
 // small margin), so that every texel the triangle touches has its centre
 // inside the enlarged triangle. The corner of two moved edges lies
 // u_lambda / cos(phi / 2) from the original vertex (phi: angle between the
-// edge normals); at a sharp vertex that runs off towards infinity, so when
-// 1 + dot(n0, n1) < 0.1 (a vertex angle under about 26 degrees) or the
-// triangle has (almost) no area in the map, we fall back to its bounding box
-// grown by u_lambda: still a superset of every texel centre within u_lambda
-// of the triangle, hence still conservative, and never far from it.
-// Which texels really count is decided exactly per texel in cons_fs.glsl.
+// edge normals); at a sharp vertex that runs off towards infinity, so the
+// triangle's bounding box grown by u_lambda is emitted instead when it is
+// smaller, when a vertex is very sharp, or when the triangle has (almost)
+// no area in the map: still a superset of every texel centre within
+// u_lambda of the triangle, hence still conservative.
+// Which texels really count is decided exactly per texel in cons_fs.glsl,
+// from the set-up computed here once per triangle (cons_setup.glsl).
+// SL_MODE (shadowmap.c defines it, one program per layer): 0 BGSM, 1 BGSM's
+// second layer, 2 SGSM (see cons_fs.glsl).
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 4) out;
 uniform float u_size;          // map size in texels
 uniform float u_lambda;        // enlargement, texels
 uniform uint u_first;          // scene index of this draw's first triangle
-flat out vec3 g_v0;
+flat out vec3 g_v0;            // window-space vertices: x, y in texels, z depth
 flat out vec3 g_v1;
 flat out vec3 g_v2;
 flat out uint g_tri;
-flat out vec3 g_n0;            // unused here: sgsm_adj's neighbours (cons_adj_gs.glsl)
-flat out vec3 g_n1;
-flat out vec3 g_n2;
-flat out uint g_keep;
-uniform int u_mode;
+flat out dvec2 g_e0;           // outward unit normal of edge v0 -> v1
+flat out dvec2 g_e1;           //                            v1 -> v2
+flat out dvec2 g_e2;           //                            v2 -> v0
+flat out dvec2 g_grad;         // depth plane gradient
+flat out uint g_flags;         // bit 0: |area| > 1e-12 (the plane is used); bit 1: |area| >= 1e-12
 
 vec3 win(vec4 c) { return vec3((c.xy * 0.5 + 0.5) * u_size, c.z); }
 
@@ -44,44 +47,58 @@ void main()
     g_v1 = v[1];
     g_v2 = v[2];
     g_tri = u_first + uint(gl_PrimitiveIDIn) + 1u;
-    g_n0 = g_n1 = g_n2 = vec3(0.0);
-    g_keep = 0u;
+    double darea = cons_area(v[0], v[1], v[2]);
+    double ds = darea >= 0.0 ? 1.0 : -1.0;      // the per-texel test's orientation
+    g_e0 = cons_edge_normal(v[0], v[1], ds);
+    g_e1 = cons_edge_normal(v[1], v[2], ds);
+    g_e2 = cons_edge_normal(v[2], v[0], ds);
+    g_grad = cons_plane_grad(v[0], v[1], v[2], darea);
+    g_flags = (abs(darea) > 1e-12 ? 1u : 0u) | (abs(darea) >= 1e-12 ? 2u : 0u);
     // every emitted vertex at the nearest depth of the triangle, clamped into
     // the box: clipping must never cut a fragment we want (cons_fs writes the
     // real conservative depth)
     float z = clamp(min(v[0].z, min(v[1].z, v[2].z)), 0.0, 1.0);
     float area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
-    if (u_mode == 2 || u_mode == 3) {
-        // SGSM keeps only texels wholly inside the triangle, whose centres
-        // the triangle itself covers: no enlargement
-        for (int i = 0; i < 3; i++)
-            emit(v[i].xy, z);
-        EndPrimitive();
-        return;
-    }
+#if SL_MODE == 2
+    // SGSM keeps only texels wholly inside the triangle, whose centres the
+    // triangle itself covers: no enlargement
+    for (int i = 0; i < 3; i++)
+        emit(v[i].xy, z);
+#else
+    // The enlarged triangle, its corners in double (the miter's 1 / (1 +
+    // dot(a, b)) amplifies the error of the normals, which double makes
+    // negligible; only the final rounding to float remains, as for any
+    // vertex), or the grown bounding box: whichever has the smaller area,
+    // and the box whenever a vertex is sharper than about 2.6 degrees
+    // (1 + dot < 1e-3), where the corner runs off (up to 45 lambda here).
+    vec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)) - vec2(u_lambda);
+    vec2 hi = max(v[0].xy, max(v[1].xy, v[2].xy)) + vec2(u_lambda);
     bool fallback = abs(area) < 1e-6;
-    vec2 n[3];
+    vec2 w[3];
     if (!fallback) {
-        float s = area > 0.0 ? 1.0 : -1.0;        // outward normals for either winding
+        dvec2 n[3];
         for (int i = 0; i < 3; i++) {
-            vec2 e = v[(i + 1) % 3].xy - v[i].xy;
-            n[i] = normalize(s * vec2(e.y, -e.x));
+            dvec2 e = dvec2(v[(i + 1) % 3].xy) - dvec2(v[i].xy);
+            n[i] = normalize(double(area > 0.0 ? 1.0 : -1.0) * dvec2(e.y, -e.x));  // outward, either winding
         }
-        for (int i = 0; i < 3; i++)
-            fallback = fallback || (1.0 + dot(n[(i + 2) % 3], n[i]) < 0.1);
+        for (int i = 0; i < 3; i++) {
+            dvec2 a = n[(i + 2) % 3], b = n[i];     // the normals of the two edges at vertex i
+            double c = 1.0 + dot(a, b);
+            fallback = fallback || c < 1e-3;
+            w[i] = vec2(dvec2(v[i].xy) + double(u_lambda) * (a + b) / max(c, 1e-3));
+        }
+        float tri = abs((w[1].x - w[0].x) * (w[2].y - w[0].y) - (w[2].x - w[0].x) * (w[1].y - w[0].y));
+        fallback = fallback || (hi.x - lo.x) * (hi.y - lo.y) < 0.5 * tri;
     }
     if (fallback) {
-        vec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)) - vec2(u_lambda);
-        vec2 hi = max(v[0].xy, max(v[1].xy, v[2].xy)) + vec2(u_lambda);
         emit(vec2(lo.x, lo.y), z);
         emit(vec2(hi.x, lo.y), z);
         emit(vec2(lo.x, hi.y), z);
         emit(vec2(hi.x, hi.y), z);
     } else {
-        for (int i = 0; i < 3; i++) {
-            vec2 a = n[(i + 2) % 3], b = n[i];      // the normals of the two edges at vertex i
-            emit(v[i].xy + u_lambda * (a + b) / (1.0 + dot(a, b)), z);
-        }
+        for (int i = 0; i < 3; i++)
+            emit(w[i], z);
     }
+#endif
     EndPrimitive();
 }

@@ -1,0 +1,122 @@
+/*
+ * bench::* — `shadowlab bench` in its quick mode (truth and layers on a small
+ * scene, two repetitions): every row is there, with positive, finite
+ * measurements, plain counterparts and counters, in the Markdown and the
+ * CSV. No timing thresholds: a benchmark's verdicts depend on the machine.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "bench.h"
+
+static void bench_parse_stages(void **st)
+{
+    (void)st;
+    unsigned bits = 0;
+    struct sl_diag d;
+    assert_int_equal(sl_bench_parse_stages("truth,layers", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS));
+    assert_int_equal(sl_bench_parse_stages("morais", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(MORAIS));
+    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,morais", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_ALL);
+    assert_int_equal(sl_bench_parse_stages("truth,layer", &bits, &d), SL_E_USAGE);
+    assert_non_null(strstr(d.msg, "'layer'"));
+    assert_int_equal(sl_bench_parse_stages("", &bits, &d), SL_E_USAGE);
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    static char buf[1 << 16];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+static void bench_quick_mode_rows(void **st)
+{
+    (void)st;
+    char md[300], csv[300];
+    snprintf(md, sizeof md, "%s/bench.md", sl_test_dir);
+    snprintf(csv, sizeof csv, "%s/bench.csv", sl_test_dir);
+    FILE *out = fopen(md, "w");
+    assert_non_null(out);
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS), .reps = 2,
+                              .scene = "blocks", .width = 128, .height = 96, .map = 256, .csv = csv, .out = out};
+    struct sl_bench_result r;
+    struct sl_diag d;
+    enum sl_err e = sl_bench(&o, &r, &d);
+    fclose(out);
+    if (e)
+        fprintf(stderr, "bench: %s\n", d.msg);
+    assert_int_equal(e, SL_OK);
+
+    /* truth, G-buffer, six layers, memory; no study asked for */
+    static const char *const want[] = {"depth_id 256²", "depth_id_back 256²", "bgsm 256²", "bgsm2 256²",
+                                       "sgsm 256²", "sgsm_adj 256²"};
+    assert_int_equal(r.nrows, 1 + 1 + 6 + 1);
+    assert_string_equal(r.rows[0].stage, "truth");
+    assert_string_equal(r.rows[1].stage, "gbuffer");
+    assert_string_equal(r.rows[1].name, "gbuffer 128x96");
+    for (int i = 0; i < 6; i++) {
+        assert_string_equal(r.rows[2 + i].stage, "layer");
+        assert_string_equal(r.rows[2 + i].name, want[i]);
+    }
+    assert_string_equal(r.rows[8].stage, "memory");
+    for (int i = 0; i < r.nrows; i++) {
+        const struct sl_bench_row *w = &r.rows[i];
+        assert_true(isfinite(w->value) && w->value > 0);
+        if (i < 8) {
+            /* measured against a plain counterpart */
+            assert_true(isfinite(w->plain) && w->plain > 0);
+            assert_true(fabs(w->ratio - w->value / w->plain) < 1e-9 * w->ratio);
+            assert_int_equal(w->pass, w->cmp == SL_BENCH_AT_LEAST ? w->ratio >= w->target : w->ratio <= w->target);
+        }
+        if (i >= 1 && i < 8) {
+            assert_true(w->fragments > 0 && w->plain_fragments > 0);
+            assert_string_equal(w->unit, "ms");
+        }
+    }
+    /* the plain raster and the unculled passes run the same fragments;
+     * only the conservative layers have a geometry shader */
+    assert_int_equal(r.rows[1].fragments, r.rows[1].plain_fragments);
+    assert_int_equal(r.rows[2].fragments, r.rows[2].plain_fragments);
+    assert_int_equal(r.rows[2].gs_prims, 0);
+    for (int i = 4; i < 8; i++)
+        assert_true(r.rows[i].gs_prims >= 38);   /* blocks: 38 triangles, each emitted at least once */
+    assert_true(r.rows[8].value < 1e6);          /* MiB */
+
+    const char *text = slurp(md);
+    assert_non_null(strstr(text, "git_sha: "));
+    assert_non_null(strstr(text, "gl_renderer: "));
+    assert_non_null(strstr(text, "isa: "));
+    assert_non_null(strstr(text, "## Summary"));
+    assert_non_null(strstr(text, "| truth | truth blocks, 1 viewpoints, 128x96 | Mrays/s |"));
+    assert_non_null(strstr(text, "| layer | sgsm_adj 256² | ms |"));
+    assert_non_null(strstr(text, "| memory | peak RSS after all stages | MiB |"));
+    text = slurp(csv);
+    int lines = 0;
+    for (const char *p = text; *p; p++)
+        lines += *p == '\n';
+    assert_int_equal(lines, 1 + r.nrows);
+    assert_non_null(strstr(text, ",layer,\"bgsm2 256²\",ms,"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(bench, parse_stages),
+        SL_CASE(bench, quick_mode_rows),
+    };
+    return cmocka_run_group_tests_name("bench", tests, sl_test_setup, sl_test_teardown);
+}
