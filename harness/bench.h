@@ -1,7 +1,7 @@
 /*
  * bench.h — `shadowlab bench`: each stage of the harness against the plain
  * thing anyone would write for the same job, and the whole studies end to
- * end, each with its target (issue 6):
+ * end, each with its target:
  *
  * - truth: the truth pass against a plain Embree rtcOccluded16 loop over the
  *   very same rays (target: at least 0.8x its rays/s);
