@@ -1,0 +1,49 @@
+/*
+ * arealight.h — rectangular area lights (Curtis 2009 uses square ones), their
+ * sample points and the stateless per-pixel random source both the area
+ * truth and the `soft_mc` method draw from.
+ *
+ * A scene's area light (scene.h, SL_LIGHT_AREA) has a centre, the unit
+ * normal of the side that emits, an up direction and a size (width across
+ * up x normal, height along up). sl_area_of turns it into an orthonormal
+ * frame in double; sl_area_point maps the unit square onto the rectangle.
+ *
+ * Random numbers: Curtis hashes each fragment's screen coordinates with a
+ * 16-round MD5 so that every pixel draws independently on the GPU. We keep
+ * the idea (a stateless hash of pixel, sample index and seed, so any pixel's
+ * samples can be recomputed alone, in any order, on any thread: fixed seeds
+ * give bit-identical images) with a cheaper integer hash (Wellons'
+ * "lowbias32" finaliser, applied in a chain), since MD5's rounds buy
+ * nothing a CPU needs here.
+ * Does not: trace, render or own anything.
+ */
+#ifndef SL_AREALIGHT_H
+#define SL_AREALIGHT_H
+#include <stdint.h>
+#include "scene.h"
+
+struct sl_area {
+    double c[3];     /* centre */
+    double n[3];     /* unit normal, the side that emits */
+    double ex[3];    /* unit, along the width: up x normal, orthogonal to n */
+    double ey[3];    /* unit, along the height: n x ex (up made orthogonal to n) */
+    double w, h;     /* width and height */
+};
+
+/* The frame of an SL_LIGHT_AREA light. */
+void sl_area_of(const struct sl_light *l, struct sl_area *a);
+
+/* The point at (u, v) in [0, 1]^2 of the rectangle: c + (u - 1/2) w ex + (v - 1/2) h ey. */
+void sl_area_point(const struct sl_area *a, double u, double v, double out[3]);
+
+/* 32 random bits for (x, y, k) under seed: pixel x, y, sample k. */
+uint32_t sl_hash4(uint32_t x, uint32_t y, uint32_t k, uint32_t seed);
+
+/* A 32-bit hash as a double in [0, 1). */
+static inline double sl_unit(uint32_t h) { return (double)h * (1.0 / 4294967296.0); }
+
+/* Sample k of an n x n jittered grid (stratified) over the unit square for
+ * pixel (x, y): cell (k mod n, k div n), a random point inside it. */
+void sl_area_jitter(uint32_t x, uint32_t y, uint32_t k, uint32_t n, uint32_t seed, double *u, double *v);
+
+#endif
