@@ -171,6 +171,17 @@ static const cyaml_schema_value_t file_schema = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, struct bl_file, file_fields),
 };
 
+/* The baseline's tolerances by class, NULL where the file gives none. */
+static void tol_ptrs(const struct bl_tol *t, const double *out[SL_CC_COUNT])
+{
+    const double *p[SL_CC_COUNT] = {
+#define BL_TOL_PTR(name, tol, text) t ? t->name : NULL,
+        SL_CHECK_CLASSES(BL_TOL_PTR)
+#undef BL_TOL_PTR
+    };
+    memcpy(out, p, sizeof p);
+}
+
 static const uint64_t *bl_fig(const struct bl_figs *f, int k, unsigned *n)
 {
     switch ((enum sl_figure)k) {
@@ -395,12 +406,9 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
     }
     for (int k = 0; k < SL_CC_COUNT; k++)
         m.tol[k] = class_tol[k];
-    if (b->tolerances) {
-        const double *t[SL_CC_COUNT] = {
-#define BL_TOL_PTR(name, tol, text) b->tolerances->name,
-            SL_CHECK_CLASSES(BL_TOL_PTR)
-#undef BL_TOL_PTR
-        };
+    {
+        const double *t[SL_CC_COUNT];
+        tol_ptrs(b->tolerances, t);
         for (int k = 0; k < SL_CC_COUNT; k++)
             if (t[k]) {
                 char key[64];
@@ -516,12 +524,9 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
         enum sl_err e = sl_yaml_load(baseline, &file_schema, (void **)&old, &pos, SL_E_BASELINE, d);
         if (e)
             return e;
-        if (old->tolerances) {
-            const double *t[SL_CC_COUNT] = {
-#define BL_TOL_PTR(name, tol, text) old->tolerances->name,
-                SL_CHECK_CLASSES(BL_TOL_PTR)
-#undef BL_TOL_PTR
-            };
+        {
+            const double *t[SL_CC_COUNT];
+            tol_ptrs(old->tolerances, t);
             for (int k = 0; k < SL_CC_COUNT; k++)
                 if (t[k]) {
                     tol[k] = *t[k];

@@ -261,18 +261,36 @@ static void csv_cell(FILE *f, const struct sl_table_cell *c)
 
 /* ---- LaTeX ---- */
 
-static void tex(FILE *f, const char *s)
+/* LaTeX: the ten specials, and the few non-ASCII signs the report writes */
+void sl_tex_text(FILE *f, const char *s)
 {
-    for (; *s; s++) {
-        switch (*s) {
-        case '_': case '%': case '&': case '#': case '$': case '{': case '}':
-            fputc('\\', f);
-            fputc(*s, f);
-            break;
-        case '\\': fputs("\\textbackslash{}", f); break;
-        case '~':  fputs("\\textasciitilde{}", f); break;
-        case '^':  fputs("\\textasciicircum{}", f); break;
-        default:   fputc(*s, f);
+    for (; s && *s; s++) {
+        const unsigned char *u = (const unsigned char *)s;
+        if (u[0] == 0xC2 && u[1] == 0xB2) {            /* ² */
+            fputs("\\textsuperscript{2}", f);
+            s++;
+        } else if (u[0] == 0xC3 && u[1] == 0x97) {     /* × */
+            fputs("$\\times$", f);
+            s++;
+        } else if (u[0] == 0xE2 && u[1] == 0x80 && u[2] == 0x93) { /* – */
+            fputs("--", f);
+            s += 2;
+        } else if (u[0] == 0xE2 && u[1] == 0x86 && u[2] == 0x92) { /* → */
+            fputs("$\\to$", f);
+            s += 2;
+        } else {
+            switch (*s) {
+            case '_': case '%': case '&': case '#': case '$': case '{': case '}':
+                fputc('\\', f);
+                fputc(*s, f);
+                break;
+            case '\\': fputs("\\textbackslash{}", f); break;
+            case '~':  fputs("\\textasciitilde{}", f); break;
+            case '^':  fputs("\\textasciicircum{}", f); break;
+            case '<':  fputs("\\textless{}", f); break;
+            case '>':  fputs("\\textgreater{}", f); break;
+            default:   fputc(*s, f);
+            }
         }
     }
 }
@@ -290,13 +308,13 @@ static void tex_key(FILE *f, const char *s)
 static void tex_provenance(FILE *f, const struct sl_table_cell *c)
 {
     fputs("method \\texttt{", f);
-    tex(f, c->method);
+    sl_tex_text(f, c->method);
     fputs("}; git \\texttt{", f);
-    tex(f, c->git_sha);
+    sl_tex_text(f, c->git_sha);
     fputs("}, config \\texttt{", f);
-    tex(f, c->config_hash);
+    sl_tex_text(f, c->config_hash);
     fputs("}, machine ", f);
-    tex(f, c->machine);
+    sl_tex_text(f, c->machine);
 }
 
 static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct group *g)
@@ -306,11 +324,11 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     for (int k = 0; k < g->n; k++)
         ncols += cells[g->idx[k]].fig.nregions;
     fputs("\\begin{table}[htbp]\n\\centering\n\\caption{", f);
-    tex(f, c0->scene);
+    sl_tex_text(f, c0->scene);
     fputs(" / ", f);
-    tex(f, c0->viewpoint);
+    sl_tex_text(f, c0->viewpoint);
     fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
-    tex(f, c0->label);
+    sl_tex_text(f, c0->label);
     fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.}\n",
             (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
             (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
@@ -348,7 +366,7 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     }
     fputs(" \\\\\n\\midrule\n", f);
     for (int fi = 0; fi < SL_FIG_COUNT; fi++) {
-        tex(f, sl_figure_name((enum sl_figure)fi));
+        sl_tex_text(f, sl_figure_name((enum sl_figure)fi));
         for (int k = 0; k < g->n; k++) {
             const struct sl_table_cell *c = &cells[g->idx[k]];
             for (int r = 0; r < c->fig.nregions; r++) {
@@ -405,7 +423,7 @@ enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *titl
         fputs("% shadowlab tables; needs \\usepackage{booktabs}\n", out);
         if (title) {
             fputs("\\section*{", out);
-            tex(out, title);
+            sl_tex_text(out, title);
             fputs("}\n", out);
         }
         fputs("\n", out);

@@ -58,4 +58,8 @@ struct sl_table_cell {
 enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *title,
                            const struct sl_table_cell *cells, int ncells, struct sl_diag *d);
 
+/* s as LaTeX text: the ten specials escaped, and the few non-ASCII signs
+ * shadowlab writes (², ×, –, →) as LaTeX. Shared by the tables and the report. */
+void sl_tex_text(FILE *f, const char *s);
+
 #endif

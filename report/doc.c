@@ -9,7 +9,7 @@
  * - Registered paths are relative, made of [A-Za-z0-9._-] and '/', and never
  *   start with '.' or contain "..": a cell's names cannot escape the folder.
  * - Text reaches a page only through the escapers here (html_text, md_text,
- *   tex_text), so a label or path can never break a page or a table.
+ *   sl_tex_text in table.c), so a label or path can never break a page or a table.
  * - Write errors on the pages are found by ferror at the end (report.c).
  */
 #define _POSIX_C_SOURCE 200809L
@@ -339,39 +339,6 @@ static void md_text(FILE *f, const char *s)
     }
 }
 
-/* LaTeX: the ten specials, and the few non-ASCII signs the report writes */
-static void tex_text(FILE *f, const char *s)
-{
-    for (; s && *s; s++) {
-        const unsigned char *u = (const unsigned char *)s;
-        if (u[0] == 0xC2 && u[1] == 0xB2) {            /* ² */
-            fputs("\\textsuperscript{2}", f);
-            s++;
-        } else if (u[0] == 0xC3 && u[1] == 0x97) {     /* × */
-            fputs("$\\times$", f);
-            s++;
-        } else if (u[0] == 0xE2 && u[1] == 0x80 && u[2] == 0x93) { /* – */
-            fputs("--", f);
-            s += 2;
-        } else if (u[0] == 0xE2 && u[1] == 0x86 && u[2] == 0x92) { /* → */
-            fputs("$\\to$", f);
-            s += 2;
-        } else {
-            switch (*s) {
-            case '_': case '%': case '&': case '#': case '$': case '{': case '}':
-                fputc('\\', f);
-                fputc(*s, f);
-                break;
-            case '\\': fputs("\\textbackslash{}", f); break;
-            case '~':  fputs("\\textasciitilde{}", f); break;
-            case '^':  fputs("\\textasciicircum{}", f); break;
-            case '<':  fputs("\\textless{}", f); break;
-            case '>':  fputs("\\textgreater{}", f); break;
-            default:   fputc(*s, f);
-            }
-        }
-    }
-}
 
 /* ---- doc ---- */
 
@@ -620,7 +587,7 @@ static void tex_table(FILE *f, const struct sl_report_tab *t)
         fprintf(f, "{\\footnotesize\n\\begin{longtable}{%s}\n\\caption{", spec);
     else
         fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\caption{", f);
-    tex_text(f, t->title);
+    sl_tex_text(f, t->title);
     fprintf(f, "}\n\\label{tab:%s}", t->id);
     fputs(longtab ? "\\\\\n" : "\n", f);
     if (!longtab)
@@ -629,7 +596,7 @@ static void tex_table(FILE *f, const struct sl_report_tab *t)
     if (t->ngroups) {
         for (int g = 0; g < t->ngroups; g++) {
             fprintf(f, "%s\\multicolumn{%d}{c}{", g ? " & " : "", t->span[g]);
-            tex_text(f, t->group[g]);
+            sl_tex_text(f, t->group[g]);
             fputc('}', f);
         }
         fputs(" \\\\\n", f);
@@ -643,7 +610,7 @@ static void tex_table(FILE *f, const struct sl_report_tab *t)
     for (int c = 0; c < t->ncols; c++) {
         if (c)
             fputs(" & ", f);
-        tex_text(f, t->head[c] ? t->head[c] : "");
+        sl_tex_text(f, t->head[c] ? t->head[c] : "");
     }
     fputs(" \\\\\n\\midrule\n", f);
     if (longtab)
@@ -654,7 +621,7 @@ static void tex_table(FILE *f, const struct sl_report_tab *t)
         for (int c = 0; c < t->ncols; c++) {
             if (c)
                 fputs(" & ", f);
-            tex_text(f, tab_at(t, r, c));
+            sl_tex_text(f, tab_at(t, r, c));
         }
         fputs(" \\\\\n", f);
     }
@@ -665,7 +632,7 @@ static void tex_table(FILE *f, const struct sl_report_tab *t)
     }
     if (t->note[0]) {
         fputs("\n\\smallskip\n{\\scriptsize ", f);
-        tex_text(f, t->note);
+        sl_tex_text(f, t->note);
         fputs("\\par}\n", f);
     }
     fputs(longtab ? "}\n" : "\\end{table}\n", f);
