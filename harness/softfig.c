@@ -1,0 +1,80 @@
+/*
+ * softfig.c — see softfig.h. Invariants (tested): lit + umbra + penumbra =
+ * pixels; the right ones never exceed their class; within 0.05 <= within 0.1.
+ */
+#include "softfig.h"
+#include <math.h>
+#include <string.h>
+
+static const char *const sfig_name[] = {
+#define F(name, text, of) #name,
+    SL_SOFT_FIGURES(F)
+#undef F
+};
+static const char *const sfig_text[] = {
+#define F(name, text, of) text,
+    SL_SOFT_FIGURES(F)
+#undef F
+};
+static const char *const sfig_of[] = {
+#define F(name, text, of) of,
+    SL_SOFT_FIGURES(F)
+#undef F
+};
+
+const char *sl_soft_figure_name(enum sl_soft_figure f) { return sfig_name[f]; }
+const char *sl_soft_figure_text(enum sl_soft_figure f) { return sfig_text[f]; }
+const char *sl_soft_figure_of(enum sl_soft_figure f) { return sfig_of[f]; }
+
+/* 0 lit, 1 umbra, 2 penumbra */
+static int soft_class(float v)
+{
+    return v >= 1.0f ? 0 : v <= 0.0f ? 1 : 2;
+}
+
+void sl_soft_figures_compute(int w, int h, const uint32_t *tri, const float *v, const float *t, const float *se,
+                             struct sl_soft_figures *out)
+{
+    memset(out, 0, sizeof *out);
+    double sum_abs = 0, sum_sq = 0, sum_signed = 0, sum_se = 0;
+    uint64_t *n = out->n;
+    size_t np = (size_t)w * (size_t)h;
+    for (size_t i = 0; i < np; i++) {
+        if (!tri[i])
+            continue;
+        n[SL_SFIG_soft_pixels]++;
+        double e = (double)v[i] - (double)t[i];
+        sum_abs += fabs(e);
+        sum_sq += e * e;
+        sum_signed += e;
+        if (se)
+            sum_se += se[i];
+        n[SL_SFIG_soft_within_005] += fabs(e) <= 0.05;
+        n[SL_SFIG_soft_within_010] += fabs(e) <= 0.1;
+        int ct = soft_class(t[i]), cm = soft_class(v[i]);
+        n[SL_SFIG_soft_truth_lit + ct]++;
+        n[SL_SFIG_soft_lit_right + ct] += ct == cm;
+        n[SL_SFIG_soft_class_right] += ct == cm;
+    }
+    uint64_t px = n[SL_SFIG_soft_pixels];
+    n[SL_SFIG_soft_mae] = n[SL_SFIG_soft_rmse] = n[SL_SFIG_soft_bias] = px;
+    n[SL_SFIG_soft_truth_stderr] = se ? px : 0;
+    for (int k = 0; k < SL_SFIG_COUNT; k++) {
+        out->pct[k] = NAN;
+        const char *of = sfig_of[k];
+        if (!of[0])
+            continue;
+        if (!strcmp(of, "visibility"))
+            continue;   /* the means, below */
+        for (int b = 0; b < SL_SFIG_COUNT; b++)
+            if (!strcmp(of, sfig_name[b]) && n[b])
+                out->pct[k] = 100.0 * (double)n[k] / (double)n[b];
+    }
+    if (px) {
+        out->pct[SL_SFIG_soft_mae] = 100.0 * sum_abs / (double)px;
+        out->pct[SL_SFIG_soft_rmse] = 100.0 * sqrt(sum_sq / (double)px);
+        out->pct[SL_SFIG_soft_bias] = 100.0 * sum_signed / (double)px;
+        if (se)
+            out->pct[SL_SFIG_soft_truth_stderr] = 100.0 * sum_se / (double)px;
+    }
+}

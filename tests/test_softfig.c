@@ -1,0 +1,66 @@
+/*
+ * softfig::* — the soft-shadow figures on hand-made images whose every
+ * number can be worked out on paper.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "softfig.h"
+
+/* 2 x 4 pixels, one background:
+ * truth   1    1    0    0.5 | 0.25  0   (bg)  1
+ * method  1    0.92 0    0.46| 0.5   0.02 (bg) 1      */
+static void softfig_worked_example(void **st)
+{
+    (void)st;
+    const uint32_t tri[8] = {1, 1, 1, 1, 1, 1, 0, 1};
+    const float t[8] = {1, 1, 0, 0.5f, 0.25f, 0, 0.7f, 1};
+    const float v[8] = {1, 0.92f, 0, 0.46f, 0.5f, 0.02f, 0.1f, 1};
+    const float se[8] = {0, 0, 0, 0.1f, 0.2f, 0, 9, 0};
+    struct sl_soft_figures f;
+    sl_soft_figures_compute(4, 2, tri, v, t, se, &f);
+    assert_int_equal(f.n[SL_SFIG_soft_pixels], 7);
+    /* errors 0, -0.08, 0, -0.04, +0.25, +0.02, 0 */
+    assert_true(fabs(f.pct[SL_SFIG_soft_mae] - 100.0 * 0.39 / 7) < 1e-4);
+    assert_true(fabs(f.pct[SL_SFIG_soft_rmse] - 100.0 * sqrt((0.0064 + 0.0016 + 0.0625 + 0.0004) / 7)) < 1e-4);
+    assert_true(fabs(f.pct[SL_SFIG_soft_bias] - 100.0 * 0.15 / 7) < 1e-4);
+    assert_int_equal(f.n[SL_SFIG_soft_within_005], 5);   /* 0, 0, -0.04, +0.02, 0 */
+    assert_int_equal(f.n[SL_SFIG_soft_within_010], 6);
+    assert_int_equal(f.n[SL_SFIG_soft_truth_lit], 3);
+    assert_int_equal(f.n[SL_SFIG_soft_truth_umbra], 2);
+    assert_int_equal(f.n[SL_SFIG_soft_truth_penumbra], 2);
+    assert_int_equal(f.n[SL_SFIG_soft_lit_right], 2);      /* 0.92 is penumbra */
+    assert_int_equal(f.n[SL_SFIG_soft_umbra_right], 1);    /* 0.02 is penumbra */
+    assert_int_equal(f.n[SL_SFIG_soft_penumbra_right], 2);
+    assert_int_equal(f.n[SL_SFIG_soft_class_right], 5);
+    assert_true(fabs(f.pct[SL_SFIG_soft_class_right] - 100.0 * 5 / 7) < 1e-9);
+    assert_true(fabs(f.pct[SL_SFIG_soft_lit_right] - 100.0 * 2 / 3) < 1e-9);
+    assert_true(fabs(f.pct[SL_SFIG_soft_truth_stderr] - 100.0 * 0.3 / 7) < 1e-4);   /* background's 9 left out */
+    assert_true(isnan(f.pct[SL_SFIG_soft_pixels]));
+}
+
+/* No pixel: no division by zero, NaN percentages. */
+static void softfig_empty(void **st)
+{
+    (void)st;
+    const uint32_t tri[2] = {0, 0};
+    const float z[2] = {0, 0};
+    struct sl_soft_figures f;
+    sl_soft_figures_compute(2, 1, tri, z, z, NULL, &f);
+    assert_int_equal(f.n[SL_SFIG_soft_pixels], 0);
+    for (int k = 0; k < SL_SFIG_COUNT; k++)
+        assert_true(isnan(f.pct[k]));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(softfig, worked_example),
+        SL_CASE(softfig, empty),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
