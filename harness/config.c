@@ -193,12 +193,13 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             for (int k = 0; k < s.nvp; k++)
                 snprintf(cs->viewpoints[k], sizeof cs->viewpoints[k], "%s", s.vp[k].name);
         }
-        if (s.light.type != SL_LIGHT_DIRECTIONAL) {
+        if (s.light.type != SL_LIGHT_DIRECTIONAL && s.light.type != SL_LIGHT_AREA) {
             sl_scene_free(&s);
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has a non-directional light: the hard-shadow passes handle "
-                               "directional lights only so far", rs->scene);
+                               "scene '%s' has a spot or point light: the passes handle directional and "
+                               "area lights only so far", rs->scene);
         }
+        cs->light_type = s.light.type;
         sl_scene_free(&s);
         for (unsigned k = 0; k < si; k++)
             if (strcmp(c->scenes[k].path, cs->path) == 0)
@@ -370,6 +371,20 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             if (cs->method_mask & (1u << k))
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s' listed twice", rs->methods[i]);
             cs->method_mask |= 1u << k;
+        }
+        /* every label a scene runs must handle its light */
+        for (int k = 0; k < c->nmethods; k++) {
+            if (!(cs->method_mask & (1u << k)))
+                continue;
+            int area = cs->light_type == SL_LIGHT_AREA, handles_area = !!(c->methods[k].method->lights & SL_LIGHTS_AREA);
+            if (area != handles_area) {
+                snprintf(key, sizeof key, rs->methods_count ? "scenes[%u].methods" : "scenes[%u]", si);
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                                   "scene '%s' has %s light but method '%s' (label %s) handles %s lights only: "
+                                   "give the scene a 'methods:' list of the labels that fit",
+                                   cs->name, area ? "an area" : "a directional", c->methods[k].method->name,
+                                   c->methods[k].label, handles_area ? "area" : "directional");
+            }
         }
     }
 

@@ -45,6 +45,7 @@ struct sl_config_scene {
     char viewpoints[SL_MAX_VIEWPOINTS][32];
     unsigned map_mask;                /* bit i: swept at map size maps[i] */
     unsigned method_mask;             /* bit i: runs methods[i] */
+    int      light_type;              /* enum sl_light_type of the scene's light */
 };
 
 struct sl_config {

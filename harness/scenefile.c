@@ -699,6 +699,8 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     out->nranges = b.nranges;
     out->light = light;
     memcpy(out->light_dir, light.dir, sizeof out->light_dir);
+    if (light.type == SL_LIGHT_AREA)   /* the light travels from its emitting side: PFL faces it */
+        memcpy(out->light_dir, light.normal, sizeof out->light_dir);
     return SL_OK;
 }
 

@@ -23,6 +23,8 @@ struct sl_adjacency;
 /* Beyond the frame layers (SL_NEED(layer) bits of frame.h), a method may need
  * the scene's edge and vertex adjacency, built once per scene on demand. */
 #define SL_NEED_ADJACENCY (1u << 16)
+/* The near and far depth layers of an area light (softmap.h; Curtis 2009). */
+#define SL_NEED_SOFT      (1u << 17)
 
 enum sl_verdict {
     SL_V_NONE      = 0,   /* background */
@@ -57,6 +59,7 @@ struct sl_verdicts {
     uint8_t *detail; /* coherence: how many of the texels tested say shadow, when has_detail */
     int      has_detail;
     uint8_t *tests;  /* ray-triangle tests spent on each pixel (saturating at 255), zeroed before a run */
+    float   *vis;    /* soft methods (area lights): the visible fraction of the light per pixel, 0..1 */
 };
 
 /* Machine-independent counts beside wall time. */
@@ -122,10 +125,15 @@ struct sl_method_args {
 #define SL_EXACT_SHADOW (1u << 1)   /* a PFL pixel it calls shadowed is shadowed in truth */
 #define SL_EXACT_PROVED (1u << 2)   /* a pixel it confirms, corrects or traces agrees with the truth */
 
+/* The lights a method handles (0 = directional only). A hard method under an
+ * area light would need the light as a point; those that handle it say so. */
+#define SL_LIGHTS_AREA (1u << 1)
+
 struct sl_method {
     const char *name;          /* config key */
     const char *summary;
     unsigned    exact;         /* SL_EXACT_* */
+    unsigned    lights;        /* 0: directional lights; SL_LIGHTS_AREA: area lights only */
     unsigned    params_ok;     /* SL_PARAM_* bits it reads */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);
