@@ -96,12 +96,21 @@ struct bl_figs {
     SL_FIGURES(BL_FIG_MEMBER)
 #undef BL_FIG_MEMBER
 };
+/* a soft-shadow cell: counts, and the means (percent of visibility) */
+struct bl_soft_n {
+#define BL_SOFT_N_MEMBER(name, text, of) uint64_t name;
+    SL_SOFT_FIGURES(BL_SOFT_N_MEMBER)
+#undef BL_SOFT_N_MEMBER
+};
+struct bl_soft_mean { double *soft_mae, *soft_rmse, *soft_bias, *soft_truth_stderr; };
 struct bl_cell {
     char *cell;
     struct bl_counters *counters;
     char **regions;
     unsigned regions_count;
     struct bl_figs *figures;
+    struct bl_soft_n *soft;
+    struct bl_soft_mean *soft_mean;
 };
 struct bl_file {
     unsigned version;
@@ -143,11 +152,30 @@ static const cyaml_schema_field_t fig_fields[] = {
 #undef BL_FIG_FIELD
     CYAML_FIELD_END
 };
+static const cyaml_schema_field_t soft_n_fields[] = {
+#define BL_SOFT_N_FIELD(name, text, of) CYAML_FIELD_UINT(#name, CYAML_FLAG_DEFAULT, struct bl_soft_n, name),
+    SL_SOFT_FIGURES(BL_SOFT_N_FIELD)
+#undef BL_SOFT_N_FIELD
+    CYAML_FIELD_END
+};
+static const cyaml_schema_field_t soft_mean_fields[] = {
+    CYAML_FIELD_FLOAT_PTR("soft_mae", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_soft_mean, soft_mae),
+    CYAML_FIELD_FLOAT_PTR("soft_rmse", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_soft_mean, soft_rmse),
+    CYAML_FIELD_FLOAT_PTR("soft_bias", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_soft_mean, soft_bias),
+    CYAML_FIELD_FLOAT_PTR("soft_truth_stderr", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_soft_mean,
+                          soft_truth_stderr),
+    CYAML_FIELD_END
+};
+/* a hard cell has regions and figures; a soft cell (area light) soft and soft_mean */
 static const cyaml_schema_field_t cell_fields[] = {
     CYAML_FIELD_STRING_PTR("cell", CYAML_FLAG_POINTER, struct bl_cell, cell, 1, 255),
     CYAML_FIELD_MAPPING_PTR("counters", CYAML_FLAG_POINTER, struct bl_cell, counters, counter_fields),
-    CYAML_FIELD_SEQUENCE("regions", CYAML_FLAG_POINTER, struct bl_cell, regions, &str_schema, 1, SL_MAX_REGIONS),
-    CYAML_FIELD_MAPPING_PTR("figures", CYAML_FLAG_POINTER, struct bl_cell, figures, fig_fields),
+    CYAML_FIELD_SEQUENCE("regions", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_cell, regions, &str_schema,
+                         1, SL_MAX_REGIONS),
+    CYAML_FIELD_MAPPING_PTR("figures", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_cell, figures, fig_fields),
+    CYAML_FIELD_MAPPING_PTR("soft", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_cell, soft, soft_n_fields),
+    CYAML_FIELD_MAPPING_PTR("soft_mean", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct bl_cell, soft_mean,
+                            soft_mean_fields),
     CYAML_FIELD_END
 };
 static const cyaml_schema_value_t cell_schema = {
@@ -295,6 +323,34 @@ static void compare(struct cmp *m, const char *key, const char *region, const ch
             bad ? "**FAIL**" : "ok");
 }
 
+/* A mean already in percent (a soft cell's MAE, ...): moved by the difference,
+ * in percentage points; exact on the baseline's machine. */
+static void compare_mean(struct cmp *m, const char *key, const char *what, double a, double b)
+{
+    m->r->compared++;
+    if (a == b || (isnan(a) && isnan(b)))
+        return;
+    m->r->moved++;
+    double moved = b - a;
+    int bad = m->exact || !(fabs(moved) <= m->tol[SL_CC_soft] + 1e-12);
+    if (bad)
+        m->r->failed++;
+    if (m->rows >= m->max_rows) {
+        m->hidden++;
+        return;
+    }
+    if (m->rows++ == 0)
+        fprintf(m->out, "| cell | region | figure | class | baseline | now | moved | tolerance | |\n"
+                        "|---|---|---|---|---:|---:|---:|---:|---|\n");
+    char tolbuf[32];
+    if (m->exact)
+        snprintf(tolbuf, sizeof tolbuf, "exact");
+    else
+        snprintf(tolbuf, sizeof tolbuf, "%g pp", m->tol[SL_CC_soft]);
+    fprintf(m->out, "| %s | image | %s | soft | %.6g | %.6g | %+.4f pp | %s | %s |\n", key, what, a, b, moved,
+            tolbuf, bad ? "**FAIL**" : "ok");
+}
+
 static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl_yaml_pos *pos, unsigned ci,
                                 const struct bl_cell *b, const struct sl_table_cell *c, struct sl_diag *d)
 {
@@ -304,6 +360,38 @@ static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl
     for (int k = 0; k < BL_C_COUNT; k++)
         compare(m, b->cell, "cell", counter_name[k], counter_class[k], bl_counter(b->counters, k),
                 cell_counter(c, k), img_a, img_b);
+    if (!!b->soft != !!c->has_soft || (!b->soft && !b->figures)) {
+        snprintf(key, sizeof key, "cells[%u]", ci);
+        if (!b->soft && !b->figures)
+            return sl_yaml_bad(d, SL_E_BASELINE, file, pos, key, "a cell needs 'figures' (or 'soft')");
+        m->r->failed++;
+        fprintf(m->out, "| %s | image | (kind) | view | %s | %s | | exact | **FAIL** |\n", b->cell,
+                b->soft ? "soft" : "hard", c->has_soft ? "soft" : "hard");
+        return SL_OK;
+    }
+    if (b->soft) {
+        /* counts as shares of the pixels, means in percentage points of visibility */
+        const uint64_t bn[SL_SFIG_COUNT] = {
+#define BL_SOFT_N_VAL(name, text, of) b->soft->name,
+            SL_SOFT_FIGURES(BL_SOFT_N_VAL)
+#undef BL_SOFT_N_VAL
+        };
+        double pa = (double)bn[SL_SFIG_soft_pixels], pb = (double)c->soft.n[SL_SFIG_soft_pixels];
+        for (int k = 0; k < SL_SFIG_COUNT; k++)
+            compare(m, b->cell, "image", sl_soft_figure_name((enum sl_soft_figure)k), SL_CC_soft, bn[k],
+                    c->soft.n[k], pa, pb);
+        const struct { const double *v; int k; } means[] = {
+            {b->soft_mean ? b->soft_mean->soft_mae : NULL, SL_SFIG_soft_mae},
+            {b->soft_mean ? b->soft_mean->soft_rmse : NULL, SL_SFIG_soft_rmse},
+            {b->soft_mean ? b->soft_mean->soft_bias : NULL, SL_SFIG_soft_bias},
+            {b->soft_mean ? b->soft_mean->soft_truth_stderr : NULL, SL_SFIG_soft_truth_stderr},
+        };
+        for (size_t j = 0; j < sizeof means / sizeof means[0]; j++)
+            if (means[j].v)
+                compare_mean(m, b->cell, sl_soft_figure_name((enum sl_soft_figure)means[j].k), *means[j].v,
+                             c->soft.pct[means[j].k]);
+        return SL_OK;
+    }
     /* regions, matched by name */
     for (unsigned r = 0; r < b->regions_count; r++) {
         int found = -1;
@@ -599,7 +687,24 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
         fprintf(f, "\n    counters: {");
         for (int k = 0; k < BL_C_COUNT; k++)
             fprintf(f, "%s%s: %llu", k ? ", " : "", counter_name[k], (unsigned long long)cell_counter(c, k));
-        fprintf(f, "}\n    regions: [");
+        fprintf(f, "}\n");
+        if (c->has_soft) {
+            fprintf(f, "    soft: {");
+            for (int k = 0; k < SL_SFIG_COUNT; k++)
+                fprintf(f, "%s%s: %llu", k ? ", " : "", sl_soft_figure_name((enum sl_soft_figure)k),
+                        (unsigned long long)c->soft.n[k]);
+            fprintf(f, "}\n    soft_mean: {");
+            static const int means[] = {SL_SFIG_soft_mae, SL_SFIG_soft_rmse, SL_SFIG_soft_bias,
+                                        SL_SFIG_soft_truth_stderr};
+            int w = 0;
+            for (size_t j = 0; j < sizeof means / sizeof means[0]; j++)
+                if (!isnan(c->soft.pct[means[j]]))   /* exact to the last bit: %.17g round-trips */
+                    fprintf(f, "%s%s: %.17g", w++ ? ", " : "", sl_soft_figure_name((enum sl_soft_figure)means[j]),
+                            c->soft.pct[means[j]]);
+            fprintf(f, "}\n");
+            continue;
+        }
+        fprintf(f, "    regions: [");
         for (int r = 0; r < c->fig.nregions; r++) {
             char name[16];
             region_name(c->fig.r[r].thickness, name, sizeof name);

@@ -31,7 +31,8 @@
     X(view,      0.01, "the view: pixels, PFL, PnFL, truth counts (pp of the image's pixels)")      \
     X(error,     0.05, "wrong pixels: incorrect light or shadow, wrong, caught, kept wrong, turned bad, wrong hints (pp of the region)") \
     X(decision,  0.10, "how pixels were decided: light, shadow, uncertain, traced, hinted, confirmed, corrected, changes vs NSM (pp of the region)") \
-    X(cost,      0.5,  "machine-independent counters: rays, ray-triangle tests, lookups, GS primitives, fragments (percent of the baseline value)")
+    X(cost,      0.5,  "machine-independent counters: rays, ray-triangle tests, lookups, GS primitives, fragments (percent of the baseline value)") \
+    X(soft,      0.1,  "soft shadows: MAE, RMSE, bias of the visible fraction (pp of visibility) and the soft counts (pp of the pixels)")
 
 enum sl_check_class {
 #define SL_CC_ENUM(name, tol, text) SL_CC_##name,

@@ -29,7 +29,7 @@
 #include <sys/stat.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 7   /* 7: study, config text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
+#define SL_STORE_VERSION 8   /* 8: soft-shadow figures; 7: study, config text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
 #define SL_STORE_BUSY_MS 10000
 
 /* ---- schema ---- */
@@ -131,7 +131,8 @@ static const char sql_figures[] =
     "  label      TEXT NOT NULL,\n"
     "  region     TEXT NOT NULL CHECK (region = 'image' OR region GLOB '[1-9]px'\n"
     "               OR region GLOB '[1-9][0-9]px' OR region GLOB '[1-9][0-9][0-9]px'),\n"
-    "  figure     TEXT NOT NULL CHECK (figure IN (" SL_FIGURES(SL_FIG_SQL_NAME) "'background')),\n"
+    "  figure     TEXT NOT NULL CHECK (figure IN (" SL_FIGURES(SL_FIG_SQL_NAME) SL_SOFT_FIGURES(SL_FIG_SQL_NAME)
+    "'background')),\n"
     "  count      INTEGER NOT NULL CHECK (count >= 0),\n"
     "  percent    REAL,\n"
     "  percent_of TEXT,\n"
@@ -651,6 +652,9 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
             e = put_figure(s, cell_id, c, viewport, region, sl_figure_name((enum sl_figure)k), g->n[k],
                            g->pct[k], sl_figure_of((enum sl_figure)k), key, d);
     }
+    for (int k = 0; c->soft && k < SL_SFIG_COUNT && !e; k++)
+        e = put_figure(s, cell_id, c, viewport, "image", sl_soft_figure_name((enum sl_soft_figure)k), c->soft->n[k],
+                       c->soft->pct[k], sl_soft_figure_of((enum sl_soft_figure)k), key, d);
     if (!e)
         e = put_figure(s, cell_id, c, viewport, "image", "background", fig->background, NAN, NULL, key, d);
     if (!e) {
@@ -723,6 +727,18 @@ static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struc
         double pct = sqlite3_column_type(st, 3) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 3);
         if (figure && strcmp(figure, "background") == 0) {
             f->background = count;
+            continue;
+        }
+        int sk = 0;
+        while (sk < SL_SFIG_COUNT && (!figure || strcmp(figure, sl_soft_figure_name((enum sl_soft_figure)sk)) != 0))
+            sk++;
+        if (sk < SL_SFIG_COUNT) {
+            if (!c->has_soft)
+                for (int j = 0; j < SL_SFIG_COUNT; j++)
+                    c->soft.pct[j] = NAN;
+            c->has_soft = 1;
+            c->soft.n[sk] = count;
+            c->soft.pct[sk] = pct;
             continue;
         }
         int t = region_thickness(region), k = 0;

@@ -31,6 +31,7 @@ struct sl_store_cell {
     uint64_t    n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
     const struct sl_figures     *fig;
     const struct sl_table_costs *costs;     /* counters and stage times; NULL = unknown */
+    const struct sl_soft_figures *soft;     /* a soft-shadow cell's figures (area light); NULL = none */
     const char *overlay;                    /* overlay PNG relative to the database's folder; NULL/"" none */
 };
 

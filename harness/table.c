@@ -139,6 +139,37 @@ static const char md_note[] =
     "correct/incorrect of the method's light or shadow pixels; wrong caught of all wrong pixels of "
     "the image. Background pixels enter no region; PnFL pixels count as shadow.\n\n";
 
+/* A cell's columns and rows: hard cells have a column per region and the
+ * figures of figures.h; soft cells (an area light) one column, the whole
+ * image, and the figures of softfig.h. */
+static int cell_cols(const struct sl_table_cell *c) { return c->has_soft ? 1 : c->fig.nregions; }
+static int cell_rows(const struct sl_table_cell *c) { return c->has_soft ? SL_SFIG_COUNT : SL_FIG_COUNT; }
+static int col_thickness(const struct sl_table_cell *c, int col) { return c->has_soft ? 0 : c->fig.r[col].thickness; }
+static const char *row_name(const struct sl_table_cell *c, int k)
+{
+    return c->has_soft ? sl_soft_figure_name((enum sl_soft_figure)k) : sl_figure_name((enum sl_figure)k);
+}
+static const char *row_of(const struct sl_table_cell *c, int k)
+{
+    return c->has_soft ? sl_soft_figure_of((enum sl_soft_figure)k) : sl_figure_of((enum sl_figure)k);
+}
+static void cell_value(const struct sl_table_cell *c, int col, int k, uint64_t *n, double *pct)
+{
+    *n = c->has_soft ? c->soft.n[k] : c->fig.r[col].n[k];
+    *pct = c->has_soft ? c->soft.pct[k] : c->fig.r[col].pct[k];
+}
+/* "count (pct%)", or for a soft mean "pct (of visibility)" */
+static void value_text(const struct sl_table_cell *c, int k, uint64_t n, double pct, int tex, char *out, size_t sz)
+{
+    const char *pc = tex ? "\\%" : "%";
+    if (isnan(pct))
+        snprintf(out, sz, "%llu", (unsigned long long)n);
+    else if (c->has_soft && !strcmp(row_of(c, k), "visibility"))
+        snprintf(out, sz, "%.3f%s", pct, pc);
+    else
+        snprintf(out, sz, "%llu (%.2f%s)", (unsigned long long)n, pct, pc);
+}
+
 static void md_provenance(FILE *f, const struct sl_table_cell *c)
 {
     fprintf(f, "method `%s`; git `%s`, config `%s`, machine `%s`", c->method, c->git_sha, c->config_hash,
@@ -149,17 +180,21 @@ static void md_table(FILE *f, const struct sl_table_cell *cells, const struct gr
 {
     const struct sl_table_cell *c0 = &cells[g->idx[0]];
     fprintf(f, "## %s / %s / %dx%d / %s\n\n", c0->scene, c0->viewpoint, c0->vw, c0->vh, c0->label);
-    fprintf(f, "PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.\n\n",
-            (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
-            (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
-            (unsigned long long)c0->n_truth_shadow);
+    if (c0->has_soft)
+        fprintf(f, "Area light: the visible fraction of the light against the area truth "
+                   "(means in %% of full visibility).\n\n");
+    else
+        fprintf(f, "PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.\n\n",
+                (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
+                (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
+                (unsigned long long)c0->n_truth_shadow);
     fprintf(f, "| figure |");
     int ncols = 0;
     for (int k = 0; k < g->n; k++) {
         const struct sl_table_cell *c = &cells[g->idx[k]];
-        for (int r = 0; r < c->fig.nregions; r++, ncols++) {
+        for (int r = 0; r < cell_cols(c); r++, ncols++) {
             char rn[16];
-            region_name(c->fig.r[r].thickness, rn, sizeof rn);
+            region_name(col_thickness(c, r), rn, sizeof rn);
             fprintf(f, " %d² %s |", c->map_size, rn);
         }
     }
@@ -167,16 +202,17 @@ static void md_table(FILE *f, const struct sl_table_cell *cells, const struct gr
     for (int k = 0; k < ncols; k++)
         fprintf(f, "---:|");
     fprintf(f, "\n");
-    for (int fi = 0; fi < SL_FIG_COUNT; fi++) {
-        fprintf(f, "| %s |", sl_figure_name((enum sl_figure)fi));
+    for (int fi = 0; fi < cell_rows(c0); fi++) {
+        fprintf(f, "| %s |", row_name(c0, fi));
         for (int k = 0; k < g->n; k++) {
             const struct sl_table_cell *c = &cells[g->idx[k]];
-            for (int r = 0; r < c->fig.nregions; r++) {
-                const struct sl_region_figures *rg = &c->fig.r[r];
-                if (isnan(rg->pct[fi]))
-                    fprintf(f, " %llu |", (unsigned long long)rg->n[fi]);
-                else
-                    fprintf(f, " %llu (%.2f%%) |", (unsigned long long)rg->n[fi], rg->pct[fi]);
+            for (int r = 0; r < cell_cols(c); r++) {
+                uint64_t n;
+                double pct;
+                char v[64];
+                cell_value(c, r, fi, &n, &pct);
+                value_text(c, fi, n, pct, 0, v, sizeof v);
+                fprintf(f, " %s |", v);
             }
         }
         fprintf(f, "\n");
@@ -241,16 +277,18 @@ static void csv_provenance(FILE *f, const struct sl_table_cell *c)
 
 static void csv_cell(FILE *f, const struct sl_table_cell *c)
 {
-    for (int r = 0; r < c->fig.nregions; r++) {
-        const struct sl_region_figures *g = &c->fig.r[r];
+    for (int r = 0; r < cell_cols(c); r++) {
         char rn[16];
-        region_name(g->thickness, rn, sizeof rn);
-        for (int k = 0; k < SL_FIG_COUNT; k++) {
+        region_name(col_thickness(c, r), rn, sizeof rn);
+        for (int k = 0; k < cell_rows(c); k++) {
+            uint64_t n;
+            double pct;
+            cell_value(c, r, k, &n, &pct);
             csv_key(f, c);
-            fprintf(f, "%s,%s,%llu,", rn, sl_figure_name((enum sl_figure)k), (unsigned long long)g->n[k]);
-            if (!isnan(g->pct[k]))
-                fprintf(f, "%.4f", g->pct[k]);
-            fprintf(f, ",%s", sl_figure_of((enum sl_figure)k));
+            fprintf(f, "%s,%s,%llu,", rn, row_name(c, k), (unsigned long long)n);
+            if (!isnan(pct))
+                fprintf(f, "%.4f", pct);
+            fprintf(f, ",%s", row_of(c, k));
             csv_provenance(f, c);
         }
     }
@@ -322,17 +360,20 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     const struct sl_table_cell *c0 = &cells[g->idx[0]];
     int ncols = 0;
     for (int k = 0; k < g->n; k++)
-        ncols += cells[g->idx[k]].fig.nregions;
+        ncols += cell_cols(&cells[g->idx[k]]);
     fputs("\\begin{table}[htbp]\n\\centering\n\\caption{", f);
     sl_tex_text(f, c0->scene);
     fputs(" / ", f);
     sl_tex_text(f, c0->viewpoint);
     fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
     sl_tex_text(f, c0->label);
-    fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.}\n",
-            (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
-            (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
-            (unsigned long long)c0->n_truth_shadow);
+    if (c0->has_soft)
+        fputs(". Area light: the visible fraction against the area truth (means in \\% of full visibility).}\n", f);
+    else
+        fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.}\n",
+                (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
+                (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
+                (unsigned long long)c0->n_truth_shadow);
     fputs("\\label{tab:", f);
     tex_key(f, c0->scene);
     fputc('-', f);
@@ -346,11 +387,11 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     /* map sizes over their regions */
     for (int k = 0; k < g->n; k++) {
         const struct sl_table_cell *c = &cells[g->idx[k]];
-        fprintf(f, " & \\multicolumn{%d}{c}{$%d^2$}", c->fig.nregions, c->map_size);
+        fprintf(f, " & \\multicolumn{%d}{c}{$%d^2$}", cell_cols(c), c->map_size);
     }
     fputs(" \\\\\n", f);
     for (int k = 0, col = 2; k < g->n; k++) {
-        int nr = cells[g->idx[k]].fig.nregions;
+        int nr = cell_cols(&cells[g->idx[k]]);
         if (nr > 0)
             fprintf(f, "%s\\cmidrule(lr){%d-%d}", k ? " " : "", col, col + nr - 1);
         col += nr;
@@ -358,23 +399,24 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     fputs("\nfigure", f);
     for (int k = 0; k < g->n; k++) {
         const struct sl_table_cell *c = &cells[g->idx[k]];
-        for (int r = 0; r < c->fig.nregions; r++) {
+        for (int r = 0; r < cell_cols(c); r++) {
             char rn[16];
-            region_name(c->fig.r[r].thickness, rn, sizeof rn);
+            region_name(col_thickness(c, r), rn, sizeof rn);
             fprintf(f, " & %s", rn);
         }
     }
     fputs(" \\\\\n\\midrule\n", f);
-    for (int fi = 0; fi < SL_FIG_COUNT; fi++) {
-        sl_tex_text(f, sl_figure_name((enum sl_figure)fi));
+    for (int fi = 0; fi < cell_rows(c0); fi++) {
+        sl_tex_text(f, row_name(c0, fi));
         for (int k = 0; k < g->n; k++) {
             const struct sl_table_cell *c = &cells[g->idx[k]];
-            for (int r = 0; r < c->fig.nregions; r++) {
-                const struct sl_region_figures *rg = &c->fig.r[r];
-                if (isnan(rg->pct[fi]))
-                    fprintf(f, " & %llu", (unsigned long long)rg->n[fi]);
-                else
-                    fprintf(f, " & %llu (%.2f\\%%)", (unsigned long long)rg->n[fi], rg->pct[fi]);
+            for (int r = 0; r < cell_cols(c); r++) {
+                uint64_t n;
+                double pct;
+                char v[64];
+                cell_value(c, r, fi, &n, &pct);
+                value_text(c, fi, n, pct, 1, v, sizeof v);
+                fprintf(f, " & %s", v);
             }
         }
         fputs(" \\\\\n", f);

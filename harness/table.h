@@ -18,6 +18,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include "figures.h"
+#include "softfig.h"
 #include "sl_error.h"
 
 enum sl_table_format { SL_TABLE_MD = 0, SL_TABLE_CSV, SL_TABLE_LATEX };
@@ -41,7 +42,9 @@ struct sl_table_cell {
     char     scene[64], viewpoint[32], method[32], label[48];
     int      vw, vh, map_size;
     uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
-    struct sl_figures fig;
+    struct sl_figures fig;             /* hard shadows (fig.nregions = 0 for a soft cell) */
+    int      has_soft;                 /* an area light: the soft figures below instead */
+    struct sl_soft_figures soft;
     struct sl_table_costs cost;
     char     study[64];                 /* the config's name */
     char     overlay[512];              /* error overlay PNG: relative to the database's folder

@@ -263,6 +263,60 @@ static void store_round_trip(void **st)
     tmp_remove(&t);
 }
 
+/* A soft-shadow cell (area light): no region of hard figures, the soft
+ * figures of the whole image, back as stored; and the tables render them. */
+static void store_soft_cell(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p;
+    fill_prov(&p, "abc1234");
+    int64_t run = 0;
+    assert_int_equal(sl_store_begin_run(s, &p, "soft", "c.yaml", HASH_A, "", &run, &d), SL_OK);
+    struct sl_figures f;
+    memset(&f, 0, sizeof f);
+    f.background = 77;
+    struct sl_soft_figures sf;
+    for (int k = 0; k < SL_SFIG_COUNT; k++) {
+        sf.n[k] = 1000 + (uint64_t)k;
+        sf.pct[k] = k == SL_SFIG_soft_pixels ? NAN : 0.5 + k;
+    }
+    struct sl_store_cell c = make_cell("side", 1024, "soft_a", &f, NULL, 10);
+    c.soft = &sf;
+    assert_int_equal(sl_store_put_cell(s, run, HASH_A, &c, &d), SL_OK);
+    struct sl_table_cell *cells = NULL;
+    int n = 0;
+    assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 1);
+    assert_true(cells[0].has_soft);
+    assert_int_equal(cells[0].fig.nregions, 0);
+    assert_int_equal(cells[0].fig.background, 77);
+    for (int k = 0; k < SL_SFIG_COUNT; k++) {
+        assert_int_equal(cells[0].soft.n[k], 1000 + (uint64_t)k);
+        if (k == SL_SFIG_soft_pixels)
+            assert_true(isnan(cells[0].soft.pct[k]));
+        else
+            assert_true(cells[0].soft.pct[k] == 0.5 + k);
+    }
+    /* rendered: the soft rows, a mean as a percentage of visibility, a count with its share */
+    char *md = NULL;
+    size_t len = 0;
+    FILE *mf = open_memstream(&md, &len);
+    assert_int_equal(sl_table_write(mf, SL_TABLE_MD, NULL, cells, n, &d), SL_OK);
+    fclose(mf);
+    assert_non_null(strstr(md, "| soft_mae | 1.500% |"));
+    assert_non_null(strstr(md, "| soft_within_005 | 1004 (4.50%) |"));
+    assert_null(strstr(md, "| wrong |"));
+    free(md);
+    free(cells);
+    sl_store_close(s);
+    tmp_remove(&t);
+}
+
 static void store_has_cell_matches_key_and_hash(void **st)
 {
     (void)st;
@@ -635,6 +689,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(store, round_trip),
+        SL_CASE(store, soft_cell),
         SL_CASE(store, has_cell_matches_key_and_hash),
         SL_CASE(store, latest_run_wins),
         SL_CASE(store, failed_put_leaves_no_cell),
