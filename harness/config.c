@@ -52,6 +52,7 @@ struct raw_config {
     struct raw_outputs *outputs;
     struct raw_reps *repetitions;
     unsigned *seed;
+    unsigned *area_samples;
     char *store;
     unsigned *threads;
 };
@@ -126,6 +127,7 @@ static const cyaml_schema_field_t config_fields[] = {
     CYAML_FIELD_MAPPING_PTR("repetitions", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
                             repetitions, reps_fields),
     CYAML_FIELD_UINT_PTR("seed", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, seed),
+    CYAML_FIELD_UINT_PTR("area_samples", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, area_samples),
     CYAML_FIELD_STRING_PTR("store", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, store, 1, 511),
     CYAML_FIELD_UINT_PTR("threads", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, threads),
     CYAML_FIELD_END,
@@ -398,6 +400,10 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
     if (c->runs < 1 || c->runs > 1000)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.runs", "runs %d: must be 1..1000", c->runs);
     c->seed = r->seed ? *r->seed : 1u;
+    c->area_samples = r->area_samples ? (int)*r->area_samples : 32;
+    if (c->area_samples < 2 || c->area_samples > 1024)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "area_samples",
+                           "area_samples %d: samples per side of an area light's truth, 2..1024", c->area_samples);
     snprintf(c->store, sizeof c->store, "%s", r->store ? r->store : "");
     c->overlay_contour = c->regions[0];
     if (r->outputs && r->outputs->overlay_contour) {
@@ -481,7 +487,8 @@ void sl_config_write(const struct sl_config *c, FILE *f)
     fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",
             c->tables ? "true" : "false", c->overlays ? "true" : "false", c->overlay_contour,
             c->exr ? "true" : "false");
-    fprintf(f, "repetitions: {warmup: %d, runs: %d}\nseed: %u\n", c->warmup, c->runs, c->seed);
+    fprintf(f, "repetitions: {warmup: %d, runs: %d}\nseed: %u\narea_samples: %d\n", c->warmup, c->runs, c->seed,
+            c->area_samples);
     if (c->store[0])
         fprintf(f, "store: %s\n", c->store);
     fprintf(f, "threads: %d\n", c->threads);

@@ -66,6 +66,7 @@ struct sl_config {
     int  overlay_contour;
     int  warmup, runs;                /* repetitions for timing */
     unsigned seed;
+    int  area_samples;                /* area-light truth: samples per side of the light (0 = 32) */
     char store[512];                  /* "" = <output root>/shadowlab.db */
     int  threads;                     /* resolved: >= 1 */
 };

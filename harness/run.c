@@ -20,6 +20,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "adjacency.h"
+#include "softfig.h"
+#include "softtruth.h"
 #include "contour.h"
 #include "gbuffer.h"
 #include "glctx.h"
@@ -167,6 +169,8 @@ static void table_cells_of(const struct sl_config *c, const struct sl_run_result
         t->n_truth_lit = cl->n_truth_lit;
         t->n_truth_shadow = cl->n_truth_shadow;
         t->fig = cl->fig;
+        t->has_soft = cl->has_soft;
+        t->soft = cl->soft;
         costs_of(c, cl, &t->cost);
         snprintf(t->study, sizeof t->study, "%s", c->name);
         if (c->overlays) {
@@ -444,6 +448,9 @@ struct run_ctx {
     int W, H;
     uint8_t *state, *band, *rgb;
     struct sl_verdicts vd;
+    /* an area light's scene: its truth is the visible fraction (softtruth.h) */
+    int area;
+    float *soft_truth, *soft_se;
 };
 
 static void drop_frame(struct run_ctx *x)
@@ -485,6 +492,9 @@ static void ctx_free(struct run_ctx *x)
     free(x->vd.base);
     free(x->vd.detail);
     free(x->vd.tests);
+    free(x->vd.vis);
+    free(x->soft_truth);
+    free(x->soft_se);
     if (x->gl.ctx) {
         sl_shadowmap_free(&x->spass);
         sl_gl_free(&x->gl);
@@ -507,6 +517,7 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
         return e;
     res->ms_bvh += x->rt.ms_build;
     res->passes.scenes++;
+    x->area = x->scene.light.type == SL_LIGHT_AREA;
     x->scene_key = scene_key(&x->scene, &x->gl, &x->rt);
     unsigned needs = 0;
     for (int m = 0; m < c->nmethods; m++)
@@ -532,6 +543,12 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
     free(x->vd.detail);
     free(x->vd.tests);
+    free(x->vd.vis);
+    free(x->soft_truth);
+    free(x->soft_se);
+    x->vd.vis = sl_calloc(npx, sizeof(float));
+    x->soft_truth = sl_calloc(npx, sizeof(float));
+    x->soft_se = sl_calloc(npx, sizeof(float));
     x->vd.tests = sl_calloc(npx, 1);
     x->vd.base = sl_calloc(npx, 1);
     x->vd.detail = sl_calloc(npx, 1);
@@ -542,7 +559,8 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     x->vd.how = sl_calloc(npx, 1);
     x->W = x->vd.w = W;
     x->H = x->vd.h = H;
-    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how || !x->vd.base || !x->vd.detail || !x->vd.tests) {
+    if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how || !x->vd.base || !x->vd.detail || !x->vd.tests ||
+        !x->vd.vis || !x->soft_truth || !x->soft_se) {
         x->W = x->H = 0;
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "per-pixel buffers %dx%d", W, H);
     }
@@ -570,6 +588,43 @@ static uint64_t layer_bad(const struct sl_depth_layer *l, int size)
     for (size_t i = 0; i < nt; i++)
         n += !(l->depth[i] >= 0.0f && l->depth[i] <= 1.0f);
     return n;
+}
+
+/* The truth of a view under an area light: the visible fraction of the light
+ * per pixel from the config's samples (not cached: its key would need the
+ * samples and seed, and it is a float image), and a binary truth beside it
+ * for the counts (lit: every sample visible; shadow: any not). No light fit:
+ * the soft layers fit their own frustum. */
+static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k, int reps,
+                             double *times, struct sl_run_result *res, struct sl_diag *d)
+{
+    struct sl_soft_truth_stats st;
+    for (int r = 0; r < reps; r++) {
+        enum sl_err e = sl_soft_truth(&x->rt, &x->scene, &x->view, c->area_samples, c->seed, x->soft_truth,
+                                      x->soft_se, &st, d);
+        if (e)
+            return e;
+        times[r] = st.ms_trace;
+    }
+    med_min_max(times + c->warmup, c->runs, x->vms.truth);
+    res->passes.truths_traced++;
+    res->passes.soft_truths++;
+    x->truth_cached = 0;
+    x->truth_rays = st.rays;
+    struct sl_view *v = &x->view;
+    v->n_lit = v->n_shadow = 0;
+    size_t np = (size_t)v->w * (size_t)v->h;
+    for (size_t i = 0; i < np; i++)
+        if (v->cls[i] == SL_C_PFL) {
+            v->truth[i] = x->soft_truth[i] >= 1.0f ? SL_T_LIT : SL_T_SHADOW;
+            v->n_lit += v->truth[i] == SL_T_LIT;
+            v->n_shadow += v->truth[i] == SL_T_SHADOW;
+        }
+    x->view_bad = view_bad(v);
+    x->view_scene = k->scene;
+    x->view_vp = k->vp;
+    x->view_viewport = k->viewport;
+    return SL_OK;
 }
 
 static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
@@ -600,6 +655,8 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
     }
     med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
     double t0 = sl_now();
+    if (x->area)
+        return area_view(x, c, k, reps, times, res, d);
     unsigned long long key = truth_key(x->scene_key, &x->scene.vp[vp], W, H);
     x->truth_cached = cache_dir && cache_dir[0] && truth_cache_read(cache_dir, key, &x->view);
     x->truth_rays = 0;
@@ -753,6 +810,48 @@ static void report_violations(const struct sl_config *c, const struct sl_cell *c
     }
 }
 
+/* An area light's cell: the soft figures of the method's visible fraction
+ * against the area truth, and an error heat map as its overlay. */
+static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                             struct sl_cell *cell, const char *ovdir, struct sl_diag *d)
+{
+    int W = x->view.w, H = x->view.h;
+    size_t npx = (size_t)W * (size_t)H;
+    double t0 = sl_now();
+    sl_soft_figures_compute(W, H, x->view.tri, x->vd.vis, x->soft_truth, x->soft_se, &cell->soft);
+    cell->has_soft = 1;
+    memset(&cell->fig, 0, sizeof cell->fig);
+    cell->fig.background = x->view.n_background;
+    for (size_t i = 0; i < npx; i++)
+        cell->nonfinite += x->view.tri[i] && !(x->vd.vis[i] >= 0.0f && x->vd.vis[i] <= 1.0f);
+    cell->ms.figures = 1e3 * (sl_now() - t0);
+    if (!ovdir)
+        return SL_OK;
+    t0 = sl_now();
+    /* the visible fraction as grey; where the method is off by more than 0.05,
+     * red where it is too dark and blue where too light, stronger with the error */
+    for (size_t i = 0; i < npx; i++) {
+        uint8_t *p = x->rgb + 3 * i;
+        if (!x->view.tri[i]) {
+            p[0] = p[1] = p[2] = 0;
+            continue;
+        }
+        float e = x->vd.vis[i] - x->soft_truth[i], g = 40.0f + 180.0f * x->vd.vis[i];
+        float a = fabsf(e) > 0.05f ? fminf(1.0f, 0.3f + fabsf(e)) : 0.0f;
+        p[0] = (uint8_t)((1 - a) * g + a * (e < 0 ? 255.0f : 0.0f));
+        p[1] = (uint8_t)((1 - a) * g);
+        p[2] = (uint8_t)((1 - a) * g + a * (e > 0 ? 255.0f : 0.0f));
+    }
+    /* the overlay's rows go bottom-up like the view's */
+    char name[400], path[1600];
+    overlay_name(c, cell, name, sizeof name);
+    snprintf(path, sizeof path, "%s/%s", ovdir, name);
+    (void)k;
+    enum sl_err e = sl_image_write_rgb8(path, W, H, x->rgb, d);
+    cell->ms.overlay = 1e3 * (sl_now() - t0);
+    return e;
+}
+
 static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
                             struct sl_cell *cell, const char *ovdir, const char *exrdir,
                             struct sl_run_result *res, struct sl_diag *d)
@@ -808,6 +907,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     med_min_max(times, c->runs, cell->ms.method);
     cell->cost.ms_method = cell->ms.method[SL_MED];
 
+    if (x->area)
+        return soft_cell(x, c, k, cell, ovdir, d);
     double t0 = sl_now();
     for (size_t i = 0; i < npx; i++)
         x->state[i] = x->vd.v[i];   /* 0 background, else the verdict */
@@ -913,7 +1014,7 @@ static enum sl_err store_cell(struct sl_store *st, int64_t run_id, const struct 
         .map_size = c->maps[cl->key.map], .cell_index = cl->index,
         .n_pfl = cl->n_pfl, .n_pnfl = cl->n_pnfl, .n_background = cl->n_background,
         .n_truth_lit = cl->n_truth_lit, .n_truth_shadow = cl->n_truth_shadow,
-        .fig = &cl->fig, .costs = &k, .overlay = overlay,
+        .fig = &cl->fig, .costs = &k, .overlay = overlay, .soft = cl->has_soft ? &cl->soft : NULL,
     };
     return sl_store_put_cell(st, run_id, c->hash, &sc, d);
 }
@@ -1082,7 +1183,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         if ((e = ensure_scene(&x, c, k.scene, res, d)) ||
             (e = ensure_buffers(&x, c->viewport_w[k.viewport], c->viewport_h[k.viewport], d)) ||
             (e = ensure_view(&x, c, &k, cache, res, d)) ||
-            (e = ensure_frame(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d)))
+            (!x.area && (e = ensure_frame(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d))))
             break;
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;

@@ -26,6 +26,7 @@
 #include "figures.h"
 #include "frame.h"
 #include "provenance.h"
+#include "softfig.h"
 #include "table.h"
 
 struct sl_cell_key {
@@ -86,6 +87,8 @@ struct sl_cell {
     int      truth_cached;
     uint64_t truth_rays;
     uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
+    int      has_soft;                 /* an area light's cell: soft figures instead of fig's regions */
+    struct sl_soft_figures soft;
     uint64_t violations;               /* of the method's declared exactness; must be 0 */
     uint64_t nonfinite;                /* G-buffer values not finite, depths of the layers it reads
                                         * outside [0, 1]; must be 0 */
@@ -103,6 +106,7 @@ struct sl_pass_counts {
     int adjacency;                     /* adjacency tables built (only when a method needs them) */
     int gbuffers;                      /* G-buffer passes */
     int truths_traced, truths_cached;  /* truth passes traced / read from cache */
+    int soft_truths;                   /* of those traced, area-light truths (visible fractions) */
     int layers[SL_LAYER_COUNT];        /* shadow-map layer renders */
     int method_runs;                   /* method invocations, repetitions included */
 };

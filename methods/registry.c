@@ -19,6 +19,7 @@ extern const struct sl_method sl_method_neighbours;
 extern const struct sl_method sl_method_adjacency;
 extern const struct sl_method sl_method_chain;
 extern const struct sl_method sl_method_raytrace;
+extern const struct sl_method sl_method_hard_point;
 
 static const struct sl_method *const sl_methods[] = {
     &sl_method_nsm,
@@ -34,6 +35,7 @@ static const struct sl_method *const sl_methods[] = {
     &sl_method_csm_adj,
     &sl_method_hertel,
     &sl_method_raytrace,
+    &sl_method_hard_point,
     NULL,
 };
 

@@ -1,0 +1,92 @@
+/*
+ * soft::* — scenes with an area light through the driver: the area truth
+ * once per view (counted), no hard-shadow pass, the soft figures adding up,
+ * the hard-shadow approximation (hard_point) scored against the area truth,
+ * determinism; and a scene without an area light never pays for a soft pass.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "config.h"
+#include "run.h"
+
+static const char *soft_cfg =
+    "scenes: [{scene: curtis_box}]\nviewports: [{width: 128, height: 96}]\nmap_sizes: [512, 1024]\n"
+    "methods: [{label: point, method: hard_point}]\narea_samples: 8\n";
+
+static void soft_driver(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("soft.yaml", soft_cfg, &c);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result a, b;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &o, &a, &d), SL_OK);
+    assert_int_equal(a.ncells, 2 * 2);
+    assert_int_equal(a.passes.soft_truths, 2);            /* once per view, not per map size */
+    assert_int_equal(a.passes.truths_traced, 2);
+    for (int l = 0; l < SL_LAYER_COUNT; l++)
+        assert_int_equal(a.passes.layers[l], 0);            /* hard_point reads no shadow map */
+    for (int i = 0; i < a.ncells; i++) {
+        const struct sl_cell *cl = &a.cells[i];
+        const uint64_t *n = cl->soft.n;
+        assert_true(cl->has_soft);
+        assert_int_equal(cl->nonfinite, 0);
+        assert_int_equal(n[SL_SFIG_soft_pixels], cl->n_pfl + cl->n_pnfl);
+        assert_int_equal(n[SL_SFIG_soft_truth_lit] + n[SL_SFIG_soft_truth_umbra] + n[SL_SFIG_soft_truth_penumbra],
+                         n[SL_SFIG_soft_pixels]);
+        assert_true(n[SL_SFIG_soft_truth_penumbra] > 1000);   /* Curtis's case has wide penumbrae */
+        assert_true(n[SL_SFIG_soft_within_005] <= n[SL_SFIG_soft_within_010]);
+        /* a point light gives 0 or 1: never a penumbra, so every penumbra pixel is an error */
+        assert_int_equal(n[SL_SFIG_soft_penumbra_right], 0);
+        assert_true(cl->soft.pct[SL_SFIG_soft_mae] > 1.0);
+        assert_true(cl->soft.pct[SL_SFIG_soft_rmse] >= cl->soft.pct[SL_SFIG_soft_mae]);
+        /* where the whole light is seen, so is its centre (up to an occluder slipping between
+         * every sample but not the centre): at least 99.9% */
+        assert_true(n[SL_SFIG_soft_lit_right] * 1000 >= n[SL_SFIG_soft_truth_lit] * 999);
+        assert_true(n[SL_SFIG_soft_umbra_right] * 1000 >= n[SL_SFIG_soft_truth_umbra] * 999);
+        /* one ray per pixel that faces the light's centre, none for the others */
+        assert_true(cl->cost.rays > n[SL_SFIG_soft_pixels] / 2 && cl->cost.rays <= n[SL_SFIG_soft_pixels]);
+    }
+    /* the same again, bit for bit */
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    for (int i = 0; i < a.ncells; i++) {
+        assert_memory_equal(a.cells[i].soft.n, b.cells[i].soft.n, sizeof a.cells[i].soft.n);
+        assert_memory_equal(a.cells[i].soft.pct, b.cells[i].soft.pct, sizeof a.cells[i].soft.pct);
+    }
+    sl_run_result_free(&a);
+    sl_run_result_free(&b);
+}
+
+/* No area light, no soft pass. */
+static void soft_none_without_area_light(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("hard.yaml", "scenes: [{scene: blocks}]\nviewports: [{width: 64, height: 64}]\n"
+                   "map_sizes: [256]\nmethods: [{method: nsm}]\n", &c);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result r;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(r.passes.soft_truths, 0);
+    assert_int_equal(r.passes.truths_traced, 1);
+    assert_false(r.cells[0].has_soft);
+    sl_run_result_free(&r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(soft, driver),
+        SL_CASE(soft, none_without_area_light),
+    };
+    return cmocka_run_group_tests(tests, sl_test_setup, sl_test_teardown);
+}
