@@ -77,4 +77,23 @@ echo "$err" | grep -q "nope.db: no results store" || fail "no store: '$err'"
 grep -q '^  error: 5 ' "$tmp/loose.yaml" || fail "--update lost the tolerance"
 grep -q '^counts: tolerance' "$tmp/loose.yaml" || fail "--update lost the count mode"
 
+# a soft-shadow cell (area light): its means compared in pp of visibility
+cat >"$tmp/s.yaml" <<'YAML'
+name: softcheck
+scenes: [{scene: curtis_box, viewpoints: [above]}]
+viewports: [{width: 64, height: 64}]
+map_sizes: [256]
+methods: [{label: point, method: hard_point}]
+area_samples: 4
+outputs: {overlays: false}
+YAML
+"$bin" run "$tmp/s.yaml" --out "$tmp/s" --no-cache >/dev/null 2>&1 || { echo "FAIL soft run"; exit 1; }
+"$bin" check "$tmp/s/shadowlab.db" --baseline "$tmp/sb.yaml" --update 2>/dev/null || fail "soft --update"
+grep -q "^    soft_mean: {soft_mae: " "$tmp/sb.yaml" || fail "soft baseline has no means"
+"$bin" check "$tmp/s/shadowlab.db" --baseline "$tmp/sb.yaml" >/dev/null || fail "soft cell against its own baseline"
+sed -E 's/soft_mean: \{soft_mae: [0-9.]+/soft_mean: {soft_mae: 99/' "$tmp/sb.yaml" >"$tmp/sb2.yaml"
+out=$("$bin" check "$tmp/s/shadowlab.db" --baseline "$tmp/sb2.yaml"); rc=$?
+[ $rc -eq 1 ] || fail "a moved soft MAE: exit $rc, want 1"
+echo "$out" | grep -q '| soft_mae | soft | 99 |' || fail "the moved soft MAE is not named: $out"
+
 [ $fails -eq 0 ] && echo "cli::check passed" || exit 1
