@@ -33,6 +33,10 @@ struct raw_method {
     unsigned *texels;
     unsigned *level;
     char  *finish;
+    unsigned *grid;
+    char  *search;
+    unsigned *layers;
+    bool  *blur;
 };
 struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bool *exr; };
 struct raw_scene_ref {
@@ -80,6 +84,10 @@ static const cyaml_schema_field_t method_fields[] = {
     CYAML_FIELD_UINT_PTR("texels", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, texels),
     CYAML_FIELD_UINT_PTR("level", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, level),
     CYAML_FIELD_STRING_PTR("finish", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, finish, 1, 15),
+    CYAML_FIELD_UINT_PTR("grid", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, grid),
+    CYAML_FIELD_STRING_PTR("search", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, search, 1, 15),
+    CYAML_FIELD_UINT_PTR("layers", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, layers),
+    CYAML_FIELD_BOOL_PTR("blur", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, blur),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t method_schema = {
@@ -333,9 +341,33 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             else
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "finish '%s': trace or lit", rm->finish);
         }
+        if (rm->grid) {
+            p->set |= SL_PARAM_GRID;
+            p->grid = (int)*rm->grid;
+        }
+        if (rm->layers) {
+            p->set |= SL_PARAM_LAYERS;
+            p->layers = (int)*rm->layers;
+        }
+        if (rm->blur) {
+            p->set |= SL_PARAM_BLUR;
+            p->blur = *rm->blur ? 1 : 0;
+        }
+        if (rm->search) {
+            p->set |= SL_PARAM_SEARCH;
+            snprintf(key, sizeof key, "methods[%u].search", i);
+            if (strcmp(rm->search, "linear") == 0)
+                p->search = 0;
+            else if (strcmp(rm->search, "hierarchical") == 0)
+                p->search = 1;
+            else
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "search '%s': linear or hierarchical", rm->search);
+        }
         static const struct { unsigned bit; const char *name; } pk[] = {
             {SL_PARAM_SELF_SHADOW, "self_shadow"}, {SL_PARAM_BIAS, "bias"}, {SL_PARAM_SLOPE, "slope"},
             {SL_PARAM_TEXELS, "texels"}, {SL_PARAM_LEVEL, "level"}, {SL_PARAM_FINISH, "finish"},
+            {SL_PARAM_GRID, "grid"}, {SL_PARAM_SEARCH, "search"}, {SL_PARAM_LAYERS, "layers"},
+            {SL_PARAM_BLUR, "blur"},
         };
         for (size_t k = 0; k < sizeof pk / sizeof pk[0]; k++)
             if ((p->set & pk[k].bit) && !(cm->method->params_ok & pk[k].bit)) {
@@ -482,6 +514,14 @@ void sl_config_write(const struct sl_config *c, FILE *f)
             fprintf(f, ", level: %d", p->level);
         if (p->set & SL_PARAM_FINISH)
             fprintf(f, ", finish: %s", p->finish ? "lit" : "trace");
+        if (p->set & SL_PARAM_GRID)
+            fprintf(f, ", grid: %d", p->grid);
+        if (p->set & SL_PARAM_SEARCH)
+            fprintf(f, ", search: %s", p->search ? "hierarchical" : "linear");
+        if (p->set & SL_PARAM_LAYERS)
+            fprintf(f, ", layers: %d", p->layers);
+        if (p->set & SL_PARAM_BLUR)
+            fprintf(f, ", blur: %s", p->blur ? "true" : "false");
         fprintf(f, "}\n");
     }
     fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",

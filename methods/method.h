@@ -99,6 +99,10 @@ int         sl_self_shadow_parse(const char *name);   /* -1 if unknown */
 #define SL_PARAM_TEXELS      (1u << 3)
 #define SL_PARAM_LEVEL       (1u << 4)
 #define SL_PARAM_FINISH      (1u << 5)
+#define SL_PARAM_GRID        (1u << 6)
+#define SL_PARAM_SEARCH      (1u << 7)
+#define SL_PARAM_LAYERS      (1u << 8)
+#define SL_PARAM_BLUR        (1u << 9)
 struct sl_method_params {
     unsigned set;
     int      self_shadow;   /* enum sl_self_shadow */
@@ -107,6 +111,10 @@ struct sl_method_params {
     int      texels;        /* coherence, neighbours: 4 or 9 */
     int      level;         /* adjacency: 1 (edge) or 2 (vertex) */
     int      finish;        /* chain: 0 trace the pixels left, 1 leave them lit */
+    int      grid;          /* soft_mc: rays per pixel = grid x grid (jittered points on the light) */
+    int      search;        /* soft_mc: 0 linear + binary refinement, 1 hierarchical (N-buffer) */
+    int      layers;        /* soft_mc: 1 (near only) or 2 (near and far) */
+    int      blur;          /* soft_mc: 1 the depth-sensitive screen-space blur, 0 none */
 };
 
 struct sl_method_args {
