@@ -21,6 +21,8 @@
 #include <unistd.h>
 #include "adjacency.h"
 #include "softfig.h"
+#include "softmap.h"
+#include "softmc.h"
 #include "softtruth.h"
 #include "contour.h"
 #include "gbuffer.h"
@@ -451,6 +453,12 @@ struct run_ctx {
     /* an area light's scene: its truth is the visible fraction (softtruth.h) */
     int area;
     float *soft_truth, *soft_se;
+    /* its layers for soft_mc (softmap.h) and their N-buffer, per (view, map size) */
+    struct sl_softmap_pass softpass;
+    struct sl_softmap softmap;
+    struct sl_softmc_nbuf nbuf;
+    int soft_map;                        /* map index the layers are for, -1 none */
+    uint8_t *receivers;                  /* per scene range: a pure receiver */
 };
 
 static void drop_frame(struct run_ctx *x)
@@ -462,6 +470,9 @@ static void drop_frame(struct run_ctx *x)
 static void drop_view(struct run_ctx *x)
 {
     drop_frame(x);
+    sl_softmap_free(&x->softmap);
+    memset(&x->softmap, 0, sizeof x->softmap);
+    x->soft_map = -1;
     sl_view_free(&x->view);
     x->view_scene = x->view_vp = x->view_viewport = -1;
 }
@@ -495,7 +506,10 @@ static void ctx_free(struct run_ctx *x)
     free(x->vd.vis);
     free(x->soft_truth);
     free(x->soft_se);
+    free(x->receivers);
+    sl_softmc_nbuf_free(&x->nbuf);
     if (x->gl.ctx) {
+        sl_softmap_pass_free(&x->softpass);
         sl_shadowmap_free(&x->spass);
         sl_gl_free(&x->gl);
     }
@@ -518,6 +532,12 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
     res->ms_bvh += x->rt.ms_build;
     res->passes.scenes++;
     x->area = x->scene.light.type == SL_LIGHT_AREA;
+    free(x->receivers);
+    x->receivers = sl_calloc((size_t)(x->scene.nranges ? x->scene.nranges : 1), 1);
+    if (!x->receivers)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "receiver flags");
+    for (int r = 0; r < x->scene.nranges; r++)
+        x->receivers[r] = (uint8_t)x->scene.ranges[r].receiver;
     x->scene_key = scene_key(&x->scene, &x->gl, &x->rt);
     unsigned needs = 0;
     for (int m = 0; m < c->nmethods; m++)
@@ -810,6 +830,33 @@ static void report_violations(const struct sl_config *c, const struct sl_cell *c
     }
 }
 
+/* The area light's near and far layers at the cell's map size, and their
+ * N-buffer, once per (view, map size) and only when a soft method of the
+ * group reads them. */
+static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                               unsigned needs, struct sl_run_result *res, struct sl_diag *d)
+{
+    if (!(needs & SL_NEED_SOFT) || x->soft_map == k->map)
+        return SL_OK;
+    if (!x->softpass.prog) {
+        enum sl_err e = sl_softmap_init(&x->softpass, d);
+        if (e)
+            return e;
+    }
+    sl_softmap_free(&x->softmap);
+    memset(&x->softmap, 0, sizeof x->softmap);
+    x->soft_map = -1;
+    struct sl_softmap_desc sd = {.size = c->maps[k->map], .receiver = x->receivers};
+    enum sl_err e = sl_softmap_render(&x->softpass, &x->mesh, &x->scene, &x->view, &sd, &x->softmap, d);
+    if (!e)
+        e = sl_softmc_nbuf_build(&x->softmap, c->threads, &x->nbuf, d);
+    if (e)
+        return e;
+    res->passes.soft_layers++;
+    x->soft_map = k->map;
+    return SL_OK;
+}
+
 /* An area light's cell: the soft figures of the method's visible fraction
  * against the area truth, and an error heat map as its overlay. */
 static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
@@ -887,6 +934,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_method_args a = {
         .scene = &x->scene, .view = &mview, .frame = &x->frame, .params = &cm->params,
         .rt = &x->rt, .adj = x->have_adj ? &x->adj : NULL, .threads = c->threads,
+        .softmap = x->soft_map >= 0 ? &x->softmap : NULL, .nbuf = x->soft_map >= 0 ? &x->nbuf : NULL,
+        .seed = c->seed,
     };
     int reps = c->warmup + c->runs;
     double times[SL_MAX_REPS];
@@ -1145,7 +1194,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
 
     struct run_ctx x;
     memset(&x, 0, sizeof x);
-    x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = -1;
+    x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = -1;
     struct sl_store *st = NULL;
     int64_t run_id = 0;
     int show = o->progress && isatty(2);
@@ -1183,7 +1232,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         if ((e = ensure_scene(&x, c, k.scene, res, d)) ||
             (e = ensure_buffers(&x, c->viewport_w[k.viewport], c->viewport_h[k.viewport], d)) ||
             (e = ensure_view(&x, c, &k, cache, res, d)) ||
-            (!x.area && (e = ensure_frame(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d))))
+            (!x.area && (e = ensure_frame(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d))) ||
+            (x.area && (e = ensure_soft(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d))))
             break;
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;

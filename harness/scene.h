@@ -50,6 +50,7 @@ struct sl_mesh_range {
     char     name[SL_MESH_NAME];
     uint32_t first, count;    /* triangles [first, first + count) */
     int      two_sided;       /* leaves: never culled, shadowed from both sides */
+    int      receiver;        /* a pure receiver (the ground): left out of soft_mc's layers (Curtis 3.3) */
 };
 
 struct sl_scene {

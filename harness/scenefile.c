@@ -40,6 +40,7 @@ struct raw_mesh {
     unsigned *segments, *rings, *grid, *count, *seed;
     struct raw_xform *transform;
     bool *two_sided;
+    bool *receiver;
 };
 struct raw_light {
     char *type;
@@ -103,6 +104,7 @@ static const cyaml_schema_field_t mesh_fields[] = {
     CYAML_FIELD_MAPPING_PTR("transform", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_mesh,
                             transform, xform_fields),
     CYAML_FIELD_BOOL_PTR("two_sided", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_mesh, two_sided),
+    CYAML_FIELD_BOOL_PTR("receiver", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_mesh, receiver),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t mesh_schema = {
@@ -486,6 +488,7 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
     rg->first = b->all.nt;
     rg->count = m.nt;
     rg->two_sided = r->two_sided ? *r->two_sided : 0;
+    rg->receiver = r->receiver ? *r->receiver : 0;
     uint32_t base = b->all.nv;
     for (uint32_t v = 0; v < m.nv; v++)
         sl_mesh_vertex(&b->all, m.pos[3 * v], m.pos[3 * v + 1], m.pos[3 * v + 2]);

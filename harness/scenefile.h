@@ -16,6 +16,8 @@
  *     - {name: spider, file: /usr/share/assimp/models/OBJ/spider.obj,
  *        transform: {translate: [0, 0, 0], rotate: [0, 90, 0], scale: [0.1, 0.1, 0.1]},
  *        two_sided: false}
+ *     - {name: ground, generator: plane, size: 60, receiver: true}   # a pure receiver: soft_mc's
+ *                                          # layers leave it out (Curtis 3.3); default false
  *   viewpoints:
  *     - {name: side, position: [35, 50, -43], direction: [-1, -1.2, 1],
  *        up: [0, 1, 0], fov: 60, near: 20, far: 250}

@@ -19,6 +19,8 @@
 
 struct sl_rt;
 struct sl_adjacency;
+struct sl_softmap;
+struct sl_softmc_nbuf;
 
 /* Beyond the frame layers (SL_NEED(layer) bits of frame.h), a method may need
  * the scene's edge and vertex adjacency, built once per scene on demand. */
@@ -124,6 +126,9 @@ struct sl_method_args {
     const struct sl_method_params *params;
     const struct sl_rt            *rt;       /* for methods that trace */
     const struct sl_adjacency     *adj;      /* when needs has SL_NEED_ADJACENCY, else NULL */
+    const struct sl_softmap       *softmap;  /* when needs has SL_NEED_SOFT: the area light's layers */
+    const struct sl_softmc_nbuf   *nbuf;     /* ... and their N-buffer */
+    uint32_t                       seed;     /* the config's seed, for methods that sample */
     int                            threads;
 };
 

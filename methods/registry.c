@@ -20,6 +20,7 @@ extern const struct sl_method sl_method_adjacency;
 extern const struct sl_method sl_method_chain;
 extern const struct sl_method sl_method_raytrace;
 extern const struct sl_method sl_method_hard_point;
+extern const struct sl_method sl_method_soft_mc;
 
 static const struct sl_method *const sl_methods[] = {
     &sl_method_nsm,
@@ -36,6 +37,7 @@ static const struct sl_method *const sl_methods[] = {
     &sl_method_hertel,
     &sl_method_raytrace,
     &sl_method_hard_point,
+    &sl_method_soft_mc,
     NULL,
 };
 

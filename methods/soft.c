@@ -8,6 +8,8 @@
  * ray. Its error against the area truth is what any hard-shadow method makes
  * under this light before adding errors of its own (aliasing): the
  * penumbra it cannot have.
+ *
+ * soft_mc: see below.
  */
 #include <math.h>
 #include <omp.h>
@@ -15,6 +17,8 @@
 #include <embree3/rtcore.h>
 #include "arealight.h"
 #include "method.h"
+#include "softmap.h"
+#include "softmc.h"
 #include "truth.h"
 #include "util.h"
 
@@ -94,4 +98,74 @@ const struct sl_method sl_method_hard_point = {
     .needs = point_needs,
     .configure = point_configure,
     .run = point_run,
+};
+
+/*
+ * soft_mc: Curtis 2009 (softmc.h) as a method. Parameters: grid (rays per
+ * pixel = grid^2, default 3; Curtis uses 2 and 3), search (hierarchical,
+ * default, or linear), layers (2, default, or 1: the single-layer
+ * variant), blur (the depth-sensitive screen-space blur, default false).
+ * Its samples use the config's seed + 1, so they are never the very points
+ * the area truth draws (same grid, same seed would cancel their errors).
+ */
+static unsigned mc_needs(const struct sl_method_params *p) { (void)p; return SL_NEED_SOFT; }
+
+static enum sl_err mc_configure(struct sl_method_params *p, struct sl_diag *d)
+{
+    if (!(p->set & SL_PARAM_GRID))
+        p->grid = 3;
+    if (!(p->set & SL_PARAM_SEARCH))
+        p->search = 1;
+    if (!(p->set & SL_PARAM_LAYERS))
+        p->layers = 2;
+    if (!(p->set & SL_PARAM_BLUR))
+        p->blur = 0;
+    if (p->grid < 1 || p->grid > 16)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "grid", "grid %d: 1..16 (rays per pixel = grid^2)", p->grid);
+    if (p->layers != 1 && p->layers != 2)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "layers", "layers %d: 1 or 2", p->layers);
+    p->set = SL_PARAM_GRID | SL_PARAM_SEARCH | SL_PARAM_LAYERS | SL_PARAM_BLUR;
+    return SL_OK;
+}
+
+static enum sl_err mc_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
+                          struct sl_diag *d)
+{
+    if (!a->softmap || !a->nbuf || !out->vis)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, "method", "soft_mc without its layers");
+    const struct sl_method_params *p = a->params;
+    struct sl_softmc_desc desc = {
+        .grid = p->grid, .seed = a->seed + 1u, .search = p->search ? SL_SOFTMC_HIER : SL_SOFTMC_LINEAR,
+        .layers = p->layers, .blur_radius = p->blur ? 4 : 0, .threads = a->threads,
+    };
+    struct sl_softmc_result r;
+    memset(&r, 0, sizeof r);
+    double t0 = sl_now();
+    enum sl_err e = sl_softmc_run(a->softmap, a->nbuf, a->view, &desc, &r, d);
+    if (!e) {
+        const struct sl_view *v = a->view;
+        const float *src = r.vis_blur ? r.vis_blur : r.vis;
+        size_t np = (size_t)v->w * (size_t)v->h;
+        for (size_t i = 0; i < np; i++) {
+            out->vis[i] = src[i];
+            out->v[i] = !v->tri[i] ? SL_V_NONE : src[i] >= 1.0f ? SL_V_LIT : src[i] <= 0.0f ? SL_V_SHADOW : SL_V_UNCERTAIN;
+            out->how[i] = v->tri[i] ? SL_HOW_MAP : SL_HOW_NONE;
+        }
+        c->rays = r.st.rays;
+        c->lookups = r.st.lookups;
+        c->ms_trace = r.st.ms_trace;
+    }
+    c->ms_method = 1e3 * (sl_now() - t0);
+    sl_softmc_result_free(&r);
+    return e;
+}
+
+const struct sl_method sl_method_soft_mc = {
+    .name = "soft_mc",
+    .summary = "Curtis 2009: rays to jittered points on an area light through near/far layers (grid, search, layers, blur)",
+    .lights = SL_LIGHTS_AREA,
+    .params_ok = SL_PARAM_GRID | SL_PARAM_SEARCH | SL_PARAM_LAYERS | SL_PARAM_BLUR,
+    .needs = mc_needs,
+    .configure = mc_configure,
+    .run = mc_run,
 };

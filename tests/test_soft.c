@@ -34,6 +34,7 @@ static void soft_driver(void **st)
     assert_int_equal(a.passes.truths_traced, 2);
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         assert_int_equal(a.passes.layers[l], 0);            /* hard_point reads no shadow map */
+    assert_int_equal(a.passes.soft_layers, 0);
     for (int i = 0; i < a.ncells; i++) {
         const struct sl_cell *cl = &a.cells[i];
         const uint64_t *n = cl->soft.n;
@@ -65,6 +66,59 @@ static void soft_driver(void **st)
     sl_run_result_free(&b);
 }
 
+/* soft_mc through the driver: its layers once per (view, map size), output
+ * in [0, 1], bit for bit again, and closer to the area truth than the
+ * hard-shadow approximation on Curtis's case; the single-layer variant and
+ * 2x2 grid in between. */
+static void soft_mc_driver(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("mc.yaml",
+                   "scenes: [{scene: curtis_box}]\nviewports: [{width: 128, height: 96}]\nmap_sizes: [512, 1024]\n"
+                   "methods:\n  - {label: point, method: hard_point}\n  - {label: mc3, method: soft_mc}\n"
+                   "  - {label: mc2, method: soft_mc, grid: 2}\n  - {label: one, method: soft_mc, layers: 1}\n"
+                   "  - {label: lin, method: soft_mc, search: linear}\n  - {label: blur, method: soft_mc, blur: true}\n"
+                   "area_samples: 16\n", &c);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result a, b;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &o, &a, &d), SL_OK);
+    assert_int_equal(a.ncells, 2 * 2 * 6);
+    assert_int_equal(a.passes.soft_truths, 2);
+    assert_int_equal(a.passes.soft_layers, 2 * 2);        /* per (view, map size), shared by 5 labels */
+    for (int i = 0; i < a.ncells; i += 6) {
+        const struct sl_cell *cl = &a.cells[i];
+        double point = cl[0].soft.pct[SL_SFIG_soft_mae], mc3 = cl[1].soft.pct[SL_SFIG_soft_mae],
+               mc2 = cl[2].soft.pct[SL_SFIG_soft_mae], one = cl[3].soft.pct[SL_SFIG_soft_mae];
+        printf("soft::mc_driver: %s map %d: MAE point %.3f, mc 2x2 %.3f, 3x3 %.3f, one layer %.3f, "
+               "linear %.3f, blurred %.3f (%% of visibility)\n", cl->viewpoint, c.maps[cl->key.map], point, mc2,
+               mc3, one, cl[4].soft.pct[SL_SFIG_soft_mae], cl[5].soft.pct[SL_SFIG_soft_mae]);
+        assert_true(mc3 < mc2 && mc2 < point);
+        assert_true(mc3 < one);
+        for (int k = 0; k < 6; k++) {
+            assert_true(cl[k].has_soft);
+            assert_int_equal(cl[k].nonfinite, 0);               /* every fraction in [0, 1] */
+        }
+        /* soft_mc gives penumbrae; a point light cannot */
+        assert_true(cl[1].soft.n[SL_SFIG_soft_penumbra_right] > 0);
+        assert_true(cl[1].cost.rays > 0 && cl[1].cost.lookups > 0);
+    }
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    for (int i = 0; i < a.ncells; i++)
+        assert_memory_equal(a.cells[i].soft.pct, b.cells[i].soft.pct, sizeof a.cells[i].soft.pct);
+    sl_run_result_free(&b);
+    /* another seed moves the samples of both the truth and soft_mc */
+    c.seed = 7;
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    int moved = 0;
+    for (int i = 0; i < a.ncells; i++)
+        moved += a.cells[i].soft.pct[SL_SFIG_soft_mae] != b.cells[i].soft.pct[SL_SFIG_soft_mae];
+    assert_true(moved > a.ncells / 2);
+    sl_run_result_free(&a);
+    sl_run_result_free(&b);
+}
+
 /* No area light, no soft pass. */
 static void soft_none_without_area_light(void **st)
 {
@@ -77,6 +131,7 @@ static void soft_none_without_area_light(void **st)
     struct sl_diag d;
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
     assert_int_equal(r.passes.soft_truths, 0);
+    assert_int_equal(r.passes.soft_layers, 0);
     assert_int_equal(r.passes.truths_traced, 1);
     assert_false(r.cells[0].has_soft);
     sl_run_result_free(&r);
@@ -86,6 +141,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(soft, driver),
+        SL_CASE(soft, mc_driver),
         SL_CASE(soft, none_without_area_light),
     };
     return cmocka_run_group_tests(tests, sl_test_setup, sl_test_teardown);
