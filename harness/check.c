@@ -283,6 +283,9 @@ struct cmp {
     long hidden;
 };
 
+static void moved_row(struct cmp *m, const char *key, const char *region, const char *what,
+                      enum sl_check_class cls, const char *a, const char *b, double moved, const char *unit);
+
 /* One value: baseline a, now b; `share_of` the denominators that turn counts
  * into percentage points (0: relative to a, the cost rule). */
 static void compare(struct cmp *m, const char *key, const char *region, const char *what,
@@ -292,7 +295,7 @@ static void compare(struct cmp *m, const char *key, const char *region, const ch
     if (a == b)
         return;
     m->r->moved++;
-    double moved, tol = m->tol[cls];
+    double moved;
     const char *unit;
     if (cls == SL_CC_cost) {
         moved = 100.0 * ((double)b - (double)a) / (a ? (double)a : 1.0);
@@ -303,7 +306,19 @@ static void compare(struct cmp *m, const char *key, const char *region, const ch
         moved = pb - pa;
         unit = "pp";
     }
-    int bad = m->exact || cls == SL_CC_invariant || fabs(moved) > tol + 1e-12;
+    char va[32], vb[32];
+    snprintf(va, sizeof va, "%llu", (unsigned long long)a);
+    snprintf(vb, sizeof vb, "%llu", (unsigned long long)b);
+    moved_row(m, key, region, what, cls, va, vb, moved, unit);
+}
+
+/* Count a moved value, failed when beyond its class's tolerance (or counts
+ * are exact), and list it while rows remain. */
+static void moved_row(struct cmp *m, const char *key, const char *region, const char *what,
+                      enum sl_check_class cls, const char *a, const char *b, double moved, const char *unit)
+{
+    double tol = m->tol[cls];
+    int bad = m->exact || cls == SL_CC_invariant || !(fabs(moved) <= tol + 1e-12);
     if (bad)
         m->r->failed++;
     if (m->rows >= m->max_rows) {
@@ -318,9 +333,8 @@ static void compare(struct cmp *m, const char *key, const char *region, const ch
         snprintf(tolbuf, sizeof tolbuf, "exact");
     else
         snprintf(tolbuf, sizeof tolbuf, "%g %s", tol, unit);
-    fprintf(m->out, "| %s | %s | %s | %s | %llu | %llu | %+.4f %s | %s | %s |\n", key, region, what,
-            class_name[cls], (unsigned long long)a, (unsigned long long)b, moved, unit, tolbuf,
-            bad ? "**FAIL**" : "ok");
+    fprintf(m->out, "| %s | %s | %s | %s | %s | %s | %+.4f %s | %s | %s |\n", key, region, what, class_name[cls], a,
+            b, moved, unit, tolbuf, bad ? "**FAIL**" : "ok");
 }
 
 /* A mean already in percent (a soft cell's MAE, ...): moved by the difference,
@@ -331,24 +345,10 @@ static void compare_mean(struct cmp *m, const char *key, const char *what, doubl
     if (a == b || (isnan(a) && isnan(b)))
         return;
     m->r->moved++;
-    double moved = b - a;
-    int bad = m->exact || !(fabs(moved) <= m->tol[SL_CC_soft] + 1e-12);
-    if (bad)
-        m->r->failed++;
-    if (m->rows >= m->max_rows) {
-        m->hidden++;
-        return;
-    }
-    if (m->rows++ == 0)
-        fprintf(m->out, "| cell | region | figure | class | baseline | now | moved | tolerance | |\n"
-                        "|---|---|---|---|---:|---:|---:|---:|---|\n");
-    char tolbuf[32];
-    if (m->exact)
-        snprintf(tolbuf, sizeof tolbuf, "exact");
-    else
-        snprintf(tolbuf, sizeof tolbuf, "%g pp", m->tol[SL_CC_soft]);
-    fprintf(m->out, "| %s | image | %s | soft | %.6g | %.6g | %+.4f pp | %s | %s |\n", key, what, a, b, moved,
-            tolbuf, bad ? "**FAIL**" : "ok");
+    char va[32], vb[32];
+    snprintf(va, sizeof va, "%.6g", a);
+    snprintf(vb, sizeof vb, "%.6g", b);
+    moved_row(m, key, "image", what, SL_CC_soft, va, vb, b - a, "pp");
 }
 
 static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl_yaml_pos *pos, unsigned ci,

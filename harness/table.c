@@ -170,6 +170,22 @@ static void value_text(const struct sl_table_cell *c, int k, uint64_t n, double 
         snprintf(out, sz, "%llu (%.2f%s)", (unsigned long long)n, pct, pc);
 }
 
+/* One row's values across a table's cells and columns: Markdown or LaTeX cells. */
+static void row_values(FILE *f, const struct sl_table_cell *cells, const struct group *g, int fi, int tex)
+{
+    for (int k = 0; k < g->n; k++) {
+        const struct sl_table_cell *c = &cells[g->idx[k]];
+        for (int r = 0; r < cell_cols(c); r++) {
+            uint64_t n;
+            double pct;
+            char v[64];
+            cell_value(c, r, fi, &n, &pct);
+            value_text(c, fi, n, pct, tex, v, sizeof v);
+            fprintf(f, tex ? " & %s" : " %s |", v);
+        }
+    }
+}
+
 static void md_provenance(FILE *f, const struct sl_table_cell *c)
 {
     fprintf(f, "method `%s`; git `%s`, config `%s`, machine `%s`", c->method, c->git_sha, c->config_hash,
@@ -204,17 +220,7 @@ static void md_table(FILE *f, const struct sl_table_cell *cells, const struct gr
     fprintf(f, "\n");
     for (int fi = 0; fi < cell_rows(c0); fi++) {
         fprintf(f, "| %s |", row_name(c0, fi));
-        for (int k = 0; k < g->n; k++) {
-            const struct sl_table_cell *c = &cells[g->idx[k]];
-            for (int r = 0; r < cell_cols(c); r++) {
-                uint64_t n;
-                double pct;
-                char v[64];
-                cell_value(c, r, fi, &n, &pct);
-                value_text(c, fi, n, pct, 0, v, sizeof v);
-                fprintf(f, " %s |", v);
-            }
-        }
+        row_values(f, cells, g, fi, 0);
         fprintf(f, "\n");
     }
     fprintf(f, "\n");
@@ -408,17 +414,7 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     fputs(" \\\\\n\\midrule\n", f);
     for (int fi = 0; fi < cell_rows(c0); fi++) {
         sl_tex_text(f, row_name(c0, fi));
-        for (int k = 0; k < g->n; k++) {
-            const struct sl_table_cell *c = &cells[g->idx[k]];
-            for (int r = 0; r < cell_cols(c); r++) {
-                uint64_t n;
-                double pct;
-                char v[64];
-                cell_value(c, r, fi, &n, &pct);
-                value_text(c, fi, n, pct, 1, v, sizeof v);
-                fprintf(f, " & %s", v);
-            }
-        }
+        row_values(f, cells, g, fi, 1);
         fputs(" \\\\\n", f);
     }
     fputs("\\bottomrule\n\\end{tabular}\n\n\\smallskip\n{\\footnotesize ", f);
