@@ -859,8 +859,8 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
 
 /* An area light's cell: the soft figures of the method's visible fraction
  * against the area truth, and an error heat map as its overlay. */
-static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
-                             struct sl_cell *cell, const char *ovdir, struct sl_diag *d)
+static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, struct sl_cell *cell, const char *ovdir,
+                             struct sl_diag *d)
 {
     int W = x->view.w, H = x->view.h;
     size_t npx = (size_t)W * (size_t)H;
@@ -889,11 +889,9 @@ static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, const
         p[1] = (uint8_t)((1 - a) * g);
         p[2] = (uint8_t)((1 - a) * g + a * (e > 0 ? 255.0f : 0.0f));
     }
-    /* the overlay's rows go bottom-up like the view's */
     char name[400], path[1600];
     overlay_name(c, cell, name, sizeof name);
     snprintf(path, sizeof path, "%s/%s", ovdir, name);
-    (void)k;
     enum sl_err e = sl_image_write_rgb8(path, W, H, x->rgb, d);
     cell->ms.overlay = 1e3 * (sl_now() - t0);
     return e;
@@ -957,7 +955,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     cell->cost.ms_method = cell->ms.method[SL_MED];
 
     if (x->area)
-        return soft_cell(x, c, k, cell, ovdir, d);
+        return soft_cell(x, c, cell, ovdir, d);
     double t0 = sl_now();
     for (size_t i = 0; i < npx; i++)
         x->state[i] = x->vd.v[i];   /* 0 background, else the verdict */
