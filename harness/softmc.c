@@ -455,6 +455,17 @@ static void region_at(const struct ctx *c, const double qe[3], double ze, double
     }
 }
 
+/* Sample s of pixel (x, y): a point of the jittered grid, or the light's
+ * centre for every ray when desc.centre is set (the light as a point). */
+static void sample_uv(const struct ctx *c, int x, int y, int s, int r, double *su, double *sv)
+{
+    if (c->o.centre) {
+        *su = *sv = 0.5;
+        return;
+    }
+    sl_area_jitter((uint32_t)x, (uint32_t)y, (uint32_t)s, (uint32_t)r, c->o.seed, su, sv);
+}
+
 /* The fraction of the pixel's rays that leave its surface on the front
  * side (3.7's first case blocks the others): no lookups. */
 static float front_facing(const struct ctx *c, int x, int y, const double q[3], const double nr[3])
@@ -463,7 +474,7 @@ static float front_facing(const struct ctx *c, int x, int y, const double q[3], 
     int front = 0;
     for (int s = 0; s < nrays; s++) {
         double su, sv, p[3];
-        sl_area_jitter((uint32_t)x, (uint32_t)y, (uint32_t)s, (uint32_t)r, c->o.seed, &su, &sv);
+        sample_uv(c, x, y, s, r, &su, &sv);
         sl_area_point(&c->m->area, su, sv, p);
         front += nr[0] * (p[0] - q[0]) + nr[1] * (p[1] - q[1]) + nr[2] * (p[2] - q[2]) > 0.0;
     }
@@ -540,7 +551,7 @@ static float pixel(const struct ctx *c, int x, int y, size_t i, struct counts *k
     int visible = 0;
     for (int s = 0; s < nrays; s++) {
         double su, sv, p[3];
-        sl_area_jitter((uint32_t)x, (uint32_t)y, (uint32_t)s, (uint32_t)r, c->o.seed, &su, &sv);
+        sample_uv(c, x, y, s, r, &su, &sv);
         sl_area_point(a, su, sv, p);
         k->rays++;
         /* 3.7: leaving the surface on its back side */

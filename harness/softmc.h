@@ -109,6 +109,8 @@ struct sl_softmc_desc {
     double   blur_sigma;        /* pixels; 0 = radius / 2 */
     double   blur_depth_k;      /* per world unit of eye depth; 0 = 1 */
     int      threads;           /* 0 = OpenMP's default */
+    int      centre;            /* 1: every ray to the light's centre (the light as a point: with
+                                 * grid 1 and one layer, a conventional shadow map from the centre) */
 };
 
 /* The filled-in desc (defaults applied). */

@@ -21,6 +21,7 @@ extern const struct sl_method sl_method_chain;
 extern const struct sl_method sl_method_raytrace;
 extern const struct sl_method sl_method_hard_point;
 extern const struct sl_method sl_method_soft_mc;
+extern const struct sl_method sl_method_point_map;
 
 static const struct sl_method *const sl_methods[] = {
     &sl_method_nsm,
@@ -38,6 +39,7 @@ static const struct sl_method *const sl_methods[] = {
     &sl_method_raytrace,
     &sl_method_hard_point,
     &sl_method_soft_mc,
+    &sl_method_point_map,
     NULL,
 };
 

@@ -128,16 +128,45 @@ static enum sl_err mc_configure(struct sl_method_params *p, struct sl_diag *d)
     return SL_OK;
 }
 
+static enum sl_err mc_desc_run(const struct sl_method_args *a, const struct sl_softmc_desc *desc_in,
+                               struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d);
+
 static enum sl_err mc_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
                           struct sl_diag *d)
 {
-    if (!a->softmap || !a->nbuf || !out->vis)
-        return sl_fail(d, SL_E_INTERNAL, NULL, 0, "method", "soft_mc without its layers");
     const struct sl_method_params *p = a->params;
     struct sl_softmc_desc desc = {
         .grid = p->grid, .seed = a->seed + 1u, .search = p->search ? SL_SOFTMC_HIER : SL_SOFTMC_LINEAR,
         .layers = p->layers, .blur_radius = p->blur ? 4 : 0, .threads = a->threads,
     };
+    return mc_desc_run(a, &desc, out, c, d);
+}
+
+/* point_map: the hard shadow-map approximation of an area light — one ray
+ * per pixel to the light's centre tested against the near layer alone,
+ * which is a conventional shadow map from the centre (with Curtis's bias):
+ * hard_point's answer plus the map's own aliasing. */
+static enum sl_err pm_configure(struct sl_method_params *p, struct sl_diag *d)
+{
+    (void)d;
+    p->set = 0;
+    return SL_OK;
+}
+
+static enum sl_err pm_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
+                          struct sl_diag *d)
+{
+    struct sl_softmc_desc desc = {.grid = 1, .layers = 1, .centre = 1, .search = SL_SOFTMC_HIER,
+                                  .threads = a->threads};
+    return mc_desc_run(a, &desc, out, c, d);
+}
+
+static enum sl_err mc_desc_run(const struct sl_method_args *a, const struct sl_softmc_desc *desc_in,
+                               struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d)
+{
+    if (!a->softmap || !a->nbuf || !out->vis)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, "method", "soft_mc without its layers");
+    struct sl_softmc_desc desc = *desc_in;
     struct sl_softmc_result r;
     memset(&r, 0, sizeof r);
     double t0 = sl_now();
@@ -168,4 +197,13 @@ const struct sl_method sl_method_soft_mc = {
     .needs = mc_needs,
     .configure = mc_configure,
     .run = mc_run,
+};
+
+const struct sl_method sl_method_point_map = {
+    .name = "point_map",
+    .summary = "area light as a point at its centre through a shadow map (soft_mc's near layer): the hard map approximation",
+    .lights = SL_LIGHTS_AREA,
+    .needs = mc_needs,
+    .configure = pm_configure,
+    .run = pm_run,
 };

@@ -119,6 +119,36 @@ static void soft_mc_driver(void **st)
     sl_run_result_free(&b);
 }
 
+/* point_map, the light as a point through a shadow map, is hard_point plus
+ * the map's aliasing: 0 or 1 everywhere, and on Curtis's case within a
+ * fraction of a point of hard_point's error. */
+static void soft_point_map(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("pm.yaml",
+                   "scenes: [{scene: curtis_box}]\nviewports: [{width: 128, height: 96}]\nmap_sizes: [1024]\n"
+                   "methods:\n  - {label: point, method: hard_point}\n  - {label: map, method: point_map}\n"
+                   "area_samples: 8\n", &c);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result r;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(r.ncells, 2 * 2);
+    for (int i = 0; i < r.ncells; i += 2) {
+        const struct sl_cell *point = &r.cells[i], *map = &r.cells[i + 1];
+        assert_int_equal(map->soft.n[SL_SFIG_soft_penumbra_right], 0);   /* a point gives no penumbra */
+        assert_int_equal(map->nonfinite, 0);
+        double dm = map->soft.pct[SL_SFIG_soft_mae] - point->soft.pct[SL_SFIG_soft_mae];
+        printf("soft::point_map: %s: MAE hard_point %.3f, point_map %.3f\n", point->viewpoint,
+               point->soft.pct[SL_SFIG_soft_mae], map->soft.pct[SL_SFIG_soft_mae]);
+        assert_true(fabs(dm) < 0.5);
+        /* one ray per pixel at most: the centre (classified pixels need none) */
+        assert_true(map->cost.rays <= map->soft.n[SL_SFIG_soft_pixels]);
+    }
+    sl_run_result_free(&r);
+}
+
 /* No area light, no soft pass. */
 static void soft_none_without_area_light(void **st)
 {
@@ -142,6 +172,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         SL_CASE(soft, driver),
         SL_CASE(soft, mc_driver),
+        SL_CASE(soft, point_map),
         SL_CASE(soft, none_without_area_light),
     };
     return cmocka_run_group_tests(tests, sl_test_setup, sl_test_teardown);
