@@ -393,7 +393,20 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
     for (unsigned si = 0; si < r->scenes_count; si++) {
         const struct raw_scene_ref *rs = &r->scenes[si];
         struct sl_config_scene *cs = &c->scenes[si];
-        cs->method_mask = rs->methods_count ? 0u : (c->nmethods == 32 ? ~0u : (1u << c->nmethods) - 1u);
+        int area = cs->light_type == SL_LIGHT_AREA;
+        /* without a list, a scene runs every label that handles its light, so one
+         * config can mix directional-light and area-light scenes */
+        cs->method_mask = 0u;
+        for (int k = 0; k < c->nmethods && !rs->methods_count; k++)
+            if (area == !!(c->methods[k].method->lights & SL_LIGHTS_AREA))
+                cs->method_mask |= 1u << k;
+        if (!rs->methods_count && !cs->method_mask) {
+            snprintf(key, sizeof key, "scenes[%u]", si);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                               "scene '%s' has %s light and no method of this config handles it (%s)", cs->name,
+                               area ? "an area" : "a directional",
+                               area ? "hard_point, point_map, soft_mc do" : "every hard-shadow method does");
+        }
         for (unsigned i = 0; i < rs->methods_count; i++) {
             snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
             int k = 0;
@@ -406,16 +419,15 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s' listed twice", rs->methods[i]);
             cs->method_mask |= 1u << k;
         }
-        /* every label a scene runs must handle its light */
+        /* every label a scene's list names must handle its light */
         for (int k = 0; k < c->nmethods; k++) {
             if (!(cs->method_mask & (1u << k)))
                 continue;
-            int area = cs->light_type == SL_LIGHT_AREA, handles_area = !!(c->methods[k].method->lights & SL_LIGHTS_AREA);
+            int handles_area = !!(c->methods[k].method->lights & SL_LIGHTS_AREA);
             if (area != handles_area) {
-                snprintf(key, sizeof key, rs->methods_count ? "scenes[%u].methods" : "scenes[%u]", si);
+                snprintf(key, sizeof key, "scenes[%u].methods", si);
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                                   "scene '%s' has %s light but method '%s' (label %s) handles %s lights only: "
-                                   "give the scene a 'methods:' list of the labels that fit",
+                                   "scene '%s' has %s light but method '%s' (label %s) handles %s lights only",
                                    cs->name, area ? "an area" : "a directional", c->methods[k].method->name,
                                    c->methods[k].label, handles_area ? "area" : "directional");
             }
