@@ -72,10 +72,13 @@ static int same_view(const struct sl_report_view *v, const struct sl_table_cell 
 enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
 {
     s->nviews = s->nscenes = s->nlabels = s->nmaps = s->nregions = 0;
-    int has_image = 0, moderno_only = 0, morais_only = 0;
+    int has_image = 0, moderno_only = 0, morais_only = 0, hard = 0;
+    s->curtis = 0;
     for (int i = 0; i < s->n; i++) {
         const struct sl_table_cell *c = &s->cells[i];
         int k;
+        s->curtis |= c->has_soft;
+        hard |= !c->has_soft;
         for (k = 0; k < s->nviews && !same_view(&s->views[k], c); k++)
             ;
         if (k == s->nviews) {
@@ -137,8 +140,8 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
     }
     if (has_image)
         s->regions[s->nregions++] = 0;
-    s->morais = morais_only;
-    s->moderno = moderno_only || !morais_only;
+    s->morais = hard && morais_only;
+    s->moderno = hard && (moderno_only || !morais_only);
     return SL_OK;
 }
 
@@ -784,5 +787,67 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
                            "geometry-shader primitives, fragments) let a reader carry the comparison to a GPU, "
                            "where the balance between raster and ray cost differs: weigh each counter with that "
                            "GPU's cost per ray, per test and per fragment.");
+    return e;
+}
+
+/* ---- Curtis 2009: soft shadows ---- */
+
+/* Per view, a row per soft label and map size: how close the visible
+ * fraction is to the area truth, and what it cost. Curtis reports images
+ * and frame times; this table puts his quality question (how far from the
+ * reference, and where: lit, umbra, penumbra) beside the cost in numbers. */
+enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
+{
+    enum sl_err e = SL_OK;
+    for (int v = 0; v < s->nviews && !e; v++) {
+        const struct sl_report_view *vw = &s->views[v];
+        char id[160];
+        view_id(s, vw, "soft", id, sizeof id);
+        char title[200];
+        view_title(vw, title, sizeof title);
+        struct sl_report_tab t;
+        sl_report_tab_init(&t, id, 11, 2, "%s: the visible fraction of the light against the area truth "
+                           "(Curtis 2009)", title);
+        static const char *const head[] = {"label", "map", "MAE", "RMSE", "bias", "within 0.05", "within 0.1",
+                                           "class right", "penumbra right", "rays / pixel", "method ms"};
+        for (int k = 0; k < 11; k++)
+            sl_report_tab_head(&t, k, "%s", head[k]);
+        int any = 0;
+        double stderr_mean = NAN;
+        for (int l = 0; l < s->nlabels; l++)
+            for (int m = 0; m < s->nmaps; m++) {
+                const struct sl_table_cell *c = sl_report_study_cell(s, vw, s->labels[l], s->maps[m]);
+                if (!c || !c->has_soft)
+                    continue;
+                const struct sl_soft_figures *f = &c->soft;
+                sl_report_tab_row(&t, m == 0);
+                if (m == 0 || !any)
+                    sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+                any = 1;
+                sl_report_tab_cell(&t, 1, "%d²", c->map_size);
+                sl_report_tab_cell(&t, 2, "%.2f", f->pct[SL_SFIG_soft_mae]);
+                sl_report_tab_cell(&t, 3, "%.2f", f->pct[SL_SFIG_soft_rmse]);
+                sl_report_tab_cell(&t, 4, "%+.2f", f->pct[SL_SFIG_soft_bias]);
+                sl_report_tab_cell(&t, 5, "%.2f%%", f->pct[SL_SFIG_soft_within_005]);
+                sl_report_tab_cell(&t, 6, "%.2f%%", f->pct[SL_SFIG_soft_within_010]);
+                sl_report_tab_cell(&t, 7, "%.2f%%", f->pct[SL_SFIG_soft_class_right]);
+                if (isnan(f->pct[SL_SFIG_soft_penumbra_right]))
+                    sl_report_tab_cell(&t, 8, "–");
+                else
+                    sl_report_tab_cell(&t, 8, "%.2f%%", f->pct[SL_SFIG_soft_penumbra_right]);
+                uint64_t px = f->n[SL_SFIG_soft_pixels];
+                sl_report_tab_cell(&t, 9, "%.2f", px ? (double)c->cost.rays / (double)px : 0.0);
+                char buf[32];
+                fmt_ms(buf, sizeof buf, c->cost.method[SL_MED]);
+                sl_report_tab_cell(&t, 10, "%s", buf);
+                stderr_mean = f->pct[SL_SFIG_soft_truth_stderr];
+            }
+        snprintf(t.note, sizeof t.note, "Errors in %% of full visibility (MAE, RMSE; bias > 0: too light); "
+                 "within: share of pixels; class: lit / umbra / penumbra as the truth classes them; the "
+                 "truth's own mean standard error here: %.3f.", stderr_mean);
+        if (any)
+            e = sl_report_doc_table(doc, &t, d);
+        sl_report_tab_free(&t);
+    }
     return e;
 }

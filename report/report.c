@@ -272,6 +272,10 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
         sl_report_doc_heading(doc, 3, NULL, "%s: tables in Morais 2015's layout", s->name);
         e = sl_report_morais(doc, s, d);
     }
+    if (!e && s->curtis) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: soft shadows (area lights), Curtis 2009", s->name);
+        e = sl_report_curtis(doc, s, d);
+    }
     if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: the chain's steps per scene", s->name);
         e = sl_report_plot_chain(doc, s, gnuplot, d);

@@ -115,6 +115,7 @@ struct sl_report_study {
     int   maps[SL_REPORT_MAXKEYS], nmaps;          /* ascending */
     int   regions[SL_MAX_REGIONS], nregions;       /* contours ascending, whole image (0) last */
     int   moderno, morais;                         /* layouts chosen for it */
+    int   curtis;                                  /* it has soft cells (area lights): Curtis 2009's table */
 };
 
 /* Fill the keys of s from its cells; SL_E_USAGE when they exceed the limits. */
@@ -130,6 +131,8 @@ void sl_report_region_name(int thickness, char *buf, size_t n);
 enum sl_err sl_report_moderno(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+/* Soft shadows: per view, rows label x map size, the soft figures and their cost */
+enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 /* 1 if the method belongs to the layout (Moderno: coherence ... chain; Morais: bgsm ... raytrace; nsm both) */
 int sl_report_is_moderno(const char *method);
 int sl_report_is_morais(const char *method);

@@ -23,6 +23,7 @@ cat >"$tmp/mini.yaml" <<'YAML'
 name: mini
 scenes:
   - {scene: primitives, viewpoints: [side, with]}
+  - {scene: curtis_box, viewpoints: [above]}
 viewports: [{width: 96, height: 96}]
 map_sizes: [256, 512]
 contours: [2, 4]
@@ -33,8 +34,11 @@ methods:
   - {label: chain_lit, method: chain, finish: lit}
   - {label: csm_adj, method: csm_adj}
   - {label: raytrace, method: raytrace}
+  - {label: point, method: hard_point}
+  - {label: mc, method: soft_mc, grid: 2}
 outputs: {tables: true, overlays: true, overlay_contour: 2}
 repetitions: {warmup: 0, runs: 2}
+area_samples: 4
 YAML
 "$bin" run "$tmp/mini.yaml" --out "$tmp/res" --no-cache >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; echo "FAIL run"; exit 1; }
 db="$tmp/res/shadowlab.db"
@@ -47,6 +51,9 @@ if "$bin" report "$db" >"$tmp/report.out" 2>&1; then ok; else cat "$tmp/report.o
 rep="$tmp/res/report"
 html="$rep/report.html"; md="$rep/report.md"
 [ -s "$html" ] && [ -s "$md" ] && ok || fail "report.html or report.md missing"
+# the area-light scene's cells get Curtis's table, with both soft labels
+grep -q "soft shadows (area lights), Curtis 2009" "$md" && grep -q "^| mc | 256² | " "$md" &&
+  grep -q "^| point | 256² | " "$md" && ok || fail "no soft-shadow table for the area-light cells"
 grep -q "$(basename "$gone")" "$html" && ok || fail "the missing overlay is not listed"
 ls -a "$rep" | grep -q staging && fail "a staging folder was left" || ok
 
