@@ -14,6 +14,7 @@
 #include <errno.h>
 #include <ftw.h>
 #include <limits.h>
+#include <signal.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1106,6 +1107,12 @@ static void carry_previous(const char *root, const char *name, const char *final
             continue;
         snprintf(own, sizeof own, "%s/%s", root, e->d_name);
         if (strcmp(own, stage) == 0)
+            continue;
+        /* only a dead run's folder: another run of this config may be writing
+         * its own right now (a pid that cannot be parsed counts as dead) */
+        char *end;
+        long pid = strtol(e->d_name + strlen(prefix), &end, 10);
+        if (*end == '\0' && pid > 0 && (kill((pid_t)pid, 0) == 0 || errno == EPERM))
             continue;
         carry_files(own, stage, "overlays");
         carry_files(own, stage, "exr");

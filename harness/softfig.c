@@ -26,6 +26,14 @@ const char *sl_soft_figure_name(enum sl_soft_figure f) { return sfig_name[f]; }
 const char *sl_soft_figure_text(enum sl_soft_figure f) { return sfig_text[f]; }
 const char *sl_soft_figure_of(enum sl_soft_figure f) { return sfig_of[f]; }
 
+/* The counts below index the truth's class (0 lit, 1 umbra, 2 penumbra)
+ * from the first of each triple: the X-macro must keep them in that order. */
+_Static_assert(SL_SFIG_soft_truth_umbra == SL_SFIG_soft_truth_lit + 1 &&
+                   SL_SFIG_soft_truth_penumbra == SL_SFIG_soft_truth_lit + 2 &&
+                   SL_SFIG_soft_umbra_right == SL_SFIG_soft_lit_right + 1 &&
+                   SL_SFIG_soft_penumbra_right == SL_SFIG_soft_lit_right + 2,
+               "soft figures: lit, umbra, penumbra in order");
+
 /* 0 lit, 1 umbra, 2 penumbra */
 static int soft_class(float v)
 {
