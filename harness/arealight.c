@@ -2,6 +2,7 @@
  * arealight.c — see arealight.h.
  */
 #include "arealight.h"
+#include "truth.h"
 #include <math.h>
 
 static void normalise(double v[3])
@@ -33,6 +34,22 @@ void sl_area_of(const struct sl_light *l, struct sl_area *a)
     normalise(a->ey);
     a->w = l->size[0];
     a->h = l->size[1];
+}
+
+int sl_point_ray(const float c[3], const float p[3], float dir[3], float *tfar)
+{
+    double to[3], dist2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        to[k] = (double)c[k] - (double)p[k];
+        dist2 += to[k] * to[k];
+    }
+    if (!(dist2 > 0.0))
+        return 0;
+    double dist = sqrt(dist2);
+    for (int k = 0; k < 3; k++)
+        dir[k] = (float)(to[k] / dist);
+    *tfar = (float)dist - sl_rt_tnear(c);
+    return 1;
 }
 
 void sl_area_point(const struct sl_area *a, double u, double v, double out[3])

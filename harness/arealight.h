@@ -36,6 +36,28 @@ void sl_area_of(const struct sl_light *l, struct sl_area *a);
 /* The point at (u, v) in [0, 1]^2 of the rectangle: c + (u - 1/2) w ex + (v - 1/2) h ey. */
 void sl_area_point(const struct sl_area *a, double u, double v, double out[3]);
 
+/* The shadow ray from p to a point light at c, as every user of a point
+ * light casts it (the point truth, hard_point, the methods' sure tests):
+ * unit direction (c - p) / |c - p| computed in double, and its end tfar =
+ * |c - p| minus the tnear of c (truth.h), so a ray never meets the light's
+ * own surroundings. Returns 0 when p coincides with c (no direction). */
+int sl_point_ray(const float c[3], const float p[3], float dir[3], float *tfar);
+
+/* Whether a point p with unit normal n (turned toward the camera) is lit at
+ * all by a point light at the area light's centre: it faces the centre and
+ * lies on the emitting side of the light's plane (a PFL pixel of the point
+ * approximation). Double, so the G-buffer's classes and hard_point agree. */
+static inline int sl_point_faces(const struct sl_light *l, const float p[3], const float n[3])
+{
+    double facing = 0.0, emitting = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double to = (double)l->pos[k] - (double)p[k];
+        facing += (double)n[k] * to;
+        emitting -= (double)l->normal[k] * to;
+    }
+    return facing > 0.0 && emitting > 0.0;
+}
+
 /* 32 random bits for (x, y, k) under seed: pixel x, y, sample k. */
 uint32_t sl_hash4(uint32_t x, uint32_t y, uint32_t k, uint32_t seed);
 

@@ -166,7 +166,8 @@ static const cyaml_schema_field_t soft_mean_fields[] = {
                           soft_truth_stderr),
     CYAML_FIELD_END
 };
-/* a hard cell has regions and figures; a soft cell (area light) soft and soft_mean */
+/* a hard cell has regions and figures; a soft method's cell (area light) soft and
+ * soft_mean; a hard method's cell under an area light all four */
 static const cyaml_schema_field_t cell_fields[] = {
     CYAML_FIELD_STRING_PTR("cell", CYAML_FLAG_POINTER, struct bl_cell, cell, 1, 255),
     CYAML_FIELD_MAPPING_PTR("counters", CYAML_FLAG_POINTER, struct bl_cell, counters, counter_fields),
@@ -360,13 +361,18 @@ static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl
     for (int k = 0; k < BL_C_COUNT; k++)
         compare(m, b->cell, "cell", counter_name[k], counter_class[k], bl_counter(b->counters, k),
                 cell_counter(c, k), img_a, img_b);
-    if (!!b->soft != !!c->has_soft || (!b->soft && !b->figures)) {
+    /* a soft method's cell has soft figures, a directional light's hard
+     * ones, a hard method's under an area light both */
+    if (!b->soft && !b->figures) {
         snprintf(key, sizeof key, "cells[%u]", ci);
-        if (!b->soft && !b->figures)
-            return sl_yaml_bad(d, SL_E_BASELINE, file, pos, key, "a cell needs 'figures' (or 'soft')");
+        return sl_yaml_bad(d, SL_E_BASELINE, file, pos, key, "a cell needs 'figures', 'soft' or both");
+    }
+    int has_hard = c->fig.nregions > 0;
+    if (!!b->soft != !!c->has_soft || !!b->figures != has_hard) {
+        static const char *const kind[] = {"none", "hard", "soft", "soft + hard"};
         m->r->failed++;
         fprintf(m->out, "| %s | image | (kind) | view | %s | %s | | exact | **FAIL** |\n", b->cell,
-                b->soft ? "soft" : "hard", c->has_soft ? "soft" : "hard");
+                kind[(b->soft ? 2 : 0) + (b->figures ? 1 : 0)], kind[(c->has_soft ? 2 : 0) + has_hard]);
         return SL_OK;
     }
     if (b->soft) {
@@ -390,7 +396,8 @@ static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl
             if (means[j].v)
                 compare_mean(m, b->cell, sl_soft_figure_name((enum sl_soft_figure)means[j].k), *means[j].v,
                              c->soft.pct[means[j].k]);
-        return SL_OK;
+        if (!b->figures)
+            return SL_OK;
     }
     /* regions, matched by name */
     for (unsigned r = 0; r < b->regions_count; r++) {
@@ -702,8 +709,9 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
                     fprintf(f, "%s%s: %.17g", w++ ? ", " : "", sl_soft_figure_name((enum sl_soft_figure)means[j]),
                             c->soft.pct[means[j]]);
             fprintf(f, "}\n");
-            continue;
         }
+        if (c->fig.nregions == 0)
+            continue;
         fprintf(f, "    regions: [");
         for (int r = 0; r < c->fig.nregions; r++) {
             char name[16];

@@ -395,17 +395,18 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         struct sl_config_scene *cs = &c->scenes[si];
         int area = cs->light_type == SL_LIGHT_AREA;
         /* without a list, a scene runs every label that handles its light, so one
-         * config can mix directional-light and area-light scenes */
+         * config can mix directional-light and area-light scenes: the hard-shadow
+         * methods handle both (an area light as a point at its centre), the soft
+         * ones area lights only */
         cs->method_mask = 0u;
         for (int k = 0; k < c->nmethods && !rs->methods_count; k++)
-            if (area == !!(c->methods[k].method->lights & SL_LIGHTS_AREA))
+            if (area || !(c->methods[k].method->lights & SL_LIGHTS_AREA))
                 cs->method_mask |= 1u << k;
         if (!rs->methods_count && !cs->method_mask) {
             snprintf(key, sizeof key, "scenes[%u]", si);
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has %s light and no method of this config handles it (%s)", cs->name,
-                               area ? "an area" : "a directional",
-                               area ? "hard_point, point_map, soft_mc do" : "every hard-shadow method does");
+                               "scene '%s' has a directional light and every method of this config needs an "
+                               "area light (hard_point, point_map, soft_mc do)", cs->name);
         }
         for (unsigned i = 0; i < rs->methods_count; i++) {
             snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
@@ -423,13 +424,11 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         for (int k = 0; k < c->nmethods; k++) {
             if (!(cs->method_mask & (1u << k)))
                 continue;
-            int handles_area = !!(c->methods[k].method->lights & SL_LIGHTS_AREA);
-            if (area != handles_area) {
+            if (!area && (c->methods[k].method->lights & SL_LIGHTS_AREA)) {
                 snprintf(key, sizeof key, "scenes[%u].methods", si);
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                                   "scene '%s' has %s light but method '%s' (label %s) handles %s lights only",
-                                   cs->name, area ? "an area" : "a directional", c->methods[k].method->name,
-                                   c->methods[k].label, handles_area ? "area" : "directional");
+                                   "scene '%s' has a directional light but method '%s' (label %s) handles area "
+                                   "lights only", cs->name, c->methods[k].method->name, c->methods[k].label);
             }
         }
     }

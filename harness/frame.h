@@ -25,13 +25,24 @@ enum sl_layer_id {
 };
 #define SL_NEED(layer) (1u << (layer))
 
-/* The light's orthographic box in light view space: x, y across the light,
- * depth = distance along the light direction (positive away from the light). */
+/* The light's frustum in light view space. A directional light's is an
+ * orthographic box: x, y across the light, depth = distance along the light
+ * direction (positive away from the light). An area light taken as a point
+ * at its centre (`persp`) has a perspective frustum from that point along
+ * the light's normal: lo/hi[0..1] bound x/depth and y/depth (the tangents
+ * across the axis), lo/hi[2] are the near and far depths. Window depth is
+ * then A - B / depth (zero-to-one clip, A = far / (far - near), B = far *
+ * near / (far - near)): not linear in depth, but affine across a triangle in
+ * window space, so the conservative layers' depth planes hold unchanged. */
 struct sl_light_box {
     mat4  view, proj, vp;       /* vp = proj * view, depth in [0, 1] (zero-to-one clip) */
-    float lo[3], hi[3];         /* x, y, depth */
+    float lo[3], hi[3];         /* x, y, depth (perspective: x/depth, y/depth, depth) */
+    int   persp;                /* 1: a point light at `eye` (perspective), 0: directional (orthographic) */
+    float eye[3];               /* persp: the light's position, world */
     uint32_t n_receivers;       /* pixels the box was fitted to */
     uint32_t n_casters;         /* triangles that can shadow them */
+    uint32_t n_straddling;      /* persp: casters reaching behind the light's plane, which the
+                                 * conservative layers cannot enlarge and leave out */
 };
 
 struct sl_depth_layer {
@@ -54,24 +65,57 @@ struct sl_depth_layer {
 
 struct sl_light_frame {
     int   size;
-    float dir[3];               /* direction the light travels */
+    float dir[3];               /* direction the light travels (persp: the frustum's axis) */
     struct sl_light_box box;
-    float texel_world;          /* world units across one texel (the larger side) */
-    float depth_range;          /* world units of depth from 0 to 1 */
+    float texel_world;          /* world units across one texel (the larger side); persp: at depth 1 */
+    float depth_range;          /* world units of depth from 0 to 1 (persp: far - near) */
     unsigned have;              /* SL_NEED bits of the layers rendered */
     struct sl_depth_layer layer[SL_LAYER_COUNT];
 };
 
 /* Project a world point into the frame: texel coordinates in [0, size) (not
- * clamped; u, v may fall outside for points outside the box) and depth. */
+ * clamped; u, v may fall outside for points outside the box) and window
+ * depth. The division by w is exact for the orthographic box (w = 1). */
 static inline void sl_frame_project(const struct sl_light_frame *f, const float p[3],
                                     float *u, float *v, float *z)
 {
     vec4 w = {p[0], p[1], p[2], 1.0f}, c;
     glm_mat4_mulv((vec4 *)f->box.vp, w, c);
-    *u = (c[0] * 0.5f + 0.5f) * (float)f->size;
-    *v = (c[1] * 0.5f + 0.5f) * (float)f->size;
-    *z = c[2];
+    *u = (c[0] / c[3] * 0.5f + 0.5f) * (float)f->size;
+    *v = (c[1] / c[3] * 0.5f + 0.5f) * (float)f->size;
+    *z = c[2] / c[3];
+}
+
+/* The unit direction from p toward the light, and how far a shadow ray from
+ * p may look (INFINITY for a directional light). For a point light the ray
+ * stops short of the light by its own tnear (truth.h, sl_light_ray_to),
+ * computed here exactly as the truth computes it. */
+void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir[3], float *tmax);
+
+/* Depth along the light (world units from the light for a point light,
+ * from the box's zero for a directional one) of a window depth. */
+static inline double sl_frame_depth_of(const struct sl_light_frame *f, double z)
+{
+    double n = f->box.lo[2], fa = f->box.hi[2];
+    if (!f->box.persp)
+        return n + z * (fa - n);
+    return fa * n / (fa - (fa - n) * z);
+}
+
+/* World units along the light per unit of window depth at window depth z:
+ * the constant depth_range of a box, d^2 / B of a perspective frustum. */
+static inline double sl_frame_world_per_depth(const struct sl_light_frame *f, double z)
+{
+    if (!f->box.persp)
+        return f->depth_range;
+    double n = f->box.lo[2], fa = f->box.hi[2], d = sl_frame_depth_of(f, z);
+    return d * d * (fa - n) / (fa * n);
+}
+
+/* World units across one texel at window depth z (the larger side). */
+static inline double sl_frame_texel_world_at(const struct sl_light_frame *f, double z)
+{
+    return f->box.persp ? f->texel_world * sl_frame_depth_of(f, z) : f->texel_world;
 }
 
 /* Texel index of texel coordinates, clamped to the map. */

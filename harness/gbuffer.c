@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "arealight.h"
 #include "util.h"
 
 extern const char sl_glsl_gbuffer_vs[];
@@ -127,6 +128,7 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
 
     if (!e) {
         const float *L = s->light_dir;
+        const int area = s->light.type == SL_LIGHT_AREA;
         for (size_t i = 0; i < n; i++) {
             for (int k = 0; k < 3; k++)
                 v->pos[3 * i + k] = rgba_pos[4 * i + k];
@@ -145,9 +147,11 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
                 v->n_background++;
                 continue;
             }
-            /* toward the light is -L */
+            /* toward the light is -L; an area light's pixels face its
+             * centre, on the side it emits (the point the hard methods take
+             * it for) */
             float ndl = -(v->nrm[3 * i] * L[0] + v->nrm[3 * i + 1] * L[1] + v->nrm[3 * i + 2] * L[2]);
-            if (ndl > 0.0f) {
+            if (area ? sl_point_faces(&s->light, v->pos + 3 * i, v->nrm + 3 * i) : ndl > 0.0f) {
                 v->cls[i] = SL_C_PFL;
                 v->truth[i] = SL_T_LIT;   /* until truth.c traces it */
                 v->n_pfl++;

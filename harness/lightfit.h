@@ -1,6 +1,8 @@
 /*
- * lightfit.h — the orthographic frustum of a directional light, fitted per
- * view as the seeds did: "the minimum size needed to contain the objects seen
+ * lightfit.h — the light frustum, fitted per view: orthographic for a
+ * directional light, perspective from the centre of an area light taken as
+ * a point (lightfit.c, fit_point). For a directional light, as the seeds
+ * did: "the minimum size needed to contain the objects seen
  * by the camera, including all geometry that could influence lighting".
  *
  * Receivers are the PFL pixels of the view (the only points whose shadow is

@@ -79,7 +79,7 @@ double sl_point_tri_dist_d(const double p[3], const double a[3], const double b[
     return sqrt(plane * plane + e * e);
 }
 
-int sl_shadow_ray_tri_sure(const float p[3], const float light_dir[3], float tnear, const float af[3],
+int sl_shadow_ray_tri_sure(const float p[3], const float toward[3], float tmax, float tnear, const float af[3],
                            const float bf[3], const float cf[3])
 {
     double a[3], b[3], c[3], o[3], dir[3], n[3], e1[3], e2[3], mag = 0.0;
@@ -88,7 +88,7 @@ int sl_shadow_ray_tri_sure(const float p[3], const float light_dir[3], float tne
         b[k] = bf[k];
         c[k] = cf[k];
         o[k] = p[k];
-        dir[k] = -(double)light_dir[k];
+        dir[k] = (double)toward[k];
         mag = fmax(mag, fmax(fabs(o[k]), fmax(fabs(a[k]), fmax(fabs(b[k]), fabs(c[k])))));
     }
     SUB(e1, b, a);
@@ -107,12 +107,14 @@ int sl_shadow_ray_tri_sure(const float p[3], const float light_dir[3], float tne
         return -1;                             /* behind, or before Embree starts looking */
     double q[3] = {o[0] + th * dir[0], o[1] + th * dir[1], o[2] + th * dir[2]};
     double margin = 1e-5 * (mag + 1.0);
+    if (th > (double)tmax + margin)
+        return -1;                             /* beyond the ray's end: behind a point light */
     if (sl_point_tri_dist_d(q, a, b, c) > margin)
         return -1;
     /* inside: by how much (distance to the boundary, with the sign of the
      * barycentric test) */
     double t;
-    if (th > 2.0 * (double)tnear && sl_ray_tri_d(o, dir, a, b, c, 0.0, &t) &&
+    if (th > 2.0 * (double)tnear && th < (double)tmax - margin && sl_ray_tri_d(o, dir, a, b, c, 0.0, &t) &&
         sl_point_tri_edge_dist_d(q, a, b, c) > margin)
         return 1;
     return 0;

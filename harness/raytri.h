@@ -20,14 +20,16 @@ double sl_point_tri_dist_d(const double p[3], const double a[3], const double b[
 double sl_point_tri_edge_dist_d(const double p[3], const double a[3], const double b[3],
                                 const double c[3]);
 
-/* Does the shadow ray from p (toward -light_dir, from tnear on, as the
- * truth traces it) surely meet triangle abc (+1), surely miss it (-1), or is
- * it too close to call (0)? Decided in double with a margin of 1e-5 of the
- * coordinates' size (far above float rounding): +1 needs the crossing inside
- * the triangle by the margin and beyond 2 tnear; -1 needs it outside by the
- * margin, or before tnear / 2, where Embree does not look. A grazing ray is
+/* Does the shadow ray from p (along the unit `toward`, the direction to the
+ * light, from tnear up to tmax, as the truth traces it: sl_frame_toward)
+ * surely meet triangle abc (+1), surely miss it (-1), or is it too close to
+ * call (0)? Decided in double with a margin of 1e-5 of the coordinates' size
+ * (far above float rounding): +1 needs the crossing inside the triangle by
+ * the margin, beyond 2 tnear and short of tmax by the margin; -1 needs it
+ * outside by the margin, before tnear / 2, where Embree does not look, or
+ * beyond tmax by the margin (behind a point light). A grazing ray is
  * always 0. */
-int sl_shadow_ray_tri_sure(const float p[3], const float light_dir[3], float tnear, const float a[3],
+int sl_shadow_ray_tri_sure(const float p[3], const float toward[3], float tmax, float tnear, const float a[3],
                            const float b[3], const float c[3]);
 
 #endif

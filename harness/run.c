@@ -611,37 +611,41 @@ static uint64_t layer_bad(const struct sl_depth_layer *l, int size)
     return n;
 }
 
-/* The truth of a view under an area light: the visible fraction of the light
- * per pixel from the config's samples (not cached: its key would need the
- * samples and seed, and it is a float image), and a binary truth beside it
- * for the counts (lit: every sample visible; shadow: any not). No light fit:
- * the soft layers fit their own frustum. */
+/* The truths of a view under an area light: the visible fraction of the
+ * light per pixel from the config's samples (not cached: its key would need
+ * the samples and seed, and it is a float image), and the hard truth of the
+ * point at its centre (one ray per PFL pixel, truth.h), which the hard-shadow
+ * methods' figures and exactness are measured against; then the point's
+ * perspective frustum (lightfit.h). The soft layers fit their own. Both
+ * truths are timed together as the view's truth; the point's adds one ray
+ * per pixel to the area's area_samples^2. */
 static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k, int reps,
                              double *times, struct sl_run_result *res, struct sl_diag *d)
 {
     struct sl_soft_truth_stats st;
+    struct sl_truth_stats ts;
     for (int r = 0; r < reps; r++) {
         enum sl_err e = sl_soft_truth(&x->rt, &x->scene, &x->view, c->area_samples, c->seed, x->soft_truth,
                                       x->soft_se, &st, d);
+        if (!e)
+            e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d);
         if (e)
             return e;
-        times[r] = st.ms_trace;
+        times[r] = st.ms_trace + ts.ms_trace;
     }
     med_min_max(times + c->warmup, c->runs, x->vms.truth);
     res->passes.truths_traced++;
     res->passes.soft_truths++;
     x->truth_cached = 0;
-    x->truth_rays = st.rays;
-    struct sl_view *v = &x->view;
-    v->n_lit = v->n_shadow = 0;
-    size_t np = (size_t)v->w * (size_t)v->h;
-    for (size_t i = 0; i < np; i++)
-        if (v->cls[i] == SL_C_PFL) {
-            v->truth[i] = x->soft_truth[i] >= 1.0f ? SL_T_LIT : SL_T_SHADOW;
-            v->n_lit += v->truth[i] == SL_T_LIT;
-            v->n_shadow += v->truth[i] == SL_T_SHADOW;
-        }
-    x->view_bad = view_bad(v);
+    x->truth_rays = st.rays + ts.rays;
+    double t0 = sl_now();
+    sl_light_fit(&x->scene, &x->view, &x->box);
+    x->vms.fit = 1e3 * (sl_now() - t0);
+    if (x->box.n_straddling)
+        fprintf(stderr, "shadowlab: warning: %s/%s: %u triangle(s) reach behind the area light's plane; the "
+                        "conservative layers of its point frustum leave them out\n",
+                x->scene.name, c->scenes[k->scene].viewpoints[k->vp], x->box.n_straddling);
+    x->view_bad = view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
     x->view_viewport = k->viewport;
@@ -859,7 +863,8 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
 }
 
 /* An area light's cell: the soft figures of the method's visible fraction
- * against the area truth, and an error heat map as its overlay. */
+ * against the area truth, and an error heat map as its overlay (a hard
+ * method's cell also has its hard figures against the point truth). */
 static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, struct sl_cell *cell, const char *ovdir,
                              struct sl_diag *d)
 {
@@ -868,11 +873,9 @@ static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, struc
     double t0 = sl_now();
     sl_soft_figures_compute(W, H, x->view.tri, x->vd.vis, x->soft_truth, x->soft_se, &cell->soft);
     cell->has_soft = 1;
-    memset(&cell->fig, 0, sizeof cell->fig);
-    cell->fig.background = x->view.n_background;
     for (size_t i = 0; i < npx; i++)
         cell->nonfinite += x->view.tri[i] && !(x->vd.vis[i] >= 0.0f && x->vd.vis[i] <= 1.0f);
-    cell->ms.figures = 1e3 * (sl_now() - t0);
+    cell->ms.figures += 1e3 * (sl_now() - t0);
     if (!ovdir)
         return SL_OK;
     t0 = sl_now();
@@ -955,8 +958,12 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     med_min_max(times, c->runs, cell->ms.method);
     cell->cost.ms_method = cell->ms.method[SL_MED];
 
-    if (x->area)
+    const int soft = (cm->method->lights & SL_LIGHTS_AREA) != 0;
+    if (soft) {
+        memset(&cell->fig, 0, sizeof cell->fig);
+        cell->fig.background = x->view.n_background;
         return soft_cell(x, c, cell, ovdir, d);
+    }
     double t0 = sl_now();
     for (size_t i = 0; i < npx; i++)
         x->state[i] = x->vd.v[i];   /* 0 background, else the verdict */
@@ -982,7 +989,17 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
                 }
         }
     }
-    if (ovdir) {
+    if (x->area) {
+        /* a hard method under an area light: its verdicts as a visible
+         * fraction, scored against the area truth. A pixel it leaves
+         * uncertain counts as half lit: the method says neither, and 0.5 is
+         * the guess whose worst error is smallest. */
+        for (size_t i = 0; i < npx; i++)
+            x->vd.vis[i] = x->vd.v[i] == SL_V_LIT ? 1.0f : x->vd.v[i] == SL_V_UNCERTAIN ? 0.5f : 0.0f;
+        e = soft_cell(x, c, cell, ovdir, d);
+        ovdir = NULL;   /* the overlay is the soft one: the error against the area truth */
+    }
+    if (ovdir && !e) {
         t0 = sl_now();
         char name[400], path[1600];
         overlay_name(c, cell, name, sizeof name);
@@ -1237,7 +1254,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         if ((e = ensure_scene(&x, c, k.scene, res, d)) ||
             (e = ensure_buffers(&x, c->viewport_w[k.viewport], c->viewport_h[k.viewport], d)) ||
             (e = ensure_view(&x, c, &k, cache, res, d)) ||
-            (!x.area && (e = ensure_frame(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d))) ||
+            (e = ensure_frame(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d)) ||
             (x.area && (e = ensure_soft(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d))))
             break;
         struct sl_cell *cell = &res->cells[res->ncells];

@@ -6,8 +6,10 @@
  * centre (GL's rasterisation rule), which is what the seeds' analysis assumes.
  */
 #include "shadowmap.h"
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "arealight.h"
 #include "util.h"
 
 extern const char sl_glsl_depth_id_vs[];
@@ -26,6 +28,19 @@ extern const char sl_glsl_cons_setup[];
 
 /* How a layer is drawn. */
 enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM, K_SGSM_ADJ };
+
+void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir[3], float *tmax)
+{
+    if (!f->box.persp) {
+        for (int k = 0; k < 3; k++)
+            dir[k] = -f->dir[k];
+        *tmax = INFINITY;
+    } else if (!sl_point_ray(f->box.eye, p, dir, tmax)) {
+        dir[0] = dir[1] = 0.0f;   /* at the light itself: no ray */
+        dir[2] = 1.0f;
+        *tmax = 0.0f;
+    }
+}
 
 void sl_frame_free(struct sl_light_frame *f)
 {

@@ -141,7 +141,11 @@ static const char md_note[] =
 
 /* A cell's columns and rows: hard cells have a column per region and the
  * figures of figures.h; soft cells (an area light) one column, the whole
- * image, and the figures of softfig.h. */
+ * image, and the figures of softfig.h. A hard method's cell under an area
+ * light has both: it is written as its soft table and then, through a copy
+ * with has_soft cleared (its "point twin"), as its hard table. */
+static int point_twin(const struct sl_table_cell *c) { return !c->has_soft && c->soft.n[SL_SFIG_soft_pixels] > 0; }
+static int dual(const struct sl_table_cell *c) { return c->has_soft && c->fig.nregions > 0; }
 static int cell_cols(const struct sl_table_cell *c) { return c->has_soft ? 1 : c->fig.nregions; }
 static int cell_rows(const struct sl_table_cell *c) { return c->has_soft ? SL_SFIG_COUNT : SL_FIG_COUNT; }
 static int col_thickness(const struct sl_table_cell *c, int col) { return c->has_soft ? 0 : c->fig.r[col].thickness; }
@@ -200,10 +204,10 @@ static void md_table(FILE *f, const struct sl_table_cell *cells, const struct gr
         fprintf(f, "Area light: the visible fraction of the light against the area truth "
                    "(means in %% of full visibility).\n\n");
     else
-        fprintf(f, "PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.\n\n",
+        fprintf(f, "PFL %llu, PnFL %llu, background %llu; truth%s: %llu PFL lit, %llu PFL shadowed.\n\n",
                 (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
-                (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
-                (unsigned long long)c0->n_truth_shadow);
+                (unsigned long long)c0->n_background, point_twin(c0) ? " of the area light's centre" : "",
+                (unsigned long long)c0->n_truth_lit, (unsigned long long)c0->n_truth_shadow);
     fprintf(f, "| figure |");
     int ncols = 0;
     for (int k = 0; k < g->n; k++) {
@@ -281,7 +285,7 @@ static void csv_provenance(FILE *f, const struct sl_table_cell *c)
     fputc('\n', f);
 }
 
-static void csv_cell(FILE *f, const struct sl_table_cell *c)
+static void csv_cell(FILE *f, const struct sl_table_cell *c, int background)
 {
     for (int r = 0; r < cell_cols(c); r++) {
         char rn[16];
@@ -298,6 +302,8 @@ static void csv_cell(FILE *f, const struct sl_table_cell *c)
             csv_provenance(f, c);
         }
     }
+    if (!background)
+        return;
     csv_key(f, c);
     fprintf(f, "image,background,%llu,,", (unsigned long long)c->fig.background);
     csv_provenance(f, c);
@@ -376,16 +382,18 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     if (c0->has_soft)
         fputs(". Area light: the visible fraction against the area truth (means in \\% of full visibility).}\n", f);
     else
-        fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth: %llu PFL lit, %llu PFL shadowed.}\n",
+        fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth%s: %llu PFL lit, %llu PFL shadowed.}\n",
                 (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
-                (unsigned long long)c0->n_background, (unsigned long long)c0->n_truth_lit,
-                (unsigned long long)c0->n_truth_shadow);
+                (unsigned long long)c0->n_background, point_twin(c0) ? " of the area light's centre" : "",
+                (unsigned long long)c0->n_truth_lit, (unsigned long long)c0->n_truth_shadow);
     fputs("\\label{tab:", f);
     tex_key(f, c0->scene);
     fputc('-', f);
     tex_key(f, c0->viewpoint);
     fprintf(f, "-%dx%d-", c0->vw, c0->vh);
     tex_key(f, c0->label);
+    if (point_twin(c0))
+        fputs("-point", f);
     fputs("}\n\\begin{tabular}{l", f);
     for (int k = 0; k < ncols; k++)
         fputc('r', f);
@@ -443,19 +451,38 @@ enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *titl
     enum sl_err e = layout_build(cells, ncells, &l, d);
     if (e)
         return e;
+    /* the point twins of cells that have both kinds of figures */
+    struct sl_table_cell *twin = NULL;
+    for (int i = 0; i < ncells && !twin; i++)
+        if (dual(&cells[i])) {
+            twin = malloc((size_t)ncells * sizeof *twin);
+            if (!twin) {
+                layout_free(&l);
+                return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "tables");
+            }
+            memcpy(twin, cells, (size_t)ncells * sizeof *twin);
+            for (int j = 0; j < ncells; j++)
+                twin[j].has_soft = twin[j].has_soft && !dual(&cells[j]);
+        }
     switch (fmt) {
     case SL_TABLE_MD:
         if (title)
             fprintf(out, "# %s\n\n", title);
         fputs(md_note, out);
-        for (int g = 0; g < l.ngroups; g++)
+        for (int g = 0; g < l.ngroups; g++) {
             md_table(out, cells, &l.groups[g]);
+            if (dual(&cells[l.groups[g].idx[0]]))
+                md_table(out, twin, &l.groups[g]);
+        }
         break;
     case SL_TABLE_CSV:
         fputs("scene,viewpoint,viewport,map_size,method,label,region,figure,count,percent,percent_of,"
               "git_sha,config_hash,machine\n", out);
-        for (int i = 0; i < ncells; i++)
-            csv_cell(out, &cells[l.order[i]]);
+        for (int i = 0; i < ncells; i++) {
+            csv_cell(out, &cells[l.order[i]], 1);
+            if (dual(&cells[l.order[i]]))
+                csv_cell(out, &twin[l.order[i]], 0);
+        }
         break;
     case SL_TABLE_LATEX:
         fputs("% shadowlab tables; needs \\usepackage{booktabs}\n", out);
@@ -465,10 +492,14 @@ enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *titl
             fputs("}\n", out);
         }
         fputs("\n", out);
-        for (int g = 0; g < l.ngroups; g++)
+        for (int g = 0; g < l.ngroups; g++) {
             latex_table(out, cells, &l.groups[g]);
+            if (dual(&cells[l.groups[g].idx[0]]))
+                latex_table(out, twin, &l.groups[g]);
+        }
         break;
     }
+    free(twin);
     layout_free(&l);
     if (ferror(out) || fflush(out) != 0)
         return sl_fail(d, SL_E_IO, NULL, 0, NULL, "writing the tables failed");

@@ -42,8 +42,9 @@ struct sl_table_cell {
     char     scene[64], viewpoint[32], method[32], label[48];
     int      vw, vh, map_size;
     uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
-    struct sl_figures fig;             /* hard shadows (fig.nregions = 0 for a soft cell) */
-    int      has_soft;                 /* an area light: the soft figures below instead */
+    struct sl_figures fig;             /* hard shadows (fig.nregions = 0 for a soft method's cell) */
+    int      has_soft;                 /* an area light: the soft figures below; a hard method's cell
+                                        * has both, its hard figures against the light's centre */
     struct sl_soft_figures soft;
     struct sl_table_costs cost;
     char     study[64];                 /* the config's name */

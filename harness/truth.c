@@ -23,6 +23,7 @@
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 #endif
+#include "arealight.h"
 #include "util.h"
 
 void sl_rt_thread_init(void)
@@ -126,6 +127,8 @@ enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, 
     const int W = v->w, H = v->h;
     const int tx = (W + 3) / 4, ty = (H + 3) / 4;
     const float lx = -s->light_dir[0], ly = -s->light_dir[1], lz = -s->light_dir[2];
+    /* an area light is traced as a point at its centre (arealight.h) */
+    const int point = s->light.type == SL_LIGHT_AREA;
     uint64_t rays = 0, shadow = 0;
     /* 4x4 tiles as 16-ray packets; packets are independent, so the result
      * does not depend on the thread count or schedule, nor on which other
@@ -161,6 +164,15 @@ enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, 
                     r.dir_z[k] = lz;
                     r.time[k] = 0.0f;
                     r.tfar[k] = tfar ? tfar[i] : INFINITY;
+                    if (point) {
+                        float dir[3], end = 0.0f;   /* a pixel at the light itself: an empty ray */
+                        if (!sl_point_ray(s->light.pos, p, dir, &end))
+                            dir[0] = dir[1] = 0.0f, dir[2] = 1.0f;
+                        r.dir_x[k] = dir[0];
+                        r.dir_y[k] = dir[1];
+                        r.dir_z[k] = dir[2];
+                        r.tfar[k] = end < r.tfar[k] ? end : r.tfar[k];
+                    }
                     r.mask[k] = 0xffffffffu;
                     r.id[k] = v->tri[i];
                     r.flags[k] = 0;

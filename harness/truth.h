@@ -47,7 +47,10 @@ struct sl_truth_stats {
 };
 
 /* Trace every PFL pixel of v toward the light; fills v->truth with
- * SL_T_LIT / SL_T_SHADOW and v->n_lit / n_shadow. */
+ * SL_T_LIT / SL_T_SHADOW and v->n_lit / n_shadow. An area light is traced as
+ * a point at its centre (sl_point_ray): the hard truth the hard-shadow
+ * methods answer to under it; its own truth is the visible fraction
+ * (softtruth.h). */
 enum sl_err sl_truth_trace(const struct sl_rt *rt, const struct sl_scene *s, struct sl_view *v,
                            struct sl_truth_stats *st, struct sl_diag *d);
 

@@ -16,7 +16,10 @@
 
 /* The truth of one pixel. PnFL pixels (dot(n, l) <= 0 with n the face normal
  * turned toward the camera and l toward the light) are shadowed by definition
- * and counted apart from the PFL ones, as in Morais 2015. */
+ * and counted apart from the PFL ones, as in Morais 2015. Under an area
+ * light, l points to its centre and a PFL pixel also lies on the side the
+ * light emits (sl_point_faces): the classes and this truth are those of the
+ * point the hard-shadow methods take the light for. */
 enum sl_truth {
     SL_T_BACKGROUND = 0,
     SL_T_PNFL       = 1,

@@ -38,6 +38,13 @@
  *   it too.
  * csm traces its undecided pixels with the truth's own rays
  * (sl_rt_trace), so its image equals the truth pixel for pixel.
+ * - Under an area light taken as a point at its centre the frame is a
+ *   perspective frustum from that point (lightfit.c). Every argument above
+ *   carries over: a pixel's ray to the point projects to the pixel's own
+ *   texel, window depth is monotone in depth along the ray and affine across
+ *   a triangle in window space, the ray-triangle tests use the ray to the
+ *   point and stop where the truth's ray stops, and the depth margin for
+ *   tnear is converted with the local scale (sl_frame_world_per_depth).
  */
 #include <math.h>
 #include <omp.h>
@@ -50,10 +57,13 @@
 
 /* 1 when the pixel's shadow ray surely misses triangle t (or cannot reach
  * it within Embree's [tnear, inf)), 0 when it may hit. */
-static int surely_misses(const struct sl_scene *s, const float p[3], uint32_t t)
+static int surely_misses(const struct sl_method_args *a, const float p[3], uint32_t t)
 {
+    const struct sl_scene *s = a->scene;
     const uint32_t *ix = s->idx + 3 * (size_t)t;
-    return sl_shadow_ray_tri_sure(p, s->light_dir, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
+    float toward[3], tmax;
+    sl_frame_toward(a->frame, p, toward, &tmax);
+    return sl_shadow_ray_tri_sure(p, toward, tmax, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
                                   s->pos + 3 * ix[2]) < 0;
 }
 
@@ -74,7 +84,7 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
     if (use_sgsm) {
         const struct sl_depth_layer *sg = &f->layer[sgsm_layer];
         (*lookups)++;
-        float m = 2.0f * sl_rt_tnear(p) / f->depth_range + 0x1p-20f;
+        float m = (float)(2.0 * sl_rt_tnear(p) / sl_frame_world_per_depth(f, z)) + 0x1p-20f;
         if (sg->id[k] && sg->id[k] != v->tri[i] && sg->depth[k] < z - m)
             r |= V_SHADOW;
     }
@@ -88,7 +98,7 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
             int skip = id1 == v->tri[i];
             if (!skip) {
                 (*tests)++;
-                skip = surely_misses(a->scene, p, id1 - 1);
+                skip = surely_misses(a, p, id1 - 1);
             }
             if (skip) {
                 (*lookups)++;

@@ -42,6 +42,24 @@ static enum sl_err h_configure(struct sl_method_params *p, struct sl_diag *d)
     return SL_OK;
 }
 
+/* How far the pixel's shadow ray runs before reaching window depth zs (the
+ * stored depth, zs <= z, the pixel's), with room for rounding (2^-16 of
+ * window depth) and the truth's tnear. Along a directional light depth falls
+ * one for one with the distance; toward a point light, a ray from depth d
+ * reaches depth d' after (1 - d'/d) of its length to the light (depth is 0
+ * at the light), d and d' from the frustum's window depths. */
+static float ray_to_depth(const struct sl_light_frame *f, const float p[3], float z, float zs)
+{
+    if (!f->box.persp)
+        return (z - zs + 0x1p-16f) * f->depth_range + 4.0f * sl_rt_tnear(p);
+    double d = sl_frame_depth_of(f, z), ds = sl_frame_depth_of(f, fmax(0.0, (double)zs - 0x1p-16));
+    double len = 0.0;
+    for (int k = 0; k < 3; k++)
+        len += ((double)f->box.eye[k] - p[k]) * ((double)f->box.eye[k] - p[k]);
+    double t = sqrt(len) * (1.0 - ds / d);
+    return (float)(t * (1.0 + 0x1p-16)) + 4.0f * sl_rt_tnear(p);
+}
+
 static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
                          struct sl_diag *d)
 {
@@ -78,7 +96,9 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
             const uint32_t *ix = s->idx + 3 * (size_t)(id - 1);
             tests++;
             out->tests[i] = 1;
-            if (sl_shadow_ray_tri_sure(p, s->light_dir, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
+            float toward[3], tmax;
+            sl_frame_toward(f, p, toward, &tmax);
+            if (sl_shadow_ray_tri_sure(p, toward, tmax, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
                                        s->pos + 3 * ix[2]) > 0) {
                 out->v[i] = SL_V_SHADOW;
                 out->how[i] = SL_HOW_CONFIRM;
@@ -89,7 +109,7 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
         undecided[i] = 1;
         /* RT_opt: from the pixel up to the stored depth, with room for
          * rounding and the truth's tnear */
-        tfar[i] = (z - L->depth[k] + 0x1p-16f) * f->depth_range + 4.0f * sl_rt_tnear(p);
+        tfar[i] = ray_to_depth(f, p, z, L->depth[k]);
     }
     c->ms_method += 1e3 * (sl_now() - t0);
     c->lookups += lookups;

@@ -138,15 +138,21 @@ struct sl_method_args {
 #define SL_EXACT_SHADOW (1u << 1)   /* a PFL pixel it calls shadowed is shadowed in truth */
 #define SL_EXACT_PROVED (1u << 2)   /* a pixel it confirms, corrects or traces agrees with the truth */
 
-/* The lights a method handles (0 = directional only). A hard method under an
- * area light would need the light as a point; those that handle it say so. */
+/* The lights a method handles. A hard-shadow method (lights = 0) runs under
+ * a directional light, and under an area light taken as a point at its
+ * centre: its frame is then the point's perspective frustum (frame.h), its
+ * rays go to the point (sl_frame_toward), its figures and exactness answer
+ * to the point's truth, and its verdicts, as a visible fraction 0 or 1,
+ * are also scored against the area truth (the error of the hard-shadow
+ * approximation). A soft method (SL_LIGHTS_AREA) needs an area light and
+ * writes the visible fraction itself. */
 #define SL_LIGHTS_AREA (1u << 1)
 
 struct sl_method {
     const char *name;          /* config key */
     const char *summary;
     unsigned    exact;         /* SL_EXACT_* */
-    unsigned    lights;        /* 0: directional lights; SL_LIGHTS_AREA: area lights only */
+    unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only */
     unsigned    params_ok;     /* SL_PARAM_* bits it reads */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);

@@ -83,6 +83,18 @@ struct ctx {
     int S;
 };
 
+/* A pixel's shadow ray: its origin, direction toward the light and end. */
+struct sray {
+    const float *p;
+    float toward[3], tmax;
+};
+
+static void sray_of(const struct ctx *c, const float p[3], struct sray *r)
+{
+    r->p = p;
+    sl_frame_toward(c->a->frame, p, r->toward, &r->tmax);
+}
+
 static int lit_at(const struct ctx *c, int tx, int ty, float z)
 {
     if (tx < 0) tx = 0;
@@ -115,19 +127,19 @@ static int coherence(const struct ctx *c, float u, float v, float z, int texels,
     return lit == n * n ? 1 : lit == 0 ? 2 : 0;
 }
 
-static int sure_hit(const struct ctx *c, const float p[3], uint32_t tri_plus1, uint32_t own, uint64_t *tests)
+static int sure_hit(const struct ctx *c, const struct sray *r, uint32_t tri_plus1, uint32_t own, uint64_t *tests)
 {
     if (!tri_plus1 || tri_plus1 == own)
         return 0;
     const struct sl_scene *s = c->a->scene;
     const uint32_t *ix = s->idx + 3 * (size_t)(tri_plus1 - 1);
     (*tests)++;
-    return sl_shadow_ray_tri_sure(p, s->light_dir, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
-                                  s->pos + 3 * ix[2]) > 0;
+    return sl_shadow_ray_tri_sure(r->p, r->toward, r->tmax, sl_rt_tnear(r->p), s->pos + 3 * ix[0],
+                                  s->pos + 3 * ix[1], s->pos + 3 * ix[2]) > 0;
 }
 
 /* Triangles of the texel and its neighbours: 4 toward the pixel's quadrant or 9. */
-static int neighbours_hit(const struct ctx *c, const float p[3], float u, float v, int texels, uint32_t own,
+static int neighbours_hit(const struct ctx *c, const struct sray *p, float u, float v, int texels, uint32_t own,
                           uint64_t *lookups, uint64_t *tests)
 {
     int tx = (int)floorf(u), ty = (int)floorf(v);
@@ -158,7 +170,7 @@ static int neighbours_hit(const struct ctx *c, const float p[3], float u, float 
     return 0;
 }
 
-static int adjacency_hit(const struct ctx *c, const float p[3], uint32_t stored, int level, uint32_t own,
+static int adjacency_hit(const struct ctx *c, const struct sray *p, uint32_t stored, int level, uint32_t own,
                          uint64_t *tests)
 {
     if (!stored)
@@ -213,6 +225,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         out->base[i] = nsm;
         const uint32_t own = v->tri[i];
         int hit = 0, coh = 0, shadowed = 0;
+        struct sray ray;
         switch (kind) {
         case K_COHERENCE:
             coh = coherence(&c, u, w, z, prm->texels, &lookups, &shadowed);
@@ -221,13 +234,16 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             out->detail[i] = (uint8_t)shadowed;
             continue;
         case K_TEXEL:
-            hit = sure_hit(&c, p, c.L->id[k], own, &tests);
+            sray_of(&c, p, &ray);
+            hit = sure_hit(&c, &ray, c.L->id[k], own, &tests);
             break;
         case K_NEIGHBOURS:
-            hit = neighbours_hit(&c, p, u, w, prm->texels, own, &lookups, &tests);
+            sray_of(&c, p, &ray);
+            hit = neighbours_hit(&c, &ray, u, w, prm->texels, own, &lookups, &tests);
             break;
         case K_ADJACENCY:
-            hit = adjacency_hit(&c, p, c.L->id[k], prm->level, own, &tests);
+            sray_of(&c, p, &ray);
+            hit = adjacency_hit(&c, &ray, c.L->id[k], prm->level, own, &tests);
             break;
         }
         out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
@@ -291,11 +307,13 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
                 }
                 continue;
             }
-            if (step == 1 && neighbours_hit(&c, p, u, w, 9, v->tri[i], &lookups, &tests)) {
+            struct sray ray;
+            sray_of(&c, p, &ray);
+            if (step == 1 && neighbours_hit(&c, &ray, u, w, 9, v->tri[i], &lookups, &tests)) {
                 out->v[i] = SL_V_SHADOW;
                 out->how[i] = out->base[i] == SL_V_SHADOW ? SL_HOW_CONFIRM : SL_HOW_CORRECT;
             } else if (step == 2 && out->base[i] == SL_V_SHADOW &&
-                       adjacency_hit(&c, p, c.L->id[k], 2, v->tri[i], &tests)) {
+                       adjacency_hit(&c, &ray, c.L->id[k], 2, v->tri[i], &tests)) {
                 out->v[i] = SL_V_SHADOW;        /* the map shadowed it: a confirmation */
                 out->how[i] = SL_HOW_CONFIRM_ADJ;
             } else {

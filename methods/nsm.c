@@ -80,11 +80,15 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "nsm: layer %d not rendered", (int)L);
     const float *depth = f->layer[L].depth;
     const uint32_t *id = f->layer[L].id;
-    /* offsets in window depth units: world units / depth range */
+    /* offsets in window depth units: world units / depth range (a point
+     * light's frustum: per pixel, with the texel's size and the depth's
+     * scale at the pixel's depth, and the slope toward the light point) */
+    const int persp = f->box.persp;
     const float texel_z = f->texel_world / f->depth_range;
-    const float bias = (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE)
-                           ? a->params->bias * texel_z : 0.0f;
-    const float slope = policy == SL_SELF_SLOPE ? a->params->slope * texel_z : 0.0f;
+    const float bias_texels = (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE) ? a->params->bias : 0.0f;
+    const float slope_texels = policy == SL_SELF_SLOPE ? a->params->slope : 0.0f;
+    const float bias = bias_texels * texel_z;
+    const float slope = slope_texels * texel_z;
     const float *Ld = a->scene->light_dir;
     const long n = (long)v->w * v->h;
     uint64_t lookups = 0;
@@ -97,12 +101,18 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
         sl_frame_project(f, v->pos + 3 * i, &u, &w, &z);
         uint32_t k = sl_frame_texel(f, u, w);
         lookups++;
-        float off = bias;
-        if (slope > 0.0f) {
+        float off = bias, sl = slope, toward[3] = {-Ld[0], -Ld[1], -Ld[2]};
+        if (persp && (bias_texels > 0.0f || slope_texels > 0.0f)) {
+            float tz = (float)(sl_frame_texel_world_at(f, z) / sl_frame_world_per_depth(f, z)), tmax;
+            off = bias_texels * tz;
+            sl = slope_texels * tz;
+            sl_frame_toward(f, v->pos + 3 * i, toward, &tmax);
+        }
+        if (sl > 0.0f) {
             const float *nn = v->nrm + 3 * i;
-            float cosa = -(nn[0] * Ld[0] + nn[1] * Ld[1] + nn[2] * Ld[2]);
+            float cosa = nn[0] * toward[0] + nn[1] * toward[1] + nn[2] * toward[2];
             float tana = sqrtf(fmaxf(0.0f, 1.0f - cosa * cosa)) / cosa;
-            off += slope * fminf(tana, 10.0f);
+            off += sl * fminf(tana, 10.0f);
         }
         int lit;
         if (policy == SL_SELF_TRIANGLE_ID && id[k] == v->tri[i])

@@ -37,8 +37,7 @@ static enum sl_err point_run(const struct sl_method_args *a, struct sl_verdicts 
     const struct sl_view *v = a->view;
     if (a->scene->light.type != SL_LIGHT_AREA || !out->vis)
         return sl_fail(d, SL_E_METHOD, NULL, 0, "method", "hard_point needs an area light");
-    struct sl_area ar;
-    sl_area_of(&a->scene->light, &ar);
+    const struct sl_light *L = &a->scene->light;
     double t0 = sl_now();
     long np = (long)v->w * v->h;
     uint64_t rays = 0;
@@ -50,32 +49,23 @@ static enum sl_err point_run(const struct sl_method_args *a, struct sl_verdicts 
         if (!v->tri[i])
             continue;
         const float *p = v->pos + 3 * i, *n = v->nrm + 3 * i;
-        double to[3], dist2 = 0, facing = 0, emitting = 0;
-        for (int k = 0; k < 3; k++) {
-            to[k] = ar.c[k] - p[k];
-            dist2 += to[k] * to[k];
-            facing += n[k] * to[k];
-            emitting -= ar.n[k] * to[k];
-        }
         out->how[i] = SL_HOW_TRACED;
+        float dir[3], tfar;
         /* facing away from the centre, or behind the light: no light */
-        if (!(facing > 0.0 && emitting > 0.0)) {
+        if (!sl_point_faces(L, p, n) || !sl_point_ray(L->pos, p, dir, &tfar)) {
             out->v[i] = SL_V_SHADOW;
             continue;
         }
-        double dist = sqrt(dist2);
         struct RTCRay r;
         memset(&r, 0, sizeof r);
         r.org_x = p[0];
         r.org_y = p[1];
         r.org_z = p[2];
-        r.dir_x = (float)(to[0] / dist);
-        r.dir_y = (float)(to[1] / dist);
-        r.dir_z = (float)(to[2] / dist);
+        r.dir_x = dir[0];
+        r.dir_y = dir[1];
+        r.dir_z = dir[2];
         r.tnear = sl_rt_tnear(p);
-        /* stop short of the light as the area truth does (softtruth.c) */
-        float q[3] = {(float)ar.c[0], (float)ar.c[1], (float)ar.c[2]};
-        r.tfar = (float)dist - sl_rt_tnear(q);
+        r.tfar = tfar;   /* stops short of the light as the area truth does (softtruth.c) */
         r.mask = 0xffffffffu;
         r.id = v->tri[i];   /* the own-triangle filter's key */
         struct RTCIntersectContext ctx;

@@ -3,6 +3,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
 #include "fixture.h"
@@ -13,9 +14,9 @@ static void project(const struct sl_light_box *b, const float p[3], float out[3]
 {
     vec4 w = {p[0], p[1], p[2], 1.0f}, c;
     glm_mat4_mulv((vec4 *)b->vp, w, c);
-    out[0] = c[0] * 0.5f + 0.5f;
-    out[1] = c[1] * 0.5f + 0.5f;
-    out[2] = c[2];
+    out[0] = c[0] / c[3] * 0.5f + 0.5f;
+    out[1] = c[1] / c[3] * 0.5f + 0.5f;
+    out[2] = c[2] / c[3];
 }
 
 static int inside(const float q[3])
@@ -118,11 +119,84 @@ static void lightfit_primitives_occluders_inside(void **st)
     fixture_close(&f);
 }
 
+/* An area light as a point at its centre: a perspective frustum that holds
+ * every receiver and the nearest occluder on each shadowed pixel's ray to
+ * the centre; its window depths turn back into depths along the axis, and
+ * the depth scale is the derivative of that map. */
+static void lightfit_point_occluders_inside(void **st)
+{
+    (void)st;
+    struct fixture f;
+    assert_true(fixture_open(&f, "curtis_box", 2));
+    assert_int_equal(f.scene.light.type, SL_LIGHT_AREA);
+    const float *c = f.scene.light.pos, *nl = f.scene.light.normal;
+    for (int vp = 0; vp < f.scene.nvp; vp++) {
+        struct sl_view v;
+        assert_true(fixture_view(&f, vp, 96, 96, &v));
+        struct sl_light_frame fr;
+        memset(&fr, 0, sizeof fr);
+        sl_light_fit(&f.scene, &v, &fr.box);
+        assert_true(fr.box.persp);
+        assert_int_equal(fr.box.n_receivers, v.n_pfl);
+        assert_int_equal(fr.box.n_straddling, 0);
+        assert_true(fr.box.lo[2] > 0.0f && fr.box.lo[2] < fr.box.hi[2]);
+        fr.size = 1024;
+        fr.depth_range = fr.box.hi[2] - fr.box.lo[2];
+        long checked = 0;
+        for (int i = 0; i < v.w * v.h; i++) {
+            if (v.cls[i] != SL_C_PFL)
+                continue;
+            const float *p = v.pos + 3 * i;
+            float q[3];
+            project(&fr.box, p, q);
+            assert_true(inside(q));
+            /* depth along the light's normal, back from window depth */
+            double axis = 0.0;
+            for (int k = 0; k < 3; k++)
+                axis += ((double)p[k] - c[k]) * nl[k];
+            assert_true(fabs(sl_frame_depth_of(&fr, q[2]) - axis) <= 1e-4 * axis);
+            double h = 1e-4, dd = sl_frame_depth_of(&fr, q[2] + h) - sl_frame_depth_of(&fr, q[2] - h);
+            assert_true(fabs(dd / (2 * h) - sl_frame_world_per_depth(&fr, q[2])) <=
+                        1e-3 * sl_frame_world_per_depth(&fr, q[2]));
+            if (v.truth[i] != SL_T_SHADOW)
+                continue;
+            double o[3] = {p[0], p[1], p[2]}, dir[3], len = 0.0, best = INFINITY;
+            for (int k = 0; k < 3; k++) {
+                dir[k] = (double)c[k] - o[k];
+                len += dir[k] * dir[k];
+            }
+            len = sqrt(len);
+            for (int k = 0; k < 3; k++)
+                dir[k] /= len;
+            for (uint32_t t = 0; t < f.scene.nt; t++) {
+                double a[3], b[3], cc[3], th;
+                for (int k = 0; k < 3; k++) {
+                    a[k] = f.scene.pos[3 * f.scene.idx[3 * t] + k];
+                    b[k] = f.scene.pos[3 * f.scene.idx[3 * t + 1] + k];
+                    cc[k] = f.scene.pos[3 * f.scene.idx[3 * t + 2] + k];
+                }
+                if (t + 1 != v.tri[i] && sl_ray_tri_d(o, dir, a, b, cc, 1e-4, &th) && th < best && th < len)
+                    best = th;
+            }
+            assert_true(isfinite(best));
+            float hit[3] = {(float)(o[0] + best * dir[0]), (float)(o[1] + best * dir[1]),
+                            (float)(o[2] + best * dir[2])};
+            project(&fr.box, hit, q);
+            assert_true(inside(q));
+            checked++;
+        }
+        assert_true(checked > 100);
+        sl_view_free(&v);
+    }
+    fixture_close(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(lightfit, synthetic),
         SL_CASE(lightfit, primitives_occluders_inside),
+        SL_CASE(lightfit, point_occluders_inside),
     };
     return cmocka_run_group_tests_name("lightfit", tests, NULL, NULL);
 }

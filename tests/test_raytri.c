@@ -57,6 +57,26 @@ static void raytri_distances(void **st)
     assert_true(fabs(sl_point_tri_edge_dist_d(s, A, B, C) - 0.1) < 1e-12);
 }
 
+/* The sure test along a ray toward a point light: a triangle between the
+ * pixel and the light is a sure hit, the same triangle beyond the light a
+ * sure miss (the ray ends there), one right at the light too close to call;
+ * with no end (a directional light) the far one is a hit as well. */
+static void raytri_sure_until_the_light(void **st)
+{
+    (void)st;
+    const float p[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+    const float a[3] = {-1, 5, -1}, b[3] = {1, 5, -1}, c[3] = {0, 5, 1};        /* at y = 5 */
+    const float a2[3] = {-1, 12, -1}, b2[3] = {1, 12, -1}, c2[3] = {0, 12, 1};  /* at y = 12 */
+    float tnear = 1e-5f;
+    assert_int_equal(sl_shadow_ray_tri_sure(p, up, 10.0f, tnear, a, b, c), 1);
+    assert_int_equal(sl_shadow_ray_tri_sure(p, up, 10.0f, tnear, a2, b2, c2), -1);
+    assert_int_equal(sl_shadow_ray_tri_sure(p, up, 12.0f, tnear, a2, b2, c2), 0);
+    assert_int_equal(sl_shadow_ray_tri_sure(p, up, INFINITY, tnear, a2, b2, c2), 1);
+    /* a triangle below the pixel: behind the ray, whatever its end */
+    const float a3[3] = {-1, -3, -1}, b3[3] = {1, -3, -1}, c3[3] = {0, -3, 1};
+    assert_int_equal(sl_shadow_ray_tri_sure(p, up, INFINITY, tnear, a3, b3, c3), -1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -64,6 +84,7 @@ int main(void)
         SL_CASE(raytri, miss_outside_and_behind),
         SL_CASE(raytri, edges_closed_and_tmin),
         SL_CASE(raytri, distances),
+        SL_CASE(raytri, sure_until_the_light),
     };
     return cmocka_run_group_tests_name("raytri", tests, NULL, NULL);
 }

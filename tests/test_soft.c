@@ -149,6 +149,92 @@ static void soft_point_map(void **st)
     sl_run_result_free(&r);
 }
 
+/* The hard-shadow methods under an area light taken as a point at its
+ * centre: a perspective frustum from the centre, rays to the centre. Their
+ * hard figures answer to the point's truth, so the exact ones are exact and
+ * make no wrong pixel, and their visible fraction (0/1) scored against the
+ * area truth is hard_point's, figure for figure; the plain map's aliasing
+ * falls with the map size, and the conservative layers do decide pixels
+ * (a frustum that missed receivers or casters would break one or the
+ * other). The soft figures of every hard cell add up as a soft cell's. */
+static void soft_hard_methods(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    static const char *const labels[] = {"point", "nsm", "slope", "coherence", "texel", "neighbours",
+                                         "adjacency", "chain", "bgsm", "sgsm", "sgsm_adj", "csm", "csm_adj",
+                                         "hertel", "raytrace"};
+    enum { NL = sizeof labels / sizeof labels[0] };
+    sl_test_config("hardarea.yaml",
+                   "scenes: [{scene: curtis_box}]\nviewports: [{width: 160, height: 120}]\nmap_sizes: [256, 2048]\n"
+                   "methods:\n  - {label: point, method: hard_point}\n  - {label: nsm, method: nsm}\n"
+                   "  - {label: slope, method: nsm, self_shadow: slope, bias: 1, slope: 1}\n"
+                   "  - {label: coherence, method: coherence, texels: 9}\n  - {label: texel, method: texel}\n"
+                   "  - {label: neighbours, method: neighbours, texels: 9}\n"
+                   "  - {label: adjacency, method: adjacency, level: 2}\n  - {label: chain, method: chain}\n"
+                   "  - {label: bgsm, method: bgsm}\n  - {label: sgsm, method: sgsm}\n"
+                   "  - {label: sgsm_adj, method: sgsm_adj}\n  - {label: csm, method: csm}\n"
+                   "  - {label: csm_adj, method: csm_adj}\n  - {label: hertel, method: hertel}\n"
+                   "  - {label: raytrace, method: raytrace}\n"
+                   "area_samples: 8\n", &c);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result r;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(r.ncells, 2 * 2 * NL);                 /* 2 views x 2 map sizes x every label */
+    assert_int_equal(r.passes.soft_truths, 2);
+    assert_int_equal(r.passes.truths_traced, 2);
+    assert_int_equal(r.passes.layers[SL_LAYER_BGSM], 4);    /* once per (view, map size) */
+    assert_int_equal(r.passes.soft_layers, 0);
+    for (int i = 0; i < r.ncells; i += NL) {
+        const struct sl_cell *point = &r.cells[i];
+        assert_string_equal(c.methods[point->key.method].label, "point");
+        int map = c.maps[point->key.map];
+        for (int k = 1; k < NL; k++) {
+            const struct sl_cell *cl = &r.cells[i + k];
+            const char *label = c.methods[cl->key.method].label;
+            assert_string_equal(label, labels[k]);
+            assert_true(cl->has_soft);
+            assert_true(cl->fig.nregions > 0);
+            assert_int_equal(cl->violations, 0);
+            assert_int_equal(cl->nonfinite, 0);
+            const struct sl_region_figures *img = &cl->fig.r[cl->fig.nregions - 1];
+            const uint64_t *n = cl->soft.n;
+            assert_int_equal(n[SL_SFIG_soft_pixels], cl->n_pfl + cl->n_pnfl);
+            assert_int_equal(n[SL_SFIG_soft_truth_lit] + n[SL_SFIG_soft_truth_umbra] +
+                             n[SL_SFIG_soft_truth_penumbra], n[SL_SFIG_soft_pixels]);
+            int exact = !strcmp(label, "chain") || !strcmp(label, "csm") || !strcmp(label, "csm_adj") ||
+                        !strcmp(label, "hertel") || !strcmp(label, "raytrace");
+            printf("soft::hard_methods: %s %d %-10s wrong %5llu uncertain %5llu MAE %.3f (hard_point %.3f)\n",
+                   cl->viewpoint, map, label, (unsigned long long)img->n[SL_FIG_wrong],
+                   (unsigned long long)img->n[SL_FIG_uncertain], cl->soft.pct[SL_SFIG_soft_mae],
+                   point->soft.pct[SL_SFIG_soft_mae]);
+            if (exact) {
+                assert_int_equal(img->n[SL_FIG_wrong], 0);
+                assert_int_equal(img->n[SL_FIG_uncertain], 0);
+                assert_memory_equal(cl->soft.n, point->soft.n, sizeof cl->soft.n);
+                assert_memory_equal(cl->soft.pct, point->soft.pct, sizeof cl->soft.pct);
+            }
+            if (!strcmp(label, "bgsm")) {
+                /* conservative, and deciding most lit pixels at 2048² */
+                assert_int_equal(img->n[SL_FIG_light_incorrect], 0);
+                if (map == 2048)
+                    assert_true(img->n[SL_FIG_light] * 10 >= cl->n_truth_lit * 8);
+            }
+            if (!strcmp(label, "sgsm") || !strcmp(label, "sgsm_adj"))
+                assert_int_equal(img->n[SL_FIG_shadow_incorrect], 0);   /* its shadow is proved */
+            if (!strcmp(label, "nsm")) {
+                /* aliasing: some at 256², under 1% of the PFL pixels at 2048² */
+                if (map == 256)
+                    assert_true(img->n[SL_FIG_wrong] > 0);
+                else
+                    assert_true(img->n[SL_FIG_wrong] * 100 < cl->n_pfl);
+            }
+        }
+    }
+    sl_run_result_free(&r);
+}
+
 /* No area light, no soft pass. */
 static void soft_none_without_area_light(void **st)
 {
@@ -173,6 +259,7 @@ int main(void)
         SL_CASE(soft, driver),
         SL_CASE(soft, mc_driver),
         SL_CASE(soft, point_map),
+        SL_CASE(soft, hard_methods),
         SL_CASE(soft, none_without_area_light),
     };
     return cmocka_run_group_tests(tests, sl_test_setup, sl_test_teardown);

@@ -37,12 +37,21 @@ flat out dvec2 g_ngrad1;
 flat out dvec2 g_ngrad2;
 flat out uint g_flags;     // bits 0, 1: the triangle's |area| > 1e-12, >= 1e-12; 2 + i, 5 + i: the same of neighbour i
 
-vec3 win(vec4 c) { return vec3((c.xy * 0.5 + 0.5) * u_size, c.z); }
+// Window space of a clip-space vertex. The division is exact (by 1) in a
+// directional light's orthographic frustum; in a point light's perspective
+// one, window depth z / w is still affine across the triangle in window
+// space, so the depth planes of cons_setup.glsl hold as they are.
+vec3 win(vec4 c) { return vec3((c.xy / c.w * 0.5 + 0.5) * u_size, c.z / c.w); }
 
 float area2(vec3 a, vec3 b, vec3 c) { return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y); }
 
 void main()
 {
+    // a vertex at or behind a point light's plane has no window position:
+    // the triangle is left out (it only loses proofs of shadow), and such a
+    // neighbour counts as missing
+    if (gl_in[0].gl_Position.w <= 0.0 || gl_in[2].gl_Position.w <= 0.0 || gl_in[4].gl_Position.w <= 0.0)
+        return;
     vec3 v[3] = vec3[3](win(gl_in[0].gl_Position), win(gl_in[2].gl_Position), win(gl_in[4].gl_Position));
     vec3 o[3] = vec3[3](win(gl_in[1].gl_Position), win(gl_in[3].gl_Position), win(gl_in[5].gl_Position));
     g_v0 = v[0];
@@ -58,7 +67,7 @@ void main()
     uint keep = 0u;
     for (int i = 0; i < 3; i++) {
         vec3 a = v[i], b = v[(i + 1) % 3];
-        bool exists = o[i] != a && o[i] != b;
+        bool exists = o[i] != a && o[i] != b && gl_in[2 * i + 1].gl_Position.w > 0.0;
         // the neighbour winds b -> a -> opposite
         if (away && exists && area2(b, a, o[i]) < 0.0)
             keep |= 1u << i;

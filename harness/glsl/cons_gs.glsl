@@ -32,7 +32,11 @@ flat out dvec2 g_e2;           //                            v2 -> v0
 flat out dvec2 g_grad;         // depth plane gradient
 flat out uint g_flags;         // bit 0: |area| > 1e-12 (the plane is used); bit 1: |area| >= 1e-12
 
-vec3 win(vec4 c) { return vec3((c.xy * 0.5 + 0.5) * u_size, c.z); }
+// Window space of a clip-space vertex. The division is exact (by 1) in a
+// directional light's orthographic frustum; in a point light's perspective
+// one, window depth z / w is still affine across the triangle in window
+// space, so the depth planes of cons_setup.glsl hold as they are.
+vec3 win(vec4 c) { return vec3((c.xy / c.w * 0.5 + 0.5) * u_size, c.z / c.w); }
 
 void emit(vec2 p, float z)
 {
@@ -42,6 +46,10 @@ void emit(vec2 p, float z)
 
 void main()
 {
+    // a vertex at or behind a point light's plane has no window position:
+    // the triangle is left out (lightfit.c counts such casters)
+    if (gl_in[0].gl_Position.w <= 0.0 || gl_in[1].gl_Position.w <= 0.0 || gl_in[2].gl_Position.w <= 0.0)
+        return;
     vec3 v[3] = vec3[3](win(gl_in[0].gl_Position), win(gl_in[1].gl_Position), win(gl_in[2].gl_Position));
     g_v0 = v[0];
     g_v1 = v[1];
