@@ -11,6 +11,12 @@
  * relative EPS on each side, the linear search samples points with the exact
  * test: so every sample hit is also found by the hierarchical search, and no
  * shortcut proves more than the hierarchical search would find.
+ * Third layer (3.4): a sample between the layers that the camera sees
+ * (eye_sees) takes the state FREE instead of being a hit, and a change into
+ * or out of FREE is a hit unless the camera sees its other end too. A
+ * search that meets no sample between the layers takes the same samples and
+ * refinements with two layers and with three, so a ray blocked with three
+ * layers is blocked with two: three layers never give less light.
  */
 #include "softmc.h"
 #include <math.h>
@@ -21,6 +27,10 @@
 
 #define EPS 0x1p-20
 #define ITER_CAP_PER_TEXEL 64
+/* Third layer: a point is seen by the camera when it lies in front of the
+ * planes of the surfaces of its nearest pixels by more than this times its
+ * distance from the camera (eye_sees says why). */
+#define EYE_MARGIN 1e-4
 
 void sl_softmc_defaults(const struct sl_softmc_desc *in, struct sl_softmc_desc *out)
 {
@@ -131,14 +141,17 @@ struct ctx {
     const struct sl_softmc_nbuf *nb;
     const struct sl_view *v;
     struct sl_softmc_desc o;
-    int S, two;
+    int S, two, eye;                 /* eye: the camera's G-buffer is the third layer */
     double L;                        /* depth of the light's plane */
     struct sl_softmc_texel global;   /* the whole map */
+    double cam[3];                   /* the camera's position */
+    double clip[4][4];               /* proj x view, column-major as cglm's */
 };
 
 /* Per-thread counters, summed at the end (integer sums: any order). */
 struct counts {
     uint64_t unlit, lit, umbra, endpoint, rays, backface, region, searched, hit, lookups, lk_search, capped;
+    uint64_t eye_tests, eye_seen, eye_outside;
 };
 
 static inline int clampi(int x, int hi)
@@ -319,22 +332,114 @@ static int search_hier(const struct ctx *c, const struct tray *r, uint64_t *look
     return 1;   /* never seen; the conservative answer */
 }
 
-enum state { FRONT, BEHIND, BOTH, BETWEEN };
+/* ---- the third layer: the camera's G-buffer (3.4) ---------------------- */
 
-/* A point sample of the ray: its texel, depth and state (exact tests). */
+/* The inverse of sl_softmap_project: the world point at continuous texel
+ * (u, v) and linear depth z. */
+static void unproject(const struct sl_softmap *m, double u, double v, double z, double out[3])
+{
+    const double k = 2.0 * m->tan_half * z / (double)m->size;
+    const double x = (u - 0.5 * (double)m->size) * k, y = (v - 0.5 * (double)m->size) * k;
+    for (int a = 0; a < 3; a++)
+        out[a] = m->eye[a] + x * m->right[a] + y * m->up[a] + z * m->fwd[a];
+}
+
+enum eye { EYE_HIDDEN, EYE_SEEN, EYE_OUTSIDE };
+
+/* Whether the camera sees the world point x, i.e. x is nearer to the camera
+ * than the surfaces the G-buffer holds where x projects: then x is empty
+ * space (the camera looks through it), not inside a solid, and a ray there
+ * is not blocked.
+ * The surface at a pixel is taken as the plane of its triangle (position
+ * and face normal, turned toward the camera), not the single depth at the
+ * pixel's centre: x falls anywhere inside a pixel, and across half a pixel
+ * a surface seen at an angle can change depth by as much as a ray's end
+ * stands off its own receiver (the bias, about one map texel, see below),
+ * so the centre's depth would call a ray's last samples hidden or seen by
+ * where they fall in the pixel. With the camera on the plane's front side, "in front of the
+ * plane" is "nearer than the plane along x's line of sight".
+ * x must be in front of the planes of all 4 pixels whose centres surround
+ * its projection (background pixels, where the camera saw nothing up to the
+ * far plane, constrain nothing): at a silhouette or a crease one of them
+ * holds the nearer surface, so an edge falls back to two layers rather than
+ * leak light.
+ * Margin: EYE_MARGIN x the distance from the camera, along the normal. It
+ * sits between two measured sizes (softbox, softmix, soft_wuson, 256x192
+ * views): the G-buffer's float, GPU-interpolated positions lie off their
+ * triangle's plane by ~1e-8 of the distance (99.9% below 2e-7), so 1e-4 is
+ * far above that noise; a ray's end q' stands off its own receiver, along
+ * the normal, by about sqrt(2) z tan(fov/2) / size (eq. 3.2's bias), i.e.
+ * 1.5e-3 (1st percentile) to 3e-3 (median) of the distance at a 512^2
+ * map, half that at 1024^2, so the margin stays several times below it up
+ * to 2048^2 and a receiver's own surface does not hide its rays' last
+ * samples. A point within the margin keeps the two-layer answer.
+ * Outside the view frustum (behind the camera, off the image, nearer than
+ * the near plane or beyond the far plane, where geometry is clipped) the
+ * G-buffer says nothing about x: EYE_OUTSIDE, and the caller keeps the
+ * two-layer answer (an occluder), so the third layer only ever removes
+ * intersections the camera shows to be empty. */
+static enum eye eye_sees(const struct ctx *c, const double x[3])
+{
+    const struct sl_view *v = c->v;
+    double h[4];
+    for (int r = 0; r < 4; r++)
+        h[r] = c->clip[0][r] * x[0] + c->clip[1][r] * x[1] + c->clip[2][r] * x[2] + c->clip[3][r];
+    /* GL clip space, z in [-w, w] (gbuffer.c: GL_NEGATIVE_ONE_TO_ONE) */
+    if (!(h[3] > 0.0) || !(fabs(h[0]) <= h[3]) || !(fabs(h[1]) <= h[3]) || !(fabs(h[2]) <= h[3]))
+        return EYE_OUTSIDE;
+    /* continuous pixel coordinates with pixel centres at integers */
+    const double px = (0.5 * h[0] / h[3] + 0.5) * (double)v->w - 0.5;
+    const double py = (0.5 * h[1] / h[3] + 0.5) * (double)v->h - 0.5;
+    const int i0 = (int)floor(px), j0 = (int)floor(py);
+    const double dc[3] = {x[0] - c->cam[0], x[1] - c->cam[1], x[2] - c->cam[2]};
+    const double margin = EYE_MARGIN * sqrt(dc[0] * dc[0] + dc[1] * dc[1] + dc[2] * dc[2]);
+    for (int dj = 0; dj < 2; dj++)
+        for (int di = 0; di < 2; di++) {
+            const size_t i = (size_t)clampi(j0 + dj, v->h - 1) * (size_t)v->w + (size_t)clampi(i0 + di, v->w - 1);
+            if (!v->tri[i])
+                continue;
+            const float *p = v->pos + 3 * i, *n = v->nrm + 3 * i;
+            const double off = (x[0] - (double)p[0]) * (double)n[0] + (x[1] - (double)p[1]) * (double)n[1] +
+                               (x[2] - (double)p[2]) * (double)n[2];
+            if (!(off > margin))
+                return EYE_HIDDEN;
+        }
+    return EYE_SEEN;
+}
+
+/* The eye test of a point, counted: seen (1) or not (0). */
+static int eye_free(const struct ctx *c, const double x[3], struct counts *k)
+{
+    const enum eye e = eye_sees(c, x);
+    k->eye_tests++;
+    k->eye_seen += e == EYE_SEEN;
+    k->eye_outside += e == EYE_OUTSIDE;
+    return e == EYE_SEEN;
+}
+
+/* ---- linear search ----------------------------------------------------- */
+
+/* FREE: between the layers, but seen by the camera (third layer only). */
+enum state { FRONT, BEHIND, BOTH, BETWEEN, FREE };
+
+/* A point sample of the ray: its texel, position, depth and state (exact
+ * tests). */
 struct sample {
     int i, j;
-    double d;
+    double u, v, d;
     float near, far;
     enum state st;
 };
 
-static struct sample sample_at(const struct ctx *c, const struct tray *r, double s, uint64_t *lookups)
+static struct sample sample_at(const struct ctx *c, const struct tray *r, double s, uint64_t *lookups,
+                               struct counts *k)
 {
     struct sample o;
     const double px = r->ax + s * (r->bx - r->ax), py = r->ay + s * (r->by - r->ay);
     o.i = clampi((int)floor(px), c->S - 1);
     o.j = clampi((int)floor(py), c->S - 1);
+    o.u = px;
+    o.v = py;
     struct sl_softmc_texel t = fetch(c, 0, o.i, o.j);
     (*lookups)++;
     o.near = t.near_min;
@@ -342,7 +447,46 @@ static struct sample sample_at(const struct ctx *c, const struct tray *r, double
     o.d = ray_depth(r, s);
     const int front = o.d < (double)o.near, behind = o.d > (double)o.far;
     o.st = front && behind ? BOTH : front ? FRONT : behind ? BEHIND : BETWEEN;
+    if (o.st == BETWEEN && c->eye) {
+        double x[3];
+        unproject(c->m, px, py, o.d, x);
+        if (eye_free(c, x, k))
+            o.st = FREE;
+    }
     return o;
+}
+
+/* Third layer: a change between FREE and a state outside the layers
+ * (FRONT, BEHIND, BOTH: empty space as the light sees it) is a way out of
+ * the hull only if the camera sees the samples outside too; otherwise it is
+ * a hit, the two-layer answer. Between two texels the layers cannot tell a
+ * surface that runs on (a leaf crossed at a texel's edge: "in front" on one
+ * side, "between" just under it on the other; or, with the leaf's depth
+ * varying inside a texel, "in front" on both sides) from a step in depth (a
+ * ray that slips under a horn from the side); the camera can: it sees both
+ * sides of the crossing only when no surface it sees parts them. The
+ * samples are the ends of the linear step (a, d) and of the refined change
+ * (b, c; b keeps a's state): all of them outside the layers must be seen
+ * (tests/scenes/softmix.yaml's leaf leaked light through texel edges until
+ * all four were asked). */
+static int free_change_blocked(const struct ctx *c, const struct sample *const s[4], struct counts *k)
+{
+    int any = 0;
+    for (int n = 0; n < 4; n++)
+        any |= s[n]->st == FREE;
+    if (!any)
+        return 0;
+    for (int n = 0; n < 4; n++) {
+        /* b is a copy of a until the refinement moves it (and c of d) */
+        if (s[n]->st == FREE || (n > 0 && s[n]->u == s[n - 1]->u && s[n]->v == s[n - 1]->v &&
+                                 s[n]->d == s[n - 1]->d))
+            continue;
+        double x[3];
+        unproject(c->m, s[n]->u, s[n]->v, s[n]->d, x);
+        if (!eye_free(c, x, k))
+            return 1;
+    }
+    return 0;
 }
 
 /* Two samples in one texel: the ray's depths between them run from a.d to
@@ -370,23 +514,30 @@ static int crossed(const struct sample *a, const struct sample *b)
  * inverse depth is what is linear in the map, so in a wide frustum a ray
  * runs through the depths of the occluders (and of its end) in its last few
  * texels (softmix.yaml, 150 degrees: 31% of the pixels differed from the
- * hierarchical search; 6% with the depth steps added). */
-static int search_linear(const struct ctx *c, const struct tray *r, double dd, uint64_t *lookups)
+ * hierarchical search; 6% with the depth steps added).
+ * Third layer: FREE is one more state, so a ray entering or leaving the
+ * camera's empty space is refined like any other change, and the refined
+ * change must pass free_change_blocked. The one-texel crossing test stays:
+ * within one texel the depth runs past near (or far) there, i.e. through
+ * the surface the light sees (or its back), whatever the camera sees of
+ * the points beside it. */
+static int search_linear(const struct ctx *c, const struct tray *r, double dd, uint64_t *lookups,
+                         struct counts *k)
 {
     const double len = fmax(fabs(r->bx - r->ax), fabs(r->by - r->ay));
     const int n = len > c->o.step_texels ? (int)ceil(len / c->o.step_texels) : 1;
     const double ds = 1.0 / (double)n;
-    struct sample prev = sample_at(c, r, 0.0, lookups);
+    struct sample prev = sample_at(c, r, 0.0, lookups, k);
     if (prev.st == BETWEEN)
         return 1;
     /* each step ends a texture step or a depth step: at most this many */
     const double cap = (double)n + ceil((ray_depth(r, 1.0) - prev.d) / dd) + 1.0;
     double sp = 0.0;
-    for (int k = 0; sp < 1.0; k++) {
+    for (int it = 0; sp < 1.0; it++) {
         double s = fmin(sp + ds, ray_param(r, prev.d + dd));
-        if (!(s > sp) || s > 1.0 || (double)k >= cap)
+        if (!(s > sp) || s > 1.0 || (double)it >= cap)
             s = 1.0;
-        const struct sample cur = sample_at(c, r, s, lookups);
+        const struct sample cur = sample_at(c, r, s, lookups, k);
         if (cur.st == BETWEEN)
             return 1;
         if (cur.st != prev.st) {
@@ -394,7 +545,7 @@ static int search_linear(const struct ctx *c, const struct tray *r, double dd, u
             struct sample slo = prev, shi = cur;
             for (int j = 0; j < c->o.refine; j++) {
                 const double mid = 0.5 * (lo + hi);
-                const struct sample sm = sample_at(c, r, mid, lookups);
+                const struct sample sm = sample_at(c, r, mid, lookups, k);
                 if (sm.st == BETWEEN)
                     return 1;
                 if (sm.st != slo.st) {
@@ -407,6 +558,11 @@ static int search_linear(const struct ctx *c, const struct tray *r, double dd, u
             }
             if (c->two && crossed(&slo, &shi))
                 return 1;
+            if (c->eye) {
+                const struct sample *const ends[4] = {&prev, &slo, &shi, &cur};
+                if (free_change_blocked(c, ends, k))
+                    return 1;
+            }
         }
         prev = cur;
         sp = s;
@@ -529,19 +685,23 @@ static float pixel(const struct ctx *c, int x, int y, size_t i, struct counts *k
             k->lit++;
             return front_facing(c, x, y, q, nr);
         }
+        /* with the third layer a ray between the layers may pass (3.6: the
+         * umbra test "becomes invalid when using three depth maps") */
         const double dh = fmax((double)Q.near_max, Dreg);
-        const int umbra = c->o.curtis_umbra ? (double)Q.near_max <= ze
-                                            : dh <= ze && (double)Q.far_min >= dh;
+        const int umbra = !c->eye && (c->o.curtis_umbra ? (double)Q.near_max <= ze
+                                                        : dh <= ze && (double)Q.far_min >= dh);
         if (umbra) {
             k->umbra++;
             return 0.0f;
         }
     }
-    /* 3.7: the end of every ray inside a solid: one lookup, all rays */
+    /* 3.7: the end of every ray inside a solid: one lookup, all rays;
+     * with the third layer, not where the camera sees the end (in front of
+     * its own receiver: the hollows of 3.4 are what it is for) */
     if (!c->o.no_accel) {
         struct sl_softmc_texel t = fetch(c, 0, (int)floor(eu), (int)floor(ev));
         k->lookups++;
-        if (may_hit(ze, ze, &t)) {
+        if (may_hit(ze, ze, &t) && !(c->eye && eye_free(c, qe, k))) {
             k->endpoint++;
             return 0.0f;
         }
@@ -594,7 +754,7 @@ static float pixel(const struct ctx *c, int x, int y, size_t i, struct counts *k
             /* the depth step of the whole ray, whatever was cut off */
             const double len = fmax(fabs(ray.bx - ray.ax), fabs(ray.by - ray.ay));
             const double n = len > c->o.step_texels ? ceil(len / c->o.step_texels) : 1.0;
-            hit = search_linear(c, &sub, (ze - c->L) / n, &lk);
+            hit = search_linear(c, &sub, (ze - c->L) / n, &lk, k);
         } else
             hit = search_hier(c, &sub, &lk, &k->capped);
         k->lookups += lk;
@@ -615,14 +775,32 @@ enum sl_err sl_softmc_run(const struct sl_softmap *m, const struct sl_softmc_nbu
     sl_softmc_defaults(desc, &c.o);
     if (!nb->t || nb->size != m->size)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "N-buffer not built for this map");
-    if (c.o.grid > 64 || c.o.layers > 2 || c.o.search < 0 || c.o.search > SL_SOFTMC_LINEAR)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, NULL, "soft_mc: grid %d (at most 64), layers %d (1 or 2), search %d",
-                       c.o.grid, c.o.layers, c.o.search);
+    if (c.o.grid > 64 || c.o.layers > 3 || c.o.search < 0 || c.o.search > SL_SOFTMC_LINEAR)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, NULL,
+                       "soft_mc: grid %d (at most 64), layers %d (1, 2 or 3), search %d", c.o.grid, c.o.layers,
+                       c.o.search);
+    if (c.o.layers == 3 && c.o.search != SL_SOFTMC_LINEAR)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, NULL, "soft_mc: layers 3 (the camera's depth, 3.4) needs the "
+                       "linear search");
     c.m = m;
     c.nb = nb;
     c.v = v;
     c.S = m->size;
-    c.two = c.o.layers == 2;
+    c.two = c.o.layers >= 2;
+    c.eye = c.o.layers == 3;
+    if (c.eye) {
+        /* the camera at -R^T t of view = [R | t]; clip = proj x view */
+        for (int a = 0; a < 3; a++)
+            c.cam[a] = -((double)v->view[a][0] * v->view[3][0] + (double)v->view[a][1] * v->view[3][1] +
+                         (double)v->view[a][2] * v->view[3][2]);
+        for (int col = 0; col < 4; col++)
+            for (int row = 0; row < 4; row++) {
+                double acc = 0.0;
+                for (int k = 0; k < 4; k++)
+                    acc += (double)v->proj[k][row] * (double)v->view[col][k];
+                c.clip[col][row] = acc;
+            }
+    }
     c.L = m->light_depth;
     c.global = fetch(&c, nb->levels - 1, 0, 0);
     out->w = v->w;
@@ -657,6 +835,7 @@ enum sl_err sl_softmc_run(const struct sl_softmap *m, const struct sl_softmc_nbu
             tot.rays += k.rays; tot.backface += k.backface; tot.region += k.region;
             tot.searched += k.searched; tot.hit += k.hit; tot.lookups += k.lookups;
             tot.lk_search += k.lk_search; tot.capped += k.capped;
+            tot.eye_tests += k.eye_tests; tot.eye_seen += k.eye_seen; tot.eye_outside += k.eye_outside;
         }
     }
     struct sl_softmc_stats *st = &out->st;
@@ -674,6 +853,9 @@ enum sl_err sl_softmc_run(const struct sl_softmap *m, const struct sl_softmc_nbu
     st->lookups = tot.lookups;
     st->lookups_search = tot.lk_search;
     st->capped = tot.capped;
+    st->eye_tests = tot.eye_tests;
+    st->eye_seen = tot.eye_seen;
+    st->eye_outside = tot.eye_outside;
     if (c.o.blur_radius > 0) {
         out->vis_blur = sl_calloc(n, sizeof(float));
         if (!out->vis_blur) {

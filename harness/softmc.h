@@ -19,6 +19,21 @@
  * ray crosses the occluders' depths in its last few texels). desc.layers = 1
  * is the single-layer variant (3.2: anything behind the near layer
  * occludes; no refinement is possible).
+ * desc.layers = 3 adds Curtis's third layer (3.4), the camera's G-buffer of
+ * the view: a linear-search sample between the near and far layers is a hit
+ * only when the camera does not see it, i.e. when it is not nearer to the
+ * camera than the surfaces at its pixels (softmc.c, eye_sees: the margin and
+ * the policy outside the view, where the two-layer answer stands); and a
+ * ray that passes from outside the layers to such a seen point is a hit
+ * unless the camera sees its samples outside too (free_change_blocked: a
+ * thin surface crossed at a texel's edge). So the hollows and concavities
+ * inside the two-layer hull that the camera sees stop shadowing
+ * (self-shadowing gets inner penumbrae), and three layers never give less
+ * light than two with the same samples. Linear search only:
+ * the hierarchical search proves "may hit" over whole texels and windows
+ * from min/max bounds, which cannot say which points of a texel's depth
+ * range the camera sees, so sl_softmc_run refuses layers 3 with it (as
+ * Curtis pairs the third layer with linear/binary search, fig. 3.5).
  * Bias (eq. 3.2): bias = bias_scale sqrt(2) z tan(fov/2) / (size max(n.l,
  * ndl_min)), z the point's depth, l toward the light's centre. Every ray of
  * a pixel ends at q' = the point moved toward the projection point until its
@@ -29,7 +44,8 @@
  *     below the occluders' nearest depth (eq. 3.3), refined class_iters
  *     times: "fully lit" (no layer can block a ray: the pixel gets the share
  *     of its rays that leave its surface on the front side) or umbra (0).
- *     The umbra test is "strict" by default: with two layers it needs
+ *     No umbra test with three layers (3.6: rays may pass between the
+ *     layers). The umbra test is "strict" by default: with two layers it needs
  *     z >= d = max(z_near_max, D) AND z_far_min >= d (D: the depth from
  *     which the region holds every ray), so that every ray is between the
  *     layers at depth d, which the hierarchical search would also find; curtis_umbra = 1 uses Curtis's z >= z_near_max alone, which
@@ -51,10 +67,9 @@
  * rows run on OpenMP threads; counters are integer sums.
  *
  * Owns: the N-buffer (sl_softmc_nbuf_free) and result arrays
- * (sl_softmc_result_free). Does not: render (softmap.c), trace exact rays
- * (truth.c), or register itself as a method; nor use Curtis's third layer
- * (3.4, the camera's depth to tell hollows inside the two-layer hull): not
- * implemented.
+ * (sl_softmc_result_free). Does not: render (softmap.c; the third layer is
+ * the view's G-buffer as gbuffer.c rendered it, read, never rendered
+ * again), trace exact rays (truth.c), or register itself as a method.
  */
 #ifndef SL_SOFTMC_H
 #define SL_SOFTMC_H
@@ -96,7 +111,8 @@ struct sl_softmc_desc {
     int      grid;              /* r: r x r rays per pixel; 0 = 3 */
     uint32_t seed;              /* of sl_area_jitter (0 is a seed like any other) */
     int      search;            /* enum sl_softmc_search */
-    int      layers;            /* 1 = near only (3.2), 2 = near + far; 0 = 2 */
+    int      layers;            /* 1 = near only (3.2), 2 = near + far, 3 = near + far + the
+                                 * camera's G-buffer (3.4; linear search only); 0 = 2 */
     int      no_classify;       /* 1: no penumbra classification (3.6) */
     int      no_accel;          /* 1: none of 3.7's shortcuts but the back-face test */
     int      curtis_umbra;      /* 1: umbra on z >= z_near_max alone (see above) */
@@ -131,6 +147,11 @@ struct sl_softmc_stats {
     uint64_t lookups;           /* N-buffer / layer texel fetches, every kind */
     uint64_t lookups_search;    /* of which in the searches */
     uint64_t capped;            /* hierarchical searches stopped by the iteration cap (0 expected) */
+    uint64_t eye_tests;         /* three layers: points tested against the camera (samples and
+                                 * ray ends between the layers, and the samples outside them
+                                 * around a change into the camera's seen space) */
+    uint64_t eye_seen;          /* of which seen by it: no hit there */
+    uint64_t eye_outside;       /* of which outside its view: the two-layer answer (a hit) */
     double   ms_trace, ms_blur;
 };
 

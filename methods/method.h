@@ -115,7 +115,7 @@ struct sl_method_params {
     int      finish;        /* chain: 0 trace the pixels left, 1 leave them lit */
     int      grid;          /* soft_mc: rays per pixel = grid x grid (jittered points on the light) */
     int      search;        /* soft_mc: 0 linear + binary refinement, 1 hierarchical (N-buffer) */
-    int      layers;        /* soft_mc: 1 (near only) or 2 (near and far) */
+    int      layers;        /* soft_mc: 1 (near only), 2 (near and far) or 3 (and the camera's depth) */
     int      blur;          /* soft_mc: 1 the depth-sensitive screen-space blur, 0 none */
 };
 

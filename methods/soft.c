@@ -92,9 +92,13 @@ const struct sl_method sl_method_hard_point = {
 
 /*
  * soft_mc: Curtis 2009 (softmc.h) as a method. Parameters: grid (rays per
- * pixel = grid^2, default 3; Curtis uses 2 and 3), search (hierarchical,
- * default, or linear), layers (2, default, or 1: the single-layer
- * variant), blur (the depth-sensitive screen-space blur, default false).
+ * pixel = grid^2, default 3; Curtis uses 2 and 3), search (hierarchical or
+ * linear), layers (2, default; 1: the single-layer variant; 3: near, far
+ * and the camera's depth, 3.4), blur (the depth-sensitive screen-space
+ * blur, default false). The search defaults to hierarchical with 1 or 2
+ * layers and to linear with 3: the third layer decides points between the
+ * layers, which only the linear search samples (softmc.h), so layers 3
+ * with search hierarchical is refused rather than quietly run linear.
  * Its samples use the config's seed + 1, so they are never the very points
  * the area truth draws (same grid, same seed would cancel their errors).
  */
@@ -104,16 +108,20 @@ static enum sl_err mc_configure(struct sl_method_params *p, struct sl_diag *d)
 {
     if (!(p->set & SL_PARAM_GRID))
         p->grid = 3;
-    if (!(p->set & SL_PARAM_SEARCH))
-        p->search = 1;
     if (!(p->set & SL_PARAM_LAYERS))
         p->layers = 2;
+    if (!(p->set & SL_PARAM_SEARCH))
+        p->search = p->layers == 3 ? 0 : 1;
     if (!(p->set & SL_PARAM_BLUR))
         p->blur = 0;
     if (p->grid < 1 || p->grid > 16)
         return sl_fail(d, SL_E_METHOD, NULL, 0, "grid", "grid %d: 1..16 (rays per pixel = grid^2)", p->grid);
-    if (p->layers != 1 && p->layers != 2)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "layers", "layers %d: 1 or 2", p->layers);
+    if (p->layers < 1 || p->layers > 3)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "layers", "layers %d: 1, 2 or 3", p->layers);
+    if (p->layers == 3 && p->search)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "layers",
+                       "layers 3 (the camera's depth as a third layer) needs search: linear; the hierarchical "
+                       "search cannot use it");
     p->set = SL_PARAM_GRID | SL_PARAM_SEARCH | SL_PARAM_LAYERS | SL_PARAM_BLUR;
     return SL_OK;
 }
@@ -181,7 +189,8 @@ static enum sl_err mc_desc_run(const struct sl_method_args *a, const struct sl_s
 
 const struct sl_method sl_method_soft_mc = {
     .name = "soft_mc",
-    .summary = "Curtis 2009: rays to jittered points on an area light through near/far layers (grid, search, layers, blur)",
+    .summary = "Curtis 2009: rays to jittered points on an area light through near/far layers, or near/far + "
+               "the camera's depth with layers 3 and linear search (grid, search, layers, blur)",
     .lights = SL_LIGHTS_AREA,
     .params_ok = SL_PARAM_GRID | SL_PARAM_SEARCH | SL_PARAM_LAYERS | SL_PARAM_BLUR,
     .needs = mc_needs,

@@ -71,6 +71,7 @@ static const struct bad_case bad_cases[] = {
     {"tests/bad/odd_contour.yaml", SL_E_CONFIG, 3, "contours[1]", "even"},
     {"tests/bad/syntax.yaml", SL_E_CONFIG, 0, NULL, ""},
     {"tests/bad/missing_methods.yaml", SL_E_CONFIG, 0, "methods", "missing required key"},
+    {"tests/bad/soft_three_layers_hierarchical.yaml", SL_E_CONFIG, 6, "methods[0].layers", "search: linear"},
     {"tests/bad/no_such_file.yaml", SL_E_IO, 0, NULL, "cannot read"},
 };
 
