@@ -471,6 +471,7 @@ static void drop_frame(struct run_ctx *x)
 static void drop_view(struct run_ctx *x)
 {
     drop_frame(x);
+    sl_light_box_free(&x->box);
     sl_softmap_free(&x->softmap);
     memset(&x->softmap, 0, sizeof x->softmap);
     x->soft_map = -1;
@@ -641,10 +642,6 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
     double t0 = sl_now();
     sl_light_fit(&x->scene, &x->view, &x->box);
     x->vms.fit = 1e3 * (sl_now() - t0);
-    if (x->box.n_straddling)
-        fprintf(stderr, "shadowlab: warning: %s/%s: %u triangle(s) reach behind the area light's plane; the "
-                        "conservative layers of its point frustum leave them out\n",
-                x->scene.name, c->scenes[k->scene].viewpoints[k->vp], x->box.n_straddling);
     x->view_bad = view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
