@@ -10,9 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-void sl_light_view(const float dir[3], mat4 view)
+/* A view from eye looking along dir. */
+static void view_along(const float eye_in[3], const float dir[3], mat4 view)
 {
-    vec3 eye = {0, 0, 0}, d, up = {0, 1, 0};
+    vec3 eye = {eye_in[0], eye_in[1], eye_in[2]}, d, up = {0, 1, 0};
     glm_vec3_copy((float *)dir, d);
     /* any up not parallel to the light: the axis least aligned with it */
     float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]);
@@ -21,6 +22,12 @@ void sl_light_view(const float dir[3], mat4 view)
         if (ax <= az) up[0] = 1.0f; else up[2] = 1.0f;
     }
     glm_look(eye, d, up, view);
+}
+
+void sl_light_view(const float dir[3], mat4 view)
+{
+    const float origin[3] = {0.0f, 0.0f, 0.0f};
+    view_along(origin, dir, view);
 }
 
 static void to_light(const mat4 view, const float p[3], float out[3])
@@ -90,16 +97,7 @@ static void list_unmapped(struct sl_light_box *out, uint32_t t, uint32_t *cap, i
 static void fit_point(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
 {
     const float *c = s->light.pos;
-    vec3 eye = {c[0], c[1], c[2]}, ctr, up;
-    float ax = fabsf(s->light.normal[0]), ay = fabsf(s->light.normal[1]), az = fabsf(s->light.normal[2]);
-    up[0] = up[1] = up[2] = 0.0f;
-    if (ay >= ax && ay >= az)
-        up[ax <= az ? 0 : 2] = 1.0f;
-    else
-        up[1] = 1.0f;
-    for (int k = 0; k < 3; k++)
-        ctr[k] = c[k] + s->light.normal[k];
-    glm_lookat(eye, ctr, up, out->view);
+    view_along(c, s->light.normal, out->view);
     out->persp = 1;
     memcpy(out->eye, c, sizeof out->eye);
     float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
