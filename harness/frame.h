@@ -40,10 +40,23 @@ struct sl_light_box {
     int   persp;                /* 1: a point light at `eye` (perspective), 0: directional (orthographic) */
     float eye[3];               /* persp: the light's position, world */
     uint32_t n_receivers;       /* pixels the box was fitted to */
+    uint32_t n_outside;         /* persp: PFL pixels left outside it (too far off the axis, lightfit.c) */
     uint32_t n_casters;         /* triangles that can shadow them */
-    uint32_t n_straddling;      /* persp: casters reaching behind the light's plane, which the
-                                 * conservative layers cannot enlarge and leave out */
+    /* persp: triangles the conservative layers cannot hold — reaching to
+     * within wmin of the light's plane or behind it, or beyond the guard
+     * band across it, where window coordinates lose the precision their
+     * exact tests need. Their geometry shaders leave them out; a method
+     * that claims light from those layers must see its ray surely miss
+     * each (sl_method_unmapped_missed). The plain layers draw them, GL
+     * clipping them at the near plane. */
+    uint32_t n_unmapped;
+    uint32_t *unmapped;         /* their triangle indices (owned: sl_light_box_free); NULL with
+                                 * n_unmapped > 0 if the list could not be allocated */
+    float wmin;                 /* persp: clip w below which the geometry shaders drop a triangle */
+    float guard;                /* persp: |x/w|, |y/w| (NDC) beyond which they drop it; 0: never (ortho) */
 };
+
+void sl_light_box_free(struct sl_light_box *b);
 
 struct sl_depth_layer {
     float    *depth;            /* size*size window depth in [0,1], 1 = empty */
@@ -116,6 +129,14 @@ static inline double sl_frame_world_per_depth(const struct sl_light_frame *f, do
 static inline double sl_frame_texel_world_at(const struct sl_light_frame *f, double z)
 {
     return f->box.persp ? f->texel_world * sl_frame_depth_of(f, z) : f->texel_world;
+}
+
+/* Whether texel coordinates fall inside the map: always so for a
+ * directional light's receivers, not for those a point light's frustum
+ * leaves outside (lightfit.c), whose lookups read the map's border. */
+static inline int sl_frame_inside(const struct sl_light_frame *f, float u, float v)
+{
+    return u >= 0.0f && v >= 0.0f && u < (float)f->size && v < (float)f->size;
 }
 
 /* Texel index of texel coordinates, clamped to the map. */

@@ -7,11 +7,13 @@
 #include <cglm/clipspace/persp_rh_zo.h>
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
-void sl_light_view(const float dir[3], mat4 view)
+/* A view from eye looking along dir. */
+static void view_along(const float eye_in[3], const float dir[3], mat4 view)
 {
-    vec3 eye = {0, 0, 0}, d, up = {0, 1, 0};
+    vec3 eye = {eye_in[0], eye_in[1], eye_in[2]}, d, up = {0, 1, 0};
     glm_vec3_copy((float *)dir, d);
     /* any up not parallel to the light: the axis least aligned with it */
     float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]);
@@ -20,6 +22,12 @@ void sl_light_view(const float dir[3], mat4 view)
         if (ax <= az) up[0] = 1.0f; else up[2] = 1.0f;
     }
     glm_look(eye, d, up, view);
+}
+
+void sl_light_view(const float dir[3], mat4 view)
+{
+    const float origin[3] = {0.0f, 0.0f, 0.0f};
+    view_along(origin, dir, view);
 }
 
 static void to_light(const mat4 view, const float p[3], float out[3])
@@ -34,31 +42,62 @@ static void to_light(const mat4 view, const float p[3], float out[3])
 /* An area light as a point at its centre: a perspective frustum from the
  * centre along the light's normal. Across the axis it bounds the receivers'
  * tangents x/d, y/d (every receiver is on the emitting side, d > 0: the
- * G-buffer's classes say so); its far plane is the farthest receiver, its
- * near plane the nearest point of a triangle whose tangents overlap theirs
- * (a shadow ray runs from the receiver to the centre, so its tangents stay
- * the receiver's and its depth falls toward 0: only such triangles, between
- * the light and the receiver, can block it). A triangle reaching behind the
- * light's plane (some vertex at d <= 0) has no bounded projection: it may
- * still block rays near the light, so it is counted as straddling, and the
- * near plane is then kept at 1/1024 of the far one: the plain layers clip it
- * there, the conservative ones leave it out (their geometry shader needs
- * every vertex in front of the light). Near is also never below far/2^20,
- * so that window depth keeps ~2^-4 of float's relative precision at the
- * far end. */
+ * G-buffer's classes say so) up to SL_POINT_MAX_TAN: one perspective map
+ * cannot reach the light's own plane (receivers there need an infinite
+ * field of view, and spread over a wide one the texels grow without bound),
+ * so receivers more than atan(8) = 82.9 degrees off the axis in x or y are
+ * left outside the map (counted in n_outside): the exact methods decide
+ * them by tracing, the others read the map's border (a cube map would be
+ * the full answer). Its far plane is twice the farthest receiver's depth
+ * (below), its near plane the nearest receiver or the nearest point of a
+ * caster whose tangents overlap theirs (a shadow ray runs from the receiver
+ * to the centre, so its tangents stay the receiver's and its depth falls
+ * toward 0: only such triangles, between the light and the receiver, can
+ * block it).
+ *
+ * The conservative layers' exact per-texel tests need window coordinates
+ * with float precision to spare. A triangle with a vertex closer to the
+ * light's plane than far / 4096 (or behind it), or beyond a guard band of
+ * one frustum width on each side (NDC beyond +-3), is "unmapped": listed
+ * here, tested on the CPU by every method that claims light from those
+ * layers, and dropped by their geometry shaders, which use looser bounds
+ * (w < far / 8192, NDC beyond +-5) so that float rounding between this fit
+ * and the GPU never loses a triangle from both. A triangle wholly behind
+ * the plane, wholly beyond every receiver, or (in front) projecting outside
+ * the receivers' tangents cannot block a receiver's ray and is ignored.
+ * The near plane comes down to the nearest mapped caster or receiver,
+ * never below far / 4096: window depth is about 1 - near / d, so at depth d
+ * its float steps are d / near * 2^-24 of d; with near / d >= 1/2048 that
+ * is at worst 2^-13 of the depth, enough to tell surfaces apart. The plain
+ * layers clip what lies nearer; the conservative ones list it (above). */
+#define SL_POINT_MAX_TAN 8.0f
+#define SL_POINT_WMIN_DIV 4096.0f
+#define SL_POINT_GUARD_CPU 3.0f
+#define SL_POINT_GUARD_GPU 5.0f
+
+static void list_unmapped(struct sl_light_box *out, uint32_t t, uint32_t *cap, int *oom)
+{
+    if (out->n_unmapped == *cap && !*oom) {
+        uint32_t *g = realloc(out->unmapped, (*cap ? 2u * *cap : 8u) * sizeof *g);
+        if (g) {
+            out->unmapped = g;
+            *cap = *cap ? 2u * *cap : 8u;
+        } else {
+            /* counted but not listed: every conservative lit claim is withheld */
+            *oom = 1;
+            free(out->unmapped);
+            out->unmapped = NULL;
+        }
+    }
+    if (!*oom)
+        out->unmapped[out->n_unmapped] = t;
+    out->n_unmapped++;
+}
+
 static void fit_point(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
 {
     const float *c = s->light.pos;
-    vec3 eye = {c[0], c[1], c[2]}, ctr, up;
-    float ax = fabsf(s->light.normal[0]), ay = fabsf(s->light.normal[1]), az = fabsf(s->light.normal[2]);
-    up[0] = up[1] = up[2] = 0.0f;
-    if (ay >= ax && ay >= az)
-        up[ax <= az ? 0 : 2] = 1.0f;
-    else
-        up[1] = 1.0f;
-    for (int k = 0; k < 3; k++)
-        ctr[k] = c[k] + s->light.normal[k];
-    glm_lookat(eye, ctr, up, out->view);
+    view_along(c, s->light.normal, out->view);
     out->persp = 1;
     memcpy(out->eye, c, sizeof out->eye);
     float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
@@ -71,6 +110,10 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, struct 
         if (!(q[2] > 0.0f))
             continue;   /* not on the emitting side: never PFL (sl_point_faces) */
         float t[3] = {q[0] / q[2], q[1] / q[2], q[2]};
+        if (!(fabsf(t[0]) <= SL_POINT_MAX_TAN && fabsf(t[1]) <= SL_POINT_MAX_TAN)) {
+            out->n_outside++;
+            continue;
+        }
         for (int k = 0; k < 3; k++) {
             if (t[k] < lo[k]) lo[k] = t[k];
             if (t[k] > hi[k]) hi[k] = t[k];
@@ -78,54 +121,77 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, struct 
         out->n_receivers++;
     }
     if (out->n_receivers == 0) {
-        /* nothing lit: no lookup will happen; any valid frustum */
+        /* nothing lit inside: no lookup will be trusted; any valid frustum */
         lo[0] = lo[1] = -1.0f;
         hi[0] = hi[1] = 1.0f;
         lo[2] = hi[2] = 1.0f;
     }
-    float near = lo[2];
-    for (uint32_t t = 0; t < s->nt; t++) {
-        float tl[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, th[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-        int behind = 0;
-        for (int k = 0; k < 3; k++) {
-            float q[3];
-            to_light(out->view, s->pos + 3 * s->idx[3 * t + k], q);
-            behind |= !(q[2] > 0.0f);
-            float r[3] = {q[0] / q[2], q[1] / q[2], q[2]};
-            for (int j = 0; j < 3; j++) {
-                if (r[j] < tl[j]) tl[j] = r[j];
-                if (r[j] > th[j]) th[j] = r[j];
-            }
-        }
-        if (th[2] <= 0.0f || tl[2] > hi[2])
-            continue;   /* wholly behind the light, or beyond every receiver */
-        if (behind) {
-            out->n_casters++;
-            out->n_straddling++;
-            continue;
-        }
-        if (th[0] < lo[0] || tl[0] > hi[0] || th[1] < lo[1] || tl[1] > hi[1])
-            continue;
-        out->n_casters++;
-        if (tl[2] < near)
-            near = tl[2];
-    }
-    float far = hi[2] * (1.0f + 1e-4f) + 1e-6f * fabsf(hi[2]);
-    if (out->n_straddling)
-        near = fminf(near, far / 1024.0f);
-    near = fmaxf(near * (1.0f - 1e-4f), far * 0x1p-20f);
     /* tangents: 1e-4 of the extent, at least 1e-6 absolute */
     for (int k = 0; k < 2; k++) {
         float m = fmaxf(1e-4f * (hi[k] - lo[k]), 1e-6f);
         lo[k] -= m;
         hi[k] += m;
     }
+    /* far at twice the farthest receiver: window depth 1 - z there is then
+     * about near / (2 d), clear of the cleared 1 by many float steps (a 1e-4
+     * margin, as the box has, would be near/d * 1e-4: below one step when
+     * near is small); the precision of depth barely depends on far */
+    float far = 2.0f * hi[2];
+    float dmin = far / SL_POINT_WMIN_DIV;
+    float near = lo[2];
+    uint32_t cap = 0;
+    int oom = 0;
+    for (uint32_t t = 0; t < s->nt; t++) {
+        int behind = 0, close = 0, outside = 0;
+        float dlo = FLT_MAX, dhi = -FLT_MAX, xlo = FLT_MAX, xhi = -FLT_MAX, ylo = FLT_MAX, yhi = -FLT_MAX;
+        for (int k = 0; k < 3; k++) {
+            float q[3];
+            to_light(out->view, s->pos + 3 * s->idx[3 * t + k], q);
+            float d = q[2];
+            behind |= !(d > 0.0f);
+            close |= !(d >= dmin);
+            dlo = fminf(dlo, d);
+            dhi = fmaxf(dhi, d);
+            if (d > 0.0f) {
+                float tt[2] = {q[0] / d, q[1] / d};
+                xlo = fminf(xlo, tt[0]);
+                xhi = fmaxf(xhi, tt[0]);
+                ylo = fminf(ylo, tt[1]);
+                yhi = fmaxf(yhi, tt[1]);
+                for (int j = 0; j < 2; j++) {
+                    float ndc = 2.0f * (tt[j] - lo[j]) / (hi[j] - lo[j]) - 1.0f;
+                    outside |= !(fabsf(ndc) <= SL_POINT_GUARD_CPU);
+                }
+            }
+        }
+        if (!(dhi > 0.0f) || dlo > hi[2])
+            continue;   /* wholly behind the light, or beyond every receiver */
+        if (!behind && (xhi < lo[0] || xlo > hi[0] || yhi < lo[1] || ylo > hi[1]))
+            continue;   /* in front, projecting beside every receiver */
+        out->n_casters++;
+        if (close || outside) {
+            list_unmapped(out, t, &cap, &oom);
+            continue;
+        }
+        if (dlo < near)
+            near = dlo;
+    }
+    near = fmaxf(near * (1.0f - 1e-4f), dmin);
     lo[2] = near;
     hi[2] = far;
     memcpy(out->lo, lo, sizeof lo);
     memcpy(out->hi, hi, sizeof hi);
+    out->wmin = dmin * 0.5f;
+    out->guard = SL_POINT_GUARD_GPU;
     glm_frustum_rh_zo(lo[0] * near, hi[0] * near, lo[1] * near, hi[1] * near, near, far, out->proj);
     glm_mat4_mul(out->proj, out->view, out->vp);
+}
+
+void sl_light_box_free(struct sl_light_box *b)
+{
+    free(b->unmapped);
+    b->unmapped = NULL;
+    b->n_unmapped = 0;
 }
 
 void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)

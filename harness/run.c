@@ -21,6 +21,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "adjacency.h"
+#include "arealight.h"
 #include "softfig.h"
 #include "softmap.h"
 #include "softmc.h"
@@ -324,7 +325,25 @@ static void write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_r
             res->ms_total);
 }
 
-/* ---- truth cache ---- */
+/* ---- truth cache ----
+ *
+ * One file per view and kind of truth in the cache folder, named by its key:
+ * truth-<key>.bin (the hard truth) and area-<key>.bin (an area light's
+ * visible fraction, its standard error and the hard truth of its centre).
+ * Every file is a fixed header then the payload:
+ *   magic[8] (the kind), format version, number of parts, key, width,
+ *   height, payload length, FNV-1a 64 of the payload
+ * in the machine's byte order (the keys hash native floats, so a cache is
+ * the machine's own anyway). A file is used only when every header field is
+ * the expected one, the payload has exactly the expected length with
+ * nothing after it, its checksum matches and its values agree with the
+ * view's classes; anything else (a write cut short, another format, a key
+ * collision, a damaged disk) is ignored, the truth recomputed and the file
+ * replaced. Files are written to a temporary name and renamed into place,
+ * so a reader never sees a half-written one. */
+
+/* Bump when the layout of a cache file changes. */
+#define SL_CACHE_FORMAT 2u
 
 /* What a scene's truths depend on besides the view: hashed once per scene
  * (the geometry is the bulk of it). */
@@ -349,56 +368,190 @@ static unsigned long long truth_key(unsigned long long scene, const struct sl_vi
     return sl_fnv1a(k, &h, sizeof h);
 }
 
-static const char truth_magic[8] = {'S', 'L', 'T', 'R', 'U', 'T', 'H', '1'};
+/* An area truth adds to the view's truth key its rules, the cache format,
+ * its samples per side (resolved, so 0 and 32 share a file) and its seed,
+ * and a few of its sample points: the sample pattern is shared with soft_mc
+ * (arealight.h), so a change made there for soft_mc is a new key here. */
+static unsigned long long area_key(unsigned long long view, int side, uint32_t seed)
+{
+    const uint32_t format = SL_CACHE_FORMAT, n = (uint32_t)side;
+    unsigned long long k = sl_fnv1a(view, SL_SOFT_TRUTH_VERSION, strlen(SL_SOFT_TRUTH_VERSION));
+    k = sl_fnv1a(k, &format, sizeof format);
+    k = sl_fnv1a(k, &side, sizeof side);
+    k = sl_fnv1a(k, &seed, sizeof seed);
+    for (uint32_t i = 0; i < 8; i++) {
+        double uv[2];
+        sl_area_jitter(37 * i, 11 * i, (5 * i) % (n * n), n, seed, &uv[0], &uv[1]);
+        k = sl_fnv1a(k, uv, sizeof uv);
+    }
+    return k;
+}
 
-/* 1 and v->truth filled when a valid cache entry exists and agrees with the
- * view's classes; 0 otherwise (then the truth is traced). */
-static int truth_cache_read(const char *dir, unsigned long long key, struct sl_view *v)
+struct cache_head {
+    char     magic[8];
+    uint32_t format, parts;
+    uint64_t key;
+    int32_t  w, h;
+    uint64_t bytes, sum;
+};
+_Static_assert(sizeof(struct cache_head) == 48, "the cache header is written as it lies in memory");
+
+/* One array of a cache file's payload. */
+struct cache_part {
+    const void *p;
+    size_t      n;   /* bytes */
+};
+
+enum cache_read { CACHE_MISS, CACHE_REJECTED, CACHE_HIT };
+
+static void cache_path(char *path, size_t size, const char *dir, const char *kind, unsigned long long key)
+{
+    snprintf(path, size, "%s/%s-%016llx.bin", dir, kind, key);
+}
+
+/* The payload of the file of (kind, key) into *out (malloc'd, `bytes`
+ * long): CACHE_HIT when its header, length and checksum are all as
+ * expected; CACHE_MISS when there is no file; CACHE_REJECTED otherwise. */
+static enum cache_read cache_load(const char *dir, const char *kind, const char magic[8], unsigned long long key,
+                                  int w, int h, uint32_t parts, size_t bytes, void **out)
 {
     char path[1200];
-    snprintf(path, sizeof path, "%s/truth-%016llx.bin", dir, key);
+    cache_path(path, sizeof path, dir, kind, key);
+    *out = NULL;
     FILE *f = fopen(path, "rb");
     if (!f)
-        return 0;
-    char magic[8];
-    int32_t wh[2];
-    size_t n = (size_t)v->w * (size_t)v->h;
-    uint8_t *buf = malloc(n);
-    int ok = buf && fread(magic, 1, 8, f) == 8 && memcmp(magic, truth_magic, 8) == 0 &&
-             fread(wh, sizeof wh, 1, f) == 1 && wh[0] == v->w && wh[1] == v->h && fread(buf, 1, n, f) == n;
+        return CACHE_MISS;
+    struct cache_head hd;
+    void *buf = malloc(bytes ? bytes : 1);
+    int ok = buf && fread(&hd, sizeof hd, 1, f) == 1 && memcmp(hd.magic, magic, 8) == 0 &&
+             hd.format == SL_CACHE_FORMAT && hd.parts == parts && hd.key == key && hd.w == w && hd.h == h &&
+             hd.bytes == bytes && fread(buf, 1, bytes, f) == bytes && fgetc(f) == EOF && !ferror(f) &&
+             sl_fnv1a(SL_FNV_SEED, buf, bytes) == hd.sum;
     fclose(f);
+    if (!ok) {
+        free(buf);
+        return CACHE_REJECTED;
+    }
+    *out = buf;
+    return CACHE_HIT;
+}
+
+/* Write the file of (kind, key): a temporary file renamed into place. */
+static void cache_store(const char *dir, const char *kind, const char magic[8], unsigned long long key, int w,
+                        int h, const struct cache_part *part, uint32_t parts)
+{
+    char path[1200], tmp[1300];
+    cache_path(path, sizeof path, dir, kind, key);
+    snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid());
+    struct cache_head hd;
+    memset(&hd, 0, sizeof hd);
+    memcpy(hd.magic, magic, 8);
+    hd.format = SL_CACHE_FORMAT;
+    hd.parts = parts;
+    hd.key = key;
+    hd.w = w;
+    hd.h = h;
+    hd.sum = SL_FNV_SEED;
+    for (uint32_t i = 0; i < parts; i++) {
+        hd.bytes += part[i].n;
+        hd.sum = sl_fnv1a(hd.sum, part[i].p, part[i].n);   /* FNV runs on: the parts hash as one */
+    }
+    FILE *f = fopen(tmp, "wb");
+    if (!f)
+        return;   /* a cache that cannot be written is only a lost speed-up */
+    int ok = fwrite(&hd, sizeof hd, 1, f) == 1;
+    for (uint32_t i = 0; ok && i < parts; i++)
+        ok = fwrite(part[i].p, 1, part[i].n, f) == part[i].n;
+    ok = (fclose(f) == 0) && ok;
+    if (!ok || rename(tmp, path) != 0)
+        remove(tmp);
+}
+
+/* 1 when a truth image agrees with the view's classes (then *lit and
+ * *shadow are its counts), 0 otherwise. */
+static int truth_agrees(const struct sl_view *v, const uint8_t *truth, uint64_t *lit_out, uint64_t *shadow_out)
+{
+    size_t n = (size_t)v->w * (size_t)v->h;
     uint64_t lit = 0, shadow = 0;
-    for (size_t i = 0; ok && i < n; i++) {
-        uint8_t t = buf[i], c = v->cls[i];
-        ok = (c == SL_C_BACKGROUND && t == SL_T_BACKGROUND) || (c == SL_C_PNFL && t == SL_T_PNFL) ||
-             (c == SL_C_PFL && (t == SL_T_LIT || t == SL_T_SHADOW));
+    for (size_t i = 0; i < n; i++) {
+        uint8_t t = truth[i], c = v->cls[i];
+        if (!((c == SL_C_BACKGROUND && t == SL_T_BACKGROUND) || (c == SL_C_PNFL && t == SL_T_PNFL) ||
+              (c == SL_C_PFL && (t == SL_T_LIT || t == SL_T_SHADOW))))
+            return 0;
         lit += t == SL_T_LIT;
         shadow += t == SL_T_SHADOW;
     }
-    if (ok) {
+    *lit_out = lit;
+    *shadow_out = shadow;
+    return 1;
+}
+
+static const char truth_magic[8] = {'S', 'L', 'T', 'R', 'U', 'T', 'H', '2'};
+
+/* CACHE_HIT and v->truth filled when a valid cache entry exists and agrees
+ * with the view's classes; otherwise v->truth is untouched (then it is
+ * traced). */
+static enum cache_read truth_cache_read(const char *dir, unsigned long long key, struct sl_view *v)
+{
+    size_t n = (size_t)v->w * (size_t)v->h;
+    void *buf;
+    uint64_t lit, shadow;
+    enum cache_read r = cache_load(dir, "truth", truth_magic, key, v->w, v->h, 1, n, &buf);
+    if (r == CACHE_HIT && !truth_agrees(v, buf, &lit, &shadow))
+        r = CACHE_REJECTED;
+    if (r == CACHE_HIT) {
         memcpy(v->truth, buf, n);
         v->n_lit = lit;
         v->n_shadow = shadow;
     }
     free(buf);
-    return ok;
+    return r;
 }
 
 static void truth_cache_write(const char *dir, unsigned long long key, const struct sl_view *v)
 {
-    char path[1200], tmp[1300];
-    snprintf(path, sizeof path, "%s/truth-%016llx.bin", dir, key);
-    snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid());
-    FILE *f = fopen(tmp, "wb");
-    if (!f)
-        return;   /* a cache that cannot be written is only a lost speed-up */
-    int32_t wh[2] = {v->w, v->h};
+    struct cache_part part = {v->truth, (size_t)v->w * (size_t)v->h};
+    cache_store(dir, "truth", truth_magic, key, v->w, v->h, &part, 1);
+}
+
+static const char area_magic[8] = {'S', 'L', 'A', 'R', 'E', 'A', 'V', '1'};
+
+/* CACHE_HIT with the visible fraction, its standard error and the centre's
+ * hard truth filled when a valid entry exists: its fractions and errors in
+ * [0, 1], 0 on the background, and the point truth agreeing with the view's
+ * classes. Otherwise nothing is written. */
+static enum cache_read area_cache_read(const char *dir, unsigned long long key, struct sl_view *v, float *visible,
+                                       float *se)
+{
+    size_t n = (size_t)v->w * (size_t)v->h, nf = n * sizeof(float);
+    void *buf;
+    enum cache_read r = cache_load(dir, "area", area_magic, key, v->w, v->h, 3, 2 * nf + n, &buf);
+    if (r != CACHE_HIT)
+        return r;
+    const float *fv = buf, *fs = fv + n;   /* malloc'd: aligned for float */
+    const uint8_t *truth = (const uint8_t *)buf + 2 * nf;
+    uint64_t lit, shadow;
+    int ok = truth_agrees(v, truth, &lit, &shadow);
+    for (size_t i = 0; ok && i < n; i++)
+        ok = v->tri[i] ? (fv[i] >= 0.0f && fv[i] <= 1.0f && fs[i] >= 0.0f && fs[i] <= 1.0f)
+                       : (fv[i] == 0.0f && fs[i] == 0.0f);
+    if (ok) {
+        memcpy(visible, fv, nf);
+        memcpy(se, fs, nf);
+        memcpy(v->truth, truth, n);
+        v->n_lit = lit;
+        v->n_shadow = shadow;
+    }
+    free(buf);
+    return ok ? CACHE_HIT : CACHE_REJECTED;
+}
+
+static void area_cache_write(const char *dir, unsigned long long key, const struct sl_view *v, const float *visible,
+                             const float *se)
+{
     size_t n = (size_t)v->w * (size_t)v->h;
-    int ok = fwrite(truth_magic, 1, 8, f) == 8 && fwrite(wh, sizeof wh, 1, f) == 1 &&
-             fwrite(v->truth, 1, n, f) == n;
-    ok = (fclose(f) == 0) && ok;
-    if (!ok || rename(tmp, path) != 0)
-        remove(tmp);
+    struct cache_part part[3] = {{visible, n * sizeof(float)}, {se, n * sizeof(float)}, {v->truth, n}};
+    cache_store(dir, "area", area_magic, key, v->w, v->h, part, 3);
 }
 
 /* ---- the run ---- */
@@ -471,6 +624,7 @@ static void drop_frame(struct run_ctx *x)
 static void drop_view(struct run_ctx *x)
 {
     drop_frame(x);
+    sl_light_box_free(&x->box);
     sl_softmap_free(&x->softmap);
     memset(&x->softmap, 0, sizeof x->softmap);
     x->soft_map = -1;
@@ -612,39 +766,50 @@ static uint64_t layer_bad(const struct sl_depth_layer *l, int size)
 }
 
 /* The truths of a view under an area light: the visible fraction of the
- * light per pixel from the config's samples (not cached: its key would need
- * the samples and seed, and it is a float image), and the hard truth of the
- * point at its centre (one ray per PFL pixel, truth.h), which the hard-shadow
- * methods' figures and exactness are measured against; then the point's
- * perspective frustum (lightfit.h). The soft layers fit their own. Both
- * truths are timed together as the view's truth; the point's adds one ray
- * per pixel to the area's area_samples^2. */
-static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k, int reps,
-                             double *times, struct sl_run_result *res, struct sl_diag *d)
+ * light per pixel from the config's samples and seed, and the hard truth of
+ * the point at its centre (one ray per PFL pixel, truth.h), which the
+ * hard-shadow methods' figures and exactness are measured against; then the
+ * point's perspective frustum (lightfit.h). The soft layers fit their own.
+ * Both truths are timed together as the view's truth; the point's adds one
+ * ray per pixel to the area's area_samples^2. Both come from the cache
+ * (area_key) when it holds them, timed as the read, as a hard truth is. */
+static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                             unsigned long long view_key, const char *cache_dir, int reps, double *times,
+                             struct sl_run_result *res, struct sl_diag *d)
 {
-    struct sl_soft_truth_stats st;
-    struct sl_truth_stats ts;
-    for (int r = 0; r < reps; r++) {
-        enum sl_err e = sl_soft_truth(&x->rt, &x->scene, &x->view, c->area_samples, c->seed, x->soft_truth,
-                                      x->soft_se, &st, d);
-        if (!e)
-            e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d);
-        if (e)
-            return e;
-        times[r] = st.ms_trace + ts.ms_trace;
-    }
-    med_min_max(times + c->warmup, c->runs, x->vms.truth);
-    res->passes.truths_traced++;
-    res->passes.soft_truths++;
-    x->truth_cached = 0;
-    x->truth_rays = st.rays + ts.rays;
+    const int cache = cache_dir && cache_dir[0];
+    const unsigned long long key = area_key(view_key, sl_soft_truth_side(c->area_samples), c->seed);
     double t0 = sl_now();
+    enum cache_read got = cache ? area_cache_read(cache_dir, key, &x->view, x->soft_truth, x->soft_se) : CACHE_MISS;
+    x->truth_cached = got == CACHE_HIT;
+    x->truth_rays = 0;
+    res->passes.cache_rejected += got == CACHE_REJECTED;
+    if (x->truth_cached) {
+        res->passes.truths_cached++;
+        res->passes.soft_truths_cached++;
+        x->vms.truth[SL_MED] = x->vms.truth[SL_MIN] = x->vms.truth[SL_MAX] = 1e3 * (sl_now() - t0);
+    } else {
+        struct sl_soft_truth_stats st;
+        struct sl_truth_stats ts;
+        for (int r = 0; r < reps; r++) {
+            enum sl_err e = sl_soft_truth(&x->rt, &x->scene, &x->view, c->area_samples, c->seed, x->soft_truth,
+                                          x->soft_se, &st, d);
+            if (!e)
+                e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d);
+            if (e)
+                return e;
+            times[r] = st.ms_trace + ts.ms_trace;
+        }
+        med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        res->passes.truths_traced++;
+        res->passes.soft_truths++;
+        x->truth_rays = st.rays + ts.rays;
+        if (cache)
+            area_cache_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
+    }
+    t0 = sl_now();
     sl_light_fit(&x->scene, &x->view, &x->box);
     x->vms.fit = 1e3 * (sl_now() - t0);
-    if (x->box.n_straddling)
-        fprintf(stderr, "shadowlab: warning: %s/%s: %u triangle(s) reach behind the area light's plane; the "
-                        "conservative layers of its point frustum leave them out\n",
-                x->scene.name, c->scenes[k->scene].viewpoints[k->vp], x->box.n_straddling);
     x->view_bad = view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
@@ -679,12 +844,14 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
             return e;
     }
     med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
-    double t0 = sl_now();
-    if (x->area)
-        return area_view(x, c, k, reps, times, res, d);
     unsigned long long key = truth_key(x->scene_key, &x->scene.vp[vp], W, H);
-    x->truth_cached = cache_dir && cache_dir[0] && truth_cache_read(cache_dir, key, &x->view);
+    if (x->area)
+        return area_view(x, c, k, key, cache_dir, reps, times, res, d);
+    double t0 = sl_now();
+    enum cache_read got = cache_dir && cache_dir[0] ? truth_cache_read(cache_dir, key, &x->view) : CACHE_MISS;
+    x->truth_cached = got == CACHE_HIT;
     x->truth_rays = 0;
+    res->passes.cache_rejected += got == CACHE_REJECTED;
     if (x->truth_cached) {
         res->passes.truths_cached++;
         x->vms.truth[SL_MED] = x->vms.truth[SL_MIN] = x->vms.truth[SL_MAX] = 1e3 * (sl_now() - t0);

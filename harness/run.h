@@ -107,6 +107,9 @@ struct sl_pass_counts {
     int gbuffers;                      /* G-buffer passes */
     int truths_traced, truths_cached;  /* truth passes traced / read from cache */
     int soft_truths;                   /* of those traced, area-light truths (visible fractions) */
+    int soft_truths_cached;            /* of those read from cache, area-light truths */
+    int cache_rejected;                /* cache files found but not used (cut short, damaged, another
+                                        * format or key, or not agreeing with the view): recomputed */
     int soft_layers;                   /* soft_mc's near + far layers and N-buffer, per (view, map size) */
     int layers[SL_LAYER_COUNT];        /* shadow-map layer renders */
     int method_runs;                   /* method invocations, repetitions included */

@@ -150,6 +150,9 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
             glUniform1f(glGetUniformLocation(prog, "u_lambda"),  /* -1 (unused) in the adjacency GS */
                         (float)(0.70710678 * (1.0 + 1.0 / 1024.0) + 2.0 * SL_CONS_EPS_TEXELS));
             glUniform1d(glGetUniformLocation(prog, "u_eps"), SL_CONS_EPS_TEXELS);
+            /* a point light's unmapped triangles (frame.h) are left out */
+            glUniform1f(glGetUniformLocation(prog, "u_wmin"), f->box.wmin);
+            glUniform1f(glGetUniformLocation(prog, "u_guard"), f->box.guard);
             glUniform1d(glGetUniformLocation(prog, "u_zeps"), SL_CONS_EPS_DEPTH);
             if (kind == K_BGSM2) {
                 /* the second layer leaves out, per texel, the triangle the

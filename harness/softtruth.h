@@ -38,6 +38,13 @@
 #include "truth.h"
 #include "view.h"
 
+/* Bump when anything here or in softtruth.c changes what the estimate is
+ * (estimator, standard error, side tests, the segment's ends): the driver
+ * keys its cache of area truths with it (run.c), so cached truths of older
+ * rules are never read. The sample pattern (arealight.h) keys it apart. */
+#define SL_SOFT_TRUTH_VERSION "soft-truth-v1 stratified-jitter collapsed-pairs-stderr face-and-emit-sides " \
+                              "segment-tnear-both-ends"
+
 #define SL_SOFT_TRUTH_SIDE_DEFAULT 32     /* samples per side: 1024 samples per pixel */
 #define SL_SOFT_TRUTH_SIDE_MAX     1024   /* 2^20 samples per pixel; far beyond any use */
 

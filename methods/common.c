@@ -5,8 +5,31 @@
  */
 #include <stdlib.h>
 #include "method.h"
+#include "raytri.h"
 #include "truth.h"
 #include "util.h"
+
+int sl_method_unmapped_missed(const struct sl_method_args *a, const float p[3], uint32_t own, uint64_t *tests)
+{
+    const struct sl_light_box *b = &a->frame->box;
+    if (!b->n_unmapped)
+        return 1;
+    if (!b->unmapped)
+        return 0;   /* not listed (out of memory): nothing is claimed */
+    const struct sl_scene *s = a->scene;
+    float toward[3], tmax;
+    sl_frame_toward(a->frame, p, toward, &tmax);
+    for (uint32_t k = 0; k < b->n_unmapped; k++) {
+        if (b->unmapped[k] + 1u == own)
+            continue;   /* the truth ignores the pixel's own triangle */
+        const uint32_t *ix = s->idx + 3 * (size_t)b->unmapped[k];
+        (*tests)++;
+        if (sl_shadow_ray_tri_sure(p, toward, tmax, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
+                                   s->pos + 3 * ix[2]) >= 0)
+            return 0;
+    }
+    return 1;
+}
 
 enum sl_err sl_method_trace_left(const struct sl_method_args *a, const uint8_t *left, const float *tfar,
                                  struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d)

@@ -81,6 +81,8 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
     sl_frame_project(f, p, &u, &w, &z);
     uint32_t k = sl_frame_texel(f, u, w);
     int r = 0;
+    if (!sl_frame_inside(f, u, w))
+        return 0;   /* outside a point light's map: the layers say nothing */
     if (use_sgsm) {
         const struct sl_depth_layer *sg = &f->layer[sgsm_layer];
         (*lookups)++;
@@ -106,6 +108,9 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
                     r |= V_LIT;
             }
         }
+        /* the layers know nothing of casters reaching behind a point light */
+        if ((r & V_LIT) && !sl_method_unmapped_missed(a, p, v->tri[i], tests))
+            r &= ~V_LIT;
     }
     return r;
 }
@@ -128,7 +133,7 @@ static enum sl_err run_mode(const struct sl_method_args *a, struct sl_verdicts *
             continue;
         const uint64_t tests_before = tests;
         int r = decide(a, (size_t)i, mode != M_SGSM, mode != M_BGSM, sgsm_layer, &lookups, &tests);
-        out->tests[i] = (uint8_t)(tests - tests_before);      /* at most one per pixel */
+        out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
         out->how[i] = SL_HOW_MAP;
         if (r == (V_LIT | V_SHADOW)) {
             conflicts++;       /* impossible if both layers are right; trace it */

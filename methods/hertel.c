@@ -88,14 +88,20 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
         lookups++;
         uint32_t id = L->id[k] & ~SL_FULL;
         out->how[i] = SL_HOW_MAP;
-        if (!id || L->depth[k] > z) {
+        /* casters reaching behind a point light are not in the layer: only
+         * a ray that surely misses them all may be called lit from it or cut
+         * short at its depth */
+        const uint64_t tests_before = tests;
+        const int clear = sl_frame_inside(f, u, w) && sl_method_unmapped_missed(a, p, v->tri[i], &tests);
+        out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
+        if (clear && (!id || L->depth[k] > z)) {
             out->v[i] = SL_V_LIT;
             continue;
         }
-        if (id != v->tri[i]) {
+        if (id && id != v->tri[i] && sl_frame_inside(f, u, w) && (clear || L->depth[k] <= z)) {
             const uint32_t *ix = s->idx + 3 * (size_t)(id - 1);
             tests++;
-            out->tests[i] = 1;
+            out->tests[i] = (uint8_t)(out->tests[i] < 255 ? out->tests[i] + 1 : 255);
             float toward[3], tmax;
             sl_frame_toward(f, p, toward, &tmax);
             if (sl_shadow_ray_tri_sure(p, toward, tmax, sl_rt_tnear(p), s->pos + 3 * ix[0], s->pos + 3 * ix[1],
@@ -109,7 +115,7 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
         undecided[i] = 1;
         /* RT_opt: from the pixel up to the stored depth, with room for
          * rounding and the truth's tnear */
-        tfar[i] = ray_to_depth(f, p, z, L->depth[k]);
+        tfar[i] = clear && id ? ray_to_depth(f, p, z, L->depth[k]) : INFINITY;
     }
     c->ms_method += 1e3 * (sl_now() - t0);
     c->lookups += lookups;

@@ -188,6 +188,12 @@ static inline int sl_verdict_fixed(const struct sl_view *v, size_t i, struct sl_
 enum sl_err sl_method_trace_left(const struct sl_method_args *a, const uint8_t *left, const float *tfar,
                                  struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d);
 
+/* Whether the shadow ray of pixel p (own: its triangle + 1) surely misses
+ * every triangle the frame's conservative layers leave out (a point light's
+ * unmapped triangles, frame.h): a method may claim light from those layers
+ * only then. Always 1 for a directional light; tests are counted in *tests. */
+int sl_method_unmapped_missed(const struct sl_method_args *a, const float p[3], uint32_t own, uint64_t *tests);
+
 const struct sl_method *sl_method_find(const char *name);
 int                     sl_method_count(void);
 const struct sl_method *sl_method_at(int i);

@@ -78,7 +78,7 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
         const struct sl_table_cell *c = &s->cells[i];
         int k;
         s->curtis |= c->has_soft;
-        hard |= !c->has_soft;
+        hard |= !c->has_soft || c->fig.nregions > 0;   /* a hard method under an area light has both */
         for (k = 0; k < s->nviews && !same_view(&s->views[k], c); k++)
             ;
         if (k == s->nviews) {

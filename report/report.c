@@ -263,6 +263,14 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
                                                  "changes against NSM)",
                        other[0] ? " Methods of neither thesis (" : "", other, other[0] ? ") appear in the "
                        "figure tables, the plots and the costs only." : "");
+    int point = 0;   /* hard figures of cells under an area light */
+    for (int i = 0; i < s->n && !point; i++)
+        point = s->cells[i].has_soft && s->cells[i].fig.nregions > 0;
+    if (point && (s->moderno || s->morais))
+        sl_report_doc_para(doc, "Under an area light the hard-shadow methods take the light for a point at its "
+                                "centre: their wrong pixels and decisions in the hard-shadow tables and plots are "
+                                "counted against that point's own truth; the soft-shadow table scores the same "
+                                "verdicts (lit 1, shadowed 0, uncertain 0.5) against the area truth.");
     enum sl_err e = SL_OK;
     if (s->moderno) {
         sl_report_doc_heading(doc, 3, NULL, "%s: tables in Moderno 2011's layout", s->name);

@@ -138,7 +138,7 @@ static void lightfit_point_occluders_inside(void **st)
         sl_light_fit(&f.scene, &v, &fr.box);
         assert_true(fr.box.persp);
         assert_int_equal(fr.box.n_receivers, v.n_pfl);
-        assert_int_equal(fr.box.n_straddling, 0);
+        assert_int_equal(fr.box.n_unmapped, 0);
         assert_true(fr.box.lo[2] > 0.0f && fr.box.lo[2] < fr.box.hi[2]);
         fr.size = 1024;
         fr.depth_range = fr.box.hi[2] - fr.box.lo[2];

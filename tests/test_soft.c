@@ -2,8 +2,12 @@
  * soft::* — scenes with an area light through the driver: the area truth
  * once per view (counted), no hard-shadow pass, the soft figures adding up,
  * the hard-shadow approximation (hard_point) scored against the area truth,
- * determinism; and a scene without an area light never pays for a soft pass.
+ * determinism; a scene without an area light never pays for a soft pass;
+ * and the area truths' cache: read back bit for bit, keyed by samples and
+ * seed, damaged files refused, off when asked.
  */
+#define _XOPEN_SOURCE 700
+#include <dirent.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -11,6 +15,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
 #include "config.h"
@@ -340,6 +346,234 @@ static void soft_none_without_area_light(void **st)
     sl_run_result_free(&r);
 }
 
+/* Every figure of two runs' cells, hard and soft, bit for bit (timings aside). */
+static void assert_same_figures(const struct sl_run_result *a, const struct sl_run_result *b)
+{
+    assert_int_equal(a->ncells, b->ncells);
+    for (int i = 0; i < a->ncells; i++) {
+        const struct sl_cell *x = &a->cells[i], *y = &b->cells[i];
+        assert_memory_equal(x->soft.n, y->soft.n, sizeof x->soft.n);
+        assert_memory_equal(x->soft.pct, y->soft.pct, sizeof x->soft.pct);
+        assert_int_equal(x->fig.nregions, y->fig.nregions);
+        assert_int_equal(x->fig.background, y->fig.background);
+        assert_int_equal(x->fig.wrong_image, y->fig.wrong_image);
+        assert_memory_equal(x->fig.r, y->fig.r, sizeof x->fig.r);
+        assert_memory_equal(x->pattern, y->pattern, sizeof x->pattern);
+        assert_int_equal(x->n_truth_lit, y->n_truth_lit);
+        assert_int_equal(x->n_truth_shadow, y->n_truth_shadow);
+        assert_int_equal(x->n_pfl, y->n_pfl);
+        assert_int_equal(x->cost.rays, y->cost.rays);
+        assert_int_equal(x->cost.lookups, y->cost.lookups);
+        assert_int_equal(x->violations, y->violations);
+        assert_int_equal(x->nonfinite, y->nonfinite);
+    }
+}
+
+/* Files in `dir` whose name starts with `prefix` and ends in .bin (no temporaries). */
+static int count_files(const char *dir, const char *prefix)
+{
+    DIR *dp = opendir(dir);
+    if (!dp)
+        return -1;
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(dp))) {
+        size_t l = strlen(e->d_name);
+        n += strncmp(e->d_name, prefix, strlen(prefix)) == 0 && l > 4 && strcmp(e->d_name + l - 4, ".bin") == 0;
+    }
+    closedir(dp);
+    return n;
+}
+
+/* The one file in `dir` starting with `prefix`, into path; its size. */
+static long one_file(const char *dir, const char *prefix, char *path, size_t size)
+{
+    DIR *dp = opendir(dir);
+    assert_non_null(dp);
+    struct dirent *e;
+    long len = -1;
+    while ((e = readdir(dp)))
+        if (strncmp(e->d_name, prefix, strlen(prefix)) == 0) {
+            snprintf(path, size, "%s/%s", dir, e->d_name);
+            struct stat sb;
+            assert_int_equal(stat(path, &sb), 0);
+            len = (long)sb.st_size;
+            break;
+        }
+    closedir(dp);
+    assert_true(len > 0);
+    return len;
+}
+
+static const char *cache_cfg =
+    "scenes: [{scene: curtis_box}]\nviewports: [{width: 64, height: 48}]\nmap_sizes: [256]\n"
+    "methods:\n  - {label: point, method: hard_point}\n  - {label: nsm, method: nsm}\n"
+    "  - {label: mc, method: soft_mc, grid: 2}\narea_samples: 4\nseed: 3\n";
+
+/* An area light's truths (visible fraction, standard error, the centre's
+ * hard truth) come from the cache on a second run, counted, with every
+ * figure as traced; another sample count or seed is another file; a file
+ * cut short or with a flipped byte is refused, recomputed and replaced. */
+static void soft_truth_cache(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("cache.yaml", cache_cfg, &c);
+    char cache[300], cmd[400];
+    snprintf(cache, sizeof cache, "%s/softcache", sl_test_dir);
+    snprintf(cmd, sizeof cmd, "mkdir -p %s", cache);
+    assert_int_equal(system(cmd), 0);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = cache};
+    struct sl_run_result a, b;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &o, &a, &d), SL_OK);
+    assert_int_equal(a.ncells, 2 * 3);
+    assert_int_equal(a.passes.soft_truths, 2);
+    assert_int_equal(a.passes.truths_traced, 2);
+    assert_int_equal(a.passes.truths_cached, 0);
+    assert_int_equal(a.passes.soft_truths_cached, 0);
+    assert_int_equal(a.passes.cache_rejected, 0);
+    assert_int_equal(count_files(cache, "area-"), 2);     /* one per view */
+    assert_int_equal(count_files(cache, "truth-"), 0);    /* the centre's truth lives in the area file */
+    for (int i = 0; i < a.ncells; i++) {
+        assert_int_equal(a.cells[i].truth_cached, 0);
+        assert_true(a.cells[i].truth_rays > 0);
+    }
+
+    /* the same run again: read, not traced, and the same to the bit */
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.truths_traced, 0);
+    assert_int_equal(b.passes.soft_truths, 0);
+    assert_int_equal(b.passes.truths_cached, 2);
+    assert_int_equal(b.passes.soft_truths_cached, 2);
+    assert_int_equal(b.passes.cache_rejected, 0);
+    assert_int_equal(b.passes.gbuffers, 2);               /* methods still need the G-buffer */
+    for (int i = 0; i < b.ncells; i++) {
+        assert_int_equal(b.cells[i].truth_cached, 1);
+        assert_int_equal(b.cells[i].truth_rays, 0);
+    }
+    assert_same_figures(&a, &b);
+    sl_run_result_free(&b);
+
+    /* another sample count, another seed: other truths, other files */
+    c.area_samples = 6;
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.soft_truths, 2);
+    assert_int_equal(b.passes.truths_cached, 0);
+    assert_int_equal(b.passes.cache_rejected, 0);
+    int moved = 0;
+    for (int i = 0; i < b.ncells; i++)
+        moved += a.cells[i].soft.pct[SL_SFIG_soft_mae] != b.cells[i].soft.pct[SL_SFIG_soft_mae];
+    assert_true(moved > 0);
+    sl_run_result_free(&b);
+    c.area_samples = 4;
+    c.seed = 4;
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.soft_truths, 2);
+    assert_int_equal(b.passes.truths_cached, 0);
+    assert_int_equal(b.passes.cache_rejected, 0);
+    sl_run_result_free(&b);
+    assert_int_equal(count_files(cache, "area-"), 6);
+    /* the first files are still there and still read */
+    c.seed = 3;
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.soft_truths_cached, 2);
+    assert_same_figures(&a, &b);
+    sl_run_result_free(&b);
+
+    /* a file cut short: refused, traced again, rewritten whole */
+    snprintf(cmd, sizeof cmd, "rm -rf %s && mkdir -p %s", cache, cache);
+    assert_int_equal(system(cmd), 0);
+    o.last = 3;                                           /* the first view's cells */
+    sl_run_result_free(&a);
+    assert_int_equal(sl_run(&c, &o, &a, &d), SL_OK);
+    assert_int_equal(a.passes.soft_truths, 1);
+    char path[600];
+    long len = one_file(cache, "area-", path, sizeof path);
+    assert_int_equal(truncate(path, len - 100), 0);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.cache_rejected, 1);
+    assert_int_equal(b.passes.soft_truths, 1);
+    assert_int_equal(b.passes.truths_cached, 0);
+    assert_same_figures(&a, &b);
+    sl_run_result_free(&b);
+    assert_int_equal(one_file(cache, "area-", path, sizeof path), len);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.soft_truths_cached, 1);
+    sl_run_result_free(&b);
+
+    /* one byte of the payload flipped, the length unchanged: the checksum refuses it */
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    assert_int_equal(fseek(f, len / 2, SEEK_SET), 0);
+    int byte = fgetc(f);
+    assert_int_equal(fseek(f, len / 2, SEEK_SET), 0);
+    fputc(byte ^ 0x10, f);
+    fclose(f);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.cache_rejected, 1);
+    assert_int_equal(b.passes.soft_truths, 1);
+    assert_same_figures(&a, &b);
+    sl_run_result_free(&b);
+
+    /* a foreign file of the right length under the name: refused */
+    f = fopen(path, "wb");
+    assert_non_null(f);
+    for (long i = 0; i < len; i++)
+        fputc((int)(i * 7 & 0xff), f);
+    fclose(f);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.cache_rejected, 1);
+    assert_int_equal(b.passes.soft_truths, 1);
+    assert_same_figures(&a, &b);
+    sl_run_result_free(&b);
+    sl_run_result_free(&a);
+}
+
+/* No cache ("" — what `run --no-cache` passes): a filled cache is not read
+ * and nothing is written, neither to the default folder. */
+static void soft_truth_no_cache(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("nocache.yaml", cache_cfg, &c);
+    char root[300], cache[400], cmd[500];
+    snprintf(root, sizeof root, "%s/nocache", sl_test_dir);
+    snprintf(cache, sizeof cache, "%s/cache", root);
+    /* the default folder, <out_root>/cache, filled by a run that writes files */
+    struct sl_run_opts w = {.out_root = root, .write_files = 1, .store = ""};
+    struct sl_run_result a, b;
+    struct sl_diag d;
+    assert_int_equal(sl_run(&c, &w, &a, &d), SL_OK);
+    assert_int_equal(a.passes.soft_truths, 2);
+    assert_int_equal(count_files(cache, "area-"), 2);
+    sl_run_result_free(&a);
+    assert_int_equal(sl_run(&c, &w, &a, &d), SL_OK);
+    assert_int_equal(a.passes.soft_truths_cached, 2);
+    sl_run_result_free(&a);
+    /* the same with the cache off: traced, although the files are there */
+    w.cache_dir = "";
+    assert_int_equal(sl_run(&c, &w, &b, &d), SL_OK);
+    assert_int_equal(b.passes.soft_truths, 2);
+    assert_int_equal(b.passes.truths_cached, 0);
+    assert_int_equal(b.passes.soft_truths_cached, 0);
+    assert_int_equal(b.passes.cache_rejected, 0);
+    sl_run_result_free(&b);
+    /* and an empty output root gets no cache folder */
+    snprintf(cmd, sizeof cmd, "rm -rf %s", cache);
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(sl_run(&c, &w, &b, &d), SL_OK);
+    assert_int_equal(b.passes.soft_truths, 2);
+    assert_int_equal(count_files(cache, ""), -1);          /* no folder */
+    sl_run_result_free(&b);
+    /* compute-only runs have no cache by default either */
+    struct sl_run_opts o = {.write_files = 0, .store = ""};
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.soft_truths, 2);
+    assert_int_equal(b.passes.truths_cached, 0);
+    sl_run_result_free(&b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -349,6 +583,8 @@ int main(void)
         SL_CASE(soft, point_map),
         SL_CASE(soft, hard_methods),
         SL_CASE(soft, none_without_area_light),
+        SL_CASE(soft, truth_cache),
+        SL_CASE(soft, truth_no_cache),
     };
     return cmocka_run_group_tests(tests, sl_test_setup, sl_test_teardown);
 }

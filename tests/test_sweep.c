@@ -3,12 +3,15 @@
  * computed once (counted); the truth cache; --cells and --resume against an
  * uninterrupted run.
  */
+#define _XOPEN_SOURCE 700
+#include <dirent.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
 #include "config.h"
@@ -195,7 +198,8 @@ static void sweep_repetitions(void **st)
     sl_run_result_free(&b);
 }
 
-/* A second run reads every truth from the cache, and gets the same figures. */
+/* A second run reads every truth from the cache, and gets the same figures;
+ * a damaged or older file is refused and traced again. */
 static void sweep_truth_cache(void **st)
 {
     (void)st;
@@ -220,11 +224,47 @@ static void sweep_truth_cache(void **st)
         assert_int_equal(a.cells[i].n_truth_shadow, b.cells[i].n_truth_shadow);
         assert_memory_equal(a.cells[i].fig.r, b.cells[i].fig.r, sizeof a.cells[i].fig.r);
     }
+    /* a file cut short, and one in the older layout (magic, size, truth
+     * with no checksum): both refused and traced again, same figures */
+    char path[700];
+    DIR *dp = opendir(cache);
+    assert_non_null(dp);
+    int files = 0;
+    for (struct dirent *e; (e = readdir(dp));)
+        if (strncmp(e->d_name, "truth-", 6) == 0) {
+            snprintf(path, sizeof path, "%s/%s", cache, e->d_name);
+            if (files == 0) {
+                assert_int_equal(truncate(path, 48 + 128 * 96 - 1), 0);
+            } else if (files == 1) {
+                FILE *f = fopen(path, "wb");
+                assert_non_null(f);
+                const int32_t wh[2] = {128, 96};
+                fwrite("SLTRUTH1", 1, 8, f);
+                fwrite(wh, sizeof wh, 1, f);
+                for (int i = 0; i < 128 * 96; i++)
+                    fputc(0, f);
+                fclose(f);
+            }
+            files++;
+        }
+    closedir(dp);
+    assert_int_equal(files, 3);
+    sl_run_result_free(&b);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.cache_rejected, 2);
+    assert_int_equal(b.passes.truths_traced, 2);
+    assert_int_equal(b.passes.truths_cached, 1);
+    for (int i = 0; i < a.ncells; i++)
+        assert_memory_equal(a.cells[i].fig.r, b.cells[i].fig.r, sizeof a.cells[i].fig.r);
+    sl_run_result_free(&b);
+    assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
+    assert_int_equal(b.passes.truths_cached, 3);          /* rewritten whole */
     /* a different viewport is a different truth: traced, not read */
     c.viewport_w[0] = 120;
     sl_run_result_free(&b);
     assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
     assert_int_equal(b.passes.truths_traced, 3);
+    assert_int_equal(b.passes.cache_rejected, 0);
     sl_run_result_free(&a);
     sl_run_result_free(&b);
 }

@@ -310,6 +310,38 @@ static void table_summary_rows(void **st)
     free(buf);
 }
 
+/* A hard method's cell under an area light has soft and hard figures: its
+ * soft table comes first, then its hard one against the light's centre; the
+ * CSV has both sets of rows and one background row; LaTeX labels differ. */
+static void table_soft_and_hard(void **st)
+{
+    (void)st;
+    struct sl_table_cell c[2] = {make("side", 1024, 1000, "h/c/i"), make("side", 512, 100, "h/c/i")};
+    for (int i = 0; i < 2; i++) {
+        c[i].has_soft = 1;
+        for (int k = 0; k < SL_SFIG_COUNT; k++) {
+            c[i].soft.n[k] = 300u + (uint64_t)k;
+            c[i].soft.pct[k] = 1.5 + k;
+        }
+    }
+    char *md = render(SL_TABLE_MD, NULL, c, 2, SL_OK);
+    assert_int_equal(count_of(md, "## prim_s / side / 64x32 / nsm_a"), 2);
+    assert_before(md, "Area light: the visible fraction", "truth of the area light's centre: 44 PFL lit");
+    assert_int_equal(count_of(md, "| soft_mae |"), 1);
+    assert_int_equal(count_of(md, "| wrong |"), 1);
+    free(md);
+    char *csv = render(SL_TABLE_CSV, NULL, c, 2, SL_OK);
+    assert_int_equal(count_of(csv, ",image,background,"), 2);             /* one per cell */
+    assert_int_equal(count_of(csv, ",image,soft_mae,"), 2);
+    assert_int_equal(count_of(csv, ",image,wrong,"), 2);
+    assert_int_equal(count_of(csv, ",2px,wrong,"), 2);
+    free(csv);
+    char *tex = render(SL_TABLE_LATEX, NULL, c, 2, SL_OK);
+    assert_int_equal(count_of(tex, "\\label{tab:prim-s-side-64x32-nsm-a}"), 1);
+    assert_int_equal(count_of(tex, "\\label{tab:prim-s-side-64x32-nsm-a-point}"), 1);
+    free(tex);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -320,6 +352,7 @@ int main(void)
         SL_CASE(table, latex_booktabs),
         SL_CASE(table, duplicate_map_refused),
         SL_CASE(table, empty_and_formats),
+        SL_CASE(table, soft_and_hard),
     };
     return cmocka_run_group_tests_name("table", tests, NULL, NULL);
 }

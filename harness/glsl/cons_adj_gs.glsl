@@ -14,6 +14,8 @@ layout(triangles_adjacency) in;
 layout(triangle_strip, max_vertices = 3) out;
 uniform float u_size;
 uniform uint u_first;
+uniform float u_wmin;          // a point light's frustum: least clip w kept
+uniform float u_guard;         // ... and largest |NDC x, y| kept; 0: keep all (orthographic)
 flat out vec3 g_v0;
 flat out vec3 g_v1;
 flat out vec3 g_v2;
@@ -41,16 +43,23 @@ flat out uint g_flags;     // bits 0, 1: the triangle's |area| > 1e-12, >= 1e-12
 // directional light's orthographic frustum; in a point light's perspective
 // one, window depth z / w is still affine across the triangle in window
 // space, so the depth planes of cons_setup.glsl hold as they are.
+bool unmapped(vec4 c)
+{
+    return u_guard > 0.0 && (c.w < u_wmin || abs(c.x / c.w) > u_guard || abs(c.y / c.w) > u_guard);
+}
+
 vec3 win(vec4 c) { return vec3((c.xy / c.w * 0.5 + 0.5) * u_size, c.z / c.w); }
 
 float area2(vec3 a, vec3 b, vec3 c) { return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y); }
 
 void main()
 {
-    // a vertex at or behind a point light's plane has no window position:
-    // the triangle is left out (it only loses proofs of shadow), and such a
-    // neighbour counts as missing
-    if (gl_in[0].gl_Position.w <= 0.0 || gl_in[2].gl_Position.w <= 0.0 || gl_in[4].gl_Position.w <= 0.0)
+    // a point light's triangles too close to its plane (or behind it) or
+    // beyond the guard band across it have no precise window position: they
+    // are left out (lightfit.c lists them for the methods to test)
+    // (a lost triangle only loses proofs of shadow; such a neighbour counts
+    // as missing)
+    if (unmapped(gl_in[0].gl_Position) || unmapped(gl_in[2].gl_Position) || unmapped(gl_in[4].gl_Position))
         return;
     vec3 v[3] = vec3[3](win(gl_in[0].gl_Position), win(gl_in[2].gl_Position), win(gl_in[4].gl_Position));
     vec3 o[3] = vec3[3](win(gl_in[1].gl_Position), win(gl_in[3].gl_Position), win(gl_in[5].gl_Position));
@@ -67,7 +76,7 @@ void main()
     uint keep = 0u;
     for (int i = 0; i < 3; i++) {
         vec3 a = v[i], b = v[(i + 1) % 3];
-        bool exists = o[i] != a && o[i] != b && gl_in[2 * i + 1].gl_Position.w > 0.0;
+        bool exists = o[i] != a && o[i] != b && !unmapped(gl_in[2 * i + 1].gl_Position);
         // the neighbour winds b -> a -> opposite
         if (away && exists && area2(b, a, o[i]) < 0.0)
             keep |= 1u << i;

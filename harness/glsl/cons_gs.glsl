@@ -22,6 +22,8 @@ layout(triangle_strip, max_vertices = 4) out;
 uniform float u_size;          // map size in texels
 uniform float u_lambda;        // enlargement, texels
 uniform uint u_first;          // scene index of this draw's first triangle
+uniform float u_wmin;          // a point light's frustum: least clip w kept
+uniform float u_guard;         // ... and largest |NDC x, y| kept; 0: keep all (orthographic)
 flat out vec3 g_v0;            // window-space vertices: x, y in texels, z depth
 flat out vec3 g_v1;
 flat out vec3 g_v2;
@@ -36,6 +38,11 @@ flat out uint g_flags;         // bit 0: |area| > 1e-12 (the plane is used); bit
 // directional light's orthographic frustum; in a point light's perspective
 // one, window depth z / w is still affine across the triangle in window
 // space, so the depth planes of cons_setup.glsl hold as they are.
+bool unmapped(vec4 c)
+{
+    return u_guard > 0.0 && (c.w < u_wmin || abs(c.x / c.w) > u_guard || abs(c.y / c.w) > u_guard);
+}
+
 vec3 win(vec4 c) { return vec3((c.xy / c.w * 0.5 + 0.5) * u_size, c.z / c.w); }
 
 void emit(vec2 p, float z)
@@ -46,9 +53,10 @@ void emit(vec2 p, float z)
 
 void main()
 {
-    // a vertex at or behind a point light's plane has no window position:
-    // the triangle is left out (lightfit.c counts such casters)
-    if (gl_in[0].gl_Position.w <= 0.0 || gl_in[1].gl_Position.w <= 0.0 || gl_in[2].gl_Position.w <= 0.0)
+    // a point light's triangles too close to its plane (or behind it) or
+    // beyond the guard band across it have no precise window position: they
+    // are left out (lightfit.c lists them for the methods to test)
+    if (unmapped(gl_in[0].gl_Position) || unmapped(gl_in[1].gl_Position) || unmapped(gl_in[2].gl_Position))
         return;
     vec3 v[3] = vec3[3](win(gl_in[0].gl_Position), win(gl_in[1].gl_Position), win(gl_in[2].gl_Position));
     g_v0 = v[0];
