@@ -101,7 +101,7 @@ static inline void sl_frame_project(const struct sl_light_frame *f, const float 
 
 /* The unit direction from p toward the light, and how far a shadow ray from
  * p may look (INFINITY for a directional light). For a point light the ray
- * stops short of the light by its own tnear (truth.h, sl_light_ray_to),
+ * stops short of the light by its own tnear (sl_point_ray, arealight.h),
  * computed here exactly as the truth computes it. */
 void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir[3], float *tmax);
 
