@@ -765,6 +765,20 @@ static uint64_t layer_bad(const struct sl_depth_layer *l, int size)
     return n;
 }
 
+/* The light frustum of the view (lightfit.h), timed; a point light's says
+ * what it could not map. */
+static void fit_light(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k)
+{
+    double t0 = sl_now();
+    sl_light_fit(&x->scene, &x->view, &x->box);
+    x->vms.fit = 1e3 * (sl_now() - t0);
+    if (x->box.n_outside || x->box.n_unmapped)
+        fprintf(stderr, "shadowlab: note: %s/%s: the point frustum of the area light's centre leaves %u PFL "
+                        "pixel(s) outside its map (the exact methods trace them) and %u triangle(s) out of the "
+                        "conservative layers (tested on the CPU instead)\n",
+                x->scene.name, c->scenes[k->scene].viewpoints[k->vp], x->box.n_outside, x->box.n_unmapped);
+}
+
 /* The truths of a view under an area light: the visible fraction of the
  * light per pixel from the config's samples and seed, and the hard truth of
  * the point at its centre (one ray per PFL pixel, truth.h), which the
@@ -807,9 +821,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
         if (cache)
             area_cache_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
     }
-    t0 = sl_now();
-    sl_light_fit(&x->scene, &x->view, &x->box);
-    x->vms.fit = 1e3 * (sl_now() - t0);
+    fit_light(x, c, k);
     x->view_bad = view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
@@ -869,9 +881,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         if (cache_dir && cache_dir[0])
             truth_cache_write(cache_dir, key, &x->view);
     }
-    t0 = sl_now();
-    sl_light_fit(&x->scene, &x->view, &x->box);
-    x->vms.fit = 1e3 * (sl_now() - t0);
+    fit_light(x, c, k);
     x->view_bad = view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
