@@ -765,9 +765,10 @@ static uint64_t layer_bad(const struct sl_depth_layer *l, int size)
     return n;
 }
 
-/* The light frustum of the view (lightfit.h), timed; a point light's says
- * what it could not map. */
-static void fit_light(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k)
+/* The view's truth is in place: its light frustum (lightfit.h), timed (a
+ * point light's says what it could not map), its count of bad G-buffer
+ * values, and the key it is kept under. */
+static void view_ready(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k)
 {
     double t0 = sl_now();
     sl_light_fit(&x->scene, &x->view, &x->box);
@@ -777,6 +778,10 @@ static void fit_light(struct run_ctx *x, const struct sl_config *c, const struct
                         "pixel(s) outside its map (the exact methods trace them) and %u triangle(s) out of the "
                         "conservative layers (tested on the CPU instead)\n",
                 x->scene.name, c->scenes[k->scene].viewpoints[k->vp], x->box.n_outside, x->box.n_unmapped);
+    x->view_bad = view_bad(&x->view);
+    x->view_scene = k->scene;
+    x->view_vp = k->vp;
+    x->view_viewport = k->viewport;
 }
 
 /* The truths of a view under an area light: the visible fraction of the
@@ -821,11 +826,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
         if (cache)
             area_cache_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
     }
-    fit_light(x, c, k);
-    x->view_bad = view_bad(&x->view);
-    x->view_scene = k->scene;
-    x->view_vp = k->vp;
-    x->view_viewport = k->viewport;
+    view_ready(x, c, k);
     return SL_OK;
 }
 
@@ -881,11 +882,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         if (cache_dir && cache_dir[0])
             truth_cache_write(cache_dir, key, &x->view);
     }
-    fit_light(x, c, k);
-    x->view_bad = view_bad(&x->view);
-    x->view_scene = k->scene;
-    x->view_vp = k->vp;
-    x->view_viewport = k->viewport;
+    view_ready(x, c, k);
     return SL_OK;
 }
 
@@ -1430,9 +1427,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         if ((e = ensure_scene(&x, c, k.scene, res, d)) ||
             (e = ensure_buffers(&x, c->viewport_w[k.viewport], c->viewport_h[k.viewport], d)) ||
-            (e = ensure_view(&x, c, &k, cache, res, d)) ||
-            (e = ensure_frame(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d)) ||
-            (x.area && (e = ensure_soft(&x, c, &k, group_needs(c, idx, last, st, o->resume), res, d))))
+            (e = ensure_view(&x, c, &k, cache, res, d)))
+            break;
+        const unsigned needs = group_needs(c, idx, last, st, o->resume);
+        if ((e = ensure_frame(&x, c, &k, needs, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))))
             break;
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;

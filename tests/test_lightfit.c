@@ -24,6 +24,28 @@ static int inside(const float q[3])
     return q[0] >= 0.0f && q[0] <= 1.0f && q[1] >= 0.0f && q[1] <= 1.0f && q[2] >= 0.0f && q[2] <= 1.0f;
 }
 
+/* The world point where the ray from p along the unit dir first meets a
+ * triangle other than the pixel's own (own = triangle + 1) before tmax:
+ * brute force in double; 0 if none. */
+static int nearest_hit(const struct sl_scene *s, const float p[3], const double dir[3], uint32_t own, double tmax,
+                       float hit[3])
+{
+    double o[3] = {p[0], p[1], p[2]}, best = INFINITY;
+    for (uint32_t t = 0; t < s->nt; t++) {
+        double a[3], b[3], c[3], th;
+        for (int k = 0; k < 3; k++) {
+            a[k] = s->pos[3 * s->idx[3 * t] + k];
+            b[k] = s->pos[3 * s->idx[3 * t + 1] + k];
+            c[k] = s->pos[3 * s->idx[3 * t + 2] + k];
+        }
+        if (t + 1 != own && sl_ray_tri_d(o, dir, a, b, c, 1e-4, &th) && th < best && th < tmax)
+            best = th;
+    }
+    for (int k = 0; k < 3; k++)
+        hit[k] = (float)(o[k] + best * dir[k]);
+    return isfinite(best);
+}
+
 /* A hand-made view: four receivers on y = 0, light straight down. A triangle
  * hanging over them must be inside, one off to the side must not count as a
  * caster, one below the receivers must not move the near plane. */
@@ -94,21 +116,9 @@ static void lightfit_primitives_occluders_inside(void **st)
             assert_true(inside(q));
             if (v.truth[i] != SL_T_SHADOW)
                 continue;
-            const float *p = v.pos + 3 * i;
-            double o[3] = {p[0], p[1], p[2]}, dir[3] = {-L[0], -L[1], -L[2]}, best = INFINITY;
-            for (uint32_t t = 0; t < f.scene.nt; t++) {
-                double a[3], b[3], c[3], th;
-                for (int k = 0; k < 3; k++) {
-                    a[k] = f.scene.pos[3 * f.scene.idx[3 * t] + k];
-                    b[k] = f.scene.pos[3 * f.scene.idx[3 * t + 1] + k];
-                    c[k] = f.scene.pos[3 * f.scene.idx[3 * t + 2] + k];
-                }
-                if (t + 1 != v.tri[i] && sl_ray_tri_d(o, dir, a, b, c, 1e-4, &th) && th < best)
-                    best = th;
-            }
-            assert_true(isfinite(best));
-            float hit[3] = {(float)(o[0] + best * dir[0]), (float)(o[1] + best * dir[1]),
-                            (float)(o[2] + best * dir[2])};
+            const double dir[3] = {-L[0], -L[1], -L[2]};
+            float hit[3];
+            assert_true(nearest_hit(&f.scene, v.pos + 3 * i, dir, v.tri[i], INFINITY, hit));
             project(&box, hit, q);
             assert_true(inside(q));
             checked++;
@@ -160,27 +170,16 @@ static void lightfit_point_occluders_inside(void **st)
                         1e-3 * sl_frame_world_per_depth(&fr, q[2]));
             if (v.truth[i] != SL_T_SHADOW)
                 continue;
-            double o[3] = {p[0], p[1], p[2]}, dir[3], len = 0.0, best = INFINITY;
+            double dir[3], len = 0.0;
             for (int k = 0; k < 3; k++) {
-                dir[k] = (double)c[k] - o[k];
+                dir[k] = (double)c[k] - p[k];
                 len += dir[k] * dir[k];
             }
             len = sqrt(len);
             for (int k = 0; k < 3; k++)
                 dir[k] /= len;
-            for (uint32_t t = 0; t < f.scene.nt; t++) {
-                double a[3], b[3], cc[3], th;
-                for (int k = 0; k < 3; k++) {
-                    a[k] = f.scene.pos[3 * f.scene.idx[3 * t] + k];
-                    b[k] = f.scene.pos[3 * f.scene.idx[3 * t + 1] + k];
-                    cc[k] = f.scene.pos[3 * f.scene.idx[3 * t + 2] + k];
-                }
-                if (t + 1 != v.tri[i] && sl_ray_tri_d(o, dir, a, b, cc, 1e-4, &th) && th < best && th < len)
-                    best = th;
-            }
-            assert_true(isfinite(best));
-            float hit[3] = {(float)(o[0] + best * dir[0]), (float)(o[1] + best * dir[1]),
-                            (float)(o[2] + best * dir[2])};
+            float hit[3];
+            assert_true(nearest_hit(&f.scene, p, dir, v.tri[i], len, hit));
             project(&fr.box, hit, q);
             assert_true(inside(q));
             checked++;

@@ -22,6 +22,29 @@
 #include "config.h"
 #include "run.h"
 
+/* Every figure of two runs' cells, hard and soft, bit for bit (timings aside). */
+static void assert_same_figures(const struct sl_run_result *a, const struct sl_run_result *b)
+{
+    assert_int_equal(a->ncells, b->ncells);
+    for (int i = 0; i < a->ncells; i++) {
+        const struct sl_cell *x = &a->cells[i], *y = &b->cells[i];
+        assert_memory_equal(x->soft.n, y->soft.n, sizeof x->soft.n);
+        assert_memory_equal(x->soft.pct, y->soft.pct, sizeof x->soft.pct);
+        assert_int_equal(x->fig.nregions, y->fig.nregions);
+        assert_int_equal(x->fig.background, y->fig.background);
+        assert_int_equal(x->fig.wrong_image, y->fig.wrong_image);
+        assert_memory_equal(x->fig.r, y->fig.r, sizeof x->fig.r);
+        assert_memory_equal(x->pattern, y->pattern, sizeof x->pattern);
+        assert_int_equal(x->n_truth_lit, y->n_truth_lit);
+        assert_int_equal(x->n_truth_shadow, y->n_truth_shadow);
+        assert_int_equal(x->n_pfl, y->n_pfl);
+        assert_int_equal(x->cost.rays, y->cost.rays);
+        assert_int_equal(x->cost.lookups, y->cost.lookups);
+        assert_int_equal(x->violations, y->violations);
+        assert_int_equal(x->nonfinite, y->nonfinite);
+    }
+}
+
 static const char *soft_cfg =
     "scenes: [{scene: curtis_box}]\nviewports: [{width: 128, height: 96}]\nmap_sizes: [512, 1024]\n"
     "methods: [{label: point, method: hard_point}]\narea_samples: 8\n";
@@ -64,10 +87,7 @@ static void soft_driver(void **st)
     }
     /* the same again, bit for bit */
     assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
-    for (int i = 0; i < a.ncells; i++) {
-        assert_memory_equal(a.cells[i].soft.n, b.cells[i].soft.n, sizeof a.cells[i].soft.n);
-        assert_memory_equal(a.cells[i].soft.pct, b.cells[i].soft.pct, sizeof a.cells[i].soft.pct);
-    }
+    assert_same_figures(&a, &b);
     sl_run_result_free(&a);
     sl_run_result_free(&b);
 }
@@ -111,8 +131,7 @@ static void soft_mc_driver(void **st)
         assert_true(cl[1].cost.rays > 0 && cl[1].cost.lookups > 0);
     }
     assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
-    for (int i = 0; i < a.ncells; i++)
-        assert_memory_equal(a.cells[i].soft.pct, b.cells[i].soft.pct, sizeof a.cells[i].soft.pct);
+    assert_same_figures(&a, &b);
     sl_run_result_free(&b);
     /* another seed moves the samples of both the truth and soft_mc */
     c.seed = 7;
@@ -197,17 +216,11 @@ static void soft_three_layers(void **st)
     assert_int_equal(wuson_better, 2);
     /* bit for bit: again, and on one thread */
     assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
-    for (int i = 0; i < a.ncells; i++) {
-        assert_memory_equal(a.cells[i].soft.n, b.cells[i].soft.n, sizeof a.cells[i].soft.n);
-        assert_memory_equal(a.cells[i].soft.pct, b.cells[i].soft.pct, sizeof a.cells[i].soft.pct);
-    }
+    assert_same_figures(&a, &b);
     sl_run_result_free(&b);
     c.threads = 1;
     assert_int_equal(sl_run(&c, &o, &b, &d), SL_OK);
-    for (int i = 0; i < a.ncells; i++) {
-        assert_memory_equal(a.cells[i].soft.n, b.cells[i].soft.n, sizeof a.cells[i].soft.n);
-        assert_memory_equal(a.cells[i].soft.pct, b.cells[i].soft.pct, sizeof a.cells[i].soft.pct);
-    }
+    assert_same_figures(&a, &b);
     sl_run_result_free(&a);
     sl_run_result_free(&b);
 }
@@ -344,29 +357,6 @@ static void soft_none_without_area_light(void **st)
     assert_int_equal(r.passes.truths_traced, 1);
     assert_false(r.cells[0].has_soft);
     sl_run_result_free(&r);
-}
-
-/* Every figure of two runs' cells, hard and soft, bit for bit (timings aside). */
-static void assert_same_figures(const struct sl_run_result *a, const struct sl_run_result *b)
-{
-    assert_int_equal(a->ncells, b->ncells);
-    for (int i = 0; i < a->ncells; i++) {
-        const struct sl_cell *x = &a->cells[i], *y = &b->cells[i];
-        assert_memory_equal(x->soft.n, y->soft.n, sizeof x->soft.n);
-        assert_memory_equal(x->soft.pct, y->soft.pct, sizeof x->soft.pct);
-        assert_int_equal(x->fig.nregions, y->fig.nregions);
-        assert_int_equal(x->fig.background, y->fig.background);
-        assert_int_equal(x->fig.wrong_image, y->fig.wrong_image);
-        assert_memory_equal(x->fig.r, y->fig.r, sizeof x->fig.r);
-        assert_memory_equal(x->pattern, y->pattern, sizeof x->pattern);
-        assert_int_equal(x->n_truth_lit, y->n_truth_lit);
-        assert_int_equal(x->n_truth_shadow, y->n_truth_shadow);
-        assert_int_equal(x->n_pfl, y->n_pfl);
-        assert_int_equal(x->cost.rays, y->cost.rays);
-        assert_int_equal(x->cost.lookups, y->cost.lookups);
-        assert_int_equal(x->violations, y->violations);
-        assert_int_equal(x->nonfinite, y->nonfinite);
-    }
 }
 
 /* Files in `dir` whose name starts with `prefix` and ends in .bin (no temporaries). */
