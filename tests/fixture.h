@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "scenefile.h"
 #include "gbuffer.h"
 #include "glctx.h"
 #include "truth.h"

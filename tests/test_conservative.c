@@ -15,6 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include "scenefile.h"
 #include "sl_test.h"
 #include "adjacency.h"
 #include "config.h"

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "gen.h"
 #include "adjacency.h"
 #include "meshio.h"
 

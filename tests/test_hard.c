@@ -24,6 +24,7 @@
 #include <string.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include "scenefile.h"
 #include "sl_test.h"
 #include "config.h"
 #include "fixture.h"

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "gen.h"
 #include "fixture.h"
 #include "lightfit.h"
 #include "raytri.h"

@@ -17,6 +17,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include "sl_test.h"
+#include "gen.h"
 #include "adjacency.h"
 #include "meshio.h"
 

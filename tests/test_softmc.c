@@ -25,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
+#include "scenefile.h"
 #include "sl_test.h"
 #include "arealight.h"
 #include "gbuffer.h"

@@ -80,32 +80,6 @@ struct sl_mesh {
     int       oom;   /* set when an append failed; checked once at the end */
 };
 
-uint32_t sl_mesh_vertex(struct sl_mesh *m, float x, float y, float z);
-void     sl_mesh_tri(struct sl_mesh *m, uint32_t a, uint32_t b, uint32_t c);
-void     sl_mesh_free(struct sl_mesh *m);
-
-/* Procedural generators (gen.c). Every mesh is closed unless it is a plane;
- * front faces are counter-clockwise seen from outside. */
-void sl_gen_plane(struct sl_mesh *m, float cx, float y, float cz, float size, int grid);
-void sl_gen_sphere(struct sl_mesh *m, float cx, float cy, float cz, float r, int slices, int stacks);
-void sl_gen_torus(struct sl_mesh *m, float cx, float cy, float cz, float R, float r, int nu, int nv);
-void sl_gen_cylinder(struct sl_mesh *m, float cx, float y0, float cz, float r, float h, int n);
-void sl_gen_pyramid(struct sl_mesh *m, float cx, float y0, float cz, float base, float h);
-void sl_gen_box(struct sl_mesh *m, const float lo[3], const float hi[3]);
-/* Props of the Bench, Trees and Flowers scenes (metres; gen.c says each
- * one's shape). Triangle counts: cone 2n; tree 1024 (64 trunk + 960 open
- * leaves, two-sided); flowers 64 * count (tiny, two-sided petals and
- * leaves); bench 240 (20 closed boxes); lamp 172; flower box 28 (one closed
- * hollow solid; returns the soil height y0 + 0.8 h). Seeded ones give the
- * same mesh for the same seed. */
-void  sl_gen_cone(struct sl_mesh *m, float cx, float y0, float cz, float r, float h, int n);
-void  sl_gen_tree(struct sl_mesh *m, float cx, float y0, float cz, float height, uint32_t seed);
-void  sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width, float depth,
-                     int count, uint32_t seed);
-void  sl_gen_bench(struct sl_mesh *m, float cx, float y0, float cz, float length, uint32_t seed);
-void  sl_gen_lamp(struct sl_mesh *m, float cx, float y0, float cz, float height);
-float sl_gen_flower_box(struct sl_mesh *m, float cx, float y0, float cz, float w, float d, float h);
-
 /* The unnormalised normal (b - a) x (c - a) of a triangle in double; returns
  * its length (twice the area), 0 for a zero-area triangle. The scene and the
  * weld share it, so the weld drops exactly the triangles a scene rejects. */
@@ -115,8 +89,6 @@ double sl_tri_normal_d(const float a[3], const float b[3], const float c[3], dou
  * degenerate (zero-area) triangles are rejected with SL_E_SCENE. */
 enum sl_err sl_scene_from_mesh(struct sl_scene *s, const struct sl_mesh *m, struct sl_diag *d);
 
-/* A scene by name (a file in the scenes folder) or by path (scenefile.h). */
-enum sl_err sl_scene_build(const char *ref, struct sl_scene *out, struct sl_diag *d);
 int         sl_scene_find_viewpoint(const struct sl_scene *s, const char *name);
 
 void sl_scene_free(struct sl_scene *s);

@@ -9,7 +9,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "scenefile.h"
 #include "util.h"
 
 void sl_scene_free(struct sl_scene *s)
@@ -71,14 +70,6 @@ enum sl_err sl_scene_from_mesh(struct sl_scene *s, const struct sl_mesh *m, stru
             s->fn[3 * t + k] = (float)(n[k] / len);
     }
     return SL_OK;
-}
-
-enum sl_err sl_scene_build(const char *ref, struct sl_scene *out, struct sl_diag *d)
-{
-    char path[1024];
-    memset(out, 0, sizeof *out);
-    enum sl_err e = sl_scene_resolve(ref, NULL, path, sizeof path, d);
-    return e ? e : sl_scene_load(path, out, d);
 }
 
 int sl_scene_find_viewpoint(const struct sl_scene *s, const char *name)

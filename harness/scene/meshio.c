@@ -17,6 +17,7 @@
  *   only if its double-precision normal has a length > 0 computed exactly as
  *   scene.c computes it, so a welded mesh never fails there for zero area.
  */
+#include "gen.h"
 #include "meshio.h"
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>

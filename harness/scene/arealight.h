@@ -36,6 +36,19 @@ void sl_area_of(const struct sl_light *l, struct sl_area *a);
 /* The point at (u, v) in [0, 1]^2 of the rectangle: c + (u - 1/2) w ex + (v - 1/2) h ey. */
 void sl_area_point(const struct sl_area *a, double u, double v, double out[3]);
 
+/* Distance along the ray (the truth's and every method's) at which shadow rays start: 2^-16 (about 1.5e-5) of
+ * the origin's largest coordinate magnitude, plus 2^-24 absolute. */
+static inline float sl_rt_tnear(const float p[3])
+{
+    /* plain comparisons: fmaxf is a libm call when NaNs must be honoured */
+    float x = p[0] < 0.0f ? -p[0] : p[0];
+    float y = p[1] < 0.0f ? -p[1] : p[1];
+    float z = p[2] < 0.0f ? -p[2] : p[2];
+    float m = x > y ? x : y;
+    m = m > z ? m : z;
+    return m * 0x1p-16f + 0x1p-24f;
+}
+
 /* The shadow ray from p to a point light at c, as every user of a point
  * light casts it (the point truth, hard_point, the methods' sure tests):
  * unit direction (c - p) / |c - p| computed in double, and its end tfar =

@@ -4,7 +4,7 @@
  * outside, and no generator emits a zero-area triangle (pole caps use one
  * vertex per pole, not a ring of coincident ones).
  */
-#include "scene.h"
+#include "gen.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

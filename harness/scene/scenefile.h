@@ -42,6 +42,8 @@ const char *sl_scenes_dir(void);
 enum sl_err sl_scene_resolve(const char *ref, const char *rel_dir, char *path, size_t n,
                              struct sl_diag *d);
 
+/* A scene by name (a file in the scenes folder) or by path (scenefile.h). */
+enum sl_err sl_scene_build(const char *ref, struct sl_scene *out, struct sl_diag *d);
 enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag *d);
 
 /* Scene files in the scenes folder: names (file base names) and

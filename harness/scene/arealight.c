@@ -2,7 +2,6 @@
  * arealight.c — see arealight.h.
  */
 #include "arealight.h"
-#include "truth.h"
 #include <math.h>
 
 static void normalise(double v[3])

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "gen.h"
 #include "meshio.h"
 #include "util.h"
 #include "yamlfile.h"
@@ -747,4 +748,12 @@ int sl_scene_list(char (*names)[64], char (*descr)[160], int max)
             memcpy(td, descr[k], 160); memcpy(descr[k], descr[k - 1], 160); memcpy(descr[k - 1], td, 160);
         }
     return n;
+}
+
+enum sl_err sl_scene_build(const char *ref, struct sl_scene *out, struct sl_diag *d)
+{
+    char path[1024];
+    memset(out, 0, sizeof *out);
+    enum sl_err e = sl_scene_resolve(ref, NULL, path, sizeof path, d);
+    return e ? e : sl_scene_load(path, out, d);
 }

@@ -15,6 +15,7 @@
 #include <embree3/rtcore.h>
 #include "scene.h"
 #include "view.h"
+#include "arealight.h" /* sl_rt_tnear: where the truth's shadow rays start */
 
 struct sl_rt {
     RTCDevice device;
@@ -27,19 +28,6 @@ struct sl_rt {
 enum sl_err sl_rt_build(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
                         struct sl_diag *d);
 void        sl_rt_free(struct sl_rt *rt);
-
-/* Distance along the ray at which shadow rays start: 2^-16 (about 1.5e-5) of
- * the origin's largest coordinate magnitude, plus 2^-24 absolute. */
-static inline float sl_rt_tnear(const float p[3])
-{
-    /* plain comparisons: fmaxf is a libm call when NaNs must be honoured */
-    float x = p[0] < 0.0f ? -p[0] : p[0];
-    float y = p[1] < 0.0f ? -p[1] : p[1];
-    float z = p[2] < 0.0f ? -p[2] : p[2];
-    float m = x > y ? x : y;
-    m = m > z ? m : z;
-    return m * 0x1p-16f + 0x1p-24f;
-}
 
 struct sl_truth_stats {
     uint64_t rays;
