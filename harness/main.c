@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "bench.h"
 #include "check.h"
 #include "config.h"
@@ -131,10 +132,67 @@ static int parse_cells(const char *s, int *a, int *b)
     return 1;
 }
 
+/* What a run says along the way, on stderr: notes, violations and
+ * non-finite values always; progress as one rewritten line on a terminal. */
+struct event_state {
+    int tty;
+};
+
+static void print_event(const struct sl_run_event *ev, void *user)
+{
+    const struct event_state *es = user;
+    const struct sl_config *c = ev->config;
+    const struct sl_cell *cl = ev->cell;
+    switch (ev->kind) {
+    case SL_EVENT_FRUSTUM_NOTE:
+        fprintf(stderr, "shadowlab: note: %s/%s: the point frustum of the area light's centre leaves %u PFL "
+                        "pixel(s) outside its map (the exact methods trace them) and %u triangle(s) out of the "
+                        "conservative layers (tested on the CPU instead)\n",
+                ev->scene, ev->viewpoint, ev->box->n_outside, ev->box->n_unmapped);
+        break;
+    case SL_EVENT_VIOLATIONS: {
+        static const char *const layer_names[SL_LAYER_COUNT] = {"depth", "depth_back", "bgsm", "bgsm2", "sgsm",
+                                                                "sgsm_adj"};
+        fprintf(stderr, "shadowlab: VIOLATION: %s/%s %dx%d map %d '%s': %llu pixel(s) break its exactness\n",
+                cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
+                c->maps[cl->key.map], c->methods[cl->key.method].label, (unsigned long long)cl->violations);
+        for (uint64_t k = 0; k < cl->violations && k < SL_MAX_VIOLATIONS; k++) {
+            const struct sl_violation *o = &cl->violation[k];
+            fprintf(stderr, "  pixel (%d, %d): truth %d, verdict %d, how %d, own triangle %u, texel (%d, %d):",
+                    o->x, o->y, o->truth, o->verdict, o->how, o->own_tri ? o->own_tri - 1 : 0, o->tx, o->ty);
+            for (int l = 0; l < SL_LAYER_COUNT; l++)
+                if (o->layer_tri[l])
+                    fprintf(stderr, " %s triangle %u", layer_names[l], o->layer_tri[l] - 1);
+            fputc('\n', stderr);
+        }
+        break;
+    }
+    case SL_EVENT_NONFINITE:
+        fprintf(stderr, "shadowlab: NON-FINITE: %s/%s map %d '%s': %llu G-buffer or shadow-map value(s) "
+                        "not finite or out of range\n", cl->scene, cl->viewpoint, c->maps[cl->key.map],
+                c->methods[cl->key.method].label, (unsigned long long)cl->nonfinite);
+        break;
+    case SL_EVENT_PROGRESS: {
+        if (!es->tty)
+            break;
+        double el = ev->elapsed_s;
+        double eta = ev->done ? el * (double)(ev->total - ev->done) / (double)ev->done : 0.0;
+        fprintf(stderr, "\r[%d/%d] %s/%s %d² %-16s %6.1fs elapsed, ~%.0fs left   ", ev->done, ev->total, cl->scene,
+                cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label, el, eta);
+        if (ev->done == ev->total)
+            fputc('\n', stderr);
+        fflush(stderr);
+        break;
+    }
+    }
+}
+
 static int cmd_run(int argc, char **argv)
 {
     const char *cfg = NULL;
-    struct sl_run_opts o = {.table_out = stdout, .write_files = 1, .progress = 1};
+    struct sl_run_opts o = {.table_out = stdout, .write_files = 1, .on_event = print_event};
+    struct event_state es = {.tty = isatty(2)};
+    o.user = &es;
     int no_cache = 0;
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)

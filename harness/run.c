@@ -26,6 +26,8 @@
 #include "softmap.h"
 #include "softmc.h"
 #include "softtruth.h"
+#include "cache.h"
+#include "cell.h"
 #include "contour.h"
 #include "gbuffer.h"
 #include "glctx.h"
@@ -39,63 +41,12 @@
 #include "truth.h"
 #include "util.h"
 
-/* Bump when anything that determines the truth changes (tnear, filter, PFL
- * rule), so cached truths of older code are never read. */
-#define SL_TRUTH_VERSION "truth-v1 own-triangle-filter tnear=2^-16|p|+2^-24 face-normal-pfl"
-
 void sl_run_result_free(struct sl_run_result *r)
 {
     if (!r)
         return;
     free(r->cells);
     memset(r, 0, sizeof *r);
-}
-
-static int popcount(unsigned m)
-{
-    int n = 0;
-    for (; m; m &= m - 1)
-        n++;
-    return n;
-}
-
-/* The j-th set bit of mask (j < popcount(mask)). */
-static int nth_bit(unsigned mask, int j)
-{
-    int b = 0;
-    while (!(mask & (1u << b)) || j-- > 0)
-        b++;
-    return b;
-}
-
-int sl_plan_count(const struct sl_config *c)
-{
-    int n = 0;
-    for (int s = 0; s < c->nscenes; s++)
-        n += c->nviewports * c->scenes[s].nviewpoints * popcount(c->scenes[s].map_mask) *
-             popcount(c->scenes[s].method_mask);
-    return n;
-}
-
-void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k)
-{
-    memset(k, 0, sizeof *k);
-    for (int s = 0; s < c->nscenes; s++) {
-        const struct sl_config_scene *cs = &c->scenes[s];
-        int nm = popcount(cs->map_mask), nl = popcount(cs->method_mask);
-        int per = c->nviewports * cs->nviewpoints * nm * nl;
-        if (index < per) {
-            k->scene = s;
-            k->method = nth_bit(cs->method_mask, index % nl);
-            index /= nl;
-            k->map = nth_bit(cs->map_mask, index % nm);
-            index /= nm;
-            k->vp = index % cs->nviewpoints;
-            k->viewport = index / cs->nviewpoints;
-            return;
-        }
-        index -= per;
-    }
 }
 
 static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw)
@@ -325,235 +276,6 @@ static void write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_r
             res->ms_total);
 }
 
-/* ---- truth cache ----
- *
- * One file per view and kind of truth in the cache folder, named by its key:
- * truth-<key>.bin (the hard truth) and area-<key>.bin (an area light's
- * visible fraction, its standard error and the hard truth of its centre).
- * Every file is a fixed header then the payload:
- *   magic[8] (the kind), format version, number of parts, key, width,
- *   height, payload length, FNV-1a 64 of the payload
- * in the machine's byte order (the keys hash native floats, so a cache is
- * the machine's own anyway). A file is used only when every header field is
- * the expected one, the payload has exactly the expected length with
- * nothing after it, its checksum matches and its values agree with the
- * view's classes; anything else (a write cut short, another format, a key
- * collision, a damaged disk) is ignored, the truth recomputed and the file
- * replaced. Files are written to a temporary name and renamed into place,
- * so a reader never sees a half-written one. */
-
-/* Bump when the layout of a cache file changes. */
-#define SL_CACHE_FORMAT 2u
-
-/* What a scene's truths depend on besides the view: hashed once per scene
- * (the geometry is the bulk of it). */
-static unsigned long long scene_key(const struct sl_scene *s, const struct sl_gl *gl, const struct sl_rt *rt)
-{
-    unsigned long long k = SL_FNV_SEED;
-    k = sl_fnv1a(k, SL_TRUTH_VERSION, strlen(SL_TRUTH_VERSION));
-    k = sl_fnv1a(k, s->pos, (size_t)s->nv * 3 * sizeof(float));
-    k = sl_fnv1a(k, s->idx, (size_t)s->nt * 3 * sizeof(uint32_t));
-    k = sl_fnv1a(k, &s->light, sizeof s->light);
-    /* the G-buffer positions come from GL: another renderer, another truth */
-    k = sl_fnv1a(k, gl->renderer, strlen(gl->renderer));
-    k = sl_fnv1a(k, gl->version, strlen(gl->version));
-    k = sl_fnv1a(k, rt->version, strlen(rt->version));
-    return k;
-}
-
-static unsigned long long truth_key(unsigned long long scene, const struct sl_viewpoint *vp, int w, int h)
-{
-    unsigned long long k = sl_fnv1a(scene, vp, sizeof *vp);
-    k = sl_fnv1a(k, &w, sizeof w);
-    return sl_fnv1a(k, &h, sizeof h);
-}
-
-/* An area truth adds to the view's truth key its rules, the cache format,
- * its samples per side (resolved, so 0 and 32 share a file) and its seed,
- * and a few of its sample points: the sample pattern is shared with soft_mc
- * (arealight.h), so a change made there for soft_mc is a new key here. */
-static unsigned long long area_key(unsigned long long view, int side, uint32_t seed)
-{
-    const uint32_t format = SL_CACHE_FORMAT, n = (uint32_t)side;
-    unsigned long long k = sl_fnv1a(view, SL_SOFT_TRUTH_VERSION, strlen(SL_SOFT_TRUTH_VERSION));
-    k = sl_fnv1a(k, &format, sizeof format);
-    k = sl_fnv1a(k, &side, sizeof side);
-    k = sl_fnv1a(k, &seed, sizeof seed);
-    for (uint32_t i = 0; i < 8; i++) {
-        double uv[2];
-        sl_area_jitter(37 * i, 11 * i, (5 * i) % (n * n), n, seed, &uv[0], &uv[1]);
-        k = sl_fnv1a(k, uv, sizeof uv);
-    }
-    return k;
-}
-
-struct cache_head {
-    char     magic[8];
-    uint32_t format, parts;
-    uint64_t key;
-    int32_t  w, h;
-    uint64_t bytes, sum;
-};
-_Static_assert(sizeof(struct cache_head) == 48, "the cache header is written as it lies in memory");
-
-/* One array of a cache file's payload. */
-struct cache_part {
-    const void *p;
-    size_t      n;   /* bytes */
-};
-
-enum cache_read { CACHE_MISS, CACHE_REJECTED, CACHE_HIT };
-
-static void cache_path(char *path, size_t size, const char *dir, const char *kind, unsigned long long key)
-{
-    snprintf(path, size, "%s/%s-%016llx.bin", dir, kind, key);
-}
-
-/* The payload of the file of (kind, key) into *out (malloc'd, `bytes`
- * long): CACHE_HIT when its header, length and checksum are all as
- * expected; CACHE_MISS when there is no file; CACHE_REJECTED otherwise. */
-static enum cache_read cache_load(const char *dir, const char *kind, const char magic[8], unsigned long long key,
-                                  int w, int h, uint32_t parts, size_t bytes, void **out)
-{
-    char path[1200];
-    cache_path(path, sizeof path, dir, kind, key);
-    *out = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return CACHE_MISS;
-    struct cache_head hd;
-    void *buf = malloc(bytes ? bytes : 1);
-    int ok = buf && fread(&hd, sizeof hd, 1, f) == 1 && memcmp(hd.magic, magic, 8) == 0 &&
-             hd.format == SL_CACHE_FORMAT && hd.parts == parts && hd.key == key && hd.w == w && hd.h == h &&
-             hd.bytes == bytes && fread(buf, 1, bytes, f) == bytes && fgetc(f) == EOF && !ferror(f) &&
-             sl_fnv1a(SL_FNV_SEED, buf, bytes) == hd.sum;
-    fclose(f);
-    if (!ok) {
-        free(buf);
-        return CACHE_REJECTED;
-    }
-    *out = buf;
-    return CACHE_HIT;
-}
-
-/* Write the file of (kind, key): a temporary file renamed into place. */
-static void cache_store(const char *dir, const char *kind, const char magic[8], unsigned long long key, int w,
-                        int h, const struct cache_part *part, uint32_t parts)
-{
-    char path[1200], tmp[1300];
-    cache_path(path, sizeof path, dir, kind, key);
-    snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid());
-    struct cache_head hd;
-    memset(&hd, 0, sizeof hd);
-    memcpy(hd.magic, magic, 8);
-    hd.format = SL_CACHE_FORMAT;
-    hd.parts = parts;
-    hd.key = key;
-    hd.w = w;
-    hd.h = h;
-    hd.sum = SL_FNV_SEED;
-    for (uint32_t i = 0; i < parts; i++) {
-        hd.bytes += part[i].n;
-        hd.sum = sl_fnv1a(hd.sum, part[i].p, part[i].n);   /* FNV runs on: the parts hash as one */
-    }
-    FILE *f = fopen(tmp, "wb");
-    if (!f)
-        return;   /* a cache that cannot be written is only a lost speed-up */
-    int ok = fwrite(&hd, sizeof hd, 1, f) == 1;
-    for (uint32_t i = 0; ok && i < parts; i++)
-        ok = fwrite(part[i].p, 1, part[i].n, f) == part[i].n;
-    ok = (fclose(f) == 0) && ok;
-    if (!ok || rename(tmp, path) != 0)
-        remove(tmp);
-}
-
-/* 1 when a truth image agrees with the view's classes (then *lit and
- * *shadow are its counts), 0 otherwise. */
-static int truth_agrees(const struct sl_view *v, const uint8_t *truth, uint64_t *lit_out, uint64_t *shadow_out)
-{
-    size_t n = (size_t)v->w * (size_t)v->h;
-    uint64_t lit = 0, shadow = 0;
-    for (size_t i = 0; i < n; i++) {
-        uint8_t t = truth[i], c = v->cls[i];
-        if (!((c == SL_C_BACKGROUND && t == SL_T_BACKGROUND) || (c == SL_C_PNFL && t == SL_T_PNFL) ||
-              (c == SL_C_PFL && (t == SL_T_LIT || t == SL_T_SHADOW))))
-            return 0;
-        lit += t == SL_T_LIT;
-        shadow += t == SL_T_SHADOW;
-    }
-    *lit_out = lit;
-    *shadow_out = shadow;
-    return 1;
-}
-
-static const char truth_magic[8] = {'S', 'L', 'T', 'R', 'U', 'T', 'H', '2'};
-
-/* CACHE_HIT and v->truth filled when a valid cache entry exists and agrees
- * with the view's classes; otherwise v->truth is untouched (then it is
- * traced). */
-static enum cache_read truth_cache_read(const char *dir, unsigned long long key, struct sl_view *v)
-{
-    size_t n = (size_t)v->w * (size_t)v->h;
-    void *buf;
-    uint64_t lit, shadow;
-    enum cache_read r = cache_load(dir, "truth", truth_magic, key, v->w, v->h, 1, n, &buf);
-    if (r == CACHE_HIT && !truth_agrees(v, buf, &lit, &shadow))
-        r = CACHE_REJECTED;
-    if (r == CACHE_HIT) {
-        memcpy(v->truth, buf, n);
-        v->n_lit = lit;
-        v->n_shadow = shadow;
-    }
-    free(buf);
-    return r;
-}
-
-static void truth_cache_write(const char *dir, unsigned long long key, const struct sl_view *v)
-{
-    struct cache_part part = {v->truth, (size_t)v->w * (size_t)v->h};
-    cache_store(dir, "truth", truth_magic, key, v->w, v->h, &part, 1);
-}
-
-static const char area_magic[8] = {'S', 'L', 'A', 'R', 'E', 'A', 'V', '1'};
-
-/* CACHE_HIT with the visible fraction, its standard error and the centre's
- * hard truth filled when a valid entry exists: its fractions and errors in
- * [0, 1], 0 on the background, and the point truth agreeing with the view's
- * classes. Otherwise nothing is written. */
-static enum cache_read area_cache_read(const char *dir, unsigned long long key, struct sl_view *v, float *visible,
-                                       float *se)
-{
-    size_t n = (size_t)v->w * (size_t)v->h, nf = n * sizeof(float);
-    void *buf;
-    enum cache_read r = cache_load(dir, "area", area_magic, key, v->w, v->h, 3, 2 * nf + n, &buf);
-    if (r != CACHE_HIT)
-        return r;
-    const float *fv = buf, *fs = fv + n;   /* malloc'd: aligned for float */
-    const uint8_t *truth = (const uint8_t *)buf + 2 * nf;
-    uint64_t lit, shadow;
-    int ok = truth_agrees(v, truth, &lit, &shadow);
-    for (size_t i = 0; ok && i < n; i++)
-        ok = v->tri[i] ? (fv[i] >= 0.0f && fv[i] <= 1.0f && fs[i] >= 0.0f && fs[i] <= 1.0f)
-                       : (fv[i] == 0.0f && fs[i] == 0.0f);
-    if (ok) {
-        memcpy(visible, fv, nf);
-        memcpy(se, fs, nf);
-        memcpy(v->truth, truth, n);
-        v->n_lit = lit;
-        v->n_shadow = shadow;
-    }
-    free(buf);
-    return ok ? CACHE_HIT : CACHE_REJECTED;
-}
-
-static void area_cache_write(const char *dir, unsigned long long key, const struct sl_view *v, const float *visible,
-                             const float *se)
-{
-    size_t n = (size_t)v->w * (size_t)v->h;
-    struct cache_part part[3] = {{visible, n * sizeof(float)}, {se, n * sizeof(float)}, {v->truth, n}};
-    cache_store(dir, "area", area_magic, key, v->w, v->h, part, 3);
-}
-
 /* ---- the run ---- */
 
 /* Repetitions of a timed stage: the config's warm-up runs, then its timed
@@ -613,7 +335,16 @@ struct run_ctx {
     struct sl_softmc_nbuf nbuf;
     int soft_map;                        /* map index the layers are for, -1 none */
     uint8_t *receivers;                  /* per scene range: a pure receiver */
+    /* where notes, violations and progress go (the library never prints) */
+    void (*on_event)(const struct sl_run_event *ev, void *user);
+    void *user;
 };
+
+static void emit(const struct run_ctx *x, const struct sl_run_event *ev)
+{
+    if (x->on_event)
+        x->on_event(ev, x->user);
+}
 
 static void drop_frame(struct run_ctx *x)
 {
@@ -693,7 +424,7 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "receiver flags");
     for (int r = 0; r < x->scene.nranges; r++)
         x->receivers[r] = (uint8_t)x->scene.ranges[r].receiver;
-    x->scene_key = scene_key(&x->scene, &x->gl, &x->rt);
+    x->scene_key = sl_cache_scene_key(&x->scene, x->gl.renderer, x->gl.version, &x->rt);
     unsigned needs = 0;
     for (int m = 0; m < c->nmethods; m++)
         if (c->scenes[si].method_mask & (1u << m))
@@ -773,11 +504,11 @@ static void view_ready(struct run_ctx *x, const struct sl_config *c, const struc
     double t0 = sl_now();
     sl_light_fit(&x->scene, &x->view, &x->box);
     x->vms.fit = 1e3 * (sl_now() - t0);
-    if (x->box.n_outside || x->box.n_unmapped)
-        fprintf(stderr, "shadowlab: note: %s/%s: the point frustum of the area light's centre leaves %u PFL "
-                        "pixel(s) outside its map (the exact methods trace them) and %u triangle(s) out of the "
-                        "conservative layers (tested on the CPU instead)\n",
-                x->scene.name, c->scenes[k->scene].viewpoints[k->vp], x->box.n_outside, x->box.n_unmapped);
+    if (x->box.n_outside || x->box.n_unmapped) {
+        struct sl_run_event ev = {.kind = SL_EVENT_FRUSTUM_NOTE, .config = c, .scene = x->scene.name,
+                                  .viewpoint = c->scenes[k->scene].viewpoints[k->vp], .box = &x->box};
+        emit(x, &ev);
+    }
     x->view_bad = view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
@@ -797,12 +528,13 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
                              struct sl_run_result *res, struct sl_diag *d)
 {
     const int cache = cache_dir && cache_dir[0];
-    const unsigned long long key = area_key(view_key, sl_soft_truth_side(c->area_samples), c->seed);
+    const unsigned long long key = sl_cache_area_key(view_key, sl_soft_truth_side(c->area_samples), c->seed);
     double t0 = sl_now();
-    enum cache_read got = cache ? area_cache_read(cache_dir, key, &x->view, x->soft_truth, x->soft_se) : CACHE_MISS;
-    x->truth_cached = got == CACHE_HIT;
+    enum sl_cache_read got =
+        cache ? sl_cache_area_read(cache_dir, key, &x->view, x->soft_truth, x->soft_se) : SL_CACHE_MISS;
+    x->truth_cached = got == SL_CACHE_HIT;
     x->truth_rays = 0;
-    res->passes.cache_rejected += got == CACHE_REJECTED;
+    res->passes.cache_rejected += got == SL_CACHE_REJECTED;
     if (x->truth_cached) {
         res->passes.truths_cached++;
         res->passes.soft_truths_cached++;
@@ -824,7 +556,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
         res->passes.soft_truths++;
         x->truth_rays = st.rays + ts.rays;
         if (cache)
-            area_cache_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
+            sl_cache_area_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
     }
     view_ready(x, c, k);
     return SL_OK;
@@ -857,14 +589,15 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
             return e;
     }
     med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
-    unsigned long long key = truth_key(x->scene_key, &x->scene.vp[vp], W, H);
+    unsigned long long key = sl_cache_view_key(x->scene_key, &x->scene.vp[vp], W, H);
     if (x->area)
         return area_view(x, c, k, key, cache_dir, reps, times, res, d);
     double t0 = sl_now();
-    enum cache_read got = cache_dir && cache_dir[0] ? truth_cache_read(cache_dir, key, &x->view) : CACHE_MISS;
-    x->truth_cached = got == CACHE_HIT;
+    enum sl_cache_read got =
+        cache_dir && cache_dir[0] ? sl_cache_truth_read(cache_dir, key, &x->view) : SL_CACHE_MISS;
+    x->truth_cached = got == SL_CACHE_HIT;
     x->truth_rays = 0;
-    res->passes.cache_rejected += got == CACHE_REJECTED;
+    res->passes.cache_rejected += got == SL_CACHE_REJECTED;
     if (x->truth_cached) {
         res->passes.truths_cached++;
         x->vms.truth[SL_MED] = x->vms.truth[SL_MIN] = x->vms.truth[SL_MAX] = 1e3 * (sl_now() - t0);
@@ -880,31 +613,10 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         res->passes.truths_traced++;
         x->truth_rays = ts.rays;
         if (cache_dir && cache_dir[0])
-            truth_cache_write(cache_dir, key, &x->view);
+            sl_cache_truth_write(cache_dir, key, &x->view);
     }
     view_ready(x, c, k);
     return SL_OK;
-}
-
-/* The layers wanted by the selected cells of the (view, map) group that
- * starts at cell `from` (the group's cells are contiguous in sweep order),
- * leaving out cells a resumed run will skip. */
-static unsigned group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
-{
-    struct sl_cell_key k0, k;
-    sl_plan_cell(c, from, &k0);
-    unsigned needs = 0;
-    for (int i = from; i < last; i++) {
-        sl_plan_cell(c, i, &k);
-        if (k.scene != k0.scene || k.viewport != k0.viewport || k.vp != k0.vp || k.map != k0.map)
-            break;
-        const struct sl_config_scene *cs = &c->scenes[k.scene];
-        if (resume && sl_store_has_cell(st, c->hash, cs->name, cs->viewpoints[k.vp], c->viewport_w[k.viewport],
-                                        c->viewport_h[k.viewport], c->maps[k.map], c->methods[k.method].label))
-            continue;
-        needs |= c->methods[k.method].method->needs(&c->methods[k.method].params);
-    }
-    return needs;
 }
 
 static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
@@ -951,64 +663,6 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
     return e;
 }
 
-/* Every PFL pixel against the guarantee the method declares. */
-static void check_exact(const struct run_ctx *x, const struct sl_method *m, struct sl_cell *cell)
-{
-    const struct sl_view *v = &x->view;
-    for (int y = 0; y < v->h; y++)
-        for (int xx = 0; xx < v->w; xx++) {
-            size_t i = (size_t)y * (size_t)v->w + (size_t)xx;
-            if (v->cls[i] != SL_C_PFL)
-                continue;
-            uint8_t how = x->vd.how[i];
-            int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || how == SL_HOW_CORRECT ||
-                         how == SL_HOW_TRACED;
-            int right = (x->vd.v[i] == SL_V_LIT) == (v->truth[i] == SL_T_LIT);
-            int bad = ((m->exact & SL_EXACT_LIT) && x->vd.v[i] == SL_V_LIT && v->truth[i] != SL_T_LIT) ||
-                      ((m->exact & SL_EXACT_SHADOW) && x->vd.v[i] == SL_V_SHADOW && v->truth[i] != SL_T_SHADOW) ||
-                      ((m->exact & SL_EXACT_PROVED) && proved && !right);
-            if (!bad)
-                continue;
-            if (cell->violations < SL_MAX_VIOLATIONS) {
-                struct sl_violation *o = &cell->violation[cell->violations];
-                memset(o, 0, sizeof *o);
-                o->x = xx;
-                o->y = y;
-                o->truth = v->truth[i];
-                o->verdict = x->vd.v[i];
-                o->how = x->vd.how[i];
-                o->own_tri = v->tri[i];
-                float u, w, z;
-                sl_frame_project(&x->frame, v->pos + 3 * i, &u, &w, &z);
-                uint32_t k = sl_frame_texel(&x->frame, u, w);
-                o->tx = (int)(k % (uint32_t)x->frame.size);
-                o->ty = (int)(k / (uint32_t)x->frame.size);
-                for (int l = 0; l < SL_LAYER_COUNT; l++)
-                    if (x->frame.have & SL_NEED(l))
-                        o->layer_tri[l] = x->frame.layer[l].id[k] & ~SL_FULL;
-            }
-            cell->violations++;
-        }
-}
-
-static void report_violations(const struct sl_config *c, const struct sl_cell *cl)
-{
-    static const char *const layer_names[SL_LAYER_COUNT] = {"depth", "depth_back", "bgsm", "bgsm2", "sgsm",
-                                                            "sgsm_adj"};
-    fprintf(stderr, "shadowlab: VIOLATION: %s/%s %dx%d map %d '%s': %llu pixel(s) break its exactness\n",
-            cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
-            c->maps[cl->key.map], c->methods[cl->key.method].label, (unsigned long long)cl->violations);
-    for (uint64_t k = 0; k < cl->violations && k < SL_MAX_VIOLATIONS; k++) {
-        const struct sl_violation *o = &cl->violation[k];
-        fprintf(stderr, "  pixel (%d, %d): truth %d, verdict %d, how %d, own triangle %u, texel (%d, %d):",
-                o->x, o->y, o->truth, o->verdict, o->how, o->own_tri ? o->own_tri - 1 : 0, o->tx, o->ty);
-        for (int l = 0; l < SL_LAYER_COUNT; l++)
-            if (o->layer_tri[l])
-                fprintf(stderr, " %s triangle %u", layer_names[l], o->layer_tri[l] - 1);
-        fputc('\n', stderr);
-    }
-}
-
 /* The area light's near and far layers at the cell's map size, and their
  * N-buffer, once per (view, map size) and only when a soft method of the
  * group reads them. */
@@ -1034,45 +688,6 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
     res->passes.soft_layers++;
     x->soft_map = k->map;
     return SL_OK;
-}
-
-/* An area light's cell: the soft figures of the method's visible fraction
- * against the area truth, and an error heat map as its overlay (a hard
- * method's cell also has its hard figures against the point truth). */
-static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, struct sl_cell *cell, const char *ovdir,
-                             struct sl_diag *d)
-{
-    int W = x->view.w, H = x->view.h;
-    size_t npx = (size_t)W * (size_t)H;
-    double t0 = sl_now();
-    sl_soft_figures_compute(W, H, x->view.tri, x->vd.vis, x->soft_truth, x->soft_se, &cell->soft);
-    cell->has_soft = 1;
-    for (size_t i = 0; i < npx; i++)
-        cell->nonfinite += x->view.tri[i] && !(x->vd.vis[i] >= 0.0f && x->vd.vis[i] <= 1.0f);
-    cell->ms.figures += 1e3 * (sl_now() - t0);
-    if (!ovdir)
-        return SL_OK;
-    t0 = sl_now();
-    /* the visible fraction as grey; where the method is off by more than 0.05,
-     * red where it is too dark and blue where too light, stronger with the error */
-    for (size_t i = 0; i < npx; i++) {
-        uint8_t *p = x->rgb + 3 * i;
-        if (!x->view.tri[i]) {
-            p[0] = p[1] = p[2] = 0;
-            continue;
-        }
-        float e = x->vd.vis[i] - x->soft_truth[i], g = 40.0f + 180.0f * x->vd.vis[i];
-        float a = fabsf(e) > 0.05f ? fminf(1.0f, 0.3f + fabsf(e)) : 0.0f;
-        p[0] = (uint8_t)((1 - a) * g + a * (e < 0 ? 255.0f : 0.0f));
-        p[1] = (uint8_t)((1 - a) * g);
-        p[2] = (uint8_t)((1 - a) * g + a * (e > 0 ? 255.0f : 0.0f));
-    }
-    char name[400], path[1600];
-    overlay_name(c, cell, name, sizeof name);
-    snprintf(path, sizeof path, "%s/%s", ovdir, name);
-    enum sl_err e = sl_image_write_rgb8(path, W, H, x->rgb, d);
-    cell->ms.overlay = 1e3 * (sl_now() - t0);
-    return e;
 }
 
 static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
@@ -1132,68 +747,23 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     med_min_max(times, c->runs, cell->ms.method);
     cell->cost.ms_method = cell->ms.method[SL_MED];
 
-    const int soft = (cm->method->lights & SL_LIGHTS_AREA) != 0;
-    if (soft) {
-        memset(&cell->fig, 0, sizeof cell->fig);
-        cell->fig.background = x->view.n_background;
-        return soft_cell(x, c, cell, ovdir, d);
-    }
-    double t0 = sl_now();
-    for (size_t i = 0; i < npx; i++)
-        x->state[i] = x->vd.v[i];   /* 0 background, else the verdict */
-    /* regions are the increasing contours, then 0 (whole image) */
-    int maxt = c->regions[c->nregions - 2];
-    sl_contour_bands(W, H, x->state, maxt / 2 - 1, x->band);
-    cell->ms.contours = 1e3 * (sl_now() - t0);
-    t0 = sl_now();
-    sl_figures_compute(&x->view, &x->vd, x->band, c->regions, c->nregions, &cell->fig);
-    cell->ms.figures = 1e3 * (sl_now() - t0);
-    if (cm->method->exact)
-        check_exact(x, cm->method, cell);
-    if (x->vd.has_detail) {
-        cell->has_patterns = 1;
-        for (size_t i = 0; i < npx; i++) {
-            if (x->view.cls[i] != SL_C_PFL)
-                continue;
-            uint8_t k = x->vd.detail[i] < 10 ? x->vd.detail[i] : 9;
-            for (int r = 0; r < cell->fig.nregions; r++)
-                if (sl_in_contour(x->band[i], cell->fig.r[r].thickness)) {
-                    cell->pattern[r][k][0]++;
-                    cell->pattern[r][k][1] += x->view.truth[i] == SL_T_SHADOW;
-                }
-        }
-    }
-    if (x->area) {
-        /* a hard method under an area light: its verdicts as a visible
-         * fraction, scored against the area truth. A pixel it leaves
-         * uncertain counts as half lit: the method says neither, and 0.5 is
-         * the guess whose worst error is smallest. */
-        for (size_t i = 0; i < npx; i++)
-            x->vd.vis[i] = x->vd.v[i] == SL_V_LIT ? 1.0f : x->vd.v[i] == SL_V_UNCERTAIN ? 0.5f : 0.0f;
-        e = soft_cell(x, c, cell, ovdir, d);
-        ovdir = NULL;   /* the overlay is the soft one: the error against the area truth */
-    }
-    if (ovdir && !e) {
-        t0 = sl_now();
-        char name[400], path[1600];
+    char ovpath[1600] = "", exrpath[1400] = "";
+    if (ovdir) {
+        char name[400];
         overlay_name(c, cell, name, sizeof name);
-        snprintf(path, sizeof path, "%s/%s", ovdir, name);
-        sl_overlay_build(&x->view, x->scene.light_dir, &x->vd, x->band, c->overlay_contour, x->rgb);
-        e = sl_image_write_rgb8(path, W, H, x->rgb, d);
-        cell->ms.overlay = 1e3 * (sl_now() - t0);
+        snprintf(ovpath, sizeof ovpath, "%s/%s", ovdir, name);
     }
-    if (exrdir && !e) {
-        /* the per-pixel layers behind the figures, for anyone who wants to
-         * recount: truth (enum sl_truth), verdict (enum sl_verdict), how
-         * (enum sl_how) and contour band (k: inside the 2k-px contour) */
-        char path[1400];
-        snprintf(path, sizeof path, "%s/%s-%s-%dx%d-%d-%s.exr", exrdir, cell->scene, cell->viewpoint, W, H,
+    if (exrdir)
+        snprintf(exrpath, sizeof exrpath, "%s/%s-%s-%dx%d-%d-%s.exr", exrdir, cell->scene, cell->viewpoint, W, H,
                  c->maps[k->map], cm->label);
-        static const char *const names[] = {"truth", "verdict", "how", "contour"};
-        const unsigned char *layers[] = {x->view.truth, x->vd.v, x->vd.how, x->band};
-        e = sl_image_write_layers(path, W, H, 4, names, layers, d);
-    }
-    return e;
+    struct sl_cell_inputs in = {
+        .method = cm->method, .view = &x->view, .frame = &x->frame, .light_dir = x->scene.light_dir,
+        .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
+        .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
+        .state = x->state, .band = x->band, .rgb = x->rgb,
+        .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL,
+    };
+    return sl_cell_score(&in, &x->vd, cell, d);
 }
 
 /* The overlay's path as the store keeps it: relative to the database's
@@ -1329,17 +899,6 @@ static enum sl_err begin_run(struct sl_store *st, const struct sl_config *c, con
     return e;
 }
 
-static void progress(int done, int total, const struct sl_cell *cl, const struct sl_config *c, double t_start)
-{
-    double el = sl_now() - t_start;
-    double eta = done ? el * (double)(total - done) / (double)done : 0.0;
-    fprintf(stderr, "\r[%d/%d] %s/%s %d² %-16s %6.1fs elapsed, ~%.0fs left   ", done, total, cl->scene,
-            cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label, el, eta);
-    if (done == total)
-        fputc('\n', stderr);
-    fflush(stderr);
-}
-
 enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struct sl_run_result *res,
                    struct sl_diag *d)
 {
@@ -1391,9 +950,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     struct run_ctx x;
     memset(&x, 0, sizeof x);
     x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = -1;
+    x.on_event = o->on_event;
+    x.user = o->user;
     struct sl_store *st = NULL;
     int64_t run_id = 0;
-    int show = o->progress && isatty(2);
     if ((e = sl_gl_init(&x.gl, d)) || (e = sl_shadowmap_init(&x.spass, d)))
         goto out;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
@@ -1417,19 +977,15 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     for (int idx = first; idx < last && !e; idx++) {
         struct sl_cell_key k;
         sl_plan_cell(c, idx, &k);
-        if (o->resume) {
-            const struct sl_config_scene *cs = &c->scenes[k.scene];
-            if (sl_store_has_cell(st, c->hash, cs->name, cs->viewpoints[k.vp], c->viewport_w[k.viewport],
-                                  c->viewport_h[k.viewport], c->maps[k.map], c->methods[k.method].label)) {
-                res->skipped++;
-                continue;
-            }
+        if (o->resume && sl_plan_stored(c, &k, st)) {
+            res->skipped++;
+            continue;
         }
         if ((e = ensure_scene(&x, c, k.scene, res, d)) ||
             (e = ensure_buffers(&x, c->viewport_w[k.viewport], c->viewport_h[k.viewport], d)) ||
             (e = ensure_view(&x, c, &k, cache, res, d)))
             break;
-        const unsigned needs = group_needs(c, idx, last, st, o->resume);
+        const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume);
         if ((e = ensure_frame(&x, c, &k, needs, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))))
             break;
         struct sl_cell *cell = &res->cells[res->ncells];
@@ -1437,17 +993,21 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? ovdir : NULL,
                           o->write_files && c->exr ? exrdir : NULL, res, d)))
             break;
-        if (cell->violations)
-            report_violations(c, cell);
-        if (cell->nonfinite)
-            fprintf(stderr, "shadowlab: NON-FINITE: %s/%s map %d '%s': %llu G-buffer or shadow-map value(s) "
-                            "not finite or out of range\n", cell->scene, cell->viewpoint, c->maps[k.map],
-                    c->methods[k.method].label, (unsigned long long)cell->nonfinite);
+        if (cell->violations) {
+            struct sl_run_event ev = {.kind = SL_EVENT_VIOLATIONS, .config = c, .cell = cell};
+            emit(&x, &ev);
+        }
+        if (cell->nonfinite) {
+            struct sl_run_event ev = {.kind = SL_EVENT_NONFINITE, .config = c, .cell = cell};
+            emit(&x, &ev);
+        }
         if (st && (e = store_cell(st, run_id, c, cell, store_path, o->write_files ? final : NULL, d)))
             break;
         res->ncells++;
-        if (show)
-            progress(res->ncells + res->skipped, last - first, cell, c, t_start);
+        struct sl_run_event ev = {.kind = SL_EVENT_PROGRESS, .config = c, .cell = cell,
+                                  .done = res->ncells + res->skipped, .total = last - first,
+                                  .elapsed_s = sl_now() - t_start};
+        emit(&x, &ev);
     }
     res->ms_total = 1e3 * (sl_now() - t_start);
     if (e || !o->write_files)

@@ -25,20 +25,31 @@
 #include "config.h"
 #include "figures.h"
 #include "frame.h"
+#include "plan.h"
 #include "provenance.h"
 #include "softfig.h"
 #include "table.h"
 
-struct sl_cell_key {
-    int scene;      /* index into config scenes */
-    int viewport;   /* index into config viewports */
-    int vp;         /* index into that scene's config viewpoints */
-    int map;        /* index into config map sizes */
-    int method;     /* index into config methods */
-};
+struct sl_cell;
+struct sl_light_box;
 
-int  sl_plan_count(const struct sl_config *c);
-void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k);
+/* What a run says along the way. */
+enum sl_run_event_kind {
+    SL_EVENT_FRUSTUM_NOTE,   /* a point frustum left pixels outside its map or triangles out of its
+                              * conservative layers: scene, viewpoint, box */
+    SL_EVENT_VIOLATIONS,     /* a cell broke its method's declared exactness (a bug): cell */
+    SL_EVENT_NONFINITE,      /* a cell read values not finite or out of range: cell */
+    SL_EVENT_PROGRESS,       /* a cell is done: cell, done of total, elapsed seconds */
+};
+struct sl_run_event {
+    enum sl_run_event_kind      kind;
+    const struct sl_config     *config;
+    const struct sl_cell       *cell;
+    const char                 *scene, *viewpoint;
+    const struct sl_light_box  *box;
+    int                         done, total;   /* cells, skipped ones included */
+    double                      elapsed_s;
+};
 
 struct sl_run_opts {
     const char *out_root;   /* NULL = "results" */
@@ -49,7 +60,10 @@ struct sl_run_opts {
     const char *store;      /* database path; NULL = config's, else <out_root>/shadowlab.db
                              * when write_files; "" = no store */
     const char *cache_dir;  /* truth cache; NULL = <out_root>/cache when write_files; "" = none */
-    int         progress;   /* a progress line on stderr when it is a terminal */
+    /* What happens along the way, for the caller to show (the library never
+     * prints): NULL = nothing is said. */
+    void      (*on_event)(const struct sl_run_event *ev, void *user);
+    void       *user;
 };
 
 /* Wall times of the stages of one cell, ms; view stages are shared by every

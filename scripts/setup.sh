@@ -41,7 +41,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+# SL_CMAKE_ARGS: extra configure flags (CI passes -DSL_WERROR=ON)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo ${SL_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j "$jobs"
 
 case "${1:-run}" in

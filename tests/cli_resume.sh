@@ -33,8 +33,8 @@ wait "$pid" 2>/dev/null
 stored=$(cells "$tmp/a/shadowlab.db")
 echo "killed after $stored of 36 cells"
 [ -e "$tmp/a/sweep" ] && { echo "FAIL a killed run left results/sweep/"; exit 1; }
-# every stored cell is whole: 4 regions x every figure of harness/figures.h + background
-nfig=$(grep -c '^    X(' harness/figures.h)
+# every stored cell is whole: 4 regions x every figure of harness/score/figures.h + background
+nfig=$(grep -c '^    X(' harness/score/figures.h)
 rows=$("$bin" table "$tmp/a/shadowlab.db" --format csv | tail -n +2 | wc -l)
 [ "$rows" -eq $((stored * (4 * nfig + 1))) ] || { echo "FAIL $rows figure rows for $stored cells ($nfig figures)"; exit 1; }
 

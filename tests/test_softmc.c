@@ -1,5 +1,5 @@
 /*
- * softmc::* — Curtis 2009's soft shadows (harness/softmap.c, softmc.c) on
+ * softmc::* — Curtis 2009's soft shadows (harness/render/softmap.c, methods/softmc.c) on
  * tests/scenes/softbox.yaml: an elongated box floating over a ground that is
  * a pure receiver, under a 4 x 4 area light. The frame holds the view and
  * the light, the layers bound the box; output in [0, 1] and bit-identical

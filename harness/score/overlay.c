@@ -3,6 +3,7 @@
  * 0.2 ambient, plus 0.7 * dot(n, l) where the method says lit.
  */
 #include "overlay.h"
+#include <math.h>
 #include <string.h>
 #include "contour.h"
 
@@ -39,5 +40,22 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const s
         float g = 0.2f + (verdict == SL_V_LIT && ndl > 0.0f ? 0.7f * ndl : 0.0f);
         uint8_t gg = (uint8_t)(255.0f * g + 0.5f);
         o[0] = o[1] = o[2] = gg;
+    }
+}
+
+void sl_overlay_soft(int w, int h, const uint32_t *tri, const float *vis, const float *truth, uint8_t *rgb)
+{
+    size_t npx = (size_t)w * (size_t)h;
+    for (size_t i = 0; i < npx; i++) {
+        uint8_t *p = rgb + 3 * i;
+        if (!tri[i]) {
+            p[0] = p[1] = p[2] = 0;
+            continue;
+        }
+        float e = vis[i] - truth[i], g = 40.0f + 180.0f * vis[i];
+        float a = fabsf(e) > 0.05f ? fminf(1.0f, 0.3f + fabsf(e)) : 0.0f;
+        p[0] = (uint8_t)((1 - a) * g + a * (e < 0 ? 255.0f : 0.0f));
+        p[1] = (uint8_t)((1 - a) * g);
+        p[2] = (uint8_t)((1 - a) * g + a * (e > 0 ? 255.0f : 0.0f));
     }
 }

@@ -1,0 +1,82 @@
+/*
+ * plan.c — see plan.h.
+ *
+ * Invariant: sl_plan_cell is the inverse of the sweep order sl_plan_count
+ * counts, scene by scene: viewport, then viewpoint, then map size, then
+ * method label, the last varying fastest.
+ */
+#include "plan.h"
+#include <string.h>
+
+static int popcount(unsigned m)
+{
+    int n = 0;
+    for (; m; m &= m - 1)
+        n++;
+    return n;
+}
+
+/* The j-th set bit of mask (j < popcount(mask)). */
+static int nth_bit(unsigned mask, int j)
+{
+    int b = 0;
+    while (!(mask & (1u << b)) || j-- > 0)
+        b++;
+    return b;
+}
+
+int sl_plan_count(const struct sl_config *c)
+{
+    int n = 0;
+    for (int s = 0; s < c->nscenes; s++)
+        n += c->nviewports * c->scenes[s].nviewpoints * popcount(c->scenes[s].map_mask) *
+             popcount(c->scenes[s].method_mask);
+    return n;
+}
+
+void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k)
+{
+    memset(k, 0, sizeof *k);
+    for (int s = 0; s < c->nscenes; s++) {
+        const struct sl_config_scene *cs = &c->scenes[s];
+        int nm = popcount(cs->map_mask), nl = popcount(cs->method_mask);
+        int per = c->nviewports * cs->nviewpoints * nm * nl;
+        if (index < per) {
+            k->scene = s;
+            k->method = nth_bit(cs->method_mask, index % nl);
+            index /= nl;
+            k->map = nth_bit(cs->map_mask, index % nm);
+            index /= nm;
+            k->vp = index % cs->nviewpoints;
+            k->viewport = index / cs->nviewpoints;
+            return;
+        }
+        index -= per;
+    }
+}
+
+int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
+{
+    const struct sl_config_scene *cs = &c->scenes[k->scene];
+    return sl_store_has_cell(st, c->hash, cs->name, cs->viewpoints[k->vp], c->viewport_w[k->viewport],
+                             c->viewport_h[k->viewport], c->maps[k->map], c->methods[k->method].label);
+}
+
+/* The layers wanted by the selected cells of the (view, map) group that
+ * starts at cell `from` (the group's cells are contiguous in sweep order),
+ * leaving out cells a resumed run will skip. */
+unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
+{
+    struct sl_cell_key k0, k;
+    sl_plan_cell(c, from, &k0);
+    unsigned needs = 0;
+    for (int i = from; i < last; i++) {
+        sl_plan_cell(c, i, &k);
+        if (k.scene != k0.scene || k.viewport != k0.viewport || k.vp != k0.vp || k.map != k0.map)
+            break;
+        if (resume && sl_plan_stored(c, &k, st))
+            continue;
+        needs |= c->methods[k.method].method->needs(&c->methods[k.method].params);
+    }
+    return needs;
+}

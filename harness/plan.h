@@ -1,0 +1,37 @@
+/*
+ * plan.h — the sweep a config expands to: a list of independent cells,
+ * scene x viewport x viewpoint x map size x method label, each with an
+ * index (so `--cells A:B` can split a sweep across machines and processes),
+ * and what each group of cells sharing a view and a map size needs rendered.
+ *
+ * Owns: nothing (pure functions of the config). Does not: run a cell
+ * (run.c), score it (cell.c) or write it anywhere.
+ */
+#ifndef SL_PLAN_H
+#define SL_PLAN_H
+#include "config.h"
+#include "store.h"
+
+struct sl_cell_key {
+    int scene;      /* index into config scenes */
+    int viewport;   /* index into config viewports */
+    int vp;         /* index into that scene's config viewpoints */
+    int map;        /* index into config map sizes */
+    int method;     /* index into config methods */
+};
+
+/* Number of cells of the sweep, and the key of the cell at `index`. */
+int  sl_plan_count(const struct sl_config *c);
+void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k);
+
+/* 1 when the store holds the cell of key k for this config (a resumed run
+ * skips it). */
+int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st);
+
+/* The layers (SL_NEED bits of frame.h and method.h) wanted by the selected
+ * cells of the (view, map size) group that starts at cell `from` (a group's
+ * cells are contiguous in sweep order), leaving out cells a resumed run
+ * will skip. */
+unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume);
+
+#endif
