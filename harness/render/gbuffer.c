@@ -16,18 +16,6 @@ extern const char sl_glsl_gbuffer_fs[];
 /* The id's top bit: the camera sees the triangle's back (gbuffer_fs.glsl). */
 #define SL_BACK_FACING 0x80000000u
 
-void sl_view_free(struct sl_view *v)
-{
-    if (!v)
-        return;
-    free(v->pos);
-    free(v->nrm);
-    free(v->tri);
-    free(v->cls);
-    free(v->truth);
-    memset(v, 0, sizeof *v);
-}
-
 void sl_camera_matrices(const struct sl_viewpoint *vp, float aspect, mat4 view, mat4 proj)
 {
     vec3 eye, dir, up;

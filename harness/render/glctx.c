@@ -10,24 +10,6 @@
 #include "adjacency.h"
 #include "util.h"
 
-#define SL_GL_DEF(type, name) type sl_##name;
-SL_GL_FUNCS(SL_GL_DEF)
-#undef SL_GL_DEF
-
-const char *sl_glfn_load(void)
-{
-#define SL_GL_LOAD(type, name)                                    \
-    {                                                             \
-        OSMESAproc p_ = OSMesaGetProcAddress(#name);              \
-        if (!p_)                                                  \
-            return #name;                                         \
-        memcpy(&sl_##name, &p_, sizeof p_);                       \
-    }
-    SL_GL_FUNCS(SL_GL_LOAD)
-#undef SL_GL_LOAD
-    return NULL;
-}
-
 enum sl_err sl_gl_init(struct sl_gl *g, struct sl_diag *d)
 {
     memset(g, 0, sizeof *g);

@@ -187,13 +187,6 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, struct 
     glm_mat4_mul(out->proj, out->view, out->vp);
 }
 
-void sl_light_box_free(struct sl_light_box *b)
-{
-    free(b->unmapped);
-    b->unmapped = NULL;
-    b->n_unmapped = 0;
-}
-
 void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
 {
     memset(out, 0, sizeof *out);

@@ -29,30 +29,6 @@ extern const char sl_glsl_cons_setup[];
 /* How a layer is drawn. */
 enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM, K_SGSM_ADJ };
 
-void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir[3], float *tmax)
-{
-    if (!f->box.persp) {
-        for (int k = 0; k < 3; k++)
-            dir[k] = -f->dir[k];
-        *tmax = INFINITY;
-    } else if (!sl_point_ray(f->box.eye, p, dir, tmax)) {
-        dir[0] = dir[1] = 0.0f;   /* at the light itself: no ray */
-        dir[2] = 1.0f;
-        *tmax = 0.0f;
-    }
-}
-
-void sl_frame_free(struct sl_light_frame *f)
-{
-    if (!f)
-        return;
-    for (int i = 0; i < SL_LAYER_COUNT; i++) {
-        free(f->layer[i].depth);
-        free(f->layer[i].id);
-    }
-    memset(f, 0, sizeof *f);
-}
-
 /* A conservative-layer shader specialised for one layer: the file's
  * #version line, SL_MODE, then `pre` (shared code, NULL = none), then the
  * rest of the file. The caller frees it. */
