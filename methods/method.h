@@ -20,12 +20,12 @@
 struct sl_rt;
 struct sl_adjacency;
 struct sl_softmap;
-struct sl_softmc_nbuf;
 
 /* Beyond the frame layers (SL_NEED(layer) bits of frame.h), a method may need
  * the scene's edge and vertex adjacency, built once per scene on demand. */
 #define SL_NEED_ADJACENCY (1u << 16)
-/* The near and far depth layers of an area light (softmap.h; Curtis 2009). */
+/* The near and far depth layers of an area light and their N-buffer
+ * (softmap.h; Curtis 2009). */
 #define SL_NEED_SOFT      (1u << 17)
 
 enum sl_verdict {
@@ -126,8 +126,8 @@ struct sl_method_args {
     const struct sl_method_params *params;
     const struct sl_rt            *rt;       /* for methods that trace */
     const struct sl_adjacency     *adj;      /* when needs has SL_NEED_ADJACENCY, else NULL */
-    const struct sl_softmap       *softmap;  /* when needs has SL_NEED_SOFT: the area light's layers */
-    const struct sl_softmc_nbuf   *nbuf;     /* ... and their N-buffer */
+    const struct sl_softmap       *softmap;  /* when needs has SL_NEED_SOFT: the area light's layers,
+                                              * their N-buffer built (softmap->nbuf) */
     uint32_t                       seed;     /* the config's seed, for methods that sample */
     int                            threads;
 };
