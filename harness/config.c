@@ -21,22 +21,61 @@
 #include "util.h"
 #include "yamlfile.h"
 
+/* ---- method knobs ----
+ * The keys of a method entry are SL_KNOBS (method.h). Per kind of knob, in
+ * one place: what libcyaml fills (RAW_), its schema entry (SCHEMA_), the
+ * copy into struct sl_method_params with the check of a word (COPY_, inside
+ * validate: p, rm, key, file, ix, d in scope), and its text in the
+ * filled-in config (WRITE_, inside sl_config_write: p, f in scope). */
+#define RAW_UINT   unsigned
+#define RAW_FLOAT  float
+#define RAW_BOOL   bool
+#define RAW_WORDS  char
+#define RAW_POLICY char
+#define KNOB_OPT (CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL)
+#define SCHEMA_UINT(name)   CYAML_FIELD_UINT_PTR(#name, KNOB_OPT, struct raw_method, name)
+#define SCHEMA_FLOAT(name)  CYAML_FIELD_FLOAT_PTR(#name, KNOB_OPT, struct raw_method, name)
+#define SCHEMA_BOOL(name)   CYAML_FIELD_BOOL_PTR(#name, KNOB_OPT, struct raw_method, name)
+#define SCHEMA_WORDS(name)  CYAML_FIELD_STRING_PTR(#name, KNOB_OPT, struct raw_method, name, 1, 15)
+#define SCHEMA_POLICY(name) CYAML_FIELD_STRING_PTR(#name, KNOB_OPT, struct raw_method, name, 1, 63)
+
+/* "none, constant, ..., triangle_id, ": the self-shadow policies a config
+ * may name (printed without the last ", ") */
+#define SELF_KNOWN(id, text) text ", "
+static const char self_shadow_known[] = SL_SELF_SHADOW(SELF_KNOWN);
+#undef SELF_KNOWN
+
+#define COPY_UINT(name, type, a, b)   p->name = (type)*rm->name;
+#define COPY_FLOAT(name, type, a, b)  p->name = (type)*rm->name;
+#define COPY_BOOL(name, type, a, b)   p->name = *rm->name ? 1 : 0;
+#define COPY_WORDS(name, type, a, b)                                                             \
+    if (strcmp(rm->name, a) == 0)                                                                \
+        p->name = 0;                                                                             \
+    else if (strcmp(rm->name, b) == 0)                                                           \
+        p->name = 1;                                                                             \
+    else                                                                                         \
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, #name " '%s': " a " or " b, rm->name);
+#define COPY_POLICY(name, type, a, b)                                                            \
+    p->name = sl_self_shadow_parse(rm->name);                                                    \
+    if (p->name < 0)                                                                             \
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,                                        \
+                           "unknown self-shadow policy '%s' (known: %.*s)", rm->name,            \
+                           (int)sizeof self_shadow_known - 3, self_shadow_known);
+#define WRITE_UINT(name, a, b)   fprintf(f, ", " #name ": %d", p->name);
+#define WRITE_FLOAT(name, a, b)  fprintf(f, ", " #name ": %g", (double)p->name);
+#define WRITE_BOOL(name, a, b)   fprintf(f, ", " #name ": %s", p->name ? "true" : "false");
+#define WRITE_WORDS(name, a, b)  fprintf(f, ", " #name ": %s", p->name ? b : a);
+#define WRITE_POLICY(name, a, b) fprintf(f, ", " #name ": %s", sl_self_shadow_name(p->name));
+
 /* ---- raw schema (what libcyaml fills) ---- */
 
 struct raw_viewport { unsigned width, height; };
 struct raw_method {
     char  *label;
     char  *method;
-    char  *self_shadow;
-    float *bias;
-    float *slope;
-    unsigned *texels;
-    unsigned *level;
-    char  *finish;
-    unsigned *grid;
-    char  *search;
-    unsigned *layers;
-    bool  *blur;
+#define RAW_KNOB(id, bit, name, type, kind, a, b, doc) RAW_##kind *name;
+    SL_KNOBS(RAW_KNOB)
+#undef RAW_KNOB
 };
 struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bool *exr; };
 struct raw_scene_ref {
@@ -78,16 +117,9 @@ static const cyaml_schema_value_t viewport_schema = {
 static const cyaml_schema_field_t method_fields[] = {
     CYAML_FIELD_STRING_PTR("label", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, label, 1, 47),
     CYAML_FIELD_STRING_PTR("method", CYAML_FLAG_POINTER, struct raw_method, method, 1, 63),
-    CYAML_FIELD_STRING_PTR("self_shadow", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, self_shadow, 1, 63),
-    CYAML_FIELD_FLOAT_PTR("bias", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, bias),
-    CYAML_FIELD_FLOAT_PTR("slope", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, slope),
-    CYAML_FIELD_UINT_PTR("texels", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, texels),
-    CYAML_FIELD_UINT_PTR("level", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, level),
-    CYAML_FIELD_STRING_PTR("finish", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, finish, 1, 15),
-    CYAML_FIELD_UINT_PTR("grid", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, grid),
-    CYAML_FIELD_STRING_PTR("search", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, search, 1, 15),
-    CYAML_FIELD_UINT_PTR("layers", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, layers),
-    CYAML_FIELD_BOOL_PTR("blur", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, blur),
+#define SCHEMA_KNOB(id, bit, name, type, kind, a, b, doc) SCHEMA_##kind(name),
+    SL_KNOBS(SCHEMA_KNOB)
+#undef SCHEMA_KNOB
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t method_schema = {
@@ -306,68 +338,19 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                            "label '%s' used twice: give each entry its own label", cm->label);
         struct sl_method_params *p = &cm->params;
         memset(p, 0, sizeof *p);
-        if (rm->self_shadow) {
-            p->set |= SL_PARAM_SELF_SHADOW;
-            p->self_shadow = sl_self_shadow_parse(rm->self_shadow);
-            snprintf(key, sizeof key, "methods[%u].self_shadow", i);
-            if (p->self_shadow < 0)
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                           "unknown self-shadow policy '%s' (known: none, constant, slope, "
-                           "front_faces, triangle_id)", rm->self_shadow);
+        /* each knob the entry gives: its bit, and its value (a word checked) */
+#define COPY_KNOB(id, bit, name, type, kind, a, b, doc)                                                  \
+        if (rm->name) {                                                                                  \
+            p->set |= id;                                                                                \
+            snprintf(key, sizeof key, "methods[%u]." #name, i);                                          \
+            COPY_##kind(name, type, a, b)                                                                \
         }
-        if (rm->bias) {
-            p->set |= SL_PARAM_BIAS;
-            p->bias = *rm->bias;
-        }
-        if (rm->slope) {
-            p->set |= SL_PARAM_SLOPE;
-            p->slope = *rm->slope;
-        }
-        if (rm->texels) {
-            p->set |= SL_PARAM_TEXELS;
-            p->texels = (int)*rm->texels;
-        }
-        if (rm->level) {
-            p->set |= SL_PARAM_LEVEL;
-            p->level = (int)*rm->level;
-        }
-        if (rm->finish) {
-            p->set |= SL_PARAM_FINISH;
-            snprintf(key, sizeof key, "methods[%u].finish", i);
-            if (strcmp(rm->finish, "trace") == 0)
-                p->finish = 0;
-            else if (strcmp(rm->finish, "lit") == 0)
-                p->finish = 1;
-            else
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "finish '%s': trace or lit", rm->finish);
-        }
-        if (rm->grid) {
-            p->set |= SL_PARAM_GRID;
-            p->grid = (int)*rm->grid;
-        }
-        if (rm->layers) {
-            p->set |= SL_PARAM_LAYERS;
-            p->layers = (int)*rm->layers;
-        }
-        if (rm->blur) {
-            p->set |= SL_PARAM_BLUR;
-            p->blur = *rm->blur ? 1 : 0;
-        }
-        if (rm->search) {
-            p->set |= SL_PARAM_SEARCH;
-            snprintf(key, sizeof key, "methods[%u].search", i);
-            if (strcmp(rm->search, "linear") == 0)
-                p->search = 0;
-            else if (strcmp(rm->search, "hierarchical") == 0)
-                p->search = 1;
-            else
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "search '%s': linear or hierarchical", rm->search);
-        }
+        SL_KNOBS(COPY_KNOB)
+#undef COPY_KNOB
         static const struct { unsigned bit; const char *name; } pk[] = {
-            {SL_PARAM_SELF_SHADOW, "self_shadow"}, {SL_PARAM_BIAS, "bias"}, {SL_PARAM_SLOPE, "slope"},
-            {SL_PARAM_TEXELS, "texels"}, {SL_PARAM_LEVEL, "level"}, {SL_PARAM_FINISH, "finish"},
-            {SL_PARAM_GRID, "grid"}, {SL_PARAM_SEARCH, "search"}, {SL_PARAM_LAYERS, "layers"},
-            {SL_PARAM_BLUR, "blur"},
+#define NAME_KNOB(id, bit, name, ...) {id, #name},
+            SL_KNOBS(NAME_KNOB)
+#undef NAME_KNOB
         };
         for (size_t k = 0; k < sizeof pk / sizeof pk[0]; k++)
             if ((p->set & pk[k].bit) && !(cm->method->params_ok & pk[k].bit)) {
@@ -513,26 +496,11 @@ void sl_config_write(const struct sl_config *c, FILE *f)
     for (int i = 0; i < c->nmethods; i++) {
         const struct sl_method_params *p = &c->methods[i].params;
         fprintf(f, "  - {label: %s, method: %s", c->methods[i].label, c->methods[i].method->name);
-        if (p->set & SL_PARAM_SELF_SHADOW)
-            fprintf(f, ", self_shadow: %s", sl_self_shadow_name(p->self_shadow));
-        if (p->set & SL_PARAM_BIAS)
-            fprintf(f, ", bias: %g", (double)p->bias);
-        if (p->set & SL_PARAM_SLOPE)
-            fprintf(f, ", slope: %g", (double)p->slope);
-        if (p->set & SL_PARAM_TEXELS)
-            fprintf(f, ", texels: %d", p->texels);
-        if (p->set & SL_PARAM_LEVEL)
-            fprintf(f, ", level: %d", p->level);
-        if (p->set & SL_PARAM_FINISH)
-            fprintf(f, ", finish: %s", p->finish ? "lit" : "trace");
-        if (p->set & SL_PARAM_GRID)
-            fprintf(f, ", grid: %d", p->grid);
-        if (p->set & SL_PARAM_SEARCH)
-            fprintf(f, ", search: %s", p->search ? "hierarchical" : "linear");
-        if (p->set & SL_PARAM_LAYERS)
-            fprintf(f, ", layers: %d", p->layers);
-        if (p->set & SL_PARAM_BLUR)
-            fprintf(f, ", blur: %s", p->blur ? "true" : "false");
+#define WRITE_KNOB(id, bit, name, type, kind, a, b, doc) \
+        if (p->set & id)                                 \
+            WRITE_##kind(name, a, b)
+        SL_KNOBS(WRITE_KNOB)
+#undef WRITE_KNOB
         fprintf(f, "}\n");
     }
     fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",

@@ -332,7 +332,7 @@ struct run_ctx {
     /* its layers for soft_mc (softmap.h) and their N-buffer, per (view, map size) */
     struct sl_softmap_pass softpass;
     struct sl_softmap softmap;
-    struct sl_softmc_nbuf nbuf;
+    struct sl_softmap_nbuf nbuf;
     int soft_map;                        /* map index the layers are for, -1 none */
     uint8_t *receivers;                  /* per scene range: a pure receiver */
     /* where notes, violations and progress go (the library never prints) */
@@ -393,7 +393,7 @@ static void ctx_free(struct run_ctx *x)
     free(x->soft_truth);
     free(x->soft_se);
     free(x->receivers);
-    sl_softmc_nbuf_free(&x->nbuf);
+    sl_softmap_nbuf_free(&x->nbuf);
     if (x->gl.ctx) {
         sl_softmap_pass_free(&x->softpass);
         sl_shadowmap_free(&x->spass);
@@ -682,7 +682,7 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
     struct sl_softmap_desc sd = {.size = c->maps[k->map], .receiver = x->receivers};
     enum sl_err e = sl_softmap_render(&x->softpass, &x->mesh, &x->scene, &x->view, &sd, &x->softmap, d);
     if (!e)
-        e = sl_softmc_nbuf_build(&x->softmap, c->threads, &x->nbuf, d);
+        e = sl_softmap_nbuf_build(&x->softmap, c->threads, &x->nbuf, d);
     if (e)
         return e;
     res->passes.soft_layers++;
@@ -725,7 +725,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_method_args a = {
         .scene = &x->scene, .view = &mview, .frame = &x->frame, .params = &cm->params,
         .rt = &x->rt, .adj = x->have_adj ? &x->adj : NULL, .threads = c->threads,
-        .softmap = x->soft_map >= 0 ? &x->softmap : NULL, .nbuf = x->soft_map >= 0 ? &x->nbuf : NULL,
+        .softmap = x->soft_map >= 0 ? &x->softmap : NULL,
         .seed = c->seed,
     };
     int reps = c->warmup + c->runs;

@@ -162,13 +162,13 @@ static enum sl_err pm_run(const struct sl_method_args *a, struct sl_verdicts *ou
 static enum sl_err mc_desc_run(const struct sl_method_args *a, const struct sl_softmc_desc *desc_in,
                                struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d)
 {
-    if (!a->softmap || !a->nbuf || !out->vis)
+    if (!a->softmap || !a->softmap->nbuf || !out->vis)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, "method", "soft_mc without its layers");
     struct sl_softmc_desc desc = *desc_in;
     struct sl_softmc_result r;
     memset(&r, 0, sizeof r);
     double t0 = sl_now();
-    enum sl_err e = sl_softmc_run(a->softmap, a->nbuf, a->view, &desc, &r, d);
+    enum sl_err e = sl_softmc_run(a->softmap, a->view, &desc, &r, d);
     if (!e) {
         const struct sl_view *v = a->view;
         const float *src = r.vis_blur ? r.vis_blur : r.vis;

@@ -46,18 +46,6 @@ void sl_softmc_defaults(const struct sl_softmc_desc *in, struct sl_softmc_desc *
     if (out->blur_depth_k <= 0.0) out->blur_depth_k = 1.0;
 }
 
-/* Plain comparisons: fminf/fmaxf are libm calls when NaNs must be honoured
- * (no -ffast-math here), and the layers hold no NaN. */
-static inline void merge(struct sl_softmc_texel *a, const struct sl_softmc_texel *b)
-{
-    a->near_min = b->near_min < a->near_min ? b->near_min : a->near_min;
-    a->near_max = b->near_max > a->near_max ? b->near_max : a->near_max;
-    a->far_min = b->far_min < a->far_min ? b->far_min : a->far_min;
-    a->far_max = b->far_max > a->far_max ? b->far_max : a->far_max;
-}
-
-/* ---- N-buffer ---------------------------------------------------------- */
-
 static int log2i(int x)
 {
     int n = 0;
@@ -66,84 +54,16 @@ static int log2i(int x)
     return n;
 }
 
-enum sl_err sl_softmc_nbuf_build(const struct sl_softmap *m, int threads, struct sl_softmc_nbuf *nb,
-                                 struct sl_diag *d)
-{
-    if (!m->near || !m->far || m->size <= 0 || (m->size & (m->size - 1)))
-        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "N-buffer of a map without layers");
-    double t0 = sl_now();
-    const int S = m->size;
-    const size_t n = (size_t)S * (size_t)S;
-    const int levels = log2i(S) + 1;
-    /* a previous build of the same size is overwritten in place: a fresh
-     * allocation costs more in first-touch page faults than the build itself
-     * (176 MB at 1024) */
-    if (!nb->t || nb->size != S || nb->levels != levels) {
-        sl_softmc_nbuf_free(nb);
-        nb->t = malloc(n * (size_t)levels * sizeof *nb->t);
-        if (!nb->t)
-            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "N-buffer %dx%d, %d levels", S, S, levels);
-        nb->size = S;
-        nb->levels = levels;
-    }
-    if (threads <= 0)
-        threads = omp_get_max_threads();
-    for (size_t i = 0; i < n; i++) {
-        struct sl_softmc_texel *t = &nb->t[i];
-        t->near_min = t->near_max = m->near[i];
-        t->far_min = t->far_max = m->far[i];
-    }
-    for (int L = 1; L < nb->levels; L++) {
-        const int h = 1 << (L - 1);
-        const struct sl_softmc_texel *src = nb->t + (size_t)(L - 1) * n;
-        struct sl_softmc_texel *dst = nb->t + (size_t)L * n;
-        /* the window [i, i + 2h) is [i, i + h) and [i + h, i + 2h) (the same
-         * for j); a half that starts beyond the map is left out (clipped) */
-#pragma omp parallel for num_threads(threads) schedule(static)
-        for (int j = 0; j < S; j++) {
-            const struct sl_softmc_texel *r0 = src + (size_t)j * S;
-            const struct sl_softmc_texel *r1 = j + h < S ? r0 + (size_t)h * S : NULL;
-            struct sl_softmc_texel *o = dst + (size_t)j * S;
-            /* interior columns without a bounds test, so the loop vectorises */
-            for (int i = 0; i < S - h; i++) {
-                struct sl_softmc_texel r = r0[i];
-                merge(&r, &r0[i + h]);
-                if (r1) {
-                    merge(&r, &r1[i]);
-                    merge(&r, &r1[i + h]);
-                }
-                o[i] = r;
-            }
-            for (int i = S - h; i < S; i++) {
-                struct sl_softmc_texel r = r0[i];
-                if (r1)
-                    merge(&r, &r1[i]);
-                o[i] = r;
-            }
-        }
-    }
-    nb->ms_build = 1e3 * (sl_now() - t0);
-    return SL_OK;
-}
-
-void sl_softmc_nbuf_free(struct sl_softmc_nbuf *nb)
-{
-    if (!nb)
-        return;
-    free(nb->t);
-    memset(nb, 0, sizeof *nb);
-}
-
 /* ---- per-pixel context ------------------------------------------------- */
 
 struct ctx {
     const struct sl_softmap *m;
-    const struct sl_softmc_nbuf *nb;
+    const struct sl_softmap_nbuf *nb;
     const struct sl_view *v;
     struct sl_softmc_desc o;
     int S, two, eye;                 /* eye: the camera's G-buffer is the third layer */
     double L;                        /* depth of the light's plane */
-    struct sl_softmc_texel global;   /* the whole map */
+    struct sl_softmap_texel global;   /* the whole map */
     double cam[3];                   /* the camera's position */
     double clip[4][4];               /* proj x view, column-major as cglm's */
 };
@@ -162,10 +82,10 @@ static inline int clampi(int x, int hi)
 /* The window of side 2^level at corner (i, j), clamped to the map: a corner
  * left of or below the map gives the window at 0, a superset of the part
  * inside. With one layer the far layer is "infinitely deep". */
-static inline struct sl_softmc_texel fetch(const struct ctx *c, int level, int i, int j)
+static inline struct sl_softmap_texel fetch(const struct ctx *c, int level, int i, int j)
 {
     const int S = c->S;
-    struct sl_softmc_texel t =
+    struct sl_softmap_texel t =
         c->nb->t[((size_t)level * (size_t)S + (size_t)clampi(j, S - 1)) * (size_t)S + (size_t)clampi(i, S - 1)];
     if (!c->two)
         t.far_min = t.far_max = INFINITY;
@@ -175,7 +95,7 @@ static inline struct sl_softmc_texel fetch(const struct ctx *c, int level, int i
 /* Extremes over the texels that the continuous rectangle [u0, u1] x [v0, v1]
  * touches, in at most 4 fetches: squares of side 2^n, n = floor(log2(longer
  * side)), at the two ends of each axis (a superset on the shorter axis). */
-static struct sl_softmc_texel query_rect(const struct ctx *c, double u0, double v0, double u1, double v1,
+static struct sl_softmap_texel query_rect(const struct ctx *c, double u0, double v0, double u1, double v1,
                                          uint64_t *lookups)
 {
     const int S = c->S;
@@ -185,21 +105,21 @@ static struct sl_softmc_texel query_rect(const struct ctx *c, double u0, double 
     int n = log2i(wx > wy ? wx : wy), side = 1 << n;
     int xs[2] = {i0, i1 - side + 1}, ys[2] = {j0, j1 - side + 1};
     int nx = wx > side ? 2 : 1, ny = wy > side ? 2 : 1;
-    struct sl_softmc_texel r = fetch(c, n, xs[0], ys[0]);
+    struct sl_softmap_texel r = fetch(c, n, xs[0], ys[0]);
     (*lookups)++;
     for (int a = 0; a < nx; a++)
         for (int b = 0; b < ny; b++) {
             if (a == 0 && b == 0)
                 continue;
-            struct sl_softmc_texel t = fetch(c, n, xs[a], ys[b]);
-            merge(&r, &t);
+            struct sl_softmap_texel t = fetch(c, n, xs[a], ys[b]);
+            sl_softmap_texel_merge(&r, &t);
             (*lookups)++;
         }
     return r;
 }
 
 /* "May hit" tests: a ray portion with depths [dlo, dhi] against bounds. */
-static inline int may_hit(double dlo, double dhi, const struct sl_softmc_texel *t)
+static inline int may_hit(double dlo, double dhi, const struct sl_softmap_texel *t)
 {
     return dhi * (1.0 + EPS) >= (double)t->near_min && dlo * (1.0 - EPS) <= (double)t->far_max;
 }
@@ -278,7 +198,7 @@ static int search_hier(const struct ctx *c, const struct tray *r, uint64_t *look
     int n0 = log2i(ext);
     if ((1 << n0) < ext)
         n0++;
-    struct sl_softmc_texel t = fetch(c, n0, ix0, iy0);
+    struct sl_softmap_texel t = fetch(c, n0, ix0, iy0);
     (*lookups)++;
     double s = 0.0;
     if (!may_hit(ray_depth(r, 0.0), ray_depth(r, 1.0), &t))
@@ -440,7 +360,7 @@ static struct sample sample_at(const struct ctx *c, const struct tray *r, double
     o.j = clampi((int)floor(py), c->S - 1);
     o.u = px;
     o.v = py;
-    struct sl_softmc_texel t = fetch(c, 0, o.i, o.j);
+    struct sl_softmap_texel t = fetch(c, 0, o.i, o.j);
     (*lookups)++;
     o.near = t.near_min;
     o.far = t.far_max;
@@ -669,7 +589,7 @@ static float pixel(const struct ctx *c, int x, int y, size_t i, struct counts *k
     sl_softmap_project(m, qe, &eu, &ev, &ez);
 
     /* 3.6: bounds over the region every ray crosses, refined (eq. 3.3) */
-    struct sl_softmc_texel Q = c->global;
+    struct sl_softmap_texel Q = c->global;
     double Dreg = c->L;                                  /* Q holds for depths >= Dreg */
     double D = fmax(c->L, (double)Q.near_min);           /* nothing can be hit nearer */
     if (!c->o.no_classify) {
@@ -699,7 +619,7 @@ static float pixel(const struct ctx *c, int x, int y, size_t i, struct counts *k
      * with the third layer, not where the camera sees the end (in front of
      * its own receiver: the hollows of 3.4 are what it is for) */
     if (!c->o.no_accel) {
-        struct sl_softmc_texel t = fetch(c, 0, (int)floor(eu), (int)floor(ev));
+        struct sl_softmap_texel t = fetch(c, 0, (int)floor(eu), (int)floor(ev));
         k->lookups++;
         if (may_hit(ze, ze, &t) && !(c->eye && eye_free(c, qe, k))) {
             k->endpoint++;
@@ -736,7 +656,7 @@ static float pixel(const struct ctx *c, int x, int y, size_t i, struct counts *k
             int lit = !shorten(&ray, c->L, ze, ds, de, &s0, &s1);
             if (!lit) {
                 struct tray sub = ray_sub(&ray, s0, s1);
-                struct sl_softmc_texel t = query_rect(c, sub.ax, sub.ay, sub.bx, sub.by, &k->lookups);
+                struct sl_softmap_texel t = query_rect(c, sub.ax, sub.ay, sub.bx, sub.by, &k->lookups);
                 lit = !may_hit(ray_depth(&sub, 0.0), ray_depth(&sub, 1.0), &t) ||
                       !shorten(&ray, c->L, ze, (double)t.near_min / (1.0 + EPS),
                                (double)t.far_max / (1.0 - EPS), &s0, &s1);
@@ -766,14 +686,15 @@ static float pixel(const struct ctx *c, int x, int y, size_t i, struct counts *k
     return (float)visible / (float)nrays;
 }
 
-enum sl_err sl_softmc_run(const struct sl_softmap *m, const struct sl_softmc_nbuf *nb, const struct sl_view *v,
-                          const struct sl_softmc_desc *desc, struct sl_softmc_result *out, struct sl_diag *d)
+enum sl_err sl_softmc_run(const struct sl_softmap *m, const struct sl_view *v, const struct sl_softmc_desc *desc,
+                          struct sl_softmc_result *out, struct sl_diag *d)
 {
+    const struct sl_softmap_nbuf *nb = m->nbuf;
     memset(out, 0, sizeof *out);
     struct ctx c;
     memset(&c, 0, sizeof c);
     sl_softmc_defaults(desc, &c.o);
-    if (!nb->t || nb->size != m->size)
+    if (!nb || !nb->t || nb->size != m->size)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "N-buffer not built for this map");
     if (c.o.grid > 64 || c.o.layers > 3 || c.o.search < 0 || c.o.search > SL_SOFTMC_LINEAR)
         return sl_fail(d, SL_E_METHOD, NULL, 0, NULL,

@@ -11,10 +11,12 @@
  * visible fraction of the rays is the result, in [0, 1] (0 for points on or
  * behind the light's plane: it emits on one side).
  *
- * Searches (desc.search): the hierarchical one (3.5, Algorithm 2) through an
- * N-buffer, or linear steps with binary refinement on every change of state
- * (3.3), ending with a test for a crossing inside one texel (zero-thickness
- * occluders have no "between"); linear steps are the shorter of
+ * Searches (desc.search): the hierarchical one (3.5, Algorithm 2) through
+ * the layers' N-buffer (min/max windows; softmap.h builds it beside the
+ * layers and says how it is laid out: m->nbuf), or linear steps with binary
+ * refinement on every change of state (3.3), ending with a test for a
+ * crossing inside one texel (zero-thickness occluders have no "between");
+ * linear steps are the shorter of
  * step_texels in the map and an even step in depth (in a wide frustum a
  * ray crosses the occluders' depths in its last few texels). desc.layers = 1
  * is the single-layer variant (3.2: anything behind the near layer
@@ -66,40 +68,17 @@
  * Determinism: a pixel's result depends only on its inputs and the seed;
  * rows run on OpenMP threads; counters are integer sums.
  *
- * Owns: the N-buffer (sl_softmc_nbuf_free) and result arrays
- * (sl_softmc_result_free). Does not: render (softmap.c; the third layer is
- * the view's G-buffer as gbuffer.c rendered it, read, never rendered
- * again), trace exact rays (truth.c), or register itself as a method.
+ * Owns: result arrays (sl_softmc_result_free). Does not: render or build
+ * the N-buffer (softmap.c: the layers and their N-buffer, which it only
+ * reads; the third layer is the view's G-buffer as gbuffer.c rendered it,
+ * read, never rendered again), trace exact rays (truth.c), or register
+ * itself as a method.
  */
 #ifndef SL_SOFTMC_H
 #define SL_SOFTMC_H
 #include <stdint.h>
 #include "softmap.h"
 #include "view.h"
-
-/* The N-buffer (3.5; Décoret 2005): level n holds, per texel (i, j), the
- * extremes over the 2^n x 2^n window [i, i + 2^n) x [j, j + 2^n), clipped
- * to the map. Curtis centres the windows so that a GPU fetch at a point
- * covers its neighbourhood; on the CPU a window is addressed by its corner,
- * so any square of side 2^n anywhere is one fetch and centring buys nothing.
- * Every level is full size: 16 bytes x size^2 x (log2 size + 1), 176 MB at
- * 1024. */
-struct sl_softmc_texel {
-    float near_min, near_max;   /* of the near layer */
-    float far_min, far_max;     /* of the far layer (far_min: the strict umbra test) */
-};
-
-struct sl_softmc_nbuf {
-    int    size, levels;        /* levels = log2(size) + 1 */
-    struct sl_softmc_texel *t;  /* level-major: t[(n * size + j) * size + i] */
-    double ms_build;
-};
-
-/* Build nb from m's layers. nb is zeroed (first build) or a previous build,
- * whose memory is reused when the size matches. */
-enum sl_err sl_softmc_nbuf_build(const struct sl_softmap *m, int threads, struct sl_softmc_nbuf *nb,
-                                 struct sl_diag *d);
-void        sl_softmc_nbuf_free(struct sl_softmc_nbuf *nb);
 
 enum sl_softmc_search {
     SL_SOFTMC_HIER = 0,         /* Algorithm 2 through the N-buffer */
@@ -162,9 +141,10 @@ struct sl_softmc_result {
     struct sl_softmc_stats st;
 };
 
-/* Trace every non-background pixel of v through m's layers. */
-enum sl_err sl_softmc_run(const struct sl_softmap *m, const struct sl_softmc_nbuf *nb, const struct sl_view *v,
-                          const struct sl_softmc_desc *desc, struct sl_softmc_result *out, struct sl_diag *d);
+/* Trace every non-background pixel of v through m's layers and their
+ * N-buffer (m->nbuf, built: else SL_E_INTERNAL). */
+enum sl_err sl_softmc_run(const struct sl_softmap *m, const struct sl_view *v, const struct sl_softmc_desc *desc,
+                          struct sl_softmc_result *out, struct sl_diag *d);
 
 /* The depth-sensitive blur alone (in and out: w * h, distinct). */
 enum sl_err sl_softmc_blur(const struct sl_view *v, const float *in, float *out, int radius, double sigma,

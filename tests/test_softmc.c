@@ -48,7 +48,7 @@ struct env {
     struct sl_gbuffer_pass gp;
     struct sl_view view;
     struct sl_softmap map;
-    struct sl_softmc_nbuf nb;
+    struct sl_softmap_nbuf nb;
     struct sl_rt rt;
     uint8_t receiver[16];
     /* bounds, % of the pixels: linear vs hier, linear with vs without
@@ -78,7 +78,7 @@ static int env_open(struct env *e, const char *path, const char *vp_name)
     struct sl_softmap_desc md = {.size = MAP, .receiver = e->receiver};
     if (sl_gbuffer_render(&e->gp, &e->mesh, &e->scene, vp, VW, VH, &e->view, NULL, NULL, &d) ||
         sl_softmap_render(&SP, &e->mesh, &e->scene, &e->view, &md, &e->map, &d) ||
-        sl_softmc_nbuf_build(&e->map, 0, &e->nb, &d) || sl_rt_build(&e->rt, &e->scene, 2, 1, &d)) {
+        sl_softmap_nbuf_build(&e->map, 0, &e->nb, &d) || sl_rt_build(&e->rt, &e->scene, 2, 1, &d)) {
         fprintf(stderr, "%s: %s\n", path, d.msg);
         return 0;
     }
@@ -93,7 +93,7 @@ static int env_open(struct env *e, const char *path, const char *vp_name)
 static void env_close(struct env *e)
 {
     sl_rt_free(&e->rt);
-    sl_softmc_nbuf_free(&e->nb);
+    sl_softmap_nbuf_free(&e->nb);
     sl_softmap_free(&e->map);
     sl_view_free(&e->view);
     sl_gbuffer_free(&e->gp);
@@ -129,7 +129,7 @@ static int group_teardown(void **st)
 static void run(const struct sl_softmc_desc *o, struct sl_softmc_result *r)
 {
     struct sl_diag d;
-    enum sl_err e = sl_softmc_run(&E->map, &E->nb, &E->view, o, r, &d);
+    enum sl_err e = sl_softmc_run(&E->map, &E->view, o, r, &d);
     if (e)
         fprintf(stderr, "run: %s\n", d.msg);
     assert_int_equal(e, SL_OK);
@@ -212,7 +212,7 @@ static void softmc_frame(void **st)
     t = (size_t)floor(v) * MAP + (size_t)floor(u);
     assert_true(m->near[t] == (float)m->zfar && m->far[t] == (float)m->znear);
     /* the N-buffer's top level is the whole map */
-    const struct sl_softmc_texel *top = E->nb.t + (size_t)(E->nb.levels - 1) * MAP * MAP;
+    const struct sl_softmap_texel *top = E->nb.t + (size_t)(E->nb.levels - 1) * MAP * MAP;
     assert_true(fabs(top->near_min - (m->light_depth + 7.0)) < 1e-3);
     assert_true(top->far_max == (float)m->zfar || fabs(top->far_max - (m->light_depth + 8.0)) < 1e-3);
 }
@@ -637,19 +637,19 @@ static void softmc_fixed_fov(void **st)
     assert_true(E->ok);
     struct sl_diag d;
     struct sl_softmap m;
-    struct sl_softmc_nbuf nb;
+    struct sl_softmap_nbuf nb;
     memset(&nb, 0, sizeof nb);
     struct sl_softmap_desc md = {.size = 256, .fov_deg = 60.0, .receiver = E->receiver};
     assert_int_equal(sl_softmap_render(&SP, &E->mesh, &E->scene, &E->view, &md, &m, &d), SL_OK);
     assert_true(fabs(m.fov_deg - 60.0) < 1e-9);
     assert_true(fabs(m.light_depth - 2.0 / tan(30.0 * 3.14159265358979323846 / 180.0)) < 1e-9);
     assert_true(m.n_outside > 1000);
-    assert_int_equal(sl_softmc_nbuf_build(&m, 0, &nb, &d), SL_OK);
+    assert_int_equal(sl_softmap_nbuf_build(&m, 0, &nb, &d), SL_OK);
     struct sl_softmc_desc o = {.seed = 4};
     struct sl_softmc_result r;
     for (int search = 0; search < 2; search++) {
         o.search = search;
-        assert_int_equal(sl_softmc_run(&m, &nb, &E->view, &o, &r, &d), SL_OK);
+        assert_int_equal(sl_softmc_run(&m, &E->view, &o, &r, &d), SL_OK);
         assert_int_equal(r.st.capped, 0);
         for (size_t i = 0; i < (size_t)VW * VH; i++)
             assert_true(r.vis[i] >= 0.0f && r.vis[i] <= 1.0f);
@@ -657,7 +657,7 @@ static void softmc_fixed_fov(void **st)
     }
     printf("softmc: fixed fov 60 deg: light depth %.3f, %u of %u points outside the frustum\n", m.light_depth,
            m.n_outside, m.n_fit);
-    sl_softmc_nbuf_free(&nb);
+    sl_softmap_nbuf_free(&nb);
     sl_softmap_free(&m);
 }
 
@@ -683,18 +683,19 @@ static void softmc_bad_input(void **st)
     assert_int_equal(sl_softmap_fit(&E->scene, &E->view, &md, &m, &d), SL_OK);
     struct sl_softmc_desc o = {0};
     struct sl_softmc_result r;
-    assert_int_equal(sl_softmc_run(&m, &E->nb, &E->view, &o, &r, &d), SL_E_INTERNAL);
+    m.nbuf = &E->nb;   /* the N-buffer of another map (its size) */
+    assert_int_equal(sl_softmc_run(&m, &E->view, &o, &r, &d), SL_E_INTERNAL);
     o.grid = 65;
-    assert_int_equal(sl_softmc_run(&E->map, &E->nb, &E->view, &o, &r, &d), SL_E_METHOD);
+    assert_int_equal(sl_softmc_run(&E->map, &E->view, &o, &r, &d), SL_E_METHOD);
     /* the third layer with the hierarchical search (the default search) is
      * refused, not run linear; four layers do not exist */
     o.grid = 0;
     o.layers = 3;
-    assert_int_equal(sl_softmc_run(&E->map, &E->nb, &E->view, &o, &r, &d), SL_E_METHOD);
+    assert_int_equal(sl_softmc_run(&E->map, &E->view, &o, &r, &d), SL_E_METHOD);
     assert_non_null(strstr(d.msg, "linear"));
     o.search = SL_SOFTMC_LINEAR;
     o.layers = 4;
-    assert_int_equal(sl_softmc_run(&E->map, &E->nb, &E->view, &o, &r, &d), SL_E_METHOD);
+    assert_int_equal(sl_softmc_run(&E->map, &E->view, &o, &r, &d), SL_E_METHOD);
     sl_softmc_result_free(&r);
 }
 
@@ -778,7 +779,7 @@ static void third_layer_out_of_view(void)
     struct sl_diag d;
     run(&o, &two);
     o.layers = 3;
-    assert_int_equal(sl_softmc_run(&E->map, &E->nb, &turned, &o, &three, &d), SL_OK);
+    assert_int_equal(sl_softmc_run(&E->map, &turned, &o, &three, &d), SL_OK);
     printf("softmc: three layers, camera turned away: %llu eye tests, %llu outside the view\n",
            (unsigned long long)three.st.eye_tests, (unsigned long long)three.st.eye_outside);
     assert_true(three.st.eye_tests > 0);

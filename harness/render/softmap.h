@@ -1,9 +1,9 @@
 /*
  * softmap.h — the light frame of an area light and its two depth layers for
  * Curtis 2009's soft shadows (chapter 3): a square perspective frustum whose
- * projection point sits behind the light's centre, and the NEAR (front faces,
+ * projection point sits behind the light's centre, the NEAR (front faces,
  * nearest) and FAR (back faces, farthest) layers rendered from it with the
- * caller's pure receivers left out.
+ * caller's pure receivers left out, and their min/max N-buffer.
  *
  * Frame (eq. 3.1): the projection point is eye = c - light_depth * n with
  * light_depth = s / (2 tan(fov/2)), s the light's larger side, so the light
@@ -34,9 +34,21 @@
  * Meshes must be closed (or two-sided, drawn unculled into both layers) to
  * be occluders: an open one-sided mesh has no back faces in the far layer.
  *
- * Owns: the layer arrays (sl_softmap_free; NULL-safe) and the pass's program
- * (sl_softmap_pass_free). Does not: search the layers (softmc.c does) or
- * decide which meshes are pure receivers (the caller's flags do).
+ * The N-buffer (3.5; Décoret 2005) of the two layers is built here too, on
+ * the CPU, beside the layers it summarises (sl_softmap_nbuf_build): level n
+ * holds, per texel (i, j), the extremes over the 2^n x 2^n window
+ * [i, i + 2^n) x [j, j + 2^n), clipped to the map. Curtis centres the
+ * windows so that a GPU fetch at a point covers its neighbourhood; on the
+ * CPU a window is addressed by its corner, so any square of side 2^n
+ * anywhere is one fetch and centring buys nothing. Every level is full
+ * size: 16 bytes x size^2 x (log2 size + 1), 176 MB at 1024.
+ *
+ * Owns: the layer arrays (sl_softmap_free; NULL-safe), the pass's program
+ * (sl_softmap_pass_free) and an N-buffer's array (sl_softmap_nbuf_free;
+ * NULL-safe); the N-buffer is the caller's struct, kept apart from the
+ * layers so that its memory outlives them and is reused by the next build
+ * of the same size. Does not: search the layers or the N-buffer (softmc.c
+ * does) or decide which meshes are pure receivers (the caller's flags do).
  */
 #ifndef SL_SOFTMAP_H
 #define SL_SOFTMAP_H
@@ -58,6 +70,19 @@ struct sl_softmap_desc {
 /* The filled-in desc (defaults applied). */
 void sl_softmap_defaults(const struct sl_softmap_desc *in, struct sl_softmap_desc *out);
 
+/* One texel of the N-buffer: the extremes of both layers over its window.
+ * far_min serves the strict umbra test (softmc.h). */
+struct sl_softmap_texel {
+    float near_min, near_max;   /* of the near layer */
+    float far_min, far_max;     /* of the far layer */
+};
+
+struct sl_softmap_nbuf {
+    int    size, levels;        /* levels = log2(size) + 1 */
+    struct sl_softmap_texel *t; /* level-major: t[(n * size + j) * size + i] */
+    double ms_build;
+};
+
 struct sl_softmap {
     int      size;
     struct sl_area area;           /* the light */
@@ -73,6 +98,8 @@ struct sl_softmap {
     uint32_t n_receiver_ranges;    /* scene ranges left out as pure receivers */
     double   ms_near, ms_far, ms_readback;
     uint64_t frag_near, frag_far;  /* fragment shader invocations (GL query) */
+    const struct sl_softmap_nbuf *nbuf;   /* the N-buffer of these layers, once built
+                                           * (sl_softmap_nbuf_build); not owned; else NULL */
 };
 
 struct sl_softmap_pass {
@@ -92,7 +119,27 @@ enum sl_err sl_softmap_render(const struct sl_softmap_pass *p, const struct sl_g
                               const struct sl_scene *s, const struct sl_view *v,
                               const struct sl_softmap_desc *desc, struct sl_softmap *m, struct sl_diag *d);
 
+/* Frees the layers and forgets the N-buffer (which is not freed). */
 void sl_softmap_free(struct sl_softmap *m);
+
+/* Build nb from m's layers and point m->nbuf at it. nb is zeroed (first
+ * build) or a previous build, whose memory is reused when the size matches
+ * (a fresh allocation costs more in first-touch page faults than the build
+ * itself). Rows run on OpenMP threads (threads <= 0: OpenMP's default);
+ * the result does not depend on their number. */
+enum sl_err sl_softmap_nbuf_build(struct sl_softmap *m, int threads, struct sl_softmap_nbuf *nb,
+                                  struct sl_diag *d);
+void        sl_softmap_nbuf_free(struct sl_softmap_nbuf *nb);
+
+/* Widen a to hold b too. Plain comparisons: fminf/fmaxf are libm calls when
+ * NaNs must be honoured (no -ffast-math here), and the layers hold no NaN. */
+static inline void sl_softmap_texel_merge(struct sl_softmap_texel *a, const struct sl_softmap_texel *b)
+{
+    a->near_min = b->near_min < a->near_min ? b->near_min : a->near_min;
+    a->near_max = b->near_max > a->near_max ? b->near_max : a->near_max;
+    a->far_min = b->far_min < a->far_min ? b->far_min : a->far_min;
+    a->far_max = b->far_max > a->far_max ? b->far_max : a->far_max;
+}
 
 /* Flags for desc.receiver: 1 for every range whose name starts with prefix
  * (e.g. "ground"), 0 otherwise; returns how many were flagged. */
