@@ -31,6 +31,7 @@
 #include "glctx.h"
 #include "image.h"
 #include "lightfit.h"
+#include "outputs.h"
 #include "overlay.h"
 #include "shadowmap.h"
 #include "scenefile.h"
@@ -107,222 +108,6 @@ static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw
 static void rm_tree(const char *path)
 {
     nftw(path, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
-}
-
-/* ---- outputs ---- */
-
-static void machine_of(const struct sl_provenance *p, char *out, size_t n)
-{
-    snprintf(out, n, "%s/%s/%s", p->host, p->cpu, p->isa);
-}
-
-/* A cell's counters and times as the store and the tables carry them. */
-static void costs_of(const struct sl_config *c, const struct sl_cell *cl, struct sl_table_costs *k)
-{
-    memset(k, 0, sizeof *k);
-    const struct sl_stage_ms *s = &cl->ms;
-    k->runs = c->runs;
-    k->truth_rays = cl->truth_rays;
-    k->lookups = cl->cost.lookups;
-    k->rays = cl->cost.rays;
-    k->tri_tests = cl->cost.tri_tests;
-    k->gs_prims = cl->gs_prims;
-    k->fragments = cl->fragments;
-    k->violations = cl->violations;
-    for (int j = 0; j < 3; j++) {
-        k->gbuffer_render[j] = s->gbuffer_render[j];
-        k->truth[j] = s->truth[j];
-        k->map_render[j] = s->map_render[j];
-        k->method[j] = s->method[j];
-    }
-    k->gbuffer_readback = s->gbuffer_readback;
-    k->fit = s->fit;
-    k->map_readback = s->map_readback;
-    k->ray_step = cl->cost.ms_trace;
-    for (int j = 0; j < 4; j++)
-        k->step[j] = cl->cost.ms_step[j];
-    k->contours = s->contours;
-    k->figures = s->figures;
-    k->overlay = s->overlay;
-}
-
-/* The overlay's file name inside the run's overlays/ folder. */
-static void overlay_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n)
-{
-    snprintf(out, n, "%s-%s-%dx%d-%d-%s.png", cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
-             c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label);
-}
-
-static void table_cells_of(const struct sl_config *c, const struct sl_run_result *res,
-                           struct sl_table_cell *tc)
-{
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        struct sl_table_cell *t = &tc[i];
-        memset(t, 0, sizeof *t);
-        snprintf(t->scene, sizeof t->scene, "%s", cl->scene);
-        snprintf(t->viewpoint, sizeof t->viewpoint, "%s", cl->viewpoint);
-        snprintf(t->method, sizeof t->method, "%s", c->methods[cl->key.method].method->name);
-        snprintf(t->label, sizeof t->label, "%s", c->methods[cl->key.method].label);
-        t->vw = c->viewport_w[cl->key.viewport];
-        t->vh = c->viewport_h[cl->key.viewport];
-        t->map_size = c->maps[cl->key.map];
-        t->n_pfl = cl->n_pfl;
-        t->n_pnfl = cl->n_pnfl;
-        t->n_background = cl->n_background;
-        t->n_truth_lit = cl->n_truth_lit;
-        t->n_truth_shadow = cl->n_truth_shadow;
-        t->fig = cl->fig;
-        t->has_soft = cl->has_soft;
-        t->soft = cl->soft;
-        costs_of(c, cl, &t->cost);
-        snprintf(t->study, sizeof t->study, "%s", c->name);
-        if (c->overlays) {
-            char name[400];
-            overlay_name(c, cl, name, sizeof name);
-            snprintf(t->overlay, sizeof t->overlay, "overlays/%s", name);
-        }
-        snprintf(t->git_sha, sizeof t->git_sha, "%s", res->prov.git_sha);
-        snprintf(t->config_hash, sizeof t->config_hash, "%016llx", c->hash);
-        machine_of(&res->prov, t->machine, sizeof t->machine);
-    }
-}
-
-static enum sl_err write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
-                                const struct sl_run_result *res, struct sl_diag *d)
-{
-    struct sl_table_cell *tc = sl_calloc((size_t)(res->ncells ? res->ncells : 1), sizeof *tc);
-    if (!tc)
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "table cells");
-    table_cells_of(c, res, tc);
-    char title[256];
-    snprintf(title, sizeof title, "shadowlab: %s", c->name);
-    enum sl_err e = sl_table_write(f, fmt, title, tc, res->ncells, d);
-    free(tc);
-    return e;
-}
-
-static void write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    char machine[300];
-    machine_of(&res->prov, machine, sizeof machine);
-    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,runs,ms_gbuffer_render,ms_gbuffer_render_min,"
-               "ms_gbuffer_render_max,ms_gbuffer_readback,ms_truth,ms_truth_min,ms_truth_max,truth_cached,"
-               "truth_rays,ms_fit,ms_map_render,ms_map_render_min,ms_map_render_max,ms_map_readback,ms_method,"
-               "ms_method_min,ms_method_max,ms_ray_step,ms_step1,ms_step2,ms_step3,ms_step4,lookups,rays,"
-               "tri_tests,gs_prims,fragments,violations,ms_contours,ms_figures,ms_overlay,git_sha,config_hash,"
-               "machine\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        struct sl_table_costs k;
-        costs_of(c, cl, &k);
-        fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d", cl->index, cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
-                c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label, k.runs);
-        fprintf(f, ",%.3f,%.3f,%.3f,%.3f", k.gbuffer_render[SL_MED], k.gbuffer_render[SL_MIN],
-                k.gbuffer_render[SL_MAX], k.gbuffer_readback);
-        fprintf(f, ",%.3f,%.3f,%.3f,%d,%llu,%.3f", k.truth[SL_MED], k.truth[SL_MIN], k.truth[SL_MAX],
-                cl->truth_cached, (unsigned long long)k.truth_rays, k.fit);
-        fprintf(f, ",%.3f,%.3f,%.3f,%.3f", k.map_render[SL_MED], k.map_render[SL_MIN], k.map_render[SL_MAX],
-                k.map_readback);
-        fprintf(f, ",%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", k.method[SL_MED], k.method[SL_MIN],
-                k.method[SL_MAX], k.ray_step, k.step[0], k.step[1], k.step[2], k.step[3]);
-        fprintf(f, ",%llu,%llu,%llu,%llu,%llu,%llu", (unsigned long long)k.lookups, (unsigned long long)k.rays,
-                (unsigned long long)k.tri_tests, (unsigned long long)k.gs_prims,
-                (unsigned long long)k.fragments, (unsigned long long)k.violations);
-        fprintf(f, ",%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n", k.contours, k.figures, k.overlay, res->prov.git_sha,
-                c->hash, machine);
-    }
-}
-
-static void write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    fprintf(f, "\n## Cost per cell (ms; G-buffer and truth are shared by the cells of a view)\n\n");
-    fprintf(f, "| cell | scene | viewpoint | map | label | G-buffer | truth | fit | map render | readback "
-               "| method (median of %d) | of which rays | rays | lookups | ray-tri tests | GS prims | contours | figures | overlay |\n", c->runs);
-    fprintf(f, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        const struct sl_stage_ms *s = &cl->ms;
-        fprintf(f, "| %d | %s | %s | %d | %s | %.1f | %.1f%s | %.1f | %.1f | %.1f | %.1f | %.1f | %llu | %llu | %llu | %llu | %.1f | %.1f | %.1f |\n",
-                cl->index, cl->scene, cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label,
-                s->gbuffer_render[SL_MED] + s->gbuffer_readback, s->truth[SL_MED], cl->truth_cached ? " (cached)" : "",
-                s->fit, s->map_render[SL_MED], s->map_readback, s->method[SL_MED], cl->cost.ms_trace,
-                (unsigned long long)cl->cost.rays,
-                (unsigned long long)cl->cost.lookups, (unsigned long long)cl->cost.tri_tests,
-                (unsigned long long)cl->gs_prims, s->contours, s->figures, s->overlay);
-    }
-    fprintf(f, "\nTotal %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.\n",
-            res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
-}
-
-/* Texel coherence's undecided pixels by pattern (Moderno 2011 Tables 20/22). */
-static void write_patterns_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,texels,region,shadowed_texels,pixels,"
-               "shadowed_in_truth,git_sha,config_hash\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        if (!cl->has_patterns)
-            continue;
-        int n = c->methods[cl->key.method].params.texels;
-        for (int r = 0; r < cl->fig.nregions; r++)
-            for (int k = 0; k <= n; k++) {
-                char rn[16];
-                if (cl->fig.r[r].thickness)
-                    snprintf(rn, sizeof rn, "%dpx", cl->fig.r[r].thickness);
-                else
-                    snprintf(rn, sizeof rn, "image");
-                fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d,%s,%d,%llu,%llu,%s,%016llx\n", cl->index, cl->scene,
-                        cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
-                        c->maps[cl->key.map], c->methods[cl->key.method].label, n, rn, k,
-                        (unsigned long long)cl->pattern[r][k][0], (unsigned long long)cl->pattern[r][k][1],
-                        res->prov.git_sha, c->hash);
-            }
-    }
-}
-
-static void write_patterns_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    int any = 0;
-    for (int i = 0; i < res->ncells; i++)
-        any |= res->cells[i].has_patterns;
-    if (!any)
-        return;
-    fprintf(f, "\n## Texel coherence: undecided pixels by how many texels say shadow "
-               "(pixels, of which shadowed in truth)\n\n");
-    fprintf(f, "| cell | scene | viewpoint | map | label | region | 1 | 2 | 3 | 4 | 5 | 6 | 7 | 8 |\n");
-    fprintf(f, "|---:|---|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        if (!cl->has_patterns)
-            continue;
-        int n = c->methods[cl->key.method].params.texels;
-        for (int r = 0; r < cl->fig.nregions; r++) {
-            char rn[16];
-            if (cl->fig.r[r].thickness)
-                snprintf(rn, sizeof rn, "%d px", cl->fig.r[r].thickness);
-            else
-                snprintf(rn, sizeof rn, "image");
-            fprintf(f, "| %d | %s | %s | %d | %s | %s |", cl->index, cl->scene, cl->viewpoint,
-                    c->maps[cl->key.map], c->methods[cl->key.method].label, rn);
-            for (int k = 1; k <= 8; k++) {
-                if (k < n)
-                    fprintf(f, " %llu (%llu) |", (unsigned long long)cl->pattern[r][k][0],
-                            (unsigned long long)cl->pattern[r][k][1]);
-                else
-                    fprintf(f, " |");
-            }
-            fprintf(f, "\n");
-        }
-    }
-}
-
-static void write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    fprintf(f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
-    sl_provenance_write(&res->prov, f, "");
-    fprintf(f, "cells_computed: %d\ncells_skipped: %d\nms_total: %.1f\n", res->ncells, res->skipped,
-            res->ms_total);
 }
 
 /* ---- truth cache ----
@@ -1068,7 +853,7 @@ static enum sl_err soft_cell(struct run_ctx *x, const struct sl_config *c, struc
         p[2] = (uint8_t)((1 - a) * g + a * (e > 0 ? 255.0f : 0.0f));
     }
     char name[400], path[1600];
-    overlay_name(c, cell, name, sizeof name);
+    sl_out_overlay_name(c, cell, name, sizeof name);
     snprintf(path, sizeof path, "%s/%s", ovdir, name);
     enum sl_err e = sl_image_write_rgb8(path, W, H, x->rgb, d);
     cell->ms.overlay = 1e3 * (sl_now() - t0);
@@ -1176,7 +961,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     if (ovdir && !e) {
         t0 = sl_now();
         char name[400], path[1600];
-        overlay_name(c, cell, name, sizeof name);
+        sl_out_overlay_name(c, cell, name, sizeof name);
         snprintf(path, sizeof path, "%s/%s", ovdir, name);
         sl_overlay_build(&x->view, x->scene.light_dir, &x->vd, x->band, c->overlay_contour, x->rgb);
         e = sl_image_write_rgb8(path, W, H, x->rgb, d);
@@ -1238,23 +1023,13 @@ static enum sl_err store_cell(struct sl_store *st, int64_t run_id, const struct 
                               const struct sl_cell *cl, const char *store_path, const char *final,
                               struct sl_diag *d)
 {
-    const struct sl_config_method *cm = &c->methods[cl->key.method];
-    struct sl_table_costs k;
-    costs_of(c, cl, &k);
-    char overlay[1500] = "";
+    struct sl_cell_record sc;
+    sl_out_record(c, cl, &sc);
     if (final && final[0] && c->overlays) {
         char name[400];
-        overlay_name(c, cl, name, sizeof name);
-        overlay_store_path(store_path, final, name, overlay, sizeof overlay);
+        sl_out_overlay_name(c, cl, name, sizeof name);
+        overlay_store_path(store_path, final, name, sc.overlay, sizeof sc.overlay);
     }
-    struct sl_store_cell sc = {
-        .scene = cl->scene, .viewpoint = cl->viewpoint, .method = cm->method->name, .label = cm->label,
-        .vw = c->viewport_w[cl->key.viewport], .vh = c->viewport_h[cl->key.viewport],
-        .map_size = c->maps[cl->key.map], .cell_index = cl->index,
-        .n_pfl = cl->n_pfl, .n_pnfl = cl->n_pnfl, .n_background = cl->n_background,
-        .n_truth_lit = cl->n_truth_lit, .n_truth_shadow = cl->n_truth_shadow,
-        .fig = &cl->fig, .costs = &k, .overlay = overlay, .soft = cl->has_soft ? &cl->soft : NULL,
-    };
     return sl_store_put_cell(st, run_id, c->hash, &sc, d);
 }
 
@@ -1467,20 +1242,20 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             if ((e = sl_out_open(&of, path, d)))
                 break;
             switch (files[f].kind) {
-            case 0: e = write_tables(of.f, SL_TABLE_CSV, c, res, d); break;
+            case 0: e = sl_out_write_tables(of.f, SL_TABLE_CSV, c, res, d); break;
             case 1:
-                e = write_tables(of.f, SL_TABLE_MD, c, res, d);
-                write_costs_md(of.f, c, res);
-                write_patterns_md(of.f, c, res);
+                e = sl_out_write_tables(of.f, SL_TABLE_MD, c, res, d);
+                sl_out_write_costs_md(of.f, c, res);
+                sl_out_write_patterns_md(of.f, c, res);
                 break;
-            case 2: e = write_tables(of.f, SL_TABLE_LATEX, c, res, d); break;
-            case 3: write_costs_csv(of.f, c, res); break;
+            case 2: e = sl_out_write_tables(of.f, SL_TABLE_LATEX, c, res, d); break;
+            case 3: sl_out_write_costs_csv(of.f, c, res); break;
             case 4:
                 fprintf(of.f, "# from %s (hash %016llx), git %s\n", c->path, c->hash, res->prov.git_sha);
                 sl_config_write(c, of.f);
                 break;
-            case 5: write_run_yaml(of.f, c, res); break;
-            case 6: write_patterns_csv(of.f, c, res); break;
+            case 5: sl_out_write_run_yaml(of.f, c, res); break;
+            case 6: sl_out_write_patterns_csv(of.f, c, res); break;
             }
             if (e)
                 sl_out_abort(&of);
@@ -1516,9 +1291,9 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             rm_tree(old);
     }
     if (o->table_out && c->tables) {
-        e = write_tables(o->table_out, SL_TABLE_MD, c, res, d);
-        write_costs_md(o->table_out, c, res);
-        write_patterns_md(o->table_out, c, res);
+        e = sl_out_write_tables(o->table_out, SL_TABLE_MD, c, res, d);
+        sl_out_write_costs_md(o->table_out, c, res);
+        sl_out_write_patterns_md(o->table_out, c, res);
         fprintf(o->table_out, "\nwritten to %s/%s%s\n", final, store_path[0] ? " and " : "", store_path);
     }
 out:
