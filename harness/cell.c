@@ -11,7 +11,6 @@
 #include "contour.h"
 #include "image.h"
 #include "overlay.h"
-#include "run.h"
 #include "softfig.h"
 #include "util.h"
 

@@ -19,11 +19,62 @@
 #ifndef SL_CELL_H
 #define SL_CELL_H
 #include <stdint.h>
+#include "config.h"
 #include "frame.h"
+#include "figures.h"
+#include "plan.h"
+#include "softfig.h"
 #include "method.h"
 #include "view.h"
 
-struct sl_cell;
+/* Wall times of the stages of one cell, ms; view stages are shared by every
+ * cell of the view and reported with each. The G-buffer render, the truth
+ * (when traced, not cached), each shadow-map layer render and the method are
+ * repeated as the config says (warm-up + runs): each keeps the median of the
+ * timed runs with their min and max. The layers the method reads add up
+ * (sum of medians, of mins, of maxes). The rest is timed once. */
+struct sl_stage_ms {
+    double gbuffer_render[3], gbuffer_readback, truth[3], fit;   /* [SL_MED], [SL_MIN], [SL_MAX] */
+    double map_render[3], map_readback;
+    double method[3], contours, figures, overlay;
+};
+
+/* A pixel where a method broke the guarantee it declares (method.h
+ * SL_EXACT_*): where, what, and which triangles its texel holds. */
+struct sl_violation {
+    int      x, y;                     /* pixel, y = 0 the bottom row */
+    uint8_t  truth, verdict, how;
+    uint32_t own_tri;                  /* triangle + 1 the pixel lies on */
+    int      tx, ty;                   /* its texel */
+    uint32_t layer_tri[SL_LAYER_COUNT];/* triangle + 1 each rendered layer holds there, 0 none */
+};
+#define SL_MAX_VIOLATIONS 4
+
+struct sl_cell {
+    int index;                         /* in the sweep */
+    struct sl_cell_key key;
+    char scene[64];
+    char viewpoint[32];
+    struct sl_figures  fig;
+    struct sl_cost     cost;
+    struct sl_stage_ms ms;
+    uint64_t gs_prims, fragments;      /* of the layers the method reads (GL queries) */
+    int      truth_cached;
+    uint64_t truth_rays;
+    uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
+    int      has_soft;                 /* an area light's cell: soft figures instead of fig's regions */
+    struct sl_soft_figures soft;
+    uint64_t violations;               /* of the method's declared exactness; must be 0 */
+    uint64_t nonfinite;                /* G-buffer values not finite, depths of the layers it reads
+                                        * outside [0, 1]; must be 0 */
+    /* texel coherence (Moderno 2011 Tables 20/22): per region, PFL pixels by
+     * how many of the tested texels say shadow, and of those how many are
+     * shadowed in truth; has_patterns when the method reports it */
+    int      has_patterns;
+    uint64_t pattern[SL_MAX_REGIONS][10][2];
+    struct sl_violation violation[SL_MAX_VIOLATIONS];
+};
+
 
 struct sl_cell_inputs {
     const struct sl_method      *method;

@@ -331,7 +331,7 @@ static int cmd_table(int argc, char **argv)
     }
     fclose(probe);
     struct sl_store *st = NULL;
-    struct sl_table_cell *cells = NULL;
+    struct sl_cell_record *cells = NULL;
     int n = 0;
     enum sl_err e = sl_store_open_existing(db, &st, &d);
     if (!e)

@@ -3,41 +3,28 @@
  *
  * Invariants: cells are visited in sweep order, so the cells sharing a scene,
  * a view and a map size are contiguous and each shared stage is computed once
- * for them (the caches below hold the current scene, view and frame); the
+ * for them (the run context holds the current scene, view and frame); the
  * layers rendered for a (view, map size) are the union of what the methods of
- * the selected cells in that group declare; methods see the view without
- * its truth.
+ * the selected cells in that group declare (plan.c); methods see the view
+ * without its truth.
  */
 #define _XOPEN_SOURCE 700
 #include "run.h"
-#include <dirent.h>
-#include <errno.h>
-#include <ftw.h>
-#include <limits.h>
-#include <signal.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 #include "adjacency.h"
-#include "arealight.h"
-#include "softfig.h"
 #include "softmap.h"
-#include "softmc.h"
 #include "softtruth.h"
 #include "cache.h"
 #include "cell.h"
-#include "contour.h"
 #include "gbuffer.h"
 #include "glctx.h"
-#include "image.h"
 #include "lightfit.h"
-#include "overlay.h"
+#include "outputs.h"
 #include "shadowmap.h"
 #include "scenefile.h"
-#include "store.h"
-#include "table.h"
 #include "truth.h"
 #include "util.h"
 
@@ -47,233 +34,6 @@ void sl_run_result_free(struct sl_run_result *r)
         return;
     free(r->cells);
     memset(r, 0, sizeof *r);
-}
-
-static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw)
-{
-    (void)sb; (void)flag; (void)ftw;
-    return remove(p);
-}
-
-static void rm_tree(const char *path)
-{
-    nftw(path, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
-}
-
-/* ---- outputs ---- */
-
-static void machine_of(const struct sl_provenance *p, char *out, size_t n)
-{
-    snprintf(out, n, "%s/%s/%s", p->host, p->cpu, p->isa);
-}
-
-/* A cell's counters and times as the store and the tables carry them. */
-static void costs_of(const struct sl_config *c, const struct sl_cell *cl, struct sl_table_costs *k)
-{
-    memset(k, 0, sizeof *k);
-    const struct sl_stage_ms *s = &cl->ms;
-    k->runs = c->runs;
-    k->truth_rays = cl->truth_rays;
-    k->lookups = cl->cost.lookups;
-    k->rays = cl->cost.rays;
-    k->tri_tests = cl->cost.tri_tests;
-    k->gs_prims = cl->gs_prims;
-    k->fragments = cl->fragments;
-    k->violations = cl->violations;
-    for (int j = 0; j < 3; j++) {
-        k->gbuffer_render[j] = s->gbuffer_render[j];
-        k->truth[j] = s->truth[j];
-        k->map_render[j] = s->map_render[j];
-        k->method[j] = s->method[j];
-    }
-    k->gbuffer_readback = s->gbuffer_readback;
-    k->fit = s->fit;
-    k->map_readback = s->map_readback;
-    k->ray_step = cl->cost.ms_trace;
-    for (int j = 0; j < 4; j++)
-        k->step[j] = cl->cost.ms_step[j];
-    k->contours = s->contours;
-    k->figures = s->figures;
-    k->overlay = s->overlay;
-}
-
-/* The overlay's file name inside the run's overlays/ folder. */
-static void overlay_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n)
-{
-    snprintf(out, n, "%s-%s-%dx%d-%d-%s.png", cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
-             c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label);
-}
-
-static void table_cells_of(const struct sl_config *c, const struct sl_run_result *res,
-                           struct sl_table_cell *tc)
-{
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        struct sl_table_cell *t = &tc[i];
-        memset(t, 0, sizeof *t);
-        snprintf(t->scene, sizeof t->scene, "%s", cl->scene);
-        snprintf(t->viewpoint, sizeof t->viewpoint, "%s", cl->viewpoint);
-        snprintf(t->method, sizeof t->method, "%s", c->methods[cl->key.method].method->name);
-        snprintf(t->label, sizeof t->label, "%s", c->methods[cl->key.method].label);
-        t->vw = c->viewport_w[cl->key.viewport];
-        t->vh = c->viewport_h[cl->key.viewport];
-        t->map_size = c->maps[cl->key.map];
-        t->n_pfl = cl->n_pfl;
-        t->n_pnfl = cl->n_pnfl;
-        t->n_background = cl->n_background;
-        t->n_truth_lit = cl->n_truth_lit;
-        t->n_truth_shadow = cl->n_truth_shadow;
-        t->fig = cl->fig;
-        t->has_soft = cl->has_soft;
-        t->soft = cl->soft;
-        costs_of(c, cl, &t->cost);
-        snprintf(t->study, sizeof t->study, "%s", c->name);
-        if (c->overlays) {
-            char name[400];
-            overlay_name(c, cl, name, sizeof name);
-            snprintf(t->overlay, sizeof t->overlay, "overlays/%s", name);
-        }
-        snprintf(t->git_sha, sizeof t->git_sha, "%s", res->prov.git_sha);
-        snprintf(t->config_hash, sizeof t->config_hash, "%016llx", c->hash);
-        machine_of(&res->prov, t->machine, sizeof t->machine);
-    }
-}
-
-static enum sl_err write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
-                                const struct sl_run_result *res, struct sl_diag *d)
-{
-    struct sl_table_cell *tc = sl_calloc((size_t)(res->ncells ? res->ncells : 1), sizeof *tc);
-    if (!tc)
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "table cells");
-    table_cells_of(c, res, tc);
-    char title[256];
-    snprintf(title, sizeof title, "shadowlab: %s", c->name);
-    enum sl_err e = sl_table_write(f, fmt, title, tc, res->ncells, d);
-    free(tc);
-    return e;
-}
-
-static void write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    char machine[300];
-    machine_of(&res->prov, machine, sizeof machine);
-    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,runs,ms_gbuffer_render,ms_gbuffer_render_min,"
-               "ms_gbuffer_render_max,ms_gbuffer_readback,ms_truth,ms_truth_min,ms_truth_max,truth_cached,"
-               "truth_rays,ms_fit,ms_map_render,ms_map_render_min,ms_map_render_max,ms_map_readback,ms_method,"
-               "ms_method_min,ms_method_max,ms_ray_step,ms_step1,ms_step2,ms_step3,ms_step4,lookups,rays,"
-               "tri_tests,gs_prims,fragments,violations,ms_contours,ms_figures,ms_overlay,git_sha,config_hash,"
-               "machine\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        struct sl_table_costs k;
-        costs_of(c, cl, &k);
-        fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d", cl->index, cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
-                c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label, k.runs);
-        fprintf(f, ",%.3f,%.3f,%.3f,%.3f", k.gbuffer_render[SL_MED], k.gbuffer_render[SL_MIN],
-                k.gbuffer_render[SL_MAX], k.gbuffer_readback);
-        fprintf(f, ",%.3f,%.3f,%.3f,%d,%llu,%.3f", k.truth[SL_MED], k.truth[SL_MIN], k.truth[SL_MAX],
-                cl->truth_cached, (unsigned long long)k.truth_rays, k.fit);
-        fprintf(f, ",%.3f,%.3f,%.3f,%.3f", k.map_render[SL_MED], k.map_render[SL_MIN], k.map_render[SL_MAX],
-                k.map_readback);
-        fprintf(f, ",%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", k.method[SL_MED], k.method[SL_MIN],
-                k.method[SL_MAX], k.ray_step, k.step[0], k.step[1], k.step[2], k.step[3]);
-        fprintf(f, ",%llu,%llu,%llu,%llu,%llu,%llu", (unsigned long long)k.lookups, (unsigned long long)k.rays,
-                (unsigned long long)k.tri_tests, (unsigned long long)k.gs_prims,
-                (unsigned long long)k.fragments, (unsigned long long)k.violations);
-        fprintf(f, ",%.3f,%.3f,%.3f,%s,%016llx,\"%s\"\n", k.contours, k.figures, k.overlay, res->prov.git_sha,
-                c->hash, machine);
-    }
-}
-
-static void write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    fprintf(f, "\n## Cost per cell (ms; G-buffer and truth are shared by the cells of a view)\n\n");
-    fprintf(f, "| cell | scene | viewpoint | map | label | G-buffer | truth | fit | map render | readback "
-               "| method (median of %d) | of which rays | rays | lookups | ray-tri tests | GS prims | contours | figures | overlay |\n", c->runs);
-    fprintf(f, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        const struct sl_stage_ms *s = &cl->ms;
-        fprintf(f, "| %d | %s | %s | %d | %s | %.1f | %.1f%s | %.1f | %.1f | %.1f | %.1f | %.1f | %llu | %llu | %llu | %llu | %.1f | %.1f | %.1f |\n",
-                cl->index, cl->scene, cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label,
-                s->gbuffer_render[SL_MED] + s->gbuffer_readback, s->truth[SL_MED], cl->truth_cached ? " (cached)" : "",
-                s->fit, s->map_render[SL_MED], s->map_readback, s->method[SL_MED], cl->cost.ms_trace,
-                (unsigned long long)cl->cost.rays,
-                (unsigned long long)cl->cost.lookups, (unsigned long long)cl->cost.tri_tests,
-                (unsigned long long)cl->gs_prims, s->contours, s->figures, s->overlay);
-    }
-    fprintf(f, "\nTotal %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.\n",
-            res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
-}
-
-/* Texel coherence's undecided pixels by pattern (Moderno 2011 Tables 20/22). */
-static void write_patterns_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,texels,region,shadowed_texels,pixels,"
-               "shadowed_in_truth,git_sha,config_hash\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        if (!cl->has_patterns)
-            continue;
-        int n = c->methods[cl->key.method].params.texels;
-        for (int r = 0; r < cl->fig.nregions; r++)
-            for (int k = 0; k <= n; k++) {
-                char rn[16];
-                if (cl->fig.r[r].thickness)
-                    snprintf(rn, sizeof rn, "%dpx", cl->fig.r[r].thickness);
-                else
-                    snprintf(rn, sizeof rn, "image");
-                fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d,%s,%d,%llu,%llu,%s,%016llx\n", cl->index, cl->scene,
-                        cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
-                        c->maps[cl->key.map], c->methods[cl->key.method].label, n, rn, k,
-                        (unsigned long long)cl->pattern[r][k][0], (unsigned long long)cl->pattern[r][k][1],
-                        res->prov.git_sha, c->hash);
-            }
-    }
-}
-
-static void write_patterns_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    int any = 0;
-    for (int i = 0; i < res->ncells; i++)
-        any |= res->cells[i].has_patterns;
-    if (!any)
-        return;
-    fprintf(f, "\n## Texel coherence: undecided pixels by how many texels say shadow "
-               "(pixels, of which shadowed in truth)\n\n");
-    fprintf(f, "| cell | scene | viewpoint | map | label | region | 1 | 2 | 3 | 4 | 5 | 6 | 7 | 8 |\n");
-    fprintf(f, "|---:|---|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        if (!cl->has_patterns)
-            continue;
-        int n = c->methods[cl->key.method].params.texels;
-        for (int r = 0; r < cl->fig.nregions; r++) {
-            char rn[16];
-            if (cl->fig.r[r].thickness)
-                snprintf(rn, sizeof rn, "%d px", cl->fig.r[r].thickness);
-            else
-                snprintf(rn, sizeof rn, "image");
-            fprintf(f, "| %d | %s | %s | %d | %s | %s |", cl->index, cl->scene, cl->viewpoint,
-                    c->maps[cl->key.map], c->methods[cl->key.method].label, rn);
-            for (int k = 1; k <= 8; k++) {
-                if (k < n)
-                    fprintf(f, " %llu (%llu) |", (unsigned long long)cl->pattern[r][k][0],
-                            (unsigned long long)cl->pattern[r][k][1]);
-                else
-                    fprintf(f, " |");
-            }
-            fprintf(f, "\n");
-        }
-    }
-}
-
-static void write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    fprintf(f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
-    sl_provenance_write(&res->prov, f, "");
-    fprintf(f, "cells_computed: %d\ncells_skipped: %d\nms_total: %.1f\n", res->ncells, res->skipped,
-            res->ms_total);
 }
 
 /* ---- the run ---- */
@@ -750,7 +510,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     char ovpath[1600] = "", exrpath[1400] = "";
     if (ovdir) {
         char name[400];
-        overlay_name(c, cell, name, sizeof name);
+        sl_out_overlay_name(c, cell, name, sizeof name);
         snprintf(ovpath, sizeof ovpath, "%s/%s", ovdir, name);
     }
     if (exrdir)
@@ -766,139 +526,6 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     return sl_cell_score(&in, &x->vd, cell, d);
 }
 
-/* The overlay's path as the store keeps it: relative to the database's
- * folder when the results folder lies under it (the usual layout,
- * results/shadowlab.db beside results/<name>/), else absolute. The file is in
- * place once the run ends (the staging folder is renamed then). */
-static void overlay_store_path(const char *store_path, const char *final, const char *name, char *out,
-                               size_t n)
-{
-    char dbdir[PATH_MAX], fin[PATH_MAX], tmp[1200];
-    snprintf(tmp, sizeof tmp, "%s", store_path);
-    char *slash = strrchr(tmp, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(tmp, sizeof tmp, ".");
-    if (!realpath(tmp, dbdir) || !realpath(final, fin)) {
-        /* the results folder does not exist yet on a first run: resolve its parent */
-        char parent[1200];
-        snprintf(parent, sizeof parent, "%s", final);
-        char *ps = strrchr(parent, '/');
-        const char *base = ps ? ps + 1 : final;
-        if (ps)
-            *ps = '\0';
-        else
-            snprintf(parent, sizeof parent, ".");
-        char rp[PATH_MAX];
-        if (!realpath(tmp, dbdir) || !realpath(parent, rp)) {
-            snprintf(out, n, "%s/overlays/%s", final, name);
-            return;
-        }
-        snprintf(fin, sizeof fin, "%.*s/%s", (int)(sizeof fin - 300), rp, base);
-    }
-    size_t k = strlen(dbdir);
-    if (strncmp(fin, dbdir, k) == 0 && fin[k] == '/')
-        snprintf(out, n, "%s/overlays/%s", fin + k + 1, name);
-    else
-        snprintf(out, n, "%s/overlays/%s", fin, name);
-}
-
-static enum sl_err store_cell(struct sl_store *st, int64_t run_id, const struct sl_config *c,
-                              const struct sl_cell *cl, const char *store_path, const char *final,
-                              struct sl_diag *d)
-{
-    const struct sl_config_method *cm = &c->methods[cl->key.method];
-    struct sl_table_costs k;
-    costs_of(c, cl, &k);
-    char overlay[1500] = "";
-    if (final && final[0] && c->overlays) {
-        char name[400];
-        overlay_name(c, cl, name, sizeof name);
-        overlay_store_path(store_path, final, name, overlay, sizeof overlay);
-    }
-    struct sl_store_cell sc = {
-        .scene = cl->scene, .viewpoint = cl->viewpoint, .method = cm->method->name, .label = cm->label,
-        .vw = c->viewport_w[cl->key.viewport], .vh = c->viewport_h[cl->key.viewport],
-        .map_size = c->maps[cl->key.map], .cell_index = cl->index,
-        .n_pfl = cl->n_pfl, .n_pnfl = cl->n_pnfl, .n_background = cl->n_background,
-        .n_truth_lit = cl->n_truth_lit, .n_truth_shadow = cl->n_truth_shadow,
-        .fig = &cl->fig, .costs = &k, .overlay = overlay, .soft = cl->has_soft ? &cl->soft : NULL,
-    };
-    return sl_store_put_cell(st, run_id, c->hash, &sc, d);
-}
-
-/* Move the files of <from>/<sub> into <to>/<sub> where <to> has no file of that name. */
-static void carry_files(const char *from, const char *to, const char *sub)
-{
-    char src[1400], dst[1400];
-    snprintf(src, sizeof src, "%s/%s", from, sub);
-    DIR *dir = opendir(src);
-    if (!dir)
-        return;
-    snprintf(dst, sizeof dst, "%s/%s", to, sub);
-    mkdir(dst, 0777);
-    struct dirent *e;
-    while ((e = readdir(dir))) {
-        /* a killed run may have left a half-written image under its
-         * temporary name (image.cpp writes name.tmp.ext, then renames) */
-        if (e->d_name[0] == '.' || strstr(e->d_name, ".tmp."))
-            continue;
-        char a[1800], b[1800];
-        snprintf(a, sizeof a, "%s/%s", src, e->d_name);
-        snprintf(b, sizeof b, "%s/%s", dst, e->d_name);
-        if (access(b, F_OK) != 0)
-            rename(a, b);
-    }
-    closedir(dir);
-}
-
-static void carry_previous(const char *root, const char *name, const char *final, const char *stage)
-{
-    carry_files(final, stage, "overlays");
-    carry_files(final, stage, "exr");
-    DIR *dir = opendir(root);
-    if (!dir)
-        return;
-    char prefix[200], own[1200];
-    snprintf(prefix, sizeof prefix, ".%s.partial-", name);
-    struct dirent *e;
-    while ((e = readdir(dir))) {
-        if (strncmp(e->d_name, prefix, strlen(prefix)) != 0)
-            continue;
-        snprintf(own, sizeof own, "%s/%s", root, e->d_name);
-        if (strcmp(own, stage) == 0)
-            continue;
-        /* only a dead run's folder: another run of this config may be writing
-         * its own right now (a pid that cannot be parsed counts as dead) */
-        char *end;
-        long pid = strtol(e->d_name + strlen(prefix), &end, 10);
-        if (*end == '\0' && pid > 0 && (kill((pid_t)pid, 0) == 0 || errno == EPERM))
-            continue;
-        carry_files(own, stage, "overlays");
-        carry_files(own, stage, "exr");
-        rm_tree(own);   /* a killed run's leftovers: its cells are in the store */
-    }
-    closedir(dir);
-}
-
-/* A run row carrying the filled-in config, so a number in the store can be
- * reproduced from the store alone. */
-static enum sl_err begin_run(struct sl_store *st, const struct sl_config *c, const struct sl_provenance *p,
-                             int64_t *run_id, struct sl_diag *d)
-{
-    char *text = NULL;
-    size_t len = 0;
-    FILE *f = open_memstream(&text, &len);
-    if (!f)
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "config text");
-    sl_config_write(c, f);
-    fclose(f);
-    enum sl_err e = sl_store_begin_run(st, p, c->name, c->path, c->hash, text, run_id, d);
-    free(text);
-    return e;
-}
-
 enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struct sl_run_result *res,
                    struct sl_diag *d)
 {
@@ -911,8 +538,9 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (first >= total || last > total || first >= last)
         return sl_fail(d, SL_E_USAGE, c->path, 0, "--cells", "cells %d:%d outside the sweep of %d cells",
                        first, last, total);
-    char stage[1100] = "", final[1100] = "", ovdir[1200] = "", exrdir[1200] = "", store_path[1100] = "",
-         cache[1100] = "";
+    struct sl_out_dirs dirs;
+    memset(&dirs, 0, sizeof dirs);
+    char store_path[1100] = "", cache[1100] = "";
     if (o->store)
         snprintf(store_path, sizeof store_path, "%s", o->store);
     else if (c->store[0])
@@ -931,18 +559,9 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         /* fail on an unwritable output before any GL or Embree work */
         if ((e = sl_mkdirs(root, d)))
             return e;
-        snprintf(final, sizeof final, "%s/%s", root, c->name);
-        snprintf(stage, sizeof stage, "%s/.%s.partial-%ld", root, c->name, (long)getpid());
-        rm_tree(stage);
-        if ((e = sl_mkdirs(stage, d)))
+        if ((e = sl_out_stage_begin(c, root, &dirs, d)))
             return e;
-        snprintf(ovdir, sizeof ovdir, "%s/overlays", stage);
-        snprintf(exrdir, sizeof exrdir, "%s/exr", stage);
-        if ((c->overlays && (e = sl_mkdirs(ovdir, d))) || (c->exr && (e = sl_mkdirs(exrdir, d)))) {
-            rm_tree(stage);
-            return e;
-        }
-        snprintf(res->out_dir, sizeof res->out_dir, "%s", final);
+        snprintf(res->out_dir, sizeof res->out_dir, "%s", dirs.final);
     }
     if (cache[0] && sl_mkdirs(cache, NULL) != SL_OK)
         cache[0] = '\0';   /* no cache is only slower */
@@ -964,7 +583,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     sl_provenance_fill(&res->prov);
     if (store_path[0]) {
         if ((e = sl_store_open(store_path, &st, d)) ||
-            (e = begin_run(st, c, &res->prov, &run_id, d)))
+            (e = sl_out_begin_run(st, c, &res->prov, &run_id, d)))
             goto out;
         snprintf(res->store_path, sizeof res->store_path, "%s", store_path);
     }
@@ -990,8 +609,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             break;
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;
-        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? ovdir : NULL,
-                          o->write_files && c->exr ? exrdir : NULL, res, d)))
+        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? dirs.overlays : NULL,
+                          o->write_files && c->exr ? dirs.exr : NULL, res, d)))
             break;
         if (cell->violations) {
             struct sl_run_event ev = {.kind = SL_EVENT_VIOLATIONS, .config = c, .cell = cell};
@@ -1001,7 +620,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             struct sl_run_event ev = {.kind = SL_EVENT_NONFINITE, .config = c, .cell = cell};
             emit(&x, &ev);
         }
-        if (st && (e = store_cell(st, run_id, c, cell, store_path, o->write_files ? final : NULL, d)))
+        if (st && (e = sl_out_store_cell(st, run_id, c, cell, store_path, o->write_files ? dirs.final : NULL, d)))
             break;
         res->ncells++;
         struct sl_run_event ev = {.kind = SL_EVENT_PROGRESS, .config = c, .cell = cell,
@@ -1013,77 +632,17 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (e || !o->write_files)
         goto out;
 
-    {
-        struct { const char *name; int kind; } files[] = {
-            {"figures.csv", 0}, {"table.md", 1}, {"table.tex", 2}, {"costs.csv", 3},
-            {"config.yaml", 4}, {"run.yaml", 5}, {"patterns.csv", 6},
-        };
-        for (size_t f = 0; f < sizeof files / sizeof files[0] && !e; f++) {
-            if (!c->tables && files[f].kind <= 2)
-                continue;
-            struct sl_outfile of;
-            char path[1300];
-            snprintf(path, sizeof path, "%s/%s", stage, files[f].name);
-            if ((e = sl_out_open(&of, path, d)))
-                break;
-            switch (files[f].kind) {
-            case 0: e = write_tables(of.f, SL_TABLE_CSV, c, res, d); break;
-            case 1:
-                e = write_tables(of.f, SL_TABLE_MD, c, res, d);
-                write_costs_md(of.f, c, res);
-                write_patterns_md(of.f, c, res);
-                break;
-            case 2: e = write_tables(of.f, SL_TABLE_LATEX, c, res, d); break;
-            case 3: write_costs_csv(of.f, c, res); break;
-            case 4:
-                fprintf(of.f, "# from %s (hash %016llx), git %s\n", c->path, c->hash, res->prov.git_sha);
-                sl_config_write(c, of.f);
-                break;
-            case 5: write_run_yaml(of.f, c, res); break;
-            case 6: write_patterns_csv(of.f, c, res); break;
-            }
-            if (e)
-                sl_out_abort(&of);
-            else
-                e = sl_out_commit(&of, d);
-        }
-        if (e)
-            goto out;
-    }
-    /* a resumed run computed only the missing cells: the overlays and EXR
-     * files of the cells it skipped come from the previous results folder, or
-     * from the staging folder of a run that was killed, so what the store
-     * points at is in place */
-    if (o->resume)
-        carry_previous(root, c->name, final, stage);
-    /* swap the finished folder into place */
-    {
-        char old[1200];
-        snprintf(old, sizeof old, "%s/.%s.old-%ld", root, c->name, (long)getpid());
-        struct stat sb;
-        int had = stat(final, &sb) == 0;
-        if (had && rename(final, old) != 0) {
-            e = sl_fail(d, SL_E_OUTPUT, final, 0, NULL, "cannot replace the previous results: %s", strerror(errno));
-            goto out;
-        }
-        if (rename(stage, final) != 0) {
-            if (had)
-                rename(old, final);
-            e = sl_fail(d, SL_E_OUTPUT, final, 0, NULL, "cannot move results into place: %s", strerror(errno));
-            goto out;
-        }
-        if (had)
-            rm_tree(old);
-    }
+    if ((e = sl_out_stage_finish(c, res, &dirs, o->resume, d)))
+        goto out;
     if (o->table_out && c->tables) {
-        e = write_tables(o->table_out, SL_TABLE_MD, c, res, d);
-        write_costs_md(o->table_out, c, res);
-        write_patterns_md(o->table_out, c, res);
-        fprintf(o->table_out, "\nwritten to %s/%s%s\n", final, store_path[0] ? " and " : "", store_path);
+        e = sl_out_write_tables(o->table_out, SL_TABLE_MD, c, res, d);
+        sl_out_write_costs_md(o->table_out, c, res);
+        sl_out_write_patterns_md(o->table_out, c, res);
+        fprintf(o->table_out, "\nwritten to %s/%s%s\n", dirs.final, store_path[0] ? " and " : "", store_path);
     }
 out:
-    if (e && stage[0])
-        rm_tree(stage);
+    if (e)
+        sl_out_stage_drop(&dirs);
     sl_store_close(st);
     ctx_free(&x);
     return e;

@@ -55,7 +55,7 @@ void sl_report_region_name(int t, char *buf, size_t n)
         snprintf(buf, n, "%d px", t);
 }
 
-int sl_report_region(const struct sl_table_cell *c, int thickness)
+int sl_report_region(const struct sl_cell_record *c, int thickness)
 {
     for (int r = 0; r < c->fig.nregions && r < SL_MAX_REGIONS; r++)
         if (c->fig.r[r].thickness == thickness)
@@ -63,7 +63,7 @@ int sl_report_region(const struct sl_table_cell *c, int thickness)
     return -1;
 }
 
-static int same_view(const struct sl_report_view *v, const struct sl_table_cell *c)
+static int same_view(const struct sl_report_view *v, const struct sl_cell_record *c)
 {
     return v->vw == c->vw && v->vh == c->vh && strcmp(v->scene, c->scene) == 0 &&
            strcmp(v->viewpoint, c->viewpoint) == 0;
@@ -75,7 +75,7 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
     int has_image = 0, moderno_only = 0, morais_only = 0, hard = 0;
     s->curtis = 0;
     for (int i = 0; i < s->n; i++) {
-        const struct sl_table_cell *c = &s->cells[i];
+        const struct sl_cell_record *c = &s->cells[i];
         int k;
         s->curtis |= c->has_soft;
         hard |= !c->has_soft || c->fig.nregions > 0;   /* a hard method under an area light has both */
@@ -145,11 +145,11 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
     return SL_OK;
 }
 
-const struct sl_table_cell *sl_report_study_cell(const struct sl_report_study *s, const struct sl_report_view *v,
+const struct sl_cell_record *sl_report_study_cell(const struct sl_report_study *s, const struct sl_report_view *v,
                                                  const char *label, int map_size)
 {
     for (int i = 0; i < s->n; i++) {
-        const struct sl_table_cell *c = &s->cells[i];
+        const struct sl_cell_record *c = &s->cells[i];
         if (c->map_size == map_size && same_view(v, c) && strcmp(c->label, label) == 0)
             return c;
     }
@@ -228,7 +228,7 @@ static void view_id(const struct sl_report_study *s, const struct sl_report_view
 
 /* ---- Moderno 2011: summaries (Tables 5-15) ---- */
 
-struct pick { const struct sl_table_cell *cell; int region; double v; };
+struct pick { const struct sl_cell_record *cell; int region; double v; };
 
 static void pick_text(const struct pick *p, char *buf, size_t n)
 {
@@ -297,7 +297,7 @@ static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_re
         double sum = 0.0;
         long count = 0;
         for (int i = 0; i < s->n; i++) {
-            const struct sl_table_cell *c = &s->cells[i];
+            const struct sl_cell_record *c = &s->cells[i];
             if (strcmp(c->label, s->labels[l]) != 0)
                 continue;
             int k = 0;
@@ -351,7 +351,7 @@ static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_re
 /* ---- Moderno 2011: per view ---- */
 
 /* Rows label x map x region for the labels `want` accepts; fill(t, cell, region index, col0). */
-typedef void (*row_fill)(struct sl_report_tab *t, const struct sl_table_cell *c, int r);
+typedef void (*row_fill)(struct sl_report_tab *t, const struct sl_cell_record *c, int r);
 
 static int view_rows(struct sl_report_tab *t, const struct sl_report_study *s, const struct sl_report_view *v,
                      int (*want)(const struct sl_report_study *, int), row_fill fill)
@@ -362,7 +362,7 @@ static int view_rows(struct sl_report_tab *t, const struct sl_report_study *s, c
             continue;
         int first_of_label = 1;
         for (int k = 0; k < s->nmaps; k++) {
-            const struct sl_table_cell *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
+            const struct sl_cell_record *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
             if (!c)
                 continue;
             for (int r = 0; r < c->fig.nregions && r < SL_MAX_REGIONS; r++) {
@@ -402,7 +402,7 @@ static int want_hints(const struct sl_report_study *s, int l)
     return sl_report_is_moderno(s->methods[l]) && label_has(s, l, SL_FIG_hinted);
 }
 
-static void fill_errors(struct sl_report_tab *t, const struct sl_table_cell *c, int r)
+static void fill_errors(struct sl_report_tab *t, const struct sl_cell_record *c, int r)
 {
     const struct sl_region_figures *g = &c->fig.r[r];
     char buf[96];
@@ -416,7 +416,7 @@ static void fill_errors(struct sl_report_tab *t, const struct sl_table_cell *c, 
     sl_report_tab_cell(t, 6, "%s", buf);
 }
 
-static void fill_vs_nsm(struct sl_report_tab *t, const struct sl_table_cell *c, int r)
+static void fill_vs_nsm(struct sl_report_tab *t, const struct sl_cell_record *c, int r)
 {
     static const enum sl_figure cols[] = {SL_FIG_fixed_ls, SL_FIG_fixed_sl, SL_FIG_broken_ls, SL_FIG_broken_sl,
                                           SL_FIG_kept_right, SL_FIG_kept_wrong};
@@ -424,7 +424,7 @@ static void fill_vs_nsm(struct sl_report_tab *t, const struct sl_table_cell *c, 
         sl_report_tab_cell(t, 3 + k, "%llu", (unsigned long long)c->fig.r[r].n[cols[k]]);
 }
 
-static void fill_hints(struct sl_report_tab *t, const struct sl_table_cell *c, int r)
+static void fill_hints(struct sl_report_tab *t, const struct sl_cell_record *c, int r)
 {
     const uint64_t *n = c->fig.r[r].n;
     char buf[96];
@@ -553,7 +553,7 @@ static enum sl_err morais_view(struct sl_report_doc *doc, const struct sl_report
         sl_report_tab_cell(&t, 1, p ? "PnFL" : "PFL");
         for (int k = 0; k < nmaps; k++)
             for (int l = 0; l < s->nlabels; l++) {
-                const struct sl_table_cell *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
+                const struct sl_cell_record *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
                 int r = c ? sl_report_region(c, 0) : -1;
                 if (r < 0)
                     continue;
@@ -579,7 +579,7 @@ static enum sl_err morais_view(struct sl_report_doc *doc, const struct sl_report
                 sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
             sl_report_tab_cell(&t, 1, "%s", rows[q].name);
             for (int k = 0; k < nmaps; k++) {
-                const struct sl_table_cell *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
+                const struct sl_cell_record *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
                 int r = c ? sl_report_region(c, 0) : -1;
                 if (r < 0)
                     continue;
@@ -630,12 +630,12 @@ static enum sl_err morais_times(struct sl_report_doc *doc, const struct sl_repor
                 sl_report_tab_cell(&t, 0, "%d×%d", vw->vw, vw->vh);
             sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
             for (int k = 0; k < ncols; k++) {
-                const struct sl_table_cell *c = sl_report_study_cell(s, vw, s->labels[cols[k]], s->maps[m]);
+                const struct sl_cell_record *c = sl_report_study_cell(s, vw, s->labels[cols[k]], s->maps[m]);
                 char buf[32];
-                fmt_ms(buf, sizeof buf, c ? (stage ? c->cost.method[SL_MED] : c->cost.map_render[SL_MED]) : 0.0);
+                fmt_ms(buf, sizeof buf, c ? (stage ? c->ms_method : c->ms_map_render) : 0.0);
                 sl_report_tab_cell(&t, 2 + k, "%s", buf);
-                if (c && c->cost.runs > runs)
-                    runs = c->cost.runs;
+                if (c && c->runs > runs)
+                    runs = c->runs;
             }
         }
     }
@@ -721,19 +721,19 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
             double lo = INFINITY, hi = 0.0, mlo = INFINITY, mhi = 0.0;
             double rays = 0.0, px = 0.0, tests = 0.0, lookups = 0.0, gs = 0.0, frags = 0.0;
             for (int i = 0; i < s->n; i++) {
-                const struct sl_table_cell *c = &s->cells[i];
+                const struct sl_cell_record *c = &s->cells[i];
                 if (c->map_size != s->maps[m] || strcmp(c->label, s->labels[l]) != 0)
                     continue;
-                const struct sl_table_costs *k = &c->cost;
-                if (k->method[SL_MED] > 0.0) {
-                    meth[n++] = k->method[SL_MED];
-                    lo = fmin(lo, k->method[SL_MIN] > 0.0 ? k->method[SL_MIN] : k->method[SL_MED]);
-                    hi = fmax(hi, fmax(k->method[SL_MAX], k->method[SL_MED]));
+                const struct sl_cell_record *k = c;
+                if (k->ms_method > 0.0) {
+                    meth[n++] = k->ms_method;
+                    lo = fmin(lo, k->ms_method_min > 0.0 ? k->ms_method_min : k->ms_method);
+                    hi = fmax(hi, fmax(k->ms_method_max, k->ms_method));
                 }
-                if (k->map_render[SL_MED] > 0.0) {
-                    map[nmap++] = k->map_render[SL_MED];
-                    mlo = fmin(mlo, k->map_render[SL_MIN] > 0.0 ? k->map_render[SL_MIN] : k->map_render[SL_MED]);
-                    mhi = fmax(mhi, fmax(k->map_render[SL_MAX], k->map_render[SL_MED]));
+                if (k->ms_map_render > 0.0) {
+                    map[nmap++] = k->ms_map_render;
+                    mlo = fmin(mlo, k->ms_map_render_min > 0.0 ? k->ms_map_render_min : k->ms_map_render);
+                    mhi = fmax(mhi, fmax(k->ms_map_render_max, k->ms_map_render));
                 }
                 int r = sl_report_region(c, 0);
                 px += r >= 0 ? (double)c->fig.r[r].n[SL_FIG_pixels] : (double)c->n_pfl + (double)c->n_pnfl;
@@ -816,7 +816,7 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
         double stderr_mean = NAN;
         for (int l = 0; l < s->nlabels; l++)
             for (int m = 0; m < s->nmaps; m++) {
-                const struct sl_table_cell *c = sl_report_study_cell(s, vw, s->labels[l], s->maps[m]);
+                const struct sl_cell_record *c = sl_report_study_cell(s, vw, s->labels[l], s->maps[m]);
                 if (!c || !c->has_soft)
                     continue;
                 const struct sl_soft_figures *f = &c->soft;
@@ -836,9 +836,9 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
                 else
                     sl_report_tab_cell(&t, 8, "%.2f%%", f->pct[SL_SFIG_soft_penumbra_right]);
                 uint64_t px = f->n[SL_SFIG_soft_pixels];
-                sl_report_tab_cell(&t, 9, "%.2f", px ? (double)c->cost.rays / (double)px : 0.0);
+                sl_report_tab_cell(&t, 9, "%.2f", px ? (double)c->rays / (double)px : 0.0);
                 char buf[32];
-                fmt_ms(buf, sizeof buf, c->cost.method[SL_MED]);
+                fmt_ms(buf, sizeof buf, c->ms_method);
                 sl_report_tab_cell(&t, 10, "%s", buf);
                 stderr_mean = f->pct[SL_SFIG_soft_truth_stderr];
             }

@@ -45,7 +45,7 @@ int sl_report_pareto(const double *x, const double *y, int n, unsigned char *fro
     return count;
 }
 
-enum sl_err sl_report_points(const struct sl_table_cell *cells, int ncells, struct sl_report_point **out, int *n,
+enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, struct sl_report_point **out, int *n,
                              struct sl_diag *d)
 {
     *out = NULL;
@@ -64,7 +64,7 @@ enum sl_err sl_report_points(const struct sl_table_cell *cells, int ncells, stru
     int np = 0;
     /* labels in order of first appearance, then map sizes ascending */
     for (int i = 0; i < ncells; i++) {
-        const struct sl_table_cell *c = &cells[i];
+        const struct sl_cell_record *c = &cells[i];
         int k = 0;
         while (k < np && !(p[k].map_size == c->map_size && strcmp(p[k].label, c->label) == 0))
             k++;
@@ -96,14 +96,14 @@ enum sl_err sl_report_points(const struct sl_table_cell *cells, int ncells, stru
         }
         struct sl_report_point *q = &p[k];
         q->ncells++;
-        q->ms_layers += c->cost.map_render[SL_MED];
-        q->ms_step += c->cost.method[SL_MED];
+        q->ms_layers += c->ms_map_render;
+        q->ms_step += c->ms_method;
         int r = sl_report_region(c, 0);
         double px = r >= 0 ? (double)c->fig.r[r].n[SL_FIG_pixels] : 0.0;
         if (px > 0.0) {
             sum_w[k] += 100.0 * (double)c->fig.r[r].n[SL_FIG_wrong] / px;
             nw[k]++;
-            q->rays_per_px += (double)c->cost.rays / px;
+            q->rays_per_px += (double)c->rays / px;
         }
     }
     double *x = sl_calloc((size_t)np, sizeof *x), *y = sl_calloc((size_t)np, sizeof *y);
@@ -297,7 +297,7 @@ static int chain_shares(const struct sl_report_study *s, const char *scene, cons
     memset(n, 0, sizeof n);
     int found = 0;
     for (int i = 0; i < s->n; i++) {
-        const struct sl_table_cell *c = &s->cells[i];
+        const struct sl_cell_record *c = &s->cells[i];
         if (c->map_size != map || strcmp(c->scene, scene) || strcmp(c->label, label))
             continue;
         int r = sl_report_region(c, region);

@@ -109,7 +109,7 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
     int nshown = 0, nmiss = 0;
     enum sl_err e = SL_OK;
     for (int i = 0; i < s->n && !e; i++) {
-        const struct sl_table_cell *c = &s->cells[i];
+        const struct sl_cell_record *c = &s->cells[i];
         if (!c->overlay[0])
             continue;
         char src[1600], r[400], sc[64], vp[32], lb[48], path[1400], why[128] = "";
@@ -416,7 +416,7 @@ enum sl_err sl_report_build(const struct sl_report_input *in, const char *out_di
         return e;
 
     /* studies in order of first appearance; each study's cells contiguous, in input order */
-    struct sl_table_cell *cells = sl_calloc((size_t)in->ncells, sizeof *cells);
+    struct sl_cell_record *cells = sl_calloc((size_t)in->ncells, sizeof *cells);
     struct sl_report_study *studies = sl_calloc((size_t)in->ncells, sizeof *studies);
     if (!cells || !studies) {
         free(cells);

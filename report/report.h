@@ -38,7 +38,7 @@ struct sl_report_opts {
 /* What a report holds, read from the store or given by a test. Overlay paths
  * of the cells are relative to source_dir. */
 struct sl_report_input {
-    const struct sl_table_cell *cells;
+    const struct sl_cell_record *cells;
     int                         ncells;
     const struct sl_store_run  *runs;
     int                         nruns;
@@ -76,7 +76,7 @@ struct sl_report_point {
 /* Points of the cells (callers pass one study), labels in order of first
  * appearance, map sizes ascending within a label; both fronts marked.
  * *out is malloc'ed (free), NULL when *n is 0. */
-enum sl_err sl_report_points(const struct sl_table_cell *cells, int ncells, struct sl_report_point **out,
+enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, struct sl_report_point **out,
                              int *n, struct sl_diag *d);
 
 /* Pareto front of points (x[i], y[i]), both lower-is-better: front[i] = 1

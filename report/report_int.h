@@ -104,7 +104,7 @@ struct sl_report_view { char scene[64], viewpoint[32]; int vw, vh; };
 
 struct sl_report_study {
     char  name[64], slug[64];
-    const struct sl_table_cell *cells;   /* the study's cells (not owned) */
+    const struct sl_cell_record *cells;   /* the study's cells (not owned) */
     int   n;
     struct sl_report_view views[256];    /* scene x viewpoint x viewport, in order of first appearance */
     int   nviews;
@@ -121,10 +121,10 @@ struct sl_report_study {
 /* Fill the keys of s from its cells; SL_E_USAGE when they exceed the limits. */
 enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d);
 /* The study's cell of a key, NULL if none. */
-const struct sl_table_cell *sl_report_study_cell(const struct sl_report_study *s, const struct sl_report_view *v,
+const struct sl_cell_record *sl_report_study_cell(const struct sl_report_study *s, const struct sl_report_view *v,
                                                  const char *label, int map_size);
 /* Index of a region of thickness t in the cell, -1 if it has none. */
-int sl_report_region(const struct sl_table_cell *c, int thickness);
+int sl_report_region(const struct sl_cell_record *c, int thickness);
 void sl_report_region_name(int thickness, char *buf, size_t n);
 
 /* layouts.c */

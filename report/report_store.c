@@ -49,7 +49,7 @@ enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir_out, size_
 
     struct sl_store *s = NULL;
     struct sl_store_run *runs = NULL;
-    struct sl_table_cell *all = NULL;
+    struct sl_cell_record *all = NULL;
     int nruns = 0, nall = 0;
     e = sl_store_open_existing(o->db, &s, d);
     if (!e)
@@ -62,11 +62,11 @@ enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir_out, size_
         if (seen)
             continue;
         struct sl_store_filter f = {.study = runs[i].study};
-        struct sl_table_cell *cells = NULL;
+        struct sl_cell_record *cells = NULL;
         int n = 0;
         e = sl_store_query(s, &f, &cells, &n, d);
         if (!e && n > 0) {
-            struct sl_table_cell *grown = realloc(all, (size_t)(nall + n) * sizeof *grown);
+            struct sl_cell_record *grown = realloc(all, (size_t)(nall + n) * sizeof *grown);
             if (!grown) {
                 e = sl_fail(d, SL_E_NOMEM, o->db, 0, NULL, "%d cells", nall + n);
             } else {

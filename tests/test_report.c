@@ -42,10 +42,10 @@ static void report_pareto(void **st)
 
 /* A cell with regions 2 px and image, figures consistent with figures.h:
  * pixels = pfl + pnfl = light + shadow + uncertain. */
-static struct sl_table_cell cell(const char *study, const char *scene, const char *vp, const char *label,
+static struct sl_cell_record cell(const char *study, const char *scene, const char *vp, const char *label,
                                  const char *method, int map, uint64_t wrong, double ms, uint64_t rays)
 {
-    struct sl_table_cell c;
+    struct sl_cell_record c;
     memset(&c, 0, sizeof c);
     snprintf(c.study, sizeof c.study, "%s", study);
     snprintf(c.scene, sizeof c.scene, "%s", scene);
@@ -105,17 +105,17 @@ static struct sl_table_cell cell(const char *study, const char *scene, const cha
             g->pct[k] = base > 0 ? 100.0 * (double)g->n[k] / base : NAN;
         }
     }
-    c.cost.runs = 3;
-    c.cost.method[SL_MED] = ms;
-    c.cost.method[SL_MIN] = 0.9 * ms;
-    c.cost.method[SL_MAX] = 1.2 * ms;
-    c.cost.map_render[SL_MED] = 2.0;
-    c.cost.map_render[SL_MIN] = 1.5;
-    c.cost.map_render[SL_MAX] = 3.0;
-    c.cost.rays = rays;
-    c.cost.tri_tests = 7 * rays;
-    c.cost.gs_prims = 1234;
-    c.cost.fragments = 56789;
+    c.runs = 3;
+    c.ms_method = ms;
+    c.ms_method_min = 0.9 * ms;
+    c.ms_method_max = 1.2 * ms;
+    c.ms_map_render = 2.0;
+    c.ms_map_render_min = 1.5;
+    c.ms_map_render_max = 3.0;
+    c.rays = rays;
+    c.tri_tests = 7 * rays;
+    c.gs_prims = 1234;
+    c.fragments = 56789;
     snprintf(c.git_sha, sizeof c.git_sha, "abc1234");
     snprintf(c.config_hash, sizeof c.config_hash, "0123456789abcdef");
     snprintf(c.machine, sizeof c.machine, "host/cpu/isa");
@@ -125,7 +125,7 @@ static struct sl_table_cell cell(const char *study, const char *scene, const cha
 static void report_points(void **st)
 {
     (void)st;
-    struct sl_table_cell c[5];
+    struct sl_cell_record c[5];
     /* a: 1024 given before 512; two views at 512 */
     c[0] = cell("s", "sc", "v1", "a", "nsm", 1024, 20, 4.0, 0);
     c[1] = cell("s", "sc", "v1", "a", "nsm", 512, 40, 1.0, 0);
@@ -217,7 +217,7 @@ static int count_refs(const char *html, const char *dir, int *missing)
     return n;
 }
 
-static int build_cells(struct sl_table_cell *c)
+static int build_cells(struct sl_cell_record *c)
 {
     int n = 0;
     const char *vps[] = {"side", "with"};
@@ -248,7 +248,7 @@ static void report_build(void **st)
     assert_non_null(f);
     fputs("\x89PNG not really", f);
     fclose(f);
-    static struct sl_table_cell c[32];
+    static struct sl_cell_record c[32];
     int n = build_cells(c);
     snprintf(c[0].overlay, sizeof c[0].overlay, "ov.png");
     snprintf(c[1].overlay, sizeof c[1].overlay, "gone/ov2.png");

@@ -18,6 +18,7 @@
 #include <cmocka.h>
 #include "sl_test.h"
 #include "store.h"
+#include "table.h"
 
 #define HASH_A 0x0123456789abcdefull
 #define HASH_B 0xfedcba9876543210ull
@@ -65,16 +66,30 @@ static void make_fig(struct sl_figures *f, uint64_t base, const int *thick, int 
         f->r[1].pct[SL_FIG_uncertain] = NAN;
 }
 
-static struct sl_store_cell make_cell(const char *vp, int map, const char *label, const struct sl_figures *f,
-                                      const struct sl_table_costs *cost, uint64_t base)
+/* A cell of prim_s; cost holds its counters and times (NULL: none measured). */
+static struct sl_cell_record make_cell(const char *vp, int map, const char *label, const struct sl_figures *f,
+                                       const struct sl_cell_record *cost, uint64_t base)
 {
-    struct sl_store_cell c = {
-        .scene = "prim_s", .viewpoint = vp, .method = "nsm", .label = label,
-        .vw = 640, .vh = 480, .map_size = map, .cell_index = map / 1024,
-        .n_pfl = base + 1, .n_pnfl = base + 2, .n_background = base + 3,
-        .n_truth_lit = base + 4, .n_truth_shadow = base + 5,
-        .fig = f, .costs = cost, .overlay = cost ? "study_s/overlays/a.png" : NULL,
-    };
+    struct sl_cell_record c;
+    if (cost)
+        c = *cost;
+    else
+        sl_cell_record_init(&c);
+    snprintf(c.scene, sizeof c.scene, "prim_s");
+    snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
+    snprintf(c.method, sizeof c.method, "nsm");
+    snprintf(c.label, sizeof c.label, "%s", label);
+    c.vw = 640;
+    c.vh = 480;
+    c.map_size = map;
+    c.cell_index = map / 1024;
+    c.n_pfl = base + 1;
+    c.n_pnfl = base + 2;
+    c.n_background = base + 3;
+    c.n_truth_lit = base + 4;
+    c.n_truth_shadow = base + 5;
+    c.fig = *f;
+    snprintf(c.overlay, sizeof c.overlay, "%s", cost ? "study_s/overlays/a.png" : "");
     return c;
 }
 
@@ -92,7 +107,7 @@ static void fill_prov(struct sl_provenance *p, const char *sha)
     p->threads = 2;
 }
 
-static const struct sl_table_cell *find(const struct sl_table_cell *cells, int n, const char *vp, int map)
+static const struct sl_cell_record *find(const struct sl_cell_record *cells, int n, const char *vp, int map)
 {
     for (int i = 0; i < n; i++)
         if (strcmp(cells[i].viewpoint, vp) == 0 && cells[i].map_size == map)
@@ -117,7 +132,7 @@ static void assert_same_fig(const struct sl_figures *got, const struct sl_figure
     }
 }
 
-static void assert_cell(const struct sl_table_cell *c, uint64_t base, const struct sl_figures *f,
+static void assert_cell(const struct sl_cell_record *c, uint64_t base, const struct sl_figures *f,
                         const char *sha)
 {
     assert_non_null(c);
@@ -158,14 +173,25 @@ static void store_round_trip(void **st)
     struct sl_figures f1, f2;
     make_fig(&f1, 1000, thick4, 4);
     make_fig(&f2, 3000, thick3, 3);
-    struct sl_table_costs cost = {.runs = 5, .truth_rays = 10, .lookups = 11, .rays = 12, .tri_tests = 13,
-                                  .gs_prims = 14, .fragments = 15, .violations = 0,
-                                  .gbuffer_render = {1.5, 1.25, 2.0}, .truth = {2.25, 2.0, 3.0},
-                                  .map_render = {4.5, 4.0, 5.0}, .method = {3.125, 3.0, 3.5},
-                                  .gbuffer_readback = 0.5, .fit = 0.75, .map_readback = 0.875, .ray_step = 1.0,
-                                  .step = {0.1, 0.2, 0.3, 0.4}, .contours = 6.0, .figures = 7.0, .overlay = NAN};
-    struct sl_store_cell c1 = make_cell("side", 1024, "nsm_a", &f1, &cost, 1000);
-    struct sl_store_cell c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
+    struct sl_cell_record cost;
+    sl_cell_record_init(&cost);
+    cost.runs = 5;
+    cost.truth_rays = 10;
+    cost.lookups = 11;
+    cost.rays = 12;
+    cost.tri_tests = 13;
+    cost.gs_prims = 14;
+    cost.fragments = 15;
+    cost.violations = 0;
+    cost.ms_gbuffer_render = 1.5, cost.ms_gbuffer_render_min = 1.25, cost.ms_gbuffer_render_max = 2.0;
+    cost.ms_truth = 2.25, cost.ms_truth_min = 2.0, cost.ms_truth_max = 3.0;
+    cost.ms_map_render = 4.5, cost.ms_map_render_min = 4.0, cost.ms_map_render_max = 5.0;
+    cost.ms_method = 3.125, cost.ms_method_min = 3.0, cost.ms_method_max = 3.5;
+    cost.ms_gbuffer_readback = 0.5, cost.ms_fit = 0.75, cost.ms_map_readback = 0.875, cost.ms_ray_step = 1.0;
+    cost.ms_step1 = 0.1, cost.ms_step2 = 0.2, cost.ms_step3 = 0.3, cost.ms_step4 = 0.4;
+    cost.ms_contours = 6.0, cost.ms_figures = 7.0, cost.ms_overlay = NAN;
+    struct sl_cell_record c1 = make_cell("side", 1024, "nsm_a", &f1, &cost, 1000);
+    struct sl_cell_record c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c2, &d), SL_OK);
 
@@ -174,7 +200,7 @@ static void store_round_trip(void **st)
     assert_int_equal(sl_store_count(s, "figures"), (4 * SL_FIG_COUNT + 1) + (3 * SL_FIG_COUNT + 1));
     assert_int_equal(sl_store_count(s, "sqlite_master"), -1);
 
-    struct sl_table_cell *cells = NULL;
+    struct sl_cell_record *cells = NULL;
     int n = -1;
     assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
     assert_int_equal(n, 2);
@@ -183,7 +209,7 @@ static void store_round_trip(void **st)
     /* sweep order (cell_index 1, then 2) */
     assert_int_equal(cells[0].map_size, 1024);
     /* costs, study, overlay and run come back as stored; unknown costs as zero counts and NaN times */
-    const struct sl_table_costs *k = &cells[0].cost;
+    const struct sl_cell_record *k = &cells[0];
     assert_int_equal(k->runs, 5);
     assert_int_equal(k->truth_rays, 10);
     assert_int_equal(k->lookups, 11);
@@ -191,17 +217,18 @@ static void store_round_trip(void **st)
     assert_int_equal(k->tri_tests, 13);
     assert_int_equal(k->gs_prims, 14);
     assert_int_equal(k->fragments, 15);
-    assert_true(k->gbuffer_render[SL_MIN] == 1.25 && k->truth[SL_MAX] == 3.0 && k->map_render[SL_MED] == 4.5);
-    assert_true(k->method[SL_MED] == 3.125 && k->method[SL_MIN] == 3.0 && k->method[SL_MAX] == 3.5);
-    assert_true(k->gbuffer_readback == 0.5 && k->fit == 0.75 && k->map_readback == 0.875 && k->ray_step == 1.0);
-    assert_true(k->step[0] == 0.1 && k->step[3] == 0.4 && k->contours == 6.0 && k->figures == 7.0);
-    assert_true(isnan(k->overlay));
+    assert_true(k->ms_gbuffer_render_min == 1.25 && k->ms_truth_max == 3.0 && k->ms_map_render == 4.5);
+    assert_true(k->ms_method == 3.125 && k->ms_method_min == 3.0 && k->ms_method_max == 3.5);
+    assert_true(k->ms_gbuffer_readback == 0.5 && k->ms_fit == 0.75 && k->ms_map_readback == 0.875 &&
+                k->ms_ray_step == 1.0);
+    assert_true(k->ms_step1 == 0.1 && k->ms_step4 == 0.4 && k->ms_contours == 6.0 && k->ms_figures == 7.0);
+    assert_true(isnan(k->ms_overlay));
     assert_string_equal(cells[0].study, "study_s");
     assert_string_equal(cells[0].overlay, "study_s/overlays/a.png");
     assert_int_equal(cells[0].run_id, run1);
     assert_string_equal(cells[1].overlay, "");
-    assert_int_equal(cells[1].cost.rays, 0);
-    assert_true(isnan(cells[1].cost.method[SL_MED]));
+    assert_int_equal(cells[1].rays, 0);
+    assert_true(isnan(cells[1].ms_method));
     free(cells);
 
     /* the study filter */
@@ -285,10 +312,11 @@ static void store_soft_cell(void **st)
         sf.n[k] = 1000 + (uint64_t)k;
         sf.pct[k] = k == SL_SFIG_soft_pixels ? NAN : 0.5 + k;
     }
-    struct sl_store_cell c = make_cell("side", 1024, "soft_a", &f, NULL, 10);
-    c.soft = &sf;
+    struct sl_cell_record c = make_cell("side", 1024, "soft_a", &f, NULL, 10);
+    c.soft = sf;
+    c.has_soft = 1;
     assert_int_equal(sl_store_put_cell(s, run, HASH_A, &c, &d), SL_OK);
-    struct sl_table_cell *cells = NULL;
+    struct sl_cell_record *cells = NULL;
     int n = 0;
     assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
     assert_int_equal(n, 1);
@@ -331,7 +359,7 @@ static void store_has_cell_matches_key_and_hash(void **st)
     assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
     struct sl_figures f;
     make_fig(&f, 5, thick3, 3);
-    struct sl_store_cell c = make_cell("side", 1024, "nsm_a", &f, NULL, 5);
+    struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &f, NULL, 5);
     assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "side", 640, 480, 1024, "nsm_a"));
     assert_int_equal(sl_store_put_cell(s, run, HASH_A, &c, &d), SL_OK);
     assert_true(sl_store_has_cell(s, HASH_A, "prim_s", "side", 640, 480, 1024, "nsm_a"));
@@ -362,18 +390,18 @@ static void store_latest_run_wins(void **st)
     make_fig(&f1, 1000, thick4, 4);
     make_fig(&f2, 3000, thick3, 3);
     make_fig(&f3, 5000, thick4, 4);
-    struct sl_store_cell c1 = make_cell("side", 1024, "nsm_a", &f1, NULL, 1000);
-    struct sl_store_cell c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
+    struct sl_cell_record c1 = make_cell("side", 1024, "nsm_a", &f1, NULL, 1000);
+    struct sl_cell_record c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c2, &d), SL_OK);
     assert_int_equal(sl_store_begin_run(s, &p2, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run2, &d), SL_OK);
     assert_true(run2 > run1);
-    struct sl_store_cell c3 = make_cell("side", 1024, "nsm_a", &f3, NULL, 5000);  /* c1's key */
+    struct sl_cell_record c3 = make_cell("side", 1024, "nsm_a", &f3, NULL, 5000);  /* c1's key */
     assert_int_equal(sl_store_put_cell(s, run2, HASH_A, &c3, &d), SL_OK);
     assert_int_equal(sl_store_count(s, "runs"), 2);
     assert_int_equal(sl_store_count(s, "cells"), 3);
 
-    struct sl_table_cell *cells = NULL;
+    struct sl_cell_record *cells = NULL;
     int n = 0;
     assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
     assert_int_equal(n, 2);
@@ -421,8 +449,8 @@ static void store_failed_put_leaves_no_cell(void **st)
     make_fig(&good, 10, thick3, 3);
     make_fig(&bad, 20, thick4, 4);
     bad.r[3].n[SL_FIG_COUNT - 1] = UINT64_MAX;
-    struct sl_store_cell cg = make_cell("side", 1024, "nsm_a", &good, NULL, 10);
-    struct sl_store_cell cb = make_cell("with", 1024, "nsm_a", &bad, NULL, 20);
+    struct sl_cell_record cg = make_cell("side", 1024, "nsm_a", &good, NULL, 10);
+    struct sl_cell_record cb = make_cell("with", 1024, "nsm_a", &bad, NULL, 20);
     assert_int_equal(sl_store_put_cell(s, run, HASH_A, &cg, &d), SL_OK);
 
     memset(&d, 0, sizeof d);
@@ -438,6 +466,7 @@ static void store_failed_put_leaves_no_cell(void **st)
 
     /* no transaction left open: the next put commits */
     bad.r[3].n[SL_FIG_COUNT - 1] = 42;
+    cb.fig = bad;
     assert_int_equal(sl_store_put_cell(s, run, HASH_A, &cb, &d), SL_OK);
     assert_int_equal(sl_store_count(s, "cells"), 2);
     assert_int_equal(sl_store_count(s, "figures"), 3 * SL_FIG_COUNT + 1 + 4 * SL_FIG_COUNT + 1);
@@ -472,7 +501,7 @@ static void store_refused_last_row_rolls_back(void **st)
 
     struct sl_figures f;
     make_fig(&f, 10, thick3, 3);
-    struct sl_store_cell c = make_cell("side", 1024, "nsm_a", &f, NULL, 10);
+    struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &f, NULL, 10);
     assert_int_equal(sl_store_put_cell(s, run, HASH_A, &c, &d), SL_E_IO);
     assert_string_equal(d.file, t.db);
     assert_non_null(strstr(d.msg, "disk on fire"));
@@ -514,7 +543,7 @@ static void store_killed_writer_leaves_whole_cells(void **st)
         struct sl_figures f;
         make_fig(&f, 10, thick4, 4);
         for (int i = 1;; i++) {
-            struct sl_store_cell c = make_cell("side", 64 * i, "nsm_a", &f, NULL, 10);
+            struct sl_cell_record c = make_cell("side", 64 * i, "nsm_a", &f, NULL, 10);
             if (sl_store_put_cell(w, run, HASH_A, &c, NULL) != SL_OK)
                 _exit(4);
         }
@@ -537,7 +566,7 @@ static void store_killed_writer_leaves_whole_cells(void **st)
     cells = sl_store_count(s, "cells");
     assert_true(cells >= 20);
     assert_int_equal(sl_store_count(s, "figures"), cells * (4 * SL_FIG_COUNT + 1));
-    struct sl_table_cell *out = NULL;
+    struct sl_cell_record *out = NULL;
     int n = 0;
     assert_int_equal(sl_store_query(s, NULL, &out, &n, &d), SL_OK);
     assert_int_equal(n, cells);
@@ -560,12 +589,11 @@ static void store_unknown_run_is_refused(void **st)
     assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
     struct sl_figures f;
     make_fig(&f, 10, thick3, 3);
-    struct sl_store_cell c = make_cell("side", 1024, "nsm_a", &f, NULL, 10);
+    struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &f, NULL, 10);
     assert_int_equal(sl_store_put_cell(s, 77, HASH_A, &c, &d), SL_E_IO);
     assert_non_null(strstr(d.msg, "FOREIGN KEY"));
     assert_int_equal(sl_store_count(s, "cells"), 0);
-    c.fig = NULL;
-    assert_int_equal(sl_store_put_cell(s, 77, HASH_A, &c, &d), SL_E_USAGE);
+    assert_int_equal(sl_store_put_cell(s, 77, HASH_A, NULL, &d), SL_E_USAGE);
     sl_store_close(s);
     tmp_remove(&t);
 }

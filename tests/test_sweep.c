@@ -302,7 +302,7 @@ static void sweep_cells_then_resume(void **st)
     assert_int_equal(sl_store_count(s1, "cells"), 8);
     assert_int_equal(sl_store_count(s1, "figures"), sl_store_count(s2, "figures"));
     struct sl_store_filter f = {0};
-    struct sl_table_cell *a, *b;
+    struct sl_cell_record *a, *b;
     int na, nb;
     assert_int_equal(sl_store_query(s1, &f, &a, &na, &d), SL_OK);
     assert_int_equal(sl_store_query(s2, &f, &b, &nb, &d), SL_OK);

@@ -17,9 +17,9 @@
 
 /* Regions 2 px and image; n = base + 10 r + k, pct = 10 r + k + 0.25, pixels
  * without a percentage. */
-static struct sl_table_cell make(const char *vp, int map, uint64_t base, const char *machine)
+static struct sl_cell_record make(const char *vp, int map, uint64_t base, const char *machine)
 {
-    struct sl_table_cell c;
+    struct sl_cell_record c;
     memset(&c, 0, sizeof c);
     snprintf(c.scene, sizeof c.scene, "prim_s");
     snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
@@ -50,7 +50,7 @@ static struct sl_table_cell make(const char *vp, int map, uint64_t base, const c
 }
 
 /* A 2048 and a 1024 of "side", a 1024 of "with" between them. */
-static int three_cells(struct sl_table_cell *c)
+static int three_cells(struct sl_cell_record *c)
 {
     c[0] = make("side", 2048, 2000, "h/c/i");
     c[1] = make("with", 1024, 500, "h,1/\"c\"/i");
@@ -61,7 +61,7 @@ static int three_cells(struct sl_table_cell *c)
 /* noinline: GCC -O3 otherwise takes the returned heap buffer for the address
  * of the local that open_memstream filled (-Wdangling-pointer) */
 static __attribute__((noinline)) char *render(enum sl_table_format fmt, const char *title,
-                                              const struct sl_table_cell *c, int n, enum sl_err want)
+                                              const struct sl_cell_record *c, int n, enum sl_err want)
 {
     char *buf = NULL;
     size_t len = 0;
@@ -92,7 +92,7 @@ static void assert_before(const char *s, const char *a, const char *b)
 static void table_markdown_rows(void **st)
 {
     (void)st;
-    struct sl_table_cell c[3];
+    struct sl_cell_record c[3];
     int n = three_cells(c);
     char *md = render(SL_TABLE_MD, "shadowlab: test", c, n, SL_OK);
     assert_true(strncmp(md, "# shadowlab: test\n\n", 19) == 0);
@@ -124,7 +124,7 @@ static void table_markdown_rows(void **st)
 static void table_markdown_mixed_provenance(void **st)
 {
     (void)st;
-    struct sl_table_cell c[2] = {make("side", 1024, 1000, "h/c/i"), make("side", 2048, 2000, "h/c/i")};
+    struct sl_cell_record c[2] = {make("side", 1024, 1000, "h/c/i"), make("side", 2048, 2000, "h/c/i")};
     snprintf(c[1].git_sha, sizeof c[1].git_sha, "def5678");
     char *md = render(SL_TABLE_MD, NULL, c, 2, SL_OK);
     assert_true(strncmp(md, "Percentages:", 12) == 0);
@@ -136,7 +136,7 @@ static void table_markdown_mixed_provenance(void **st)
 static void table_csv_long_form(void **st)
 {
     (void)st;
-    struct sl_table_cell c[3];
+    struct sl_cell_record c[3];
     int n = three_cells(c);
     char *csv = render(SL_TABLE_CSV, "ignored", c, n, SL_OK);
     const char *header = "scene,viewpoint,viewport,map_size,method,label,region,figure,count,percent,percent_of,"
@@ -164,7 +164,7 @@ static void table_csv_long_form(void **st)
 static void table_latex_booktabs(void **st)
 {
     (void)st;
-    struct sl_table_cell c[3];
+    struct sl_cell_record c[3];
     int n = three_cells(c);
     snprintf(c[0].machine, sizeof c[0].machine, "a&b#c$d{e}f%%g_h~^\\");
     snprintf(c[2].machine, sizeof c[2].machine, "a&b#c$d{e}f%%g_h~^\\");
@@ -215,7 +215,7 @@ static void table_latex_booktabs(void **st)
 static void table_duplicate_map_refused(void **st)
 {
     (void)st;
-    struct sl_table_cell c[2] = {make("side", 1024, 1000, "m"), make("side", 1024, 2000, "m")};
+    struct sl_cell_record c[2] = {make("side", 1024, 1000, "m"), make("side", 1024, 2000, "m")};
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
@@ -254,7 +254,7 @@ static void table_empty_and_formats(void **st)
 static void table_summary_rows(void **st)
 {
     (void)st;
-    struct sl_table_cell c[4];
+    struct sl_cell_record c[4];
     memset(c, 0, sizeof c);
     const char *vps[4] = {"side", "with", "side", "with"};
     const int maps[4] = {1024, 1024, 2048, 2048};
@@ -316,7 +316,7 @@ static void table_summary_rows(void **st)
 static void table_soft_and_hard(void **st)
 {
     (void)st;
-    struct sl_table_cell c[2] = {make("side", 1024, 1000, "h/c/i"), make("side", 512, 100, "h/c/i")};
+    struct sl_cell_record c[2] = {make("side", 1024, 1000, "h/c/i"), make("side", 512, 100, "h/c/i")};
     for (int i = 0; i < 2; i++) {
         c[i].has_soft = 1;
         for (int k = 0; k < SL_SFIG_COUNT; k++) {

@@ -1,7 +1,8 @@
 /*
  * check.c — see check.h.
  *
- * The baseline's figure lists come from the X-macro of figures.h, so a
+ * The baseline's counters are the checked columns of cellcols.h and its
+ * figure lists come from the X-macro of figures.h, so a
  * baseline written before a figure was added or renamed is refused with the
  * line of the cell that lacks it (refresh the baseline deliberately, see the
  * README). Every comparison is of integers or of shares computed the same
@@ -55,25 +56,20 @@ static enum sl_check_class figure_class(enum sl_figure f)
     }
 }
 
-/* The counters of a cell, by name: where they live and their class. */
-#define BL_COUNTERS(X)                                   \
-    X(n_pfl, view)                                       \
-    X(n_pnfl, view)                                      \
-    X(n_background, view)                                \
-    X(n_truth_lit, view)                                 \
-    X(n_truth_shadow, view)                              \
-    X(wrong_image, error)                                \
-    X(truth_rays, cost)                                  \
-    X(lookups, cost)                                     \
-    X(rays, cost)                                        \
-    X(tri_tests, cost)                                   \
-    X(gs_prims, cost)                                    \
-    X(fragments, cost)                                   \
-    X(violations, invariant)
+/* The counters of a cell a baseline holds: the columns of cellcols.h with a
+ * check class, under their baseline key, in the order of the list.
+ * BL_IF_<class>(...) keeps its arguments for a compared column. */
+#define BL_IF_none(...)
+#define BL_IF_view(...) __VA_ARGS__
+#define BL_IF_error(...) __VA_ARGS__
+#define BL_IF_decision(...) __VA_ARGS__
+#define BL_IF_cost(...) __VA_ARGS__
+#define BL_IF_invariant(...) __VA_ARGS__
+#define BL_IF_soft(...) __VA_ARGS__
 
 enum {
-#define BL_CNT_ENUM(name, cls) BL_C_##name,
-    BL_COUNTERS(BL_CNT_ENUM)
+#define BL_CNT_ENUM(name, kind, size, csv, head, cls, key) BL_IF_##cls(BL_C_##key,)
+    SL_CELL_COLUMNS(BL_CNT_ENUM)
 #undef BL_CNT_ENUM
     BL_C_COUNT
 };
@@ -87,8 +83,8 @@ struct bl_tol {
 #undef BL_TOL_MEMBER
 };
 struct bl_counters {
-#define BL_CNT_MEMBER(name, cls) uint64_t name;
-    BL_COUNTERS(BL_CNT_MEMBER)
+#define BL_CNT_MEMBER(name, kind, size, csv, head, cls, key) BL_IF_##cls(uint64_t key;)
+    SL_CELL_COLUMNS(BL_CNT_MEMBER)
 #undef BL_CNT_MEMBER
 };
 struct bl_figs {
@@ -140,8 +136,9 @@ static const cyaml_schema_field_t tol_fields[] = {
     CYAML_FIELD_END
 };
 static const cyaml_schema_field_t counter_fields[] = {
-#define BL_CNT_FIELD(name, cls) CYAML_FIELD_UINT(#name, CYAML_FLAG_DEFAULT, struct bl_counters, name),
-    BL_COUNTERS(BL_CNT_FIELD)
+#define BL_CNT_FIELD(name, kind, size, csv, head, cls, key) \
+    BL_IF_##cls(CYAML_FIELD_UINT(#key, CYAML_FLAG_DEFAULT, struct bl_counters, key),)
+    SL_CELL_COLUMNS(BL_CNT_FIELD)
 #undef BL_CNT_FIELD
     CYAML_FIELD_END
 };
@@ -227,39 +224,37 @@ static const uint64_t *bl_fig(const struct bl_figs *f, int k, unsigned *n)
 static uint64_t bl_counter(const struct bl_counters *c, int k)
 {
     const uint64_t v[BL_C_COUNT] = {
-#define BL_CNT_VAL(name, cls) c->name,
-        BL_COUNTERS(BL_CNT_VAL)
+#define BL_CNT_VAL(name, kind, size, csv, head, cls, key) BL_IF_##cls(c->key,)
+        SL_CELL_COLUMNS(BL_CNT_VAL)
 #undef BL_CNT_VAL
     };
     return v[k];
 }
 
 static const char *const counter_name[BL_C_COUNT] = {
-#define BL_CNT_NAME(name, cls) #name,
-    BL_COUNTERS(BL_CNT_NAME)
+#define BL_CNT_NAME(name, kind, size, csv, head, cls, key) BL_IF_##cls(#key,)
+    SL_CELL_COLUMNS(BL_CNT_NAME)
 #undef BL_CNT_NAME
 };
 static const enum sl_check_class counter_class[BL_C_COUNT] = {
-#define BL_CNT_CLS(name, cls) SL_CC_##cls,
-    BL_COUNTERS(BL_CNT_CLS)
+#define BL_CNT_CLS(name, kind, size, csv, head, cls, key) BL_IF_##cls(SL_CC_##cls,)
+    SL_CELL_COLUMNS(BL_CNT_CLS)
 #undef BL_CNT_CLS
 };
 
 /* The same counters of a stored cell. */
-static uint64_t cell_counter(const struct sl_table_cell *c, int k)
+static uint64_t cell_counter(const struct sl_cell_record *c, int k)
 {
     const uint64_t v[BL_C_COUNT] = {
-        [BL_C_n_pfl] = c->n_pfl, [BL_C_n_pnfl] = c->n_pnfl, [BL_C_n_background] = c->n_background,
-        [BL_C_n_truth_lit] = c->n_truth_lit, [BL_C_n_truth_shadow] = c->n_truth_shadow,
-        [BL_C_wrong_image] = c->fig.wrong_image, [BL_C_truth_rays] = c->cost.truth_rays,
-        [BL_C_lookups] = c->cost.lookups, [BL_C_rays] = c->cost.rays, [BL_C_tri_tests] = c->cost.tri_tests,
-        [BL_C_gs_prims] = c->cost.gs_prims, [BL_C_fragments] = c->cost.fragments,
-        [BL_C_violations] = c->cost.violations,
+#define BL_CNT_CELL(name, kind, size, csv, head, cls, key) \
+        BL_IF_##cls([BL_C_##key] = SL_CELL_U64_##kind(c, name),)
+        SL_CELL_COLUMNS(BL_CNT_CELL)
+#undef BL_CNT_CELL
     };
     return v[k];
 }
 
-static void cell_key(const struct sl_table_cell *c, char *out, size_t n)
+static void cell_key(const struct sl_cell_record *c, char *out, size_t n)
 {
     snprintf(out, n, "%s/%s/%dx%d/%d/%s", c->scene, c->viewpoint, c->vw, c->vh, c->map_size, c->label);
 }
@@ -353,7 +348,7 @@ static void compare_mean(struct cmp *m, const char *key, const char *what, doubl
 }
 
 static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl_yaml_pos *pos, unsigned ci,
-                                const struct bl_cell *b, const struct sl_table_cell *c, struct sl_diag *d)
+                                const struct bl_cell *b, const struct sl_cell_record *c, struct sl_diag *d)
 {
     char key[64];
     double img_b = (double)c->vw * (double)c->vh;
@@ -439,7 +434,7 @@ static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl
 
 /* Every run behind the compared cells was measured on the baseline's machine. */
 static int same_machine(const struct bl_machine *bm, const struct sl_store_run *runs, int nruns,
-                        const struct sl_table_cell *cells, int ncells)
+                        const struct sl_cell_record *cells, int ncells)
 {
     for (int i = 0; i < ncells; i++) {
         const struct sl_store_run *run = NULL;
@@ -454,7 +449,7 @@ static int same_machine(const struct bl_machine *bm, const struct sl_store_run *
     return 1;
 }
 
-static enum sl_err load_store(const char *db, const char *study, struct sl_table_cell **cells, int *n,
+static enum sl_err load_store(const char *db, const char *study, struct sl_cell_record **cells, int *n,
                               struct sl_store_run **runs, int *nruns, struct sl_diag *d)
 {
     struct sl_store *s = NULL;
@@ -490,7 +485,7 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
     enum sl_err e = sl_yaml_load(baseline, &file_schema, (void **)&b, &pos, SL_E_BASELINE, d);
     if (e)
         return e;
-    struct sl_table_cell *cells = NULL;
+    struct sl_cell_record *cells = NULL;
     struct sl_store_run *runs = NULL;
     int n = 0, nruns = 0;
     struct cmp m = {.out = out, .o = o, .r = r, .max_rows = o->max_rows > 0 ? o->max_rows : 200};
@@ -633,7 +628,7 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
         sl_yaml_free(&file_schema, old, pos);
     }
 
-    struct sl_table_cell *cells = NULL;
+    struct sl_cell_record *cells = NULL;
     struct sl_store_run *runs = NULL;
     int n = 0, nruns = 0;
     enum sl_err e = load_store(db, study, &cells, &n, &runs, &nruns, d);
@@ -686,7 +681,7 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
         fprintf(f, "  %s: %g   # %s%s\n", class_name[k], tol[k], class_text[k], tol_set[k] ? "" : " [default]");
     fprintf(f, "cells:\n");
     for (int i = 0; i < n; i++) {
-        const struct sl_table_cell *c = &cells[i];
+        const struct sl_cell_record *c = &cells[i];
         char key[256];
         cell_key(c, key, sizeof key);
         fprintf(f, "  - cell: ");

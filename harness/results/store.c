@@ -13,8 +13,9 @@
  *   tables are exactly the ones below (compared ignoring white space); an
  *   empty file is initialised. Anything else is refused before it is touched
  *   (no WAL switch, no schema), so a wrong path never damages another file.
- * - The figure CHECK lists the names of figures.h: adding a figure there
- *   changes the schema text, and old databases are refused at open instead of
+ * - The figure CHECK lists the names of figures.h, and the cells table the
+ *   columns of cellcols.h: adding a figure or a stored column there changes
+ *   the schema text, and old databases are refused at open instead of
  *   failing at the first put. Bump SL_STORE_VERSION with such a change.
  * Nothing here prints; errors name the database file and carry sqlite's text.
  */
@@ -38,36 +39,34 @@
     "CHECK (length(" col ") = 16 AND " col " NOT GLOB '*[^0-9a-f]*')"
 #define SL_FIG_SQL_NAME(name, text, of) "'" #name "', "
 
-/* Stage times of a cell, ms: column name and where it lives in
- * struct sl_table_costs. One list for the schema, the insert and the query. */
-#define SL_MS_COLUMNS(X)                                                        \
-    X(ms_gbuffer_render, gbuffer_render[SL_MED])                               \
-    X(ms_gbuffer_render_min, gbuffer_render[SL_MIN])                           \
-    X(ms_gbuffer_render_max, gbuffer_render[SL_MAX])                           \
-    X(ms_gbuffer_readback, gbuffer_readback)                                   \
-    X(ms_truth, truth[SL_MED])                                                 \
-    X(ms_truth_min, truth[SL_MIN])                                             \
-    X(ms_truth_max, truth[SL_MAX])                                             \
-    X(ms_fit, fit)                                                             \
-    X(ms_map_render, map_render[SL_MED])                                       \
-    X(ms_map_render_min, map_render[SL_MIN])                                   \
-    X(ms_map_render_max, map_render[SL_MAX])                                   \
-    X(ms_map_readback, map_readback)                                           \
-    X(ms_method, method[SL_MED])                                               \
-    X(ms_method_min, method[SL_MIN])                                           \
-    X(ms_method_max, method[SL_MAX])                                           \
-    X(ms_ray_step, ray_step)                                                   \
-    X(ms_step1, step[0])                                                       \
-    X(ms_step2, step[1])                                                       \
-    X(ms_step3, step[2])                                                       \
-    X(ms_step4, step[3])                                                       \
-    X(ms_contours, contours)                                                   \
-    X(ms_figures, figures)                                                     \
-    X(ms_overlay, overlay)
-#define SL_MS_SQL_COL(col, field) "  " #col " REAL,\n"
-#define SL_MS_SQL_NAME(col, field) ", " #col
-#define SL_MS_SQL_L_NAME(col, field) ", l." #col
-#define SL_MS_SQL_PARAM(col, field) ",?"
+/* The cell columns of cellcols.h, by kind: their SQL declaration, their
+ * name in the INSERT, SELECT and VALUES lists (flag columns are not stored),
+ * how a record's value is bound and how a row's value is read back. */
+#define SL_SQL_DECL_text(name)     "TEXT NOT NULL"
+#define SL_SQL_DECL_path(name)     "TEXT"
+#define SL_SQL_DECL_dim(name)      "INTEGER NOT NULL CHECK (" #name " > 0)"
+#define SL_SQL_DECL_index(name)    "INTEGER NOT NULL"
+#define SL_SQL_DECL_runs(name)     "INTEGER NOT NULL CHECK (" #name " >= 0)"
+#define SL_SQL_DECL_count(name)    "INTEGER NOT NULL CHECK (" #name " >= 0)"
+#define SL_SQL_DECL_wrong(name)    "INTEGER NOT NULL CHECK (" #name " >= 0)"
+#define SL_SQL_DECL_ms(name)       "REAL"
+#define SL_SQL_DECL_viewport(name) "TEXT NOT NULL"
+#define SL_SQL_STORED_flag(...)
+#define SL_SQL_STORED(kind, ...) SL_SQL_STORED_##kind(__VA_ARGS__)
+#define SL_SQL_STORED_text(...) __VA_ARGS__
+#define SL_SQL_STORED_path(...) __VA_ARGS__
+#define SL_SQL_STORED_dim(...) __VA_ARGS__
+#define SL_SQL_STORED_index(...) __VA_ARGS__
+#define SL_SQL_STORED_runs(...) __VA_ARGS__
+#define SL_SQL_STORED_count(...) __VA_ARGS__
+#define SL_SQL_STORED_wrong(...) __VA_ARGS__
+#define SL_SQL_STORED_ms(...) __VA_ARGS__
+#define SL_SQL_STORED_viewport(...) __VA_ARGS__
+#define SL_SQL_COL(name, kind, size, csv, head, check, key) \
+    SL_SQL_STORED(kind, "  " #name " " SL_SQL_DECL_##kind(name) ",\n")
+#define SL_SQL_NAME(name, kind, size, csv, head, check, key) SL_SQL_STORED(kind, ", " #name)
+#define SL_SQL_L_NAME(name, kind, size, csv, head, check, key) SL_SQL_STORED(kind, ", l." #name)
+#define SL_SQL_PARAM(name, kind, size, csv, head, check, key) SL_SQL_STORED(kind, ",?")
 
 static const char sql_runs[] =
     "CREATE TABLE runs (\n"
@@ -93,31 +92,7 @@ static const char sql_cells[] =
     "  cell_id        INTEGER PRIMARY KEY,\n"
     "  run_id         INTEGER NOT NULL REFERENCES runs (run_id),\n"
     "  config_hash    TEXT NOT NULL " SL_HEX16_CHECK("config_hash") ",\n"
-    "  scene          TEXT NOT NULL,\n"
-    "  viewpoint      TEXT NOT NULL,\n"
-    "  viewport       TEXT NOT NULL,\n"
-    "  vw             INTEGER NOT NULL CHECK (vw > 0),\n"
-    "  vh             INTEGER NOT NULL CHECK (vh > 0),\n"
-    "  map_size       INTEGER NOT NULL CHECK (map_size > 0),\n"
-    "  method         TEXT NOT NULL,\n"
-    "  label          TEXT NOT NULL,\n"
-    "  cell_index     INTEGER NOT NULL,\n"
-    "  n_pfl          INTEGER NOT NULL CHECK (n_pfl >= 0),\n"
-    "  n_pnfl         INTEGER NOT NULL CHECK (n_pnfl >= 0),\n"
-    "  n_background   INTEGER NOT NULL CHECK (n_background >= 0),\n"
-    "  n_truth_lit    INTEGER NOT NULL CHECK (n_truth_lit >= 0),\n"
-    "  n_truth_shadow INTEGER NOT NULL CHECK (n_truth_shadow >= 0),\n"
-    "  n_wrong_image  INTEGER NOT NULL CHECK (n_wrong_image >= 0),\n"
-    "  truth_rays     INTEGER NOT NULL CHECK (truth_rays >= 0),\n"
-    "  runs           INTEGER NOT NULL CHECK (runs >= 0),\n"
-    "  lookups        INTEGER NOT NULL CHECK (lookups >= 0),\n"
-    "  rays           INTEGER NOT NULL CHECK (rays >= 0),\n"
-    "  tri_tests      INTEGER NOT NULL CHECK (tri_tests >= 0),\n"
-    "  gs_prims       INTEGER NOT NULL CHECK (gs_prims >= 0),\n"
-    "  fragments      INTEGER NOT NULL CHECK (fragments >= 0),\n"
-    "  violations     INTEGER NOT NULL CHECK (violations >= 0),\n"
-    SL_MS_COLUMNS(SL_MS_SQL_COL)
-    "  overlay        TEXT,\n"
+    SL_CELL_COLUMNS(SL_SQL_COL)
     "  CHECK (viewport = vw || 'x' || vh)\n"
     ")";
 
@@ -160,10 +135,8 @@ static const char sql_ins_run[] =
     "gl_renderer, gl_version, embree, threads, lp_num_threads) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
 
 static const char sql_ins_cell[] =
-    "INSERT INTO cells (run_id, config_hash, scene, viewpoint, viewport, vw, vh, map_size, method, "
-    "label, cell_index, n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow, n_wrong_image, "
-    "truth_rays, runs, lookups, rays, tri_tests, gs_prims, fragments, violations" SL_MS_COLUMNS(SL_MS_SQL_NAME)
-    ", overlay) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?" SL_MS_COLUMNS(SL_MS_SQL_PARAM) ",?)";
+    "INSERT INTO cells (run_id, config_hash" SL_CELL_COLUMNS(SL_SQL_NAME) ") VALUES (?,?"
+    SL_CELL_COLUMNS(SL_SQL_PARAM) ")";
 
 static const char sql_ins_fig[] =
     "INSERT INTO figures (cell_id, scene, viewpoint, viewport, map_size, label, region, figure, "
@@ -184,11 +157,8 @@ static const char sql_query_cells[] =
     "  WHERE (?1 IS NULL OR scene = ?1) AND (?2 IS NULL OR viewpoint = ?2)\n"
     "    AND (?3 IS NULL OR label = ?3) AND (?4 = 0 OR map_size = ?4) AND (?5 = 0 OR run_id = ?5)\n"
     "    AND (?6 IS NULL OR run_id IN (SELECT run_id FROM runs WHERE study = ?6)))\n"
-    "SELECT l.cell_id, l.scene, l.viewpoint, l.method, l.label, l.vw, l.vh, l.map_size,\n"
-    "       l.n_pfl, l.n_pnfl, l.n_background, l.n_truth_lit, l.n_truth_shadow, l.n_wrong_image,\n"
-    "       l.config_hash, r.git_sha, r.host, r.cpu, r.isa, r.study, l.run_id, l.overlay,\n"
-    "       l.truth_rays, l.runs, l.lookups, l.rays, l.tri_tests, l.gs_prims, l.fragments, l.violations\n"
-    "       " SL_MS_COLUMNS(SL_MS_SQL_L_NAME) "\n"
+    "SELECT l.cell_id, l.config_hash, r.git_sha, r.host, r.cpu, r.isa, r.study, l.run_id\n"
+    "       " SL_CELL_COLUMNS(SL_SQL_L_NAME) "\n"
     "FROM latest l JOIN runs r ON r.run_id = l.run_id\n"
     "WHERE l.rn = 1\n"
     "ORDER BY l.scene, l.cell_index, l.run_id, l.cell_id";
@@ -550,7 +520,7 @@ enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p
     return e;
 }
 
-static enum sl_err put_figure(struct sl_store *s, sqlite3_int64 cell_id, const struct sl_store_cell *c,
+static enum sl_err put_figure(struct sl_store *s, sqlite3_int64 cell_id, const struct sl_cell_record *c,
                               const char *viewport, const char *region, const char *figure,
                               uint64_t count, double pct, const char *of, const char *key,
                               struct sl_diag *d)
@@ -576,42 +546,26 @@ static enum sl_err put_figure(struct sl_store *s, sqlite3_int64 cell_id, const s
 }
 
 static enum sl_err put_cell_row(struct sl_store *s, int64_t run_id, const char *hash,
-                                const struct sl_store_cell *c, const char *viewport, const char *key,
+                                const struct sl_cell_record *c, const char *viewport, const char *key,
                                 sqlite3_int64 *cell_id, struct sl_diag *d)
 {
     sqlite3_stmt *st = s->st[ST_INS_CELL];
     struct binder b = {st, 1, SQLITE_OK};
     b_int(&b, run_id);
     b_text(&b, hash);
-    b_text(&b, c->scene);
-    b_text(&b, c->viewpoint);
-    b_text(&b, viewport);
-    b_int(&b, c->vw);
-    b_int(&b, c->vh);
-    b_int(&b, c->map_size);
-    b_text(&b, c->method);
-    b_text(&b, c->label);
-    b_int(&b, c->cell_index);
-    b_u64(&b, c->n_pfl);
-    b_u64(&b, c->n_pnfl);
-    b_u64(&b, c->n_background);
-    b_u64(&b, c->n_truth_lit);
-    b_u64(&b, c->n_truth_shadow);
-    b_u64(&b, c->fig->wrong_image);
-    static const struct sl_table_costs unknown;
-    const struct sl_table_costs *k = c->costs ? c->costs : &unknown;
-    b_u64(&b, k->truth_rays);
-    b_int(&b, k->runs);
-    b_u64(&b, k->lookups);
-    b_u64(&b, k->rays);
-    b_u64(&b, k->tri_tests);
-    b_u64(&b, k->gs_prims);
-    b_u64(&b, k->fragments);
-    b_u64(&b, k->violations);
-#define SL_MS_BIND(col, field) b_real(&b, c->costs ? k->field : NAN);
-    SL_MS_COLUMNS(SL_MS_BIND)
-#undef SL_MS_BIND
-    b_text_or_null(&b, c->overlay);
+#define SL_BIND_text(name)     b_text(&b, c->name);
+#define SL_BIND_path(name)     b_text_or_null(&b, c->name);
+#define SL_BIND_dim(name)      b_int(&b, c->name);
+#define SL_BIND_index(name)    b_int(&b, c->name);
+#define SL_BIND_runs(name)     b_int(&b, c->name);
+#define SL_BIND_count(name)    b_u64(&b, SL_CELL_U64_count(c, name));
+#define SL_BIND_wrong(name)    b_u64(&b, SL_CELL_U64_wrong(c, name));
+#define SL_BIND_ms(name)       b_real(&b, c->name);
+#define SL_BIND_viewport(name) b_text(&b, viewport);
+#define SL_BIND_flag(name)
+#define SL_BIND(name, kind, size, csv, head, check, key) SL_BIND_##kind(name)
+    SL_CELL_COLUMNS(SL_BIND)
+#undef SL_BIND
     enum sl_err e = SL_OK;
     if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
         e = db_fail(s, d, key, "cannot store the cell");
@@ -622,11 +576,11 @@ static enum sl_err put_cell_row(struct sl_store *s, int64_t run_id, const char *
 }
 
 enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long long config_hash,
-                              const struct sl_store_cell *c, struct sl_diag *d)
+                              const struct sl_cell_record *c, struct sl_diag *d)
 {
-    if (!s || !c || !c->fig || !c->scene || !c->viewpoint || !c->method || !c->label)
+    if (!s || !c)
         return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_put_cell: missing argument");
-    const struct sl_figures *fig = c->fig;
+    const struct sl_figures *fig = &c->fig;
     char key[96], viewport[32], hash[24];
     snprintf(key, sizeof key, "%s/%s/%dx%d/%d/%s", c->scene, c->viewpoint, c->vw, c->vh, c->map_size,
              c->label);
@@ -652,9 +606,9 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
             e = put_figure(s, cell_id, c, viewport, region, sl_figure_name((enum sl_figure)k), g->n[k],
                            g->pct[k], sl_figure_of((enum sl_figure)k), key, d);
     }
-    for (int k = 0; c->soft && k < SL_SFIG_COUNT && !e; k++)
-        e = put_figure(s, cell_id, c, viewport, "image", sl_soft_figure_name((enum sl_soft_figure)k), c->soft->n[k],
-                       c->soft->pct[k], sl_soft_figure_of((enum sl_soft_figure)k), key, d);
+    for (int k = 0; c->has_soft && k < SL_SFIG_COUNT && !e; k++)
+        e = put_figure(s, cell_id, c, viewport, "image", sl_soft_figure_name((enum sl_soft_figure)k), c->soft.n[k],
+                       c->soft.pct[k], sl_soft_figure_of((enum sl_soft_figure)k), key, d);
     if (!e)
         e = put_figure(s, cell_id, c, viewport, "image", "background", fig->background, NAN, NULL, key, d);
     if (!e) {
@@ -711,7 +665,7 @@ static uint64_t col_u64(sqlite3_stmt *st, int i)
 }
 
 /* Figures of one cell into c->fig (c->fig.wrong_image is already set). */
-static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struct sl_table_cell *c,
+static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struct sl_cell_record *c,
                                 struct sl_diag *d)
 {
     sqlite3_stmt *st = s->st[ST_QUERY_FIGS];
@@ -771,7 +725,7 @@ static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struc
 }
 
 enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
-                           struct sl_table_cell **out, int *n, struct sl_diag *d)
+                           struct sl_cell_record **out, int *n, struct sl_diag *d)
 {
     if (!out || !n)
         return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_query: no output pointer");
@@ -794,13 +748,13 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
         st_clear(st);
         return db_fail(s, d, NULL, "cannot query cells");
     }
-    struct sl_table_cell *cells = NULL;
+    struct sl_cell_record *cells = NULL;
     int count = 0, cap = 0, rc = SQLITE_DONE;
     enum sl_err e = SL_OK;
     while (!e && (rc = sqlite3_step(st)) == SQLITE_ROW) {
         if (count == cap) {
             int ncap = cap ? 2 * cap : 16;
-            struct sl_table_cell *nc = realloc(cells, (size_t)ncap * sizeof *nc);
+            struct sl_cell_record *nc = realloc(cells, (size_t)ncap * sizeof *nc);
             if (!nc) {
                 e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "%d cells", ncap);
                 break;
@@ -808,47 +762,34 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
             cells = nc;
             cap = ncap;
         }
-        struct sl_table_cell *c = &cells[count++];
+        struct sl_cell_record *c = &cells[count++];
         memset(c, 0, sizeof *c);
-        sqlite3_int64 cell_id = sqlite3_column_int64(st, 0);
-        col_text(st, 1, c->scene, sizeof c->scene);
-        col_text(st, 2, c->viewpoint, sizeof c->viewpoint);
-        col_text(st, 3, c->method, sizeof c->method);
-        col_text(st, 4, c->label, sizeof c->label);
-        c->vw = sqlite3_column_int(st, 5);
-        c->vh = sqlite3_column_int(st, 6);
-        c->map_size = sqlite3_column_int(st, 7);
-        c->n_pfl = col_u64(st, 8);
-        c->n_pnfl = col_u64(st, 9);
-        c->n_background = col_u64(st, 10);
-        c->n_truth_lit = col_u64(st, 11);
-        c->n_truth_shadow = col_u64(st, 12);
-        c->fig.wrong_image = col_u64(st, 13);
-        col_text(st, 14, c->config_hash, sizeof c->config_hash);
-        col_text(st, 15, c->git_sha, sizeof c->git_sha);
-        const char *host = (const char *)sqlite3_column_text(st, 16);
-        const char *cpu = (const char *)sqlite3_column_text(st, 17);
-        const char *isa = (const char *)sqlite3_column_text(st, 18);
+        int i = 0;
+        sqlite3_int64 cell_id = sqlite3_column_int64(st, i++);
+        col_text(st, i++, c->config_hash, sizeof c->config_hash);
+        col_text(st, i++, c->git_sha, sizeof c->git_sha);
+        const char *host = (const char *)sqlite3_column_text(st, i++);
+        const char *cpu = (const char *)sqlite3_column_text(st, i++);
+        const char *isa = (const char *)sqlite3_column_text(st, i++);
         snprintf(c->machine, sizeof c->machine, "%s/%s/%s", host ? host : "", cpu ? cpu : "",
                  isa ? isa : "");
-        col_text(st, 19, c->study, sizeof c->study);
-        c->run_id = sqlite3_column_int64(st, 20);
-        col_text(st, 21, c->overlay, sizeof c->overlay);
-        struct sl_table_costs *k = &c->cost;
-        int i = 22;
-        k->truth_rays = col_u64(st, i++);
-        k->runs = sqlite3_column_int(st, i++);
-        k->lookups = col_u64(st, i++);
-        k->rays = col_u64(st, i++);
-        k->tri_tests = col_u64(st, i++);
-        k->gs_prims = col_u64(st, i++);
-        k->fragments = col_u64(st, i++);
-        k->violations = col_u64(st, i++);
-#define SL_MS_READ(col, field)                                                              \
-        k->field = sqlite3_column_type(st, i) == SQLITE_NULL ? NAN : sqlite3_column_double(st, i); \
+        col_text(st, i++, c->study, sizeof c->study);
+        c->run_id = sqlite3_column_int64(st, i++);
+#define SL_READ_text(name)     col_text(st, i++, c->name, sizeof c->name);
+#define SL_READ_path(name)     col_text(st, i++, c->name, sizeof c->name);
+#define SL_READ_dim(name)      c->name = sqlite3_column_int(st, i++);
+#define SL_READ_index(name)    c->name = sqlite3_column_int(st, i++);
+#define SL_READ_runs(name)     c->name = sqlite3_column_int(st, i++);
+#define SL_READ_count(name)    SL_CELL_U64_count(c, name) = col_u64(st, i++);
+#define SL_READ_wrong(name)    SL_CELL_U64_wrong(c, name) = col_u64(st, i++);
+#define SL_READ_ms(name)                                                                     \
+        c->name = sqlite3_column_type(st, i) == SQLITE_NULL ? NAN : sqlite3_column_double(st, i); \
         i++;
-        SL_MS_COLUMNS(SL_MS_READ)
-#undef SL_MS_READ
+#define SL_READ_viewport(name) i++;
+#define SL_READ_flag(name)
+#define SL_READ(name, kind, size, csv, head, check, key) SL_READ_##kind(name)
+        SL_CELL_COLUMNS(SL_READ)
+#undef SL_READ
         e = load_figures(s, cell_id, c, d);
     }
     if (!e && rc != SQLITE_DONE)

@@ -9,8 +9,11 @@
  * identified across runs by the config hash and its key; `--resume` asks
  * sl_store_has_cell and skips what is there.
  *
+ * A cell is a struct sl_cell_record (cellcols.h): the `cells` table's
+ * columns, its INSERT and its SELECT are generated from SL_CELL_COLUMNS.
+ *
  * Owns: the sqlite3 handle (sl_store_close). Does not: compute or format
- * (table.c formats what sl_store_query returns).
+ * (table.c formats what sl_store_query returns); know the tables.
  * Schema versioned with PRAGMA user_version; a database of another version is
  * refused with SL_E_IO naming the file.
  */
@@ -19,21 +22,9 @@
 #include <stdint.h>
 #include "method.h"
 #include "provenance.h"
-#include "table.h"
+#include "cellcols.h"
 
 struct sl_store;
-
-/* Key and content of one cell. */
-struct sl_store_cell {
-    const char *scene, *viewpoint, *method, *label;
-    int         vw, vh, map_size;
-    int         cell_index;                 /* index in the config's sweep */
-    uint64_t    n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
-    const struct sl_figures     *fig;
-    const struct sl_table_costs *costs;     /* counters and stage times; NULL = unknown */
-    const struct sl_soft_figures *soft;     /* a soft-shadow cell's figures (area light); NULL = none */
-    const char *overlay;                    /* overlay PNG relative to the database's folder; NULL/"" none */
-};
 
 /* Open or create the database at path. Its folder must exist: the caller
  * makes it (sl_mkdirs); the store creates no folders. */
@@ -54,16 +45,18 @@ enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p
 int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const char *scene,
                       const char *viewpoint, int vw, int vh, int map_size, const char *label);
 
-/* Append one cell and all its figures in one transaction. */
+/* Append one cell (its columns of cellcols.h, its figures, its soft figures
+ * when has_soft) in one transaction. NAN stage times are stored as NULL (not
+ * measured); study, run_id and the provenance fields are the run's, not read. */
 enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long long config_hash,
-                              const struct sl_store_cell *c, struct sl_diag *d);
+                              const struct sl_cell_record *c, struct sl_diag *d);
 
 /* Cells for tables: filters may be NULL / 0 for "any"; when a key was stored
  * several times, the latest run's cell wins (with run_id set: the latest of
  * that run). Ordered by scene, then the config's sweep order (cell_index).
  * Each cell's regions come back as figures.c orders them (contours ascending,
- * whole image last), NULL percentages as NAN, machine as "host/cpu/isa" of
- * its run. *out is malloc'ed (free), NULL when *n is 0 or on error. */
+ * whole image last), NULL percentages and times as NAN, machine as
+ * "host/cpu/isa" of its run. *out is malloc'ed (free), NULL when *n is 0 or on error. */
 struct sl_store_filter {
     const char *study;                      /* the config's name */
     const char *scene, *viewpoint, *label;
@@ -71,7 +64,7 @@ struct sl_store_filter {
     int64_t     run_id;                     /* 0 = all runs */
 };
 enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
-                           struct sl_table_cell **out, int *n, struct sl_diag *d);
+                           struct sl_cell_record **out, int *n, struct sl_diag *d);
 
 /* One run (one invocation of `shadowlab run`): where its numbers came from. */
 struct sl_store_run {

@@ -9,7 +9,7 @@
 #include <string.h>
 #include "util.h"
 
-struct pick { const struct sl_table_cell *cell; int region; double v; };
+struct pick { const struct sl_cell_record *cell; int region; double v; };
 
 static void region_name(int t, char *buf, size_t n)
 {
@@ -24,7 +24,7 @@ static int wanted(const struct sl_summary_opts *o, int thickness)
     return o->region < 0 ? thickness != 0 : thickness == o->region;
 }
 
-enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct sl_table_cell *cells, int n,
+enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct sl_cell_record *cells, int n,
                              const struct sl_summary_opts *o, struct sl_diag *d)
 {
     if (o->figure < 0 || o->figure >= SL_FIG_COUNT)
@@ -56,7 +56,7 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
     for (int k = 0; k < nmaps; k++)
         best[k] = worst[k] = (struct pick){NULL, 0, NAN};
     for (int i = 0; i < n; i++) {
-        const struct sl_table_cell *c = &cells[i];
+        const struct sl_cell_record *c = &cells[i];
         int k = 0;
         while (maps[k] != c->map_size)
             k++;

@@ -21,7 +21,7 @@ struct sl_summary_opts {
     int         avg_map;           /* 0 = the first map size that has the cell */
 };
 
-enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct sl_table_cell *cells, int n,
+enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct sl_cell_record *cells, int n,
                              const struct sl_summary_opts *o, struct sl_diag *d);
 
 #endif

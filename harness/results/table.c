@@ -31,7 +31,7 @@ int sl_table_format_parse(const char *name)
 
 /* ---- order ---- */
 
-static int same_table(const struct sl_table_cell *a, const struct sl_table_cell *b)
+static int same_table(const struct sl_cell_record *a, const struct sl_cell_record *b)
 {
     return a->vw == b->vw && a->vh == b->vh && strcmp(a->scene, b->scene) == 0 &&
            strcmp(a->viewpoint, b->viewpoint) == 0 && strcmp(a->label, b->label) == 0;
@@ -63,7 +63,7 @@ static void layout_free(struct layout *l)
     free(l->groups);
 }
 
-static enum sl_err layout_build(const struct sl_table_cell *cells, int ncells, struct layout *l,
+static enum sl_err layout_build(const struct sl_cell_record *cells, int ncells, struct layout *l,
                                 struct sl_diag *d)
 {
     memset(l, 0, sizeof *l);
@@ -100,7 +100,7 @@ static enum sl_err layout_build(const struct sl_table_cell *cells, int ncells, s
         l->groups[g].idx = l->order + start;
         l->groups[g].n = pos - start;
         for (int k = start + 1; k < pos && !e; k++) {
-            const struct sl_table_cell *a = &cells[l->order[k - 1]], *b = &cells[l->order[k]];
+            const struct sl_cell_record *a = &cells[l->order[k - 1]], *b = &cells[l->order[k]];
             if (a->map_size == b->map_size) {
                 char key[96];
                 snprintf(key, sizeof key, "%s/%s/%dx%d/%s", b->scene, b->viewpoint, b->vw, b->vh, b->label);
@@ -120,11 +120,11 @@ static enum sl_err layout_build(const struct sl_table_cell *cells, int ncells, s
 }
 
 /* 1 if every cell of the group has the provenance of the first. */
-static int same_provenance(const struct sl_table_cell *cells, const struct group *g)
+static int same_provenance(const struct sl_cell_record *cells, const struct group *g)
 {
-    const struct sl_table_cell *a = &cells[g->idx[0]];
+    const struct sl_cell_record *a = &cells[g->idx[0]];
     for (int k = 1; k < g->n; k++) {
-        const struct sl_table_cell *b = &cells[g->idx[k]];
+        const struct sl_cell_record *b = &cells[g->idx[k]];
         if (strcmp(a->git_sha, b->git_sha) || strcmp(a->config_hash, b->config_hash) ||
             strcmp(a->machine, b->machine) || strcmp(a->method, b->method))
             return 0;
@@ -144,26 +144,26 @@ static const char md_note[] =
  * image, and the figures of softfig.h. A hard method's cell under an area
  * light has both: it is written as its soft table and then, through a copy
  * with has_soft cleared (its "point twin"), as its hard table. */
-static int point_twin(const struct sl_table_cell *c) { return !c->has_soft && c->soft.n[SL_SFIG_soft_pixels] > 0; }
-static int dual(const struct sl_table_cell *c) { return c->has_soft && c->fig.nregions > 0; }
-static int cell_cols(const struct sl_table_cell *c) { return c->has_soft ? 1 : c->fig.nregions; }
-static int cell_rows(const struct sl_table_cell *c) { return c->has_soft ? SL_SFIG_COUNT : SL_FIG_COUNT; }
-static int col_thickness(const struct sl_table_cell *c, int col) { return c->has_soft ? 0 : c->fig.r[col].thickness; }
-static const char *row_name(const struct sl_table_cell *c, int k)
+static int point_twin(const struct sl_cell_record *c) { return !c->has_soft && c->soft.n[SL_SFIG_soft_pixels] > 0; }
+static int dual(const struct sl_cell_record *c) { return c->has_soft && c->fig.nregions > 0; }
+static int cell_cols(const struct sl_cell_record *c) { return c->has_soft ? 1 : c->fig.nregions; }
+static int cell_rows(const struct sl_cell_record *c) { return c->has_soft ? SL_SFIG_COUNT : SL_FIG_COUNT; }
+static int col_thickness(const struct sl_cell_record *c, int col) { return c->has_soft ? 0 : c->fig.r[col].thickness; }
+static const char *row_name(const struct sl_cell_record *c, int k)
 {
     return c->has_soft ? sl_soft_figure_name((enum sl_soft_figure)k) : sl_figure_name((enum sl_figure)k);
 }
-static const char *row_of(const struct sl_table_cell *c, int k)
+static const char *row_of(const struct sl_cell_record *c, int k)
 {
     return c->has_soft ? sl_soft_figure_of((enum sl_soft_figure)k) : sl_figure_of((enum sl_figure)k);
 }
-static void cell_value(const struct sl_table_cell *c, int col, int k, uint64_t *n, double *pct)
+static void cell_value(const struct sl_cell_record *c, int col, int k, uint64_t *n, double *pct)
 {
     *n = c->has_soft ? c->soft.n[k] : c->fig.r[col].n[k];
     *pct = c->has_soft ? c->soft.pct[k] : c->fig.r[col].pct[k];
 }
 /* "count (pct%)", or for a soft mean "pct (of visibility)" */
-static void value_text(const struct sl_table_cell *c, int k, uint64_t n, double pct, int tex, char *out, size_t sz)
+static void value_text(const struct sl_cell_record *c, int k, uint64_t n, double pct, int tex, char *out, size_t sz)
 {
     const char *pc = tex ? "\\%" : "%";
     if (isnan(pct))
@@ -175,10 +175,10 @@ static void value_text(const struct sl_table_cell *c, int k, uint64_t n, double 
 }
 
 /* One row's values across a table's cells and columns: Markdown or LaTeX cells. */
-static void row_values(FILE *f, const struct sl_table_cell *cells, const struct group *g, int fi, int tex)
+static void row_values(FILE *f, const struct sl_cell_record *cells, const struct group *g, int fi, int tex)
 {
     for (int k = 0; k < g->n; k++) {
-        const struct sl_table_cell *c = &cells[g->idx[k]];
+        const struct sl_cell_record *c = &cells[g->idx[k]];
         for (int r = 0; r < cell_cols(c); r++) {
             uint64_t n;
             double pct;
@@ -190,15 +190,15 @@ static void row_values(FILE *f, const struct sl_table_cell *cells, const struct 
     }
 }
 
-static void md_provenance(FILE *f, const struct sl_table_cell *c)
+static void md_provenance(FILE *f, const struct sl_cell_record *c)
 {
     fprintf(f, "method `%s`; git `%s`, config `%s`, machine `%s`", c->method, c->git_sha, c->config_hash,
             c->machine);
 }
 
-static void md_table(FILE *f, const struct sl_table_cell *cells, const struct group *g)
+static void md_table(FILE *f, const struct sl_cell_record *cells, const struct group *g)
 {
-    const struct sl_table_cell *c0 = &cells[g->idx[0]];
+    const struct sl_cell_record *c0 = &cells[g->idx[0]];
     fprintf(f, "## %s / %s / %dx%d / %s\n\n", c0->scene, c0->viewpoint, c0->vw, c0->vh, c0->label);
     if (c0->has_soft)
         fprintf(f, "Area light: the visible fraction of the light against the area truth "
@@ -211,7 +211,7 @@ static void md_table(FILE *f, const struct sl_table_cell *cells, const struct gr
     fprintf(f, "| figure |");
     int ncols = 0;
     for (int k = 0; k < g->n; k++) {
-        const struct sl_table_cell *c = &cells[g->idx[k]];
+        const struct sl_cell_record *c = &cells[g->idx[k]];
         for (int r = 0; r < cell_cols(c); r++, ncols++) {
             char rn[16];
             region_name(col_thickness(c, r), rn, sizeof rn);
@@ -233,7 +233,7 @@ static void md_table(FILE *f, const struct sl_table_cell *cells, const struct gr
         fprintf(f, "\n\n");
     } else {
         for (int k = 0; k < g->n; k++) {
-            const struct sl_table_cell *c = &cells[g->idx[k]];
+            const struct sl_cell_record *c = &cells[g->idx[k]];
             fprintf(f, "- %d²: ", c->map_size);
             md_provenance(f, c);
             fprintf(f, "\n");
@@ -261,7 +261,7 @@ static void csv_field(FILE *f, const char *s)
 }
 
 /* scene,viewpoint,viewport,map_size,method,label, */
-static void csv_key(FILE *f, const struct sl_table_cell *c)
+static void csv_key(FILE *f, const struct sl_cell_record *c)
 {
     csv_field(f, c->scene);
     fputc(',', f);
@@ -274,7 +274,7 @@ static void csv_key(FILE *f, const struct sl_table_cell *c)
 }
 
 /* ,git_sha,config_hash,machine\n */
-static void csv_provenance(FILE *f, const struct sl_table_cell *c)
+static void csv_provenance(FILE *f, const struct sl_cell_record *c)
 {
     fputc(',', f);
     csv_field(f, c->git_sha);
@@ -285,7 +285,7 @@ static void csv_provenance(FILE *f, const struct sl_table_cell *c)
     fputc('\n', f);
 }
 
-static void csv_cell(FILE *f, const struct sl_table_cell *c, int background)
+static void csv_cell(FILE *f, const struct sl_cell_record *c, int background)
 {
     for (int r = 0; r < cell_cols(c); r++) {
         char rn[16];
@@ -355,7 +355,7 @@ static void tex_key(FILE *f, const char *s)
     }
 }
 
-static void tex_provenance(FILE *f, const struct sl_table_cell *c)
+static void tex_provenance(FILE *f, const struct sl_cell_record *c)
 {
     fputs("method \\texttt{", f);
     sl_tex_text(f, c->method);
@@ -367,9 +367,9 @@ static void tex_provenance(FILE *f, const struct sl_table_cell *c)
     sl_tex_text(f, c->machine);
 }
 
-static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct group *g)
+static void latex_table(FILE *f, const struct sl_cell_record *cells, const struct group *g)
 {
-    const struct sl_table_cell *c0 = &cells[g->idx[0]];
+    const struct sl_cell_record *c0 = &cells[g->idx[0]];
     int ncols = 0;
     for (int k = 0; k < g->n; k++)
         ncols += cell_cols(&cells[g->idx[k]]);
@@ -400,7 +400,7 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     fputs("}\n\\toprule\n", f);
     /* map sizes over their regions */
     for (int k = 0; k < g->n; k++) {
-        const struct sl_table_cell *c = &cells[g->idx[k]];
+        const struct sl_cell_record *c = &cells[g->idx[k]];
         fprintf(f, " & \\multicolumn{%d}{c}{$%d^2$}", cell_cols(c), c->map_size);
     }
     fputs(" \\\\\n", f);
@@ -412,7 +412,7 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
     }
     fputs("\nfigure", f);
     for (int k = 0; k < g->n; k++) {
-        const struct sl_table_cell *c = &cells[g->idx[k]];
+        const struct sl_cell_record *c = &cells[g->idx[k]];
         for (int r = 0; r < cell_cols(c); r++) {
             char rn[16];
             region_name(col_thickness(c, r), rn, sizeof rn);
@@ -430,7 +430,7 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
         tex_provenance(f, c0);
     } else {
         for (int k = 0; k < g->n; k++) {
-            const struct sl_table_cell *c = &cells[g->idx[k]];
+            const struct sl_cell_record *c = &cells[g->idx[k]];
             fprintf(f, "%s$%d^2$: ", k ? "\\\\\n" : "", c->map_size);
             tex_provenance(f, c);
         }
@@ -441,7 +441,7 @@ static void latex_table(FILE *f, const struct sl_table_cell *cells, const struct
 /* ---- entry ---- */
 
 enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *title,
-                           const struct sl_table_cell *cells, int ncells, struct sl_diag *d)
+                           const struct sl_cell_record *cells, int ncells, struct sl_diag *d)
 {
     if (!out || ncells < 0 || (ncells > 0 && !cells))
         return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_table_write: bad arguments");
@@ -452,7 +452,7 @@ enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *titl
     if (e)
         return e;
     /* the point twins of cells that have both kinds of figures */
-    struct sl_table_cell *twin = NULL;
+    struct sl_cell_record *twin = NULL;
     for (int i = 0; i < ncells && !twin; i++)
         if (dual(&cells[i])) {
             twin = malloc((size_t)ncells * sizeof *twin);

@@ -1,0 +1,515 @@
+/*
+ * outputs.c — see outputs.h.
+ *
+ * Every file is written from the cells in memory in sweep order; the tables
+ * and the store get the same record of a cell (sl_out_record), so table.md
+ * and `shadowlab table` on the store can never disagree. costs.csv is
+ * generated from the column list of cellcols.h: its header and its rows
+ * cannot drift apart.
+ */
+#define _XOPEN_SOURCE 700
+#include "outputs.h"
+#include <dirent.h>
+#include <errno.h>
+#include <ftw.h>
+#include <limits.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <string.h>
+#include "util.h"
+
+static void machine_of(const struct sl_provenance *p, char *out, size_t n)
+{
+    snprintf(out, n, "%s/%s/%s", p->host, p->cpu, p->isa);
+}
+
+void sl_out_overlay_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n)
+{
+    snprintf(out, n, "%s-%s-%dx%d-%d-%s.png", cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
+             c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label);
+}
+
+void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct sl_cell_record *r)
+{
+    const struct sl_config_method *cm = &c->methods[cl->key.method];
+    const struct sl_stage_ms *s = &cl->ms;
+    memset(r, 0, sizeof *r);
+    snprintf(r->scene, sizeof r->scene, "%s", cl->scene);
+    snprintf(r->viewpoint, sizeof r->viewpoint, "%s", cl->viewpoint);
+    snprintf(r->method, sizeof r->method, "%s", cm->method->name);
+    snprintf(r->label, sizeof r->label, "%s", cm->label);
+    r->vw = c->viewport_w[cl->key.viewport];
+    r->vh = c->viewport_h[cl->key.viewport];
+    r->map_size = c->maps[cl->key.map];
+    r->cell_index = cl->index;
+    r->n_pfl = cl->n_pfl;
+    r->n_pnfl = cl->n_pnfl;
+    r->n_background = cl->n_background;
+    r->n_truth_lit = cl->n_truth_lit;
+    r->n_truth_shadow = cl->n_truth_shadow;
+    r->truth_rays = cl->truth_rays;
+    r->runs = c->runs;
+    r->lookups = cl->cost.lookups;
+    r->rays = cl->cost.rays;
+    r->tri_tests = cl->cost.tri_tests;
+    r->gs_prims = cl->gs_prims;
+    r->fragments = cl->fragments;
+    r->violations = cl->violations;
+    r->ms_gbuffer_render = s->gbuffer_render[SL_MED];
+    r->ms_gbuffer_render_min = s->gbuffer_render[SL_MIN];
+    r->ms_gbuffer_render_max = s->gbuffer_render[SL_MAX];
+    r->ms_gbuffer_readback = s->gbuffer_readback;
+    r->ms_truth = s->truth[SL_MED];
+    r->ms_truth_min = s->truth[SL_MIN];
+    r->ms_truth_max = s->truth[SL_MAX];
+    r->ms_fit = s->fit;
+    r->ms_map_render = s->map_render[SL_MED];
+    r->ms_map_render_min = s->map_render[SL_MIN];
+    r->ms_map_render_max = s->map_render[SL_MAX];
+    r->ms_map_readback = s->map_readback;
+    r->ms_method = s->method[SL_MED];
+    r->ms_method_min = s->method[SL_MIN];
+    r->ms_method_max = s->method[SL_MAX];
+    r->ms_ray_step = cl->cost.ms_trace;
+    r->ms_step1 = cl->cost.ms_step[0];
+    r->ms_step2 = cl->cost.ms_step[1];
+    r->ms_step3 = cl->cost.ms_step[2];
+    r->ms_step4 = cl->cost.ms_step[3];
+    r->ms_contours = s->contours;
+    r->ms_figures = s->figures;
+    r->ms_overlay = s->overlay;
+    r->truth_cached = cl->truth_cached;
+    r->fig = cl->fig;
+    r->has_soft = cl->has_soft;
+    r->soft = cl->soft;
+    snprintf(r->study, sizeof r->study, "%s", c->name);
+    snprintf(r->config_hash, sizeof r->config_hash, "%016llx", c->hash);
+}
+
+static void table_cells_of(const struct sl_config *c, const struct sl_run_result *res,
+                           struct sl_cell_record *tc)
+{
+    for (int i = 0; i < res->ncells; i++) {
+        const struct sl_cell *cl = &res->cells[i];
+        struct sl_cell_record *t = &tc[i];
+        sl_out_record(c, cl, t);
+        if (c->overlays) {
+            char name[400];
+            sl_out_overlay_name(c, cl, name, sizeof name);
+            snprintf(t->overlay, sizeof t->overlay, "overlays/%s", name);
+        }
+        snprintf(t->git_sha, sizeof t->git_sha, "%s", res->prov.git_sha);
+        machine_of(&res->prov, t->machine, sizeof t->machine);
+    }
+}
+
+enum sl_err sl_out_write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
+                                const struct sl_run_result *res, struct sl_diag *d)
+{
+    struct sl_cell_record *tc = sl_calloc((size_t)(res->ncells ? res->ncells : 1), sizeof *tc);
+    if (!tc)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "table cells");
+    table_cells_of(c, res, tc);
+    char title[256];
+    snprintf(title, sizeof title, "shadowlab: %s", c->name);
+    enum sl_err e = sl_table_write(f, fmt, title, tc, res->ncells, d);
+    free(tc);
+    return e;
+}
+
+/* ---- costs.csv: the columns of cellcols.h with a csv position ---- */
+
+static const int csv_pos[SL_COL_COUNT] = {
+#define SL_CSV_POS(name, kind, size, csv, head, check, key) [SL_COL_##name] = csv,
+    SL_CELL_COLUMNS(SL_CSV_POS)
+#undef SL_CSV_POS
+};
+static const char *const csv_head[SL_COL_COUNT] = {
+#define SL_CSV_HEAD(name, kind, size, csv, head, check, key) [SL_COL_##name] = head,
+    SL_CELL_COLUMNS(SL_CSV_HEAD)
+#undef SL_CSV_HEAD
+};
+
+/* The columns of costs.csv in order; their number. */
+static int csv_order(enum sl_cell_col order[SL_COL_COUNT])
+{
+    int n = 0;
+    for (int p = 1; n < SL_COL_COUNT; p++) {
+        int found = -1;
+        for (int k = 0; k < SL_COL_COUNT && found < 0; k++)
+            if (csv_pos[k] == p)
+                found = k;
+        if (found < 0)
+            break;
+        order[n++] = (enum sl_cell_col)found;
+    }
+    return n;
+}
+
+static void csv_value(FILE *f, const struct sl_cell_record *r, enum sl_cell_col col)
+{
+#define SL_CSV_text(name)     fprintf(f, "%s", r->name);
+#define SL_CSV_path(name)     fprintf(f, "%s", r->name);
+#define SL_CSV_dim(name)      fprintf(f, "%d", r->name);
+#define SL_CSV_index(name)    fprintf(f, "%d", r->name);
+#define SL_CSV_runs(name)     fprintf(f, "%d", r->name);
+#define SL_CSV_flag(name)     fprintf(f, "%d", r->name);
+#define SL_CSV_count(name)    fprintf(f, "%llu", (unsigned long long)SL_CELL_U64_count(r, name));
+#define SL_CSV_wrong(name)    fprintf(f, "%llu", (unsigned long long)SL_CELL_U64_wrong(r, name));
+#define SL_CSV_ms(name)       fprintf(f, "%.3f", r->name);
+#define SL_CSV_viewport(name) fprintf(f, "%dx%d", r->vw, r->vh);
+    switch (col) {
+#define SL_CSV_CASE(name, kind, size, csv, head, check, key) \
+    case SL_COL_##name: SL_CSV_##kind(name) break;
+    SL_CELL_COLUMNS(SL_CSV_CASE)
+#undef SL_CSV_CASE
+    case SL_COL_COUNT:
+        break;
+    }
+}
+
+void sl_out_write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    char machine[300];
+    machine_of(&res->prov, machine, sizeof machine);
+    enum sl_cell_col order[SL_COL_COUNT];
+    int ncols = csv_order(order);
+    for (int j = 0; j < ncols; j++)
+        fprintf(f, "%s%s", j ? "," : "", csv_head[order[j]]);
+    fprintf(f, ",git_sha,config_hash,machine\n");
+    for (int i = 0; i < res->ncells; i++) {
+        struct sl_cell_record r;
+        sl_out_record(c, &res->cells[i], &r);
+        for (int j = 0; j < ncols; j++) {
+            if (j)
+                fputc(',', f);
+            csv_value(f, &r, order[j]);
+        }
+        fprintf(f, ",%s,%016llx,\"%s\"\n", res->prov.git_sha, c->hash, machine);
+    }
+}
+
+void sl_out_write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    fprintf(f, "\n## Cost per cell (ms; G-buffer and truth are shared by the cells of a view)\n\n");
+    fprintf(f, "| cell | scene | viewpoint | map | label | G-buffer | truth | fit | map render | readback "
+               "| method (median of %d) | of which rays | rays | lookups | ray-tri tests | GS prims | contours | figures | overlay |\n", c->runs);
+    fprintf(f, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (int i = 0; i < res->ncells; i++) {
+        const struct sl_cell *cl = &res->cells[i];
+        const struct sl_stage_ms *s = &cl->ms;
+        fprintf(f, "| %d | %s | %s | %d | %s | %.1f | %.1f%s | %.1f | %.1f | %.1f | %.1f | %.1f | %llu | %llu | %llu | %llu | %.1f | %.1f | %.1f |\n",
+                cl->index, cl->scene, cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label,
+                s->gbuffer_render[SL_MED] + s->gbuffer_readback, s->truth[SL_MED], cl->truth_cached ? " (cached)" : "",
+                s->fit, s->map_render[SL_MED], s->map_readback, s->method[SL_MED], cl->cost.ms_trace,
+                (unsigned long long)cl->cost.rays,
+                (unsigned long long)cl->cost.lookups, (unsigned long long)cl->cost.tri_tests,
+                (unsigned long long)cl->gs_prims, s->contours, s->figures, s->overlay);
+    }
+    fprintf(f, "\nTotal %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.\n",
+            res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
+}
+
+void sl_out_write_patterns_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,texels,region,shadowed_texels,pixels,"
+               "shadowed_in_truth,git_sha,config_hash\n");
+    for (int i = 0; i < res->ncells; i++) {
+        const struct sl_cell *cl = &res->cells[i];
+        if (!cl->has_patterns)
+            continue;
+        int n = c->methods[cl->key.method].params.texels;
+        for (int r = 0; r < cl->fig.nregions; r++)
+            for (int k = 0; k <= n; k++) {
+                char rn[16];
+                if (cl->fig.r[r].thickness)
+                    snprintf(rn, sizeof rn, "%dpx", cl->fig.r[r].thickness);
+                else
+                    snprintf(rn, sizeof rn, "image");
+                fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d,%s,%d,%llu,%llu,%s,%016llx\n", cl->index, cl->scene,
+                        cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
+                        c->maps[cl->key.map], c->methods[cl->key.method].label, n, rn, k,
+                        (unsigned long long)cl->pattern[r][k][0], (unsigned long long)cl->pattern[r][k][1],
+                        res->prov.git_sha, c->hash);
+            }
+    }
+}
+
+void sl_out_write_patterns_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    int any = 0;
+    for (int i = 0; i < res->ncells; i++)
+        any |= res->cells[i].has_patterns;
+    if (!any)
+        return;
+    fprintf(f, "\n## Texel coherence: undecided pixels by how many texels say shadow "
+               "(pixels, of which shadowed in truth)\n\n");
+    fprintf(f, "| cell | scene | viewpoint | map | label | region | 1 | 2 | 3 | 4 | 5 | 6 | 7 | 8 |\n");
+    fprintf(f, "|---:|---|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (int i = 0; i < res->ncells; i++) {
+        const struct sl_cell *cl = &res->cells[i];
+        if (!cl->has_patterns)
+            continue;
+        int n = c->methods[cl->key.method].params.texels;
+        for (int r = 0; r < cl->fig.nregions; r++) {
+            char rn[16];
+            if (cl->fig.r[r].thickness)
+                snprintf(rn, sizeof rn, "%d px", cl->fig.r[r].thickness);
+            else
+                snprintf(rn, sizeof rn, "image");
+            fprintf(f, "| %d | %s | %s | %d | %s | %s |", cl->index, cl->scene, cl->viewpoint,
+                    c->maps[cl->key.map], c->methods[cl->key.method].label, rn);
+            for (int k = 1; k <= 8; k++) {
+                if (k < n)
+                    fprintf(f, " %llu (%llu) |", (unsigned long long)cl->pattern[r][k][0],
+                            (unsigned long long)cl->pattern[r][k][1]);
+                else
+                    fprintf(f, " |");
+            }
+            fprintf(f, "\n");
+        }
+    }
+}
+
+void sl_out_write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    fprintf(f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
+    sl_provenance_write(&res->prov, f, "");
+    fprintf(f, "cells_computed: %d\ncells_skipped: %d\nms_total: %.1f\n", res->ncells, res->skipped,
+            res->ms_total);
+}
+
+/* ---- the run's folder: staged, then swapped into place ---- */
+
+static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw)
+{
+    (void)sb; (void)flag; (void)ftw;
+    return remove(p);
+}
+
+static void rm_tree(const char *path)
+{
+    nftw(path, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+/* The overlay's path as the store keeps it: relative to the database's
+ * folder when the results folder lies under it (the usual layout,
+ * results/shadowlab.db beside results/<name>/), else absolute. The file is in
+ * place once the run ends (the staging folder is renamed then). */
+static void overlay_store_path(const char *store_path, const char *final, const char *name, char *out,
+                               size_t n)
+{
+    char dbdir[PATH_MAX], fin[PATH_MAX], tmp[1200];
+    snprintf(tmp, sizeof tmp, "%s", store_path);
+    char *slash = strrchr(tmp, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(tmp, sizeof tmp, ".");
+    if (!realpath(tmp, dbdir) || !realpath(final, fin)) {
+        /* the results folder does not exist yet on a first run: resolve its parent */
+        char parent[1200];
+        snprintf(parent, sizeof parent, "%s", final);
+        char *ps = strrchr(parent, '/');
+        const char *base = ps ? ps + 1 : final;
+        if (ps)
+            *ps = '\0';
+        else
+            snprintf(parent, sizeof parent, ".");
+        char rp[PATH_MAX];
+        if (!realpath(tmp, dbdir) || !realpath(parent, rp)) {
+            snprintf(out, n, "%s/overlays/%s", final, name);
+            return;
+        }
+        snprintf(fin, sizeof fin, "%.*s/%s", (int)(sizeof fin - 300), rp, base);
+    }
+    size_t k = strlen(dbdir);
+    if (strncmp(fin, dbdir, k) == 0 && fin[k] == '/')
+        snprintf(out, n, "%s/overlays/%s", fin + k + 1, name);
+    else
+        snprintf(out, n, "%s/overlays/%s", fin, name);
+}
+
+enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct sl_config *c,
+                              const struct sl_cell *cl, const char *store_path, const char *final,
+                              struct sl_diag *d)
+{
+    struct sl_cell_record sc;
+    sl_out_record(c, cl, &sc);
+    if (final && final[0] && c->overlays) {
+        char name[400];
+        sl_out_overlay_name(c, cl, name, sizeof name);
+        overlay_store_path(store_path, final, name, sc.overlay, sizeof sc.overlay);
+    }
+    return sl_store_put_cell(st, run_id, c->hash, &sc, d);
+}
+
+/* Move the files of <from>/<sub> into <to>/<sub> where <to> has no file of that name. */
+static void carry_files(const char *from, const char *to, const char *sub)
+{
+    char src[1400], dst[1400];
+    snprintf(src, sizeof src, "%s/%s", from, sub);
+    DIR *dir = opendir(src);
+    if (!dir)
+        return;
+    snprintf(dst, sizeof dst, "%s/%s", to, sub);
+    mkdir(dst, 0777);
+    struct dirent *e;
+    while ((e = readdir(dir))) {
+        /* a killed run may have left a half-written image under its
+         * temporary name (image.cpp writes name.tmp.ext, then renames) */
+        if (e->d_name[0] == '.' || strstr(e->d_name, ".tmp."))
+            continue;
+        char a[1800], b[1800];
+        snprintf(a, sizeof a, "%s/%s", src, e->d_name);
+        snprintf(b, sizeof b, "%s/%s", dst, e->d_name);
+        if (access(b, F_OK) != 0)
+            rename(a, b);
+    }
+    closedir(dir);
+}
+
+static void carry_previous(const char *root, const char *name, const char *final, const char *stage)
+{
+    carry_files(final, stage, "overlays");
+    carry_files(final, stage, "exr");
+    DIR *dir = opendir(root);
+    if (!dir)
+        return;
+    char prefix[200], own[1200];
+    snprintf(prefix, sizeof prefix, ".%s.partial-", name);
+    struct dirent *e;
+    while ((e = readdir(dir))) {
+        if (strncmp(e->d_name, prefix, strlen(prefix)) != 0)
+            continue;
+        snprintf(own, sizeof own, "%s/%s", root, e->d_name);
+        if (strcmp(own, stage) == 0)
+            continue;
+        /* only a dead run's folder: another run of this config may be writing
+         * its own right now (a pid that cannot be parsed counts as dead) */
+        char *end;
+        long pid = strtol(e->d_name + strlen(prefix), &end, 10);
+        if (*end == '\0' && pid > 0 && (kill((pid_t)pid, 0) == 0 || errno == EPERM))
+            continue;
+        carry_files(own, stage, "overlays");
+        carry_files(own, stage, "exr");
+        rm_tree(own);   /* a killed run's leftovers: its cells are in the store */
+    }
+    closedir(dir);
+}
+
+/* A run row carrying the filled-in config, so a number in the store can be
+ * reproduced from the store alone. */
+enum sl_err sl_out_begin_run(struct sl_store *st, const struct sl_config *c, const struct sl_provenance *p,
+                             int64_t *run_id, struct sl_diag *d)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    if (!f)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "config text");
+    sl_config_write(c, f);
+    fclose(f);
+    enum sl_err e = sl_store_begin_run(st, p, c->name, c->path, c->hash, text, run_id, d);
+    free(text);
+    return e;
+}
+
+enum sl_err sl_out_stage_begin(const struct sl_config *c, const char *root, struct sl_out_dirs *o,
+                               struct sl_diag *d)
+{
+    enum sl_err e;
+    snprintf(o->root, sizeof o->root, "%s", root);
+    snprintf(o->final, sizeof o->final, "%s/%s", root, c->name);
+    snprintf(o->stage, sizeof o->stage, "%s/.%s.partial-%ld", root, c->name, (long)getpid());
+    rm_tree(o->stage);
+    if ((e = sl_mkdirs(o->stage, d))) {
+        o->stage[0] = '\0';
+        return e;
+    }
+    snprintf(o->overlays, sizeof o->overlays, "%s/overlays", o->stage);
+    snprintf(o->exr, sizeof o->exr, "%s/exr", o->stage);
+    if ((c->overlays && (e = sl_mkdirs(o->overlays, d))) || (c->exr && (e = sl_mkdirs(o->exr, d)))) {
+        sl_out_stage_drop(o);
+        return e;
+    }
+    return SL_OK;
+}
+
+void sl_out_stage_drop(struct sl_out_dirs *o)
+{
+    if (o->stage[0])
+        rm_tree(o->stage);
+    o->stage[0] = '\0';
+}
+
+enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_result *res,
+                                const struct sl_out_dirs *o, int resume, struct sl_diag *d)
+{
+    enum sl_err e = SL_OK;
+    {
+        struct { const char *name; int kind; } files[] = {
+            {"figures.csv", 0}, {"table.md", 1}, {"table.tex", 2}, {"costs.csv", 3},
+            {"config.yaml", 4}, {"run.yaml", 5}, {"patterns.csv", 6},
+        };
+        for (size_t f = 0; f < sizeof files / sizeof files[0] && !e; f++) {
+            if (!c->tables && files[f].kind <= 2)
+                continue;
+            struct sl_outfile of;
+            char path[1300];
+            snprintf(path, sizeof path, "%s/%s", o->stage, files[f].name);
+            if ((e = sl_out_open(&of, path, d)))
+                break;
+            switch (files[f].kind) {
+            case 0: e = sl_out_write_tables(of.f, SL_TABLE_CSV, c, res, d); break;
+            case 1:
+                e = sl_out_write_tables(of.f, SL_TABLE_MD, c, res, d);
+                sl_out_write_costs_md(of.f, c, res);
+                sl_out_write_patterns_md(of.f, c, res);
+                break;
+            case 2: e = sl_out_write_tables(of.f, SL_TABLE_LATEX, c, res, d); break;
+            case 3: sl_out_write_costs_csv(of.f, c, res); break;
+            case 4:
+                fprintf(of.f, "# from %s (hash %016llx), git %s\n", c->path, c->hash, res->prov.git_sha);
+                sl_config_write(c, of.f);
+                break;
+            case 5: sl_out_write_run_yaml(of.f, c, res); break;
+            case 6: sl_out_write_patterns_csv(of.f, c, res); break;
+            }
+            if (e)
+                sl_out_abort(&of);
+            else
+                e = sl_out_commit(&of, d);
+        }
+        if (e)
+            return e;
+    }
+    /* a resumed run computed only the missing cells: the overlays and EXR
+     * files of the cells it skipped come from the previous results folder, or
+     * from the staging folder of a run that was killed, so what the store
+     * points at is in place */
+    if (resume)
+        carry_previous(o->root, c->name, o->final, o->stage);
+    /* swap the finished folder into place */
+    {
+        char old[1200];
+        snprintf(old, sizeof old, "%s/.%s.old-%ld", o->root, c->name, (long)getpid());
+        struct stat sb;
+        int had = stat(o->final, &sb) == 0;
+        if (had && rename(o->final, old) != 0) {
+            return sl_fail(d, SL_E_OUTPUT, o->final, 0, NULL, "cannot replace the previous results: %s",
+                           strerror(errno));
+        }
+        if (rename(o->stage, o->final) != 0) {
+            if (had)
+                rename(old, o->final);
+            return sl_fail(d, SL_E_OUTPUT, o->final, 0, NULL, "cannot move results into place: %s",
+                           strerror(errno));
+        }
+        if (had)
+            rm_tree(old);
+    }
+    return SL_OK;
+}

@@ -1,0 +1,73 @@
+/*
+ * outputs.h — what `shadowlab run` writes beside its results: the tables
+ * (table.md, table.tex, figures.csv), the cost per cell (costs.csv and the
+ * Markdown cost table), texel coherence's patterns (patterns.csv and its
+ * Markdown table) and run.yaml; and the record of a computed cell
+ * (cellcols.h) that the tables and the store are given.
+ *
+ * costs.csv's columns are the cell columns of cellcols.h that have a csv
+ * position, in that order, then git_sha, config_hash and machine.
+ *
+ * And the run's folder: staged in a hidden folder and swapped into place at
+ * the end (sl_out_stage_*), and each computed cell put into the store with
+ * the path of its overlay.
+ *
+ * Owns: nothing between calls. Does not: compute cells, or print anywhere
+ * but the FILEs it is given.
+ */
+#ifndef SL_OUTPUTS_H
+#define SL_OUTPUTS_H
+#include <stdio.h>
+#include "run.h"
+
+/* The overlay's file name inside the run's overlays/ folder. */
+void sl_out_overlay_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n);
+
+/* cl as a record: key, counts, costs and figures; study and config_hash from
+ * c. No overlay, run_id, git SHA or machine (the caller's). */
+void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct sl_cell_record *r);
+
+/* The computed cells as tables (table.h); SL_E_NOMEM, or sl_table_write's error. */
+enum sl_err sl_out_write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
+                                const struct sl_run_result *res, struct sl_diag *d);
+void sl_out_write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res);
+void sl_out_write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res);
+/* Texel coherence's undecided pixels by pattern (Moderno 2011 Tables 20/22). */
+void sl_out_write_patterns_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res);
+void sl_out_write_patterns_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res);
+void sl_out_write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res);
+
+/* The run's folders: results land in a hidden staging folder
+ * <root>/.<name>.partial-<pid>, which replaces <root>/<name> once every file
+ * is written, so a reader never sees a half-written results folder. */
+struct sl_out_dirs {
+    char root[1024];
+    char final[1100];      /* <root>/<name> */
+    char stage[1100];      /* the staging folder, "" none */
+    char overlays[1200];   /* <stage>/overlays */
+    char exr[1200];        /* <stage>/exr */
+};
+/* Make the staging folder (and its overlays/ and exr/ when the config asks). */
+enum sl_err sl_out_stage_begin(const struct sl_config *c, const char *root, struct sl_out_dirs *o,
+                               struct sl_diag *d);
+/* Write the run's files into the staging folder; after a resumed run, carry
+ * the overlays and EXR files of the cells it skipped from the previous
+ * folder (or a killed run's staging folder), so what the store points at
+ * is in place; then swap the staging folder into place. */
+enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_result *res,
+                                const struct sl_out_dirs *o, int resume, struct sl_diag *d);
+/* Remove the staging folder (a run that failed). NULL-safe on an empty o. */
+void sl_out_stage_drop(struct sl_out_dirs *o);
+
+/* The run row of the store, carrying the filled-in config. */
+enum sl_err sl_out_begin_run(struct sl_store *st, const struct sl_config *c, const struct sl_provenance *p,
+                             int64_t *run_id, struct sl_diag *d);
+/* Put one computed cell into the store, with its overlay's path as the store
+ * keeps it (relative to the database's folder when the results folder lies
+ * under it, else absolute); final: the results folder, NULL when no files
+ * are written. */
+enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct sl_config *c,
+                              const struct sl_cell *cl, const char *store_path, const char *final,
+                              struct sl_diag *d);
+
+#endif

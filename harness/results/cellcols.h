@@ -1,0 +1,145 @@
+/*
+ * cellcols.h — the columns of one cell of results, listed once, and the
+ * plain record that carries them.
+ *
+ * SL_CELL_COLUMNS is the one list of a cell's key, counts and costs. From it
+ * come the fields of struct sl_cell_record, the results store's `cells`
+ * table (schema, INSERT, SELECT: store.c), the run's costs.csv (header and
+ * row: outputs.c) and the counters a baseline compares (check.c). Adding a
+ * counter is one line here (a stored column also changes the store's schema
+ * text: bump its version, see store.c).
+ *
+ * X(name, kind, size, csv, head, check, key):
+ *   name   the record's field and the store's column;
+ *   kind   how it is held, stored and written:
+ *            text      char[size], TEXT NOT NULL
+ *            path      char[size], TEXT, NULL when "" (the error overlay PNG: relative
+ *                      to the database's folder in the store, to the run's folder
+ *                      in a run)
+ *            dim       int, INTEGER NOT NULL CHECK (name > 0)
+ *            index     int, INTEGER NOT NULL
+ *            runs      int, INTEGER NOT NULL CHECK (name >= 0)
+ *            count     uint64_t, INTEGER NOT NULL CHECK (name >= 0)
+ *            ms        double, REAL (a wall time in ms; NULL/NAN = not measured)
+ *            viewport  no field: "vw x vh", stored for the figure queries
+ *            wrong     no field: fig.wrong_image (the whole image's wrong pixels)
+ *            flag      int, not stored (the run's costs.csv only)
+ *   size   char array size of text and path, else 0;
+ *   csv    position in costs.csv (1 = first), 0 = not written there, under
+ *          the header `head`; git_sha, config_hash and machine follow;
+ *   check  class of check.h a baseline compares it under (none = not
+ *          compared), as the counter `key`.
+ * The list is in the order of the store's columns.
+ *
+ * The record is what the store returns and takes, what the tables, the
+ * summaries, the report and the baseline check read, and what the run builds
+ * from its cells. Does not: read, write or format anything (the store, the
+ * tables and the run's outputs do); decide a cell's figures (figures.h).
+ */
+#ifndef SL_CELLCOLS_H
+#define SL_CELLCOLS_H
+#include <stdint.h>
+#include "figures.h"
+#include "softfig.h"
+
+/* Stages timed over the config's repetitions keep {median, min, max}. */
+enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
+
+/* clang-format off */
+#define SL_CELL_COLUMNS(X)                                                                  \
+    /* name                kind      size  csv  head                  check      key */    \
+    X(scene,               text,     64,   2,   "scene",              none,      _)         \
+    X(viewpoint,           text,     32,   3,   "viewpoint",          none,      _)         \
+    X(viewport,            viewport, 0,    4,   "viewport",           none,      _)         \
+    X(vw,                  dim,      0,    0,   "",                   none,      _)         \
+    X(vh,                  dim,      0,    0,   "",                   none,      _)         \
+    X(map_size,            dim,      0,    5,   "map_size",           none,      _)         \
+    X(method,              text,     32,   0,   "",                   none,      _)         \
+    X(label,               text,     48,   6,   "label",              none,      _)         \
+    X(cell_index,          index,    0,    1,   "cell",               none,      _)         \
+    X(n_pfl,               count,    0,    0,   "",                   view,      n_pfl)     \
+    X(n_pnfl,              count,    0,    0,   "",                   view,      n_pnfl)    \
+    X(n_background,        count,    0,    0,   "",                   view,      n_background) \
+    X(n_truth_lit,         count,    0,    0,   "",                   view,      n_truth_lit) \
+    X(n_truth_shadow,      count,    0,    0,   "",                   view,      n_truth_shadow) \
+    X(n_wrong_image,       wrong,    0,    0,   "",                   error,     wrong_image) \
+    X(truth_rays,          count,    0,    16,  "truth_rays",         cost,      truth_rays) \
+    X(runs,                runs,     0,    7,   "runs",               none,      _)         \
+    X(lookups,             count,    0,    30,  "lookups",            cost,      lookups)   \
+    X(rays,                count,    0,    31,  "rays",               cost,      rays)      \
+    X(tri_tests,           count,    0,    32,  "tri_tests",          cost,      tri_tests) \
+    X(gs_prims,            count,    0,    33,  "gs_prims",           cost,      gs_prims)  \
+    X(fragments,           count,    0,    34,  "fragments",          cost,      fragments) \
+    X(violations,          count,    0,    35,  "violations",         invariant, violations) \
+    X(ms_gbuffer_render,   ms,       0,    8,   "ms_gbuffer_render",  none,      _)         \
+    X(ms_gbuffer_render_min, ms,     0,    9,   "ms_gbuffer_render_min", none,   _)         \
+    X(ms_gbuffer_render_max, ms,     0,    10,  "ms_gbuffer_render_max", none,   _)         \
+    X(ms_gbuffer_readback, ms,       0,    11,  "ms_gbuffer_readback", none,     _)         \
+    X(ms_truth,            ms,       0,    12,  "ms_truth",           none,      _)         \
+    X(ms_truth_min,        ms,       0,    13,  "ms_truth_min",       none,      _)         \
+    X(ms_truth_max,        ms,       0,    14,  "ms_truth_max",       none,      _)         \
+    X(ms_fit,              ms,       0,    17,  "ms_fit",             none,      _)         \
+    X(ms_map_render,       ms,       0,    18,  "ms_map_render",      none,      _)         \
+    X(ms_map_render_min,   ms,       0,    19,  "ms_map_render_min",  none,      _)         \
+    X(ms_map_render_max,   ms,       0,    20,  "ms_map_render_max",  none,      _)         \
+    X(ms_map_readback,     ms,       0,    21,  "ms_map_readback",    none,      _)         \
+    X(ms_method,           ms,       0,    22,  "ms_method",          none,      _)         \
+    X(ms_method_min,       ms,       0,    23,  "ms_method_min",      none,      _)         \
+    X(ms_method_max,       ms,       0,    24,  "ms_method_max",      none,      _)         \
+    X(ms_ray_step,         ms,       0,    25,  "ms_ray_step",        none,      _)         \
+    X(ms_step1,            ms,       0,    26,  "ms_step1",           none,      _)         \
+    X(ms_step2,            ms,       0,    27,  "ms_step2",           none,      _)         \
+    X(ms_step3,            ms,       0,    28,  "ms_step3",           none,      _)         \
+    X(ms_step4,            ms,       0,    29,  "ms_step4",           none,      _)         \
+    X(ms_contours,         ms,       0,    36,  "ms_contours",        none,      _)         \
+    X(ms_figures,          ms,       0,    37,  "ms_figures",         none,      _)         \
+    X(ms_overlay,          ms,       0,    38,  "ms_overlay",         none,      _)         \
+    X(overlay,             path,     1500, 0,   "",                   none,      _)         \
+    X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)
+/* clang-format on */
+
+/* One enumerator per column: SL_COL_<name>. */
+enum sl_cell_col {
+#define SL_COL_ENUM(name, kind, size, csv, head, check, key) SL_COL_##name,
+    SL_CELL_COLUMNS(SL_COL_ENUM)
+#undef SL_COL_ENUM
+    SL_COL_COUNT
+};
+
+/* The record's field of each kind (none for viewport and wrong). */
+#define SL_CELL_FIELD_text(name, size)     char name[size];
+#define SL_CELL_FIELD_path(name, size)     char name[size];
+#define SL_CELL_FIELD_dim(name, size)      int name;
+#define SL_CELL_FIELD_index(name, size)    int name;
+#define SL_CELL_FIELD_runs(name, size)     int name;
+#define SL_CELL_FIELD_count(name, size)    uint64_t name;
+#define SL_CELL_FIELD_ms(name, size)       double name;
+#define SL_CELL_FIELD_viewport(name, size)
+#define SL_CELL_FIELD_wrong(name, size)
+#define SL_CELL_FIELD_flag(name, size)     int name;
+
+/* The value of a count of record r (kinds count and wrong). */
+#define SL_CELL_U64_count(r, name) ((r)->name)
+#define SL_CELL_U64_wrong(r, name) ((r)->fig.wrong_image)
+
+struct sl_cell_record {
+    /* key, counts and costs: one field per column above */
+#define SL_CELL_FIELD(name, kind, size, csv, head, check, key) SL_CELL_FIELD_##kind(name, size)
+    SL_CELL_COLUMNS(SL_CELL_FIELD)
+#undef SL_CELL_FIELD
+    struct sl_figures fig;             /* hard shadows (fig.nregions = 0 for a soft method's cell) */
+    int      has_soft;                 /* an area light: the soft figures below; a hard method's cell
+                                        * has both, its hard figures against the light's centre */
+    struct sl_soft_figures soft;
+    /* the run's, not columns of the cell */
+    char     study[64];                /* the config's name */
+    int64_t  run_id;                   /* 0 when not from the store */
+    /* provenance of the numbers, printed under each table and in CSV rows */
+    char     git_sha[48], config_hash[24], machine[256];
+};
+
+/* *r with nothing known: zero keys and counts, every stage time NAN (not
+ * measured), no figures. */
+void sl_cell_record_init(struct sl_cell_record *r);
+
+#endif
