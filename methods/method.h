@@ -201,7 +201,7 @@ struct sl_method {
                        struct sl_cost *c, struct sl_diag *d);
 };
 
-/* Helpers the methods share (common.c). */
+/* Helpers the methods share (method.c). */
 
 /* Background and PnFL pixels get their fixed verdicts (none; shadow by
  * definition); returns 1 for them, 0 for a PFL pixel the method decides. */

@@ -1,7 +1,8 @@
 /*
- * common.c — what several methods share: tracing the pixels the maps leave
- * undecided, with the truth's own rays (harness/truth.c), so a traced pixel
- * gets, ray for ray, the truth's answer.
+ * method.c — the helpers of method.h that several methods share: tracing
+ * the pixels the maps leave undecided with the truth's own rays
+ * (harness/truth/truth.c), so a traced pixel gets, ray for ray, the truth's
+ * answer. The table of methods and its lookups are in registry.c.
  */
 #include <stdlib.h>
 #include "method.h"
