@@ -1,6 +1,7 @@
 /* Shared by the cmocka tests: case names module::case (the function is
- * module_case), a temporary folder per test program, and configs written
- * there from text. Include after <cmocka.h>. */
+ * module_case), main's run of the group or of one case, a temporary folder
+ * per test program, and configs written there from text. Include after
+ * <cmocka.h>. */
 #ifndef SL_TEST_H
 #define SL_TEST_H
 #include <stdio.h>
@@ -13,6 +14,39 @@
 /* The program's temporary folder (made by sl_test_setup, removed by
  * sl_test_teardown: pass them to cmocka_run_group_tests_name). */
 static char sl_test_dir[] = "/tmp/shadowlab-test-XXXXXX";
+
+/* main(argc, argv) of a test program: run the group `tests` (with the
+ * group's setup and teardown), or with a case name as the one argument only
+ * that case, still inside the group's setup and teardown (ctest runs each
+ * module::case on its own this way: tests/CMakeLists.txt). A name that is not
+ * exactly one case's fails, so a renamed case cannot pass by running nothing. */
+#define sl_run_group(argc, argv, name, tests, setup, teardown)                                        \
+    sl_run_group_n((argc), (argv), (name), (tests), sizeof(tests) / sizeof((tests)[0]), (setup), (teardown))
+
+static inline int sl_run_group_n(int argc, char **argv, const char *name, const struct CMUnitTest *tests,
+                                 size_t n, CMFixtureFunction setup, CMFixtureFunction teardown)
+{
+    if (argc > 2) {
+        fprintf(stderr, "usage: %s [module::case]\n", argv[0]);
+        return 2;
+    }
+    if (argc == 2) {
+        size_t hits = 0;
+        for (size_t i = 0; i < n; i++)
+            hits += strcmp(tests[i].name, argv[1]) == 0;
+        /* cmocka's filter is a glob matched against the whole name: a name
+         * with no wildcard in it matches only itself */
+        if (hits != 1 || strpbrk(argv[1], "*?")) {
+            fprintf(stderr, "%s: %s case named '%s'; the cases:\n", argv[0], hits > 1 ? "more than one" : "no",
+                    argv[1]);
+            for (size_t i = 0; i < n; i++)
+                fprintf(stderr, "  %s\n", tests[i].name);
+            return 2;
+        }
+        cmocka_set_test_filter(argv[1]);
+    }
+    return _cmocka_run_group_tests(name, tests, n, setup, teardown);
+}
 
 static inline int sl_test_setup(void **st)
 {

@@ -304,7 +304,7 @@ static void adjacency_bench_scene_scale(void **st)
     sl_mesh_free(&m);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(adjacency, closed_box),
@@ -315,5 +315,5 @@ int main(void)
         SL_CASE(adjacency, matches_brute_force_mixed),
         SL_CASE(adjacency, bench_scene_scale),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return sl_run_group(argc, argv, "adjacency", tests, NULL, NULL);
 }

@@ -112,11 +112,11 @@ static void bench_quick_mode_rows(void **st)
     assert_non_null(strstr(text, ",layer,\"bgsm2 256²\",ms,"));
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(bench, parse_stages),
         SL_CASE(bench, quick_mode_rows),
     };
-    return cmocka_run_group_tests_name("bench", tests, sl_test_setup, sl_test_teardown);
+    return sl_run_group(argc, argv, "bench", tests, sl_test_setup, sl_test_teardown);
 }

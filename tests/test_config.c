@@ -106,7 +106,7 @@ static void config_syntax_error_has_line(void **st)
     assert_true(d.line >= 2 && d.line <= 3);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(config, default_loads),
@@ -114,5 +114,5 @@ int main(void)
         SL_CASE(config, bad_inputs),
         SL_CASE(config, syntax_error_has_line),
     };
-    return cmocka_run_group_tests_name("config", tests, NULL, NULL);
+    return sl_run_group(argc, argv, "config", tests, NULL, NULL);
 }

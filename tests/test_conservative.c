@@ -277,12 +277,12 @@ static void conservative_adjacency_cases(void **st)
 
 
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(conservative, invariants_on_every_scene),
         SL_CASE(conservative, slivers_stay_finite_and_near),
         SL_CASE(conservative, adjacency_cases),
     };
-    return cmocka_run_group_tests_name("conservative", tests, sl_test_setup, sl_test_teardown);
+    return sl_run_group(argc, argv, "conservative", tests, sl_test_setup, sl_test_teardown);
 }

@@ -100,7 +100,7 @@ static void contour_whole_image_region(void **st)
     assert_true(sl_in_contour(3, 6));
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(contour, vertical_edge_widths),
@@ -109,5 +109,5 @@ int main(void)
         SL_CASE(contour, single_pixel_diamond),
         SL_CASE(contour, whole_image_region),
     };
-    return cmocka_run_group_tests_name("contour", tests, NULL, NULL);
+    return sl_run_group(argc, argv, "contour", tests, NULL, NULL);
 }

@@ -294,7 +294,7 @@ static void e2e_two_sided_leaf(void **st)
 
 
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(e2e, default_experiment),
@@ -303,5 +303,5 @@ int main(void)
         SL_CASE(e2e, exr_layers),
         SL_CASE(e2e, two_sided_leaf),
     };
-    return cmocka_run_group_tests_name("e2e", tests, sl_test_setup, sl_test_teardown);
+    return sl_run_group(argc, argv, "e2e", tests, sl_test_setup, sl_test_teardown);
 }

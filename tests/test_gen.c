@@ -319,7 +319,7 @@ static void gen_bench_scene_budget(void **st)
     sl_mesh_free(&m);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(gen, triangle_counts),
@@ -330,5 +330,5 @@ int main(void)
         SL_CASE(gen, tree_leaves_are_large),
         SL_CASE(gen, bench_scene_budget),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return sl_run_group(argc, argv, "gen", tests, NULL, NULL);
 }

@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <sys/stat.h>
 #include <cmocka.h>
 #include "scenefile.h"
 #include "sl_test.h"
@@ -33,6 +34,59 @@
 static struct sl_config hard;
 static struct sl_run_result all;   /* the whole sweep, once */
 
+/* The sweep takes minutes and ctest runs each hard::* case in its own
+ * process, so ctest first runs `test_hard --sweep FILE` (the fixture
+ * hard::sweep, tests/CMakeLists.txt) and the cases read its cells from FILE,
+ * named by SL_HARD_SWEEP. The file is this binary's raw cells: used only when
+ * it is newer than the binary and holds the plan's count of cells of this
+ * size; otherwise (and run by hand, without SL_HARD_SWEEP) the case sweeps. */
+struct sweep_head {
+    char magic[8];
+    uint64_t cell_size;
+    int64_t ncells;
+};
+
+static int sweep_load(const char *path)
+{
+    struct stat sf, sx;
+    if (stat(path, &sf) || stat("/proc/self/exe", &sx) || sf.st_mtime < sx.st_mtime)
+        return 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    struct sweep_head h;
+    int ok = fread(&h, sizeof h, 1, f) == 1 && !memcmp(h.magic, "slhard1", 8) &&
+             h.cell_size == sizeof(struct sl_cell) && h.ncells == sl_plan_count(&hard) && h.ncells > 0;
+    if (ok) {
+        all.cells = calloc((size_t)h.ncells, sizeof *all.cells);
+        ok = all.cells && fread(all.cells, sizeof *all.cells, (size_t)h.ncells, f) == (size_t)h.ncells &&
+             fgetc(f) == EOF;
+        all.ncells = ok ? (int)h.ncells : 0;
+        if (!ok)
+            sl_run_result_free(&all);
+    }
+    fclose(f);
+    if (ok)
+        printf("hard: the sweep's %d cells from %s\n", all.ncells, path);
+    return ok;
+}
+
+static int sweep_save(const char *path)
+{
+    char tmp[1100];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "wb");
+    if (!f)
+        return -1;
+    struct sweep_head h = {.magic = "slhard1", .cell_size = sizeof(struct sl_cell), .ncells = all.ncells};
+    int ok = fwrite(&h, sizeof h, 1, f) == 1 &&
+             fwrite(all.cells, sizeof *all.cells, (size_t)all.ncells, f) == (size_t)all.ncells;
+    ok = fclose(f) == 0 && ok && rename(tmp, path) == 0;
+    if (!ok)
+        remove(tmp);
+    return ok ? 0 : -1;
+}
+
 static int setup(void **st)
 {
     if (sl_test_setup(st))
@@ -42,6 +96,9 @@ static int setup(void **st)
         fprintf(stderr, "%s:%d %s: %s\n", d.file, d.line, d.key, d.msg);
         return -1;
     }
+    const char *cached = getenv("SL_HARD_SWEEP");
+    if (cached && *cached && sweep_load(cached))
+        return 0;
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     if (sl_run(&hard, &o, &all, &d)) {
         fprintf(stderr, "hard-cases: %s\n", d.msg);
@@ -313,8 +370,16 @@ static void hard_rigid_offset(void **st)
     printf("hard::rigid_offset: worst %d of %d allowed\n", worst, SL_OFFSET_MAX_PIXELS);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
+    if (argc == 3 && !strcmp(argv[1], "--sweep")) {   /* the fixture hard::sweep */
+        remove(argv[2]);
+        unsetenv("SL_HARD_SWEEP");
+        int ok = setup(NULL) == 0 && sweep_save(argv[2]) == 0;
+        if (ok)
+            printf("hard: the sweep's %d cells in %s\n", all.ncells, argv[2]);
+        return teardown(NULL) == 0 && ok ? 0 : 1;
+    }
     const struct CMUnitTest tests[] = {
         SL_CASE(hard, invariants),
         SL_CASE(hard, deterministic),
@@ -322,5 +387,5 @@ int main(void)
         SL_CASE(hard, far_is_its_twin),
         SL_CASE(hard, rigid_offset),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return sl_run_group(argc, argv, "hard", tests, setup, teardown);
 }

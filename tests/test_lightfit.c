@@ -191,12 +191,12 @@ static void lightfit_point_occluders_inside(void **st)
     fixture_close(&f);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(lightfit, synthetic),
         SL_CASE(lightfit, primitives_occluders_inside),
         SL_CASE(lightfit, point_occluders_inside),
     };
-    return cmocka_run_group_tests_name("lightfit", tests, NULL, NULL);
+    return sl_run_group(argc, argv, "lightfit", tests, NULL, NULL);
 }

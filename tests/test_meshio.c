@@ -435,7 +435,7 @@ static void meshio_bad_files_fail_and_leave_mesh(void **st)
     }
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(meshio, weld_two_quads),
@@ -446,5 +446,5 @@ int main(void)
         SL_CASE(meshio, xform_and_append),
         SL_CASE(meshio, bad_files_fail_and_leave_mesh),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return sl_run_group(argc, argv, "meshio", tests, NULL, NULL);
 }

@@ -343,7 +343,7 @@ static void moderno_figure29_adjacent_geometry(void **st)
     fig_close(&g);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(moderno, proofs_never_wrong),
@@ -353,5 +353,5 @@ int main(void)
         SL_CASE(moderno, figure22_neighbour_texel),
         SL_CASE(moderno, figure29_adjacent_geometry),
     };
-    return cmocka_run_group_tests_name("moderno", tests, sl_test_setup, sl_test_teardown);
+    return sl_run_group(argc, argv, "moderno", tests, sl_test_setup, sl_test_teardown);
 }

@@ -77,7 +77,7 @@ static void raytri_sure_until_the_light(void **st)
     assert_int_equal(sl_shadow_ray_tri_sure(p, up, INFINITY, tnear, a3, b3, c3), -1);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(raytri, hit_inside),
@@ -86,5 +86,5 @@ int main(void)
         SL_CASE(raytri, distances),
         SL_CASE(raytri, sure_until_the_light),
     };
-    return cmocka_run_group_tests_name("raytri", tests, NULL, NULL);
+    return sl_run_group(argc, argv, "raytri", tests, NULL, NULL);
 }

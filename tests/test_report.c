@@ -335,12 +335,12 @@ static void report_build(void **st)
     assert_int_equal(access(fresh, F_OK), -1);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(report, pareto),
         SL_CASE(report, points),
         SL_CASE(report, build),
     };
-    return cmocka_run_group_tests_name("report", tests, sl_test_setup, sl_test_teardown);
+    return sl_run_group(argc, argv, "report", tests, sl_test_setup, sl_test_teardown);
 }

@@ -564,7 +564,7 @@ static void soft_truth_no_cache(void **st)
     sl_run_result_free(&b);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(soft, driver),
@@ -576,5 +576,5 @@ int main(void)
         SL_CASE(soft, truth_cache),
         SL_CASE(soft, truth_no_cache),
     };
-    return cmocka_run_group_tests(tests, sl_test_setup, sl_test_teardown);
+    return sl_run_group(argc, argv, "soft", tests, sl_test_setup, sl_test_teardown);
 }

@@ -56,11 +56,11 @@ static void softfig_empty(void **st)
         assert_true(isnan(f.pct[k]));
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(softfig, worked_example),
         SL_CASE(softfig, empty),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return sl_run_group(argc, argv, "softfig", tests, NULL, NULL);
 }

@@ -903,7 +903,7 @@ static void softmc_third_layer_scenes(void **st)
     }
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(softmc, frame),
@@ -920,5 +920,5 @@ int main(void)
         SL_CASE(softmc, mixed_scene),
         SL_CASE(softmc, third_layer_scenes),
     };
-    return cmocka_run_group_tests_name("softmc", tests, group_setup, group_teardown);
+    return sl_run_group(argc, argv, "softmc", tests, group_setup, group_teardown);
 }

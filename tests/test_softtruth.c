@@ -578,7 +578,7 @@ static void softtruth_dense_model(void **st)
     fixture_close(&f);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(softtruth, values_and_regions),
@@ -588,5 +588,5 @@ int main(void)
         SL_CASE(softtruth, refuses_bad_input),
         SL_CASE(softtruth, dense_model),
     };
-    return cmocka_run_group_tests_name("softtruth", tests, sl_test_setup, sl_test_teardown);
+    return sl_run_group(argc, argv, "softtruth", tests, sl_test_setup, sl_test_teardown);
 }

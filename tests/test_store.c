@@ -713,7 +713,7 @@ static void store_missing_folder_is_an_error(void **st)
     assert_non_null(strstr(d.msg, "unable to open"));
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(store, round_trip),
@@ -729,5 +729,5 @@ int main(void)
         SL_CASE(store, new_file_is_current_version_wal),
         SL_CASE(store, missing_folder_is_an_error),
     };
-    return cmocka_run_group_tests_name("store", tests, NULL, NULL);
+    return sl_run_group(argc, argv, "store", tests, NULL, NULL);
 }

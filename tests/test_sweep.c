@@ -327,7 +327,7 @@ static void sweep_cells_then_resume(void **st)
 
 
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(sweep, plan_order),
@@ -337,5 +337,5 @@ int main(void)
         SL_CASE(sweep, truth_cache),
         SL_CASE(sweep, cells_then_resume),
     };
-    return cmocka_run_group_tests_name("sweep", tests, sl_test_setup, sl_test_teardown);
+    return sl_run_group(argc, argv, "sweep", tests, sl_test_setup, sl_test_teardown);
 }

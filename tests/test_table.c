@@ -342,7 +342,7 @@ static void table_soft_and_hard(void **st)
     free(tex);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(table, summary_rows),
@@ -354,5 +354,5 @@ int main(void)
         SL_CASE(table, empty_and_formats),
         SL_CASE(table, soft_and_hard),
     };
-    return cmocka_run_group_tests_name("table", tests, NULL, NULL);
+    return sl_run_group(argc, argv, "table", tests, NULL, NULL);
 }

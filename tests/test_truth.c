@@ -155,12 +155,12 @@ static void truth_thread_count_invariant(void **st)
     fixture_close(&f1);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(truth, blocks_matches_brute_force),
         SL_CASE(truth, primitives_matches_brute_force),
         SL_CASE(truth, thread_count_invariant),
     };
-    return cmocka_run_group_tests_name("truth", tests, NULL, NULL);
+    return sl_run_group(argc, argv, "truth", tests, NULL, NULL);
 }
