@@ -111,19 +111,25 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
         return soft_score(in, vd, cell, d);
     }
     double t0 = sl_now();
-    for (size_t i = 0; i < npx; i++)
-        in->state[i] = vd->v[i];   /* 0 background, else the verdict */
-    /* regions are the increasing contours, then 0 (whole image) */
-    int maxt = in->regions[in->nregions - 2];
-    sl_contour_bands(W, H, in->state, maxt / 2 - 1, in->band);
-    cell->ms.contours = 1e3 * (sl_now() - t0);
+    const uint8_t *band = in->shared_band;
+    if (band) {
+        cell->ms.contours = in->shared_band_ms;
+    } else {
+        for (size_t i = 0; i < npx; i++)
+            in->state[i] = vd->v[i];   /* 0 background, else the verdict */
+        /* regions are the increasing contours, then 0 (whole image) */
+        int maxt = in->regions[in->nregions - 2];
+        sl_contour_bands(W, H, in->state, maxt / 2 - 1, in->band);
+        band = in->band;
+        cell->ms.contours = 1e3 * (sl_now() - t0);
+    }
     t0 = sl_now();
-    sl_figures_compute(v, vd, in->band, in->regions, in->nregions, &cell->fig);
+    sl_figures_compute(v, vd, band, in->regions, in->nregions, &cell->fig);
     cell->ms.figures = 1e3 * (sl_now() - t0);
     if (in->method->exact)
         check_exact(in, vd, cell);
     if (vd->has_detail)
-        count_patterns(v, vd, in->band, cell);
+        count_patterns(v, vd, band, cell);
     enum sl_err e = SL_OK;
     const char *overlay = in->overlay_path;
     if (in->soft_truth) {
@@ -138,7 +144,7 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
     }
     if (overlay && !e) {
         t0 = sl_now();
-        sl_overlay_build(v, in->light_dir, vd, in->band, in->overlay_contour, in->rgb);
+        sl_overlay_build(v, in->light_dir, vd, band, in->overlay_contour, in->rgb);
         e = sl_image_write_rgb8(overlay, W, H, in->rgb, d);
         cell->ms.overlay = 1e3 * (sl_now() - t0);
     }
@@ -147,7 +153,7 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
          * recount: truth (enum sl_truth), verdict (enum sl_verdict), how
          * (enum sl_how) and contour band (k: inside the 2k-px contour) */
         static const char *const names[] = {"truth", "verdict", "how", "contour"};
-        const unsigned char *layers[] = {v->truth, vd->v, vd->how, in->band};
+        const unsigned char *layers[] = {v->truth, vd->v, vd->how, band};
         e = sl_image_write_layers(in->exr_path, W, H, 4, names, layers, d);
     }
     return e;

@@ -4,7 +4,9 @@
  * frame, the verdicts, the scratch buffers), into the cell's figures.
  *
  * A hard-shadow method's cell gets its contours (drawn from its own result
- * image), its figures per region, the exactness check of what it declares
+ * image — config `contour_from: own` — or handed in precomputed: the
+ * driver draws them once per view and map from NSM's image for
+ * `contour_from: nsm`, the thesis's), its figures per region, the exactness check of what it declares
  * (method.h SL_EXACT_*, every PFL pixel; the first few violating pixels are
  * kept with the triangles their texel holds), coherence's patterns, its
  * error overlay and, when asked, the per-pixel EXR layers behind the
@@ -86,6 +88,11 @@ struct sl_cell_inputs {
     int                          overlay_contour;   /* the contour drawn on the overlay, px */
     const float *soft_truth, *soft_se;        /* an area light's visible fraction and its error, else NULL */
     uint8_t *state, *band, *rgb;              /* scratch: w*h, w*h, 3*w*h bytes */
+    const uint8_t *shared_band;               /* non-NULL: the contour bands to score on (w*h, as
+                                               * sl_contour_bands writes them), drawn once for the
+                                               * view and map by the caller; NULL: drawn here from
+                                               * the method's own verdicts */
+    double shared_band_ms;                    /* what drawing shared_band cost, ms (ms.contours) */
     const char *overlay_path;                 /* NULL: no overlay */
     const char *exr_path;                     /* NULL: no EXR layers */
 };

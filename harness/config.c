@@ -98,6 +98,7 @@ struct raw_config {
     unsigned *area_samples;
     char *store;
     unsigned *threads;
+    char *contour_from;
 };
 
 static const cyaml_schema_value_t str_schema = {
@@ -170,11 +171,15 @@ static const cyaml_schema_field_t config_fields[] = {
     CYAML_FIELD_UINT_PTR("area_samples", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, area_samples),
     CYAML_FIELD_STRING_PTR("store", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, store, 1, 511),
     CYAML_FIELD_UINT_PTR("threads", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, threads),
+    CYAML_FIELD_STRING_PTR("contour_from", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
+                           contour_from, 1, 15),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t config_schema = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, struct raw_config, config_fields),
 };
+
+const char *sl_contour_from_name(int policy) { return policy == SL_CONTOUR_OWN ? "own" : "nsm"; }
 
 static int is_pow2(unsigned v) { return v && !(v & (v - 1)); }
 
@@ -442,6 +447,17 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                        "overlay_contour %u is not one of the contours (or 0: the whole image)", t);
         c->overlay_contour = (int)t;
     }
+    c->contour_from = SL_CONTOUR_NSM;
+    if (r->contour_from) {
+        if (strcmp(r->contour_from, "nsm") == 0)
+            c->contour_from = SL_CONTOUR_NSM;
+        else if (strcmp(r->contour_from, "own") == 0)
+            c->contour_from = SL_CONTOUR_OWN;
+        else
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "contour_from",
+                               "'%s': nsm (NSM's image, shared by every method) or own (each method's)",
+                               r->contour_from);
+    }
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     c->threads = r->threads && *r->threads ? (int)*r->threads : (int)(cores > 0 ? cores : 1);
     if (c->threads > 256)
@@ -492,7 +508,7 @@ void sl_config_write(const struct sl_config *c, FILE *f)
     fprintf(f, "]\ncontours: [");
     for (int i = 0; i + 1 < c->nregions; i++)
         fprintf(f, "%s%d", i ? ", " : "", c->regions[i]);
-    fprintf(f, "]\nmethods:\n");
+    fprintf(f, "]\ncontour_from: %s\nmethods:\n", sl_contour_from_name(c->contour_from));
     for (int i = 0; i < c->nmethods; i++) {
         const struct sl_method_params *p = &c->methods[i].params;
         fprintf(f, "  - {label: %s, method: %s", c->methods[i].label, c->methods[i].method->name);

@@ -15,6 +15,9 @@
  *   viewports: [{width: 1024, height: 1024}]      # default 1024 x 1024
  *   map_sizes: [1024, 2048]    # powers of two, 64 .. 16384
  *   contours: [2, 4, 6]        # even thicknesses in pixels; the whole image is always added
+ *   contour_from: nsm          # whose image the contours are drawn from: nsm (default, Moderno
+ *                              # 2011's: NSM's, front faces culled, one contour per view and map
+ *                              # shared by every method) or own (each method's own result image)
  *   methods:                   # the same method may appear under several labels
  *     - {label: nsm, method: nsm, self_shadow: front_faces}
  *   outputs: {tables: true, overlays: true, overlay_contour: 2, exr: false}
@@ -30,6 +33,13 @@
 #include "sl_error.h"
 
 #define SL_CFG_MAX 32
+
+/* Whose result image a (view, map size)'s contours are drawn from. */
+enum sl_contour_from {
+    SL_CONTOUR_NSM = 0,   /* NSM's (front faces culled), shared by every method: the thesis's */
+    SL_CONTOUR_OWN = 1,   /* each method's own verdicts */
+};
+const char *sl_contour_from_name(int policy);   /* "nsm", "own" */
 
 struct sl_config_method {
     char                     label[48];
@@ -64,6 +74,7 @@ struct sl_config {
     struct sl_config_method methods[SL_CFG_MAX];
     int  tables, overlays, exr;
     int  overlay_contour;
+    int  contour_from;                /* enum sl_contour_from */
     int  warmup, runs;                /* repetitions for timing */
     unsigned seed;
     int  area_samples;                /* area-light truth: samples per side of the light (0 = 32) */

@@ -40,6 +40,7 @@ void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct s
     snprintf(r->viewpoint, sizeof r->viewpoint, "%s", cl->viewpoint);
     snprintf(r->method, sizeof r->method, "%s", cm->method->name);
     snprintf(r->label, sizeof r->label, "%s", cm->label);
+    snprintf(r->contour_from, sizeof r->contour_from, "%s", sl_contour_from_name(c->contour_from));
     r->vw = c->viewport_w[cl->key.viewport];
     r->vh = c->viewport_h[cl->key.viewport];
     r->map_size = c->maps[cl->key.map];

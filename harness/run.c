@@ -19,6 +19,7 @@
 #include "softtruth.h"
 #include "cache.h"
 #include "cell.h"
+#include "contour.h"
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
@@ -86,6 +87,12 @@ struct run_ctx {
     int W, H;
     uint8_t *state, *band, *rgb;
     struct sl_verdicts vd;
+    /* contour_from nsm: NSM's verdicts (front faces culled) and the contour
+     * bands drawn from them, once per (view, map size), shared by its cells */
+    struct sl_verdicts nvd;
+    uint8_t *nsm_band;
+    int nsm_map;                         /* map index the bands are for, -1 none */
+    double nsm_band_ms;
     /* an area light's scene: its truth is the visible fraction (softtruth.h) */
     int area;
     float *soft_truth, *soft_se;
@@ -110,6 +117,7 @@ static void drop_frame(struct run_ctx *x)
 {
     sl_frame_free(&x->frame);
     x->frame_map = -1;
+    x->nsm_map = -1;
 }
 
 static void drop_view(struct run_ctx *x)
@@ -138,8 +146,11 @@ static void drop_scene(struct run_ctx *x)
     x->scene_i = -1;
 }
 
+static void free_nsm(struct run_ctx *x);
+
 static void ctx_free(struct run_ctx *x)
 {
+    free_nsm(x);
     drop_scene(x);
     free(x->state);
     free(x->band);
@@ -201,6 +212,15 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
     return SL_OK;
 }
 
+static void free_nsm(struct run_ctx *x)
+{
+    free(x->nvd.v); free(x->nvd.how); free(x->nvd.base); free(x->nvd.detail); free(x->nvd.tests);
+    free(x->nvd.vis); free(x->nsm_band);
+    memset(&x->nvd, 0, sizeof x->nvd);
+    x->nsm_band = NULL;
+    x->nsm_map = -1;
+}
+
 static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_diag *d)
 {
     if (x->W == W && x->H == H)
@@ -225,8 +245,20 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     x->vd.how = sl_calloc(npx, 1);
     x->W = x->vd.w = W;
     x->H = x->vd.h = H;
+    free_nsm(x);
+    x->nvd.v = sl_calloc(npx, 1);
+    x->nvd.how = sl_calloc(npx, 1);
+    x->nvd.base = sl_calloc(npx, 1);
+    x->nvd.detail = sl_calloc(npx, 1);
+    x->nvd.tests = sl_calloc(npx, 1);
+    x->nvd.vis = sl_calloc(npx, sizeof(float));
+    x->nsm_band = sl_calloc(npx, 1);
+    x->nvd.w = W;
+    x->nvd.h = H;
+    x->nsm_map = -1;
     if (!x->state || !x->band || !x->rgb || !x->vd.v || !x->vd.how || !x->vd.base || !x->vd.detail || !x->vd.tests ||
-        !x->vd.vis || !x->soft_truth || !x->soft_se) {
+        !x->vd.vis || !x->soft_truth || !x->soft_se || !x->nvd.v || !x->nvd.how || !x->nvd.base || !x->nvd.detail ||
+        !x->nvd.tests || !x->nvd.vis || !x->nsm_band) {
         x->W = x->H = 0;
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "per-pixel buffers %dx%d", W, H);
     }
@@ -450,6 +482,49 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
     return SL_OK;
 }
 
+/* contour_from nsm: the contours of the current view at the cell's map
+ * size, drawn from NSM's image (front faces culled, as Moderno 2011 drew
+ * them) whatever the config's methods are, once per (view, map size). The
+ * frame must hold the back-face layer. NSM's run is not counted among the
+ * sweep's method runs: it is part of drawing the contour. */
+static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                                  struct sl_diag *d)
+{
+    if (x->nsm_map == k->map)
+        return SL_OK;
+    const struct sl_method *m = sl_method_find("nsm");
+    if (!m)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "contour_from nsm: no nsm method");
+    struct sl_method_params p;
+    memset(&p, 0, sizeof p);
+    p.self_shadow = SL_SELF_FRONT_FACES;
+    p.set = SL_PARAM_SELF_SHADOW;
+    enum sl_err e = m->configure ? m->configure(&p, d) : SL_OK;
+    if (e)
+        return e;
+    size_t npx = (size_t)x->W * (size_t)x->H;
+    struct sl_view mview = x->view;
+    mview.truth = NULL;
+    struct sl_method_args a = {
+        .scene = &x->scene, .view = &mview, .frame = &x->frame, .params = &p,
+        .rt = &x->rt, .adj = NULL, .threads = c->threads, .seed = c->seed,
+    };
+    struct sl_cost cost = {0};
+    x->nvd.has_base = 0;
+    x->nvd.has_detail = 0;
+    memset(x->nvd.tests, 0, npx);
+    double t0 = sl_now();
+    if ((e = m->run(&a, &x->nvd, &cost, d)))
+        return e;
+    for (size_t i = 0; i < npx; i++)
+        x->state[i] = x->nvd.v[i];   /* 0 background, else the verdict: as a method's own contour */
+    int maxt = c->regions[c->nregions - 2];
+    sl_contour_bands(x->W, x->H, x->state, maxt / 2 - 1, x->nsm_band);
+    x->nsm_band_ms = 1e3 * (sl_now() - t0);
+    x->nsm_map = k->map;
+    return SL_OK;
+}
+
 static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
                             struct sl_cell *cell, const char *ovdir, const char *exrdir,
                             struct sl_run_result *res, struct sl_diag *d)
@@ -521,6 +596,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb,
+        .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL,
     };
     return sl_cell_score(&in, &x->vd, cell, d);
@@ -568,7 +644,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
 
     struct run_ctx x;
     memset(&x, 0, sizeof x);
-    x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = -1;
+    x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = x.nsm_map = -1;
     x.on_event = o->on_event;
     x.user = o->user;
     struct sl_store *st = NULL;
@@ -604,8 +680,14 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             (e = ensure_buffers(&x, c->viewport_w[k.viewport], c->viewport_h[k.viewport], d)) ||
             (e = ensure_view(&x, c, &k, cache, res, d)))
             break;
-        const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume);
-        if ((e = ensure_frame(&x, c, &k, needs, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))))
+        /* contour_from nsm: a hard method's contours come from NSM's image,
+         * which reads the back-face layer */
+        const int nsm_contour = c->contour_from == SL_CONTOUR_NSM &&
+                                !(c->methods[k.method].method->lights & SL_LIGHTS_AREA);
+        const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume) |
+                               (nsm_contour ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
+        if ((e = ensure_frame(&x, c, &k, needs, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
+            (nsm_contour && (e = ensure_contour(&x, c, &k, d))))
             break;
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;

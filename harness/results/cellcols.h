@@ -56,6 +56,7 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(map_size,            dim,      0,    5,   "map_size",           none,      _)         \
     X(method,              text,     32,   0,   "",                   none,      _)         \
     X(label,               text,     48,   6,   "label",              none,      _)         \
+    X(contour_from,        text,     8,    0,   "",                   none,      _)         \
     X(cell_index,          index,    0,    1,   "cell",               none,      _)         \
     X(n_pfl,               count,    0,    0,   "",                   view,      n_pfl)     \
     X(n_pnfl,              count,    0,    0,   "",                   view,      n_pnfl)    \

@@ -30,7 +30,7 @@
 #include <sys/stat.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 8   /* 8: soft-shadow figures; 7: study, config text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
+#define SL_STORE_VERSION 9   /* 9: contour_from (whose image the contours are drawn from), PnFL-inclusive figures (Moderno's count); 8: soft-shadow figures; 7: study, config text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
 #define SL_STORE_BUSY_MS 10000
 
 /* ---- schema ---- */

@@ -37,6 +37,10 @@ void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, c
     for (int r = 0; r < nregions; r++)
         out->r[r].thickness = thickness[r];
     size_t n = (size_t)v->w * (size_t)v->h;
+    /* Moderno's count: PnFL pixels are hinted when the method hints at all */
+    int hints = 0;
+    for (size_t i = 0; i < n && vd->has_base && !hints; i++)
+        hints = vd->how[i] == SL_HOW_HINT;
     for (size_t i = 0; i < n; i++) {
         uint8_t t = v->truth[i];
         if (t == SL_T_BACKGROUND) {
@@ -81,6 +85,28 @@ void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, c
                 if (vd->how[i] == SL_HOW_HINT) {
                     c[bl ? SL_FIG_hinted_light : SL_FIG_hinted_shadow]++;
                     c[bl ? SL_FIG_hinted_light_wrong : SL_FIG_hinted_shadow_wrong] += (uint64_t)wrong;
+                }
+            }
+            if (vd->has_base) {
+                uint8_t how = vd->how[i];
+                int pnfl = t == SL_T_PNFL, bl = !pnfl && vd->base[i] == SL_V_LIT;
+                int hinted = how == SL_HOW_HINT || (pnfl && hints);
+                int conf = how == SL_HOW_HINT || how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ ||
+                           how == SL_HOW_CORRECT || pnfl;
+                c[SL_FIG_nsm_shadow_moderno] += (uint64_t)!bl;
+                c[SL_FIG_hinted_moderno] += (uint64_t)hinted;
+                if (!bl) {
+                    c[SL_FIG_hinted_shadow_moderno] += (uint64_t)hinted;
+                    c[SL_FIG_hinted_shadow_wrong_moderno] += (uint64_t)(how == SL_HOW_HINT && wrong);
+                }
+                c[SL_FIG_conf_moderno] += (uint64_t)conf;
+                c[SL_FIG_conf_step2_moderno] += (uint64_t)(conf && how != SL_HOW_CONFIRM_ADJ);
+                if (bl)
+                    c[SL_FIG_conf_light_moderno] += (uint64_t)(how == SL_HOW_HINT || how == SL_HOW_CORRECT);
+                else {
+                    int cs = how == SL_HOW_HINT || how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || pnfl;
+                    c[SL_FIG_conf_shadow_moderno] += (uint64_t)cs;
+                    c[SL_FIG_conf_shadow_step2_moderno] += (uint64_t)(cs && how != SL_HOW_CONFIRM_ADJ);
                 }
             }
             if (vd->has_base && t != SL_T_PNFL && (verdict == SL_V_LIT || verdict == SL_V_SHADOW)) {

@@ -8,6 +8,16 @@
  * shadows them by definition and is always right there), so that
  * light + shadow + uncertain = pixels in the region, as in the seeds' tables.
  * "correct"/"incorrect" compare the verdict with the truth.
+ *
+ * PnFL in the hints, confirmations and NSM's light/shadow split: the two
+ * theses count them differently, and both counts exist. Morais 2015 keeps
+ * PnFL apart (his PFL/PnFL tables): nsm_light, nsm_shadow, hinted*,
+ * confirmed, corrected and the vs-NSM classes count PFL pixels only.
+ * Moderno 2011 counts PnFL as shadow, hinted and confirmed ("all approaches
+ * use normals", §4.4; Table 18's shadow pixels include them): the *_moderno
+ * figures, defined for a method that reports NSM's verdicts (has_base).
+ * PnFL are never wrong, so the wrong counts are the same under both; only
+ * their bases differ.
  * Does not: format or write (run.c does).
  */
 #ifndef SL_FIGURES_H
@@ -34,13 +44,13 @@
     X(wrong_caught,     "wrong pixels of the whole image inside this region", "wrong_image") \
     X(traced,           "pixels decided by a shadow ray (uncertain to the maps)", "pixels") \
     X(traced_shadow,    "of those, shadowed in truth",                "traced")   \
-    X(hinted,           "pixels given a coherence hint",              "pixels")   \
+    X(hinted,           "PFL pixels given a coherence hint (PnFL apart)",              "pixels")   \
     X(hinted_wrong,     "of those, hinted wrongly",                   "hinted")   \
-    X(nsm_light,        "pixels NSM puts in light (PFL)",             "pixels")   \
-    X(nsm_shadow,       "pixels NSM puts in shadow (PFL)",            "pixels")   \
-    X(hinted_light,     "NSM-lit pixels hinted (Moderno Tables 7, 19)", "nsm_light") \
+    X(nsm_light,        "pixels NSM puts in light (PFL; PnFL are never lit)",             "pixels")   \
+    X(nsm_shadow,       "pixels NSM puts in shadow (PFL only: Morais's count)",            "pixels")   \
+    X(hinted_light,     "NSM-lit pixels hinted (Moderno Tables 7-8 light)", "nsm_light") \
     X(hinted_light_wrong, "NSM-lit pixels hinted wrongly",            "nsm_light") \
-    X(hinted_shadow,    "NSM-shadowed pixels hinted",                 "nsm_shadow") \
+    X(hinted_shadow,    "NSM-shadowed PFL pixels hinted (PnFL apart)",                 "nsm_shadow") \
     X(hinted_shadow_wrong, "NSM-shadowed pixels hinted wrongly",      "nsm_shadow") \
     X(confirmed,        "shadow confirmed by a ray-triangle hit",     "pixels")   \
     X(confirmed_adj,    "of those, in the chain's adjacency step",    "confirmed") \
@@ -51,7 +61,16 @@
     X(broken_sl,        "vs NSM: S->L, now wrong (turned bad)",       "pixels")   \
     X(kept_right,       "vs NSM: unchanged and right (maintained correct)", "pixels") \
     X(kept_wrong,       "vs NSM: unchanged and wrong (maintained incorrect)", "pixels") \
-    X(ray_tri_tests,    "ray-triangle tests outside Embree spent on these pixels", "")
+    X(ray_tri_tests,    "ray-triangle tests outside Embree spent on these pixels", "")         \
+    X(nsm_shadow_moderno, "pixels NSM puts in shadow, PnFL with them (Moderno's count)", "pixels") \
+    X(hinted_moderno,   "pixels hinted, PnFL with them when the method hints (Moderno's count)", "pixels") \
+    X(hinted_shadow_moderno, "NSM-shadowed pixels hinted, PnFL with them (Moderno Tables 7-8 shadow)", "nsm_shadow_moderno") \
+    X(hinted_shadow_wrong_moderno, "NSM-shadowed pixels hinted wrongly (Moderno Tables 7-8)", "nsm_shadow_moderno") \
+    X(conf_moderno,     "hints + confirmations + corrections, PnFL with them (Moderno Table 13)", "pixels") \
+    X(conf_step2_moderno, "the same without the adjacency step's (Moderno Table 12)", "pixels") \
+    X(conf_light_moderno, "NSM-lit pixels hinted or corrected (Moderno Table 12 light)", "nsm_light") \
+    X(conf_shadow_moderno, "NSM-shadowed hinted or confirmed, PnFL with them (Moderno Table 13 shadow)", "nsm_shadow_moderno") \
+    X(conf_shadow_step2_moderno, "the same without the adjacency step's (Moderno Table 12 shadow)", "nsm_shadow_moderno")
 
 enum sl_figure {
 #define SL_FIG_ENUM(name, text, of) SL_FIG_##name,
