@@ -241,17 +241,39 @@ static void pick_text(const struct pick *p, char *buf, size_t n)
     snprintf(buf, n, "%.2f (%s/%s, %s)", p->v, p->cell->scene, p->cell->viewpoint, rn);
 }
 
+/* Each row names a thesis table only where it holds that table's quantity
+ * over that table's pixels (the contour of NSM's image under contour_from
+ * nsm; PnFL counted as Moderno counts them: shadow, hinted, confirmed);
+ * `method` limits it to the approach the table is about (NULL: every
+ * Moderno method). */
 static const struct {
     enum sl_figure fig;
     int lower_is_better, always;
+    const char *method;
     const char *title;
 } moderno_summaries[] = {
-    {SL_FIG_wrong_caught, 0, 1, "Errors caught inside the contour, % of the image's wrong pixels (Moderno 2011 Table 5)"},
-    {SL_FIG_wrong, 1, 1, "Wrong pixels, % of the contour's pixels (Moderno 2011 Tables 6, 9-11, 14-15)"},
-    {SL_FIG_hinted, 0, 0, "Pixels hinted by texel coherence, % of the contour's pixels (Moderno 2011 Tables 7-8)"},
-    {SL_FIG_confirmed, 0, 0, "Shadow confirmed by a ray-triangle hit, % of the contour's pixels (Moderno 2011 Tables 12-13)"},
-    {SL_FIG_corrected, 0, 0, "Lit turned shadowed by a ray-triangle hit, % of the contour's pixels"},
+    {SL_FIG_wrong_caught, 0, 1, NULL, "Errors caught inside the contour, % of the image's wrong pixels (Moderno 2011 Table 5)"},
+    {SL_FIG_wrong, 1, 1, NULL, "Wrong pixels, % of the contour's pixels (Moderno 2011 Tables 6, 9-11, 14-15)"},
+    {SL_FIG_hinted_moderno, 0, 0, "coherence", "Confirmations by texel coherence (hints, PnFL hinted), % of the contour's pixels (Moderno 2011 Tables 7-8, row 1)"},
+    {SL_FIG_hinted_light, 0, 0, "coherence", "Confirmations in light, % of NSM's lit pixels (Moderno 2011 Tables 7-8, row 2)"},
+    {SL_FIG_hinted_shadow_moderno, 0, 0, "coherence", "Confirmations in shadow, % of NSM's shadowed pixels with PnFL (Moderno 2011 Tables 7-8, row 3)"},
+    {SL_FIG_hinted_light_wrong, 1, 0, "coherence", "Wrong confirmations in light, % of NSM's lit pixels (Moderno 2011 Tables 7-8, row 4)"},
+    {SL_FIG_hinted_shadow_wrong_moderno, 1, 0, "coherence", "Wrong confirmations in shadow, % of NSM's shadowed pixels with PnFL (Moderno 2011 Tables 7-8, row 5)"},
+    {SL_FIG_conf_step2_moderno, 0, 0, "chain", "Confirmations after the neighbour-texel step (hints + confirmations + corrections, PnFL with them), % of the contour's pixels (Moderno 2011 Table 12, row 1)"},
+    {SL_FIG_conf_light_moderno, 0, 0, "chain", "Confirmations/corrections in light after the neighbour-texel step, % of NSM's lit pixels (Moderno 2011 Table 12, row 2)"},
+    {SL_FIG_conf_shadow_step2_moderno, 0, 0, "chain", "Confirmations in shadow after the neighbour-texel step, % of NSM's shadowed pixels with PnFL (Moderno 2011 Table 12, row 3)"},
+    {SL_FIG_conf_moderno, 0, 0, "chain", "Confirmations after the adjacent-geometry step (hints + confirmations + corrections, PnFL with them), % of the contour's pixels (Moderno 2011 Table 13, row 1)"},
+    {SL_FIG_conf_shadow_moderno, 0, 0, "chain", "Confirmations in shadow after the adjacent-geometry step, % of NSM's shadowed pixels with PnFL (Moderno 2011 Table 13, row 2)"},
+    {SL_FIG_confirmed, 0, 0, NULL, "Shadow confirmed by a ray-triangle hit alone, % of the contour's pixels (no thesis table: its Tables 12-13 add hints and corrections, above)"},
+    {SL_FIG_corrected, 0, 0, NULL, "Lit turned shadowed by a ray-triangle hit, % of the contour's pixels (no thesis table)"},
 };
+
+static int summary_wants(const struct sl_report_study *s, int l, int which)
+{
+    const char *m = moderno_summaries[which].method;
+    return label_is(s, l, sl_report_is_moderno) && (!m || strcmp(s->methods[l], m) == 0) &&
+           (moderno_summaries[which].always || label_has(s, l, moderno_summaries[which].fig));
+}
 
 static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_report_study *s, int which,
                                    struct sl_diag *d)
@@ -268,7 +290,7 @@ static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_re
                       sl_report_region(&s->cells[i], 2) >= 0;
     int nrows = 0;
     for (int l = 0; l < s->nlabels; l++)
-        nrows += label_is(s, l, sl_report_is_moderno) && (moderno_summaries[which].always || label_has(s, l, f));
+        nrows += summary_wants(s, l, which);
     if (nrows == 0)
         return SL_OK;
     struct sl_report_tab t;
@@ -289,7 +311,7 @@ static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_re
     if (has_avgcase)
         sl_report_tab_head(&t, 2 + 2 * nmaps, "average case (bench/with, 2 px)");
     for (int l = 0; l < s->nlabels; l++) {
-        if (!label_is(s, l, sl_report_is_moderno) || !(moderno_summaries[which].always || label_has(s, l, f)))
+        if (!summary_wants(s, l, which))
             continue;
         struct pick best[10], worst[10], avgcase = {NULL, 0, NAN};
         memset(best, 0, sizeof best);
@@ -419,8 +441,9 @@ static void fill_errors(struct sl_report_tab *t, const struct sl_cell_record *c,
 static void fill_vs_nsm(struct sl_report_tab *t, const struct sl_cell_record *c, int r)
 {
     static const enum sl_figure cols[] = {SL_FIG_fixed_ls, SL_FIG_fixed_sl, SL_FIG_broken_ls, SL_FIG_broken_sl,
-                                          SL_FIG_kept_right, SL_FIG_kept_wrong};
-    for (int k = 0; k < 6; k++)
+                                          SL_FIG_kept_ll_right, SL_FIG_kept_ss_right_moderno,
+                                          SL_FIG_kept_ll_wrong, SL_FIG_kept_ss_wrong};
+    for (int k = 0; k < 8; k++)
         sl_report_tab_cell(t, 3 + k, "%llu", (unsigned long long)c->fig.r[r].n[cols[k]]);
 }
 
@@ -428,9 +451,10 @@ static void fill_hints(struct sl_report_tab *t, const struct sl_cell_record *c, 
 {
     const uint64_t *n = c->fig.r[r].n;
     char buf[96];
-    uint64_t base[2] = {n[SL_FIG_nsm_light], n[SL_FIG_nsm_shadow]};
-    uint64_t hinted[2] = {n[SL_FIG_hinted_light], n[SL_FIG_hinted_shadow]};
-    uint64_t wrong[2] = {n[SL_FIG_hinted_light_wrong], n[SL_FIG_hinted_shadow_wrong]};
+    /* Moderno's count: PnFL are NSM shadow and hinted */
+    uint64_t base[2] = {n[SL_FIG_nsm_light], n[SL_FIG_nsm_shadow_moderno]};
+    uint64_t hinted[2] = {n[SL_FIG_hinted_light], n[SL_FIG_hinted_shadow_moderno]};
+    uint64_t wrong[2] = {n[SL_FIG_hinted_light_wrong], n[SL_FIG_hinted_shadow_wrong_moderno]};
     for (int k = 0; k < 2; k++) {
         fmt_of(buf, sizeof buf, hinted[k], base[k]);
         sl_report_tab_cell(t, 3 + 3 * k, "%s", buf);
@@ -439,6 +463,21 @@ static void fill_hints(struct sl_report_tab *t, const struct sl_cell_record *c, 
         fmt_of(buf, sizeof buf, base[k] > hinted[k] ? base[k] - hinted[k] : 0, base[k]);
         sl_report_tab_cell(t, 5 + 3 * k, "%s", buf);
     }
+}
+
+/* Which contour the study's cells were scored on (config contour_from). */
+static const char *contour_note(const struct sl_report_study *s)
+{
+    int own = 0, nsm = 0;
+    for (int i = 0; i < s->n; i++) {
+        own += strcmp(s->cells[i].contour_from, "own") == 0;
+        nsm += strcmp(s->cells[i].contour_from, "own") != 0;
+    }
+    if (own && nsm)
+        return "Contours: mixed (some cells contour_from nsm, some own) - not comparable.";
+    return own ? "Contours from each method's own result image (contour_from: own), not the thesis's."
+               : "Contours from NSM's image (front faces culled), one per view and map shared by every method "
+                 "(contour_from: nsm, the thesis's).";
 }
 
 static void key_heads(struct sl_report_tab *t)
@@ -463,7 +502,7 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
     sl_report_tab_head(&t, 4, "wrongly lit (of light)");
     sl_report_tab_head(&t, 5, "wrongly shadowed (of shadow)");
     sl_report_tab_head(&t, 6, "wrong (of pixels)");
-    snprintf(t.note, sizeof t.note, "Contours from each method's own result image; PnFL pixels count as shadow.");
+    snprintf(t.note, sizeof t.note, "PnFL pixels count as shadow. %s", contour_note(s));
     if (view_rows(&t, s, v, want_moderno, fill_errors))
         e = sl_report_doc_table(doc, &t, d);
     sl_report_tab_free(&t);
@@ -480,7 +519,8 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
             sl_report_tab_head(&t, 4 + 3 * k, "wrongly hinted");
             sl_report_tab_head(&t, 5 + 3 * k, "undecided");
         }
-        snprintf(t.note, sizeof t.note, "Percentages of NSM's PFL pixels in light (shadow) in the region.");
+        snprintf(t.note, sizeof t.note, "Percentages of NSM's pixels in light (in shadow, PnFL with them: hinted, "
+                 "as Moderno counts them) in the region. %s", contour_note(s));
         if (view_rows(&t, s, v, want_hints, fill_hints))
             e = sl_report_doc_table(doc, &t, d);
         sl_report_tab_free(&t);
@@ -488,20 +528,25 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
 
     if (!e) {
         view_id(s, v, "vs-nsm", id, sizeof id);
-        sl_report_tab_init(&t, id, 9, 3, "%s: pixel changes against NSM (Moderno 2011 Table 23)", vt);
+        sl_report_tab_init(&t, id, 11, 3, "%s: pixel changes against NSM (Moderno 2011 Table 23)", vt);
         key_heads(&t);
         sl_report_tab_group(&t, 3, "%s", "");
         sl_report_tab_group(&t, 2, "corrected");
         sl_report_tab_group(&t, 2, "turned bad");
-        sl_report_tab_group(&t, 2, "maintained");
+        sl_report_tab_group(&t, 2, "maintained correct");
         sl_report_tab_head(&t, 3, "L→S");
         sl_report_tab_head(&t, 4, "S→L");
         sl_report_tab_head(&t, 5, "L→S");
         sl_report_tab_head(&t, 6, "S→L");
-        sl_report_tab_head(&t, 7, "correct");
-        sl_report_tab_head(&t, 8, "incorrect");
+        sl_report_tab_group(&t, 2, "maintained incorrect");
+        sl_report_tab_head(&t, 7, "L→L");
+        sl_report_tab_head(&t, 8, "S→S");
+        sl_report_tab_head(&t, 9, "L→L");
+        sl_report_tab_head(&t, 10, "S→S");
         snprintf(t.note, sizeof t.note,
-                 "PFL pixels; L→S: NSM put it in light, the method in shadow. Maintained: the same verdict as NSM.");
+                 "L→S: NSM put it in light, the method in shadow. Maintained: the same verdict as NSM. PnFL pixels "
+                 "are maintained correct S→S, as Moderno counts them; with no pixel left undecided the classes add "
+                 "up to the region's pixels. %s", contour_note(s));
         if (view_rows(&t, s, v, want_vs_nsm, fill_vs_nsm))
             e = sl_report_doc_table(doc, &t, d);
         sl_report_tab_free(&t);

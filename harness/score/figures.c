@@ -94,6 +94,7 @@ void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, c
                 int conf = how == SL_HOW_HINT || how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ ||
                            how == SL_HOW_CORRECT || pnfl;
                 c[SL_FIG_nsm_shadow_moderno] += (uint64_t)!bl;
+                c[SL_FIG_kept_ss_right_moderno] += (uint64_t)pnfl;   /* shadowed by both, always right */
                 c[SL_FIG_hinted_moderno] += (uint64_t)hinted;
                 if (!bl) {
                     c[SL_FIG_hinted_shadow_moderno] += (uint64_t)hinted;
@@ -111,8 +112,13 @@ void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, c
             }
             if (vd->has_base && t != SL_T_PNFL && (verdict == SL_V_LIT || verdict == SL_V_SHADOW)) {
                 uint8_t b = vd->base[i];
-                if (b == verdict)
+                if (b == verdict) {
                     c[wrong ? SL_FIG_kept_wrong : SL_FIG_kept_right]++;
+                    if (b == SL_V_LIT)
+                        c[wrong ? SL_FIG_kept_ll_wrong : SL_FIG_kept_ll_right]++;
+                    else
+                        c[wrong ? SL_FIG_kept_ss_wrong : SL_FIG_kept_ss_right_moderno]++;
+                }
                 else if (b == SL_V_LIT)
                     c[wrong ? SL_FIG_broken_ls : SL_FIG_fixed_ls]++;
                 else if (b == SL_V_SHADOW)

@@ -70,7 +70,11 @@
     X(conf_step2_moderno, "the same without the adjacency step's (Moderno Table 12)", "pixels") \
     X(conf_light_moderno, "NSM-lit pixels hinted or corrected (Moderno Table 12 light)", "nsm_light") \
     X(conf_shadow_moderno, "NSM-shadowed hinted or confirmed, PnFL with them (Moderno Table 13 shadow)", "nsm_shadow_moderno") \
-    X(conf_shadow_step2_moderno, "the same without the adjacency step's (Moderno Table 12 shadow)", "nsm_shadow_moderno")
+    X(conf_shadow_step2_moderno, "the same without the adjacency step's (Moderno Table 12 shadow)", "nsm_shadow_moderno")    \
+    X(kept_ll_right,    "vs NSM: L->L and right (Moderno Table 23 maintained correct L->L)", "pixels") \
+    X(kept_ss_right_moderno, "vs NSM: S->S and right, PnFL with them (Table 23 maintained correct S->S)", "pixels") \
+    X(kept_ll_wrong,    "vs NSM: L->L and wrong (Table 23 maintained incorrect L->L)", "pixels") \
+    X(kept_ss_wrong,    "vs NSM: S->S and wrong (Table 23 maintained incorrect S->S)", "pixels")
 
 enum sl_figure {
 #define SL_FIG_ENUM(name, text, of) SL_FIG_##name,
