@@ -15,6 +15,8 @@
 #include <cmocka.h>
 #include "sl_test.h"
 #include "adjacency.h"
+#include "cell.h"
+#include "contour.h"
 #include "config.h"
 #include "fixture.h"
 #include <cglm/clipspace/ortho_rh_zo.h>
@@ -343,6 +345,134 @@ static void moderno_figure29_adjacent_geometry(void **st)
     fig_close(&g);
 }
 
+
+/* A 16 x 4 image: NSM's verdicts change from lit to shadow between columns
+ * 7 and 8, the method's between 11 and 12 (truth = NSM's). Under
+ * contour_from own the 2-px contour is columns 11-12 (the method's own
+ * change: 4 lit + 4 shadowed pixels); handed NSM's bands (contour_from nsm)
+ * it is columns 7-8, where the method says lit on both sides (8 lit, 4 of
+ * them wrong). */
+static void moderno_contour_policy_pixels(void **st)
+{
+    (void)st;
+    enum { W = 16, H = 4, N = W * H };
+    static uint8_t cls[N], truth[N], v[N], how[N], base[N], tests[N], nstate[N], nband[N], state[N], band[N],
+        rgb[3 * N];
+    static uint32_t tri[N];
+    for (int i = 0; i < N; i++) {
+        int x = i % W;
+        cls[i] = SL_C_PFL;
+        tri[i] = 1;
+        truth[i] = x < 8 ? SL_T_LIT : SL_T_SHADOW;
+        nstate[i] = x < 8 ? SL_V_LIT : SL_V_SHADOW;
+        v[i] = x < 12 ? SL_V_LIT : SL_V_SHADOW;
+        how[i] = SL_HOW_MAP;
+    }
+    struct sl_view view = {.w = W, .h = H, .tri = tri, .cls = cls, .truth = truth};
+    struct sl_verdicts vd = {.w = W, .h = H, .v = v, .how = how, .base = base, .tests = tests};
+    static const struct sl_method fake = {.name = "fake"};   /* no exactness, hard light */
+    const struct sl_method *m = &fake;
+    int regions[] = {2, 4, 0};
+    sl_contour_bands(W, H, nstate, 1, nband);
+    struct sl_cell_inputs in = {.method = m, .view = &view, .regions = regions, .nregions = 3,
+                                .overlay_contour = 2, .state = state, .band = band, .rgb = rgb};
+    struct sl_diag d;
+    struct sl_cell own, nsm;
+    memset(&own, 0, sizeof own);
+    memset(&nsm, 0, sizeof nsm);
+    assert_int_equal(sl_cell_score(&in, &vd, &own, &d), SL_OK);
+    in.shared_band = nband;
+    assert_int_equal(sl_cell_score(&in, &vd, &nsm, &d), SL_OK);
+    for (int x = 0; x < W; x++) {   /* own: drawn from the method's image into the scratch */
+        assert_int_equal(sl_in_contour(band[x], 2), x == 11 || x == 12);
+        assert_int_equal(sl_in_contour(nband[x], 2), x == 7 || x == 8);
+    }
+    assert_int_equal(own.fig.r[0].n[SL_FIG_pixels], 8);
+    assert_int_equal(own.fig.r[0].n[SL_FIG_light], 4);
+    assert_int_equal(own.fig.r[0].n[SL_FIG_shadow], 4);
+    assert_int_equal(own.fig.r[0].n[SL_FIG_wrong], 4);            /* column 11: lit, shadowed in truth */
+    assert_int_equal(nsm.fig.r[0].n[SL_FIG_pixels], 8);
+    assert_int_equal(nsm.fig.r[0].n[SL_FIG_light], 8);
+    assert_int_equal(nsm.fig.r[0].n[SL_FIG_shadow], 0);
+    assert_int_equal(nsm.fig.r[0].n[SL_FIG_wrong], 4);            /* column 8 */
+    assert_int_equal(nsm.fig.r[0].n[SL_FIG_light_incorrect], 4);
+    assert_int_equal(nsm.fig.r[1].n[SL_FIG_pixels], 16);          /* 4 px: columns 6-9 */
+    assert_int_equal(nsm.fig.r[1].n[SL_FIG_wrong], 8);            /* columns 8, 9 */
+    assert_int_equal(own.fig.r[1].n[SL_FIG_wrong], 8);            /* columns 10, 11 */
+    assert_int_equal(nsm.fig.r[2].n[SL_FIG_wrong], 16);           /* the image is the same either way */
+    assert_int_equal(own.fig.r[2].n[SL_FIG_wrong], 16);
+}
+
+/* Primitives under contour_from nsm (the default): every approach of a
+ * (view, map size) is scored on the same contour (NSM's), and NSM's own
+ * cells are the same under both policies; Moderno's "Confirmations" are
+ * hints + confirmations + corrections with the PnFL pixels; Table 23's
+ * classes (L->L and S->S apart) add up to the region's pixels. */
+static void moderno_shared_contour_primitives(void **st)
+{
+    (void)st;
+    static const char *const body =
+        "scenes: [{scene: primitives, viewpoints: [side, with]}]\n"
+        "viewports: [{width: 256, height: 192}]\nmap_sizes: [1024, 2048]\n%s"
+        "methods:\n  - {label: nsm, method: nsm, self_shadow: front_faces}\n"
+        "  - {label: coherence4, method: coherence, texels: 4}\n  - {label: texel, method: texel}\n"
+        "  - {label: chain, method: chain, finish: trace}\n";
+    char text[1024];
+    struct sl_config c, co;
+    struct sl_diag d;
+    snprintf(text, sizeof text, body, "");
+    sl_test_config("c.yaml", text, &c);
+    assert_int_equal(c.contour_from, SL_CONTOUR_NSM);
+    snprintf(text, sizeof text, body, "contour_from: own\n");
+    sl_test_config("o.yaml", text, &co);
+    assert_int_equal(co.contour_from, SL_CONTOUR_OWN);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result r, ro;
+    assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    assert_int_equal(sl_run(&co, &o, &ro, &d), SL_OK);
+    assert_int_equal(r.ncells, 2 * 2 * 4);
+    assert_int_equal(ro.ncells, r.ncells);
+    int differs = 0;
+    for (int i = 0; i < r.ncells; i += 4) {
+        const struct sl_cell *g = &r.cells[i];
+        for (int rg = 0; rg < g->fig.nregions; rg++) {
+            /* NSM's cell: its own contour is the shared one */
+            assert_memory_equal(g->fig.r[rg].n, ro.cells[i].fig.r[rg].n, sizeof g->fig.r[rg].n);
+            for (int k = 1; k < 4; k++) {
+                const uint64_t *n = r.cells[i + k].fig.r[rg].n;
+                assert_int_equal(n[SL_FIG_pixels], g->fig.r[rg].n[SL_FIG_pixels]);
+                assert_int_equal(n[SL_FIG_pnfl], g->fig.r[rg].n[SL_FIG_pnfl]);
+                differs += ro.cells[i + k].fig.r[rg].n[SL_FIG_pixels] != n[SL_FIG_pixels];
+                /* Moderno's "Confirmations" (Tables 7-8, 12-13) */
+                assert_int_equal(n[SL_FIG_conf_moderno], n[SL_FIG_hinted] + n[SL_FIG_confirmed] +
+                                                             n[SL_FIG_corrected] + n[SL_FIG_pnfl]);
+                assert_int_equal(n[SL_FIG_conf_step2_moderno], n[SL_FIG_conf_moderno] - n[SL_FIG_confirmed_adj]);
+                assert_int_equal(n[SL_FIG_nsm_shadow_moderno], n[SL_FIG_nsm_shadow] + n[SL_FIG_pnfl]);
+                assert_int_equal(n[SL_FIG_nsm_light] + n[SL_FIG_nsm_shadow_moderno], n[SL_FIG_pixels]);
+                if (k != 2) {   /* the hinting methods: PnFL are hinted */
+                    assert_int_equal(n[SL_FIG_hinted_moderno], n[SL_FIG_hinted] + n[SL_FIG_pnfl]);
+                    assert_int_equal(n[SL_FIG_hinted_shadow_moderno], n[SL_FIG_hinted_shadow] + n[SL_FIG_pnfl]);
+                } else {
+                    assert_int_equal(n[SL_FIG_hinted_moderno], 0);
+                }
+                /* Table 23: the eight classes and the undecided are the region */
+                assert_int_equal(n[SL_FIG_fixed_ls] + n[SL_FIG_fixed_sl] + n[SL_FIG_broken_ls] +
+                                     n[SL_FIG_broken_sl] + n[SL_FIG_kept_ll_right] + n[SL_FIG_kept_ss_right_moderno] +
+                                     n[SL_FIG_kept_ll_wrong] + n[SL_FIG_kept_ss_wrong] + n[SL_FIG_uncertain],
+                                 n[SL_FIG_pixels]);
+                assert_int_equal(n[SL_FIG_kept_ll_right] + n[SL_FIG_kept_ss_right_moderno],
+                                 n[SL_FIG_kept_right] + n[SL_FIG_pnfl]);
+            }
+        }
+        /* texel and chain decide every pixel: Table 23 adds up to the contour */
+        assert_int_equal(r.cells[i + 2].fig.r[0].n[SL_FIG_uncertain], 0);
+        assert_int_equal(r.cells[i + 3].fig.r[0].n[SL_FIG_uncertain], 0);
+    }
+    assert_true(differs > 0);   /* under own the approaches' contours differ */
+    sl_run_result_free(&r);
+    sl_run_result_free(&ro);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -352,6 +482,8 @@ int main(int argc, char **argv)
         SL_CASE(moderno, figure19_lit_but_shadowed),
         SL_CASE(moderno, figure22_neighbour_texel),
         SL_CASE(moderno, figure29_adjacent_geometry),
+        SL_CASE(moderno, contour_policy_pixels),
+        SL_CASE(moderno, shared_contour_primitives),
     };
     return sl_run_group(argc, argv, "moderno", tests, sl_test_setup, sl_test_teardown);
 }

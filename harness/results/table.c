@@ -192,8 +192,8 @@ static void row_values(FILE *f, const struct sl_cell_record *cells, const struct
 
 static void md_provenance(FILE *f, const struct sl_cell_record *c)
 {
-    fprintf(f, "method `%s`; git `%s`, config `%s`, machine `%s`", c->method, c->git_sha, c->config_hash,
-            c->machine);
+    fprintf(f, "method `%s`; contours from `%s` (contour_from); git `%s`, config `%s`, machine `%s`", c->method,
+            c->contour_from, c->git_sha, c->config_hash, c->machine);
 }
 
 static void md_table(FILE *f, const struct sl_cell_record *cells, const struct group *g)
@@ -359,7 +359,9 @@ static void tex_provenance(FILE *f, const struct sl_cell_record *c)
 {
     fputs("method \\texttt{", f);
     sl_tex_text(f, c->method);
-    fputs("}; git \\texttt{", f);
+    fputs("}; contours from \\texttt{", f);
+    sl_tex_text(f, c->contour_from);
+    fputs("} (contour\\_from); git \\texttt{", f);
     sl_tex_text(f, c->git_sha);
     fputs("}, config \\texttt{", f);
     sl_tex_text(f, c->config_hash);
