@@ -85,4 +85,37 @@ enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, str
  * on the front. */
 int sl_report_pareto(const double *x, const double *y, int n, unsigned char *front);
 
+
+/* ---- the fidelity section (fidelity.c), exposed for its unit test ---- */
+
+/* One number of Moderno 2011's appendix (Primitives) beside shadowlab's. */
+struct sl_report_fidelity_row {
+    int            table;          /* the thesis's table number */
+    const char    *viewpoint;
+    int            map_size, contour;   /* contour 0 = whole image */
+    const char    *label;          /* the cell's label (configs/moderno-2011.yaml) */
+    enum sl_figure fig;
+    uint64_t       thesis;         /* as published (typos resolved: note) */
+    int            measured;       /* 0: the store has no such cell or region ("not measured") */
+    uint64_t       value;          /* shadowlab's, when measured */
+    double         ratio;          /* value / thesis; NAN when not measured or the thesis's is 0 */
+    const char    *note;           /* NULL or the typo / transcription note */
+};
+#define SL_REPORT_FIDELITY_MAXROWS 512
+#define SL_REPORT_FIDELITY_NCLAIMS 7
+
+/* A qualitative claim of the thesis, measured on the cells. */
+struct sl_report_fidelity_claim {
+    const char *claim, *thesis;
+    int         verdict;           /* 1 reproduced, 0 not, -1 not measured */
+    char        measured[200];
+};
+
+/* 1 if the cells hold hard-shadow cells of scene primitives. */
+int sl_report_fidelity_applies(const struct sl_cell_record *c, int n);
+/* Every transcribed datum (at most max) against the cells; returns the count. */
+int sl_report_fidelity_rows(const struct sl_cell_record *c, int n, struct sl_report_fidelity_row *out, int max);
+/* The claims (max >= SL_REPORT_FIDELITY_NCLAIMS, else 0); returns the count. */
+int sl_report_fidelity_claims(const struct sl_cell_record *c, int n, struct sl_report_fidelity_claim *out, int max);
+
 #endif

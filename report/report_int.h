@@ -137,6 +137,9 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
 int sl_report_is_moderno(const char *method);
 int sl_report_is_morais(const char *method);
 
+/* fidelity.c: Moderno 2011's Primitives numbers and claims beside the study's */
+enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+
 /* plots.c */
 enum sl_err sl_report_gnuplot_find(const char *want, char *path, size_t n, struct sl_diag *d);
 enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
