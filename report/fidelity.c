@@ -466,7 +466,7 @@ int sl_report_fidelity_claims(const struct sl_cell_record *c, int n, struct sl_r
 
     /* 4, 5. the larger neighbourhood beats the smaller */
     static const struct { const char *text, *thesis, *better, *worse; } pairs[] = {
-        {"9 neighbour texels beat 4 (fewer wrong pixels in the contours)", "Tables 9-10, 16", "neighbours9",
+        {"9 neighbour texels beat 4 (fewer wrong pixels in the contours)", "Tables 10, 16", "neighbours9",
          "neighbours4"},
         {"vertex adjacency (two levels) beats edge adjacency (one level)", "Tables 11, 16", "adjacency2",
          "adjacency1"}};
@@ -484,7 +484,7 @@ int sl_report_fidelity_claims(const struct sl_cell_record *c, int n, struct sl_r
 
     /* 6. the chain leaves about a quarter of the contour to the ray tracer */
     claim(&out[k], "the chain leaves about a quarter of the contour's pixels to the ray tracer (20-30%)",
-          "section 4.9: about 25%");
+          "Table 13, section 4.9: about 25% (one fourth)");
     {
         int m;
         double v = mean_pct(c, n, "chain", SL_FIG_traced, SL_FIG_pixels, 0, &m);

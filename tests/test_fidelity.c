@@ -1,0 +1,249 @@
+/* fidelity::* — the report's fidelity section (report/fidelity.c) on cells
+ * built here with known values: a transcribed datum's ratio, "not measured"
+ * for a cell or region the cells lack (and for a cell counted on its own
+ * contour), each claim's verdict and measured value, and the section in the
+ * written page only when Primitives cells are there. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "report.h"
+
+/* A Primitives cell, 1024 x 1024, with regions thick[0..nr) (0 = image). */
+static struct sl_cell_record cell(const char *vp, const char *label, const char *method, int map, const int *thick,
+                                 int nr)
+{
+    struct sl_cell_record c;
+    memset(&c, 0, sizeof c);
+    snprintf(c.study, sizeof c.study, "fid");
+    snprintf(c.scene, sizeof c.scene, "primitives");
+    snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
+    snprintf(c.label, sizeof c.label, "%s", label);
+    snprintf(c.method, sizeof c.method, "%s", method);
+    snprintf(c.contour_from, sizeof c.contour_from, "nsm");
+    c.vw = c.vh = 1024;
+    c.map_size = map;
+    c.run_id = 1;
+    c.runs = 1;
+    c.fig.nregions = nr;
+    for (int r = 0; r < nr; r++) {
+        c.fig.r[r].thickness = thick[r];
+        c.fig.r[r].n[SL_FIG_pixels] = 1000;
+        for (int k = 0; k < SL_FIG_COUNT; k++)
+            c.fig.r[r].pct[k] = NAN;
+    }
+    return c;
+}
+
+static const struct sl_report_fidelity_row *row(const struct sl_report_fidelity_row *r, int n, int table,
+                                                int map, int contour, const char *label, enum sl_figure f)
+{
+    for (int i = 0; i < n; i++)
+        if (r[i].table == table && r[i].map_size == map && r[i].contour == contour && !strcmp(r[i].label, label) &&
+            r[i].fig == f)
+            return &r[i];
+    return NULL;
+}
+
+static int build(struct sl_cell_record *c)
+{
+    static const int two_img[] = {2, 0}, six_img[] = {6, 0}, two[] = {2};
+    int n = 0;
+    /* side 1024: NSM with 2 px and the image; no 2048 cell of side at all */
+    c[n] = cell("side", "nsm", "nsm", 1024, two_img, 2);
+    c[n].fig.r[0].n[SL_FIG_pixels] = 5500;     /* thesis 11000: ratio 0.50 */
+    c[n].fig.r[0].n[SL_FIG_wrong] = 1769;      /* thesis 1769: ratio 1.00 */
+    c[n].fig.r[1].n[SL_FIG_pixels] = 1048576;
+    n++;
+    /* coherence4 side 1024: hints; wrong 3 of 5633 light, 0 of 5367 shadow */
+    c[n] = cell("side", "coherence4", "coherence", 1024, two, 1);
+    c[n].fig.r[0].n[SL_FIG_hinted_light] = 5510;       /* thesis 2755: ratio 2.00 */
+    c[n].fig.r[0].n[SL_FIG_hinted_light_wrong] = 3;
+    c[n].fig.r[0].n[SL_FIG_nsm_light] = 5633;
+    c[n].fig.r[0].n[SL_FIG_nsm_shadow_moderno] = 5367;
+    c[n].fig.r[0].n[SL_FIG_hinted_shadow_wrong_moderno] = 0;
+    n++;
+    /* texel counted on its own contour: not the thesis's, not measured */
+    c[n] = cell("side", "texel", "texel", 1024, two, 1);
+    snprintf(c[n].contour_from, sizeof c[n].contour_from, "own");
+    c[n].fig.r[0].n[SL_FIG_wrong] = 1973;
+    n++;
+    /* with: NSM at 1024 and 2048; the 6 px contour's errors rise (90 -> 95),
+     * the image's fall (200 -> 100); 95 of the image's 100 caught at 2x */
+    c[n] = cell("with", "nsm", "nsm", 1024, six_img, 2);
+    c[n].fig.r[0].n[SL_FIG_wrong] = 90;
+    c[n].fig.r[1].n[SL_FIG_wrong] = 200;
+    c[n].fig.wrong_image = 200;
+    n++;
+    c[n] = cell("with", "nsm", "nsm", 2048, six_img, 2);
+    c[n].fig.r[0].n[SL_FIG_wrong] = 95;
+    c[n].fig.r[0].n[SL_FIG_wrong_caught] = 95;
+    c[n].fig.r[1].n[SL_FIG_wrong] = 100;
+    c[n].fig.wrong_image = 100;
+    n++;
+    /* neighbours: 9 beat 4 (1% against 2%); adjacency: two levels lose (3% against 2%) */
+    static const char *const lab[] = {"neighbours9", "neighbours4", "adjacency2", "adjacency1"};
+    static const char *const met[] = {"neighbours", "neighbours", "adjacency", "adjacency"};
+    static const uint64_t wrong[] = {10, 20, 30, 20};
+    for (int i = 0; i < 4; i++, n++) {
+        c[n] = cell("with", lab[i], met[i], 1024, two_img, 2);
+        c[n].fig.r[0].n[SL_FIG_wrong] = wrong[i];
+        c[n].fig.r[1].n[SL_FIG_wrong] = 1000;   /* the image is no contour: left out of the means */
+    }
+    /* the chain traced 250 of 1000: a quarter */
+    c[n] = cell("with", "chain", "chain", 1024, two, 1);
+    c[n].fig.r[0].n[SL_FIG_traced] = 250;
+    n++;
+    return n;
+}
+
+static void fidelity_rows(void **st)
+{
+    (void)st;
+    static struct sl_cell_record c[16];
+    int n = build(c);
+    static struct sl_report_fidelity_row r[SL_REPORT_FIDELITY_MAXROWS];
+    int nr = sl_report_fidelity_rows(c, n, r, SL_REPORT_FIDELITY_MAXROWS);
+    assert_true(nr > 200);
+    const struct sl_report_fidelity_row *x = row(r, nr, 16, 1024, 2, "nsm", SL_FIG_pixels);
+    assert_non_null(x);
+    assert_int_equal(x->thesis, 11000);
+    assert_true(x->measured);
+    assert_int_equal(x->value, 5500);
+    assert_true(fabs(x->ratio - 0.5) < 1e-12);
+    x = row(r, nr, 16, 1024, 2, "nsm", SL_FIG_wrong);
+    assert_true(fabs(x->ratio - 1.0) < 1e-12);
+    x = row(r, nr, 19, 1024, 2, "coherence4", SL_FIG_hinted_light);
+    assert_int_equal(x->thesis, 2755);
+    assert_true(fabs(x->ratio - 2.0) < 1e-12);
+    /* the thesis's 0 wrong shadow hints: measured 0, no ratio */
+    x = row(r, nr, 19, 1024, 2, "coherence4", SL_FIG_hinted_shadow_wrong_moderno);
+    assert_true(x->measured);
+    assert_int_equal(x->value, 0);
+    assert_true(isnan(x->ratio));
+    /* a region the cell lacks, a map size, a label, an own-contour cell: not measured */
+    x = row(r, nr, 16, 1024, 4, "nsm", SL_FIG_pixels);
+    assert_false(x->measured);
+    assert_true(isnan(x->ratio));
+    x = row(r, nr, 16, 2048, 2, "nsm", SL_FIG_wrong);
+    assert_false(x->measured);
+    x = row(r, nr, 21, 1024, 2, "coherence9", SL_FIG_hinted_light);
+    assert_false(x->measured);
+    x = row(r, nr, 16, 1024, 2, "texel", SL_FIG_wrong);
+    assert_false(x->measured);
+    /* the typo resolved: Table 23's 1024/2 px maintained correct L->L is 4788, not the printed 4966 */
+    x = row(r, nr, 23, 1024, 2, "texel", SL_FIG_kept_ll_right);
+    assert_int_equal(x->thesis, 4788);
+    assert_non_null(x->note);
+    assert_non_null(strstr(x->note, "4966"));
+}
+
+static void fidelity_claims(void **st)
+{
+    (void)st;
+    static struct sl_cell_record c[16];
+    int n = build(c);
+    struct sl_report_fidelity_claim cl[SL_REPORT_FIDELITY_NCLAIMS];
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS - 1), 0);
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    /* 1: with's 6 px rose, its image fell */
+    assert_int_equal(cl[0].verdict, 0);
+    assert_non_null(strstr(cl[0].measured, "1 of 2"));
+    /* 2: 95 of 100 caught at 2048 = 2 x 1024 */
+    assert_int_equal(cl[1].verdict, 1);
+    assert_non_null(strstr(cl[1].measured, "95.00%"));
+    /* 3: no coherence9 cell */
+    assert_int_equal(cl[2].verdict, -1);
+    assert_string_equal(cl[2].measured, "not measured");
+    /* 4, 5 */
+    assert_int_equal(cl[3].verdict, 1);
+    assert_non_null(strstr(cl[3].measured, "neighbours9 1.00%, neighbours4 2.00%"));
+    assert_int_equal(cl[4].verdict, 0);
+    assert_non_null(strstr(cl[4].measured, "adjacency2 3.00%, adjacency1 2.00%"));
+    /* 6: a quarter traced */
+    assert_int_equal(cl[5].verdict, 1);
+    assert_non_null(strstr(cl[5].measured, "25.00%"));
+    /* 7: no chain_lit */
+    assert_int_equal(cl[6].verdict, -1);
+
+    /* coherence9 and chain_lit added: claim 3 and 7 decided */
+    c[n] = c[1];
+    snprintf(c[n].label, sizeof c[n].label, "coherence9");
+    c[n].fig.r[0].n[SL_FIG_hinted_light_wrong] = 113;   /* 2.01% of 5633 */
+    n++;
+    c[n] = c[n - 1];
+    snprintf(c[n].label, sizeof c[n].label, "chain_lit");
+    snprintf(c[n].method, sizeof c[n].method, "chain");
+    c[n].fig.r[0].n[SL_FIG_wrong] = 20;   /* 2% wrong, below NSM's */
+    n++;
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    assert_int_equal(cl[2].verdict, 0);
+    assert_non_null(strstr(cl[2].measured, "4 texels 0.05% / 0.00%, 9 texels 2.01% / 0.00%"));
+    assert_int_equal(cl[6].verdict, 1);
+    assert_non_null(strstr(cl[6].measured, "chain_lit 2.00%"));
+}
+
+static void fidelity_section(void **st)
+{
+    (void)st;
+    static struct sl_cell_record c[16];
+    int n = build(c);
+    assert_true(sl_report_fidelity_applies(c, n));
+    char out[300], path[400];
+    snprintf(out, sizeof out, "%s/rep", sl_test_dir);
+    struct sl_store_run run;
+    memset(&run, 0, sizeof run);
+    run.run_id = 1;
+    snprintf(run.study, sizeof run.study, "fid");
+    snprintf(run.config_path, sizeof run.config_path, "configs/x.yaml");
+    run.ncells = n;
+    struct sl_report_input in = {c, n, &run, 1, "test cells", sl_test_dir};
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_report_build(&in, out, NULL, &d);
+    if (e)
+        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+    snprintf(path, sizeof path, "%s/report.md", out);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    static char md[1 << 22];
+    size_t len = fread(md, 1, sizeof md - 1, f);
+    fclose(f);
+    md[len] = 0;
+    assert_non_null(strstr(md, "fidelity to Moderno 2011 (Primitives)"));
+    assert_non_null(strstr(md, "| 1024 | 2 px | nsm | pixels | 11000 | 5500 | 0.50 |"));
+    assert_non_null(strstr(md, "| 2048 | 2 px | nsm | wrong | 1111 | not measured |"));
+    assert_non_null(strstr(md, "not reproduced"));
+
+    /* no Primitives cell: no section */
+    for (int i = 0; i < n; i++)
+        snprintf(c[i].scene, sizeof c[i].scene, "bench");
+    assert_false(sl_report_fidelity_applies(c, n));
+    snprintf(out, sizeof out, "%s/rep2", sl_test_dir);
+    assert_int_equal(sl_report_build(&in, out, NULL, &d), SL_OK);
+    snprintf(path, sizeof path, "%s/report.md", out);
+    f = fopen(path, "rb");
+    assert_non_null(f);
+    len = fread(md, 1, sizeof md - 1, f);
+    fclose(f);
+    md[len] = 0;
+    assert_null(strstr(md, "fidelity to Moderno"));
+}
+
+int main(int argc, char **argv)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(fidelity, rows),
+        SL_CASE(fidelity, claims),
+        SL_CASE(fidelity, section),
+    };
+    return sl_run_group(argc, argv, "fidelity", tests, sl_test_setup, sl_test_teardown);
+}
