@@ -44,6 +44,7 @@ static struct sl_cell_record make(const char *vp, int map, uint64_t base, const 
             c.fig.r[r].pct[k] = k == SL_FIG_pixels ? NAN : 10.0 * r + k + 0.25;
         }
     snprintf(c.git_sha, sizeof c.git_sha, "abc1234");
+    snprintf(c.contour_from, sizeof c.contour_from, "nsm");
     snprintf(c.config_hash, sizeof c.config_hash, "0123456789abcdef");
     snprintf(c.machine, sizeof c.machine, "%s", machine);
     return c;
@@ -109,7 +110,8 @@ static void table_markdown_rows(void **st)
     const int K = SL_FIG_COUNT - 1;
     snprintf(last, sizeof last,
              "\n| %s | %d (%d.25%%) | %d (%d.25%%) | %d (%d.25%%) | %d (%d.25%%) |\n\n"
-             "method `nsm`; git `abc1234`, config `0123456789abcdef`, machine `h/c/i`\n",
+             "method `nsm`; contours from `nsm` (contour_from); git `abc1234`, config `0123456789abcdef`, "
+             "machine `h/c/i`\n",
              sl_figure_name(K), 1000 + K, K, 1010 + K, 10 + K, 2000 + K, K, 2010 + K, 10 + K);
     assert_non_null(strstr(md, last));
     assert_non_null(strstr(md, "## prim_s / with / 64x32 / nsm_a\n\n"));
@@ -128,8 +130,9 @@ static void table_markdown_mixed_provenance(void **st)
     snprintf(c[1].git_sha, sizeof c[1].git_sha, "def5678");
     char *md = render(SL_TABLE_MD, NULL, c, 2, SL_OK);
     assert_true(strncmp(md, "Percentages:", 12) == 0);
-    assert_non_null(strstr(md, "- 1024²: method `nsm`; git `abc1234`, config `0123456789abcdef`, machine `h/c/i`\n"
-                               "- 2048²: method `nsm`; git `def5678`,"));
+    assert_non_null(strstr(md, "- 1024²: method `nsm`; contours from `nsm` (contour_from); git `abc1234`, config "
+                               "`0123456789abcdef`, machine `h/c/i`\n"
+                               "- 2048²: method `nsm`; contours from `nsm` (contour_from); git `def5678`,"));
     free(md);
 }
 
@@ -198,7 +201,8 @@ static void table_latex_booktabs(void **st)
                  name, 1000 + K, K, 1010 + K, 10 + K, 2000 + K, K, 2010 + K, 10 + K);
         assert_non_null(strstr(tex, last));
     }
-    assert_non_null(strstr(tex, "{\\footnotesize method \\texttt{nsm}; git \\texttt{abc1234}, config "
+    assert_non_null(strstr(tex, "{\\footnotesize method \\texttt{nsm}; contours from \\texttt{nsm} (contour\\_from); git "
+                                "\\texttt{abc1234}, config "
                                 "\\texttt{0123456789abcdef}, machine "
                                 "a\\&b\\#c\\$d\\{e\\}f\\%g\\_h\\textasciitilde{}\\textasciicircum{}"
                                 "\\textbackslash{}\\par}\n\\end{table}\n"));
