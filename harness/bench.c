@@ -713,7 +713,7 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     if (o->csv)
         e = write_csv(res, o->csv, d);
 done:
-    if (x.gl.ctx) {
+    if (x.gl.backend) {
         sl_gbuffer_free(&x.gp);
         sl_gl_mesh_free(&x.mesh);
         sl_gl_free(&x.gl);
