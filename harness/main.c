@@ -77,7 +77,7 @@ static const char usage_check[] =
 
 static const char usage_bench[] =
     "usage: shadowlab bench [CONFIG] [--only LIST] [--reps N] [--scene S] [--viewport WxH] [--map N]\n"
-    "                       [--csv FILE]\n"
+    "                       [--csv FILE] [--gl osmesa|egl]\n"
     "  Each measurement against its target, as a Markdown table with PASS/MISS:\n"
     "    truth    the truth pass vs a plain Embree rtcOccluded16 loop over the same rays (>= 0.8x)\n"
     "    layers   the G-buffer and every shadow-map layer vs a plain raster of the same mesh, size\n"
@@ -90,7 +90,8 @@ static const char usage_bench[] =
     "  --scene S       scene of the truth and layer stages (default: CONFIG's first scene, else bench)\n"
     "  --viewport WxH  their viewport (default: CONFIG's first, else 1024x1024)\n"
     "  --map N         the layers' map size (default 2048)\n"
-    "  --csv FILE      also write the summary rows as CSV\n";
+    "  --csv FILE      also write the summary rows as CSV\n"
+    "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
 
 static const char usage_list[] = "usage: shadowlab list methods|scenes\n";
 
@@ -460,6 +461,9 @@ static int cmd_bench(int argc, char **argv)
                 return usage_error("bench: --map must be 16..16384", usage_bench);
         } else if (strcmp(a, "--csv") == 0 && val) {
             o.csv = argv[++i];
+        } else if (strcmp(a, "--gl") == 0 && val) {
+            if (!(o.gl = sl_gl_backend_parse(argv[++i])))
+                return usage_error("bench: --gl wants osmesa or egl", usage_bench);
         } else if (a[0] == '-') {
             return usage_error("bench: unknown option or missing value", usage_bench);
         } else if (!o.config) {

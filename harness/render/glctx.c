@@ -134,6 +134,7 @@ void sl_gl_free(struct sl_gl *g)
 #ifdef SL_HAVE_EGL
     sl_egl_close(g);
 #endif
+    g->backend = SL_GL_DEFAULT;   /* closed: callers test it */
 }
 
 void sl_gl_describe(const struct sl_gl *g, char *buf, size_t n)
