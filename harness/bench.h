@@ -24,6 +24,7 @@
  */
 #ifndef SL_BENCH_H
 #define SL_BENCH_H
+#include "glctx.h"
 #include <stdint.h>
 #include <stdio.h>
 #include "config.h"
@@ -56,6 +57,8 @@ struct sl_bench_opts {
     const char *morais;    /*                      configs/morais-2015.yaml */
     const char *csv;       /* also write the rows here as CSV; NULL = no */
     FILE       *out;       /* Markdown; NULL = stdout */
+    enum sl_gl_backend gl; /* GL context of every stage; SL_GL_DEFAULT = OSMesa where built
+                            * (the studies: their config's 'gl') */
 };
 
 enum sl_bench_cmp { SL_BENCH_AT_LEAST, SL_BENCH_AT_MOST };

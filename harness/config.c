@@ -99,6 +99,7 @@ struct raw_config {
     char *store;
     unsigned *threads;
     char *contour_from;
+    char *gl;
 };
 
 static const cyaml_schema_value_t str_schema = {
@@ -173,6 +174,7 @@ static const cyaml_schema_field_t config_fields[] = {
     CYAML_FIELD_UINT_PTR("threads", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, threads),
     CYAML_FIELD_STRING_PTR("contour_from", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
                            contour_from, 1, 15),
+    CYAML_FIELD_STRING_PTR("gl", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, gl, 1, 15),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t config_schema = {
@@ -436,6 +438,9 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "area_samples",
                            "area_samples %d: samples per side of an area light's truth, 2..1024", c->area_samples);
     snprintf(c->store, sizeof c->store, "%s", r->store ? r->store : "");
+    c->gl = sl_gl_backend_resolve(r->gl ? sl_gl_backend_parse(r->gl) : SL_GL_DEFAULT);
+    if (r->gl && sl_gl_backend_parse(r->gl) == SL_GL_DEFAULT)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "gl", "gl '%s': osmesa or egl", r->gl);
     c->overlay_contour = c->regions[0];
     if (r->outputs && r->outputs->overlay_contour) {
         unsigned t = *r->outputs->overlay_contour;
@@ -527,4 +532,5 @@ void sl_config_write(const struct sl_config *c, FILE *f)
     if (c->store[0])
         fprintf(f, "store: %s\n", c->store);
     fprintf(f, "threads: %d\n", c->threads);
+    fprintf(f, "gl: %s\n", sl_gl_backend_name(sl_gl_backend_resolve(c->gl)));
 }

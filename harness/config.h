@@ -28,6 +28,7 @@
  */
 #ifndef SL_CONFIG_H
 #define SL_CONFIG_H
+#include "glctx.h"
 #include "method.h"
 #include "scene.h"
 #include "sl_error.h"
@@ -80,6 +81,8 @@ struct sl_config {
     int  area_samples;                /* area-light truth: samples per side of the light (0 = 32) */
     char store[512];                  /* "" = <output root>/shadowlab.db */
     int  threads;                     /* resolved: >= 1 */
+    enum sl_gl_backend gl;            /* 'gl: osmesa|egl'; resolved (never SL_GL_DEFAULT); the
+                                       * command line's --gl replaces it */
 };
 
 /* Parse and validate; on failure d names file, line and key. */

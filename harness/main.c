@@ -34,11 +34,14 @@ static const char usage[] =
 
 static const char usage_run[] =
     "usage: shadowlab run CONFIG [--out DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
+    "                     [--gl osmesa|egl]\n"
     "  --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
     "  --cells A:B   compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
     "  --resume      skip cells the results store already holds for this config\n"
     "  --db FILE     results store (default: the config's 'store', else DIR/shadowlab.db)\n"
-    "  --no-cache    trace the truth even when DIR/cache holds it\n";
+    "  --no-cache    trace the truth even when DIR/cache holds it\n"
+    "  --gl B        the GL context: osmesa (the default where built) or egl (GPU machines;\n"
+    "                SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n";
 
 static const char usage_validate[] =
     "usage: shadowlab validate FILE\n"
@@ -74,7 +77,7 @@ static const char usage_check[] =
 
 static const char usage_bench[] =
     "usage: shadowlab bench [CONFIG] [--only LIST] [--reps N] [--scene S] [--viewport WxH] [--map N]\n"
-    "                       [--csv FILE]\n"
+    "                       [--csv FILE] [--gl osmesa|egl]\n"
     "  Each measurement against its target, as a Markdown table with PASS/MISS:\n"
     "    truth    the truth pass vs a plain Embree rtcOccluded16 loop over the same rays (>= 0.8x)\n"
     "    layers   the G-buffer and every shadow-map layer vs a plain raster of the same mesh, size\n"
@@ -87,7 +90,8 @@ static const char usage_bench[] =
     "  --scene S       scene of the truth and layer stages (default: CONFIG's first scene, else bench)\n"
     "  --viewport WxH  their viewport (default: CONFIG's first, else 1024x1024)\n"
     "  --map N         the layers' map size (default 2048)\n"
-    "  --csv FILE      also write the summary rows as CSV\n";
+    "  --csv FILE      also write the summary rows as CSV\n"
+    "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
 
 static const char usage_list[] = "usage: shadowlab list methods|scenes\n";
 
@@ -194,9 +198,14 @@ static int cmd_run(int argc, char **argv)
     struct event_state es = {.tty = isatty(2)};
     o.user = &es;
     int no_cache = 0;
+    enum sl_gl_backend gl = SL_GL_DEFAULT;
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
             o.out_root = argv[++i];
+        else if (strcmp(argv[i], "--gl") == 0 && i + 1 < argc) {
+            if (!(gl = sl_gl_backend_parse(argv[++i])))
+                return usage_error("run: --gl wants osmesa or egl", usage_run);
+        }
         else if (strcmp(argv[i], "--db") == 0 && i + 1 < argc)
             o.store = argv[++i];
         else if (strcmp(argv[i], "--cells") == 0 && i + 1 < argc) {
@@ -223,6 +232,8 @@ static int cmd_run(int argc, char **argv)
     enum sl_err e = sl_config_load(cfg, &c, &d);
     if (e)
         return fail(e, &d);
+    if (gl)
+        c.gl = gl;
     struct sl_run_result r;
     e = sl_run(&c, &o, &r, &d);
     sl_run_result_free(&r);
@@ -450,6 +461,9 @@ static int cmd_bench(int argc, char **argv)
                 return usage_error("bench: --map must be 16..16384", usage_bench);
         } else if (strcmp(a, "--csv") == 0 && val) {
             o.csv = argv[++i];
+        } else if (strcmp(a, "--gl") == 0 && val) {
+            if (!(o.gl = sl_gl_backend_parse(argv[++i])))
+                return usage_error("bench: --gl wants osmesa or egl", usage_bench);
         } else if (a[0] == '-') {
             return usage_error("bench: unknown option or missing value", usage_bench);
         } else if (!o.config) {

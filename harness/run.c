@@ -138,7 +138,7 @@ static void drop_scene(struct run_ctx *x)
     if (x->have_adj)
         sl_adjacency_free(&x->adj);
     x->have_adj = 0;
-    if (x->gl.ctx) {
+    if (x->gl.backend) {
         sl_gbuffer_free(&x->gpass);
         sl_gl_mesh_free(&x->mesh);
     }
@@ -165,7 +165,7 @@ static void ctx_free(struct run_ctx *x)
     free(x->soft_se);
     free(x->receivers);
     sl_softmap_nbuf_free(&x->nbuf);
-    if (x->gl.ctx) {
+    if (x->gl.backend) {
         sl_softmap_pass_free(&x->softpass);
         sl_shadowmap_free(&x->spass);
         sl_gl_free(&x->gl);
@@ -195,7 +195,7 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "receiver flags");
     for (int r = 0; r < x->scene.nranges; r++)
         x->receivers[r] = (uint8_t)x->scene.ranges[r].receiver;
-    x->scene_key = sl_cache_scene_key(&x->scene, x->gl.renderer, x->gl.version, &x->rt);
+    x->scene_key = sl_cache_scene_key(&x->scene, sl_gl_backend_name(x->gl.backend), x->gl.renderer, x->gl.version, &x->rt);
     unsigned needs = 0;
     for (int m = 0; m < c->nmethods; m++)
         if (c->scenes[si].method_mask & (1u << m))
@@ -649,10 +649,11 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     x.user = o->user;
     struct sl_store *st = NULL;
     int64_t run_id = 0;
-    if ((e = sl_gl_init(&x.gl, d)) || (e = sl_shadowmap_init(&x.spass, d)))
+    if ((e = sl_gl_open(&x.gl, &(struct sl_gl_desc){.backend = c->gl}, d)) || (e = sl_shadowmap_init(&x.spass, d)))
         goto out;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
     snprintf(res->prov.gl_version, sizeof res->prov.gl_version, "%s", x.gl.version);
+    sl_gl_describe(&x.gl, res->prov.gl_backend, sizeof res->prov.gl_backend);
     snprintf(res->prov.embree, sizeof res->prov.embree, "%d.%d.%d", RTC_VERSION_MAJOR, RTC_VERSION_MINOR,
              RTC_VERSION_PATCH);
     res->prov.threads = c->threads;

@@ -13,6 +13,8 @@ cd "$(dirname "$0")/.."
 PACKAGES=(
   build-essential cmake pkg-config git
   libosmesa6-dev        # OpenGL 4.5 core without a window (llvmpipe)
+  libegl-dev            # EGL (libglvnd): the GL context on GPU machines and where OSMesa is gone
+  libegl-mesa0          # Mesa's EGL vendor (llvmpipe, surfaceless or the software device)
   libembree-dev         # ray tracing: the ground truth
   libopenimageio-dev    # images (overlays)
   libopenexr-dev        # OpenImageIO's CMake package asks for OpenEXR

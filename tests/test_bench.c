@@ -61,10 +61,10 @@ static void bench_quick_mode_rows(void **st)
         fprintf(stderr, "bench: %s\n", d.msg);
     assert_int_equal(e, SL_OK);
 
-    /* truth, G-buffer, six layers, memory; no study asked for */
+    /* truth, G-buffer, six layers, memory, the first context; no study asked for */
     static const char *const want[] = {"depth_id 256²", "depth_id_back 256²", "bgsm 256²", "bgsm2 256²",
                                        "sgsm 256²", "sgsm_adj 256²"};
-    assert_int_equal(r.nrows, 1 + 1 + 6 + 1);
+    assert_int_equal(r.nrows, 1 + 1 + 6 + 1 + 1);
     assert_string_equal(r.rows[0].stage, "truth");
     assert_string_equal(r.rows[1].stage, "gbuffer");
     assert_string_equal(r.rows[1].name, "gbuffer 128x96");
@@ -73,6 +73,8 @@ static void bench_quick_mode_rows(void **st)
         assert_string_equal(r.rows[2 + i].name, want[i]);
     }
     assert_string_equal(r.rows[8].stage, "memory");
+    assert_string_equal(r.rows[9].stage, "context");
+    assert_non_null(strstr(r.rows[9].name, "first GL context ("));
     for (int i = 0; i < r.nrows; i++) {
         const struct sl_bench_row *w = &r.rows[i];
         assert_true(isfinite(w->value) && w->value > 0);

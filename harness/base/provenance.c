@@ -11,14 +11,16 @@
 
 void sl_provenance_fill(struct sl_provenance *p)
 {
-    char gl_r[128], gl_v[128], emb[32];
+    char gl_r[128], gl_v[128], gl_b[192], emb[32];
     int threads = p->threads;
     memcpy(gl_r, p->gl_renderer, sizeof gl_r);
     memcpy(gl_v, p->gl_version, sizeof gl_v);
+    memcpy(gl_b, p->gl_backend, sizeof gl_b);
     memcpy(emb, p->embree, sizeof emb);
     memset(p, 0, sizeof *p);
     memcpy(p->gl_renderer, gl_r, sizeof gl_r);
     memcpy(p->gl_version, gl_v, sizeof gl_v);
+    memcpy(p->gl_backend, gl_b, sizeof gl_b);
     memcpy(p->embree, emb, sizeof emb);
     p->threads = threads;
     snprintf(p->git_sha, sizeof p->git_sha, "%s", sl_git_sha());
@@ -71,6 +73,7 @@ void sl_provenance_write(const struct sl_provenance *p, FILE *f, const char *pre
     fprintf(f, "%sisa: %s\n", prefix, p->isa);
     fprintf(f, "%sgl_renderer: %s\n", prefix, p->gl_renderer);
     fprintf(f, "%sgl_version: %s\n", prefix, p->gl_version);
+    fprintf(f, "%sgl_backend: %s\n", prefix, p->gl_backend[0] ? p->gl_backend : "(unknown)");
     fprintf(f, "%sembree: %s\n", prefix, p->embree);
     fprintf(f, "%sthreads: %d\n", prefix, p->threads);
     fprintf(f, "%slp_num_threads: %s\n", prefix, p->lp_threads[0] ? p->lp_threads : "(unset)");

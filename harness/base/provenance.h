@@ -1,7 +1,7 @@
 /*
  * provenance.h — where a number came from: git SHA (built in), host, CPU
  * model and instruction set (llvmpipe and Embree pick code paths by ISA, so
- * results can differ between CPUs), GL renderer, Embree version, threads,
+ * results can differ between CPUs), GL backend and renderer, Embree version, threads,
  * UTC time. Written beside every result.
  */
 #ifndef SL_PROVENANCE_H
@@ -19,6 +19,7 @@ struct sl_provenance {
     char isa[64];
     char gl_renderer[128];
     char gl_version[128];
+    char gl_backend[192];    /* "osmesa", or "egl " + the EGL device and vendor used */
     char embree[32];
     int  threads;
     char lp_threads[16];     /* LP_NUM_THREADS as set, or "" */

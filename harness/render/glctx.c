@@ -1,18 +1,71 @@
 /*
- * glctx.c — OSMesa context and GL helpers.
- * Invariant: a 4.5 core context or a clear SL_E_GL (OSMesa returns NULL for
- * 4.6 on Mesa 22.3, so 4.5 is asked for exactly).
+ * glctx.c — the GL context (OSMesa or EGL, glegl.c) and GL helpers.
+ * Invariant: a 4.5 core context or a clear error (OSMesa returns NULL for
+ * 4.6 on Mesa 22.3, so 4.5 is asked for exactly, through both backends).
+ * Everything after sl_gl_open is the same for both backends.
  */
 #include "glctx.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "adjacency.h"
+#include "glegl.h"
 #include "util.h"
+#ifdef SL_HAVE_OSMESA
+#include <GL/osmesa.h>
+#endif
 
-enum sl_err sl_gl_init(struct sl_gl *g, struct sl_diag *d)
+const char *sl_gl_backend_name(enum sl_gl_backend b)
 {
-    memset(g, 0, sizeof *g);
+    switch (b) {
+    case SL_GL_OSMESA: return "osmesa";
+    case SL_GL_EGL: return "egl";
+    default: return "default";
+    }
+}
+
+enum sl_gl_backend sl_gl_backend_parse(const char *s)
+{
+    if (s && strcmp(s, "osmesa") == 0)
+        return SL_GL_OSMESA;
+    if (s && strcmp(s, "egl") == 0)
+        return SL_GL_EGL;
+    return SL_GL_DEFAULT;
+}
+
+enum sl_gl_backend sl_gl_backend_resolve(enum sl_gl_backend b)
+{
+    if (b != SL_GL_DEFAULT)
+        return b;
+#ifdef SL_HAVE_OSMESA
+    return SL_GL_OSMESA;
+#else
+    return SL_GL_EGL;
+#endif
+}
+
+int sl_gl_backend_built(enum sl_gl_backend b)
+{
+    switch (b) {
+#ifdef SL_HAVE_OSMESA
+    case SL_GL_OSMESA: return 1;
+#endif
+#ifdef SL_HAVE_EGL
+    case SL_GL_EGL: return 1;
+#endif
+    case SL_GL_DEFAULT: return 1;
+    default: return 0;
+    }
+}
+
+#ifdef SL_HAVE_OSMESA
+static sl_glproc osmesa_proc(const char *name)
+{
+    return (sl_glproc)OSMesaGetProcAddress(name);
+}
+
+static enum sl_err osmesa_open(struct sl_gl *g, struct sl_diag *d)
+{
     const int attribs[] = {
         OSMESA_FORMAT, OSMESA_RGBA,
         OSMESA_DEPTH_BITS, 0,
@@ -21,31 +74,75 @@ enum sl_err sl_gl_init(struct sl_gl *g, struct sl_diag *d)
         OSMESA_CONTEXT_MINOR_VERSION, 5,
         0,
     };
-    g->ctx = OSMesaCreateContextAttribs(attribs, NULL);
-    if (!g->ctx)
+    OSMesaContext ctx = OSMesaCreateContextAttribs(attribs, NULL);
+    if (!ctx)
         return sl_fail(d, SL_E_GL, NULL, 0, NULL, "OSMesa could not create a 4.5 core context");
-    if (!OSMesaMakeCurrent(g->ctx, g->pixel, GL_UNSIGNED_BYTE, 1, 1)) {
-        OSMesaDestroyContext(g->ctx);
-        g->ctx = NULL;
+    if (!OSMesaMakeCurrent(ctx, g->pixel, GL_UNSIGNED_BYTE, 1, 1)) {
+        OSMesaDestroyContext(ctx);
         return sl_fail(d, SL_E_GL, NULL, 0, NULL, "OSMesaMakeCurrent failed");
     }
-    const char *missing = sl_glfn_load();
+    const char *missing = sl_glfn_load(osmesa_proc);
     if (missing) {
-        OSMesaDestroyContext(g->ctx);
-        g->ctx = NULL;
+        OSMesaDestroyContext(ctx);
         return sl_fail(d, SL_E_GL, NULL, 0, NULL, "OSMesa lacks %s", missing);
     }
+    g->osmesa = ctx;
+    return SL_OK;
+}
+#endif
+
+enum sl_err sl_gl_open(struct sl_gl *g, const struct sl_gl_desc *desc, struct sl_diag *d)
+{
+    memset(g, 0, sizeof *g);
+    enum sl_gl_backend b = sl_gl_backend_resolve(desc ? desc->backend : SL_GL_DEFAULT);
+    if (!sl_gl_backend_built(b))
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "gl",
+                       "this shadowlab was built without the %s backend (its library was not found at "
+                       "configure time)",
+                       sl_gl_backend_name(b));
+    enum sl_err e = SL_E_INTERNAL;
+#ifdef SL_HAVE_OSMESA
+    if (b == SL_GL_OSMESA)
+        e = osmesa_open(g, d);
+#endif
+#ifdef SL_HAVE_EGL
+    if (b == SL_GL_EGL)
+        e = sl_egl_open(g, d);
+#endif
+    if (e)
+        return e;
+    g->backend = b;
     snprintf(g->renderer, sizeof g->renderer, "%s", (const char *)glGetString(GL_RENDERER));
     snprintf(g->version, sizeof g->version, "%s", (const char *)glGetString(GL_VERSION));
     return SL_OK;
 }
 
+enum sl_err sl_gl_init(struct sl_gl *g, struct sl_diag *d)
+{
+    return sl_gl_open(g, NULL, d);
+}
+
 void sl_gl_free(struct sl_gl *g)
 {
-    if (g && g->ctx) {
-        OSMesaDestroyContext(g->ctx);
-        g->ctx = NULL;
-    }
+    if (!g)
+        return;
+#ifdef SL_HAVE_OSMESA
+    if (g->osmesa)
+        OSMesaDestroyContext(g->osmesa);
+    g->osmesa = NULL;
+#endif
+#ifdef SL_HAVE_EGL
+    sl_egl_close(g);
+#endif
+    g->backend = SL_GL_DEFAULT;   /* closed: callers test it */
+}
+
+void sl_gl_describe(const struct sl_gl *g, char *buf, size_t n)
+{
+    if (g->device[0])
+        snprintf(buf, n, "%s %s", sl_gl_backend_name(g->backend), g->device);
+    else
+        snprintf(buf, n, "%s", sl_gl_backend_name(g->backend));
 }
 
 static GLuint compile(GLenum type, const char *src, struct sl_diag *d)

@@ -1,32 +1,62 @@
 /*
- * glctx.h — the OpenGL 4.5 core context (OSMesa, no window) and the scene's
- * GL buffers.
+ * glctx.h — the OpenGL 4.5 core context (no window) and the scene's GL
+ * buffers.
  *
- * Owns: the OSMesa context (one per process; all passes render into their own
- * framebuffer objects, never into the OSMesa buffer), the scene's vertex and
- * index buffers (uploaded once per scene).
+ * Owns: the one context of the process, from one of two backends: OSMesa
+ * (Mesa's off-screen library, removed from Mesa 25.1) or EGL (surfaceless;
+ * an EGL device chosen as glegl.c says: hardware first, the software device
+ * or EGL_PLATFORM_SURFACELESS_MESA as fallbacks). All passes render into
+ * their own framebuffer objects, never into a window-system buffer, so
+ * everything above the context is shared. Also the scene's vertex and index
+ * buffers (uploaded once per scene).
  * Does not: decide what to render (gbuffer.c, shadowmap.c do), or read back.
- * GL entry points come from libOSMesa itself (GL_GLEXT_PROTOTYPES): libepoxy
- * aborts under OSMesa, and OSMesa exports every gl* symbol.
+ * GL entry points: all looked up through the backend (glfn.h says why).
  */
 #ifndef SL_GLCTX_H
 #define SL_GLCTX_H
-#include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include "glfn.h"
 #include "scene.h"
 #include "sl_error.h"
 
-struct sl_gl {
-    OSMesaContext ctx;
-    unsigned char pixel[4];   /* the 1x1 OSMesa surface we make current */
-    char renderer[128];
-    char version[128];
+/* Zero is the default: OSMesa where built, else EGL. */
+enum sl_gl_backend { SL_GL_DEFAULT = 0, SL_GL_OSMESA, SL_GL_EGL };
+
+/* "osmesa", "egl" ("default" for SL_GL_DEFAULT). */
+const char *sl_gl_backend_name(enum sl_gl_backend b);
+/* "osmesa" or "egl" -> the backend; SL_GL_DEFAULT for anything else. */
+enum sl_gl_backend sl_gl_backend_parse(const char *s);
+/* SL_GL_DEFAULT -> OSMesa where built, else EGL; others unchanged. */
+enum sl_gl_backend sl_gl_backend_resolve(enum sl_gl_backend b);
+/* Whether this binary was built with that backend (SL_GL_DEFAULT: any). */
+int sl_gl_backend_built(enum sl_gl_backend b);
+
+struct sl_gl_desc {
+    enum sl_gl_backend backend;   /* SL_GL_DEFAULT = OSMesa where built, else EGL */
 };
 
+struct sl_gl {
+    enum sl_gl_backend backend;   /* the one in use */
+    void *osmesa;                 /* OSMesaContext */
+    unsigned char pixel[4];       /* the 1x1 OSMesa surface we make current */
+    void *egl_display, *egl_ctx;  /* EGLDisplay, EGLContext */
+    char renderer[128];
+    char version[128];
+    /* EGL: what was used, e.g. "device 0 (EGL_MESA_device_software), vendor Mesa
+     * Project" or "surfaceless (Mesa Project)"; OSMesa: "". */
+    char device[160];
+};
+
+/* The default backend (zero desc). SL_E_USAGE: a backend not built, or a bad
+ * SHADOWLAB_EGL_DEVICE; SL_E_GL: no display, no 4.5 core context, or an entry
+ * point missing. */
 enum sl_err sl_gl_init(struct sl_gl *g, struct sl_diag *d);
+enum sl_err sl_gl_open(struct sl_gl *g, const struct sl_gl_desc *desc, struct sl_diag *d);
 void        sl_gl_free(struct sl_gl *g);
+
+/* "osmesa" or "egl <device>": the backend and device, for provenance. */
+void sl_gl_describe(const struct sl_gl *g, char *buf, size_t n);
 
 /* Link a program from sources (gs may be NULL); 0 and diag on failure. */
 GLuint sl_gl_program(const char *vs, const char *gs, const char *fs, struct sl_diag *d);

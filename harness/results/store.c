@@ -30,7 +30,11 @@
 #include <sys/stat.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 9   /* 9: contour_from (whose image the contours are drawn from), PnFL-inclusive figures (Moderno's count); 8: soft-shadow figures; 7: study, config text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints, confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by NSM's light and shadow */
+#define SL_STORE_VERSION 10   /* 10: runs.gl_backend; 9: contour_from (whose image the contours are drawn from),
+                               * PnFL-inclusive figures (Moderno's count); 8: soft-shadow figures; 7: study, config
+                               * text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints,
+                               * confirmations, changes vs NSM; 4: confirmed_adj; 5: ray_tri_tests; 6: hints by
+                               * NSM's light and shadow */
 #define SL_STORE_BUSY_MS 10000
 
 /* ---- schema ---- */
@@ -82,6 +86,7 @@ static const char sql_runs[] =
     "  isa            TEXT NOT NULL,\n"
     "  gl_renderer    TEXT NOT NULL,\n"
     "  gl_version     TEXT NOT NULL,\n"
+    "  gl_backend     TEXT NOT NULL,\n"
     "  embree         TEXT NOT NULL,\n"
     "  threads        INTEGER NOT NULL,\n"
     "  lp_num_threads TEXT NOT NULL\n"
@@ -132,7 +137,8 @@ static const char *const sl_indexes[] = {
 
 static const char sql_ins_run[] =
     "INSERT INTO runs (time_utc, git_sha, study, config_path, config_hash, config_text, host, cpu, isa, "
-    "gl_renderer, gl_version, embree, threads, lp_num_threads) VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
+    "gl_renderer, gl_version, gl_backend, embree, threads, lp_num_threads) "
+    "VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
 
 static const char sql_ins_cell[] =
     "INSERT INTO cells (run_id, config_hash" SL_CELL_COLUMNS(SL_SQL_NAME) ") VALUES (?,?"
@@ -165,7 +171,7 @@ static const char sql_query_cells[] =
 
 static const char sql_query_runs[] =
     "SELECT r.run_id, r.time_utc, r.git_sha, r.study, r.config_path, r.config_hash, r.config_text,\n"
-    "       r.host, r.cpu, r.isa, r.gl_renderer, r.gl_version, r.embree, r.threads, r.lp_num_threads,\n"
+    "       r.host, r.cpu, r.isa, r.gl_renderer, r.gl_version, r.gl_backend, r.embree, r.threads, r.lp_num_threads,\n"
     "       (SELECT count(*) FROM cells c WHERE c.run_id = r.run_id)\n"
     "FROM runs r ORDER BY r.run_id";
 
@@ -508,6 +514,7 @@ enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p
     b_text(&b, p->isa);
     b_text(&b, p->gl_renderer);
     b_text(&b, p->gl_version);
+    b_text(&b, p->gl_backend);
     b_text(&b, p->embree);
     b_int(&b, p->threads);
     b_text(&b, p->lp_threads);
@@ -840,6 +847,7 @@ enum sl_err sl_store_runs(struct sl_store *s, struct sl_store_run **out, int *n,
         col_text(st, i++, r->prov.isa, sizeof r->prov.isa);
         col_text(st, i++, r->prov.gl_renderer, sizeof r->prov.gl_renderer);
         col_text(st, i++, r->prov.gl_version, sizeof r->prov.gl_version);
+        col_text(st, i++, r->prov.gl_backend, sizeof r->prov.gl_backend);
         col_text(st, i++, r->prov.embree, sizeof r->prov.embree);
         r->prov.threads = sqlite3_column_int(st, i++);
         col_text(st, i++, r->prov.lp_threads, sizeof r->prov.lp_threads);

@@ -23,7 +23,8 @@
 
 /* What a scene's truths depend on besides the view: hashed once per scene
  * (the geometry is the bulk of it). */
-unsigned long long sl_cache_scene_key(const struct sl_scene *s, const char *gl_renderer, const char *gl_version,
+unsigned long long sl_cache_scene_key(const struct sl_scene *s, const char *gl_backend, const char *gl_renderer,
+                                      const char *gl_version,
                                       const struct sl_rt *rt)
 {
     unsigned long long k = SL_FNV_SEED;
@@ -32,6 +33,7 @@ unsigned long long sl_cache_scene_key(const struct sl_scene *s, const char *gl_r
     k = sl_fnv1a(k, s->idx, (size_t)s->nt * 3 * sizeof(uint32_t));
     k = sl_fnv1a(k, &s->light, sizeof s->light);
     /* the G-buffer positions come from GL: another renderer, another truth */
+    k = sl_fnv1a(k, gl_backend, strlen(gl_backend));
     k = sl_fnv1a(k, gl_renderer, strlen(gl_renderer));
     k = sl_fnv1a(k, gl_version, strlen(gl_version));
     k = sl_fnv1a(k, rt->version, strlen(rt->version));

@@ -30,9 +30,10 @@
 enum sl_cache_read { SL_CACHE_MISS, SL_CACHE_REJECTED, SL_CACHE_HIT };
 
 /* What a scene's truths depend on besides the view: the truth's rules, the
- * geometry, the light, the GL renderer that made the G-buffer and Embree's
+ * geometry, the light, the GL backend and renderer that made the G-buffer and Embree's
  * version; hashed once per scene. */
-unsigned long long sl_cache_scene_key(const struct sl_scene *s, const char *gl_renderer, const char *gl_version,
+unsigned long long sl_cache_scene_key(const struct sl_scene *s, const char *gl_backend, const char *gl_renderer,
+                                      const char *gl_version,
                                       const struct sl_rt *rt);
 /* A view's key: the scene's, its viewpoint and its viewport. */
 unsigned long long sl_cache_view_key(unsigned long long scene, const struct sl_viewpoint *vp, int w, int h);
