@@ -29,6 +29,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -410,6 +411,145 @@ static int mesh_append(struct sl_mesh *dst, const struct sl_mesh *src)
     return 1;
 }
 
+/* ------------------------------------------------------ text pre-checks */
+
+/*
+ * assimp repairs some broken text files silently: an ASCII PLY declaring
+ * more elements than it holds, OBJ face corners naming a texture coordinate
+ * or normal that does not exist. These are refused here, before assimp,
+ * with the line that is wrong. Only run in the reader's child.
+ */
+static enum sl_err ply_ascii_check(FILE *f, const char *path, struct sl_diag *d)
+{
+    char line[1024];
+    unsigned long long declared = 0;
+    int ascii = 0, lineno = 0;
+    while (fgets(line, sizeof line, f)) {
+        lineno++;
+        if (!strncmp(line, "format ascii", 12))
+            ascii = 1;
+        else if (!strncmp(line, "element ", 8)) {
+            char name[64];
+            unsigned long long n;
+            if (sscanf(line + 8, "%63s %llu", name, &n) == 2)
+                declared += n;
+        } else if (!strncmp(line, "end_header", 10))
+            break;
+    }
+    if (!ascii)
+        return SL_OK;
+    unsigned long long held = 0;
+    while (fgets(line, sizeof line, f)) {
+        size_t k = strspn(line, " \t\r\n");
+        if (line[k])
+            held++;
+        size_t len = strlen(line);
+        while (len && line[len - 1] != '\n' && fgets(line, sizeof line, f))   /* long line */
+            len = strlen(line);
+    }
+    if (held < declared)
+        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "truncated file: the header declares %llu "
+                       "element lines, the file holds %llu", declared, held);
+    return SL_OK;
+}
+
+/* v/vt/vn counts and, per face corner, indices in 1..count (or negative,
+ * relative to the count so far). */
+static enum sl_err obj_check(FILE *f, const char *path, struct sl_diag *d)
+{
+    char line[4096];
+    long long cnt[3] = {0, 0, 0}, maxref[3] = {0, 0, 0};
+    int maxline[3] = {0, 0, 0}, lineno = 0;
+    static const char *what[3] = {"vertex", "texture coordinate", "normal"};
+    while (fgets(line, sizeof line, f)) {
+        lineno++;
+        if (line[0] == 'v' && line[1] == ' ')
+            cnt[0]++;
+        else if (line[0] == 'v' && line[1] == 't' && (line[2] == ' ' || line[2] == '\t'))
+            cnt[1]++;
+        else if (line[0] == 'v' && line[1] == 'n' && (line[2] == ' ' || line[2] == '\t'))
+            cnt[2]++;
+        else if (line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
+            char *q = line + 2;
+            for (;;) {
+                while (*q == ' ' || *q == '\t')
+                    q++;
+                if (!*q || *q == '\n' || *q == '\r' || *q == '#')
+                    break;
+                for (int k = 0; k < 3; k++) {
+                    char *e;
+                    if (*q == '/' || *q == ' ' || *q == '\t' || *q == '\n' || *q == '\r' || !*q) {
+                        if (*q == '/')
+                            q++;
+                        continue;   /* absent */
+                    }
+                    long long v = strtoll(q, &e, 10);
+                    if (e == q)
+                        return sl_fail(d, SL_E_SCENE, path, lineno, NULL, "corrupt file: "
+                                       "bad face corner (line %d)", lineno);
+                    q = e;
+                    if (v < 0 ? -v > cnt[k] : v == 0)
+                        return sl_fail(d, SL_E_SCENE, path, lineno, NULL, "corrupt file: line %d: "
+                                       "face names %s %lld of %lld", lineno, what[k], v, cnt[k]);
+                    if (v > maxref[k]) {
+                        maxref[k] = v;
+                        maxline[k] = lineno;
+                    }
+                    if (*q == '/')
+                        q++;
+                    else
+                        break;
+                }
+                while (*q && *q != ' ' && *q != '\t' && *q != '\n' && *q != '\r')
+                    q++;
+            }
+        }
+        size_t len = strlen(line);
+        while (len && line[len - 1] != '\n' && fgets(line, sizeof line, f))
+            len = strlen(line);
+    }
+    for (int k = 0; k < 3; k++)
+        if (maxref[k] > cnt[k])
+            return sl_fail(d, SL_E_SCENE, path, maxline[k], NULL, "corrupt file: line %d: face "
+                           "names %s %lld of %lld", maxline[k], what[k], maxref[k], cnt[k]);
+    return SL_OK;
+}
+
+static enum sl_err text_precheck(const char *path, struct sl_diag *d)
+{
+    const char *dot = strrchr(path, '.');
+    if (!dot)
+        return SL_OK;
+    int ply = !strcasecmp(dot, ".ply"), obj = !strcasecmp(dot, ".obj");
+    if (!ply && !obj)
+        return SL_OK;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return SL_OK;   /* load_direct reports it */
+    enum sl_err e = ply ? ply_ascii_check(f, path, d) : obj_check(f, path, d);
+    fclose(f);
+    return e;
+}
+
+/* assimp logs some errors and carries on with a repaired scene (an OFF face
+ * index out of range); the first error logged about an index or a range
+ * makes the file fail. Other logged errors (a missing material) are about
+ * things we never read. */
+static char g_ai_error[256];
+
+static void ai_log(const char *msg, char *user)
+{
+    (void)user;
+    if (g_ai_error[0] || strncmp(msg, "Error", 5) != 0 ||
+        !(strstr(msg, "ndex") || strstr(msg, "range")))
+        return;
+    const char *m = strstr(msg, ": ");
+    snprintf(g_ai_error, sizeof g_ai_error, "%s", m ? m + 2 : msg);
+    size_t n = strlen(g_ai_error);
+    while (n && (g_ai_error[n - 1] == '\n' || g_ai_error[n - 1] == '\r'))
+        g_ai_error[--n] = 0;
+}
+
 /* In the reader's process: assimp reads the file, its result is checked and
  * welded into m. sl_mesh_load_file runs this in a child (meshjail). */
 static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float xform[16],
@@ -453,13 +593,22 @@ static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float 
      * transforms ourselves, in double, composed with xform), and anything
      * that generates normals or tangents (the scene computes face normals).
      */
+    enum sl_err e = text_precheck(path, d);
+    if (e)
+        return e;
+    struct aiLogStream ls = {.callback = ai_log, .user = NULL};
+    aiAttachLogStream(&ls);
     const struct aiScene *sc = aiImportFile(path, 0);
+    if (sc && g_ai_error[0]) {
+        aiReleaseImport(sc);
+        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "corrupt file: %s", g_ai_error);
+    }
     if (!sc) {
         const char *why = aiGetErrorString();
         return sl_fail(d, SL_E_SCENE, path, 0, NULL, "%s",
                        why && why[0] ? why : "assimp could not import the file");
     }
-    enum sl_err e = check_raw(sc, path, d);
+    e = check_raw(sc, path, d);
     if (e) {
         aiReleaseImport(sc);
         return e;
