@@ -501,9 +501,15 @@ static enum sl_err store_quick_check(struct sl_store *s, struct sl_diag *d)
     enum sl_err e = SL_OK;
     if (rc != SQLITE_ROW)
         e = db_fail(s, d, NULL, "the store is damaged (quick_check failed)");
-    else if (!t || strcmp((const char *)t, "ok") != 0)
-        e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "the store is damaged (SQLite quick_check: %.200s); "
-                    "refusing to write into it", t ? (const char *)t : "no answer");
+    else if (!t || strcmp((const char *)t, "ok") != 0) {
+        char why[200];   /* its first line: the message stays one line */
+        snprintf(why, sizeof why, "%s", t ? (const char *)t : "no answer");
+        for (char *c = why; *c; c++)
+            if (*c == '\n')
+                *c = ' ';
+        e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "the store is damaged (SQLite quick_check: %s); "
+                    "refusing to write into it", why);
+    }
     sqlite3_finalize(q);
     return e;
 }
