@@ -38,7 +38,9 @@ static const char usage_run[] =
     "  --cells A:B   compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
     "  --resume      skip cells the results store already holds for this config\n"
     "  --db FILE     results store (default: the config's 'store', else DIR/shadowlab.db)\n"
-    "  --no-cache    trace the truth even when DIR/cache holds it\n";
+    "  --no-cache    trace the truth even when DIR/cache holds it\n"
+    "  One run writes a results store at a time (a lock on DB.lock); a second is refused\n"
+    "  with exit 2, naming the holder's pid. Exit codes: 0 done, 2 bad input, usage or failure.\n";
 
 static const char usage_validate[] =
     "usage: shadowlab validate FILE\n"
