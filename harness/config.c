@@ -335,6 +335,8 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         }
         snprintf(cm->label, sizeof cm->label, "%s", rm->label ? rm->label : rm->method);
         snprintf(key, sizeof key, "methods[%u].label", i);
+        if (cm->label[0] == '.')   /* labels name files: no '..', no hidden file */
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s': must not start with '.'", cm->label);
         for (const char *p = cm->label; *p; p++)
             if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
                   *p == '-' || *p == '_' || *p == '.'))

@@ -41,7 +41,9 @@ static const char usage_run[] =
     "  --db FILE     results store (default: the config's 'store', else DIR/shadowlab.db)\n"
     "  --no-cache    trace the truth even when DIR/cache holds it\n"
     "  --gl B        the GL context: osmesa (the default where built) or egl (GPU machines;\n"
-    "                SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n";
+    "                SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
+    "  One run writes a results store at a time (a lock on DB.lock); a second is refused\n"
+    "  with exit 2, naming the holder's pid. Exit codes: 0 done, 2 bad input, usage or failure.\n";
 
 static const char usage_validate[] =
     "usage: shadowlab validate FILE\n"

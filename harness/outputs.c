@@ -439,9 +439,26 @@ enum sl_err sl_out_stage_begin(const struct sl_config *c, const char *root, stru
     return SL_OK;
 }
 
+static int has_entries(const char *dir)
+{
+    DIR *dp = opendir(dir);
+    if (!dp)
+        return 0;
+    struct dirent *e;
+    int n = 0;
+    while (!n && (e = readdir(dp)))
+        n = strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0;
+    closedir(dp);
+    return n;
+}
+
+/* A run that failed after cells went into the store (a table that could
+ * not be written, a full disk) keeps its staging folder when it holds
+ * overlays or EXR files: the store points at them, and the next `--resume`
+ * carries them over from this (then dead) run's folder (carry_previous). */
 void sl_out_stage_drop(struct sl_out_dirs *o)
 {
-    if (o->stage[0])
+    if (o->stage[0] && !has_entries(o->overlays) && !has_entries(o->exr))
         rm_tree(o->stage);
     o->stage[0] = '\0';
 }

@@ -24,6 +24,7 @@ PACKAGES=(
   libassimp-dev         # model files
   assimp-testmodels     # third-party models the model scenes and tests load
   libsqlite3-dev        # results store
+  sqlite3               # the store from the shell (tests: cli::hostile, cli::report)
   libcmocka-dev         # unit tests
   gnuplot-nox           # the report's plots (shadowlab report)
   chromium              # the report's rendering test (cli::report)

@@ -9,7 +9,9 @@ pass=0 fail=0
 
 check() { # name expected_rc stderr_pattern -- command...
   local name=$1 want=$2 pat=$3; shift 4
-  "$@" >"$tmp/out" 2>"$tmp/err"
+  # a hang fails the case instead of blocking the suite (a model reader that
+  # loops is stopped by shadowlab itself after a few seconds)
+  timeout 60 "$@" >"$tmp/out" 2>"$tmp/err"
   local rc=$? lines
   lines=$(wc -l <"$tmp/err")
   if [ "$rc" -ne "$want" ]; then

@@ -110,8 +110,10 @@ refuse "missing db" "no such results store" "$bin" report "$tmp/nope.db" --out "
 refuse "empty file" "empty file" "$bin" report "$tmp/empty.db" --out "$tmp/x2"
 echo "not a database" >"$tmp/text.db"
 refuse "foreign file" "text.db" "$bin" report "$tmp/text.db" --out "$tmp/x3"
-: >"$tmp/store.db"
-"$bin" table "$tmp/store.db" >/dev/null 2>&1   # initialises an empty store
+# an empty store: the schema of a real one, no rows (readers open read-only
+# and no longer initialise a store)
+{ sqlite3 "$db" .schema | grep -v '^CREATE TABLE sqlite_'
+  echo "PRAGMA user_version = $(sqlite3 "$db" 'PRAGMA user_version');"; } | sqlite3 "$tmp/store.db"
 refuse "store without cells" "no cells" "$bin" report "$tmp/store.db" --out "$tmp/x4"
 refuse "no gnuplot" "gnuplot" env PATH=/nonexistent "$bin" report "$db" --out "$tmp/x5"
 for x in x1 x2 x3 x4 x5; do [ -e "$tmp/$x" ] && fail "refused report $x still wrote $tmp/$x"; done

@@ -406,6 +406,13 @@ static void meshio_bad_files_fail_and_leave_mesh(void **st)
         {MODELS "/PLY/cube_binary.ply", inf_x, "non-finite transform"},
         /* finite file and transform whose product overflows float */
         {MODELS "/OBJ/spider.obj", huge_x, "non-finite vertex"},
+        /* issue 15: files that crashed, hung or were silently repaired */
+        {"tests/bad/models/empty_solid.stl", NULL, "no triangles"},
+        {"tests/bad/models/header_only.ply", NULL, "the reader was stopped"},
+        {"tests/bad/models/ply25.ply", NULL, "the reader was stopped"},
+        {"tests/bad/models/short_vertices.ply", NULL, "truncated file"},
+        {"tests/bad/models/bad_index.off", NULL, "Vertex index is out of range"},
+        {"tests/bad/models/bad_vt.obj", NULL, "face names texture coordinate 5 of 1"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         struct sl_mesh m = {0};

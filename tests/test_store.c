@@ -17,6 +17,7 @@
 #include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "outputs.h"
 #include "store.h"
 #include "table.h"
 
@@ -37,7 +38,7 @@ static void tmp_make(struct tmp *t)
 
 static void tmp_remove(struct tmp *t)
 {
-    static const char *const suffix[] = {"", "-wal", "-shm", "-journal"};
+    static const char *const suffix[] = {"", "-wal", "-shm", "-journal", ".lock"};
     char p[160];
     for (size_t i = 0; i < sizeof suffix / sizeof suffix[0]; i++) {
         snprintf(p, sizeof p, "%s%s", t->db, suffix[i]);
@@ -552,7 +553,7 @@ static void store_killed_writer_leaves_whole_cells(void **st)
     long cells = 0;
     for (int tries = 0; tries < 2000 && cells < 20; tries++) {
         sleep_ms(2);
-        assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+        assert_int_equal(sl_store_open_existing(t.db, &s, &d), SL_OK);   /* a reader, beside the writer */
         cells = sl_store_count(s, "cells");
         sl_store_close(s);
     }
@@ -713,6 +714,66 @@ static void store_missing_folder_is_an_error(void **st)
     assert_non_null(strstr(d.msg, "unable to open"));
 }
 
+/* issue 15: one writer per store; a second writer (here the same process on
+ * another descriptor, which flock treats alike) is refused, naming the pid;
+ * a reader is not. */
+static void store_one_writer_at_a_time(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *a = NULL, *b = NULL, *r = NULL;
+    assert_int_equal(sl_store_open(t.db, &a, &d), SL_OK);
+    assert_int_equal(sl_store_open(t.db, &b, &d), SL_E_IO);
+    assert_null(b);
+    char want[64];
+    snprintf(want, sizeof want, "in use by another run (pid %ld,", (long)getpid());
+    assert_non_null(strstr(d.msg, want));
+    assert_int_equal(sl_store_open_existing(t.db, &r, &d), SL_OK);
+    sl_store_close(r);
+    sl_store_close(a);
+    assert_int_equal(sl_store_open(t.db, &b, &d), SL_OK);   /* released on close */
+    sl_store_close(b);
+    tmp_remove(&t);
+}
+
+/* issue 15: a run that failed after cells went into the store keeps the
+ * staged overlays the store points at; an empty staging folder goes. */
+static void store_failed_run_keeps_staged_overlays(void **st)
+{
+    (void)st;
+    char root[64];
+    snprintf(root, sizeof root, "/tmp/sl_stage_XXXXXX");
+    assert_non_null(mkdtemp(root));
+    struct sl_config *c = calloc(1, sizeof *c);
+    assert_non_null(c);
+    snprintf(c->name, sizeof c->name, "study");
+    c->overlays = 1;
+    struct sl_out_dirs o;
+    memset(&o, 0, sizeof o);
+    struct sl_diag d;
+    assert_int_equal(sl_out_stage_begin(c, root, &o, &d), SL_OK);
+    char stage[1100], png[1300];
+    snprintf(stage, sizeof stage, "%s", o.stage);
+    sl_out_stage_drop(&o);
+    assert_int_not_equal(access(stage, F_OK), 0);   /* nothing in it: removed */
+    assert_int_equal(sl_out_stage_begin(c, root, &o, &d), SL_OK);
+    snprintf(png, sizeof png, "%s/cell.png", o.overlays);
+    FILE *f = fopen(png, "w");
+    assert_non_null(f);
+    fclose(f);
+    sl_out_stage_drop(&o);
+    assert_int_equal(access(png, F_OK), 0);   /* kept for the next --resume */
+    unlink(png);
+    char sub[1200];
+    snprintf(sub, sizeof sub, "%s/overlays", stage);
+    rmdir(sub);
+    rmdir(stage);
+    rmdir(root);
+    free(c);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -728,6 +789,8 @@ int main(int argc, char **argv)
         SL_CASE(store, refuses_other_version),
         SL_CASE(store, new_file_is_current_version_wal),
         SL_CASE(store, missing_folder_is_an_error),
+        SL_CASE(store, one_writer_at_a_time),
+        SL_CASE(store, failed_run_keeps_staged_overlays),
     };
     return sl_run_group(argc, argv, "store", tests, NULL, NULL);
 }

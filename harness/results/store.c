@@ -27,7 +27,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include "util.h"
 
 #define SL_STORE_VERSION 10   /* 10: runs.gl_backend; 9: contour_from (whose image the contours are drawn from),
@@ -201,6 +205,7 @@ struct sl_store {
     sqlite3      *db;
     sqlite3_stmt *st[ST_COUNT];
     char         *path;
+    int           lockfd;   /* <path>.lock, flock()ed while open for writing; -1 if none */
 };
 
 /* ---- helpers ---- */
@@ -407,6 +412,8 @@ static enum sl_err check_schema(struct sl_store *s, struct sl_diag *d)
     return e;
 }
 
+static enum sl_err store_quick_check(struct sl_store *s, struct sl_diag *d);
+
 static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
 {
     sqlite3_busy_timeout(s->db, SL_STORE_BUSY_MS);
@@ -429,12 +436,14 @@ static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
                        "results store of schema version %lld; this build reads version %d",
                        (long long)ver, SL_STORE_VERSION);
     }
+    enum sl_err e;
+    if (s->lockfd >= 0 && (e = store_quick_check(s, d)))   /* writers only */
+        return e;
     /* ours (or empty) from here on: WAL lets readers run beside a writing run */
     sqlite3_int64 ignore = 0;
     (void)query_int(s->db, "PRAGMA journal_mode = WAL", &ignore);
     if (sqlite3_exec(s->db, "PRAGMA foreign_keys = ON", NULL, NULL, NULL) != SQLITE_OK)
         return db_fail(s, d, NULL, "cannot enable foreign keys");
-    enum sl_err e;
     if (ver == 0 && (e = init_if_empty(s, d)))
         return e;
     if ((e = check_schema(s, d)))
@@ -446,7 +455,72 @@ static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
     return SL_OK;
 }
 
-enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_diag *d)
+/*
+ * One writer per store: a writer holds flock(LOCK_EX) on "<path>.lock" (with
+ * its pid written inside) for as long as the store is open. A second writer
+ * is refused at once, naming the holder, rather than waiting: a run can take
+ * hours, and a refused run loses nothing (`--resume` later adds what is
+ * missing). The lock dies with its process, so a killed run leaves none.
+ * Readers (sl_store_open_existing) open read-only and take no lock: WAL
+ * lets them read beside the writer.
+ */
+static enum sl_err store_lock(struct sl_store *s, struct sl_diag *d)
+{
+    char lp[1100];
+    snprintf(lp, sizeof lp, "%s.lock", s->path);
+    int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return sl_fail(d, SL_E_IO, s->path, 0, NULL, "unable to open its lock file %s: %s", lp,
+                       strerror(errno));
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        int en = errno;
+        char buf[32] = "";
+        ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
+        buf[n > 0 ? n : 0] = 0;
+        buf[strcspn(buf, "\n")] = 0;
+        close(fd);
+        if (en == EWOULDBLOCK)
+            return sl_fail(d, SL_E_IO, s->path, 0, NULL,
+                           "results store in use by another run (pid %s, lock %s); wait for it to "
+                           "finish, then `run --resume`, or write elsewhere with --out",
+                           buf[0] ? buf : "unknown", lp);
+        return sl_fail(d, SL_E_IO, s->path, 0, NULL, "cannot lock %s: %s", lp, strerror(en));
+    }
+    char pid[32];
+    int k = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+    if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)k, 0) != k) {
+        /* the pid only makes the message better; the lock holds without it */
+    }
+    s->lockfd = fd;
+    return SL_OK;
+}
+
+/* Damage inside SQLite's pages goes unnoticed until a query trips on it;
+ * a writer checks first, so a run never adds to a damaged store. */
+static enum sl_err store_quick_check(struct sl_store *s, struct sl_diag *d)
+{
+    sqlite3_stmt *q = NULL;
+    if (sqlite3_prepare_v2(s->db, "PRAGMA quick_check(1)", -1, &q, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "the store is damaged (quick_check could not run)");
+    int rc = sqlite3_step(q);
+    const unsigned char *t = rc == SQLITE_ROW ? sqlite3_column_text(q, 0) : NULL;
+    enum sl_err e = SL_OK;
+    if (rc != SQLITE_ROW)
+        e = db_fail(s, d, NULL, "the store is damaged (quick_check failed)");
+    else if (!t || strcmp((const char *)t, "ok") != 0) {
+        char why[200];   /* its first line: the message stays one line */
+        snprintf(why, sizeof why, "%s", t ? (const char *)t : "no answer");
+        for (char *c = why; *c; c++)
+            if (*c == '\n')
+                *c = ' ';
+        e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "the store is damaged (SQLite quick_check: %s); "
+                    "refusing to write into it", why);
+    }
+    sqlite3_finalize(q);
+    return e;
+}
+
+static enum sl_err store_open(const char *path, int readonly, struct sl_store **out, struct sl_diag *d)
 {
     if (!out)
         return sl_fail(d, SL_E_USAGE, path, 0, NULL, "sl_store_open: no output pointer");
@@ -462,8 +536,15 @@ enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_dia
     }
     memcpy(p, path, n);
     s->path = p;
-    int rc = sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL);
-    enum sl_err e = rc == SQLITE_OK ? store_setup(s, d) : db_fail(s, d, NULL, "cannot open");
+    s->lockfd = -1;
+    enum sl_err e = readonly ? SL_OK : store_lock(s, d);
+    if (!e) {
+        int flags = readonly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+        int rc = sqlite3_open_v2(path, &s->db, flags, NULL);
+        e = rc == SQLITE_OK ? SL_OK : db_fail(s, d, NULL, "cannot open");
+    }
+    if (!e)
+        e = store_setup(s, d);
     if (e) {
         sl_store_close(s);
         return e;
@@ -472,12 +553,17 @@ enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_dia
     return SL_OK;
 }
 
+enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_diag *d)
+{
+    return store_open(path, 0, out, d);
+}
+
 enum sl_err sl_store_open_existing(const char *path, struct sl_store **out, struct sl_diag *d)
 {
     struct stat sb;
     if (!path || stat(path, &sb) != 0 || !S_ISREG(sb.st_mode))
         return sl_fail(d, SL_E_IO, path, 0, NULL, "no results store here (run `shadowlab run CONFIG` first)");
-    return sl_store_open(path, out, d);
+    return store_open(path, 1, out, d);
 }
 
 void sl_store_close(struct sl_store *s)
@@ -487,6 +573,8 @@ void sl_store_close(struct sl_store *s)
     for (int i = 0; i < ST_COUNT; i++)
         sqlite3_finalize(s->st[i]);
     sqlite3_close(s->db);
+    if (s->lockfd >= 0)
+        close(s->lockfd);   /* releases the flock */
     free(s->path);
     free(s);
 }

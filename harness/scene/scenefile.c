@@ -10,6 +10,7 @@
 #include <cglm/cglm.h>
 #include <dirent.h>
 #include <errno.h>
+#include <ctype.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -553,12 +554,29 @@ static enum sl_err read_light(const struct raw_light *l, const char *file, const
     return SL_OK;
 }
 
+/* Scene and viewpoint names become parts of file names under --out: only
+ * [A-Za-z0-9._-], no leading dot (no '..', no hidden file), 1..63 bytes. */
+static int safe_name(const char *s)
+{
+    size_t n = strlen(s);
+    if (n == 0 || n > 63 || s[0] == '.')
+        return 0;
+    for (; *s; s++)
+        if (!isalnum((unsigned char)*s) && *s != '.' && *s != '_' && *s != '-')
+            return 0;
+    return 1;
+}
+
 static enum sl_err read_viewpoint(const struct raw_vp *r, const char *file, const struct sl_yaml_pos *pos,
                                   unsigned i, struct sl_viewpoint *v, struct sl_diag *d)
 {
     char key[96];
     memset(v, 0, sizeof *v);
     snprintf(v->name, sizeof v->name, "%s", r->name);
+    snprintf(key, sizeof key, "viewpoints[%u].name", i);
+    if (!safe_name(r->name))
+        return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "viewpoint name '%.64s': use 1..63 letters, "
+                           "digits, '-', '_' and '.', not starting with '.' (it names files)", r->name);
     snprintf(key, sizeof key, "viewpoints[%u].position", i);
     if (!finite3(r->position))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "non-finite position");
@@ -621,6 +639,9 @@ static enum sl_err load_into(const char *path, struct build *b, struct sl_light 
             snprintf(out->name, sizeof out->name, "%s", r->name);
         else
             snprintf(out->name, sizeof out->name, "%.*s", (int)(n > 5 ? n - 5 : n), base);
+        if (!safe_name(out->name))
+            e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "name", "scene name '%.64s': use 1..63 letters, "
+                            "digits, '-', '_' and '.', not starting with '.' (it names files)", out->name);
         if (r->description)
             snprintf(out->description, sizeof out->description, "%s", r->description);
         for (unsigned i = 0; !e && i < r->viewpoints_count; i++) {
