@@ -43,7 +43,8 @@ static const char usage_run[] =
     "  --gl B        the GL context: osmesa (the default where built) or egl (GPU machines;\n"
     "                SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
     "  One run writes a results store at a time (a lock on DB.lock); a second is refused\n"
-    "  with exit 2, naming the holder's pid. Exit codes: 0 done, 2 bad input, usage or failure.\n";
+    "  with exit 2, naming the holder's pid. Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
+    "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
 
 static const char usage_validate[] =
     "usage: shadowlab validate FILE\n"
@@ -97,12 +98,25 @@ static const char usage_bench[] =
 
 static const char usage_list[] = "usage: shadowlab list methods|scenes\n";
 
+/* 2: bad input or usage (a config, a scene, a model, an option, a store or
+ * file that cannot be read as what it should be); 3: a system failure (an
+ * output that cannot be written, GL, Embree, memory, an internal error). */
+static int exit_code(enum sl_err e)
+{
+    switch (e) {
+    case SL_E_OUTPUT: case SL_E_GL: case SL_E_EMBREE: case SL_E_NOMEM: case SL_E_IMAGE: case SL_E_INTERNAL:
+        return 3;
+    default:
+        return 2;
+    }
+}
+
 static int fail(enum sl_err e, const struct sl_diag *d)
 {
     char line[1200];
     sl_diag_format(d, e, line, sizeof line);
     fprintf(stderr, "shadowlab: %s\n", line);
-    return 2;
+    return exit_code(e);
 }
 
 static int usage_error(const char *msg, const char *text)
