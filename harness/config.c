@@ -478,7 +478,7 @@ enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_di
     snprintf(out->path, sizeof out->path, "%s", path);
     struct raw_config *raw = NULL;
     struct sl_yaml_pos *ix = NULL;
-    enum sl_err e = sl_yaml_load(path, &config_schema, (void **)&raw, &ix, SL_E_CONFIG, d);
+    enum sl_err e = sl_yaml_load(path, &config_schema, (void **)&raw, &ix, SL_CONFIG_MAX_BYTES, SL_E_CONFIG, d);
     if (e)
         return e;
     e = sl_hash_file(path, &out->hash, d);

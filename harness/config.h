@@ -34,6 +34,10 @@
 #include "sl_error.h"
 
 #define SL_CFG_MAX 32
+/* A config is refused unread above 4 MiB: with at most SL_CFG_MAX entries
+ * per list a real one is a few KiB, and a huge one would cost memory and
+ * time (the YAML parse and its line index) before the entry limits apply. */
+#define SL_CONFIG_MAX_BYTES ((size_t)4 << 20)
 
 /* Whose result image a (view, map size)'s contours are drawn from. */
 enum sl_contour_from {

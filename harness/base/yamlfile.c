@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <stdint.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <yaml.h>
 #include "util.h"
@@ -17,10 +19,19 @@
 /* ---- position index: dotted key path -> line, built with libyaml ---- */
 
 struct pos_entry { char path[128]; int line; };
-struct sl_yaml_pos { struct pos_entry *e; int n, cap; };
+struct sl_yaml_pos {
+    struct pos_entry *e;
+    int n, cap, max;      /* max: entries kept at most (see pos_build) */
+    int root_line;        /* line of the top-level node, 0 if none */
+    yaml_event_type_t root_type;
+    int err_line;         /* libyaml's own error: line (0 if none) and text */
+    char err[128];
+};
 
 static void pos_add(struct sl_yaml_pos *ix, const char *path, int line)
 {
+    if (ix->n >= ix->max)
+        return;
     if (ix->n == ix->cap) {
         int cap = ix->cap ? 2 * ix->cap : 64;
         void *p = realloc(ix->e, (size_t)cap * sizeof *ix->e);
@@ -36,23 +47,32 @@ static void pos_add(struct sl_yaml_pos *ix, const char *path, int line)
 
 /* Walk the event stream keeping, per nesting level, the path and whether the
  * next scalar of a mapping is a key. Errors of the YAML syntax itself are
- * left to libcyaml, which reports them with their line. */
-static void pos_build(const char *path, struct sl_yaml_pos *ix)
+ * left to libcyaml, which reports them with their line; libyaml's own line
+ * is kept as a fallback for errors libcyaml gives none for. The index keeps
+ * at most ix->max entries, so a huge file costs bounded memory here: the
+ * schema's entry limits (checked by libcyaml) reject such a file anyway,
+ * and only its lines beyond the cap go unnamed. */
+static void pos_build(const unsigned char *text, size_t len, struct sl_yaml_pos *ix)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return;
     yaml_parser_t p;
     yaml_parser_initialize(&p);
-    yaml_parser_set_input_file(&p, f);
+    yaml_parser_set_input_string(&p, text, len);
     struct { char path[128]; int is_map, want_key, index; char key[64]; } st[32];
     int depth = -1;
     for (;;) {
         yaml_event_t ev;
-        if (!yaml_parser_parse(&p, &ev))
+        if (!yaml_parser_parse(&p, &ev)) {
+            ix->err_line = (int)p.problem_mark.line + 1;
+            snprintf(ix->err, sizeof ix->err, "%s", p.problem ? p.problem : "syntax error");
             break;
+        }
         yaml_event_type_t t = ev.type;
         int line = (int)ev.start_mark.line + 1;
+        if (depth < 0 && !ix->root_line && (t == YAML_SCALAR_EVENT || t == YAML_MAPPING_START_EVENT ||
+                                            t == YAML_SEQUENCE_START_EVENT || t == YAML_ALIAS_EVENT)) {
+            ix->root_line = line;
+            ix->root_type = t;
+        }
         char here[128] = "";
         int is_value = 0;
         if (depth >= 0 && (t == YAML_SCALAR_EVENT || t == YAML_MAPPING_START_EVENT ||
@@ -93,7 +113,6 @@ static void pos_build(const char *path, struct sl_yaml_pos *ix)
             break;
     }
     yaml_parser_delete(&p);
-    fclose(f);
 }
 
 int sl_yaml_line(const struct sl_yaml_pos *ix, const char *path)
@@ -192,21 +211,130 @@ enum sl_err sl_yaml_bad(struct sl_diag *d, enum sl_err kind, const char *file,
 }
 
 
+/* Read the whole file, refusing it before reading when it is over
+ * max_bytes (the caller's limit for its kind of file). */
+static enum sl_err read_text(const char *path, size_t max_bytes, unsigned char **text, size_t *len,
+                             enum sl_err kind, struct sl_diag *d)
+{
+    *text = NULL;
+    *len = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(errno));
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0) {
+        int err = errno;
+        fclose(f);
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(err));
+    }
+    if (!S_ISREG(st.st_mode)) {
+        fclose(f);
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s",
+                       S_ISDIR(st.st_mode) ? strerror(EISDIR) : "not a regular file");
+    }
+    if ((uintmax_t)st.st_size > (uintmax_t)max_bytes) {
+        fclose(f);
+        return sl_fail(d, kind, path, 0, NULL, "file of %jd bytes: at most %zu MiB are read for this kind of file",
+                       (intmax_t)st.st_size, max_bytes >> 20);
+    }
+    /* +1 so a file that grew since fstat is seen as over the limit */
+    unsigned char *buf = malloc(max_bytes + 1 < (size_t)st.st_size + 1 ? max_bytes + 1 : (size_t)st.st_size + 1);
+    if (!buf) {
+        fclose(f);
+        return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "reading the file");
+    }
+    size_t n = fread(buf, 1, (size_t)st.st_size + 1, f);
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(buf);
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(EIO));
+    }
+    if (n > (size_t)st.st_size) {
+        free(buf);
+        return sl_fail(d, kind, path, 0, NULL, "the file grew while being read");
+    }
+    *text = buf;
+    *len = n;
+    return SL_OK;
+}
+
+/* libyaml refuses bytes that are not UTF-8 text and control characters
+ * without saying where; find the first such byte and name its line. */
+static enum sl_err check_text(const char *path, const unsigned char *s, size_t n, enum sl_err kind,
+                              struct sl_diag *d)
+{
+    int line = 1;
+    size_t col0 = 0;
+    for (size_t i = 0; i < n;) {
+        unsigned c = s[i];
+        if (c == '\n') {
+            line++;
+            col0 = ++i;
+            continue;
+        }
+        if (c < 0x80) {
+            if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f)
+                return sl_fail(d, kind, path, line, NULL, "%s (byte 0x%02x at column %zu): not YAML text",
+                               c == 0 ? "NUL byte" : "control character", c, i - col0 + 1);
+            i++;
+            continue;
+        }
+        /* a UTF-8 sequence: lead byte, then 1..3 continuation bytes;
+         * overlong forms and surrogates are refused as libyaml does */
+        size_t k = c >= 0xc2 && c <= 0xdf ? 1 : c >= 0xe0 && c <= 0xef ? 2 : c >= 0xf0 && c <= 0xf4 ? 3 : 0;
+        int ok = k > 0 && i + k < n;
+        uint32_t cp = k == 1 ? c & 0x1f : k == 2 ? c & 0x0f : c & 0x07;
+        for (size_t j = 1; ok && j <= k; j++) {
+            if ((s[i + j] & 0xc0) != 0x80)
+                ok = 0;
+            cp = (cp << 6) | (s[i + j] & 0x3f);
+        }
+        if (ok && ((k == 2 && (cp < 0x800 || (cp >= 0xd800 && cp <= 0xdfff))) ||
+                   (k == 3 && (cp < 0x10000 || cp > 0x10ffff))))
+            ok = 0;
+        if (!ok)
+            return sl_fail(d, kind, path, line, NULL, "byte 0x%02x at column %zu is not UTF-8 text", c,
+                           i - col0 + 1);
+        i += k + 1;
+    }
+    return SL_OK;
+}
+
+static const char *event_name(yaml_event_type_t t)
+{
+    return t == YAML_SEQUENCE_START_EVENT ? "a sequence" : t == YAML_SCALAR_EVENT ? "a scalar"
+         : t == YAML_ALIAS_EVENT ? "an alias" : "not a mapping";
+}
+
 enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, void **out,
-                         struct sl_yaml_pos **pos, enum sl_err kind, struct sl_diag *d)
+                         struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind, struct sl_diag *d)
 {
     *out = NULL;
     *pos = NULL;
-    if (access(path, R_OK) != 0)
-        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(errno));
+    unsigned char *text;
+    size_t len;
+    enum sl_err re = read_text(path, max_bytes, &text, &len, kind, d);
+    if (!re)
+        re = check_text(path, text, len, kind, d);
+    if (re) {
+        free(text);
+        return re;
+    }
     struct cy_log lg;
     memset(&lg, 0, sizeof lg);
     const cyaml_config_t *cfg = cy_config(&lg);
     struct sl_yaml_pos *ix = calloc(1, sizeof *ix);
-    if (!ix)
+    if (!ix) {
+        free(text);
         return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "position index");
-    pos_build(path, ix);
-    cyaml_err_t ce = cyaml_load_file(path, cfg, schema, (cyaml_data_t **)out, NULL);
+    }
+    /* one entry per 64 bytes of the limit, at least 65536: far more than
+     * the schemas' entry limits let through (132 bytes each) */
+    ix->max = (int)(max_bytes / 64 > 65536 ? (max_bytes / 64 < (1u << 22) ? max_bytes / 64 : (1u << 22)) : 65536);
+    pos_build(text, len, ix);
+    cyaml_err_t ce = cyaml_load_data(text, len, cfg, schema, (cyaml_data_t **)out, NULL);
+    free(text);
     if (ce == CYAML_OK && *out) {
         *pos = ix;
         return SL_OK;
@@ -235,8 +363,26 @@ enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, v
     }
     if (lg.ntrace)
         line = lg.trace_line[0];
-    const char *unexpected = "Unexpected key: ";
-    if (strncmp(lg.first, unexpected, strlen(unexpected)) == 0) {
+    const char *unexpected = "Unexpected key: ", *excessive = "Excessive entries";
+    const char *expecting = "Expecting MAPPING, got event";
+    if (lg.ntrace == 0 && strncmp(lg.first, expecting, strlen(expecting)) == 0) {
+        /* the whole file is a sequence or a scalar */
+        e = sl_fail(d, kind, path, ix->root_line, NULL, "the file is %s: it must be a YAML mapping (key: value lines)",
+                    event_name(ix->root_type));
+    } else if (strncmp(lg.first, excessive, strlen(excessive)) == 0) {
+        /* libcyaml's frame is the entry it refused, one past the last it
+         * kept: name the sequence, at the line of that entry */
+        char *br = strrchr(key, '[');
+        int max = 0;
+        const char *mx = strchr(lg.first, '(');
+        if (mx)
+            max = atoi(mx + 1);
+        char entry[128];
+        snprintf(entry, sizeof entry, "%s[%d]", br ? (*br = '\0', key) : key, max);
+        int eline = sl_yaml_line(ix, entry);
+        e = sl_fail(d, kind, path, eline ? eline : line, key[0] ? key : NULL,
+                    "more than %d entries: at most %d are allowed", max, max);
+    } else if (strncmp(lg.first, unexpected, strlen(unexpected)) == 0) {
         const char *k = lg.first + strlen(unexpected);
         const struct pos_entry *pe = pos_find_key(ix, k, line);
         snprintf(key, sizeof key, "%s", pe ? pe->path : k);
@@ -248,6 +394,8 @@ enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, v
         line = lg.ntrace > 1 ? lg.trace_line[1] : 0;
         e = sl_fail(d, kind, path, line, key, "missing required key");
     } else {
+        if (!line && ix->err_line) /* libyaml's own error, which libcyaml gives no line for */
+            line = ix->err_line;
         e = sl_fail(d, kind, path, line, key[0] ? key : NULL, "%s",
                     lg.first[0] ? lg.first : cyaml_strerror(ce));
     }

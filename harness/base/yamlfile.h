@@ -9,16 +9,19 @@
  */
 #ifndef SL_YAMLFILE_H
 #define SL_YAMLFILE_H
+#include <stddef.h>
 #include <cyaml/cyaml.h>
 #include "sl_error.h"
 
 struct sl_yaml_pos;
 
 /* Load path into *out. Errors: SL_E_IO (unreadable), `kind` (the file's own
- * error id, e.g. SL_E_CONFIG or SL_E_SCENE) for YAML and schema errors. On
+ * error id, e.g. SL_E_CONFIG or SL_E_SCENE) for YAML and schema errors, for
+ * bytes that are not UTF-8 text (named with their line) and for a file over
+ * max_bytes (refused before it is read, so a huge file costs nothing). On
  * success *pos is the position index (free both with sl_yaml_free). */
 enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, void **out,
-                         struct sl_yaml_pos **pos, enum sl_err kind, struct sl_diag *d);
+                         struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind, struct sl_diag *d);
 void        sl_yaml_free(const cyaml_schema_value_t *schema, void *data, struct sl_yaml_pos *pos);
 
 /* Line of a dotted key path, 0 if unknown. */

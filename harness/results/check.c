@@ -23,6 +23,10 @@
 
 #define SL_BASELINE_VERSION 1
 
+/* baselines are written by shadowlab (tests/baselines/ci.yaml: 300 KiB);
+ * 64 MiB leaves room for big sweeps and still refuses a runaway file unread */
+#define SL_BASELINE_MAX_BYTES ((size_t)64 << 20)
+
 static const char *const class_name[SL_CC_COUNT] = {
 #define SL_CC_NAME(name, tol, text) #name,
     SL_CHECK_CLASSES(SL_CC_NAME)
@@ -482,7 +486,7 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
     memset(r, 0, sizeof *r);
     struct bl_file *b = NULL;
     struct sl_yaml_pos *pos = NULL;
-    enum sl_err e = sl_yaml_load(baseline, &file_schema, (void **)&b, &pos, SL_E_BASELINE, d);
+    enum sl_err e = sl_yaml_load(baseline, &file_schema, (void **)&b, &pos, SL_BASELINE_MAX_BYTES, SL_E_BASELINE, d);
     if (e)
         return e;
     struct sl_cell_record *cells = NULL;
@@ -611,7 +615,7 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
         fclose(probe);
         struct bl_file *old = NULL;
         struct sl_yaml_pos *pos = NULL;
-        enum sl_err e = sl_yaml_load(baseline, &file_schema, (void **)&old, &pos, SL_E_BASELINE, d);
+        enum sl_err e = sl_yaml_load(baseline, &file_schema, (void **)&old, &pos, SL_BASELINE_MAX_BYTES, SL_E_BASELINE, d);
         if (e)
             return e;
         {

@@ -611,7 +611,7 @@ static enum sl_err load_into(const char *path, struct build *b, struct sl_light 
 {
     struct raw_scene *r = NULL;
     struct sl_yaml_pos *pos = NULL;
-    enum sl_err e = sl_yaml_load(path, &scene_schema, (void **)&r, &pos, SL_E_SCENE, d);
+    enum sl_err e = sl_yaml_load(path, &scene_schema, (void **)&r, &pos, SL_SCENE_MAX_BYTES, SL_E_SCENE, d);
     if (e)
         return e;
     if (r->base) {

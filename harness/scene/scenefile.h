@@ -35,6 +35,12 @@
 #include "scene.h"
 #include "sl_error.h"
 
+/* A scene file is refused unread above 16 MiB: big geometry lives in model
+ * files, and 4096 mesh entries (the schema's limit) fit in under 1 MiB; a
+ * huge file would cost memory and time (the YAML parse and its line index)
+ * before the entry limits apply. */
+#define SL_SCENE_MAX_BYTES ((size_t)16 << 20)
+
 const char *sl_scenes_dir(void);
 
 /* Resolve `ref` to a readable file path. rel_dir: folder of the referring
