@@ -43,6 +43,16 @@ while IFS=$'\t' read -r f pat; do
     *) check "run $f" 2 "^shadowlab: $pat" -- "$bin" run "$f" --out "$tmp/results" ;;
   esac
 done < tests/bad/expect.tsv
+# huge files are refused before they are read (made here, not committed):
+# a config over 4 MiB and a scene file over 16 MiB, both padded with comments
+{ printf 'scenes: [{scene: primitives}]\nmap_sizes: [1024]\nmethods: [{method: nsm}]\n'
+  head -c $((4 * 1024 * 1024)) /dev/zero | tr '\0' '#'; } >"$tmp/huge.yaml"
+check "config over 4 MiB" 2 "^shadowlab: $tmp/huge\.yaml: file of 4194[0-9]+ bytes: at most 4 MiB" -- \
+  "$bin" validate "$tmp/huge.yaml"
+{ cat tests/bad/scenes/degenerate_depth.yaml; head -c $((16 * 1024 * 1024)) /dev/zero | tr '\0' '#'; } \
+  >"$tmp/huge_scene.yaml"
+check "scene over 16 MiB" 2 "^shadowlab: $tmp/huge_scene\.yaml: file of 16777[0-9]+ bytes: at most 16 MiB" -- \
+  "$bin" validate "$tmp/huge_scene.yaml"
 check "missing config" 2 "no_such\.yaml: cannot read: No such file" -- "$bin" run tests/bad/no_such.yaml --out "$tmp/results"
 check "unknown command" 2 "unknown command" -- "$bin" frobnicate
 check "run without config" 2 "missing CONFIG" -- "$bin" run

@@ -591,24 +591,63 @@ static enum sl_err read_viewpoint(const struct raw_vp *r, const char *file, cons
     if (fabsf(glm_vec3_dot(up, v->dir)) > 0.9999f)
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "up is parallel to the view direction");
     memcpy(v->up, up, sizeof up);
+    /* Degenerate views are refused: they render as all background, with no
+     * word. fov in (0.1, 179] degrees: at 179.999 tan(fov/2) is 1.1e5 and the
+     * whole scene shrinks to the image's centre pixel (at 179, 115); below
+     * 0.1 a pixel spans under 1e-6 radians, at float's precision for the
+     * view direction. far/near at most 1e7: the projection is float, and
+     * past that (1e-30 with 1e30, say) depths at the far end all round to
+     * the same value, or the matrix's terms under- and overflow. */
     snprintf(key, sizeof key, "viewpoints[%u].fov", i);
     if (!(r->fov > 0.0f && r->fov < 180.0f))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "fov must be in (0, 180) degrees");
+    if (!(r->fov > 0.1f && r->fov <= 179.0f))
+        return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "viewpoint '%s': fov %g degrees is degenerate: use "
+                           "(0.1, 179] (the image would be all background)", r->name, (double)r->fov);
     snprintf(key, sizeof key, "viewpoints[%u].near", i);
     if (!(r->near > 0.0f) || !isfinite(r->near))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "near must be > 0");
     snprintf(key, sizeof key, "viewpoints[%u].far", i);
     if (!(r->far > r->near) || !isfinite(r->far))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "far must exceed near");
+    if (!((double)r->far / (double)r->near <= 1e7))
+        return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "viewpoint '%s': near %g and far %g are degenerate: "
+                           "far/near must be at most 1e7 (depth precision)", r->name, (double)r->near,
+                           (double)r->far);
     v->fov_deg = r->fov;
     v->znear = r->near;
     v->zfar = r->far;
     return SL_OK;
 }
 
-static enum sl_err load_into(const char *path, struct build *b, struct sl_light *light, int *have_light,
-                             struct sl_scene *out, int depth, struct sl_diag *d)
+/* The files of a chain of base: scenes, outermost first (cycle check). */
+struct chain { int n; char real[5][1024]; const char *shown[5]; };
+
+/* realpath into a fixed buffer (realpath itself may write PATH_MAX bytes) */
+static void real_of(const char *path, char *buf, size_t n)
 {
+    char *r = realpath(path, NULL);
+    snprintf(buf, n, "%s", r ? r : path);
+    free(r);
+}
+
+static void chain_text(const struct chain *ch, const char *last, char *buf, size_t n)
+{
+    size_t k = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < ch->n && k < n; i++)
+        k += (size_t)snprintf(buf + k, n - k, "%s -> ", ch->shown[i]);
+    if (k < n)
+        snprintf(buf + k, n - k, "%s", last);
+}
+
+static enum sl_err load_into(const char *path, struct build *b, struct sl_light *light, int *have_light,
+                             struct sl_scene *out, struct chain *ch, struct sl_diag *d)
+{
+    int depth = ch->n;
+    real_of(path, ch->real[depth], sizeof ch->real[depth]);
+    ch->shown[depth] = path;
+    ch->n++;
     struct raw_scene *r = NULL;
     struct sl_yaml_pos *pos = NULL;
     enum sl_err e = sl_yaml_load(path, &scene_schema, (void **)&r, &pos, SL_SCENE_MAX_BYTES, SL_E_SCENE, d);
@@ -618,12 +657,25 @@ static enum sl_err load_into(const char *path, struct build *b, struct sl_light 
         char dir[512], bpath[1024];
         dir_of(path, dir, sizeof dir);
         struct sl_diag bd;
-        if (depth >= 4)
-            e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "base", "scenes based on scenes more than 4 deep");
-        else if (sl_scene_resolve(r->base, dir, bpath, sizeof bpath, &bd))
+        char real[1024];
+        int cycle = 0;
+        if (sl_scene_resolve(r->base, dir, bpath, sizeof bpath, &bd))
             e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "base", "%s", bd.msg);
-        else
-            e = load_into(bpath, b, light, have_light, NULL, depth + 1, d);
+        else {
+            for (char *q; (q = strstr(bpath, "/./")) != NULL;) /* dir/./x.yaml -> dir/x.yaml */
+                memmove(q, q + 2, strlen(q + 2) + 1);
+            real_of(bpath, real, sizeof real);
+            for (int k = 0; k < ch->n; k++)
+                cycle |= strcmp(ch->real[k], real) == 0;
+        }
+        if (!e && cycle) {
+            char text[800];
+            chain_text(ch, bpath, text, sizeof text);
+            e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "base", "base '%s' makes a cycle: %s", r->base, text);
+        } else if (!e && depth >= 4)
+            e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "base", "scenes based on scenes more than 4 deep");
+        else if (!e)
+            e = load_into(bpath, b, light, have_light, NULL, ch, d);
     }
     if (!e && r->light) {
         e = read_light(r->light, path, pos, light, d);
@@ -705,7 +757,8 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     struct sl_light light;
     memset(&light, 0, sizeof light);
     int have_light = 0;
-    enum sl_err e = load_into(path, &b, &light, &have_light, out, 0, d);
+    struct chain ch = {0};
+    enum sl_err e = load_into(path, &b, &light, &have_light, out, &ch, d);
     if (!e) {
         rebase(&b, out, &light);
         e = sl_scene_from_mesh(out, &b.all, d);
