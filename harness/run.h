@@ -80,6 +80,8 @@ struct sl_pass_counts {
     int soft_layers;                   /* soft_mc's near + far layers and N-buffer, per (view, map size) */
     int layers[SL_LAYER_COUNT];        /* shadow-map layer renders */
     int method_runs;                   /* method invocations, repetitions included */
+    int contour_runs;                  /* contour_from nsm: NSM runs made only to draw a contour (none
+                                        * where a label of the config is that NSM: its run is reused) */
 };
 
 struct sl_run_result {

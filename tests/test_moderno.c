@@ -472,6 +472,32 @@ static void moderno_shared_contour_primitives(void **st)
         assert_int_equal(r.cells[i + 3].fig.r[0].n[SL_FIG_uncertain], 0);
     }
     assert_true(differs > 0);   /* under own the approaches' contours differ */
+    /* NSM once per (view, map): the nsm label's run draws the contour and is
+     * that label's cell; own draws no NSM contour at all */
+    assert_int_equal(r.passes.contour_runs, 0);
+    assert_int_equal(r.passes.method_runs, r.ncells);
+    assert_int_equal(ro.passes.contour_runs, 0);
+    assert_int_equal(ro.passes.method_runs, ro.ncells);
+    /* without an nsm label the contour's NSM runs apart, once per (view,
+     * map), and every other approach's figures are the same */
+    static const char *const nolabel =
+        "scenes: [{scene: primitives, viewpoints: [side, with]}]\n"
+        "viewports: [{width: 256, height: 192}]\nmap_sizes: [1024, 2048]\n"
+        "methods:\n  - {label: coherence4, method: coherence, texels: 4}\n  - {label: texel, method: texel}\n"
+        "  - {label: chain, method: chain, finish: trace}\n";
+    struct sl_config cn;
+    struct sl_run_result rn;
+    sl_test_config("n.yaml", nolabel, &cn);
+    assert_int_equal(sl_run(&cn, &o, &rn, &d), SL_OK);
+    assert_int_equal(rn.ncells, 2 * 2 * 3);
+    assert_int_equal(rn.passes.contour_runs, 2 * 2);
+    assert_int_equal(rn.passes.method_runs, rn.ncells);
+    for (int i = 0, j = 0; i < r.ncells; i += 4, j += 3)
+        for (int k = 1; k < 4; k++)
+            for (int rg = 0; rg < r.cells[i].fig.nregions; rg++)
+                assert_memory_equal(r.cells[i + k].fig.r[rg].n, rn.cells[j + k - 1].fig.r[rg].n,
+                                    sizeof r.cells[i + k].fig.r[rg].n);
+    sl_run_result_free(&rn);
     sl_run_result_free(&r);
     sl_run_result_free(&ro);
 }
