@@ -710,6 +710,91 @@ static void moderno_wrong_hints_where(void **st)
     }
 }
 
+/* Contour pixels with 8-connectivity: a pixel whose 3 x 3 neighbourhood
+ * holds the other state (the change), then dilations by the 3 x 3 square.
+ * Returns the counts for 2, 4, 6 px in n[0..2]. */
+static void bands8_count(int W, int H, const uint8_t *state, uint64_t n[3])
+{
+    uint8_t *b = calloc((size_t)W * H, 1);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            uint8_t s0 = state[y * W + x];
+            if (!s0)
+                continue;
+            for (int j = -1; j <= 1 && !b[y * W + x]; j++)
+                for (int i = -1; i <= 1; i++) {
+                    int xx = x + i, yy = y + j;
+                    if (xx >= 0 && yy >= 0 && xx < W && yy < H && state[yy * W + xx] && state[yy * W + xx] != s0)
+                        b[y * W + x] = 1;
+                }
+        }
+    for (int k = 1; k <= 2; k++)
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                if (b[y * W + x] || !state[y * W + x])
+                    continue;
+                for (int j = -1; j <= 1 && !b[y * W + x]; j++)
+                    for (int i = -1; i <= 1; i++) {
+                        int xx = x + i, yy = y + j;
+                        if (xx >= 0 && yy >= 0 && xx < W && yy < H && b[yy * W + xx] == k)
+                            b[y * W + x] = (uint8_t)(k + 1);
+                    }
+            }
+    n[0] = n[1] = n[2] = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++)
+        for (int t = 0; t < 3; t++)
+            n[t] += b[i] && b[i] <= t + 1;
+    free(b);
+}
+
+/* Issue 14 item 2: Primitives/side's contour pixels (NSM's image, 1024²
+ * viewport) as shadowlab draws them (4-connected change and dilations) and
+ * with 8-connectivity, beside the thesis's Table 16 counts. */
+static void moderno_contour_connectivity(void **st)
+{
+    (void)st;
+    static const uint64_t thesis[2][3] = {{11000, 21482, 31683}, {10750, 21022, 31047}};
+    struct fig g;
+    fig_open(&g, "primitives");
+    sl_view_free(&g.v);
+    assert_true(fixture_view(&g.f, 0, 1024, 1024, &g.v));
+    g.mv = g.v;
+    g.mv.truth = NULL;
+    size_t npx = (size_t)g.v.w * g.v.h;
+    free(g.vd.v); free(g.vd.how); free(g.vd.base); free(g.vd.detail); free(g.vd.tests);
+    g.vd.w = g.v.w;
+    g.vd.h = g.v.h;
+    g.vd.v = calloc(npx, 1); g.vd.how = calloc(npx, 1); g.vd.base = calloc(npx, 1);
+    g.vd.detail = calloc(npx, 1); g.vd.tests = calloc(npx, 1);
+    uint8_t *band = calloc(npx, 1);
+    for (int m = 0; m < 2; m++) {
+        fig_frame_study(&g, 1024 << m);
+        fig_run(&g, "nsm", 0, 0);
+        sl_contour_bands(g.v.w, g.v.h, g.vd.v, 2, band);
+        uint64_t n4[3] = {0, 0, 0}, n8[3];
+        for (size_t i = 0; i < npx; i++)
+            for (int t = 0; t < 3; t++)
+                n4[t] += sl_in_contour(band[i], 2 * (t + 1));
+        bands8_count(g.v.w, g.v.h, g.vd.v, n8);
+        for (int t = 0; t < 3; t++) {
+            printf("contour primitives/side map %d %d px: 4-connected %llu (%.2fx the thesis's %llu), "
+                   "8-connected %llu (%.2fx)\n", 1024 << m, 2 * (t + 1), (unsigned long long)n4[t],
+                   (double)n4[t] / (double)thesis[m][t], (unsigned long long)thesis[m][t],
+                   (unsigned long long)n8[t], (double)n8[t] / (double)thesis[m][t]);
+            assert_true(n8[t] > n4[t]);
+        }
+        /* each dilation adds about the first band again, as in the thesis's
+         * counts: "2 px" is one pixel each side of the change in both */
+        for (int t = 1; t < 3; t++) {
+            double ours = (double)(n4[t] - n4[t - 1]) / (double)n4[0];
+            double theirs = (double)(thesis[m][t] - thesis[m][t - 1]) / (double)thesis[m][0];
+            assert_true(fabs(ours - theirs) < 0.1);
+        }
+    }
+    free(band);
+    fig_close(&g);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -722,6 +807,7 @@ int main(int argc, char **argv)
         SL_CASE(moderno, contour_policy_pixels),
         SL_CASE(moderno, shared_contour_primitives),
         SL_CASE(moderno, wrong_hints_where),
+        SL_CASE(moderno, contour_connectivity),
     };
     return sl_run_group(argc, argv, "moderno", tests, sl_test_setup, sl_test_teardown);
 }
