@@ -238,10 +238,69 @@ static void fidelity_section(void **st)
     assert_null(strstr(md, "fidelity to Moderno"));
 }
 
+static uint64_t th(const struct sl_report_fidelity_row *r, int n, int table, int map, int contour, const char *label,
+                   enum sl_figure f)
+{
+    const struct sl_report_fidelity_row *x = row(r, n, table, map, contour, label, f);
+    assert_non_null(x);
+    return x->thesis;
+}
+
+/* The transcription holds the thesis's own sums, so a mistyped datum fails:
+ * Table 16's pixels are Table 18's light + shadow; Table 17's caught errors
+ * are Table 16's NSM errors and Table 18's incorrect light + shadow; the
+ * hints of Tables 19/21 lie within NSM's light and shadow; and the eight
+ * classes of Tables 23, 24 and 26 add up to NSM's light (L->S corrected and
+ * turned bad, L->L kept) and its shadow (the S-> classes), approach by
+ * approach; every table is there for both map sizes and all four regions. */
+static void fidelity_transcription_sums(void **st)
+{
+    (void)st;
+    static struct sl_report_fidelity_row r[SL_REPORT_FIDELITY_MAXROWS];
+    int n = sl_report_fidelity_rows(NULL, 0, r, SL_REPORT_FIDELITY_MAXROWS);
+    assert_true(n < SL_REPORT_FIDELITY_MAXROWS);
+    static const int regions[] = {2, 4, 6, 0};
+    static const struct { int table; const char *label; } classes[] = {
+        {23, "texel"}, {24, "neighbours4"}, {24, "neighbours9"}, {26, "adjacency1"}, {26, "adjacency2"}};
+    int checked = 0;
+    for (int m = 1024; m <= 2048; m *= 2)
+        for (int g = 0; g < 4; g++) {
+            const int c = regions[g];
+            const uint64_t L = th(r, n, 18, m, c, "nsm", SL_FIG_light), S = th(r, n, 18, m, c, "nsm", SL_FIG_shadow);
+            assert_int_equal(th(r, n, 16, m, c, "nsm", SL_FIG_pixels), L + S);
+            const uint64_t wrong = th(r, n, 16, m, c, "nsm", SL_FIG_wrong);
+            assert_int_equal(wrong, th(r, n, 18, m, c, "nsm", SL_FIG_light_incorrect) +
+                                        th(r, n, 18, m, c, "nsm", SL_FIG_shadow_incorrect));
+            if (c)
+                assert_int_equal(th(r, n, 17, m, c, "nsm", SL_FIG_wrong_caught), wrong);
+            for (int k = 19; k <= 21; k += 2) {
+                const char *lab = k == 19 ? "coherence4" : "coherence9";
+                assert_true(th(r, n, k, m, c, lab, SL_FIG_hinted_light) <= L);
+                assert_true(th(r, n, k, m, c, lab, SL_FIG_hinted_shadow_moderno) <= S);
+            }
+            for (size_t a = 0; a < sizeof classes / sizeof classes[0]; a++) {
+                const int t = classes[a].table;
+                const char *lab = classes[a].label;
+                assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_ls) + th(r, n, t, m, c, lab, SL_FIG_broken_ls) +
+                                     th(r, n, t, m, c, lab, SL_FIG_kept_ll_right) +
+                                     th(r, n, t, m, c, lab, SL_FIG_kept_ll_wrong), L);
+                assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_sl) + th(r, n, t, m, c, lab, SL_FIG_broken_sl) +
+                                     th(r, n, t, m, c, lab, SL_FIG_kept_ss_right_moderno) +
+                                     th(r, n, t, m, c, lab, SL_FIG_kept_ss_wrong), S);
+                /* what NSM got wrong in light, an approach keeps or corrects */
+                assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_ls) + th(r, n, t, m, c, lab, SL_FIG_kept_ll_wrong),
+                                 th(r, n, 18, m, c, "nsm", SL_FIG_light_incorrect));
+                checked++;
+            }
+        }
+    assert_int_equal(checked, 2 * 4 * 5);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(fidelity, rows),
+        SL_CASE(fidelity, transcription_sums),
         SL_CASE(fidelity, claims),
         SL_CASE(fidelity, section),
     };
