@@ -101,7 +101,7 @@ struct sl_report_fidelity_row {
     double         ratio;          /* value / thesis; NAN when not measured or the thesis's is 0 */
     const char    *note;           /* NULL or the typo / transcription note */
 };
-#define SL_REPORT_FIDELITY_MAXROWS 512
+#define SL_REPORT_FIDELITY_MAXROWS 1024
 #define SL_REPORT_FIDELITY_NCLAIMS 7
 
 /* A qualitative claim of the thesis, measured on the cells. */

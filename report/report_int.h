@@ -137,6 +137,20 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
 int sl_report_is_moderno(const char *method);
 int sl_report_is_morais(const char *method);
 
+/* fidelity_thesis.c: Moderno 2011's published Primitives numbers, one datum a row */
+struct sl_thesis_datum {
+    int         table;
+    const char *viewpoint;
+    int         map_size;
+    int         contour;        /* px; 0 = whole image */
+    const char *label;          /* the cell's label in configs/moderno-2011.yaml */
+    enum sl_figure fig;
+    uint64_t    value;
+    const char *note;           /* a typo or an OCR garble and how it was resolved; NULL = none */
+};
+extern const struct sl_thesis_datum sl_thesis[];
+extern const int sl_nthesis;
+
 /* fidelity.c: Moderno 2011's Primitives numbers and claims beside the study's */
 enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 
