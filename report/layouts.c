@@ -579,13 +579,14 @@ static enum sl_err morais_view(struct sl_report_doc *doc, const struct sl_report
                                const struct sl_report_view *v, struct sl_diag *d)
 {
     static const struct { enum sl_figure f; const char *name; } rows[] = {
+        /* Morais 2015 Table 7's six rows in its order, then what it has no row for */
         {SL_FIG_light, "pixels in light"},
         {SL_FIG_shadow, "pixels in shadow"},
-        {SL_FIG_uncertain, "uncertain"},
         {SL_FIG_light_correct, "light – correct"},
         {SL_FIG_light_incorrect, "light – incorrect"},
         {SL_FIG_shadow_correct, "shadow – correct"},
         {SL_FIG_shadow_incorrect, "shadow – incorrect"},
+        {SL_FIG_uncertain, "uncertain (no row in the thesis)"},
     };
     int nmaps = s->nmaps > SL_REPORT_MAXCOLS - 2 ? SL_REPORT_MAXCOLS - 2 : s->nmaps;
     char vt[160], id[160], buf[96];
