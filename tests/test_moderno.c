@@ -636,6 +636,25 @@ static void fig_frame_study(struct fig *g, int S)
     assert_int_equal(sl_shadowmap_render(&g->sp, &g->f.mesh, &g->fr, SL_NEED(SL_LAYER_DEPTH_ID_BACK), &d), SL_OK);
 }
 
+/* The view of a study cell: viewpoint vp at the study's 1024 x 1024, its
+ * truth, and verdict buffers of its size. */
+static void fig_view_study(struct fig *g, int vp)
+{
+    sl_view_free(&g->v);
+    assert_true(fixture_view(&g->f, vp, 1024, 1024, &g->v));
+    g->mv = g->v;
+    g->mv.truth = NULL;
+    size_t npx = (size_t)g->v.w * g->v.h;
+    uint8_t **bufs[] = {&g->vd.v, &g->vd.how, &g->vd.base, &g->vd.detail, &g->vd.tests};
+    for (int k = 0; k < 5; k++) {
+        free(*bufs[k]);
+        *bufs[k] = calloc(npx, 1);
+        assert_non_null(*bufs[k]);
+    }
+    g->vd.w = g->v.w;
+    g->vd.h = g->v.h;
+}
+
 static void moderno_wrong_hints_where(void **st)
 {
     (void)st;
@@ -647,16 +666,7 @@ static void moderno_wrong_hints_where(void **st)
         struct hint_classes all;            /* the scene's views and maps, 6-px contour */
         memset(&all, 0, sizeof all);
         for (int vp = 0; vp < g.f.scene.nvp; vp++) {
-            sl_view_free(&g.v);
-            assert_true(fixture_view(&g.f, vp, 1024, 1024, &g.v));
-            g.mv = g.v;
-            g.mv.truth = NULL;
-            size_t npx = (size_t)g.v.w * g.v.h;
-            free(g.vd.v); free(g.vd.how); free(g.vd.base); free(g.vd.detail); free(g.vd.tests);
-            g.vd.w = g.v.w;
-            g.vd.h = g.v.h;
-            g.vd.v = calloc(npx, 1); g.vd.how = calloc(npx, 1); g.vd.base = calloc(npx, 1);
-            g.vd.detail = calloc(npx, 1); g.vd.tests = calloc(npx, 1);
+            fig_view_study(&g, vp);
             for (int S = 1024; S <= 2048; S *= 2)
                 for (int T = 2; T <= 6; T += 4) {
                     if (T == 2)
@@ -756,16 +766,8 @@ static void moderno_contour_connectivity(void **st)
     static const uint64_t thesis[2][3] = {{11000, 21482, 31683}, {10750, 21022, 31047}};
     struct fig g;
     fig_open(&g, "primitives");
-    sl_view_free(&g.v);
-    assert_true(fixture_view(&g.f, 0, 1024, 1024, &g.v));
-    g.mv = g.v;
-    g.mv.truth = NULL;
+    fig_view_study(&g, 0);
     size_t npx = (size_t)g.v.w * g.v.h;
-    free(g.vd.v); free(g.vd.how); free(g.vd.base); free(g.vd.detail); free(g.vd.tests);
-    g.vd.w = g.v.w;
-    g.vd.h = g.v.h;
-    g.vd.v = calloc(npx, 1); g.vd.how = calloc(npx, 1); g.vd.base = calloc(npx, 1);
-    g.vd.detail = calloc(npx, 1); g.vd.tests = calloc(npx, 1);
     uint8_t *band = calloc(npx, 1);
     for (int m = 0; m < 2; m++) {
         fig_frame_study(&g, 1024 << m);
