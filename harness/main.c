@@ -641,10 +641,11 @@ static int cmd_check(int argc, char **argv)
         OPT_HELP,
         {"baseline", required_argument, NULL, OPT_BASELINE}, {"study", required_argument, NULL, OPT_STUDY},
         {"rows", required_argument, NULL, OPT_ROWS},         {"update", no_argument, NULL, OPT_UPDATE},
-        {0, 0, 0, 0},
+        {"format", required_argument, NULL, OPT_FORMAT},     {"json", required_argument, NULL, OPT_JSON},
+        {"junit", required_argument, NULL, OPT_JUNIT},       {0, 0, 0, 0},
     };
     const struct opt_parser p = {"check", "", usage_check, lo};
-    const char *baseline = NULL;
+    const char *baseline = NULL, *json = NULL, *junit = NULL;
     struct sl_check_opts o = {0};
     int update = 0;
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
@@ -660,6 +661,13 @@ static int cmd_check(int argc, char **argv)
             break;
         }
         case OPT_UPDATE: update = 1; break;
+        case OPT_FORMAT:
+            if (strcmp(optarg, "text") && strcmp(optarg, "md"))
+                return usage_error("check: --format text or md", usage_check);
+            o.format = strcmp(optarg, "md") ? SL_CHECK_TEXT : SL_CHECK_MD;
+            break;
+        case OPT_JSON: json = optarg; break;
+        case OPT_JUNIT: junit = optarg; break;
         default: return opt_exit(c);
         }
     }
@@ -677,8 +685,22 @@ static int cmd_check(int argc, char **argv)
         fprintf(stderr, "shadowlab: wrote %s from %s\n", baseline, db);
         return 0;
     }
+    /* colour only for a person at a terminal (https://no-color.org) */
+    const char *nc = getenv("NO_COLOR");
+    o.color = o.format == SL_CHECK_TEXT && isatty(1) && !(nc && nc[0]);
+    struct { const char *path; FILE **f; } outs[] = {{json, &o.json}, {junit, &o.junit}};
+    for (int i = 0; i < 2; i++)
+        if (outs[i].path && !(*outs[i].f = fopen(outs[i].path, "w"))) {
+            sl_fail(&d, SL_E_OUTPUT, outs[i].path, 0, NULL, "cannot write");
+            if (o.json)
+                fclose(o.json);
+            return fail(SL_E_OUTPUT, &d);
+        }
     struct sl_check_result r;
     enum sl_err e = sl_check(db, baseline, &o, stdout, &r, &d);
+    for (int i = 0; i < 2; i++)
+        if (*outs[i].f && fclose(*outs[i].f) != 0 && !e)
+            e = sl_fail(&d, SL_E_OUTPUT, outs[i].path, 0, NULL, "cannot write");
     if (e)
         return fail(e, &d);
     return r.failed || r.missing ? 1 : 0;
