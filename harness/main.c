@@ -116,7 +116,11 @@ static const char usage_bench[] =
     "  --csv FILE      also write the summary rows as CSV\n"
     "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
 
-static const char usage_list[] = "usage: shadowlab list methods|scenes\n";
+static const char usage_list[] =
+    "usage: shadowlab list methods|scenes\n"
+    "  scenes: the scene files a config can name, each with where it was found; a name is looked\n"
+    "  up in the config's folder, then in each folder of SHADOWLAB_SCENES (colon-separated), then\n"
+    "  in the installed share/shadowlab/scenes (or, not installed, the source tree's scenes/)\n";
 
 /* 2: bad input or usage (a config, a scene, a model, an option, a store or
  * file that cannot be read as what it should be); 3: a system failure (an
@@ -177,7 +181,7 @@ static int opt_next(const struct opt_parser *p, int argc, char **argv)
     }
     if (c == '?' || c == ':') {
         char what[128];
-        if (optopt && optopt < 256)
+        if (c == '?' && optopt && optopt < 256)   /* an unknown letter, maybe inside -abc */
             snprintf(what, sizeof what, "-%c", optopt);
         else
             snprintf(what, sizeof what, "%s", argv[optind - 1]);
@@ -772,12 +776,20 @@ static int cmd_list(int argc, char **argv)
         return 0;
     }
     if (argc == 2 && strcmp(argv[1], "scenes") == 0) {
-        static char names[256][64], descr[256][160];
-        int n = sl_scene_list(names, descr, 256);
+        static char names[256][64], descr[256][160], paths[256][1024];
+        static const char *origin[256];
+        int n = sl_scene_list_where(names, descr, paths, origin, 256);
         for (int i = 0; i < n; i++)
-            printf("%-12s %s\n", names[i], descr[i]);
-        if (n == 0)
-            fprintf(stderr, "shadowlab: no scene files in %s\n", sl_scenes_dir());
+            printf("%-14s %-50s [%s: %s]\n", names[i], descr[i], origin[i], paths[i]);
+        if (n == 0) {
+            char dirs[16][1024];
+            const char *o[16];
+            int nd = sl_scene_dirs(NULL, dirs, o, 16);
+            fprintf(stderr, "shadowlab: no scene files in");
+            for (int i = 0; i < nd; i++)
+                fprintf(stderr, "%s %s (%s)", i ? "," : "", dirs[i], o[i]);
+            fputc('\n', stderr);
+        }
         return 0;
     }
     return usage_error("list: methods or scenes", usage_list);
