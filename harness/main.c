@@ -37,7 +37,7 @@ static const char usage[] =
     "  version, -V, --version     the git SHA this binary was built from\n";
 
 static const char usage_run[] =
-    "usage: shadowlab run CONFIG [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
+    "usage: shadowlab run CONFIG|SCENE [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
     "                     [--gl osmesa|egl] [-j N] [-D KEY=VALUE]... [-q|-v]\n"
     "  -o, --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
     "  --cells A:B       compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
@@ -53,6 +53,8 @@ static const char usage_run[] =
     "                    (the results' config hash covers the overrides)\n"
     "  -q, --quiet       print only the 'written to' line (and errors)\n"
     "  -v, --verbose     print every table of the run (the Markdown of table.md) as well\n"
+    "  SCENE: a scene file given for a config runs a default study of it (every viewpoint; nsm,\n"
+    "  csm and raytrace; 1024x1024 viewport; 2048 map) and prints the config it used.\n"
     "  By default a summary: cells, time, the wrong pixels (soft: the error) per label, where the\n"
     "  files are. Progress goes to stderr: one live line on a terminal, else one line every 10 s\n"
     "  or 5% of the cells. Ctrl-C (SIGINT) or SIGTERM stops after the cell under way, writes the\n"
@@ -363,6 +365,55 @@ static void print_summary(const struct sl_config *c, const struct sl_run_result 
     }
 }
 
+/* A scene file has a top-level meshes, light or base key; a config has not. */
+static int looks_like_scene(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 0;
+    char line[512];
+    int scene = 0;
+    while (!scene && fgets(line, sizeof line, f))
+        scene = strncmp(line, "meshes:", 7) == 0 || strncmp(line, "light:", 6) == 0 ||
+                strncmp(line, "base:", 5) == 0;
+    fclose(f);
+    return scene;
+}
+
+/* `shadowlab run SCENE.yaml`: a default study of the scene, as a config file
+ * beside nothing (a temporary file, removed once read): every viewpoint,
+ * NSM, CSM (Morais 2015's conservative pair, exact) and the ray-traced
+ * reference, 1024² viewport, 2048² map. The config used is printed so it can
+ * be saved and edited. 0 on failure (errno-style message printed). */
+static int default_study(const char *scene, char *out, size_t n)
+{
+    char abs[4096];
+    if (!realpath(scene, abs))
+        return 0;
+    snprintf(out, n, "/tmp/shadowlab-study-XXXXXX.yaml");
+    int fd = mkstemps(out, 5);
+    if (fd < 0)
+        return 0;
+    FILE *f = fdopen(fd, "w");
+    if (!f) {
+        close(fd);
+        unlink(out);
+        return 0;
+    }
+    /* the name: the scene file's own name without .yaml, kept to the
+     * characters a config name allows */
+    const char *base = strrchr(abs, '/') ? strrchr(abs, '/') + 1 : abs;
+    char name[64];
+    size_t k = 0;
+    for (const char *p = base; *p && k + 1 < sizeof name && strcmp(p, ".yaml"); p++)
+        name[k++] = (strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.", *p) && *p) ? *p : '_';
+    name[k] = '\0';
+    fprintf(f, "name: %s\nscenes: [{scene: \"%s\"}]\nviewports: [{width: 1024, height: 1024}]\nmap_sizes: [2048]\n"
+               "methods:\n  - {label: nsm, method: nsm}\n  - {label: csm, method: csm}\n"
+               "  - {label: raytrace, method: raytrace}\n", name[0] && name[0] != '.' ? name : "scene", abs);
+    return fclose(f) == 0;
+}
+
 static int cmd_run(int argc, char **argv)
 {
     static const struct option lo[] = {
@@ -430,7 +481,25 @@ static int cmd_run(int argc, char **argv)
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     struct sl_config c;
-    enum sl_err e = sl_config_load_with(cfg, ov.v, ov.n, &c, &d);
+    char study[64] = "";
+    if (looks_like_scene(cfg)) {
+        if (!default_study(cfg, study, sizeof study)) {
+            sl_fail(&d, SL_E_IO, cfg, 0, NULL, "cannot write a default study for this scene");
+            return fail(SL_E_IO, &d);
+        }
+    }
+    enum sl_err e = sl_config_load_with(study[0] ? study : cfg, ov.v, ov.n, &c, &d);
+    if (study[0]) {
+        unlink(study);
+        if (!e) {
+            snprintf(c.path, sizeof c.path, "%s", cfg);
+            if (!es.quiet) {
+                fprintf(stderr, "shadowlab: %s is a scene: a default study of it, with this config "
+                                "(save it as a .yaml file to edit it):\n", cfg);
+                sl_config_write(&c, stderr);
+            }
+        }
+    }
     if (e)
         return fail(e, &d);
     if (gl)
@@ -475,21 +544,6 @@ static int cmd_run(int argc, char **argv)
         return 128 + (stop_signal == SIGTERM ? SIGTERM : SIGINT);
     }
     return 0;
-}
-
-/* A scene file has a top-level meshes, light or base key; a config has not. */
-static int looks_like_scene(const char *path)
-{
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return 0;
-    char line[512];
-    int scene = 0;
-    while (!scene && fgets(line, sizeof line, f))
-        scene = strncmp(line, "meshes:", 7) == 0 || strncmp(line, "light:", 6) == 0 ||
-                strncmp(line, "base:", 5) == 0;
-    fclose(f);
-    return scene;
 }
 
 static int cmd_validate(int argc, char **argv)

@@ -141,5 +141,16 @@ echo "$out" | grep -q "^primitives .*\[source tree: " && ok || fail "the built-i
 echo "$out" | grep -q notascene && fail "list scenes lists a config" || ok
 "$bin" list scenes | grep -q "^default" && fail "list scenes lists configs/" || ok
 
+# a scene given where a config is expected: a default study, its config printed
+cp scenes/blocks.yaml "$tmp/myscene.yaml"
+"$bin" run "$tmp/myscene.yaml" -o "$tmp/st" -D 'viewports=[{width: 128, height: 128}]' -D 'map_sizes=[256]' \
+  >"$tmp/st.out" 2>"$tmp/st.err" || fail "run SCENE: $(cat "$tmp/st.err")"
+grep -q "is a scene: a default study" "$tmp/st.err" && grep -q "^  - {label: csm, method: csm}" "$tmp/st.err" && ok ||
+  fail "run SCENE: config not printed"
+for l in nsm csm raytrace; do grep -q "^$l  *1 " "$tmp/st.out" && ok || fail "run SCENE: no $l line"; done
+grep -q "^myscene: 3 cell(s) computed" "$tmp/st.out" && ok || fail "run SCENE summary: $(cat "$tmp/st.out")"
+sed -n '/^# filled-in config/,$p' "$tmp/st.err" | grep -v "^shadowlab: [0-9]" >"$tmp/saved.yaml"
+"$bin" validate "$tmp/saved.yaml" >/dev/null 2>&1 && ok || fail "the printed config does not validate"
+
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]
