@@ -573,6 +573,22 @@ static int cmd_validate(int argc, char **argv)
                "bounds (%g, %g, %g) .. (%g, %g, %g)\n", file, s.name, s.nt, s.nv, s.nranges, s.nvp,
                s.origin[0] + s.lo[0], s.origin[1] + s.lo[1], s.origin[2] + s.lo[2], s.origin[0] + s.hi[0],
                s.origin[1] + s.hi[1], s.origin[2] + s.hi[2]);
+        /* per mesh, in world units, to frame viewpoints without a run */
+        for (int m = 0; m < s.nranges; m++) {
+            const struct sl_mesh_range *r = &s.ranges[m];
+            double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+            for (uint32_t t = r->first; t < r->first + r->count; t++)
+                for (int k = 0; k < 3; k++) {
+                    const float *v = &s.pos[3 * s.idx[3 * t + k]];
+                    for (int a = 0; a < 3; a++) {
+                        lo[a] = v[a] < lo[a] ? v[a] : lo[a];
+                        hi[a] = v[a] > hi[a] ? v[a] : hi[a];
+                    }
+                }
+            printf("  mesh %-16s %8u triangles, bounds (%g, %g, %g) .. (%g, %g, %g)\n", r->name, r->count,
+                   s.origin[0] + lo[0], s.origin[1] + lo[1], s.origin[2] + lo[2], s.origin[0] + hi[0],
+                   s.origin[1] + hi[1], s.origin[2] + hi[2]);
+        }
         sl_scene_free(&s);
         return 0;
     }

@@ -141,6 +141,12 @@ echo "$out" | grep -q "^primitives .*\[source tree: " && ok || fail "the built-i
 echo "$out" | grep -q notascene && fail "list scenes lists a config" || ok
 "$bin" list scenes | grep -q "^default" && fail "list scenes lists configs/" || ok
 
+# validate of a scene: per-mesh bounds inside the scene's bounds
+out=$("$bin" validate scenes/primitives.yaml) || fail "validate scene"
+[ "$(echo "$out" | grep -c '^  mesh ')" -eq "$(echo "$out" | sed -n 's/.* \([0-9]*\) mesh(es).*/\1/p')" ] && ok ||
+  fail "validate: not one bounds line per mesh: $out"
+echo "$out" | grep -q "^  mesh torus .* triangles, bounds (" && ok || fail "validate: no torus bounds: $out"
+
 # a scene given where a config is expected: a default study, its config printed
 cp scenes/blocks.yaml "$tmp/myscene.yaml"
 "$bin" run "$tmp/myscene.yaml" -o "$tmp/st" -D 'viewports=[{width: 128, height: 128}]' -D 'map_sizes=[256]' \
