@@ -472,6 +472,282 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
     return SL_OK;
 }
 
+/* ---- -D key=value: a config key replaced by its path ----
+ * The file is parsed into a libyaml document, each override's value (itself
+ * YAML: 0.01, [512, 1024], {width: 512, height: 512}) is grafted at its
+ * path, and the document is written back out as text that goes through the
+ * same libcyaml schema and checks as the file itself: an override is valid
+ * exactly when the same text in the file would be. */
+struct ov_ctx {
+    const char *const *ov;
+    int n;
+};
+
+static int ov_copy(yaml_document_t *dst, yaml_document_t *src, int idx)
+{
+    yaml_node_t *n = yaml_document_get_node(src, idx);
+    if (!n)
+        return 0;
+    if (n->type == YAML_SCALAR_NODE)
+        return yaml_document_add_scalar(dst, NULL, n->data.scalar.value, (int)n->data.scalar.length,
+                                        YAML_ANY_SCALAR_STYLE);
+    if (n->type == YAML_SEQUENCE_NODE) {
+        int s = yaml_document_add_sequence(dst, NULL, YAML_FLOW_SEQUENCE_STYLE);
+        for (yaml_node_item_t *it = n->data.sequence.items.start; s && it < n->data.sequence.items.top; it++) {
+            int c = ov_copy(dst, src, *it);
+            if (!c || !yaml_document_append_sequence_item(dst, s, c))
+                return 0;
+        }
+        return s;
+    }
+    int m = yaml_document_add_mapping(dst, NULL, YAML_FLOW_MAPPING_STYLE);
+    for (yaml_node_pair_t *pr = n->data.mapping.pairs.start; m && pr < n->data.mapping.pairs.top; pr++) {
+        int k = ov_copy(dst, src, pr->key), v = ov_copy(dst, src, pr->value);
+        if (!k || !v || !yaml_document_append_mapping_pair(dst, m, k, v))
+            return 0;
+    }
+    return m;
+}
+
+static int ov_parse(yaml_document_t *doc, const unsigned char *text, size_t len)
+{
+    yaml_parser_t p;
+    if (!yaml_parser_initialize(&p))
+        return 0;
+    yaml_parser_set_input_string(&p, text, len);
+    int ok = yaml_parser_load(&p, doc);
+    yaml_parser_delete(&p);
+    if (ok && !yaml_document_get_root_node(doc)) {
+        yaml_document_delete(doc);
+        ok = 0;
+    }
+    return ok;
+}
+
+static int ov_emit(void *user, unsigned char *buf, size_t size)
+{
+    return fwrite(buf, 1, size, user) == size;
+}
+
+/* Set path (a.b[2].c) in doc to a copy of val's root; 0 with msg on failure. */
+static int ov_set(yaml_document_t *doc, const char *path, yaml_document_t *val, char *msg, size_t nmsg)
+{
+    int node = 1;   /* the root */
+    const char *p = path;
+    while (*p) {
+        char name[64];
+        size_t k = strcspn(p, ".[");
+        if (k == 0 || k >= sizeof name) {
+            snprintf(msg, nmsg, "not a key path (name.name[index])");
+            return 0;
+        }
+        memcpy(name, p, k);
+        name[k] = '\0';
+        p += k;
+        int idx = -1;
+        if (*p == '[') {
+            char *end;
+            long v = strtol(p + 1, &end, 10);
+            if (end == p + 1 || *end != ']' || v < 0 || v > 1000) {
+                snprintf(msg, nmsg, "an index is [N], N >= 0");
+                return 0;
+            }
+            idx = (int)v;
+            p = end + 1;
+        }
+        if (*p == '.')
+            p++;
+        else if (*p) {
+            snprintf(msg, nmsg, "not a key path (name.name[index])");
+            return 0;
+        }
+        yaml_node_t *m = yaml_document_get_node(doc, node);
+        if (!m || m->type != YAML_MAPPING_NODE) {
+            snprintf(msg, nmsg, "'%s' is inside a value that is not a mapping", name);
+            return 0;
+        }
+        yaml_node_pair_t *hit = NULL;
+        for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
+            yaml_node_t *kn = yaml_document_get_node(doc, pr->key);
+            if (kn && kn->type == YAML_SCALAR_NODE && strcmp((const char *)kn->data.scalar.value, name) == 0)
+                hit = pr;
+        }
+        int last = !*p;
+        if (!hit) {
+            if (idx >= 0) {
+                snprintf(msg, nmsg, "the config has no '%s' list to index", name);
+                return 0;
+            }
+            /* a new key: the schema check after this says whether it exists */
+            int kn = yaml_document_add_scalar(doc, NULL, (yaml_char_t *)name, -1, YAML_PLAIN_SCALAR_STYLE);
+            int vn = last ? ov_copy(doc, val, 1) : yaml_document_add_mapping(doc, NULL, YAML_BLOCK_MAPPING_STYLE);
+            if (!kn || !vn || !yaml_document_append_mapping_pair(doc, node, kn, vn)) {
+                snprintf(msg, nmsg, "out of memory");
+                return 0;
+            }
+            node = vn;
+            continue;
+        }
+        if (idx < 0) {
+            if (last && !(hit->value = ov_copy(doc, val, 1))) {
+                snprintf(msg, nmsg, "out of memory");
+                return 0;
+            }
+            node = hit->value;
+            continue;
+        }
+        yaml_node_t *sq = yaml_document_get_node(doc, hit->value);
+        if (!sq || sq->type != YAML_SEQUENCE_NODE) {
+            snprintf(msg, nmsg, "'%s' is not a list", name);
+            return 0;
+        }
+        int count = (int)(sq->data.sequence.items.top - sq->data.sequence.items.start);
+        if (idx > count || (idx == count && !last)) {
+            snprintf(msg, nmsg, "'%s' has %d entr%s (an index past them adds one only as the last step)", name,
+                     count, count == 1 ? "y" : "ies");
+            return 0;
+        }
+        if (idx == count) {
+            int vn = ov_copy(doc, val, 1);
+            if (!vn || !yaml_document_append_sequence_item(doc, hit->value, vn)) {
+                snprintf(msg, nmsg, "out of memory");
+                return 0;
+            }
+            node = vn;
+        } else if (last) {
+            int vn = ov_copy(doc, val, 1);
+            if (!vn) {
+                snprintf(msg, nmsg, "out of memory");
+                return 0;
+            }
+            sq = yaml_document_get_node(doc, hit->value);   /* adding nodes may move the node table */
+            sq->data.sequence.items.start[idx] = vn;
+        } else {
+            node = sq->data.sequence.items.start[idx];
+        }
+    }
+    return 1;
+}
+
+static enum sl_err ov_edit(unsigned char **text, size_t *len, void *user, struct sl_diag *d)
+{
+    const struct ov_ctx *o = user;
+    yaml_document_t doc;
+    if (!ov_parse(&doc, *text, *len))
+        return SL_OK;   /* not YAML: the loader names the file's own error */
+    yaml_node_t *root = yaml_document_get_root_node(&doc);
+    if (root->type != YAML_MAPPING_NODE) {
+        yaml_document_delete(&doc);
+        return SL_OK;
+    }
+    for (int i = 0; i < o->n; i++) {
+        const char *eq = strchr(o->ov[i], '=');
+        char path[96], msg[300];
+        char src[200];
+        snprintf(src, sizeof src, "-D %s", o->ov[i]);
+        if (!eq || eq == o->ov[i] || (size_t)(eq - o->ov[i]) >= sizeof path) {
+            yaml_document_delete(&doc);
+            return sl_fail(d, SL_E_USAGE, src, 0, NULL, "-D wants KEY=VALUE (e.g. -D map_sizes=[512,1024])");
+        }
+        snprintf(path, sizeof path, "%.*s", (int)(eq - o->ov[i]), o->ov[i]);
+        yaml_document_t val;
+        if (!ov_parse(&val, (const unsigned char *)eq + 1, strlen(eq + 1))) {
+            yaml_document_delete(&doc);
+            return sl_fail(d, SL_E_CONFIG, src, 0, path, "the value '%s' is not YAML", eq + 1);
+        }
+        int ok = ov_set(&doc, path, &val, msg, sizeof msg);
+        yaml_document_delete(&val);
+        if (!ok) {
+            yaml_document_delete(&doc);
+            return sl_fail(d, SL_E_CONFIG, src, 0, path, "%s", msg);
+        }
+    }
+    char *out = NULL;
+    size_t n = 0;
+    FILE *mf = open_memstream(&out, &n);
+    yaml_emitter_t em;
+    int ok = mf && yaml_emitter_initialize(&em);
+    if (ok) {
+        yaml_emitter_set_output(&em, ov_emit, mf);
+        yaml_emitter_set_unicode(&em, 1);
+        ok = yaml_emitter_open(&em) && yaml_emitter_dump(&em, &doc) && yaml_emitter_close(&em);
+        yaml_emitter_delete(&em);
+    } else {
+        yaml_document_delete(&doc);
+    }
+    if (mf)
+        fclose(mf);
+    if (!ok) {
+        free(out);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "writing the config with its -D overrides");
+    }
+    free(*text);
+    *text = (unsigned char *)out;
+    *len = n;
+    return SL_OK;
+}
+
+/* Does an error at `key` concern the override of `path`? */
+static int ov_concerns(const char *key, const char *path)
+{
+    size_t k = strlen(key), p = strlen(path);
+    if (!k)
+        return 0;
+    if (k >= p)
+        return strncmp(key, path, p) == 0 && (key[p] == '\0' || key[p] == '.' || key[p] == '[');
+    return strncmp(key, path, k) == 0 && (path[k] == '.' || path[k] == '[');
+}
+
+enum sl_err sl_config_load_with(const char *path, const char *const *overrides, int n, struct sl_config *out,
+                                struct sl_diag *d)
+{
+    if (n <= 0)
+        return sl_config_load(path, out, d);
+    memset(out, 0, sizeof *out);
+    snprintf(out->path, sizeof out->path, "%s", path);
+    struct raw_config *raw = NULL;
+    struct sl_yaml_pos *ix = NULL;
+    struct ov_ctx oc = {overrides, n};
+    enum sl_err e = sl_yaml_load_edited(path, &config_schema, (void **)&raw, &ix, SL_CONFIG_MAX_BYTES, SL_E_CONFIG,
+                                        ov_edit, &oc, d);
+    if (!e)
+        e = sl_hash_file(path, &out->hash, d);
+    if (!e) {
+        /* the same file with the same overrides hashes alike (so --resume
+         * finds its cells); with other overrides it does not */
+        for (int i = 0; i < n; i++)
+            for (size_t k = 0, len = strlen(overrides[i]); k <= len; k++)   /* the NUL separates them */
+                out->hash = (out->hash ^ (unsigned char)overrides[i][k]) * 1099511628211ull;
+        /* line numbers of the written-out text mean nothing to the user:
+         * positions are looked up only by key from here on */
+        e = validate(raw, path, ix, out, d);
+    }
+    sl_yaml_free(&config_schema, raw, ix);
+    if (!e || d->file[0] == '-')
+        return e;
+    /* an error at an overridden key is the override's */
+    for (int i = 0; i < n; i++) {
+        const char *eq = strchr(overrides[i], '=');
+        char p[96];
+        snprintf(p, sizeof p, "%.*s", eq ? (int)(eq - overrides[i]) : 0, overrides[i]);
+        if (ov_concerns(d->key, p)) {
+            snprintf(d->file, sizeof d->file, "-D %s", overrides[i]);
+            d->line = 0;
+            return e;
+        }
+    }
+    /* else the file's own error, with its own line, if the file alone has it */
+    struct sl_config *alone = malloc(sizeof *alone);
+    struct sl_diag d2;
+    memset(&d2, 0, sizeof d2);
+    if (alone && sl_config_load(path, alone, &d2) != SL_OK)
+        *d = d2;
+    else
+        d->line = 0;
+    free(alone);
+    return e;
+}
+
 enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_diag *d)
 {
     memset(out, 0, sizeof *out);

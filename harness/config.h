@@ -92,6 +92,14 @@ struct sl_config {
 /* Parse and validate; on failure d names file, line and key. */
 enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_diag *d);
 
+/* The same with command-line overrides, each "key.path[i]=YAML value"
+ * (-D): applied to the file's YAML before the schema and every check, so an
+ * override is refused exactly as the same text in the file would be, the
+ * diag then naming "-D key=value" as the source. The hash covers the file
+ * and the overrides. */
+enum sl_err sl_config_load_with(const char *path, const char *const *overrides, int n, struct sl_config *out,
+                                struct sl_diag *d);
+
 /* Write the filled-in config (every default explicit) as YAML. */
 void sl_config_write(const struct sl_config *c, FILE *f);
 

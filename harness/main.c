@@ -3,9 +3,13 @@
  * 0 success, 1 a check failed, 2 bad input or usage (and any other failure
  * that leaves no result).
  */
+#define _GNU_SOURCE   /* getopt_long, setenv, sigaction */
+#include <getopt.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 #include "bench.h"
 #include "check.h"
@@ -22,32 +26,45 @@
 #include "util.h"
 
 static const char usage[] =
-    "usage: shadowlab <command> [--help] ...\n"
-    "  run CONFIG [options]       run an experiment (shadowlab run --help)\n"
-    "  validate FILE              check a config or a scene file without GL or Embree\n"
+    "usage: shadowlab <command> [--help] ...      (shadowlab help COMMAND = shadowlab COMMAND --help)\n"
+    "  run CONFIG|SCENE [options] run an experiment (shadowlab run --help)\n"
+    "  validate FILE [-D K=V]     check a config or a scene file without GL or Embree\n"
     "  table DB [options]         regenerate tables from a results store\n"
-    "  report DB [--out DIR]      HTML and Markdown report of a results store (needs gnuplot)\n"
+    "  report DB [-o DIR]         HTML and Markdown report of a results store (needs gnuplot)\n"
     "  check DB --baseline FILE   compare a results store with a committed baseline (exit 1 if outside)\n"
     "  bench [CONFIG] [options]   every stage against its plain counterpart, the studies, their targets\n"
     "  list methods|scenes        what can be named in a config\n"
-    "  version                    the git SHA this binary was built from\n";
+    "  version, -V, --version     the git SHA this binary was built from\n";
 
 static const char usage_run[] =
-    "usage: shadowlab run CONFIG [--out DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
-    "                     [--gl osmesa|egl]\n"
-    "  --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
-    "  --cells A:B   compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
-    "  --resume      skip cells the results store already holds for this config\n"
-    "  --db FILE     results store (default: the config's 'store', else DIR/shadowlab.db)\n"
-    "  --no-cache    trace the truth even when DIR/cache holds it\n"
-    "  --gl B        the GL context: osmesa (the default where built) or egl (GPU machines;\n"
-    "                SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
+    "usage: shadowlab run CONFIG|SCENE [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
+    "                     [--gl osmesa|egl] [-j N] [-D KEY=VALUE]... [-q|-v]\n"
+    "  -o, --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
+    "  --cells A:B       compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
+    "  --resume          skip cells the results store already holds for this config\n"
+    "  --db FILE         results store (default: the config's 'store', else DIR/shadowlab.db)\n"
+    "  --no-cache        trace the truth even when DIR/cache holds it\n"
+    "  --gl B            the GL context: osmesa (the default where built) or egl (GPU machines;\n"
+    "                    SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
+    "  -j, --threads N   threads of the truth and the CPU passes (the config's 'threads') and of\n"
+    "                    llvmpipe (LP_NUM_THREADS), 1..256\n"
+    "  -D KEY=VALUE      replace a config key by its path, the value in YAML, checked as the file is:\n"
+    "                    -D map_sizes=[512,1024] -D 'methods[0].bias=0.01' -D outputs.exr=true\n"
+    "                    (the results' config hash covers the overrides)\n"
+    "  -q, --quiet       print only the 'written to' line (and errors)\n"
+    "  -v, --verbose     print every table of the run (the Markdown of table.md) as well\n"
+    "  SCENE: a scene file given for a config runs a default study of it (every viewpoint; nsm,\n"
+    "  csm and raytrace; 1024x1024 viewport; 2048 map) and prints the config it used.\n"
+    "  By default a summary: cells, time, the wrong pixels (soft: the error) per label, where the\n"
+    "  files are. Progress goes to stderr: one live line on a terminal, else one line every 10 s\n"
+    "  or 5% of the cells. Ctrl-C (SIGINT) or SIGTERM stops after the cell under way, writes the\n"
+    "  folder of what is stored and says how to --resume (exit 130 or 143).\n"
     "  One run writes a results store at a time (a lock on DB.lock); a second is refused\n"
     "  with exit 2, naming the holder's pid. Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
     "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
 
 static const char usage_validate[] =
-    "usage: shadowlab validate FILE\n"
+    "usage: shadowlab validate FILE [-D KEY=VALUE]...\n"
     "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
     "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
 
@@ -61,14 +78,15 @@ static const char usage_table[] =
     "  the cells of one label (as the theses' summary tables), md or csv.\n";
 
 static const char usage_report[] =
-    "usage: shadowlab report RESULTS_DB [--out DIR]\n"
+    "usage: shadowlab report RESULTS_DB [-o DIR]\n"
     "  Writes DIR/report.html (self-contained, offline) and DIR/report.md with the thesis-style\n"
     "  tables of every study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
     "  (gnuplot, SVG), costs, the error overlays and the provenance of every run.\n"
-    "  --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n";
+    "  -o, --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n";
 
 static const char usage_check[] =
     "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
+    "                          [--format text|md] [--json FILE] [--junit FILE]\n"
     "  Compares the latest stored cell of each key with the baseline FILE: violations of a\n"
     "  method's exactness always exactly; every count exactly when the store was measured on\n"
     "  the baseline's machine; otherwise each class of figure within the baseline's tolerance\n"
@@ -76,7 +94,11 @@ static const char usage_check[] =
     "  tolerance or a baseline cell is missing, 2 on bad input.\n"
     "  --study NAME  only cells of that config name\n"
     "  --rows N      show at most N moved values (default 200)\n"
-    "  --update      write FILE from DB instead (keeps FILE's tolerances): a deliberate refresh\n";
+    "  --update      write FILE from DB instead (keeps FILE's tolerances): a deliberate refresh\n"
+    "  --format F    text (default: a plain table; colour on a terminal unless NO_COLOR is set)\n"
+    "                or md (Markdown)\n"
+    "  --json FILE   also write every compared cell and class with its verdict as JSON\n"
+    "  --junit FILE  also write JUnit XML: one testcase per cell and class of figure\n";
 
 static const char usage_bench[] =
     "usage: shadowlab bench [CONFIG] [--only LIST] [--reps N] [--scene S] [--viewport WxH] [--map N]\n"
@@ -96,7 +118,11 @@ static const char usage_bench[] =
     "  --csv FILE      also write the summary rows as CSV\n"
     "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
 
-static const char usage_list[] = "usage: shadowlab list methods|scenes\n";
+static const char usage_list[] =
+    "usage: shadowlab list methods|scenes\n"
+    "  scenes: the scene files a config can name, each with where it was found; a name is looked\n"
+    "  up in the config's folder, then in each folder of SHADOWLAB_SCENES (colon-separated), then\n"
+    "  in the installed share/shadowlab/scenes (or, not installed, the source tree's scenes/)\n";
 
 /* 2: bad input or usage (a config, a scene, a model, an option, a store or
  * file that cannot be read as what it should be); 3: a system failure (an
@@ -125,12 +151,64 @@ static int usage_error(const char *msg, const char *text)
     return 2;
 }
 
-static int wants_help(int argc, char **argv)
+
+/* ---- options: getopt_long per verb ----
+ * Each verb has a table of long options and a short-option string; opt_next
+ * returns the next option (as getopt_long does), handles --help itself and
+ * turns an unknown option or a missing value into one message that names
+ * it. To add an option to a verb: one entry in its `struct option` table
+ * (a short letter, or an OPT_* id above 256 for a long-only one) and one
+ * case in its switch. */
+enum {
+    OPT_CELLS = 256, OPT_RESUME, OPT_DB, OPT_NO_CACHE, OPT_GL, OPT_FORMAT, OPT_SCENE, OPT_VIEWPOINT,
+    OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
+    OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV,
+};
+#define OPT_HELP {"help", no_argument, NULL, 'h'}
+enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };
+
+struct opt_parser {
+    const char *verb, *shorts, *help;
+    const struct option *longs;
+};
+
+static int opt_next(const struct opt_parser *p, int argc, char **argv)
 {
-    for (int i = 2; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
-            return 1;
-    return 0;
+    char shorts[64];
+    snprintf(shorts, sizeof shorts, ":h%s", p->shorts);   /* ':' = say which value is missing */
+    int c = getopt_long(argc, argv, shorts, p->longs, NULL);
+    if (c == 'h') {
+        fputs(p->help, stdout);
+        return OPT_EXIT_OK;
+    }
+    if (c == '?' || c == ':') {
+        char what[128];
+        if (c == '?' && optopt && optopt < 256)   /* an unknown letter, maybe inside -abc */
+            snprintf(what, sizeof what, "-%c", optopt);
+        else
+            snprintf(what, sizeof what, "%s", argv[optind - 1]);
+        fprintf(stderr, "shadowlab %s: %s '%s'\n%s", p->verb, c == '?' ? "unknown option" : "missing value for",
+                what, p->help);
+        return OPT_EXIT_USAGE;
+    }
+    return c;
+}
+
+static int opt_exit(int c) { return c == OPT_EXIT_OK ? 0 : 2; }
+
+/* -D KEY=VALUE, repeatable */
+struct overrides {
+    const char *v[64];
+    int n;
+};
+static int add_override(struct overrides *o, const char *verb, const char *arg, const char *help)
+{
+    if (o->n == (int)(sizeof o->v / sizeof o->v[0]) || !strchr(arg, '=')) {
+        fprintf(stderr, "shadowlab %s: -D wants KEY=VALUE (at most 64): '%s'\n%s", verb, arg, help);
+        return 0;
+    }
+    o->v[o->n++] = arg;
+    return 1;
 }
 
 /* "A:B" -> [A, B); "A:" -> [A, end) */
@@ -152,19 +230,70 @@ static int parse_cells(const char *s, int *a, int *b)
     return 1;
 }
 
+/* SIGINT / SIGTERM: the run stops after the cell under way; a second
+ * signal kills at once (the default action, restored). */
+static volatile int stop_signal;
+static void on_stop(int sig)
+{
+    stop_signal = sig;
+    signal(sig, SIG_DFL);
+}
+
 /* What a run says along the way, on stderr: notes, violations and
- * non-finite values always; progress as one rewritten line on a terminal. */
+ * non-finite values always; progress as one rewritten line on a terminal,
+ * else a line every 10 s or 5% of the cells (CI logs, nohup, batch jobs). */
 struct event_state {
-    int tty;
+    int    tty, quiet;
+    double last_s;
+    int    last_done;
 };
+
+static void fmt_dur(double s, char *out, size_t n)
+{
+    if (s < 60)
+        snprintf(out, n, "%.0fs", s);
+    else if (s < 3600)
+        snprintf(out, n, "%dm%02ds", (int)s / 60, (int)s % 60);
+    else
+        snprintf(out, n, "%dh%02dm", (int)s / 3600, ((int)s % 3600) / 60);
+}
+
+static void print_progress(const struct sl_run_event *ev, struct event_state *es)
+{
+    const struct sl_config *c = ev->config;
+    const struct sl_cell *cl = ev->cell;
+    double el = ev->elapsed_s;
+    double eta = ev->done ? el * (double)(ev->total - ev->done) / (double)ev->done : 0.0;
+    if (es->tty) {
+        fprintf(stderr, "\r[%d/%d] %s/%s %d² %-16s %6.1fs elapsed, ~%.0fs left   ", ev->done, ev->total, cl->scene,
+                cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label, el, eta);
+        if (ev->done == ev->total)
+            fputc('\n', stderr);
+        fflush(stderr);
+        return;
+    }
+    int step = (ev->total + 19) / 20;   /* 5% of the cells, at least one */
+    if (ev->done != ev->total && el - es->last_s < 10.0 && ev->done - es->last_done < step)
+        return;
+    char e1[32], e2[32];
+    fmt_dur(el, e1, sizeof e1);
+    fmt_dur(eta, e2, sizeof e2);
+    fprintf(stderr, "shadowlab: %d/%d cells (%.0f%%), %s elapsed, ~%s left\n", ev->done, ev->total,
+            100.0 * ev->done / (ev->total ? ev->total : 1), e1, e2);
+    fflush(stderr);
+    es->last_s = el;
+    es->last_done = ev->done;
+}
 
 static void print_event(const struct sl_run_event *ev, void *user)
 {
-    const struct event_state *es = user;
+    struct event_state *es = user;
     const struct sl_config *c = ev->config;
     const struct sl_cell *cl = ev->cell;
     switch (ev->kind) {
     case SL_EVENT_FRUSTUM_NOTE:
+        if (es->quiet)
+            break;
         fprintf(stderr, "shadowlab: note: %s/%s: the point frustum of the area light's centre leaves %u PFL "
                         "pixel(s) outside its map (the exact methods trace them) and %u triangle(s) out of the "
                         "conservative layers (tested on the CPU instead)\n",
@@ -192,68 +321,48 @@ static void print_event(const struct sl_run_event *ev, void *user)
                         "not finite or out of range\n", cl->scene, cl->viewpoint, c->maps[cl->key.map],
                 c->methods[cl->key.method].label, (unsigned long long)cl->nonfinite);
         break;
-    case SL_EVENT_PROGRESS: {
-        if (!es->tty)
-            break;
-        double el = ev->elapsed_s;
-        double eta = ev->done ? el * (double)(ev->total - ev->done) / (double)ev->done : 0.0;
-        fprintf(stderr, "\r[%d/%d] %s/%s %d² %-16s %6.1fs elapsed, ~%.0fs left   ", ev->done, ev->total, cl->scene,
-                cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label, el, eta);
-        if (ev->done == ev->total)
-            fputc('\n', stderr);
-        fflush(stderr);
+    case SL_EVENT_PROGRESS:
+        if (!es->quiet)
+            print_progress(ev, es);
         break;
-    }
     }
 }
 
-static int cmd_run(int argc, char **argv)
+/* One screen: what ran, how long, one headline figure per label. */
+static void print_summary(const struct sl_config *c, const struct sl_run_result *r)
 {
-    const char *cfg = NULL;
-    struct sl_run_opts o = {.table_out = stdout, .write_files = 1, .on_event = print_event};
-    struct event_state es = {.tty = isatty(2)};
-    o.user = &es;
-    int no_cache = 0;
-    enum sl_gl_backend gl = SL_GL_DEFAULT;
-    for (int i = 2; i < argc; i++) {
-        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-            o.out_root = argv[++i];
-        else if (strcmp(argv[i], "--gl") == 0 && i + 1 < argc) {
-            if (!(gl = sl_gl_backend_parse(argv[++i])))
-                return usage_error("run: --gl wants osmesa or egl", usage_run);
+    printf("%s: %d cell(s) computed, %d already stored, in %.1f s (%s)\n", c->name, r->ncells, r->skipped,
+           r->ms_total / 1e3, r->prov.gl_renderer);
+    if (!r->ncells)
+        return;
+    printf("%-20s %6s %14s %12s\n", "label", "cells", "wrong pixels", "of pixels");
+    for (int m = 0; m < c->nmethods; m++) {
+        uint64_t wrong = 0, pixels = 0;
+        double mae = 0;
+        int n = 0, nsoft = 0;
+        for (int i = 0; i < r->ncells; i++) {
+            const struct sl_cell *cl = &r->cells[i];
+            if (cl->key.method != m)
+                continue;
+            n++;
+            if (cl->has_soft) {
+                nsoft++;
+                mae += cl->soft.pct[SL_SFIG_soft_mae];
+                continue;
+            }
+            const struct sl_region_figures *img = &cl->fig.r[cl->fig.nregions - 1];   /* the whole image */
+            wrong += img->n[SL_FIG_wrong];
+            pixels += img->n[SL_FIG_pixels];
         }
-        else if (strcmp(argv[i], "--db") == 0 && i + 1 < argc)
-            o.store = argv[++i];
-        else if (strcmp(argv[i], "--cells") == 0 && i + 1 < argc) {
-            if (!parse_cells(argv[++i], &o.first, &o.last))
-                return usage_error("run: --cells wants A:B with 0 <= A < B (or A:)", usage_run);
-        } else if (strcmp(argv[i], "--resume") == 0)
-            o.resume = 1;
-        else if (strcmp(argv[i], "--no-cache") == 0)
-            no_cache = 1;
-        else if (argv[i][0] == '-')
-            return usage_error("run: unknown option", usage_run);
-        else if (!cfg)
-            cfg = argv[i];
+        if (!n)
+            continue;
+        if (nsoft == n)
+            printf("%-20s %6d %14s %11.3f%% mean absolute error of visibility\n", c->methods[m].label, n, "-",
+                   mae / nsoft);
         else
-            return usage_error("run: one config at a time", usage_run);
+            printf("%-20s %6d %14llu %11.3f%%\n", c->methods[m].label, n, (unsigned long long)wrong,
+                   pixels ? 100.0 * (double)wrong / (double)pixels : 0.0);
     }
-    if (!cfg)
-        return usage_error("run: missing CONFIG", usage_run);
-    if (no_cache)
-        o.cache_dir = "";
-    struct sl_diag d;
-    memset(&d, 0, sizeof d);
-    struct sl_config c;
-    enum sl_err e = sl_config_load(cfg, &c, &d);
-    if (e)
-        return fail(e, &d);
-    if (gl)
-        c.gl = gl;
-    struct sl_run_result r;
-    e = sl_run(&c, &o, &r, &d);
-    sl_run_result_free(&r);
-    return e ? fail(e, &d) : 0;
 }
 
 /* A scene file has a top-level meshes, light or base key; a config has not. */
@@ -271,84 +380,278 @@ static int looks_like_scene(const char *path)
     return scene;
 }
 
-static int cmd_validate(int argc, char **argv)
+/* `shadowlab run SCENE.yaml`: a default study of the scene, as a config file
+ * beside nothing (a temporary file, removed once read): every viewpoint,
+ * NSM, CSM (Morais 2015's conservative pair, exact) and the ray-traced
+ * reference, 1024² viewport, 2048² map. The config used is printed so it can
+ * be saved and edited. 0 on failure (errno-style message printed). */
+static int default_study(const char *scene, char *out, size_t n)
 {
-    if (argc != 3)
-        return usage_error("validate: one FILE", usage_validate);
+    char abs[4096];
+    if (!realpath(scene, abs))
+        return 0;
+    snprintf(out, n, "/tmp/shadowlab-study-XXXXXX.yaml");
+    int fd = mkstemps(out, 5);
+    if (fd < 0)
+        return 0;
+    FILE *f = fdopen(fd, "w");
+    if (!f) {
+        close(fd);
+        unlink(out);
+        return 0;
+    }
+    /* the name: the scene file's own name without .yaml, kept to the
+     * characters a config name allows */
+    const char *base = strrchr(abs, '/') ? strrchr(abs, '/') + 1 : abs;
+    char name[64];
+    size_t k = 0;
+    for (const char *p = base; *p && k + 1 < sizeof name && strcmp(p, ".yaml"); p++)
+        name[k++] = (strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.", *p) && *p) ? *p : '_';
+    name[k] = '\0';
+    fprintf(f, "name: %s\nscenes: [{scene: \"%s\"}]\nviewports: [{width: 1024, height: 1024}]\nmap_sizes: [2048]\n"
+               "methods:\n  - {label: nsm, method: nsm}\n  - {label: csm, method: csm}\n"
+               "  - {label: raytrace, method: raytrace}\n", name[0] && name[0] != '.' ? name : "scene", abs);
+    return fclose(f) == 0;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    static const struct option lo[] = {
+        OPT_HELP,
+        {"out", required_argument, NULL, 'o'},      {"cells", required_argument, NULL, OPT_CELLS},
+        {"resume", no_argument, NULL, OPT_RESUME},  {"db", required_argument, NULL, OPT_DB},
+        {"no-cache", no_argument, NULL, OPT_NO_CACHE}, {"gl", required_argument, NULL, OPT_GL},
+        {"threads", required_argument, NULL, 'j'},  {"quiet", no_argument, NULL, 'q'},
+        {"verbose", no_argument, NULL, 'v'},        {"define", required_argument, NULL, 'D'},
+        {0, 0, 0, 0},
+    };
+    const struct opt_parser p = {"run", "o:j:qvD:", usage_run, lo};
+    struct sl_run_opts o = {.write_files = 1, .on_event = print_event, .stop = &stop_signal};
+    struct event_state es = {.tty = isatty(2)};
+    o.user = &es;
+    int no_cache = 0, verbose = 0, threads = 0;
+    enum sl_gl_backend gl = SL_GL_DEFAULT;
+    struct overrides ov = {.n = 0};
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
+        switch (c) {
+        case 'o': o.out_root = optarg; break;
+        case OPT_GL:
+            if (!(gl = sl_gl_backend_parse(optarg)))
+                return usage_error("run: --gl wants osmesa or egl", usage_run);
+            break;
+        case OPT_DB: o.store = optarg; break;
+        case OPT_CELLS:
+            if (!parse_cells(optarg, &o.first, &o.last))
+                return usage_error("run: --cells wants A:B with 0 <= A < B (or A:)", usage_run);
+            break;
+        case OPT_RESUME: o.resume = 1; break;
+        case OPT_NO_CACHE: no_cache = 1; break;
+        case 'j': {
+            char *end;
+            long v = strtol(optarg, &end, 10);
+            if (*end || end == optarg || v < 1 || v > 256)
+                return usage_error("run: -j/--threads wants a number of threads, 1..256", usage_run);
+            threads = (int)v;
+            break;
+        }
+        case 'q': es.quiet = 1; break;
+        case 'v': verbose = 1; break;
+        case 'D':
+            if (!add_override(&ov, "run", optarg, usage_run))
+                return 2;
+            break;
+        default: return opt_exit(c);
+        }
+    }
+    if (optind >= argc)
+        return usage_error("run: missing CONFIG", usage_run);
+    if (optind + 1 < argc)
+        return usage_error("run: one config at a time", usage_run);
+    const char *cfg = argv[optind];
+    if (no_cache)
+        o.cache_dir = "";
+    if (verbose && !es.quiet)
+        o.table_out = stdout;
+    if (threads) {
+        /* llvmpipe reads it when the GL context is made */
+        char t[8];
+        snprintf(t, sizeof t, "%d", threads);
+        setenv("LP_NUM_THREADS", t, 1);
+    }
     struct sl_diag d;
     memset(&d, 0, sizeof d);
-    if (looks_like_scene(argv[2])) {
+    struct sl_config c;
+    char study[64] = "";
+    if (looks_like_scene(cfg)) {
+        if (!default_study(cfg, study, sizeof study)) {
+            sl_fail(&d, SL_E_IO, cfg, 0, NULL, "cannot write a default study for this scene");
+            return fail(SL_E_IO, &d);
+        }
+    }
+    enum sl_err e = sl_config_load_with(study[0] ? study : cfg, ov.v, ov.n, &c, &d);
+    if (study[0]) {
+        unlink(study);
+        if (!e) {
+            snprintf(c.path, sizeof c.path, "%s", cfg);
+            if (!es.quiet) {
+                fprintf(stderr, "shadowlab: %s is a scene: a default study of it, with this config "
+                                "(save it as a .yaml file to edit it):\n", cfg);
+                sl_config_write(&c, stderr);
+            }
+        }
+    }
+    if (e)
+        return fail(e, &d);
+    if (gl)
+        c.gl = gl;
+    if (threads)
+        c.threads = threads;
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    struct sl_run_result r;
+    e = sl_run(&c, &o, &r, &d);
+    if (!e) {
+        if (!es.quiet && !verbose)
+            print_summary(&c, &r);
+        else if (verbose)
+            printf("\n%s: %d cell(s) computed, %d already stored, in %.1f s\n", c.name, r.ncells, r.skipped,
+                   r.ms_total / 1e3);
+        /* the one line a script or a redirected log needs, even with -q */
+        printf("written to %s/%s%s\n", r.out_dir, r.store_path[0] ? " and " : "", r.store_path);
+    }
+    int interrupted = r.interrupted;
+    int stored = r.stored_total;
+    char store_path[sizeof r.store_path];
+    snprintf(store_path, sizeof store_path, "%s", r.store_path);
+    sl_run_result_free(&r);
+    if (e)
+        return fail(e, &d);
+    if (interrupted) {
+        fflush(stdout);
+        fprintf(stderr, "shadowlab: interrupted (%s): %d of %d cell(s) of this config are stored%s%s; "
+                        "to go on:\n  shadowlab", stop_signal == SIGTERM ? "SIGTERM" : "SIGINT", stored,
+                sl_plan_count(&c), store_path[0] ? " in " : "", store_path);
+        for (int i = 0; i < argc; i++) {
+            const char *a = argv[i];
+            int plain = strspn(a, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,") ==
+                        strlen(a);
+            fprintf(stderr, plain ? " %s" : " '%s'", a);
+        }
+        fprintf(stderr, "%s\n", o.resume ? "" : " --resume");
+        return 128 + (stop_signal == SIGTERM ? SIGTERM : SIGINT);
+    }
+    return 0;
+}
+
+static int cmd_validate(int argc, char **argv)
+{
+    static const struct option lo[] = {OPT_HELP, {"define", required_argument, NULL, 'D'}, {0, 0, 0, 0}};
+    const struct opt_parser p = {"validate", "D:", usage_validate, lo};
+    struct overrides ov = {.n = 0};
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
+        if (c != 'D')
+            return opt_exit(c);
+        if (!add_override(&ov, "validate", optarg, usage_validate))
+            return 2;
+    }
+    if (optind + 1 != argc)
+        return usage_error("validate: one FILE", usage_validate);
+    const char *file = argv[optind];
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    if (looks_like_scene(file)) {
+        if (ov.n)
+            return usage_error("validate: -D applies to a config, not to a scene file", usage_validate);
         struct sl_scene s;
-        enum sl_err e = sl_scene_load(argv[2], &s, &d);
+        enum sl_err e = sl_scene_load(file, &s, &d);
         if (e)
             return fail(e, &d);
         printf("%s: ok: scene '%s', %u triangles, %u vertices, %d mesh(es), %d viewpoint(s), "
-               "bounds (%g, %g, %g) .. (%g, %g, %g)\n", argv[2], s.name, s.nt, s.nv, s.nranges, s.nvp,
+               "bounds (%g, %g, %g) .. (%g, %g, %g)\n", file, s.name, s.nt, s.nv, s.nranges, s.nvp,
                s.origin[0] + s.lo[0], s.origin[1] + s.lo[1], s.origin[2] + s.lo[2], s.origin[0] + s.hi[0],
                s.origin[1] + s.hi[1], s.origin[2] + s.hi[2]);
+        /* per mesh, in world units, to frame viewpoints without a run */
+        for (int m = 0; m < s.nranges; m++) {
+            const struct sl_mesh_range *r = &s.ranges[m];
+            double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+            for (uint32_t t = r->first; t < r->first + r->count; t++)
+                for (int k = 0; k < 3; k++) {
+                    const float *v = &s.pos[3 * s.idx[3 * t + k]];
+                    for (int a = 0; a < 3; a++) {
+                        lo[a] = v[a] < lo[a] ? v[a] : lo[a];
+                        hi[a] = v[a] > hi[a] ? v[a] : hi[a];
+                    }
+                }
+            printf("  mesh %-16s %8u triangles, bounds (%g, %g, %g) .. (%g, %g, %g)\n", r->name, r->count,
+                   s.origin[0] + lo[0], s.origin[1] + lo[1], s.origin[2] + lo[2], s.origin[0] + hi[0],
+                   s.origin[1] + hi[1], s.origin[2] + hi[2]);
+        }
         sl_scene_free(&s);
         return 0;
     }
     struct sl_config c;
-    enum sl_err e = sl_config_load(argv[2], &c, &d);
+    enum sl_err e = sl_config_load_with(file, ov.v, ov.n, &c, &d);
     if (e)
         return fail(e, &d);
-    printf("%s: ok: %d scene(s), %d cell(s)\n", argv[2], c.nscenes, sl_plan_count(&c));
+    printf("%s: ok: %d scene(s), %d cell(s)\n", file, c.nscenes, sl_plan_count(&c));
     sl_config_write(&c, stdout);
     return 0;
 }
 
 static int cmd_table(int argc, char **argv)
 {
-    const char *db = NULL;
+    static const struct option lo[] = {
+        OPT_HELP,
+        {"format", required_argument, NULL, OPT_FORMAT},     {"scene", required_argument, NULL, OPT_SCENE},
+        {"viewpoint", required_argument, NULL, OPT_VIEWPOINT}, {"label", required_argument, NULL, OPT_LABEL},
+        {"map", required_argument, NULL, OPT_MAP},           {"run", required_argument, NULL, OPT_RUN},
+        {"summary", required_argument, NULL, OPT_SUMMARY},   {"region", required_argument, NULL, OPT_REGION},
+        {"lower-is-better", no_argument, NULL, OPT_LOWER},   {"average-case", required_argument, NULL, OPT_AVG},
+        {0, 0, 0, 0},
+    };
+    const struct opt_parser p = {"table", "", usage_table, lo};
     struct sl_store_filter f = {0};
     int fmt = SL_TABLE_MD;
     struct sl_summary_opts so = {.figure = -1, .region = -1};
     const char *summary = NULL;
     char avg_scene[64] = "", avg_vp[32] = "";
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--format") == 0 && v) {
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
+        const char *v = optarg;
+        switch (c) {
+        case OPT_FORMAT:
             fmt = sl_table_format_parse(v);
             if (fmt < 0)
                 return usage_error("table: --format md, csv or latex", usage_table);
-            i++;
-        } else if (strcmp(a, "--scene") == 0 && v) {
-            f.scene = v; i++;
-        } else if (strcmp(a, "--viewpoint") == 0 && v) {
-            f.viewpoint = v; i++;
-        } else if (strcmp(a, "--label") == 0 && v) {
-            f.label = v; i++;
-        } else if (strcmp(a, "--map") == 0 && v) {
-            f.map_size = atoi(v); i++;
-        } else if (strcmp(a, "--run") == 0 && v) {
-            f.run_id = atoll(v); i++;
-        } else if (strcmp(a, "--summary") == 0 && v) {
-            summary = v; i++;
-        } else if (strcmp(a, "--region") == 0 && v) {
+            break;
+        case OPT_SCENE: f.scene = v; break;
+        case OPT_VIEWPOINT: f.viewpoint = v; break;
+        case OPT_LABEL: f.label = v; break;
+        case OPT_MAP: f.map_size = atoi(v); break;
+        case OPT_RUN: f.run_id = atoll(v); break;
+        case OPT_SUMMARY: summary = v; break;
+        case OPT_REGION:
             so.region = !strcmp(v, "image") ? 0 : !strcmp(v, "contours") ? -1 : atoi(v);
             if (so.region < -1 || (so.region > 0 && so.region % 2))
                 return usage_error("table: --region N (even), image or contours", usage_table);
-            i++;
-        } else if (strcmp(a, "--lower-is-better") == 0) {
-            so.lower_is_better = 1;
-        } else if (strcmp(a, "--average-case") == 0 && v) {
+            break;
+        case OPT_LOWER: so.lower_is_better = 1; break;
+        case OPT_AVG:
             if (sscanf(v, "%63[^/]/%31[^/]/%d/%d", avg_scene, avg_vp, &so.avg_region, &so.avg_map) < 3)
                 return usage_error("table: --average-case SCENE/VIEWPOINT/N[/MAP]", usage_table);
             so.avg_scene = avg_scene;
             so.avg_viewpoint = avg_vp;
-            i++;
-        } else if (a[0] == '-') {
-            return usage_error("table: unknown option", usage_table);
-        } else if (!db) {
-            db = a;
-        } else {
-            return usage_error("table: one DB", usage_table);
+            break;
+        default: return opt_exit(c);
         }
     }
-    if (!db)
+    if (optind >= argc)
         return usage_error("table: missing DB", usage_table);
+    if (optind + 1 < argc)
+        return usage_error("table: one DB", usage_table);
+    const char *db = argv[optind];
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     FILE *probe = fopen(db, "rb");
@@ -383,19 +686,19 @@ static int cmd_table(int argc, char **argv)
 
 static int cmd_report(int argc, char **argv)
 {
+    static const struct option lo[] = {OPT_HELP, {"out", required_argument, NULL, 'o'}, {0, 0, 0, 0}};
+    const struct opt_parser p = {"report", "o:", usage_report, lo};
     struct sl_report_opts o = {0};
-    for (int i = 2; i < argc; i++) {
-        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-            o.out_dir = argv[++i];
-        else if (argv[i][0] == '-')
-            return usage_error("report: unknown option", usage_report);
-        else if (!o.db)
-            o.db = argv[i];
-        else
-            return usage_error("report: one RESULTS_DB", usage_report);
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
+        if (c != 'o')
+            return opt_exit(c);
+        o.out_dir = optarg;
     }
-    if (!o.db)
+    if (optind >= argc)
         return usage_error("report: missing RESULTS_DB", usage_report);
+    if (optind + 1 < argc)
+        return usage_error("report: one RESULTS_DB", usage_report);
+    o.db = argv[optind];
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     char dir[1100];
@@ -408,29 +711,43 @@ static int cmd_report(int argc, char **argv)
 
 static int cmd_check(int argc, char **argv)
 {
-    const char *db = NULL, *baseline = NULL;
+    static const struct option lo[] = {
+        OPT_HELP,
+        {"baseline", required_argument, NULL, OPT_BASELINE}, {"study", required_argument, NULL, OPT_STUDY},
+        {"rows", required_argument, NULL, OPT_ROWS},         {"update", no_argument, NULL, OPT_UPDATE},
+        {"format", required_argument, NULL, OPT_FORMAT},     {"json", required_argument, NULL, OPT_JSON},
+        {"junit", required_argument, NULL, OPT_JUNIT},       {0, 0, 0, 0},
+    };
+    const struct opt_parser p = {"check", "", usage_check, lo};
+    const char *baseline = NULL, *json = NULL, *junit = NULL;
     struct sl_check_opts o = {0};
     int update = 0;
-    for (int i = 2; i < argc; i++) {
-        if (strcmp(argv[i], "--baseline") == 0 && i + 1 < argc)
-            baseline = argv[++i];
-        else if (strcmp(argv[i], "--study") == 0 && i + 1 < argc)
-            o.study = argv[++i];
-        else if (strcmp(argv[i], "--rows") == 0 && i + 1 < argc) {
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
+        switch (c) {
+        case OPT_BASELINE: baseline = optarg; break;
+        case OPT_STUDY: o.study = optarg; break;
+        case OPT_ROWS: {
             char *end;
-            long v = strtol(argv[++i], &end, 10);
+            long v = strtol(optarg, &end, 10);
             if (*end || v < 1 || v > 1000000)
                 return usage_error("check: --rows wants a positive number", usage_check);
             o.max_rows = (int)v;
-        } else if (strcmp(argv[i], "--update") == 0)
-            update = 1;
-        else if (argv[i][0] == '-')
-            return usage_error("check: unknown option", usage_check);
-        else if (!db)
-            db = argv[i];
-        else
-            return usage_error("check: one results store at a time", usage_check);
+            break;
+        }
+        case OPT_UPDATE: update = 1; break;
+        case OPT_FORMAT:
+            if (strcmp(optarg, "text") && strcmp(optarg, "md"))
+                return usage_error("check: --format text or md", usage_check);
+            o.format = strcmp(optarg, "md") ? SL_CHECK_TEXT : SL_CHECK_MD;
+            break;
+        case OPT_JSON: json = optarg; break;
+        case OPT_JUNIT: junit = optarg; break;
+        default: return opt_exit(c);
+        }
     }
+    if (optind + 1 < argc)
+        return usage_error("check: one results store at a time", usage_check);
+    const char *db = optind < argc ? argv[optind] : NULL;
     if (!db || !baseline)
         return usage_error("check: wants DB and --baseline FILE", usage_check);
     struct sl_diag d;
@@ -442,8 +759,22 @@ static int cmd_check(int argc, char **argv)
         fprintf(stderr, "shadowlab: wrote %s from %s\n", baseline, db);
         return 0;
     }
+    /* colour only for a person at a terminal (https://no-color.org) */
+    const char *nc = getenv("NO_COLOR");
+    o.color = o.format == SL_CHECK_TEXT && isatty(1) && !(nc && nc[0]);
+    struct { const char *path; FILE **f; } outs[] = {{json, &o.json}, {junit, &o.junit}};
+    for (int i = 0; i < 2; i++)
+        if (outs[i].path && !(*outs[i].f = fopen(outs[i].path, "w"))) {
+            sl_fail(&d, SL_E_OUTPUT, outs[i].path, 0, NULL, "cannot write");
+            if (o.json)
+                fclose(o.json);
+            return fail(SL_E_OUTPUT, &d);
+        }
     struct sl_check_result r;
     enum sl_err e = sl_check(db, baseline, &o, stdout, &r, &d);
+    for (int i = 0; i < 2; i++)
+        if (*outs[i].f && fclose(*outs[i].f) != 0 && !e)
+            e = sl_fail(&d, SL_E_OUTPUT, outs[i].path, 0, NULL, "cannot write");
     if (e)
         return fail(e, &d);
     return r.failed || r.missing ? 1 : 0;
@@ -451,61 +782,84 @@ static int cmd_check(int argc, char **argv)
 
 static int cmd_bench(int argc, char **argv)
 {
+    static const struct option lo[] = {
+        OPT_HELP,
+        {"reps", required_argument, NULL, OPT_REPS},         {"only", required_argument, NULL, OPT_ONLY},
+        {"scene", required_argument, NULL, OPT_SCENE},       {"viewport", required_argument, NULL, OPT_VIEWPORT},
+        {"map", required_argument, NULL, OPT_MAP},           {"csv", required_argument, NULL, OPT_CSV},
+        {"gl", required_argument, NULL, OPT_GL},             {0, 0, 0, 0},
+    };
+    const struct opt_parser p = {"bench", "", usage_bench, lo};
     struct sl_bench_opts o = {.config = NULL, .reps = 0, .out = stdout};
     struct sl_diag d;
     memset(&d, 0, sizeof d);
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--reps") == 0 && val) {
-            o.reps = atoi(argv[++i]);
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
+        switch (c) {
+        case OPT_REPS:
+            o.reps = atoi(optarg);
             if (o.reps < 1 || o.reps > 1000)
                 return usage_error("bench: --reps must be 1..1000", usage_bench);
-        } else if (strcmp(a, "--only") == 0 && val) {
-            enum sl_err e = sl_bench_parse_stages(argv[++i], &o.stages, &d);
-            if (e)
+            break;
+        case OPT_ONLY:
+            if (sl_bench_parse_stages(optarg, &o.stages, &d))
                 return usage_error(d.msg, usage_bench);
-        } else if (strcmp(a, "--scene") == 0 && val) {
-            o.scene = argv[++i];
-        } else if (strcmp(a, "--viewport") == 0 && val) {
+            break;
+        case OPT_SCENE: o.scene = optarg; break;
+        case OPT_VIEWPORT: {
             char tail;
-            if (sscanf(argv[++i], "%dx%d%c", &o.width, &o.height, &tail) != 2 || o.width < 1 || o.height < 1 ||
+            if (sscanf(optarg, "%dx%d%c", &o.width, &o.height, &tail) != 2 || o.width < 1 || o.height < 1 ||
                 o.width > 16384 || o.height > 16384)
                 return usage_error("bench: --viewport wants WxH, 1..16384 each", usage_bench);
-        } else if (strcmp(a, "--map") == 0 && val) {
-            o.map = atoi(argv[++i]);
+            break;
+        }
+        case OPT_MAP:
+            o.map = atoi(optarg);
             if (o.map < 16 || o.map > 16384)
                 return usage_error("bench: --map must be 16..16384", usage_bench);
-        } else if (strcmp(a, "--csv") == 0 && val) {
-            o.csv = argv[++i];
-        } else if (strcmp(a, "--gl") == 0 && val) {
-            if (!(o.gl = sl_gl_backend_parse(argv[++i])))
+            break;
+        case OPT_CSV: o.csv = optarg; break;
+        case OPT_GL:
+            if (!(o.gl = sl_gl_backend_parse(optarg)))
                 return usage_error("bench: --gl wants osmesa or egl", usage_bench);
-        } else if (a[0] == '-') {
-            return usage_error("bench: unknown option or missing value", usage_bench);
-        } else if (!o.config) {
-            o.config = a;
-        } else {
-            return usage_error("bench: one CONFIG at most", usage_bench);
+            break;
+        default: return opt_exit(c);
         }
     }
+    if (optind + 1 < argc)
+        return usage_error("bench: one CONFIG at most", usage_bench);
+    o.config = optind < argc ? argv[optind] : NULL;
     enum sl_err e = sl_bench(&o, NULL, &d);
     return e ? fail(e, &d) : 0;
 }
 
 static int cmd_list(int argc, char **argv)
 {
-    if (argc == 3 && strcmp(argv[2], "methods") == 0) {
+    static const struct option lo[] = {OPT_HELP, {0, 0, 0, 0}};
+    const struct opt_parser p = {"list", "", usage_list, lo};
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;)
+        return opt_exit(c);
+    argc -= optind - 1;
+    argv += optind - 1;
+    if (argc == 2 && strcmp(argv[1], "methods") == 0) {
         for (int i = 0; i < sl_method_count(); i++)
             printf("%-12s %s\n", sl_method_at(i)->name, sl_method_at(i)->summary);
         return 0;
     }
-    if (argc == 3 && strcmp(argv[2], "scenes") == 0) {
-        static char names[256][64], descr[256][160];
-        int n = sl_scene_list(names, descr, 256);
+    if (argc == 2 && strcmp(argv[1], "scenes") == 0) {
+        static char names[256][64], descr[256][160], paths[256][1024];
+        static const char *origin[256];
+        int n = sl_scene_list_where(names, descr, paths, origin, 256);
         for (int i = 0; i < n; i++)
-            printf("%-12s %s\n", names[i], descr[i]);
-        if (n == 0)
-            fprintf(stderr, "shadowlab: no scene files in %s\n", sl_scenes_dir());
+            printf("%-14s %-50s [%s: %s]\n", names[i], descr[i], origin[i], paths[i]);
+        if (n == 0) {
+            char dirs[16][1024];
+            const char *o[16];
+            int nd = sl_scene_dirs(NULL, dirs, o, 16);
+            fprintf(stderr, "shadowlab: no scene files in");
+            for (int i = 0; i < nd; i++)
+                fprintf(stderr, "%s %s (%s)", i ? "," : "", dirs[i], o[i]);
+            fputc('\n', stderr);
+        }
         return 0;
     }
     return usage_error("list: methods or scenes", usage_list);
@@ -515,7 +869,6 @@ int main(int argc, char **argv)
 {
     if (argc < 2)
         return usage_error("missing command", usage);
-    const char *cmd = argv[1];
     static const struct {
         const char *name;
         int (*fn)(int, char **);
@@ -529,21 +882,27 @@ int main(int argc, char **argv)
         {"bench", cmd_bench, usage_bench},
         {"list", cmd_list, usage_list},
     };
-    for (size_t i = 0; i < sizeof verbs / sizeof verbs[0]; i++)
-        if (strcmp(cmd, verbs[i].name) == 0) {
-            if (wants_help(argc, argv)) {
-                fputs(verbs[i].help, stdout);
-                return 0;
-            }
-            return verbs[i].fn(argc, argv);
-        }
-    if (strcmp(cmd, "version") == 0) {
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "version") || !strcmp(cmd, "-V") || !strcmp(cmd, "--version")) {
         printf("shadowlab %s\n", sl_git_sha());
         return 0;
     }
-    if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
+    int help = !strcmp(cmd, "-h") || !strcmp(cmd, "--help") || !strcmp(cmd, "help");
+    if (help && argc == 2) {
         fputs(usage, stdout);
         return 0;
     }
-    return usage_error("unknown command", usage);
+    if (help)
+        cmd = argv[2];   /* help VERB = VERB --help */
+    for (size_t i = 0; i < sizeof verbs / sizeof verbs[0]; i++)
+        if (strcmp(cmd, verbs[i].name) == 0) {
+            if (help) {
+                fputs(verbs[i].help, stdout);
+                return 0;
+            }
+            /* the verb sees itself as argv[0], as getopt_long expects */
+            return verbs[i].fn(argc - 1, argv + 1);
+        }
+    fprintf(stderr, "shadowlab: unknown command '%s'\n%s", cmd, usage);
+    return 2;
 }

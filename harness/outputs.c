@@ -531,3 +531,49 @@ enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_r
     }
     return SL_OK;
 }
+
+/* The run folder's figures.csv, table.md and table.tex from the store, when
+ * it holds more cells of this config (same hash) than this run computed: a
+ * resumed, split or interrupted run then still leaves tables of every
+ * stored cell, as `shadowlab table DB` would print them. */
+enum sl_err sl_out_rebuild_from_store(struct sl_store *st, const struct sl_config *c, int computed,
+                                      const char *dir, int *stored, struct sl_diag *d)
+{
+    *stored = -1;
+    struct sl_store_filter f = {.study = c->name};
+    struct sl_cell_record *cells = NULL;
+    int n = 0;
+    enum sl_err e = sl_store_query(st, &f, &cells, &n, d);
+    if (e)
+        return e;
+    char hash[24];
+    snprintf(hash, sizeof hash, "%016llx", c->hash);
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (strcmp(cells[i].config_hash, hash) == 0)
+            cells[k++] = cells[i];
+    *stored = k;
+    if (k <= computed) {
+        free(cells);
+        return SL_OK;
+    }
+    static const struct { const char *name; enum sl_table_format fmt; } files[] = {
+        {"figures.csv", SL_TABLE_CSV}, {"table.md", SL_TABLE_MD}, {"table.tex", SL_TABLE_LATEX},
+    };
+    char title[256];
+    snprintf(title, sizeof title, "shadowlab: %s (every stored cell of this config)", c->name);
+    for (size_t i = 0; i < sizeof files / sizeof files[0] && !e; i++) {
+        struct sl_outfile of;
+        char path[1300];
+        snprintf(path, sizeof path, "%s/%s", dir, files[i].name);
+        if ((e = sl_out_open(&of, path, d)))
+            break;
+        e = sl_table_write(of.f, files[i].fmt, title, cells, k, d);
+        if (e)
+            sl_out_abort(&of);
+        else
+            e = sl_out_commit(&of, d);
+    }
+    free(cells);
+    return e;
+}

@@ -710,6 +710,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         goto out;
     }
     for (int idx = first; idx < last && !e; idx++) {
+        if (o->stop && *o->stop) {
+            res->interrupted = 1;
+            break;
+        }
         struct sl_cell_key k;
         sl_plan_cell(c, idx, &k);
         if (o->resume && sl_plan_stored(c, &k, st)) {
@@ -756,11 +760,13 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
 
     if ((e = sl_out_stage_finish(c, res, &dirs, o->resume, d)))
         goto out;
-    if (o->table_out && c->tables) {
+    res->stored_total = -1;
+    if (st && c->tables)
+        e = sl_out_rebuild_from_store(st, c, res->ncells, dirs.final, &res->stored_total, d);
+    if (!e && o->table_out && c->tables) {
         e = sl_out_write_tables(o->table_out, SL_TABLE_MD, c, res, d);
         sl_out_write_costs_md(o->table_out, c, res);
         sl_out_write_patterns_md(o->table_out, c, res);
-        fprintf(o->table_out, "\nwritten to %s/%s%s\n", dirs.final, store_path[0] ? " and " : "", store_path);
     }
 out:
     if (e)

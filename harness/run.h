@@ -14,7 +14,10 @@
  * Output (outputs.h): <out_root>/<name>/{figures.csv, costs.csv, table.md,
  * table.tex, config.yaml, run.yaml, patterns.csv, overlays/<cell>.png,
  * exr/<cell>.exr (when asked)} for the cells this invocation computed,
- * written into a hidden staging folder and renamed into place at the end.
+ * written into a hidden staging folder and renamed into place at the end;
+ * then, when the store holds more cells of this config than this run
+ * computed (--resume, --cells, an interrupt), figures.csv and the tables
+ * are rebuilt from the store so the folder covers every stored cell.
  *
  * Owns: the GL context, the BVH, the current scene, view and frame while a
  * run lasts. Does not: print (notes, violations and progress go to the
@@ -65,6 +68,9 @@ struct sl_run_opts {
      * prints): NULL = nothing is said. */
     void      (*on_event)(const struct sl_run_event *ev, void *user);
     void       *user;
+    /* Set (by a signal handler) to stop after the cell under way: the run then
+     * writes its folder as usual and returns SL_OK with res->interrupted. */
+    const volatile int *stop;
 };
 
 /* What was computed, to prove nothing is computed twice or needlessly. */
@@ -90,6 +96,8 @@ struct sl_run_result {
     int    ncells;                     /* computed by this invocation */
     struct sl_cell *cells;
     int    skipped;                    /* already in the store (--resume) */
+    int    interrupted;                /* stopped by o->stop before the end */
+    int    stored_total;               /* cells of this config in the store after the run, -1 unknown */
     char   store_path[1100];           /* the database written, "" none */
     struct sl_pass_counts passes;
     double ms_total, ms_scene, ms_bvh;

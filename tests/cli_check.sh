@@ -34,20 +34,20 @@ echo "$out" | grep -q "Counts compared exactly" || fail "same machine, counts no
 awk 'BEGIN{c=0} /cell: "primitives\/side\/128x128\/256\/nsm"/{c=1} c && /^      wrong: /{sub(/\]$/,""); n=split($0,a,", "); a[n]+=50; s=a[1]; for(i=2;i<=n;i++) s=s", "a[i]; print s"]"; c=0; next} {print}' \
   "$tmp/b.yaml" >"$tmp/moved.yaml"
 cmp -s "$tmp/b.yaml" "$tmp/moved.yaml" && fail "the edit did not change the baseline"
-out=$("$bin" check "$db" --baseline "$tmp/moved.yaml"); rc=$?
+out=$("$bin" check "$db" --baseline "$tmp/moved.yaml" --format md); rc=$?
 [ $rc -eq 1 ] || fail "50 wrong pixels moved: exit $rc, want 1"
 echo "$out" | grep -q '| primitives/side/128x128/256/nsm | image | wrong | error | .* | \*\*FAIL\*\* |' ||
   fail "the moved figure is not named: $out"
 
 # the same move is within a 5 pp tolerance when counts are compared by tolerance
 sed -e 's/^counts: same_machine/counts: tolerance/' -e 's/^  error: .*/  error: 5/' "$tmp/moved.yaml" >"$tmp/loose.yaml"
-out=$("$bin" check "$db" --baseline "$tmp/loose.yaml"); rc=$?
+out=$("$bin" check "$db" --baseline "$tmp/loose.yaml" --format md); rc=$?
 [ $rc -eq 0 ] || fail "a move within tolerance: exit $rc, want 0: $out"
 echo "$out" | grep -q '| wrong | error | .* | ok |' || fail "a move within tolerance is not listed as ok"
 
 # a violation fails whatever the tolerances
 sed -e 's/violations: 0}/violations: 1}/' "$tmp/loose.yaml" >"$tmp/viol.yaml"
-"$bin" check "$db" --baseline "$tmp/viol.yaml" >"$tmp/viol.out"; rc=$?
+"$bin" check "$db" --baseline "$tmp/viol.yaml" --format md >"$tmp/viol.out"; rc=$?
 [ $rc -eq 1 ] || fail "a violation: exit $rc, want 1"
 grep -q '| violations | invariant | 1 | 0 | .* | exact | \*\*FAIL\*\* |' "$tmp/viol.out" || fail "violation row missing"
 
@@ -92,7 +92,7 @@ YAML
 grep -q "^    soft_mean: {soft_mae: " "$tmp/sb.yaml" || fail "soft baseline has no means"
 "$bin" check "$tmp/s/shadowlab.db" --baseline "$tmp/sb.yaml" >/dev/null || fail "soft cell against its own baseline"
 sed -E 's/soft_mean: \{soft_mae: [0-9.]+/soft_mean: {soft_mae: 99/' "$tmp/sb.yaml" >"$tmp/sb2.yaml"
-out=$("$bin" check "$tmp/s/shadowlab.db" --baseline "$tmp/sb2.yaml"); rc=$?
+out=$("$bin" check "$tmp/s/shadowlab.db" --baseline "$tmp/sb2.yaml" --format md); rc=$?
 [ $rc -eq 1 ] || fail "a moved soft MAE: exit $rc, want 1"
 echo "$out" | grep -q '| soft_mae | soft | 99 |' || fail "the moved soft MAE is not named: $out"
 

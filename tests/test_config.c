@@ -106,6 +106,52 @@ static void config_syntax_error_has_line(void **st)
     assert_true(d.line >= 2 && d.line <= 3);
 }
 
+/* -D overrides: applied by key path, checked as the file is, the error naming
+ * the override; the hash follows the overrides. */
+static void config_overrides(void **st)
+{
+    (void)st;
+    struct sl_config a, b, c;
+    struct sl_diag d;
+    assert_int_equal(sl_config_load("configs/default.yaml", &a, &d), SL_OK);
+    const char *ok[] = {"map_sizes=[512, 1024, 4096]", "methods[0].self_shadow=slope", "methods[0].bias=0.01",
+                        "viewports=[{width: 256, height: 128}]", "outputs.exr=true", "threads=3"};
+    assert_int_equal(sl_config_load_with("configs/default.yaml", ok, 6, &b, &d), SL_OK);
+    assert_int_equal(b.nmaps, 3);
+    assert_int_equal(b.maps[2], 4096);
+    assert_int_equal(b.methods[0].params.self_shadow, sl_self_shadow_parse("slope"));
+    assert_true(b.methods[0].params.bias > 0.0099f && b.methods[0].params.bias < 0.0101f);
+    assert_int_equal(b.viewport_w[0], 256);
+    assert_int_equal(b.viewport_h[0], 128);
+    assert_int_equal(b.exr, 1);
+    assert_int_equal(b.threads, 3);
+    assert_string_equal(b.path, "configs/default.yaml");
+    assert_true(a.hash != b.hash);
+    assert_int_equal(sl_config_load_with("configs/default.yaml", ok, 6, &c, &d), SL_OK);
+    assert_true(b.hash == c.hash);   /* the same overrides: the same study (--resume finds it) */
+    assert_int_equal(sl_config_load_with("configs/default.yaml", NULL, 0, &c, &d), SL_OK);
+    assert_true(a.hash == c.hash);
+    static const struct { const char *ov, *key, *msg; } bad[] = {
+        {"map_sizes=[100]", "map_sizes[0]", "power of two"},
+        {"methods[0].bias=0.01", "methods[0].bias", "bias applies to"},
+        {"methods[3].bias=1", "methods[3].bias", "has 1 entry"},
+        {"seed=-1", "seed", ""},
+        {"frobnicate=1", "frobnicate", "unknown key"},
+        {"scenes[0].scene=nope", "scenes[0].scene", "unknown scene 'nope'"},
+        {"name=[", "name", "not YAML"},
+        {"map_sizes.x=1", "map_sizes.x", "not a mapping"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        memset(&d, 0, sizeof d);
+        assert_int_not_equal(sl_config_load_with("configs/default.yaml", &bad[i].ov, 1, &c, &d), SL_OK);
+        char src[200];
+        snprintf(src, sizeof src, "-D %s", bad[i].ov);
+        assert_string_equal(d.file, src);
+        assert_string_equal(d.key, bad[i].key);
+        assert_non_null(strstr(d.msg, bad[i].msg));
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -113,6 +159,7 @@ int main(int argc, char **argv)
         SL_CASE(config, written_reads_back),
         SL_CASE(config, bad_inputs),
         SL_CASE(config, syntax_error_has_line),
+        SL_CASE(config, overrides),
     };
     return sl_run_group(argc, argv, "config", tests, NULL, NULL);
 }

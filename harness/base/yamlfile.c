@@ -310,6 +310,13 @@ static const char *event_name(yaml_event_type_t t)
 enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, void **out,
                          struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind, struct sl_diag *d)
 {
+    return sl_yaml_load_edited(path, schema, out, pos, max_bytes, kind, NULL, NULL, d);
+}
+
+enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *schema, void **out,
+                                struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind,
+                                sl_yaml_edit_fn edit, void *edit_user, struct sl_diag *d)
+{
     *out = NULL;
     *pos = NULL;
     unsigned char *text;
@@ -317,6 +324,8 @@ enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, v
     enum sl_err re = read_text(path, max_bytes, &text, &len, kind, d);
     if (!re)
         re = check_text(path, text, len, kind, d);
+    if (!re && edit)
+        re = edit(&text, &len, edit_user, d);
     if (re) {
         free(text);
         return re;

@@ -22,6 +22,13 @@ struct sl_yaml_pos;
  * success *pos is the position index (free both with sl_yaml_free). */
 enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, void **out,
                          struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind, struct sl_diag *d);
+/* The same, with the checked text handed to edit() before it is parsed
+ * (the command line's -D overrides): edit may replace *text (malloc'd; the
+ * old one freed by it) and *len, or fail with its own diag. */
+typedef enum sl_err (*sl_yaml_edit_fn)(unsigned char **text, size_t *len, void *user, struct sl_diag *d);
+enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *schema, void **out,
+                                struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind,
+                                sl_yaml_edit_fn edit, void *edit_user, struct sl_diag *d);
 void        sl_yaml_free(const cyaml_schema_value_t *schema, void *data, struct sl_yaml_pos *pos);
 
 /* Line of a dotted key path, 0 if unknown. */

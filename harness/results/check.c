@@ -11,6 +11,7 @@
 #define _XOPEN_SOURCE 700
 #include "check.h"
 #include <math.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -273,6 +274,15 @@ static void region_name(int t, char *out, size_t n)
 
 /* ---- comparing ---- */
 
+/* What one baseline cell did per class, for --json and --junit. */
+struct cell_stats {
+    const char *cell;
+    int  missing;
+    long compared[SL_CC_COUNT], moved[SL_CC_COUNT], failed[SL_CC_COUNT];
+    double worst[SL_CC_COUNT];            /* the largest |moved| */
+    char first_fail[SL_CC_COUNT][200];    /* the first value outside tolerance */
+};
+
 struct cmp {
     FILE *out;
     const struct sl_check_opts *o;
@@ -281,7 +291,54 @@ struct cmp {
     int exact;
     int rows, max_rows;
     long hidden;
+    struct cell_stats *cur;               /* the baseline cell being compared */
 };
+
+/* One row of the table of what moved: Markdown, or plain columns for a
+ * terminal (FAIL in red, ok in green when asked); the header before the
+ * first row of either kind (a moved value or a missing cell). */
+static void table_row(struct cmp *m, const char *cell, const char *region, const char *what, const char *cls,
+                      const char *a, const char *b, const char *moved, const char *tol, int bad)
+{
+    int md = m->o->format == SL_CHECK_MD;
+    if (m->rows++ == 0) {
+        if (md)
+            fprintf(m->out, "| cell | region | figure | class | baseline | now | moved | tolerance | |\n"
+                            "|---|---|---|---|---:|---:|---:|---:|---|\n");
+        else
+            fprintf(m->out, "%-40s %-6s %-24s %-9s %12s %12s %14s %10s %s\n", "cell", "region", "figure", "class",
+                    "baseline", "now", "moved", "tolerance", "");
+    }
+    if (md) {
+        fprintf(m->out, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", cell, region, what, cls, a, b, moved, tol,
+                bad ? "**FAIL**" : "ok");
+        return;
+    }
+    const char *on = !m->o->color ? "" : bad ? "\033[1;31m" : "\033[32m", *off = m->o->color ? "\033[0m" : "";
+    fprintf(m->out, "%-40s %-6s %-24s %-9s %12s %12s %14s %10s %s%s%s\n", cell, region, what, cls, a, b, moved, tol,
+            on, bad ? "FAIL" : "ok", off);
+}
+
+static void stat_fail(struct cmp *m, enum sl_check_class cls, double moved, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void stat_fail(struct cmp *m, enum sl_check_class cls, double moved, const char *fmt, ...)
+{
+    struct cell_stats *s = m->cur;
+    if (!s)
+        return;
+    s->moved[cls]++;
+    if (fabs(moved) > s->worst[cls])
+        s->worst[cls] = fabs(moved);
+    if (!fmt)
+        return;
+    s->failed[cls]++;
+    if (!s->first_fail[cls][0]) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(s->first_fail[cls], sizeof s->first_fail[cls], fmt, ap);
+        va_end(ap);
+    }
+}
 
 static void moved_row(struct cmp *m, const char *key, const char *region, const char *what,
                       enum sl_check_class cls, const char *a, const char *b, double moved, const char *unit);
@@ -292,6 +349,8 @@ static void compare(struct cmp *m, const char *key, const char *region, const ch
                     enum sl_check_class cls, uint64_t a, uint64_t b, double den_a, double den_b)
 {
     m->r->compared++;
+    if (m->cur)
+        m->cur->compared[cls]++;
     if (a == b)
         return;
     m->r->moved++;
@@ -319,22 +378,22 @@ static void moved_row(struct cmp *m, const char *key, const char *region, const 
 {
     double tol = m->tol[cls];
     int bad = m->exact || cls == SL_CC_invariant || !(fabs(moved) <= tol + 1e-12);
-    if (bad)
-        m->r->failed++;
-    if (m->rows >= m->max_rows) {
-        m->hidden++;
-        return;
-    }
-    if (m->rows++ == 0)
-        fprintf(m->out, "| cell | region | figure | class | baseline | now | moved | tolerance | |\n"
-                        "|---|---|---|---|---:|---:|---:|---:|---|\n");
     char tolbuf[32];
     if (m->exact || cls == SL_CC_invariant)
         snprintf(tolbuf, sizeof tolbuf, "exact");
     else
         snprintf(tolbuf, sizeof tolbuf, "%g %s", tol, unit);
-    fprintf(m->out, "| %s | %s | %s | %s | %s | %s | %+.4f %s | %s | %s |\n", key, region, what, class_name[cls], a,
-            b, moved, unit, tolbuf, bad ? "**FAIL**" : "ok");
+    if (bad)
+        m->r->failed++;
+    stat_fail(m, cls, moved, bad ? "%s %s: baseline %s, now %s, moved %+.4f %s (tolerance %s)" : NULL, region, what,
+              a, b, moved, unit, tolbuf);
+    if (m->rows >= m->max_rows) {
+        m->hidden++;
+        return;
+    }
+    char mv[48];
+    snprintf(mv, sizeof mv, "%+.4f %s", moved, unit);
+    table_row(m, key, region, what, class_name[cls], a, b, mv, tolbuf, bad);
 }
 
 /* A mean already in percent (a soft cell's MAE, ...): moved by the difference,
@@ -342,6 +401,8 @@ static void moved_row(struct cmp *m, const char *key, const char *region, const 
 static void compare_mean(struct cmp *m, const char *key, const char *what, double a, double b)
 {
     m->r->compared++;
+    if (m->cur)
+        m->cur->compared[SL_CC_soft]++;
     if (a == b || (isnan(a) && isnan(b)))
         return;
     m->r->moved++;
@@ -370,8 +431,9 @@ static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl
     if (!!b->soft != !!c->has_soft || !!b->figures != has_hard) {
         static const char *const kind[] = {"none", "hard", "soft", "soft + hard"};
         m->r->failed++;
-        fprintf(m->out, "| %s | image | (kind) | view | %s | %s | | exact | **FAIL** |\n", b->cell,
-                kind[(b->soft ? 2 : 0) + (b->figures ? 1 : 0)], kind[(c->has_soft ? 2 : 0) + has_hard]);
+        const char *ka = kind[(b->soft ? 2 : 0) + (b->figures ? 1 : 0)], *kb = kind[(c->has_soft ? 2 : 0) + has_hard];
+        stat_fail(m, SL_CC_view, 0.0, "kind of cell: baseline %s, now %s", ka, kb);
+        table_row(m, b->cell, "image", "(kind)", "view", ka, kb, "", "exact", 1);
         return SL_OK;
     }
     if (b->soft) {
@@ -409,8 +471,8 @@ static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl
         }
         if (found < 0) {
             m->r->failed++;
-            fprintf(m->out, "| %s | %s | (region) | view | present | missing | | exact | **FAIL** |\n", b->cell,
-                    b->regions[r]);
+            stat_fail(m, SL_CC_view, 0.0, "region %s missing", b->regions[r]);
+            table_row(m, b->cell, b->regions[r], "(region)", "view", "present", "missing", "", "exact", 1);
             continue;
         }
         const struct sl_region_figures *g = &c->fig.r[found];
@@ -477,6 +539,122 @@ static enum sl_err load_store(const char *db, const char *study, struct sl_cell_
     return e;
 }
 
+/* ---- --json and --junit ---- */
+
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+static void xml_str(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        switch (*s) {
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '&': fputs("&amp;", f); break;
+        case '"': fputs("&quot;", f); break;
+        default:
+            if ((unsigned char)*s >= 0x20 || *s == '\t' || *s == '\n')
+                fputc(*s, f);
+        }
+    }
+}
+
+/* Does the class apply to the cell (anything compared, or a failure)? A hard
+ * cell has no soft class and a soft cell no figures of the hard classes. */
+static int class_applies(const struct cell_stats *s, int k)
+{
+    return s->missing || s->compared[k] || s->failed[k];
+}
+
+static void write_json(FILE *f, const char *db, const char *baseline, const struct cmp *m,
+                       const struct cell_stats *st, unsigned n)
+{
+    fprintf(f, "{\n  \"db\": ");
+    json_str(f, db);
+    fprintf(f, ",\n  \"baseline\": ");
+    json_str(f, baseline);
+    fprintf(f, ",\n  \"exact_counts\": %s,\n  \"cells\": %d,\n  \"missing\": %d,\n  \"extra\": %d,\n"
+               "  \"compared\": %ld,\n  \"moved\": %ld,\n  \"failed\": %ld,\n  \"passed\": %s,\n",
+            m->exact ? "true" : "false", m->r->cells, m->r->missing, m->r->extra, m->r->compared, m->r->moved,
+            m->r->failed, m->r->failed || m->r->missing ? "false" : "true");
+    fprintf(f, "  \"tolerances\": {");
+    for (int k = 0; k < SL_CC_COUNT; k++)
+        fprintf(f, "%s\"%s\": %g", k ? ", " : "", class_name[k], m->tol[k]);
+    fprintf(f, "},\n  \"results\": [");
+    for (unsigned i = 0; i < n; i++) {
+        const struct cell_stats *s = &st[i];
+        fprintf(f, "%s\n    {\"cell\": ", i ? "," : "");
+        json_str(f, s->cell ? s->cell : "");
+        fprintf(f, ", \"missing\": %s, \"classes\": {", s->missing ? "true" : "false");
+        for (int k = 0, w = 0; k < SL_CC_COUNT; k++) {
+            if (!class_applies(s, k))
+                continue;
+            fprintf(f, "%s\n      \"%s\": {\"compared\": %ld, \"moved\": %ld, \"failed\": %ld, "
+                       "\"worst_moved\": %.6g, \"passed\": %s",
+                    w++ ? "," : "", class_name[k], s->compared[k], s->moved[k], s->failed[k], s->worst[k],
+                    s->missing || s->failed[k] ? "false" : "true");
+            if (s->failed[k]) {
+                fprintf(f, ", \"first_failure\": ");
+                json_str(f, s->first_fail[k]);
+            }
+            fputc('}', f);
+        }
+        fprintf(f, "}}");
+    }
+    fprintf(f, "\n  ]\n}\n");
+}
+
+static void write_junit(FILE *f, const char *db, const char *baseline, const struct cell_stats *st, unsigned n)
+{
+    long tests = 0, failures = 0;
+    for (unsigned i = 0; i < n; i++)
+        for (int k = 0; k < SL_CC_COUNT; k++)
+            if (class_applies(&st[i], k)) {
+                tests++;
+                failures += st[i].missing || st[i].failed[k];
+            }
+    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites tests=\"%ld\" failures=\"%ld\">\n"
+               "  <testsuite name=\"shadowlab check ", tests, failures);
+    xml_str(f, db);
+    fprintf(f, " against ");
+    xml_str(f, baseline);
+    fprintf(f, "\" tests=\"%ld\" failures=\"%ld\" errors=\"0\">\n", tests, failures);
+    for (unsigned i = 0; i < n; i++) {
+        const struct cell_stats *s = &st[i];
+        for (int k = 0; k < SL_CC_COUNT; k++) {
+            if (!class_applies(s, k))
+                continue;
+            fprintf(f, "    <testcase classname=\"");
+            xml_str(f, s->cell ? s->cell : "");
+            fprintf(f, "\" name=\"%s\"", class_name[k]);
+            if (!s->missing && !s->failed[k]) {
+                fprintf(f, "/>\n");
+                continue;
+            }
+            fprintf(f, ">\n      <failure message=\"");
+            if (s->missing)
+                fprintf(f, "the cell is missing from the store");
+            else
+                xml_str(f, s->first_fail[k]);
+            fprintf(f, "\">%ld of %ld value(s) outside tolerance</failure>\n    </testcase>\n", s->failed[k],
+                    s->compared[k]);
+        }
+    }
+    fprintf(f, "  </testsuite>\n</testsuites>\n");
+}
+
 enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check_opts *o, FILE *out,
                      struct sl_check_result *r, struct sl_diag *d)
 {
@@ -535,9 +713,18 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
         e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "check");
         goto done;
     }
-    fprintf(out, "## shadowlab check: %s against %s\n\n", db, baseline);
+    struct cell_stats *stats = calloc(b->cells_count + 1, sizeof *stats);
+    if (!stats) {
+        free(seen);
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "check");
+        goto done;
+    }
+    fprintf(out, o->format == SL_CHECK_MD ? "## shadowlab check: %s against %s\n\n" : "shadowlab check: %s against %s\n\n",
+            db, baseline);
     for (unsigned i = 0; i < b->cells_count && !e; i++) {
         const struct bl_cell *bc = &b->cells[i];
+        m.cur = &stats[i];
+        m.cur->cell = bc->cell;
         int found = -1;
         char key[256];
         for (int j = 0; j < n && found < 0; j++) {
@@ -547,7 +734,8 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
         }
         if (found < 0) {
             r->missing++;
-            fprintf(out, "| %s | | (cell) | | present | missing | | | **FAIL** |\n", bc->cell);
+            m.cur->missing = 1;
+            table_row(&m, bc->cell, "", "(cell)", "", "present", "missing", "", "", 1);
             continue;
         }
         seen[found] = 1;
@@ -578,6 +766,11 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
             for (int k = 0; k < SL_CC_COUNT; k++)
                 fprintf(out, "- %s: %g — %s\n", class_name[k], m.tol[k], class_text[k]);
     }
+    if (!e && o->json)
+        write_json(o->json, db, baseline, &m, stats, b->cells_count);
+    if (!e && o->junit)
+        write_junit(o->junit, db, baseline, stats, b->cells_count);
+    free(stats);
     free(seen);
 done:
     free(cells);

@@ -41,9 +41,19 @@ enum sl_check_class {
     SL_CC_COUNT
 };
 
+enum sl_check_format {
+    SL_CHECK_TEXT = 0,          /* a plain table for a terminal */
+    SL_CHECK_MD = 1,            /* Markdown */
+};
+
 struct sl_check_opts {
     const char *study;          /* only cells of this config name; NULL = every cell */
     int         max_rows;       /* rows of the "what moved" table; 0 = 200 */
+    int         format;         /* enum sl_check_format */
+    int         color;          /* text only: ok green, FAIL red (ANSI); the caller decides (a TTY,
+                                 * no NO_COLOR) */
+    FILE       *json;           /* also every compared cell and class with its verdict, as JSON */
+    FILE       *junit;          /* also JUnit XML: one testcase per (baseline cell, class) */
 };
 
 struct sl_check_result {

@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include "gen.h"
 #include "meshio.h"
@@ -230,10 +231,66 @@ static void dir_of(const char *path, char *out, size_t n)
         snprintf(out, n, ".");
 }
 
+/* The installed share folder, found from the binary's own place
+ * (<prefix>/bin/shadowlab -> <prefix>/share/shadowlab/scenes), so an
+ * installed tree can be moved or installed under any prefix. "" if absent. */
+static const char *installed_dir(void)
+{
+    static char dir[1024];
+    static int done;
+    if (done)
+        return dir;
+    done = 1;
+    char exe[900];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return dir;
+    exe[n] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (!slash)
+        return dir;
+    *slash = '\0';                /* <prefix>/bin */
+    slash = strrchr(exe, '/');
+    if (!slash)
+        return dir;
+    *slash = '\0';                /* <prefix> */
+    snprintf(dir, sizeof dir, "%s/share/shadowlab/scenes", exe);
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
+        dir[0] = '\0';
+    return dir;
+}
+
+int sl_scene_dirs(const char *rel_dir, char (*dirs)[1024], const char **origin, int max)
+{
+    int n = 0;
+    if (rel_dir && n < max) {
+        snprintf(dirs[n], 1024, "%s", rel_dir);
+        origin[n++] = "config folder";
+    }
+    const char *e = getenv("SHADOWLAB_SCENES");
+    for (const char *p = e; p && *p && n < max;) {
+        size_t k = strcspn(p, ":");
+        if (k) {
+            snprintf(dirs[n], 1024, "%.*s", (int)k, p);
+            origin[n++] = "SHADOWLAB_SCENES";
+        }
+        p += k + (p[k] == ':');
+    }
+    /* an installed binary never looks into the tree it was built from: the
+     * source tree's scenes/ stands in only for a binary that is not installed */
+    const char *inst = installed_dir();
+    if (n < max) {
+        snprintf(dirs[n], 1024, "%s", inst[0] ? inst : SL_SCENES_DIR);
+        origin[n++] = inst[0] ? "installed" : "source tree";
+    }
+    return n;
+}
+
 const char *sl_scenes_dir(void)
 {
-    const char *e = getenv("SHADOWLAB_SCENES");
-    return (e && e[0]) ? e : SL_SCENES_DIR;
+    const char *inst = installed_dir();
+    return inst[0] ? inst : SL_SCENES_DIR;
 }
 
 enum sl_err sl_scene_resolve(const char *ref, const char *rel_dir, char *path, size_t n,
@@ -253,7 +310,19 @@ enum sl_err sl_scene_resolve(const char *ref, const char *rel_dir, char *path, s
             if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
                   *p == '-' || *p == '_' || (*p == '/' && p[1] && p[1] != '/' && p[1] != '.')))
                 return sl_fail(d, SL_E_SCENE, NULL, 0, "scene", "'%s' is neither a scene name nor a path", ref);
-        snprintf(path, n, "%s/%s.yaml", sl_scenes_dir(), ref);
+        /* the first folder of the search path that has it */
+        char dirs[16][1024];
+        const char *origin[16];
+        int nd = sl_scene_dirs(rel_dir, dirs, origin, 16);
+        for (int i = 0; i < nd; i++) {
+            snprintf(path, n, "%s/%s.yaml", dirs[i], ref);
+            if (access(path, R_OK) == 0)
+                return SL_OK;
+        }
+        char where[600] = "";
+        for (int i = 0; i < nd; i++)
+            snprintf(where + strlen(where), sizeof where - strlen(where), "%s%s", i ? ", " : "", dirs[i]);
+        return sl_fail(d, SL_E_SCENE, NULL, 0, "scene", "no scene '%s' in %s", ref, where);
     }
     if (access(path, R_OK) != 0)
         return sl_fail(d, SL_E_SCENE, NULL, 0, "scene", "no scene '%s' (%s: %s)", ref, path, strerror(errno));
@@ -782,46 +851,84 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     return SL_OK;
 }
 
-int sl_scene_list(char (*names)[64], char (*descr)[160], int max)
+/* A scene file has a top-level meshes, light or base key (a config has not). */
+static int scene_file_info(const char *path, char *descr, size_t n)
 {
-    DIR *dir = opendir(sl_scenes_dir());
-    if (!dir)
+    FILE *f = fopen(path, "r");
+    if (!f)
         return 0;
-    int n = 0;
-    struct dirent *de;
-    while ((de = readdir(dir)) && n < max) {
-        size_t len = strlen(de->d_name);
-        if (len < 6 || strcmp(de->d_name + len - 5, ".yaml") != 0 || de->d_name[0] == '.')
-            continue;
-        snprintf(names[n], 64, "%.*s", (int)(len - 5), de->d_name);
-        descr[n][0] = '\0';
-        /* the description without building the scene: read the key's line */
-        char path[1024], line[512];
-        snprintf(path, sizeof path, "%s/%s", sl_scenes_dir(), de->d_name);
-        FILE *f = fopen(path, "r");
-        if (f) {
-            while (fgets(line, sizeof line, f))
-                if (strncmp(line, "description:", 12) == 0) {
-                    char *v = line + 12;
-                    while (*v == ' ' || *v == '"')
-                        v++;
-                    v[strcspn(v, "\"\n")] = '\0';
-                    snprintf(descr[n], 160, "%s", v);
-                    break;
-                }
-            fclose(f);
+    char line[512];
+    int scene = 0;
+    descr[0] = '\0';
+    while (fgets(line, sizeof line, f)) {
+        scene |= strncmp(line, "meshes:", 7) == 0 || strncmp(line, "light:", 6) == 0 ||
+                 strncmp(line, "base:", 5) == 0;
+        if (strncmp(line, "description:", 12) == 0 && !descr[0]) {
+            char *v = line + 12;
+            while (*v == ' ' || *v == '"')
+                v++;
+            v[strcspn(v, "\"\n")] = '\0';
+            snprintf(descr, n, "%s", v);
         }
-        n++;
     }
-    closedir(dir);
+    fclose(f);
+    return scene;
+}
+
+int sl_scene_list_where(char (*names)[64], char (*descr)[160], char (*paths)[1024], const char **origins,
+                        int max)
+{
+    char dirs[16][1024];
+    const char *origin[16];
+    int nd = sl_scene_dirs(NULL, dirs, origin, 16), n = 0;
+    for (int di = 0; di < nd; di++) {
+        DIR *dir = opendir(dirs[di]);
+        if (!dir)
+            continue;
+        struct dirent *de;
+        while ((de = readdir(dir)) && n < max) {
+            size_t len = strlen(de->d_name);
+            if (len < 6 || len > 68 || strcmp(de->d_name + len - 5, ".yaml") != 0 || de->d_name[0] == '.')
+                continue;
+            char name[64];
+            snprintf(name, sizeof name, "%.*s", (int)(len - 5), de->d_name);
+            int dup = 0;   /* an earlier folder of the path has it: that one is used */
+            for (int k = 0; k < n && !dup; k++)
+                dup = strcmp(names[k], name) == 0;
+            char path[1100];
+            snprintf(path, sizeof path, "%s/%s", dirs[di], de->d_name);
+            if (dup || !scene_file_info(path, descr[n], 160))
+                continue;   /* configs and other YAML files are not scenes */
+            snprintf(names[n], 64, "%s", name);
+            if (paths)
+                snprintf(paths[n], 1024, "%s", path);
+            if (origins)
+                origins[n] = origin[di];
+            n++;
+        }
+        closedir(dir);
+    }
     /* sorted, so listings are stable */
     for (int i = 1; i < n; i++)
         for (int k = i; k > 0 && strcmp(names[k - 1], names[k]) > 0; k--) {
-            char t[64], td[160];
+            char t[64], td[160], tp[1024];
             memcpy(t, names[k], 64); memcpy(names[k], names[k - 1], 64); memcpy(names[k - 1], t, 64);
             memcpy(td, descr[k], 160); memcpy(descr[k], descr[k - 1], 160); memcpy(descr[k - 1], td, 160);
+            if (paths) {
+                memcpy(tp, paths[k], 1024); memcpy(paths[k], paths[k - 1], 1024); memcpy(paths[k - 1], tp, 1024);
+            }
+            if (origins) {
+                const char *to = origins[k];
+                origins[k] = origins[k - 1];
+                origins[k - 1] = to;
+            }
         }
     return n;
+}
+
+int sl_scene_list(char (*names)[64], char (*descr)[160], int max)
+{
+    return sl_scene_list_where(names, descr, NULL, NULL, max);
 }
 
 enum sl_err sl_scene_build(const char *ref, struct sl_scene *out, struct sl_diag *d)

@@ -27,7 +27,7 @@
  * A scene is named by a path (ending in .yaml or starting with / or ., relative
  * to the referring file) or by a name looked up in the scenes folder, which
  * may name a sub-folder (hard/grazing_89 is scenes/hard/grazing_89.yaml):
- * $SHADOWLAB_SCENES if set, else the source tree's scenes/.
+ * the search path of sl_scene_dirs, first hit wins.
  */
 #ifndef SL_SCENEFILE_H
 #define SL_SCENEFILE_H
@@ -41,7 +41,23 @@
  * before the entry limits apply. */
 #define SL_SCENE_MAX_BYTES ((size_t)16 << 20)
 
+/* The folders a scene name is looked up in, in order, each with where it
+ * comes from: the referring file's folder (rel_dir, when given: "config
+ * folder"), then each folder of $SHADOWLAB_SCENES (colon-separated, in
+ * order: "SHADOWLAB_SCENES"), then the installed share folder found from the
+ * binary's own place (<prefix>/share/shadowlab/scenes: "installed") or, for
+ * a binary that is not installed, the source tree's scenes/ ("source
+ * tree"). Returns how many (at most max). */
+int sl_scene_dirs(const char *rel_dir, char (*dirs)[1024], const char **origin, int max);
+
+/* The last folder of that path: installed, else the source tree's. */
 const char *sl_scenes_dir(void);
+
+/* The scene files (top-level meshes, light or base) of the search path
+ * without a referring file, first of a name only, sorted: name, description,
+ * path, origin (as sl_scene_dirs). */
+int sl_scene_list_where(char (*names)[64], char (*descr)[160], char (*paths)[1024], const char **origins,
+                        int max);
 
 /* Resolve `ref` to a readable file path. rel_dir: folder of the referring
  * file (NULL = current folder). */

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# cli::install — `cmake --install` into a temporary prefix; the installed
+# binary, started from another folder with the source tree hidden (an empty
+# folder mounted over it in a private mount namespace, so a binary that still
+# looked into the tree it was built from would find nothing there), runs the
+# shipped default config and finds every scene in <prefix>/share/shadowlab.
+# The man page and the bash completion are installed and load.
+set -u
+build=${1:?usage: cli_install.sh BUILD_DIR SOURCE_DIR}
+src=${2:?usage: cli_install.sh BUILD_DIR SOURCE_DIR}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+prefix=$tmp/prefix
+cmake --install "$build" --prefix "$prefix" >"$tmp/install.log" 2>&1 || { echo "FAIL cmake --install:"; cat "$tmp/install.log"; exit 1; }
+b=$prefix/bin/shadowlab
+share=$prefix/share/shadowlab
+for f in "$b" "$share/configs/default.yaml" "$share/scenes/primitives.yaml" "$share/scenes/hard/models/tiny.obj" \
+         "$prefix/share/man/man1/shadowlab.1" "$prefix/share/bash-completion/completions/shadowlab"; do
+  [ -e "$f" ] || { echo "FAIL not installed: $f"; exit 1; }
+done
+man -l "$prefix/share/man/man1/shadowlab.1" 2>/dev/null | grep -q "SHADOWLAB_SCENES" || command -v man >/dev/null ||
+  true   # man may be missing; the page is checked by groff below when present
+if command -v groff >/dev/null; then
+  groff -man -Tutf8 -ww -z "$prefix/share/man/man1/shadowlab.1" 2>"$tmp/groff.err"
+  [ -s "$tmp/groff.err" ] && { echo "FAIL man page warnings:"; cat "$tmp/groff.err"; exit 1; }
+fi
+# the completion offers the verbs and a verb's options
+out=$(bash -c "source '$prefix/share/bash-completion/completions/shadowlab'
+COMP_WORDS=(shadowlab ch); COMP_CWORD=1; _shadowlab; echo \${COMPREPLY[*]}
+COMP_WORDS=(shadowlab check x.db --ju); COMP_CWORD=3; _shadowlab; echo \${COMPREPLY[*]}")
+[ "$out" = "$(printf 'check\n--junit')" ] || { echo "FAIL completion: '$out'"; exit 1; }
+
+mkdir -p "$tmp/elsewhere" "$tmp/empty"
+cd "$tmp/elsewhere"
+# the source tree hidden where the system allows a private mount namespace
+hide() { unshare -m --propagation private sh -c 'mount --bind "$1" "$2" && shift 2 && exec "$@"' sh "$tmp/empty" "$src" "$@"; }
+if hide true 2>/dev/null; then
+  [ -z "$(hide ls -A "$src")" ] || { echo "FAIL the source tree is not hidden"; exit 1; }
+  echo "source tree $src hidden in a mount namespace"
+else
+  hide() { "$@"; }
+  echo "note: no mount namespace here; the source tree stays visible (origins are still checked)"
+fi
+out=$(hide "$b" list scenes) || { echo "FAIL list scenes"; exit 1; }
+[ "$(echo "$out" | wc -l)" -ge 9 ] || { echo "FAIL list scenes: $out"; exit 1; }
+echo "$out" | grep -v "\[installed: $share/scenes/" && { echo "FAIL a scene not from the installed folder"; exit 1; }
+echo "$out" | grep -q "$src" && { echo "FAIL the installed binary lists the source tree"; exit 1; }
+hide "$b" run "$share/configs/default.yaml" -o "$tmp/elsewhere/out" --no-cache >"$tmp/run.out" 2>"$tmp/run.err" ||
+  { echo "FAIL installed run:"; cat "$tmp/run.out" "$tmp/run.err"; exit 1; }
+grep -q "^default: 6 cell(s) computed, 0 already stored" "$tmp/run.out" || { echo "FAIL run summary:"; cat "$tmp/run.out"; exit 1; }
+grep -q "^written to $tmp/elsewhere/out/default/" "$tmp/run.out" || { echo "FAIL no 'written to'"; exit 1; }
+[ "$(tail -n +2 out/default/figures.csv | cut -d, -f1-6 | sort -u | wc -l)" -eq 6 ] || { echo "FAIL figures.csv"; exit 1; }
+# a config elsewhere that names a scene of its own folder, and SHADOWLAB_SCENES in front of the installed folder
+printf 'name: mine\nbase: primitives\nviewpoints:\n  - {name: side, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}\n  - {name: with, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}\n' >"$tmp/elsewhere/mine.yaml"
+mkdir -p "$tmp/extra"
+printf 'name: extra\ndescription: "an extra scene"\nbase: primitives\nviewpoints:\n  - {name: side, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}\n  - {name: with, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}\n' >"$tmp/extra/extra.yaml"
+printf 'name: own\nscenes: [{scene: mine, viewpoints: [side]}, {scene: extra, viewpoints: [with]}]\nmap_sizes: [256]\nmethods: [{method: nsm}]\n' >"$tmp/elsewhere/own.yaml"
+SHADOWLAB_SCENES=$tmp/extra hide "$b" validate own.yaml >"$tmp/v.out" 2>&1 || { echo "FAIL search path:"; cat "$tmp/v.out"; exit 1; }
+grep -q "ok: 2 scene(s), 2 cell(s)" "$tmp/v.out" || { echo "FAIL search path: $(cat "$tmp/v.out")"; exit 1; }
+hide "$b" validate own.yaml >"$tmp/v.out" 2>&1 && { echo "FAIL 'extra' found without SHADOWLAB_SCENES"; exit 1; }
+grep -q "unknown scene 'extra'" "$tmp/v.out" || { echo "FAIL: $(cat "$tmp/v.out")"; exit 1; }
+echo "1 passed, 0 failed"
