@@ -93,6 +93,7 @@ struct sl_cell_inputs {
                                                * view and map by the caller; NULL: drawn here from
                                                * the method's own verdicts */
     double shared_band_ms;                    /* what drawing shared_band cost, ms (ms.contours) */
+    const char *label;                        /* the method's label (overlay title); NULL: its name */
     const char *overlay_path;                 /* NULL: no overlay */
     const char *exr_path;                     /* NULL: no EXR layers */
 };

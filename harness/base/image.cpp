@@ -1,12 +1,19 @@
 // image.cpp — thin OpenImageIO wrapper behind image.h. C++ stays here.
 #include "image.h"
 #include "provenance.h"
+#include <OpenImageIO/half.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+#include <algorithm>
+#include <cmath>
+#include <mutex>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 using namespace OIIO;
 
@@ -68,30 +75,53 @@ extern "C" enum sl_err sl_image_read_rgb8(const char *path, int *w, int *h, unsi
 
 extern "C" enum sl_err sl_image_write_layers(const char *path, int w, int h, int nlayers,
                                              const char *const *names,
-                                             const unsigned char *const *layers, struct sl_diag *d)
+                                             const unsigned char *const *layers, int nattrs,
+                                             const struct sl_image_attr *attrs, struct sl_diag *d)
 {
     std::string tmp = tmp_name(path);
     auto out = ImageOutput::create(path);
     if (!out)
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "no image writer: %s", OIIO::geterror().c_str());
-    ImageSpec spec(w, h, nlayers, TypeDesc::UINT32);
+    // Each layer twice: HALF under its name (the code as a number: what
+    // viewers and `oiiotool --stats` show; UINT alone read as 0 there, being
+    // scaled by 2^32) and UINT as "code.<name>" (the integer as it is).
+    // Pixels are handed over in the channels' own formats (TypeUnknown):
+    // converting floats to UINT would scale them.
+    ImageSpec spec(w, h, 2 * nlayers, TypeDesc::HALF);
     spec.channelnames.clear();
-    for (int c = 0; c < nlayers; c++)
+    spec.channelformats.clear();
+    for (int c = 0; c < nlayers; c++) {
         spec.channelnames.push_back(names[c]);
+        spec.channelformats.push_back(TypeDesc::HALF);
+    }
+    for (int c = 0; c < nlayers; c++) {
+        spec.channelnames.push_back(std::string("code.") + names[c]);
+        spec.channelformats.push_back(TypeDesc::UINT32);
+    }
     spec.attribute("Software", std::string("shadowlab ") + sl_git_sha());
     spec.attribute("compression", "zip");
-    const size_t n = (size_t)w * (size_t)h;
-    std::unique_ptr<unsigned[]> buf(new (std::nothrow) unsigned[n * (size_t)nlayers]);
+    for (int a = 0; a < nattrs; a++)
+        spec.attribute(attrs[a].name, attrs[a].value);
+    // one pixel in the file's channel order, packed: the halves, then the UINTs
+    // (copied with memcpy: a UINT may sit at an odd offset)
+    const size_t n = (size_t)w * (size_t)h, px = (size_t)nlayers * (2 + 4);
+    std::unique_ptr<unsigned char[]> buf(new (std::nothrow) unsigned char[n * px]);
     if (!buf)
         return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "EXR buffer");
-    for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < nlayers; c++)
-            buf[i * (size_t)nlayers + (size_t)c] = layers[c][i];
+    for (size_t i = 0; i < n; i++) {
+        unsigned char *p = buf.get() + i * px;
+        for (int c = 0; c < nlayers; c++) {
+            half hv((float)layers[c][i]);
+            std::memcpy(p + 2 * (size_t)c, &hv, 2);
+            unsigned u = layers[c][i];
+            std::memcpy(p + 2 * (size_t)nlayers + 4 * (size_t)c, &u, 4);
+        }
+    }
     if (!out->open(tmp, spec))
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "cannot write: %s", out->geterror().c_str());
-    const stride_t ys = -(stride_t)w * nlayers * (stride_t)sizeof(unsigned);
-    const unsigned *last = buf.get() + (size_t)(h - 1) * (size_t)w * (size_t)nlayers;
-    bool ok = out->write_image(TypeDesc::UINT32, last, AutoStride, ys);
+    const stride_t xs = (stride_t)px, ys = -(stride_t)w * (stride_t)px;
+    const unsigned char *last = buf.get() + (size_t)(h - 1) * (size_t)w * px;
+    bool ok = out->write_image(TypeUnknown, last, xs, ys);
     ok = out->close() && ok;
     if (!ok || std::rename(tmp.c_str(), path) != 0) {
         std::remove(tmp.c_str());
@@ -121,15 +151,206 @@ extern "C" enum sl_err sl_image_read_layer(const char *path, const char *name, i
     *out = (unsigned *)std::malloc(n * sizeof(unsigned));
     if (!*out)
         return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "image buffer");
-    /* file rows are top-down; hand back bottom-up like the rest of shadowlab */
-    const stride_t ys = -(stride_t)spec.width * (stride_t)sizeof(unsigned);
-    unsigned *last = *out + (size_t)(spec.height - 1) * (size_t)spec.width;
-    bool ok = in->read_image(0, 0, ch, ch + 1, TypeDesc::UINT32, last, AutoStride, ys);
+    /* file rows are top-down; hand back bottom-up like the rest of shadowlab.
+     * A UINT channel as it is; a HALF or FLOAT one holds the code as a
+     * number (reading it as UINT32 would scale 1.0 to 2^32 - 1) */
+    bool ok;
+    if (spec.channelformat(ch).basetype == TypeDesc::UINT32) {
+        const stride_t ys = -(stride_t)spec.width * (stride_t)sizeof(unsigned);
+        unsigned *last = *out + (size_t)(spec.height - 1) * (size_t)spec.width;
+        ok = in->read_image(0, 0, ch, ch + 1, TypeDesc::UINT32, last, AutoStride, ys);
+    } else {
+        std::vector<float> f(n);
+        ok = in->read_image(0, 0, ch, ch + 1, TypeDesc::FLOAT, f.data());
+        for (int y = 0; ok && y < spec.height; y++)
+            for (int x = 0; x < spec.width; x++) {
+                float v = f[(size_t)y * (size_t)spec.width + (size_t)x];
+                (*out)[(size_t)(spec.height - 1 - y) * (size_t)spec.width + (size_t)x] =
+                    v > 0.0f ? (unsigned)std::lround(v) : 0u;
+            }
+    }
     in->close();
     if (!ok) {
         std::free(*out);
         *out = nullptr;
         return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot decode image");
+    }
+    return SL_OK;
+}
+
+extern "C" enum sl_err sl_image_read_attr(const char *path, const char *name, char *out, int n,
+                                          struct sl_diag *d)
+{
+    auto in = ImageInput::open(path);
+    if (!in)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read image: %s", OIIO::geterror().c_str());
+    std::string v = in->spec().get_string_attribute(name, "\x01");
+    in->close();
+    if (v == "\x01")
+        return sl_fail(d, SL_E_IO, path, 0, name, "no such attribute");
+    std::snprintf(out, (size_t)n, "%s", v.c_str());
+    return SL_OK;
+}
+
+// The sheet's font: DejaVu Sans (fonts-dejavu-core) by name, else
+// OpenImageIO's default; NULL when neither loads (the sheet then has no
+// text). Looked up once: a failed lookup searches every font folder.
+static const std::string *sheet_font()
+{
+    static std::string font;
+    static bool found = false;
+    static std::once_flag once;
+    std::call_once(once, [] {
+        for (const char *name : {"DejaVuSans", ""}) {
+            if (ImageBufAlgo::text_size("Ag", 16, name).defined()) {
+                font = name;
+                found = true;
+                break;
+            }
+        }
+        (void)OIIO::geterror();   // a failed lookup leaves a message: not ours to print
+    });
+    return found ? &font : nullptr;
+}
+
+extern "C" enum sl_err sl_image_write_sheet(const char *path, const struct sl_image_sheet *s,
+                                            struct sl_diag *d)
+{
+    namespace IBA = ImageBufAlgo;
+    const int W = s->w, H = s->h;
+    // the frame, top-down like the file
+    ImageBuf bu(ImageSpec(W, H, 3, TypeDesc::UINT8), const_cast<unsigned char *>(s->rgb));
+    ImageBuf frame = IBA::flip(bu);
+    int vx = 0, vy = 0, vw = W, vh = H;
+    if (s->view[2] > 0) {
+        vx = s->view[0];
+        vw = s->view[2];
+        vh = s->view[3];
+        vy = H - (s->view[1] + vh);
+    }
+    const std::string *font = sheet_font();
+    // text about 1/48 of the frame's height (21 px at 1024), 12 to 22 px
+    const int fs = std::clamp(std::max(vh, H) / 48, 12, 22);
+    const int M = fs / 2 + 4, line = fs * 3 / 2;
+    auto textw = [&](const std::string &t) {
+        if (!font || t.empty())
+            return 0;
+        ROI r = IBA::text_size(t, fs, *font);
+        return r.defined() ? r.width() : 0;
+    };
+    const float white[3] = {1, 1, 1}, black[3] = {0, 0, 0}, rim[3] = {0.55f, 0.55f, 0.55f};
+
+    // insets: nearest-neighbour zooms of their windows, cut before any mark
+    const int z = std::max(1, s->zoom), ni = std::min(s->ninsets, SL_SHEET_MAX_INSETS);
+    std::vector<ImageBuf> zoomed((size_t)std::max(ni, 0));
+    std::vector<ROI> win((size_t)std::max(ni, 0));
+    int colw = 0, colh = 0;
+    for (int k = 0; k < ni; k++) {
+        const int *b = s->inset[k];
+        win[(size_t)k] = ROI(b[0], b[0] + b[2], H - (b[1] + b[3]), H - b[1], 0, 1, 0, 3);
+        ImageBuf cut = IBA::cut(frame, win[(size_t)k]);
+        zoomed[(size_t)k] = IBA::resample(cut, false, ROI(0, b[2] * z, 0, b[3] * z, 0, 1, 0, 3));
+        colw = std::max({colw, b[2] * z, textw(s->inset_caption[k])});
+        colh += (font ? line : 0) + b[3] * z + M;
+    }
+
+    // the windows marked on the frame: a white 2-px box just outside each and
+    // its number; then every error pixel put back as it was, so a mark never
+    // covers one
+    ImageBuf marked = frame;
+    ROI u;
+    for (int k = 0; k < ni; k++) {
+        const ROI &r = win[(size_t)k];
+        IBA::render_box(marked, r.xbegin - 2, r.ybegin - 2, r.xend + 1, r.yend + 1, white);
+        IBA::render_box(marked, r.xbegin - 1, r.ybegin - 1, r.xend, r.yend, white);
+        if (font) {
+            int ty = r.ybegin - 4 - fs >= 0 ? r.ybegin - 4 : r.yend + 4 + fs;
+            IBA::render_text(marked, r.xbegin - 2, ty, std::to_string(k + 1), fs, *font, white);
+        }
+        ROI m(r.xbegin - 3, r.xend + 3 + fs, r.ybegin - 8 - 2 * fs, r.yend + 8 + 2 * fs, 0, 1, 0, 3);
+        u = k ? roi_union(u, m) : m;
+    }
+    if (ni > 0 && s->keep) {
+        u = roi_intersection(u, frame.roi());
+        ImageBuf kb(ImageSpec(W, H, 1, TypeDesc::UINT8), const_cast<unsigned char *>(s->keep));
+        ImageBuf keep = IBA::crop(IBA::flip(kb), ROI(u.xbegin, u.xend, u.ybegin, u.yend, 0, 1, 0, 1));
+        ImageBuf k3 = IBA::channels(keep, 3, {0, 0, 0});
+        ImageBuf was = IBA::crop(frame, u).copy(TypeDesc::FLOAT);
+        ImageBuf now = IBA::crop(marked, u).copy(TypeDesc::FLOAT);
+        ImageBuf back = IBA::mad(k3, IBA::sub(was, now), now);   // keep ? was : now
+        IBA::paste(marked, 0, 0, 0, 0, back, u);
+    }
+
+    // the sheet: title, the view at 1:1 with the insets beside it, the legend
+    std::string title = s->title;
+    const int titleh = font && !title.empty() ? line : 0;
+    const int bodyw = vw + (ni > 0 ? M + colw : 0), bodyh = std::max(vh, colh);
+    const int sw = 2 * M + std::max(bodyw, textw(title));
+    std::vector<int> lx, ly;
+    int x = M, y = 0, rows = s->nlegend > 0 ? 1 : 0;
+    for (int k = 0; k < s->nlegend && k < SL_SHEET_MAX_LEGEND; k++) {
+        int ew = fs + 6 + (font ? textw(s->legend_text[k]) : 0) + 2 * M;
+        if (x > M && x + ew > sw - M) {
+            x = M;
+            y += line;
+            rows++;
+        }
+        lx.push_back(x);
+        ly.push_back(y);
+        x += ew;
+    }
+    const int top = M + titleh, legy = top + bodyh + M;
+    const int sh = legy + rows * line + M;
+    ImageBuf sheet(ImageSpec(sw, sh, 3, TypeDesc::UINT8));
+    IBA::fill(sheet, white);
+    if (titleh)
+        IBA::render_text(sheet, M, M + fs, title, fs, *font, black);
+    IBA::paste(sheet, M - vx, top - vy, 0, 0, marked, ROI(vx, vx + vw, vy, vy + vh, 0, 1, 0, 3));
+    std::string where[SL_SHEET_MAX_INSETS];
+    int cx = M + vw + M, cy = top;
+    for (int k = 0; k < ni; k++) {
+        const ROI &r = win[(size_t)k];
+        if (font)
+            IBA::render_text(sheet, cx, cy + fs, s->inset_caption[k], fs, *font, black);
+        int py = cy + (font ? line : 0);
+        IBA::paste(sheet, cx, py, 0, 0, zoomed[(size_t)k]);
+        IBA::render_box(sheet, cx - 1, py - 1, cx + r.width() * z, py + r.height() * z, rim);
+        where[k] = std::to_string(r.xbegin) + " " + std::to_string(r.ybegin) + " " + std::to_string(r.width()) +
+                   " " + std::to_string(r.height()) + " " + std::to_string(cx) + " " + std::to_string(py) + " " +
+                   std::to_string(z);
+        cy = py + r.height() * z + M;
+    }
+    std::string legend;
+    for (size_t k = 0; k < lx.size(); k++) {
+        const unsigned char *c = s->legend_rgb[k];
+        const float cf[3] = {c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f};
+        int ex = lx[k], ey = legy + ly[k];
+        IBA::fill(sheet, cf, ROI(ex, ex + fs, ey, ey + fs, 0, 1, 0, 3));
+        IBA::render_box(sheet, ex, ey, ex + fs - 1, ey + fs - 1, black);
+        if (font)
+            IBA::render_text(sheet, ex + fs + 6, ey + fs - fs / 5, s->legend_text[k], fs, *font, black);
+        legend += (k ? "; " : "") + std::string(s->legend_text[k]);
+    }
+
+    ImageSpec &spec = sheet.specmod();
+    spec.attribute("Software", std::string("shadowlab ") + sl_git_sha());
+    if (!title.empty())
+        spec.attribute("ImageDescription", title);
+    spec.attribute("shadowlab:view", std::to_string(vx) + " " + std::to_string(vy) + " " + std::to_string(vw) + " " +
+                                         std::to_string(vh) + " " + std::to_string(M) + " " + std::to_string(top));
+    for (int k = 0; k < ni; k++)
+        spec.attribute("shadowlab:inset" + std::to_string(k + 1), where[k]);
+    spec.attribute("shadowlab:legend", legend);
+    spec.attribute("shadowlab:text", font ? "1" : "0");
+    for (int a = 0; a < s->nattrs; a++)
+        spec.attribute(s->attrs[a].name, s->attrs[a].value);
+    if (sheet.has_error() || marked.has_error())
+        return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "composing the sheet: %s",
+                       (sheet.geterror() + marked.geterror()).c_str());
+    std::string tmp = tmp_name(path);
+    if (!sheet.write(tmp) || std::rename(tmp.c_str(), path) != 0) {
+        std::remove(tmp.c_str());
+        return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "write failed: %s", sheet.geterror().c_str());
     }
     return SL_OK;
 }
