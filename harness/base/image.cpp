@@ -108,8 +108,10 @@ extern "C" enum sl_err sl_image_write_layers(const char *path, int w, int h, int
     std::unique_ptr<unsigned char[]> buf(new (std::nothrow) unsigned char[n * px]);
     if (!buf)
         return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "EXR buffer");
+    // top-down rows, packed (OpenImageIO takes per-channel formats only contiguous)
     for (size_t i = 0; i < n; i++) {
-        unsigned char *p = buf.get() + i * px;
+        size_t x = i % (size_t)w, y = i / (size_t)w;
+        unsigned char *p = buf.get() + (((size_t)h - 1 - y) * (size_t)w + x) * px;
         for (int c = 0; c < nlayers; c++) {
             half hv((float)layers[c][i]);
             std::memcpy(p + 2 * (size_t)c, &hv, 2);
@@ -119,9 +121,7 @@ extern "C" enum sl_err sl_image_write_layers(const char *path, int w, int h, int
     }
     if (!out->open(tmp, spec))
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "cannot write: %s", out->geterror().c_str());
-    const stride_t xs = (stride_t)px, ys = -(stride_t)w * (stride_t)px;
-    const unsigned char *last = buf.get() + (size_t)(h - 1) * (size_t)w * px;
-    bool ok = out->write_image(TypeUnknown, last, xs, ys);
+    bool ok = out->write_image(TypeUnknown, buf.get());
     ok = out->close() && ok;
     if (!ok || std::rename(tmp.c_str(), path) != 0) {
         std::remove(tmp.c_str());
