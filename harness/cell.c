@@ -56,15 +56,16 @@ static void check_exact(const struct sl_cell_inputs *in, const struct sl_verdict
         }
 }
 
-/* The sheet's title and crop (overlay.h: the scene's bounding box when it
- * fills less than half the frame). */
-static void sheet_frame(const struct sl_cell_inputs *in, const struct sl_cell *cell, struct sl_image_sheet *sh)
+/* The sheet's title and crop (overlay.h: the scene's bounding box, or its
+ * shadows' and errors', when that fills less than half the frame). */
+static void sheet_frame(const struct sl_cell_inputs *in, const struct sl_cell *cell, const uint8_t *band,
+                        const uint8_t *err, struct sl_image_sheet *sh)
 {
     const struct sl_view *v = in->view;
     snprintf(sh->title, sizeof sh->title, "%s/%s  %s  map %d  %dx%d", cell->scene, cell->viewpoint,
              in->label ? in->label : in->method->name, in->frame ? in->frame->size : 0, v->w, v->h);
     struct sl_ov_box b;
-    if (sl_overlay_crop(v, 16, &b)) {
+    if (sl_overlay_crop(v, band, err, 16, &b)) {
         sh->view[0] = b.x;
         sh->view[1] = b.y;
         sh->view[2] = b.w;
@@ -89,7 +90,7 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
     sh.h = H;
     sh.rgb = in->rgb;
     sh.keep = err;
-    sheet_frame(in, cell, &sh);
+    sheet_frame(in, cell, band, err, &sh);
     uint64_t wrong = count[SL_OV_LIT_WRONG] + count[SL_OV_SHADOW_WRONG] + count[SL_OV_WRONG_OUTSIDE];
     size_t npx = (size_t)W * (size_t)H;
     if (wrong > 0 && count[SL_OV_UNCERTAIN] > 0) {
@@ -216,7 +217,7 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
     sh.w = W;
     sh.h = H;
     sh.rgb = in->rgb;
-    sheet_frame(in, cell, &sh);
+    sheet_frame(in, cell, NULL, NULL, &sh);
     static const struct { uint8_t rgb[3]; const char *text; } key[] = {
         {{213, 94, 0}, "too dark (off the area truth by > 0.05)"},
         {{0, 114, 178}, "too light (off by > 0.05)"},

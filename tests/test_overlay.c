@@ -321,19 +321,33 @@ static void overlay_crop_small_scene(void **st)
     struct sl_view v = {.w = W, .h = H, .truth = truth};
     struct sl_ov_box b;
     memset(truth, SL_T_BACKGROUND, sizeof truth);
-    assert_int_equal(sl_overlay_crop(&v, 4, &b), 0);   /* nothing: the whole frame */
+    assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 0);   /* nothing: the whole frame */
     assert_true(b.x == 0 && b.y == 0 && b.w == W && b.h == H);
     for (int y = 30; y < 40; y++)
         for (int x = 50; x < 70; x++)
             truth[y * W + x] = SL_T_LIT;
-    assert_int_equal(sl_overlay_crop(&v, 4, &b), 1);
+    assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 1);
     assert_int_equal(b.x, 46);
     assert_int_equal(b.y, 26);
     assert_int_equal(b.w, 28);
     assert_int_equal(b.h, 18);
     truth[0] = truth[W * H - 1] = SL_T_SHADOW;   /* two far corners: the box spans the frame */
-    assert_int_equal(sl_overlay_crop(&v, 4, &b), 0);
+    assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 0);
     assert_true(b.x == 0 && b.w == W);
+    /* a ground filling the frame: the contours' and errors' box, padded by
+     * 1/16 of the shorter side (5 px) when that is more than pad */
+    static uint8_t band[W * H], err[W * H];
+    memset(truth, SL_T_LIT, sizeof truth);
+    assert_int_equal(sl_overlay_crop(&v, band, err, 4, &b), 0);   /* no contour, no error */
+    for (int x = 20; x < 30; x++)
+        band[40 * W + x] = 1;
+    err[50 * W + 35] = 255;
+    assert_int_equal(sl_overlay_crop(&v, band, err, 4, &b), 1);
+    assert_int_equal(b.x, 15);
+    assert_int_equal(b.y, 35);
+    assert_int_equal(b.w, 26);
+    assert_int_equal(b.h, 21);
+    assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 0);   /* without bands: the ground's box */
 }
 
 int main(int argc, char **argv)

@@ -68,39 +68,66 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const s
         memcpy(count, cnt, sizeof cnt);
 }
 
-int sl_overlay_crop(const struct sl_view *v, int pad, struct sl_ov_box *out)
+/* Bounding box of the pixels with keep(i) true, or x1 < 0 when none. */
+static void bbox(const struct sl_view *v, const uint8_t *band, const uint8_t *err, int *x0, int *y0, int *x1, int *y1)
 {
-    int x0 = v->w, y0 = v->h, x1 = -1, y1 = -1;
+    *x0 = v->w, *y0 = v->h, *x1 = -1, *y1 = -1;
     for (int y = 0; y < v->h; y++) {
-        const uint8_t *row = v->truth + (size_t)y * (size_t)v->w;
+        size_t r = (size_t)y * (size_t)v->w;
         int first = -1, last = -1;
-        for (int x = 0; x < v->w; x++)
-            if (row[x] != SL_T_BACKGROUND) {
+        for (int x = 0; x < v->w; x++) {
+            size_t i = r + (size_t)x;
+            int in = band ? band[i] != 0 || (err && err[i]) : v->truth[i] != SL_T_BACKGROUND;
+            if (in) {
                 if (first < 0)
                     first = x;
                 last = x;
             }
+        }
         if (first < 0)
             continue;
-        x0 = first < x0 ? first : x0;
-        x1 = last > x1 ? last : x1;
-        y0 = y < y0 ? y : y0;
-        y1 = y;
+        *x0 = first < *x0 ? first : *x0;
+        *x1 = last > *x1 ? last : *x1;
+        *y0 = y < *y0 ? y : *y0;
+        *y1 = y;
     }
-    *out = (struct sl_ov_box){0, 0, v->w, v->h};
+}
+
+/* The box padded, clamped; 1 when it covers less than half the frame. */
+static int small_box(const struct sl_view *v, int x0, int y0, int x1, int y1, int pad, struct sl_ov_box *out)
+{
     if (x1 < 0)
-        return 0;   /* nothing but background: show the frame as it is */
+        return 0;
     x0 = x0 - pad > 0 ? x0 - pad : 0;
     y0 = y0 - pad > 0 ? y0 - pad : 0;
     x1 = x1 + pad < v->w - 1 ? x1 + pad : v->w - 1;
     y1 = y1 + pad < v->h - 1 ? y1 + pad : v->h - 1;
     struct sl_ov_box b = {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
-    /* half the frame: below it, the scene is small enough that a crop shows
-     * it noticeably larger in a report's fixed-width figure */
+    /* half the frame: below it, a crop shows the scene noticeably larger in
+     * a report's fixed-width figure */
     if (2 * (uint64_t)b.w * (uint64_t)b.h >= (uint64_t)v->w * (uint64_t)v->h)
         return 0;
     *out = b;
     return 1;
+}
+
+int sl_overlay_crop(const struct sl_view *v, const uint8_t *band, const uint8_t *err, int pad, struct sl_ov_box *out)
+{
+    int x0, y0, x1, y1;
+    *out = (struct sl_ov_box){0, 0, v->w, v->h};
+    bbox(v, NULL, NULL, &x0, &y0, &x1, &y1);
+    if (x1 < 0)
+        return 0;   /* nothing but background: show the frame as it is */
+    if (small_box(v, x0, y0, x1, y1, pad, out))
+        return 1;
+    if (!band)
+        return 0;
+    /* a ground filling the frame (Bench, Trees): the shadows' boundaries and
+     * the errors instead, with a wider margin so the casters' lit sides
+     * beside them stay in view */
+    int m = (v->w < v->h ? v->w : v->h) / 16;
+    bbox(v, band, err, &x0, &y0, &x1, &y1);
+    return small_box(v, x0, y0, x1, y1, pad > m ? pad : m, out);
 }
 
 static int overlaps(const struct sl_ov_box *a, int x, int y, int s)

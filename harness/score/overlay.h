@@ -48,10 +48,16 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const s
 /* A rectangle of pixels, y = 0 the bottom row. */
 struct sl_ov_box { int x, y, w, h; };
 
-/* The scene's bounding box (pixels whose truth is not background), padded by
- * pad and clamped to the frame. Returns 1 when it covers less than half the
- * frame (worth cropping to), else 0 (*out is then the whole frame). */
-int sl_overlay_crop(const struct sl_view *v, int pad, struct sl_ov_box *out);
+/* The part of the frame worth showing: the scene's bounding box (pixels
+ * whose truth is not background) when it covers less than half the frame;
+ * else, given the contour bands (band, and err: nonzero where wrong or
+ * uncertain; either may be NULL), the box of the contours and the errors
+ * padded by 1/16 of the frame's shorter side, when that covers less than half
+ * (a ground plane filling the frame around small casters: Bench, Trees).
+ * Boxes are padded by at least pad and clamped to the frame. Returns 1 when
+ * *out is such a crop, 0 when it is the whole frame. */
+int sl_overlay_crop(const struct sl_view *v, const uint8_t *band, const uint8_t *err, int pad,
+                    struct sl_ov_box *out);
 
 /* Up to n windows of s x s pixels holding the most nonzero pixels of err,
  * chosen greedily: the first holds the most of any window (ties: the lowest,
