@@ -100,7 +100,8 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
             err[i] = err[i] && vd->v[i] != SL_V_UNCERTAIN ? 255 : 0;
     }
     /* windows of 1/16 the frame's shorter side (64 px at 1024), zoomed to
-     * fill about a third of the view's height each, 2x to 8x */
+     * fill about a third of the view's height each, 4x (a pixel plainly a
+     * square) to 8x */
     int s = (W < H ? W : H) / 16, vh = sh.view[2] ? sh.view[3] : H;
     s = s < 8 ? 8 : s > 128 ? 128 : s;
     struct sl_ov_box box[3];
@@ -112,7 +113,7 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
         for (size_t i = 0; i < npx; i++)
             err[i] = err[i] || vd->v[i] == SL_V_UNCERTAIN ? 255 : 0;
     int z = vh / 3 / s;
-    sh.zoom = z < 2 ? 2 : z > 8 ? 8 : z;
+    sh.zoom = z < 4 ? 4 : z > 8 ? 8 : z;
     sh.ninsets = n;
     for (int k = 0; k < n; k++) {
         sh.inset[k][0] = box[k].x;

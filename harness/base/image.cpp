@@ -260,15 +260,28 @@ extern "C" enum sl_err sl_image_write_sheet(const char *path, const struct sl_im
     const int z = std::max(1, s->zoom), ni = std::clamp(s->ninsets, 0, SL_SHEET_MAX_INSETS);
     std::vector<ImageBuf> zoomed((size_t)ni);
     std::vector<ROI> win((size_t)ni);
-    int colw = 0, colh = 0;
+    // laid out in columns beside the view, a new column when the next would
+    // reach below the view (a short crop gets its insets side by side)
+    std::vector<int> ix((size_t)ni), iy((size_t)ni);
+    int colx = 0, colw = 0, cy = 0, colh = 0;
     for (int k = 0; k < ni; k++) {
         const int *b = s->inset[k];
         win[(size_t)k] = ROI(b[0], b[0] + b[2], H - (b[1] + b[3]), H - b[1], 0, 1, 0, 3);
         ImageBuf cut = IBA::cut(frame, win[(size_t)k]);
         zoomed[(size_t)k] = IBA::resample(cut, false, ROI(0, b[2] * z, 0, b[3] * z, 0, 1, 0, 3));
+        int bh = (font ? line : 0) + b[3] * z + M;
+        if (cy > 0 && cy + bh > vh + M) {
+            colx += colw + M;
+            colw = 0;
+            cy = 0;
+        }
+        ix[(size_t)k] = colx;
+        iy[(size_t)k] = cy;
         colw = std::max({colw, b[2] * z, textw(s->inset_caption[k])});
-        colh += (font ? line : 0) + b[3] * z + M;
+        cy += bh;
+        colh = std::max(colh, cy);
     }
+    colw += colx;
 
     // the layout: title, the view at 1:1 with the insets beside it, the legend
     std::string title = s->title;
@@ -332,9 +345,9 @@ extern "C" enum sl_err sl_image_write_sheet(const char *path, const struct sl_im
     if (titleh)
         IBA::render_text(sheet, M, M + fs, title, fs, *font, black);
     std::string where[SL_SHEET_MAX_INSETS];
-    int cx = M + vw + M, cy = top;
     for (int k = 0; k < ni; k++) {
         const ROI &r = win[(size_t)k];
+        int cx = M + vw + M + ix[(size_t)k], cy = top + iy[(size_t)k];
         if (font)
             IBA::render_text(sheet, cx, cy + fs, s->inset_caption[k], fs, *font, black);
         int py = cy + (font ? line : 0);
@@ -343,7 +356,6 @@ extern "C" enum sl_err sl_image_write_sheet(const char *path, const struct sl_im
         where[k] = std::to_string(r.xbegin) + " " + std::to_string(r.ybegin) + " " + std::to_string(r.width()) +
                    " " + std::to_string(r.height()) + " " + std::to_string(cx) + " " + std::to_string(py) + " " +
                    std::to_string(z);
-        cy = py + r.height() * z + M;
     }
     std::string legend;
     for (size_t k = 0; k < lx.size(); k++) {
