@@ -9,8 +9,10 @@
  * `contour_from: nsm`, the thesis's), its figures per region, the exactness check of what it declares
  * (method.h SL_EXACT_*, every PFL pixel; the first few violating pixels are
  * kept with the triangles their texel holds), coherence's patterns, its
- * error overlay and, when asked, the per-pixel EXR layers behind the
- * figures. Under an area light its verdicts are also scored as a visible
+ * error overlay sheet (overlay.h, image.h: the frame at 1:1 or cropped to
+ * the scene, the densest error windows zoomed, a legend) and, when asked,
+ * the per-pixel EXR layers behind the figures with their codes named in the
+ * header. Under an area light its verdicts are also scored as a visible
  * fraction against the area truth (softfig.h), and its overlay is then the
  * soft error heat map. A soft method's cell gets the soft figures only.
  *
