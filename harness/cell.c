@@ -56,6 +56,145 @@ static void check_exact(const struct sl_cell_inputs *in, const struct sl_verdict
         }
 }
 
+/* The sheet's title and crop (overlay.h: the scene's bounding box, or its
+ * shadows' and errors', when that fills less than half the frame). */
+static void sheet_frame(const struct sl_cell_inputs *in, const struct sl_cell *cell, const uint8_t *band,
+                        const uint8_t *err, struct sl_image_sheet *sh)
+{
+    const struct sl_view *v = in->view;
+    snprintf(sh->title, sizeof sh->title, "%s/%s  %s  map %d  %dx%d", cell->scene, cell->viewpoint,
+             in->label ? in->label : in->method->name, in->frame ? in->frame->size : 0, v->w, v->h);
+    struct sl_ov_box b;
+    if (sl_overlay_crop(v, band, err, 16, &b)) {
+        sh->view[0] = b.x;
+        sh->view[1] = b.y;
+        sh->view[2] = b.w;
+        sh->view[3] = b.h;
+    }
+}
+
+/* A hard-light cell's overlay sheet: the frame at 1:1 (cropped to the scene
+ * when small), the three windows with most wrong pixels zoomed beside it (the
+ * uncertain ones when none is wrong), a legend with each class's count.
+ * err: w * h scratch (the error mask). */
+static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct sl_verdicts *vd, const uint8_t *band,
+                                 const struct sl_cell *cell, uint8_t *err, struct sl_diag *d)
+{
+    const struct sl_view *v = in->view;
+    int W = v->w, H = v->h, th = in->overlay_contour;
+    uint64_t count[SL_OV_CLASSES];
+    sl_overlay_build(v, in->light_dir, vd, band, th, in->rgb, err, count);
+    struct sl_image_sheet sh;
+    memset(&sh, 0, sizeof sh);
+    sh.w = W;
+    sh.h = H;
+    sh.rgb = in->rgb;
+    sh.keep = err;
+    sheet_frame(in, cell, band, err, &sh);
+    uint64_t wrong = count[SL_OV_LIT_WRONG] + count[SL_OV_SHADOW_WRONG] + count[SL_OV_WRONG_OUTSIDE];
+    size_t npx = (size_t)W * (size_t)H;
+    if (wrong > 0 && count[SL_OV_UNCERTAIN] > 0) {
+        /* the insets go where the wrong pixels are: leave the uncertain
+         * ones out of the mask while choosing (put back below) */
+        for (size_t i = 0; i < npx; i++)
+            err[i] = err[i] && vd->v[i] != SL_V_UNCERTAIN ? 255 : 0;
+    }
+    /* windows of 1/16 the frame's shorter side (64 px at 1024), zoomed to
+     * fill about a third of the view's height each, 4x (a pixel plainly a
+     * square) to 8x */
+    int s = (W < H ? W : H) / 16, vh = sh.view[2] ? sh.view[3] : H;
+    s = s < 8 ? 8 : s > 128 ? 128 : s;
+    struct sl_ov_box box[3];
+    uint64_t inbox[3];
+    int n = wrong || count[SL_OV_UNCERTAIN] ? sl_overlay_insets(W, H, err, s, 3, box, inbox) : 0;
+    if (n < 0)
+        return sl_fail(d, SL_E_NOMEM, in->overlay_path, 0, NULL, "inset search");
+    if (wrong > 0 && count[SL_OV_UNCERTAIN] > 0)
+        for (size_t i = 0; i < npx; i++)
+            err[i] = err[i] || vd->v[i] == SL_V_UNCERTAIN ? 255 : 0;
+    int z = vh / 3 / s;
+    sh.zoom = z < 4 ? 4 : z > 8 ? 8 : z;
+    sh.ninsets = n;
+    for (int k = 0; k < n; k++) {
+        sh.inset[k][0] = box[k].x;
+        sh.inset[k][1] = box[k].y;
+        sh.inset[k][2] = box[k].w;
+        sh.inset[k][3] = box[k].h;
+        snprintf(sh.inset_caption[k], sizeof sh.inset_caption[k], "%d: %llu %s in %dx%d, x%d", k + 1,
+                 (unsigned long long)inbox[k], wrong ? "wrong" : "uncertain", box[k].w, box[k].h, sh.zoom);
+    }
+    char c[12];
+    if (th > 0)
+        snprintf(c, sizeof c, "%d-px", th);   /* "2-px" */
+    static const char *const what[SL_OV_CLASSES] = {
+        [SL_OV_LIT_WRONG] = "said lit, shadowed", [SL_OV_SHADOW_WRONG] = "said shadowed, lit",
+        [SL_OV_WRONG_OUTSIDE] = "wrong, outside the contour", [SL_OV_UNCERTAIN] = "uncertain",
+        [SL_OV_CONTOUR] = "contour (right pixels)",
+    };
+    for (int k = 0; k < SL_OV_CLASSES; k++) {
+        if (th == 0 && (k == SL_OV_WRONG_OUTSIDE || k == SL_OV_CONTOUR))
+            continue;   /* contour 0: the whole image, nothing outside it */
+        memcpy(sh.legend_rgb[sh.nlegend], sl_overlay_colour[k], 3);
+        if (k == SL_OV_CONTOUR)
+            snprintf(sh.legend_text[sh.nlegend], sizeof sh.legend_text[0], "%s contour, faint", c);
+        else
+            snprintf(sh.legend_text[sh.nlegend], sizeof sh.legend_text[0], "%s%s%s%s: %llu", what[k],
+                     k < SL_OV_WRONG_OUTSIDE && th > 0 ? ", in the " : "",
+                     k < SL_OV_WRONG_OUTSIDE && th > 0 ? c : "", k < SL_OV_WRONG_OUTSIDE && th > 0 ? " contour" : "",
+                     (unsigned long long)count[k]);
+        sh.nlegend++;
+    }
+    if (sh.nlegend < SL_SHEET_MAX_LEGEND) {
+        static const uint8_t box_white[3] = {255, 255, 255};
+        memcpy(sh.legend_rgb[sh.nlegend], box_white, 3);
+        snprintf(sh.legend_text[sh.nlegend++], sizeof sh.legend_text[0], "white boxes: the insets' windows");
+    }
+    return sl_image_write_sheet(in->overlay_path, &sh, d);
+}
+
+/* The EXR layers, each code named in the header (shadowlab:<layer>).
+ * errcls: w * h scratch. */
+static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_verdicts *vd, const uint8_t *band,
+                             const struct sl_cell *cell, uint8_t *errcls, struct sl_diag *d)
+{
+    const struct sl_view *v = in->view;
+    size_t npx = (size_t)v->w * (size_t)v->h;
+    for (size_t i = 0; i < npx; i++) {
+        uint8_t t = v->truth[i], x = vd->v[i];
+        errcls[i] = x == SL_V_LIT && t != SL_T_LIT && t != SL_T_BACKGROUND ? 1
+                    : x == SL_V_SHADOW && t == SL_T_LIT                    ? 2
+                    : x == SL_V_UNCERTAIN                                  ? 3
+                                                                           : 0;
+    }
+    char how[400] = "", title[200], cf[160];
+    int k = 0;
+    static const char *const hows[] = {
+#define SL_HOW_TEXT(id, text) text,
+        SL_HOWS(SL_HOW_TEXT)
+#undef SL_HOW_TEXT
+    };
+    for (size_t j = 0; j < sizeof hows / sizeof hows[0]; j++)
+        k += snprintf(how + k, sizeof how - (size_t)k, "%s%zu %s", j ? ", " : "", j, hows[j]);
+    snprintf(title, sizeof title, "%s/%s %s map %d %dx%d", cell->scene, cell->viewpoint,
+             in->label ? in->label : in->method->name, in->frame ? in->frame->size : 0, v->w, v->h);
+    snprintf(cf, sizeof cf, "k >= 1: inside the 2k-px contour (and every thicker one) of the verdicts it is "
+             "scored on; 0 outside all");
+    const struct sl_image_attr attrs[] = {
+        {"shadowlab:truth", "0 background, 1 faces away from the light (PnFL), 2 lit, 3 shadowed"},
+        {"shadowlab:verdict", "0 background, 1 lit, 2 shadowed, 3 uncertain (left for a ray tracer)"},
+        {"shadowlab:error", "0 right or background, 1 said lit but not lit in truth, 2 said shadowed but lit, "
+                            "3 uncertain"},
+        {"shadowlab:contour", cf},
+        {"shadowlab:how", how},
+        {"shadowlab:channels", "each layer twice: half (the code as a number) and uint32 code.<layer>"},
+        {"shadowlab:cell", title},
+    };
+    static const char *const names[] = {"truth", "verdict", "error", "contour", "how"};
+    const unsigned char *layers[] = {v->truth, vd->v, errcls, band, vd->how};
+    return sl_image_write_layers(in->exr_path, v->w, v->h, 5, names, layers,
+                                 (int)(sizeof attrs / sizeof attrs[0]), attrs, d);
+}
+
 /* An area light's cell: the soft figures of the visible fraction vd->vis
  * against the area truth, and the error heat map as its overlay. */
 static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_verdicts *vd, struct sl_cell *cell,
@@ -74,7 +213,23 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
         return SL_OK;
     t0 = sl_now();
     sl_overlay_soft(W, H, v->tri, vd->vis, in->soft_truth, in->rgb);
-    enum sl_err e = sl_image_write_rgb8(in->overlay_path, W, H, in->rgb, d);
+    struct sl_image_sheet sh;
+    memset(&sh, 0, sizeof sh);
+    sh.w = W;
+    sh.h = H;
+    sh.rgb = in->rgb;
+    sheet_frame(in, cell, NULL, NULL, &sh);
+    static const struct { uint8_t rgb[3]; const char *text; } key[] = {
+        {{213, 94, 0}, "too dark (off the area truth by > 0.05)"},
+        {{0, 114, 178}, "too light (off by > 0.05)"},
+        {{220, 220, 220}, "grey: the visible fraction"},
+    };
+    for (int k = 0; k < 3; k++) {
+        memcpy(sh.legend_rgb[k], key[k].rgb, 3);
+        snprintf(sh.legend_text[k], sizeof sh.legend_text[k], "%s", key[k].text);
+    }
+    sh.nlegend = 3;
+    enum sl_err e = sl_image_write_sheet(in->overlay_path, &sh, d);
     cell->ms.overlay = 1e3 * (sl_now() - t0);
     return e;
 }
@@ -142,19 +297,19 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
         e = soft_score(in, vd, cell, d);
         overlay = NULL;   /* the overlay is the soft one: the error against the area truth */
     }
+    /* the scratch state is free once the bands are drawn: the overlay's
+     * error mask, then the EXR's error classes */
     if (overlay && !e) {
         t0 = sl_now();
-        sl_overlay_build(v, in->light_dir, vd, band, in->overlay_contour, in->rgb);
-        e = sl_image_write_rgb8(overlay, W, H, in->rgb, d);
+        e = write_overlay(in, vd, band, cell, in->state, d);
         cell->ms.overlay = 1e3 * (sl_now() - t0);
     }
     if (in->exr_path && !e) {
         /* the per-pixel layers behind the figures, for anyone who wants to
-         * recount: truth (enum sl_truth), verdict (enum sl_verdict), how
-         * (enum sl_how) and contour band (k: inside the 2k-px contour) */
-        static const char *const names[] = {"truth", "verdict", "how", "contour"};
-        const unsigned char *layers[] = {v->truth, vd->v, vd->how, band};
-        e = sl_image_write_layers(in->exr_path, W, H, 4, names, layers, d);
+         * recount: truth (enum sl_truth), verdict (enum sl_verdict), the
+         * error class, the contour band (k: inside the 2k-px contour) and
+         * how (enum sl_how), each code named in the header */
+        e = write_exr(in, vd, band, cell, in->state, d);
     }
     return e;
 }

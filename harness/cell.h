@@ -9,8 +9,10 @@
  * `contour_from: nsm`, the thesis's), its figures per region, the exactness check of what it declares
  * (method.h SL_EXACT_*, every PFL pixel; the first few violating pixels are
  * kept with the triangles their texel holds), coherence's patterns, its
- * error overlay and, when asked, the per-pixel EXR layers behind the
- * figures. Under an area light its verdicts are also scored as a visible
+ * error overlay sheet (overlay.h, image.h: the frame at 1:1 or cropped to
+ * the scene, the densest error windows zoomed, a legend) and, when asked,
+ * the per-pixel EXR layers behind the figures with their codes named in the
+ * header. Under an area light its verdicts are also scored as a visible
  * fraction against the area truth (softfig.h), and its overlay is then the
  * soft error heat map. A soft method's cell gets the soft figures only.
  *
@@ -93,6 +95,7 @@ struct sl_cell_inputs {
                                                * view and map by the caller; NULL: drawn here from
                                                * the method's own verdicts */
     double shared_band_ms;                    /* what drawing shared_band cost, ms (ms.contours) */
+    const char *label;                        /* the method's label (overlay title); NULL: its name */
     const char *overlay_path;                 /* NULL: no overlay */
     const char *exr_path;                     /* NULL: no EXR layers */
 };

@@ -636,7 +636,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb,
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
-        .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL,
+        .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
     };
     return sl_cell_score(&in, &x->vd, cell, d);
 }

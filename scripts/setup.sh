@@ -17,6 +17,7 @@ PACKAGES=(
   libegl-mesa0          # Mesa's EGL vendor (llvmpipe, surfaceless or the software device)
   libembree-dev         # ray tracing: the ground truth
   libopenimageio-dev    # images (overlays)
+  fonts-dejavu-core     # the overlays' legend text (drawn without text when missing)
   libopenexr-dev        # OpenImageIO's CMake package asks for OpenEXR
   openimageio-tools     # ... and checks that its tools (iconvert, ...) exist
   libcglm-dev           # vector math

@@ -16,6 +16,7 @@
 #include "config.h"
 #include "image.h"
 #include "method.h"
+#include "overlay.h"
 #include "view.h"
 #include "run.h"
 
@@ -107,24 +108,39 @@ static void e2e_default_experiment(void **st)
         assert_true(exists(dir, files[i]));
     char png[1400];
     snprintf(png, sizeof png, "%s/overlays/primitives-side-1024x1024-1024-nsm.png", dir);
-    int w, h;
+    int w, h, v[6];
     unsigned char *rgb;
+    char at[200];
     assert_int_equal(sl_image_read_rgb8(png, &w, &h, &rgb, &d), SL_OK);
-    assert_int_equal(w, 1024);
-    assert_int_equal(h, 1024);
-    long green = 0, grey = 0, wrong = 0;
-    for (long i = 0; i < (long)w * h; i++) {
-        const unsigned char *p = rgb + 3 * i;
-        green += p[0] == 0 && p[1] == 200 && p[2] == 0;
-        grey += p[0] == p[1] && p[1] == p[2] && p[0] > 0;
-        wrong += (p[0] == 230 && p[1] == 0) || (p[0] == 255 && p[1] == 230) || (p[2] == 255 && p[1] == 60);
-    }
+    /* the sheet: the frame at 1:1 where "shadowlab:view" says (x y w h X Y) */
+    assert_int_equal(sl_image_read_attr(png, "shadowlab:view", at, sizeof at, &d), SL_OK);
+    assert_int_equal(sscanf(at, "%d %d %d %d %d %d", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]), 6);
+    /* the ground fills the frame, the shadows and errors less than half of
+     * it: cropped to them (every wrong pixel still in view: counted below) */
+    assert_true(v[2] < 1024 && v[3] < 1024 && 2 * v[2] * v[3] < 1024 * 1024);
+    assert_true(w > v[2] && h > v[3]);   /* insets beside it, legend below */
+    long tint = 0, grey = 0, wrong = 0, white = 0;
+    for (int y = 0; y < v[3]; y++)
+        for (int x = 0; x < v[2]; x++) {
+            const unsigned char *p = rgb + 3 * ((size_t)(v[5] + y) * (size_t)w + (size_t)(v[4] + x));
+            int e = 0;
+            for (int k = 0; k <= SL_OV_UNCERTAIN; k++)
+                e |= !memcmp(p, sl_overlay_colour[k], 3);
+            wrong += e;
+            white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+            grey += p[0] == p[1] && p[1] == p[2] && p[0] > 0 && p[0] < 255;
+            tint += !e && p[1] > p[0] && p[2] > p[0];   /* the contour: grey blended with bluish green */
+        }
     free(rgb);
-    /* the overlay's coloured pixels are the figures' own: contour and errors */
+    /* the overlay's coloured pixels are the figures' own: every wrong pixel
+     * in its colour, the contour's right pixels tinted but where a white
+     * inset mark lies over one */
     const struct sl_region_figures *c2 = &r.cells[0].fig.r[0];
-    assert_int_equal(green + wrong, (long)(c2->n[SL_FIG_pixels] - c2->n[SL_FIG_wrong]) + (long)r.cells[0].fig.wrong_image);
+    long contour_right = (long)(c2->n[SL_FIG_pixels] - c2->n[SL_FIG_wrong]);
     assert_int_equal(wrong, (long)r.cells[0].fig.wrong_image);
-    assert_true(grey > w * h / 2);
+    assert_true(tint <= contour_right && tint + white >= contour_right);
+    assert_true(white > 0);
+    assert_true(grey > (long)v[2] * v[3] / 2);
     /* no staging folders left behind */
     char cmd[1400];
     snprintf(cmd, sizeof cmd, "ls -A %s | grep -q partial", sl_test_dir);

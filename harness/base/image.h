@@ -3,6 +3,13 @@
  * shadowlab). Writes 8-bit RGB images; the format follows the extension.
  * Rows are given bottom-up (GL order) and written top-down. The file appears
  * under its name only when complete (written to a temporary, then renamed).
+ *
+ * The overlay sheet (sl_image_write_sheet) is composed with ImageBufAlgo:
+ * the frame (or a crop of it) at 1:1, zoomed insets beside it (nearest
+ * neighbour) whose windows are marked on the frame, a title and a legend.
+ * Text needs a TrueType font (DejaVu Sans, Debian's fonts-dejavu-core, or
+ * OpenImageIO's default); without one the sheet is drawn without text and
+ * the legend and captions are still in the file's metadata.
  */
 #ifndef SL_IMAGE_H
 #define SL_IMAGE_H
@@ -14,19 +21,60 @@ extern "C" {
 enum sl_err sl_image_write_rgb8(const char *path, int w, int h, const unsigned char *rgb_bottom_up,
                                 struct sl_diag *d);
 
-/* Write per-pixel integer layers (e.g. truth, verdict, how, contour) as the
- * UINT channels of one OpenEXR file, named as given; rows bottom-up. */
+/* Header attributes: name = value strings. */
+struct sl_image_attr { const char *name, *value; };
+
+/* Per-pixel integer layers (truth, verdict, ...) as one OpenEXR file. Each
+ * layer is written twice: as a HALF channel under its name holding the code
+ * itself (0, 1, 2, ... exact in half; what viewers and `oiiotool --stats`
+ * show), and as a UINT channel "code.<name>" (the integer as it is, for
+ * tools that want integers). attrs (may be 0) go in the header, e.g.
+ * "shadowlab:verdict" = "0 background, 1 lit, ...". Rows bottom-up. */
 enum sl_err sl_image_write_layers(const char *path, int w, int h, int nlayers, const char *const *names,
-                                  const unsigned char *const *layers, struct sl_diag *d);
+                                  const unsigned char *const *layers, int nattrs,
+                                  const struct sl_image_attr *attrs, struct sl_diag *d);
 
 /* Read back channel `name` of such a file as 32-bit integers, rows bottom-up
- * (tests); *out malloc'ed. */
+ * (tests): a UINT channel as it is, a HALF or FLOAT one rounded; *out malloc'ed. */
 enum sl_err sl_image_read_layer(const char *path, const char *name, int *w, int *h, unsigned **out,
                                 struct sl_diag *d);
 
 /* Read back an 8-bit RGB image (for tests); *rgb malloc'ed, rows top-down. */
 enum sl_err sl_image_read_rgb8(const char *path, int *w, int *h, unsigned char **rgb,
                                struct sl_diag *d);
+
+/* A string attribute of an image file's header into out (n bytes);
+ * SL_E_IO when the file or the attribute is missing. */
+enum sl_err sl_image_read_attr(const char *path, const char *name, char *out, int n, struct sl_diag *d);
+
+#define SL_SHEET_MAX_INSETS 4
+#define SL_SHEET_MAX_LEGEND 8
+
+/* The overlay sheet. Rectangles are in the frame's pixels, y = 0 its bottom
+ * row. Zero fields mean: no crop (whole frame), no insets, no legend. */
+struct sl_image_sheet {
+    int w, h;
+    const unsigned char *rgb;        /* 3 * w * h, bottom-up */
+    const unsigned char *keep;       /* w * h or NULL: nonzero where nothing may be drawn over (errors) */
+    int view[4];                     /* x, y, w, h shown at 1:1; w == 0: the whole frame */
+    int ninsets, zoom;
+    int inset[SL_SHEET_MAX_INSETS][4];
+    char inset_caption[SL_SHEET_MAX_INSETS][96];
+    int nlegend;
+    unsigned char legend_rgb[SL_SHEET_MAX_LEGEND][3];
+    char legend_text[SL_SHEET_MAX_LEGEND][96];
+    char title[200];
+    int nattrs;
+    const struct sl_image_attr *attrs;
+};
+
+/* Compose and write the sheet (PNG: the format follows the extension). Its
+ * header says where each part landed, in the file's top-down pixels:
+ * "shadowlab:view" = "x y w h X Y" (the frame's rectangle, top-down, and its
+ * top-left corner in the sheet), "shadowlab:insetK" (K = 1, 2, ...) =
+ * "x y s s X Y zoom", "shadowlab:legend" (the legend's lines) and
+ * "shadowlab:text" = "1" when a font was found. */
+enum sl_err sl_image_write_sheet(const char *path, const struct sl_image_sheet *s, struct sl_diag *d);
 
 #ifdef __cplusplus
 }

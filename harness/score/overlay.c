@@ -1,50 +1,194 @@
 /*
  * overlay.c — see overlay.h. The grey is Lambert on the face normal:
- * 0.2 ambient, plus 0.7 * dot(n, l) where the method says lit.
+ * 0.12 ambient, plus 0.5 * dot(n, l) where the method says lit.
+ *
+ * Invariant: a pixel is wrong here exactly when figures.c counts it wrong
+ * (said lit while not lit in truth, or said shadowed while lit), so the
+ * overlay's error colours add up to the cell's wrong pixels.
  */
 #include "overlay.h"
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include "contour.h"
 
+const uint8_t sl_overlay_colour[SL_OV_CLASSES][3] = {
+    [SL_OV_LIT_WRONG] = {213, 94, 0},       /* vermillion */
+    [SL_OV_SHADOW_WRONG] = {240, 228, 66},  /* yellow */
+    [SL_OV_WRONG_OUTSIDE] = {0, 114, 178},  /* blue */
+    [SL_OV_UNCERTAIN] = {204, 121, 167},    /* reddish purple */
+    [SL_OV_CONTOUR] = {0, 158, 115},        /* bluish green, blended */
+};
+
 void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const struct sl_verdicts *vd,
-                      const uint8_t *band, int thickness, uint8_t *rgb)
+                      const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
+                      uint64_t count[SL_OV_CLASSES])
 {
-    static const uint8_t green[3] = {0, 200, 0}, red[3] = {230, 0, 0}, yellow[3] = {255, 230, 0},
-                         blue[3] = {0, 60, 255}, purple[3] = {160, 0, 200}, bg[3] = {0, 0, 0};
     size_t n = (size_t)v->w * (size_t)v->h;
+    uint64_t cnt[SL_OV_CLASSES] = {0};
     for (size_t i = 0; i < n; i++) {
         uint8_t *o = rgb + 3 * i;
         uint8_t t = v->truth[i], verdict = vd->v[i];
+        if (err)
+            err[i] = 0;
         if (t == SL_T_BACKGROUND) {
-            memcpy(o, bg, 3);
+            o[0] = o[1] = o[2] = 0;
             continue;
         }
         int inside = sl_in_contour(band[i], thickness);
         int truth_lit = t == SL_T_LIT;
-        const uint8_t *c = NULL;
+        int k = -1;
         if (verdict == SL_V_LIT && !truth_lit)
-            c = inside ? red : blue;
+            k = inside ? SL_OV_LIT_WRONG : SL_OV_WRONG_OUTSIDE;
         else if (verdict == SL_V_SHADOW && truth_lit)
-            c = inside ? yellow : blue;
+            k = inside ? SL_OV_SHADOW_WRONG : SL_OV_WRONG_OUTSIDE;
         else if (verdict == SL_V_UNCERTAIN)
-            c = purple;
-        else if (inside && thickness > 0)
-            c = green;
-        if (c) {
-            memcpy(o, c, 3);
+            k = SL_OV_UNCERTAIN;
+        if (k >= 0) {
+            memcpy(o, sl_overlay_colour[k], 3);
+            if (err)
+                err[i] = 255;
+            cnt[k]++;
             continue;
         }
         const float *nn = v->nrm + 3 * i;
         float ndl = -(nn[0] * light_dir[0] + nn[1] * light_dir[1] + nn[2] * light_dir[2]);
-        float g = 0.2f + (verdict == SL_V_LIT && ndl > 0.0f ? 0.7f * ndl : 0.0f);
-        uint8_t gg = (uint8_t)(255.0f * g + 0.5f);
-        o[0] = o[1] = o[2] = gg;
+        float g = 255.0f * (0.12f + (verdict == SL_V_LIT && ndl > 0.0f ? 0.5f * ndl : 0.0f));
+        if (inside && thickness > 0) {
+            /* the faint tint: 65% grey, 35% bluish green */
+            const uint8_t *c = sl_overlay_colour[SL_OV_CONTOUR];
+            for (int j = 0; j < 3; j++)
+                o[j] = (uint8_t)(0.65f * g + 0.35f * (float)c[j] + 0.5f);
+            cnt[SL_OV_CONTOUR]++;
+            continue;
+        }
+        o[0] = o[1] = o[2] = (uint8_t)(g + 0.5f);
     }
+    if (count)
+        memcpy(count, cnt, sizeof cnt);
+}
+
+/* Bounding box of the pixels with keep(i) true, or x1 < 0 when none. */
+static void bbox(const struct sl_view *v, const uint8_t *band, const uint8_t *err, int *x0, int *y0, int *x1, int *y1)
+{
+    *x0 = v->w, *y0 = v->h, *x1 = -1, *y1 = -1;
+    for (int y = 0; y < v->h; y++) {
+        size_t r = (size_t)y * (size_t)v->w;
+        int first = -1, last = -1;
+        for (int x = 0; x < v->w; x++) {
+            size_t i = r + (size_t)x;
+            int in = band ? band[i] != 0 || (err && err[i]) : v->truth[i] != SL_T_BACKGROUND;
+            if (in) {
+                if (first < 0)
+                    first = x;
+                last = x;
+            }
+        }
+        if (first < 0)
+            continue;
+        *x0 = first < *x0 ? first : *x0;
+        *x1 = last > *x1 ? last : *x1;
+        *y0 = y < *y0 ? y : *y0;
+        *y1 = y;
+    }
+}
+
+/* The box padded, clamped; 1 when it covers less than half the frame. */
+static int small_box(const struct sl_view *v, int x0, int y0, int x1, int y1, int pad, struct sl_ov_box *out)
+{
+    if (x1 < 0)
+        return 0;
+    x0 = x0 - pad > 0 ? x0 - pad : 0;
+    y0 = y0 - pad > 0 ? y0 - pad : 0;
+    x1 = x1 + pad < v->w - 1 ? x1 + pad : v->w - 1;
+    y1 = y1 + pad < v->h - 1 ? y1 + pad : v->h - 1;
+    struct sl_ov_box b = {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+    /* half the frame: below it, a crop shows the scene noticeably larger in
+     * a report's fixed-width figure */
+    if (2 * (uint64_t)b.w * (uint64_t)b.h >= (uint64_t)v->w * (uint64_t)v->h)
+        return 0;
+    *out = b;
+    return 1;
+}
+
+int sl_overlay_crop(const struct sl_view *v, const uint8_t *band, const uint8_t *err, int pad, struct sl_ov_box *out)
+{
+    int x0, y0, x1, y1;
+    *out = (struct sl_ov_box){0, 0, v->w, v->h};
+    bbox(v, NULL, NULL, &x0, &y0, &x1, &y1);
+    if (x1 < 0)
+        return 0;   /* nothing but background: show the frame as it is */
+    if (small_box(v, x0, y0, x1, y1, pad, out))
+        return 1;
+    if (!band)
+        return 0;
+    /* a ground filling the frame (Bench, Trees): the shadows' boundaries and
+     * the errors instead, with a wider margin so the casters' lit sides
+     * beside them stay in view */
+    int m = (v->w < v->h ? v->w : v->h) / 16;
+    bbox(v, band, err, &x0, &y0, &x1, &y1);
+    return small_box(v, x0, y0, x1, y1, pad > m ? pad : m, out);
+}
+
+static int overlaps(const struct sl_ov_box *a, int x, int y, int s)
+{
+    return x < a->x + a->w && a->x < x + s && y < a->y + a->h && a->y < y + s;
+}
+
+int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_ov_box *out, uint64_t *count)
+{
+    if (s > w)
+        s = w;
+    if (s > h)
+        s = h;
+    if (s <= 0 || n <= 0)
+        return 0;
+    /* summed-area table, (w+1) x (h+1), sat[y][x] = errors in [0,x) x [0,y) */
+    size_t sw = (size_t)w + 1;
+    uint32_t *sat = calloc(sw * ((size_t)h + 1), sizeof *sat);
+    if (!sat)
+        return -1;
+    for (int y = 0; y < h; y++) {
+        uint32_t run = 0;
+        const uint8_t *e = err + (size_t)y * (size_t)w;
+        uint32_t *above = sat + (size_t)y * sw, *row = above + sw;
+        for (int x = 0; x < w; x++) {
+            run += e[x] != 0;
+            row[x + 1] = above[x + 1] + run;
+        }
+    }
+    int got = 0;
+    for (; got < n; got++) {
+        uint32_t best = 0;
+        int bx = -1, by = -1;
+        for (int y = 0; y + s <= h; y++) {
+            const uint32_t *lo = sat + (size_t)y * sw, *hi = lo + (size_t)s * sw;
+            for (int x = 0; x + s <= w; x++) {
+                uint32_t c = hi[x + s] - hi[x] - lo[x + s] + lo[x];
+                if (c <= best)
+                    continue;
+                int clash = 0;
+                for (int k = 0; k < got && !clash; k++)
+                    clash = overlaps(&out[k], x, y, s);
+                if (clash)
+                    continue;
+                best = c;
+                bx = x;
+                by = y;
+            }
+        }
+        if (bx < 0)
+            break;
+        out[got] = (struct sl_ov_box){bx, by, s, s};
+        count[got] = best;
+    }
+    free(sat);
+    return got;
 }
 
 void sl_overlay_soft(int w, int h, const uint32_t *tri, const float *vis, const float *truth, uint8_t *rgb)
 {
+    static const float dark[3] = {213, 94, 0}, light[3] = {0, 114, 178};   /* vermillion, blue */
     size_t npx = (size_t)w * (size_t)h;
     for (size_t i = 0; i < npx; i++) {
         uint8_t *p = rgb + 3 * i;
@@ -54,8 +198,8 @@ void sl_overlay_soft(int w, int h, const uint32_t *tri, const float *vis, const 
         }
         float e = vis[i] - truth[i], g = 40.0f + 180.0f * vis[i];
         float a = fabsf(e) > 0.05f ? fminf(1.0f, 0.3f + fabsf(e)) : 0.0f;
-        p[0] = (uint8_t)((1 - a) * g + a * (e < 0 ? 255.0f : 0.0f));
-        p[1] = (uint8_t)((1 - a) * g);
-        p[2] = (uint8_t)((1 - a) * g + a * (e > 0 ? 255.0f : 0.0f));
+        const float *c = e < 0 ? dark : light;
+        for (int j = 0; j < 3; j++)
+            p[j] = (uint8_t)((1 - a) * g + a * c[j]);
     }
 }

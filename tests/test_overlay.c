@@ -1,0 +1,364 @@
+/*
+ * overlay::* — the overlay sheet and the EXR layers as a reader sees them:
+ * every wrong or uncertain pixel shows its error colour in the 1:1 view
+ * (nothing drawn over it: neither the contour nor the insets' marks), the
+ * insets hold the windows with most wrong pixels and show them pixel for
+ * pixel, the crop to a small scene, and the EXR read by oiiotool.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "config.h"
+#include "contour.h"
+#include "image.h"
+#include "method.h"
+#include "overlay.h"
+#include "run.h"
+#include "view.h"
+
+static int write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return 0;
+    fputs(text, f);
+    return fclose(f) == 0;
+}
+
+/* One run shared by the cases: Primitives/side at 512² with a 256² map
+ * (hundreds of wrong pixels), NSM and texel coherence (which leaves pixels
+ * uncertain), overlays and EXR layers on. */
+static struct sl_run_result run;
+static int ran;
+
+static void run_once(void)
+{
+    if (ran)
+        return;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/ov.yaml", sl_test_dir);
+    assert_true(write_file(path,
+        "name: ov\nscenes: [{scene: primitives, viewpoints: [side]}]\n"
+        "viewports: [{width: 512, height: 512}]\nmap_sizes: [256]\ncontours: [2, 4, 6]\n"
+        "methods:\n  - {label: nsm, method: nsm, self_shadow: front_faces}\n"
+        "  - {label: coh, method: coherence, texels: 9}\n"
+        "outputs: {tables: false, overlays: true, overlay_contour: 2, exr: true}\n"));
+    struct sl_config c;
+    struct sl_diag d;
+    assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    struct sl_run_opts o = {.out_root = sl_test_dir, .write_files = 1, .store = "", .cache_dir = ""};
+    enum sl_err e = sl_run(&c, &o, &run, &d);
+    if (e)
+        fprintf(stderr, "%s\n", d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(run.ncells, 2);
+    ran = 1;
+}
+
+struct layers {
+    int w, h;
+    unsigned *truth, *verdict, *contour;
+};
+
+static void read_layers(const char *label, struct layers *L)
+{
+    char p[1400];
+    struct sl_diag d;
+    int w, h;
+    snprintf(p, sizeof p, "%s/ov/exr/primitives-side-512x512-256-%s.exr", sl_test_dir, label);
+    assert_int_equal(sl_image_read_layer(p, "truth", &L->w, &L->h, &L->truth, &d), SL_OK);
+    assert_int_equal(sl_image_read_layer(p, "verdict", &w, &h, &L->verdict, &d), SL_OK);
+    assert_int_equal(sl_image_read_layer(p, "contour", &w, &h, &L->contour, &d), SL_OK);
+}
+
+static void free_layers(struct layers *L)
+{
+    free(L->truth);
+    free(L->verdict);
+    free(L->contour);
+}
+
+/* The class a pixel must show, as overlay.h defines it; -1 when right. */
+static int expected_class(const struct layers *L, size_t i)
+{
+    int inside = sl_in_contour((uint8_t)L->contour[i], 2);
+    if (L->verdict[i] == SL_V_LIT && L->truth[i] != SL_T_LIT && L->truth[i] != SL_T_BACKGROUND)
+        return inside ? SL_OV_LIT_WRONG : SL_OV_WRONG_OUTSIDE;
+    if (L->verdict[i] == SL_V_SHADOW && L->truth[i] == SL_T_LIT)
+        return inside ? SL_OV_SHADOW_WRONG : SL_OV_WRONG_OUTSIDE;
+    if (L->verdict[i] == SL_V_UNCERTAIN)
+        return SL_OV_UNCERTAIN;
+    return -1;
+}
+
+static int is_error_colour(const unsigned char *p)
+{
+    for (int k = 0; k < SL_OV_UNCERTAIN + 1; k++)
+        if (!memcmp(p, sl_overlay_colour[k], 3))
+            return 1;
+    return 0;
+}
+
+struct sheet {
+    int w, h;
+    unsigned char *rgb;   /* top-down */
+    int view[6];          /* x y w h (frame, top-down) X Y (in the sheet) */
+    int ninsets, inset[3][7];
+};
+
+static void read_sheet(const char *label, struct sheet *S)
+{
+    char p[1400], a[200];
+    struct sl_diag d;
+    snprintf(p, sizeof p, "%s/ov/overlays/primitives-side-512x512-256-%s.png", sl_test_dir, label);
+    assert_int_equal(sl_image_read_rgb8(p, &S->w, &S->h, &S->rgb, &d), SL_OK);
+    assert_int_equal(sl_image_read_attr(p, "shadowlab:view", a, sizeof a, &d), SL_OK);
+    assert_int_equal(sscanf(a, "%d %d %d %d %d %d", &S->view[0], &S->view[1], &S->view[2], &S->view[3],
+                            &S->view[4], &S->view[5]), 6);
+    S->ninsets = 0;
+    for (int k = 0; k < 3; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "shadowlab:inset%d", k + 1);
+        if (sl_image_read_attr(p, name, a, sizeof a, &d) != SL_OK)
+            break;
+        int *b = S->inset[k];
+        assert_int_equal(sscanf(a, "%d %d %d %d %d %d %d", b, b + 1, b + 2, b + 3, b + 4, b + 5, b + 6), 7);
+        S->ninsets++;
+    }
+}
+
+static const unsigned char *at(const struct sheet *S, int x, int y)
+{
+    assert_true(x >= 0 && x < S->w && y >= 0 && y < S->h);
+    return S->rgb + 3 * ((size_t)y * (size_t)S->w + (size_t)x);
+}
+
+/* Wrong (or uncertain, when want_uncertain) pixels in the top-down window
+ * x, y, s x s of the frame. */
+static uint64_t count_window(const struct layers *L, int x, int y, int s, int want_uncertain)
+{
+    uint64_t n = 0;
+    for (int j = y; j < y + s; j++)
+        for (int i = x; i < x + s; i++) {
+            size_t k = (size_t)(L->h - 1 - j) * (size_t)L->w + (size_t)i;
+            int c = expected_class(L, k);
+            n += want_uncertain ? c == SL_OV_UNCERTAIN : c >= 0 && c != SL_OV_UNCERTAIN;
+        }
+    return n;
+}
+
+/* The most wrong pixels of any s x s window overlapping none of the first
+ * `taken` insets, by sliding column sums (not overlay.c's summed-area table). */
+static uint64_t best_window(const struct layers *L, int s, const struct sheet *S, int taken, int want_uncertain)
+{
+    int W = L->w, H = L->h;
+    uint64_t best = 0;
+    unsigned *col = calloc((size_t)W, sizeof *col);
+    unsigned char *m = malloc((size_t)W * (size_t)H);
+    assert_non_null(col);
+    assert_non_null(m);
+    for (int j = 0; j < H; j++)   /* top-down mask */
+        for (int i = 0; i < W; i++) {
+            int c = expected_class(L, (size_t)(H - 1 - j) * (size_t)W + (size_t)i);
+            m[(size_t)j * (size_t)W + (size_t)i] = want_uncertain ? c == SL_OV_UNCERTAIN : c >= 0 && c != SL_OV_UNCERTAIN;
+        }
+    for (int j = 0; j < s; j++)
+        for (int i = 0; i < W; i++)
+            col[i] += m[(size_t)j * (size_t)W + (size_t)i];
+    for (int y = 0; y + s <= H; y++) {
+        if (y > 0)
+            for (int i = 0; i < W; i++)
+                col[i] += m[(size_t)(y + s - 1) * (size_t)W + (size_t)i] - m[(size_t)(y - 1) * (size_t)W + (size_t)i];
+        int64_t run = 0;
+        for (int i = 0; i < s; i++)
+            run += col[i];
+        for (int x = 0; x + s <= W; x++) {
+            if (x > 0)
+                run += (int64_t)col[x + s - 1] - (int64_t)col[x - 1];
+            int clash = 0;
+            for (int k = 0; k < taken; k++) {
+                const int *b = S->inset[k];
+                clash |= x < b[0] + b[2] && b[0] < x + s && y < b[1] + b[3] && b[1] < y + s;
+            }
+            if (!clash && (uint64_t)run > best)
+                best = (uint64_t)run;
+        }
+    }
+    free(col);
+    free(m);
+    return best;
+}
+
+static void check_cell(const char *label, const struct sl_cell *cell)
+{
+    struct layers L;
+    struct sheet S;
+    read_layers(label, &L);
+    read_sheet(label, &S);
+    const int *v = S.view;
+    /* every wrong and every uncertain pixel lies in the view and shows its
+     * class's colour there; no other pixel of the view shows one */
+    uint64_t errors = 0, coloured = 0, uncertain = 0;
+    for (int y = 0; y < L.h; y++)
+        for (int x = 0; x < L.w; x++) {
+            size_t i = (size_t)(L.h - 1 - y) * (size_t)L.w + (size_t)x;
+            int c = expected_class(&L, i);
+            int in_view = x >= v[0] && x < v[0] + v[2] && y >= v[1] && y < v[1] + v[3];
+            if (c >= 0) {
+                assert_true(in_view);
+                errors++;
+                uncertain += c == SL_OV_UNCERTAIN;
+                assert_memory_equal(at(&S, v[4] + x - v[0], v[5] + y - v[1]), sl_overlay_colour[c], 3);
+            }
+            if (in_view)
+                coloured += is_error_colour(at(&S, v[4] + x - v[0], v[5] + y - v[1]));
+        }
+    assert_int_equal(coloured, errors);
+    assert_int_equal(errors - uncertain, cell->fig.wrong_image);
+    printf("overlay %s: %llu wrong, %llu uncertain, all shown; %d insets\n", label,
+           (unsigned long long)(errors - uncertain), (unsigned long long)uncertain, S.ninsets);
+
+    /* the insets: the windows with most wrong pixels (uncertain ones when
+     * none is wrong), greedily, and each shows its window at zoom z pixel for
+     * pixel: every error pixel of the window z x z times, in its colour */
+    int want_u = errors == uncertain;
+    assert_true(S.ninsets >= 1);
+    for (int k = 0; k < S.ninsets; k++) {
+        const int *b = S.inset[k];
+        int s = b[2], z = b[6];
+        assert_int_equal(b[3], s);
+        uint64_t n = count_window(&L, b[0], b[1], s, want_u);
+        assert_true(n > 0);
+        assert_int_equal(n, best_window(&L, s, &S, k, want_u));
+        uint64_t shown = 0;
+        for (int j = 0; j < s * z; j++)
+            for (int i = 0; i < s * z; i++) {
+                size_t fi = (size_t)(L.h - 1 - (b[1] + j / z)) * (size_t)L.w + (size_t)(b[0] + i / z);
+                int c = expected_class(&L, fi);
+                const unsigned char *p = at(&S, b[4] + i, b[5] + j);
+                if (c >= 0)
+                    assert_memory_equal(p, sl_overlay_colour[c], 3);
+                else   /* elsewhere the same pixel as the view's (unmarked there: compare off the marks) */
+                    assert_false(is_error_colour(p));
+                shown += c >= 0 && (want_u ? c == SL_OV_UNCERTAIN : c != SL_OV_UNCERTAIN);
+            }
+        assert_int_equal(shown, n * (uint64_t)z * (uint64_t)z);
+        /* marked on the view: the 2-px white box just outside the window,
+         * wherever it does not fall on an error pixel */
+        int x0 = b[0] - 2, y0 = b[1] - 2;
+        if (x0 >= v[0] && y0 >= v[1]) {
+            size_t fi = (size_t)(L.h - 1 - y0) * (size_t)L.w + (size_t)x0;
+            if (expected_class(&L, fi) < 0) {
+                const unsigned char *p = at(&S, v[4] + x0 - v[0], v[5] + y0 - v[1]);
+                assert_true(p[0] == 255 && p[1] == 255 && p[2] == 255);
+            }
+        }
+    }
+    free(S.rgb);
+    free_layers(&L);
+}
+
+static void overlay_errors_on_top(void **st)
+{
+    (void)st;
+    run_once();
+    check_cell("nsm", &run.cells[0]);
+    check_cell("coh", &run.cells[1]);
+}
+
+/* oiiotool reads the layers as they are: non-zero maxima for truth (3,
+ * shadowed), verdict (2 or 3) and error; the header names the codes. */
+static void overlay_exr_stats(void **st)
+{
+    (void)st;
+    run_once();
+    char cmd[1600], line[512];
+    snprintf(cmd, sizeof cmd,
+             "oiiotool %s/ov/exr/primitives-side-512x512-256-nsm.exr --ch truth,verdict,error,contour "
+             "--printstats 2>&1", sl_test_dir);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    float mx[4] = {-1, -1, -1, -1};
+    int got = 0;
+    while (fgets(line, sizeof line, p))
+        if (strstr(line, "Stats Max:"))
+            got = sscanf(strstr(line, ":") + 1, "%f %f %f %f", &mx[0], &mx[1], &mx[2], &mx[3]);
+    assert_int_equal(pclose(p), 0);
+    assert_int_equal(got, 4);
+    assert_true(mx[0] == SL_T_SHADOW);
+    assert_true(mx[1] == SL_V_SHADOW);
+    assert_true(mx[2] >= 1.0f);   /* NSM has wrong pixels at 256² */
+    assert_true(mx[3] == 3.0f);   /* bands 1-3: the 2, 4 and 6-px contours */
+    char a[400];
+    struct sl_diag d;
+    snprintf(cmd, sizeof cmd, "%s/ov/exr/primitives-side-512x512-256-nsm.exr", sl_test_dir);
+    assert_int_equal(sl_image_read_attr(cmd, "shadowlab:verdict", a, sizeof a, &d), SL_OK);
+    assert_non_null(strstr(a, "1 lit"));
+    assert_int_equal(sl_image_read_attr(cmd, "shadowlab:how", a, sizeof a, &d), SL_OK);
+    assert_non_null(strstr(a, "2 map"));
+    /* the integer codes beside them, equal */
+    unsigned *h, *u;
+    int w, hh;
+    assert_int_equal(sl_image_read_layer(cmd, "verdict", &w, &hh, &h, &d), SL_OK);
+    assert_int_equal(sl_image_read_layer(cmd, "code.verdict", &w, &hh, &u, &d), SL_OK);
+    assert_memory_equal(h, u, (size_t)w * (size_t)hh * sizeof *h);
+    free(h);
+    free(u);
+}
+
+/* The crop: a scene filling little of the frame is shown by its bounding
+ * box, padded; one filling most of it is not cropped. */
+static void overlay_crop_small_scene(void **st)
+{
+    (void)st;
+    enum { W = 100, H = 80 };
+    static uint8_t truth[W * H];
+    struct sl_view v = {.w = W, .h = H, .truth = truth};
+    struct sl_ov_box b;
+    memset(truth, SL_T_BACKGROUND, sizeof truth);
+    assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 0);   /* nothing: the whole frame */
+    assert_true(b.x == 0 && b.y == 0 && b.w == W && b.h == H);
+    for (int y = 30; y < 40; y++)
+        for (int x = 50; x < 70; x++)
+            truth[y * W + x] = SL_T_LIT;
+    assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 1);
+    assert_int_equal(b.x, 46);
+    assert_int_equal(b.y, 26);
+    assert_int_equal(b.w, 28);
+    assert_int_equal(b.h, 18);
+    truth[0] = truth[W * H - 1] = SL_T_SHADOW;   /* two far corners: the box spans the frame */
+    assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 0);
+    assert_true(b.x == 0 && b.w == W);
+    /* a ground filling the frame: the contours' and errors' box, padded by
+     * 1/16 of the shorter side (5 px) when that is more than pad */
+    static uint8_t band[W * H], err[W * H];
+    memset(truth, SL_T_LIT, sizeof truth);
+    assert_int_equal(sl_overlay_crop(&v, band, err, 4, &b), 0);   /* no contour, no error */
+    for (int x = 20; x < 30; x++)
+        band[40 * W + x] = 1;
+    err[50 * W + 35] = 255;
+    assert_int_equal(sl_overlay_crop(&v, band, err, 4, &b), 1);
+    assert_int_equal(b.x, 15);
+    assert_int_equal(b.y, 35);
+    assert_int_equal(b.w, 26);
+    assert_int_equal(b.h, 21);
+    assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 0);   /* without bands: the ground's box */
+}
+
+int main(int argc, char **argv)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(overlay, errors_on_top),
+        SL_CASE(overlay, exr_stats),
+        SL_CASE(overlay, crop_small_scene),
+    };
+    int rc = sl_run_group(argc, argv, "overlay", tests, sl_test_setup, sl_test_teardown);
+    if (ran)
+        sl_run_result_free(&run);
+    return rc;
+}
