@@ -53,19 +53,23 @@ static const char usage_validate[] =
 
 static const char usage_table[] =
     "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
-    "                          [--map N] [--run ID]\n"
+    "                          [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
     "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
     "                           [--average-case SCENE/VIEWPOINT/N[/MAP]]]\n"
     "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
     "  --summary, the average, best and worst per map size of one figure's percentage over\n"
-    "  the cells of one label (as the theses' summary tables), md or csv.\n";
+    "  the cells of one label (as the theses' summary tables), md or csv.\n"
+    "  md and latex leave out the figures a method does not produce (0 in every column past\n"
+    "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n";
 
 static const char usage_report[] =
-    "usage: shadowlab report RESULTS_DB [--out DIR]\n"
-    "  Writes DIR/report.html (self-contained, offline) and DIR/report.md with the thesis-style\n"
+    "usage: shadowlab report RESULTS_DB [--out DIR] [--self-contained] [--latex]\n"
+    "  Writes DIR/report.html (offline; links its images and plots) and DIR/report.md with the thesis-style\n"
     "  tables of every study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
     "  (gnuplot, SVG), costs, the error overlays and the provenance of every run.\n"
-    "  --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n";
+    "  --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n"
+    "  --self-contained  also DIR/report-full.html: one file, images and plots embedded\n"
+    "  --latex       also DIR/report.tex: a pdflatex document that \\inputs the tables and plots\n";
 
 static const char usage_check[] =
     "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
@@ -304,7 +308,7 @@ static int cmd_table(int argc, char **argv)
     struct sl_store_filter f = {0};
     int fmt = SL_TABLE_MD;
     struct sl_summary_opts so = {.figure = -1, .region = -1};
-    const char *summary = NULL;
+    const char *summary = NULL, *figures = NULL;
     char avg_scene[64] = "", avg_vp[32] = "";
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
@@ -326,6 +330,8 @@ static int cmd_table(int argc, char **argv)
             f.run_id = atoll(v); i++;
         } else if (strcmp(a, "--summary") == 0 && v) {
             summary = v; i++;
+        } else if (strcmp(a, "--figures") == 0 && v) {
+            figures = v; i++;
         } else if (strcmp(a, "--region") == 0 && v) {
             so.region = !strcmp(v, "image") ? 0 : !strcmp(v, "contours") ? -1 : atoi(v);
             if (so.region < -1 || (so.region > 0 && so.region % 2))
@@ -374,7 +380,13 @@ static int cmd_table(int argc, char **argv)
         else
             e = sl_summary_write(stdout, (enum sl_table_format)fmt, cells, n, &so, &d);
     } else if (!e) {
-        e = sl_table_write(stdout, (enum sl_table_format)fmt, db, cells, n, &d);
+        /* the terminal's tables: only what the methods produce, unless --figures says */
+        struct sl_table_rows rows = {0};
+        e = sl_table_figures_parse(figures, &rows, &d);
+        if (!figures)
+            rows.produced = fmt != SL_TABLE_CSV;
+        if (!e)
+            e = sl_table_write_rows(stdout, (enum sl_table_format)fmt, db, cells, n, &rows, &d);
     }
     free(cells);
     sl_store_close(st);
@@ -387,6 +399,10 @@ static int cmd_report(int argc, char **argv)
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
             o.out_dir = argv[++i];
+        else if (strcmp(argv[i], "--self-contained") == 0)
+            o.self_contained = 1;
+        else if (strcmp(argv[i], "--latex") == 0)
+            o.latex = 1;
         else if (argv[i][0] == '-')
             return usage_error("report: unknown option", usage_report);
         else if (!o.db)
@@ -402,7 +418,8 @@ static int cmd_report(int argc, char **argv)
     enum sl_err e = sl_report_write(&o, dir, sizeof dir, &d);
     if (e)
         return fail(e, &d);
-    printf("report: %s/report.html, %s/report.md\n", dir, dir);
+    printf("report: %s/report.html, %s/report.md%s%s%s%s\n", dir, dir, o.self_contained ? ", " : "",
+           o.self_contained ? "report-full.html" : "", o.latex ? ", " : "", o.latex ? "report.tex" : "");
     return 0;
 }
 

@@ -718,7 +718,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if ((e = sl_out_stage_finish(c, res, &dirs, o->resume, d)))
         goto out;
     if (o->table_out && c->tables) {
-        e = sl_out_write_tables(o->table_out, SL_TABLE_MD, c, res, d);
+        e = sl_out_print_tables(o->table_out, c, res, d);
         sl_out_write_costs_md(o->table_out, c, res);
         sl_out_write_patterns_md(o->table_out, c, res);
         fprintf(o->table_out, "\nwritten to %s/%s%s\n", dirs.final, store_path[0] ? " and " : "", store_path);

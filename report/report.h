@@ -33,6 +33,8 @@ struct sl_report_opts {
     const char *db;        /* the results store (required) */
     const char *out_dir;   /* NULL: <db folder>/report */
     const char *gnuplot;   /* NULL: "gnuplot" searched in PATH */
+    int self_contained;    /* report.html embeds its images and plots (data: URIs): one file */
+    int latex;             /* also report.tex, a pdflatex document \input-ing the tables and plot PDFs */
 };
 
 /* What a report holds, read from the store or given by a test. Overlay paths
@@ -55,6 +57,9 @@ enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir, size_t n,
 /* Write the report of cells already in memory into out_dir. */
 enum sl_err sl_report_build(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
                             struct sl_diag *d);
+/* The same with sl_report_opts's self_contained and latex. */
+enum sl_err sl_report_build_with(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
+                                 int self_contained, int latex, struct sl_diag *d);
 
 /* ---- the accuracy-vs-cost data, exposed for its unit test ---- */
 
@@ -65,16 +70,21 @@ struct sl_report_point {
     int    map_size;
     int    ncells;
     double wrong_pct;      /* wrong pixels, % of the non-background pixels (whole image) */
+    double uncertain_pct;  /* pixels the method leaves undecided, % of the same */
     double ms;             /* the method's time per cell, ms: ms_layers + ms_step */
     double ms_layers;      /* rendering the shadow-map layers it reads (median of repetitions) */
     double ms_step;        /* its per-pixel step, ray step included (median of repetitions) */
+    double ms_min, ms_max; /* the same from the repetitions' minima and maxima; = ms with one run */
+    int    reps;           /* fewest timed repetitions of its cells */
     double rays_per_px;    /* shadow rays per non-background pixel */
-    int    front_ms;       /* on the Pareto front of (ms, wrong_pct) */
-    int    front_rays;     /* on the Pareto front of (rays_per_px, wrong_pct) */
+    int    front_ms;       /* on the Pareto front of (ms, wrong_pct + uncertain_pct) */
+    int    front_rays;     /* on the Pareto front of (rays_per_px, wrong_pct + uncertain_pct) */
 };
 
 /* Points of the cells (callers pass one study), labels in order of first
- * appearance, map sizes ascending within a label; both fronts marked.
+ * appearance, map sizes ascending within a label; both fronts marked. The
+ * fronts count an undecided pixel as an error: a method that leaves 1.2% of
+ * the image undecided has not answered for it, however few it gets wrong.
  * *out is malloc'ed (free), NULL when *n is 0. */
 enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, struct sl_report_point **out,
                              int *n, struct sl_diag *d);
