@@ -419,7 +419,7 @@ static int cmd_report(int argc, char **argv)
     if (e)
         return fail(e, &d);
     printf("report: %s/report.html, %s/report.md%s%s%s%s\n", dir, dir, o.self_contained ? ", " : "",
-           o.self_contained ? "report-full.html" : "", o.latex ? ", " : "", o.latex ? "report.tex" : "");
+           o.self_contained ? "(self-contained)" : "", o.latex ? ", " : "", o.latex ? "report.tex" : "");
     return 0;
 }
 

@@ -288,7 +288,7 @@ static enum sl_err gp_run(struct sl_report_doc *doc, const char *gnuplot, const 
                "  set output '%s.svg'\n"
                "}\n"
                "set encoding utf8\nDATA = '%s.dat'\n",
-            name, name, name, 12.0, 12.0 * h / w, name, w, h, name, name);   /* 12 cm: about \\linewidth, so 7 pt stays 7 pt */
+            name, name, name, 12.0, 12.0 * h / w, name, w, h, name, name);   /* 12 cm, about the line width: 7 pt stays 7 pt */
     fputs(body, m);
     fputs("\nunset output\n", m);
     int bad = ferror(m);
@@ -596,10 +596,10 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
              which ? "shadow rays per pixel" : "method time");
     fputs("set multiplot title ", m);
     gp_quote(m, title);
-    fputs("\nset lmargin at screen 0.10\nset rmargin at screen 0.70\n"
+    fputs("\nset lmargin at screen 0.10\nset rmargin at screen 0.66\n"
           "set grid\nset border 3\nset tics nomirror\nset yrange [0:*]\n"
           "set offsets graph 0.03, graph 0.03, graph 0.06, 0\n"
-          "set key at screen 0.72, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box\n", m);
+          "set key at screen 0.68, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box\n", m);
     if (logx)
         fputs("set logscale x\n", m);
     for (int panel = 0; panel < 2; panel++) {
