@@ -753,8 +753,60 @@ static void md_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
  * each a float of its own, since a longtable cannot be scaled to the line. */
 #define TEX_ROWS 40
 
+/* Characters of s as shown (UTF-8 sequences count one); up to n bytes. */
+static int shown_len(const char *s, size_t n)
+{
+    int k = 0;
+    for (size_t i = 0; i < n && s[i]; i++)
+        k += ((unsigned char)s[i] & 0xC0) != 0x80;
+    return k;
+}
+
+/* Width of column c in characters; stacked: a cell "v (where)" counts as its
+ * longer line. */
+static int col_chars(const struct sl_report_tab *t, int c, int stack)
+{
+    int w = t->head[c] ? shown_len(t->head[c], strlen(t->head[c])) : 0;
+    for (int r = 0; r < t->nrows; r++) {
+        const char *v = tab_at(t, r, c), *cut = stack ? strstr(v, " (") : NULL;
+        int len = cut ? shown_len(v, (size_t)(cut - v)) : shown_len(v, strlen(v));
+        if (cut && shown_len(cut + 1, strlen(cut + 1)) > len)
+            len = shown_len(cut + 1, strlen(cut + 1));
+        if (len > w)
+            w = len;
+    }
+    return w;
+}
+
+/* A cell; stacked, "v (where)" as two lines (v above its "(where)"). */
+static void tex_cell(FILE *f, const char *v, int stack, char align)
+{
+    const char *cut = stack ? strstr(v, " (") : NULL;
+    if (!cut) {
+        sl_tex_text(f, v);
+        return;
+    }
+    char first[512];
+    snprintf(first, sizeof first, "%.*s", (int)(cut - v), v);
+    fprintf(f, "\\begin{tabular}[t]{@{}%c@{}}", align);
+    sl_tex_text(f, first);
+    fputs("\\\\ ", f);
+    sl_tex_text(f, cut + 1);
+    fputs("\\end{tabular}", f);
+}
+
+/* About 80 characters of footnotesize digits and column gaps fill an A4
+ * article's 345 pt line. A table wider than that has its "value (where)"
+ * cells stacked onto two lines before anything is scaled: Moderno's summary
+ * tables otherwise shrank to a 5 pt font. */
+#define TEX_LINE_CHARS 80
+
 static void tex_part(FILE *f, const struct sl_report_tab *t, int from, int to, int part, int parts)
 {
+    int wide = 0;
+    for (int c = 0; c < t->ncols; c++)
+        wide += col_chars(t, c, 0) + 2;
+    int stack = wide > TEX_LINE_CHARS;
     char spec[SL_REPORT_MAXCOLS + 1];
     for (int c = 0; c < t->ncols; c++)
         spec[c] = c < t->nkeys ? 'l' : 'r';
@@ -796,7 +848,7 @@ static void tex_part(FILE *f, const struct sl_report_tab *t, int from, int to, i
         for (int c = 0; c < t->ncols; c++) {
             if (c)
                 fputs(" & ", f);
-            sl_tex_text(f, tab_at(t, r, c));
+            tex_cell(f, tab_at(t, r, c), stack, c < t->nkeys ? 'l' : 'r');
         }
         fputs(" \\\\\n", f);
     }
