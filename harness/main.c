@@ -64,11 +64,12 @@ static const char usage_table[] =
 
 static const char usage_report[] =
     "usage: shadowlab report RESULTS_DB [--out DIR] [--self-contained] [--latex]\n"
-    "  Writes DIR/report.html (offline; links its images and plots) and DIR/report.md with the thesis-style\n"
-    "  tables of every study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
+    "  Writes DIR/report.html (offline; it links its images, plots and .tex beside it) and\n"
+    "  DIR/report.md: a contents tree, a summary first, then the thesis-style tables of every\n"
+    "  study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
     "  (gnuplot, SVG), costs, the error overlays and the provenance of every run.\n"
     "  --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n"
-    "  --self-contained  also DIR/report-full.html: one file, images and plots embedded\n"
+    "  --self-contained  report.html is one file: images and plots embedded, nothing outside it\n"
     "  --latex       also DIR/report.tex: a pdflatex document that \\inputs the tables and plots\n";
 
 static const char usage_check[] =

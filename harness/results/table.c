@@ -267,9 +267,10 @@ static void md_table(FILE *f, const struct sl_cell_record *cells, const struct g
     }
     fprintf(f, "\n");
     if (shown < cell_rows(c0))
-        fprintf(f, "(%d of %d figures shown: %s; `--figures all` shows every one.)\n\n", shown, cell_rows(c0),
+        fprintf(f, "(%d of %d figures shown: %s; table.md and `shadowlab table --figures all` have every row.)\n\n",
+                shown, cell_rows(c0),
                 rows->picked ? "those picked with --figures" : "the rest are 0 in every column, not produced by "
-                "this method; table.md and `shadowlab table --figures all` have every row");
+                "this method");
     if (same_provenance(cells, g)) {
         md_provenance(f, c0);
         fprintf(f, "\n\n");
