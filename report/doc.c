@@ -383,7 +383,8 @@ static void tex_para(FILE *f, const char *s)
 }
 
 /* A unique id for a heading: the anchor asked for, else a slug of its text. */
-static void heading_id(struct sl_report_doc *doc, const char *anchor, const char *text, char *id, size_t n)
+static void heading_id(struct sl_report_doc *doc, int level, const char *anchor, const char *text, char *id,
+                       size_t n)
 {
     char base[80];
     if (anchor && anchor[0]) {
@@ -430,6 +431,7 @@ static void heading_id(struct sl_report_doc *doc, const char *anchor, const char
     }
     struct sl_report_heading *h = &doc->heads[doc->nheads++];
     memset(h, 0, sizeof *h);
+    h->level = level;
     snprintf(h->id, sizeof h->id, "%s", id);
     snprintf(h->text, sizeof h->text, "%s", text);
 }
@@ -449,13 +451,11 @@ static void tex_heading(struct sl_report_doc *doc, int level, const char *text)
 static void heading_at(struct sl_report_doc *doc, int level, const char *anchor, const char *text, int in_summary)
 {
     char id[100];
-    heading_id(doc, anchor, text, id, sizeof id);
     if (level < 1)
         level = 1;
     if (level > 5)
         level = 5;
-    if (doc->nheads > 0)
-        doc->heads[doc->nheads - 1].level = level;
+    heading_id(doc, level, anchor, text, id, sizeof id);
     if (in_summary) {
         fputs("<details class=\"sec\" id=\"", doc->html);
         html_text(doc->html, id);
@@ -598,27 +598,6 @@ void sl_report_doc_tex_figure(struct sl_report_doc *doc, const char *pdf_rel, co
             pdf_rel);   /* a checked file name: letters, digits, . _ - / */
     tex_para(doc->tex, caption);
     fputs("}\n\\end{figure}\n\n", doc->tex);
-}
-
-void sl_report_doc_gallery(struct sl_report_doc *doc, const char *const *rel, const char *const *caption, int n)
-{
-    fputs("<div class=\"gallery\">\n", doc->html);
-    for (int i = 0; i < n; i++) {
-        fputs("<figure><img loading=\"lazy\" src=\"", doc->html);
-        sl_report_doc_src(doc, rel[i]);
-        fputs("\" alt=\"", doc->html);
-        html_text(doc->html, caption[i]);
-        fputs("\"><figcaption>", doc->html);
-        html_text(doc->html, caption[i]);
-        fputs("</figcaption></figure>\n", doc->html);
-        fputs("- ![", doc->md);
-        md_text(doc->md, caption[i]);
-        fprintf(doc->md, "](%s) ", rel[i]);
-        md_text(doc->md, caption[i]);
-        fputc('\n', doc->md);
-    }
-    fputs("</div>\n", doc->html);
-    fputc('\n', doc->md);
 }
 
 void sl_report_doc_details(struct sl_report_doc *doc, const char *summary, const char *text)

@@ -138,8 +138,6 @@ void sl_report_doc_link(struct sl_report_doc *doc, const char *rel, const char *
 void sl_report_doc_links(struct sl_report_doc *doc, const char *prefix, const char *const *rel,
                          const char *const *text, int n);
 void sl_report_doc_image(struct sl_report_doc *doc, const char *rel, const char *caption);
-/* A gallery of small images with captions (HTML grid, Markdown list). */
-void sl_report_doc_gallery(struct sl_report_doc *doc, const char *const *rel, const char *const *caption, int n);
 void sl_report_doc_details(struct sl_report_doc *doc, const char *summary, const char *text);
 void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int n);
 /* The table in both pages, its .tex in tex/<id>.tex linked under it. */
