@@ -1,13 +1,16 @@
 /*
- * report.h — `shadowlab report RESULTS_DB`: one self-contained page
- * (report.html, inline CSS, no network) and its Markdown twin (report.md)
- * from the results store, with the files they reference beside them:
+ * report.h — `shadowlab report RESULTS_DB`: one offline page (report.html,
+ * inline CSS and one inline script, no network; it links the files beside
+ * it, or with self_contained embeds them as data: URIs) and its Markdown twin
+ * (report.md), with latex also report.tex, from the results store: a
+ * contents tree, a summary (what was run, headline table, plots), then:
  *   - per study (config name): thesis-style tables in the layout of the
  *     thesis whose methods the cells ran (Moderno 2011 Tables 5-23, Morais
  *     2015 Table 7 and Tables 25/26), each also as a booktabs .tex file;
  *   - the chain's steps per scene as stacked bars (Moderno Figures 31/32) and
- *     wrong pixels against method time and rays per pixel with the Pareto
- *     front marked, drawn by gnuplot (SVG);
+ *     wrong and undecided pixels against method time and rays per pixel with
+ *     the Pareto front marked, drawn by gnuplot (SVG and PDF, each kept as
+ *     .dat + .gp);
  *   - a cost section (times, rays, ray-triangle tests, GS primitives,
  *     fragments), the error overlays the runs wrote (copied), and the
  *     provenance of every run (git SHA, config and its hash, machine).
