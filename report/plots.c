@@ -1,23 +1,24 @@
 /*
  * plots.c — the report's figures, drawn by gnuplot from data computed here:
- * the chain's steps per scene (Moderno 2011 Figures 31/32) and wrong pixels
- * against cost with the Pareto front (see report.h).
+ * the chain's steps per scene (Moderno 2011 Figures 31/32) and wrong and
+ * undecided pixels against cost with the Pareto front (see report.h).
  *
  * Invariants:
- * - gnuplot gets one script on its stdin (popen) with the data inline as
- *   datablocks, writes one SVG into the staging folder, and its stderr goes
- *   to a scratch log there, so nothing of it reaches our stdout/stderr; a
- *   failed plot names the script's first error line.
+ * - Each plot is a kept pair, NAME.dat and NAME.gp, in the staging folder's
+ *   plots/; gnuplot runs on NAME.gp there (system(), stdin /dev/null) and
+ *   draws NAME.svg, and NAME.pdf where it has pdfcairo; its output goes to a
+ *   scratch log, so nothing of it reaches our stdout/stderr; a failed plot
+ *   names the log's first error line. The pair redraws the plot without
+ *   shadowlab.
  * - Every number in a plot is also printed in a table beside it, so the
  *   Markdown page and a reader without SVG see the same data.
  * - Strings reach gnuplot only through gp_quote/gp_datum: no label or path
  *   can end a string or inject a command.
- * - SIGPIPE (gnuplot dying mid-script) is ignored for the write and restored.
+ * - Shell words (the gnuplot path, the folder) are single-quoted (sh_quote).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>

@@ -21,7 +21,8 @@
  *
  * Owns: nothing after return. Does not: run experiments, write to the store,
  * print (errors come back as an id and an sl_diag), or fetch anything from
- * the network. gnuplot is the one outside program it runs (popen).
+ * the network. gnuplot is the one outside program it runs (system(), in the
+ * staging folder's plots/).
  */
 #ifndef SL_REPORT_H
 #define SL_REPORT_H
