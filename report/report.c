@@ -123,7 +123,7 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
         return SL_OK;
     }
     sl_report_doc_para(doc,
-                       "The error overlays the runs wrote, one per cell, each with its legend. Pick a scene, "
+                       "The error overlays the runs wrote, one per cell (colours: the README's Output section). Pick a scene, "
                        "view, map size or method to narrow the gallery; a thumbnail opens the overlay at full "
                        "size.");
     /* per shown overlay: rel, caption, scene, view, map, method, id */
