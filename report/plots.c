@@ -289,7 +289,8 @@ static enum sl_err gp_run(struct sl_report_doc *doc, const char *gnuplot, const 
                "  set output '%s.svg'\n"
                "}\n"
                "set encoding utf8\nDATA = '%s.dat'\n",
-            name, name, name, 12.0, 12.0 * h / w, name, w, h, name, name);   /* 12 cm, about the line width: 7 pt stays 7 pt */
+            /* 12 cm, about the line width: 7 pt stays 7 pt */
+            name, name, name, 12.0, 12.0 * h / w, name, w, h, name, name);
     fputs(body, m);
     fputs("\nunset output\n", m);
     int bad = ferror(m);

@@ -123,8 +123,9 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
         return SL_OK;
     }
     sl_report_doc_para(doc,
-                       "The error overlays the runs wrote, one per cell (colours: the README's Output section). Pick a scene, "
-                       "view, map size or method to narrow the gallery; a thumbnail opens the overlay at full "
+                       "The error overlays the runs wrote, one per cell (colours: the README's Output "
+                       "section). Pick a scene, view, map size or method to narrow the gallery; a thumbnail "
+                       "opens the overlay at full "
                        "size.");
     /* per shown overlay: rel, caption, scene, view, map, method, id */
     char (*str)[7][400] = sl_calloc((size_t)n, sizeof *str);
