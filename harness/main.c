@@ -70,19 +70,24 @@ static const char usage_validate[] =
 
 static const char usage_table[] =
     "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
-    "                          [--map N] [--run ID]\n"
+    "                          [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
     "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
     "                           [--average-case SCENE/VIEWPOINT/N[/MAP]]]\n"
     "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
     "  --summary, the average, best and worst per map size of one figure's percentage over\n"
-    "  the cells of one label (as the theses' summary tables), md or csv.\n";
+    "  the cells of one label (as the theses' summary tables), md or csv.\n"
+    "  md and latex leave out the figures a method does not produce (0 in every column past\n"
+    "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n";
 
 static const char usage_report[] =
-    "usage: shadowlab report RESULTS_DB [-o DIR]\n"
-    "  Writes DIR/report.html (self-contained, offline) and DIR/report.md with the thesis-style\n"
-    "  tables of every study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
+    "usage: shadowlab report RESULTS_DB [-o DIR] [--self-contained] [--latex]\n"
+    "  Writes DIR/report.html (offline; it links its images, plots and .tex beside it) and\n"
+    "  DIR/report.md: a contents tree, a summary first, then the thesis-style tables of every\n"
+    "  study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
     "  (gnuplot, SVG), costs, the error overlays and the provenance of every run.\n"
-    "  -o, --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n";
+    "  -o, --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n"
+    "  --self-contained  report.html is one file: images and plots embedded, nothing outside it\n"
+    "  --latex           also DIR/report.tex: a pdflatex document that \\inputs the tables and plots\n";
 
 static const char usage_check[] =
     "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
@@ -161,8 +166,8 @@ static int usage_error(const char *msg, const char *text)
  * case in its switch. */
 enum {
     OPT_CELLS = 256, OPT_RESUME, OPT_DB, OPT_NO_CACHE, OPT_GL, OPT_FORMAT, OPT_SCENE, OPT_VIEWPOINT,
-    OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
-    OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV,
+    OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_FIGURES, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
+    OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX,
 };
 #define OPT_HELP {"help", no_argument, NULL, 'h'}
 enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };
@@ -609,6 +614,7 @@ static int cmd_table(int argc, char **argv)
         {"viewpoint", required_argument, NULL, OPT_VIEWPOINT}, {"label", required_argument, NULL, OPT_LABEL},
         {"map", required_argument, NULL, OPT_MAP},           {"run", required_argument, NULL, OPT_RUN},
         {"summary", required_argument, NULL, OPT_SUMMARY},   {"region", required_argument, NULL, OPT_REGION},
+        {"figures", required_argument, NULL, OPT_FIGURES},
         {"lower-is-better", no_argument, NULL, OPT_LOWER},   {"average-case", required_argument, NULL, OPT_AVG},
         {0, 0, 0, 0},
     };
@@ -616,7 +622,7 @@ static int cmd_table(int argc, char **argv)
     struct sl_store_filter f = {0};
     int fmt = SL_TABLE_MD;
     struct sl_summary_opts so = {.figure = -1, .region = -1};
-    const char *summary = NULL;
+    const char *summary = NULL, *figures = NULL;
     char avg_scene[64] = "", avg_vp[32] = "";
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
         const char *v = optarg;
@@ -632,6 +638,7 @@ static int cmd_table(int argc, char **argv)
         case OPT_MAP: f.map_size = atoi(v); break;
         case OPT_RUN: f.run_id = atoll(v); break;
         case OPT_SUMMARY: summary = v; break;
+        case OPT_FIGURES: figures = v; break;
         case OPT_REGION:
             so.region = !strcmp(v, "image") ? 0 : !strcmp(v, "contours") ? -1 : atoi(v);
             if (so.region < -1 || (so.region > 0 && so.region % 2))
@@ -677,7 +684,13 @@ static int cmd_table(int argc, char **argv)
         else
             e = sl_summary_write(stdout, (enum sl_table_format)fmt, cells, n, &so, &d);
     } else if (!e) {
-        e = sl_table_write(stdout, (enum sl_table_format)fmt, db, cells, n, &d);
+        /* the terminal's tables: only what the methods produce, unless --figures says */
+        struct sl_table_rows rows = {0};
+        e = sl_table_figures_parse(figures, &rows, &d);
+        if (!figures)
+            rows.produced = fmt != SL_TABLE_CSV;
+        if (!e)
+            e = sl_table_write_rows(stdout, (enum sl_table_format)fmt, db, cells, n, &rows, &d);
     }
     free(cells);
     sl_store_close(st);
@@ -686,13 +699,20 @@ static int cmd_table(int argc, char **argv)
 
 static int cmd_report(int argc, char **argv)
 {
-    static const struct option lo[] = {OPT_HELP, {"out", required_argument, NULL, 'o'}, {0, 0, 0, 0}};
+    static const struct option lo[] = {OPT_HELP, {"out", required_argument, NULL, 'o'},
+                                       {"self-contained", no_argument, NULL, OPT_SELF_CONTAINED},
+                                       {"latex", no_argument, NULL, OPT_LATEX}, {0, 0, 0, 0}};
     const struct opt_parser p = {"report", "o:", usage_report, lo};
     struct sl_report_opts o = {0};
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
-        if (c != 'o')
+        if (c == 'o')
+            o.out_dir = optarg;
+        else if (c == OPT_SELF_CONTAINED)
+            o.self_contained = 1;
+        else if (c == OPT_LATEX)
+            o.latex = 1;
+        else
             return opt_exit(c);
-        o.out_dir = optarg;
     }
     if (optind >= argc)
         return usage_error("report: missing RESULTS_DB", usage_report);
@@ -705,7 +725,8 @@ static int cmd_report(int argc, char **argv)
     enum sl_err e = sl_report_write(&o, dir, sizeof dir, &d);
     if (e)
         return fail(e, &d);
-    printf("report: %s/report.html, %s/report.md\n", dir, dir);
+    printf("report: %s/report.html, %s/report.md%s%s%s%s\n", dir, dir, o.self_contained ? ", " : "",
+           o.self_contained ? "(self-contained)" : "", o.latex ? ", " : "", o.latex ? "report.tex" : "");
     return 0;
 }
 

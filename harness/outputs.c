@@ -106,8 +106,9 @@ static void table_cells_of(const struct sl_config *c, const struct sl_run_result
     }
 }
 
-enum sl_err sl_out_write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
-                                const struct sl_run_result *res, struct sl_diag *d)
+static enum sl_err write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
+                                const struct sl_run_result *res, const struct sl_table_rows *rows,
+                                struct sl_diag *d)
 {
     struct sl_cell_record *tc = sl_calloc((size_t)(res->ncells ? res->ncells : 1), sizeof *tc);
     if (!tc)
@@ -115,9 +116,26 @@ enum sl_err sl_out_write_tables(FILE *f, enum sl_table_format fmt, const struct 
     table_cells_of(c, res, tc);
     char title[256];
     snprintf(title, sizeof title, "shadowlab: %s", c->name);
-    enum sl_err e = sl_table_write(f, fmt, title, tc, res->ncells, d);
+    enum sl_err e = rows ? sl_table_write_rows(f, fmt, title, tc, res->ncells, rows, d)
+                         : sl_table_write(f, fmt, title, tc, res->ncells, d);
     free(tc);
     return e;
+}
+
+enum sl_err sl_out_write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
+                                const struct sl_run_result *res, struct sl_diag *d)
+{
+    return write_tables(f, fmt, c, res, NULL, d);
+}
+
+/* The terminal gets only the figures each method produces (about 20 rows of
+ * NSM's are 0: hints, confirmations, changes against itself); table.md keeps
+ * every row. */
+enum sl_err sl_out_print_tables(FILE *f, const struct sl_config *c, const struct sl_run_result *res,
+                                struct sl_diag *d)
+{
+    struct sl_table_rows rows = {.produced = 1};
+    return write_tables(f, SL_TABLE_MD, c, res, &rows, d);
 }
 
 /* ---- costs.csv: the columns of cellcols.h with a csv position ---- */

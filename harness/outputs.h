@@ -30,6 +30,9 @@ void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct s
 /* The computed cells as tables (table.h); SL_E_NOMEM, or sl_table_write's error. */
 enum sl_err sl_out_write_tables(FILE *f, enum sl_table_format fmt, const struct sl_config *c,
                                 const struct sl_run_result *res, struct sl_diag *d);
+/* Markdown for the terminal: the rows a method does not produce left out. */
+enum sl_err sl_out_print_tables(FILE *f, const struct sl_config *c, const struct sl_run_result *res,
+                                struct sl_diag *d);
 void sl_out_write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res);
 void sl_out_write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res);
 /* Texel coherence's undecided pixels by pattern (Moderno 2011 Tables 20/22). */

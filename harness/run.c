@@ -764,7 +764,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (st && c->tables)
         e = sl_out_rebuild_from_store(st, c, res->ncells, dirs.final, &res->stored_total, d);
     if (!e && o->table_out && c->tables) {
-        e = sl_out_write_tables(o->table_out, SL_TABLE_MD, c, res, d);
+        e = sl_out_print_tables(o->table_out, c, res, d);
         sl_out_write_costs_md(o->table_out, c, res);
         sl_out_write_patterns_md(o->table_out, c, res);
     }

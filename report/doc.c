@@ -15,6 +15,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "report_int.h"
 #include <errno.h>
+#include <stddef.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -312,7 +313,7 @@ static const char *tab_at(const struct sl_report_tab *t, int r, int c)
 
 /* ---- escapers ---- */
 
-static void html_text(FILE *f, const char *s)
+void sl_report_html_text(FILE *f, const char *s)
 {
     for (; s && *s; s++) {
         switch (*s) {
@@ -327,7 +328,7 @@ static void html_text(FILE *f, const char *s)
 }
 
 /* CommonMark: backslash-escape the punctuation that could start markup */
-static void md_text(FILE *f, const char *s)
+void sl_report_md_text(FILE *f, const char *s)
 {
     for (; s && *s; s++) {
         if (strchr("\\`*_[]<>|#!", *s))
@@ -340,7 +341,145 @@ static void md_text(FILE *f, const char *s)
 }
 
 
+#define html_text sl_report_html_text
+#define md_text sl_report_md_text
+
 /* ---- doc ---- */
+
+
+enum sl_err sl_report_doc_open(struct sl_report_doc *doc, int latex, struct sl_diag *d)
+{
+    doc->html = open_memstream(&doc->html_buf, &doc->html_len);
+    doc->md = open_memstream(&doc->md_buf, &doc->md_len);
+    doc->tex = latex ? open_memstream(&doc->tex_buf, &doc->tex_len) : NULL;
+    if (!doc->html || !doc->md || (latex && !doc->tex))
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "report pages");
+    return SL_OK;
+}
+
+void sl_report_doc_free(struct sl_report_doc *doc)
+{
+    FILE **f[3] = {&doc->html, &doc->md, &doc->tex};
+    for (int k = 0; k < 3; k++)
+        if (*f[k]) {
+            fclose(*f[k]);
+            *f[k] = NULL;
+        }
+    free(doc->html_buf);
+    free(doc->md_buf);
+    free(doc->tex_buf);
+    free(doc->heads);
+    doc->html_buf = doc->md_buf = doc->tex_buf = NULL;
+    doc->heads = NULL;
+    doc->nheads = doc->capheads = 0;
+}
+
+/* LaTeX text of the report's prose: sl_tex_text (which maps the signs it
+ * knows and replaces any other non-ASCII one, so pdflatex never stops). */
+static void tex_para(FILE *f, const char *s)
+{
+    if (f)
+        sl_tex_text(f, s);
+}
+
+/* A unique id for a heading: the anchor asked for, else a slug of its text. */
+static void heading_id(struct sl_report_doc *doc, int level, const char *anchor, const char *text, char *id,
+                       size_t n)
+{
+    char base[80];
+    if (anchor && anchor[0]) {
+        snprintf(base, sizeof base, "%s", anchor);
+    } else {
+        size_t k = 0;
+        int dash = 1;
+        for (const char *p = text; *p && k + 1 < sizeof base && k < 60; p++) {
+            char c = *p;
+            if (c >= 'A' && c <= 'Z')
+                c = (char)(c - 'A' + 'a');
+            if ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9')) {
+                base[k++] = c;
+                dash = 0;
+            } else if (!dash) {
+                base[k++] = '-';
+                dash = 1;
+            }
+        }
+        while (k > 0 && base[k - 1] == '-')
+            k--;
+        base[k] = '\0';
+        if (!k)
+            snprintf(base, sizeof base, "s");
+    }
+    snprintf(id, n, "%s", base);
+    for (int k = 2;; k++) {
+        int used = 0;
+        for (int i = 0; i < doc->nheads && !used; i++)
+            used = strcmp(doc->heads[i].id, id) == 0;
+        if (!used)
+            break;
+        snprintf(id, n, "%.80s-%d", base, k);
+    }
+    if (doc->nheads == doc->capheads) {
+        int cap = doc->capheads ? 2 * doc->capheads : 64;
+        struct sl_report_heading *h = realloc(doc->heads, (size_t)cap * sizeof *h);
+        if (!h) {
+            doc->oom = 1;
+            return;
+        }
+        doc->heads = h;
+        doc->capheads = cap;
+    }
+    struct sl_report_heading *h = &doc->heads[doc->nheads++];
+    memset(h, 0, sizeof *h);
+    h->level = level;
+    snprintf(h->id, sizeof h->id, "%s", id);
+    snprintf(h->text, sizeof h->text, "%s", text);
+}
+
+static void tex_heading(struct sl_report_doc *doc, int level, const char *text)
+{
+    static const char *const cmd[] = {"section", "section", "section", "subsection", "subsubsection", "paragraph"};
+    if (!doc->tex || level < 2)
+        return;
+    if (level == 2)
+        fputs("\\clearpage\n", doc->tex);
+    fprintf(doc->tex, "\\%s{", cmd[level > 5 ? 5 : level]);
+    tex_para(doc->tex, text);
+    fputs("}\n\n", doc->tex);
+}
+
+static void heading_at(struct sl_report_doc *doc, int level, const char *anchor, const char *text, int in_summary)
+{
+    char id[100];
+    if (level < 1)
+        level = 1;
+    if (level > 5)
+        level = 5;
+    heading_id(doc, level, anchor, text, id, sizeof id);
+    if (in_summary) {
+        fputs("<details class=\"sec\" id=\"", doc->html);
+        html_text(doc->html, id);
+        fprintf(doc->html, "\"><summary><h%d>", level);
+    } else {
+        fprintf(doc->html, "<h%d id=\"", level);
+        html_text(doc->html, id);
+        fputs("\">", doc->html);
+    }
+    html_text(doc->html, text);
+    if (level > 1) {
+        fputs(" <a class=\"anc\" href=\"#", doc->html);
+        html_text(doc->html, id);
+        fputs("\" title=\"link to this section\">#</a>", doc->html);
+    }
+    fprintf(doc->html, "</h%d>%s\n", level, in_summary ? "</summary>" : "");
+    fprintf(doc->md, "<a id=\"%s\"></a>\n\n", id);   /* ids are slugs: nothing to escape */
+    for (int i = 0; i < level; i++)
+        fputc('#', doc->md);
+    fputc(' ', doc->md);
+    md_text(doc->md, text);
+    fputs("\n\n", doc->md);
+    tex_heading(doc, level, text);
+}
 
 void sl_report_doc_heading(struct sl_report_doc *doc, int level, const char *anchor, const char *fmt, ...)
 {
@@ -349,26 +488,27 @@ void sl_report_doc_heading(struct sl_report_doc *doc, int level, const char *anc
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    if (level < 1)
-        level = 1;
-    if (level > 4)
-        level = 4;
-    fprintf(doc->html, "<h%d", level);
-    if (anchor && anchor[0]) {
-        fputs(" id=\"", doc->html);
-        html_text(doc->html, anchor);
-        fputc('"', doc->html);
-    }
-    fputc('>', doc->html);
-    html_text(doc->html, text);
-    fprintf(doc->html, "</h%d>\n", level);
-    if (anchor && anchor[0])
-        fprintf(doc->md, "<a id=\"%s\"></a>\n\n", anchor);   /* anchors are slugs: nothing to escape */
-    for (int i = 0; i < level; i++)
-        fputc('#', doc->md);
-    fputc(' ', doc->md);
-    md_text(doc->md, text);
-    fputs("\n\n", doc->md);
+    heading_at(doc, level, anchor, text, 0);
+}
+
+void sl_report_doc_section_begin(struct sl_report_doc *doc, int level, const char *anchor, const char *fmt, ...)
+{
+    char text[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    heading_at(doc, level, anchor, text, 1);
+}
+
+void sl_report_doc_section_end(struct sl_report_doc *doc)
+{
+    fputs("</details>\n", doc->html);
+}
+
+void sl_report_doc_raw_html(struct sl_report_doc *doc, const char *html)
+{
+    fputs(html, doc->html);
 }
 
 void sl_report_doc_para(struct sl_report_doc *doc, const char *fmt, ...)
@@ -382,7 +522,19 @@ void sl_report_doc_para(struct sl_report_doc *doc, const char *fmt, ...)
     fputs("</p>\n", doc->html);
     md_text(doc->md, text ? text : "(out of memory)");
     fputs("\n\n", doc->md);
+    if (doc->tex) {
+        tex_para(doc->tex, text ? text : "(out of memory)");
+        fputs("\n\n", doc->tex);
+    }
     free(text);
+}
+
+/* src/href value of rel: a data: URI when self-contained, else rel */
+void sl_report_doc_src(struct sl_report_doc *doc, const char *rel)
+{
+    char *uri = sl_report_doc_uri(doc, rel);
+    html_text(doc->html, uri ? uri : rel);
+    free(uri);
 }
 
 void sl_report_doc_links(struct sl_report_doc *doc, const char *prefix, const char *const *rel,
@@ -395,11 +547,20 @@ void sl_report_doc_links(struct sl_report_doc *doc, const char *prefix, const ch
     }
     for (int i = 0; i < n; i++) {
         fputs(i ? ", " : (prefix ? " " : ""), doc->html);
-        fputs("<a href=\"", doc->html);
-        html_text(doc->html, rel[i]);
-        fputs("\">", doc->html);
-        html_text(doc->html, text[i]);
-        fputs("</a>", doc->html);
+        /* a self-contained page links nothing outside itself: files are named, not linked */
+        int link = !doc->self_contained || rel[i][0] == '#';
+        if (link) {
+            fputs("<a href=\"", doc->html);
+            html_text(doc->html, rel[i]);
+            fputs("\">", doc->html);
+            html_text(doc->html, text[i]);
+            fputs("</a>", doc->html);
+        } else {
+            html_text(doc->html, text[i]);
+            fputs(" (<code>", doc->html);
+            html_text(doc->html, rel[i]);
+            fputs("</code>)", doc->html);
+        }
         fputs(i ? ", [" : (prefix ? " [" : "["), doc->md);
         md_text(doc->md, text[i]);
         fprintf(doc->md, "](%s)", rel[i]);   /* rel is a checked file name */
@@ -416,7 +577,7 @@ void sl_report_doc_link(struct sl_report_doc *doc, const char *rel, const char *
 void sl_report_doc_image(struct sl_report_doc *doc, const char *rel, const char *caption)
 {
     fputs("<figure><img src=\"", doc->html);
-    html_text(doc->html, rel);
+    sl_report_doc_src(doc, rel);
     fputs("\" alt=\"", doc->html);
     html_text(doc->html, caption);
     fputs("\"><figcaption>", doc->html);
@@ -429,27 +590,14 @@ void sl_report_doc_image(struct sl_report_doc *doc, const char *rel, const char 
     fputs("\n\n", doc->md);
 }
 
-void sl_report_doc_gallery(struct sl_report_doc *doc, const char *const *rel, const char *const *caption, int n)
+void sl_report_doc_tex_figure(struct sl_report_doc *doc, const char *pdf_rel, const char *caption)
 {
-    fputs("<div class=\"gallery\">\n", doc->html);
-    for (int i = 0; i < n; i++) {
-        fputs("<figure><a href=\"", doc->html);
-        html_text(doc->html, rel[i]);
-        fputs("\"><img loading=\"lazy\" src=\"", doc->html);
-        html_text(doc->html, rel[i]);
-        fputs("\" alt=\"", doc->html);
-        html_text(doc->html, caption[i]);
-        fputs("\"></a><figcaption>", doc->html);
-        html_text(doc->html, caption[i]);
-        fputs("</figcaption></figure>\n", doc->html);
-        fputs("- ![", doc->md);
-        md_text(doc->md, caption[i]);
-        fprintf(doc->md, "](%s) ", rel[i]);
-        md_text(doc->md, caption[i]);
-        fputc('\n', doc->md);
-    }
-    fputs("</div>\n", doc->html);
-    fputc('\n', doc->md);
+    if (!doc->tex)
+        return;
+    fprintf(doc->tex, "\\begin{figure}[htbp]\n\\centering\n\\includegraphics[width=\\linewidth]{%s}\n\\caption{",
+            pdf_rel);   /* a checked file name: letters, digits, . _ - / */
+    tex_para(doc->tex, caption);
+    fputs("}\n\\end{figure}\n\n", doc->tex);
 }
 
 void sl_report_doc_details(struct sl_report_doc *doc, const char *summary, const char *text)
@@ -495,7 +643,7 @@ void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int
     fputc('\n', doc->md);
 }
 
-static void html_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
+static void html_table(FILE *f, const struct sl_report_tab *t, const char *texrel, int self_contained)
 {
     fputs(t->wrap ? "<div class=\"tab\"><table class=\"wrap\">\n<caption>" : "<div class=\"tab\"><table>\n<caption>", f);
     html_text(f, t->title);
@@ -530,9 +678,15 @@ static void html_table(FILE *f, const struct sl_report_tab *t, const char *texre
         html_text(f, t->note);
         fputc(' ', f);
     }
-    fputs("<a href=\"", f);
-    html_text(f, texrel);
-    fputs("\">LaTeX</a></p></div>\n", f);
+    if (self_contained) {   /* named, not linked: the one file refers to nothing outside */
+        fputs("LaTeX: <code>", f);
+        html_text(f, texrel);
+        fputs("</code></p></div>\n", f);
+    } else {
+        fputs("<a href=\"", f);
+        html_text(f, texrel);
+        fputs("\">LaTeX</a></p></div>\n", f);
+    }
 }
 
 static void md_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
@@ -574,24 +728,78 @@ static void md_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
     fprintf(f, "[LaTeX](%s)\n\n", texrel);
 }
 
-static void tex_table(FILE *f, const struct sl_report_tab *t)
+/* Rows of a table per float: a longer one is split into parts ("continued"),
+ * each a float of its own, since a longtable cannot be scaled to the line. */
+#define TEX_ROWS 40
+
+/* Characters of s as shown (UTF-8 sequences count one); up to n bytes. */
+static int shown_len(const char *s, size_t n)
 {
-    int longtab = t->nrows > 40;
-    fputs("% shadowlab report table; needs \\usepackage{booktabs}", f);
-    fputs(longtab ? " and \\usepackage{longtable}\n" : "\n", f);
+    int k = 0;
+    for (size_t i = 0; i < n && s[i]; i++)
+        k += ((unsigned char)s[i] & 0xC0) != 0x80;
+    return k;
+}
+
+/* Width of column c in characters; stacked: a cell "v (where)" counts as its
+ * longer line. */
+static int col_chars(const struct sl_report_tab *t, int c, int stack)
+{
+    int w = t->head[c] ? shown_len(t->head[c], strlen(t->head[c])) : 0;
+    for (int r = 0; r < t->nrows; r++) {
+        const char *v = tab_at(t, r, c), *cut = stack ? strstr(v, " (") : NULL;
+        int len = cut ? shown_len(v, (size_t)(cut - v)) : shown_len(v, strlen(v));
+        if (cut && shown_len(cut + 1, strlen(cut + 1)) > len)
+            len = shown_len(cut + 1, strlen(cut + 1));
+        if (len > w)
+            w = len;
+    }
+    return w;
+}
+
+/* A cell; stacked, "v (where)" as two lines (v above its "(where)"). */
+static void tex_cell(FILE *f, const char *v, int stack, char align)
+{
+    const char *cut = stack ? strstr(v, " (") : NULL;
+    if (!cut) {
+        sl_tex_text(f, v);
+        return;
+    }
+    char first[512];
+    snprintf(first, sizeof first, "%.*s", (int)(cut - v), v);
+    fprintf(f, "\\begin{tabular}[t]{@{}%c@{}}", align);
+    sl_tex_text(f, first);
+    fputs("\\\\ ", f);
+    sl_tex_text(f, cut + 1);
+    fputs("\\end{tabular}", f);
+}
+
+/* About 80 characters of footnotesize digits and column gaps fill an A4
+ * article's 345 pt line. A table wider than that has its "value (where)"
+ * cells stacked onto two lines before anything is scaled: Moderno's summary
+ * tables otherwise shrank to a 5 pt font. */
+#define TEX_LINE_CHARS 80
+
+static void tex_part(FILE *f, const struct sl_report_tab *t, int from, int to, int part, int parts)
+{
+    int wide = 0;
+    for (int c = 0; c < t->ncols; c++)
+        wide += col_chars(t, c, 0) + 2;
+    int stack = wide > TEX_LINE_CHARS;
     char spec[SL_REPORT_MAXCOLS + 1];
     for (int c = 0; c < t->ncols; c++)
         spec[c] = c < t->nkeys ? 'l' : 'r';
     spec[t->ncols] = '\0';
-    if (longtab)
-        fprintf(f, "{\\footnotesize\n\\begin{longtable}{%s}\n\\caption{", spec);
-    else
-        fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\caption{", f);
+    fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
     sl_tex_text(f, t->title);
-    fprintf(f, "}\n\\label{tab:%s}", t->id);
-    fputs(longtab ? "\\\\\n" : "\n", f);
-    if (!longtab)
-        fprintf(f, "\\begin{tabular}{%s}\n", spec);
+    if (parts > 1)
+        fprintf(f, " (part %d of %d)", part + 1, parts);
+    fputc('}', f);
+    if (part == 0)
+        fprintf(f, "\n\\label{tab:%s}", t->id);
+    /* scaled down to the line only when wider, never up */
+    fprintf(f, "\n\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%%\n\\begin{tabular}{%s}\n",
+            spec);
     fputs("\\toprule\n", f);
     if (t->ngroups) {
         for (int g = 0; g < t->ngroups; g++) {
@@ -613,29 +821,33 @@ static void tex_table(FILE *f, const struct sl_report_tab *t)
         sl_tex_text(f, t->head[c] ? t->head[c] : "");
     }
     fputs(" \\\\\n\\midrule\n", f);
-    if (longtab)
-        fputs("\\endhead\n\\bottomrule\n\\endlastfoot\n", f);
-    for (int r = 0; r < t->nrows; r++) {
-        if (t->rule[r])
+    for (int r = from; r < to; r++) {
+        if (t->rule[r] && r > from)
             fputs("\\addlinespace\n", f);
         for (int c = 0; c < t->ncols; c++) {
             if (c)
                 fputs(" & ", f);
-            sl_tex_text(f, tab_at(t, r, c));
+            tex_cell(f, tab_at(t, r, c), stack, c < t->nkeys ? 'l' : 'r');
         }
         fputs(" \\\\\n", f);
     }
-    if (longtab) {
-        fputs("\\end{longtable}\n", f);
-    } else {
-        fputs("\\bottomrule\n\\end{tabular}\n", f);
-    }
-    if (t->note[0]) {
-        fputs("\n\\smallskip\n{\\scriptsize ", f);
+    fputs("\\bottomrule\n\\end{tabular}}\n", f);
+    if (t->note[0] && part == parts - 1) {
+        fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
         sl_tex_text(f, t->note);
         fputs("\\par}\n", f);
     }
-    fputs(longtab ? "}\n" : "\\end{table}\n", f);
+    fputs("\\end{table}\n", f);
+}
+
+static void tex_table(FILE *f, const struct sl_report_tab *t)
+{
+    fputs("% shadowlab report table; needs \\usepackage{booktabs,graphicx}\n", f);
+    int parts = t->nrows > TEX_ROWS ? (t->nrows + TEX_ROWS - 1) / TEX_ROWS : 1;
+    for (int p = 0; p < parts; p++) {
+        int to = (p + 1) * TEX_ROWS;
+        tex_part(f, t, p * TEX_ROWS, to < t->nrows ? to : t->nrows, p, parts);
+    }
 }
 
 enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_report_tab *t, struct sl_diag *d)
@@ -657,8 +869,16 @@ enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_repor
     int bad = ferror(f);
     if (fclose(f) != 0 || bad)
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "write failed");
-    html_table(doc->html, t, rel);
+    html_table(doc->html, t, rel, doc->self_contained);
     md_table(doc->md, t, rel);
     doc->ntables++;
+    if (doc->tex) {
+        fprintf(doc->tex, "\\input{%s}\n", rel);
+        /* a float per table: flushed every few tables so LaTeX never holds
+         * more than its 18 unprocessed floats */
+        if (doc->ntables % 8 == 0)
+            fputs("\\clearpage\n", doc->tex);
+    }
     return SL_OK;
 }
+

@@ -1,23 +1,24 @@
 /*
  * plots.c — the report's figures, drawn by gnuplot from data computed here:
- * the chain's steps per scene (Moderno 2011 Figures 31/32) and wrong pixels
- * against cost with the Pareto front (see report.h).
+ * the chain's steps per scene (Moderno 2011 Figures 31/32) and wrong and
+ * undecided pixels against cost with the Pareto front (see report.h).
  *
  * Invariants:
- * - gnuplot gets one script on its stdin (popen) with the data inline as
- *   datablocks, writes one SVG into the staging folder, and its stderr goes
- *   to a scratch log there, so nothing of it reaches our stdout/stderr; a
- *   failed plot names the script's first error line.
+ * - Each plot is a kept pair, NAME.dat and NAME.gp, in the staging folder's
+ *   plots/; gnuplot runs on NAME.gp there (system(), stdin /dev/null) and
+ *   draws NAME.svg, and NAME.pdf where it has pdfcairo; its output goes to a
+ *   scratch log, so nothing of it reaches our stdout/stderr; a failed plot
+ *   names the log's first error line. The pair redraws the plot without
+ *   shadowlab.
  * - Every number in a plot is also printed in a table beside it, so the
  *   Markdown page and a reader without SVG see the same data.
  * - Strings reach gnuplot only through gp_quote/gp_datum: no label or path
  *   can end a string or inject a command.
- * - SIGPIPE (gnuplot dying mid-script) is ignored for the write and restored.
+ * - Shell words (the gnuplot path, the folder) are single-quoted (sh_quote).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -53,7 +54,7 @@ enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, str
     if (ncells <= 0)
         return SL_OK;
     struct sl_report_point *p = sl_calloc((size_t)ncells, sizeof *p);
-    double *sum_w = sl_calloc((size_t)ncells, sizeof *sum_w);
+    double *sum_w = sl_calloc((size_t)ncells, 2 * sizeof *sum_w);   /* wrong %, then uncertain % */
     int *nw = sl_calloc((size_t)ncells, sizeof *nw);
     if (!p || !sum_w || !nw) {
         free(p);
@@ -84,9 +85,10 @@ enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, str
             }
             memmove(&p[at + 1], &p[at], (size_t)(np - at) * sizeof *p);
             memmove(&sum_w[at + 1], &sum_w[at], (size_t)(np - at) * sizeof *sum_w);
+            memmove(&sum_w[ncells + at + 1], &sum_w[ncells + at], (size_t)(np - at) * sizeof *sum_w);
             memmove(&nw[at + 1], &nw[at], (size_t)(np - at) * sizeof *nw);
             memset(&p[at], 0, sizeof *p);
-            sum_w[at] = 0.0;
+            sum_w[at] = sum_w[ncells + at] = 0.0;
             nw[at] = 0;
             snprintf(p[at].label, sizeof p[at].label, "%s", c->label);
             snprintf(p[at].method, sizeof p[at].method, "%s", c->method);
@@ -98,10 +100,17 @@ enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, str
         q->ncells++;
         q->ms_layers += c->ms_map_render;
         q->ms_step += c->ms_method;
+        /* with one run min = max = median; an old store without them keeps the median */
+        q->ms_min += (c->ms_map_render_min > 0 ? c->ms_map_render_min : c->ms_map_render) +
+                     (c->ms_method_min > 0 ? c->ms_method_min : c->ms_method);
+        q->ms_max += (c->ms_map_render_max > 0 ? c->ms_map_render_max : c->ms_map_render) +
+                     (c->ms_method_max > 0 ? c->ms_method_max : c->ms_method);
+        q->reps = q->ncells == 1 || c->runs < q->reps ? c->runs : q->reps;
         int r = sl_report_region(c, 0);
         double px = r >= 0 ? (double)c->fig.r[r].n[SL_FIG_pixels] : 0.0;
         if (px > 0.0) {
             sum_w[k] += 100.0 * (double)c->fig.r[r].n[SL_FIG_wrong] / px;
+            sum_w[ncells + k] += 100.0 * (double)c->fig.r[r].n[SL_FIG_uncertain] / px;
             nw[k]++;
             q->rays_per_px += (double)c->rays / px;
         }
@@ -122,12 +131,15 @@ enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, str
         p[k].ms_step /= p[k].ncells;
         /* a method's cost is its own layers and its step: NSM's map counts, as does raytrace's rays */
         p[k].ms = p[k].ms_layers + p[k].ms_step;
+        p[k].ms_min /= p[k].ncells;
+        p[k].ms_max /= p[k].ncells;
         p[k].wrong_pct = nw[k] ? sum_w[k] / nw[k] : NAN;
+        p[k].uncertain_pct = nw[k] ? sum_w[ncells + k] / nw[k] : NAN;
         p[k].rays_per_px = nw[k] ? p[k].rays_per_px / nw[k] : NAN;
     }
     for (int k = 0; k < np; k++) {
         x[k] = p[k].ms > 0.0 ? p[k].ms : NAN;   /* no time stored: not a point of the time front */
-        y[k] = p[k].wrong_pct;
+        y[k] = p[k].wrong_pct + p[k].uncertain_pct;
     }
     sl_report_pareto(x, y, np, f);
     for (int k = 0; k < np; k++) {
@@ -219,61 +231,137 @@ static void sh_quote(char *buf, size_t n, const char *s)
     buf[k] = '\0';
 }
 
-/* Run gnuplot on `body` with an SVG terminal writing rel (registered here). */
-static enum sl_err gp_run(struct sl_report_doc *doc, const char *gnuplot, const char *rel, int w, int h,
-                          const char *body, struct sl_diag *d)
+static int run_sh(const char *cmd)
 {
-    char svg[1400], logrel[300], log[1400];
-    enum sl_err e = sl_report_out_path(doc->out, rel, 1, svg, sizeof svg, d);
-    snprintf(logrel, sizeof logrel, "%s.log", rel);
+    fflush(NULL);
+    int status = system(cmd);
+    return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static enum sl_err write_text(struct sl_report_doc *doc, const char *rel, const char *text, struct sl_diag *d)
+{
+    char path[1400];
+    enum sl_err e = sl_report_out_path(doc->out, rel, 1, path, sizeof path, d);
+    if (e)
+        return e;
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+    fputs(text, f);
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "write failed");
+    return SL_OK;
+}
+
+/* A plot is kept as plots/NAME.dat (its numbers) and plots/NAME.gp (the
+ * script, which reads NAME.dat from its own folder), drawn from them as
+ * NAME.svg for the page and, where gnuplot has pdfcairo, NAME.pdf for
+ * LaTeX: `cd plots && gnuplot NAME.gp` (SVG) or `gnuplot -e "out='pdf'"
+ * NAME.gp` redraws it, so a plot can be restyled without shadowlab. `body`
+ * refers to the data as DATA. */
+static enum sl_err gp_run(struct sl_report_doc *doc, const char *gnuplot, const char *name, int w, int h,
+                          const char *data, const char *body, struct sl_diag *d)
+{
+    char rel[4][300], path[4][1400], logrel[300], log[1400];
+    static const char *const ext[4] = {"dat", "gp", "svg", "pdf"};
+    for (int k = 0; k < 4; k++)
+        snprintf(rel[k], sizeof rel[k], "plots/%s.%s", name, ext[k]);
+    char qexe[4400], cmd[9000];
+    sh_quote(qexe, sizeof qexe, gnuplot);
+    if (doc->gp_pdf == 0) {
+        snprintf(cmd, sizeof cmd, "%s -e 'set terminal pdfcairo' </dev/null >/dev/null 2>&1", qexe);
+        doc->gp_pdf = run_sh(cmd) == 0 ? 1 : -1;
+    }
+    char *script = NULL;
+    size_t slen = 0;
+    FILE *m = open_memstream(&script, &slen);
+    if (!m)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, name, "plot script");
+    fprintf(m, "# shadowlab plot: cd to this folder, then `gnuplot %s.gp` (SVG) or\n"
+               "# `gnuplot -e \"out='pdf'\" %s.gp` (PDF, needs the pdfcairo terminal); numbers in %s.dat\n"
+               "if (!exists(\"out\")) out = 'svg'\n"
+               "if (out eq 'pdf') {\n"
+               "  set terminal pdfcairo size %.2fcm,%.2fcm noenhanced font 'sans,7'\n"
+               "  set output '%s.pdf'\n"
+               "} else {\n"
+               "  set terminal svg size %d,%d dynamic noenhanced font 'sans,11' background '#ffffff'\n"
+               "  set output '%s.svg'\n"
+               "}\n"
+               "set encoding utf8\nDATA = '%s.dat'\n",
+            /* 12 cm, about the line width: 7 pt stays 7 pt */
+            name, name, name, 12.0, 12.0 * h / w, name, w, h, name, name);
+    fputs(body, m);
+    fputs("\nunset output\n", m);
+    int bad = ferror(m);
+    fclose(m);
+    if (bad || !script) {
+        free(script);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, name, "plot script");
+    }
+    enum sl_err e = write_text(doc, rel[0], data, d);
+    if (!e)
+        e = write_text(doc, rel[1], script, d);
+    free(script);
+    snprintf(logrel, sizeof logrel, "plots/%s.log", name);
+    for (int k = 2; k < 4 && !e; k++)
+        if (k == 2 || doc->gp_pdf > 0)
+            e = sl_report_out_path(doc->out, rel[k], 1, path[k], sizeof path[k], d);
     if (!e)
         e = sl_report_out_path(doc->out, logrel, 0, log, sizeof log, d);
     if (e)
         return e;
-    char qexe[4400], qlog[2900], cmd[7400];
-    sh_quote(qexe, sizeof qexe, gnuplot);
+    /* the folder of the staged files: log is <stage>/plots/NAME.log */
+    char dir[1400], qdir[2900], qlog[2900], qgp[700];
+    snprintf(dir, sizeof dir, "%s", log);
+    *strrchr(dir, '/') = '\0';
+    sh_quote(qdir, sizeof qdir, dir);
     sh_quote(qlog, sizeof qlog, log);
-    snprintf(cmd, sizeof cmd, "%s >%s 2>&1", qexe, qlog);
-
-    struct sigaction ign = {0}, old;
-    ign.sa_handler = SIG_IGN;
-    sigemptyset(&ign.sa_mask);
-    sigaction(SIGPIPE, &ign, &old);
-    fflush(NULL);
-    FILE *gp = popen(cmd, "w");
-    int status = -1;
-    if (gp) {
-        fprintf(gp, "set terminal svg size %d,%d dynamic noenhanced font 'sans,11' background '#ffffff'\n", w, h);
-        fputs("set encoding utf8\nset output ", gp);
-        gp_quote(gp, svg);
-        fputc('\n', gp);
-        fputs(body, gp);
-        fputs("\nunset output\nexit\n", gp);
-        status = pclose(gp);
-    }
-    sigaction(SIGPIPE, &old, NULL);
-    if (!gp)
-        return sl_fail(d, SL_E_IO, gnuplot, 0, "gnuplot", "cannot start gnuplot: %s", strerror(errno));
-    struct stat st;
-    int ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0 && stat(svg, &st) == 0 && st.st_size > 0;
-    if (!ok) {
-        char first[300] = "";
-        FILE *lf = fopen(log, "r");
-        if (lf) {
-            char line[300];
-            while (fgets(line, sizeof line, lf))
-                if (strstr(line, "rror") || !first[0]) {
-                    snprintf(first, sizeof first, "%s", line);
-                    if (strstr(line, "rror"))
-                        break;
-                }
-            fclose(lf);
+    char gpname[320];
+    snprintf(gpname, sizeof gpname, "%s.gp", name);
+    sh_quote(qgp, sizeof qgp, gpname);
+    for (int k = 2; k < 4; k++) {
+        if (k == 3 && doc->gp_pdf <= 0)
+            break;
+        snprintf(cmd, sizeof cmd, "(cd %s && %s -e \"out='%s'\" %s </dev/null) >>%s 2>&1", qdir, qexe, ext[k],
+                 qgp, qlog);
+        int status = run_sh(cmd);
+        struct stat st;
+        if (status != 0 || stat(path[k], &st) != 0 || st.st_size == 0) {
+            char first[300] = "";
+            FILE *lf = fopen(log, "r");
+            if (lf) {
+                char line[300];
+                while (fgets(line, sizeof line, lf))
+                    if (strstr(line, "rror") || !first[0]) {
+                        snprintf(first, sizeof first, "%s", line);
+                        if (strstr(line, "rror"))
+                            break;
+                    }
+                fclose(lf);
+            }
+            first[strcspn(first, "\r\n")] = '\0';
+            return sl_fail(d, SL_E_IO, gnuplot, 0, rel[2], "gnuplot failed on this plot (status %d): %s", status,
+                           first[0] ? first : "no message");
         }
-        first[strcspn(first, "\r\n")] = '\0';
-        return sl_fail(d, SL_E_IO, gnuplot, 0, rel, "gnuplot failed on this plot (status %d): %s", status,
-                       first[0] ? first : "no message");
     }
     return SL_OK;
+}
+
+/* The plot on the page (SVG) and in the LaTeX document (PDF, where drawn). */
+static void plot_show(struct sl_report_doc *doc, const char *name, const char *caption)
+{
+    char rel[300];
+    snprintf(rel, sizeof rel, "plots/%s.svg", name);
+    sl_report_doc_image(doc, rel, caption);
+    snprintf(rel, sizeof rel, "plots/%s.pdf", name);
+    if (sl_report_out_has(doc->out, rel))
+        sl_report_doc_tex_figure(doc, rel, caption);
+    char gp[300], dat[300];
+    snprintf(gp, sizeof gp, "plots/%s.gp", name);
+    snprintf(dat, sizeof dat, "plots/%s.dat", name);
+    const char *r[2] = {gp, dat}, *t[2] = {"gnuplot script", "its data"};
+    sl_report_doc_links(doc, "Redraw or restyle:", r, t, 2);
 }
 
 /* ---- Moderno Figures 31/32: the chain's steps per scene ---- */
@@ -347,11 +435,18 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
     enum sl_err e = SL_OK;
     for (int sc = 0; sc < s->nscenes && !e; sc++) {
         const char *scene = s->scenes[sc];
-        char *body = NULL;
-        size_t blen = 0;
-        FILE *m = open_memstream(&body, &blen);
-        if (!m)
+        char *body = NULL, *data = NULL;
+        size_t blen = 0, dlen = 0;
+        FILE *m = open_memstream(&body, &blen), *dm = open_memstream(&data, &dlen);
+        if (!m || !dm) {
+            if (m)
+                fclose(m);
+            if (dm)
+                fclose(dm);
+            free(body);
+            free(data);
             return sl_fail(d, SL_E_NOMEM, NULL, 0, scene, "plot script");
+        }
         char id[160], slug[64];
         sl_report_slug(scene, slug, sizeof slug);
         snprintf(id, sizeof id, "%s-chain-%s", s->slug, slug);
@@ -363,7 +458,10 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
         sl_report_tab_head(&t, 2, "region (PFL)");
         for (int k = 0; k < ST_N; k++)
             sl_report_tab_head(&t, 3 + k, "%s", steps[k].name);
-        fputs("$d << EOD\n", m);
+        fprintf(dm, "# %s / %s: %% of PFL per step:", s->name, scene);
+        for (int k = 0; k < ST_N; k++)
+            fprintf(dm, " %s;", steps[k].name);
+        fputc('\n', dm);
         int bars = 0;
         for (int q = 0; q < nchains; q++)
             for (int k = 0; k < s->nmaps; k++)
@@ -375,10 +473,10 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
                     char rn[16], name[128];
                     sl_report_region_name(s->regions[r], rn, sizeof rn);
                     snprintf(name, sizeof name, "%s %d² %s", s->labels[chains[q]], s->maps[k], rn);
-                    gp_datum(m, name);
+                    gp_datum(dm, name);
                     for (int j = 0; j < ST_N; j++)
-                        fprintf(m, " %.4f", share[j]);
-                    fputc('\n', m);
+                        fprintf(dm, " %.4f", share[j]);
+                    fputc('\n', dm);
                     sl_report_tab_row(&t, r == 0);
                     sl_report_tab_cell(&t, 0, "%s", s->labels[chains[q]]);
                     sl_report_tab_cell(&t, 1, "%d²", s->maps[k]);
@@ -387,7 +485,6 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
                         sl_report_tab_cell(&t, 3 + j, "%.2f", share[j]);
                     bars++;
                 }
-        fputs("EOD\n", m);
         fputs("set style data histograms\nset style histogram rowstacked\n"
               "set style fill solid 1.0 border rgb '#444444'\nset boxwidth 0.8 relative\n"
               "set yrange [0:100]\nset ylabel 'share of the region''s PFL pixels (%)'\n"
@@ -398,29 +495,30 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
         gp_quote(m, title);
         fputs("\nplot ", m);
         for (int j = 0; j < ST_N; j++) {
-            fprintf(m, "%s using %d%s title ", j ? ", ''" : "$d", j + 2, j ? "" : ":xtic(1)");
+            fprintf(m, "%s using %d%s title ", j ? ", ''" : "DATA", j + 2, j ? "" : ":xtic(1)");
             gp_quote(m, steps[j].name);
             fprintf(m, " lc rgb '%s'", steps[j].color);
         }
         fputc('\n', m);
-        int bad = ferror(m);
-        fclose(m);
-        if (bad || !body) {
+        int bad = ferror(m) | ferror(dm);
+        bad |= fclose(m) != 0;
+        bad |= fclose(dm) != 0;
+        if (bad || !body || !data) {
             free(body);
+            free(data);
             sl_report_tab_free(&t);
             return sl_fail(d, SL_E_NOMEM, NULL, 0, scene, "plot script");
         }
         if (bars > 0) {
-            char rel[200];
-            snprintf(rel, sizeof rel, "plots/%s.svg", id);
             int w = 420 + 34 * bars;
-            e = gp_run(doc, gnuplot, rel, w > 1400 ? 1400 : w, 520, body, d);
+            e = gp_run(doc, gnuplot, id, w > 1400 ? 1400 : w, 520, data, body, d);
             if (!e) {
-                sl_report_doc_image(doc, rel, title);
+                plot_show(doc, id, title);
                 e = sl_report_doc_table(doc, &t, d);
             }
         }
         free(body);
+        free(data);
         sl_report_tab_free(&t);
     }
     return e;
@@ -428,91 +526,151 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
 
 /* ---- accuracy against cost ---- */
 
-static int cmp_x(const void *a, const void *b)
-{
-    const double *p = a, *q = b;
-    return (p[0] > q[0]) - (p[0] < q[0]);
-}
+/* Okabe-Ito's colour-blind-safe palette (its yellow swapped for grey: too
+ * faint on white) and filled markers; method k gets colour k % 8 and
+ * marker (k + k / 8) % 8, so up to 64 methods differ in one or the other. */
+static const char *const okabe[8] = {"#E69F00", "#56B4E9", "#009E73", "#999999",
+                                     "#0072B2", "#D55E00", "#CC79A7", "#000000"};
+static const int markers[8] = {7, 5, 9, 11, 13, 15, 4, 6};
 
-/* One scatter of (x, wrong %) with its front; which: 0 time, 1 rays per pixel */
+/* Two panels over one cost axis (which: 0 method time, 1 rays per pixel):
+ * wrong pixels above, undecided pixels below, one colour and marker per
+ * method label with its map sizes joined smallest to largest, min-max bars
+ * of the repetitions on time, and the Pareto front of (cost, wrong +
+ * uncertain) ringed in both. Returns SL_OK without a plot when no point has
+ * that cost (say so on the page). */
 static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
                                  const struct sl_report_point *p, int np, int which, struct sl_diag *d)
 {
-    char *body = NULL;
-    size_t blen = 0;
-    FILE *m = open_memstream(&body, &blen);
-    double *front = sl_calloc((size_t)np * 2 + 2, sizeof *front);
-    if (!m || !front) {
+    char *body = NULL, *data = NULL;
+    size_t blen = 0, dlen = 0;
+    FILE *m = open_memstream(&body, &blen), *dm = open_memstream(&data, &dlen);
+    if (!m || !dm) {
         if (m)
             fclose(m);
+        if (dm)
+            fclose(dm);
         free(body);
-        free(front);
+        free(data);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
     }
     double lo = INFINITY, hi = 0.0;
-    int npts = 0, nfront = 0;
-    fputs("$all << EOD\n", m);
+    int npts = 0, nblocks = 0, bars = 0, any_rays = 0;
+    const char *plabel = NULL;
+    /* one block per label: x, wrong %, uncertain %, x min, x max, map size */
     for (int k = 0; k < np; k++) {
         double x = which ? p[k].rays_per_px : p[k].ms;
+        if (which && x > 0.0)
+            any_rays = 1;
         if (isnan(x) || isnan(p[k].wrong_pct) || (which == 0 && !(x > 0.0)))
             continue;
-        char name[96];
-        snprintf(name, sizeof name, "%s %d²", p[k].label, p[k].map_size);
-        fprintf(m, "%.6g %.6g ", x, p[k].wrong_pct);
-        gp_datum(m, name);
-        fputc('\n', m);
-        lo = fmin(lo, x);
-        hi = fmax(hi, x);
+        if (!plabel || strcmp(plabel, p[k].label) != 0) {
+            if (plabel)
+                fputs("\n\n", dm);
+            fputs("# ", dm);
+            gp_datum(dm, p[k].label);
+            fputs(": x wrong% uncertain% x_min x_max map\n", dm);
+            plabel = p[k].label;
+            nblocks++;
+        }
+        double xl = which ? x : p[k].ms_min, xh = which ? x : p[k].ms_max;
+        if (!which && p[k].reps > 1 && xh > xl)
+            bars = 1;
+        fprintf(dm, "%.6g %.6g %.6g %.6g %.6g %d\n", x, p[k].wrong_pct, p[k].uncertain_pct, xl, xh, p[k].map_size);
+        lo = fmin(lo, fmin(x, xl));
+        hi = fmax(hi, fmax(x, xh));
         npts++;
-        if (which ? p[k].front_rays : p[k].front_ms) {
-            front[2 * nfront] = x;
-            front[2 * nfront + 1] = p[k].wrong_pct;
+    }
+    fputs("\n\n# Pareto front of (cost, wrong% + uncertain%): x wrong% uncertain%\n", dm);
+    int nfront = 0;
+    for (int k = 0; k < np; k++) {
+        double x = which ? p[k].rays_per_px : p[k].ms;
+        if ((which ? p[k].front_rays : p[k].front_ms) && !isnan(x)) {
+            fprintf(dm, "%.6g %.6g %.6g\n", x, p[k].wrong_pct, p[k].uncertain_pct);
             nfront++;
         }
     }
-    fputs("EOD\n$front << EOD\n", m);
-    qsort(front, (size_t)nfront, 2 * sizeof *front, cmp_x);
-    for (int k = 0; k < nfront; k++)
-        fprintf(m, "%.6g %.6g\n", front[2 * k], front[2 * k + 1]);
-    fputs("EOD\n", m);
-    free(front);
-    int logx = which == 0 && lo > 0.0 && hi / lo >= 20.0;
+    if (nfront == 0)
+        fputs("NaN NaN NaN\n", dm);
+    int logx = lo > 0.0 && hi / lo >= 20.0;
     char title[200];
-    snprintf(title, sizeof title, "%s: wrong pixels against %s", s->name,
+    snprintf(title, sizeof title, "%s: wrong and undecided pixels against %s", s->name,
              which ? "shadow rays per pixel" : "method time");
-    fputs("set title ", m);
+    fputs("set multiplot title ", m);
     gp_quote(m, title);
-    fprintf(m, "\nset xlabel '%s'\n", which ? "shadow rays per non-background pixel (mean over views)"
-                                            : "method time per cell, ms: its shadow-map layers + its per-pixel step "
-                                              "(medians, mean over views)");
-    fputs("set ylabel 'wrong pixels, % of non-background (mean over views)'\n"
-          "set grid\nset key top right box opaque\nset border 3\nset tics nomirror\nset yrange [0:*]\n"
-          "set offsets graph 0.05, graph 0.15, graph 0.08, 0\n",
-          m);
+    fputs("\nset lmargin at screen 0.10\nset rmargin at screen 0.66\n"
+          "set grid\nset border 3\nset tics nomirror\nset yrange [0:*]\n"
+          "set offsets graph 0.03, graph 0.03, graph 0.06, 0\n"
+          "set key at screen 0.68, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box\n", m);
     if (logx)
         fputs("set logscale x\n", m);
-    fputs("plot $all using 1:2 with points pt 7 ps 1.1 lc rgb '#4477aa' title 'method × map size', "
-          "$all using 1:2:3 with labels offset char 0.6,0.6 left font ',8' tc rgb '#333333' notitle, "
-          "$front using 1:2 with steps lw 2 lc rgb '#cc3311' title 'Pareto front', "
-          "$front using 1:2 with points pt 6 ps 2 lw 2 lc rgb '#cc3311' notitle\n", m);
-    int bad = ferror(m);
-    fclose(m);
-    if (bad || !body) {
+    for (int panel = 0; panel < 2; panel++) {
+        if (panel == 0)
+            fputs("set tmargin at screen 0.90\nset bmargin at screen 0.54\nset xlabel ''\n"
+                  "set ylabel 'wrong pixels, % of non-background'\n", m);
+        else
+            fprintf(m, "unset key\nset tmargin at screen 0.46\nset bmargin at screen 0.10\nset xlabel '%s'\n"
+                       "set ylabel 'undecided pixels, %% of non-background'\n",
+                    which ? "shadow rays per non-background pixel (mean over views)"
+                          : "method time per cell, ms: its shadow-map layers + its per-pixel step (mean over views)");
+        fputs("plot ", m);
+        int b = 0;
+        plabel = NULL;
+        for (int k = 0; k < np; k++) {
+            double x = which ? p[k].rays_per_px : p[k].ms;
+            if (isnan(x) || isnan(p[k].wrong_pct) || (which == 0 && !(x > 0.0)))
+                continue;
+            if (plabel && strcmp(plabel, p[k].label) == 0)
+                continue;
+            plabel = p[k].label;
+            const char *col = okabe[b % 8];
+            int pt = markers[(b + b / 8) % 8];
+            fprintf(m, "%sDATA index %d using 1:%d with lines lw 1 lc rgb '%s' notitle, ", b ? ", \\\n  " : "", b,
+                    2 + panel, col);
+            if (bars)
+                fprintf(m, "DATA index %d using 1:%d:4:5 with xerrorbars pt %d ps 1.1 lc rgb '%s' title ", b,
+                        2 + panel, pt, col);
+            else
+                fprintf(m, "DATA index %d using 1:%d with points pt %d ps 1.1 lc rgb '%s' title ", b, 2 + panel, pt,
+                        col);
+            gp_quote(m, p[k].label);
+            b++;
+        }
+        fprintf(m, ", \\\n  DATA index %d using 1:%d with points pt 6 ps 2.2 lw 1.2 lc rgb '#000000' "
+                   "title 'Pareto front (wrong + undecided)'\n",
+                nblocks, 2 + panel);
+    }
+    fputs("unset multiplot\n", m);
+    int bad = ferror(m) | ferror(dm);
+    bad |= fclose(m) != 0;
+    bad |= fclose(dm) != 0;
+    if (bad || !body || !data) {
         free(body);
+        free(data);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
     }
     enum sl_err e = SL_OK;
-    if (npts == 0) {
+    if (which && !any_rays) {
+        /* a study without rays gets no rays plot: every point would sit at 0 */
+        sl_report_doc_para(doc, "No method of this study casts shadow rays: the rays-per-pixel plot is not drawn.");
+    } else if (npts == 0) {
         sl_report_doc_para(doc, "No cell of this study has a %s stored: that plot is not drawn.",
                            which ? "ray count" : "method time");
     } else {
-        char rel[200];
-        snprintf(rel, sizeof rel, "plots/%s-accuracy-%s.svg", s->slug, which ? "rays" : "time");
-        e = gp_run(doc, gnuplot, rel, 860, 560, body, d);
-        if (!e)
-            sl_report_doc_image(doc, rel, title);
+        char name[160];
+        snprintf(name, sizeof name, "%s-accuracy-%s", s->slug, which ? "rays" : "time");
+        e = gp_run(doc, gnuplot, name, 900, 640, data, body, d);
+        if (!e) {
+            char cap[400];
+            snprintf(cap, sizeof cap, "%s. Above the pixels the method gets wrong, below those it leaves undecided; "
+                     "each method's map sizes joined from the smallest map to the largest%s; ringed: the Pareto "
+                     "front of cost against wrong + undecided.", title,
+                     bars ? ", bars from the fastest to the slowest timed repetition" : "");
+            plot_show(doc, name, cap);
+        }
     }
     free(body);
+    free(data);
     return e;
 }
 
@@ -526,11 +684,12 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
         return e;
     sl_report_doc_para(doc,
                        "One point per method label and shadow-map size: the mean over the study's scenes, "
-                       "viewpoints and viewports of the wrong pixels (whole image) and of the cost. A method's "
-                       "time is the rendering of the shadow-map layers it reads plus its per-pixel step (ray "
-                       "step included), each the median of the timed repetitions, so a map-only method and a "
-                       "ray tracer are charged alike. The Pareto front joins the points no other point beats in "
-                       "both cost and wrong pixels.");
+                       "viewpoints and viewports of the wrong and of the undecided pixels (whole image) and of "
+                       "the cost. A method's time is the rendering of the shadow-map layers it reads plus its "
+                       "per-pixel step (ray step included), each the median of the timed repetitions (min-max "
+                       "beside it), so a map-only method and a ray tracer are charged alike. The Pareto front "
+                       "holds the points no other point beats in both cost and wrong + undecided pixels: a pixel "
+                       "left undecided counts as an error there, since the method has not answered for it.");
     e = accuracy_plot(doc, s, gnuplot, p, np, 0, d);
     if (!e)
         e = accuracy_plot(doc, s, gnuplot, p, np, 1, d);
@@ -538,10 +697,12 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
         char id[160];
         snprintf(id, sizeof id, "%s-accuracy", s->slug);
         struct sl_report_tab t;
-        sl_report_tab_init(&t, id, 10, 2, "%s: wrong pixels against cost, with the Pareto fronts", s->name);
-        static const char *const heads[] = {"method", "map", "cells", "wrong %", "layers ms", "step ms",
-                                            "method ms", "rays / pixel", "front (time)", "front (rays)"};
-        for (int k = 0; k < 10; k++)
+        sl_report_tab_init(&t, id, 12, 2, "%s: wrong and undecided pixels against cost, with the Pareto fronts",
+                           s->name);
+        static const char *const heads[] = {"method", "map", "cells", "wrong %", "undecided %", "layers ms",
+                                            "step ms", "method ms", "min–max ms", "rays / pixel", "front (time)",
+                                            "front (rays)"};
+        for (int k = 0; k < 12; k++)
             sl_report_tab_head(&t, k, "%s", heads[k]);
         for (int k = 0; k < np; k++) {
             sl_report_tab_row(&t, k == 0 || strcmp(p[k].label, p[k - 1].label) != 0);
@@ -549,12 +710,17 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
             sl_report_tab_cell(&t, 1, "%d²", p[k].map_size);
             sl_report_tab_cell(&t, 2, "%d", p[k].ncells);
             sl_report_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
-            sl_report_tab_cell(&t, 4, "%.3f", p[k].ms_layers);
-            sl_report_tab_cell(&t, 5, "%.3f", p[k].ms_step);
-            sl_report_tab_cell(&t, 6, "%.3f", p[k].ms);
-            sl_report_tab_cell(&t, 7, "%.4f", p[k].rays_per_px);
-            sl_report_tab_cell(&t, 8, "%s", p[k].front_ms ? "yes" : "");
-            sl_report_tab_cell(&t, 9, "%s", p[k].front_rays ? "yes" : "");
+            sl_report_tab_cell(&t, 4, "%.4f", p[k].uncertain_pct);
+            sl_report_tab_cell(&t, 5, "%.3f", p[k].ms_layers);
+            sl_report_tab_cell(&t, 6, "%.3f", p[k].ms_step);
+            sl_report_tab_cell(&t, 7, "%.3f", p[k].ms);
+            if (p[k].reps > 1)
+                sl_report_tab_cell(&t, 8, "%.3f–%.3f (%d runs)", p[k].ms_min, p[k].ms_max, p[k].reps);
+            else
+                sl_report_tab_cell(&t, 8, "1 run");
+            sl_report_tab_cell(&t, 9, "%.4f", p[k].rays_per_px);
+            sl_report_tab_cell(&t, 10, "%s", p[k].front_ms ? "yes" : "");
+            sl_report_tab_cell(&t, 11, "%s", p[k].front_rays ? "yes" : "");
         }
         e = sl_report_doc_table(doc, &t, d);
         sl_report_tab_free(&t);

@@ -44,9 +44,27 @@ static const char css[] =
     ".gallery figure{margin:0}.gallery img{width:100%;image-rendering:pixelated}"
     "details{margin:.4em 0}summary{cursor:pointer}"
     "pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;overflow-x:auto;font-size:12px}"
-    "footer{margin-top:3em;font-size:12px;color:#666;border-top:1px solid #ccc;padding-top:.5em}";
+    "footer{margin-top:3em;font-size:12px;color:#666;border-top:1px solid #ccc;padding-top:.5em}"
+    "nav.toc ul{margin:.1em 0;padding-left:1.3em}nav.toc li{margin:.05em 0}nav.toc>ul{columns:2 22em}"
+    "a.anc{color:#aaa;text-decoration:none;font-weight:400;font-size:.8em;visibility:hidden}"
+    "h1:hover a.anc,h2:hover a.anc,h3:hover a.anc,h4:hover a.anc,h5:hover a.anc{visibility:visible}"
+    "details.sec{border-left:3px solid #ddd;padding-left:.8em;margin:.5em 0}"
+    "details.sec>summary>h5,details.sec>summary>h4{display:inline;margin:0}"
+    ".filters{background:#f3f4f6;border:1px solid #ddd;padding:.4em .8em;margin:.6em 0}"
+    ".filters label{margin-right:1em}.filters .count{color:#555}"
+    ".gallery figure:target{grid-column:1/-1}.gallery figure:target img{width:auto;max-width:100%}";
 
-#define SL_REPORT_PAGE 2   /* keep value of the two pages: moved after every other file */
+/* The gallery's filters: the only script, inline, no network. */
+static const char filter_js[] =
+    "<script>\n"
+    "document.querySelectorAll('.filters').forEach(function(f){\n"
+    "  var g=document.getElementById(f.dataset.for),s=f.querySelectorAll('select');\n"
+    "  function u(){var n=0;g.querySelectorAll('figure').forEach(function(x){var ok=true;\n"
+    "    s.forEach(function(e){if(e.value&&x.dataset[e.dataset.k]!==e.value)ok=false;});\n"
+    "    x.hidden=!ok;if(ok)n++;});f.querySelector('.count').textContent=n+' shown';}\n"
+    "  s.forEach(function(e){e.addEventListener('change',u);});u();});\n"
+    "</script>\n";
+
 
 /* ---- overlays ---- */
 
@@ -80,6 +98,16 @@ static enum sl_err copy_file(const char *from, const char *to, int *missing, cha
     return SL_OK;
 }
 
+/* The gallery id of a cell's overlay (a slug, unique per study). */
+static void overlay_id(const struct sl_report_study *s, const struct sl_cell_record *c, char *buf, size_t n)
+{
+    char sc[64], vp[32], lb[48];
+    sl_report_slug(c->scene, sc, sizeof sc);
+    sl_report_slug(c->viewpoint, vp, sizeof vp);
+    sl_report_slug(c->label, lb, sizeof lb);
+    snprintf(buf, n, "ov-%s-%s-%s-%dx%d-%d-%s", s->slug, sc, vp, c->vw, c->vh, c->map_size, lb);
+}
+
 static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_report_study *s,
                                     const char *source_dir, struct sl_diag *d)
 {
@@ -95,14 +123,17 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
         return SL_OK;
     }
     sl_report_doc_para(doc,
-                       "The error overlays the runs wrote (Moderno 2011's colours): contour green, wrongly lit "
-                       "red and wrongly shadowed yellow inside the contour, any wrong pixel outside it blue, "
-                       "undecided pixels purple, over a grey render shaded by the method's own verdicts.");
-    char **rel = sl_calloc((size_t)n, sizeof *rel), **cap = sl_calloc((size_t)n, sizeof *cap);
+                       "The error overlays the runs wrote, one per cell (colours: the README's Output "
+                       "section). Pick a scene, view, map size or method to narrow the gallery; a thumbnail "
+                       "opens the overlay at full "
+                       "size.");
+    /* per shown overlay: rel, caption, scene, view, map, method, id */
+    char (*str)[7][400] = sl_calloc((size_t)n, sizeof *str);
+    struct sl_report_thumb *th = sl_calloc((size_t)n, sizeof *th);
     char **miss = sl_calloc((size_t)n, sizeof *miss);
-    if (!rel || !cap || !miss) {
-        free(rel);
-        free(cap);
+    if (!str || !th || !miss) {
+        free(str);
+        free(th);
         free(miss);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "overlay list");
     }
@@ -112,7 +143,8 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
         const struct sl_cell_record *c = &s->cells[i];
         if (!c->overlay[0])
             continue;
-        char src[1600], r[400], sc[64], vp[32], lb[48], path[1400], why[128] = "";
+        char src[1600], sc[64], vp[32], lb[48], path[1400], why[128] = "";
+        char (*v)[400] = str[nshown];
         if (c->overlay[0] == '/' || !source_dir || !source_dir[0])
             snprintf(src, sizeof src, "%s", c->overlay);
         else
@@ -120,10 +152,15 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
         sl_report_slug(c->scene, sc, sizeof sc);
         sl_report_slug(c->viewpoint, vp, sizeof vp);
         sl_report_slug(c->label, lb, sizeof lb);
-        snprintf(r, sizeof r, "overlays/%s/%s-%s-%dx%d-%d-%s.png", s->slug, sc, vp, c->vw, c->vh, c->map_size, lb);
-        char caption[300];
-        snprintf(caption, sizeof caption, "%s / %s / %d×%d / %d² / %s", c->scene, c->viewpoint, c->vw, c->vh,
+        snprintf(v[0], sizeof v[0], "overlays/%s/%s-%s-%dx%d-%d-%s.png", s->slug, sc, vp, c->vw, c->vh,
+                 c->map_size, lb);
+        snprintf(v[1], sizeof v[1], "%s / %s / %d×%d / %d² / %s", c->scene, c->viewpoint, c->vw, c->vh,
                  c->map_size, c->label);
+        snprintf(v[2], sizeof v[2], "%s", c->scene);
+        snprintf(v[3], sizeof v[3], "%s %d×%d", c->viewpoint, c->vw, c->vh);
+        snprintf(v[4], sizeof v[4], "%d²", c->map_size);
+        snprintf(v[5], sizeof v[5], "%s", c->label);
+        overlay_id(s, c, v[6], sizeof v[6]);
         struct stat st;
         int missing = 1;
         if (stat(src, &st) != 0)
@@ -132,13 +169,13 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
             snprintf(why, sizeof why, "not a file");
         else
             missing = 0;
-        if (!missing && !(e = sl_report_out_path(doc->out, r, 1, path, sizeof path, d)))
+        if (!missing && !(e = sl_report_out_path(doc->out, v[0], 1, path, sizeof path, d)))
             e = copy_file(src, path, &missing, why, sizeof why, d);
         if (e)
             break;
         if (missing) {
             char line[2000];
-            snprintf(line, sizeof line, "%s: %s (%s)", caption, c->overlay, why);
+            snprintf(line, sizeof line, "%s: %s (%s)", v[1], c->overlay, why);
             miss[nmiss] = strdup(line);
             if (!miss[nmiss])
                 e = sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "overlay list");
@@ -146,19 +183,12 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
                 nmiss++;
             continue;
         }
-        rel[nshown] = strdup(r);
-        cap[nshown] = strdup(caption);
-        if (!rel[nshown] || !cap[nshown]) {
-            free(rel[nshown]);
-            free(cap[nshown]);
-            e = sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "overlay list");
-        } else {
-            nshown++;
-        }
+        th[nshown] = (struct sl_report_thumb){v[0], v[1], v[2], v[3], v[4], v[5], v[6]};
+        nshown++;
     }
     if (!e) {
         if (nshown)
-            sl_report_doc_gallery(doc, (const char *const *)rel, (const char *const *)cap, nshown);
+            sl_report_doc_filter_gallery(doc, th, nshown);
         if (nmiss) {
             sl_report_doc_para(doc, "%d overlay(s) recorded in the store but missing from %s:", nmiss,
                                source_dir && source_dir[0] ? source_dir : "the database's folder");
@@ -167,15 +197,85 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
         if (none)
             sl_report_doc_para(doc, "%d cell(s) of this study stored no overlay.", none);
     }
-    for (int k = 0; k < nshown; k++) {
-        free(rel[k]);
-        free(cap[k]);
-    }
     for (int k = 0; k < nmiss; k++)
         free(miss[k]);
-    free(rel);
-    free(cap);
+    free(str);
+    free(th);
     free(miss);
+    return e;
+}
+
+/* ---- per scene and view: collapsible, the headline figures of each cell ---- */
+
+static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
+{
+    sl_report_doc_para(doc, "Per view (scene, viewpoint, viewport), the whole image's figures of every method "
+                            "and map size; open a view for its table and the links to its overlays.");
+    enum sl_err e = SL_OK;
+    for (int sc = 0; sc < s->nscenes && !e; sc++) {
+        char anchor[160], slug[64];
+        sl_report_slug(s->scenes[sc], slug, sizeof slug);
+        snprintf(anchor, sizeof anchor, "%s-scene-%s", s->slug, slug);
+        sl_report_doc_heading(doc, 4, anchor, "%s / %s", s->name, s->scenes[sc]);
+        for (int v = 0; v < s->nviews && !e; v++) {
+            const struct sl_report_view *w = &s->views[v];
+            if (strcmp(w->scene, s->scenes[sc]))
+                continue;
+            char vs[32], id[200];
+            sl_report_slug(w->viewpoint, vs, sizeof vs);
+            snprintf(anchor, sizeof anchor, "%s-view-%s-%s-%dx%d", s->slug, slug, vs, w->vw, w->vh);
+            sl_report_doc_section_begin(doc, 5, anchor, "%s / %s / %s / %d×%d", s->name, w->scene, w->viewpoint,
+                                        w->vw, w->vh);
+            snprintf(id, sizeof id, "%s-view-%s-%s-%dx%d", s->slug, slug, vs, w->vw, w->vh);
+            struct sl_report_tab t;
+            sl_report_tab_init(&t, id, 8, 2, "%s / %s / %s / %d×%d: whole image, %% of its non-background pixels",
+                               s->name, w->scene, w->viewpoint, w->vw, w->vh);
+            static const char *const heads[] = {"method", "map", "wrong %", "wrongly lit %", "wrongly shadowed %",
+                                                "uncertain %", "traced %", "method ms"};
+            const char *rel[2 * SL_REPORT_MAXKEYS], *text[2 * SL_REPORT_MAXKEYS];
+            char rels[2 * SL_REPORT_MAXKEYS][200], texts[2 * SL_REPORT_MAXKEYS][80];
+            int nl = 0;
+            for (int k = 0; k < 8; k++)
+                sl_report_tab_head(&t, k, "%s", heads[k]);
+            for (int l = 0; l < s->nlabels; l++)
+                for (int m = 0; m < s->nmaps; m++) {
+                    const struct sl_cell_record *c = sl_report_study_cell(s, w, s->labels[l], s->maps[m]);
+                    int r = c ? sl_report_region(c, 0) : -1;
+                    if (!c || r < 0)
+                        continue;
+                    const uint64_t *n = c->fig.r[r].n;
+                    double px = n[SL_FIG_pixels] ? (double)n[SL_FIG_pixels] : NAN;
+                    sl_report_tab_row(&t, m == 0);
+                    sl_report_tab_cell(&t, 0, "%s", c->label);
+                    sl_report_tab_cell(&t, 1, "%d²", c->map_size);
+                    sl_report_tab_cell(&t, 2, "%.3f", 100.0 * (double)n[SL_FIG_wrong] / px);
+                    sl_report_tab_cell(&t, 3, "%.3f", 100.0 * (double)n[SL_FIG_light_incorrect] / px);
+                    sl_report_tab_cell(&t, 4, "%.3f", 100.0 * (double)n[SL_FIG_shadow_incorrect] / px);
+                    sl_report_tab_cell(&t, 5, "%.3f", 100.0 * (double)n[SL_FIG_uncertain] / px);
+                    sl_report_tab_cell(&t, 6, "%.3f", 100.0 * (double)n[SL_FIG_traced] / px);
+                    sl_report_tab_cell(&t, 7, "%.3f", c->ms_map_render + c->ms_method);
+                    char ov[200], file[300], sc2[64], lb[48];
+                    sl_report_slug(c->label, lb, sizeof lb);
+                    sl_report_slug(c->scene, sc2, sizeof sc2);
+                    snprintf(file, sizeof file, "overlays/%s/%s-%s-%dx%d-%d-%s.png", s->slug, sc2, vs, c->vw,
+                             c->vh, c->map_size, lb);
+                    /* only overlays the gallery holds: a link never points at nothing */
+                    if (c->overlay[0] && sl_report_out_has(doc->out, file) && nl < 2 * SL_REPORT_MAXKEYS) {
+                        overlay_id(s, c, ov, sizeof ov);
+                        snprintf(rels[nl], sizeof rels[nl], "#%s", ov);
+                        snprintf(texts[nl], sizeof texts[nl], "%s %d²", c->label, c->map_size);
+                        rel[nl] = rels[nl];
+                        text[nl] = texts[nl];
+                        nl++;
+                    }
+                }
+            e = sl_report_doc_table(doc, &t, d);
+            sl_report_tab_free(&t);
+            if (!e && nl)
+                sl_report_doc_links(doc, "Overlays:", rel, text, nl);
+            sl_report_doc_section_end(doc);
+        }
+    }
     return e;
 }
 
@@ -220,12 +320,13 @@ static void join_names(char *buf, size_t n, const char (*names)[64], int count)
         k += (size_t)snprintf(buf + k, n - k, "%s%s", i ? ", " : "", names[i]);
 }
 
-static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_study *s, const char *gnuplot,
-                                 const char *source_dir, struct sl_diag *d)
+/* The study's summary: what was run, the headline table, the plots. */
+static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_study *s, const char *gnuplot,
+                                   struct sl_diag *d)
 {
     char anchor[96], scenes[1024] = "", labels[2048] = "", maps[512] = "", runs[512] = "", other[512] = "";
-    snprintf(anchor, sizeof anchor, "study-%s", s->slug);
-    sl_report_doc_heading(doc, 2, anchor, "Study %s", s->name);
+    snprintf(anchor, sizeof anchor, "summary-%s", s->slug);
+    sl_report_doc_heading(doc, 3, anchor, "Study %s", s->name);
     join_names(scenes, sizeof scenes, (const char (*)[64])s->scenes, s->nscenes);
     size_t k = 0, ko = 0;
     for (int l = 0; l < s->nlabels; l++) {
@@ -271,6 +372,16 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
                                 "centre: their wrong pixels and decisions in the hard-shadow tables and plots are "
                                 "counted against that point's own truth; the soft-shadow table scores the same "
                                 "verdicts (lit 1, shadowed 0, uncertain 0.5) against the area truth.");
+    return sl_report_plot_accuracy(doc, s, gnuplot, d);
+}
+
+/* The study's detail: the thesis tables, costs, overlays, views, figures. */
+static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_study *s, const char *gnuplot,
+                                 const char *source_dir, struct sl_diag *d)
+{
+    char anchor[96];
+    snprintf(anchor, sizeof anchor, "study-%s", s->slug);
+    sl_report_doc_heading(doc, 2, anchor, "Study %s in detail", s->name);
     enum sl_err e = SL_OK;
     if (s->moderno) {
         sl_report_doc_heading(doc, 3, NULL, "%s: tables in Moderno 2011's layout", s->name);
@@ -293,16 +404,16 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
         e = sl_report_plot_chain(doc, s, gnuplot, d);
     }
     if (!e) {
-        sl_report_doc_heading(doc, 3, NULL, "%s: wrong pixels against cost", s->name);
-        e = sl_report_plot_accuracy(doc, s, gnuplot, d);
-    }
-    if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: cost", s->name);
         e = sl_report_costs(doc, s, d);
     }
     if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: error overlays", s->name);
         e = section_overlays(doc, s, source_dir, d);
+    }
+    if (!e) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: scenes and views", s->name);
+        e = section_views(doc, s, d);
     }
     if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: all figures", s->name);
@@ -368,47 +479,60 @@ static enum sl_err section_provenance(struct sl_report_doc *doc, const struct sl
 
 static void page_begin(struct sl_report_doc *doc, const struct sl_report_input *in, int nstudies)
 {
-    fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-          "<title>shadowlab report</title>\n<style>", doc->html);
-    fputs(css, doc->html);
-    fputs("</style>\n</head>\n<body>\n", doc->html);
     sl_report_doc_heading(doc, 1, "top", "shadowlab report");
     sl_report_doc_para(doc,
                        "Shadow-map errors against an Embree ray-traced truth, pixel by pixel: %d cell(s) of %d "
-                       "study(ies) from %d run(s)%s%s.",
+                       "study(ies) from %d run(s)%s%s. The summary comes first (what was run, the headline "
+                       "table, the plots); each study's detail follows.",
                        in->ncells, nstudies, in->nruns, in->source && in->source[0] ? " in " : "",
                        in->source ? in->source : "");
 }
 
-static void page_end(struct sl_report_doc *doc, const struct sl_report_input *in)
+static char *page_head(void)
+{
+    char *h = NULL;
+    size_t n = 0;
+    FILE *m = open_memstream(&h, &n);
+    if (!m)
+        return NULL;
+    fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+          "<title>shadowlab report</title>\n<style>", m);
+    fputs(css, m);
+    fputs("</style>\n</head>\n<body>\n", m);
+    if (fclose(m) != 0) {
+        free(h);
+        return NULL;
+    }
+    return h;
+}
+
+/* The footer goes into the body (Markdown too); the script and closing tags are the tail. */
+static void page_end(struct sl_report_doc *doc, const struct sl_report_input *in, int self_contained)
 {
     char when[32] = "";
     time_t now = time(NULL);
     struct tm tm;
     if (gmtime_r(&now, &tm))
         strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &tm);
-    fputs("<footer>", doc->html);
+    sl_report_doc_raw_html(doc, "<footer>");
     fprintf(doc->md, "---\n\n");
-    sl_report_doc_para(doc, "Written by shadowlab %s at %s from %s. Offline page: no network, no scripts.",
-                       sl_git_sha(), when, in->source && in->source[0] ? in->source : "cells in memory");
-    fputs("</footer>\n</body>\n</html>\n", doc->html);
-}
-
-static enum sl_err open_page(struct sl_report_out *o, const char *rel, FILE **f, struct sl_diag *d)
-{
-    char path[1400];
-    enum sl_err e = sl_report_out_path(o, rel, SL_REPORT_PAGE, path, sizeof path, d);
-    if (e)
-        return e;
-    *f = fopen(path, "w");
-    if (!*f)
-        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
-    return SL_OK;
+    sl_report_doc_para(doc, "Written by shadowlab %s at %s from %s. %s", sl_git_sha(), when,
+                       in->source && in->source[0] ? in->source : "cells in memory",
+                       self_contained ? "One file: every image and plot is embedded, nothing is fetched."
+                                          : "Offline page: it links its images, plots and .tex files in this "
+                                            "folder and fetches nothing from the network.");
+    sl_report_doc_raw_html(doc, "</footer>\n");
 }
 
 enum sl_err sl_report_build(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
                             struct sl_diag *d)
+{
+    return sl_report_build_with(in, out_dir, gnuplot, 0, 0, d);
+}
+
+enum sl_err sl_report_build_with(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
+                                 int self_contained, int latex, struct sl_diag *d)
 {
     if (!in || in->ncells < 0 || (in->ncells > 0 && !in->cells) || in->nruns < 0 || (in->nruns > 0 && !in->runs))
         return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_report_build: bad arguments");
@@ -456,48 +580,36 @@ enum sl_err sl_report_build(const struct sl_report_input *in, const char *out_di
 
     struct sl_report_out out;
     memset(&out, 0, sizeof out);
-    struct sl_report_doc doc = {NULL, NULL, &out, 0};
+    struct sl_report_doc doc;
+    memset(&doc, 0, sizeof doc);
+    doc.out = &out;
+    doc.self_contained = self_contained;
     if (!e)
         e = sl_report_out_begin(&out, out_dir, d);
     if (!e)
-        e = open_page(&out, "report.md", &doc.md, d);
-    if (!e)
-        e = open_page(&out, "report.html", &doc.html, d);
+        e = sl_report_doc_open(&doc, latex, d);
     if (!e) {
         page_begin(&doc, in, nstudies);
-        const char *rel[SL_REPORT_MAXKEYS + 1], *text[SL_REPORT_MAXKEYS + 1];
-        char anchors[SL_REPORT_MAXKEYS + 1][80], names[SL_REPORT_MAXKEYS + 1][80];
-        int nl = 0;
-        for (int k = 0; k < nstudies && nl < SL_REPORT_MAXKEYS; k++, nl++) {
-            snprintf(anchors[nl], sizeof anchors[nl], "#study-%s", studies[k].slug);
-            snprintf(names[nl], sizeof names[nl], "%s", studies[k].name);
-            rel[nl] = anchors[nl];
-            text[nl] = names[nl];
-        }
-        snprintf(anchors[nl], sizeof anchors[nl], "#provenance");
-        snprintf(names[nl], sizeof names[nl], "provenance");
-        rel[nl] = anchors[nl];
-        text[nl] = names[nl];
-        nl++;
-        fputs("<nav>", doc.html);
-        sl_report_doc_links(&doc, "Contents:", rel, text, nl);
-        fputs("</nav>\n", doc.html);
+        sl_report_doc_heading(&doc, 2, "summary", "Summary");
     }
+    for (int k = 0; k < nstudies && !e; k++)
+        e = section_summary(&doc, &studies[k], gp, d);
     for (int k = 0; k < nstudies && !e; k++)
         e = section_study(&doc, &studies[k], gp, in->source_dir, d);
     if (!e)
         e = section_provenance(&doc, in, d);
     if (!e)
-        page_end(&doc, in);
-    for (int k = 0; k < 2; k++) {
-        FILE **f = k ? &doc.html : &doc.md;
-        if (!*f)
-            continue;
-        int bad = ferror(*f);
-        if ((fclose(*f) != 0 || bad) && !e)
-            e = sl_fail(d, SL_E_OUTPUT, out.dir, 0, k ? "report.html" : "report.md", "write failed");
-        *f = NULL;
+        page_end(&doc, in, self_contained);
+    char *head = e ? NULL : page_head();
+    if (!e && !head)
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "report page");
+    if (!e) {
+        char tail[sizeof filter_js + 32];
+        snprintf(tail, sizeof tail, "%s</body>\n</html>\n", filter_js);
+        e = sl_report_doc_finish(&doc, head, tail, "shadowlab report", d);
     }
+    free(head);
+    sl_report_doc_free(&doc);
     if (!e)
         e = sl_report_out_commit(&out, d);
     else

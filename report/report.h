@@ -1,13 +1,16 @@
 /*
- * report.h — `shadowlab report RESULTS_DB`: one self-contained page
- * (report.html, inline CSS, no network) and its Markdown twin (report.md)
- * from the results store, with the files they reference beside them:
+ * report.h — `shadowlab report RESULTS_DB`: one offline page (report.html,
+ * inline CSS and one inline script, no network; it links the files beside
+ * it, or with self_contained embeds them as data: URIs) and its Markdown twin
+ * (report.md), with latex also report.tex, from the results store: a
+ * contents tree, a summary (what was run, headline table, plots), then:
  *   - per study (config name): thesis-style tables in the layout of the
  *     thesis whose methods the cells ran (Moderno 2011 Tables 5-23, Morais
  *     2015 Table 7 and Tables 25/26), each also as a booktabs .tex file;
  *   - the chain's steps per scene as stacked bars (Moderno Figures 31/32) and
- *     wrong pixels against method time and rays per pixel with the Pareto
- *     front marked, drawn by gnuplot (SVG);
+ *     wrong and undecided pixels against method time and rays per pixel with
+ *     the Pareto front marked, drawn by gnuplot (SVG and PDF, each kept as
+ *     .dat + .gp);
  *   - a cost section (times, rays, ray-triangle tests, GS primitives,
  *     fragments), the error overlays the runs wrote (copied), and the
  *     provenance of every run (git SHA, config and its hash, machine).
@@ -18,7 +21,8 @@
  *
  * Owns: nothing after return. Does not: run experiments, write to the store,
  * print (errors come back as an id and an sl_diag), or fetch anything from
- * the network. gnuplot is the one outside program it runs (popen).
+ * the network. gnuplot is the one outside program it runs (system(), in the
+ * staging folder's plots/).
  */
 #ifndef SL_REPORT_H
 #define SL_REPORT_H
@@ -33,6 +37,8 @@ struct sl_report_opts {
     const char *db;        /* the results store (required) */
     const char *out_dir;   /* NULL: <db folder>/report */
     const char *gnuplot;   /* NULL: "gnuplot" searched in PATH */
+    int self_contained;    /* report.html embeds its images and plots (data: URIs): one file */
+    int latex;             /* also report.tex, a pdflatex document \input-ing the tables and plot PDFs */
 };
 
 /* What a report holds, read from the store or given by a test. Overlay paths
@@ -55,6 +61,9 @@ enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir, size_t n,
 /* Write the report of cells already in memory into out_dir. */
 enum sl_err sl_report_build(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
                             struct sl_diag *d);
+/* The same with sl_report_opts's self_contained and latex. */
+enum sl_err sl_report_build_with(const struct sl_report_input *in, const char *out_dir, const char *gnuplot,
+                                 int self_contained, int latex, struct sl_diag *d);
 
 /* ---- the accuracy-vs-cost data, exposed for its unit test ---- */
 
@@ -65,16 +74,21 @@ struct sl_report_point {
     int    map_size;
     int    ncells;
     double wrong_pct;      /* wrong pixels, % of the non-background pixels (whole image) */
+    double uncertain_pct;  /* pixels the method leaves undecided, % of the same */
     double ms;             /* the method's time per cell, ms: ms_layers + ms_step */
     double ms_layers;      /* rendering the shadow-map layers it reads (median of repetitions) */
     double ms_step;        /* its per-pixel step, ray step included (median of repetitions) */
+    double ms_min, ms_max; /* the same from the repetitions' minima and maxima; = ms with one run */
+    int    reps;           /* fewest timed repetitions of its cells */
     double rays_per_px;    /* shadow rays per non-background pixel */
-    int    front_ms;       /* on the Pareto front of (ms, wrong_pct) */
-    int    front_rays;     /* on the Pareto front of (rays_per_px, wrong_pct) */
+    int    front_ms;       /* on the Pareto front of (ms, wrong_pct + uncertain_pct) */
+    int    front_rays;     /* on the Pareto front of (rays_per_px, wrong_pct + uncertain_pct) */
 };
 
 /* Points of the cells (callers pass one study), labels in order of first
- * appearance, map sizes ascending within a label; both fronts marked.
+ * appearance, map sizes ascending within a label; both fronts marked. The
+ * fronts count an undecided pixel as an error: a method that leaves 1.2% of
+ * the image undecided has not answered for it, however few it gets wrong.
  * *out is malloc'ed (free), NULL when *n is 0. */
 enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, struct sl_report_point **out,
                              int *n, struct sl_diag *d);

@@ -73,11 +73,60 @@ void sl_report_tab_free(struct sl_report_tab *t);
 
 /* ---- doc ---- */
 
+/* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation). */
+void sl_report_html_text(FILE *f, const char *s);
+void sl_report_md_text(FILE *f, const char *s);
+
+/* A heading as the contents tree lists it. */
+struct sl_report_heading {
+    int  level;
+    char id[96];
+    char text[160];
+};
+
+/* html, md and tex are the pages' bodies (memory streams, see
+ * sl_report_doc_open): the contents tree goes in front of them when the
+ * pages are finished, since it lists every heading. tex is NULL without
+ * --latex. */
 struct sl_report_doc {
-    FILE *html, *md;
+    FILE *html, *md, *tex;
+    char *html_buf, *md_buf, *tex_buf;
+    size_t html_len, md_len, tex_len;
     struct sl_report_out *out;
     int   ntables;
+    int   self_contained;   /* images and plots as data: URIs */
+    int   gp_pdf;           /* gnuplot's pdfcairo terminal: 0 not asked yet, 1 there, -1 not */
+    struct sl_report_heading *heads;
+    int   nheads, capheads;
+    int   oom;
 };
+
+enum sl_err sl_report_doc_open(struct sl_report_doc *doc, int latex, struct sl_diag *d);
+/* Close the body streams and write the pages: HTML (head, contents tree,
+ * body), Markdown (contents list, body), and with --latex the document
+ * report.tex. `head` is the HTML up to <body>, `tail` after the body. */
+enum sl_err sl_report_doc_finish(struct sl_report_doc *doc, const char *head, const char *tail,
+                                 const char *tex_title, struct sl_diag *d);
+void        sl_report_doc_free(struct sl_report_doc *doc);
+/* A collapsible section (<details>) headed at level, listed in the contents. */
+void sl_report_doc_section_begin(struct sl_report_doc *doc, int level, const char *anchor, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+void sl_report_doc_section_end(struct sl_report_doc *doc);
+/* Raw HTML into the page only (the caller escapes). */
+void sl_report_doc_raw_html(struct sl_report_doc *doc, const char *html);
+/* The page's value for a src/href of a report file: rel, or with
+ * self_contained a data: URI of the staged file (malloc'ed; NULL if out of
+ * memory or unreadable, then rel is used). */
+char *sl_report_doc_uri(struct sl_report_doc *doc, const char *rel);
+/* Write that value into the page, HTML-escaped. */
+void  sl_report_doc_src(struct sl_report_doc *doc, const char *rel);
+/* One gallery item with its filter keys (HTML data- attributes). */
+struct sl_report_thumb {
+    const char *rel, *caption, *scene, *view, *map, *method, *id;
+};
+void sl_report_doc_filter_gallery(struct sl_report_doc *doc, const struct sl_report_thumb *t, int n);
+/* \includegraphics of a plot's PDF in the LaTeX document (nothing without --latex). */
+void sl_report_doc_tex_figure(struct sl_report_doc *doc, const char *pdf_rel, const char *caption);
 
 void sl_report_doc_heading(struct sl_report_doc *doc, int level, const char *anchor, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
@@ -89,8 +138,6 @@ void sl_report_doc_link(struct sl_report_doc *doc, const char *rel, const char *
 void sl_report_doc_links(struct sl_report_doc *doc, const char *prefix, const char *const *rel,
                          const char *const *text, int n);
 void sl_report_doc_image(struct sl_report_doc *doc, const char *rel, const char *caption);
-/* A gallery of small images with captions (HTML grid, Markdown list). */
-void sl_report_doc_gallery(struct sl_report_doc *doc, const char *const *rel, const char *const *caption, int n);
 void sl_report_doc_details(struct sl_report_doc *doc, const char *summary, const char *text);
 void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int n);
 /* The table in both pages, its .tex in tex/<id>.tex linked under it. */

@@ -82,7 +82,7 @@ enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir_out, size_
                     nruns);
     if (!e) {
         struct sl_report_input in = {all, nall, runs, nruns, o->db, dir};
-        e = sl_report_build(&in, outdir, gp, d);
+        e = sl_report_build_with(&in, outdir, gp, o->self_contained, o->latex, d);
     }
     if (!e && dir_out)
         snprintf(dir_out, n, "%s", outdir);

@@ -29,6 +29,7 @@ PACKAGES=(
   libcmocka-dev         # unit tests
   gnuplot-nox           # the report's plots (shadowlab report)
   chromium              # the report's rendering test (cli::report)
+  texlive-latex-recommended lmodern  # pdflatex, booktabs, fonts: report --latex compiles (cli::report)
 )
 
 missing=()

@@ -6,6 +6,10 @@
 # exists, that each table has its .tex, that the page needs no network; then
 # the refusals: missing, empty, foreign and cell-less databases, no gnuplot,
 # and a failing gnuplot, which must leave the earlier report untouched.
+# Also: every anchor resolves and the contents reach the views
+# (report_anchors.py), plots kept as .dat/.gp/.pdf, --self-contained refers
+# to nothing outside itself and renders alone, --latex compiles with
+# pdflatex without an overfull box, table --figures and the terminal's rows.
 # Skips (77) only when Chromium is not installed.
 set -u
 bin=${1:?usage: cli_report.sh path/to/shadowlab}
@@ -18,6 +22,13 @@ trap 'rm -rf "$tmp"' EXIT
 fails=0; passes=0
 ok()   { passes=$((passes + 1)); }
 fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+refuse() {  # refuse WHAT EXPECTED_TEXT command...
+  local what=$1 text=$2; shift 2
+  "$@" >"$tmp/r.out" 2>"$tmp/r.err"; local rc=$?
+  if [ "$rc" -ne 2 ]; then fail "$what: exit $rc, wanted 2"; return; fi
+  [ "$(wc -l <"$tmp/r.err")" -eq 1 ] || { fail "$what: not one line:"; cat "$tmp/r.err"; return; }
+  grep -q -i -- "$text" "$tmp/r.err" && ok || { fail "$what: message lacks '$text':"; cat "$tmp/r.err"; }
+}
 
 cat >"$tmp/mini.yaml" <<'YAML'
 name: mini
@@ -76,8 +87,27 @@ grep -q 'overlays/mini/' "$html" && ok || fail "no overlay shown"
 ntab=$(grep -c -E '<table[ >]' "$html"); ntex=$(grep -o 'href="tex/[^"]*"' "$html" | sort -u | wc -l)
 [ "$ntab" -gt 10 ] && [ "$ntab" -eq "$ntex" ] && ok || fail "$ntab tables but $ntex .tex links"
 grep -q '\\toprule' "$rep"/tex/mini-costs.tex && ok || fail "tex is not booktabs"
-# self-contained: no scripts, no stylesheet links, no remote fonts
-grep -q -i -E '<script|<link |@import|url\(|https?://' "$html" && fail "the page reaches outside itself" || ok
+# offline: no loaded scripts (the gallery's filter is inline), no stylesheet links, no remote fonts
+grep -q -i -E '<script[^>]* src=|<link |@import|url\(|https?://' "$html" && fail "the page reaches outside itself" || ok
+# every plot kept as data + script beside its SVG, and a PDF where gnuplot has pdfcairo
+pdf=0; gnuplot -e 'set terminal pdfcairo' </dev/null >/dev/null 2>&1 && pdf=1
+for svg in "$rep"/plots/*.svg; do
+  b=${svg%.svg}
+  [ -s "$b.dat" ] && [ -s "$b.gp" ] && ok || fail "$svg has no .dat/.gp beside it"
+  [ "$pdf" -eq 0 ] || [ -s "$b.pdf" ] && ok || fail "$svg has no .pdf beside it"
+done
+# the kept script redraws its plot by itself
+(cd "$rep/plots" && gnuplot -e "out='svg'" mini-accuracy-time.gp) >/dev/null 2>&1 && ok || fail "mini-accuracy-time.gp does not redraw"
+# the two-panel accuracy plot counts the undecided pixels, and the page says how
+grep -q 'undecided pixels' "$rep/plots/mini-accuracy-time.gp" && grep -q 'Pareto front (wrong + undecided)' \
+  "$rep/plots/mini-accuracy-time.gp" && ok || fail "accuracy plot without its undecided panel"
+# every anchor resolves, the contents reach the views
+python3 "$(dirname "$0")/report_anchors.py" "$html" && ok || fail "anchors of report.html"
+# the summary comes first: the first plot precedes the first thesis table
+first_plot=$(grep -n -m1 'plots/mini-accuracy-time.svg' "$html" | cut -d: -f1)
+first_thesis=$(grep -n -m1 'Moderno 2011 Table 5' "$html" | cut -d: -f1)
+[ -n "$first_plot" ] && [ -n "$first_thesis" ] && [ "$first_plot" -lt "$first_thesis" ] && ok ||
+  fail "the plots do not come before the tables"
 for want in 'Moderno 2011 Table 5' 'Moderno 2011 Tables 17/18' 'Moderno 2011 Table 23' 'Morais 2015 Table 7' \
             'Morais 2015 Table 25' 'Pareto front' 'carry the comparison to a GPU' 'Run 1: config' 'llvmpipe'; do
   grep -q "$want" "$html" && ok || fail "no '$want' in the page"
@@ -93,18 +123,48 @@ sd=$(echo "$stats" | sed -n 's/.*StdDev: *//p' | head -1 | tr ' ' '\n' | grep -E
 if [ -n "$sd" ] && awk -v s="$sd" 'BEGIN { exit !(s > 5.0) }'; then ok; else echo "$stats"; fail "blank screenshot (stddev ${sd:-?})"; fi
 echo "$stats" | grep -q 'Constant: Yes' && fail "screenshot is one colour" || ok
 
+# ---- --self-contained: one file, nothing outside it ----
+"$bin" report "$db" --out "$tmp/one" --self-contained >/dev/null 2>&1 && [ -s "$tmp/one/report.html" ] && ok ||
+  fail "report --self-contained"
+python3 "$(dirname "$0")/report_anchors.py" "$tmp/one/report.html" --self-contained && ok || fail "self-contained page"
+grep -q -i -E '<script[^>]* src=|<link |@import|url\(' "$tmp/one/report.html" && fail "self-contained page loads something" || ok
+# moved alone, it still shows its images: copy it where nothing is beside it
+mkdir -p "$tmp/alone" && cp "$tmp/one/report.html" "$tmp/alone/" || fail "copy"
+timeout 120 "$chromium" --headless=new --no-sandbox --disable-gpu --hide-scrollbars \
+  --user-data-dir="$tmp/chrome2" --screenshot="$tmp/one.png" --window-size=1280,2000 "file://$tmp/alone/report.html" \
+  >"$tmp/chrome2.out" 2>&1
+st1=$( (oiiotool --stats "$tmp/one.png" || iinfo --stats "$tmp/one.png") 2>/dev/null)
+sd1=$(echo "$st1" | sed -n 's/.*StdDev: *//p' | head -1 | tr ' ' '\n' | grep -E '^[0-9.]+$' | sort -g | tail -1)
+if [ -n "$sd1" ] && awk -v s="$sd1" 'BEGIN { exit !(s > 5.0) }'; then ok; else fail "blank self-contained screenshot (stddev ${sd1:-?})"; fi
+
+# ---- --latex: report.tex compiles with pdflatex, nothing overfull ----
+"$bin" report "$db" --out "$tmp/tex" --latex >/dev/null 2>&1 && [ -s "$tmp/tex/report.tex" ] && ok || fail "report --latex"
+if command -v pdflatex >/dev/null; then
+  (cd "$tmp/tex" && for pass in 1 2; do pdflatex -interaction=nonstopmode -halt-on-error report.tex >/dev/null 2>&1 || exit 1; done) &&
+    [ -s "$tmp/tex/report.pdf" ] && ok || { grep -A3 '^!' "$tmp/tex/report.log" | head; fail "pdflatex report.tex"; }
+  grep -q 'Overfull \\hbox' "$tmp/tex/report.log" && { grep -A2 'Overfull' "$tmp/tex/report.log" | head; fail "Overfull hbox"; } || ok
+  grep -q 'includegraphics.*plots/mini-accuracy-time.pdf' "$tmp/tex/report.tex" && ok || fail "report.tex lacks the plots"
+else
+  fail "pdflatex is not installed (Debian: apt-get install texlive-latex-recommended; scripts/setup.sh does)"
+fi
+
+# ---- tables: LaTeX without a heading, --figures, the terminal's produced rows ----
+"$bin" table "$db" --format latex --label nsm >"$tmp/t.tex" 2>&1 && ! grep -q '\\section' "$tmp/t.tex" && ok ||
+  fail "table --format latex writes a heading"
+"$bin" table "$db" --format latex --label nsm --figures wrong,light_incorrect >"$tmp/f.tex" 2>&1 &&
+  [ "$(grep -c -E '^(wrong|light\\_incorrect) & ' "$tmp/f.tex")" -eq "$(grep -c '^\\begin{tabular}' "$tmp/f.tex" | awk '{print 2*$1}')" ] &&
+  ! grep -q '^pixels & ' "$tmp/f.tex" && ok || fail "table --figures"
+refuse "unknown figure" "'bogus'" "$bin" table "$db" --figures wrong,bogus
+"$bin" table "$db" --label nsm >"$tmp/t.md" 2>&1
+grep -q '^| hinted |' "$tmp/t.md" && fail "the terminal's nsm table prints hinted (0, not produced)" || ok
+grep -q '^| hinted |' "$tmp/res/mini/table.md" && ok || fail "table.md lost the rows nsm does not produce"
+grep -q '^| wrong |' "$tmp/t.md" && ok || fail "the terminal's table lost wrong"
+
 # ---- --out elsewhere ----
 "$bin" report "$db" --out "$tmp/elsewhere" >/dev/null 2>&1 && [ -s "$tmp/elsewhere/report.html" ] && ok ||
   fail "report --out"
 
 # ---- refusals: exit 2, one line naming the problem, nothing written ----
-refuse() {  # refuse WHAT EXPECTED_TEXT command...
-  local what=$1 text=$2; shift 2
-  "$@" >"$tmp/r.out" 2>"$tmp/r.err"; local rc=$?
-  if [ "$rc" -ne 2 ]; then fail "$what: exit $rc, wanted 2"; return; fi
-  [ "$(wc -l <"$tmp/r.err")" -eq 1 ] || { fail "$what: not one line:"; cat "$tmp/r.err"; return; }
-  grep -q -i -- "$text" "$tmp/r.err" && ok || { fail "$what: message lacks '$text':"; cat "$tmp/r.err"; }
-}
 refuse "missing db" "no such results store" "$bin" report "$tmp/nope.db" --out "$tmp/x1"
 : >"$tmp/empty.db"
 refuse "empty file" "empty file" "$bin" report "$tmp/empty.db" --out "$tmp/x2"

@@ -145,6 +145,11 @@ static void report_points(void **st)
     assert_true(fabs(p[0].ms_step - 2.0) < 1e-9);
     assert_true(fabs(p[0].ms_layers - 2.0) < 1e-9);
     assert_true(fabs(p[0].ms - 4.0) < 1e-9);
+    /* undecided pixels: 100 of 2000 in every cell; the repetitions' min and max (cell()) */
+    assert_true(fabs(p[0].uncertain_pct - 5.0) < 1e-9);
+    assert_true(fabs(p[0].ms_min - (1.5 + 0.9 * 1.0 + 1.5 + 0.9 * 3.0) / 2.0) < 1e-9);
+    assert_true(fabs(p[0].ms_max - (3.0 + 1.2 * 1.0 + 3.0 + 1.2 * 3.0) / 2.0) < 1e-9);
+    assert_int_equal(p[0].reps, 3);
     assert_int_equal(p[1].map_size, 1024);
     assert_true(fabs(p[1].wrong_pct - 1.0) < 1e-9);
     assert_true(fabs(p[1].ms - 6.0) < 1e-9);
@@ -234,6 +239,22 @@ static int build_cells(struct sl_cell_record *c)
     return n;
 }
 
+/* Every href="#x" of a page names an element with id="x". */
+static int dangling_anchors(const char *html)
+{
+    int bad = 0;
+    for (const char *p = strstr(html, "href=\"#"); p; p = strstr(p + 1, "href=\"#")) {
+        const char *v = p + 7, *end = strchr(v, '"');
+        char want[300];
+        snprintf(want, sizeof want, "id=\"%.*s\"", (int)(end - v), v);
+        if (!strstr(html, want)) {
+            fprintf(stderr, "dangling: %s\n", want);
+            bad++;
+        }
+    }
+    return bad;
+}
+
 static void report_build(void **st)
 {
     (void)st;
@@ -289,6 +310,7 @@ static void report_build(void **st)
     assert_true(refs > 20);
     assert_int_equal(missing, 0);
     assert_non_null(strstr(html, "gone/ov2.png"));                 /* listed as missing */
+    assert_int_equal(dangling_anchors(html), 0);
     assert_non_null(strstr(html, "&lt;b&gt;not html&lt;/b&gt;"));  /* config text escaped */
     assert_non_null(strstr(html, "Morais 2015 Table 7"));
     assert_non_null(strstr(html, "Moderno 2011 Table 23"));
@@ -314,7 +336,7 @@ static void report_build(void **st)
     c[2].fig.r[0].n[SL_FIG_pixels] = 1;   /* a changed report, were it written */
     e = sl_report_build(&in, out, "/bin/false", &d);
     assert_int_equal(e, SL_E_IO);
-    assert_string_equal(d.key, "plots/moderno-mini-chain-bench.svg");
+    assert_string_equal(d.key, "plots/moderno-mini-accuracy-time.svg");   /* the summary's plot comes first */
     assert_int_equal(stat(path, &after), 0);
     assert_int_equal(before.st_mtime, after.st_mtime);
     assert_int_equal(before.st_size, after.st_size);
@@ -335,12 +357,70 @@ static void report_build(void **st)
     assert_int_equal(access(fresh, F_OK), -1);
 }
 
+/* A study whose methods cast no ray, written as one file with --latex:
+ * no rays plot, plots kept as .dat/.gp, every image a data: URI, every link
+ * an anchor on the page, the contents down to the views, report.tex
+ * \input-ing the tables without a heading of its own. */
+static void report_self_contained(void **st)
+{
+    (void)st;
+    static struct sl_cell_record c[8];
+    int n = 0;
+    const char *vps[] = {"side", "with"};
+    for (int v = 0; v < 2; v++)
+        for (int m = 0; m < 2; m++) {
+            c[n++] = cell("plain", "bench", vps[v], "nsm", "nsm", 512 << m, 40, 1.0, 0);
+            c[n++] = cell("plain", "bench", vps[v], "coherence4", "coherence", 512 << m, 30, 2.0, 0);
+        }
+    char out[400];
+    snprintf(out, sizeof out, "%s/one", sl_test_dir);
+    struct sl_report_input in = {c, n, NULL, 0, "test cells", sl_test_dir};
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_report_build_with(&in, out, NULL, 1, 1, &d);
+    if (e)
+        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_true(exists(out, "plots/plain-accuracy-time.svg"));
+    assert_true(exists(out, "plots/plain-accuracy-time.dat"));
+    assert_true(exists(out, "plots/plain-accuracy-time.gp"));
+    assert_false(exists(out, "plots/plain-accuracy-rays.svg"));
+    char path[600];
+    snprintf(path, sizeof path, "%s/report.html", out);
+    char *html = slurp(path);
+    assert_non_null(html);
+    assert_non_null(strstr(html, "No method of this study casts shadow rays"));
+    for (const char *p = strstr(html, "src=\""); p; p = strstr(p + 1, "src=\""))
+        assert_int_equal(strncmp(p + 5, "data:", 5), 0);
+    for (const char *p = strstr(html, "href=\""); p; p = strstr(p + 1, "href=\""))
+        assert_int_equal(p[6], '#');
+    assert_int_equal(dangling_anchors(html), 0);
+    assert_non_null(strstr(html, "<nav class=\"toc\">"));
+    assert_non_null(strstr(html, "href=\"#plain-view-bench-side-64x32\""));      /* contents reach the views */
+    assert_non_null(strstr(html, "<details class=\"sec\" id=\"plain-view-bench-side-64x32\">"));
+    free(html);
+    snprintf(path, sizeof path, "%s/report.tex", out);
+    char *tex = slurp(path);
+    assert_non_null(tex);
+    assert_non_null(strstr(tex, "\\begin{document}"));
+    assert_non_null(strstr(tex, "\\input{tex/plain-accuracy.tex}"));
+    assert_null(strstr(tex, "\\section*{"));
+    free(tex);
+    snprintf(path, sizeof path, "%s/tex/plain-accuracy.tex", out);
+    tex = slurp(path);
+    assert_non_null(tex);
+    assert_non_null(strstr(tex, "\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%"));
+    assert_null(strstr(tex, "\\section"));
+    free(tex);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(report, pareto),
         SL_CASE(report, points),
         SL_CASE(report, build),
+        SL_CASE(report, self_contained),
     };
     return sl_run_group(argc, argv, "report", tests, sl_test_setup, sl_test_teardown);
 }

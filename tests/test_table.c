@@ -172,19 +172,21 @@ static void table_latex_booktabs(void **st)
     snprintf(c[0].machine, sizeof c[0].machine, "a&b#c$d{e}f%%g_h~^\\");
     snprintf(c[2].machine, sizeof c[2].machine, "a&b#c$d{e}f%%g_h~^\\");
     char *tex = render(SL_TABLE_LATEX, "Primitives 50%", c, n, SL_OK);
-    assert_non_null(strstr(tex, "\\section*{Primitives 50\\%}\n"));
-    assert_non_null(strstr(tex, "\\caption{prim\\_s / side / 64$\\times$32 / nsm\\_a. PFL 11, PnFL 22, "
-                                "background 33; truth: 44 PFL lit, 55 PFL shadowed.}\n"
-                                "\\label{tab:prim-s-side-64x32-nsm-a}\n"
-                                "\\begin{tabular}{lrrrr}\n\\toprule\n"
-                                " & \\multicolumn{2}{c}{$1024^2$} & \\multicolumn{2}{c}{$2048^2$} \\\\\n"
-                                "\\cmidrule(lr){2-3} \\cmidrule(lr){4-5}\n"
-                                "figure & 2px & image & 2px & image \\\\\n\\midrule\n"
-                                "pixels & 1000 & 1010 & 2000 & 2010 \\\\\n"));
-    assert_non_null(strstr(tex, "\nlight\\_correct & 1006 (6.25\\%) & 1016 (16.25\\%) & 2006 (6.25\\%) & "
-                                "2016 (16.25\\%) \\\\\n"));
-    assert_non_null(strstr(tex, "\nwrong\\_caught & 1011 (11.25\\%) & 1021 (21.25\\%) & 2011 (11.25\\%) & "
-                                "2021 (21.25\\%) \\\\\n"));
+    /* no heading: the file is \input into a document; the source is a comment */
+    assert_null(strstr(tex, "\\section"));
+    assert_non_null(strstr(tex, "\n% from: Primitives 50%\n"));
+    /* one float per map size, scaled down to the line only when wider */
+    assert_non_null(strstr(tex, "\\caption{prim\\_s / side / 64$\\times$32 / nsm\\_a / $1024^2$ map. PFL 11, "
+                                "PnFL 22, background 33; truth: 44 PFL lit, 55 PFL shadowed.}\n"
+                                "\\label{tab:prim-s-side-64x32-nsm-a-1024}\n"
+                                "\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%\n"
+                                "\\begin{tabular}{lrr}\n\\toprule\n"
+                                "figure & 2px & image \\\\\n\\midrule\n"
+                                "pixels & 1000 & 1010 \\\\\n"));
+    assert_non_null(strstr(tex, "\\label{tab:prim-s-side-64x32-nsm-a-2048}\n"));
+    assert_non_null(strstr(tex, "\nlight\\_correct & 1006 (6.25\\%) & 1016 (16.25\\%) \\\\\n"));
+    assert_non_null(strstr(tex, "\nlight\\_correct & 2006 (6.25\\%) & 2016 (16.25\\%) \\\\\n"));
+    assert_non_null(strstr(tex, "\nwrong\\_caught & 1011 (11.25\\%) & 1021 (21.25\\%) \\\\\n"));
     {
         char name[64], last[512];
         const int K = SL_FIG_COUNT - 1;
@@ -195,25 +197,79 @@ static void table_latex_booktabs(void **st)
             name[o++] = *q;
         }
         name[o] = '\0';
-        snprintf(last, sizeof last,
-                 "\n%s & %d (%d.25\\%%) & %d (%d.25\\%%) & %d (%d.25\\%%) & %d (%d.25\\%%) \\\\\n"
-                 "\\bottomrule\n\\end{tabular}\n",
-                 name, 1000 + K, K, 1010 + K, 10 + K, 2000 + K, K, 2010 + K, 10 + K);
+        snprintf(last, sizeof last, "\n%s & %d (%d.25\\%%) & %d (%d.25\\%%) \\\\\n\\bottomrule\n\\end{tabular}}\n",
+                 name, 2000 + K, K, 2010 + K, 10 + K);
         assert_non_null(strstr(tex, last));
     }
-    assert_non_null(strstr(tex, "{\\footnotesize method \\texttt{nsm}; contours from \\texttt{nsm} (contour\\_from); git "
-                                "\\texttt{abc1234}, config "
+    assert_non_null(strstr(tex, "{\\scriptsize\\raggedright method \\texttt{nsm}; contours from \\texttt{nsm} "
+                                "(contour\\_from); git \\texttt{abc1234}, config "
                                 "\\texttt{0123456789abcdef}, machine "
                                 "a\\&b\\#c\\$d\\{e\\}f\\%g\\_h\\textasciitilde{}\\textasciicircum{}"
                                 "\\textbackslash{}\\par}\n\\end{table}\n"));
-    assert_int_equal(count_of(tex, "\\begin{table}"), 2);
-    assert_int_equal(count_of(tex, "\\end{table}"), 2);
-    assert_int_equal(count_of(tex, "\\toprule"), 2);
-    assert_int_equal(count_of(tex, "\\bottomrule"), 2);
+    assert_int_equal(count_of(tex, "\\begin{table}"), 3);
+    assert_int_equal(count_of(tex, "\\end{table}"), 3);
+    assert_int_equal(count_of(tex, "\\toprule"), 3);
+    assert_int_equal(count_of(tex, "\\bottomrule"), 3);
     assert_before(tex, "{prim\\_s / side /", "{prim\\_s / with /");
     /* no unescaped percent sign in a table row: every % is \% */
     assert_null(strstr(tex, "25%"));
     free(tex);
+}
+
+/* Rows a method does not produce (0 everywhere, past wrong_caught) are left
+ * out of LaTeX and of sl_table_write_rows with `produced`; a zero core figure
+ * stays; --figures picks rows; Markdown by default keeps everything. */
+static void table_rows_produced_and_picked(void **st)
+{
+    (void)st;
+    struct sl_cell_record c[2] = {make("side", 1024, 1000, "m"), make("side", 2048, 2000, "m")};
+    for (int i = 0; i < 2; i++)
+        for (int r = 0; r < 2; r++) {
+            c[i].fig.r[r].n[SL_FIG_hinted] = 0;           /* never produced */
+            c[i].fig.r[r].n[SL_FIG_wrong] = 0;            /* a core figure: a result */
+            c[i].fig.r[r].n[SL_FIG_confirmed] = i == 1;   /* produced in one column only */
+        }
+    char *md = render(SL_TABLE_MD, NULL, c, 2, SL_OK);
+    assert_non_null(strstr(md, "| hinted |"));
+    assert_null(strstr(md, "figures shown"));
+    free(md);
+    char *tex = render(SL_TABLE_LATEX, NULL, c, 2, SL_OK);
+    assert_null(strstr(tex, "\nhinted &"));
+    assert_non_null(strstr(tex, "\nwrong & 0 ("));
+    assert_non_null(strstr(tex, "\nconfirmed & 0 ("));          /* 0 here, 1 in the 2048 column */
+    assert_non_null(strstr(tex, "\nconfirmed & 1 ("));
+    char note[128];
+    snprintf(note, sizeof note, "%d of %d figures shown", SL_FIG_COUNT - 1, SL_FIG_COUNT);
+    assert_non_null(strstr(tex, note));
+    free(tex);
+    /* the terminal's Markdown */
+    struct sl_table_rows rows = {.produced = 1};
+    char *buf = NULL;
+    size_t len = 0;
+    struct sl_diag d;
+    FILE *f = open_memstream(&buf, &len);
+    assert_int_equal(sl_table_write_rows(f, SL_TABLE_MD, NULL, c, 2, &rows, &d), SL_OK);
+    fclose(f);
+    assert_null(strstr(buf, "| hinted |"));
+    assert_non_null(strstr(buf, "| wrong | 0 ("));
+    assert_non_null(strstr(buf, "--figures all"));
+    free(buf);
+    /* --figures */
+    assert_int_equal(sl_table_figures_parse("wrong,light_incorrect,soft_mae", &rows, &d), SL_OK);
+    assert_true(rows.picked && rows.pick_hard[SL_FIG_wrong] && rows.pick_hard[SL_FIG_light_incorrect]);
+    assert_true(rows.pick_soft[SL_SFIG_soft_mae] && !rows.pick_hard[SL_FIG_pixels]);
+    f = open_memstream(&buf, &len);
+    assert_int_equal(sl_table_write_rows(f, SL_TABLE_LATEX, NULL, c, 2, &rows, &d), SL_OK);
+    fclose(f);
+    assert_int_equal(count_of(buf, " \\\\\n"), 2 * (1 + 2));   /* head + 2 rows */
+    assert_non_null(strstr(buf, "\nlight\\_incorrect & "));
+    assert_before(buf, "\nlight\\_incorrect & ", "\nwrong & ");   /* figures.h's order, not the list's */
+    free(buf);
+    assert_int_equal(sl_table_figures_parse("all", &rows, &d), SL_OK);
+    assert_false(rows.picked || rows.produced);
+    assert_int_equal(sl_table_figures_parse("wrong,bogus", &rows, &d), SL_E_USAGE);
+    assert_string_equal(d.key, "--figures");
+    assert_non_null(strstr(d.msg, "'bogus'"));
 }
 
 static void table_duplicate_map_refused(void **st)
@@ -341,8 +397,8 @@ static void table_soft_and_hard(void **st)
     assert_int_equal(count_of(csv, ",2px,wrong,"), 2);
     free(csv);
     char *tex = render(SL_TABLE_LATEX, NULL, c, 2, SL_OK);
-    assert_int_equal(count_of(tex, "\\label{tab:prim-s-side-64x32-nsm-a}"), 1);
-    assert_int_equal(count_of(tex, "\\label{tab:prim-s-side-64x32-nsm-a-point}"), 1);
+    assert_int_equal(count_of(tex, "\\label{tab:prim-s-side-64x32-nsm-a-1024}"), 1);
+    assert_int_equal(count_of(tex, "\\label{tab:prim-s-side-64x32-nsm-a-1024-point}"), 1);
     free(tex);
 }
 
@@ -354,6 +410,7 @@ int main(int argc, char **argv)
         SL_CASE(table, markdown_mixed_provenance),
         SL_CASE(table, csv_long_form),
         SL_CASE(table, latex_booktabs),
+        SL_CASE(table, rows_produced_and_picked),
         SL_CASE(table, duplicate_map_refused),
         SL_CASE(table, empty_and_formats),
         SL_CASE(table, soft_and_hard),

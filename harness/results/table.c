@@ -190,15 +190,51 @@ static void row_values(FILE *f, const struct sl_cell_record *cells, const struct
     }
 }
 
+/* Whether figure row fi of a table is shown (table.h: struct sl_table_rows). */
+static int row_shown(const struct sl_cell_record *cells, const struct group *g, int fi,
+                     const struct sl_table_rows *rows)
+{
+    const struct sl_cell_record *c0 = &cells[g->idx[0]];
+    if (!rows)
+        return 1;
+    if (rows->picked)
+        return c0->has_soft ? rows->pick_soft[fi] : rows->pick_hard[fi];
+    if (!rows->produced || c0->has_soft || fi <= SL_FIG_wrong_caught)
+        return 1;
+    for (int k = 0; k < g->n; k++) {
+        const struct sl_cell_record *c = &cells[g->idx[k]];
+        for (int r = 0; r < cell_cols(c); r++) {
+            uint64_t n;
+            double pct;
+            cell_value(c, r, fi, &n, &pct);
+            if (n)
+                return 1;
+        }
+    }
+    return 0;
+}
+
+static int rows_shown(const struct sl_cell_record *cells, const struct group *g, const struct sl_table_rows *rows)
+{
+    int n = 0;
+    for (int fi = 0; fi < cell_rows(&cells[g->idx[0]]); fi++)
+        n += row_shown(cells, g, fi, rows);
+    return n;
+}
+
 static void md_provenance(FILE *f, const struct sl_cell_record *c)
 {
     fprintf(f, "method `%s`; contours from `%s` (contour_from); git `%s`, config `%s`, machine `%s`", c->method,
             c->contour_from, c->git_sha, c->config_hash, c->machine);
 }
 
-static void md_table(FILE *f, const struct sl_cell_record *cells, const struct group *g)
+static void md_table(FILE *f, const struct sl_cell_record *cells, const struct group *g,
+                     const struct sl_table_rows *rows)
 {
     const struct sl_cell_record *c0 = &cells[g->idx[0]];
+    int shown = rows_shown(cells, g, rows);
+    if (shown == 0)
+        return;
     fprintf(f, "## %s / %s / %dx%d / %s\n\n", c0->scene, c0->viewpoint, c0->vw, c0->vh, c0->label);
     if (c0->has_soft)
         fprintf(f, "Area light: the visible fraction of the light against the area truth "
@@ -223,11 +259,18 @@ static void md_table(FILE *f, const struct sl_cell_record *cells, const struct g
         fprintf(f, "---:|");
     fprintf(f, "\n");
     for (int fi = 0; fi < cell_rows(c0); fi++) {
+        if (!row_shown(cells, g, fi, rows))
+            continue;
         fprintf(f, "| %s |", row_name(c0, fi));
         row_values(f, cells, g, fi, 0);
         fprintf(f, "\n");
     }
     fprintf(f, "\n");
+    if (shown < cell_rows(c0))
+        fprintf(f, "(%d of %d figures shown: %s; table.md and `shadowlab table --figures all` have every row.)\n\n",
+                shown, cell_rows(c0),
+                rows->picked ? "those picked with --figures" : "the rest are 0 in every column, not produced by "
+                "this method");
     if (same_provenance(cells, g)) {
         md_provenance(f, c0);
         fprintf(f, "\n\n");
@@ -311,36 +354,45 @@ static void csv_cell(FILE *f, const struct sl_cell_record *c, int background)
 
 /* ---- LaTeX ---- */
 
-/* LaTeX: the ten specials, and the few non-ASCII signs the report writes */
+/* LaTeX: the ten specials, and the non-ASCII signs the report writes; any
+ * other non-ASCII character becomes '?', so a name can never stop pdflatex
+ * (inputenc has no glyph for most of them). */
 void sl_tex_text(FILE *f, const char *s)
 {
+    static const struct { const char *utf8, *tex; } signs[] = {
+        {"\xC2\xB2", "\\textsuperscript{2}"}, {"\xC3\x97", "$\\times$"},   {"\xE2\x80\x93", "--"},
+        {"\xE2\x80\x94", "---"},              {"\xE2\x86\x92", "$\\to$"},  {"\xE2\x89\xA4", "$\\le$"},
+        {"\xE2\x89\xA5", "$\\ge$"},           {"\xC2\xB1", "$\\pm$"},      {"\xC2\xB5", "$\\mu$"},
+        {"\xC2\xB7", "$\\cdot$"},             {"\xE2\x80\x99", "'"},       {"\xE2\x80\x98", "`"},
+        {"\xE2\x80\x9C", "``"},               {"\xE2\x80\x9D", "''"},      {"\xE2\x80\xA6", "\\ldots{}"},
+        {"\xC2\xA0", "~"},                    {"\xE2\x89\x88", "$\\approx$"}, {"\xC2\xB0", "$^\\circ$"},
+    };
     for (; s && *s; s++) {
         const unsigned char *u = (const unsigned char *)s;
-        if (u[0] == 0xC2 && u[1] == 0xB2) {            /* ² */
-            fputs("\\textsuperscript{2}", f);
-            s++;
-        } else if (u[0] == 0xC3 && u[1] == 0x97) {     /* × */
-            fputs("$\\times$", f);
-            s++;
-        } else if (u[0] == 0xE2 && u[1] == 0x80 && u[2] == 0x93) { /* – */
-            fputs("--", f);
-            s += 2;
-        } else if (u[0] == 0xE2 && u[1] == 0x86 && u[2] == 0x92) { /* → */
-            fputs("$\\to$", f);
-            s += 2;
-        } else {
-            switch (*s) {
-            case '_': case '%': case '&': case '#': case '$': case '{': case '}':
-                fputc('\\', f);
-                fputc(*s, f);
-                break;
-            case '\\': fputs("\\textbackslash{}", f); break;
-            case '~':  fputs("\\textasciitilde{}", f); break;
-            case '^':  fputs("\\textasciicircum{}", f); break;
-            case '<':  fputs("\\textless{}", f); break;
-            case '>':  fputs("\\textgreater{}", f); break;
-            default:   fputc(*s, f);
-            }
+        if (u[0] >= 0x80) {
+            size_t len = 1;
+            while (len < 4 && (u[len] & 0xC0) == 0x80)
+                len++;
+            const char *tex = "?";
+            for (size_t k = 0; k < sizeof signs / sizeof signs[0]; k++)
+                if (strlen(signs[k].utf8) == len && memcmp(signs[k].utf8, s, len) == 0)
+                    tex = signs[k].tex;
+            fputs(tex, f);
+            s += len - 1;
+            continue;
+        }
+        switch (*s) {
+        case '_': case '%': case '&': case '#': case '$': case '{': case '}':
+            fputc('\\', f);
+            fputc(*s, f);
+            break;
+        case '\\': fputs("\\textbackslash{}", f); break;
+        case '~':  fputs("\\textasciitilde{}", f); break;
+        case '^':  fputs("\\textasciicircum{}", f); break;
+        case '<':  fputs("\\textless{}", f); break;
+        case '>':  fputs("\\textgreater{}", f); break;
+        case '\n': fputc(' ', f); break;
+        default:   fputc(*s, f);
         }
     }
 }
@@ -369,81 +421,114 @@ static void tex_provenance(FILE *f, const struct sl_cell_record *c)
     sl_tex_text(f, c->machine);
 }
 
-static void latex_table(FILE *f, const struct sl_cell_record *cells, const struct group *g)
+/* One float per map size (a cell), so a table has 1 + its regions columns:
+ * split by map size because two map sizes side by side were 60-294 pt wider
+ * than an A4 article's \textwidth; what is still too wide (long figure names
+ * beside four or five regions) is scaled down to \linewidth by the
+ * \resizebox guard, never up. */
+static void latex_table(FILE *f, const struct sl_cell_record *cells, const struct group *g,
+                        const struct sl_table_rows *rows)
 {
     const struct sl_cell_record *c0 = &cells[g->idx[0]];
-    int ncols = 0;
-    for (int k = 0; k < g->n; k++)
-        ncols += cell_cols(&cells[g->idx[k]]);
-    fputs("\\begin{table}[htbp]\n\\centering\n\\caption{", f);
-    sl_tex_text(f, c0->scene);
-    fputs(" / ", f);
-    sl_tex_text(f, c0->viewpoint);
-    fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
-    sl_tex_text(f, c0->label);
-    if (c0->has_soft)
-        fputs(". Area light: the visible fraction against the area truth (means in \\% of full visibility).}\n", f);
-    else
-        fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth%s: %llu PFL lit, %llu PFL shadowed.}\n",
-                (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
-                (unsigned long long)c0->n_background, point_twin(c0) ? " of the area light's centre" : "",
-                (unsigned long long)c0->n_truth_lit, (unsigned long long)c0->n_truth_shadow);
-    fputs("\\label{tab:", f);
-    tex_key(f, c0->scene);
-    fputc('-', f);
-    tex_key(f, c0->viewpoint);
-    fprintf(f, "-%dx%d-", c0->vw, c0->vh);
-    tex_key(f, c0->label);
-    if (point_twin(c0))
-        fputs("-point", f);
-    fputs("}\n\\begin{tabular}{l", f);
-    for (int k = 0; k < ncols; k++)
-        fputc('r', f);
-    fputs("}\n\\toprule\n", f);
-    /* map sizes over their regions */
+    int shown = rows_shown(cells, g, rows);
+    if (shown == 0)
+        return;
     for (int k = 0; k < g->n; k++) {
         const struct sl_cell_record *c = &cells[g->idx[k]];
-        fprintf(f, " & \\multicolumn{%d}{c}{$%d^2$}", cell_cols(c), c->map_size);
-    }
-    fputs(" \\\\\n", f);
-    for (int k = 0, col = 2; k < g->n; k++) {
-        int nr = cell_cols(&cells[g->idx[k]]);
-        if (nr > 0)
-            fprintf(f, "%s\\cmidrule(lr){%d-%d}", k ? " " : "", col, col + nr - 1);
-        col += nr;
-    }
-    fputs("\nfigure", f);
-    for (int k = 0; k < g->n; k++) {
-        const struct sl_cell_record *c = &cells[g->idx[k]];
-        for (int r = 0; r < cell_cols(c); r++) {
+        struct group one = {&g->idx[k], 1};
+        int ncols = cell_cols(c);
+        fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
+        sl_tex_text(f, c0->scene);
+        fputs(" / ", f);
+        sl_tex_text(f, c0->viewpoint);
+        fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
+        sl_tex_text(f, c0->label);
+        fprintf(f, " / $%d^2$ map", c->map_size);
+        if (c0->has_soft)
+            fputs(". Area light: the visible fraction against the area truth (means in \\% of full visibility).",
+                  f);
+        else
+            fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth%s: %llu PFL lit, %llu PFL shadowed.",
+                    (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
+                    (unsigned long long)c0->n_background, point_twin(c0) ? " of the area light's centre" : "",
+                    (unsigned long long)c0->n_truth_lit, (unsigned long long)c0->n_truth_shadow);
+        if (shown < cell_rows(c0))
+            fprintf(f, " %d of %d figures shown (%s).", shown, cell_rows(c0),
+                    rows->picked ? "chosen with -{}-figures" : "the others are 0: not produced by this method");
+        fputs("}\n\\label{tab:", f);
+        tex_key(f, c0->scene);
+        fputc('-', f);
+        tex_key(f, c0->viewpoint);
+        fprintf(f, "-%dx%d-", c0->vw, c0->vh);
+        tex_key(f, c0->label);
+        fprintf(f, "-%d", c->map_size);
+        if (point_twin(c0))
+            fputs("-point", f);
+        fputs("}\n\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%\n\\begin{tabular}{l", f);
+        for (int r = 0; r < ncols; r++)
+            fputc('r', f);
+        fputs("}\n\\toprule\nfigure", f);
+        for (int r = 0; r < ncols; r++) {
             char rn[16];
             region_name(col_thickness(c, r), rn, sizeof rn);
             fprintf(f, " & %s", rn);
         }
-    }
-    fputs(" \\\\\n\\midrule\n", f);
-    for (int fi = 0; fi < cell_rows(c0); fi++) {
-        sl_tex_text(f, row_name(c0, fi));
-        row_values(f, cells, g, fi, 1);
-        fputs(" \\\\\n", f);
-    }
-    fputs("\\bottomrule\n\\end{tabular}\n\n\\smallskip\n{\\footnotesize ", f);
-    if (same_provenance(cells, g)) {
-        tex_provenance(f, c0);
-    } else {
-        for (int k = 0; k < g->n; k++) {
-            const struct sl_cell_record *c = &cells[g->idx[k]];
-            fprintf(f, "%s$%d^2$: ", k ? "\\\\\n" : "", c->map_size);
-            tex_provenance(f, c);
+        fputs(" \\\\\n\\midrule\n", f);
+        for (int fi = 0; fi < cell_rows(c0); fi++) {
+            if (!row_shown(cells, g, fi, rows))
+                continue;
+            sl_tex_text(f, row_name(c0, fi));
+            row_values(f, cells, &one, fi, 1);
+            fputs(" \\\\\n", f);
         }
+        fputs("\\bottomrule\n\\end{tabular}}\n\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
+        tex_provenance(f, c);
+        fputs("\\par}\n\\end{table}\n\n", f);
     }
-    fputs("\\par}\n\\end{table}\n\n", f);
 }
 
 /* ---- entry ---- */
 
+enum sl_err sl_table_figures_parse(const char *list, struct sl_table_rows *rows, struct sl_diag *d)
+{
+    memset(rows, 0, sizeof *rows);
+    if (!list || strcmp(list, "all") == 0)
+        return SL_OK;
+    rows->picked = 1;
+    const char *p = list;
+    while (*p) {
+        size_t len = strcspn(p, ",");
+        int found = 0;
+        for (int k = 0; k < SL_FIG_COUNT; k++)
+            if (strlen(sl_figure_name((enum sl_figure)k)) == len &&
+                strncmp(sl_figure_name((enum sl_figure)k), p, len) == 0)
+                rows->pick_hard[k] = 1, found = 1;
+        for (int k = 0; k < SL_SFIG_COUNT; k++)
+            if (strlen(sl_soft_figure_name((enum sl_soft_figure)k)) == len &&
+                strncmp(sl_soft_figure_name((enum sl_soft_figure)k), p, len) == 0)
+                rows->pick_soft[k] = 1, found = 1;
+        if (!found)
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "--figures",
+                           "unknown figure '%.*s' (the names of figures.h and softfig.h, e.g. wrong, "
+                           "light_incorrect, uncertain, soft_mae; or all)", (int)len, p);
+        p += len;
+        if (*p == ',')
+            p++;
+    }
+    return SL_OK;
+}
+
 enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *title,
                            const struct sl_cell_record *cells, int ncells, struct sl_diag *d)
+{
+    /* LaTeX leaves out the rows a method does not produce; the others keep everything */
+    struct sl_table_rows rows = {.produced = fmt == SL_TABLE_LATEX};
+    return sl_table_write_rows(out, fmt, title, cells, ncells, &rows, d);
+}
+
+enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char *title,
+                                const struct sl_cell_record *cells, int ncells, const struct sl_table_rows *rows,
+                                struct sl_diag *d)
 {
     if (!out || ncells < 0 || (ncells > 0 && !cells))
         return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_table_write: bad arguments");
@@ -472,9 +557,9 @@ enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *titl
             fprintf(out, "# %s\n\n", title);
         fputs(md_note, out);
         for (int g = 0; g < l.ngroups; g++) {
-            md_table(out, cells, &l.groups[g]);
+            md_table(out, cells, &l.groups[g], rows);
             if (dual(&cells[l.groups[g].idx[0]]))
-                md_table(out, twin, &l.groups[g]);
+                md_table(out, twin, &l.groups[g], rows);
         }
         break;
     case SL_TABLE_CSV:
@@ -487,17 +572,20 @@ enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *titl
         }
         break;
     case SL_TABLE_LATEX:
-        fputs("% shadowlab tables; needs \\usepackage{booktabs}\n", out);
+        /* no heading: the file is \\input into the reader's own document; the
+         * source is a comment (one line: a title holds no line break here) */
+        fputs("% shadowlab tables; needs \\usepackage{booktabs,graphicx}\n", out);
         if (title) {
-            fputs("\\section*{", out);
-            sl_tex_text(out, title);
-            fputs("}\n", out);
+            fputs("% from: ", out);
+            for (const char *t = title; *t; t++)
+                fputc(*t == '\n' || *t == '\r' ? ' ' : *t, out);
+            fputc('\n', out);
         }
         fputs("\n", out);
         for (int g = 0; g < l.ngroups; g++) {
-            latex_table(out, cells, &l.groups[g]);
+            latex_table(out, cells, &l.groups[g], rows);
             if (dual(&cells[l.groups[g].idx[0]]))
-                latex_table(out, twin, &l.groups[g]);
+                latex_table(out, twin, &l.groups[g], rows);
         }
         break;
     }

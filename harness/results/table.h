@@ -31,6 +31,27 @@ int sl_table_format_parse(const char *name);     /* -1 if unknown: md, csv, late
 enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *title,
                            const struct sl_cell_record *cells, int ncells, struct sl_diag *d);
 
+/* Which figure rows a table shows. Zero means every row (the Markdown files
+ * and CSV keep everything). `produced` leaves out the rows a method does not
+ * produce: a figure past the core ones (pixels ... wrong_caught, always
+ * shown: a zero there is a result) that is 0 in every column of the table.
+ * `pick` (figure names, see sl_table_figures_parse) shows those rows only,
+ * in figures.h's order; a soft table none of whose figures is picked is left
+ * out. LaTeX always splits a table by map size (one float each, scaled down
+ * to \linewidth only when still too wide) and never writes a heading. */
+struct sl_table_rows {
+    int           produced;
+    int           picked;                /* pick_hard/pick_soft are set */
+    unsigned char pick_hard[SL_FIG_COUNT];
+    unsigned char pick_soft[SL_SFIG_COUNT];
+};
+enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char *title,
+                                const struct sl_cell_record *cells, int ncells, const struct sl_table_rows *rows,
+                                struct sl_diag *d);
+/* "wrong,light_incorrect" -> rows->pick_*; "all" picks nothing and clears
+ * produced. An unknown name is SL_E_USAGE (key "--figures") listing them. */
+enum sl_err sl_table_figures_parse(const char *list, struct sl_table_rows *rows, struct sl_diag *d);
+
 /* s as LaTeX text: the ten specials escaped, and the few non-ASCII signs
  * shadowlab writes (², ×, –, →) as LaTeX. Shared by the tables and the report. */
 void sl_tex_text(FILE *f, const char *s);
