@@ -17,6 +17,7 @@
 #include "scene.h"
 #include "scenefile.h"
 #include "store.h"
+#include "submit.h"
 #include "summary.h"
 #include "table.h"
 #include "util.h"
@@ -29,17 +30,22 @@ static const char usage[] =
     "  report DB [--out DIR]      HTML and Markdown report of a results store (needs gnuplot)\n"
     "  check DB --baseline FILE   compare a results store with a committed baseline (exit 1 if outside)\n"
     "  bench [CONFIG] [options]   every stage against its plain counterpart, the studies, their targets\n"
+    "  submit CONFIG --slurm ...  the sweep as a Slurm job array plus a merge job (shadowlab submit --help)\n"
+    "  merge SHARD.db... -o DB    the stores of a split sweep into one; exit 1 if a cell is missing\n"
     "  list methods|scenes        what can be named in a config\n"
     "  version                    the git SHA this binary was built from\n";
 
 static const char usage_run[] =
     "usage: shadowlab run CONFIG [--out DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
-    "                     [--gl osmesa|egl]\n"
+    "                     [--cache DIR] [--gl osmesa|egl] [--jobs N]\n"
     "  --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
     "  --cells A:B   compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
     "  --resume      skip cells the results store already holds for this config\n"
     "  --db FILE     results store (default: the config's 'store', else DIR/shadowlab.db)\n"
     "  --no-cache    trace the truth even when DIR/cache holds it\n"
+    "  --cache DIR   the truth cache (default DIR/cache; written atomically, may be shared)\n"
+    "  --jobs N      N worker processes over slices of the sweep (whole views kept together), their\n"
+    "                stores merged into DB; the same cells as one process\n"
     "  --gl B        the GL context: osmesa (the default where built) or egl (GPU machines;\n"
     "                SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
     "  One run writes a results store at a time (a lock on DB.lock); a second is refused\n"
@@ -95,6 +101,25 @@ static const char usage_bench[] =
     "  --map N         the layers' map size (default 2048)\n"
     "  --csv FILE      also write the summary rows as CSV\n"
     "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
+
+static const char usage_submit[] =
+    "usage: shadowlab submit CONFIG --slurm [--tasks N | --cells-per-task K] [--max-running T]\n"
+    "                        [--out DIR] [--partition P] [--time HH:MM:SS] [--mem M] [--dry-run]\n"
+    "  Writes DIR/slurm/array.sh, an sbatch job array whose task i runs `shadowlab run CONFIG\n"
+    "  --cells A:B --out DIR/shards/task-i --db DIR/shards/task-i/shadowlab.db --resume`, and\n"
+    "  DIR/slurm/merge.sh, which merges the shards into DIR/shadowlab.db; without --dry-run, submits\n"
+    "  both (the merge with --dependency=afterok on the array) and prints the job ids.\n"
+    "  --tasks N            N tasks (default: one per 256 cells); cuts move to view boundaries\n"
+    "  --cells-per-task K   tasks of about K cells\n"
+    "  --max-running T      at most T tasks at once (--array=0-(N-1)%T)\n"
+    "  --out DIR            default results/; must be on a filesystem every node sees\n";
+
+static const char usage_merge[] =
+    "usage: shadowlab merge SHARD.db... -o STORE.db\n"
+    "  Copies the runs and cells of each shard (one config, the same in every shard) into STORE.db,\n"
+    "  one transaction per shard; a cell already there is a duplicate and is not copied again. The\n"
+    "  overlays and EXR files go under STORE.db's folder. Names the cells of the sweep no shard\n"
+    "  holds; exit 1 when any is missing, 2 when a shard holds another config or cannot be read.\n";
 
 static const char usage_list[] = "usage: shadowlab list methods|scenes\n";
 
@@ -207,13 +232,124 @@ static void print_event(const struct sl_run_event *ev, void *user)
     }
 }
 
+/* What a merge did, shard by shard, and the cells of the sweep it lacks. */
+static int print_merge(const char *const *shards, const struct sl_shards_result *r, const char *out)
+{
+    for (int i = 0; i < r->nshards; i++) {
+        const struct sl_merge_shard *s = &r->shard[i];
+        if (r->absent[i])
+            fprintf(stderr, "shadowlab: merge: %s: not there (its cells are missing below)\n", shards[i]);
+        else
+            printf("%s: %d cell(s) copied, %d duplicate(s) skipped, %d run(s), %d overlay(s)%s\n", shards[i],
+                   s->cells, s->duplicates, s->runs, s->overlays, s->overlays_missing ? " (some not found)" : "");
+    }
+    const struct sl_config *c = &r->config;
+    for (int i = 0; i < r->nmissing && i < 50; i++) {
+        struct sl_cell_key k;
+        sl_plan_cell(c, r->missing[i], &k);
+        fprintf(stderr, "shadowlab: merge: missing cell %d: %s/%s %dx%d map %d '%s'\n", r->missing[i],
+                c->scenes[k.scene].name, c->scenes[k.scene].viewpoints[k.vp], c->viewport_w[k.viewport],
+                c->viewport_h[k.viewport], c->maps[k.map], c->methods[k.method].label);
+    }
+    if (r->nmissing > 50)
+        fprintf(stderr, "shadowlab: merge: ... and %d more missing\n", r->nmissing - 50);
+    printf("merged into %s: %d of %d cell(s) of the sweep stored, %d missing; %d copied, %d duplicate(s), "
+           "%.2f s (%.1f ms per 1,000 cells)\n", out, r->total - r->nmissing, r->total, r->nmissing, r->copied,
+           r->duplicates, r->seconds, r->copied ? 1e6 * r->seconds / r->copied : 0.0);
+    return r->nmissing ? 1 : 0;
+}
+
+static int run_jobs(const struct sl_config *c, const struct sl_jobs_opts *o)
+{
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct sl_jobs_result r;
+    enum sl_err e = sl_jobs_run(c, o, &r, &d);
+    for (int i = 0; i < r.nworkers; i++)
+        fprintf(stderr, "shadowlab: worker %d: cells %d:%d, exit %d, %.1f s wall, %.1f s CPU%s%s\n", i,
+                r.w[i].first, r.w[i].last, r.w[i].status, r.w[i].wall_s, r.w[i].cpu_s,
+                r.w[i].status ? ", log " : "", r.w[i].status ? r.w[i].log : "");
+    fprintf(stderr, "shadowlab: %d worker(s), %.1f s wall, %.1f s CPU; %d of %d view(s) started twice by the split\n",
+            r.nworkers, r.wall_s, r.cpu_s, r.split_views, r.nviews);
+    int rc = e ? fail(e, &d) : 0;
+    if (!e) {
+        const char *shards[64];
+        char paths[64][1300];
+        for (int i = 0; i < r.nworkers; i++) {
+            snprintf(paths[i], sizeof paths[i], "%s/task-%d/shadowlab.db", r.workdir, i);
+            shards[i] = paths[i];
+        }
+        rc = print_merge(shards, &r.merge, r.store);
+    }
+    sl_jobs_result_free(&r);
+    return rc;
+}
+
+static int cmd_merge(int argc, char **argv)
+{
+    const char *out = NULL;
+    const char **shards = calloc((size_t)argc, sizeof *shards);
+    int n = 0;
+    if (!shards)
+        return 3;
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
+            out = argv[++i];
+        else if (argv[i][0] == '-') {
+            free(shards);
+            return usage_error("merge: unknown option", usage_merge);
+        } else
+            shards[n++] = argv[i];
+    }
+    if (!out || !n) {
+        free(shards);
+        return usage_error("merge: wants SHARD.db... and -o STORE.db", usage_merge);
+    }
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct sl_shards_result r;
+    enum sl_err e = sl_shards_merge(shards, n, out, 0, &r, &d);
+    int rc = e ? fail(e, &d) : print_merge(shards, &r, out);
+    sl_shards_result_free(&r);
+    free(shards);
+    return rc;
+}
+
+static int cmd_submit(int argc, char **argv)
+{
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct sl_submit_opts o;
+    enum sl_err e = sl_submit_parse(argc, argv, &o, &d);
+    if (e) {
+        char line[1200];
+        sl_diag_format(&d, e, line, sizeof line);
+        return usage_error(line, usage_submit);
+    }
+    struct sl_config c;
+    if ((e = sl_config_load(o.config, &c, &d)))
+        return fail(e, &d);
+    static struct sl_submit_result r;
+    if ((e = sl_submit(&c, &o, &r, &d)))
+        return fail(e, &d);
+    printf("%d task(s) over %d cell(s):", r.ntasks, r.total);
+    for (int i = 0; i < r.ntasks; i++)
+        printf(" %d:%d", r.bounds[i], r.bounds[i + 1]);
+    printf("\n%d of %d view(s) start in two tasks (their G-buffer and truth are computed twice)\n",
+           r.split_views, r.nviews);
+    printf("array script: %s\nmerge script: %s\nmerged store: %s\n", r.array_script, r.merge_script, r.merged);
+    if (!o.dry_run)
+        printf("array job %s, merge job %s (afterok:%s)\n", r.array_job, r.merge_job, r.array_job);
+    return 0;
+}
+
 static int cmd_run(int argc, char **argv)
 {
     const char *cfg = NULL;
     struct sl_run_opts o = {.table_out = stdout, .write_files = 1, .on_event = print_event};
     struct event_state es = {.tty = isatty(2)};
     o.user = &es;
-    int no_cache = 0;
+    int no_cache = 0, jobs = 1;
     enum sl_gl_backend gl = SL_GL_DEFAULT;
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
@@ -231,7 +367,12 @@ static int cmd_run(int argc, char **argv)
             o.resume = 1;
         else if (strcmp(argv[i], "--no-cache") == 0)
             no_cache = 1;
-        else if (argv[i][0] == '-')
+        else if (strcmp(argv[i], "--cache") == 0 && i + 1 < argc)
+            o.cache_dir = argv[++i];
+        else if (strcmp(argv[i], "--jobs") == 0 && i + 1 < argc) {
+            if ((jobs = atoi(argv[++i])) < 1 || jobs > 64)
+                return usage_error("run: --jobs wants 1..64", usage_run);
+        } else if (argv[i][0] == '-')
             return usage_error("run: unknown option", usage_run);
         else if (!cfg)
             cfg = argv[i];
@@ -250,6 +391,13 @@ static int cmd_run(int argc, char **argv)
         return fail(e, &d);
     if (gl)
         c.gl = gl;
+    if (jobs > 1) {
+        if (o.first || o.last)
+            return usage_error("run: --jobs splits the whole sweep; --cells is for one task", usage_run);
+        struct sl_jobs_opts jo = {.jobs = jobs, .out_root = o.out_root, .store = o.store, .cache = o.cache_dir,
+                                  .gl = gl ? sl_gl_backend_name(gl) : NULL, .resume = o.resume};
+        return run_jobs(&c, &jo);
+    }
     struct sl_run_result r;
     e = sl_run(&c, &o, &r, &d);
     sl_run_result_free(&r);
@@ -527,6 +675,8 @@ int main(int argc, char **argv)
         {"report", cmd_report, usage_report},
         {"check", cmd_check, usage_check},
         {"bench", cmd_bench, usage_bench},
+        {"submit", cmd_submit, usage_submit},
+        {"merge", cmd_merge, usage_merge},
         {"list", cmd_list, usage_list},
     };
     for (size_t i = 0; i < sizeof verbs / sizeof verbs[0]; i++)
