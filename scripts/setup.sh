@@ -28,6 +28,7 @@ PACKAGES=(
   libcmocka-dev         # unit tests
   gnuplot-nox           # the report's plots (shadowlab report)
   chromium              # the report's rendering test (cli::report)
+  slurm-wlm munge       # the Slurm job-array test (slurm::array) and `shadowlab submit`
 )
 
 missing=()
