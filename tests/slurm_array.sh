@@ -32,6 +32,16 @@ stop() {
     kill -KILL "$p" 2>/dev/null
     wait "$p" 2>/dev/null
   done
+  # what slurmd started and left behind (a job step cut off by the stop is
+  # re-parented to init): found by the SLURM_CONF of this test in its
+  # environment, which only the daemons started here hand down (this shell
+  # drops it first, so the scan's own processes do not carry it)
+  unset SLURM_CONF
+  for e in /proc/[0-9]*/environ; do
+    p=${e#/proc/}; p=${p%/environ}
+    [ "$p" = $$ ] && continue
+    tr '\0' '\n' <"$e" 2>/dev/null | grep -qx "SLURM_CONF=$tmp/slurm.conf" && kill -KILL "$p" 2>/dev/null
+  done
   if [ $rc -ne 0 ] && [ $rc -ne 77 ]; then
     for f in slurmctld.log slurmd.log munged.out out/slurm/task-0.log out/slurm/merge.log; do
       [ -f "$tmp/$f" ] && { echo "--- $f (tail)"; tail -n 15 "$tmp/$f"; }
