@@ -96,11 +96,13 @@ static int boundary_level(const struct sl_config *c, int i)
 }
 
 /* Each cut goes to the view boundary nearest its even share of the cells
- * when one lies within half a slice of it, else to the nearest (view, map
- * size) boundary so near, else exactly at the share: balance by cell count
- * first, sharing second. Cells differ in cost (a soft cell costs more than a
- * hard one), so the balance is by count, not time: an estimate per method
- * would be a guess the bench does not back. */
+ * when one lies within a quarter of a slice of it, else to the nearest
+ * (view, map size) boundary so near (the layers stay shared, the view is
+ * computed twice), else exactly at the share. A quarter: every slice holds
+ * between half and one and a half of its even share, and a sweep whose views
+ * hold at most half a slice's cells loses no view. Cells differ in cost (a soft cell costs more than a
+ * hard one), so the balance is by count, not time: a cost per method would be
+ * a guess the bench does not back. */
 int sl_plan_slices(const struct sl_config *c, int n, int *b)
 {
     int total = sl_plan_count(c);
@@ -114,7 +116,7 @@ int sl_plan_slices(const struct sl_config *c, int n, int *b)
     for (int i = 1; i < n; i++) {
         int t = (int)(i * share + 0.5), cut = -1;
         for (int level = 2; level >= 1 && cut < 0; level--)
-            for (int dist = 0; dist <= (int)(share / 2) && cut < 0; dist++) {
+            for (int dist = 0; dist <= (int)(share / 4) && cut < 0; dist++) {
                 if (t - dist > b[k - 1] && t - dist < total && boundary_level(c, t - dist) >= level)
                     cut = t - dist;
                 else if (t + dist > b[k - 1] && t + dist < total && boundary_level(c, t + dist) >= level)
