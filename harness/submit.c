@@ -287,7 +287,8 @@ static void array_body(FILE *f, const void *arg)
     fprintf(f, "\n#SBATCH --output=%s/slurm/task-%%a.log\n", x->out);
     sbatch_lines(f, x->o);
     fprintf(f, "# task i computes cells[i] of the sweep into its own store (never a file two hosts write);\n"
-               "# --resume: a requeued or re-submitted task computes only the cells its store lacks\n"
+               "# --resume: a requeued or re-submitted task computes only the cells its store lacks;\n"
+               "# the truth cache is shared (its files are written under a temporary name and renamed)\n"
                "set -euo pipefail\ncells=(");
     for (int i = 0; i < r->ntasks; i++)
         fprintf(f, "%s%d:%d", i ? " " : "", r->bounds[i], r->bounds[i + 1]);
@@ -297,7 +298,9 @@ static void array_body(FILE *f, const void *arg)
     quote(f, x->exe);
     fprintf(f, " run ");
     quote(f, x->config);
-    fprintf(f, " --cells \"${cells[$i]}\" --out \"$dir\" --db \"$dir/shadowlab.db\" --resume\n");
+    fprintf(f, " --cells \"${cells[$i]}\" --out \"$dir\" --db \"$dir/shadowlab.db\" --cache ");
+    quote(f, x->out);
+    fprintf(f, "/cache --resume\n");
 }
 
 static void merge_body(FILE *f, const void *arg)

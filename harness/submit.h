@@ -9,7 +9,8 @@
  * <out>/shards/task-<i>/ for Slurm, <out>/.jobs-<name>/task-<i>/ for --jobs:
  * no SQLite file is ever written by two processes or hosts. A task runs
  * `shadowlab run CONFIG --cells A:B --out TASKDIR --db TASKDIR/shadowlab.db
- * --resume`, so a requeued or re-run task computes only what it lacks.
+ * --cache OUT/cache --resume`, so a requeued or re-run task computes only what
+ * it lacks; the truth cache is shared (written atomically, cache.h).
  *
  * Owns: nothing between calls. Does not: print (the results come back for
  * main.c to show; a worker's own output goes to its log file).

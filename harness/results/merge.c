@@ -117,29 +117,31 @@ const char *sl_merge_config_path(const struct sl_merge *m)
     return m && m->config_path[0] ? m->config_path : NULL;
 }
 
-/* Copy src to dst (a hard link where both lie on one filesystem), whole or
- * not at all: a copy goes through dst.tmp and a rename. 1 copied, 0 dst was
- * there, -1 src missing or unwritable. */
-static int gather(const char *src, const char *dst)
+/* Put src at dst (a hard link where both lie on one filesystem, else a
+ * copy), whole or not at all: through dst.tmp and a rename, so a reader sees
+ * the old file or the new one. replace: over a file already at dst (a copied
+ * cell's own overlay supersedes one of an older computation of that key),
+ * else keep it. 1 put, 0 dst was kept, -1 src missing or dst unwritable. */
+static int gather(const char *src, const char *dst, int replace)
 {
-    if (access(dst, F_OK) == 0)
+    if (!replace && access(dst, F_OK) == 0)
         return 0;
-    if (link(src, dst) == 0)
-        return 1;
-    if (errno == ENOENT && access(src, F_OK) != 0)
-        return -1;
     char tmp[1300];
     snprintf(tmp, sizeof tmp, "%s.tmp", dst);
-    int in = open(src, O_RDONLY), outfd = in >= 0 ? open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644) : -1;
-    int ok = in >= 0 && outfd >= 0;
-    char buf[65536];
-    ssize_t r;
-    while (ok && (r = read(in, buf, sizeof buf)) > 0)
-        ok = write(outfd, buf, (size_t)r) == r;
-    if (in >= 0)
-        close(in);
-    if (outfd >= 0 && close(outfd) != 0)
-        ok = 0;
+    unlink(tmp);
+    int ok = link(src, tmp) == 0;
+    if (!ok) {
+        int in = open(src, O_RDONLY), outfd = in >= 0 ? open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644) : -1;
+        ok = in >= 0 && outfd >= 0;
+        char buf[65536];
+        ssize_t r;
+        while (ok && (r = read(in, buf, sizeof buf)) > 0)
+            ok = write(outfd, buf, (size_t)r) == r;
+        if (in >= 0)
+            close(in);
+        if (outfd >= 0 && close(outfd) != 0)
+            ok = 0;
+    }
     if (!ok || rename(tmp, dst) != 0) {
         unlink(tmp);
         return -1;
@@ -165,7 +167,7 @@ static enum sl_err gather_overlay(struct sl_merge *m, const char *shard_dir, con
         snprintf(src, sizeof src, "%s/%s", shard_dir, ov);
     snprintf(rel, sizeof rel, "%s/overlays/%s", study, base_name(ov));
     snprintf(dst, sizeof dst, "%s/%s", m->dir, rel);
-    int g = gather(src, dst);
+    int g = gather(src, dst, 1);
     if (g < 0) {
         info->overlays_missing++;   /* the cell keeps the path it had */
         return SL_OK;
@@ -193,7 +195,7 @@ static void gather_exr(struct sl_merge *m, const char *shard_dir, const char *st
             char a[2800], b[2800];
             snprintf(a, sizeof a, "%s/%s", from, e->d_name);
             snprintf(b, sizeof b, "%s/%s", to, e->d_name);
-            if (gather(a, b) > 0)
+            if (gather(a, b, m->append) > 0)
                 info->exr++;
         }
     }
