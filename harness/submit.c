@@ -62,6 +62,28 @@ enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, i
     r->absent = sl_calloc((size_t)n + 1, sizeof *r->absent);
     if (!r->shard || !r->absent)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "merge result");
+    /* every shard there is checked before the merged store is touched: a
+     * shard of another config leaves nothing half merged */
+    const char *first = NULL;
+    char hash[24] = "";
+    for (int i = 0; i < n; i++) {
+        if (!file_exists(shards[i]))
+            continue;
+        struct sl_merge_shard p;
+        enum sl_err e = sl_merge_probe(shards[i], &p, d);
+        if (e)
+            return e;
+        if (!p.config_hash[0])
+            continue;
+        if (!first) {
+            first = shards[i];
+            snprintf(hash, sizeof hash, "%s", p.config_hash);
+        } else if (strcmp(hash, p.config_hash) != 0) {
+            return sl_fail(d, SL_E_USAGE, shards[i], 0, NULL,
+                           "holds config hash %s (study '%s'), but %s holds %s: not a shard of the same sweep",
+                           p.config_hash, p.study, first, hash);
+        }
+    }
     char dir[1200];
     snprintf(dir, sizeof dir, "%s", out);
     char *slash = strrchr(dir, '/');

@@ -207,16 +207,18 @@ static int exec(sqlite3 *db, const char *sql)
     return sqlite3_exec(db, sql, NULL, NULL, NULL);
 }
 
-/* The one config hash of the attached shard ("" when it holds no run). */
-static enum sl_err shard_hash(struct sl_merge *m, const char *shard, struct sl_merge_shard *info,
+/* The one config hash (and study) of the shard, read through db under
+ * schema name `schema` ("" when it holds no run). */
+static enum sl_err shard_hash(sqlite3 *db, const char *schema, const char *shard, struct sl_merge_shard *info,
                               struct sl_diag *d)
 {
     sqlite3_stmt *st = NULL;
-    if (sqlite3_prepare_v2(m->db,
-                           "SELECT config_hash, study FROM shard.runs UNION "
-                           "SELECT c.config_hash, r.study FROM shard.cells c JOIN shard.runs r USING (run_id)",
-                           -1, &st, NULL) != SQLITE_OK)
-        return db_fail(m, d, "cannot read the shard's runs");
+    char *q = sqlite3_mprintf("SELECT config_hash, study FROM %s.runs UNION SELECT c.config_hash, r.study "
+                              "FROM %s.cells c JOIN %s.runs r USING (run_id)", schema, schema, schema);
+    int rc = q ? sqlite3_prepare_v2(db, q, -1, &st, NULL) : SQLITE_NOMEM;
+    sqlite3_free(q);
+    if (rc != SQLITE_OK)
+        return sl_fail(d, SL_E_IO, shard, 0, NULL, "cannot read its runs: %s", sqlite3_errmsg(db));
     int n = 0;
     enum sl_err e = SL_OK;
     while (!e && sqlite3_step(st) == SQLITE_ROW) {
@@ -230,10 +232,23 @@ static enum sl_err shard_hash(struct sl_merge *m, const char *shard, struct sl_m
                         h ? h : "");
     }
     sqlite3_finalize(st);
-    if (!e && n && m->hash[0] && strcmp(m->hash, info->config_hash) != 0)
-        e = sl_fail(d, SL_E_USAGE, shard, 0, NULL,
-                    "holds config hash %s (study '%s'), but %s holds %s: not a shard of the same sweep",
-                    info->config_hash, info->study, m->first, m->hash);
+    return e;
+}
+
+enum sl_err sl_merge_probe(const char *shard, struct sl_merge_shard *info, struct sl_diag *d)
+{
+    memset(info, 0, sizeof *info);
+    struct sl_store *probe = NULL;
+    enum sl_err e = sl_store_open_existing(shard, &probe, d);   /* a results store of this version */
+    sl_store_close(probe);
+    if (e)
+        return e;
+    sqlite3 *db = NULL;
+    if (sqlite3_open_v2(shard, &db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK)
+        e = sl_fail(d, SL_E_IO, shard, 0, NULL, "cannot open: %s", db ? sqlite3_errmsg(db) : "out of memory");
+    else
+        e = shard_hash(db, "main", shard, info, d);
+    sqlite3_close(db);
     return e;
 }
 
@@ -383,7 +398,11 @@ enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_
         return db_fail(m, d, "cannot attach the shard");
     }
     sqlite3_free(att);
-    e = shard_hash(m, shard, info, d);
+    e = shard_hash(m->db, "shard", shard, info, d);
+    if (!e && info->config_hash[0] && m->hash[0] && strcmp(m->hash, info->config_hash) != 0)
+        e = sl_fail(d, SL_E_USAGE, shard, 0, NULL,
+                    "holds config hash %s (study '%s'), but %s holds %s: not a shard of the same sweep",
+                    info->config_hash, info->study, m->first, m->hash);
     if (!e && info->config_hash[0]) {
         char ov[1300];
         snprintf(ov, sizeof ov, "%s/%s/overlays", m->dir, info->study);

@@ -41,6 +41,10 @@ struct sl_merge_shard {
  * results of `run --jobs`, which supersede older ones as a second `run`'s
  * would: the latest run wins in every query). */
 enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **out, struct sl_diag *d);
+/* Check a shard before anything is written: a results store of this
+ * version whose runs are of one config; its hash and study into info
+ * (config_hash "" when it holds no run). */
+enum sl_err sl_merge_probe(const char *shard, struct sl_merge_shard *info, struct sl_diag *d);
 /* Copy one shard. Refused (SL_E_USAGE naming both) when it holds another
  * config hash than the first shard added, or more than one; SL_E_IO when it
  * is not a results store of this version. */
