@@ -1,6 +1,6 @@
 /*
  * main.c — the command line. The only place that prints errors and exits:
- * 0 success, 1 a check failed, 2 bad input or usage (and any other failure
+ * 0 success, 1 a check failed, 2 bad input or sl_usage (and any other failure
  * that leaves no result).
  */
 #define _GNU_SOURCE   /* getopt_long, setenv, sigaction */
@@ -21,115 +21,15 @@
 #include "scene.h"
 #include "scenefile.h"
 #include "store.h"
+#include "submit.h"
 #include "summary.h"
 #include "table.h"
+#include "usage.h"
 #include "util.h"
 
-static const char usage[] =
-    "usage: shadowlab <command> [--help] ...      (shadowlab help COMMAND = shadowlab COMMAND --help)\n"
-    "  run CONFIG|SCENE [options] run an experiment (shadowlab run --help)\n"
-    "  validate FILE [-D K=V]     check a config or a scene file without GL or Embree\n"
-    "  table DB [options]         regenerate tables from a results store\n"
-    "  report DB [-o DIR]         HTML and Markdown report of a results store (needs gnuplot)\n"
-    "  check DB --baseline FILE   compare a results store with a committed baseline (exit 1 if outside)\n"
-    "  bench [CONFIG] [options]   every stage against its plain counterpart, the studies, their targets\n"
-    "  list methods|scenes        what can be named in a config\n"
-    "  version, -V, --version     the git SHA this binary was built from\n";
 
-static const char usage_run[] =
-    "usage: shadowlab run CONFIG|SCENE [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
-    "                     [--gl osmesa|egl] [-j N] [-D KEY=VALUE]... [-q|-v]\n"
-    "  -o, --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
-    "  --cells A:B       compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
-    "  --resume          skip cells the results store already holds for this config\n"
-    "  --db FILE         results store (default: the config's 'store', else DIR/shadowlab.db)\n"
-    "  --no-cache        trace the truth even when DIR/cache holds it\n"
-    "  --gl B            the GL context: osmesa (the default where built) or egl (GPU machines;\n"
-    "                    SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
-    "  -j, --threads N   threads of the truth and the CPU passes (the config's 'threads') and of\n"
-    "                    llvmpipe (LP_NUM_THREADS), 1..256\n"
-    "  -D KEY=VALUE      replace a config key by its path, the value in YAML, checked as the file is:\n"
-    "                    -D map_sizes=[512,1024] -D 'methods[0].bias=0.01' -D outputs.exr=true\n"
-    "                    (the results' config hash covers the overrides)\n"
-    "  -q, --quiet       print only the 'written to' line (and errors)\n"
-    "  -v, --verbose     print every table of the run (the Markdown of table.md) as well\n"
-    "  SCENE: a scene file given for a config runs a default study of it (every viewpoint; nsm,\n"
-    "  csm and raytrace; 1024x1024 viewport; 2048 map) and prints the config it used.\n"
-    "  By default a summary: cells, time, the wrong pixels (soft: the error) per label, where the\n"
-    "  files are. Progress goes to stderr: one live line on a terminal, else one line every 10 s\n"
-    "  or 5% of the cells. Ctrl-C (SIGINT) or SIGTERM stops after the cell under way, writes the\n"
-    "  folder of what is stored and says how to --resume (exit 130 or 143).\n"
-    "  One run writes a results store at a time (a lock on DB.lock); a second is refused\n"
-    "  with exit 2, naming the holder's pid. Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
-    "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
 
-static const char usage_validate[] =
-    "usage: shadowlab validate FILE [-D KEY=VALUE]...\n"
-    "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
-    "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
-
-static const char usage_table[] =
-    "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
-    "                          [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
-    "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
-    "                           [--average-case SCENE/VIEWPOINT/N[/MAP]]]\n"
-    "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
-    "  --summary, the average, best and worst per map size of one figure's percentage over\n"
-    "  the cells of one label (as the theses' summary tables), md or csv.\n"
-    "  md and latex leave out the figures a method does not produce (0 in every column past\n"
-    "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n";
-
-static const char usage_report[] =
-    "usage: shadowlab report RESULTS_DB [-o DIR] [--self-contained] [--latex]\n"
-    "  Writes DIR/report.html (offline; it links its images, plots and .tex beside it) and\n"
-    "  DIR/report.md: a contents tree, a summary first, then the thesis-style tables of every\n"
-    "  study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
-    "  (gnuplot, SVG), costs, the error overlays and the provenance of every run.\n"
-    "  -o, --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n"
-    "  --self-contained  report.html is one file: images and plots embedded, nothing outside it\n"
-    "  --latex           also DIR/report.tex: a pdflatex document that \\inputs the tables and plots\n";
-
-static const char usage_check[] =
-    "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
-    "                          [--format text|md] [--json FILE] [--junit FILE]\n"
-    "  Compares the latest stored cell of each key with the baseline FILE: violations of a\n"
-    "  method's exactness always exactly; every count exactly when the store was measured on\n"
-    "  the baseline's machine; otherwise each class of figure within the baseline's tolerance\n"
-    "  (percentage points). Prints what moved and by how much; exit 1 when anything is outside\n"
-    "  tolerance or a baseline cell is missing, 2 on bad input.\n"
-    "  --study NAME  only cells of that config name\n"
-    "  --rows N      show at most N moved values (default 200)\n"
-    "  --update      write FILE from DB instead (keeps FILE's tolerances): a deliberate refresh\n"
-    "  --format F    text (default: a plain table; colour on a terminal unless NO_COLOR is set)\n"
-    "                or md (Markdown)\n"
-    "  --json FILE   also write every compared cell and class with its verdict as JSON\n"
-    "  --junit FILE  also write JUnit XML: one testcase per cell and class of figure\n";
-
-static const char usage_bench[] =
-    "usage: shadowlab bench [CONFIG] [--only LIST] [--reps N] [--scene S] [--viewport WxH] [--map N]\n"
-    "                       [--csv FILE] [--gl osmesa|egl]\n"
-    "  Each measurement against its target, as a Markdown table with PASS/MISS:\n"
-    "    truth    the truth pass vs a plain Embree rtcOccluded16 loop over the same rays (>= 0.8x)\n"
-    "    layers   the G-buffer and every shadow-map layer vs a plain raster of the same mesh, size\n"
-    "             and matrix, with GL counters (render time within 2x)\n"
-    "    moderno  configs/moderno-2011.yaml end to end, no files, no cache (< 60 s)\n"
-    "    morais   configs/morais-2015.yaml end to end, no files, no cache (< 300 s)\n"
-    "  and the peak RSS after all of it (< 2 GiB). A missed target exits 0; a failure exits 2.\n"
-    "  --only LIST     comma-separated stages (default all); `--only truth,layers` is the quick mode\n"
-    "  --reps N        timed repetitions after one warm-up (default 7)\n"
-    "  --scene S       scene of the truth and layer stages (default: CONFIG's first scene, else bench)\n"
-    "  --viewport WxH  their viewport (default: CONFIG's first, else 1024x1024)\n"
-    "  --map N         the layers' map size (default 2048)\n"
-    "  --csv FILE      also write the summary rows as CSV\n"
-    "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
-
-static const char usage_list[] =
-    "usage: shadowlab list methods|scenes\n"
-    "  scenes: the scene files a config can name, each with where it was found; a name is looked\n"
-    "  up in the config's folder, then in each folder of SHADOWLAB_SCENES (colon-separated), then\n"
-    "  in the installed share/shadowlab/scenes (or, not installed, the source tree's scenes/)\n";
-
-/* 2: bad input or usage (a config, a scene, a model, an option, a store or
+/* 2: bad input or sl_usage (a config, a scene, a model, an option, a store or
  * file that cannot be read as what it should be); 3: a system failure (an
  * output that cannot be written, GL, Embree, memory, an internal error). */
 static int exit_code(enum sl_err e)
@@ -167,7 +67,7 @@ static int usage_error(const char *msg, const char *text)
 enum {
     OPT_CELLS = 256, OPT_RESUME, OPT_DB, OPT_NO_CACHE, OPT_GL, OPT_FORMAT, OPT_SCENE, OPT_VIEWPOINT,
     OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_FIGURES, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
-    OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX,
+    OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX, OPT_CACHE, OPT_JOBS,
 };
 #define OPT_HELP {"help", no_argument, NULL, 'h'}
 enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };
@@ -419,6 +319,110 @@ static int default_study(const char *scene, char *out, size_t n)
     return fclose(f) == 0;
 }
 
+/* What a merge did, shard by shard, and the cells of the sweep it lacks. */
+static int print_merge(const char *const *shards, const struct sl_shards_result *r, const char *out)
+{
+    for (int i = 0; i < r->nshards; i++) {
+        const struct sl_merge_shard *s = &r->shard[i];
+        if (r->absent[i])
+            fprintf(stderr, "shadowlab: merge: %s: not there (its cells are missing below)\n", shards[i]);
+        else
+            printf("%s: %d cell(s) copied, %d duplicate(s) skipped, %d run(s), %d overlay(s)%s\n", shards[i],
+                   s->cells, s->duplicates, s->runs, s->overlays, s->overlays_missing ? " (some not found)" : "");
+    }
+    const struct sl_config *c = &r->config;
+    for (int i = 0; i < r->nmissing && i < 50; i++) {
+        struct sl_cell_key k;
+        sl_plan_cell(c, r->missing[i], &k);
+        fprintf(stderr, "shadowlab: merge: missing cell %d: %s/%s %dx%d map %d '%s'\n", r->missing[i],
+                c->scenes[k.scene].name, c->scenes[k.scene].viewpoints[k.vp], c->viewport_w[k.viewport],
+                c->viewport_h[k.viewport], c->maps[k.map], c->methods[k.method].label);
+    }
+    if (r->nmissing > 50)
+        fprintf(stderr, "shadowlab: merge: ... and %d more missing\n", r->nmissing - 50);
+    printf("merged into %s: %d of %d cell(s) of the sweep stored, %d missing; %d copied, %d duplicate(s), "
+           "%.2f s (%.1f ms per 1,000 cells)\n", out, r->total - r->nmissing, r->total, r->nmissing, r->copied,
+           r->duplicates, r->seconds, r->copied ? 1e6 * r->seconds / r->copied : 0.0);
+    return r->nmissing ? 1 : 0;
+}
+
+static int run_jobs(const struct sl_config *c, const struct sl_jobs_opts *o)
+{
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct sl_jobs_result r;
+    enum sl_err e = sl_jobs_run(c, o, &r, &d);
+    for (int i = 0; i < r.nworkers; i++)
+        fprintf(stderr, "shadowlab: worker %d: cells %d:%d, exit %d, %.1f s wall, %.1f s CPU%s%s\n", i,
+                r.w[i].first, r.w[i].last, r.w[i].status, r.w[i].wall_s, r.w[i].cpu_s,
+                r.w[i].status ? ", log " : "", r.w[i].status ? r.w[i].log : "");
+    fprintf(stderr, "shadowlab: %d worker(s), %.1f s wall, %.1f s CPU; %d of %d view(s) started twice by the split\n",
+            r.nworkers, r.wall_s, r.cpu_s, r.split_views, r.nviews);
+    int rc = e ? fail(e, &d) : 0;
+    if (!e) {
+        const char *shards[64];
+        char paths[64][1300];
+        for (int i = 0; i < r.nworkers; i++) {
+            snprintf(paths[i], sizeof paths[i], "%s/task-%d/shadowlab.db", r.workdir, i);
+            shards[i] = paths[i];
+        }
+        rc = print_merge(shards, &r.merge, r.store);
+    }
+    sl_jobs_result_free(&r);
+    return rc;
+}
+
+static int cmd_merge(int argc, char **argv)
+{
+    static const struct option lo[] = {OPT_HELP, {"out", required_argument, NULL, 'o'}, {0, 0, 0, 0}};
+    const struct opt_parser p = {"merge", "o:", sl_usage_merge, lo};
+    const char *out = NULL;
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
+        if (c != 'o')
+            return opt_exit(c);
+        out = optarg;
+    }
+    int n = argc - optind;
+    if (!out || n < 1)
+        return usage_error("merge: wants SHARD.db... and -o STORE.db", sl_usage_merge);
+    const char **shards = (const char **)(argv + optind);
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct sl_shards_result r;
+    enum sl_err e = sl_shards_merge(shards, n, out, 0, &r, &d);
+    int rc = e ? fail(e, &d) : print_merge(shards, &r, out);
+    sl_shards_result_free(&r);
+    return rc;
+}
+
+static int cmd_submit(int argc, char **argv)
+{
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct sl_submit_opts o;
+    enum sl_err e = sl_submit_parse(argc, argv, &o, &d);
+    if (e) {
+        char line[1200];
+        sl_diag_format(&d, e, line, sizeof line);
+        return usage_error(line, sl_usage_submit);
+    }
+    struct sl_config c;
+    if ((e = sl_config_load(o.config, &c, &d)))
+        return fail(e, &d);
+    static struct sl_submit_result r;
+    if ((e = sl_submit(&c, &o, &r, &d)))
+        return fail(e, &d);
+    printf("%d task(s) over %d cell(s):", r.ntasks, r.total);
+    for (int i = 0; i < r.ntasks; i++)
+        printf(" %d:%d", r.bounds[i], r.bounds[i + 1]);
+    printf("\n%d of %d view(s) start in two tasks (their G-buffer and truth are computed twice)\n",
+           r.split_views, r.nviews);
+    printf("array script: %s\nmerge script: %s\nmerged store: %s\n", r.array_script, r.merge_script, r.merged);
+    if (!o.dry_run)
+        printf("array job %s, merge job %s (afterok:%s)\n", r.array_job, r.merge_job, r.array_job);
+    return 0;
+}
+
 static int cmd_run(int argc, char **argv)
 {
     static const struct option lo[] = {
@@ -428,13 +432,14 @@ static int cmd_run(int argc, char **argv)
         {"no-cache", no_argument, NULL, OPT_NO_CACHE}, {"gl", required_argument, NULL, OPT_GL},
         {"threads", required_argument, NULL, 'j'},  {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},        {"define", required_argument, NULL, 'D'},
+        {"cache", required_argument, NULL, OPT_CACHE}, {"jobs", required_argument, NULL, OPT_JOBS},
         {0, 0, 0, 0},
     };
-    const struct opt_parser p = {"run", "o:j:qvD:", usage_run, lo};
+    const struct opt_parser p = {"run", "o:j:qvD:", sl_usage_run, lo};
     struct sl_run_opts o = {.write_files = 1, .on_event = print_event, .stop = &stop_signal};
     struct event_state es = {.tty = isatty(2)};
     o.user = &es;
-    int no_cache = 0, verbose = 0, threads = 0;
+    int no_cache = 0, verbose = 0, threads = 0, jobs = 1;
     enum sl_gl_backend gl = SL_GL_DEFAULT;
     struct overrides ov = {.n = 0};
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
@@ -442,36 +447,41 @@ static int cmd_run(int argc, char **argv)
         case 'o': o.out_root = optarg; break;
         case OPT_GL:
             if (!(gl = sl_gl_backend_parse(optarg)))
-                return usage_error("run: --gl wants osmesa or egl", usage_run);
+                return usage_error("run: --gl wants osmesa or egl", sl_usage_run);
             break;
         case OPT_DB: o.store = optarg; break;
         case OPT_CELLS:
             if (!parse_cells(optarg, &o.first, &o.last))
-                return usage_error("run: --cells wants A:B with 0 <= A < B (or A:)", usage_run);
+                return usage_error("run: --cells wants A:B with 0 <= A < B (or A:)", sl_usage_run);
             break;
         case OPT_RESUME: o.resume = 1; break;
         case OPT_NO_CACHE: no_cache = 1; break;
+        case OPT_CACHE: o.cache_dir = optarg; break;
+        case OPT_JOBS:
+            if ((jobs = atoi(optarg)) < 1 || jobs > 64)
+                return usage_error("run: --jobs wants 1..64", sl_usage_run);
+            break;
         case 'j': {
             char *end;
             long v = strtol(optarg, &end, 10);
             if (*end || end == optarg || v < 1 || v > 256)
-                return usage_error("run: -j/--threads wants a number of threads, 1..256", usage_run);
+                return usage_error("run: -j/--threads wants a number of threads, 1..256", sl_usage_run);
             threads = (int)v;
             break;
         }
         case 'q': es.quiet = 1; break;
         case 'v': verbose = 1; break;
         case 'D':
-            if (!add_override(&ov, "run", optarg, usage_run))
+            if (!add_override(&ov, "run", optarg, sl_usage_run))
                 return 2;
             break;
         default: return opt_exit(c);
         }
     }
     if (optind >= argc)
-        return usage_error("run: missing CONFIG", usage_run);
+        return usage_error("run: missing CONFIG", sl_usage_run);
     if (optind + 1 < argc)
-        return usage_error("run: one config at a time", usage_run);
+        return usage_error("run: one config at a time", sl_usage_run);
     const char *cfg = argv[optind];
     if (no_cache)
         o.cache_dir = "";
@@ -511,6 +521,17 @@ static int cmd_run(int argc, char **argv)
         c.gl = gl;
     if (threads)
         c.threads = threads;
+    if (jobs > 1) {
+        /* the workers read the config file again: what only this command line says cannot reach them */
+        if (o.first || o.last)
+            return usage_error("run: --jobs splits the whole sweep; --cells is for one task", sl_usage_run);
+        if (ov.n || study[0] || threads)
+            return usage_error("run: --jobs runs the config file as it is: no -D, -j or scene file with it",
+                               sl_usage_run);
+        struct sl_jobs_opts jo = {.jobs = jobs, .out_root = o.out_root, .store = o.store, .cache = o.cache_dir,
+                                  .gl = gl ? sl_gl_backend_name(gl) : NULL, .resume = o.resume};
+        return run_jobs(&c, &jo);
+    }
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_stop;
@@ -554,22 +575,22 @@ static int cmd_run(int argc, char **argv)
 static int cmd_validate(int argc, char **argv)
 {
     static const struct option lo[] = {OPT_HELP, {"define", required_argument, NULL, 'D'}, {0, 0, 0, 0}};
-    const struct opt_parser p = {"validate", "D:", usage_validate, lo};
+    const struct opt_parser p = {"validate", "D:", sl_usage_validate, lo};
     struct overrides ov = {.n = 0};
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
         if (c != 'D')
             return opt_exit(c);
-        if (!add_override(&ov, "validate", optarg, usage_validate))
+        if (!add_override(&ov, "validate", optarg, sl_usage_validate))
             return 2;
     }
     if (optind + 1 != argc)
-        return usage_error("validate: one FILE", usage_validate);
+        return usage_error("validate: one FILE", sl_usage_validate);
     const char *file = argv[optind];
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     if (looks_like_scene(file)) {
         if (ov.n)
-            return usage_error("validate: -D applies to a config, not to a scene file", usage_validate);
+            return usage_error("validate: -D applies to a config, not to a scene file", sl_usage_validate);
         struct sl_scene s;
         enum sl_err e = sl_scene_load(file, &s, &d);
         if (e)
@@ -618,7 +639,7 @@ static int cmd_table(int argc, char **argv)
         {"lower-is-better", no_argument, NULL, OPT_LOWER},   {"average-case", required_argument, NULL, OPT_AVG},
         {0, 0, 0, 0},
     };
-    const struct opt_parser p = {"table", "", usage_table, lo};
+    const struct opt_parser p = {"table", "", sl_usage_table, lo};
     struct sl_store_filter f = {0};
     int fmt = SL_TABLE_MD;
     struct sl_summary_opts so = {.figure = -1, .region = -1};
@@ -630,7 +651,7 @@ static int cmd_table(int argc, char **argv)
         case OPT_FORMAT:
             fmt = sl_table_format_parse(v);
             if (fmt < 0)
-                return usage_error("table: --format md, csv or latex", usage_table);
+                return usage_error("table: --format md, csv or latex", sl_usage_table);
             break;
         case OPT_SCENE: f.scene = v; break;
         case OPT_VIEWPOINT: f.viewpoint = v; break;
@@ -642,12 +663,12 @@ static int cmd_table(int argc, char **argv)
         case OPT_REGION:
             so.region = !strcmp(v, "image") ? 0 : !strcmp(v, "contours") ? -1 : atoi(v);
             if (so.region < -1 || (so.region > 0 && so.region % 2))
-                return usage_error("table: --region N (even), image or contours", usage_table);
+                return usage_error("table: --region N (even), image or contours", sl_usage_table);
             break;
         case OPT_LOWER: so.lower_is_better = 1; break;
         case OPT_AVG:
             if (sscanf(v, "%63[^/]/%31[^/]/%d/%d", avg_scene, avg_vp, &so.avg_region, &so.avg_map) < 3)
-                return usage_error("table: --average-case SCENE/VIEWPOINT/N[/MAP]", usage_table);
+                return usage_error("table: --average-case SCENE/VIEWPOINT/N[/MAP]", sl_usage_table);
             so.avg_scene = avg_scene;
             so.avg_viewpoint = avg_vp;
             break;
@@ -655,9 +676,9 @@ static int cmd_table(int argc, char **argv)
         }
     }
     if (optind >= argc)
-        return usage_error("table: missing DB", usage_table);
+        return usage_error("table: missing DB", sl_usage_table);
     if (optind + 1 < argc)
-        return usage_error("table: one DB", usage_table);
+        return usage_error("table: one DB", sl_usage_table);
     const char *db = argv[optind];
     struct sl_diag d;
     memset(&d, 0, sizeof d);
@@ -702,7 +723,7 @@ static int cmd_report(int argc, char **argv)
     static const struct option lo[] = {OPT_HELP, {"out", required_argument, NULL, 'o'},
                                        {"self-contained", no_argument, NULL, OPT_SELF_CONTAINED},
                                        {"latex", no_argument, NULL, OPT_LATEX}, {0, 0, 0, 0}};
-    const struct opt_parser p = {"report", "o:", usage_report, lo};
+    const struct opt_parser p = {"report", "o:", sl_usage_report, lo};
     struct sl_report_opts o = {0};
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
         if (c == 'o')
@@ -715,9 +736,9 @@ static int cmd_report(int argc, char **argv)
             return opt_exit(c);
     }
     if (optind >= argc)
-        return usage_error("report: missing RESULTS_DB", usage_report);
+        return usage_error("report: missing RESULTS_DB", sl_usage_report);
     if (optind + 1 < argc)
-        return usage_error("report: one RESULTS_DB", usage_report);
+        return usage_error("report: one RESULTS_DB", sl_usage_report);
     o.db = argv[optind];
     struct sl_diag d;
     memset(&d, 0, sizeof d);
@@ -739,7 +760,7 @@ static int cmd_check(int argc, char **argv)
         {"format", required_argument, NULL, OPT_FORMAT},     {"json", required_argument, NULL, OPT_JSON},
         {"junit", required_argument, NULL, OPT_JUNIT},       {0, 0, 0, 0},
     };
-    const struct opt_parser p = {"check", "", usage_check, lo};
+    const struct opt_parser p = {"check", "", sl_usage_check, lo};
     const char *baseline = NULL, *json = NULL, *junit = NULL;
     struct sl_check_opts o = {0};
     int update = 0;
@@ -751,14 +772,14 @@ static int cmd_check(int argc, char **argv)
             char *end;
             long v = strtol(optarg, &end, 10);
             if (*end || v < 1 || v > 1000000)
-                return usage_error("check: --rows wants a positive number", usage_check);
+                return usage_error("check: --rows wants a positive number", sl_usage_check);
             o.max_rows = (int)v;
             break;
         }
         case OPT_UPDATE: update = 1; break;
         case OPT_FORMAT:
             if (strcmp(optarg, "text") && strcmp(optarg, "md"))
-                return usage_error("check: --format text or md", usage_check);
+                return usage_error("check: --format text or md", sl_usage_check);
             o.format = strcmp(optarg, "md") ? SL_CHECK_TEXT : SL_CHECK_MD;
             break;
         case OPT_JSON: json = optarg; break;
@@ -767,10 +788,10 @@ static int cmd_check(int argc, char **argv)
         }
     }
     if (optind + 1 < argc)
-        return usage_error("check: one results store at a time", usage_check);
+        return usage_error("check: one results store at a time", sl_usage_check);
     const char *db = optind < argc ? argv[optind] : NULL;
     if (!db || !baseline)
-        return usage_error("check: wants DB and --baseline FILE", usage_check);
+        return usage_error("check: wants DB and --baseline FILE", sl_usage_check);
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     if (update) {
@@ -810,7 +831,7 @@ static int cmd_bench(int argc, char **argv)
         {"map", required_argument, NULL, OPT_MAP},           {"csv", required_argument, NULL, OPT_CSV},
         {"gl", required_argument, NULL, OPT_GL},             {0, 0, 0, 0},
     };
-    const struct opt_parser p = {"bench", "", usage_bench, lo};
+    const struct opt_parser p = {"bench", "", sl_usage_bench, lo};
     struct sl_bench_opts o = {.config = NULL, .reps = 0, .out = stdout};
     struct sl_diag d;
     memset(&d, 0, sizeof d);
@@ -819,35 +840,35 @@ static int cmd_bench(int argc, char **argv)
         case OPT_REPS:
             o.reps = atoi(optarg);
             if (o.reps < 1 || o.reps > 1000)
-                return usage_error("bench: --reps must be 1..1000", usage_bench);
+                return usage_error("bench: --reps must be 1..1000", sl_usage_bench);
             break;
         case OPT_ONLY:
             if (sl_bench_parse_stages(optarg, &o.stages, &d))
-                return usage_error(d.msg, usage_bench);
+                return usage_error(d.msg, sl_usage_bench);
             break;
         case OPT_SCENE: o.scene = optarg; break;
         case OPT_VIEWPORT: {
             char tail;
             if (sscanf(optarg, "%dx%d%c", &o.width, &o.height, &tail) != 2 || o.width < 1 || o.height < 1 ||
                 o.width > 16384 || o.height > 16384)
-                return usage_error("bench: --viewport wants WxH, 1..16384 each", usage_bench);
+                return usage_error("bench: --viewport wants WxH, 1..16384 each", sl_usage_bench);
             break;
         }
         case OPT_MAP:
             o.map = atoi(optarg);
             if (o.map < 16 || o.map > 16384)
-                return usage_error("bench: --map must be 16..16384", usage_bench);
+                return usage_error("bench: --map must be 16..16384", sl_usage_bench);
             break;
         case OPT_CSV: o.csv = optarg; break;
         case OPT_GL:
             if (!(o.gl = sl_gl_backend_parse(optarg)))
-                return usage_error("bench: --gl wants osmesa or egl", usage_bench);
+                return usage_error("bench: --gl wants osmesa or egl", sl_usage_bench);
             break;
         default: return opt_exit(c);
         }
     }
     if (optind + 1 < argc)
-        return usage_error("bench: one CONFIG at most", usage_bench);
+        return usage_error("bench: one CONFIG at most", sl_usage_bench);
     o.config = optind < argc ? argv[optind] : NULL;
     enum sl_err e = sl_bench(&o, NULL, &d);
     return e ? fail(e, &d) : 0;
@@ -856,7 +877,7 @@ static int cmd_bench(int argc, char **argv)
 static int cmd_list(int argc, char **argv)
 {
     static const struct option lo[] = {OPT_HELP, {0, 0, 0, 0}};
-    const struct opt_parser p = {"list", "", usage_list, lo};
+    const struct opt_parser p = {"list", "", sl_usage_list, lo};
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;)
         return opt_exit(c);
     argc -= optind - 1;
@@ -883,25 +904,27 @@ static int cmd_list(int argc, char **argv)
         }
         return 0;
     }
-    return usage_error("list: methods or scenes", usage_list);
+    return usage_error("list: methods or scenes", sl_usage_list);
 }
 
 int main(int argc, char **argv)
 {
     if (argc < 2)
-        return usage_error("missing command", usage);
+        return usage_error("missing command", sl_usage);
     static const struct {
         const char *name;
         int (*fn)(int, char **);
         const char *help;
     } verbs[] = {
-        {"run", cmd_run, usage_run},
-        {"validate", cmd_validate, usage_validate},
-        {"table", cmd_table, usage_table},
-        {"report", cmd_report, usage_report},
-        {"check", cmd_check, usage_check},
-        {"bench", cmd_bench, usage_bench},
-        {"list", cmd_list, usage_list},
+        {"run", cmd_run, sl_usage_run},
+        {"validate", cmd_validate, sl_usage_validate},
+        {"table", cmd_table, sl_usage_table},
+        {"report", cmd_report, sl_usage_report},
+        {"check", cmd_check, sl_usage_check},
+        {"bench", cmd_bench, sl_usage_bench},
+        {"submit", cmd_submit, sl_usage_submit},
+        {"merge", cmd_merge, sl_usage_merge},
+        {"list", cmd_list, sl_usage_list},
     };
     const char *cmd = argv[1];
     if (!strcmp(cmd, "version") || !strcmp(cmd, "-V") || !strcmp(cmd, "--version")) {
@@ -910,7 +933,7 @@ int main(int argc, char **argv)
     }
     int help = !strcmp(cmd, "-h") || !strcmp(cmd, "--help") || !strcmp(cmd, "help");
     if (help && argc == 2) {
-        fputs(usage, stdout);
+        fputs(sl_usage, stdout);
         return 0;
     }
     if (help)
@@ -924,6 +947,6 @@ int main(int argc, char **argv)
             /* the verb sees itself as argv[0], as getopt_long expects */
             return verbs[i].fn(argc - 1, argv + 1);
         }
-    fprintf(stderr, "shadowlab: unknown command '%s'\n%s", cmd, usage);
+    fprintf(stderr, "shadowlab: unknown command '%s'\n%s", cmd, sl_usage);
     return 2;
 }

@@ -80,3 +80,68 @@ unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, stru
     }
     return needs;
 }
+
+/* 2 where a view (scene, viewport, viewpoint) starts at cell i, 1 where only
+ * its map size changes, 0 inside a (view, map size) group. */
+static int boundary_level(const struct sl_config *c, int i)
+{
+    if (i == 0)
+        return 2;
+    struct sl_cell_key a, b;
+    sl_plan_cell(c, i - 1, &a);
+    sl_plan_cell(c, i, &b);
+    if (a.scene != b.scene || a.viewport != b.viewport || a.vp != b.vp)
+        return 2;
+    return a.map != b.map;
+}
+
+/* Each cut goes to the view boundary nearest its even share of the cells
+ * when one lies within a quarter of a slice of it, else to the nearest
+ * (view, map size) boundary so near (the layers stay shared, the view is
+ * computed twice), else exactly at the share. A quarter: every slice holds
+ * between half and one and a half of its even share, and a sweep whose views
+ * hold at most half a slice's cells loses no view. Cells differ in cost (a soft cell costs more than a
+ * hard one), so the balance is by count, not time: a cost per method would be
+ * a guess the bench does not back. */
+int sl_plan_slices(const struct sl_config *c, int n, int *b)
+{
+    int total = sl_plan_count(c);
+    if (n > total)
+        n = total;
+    if (n < 1)
+        n = 1;
+    int k = 0;
+    b[k++] = 0;
+    double share = (double)total / n;
+    for (int i = 1; i < n; i++) {
+        int t = (int)(i * share + 0.5), cut = -1;
+        for (int level = 2; level >= 1 && cut < 0; level--)
+            for (int dist = 0; dist <= (int)(share / 4) && cut < 0; dist++) {
+                if (t - dist > b[k - 1] && t - dist < total && boundary_level(c, t - dist) >= level)
+                    cut = t - dist;
+                else if (t + dist > b[k - 1] && t + dist < total && boundary_level(c, t + dist) >= level)
+                    cut = t + dist;
+            }
+        if (cut < 0)
+            cut = t;
+        if (cut > b[k - 1] && cut < total)
+            b[k++] = cut;
+    }
+    b[k] = total;
+    return k;
+}
+
+int sl_plan_split_views(const struct sl_config *c, const int *b, int n, int *nviews)
+{
+    int views = 0, extra = 0;
+    for (int s = 0; s < n; s++)
+        for (int i = b[s]; i < b[s + 1]; i++) {
+            int lvl = boundary_level(c, i);
+            views += lvl == 2;
+            /* a slice that starts inside a view computes that view again */
+            extra += i == b[s] && lvl < 2;
+        }
+    if (nviews)
+        *nviews = views;
+    return extra;
+}

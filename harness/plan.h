@@ -34,4 +34,15 @@ int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struc
  * will skip. */
 unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume);
 
+/* Split the sweep into at most n slices [b[i], b[i+1]) (b holds n + 1
+ * ints) for tasks or worker processes: balanced by cell count, each cut moved
+ * to a view boundary (scene, viewport, viewpoint) when one lies within a
+ * quarter of a slice, so a view's G-buffer and truth are computed in one task. Returns
+ * the number of slices (no empty one). */
+int sl_plan_slices(const struct sl_config *c, int n, int *b);
+/* How much sharing a split loses: the views that start a second time
+ * (a slice beginning inside a view renders its G-buffer and traces or reads
+ * its truth again); *nviews: the sweep's views. */
+int sl_plan_split_views(const struct sl_config *c, const int *b, int n, int *nviews);
+
 #endif

@@ -30,6 +30,7 @@ PACKAGES=(
   gnuplot-nox           # the report's plots (shadowlab report)
   chromium              # the report's rendering test (cli::report)
   texlive-latex-recommended lmodern  # pdflatex, booktabs, fonts: report --latex compiles (cli::report)
+  slurm-wlm munge       # the Slurm job-array test (slurm::array) and `shadowlab submit`
 )
 
 missing=()

@@ -1,0 +1,431 @@
+/*
+ * merge.c — see merge.h.
+ *
+ * Column lists come from PRAGMA table_info of the merged store rather than
+ * from SL_CELL_COLUMNS, so a column added to cellcols.h is carried without a
+ * change here (both sides are the same schema version: sl_store_open_existing
+ * refuses another one before anything is attached).
+ */
+#define _GNU_SOURCE
+#include "merge.h"
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include "util.h"
+
+struct sl_merge {
+    struct sl_store *store;   /* holds the lock and made the schema */
+    sqlite3 *db;              /* our connection, for ATTACH */
+    char path[1100], dir[1100];
+    char hash[24], first[1100];
+    int append;
+    char *config_text;
+    char config_path[512];
+    char *run_cols, *cell_cols, *fig_cols;   /* comma lists without the ids we remap */
+};
+
+static enum sl_err db_fail(struct sl_merge *m, struct sl_diag *d, const char *what)
+{
+    return sl_fail(d, SL_E_IO, m->path, 0, NULL, "%s: %s", what, sqlite3_errmsg(m->db));
+}
+
+/* "a, b, c": the table's columns but `skip1` and `skip2`. */
+static char *columns(sqlite3 *db, const char *table, const char *skip1, const char *skip2)
+{
+    char *q = sqlite3_mprintf("PRAGMA main.table_info(%s)", table);
+    sqlite3_stmt *st = NULL;
+    char *out = NULL;
+    if (q && sqlite3_prepare_v2(db, q, -1, &st, NULL) == SQLITE_OK) {
+        out = sqlite3_mprintf("%s", "");
+        while (out && sqlite3_step(st) == SQLITE_ROW) {
+            const char *n = (const char *)sqlite3_column_text(st, 1);
+            if (!n || !strcmp(n, skip1) || (skip2 && !strcmp(n, skip2)))
+                continue;
+            char *next = sqlite3_mprintf("%s%s%s", out, out[0] ? ", " : "", n);
+            sqlite3_free(out);
+            out = next;
+        }
+    }
+    sqlite3_finalize(st);
+    sqlite3_free(q);
+    return out;
+}
+
+enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **out, struct sl_diag *d)
+{
+    struct sl_merge *m = sl_calloc(1, sizeof *m);
+    if (!m)
+        return sl_fail(d, SL_E_NOMEM, out_path, 0, NULL, "merge");
+    m->append = append;
+    snprintf(m->path, sizeof m->path, "%s", out_path);
+    snprintf(m->dir, sizeof m->dir, "%s", out_path);
+    char *slash = strrchr(m->dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(m->dir, sizeof m->dir, ".");
+    enum sl_err e = sl_store_open(out_path, &m->store, d);
+    if (!e && sqlite3_open_v2(out_path, &m->db, SQLITE_OPEN_READWRITE, NULL) != SQLITE_OK)
+        e = db_fail(m, d, "cannot open");
+    if (!e) {
+        sqlite3_busy_timeout(m->db, 10000);
+        m->run_cols = columns(m->db, "runs", "run_id", NULL);
+        m->cell_cols = columns(m->db, "cells", "cell_id", "run_id");
+        m->fig_cols = columns(m->db, "figures", "cell_id", NULL);
+        if (!m->run_cols || !m->cell_cols || !m->fig_cols)
+            e = db_fail(m, d, "cannot read the schema");
+    }
+    if (e) {
+        sl_merge_close(m);
+        return e;
+    }
+    *out = m;
+    return SL_OK;
+}
+
+void sl_merge_close(struct sl_merge *m)
+{
+    if (!m)
+        return;
+    sqlite3_close(m->db);
+    sl_store_close(m->store);
+    sqlite3_free(m->run_cols);
+    sqlite3_free(m->cell_cols);
+    sqlite3_free(m->fig_cols);
+    free(m->config_text);
+    free(m);
+}
+
+const char *sl_merge_config_hash(const struct sl_merge *m)
+{
+    return m && m->hash[0] ? m->hash : NULL;
+}
+
+const char *sl_merge_config_text(const struct sl_merge *m)
+{
+    return m ? m->config_text : NULL;
+}
+
+const char *sl_merge_config_path(const struct sl_merge *m)
+{
+    return m && m->config_path[0] ? m->config_path : NULL;
+}
+
+/* Put src at dst (a hard link where both lie on one filesystem, else a
+ * copy), whole or not at all: through dst.tmp and a rename, so a reader sees
+ * the old file or the new one. replace: over a file already at dst (a copied
+ * cell's own overlay supersedes one of an older computation of that key),
+ * else keep it. 1 put, 0 dst was kept, -1 src missing or dst unwritable. */
+static int gather(const char *src, const char *dst, int replace)
+{
+    if (!replace && access(dst, F_OK) == 0)
+        return 0;
+    char tmp[1300];
+    snprintf(tmp, sizeof tmp, "%s.tmp", dst);
+    unlink(tmp);
+    int ok = link(src, tmp) == 0;
+    if (!ok) {
+        int in = open(src, O_RDONLY), outfd = in >= 0 ? open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644) : -1;
+        ok = in >= 0 && outfd >= 0;
+        char buf[65536];
+        ssize_t r;
+        while (ok && (r = read(in, buf, sizeof buf)) > 0)
+            ok = write(outfd, buf, (size_t)r) == r;
+        if (in >= 0)
+            close(in);
+        if (outfd >= 0 && close(outfd) != 0)
+            ok = 0;
+    }
+    if (!ok || rename(tmp, dst) != 0) {
+        unlink(tmp);
+        return -1;
+    }
+    return 1;
+}
+
+static const char *base_name(const char *p)
+{
+    const char *s = strrchr(p, '/');
+    return s ? s + 1 : p;
+}
+
+/* One overlay: the shard's (relative to its folder, or absolute) into
+ * <dir>/<study>/overlays/, and the merged cell pointed at it. */
+static enum sl_err gather_overlay(struct sl_merge *m, const char *shard_dir, const char *study, const char *ov,
+                                  sqlite3_int64 cell, struct sl_merge_shard *info, struct sl_diag *d)
+{
+    char src[2400], dst[2400], rel[1400];
+    if (ov[0] == '/')
+        snprintf(src, sizeof src, "%s", ov);
+    else
+        snprintf(src, sizeof src, "%s/%s", shard_dir, ov);
+    snprintf(rel, sizeof rel, "%s/overlays/%s", study, base_name(ov));
+    snprintf(dst, sizeof dst, "%s/%s", m->dir, rel);
+    int g = gather(src, dst, 1);
+    if (g < 0) {
+        info->overlays_missing++;   /* the cell keeps the path it had */
+        return SL_OK;
+    }
+    info->overlays += g;
+    char *q = sqlite3_mprintf("UPDATE main.cells SET overlay = %Q WHERE cell_id = %lld", rel, cell);
+    int rc = q ? sqlite3_exec(m->db, q, NULL, NULL, NULL) : SQLITE_NOMEM;
+    sqlite3_free(q);
+    return rc == SQLITE_OK ? SL_OK : db_fail(m, d, "cannot point a merged cell at its overlay");
+}
+
+static void gather_exr(struct sl_merge *m, const char *shard_dir, const char *study, struct sl_merge_shard *info)
+{
+    char from[2400], to[2400];
+    snprintf(from, sizeof from, "%s/%s/exr", shard_dir, study);
+    DIR *dir = opendir(from);
+    if (!dir)
+        return;
+    snprintf(to, sizeof to, "%s/%s/exr", m->dir, study);
+    if (sl_mkdirs(to, NULL) == SL_OK) {
+        struct dirent *e;
+        while ((e = readdir(dir))) {
+            if (e->d_name[0] == '.' || strstr(e->d_name, ".tmp."))
+                continue;
+            char a[2800], b[2800];
+            snprintf(a, sizeof a, "%s/%s", from, e->d_name);
+            snprintf(b, sizeof b, "%s/%s", to, e->d_name);
+            if (gather(a, b, m->append) > 0)
+                info->exr++;
+        }
+    }
+    closedir(dir);
+}
+
+static int exec(sqlite3 *db, const char *sql)
+{
+    return sqlite3_exec(db, sql, NULL, NULL, NULL);
+}
+
+/* The one config hash (and study) of the shard, read through db under
+ * schema name `schema` ("" when it holds no run). */
+static enum sl_err shard_hash(sqlite3 *db, const char *schema, const char *shard, struct sl_merge_shard *info,
+                              struct sl_diag *d)
+{
+    sqlite3_stmt *st = NULL;
+    char *q = sqlite3_mprintf("SELECT config_hash, study FROM %s.runs UNION SELECT c.config_hash, r.study "
+                              "FROM %s.cells c JOIN %s.runs r USING (run_id)", schema, schema, schema);
+    int rc = q ? sqlite3_prepare_v2(db, q, -1, &st, NULL) : SQLITE_NOMEM;
+    sqlite3_free(q);
+    if (rc != SQLITE_OK)
+        return sl_fail(d, SL_E_IO, shard, 0, NULL, "cannot read its runs: %s", sqlite3_errmsg(db));
+    int n = 0;
+    enum sl_err e = SL_OK;
+    while (!e && sqlite3_step(st) == SQLITE_ROW) {
+        const char *h = (const char *)sqlite3_column_text(st, 0), *s = (const char *)sqlite3_column_text(st, 1);
+        if (n++ == 0) {
+            snprintf(info->config_hash, sizeof info->config_hash, "%s", h ? h : "");
+            snprintf(info->study, sizeof info->study, "%s", s ? s : "");
+        } else if (strcmp(h ? h : "", info->config_hash) != 0)
+            e = sl_fail(d, SL_E_USAGE, shard, 0, NULL,
+                        "holds runs of two configs (hash %s and %s): merge shards of one sweep", info->config_hash,
+                        h ? h : "");
+    }
+    sqlite3_finalize(st);
+    return e;
+}
+
+enum sl_err sl_merge_probe(const char *shard, struct sl_merge_shard *info, struct sl_diag *d)
+{
+    memset(info, 0, sizeof *info);
+    struct sl_store *probe = NULL;
+    enum sl_err e = sl_store_open_existing(shard, &probe, d);   /* a results store of this version */
+    sl_store_close(probe);
+    if (e)
+        return e;
+    sqlite3 *db = NULL;
+    if (sqlite3_open_v2(shard, &db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK)
+        e = sl_fail(d, SL_E_IO, shard, 0, NULL, "cannot open: %s", db ? sqlite3_errmsg(db) : "out of memory");
+    else
+        e = shard_hash(db, "main", shard, info, d);
+    sqlite3_close(db);
+    return e;
+}
+
+/* The merged run of shard run `id`: copied the first time one of its cells
+ * is, so a run whose cells all were there already (a second merge of the
+ * same shard) adds no row. Two runs alike in every column (two workers
+ * started in the same second) stay two runs. */
+static enum sl_err merged_run(struct sl_merge *m, sqlite3_stmt *cp, sqlite3_int64 id, sqlite3_int64 **map,
+                              int *nmap, sqlite3_int64 *out, struct sl_merge_shard *info, struct sl_diag *d)
+{
+    if (id < 0 || id > 100000000)
+        return sl_fail(d, SL_E_IO, m->path, 0, NULL, "shard run id %lld out of range", (long long)id);
+    if (id >= *nmap) {
+        int n = (int)id + 64;
+        sqlite3_int64 *p = realloc(*map, (size_t)n * sizeof *p);
+        if (!p)
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "merge run map");
+        memset(p + *nmap, 0, (size_t)(n - *nmap) * sizeof *p);
+        *map = p;
+        *nmap = n;
+    }
+    if (!(*map)[id]) {
+        sqlite3_bind_int64(cp, 1, id);
+        int rc = sqlite3_step(cp);
+        sqlite3_reset(cp);
+        if (rc != SQLITE_DONE || sqlite3_changes(m->db) != 1)
+            return sl_fail(d, SL_E_IO, m->path, 0, NULL, "shard cell names run %lld, which it does not hold",
+                           (long long)id);
+        (*map)[id] = sqlite3_last_insert_rowid(m->db);
+        info->runs++;
+    }
+    *out = (*map)[id];
+    return SL_OK;
+}
+
+static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct sl_merge_shard *info,
+                              struct sl_diag *d)
+{
+    sqlite3_int64 premax = 0, *map = NULL;
+    int nmap = 0;
+    sqlite3_stmt *st = NULL, *dup = NULL, *cc = NULL, *cf = NULL, *cr = NULL;
+    char *ins_r = sqlite3_mprintf("INSERT INTO main.runs (%s) SELECT %s FROM shard.runs WHERE run_id = ?",
+                                  m->run_cols, m->run_cols);
+    char *ins_c = sqlite3_mprintf("INSERT INTO main.cells (run_id, %s) SELECT ?1, %s FROM shard.cells WHERE cell_id = ?2",
+                                  m->cell_cols, m->cell_cols);
+    char *ins_f = sqlite3_mprintf("INSERT INTO main.figures (cell_id, %s) SELECT ?1, %s FROM shard.figures "
+                                  "WHERE cell_id = ?2", m->fig_cols, m->fig_cols);
+    enum sl_err e = SL_OK;
+    if (sqlite3_prepare_v2(m->db, "SELECT IFNULL(MAX(cell_id), 0) FROM main.cells", -1, &st, NULL) == SQLITE_OK &&
+        sqlite3_step(st) == SQLITE_ROW)
+        premax = sqlite3_column_int64(st, 0);
+    sqlite3_finalize(st);
+    st = NULL;
+    if (!ins_c || !ins_f || !ins_r || sqlite3_prepare_v2(m->db, ins_c, -1, &cc, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(m->db, ins_r, -1, &cr, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(m->db, ins_f, -1, &cf, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(m->db,
+                           "SELECT cell_id, run_id, config_hash, scene, viewpoint, vw, vh, map_size, label, overlay "
+                           "FROM shard.cells ORDER BY cell_id", -1, &st, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(m->db,
+                           "SELECT EXISTS (SELECT 1 FROM main.cells WHERE cell_id <= ?1 AND config_hash = ?2 AND "
+                           "scene = ?3 AND viewpoint = ?4 AND vw = ?5 AND vh = ?6 AND map_size = ?7 AND label = ?8)",
+                           -1, &dup, NULL) != SQLITE_OK)
+        e = db_fail(m, d, "cannot read the shard's cells");
+    while (!e && sqlite3_step(st) == SQLITE_ROW) {
+        sqlite3_int64 cell = sqlite3_column_int64(st, 0), run = sqlite3_column_int64(st, 1);
+        /* a cell already in the store before this shard: another shard (or
+         * an earlier merge of this one) brought it */
+        sqlite3_bind_int64(dup, 1, premax);
+        for (int k = 2; k <= 8; k++)
+            sqlite3_bind_value(dup, k, sqlite3_column_value(st, k));
+        int is_dup = !m->append && sqlite3_step(dup) == SQLITE_ROW && sqlite3_column_int(dup, 0);
+        sqlite3_reset(dup);
+        if (is_dup) {
+            info->duplicates++;
+            continue;
+        }
+        sqlite3_int64 to_run = 0;
+        if ((e = merged_run(m, cr, run, &map, &nmap, &to_run, info, d)))
+            break;
+        sqlite3_bind_int64(cc, 1, to_run);
+        sqlite3_bind_int64(cc, 2, cell);
+        if (sqlite3_step(cc) != SQLITE_DONE) {
+            e = db_fail(m, d, "cannot copy a cell");
+            break;
+        }
+        sqlite3_reset(cc);
+        sqlite3_int64 to = sqlite3_last_insert_rowid(m->db);
+        sqlite3_bind_int64(cf, 1, to);
+        sqlite3_bind_int64(cf, 2, cell);
+        if (sqlite3_step(cf) != SQLITE_DONE) {
+            e = db_fail(m, d, "cannot copy a cell's figures");
+            break;
+        }
+        sqlite3_reset(cf);
+        info->cells++;
+        const char *ov = (const char *)sqlite3_column_text(st, 9);
+        if (ov && ov[0])
+            e = gather_overlay(m, shard_dir, info->study, ov, to, info, d);
+    }
+    sqlite3_finalize(st);
+    sqlite3_finalize(dup);
+    sqlite3_finalize(cc);
+    sqlite3_finalize(cf);
+    sqlite3_finalize(cr);
+    sqlite3_free(ins_r);
+    free(map);
+    sqlite3_free(ins_c);
+    sqlite3_free(ins_f);
+    return e;
+}
+
+static char *first_config_text(sqlite3 *db, char *path, size_t n)
+{
+    sqlite3_stmt *st = NULL;
+    char *t = NULL;
+    if (sqlite3_prepare_v2(db, "SELECT config_text, config_path FROM shard.runs ORDER BY run_id LIMIT 1", -1, &st,
+                           NULL) == SQLITE_OK &&
+        sqlite3_step(st) == SQLITE_ROW) {
+        const char *s = (const char *)sqlite3_column_text(st, 0), *p = (const char *)sqlite3_column_text(st, 1);
+        t = s ? strdup(s) : NULL;
+        snprintf(path, n, "%s", p ? p : "");
+    }
+    sqlite3_finalize(st);
+    return t;
+}
+
+enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_shard *info, struct sl_diag *d)
+{
+    memset(info, 0, sizeof *info);
+    struct sl_store *probe = NULL;
+    enum sl_err e = sl_store_open_existing(shard, &probe, d);   /* a results store of this version */
+    sl_store_close(probe);
+    if (e)
+        return e;
+    char shard_dir[1100];
+    snprintf(shard_dir, sizeof shard_dir, "%s", shard);
+    char *slash = strrchr(shard_dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(shard_dir, sizeof shard_dir, ".");
+
+    char *att = sqlite3_mprintf("ATTACH DATABASE %Q AS shard", shard);
+    if (!att || exec(m->db, att) != SQLITE_OK) {
+        sqlite3_free(att);
+        return db_fail(m, d, "cannot attach the shard");
+    }
+    sqlite3_free(att);
+    e = shard_hash(m->db, "shard", shard, info, d);
+    if (!e && info->config_hash[0] && m->hash[0] && strcmp(m->hash, info->config_hash) != 0)
+        e = sl_fail(d, SL_E_USAGE, shard, 0, NULL,
+                    "holds config hash %s (study '%s'), but %s holds %s: not a shard of the same sweep",
+                    info->config_hash, info->study, m->first, m->hash);
+    if (!e && info->config_hash[0]) {
+        char ov[1300];
+        snprintf(ov, sizeof ov, "%s/%s/overlays", m->dir, info->study);
+        e = sl_mkdirs(ov, d);
+    }
+    if (!e && info->config_hash[0]) {
+        if (exec(m->db, "BEGIN IMMEDIATE") != SQLITE_OK)
+            e = db_fail(m, d, "cannot begin");
+        if (!e)
+            e = copy_cells(m, shard_dir, info, d);
+        if (!e && exec(m->db, "COMMIT") != SQLITE_OK)
+            e = db_fail(m, d, "cannot commit");
+        if (e)
+            exec(m->db, "ROLLBACK");
+    }
+    if (!e && info->config_hash[0] && !m->hash[0]) {
+        snprintf(m->hash, sizeof m->hash, "%s", info->config_hash);
+        snprintf(m->first, sizeof m->first, "%s", shard);
+        m->config_text = first_config_text(m->db, m->config_path, sizeof m->config_path);
+    }
+    if (exec(m->db, "DETACH DATABASE shard") != SQLITE_OK && !e)
+        e = db_fail(m, d, "cannot detach the shard");
+    if (!e && info->study[0])
+        gather_exr(m, shard_dir, info->study, info);
+    return e;
+}

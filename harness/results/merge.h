@@ -1,0 +1,59 @@
+/*
+ * merge.h — shards into one results store (`shadowlab merge`).
+ *
+ * A sweep split across tasks (`run --cells A:B`, one store per task, so no
+ * SQLite file is ever written by two hosts) comes back together here: each
+ * shard is attached in turn (SQLite allows 10 attached databases, one at a
+ * time is enough), its runs and cells are copied in one transaction, and
+ * the overlay of every copied cell is gathered under the merged store's
+ * folder as <study>/overlays/<file> (the layout `run` writes: the store
+ * beside results/<name>/), with the exr/ files of <study> beside them.
+ *
+ * A cell is the same cell when its config hash and key (scene, viewpoint,
+ * viewport, map size, label) are: a cell already in the merged store is not
+ * copied again (counted as a duplicate), so merging twice adds nothing. A
+ * run row is copied once (matched on time, host, git SHA and config hash).
+ *
+ * Owns: its own SQLite connection to the merged store, opened after
+ * sl_store_open made (or checked) the schema and while that handle holds the
+ * store's lock. Does not: know the sweep (the driver checks for missing
+ * cells against the config the runs carry), or print.
+ */
+#ifndef SL_MERGE_H
+#define SL_MERGE_H
+#include "store.h"
+
+struct sl_merge;
+
+struct sl_merge_shard {
+    char config_hash[24];      /* the one config hash the shard holds */
+    char study[64];
+    int  runs;                 /* run rows copied (0 when all were there) */
+    int  cells;                /* cell rows copied */
+    int  duplicates;           /* cells whose key the merged store already held */
+    int  overlays;             /* overlay files gathered */
+    int  overlays_missing;     /* overlays a copied cell names but the shard's folder lacks */
+    int  exr;                  /* EXR files gathered */
+};
+
+/* Open (or create) the merged store at out_path; its folder must exist.
+ * append: copy every cell, even one whose key is stored already (fresh
+ * results of `run --jobs`, which supersede older ones as a second `run`'s
+ * would: the latest run wins in every query). */
+enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **out, struct sl_diag *d);
+/* Check a shard before anything is written: a results store of this
+ * version whose runs are of one config; its hash and study into info
+ * (config_hash "" when it holds no run). */
+enum sl_err sl_merge_probe(const char *shard, struct sl_merge_shard *info, struct sl_diag *d);
+/* Copy one shard. Refused (SL_E_USAGE naming both) when it holds another
+ * config hash than the first shard added, or more than one; SL_E_IO when it
+ * is not a results store of this version. */
+enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_shard *info, struct sl_diag *d);
+/* The config hash every shard holds and the filled-in config text of the
+ * first run copied (NULL before any shard); valid until sl_merge_close. */
+const char *sl_merge_config_hash(const struct sl_merge *m);
+const char *sl_merge_config_text(const struct sl_merge *m);
+const char *sl_merge_config_path(const struct sl_merge *m);   /* as that run was given it */
+void        sl_merge_close(struct sl_merge *m);   /* NULL-safe */
+
+#endif

@@ -1,0 +1,545 @@
+/*
+ * submit.c — see submit.h.
+ */
+#define _GNU_SOURCE
+#include "submit.h"
+#include <errno.h>
+#include <fcntl.h>
+#include <ftw.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include "plan.h"
+#include "util.h"
+
+/* ---- merge with the sweep ---- */
+
+static int file_exists(const char *p)
+{
+    struct stat sb;
+    return stat(p, &sb) == 0 && S_ISREG(sb.st_mode);
+}
+
+/* The sweep the shards computed: the config file the runs were given when it
+ * is still there unchanged (its hash matches, and scene paths relative to it
+ * resolve), else the filled-in config text the runs carry, loaded from a
+ * temporary file beside the merged store. */
+static enum sl_err sweep_config(const struct sl_merge *m, const char *out_dir, struct sl_config *c,
+                                struct sl_diag *d)
+{
+    unsigned long long want = strtoull(sl_merge_config_hash(m), NULL, 16);
+    const char *path = sl_merge_config_path(m);
+    struct sl_diag ignore;
+    if (path && file_exists(path) && sl_config_load(path, c, &ignore) == SL_OK && c->hash == want)
+        return SL_OK;
+    const char *text = sl_merge_config_text(m);
+    if (!text)
+        return sl_fail(d, SL_E_IO, NULL, 0, NULL, "the shards' runs carry no config: cannot name missing cells");
+    char tmp[1300];
+    snprintf(tmp, sizeof tmp, "%s/.merge-config-%ld.yaml", out_dir, (long)getpid());
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        return sl_fail(d, SL_E_OUTPUT, tmp, 0, NULL, "cannot write: %s", strerror(errno));
+    fputs(text, f);
+    fclose(f);
+    enum sl_err e = sl_config_load(tmp, c, d);
+    unlink(tmp);
+    c->hash = want;   /* the cells are keyed by the hash of the file the runs read */
+    return e;
+}
+
+enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, int append,
+                            struct sl_shards_result *r, struct sl_diag *d)
+{
+    memset(r, 0, sizeof *r);
+    r->nshards = n;
+    r->shard = sl_calloc((size_t)n + 1, sizeof *r->shard);
+    r->absent = sl_calloc((size_t)n + 1, sizeof *r->absent);
+    if (!r->shard || !r->absent)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "merge result");
+    /* every shard there is checked before the merged store is touched: a
+     * shard of another config leaves nothing half merged */
+    const char *first = NULL;
+    char hash[24] = "";
+    for (int i = 0; i < n; i++) {
+        if (!file_exists(shards[i]))
+            continue;
+        struct sl_merge_shard p;
+        enum sl_err e = sl_merge_probe(shards[i], &p, d);
+        if (e)
+            return e;
+        if (!p.config_hash[0])
+            continue;
+        if (!first) {
+            first = shards[i];
+            snprintf(hash, sizeof hash, "%s", p.config_hash);
+        } else if (strcmp(hash, p.config_hash) != 0) {
+            return sl_fail(d, SL_E_USAGE, shards[i], 0, NULL,
+                           "holds config hash %s (study '%s'), but %s holds %s: not a shard of the same sweep",
+                           p.config_hash, p.study, first, hash);
+        }
+    }
+    char dir[1200];
+    snprintf(dir, sizeof dir, "%s", out);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
+    enum sl_err e = sl_mkdirs(dir, d);
+    if (e)
+        return e;
+    struct sl_merge *m = NULL;
+    if ((e = sl_merge_open(out, append, &m, d)))
+        return e;
+    double t0 = sl_now();
+    for (int i = 0; i < n && !e; i++) {
+        if (!file_exists(shards[i])) {
+            r->absent[i] = 1;
+            continue;
+        }
+        e = sl_merge_add(m, shards[i], &r->shard[i], d);
+        r->copied += r->shard[i].cells;
+        r->duplicates += r->shard[i].duplicates;
+    }
+    r->seconds = sl_now() - t0;
+    if (!e && sl_merge_config_hash(m)) {
+        e = sweep_config(m, dir, &r->config, d);
+        struct sl_store *st = NULL;
+        if (!e)
+            e = sl_store_open_existing(out, &st, d);
+        if (!e) {
+            r->total = sl_plan_count(&r->config);
+            r->missing = sl_calloc((size_t)r->total + 1, sizeof *r->missing);
+            if (!r->missing)
+                e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "missing cells");
+            for (int i = 0; !e && i < r->total; i++) {
+                struct sl_cell_key k;
+                sl_plan_cell(&r->config, i, &k);
+                if (!sl_plan_stored(&r->config, &k, st))
+                    r->missing[r->nmissing++] = i;
+            }
+        }
+        sl_store_close(st);
+    } else if (!e) {
+        e = sl_fail(d, SL_E_USAGE, n ? shards[0] : out, 0, NULL, "no shard holds a run: nothing to merge");
+    }
+    sl_merge_close(m);
+    return e;
+}
+
+void sl_shards_result_free(struct sl_shards_result *r)
+{
+    free(r->shard);
+    free(r->absent);
+    free(r->missing);
+    memset(r, 0, sizeof *r);
+}
+
+/* ---- Slurm ---- */
+
+static enum sl_err want_int(const char *opt, const char *v, int lo, int hi, int *out, struct sl_diag *d)
+{
+    char *end;
+    long x = v ? strtol(v, &end, 10) : 0;
+    if (!v || end == v || *end || x < lo || x > hi)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, opt, "wants a whole number %d..%d", lo, hi);
+    *out = (int)x;
+    return SL_OK;
+}
+
+/* Slurm's own checks come later; these only keep the script's #SBATCH lines
+ * to one token each (a value with a blank or a quote would break the line). */
+static enum sl_err want_word(const char *opt, const char *v, const char **out, struct sl_diag *d)
+{
+    if (!v || !v[0] || strpbrk(v, " \t\n'\"\\$`"))
+        return sl_fail(d, SL_E_USAGE, NULL, 0, opt, "wants one word");
+    *out = v;
+    return SL_OK;
+}
+
+enum sl_err sl_submit_parse(int argc, char **argv, struct sl_submit_opts *o, struct sl_diag *d)
+{
+    memset(o, 0, sizeof *o);
+    enum sl_err e = SL_OK;
+    for (int i = 2; i < argc && !e; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = 1;
+        if (!strcmp(a, "--tasks"))
+            e = want_int(a, v, 1, SL_SUBMIT_MAX_TASKS, &o->tasks, d);
+        else if (!strcmp(a, "--cells-per-task"))
+            e = want_int(a, v, 1, 1 << 30, &o->cells_per_task, d);
+        else if (!strcmp(a, "--max-running"))
+            e = want_int(a, v, 1, SL_SUBMIT_MAX_TASKS, &o->max_running, d);
+        else if (!strcmp(a, "--out") && v)
+            o->out = v;
+        else if (!strcmp(a, "--partition"))
+            e = want_word(a, v, &o->partition, d);
+        else if (!strcmp(a, "--time"))
+            e = want_word(a, v, &o->time, d);
+        else if (!strcmp(a, "--mem"))
+            e = want_word(a, v, &o->mem, d);
+        else {
+            takes = 0;
+            if (!strcmp(a, "--dry-run"))
+                o->dry_run = 1;
+            else if (!strcmp(a, "--slurm"))
+                o->slurm = 1;
+            else if (a[0] == '-')
+                e = sl_fail(d, SL_E_USAGE, NULL, 0, a, "unknown option or missing value");
+            else if (!o->config)
+                o->config = a;
+            else
+                e = sl_fail(d, SL_E_USAGE, NULL, 0, a, "one CONFIG at a time");
+        }
+        i += takes;
+    }
+    if (!e && !o->config)
+        e = sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "missing CONFIG");
+    if (!e && !o->slurm)
+        e = sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "--slurm: the only scheduler there is, name it");
+    if (!e && o->tasks && o->cells_per_task)
+        e = sl_fail(d, SL_E_USAGE, NULL, 0, "--tasks", "give --tasks or --cells-per-task, not both");
+    return e;
+}
+
+/* s in single quotes for bash ('\'' for a quote inside). */
+static void quote(FILE *f, const char *s)
+{
+    fputc('\'', f);
+    for (; *s; s++)
+        if (*s == '\'')
+            fputs("'\\''", f);
+        else
+            fputc(*s, f);
+    fputc('\'', f);
+}
+
+static void sbatch_lines(FILE *f, const struct sl_submit_opts *o)
+{
+    if (o->partition)
+        fprintf(f, "#SBATCH --partition=%s\n", o->partition);
+    if (o->time)
+        fprintf(f, "#SBATCH --time=%s\n", o->time);
+    if (o->mem)
+        fprintf(f, "#SBATCH --mem=%s\n", o->mem);
+}
+
+/* Run argv (a program on PATH), its first stdout line into out. */
+static enum sl_err run_capture(char *const argv[], const char *what, char *out, size_t n, struct sl_diag *d)
+{
+    int fd[2];
+    if (pipe(fd) != 0)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, argv[0], "pipe: %s", strerror(errno));
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(fd[0]);
+        close(fd[1]);
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, argv[0], "fork: %s", strerror(errno));
+    }
+    if (pid == 0) {
+        dup2(fd[1], 1);
+        close(fd[0]);
+        close(fd[1]);
+        execvp(argv[0], argv);
+        _exit(127);
+    }
+    close(fd[1]);
+    FILE *f = fdopen(fd[0], "r");
+    out[0] = '\0';
+    if (f) {
+        if (fgets(out, (int)n, f))
+            out[strcspn(out, "\r\n;")] = '\0';   /* --parsable: "id" or "id;cluster" */
+        while (fgetc(f) != EOF)
+            ;
+        fclose(f);
+    } else {
+        close(fd[0]);
+    }
+    int st = 0;
+    while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
+        ;
+    if (!WIFEXITED(st) || WEXITSTATUS(st) == 127)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, argv[0], "cannot run it: is Slurm installed here and on PATH?");
+    if (WEXITSTATUS(st) != 0 || !out[0])
+        return sl_fail(d, SL_E_USAGE, what, 0, argv[0], "refused it (exit %d; its message is above)",
+                       WEXITSTATUS(st));
+    return SL_OK;
+}
+
+static enum sl_err write_script(const char *path, void (*body)(FILE *, const void *), const void *arg,
+                                struct sl_diag *d)
+{
+    char tmp[1300];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+    body(f, arg);
+    int bad = ferror(f);
+    bad |= fclose(f) != 0;
+    if (bad || chmod(tmp, 0755) != 0 || rename(tmp, path) != 0) {
+        unlink(tmp);
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+    }
+    return SL_OK;
+}
+
+struct script_ctx {
+    const struct sl_config *c;
+    const struct sl_submit_opts *o;
+    const struct sl_submit_result *r;
+    char exe[PATH_MAX], config[PATH_MAX], out[PATH_MAX];
+};
+
+static void array_body(FILE *f, const void *arg)
+{
+    const struct script_ctx *x = arg;
+    const struct sl_submit_result *r = x->r;
+    fprintf(f, "#!/bin/bash\n# written by `shadowlab submit`: study '%s' (config hash %016llx), %d cells in %d tasks\n",
+            x->c->name, x->c->hash, r->total, r->ntasks);
+    fprintf(f, "#SBATCH --job-name=shadowlab-%s\n#SBATCH --array=0-%d", x->c->name, r->ntasks - 1);
+    if (x->o->max_running)
+        fprintf(f, "%%%d", x->o->max_running);
+    fprintf(f, "\n#SBATCH --output=%s/slurm/task-%%a.log\n", x->out);
+    sbatch_lines(f, x->o);
+    fprintf(f, "# task i computes cells[i] of the sweep into its own store (never a file two hosts write);\n"
+               "# --resume: a requeued or re-submitted task computes only the cells its store lacks;\n"
+               "# the truth cache is shared (its files are written under a temporary name and renamed)\n"
+               "set -euo pipefail\ncells=(");
+    for (int i = 0; i < r->ntasks; i++)
+        fprintf(f, "%s%d:%d", i ? " " : "", r->bounds[i], r->bounds[i + 1]);
+    fprintf(f, ")\ni=${SLURM_ARRAY_TASK_ID:?submit this script with sbatch}\ndir=");
+    quote(f, x->out);
+    fprintf(f, "/shards/task-$i\nmkdir -p \"$dir\"\nexec ");
+    quote(f, x->exe);
+    fprintf(f, " run ");
+    quote(f, x->config);
+    fprintf(f, " --cells \"${cells[$i]}\" --out \"$dir\" --db \"$dir/shadowlab.db\" --cache ");
+    quote(f, x->out);
+    fprintf(f, "/cache --resume\n");
+}
+
+static void merge_body(FILE *f, const void *arg)
+{
+    const struct script_ctx *x = arg;
+    fprintf(f, "#!/bin/bash\n# written by `shadowlab submit`: the %d shards of study '%s' into one store\n",
+            x->r->ntasks, x->c->name);
+    fprintf(f, "#SBATCH --job-name=shadowlab-%s-merge\n#SBATCH --output=%s/slurm/merge.log\n", x->c->name, x->out);
+    sbatch_lines(f, x->o);
+    fprintf(f, "set -euo pipefail\nexec ");
+    quote(f, x->exe);
+    fprintf(f, " merge");
+    for (int i = 0; i < x->r->ntasks; i++) {
+        fputs(" \\\n  ", f);
+        quote(f, x->out);
+        fprintf(f, "/shards/task-%d/shadowlab.db", i);
+    }
+    fputs(" \\\n  -o ", f);
+    quote(f, x->r->merged);
+    fputc('\n', f);
+}
+
+/* Absolute forms: the script runs on another host, in another folder. */
+static enum sl_err absolute(const char *what, const char *p, char *out, struct sl_diag *d)
+{
+    if (!realpath(p, out))
+        return sl_fail(d, SL_E_IO, p, 0, what, "cannot resolve: %s", strerror(errno));
+    if (strpbrk(out, "\n"))
+        return sl_fail(d, SL_E_USAGE, p, 0, what, "a path with a line break cannot go into a batch script");
+    return SL_OK;
+}
+
+enum sl_err sl_submit(const struct sl_config *c, const struct sl_submit_opts *o, struct sl_submit_result *r,
+                      struct sl_diag *d)
+{
+    memset(r, 0, sizeof *r);
+    static struct script_ctx x;
+    memset(&x, 0, sizeof x);
+    x.c = c;
+    x.o = o;
+    x.r = r;
+    r->total = sl_plan_count(c);
+    int want = o->tasks;
+    if (!want) {
+        int k = o->cells_per_task ? o->cells_per_task : SL_SUBMIT_CELLS_PER_TASK;
+        want = (r->total + k - 1) / k;
+    }
+    if (want > SL_SUBMIT_MAX_TASKS)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--cells-per-task", "%d tasks: at most %d", want,
+                       SL_SUBMIT_MAX_TASKS);
+    r->ntasks = sl_plan_slices(c, want, r->bounds);
+    r->split_views = sl_plan_split_views(c, r->bounds, r->ntasks, &r->nviews);
+    const char *out = o->out ? o->out : "results";
+    char slurm_dir[1200];
+    snprintf(slurm_dir, sizeof slurm_dir, "%s/slurm", out);
+    enum sl_err e;
+    if ((e = sl_mkdirs(slurm_dir, d)) || (e = absolute("--out", out, x.out, d)) ||
+        (e = absolute("CONFIG", o->config, x.config, d)) || (e = absolute("shadowlab", "/proc/self/exe", x.exe, d)))
+        return e;
+    snprintf(r->merged, sizeof r->merged, "%s/shadowlab.db", x.out);
+    snprintf(r->array_script, sizeof r->array_script, "%s/slurm/array.sh", x.out);
+    snprintf(r->merge_script, sizeof r->merge_script, "%s/slurm/merge.sh", x.out);
+    if ((e = write_script(r->array_script, array_body, &x, d)) || (e = write_script(r->merge_script, merge_body, &x, d)))
+        return e;
+    if (o->dry_run)
+        return SL_OK;
+    char *arr[] = {"sbatch", "--parsable", r->array_script, NULL};
+    if ((e = run_capture(arr, r->array_script, r->array_job, sizeof r->array_job, d)))
+        return e;
+    char dep[128];
+    snprintf(dep, sizeof dep, "--dependency=afterok:%s", r->array_job);
+    char *mrg[] = {arr[0], "--parsable", dep, r->merge_script, NULL};
+    return run_capture(mrg, r->merge_script, r->merge_job, sizeof r->merge_job, d);
+}
+
+/* ---- worker processes on this machine ---- */
+
+static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw)
+{
+    (void)sb;
+    (void)flag;
+    (void)ftw;
+    return remove(p);
+}
+
+static double tv_s(struct timeval t)
+{
+    return (double)t.tv_sec + 1e-6 * (double)t.tv_usec;
+}
+
+/* One worker: this binary, `run CONFIG --cells A:B` into its own folder and
+ * store, its stdout and stderr into its log. */
+static enum sl_err spawn_worker(const struct sl_config *c, const struct sl_jobs_opts *o, const char *dir,
+                                const char *cache, struct sl_jobs_worker *w, pid_t *out, struct sl_diag *d)
+{
+    char cells[64], db[1300];
+    snprintf(cells, sizeof cells, "%d:%d", w->first, w->last);
+    snprintf(db, sizeof db, "%s/shadowlab.db", dir);
+    snprintf(w->log, sizeof w->log, "%s/run.log", dir);
+    char *argv[16];
+    int n = 0;
+    argv[n++] = "shadowlab";
+    argv[n++] = "run";
+    argv[n++] = (char *)c->path;
+    argv[n++] = "--cells";
+    argv[n++] = cells;
+    argv[n++] = "--out";
+    argv[n++] = (char *)dir;
+    argv[n++] = "--db";
+    argv[n++] = db;
+    if (cache[0]) {
+        argv[n++] = "--cache";
+        argv[n++] = (char *)cache;
+    } else {
+        argv[n++] = "--no-cache";
+    }
+    if (o->gl) {
+        argv[n++] = "--gl";
+        argv[n++] = (char *)o->gl;
+    }
+    if (o->resume)
+        argv[n++] = "--resume";
+    argv[n] = NULL;
+    int fd = open(w->log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0)
+        return sl_fail(d, SL_E_OUTPUT, w->log, 0, NULL, "cannot write: %s", strerror(errno));
+    pid_t pid = fork();
+    if (pid == 0) {
+        dup2(fd, 1);
+        dup2(fd, 2);
+        close(fd);
+        execv("/proc/self/exe", argv);
+        _exit(127);
+    }
+    close(fd);
+    if (pid < 0)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "fork: %s", strerror(errno));
+    *out = pid;
+    return SL_OK;
+}
+
+enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o, struct sl_jobs_result *r,
+                        struct sl_diag *d)
+{
+    memset(r, 0, sizeof *r);
+    const char *root = o->out_root ? o->out_root : "results";
+    int jobs = o->jobs < 1 ? 1 : o->jobs > 64 ? 64 : o->jobs;
+    int bounds[65];
+    r->nworkers = sl_plan_slices(c, jobs, bounds);
+    r->split_views = sl_plan_split_views(c, bounds, r->nworkers, &r->nviews);
+    if (o->store)
+        snprintf(r->store, sizeof r->store, "%s", o->store);
+    else if (c->store[0])
+        snprintf(r->store, sizeof r->store, "%s", c->store);
+    else
+        snprintf(r->store, sizeof r->store, "%s/shadowlab.db", root);
+    char cache[1200];
+    if (o->cache)
+        snprintf(cache, sizeof cache, "%s", o->cache);
+    else
+        snprintf(cache, sizeof cache, "%s/cache", root);
+    snprintf(r->workdir, sizeof r->workdir, "%s/.jobs-%s", root, c->name);
+    enum sl_err e = SL_OK;
+    pid_t pids[64];
+    double t0 = sl_now();
+    int started = 0;
+    for (int i = 0; i < r->nworkers && !e; i++) {
+        struct sl_jobs_worker *w = &r->w[i];
+        w->first = bounds[i];
+        w->last = bounds[i + 1];
+        char dir[1300];
+        snprintf(dir, sizeof dir, "%s/task-%d", r->workdir, i);
+        if ((e = sl_mkdirs(dir, d)))
+            break;
+        if (!(e = spawn_worker(c, o, dir, cache, w, &pids[i], d)))
+            started++;
+    }
+    /* wait for every worker started, even after a failure: none is left behind */
+    int failed = 0;
+    for (int left = started; left > 0; left--) {
+        int st = 0;
+        struct rusage ru;
+        pid_t p = wait4(-1, &st, 0, &ru);
+        if (p < 0 && errno == EINTR) {
+            left++;
+            continue;
+        }
+        if (p < 0)
+            break;
+        for (int i = 0; i < started; i++)
+            if (pids[i] == p) {
+                r->w[i].status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+                r->w[i].wall_s = sl_now() - t0;
+                r->w[i].cpu_s = tv_s(ru.ru_utime) + tv_s(ru.ru_stime);
+                r->cpu_s += r->w[i].cpu_s;
+                failed |= r->w[i].status != 0;
+            }
+    }
+    r->wall_s = sl_now() - t0;
+    if (e)
+        return e;
+    if (failed)
+        return sl_fail(d, SL_E_INTERNAL, c->path, 0, "--jobs", "a worker failed (its log is named above)");
+    const char *shards[64];
+    char paths[64][1300];
+    for (int i = 0; i < r->nworkers; i++) {
+        snprintf(paths[i], sizeof paths[i], "%s/task-%d/shadowlab.db", r->workdir, i);
+        shards[i] = paths[i];
+    }
+    if ((e = sl_shards_merge(shards, r->nworkers, r->store, 1, &r->merge, d)))
+        return e;
+    if (r->merge.nmissing == 0)
+        nftw(r->workdir, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
+    return SL_OK;
+}
+
+void sl_jobs_result_free(struct sl_jobs_result *r)
+{
+    sl_shards_result_free(&r->merge);
+}

@@ -1,0 +1,131 @@
+/* The help text of every verb (see usage.h). */
+#include "usage.h"
+
+const char sl_usage[] =
+    "usage: shadowlab <command> [--help] ...      (shadowlab help COMMAND = shadowlab COMMAND --help)\n"
+    "  run CONFIG|SCENE [options] run an experiment (shadowlab run --help)\n"
+    "  validate FILE [-D K=V]     check a config or a scene file without GL or Embree\n"
+    "  table DB [options]         regenerate tables from a results store\n"
+    "  report DB [-o DIR]         HTML and Markdown report of a results store (needs gnuplot)\n"
+    "  check DB --baseline FILE   compare a results store with a committed baseline (exit 1 if outside)\n"
+    "  bench [CONFIG] [options]   every stage against its plain counterpart, the studies, their targets\n"
+    "  submit CONFIG --slurm ...  the sweep as a Slurm job array plus a merge job (shadowlab submit --help)\n"
+    "  merge SHARD.db... -o DB    the stores of a split sweep into one; exit 1 if a cell is missing\n"
+    "  list methods|scenes        what can be named in a config\n"
+    "  version, -V, --version     the git SHA this binary was built from\n";
+
+const char sl_usage_run[] =
+    "usage: shadowlab run CONFIG|SCENE [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
+    "                     [--cache DIR] [--gl osmesa|egl] [--jobs N] [-j N] [-D KEY=VALUE]... [-q|-v]\n"
+    "  -o, --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
+    "  --cells A:B       compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
+    "  --resume          skip cells the results store already holds for this config\n"
+    "  --db FILE         results store (default: the config's 'store', else DIR/shadowlab.db)\n"
+    "  --no-cache        trace the truth even when DIR/cache holds it\n"
+    "  --cache DIR       the truth cache (default DIR/cache; written atomically, may be shared)\n"
+    "  --jobs N          N worker processes over slices of the sweep (whole views kept together),\n"
+    "                    their stores merged into DB; the same cells as one process\n"
+    "  --gl B            the GL context: osmesa (the default where built) or egl (GPU machines;\n"
+    "                    SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
+    "  -j, --threads N   threads of the truth and the CPU passes (the config's 'threads') and of\n"
+    "                    llvmpipe (LP_NUM_THREADS), 1..256\n"
+    "  -D KEY=VALUE      replace a config key by its path, the value in YAML, checked as the file is:\n"
+    "                    -D map_sizes=[512,1024] -D 'methods[0].bias=0.01' -D outputs.exr=true\n"
+    "                    (the results' config hash covers the overrides)\n"
+    "  -q, --quiet       print only the 'written to' line (and errors)\n"
+    "  -v, --verbose     print every table of the run (the Markdown of table.md) as well\n"
+    "  SCENE: a scene file given for a config runs a default study of it (every viewpoint; nsm,\n"
+    "  csm and raytrace; 1024x1024 viewport; 2048 map) and prints the config it used.\n"
+    "  By default a summary: cells, time, the wrong pixels (soft: the error) per label, where the\n"
+    "  files are. Progress goes to stderr: one live line on a terminal, else one line every 10 s\n"
+    "  or 5% of the cells. Ctrl-C (SIGINT) or SIGTERM stops after the cell under way, writes the\n"
+    "  folder of what is stored and says how to --resume (exit 130 or 143).\n"
+    "  One run writes a results store at a time (a lock on DB.lock); a second is refused\n"
+    "  with exit 2, naming the holder's pid. Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
+    "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
+
+const char sl_usage_validate[] =
+    "usage: shadowlab validate FILE [-D KEY=VALUE]...\n"
+    "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
+    "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
+
+const char sl_usage_table[] =
+    "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
+    "                          [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
+    "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
+    "                           [--average-case SCENE/VIEWPOINT/N[/MAP]]]\n"
+    "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
+    "  --summary, the average, best and worst per map size of one figure's percentage over\n"
+    "  the cells of one label (as the theses' summary tables), md or csv.\n"
+    "  md and latex leave out the figures a method does not produce (0 in every column past\n"
+    "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n";
+
+const char sl_usage_report[] =
+    "usage: shadowlab report RESULTS_DB [-o DIR] [--self-contained] [--latex]\n"
+    "  Writes DIR/report.html (offline; it links its images, plots and .tex beside it) and\n"
+    "  DIR/report.md: a contents tree, a summary first, then the thesis-style tables of every\n"
+    "  study (and their .tex), the chain's steps and accuracy-vs-cost plots\n"
+    "  (gnuplot, SVG), costs, the error overlays and the provenance of every run.\n"
+    "  -o, --out DIR     output folder (default: <folder of RESULTS_DB>/report)\n"
+    "  --self-contained  report.html is one file: images and plots embedded, nothing outside it\n"
+    "  --latex           also DIR/report.tex: a pdflatex document that \\inputs the tables and plots\n";
+
+const char sl_usage_check[] =
+    "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
+    "                          [--format text|md] [--json FILE] [--junit FILE]\n"
+    "  Compares the latest stored cell of each key with the baseline FILE: violations of a\n"
+    "  method's exactness always exactly; every count exactly when the store was measured on\n"
+    "  the baseline's machine; otherwise each class of figure within the baseline's tolerance\n"
+    "  (percentage points). Prints what moved and by how much; exit 1 when anything is outside\n"
+    "  tolerance or a baseline cell is missing, 2 on bad input.\n"
+    "  --study NAME  only cells of that config name\n"
+    "  --rows N      show at most N moved values (default 200)\n"
+    "  --update      write FILE from DB instead (keeps FILE's tolerances): a deliberate refresh\n"
+    "  --format F    text (default: a plain table; colour on a terminal unless NO_COLOR is set)\n"
+    "                or md (Markdown)\n"
+    "  --json FILE   also write every compared cell and class with its verdict as JSON\n"
+    "  --junit FILE  also write JUnit XML: one testcase per cell and class of figure\n";
+
+const char sl_usage_bench[] =
+    "usage: shadowlab bench [CONFIG] [--only LIST] [--reps N] [--scene S] [--viewport WxH] [--map N]\n"
+    "                       [--csv FILE] [--gl osmesa|egl]\n"
+    "  Each measurement against its target, as a Markdown table with PASS/MISS:\n"
+    "    truth    the truth pass vs a plain Embree rtcOccluded16 loop over the same rays (>= 0.8x)\n"
+    "    layers   the G-buffer and every shadow-map layer vs a plain raster of the same mesh, size\n"
+    "             and matrix, with GL counters (render time within 2x)\n"
+    "    moderno  configs/moderno-2011.yaml end to end, no files, no cache (< 60 s)\n"
+    "    morais   configs/morais-2015.yaml end to end, no files, no cache (< 300 s)\n"
+    "  and the peak RSS after all of it (< 2 GiB). A missed target exits 0; a failure exits 2.\n"
+    "  --only LIST     comma-separated stages (default all); `--only truth,layers` is the quick mode\n"
+    "  --reps N        timed repetitions after one warm-up (default 7)\n"
+    "  --scene S       scene of the truth and layer stages (default: CONFIG's first scene, else bench)\n"
+    "  --viewport WxH  their viewport (default: CONFIG's first, else 1024x1024)\n"
+    "  --map N         the layers' map size (default 2048)\n"
+    "  --csv FILE      also write the summary rows as CSV\n"
+    "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
+
+const char sl_usage_list[] =
+    "usage: shadowlab list methods|scenes\n"
+    "  scenes: the scene files a config can name, each with where it was found; a name is looked\n"
+    "  up in the config's folder, then in each folder of SHADOWLAB_SCENES (colon-separated), then\n"
+    "  in the installed share/shadowlab/scenes (or, not installed, the source tree's scenes/)\n";
+
+const char sl_usage_submit[] =
+    "usage: shadowlab submit CONFIG --slurm [--tasks N | --cells-per-task K] [--max-running T]\n"
+    "                        [--out DIR] [--partition P] [--time HH:MM:SS] [--mem M] [--dry-run]\n"
+    "  Writes DIR/slurm/array.sh, an sbatch job array whose task i runs\n"
+    "    shadowlab run CONFIG --cells A:B --out DIR/shards/task-i --db DIR/shards/task-i/shadowlab.db\n"
+    "                         --cache DIR/cache --resume\n"
+    "  and DIR/slurm/merge.sh, which merges the shards into DIR/shadowlab.db; without --dry-run,\n"
+    "  submits both (the merge with --dependency=afterok on the array) and prints the job ids.\n"
+    "  --tasks N            N tasks (default: one per 256 cells); cuts move to view boundaries\n"
+    "  --cells-per-task K   tasks of about K cells\n"
+    "  --max-running T      at most T tasks at once (--array=0-(N-1)%T)\n"
+    "  --out DIR            default results/; must be on a filesystem every node sees\n";
+
+const char sl_usage_merge[] =
+    "usage: shadowlab merge SHARD.db... -o STORE.db\n"
+    "  Copies the runs and cells of each shard (one config, the same in every shard) into STORE.db,\n"
+    "  one transaction per shard; a cell already there is a duplicate and is not copied again. The\n"
+    "  overlays and EXR files go under STORE.db's folder. Names the cells of the sweep no shard\n"
+    "  holds; exit 1 when any is missing, 2 when a shard holds another config or cannot be read.\n";
