@@ -28,6 +28,8 @@ PACKAGES=(
   libcmocka-dev         # unit tests
   gnuplot-nox           # the report's plots (shadowlab report)
   chromium              # the report's rendering test (cli::report)
+  clang                 # the libFuzzer entries (-DSL_FUZZ=ON, fuzz/; CI's fuzz step) ...
+  libclang-rt-14-dev    # ... whose libFuzzer and sanitizer runtimes clang only recommends
 )
 
 missing=()
