@@ -60,7 +60,9 @@ for e in "${entries[@]}"; do
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$e/log")
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$e/log")
   cov=$(grep -oE 'cov: [0-9]+ ft: [0-9]+ corp: [0-9]+' "$work/$e/log" | tail -n 1)
-  found=$(ls "$work/$e/found")
+  # slow-unit-* are inputs slower than 10 s: shown, not failures
+  found=$(ls "$work/$e/found" | grep -v '^slow-unit-')
+  slow=$(ls "$work/$e/found" | grep -c '^slow-unit-')
   if [ $rc -ne 0 ] || [ -n "$found" ]; then
     echo "FAIL $e: exit $rc after ${wall} s, ${execs:-?} execs; libFuzzer says:"
     grep -E '^(==[0-9]+==|SUMMARY|.*ERROR)' "$work/$e/log" | head -n 5
@@ -70,7 +72,7 @@ for e in "${entries[@]}"; do
     done
     fail=1
   else
-    echo "ok   $e: ${secs} s, $nseed seeds, ${execs:-?} execs, ${rate:-?} exec/s, ${cov:-no coverage line}"
+    echo "ok   $e: ${secs} s, $nseed seeds, ${execs:-?} execs, ${rate:-?} exec/s, ${cov:-no coverage line}, $slow slow inputs"
   fi
 done
 if [ $fail -eq 0 ] && [ -z "${FUZZ_WORK:-}" ]; then rm -rf "$work"; else echo "fuzz/run.sh: logs and inputs in $work"; fi

@@ -7,7 +7,8 @@
  * - The child does only the reader's work (assimp, our checks, the weld)
  *   and writes one result into the pipe, then _exit()s: it flushes and
  *   cleans nothing of the parent's, prints nothing (stdout and stderr go to
- *   /dev/null), and writes no core file.
+ *   /dev/null), writes no core file, and runs no signal handler of the
+ *   parent's: a crash ends it by the signal.
  * - The child is bounded in CPU time (RLIMIT_CPU), address space (RLIMIT_AS)
  *   and wall time (the parent kills it at the deadline), all scaled by the
  *   file's size, so no file can hang or exhaust the parent.
@@ -83,6 +84,12 @@ static unsigned long long vm_size(void)
 static void jail_child(int fd, sl_mesh_reader_fn read, const char *path, const float xform[16],
                        unsigned cpu_s, unsigned long long as_bytes)
 {
+    /* A crash ends the child by its signal (what jail_verdict reports), not
+     * in a handler inherited from the parent: a host's, or libFuzzer's,
+     * which would write the input as its own crash (fuzz/, issue 15). */
+    static const int fatal[] = {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGXCPU};
+    for (size_t i = 0; i < sizeof fatal / sizeof fatal[0]; i++)
+        signal(fatal[i], SIG_DFL);
     struct rlimit r = {.rlim_cur = cpu_s, .rlim_max = cpu_s + 1};
     setrlimit(RLIMIT_CPU, &r);
     r.rlim_cur = r.rlim_max = as_bytes;
