@@ -10,6 +10,7 @@
  * (assimp, and the byte checks, go by it).
  */
 #include "fuzz_common.h"
+#include "gen.h"      /* sl_mesh_free */
 #include "meshio.h"
 #include "meshio_check.h"
 #ifndef SL_FUZZ_EXT
