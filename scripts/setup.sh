@@ -31,6 +31,8 @@ PACKAGES=(
   chromium              # the report's rendering test (cli::report)
   texlive-latex-recommended lmodern  # pdflatex, booktabs, fonts: report --latex compiles (cli::report)
   slurm-wlm munge       # the Slurm job-array test (slurm::array) and `shadowlab submit`
+  clang                 # the libFuzzer entries (-DSL_FUZZ=ON, fuzz/; CI's fuzz step) ...
+  libclang-rt-14-dev    # ... whose libFuzzer and sanitizer runtimes clang only recommends
 )
 
 missing=()

@@ -383,6 +383,29 @@ static void meshio_xform_and_append(void **st)
     sl_mesh_free(&m);
 }
 
+/* The controls of the binary PLY and glTF bad files: the same bytes with
+ * the defect taken out load whole (two triangles, four vertices), so the
+ * checks refuse the defect, not the format or the byte order. */
+static void meshio_binary_ply_and_gltf_controls(void **st)
+{
+    (void)st;
+    static const char *files[] = {"tests/models/quad_le.ply", "tests/models/quad_be.ply",
+                                  "tests/models/quad_index.gltf"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        struct sl_mesh m = {0};
+        struct sl_mesh_load_stats s;
+        load_ok(&m, files[i], &s);
+        assert_int_equal(m.nt, 2);
+        assert_int_equal(m.nv, 4);
+        assert_int_equal(s.degenerate, 0);
+        float lo[3], hi[3];
+        mesh_bounds(&m, 0, lo, hi);
+        assert_true(lo[0] == 0.0f && lo[1] == 0.0f && lo[2] == 0.0f);
+        assert_true(hi[0] == 1.0f && hi[1] == 1.0f && hi[2] == 0.0f);
+        sl_mesh_free(&m);
+    }
+}
+
 /* ------------------------------------------------------------- bad input */
 
 struct bad_case { const char *path; const float *xform; const char *msg; };
@@ -398,7 +421,7 @@ static void meshio_bad_files_fail_and_leave_mesh(void **st)
         {MODELS "/OBJ/testpoints.obj", NULL, "no triangles"},
         {"tests/models/nan_vertex.obj", NULL, "non-finite vertex"},
         {"tests/models/zero_area.obj", NULL, "only zero-area triangles"},
-        {"tests/models/truncated_binary.ply", NULL, "corrupt file"},
+        {"tests/models/truncated_binary.ply", NULL, "truncated file: the header declares 6 'face' elements"},
         {"tests/models/truncated_binary.stl", NULL, "STL"},
         {"tests/models/not_a_model.xyz", NULL, "No suitable reader"},
         {"tests/models/does_not_exist.obj", NULL, "cannot open"},
@@ -413,6 +436,23 @@ static void meshio_bad_files_fail_and_leave_mesh(void **st)
         {"tests/bad/models/short_vertices.ply", NULL, "truncated file"},
         {"tests/bad/models/bad_index.off", NULL, "Vertex index is out of range"},
         {"tests/bad/models/bad_vt.obj", NULL, "face names texture coordinate 5 of 1"},
+        /* binary PLY, both byte orders: fewer bytes than declared, an index
+         * out of range (controls: tests/models/quad_le.ply, quad_be.ply) */
+        {"tests/bad/models/short_binary_le.ply", NULL,
+         "truncated file: the header declares 40 'vertex' elements (12 bytes each), the file holds 6"},
+        {"tests/bad/models/short_binary_be.ply", NULL,
+         "truncated file: the header declares 5 'face' elements, the data ends in element 2"},
+        {"tests/bad/models/bad_index_le.ply", NULL,
+         "corrupt file: face 1 names vertex 7, the header declares 4 vertices"},
+        {"tests/bad/models/bad_index_be.ply", NULL,
+         "corrupt file: face 1 names vertex -1, the header declares 4 vertices"},
+        /* glTF indices beyond the POSITION accessor: assimp drops those
+         * faces with a warning (control: tests/models/quad_index.gltf) */
+        {"tests/bad/models/bad_index.gltf", NULL, "face index out of range in mesh 'quad'"},
+        {"tests/bad/models/bad_index_all.gltf", NULL, "face index out of range"},
+        /* found by fuzz_mesh_ply: assimp's PLY reader crashes on it (alone,
+         * outside shadowlab too); the reader's child ends by SIGSEGV */
+        {"tests/bad/models/fuzz_crash_format.ply", NULL, "the reader crashed (signal 11, SIGSEGV"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         struct sl_mesh m = {0};
@@ -452,6 +492,7 @@ int main(int argc, char **argv)
         SL_CASE(meshio, stl_and_ply),
         SL_CASE(meshio, xform_and_append),
         SL_CASE(meshio, bad_files_fail_and_leave_mesh),
+        SL_CASE(meshio, binary_ply_and_gltf_controls),
     };
     return sl_run_group(argc, argv, "meshio", tests, NULL, NULL);
 }

@@ -7,7 +7,11 @@
  *   references against the scene's mesh count, and the node tree is walked
  *   with an explicit depth limit (no recursion a hostile file can exhaust).
  *   assimp's own post-processing only runs on a scene whose pointers, face
- *   indices and coordinates passed these checks (see sl_mesh_load_file).
+ *   indices and coordinates passed these checks (see load_direct).
+ * - assimp only ever runs in the reader's child (meshio_child.c: limits, a
+ *   crash or a hang is an error naming the file), after the file's own bytes
+ *   were checked (meshio_check.c: declared vs present counts, indices); the
+ *   parent checks the child's mesh again before anything is appended.
  * - A file is built into a private mesh, checked and welded there, and only
  *   appended to the caller's mesh when everything succeeded, so an error
  *   leaves the caller's mesh exactly as it was (same counts, same bytes).
@@ -17,9 +21,10 @@
  *   only if its double-precision normal has a length > 0 computed exactly as
  *   scene.c computes it, so a welded mesh never fails there for zero area.
  */
-#define _DEFAULT_SOURCE   /* fork, poll, setrlimit, kill, strsignal */
 #include "gen.h"
 #include "meshio.h"
+#include "meshio_check.h"
+#include "meshio_child.h"
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -29,23 +34,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-#include <fcntl.h>
-#include <poll.h>
-#include <signal.h>
-#include <sys/resource.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
 #include "util.h"
 
 /* Deeper node trees than this are treated as corrupt. Real files nest a few
  * dozen levels; the limit only bounds the walk's stack. */
 #define MESHIO_MAX_DEPTH 256
-/* uint32 indices and counts everywhere; keep well clear of the top values,
- * which adjacency uses as markers. */
-#define MESHIO_MAX_ELEMS 0x3fffffffu
 
 /* ---------------------------------------------------------------- welding */
 
@@ -411,135 +404,24 @@ static int mesh_append(struct sl_mesh *dst, const struct sl_mesh *src)
     return 1;
 }
 
-/* ------------------------------------------------------ text pre-checks */
-
-/*
- * assimp repairs some broken text files silently: an ASCII PLY declaring
- * more elements than it holds, OBJ face corners naming a texture coordinate
- * or normal that does not exist. These are refused here, before assimp,
- * with the line that is wrong. Only run in the reader's child.
- */
-static enum sl_err ply_ascii_check(FILE *f, const char *path, struct sl_diag *d)
-{
-    char line[1024];
-    unsigned long long declared = 0;
-    int ascii = 0, lineno = 0;
-    while (fgets(line, sizeof line, f)) {
-        lineno++;
-        if (!strncmp(line, "format ascii", 12))
-            ascii = 1;
-        else if (!strncmp(line, "element ", 8)) {
-            char name[64];
-            unsigned long long n;
-            if (sscanf(line + 8, "%63s %llu", name, &n) == 2)
-                declared += n;
-        } else if (!strncmp(line, "end_header", 10))
-            break;
-    }
-    if (!ascii)
-        return SL_OK;
-    unsigned long long held = 0;
-    while (fgets(line, sizeof line, f)) {
-        size_t k = strspn(line, " \t\r\n");
-        if (line[k])
-            held++;
-        size_t len = strlen(line);
-        while (len && line[len - 1] != '\n' && fgets(line, sizeof line, f))   /* long line */
-            len = strlen(line);
-    }
-    if (held < declared)
-        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "truncated file: the header declares %llu "
-                       "element lines, the file holds %llu", declared, held);
-    return SL_OK;
-}
-
-/* v/vt/vn counts and, per face corner, indices in 1..count (or negative,
- * relative to the count so far). */
-static enum sl_err obj_check(FILE *f, const char *path, struct sl_diag *d)
-{
-    char line[4096];
-    long long cnt[3] = {0, 0, 0}, maxref[3] = {0, 0, 0};
-    int maxline[3] = {0, 0, 0}, lineno = 0;
-    static const char *what[3] = {"vertex", "texture coordinate", "normal"};
-    while (fgets(line, sizeof line, f)) {
-        lineno++;
-        if (line[0] == 'v' && line[1] == ' ')
-            cnt[0]++;
-        else if (line[0] == 'v' && line[1] == 't' && (line[2] == ' ' || line[2] == '\t'))
-            cnt[1]++;
-        else if (line[0] == 'v' && line[1] == 'n' && (line[2] == ' ' || line[2] == '\t'))
-            cnt[2]++;
-        else if (line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
-            char *q = line + 2;
-            for (;;) {
-                while (*q == ' ' || *q == '\t')
-                    q++;
-                if (!*q || *q == '\n' || *q == '\r' || *q == '#')
-                    break;
-                for (int k = 0; k < 3; k++) {
-                    char *e;
-                    if (*q == '/' || *q == ' ' || *q == '\t' || *q == '\n' || *q == '\r' || !*q) {
-                        if (*q == '/')
-                            q++;
-                        continue;   /* absent */
-                    }
-                    long long v = strtoll(q, &e, 10);
-                    if (e == q)
-                        return sl_fail(d, SL_E_SCENE, path, lineno, NULL, "corrupt file: "
-                                       "bad face corner (line %d)", lineno);
-                    q = e;
-                    if (v < 0 ? -v > cnt[k] : v == 0)
-                        return sl_fail(d, SL_E_SCENE, path, lineno, NULL, "corrupt file: line %d: "
-                                       "face names %s %lld of %lld", lineno, what[k], v, cnt[k]);
-                    if (v > maxref[k]) {
-                        maxref[k] = v;
-                        maxline[k] = lineno;
-                    }
-                    if (*q == '/')
-                        q++;
-                    else
-                        break;
-                }
-                while (*q && *q != ' ' && *q != '\t' && *q != '\n' && *q != '\r')
-                    q++;
-            }
-        }
-        size_t len = strlen(line);
-        while (len && line[len - 1] != '\n' && fgets(line, sizeof line, f))
-            len = strlen(line);
-    }
-    for (int k = 0; k < 3; k++)
-        if (maxref[k] > cnt[k])
-            return sl_fail(d, SL_E_SCENE, path, maxline[k], NULL, "corrupt file: line %d: face "
-                           "names %s %lld of %lld", maxline[k], what[k], maxref[k], cnt[k]);
-    return SL_OK;
-}
-
-static enum sl_err text_precheck(const char *path, struct sl_diag *d)
-{
-    const char *dot = strrchr(path, '.');
-    if (!dot)
-        return SL_OK;
-    int ply = !strcasecmp(dot, ".ply"), obj = !strcasecmp(dot, ".obj");
-    if (!ply && !obj)
-        return SL_OK;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return SL_OK;   /* load_direct reports it */
-    enum sl_err e = ply ? ply_ascii_check(f, path, d) : obj_check(f, path, d);
-    fclose(f);
-    return e;
-}
-
 /* assimp logs some errors and carries on with a repaired scene (an OFF face
  * index out of range); the first error logged about an index or a range
  * makes the file fail. Other logged errors (a missing material) are about
- * things we never read. */
+ * things we never read. Its glTF 2 reader drops faces whose indices reach
+ * beyond the primitive's POSITION accessor with only a warning: the rest
+ * loads (silently wrong), or a mesh left with no face fails as "has no
+ * faces" (and one left with only degenerate faces as "only zero-area
+ * triangles"); that warning makes the file fail too, with its real reason. */
 static char g_ai_error[256];
+static int  g_ai_dropped;
 
 static void ai_log(const char *msg, char *user)
 {
     (void)user;
+    if (!strncmp(msg, "Warn", 4) && strstr(msg, "out-of-range indices")) {
+        g_ai_dropped = 1;
+        return;
+    }
     if (g_ai_error[0] || strncmp(msg, "Error", 5) != 0 ||
         !(strstr(msg, "ndex") || strstr(msg, "range")))
         return;
@@ -550,8 +432,21 @@ static void ai_log(const char *msg, char *user)
         g_ai_error[--n] = 0;
 }
 
+/* The glTF reader's dropped faces (see ai_log), naming the mesh where the
+ * scene has one (assimp's warning names none) or assimp's own failure. */
+static enum sl_err dropped_faces(const struct aiScene *sc, const char *path, struct sl_diag *d)
+{
+    const char *why = sc ? NULL : aiGetErrorString();
+    const struct aiMesh *am = sc && sc->mNumMeshes == 1 && sc->mMeshes ? sc->mMeshes[0] : NULL;
+    return sl_fail(d, SL_E_SCENE, path, 0, NULL, "corrupt file: face index out of range%s%.*s%s "
+                   "(a primitive's indices name vertices its POSITION accessor does not hold)%s%s",
+                   am ? " in mesh '" : "", am ? (int)(am->mName.length < 64 ? am->mName.length : 64) : 0,
+                   am ? am->mName.data : "", am ? "'" : "", why && why[0] ? ": " : "",
+                   why && why[0] ? why : "");
+}
+
 /* In the reader's process: assimp reads the file, its result is checked and
- * welded into m. sl_mesh_load_file runs this in a child (meshjail). */
+ * welded into m. sl_mesh_load_file runs this in a child (meshio_child.c). */
 static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float xform[16],
                                struct sl_mesh_load_stats *st, struct sl_diag *d)
 {
@@ -593,12 +488,18 @@ static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float 
      * transforms ourselves, in double, composed with xform), and anything
      * that generates normals or tangents (the scene computes face normals).
      */
-    enum sl_err e = text_precheck(path, d);
+    enum sl_err e = sl_mesh_precheck(path, d);
     if (e)
         return e;
     struct aiLogStream ls = {.callback = ai_log, .user = NULL};
     aiAttachLogStream(&ls);
     const struct aiScene *sc = aiImportFile(path, 0);
+    if (g_ai_dropped) {
+        e = dropped_faces(sc, path, d);
+        if (sc)
+            aiReleaseImport(sc);
+        return e;
+    }
     if (sc && g_ai_error[0]) {
         aiReleaseImport(sc);
         return sl_fail(d, SL_E_SCENE, path, 0, NULL, "corrupt file: %s", g_ai_error);
@@ -659,250 +560,18 @@ static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float 
     return e;
 }
 
-/* ------------------------------------------------------------- the jail */
-
-/*
- * Model files are untrusted and assimp is not hardened: malformed files
- * crash it (SIGSEGV) or loop forever. So the reading runs in a forked child
- * that does only assimp + our checks + writing the result into a pipe, then
- * _exit()s; it inherits no duty to flush or clean anything. The child is
- * limited in CPU time (RLIMIT_CPU), address space (RLIMIT_AS) and wall
- * time (the parent kills it), all scaled by the file's size; it writes no
- * core file. The parent checks what comes back (counts, index ranges,
- * finite coordinates) before it appends anything to m, so a child that went
- * wrong cannot hand over a broken mesh.
- */
-#define JAIL_CPU_BASE_S   3     /* CPU seconds for any file ... */
-#define JAIL_CPU_PER_MB_S 1     /* ... plus this per MiB of file */
-#define JAIL_AS_BASE      (4ull << 30)  /* address space beyond the parent's ... */
-#define JAIL_AS_PER_BYTE  64ull         /* ... plus this per byte of file */
-
-struct jail_head {
-    uint32_t                  magic;
-    int32_t                   err;
-    struct sl_diag            d;
-    struct sl_mesh_load_stats st;
-    uint32_t                  nv, nt;
-};
-#define JAIL_MAGIC 0x534c4d31u   /* "SLM1" */
-
-static int write_all(int fd, const void *p, size_t n)
-{
-    const char *c = p;
-    while (n) {
-        ssize_t w = write(fd, c, n > (1u << 20) ? (1u << 20) : n);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0)
-            return 0;
-        c += w;
-        n -= (size_t)w;
-    }
-    return 1;
-}
-
-static unsigned long long vm_size(void)
-{
-    unsigned long long pages = 0;
-    FILE *f = fopen("/proc/self/statm", "r");
-    if (f) {
-        if (fscanf(f, "%llu", &pages) != 1)
-            pages = 0;
-        fclose(f);
-    }
-    long ps = sysconf(_SC_PAGESIZE);
-    return pages * (unsigned long long)(ps > 0 ? ps : 4096);
-}
-
-static void jail_child(int fd, const char *path, const float xform[16], unsigned cpu_s,
-                       unsigned long long as_bytes)
-{
-    struct rlimit r = {.rlim_cur = cpu_s, .rlim_max = cpu_s + 1};
-    setrlimit(RLIMIT_CPU, &r);
-    r.rlim_cur = r.rlim_max = as_bytes;
-    setrlimit(RLIMIT_AS, &r);
-    r.rlim_cur = r.rlim_max = 0;
-    setrlimit(RLIMIT_CORE, &r);
-    int null = open("/dev/null", O_RDWR);
-    if (null >= 0) {   /* assimp may print; only main() speaks */
-        dup2(null, 1);
-        dup2(null, 2);
-    }
-    struct sl_mesh m = {0};
-    struct jail_head h;
-    memset(&h, 0, sizeof h);
-    h.magic = JAIL_MAGIC;
-    h.err = (int32_t)load_direct(&m, path, xform, &h.st, &h.d);
-    if (!h.err) {
-        h.nv = m.nv;
-        h.nt = m.nt;
-    }
-    int ok = write_all(fd, &h, sizeof h);
-    if (ok && !h.err)
-        ok = write_all(fd, m.pos, (size_t)m.nv * 3 * sizeof(float)) &&
-             write_all(fd, m.idx, (size_t)m.nt * 3 * sizeof(uint32_t));
-    _exit(ok ? 0 : 3);
-}
-
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* Read n bytes before the deadline: 1 done, 0 end of data, -1 timeout, -2 error. */
-static int read_until(int fd, void *p, size_t n, double deadline)
-{
-    char *c = p;
-    while (n) {
-        double left = deadline - now_s();
-        if (left <= 0)
-            return -1;
-        struct pollfd pf = {.fd = fd, .events = POLLIN};
-        int k = poll(&pf, 1, (int)(left * 1000.0) + 1);
-        if (k < 0 && errno == EINTR)
-            continue;
-        if (k < 0)
-            return -2;
-        if (k == 0)
-            continue;
-        ssize_t r = read(fd, c, n);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r < 0)
-            return -2;
-        if (r == 0)
-            return 0;
-        c += r;
-        n -= (size_t)r;
-    }
-    return 1;
-}
-
-static const char *sig_name(int s)
-{
-    switch (s) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGBUS:  return "SIGBUS";
-    case SIGABRT: return "SIGABRT";
-    case SIGFPE:  return "SIGFPE";
-    case SIGILL:  return "SIGILL";
-    case SIGKILL: return "SIGKILL";
-    case SIGXCPU: return "SIGXCPU";
-    default:      return "signal";
-    }
-}
-
-/* What the child's end says, once its data did not come back whole. */
-static enum sl_err jail_verdict(int status, int timed_out, unsigned cpu_s, unsigned wall_s,
-                                unsigned long long as_mb, const char *path, struct sl_diag *d)
-{
-    const char *pre = "cannot read the model";
-    if (timed_out)
-        return sl_fail(d, SL_E_SCENE, path, 0, NULL,
-                       "%s: the reader was stopped after %u s (wall clock): a hang or a file "
-                       "too large", pre, wall_s);
-    if (WIFSIGNALED(status)) {
-        int s = WTERMSIG(status);
-        if (s == SIGXCPU || s == SIGKILL)
-            return sl_fail(d, SL_E_SCENE, path, 0, NULL,
-                           "%s: the reader was stopped after %u s of CPU (%s): a hang or a "
-                           "file too large", pre, cpu_s, sig_name(s));
-        return sl_fail(d, SL_E_SCENE, path, 0, NULL,
-                       "%s: the reader crashed (signal %d, %s; memory limit %llu MiB)", pre, s,
-                       sig_name(s), as_mb);
-    }
-    return sl_fail(d, SL_E_SCENE, path, 0, NULL, "%s: the reader ended without a result "
-                   "(exit %d)", pre, WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-}
-
 enum sl_err sl_mesh_load_file(struct sl_mesh *m, const char *path, const float xform[16],
                               struct sl_mesh_load_stats *st, struct sl_diag *d)
 {
     if (!m || !path)
         return sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "sl_mesh_load_file: NULL argument");
-    struct stat sb;
-    unsigned long long size = stat(path, &sb) == 0 ? (unsigned long long)sb.st_size : 0;
-    unsigned cpu_s = JAIL_CPU_BASE_S + JAIL_CPU_PER_MB_S * (unsigned)(size >> 20);
-    unsigned wall_s = 2 * cpu_s + 5;   /* a loaded machine gives the child less than a core */
-    unsigned long long as = vm_size() + JAIL_AS_BASE + JAIL_AS_PER_BYTE * size;
-    int fds[2];
-    if (pipe(fds) != 0)
-        return sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "cannot read the model: pipe: %s",
-                       strerror(errno));
-    fflush(NULL);   /* the child must not write the parent's buffers again */
-    pid_t pid = fork();
-    if (pid < 0) {
-        int en = errno;
-        close(fds[0]);
-        close(fds[1]);
-        return sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "cannot read the model: fork: %s",
-                       strerror(en));
-    }
-    if (pid == 0) {
-        close(fds[0]);
-        jail_child(fds[1], path, xform, cpu_s, as);
-    }
-    close(fds[1]);
-    double deadline = now_s() + wall_s;
-    struct jail_head h;
     struct sl_mesh got = {0};
-    int r = read_until(fds[0], &h, sizeof h, deadline), bad = 0;
-    enum sl_err e = SL_OK;
-    if (r == 1 && h.magic != JAIL_MAGIC)
-        bad = 1;
-    else if (r == 1 && h.err) {
-        if (h.err < 0 || h.err >= SL_ERR_COUNT)
-            bad = 1;
-        else {
-            h.d.file[sizeof h.d.file - 1] = h.d.key[sizeof h.d.key - 1] = 0;
-            h.d.msg[sizeof h.d.msg - 1] = 0;
-            if (d)
-                *d = h.d;
-            e = (enum sl_err)h.err;
-        }
-    } else if (r == 1) {
-        if (h.nv == 0 || h.nt == 0 || h.nv > MESHIO_MAX_ELEMS || h.nt > MESHIO_MAX_ELEMS)
-            bad = 1;
-        else {
-            got.pos = malloc((size_t)h.nv * 3 * sizeof(float));
-            got.idx = malloc((size_t)h.nt * 3 * sizeof(uint32_t));
-            if (!got.pos || !got.idx)
-                e = sl_fail(d, SL_E_NOMEM, path, 0, NULL, "mesh of %u triangles", h.nt);
-            else {
-                got.nv = got.cap_v = h.nv;
-                got.nt = got.cap_t = h.nt;
-                r = read_until(fds[0], got.pos, (size_t)h.nv * 3 * sizeof(float), deadline);
-                if (r == 1)
-                    r = read_until(fds[0], got.idx, (size_t)h.nt * 3 * sizeof(uint32_t), deadline);
-            }
-        }
-    }
-    if (r == -1)
-        kill(pid, SIGKILL);
-    close(fds[0]);
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-        ;
-    if (!e && r != 1)
-        e = jail_verdict(status, r == -1, cpu_s, wall_s, as >> 20, path, d);
-    else if (!e && bad)
-        e = sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "cannot read the model: the reader "
-                    "handed back a malformed result");
-    /* the child's result is checked like assimp's was */
-    for (size_t i = 0; !e && got.pos && i < 3 * (size_t)got.nv; i++)
-        if (!isfinite(got.pos[i]))
-            e = sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "cannot read the model: the reader "
-                        "handed back a non-finite vertex");
-    for (size_t i = 0; !e && got.idx && i < 3 * (size_t)got.nt; i++)
-        if (got.idx[i] >= got.nv)
-            e = sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "cannot read the model: the reader "
-                        "handed back an index out of range");
+    struct sl_mesh_load_stats s;
+    enum sl_err e = sl_mesh_read_in_child(load_direct, path, xform, &got, &s, d);
     if (!e && !mesh_append(m, &got))
         e = sl_fail(d, SL_E_NOMEM, path, 0, NULL, "out of memory appending %u triangles", got.nt);
     if (!e && st)
-        *st = h.st;
+        *st = s;
     sl_mesh_free(&got);
     return e;
 }

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# fuzz/run.sh BUILD SECONDS [ENTRY...] — run libFuzzer entries one after the
+# other, each for SECONDS with its seed corpus, and print one summary line
+# each (execs, exec/s, coverage). Exits 1 if any entry found a crash, a
+# timeout or a leak (its input is kept and shown), 0 otherwise.
+#   CC=clang CXX=clang++ cmake -S . -B build-fuzz -DSL_FUZZ=ON -DSL_TESTS=OFF
+#   cmake --build build-fuzz --target fuzz_config fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_gltf
+#   fuzz/run.sh build-fuzz 60            # what CI runs
+# Seeds (copied, never written): tests/bad/ and the repository's configs,
+# scenes and model files, plus Debian's assimp-testmodels where installed
+# (files up to 64 KiB: larger ones only slow each input down). New inputs
+# go to $FUZZ_WORK (default: a temporary folder, removed unless a finding
+# was kept there).
+set -u
+cd "$(dirname "$0")/.."
+build=${1:?usage: fuzz/run.sh BUILD SECONDS [ENTRY...]}
+secs=${2:?usage: fuzz/run.sh BUILD SECONDS [ENTRY...]}
+shift 2
+entries=("$@")
+[ ${#entries[@]} -eq 0 ] && entries=(fuzz_config fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_gltf)
+work=${FUZZ_WORK:-$(mktemp -d /tmp/sl-fuzz-run.XXXXXX)}
+mkdir -p "$work"
+assimp=/usr/share/assimp/models
+
+# seeds ENTRY DIR: copy the entry's seed files into DIR
+seeds() {
+  local n=0 f dst=$2
+  case $1 in
+    fuzz_config) set -- tests/bad/*.yaml configs/*.yaml ;;
+    fuzz_scene) set -- tests/bad/scenes/*.yaml tests/scenes/*.yaml scenes/*.yaml scenes/*/*.yaml ;;
+    fuzz_mesh_obj) set -- tests/models/*.obj tests/bad/models/*.obj "$assimp"/OBJ/*.obj ;;
+    fuzz_mesh_ply) set -- tests/models/*.ply tests/bad/models/*.ply "$assimp"/PLY/*.ply ;;
+    fuzz_mesh_gltf) # embedded buffers only load: an external .bin is not beside the input
+      set -- tests/models/*.gltf tests/bad/models/*.gltf $(find "$assimp"/glTF2 -name '*.gltf' 2>/dev/null) ;;
+    *) echo "fuzz/run.sh: unknown entry $1" >&2; return 1 ;;
+  esac
+  for f in "$@"; do
+    [ -f "$f" ] && [ "$(stat -c %s "$f")" -le 65536 ] || continue
+    n=$((n + 1))
+    cp "$f" "$dst/$n-$(basename "$f")" || return 1
+  done
+}
+
+fail=0
+for e in "${entries[@]}"; do
+  bin=$build/fuzz/$e
+  if [ ! -x "$bin" ]; then echo "FAIL $e: $bin not built"; fail=1; continue; fi
+  mkdir -p "$work/$e/seeds" "$work/$e/corpus" "$work/$e/found"
+  rm -f "$work/$e/seeds"/*
+  seeds "$e" "$work/$e/seeds" || { fail=1; continue; }
+  nseed=$(ls "$work/$e/seeds" | wc -l)
+  start=$(date +%s)
+  # -timeout: an input slower than this is a hang (a model reader is stopped
+  # after a few seconds by shadowlab itself); -rss_limit_mb: libFuzzer's own
+  "$bin" -max_total_time="$secs" -timeout=25 -rss_limit_mb=2560 -max_len=65536 \
+    -print_final_stats=1 -artifact_prefix="$work/$e/found/" \
+    "$work/$e/corpus" "$work/$e/seeds" >"$work/$e/log" 2>&1
+  rc=$?
+  wall=$(( $(date +%s) - start ))
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$e/log")
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$e/log")
+  cov=$(grep -oE 'cov: [0-9]+ ft: [0-9]+ corp: [0-9]+' "$work/$e/log" | tail -n 1)
+  # slow-unit-* are inputs slower than 10 s: shown, not failures
+  found=$(ls "$work/$e/found" | grep -v '^slow-unit-')
+  slow=$(ls "$work/$e/found" | grep -c '^slow-unit-')
+  if [ $rc -ne 0 ] || [ -n "$found" ]; then
+    echo "FAIL $e: exit $rc after ${wall} s, ${execs:-?} execs; libFuzzer says:"
+    grep -E '^(==[0-9]+==|SUMMARY|.*ERROR)' "$work/$e/log" | head -n 5
+    for f in $found; do
+      echo "  input $work/$e/found/$f ($(stat -c %s "$work/$e/found/$f") bytes):"
+      head -c 512 "$work/$e/found/$f" | od -c | head -n 8 | sed 's/^/    /'
+    done
+    fail=1
+  else
+    echo "ok   $e: ${secs} s, $nseed seeds, ${execs:-?} execs, ${rate:-?} exec/s, ${cov:-no coverage line}, $slow slow inputs"
+  fi
+done
+if [ $fail -eq 0 ] && [ -z "${FUZZ_WORK:-}" ]; then rm -rf "$work"; else echo "fuzz/run.sh: logs and inputs in $work"; fi
+exit $fail

@@ -1,0 +1,330 @@
+/*
+ * meshio_check.c — checks of a model file's own bytes before assimp reads
+ * it: what assimp would silently repair or misread (issue 15).
+ *
+ * Invariants:
+ * - Every check is bounded by the file's size: each loop step consumes at
+ *   least one byte or one line, and declared counts are only compared with
+ *   what is present, never used to allocate or to loop, so a header claiming
+ *   billions of elements costs nothing.
+ * - A file is refused only for a defect we can name (declared vs present
+ *   counts, an index out of range) with the file, the line or element, and
+ *   the numbers; anything these checks do not understand (an unknown
+ *   property type, a header without end_header) passes unchanged to assimp,
+ *   which runs in the reader's child with limits (meshio_child.c).
+ * - Checks only read; they run in the reader's child, like assimp.
+ */
+#define _DEFAULT_SOURCE
+#include "meshio_check.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+/* ------------------------------------------------------------------ PLY */
+
+/*
+ * assimp repairs or misreads broken PLY silently: an ASCII file declaring
+ * more elements than it holds loads with made-up triangles, and a binary one
+ * cut short is read past its end (garbage indices, or a crash). So the
+ * header is parsed here and the data measured against it: ASCII counts
+ * element lines; binary walks the elements (fixed-size rows by arithmetic,
+ * rows with lists item by item) and checks every face's vertex indices
+ * against the declared vertex count.
+ */
+#define PLY_MAX_ELEMS 32
+#define PLY_MAX_PROPS 64
+
+enum ply_fmt { PLY_UNKNOWN, PLY_ASCII, PLY_LE, PLY_BE };
+
+struct ply_prop {
+    int list;           /* a list: count of count_size bytes, then items */
+    int count_size;
+    int size;           /* scalar (or list item) size in bytes */
+    int is_signed, is_float;
+    int is_index;       /* face vertex_indices / vertex_index */
+};
+
+struct ply_elem {
+    char name[64];
+    unsigned long long n;
+    int nprops;
+    int row;            /* bytes per row when no property is a list, else -1 */
+    struct ply_prop props[PLY_MAX_PROPS];
+};
+
+struct ply_head {
+    enum ply_fmt fmt;
+    int nelems;
+    struct ply_elem el[PLY_MAX_ELEMS];
+    unsigned long long nvert;   /* the 'vertex' element's count */
+    long data;                  /* offset of the first data byte */
+};
+
+/* 1 with size and kind set, 0 for a type name we do not know. */
+static int ply_type(const char *t, int *size, int *sgn, int *flt)
+{
+    static const struct { const char *name; int size, sgn, flt; } ty[] = {
+        {"char", 1, 1, 0},   {"int8", 1, 1, 0},    {"uchar", 1, 0, 0},  {"uint8", 1, 0, 0},
+        {"short", 2, 1, 0},  {"int16", 2, 1, 0},   {"ushort", 2, 0, 0}, {"uint16", 2, 0, 0},
+        {"int", 4, 1, 0},    {"int32", 4, 1, 0},   {"uint", 4, 0, 0},   {"uint32", 4, 0, 0},
+        {"float", 4, 1, 1},  {"float32", 4, 1, 1}, {"double", 8, 1, 1}, {"float64", 8, 1, 1},
+    };
+    for (size_t i = 0; i < sizeof ty / sizeof ty[0]; i++)
+        if (!strcmp(t, ty[i].name)) {
+            *size = ty[i].size;
+            *sgn = ty[i].sgn;
+            *flt = ty[i].flt;
+            return 1;
+        }
+    return 0;
+}
+
+/* 1: header read whole and understood; 0: leave the file to assimp. */
+static int ply_header(FILE *f, struct ply_head *h)
+{
+    char line[1024];
+    memset(h, 0, sizeof *h);
+    struct ply_elem *cur = NULL;
+    while (fgets(line, sizeof line, f)) {
+        size_t len = strlen(line);
+        if (!len || line[len - 1] != '\n')
+            return 0;   /* a header line of 1 KiB, or no end_header */
+        char a[64], b[64], c[64], e[64];
+        if (!strncmp(line, "format ", 7)) {
+            if (sscanf(line + 7, "%63s", a) != 1)
+                return 0;
+            h->fmt = !strcmp(a, "ascii") ? PLY_ASCII : !strcmp(a, "binary_little_endian") ? PLY_LE
+                     : !strcmp(a, "binary_big_endian") ? PLY_BE : PLY_UNKNOWN;
+        } else if (!strncmp(line, "element ", 8)) {
+            unsigned long long n;
+            if (h->nelems >= PLY_MAX_ELEMS || sscanf(line + 8, "%63s %llu", a, &n) != 2)
+                return 0;
+            cur = &h->el[h->nelems++];
+            snprintf(cur->name, sizeof cur->name, "%s", a);
+            cur->n = n;
+            if (!strcmp(a, "vertex"))
+                h->nvert = n;
+        } else if (!strncmp(line, "property ", 9)) {
+            if (!cur || cur->nprops >= PLY_MAX_PROPS)
+                return 0;
+            struct ply_prop *p = &cur->props[cur->nprops++];
+            int s, g, fl;
+            if (sscanf(line + 9, "list %63s %63s %63s", a, b, c) == 3) {
+                if (!ply_type(a, &p->count_size, &g, &fl) || fl || !ply_type(b, &p->size, &p->is_signed,
+                                                                          &p->is_float))
+                    return 0;
+                p->list = 1;
+                p->is_index = !strcmp(cur->name, "face") &&
+                              (!strcmp(c, "vertex_indices") || !strcmp(c, "vertex_index"));
+            } else if (sscanf(line + 9, "%63s %63s", a, e) == 2 && ply_type(a, &s, &g, &fl)) {
+                p->size = s;
+            } else
+                return 0;
+        } else if (!strncmp(line, "end_header", 10)) {
+            for (int i = 0; i < h->nelems; i++) {
+                struct ply_elem *el = &h->el[i];
+                el->row = 0;
+                for (int k = 0; k < el->nprops && el->row >= 0; k++)
+                    el->row = el->props[k].list ? -1 : el->row + el->props[k].size;
+            }
+            h->data = ftell(f);
+            return h->fmt != PLY_UNKNOWN && h->data > 0;
+        }
+    }
+    return 0;
+}
+
+static enum sl_err ply_ascii_check(FILE *f, const struct ply_head *h, const char *path,
+                                   struct sl_diag *d)
+{
+    char line[1024];
+    unsigned long long declared = 0, held = 0;
+    for (int i = 0; i < h->nelems; i++)
+        declared += h->el[i].n;
+    while (fgets(line, sizeof line, f)) {
+        size_t k = strspn(line, " \t\r\n");
+        if (line[k])
+            held++;
+        size_t len = strlen(line);
+        while (len && line[len - 1] != '\n' && fgets(line, sizeof line, f))   /* long line */
+            len = strlen(line);
+    }
+    if (held < declared)
+        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "truncated file: the header declares %llu "
+                       "element lines, the file holds %llu", declared, held);
+    return SL_OK;
+}
+
+/* An integer of `size` bytes in the file's byte order. */
+static long long ply_int(const unsigned char *b, int size, int sgn, int big)
+{
+    unsigned long long u = 0;
+    for (int i = 0; i < size; i++)
+        u |= (unsigned long long)b[big ? size - 1 - i : i] << (8 * i);
+    if (sgn && size < 8 && (u >> (8 * size - 1)) & 1)
+        return (long long)u - (1ll << (8 * size));
+    return (long long)u;
+}
+
+static enum sl_err ply_binary_check(FILE *f, const struct ply_head *h, unsigned long long size,
+                                    const char *path, struct sl_diag *d)
+{
+    const int big = h->fmt == PLY_BE;
+    unsigned long long pos = (unsigned long long)h->data;
+    for (int i = 0; i < h->nelems; i++) {
+        const struct ply_elem *el = &h->el[i];
+        if (el->row >= 0) {   /* fixed rows: arithmetic, no reading */
+            unsigned long long left = size - pos;
+            if (el->row && el->n > left / (unsigned)el->row)
+                return sl_fail(d, SL_E_SCENE, path, 0, NULL, "truncated file: the header declares "
+                               "%llu '%s' elements (%d bytes each), the file holds %llu",
+                               el->n, el->name, el->row, left / (unsigned)el->row);
+            pos += el->n * (unsigned)el->row;
+            continue;
+        }
+        if (fseek(f, (long)pos, SEEK_SET) != 0)
+            return SL_OK;   /* not seekable: leave it to assimp */
+        for (unsigned long long r = 0; r < el->n; r++) {
+            for (int k = 0; k < el->nprops; k++) {
+                const struct ply_prop *p = &el->props[k];
+                unsigned char b[8];
+                int need = p->list ? p->count_size : p->size;
+                if (size - pos < (unsigned)need || fread(b, 1, (size_t)need, f) != (size_t)need)
+                    goto cut;
+                pos += (unsigned)need;
+                if (!p->list)
+                    continue;
+                /* read as unsigned whatever its type: a negative count is
+                 * then a huge one, refused as truncation below */
+                long long cnt = ply_int(b, p->count_size, 0, big);
+                unsigned long long bytes = (unsigned long long)cnt * (unsigned)p->size;
+                if (size - pos < bytes)
+                    goto cut;
+                if (!p->is_index || p->is_float) {
+                    pos += bytes;
+                    if (fseek(f, (long)pos, SEEK_SET) != 0)
+                        return SL_OK;
+                    continue;
+                }
+                for (long long c = 0; c < cnt; c++) {
+                    if (fread(b, 1, (size_t)p->size, f) != (size_t)p->size)
+                        goto cut;
+                    long long v = ply_int(b, p->size, p->is_signed, big);
+                    if (v < 0 || (unsigned long long)v >= h->nvert)
+                        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "corrupt file: face %llu "
+                                       "names vertex %lld, the header declares %llu vertices",
+                                       r, v, h->nvert);
+                }
+                pos += bytes;
+            }
+            continue;
+        cut:
+            return sl_fail(d, SL_E_SCENE, path, 0, NULL, "truncated file: the header declares "
+                           "%llu '%s' elements, the data ends in element %llu", el->n, el->name, r);
+        }
+    }
+    return SL_OK;
+}
+
+static enum sl_err ply_check(FILE *f, const char *path, struct sl_diag *d)
+{
+    struct ply_head *h = malloc(sizeof *h);
+    if (!h)
+        return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "PLY header");
+    enum sl_err e = SL_OK;
+    struct stat sb;
+    if (ply_header(f, h)) {
+        if (h->fmt == PLY_ASCII)
+            e = ply_ascii_check(f, h, path, d);
+        else if (fstat(fileno(f), &sb) == 0 && (unsigned long long)sb.st_size >= (unsigned long long)h->data)
+            e = ply_binary_check(f, h, (unsigned long long)sb.st_size, path, d);
+    }
+    free(h);
+    return e;
+}
+
+/* ------------------------------------------------------------------ OBJ */
+
+/*
+ * assimp repairs OBJ face corners naming a texture coordinate or normal
+ * that does not exist. They are refused here with the line that is wrong.
+ */
+/* v/vt/vn counts and, per face corner, indices in 1..count (or negative,
+ * relative to the count so far). */
+static enum sl_err obj_check(FILE *f, const char *path, struct sl_diag *d)
+{
+    char line[4096];
+    long long cnt[3] = {0, 0, 0}, maxref[3] = {0, 0, 0};
+    int maxline[3] = {0, 0, 0}, lineno = 0;
+    static const char *what[3] = {"vertex", "texture coordinate", "normal"};
+    while (fgets(line, sizeof line, f)) {
+        lineno++;
+        if (line[0] == 'v' && line[1] == ' ')
+            cnt[0]++;
+        else if (line[0] == 'v' && line[1] == 't' && (line[2] == ' ' || line[2] == '\t'))
+            cnt[1]++;
+        else if (line[0] == 'v' && line[1] == 'n' && (line[2] == ' ' || line[2] == '\t'))
+            cnt[2]++;
+        else if (line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
+            char *q = line + 2;
+            for (;;) {
+                while (*q == ' ' || *q == '\t')
+                    q++;
+                if (!*q || *q == '\n' || *q == '\r' || *q == '#')
+                    break;
+                for (int k = 0; k < 3; k++) {
+                    char *e;
+                    if (*q == '/' || *q == ' ' || *q == '\t' || *q == '\n' || *q == '\r' || !*q) {
+                        if (*q == '/')
+                            q++;
+                        continue;   /* absent */
+                    }
+                    long long v = strtoll(q, &e, 10);
+                    if (e == q)
+                        return sl_fail(d, SL_E_SCENE, path, lineno, NULL, "corrupt file: "
+                                       "bad face corner (line %d)", lineno);
+                    q = e;
+                    if (v < 0 ? -v > cnt[k] : v == 0)
+                        return sl_fail(d, SL_E_SCENE, path, lineno, NULL, "corrupt file: line %d: "
+                                       "face names %s %lld of %lld", lineno, what[k], v, cnt[k]);
+                    if (v > maxref[k]) {
+                        maxref[k] = v;
+                        maxline[k] = lineno;
+                    }
+                    if (*q == '/')
+                        q++;
+                    else
+                        break;
+                }
+                while (*q && *q != ' ' && *q != '\t' && *q != '\n' && *q != '\r')
+                    q++;
+            }
+        }
+        size_t len = strlen(line);
+        while (len && line[len - 1] != '\n' && fgets(line, sizeof line, f))
+            len = strlen(line);
+    }
+    for (int k = 0; k < 3; k++)
+        if (maxref[k] > cnt[k])
+            return sl_fail(d, SL_E_SCENE, path, maxline[k], NULL, "corrupt file: line %d: face "
+                           "names %s %lld of %lld", maxline[k], what[k], maxref[k], cnt[k]);
+    return SL_OK;
+}
+
+enum sl_err sl_mesh_precheck(const char *path, struct sl_diag *d)
+{
+    const char *dot = strrchr(path, '.');
+    if (!dot)
+        return SL_OK;
+    int ply = !strcasecmp(dot, ".ply"), obj = !strcasecmp(dot, ".obj");
+    if (!ply && !obj)
+        return SL_OK;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return SL_OK;   /* the reader reports it */
+    enum sl_err e = ply ? ply_check(f, path, d) : obj_check(f, path, d);
+    fclose(f);
+    return e;
+}
