@@ -228,7 +228,7 @@ static enum sl_err bench_truth(struct bench_ctx *x, struct sl_bench_result *res,
     for (int vi = 0; vi < x->nvp && !e; vi++) {
         int vp = x->vp[vi];
         struct sl_view v;
-        if ((e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, x->W, x->H, &v, NULL, NULL, d)))
+        if ((e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, x->W, x->H, &v, NULL, NULL, NULL, d)))
             break;
         struct packets pk = {0};
         double *tt = calloc((size_t)reps, sizeof *tt), *tp = calloc((size_t)reps, sizeof *tp);
@@ -427,7 +427,7 @@ static enum sl_err bench_layers(struct bench_ctx *x, struct sl_bench_result *res
         GLuint q;
         glGenQueries(1, &q);
         glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q);
-        e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, W, H, &v, &mr, &mb, d);
+        e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, W, H, &v, &mr, &mb, NULL, d);
         glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
         GLuint64 frags = 0;
         glGetQueryObjectui64v(q, GL_QUERY_RESULT, &frags);
