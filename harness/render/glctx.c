@@ -103,7 +103,7 @@ enum sl_err sl_gl_open(struct sl_gl *g, const struct sl_gl_desc *desc, struct sl
     memset(g, 0, sizeof *g);
     const char *env = getenv("SHADOWLAB_GL");
     if (env && env[0] && sl_gl_backend_parse(env) == SL_GL_DEFAULT)
-        return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_GL", "SHADOWLAB_GL '%s': osmesa or egl", env);
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_GL", "'%s': osmesa or egl", env);
     enum sl_gl_backend b = sl_gl_backend_resolve(desc ? desc->backend : SL_GL_DEFAULT);
     if (!sl_gl_backend_built(b))
         return sl_fail(d, SL_E_USAGE, NULL, 0, "gl",
