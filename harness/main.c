@@ -107,6 +107,8 @@ static const char usage_bench[] =
     "    truth    the truth pass vs a plain Embree rtcOccluded16 loop over the same rays (>= 0.8x)\n"
     "    layers   the G-buffer and every shadow-map layer vs a plain raster of the same mesh, size\n"
     "             and matrix, with GL counters (render time within 2x)\n"
+    "    backends context creation, the G-buffer and each layer through OSMesa and EGL side by\n"
+    "             side (EGL's min within 5% of OSMesa's per stage; needs both built)\n"
     "    moderno  configs/moderno-2011.yaml end to end, no files, no cache (< 60 s)\n"
     "    morais   configs/morais-2015.yaml end to end, no files, no cache (< 300 s)\n"
     "  and the peak RSS after all of it (< 2 GiB). A missed target exits 0; a failure exits 2.\n"

@@ -5,6 +5,7 @@
  * Everything after sl_gl_open is the same for both backends.
  */
 #include "glctx.h"
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -214,13 +215,14 @@ void sl_gl_timer_end(struct sl_gl_timer *t)
     glEndQuery(GL_TIME_ELAPSED);
 }
 
-double sl_gl_timer_ms(struct sl_gl_timer *t)
+double sl_gl_timer_ms(struct sl_gl_timer *t, double wall_ms)
 {
     GLuint64 ns = 0;
     glGetQueryObjectui64v(t->q, GL_QUERY_RESULT, &ns);
     glDeleteQueries(1, &t->q);
     t->q = 0;
-    return 1e-6 * (double)ns;
+    double ms = 1e-6 * (double)ns;
+    return ms <= wall_ms ? ms : NAN;
 }
 
 enum sl_err sl_gl_check(const char *what, struct sl_diag *d)

@@ -71,8 +71,12 @@ GLuint sl_gl_program(const char *vs, const char *gs, const char *fs, struct sl_d
 struct sl_gl_timer { GLuint q; };
 void   sl_gl_timer_begin(struct sl_gl_timer *t);
 void   sl_gl_timer_end(struct sl_gl_timer *t);
-/* Elapsed ms (waits for the result if not ready); frees the query. */
-double sl_gl_timer_ms(struct sl_gl_timer *t);
+/* Elapsed ms (waits for the result if not ready); frees the query. NaN (not
+ * measured) when the result lies outside [0, wall_ms], the wall time of a
+ * bracket that holds the query: no working timer can report that. llvmpipe
+ * does for a query begun before any work of a fresh context (no rasteriser
+ * thread records a start, and the result is the time since boot). */
+double sl_gl_timer_ms(struct sl_gl_timer *t, double wall_ms);
 
 /* glGetError after a pass, as an sl_err naming the pass. */
 enum sl_err sl_gl_check(const char *what, struct sl_diag *d);

@@ -340,7 +340,7 @@ static enum sl_err render_layer(const struct sl_softmap_pass *p, const struct sl
         double t2 = sl_now();
         glGetTextureImage(tex[1], 0, GL_RED, GL_FLOAT, (GLsizei)(n * sizeof(float)), out);
         m->ms_readback += 1e3 * (sl_now() - t2);
-        *ms_gpu = sl_gl_timer_ms(&gt);   /* after the readback: no extra wait */
+        *ms_gpu = sl_gl_timer_ms(&gt, *ms_render);   /* after the readback: no extra wait */
         glDisable(GL_CULL_FACE);
         glDepthFunc(GL_LESS);
         glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
