@@ -50,27 +50,22 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* {median, min, max} of n >= 1 times (sorted in place). */
+/* {median, min, max} of n >= 1 times (sorted in place), NaN ones (a GPU
+ * timer that failed, glctx.h) left out; all NaN: NaN (not measured). */
 static void med_min_max(double *t, int n, double out[3])
-{
-    qsort(t, (size_t)n, sizeof t[0], cmp_double);
-    out[SL_MED] = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
-    out[SL_MIN] = t[0];
-    out[SL_MAX] = t[n - 1];
-}
-
-/* The same over the times that are not NaN (a GPU timer that failed,
- * glctx.h); NaN (not measured) when none is. */
-static void med_min_max_known(double *t, int n, double out[3])
 {
     int k = 0;
     for (int i = 0; i < n; i++)
         if (!isnan(t[i]))
             t[k++] = t[i];
-    if (k)
-        med_min_max(t, k, out);
-    else
+    if ((n = k) == 0) {
         out[SL_MED] = out[SL_MIN] = out[SL_MAX] = NAN;
+        return;
+    }
+    qsort(t, (size_t)n, sizeof t[0], cmp_double);
+    out[SL_MED] = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+    out[SL_MIN] = t[0];
+    out[SL_MAX] = t[n - 1];
 }
 
 struct run_ctx {
@@ -398,7 +393,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
             return e;
     }
     med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
-    med_min_max_known(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
+    med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
     unsigned long long key = sl_cache_view_key(x->scene_key, &x->scene.vp[vp], W, H);
     if (x->area)
         return area_view(x, c, k, key, cache_dir, reps, times, res, d);
@@ -471,7 +466,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         }
         if (!e) {
             med_min_max(times + c->warmup, c->runs, x->layer_ms[l]);
-            med_min_max_known(gpu + c->warmup, c->runs, x->layer_gpu[l]);
+            med_min_max(gpu + c->warmup, c->runs, x->layer_gpu[l]);
         }
     }
     return e;
