@@ -11,6 +11,10 @@
  *   the same way: render + glFinish, readback apart (target: within 2x);
  *   with the GL counters (GS primitives, fragment shader invocations) so the
  *   comparison carries to a GPU;
+ * - backends: context creation, the G-buffer and each layer through OSMesa
+ *   and through EGL in the same process, side by side (wall min and median,
+ *   CPU, GPU time; target: EGL's min within 5% of OSMesa's per stage);
+ *   skipped, with a line, when one of the two is not built;
  * - moderno, morais: configs/moderno-2011.yaml and configs/morais-2015.yaml
  *   through sl_run, no files, no store, no truth cache (targets: 60 s and
  *   300 s of wall time);
@@ -33,6 +37,7 @@
 #define SL_BENCH_STAGES(X)   \
     X(TRUTH,   "truth")      \
     X(LAYERS,  "layers")     \
+    X(BACKENDS, "backends")  \
     X(MODERNO, "moderno")    \
     X(MORAIS,  "morais")
 

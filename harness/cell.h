@@ -41,6 +41,11 @@ struct sl_stage_ms {
     double gbuffer_render[3], gbuffer_readback, truth[3], fit;   /* [SL_MED], [SL_MIN], [SL_MAX] */
     double map_render[3], map_readback;
     double method[3], contours, figures, overlay;
+    /* GPU time (GL_TIME_ELAPSED, glctx.h) of the same G-buffer and layer
+     * renders over the same repetitions; 0 where no GL pass ran (no layer
+     * read). The soft layers of an area light are rendered once: their
+     * wall and GPU times go to map_render and gpu_map as they are. */
+    double gpu_gbuffer[3], gpu_map[3];
 };
 
 /* A pixel where a method broke the guarantee it declares (method.h

@@ -1,6 +1,6 @@
 /*
  * main.c — the command line. The only place that prints errors and exits:
- * 0 success, 1 a check failed, 2 bad input or sl_usage (and any other failure
+ * 0 success, 1 a check failed, 2 bad input or usage (and any other failure
  * that leaves no result).
  */
 #define _GNU_SOURCE   /* getopt_long, setenv, sigaction */
@@ -29,7 +29,7 @@
 
 
 
-/* 2: bad input or sl_usage (a config, a scene, a model, an option, a store or
+/* 2: bad input or usage (a config, a scene, a model, an option, a store or
  * file that cannot be read as what it should be); 3: a system failure (an
  * output that cannot be written, GL, Embree, memory, an internal error). */
 static int exit_code(enum sl_err e)

@@ -70,6 +70,8 @@ void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct s
     r->ms_map_render_min = s->map_render[SL_MIN];
     r->ms_map_render_max = s->map_render[SL_MAX];
     r->ms_map_readback = s->map_readback;
+    r->ms_gpu_gbuffer = s->gpu_gbuffer[SL_MED];
+    r->ms_gpu_map = s->gpu_map[SL_MED];
     r->ms_method = s->method[SL_MED];
     r->ms_method_min = s->method[SL_MIN];
     r->ms_method_max = s->method[SL_MAX];

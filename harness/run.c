@@ -50,9 +50,18 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* {median, min, max} of n >= 1 times (sorted in place). */
+/* {median, min, max} of n >= 1 times (sorted in place), NaN ones (a GPU
+ * timer that failed, glctx.h) left out; all NaN: NaN (not measured). */
 static void med_min_max(double *t, int n, double out[3])
 {
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (!isnan(t[i]))
+            t[k++] = t[i];
+    if ((n = k) == 0) {
+        out[SL_MED] = out[SL_MIN] = out[SL_MAX] = NAN;
+        return;
+    }
     qsort(t, (size_t)n, sizeof t[0], cmp_double);
     out[SL_MED] = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
     out[SL_MIN] = t[0];
@@ -82,6 +91,7 @@ struct run_ctx {
     int frame_map;
     struct sl_light_frame frame;
     double layer_ms[SL_LAYER_COUNT][3];   /* render time of each layer: median, min, max */
+    double layer_gpu[SL_LAYER_COUNT][3];  /* its GPU time (GL_TIME_ELAPSED), the same */
     uint64_t view_bad, layer_bad[SL_LAYER_COUNT];   /* values that are not finite or out of range */
     /* per-pixel scratch */
     int W, H;
@@ -368,21 +378,22 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "viewpoint vanished from the scene");
     memset(&x->vms, 0, sizeof x->vms);
     int reps = c->warmup + c->runs;
-    double times[SL_MAX_REPS];
+    double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
     enum sl_err e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &x->view, &times[0],
-                                      &x->vms.gbuffer_readback, d);
+                                      &x->vms.gbuffer_readback, &gpu[0], d);
     if (e)
         return e;
     res->passes.gbuffers++;
     for (int r = 1; r < reps; r++) {
         /* the same pass again, timed only */
         struct sl_view again;
-        e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &again, &times[r], NULL, d);
+        e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &again, &times[r], NULL, &gpu[r], d);
         sl_view_free(&again);
         if (e)
             return e;
     }
     med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
+    med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
     unsigned long long key = sl_cache_view_key(x->scene_key, &x->scene.vp[vp], W, H);
     if (x->area)
         return area_view(x, c, k, key, cache_dir, reps, times, res, d);
@@ -438,8 +449,9 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
             continue;
         res->passes.layers[l]++;
         x->layer_bad[l] = layer_bad(&x->frame.layer[l], x->frame.size);
-        double times[SL_MAX_REPS];
+        double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
         times[0] = x->frame.layer[l].ms_render;
+        gpu[0] = x->frame.layer[l].ms_gpu;
         for (int r = 1; r < reps && !e; r++) {
             /* the same layer again into a scratch copy of the frame (which
              * shares the other layers, e.g. BGSM for BGSM2), timed only */
@@ -448,11 +460,14 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
             memset(&again.layer[l], 0, sizeof again.layer[l]);
             e = sl_shadowmap_render(&x->spass, &x->mesh, &again, SL_NEED(l), d);
             times[r] = again.layer[l].ms_render;
+            gpu[r] = again.layer[l].ms_gpu;
             free(again.layer[l].depth);
             free(again.layer[l].id);
         }
-        if (!e)
+        if (!e) {
             med_min_max(times + c->warmup, c->runs, x->layer_ms[l]);
+            med_min_max(gpu + c->warmup, c->runs, x->layer_gpu[l]);
+        }
     }
     return e;
 }
@@ -571,12 +586,19 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     unsigned mneeds = cm->method->needs(&cm->params);
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         if (mneeds & SL_NEED(l)) {
-            for (int j = 0; j < 3; j++)
+            for (int j = 0; j < 3; j++) {
                 cell->ms.map_render[j] += x->layer_ms[l][j];
+                cell->ms.gpu_map[j] += x->layer_gpu[l][j];
+            }
             cell->nonfinite += x->layer_bad[l];
             cell->ms.map_readback += x->frame.layer[l].ms_readback;
             cell->gs_prims += x->frame.layer[l].gs_prims;
             cell->fragments += x->frame.layer[l].fragments;
+        }
+    if ((mneeds & SL_NEED_SOFT) && x->soft_map >= 0)
+        for (int j = 0; j < 3; j++) {   /* rendered once (ensure_soft): no spread */
+            cell->ms.map_render[j] += x->softmap.ms_near + x->softmap.ms_far;
+            cell->ms.gpu_map[j] += x->softmap.ms_gpu_near + x->softmap.ms_gpu_far;
         }
     /* methods get the view without its truth */
     struct sl_view mview = x->view;

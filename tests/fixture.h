@@ -34,7 +34,7 @@ static inline int fixture_open(struct fixture *f, const char *scene, int threads
 static inline int fixture_view(struct fixture *f, int vp, int w, int h, struct sl_view *v)
 {
     struct sl_diag d;
-    if (sl_gbuffer_render(&f->gp, &f->mesh, &f->scene, vp, w, h, v, NULL, NULL, &d) ||
+    if (sl_gbuffer_render(&f->gp, &f->mesh, &f->scene, vp, w, h, v, NULL, NULL, NULL, &d) ||
         sl_truth_trace(&f->rt, &f->scene, v, NULL, &d)) {
         fprintf(stderr, "fixture view: %s\n", d.msg);
         return 0;

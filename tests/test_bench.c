@@ -26,6 +26,8 @@ static void bench_parse_stages(void **st)
     assert_int_equal(sl_bench_parse_stages("morais", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(MORAIS));
     assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,morais", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_ALL & ~SL_BENCH_STAGE(BACKENDS));
+    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_ALL);
     assert_int_equal(sl_bench_parse_stages("truth,layer", &bits, &d), SL_E_USAGE);
     assert_non_null(strstr(d.msg, "'layer'"));
@@ -114,11 +116,49 @@ static void bench_quick_mode_rows(void **st)
     assert_non_null(strstr(text, ",layer,\"bgsm2 256²\",ms,"));
 }
 
+/* OSMesa and EGL side by side: a row per stage (context, G-buffer, the six
+ * layers), EGL's min against OSMesa's, judged at 5%. */
+static void bench_backends_rows(void **st)
+{
+    (void)st;
+    if (!sl_gl_backend_built(SL_GL_OSMESA) || !sl_gl_backend_built(SL_GL_EGL))
+        skip();
+    char md[300];
+    snprintf(md, sizeof md, "%s/backends.md", sl_test_dir);
+    FILE *out = fopen(md, "w");
+    assert_non_null(out);
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(BACKENDS), .reps = 2, .scene = "blocks", .width = 64,
+                              .height = 48, .map = 128, .out = out};
+    struct sl_bench_result r;
+    struct sl_diag d;
+    enum sl_err e = sl_bench(&o, &r, &d);
+    fclose(out);
+    if (e)
+        fprintf(stderr, "bench: %s\n", d.msg);
+    assert_int_equal(e, SL_OK);
+    /* eight backend rows, then memory and the first context */
+    assert_int_equal(r.nrows, 8 + 2);
+    assert_string_equal(r.rows[0].name, "EGL vs OSMesa: context");
+    assert_string_equal(r.rows[1].name, "EGL vs OSMesa: gbuffer 64x48");
+    assert_string_equal(r.rows[7].name, "EGL vs OSMesa: sgsm_adj 128²");
+    for (int i = 0; i < 8; i++) {
+        const struct sl_bench_row *w = &r.rows[i];
+        assert_string_equal(w->stage, "backend");
+        assert_true(isfinite(w->value) && w->value > 0 && isfinite(w->plain) && w->plain > 0);
+        assert_true(fabs(w->ratio - w->value / w->plain) < 1e-9 * w->ratio);
+        assert_int_equal(w->pass, w->ratio <= 1.05);
+    }
+    const char *text = slurp(md);
+    assert_non_null(strstr(text, "## GL backends side by side"));
+    assert_non_null(strstr(text, "| bgsm2 128² |"));
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(bench, parse_stages),
         SL_CASE(bench, quick_mode_rows),
+        SL_CASE(bench, backends_rows),
     };
     return sl_run_group(argc, argv, "bench", tests, sl_test_setup, sl_test_teardown);
 }

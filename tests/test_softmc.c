@@ -76,7 +76,7 @@ static int env_open(struct env *e, const char *path, const char *vp_name)
     int vp = sl_scene_find_viewpoint(&e->scene, vp_name);
     double t0 = sl_now();
     struct sl_softmap_desc md = {.size = MAP, .receiver = e->receiver};
-    if (sl_gbuffer_render(&e->gp, &e->mesh, &e->scene, vp, VW, VH, &e->view, NULL, NULL, &d) ||
+    if (sl_gbuffer_render(&e->gp, &e->mesh, &e->scene, vp, VW, VH, &e->view, NULL, NULL, NULL, &d) ||
         sl_softmap_render(&SP, &e->mesh, &e->scene, &e->view, &md, &e->map, &d) ||
         sl_softmap_nbuf_build(&e->map, 0, &e->nb, &d) || sl_rt_build(&e->rt, &e->scene, 2, 1, &d)) {
         fprintf(stderr, "%s: %s\n", path, d.msg);

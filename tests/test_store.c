@@ -191,6 +191,7 @@ static void store_round_trip(void **st)
     cost.ms_gbuffer_readback = 0.5, cost.ms_fit = 0.75, cost.ms_map_readback = 0.875, cost.ms_ray_step = 1.0;
     cost.ms_step1 = 0.1, cost.ms_step2 = 0.2, cost.ms_step3 = 0.3, cost.ms_step4 = 0.4;
     cost.ms_contours = 6.0, cost.ms_figures = 7.0, cost.ms_overlay = NAN;
+    cost.ms_gpu_gbuffer = 0.3125, cost.ms_gpu_map = 0.0;   /* 0: no layer read */
     struct sl_cell_record c1 = make_cell("side", 1024, "nsm_a", &f1, &cost, 1000);
     struct sl_cell_record c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
@@ -224,6 +225,8 @@ static void store_round_trip(void **st)
                 k->ms_ray_step == 1.0);
     assert_true(k->ms_step1 == 0.1 && k->ms_step4 == 0.4 && k->ms_contours == 6.0 && k->ms_figures == 7.0);
     assert_true(isnan(k->ms_overlay));
+    assert_true(k->ms_gpu_gbuffer == 0.3125 && k->ms_gpu_map == 0.0);
+    assert_true(isnan(cells[1].ms_gpu_gbuffer));   /* not measured: NULL, back as NaN */
     assert_string_equal(cells[0].study, "study_s");
     assert_string_equal(cells[0].overlay, "study_s/overlays/a.png");
     assert_int_equal(cells[0].run_id, run1);

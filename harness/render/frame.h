@@ -62,6 +62,7 @@ struct sl_depth_layer {
     float    *depth;            /* size*size window depth in [0,1], 1 = empty */
     uint32_t *id;               /* triangle + 1, 0 = empty */
     double    ms_render, ms_readback;
+    double    ms_gpu;           /* GL_TIME_ELAPSED of the clears and draws (glctx.h) */
     uint64_t  gs_prims;         /* primitives the geometry shader emitted (GL query; 0 without GS) */
     uint64_t  fragments;        /* fragment shader invocations (GL query) */
 };

@@ -45,7 +45,7 @@ void sl_gbuffer_free(struct sl_gbuffer_pass *p)
 enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_gl_mesh *m,
                               const struct sl_scene *s, int vp, int w, int h,
                               struct sl_view *v, double *ms_render, double *ms_readback,
-                              struct sl_diag *d)
+                              double *ms_gpu, struct sl_diag *d)
 {
     memset(v, 0, sizeof *v);
     v->w = w;
@@ -87,6 +87,8 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
         const float zero4[4] = {0, 0, 0, 0};
         const GLuint zero_u[4] = {0, 0, 0, 0};
         const float one = 1.0f;
+        struct sl_gl_timer gt;
+        sl_gl_timer_begin(&gt);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
         glViewport(0, 0, w, h);
         glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
@@ -100,11 +102,14 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
         glUniformMatrix4fv(glGetUniformLocation(p->prog, "u_vp"), 1, GL_FALSE, (const float *)vpm);
         glBindVertexArray(m->vao);
         glDrawElements(GL_TRIANGLES, m->count, GL_UNSIGNED_INT, NULL);
+        sl_gl_timer_end(&gt);
         glFinish();
         double t1 = sl_now();
         glGetTextureImage(tex[0], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba_pos);
         glGetTextureImage(tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), v->tri);
         double t2 = sl_now();
+        double gpu = sl_gl_timer_ms(&gt, 1e3 * (t1 - t0));   /* after the readback: no extra wait */
+        if (ms_gpu) *ms_gpu = gpu;
         if (ms_render) *ms_render = 1e3 * (t1 - t0);
         if (ms_readback) *ms_readback = 1e3 * (t2 - t1);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -23,11 +23,12 @@ void        sl_gbuffer_free(struct sl_gbuffer_pass *p);
 
 /* Render viewpoint vp at w x h and fill v (pos, nrm, tri, cls; truth set to
  * SL_T_BACKGROUND / SL_T_PNFL, and SL_T_LIT for PFL pixels until truth.c
- * traces them). Times in ms go to *ms_render and *ms_readback when not NULL. */
+ * traces them). Times in ms go to *ms_render and *ms_readback (wall) and
+ * *ms_gpu (GL_TIME_ELAPSED of the clears and the draw) when not NULL. */
 enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_gl_mesh *m,
                               const struct sl_scene *s, int vp, int w, int h,
                               struct sl_view *v, double *ms_render, double *ms_readback,
-                              struct sl_diag *d);
+                              double *ms_gpu, struct sl_diag *d);
 
 /* Camera matrices of a viewpoint at an aspect ratio. */
 void sl_camera_matrices(const struct sl_viewpoint *vp, float aspect, mat4 view, mat4 proj);

@@ -27,7 +27,9 @@ enum sl_gl_backend { SL_GL_DEFAULT = 0, SL_GL_OSMESA, SL_GL_EGL };
 const char *sl_gl_backend_name(enum sl_gl_backend b);
 /* "osmesa" or "egl" -> the backend; SL_GL_DEFAULT for anything else. */
 enum sl_gl_backend sl_gl_backend_parse(const char *s);
-/* SL_GL_DEFAULT -> OSMesa where built, else EGL; others unchanged. */
+/* SL_GL_DEFAULT -> $SHADOWLAB_GL when it names a backend, else OSMesa where
+ * built, else EGL; others unchanged. The order of choice is so: --gl on the
+ * command line, then the config's gl:, then SHADOWLAB_GL, then the build's. */
 enum sl_gl_backend sl_gl_backend_resolve(enum sl_gl_backend b);
 /* Whether this binary was built with that backend (SL_GL_DEFAULT: any). */
 int sl_gl_backend_built(enum sl_gl_backend b);
@@ -48,8 +50,8 @@ struct sl_gl {
     char device[160];
 };
 
-/* The default backend (zero desc). SL_E_USAGE: a backend not built, or a bad
- * SHADOWLAB_EGL_DEVICE; SL_E_GL: no display, no 4.5 core context, or an entry
+/* The default backend (zero desc). SL_E_USAGE: a backend not built, a bad
+ * SHADOWLAB_GL (checked even when desc names a backend) or SHADOWLAB_EGL_DEVICE; SL_E_GL: no display, no 4.5 core context, or an entry
  * point missing. */
 enum sl_err sl_gl_init(struct sl_gl *g, struct sl_diag *d);
 enum sl_err sl_gl_open(struct sl_gl *g, const struct sl_gl_desc *desc, struct sl_diag *d);
@@ -60,6 +62,21 @@ void sl_gl_describe(const struct sl_gl *g, char *buf, size_t n);
 
 /* Link a program from sources (gs may be NULL); 0 and diag on failure. */
 GLuint sl_gl_program(const char *vs, const char *gs, const char *fs, struct sl_diag *d);
+
+/* GPU time of a pass: a GL_TIME_ELAPSED query (core since 3.3) around the
+ * pass's clears and draws. Only one may be open at a time. Its result is read
+ * by sl_gl_timer_ms after the pass's readback, which has already waited for
+ * the GPU, so reading it adds no stall to what the wall clock measures. On
+ * llvmpipe "GPU" time is the rasteriser threads' span, reported as it is. */
+struct sl_gl_timer { GLuint q; };
+void   sl_gl_timer_begin(struct sl_gl_timer *t);
+void   sl_gl_timer_end(struct sl_gl_timer *t);
+/* Elapsed ms (waits for the result if not ready); frees the query. NaN (not
+ * measured) when the result lies outside [0, wall_ms], the wall time of a
+ * bracket that holds the query: no working timer can report that. llvmpipe
+ * does for a query begun before any work of a fresh context (no rasteriser
+ * thread records a start, and the result is the time since boot). */
+double sl_gl_timer_ms(struct sl_gl_timer *t, double wall_ms);
 
 /* glGetError after a pass, as an sl_err naming the pass. */
 enum sl_err sl_gl_check(const char *what, struct sl_diag *d);

@@ -209,13 +209,37 @@ enum sl_err sl_egl_open(struct sl_gl *g, struct sl_diag *d)
     return sl_fail(d, SL_E_GL, NULL, 0, NULL, "no EGL display gave a 4.5 core context: tried %s", tried);
 }
 
+/* The display of the last context stays initialized until exit. eglTerminate
+ * makes Mesa unload its DRI driver (dlclose), and the next eglInitialize
+ * loads, relocates and configures it again (dlopen of swrast_dri.so, the
+ * driconf XML through expat): perf showed that as nearly all of a context's
+ * creation, 60 ms per context on llvmpipe against OSMesa's 1.4 ms (bench
+ * --only backends). eglInitialize of an initialized display does nothing, so
+ * the next context on it costs what OSMesa's does. */
+static EGLDisplay kept = EGL_NO_DISPLAY;
+
+static void terminate_kept(void)
+{
+    if (kept != EGL_NO_DISPLAY)
+        eglTerminate(kept);
+    kept = EGL_NO_DISPLAY;
+    eglReleaseThread();
+}
+
 void sl_egl_close(struct sl_gl *g)
 {
     if (g->egl_display) {
         eglMakeCurrent(g->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (g->egl_ctx)
             eglDestroyContext(g->egl_display, g->egl_ctx);
-        eglTerminate(g->egl_display);
+        if (kept != g->egl_display) {
+            static int registered;
+            if (kept != EGL_NO_DISPLAY)
+                eglTerminate(kept);
+            kept = g->egl_display;
+            if (!registered)
+                registered = atexit(terminate_kept) == 0;
+        }
     }
     g->egl_display = g->egl_ctx = NULL;
 }

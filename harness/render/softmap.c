@@ -275,8 +275,8 @@ enum sl_err sl_softmap_fit(const struct sl_scene *s, const struct sl_view *v,
 /* One layer: front faces nearest (far = 0) or back faces farthest (far = 1). */
 static enum sl_err render_layer(const struct sl_softmap_pass *p, const struct sl_gl_mesh *gm,
                                 const struct sl_scene *s, const uint8_t *receiver, int far,
-                                struct sl_softmap *m, float *out, double *ms_render, uint64_t *frags,
-                                struct sl_diag *d)
+                                struct sl_softmap *m, float *out, double *ms_render, double *ms_gpu,
+                                uint64_t *frags, struct sl_diag *d)
 {
     const int S = m->size;
     const size_t n = (size_t)S * (size_t)S;
@@ -296,6 +296,8 @@ static enum sl_err render_layer(const struct sl_softmap_pass *p, const struct sl
         /* Curtis's clears: near layer to the far plane, far layer to the near one */
         const float clear_depth = far ? 0.0f : 1.0f;
         const float clear_lin[4] = {(float)(far ? m->znear : m->zfar), 0, 0, 0};
+        struct sl_gl_timer gt;
+        sl_gl_timer_begin(&gt);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
         glViewport(0, 0, S, S);
         glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -327,6 +329,7 @@ static enum sl_err render_layer(const struct sl_softmap_pass *p, const struct sl
                            (const void *)((size_t)g->first * 3 * sizeof(uint32_t)));
         }
         glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+        sl_gl_timer_end(&gt);
         glFinish();
         double t1 = sl_now();
         GLuint64 f = 0;
@@ -337,6 +340,7 @@ static enum sl_err render_layer(const struct sl_softmap_pass *p, const struct sl
         double t2 = sl_now();
         glGetTextureImage(tex[1], 0, GL_RED, GL_FLOAT, (GLsizei)(n * sizeof(float)), out);
         m->ms_readback += 1e3 * (sl_now() - t2);
+        *ms_gpu = sl_gl_timer_ms(&gt, *ms_render);   /* after the readback: no extra wait */
         glDisable(GL_CULL_FACE);
         glDepthFunc(GL_LESS);
         glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
@@ -362,9 +366,9 @@ enum sl_err sl_softmap_render(const struct sl_softmap_pass *p, const struct sl_g
         sl_softmap_free(m);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "soft-shadow layers %dx%d", m->size, m->size);
     }
-    e = render_layer(p, gm, s, desc->receiver, 0, m, m->near, &m->ms_near, &m->frag_near, d);
+    e = render_layer(p, gm, s, desc->receiver, 0, m, m->near, &m->ms_near, &m->ms_gpu_near, &m->frag_near, d);
     if (!e)
-        e = render_layer(p, gm, s, desc->receiver, 1, m, m->far, &m->ms_far, &m->frag_far, d);
+        e = render_layer(p, gm, s, desc->receiver, 1, m, m->far, &m->ms_far, &m->ms_gpu_far, &m->frag_far, d);
     if (e)
         sl_softmap_free(m);
     return e;

@@ -97,6 +97,7 @@ struct sl_softmap {
     uint32_t n_outside;            /* of which outside the frustum (fitted fov capped) */
     uint32_t n_receiver_ranges;    /* scene ranges left out as pure receivers */
     double   ms_near, ms_far, ms_readback;
+    double   ms_gpu_near, ms_gpu_far;   /* GL_TIME_ELAPSED of each layer's clears and draws */
     uint64_t frag_near, frag_far;  /* fragment shader invocations (GL query) */
     const struct sl_softmap_nbuf *nbuf;   /* the N-buffer of these layers, once built
                                            * (sl_softmap_nbuf_build); not owned; else NULL */

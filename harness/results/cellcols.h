@@ -20,7 +20,9 @@
  *            index     int, INTEGER NOT NULL
  *            runs      int, INTEGER NOT NULL CHECK (name >= 0)
  *            count     uint64_t, INTEGER NOT NULL CHECK (name >= 0)
- *            ms        double, REAL (a wall time in ms; NULL/NAN = not measured)
+ *            ms        double, REAL (a wall time in ms, or ms_gpu_*: the GPU time of
+ *                      the same passes from GL_TIME_ELAPSED queries, median over
+ *                      the same repetitions; NULL/NAN = not measured)
  *            viewport  no field: "vw x vh", stored for the figure queries
  *            wrong     no field: fig.wrong_image (the whole image's wrong pixels)
  *            flag      int, not stored (the run's costs.csv only)
@@ -95,6 +97,8 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(ms_contours,         ms,       0,    36,  "ms_contours",        none,      _)         \
     X(ms_figures,          ms,       0,    37,  "ms_figures",         none,      _)         \
     X(ms_overlay,          ms,       0,    38,  "ms_overlay",         none,      _)         \
+    X(ms_gpu_gbuffer,      ms,       0,    39,  "ms_gpu_gbuffer",     none,      _)         \
+    X(ms_gpu_map,          ms,       0,    40,  "ms_gpu_map",         none,      _)         \
     X(overlay,             path,     1500, 0,   "",                   none,      _)         \
     X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)
 /* clang-format on */
