@@ -400,6 +400,11 @@ static int cmd_submit(int argc, char **argv)
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     struct sl_submit_opts o;
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(sl_usage_submit, stdout);
+            return 0;
+        }
     enum sl_err e = sl_submit_parse(argc, argv, &o, &d);
     if (e) {
         char line[1200];

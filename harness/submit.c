@@ -167,7 +167,7 @@ enum sl_err sl_submit_parse(int argc, char **argv, struct sl_submit_opts *o, str
 {
     memset(o, 0, sizeof *o);
     enum sl_err e = SL_OK;
-    for (int i = 2; i < argc && !e; i++) {
+    for (int i = 1; i < argc && !e; i++) {   /* argv[0] is the verb */
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int takes = 1;
         if (!strcmp(a, "--tasks"))
@@ -176,7 +176,7 @@ enum sl_err sl_submit_parse(int argc, char **argv, struct sl_submit_opts *o, str
             e = want_int(a, v, 1, 1 << 30, &o->cells_per_task, d);
         else if (!strcmp(a, "--max-running"))
             e = want_int(a, v, 1, SL_SUBMIT_MAX_TASKS, &o->max_running, d);
-        else if (!strcmp(a, "--out") && v)
+        else if ((!strcmp(a, "--out") || !strcmp(a, "-o")) && v)
             o->out = v;
         else if (!strcmp(a, "--partition"))
             e = want_word(a, v, &o->partition, d);

@@ -62,7 +62,7 @@ struct sl_submit_opts {
  * context) is a small part of it. */
 #define SL_SUBMIT_CELLS_PER_TASK 256
 
-/* Options after `submit`; SL_E_USAGE naming the option. */
+/* The verb's arguments, argv[0] being `submit`; SL_E_USAGE naming the option. */
 enum sl_err sl_submit_parse(int argc, char **argv, struct sl_submit_opts *o, struct sl_diag *d);
 
 struct sl_submit_result {

@@ -38,9 +38,10 @@ stop() {
   # drops it first, so the scan's own processes do not carry it)
   unset SLURM_CONF
   for e in /proc/[0-9]*/environ; do
+    [ -r "$e" ] || continue
     p=${e#/proc/}; p=${p%/environ}
     [ "$p" = $$ ] && continue
-    tr '\0' '\n' <"$e" 2>/dev/null | grep -qx "SLURM_CONF=$tmp/slurm.conf" && kill -KILL "$p" 2>/dev/null
+    { tr '\0' '\n' <"$e"; } 2>/dev/null | grep -qx "SLURM_CONF=$tmp/slurm.conf" && kill -KILL "$p" 2>/dev/null
   done
   if [ $rc -ne 0 ] && [ $rc -ne 77 ]; then
     for f in slurmctld.log slurmd.log munged.out out/slurm/task-0.log out/slurm/merge.log; do
