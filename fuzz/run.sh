@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# fuzz/run.sh BUILD SECONDS [ENTRY...] — run libFuzzer entries one after the
-# other, each for SECONDS with its seed corpus, and print one summary line
+# fuzz/run.sh BUILD SECONDS [ENTRY...] — run libFuzzer entries (FUZZ_JOBS at
+# a time, default the cores), each for SECONDS with its seed corpus, and print one summary line
 # each (execs, exec/s, coverage). Exits 1 if any entry found a crash, a
 # timeout or a leak (its input is kept and shown), 0 otherwise.
 #   CC=clang CXX=clang++ cmake -S . -B build-fuzz -DSL_FUZZ=ON -DSL_TESTS=OFF
@@ -41,13 +41,14 @@ seeds() {
   done
 }
 
-fail=0
-for e in "${entries[@]}"; do
+# one ENTRY: run it, print its summary line; 1 on a finding
+one() {
+  local e=$1 bin nseed start rc wall execs rate cov found slow f
   bin=$build/fuzz/$e
-  if [ ! -x "$bin" ]; then echo "FAIL $e: $bin not built"; fail=1; continue; fi
+  if [ ! -x "$bin" ]; then echo "FAIL $e: $bin not built"; return 1; fi
   mkdir -p "$work/$e/seeds" "$work/$e/corpus" "$work/$e/found"
   rm -f "$work/$e/seeds"/*
-  seeds "$e" "$work/$e/seeds" || { fail=1; continue; }
+  seeds "$e" "$work/$e/seeds" || return 1
   nseed=$(ls "$work/$e/seeds" | wc -l)
   start=$(date +%s)
   # -timeout: an input slower than this is a hang (a model reader is stopped
@@ -70,10 +71,26 @@ for e in "${entries[@]}"; do
       echo "  input $work/$e/found/$f ($(stat -c %s "$work/$e/found/$f") bytes):"
       head -c 512 "$work/$e/found/$f" | od -c | head -n 8 | sed 's/^/    /'
     done
-    fail=1
+    return 1
   else
     echo "ok   $e: ${secs} s, $nseed seeds, ${execs:-?} execs, ${rate:-?} exec/s, ${cov:-no coverage line}, $slow slow inputs"
   fi
+}
+
+# The entries run FUZZ_JOBS at a time (default: the cores), each on one core,
+# so CI's five 60 s runs take three minutes on two cores, not five; their
+# lines are printed in the entries' order.
+njobs=${FUZZ_JOBS:-$(nproc)}
+for e in "${entries[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$njobs" ]; do wait -n; done
+  mkdir -p "$work/$e"
+  ( one "$e" >"$work/$e.summary" 2>&1; echo $? >"$work/$e.rc" ) &
+done
+wait
+fail=0
+for e in "${entries[@]}"; do
+  cat "$work/$e.summary"
+  [ "$(cat "$work/$e.rc" 2>/dev/null)" = 0 ] || fail=1
 done
 if [ $fail -eq 0 ] && [ -z "${FUZZ_WORK:-}" ]; then rm -rf "$work"; else echo "fuzz/run.sh: logs and inputs in $work"; fi
 exit $fail
