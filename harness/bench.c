@@ -20,7 +20,7 @@
  * Studies run last, after this file's GL context and BVHs are freed: sl_run
  * makes its own (one OSMesa context at a time).
  */
-#include "bench.h"
+#include "bench_int.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -83,7 +83,7 @@ enum sl_err sl_bench_parse_stages(const char *list, unsigned *out, struct sl_dia
             }
         if (!found)
             return sl_fail(d, SL_E_USAGE, NULL, 0, "--only",
-                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais)", (int)n, p);
+                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs)", (int)n, p);
         p += n;
         if (*p == ',')
             p++;
@@ -105,8 +105,8 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-static struct sl_bench_row *add_row(struct sl_bench_result *res, const char *stage, const char *unit,
-                                    double value, double plain, double target, enum sl_bench_cmp cmp)
+struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *stage, const char *unit,
+                                      double value, double plain, double target, enum sl_bench_cmp cmp)
 {
     if (res->nrows >= (int)(sizeof res->rows / sizeof res->rows[0]))
         return NULL;
@@ -282,7 +282,7 @@ static enum sl_err bench_truth(struct bench_ctx *x, struct sl_bench_result *res,
             fprintf(out, "Occluded rays the plain loop counts beyond the truth's shadowed pixels (rays "
                          "crossing their own triangle beyond tnear, which the truth's filter rejects): %s\n\n",
                     notes);
-        struct sl_bench_row *row = add_row(res, "truth", "Mrays/s", sum_rays / sum_truth * 1e-6,
+        struct sl_bench_row *row = sl_bench_add_row(res, "truth", "Mrays/s", sum_rays / sum_truth * 1e-6,
                                            sum_rays / sum_plain * 1e-6, TARGET_TRUTH_RATIO, SL_BENCH_AT_LEAST);
         if (row) {
             snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d", x->s.name, x->nvp, x->W, x->H);
@@ -369,7 +369,7 @@ static void layer_row(struct sl_bench_result *res, FILE *out, const char *stage,
     fprintf(out, "| %s | %.2f | %.2f | %.2f | %.2f | **%.2f** | %llu | %llu | %llu | %.2f |\n", name, mr, pr,
             mb, pb, mr / pr, (unsigned long long)t->gs_prims, (unsigned long long)t->fragments,
             (unsigned long long)t->p_fragments, t->p_fragments ? (double)t->fragments / (double)t->p_fragments : 0.0);
-    struct sl_bench_row *row = add_row(res, stage, "ms", mr, pr, TARGET_RASTER_RATIO, SL_BENCH_AT_MOST);
+    struct sl_bench_row *row = sl_bench_add_row(res, stage, "ms", mr, pr, TARGET_RASTER_RATIO, SL_BENCH_AT_MOST);
     if (row) {
         snprintf(row->name, sizeof row->name, "%s", name);
         row->gs_prims = t->gs_prims;
@@ -677,7 +677,7 @@ static enum sl_err bench_backends(struct bench_ctx *x, struct sl_bench_result *r
             snprintf(name, sizeof name, "gbuffer %dx%d", x->W, x->H);
         else
             snprintf(name, sizeof name, "%s %d²", layer_names[s - 2], x->S);
-        struct sl_bench_row *row = add_row(res, "backend", "ms", mn[1], mn[0], TARGET_BACKEND_RATIO,
+        struct sl_bench_row *row = sl_bench_add_row(res, "backend", "ms", mn[1], mn[0], TARGET_BACKEND_RATIO,
                                            SL_BENCH_AT_MOST);
         char gp[2][24] = {"", ""};
         for (int i = 0; i < 2 && s > 0; i++)
@@ -744,11 +744,11 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
         }
     fprintf(out, "%s, method runs %d (their median times summed: %.0f ms); exactness violations: %llu.\n\n",
             layers ? ")" : "", rr.passes.method_runs, ms_method, (unsigned long long)viol);
-    struct sl_bench_row *row = add_row(res, "study", "s", wall, 0, target_s, SL_BENCH_AT_MOST);
+    struct sl_bench_row *row = sl_bench_add_row(res, "study", "s", wall, 0, target_s, SL_BENCH_AT_MOST);
     if (row)
         snprintf(row->name, sizeof row->name, "%s, %d cells, wall", label, rr.ncells);
     /* not a speed, but a fast layer that loses exactness is no gain */
-    row = add_row(res, "study", "pixels", (double)viol, 0, 0, SL_BENCH_AT_MOST);
+    row = sl_bench_add_row(res, "study", "pixels", (double)viol, 0, 0, SL_BENCH_AT_MOST);
     if (row)
         snprintf(row->name, sizeof row->name, "%s, exactness violations", label);
     sl_run_result_free(&rr);
@@ -923,14 +923,20 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
         if (e)
             goto done;
     }
+    if (stages & SL_BENCH_STAGE(JOBS)) {
+        e = sl_bench_jobs(o->config ? o->config : o->morais ? o->morais : "configs/morais-2015.yaml", o->gl, out, res, d);
+        fflush(out);
+        if (e)
+            goto done;
+    }
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
-    struct sl_bench_row *row = add_row(res, "memory", "MiB", ru.ru_maxrss / 1024.0, 0, TARGET_RSS_MIB,
+    struct sl_bench_row *row = sl_bench_add_row(res, "memory", "MiB", ru.ru_maxrss / 1024.0, 0, TARGET_RSS_MIB,
                                        SL_BENCH_AT_MOST);
     if (row)
         snprintf(row->name, sizeof row->name, "peak RSS after all stages");
     /* last, so the stages' rows keep their places */
-    struct sl_bench_row *crow = add_row(res, "context", "ms", ctx_ms, 0, TARGET_CONTEXT_MS, SL_BENCH_AT_MOST);
+    struct sl_bench_row *crow = sl_bench_add_row(res, "context", "ms", ctx_ms, 0, TARGET_CONTEXT_MS, SL_BENCH_AT_MOST);
     if (crow)
         snprintf(crow->name, sizeof crow->name, "first GL context (%s), cpu %.1f ms",
                  sl_gl_backend_name(used), ctx_cpu_ms);

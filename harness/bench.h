@@ -18,6 +18,10 @@
  * - moderno, morais: configs/moderno-2011.yaml and configs/morais-2015.yaml
  *   through sl_run, no files, no store, no truth cache (targets: 60 s and
  *   300 s of wall time);
+ * - jobs: the CONFIG given, else configs/morais-2015.yaml, as one process
+ *   against `run --jobs 2`, both with files, store and no truth cache, wall
+ *   and CPU time, the views the split computes twice and the merge time per
+ *   1,000 cells (target: --jobs 2 no slower than one process; bench_jobs.c);
  * - peak RSS of the process after all of it (target: under 2 GiB).
  *
  * A benchmark, not a test: a missed target is reported (MISS), not an
@@ -39,7 +43,8 @@
     X(LAYERS,  "layers")     \
     X(BACKENDS, "backends")  \
     X(MODERNO, "moderno")    \
-    X(MORAIS,  "morais")
+    X(MORAIS,  "morais")     \
+    X(JOBS,    "jobs")
 
 enum sl_bench_stage_bit {
 #define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,

@@ -8,6 +8,7 @@
 #   missing       a shard that is not there: its cells are named, exit 1
 #   twice         merging the same shards twice adds nothing
 #   jobs          run --jobs 2 gives the same table rows as one process
+#   bench         bench CONFIG --only jobs: both runs complete, their table and the row printed
 set -u
 bin=${1:?usage: cli_merge.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -99,6 +100,16 @@ jobs)
   diff <(rows "$tmp/one/shadowlab.db") <(rows "$tmp/two/shadowlab.db") >"$tmp/diff" || { head "$tmp/diff"; fail "--jobs 2 differs from one process"; }
   [ "$(ls "$tmp/two/small/overlays" | wc -l)" -eq 12 ] || fail "overlays gathered: $(ls "$tmp/two/small/overlays" | wc -l), want 12"
   [ -e "$tmp/two/.jobs-small" ] && fail "the workers' folder is left behind"
+  ;;
+bench)
+  "$bin" bench "$tmp/small.yaml" --only jobs >"$tmp/bench.md" 2>"$tmp/bench.err" || { cat "$tmp/bench.err"; fail "bench exit $?"; }
+  grep -q '^## One process against `run --jobs 2` (.*small.yaml): 12 cells$' "$tmp/bench.md" || { cat "$tmp/bench.md"; fail "heading"; }
+  grep -qE '^\| one process \| [0-9.]+ \| [0-9.]+ \|$' "$tmp/bench.md" || fail "one-process row"
+  grep -qE '^\| --jobs 2 \| [0-9.]+ \| [0-9.]+ \|$' "$tmp/bench.md" || fail "--jobs row"
+  # two views, cut between them: none computed twice; 12 cells merged
+  grep -q '^--jobs 2: 0 of 2 view(s) started in both workers.*merge of 12 cells' "$tmp/bench.md" || { cat "$tmp/bench.md"; fail "split/merge line"; }
+  grep -qE '\| small, --jobs 2 over one process, wall \|' "$tmp/bench.md" || { cat "$tmp/bench.md"; fail "summary row"; }
+  ls /tmp | grep -q "^shadowlab-bench-jobs\." && fail "temporary folder left" || true
   ;;
 *) echo "unknown case $case_"; exit 2 ;;
 esac

@@ -26,9 +26,11 @@ static void bench_parse_stages(void **st)
     assert_int_equal(sl_bench_parse_stages("morais", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(MORAIS));
     assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,morais", &bits, &d), SL_OK);
-    assert_int_equal(bits, SL_BENCH_ALL & ~SL_BENCH_STAGE(BACKENDS));
-    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_ALL & ~SL_BENCH_STAGE(BACKENDS) & ~SL_BENCH_STAGE(JOBS));
+    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_ALL);
+    assert_int_equal(sl_bench_parse_stages("jobs", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(JOBS));
     assert_int_equal(sl_bench_parse_stages("truth,layer", &bits, &d), SL_E_USAGE);
     assert_non_null(strstr(d.msg, "'layer'"));
     assert_int_equal(sl_bench_parse_stages("", &bits, &d), SL_E_USAGE);

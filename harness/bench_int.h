@@ -1,0 +1,14 @@
+#ifndef SL_BENCH_INT_H
+#define SL_BENCH_INT_H
+/* bench_int.h — what bench.c shares with the stages kept in their own files
+ * (bench_jobs.c): a row against its target, and those stages. */
+#include "bench.h"
+
+struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *stage, const char *unit,
+                                      double value, double plain, double target, enum sl_bench_cmp cmp);
+
+/* One study as one process against `run --jobs 2` (bench_jobs.c). */
+enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, struct sl_bench_result *res,
+                          struct sl_diag *d);
+
+#endif
