@@ -15,6 +15,7 @@
 #include "check.h"
 #include "config.h"
 #include "method.h"
+#include "preview.h"
 #include "provenance.h"
 #include "report.h"
 #include "run.h"
@@ -67,7 +68,7 @@ static int usage_error(const char *msg, const char *text)
 enum {
     OPT_CELLS = 256, OPT_RESUME, OPT_DB, OPT_NO_CACHE, OPT_GL, OPT_FORMAT, OPT_SCENE, OPT_VIEWPOINT,
     OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_FIGURES, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
-    OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX, OPT_CACHE, OPT_JOBS,
+    OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX, OPT_CACHE, OPT_JOBS, OPT_SIZE,
 };
 #define OPT_HELP {"help", no_argument, NULL, 'h'}
 enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };
@@ -270,55 +271,6 @@ static void print_summary(const struct sl_config *c, const struct sl_run_result 
     }
 }
 
-/* A scene file has a top-level meshes, light or base key; a config has not. */
-static int looks_like_scene(const char *path)
-{
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return 0;
-    char line[512];
-    int scene = 0;
-    while (!scene && fgets(line, sizeof line, f))
-        scene = strncmp(line, "meshes:", 7) == 0 || strncmp(line, "light:", 6) == 0 ||
-                strncmp(line, "base:", 5) == 0;
-    fclose(f);
-    return scene;
-}
-
-/* `shadowlab run SCENE.yaml`: a default study of the scene, as a config file
- * beside nothing (a temporary file, removed once read): every viewpoint,
- * NSM, CSM (Morais 2015's conservative pair, exact) and the ray-traced
- * reference, 1024² viewport, 2048² map. The config used is printed so it can
- * be saved and edited. 0 on failure (errno-style message printed). */
-static int default_study(const char *scene, char *out, size_t n)
-{
-    char abs[4096];
-    if (!realpath(scene, abs))
-        return 0;
-    snprintf(out, n, "/tmp/shadowlab-study-XXXXXX.yaml");
-    int fd = mkstemps(out, 5);
-    if (fd < 0)
-        return 0;
-    FILE *f = fdopen(fd, "w");
-    if (!f) {
-        close(fd);
-        unlink(out);
-        return 0;
-    }
-    /* the name: the scene file's own name without .yaml, kept to the
-     * characters a config name allows */
-    const char *base = strrchr(abs, '/') ? strrchr(abs, '/') + 1 : abs;
-    char name[64];
-    size_t k = 0;
-    for (const char *p = base; *p && k + 1 < sizeof name && strcmp(p, ".yaml"); p++)
-        name[k++] = (strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.", *p) && *p) ? *p : '_';
-    name[k] = '\0';
-    fprintf(f, "name: %s\nscenes: [{scene: \"%s\"}]\nviewports: [{width: 1024, height: 1024}]\nmap_sizes: [2048]\n"
-               "methods:\n  - {label: nsm, method: nsm}\n  - {label: csm, method: csm}\n"
-               "  - {label: raytrace, method: raytrace}\n", name[0] && name[0] != '.' ? name : "scene", abs);
-    return fclose(f) == 0;
-}
-
 /* What a merge did, shard by shard, and the cells of the sweep it lacks. */
 static int print_merge(const char *const *shards, const struct sl_shards_result *r, const char *out)
 {
@@ -502,8 +454,8 @@ static int cmd_run(int argc, char **argv)
     memset(&d, 0, sizeof d);
     struct sl_config c;
     char study[64] = "";
-    if (looks_like_scene(cfg)) {
-        if (!default_study(cfg, study, sizeof study)) {
+    if (sl_file_is_scene(cfg)) {
+        if (!sl_scene_default_study(cfg, study, sizeof study)) {
             sl_fail(&d, SL_E_IO, cfg, 0, NULL, "cannot write a default study for this scene");
             return fail(SL_E_IO, &d);
         }
@@ -593,7 +545,7 @@ static int cmd_validate(int argc, char **argv)
     const char *file = argv[optind];
     struct sl_diag d;
     memset(&d, 0, sizeof d);
-    if (looks_like_scene(file)) {
+    if (sl_file_is_scene(file)) {
         if (ov.n)
             return usage_error("validate: -D applies to a config, not to a scene file", sl_usage_validate);
         struct sl_scene s;
@@ -879,6 +831,43 @@ static int cmd_bench(int argc, char **argv)
     return e ? fail(e, &d) : 0;
 }
 
+static int cmd_preview(int argc, char **argv)
+{
+    static const struct option lo[] = {OPT_HELP, {"out", required_argument, NULL, 'o'},
+                                       {"viewpoint", required_argument, NULL, OPT_VIEWPOINT},
+                                       {"size", required_argument, NULL, OPT_SIZE},
+                                       {"gl", required_argument, NULL, OPT_GL}, {0, 0, 0, 0}};
+    const struct opt_parser p = {"preview", "o:", sl_usage_preview, lo};
+    struct sl_preview_opts o = {0};
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
+        if (c == 'o')
+            o.out_dir = optarg;
+        else if (c == OPT_VIEWPOINT)
+            o.viewpoint = optarg;
+        else if (c == OPT_SIZE) {
+            if (sscanf(optarg, "%dx%d", &o.w, &o.h) != 2 || o.w < 16 || o.h < 16 || o.w > 8192 || o.h > 8192)
+                return usage_error("preview: --size wants WxH, 16..8192 each", sl_usage_preview);
+        } else if (c == OPT_GL) {
+            if (!(o.gl = sl_gl_backend_parse(optarg)))
+                return usage_error("preview: --gl wants osmesa or egl", sl_usage_preview);
+        } else
+            return opt_exit(c);
+    }
+    if (optind + 1 != argc)
+        return usage_error("preview: one SCENE", sl_usage_preview);
+    o.scene = argv[optind];
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct sl_preview_result r;
+    enum sl_err e = sl_preview(&o, &r, &d);
+    for (int i = 0; i < r.n; i++)
+        printf("%s\n", r.path[i]);
+    if (e)
+        return fail(e, &d);
+    fprintf(stderr, "shadowlab: %d preview(s) in %.0f ms (%s)\n", r.n, r.ms_total, r.renderer);
+    return 0;
+}
+
 static int cmd_list(int argc, char **argv)
 {
     static const struct option lo[] = {OPT_HELP, {0, 0, 0, 0}};
@@ -929,6 +918,7 @@ int main(int argc, char **argv)
         {"bench", cmd_bench, sl_usage_bench},
         {"submit", cmd_submit, sl_usage_submit},
         {"merge", cmd_merge, sl_usage_merge},
+        {"preview", cmd_preview, sl_usage_preview},
         {"list", cmd_list, sl_usage_list},
     };
     const char *cmd = argv[1];

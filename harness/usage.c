@@ -11,6 +11,7 @@ const char sl_usage[] =
     "  bench [CONFIG] [options]   every stage against its plain counterpart, the studies, their targets\n"
     "  submit CONFIG --slurm ...  the sweep as a Slurm job array plus a merge job (shadowlab submit --help)\n"
     "  merge SHARD.db... -o DB    the stores of a split sweep into one; exit 1 if a cell is missing\n"
+    "  preview SCENE [options]    a quick shaded PNG per viewpoint, for framing cameras\n"
     "  list methods|scenes        what can be named in a config\n"
     "  version, -V, --version     the git SHA this binary was built from\n";
 
@@ -133,3 +134,12 @@ const char sl_usage_merge[] =
     "  one transaction per shard; a cell already there is a duplicate and is not copied again. The\n"
     "  overlays and EXR files go under STORE.db's folder. Names the cells of the sweep no shard\n"
     "  holds; exit 1 when any is missing, 2 when a shard holds another config or cannot be read.\n";
+
+const char sl_usage_preview[] =
+    "usage: shadowlab preview SCENE [--viewpoint V] [-o DIR] [--size WxH] [--gl osmesa|egl]\n"
+    "  Writes DIR/<scene>-<viewpoint>.png for each viewpoint of SCENE (a scene file or a built-in\n"
+    "  scene's name): the G-buffer only, faces shaded by their angle to the light, faces turned\n"
+    "  from it dark; no truth, no method, no Embree. For framing cameras before a run.\n"
+    "  --viewpoint V  only that viewpoint\n"
+    "  -o, --out DIR  output folder (default: the current one)\n"
+    "  --size WxH     image size (default 512x512)\n";

@@ -13,4 +13,5 @@ extern const char sl_usage_bench[];
 extern const char sl_usage_list[];
 extern const char sl_usage_submit[];
 extern const char sl_usage_merge[];
+extern const char sl_usage_preview[];
 #endif

@@ -158,5 +158,24 @@ grep -q "^myscene: 3 cell(s) computed" "$tmp/st.out" && ok || fail "run SCENE su
 sed -n '/^# filled-in config/,$p' "$tmp/st.err" | grep -v "^shadowlab: [0-9]" >"$tmp/saved.yaml"
 "$bin" validate "$tmp/saved.yaml" >/dev/null 2>&1 && ok || fail "the printed config does not validate"
 
+# preview: a PNG per viewpoint, the size asked for, lit faces brighter than
+# the background; an unknown viewpoint is refused naming the known ones
+"$bin" preview scenes/primitives.yaml -o "$tmp/pv" --size 96x64 >"$tmp/pv.out" 2>"$tmp/pv.err" ||
+  fail "preview: $(cat "$tmp/pv.err")"
+[ "$(wc -l <"$tmp/pv.out")" -eq 3 ] && ok || fail "preview: want 3 files: $(cat "$tmp/pv.out")"
+for vp in side with against; do
+  f="$tmp/pv/primitives-$vp.png"
+  # PNG header: width and height at bytes 16..23
+  wh=$(python3 -c "import struct,sys; print('%dx%d' % struct.unpack('>II', open(sys.argv[1],'rb').read()[16:24]))" "$f" 2>/dev/null)
+  [ "$wh" = 96x64 ] && ok || fail "preview $vp: size $wh"
+  # the brightest pixel is a lit face (the background is 46,52,64; faces turned away 31)
+  mx=$(oiiotool "$f" --printstats 2>/dev/null | sed -n 's/.*Stats Max: *\([0-9]*\) .*/\1/p')
+  [ "${mx:-0}" -ge 128 ] && ok || fail "preview $vp: brightest $mx of 255"
+done
+"$bin" preview primitives --viewpoint nope -o "$tmp/pv2" >/dev/null 2>"$tmp/pv2.err"; rc=$?
+[ $rc -eq 2 ] && grep -q "no such viewpoint (the scene has: side, with, against)" "$tmp/pv2.err" && ok ||
+  fail "preview --viewpoint nope: exit $rc, $(cat "$tmp/pv2.err")"
+[ ! -e "$tmp/pv2" ] && ok || fail "preview with a bad viewpoint made its folder"
+
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]
