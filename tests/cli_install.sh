@@ -32,6 +32,13 @@ COMP_WORDS=(shadowlab check x.db --ju); COMP_CWORD=3; _shadowlab; echo \${COMPRE
 
 mkdir -p "$tmp/elsewhere" "$tmp/empty"
 cd "$tmp/elsewhere"
+# a sanitizer build reads its LeakSanitizer suppressions from the source
+# tree, which is about to be hidden: a copy outside it serves
+case ${LSAN_OPTIONS:-} in
+  *suppressions=*)
+    supp=${LSAN_OPTIONS#*suppressions=}; supp=${supp%%:*}
+    cp "$supp" "$tmp/lsan.supp" && export LSAN_OPTIONS=${LSAN_OPTIONS/$supp/$tmp/lsan.supp} ;;
+esac
 # the source tree hidden where the system allows a private mount namespace
 hide() { unshare -m --propagation private sh -c 'mount --bind "$1" "$2" && shift 2 && exec "$@"' sh "$tmp/empty" "$src" "$@"; }
 if hide true 2>/dev/null; then

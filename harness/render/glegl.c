@@ -17,6 +17,7 @@
 #include "glegl.h"
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,6 +51,24 @@ static void note(char *tried, size_t n, const char *what, const char *why)
     snprintf(tried + len, n - len, "%s%s (%s)", len ? "; " : "", what, why);
 }
 
+/* libglvnd unloads the vendor library (Mesa's libEGL_mesa and its DRI
+ * driver) at exit, before LeakSanitizer looks: what Mesa keeps for the life
+ * of the process then shows under whatever library was mapped there later,
+ * and no suppression can name it. Marking the loaded ones RTLD_NODELETE
+ * keeps them mapped (they would stay until exit anyway: the display is
+ * kept, below), so their allocations keep their names (tests/lsan.supp).
+ * A library not loaded is left alone (RTLD_NOLOAD). */
+static void keep_vendor_libraries(void)
+{
+    static const char *const libs[] = {"libEGL_mesa.so.0", "libEGL_nvidia.so.0", "libgallium_dri.so",
+                                       "swrast_dri.so", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so"};
+    for (size_t i = 0; i < sizeof libs / sizeof libs[0]; i++) {
+        void *h = dlopen(libs[i], RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
+        if (h)
+            dlclose(h);   /* drops the count dlopen added; NODELETE stays */
+    }
+}
+
 /* Display -> current 4.5 core context with entry points, or a reason. */
 static const char *try_display(struct sl_gl *g, EGLDisplay dpy)
 {
@@ -58,6 +77,7 @@ static const char *try_display(struct sl_gl *g, EGLDisplay dpy)
     EGLint major = 0, minor = 0;
     if (!eglInitialize(dpy, &major, &minor))
         return "eglInitialize failed";
+    keep_vendor_libraries();
     const char *why = NULL;
     const char *exts = eglQueryString(dpy, EGL_EXTENSIONS);
     EGLConfig cfg = (EGLConfig)0;
