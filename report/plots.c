@@ -238,6 +238,24 @@ static int run_sh(const char *cmd)
     return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/* A plot's gnuplot script and its data, each built in memory; on failure
+ * neither is left open. */
+static enum sl_err open_script(FILE **m, char **body, size_t *blen, FILE **dm, char **data, size_t *dlen,
+                               const char *what, struct sl_diag *d)
+{
+    *m = open_memstream(body, blen);
+    *dm = open_memstream(data, dlen);
+    if (*m && *dm)
+        return SL_OK;
+    if (*m)
+        fclose(*m);
+    if (*dm)
+        fclose(*dm);
+    free(*body);
+    free(*data);
+    return sl_fail(d, SL_E_NOMEM, NULL, 0, what, "plot script");
+}
+
 static enum sl_err write_text(struct sl_report_doc *doc, const char *rel, const char *text, struct sl_diag *d)
 {
     char path[1400];
@@ -437,16 +455,9 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
         const char *scene = s->scenes[sc];
         char *body = NULL, *data = NULL;
         size_t blen = 0, dlen = 0;
-        FILE *m = open_memstream(&body, &blen), *dm = open_memstream(&data, &dlen);
-        if (!m || !dm) {
-            if (m)
-                fclose(m);
-            if (dm)
-                fclose(dm);
-            free(body);
-            free(data);
-            return sl_fail(d, SL_E_NOMEM, NULL, 0, scene, "plot script");
-        }
+        FILE *m, *dm;
+        if ((e = open_script(&m, &body, &blen, &dm, &data, &dlen, scene, d)))
+            return e;
         char id[160], slug[64];
         sl_report_slug(scene, slug, sizeof slug);
         snprintf(id, sizeof id, "%s-chain-%s", s->slug, slug);
@@ -544,16 +555,10 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
 {
     char *body = NULL, *data = NULL;
     size_t blen = 0, dlen = 0;
-    FILE *m = open_memstream(&body, &blen), *dm = open_memstream(&data, &dlen);
-    if (!m || !dm) {
-        if (m)
-            fclose(m);
-        if (dm)
-            fclose(dm);
-        free(body);
-        free(data);
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
-    }
+    FILE *m, *dm;
+    enum sl_err oe = open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
+    if (oe)
+        return oe;
     double lo = INFINITY, hi = 0.0;
     int npts = 0, nblocks = 0, bars = 0, any_rays = 0;
     const char *plabel = NULL;
