@@ -22,6 +22,10 @@
  *   against `run --jobs 2`, both with files, store and no truth cache, wall
  *   and CPU time, the views the split computes twice and the merge time per
  *   1,000 cells (target: --jobs 2 no slower than one process; bench_jobs.c);
+ * - startup: `version`, `validate CONFIG` (default configs/default.yaml) and
+ *   `help run` as child processes, against the same binary with OpenImageIO,
+ *   OSMesa, EGL and Embree preloaded as when they were linked (target:
+ *   validate's median under 50 ms; bench_startup.c);
  * - peak RSS of the process after all of it (target: under 2 GiB).
  *
  * A benchmark, not a test: a missed target is reported (MISS), not an
@@ -44,7 +48,8 @@
     X(BACKENDS, "backends")  \
     X(MODERNO, "moderno")    \
     X(MORAIS,  "morais")     \
-    X(JOBS,    "jobs")
+    X(JOBS,    "jobs")       \
+    X(STARTUP, "startup")
 
 enum sl_bench_stage_bit {
 #define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,

@@ -1,7 +1,7 @@
 #ifndef SL_BENCH_INT_H
 #define SL_BENCH_INT_H
 /* bench_int.h — what bench.c shares with the stages kept in their own files
- * (bench_jobs.c): a row against its target, and those stages. */
+ * (bench_jobs.c, bench_startup.c): a row against its target, and those stages. */
 #include "bench.h"
 
 struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *stage, const char *unit,
@@ -10,5 +10,10 @@ struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *s
 /* One study as one process against `run --jobs 2` (bench_jobs.c). */
 enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, struct sl_bench_result *res,
                           struct sl_diag *d);
+
+/* Start-up of version, validate CONFIG and help, lazy against the same
+ * binary with its heavy libraries preloaded (bench_startup.c). */
+enum sl_err sl_bench_startup(const char *config, int reps, FILE *out, struct sl_bench_result *res,
+                             struct sl_diag *d);
 
 #endif
