@@ -48,18 +48,27 @@ static int spawn_one(char *const *argv, const char *preload, struct sample *s)
     size_t n = 0;
     while (environ[n])
         n++;
-    char **env = calloc(n + 2, sizeof *env);
+    char **env = calloc(n + 3, sizeof *env);
     if (!env)
         return -1;
     size_t k = 0;
+    const char *asan = "";
     for (size_t i = 0; i < n; i++)
-        if (strncmp(environ[i], "LD_PRELOAD=", 11) != 0)
+        if (strncmp(environ[i], "ASAN_OPTIONS=", 13) == 0)
+            asan = environ[i] + 13;
+        else if (strncmp(environ[i], "LD_PRELOAD=", 11) != 0)
             env[k++] = environ[i];
-    char pre[1200];
+    char pre[1200], asan_opts[600];
     if (preload) {
         snprintf(pre, sizeof pre, "LD_PRELOAD=%s", preload);
         env[k++] = pre;
     }
+    /* a sanitized build refuses libraries loaded before its runtime unless
+     * told the order does not matter (only the eager side preloads) */
+    snprintf(asan_opts, sizeof asan_opts, "ASAN_OPTIONS=%s%s%s", asan, asan[0] && preload ? ":" : "",
+             preload ? "verify_asan_link_order=0" : "");
+    if (asan[0] || preload)
+        env[k++] = asan_opts;
     env[k] = NULL;
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
