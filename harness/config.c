@@ -81,6 +81,7 @@ struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bo
 struct raw_scene_ref {
     char *scene;
     char **viewpoints; unsigned viewpoints_count;
+    char **paths; unsigned paths_count;
     unsigned *map_sizes; unsigned map_sizes_count;
     char **methods; unsigned methods_count;
 };
@@ -131,6 +132,8 @@ static const cyaml_schema_field_t scene_ref_fields[] = {
     CYAML_FIELD_STRING_PTR("scene", CYAML_FLAG_POINTER, struct raw_scene_ref, scene, 1, 255),
     CYAML_FIELD_SEQUENCE("viewpoints", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
                          viewpoints, &str_schema, 1, SL_MAX_VIEWPOINTS),
+    CYAML_FIELD_SEQUENCE("paths", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
+                         paths, &str_schema, 1, SL_MAX_PATHS),
     CYAML_FIELD_SEQUENCE("map_sizes", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
                          map_sizes, &uint_schema, 1, SL_CFG_MAX),
     CYAML_FIELD_SEQUENCE("methods", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
@@ -237,10 +240,34 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             }
             snprintf(cs->viewpoints[i], sizeof cs->viewpoints[i], "%s", rs->viewpoints[i]);
         }
-        if (!cs->nviewpoints) {
-            cs->nviewpoints = s.nvp;
+        cs->nnamed = cs->nviewpoints;
+        if (!cs->nviewpoints && !rs->paths_count) {
+            cs->nnamed = cs->nviewpoints = s.nvp;
             for (int k = 0; k < s.nvp; k++)
                 snprintf(cs->viewpoints[k], sizeof cs->viewpoints[k], "%s", s.vp[k].name);
+        }
+        /* a path's frames follow the viewpoints, in the path's order: each is
+         * a view of the sweep (pathfile.h) */
+        for (unsigned i = 0; i < rs->paths_count; i++) {
+            snprintf(key, sizeof key, "scenes[%u].paths[%u]", si, i);
+            int p = sl_scene_find_path(&s, rs->paths[i]);
+            for (unsigned k = 0; p >= 0 && k < i; k++)
+                if (strcmp(rs->paths[k], rs->paths[i]) == 0)
+                    p = -2;
+            if (p < 0) {
+                char known[256] = "";
+                for (int k = 0; k < s.npaths; k++)
+                    snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "",
+                             s.paths[k].name);
+                sl_scene_free(&s);
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, p == -2 ? "path '%s' listed twice"
+                                   : "scene '%s' has no path '%s' (it has: %s)", p == -2 ? rs->paths[i] : rs->scene,
+                                   rs->paths[i], known[0] ? known : "none");
+            }
+            snprintf(cs->paths[cs->npaths++], sizeof cs->paths[0], "%s", s.paths[p].name);
+            for (int f = 0; f < s.paths[p].count; f++)
+                snprintf(cs->viewpoints[cs->nviewpoints++], sizeof cs->viewpoints[0], "%s",
+                         s.vp[s.paths[p].first + f].name);
         }
         if (s.light.type != SL_LIGHT_DIRECTIONAL && s.light.type != SL_LIGHT_AREA) {
             sl_scene_free(&s);
@@ -769,10 +796,20 @@ void sl_config_write(const struct sl_config *c, FILE *f)
     fprintf(f, "# filled-in config: every default explicit\n");
     fprintf(f, "name: %s\nscenes:\n", c->name);
     for (int s = 0; s < c->nscenes; s++) {
-        fprintf(f, "  - {scene: %s, viewpoints: [", c->scenes[s].ref);
-        for (int i = 0; i < c->scenes[s].nviewpoints; i++)
-            fprintf(f, "%s%s", i ? ", " : "", c->scenes[s].viewpoints[i]);
-        fprintf(f, "], map_sizes: [");
+        fprintf(f, "  - {scene: %s, ", c->scenes[s].ref);
+        if (c->scenes[s].nnamed) {
+            fprintf(f, "viewpoints: [");
+            for (int i = 0; i < c->scenes[s].nnamed; i++)
+                fprintf(f, "%s%s", i ? ", " : "", c->scenes[s].viewpoints[i]);
+            fprintf(f, "], ");
+        }
+        if (c->scenes[s].npaths) {
+            fprintf(f, "paths: [");
+            for (int i = 0; i < c->scenes[s].npaths; i++)
+                fprintf(f, "%s%s", i ? ", " : "", c->scenes[s].paths[i]);
+            fprintf(f, "], ");
+        }
+        fprintf(f, "map_sizes: [");
         for (int i = 0, k = 0; i < c->nmaps; i++)
             if (c->scenes[s].map_mask & (1u << i))
                 fprintf(f, "%s%d", k++ ? ", " : "", c->maps[i]);

@@ -376,6 +376,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
     int vp = sl_scene_find_viewpoint(&x->scene, c->scenes[k->scene].viewpoints[k->vp]);
     if (vp < 0)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "viewpoint vanished from the scene");
+    sl_scene_use_view_light(&x->scene, vp);   /* a light path's frame moves the light */
     memset(&x->vms, 0, sizeof x->vms);
     int reps = c->warmup + c->runs;
     double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
