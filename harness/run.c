@@ -24,8 +24,10 @@
 #include "glctx.h"
 #include "lightfit.h"
 #include "outputs.h"
+#include "runhelp.h"
 #include "shadowmap.h"
 #include "scenefile.h"
+#include "temporal.h"
 #include "truth.h"
 #include "util.h"
 
@@ -114,6 +116,7 @@ struct run_ctx {
     struct sl_softmap_nbuf nbuf;
     int soft_map;                        /* map index the layers are for, -1 none */
     uint8_t *receivers;                  /* per scene range: a pure receiver */
+    struct sl_temporal temporal;         /* a path's previous frame, for flicker (temporal.h) */
     /* where notes, violations and progress go (the library never prints) */
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
@@ -176,6 +179,7 @@ static void ctx_free(struct run_ctx *x)
     free(x->soft_truth);
     free(x->soft_se);
     free(x->receivers);
+    sl_temporal_free(&x->temporal);
     sl_softmap_nbuf_free(&x->nbuf);
     if (x->gl.backend) {
         sl_softmap_pass_free(&x->softpass);
@@ -277,33 +281,11 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     return SL_OK;
 }
 
-/* G-buffer values that are not finite (positions, normals of non-background
- * pixels). A hard case must never produce one (tests/test_hard.c). */
-static uint64_t view_bad(const struct sl_view *v)
-{
-    uint64_t n = 0;
-    size_t np = (size_t)v->w * (size_t)v->h;
-    for (size_t i = 0; i < np; i++)
-        if (v->cls[i] != SL_C_BACKGROUND)
-            for (int k = 0; k < 3; k++)
-                n += !isfinite(v->pos[3 * i + k]) + !isfinite(v->nrm[3 * i + k]);
-    return n;
-}
-
-/* Shadow-map depths outside [0, 1] or not finite. */
-static uint64_t layer_bad(const struct sl_depth_layer *l, int size)
-{
-    uint64_t n = 0;
-    size_t nt = (size_t)size * (size_t)size;
-    for (size_t i = 0; i < nt; i++)
-        n += !(l->depth[i] >= 0.0f && l->depth[i] <= 1.0f);
-    return n;
-}
-
 /* The view's truth is in place: its light frustum (lightfit.h), timed (a
  * point light's says what it could not map), its count of bad G-buffer
  * values, and the key it is kept under. */
-static void view_ready(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k)
+static enum sl_err view_ready(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                              struct sl_diag *d)
 {
     double t0 = sl_now();
     sl_light_fit(&x->scene, &x->view, &x->box);
@@ -313,10 +295,11 @@ static void view_ready(struct run_ctx *x, const struct sl_config *c, const struc
                                   .viewpoint = c->scenes[k->scene].viewpoints[k->vp], .box = &x->box};
         emit(x, &ev);
     }
-    x->view_bad = view_bad(&x->view);
+    x->view_bad = sl_run_view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
     x->view_viewport = k->viewport;
+    return sl_temporal_view(&x->temporal, k->scene, k->viewport, &x->scene.vp[x->view.vp], &x->view, d);
 }
 
 /* The truths of a view under an area light: the visible fraction of the
@@ -362,8 +345,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
         if (cache)
             sl_cache_area_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
     }
-    view_ready(x, c, k);
-    return SL_OK;
+    return view_ready(x, c, k, d);
 }
 
 static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
@@ -421,8 +403,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         if (cache_dir && cache_dir[0])
             sl_cache_truth_write(cache_dir, key, &x->view);
     }
-    view_ready(x, c, k);
-    return SL_OK;
+    return view_ready(x, c, k, d);
 }
 
 static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
@@ -449,7 +430,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         if (!((x->frame.have & ~before) & SL_NEED(l)))
             continue;
         res->passes.layers[l]++;
-        x->layer_bad[l] = layer_bad(&x->frame.layer[l], x->frame.size);
+        x->layer_bad[l] = sl_run_layer_bad(&x->frame.layer[l], x->frame.size);
         double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
         times[0] = x->frame.layer[l].ms_render;
         gpu[0] = x->frame.layer[l].ms_gpu;
@@ -643,6 +624,10 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         return e;
     med_min_max(times, c->runs, cell->ms.method);
     cell->cost.ms_method = cell->ms.method[SL_MED];
+    int measured;   /* flicker against the path's previous frame, if any */
+    if ((e = sl_temporal_cell(&x->temporal, k->map, k->method, x->vd.v, &measured, &cell->flicker,
+                              &cell->flicker_compared, d)))
+        return e;
 
     char ovpath[1600] = "", exrpath[1400] = "";
     if (ovdir) {
