@@ -226,13 +226,14 @@ static enum sl_err expand_one(const struct sl_raw_path *r, unsigned pi, const ch
     if (c->far)
         zfar = *c->far;
     /* the bounds read_viewpoint (scenefile.c) puts on a named viewpoint */
-    snprintf(key, sizeof key, "paths[%u].camera.fov", pi);
+    /* a key not in the file is named by the camera's line */
+    snprintf(key, sizeof key, "paths[%u].camera%s", pi, c->fov ? ".fov" : "");
     if (!(fov > 0.1f && fov <= 179.0f))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "fov must be in (0.1, 179] degrees");
-    snprintf(key, sizeof key, "paths[%u].camera.near", pi);
+    snprintf(key, sizeof key, "paths[%u].camera%s", pi, c->near ? ".near" : "");
     if (!(znear > 0.0f) || !isfinite(znear))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "near must be given (or a viewpoint) and > 0");
-    snprintf(key, sizeof key, "paths[%u].camera.far", pi);
+    snprintf(key, sizeof key, "paths[%u].camera%s", pi, c->far ? ".far" : "");
     if (!(zfar > znear) || !isfinite(zfar) || !((double)zfar / (double)znear <= 1e7))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "far must be given (or a viewpoint), exceed near and be "
                            "at most 1e7 near");

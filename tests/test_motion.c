@@ -1,0 +1,278 @@
+/*
+ * motion::* — paths in scene files (pathfile.h), flicker between frames
+ * (temporal.h) on constructed frames, and over real paths through the run:
+ * a still path flickers nowhere, exact methods flicker nowhere on any path,
+ * NSM does flicker on an orbit (so the zero above can fail).
+ */
+#define _XOPEN_SOURCE 700
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "config.h"
+#include "pathfile.h"
+#include "run.h"
+#include "scenefile.h"
+#include "temporal.h"
+
+/* ---- paths in scene files ---- */
+
+static void motion_paths_expand(void **st)
+{
+    (void)st;
+    struct sl_scene s;
+    struct sl_diag d;
+    assert_int_equal(sl_scene_build("primitives_motion", &s, &d), SL_OK);
+    assert_int_equal(s.nvp, 1);
+    assert_int_equal(s.npaths, 2);
+    assert_int_equal(s.nframes, 120);
+    assert_int_equal(sl_scene_find_viewpoint(&s, "orbit.000"), 1);
+    assert_int_equal(sl_scene_find_viewpoint(&s, "sun.059"), 120);
+    assert_int_equal(sl_scene_find_viewpoint(&s, "sun.060"), -1);
+    assert_int_equal(sl_scene_find_path(&s, "sun"), 1);
+    const struct sl_viewpoint *o0 = &s.vp[1], *o15 = &s.vp[16], *s0 = &s.vp[61], *s59 = &s.vp[120];
+    /* orbit frame 0 at center + (0, 45, 60), frame 15 at 90 degrees: center + (60, 45, 0);
+     * positions are relative to the scene's origin (the centre of its bounds) */
+    float c[3] = {(float)(-1.0 - s.origin[0]), (float)(0.0 - s.origin[1]), (float)(-5.0 - s.origin[2])};
+    assert_float_equal(o0->pos[0], c[0], 1e-3);
+    assert_float_equal(o0->pos[1], c[1] + 45.0f, 1e-3);
+    assert_float_equal(o0->pos[2], c[2] + 60.0f, 1e-3);
+    assert_float_equal(o15->pos[0], c[0] + 60.0f * (float)sin(90.0 * M_PI / 180.0), 1e-3);
+    assert_float_equal(o15->pos[2], c[2] + 60.0f * (float)cos(90.0 * M_PI / 180.0), 1e-3);
+    for (int k = 0; k < 3; k++)   /* looking at the center */
+        assert_float_equal(o15->dir[k], (c[k] - o15->pos[k]) / 75.0f, 1e-4);   /* |(60, 45, 0)| = 75 */
+    assert_int_equal(o0->path, 0);
+    assert_int_equal(o15->frame, 15);
+    assert_false(o0->has_light);
+    /* the sun: the side viewpoint held, the light from (25, 20) to (65, 80) degrees */
+    assert_int_equal(memcmp(s0->pos, s.vp[0].pos, sizeof s0->pos), 0);
+    assert_int_equal(memcmp(s59->dir, s.vp[0].dir, sizeof s0->dir), 0);
+    assert_true(s0->has_light && s59->has_light);
+    float want[3];
+    sl_path_sun(25.0f, 20.0f, want);
+    for (int k = 0; k < 3; k++)
+        assert_float_equal(s0->light_dir[k], want[k], 1e-6);
+    sl_path_sun(65.0f, 80.0f, want);
+    for (int k = 0; k < 3; k++)
+        assert_float_equal(s59->light_dir[k], want[k], 1e-6);
+    assert_float_equal(want[1], -sinf(65.0f * (float)M_PI / 180.0f), 1e-6);   /* the light travels down */
+    /* a frame's light replaces the scene's, a named viewpoint puts it back */
+    sl_scene_use_view_light(&s, 120);
+    assert_int_equal(memcmp(s.light_dir, s59->light_dir, sizeof want), 0);
+    sl_scene_use_view_light(&s, 0);
+    assert_int_equal(memcmp(s.light_dir, s.base_light_dir, sizeof want), 0);
+    sl_scene_free(&s);
+}
+
+static void motion_config_paths(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("paths.yaml",
+                   "scenes: [{scene: primitives_motion, viewpoints: [side], paths: [sun]}]\n"
+                   "map_sizes: [512]\nmethods: [{method: nsm}]\n", &c);
+    assert_int_equal(c.scenes[0].nviewpoints, 61);
+    assert_int_equal(c.scenes[0].nnamed, 1);
+    assert_string_equal(c.scenes[0].viewpoints[1], "sun.000");
+    assert_string_equal(c.scenes[0].viewpoints[60], "sun.059");
+    assert_int_equal(sl_plan_count(&c), 61);
+}
+
+/* ---- flicker on constructed frames ---- */
+
+#define W 8
+#define H 8
+/* Frame a sees 64 points on one plane (z = 0), one per pixel centre, through
+ * an identity camera (NDC = world x, y); frame b's camera moves the image
+ * 2 pixels to the right (x + 0.5 in NDC), so pixel (i, j) of a lands on
+ * (i + 2, j) of b, and the two columns i = 6, 7 leave the image. */
+static void motion_reprojection_count(void **st)
+{
+    (void)st;
+    static float pos[W * H * 3];
+    static uint32_t tri_a[W * H], tri_b[W * H];
+    static uint8_t truth_a[W * H], truth_b[W * H], va[W * H], vb[W * H];
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            int p = j * W + i;
+            pos[3 * p] = ((float)i + 0.5f) / W * 2.0f - 1.0f;
+            pos[3 * p + 1] = ((float)j + 0.5f) / H * 2.0f - 1.0f;
+            pos[3 * p + 2] = 0.0f;
+            tri_a[p] = tri_b[p] = 7;
+            truth_a[p] = truth_b[p] = SL_T_LIT;
+            va[p] = vb[p] = SL_V_LIT;
+        }
+    struct sl_temporal_frame a = {.w = W, .h = H, .pos = pos, .tri = tri_a, .truth = truth_a};
+    struct sl_temporal_frame b = {.w = W, .h = H, .pos = pos, .tri = tri_b, .truth = truth_b};
+    glm_mat4_identity(a.vp);
+    glm_mat4_identity(b.vp);
+    b.vp[3][0] = 0.5f;   /* translation x + 0.5 NDC = 2 pixels */
+    uint64_t compared = 0;
+    assert_int_equal(sl_temporal_flicker(&a, va, &b, vb, 0, &compared), 0);
+    assert_int_equal(compared, 6 * H);   /* columns 0..5 land inside */
+    /* the known set: 5 pixels of b that a's pixels land on change verdict */
+    const int changed[5][2] = {{2, 0}, {3, 3}, {7, 7}, {5, 1}, {4, 6}};
+    for (int k = 0; k < 5; k++)
+        vb[changed[k][1] * W + changed[k][0]] = SL_V_SHADOW;
+    /* ones nobody lands on (columns 0, 1 of b) do not count */
+    vb[0 * W + 0] = SL_V_SHADOW;
+    vb[5 * W + 1] = SL_V_UNCERTAIN;
+    assert_int_equal(sl_temporal_flicker(&a, va, &b, vb, 0, &compared), 5);
+    /* a changed pixel on another triangle, or whose truth changed, is not compared */
+    tri_b[3 * W + 3] = 8;
+    truth_b[7 * W + 7] = SL_T_SHADOW;
+    assert_int_equal(sl_temporal_flicker(&a, va, &b, vb, 0, &compared), 3);
+    assert_int_equal(compared, 6 * H - 2);
+    /* background pixels of a are never compared */
+    tri_a[0 * W + 0] = 0;   /* lands on (2, 0), a changed one */
+    assert_int_equal(sl_temporal_flicker(&a, va, &b, vb, 0, &compared), 2);
+    /* the same camera: pixel for pixel, whatever the matrices say */
+    tri_a[0] = 7;
+    /* (2,0) (5,1) (4,6) and the two nobody landed on, (0,0) (1,5) */
+    assert_int_equal(sl_temporal_flicker(&a, va, &b, vb, 1, &compared), 5);
+    assert_int_equal(compared, W * H - 2);
+}
+
+/* The state across views: consecutive frames compare, a gap or another
+ * view forgets the previous frame. */
+static void motion_state_frames(void **st)
+{
+    (void)st;
+    static float pos[W * H * 3], nrm[W * H * 3];
+    static uint32_t tri[W * H];
+    static uint8_t cls[W * H], truth[W * H], v0[W * H], v1[W * H];
+    for (int p = 0; p < W * H; p++) {
+        tri[p] = 1;
+        cls[p] = SL_C_PFL;
+        truth[p] = SL_T_LIT;
+        v0[p] = v1[p] = SL_V_LIT;
+    }
+    v1[9] = v1[10] = v1[33] = SL_V_SHADOW;
+    struct sl_view view = {.w = W, .h = H, .pos = pos, .nrm = nrm, .tri = tri, .cls = cls, .truth = truth};
+    glm_mat4_identity(view.view);
+    glm_mat4_identity(view.proj);
+    struct sl_viewpoint vp = {.path = 0, .frame = 0};
+    struct sl_temporal t;
+    memset(&t, 0, sizeof t);
+    struct sl_diag d;
+    int measured;
+    uint64_t fl, cmp;
+    assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v0, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(measured, 0);   /* the path's first frame */
+    vp.frame = 1;
+    assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(measured, 1);
+    assert_int_equal(fl, 3);
+    assert_int_equal(cmp, W * H);
+    assert_int_equal(sl_temporal_cell(&t, 0, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(measured, 0);   /* another map size: frame 0 had none */
+    vp.frame = 3;                    /* a gap: frame 2 not run */
+    assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(measured, 0);
+    vp.frame = 4;
+    assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(measured, 1);
+    assert_int_equal(fl, 0);
+    struct sl_viewpoint named = {.path = -1};   /* a named viewpoint between: forgets */
+    assert_int_equal(sl_temporal_view(&t, 0, 0, &named, &view, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(measured, 0);
+    vp.frame = 5;
+    assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(measured, 0);
+    sl_temporal_free(&t);
+}
+
+/* ---- over real paths, through the run ---- */
+
+static const char *motion_scene =
+    "name: motion_small\nbase: primitives\n"
+    "viewpoints:\n  - {name: side, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}\n"
+    "paths:\n"
+    "  - name: still\n    frames: 4\n    camera:\n      keyframes:\n"
+    "        - {position: [30, 40, -40], direction: [-1, -1.1, 1]}\n"
+    "        - {position: [30, 40, -40], direction: [-1, -1.1, 1]}\n"
+    "      near: 20\n      far: 250\n"
+    "  - name: orbit\n    frames: 6\n    camera:\n"
+    "      orbit: {center: [-1, 0, -5], radius: 60, height: 45, degrees: [0, 10]}\n"
+    "      near: 20\n      far: 250\n"
+    "  - name: sun\n    frames: 5\n    camera: {viewpoint: side}\n"
+    "    light: {elevation: [25, 29], azimuth: [30, 34]}\n";
+
+static void run_paths(const char *methods, struct sl_run_result *res)
+{
+    char path[400], text[1600];
+    snprintf(path, sizeof path, "%s/motion_small.yaml", sl_test_dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(motion_scene, f);
+    fclose(f);
+    snprintf(text, sizeof text,
+             "scenes: [{scene: motion_small.yaml, paths: [still, orbit, sun]}]\n"
+             "viewports: [{width: 128, height: 128}]\nmap_sizes: [256]\nmethods: [%s]\n", methods);
+    struct sl_config c;
+    sl_test_config("motion.yaml", text, &c);
+    struct sl_run_opts o = {.store = "", .cache_dir = ""};
+    struct sl_diag d;
+    enum sl_err e = sl_run(&c, &o, res, &d);
+    if (e)
+        fprintf(stderr, "%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(res->ncells, sl_plan_count(&c));
+}
+
+/* A still path flickers nowhere, for every method; exact methods flicker
+ * nowhere on any path; every frame after a path's first is compared. */
+static void motion_run_flicker(void **st)
+{
+    (void)st;
+    struct sl_run_result res;
+    run_paths("{label: nsm, method: nsm}, {label: chain, method: chain}, {label: coherence, method: coherence}, "
+              "{label: csm, method: csm}, {label: hertel, method: hertel}", &res);
+    uint64_t nsm_moving = 0;
+    int compared = 0;
+    for (int i = 0; i < res.ncells; i++) {
+        const struct sl_cell *cl = &res.cells[i];
+        const char *label = cl->key.method == 0 ? "nsm" : cl->key.method == 1 ? "chain"
+                            : cl->key.method == 2 ? "coherence" : cl->key.method == 3 ? "csm" : "hertel";
+        const int first = strstr(cl->viewpoint, ".000") != NULL;
+        if (first)
+            assert_int_equal(cl->flicker_compared, 0);
+        else
+            assert_true(cl->flicker_compared > 1000);
+        compared += !first;
+        if (strncmp(cl->viewpoint, "still.", 6) == 0 || cl->key.method >= 3) {
+            if (cl->flicker)
+                fprintf(stderr, "%s %s: flicker %llu\n", cl->viewpoint, label, (unsigned long long)cl->flicker);
+            assert_int_equal(cl->flicker, 0);
+        }
+        if (cl->key.method == 0 && strncmp(cl->viewpoint, "still.", 6) != 0)
+            nsm_moving += cl->flicker;
+    }
+    assert_int_equal(compared, 5 * (3 + 5 + 4));
+    /* the test can fail: NSM's verdicts do move with the camera and the sun */
+    assert_true(nsm_moving > 0);
+    sl_run_result_free(&res);
+}
+
+int main(int argc, char **argv)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(motion, paths_expand),
+        SL_CASE(motion, config_paths),
+        SL_CASE(motion, reprojection_count),
+        SL_CASE(motion, state_frames),
+        SL_CASE(motion, run_flicker),
+    };
+    return sl_run_group(argc, argv, "motion", tests, sl_test_setup, sl_test_teardown);
+}
