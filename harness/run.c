@@ -23,6 +23,7 @@
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
+#include "motion_run.h"
 #include "outputs.h"
 #include "runhelp.h"
 #include "shadowmap.h"
@@ -771,6 +772,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     res->stored_total = -1;
     if (st && c->tables)
         e = sl_out_rebuild_from_store(st, c, res->ncells, dirs.final, &res->stored_total, d);
+    if (!e && c->tables)   /* a config naming paths: the temporal tables, plots, overlay sequences */
+        e = sl_motion_outputs(st, c, res, dirs.final, d);
     if (!e && o->table_out && c->tables) {
         e = sl_out_print_tables(o->table_out, c, res, d);
         sl_out_write_costs_md(o->table_out, c, res);
