@@ -70,9 +70,11 @@ static const char self_shadow_known[] = SL_SELF_SHADOW(SELF_KNOWN);
 /* ---- raw schema (what libcyaml fills) ---- */
 
 struct raw_viewport { unsigned width, height; };
+struct raw_lframe { char *fit; bool *snap; };
 struct raw_method {
     char  *label;
     char  *method;
+    struct raw_lframe *light_frame;
 #define RAW_KNOB(id, bit, name, type, kind, a, b, doc) RAW_##kind *name;
     SL_KNOBS(RAW_KNOB)
 #undef RAW_KNOB
@@ -117,7 +119,14 @@ static const cyaml_schema_field_t viewport_fields[] = {
 static const cyaml_schema_value_t viewport_schema = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, struct raw_viewport, viewport_fields),
 };
+static const cyaml_schema_field_t lframe_fields[] = {
+    CYAML_FIELD_STRING_PTR("fit", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_lframe, fit, 1, 15),
+    CYAML_FIELD_BOOL_PTR("snap", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_lframe, snap),
+    CYAML_FIELD_END,
+};
 static const cyaml_schema_field_t method_fields[] = {
+    CYAML_FIELD_MAPPING_PTR("light_frame", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, light_frame,
+                            lframe_fields),
     CYAML_FIELD_STRING_PTR("label", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, label, 1, 47),
     CYAML_FIELD_STRING_PTR("method", CYAML_FLAG_POINTER, struct raw_method, method, 1, 63),
 #define SCHEMA_KNOB(id, bit, name, type, kind, a, b, doc) SCHEMA_##kind(name),
@@ -372,6 +381,23 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             if (strcmp(c->methods[k].label, cm->label) == 0)
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
                            "label '%s' used twice: give each entry its own label", cm->label);
+        /* light_frame: a stabilised frame of this label's own (lightfit.h) */
+        memset(&cm->frame_fit, 0, sizeof cm->frame_fit);
+        if (rm->light_frame) {
+            const struct raw_lframe *lf = rm->light_frame;
+            snprintf(key, sizeof key, "methods[%u].light_frame%s", i, lf->fit ? ".fit" : "");
+            if (lf->fit && strcmp(lf->fit, "tight") && strcmp(lf->fit, "sphere"))
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "fit '%s': tight or sphere", lf->fit);
+            cm->frame_fit.fit = lf->fit && !strcmp(lf->fit, "sphere") ? SL_FIT_SPHERE : SL_FIT_TIGHT;
+            cm->frame_fit.snap = lf->snap && *lf->snap;
+            snprintf(key, sizeof key, "methods[%u].light_frame", i);
+            if (cm->frame_fit.snap && cm->frame_fit.fit != SL_FIT_SPHERE)
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "snap needs a fixed-size frame: fit: sphere "
+                                   "(a tight box changes its texel size from view to view)");
+            if (cm->frame_fit.fit != SL_FIT_TIGHT && (cm->method->lights & SL_LIGHTS_AREA))
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "method '%s' reads the area light's own "
+                                   "layers: light_frame applies to hard-shadow methods", cm->method->name);
+        }
         struct sl_method_params *p = &cm->params;
         memset(p, 0, sizeof *p);
         /* each knob the entry gives: its bit, and its value (a word checked) */
@@ -443,6 +469,11 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         for (int k = 0; k < c->nmethods; k++) {
             if (!(cs->method_mask & (1u << k)))
                 continue;
+            if (area && c->methods[k].frame_fit.fit != SL_FIT_TIGHT) {
+                snprintf(key, sizeof key, "methods[%d].light_frame", k);
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has an area light: light_frame "
+                                   "fits a directional light's frame only (label %s)", cs->name, c->methods[k].label);
+            }
             if (!area && (c->methods[k].method->lights & SL_LIGHTS_AREA)) {
                 snprintf(key, sizeof key, "scenes[%u].methods", si);
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
@@ -837,6 +868,8 @@ void sl_config_write(const struct sl_config *c, FILE *f)
             WRITE_##kind(name, a, b)
         SL_KNOBS(WRITE_KNOB)
 #undef WRITE_KNOB
+        if (c->methods[i].frame_fit.fit != SL_FIT_TIGHT)
+            fprintf(f, ", light_frame: {fit: sphere, snap: %s}", c->methods[i].frame_fit.snap ? "true" : "false");
         fprintf(f, "}\n");
     }
     fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",

@@ -22,6 +22,8 @@
  *                              # shared by every method) or own (each method's own result image)
  *   methods:                   # the same method may appear under several labels
  *     - {label: nsm, method: nsm, self_shadow: front_faces}
+ *     - {label: nsm_snap, method: nsm, light_frame: {fit: sphere, snap: true}}   # a stabilised
+ *                              # frame of its own (lightfit.h); default fit tight, snap false
  *   outputs: {tables: true, overlays: true, overlay_contour: 2, exr: false}
  *   repetitions: {warmup: 0, runs: 1}   # timed runs of each cell's method; median kept
  *   seed: 1                    # for anything random
@@ -31,6 +33,7 @@
 #ifndef SL_CONFIG_H
 #define SL_CONFIG_H
 #include "glctx.h"
+#include "lightfit.h"
 #include "method.h"
 #include "scene.h"
 #include "sl_error.h"
@@ -52,6 +55,8 @@ struct sl_config_method {
     char                     label[48];
     const struct sl_method  *method;
     struct sl_method_params  params;
+    struct sl_fit_opts       frame_fit;   /* 'light_frame: {fit: tight|sphere, snap: bool}' (lightfit.h);
+                                           * zero: the tight fit every other label shares */
 };
 
 struct sl_config_scene {

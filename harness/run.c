@@ -118,6 +118,7 @@ struct run_ctx {
     int soft_map;                        /* map index the layers are for, -1 none */
     uint8_t *receivers;                  /* per scene range: a pure receiver */
     struct sl_temporal temporal;         /* a path's previous frame, for flicker (temporal.h) */
+    struct sl_alt_frames alt;            /* labels' own stabilised light frames (runhelp.h) */
     /* where notes, violations and progress go (the library never prints) */
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
@@ -139,6 +140,7 @@ static void drop_frame(struct run_ctx *x)
 static void drop_view(struct run_ctx *x)
 {
     drop_frame(x);
+    sl_run_alt_free(&x->alt);
     sl_light_box_free(&x->box);
     sl_softmap_free(&x->softmap);
     memset(&x->softmap, 0, sizeof x->softmap);
@@ -489,7 +491,7 @@ static int contour_label(const struct sl_config *c)
 {
     for (int i = 0; i < c->nmethods; i++)
         if (strcmp(c->methods[i].method->name, "nsm") == 0 &&
-            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES)
+            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES && c->methods[i].frame_fit.fit == SL_FIT_TIGHT)
             return i;
     return -1;
 }
@@ -567,6 +569,12 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     cell->n_truth_lit = x->view.n_lit;
     cell->n_truth_shadow = x->view.n_shadow;
     unsigned mneeds = cm->method->needs(&cm->params);
+    struct sl_light_frame *fr = &x->frame;   /* a label's own stabilised frame, if it asks (lightfit.h) */
+    enum sl_err e = cm->frame_fit.fit == SL_FIT_TIGHT ? SL_OK
+                    : sl_run_alt_frame(&x->alt, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map],
+                                       &cm->frame_fit, mneeds, &fr, res->passes.layers, d);
+    if (e)
+        return e;
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         if (mneeds & SL_NEED(l)) {
             for (int j = 0; j < 3; j++) {
@@ -574,9 +582,9 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
                 cell->ms.gpu_map[j] += x->layer_gpu[l][j];
             }
             cell->nonfinite += x->layer_bad[l];
-            cell->ms.map_readback += x->frame.layer[l].ms_readback;
-            cell->gs_prims += x->frame.layer[l].gs_prims;
-            cell->fragments += x->frame.layer[l].fragments;
+            cell->ms.map_readback += fr->layer[l].ms_readback;
+            cell->gs_prims += fr->layer[l].gs_prims;
+            cell->fragments += fr->layer[l].fragments;
         }
     if ((mneeds & SL_NEED_SOFT) && x->soft_map >= 0)
         for (int j = 0; j < 3; j++) {   /* rendered once (ensure_soft): no spread */
@@ -587,17 +595,17 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_view mview = x->view;
     mview.truth = NULL;
     struct sl_method_args a = {
-        .scene = &x->scene, .view = &mview, .frame = &x->frame, .params = &cm->params,
+        .scene = &x->scene, .view = &mview, .frame = fr, .params = &cm->params,
         .rt = &x->rt, .adj = x->have_adj ? &x->adj : NULL, .threads = c->threads,
         .softmap = x->soft_map >= 0 ? &x->softmap : NULL,
         .seed = c->seed,
     };
     int reps = c->warmup + c->runs;
     double times[SL_MAX_REPS];
-    enum sl_err e = SL_OK;
     /* contour_from nsm with this label's run already made for the contour:
      * its verdicts are this cell's first run (further repetitions only time) */
-    const int reuse = c->contour_from == SL_CONTOUR_NSM && x->nsm_map == k->map && x->nsm_label == (int)k->method;
+    const int reuse = c->contour_from == SL_CONTOUR_NSM && x->nsm_map == k->map && x->nsm_label == (int)k->method &&
+                      fr == &x->frame;
     for (int r = 0; r < reps && !e; r++) {
         struct sl_cost cost = {0};
         res->passes.method_runs++;
@@ -640,7 +648,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         snprintf(exrpath, sizeof exrpath, "%s/%s-%s-%dx%d-%d-%s.exr", exrdir, cell->scene, cell->viewpoint, W, H,
                  c->maps[k->map], cm->label);
     struct sl_cell_inputs in = {
-        .method = cm->method, .view = &x->view, .frame = &x->frame, .light_dir = x->scene.light_dir,
+        .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir,
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb,

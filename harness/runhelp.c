@@ -3,6 +3,7 @@
  */
 #include "runhelp.h"
 #include <math.h>
+#include <string.h>
 
 /* G-buffer values that are not finite (positions, normals of non-background
  * pixels). A hard case must never produce one (tests/test_hard.c). */
@@ -25,4 +26,44 @@ uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size)
     for (size_t i = 0; i < nt; i++)
         n += !(l->depth[i] >= 0.0f && l->depth[i] <= 1.0f);
     return n;
+}
+
+enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, const struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
+                             const struct sl_scene *s, const struct sl_view *v, int map, int size,
+                             const struct sl_fit_opts *o, unsigned needs, struct sl_light_frame **out, int *layers,
+                             struct sl_diag *d)
+{
+    needs &= (1u << SL_LAYER_COUNT) - 1u;
+    int i = 0;
+    while (i < a->n && !(a->e[i].map == map && a->e[i].fit.fit == o->fit && a->e[i].fit.snap == o->snap))
+        i++;
+    if (i == a->n) {
+        if (a->n == SL_ALT_FRAMES)
+            return sl_fail(d, SL_E_INTERNAL, NULL, 0, "light_frame", "more than %d light frames in one view",
+                           SL_ALT_FRAMES);
+        struct sl_light_frame *f = &a->e[i].f;
+        memset(&a->e[i], 0, sizeof a->e[i]);
+        a->e[i].map = map;
+        a->e[i].fit = *o;
+        f->size = size;
+        memcpy(f->dir, s->light_dir, sizeof f->dir);
+        sl_light_fit_stable(s, v, o, size, &f->box);
+        f->texel_world = fmaxf(f->box.hi[0] - f->box.lo[0], f->box.hi[1] - f->box.lo[1]) / (float)size;
+        f->depth_range = f->box.hi[2] - f->box.lo[2];
+        a->n++;
+    }
+    struct sl_light_frame *f = &a->e[i].f;
+    unsigned before = f->have;
+    enum sl_err e = sl_shadowmap_render(sp, m, f, needs, d);
+    for (int l = 0; l < SL_LAYER_COUNT && layers; l++)
+        layers[l] += ((f->have & ~before) >> l) & 1u;
+    *out = f;
+    return e;
+}
+
+void sl_run_alt_free(struct sl_alt_frames *a)
+{
+    for (int i = 0; i < a->n; i++)
+        sl_frame_free(&a->e[i].f);
+    a->n = 0;
 }
