@@ -136,7 +136,11 @@ static void motion_reprojection_count(void **st)
     assert_int_equal(sl_temporal_flicker(&a, va, &b, vb, 0, &compared), 2);
     /* the same camera: pixel for pixel, whatever the matrices say */
     tri_a[0] = 7;
-    /* (2,0) (5,1) (4,6) and the two nobody landed on, (0,0) (1,5) */
+    /* (2,0) (5,1) (4,6) and (0,0), which nobody landed on; (1,5) is undecided
+     * in b, which shows its truth (lit) as a's lit verdict did: no flicker */
+    assert_int_equal(sl_temporal_flicker(&a, va, &b, vb, 1, &compared), 4);
+    /* undecided against a decided verdict the truth disagrees with: flicker */
+    va[5 * W + 1] = SL_V_SHADOW;
     assert_int_equal(sl_temporal_flicker(&a, va, &b, vb, 1, &compared), 5);
     assert_int_equal(compared, W * H - 2);
 }

@@ -8,7 +8,17 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "method.h"
 #include "util.h"
+
+/* What the pixel shows: an undecided pixel is left for a shadow ray
+ * (method.h), whose answer is the truth's. */
+static uint8_t resolved(uint8_t v, uint8_t truth)
+{
+    if (v != SL_V_UNCERTAIN)
+        return v;
+    return truth == SL_T_LIT ? SL_V_LIT : truth == SL_T_BACKGROUND ? SL_V_NONE : SL_V_SHADOW;
+}
 
 uint64_t sl_temporal_flicker(const struct sl_temporal_frame *a, const uint8_t *va,
                              const struct sl_temporal_frame *b, const uint8_t *vb, int same_camera,
@@ -35,7 +45,7 @@ uint64_t sl_temporal_flicker(const struct sl_temporal_frame *a, const uint8_t *v
         if (b->tri[q] != a->tri[p] || b->truth[q] != a->truth[p])
             continue;
         c++;
-        n += va[p] != vb[q];
+        n += resolved(va[p], a->truth[p]) != resolved(vb[q], b->truth[q]);
     }
     if (compared)
         *compared = c;

@@ -9,7 +9,11 @@
  * the later frame's camera; it is compared only when it lands inside the
  * image on a pixel q showing the same triangle (so a point hidden in the
  * later frame, or off screen, is not compared) whose truth equals p's; of
- * those compared pixels, the ones with verdict(p) != verdict(q) flicker.
+ * those compared pixels, the ones with verdict(p) != verdict(q) flicker. A
+ * pixel a method leaves undecided (SL_V_UNCERTAIN) shows what the shadow ray
+ * it is left for answers, the truth: a method whose undecided pixels come
+ * and go between frames (texel coherence's) flickers only where it decides
+ * wrongly, as the image it feeds would.
  * When both frames have the same camera (a light path, or a still one) the
  * comparison is pixel for pixel: q = p, still on the same triangle and with
  * the same truth. A method whose verdicts equal the truth never flickers.
