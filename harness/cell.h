@@ -46,6 +46,7 @@ struct sl_stage_ms {
      * read). The soft layers of an area light are rendered once: their
      * wall and GPU times go to map_render and gpu_map as they are. */
     double gpu_gbuffer[3], gpu_map[3];
+    double flicker;   /* keeping the verdicts for the next frame and comparing them with the last (temporal.h) */
 };
 
 /* A pixel where a method broke the guarantee it declares (method.h

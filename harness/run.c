@@ -635,7 +635,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     cell->cost.ms_method = cell->ms.method[SL_MED];
     int measured;   /* flicker against the path's previous frame, if any */
     if ((e = sl_temporal_cell(&x->temporal, k->map, k->method, x->vd.v, &measured, &cell->flicker,
-                              &cell->flicker_compared, d)))
+                              &cell->flicker_compared, &cell->ms.flicker, d)))
         return e;
 
     char ovpath[1600] = "", exrpath[1400] = "";

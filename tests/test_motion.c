@@ -170,32 +170,32 @@ static void motion_state_frames(void **st)
     int measured;
     uint64_t fl, cmp;
     assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
-    assert_int_equal(sl_temporal_cell(&t, 1, 2, v0, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v0, &measured, &fl, &cmp, NULL, &d), SL_OK);
     assert_int_equal(measured, 0);   /* the path's first frame */
     vp.frame = 1;
     assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
-    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, NULL, &d), SL_OK);
     assert_int_equal(measured, 1);
     assert_int_equal(fl, 3);
     assert_int_equal(cmp, W * H);
-    assert_int_equal(sl_temporal_cell(&t, 0, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 0, 2, v1, &measured, &fl, &cmp, NULL, &d), SL_OK);
     assert_int_equal(measured, 0);   /* another map size: frame 0 had none */
     vp.frame = 3;                    /* a gap: frame 2 not run */
     assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
-    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, NULL, &d), SL_OK);
     assert_int_equal(measured, 0);
     vp.frame = 4;
     assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
-    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, NULL, &d), SL_OK);
     assert_int_equal(measured, 1);
     assert_int_equal(fl, 0);
     struct sl_viewpoint named = {.path = -1};   /* a named viewpoint between: forgets */
     assert_int_equal(sl_temporal_view(&t, 0, 0, &named, &view, &d), SL_OK);
-    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, NULL, &d), SL_OK);
     assert_int_equal(measured, 0);
     vp.frame = 5;
     assert_int_equal(sl_temporal_view(&t, 0, 0, &vp, &view, &d), SL_OK);
-    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, &d), SL_OK);
+    assert_int_equal(sl_temporal_cell(&t, 1, 2, v1, &measured, &fl, &cmp, NULL, &d), SL_OK);
     assert_int_equal(measured, 0);
     sl_temporal_free(&t);
 }

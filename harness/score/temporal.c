@@ -128,8 +128,11 @@ enum sl_err sl_temporal_view(struct sl_temporal *t, int scene, int viewport, con
 }
 
 enum sl_err sl_temporal_cell(struct sl_temporal *t, int map, int label, const uint8_t *verdicts, int *measured,
-                             uint64_t *flicker, uint64_t *compared, struct sl_diag *d)
+                             uint64_t *flicker, uint64_t *compared, double *ms, struct sl_diag *d)
 {
+    const double t0 = sl_now();
+    if (ms)
+        *ms = 0.0;
     *measured = 0;
     *flicker = *compared = 0;
     const int s = t->cur, p = 1 - s, slot = map * 32 + label;
@@ -148,5 +151,7 @@ enum sl_err sl_temporal_cell(struct sl_temporal *t, int map, int label, const ui
     glm_mat4_copy(t->cam[s], b.vp);
     *flicker = sl_temporal_flicker(&a, t->v[p][slot], &b, verdicts, same_camera(&t->vp[p], &t->vp[s]), compared);
     *measured = 1;
+    if (ms)
+        *ms = 1e3 * (sl_now() - t0);
     return SL_OK;
 }

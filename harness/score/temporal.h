@@ -78,9 +78,10 @@ enum sl_err sl_temporal_view(struct sl_temporal *t, int scene, int viewport, con
 /* A cell of the current view: its verdicts are kept for the next frame and,
  * when the previous frame holds the same (map, label), compared with them.
  * *measured = 1 with *flicker and *compared set when compared, else 0
- * (the view is no frame, or the first of its path in this run). */
+ * (the view is no frame, or the first of its path in this run); *ms (when
+ * not NULL): the wall time it took, keeping the verdicts included. */
 enum sl_err sl_temporal_cell(struct sl_temporal *t, int map, int label, const uint8_t *verdicts, int *measured,
-                             uint64_t *flicker, uint64_t *compared, struct sl_diag *d);
+                             uint64_t *flicker, uint64_t *compared, double *ms, struct sl_diag *d);
 
 void sl_temporal_free(struct sl_temporal *t);
 
