@@ -50,6 +50,13 @@ struct sl_temporal_frame {
 uint64_t sl_temporal_flicker(const struct sl_temporal_frame *a, const uint8_t *va,
                              const struct sl_temporal_frame *b, const uint8_t *vb, int same_camera,
                              uint64_t *compared);
+/* The two halves of it, so a view pair is matched once for all its labels:
+ * match[p] = q + 1 for each pixel p of a compared with pixel q of b, else 0
+ * (a->w * a->h entries); then the count over those pairs. */
+void     sl_temporal_match(const struct sl_temporal_frame *a, const struct sl_temporal_frame *b, int same_camera,
+                           uint32_t *match);
+uint64_t sl_temporal_count(const struct sl_temporal_frame *a, const uint8_t *va, const struct sl_temporal_frame *b,
+                           const uint8_t *vb, const uint32_t *match, uint64_t *compared);
 
 #define SL_TEMPORAL_SLOTS 1024   /* (map index, label index) pairs: 32 x 32 */
 
@@ -64,6 +71,10 @@ struct sl_temporal {
     uint32_t *tri[2];
     uint8_t  *truth[2];
     mat4      cam[2];
+    uint32_t *match;                       /* the previous frame's pixels in the current one (sl_temporal_match) */
+    int       have_match;
+    double    ms_match;                    /* the view's copies and match, ms: shared by its cells, reported
+                                            * with each */
     uint8_t  *v[2][SL_TEMPORAL_SLOTS];     /* verdicts of each (map, label) of that frame */
     int       has_v[2][SL_TEMPORAL_SLOTS];
 };
@@ -79,7 +90,9 @@ enum sl_err sl_temporal_view(struct sl_temporal *t, int scene, int viewport, con
  * when the previous frame holds the same (map, label), compared with them.
  * *measured = 1 with *flicker and *compared set when compared, else 0
  * (the view is no frame, or the first of its path in this run); *ms (when
- * not NULL): the wall time it took, keeping the verdicts included. */
+ * not NULL): the wall time it took, keeping the verdicts included, plus
+ * the view's copies and match (shared by its cells, reported with each as
+ * view stages are). */
 enum sl_err sl_temporal_cell(struct sl_temporal *t, int map, int label, const uint8_t *verdicts, int *measured,
                              uint64_t *flicker, uint64_t *compared, double *ms, struct sl_diag *d);
 
