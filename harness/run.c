@@ -140,7 +140,6 @@ static void drop_frame(struct run_ctx *x)
 static void drop_view(struct run_ctx *x)
 {
     drop_frame(x);
-    sl_run_alt_free(&x->alt);
     sl_light_box_free(&x->box);
     sl_softmap_free(&x->softmap);
     memset(&x->softmap, 0, sizeof x->softmap);
@@ -152,6 +151,7 @@ static void drop_view(struct run_ctx *x)
 static void drop_scene(struct run_ctx *x)
 {
     drop_view(x);
+    sl_run_alt_free(&x->alt);   /* a label's own frame may outlive a view (runhelp.h), not its scene */
     sl_rt_free(&x->rt);
     if (x->have_adj)
         sl_adjacency_free(&x->adj);

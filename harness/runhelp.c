@@ -28,6 +28,15 @@ uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size)
     return n;
 }
 
+/* Two fits that put the same map in the same place: a camera that moved
+ * less than a texel under a snapped fixed-size frame, or one that holds
+ * still while nothing else changes. */
+static int same_box(const struct sl_light_frame *f, const struct sl_light_box *b, const float dir[3])
+{
+    return memcmp(f->box.vp, b->vp, sizeof b->vp) == 0 && memcmp(f->box.lo, b->lo, sizeof b->lo) == 0 &&
+           memcmp(f->box.hi, b->hi, sizeof b->hi) == 0 && memcmp(f->dir, dir, sizeof f->dir) == 0;
+}
+
 enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, const struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
                              const struct sl_scene *s, const struct sl_view *v, int map, int size,
                              const struct sl_fit_opts *o, unsigned needs, struct sl_light_frame **out, int *layers,
@@ -37,22 +46,36 @@ enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, const struct sl_shadowmap_
     int i = 0;
     while (i < a->n && !(a->e[i].map == map && a->e[i].fit.fit == o->fit && a->e[i].fit.snap == o->snap))
         i++;
-    if (i == a->n) {
-        if (a->n == SL_ALT_FRAMES)
-            return sl_fail(d, SL_E_INTERNAL, NULL, 0, "light_frame", "more than %d light frames in one view",
-                           SL_ALT_FRAMES);
-        struct sl_light_frame *f = &a->e[i].f;
-        memset(&a->e[i], 0, sizeof a->e[i]);
-        a->e[i].map = map;
-        a->e[i].fit = *o;
-        f->size = size;
-        memcpy(f->dir, s->light_dir, sizeof f->dir);
-        sl_light_fit_stable(s, v, o, size, &f->box);
-        f->texel_world = fmaxf(f->box.hi[0] - f->box.lo[0], f->box.hi[1] - f->box.lo[1]) / (float)size;
-        f->depth_range = f->box.hi[2] - f->box.lo[2];
-        a->n++;
-    }
+    if (i == a->n && a->n == SL_ALT_FRAMES)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, "light_frame", "more than %d light frames in one scene",
+                       SL_ALT_FRAMES);
     struct sl_light_frame *f = &a->e[i].f;
+    if (i == a->n || a->e[i].vp != v->vp || a->e[i].vw != v->w || a->e[i].vh != v->h) {
+        /* a new view: its fit; the layers already rendered stay when the
+         * frame is the same (the light frame shared between frames of a path) */
+        struct sl_light_box box;
+        sl_light_fit_stable(s, v, o, size, &box);
+        if (i < a->n && same_box(f, &box, s->light_dir)) {
+            sl_light_box_free(&f->box);
+            f->box = box;
+        } else {
+            if (i < a->n)
+                sl_frame_free(f);
+            else
+                a->n++;
+            memset(&a->e[i], 0, sizeof a->e[i]);
+            a->e[i].map = map;
+            a->e[i].fit = *o;
+            f->size = size;
+            memcpy(f->dir, s->light_dir, sizeof f->dir);
+            f->box = box;
+            f->texel_world = fmaxf(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1]) / (float)size;
+            f->depth_range = box.hi[2] - box.lo[2];
+        }
+        a->e[i].vp = v->vp;
+        a->e[i].vw = v->w;
+        a->e[i].vh = v->h;
+    }
     unsigned before = f->have;
     enum sl_err e = sl_shadowmap_render(sp, m, f, needs, d);
     for (int l = 0; l < SL_LAYER_COUNT && layers; l++)

@@ -23,13 +23,21 @@ uint64_t sl_run_view_bad(const struct sl_view *v);
 uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size);
 
 /* Frames of labels whose light_frame is not the shared tight fit: one per
- * (map size, fit) of the current view, rendered once with the layers the
- * labels' methods need (added when a later label needs more), dropped with
- * the view. At most SL_ALT_FRAMES kinds per view. */
+ * (map size, fit), fitted for each view and rendered once with the layers
+ * the labels' methods need (added when a later label needs more). A view
+ * whose fit gives the very same box (same matrices, same light) keeps the
+ * rendered layers: the frame is shared between frames of a path where a
+ * fixed-size frame did not move. Dropped with the scene. At most
+ * SL_ALT_FRAMES kinds per scene. */
 #define SL_ALT_FRAMES 4
 struct sl_alt_frames {
     int n;
-    struct { int map; struct sl_fit_opts fit; struct sl_light_frame f; } e[SL_ALT_FRAMES];
+    struct {
+        int map;
+        struct sl_fit_opts fit;
+        int vp, vw, vh;               /* the view it was last fitted for: viewpoint, viewport */
+        struct sl_light_frame f;
+    } e[SL_ALT_FRAMES];
 };
 /* *out: the frame of (map, fit o) of view v, with the layers in needs;
  * layers[l] counts each layer rendered. */
