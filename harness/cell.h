@@ -46,6 +46,7 @@ struct sl_stage_ms {
      * read). The soft layers of an area light are rendered once: their
      * wall and GPU times go to map_render and gpu_map as they are. */
     double gpu_gbuffer[3], gpu_map[3];
+    double flicker;   /* keeping the verdicts for the next frame and comparing them with the last (temporal.h) */
 };
 
 /* A pixel where a method broke the guarantee it declares (method.h
@@ -74,6 +75,7 @@ struct sl_cell {
     int      has_soft;                 /* an area light's cell: soft figures instead of fig's regions */
     struct sl_soft_figures soft;
     uint64_t violations;               /* of the method's declared exactness; must be 0 */
+    uint64_t flicker, flicker_compared;/* against the previous frame of its path (temporal.h); 0, 0 none */
     uint64_t nonfinite;                /* G-buffer values not finite, depths of the layers it reads
                                         * outside [0, 1]; must be 0 */
     /* texel coherence (Moderno 2011 Tables 20/22): per region, PFL pixels by

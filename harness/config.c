@@ -70,9 +70,11 @@ static const char self_shadow_known[] = SL_SELF_SHADOW(SELF_KNOWN);
 /* ---- raw schema (what libcyaml fills) ---- */
 
 struct raw_viewport { unsigned width, height; };
+struct raw_lframe { char *fit; bool *snap; };
 struct raw_method {
     char  *label;
     char  *method;
+    struct raw_lframe *light_frame;
 #define RAW_KNOB(id, bit, name, type, kind, a, b, doc) RAW_##kind *name;
     SL_KNOBS(RAW_KNOB)
 #undef RAW_KNOB
@@ -81,6 +83,7 @@ struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bo
 struct raw_scene_ref {
     char *scene;
     char **viewpoints; unsigned viewpoints_count;
+    char **paths; unsigned paths_count;
     unsigned *map_sizes; unsigned map_sizes_count;
     char **methods; unsigned methods_count;
 };
@@ -116,7 +119,14 @@ static const cyaml_schema_field_t viewport_fields[] = {
 static const cyaml_schema_value_t viewport_schema = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, struct raw_viewport, viewport_fields),
 };
+static const cyaml_schema_field_t lframe_fields[] = {
+    CYAML_FIELD_STRING_PTR("fit", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_lframe, fit, 1, 15),
+    CYAML_FIELD_BOOL_PTR("snap", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_lframe, snap),
+    CYAML_FIELD_END,
+};
 static const cyaml_schema_field_t method_fields[] = {
+    CYAML_FIELD_MAPPING_PTR("light_frame", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, light_frame,
+                            lframe_fields),
     CYAML_FIELD_STRING_PTR("label", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, label, 1, 47),
     CYAML_FIELD_STRING_PTR("method", CYAML_FLAG_POINTER, struct raw_method, method, 1, 63),
 #define SCHEMA_KNOB(id, bit, name, type, kind, a, b, doc) SCHEMA_##kind(name),
@@ -131,6 +141,8 @@ static const cyaml_schema_field_t scene_ref_fields[] = {
     CYAML_FIELD_STRING_PTR("scene", CYAML_FLAG_POINTER, struct raw_scene_ref, scene, 1, 255),
     CYAML_FIELD_SEQUENCE("viewpoints", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
                          viewpoints, &str_schema, 1, SL_MAX_VIEWPOINTS),
+    CYAML_FIELD_SEQUENCE("paths", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
+                         paths, &str_schema, 1, SL_MAX_PATHS),
     CYAML_FIELD_SEQUENCE("map_sizes", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
                          map_sizes, &uint_schema, 1, SL_CFG_MAX),
     CYAML_FIELD_SEQUENCE("methods", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene_ref,
@@ -237,10 +249,34 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             }
             snprintf(cs->viewpoints[i], sizeof cs->viewpoints[i], "%s", rs->viewpoints[i]);
         }
-        if (!cs->nviewpoints) {
-            cs->nviewpoints = s.nvp;
+        cs->nnamed = cs->nviewpoints;
+        if (!cs->nviewpoints && !rs->paths_count) {
+            cs->nnamed = cs->nviewpoints = s.nvp;
             for (int k = 0; k < s.nvp; k++)
                 snprintf(cs->viewpoints[k], sizeof cs->viewpoints[k], "%s", s.vp[k].name);
+        }
+        /* a path's frames follow the viewpoints, in the path's order: each is
+         * a view of the sweep (pathfile.h) */
+        for (unsigned i = 0; i < rs->paths_count; i++) {
+            snprintf(key, sizeof key, "scenes[%u].paths[%u]", si, i);
+            int p = sl_scene_find_path(&s, rs->paths[i]);
+            for (unsigned k = 0; p >= 0 && k < i; k++)
+                if (strcmp(rs->paths[k], rs->paths[i]) == 0)
+                    p = -2;
+            if (p < 0) {
+                char known[256] = "";
+                for (int k = 0; k < s.npaths; k++)
+                    snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "",
+                             s.paths[k].name);
+                sl_scene_free(&s);
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, p == -2 ? "path '%s' listed twice"
+                                   : "scene '%s' has no path '%s' (it has: %s)", p == -2 ? rs->paths[i] : rs->scene,
+                                   rs->paths[i], known[0] ? known : "none");
+            }
+            snprintf(cs->paths[cs->npaths++], sizeof cs->paths[0], "%s", s.paths[p].name);
+            for (int f = 0; f < s.paths[p].count; f++)
+                snprintf(cs->viewpoints[cs->nviewpoints++], sizeof cs->viewpoints[0], "%s",
+                         s.vp[s.paths[p].first + f].name);
         }
         if (s.light.type != SL_LIGHT_DIRECTIONAL && s.light.type != SL_LIGHT_AREA) {
             sl_scene_free(&s);
@@ -345,6 +381,23 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             if (strcmp(c->methods[k].label, cm->label) == 0)
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
                            "label '%s' used twice: give each entry its own label", cm->label);
+        /* light_frame: a stabilised frame of this label's own (lightfit.h) */
+        memset(&cm->frame_fit, 0, sizeof cm->frame_fit);
+        if (rm->light_frame) {
+            const struct raw_lframe *lf = rm->light_frame;
+            snprintf(key, sizeof key, "methods[%u].light_frame%s", i, lf->fit ? ".fit" : "");
+            if (lf->fit && strcmp(lf->fit, "tight") && strcmp(lf->fit, "sphere"))
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "fit '%s': tight or sphere", lf->fit);
+            cm->frame_fit.fit = lf->fit && !strcmp(lf->fit, "sphere") ? SL_FIT_SPHERE : SL_FIT_TIGHT;
+            cm->frame_fit.snap = lf->snap && *lf->snap;
+            snprintf(key, sizeof key, "methods[%u].light_frame", i);
+            if (cm->frame_fit.snap && cm->frame_fit.fit != SL_FIT_SPHERE)
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "snap needs a fixed-size frame: fit: sphere "
+                                   "(a tight box changes its texel size from view to view)");
+            if (cm->frame_fit.fit != SL_FIT_TIGHT && (cm->method->lights & SL_LIGHTS_AREA))
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "method '%s' reads the area light's own "
+                                   "layers: light_frame applies to hard-shadow methods", cm->method->name);
+        }
         struct sl_method_params *p = &cm->params;
         memset(p, 0, sizeof *p);
         /* each knob the entry gives: its bit, and its value (a word checked) */
@@ -416,6 +469,11 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         for (int k = 0; k < c->nmethods; k++) {
             if (!(cs->method_mask & (1u << k)))
                 continue;
+            if (area && c->methods[k].frame_fit.fit != SL_FIT_TIGHT) {
+                snprintf(key, sizeof key, "methods[%d].light_frame", k);
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has an area light: light_frame "
+                                   "fits a directional light's frame only (label %s)", cs->name, c->methods[k].label);
+            }
             if (!area && (c->methods[k].method->lights & SL_LIGHTS_AREA)) {
                 snprintf(key, sizeof key, "scenes[%u].methods", si);
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
@@ -769,10 +827,20 @@ void sl_config_write(const struct sl_config *c, FILE *f)
     fprintf(f, "# filled-in config: every default explicit\n");
     fprintf(f, "name: %s\nscenes:\n", c->name);
     for (int s = 0; s < c->nscenes; s++) {
-        fprintf(f, "  - {scene: %s, viewpoints: [", c->scenes[s].ref);
-        for (int i = 0; i < c->scenes[s].nviewpoints; i++)
-            fprintf(f, "%s%s", i ? ", " : "", c->scenes[s].viewpoints[i]);
-        fprintf(f, "], map_sizes: [");
+        fprintf(f, "  - {scene: %s, ", c->scenes[s].ref);
+        if (c->scenes[s].nnamed) {
+            fprintf(f, "viewpoints: [");
+            for (int i = 0; i < c->scenes[s].nnamed; i++)
+                fprintf(f, "%s%s", i ? ", " : "", c->scenes[s].viewpoints[i]);
+            fprintf(f, "], ");
+        }
+        if (c->scenes[s].npaths) {
+            fprintf(f, "paths: [");
+            for (int i = 0; i < c->scenes[s].npaths; i++)
+                fprintf(f, "%s%s", i ? ", " : "", c->scenes[s].paths[i]);
+            fprintf(f, "], ");
+        }
+        fprintf(f, "map_sizes: [");
         for (int i = 0, k = 0; i < c->nmaps; i++)
             if (c->scenes[s].map_mask & (1u << i))
                 fprintf(f, "%s%d", k++ ? ", " : "", c->maps[i]);
@@ -800,6 +868,8 @@ void sl_config_write(const struct sl_config *c, FILE *f)
             WRITE_##kind(name, a, b)
         SL_KNOBS(WRITE_KNOB)
 #undef WRITE_KNOB
+        if (c->methods[i].frame_fit.fit != SL_FIT_TIGHT)
+            fprintf(f, ", light_frame: {fit: sphere, snap: %s}", c->methods[i].frame_fit.snap ? "true" : "false");
         fprintf(f, "}\n");
     }
     fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",

@@ -12,6 +12,8 @@
  *   name: default              # experiment name, output folder under results/
  *   scenes:                    # scene files by name (scenes/) or path (relative to this file)
  *     - {scene: primitives, viewpoints: [side, with]}   # default: all of the scene's viewpoints
+ *     - {scene: primitives_motion, paths: [orbit]}      # a path's frames as views (pathfile.h);
+ *                                                       # with paths, no viewpoint unless named
  *   viewports: [{width: 1024, height: 1024}]      # default 1024 x 1024
  *   map_sizes: [1024, 2048]    # powers of two, 64 .. 16384
  *   contours: [2, 4, 6]        # even thicknesses in pixels; the whole image is always added
@@ -20,6 +22,8 @@
  *                              # shared by every method) or own (each method's own result image)
  *   methods:                   # the same method may appear under several labels
  *     - {label: nsm, method: nsm, self_shadow: front_faces}
+ *     - {label: nsm_snap, method: nsm, light_frame: {fit: sphere, snap: true}}   # a stabilised
+ *                              # frame of its own (lightfit.h); default fit tight, snap false
  *   outputs: {tables: true, overlays: true, overlay_contour: 2, exr: false}
  *   repetitions: {warmup: 0, runs: 1}   # timed runs of each cell's method; median kept
  *   seed: 1                    # for anything random
@@ -29,6 +33,7 @@
 #ifndef SL_CONFIG_H
 #define SL_CONFIG_H
 #include "glctx.h"
+#include "lightfit.h"
 #include "method.h"
 #include "scene.h"
 #include "sl_error.h"
@@ -50,14 +55,19 @@ struct sl_config_method {
     char                     label[48];
     const struct sl_method  *method;
     struct sl_method_params  params;
+    struct sl_fit_opts       frame_fit;   /* 'light_frame: {fit: tight|sphere, snap: bool}' (lightfit.h);
+                                           * zero: the tight fit every other label shares */
 };
 
 struct sl_config_scene {
     char ref[256];                    /* as written */
     char path[1024];                  /* resolved scene file */
     char name[64];                    /* the scene's own name */
-    int  nviewpoints;                 /* resolved: never 0 */
-    char viewpoints[SL_MAX_VIEWPOINTS][32];
+    int  nviewpoints;                 /* resolved: never 0; the named ones, then each path's frames */
+    char viewpoints[SL_MAX_VIEWS][32];
+    int  nnamed;                      /* of those, named viewpoints (the rest are frames) */
+    int  npaths;                      /* paths named (pathfile.h), in order */
+    char paths[SL_MAX_PATHS][24];
     unsigned map_mask;                /* bit i: swept at map size maps[i] */
     unsigned method_mask;             /* bit i: runs methods[i] */
     int      light_type;              /* enum sl_light_type of the scene's light */

@@ -58,6 +58,9 @@ void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct s
     r->gs_prims = cl->gs_prims;
     r->fragments = cl->fragments;
     r->violations = cl->violations;
+    r->flicker = cl->flicker;
+    r->flicker_compared = cl->flicker_compared;
+    r->ms_flicker = s->flicker;
     r->ms_gbuffer_render = s->gbuffer_render[SL_MED];
     r->ms_gbuffer_render_min = s->gbuffer_render[SL_MIN];
     r->ms_gbuffer_render_max = s->gbuffer_render[SL_MAX];

@@ -23,9 +23,12 @@
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
+#include "motion_run.h"
 #include "outputs.h"
+#include "runhelp.h"
 #include "shadowmap.h"
 #include "scenefile.h"
+#include "temporal.h"
 #include "truth.h"
 #include "util.h"
 
@@ -114,6 +117,8 @@ struct run_ctx {
     struct sl_softmap_nbuf nbuf;
     int soft_map;                        /* map index the layers are for, -1 none */
     uint8_t *receivers;                  /* per scene range: a pure receiver */
+    struct sl_temporal temporal;         /* a path's previous frame, for flicker (temporal.h) */
+    struct sl_alt_frames alt;            /* labels' own stabilised light frames (runhelp.h) */
     /* where notes, violations and progress go (the library never prints) */
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
@@ -146,6 +151,7 @@ static void drop_view(struct run_ctx *x)
 static void drop_scene(struct run_ctx *x)
 {
     drop_view(x);
+    sl_run_alt_free(&x->alt);   /* a label's own frame may outlive a view (runhelp.h), not its scene */
     sl_rt_free(&x->rt);
     if (x->have_adj)
         sl_adjacency_free(&x->adj);
@@ -176,6 +182,7 @@ static void ctx_free(struct run_ctx *x)
     free(x->soft_truth);
     free(x->soft_se);
     free(x->receivers);
+    sl_temporal_free(&x->temporal);
     sl_softmap_nbuf_free(&x->nbuf);
     if (x->gl.backend) {
         sl_softmap_pass_free(&x->softpass);
@@ -277,33 +284,11 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     return SL_OK;
 }
 
-/* G-buffer values that are not finite (positions, normals of non-background
- * pixels). A hard case must never produce one (tests/test_hard.c). */
-static uint64_t view_bad(const struct sl_view *v)
-{
-    uint64_t n = 0;
-    size_t np = (size_t)v->w * (size_t)v->h;
-    for (size_t i = 0; i < np; i++)
-        if (v->cls[i] != SL_C_BACKGROUND)
-            for (int k = 0; k < 3; k++)
-                n += !isfinite(v->pos[3 * i + k]) + !isfinite(v->nrm[3 * i + k]);
-    return n;
-}
-
-/* Shadow-map depths outside [0, 1] or not finite. */
-static uint64_t layer_bad(const struct sl_depth_layer *l, int size)
-{
-    uint64_t n = 0;
-    size_t nt = (size_t)size * (size_t)size;
-    for (size_t i = 0; i < nt; i++)
-        n += !(l->depth[i] >= 0.0f && l->depth[i] <= 1.0f);
-    return n;
-}
-
 /* The view's truth is in place: its light frustum (lightfit.h), timed (a
  * point light's says what it could not map), its count of bad G-buffer
  * values, and the key it is kept under. */
-static void view_ready(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k)
+static enum sl_err view_ready(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
+                              struct sl_diag *d)
 {
     double t0 = sl_now();
     sl_light_fit(&x->scene, &x->view, &x->box);
@@ -313,10 +298,11 @@ static void view_ready(struct run_ctx *x, const struct sl_config *c, const struc
                                   .viewpoint = c->scenes[k->scene].viewpoints[k->vp], .box = &x->box};
         emit(x, &ev);
     }
-    x->view_bad = view_bad(&x->view);
+    x->view_bad = sl_run_view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
     x->view_viewport = k->viewport;
+    return sl_temporal_view(&x->temporal, k->scene, k->viewport, &x->scene.vp[x->view.vp], &x->view, d);
 }
 
 /* The truths of a view under an area light: the visible fraction of the
@@ -362,8 +348,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
         if (cache)
             sl_cache_area_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
     }
-    view_ready(x, c, k);
-    return SL_OK;
+    return view_ready(x, c, k, d);
 }
 
 static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
@@ -376,6 +361,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
     int vp = sl_scene_find_viewpoint(&x->scene, c->scenes[k->scene].viewpoints[k->vp]);
     if (vp < 0)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "viewpoint vanished from the scene");
+    sl_scene_use_view_light(&x->scene, vp);   /* a light path's frame moves the light */
     memset(&x->vms, 0, sizeof x->vms);
     int reps = c->warmup + c->runs;
     double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
@@ -420,8 +406,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         if (cache_dir && cache_dir[0])
             sl_cache_truth_write(cache_dir, key, &x->view);
     }
-    view_ready(x, c, k);
-    return SL_OK;
+    return view_ready(x, c, k, d);
 }
 
 static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
@@ -448,7 +433,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         if (!((x->frame.have & ~before) & SL_NEED(l)))
             continue;
         res->passes.layers[l]++;
-        x->layer_bad[l] = layer_bad(&x->frame.layer[l], x->frame.size);
+        x->layer_bad[l] = sl_run_layer_bad(&x->frame.layer[l], x->frame.size);
         double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
         times[0] = x->frame.layer[l].ms_render;
         gpu[0] = x->frame.layer[l].ms_gpu;
@@ -506,7 +491,7 @@ static int contour_label(const struct sl_config *c)
 {
     for (int i = 0; i < c->nmethods; i++)
         if (strcmp(c->methods[i].method->name, "nsm") == 0 &&
-            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES)
+            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES && c->methods[i].frame_fit.fit == SL_FIT_TIGHT)
             return i;
     return -1;
 }
@@ -584,6 +569,12 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     cell->n_truth_lit = x->view.n_lit;
     cell->n_truth_shadow = x->view.n_shadow;
     unsigned mneeds = cm->method->needs(&cm->params);
+    struct sl_light_frame *fr = &x->frame;   /* a label's own stabilised frame, if it asks (lightfit.h) */
+    enum sl_err e = cm->frame_fit.fit == SL_FIT_TIGHT ? SL_OK
+                    : sl_run_alt_frame(&x->alt, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map],
+                                       &cm->frame_fit, mneeds, &fr, res->passes.layers, d);
+    if (e)
+        return e;
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         if (mneeds & SL_NEED(l)) {
             for (int j = 0; j < 3; j++) {
@@ -591,9 +582,9 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
                 cell->ms.gpu_map[j] += x->layer_gpu[l][j];
             }
             cell->nonfinite += x->layer_bad[l];
-            cell->ms.map_readback += x->frame.layer[l].ms_readback;
-            cell->gs_prims += x->frame.layer[l].gs_prims;
-            cell->fragments += x->frame.layer[l].fragments;
+            cell->ms.map_readback += fr->layer[l].ms_readback;
+            cell->gs_prims += fr->layer[l].gs_prims;
+            cell->fragments += fr->layer[l].fragments;
         }
     if ((mneeds & SL_NEED_SOFT) && x->soft_map >= 0)
         for (int j = 0; j < 3; j++) {   /* rendered once (ensure_soft): no spread */
@@ -604,17 +595,17 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_view mview = x->view;
     mview.truth = NULL;
     struct sl_method_args a = {
-        .scene = &x->scene, .view = &mview, .frame = &x->frame, .params = &cm->params,
+        .scene = &x->scene, .view = &mview, .frame = fr, .params = &cm->params,
         .rt = &x->rt, .adj = x->have_adj ? &x->adj : NULL, .threads = c->threads,
         .softmap = x->soft_map >= 0 ? &x->softmap : NULL,
         .seed = c->seed,
     };
     int reps = c->warmup + c->runs;
     double times[SL_MAX_REPS];
-    enum sl_err e = SL_OK;
     /* contour_from nsm with this label's run already made for the contour:
      * its verdicts are this cell's first run (further repetitions only time) */
-    const int reuse = c->contour_from == SL_CONTOUR_NSM && x->nsm_map == k->map && x->nsm_label == (int)k->method;
+    const int reuse = c->contour_from == SL_CONTOUR_NSM && x->nsm_map == k->map && x->nsm_label == (int)k->method &&
+                      fr == &x->frame;
     for (int r = 0; r < reps && !e; r++) {
         struct sl_cost cost = {0};
         res->passes.method_runs++;
@@ -642,6 +633,10 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         return e;
     med_min_max(times, c->runs, cell->ms.method);
     cell->cost.ms_method = cell->ms.method[SL_MED];
+    int measured;   /* flicker against the path's previous frame, if any */
+    if ((e = sl_temporal_cell(&x->temporal, k->map, k->method, x->vd.v, &measured, &cell->flicker,
+                              &cell->flicker_compared, &cell->ms.flicker, d)))
+        return e;
 
     char ovpath[1600] = "", exrpath[1400] = "";
     if (ovdir) {
@@ -653,7 +648,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         snprintf(exrpath, sizeof exrpath, "%s/%s-%s-%dx%d-%d-%s.exr", exrdir, cell->scene, cell->viewpoint, W, H,
                  c->maps[k->map], cm->label);
     struct sl_cell_inputs in = {
-        .method = cm->method, .view = &x->view, .frame = &x->frame, .light_dir = x->scene.light_dir,
+        .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir,
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb,
@@ -785,6 +780,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     res->stored_total = -1;
     if (st && c->tables)
         e = sl_out_rebuild_from_store(st, c, res->ncells, dirs.final, &res->stored_total, d);
+    if (!e && c->tables)   /* a config naming paths: the temporal tables, plots, overlay sequences */
+        e = sl_motion_outputs(st, c, res, dirs.final, d);
     if (!e && o->table_out && c->tables) {
         e = sl_out_print_tables(o->table_out, c, res, d);
         sl_out_write_costs_md(o->table_out, c, res);

@@ -733,3 +733,14 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
     free(p);
     return e;
 }
+
+/* ---- for the other sections: one plot drawn and shown ---- */
+
+enum sl_err sl_report_plot_draw(struct sl_report_doc *doc, const char *gnuplot, const char *name, int w, int h,
+                                const char *data, const char *body, const char *caption, struct sl_diag *d)
+{
+    enum sl_err e = gp_run(doc, gnuplot, name, w, h, data, body, d);
+    if (!e)
+        plot_show(doc, name, caption);
+    return e;
+}

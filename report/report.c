@@ -399,6 +399,8 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
         sl_report_doc_heading(doc, 3, NULL, "%s: soft shadows (area lights), Curtis 2009", s->name);
         e = sl_report_curtis(doc, s, d);
     }
+    if (!e)   /* a heading of its own when the study has paths */
+        e = sl_report_motion(doc, s, gnuplot, d);
     if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: the chain's steps per scene", s->name);
         e = sl_report_plot_chain(doc, s, gnuplot, d);

@@ -174,6 +174,14 @@ const struct sl_cell_record *sl_report_study_cell(const struct sl_report_study *
 int sl_report_region(const struct sl_cell_record *c, int thickness);
 void sl_report_region_name(int thickness, char *buf, size_t n);
 
+/* plots.c: a plot of another section, drawn (plots/NAME.{dat,gp,svg,pdf}; body
+ * reads the data as DATA) and shown with its caption */
+enum sl_err sl_report_plot_draw(struct sl_report_doc *doc, const char *gnuplot, const char *name, int w, int h,
+                                const char *data, const char *body, const char *caption, struct sl_diag *d);
+/* motion.c: the study's paths (results/motion.h), when it has any */
+enum sl_err sl_report_motion(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                             struct sl_diag *d);
+
 /* layouts.c */
 enum sl_err sl_report_moderno(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);

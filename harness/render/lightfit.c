@@ -2,6 +2,7 @@
  * lightfit.c — see lightfit.h. Invariant: every receiver and every triangle
  * able to shadow one lies inside the box (tests/test_lightfit.c checks it).
  */
+#define _DEFAULT_SOURCE
 #include "lightfit.h"
 #include <cglm/clipspace/ortho_rh_zo.h>
 #include <cglm/clipspace/persp_rh_zo.h>
@@ -247,6 +248,73 @@ void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_l
         lo[k] -= m;
         hi[k] += m;
     }
+    memcpy(out->lo, lo, sizeof lo);
+    memcpy(out->hi, hi, sizeof hi);
+    glm_ortho_rh_zo(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], out->proj);
+    glm_mat4_mul(out->proj, out->view, out->vp);
+}
+
+/* ---- stabilised frames (lightfit.h, sl_light_fit_stable) ----
+ * Kept apart from the tight fit above so either can change alone. The
+ * sphere is centred on the frustum's corners' centroid (on its axis, at
+ * (near + far) / 2), its radius the farthest corner's distance: not the
+ * smallest enclosing sphere, but the usual engine choice and rigid with the
+ * camera, which is what keeps the size fixed. */
+void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
+                         struct sl_light_box *out)
+{
+    if (o->fit != SL_FIT_SPHERE || s->light.type == SL_LIGHT_AREA) {
+        sl_light_fit(s, v, out);
+        return;
+    }
+    memset(out, 0, sizeof *out);
+    sl_light_view(s->light_dir, out->view);
+    const struct sl_viewpoint *vp = &s->vp[v->vp];
+    const double aspect = (double)v->w / (double)v->h;
+    const double hf = vp->zfar * tan(0.5 * vp->fov_deg * M_PI / 180.0), wf = hf * aspect;
+    const double half_depth = 0.5 * ((double)vp->zfar - vp->znear);
+    double radius = sqrt(half_depth * half_depth + hf * hf + wf * wf);
+    radius = ceil(radius * 16.0) / 16.0;   /* bit-stable from view to view */
+    float centre[3], c[3];
+    for (int k = 0; k < 3; k++)
+        centre[k] = (float)(vp->pos[k] + vp->dir[k] * 0.5 * ((double)vp->znear + vp->zfar));
+    to_light(out->view, centre, c);
+    const double texel = 2.0 * radius / (double)(size - 2);
+    double cx = c[0], cy = c[1];
+    if (o->snap) {
+        cx = floor(cx / texel) * texel;
+        cy = floor(cy / texel) * texel;
+    }
+    float lo[3], hi[3];
+    lo[0] = (float)(cx - 0.5 * size * texel);
+    hi[0] = (float)(cx + 0.5 * size * texel);
+    lo[1] = (float)(cy - 0.5 * size * texel);
+    hi[1] = (float)(cy + 0.5 * size * texel);
+    /* along the light: the whole scene, with the tight fit's margins */
+    lo[2] = FLT_MAX;
+    hi[2] = -FLT_MAX;
+    for (uint32_t i = 0; i < s->nv; i++) {
+        float q[3];
+        to_light(out->view, s->pos + 3 * i, q);
+        lo[2] = fminf(lo[2], q[2]);
+        hi[2] = fmaxf(hi[2], q[2]);
+    }
+    float ext = hi[2] - lo[2], mag = fmaxf(fabsf(lo[2]), fabsf(hi[2]));
+    float m = fmaxf(1e-4f * ext, 1e-6f * mag + 1e-6f);
+    lo[2] -= m;
+    hi[2] += m;
+    size_t n = (size_t)v->w * (size_t)v->h;
+    for (size_t i = 0; i < n; i++) {
+        if (v->cls[i] != SL_C_PFL)
+            continue;
+        float q[3];
+        to_light(out->view, v->pos + 3 * i, q);
+        if (q[0] >= lo[0] && q[0] <= hi[0] && q[1] >= lo[1] && q[1] <= hi[1])
+            out->n_receivers++;
+        else
+            out->n_outside++;
+    }
+    out->n_casters = s->nt;
     memcpy(out->lo, lo, sizeof lo);
     memcpy(out->hi, hi, sizeof hi);
     glm_ortho_rh_zo(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], out->proj);

@@ -31,6 +31,9 @@
  *          the header `head`; git_sha, config_hash and machine follow;
  *   check  class of check.h a baseline compares it under (none = not
  *          compared), as the counter `key`.
+ * flicker, flicker_compared: a path's frame against the frame before it
+ * (temporal.h); compared 0 = not measured (no frame, or its path's first in
+ * the run that computed it).
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -74,6 +77,8 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(gs_prims,            count,    0,    33,  "gs_prims",           cost,      gs_prims)  \
     X(fragments,           count,    0,    34,  "fragments",          cost,      fragments) \
     X(violations,          count,    0,    35,  "violations",         invariant, violations) \
+    X(flicker,             count,    0,    0,   "",                   none,      _)         \
+    X(flicker_compared,    count,    0,    0,   "",                   none,      _)         \
     X(ms_gbuffer_render,   ms,       0,    8,   "ms_gbuffer_render",  none,      _)         \
     X(ms_gbuffer_render_min, ms,     0,    9,   "ms_gbuffer_render_min", none,   _)         \
     X(ms_gbuffer_render_max, ms,     0,    10,  "ms_gbuffer_render_max", none,   _)         \
@@ -99,6 +104,7 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(ms_overlay,          ms,       0,    38,  "ms_overlay",         none,      _)         \
     X(ms_gpu_gbuffer,      ms,       0,    39,  "ms_gpu_gbuffer",     none,      _)         \
     X(ms_gpu_map,          ms,       0,    40,  "ms_gpu_map",         none,      _)         \
+    X(ms_flicker,          ms,       0,    41,  "ms_flicker",         none,      _)         \
     X(overlay,             path,     1500, 0,   "",                   none,      _)         \
     X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)
 /* clang-format on */

@@ -74,8 +74,26 @@ enum sl_err sl_scene_from_mesh(struct sl_scene *s, const struct sl_mesh *m, stru
 
 int sl_scene_find_viewpoint(const struct sl_scene *s, const char *name)
 {
-    for (int i = 0; i < s->nvp; i++)
+    for (int i = 0; i < s->nvp + s->nframes; i++)
         if (strcmp(s->vp[i].name, name) == 0)
             return i;
     return -1;
+}
+
+int sl_scene_find_path(const struct sl_scene *s, const char *name)
+{
+    for (int i = 0; i < s->npaths; i++)
+        if (strcmp(s->paths[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+void sl_scene_use_view_light(struct sl_scene *s, int vp)
+{
+    if (s->light.type != SL_LIGHT_DIRECTIONAL)
+        return;
+    const float *d = vp >= 0 && vp < s->nvp + s->nframes && s->vp[vp].has_light ? s->vp[vp].light_dir
+                                                                                   : s->base_light_dir;
+    memcpy(s->light.dir, d, sizeof s->light.dir);
+    memcpy(s->light_dir, d, sizeof s->light_dir);
 }

@@ -18,6 +18,12 @@
 #include "sl_error.h"
 
 #define SL_MAX_VIEWPOINTS 16
+/* Paths (pathfile.h): at most SL_MAX_PATHS per scene file, their frames
+ * together at most SL_MAX_FRAMES; each frame is a viewpoint held after the
+ * named ones (vp[nvp .. nvp + nframes)), named "<path>.<frame>" (orbit.007). */
+#define SL_MAX_PATHS 8
+#define SL_MAX_FRAMES 480
+#define SL_MAX_VIEWS (SL_MAX_VIEWPOINTS + SL_MAX_FRAMES)
 
 struct sl_viewpoint {
     char  name[32];
@@ -26,6 +32,11 @@ struct sl_viewpoint {
     float up[3];      /* unit */
     float fov_deg;    /* vertical */
     float znear, zfar;
+    /* a path's frame (pathfile.h): its path (index into sl_scene.paths) and
+     * frame number; path = -1 for a named viewpoint */
+    int   path, frame;
+    int   has_light;        /* the frame moves the directional light: light_dir replaces the scene's */
+    float light_dir[3];     /* unit direction the light travels */
 };
 
 enum sl_light_type {
@@ -67,8 +78,16 @@ struct sl_scene {
     float    *fn;     /* 3 * nt, unit face normals (counter-clockwise front) */
     float     lo[3], hi[3];
     float     light_dir[3];   /* = light.dir: unit direction the light travels */
-    struct sl_viewpoint vp[SL_MAX_VIEWPOINTS];
-    int       nvp;
+    struct sl_viewpoint vp[SL_MAX_VIEWS];
+    int       nvp;            /* named viewpoints; the paths' frames follow them */
+    int       nframes;        /* frames of every path, vp[nvp .. nvp + nframes) */
+    struct sl_path_info {
+        char name[24];
+        int  first, count;    /* its frames: vp[first .. first + count) */
+        int  moves_camera, moves_light;
+    } paths[SL_MAX_PATHS];
+    int       npaths;
+    float     base_light_dir[3];  /* the scene file's light direction (a frame's may replace light_dir) */
     double    origin[3];      /* world position of the scene's local origin: scene files are
                                * moved there (scenefile.c, rebase), positions above are local */
 };
@@ -89,7 +108,15 @@ double sl_tri_normal_d(const float a[3], const float b[3], const float c[3], dou
  * degenerate (zero-area) triangles are rejected with SL_E_SCENE. */
 enum sl_err sl_scene_from_mesh(struct sl_scene *s, const struct sl_mesh *m, struct sl_diag *d);
 
+/* A named viewpoint or a path's frame ("orbit.007") by name, -1 none. */
 int         sl_scene_find_viewpoint(const struct sl_scene *s, const char *name);
+/* A path by name, -1 none. */
+int         sl_scene_find_path(const struct sl_scene *s, const char *name);
+
+/* Make viewpoint vp's light the scene's: a light path's frame sets
+ * light.dir and light_dir to its own direction, any other viewpoint puts
+ * back the scene file's (base_light_dir). Directional lights only move. */
+void        sl_scene_use_view_light(struct sl_scene *s, int vp);
 
 void sl_scene_free(struct sl_scene *s);
 

@@ -20,6 +20,7 @@
 #include <unistd.h>
 #include "gen.h"
 #include "meshio.h"
+#include "pathfile.h"
 #include "util.h"
 #include "yamlfile.h"
 
@@ -66,6 +67,7 @@ struct raw_scene {
     struct raw_light *light;
     struct raw_mesh *meshes; unsigned meshes_count;
     struct raw_vp *viewpoints; unsigned viewpoints_count;
+    struct sl_raw_path *paths; unsigned paths_count;
 };
 
 static const cyaml_schema_value_t float_schema = {CYAML_VALUE_FLOAT(CYAML_FLAG_DEFAULT, float)};
@@ -146,6 +148,8 @@ static const cyaml_schema_field_t scene_fields[] = {
                          &mesh_schema, 1, 4096),
     CYAML_FIELD_SEQUENCE("viewpoints", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene,
                          viewpoints, &vp_schema, 1, SL_MAX_VIEWPOINTS),
+    CYAML_FIELD_SEQUENCE("paths", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_scene, paths,
+                         &sl_raw_path_schema, 1, SL_MAX_PATHS),
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t scene_schema = {
@@ -642,6 +646,7 @@ static enum sl_err read_viewpoint(const struct raw_vp *r, const char *file, cons
     char key[96];
     memset(v, 0, sizeof *v);
     snprintf(v->name, sizeof v->name, "%s", r->name);
+    v->path = -1;
     snprintf(key, sizeof key, "viewpoints[%u].name", i);
     if (!safe_name(r->name))
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "viewpoint name '%.64s': use 1..63 letters, "
@@ -777,9 +782,11 @@ static enum sl_err load_into(const char *path, struct build *b, struct sl_light 
         out->nvp = (int)r->viewpoints_count;
         if (!e && !*have_light)
             e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "light", "the scene has no light");
+        if (!e && r->paths)
+            e = sl_paths_expand(r->paths, r->paths_count, path, pos, light, out, d);
         if (!e && b->all.nt == 0)
             e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "meshes", "the scene has no mesh");
-        if (!e && out->nvp == 0)
+        if (!e && out->nvp + out->nframes == 0)
             e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "viewpoints", "the scene has no viewpoint");
     }
     sl_yaml_free(&scene_schema, r, pos);
@@ -811,7 +818,7 @@ static void rebase(struct build *b, struct sl_scene *out, struct sl_light *light
             for (int k = 0; k < 3; k++)
                 b->all.pos[3 * v + k] =
                     (float)((double)b->all.pos[3 * v + k] + b->shift[r].t[k] - out->origin[k]);
-    for (int i = 0; i < out->nvp; i++)
+    for (int i = 0; i < out->nvp + out->nframes; i++)
         for (int k = 0; k < 3; k++)
             out->vp[i].pos[k] = (float)((double)out->vp[i].pos[k] - out->origin[k]);
     for (int k = 0; k < 3; k++)
@@ -848,6 +855,7 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     memcpy(out->light_dir, light.dir, sizeof out->light_dir);
     if (light.type == SL_LIGHT_AREA)   /* the light travels from its emitting side: PFL faces it */
         memcpy(out->light_dir, light.normal, sizeof out->light_dir);
+    memcpy(out->base_light_dir, out->light_dir, sizeof out->base_light_dir);
     return SL_OK;
 }
 

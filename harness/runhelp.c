@@ -1,0 +1,92 @@
+/*
+ * runhelp.c — see runhelp.h.
+ */
+#include "runhelp.h"
+#include <math.h>
+#include <string.h>
+
+/* G-buffer values that are not finite (positions, normals of non-background
+ * pixels). A hard case must never produce one (tests/test_hard.c). */
+uint64_t sl_run_view_bad(const struct sl_view *v)
+{
+    uint64_t n = 0;
+    size_t np = (size_t)v->w * (size_t)v->h;
+    for (size_t i = 0; i < np; i++)
+        if (v->cls[i] != SL_C_BACKGROUND)
+            for (int k = 0; k < 3; k++)
+                n += !isfinite(v->pos[3 * i + k]) + !isfinite(v->nrm[3 * i + k]);
+    return n;
+}
+
+/* Shadow-map depths outside [0, 1] or not finite. */
+uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size)
+{
+    uint64_t n = 0;
+    size_t nt = (size_t)size * (size_t)size;
+    for (size_t i = 0; i < nt; i++)
+        n += !(l->depth[i] >= 0.0f && l->depth[i] <= 1.0f);
+    return n;
+}
+
+/* Two fits that put the same map in the same place: a camera that moved
+ * less than a texel under a snapped fixed-size frame, or one that holds
+ * still while nothing else changes. */
+static int same_box(const struct sl_light_frame *f, const struct sl_light_box *b, const float dir[3])
+{
+    return memcmp(f->box.vp, b->vp, sizeof b->vp) == 0 && memcmp(f->box.lo, b->lo, sizeof b->lo) == 0 &&
+           memcmp(f->box.hi, b->hi, sizeof b->hi) == 0 && memcmp(f->dir, dir, sizeof f->dir) == 0;
+}
+
+enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, const struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
+                             const struct sl_scene *s, const struct sl_view *v, int map, int size,
+                             const struct sl_fit_opts *o, unsigned needs, struct sl_light_frame **out, int *layers,
+                             struct sl_diag *d)
+{
+    needs &= (1u << SL_LAYER_COUNT) - 1u;
+    int i = 0;
+    while (i < a->n && !(a->e[i].map == map && a->e[i].fit.fit == o->fit && a->e[i].fit.snap == o->snap))
+        i++;
+    if (i == a->n && a->n == SL_ALT_FRAMES)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, "light_frame", "more than %d light frames in one scene",
+                       SL_ALT_FRAMES);
+    struct sl_light_frame *f = &a->e[i].f;
+    if (i == a->n || a->e[i].vp != v->vp || a->e[i].vw != v->w || a->e[i].vh != v->h) {
+        /* a new view: its fit; the layers already rendered stay when the
+         * frame is the same (the light frame shared between frames of a path) */
+        struct sl_light_box box;
+        sl_light_fit_stable(s, v, o, size, &box);
+        if (i < a->n && same_box(f, &box, s->light_dir)) {
+            sl_light_box_free(&f->box);
+            f->box = box;
+        } else {
+            if (i < a->n)
+                sl_frame_free(f);
+            else
+                a->n++;
+            memset(&a->e[i], 0, sizeof a->e[i]);
+            a->e[i].map = map;
+            a->e[i].fit = *o;
+            f->size = size;
+            memcpy(f->dir, s->light_dir, sizeof f->dir);
+            f->box = box;
+            f->texel_world = fmaxf(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1]) / (float)size;
+            f->depth_range = box.hi[2] - box.lo[2];
+        }
+        a->e[i].vp = v->vp;
+        a->e[i].vw = v->w;
+        a->e[i].vh = v->h;
+    }
+    unsigned before = f->have;
+    enum sl_err e = sl_shadowmap_render(sp, m, f, needs, d);
+    for (int l = 0; l < SL_LAYER_COUNT && layers; l++)
+        layers[l] += ((f->have & ~before) >> l) & 1u;
+    *out = f;
+    return e;
+}
+
+void sl_run_alt_free(struct sl_alt_frames *a)
+{
+    for (int i = 0; i < a->n; i++)
+        sl_frame_free(&a->e[i].f);
+    a->n = 0;
+}

@@ -1,0 +1,50 @@
+/*
+ * runhelp.h — small checks of the run loop (run.c), kept apart so run.c
+ * stays within its size limit: values of a view and of a shadow-map layer
+ * that are not finite or out of range; the frames of labels with a
+ * stabilised light frame of their own (config light_frame, lightfit.h).
+ *
+ * Owns: nothing. Does not: print or decide anything (the run counts them
+ * into the cell's `nonfinite`).
+ */
+#ifndef SL_RUNHELP_H
+#define SL_RUNHELP_H
+#include <stdint.h>
+#include "frame.h"
+#include "lightfit.h"
+#include "shadowmap.h"
+#include "view.h"
+
+/* G-buffer values that are not finite (positions, normals of non-background
+ * pixels). A hard case must never produce one (tests/test_hard.c). */
+uint64_t sl_run_view_bad(const struct sl_view *v);
+
+/* Shadow-map depths outside [0, 1] or not finite. */
+uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size);
+
+/* Frames of labels whose light_frame is not the shared tight fit: one per
+ * (map size, fit), fitted for each view and rendered once with the layers
+ * the labels' methods need (added when a later label needs more). A view
+ * whose fit gives the very same box (same matrices, same light) keeps the
+ * rendered layers: the frame is shared between frames of a path where a
+ * fixed-size frame did not move. Dropped with the scene. At most
+ * SL_ALT_FRAMES kinds per scene. */
+#define SL_ALT_FRAMES 4
+struct sl_alt_frames {
+    int n;
+    struct {
+        int map;
+        struct sl_fit_opts fit;
+        int vp, vw, vh;               /* the view it was last fitted for: viewpoint, viewport */
+        struct sl_light_frame f;
+    } e[SL_ALT_FRAMES];
+};
+/* *out: the frame of (map, fit o) of view v, with the layers in needs;
+ * layers[l] counts each layer rendered. */
+enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, const struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
+                             const struct sl_scene *s, const struct sl_view *v, int map, int size,
+                             const struct sl_fit_opts *o, unsigned needs, struct sl_light_frame **out, int *layers,
+                             struct sl_diag *d);
+void sl_run_alt_free(struct sl_alt_frames *a);
+
+#endif
