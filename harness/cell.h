@@ -23,6 +23,7 @@
 #ifndef SL_CELL_H
 #define SL_CELL_H
 #include <stdint.h>
+#include "aliasing.h"
 #include "config.h"
 #include "frame.h"
 #include "figures.h"
@@ -81,6 +82,8 @@ struct sl_cell {
      * shadowed in truth; has_patterns when the method reports it */
     int      has_patterns;
     uint64_t pattern[SL_MAX_REGIONS][10][2];
+    int      has_alias;                /* a hard cell: its wrong pixels by aliasing error m (aliasing.h) */
+    struct sl_alias_figures alias;
     struct sl_violation violation[SL_MAX_VIOLATIONS];
 };
 

@@ -22,6 +22,7 @@ extern const struct sl_method sl_method_raytrace;
 extern const struct sl_method sl_method_hard_point;
 extern const struct sl_method sl_method_soft_mc;
 extern const struct sl_method sl_method_point_map;
+extern const struct sl_method sl_method_zpart;
 
 static const struct sl_method *const sl_methods[] = {
     &sl_method_nsm,
@@ -40,6 +41,7 @@ static const struct sl_method *const sl_methods[] = {
     &sl_method_hard_point,
     &sl_method_soft_mc,
     &sl_method_point_map,
+    &sl_method_zpart,
     NULL,
 };
 

@@ -187,18 +187,16 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, struct 
     glm_mat4_mul(out->proj, out->view, out->vp);
 }
 
-void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+/* A directional light's box, fitted to the PFL pixels i with mask[i] ==
+ * value (mask NULL: every one). */
+static void fit_dir(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                    struct sl_light_box *out)
 {
-    memset(out, 0, sizeof *out);
-    if (s->light.type == SL_LIGHT_AREA) {
-        fit_point(s, v, out);
-        return;
-    }
     sl_light_view(s->light_dir, out->view);
     float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
     size_t n = (size_t)v->w * (size_t)v->h;
     for (size_t i = 0; i < n; i++) {
-        if (v->cls[i] != SL_C_PFL)
+        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
             continue;
         float q[3];
         to_light(out->view, v->pos + 3 * i, q);
@@ -251,4 +249,69 @@ void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_l
     memcpy(out->hi, hi, sizeof hi);
     glm_ortho_rh_zo(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], out->proj);
     glm_mat4_mul(out->proj, out->view, out->vp);
+}
+
+void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+{
+    memset(out, 0, sizeof *out);
+    if (s->light.type == SL_LIGHT_AREA)
+        fit_point(s, v, out);
+    else
+        fit_dir(s, v, NULL, 0, out);
+}
+
+int sl_light_fit_slice(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                       struct sl_light_box *out)
+{
+    memset(out, 0, sizeof *out);
+    if (s->light.type == SL_LIGHT_AREA)
+        return 0;
+    fit_dir(s, v, mask, value, out);
+    return 1;
+}
+
+void sl_zsplit_closed(double n, double f, int k, double *planes)
+{
+    for (int i = 0; i <= k; i++)
+        planes[i] = n * pow(f / n, (double)i / k);
+    planes[0] = n;   /* exact ends, whatever pow rounds to */
+    planes[k] = f;
+}
+
+void sl_zsplit_iterative(double n, double f, int k, double lambda, double *planes)
+{
+    /* eq. 62, from the far end down: f_k = f; n_i = f_(i-1) =
+     * lambda n (f_i / n)^((i-1)/i) + (1 - lambda) f_i / alpha_i; n_1 = n.
+     * alpha_i is defined in the thesis's section 4.3.2, outside the seed;
+     * we take f_i / alpha_i = n + (f_i - n)(i - 1)/i, the uniform split of
+     * [n, f_i] into i equal slices, so that lambda = 0 gives the uniform
+     * split of [n, f] (the uniform counterpart of the log term, which is
+     * the log split of [n, f_i] into i slices). */
+    planes[k] = f;
+    for (int i = k; i >= 2; i--) {
+        double fi = planes[i];
+        double lg = n * pow(fi / n, (double)(i - 1) / i);
+        double un = n + (fi - n) * (double)(i - 1) / i;
+        planes[i - 1] = lambda * lg + (1.0 - lambda) * un;
+    }
+    planes[0] = n;
+}
+
+void sl_view_depth_range(const struct sl_view *v, float *zmin, float *zmax)
+{
+    float lo = FLT_MAX, hi = 0.0f;
+    size_t n = (size_t)v->w * (size_t)v->h;
+    for (size_t i = 0; i < n; i++) {
+        if (v->cls[i] == SL_C_BACKGROUND)
+            continue;
+        float z = sl_view_depth(v, v->pos + 3 * i);
+        if (z < lo) lo = z;
+        if (z > hi) hi = z;
+    }
+    if (!(lo <= hi)) {
+        lo = 1.0f;
+        hi = 2.0f;
+    }
+    *zmin = lo;
+    *zmax = hi;
 }

@@ -41,6 +41,7 @@
 #ifndef SL_CELLCOLS_H
 #define SL_CELLCOLS_H
 #include <stdint.h>
+#include "aliasing.h"
 #include "figures.h"
 #include "softfig.h"
 
@@ -136,6 +137,8 @@ struct sl_cell_record {
     int      has_soft;                 /* an area light: the soft figures below; a hard method's cell
                                         * has both, its hard figures against the light's centre */
     struct sl_soft_figures soft;
+    int      has_alias;                /* a hard cell's pixels by aliasing error m (aliasing.h), per region */
+    struct sl_alias_figures alias;
     /* the run's, not columns of the cell */
     char     study[64];                /* the config's name */
     int64_t  run_id;                   /* 0 when not from the store */

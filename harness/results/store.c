@@ -34,7 +34,7 @@
 #include <unistd.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 11   /* 11: cells.ms_gpu_gbuffer, ms_gpu_map (GL timer queries);
+#define SL_STORE_VERSION 12   /* 12: the aliasing figures (aliasing.h); 11: cells.ms_gpu_gbuffer, ms_gpu_map (GL timer queries);
                                * 10: runs.gl_backend; 9: contour_from (whose image the contours are drawn from),
                                * PnFL-inclusive figures (Moderno's count); 8: soft-shadow figures; 7: study, config
                                * text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints,
@@ -117,7 +117,7 @@ static const char sql_figures[] =
     "  region     TEXT NOT NULL CHECK (region = 'image' OR region GLOB '[1-9]px'\n"
     "               OR region GLOB '[1-9][0-9]px' OR region GLOB '[1-9][0-9][0-9]px'),\n"
     "  figure     TEXT NOT NULL CHECK (figure IN (" SL_FIGURES(SL_FIG_SQL_NAME) SL_SOFT_FIGURES(SL_FIG_SQL_NAME)
-    "'background')),\n"
+    SL_ALIAS_FIGURES(SL_FIG_SQL_NAME) "'background')),\n"
     "  count      INTEGER NOT NULL CHECK (count >= 0),\n"
     "  percent    REAL,\n"
     "  percent_of TEXT,\n"
@@ -702,6 +702,13 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
             e = put_figure(s, cell_id, c, viewport, region, sl_figure_name((enum sl_figure)k), g->n[k],
                            g->pct[k], sl_figure_of((enum sl_figure)k), key, d);
     }
+    for (int r = 0; c->has_alias && r < c->alias.nregions && !e; r++) {
+        char region[16];
+        region_name(c->alias.thickness[r], region, sizeof region);
+        for (int k = 0; k < SL_AFIG_COUNT && !e; k++)
+            e = put_figure(s, cell_id, c, viewport, region, sl_alias_figure_name((enum sl_alias_figure)k),
+                           c->alias.n[r][k], c->alias.pct[r][k], sl_alias_figure_of((enum sl_alias_figure)k), key, d);
+    }
     for (int k = 0; c->has_soft && k < SL_SFIG_COUNT && !e; k++)
         e = put_figure(s, cell_id, c, viewport, "image", sl_soft_figure_name((enum sl_soft_figure)k), c->soft.n[k],
                        c->soft.pct[k], sl_soft_figure_of((enum sl_soft_figure)k), key, d);
@@ -791,7 +798,26 @@ static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struc
             c->soft.pct[sk] = pct;
             continue;
         }
-        int t = region_thickness(region), k = 0;
+        int ak = figure ? sl_alias_figure_parse(figure) : -1, t = region_thickness(region), k = 0;
+        if (ak >= 0 && t >= 0) {
+            /* the aliasing figures' regions, in the order they come (the figures') */
+            struct sl_alias_figures *a = &c->alias;
+            int j = 0;
+            while (j < a->nregions && a->thickness[j] != t)
+                j++;
+            if (j == a->nregions && j < SL_MAX_REGIONS) {
+                a->nregions++;
+                a->thickness[j] = t;
+                for (int q = 0; q < SL_AFIG_COUNT; q++)
+                    a->pct[j][q] = NAN;
+            }
+            if (j < SL_MAX_REGIONS) {
+                c->has_alias = 1;
+                a->n[j][ak] = count;
+                a->pct[j][ak] = pct;
+            }
+            continue;
+        }
         while (k < SL_FIG_COUNT && (!figure || strcmp(figure, sl_figure_name((enum sl_figure)k)) != 0))
             k++;
         if (t < 0 || k == SL_FIG_COUNT) {
