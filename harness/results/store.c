@@ -701,11 +701,7 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
         for (int k = 0; k < SL_FIG_COUNT && !e; k++)
             e = put_figure(s, cell_id, c, viewport, region, sl_figure_name((enum sl_figure)k), g->n[k],
                            g->pct[k], sl_figure_of((enum sl_figure)k), key, d);
-    }
-    for (int r = 0; c->has_alias && r < c->alias.nregions && !e; r++) {
-        char region[16];
-        region_name(c->alias.thickness[r], region, sizeof region);
-        for (int k = 0; k < SL_AFIG_COUNT && !e; k++)
+        for (int k = 0; c->has_alias && r < c->alias.nregions && k < SL_AFIG_COUNT && !e; k++)   /* same regions */
             e = put_figure(s, cell_id, c, viewport, region, sl_alias_figure_name((enum sl_alias_figure)k),
                            c->alias.n[r][k], c->alias.pct[r][k], sl_alias_figure_of((enum sl_alias_figure)k), key, d);
     }
@@ -798,26 +794,9 @@ static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struc
             c->soft.pct[sk] = pct;
             continue;
         }
-        int ak = figure ? sl_alias_figure_parse(figure) : -1, t = region_thickness(region), k = 0;
-        if (ak >= 0 && t >= 0) {
-            /* the aliasing figures' regions, in the order they come (the figures') */
-            struct sl_alias_figures *a = &c->alias;
-            int j = 0;
-            while (j < a->nregions && a->thickness[j] != t)
-                j++;
-            if (j == a->nregions && j < SL_MAX_REGIONS) {
-                a->nregions++;
-                a->thickness[j] = t;
-                for (int q = 0; q < SL_AFIG_COUNT; q++)
-                    a->pct[j][q] = NAN;
-            }
-            if (j < SL_MAX_REGIONS) {
-                c->has_alias = 1;
-                a->n[j][ak] = count;
-                a->pct[j][ak] = pct;
-            }
-            continue;
-        }
+        int t = region_thickness(region), k = 0;
+        if (figure && t >= 0 && sl_alias_figures_put(&c->alias, t, figure, count, pct))
+            continue;   /* has_alias: set below */
         while (k < SL_FIG_COUNT && (!figure || strcmp(figure, sl_figure_name((enum sl_figure)k)) != 0))
             k++;
         if (t < 0 || k == SL_FIG_COUNT) {
@@ -840,6 +819,7 @@ static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struc
         f->r[f->nregions - 1].n[k] = count;
         f->r[f->nregions - 1].pct[k] = pct;
     }
+    c->has_alias = c->alias.nregions > 0;
     if (!e && rc != SQLITE_DONE)
         e = db_fail(s, d, NULL, "cannot read the figures of cell %lld", (long long)cell_id);
     st_clear(st);

@@ -318,3 +318,23 @@ void sl_alias_figures_compute(const struct sl_view *v, const struct sl_verdicts 
     free(all);
     free(bad);
 }
+
+int sl_alias_figures_put(struct sl_alias_figures *a, int thickness, const char *figure, uint64_t count, double pct)
+{
+    int k = sl_alias_figure_parse(figure), j = 0;
+    if (k < 0)
+        return 0;
+    while (j < a->nregions && a->thickness[j] != thickness)
+        j++;
+    if (j == SL_MAX_REGIONS)
+        return 1;   /* more regions than a cell holds: the store refuses such a cell before */
+    if (j == a->nregions) {
+        a->nregions++;
+        a->thickness[j] = thickness;
+        for (int q = 0; q < SL_AFIG_COUNT; q++)
+            a->pct[j][q] = NAN;
+    }
+    a->n[j][k] = count;
+    a->pct[j][k] = pct;
+    return 1;
+}

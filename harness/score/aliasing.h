@@ -131,4 +131,8 @@ void sl_alias_figures_compute(const struct sl_view *v, const struct sl_verdicts 
                               const uint8_t *band, const int *thickness, int nregions,
                               struct sl_alias_figures *out);
 
+/* One stored figure back into a: returns 0 if `figure` is not an aliasing
+ * figure's name, else 1 (the region is added in the order met). */
+int sl_alias_figures_put(struct sl_alias_figures *a, int thickness, const char *figure, uint64_t count, double pct);
+
 #endif
