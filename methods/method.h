@@ -146,7 +146,9 @@ int         sl_self_shadow_parse(const char *name);   /* -1 if unknown */
     X(SL_PARAM_PARTITIONS, 10, partitions,  int,   UINT,   0, 0,                                          \
       "zpart: shadow maps over the view's depth slices, 1..8")                                           \
     X(SL_PARAM_LAMBDA,     11, lambda,      float, FLOAT,  0, 0,                                          \
-      "zpart: split planes, 0 uniform .. 1 logarithmic (seed 004 eq. 62)")
+      "zpart: split planes, 0 uniform .. 1 logarithmic (seed 004 eq. 62)")                             \
+    X(SL_PARAM_WARP,       12, warp,        int,   WORDS,  "uniform", "lispsm",                           \
+      "zpart: each slice's map 0 uniform (orthographic), 1 LiSPSM (Wimmer et al. 2004)")
 
 enum sl_param {
 #define SL_KNOB_BIT(id, bit, ...) id = 1 << (bit),

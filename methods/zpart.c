@@ -22,7 +22,9 @@
  * The maps are rendered here (the method owns them: the frame builder
  * renders one frame per view and map size), so ms_method includes the k
  * fits, renders and readbacks besides the lookups; a slice without a PFL
- * pixel gets no map. Directional lights only (an area light taken as a
+ * pixel gets no map. With warp lispsm each slice's map is a LiSPSM frame
+ * (lightfit.h, sl_light_fit_lispsm, with the slice's planes as z_n and
+ * z_f). Directional lights only (an area light taken as a
  * point would need a perspective fit per slice: not done).
  */
 #include <math.h>
@@ -55,7 +57,13 @@ static enum sl_err zpart_configure(struct sl_method_params *p, struct sl_diag *d
         p->partitions = 4;
     if (!(set & SL_PARAM_LAMBDA))
         p->lambda = 0.5f;
-    p->set |= SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA;
+    if (!(set & SL_PARAM_WARP))
+        p->warp = 0;
+    p->set |= SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA | SL_PARAM_WARP;
+    if (p->warp && (p->self_shadow == SL_SELF_CONSTANT || p->self_shadow == SL_SELF_SLOPE))
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "self_shadow",
+                       "warp lispsm takes self_shadow front_faces, none or triangle_id: a depth bias in "
+                       "texels assumes a uniform map");
     if (p->partitions < 1 || p->partitions > ZPART_MAX)
         return sl_fail(d, SL_E_METHOD, NULL, 0, "partitions", "partitions must be 1 to %d", ZPART_MAX);
     if (!(p->lambda >= 0.0f && p->lambda <= 1.0f))
@@ -93,18 +101,19 @@ static void frame_for(const struct sl_scene *s, const struct sl_light_box *b, in
     f->depth_range = b->hi[2] - b->lo[2];
 }
 
-static enum sl_err zpart_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
-                             struct sl_diag *d)
+enum sl_err sl_zpart_run_k(const struct sl_method_args *a, int k, double lambda, int lispsm,
+                           struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d)
 {
     const struct sl_view *v = a->view;
     const struct sl_method_params *p = a->params;
+    const char *who = lispsm && k == 1 ? "lispsm" : "zpart";
     if (!a->spass || !a->mesh)
-        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "zpart: no shadow-map pass to render its maps with");
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "%s: no shadow-map pass to render its maps with", who);
     if (a->scene->light.type == SL_LIGHT_AREA)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "zpart", "zpart needs a directional light (this scene's is an area light)");
+        return sl_fail(d, SL_E_METHOD, NULL, 0, who, "%s needs a directional light (this scene's is an area light)",
+                       who);
     double t0 = sl_now();
     sl_verdicts_drop_frames(out);
-    const int k = p->partitions;
     const size_t n = (size_t)v->w * (size_t)v->h;
     double planes[ZPART_MAX + 1];
     out->slice = malloc(n);
@@ -114,10 +123,10 @@ static enum sl_err zpart_run(const struct sl_method_args *a, struct sl_verdicts 
         free(cls);
         free(tv);
         sl_verdicts_drop_frames(out);
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "zpart: slices of %zu pixels", n);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "%s: slices of %zu pixels", who, n);
     }
     out->nown = k;
-    sl_zpart_slices(v, k, p->lambda, planes, out->slice);
+    sl_zpart_slices(v, k, lambda, planes, out->slice);
     for (size_t i = 0; i < n; i++)
         sl_verdict_fixed(v, i, out);
     const unsigned needs = sl_method_nsm.needs(p);
@@ -132,7 +141,11 @@ static enum sl_err zpart_run(const struct sl_method_args *a, struct sl_verdicts 
     enum sl_err e = SL_OK;
     for (int s = 0; s < k && !e; s++) {
         struct sl_light_box box;
-        sl_light_fit_slice(a->scene, v, out->slice, (uint8_t)s, &box);
+        double nopt;
+        if (lispsm)
+            sl_light_fit_lispsm(a->scene, v, out->slice, (uint8_t)s, planes[s], planes[s + 1], &box, &nopt);
+        else
+            sl_light_fit_slice(a->scene, v, out->slice, (uint8_t)s, &box);
         if (box.n_receivers == 0)
             continue;   /* no PFL pixel here: no map (size 0 marks it) */
         frame_for(a->scene, &box, a->frame->size, &out->frames[s]);
@@ -164,10 +177,19 @@ static enum sl_err zpart_run(const struct sl_method_args *a, struct sl_verdicts 
     return SL_OK;
 }
 
+static enum sl_err zpart_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
+                             struct sl_diag *d)
+{
+    const struct sl_method_params *p = a->params;
+    return sl_zpart_run_k(a, p->partitions, p->lambda, p->warp, out, c, d);
+}
+
 const struct sl_method sl_method_zpart = {
     .name = "zpart",
-    .summary = "z-partitioned shadow maps: NSM over k view-depth slices (partitions 1..8, lambda 0..1)",
-    .params_ok = SL_PARAM_SELF_SHADOW | SL_PARAM_BIAS | SL_PARAM_SLOPE | SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA,
+    .summary = "z-partitioned shadow maps: NSM over k view-depth slices (partitions 1..8, lambda 0..1, "
+               "warp uniform|lispsm)",
+    .params_ok = SL_PARAM_SELF_SHADOW | SL_PARAM_BIAS | SL_PARAM_SLOPE | SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA |
+                 SL_PARAM_WARP,
     .needs = zpart_needs,
     .configure = zpart_configure,
     .run = zpart_run,

@@ -315,3 +315,126 @@ void sl_view_depth_range(const struct sl_view *v, float *zmin, float *zmax)
     *zmin = lo;
     *zmax = hi;
 }
+
+/* LiSPSM (Wimmer, Scherzer, Purgathofer 2004) for a directional light.
+ * Light space: y toward the light, z the camera's view direction made
+ * perpendicular to the light, x = y cross z. The warp is a perspective
+ * along z from a centre C at n_opt in front of the body's near face,
+ * under which light rays (parallel to y, at fixed z) stay parallel: the
+ * map is then an orthographic view along -y of the warped space, and depth
+ * -y/z_c keeps its order along every light ray, so NSM's comparison holds.
+ * In clip space, with (x_c, y_c, z_c) relative to C:
+ *   X = sx (x_c - ox z_c), Y = sy (1 - oy z_c), Z = sz (-y_c - oz z_c), W = z_c
+ * i.e. NDC x = sx (x_c/z_c - ox), y = sy (1/z_c - oy), depth = sz (-y_c/z_c - oz),
+ * fitted to the receivers' warped bounds; the depth's near end also to
+ * every caster's highest point over the receivers' z range (the warped
+ * depth -y/z_c of a point at height y is least at one end of that range).
+ * C lies at the camera's x and y in light space (the paper's choice: the
+ * warp is centred on the viewer). */
+int sl_light_fit_lispsm(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                        double zn, double zf, struct sl_light_box *out, double *nopt)
+{
+    *nopt = INFINITY;
+    if (!sl_light_fit_slice(s, v, mask, value, out) || out->n_receivers == 0)
+        return 0;
+    /* camera: forward = -(third row of the view matrix), eye = -R^T t */
+    double fw[3] = {-v->view[0][2], -v->view[1][2], -v->view[2][2]}, eye[3];
+    for (int k = 0; k < 3; k++)
+        eye[k] = -(v->view[k][0] * v->view[3][0] + v->view[k][1] * v->view[3][1] + v->view[k][2] * v->view[3][2]);
+    double y[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]}, ly = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+    for (int k = 0; k < 3; k++)
+        y[k] /= ly;
+    double fy = fw[0] * y[0] + fw[1] * y[1] + fw[2] * y[2], z[3];
+    for (int k = 0; k < 3; k++)
+        z[k] = fw[k] - fy * y[k];
+    double lz = sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
+    /* sin gamma, gamma the angle between the view and light directions */
+    double sing = lz / sqrt(fw[0] * fw[0] + fw[1] * fw[1] + fw[2] * fw[2]);
+    double n = (zn + sqrt(zn * zf)) / sing;
+    *nopt = n;
+    /* gamma -> 0: n_opt -> infinity and LiSPSM tends to the uniform map,
+     * which it then is (the paper's fallback); 1e-3 keeps the warp's float
+     * matrix well conditioned */
+    if (!(sing > 1e-3) || !isfinite(n))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        z[k] /= lz;
+    double x[3] = {y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]};
+#define LDOT(a, p) ((a)[0] * (double)(p)[0] + (a)[1] * (double)(p)[1] + (a)[2] * (double)(p)[2])
+    size_t np = (size_t)v->w * (size_t)v->h;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < np; i++) {
+        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
+            continue;
+        const float *p = v->pos + 3 * i;
+        double q[3] = {LDOT(x, p), LDOT(y, p), LDOT(z, p)};
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], q[k]);
+            hi[k] = fmax(hi[k], q[k]);
+        }
+    }
+    double d = hi[2] - lo[2];
+    if (!(d > 0.0) || n > 1e4 * d)
+        return 0;   /* a flat body along z, or a warp too weak to matter: uniform */
+    double C[3] = {LDOT(x, eye), LDOT(y, eye), lo[2] - n};
+    /* casters over the receivers' x, z cross-section, not wholly below the lowest receiver */
+    double ytop = hi[1];
+    for (uint32_t t = 0; t < s->nt; t++) {
+        double tl[3] = {INFINITY, INFINITY, INFINITY}, th[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int c = 0; c < 3; c++) {
+            const float *p = s->pos + 3 * s->idx[3 * t + c];
+            double q[3] = {LDOT(x, p), LDOT(y, p), LDOT(z, p)};
+            for (int k = 0; k < 3; k++) {
+                tl[k] = fmin(tl[k], q[k]);
+                th[k] = fmax(th[k], q[k]);
+            }
+        }
+        if (th[0] < lo[0] || tl[0] > hi[0] || th[2] < lo[2] || tl[2] > hi[2] || th[1] < lo[1])
+            continue;
+        ytop = fmax(ytop, th[1]);
+    }
+    /* warped bounds: u = x_c/z_c, t = 1/z_c, h = -y_c/z_c over the receivers */
+    double wl[3] = {INFINITY, INFINITY, INFINITY}, wh[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < np; i++) {
+        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
+            continue;
+        const float *p = v->pos + 3 * i;
+        double zc = LDOT(z, p) - C[2], w[3] = {(LDOT(x, p) - C[0]) / zc, 1.0 / zc, -(LDOT(y, p) - C[1]) / zc};
+        for (int k = 0; k < 3; k++) {
+            wl[k] = fmin(wl[k], w[k]);
+            wh[k] = fmax(wh[k], w[k]);
+        }
+    }
+#undef LDOT
+    wl[2] = fmin(wl[2], fmin(-(ytop - C[1]) / n, -(ytop - C[1]) / (n + d)));
+    for (int k = 0; k < 3; k++) {   /* the box's relative margins (above) */
+        double m = fmax(1e-4 * (wh[k] - wl[k]), 1e-6 * fmax(fabs(wl[k]), fabs(wh[k])) + 1e-12);
+        wl[k] -= m;
+        wh[k] += m;
+    }
+    double sx = 2.0 / (wh[0] - wl[0]), ox = 0.5 * (wh[0] + wl[0]);
+    double sy = 2.0 / (wh[1] - wl[1]), oy = 0.5 * (wh[1] + wl[1]);
+    double sz = 1.0 / (wh[2] - wl[2]), oz = wl[2];
+    /* rows of clip = A (q - C), q = (x.p, y.p, z.p): X = sx q_x - sx ox q_z, ... */
+    double A[4][4] = {{sx, 0, -sx * ox, 0}, {0, 0, -sy * oy, sy}, {0, -sz, -sz * oz, 0}, {0, 0, 1, 0}};
+    double R[3][3] = {{x[0], x[1], x[2]}, {y[0], y[1], y[2]}, {z[0], z[1], z[2]}};
+    for (int r = 0; r < 4; r++) {
+        double row[4] = {0, 0, 0, 0};
+        for (int c = 0; c < 3; c++) {
+            for (int k = 0; k < 3; k++)
+                row[c] += A[r][k] * R[k][c];
+        }
+        /* the constant: A (-C) plus the homogeneous column of A */
+        row[3] = A[r][3] - (A[r][0] * C[0] + A[r][1] * C[1] + A[r][2] * C[2]);
+        for (int c = 0; c < 4; c++)
+            out->vp[c][r] = (float)row[c];
+    }
+    /* view and proj are not a product that makes vp here: vp is the frame */
+    glm_mat4_identity(out->view);
+    glm_mat4_copy(out->vp, out->proj);
+    for (int k = 0; k < 3; k++) {
+        out->lo[k] = (float)wl[k];
+        out->hi[k] = (float)wh[k];
+    }
+    return 1;
+}

@@ -29,6 +29,19 @@ void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_l
 int sl_light_fit_slice(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
                        struct sl_light_box *out);
 
+/* LiSPSM (Wimmer et al. 2004): a light-space perspective frame for a
+ * directional light, fitted to the PFL pixels i with mask[i] == value
+ * (mask NULL: all) and their casters, with the warp's near distance
+ * n_opt = (zn + sqrt(zn zf)) / sin gamma (zn, zf: the view depths the
+ * receivers span; gamma: the angle between view and light directions),
+ * written to *nopt. Returns 1 with out->vp the warped frame (out->lo/hi its
+ * warped bounds, persp 0), or 0 with out the uniform box of
+ * sl_light_fit_slice where LiSPSM falls back to it: gamma -> 0 (n_opt ->
+ * infinity, as the paper does), a body without depth, or an area light
+ * (0 with n_receivers 0). */
+int sl_light_fit_lispsm(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                        double zn, double zf, struct sl_light_box *out, double *nopt);
+
 /* Split planes of z-partitioning (seed 004): planes[0..k] from n to f.
  * Closed form, eq. 50/63 (logarithmic): n_i = n (f/n)^((i-1)/k). Iterative,
  * eq. 62, blending the log and the uniform split by lambda in [0, 1]; equal
