@@ -10,6 +10,7 @@
 #include "sl_test.h"
 #include "aliasing.h"
 #include "fixture.h"
+#include "gen.h"
 #include "lightfit.h"
 #include "method.h"
 #include "raytri.h"
@@ -279,6 +280,121 @@ static void zpart_deep_scene(void **st)
     bench_close(&g);
 }
 
+
+/* A hand-made view of a receiver plane y = 0 seen by a camera at height 2
+ * looking along -z (tilted down a little), the plane's points at depths 2
+ * to 40; one pole stands on it. */
+struct handmade {
+    struct sl_scene s;
+    struct sl_view v;
+    float pos[3 * 64];
+    uint8_t cls[64];
+};
+
+static void handmade_open(struct handmade *h, const float light[3])
+{
+    memset(h, 0, sizeof *h);
+    struct sl_mesh m = {0};
+    uint32_t a = sl_mesh_vertex(&m, -0.2f, 0, -10), b = sl_mesh_vertex(&m, 0.2f, 0, -10),
+             c = sl_mesh_vertex(&m, 0, 3, -10);
+    sl_mesh_tri(&m, a, b, c);   /* the pole */
+    struct sl_diag d;
+    assert_int_equal(sl_scene_from_mesh(&h->s, &m, &d), SL_OK);
+    sl_mesh_free(&m);
+    memcpy(h->s.light_dir, light, sizeof h->s.light_dir);
+    vec3 eye = {0, 2, 0}, dir = {0, -0.05f, -1}, up = {0, 1, 0};
+    glm_look(eye, dir, up, h->v.view);
+    h->v.w = 8;
+    h->v.h = 8;
+    for (int i = 0; i < 64; i++) {
+        h->pos[3 * i] = (float)(i % 8) - 3.5f;
+        h->pos[3 * i + 1] = 0.0f;
+        h->pos[3 * i + 2] = -2.0f - 38.0f * (float)(i / 8) / 7.0f;
+        h->cls[i] = SL_C_PFL;
+    }
+    h->v.pos = h->pos;
+    h->v.cls = h->cls;
+}
+
+/* n_opt = (z_n + sqrt(z_n z_f)) / sin gamma at known angles; the light
+ * along the view direction (gamma = 0) falls back to the uniform box. */
+static void lispsm_nopt_and_fallback(void **st)
+{
+    (void)st;
+    const double zn = 2.0, zf = 40.0;
+    const double deg[] = {90.0, 60.0, 30.0, 10.0};
+    for (size_t k = 0; k < sizeof deg / sizeof deg[0]; k++) {
+        /* the light at angle deg from the camera's forward (0, -0.05, -1), in the y-z plane */
+        double g = deg[k] * 3.14159265358979323846 / 180.0, f0 = atan2(-0.05, -1.0);
+        float L[3] = {0.0f, (float)sin(f0 - g), (float)cos(f0 - g)};
+        struct handmade h;
+        handmade_open(&h, L);
+        struct sl_light_box b;
+        double nopt;
+        assert_int_equal(sl_light_fit_lispsm(&h.s, &h.v, NULL, 0, zn, zf, &b, &nopt), 1);
+        double want = (zn + sqrt(zn * zf)) / sin(g);
+        assert_float_equal(nopt, want, 1e-5 * want);
+        /* every receiver inside the warped frame */
+        for (int i = 0; i < 64; i++)
+            assert_true(inside(&b, h.pos + 3 * i));
+        sl_scene_free(&h.s);
+    }
+    /* gamma = 0: the light travels along the view direction */
+    float L[3] = {0.0f, -0.05f, -1.0f};
+    struct handmade h;
+    handmade_open(&h, L);
+    struct sl_light_box b, u;
+    double nopt;
+    assert_int_equal(sl_light_fit_lispsm(&h.s, &h.v, NULL, 0, zn, zf, &b, &nopt), 0);
+    assert_true(nopt > 1e3 * zf || !isfinite(nopt));
+    sl_light_fit_slice(&h.s, &h.v, NULL, 0, &u);
+    assert_memory_equal(b.vp, u.vp, sizeof u.vp);
+    sl_scene_free(&h.s);
+}
+
+/* On real views, LiSPSM's frame holds every receiver and each shadowed
+ * pixel's first occluder, and on the deep street it has fewer wrong pixels
+ * than NSM with a smaller median m; zpart with the warp per slice too. */
+static void lispsm_street(void **st)
+{
+    (void)st;
+    struct bench g;
+    bench_open(&g, "street", 192, 1024);
+    struct sl_method_params p = {0};
+    long w_nsm, w_l, w_zl;
+    double m_nsm, m_l, m_zl;
+    bench_run(&g, "nsm", &p);
+    wrong_and_median(&g, &w_nsm, &m_nsm);
+    bench_run(&g, "lispsm", &p);
+    assert_int_equal(g.vd.nframes, 1);
+    /* warped (not the uniform fallback): its vp is not the box's */
+    assert_true(memcmp(g.vd.frames[0].box.vp, g.fr.box.vp, sizeof g.fr.box.vp) != 0);
+    long checked = 0;
+    size_t n = (size_t)g.v.w * (size_t)g.v.h;
+    for (size_t i = 0; i < n; i++) {
+        if (g.v.cls[i] != SL_C_PFL)
+            continue;
+        assert_true(inside(&g.vd.frames[0].box, g.v.pos + 3 * i));
+        float hit[3];
+        if (g.v.truth[i] == SL_T_SHADOW && checked++ % 5 == 0) {
+            assert_true(nearest_hit(&g.f.scene, g.v.pos + 3 * i, g.f.scene.light_dir, g.v.tri[i], hit));
+            assert_true(inside(&g.vd.frames[0].box, hit));
+        }
+    }
+    assert_true(checked > 50);
+    wrong_and_median(&g, &w_l, &m_l);
+    p.set = SL_PARAM_PARTITIONS | SL_PARAM_WARP;
+    p.partitions = 4;
+    p.warp = 1;
+    bench_run(&g, "zpart", &p);
+    wrong_and_median(&g, &w_zl, &m_zl);
+    print_message("street 192^2, map 1024: nsm %ld (median m %.3f), lispsm %ld (%.3f), zpart 4 lispsm %ld (%.3f)\n",
+                  w_nsm, m_nsm, w_l, m_l, w_zl, m_zl);
+    assert_true(w_l < w_nsm && m_l < m_nsm);
+    assert_true(w_zl < w_nsm && m_zl < m_nsm);
+    bench_close(&g);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -286,6 +402,8 @@ int main(int argc, char **argv)
         SL_CASE(zpart, slices_fit),
         SL_CASE(zpart, one_is_nsm),
         SL_CASE(zpart, deep_scene),
+        SL_CASE(lispsm, nopt_and_fallback),
+        SL_CASE(lispsm, street),
     };
     return sl_run_group(argc, argv, "zpart", tests, sl_test_setup, sl_test_teardown);
 }
