@@ -295,6 +295,12 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
         count_patterns(v, vd, band, cell);
     /* the aliasing error m of every PFL pixel under the frame that served it */
     float *am = in->frame && (in->frame->size > 0 || vd->nframes > 0) ? malloc(npx * sizeof *am) : NULL;
+    cell->texels = 0;
+    for (int k = 0; k < vd->nframes; k++)
+        cell->texels += (uint64_t)vd->frames[k].size * (uint64_t)vd->frames[k].size;
+    if (vd->nframes == 0 && in->frame && in->params &&
+        (in->method->needs(in->params) & ((1u << SL_LAYER_COUNT) - 1u)))
+        cell->texels = (uint64_t)in->frame->size * (uint64_t)in->frame->size;
     if (am) {
         t0 = sl_now();
         sl_alias_image(v, in->frame, vd, 0, am);

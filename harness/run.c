@@ -656,7 +656,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .method = cm->method, .view = &x->view, .frame = &x->frame, .light_dir = x->scene.light_dir,
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
-        .state = x->state, .band = x->band, .rgb = x->rgb,
+        .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
     };

@@ -733,3 +733,14 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
     free(p);
     return e;
 }
+
+void sl_report_gp_quote(FILE *f, const char *s) { gp_quote(f, s); }
+
+enum sl_err sl_report_gp_plot(struct sl_report_doc *doc, const char *gnuplot, const char *name, int w, int h,
+                              const char *data, const char *script, const char *caption, struct sl_diag *d)
+{
+    enum sl_err e = gp_run(doc, gnuplot, name, w, h, data, script, d);
+    if (!e)
+        plot_show(doc, name, caption);
+    return e;
+}

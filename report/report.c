@@ -399,6 +399,10 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
         sl_report_doc_heading(doc, 3, NULL, "%s: soft shadows (area lights), Curtis 2009", s->name);
         e = sl_report_curtis(doc, s, d);
     }
+    if (!e && sl_report_aliasing_applies(s)) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: aliasing error m (seed 004)", s->name);
+        e = sl_report_aliasing(doc, s, gnuplot, d);
+    }
     if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: the chain's steps per scene", s->name);
         e = sl_report_plot_chain(doc, s, gnuplot, d);

@@ -100,6 +100,7 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(ms_overlay,          ms,       0,    38,  "ms_overlay",         none,      _)         \
     X(ms_gpu_gbuffer,      ms,       0,    39,  "ms_gpu_gbuffer",     none,      _)         \
     X(ms_gpu_map,          ms,       0,    40,  "ms_gpu_map",         none,      _)         \
+    X(texels,              count,    0,    41,  "texels",             none,      _)         \
     X(overlay,             path,     1500, 0,   "",                   none,      _)         \
     X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)
 /* clang-format on */

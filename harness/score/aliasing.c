@@ -5,6 +5,7 @@
  */
 #include "aliasing.h"
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 #include "contour.h"
@@ -108,22 +109,17 @@ static void beam_project(const struct beam *b, const float p[3], double *x, doub
     *cw = c[3];
 }
 
-/* Where the beam through window point (x, y) meets the plane (p, n); 0 if
- * it runs parallel to it or meets it behind the eye (clip w of the opposite
- * sign to the surface point's, sw). */
-static int beam_hit(const struct beam *b, double x, double y, const double p[3], const double n[3], double sw,
-                    double hit[3])
+/* Where the beam through two homogeneous points h0, h1 (the window point
+ * unprojected at two depths) meets the plane (p, n); 0 if it runs parallel
+ * to it or meets it behind the eye (clip w of the opposite sign to the
+ * surface point's, sw). */
+static int beam_hit(const struct beam *b, const double h0[4], const double h1[4], const double p[3],
+                    const double n[3], double sw, double hit[3])
 {
-    double nx = 2.0 * x / b->w - 1.0, ny = 2.0 * y / b->h - 1.0;
-    /* two points on the beam: NDC depths 0.25 and 0.75 lie inside both GL's
-     * [-1, 1] and the zero-to-one clip range */
-    double q0[4] = {nx, ny, 0.25, 1.0}, q1[4] = {nx, ny, 0.75, 1.0}, w0[4], w1[4];
-    mulv(b->inv, q0, w0);
-    mulv(b->inv, q1, w1);
     double o[3], d[3];
     for (int k = 0; k < 3; k++) {
-        o[k] = w0[k] / w0[3];
-        d[k] = w1[k] / w1[3] - o[k];
+        o[k] = h0[k] / h0[3];
+        d[k] = h1[k] / h1[3] - o[k];
     }
     double dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
     double pn = (p[0] - o[0]) * n[0] + (p[1] - o[1]) * n[1] + (p[2] - o[2]) * n[2];
@@ -132,9 +128,9 @@ static int beam_hit(const struct beam *b, double x, double y, const double p[3],
     double t = pn / dn;
     for (int k = 0; k < 3; k++)
         hit[k] = o[k] + t * d[k];
-    double h4[4] = {hit[0], hit[1], hit[2], 1.0}, c[4];
-    mulv(b->vp, h4, c);
-    if (!(c[3] * sw > 0.0))
+    const double *m = b->vp;
+    double cw = m[3] * hit[0] + m[7] * hit[1] + m[11] * hit[2] + m[15];
+    if (!(cw * sw > 0.0))
         return 0;
     return isfinite(hit[0]) && isfinite(hit[1]) && isfinite(hit[2]);
 }
@@ -145,13 +141,33 @@ static int beam_spans(const struct beam *b, const float pf[3], const float nf[3]
         return 0;
     double x, y, sw, p[3] = {pf[0], pf[1], pf[2]}, n[3] = {nf[0], nf[1], nf[2]};
     beam_project(b, pf, &x, &y, &sw);
-    double h[4][3];
-    if (!beam_hit(b, x + 0.5, y, p, n, sw, h[0]) || !beam_hit(b, x - 0.5, y, p, n, sw, h[1]) ||
-        !beam_hit(b, x, y + 0.5, p, n, sw, h[2]) || !beam_hit(b, x, y - 0.5, p, n, sw, h[3]))
-        return 0;
+    /* unprojection is linear in homogeneous coordinates: the window point
+     * at NDC depths 0.25 and 0.75 (inside both GL's [-1, 1] and the
+     * zero-to-one clip range), and half a pixel in x (NDC 1/w) or y (1/h)
+     * moves it by the inverse's first or second column over w or h */
+    double nx = 2.0 * x / b->w - 1.0, ny = 2.0 * y / b->h - 1.0, q0[4] = {nx, ny, 0.25, 1.0},
+           q1[4] = {nx, ny, 0.75, 1.0}, c0[4], c1[4];
+    mulv(b->inv, q0, c0);
+    mulv(b->inv, q1, c1);
+    const double *ix = b->inv, *iy = b->inv + 4;
+    double sx = 1.0 / b->w, sy = 1.0 / b->h, h[4][2][4];
+    for (int k = 0; k < 4; k++) {
+        h[0][0][k] = c0[k] + sx * ix[k];
+        h[0][1][k] = c1[k] + sx * ix[k];
+        h[1][0][k] = c0[k] - sx * ix[k];
+        h[1][1][k] = c1[k] - sx * ix[k];
+        h[2][0][k] = c0[k] + sy * iy[k];
+        h[2][1][k] = c1[k] + sy * iy[k];
+        h[3][0][k] = c0[k] - sy * iy[k];
+        h[3][1][k] = c1[k] - sy * iy[k];
+    }
+    double hit[4][3];
+    for (int e = 0; e < 4; e++)
+        if (!beam_hit(b, h[e][0], h[e][1], p, n, sw, hit[e]))
+            return 0;
     for (int k = 0; k < 3; k++) {
-        a[k] = h[0][k] - h[1][k];
-        bb[k] = h[2][k] - h[3][k];
+        a[k] = hit[0][k] - hit[1][k];
+        bb[k] = hit[2][k] - hit[3][k];
     }
     return 1;
 }
@@ -234,7 +250,7 @@ void sl_alias_image(const struct sl_view *v, const struct sl_light_frame *f, con
     }
     const long n = (long)v->w * v->h;
     const uint8_t *slice = vd && vd->nframes > 0 ? vd->slice : NULL;
-#pragma omp parallel for num_threads(threads > 0 ? threads : 1) schedule(static)
+#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) schedule(static)
     for (long i = 0; i < n; i++) {
         int s = slice ? slice[i] : 0;
         if (v->cls[i] != SL_C_PFL || s >= nf) {
