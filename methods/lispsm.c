@@ -42,6 +42,7 @@ static enum sl_err lispsm_run(const struct sl_method_args *a, struct sl_verdicts
 const struct sl_method sl_method_lispsm = {
     .name = "lispsm",
     .summary = "light space perspective shadow maps (Wimmer et al. 2004), NSM's lookup",
+    .lights = SL_LIGHTS_DIRECTIONAL,
     .params_ok = SL_PARAM_SELF_SHADOW,
     .needs = lispsm_needs,
     .configure = lispsm_configure,

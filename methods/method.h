@@ -207,12 +207,17 @@ struct sl_method_args {
  * approximation). A soft method (SL_LIGHTS_AREA) needs an area light and
  * writes the visible fraction itself. */
 #define SL_LIGHTS_AREA (1u << 1)
+/* A hard-shadow method that needs a directional light (zpart, lispsm: their
+ * fits are orthographic in light space); a scene with an area light does
+ * not run it unless its list names it, which is then an error. */
+#define SL_LIGHTS_DIRECTIONAL (1u << 2)
 
 struct sl_method {
     const char *name;          /* config key */
     const char *summary;
     unsigned    exact;         /* SL_EXACT_* */
-    unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only */
+    unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only;
+                                * SL_LIGHTS_DIRECTIONAL: hard shadows, directional lights only */
     unsigned    params_ok;     /* SL_PARAM_* bits it reads */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);
