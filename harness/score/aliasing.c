@@ -43,6 +43,7 @@ struct beam {
     double vp[16], inv[16];   /* column-major, as cglm */
     int    w, h;
     int    ok;                /* the matrix is invertible */
+    int    affine;            /* its last row is (0, 0, 0, 1): orthographic */
 };
 
 /* Gauss-Jordan with partial pivoting; returns 0 if singular. */
@@ -91,6 +92,7 @@ static void beam_init(struct beam *b, const mat4 vp, int w, int h)
     b->w = w;
     b->h = h;
     b->ok = invert4(b->vp, b->inv);
+    b->affine = b->vp[3] == 0.0 && b->vp[7] == 0.0 && b->vp[11] == 0.0 && b->vp[15] == 1.0;
 }
 
 static void mulv(const double m[16], const double v[4], double out[4])
@@ -116,10 +118,10 @@ static void beam_project(const struct beam *b, const float p[3], double *x, doub
 static int beam_hit(const struct beam *b, const double h0[4], const double h1[4], const double p[3],
                     const double n[3], double sw, double hit[3])
 {
-    double o[3], d[3];
+    double o[3], d[3], r0 = 1.0 / h0[3], r1 = 1.0 / h1[3];
     for (int k = 0; k < 3; k++) {
-        o[k] = h0[k] / h0[3];
-        d[k] = h1[k] / h1[3] - o[k];
+        o[k] = h0[k] * r0;
+        d[k] = h1[k] * r1 - o[k];
     }
     double dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
     double pn = (p[0] - o[0]) * n[0] + (p[1] - o[1]) * n[1] + (p[2] - o[2]) * n[2];
@@ -128,10 +130,12 @@ static int beam_hit(const struct beam *b, const double h0[4], const double h1[4]
     double t = pn / dn;
     for (int k = 0; k < 3; k++)
         hit[k] = o[k] + t * d[k];
-    const double *m = b->vp;
-    double cw = m[3] * hit[0] + m[7] * hit[1] + m[11] * hit[2] + m[15];
-    if (!(cw * sw > 0.0))
-        return 0;
+    if (!b->affine) {   /* an orthographic matrix has w = 1 everywhere: no eye to be behind */
+        const double *m = b->vp;
+        double cw = m[3] * hit[0] + m[7] * hit[1] + m[11] * hit[2] + m[15];
+        if (!(cw * sw > 0.0))
+            return 0;
+    }
     return isfinite(hit[0]) && isfinite(hit[1]) && isfinite(hit[2]);
 }
 
