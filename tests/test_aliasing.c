@@ -8,6 +8,8 @@
 #include <cmocka.h>
 #include "sl_test.h"
 #include "aliasing.h"
+#include "provenance.h"
+#include "store.h"
 
 #define PI 3.14159265358979323846
 
@@ -202,6 +204,80 @@ static void aliasing_figures_bands(void **st)
     assert_int_equal(sl_alias_band(8.5), 4);
 }
 
+
+/* The aliasing figures and the texels column go into the store with the
+ * cell and come back as they were; a cell without them stays without. */
+static void aliasing_store_round_trip(void **st)
+{
+    (void)st;
+    char db[200];
+    snprintf(db, sizeof db, "%s/alias.db", sl_test_dir);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(db, &s, &d), SL_OK);
+    struct sl_provenance p;
+    memset(&p, 0, sizeof p);
+    snprintf(p.git_sha, sizeof p.git_sha, "abc1234");
+    snprintf(p.time_utc, sizeof p.time_utc, "2024-01-02T03:04:05Z");
+    snprintf(p.host, sizeof p.host, "h");
+    int64_t run = 0;
+    assert_int_equal(sl_store_begin_run(s, &p, "al", "configs/aliasing.yaml", 0x1234ull, "name: al\n", &run, &d),
+                     SL_OK);
+    struct sl_cell_record c[2];
+    for (int k = 0; k < 2; k++) {
+        sl_cell_record_init(&c[k]);
+        snprintf(c[k].scene, sizeof c[k].scene, "street");
+        snprintf(c[k].viewpoint, sizeof c[k].viewpoint, "along");
+        snprintf(c[k].method, sizeof c[k].method, "zpart");
+        snprintf(c[k].label, sizeof c[k].label, "z%d", k);
+        c[k].vw = c[k].vh = 64;
+        c[k].map_size = 512;
+        c[k].cell_index = k;
+        c[k].fig.nregions = 2;
+        c[k].fig.r[0].thickness = 2;
+        c[k].fig.r[1].thickness = 0;
+        for (int r = 0; r < 2; r++)
+            for (int f = 0; f < SL_FIG_COUNT; f++)
+                c[k].fig.r[r].pct[f] = NAN;
+    }
+    c[0].texels = 4u * 512u * 512u;
+    c[0].has_alias = 1;
+    c[0].alias.nregions = 2;
+    c[0].alias.thickness[0] = 2;
+    c[0].alias.thickness[1] = 0;
+    for (int r = 0; r < 2; r++)
+        for (int f = 0; f < SL_AFIG_COUNT; f++) {
+            c[0].alias.n[r][f] = (uint64_t)(100 * r + f + 1);
+            c[0].alias.pct[r][f] = sl_alias_figure_of((enum sl_alias_figure)f)[0] ? 0.5 * f : NAN;
+        }
+    c[0].alias.n[1][SL_AFIG_wrong_m_median_milli] = 9000000000000000ull;   /* the cap milli() keeps to */
+    for (int k = 0; k < 2; k++)
+        assert_int_equal(sl_store_put_cell(s, run, 0x1234ull, &c[k], &d), SL_OK);
+    struct sl_cell_record *got = NULL;
+    int n = 0;
+    assert_int_equal(sl_store_query(s, NULL, &got, &n, &d), SL_OK);
+    assert_int_equal(n, 2);
+    const struct sl_cell_record *a = strcmp(got[0].label, "z0") == 0 ? &got[0] : &got[1], *b = a == got ? &got[1] : &got[0];
+    assert_int_equal(a->texels, 4u * 512u * 512u);
+    assert_true(a->has_alias);
+    assert_int_equal(a->alias.nregions, 2);
+    for (int r = 0; r < 2; r++) {
+        assert_int_equal(a->alias.thickness[r], r ? 0 : 2);
+        for (int f = 0; f < SL_AFIG_COUNT; f++) {
+            assert_int_equal(a->alias.n[r][f], c[0].alias.n[r][f]);
+            if (isnan(c[0].alias.pct[r][f]))
+                assert_true(isnan(a->alias.pct[r][f]));
+            else
+                assert_float_equal(a->alias.pct[r][f], c[0].alias.pct[r][f], 0.0);
+        }
+    }
+    assert_false(b->has_alias);
+    assert_int_equal(b->alias.nregions, 0);
+    assert_int_equal(b->texels, 0);
+    free(got);
+    sl_store_close(s);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -209,6 +285,7 @@ int main(int argc, char **argv)
         SL_CASE(aliasing, cos_theta),
         SL_CASE(aliasing, perspective_exact),
         SL_CASE(aliasing, figures_bands),
+        SL_CASE(aliasing, store_round_trip),
     };
     return sl_run_group(argc, argv, "aliasing", tests, sl_test_setup, sl_test_teardown);
 }
