@@ -43,7 +43,9 @@ struct beam {
     double vp[16], inv[16];   /* column-major, as cglm */
     int    w, h;
     int    ok;                /* the matrix is invertible */
-    int    affine;            /* its last row is (0, 0, 0, 1): orthographic */
+    int    parallel;          /* every beam runs along dir (orthographic, or a directional
+                               * light's warped frame); else they meet at eye */
+    double dir[3], eye[3];
 };
 
 /* Gauss-Jordan with partial pivoting; returns 0 if singular. */
@@ -92,83 +94,60 @@ static void beam_init(struct beam *b, const mat4 vp, int w, int h)
     b->w = w;
     b->h = h;
     b->ok = invert4(b->vp, b->inv);
-    b->affine = b->vp[3] == 0.0 && b->vp[7] == 0.0 && b->vp[11] == 0.0 && b->vp[15] == 1.0;
-}
-
-static void mulv(const double m[16], const double v[4], double out[4])
-{
-    for (int r = 0; r < 4; r++)
-        out[r] = m[r] * v[0] + m[4 + r] * v[1] + m[8 + r] * v[2] + m[12 + r] * v[3];
-}
-
-/* The window coordinates of p (pixel or texel units) and its clip w. */
-static void beam_project(const struct beam *b, const float p[3], double *x, double *y, double *cw)
-{
-    double q[4] = {p[0], p[1], p[2], 1.0}, c[4];
-    mulv(b->vp, q, c);
-    *x = (c[0] / c[3] * 0.5 + 0.5) * b->w;
-    *y = (c[1] / c[3] * 0.5 + 0.5) * b->h;
-    *cw = c[3];
-}
-
-/* Where the beam through two homogeneous points h0, h1 (the window point
- * unprojected at two depths) meets the plane (p, n); 0 if it runs parallel
- * to it or meets it behind the eye (clip w of the opposite sign to the
- * surface point's, sw). */
-static int beam_hit(const struct beam *b, const double h0[4], const double h1[4], const double p[3],
-                    const double n[3], double sw, double hit[3])
-{
-    double o[3], d[3], r0 = 1.0 / h0[3], r1 = 1.0 / h1[3];
+    /* the centre of projection: inv (0, 0, 1, 0), the point whose X, Y and W
+     * vanish; at infinity (w = 0 up to rounding) the beams are parallel */
+    const double *c = b->inv + 8;
+    double scale = fabs(c[0]) + fabs(c[1]) + fabs(c[2]);
+    b->parallel = !(fabs(c[3]) > 1e-12 * scale);
     for (int k = 0; k < 3; k++) {
-        o[k] = h0[k] * r0;
-        d[k] = h1[k] * r1 - o[k];
+        b->dir[k] = c[k];
+        b->eye[k] = b->parallel ? 0.0 : c[k] / c[3];
     }
+}
+
+/* Where the edge beam through the point q (on the beam, at the surface
+ * point's window depth) meets the plane (p, n): the beam runs through q and
+ * the centre of projection (b->eye, or along b->dir for parallel beams);
+ * 0 if it runs parallel to the plane or meets it behind the eye. */
+static int beam_hit(const struct beam *b, const double q[3], const double p[3], const double n[3], double hit[3])
+{
+    double d[3];
+    for (int k = 0; k < 3; k++)
+        d[k] = b->parallel ? b->dir[k] : q[k] - b->eye[k];
     double dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-    double pn = (p[0] - o[0]) * n[0] + (p[1] - o[1]) * n[1] + (p[2] - o[2]) * n[2];
     if (!(fabs(dn) > 1e-300))
         return 0;
-    double t = pn / dn;
+    double t = ((p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] + (p[2] - q[2]) * n[2]) / dn;
+    if (!b->parallel && !(1.0 + t > 0.0))
+        return 0;   /* hit = eye + (1 + t)(q - eye): behind the eye */
     for (int k = 0; k < 3; k++)
-        hit[k] = o[k] + t * d[k];
-    if (!b->affine) {   /* an orthographic matrix has w = 1 everywhere: no eye to be behind */
-        const double *m = b->vp;
-        double cw = m[3] * hit[0] + m[7] * hit[1] + m[11] * hit[2] + m[15];
-        if (!(cw * sw > 0.0))
-            return 0;
-    }
+        hit[k] = q[k] + t * d[k];
     return isfinite(hit[0]) && isfinite(hit[1]) && isfinite(hit[2]);
 }
 
+/* The spans at p: the window point of p moved by half a pixel (texel) in x
+ * or y at p's own clip depth is, in homogeneous world coordinates,
+ * (p, 1) +- (w_p / w) inv[:, 0] (or / h, inv[:, 1]); its edge beam joins it
+ * to the centre of projection inv[:, 2] (the point with X = Y = W = 0). */
 static int beam_spans(const struct beam *b, const float pf[3], const float nf[3], double a[3], double bb[3])
 {
     if (!b->ok)
         return 0;
-    double x, y, sw, p[3] = {pf[0], pf[1], pf[2]}, n[3] = {nf[0], nf[1], nf[2]};
-    beam_project(b, pf, &x, &y, &sw);
-    /* unprojection is linear in homogeneous coordinates: the window point
-     * at NDC depths 0.25 and 0.75 (inside both GL's [-1, 1] and the
-     * zero-to-one clip range), and half a pixel in x (NDC 1/w) or y (1/h)
-     * moves it by the inverse's first or second column over w or h */
-    double nx = 2.0 * x / b->w - 1.0, ny = 2.0 * y / b->h - 1.0, q0[4] = {nx, ny, 0.25, 1.0},
-           q1[4] = {nx, ny, 0.75, 1.0}, c0[4], c1[4];
-    mulv(b->inv, q0, c0);
-    mulv(b->inv, q1, c1);
-    const double *ix = b->inv, *iy = b->inv + 4;
-    double sx = 1.0 / b->w, sy = 1.0 / b->h, h[4][2][4];
-    for (int k = 0; k < 4; k++) {
-        h[0][0][k] = c0[k] + sx * ix[k];
-        h[0][1][k] = c1[k] + sx * ix[k];
-        h[1][0][k] = c0[k] - sx * ix[k];
-        h[1][1][k] = c1[k] - sx * ix[k];
-        h[2][0][k] = c0[k] + sy * iy[k];
-        h[2][1][k] = c1[k] + sy * iy[k];
-        h[3][0][k] = c0[k] - sy * iy[k];
-        h[3][1][k] = c1[k] - sy * iy[k];
-    }
+    double p[3] = {pf[0], pf[1], pf[2]}, n[3] = {nf[0], nf[1], nf[2]};
+    const double *m = b->vp;
+    double wp = m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
+    if (!(fabs(wp) > 0.0))
+        return 0;
     double hit[4][3];
-    for (int e = 0; e < 4; e++)
-        if (!beam_hit(b, h[e][0], h[e][1], p, n, sw, hit[e]))
+    for (int e = 0; e < 4; e++) {
+        const double *col = b->inv + (e < 2 ? 0 : 4);
+        double s = (e % 2 ? -1.0 : 1.0) * wp / (e < 2 ? b->w : b->h);
+        double r = 1.0 / (1.0 + s * col[3]), q[3];
+        for (int k = 0; k < 3; k++)
+            q[k] = (p[k] + s * col[k]) * r;
+        if (!beam_hit(b, q, p, n, hit[e]))
             return 0;
+    }
     for (int k = 0; k < 3; k++) {
         a[k] = hit[0][k] - hit[1][k];
         bb[k] = hit[2][k] - hit[3][k];
