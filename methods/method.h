@@ -69,7 +69,8 @@ struct sl_verdicts {
      * here: pixel i was served by frames[slice[i]] (slice NULL: frames[0];
      * 255: by none). nframes = 0, as the driver sets it before every run:
      * the cell's frame served every pixel. The frames (nown allocated) and
-     * slice are the verdicts' own: sl_verdicts_drop_frames frees them. */
+     * slice are the verdicts' own: sl_verdicts_drop_frames frees them; a
+     * frame's layers may be gone (have = 0): scoring reads its box and size. */
     struct sl_light_frame *frames;
     int      nframes, nown;
     uint8_t *slice;

@@ -165,6 +165,15 @@ enum sl_err sl_zpart_run_k(const struct sl_method_args *a, int k, double lambda,
                 out->how[i] = tmp.how[i];
             }
         c->lookups += nc.lookups;
+        /* scoring needs the slice's box and size only (its m): the layers go now,
+         * so k maps of the largest size are never held past the lookups */
+        for (int l = 0; l < SL_LAYER_COUNT; l++) {
+            free(out->frames[s].layer[l].depth);
+            free(out->frames[s].layer[l].id);
+            out->frames[s].layer[l].depth = NULL;
+            out->frames[s].layer[l].id = NULL;
+        }
+        out->frames[s].have = 0;
     }
     free(cls);
     free(tv);
