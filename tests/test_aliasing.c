@@ -257,7 +257,8 @@ static void aliasing_store_round_trip(void **st)
     int n = 0;
     assert_int_equal(sl_store_query(s, NULL, &got, &n, &d), SL_OK);
     assert_int_equal(n, 2);
-    const struct sl_cell_record *a = strcmp(got[0].label, "z0") == 0 ? &got[0] : &got[1], *b = a == got ? &got[1] : &got[0];
+    const struct sl_cell_record *a = strcmp(got[0].label, "z0") == 0 ? &got[0] : &got[1];
+    const struct sl_cell_record *b = a == got ? &got[1] : &got[0];
     assert_int_equal(a->texels, 4u * 512u * 512u);
     assert_true(a->has_alias);
     assert_int_equal(a->alias.nregions, 2);

@@ -341,7 +341,8 @@ int sl_light_fit_lispsm(const struct sl_scene *s, const struct sl_view *v, const
     double fw[3] = {-v->view[0][2], -v->view[1][2], -v->view[2][2]}, eye[3];
     for (int k = 0; k < 3; k++)
         eye[k] = -(v->view[k][0] * v->view[3][0] + v->view[k][1] * v->view[3][1] + v->view[k][2] * v->view[3][2]);
-    double y[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]}, ly = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+    double y[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]};
+    double ly = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
     for (int k = 0; k < 3; k++)
         y[k] /= ly;
     double fy = fw[0] * y[0] + fw[1] * y[1] + fw[2] * y[2], z[3];

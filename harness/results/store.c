@@ -34,7 +34,7 @@
 #include <unistd.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 12   /* 12: the aliasing figures (aliasing.h); 11: cells.ms_gpu_gbuffer, ms_gpu_map (GL timer queries);
+#define SL_STORE_VERSION 12   /* 12: aliasing figures (aliasing.h), texels; 11: cells.ms_gpu_gbuffer, ms_gpu_map;
                                * 10: runs.gl_backend; 9: contour_from (whose image the contours are drawn from),
                                * PnFL-inclusive figures (Moderno's count); 8: soft-shadow figures; 7: study, config
                                * text, every cost column, overlay path; 2: traced, traced_shadow; 3: hints,
