@@ -7,7 +7,9 @@
  */
 #include "cell.h"
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+#include "aliasing.h"
 #include "contour.h"
 #include "image.h"
 #include "overlay.h"
@@ -155,7 +157,8 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
 /* The EXR layers, each code named in the header (shadowlab:<layer>).
  * errcls: w * h scratch. */
 static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_verdicts *vd, const uint8_t *band,
-                             const struct sl_cell *cell, uint8_t *errcls, struct sl_diag *d)
+                             const struct sl_cell *cell, uint8_t *errcls, const float *am, uint8_t *acode,
+                             struct sl_diag *d)
 {
     const struct sl_view *v = in->view;
     size_t npx = (size_t)v->w * (size_t)v->h;
@@ -186,12 +189,17 @@ static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_ve
                             "3 uncertain"},
         {"shadowlab:contour", cf},
         {"shadowlab:how", how},
+        {"shadowlab:aliasing", "aliasing error m (seed 004 eq. 61, aliasing.h) in 1/8 octaves: 0 not a PFL pixel "
+                               "or m undefined, else m = 2^((code - 128) / 8) rounded, clamped to 1..255; "
+                               "m = 1, 2, 4, 8 are codes 128, 136, 144, 152"},
         {"shadowlab:channels", "each layer twice: half (the code as a number) and uint32 code.<layer>"},
         {"shadowlab:cell", title},
     };
-    static const char *const names[] = {"truth", "verdict", "error", "contour", "how"};
-    const unsigned char *layers[] = {v->truth, vd->v, errcls, band, vd->how};
-    return sl_image_write_layers(in->exr_path, v->w, v->h, 5, names, layers,
+    for (size_t i = 0; i < npx; i++)
+        acode[i] = am ? sl_alias_code(am[i]) : 0;
+    static const char *const names[] = {"truth", "verdict", "error", "contour", "how", "aliasing"};
+    const unsigned char *layers[] = {v->truth, vd->v, errcls, band, vd->how, acode};
+    return sl_image_write_layers(in->exr_path, v->w, v->h, 6, names, layers,
                                  (int)(sizeof attrs / sizeof attrs[0]), attrs, d);
 }
 
@@ -285,6 +293,21 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
         check_exact(in, vd, cell);
     if (vd->has_detail)
         count_patterns(v, vd, band, cell);
+    /* the aliasing error m of every PFL pixel under the frame that served it */
+    float *am = in->frame && (in->frame->size > 0 || vd->nframes > 0) ? malloc(npx * sizeof *am) : NULL;
+    cell->texels = 0;
+    for (int k = 0; k < vd->nframes; k++)
+        cell->texels += (uint64_t)vd->frames[k].size * (uint64_t)vd->frames[k].size;
+    if (vd->nframes == 0 && in->frame && in->params &&
+        (in->method->needs(in->params) & ((1u << SL_LAYER_COUNT) - 1u)))
+        cell->texels = (uint64_t)in->frame->size * (uint64_t)in->frame->size;
+    if (am) {
+        t0 = sl_now();
+        sl_alias_image(v, in->frame, vd, 0, am);
+        sl_alias_figures_compute(v, vd, am, band, in->regions, in->nregions, &cell->alias);
+        cell->has_alias = 1;
+        cell->ms.figures += 1e3 * (sl_now() - t0);
+    }
     enum sl_err e = SL_OK;
     const char *overlay = in->overlay_path;
     if (in->soft_truth) {
@@ -309,7 +332,8 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
          * recount: truth (enum sl_truth), verdict (enum sl_verdict), the
          * error class, the contour band (k: inside the 2k-px contour) and
          * how (enum sl_how), each code named in the header */
-        e = write_exr(in, vd, band, cell, in->state, d);
+        e = write_exr(in, vd, band, cell, in->state, am, in->rgb, d);
     }
+    free(am);
     return e;
 }

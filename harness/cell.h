@@ -23,6 +23,7 @@
 #ifndef SL_CELL_H
 #define SL_CELL_H
 #include <stdint.h>
+#include "aliasing.h"
 #include "config.h"
 #include "frame.h"
 #include "figures.h"
@@ -83,12 +84,17 @@ struct sl_cell {
      * shadowed in truth; has_patterns when the method reports it */
     int      has_patterns;
     uint64_t pattern[SL_MAX_REGIONS][10][2];
+    uint64_t texels;                   /* texels of the shadow maps the method looked up (each map once,
+                                        * whatever its layers): size^2, k size^2 for zpart's k slices */
+    int      has_alias;                /* a hard cell: its wrong pixels by aliasing error m (aliasing.h) */
+    struct sl_alias_figures alias;
     struct sl_violation violation[SL_MAX_VIOLATIONS];
 };
 
 
 struct sl_cell_inputs {
     const struct sl_method      *method;
+    const struct sl_method_params *params;    /* its parameters (which layers it reads: texels) */
     const struct sl_view        *view;        /* with its truth */
     const struct sl_light_frame *frame;       /* the layers the group rendered (violations name their triangles) */
     const float                 *light_dir;   /* the scene's, for the overlay's shading */

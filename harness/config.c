@@ -445,13 +445,15 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
          * ones area lights only */
         cs->method_mask = 0u;
         for (int k = 0; k < c->nmethods && !rs->methods_count; k++)
-            if (area || !(c->methods[k].method->lights & SL_LIGHTS_AREA))
+            if (!(c->methods[k].method->lights & (area ? SL_LIGHTS_DIRECTIONAL : SL_LIGHTS_AREA)))
                 cs->method_mask |= 1u << k;
         if (!rs->methods_count && !cs->method_mask) {
             snprintf(key, sizeof key, "scenes[%u]", si);
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has a directional light and every method of this config needs an "
-                               "area light (hard_point, point_map, soft_mc do)", cs->name);
+                               area ? "scene '%s' has an area light and every method of this config needs a "
+                                      "directional light (zpart, lispsm do)"
+                                    : "scene '%s' has a directional light and every method of this config needs an "
+                                      "area light (hard_point, point_map, soft_mc do)", cs->name);
         }
         for (unsigned i = 0; i < rs->methods_count; i++) {
             snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
@@ -478,6 +480,12 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                 snprintf(key, sizeof key, "scenes[%u].methods", si);
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
                                    "scene '%s' has a directional light but method '%s' (label %s) handles area "
+                                   "lights only", cs->name, c->methods[k].method->name, c->methods[k].label);
+            }
+            if (area && (c->methods[k].method->lights & SL_LIGHTS_DIRECTIONAL)) {
+                snprintf(key, sizeof key, "scenes[%u].methods", si);
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                                   "scene '%s' has an area light but method '%s' (label %s) handles directional "
                                    "lights only", cs->name, c->methods[k].method->name, c->methods[k].label);
             }
         }

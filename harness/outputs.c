@@ -90,6 +90,9 @@ void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct s
     r->fig = cl->fig;
     r->has_soft = cl->has_soft;
     r->soft = cl->soft;
+    r->has_alias = cl->has_alias;
+    r->texels = cl->texels;
+    r->alias = cl->alias;
     snprintf(r->study, sizeof r->study, "%s", c->name);
     snprintf(r->config_hash, sizeof r->config_hash, "%016llx", c->hash);
 }

@@ -177,8 +177,8 @@ static void ctx_free(struct run_ctx *x)
     free(x->vd.how);
     free(x->vd.base);
     free(x->vd.detail);
-    free(x->vd.tests);
-    free(x->vd.vis);
+    free(x->vd.tests); free(x->vd.vis);
+    sl_verdicts_drop_frames(&x->vd);
     free(x->soft_truth);
     free(x->soft_se);
     free(x->receivers);
@@ -247,8 +247,8 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
     size_t npx = (size_t)W * (size_t)H;
     free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
     free(x->vd.detail);
-    free(x->vd.tests);
-    free(x->vd.vis);
+    free(x->vd.tests); free(x->vd.vis);
+    sl_verdicts_drop_frames(&x->vd);
     free(x->soft_truth);
     free(x->soft_se);
     x->vd.vis = sl_calloc(npx, sizeof(float));
@@ -598,7 +598,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .scene = &x->scene, .view = &mview, .frame = fr, .params = &cm->params,
         .rt = &x->rt, .adj = x->have_adj ? &x->adj : NULL, .threads = c->threads,
         .softmap = x->soft_map >= 0 ? &x->softmap : NULL,
-        .seed = c->seed,
+        .seed = c->seed, .spass = &x->spass, .mesh = &x->mesh,
     };
     int reps = c->warmup + c->runs;
     double times[SL_MAX_REPS];
@@ -616,11 +616,11 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             memcpy(x->vd.detail, x->nvd.detail, npx);
             memcpy(x->vd.tests, x->nvd.tests, npx);
             x->vd.has_base = x->nvd.has_base;
-            x->vd.has_detail = x->nvd.has_detail;
+            x->vd.has_detail = x->nvd.has_detail, x->vd.nframes = 0;   /* NSM's: the cell's frame */
             res->passes.contour_runs--;
             cost = x->nsm_cost;
         } else {
-            x->vd.has_base = 0;
+            x->vd.has_base = x->vd.nframes = 0;   /* nframes: the cell's frame unless the method says */
             x->vd.has_detail = 0;
             memset(x->vd.tests, 0, npx);
             e = cm->method->run(&a, &x->vd, &cost, d);
@@ -651,7 +651,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir,
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
-        .state = x->state, .band = x->band, .rgb = x->rgb,
+        .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
     };

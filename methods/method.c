@@ -57,3 +57,16 @@ enum sl_err sl_method_trace_left(const struct sl_method_args *a, const uint8_t *
     free(traced);
     return e;
 }
+
+void sl_verdicts_drop_frames(struct sl_verdicts *vd)
+{
+    for (int k = 0; k < vd->nown; k++) {
+        sl_light_box_free(&vd->frames[k].box);
+        sl_frame_free(&vd->frames[k]);
+    }
+    free(vd->frames);
+    free(vd->slice);
+    vd->frames = NULL;
+    vd->slice = NULL;
+    vd->nframes = vd->nown = 0;
+}

@@ -20,6 +20,8 @@
 struct sl_rt;
 struct sl_adjacency;
 struct sl_softmap;
+struct sl_shadowmap_pass;
+struct sl_gl_mesh;
 
 /* Beyond the frame layers (SL_NEED(layer) bits of frame.h), a method may need
  * the scene's edge and vertex adjacency, built once per scene on demand. */
@@ -62,7 +64,18 @@ struct sl_verdicts {
     int      has_detail;
     uint8_t *tests;  /* ray-triangle tests spent on each pixel (saturating at 255), zeroed before a run */
     float   *vis;    /* soft methods (area lights): the visible fraction of the light per pixel, 0..1 */
+    /* A method that looks up light frames of its own (zpart, lispsm: fitted
+     * and rendered by the method through a->spass) hands them to scoring
+     * here: pixel i was served by frames[slice[i]] (slice NULL: frames[0];
+     * 255: by none). nframes = 0, as the driver sets it before every run:
+     * the cell's frame served every pixel. The frames (nown allocated) and
+     * slice are the verdicts' own: sl_verdicts_drop_frames frees them; a
+     * frame's layers may be gone (have = 0): scoring reads its box and size. */
+    struct sl_light_frame *frames;
+    int      nframes, nown;
+    uint8_t *slice;
 };
+void sl_verdicts_drop_frames(struct sl_verdicts *vd);
 
 /* Machine-independent counts beside wall time. */
 struct sl_cost {
@@ -130,7 +143,13 @@ int         sl_self_shadow_parse(const char *name);   /* -1 if unknown */
     X(SL_PARAM_LAYERS,      8, layers,      int,   UINT,   0, 0,                                          \
       "soft_mc: 1 (near only), 2 (near and far) or 3 (and the camera's depth)")                          \
     X(SL_PARAM_BLUR,        9, blur,        int,   BOOL,   0, 0,                                          \
-      "soft_mc: 1 the depth-sensitive screen-space blur, 0 none")
+      "soft_mc: 1 the depth-sensitive screen-space blur, 0 none")                                        \
+    X(SL_PARAM_PARTITIONS, 10, partitions,  int,   UINT,   0, 0,                                          \
+      "zpart: shadow maps over the view's depth slices, 1..8")                                           \
+    X(SL_PARAM_LAMBDA,     11, lambda,      float, FLOAT,  0, 0,                                          \
+      "zpart: split planes, 0 uniform .. 1 logarithmic (seed 004 eq. 62)")                             \
+    X(SL_PARAM_WARP,       12, warp,        int,   WORDS,  "uniform", "lispsm",                           \
+      "zpart: each slice's map 0 uniform (orthographic), 1 LiSPSM (Wimmer et al. 2004)")
 
 enum sl_param {
 #define SL_KNOB_BIT(id, bit, ...) id = 1 << (bit),
@@ -167,6 +186,10 @@ struct sl_method_args {
     const struct sl_softmap       *softmap;  /* when needs has SL_NEED_SOFT: the area light's layers,
                                               * their N-buffer built (softmap->nbuf) */
     uint32_t                       seed;     /* the config's seed, for methods that sample */
+    /* the shadow-map pass and the scene's GL mesh, for a method that
+     * renders frames of its own (zpart, lispsm); NULL where none can */
+    const struct sl_shadowmap_pass *spass;
+    const struct sl_gl_mesh        *mesh;
     int                            threads;
 };
 
@@ -185,12 +208,17 @@ struct sl_method_args {
  * approximation). A soft method (SL_LIGHTS_AREA) needs an area light and
  * writes the visible fraction itself. */
 #define SL_LIGHTS_AREA (1u << 1)
+/* A hard-shadow method that needs a directional light (zpart, lispsm: their
+ * fits are orthographic in light space); a scene with an area light does
+ * not run it unless its list names it, which is then an error. */
+#define SL_LIGHTS_DIRECTIONAL (1u << 2)
 
 struct sl_method {
     const char *name;          /* config key */
     const char *summary;
     unsigned    exact;         /* SL_EXACT_* */
-    unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only */
+    unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only;
+                                * SL_LIGHTS_DIRECTIONAL: hard shadows, directional lights only */
     unsigned    params_ok;     /* SL_PARAM_* bits it reads */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);

@@ -22,6 +22,8 @@ extern const struct sl_method sl_method_raytrace;
 extern const struct sl_method sl_method_hard_point;
 extern const struct sl_method sl_method_soft_mc;
 extern const struct sl_method sl_method_point_map;
+extern const struct sl_method sl_method_zpart;
+extern const struct sl_method sl_method_lispsm;
 
 static const struct sl_method *const sl_methods[] = {
     &sl_method_nsm,
@@ -40,6 +42,8 @@ static const struct sl_method *const sl_methods[] = {
     &sl_method_hard_point,
     &sl_method_soft_mc,
     &sl_method_point_map,
+    &sl_method_zpart,
+    &sl_method_lispsm,
     NULL,
 };
 

@@ -734,6 +734,8 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
     return e;
 }
 
+void sl_report_gp_quote(FILE *f, const char *s) { gp_quote(f, s); }
+
 /* ---- for the other sections: one plot drawn and shown ---- */
 
 enum sl_err sl_report_plot_draw(struct sl_report_doc *doc, const char *gnuplot, const char *name, int w, int h,

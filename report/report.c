@@ -401,6 +401,10 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
     }
     if (!e)   /* a heading of its own when the study has paths */
         e = sl_report_motion(doc, s, gnuplot, d);
+    if (!e && sl_report_aliasing_applies(s)) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: aliasing error m (seed 004)", s->name);
+        e = sl_report_aliasing(doc, s, gnuplot, d);
+    }
     if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: the chain's steps per scene", s->name);
         e = sl_report_plot_chain(doc, s, gnuplot, d);

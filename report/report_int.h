@@ -216,4 +216,13 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
 enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_report_study *s,
                                     const char *gnuplot, struct sl_diag *d);
 
+/* For sections outside plots.c: a string quoted for gnuplot (the plot
+ * itself: sl_report_plot_draw above). */
+void        sl_report_gp_quote(FILE *f, const char *s);
+
+/* aliasing.c: the aliasing error m (seed 004) per label: tables and the error rate against m */
+int         sl_report_aliasing_applies(const struct sl_report_study *s);
+enum sl_err sl_report_aliasing(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                               struct sl_diag *d);
+
 #endif

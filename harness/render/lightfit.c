@@ -188,18 +188,16 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, struct 
     glm_mat4_mul(out->proj, out->view, out->vp);
 }
 
-void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+/* A directional light's box, fitted to the PFL pixels i with mask[i] ==
+ * value (mask NULL: every one). */
+static void fit_dir(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                    struct sl_light_box *out)
 {
-    memset(out, 0, sizeof *out);
-    if (s->light.type == SL_LIGHT_AREA) {
-        fit_point(s, v, out);
-        return;
-    }
     sl_light_view(s->light_dir, out->view);
     float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
     size_t n = (size_t)v->w * (size_t)v->h;
     for (size_t i = 0; i < n; i++) {
-        if (v->cls[i] != SL_C_PFL)
+        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
             continue;
         float q[3];
         to_light(out->view, v->pos + 3 * i, q);
@@ -319,4 +317,193 @@ void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, cons
     memcpy(out->hi, hi, sizeof hi);
     glm_ortho_rh_zo(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], out->proj);
     glm_mat4_mul(out->proj, out->view, out->vp);
+}
+
+void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+{
+    memset(out, 0, sizeof *out);
+    if (s->light.type == SL_LIGHT_AREA)
+        fit_point(s, v, out);
+    else
+        fit_dir(s, v, NULL, 0, out);
+}
+
+int sl_light_fit_slice(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                       struct sl_light_box *out)
+{
+    memset(out, 0, sizeof *out);
+    if (s->light.type == SL_LIGHT_AREA)
+        return 0;
+    fit_dir(s, v, mask, value, out);
+    return 1;
+}
+
+void sl_zsplit_closed(double n, double f, int k, double *planes)
+{
+    for (int i = 0; i <= k; i++)
+        planes[i] = n * pow(f / n, (double)i / k);
+    planes[0] = n;   /* exact ends, whatever pow rounds to */
+    planes[k] = f;
+}
+
+void sl_zsplit_iterative(double n, double f, int k, double lambda, double *planes)
+{
+    /* eq. 62, from the far end down: f_k = f; n_i = f_(i-1) =
+     * lambda n (f_i / n)^((i-1)/i) + (1 - lambda) f_i / alpha_i; n_1 = n.
+     * alpha_i is defined in the thesis's section 4.3.2, outside the seed;
+     * we take f_i / alpha_i = n + (f_i - n)(i - 1)/i, the uniform split of
+     * [n, f_i] into i equal slices, so that lambda = 0 gives the uniform
+     * split of [n, f] (the uniform counterpart of the log term, which is
+     * the log split of [n, f_i] into i slices). */
+    planes[k] = f;
+    for (int i = k; i >= 2; i--) {
+        double fi = planes[i];
+        double lg = n * pow(fi / n, (double)(i - 1) / i);
+        double un = n + (fi - n) * (double)(i - 1) / i;
+        planes[i - 1] = lambda * lg + (1.0 - lambda) * un;
+    }
+    planes[0] = n;
+}
+
+void sl_view_depth_range(const struct sl_view *v, float *zmin, float *zmax)
+{
+    float lo = FLT_MAX, hi = 0.0f;
+    size_t n = (size_t)v->w * (size_t)v->h;
+    for (size_t i = 0; i < n; i++) {
+        if (v->cls[i] == SL_C_BACKGROUND)
+            continue;
+        float z = sl_view_depth(v, v->pos + 3 * i);
+        if (z < lo) lo = z;
+        if (z > hi) hi = z;
+    }
+    if (!(lo <= hi)) {
+        lo = 1.0f;
+        hi = 2.0f;
+    }
+    *zmin = lo;
+    *zmax = hi;
+}
+
+/* LiSPSM (Wimmer, Scherzer, Purgathofer 2004) for a directional light.
+ * Light space: y toward the light, z the camera's view direction made
+ * perpendicular to the light, x = y cross z. The warp is a perspective
+ * along z from a centre C at n_opt in front of the body's near face,
+ * under which light rays (parallel to y, at fixed z) stay parallel: the
+ * map is then an orthographic view along -y of the warped space, and depth
+ * -y/z_c keeps its order along every light ray, so NSM's comparison holds.
+ * In clip space, with (x_c, y_c, z_c) relative to C:
+ *   X = sx (x_c - ox z_c), Y = sy (1 - oy z_c), Z = sz (-y_c - oz z_c), W = z_c
+ * i.e. NDC x = sx (x_c/z_c - ox), y = sy (1/z_c - oy), depth = sz (-y_c/z_c - oz),
+ * fitted to the receivers' warped bounds; the depth's near end also to
+ * every caster's highest point over the receivers' z range (the warped
+ * depth -y/z_c of a point at height y is least at one end of that range).
+ * C lies at the camera's x and y in light space (the paper's choice: the
+ * warp is centred on the viewer). */
+int sl_light_fit_lispsm(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                        double zn, double zf, struct sl_light_box *out, double *nopt)
+{
+    *nopt = INFINITY;
+    if (!sl_light_fit_slice(s, v, mask, value, out) || out->n_receivers == 0)
+        return 0;
+    /* camera: forward = -(third row of the view matrix), eye = -R^T t */
+    double fw[3] = {-v->view[0][2], -v->view[1][2], -v->view[2][2]}, eye[3];
+    for (int k = 0; k < 3; k++)
+        eye[k] = -(v->view[k][0] * v->view[3][0] + v->view[k][1] * v->view[3][1] + v->view[k][2] * v->view[3][2]);
+    double y[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]};
+    double ly = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+    for (int k = 0; k < 3; k++)
+        y[k] /= ly;
+    double fy = fw[0] * y[0] + fw[1] * y[1] + fw[2] * y[2], z[3];
+    for (int k = 0; k < 3; k++)
+        z[k] = fw[k] - fy * y[k];
+    double lz = sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
+    /* sin gamma, gamma the angle between the view and light directions */
+    double sing = lz / sqrt(fw[0] * fw[0] + fw[1] * fw[1] + fw[2] * fw[2]);
+    double n = (zn + sqrt(zn * zf)) / sing;
+    *nopt = n;
+    /* gamma -> 0: n_opt -> infinity and LiSPSM tends to the uniform map,
+     * which it then is (the paper's fallback); 1e-3 keeps the warp's float
+     * matrix well conditioned */
+    if (!(sing > 1e-3) || !isfinite(n))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        z[k] /= lz;
+    double x[3] = {y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]};
+#define LDOT(a, p) ((a)[0] * (double)(p)[0] + (a)[1] * (double)(p)[1] + (a)[2] * (double)(p)[2])
+    size_t np = (size_t)v->w * (size_t)v->h;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < np; i++) {
+        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
+            continue;
+        const float *p = v->pos + 3 * i;
+        double q[3] = {LDOT(x, p), LDOT(y, p), LDOT(z, p)};
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], q[k]);
+            hi[k] = fmax(hi[k], q[k]);
+        }
+    }
+    double d = hi[2] - lo[2];
+    if (!(d > 0.0) || n > 1e4 * d)
+        return 0;   /* a flat body along z, or a warp too weak to matter: uniform */
+    double C[3] = {LDOT(x, eye), LDOT(y, eye), lo[2] - n};
+    /* casters over the receivers' x, z cross-section, not wholly below the lowest receiver */
+    double ytop = hi[1];
+    for (uint32_t t = 0; t < s->nt; t++) {
+        double tl[3] = {INFINITY, INFINITY, INFINITY}, th[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int c = 0; c < 3; c++) {
+            const float *p = s->pos + 3 * s->idx[3 * t + c];
+            double q[3] = {LDOT(x, p), LDOT(y, p), LDOT(z, p)};
+            for (int k = 0; k < 3; k++) {
+                tl[k] = fmin(tl[k], q[k]);
+                th[k] = fmax(th[k], q[k]);
+            }
+        }
+        if (th[0] < lo[0] || tl[0] > hi[0] || th[2] < lo[2] || tl[2] > hi[2] || th[1] < lo[1])
+            continue;
+        ytop = fmax(ytop, th[1]);
+    }
+    /* warped bounds: u = x_c/z_c, t = 1/z_c, h = -y_c/z_c over the receivers */
+    double wl[3] = {INFINITY, INFINITY, INFINITY}, wh[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < np; i++) {
+        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
+            continue;
+        const float *p = v->pos + 3 * i;
+        double zc = LDOT(z, p) - C[2], w[3] = {(LDOT(x, p) - C[0]) / zc, 1.0 / zc, -(LDOT(y, p) - C[1]) / zc};
+        for (int k = 0; k < 3; k++) {
+            wl[k] = fmin(wl[k], w[k]);
+            wh[k] = fmax(wh[k], w[k]);
+        }
+    }
+#undef LDOT
+    wl[2] = fmin(wl[2], fmin(-(ytop - C[1]) / n, -(ytop - C[1]) / (n + d)));
+    for (int k = 0; k < 3; k++) {   /* the box's relative margins (above) */
+        double m = fmax(1e-4 * (wh[k] - wl[k]), 1e-6 * fmax(fabs(wl[k]), fabs(wh[k])) + 1e-12);
+        wl[k] -= m;
+        wh[k] += m;
+    }
+    double sx = 2.0 / (wh[0] - wl[0]), ox = 0.5 * (wh[0] + wl[0]);
+    double sy = 2.0 / (wh[1] - wl[1]), oy = 0.5 * (wh[1] + wl[1]);
+    double sz = 1.0 / (wh[2] - wl[2]), oz = wl[2];
+    /* rows of clip = A (q - C), q = (x.p, y.p, z.p): X = sx q_x - sx ox q_z, ... */
+    double A[4][4] = {{sx, 0, -sx * ox, 0}, {0, 0, -sy * oy, sy}, {0, -sz, -sz * oz, 0}, {0, 0, 1, 0}};
+    double R[3][3] = {{x[0], x[1], x[2]}, {y[0], y[1], y[2]}, {z[0], z[1], z[2]}};
+    for (int r = 0; r < 4; r++) {
+        double row[4] = {0, 0, 0, 0};
+        for (int c = 0; c < 3; c++) {
+            for (int k = 0; k < 3; k++)
+                row[c] += A[r][k] * R[k][c];
+        }
+        /* the constant: A (-C) plus the homogeneous column of A */
+        row[3] = A[r][3] - (A[r][0] * C[0] + A[r][1] * C[1] + A[r][2] * C[2]);
+        for (int c = 0; c < 4; c++)
+            out->vp[c][r] = (float)row[c];
+    }
+    /* view and proj are not a product that makes vp here: vp is the frame */
+    glm_mat4_identity(out->view);
+    glm_mat4_copy(out->vp, out->proj);
+    for (int k = 0; k < 3; k++) {
+        out->lo[k] = (float)wl[k];
+        out->hi[k] = (float)wh[k];
+    }
+    return 1;
 }

@@ -45,6 +45,46 @@ struct sl_fit_opts {
 void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
                          struct sl_light_box *out);
 
+/* A directional light's box fitted as sl_light_fit does, to the PFL pixels
+ * i with mask[i] == value only (a depth slice's receivers, zpart); its
+ * casters are chosen against those receivers' cross-section as above.
+ * Returns 0 (box zeroed) under an area light: slices are for directional
+ * lights. With every PFL pixel marked it is sl_light_fit's box exactly. */
+int sl_light_fit_slice(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                       struct sl_light_box *out);
+
+/* LiSPSM (Wimmer et al. 2004): a light-space perspective frame for a
+ * directional light, fitted to the PFL pixels i with mask[i] == value
+ * (mask NULL: all) and their casters, with the warp's near distance
+ * n_opt = (zn + sqrt(zn zf)) / sin gamma (zn, zf: the view depths the
+ * receivers span; gamma: the angle between view and light directions),
+ * written to *nopt. Returns 1 with out->vp the warped frame (out->lo/hi its
+ * warped bounds, persp 0), or 0 with out the uniform box of
+ * sl_light_fit_slice where LiSPSM falls back to it: gamma -> 0 (n_opt ->
+ * infinity, as the paper does), a body without depth, or an area light
+ * (0 with n_receivers 0). */
+int sl_light_fit_lispsm(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                        double zn, double zf, struct sl_light_box *out, double *nopt);
+
+/* Split planes of z-partitioning (seed 004): planes[0..k] from n to f.
+ * Closed form, eq. 50/63 (logarithmic): n_i = n (f/n)^((i-1)/k). Iterative,
+ * eq. 62, blending the log and the uniform split by lambda in [0, 1]; equal
+ * to the closed form at lambda = 1 (the seed's appendix B proves it,
+ * tests/test_zpart.c checks it). */
+void sl_zsplit_closed(double n, double f, int k, double *planes);
+void sl_zsplit_iterative(double n, double f, int k, double lambda, double *planes);
+
+/* A world point's view depth (distance in front of the camera along its
+ * axis): -z in the camera's view space. */
+static inline float sl_view_depth(const struct sl_view *v, const float p[3])
+{
+    return -(v->view[0][2] * p[0] + v->view[1][2] * p[1] + v->view[2][2] * p[2] + v->view[3][2]);
+}
+
+/* The view depths of the visible (non-background) pixels: their least and
+ * greatest; 1 and 2 when none is visible. */
+void sl_view_depth_range(const struct sl_view *v, float *zmin, float *zmax);
+
 /* The light view basis for a direction (shared by the fit and the tests). */
 void sl_light_view(const float dir[3], mat4 view);
 

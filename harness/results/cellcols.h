@@ -44,6 +44,7 @@
 #ifndef SL_CELLCOLS_H
 #define SL_CELLCOLS_H
 #include <stdint.h>
+#include "aliasing.h"
 #include "figures.h"
 #include "softfig.h"
 
@@ -105,6 +106,7 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(ms_gpu_gbuffer,      ms,       0,    39,  "ms_gpu_gbuffer",     none,      _)         \
     X(ms_gpu_map,          ms,       0,    40,  "ms_gpu_map",         none,      _)         \
     X(ms_flicker,          ms,       0,    41,  "ms_flicker",         none,      _)         \
+    X(texels,              count,    0,    42,  "texels",             none,      _)         \
     X(overlay,             path,     1500, 0,   "",                   none,      _)         \
     X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)
 /* clang-format on */
@@ -142,6 +144,8 @@ struct sl_cell_record {
     int      has_soft;                 /* an area light: the soft figures below; a hard method's cell
                                         * has both, its hard figures against the light's centre */
     struct sl_soft_figures soft;
+    int      has_alias;                /* a hard cell's pixels by aliasing error m (aliasing.h), per region */
+    struct sl_alias_figures alias;
     /* the run's, not columns of the cell */
     char     study[64];                /* the config's name */
     int64_t  run_id;                   /* 0 when not from the store */

@@ -34,7 +34,8 @@
 #include <unistd.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 12   /* 12: cells.flicker, flicker_compared, ms_flicker (temporal.h);
+#define SL_STORE_VERSION 13   /* 13: aliasing figures (aliasing.h), cells.texels;
+                               * 12: cells.flicker, flicker_compared, ms_flicker (temporal.h);
                                * 11: cells.ms_gpu_gbuffer, ms_gpu_map (GL timer queries);
                                * 10: runs.gl_backend; 9: contour_from (whose image the contours are drawn from),
                                * PnFL-inclusive figures (Moderno's count); 8: soft-shadow figures; 7: study, config
@@ -118,7 +119,7 @@ static const char sql_figures[] =
     "  region     TEXT NOT NULL CHECK (region = 'image' OR region GLOB '[1-9]px'\n"
     "               OR region GLOB '[1-9][0-9]px' OR region GLOB '[1-9][0-9][0-9]px'),\n"
     "  figure     TEXT NOT NULL CHECK (figure IN (" SL_FIGURES(SL_FIG_SQL_NAME) SL_SOFT_FIGURES(SL_FIG_SQL_NAME)
-    "'background')),\n"
+    SL_ALIAS_FIGURES(SL_FIG_SQL_NAME) "'background')),\n"
     "  count      INTEGER NOT NULL CHECK (count >= 0),\n"
     "  percent    REAL,\n"
     "  percent_of TEXT,\n"
@@ -702,6 +703,9 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
         for (int k = 0; k < SL_FIG_COUNT && !e; k++)
             e = put_figure(s, cell_id, c, viewport, region, sl_figure_name((enum sl_figure)k), g->n[k],
                            g->pct[k], sl_figure_of((enum sl_figure)k), key, d);
+        for (int k = 0; c->has_alias && r < c->alias.nregions && k < SL_AFIG_COUNT && !e; k++)   /* same regions */
+            e = put_figure(s, cell_id, c, viewport, region, sl_alias_figure_name((enum sl_alias_figure)k),
+                           c->alias.n[r][k], c->alias.pct[r][k], sl_alias_figure_of((enum sl_alias_figure)k), key, d);
     }
     for (int k = 0; c->has_soft && k < SL_SFIG_COUNT && !e; k++)
         e = put_figure(s, cell_id, c, viewport, "image", sl_soft_figure_name((enum sl_soft_figure)k), c->soft.n[k],
@@ -793,6 +797,8 @@ static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struc
             continue;
         }
         int t = region_thickness(region), k = 0;
+        if (figure && t >= 0 && sl_alias_figures_put(&c->alias, t, figure, count, pct))
+            continue;   /* has_alias: set below */
         while (k < SL_FIG_COUNT && (!figure || strcmp(figure, sl_figure_name((enum sl_figure)k)) != 0))
             k++;
         if (t < 0 || k == SL_FIG_COUNT) {
@@ -815,6 +821,7 @@ static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struc
         f->r[f->nregions - 1].n[k] = count;
         f->r[f->nregions - 1].pct[k] = pct;
     }
+    c->has_alias = c->alias.nregions > 0;
     if (!e && rc != SQLITE_DONE)
         e = db_fail(s, d, NULL, "cannot read the figures of cell %lld", (long long)cell_id);
     st_clear(st);

@@ -1,0 +1,339 @@
+/*
+ * aliasing.c — see aliasing.h. Invariant: every footprint is computed in
+ * double from the inverse of the float matrices the renderer used, so m is
+ * the same on every thread count (each pixel's is computed alone).
+ */
+#include "aliasing.h"
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include "contour.h"
+
+static const char *const afig_name[] = {
+#define F(name, text, of) #name,
+    SL_ALIAS_FIGURES(F)
+#undef F
+};
+static const char *const afig_text[] = {
+#define F(name, text, of) text,
+    SL_ALIAS_FIGURES(F)
+#undef F
+};
+static const char *const afig_of[] = {
+#define F(name, text, of) of,
+    SL_ALIAS_FIGURES(F)
+#undef F
+};
+
+const char *sl_alias_figure_name(enum sl_alias_figure f) { return afig_name[f]; }
+const char *sl_alias_figure_text(enum sl_alias_figure f) { return afig_text[f]; }
+const char *sl_alias_figure_of(enum sl_alias_figure f) { return afig_of[f]; }
+
+int sl_alias_figure_parse(const char *name)
+{
+    for (int k = 0; k < SL_AFIG_COUNT; k++)
+        if (strcmp(afig_name[k], name) == 0)
+            return k;
+    return -1;
+}
+
+/* A view-projection in double, with its inverse, over a window of w x h. */
+struct beam {
+    double vp[16], inv[16];   /* column-major, as cglm */
+    int    w, h;
+    int    ok;                /* the matrix is invertible */
+    int    parallel;          /* every beam runs along dir (orthographic, or a directional
+                               * light's warped frame); else they meet at eye */
+    double dir[3], eye[3];
+};
+
+/* Gauss-Jordan with partial pivoting; returns 0 if singular. */
+static int invert4(const double m[16], double out[16])
+{
+    double a[4][8];
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) {
+            a[r][c] = m[c * 4 + r];
+            a[r][c + 4] = r == c;
+        }
+    for (int c = 0; c < 4; c++) {
+        int piv = c;
+        for (int r = c + 1; r < 4; r++)
+            if (fabs(a[r][c]) > fabs(a[piv][c]))
+                piv = r;
+        if (!(fabs(a[piv][c]) > 0.0))
+            return 0;
+        if (piv != c)
+            for (int k = 0; k < 8; k++) {
+                double t = a[c][k];
+                a[c][k] = a[piv][k];
+                a[piv][k] = t;
+            }
+        double s = 1.0 / a[c][c];
+        for (int k = 0; k < 8; k++)
+            a[c][k] *= s;
+        for (int r = 0; r < 4; r++)
+            if (r != c && a[r][c] != 0.0) {
+                double f = a[r][c];
+                for (int k = 0; k < 8; k++)
+                    a[r][k] -= f * a[c][k];
+            }
+    }
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++)
+            out[c * 4 + r] = a[r][c + 4];
+    return 1;
+}
+
+static void beam_init(struct beam *b, const mat4 vp, int w, int h)
+{
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++)
+            b->vp[c * 4 + r] = vp[c][r];
+    b->w = w;
+    b->h = h;
+    b->ok = invert4(b->vp, b->inv);
+    /* the centre of projection: inv (0, 0, 1, 0), the point whose X, Y and W
+     * vanish; at infinity (w = 0 up to rounding) the beams are parallel */
+    const double *c = b->inv + 8;
+    double scale = fabs(c[0]) + fabs(c[1]) + fabs(c[2]);
+    b->parallel = !(fabs(c[3]) > 1e-12 * scale);
+    for (int k = 0; k < 3; k++) {
+        b->dir[k] = c[k];
+        b->eye[k] = b->parallel ? 0.0 : c[k] / c[3];
+    }
+}
+
+/* Where the edge beam through the point q (on the beam, at the surface
+ * point's window depth) meets the plane (p, n): the beam runs through q and
+ * the centre of projection (b->eye, or along b->dir for parallel beams);
+ * 0 if it runs parallel to the plane or meets it behind the eye. */
+static int beam_hit(const struct beam *b, const double q[3], const double p[3], const double n[3], double hit[3])
+{
+    double d[3];
+    for (int k = 0; k < 3; k++)
+        d[k] = b->parallel ? b->dir[k] : q[k] - b->eye[k];
+    double dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    if (!(fabs(dn) > 1e-300))
+        return 0;
+    double t = ((p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] + (p[2] - q[2]) * n[2]) / dn;
+    if (!b->parallel && !(1.0 + t > 0.0))
+        return 0;   /* hit = eye + (1 + t)(q - eye): behind the eye */
+    for (int k = 0; k < 3; k++)
+        hit[k] = q[k] + t * d[k];
+    return isfinite(hit[0]) && isfinite(hit[1]) && isfinite(hit[2]);
+}
+
+/* The spans at p: the window point of p moved by half a pixel (texel) in x
+ * or y at p's own clip depth is, in homogeneous world coordinates,
+ * (p, 1) +- (w_p / w) inv[:, 0] (or / h, inv[:, 1]); its edge beam joins it
+ * to the centre of projection inv[:, 2] (the point with X = Y = W = 0). */
+static int beam_spans(const struct beam *b, const float pf[3], const float nf[3], double a[3], double bb[3])
+{
+    if (!b->ok)
+        return 0;
+    double p[3] = {pf[0], pf[1], pf[2]}, n[3] = {nf[0], nf[1], nf[2]};
+    const double *m = b->vp;
+    double wp = m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
+    if (!(fabs(wp) > 0.0))
+        return 0;
+    double hit[4][3];
+    for (int e = 0; e < 4; e++) {
+        const double *col = b->inv + (e < 2 ? 0 : 4);
+        double s = (e % 2 ? -1.0 : 1.0) * wp / (e < 2 ? b->w : b->h);
+        double r = 1.0 / (1.0 + s * col[3]), q[3];
+        for (int k = 0; k < 3; k++)
+            q[k] = (p[k] + s * col[k]) * r;
+        if (!beam_hit(b, q, p, n, hit[e]))
+            return 0;
+    }
+    for (int k = 0; k < 3; k++) {
+        a[k] = hit[0][k] - hit[1][k];
+        bb[k] = hit[2][k] - hit[3][k];
+    }
+    return 1;
+}
+
+int sl_alias_spans(const mat4 vp, int w, int h, const float p[3], const float nrm[3], double a[3], double b[3])
+{
+    struct beam bm;
+    beam_init(&bm, vp, w, h);
+    return beam_spans(&bm, p, nrm, a, b);
+}
+
+/* m from the two pairs of spans in the plane with unit normal n. */
+static double m_of_spans(int cam_ok, const double ac[3], const double bc[3], int lit_ok, const double al[3],
+                         const double bl[3], const float nf[3])
+{
+    if (!cam_ok && !lit_ok)
+        return NAN;
+    if (!lit_ok)
+        return INFINITY;
+    if (!cam_ok)
+        return 0.0;
+    /* an orthonormal basis of the plane */
+    double n[3] = {nf[0], nf[1], nf[2]}, t[3] = {0, 0, 0}, e1[3], e2[3];
+    int ax = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
+    t[ax] = 1.0;
+    e1[0] = n[1] * t[2] - n[2] * t[1];
+    e1[1] = n[2] * t[0] - n[0] * t[2];
+    e1[2] = n[0] * t[1] - n[1] * t[0];
+    double l = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    for (int k = 0; k < 3; k++)
+        e1[k] /= l;
+    e2[0] = n[1] * e1[2] - n[2] * e1[1];
+    e2[1] = n[2] * e1[0] - n[0] * e1[2];
+    e2[2] = n[0] * e1[1] - n[1] * e1[0];
+#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
+    double C[2][2] = {{DOT(ac, e1), DOT(bc, e1)}, {DOT(ac, e2), DOT(bc, e2)}};
+    double L[2][2] = {{DOT(al, e1), DOT(bl, e1)}, {DOT(al, e2), DOT(bl, e2)}};
+#undef DOT
+    double det = C[0][0] * C[1][1] - C[0][1] * C[1][0];
+    if (!(fabs(det) > 0.0))
+        return INFINITY;   /* the pixel's footprint is degenerate: edge-on */
+    double Ci[2][2] = {{C[1][1] / det, -C[0][1] / det}, {-C[1][0] / det, C[0][0] / det}};
+    double T[2][2];
+    for (int r = 0; r < 2; r++)
+        for (int c = 0; c < 2; c++)
+            T[r][c] = Ci[r][0] * L[0][c] + Ci[r][1] * L[1][c];
+    double s = T[0][0] * T[0][0] + T[0][1] * T[0][1] + T[1][0] * T[1][0] + T[1][1] * T[1][1];
+    double dt = T[0][0] * T[1][1] - T[0][1] * T[1][0];
+    double disc = s * s - 4.0 * dt * dt;
+    return sqrt(0.5 * (s + sqrt(disc > 0.0 ? disc : 0.0)));
+}
+
+double sl_alias_m(const mat4 cam_vp, int cw, int ch, const mat4 light_vp, int size, const float p[3],
+                  const float nrm[3])
+{
+    struct beam c, l;
+    beam_init(&c, cam_vp, cw, ch);
+    beam_init(&l, light_vp, size, size);
+    double ac[3], bc[3], al[3], bl[3];
+    int okc = beam_spans(&c, p, nrm, ac, bc), okl = beam_spans(&l, p, nrm, al, bl);
+    return m_of_spans(okc, ac, bc, okl, al, bl, nrm);
+}
+
+#define SL_ALIAS_MAX_FRAMES 16
+
+void sl_alias_image(const struct sl_view *v, const struct sl_light_frame *f, const struct sl_verdicts *vd,
+                    int threads, float *m)
+{
+    mat4 cvp;
+    glm_mat4_mul((vec4 *)v->proj, (vec4 *)v->view, cvp);
+    struct beam cam, lit[SL_ALIAS_MAX_FRAMES];
+    beam_init(&cam, cvp, v->w, v->h);
+    int nf = vd && vd->nframes > 0 ? vd->nframes : 1;
+    if (nf > SL_ALIAS_MAX_FRAMES)
+        nf = SL_ALIAS_MAX_FRAMES;
+    for (int k = 0; k < nf; k++) {
+        const struct sl_light_frame *fk = vd && vd->nframes > 0 ? &vd->frames[k] : f;
+        beam_init(&lit[k], (vec4 *)fk->box.vp, fk->size, fk->size);
+        lit[k].ok &= fk->size > 0;
+    }
+    const long n = (long)v->w * v->h;
+    const uint8_t *slice = vd && vd->nframes > 0 ? vd->slice : NULL;
+#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) schedule(static)
+    for (long i = 0; i < n; i++) {
+        int s = slice ? slice[i] : 0;
+        if (v->cls[i] != SL_C_PFL || s >= nf) {
+            m[i] = NAN;
+            continue;
+        }
+        const float *p = v->pos + 3 * i, *nr = v->nrm + 3 * i;
+        double ac[3], bc[3], al[3], bl[3];
+        int okc = beam_spans(&cam, p, nr, ac, bc), okl = beam_spans(&lit[s], p, nr, al, bl);
+        m[i] = (float)m_of_spans(okc, ac, bc, okl, al, bl, nr);
+    }
+}
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median of the first n values (sorted in place); 0 when n = 0. Even n:
+ * the mean of the two middle values. */
+static double median(float *x, size_t n)
+{
+    if (n == 0)
+        return 0.0;
+    qsort(x, n, sizeof *x, cmp_float);
+    return n % 2 ? (double)x[n / 2] : 0.5 * ((double)x[n / 2 - 1] + (double)x[n / 2]);
+}
+
+static uint64_t milli(double m)
+{
+    if (!(m >= 0.0))
+        return 0;
+    double r = floor(m * 1000.0 + 0.5);
+    return r >= 9e15 ? (uint64_t)9e15 : (uint64_t)r;   /* an infinite median stays a storable count */
+}
+
+void sl_alias_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, const float *m,
+                              const uint8_t *band, const int *thickness, int nregions,
+                              struct sl_alias_figures *out)
+{
+    memset(out, 0, sizeof *out);
+    if (nregions > SL_MAX_REGIONS)
+        nregions = SL_MAX_REGIONS;
+    out->nregions = nregions;
+    size_t npx = (size_t)v->w * (size_t)v->h;
+    float *all = malloc(npx * sizeof *all), *bad = malloc(npx * sizeof *bad);
+    for (int r = 0; r < nregions; r++) {
+        out->thickness[r] = thickness[r];
+        uint64_t *c = out->n[r], pfl = 0, wrong = 0;
+        size_t na = 0, nb = 0;
+        for (size_t i = 0; i < npx; i++) {
+            if (v->cls[i] != SL_C_PFL || !sl_in_contour(band[i], thickness[r]))
+                continue;
+            uint8_t t = v->truth[i], x = vd->v[i];
+            int w = (x == SL_V_LIT && t == SL_T_SHADOW) || (x == SL_V_SHADOW && t == SL_T_LIT);
+            pfl++;
+            wrong += w;
+            if (isnan(m[i])) {
+                c[SL_AFIG_m_none]++;
+                continue;
+            }
+            int b = sl_alias_band(m[i]);
+            c[SL_AFIG_px_m_le1 + b]++;
+            if (w)
+                c[SL_AFIG_wrong_m_le1 + b]++;
+            if (all)
+                all[na++] = m[i];
+            if (w && bad)
+                bad[nb++] = m[i];
+        }
+        /* without scratch memory no median is claimed (0) */
+        c[SL_AFIG_m_median_milli] = all ? milli(median(all, na)) : 0;
+        c[SL_AFIG_wrong_m_median_milli] = bad ? milli(median(bad, nb)) : 0;
+        for (int k = 0; k < SL_AFIG_COUNT; k++) {
+            double base = !strcmp(afig_of[k], "pfl") ? (double)pfl : !strcmp(afig_of[k], "wrong") ? (double)wrong
+                                                                                                 : 0.0;
+            out->pct[r][k] = base > 0.0 ? 100.0 * (double)c[k] / base : NAN;
+        }
+    }
+    free(all);
+    free(bad);
+}
+
+int sl_alias_figures_put(struct sl_alias_figures *a, int thickness, const char *figure, uint64_t count, double pct)
+{
+    int k = sl_alias_figure_parse(figure), j = 0;
+    if (k < 0)
+        return 0;
+    while (j < a->nregions && a->thickness[j] != thickness)
+        j++;
+    if (j == SL_MAX_REGIONS)
+        return 1;   /* more regions than a cell holds: the store refuses such a cell before */
+    if (j == a->nregions) {
+        a->nregions++;
+        a->thickness[j] = thickness;
+        for (int q = 0; q < SL_AFIG_COUNT; q++)
+            a->pct[j][q] = NAN;
+    }
+    a->n[j][k] = count;
+    a->pct[j][k] = pct;
+    return 1;
+}
