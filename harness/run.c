@@ -433,6 +433,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
     if (x->frame_map != k->map) {
         drop_frame(x);
         memset(&x->frame, 0, sizeof x->frame);
+        x->frame.pool = &x->spass.pool;   /* arrays reused across layers, frames, views */
         x->frame.size = c->maps[k->map];
         memcpy(x->frame.dir, x->scene.light_dir, sizeof x->frame.dir);
         x->frame.box = x->box;
@@ -461,8 +462,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
             e = sl_shadowmap_render(&x->spass, &x->mesh, &again, SL_NEED(l), d);
             times[r] = again.layer[l].ms_render;
             gpu[r] = again.layer[l].ms_gpu;
-            free(again.layer[l].depth);
-            free(again.layer[l].id);
+            sl_frame_drop_layer(&again, l);   /* back to the pool for the next repetition */
         }
         if (!e) {
             med_min_max(times + c->warmup, c->runs, x->layer_ms[l]);
