@@ -48,6 +48,11 @@ extern const char sl_glsl_bench_plain_fs[];
 #define TARGET_RASTER_RATIO  2.0     /* a pass's render time over the plain raster's, at most */
 #define TARGET_MODERNO_S     60.0
 #define TARGET_MORAIS_S      300.0
+/* issue 20: CPU time (user+sys), minor page faults, peak RSS; 0 = none */
+#define TARGET_MODERNO_CPU_S 12.0
+#define TARGET_MORAIS_CPU_S  90.0
+#define TARGET_MORAIS_FAULTS 500000.0
+#define TARGET_MORAIS_RSS_MIB 1024.0
 #define TARGET_RSS_MIB       2048.0
 #define TARGET_CONTEXT_MS    2000.0   /* the first context, driver loading included */
 
@@ -83,7 +88,7 @@ enum sl_err sl_bench_parse_stages(const char *list, unsigned *out, struct sl_dia
             }
         if (!found)
             return sl_fail(d, SL_E_USAGE, NULL, 0, "--only",
-                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs)", (int)n, p);
+                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs, churn)", (int)n, p);
         p += n;
         if (*p == ',')
             p++;
@@ -704,8 +709,8 @@ out:
 
 /* ---- whole studies -------------------------------------------------------- */
 
-static enum sl_err bench_study(const char *path, const char *label, double target_s, enum sl_gl_backend gl,
-                               FILE *out, struct sl_bench_result *res, struct sl_diag *d)
+static enum sl_err bench_study(const char *path, const char *label, double target_s, const double tgt[3],
+                               enum sl_gl_backend gl, FILE *out, struct sl_bench_result *res, struct sl_diag *d)
 {
     struct sl_config c;
     enum sl_err e = sl_config_load(path, &c, d);
@@ -715,10 +720,17 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
         c.gl = gl;
     struct sl_run_opts ro = {.out_root = NULL, .table_out = NULL, .write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result rr;
-    double t0 = sl_now();
+    struct rusage ru0, ru1;
+    getrusage(RUSAGE_SELF, &ru0);
+    double t0 = sl_now(), c0 = cpu_now();
     if ((e = sl_run(&c, &ro, &rr, d)))
         return e;
-    double wall = sl_now() - t0;
+    double wall = sl_now() - t0, cpu = cpu_now() - c0;
+    getrusage(RUSAGE_SELF, &ru1);
+    /* {CPU s, minor faults, peak RSS MiB} against tgt (0: no target, not a row) */
+    const double got[3] = {cpu, (double)(ru1.ru_minflt - ru0.ru_minflt), ru1.ru_maxrss / 1024.0};
+    static const char *const what[3][2] = {{"CPU (user+sys)", "s"}, {"minor page faults", "faults"},
+                                           {"peak RSS of the process so far", "MiB"}};
     uint64_t viol = 0, rays = 0;
     double ms_method = 0;
     for (int i = 0; i < rr.ncells; i++) {
@@ -732,7 +744,8 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
     int layers = 0;
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         layers += rr.passes.layers[l];
-    fprintf(out, "## Study %s (%s): %d cells, %.1f s\n\n", c.name, path, rr.ncells, wall);
+    fprintf(out, "## Study %s (%s): %d cells, %.1f s wall, %.1f s CPU (user+sys), %.0f minor page faults, "
+                 "peak RSS %.0f MiB\n\n", c.name, path, rr.ncells, wall, got[0], got[1], got[2]);
     fprintf(out, "No files, no store, no truth cache; %d threads. Scenes loaded %d (load %.0f ms, BVH %.0f ms), "
                  "G-buffers %d, truths traced %d (%llu rays), layer renders %d",
             c.threads, rr.passes.scenes, rr.ms_scene, rr.ms_bvh, rr.passes.gbuffers, rr.passes.truths_traced,
@@ -747,6 +760,9 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
     struct sl_bench_row *row = sl_bench_add_row(res, "study", "s", wall, 0, target_s, SL_BENCH_AT_MOST);
     if (row)
         snprintf(row->name, sizeof row->name, "%s, %d cells, wall", label, rr.ncells);
+    for (int k = 0; k < 3; k++)
+        if (tgt[k] > 0 && (row = sl_bench_add_row(res, "study", what[k][1], got[k], 0, tgt[k], SL_BENCH_AT_MOST)))
+            snprintf(row->name, sizeof row->name, "%s, %s", label, what[k][0]);
     /* not a speed, but a fast layer that loses exactness is no gain */
     row = sl_bench_add_row(res, "study", "pixels", (double)viol, 0, 0, SL_BENCH_AT_MOST);
     if (row)
@@ -859,7 +875,8 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     memset(&x, 0, sizeof x);
     x.out = out;
     enum sl_err e = SL_OK;
-    int need_scene = (stages & (SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS) | SL_BENCH_STAGE(BACKENDS))) != 0;
+    int need_scene = (stages & (SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS) | SL_BENCH_STAGE(BACKENDS) |
+                                SL_BENCH_STAGE(CHURN))) != 0;
 
     /* provenance first: a short-lived context for the renderer's name; the
      * process's first context, so its time includes loading the driver */
@@ -899,6 +916,9 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
         if (!e && (stages & SL_BENCH_STAGE(LAYERS)))
             e = bench_layers(&x, res, d);
         fflush(out);
+        if (!e && (stages & SL_BENCH_STAGE(CHURN)))
+            e = sl_bench_churn(&x.s, &x.mesh, &x.gp, x.vp[0], x.W, x.H, x.reps, out, res, d);
+        fflush(out);
         sl_gbuffer_free(&x.gp);
         sl_gl_mesh_free(&x.mesh);
         sl_gl_free(&x.gl);
@@ -911,13 +931,14 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     }
     if (stages & SL_BENCH_STAGE(MODERNO)) {
         e = bench_study(o->moderno ? o->moderno : "configs/moderno-2011.yaml", "moderno-2011", TARGET_MODERNO_S,
-                        o->gl, out, res, d);
+                        (const double[3]){TARGET_MODERNO_CPU_S, 0, 0}, o->gl, out, res, d);
         fflush(out);
         if (e)
             goto done;
     }
     if (stages & SL_BENCH_STAGE(MORAIS)) {
-        e = bench_study(o->morais ? o->morais : "configs/morais-2015.yaml", "morais-2015", TARGET_MORAIS_S, o->gl,
+        e = bench_study(o->morais ? o->morais : "configs/morais-2015.yaml", "morais-2015", TARGET_MORAIS_S,
+                        (const double[3]){TARGET_MORAIS_CPU_S, TARGET_MORAIS_FAULTS, TARGET_MORAIS_RSS_MIB}, o->gl,
                         out, res, d);
         fflush(out);
         if (e)

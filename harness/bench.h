@@ -22,6 +22,14 @@
  *   against `run --jobs 2`, both with files, store and no truth cache, wall
  *   and CPU time, the views the split computes twice and the merge time per
  *   1,000 cells (target: --jobs 2 no slower than one process; bench_jobs.c);
+ * - churn: NSM's layer at 2048^2 and 4096^2 through the pass's kept render
+ *   target and pooled arrays against a target and arrays made afresh, wall,
+ *   CPU and minor page faults (target: 4096^2 at most 5x 2048^2;
+ *   bench_churn.c);
+ * - the studies' CPU time (user + sys), minor page faults and the peak RSS
+ *   after each (targets: Moderno 12 s CPU; Morais 90 s CPU, 0.5 M faults,
+ *   1 GiB; the RSS is the process's peak so far: run a study alone to read
+ *   it as the study's);
  * - peak RSS of the process after all of it (target: under 2 GiB).
  *
  * A benchmark, not a test: a missed target is reported (MISS), not an
@@ -44,7 +52,8 @@
     X(BACKENDS, "backends")  \
     X(MODERNO, "moderno")    \
     X(MORAIS,  "morais")     \
-    X(JOBS,    "jobs")
+    X(JOBS,    "jobs")       \
+    X(CHURN,   "churn")
 
 enum sl_bench_stage_bit {
 #define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,

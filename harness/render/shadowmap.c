@@ -132,10 +132,15 @@ static struct sl_shadowmap_target *target_get(struct sl_shadowmap_pass *p, int S
     return t;
 }
 
-void sl_shadowmap_free(struct sl_shadowmap_pass *p)
+void sl_shadowmap_release_targets(struct sl_shadowmap_pass *p)
 {
     for (int i = 0; i < SL_SHADOWMAP_TARGETS; i++)
         target_free(&p->tgt[i]);
+}
+
+void sl_shadowmap_free(struct sl_shadowmap_pass *p)
+{
+    sl_shadowmap_release_targets(p);
     sl_layer_pool_free(&p->pool);
     if (p->prog_depth_id)
         glDeleteProgram(p->prog_depth_id);

@@ -44,6 +44,9 @@ struct sl_shadowmap_pass {
 
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d);
 void        sl_shadowmap_free(struct sl_shadowmap_pass *p);
+/* Free the kept render targets (not the programs, not the pool): the next
+ * layer of each size makes its own again. */
+void        sl_shadowmap_release_targets(struct sl_shadowmap_pass *p);
 
 /* Render the layers in `needs` (SL_NEED bits) into f, whose size, dir and box
  * are set by the caller. Layers already present are not rendered again.
