@@ -22,9 +22,9 @@
  *   against `run --jobs 2`, both with files, store and no truth cache, wall
  *   and CPU time, the views the split computes twice and the merge time per
  *   1,000 cells (target: --jobs 2 no slower than one process; bench_jobs.c);
- * - churn: NSM's layer at 2048^2 and 4096^2 through the pass's kept render
+ * - churn: NSM's layer at the map size S and 2S (2048^2, 4096^2) through the pass's kept render
  *   target and pooled arrays against a target and arrays made afresh, wall,
- *   CPU and minor page faults (target: 4096^2 at most 5x 2048^2;
+ *   CPU and minor page faults (target: 2S at most 5x S;
  *   bench_churn.c);
  * - the studies' CPU time (user + sys), minor page faults and the peak RSS
  *   after each (targets: Moderno 12 s CPU; Morais 90 s CPU, 0.5 M faults,

@@ -1,7 +1,7 @@
 /*
  * bench_churn.c — the `churn` stage of `shadowlab bench` (bench.h): NSM's
  * layer (depth + id, front faces culled: what the studies' NSM reads) at
- * 2048^2 and 4096^2, rendered as a study renders it now — the pass's kept
+ * the bench's map size S and 2S (2048^2 and 4096^2 by default), rendered as a study renders it now — the pass's kept
  * render target, arrays from its pool — against the same layer rendered as
  * it was before issue 20 — a render target made for it and calloc'd
  * arrays, both freed after — in alternation, so drift of a shared VM hits
@@ -10,8 +10,8 @@
  * once, untimed) in wall time, CPU time (user + sys of the process, so
  * llvmpipe's threads too) and minor page faults (getrusage).
  *
- * Target (issue 20): the 4096^2 layer at most 5x the 2048^2 one, for 4x the
- * texels. Before, a 4096^2 layer's 64 MiB arrays were above glibc's mmap
+ * Target (issue 20): the 2S layer (4096^2) at most 5x the S one (2048^2),
+ * for 4x the texels. Before, a 4096^2 layer's 64 MiB arrays were above glibc's mmap
  * threshold and faulted afresh every time (~12 us per 4 KB page here).
  */
 #include <stdlib.h>
@@ -54,10 +54,10 @@ static void min_med(double *v, int n, double *mn, double *md)
 #define NWAYS 2   /* 0 kept + pooled, 1 fresh */
 
 enum sl_err sl_bench_churn(const struct sl_scene *s, const struct sl_gl_mesh *m, struct sl_gbuffer_pass *gp,
-                           int vp, int W, int H, int reps, FILE *out, struct sl_bench_result *res,
+                           int vp, int W, int H, int S, int reps, FILE *out, struct sl_bench_result *res,
                            struct sl_diag *d)
 {
-    static const int sizes[NSIZES] = {2048, 4096};
+    const int sizes[NSIZES] = {S, 2 * S};
     const int l = SL_LAYER_DEPTH_ID_BACK;
     struct sl_view v;
     struct sl_shadowmap_pass kept, fresh;
@@ -126,7 +126,8 @@ enum sl_err sl_bench_churn(const struct sl_scene *s, const struct sl_gl_mesh *m,
         struct sl_bench_row *row = sl_bench_add_row(res, "churn", "ms", med[1][w][0], med[0][w][0], 5.0,
                                                     SL_BENCH_AT_MOST);
         if (row) {
-            snprintf(row->name, sizeof row->name, "NSM layer 4096² / 2048², %s", w ? "fresh (as before)" : "kept");
+            snprintf(row->name, sizeof row->name, "NSM layer %d² / %d², %s", sizes[1], sizes[0],
+                     w ? "fresh (as before)" : "kept");
             snprintf(row->note, sizeof row->note, "CPU %.1f / %.1f ms; minor faults %.0f / %.0f",
                      med[1][w][1], med[0][w][1], med[1][w][2], med[0][w][2]);
         }
@@ -135,7 +136,7 @@ enum sl_err sl_bench_churn(const struct sl_scene *s, const struct sl_gl_mesh *m,
     struct sl_bench_row *row = sl_bench_add_row(res, "churn", "ms", med[1][0][1], med[1][1][1], 1.0,
                                                 SL_BENCH_AT_MOST);
     if (row)
-        snprintf(row->name, sizeof row->name, "NSM layer 4096², CPU kept / fresh");
+        snprintf(row->name, sizeof row->name, "NSM layer %d², CPU kept / fresh", sizes[1]);
 out:
 #undef T
     sl_view_free(&v);
