@@ -164,17 +164,8 @@ static void ctx_free(struct run_ctx *x)
 {
     free_nsm(x);
     drop_scene(x);
-    free(x->state);
-    free(x->band);
-    free(x->rgb);
-    free(x->vd.v);
-    free(x->vd.how);
-    free(x->vd.base);
-    free(x->vd.detail);
-    free(x->vd.tests);
-    free(x->vd.vis);
-    free(x->soft_truth);
-    free(x->soft_se);
+    free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
+    free(x->vd.detail); free(x->vd.tests); free(x->vd.vis); free(x->soft_truth); free(x->soft_se);
     free(x->receivers);
     sl_softmap_nbuf_free(&x->nbuf);
     if (x->gl.backend) {
@@ -239,11 +230,7 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
         return SL_OK;
     size_t npx = (size_t)W * (size_t)H;
     free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
-    free(x->vd.detail);
-    free(x->vd.tests);
-    free(x->vd.vis);
-    free(x->soft_truth);
-    free(x->soft_se);
+    free(x->vd.detail); free(x->vd.tests); free(x->vd.vis); free(x->soft_truth); free(x->soft_se);
     x->vd.vis = sl_calloc(npx, sizeof(float));
     x->soft_truth = sl_calloc(npx, sizeof(float));
     x->soft_se = sl_calloc(npx, sizeof(float));
@@ -428,7 +415,14 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
                                 unsigned needs, struct sl_run_result *res, struct sl_diag *d)
 {
     needs &= (1u << SL_LAYER_COUNT) - 1u;   /* the frame's layers; adjacency is per scene */
-    if (x->frame_map == k->map && (x->frame.have & needs) == needs)
+    /* lazily: the layers this cell reads (BGSM2 reads BGSM) and the contour's, after giving back
+     * those no remaining cell of the group reads: a view holds what its methods read at once */
+    unsigned now = c->methods[k->method].method->needs(&c->methods[k->method].params);
+    now = needs & (now | SL_NEED(SL_LAYER_DEPTH_ID_BACK) | (now & SL_NEED(SL_LAYER_BGSM2) ? SL_NEED(SL_LAYER_BGSM) : 0));
+    for (int l = 0; l < SL_LAYER_COUNT && x->frame_map == k->map; l++)
+        if (x->frame.have & ~needs & SL_NEED(l))
+            sl_frame_drop_layer(&x->frame, l);
+    if (x->frame_map == k->map && (x->frame.have & now) == now)
         return SL_OK;
     if (x->frame_map != k->map) {
         drop_frame(x);
@@ -443,7 +437,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         x->frame_map = k->map;
     }
     unsigned before = x->frame.have;
-    enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, needs, d);
+    enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, now, d);
     int reps = c->warmup + c->runs;
     for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
         if (!((x->frame.have & ~before) & SL_NEED(l)))
@@ -751,7 +745,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         const int nsm_contour = c->contour_from == SL_CONTOUR_NSM &&
                                 !(c->methods[k.method].method->lights & SL_LIGHTS_AREA);
         const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume) |
-                               (nsm_contour ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
+                               (nsm_contour && x.nsm_map != k.map ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
         if ((e = ensure_frame(&x, c, &k, needs, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
             (nsm_contour && (e = ensure_contour(&x, c, &k, res, d))))
             break;
