@@ -15,6 +15,7 @@
  * Studies run last, after this file's GL context and BVHs are freed: sl_run
  * makes its own (one OSMesa context at a time).
  */
+#define _GNU_SOURCE   /* open_memstream */
 #include "bench_int.h"
 #include <math.h>
 #include <stdlib.h>
@@ -82,7 +83,8 @@ enum sl_err sl_bench_parse_stages(const char *list, unsigned *out, struct sl_dia
             }
         if (!found)
             return sl_fail(d, SL_E_USAGE, NULL, 0, "--only",
-                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs, churn)", (int)n, p);
+                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs, churn, "
+                           "startup)", (int)n, p);
         p += n;
         if (*p == ',')
             p++;
@@ -706,6 +708,21 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     int need_scene = (stages & (SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS) | SL_BENCH_STAGE(BACKENDS) |
                                 SL_BENCH_STAGE(CHURN))) != 0;
 
+    /* start-up first, while this process has loaded nothing heavy (its own
+     * RSS is the floor of its children's; bench_startup.c); its table is
+     * printed in its turn, after the header */
+    char *startup_md = NULL;
+    size_t startup_len = 0;
+    if (stages & SL_BENCH_STAGE(STARTUP)) {
+        FILE *mem = open_memstream(&startup_md, &startup_len);
+        if (!mem)
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "bench start-up table");
+        e = sl_bench_startup(o->config ? o->config : "configs/default.yaml", o->reps > 0 ? o->reps : 7, mem, res, d);
+        fclose(mem);
+        if (e)
+            goto done;
+    }
+
     /* provenance first: a short-lived context for the renderer's name; the
      * process's first context, so its time includes loading the driver */
     struct sl_provenance prov;
@@ -778,6 +795,10 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
         if (e)
             goto done;
     }
+    if (startup_md) {
+        fputs(startup_md, out);
+        fflush(out);
+    }
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
     struct sl_bench_row *row = sl_bench_add_row(res, "memory", "MiB", ru.ru_maxrss / 1024.0, 0, TARGET_RSS_MIB,
@@ -805,5 +826,6 @@ done:
     if (res_out && !e)
         *res_out = *res;
     free(res);
+    free(startup_md);
     return e;
 }

@@ -30,6 +30,10 @@
  *   after each (targets: Moderno 12 s CPU; Morais 90 s CPU, 0.5 M faults,
  *   1 GiB; the RSS is the process's peak so far: run a study alone to read
  *   it as the study's);
+ * - startup: `version`, `validate CONFIG` (default configs/default.yaml) and
+ *   `help run` as child processes, against the same binary with OpenImageIO,
+ *   OSMesa, EGL and Embree preloaded as when they were linked (target:
+ *   validate's median under 50 ms; bench_startup.c);
  * - peak RSS of the process after all of it (target: under 2 GiB).
  *
  * A benchmark, not a test: a missed target is reported (MISS), not an
@@ -53,7 +57,8 @@
     X(MODERNO, "moderno")    \
     X(MORAIS,  "morais")     \
     X(JOBS,    "jobs")       \
-    X(CHURN,   "churn")
+    X(CHURN,   "churn")      \
+    X(STARTUP, "startup")
 
 enum sl_bench_stage_bit {
 #define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,

@@ -1,7 +1,7 @@
 #ifndef SL_BENCH_INT_H
 #define SL_BENCH_INT_H
 /* bench_int.h — what bench.c shares with the stages kept in their own files
- * (bench_jobs.c): a row against its target, and those stages. */
+ * (bench_jobs.c, bench_startup.c): a row against its target, and those stages. */
 #include "bench.h"
 #include "gbuffer.h"
 
@@ -34,5 +34,10 @@ enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, st
 enum sl_err sl_bench_churn(const struct sl_scene *s, const struct sl_gl_mesh *m, struct sl_gbuffer_pass *gp,
                            int vp, int W, int H, int S, int reps, FILE *out, struct sl_bench_result *res,
                            struct sl_diag *d);
+
+/* Start-up of version, validate CONFIG and help, lazy against the same
+ * binary with its heavy libraries preloaded (bench_startup.c). */
+enum sl_err sl_bench_startup(const char *config, int reps, FILE *out, struct sl_bench_result *res,
+                             struct sl_diag *d);
 
 #endif

@@ -100,6 +100,8 @@ const char sl_usage_bench[] =
     "    morais   configs/morais-2015.yaml end to end, no files, no cache (< 300 s)\n"
     "    jobs     CONFIG (default configs/morais-2015.yaml) as one process vs run --jobs 2, files and\n"
     "             store, no cache: wall, CPU, views split, merge per 1,000 cells (--jobs 2 not slower)\n"
+    "    startup  version, validate CONFIG (default configs/default.yaml) and help run as processes,\n"
+    "             against the same binary with its heavy libraries preloaded (validate < 50 ms)\n"
     "  and the peak RSS after all of it (< 2 GiB). A missed target exits 0; a failure exits 2.\n"
     "  --only LIST     comma-separated stages (default all); `--only truth,layers` is the quick mode\n"
     "  --reps N        timed repetitions after one warm-up (default 7)\n"

@@ -14,6 +14,8 @@ prefix=$tmp/prefix
 cmake --install "$build" --prefix "$prefix" >"$tmp/install.log" 2>&1 || { echo "FAIL cmake --install:"; cat "$tmp/install.log"; exit 1; }
 b=$prefix/bin/shadowlab
 share=$prefix/share/shadowlab
+module=$(find "$prefix" -name shadowlab-oiio.so)
+[ -n "$module" ] || { echo "FAIL the image module is not installed"; exit 1; }
 for f in "$b" "$share/configs/default.yaml" "$share/scenes/primitives.yaml" "$share/scenes/hard/models/tiny.obj" \
          "$prefix/share/man/man1/shadowlab.1" "$prefix/share/bash-completion/completions/shadowlab"; do
   [ -e "$f" ] || { echo "FAIL not installed: $f"; exit 1; }
@@ -39,11 +41,17 @@ case ${LSAN_OPTIONS:-} in
     supp=${LSAN_OPTIONS#*suppressions=}; supp=${supp%%:*}
     cp "$supp" "$tmp/lsan.supp" && export LSAN_OPTIONS=${LSAN_OPTIONS/$supp/$tmp/lsan.supp} ;;
 esac
-# the source tree hidden where the system allows a private mount namespace
-hide() { unshare -m --propagation private sh -c 'mount --bind "$1" "$2" && shift 2 && exec "$@"' sh "$tmp/empty" "$src" "$@"; }
+# the source tree and the build tree hidden where the system allows a
+# private mount namespace (the build tree holds the image module too: the
+# installed binary must load its own, from <prefix>/lib*/shadowlab)
+hide() {
+  unshare -m --propagation private sh -c 'mount --bind "$1" "$2" && mount --bind "$1" "$3" && shift 3 && exec "$@"' \
+    sh "$tmp/empty" "$src" "$build" "$@"
+}
 if hide true 2>/dev/null; then
   [ -z "$(hide ls -A "$src")" ] || { echo "FAIL the source tree is not hidden"; exit 1; }
-  echo "source tree $src hidden in a mount namespace"
+  [ -z "$(hide ls -A "$build")" ] || { echo "FAIL the build tree is not hidden"; exit 1; }
+  echo "source tree $src and build tree $build hidden in a mount namespace"
 else
   hide() { "$@"; }
   echo "note: no mount namespace here; the source tree stays visible (origins are still checked)"
@@ -56,6 +64,8 @@ hide "$b" run "$share/configs/default.yaml" -o "$tmp/elsewhere/out" --no-cache >
   { echo "FAIL installed run:"; cat "$tmp/run.out" "$tmp/run.err"; exit 1; }
 grep -q "^default: 6 cell(s) computed, 0 already stored" "$tmp/run.out" || { echo "FAIL run summary:"; cat "$tmp/run.out"; exit 1; }
 grep -q "^written to $tmp/elsewhere/out/default/" "$tmp/run.out" || { echo "FAIL no 'written to'"; exit 1; }
+# the overlays went through the installed image module
+ls out/default/overlays/*.png >/dev/null 2>&1 || { echo "FAIL no overlay written by the installed binary"; exit 1; }
 [ "$(tail -n +2 out/default/figures.csv | cut -d, -f1-6 | sort -u | wc -l)" -eq 6 ] || { echo "FAIL figures.csv"; exit 1; }
 # a config elsewhere that names a scene of its own folder, and SHADOWLAB_SCENES in front of the installed folder
 printf 'name: mine\nbase: primitives\nviewpoints:\n  - {name: side, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}\n  - {name: with, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}\n' >"$tmp/elsewhere/mine.yaml"

@@ -15,6 +15,7 @@
 #ifdef SL_HAVE_OSMESA
 #include <GL/osmesa.h>
 #endif
+#include "glload.h"
 
 const char *sl_gl_backend_name(enum sl_gl_backend b)
 {
@@ -82,6 +83,9 @@ static enum sl_err osmesa_open(struct sl_gl *g, struct sl_diag *d)
         OSMESA_CONTEXT_MINOR_VERSION, 5,
         0,
     };
+    char why[300];
+    if (sl_osmesa_load(why, sizeof why))
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "%s", why);
     OSMesaContext ctx = OSMesaCreateContextAttribs(attribs, NULL);
     if (!ctx)
         return sl_fail(d, SL_E_GL, NULL, 0, NULL, "OSMesa could not create a 4.5 core context");

@@ -17,6 +17,7 @@
 #include "glegl.h"
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include "glload.h"
 #include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -160,6 +161,9 @@ static int is_software(const struct egl_fns *f, EGLDeviceEXT dev)
 
 enum sl_err sl_egl_open(struct sl_gl *g, struct sl_diag *d)
 {
+    char why[300];
+    if (sl_egl_load(why, sizeof why))
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "%s", why);
     struct egl_fns f;
     memset(&f, 0, sizeof f);
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);

@@ -66,6 +66,9 @@ enum sl_err sl_rt_build(struct sl_rt *rt, const struct sl_scene *s, int threads,
     rt->threads = threads;
     char cfg[64];
     snprintf(cfg, sizeof cfg, "threads=%d", threads);
+    char why[300];
+    if (sl_rtc_load(why, sizeof why))
+        return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "%s", why);
     double t0 = sl_now();
     rt->device = rtcNewDevice(cfg);
     if (!rt->device)

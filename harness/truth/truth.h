@@ -13,6 +13,7 @@
 #define SL_TRUTH_H
 #include <stdint.h>
 #include <embree3/rtcore.h>
+#include "rtload.h"   /* Embree through dlopen: rtc* are pointers */
 #include "scene.h"
 #include "view.h"
 #include "arealight.h" /* sl_rt_tnear: where the truth's shadow rays start */

@@ -1,6 +1,8 @@
-// image.cpp — thin OpenImageIO wrapper behind image.h. C++ stays here.
-#include "image.h"
-#include "provenance.h"
+// image_oiio.cpp — the OpenImageIO wrapper behind image.h, built as a module
+// (shadowlab-oiio.so) that image.c loads on the first image read or written,
+// so that verbs which touch no image never load OpenImageIO's ~260 libraries.
+// C++ stays here. Only sl_image_module is exported (-fvisibility=hidden).
+#include "image_ops.h"
 #include <OpenImageIO/half.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -18,6 +20,9 @@
 
 using namespace OIIO;
 
+// The SHA of the build that loaded the module, for the files' "Software" tag.
+static const char *module_sha = "";
+
 static bool IBA_text_defined(const char *font)
 {
     return ImageBufAlgo::text_size("Ag", 16, font).defined();
@@ -33,7 +38,7 @@ static std::string tmp_name(const std::string &path)
     return path.substr(0, dot) + ".tmp" + path.substr(dot);
 }
 
-extern "C" enum sl_err sl_image_write_rgb8(const char *path, int w, int h,
+static enum sl_err oiio_write_rgb8(const char *path, int w, int h,
                                            const unsigned char *rgb, struct sl_diag *d)
 {
     std::string tmp = tmp_name(path);
@@ -41,7 +46,7 @@ extern "C" enum sl_err sl_image_write_rgb8(const char *path, int w, int h,
     if (!out)
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "no image writer: %s", OIIO::geterror().c_str());
     ImageSpec spec(w, h, 3, TypeDesc::UINT8);
-    spec.attribute("Software", std::string("shadowlab ") + sl_git_sha());
+    spec.attribute("Software", std::string("shadowlab ") + module_sha);
     if (!out->open(tmp, spec))
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "cannot write: %s", out->geterror().c_str());
     // bottom-up rows: start at the last row and walk with a negative stride
@@ -56,7 +61,7 @@ extern "C" enum sl_err sl_image_write_rgb8(const char *path, int w, int h,
     return SL_OK;
 }
 
-extern "C" enum sl_err sl_image_read_rgb8(const char *path, int *w, int *h, unsigned char **rgb,
+static enum sl_err oiio_read_rgb8(const char *path, int *w, int *h, unsigned char **rgb,
                                           struct sl_diag *d)
 {
     auto in = ImageInput::open(path);
@@ -79,7 +84,7 @@ extern "C" enum sl_err sl_image_read_rgb8(const char *path, int *w, int *h, unsi
     return SL_OK;
 }
 
-extern "C" enum sl_err sl_image_write_layers(const char *path, int w, int h, int nlayers,
+static enum sl_err oiio_write_layers(const char *path, int w, int h, int nlayers,
                                              const char *const *names,
                                              const unsigned char *const *layers, int nattrs,
                                              const struct sl_image_attr *attrs, struct sl_diag *d)
@@ -104,7 +109,7 @@ extern "C" enum sl_err sl_image_write_layers(const char *path, int w, int h, int
         spec.channelnames.push_back(std::string("code.") + names[c]);
         spec.channelformats.push_back(TypeDesc::UINT32);
     }
-    spec.attribute("Software", std::string("shadowlab ") + sl_git_sha());
+    spec.attribute("Software", std::string("shadowlab ") + module_sha);
     spec.attribute("compression", "zip");
     for (int a = 0; a < nattrs; a++)
         spec.attribute(attrs[a].name, attrs[a].value);
@@ -136,7 +141,7 @@ extern "C" enum sl_err sl_image_write_layers(const char *path, int w, int h, int
     return SL_OK;
 }
 
-extern "C" enum sl_err sl_image_read_layer(const char *path, const char *name, int *w, int *h,
+static enum sl_err oiio_read_layer(const char *path, const char *name, int *w, int *h,
                                            unsigned **out, struct sl_diag *d)
 {
     auto in = ImageInput::open(path);
@@ -184,7 +189,7 @@ extern "C" enum sl_err sl_image_read_layer(const char *path, const char *name, i
     return SL_OK;
 }
 
-extern "C" enum sl_err sl_image_read_attr(const char *path, const char *name, char *out, int n,
+static enum sl_err oiio_read_attr(const char *path, const char *name, char *out, int n,
                                           struct sl_diag *d)
 {
     auto in = ImageInput::open(path);
@@ -226,7 +231,7 @@ static const std::string *sheet_font()
     return found ? &font : nullptr;
 }
 
-extern "C" enum sl_err sl_image_write_sheet(const char *path, const struct sl_image_sheet *s,
+static enum sl_err oiio_write_sheet(const char *path, const struct sl_image_sheet *s,
                                             struct sl_diag *d)
 {
     namespace IBA = ImageBufAlgo;
@@ -370,7 +375,7 @@ extern "C" enum sl_err sl_image_write_sheet(const char *path, const struct sl_im
     }
 
     ImageSpec &spec = sheet.specmod();
-    spec.attribute("Software", std::string("shadowlab ") + sl_git_sha());
+    spec.attribute("Software", std::string("shadowlab ") + module_sha);
     if (!title.empty())
         spec.attribute("ImageDescription", title);
     spec.attribute("shadowlab:view", std::to_string(vx) + " " + std::to_string(vy) + " " + std::to_string(vw) + " " +
@@ -394,4 +399,16 @@ extern "C" enum sl_err sl_image_write_sheet(const char *path, const struct sl_im
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "write failed: %s", sheet.geterror().c_str());
     }
     return SL_OK;
+}
+
+extern "C" __attribute__((visibility("default"))) const struct sl_image_ops *sl_image_module(int abi,
+                                                                                        const char *git_sha)
+{
+    static const struct sl_image_ops ops = {
+        oiio_write_rgb8, oiio_write_layers, oiio_read_layer, oiio_read_rgb8, oiio_read_attr, oiio_write_sheet,
+    };
+    if (abi != SL_IMAGE_ABI)
+        return NULL;
+    module_sha = git_sha ? git_sha : "";
+    return &ops;
 }
