@@ -23,9 +23,9 @@ struct sl_shadowmap_target {
     uint64_t used;              /* the pass's tick when last used (least recently used goes first) */
 };
 #define SL_SHADOWMAP_TARGETS 4
-/* Targets kept beside the one in use, in bytes of texture: every size of a
- * study up to 4096^2 stays (170 MiB for 512^2..4096^2); an 8192^2 or
- * 16384^2 one pushes the others out. */
+/* Targets kept beside the one being made, in bytes of texture: every size
+ * of a study up to 4096^2 stays (170 MiB for 512^2..4096^2, 255 MiB with
+ * BGSM2's id copies); an 8192^2 or 16384^2 one pushes the others out. */
 #define SL_SHADOWMAP_KEEP_BYTES ((size_t)256 << 20)
 
 struct sl_shadowmap_pass {
