@@ -35,6 +35,12 @@ enum sl_err sl_bench_churn(const struct sl_scene *s, const struct sl_gl_mesh *m,
                            int vp, int W, int H, int S, int reps, FILE *out, struct sl_bench_result *res,
                            struct sl_diag *d);
 
+/* This binary (/proc/self/exe) run with argv and envp, its output to
+ * /dev/null; its exit status (128 + signal when killed), -1 when it could
+ * not be started. ru (may be NULL) receives the child's own rusage. */
+struct rusage;
+int sl_bench_spawn_self(char *const *argv, char *const *envp, struct rusage *ru);
+
 /* Start-up of version, validate CONFIG and help, lazy against the same
  * binary with its heavy libraries preloaded (bench_startup.c). */
 enum sl_err sl_bench_startup(const char *config, int reps, FILE *out, struct sl_bench_result *res,

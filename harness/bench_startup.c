@@ -19,6 +19,7 @@
  * loads anything, and the table states that floor.
  */
 #define _GNU_SOURCE
+#include <errno.h>
 #include <fcntl.h>
 #include <spawn.h>
 #include <stddef.h>
@@ -41,6 +42,25 @@ extern char **environ;
 
 struct sample { double wall_ms, cpu_ms, rss_mib; };
 
+int sl_bench_spawn_self(char *const *argv, char *const *envp, struct rusage *ru)
+{
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+    pid_t pid;
+    int rc = posix_spawn(&pid, "/proc/self/exe", &fa, NULL, argv, envp);
+    posix_spawn_file_actions_destroy(&fa);
+    if (rc)
+        return -1;
+    int st;
+    struct rusage own;
+    while (wait4(pid, &st, 0, ru ? ru : &own) < 0)
+        if (errno != EINTR)
+            return -1;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+}
+
 /* argv run as a child of this binary, output discarded; preload = NULL for
  * the binary as it is. -1 when it did not run or exit 0. */
 static int spawn_one(char *const *argv, const char *preload, struct sample *s)
@@ -48,39 +68,37 @@ static int spawn_one(char *const *argv, const char *preload, struct sample *s)
     size_t n = 0;
     while (environ[n])
         n++;
-    char **env = calloc(n + 2, sizeof *env);
+    char **env = calloc(n + 3, sizeof *env);
     if (!env)
         return -1;
     size_t k = 0;
+    const char *asan = "";
     for (size_t i = 0; i < n; i++)
-        if (strncmp(environ[i], "LD_PRELOAD=", 11) != 0)
+        if (strncmp(environ[i], "ASAN_OPTIONS=", 13) == 0)
+            asan = environ[i] + 13;
+        else if (strncmp(environ[i], "LD_PRELOAD=", 11) != 0)
             env[k++] = environ[i];
-    char pre[1200];
+    char pre[1200], asan_opts[600];
     if (preload) {
         snprintf(pre, sizeof pre, "LD_PRELOAD=%s", preload);
         env[k++] = pre;
     }
+    /* a sanitized build refuses libraries loaded before its runtime unless
+     * told the order does not matter (only the eager side preloads) */
+    snprintf(asan_opts, sizeof asan_opts, "ASAN_OPTIONS=%s%s%s", asan, asan[0] && preload ? ":" : "",
+             preload ? "verify_asan_link_order=0" : "");
+    if (asan[0] || preload)
+        env[k++] = asan_opts;
     env[k] = NULL;
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-    pid_t pid;
-    double t0 = sl_now();
-    int rc = posix_spawn(&pid, "/proc/self/exe", &fa, NULL, argv, env);
-    posix_spawn_file_actions_destroy(&fa);
-    free(env);
-    if (rc)
-        return -1;
-    int st;
     struct rusage ru;
-    if (wait4(pid, &st, 0, &ru) < 0)
-        return -1;
+    double t0 = sl_now();
+    int rc = sl_bench_spawn_self(argv, env, &ru);
     s->wall_ms = 1e3 * (sl_now() - t0);
+    free(env);
     s->cpu_ms = 1e3 * ((double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
                        1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec));
     s->rss_mib = ru.ru_maxrss / 1024.0;
-    return WIFEXITED(st) && WEXITSTATUS(st) == 0 ? 0 : -1;
+    return rc == 0 ? 0 : -1;
 }
 
 static int cmp_d(const void *a, const void *b)

@@ -4,6 +4,7 @@
  * (/usr/share/assimp/models); the bad inputs are hand-made in tests/models/.
  * Counts asserted here were measured with assimp 5.2 and are properties of
  * the files (triangles, distinct positions, zero-area triangles). */
+#define _GNU_SOURCE   /* clock_gettime, pause, sched_setaffinity */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,6 +13,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <pthread.h>
+#include <sched.h>
+#include <stdatomic.h>
+#include <time.h>
+#include <unistd.h>
 #include <cmocka.h>
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
@@ -20,6 +26,7 @@
 #include "gen.h"
 #include "adjacency.h"
 #include "meshio.h"
+#include "meshio_child.h"
 
 #define MODELS "/usr/share/assimp/models"
 
@@ -410,6 +417,94 @@ static void meshio_binary_ply_and_gltf_controls(void **st)
 
 struct bad_case { const char *path; const float *xform; const char *msg; };
 
+/* A reader that blocks (no CPU: the hang the wall deadline is for) and one
+ * that works, starved: the first is stopped at the wall deadline, not much
+ * later, with the wall-clock message; the second needs 1.5 s of CPU while
+ * eight spinning threads share its one core, so it takes longer than the
+ * 11 s deadline in wall time, and must not be cut short for it (it is using
+ * CPU whenever the deadline looks). */
+static enum sl_err blocked_reader(struct sl_mesh *m, const char *path, const float xform[16],
+                                  struct sl_mesh_load_stats *s, struct sl_diag *d)
+{
+    (void)m, (void)path, (void)xform, (void)s, (void)d;
+    for (;;)
+        pause();
+    return SL_OK;   /* never reached */
+}
+
+static enum sl_err busy_reader(struct sl_mesh *m, const char *path, const float xform[16],
+                               struct sl_mesh_load_stats *s, struct sl_diag *d)
+{
+    (void)path, (void)xform, (void)s, (void)d;
+    struct timespec t0, t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t0);
+    do   /* under the CPU limit (3 s) */
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    while ((double)(t.tv_sec - t0.tv_sec) + 1e-9 * (double)(t.tv_nsec - t0.tv_nsec) < 1.5);
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    sl_gen_box(m, lo, hi);
+    return SL_OK;
+}
+
+static atomic_int spin_stop;
+
+static void *spinner(void *arg)
+{
+    (void)arg;
+    while (!atomic_load_explicit(&spin_stop, memory_order_relaxed))
+        ;
+    return NULL;
+}
+
+static double since(const struct timespec *a)
+{
+    struct timespec b;
+    clock_gettime(CLOCK_MONOTONIC, &b);
+    return (double)(b.tv_sec - a->tv_sec) + 1e-9 * (double)(b.tv_nsec - a->tv_nsec);
+}
+
+static void meshio_child_deadline_blocked_vs_busy(void **st)
+{
+    (void)st;
+    const char *path = "tests/models/empty.obj";   /* tiny: CPU limit 3 s, deadline 11 s */
+    struct sl_mesh m = {0};
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    struct timespec a;
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    assert_int_equal(sl_mesh_read_in_child(blocked_reader, path, NULL, &m, NULL, &d), SL_E_SCENE);
+    double waited = since(&a);
+    assert_non_null(strstr(d.msg, "(wall clock)"));
+    assert_true(waited >= 10.5 && waited < 22.0);   /* one deadline, no extension: no CPU was used */
+    assert_int_equal(m.nt, 0);
+
+    /* one core for this process, its threads and the child it forks */
+    cpu_set_t one, was;
+    assert_int_equal(sched_getaffinity(0, sizeof was, &was), 0);
+    CPU_ZERO(&one);
+    CPU_SET(0, &one);
+    assert_int_equal(sched_setaffinity(0, sizeof one, &one), 0);
+    pthread_t th[8];
+    atomic_store(&spin_stop, 0);
+    for (int i = 0; i < 8; i++)
+        assert_int_equal(pthread_create(&th[i], NULL, spinner, NULL), 0);
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_mesh_read_in_child(busy_reader, path, NULL, &m, NULL, &d);
+    waited = since(&a);
+    atomic_store(&spin_stop, 1);
+    for (int i = 0; i < 8; i++)
+        pthread_join(th[i], NULL);
+    sched_setaffinity(0, sizeof was, &was);
+    if (e)
+        fprintf(stderr, "busy reader: %s (after %.1f s)\n", d.msg, waited);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(m.nt, 12);
+    /* it was starved past the deadline: the case tests the extension */
+    assert_true(waited > 11.0);
+    sl_mesh_free(&m);
+}
+
 static void meshio_bad_files_fail_and_leave_mesh(void **st)
 {
     (void)st;
@@ -492,6 +587,7 @@ int main(int argc, char **argv)
         SL_CASE(meshio, stl_and_ply),
         SL_CASE(meshio, xform_and_append),
         SL_CASE(meshio, bad_files_fail_and_leave_mesh),
+        SL_CASE(meshio, child_deadline_blocked_vs_busy),
         SL_CASE(meshio, binary_ply_and_gltf_controls),
     };
     return sl_run_group(argc, argv, "meshio", tests, NULL, NULL);

@@ -11,7 +11,10 @@
  *   parent's: a crash ends it by the signal.
  * - The child is bounded in CPU time (RLIMIT_CPU), address space (RLIMIT_AS)
  *   and wall time (the parent kills it at the deadline), all scaled by the
- *   file's size, so no file can hang or exhaust the parent.
+ *   file's size, so no file can hang or exhaust the parent. The wall
+ *   deadline stops a child that is blocked; one still using CPU when it
+ *   comes is only starved by a loaded machine, and gets more time (up to 8×
+ *   the deadline; struct deadline).
  * - The pipe protocol is one header (magic, error id, diagnostic, stats,
  *   counts) and, on success, exactly nv*3 floats then nt*3 indices. The
  *   parent trusts none of it: the magic, the error id's range, the counts'
@@ -124,16 +127,60 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+/* The child's CPU time so far in clock ticks (utime + stime of
+ * /proc/PID/stat), or -1 when it cannot be read. */
+static long long child_ticks(pid_t pid)
+{
+    char path[64], buf[1024];
+    snprintf(path, sizeof path, "/proc/%d/stat", (int)pid);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = 0;
+    const char *p = strrchr(buf, ')');   /* the command name may hold spaces */
+    unsigned long long ut, stt;
+    if (!p || sscanf(p + 1, " %*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %llu %llu", &ut, &stt) != 2)
+        return -1;
+    return (long long)(ut + stt);
+}
+
+/* The wall-clock deadline of a reader. At `at`, a child that has used CPU
+ * since the last look is making progress on a loaded machine (two cores
+ * shared by a dozen processes give it a fifth of one), so the deadline moves
+ * on by `step`, up to `cap`; RLIMIT_CPU still bounds its work. A child that
+ * used none is blocked — the hang this deadline is for — and is stopped. */
+struct deadline {
+    double at, step, cap;
+    pid_t pid;
+    long long ticks;
+};
+
+static int deadline_passed(struct deadline *dl)
+{
+    double t = now_s();
+    if (t < dl->at)
+        return 0;
+    long long k = child_ticks(dl->pid);
+    if (k > dl->ticks && t + dl->step <= dl->cap) {
+        dl->ticks = k;
+        dl->at = t + dl->step;
+        return 0;
+    }
+    return 1;
+}
+
 /* Read n bytes before the deadline: 1 done, 0 end of data, -1 timeout, -2 error. */
-static int read_until(int fd, void *p, size_t n, double deadline)
+static int read_until(int fd, void *p, size_t n, struct deadline *dl)
 {
     char *c = p;
     while (n) {
-        double left = deadline - now_s();
-        if (left <= 0)
+        if (deadline_passed(dl))
             return -1;
+        double left = dl->at - now_s();
         struct pollfd pf = {.fd = fd, .events = POLLIN};
-        int k = poll(&pf, 1, (int)(left * 1000.0) + 1);
+        int k = poll(&pf, 1, left > 0 ? (int)(left * 1000.0) + 1 : 0);
         if (k < 0 && errno == EINTR)
             continue;
         if (k < 0)
@@ -199,7 +246,7 @@ enum sl_err sl_mesh_read_in_child(sl_mesh_reader_fn read, const char *path,
     struct stat sb;
     unsigned long long size = stat(path, &sb) == 0 ? (unsigned long long)sb.st_size : 0;
     unsigned cpu_s = JAIL_CPU_BASE_S + JAIL_CPU_PER_MB_S * (unsigned)(size >> 20);
-    unsigned wall_s = 2 * cpu_s + 5;   /* a loaded machine gives the child less than a core */
+    unsigned wall_s = 2 * cpu_s + 5;   /* blocked this long: stopped (struct deadline) */
     unsigned long long as = vm_size() + JAIL_AS_BASE + JAIL_AS_PER_BYTE * size;
     int fds[2];
     if (pipe(fds) != 0)
@@ -219,10 +266,12 @@ enum sl_err sl_mesh_read_in_child(sl_mesh_reader_fn read, const char *path,
         jail_child(fds[1], read, path, xform, cpu_s, as);
     }
     close(fds[1]);
-    double deadline = now_s() + wall_s;
+    double t0 = now_s();
+    struct deadline deadline = {.at = t0 + wall_s, .step = wall_s, .cap = t0 + 8.0 * wall_s, .pid = pid,
+                                .ticks = 0};
     struct jail_head h;
     struct sl_mesh got = {0};
-    int r = read_until(fds[0], &h, sizeof h, deadline), bad = 0;
+    int r = read_until(fds[0], &h, sizeof h, &deadline), bad = 0;
     enum sl_err e = SL_OK;
     if (r == 1 && h.magic != JAIL_MAGIC)
         bad = 1;
@@ -247,9 +296,9 @@ enum sl_err sl_mesh_read_in_child(sl_mesh_reader_fn read, const char *path,
             else {
                 got.nv = got.cap_v = h.nv;
                 got.nt = got.cap_t = h.nt;
-                r = read_until(fds[0], got.pos, (size_t)h.nv * 3 * sizeof(float), deadline);
+                r = read_until(fds[0], got.pos, (size_t)h.nv * 3 * sizeof(float), &deadline);
                 if (r == 1)
-                    r = read_until(fds[0], got.idx, (size_t)h.nt * 3 * sizeof(uint32_t), deadline);
+                    r = read_until(fds[0], got.idx, (size_t)h.nt * 3 * sizeof(uint32_t), &deadline);
             }
         }
     }
@@ -260,7 +309,7 @@ enum sl_err sl_mesh_read_in_child(sl_mesh_reader_fn read, const char *path,
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
         ;
     if (!e && r != 1)
-        e = jail_verdict(status, r == -1, cpu_s, wall_s, as >> 20, path, d);
+        e = jail_verdict(status, r == -1, cpu_s, (unsigned)(now_s() - t0 + 0.5), as >> 20, path, d);
     else if (!e && bad)
         e = sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "cannot read the model: the reader "
                     "handed back a malformed result");
