@@ -1,12 +1,7 @@
 /*
  * bench.c — see bench.h.
  *
- * Truth: the plain loop is what anyone would write with Embree alone: rays
- * prepared in advance as 4x4 packets, a scene with the same flags and build
- * quality but no filter function, rtcOccluded16 over the packets on the same
- * threads. The truth pass does more per ray (reads the G-buffer, skips
- * non-PFL pixels, rejects the own triangle in a filter, writes the
- * classification), and its time is measured end to end.
+ * Truth: bench_truth.c; churn: bench_churn.c; jobs: bench_jobs.c.
  *
  * Layers: each repetition renders the plain raster and then the layer, one
  * after the other, so drift of a shared VM hits both; a layer is rendered by
@@ -45,10 +40,14 @@ extern const char sl_glsl_bench_plain_fs[];
 #define GL_FRAGMENT_SHADER_INVOCATIONS_ARB 0x82F4
 #endif
 
-#define TARGET_TRUTH_RATIO   0.8     /* truth rays/s over the plain loop's, at least */
 #define TARGET_RASTER_RATIO  2.0     /* a pass's render time over the plain raster's, at most */
 #define TARGET_MODERNO_S     60.0
 #define TARGET_MORAIS_S      300.0
+/* issue 20: CPU time (user+sys), minor page faults, peak RSS; 0 = none */
+#define TARGET_MODERNO_CPU_S 12.0
+#define TARGET_MORAIS_CPU_S  90.0
+#define TARGET_MORAIS_FAULTS 500000.0
+#define TARGET_MORAIS_RSS_MIB 1024.0
 #define TARGET_RSS_MIB       2048.0
 #define TARGET_CONTEXT_MS    2000.0   /* the first context, driver loading included */
 
@@ -84,7 +83,8 @@ enum sl_err sl_bench_parse_stages(const char *list, unsigned *out, struct sl_dia
             }
         if (!found)
             return sl_fail(d, SL_E_USAGE, NULL, 0, "--only",
-                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs)", (int)n, p);
+                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs, churn, "
+                           "startup)", (int)n, p);
         p += n;
         if (*p == ',')
             p++;
@@ -128,172 +128,6 @@ struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *s
     return r;
 }
 
-/* ---- truth against a plain rtcOccluded16 loop -------------------------- */
-
-struct packets { struct RTCRay16 *r; int (*valid)[16]; int n; uint64_t rays; };
-
-static int build_packets(const struct sl_view *v, struct packets *p)
-{
-    int tx = (v->w + 3) / 4, ty = (v->h + 3) / 4;
-    p->n = tx * ty;
-    p->r = aligned_alloc(64, sizeof *p->r * (size_t)p->n);
-    p->valid = aligned_alloc(64, sizeof *p->valid * (size_t)p->n);
-    if (!p->r || !p->valid)
-        return 0;
-    p->rays = 0;
-    for (int t = 0; t < p->n; t++) {
-        int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
-        for (int k = 0; k < 16; k++) {
-            int x = x0 + (k & 3), y = y0 + (k >> 2);
-            p->valid[t][k] = 0;
-            if (x >= v->w || y >= v->h)
-                continue;
-            size_t i = (size_t)y * (size_t)v->w + (size_t)x;
-            if (v->cls[i] != SL_C_PFL)
-                continue;
-            p->valid[t][k] = -1;
-            p->rays++;
-        }
-    }
-    return 1;
-}
-
-static void reset_packets(const struct sl_view *v, const struct sl_scene *s, struct packets *p)
-{
-    int tx = (v->w + 3) / 4;
-    for (int t = 0; t < p->n; t++) {
-        int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
-        struct RTCRay16 *r = &p->r[t];
-        for (int k = 0; k < 16; k++) {
-            if (!p->valid[t][k])
-                continue;
-            size_t i = (size_t)(y0 + (k >> 2)) * (size_t)v->w + (size_t)(x0 + (k & 3));
-            const float *q = v->pos + 3 * i;
-            r->org_x[k] = q[0]; r->org_y[k] = q[1]; r->org_z[k] = q[2];
-            r->tnear[k] = sl_rt_tnear(q);
-            r->dir_x[k] = -s->light_dir[0]; r->dir_y[k] = -s->light_dir[1]; r->dir_z[k] = -s->light_dir[2];
-            r->time[k] = 0.0f;
-            r->tfar[k] = INFINITY;
-            r->mask[k] = 0xffffffffu;
-            r->id[k] = v->tri[i];
-            r->flags[k] = 0;
-        }
-    }
-}
-
-static double plain_loop(const struct sl_rt *rt, struct packets *p)
-{
-    double t0 = sl_now();
-#pragma omp parallel num_threads(rt->threads)
-    {
-        sl_rt_thread_init();
-        struct RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-#pragma omp for schedule(dynamic, 4)
-        for (int t = 0; t < p->n; t++)
-            rtcOccluded16(p->valid[t], rt->scene, &ctx, &p->r[t]);
-    }
-    return sl_now() - t0;
-}
-
-/* What the truth and layer stages work on. */
-struct bench_ctx {
-    struct sl_scene s;
-    int nvp;
-    int vp[SL_MAX_VIEWPOINTS];
-    int W, H, S, threads, reps;
-    struct sl_gl gl;
-    struct sl_gl_mesh mesh;
-    struct sl_gbuffer_pass gp;
-    FILE *out;
-};
-
-static enum sl_err bench_truth(struct bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
-{
-    struct sl_rt rt = {0}, plain = {0};
-    enum sl_err e;
-    if ((e = sl_rt_build(&rt, &x->s, x->threads, 1, d)) || (e = sl_rt_build(&plain, &x->s, x->threads, 0, d))) {
-        sl_rt_free(&rt);
-        return e;
-    }
-    FILE *out = x->out;
-    int reps = x->reps;
-    fprintf(out, "## Truth pass vs a plain rtcOccluded16 loop over the same rays (%s, median of %d after a "
-                 "warm-up, Embree %s)\n\n", x->s.name, reps, rt.version);
-    fprintf(out, "| viewpoint | viewport | rays | truth ms | truth Mrays/s | plain ms | plain Mrays/s | ratio |\n");
-    fprintf(out, "|---|---|---:|---:|---:|---:|---:|---:|\n");
-    double sum_truth = 0, sum_plain = 0;
-    uint64_t sum_rays = 0;
-    char notes[128] = "";
-    for (int vi = 0; vi < x->nvp && !e; vi++) {
-        int vp = x->vp[vi];
-        struct sl_view v;
-        if ((e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, x->W, x->H, &v, NULL, NULL, NULL, d)))
-            break;
-        struct packets pk = {0};
-        double *tt = calloc((size_t)reps, sizeof *tt), *tp = calloc((size_t)reps, sizeof *tp);
-        if (!build_packets(&v, &pk) || !tt || !tp) {
-            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "ray packets");
-        }
-        uint64_t rays = 0;
-        for (int r = -1; r < reps && !e; r++) {
-            /* the truth pass reclassifies from the G-buffer each time */
-            struct sl_truth_stats ts;
-            e = sl_truth_trace(&rt, &x->s, &v, &ts, d);
-            rays = ts.rays;
-            reset_packets(&v, &x->s, &pk);
-            double pl = plain_loop(&plain, &pk);
-            if (r >= 0) {
-                tt[r] = ts.ms_trace * 1e-3;
-                tp[r] = pl;
-            }
-        }
-        if (!e) {
-            /* the same rays must give the same answers: count the plain
-             * loop's occluded rays against the truth's shadowed pixels */
-            uint64_t plain_occ = 0;
-            for (int t = 0; t < pk.n; t++)
-                for (int k = 0; k < 16; k++)
-                    plain_occ += pk.valid[t][k] && pk.r[t].tfar[k] == -INFINITY;
-            if (plain_occ != v.n_shadow) {
-                size_t len = strlen(notes);
-                snprintf(notes + len, sizeof notes - len, "%s%s: plain +%lld occluded", len ? "; " : "",
-                         x->s.vp[vp].name, (long long)plain_occ - (long long)v.n_shadow);
-            }
-            double mt = median(tt, reps), mpl = median(tp, reps);
-            fprintf(out, "| %s | %dx%d | %llu | %.2f | %.1f | %.2f | %.1f | %.2f |\n", x->s.vp[vp].name, x->W,
-                    x->H, (unsigned long long)rays, 1e3 * mt, rays / mt * 1e-6, 1e3 * mpl,
-                    pk.rays / mpl * 1e-6, (rays / mt) / (pk.rays / mpl));
-            sum_truth += mt;
-            sum_plain += mpl;
-            sum_rays += rays;
-        }
-        free(tt);
-        free(tp);
-        free(pk.r);
-        free(pk.valid);
-        sl_view_free(&v);
-    }
-    if (!e) {
-        fprintf(out, "| **all** | | %llu | %.2f | %.1f | %.2f | %.1f | **%.2f** |\n\n",
-                (unsigned long long)sum_rays, 1e3 * sum_truth, sum_rays / sum_truth * 1e-6,
-                1e3 * sum_plain, sum_rays / sum_plain * 1e-6, sum_plain / sum_truth);
-        if (notes[0])
-            fprintf(out, "Occluded rays the plain loop counts beyond the truth's shadowed pixels (rays "
-                         "crossing their own triangle beyond tnear, which the truth's filter rejects): %s\n\n",
-                    notes);
-        struct sl_bench_row *row = sl_bench_add_row(res, "truth", "Mrays/s", sum_rays / sum_truth * 1e-6,
-                                           sum_rays / sum_plain * 1e-6, TARGET_TRUTH_RATIO, SL_BENCH_AT_LEAST);
-        if (row) {
-            snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d", x->s.name, x->nvp, x->W, x->H);
-            snprintf(row->note, sizeof row->note, "%llu rays", (unsigned long long)sum_rays);
-        }
-    }
-    sl_rt_free(&plain);
-    sl_rt_free(&rt);
-    return e;
-}
 
 /* ---- layers and the G-buffer against a plain raster --------------------- */
 
@@ -380,7 +214,7 @@ static void layer_row(struct sl_bench_result *res, FILE *out, const char *stage,
     }
 }
 
-static enum sl_err bench_layers(struct bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
+static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
 {
     FILE *out = x->out;
     int reps = x->reps, W = x->W, H = x->H, S = x->S, vp = x->vp[0];
@@ -522,7 +356,7 @@ out:
 
 struct bk_rep { double wall[BK_NSTAGES], cpu[BK_NSTAGES], gpu[BK_NSTAGES]; };
 
-static enum sl_err backend_rep(const struct bench_ctx *x, const struct sl_adjacency *adj, enum sl_gl_backend b,
+static enum sl_err backend_rep(const struct sl_bench_ctx *x, const struct sl_adjacency *adj, enum sl_gl_backend b,
                                struct bk_rep *out, struct sl_diag *d)
 {
     struct sl_gl gl;
@@ -607,7 +441,7 @@ static double min_of(const double *v, int n)
     return m;
 }
 
-static enum sl_err bench_backends(struct bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
+static enum sl_err bench_backends(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
 {
     FILE *out = x->out;
     if (!sl_gl_backend_built(SL_GL_OSMESA) || !sl_gl_backend_built(SL_GL_EGL)) {
@@ -705,8 +539,8 @@ out:
 
 /* ---- whole studies -------------------------------------------------------- */
 
-static enum sl_err bench_study(const char *path, const char *label, double target_s, enum sl_gl_backend gl,
-                               FILE *out, struct sl_bench_result *res, struct sl_diag *d)
+static enum sl_err bench_study(const char *path, const char *label, double target_s, const double tgt[3],
+                               enum sl_gl_backend gl, FILE *out, struct sl_bench_result *res, struct sl_diag *d)
 {
     struct sl_config c;
     enum sl_err e = sl_config_load(path, &c, d);
@@ -716,10 +550,17 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
         c.gl = gl;
     struct sl_run_opts ro = {.out_root = NULL, .table_out = NULL, .write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result rr;
-    double t0 = sl_now();
+    struct rusage ru0, ru1;
+    getrusage(RUSAGE_SELF, &ru0);
+    double t0 = sl_now(), c0 = cpu_now();
     if ((e = sl_run(&c, &ro, &rr, d)))
         return e;
-    double wall = sl_now() - t0;
+    double wall = sl_now() - t0, cpu = cpu_now() - c0;
+    getrusage(RUSAGE_SELF, &ru1);
+    /* {CPU s, minor faults, peak RSS MiB} against tgt (0: no target, not a row) */
+    const double got[3] = {cpu, (double)(ru1.ru_minflt - ru0.ru_minflt), ru1.ru_maxrss / 1024.0};
+    static const char *const what[3][2] = {{"CPU (user+sys)", "s"}, {"minor page faults", "faults"},
+                                           {"peak RSS of the process so far", "MiB"}};
     uint64_t viol = 0, rays = 0;
     double ms_method = 0;
     for (int i = 0; i < rr.ncells; i++) {
@@ -733,7 +574,8 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
     int layers = 0;
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         layers += rr.passes.layers[l];
-    fprintf(out, "## Study %s (%s): %d cells, %.1f s\n\n", c.name, path, rr.ncells, wall);
+    fprintf(out, "## Study %s (%s): %d cells, %.1f s wall, %.1f s CPU (user+sys), %.0f minor page faults, "
+                 "peak RSS %.0f MiB\n\n", c.name, path, rr.ncells, wall, got[0], got[1], got[2]);
     fprintf(out, "No files, no store, no truth cache; %d threads. Scenes loaded %d (load %.0f ms, BVH %.0f ms), "
                  "G-buffers %d, truths traced %d (%llu rays), layer renders %d",
             c.threads, rr.passes.scenes, rr.ms_scene, rr.ms_bvh, rr.passes.gbuffers, rr.passes.truths_traced,
@@ -748,6 +590,9 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
     struct sl_bench_row *row = sl_bench_add_row(res, "study", "s", wall, 0, target_s, SL_BENCH_AT_MOST);
     if (row)
         snprintf(row->name, sizeof row->name, "%s, %d cells, wall", label, rr.ncells);
+    for (int k = 0; k < 3; k++)
+        if (tgt[k] > 0 && (row = sl_bench_add_row(res, "study", what[k][1], got[k], 0, tgt[k], SL_BENCH_AT_MOST)))
+            snprintf(row->name, sizeof row->name, "%s, %s", label, what[k][0]);
     /* not a speed, but a fast layer that loses exactness is no gain */
     row = sl_bench_add_row(res, "study", "pixels", (double)viol, 0, 0, SL_BENCH_AT_MOST);
     if (row)
@@ -818,7 +663,7 @@ static void loadavg(char *buf, size_t n)
     fclose(f);
 }
 
-static enum sl_err setup(const struct sl_bench_opts *o, struct bench_ctx *x, struct sl_diag *d)
+static enum sl_err setup(const struct sl_bench_opts *o, struct sl_bench_ctx *x, struct sl_diag *d)
 {
     struct sl_config c;
     int have_cfg = o->config != NULL;
@@ -856,11 +701,12 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     struct sl_bench_result *res = sl_calloc(1, sizeof *res);
     if (!res)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "bench rows");
-    struct bench_ctx x;
+    struct sl_bench_ctx x;
     memset(&x, 0, sizeof x);
     x.out = out;
     enum sl_err e = SL_OK;
-    int need_scene = (stages & (SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS) | SL_BENCH_STAGE(BACKENDS))) != 0;
+    int need_scene = (stages & (SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS) | SL_BENCH_STAGE(BACKENDS) |
+                                SL_BENCH_STAGE(CHURN))) != 0;
 
     /* start-up first, while this process has loaded nothing heavy (its own
      * RSS is the floor of its children's; bench_startup.c); its table is
@@ -910,10 +756,13 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
             (e = sl_gbuffer_init(&x.gp, &x.s, d)))
             goto done;
         if (stages & SL_BENCH_STAGE(TRUTH))
-            e = bench_truth(&x, res, d);
+            e = sl_bench_truth(&x, res, d);
         fflush(out);
         if (!e && (stages & SL_BENCH_STAGE(LAYERS)))
             e = bench_layers(&x, res, d);
+        fflush(out);
+        if (!e && (stages & SL_BENCH_STAGE(CHURN)))
+            e = sl_bench_churn(&x.s, &x.mesh, &x.gp, x.vp[0], x.W, x.H, x.S, x.reps, out, res, d);
         fflush(out);
         sl_gbuffer_free(&x.gp);
         sl_gl_mesh_free(&x.mesh);
@@ -927,13 +776,14 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     }
     if (stages & SL_BENCH_STAGE(MODERNO)) {
         e = bench_study(o->moderno ? o->moderno : "configs/moderno-2011.yaml", "moderno-2011", TARGET_MODERNO_S,
-                        o->gl, out, res, d);
+                        (const double[3]){TARGET_MODERNO_CPU_S, 0, 0}, o->gl, out, res, d);
         fflush(out);
         if (e)
             goto done;
     }
     if (stages & SL_BENCH_STAGE(MORAIS)) {
-        e = bench_study(o->morais ? o->morais : "configs/morais-2015.yaml", "morais-2015", TARGET_MORAIS_S, o->gl,
+        e = bench_study(o->morais ? o->morais : "configs/morais-2015.yaml", "morais-2015", TARGET_MORAIS_S,
+                        (const double[3]){TARGET_MORAIS_CPU_S, TARGET_MORAIS_FAULTS, TARGET_MORAIS_RSS_MIB}, o->gl,
                         out, res, d);
         fflush(out);
         if (e)

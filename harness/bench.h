@@ -22,6 +22,14 @@
  *   against `run --jobs 2`, both with files, store and no truth cache, wall
  *   and CPU time, the views the split computes twice and the merge time per
  *   1,000 cells (target: --jobs 2 no slower than one process; bench_jobs.c);
+ * - churn: NSM's layer at the map size S and 2S (2048^2, 4096^2) through the pass's kept render
+ *   target and pooled arrays against a target and arrays made afresh, wall,
+ *   CPU and minor page faults (target: 2S at most 5x S;
+ *   bench_churn.c);
+ * - the studies' CPU time (user + sys), minor page faults and the peak RSS
+ *   after each (targets: Moderno 12 s CPU; Morais 90 s CPU, 0.5 M faults,
+ *   1 GiB; the RSS is the process's peak so far: run a study alone to read
+ *   it as the study's);
  * - startup: `version`, `validate CONFIG` (default configs/default.yaml) and
  *   `help run` as child processes, against the same binary with OpenImageIO,
  *   OSMesa, EGL and Embree preloaded as when they were linked (target:
@@ -49,6 +57,7 @@
     X(MODERNO, "moderno")    \
     X(MORAIS,  "morais")     \
     X(JOBS,    "jobs")       \
+    X(CHURN,   "churn")      \
     X(STARTUP, "startup")
 
 enum sl_bench_stage_bit {

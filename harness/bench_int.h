@@ -3,6 +3,25 @@
 /* bench_int.h — what bench.c shares with the stages kept in their own files
  * (bench_jobs.c, bench_startup.c): a row against its target, and those stages. */
 #include "bench.h"
+#include "gbuffer.h"
+
+/* issue 20: the truth at 0.9x a plain loop's rays/s, at least */
+#define SL_BENCH_TARGET_TRUTH_RATIO 0.9
+
+/* What the truth, layer and churn stages work on. */
+struct sl_bench_ctx {
+    struct sl_scene s;
+    int nvp;
+    int vp[SL_MAX_VIEWPOINTS];
+    int W, H, S, threads, reps;
+    struct sl_gl gl;
+    struct sl_gl_mesh mesh;
+    struct sl_gbuffer_pass gp;
+    FILE *out;
+};
+
+/* The truth pass against a plain rtcOccluded16 loop (bench_truth.c). */
+enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 
 struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *stage, const char *unit,
                                       double value, double plain, double target, enum sl_bench_cmp cmp);
@@ -10,6 +29,11 @@ struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *s
 /* One study as one process against `run --jobs 2` (bench_jobs.c). */
 enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, struct sl_bench_result *res,
                           struct sl_diag *d);
+
+/* NSM's layer kept vs made afresh (bench_churn.c). */
+enum sl_err sl_bench_churn(const struct sl_scene *s, const struct sl_gl_mesh *m, struct sl_gbuffer_pass *gp,
+                           int vp, int W, int H, int S, int reps, FILE *out, struct sl_bench_result *res,
+                           struct sl_diag *d);
 
 /* This binary (/proc/self/exe) run with argv and envp, its output to
  * /dev/null; its exit status (128 + signal when killed), -1 when it could

@@ -170,17 +170,9 @@ static void ctx_free(struct run_ctx *x)
 {
     free_nsm(x);
     drop_scene(x);
-    free(x->state);
-    free(x->band);
-    free(x->rgb);
-    free(x->vd.v);
-    free(x->vd.how);
-    free(x->vd.base);
-    free(x->vd.detail);
-    free(x->vd.tests); free(x->vd.vis);
+    free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
+    free(x->vd.detail); free(x->vd.tests); free(x->vd.vis); free(x->soft_truth); free(x->soft_se);
     sl_verdicts_drop_frames(&x->vd);
-    free(x->soft_truth);
-    free(x->soft_se);
     free(x->receivers);
     sl_temporal_free(&x->temporal);
     sl_softmap_nbuf_free(&x->nbuf);
@@ -246,11 +238,8 @@ static enum sl_err ensure_buffers(struct run_ctx *x, int W, int H, struct sl_dia
         return SL_OK;
     size_t npx = (size_t)W * (size_t)H;
     free(x->state); free(x->band); free(x->rgb); free(x->vd.v); free(x->vd.how); free(x->vd.base);
-    free(x->vd.detail);
-    free(x->vd.tests); free(x->vd.vis);
+    free(x->vd.detail); free(x->vd.tests); free(x->vd.vis); free(x->soft_truth); free(x->soft_se);
     sl_verdicts_drop_frames(&x->vd);
-    free(x->soft_truth);
-    free(x->soft_se);
     x->vd.vis = sl_calloc(npx, sizeof(float));
     x->soft_truth = sl_calloc(npx, sizeof(float));
     x->soft_se = sl_calloc(npx, sizeof(float));
@@ -413,11 +402,19 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
                                 unsigned needs, struct sl_run_result *res, struct sl_diag *d)
 {
     needs &= (1u << SL_LAYER_COUNT) - 1u;   /* the frame's layers; adjacency is per scene */
-    if (x->frame_map == k->map && (x->frame.have & needs) == needs)
+    /* lazily: the layers this cell reads (BGSM2 reads BGSM) and the contour's, after giving back
+     * those no remaining cell of the group reads: a view holds what its methods read at once */
+    unsigned now = c->methods[k->method].method->needs(&c->methods[k->method].params);
+    now = needs & (now | SL_NEED(SL_LAYER_DEPTH_ID_BACK) | (now & SL_NEED(SL_LAYER_BGSM2) ? SL_NEED(SL_LAYER_BGSM) : 0));
+    for (int l = 0; l < SL_LAYER_COUNT && x->frame_map == k->map; l++)
+        if (x->frame.have & ~needs & SL_NEED(l))
+            sl_frame_drop_layer(&x->frame, l);
+    if (x->frame_map == k->map && (x->frame.have & now) == now)
         return SL_OK;
     if (x->frame_map != k->map) {
         drop_frame(x);
         memset(&x->frame, 0, sizeof x->frame);
+        x->frame.pool = &x->spass.pool;   /* arrays reused across layers, frames, views */
         x->frame.size = c->maps[k->map];
         memcpy(x->frame.dir, x->scene.light_dir, sizeof x->frame.dir);
         x->frame.box = x->box;
@@ -427,7 +424,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         x->frame_map = k->map;
     }
     unsigned before = x->frame.have;
-    enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, needs, d);
+    enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, now, d);
     int reps = c->warmup + c->runs;
     for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
         if (!((x->frame.have & ~before) & SL_NEED(l)))
@@ -446,8 +443,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
             e = sl_shadowmap_render(&x->spass, &x->mesh, &again, SL_NEED(l), d);
             times[r] = again.layer[l].ms_render;
             gpu[r] = again.layer[l].ms_gpu;
-            free(again.layer[l].depth);
-            free(again.layer[l].id);
+            sl_frame_drop_layer(&again, l);   /* back to the pool for the next repetition */
         }
         if (!e) {
             med_min_max(times + c->warmup, c->runs, x->layer_ms[l]);
@@ -746,7 +742,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         const int nsm_contour = c->contour_from == SL_CONTOUR_NSM &&
                                 !(c->methods[k.method].method->lights & SL_LIGHTS_AREA);
         const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume) |
-                               (nsm_contour ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
+                               (nsm_contour && x.nsm_map != k.map ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
         if ((e = ensure_frame(&x, c, &k, needs, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
             (nsm_contour && (e = ensure_contour(&x, c, &k, res, d))))
             break;

@@ -37,7 +37,7 @@ static int same_box(const struct sl_light_frame *f, const struct sl_light_box *b
            memcmp(f->box.hi, b->hi, sizeof b->hi) == 0 && memcmp(f->dir, dir, sizeof f->dir) == 0;
 }
 
-enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, const struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
+enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
                              const struct sl_scene *s, const struct sl_view *v, int map, int size,
                              const struct sl_fit_opts *o, unsigned needs, struct sl_light_frame **out, int *layers,
                              struct sl_diag *d)

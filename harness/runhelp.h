@@ -41,7 +41,7 @@ struct sl_alt_frames {
 };
 /* *out: the frame of (map, fit o) of view v, with the layers in needs;
  * layers[l] counts each layer rendered. */
-enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, const struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
+enum sl_err sl_run_alt_frame(struct sl_alt_frames *a, struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
                              const struct sl_scene *s, const struct sl_view *v, int map, int size,
                              const struct sl_fit_opts *o, unsigned needs, struct sl_light_frame **out, int *layers,
                              struct sl_diag *d);

@@ -188,7 +188,7 @@ struct sl_method_args {
     uint32_t                       seed;     /* the config's seed, for methods that sample */
     /* the shadow-map pass and the scene's GL mesh, for a method that
      * renders frames of its own (zpart, lispsm); NULL where none can */
-    const struct sl_shadowmap_pass *spass;
+    struct sl_shadowmap_pass *spass;   /* not const: the pass keeps its targets (shadowmap.h) */
     const struct sl_gl_mesh        *mesh;
     int                            threads;
 };

@@ -28,14 +28,14 @@ static void bench_parse_stages(void **st)
     assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,morais", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(LAYERS) |
                                SL_BENCH_STAGE(MORAIS));
-    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,startup", &bits, &d), SL_OK);
-    assert_int_equal(bits, SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(LAYERS) |
-                               SL_BENCH_STAGE(BACKENDS) | SL_BENCH_STAGE(MORAIS) | SL_BENCH_STAGE(JOBS) |
-                               SL_BENCH_STAGE(STARTUP));
+    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,startup", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_ALL);
     assert_int_equal(sl_bench_parse_stages("startup", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(STARTUP));
     assert_int_equal(sl_bench_parse_stages("jobs", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(JOBS));
+    assert_int_equal(sl_bench_parse_stages("churn", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(CHURN));
     assert_int_equal(sl_bench_parse_stages("truth,layer", &bits, &d), SL_E_USAGE);
     assert_non_null(strstr(d.msg, "'layer'"));
     assert_int_equal(sl_bench_parse_stages("", &bits, &d), SL_E_USAGE);
@@ -70,11 +70,17 @@ static void bench_quick_mode_rows(void **st)
         fprintf(stderr, "bench: %s\n", d.msg);
     assert_int_equal(e, SL_OK);
 
-    /* truth, G-buffer, six layers, memory, the first context; no study asked for */
+    /* truth (wall; one thread's CPU), G-buffer, six layers, memory, the
+     * first context; no study asked for */
     static const char *const want[] = {"depth_id 256²", "depth_id_back 256²", "bgsm 256²", "bgsm2 256²",
                                        "sgsm 256²", "sgsm_adj 256²"};
-    assert_int_equal(r.nrows, 1 + 1 + 6 + 1 + 1);
+    assert_int_equal(r.nrows, 2 + 1 + 6 + 1 + 1);
     assert_string_equal(r.rows[0].stage, "truth");
+    assert_string_equal(r.rows[1].stage, "truth");
+    assert_string_equal(r.rows[1].name, "truth, 1 thread, CPU time");
+    /* drop the second truth row: the rest keep the places they had */
+    memmove(&r.rows[1], &r.rows[2], sizeof r.rows[0] * (size_t)(r.nrows - 2));
+    r.nrows--;
     assert_string_equal(r.rows[1].stage, "gbuffer");
     assert_string_equal(r.rows[1].name, "gbuffer 128x96");
     for (int i = 0; i < 6; i++) {
@@ -119,8 +125,41 @@ static void bench_quick_mode_rows(void **st)
     int lines = 0;
     for (const char *p = text; *p; p++)
         lines += *p == '\n';
-    assert_int_equal(lines, 1 + r.nrows);
+    assert_int_equal(lines, 1 + r.nrows + 1);   /* + the second truth row */
     assert_non_null(strstr(text, ",layer,\"bgsm2 256²\",ms,"));
+}
+
+/* The churn stage: NSM's layer at S and 2S kept and made afresh, three
+ * rows (both ratios 2S / S, CPU kept / fresh), each against its plain
+ * counterpart, with the sizes in their names and the table printed. */
+static void bench_churn_rows(void **st)
+{
+    (void)st;
+    char md[300];
+    snprintf(md, sizeof md, "%s/churn.md", sl_test_dir);
+    FILE *out = fopen(md, "w");
+    assert_non_null(out);
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(CHURN), .reps = 3, .scene = "blocks", .width = 64,
+                              .height = 64, .map = 256, .out = out};
+    struct sl_bench_result r;
+    struct sl_diag d;
+    enum sl_err e = sl_bench(&o, &r, &d);
+    fclose(out);
+    if (e)
+        fprintf(stderr, "bench: %s\n", d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(r.nrows, 3 + 2);   /* + memory, context */
+    assert_string_equal(r.rows[0].name, "NSM layer 512² / 256², kept");
+    assert_string_equal(r.rows[1].name, "NSM layer 512² / 256², fresh (as before)");
+    assert_string_equal(r.rows[2].name, "NSM layer 512², CPU kept / fresh");
+    for (int i = 0; i < 3; i++) {
+        assert_string_equal(r.rows[i].stage, "churn");
+        assert_true(r.rows[i].plain > 0 && isfinite(r.rows[i].value));
+        assert_true(fabs(r.rows[i].ratio - r.rows[i].value / r.rows[i].plain) < 1e-9 * r.rows[i].ratio);
+    }
+    const char *text = slurp(md);
+    assert_non_null(strstr(text, "| 256² | kept |"));
+    assert_non_null(strstr(text, "| 512² | fresh |"));
 }
 
 /* OSMesa and EGL side by side: a row per stage (context, G-buffer, the six
@@ -166,6 +205,7 @@ int main(int argc, char **argv)
         SL_CASE(bench, parse_stages),
         SL_CASE(bench, quick_mode_rows),
         SL_CASE(bench, backends_rows),
+        SL_CASE(bench, churn_rows),
     };
     return sl_run_group(argc, argv, "bench", tests, sl_test_setup, sl_test_teardown);
 }

@@ -1,10 +1,13 @@
 /*
- * frame.c — see frame.h: a frame's rays toward the light and the frees.
+ * frame.c — see frame.h: a frame's rays toward the light, the layer-array
+ * pool and the frees.
  */
+#define _GNU_SOURCE
 #include "frame.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include "arealight.h"
 
 void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir[3], float *tmax)
@@ -20,14 +23,105 @@ void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir
     }
 }
 
+/* Arrays from 4 MiB up are aligned to the 2 MiB of a huge page and advised
+ * as such; smaller ones are not worth a huge page's zeroing. */
+#define HUGE_FROM ((size_t)4 << 20)
+#define HUGE_ALIGN ((size_t)2 << 20)
+
+static void *pool_alloc(size_t bytes)
+{
+    if (bytes < HUGE_FROM)
+        return malloc(bytes);
+    void *p = NULL;
+    size_t n = (bytes + HUGE_ALIGN - 1) & ~(HUGE_ALIGN - 1);
+    if (posix_memalign(&p, HUGE_ALIGN, n))
+        return NULL;
+#ifdef MADV_HUGEPAGE
+    madvise(p, n, MADV_HUGEPAGE);   /* advice only: a kernel without THP ignores it */
+#endif
+    return p;
+}
+
+void *sl_layer_pool_get(struct sl_layer_pool *p, size_t bytes)
+{
+    if (!bytes)
+        bytes = 1;
+    /* the smallest idle array that is large enough */
+    int best = -1, small = -1;
+    for (int i = 0; i < p->n; i++) {
+        if (p->slot[i].busy)
+            continue;
+        if (p->slot[i].bytes >= bytes) {
+            if (best < 0 || p->slot[i].bytes < p->slot[best].bytes)
+                best = i;
+        } else if (small < 0 || p->slot[i].bytes < p->slot[small].bytes) {
+            small = i;
+        }
+    }
+    if (best >= 0) {
+        p->slot[best].busy = 1;
+        return p->slot[best].p;
+    }
+    /* none: replace an idle one that is too small, else take a new slot */
+    int s = small >= 0 ? small : p->n < SL_POOL_SLOTS ? p->n : -1;
+    void *a = pool_alloc(bytes);
+    if (!a)
+        return NULL;
+    p->allocs++;
+    if (s < 0)
+        return a;   /* every slot busy: an array outside the pool, freed on return */
+    if (s == p->n)
+        p->n++;
+    else {
+        free(p->slot[s].p);
+        p->bytes -= p->slot[s].bytes;
+    }
+    p->slot[s].p = a;
+    p->slot[s].bytes = bytes;
+    p->slot[s].busy = 1;
+    p->bytes += bytes;
+    return a;
+}
+
+void sl_layer_pool_put(struct sl_layer_pool *p, void *ptr)
+{
+    if (!ptr)
+        return;
+    for (int i = 0; i < p->n; i++)
+        if (p->slot[i].p == ptr) {
+            p->slot[i].busy = 0;
+            return;
+        }
+    free(ptr);
+}
+
+void sl_layer_pool_free(struct sl_layer_pool *p)
+{
+    for (int i = 0; i < p->n; i++)
+        free(p->slot[i].p);
+    memset(p, 0, sizeof *p);
+}
+
+void sl_frame_drop_layer(struct sl_light_frame *f, int l)
+{
+    struct sl_depth_layer *L = &f->layer[l];
+    if (f->pool) {
+        sl_layer_pool_put(f->pool, L->depth);
+        sl_layer_pool_put(f->pool, L->id);
+    } else {
+        free(L->depth);
+        free(L->id);
+    }
+    memset(L, 0, sizeof *L);
+    f->have &= ~SL_NEED(l);
+}
+
 void sl_frame_free(struct sl_light_frame *f)
 {
     if (!f)
         return;
-    for (int i = 0; i < SL_LAYER_COUNT; i++) {
-        free(f->layer[i].depth);
-        free(f->layer[i].id);
-    }
+    for (int i = 0; i < SL_LAYER_COUNT; i++)
+        sl_frame_drop_layer(f, i);
     memset(f, 0, sizeof *f);
 }
 

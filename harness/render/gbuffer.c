@@ -36,13 +36,56 @@ enum sl_err sl_gbuffer_init(struct sl_gbuffer_pass *p, const struct sl_scene *s,
     return p->prog ? SL_OK : SL_E_GL;
 }
 
+static void target_free(struct sl_gbuffer_pass *p)
+{
+    if (p->w) {
+        glDeleteFramebuffers(1, &p->fbo);
+        glDeleteTextures(2, p->tex);
+        glDeleteRenderbuffers(1, &p->depth);
+    }
+    free(p->rgba);
+    p->rgba = NULL;
+    p->w = p->h = 0;
+    p->fbo = p->tex[0] = p->tex[1] = p->depth = 0;
+}
+
 void sl_gbuffer_free(struct sl_gbuffer_pass *p)
 {
+    target_free(p);
     if (p->prog) glDeleteProgram(p->prog);
     memset(p, 0, sizeof *p);
 }
 
-enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_gl_mesh *m,
+/* The target at w x h: the kept one, or made (the old one freed). */
+static enum sl_err target_get(struct sl_gbuffer_pass *p, int w, int h, struct sl_diag *d)
+{
+    if (p->w == w && p->h == h)
+        return SL_OK;
+    target_free(p);
+    p->rgba = malloc((size_t)w * (size_t)h * 4 * sizeof(float));
+    if (!p->rgba)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "G-buffer %dx%d", w, h);
+    p->w = w;
+    p->h = h;
+    glCreateFramebuffers(1, &p->fbo);
+    glCreateTextures(GL_TEXTURE_2D, 2, p->tex);
+    glTextureStorage2D(p->tex[0], 1, GL_RGBA32F, w, h);
+    glTextureStorage2D(p->tex[1], 1, GL_R32UI, w, h);
+    glCreateRenderbuffers(1, &p->depth);
+    glNamedRenderbufferStorage(p->depth, GL_DEPTH_COMPONENT32F, w, h);
+    for (int i = 0; i < 2; i++)
+        glNamedFramebufferTexture(p->fbo, GL_COLOR_ATTACHMENT0 + (GLenum)i, p->tex[i], 0);
+    glNamedFramebufferRenderbuffer(p->fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth);
+    const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(p->fbo, 2, bufs);
+    if (glCheckNamedFramebufferStatus(p->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        target_free(p);
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "G-buffer framebuffer incomplete");
+    }
+    return SL_OK;
+}
+
+enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh *m,
                               const struct sl_scene *s, int vp, int w, int h,
                               struct sl_view *v, double *ms_render, double *ms_readback,
                               double *ms_gpu, struct sl_diag *d)
@@ -52,14 +95,12 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
     v->h = h;
     v->vp = vp;
     size_t n = (size_t)w * (size_t)h;
-    float *rgba_pos = sl_calloc(n * 4, sizeof(float));
     v->pos = sl_calloc(n * 3, sizeof(float));
     v->nrm = sl_calloc(n * 3, sizeof(float));
     v->tri = sl_calloc(n, sizeof(uint32_t));
     v->cls = sl_calloc(n, 1);
     v->truth = sl_calloc(n, 1);
-    if (!rgba_pos || !v->pos || !v->nrm || !v->tri || !v->cls || !v->truth) {
-        free(rgba_pos);
+    if (!v->pos || !v->nrm || !v->tri || !v->cls || !v->truth) {
         sl_view_free(v);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "G-buffer %dx%d", w, h);
     }
@@ -67,22 +108,12 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
     mat4 vpm;
     glm_mat4_mul(v->proj, v->view, vpm);
 
+    /* the target's making is timed with the render, as when each render
+     * made its own: the first of a size pays for it */
     double t0 = sl_now();
-    GLuint fbo, tex[2], depth;
-    glCreateFramebuffers(1, &fbo);
-    glCreateTextures(GL_TEXTURE_2D, 2, tex);
-    glTextureStorage2D(tex[0], 1, GL_RGBA32F, w, h);
-    glTextureStorage2D(tex[1], 1, GL_R32UI, w, h);
-    glCreateRenderbuffers(1, &depth);
-    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, w, h);
-    for (int i = 0; i < 2; i++)
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + (GLenum)i, tex[i], 0);
-    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fbo, 2, bufs);
-    enum sl_err e = SL_OK;
-    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "G-buffer framebuffer incomplete");
+    enum sl_err e = target_get(p, w, h, d);
+    const GLuint fbo = p->fbo;
+    float *rgba_pos = p->rgba;
     if (!e) {
         const float zero4[4] = {0, 0, 0, 0};
         const GLuint zero_u[4] = {0, 0, 0, 0};
@@ -105,8 +136,8 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
         sl_gl_timer_end(&gt);
         glFinish();
         double t1 = sl_now();
-        glGetTextureImage(tex[0], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba_pos);
-        glGetTextureImage(tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), v->tri);
+        glGetTextureImage(p->tex[0], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba_pos);
+        glGetTextureImage(p->tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), v->tri);
         double t2 = sl_now();
         double gpu = sl_gl_timer_ms(&gt, 1e3 * (t1 - t0));   /* after the readback: no extra wait */
         if (ms_gpu) *ms_gpu = gpu;
@@ -115,9 +146,6 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         e = sl_gl_check("G-buffer pass", d);
     }
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(2, tex);
-    glDeleteRenderbuffers(1, &depth);
 
     if (!e) {
         const float *L = s->light_dir;
@@ -155,7 +183,6 @@ enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_g
             }
         }
     }
-    free(rgba_pos);
     if (e)
         sl_view_free(v);
     return e;

@@ -14,8 +14,15 @@
 #include "glctx.h"
 #include "view.h"
 
+/* Owns its program, and its framebuffer, textures and readback array for
+ * the last viewport size, kept from one render to the next (a new texture
+ * is zeroed by llvmpipe in fresh memory; a new 1920x1080 RGBA32F readback
+ * array is 33 MB of page faults). */
 struct sl_gbuffer_pass {
     GLuint prog;
+    int    w, h;                /* size of the kept target; 0 none */
+    GLuint fbo, tex[2], depth;
+    float *rgba;                /* w*h*4 readback of the positions */
 };
 
 enum sl_err sl_gbuffer_init(struct sl_gbuffer_pass *p, const struct sl_scene *s, struct sl_diag *d);
@@ -25,7 +32,7 @@ void        sl_gbuffer_free(struct sl_gbuffer_pass *p);
  * SL_T_BACKGROUND / SL_T_PNFL, and SL_T_LIT for PFL pixels until truth.c
  * traces them). Times in ms go to *ms_render and *ms_readback (wall) and
  * *ms_gpu (GL_TIME_ELAPSED of the clears and the draw) when not NULL. */
-enum sl_err sl_gbuffer_render(const struct sl_gbuffer_pass *p, const struct sl_gl_mesh *m,
+enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh *m,
                               const struct sl_scene *s, int vp, int w, int h,
                               struct sl_view *v, double *ms_render, double *ms_readback,
                               double *ms_gpu, struct sl_diag *d);

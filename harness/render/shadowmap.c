@@ -66,8 +66,82 @@ enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
     return SL_OK;
 }
 
+static void target_free(struct sl_shadowmap_target *t)
+{
+    if (t->size) {
+        glDeleteFramebuffers(1, &t->fbo);
+        glDeleteTextures(2, t->tex);
+        if (t->first_ids)
+            glDeleteTextures(1, &t->first_ids);
+    }
+    memset(t, 0, sizeof *t);
+}
+
+static size_t target_bytes(const struct sl_shadowmap_target *t)
+{
+    return (size_t)t->size * (size_t)t->size * (t->first_ids ? 12u : 8u);
+}
+
+/* The render target of size S: kept from before, or made, the least
+ * recently used ones freed first while those kept beside it would exceed
+ * SL_SHADOWMAP_KEEP_BYTES (or no slot is free). */
+static struct sl_shadowmap_target *target_get(struct sl_shadowmap_pass *p, int S, struct sl_diag *d,
+                                              enum sl_err *e)
+{
+    p->tick++;
+    for (int i = 0; i < SL_SHADOWMAP_TARGETS; i++)
+        if (p->tgt[i].size == S) {
+            p->tgt[i].used = p->tick;
+            return &p->tgt[i];
+        }
+    for (;;) {
+        size_t kept = 0;
+        int lru = -1, nfree = 0;
+        for (int i = 0; i < SL_SHADOWMAP_TARGETS; i++) {
+            if (!p->tgt[i].size) {
+                nfree++;
+                continue;
+            }
+            kept += target_bytes(&p->tgt[i]);
+            if (lru < 0 || p->tgt[i].used < p->tgt[lru].used)
+                lru = i;
+        }
+        if (lru < 0 || (nfree && kept <= SL_SHADOWMAP_KEEP_BYTES))
+            break;
+        target_free(&p->tgt[lru]);
+    }
+    struct sl_shadowmap_target *t = NULL;
+    for (int i = 0; i < SL_SHADOWMAP_TARGETS && !t; i++)
+        if (!p->tgt[i].size)
+            t = &p->tgt[i];
+    t->size = S;
+    t->used = p->tick;
+    p->targets_made++;
+    glCreateFramebuffers(1, &t->fbo);
+    glCreateTextures(GL_TEXTURE_2D, 2, t->tex);
+    glTextureStorage2D(t->tex[0], 1, GL_DEPTH_COMPONENT32F, S, S);
+    glTextureStorage2D(t->tex[1], 1, GL_R32UI, S, S);
+    glNamedFramebufferTexture(t->fbo, GL_DEPTH_ATTACHMENT, t->tex[0], 0);
+    glNamedFramebufferTexture(t->fbo, GL_COLOR_ATTACHMENT0, t->tex[1], 0);
+    glNamedFramebufferDrawBuffer(t->fbo, GL_COLOR_ATTACHMENT0);
+    if (glCheckNamedFramebufferStatus(t->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        target_free(t);
+        *e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "shadow-map framebuffer incomplete (%dx%d)", S, S);
+        return NULL;
+    }
+    return t;
+}
+
+void sl_shadowmap_release_targets(struct sl_shadowmap_pass *p)
+{
+    for (int i = 0; i < SL_SHADOWMAP_TARGETS; i++)
+        target_free(&p->tgt[i]);
+}
+
 void sl_shadowmap_free(struct sl_shadowmap_pass *p)
 {
+    sl_shadowmap_release_targets(p);
+    sl_layer_pool_free(&p->pool);
     if (p->prog_depth_id)
         glDeleteProgram(p->prog_depth_id);
     for (int mode = 0; mode < 4; mode++)
@@ -76,7 +150,7 @@ void sl_shadowmap_free(struct sl_shadowmap_pass *p)
     memset(p, 0, sizeof *p);
 }
 
-static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
+static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
                                 struct sl_light_frame *f, enum kind kind,
                                 struct sl_depth_layer *out, struct sl_diag *d)
 {
@@ -87,23 +161,24 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "SGSM with adjacency without adjacency indices");
     int S = f->size;
     size_t n = (size_t)S * (size_t)S;
-    out->depth = sl_calloc(n, sizeof(float));
-    out->id = sl_calloc(n, sizeof(uint32_t));
+    if (f->pool) {
+        out->depth = sl_layer_pool_get(f->pool, n * sizeof(float));
+        out->id = sl_layer_pool_get(f->pool, n * sizeof(uint32_t));
+    } else {
+        out->depth = sl_calloc(n, sizeof(float));
+        out->id = sl_calloc(n, sizeof(uint32_t));
+    }
     if (!out->depth || !out->id)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shadow map %dx%d", S, S);
+    /* the target's making is timed with the layer, as it was when every
+     * layer made its own: the first layer of a size pays for it */
     double t0 = sl_now();
-    GLuint fbo, tex[2];
-    glCreateFramebuffers(1, &fbo);
-    glCreateTextures(GL_TEXTURE_2D, 2, tex);
-    glTextureStorage2D(tex[0], 1, GL_DEPTH_COMPONENT32F, S, S);
-    glTextureStorage2D(tex[1], 1, GL_R32UI, S, S);
-    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, tex[0], 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex[1], 0);
-    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
     enum sl_err e = SL_OK;
-    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "shadow-map framebuffer incomplete");
-    if (!e) {
+    struct sl_shadowmap_target *tg = target_get(p, S, d, &e);
+    if (!tg)
+        return e;
+    const GLuint fbo = tg->fbo;
+    {
         const GLuint zero_u[4] = {0, 0, 0, 0};
         const float one = 1.0f;
         struct sl_gl_timer gt;
@@ -136,8 +211,11 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
                 /* the second layer leaves out, per texel, the triangle the
                  * first one stored there */
                 const struct sl_depth_layer *b = &f->layer[SL_LAYER_BGSM];
-                glCreateTextures(GL_TEXTURE_2D, 1, &first_ids);
-                glTextureStorage2D(first_ids, 1, GL_R32UI, S, S);
+                if (!tg->first_ids) {
+                    glCreateTextures(GL_TEXTURE_2D, 1, &tg->first_ids);
+                    glTextureStorage2D(tg->first_ids, 1, GL_R32UI, S, S);
+                }
+                first_ids = tg->first_ids;
                 glTextureSubImage2D(first_ids, 0, 0, 0, S, S, GL_RED_INTEGER, GL_UNSIGNED_INT, b->id);
                 /* read as an image: on llvmpipe imageLoad costs less per
                  * fragment than texelFetch (measured: BGSM2 -12%) */
@@ -176,10 +254,19 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
         glDeleteQueries(2, q);
         out->gs_prims = cons ? (uint64_t)prims : 0;
         out->fragments = (uint64_t)frags;
-        if (first_ids)
-            glDeleteTextures(1, &first_ids);
-        glGetTextureImage(tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), out->depth);
-        glGetTextureImage(tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), out->id);
+        if (first_ids) {
+            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+            /* from 8192^2 up (256 MiB and more) the copy is not kept: memory
+             * is what runs short there, and the upload is small beside the
+             * layer's own render */
+            if (S >= 8192) {
+                glDeleteTextures(1, &tg->first_ids);
+                tg->first_ids = 0;
+            }
+        }
+        /* straight into the frame's arrays (warm when they come from its pool) */
+        glGetTextureImage(tg->tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), out->depth);
+        glGetTextureImage(tg->tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), out->id);
         double t2 = sl_now();
         out->ms_gpu = sl_gl_timer_ms(&gt, 1e3 * (t1 - t0));   /* after the readback: no extra wait */
         out->ms_render = 1e3 * (t1 - t0);
@@ -189,12 +276,10 @@ static enum sl_err render_layer(const struct sl_shadowmap_pass *p, const struct 
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         e = sl_gl_check("shadow-map pass", d);
     }
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(2, tex);
     return e;
 }
 
-enum sl_err sl_shadowmap_render(const struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
+enum sl_err sl_shadowmap_render(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
                                 struct sl_light_frame *f, unsigned needs, struct sl_diag *d)
 {
     for (int l = 0; l < SL_LAYER_COUNT; l++) {

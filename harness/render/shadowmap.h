@@ -3,15 +3,37 @@
  * buffer holding the id (+1) of the nearest triangle per texel, rendered from
  * the fitted orthographic box and read back.
  *
- * Owns: the programs for its layers. Does not: look anything up (methods do,
- * with sl_frame_project / sl_frame_texel).
+ * Owns: the programs for its layers, and the framebuffers and textures they
+ * render into, one set per map size, made once and reused by every layer,
+ * frame and repetition of that size (llvmpipe zeroes each new texture in
+ * fresh memory: the largest single cost of a study before they were kept).
+ * Does not: look anything up (methods do, with sl_frame_project /
+ * sl_frame_texel).
  */
 #ifndef SL_SHADOWMAP_H
 #define SL_SHADOWMAP_H
 #include "frame.h"
 #include "glctx.h"
 
+/* A map size's render target: depth32F + R32UI, and BGSM2's copy of the
+ * first layer's ids (made when first needed). */
+struct sl_shadowmap_target {
+    int      size;              /* 0: slot unused */
+    GLuint   fbo, tex[2], first_ids;
+    uint64_t used;              /* the pass's tick when last used (least recently used goes first) */
+};
+#define SL_SHADOWMAP_TARGETS 4
+/* Targets kept beside the one being made, in bytes of texture: every size
+ * of a study up to 4096^2 stays (170 MiB for 512^2..4096^2, 255 MiB with
+ * BGSM2's id copies); an 8192^2 or 16384^2 one pushes the others out. */
+#define SL_SHADOWMAP_KEEP_BYTES ((size_t)256 << 20)
+
 struct sl_shadowmap_pass {
+    struct sl_shadowmap_target tgt[SL_SHADOWMAP_TARGETS];
+    uint64_t tick;
+    uint64_t targets_made;      /* render targets created, all told (tests, bench) */
+    struct sl_layer_pool pool;  /* layer arrays for the frames that take them (f->pool = &pass->pool);
+                                 * freed by sl_shadowmap_free: free those frames first */
     GLuint prog_depth_id;
     /* conservative layers, one program each (BGSM, BGSM2, SGSM: geometry
      * shader + exact per-texel tests; SGSM with adjacency:
@@ -22,10 +44,14 @@ struct sl_shadowmap_pass {
 
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d);
 void        sl_shadowmap_free(struct sl_shadowmap_pass *p);
+/* Free the kept render targets (not the programs, not the pool): the next
+ * layer of each size makes its own again. */
+void        sl_shadowmap_release_targets(struct sl_shadowmap_pass *p);
 
 /* Render the layers in `needs` (SL_NEED bits) into f, whose size, dir and box
- * are set by the caller. Layers already present are not rendered again. */
-enum sl_err sl_shadowmap_render(const struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
+ * are set by the caller. Layers already present are not rendered again.
+ * The arrays come from f->pool when it has one. */
+enum sl_err sl_shadowmap_render(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
                                 struct sl_light_frame *f, unsigned needs, struct sl_diag *d);
 
 #endif

@@ -143,29 +143,41 @@ enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, 
         struct RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        /* Embree loads the packet and its mask with 64-byte aligned
+         * vector loads. What is the same for every ray of a directional
+         * light (direction, time, mask, flags) is written once per thread,
+         * not once per packet; a lane is filled only when it is traced (an
+         * invalid lane is never read for its answer) */
+        _Alignas(64) struct RTCRay16 r;
+        _Alignas(64) int valid[16];
+        for (int k = 0; k < 16; k++) {
+            r.dir_x[k] = lx;
+            r.dir_y[k] = ly;
+            r.dir_z[k] = lz;
+            r.time[k] = 0.0f;
+            r.mask[k] = 0xffffffffu;
+            r.flags[k] = 0;
+        }
 #pragma omp for schedule(dynamic, 4)
         for (int t = 0; t < tx * ty; t++) {
             const int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
             const int nx = W - x0 < 4 ? W - x0 : 4, ny = H - y0 < 4 ? H - y0 : 4;
-            /* Embree loads the packet and its mask with 64-byte aligned
-             * vector loads */
-            _Alignas(64) struct RTCRay16 r;
-            _Alignas(64) int valid[16] = {0};
             int any = 0;
+            memset(valid, 0, sizeof valid);
             for (int row = 0; row < ny; row++) {
                 const size_t base = (size_t)(y0 + row) * (size_t)W + (size_t)x0;
                 for (int col = 0; col < nx; col++) {
                     const size_t i = base + (size_t)col;
+                    if (v->cls[i] != SL_C_PFL || (select && !select[i]))
+                        continue;
                     const int k = row * 4 + col;
                     const float *p = v->pos + 3 * i;
+                    valid[k] = -1;
+                    any = 1;
                     r.org_x[k] = p[0];
                     r.org_y[k] = p[1];
                     r.org_z[k] = p[2];
                     r.tnear[k] = sl_rt_tnear(p);
-                    r.dir_x[k] = lx;
-                    r.dir_y[k] = ly;
-                    r.dir_z[k] = lz;
-                    r.time[k] = 0.0f;
                     r.tfar[k] = tfar ? tfar[i] : INFINITY;
                     if (point) {
                         float dir[3], end = 0.0f;   /* a pixel at the light itself: an empty ray */
@@ -176,11 +188,7 @@ enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, 
                         r.dir_z[k] = dir[2];
                         r.tfar[k] = end < r.tfar[k] ? end : r.tfar[k];
                     }
-                    r.mask[k] = 0xffffffffu;
                     r.id[k] = v->tri[i];
-                    r.flags[k] = 0;
-                    valid[k] = (v->cls[i] == SL_C_PFL && (!select || select[i])) ? -1 : 0;
-                    any |= valid[k];
                 }
             }
             if (!any)

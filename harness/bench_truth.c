@@ -1,0 +1,238 @@
+/*
+ * bench_truth.c — the `truth` stage of `shadowlab bench` (bench.h): the
+ * truth pass against the plain thing anyone would write with Embree alone:
+ * rays prepared in advance as 4x4 packets, a scene with the same flags and
+ * build quality but no filter function, rtcOccluded16 over the packets on
+ * the same threads. The truth pass does more per ray (reads the G-buffer,
+ * skips non-PFL pixels, rejects the own triangle in a filter, writes the
+ * classification), and its time is measured end to end; the plain loop's
+ * set-up is timed apart, so both comparisons are printed: against the
+ * trace alone and against set-up + trace. Wall time on the config's
+ * threads, and the CPU time of one thread on one thread, which other work
+ * on a shared machine does not inflate (wall time there moves by 2x).
+ */
+#define _GNU_SOURCE
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <omp.h>
+#include "bench_int.h"
+#include "truth.h"
+#include "util.h"
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+struct packets { struct RTCRay16 *r; int (*valid)[16]; int n; uint64_t rays; };
+
+static int build_packets(const struct sl_view *v, struct packets *p)
+{
+    int tx = (v->w + 3) / 4, ty = (v->h + 3) / 4;
+    p->n = tx * ty;
+    p->r = aligned_alloc(64, sizeof *p->r * (size_t)p->n);
+    p->valid = aligned_alloc(64, sizeof *p->valid * (size_t)p->n);
+    if (!p->r || !p->valid)
+        return 0;
+    p->rays = 0;
+    for (int t = 0; t < p->n; t++) {
+        int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
+        for (int k = 0; k < 16; k++) {
+            int x = x0 + (k & 3), y = y0 + (k >> 2);
+            p->valid[t][k] = 0;
+            if (x >= v->w || y >= v->h)
+                continue;
+            size_t i = (size_t)y * (size_t)v->w + (size_t)x;
+            if (v->cls[i] != SL_C_PFL)
+                continue;
+            p->valid[t][k] = -1;
+            p->rays++;
+        }
+    }
+    return 1;
+}
+
+static void reset_packets(const struct sl_view *v, const struct sl_scene *s, struct packets *p)
+{
+    int tx = (v->w + 3) / 4;
+    for (int t = 0; t < p->n; t++) {
+        int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
+        struct RTCRay16 *r = &p->r[t];
+        for (int k = 0; k < 16; k++) {
+            if (!p->valid[t][k])
+                continue;
+            size_t i = (size_t)(y0 + (k >> 2)) * (size_t)v->w + (size_t)(x0 + (k & 3));
+            const float *q = v->pos + 3 * i;
+            r->org_x[k] = q[0]; r->org_y[k] = q[1]; r->org_z[k] = q[2];
+            r->tnear[k] = sl_rt_tnear(q);
+            r->dir_x[k] = -s->light_dir[0]; r->dir_y[k] = -s->light_dir[1]; r->dir_z[k] = -s->light_dir[2];
+            r->time[k] = 0.0f;
+            r->tfar[k] = INFINITY;
+            r->mask[k] = 0xffffffffu;
+            r->id[k] = v->tri[i];
+            r->flags[k] = 0;
+        }
+    }
+}
+
+static double plain_loop(const struct sl_rt *rt, struct packets *p)
+{
+    double t0 = sl_now();
+#pragma omp parallel num_threads(rt->threads)
+    {
+        sl_rt_thread_init();
+        struct RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+#pragma omp for schedule(dynamic, 4)
+        for (int t = 0; t < p->n; t++)
+            rtcOccluded16(p->valid[t], rt->scene, &ctx, &p->r[t]);
+    }
+    return sl_now() - t0;
+}
+
+/* CPU time of the calling thread: with one thread a parallel region runs
+ * in it, so this is the work itself, whatever else the machine runs. */
+static double thread_cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* min and median of n values (sorted in place) */
+static void min_med(double *v, int n, double *mn, double *md)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_d);
+    *mn = v[0];
+    *md = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Per repetition: 0 truth, 1 plain set-up, 2 plain trace on the config's
+ * threads (wall); 3-5 the same on one thread (its CPU time). */
+#define TR_N 6
+
+enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
+{
+    struct sl_rt rt = {0}, plain = {0}, rt1 = {0}, plain1 = {0};
+    enum sl_err e;
+    if ((e = sl_rt_build(&rt, &x->s, x->threads, 1, d)) || (e = sl_rt_build(&plain, &x->s, x->threads, 0, d)) ||
+        (e = sl_rt_build(&rt1, &x->s, 1, 1, d)) || (e = sl_rt_build(&plain1, &x->s, 1, 0, d)))
+        goto done;
+    FILE *out = x->out;
+    int reps = x->reps;
+    const char *wait = getenv("OMP_WAIT_POLICY");
+    fprintf(out, "## Truth pass vs a plain rtcOccluded16 loop over the same rays (%s, min and median of %d "
+                 "after a warm-up, Embree %s, OMP_WAIT_POLICY %s)\n\n", x->s.name, reps, rt.version,
+            wait ? wait : "unset (libgomp: active)");
+    fprintf(out, "The truth pass is timed end to end (its packets are built from the G-buffer inside it, the "
+                 "own-triangle filter, the write-back). The plain loop's set-up (its packets from the same "
+                 "G-buffer) and its trace are timed apart. Wall: %d threads. CPU: the same on one thread, "
+                 "that thread's CPU time (what a loaded machine cannot inflate). Ratios are rays/s, the truth "
+                 "over the plain trace, and over the plain set-up + trace. Medians.\n\n", x->threads);
+    fprintf(out, "| viewpoint | rays | truth ms min / med | plain set-up ms | plain trace ms min / med | ratio | "
+                 "ratio with set-up | 1 thread CPU: truth ms | set-up ms | trace ms | ratio | ratio with set-up |\n");
+    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    double sum[TR_N] = {0};
+    uint64_t sum_rays = 0;
+    char notes[128] = "";
+    for (int vi = 0; vi < x->nvp && !e; vi++) {
+        int vp = x->vp[vi];
+        struct sl_view v;
+        if ((e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, x->W, x->H, &v, NULL,
+                                   NULL, NULL, d)))
+            break;
+        struct packets pk = {0};
+        double *tm = calloc((size_t)reps * TR_N, sizeof *tm);
+        if (!build_packets(&v, &pk) || !tm)
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "ray packets");
+        uint64_t rays = 0;
+        for (int r = -1; r < reps && !e; r++) {
+            /* the truth pass reclassifies from the G-buffer each time */
+            struct sl_truth_stats ts;
+            double w[TR_N];
+            if ((e = sl_truth_trace(&rt, &x->s, &v, &ts, d)))
+                break;
+            rays = ts.rays;
+            w[0] = ts.ms_trace;
+            double t0 = sl_now();
+            reset_packets(&v, &x->s, &pk);
+            w[1] = 1e3 * (sl_now() - t0);
+            w[2] = 1e3 * plain_loop(&plain, &pk);
+            double c0 = thread_cpu();
+            if ((e = sl_truth_trace(&rt1, &x->s, &v, NULL, d)))
+                break;
+            double c1 = thread_cpu();
+            reset_packets(&v, &x->s, &pk);
+            double c2 = thread_cpu();
+            plain_loop(&plain1, &pk);
+            double c3 = thread_cpu();
+            w[3] = 1e3 * (c1 - c0);
+            w[4] = 1e3 * (c2 - c1);
+            w[5] = 1e3 * (c3 - c2);
+            if (r >= 0)
+                for (int k = 0; k < TR_N; k++)
+                    tm[(size_t)k * (size_t)reps + (size_t)r] = w[k];
+        }
+        if (!e) {
+            /* the same rays must give the same answers: count the plain
+             * loop's occluded rays against the truth's shadowed pixels */
+            uint64_t plain_occ = 0;
+            for (int t = 0; t < pk.n; t++)
+                for (int k = 0; k < 16; k++)
+                    plain_occ += pk.valid[t][k] && pk.r[t].tfar[k] == -INFINITY;
+            if (plain_occ != v.n_shadow) {
+                size_t len = strlen(notes);
+                snprintf(notes + len, sizeof notes - len, "%s%s: plain +%lld occluded", len ? "; " : "",
+                         x->s.vp[vp].name, (long long)plain_occ - (long long)v.n_shadow);
+            }
+            double mn[TR_N], md[TR_N];
+            for (int k = 0; k < TR_N; k++) {
+                min_med(tm + (size_t)k * (size_t)reps, reps, &mn[k], &md[k]);
+                sum[k] += md[k];
+            }
+            fprintf(out, "| %s | %llu | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | "
+                         "%.2f |\n", x->s.vp[vp].name, (unsigned long long)rays, mn[0], md[0], md[1], mn[2], md[2],
+                    md[2] / md[0], (md[1] + md[2]) / md[0], md[3], md[4], md[5], md[5] / md[3],
+                    (md[4] + md[5]) / md[3]);
+            sum_rays += rays;
+        }
+        free(tm);
+        free(pk.r);
+        free(pk.valid);
+        sl_view_free(&v);
+    }
+    if (!e) {
+        fprintf(out, "| **all** | %llu | %.2f | %.2f | %.2f | **%.2f** | %.2f | %.2f | %.2f | %.2f | **%.2f** | %.2f |\n\n",
+                (unsigned long long)sum_rays, sum[0], sum[1], sum[2], sum[2] / sum[0], (sum[1] + sum[2]) / sum[0],
+                sum[3], sum[4], sum[5], sum[5] / sum[3], (sum[4] + sum[5]) / sum[3]);
+        if (notes[0])
+            fprintf(out, "Occluded rays the plain loop counts beyond the truth's shadowed pixels (rays "
+                         "crossing their own triangle beyond tnear, which the truth's filter rejects): %s\n\n",
+                    notes);
+        const double mr = sum_rays * 1e-3;   /* Mrays/s from ms */
+        struct sl_bench_row *row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[0], mr / sum[2],
+                                                    SL_BENCH_TARGET_TRUTH_RATIO, SL_BENCH_AT_LEAST);
+        if (row) {
+            snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d", x->s.name, x->nvp, x->W, x->H);
+            snprintf(row->note, sizeof row->note, "%llu rays; wall, %d threads; plain set-up apart: %.2f ms",
+                     (unsigned long long)sum_rays, x->threads, sum[1]);
+        }
+        row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[3], mr / sum[5], SL_BENCH_TARGET_TRUTH_RATIO,
+                               SL_BENCH_AT_LEAST);
+        if (row) {
+            snprintf(row->name, sizeof row->name, "truth, 1 thread, CPU time");
+            snprintf(row->note, sizeof row->note, "against the plain trace; with its set-up %.2f×",
+                     (sum[4] + sum[5]) / sum[3]);
+        }
+    }
+done:
+    sl_rt_free(&plain1);
+    sl_rt_free(&rt1);
+    sl_rt_free(&plain);
+    sl_rt_free(&rt);
+    return e;
+}

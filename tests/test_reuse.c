@@ -1,0 +1,177 @@
+/* Reuse instead of churn (issue 20): the layer-array pool hands arrays out
+ * again and replaces the ones too small; the shadow-map pass keeps one
+ * render target per map size; the G-buffer pass keeps its own. What is
+ * reused must not change a single texel or pixel: layers rendered into a
+ * pooled frame through kept targets (arrays dirty from a larger size
+ * before) are compared bit for bit with layers from a fresh pass into
+ * calloc'd arrays. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+#include "sl_test.h"
+#include "adjacency.h"
+#include "fixture.h"
+#include "lightfit.h"
+#include "shadowmap.h"
+
+static void reuse_pool_serves_and_replaces(void **st)
+{
+    (void)st;
+    struct sl_layer_pool p;
+    memset(&p, 0, sizeof p);
+    void *a = sl_layer_pool_get(&p, 1000), *b = sl_layer_pool_get(&p, 1000);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_ptr_not_equal(a, b);
+    assert_int_equal(p.allocs, 2);
+    sl_layer_pool_put(&p, a);
+    /* an idle array serves a smaller request: no allocation */
+    assert_ptr_equal(sl_layer_pool_get(&p, 500), a);
+    assert_int_equal(p.allocs, 2);
+    sl_layer_pool_put(&p, a);
+    sl_layer_pool_put(&p, b);
+    /* a larger request replaces an idle array that is too small, in its slot */
+    size_t big = (size_t)8 << 20;
+    void *c = sl_layer_pool_get(&p, big);
+    assert_non_null(c);
+    assert_int_equal(p.allocs, 3);
+    assert_int_equal(p.n, 2);
+    assert_int_equal(p.bytes, 1000 + big);
+    /* large arrays are aligned for huge pages */
+    assert_int_equal((uintptr_t)c % ((uintptr_t)2 << 20), 0);
+    memset(c, 0xab, big);
+    /* with the large one busy, a small request takes the small idle one */
+    void *s = sl_layer_pool_get(&p, 800);
+    assert_true(s == a || s == b);
+    sl_layer_pool_put(&p, s);
+    sl_layer_pool_put(&p, c);
+    /* and now the large one is the only idle one that fits */
+    assert_ptr_equal(sl_layer_pool_get(&p, big - 1), c);
+    sl_layer_pool_put(&p, c);
+    /* every slot busy: arrays outside the pool, freed when given back */
+    void *held[SL_POOL_SLOTS + 2];
+    for (int i = 0; i < SL_POOL_SLOTS + 2; i++)
+        assert_non_null(held[i] = sl_layer_pool_get(&p, 64));
+    assert_int_equal(p.n, SL_POOL_SLOTS);
+    for (int i = 0; i < SL_POOL_SLOTS + 2; i++)
+        sl_layer_pool_put(&p, held[i]);
+    sl_layer_pool_free(&p);
+    assert_int_equal(p.n, 0);
+}
+
+static void fit(const struct fixture *f, const struct sl_view *v, int size, struct sl_light_frame *fr)
+{
+    fr->size = size;
+    memcpy(fr->dir, f->scene.light_dir, sizeof fr->dir);
+    sl_light_fit(&f->scene, v, &fr->box);
+    fr->texel_world = fmaxf(fr->box.hi[0] - fr->box.lo[0], fr->box.hi[1] - fr->box.lo[1]) / (float)size;
+    fr->depth_range = fr->box.hi[2] - fr->box.lo[2];
+}
+
+/* Every layer, sizes 1024, 512, 1024 (the pooled arrays and the kept
+ * 1024^2 target come back dirty), each rendered twice in a row into the
+ * pooled frame as run.c's repetitions do, against a fresh pass per size
+ * rendering into calloc'd arrays. */
+static void reuse_layers_identical(void **st)
+{
+    (void)st;
+    struct fixture f;
+    assert_true(fixture_open(&f, "primitives", 2));
+    struct sl_diag d;
+    struct sl_adjacency adj;
+    memset(&adj, 0, sizeof adj);
+    assert_int_equal(sl_adjacency_build(&f.scene, &adj, &d), SL_OK);
+    assert_int_equal(sl_gl_mesh_upload_adjacency(&f.mesh, &f.scene, &adj, &d), SL_OK);
+    struct sl_view v;
+    assert_true(fixture_view(&f, 0, 256, 256, &v));
+    struct sl_shadowmap_pass kept;
+    assert_int_equal(sl_shadowmap_init(&kept, &d), SL_OK);
+    const unsigned all = (1u << SL_LAYER_COUNT) - 1u;
+    const int sizes[3] = {1024, 512, 1024};
+    uint64_t allocs_after_first = 0;
+    for (int si = 0; si < 3; si++) {
+        struct sl_light_frame a, b;
+        memset(&a, 0, sizeof a);
+        memset(&b, 0, sizeof b);
+        a.pool = &kept.pool;
+        fit(&f, &v, sizes[si], &a);
+        fit(&f, &v, sizes[si], &b);
+        for (int rep = 0; rep < 2; rep++) {
+            if (rep)
+                for (int l = 0; l < SL_LAYER_COUNT; l++)
+                    sl_frame_drop_layer(&a, l);
+            assert_int_equal(sl_shadowmap_render(&kept, &f.mesh, &a, all, &d), SL_OK);
+        }
+        struct sl_shadowmap_pass fresh;
+        assert_int_equal(sl_shadowmap_init(&fresh, &d), SL_OK);
+        assert_int_equal(sl_shadowmap_render(&fresh, &f.mesh, &b, all, &d), SL_OK);
+        sl_shadowmap_free(&fresh);
+        size_t n = (size_t)sizes[si] * (size_t)sizes[si];
+        for (int l = 0; l < SL_LAYER_COUNT; l++) {
+            assert_memory_equal(a.layer[l].depth, b.layer[l].depth, n * sizeof(float));
+            assert_memory_equal(a.layer[l].id, b.layer[l].id, n * sizeof(uint32_t));
+            assert_int_equal(a.layer[l].fragments, b.layer[l].fragments);
+            assert_int_equal(a.layer[l].gs_prims, b.layer[l].gs_prims);
+        }
+        /* twelve arrays at once; the first size's are the largest */
+        assert_int_equal(kept.pool.n, 2 * SL_LAYER_COUNT);
+        if (si == 0)
+            allocs_after_first = kept.pool.allocs;
+        else
+            assert_int_equal(kept.pool.allocs, allocs_after_first);
+        sl_light_box_free(&a.box);
+        sl_light_box_free(&b.box);
+        sl_frame_free(&a);
+        sl_frame_free(&b);
+    }
+    /* one target per size, made once */
+    assert_int_equal(kept.targets_made, 2);
+    sl_shadowmap_free(&kept);
+    sl_view_free(&v);
+    sl_adjacency_free(&adj);
+    fixture_close(&f);
+}
+
+/* The G-buffer through a kept target (after another size) equals a fresh
+ * pass's. */
+static void reuse_gbuffer_identical(void **st)
+{
+    (void)st;
+    struct fixture f;
+    assert_true(fixture_open(&f, "primitives", 2));
+    struct sl_diag d;
+    struct sl_view a, b, c;
+    assert_int_equal(sl_gbuffer_render(&f.gp, &f.mesh, &f.scene, 0, 200, 100, &a, NULL, NULL, NULL, &d), SL_OK);
+    sl_view_free(&a);
+    assert_int_equal(sl_gbuffer_render(&f.gp, &f.mesh, &f.scene, 1, 320, 240, &a, NULL, NULL, NULL, &d), SL_OK);
+    assert_int_equal(sl_gbuffer_render(&f.gp, &f.mesh, &f.scene, 1, 320, 240, &b, NULL, NULL, NULL, &d), SL_OK);
+    struct sl_gbuffer_pass fresh;
+    assert_int_equal(sl_gbuffer_init(&fresh, &f.scene, &d), SL_OK);
+    assert_int_equal(sl_gbuffer_render(&fresh, &f.mesh, &f.scene, 1, 320, 240, &c, NULL, NULL, NULL, &d), SL_OK);
+    sl_gbuffer_free(&fresh);
+    size_t n = 320 * 240;
+    const struct sl_view *kept[2] = {&a, &b};
+    for (int i = 0; i < 2; i++) {
+        assert_memory_equal(kept[i]->pos, c.pos, n * 3 * sizeof(float));
+        assert_memory_equal(kept[i]->nrm, c.nrm, n * 3 * sizeof(float));
+        assert_memory_equal(kept[i]->tri, c.tri, n * sizeof(uint32_t));
+        assert_memory_equal(kept[i]->cls, c.cls, n);
+    }
+    assert_int_equal(f.gp.w, 320);
+    sl_view_free(&a);
+    sl_view_free(&b);
+    sl_view_free(&c);
+    fixture_close(&f);
+}
+
+int main(int argc, char **argv)
+{
+    const struct CMUnitTest tests[] = {
+        SL_CASE(reuse, pool_serves_and_replaces),
+        SL_CASE(reuse, layers_identical),
+        SL_CASE(reuse, gbuffer_identical),
+    };
+    return sl_run_group(argc, argv, "reuse", tests, sl_test_setup, sl_test_teardown);
+}
