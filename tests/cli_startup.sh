@@ -40,6 +40,16 @@ db=$tmp/r/shadowlab.db
 [ -f "$db" ] || { echo "FAIL no store from the run"; exit 1; }
 "$bin" check "$db" --baseline "$tmp/b.yaml" --update >/dev/null 2>&1 || fail "check --update"
 
+# A sanitized build links those libraries at start on purpose (CMakeLists.txt:
+# LeakSanitizer's tracer and Mesa's libglapi loaded late): there only the
+# rendering run above is checked.
+if readelf -d "$bin" 2>/dev/null | grep -q 'libasan'; then
+  echo "sanitized build: the lazy libraries are linked at start; the light verbs are not checked here"
+  echo "$fails failed"
+  [ $fails -eq 0 ]
+  exit
+fi
+
 check_light() {
   local what=$1; shift
   local libs
