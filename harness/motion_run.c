@@ -172,16 +172,8 @@ enum sl_err sl_motion_outputs(struct sl_store *st, const struct sl_config *c, co
     int n = 0;
     enum sl_err e = SL_OK;
     if (st) {
-        struct sl_store_filter f = {.study = c->name};
-        if ((e = sl_store_query(st, &f, &cells, &n, d)))
+        if ((e = sl_out_stored_cells(st, c, &cells, &n, d)))
             return e;
-        char hash[24];
-        snprintf(hash, sizeof hash, "%016llx", c->hash);
-        int k = 0;
-        for (int i = 0; i < n; i++)
-            if (strcmp(cells[i].config_hash, hash) == 0)
-                cells[k++] = cells[i];
-        n = k;
     } else {
         cells = sl_calloc((size_t)(res->ncells ? res->ncells : 1), sizeof *cells);
         if (!cells)

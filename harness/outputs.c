@@ -558,6 +558,24 @@ enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_r
     return SL_OK;
 }
 
+enum sl_err sl_out_stored_cells(struct sl_store *st, const struct sl_config *c, struct sl_cell_record **cells,
+                                int *n, struct sl_diag *d)
+{
+    struct sl_store_filter f = {.study = c->name};
+    *cells = NULL;
+    *n = 0;
+    int all = 0;
+    enum sl_err e = sl_store_query(st, &f, cells, &all, d);
+    if (e)
+        return e;
+    char hash[24];
+    snprintf(hash, sizeof hash, "%016llx", c->hash);
+    for (int i = 0; i < all; i++)
+        if (strcmp((*cells)[i].config_hash, hash) == 0)
+            (*cells)[(*n)++] = (*cells)[i];
+    return SL_OK;
+}
+
 /* The run folder's figures.csv, table.md and table.tex from the store, when
  * it holds more cells of this config (same hash) than this run computed: a
  * resumed, split or interrupted run then still leaves tables of every
@@ -566,18 +584,11 @@ enum sl_err sl_out_rebuild_from_store(struct sl_store *st, const struct sl_confi
                                       const char *dir, int *stored, struct sl_diag *d)
 {
     *stored = -1;
-    struct sl_store_filter f = {.study = c->name};
     struct sl_cell_record *cells = NULL;
-    int n = 0;
-    enum sl_err e = sl_store_query(st, &f, &cells, &n, d);
+    int k = 0;
+    enum sl_err e = sl_out_stored_cells(st, c, &cells, &k, d);
     if (e)
         return e;
-    char hash[24];
-    snprintf(hash, sizeof hash, "%016llx", c->hash);
-    int k = 0;
-    for (int i = 0; i < n; i++)
-        if (strcmp(cells[i].config_hash, hash) == 0)
-            cells[k++] = cells[i];
     *stored = k;
     if (k <= computed) {
         free(cells);

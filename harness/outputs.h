@@ -73,6 +73,11 @@ enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct 
                               const struct sl_cell *cl, const char *store_path, const char *final,
                               struct sl_diag *d);
 
+/* The store's cells of this config (its study name and hash), in store
+ * order; *cells malloc'ed (free it), *n their number. */
+enum sl_err sl_out_stored_cells(struct sl_store *st, const struct sl_config *c, struct sl_cell_record **cells,
+                                int *n, struct sl_diag *d);
+
 /* Rebuild dir's figures.csv, table.md and table.tex from the store's cells of
  * this config when it holds more than `computed`; *stored = how many it holds. */
 enum sl_err sl_out_rebuild_from_store(struct sl_store *st, const struct sl_config *c, int computed,
