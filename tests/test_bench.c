@@ -52,23 +52,31 @@ static char *slurp(const char *path)
     return buf;
 }
 
-static void bench_quick_mode_rows(void **st)
+/* sl_bench with o, its Markdown into sl_test_dir/mdname (o->out set here);
+ * asserts it ran. Returns the Markdown's path in md (n bytes). */
+static void run_bench(struct sl_bench_opts *o, const char *mdname, char *md, size_t n, struct sl_bench_result *r)
 {
-    (void)st;
-    char md[300], csv[300];
-    snprintf(md, sizeof md, "%s/bench.md", sl_test_dir);
-    snprintf(csv, sizeof csv, "%s/bench.csv", sl_test_dir);
+    snprintf(md, n, "%s/%s", sl_test_dir, mdname);
     FILE *out = fopen(md, "w");
     assert_non_null(out);
-    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS), .reps = 2,
-                              .scene = "blocks", .width = 128, .height = 96, .map = 256, .csv = csv, .out = out};
-    struct sl_bench_result r;
+    o->out = out;
     struct sl_diag d;
-    enum sl_err e = sl_bench(&o, &r, &d);
+    enum sl_err e = sl_bench(o, r, &d);
     fclose(out);
     if (e)
         fprintf(stderr, "bench: %s\n", d.msg);
     assert_int_equal(e, SL_OK);
+}
+
+static void bench_quick_mode_rows(void **st)
+{
+    (void)st;
+    char md[300], csv[300];
+    snprintf(csv, sizeof csv, "%s/bench.csv", sl_test_dir);
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS), .reps = 2,
+                              .scene = "blocks", .width = 128, .height = 96, .map = 256, .csv = csv};
+    struct sl_bench_result r;
+    run_bench(&o, "bench.md", md, sizeof md, &r);
 
     /* truth (wall; one thread's CPU), G-buffer, six layers, memory, the
      * first context; no study asked for */
@@ -136,18 +144,10 @@ static void bench_churn_rows(void **st)
 {
     (void)st;
     char md[300];
-    snprintf(md, sizeof md, "%s/churn.md", sl_test_dir);
-    FILE *out = fopen(md, "w");
-    assert_non_null(out);
     struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(CHURN), .reps = 3, .scene = "blocks", .width = 64,
-                              .height = 64, .map = 256, .out = out};
+                              .height = 64, .map = 256};
     struct sl_bench_result r;
-    struct sl_diag d;
-    enum sl_err e = sl_bench(&o, &r, &d);
-    fclose(out);
-    if (e)
-        fprintf(stderr, "bench: %s\n", d.msg);
-    assert_int_equal(e, SL_OK);
+    run_bench(&o, "churn.md", md, sizeof md, &r);
     assert_int_equal(r.nrows, 3 + 2);   /* + memory, context */
     assert_string_equal(r.rows[0].name, "NSM layer 512² / 256², kept");
     assert_string_equal(r.rows[1].name, "NSM layer 512² / 256², fresh (as before)");
@@ -170,18 +170,10 @@ static void bench_backends_rows(void **st)
     if (!sl_gl_backend_built(SL_GL_OSMESA) || !sl_gl_backend_built(SL_GL_EGL))
         skip();
     char md[300];
-    snprintf(md, sizeof md, "%s/backends.md", sl_test_dir);
-    FILE *out = fopen(md, "w");
-    assert_non_null(out);
     struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(BACKENDS), .reps = 2, .scene = "blocks", .width = 64,
-                              .height = 48, .map = 128, .out = out};
+                              .height = 48, .map = 128};
     struct sl_bench_result r;
-    struct sl_diag d;
-    enum sl_err e = sl_bench(&o, &r, &d);
-    fclose(out);
-    if (e)
-        fprintf(stderr, "bench: %s\n", d.msg);
-    assert_int_equal(e, SL_OK);
+    run_bench(&o, "backends.md", md, sizeof md, &r);
     /* eight backend rows, then memory and the first context */
     assert_int_equal(r.nrows, 8 + 2);
     assert_string_equal(r.rows[0].name, "EGL vs OSMesa: context");
