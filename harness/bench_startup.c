@@ -153,15 +153,15 @@ enum sl_err sl_bench_startup(const char *config, int reps, FILE *out, struct sl_
             int first_lazy = (r & 1) == 0;
             for (int side = 0; side < 2; side++) {
                 int is_lazy = (side == 0) == first_lazy;
-                if (!is_lazy && !eager[0]) {
-                    full[r] = lazy[r];
-                    continue;
-                }
+                if (!is_lazy && !eager[0])
+                    continue;   /* nothing to preload: the eager side is the lazy one (below) */
                 if (spawn_one(verbs[v].argv, is_lazy ? NULL : eager, is_lazy ? &lazy[r] : &full[r]))
                     return sl_fail(d, SL_E_INTERNAL, config, 0, NULL, "`shadowlab %s` failed in the bench",
                                    verbs[v].name);
             }
         }
+        if (!eager[0])
+            memcpy(full, lazy, sizeof lazy[0] * (size_t)reps);
         double lw, lwm, lc, lcm, lr, lrm, fw, fwm, fc, fcm, fr, frm;
         stats(lazy, reps, offsetof(struct sample, wall_ms), &lw, &lwm);
         stats(lazy, reps, offsetof(struct sample, cpu_ms), &lc, &lcm);
