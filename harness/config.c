@@ -278,10 +278,10 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                 snprintf(cs->viewpoints[cs->nviewpoints++], sizeof cs->viewpoints[0], "%s",
                          s.vp[s.paths[p].first + f].name);
         }
-        if (s.light.type != SL_LIGHT_DIRECTIONAL && s.light.type != SL_LIGHT_AREA) {
+        if (s.light.type == SL_LIGHT_POINT) {
             sl_scene_free(&s);
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has a spot or point light: the passes handle directional and "
+                               "scene '%s' has a point light: the passes handle directional, spot and "
                                "area lights only so far", rs->scene);
         }
         cs->light_type = s.light.type;
@@ -438,22 +438,26 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
     for (unsigned si = 0; si < r->scenes_count; si++) {
         const struct raw_scene_ref *rs = &r->scenes[si];
         struct sl_config_scene *cs = &c->scenes[si];
-        int area = cs->light_type == SL_LIGHT_AREA;
+        const int area = cs->light_type == SL_LIGHT_AREA, dirl = cs->light_type == SL_LIGHT_DIRECTIONAL;
+        static const char *const light_names[] = {"a directional", "a spot", "a point", "an area"};
+        const char *lname = light_names[cs->light_type & 3];
         /* without a list, a scene runs every label that handles its light, so one
-         * config can mix directional-light and area-light scenes: the hard-shadow
-         * methods handle both (an area light as a point at its centre), the soft
-         * ones area lights only */
+         * config can mix scenes of every light: the hard-shadow methods handle
+         * all (a spot or point light at its position, an area light as a point
+         * at its centre), the soft ones area lights only, zpart and lispsm
+         * directional lights only */
         cs->method_mask = 0u;
-        for (int k = 0; k < c->nmethods && !rs->methods_count; k++)
-            if (!(c->methods[k].method->lights & (area ? SL_LIGHTS_DIRECTIONAL : SL_LIGHTS_AREA)))
+        for (int k = 0; k < c->nmethods && !rs->methods_count; k++) {
+            unsigned lights = c->methods[k].method->lights;
+            if (!((lights & SL_LIGHTS_AREA) && !area) && !((lights & SL_LIGHTS_DIRECTIONAL) && !dirl))
                 cs->method_mask |= 1u << k;
+        }
         if (!rs->methods_count && !cs->method_mask) {
             snprintf(key, sizeof key, "scenes[%u]", si);
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               area ? "scene '%s' has an area light and every method of this config needs a "
-                                      "directional light (zpart, lispsm do)"
-                                    : "scene '%s' has a directional light and every method of this config needs an "
-                                      "area light (hard_point, point_map, soft_mc do)", cs->name);
+                               "scene '%s' has %s light and no method of this config handles it (hard-shadow "
+                               "methods handle every light; hard_point, point_map, soft_mc need an area light; "
+                               "zpart, lispsm a directional one)", cs->name, lname);
         }
         for (unsigned i = 0; i < rs->methods_count; i++) {
             snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
@@ -471,22 +475,23 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         for (int k = 0; k < c->nmethods; k++) {
             if (!(cs->method_mask & (1u << k)))
                 continue;
-            if (area && c->methods[k].frame_fit.fit != SL_FIT_TIGHT) {
+            if (!dirl && c->methods[k].frame_fit.fit != SL_FIT_TIGHT) {
                 snprintf(key, sizeof key, "methods[%d].light_frame", k);
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has an area light: light_frame "
-                                   "fits a directional light's frame only (label %s)", cs->name, c->methods[k].label);
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has %s light: light_frame "
+                                   "fits a directional light's frame only (label %s)", cs->name, lname,
+                                   c->methods[k].label);
             }
             if (!area && (c->methods[k].method->lights & SL_LIGHTS_AREA)) {
                 snprintf(key, sizeof key, "scenes[%u].methods", si);
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                                   "scene '%s' has a directional light but method '%s' (label %s) handles area "
-                                   "lights only", cs->name, c->methods[k].method->name, c->methods[k].label);
+                                   "scene '%s' has %s light but method '%s' (label %s) handles area "
+                                   "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
             }
-            if (area && (c->methods[k].method->lights & SL_LIGHTS_DIRECTIONAL)) {
+            if (!dirl && (c->methods[k].method->lights & SL_LIGHTS_DIRECTIONAL)) {
                 snprintf(key, sizeof key, "scenes[%u].methods", si);
                 return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                                   "scene '%s' has an area light but method '%s' (label %s) handles directional "
-                                   "lights only", cs->name, c->methods[k].method->name, c->methods[k].label);
+                                   "scene '%s' has %s light but method '%s' (label %s) handles directional "
+                                   "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
             }
         }
     }

@@ -109,9 +109,8 @@ enum sl_err sl_zpart_run_k(const struct sl_method_args *a, int k, double lambda,
     const char *who = lispsm && k == 1 ? "lispsm" : "zpart";
     if (!a->spass || !a->mesh)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "%s: no shadow-map pass to render its maps with", who);
-    if (a->scene->light.type == SL_LIGHT_AREA)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, who, "%s needs a directional light (this scene's is an area light)",
-                       who);
+    if (a->scene->light.type != SL_LIGHT_DIRECTIONAL)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, who, "%s needs a directional light", who);
     double t0 = sl_now();
     sl_verdicts_drop_frames(out);
     const size_t n = (size_t)v->w * (size_t)v->h;

@@ -149,7 +149,7 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
 
     if (!e) {
         const float *L = s->light_dir;
-        const int area = s->light.type == SL_LIGHT_AREA;
+        const int at_point = s->light.type != SL_LIGHT_DIRECTIONAL;
         for (size_t i = 0; i < n; i++) {
             for (int k = 0; k < 3; k++)
                 v->pos[3 * i + k] = rgba_pos[4 * i + k];
@@ -168,11 +168,12 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
                 v->n_background++;
                 continue;
             }
-            /* toward the light is -L; an area light's pixels face its
-             * centre, on the side it emits (the point the hard methods take
-             * it for) */
+            /* toward the light is -L; under a light at a point (spot,
+             * point, an area light's centre) a pixel faces the point, and
+             * lies inside a spot's cone, on an area light's emitting side
+             * (arealight.h, sl_point_faces) */
             float ndl = -(v->nrm[3 * i] * L[0] + v->nrm[3 * i + 1] * L[1] + v->nrm[3 * i + 2] * L[2]);
-            if (area ? sl_point_faces(&s->light, v->pos + 3 * i, v->nrm + 3 * i) : ndl > 0.0f) {
+            if (at_point ? sl_point_faces(&s->light, v->pos + 3 * i, v->nrm + 3 * i) : ndl > 0.0f) {
                 v->cls[i] = SL_C_PFL;
                 v->truth[i] = SL_T_LIT;   /* until truth.c traces it */
                 v->n_pfl++;

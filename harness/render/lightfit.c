@@ -95,21 +95,26 @@ static void list_unmapped(struct sl_light_box *out, uint32_t t, uint32_t *cap, i
     out->n_unmapped++;
 }
 
-static void fit_point(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+static void fit_point(const struct sl_scene *s, const struct sl_view *v, const float c[3], const float axis[3],
+                      const uint8_t *mask, uint8_t value, struct sl_light_box *out)
 {
-    const float *c = s->light.pos;
-    view_along(c, s->light.normal, out->view);
+    view_along(c, axis, out->view);
     out->persp = 1;
     memcpy(out->eye, c, sizeof out->eye);
     float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
     size_t n = (size_t)v->w * (size_t)v->h;
     for (size_t i = 0; i < n; i++) {
-        if (v->cls[i] != SL_C_PFL)
+        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
             continue;
         float q[3];
         to_light(out->view, v->pos + 3 * i, q);
-        if (!(q[2] > 0.0f))
-            continue;   /* not on the emitting side: never PFL (sl_point_faces) */
+        if (!(q[2] > 0.0f)) {
+            /* behind the frame's plane: none under an area light or a
+             * spot (sl_point_faces); left outside for a caller whose
+             * selected pixels are not all in front */
+            out->n_outside++;
+            continue;
+        }
         float t[3] = {q[0] / q[2], q[1] / q[2], q[2]};
         if (!(fabsf(t[0]) <= SL_POINT_MAX_TAN && fabsf(t[1]) <= SL_POINT_MAX_TAN)) {
             out->n_outside++;
@@ -323,9 +328,18 @@ void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_l
 {
     memset(out, 0, sizeof *out);
     if (s->light.type == SL_LIGHT_AREA)
-        fit_point(s, v, out);
+        fit_point(s, v, s->light.pos, s->light.normal, NULL, 0, out);
+    else if (s->light.type == SL_LIGHT_SPOT)
+        fit_point(s, v, s->light.pos, s->light.dir, NULL, 0, out);
     else
         fit_dir(s, v, NULL, 0, out);
+}
+
+void sl_light_fit_persp(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
+                        const uint8_t *mask, uint8_t value, struct sl_light_box *out)
+{
+    memset(out, 0, sizeof *out);
+    fit_point(s, v, eye, axis, mask, value, out);
 }
 
 int sl_light_fit_slice(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,

@@ -1,7 +1,8 @@
 /*
  * lightfit.h — the light frustum, fitted per view: orthographic for a
- * directional light, perspective from the centre of an area light taken as
- * a point (lightfit.c, fit_point). For a directional light, as the seeds
+ * directional light, perspective from a spot light's position along its
+ * direction or from the centre of an area light taken as a point
+ * (lightfit.c, fit_point). For a directional light, as the seeds
  * did: "the minimum size needed to contain the objects seen
  * by the camera, including all geometry that could influence lighting".
  *
@@ -20,6 +21,16 @@
 #include "view.h"
 
 void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out);
+
+/* The perspective frame of a light at `eye` looking along the unit `axis`,
+ * fitted as an area light's centre is (lightfit.c, fit_point: receivers'
+ * tangents up to atan(8) off the axis, the rest counted in n_outside; its
+ * casters, near and far planes, unmapped triangles), to the PFL pixels i
+ * with mask[i] == value (mask NULL: every one). A spot light's frame is
+ * this along its direction (sl_light_fit); a point light's cube faces are
+ * this along each face's axis, over the pixels that face selects. */
+void sl_light_fit_persp(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
+                        const uint8_t *mask, uint8_t value, struct sl_light_box *out);
 
 /* Stabilised frames for a directional light (issue 23: shadows under
  * motion), the options engines use so a shadow map does not crawl as the

@@ -19,6 +19,7 @@
  */
 #ifndef SL_AREALIGHT_H
 #define SL_AREALIGHT_H
+#include <math.h>
 #include <stdint.h>
 #include "scene.h"
 
@@ -57,9 +58,14 @@ static inline float sl_rt_tnear(const float p[3])
 int sl_point_ray(const float c[3], const float p[3], float dir[3], float *tfar);
 
 /* Whether a point p with unit normal n (turned toward the camera) is lit at
- * all by a point light at the area light's centre: it faces the centre and
- * lies on the emitting side of the light's plane (a PFL pixel of the point
- * approximation). Double, so the G-buffer's classes and hard_point agree. */
+ * all by a light at a point (an area light's centre, a spot or a point
+ * light): it faces the light's position, and
+ *   - area: lies on the emitting side of the light's plane (a PFL pixel of
+ *     the point approximation);
+ *   - spot: lies inside the cone (sl_spot_inside);
+ *   - point: nothing more.
+ * Double, so the G-buffer's classes, hard_point and the methods agree. */
+static inline int sl_spot_inside(const struct sl_light *l, const float p[3]);
 static inline int sl_point_faces(const struct sl_light *l, const float p[3], const float n[3])
 {
     double facing = 0.0, emitting = 0.0;
@@ -68,7 +74,29 @@ static inline int sl_point_faces(const struct sl_light *l, const float p[3], con
         facing += (double)n[k] * to;
         emitting -= (double)l->normal[k] * to;
     }
-    return facing > 0.0 && emitting > 0.0;
+    if (!(facing > 0.0))
+        return 0;
+    if (l->type == SL_LIGHT_AREA)
+        return emitting > 0.0;
+    if (l->type == SL_LIGHT_SPOT)
+        return sl_spot_inside(l, p);
+    return 1;
+}
+
+/* Whether p lies inside a spot light's cone: the angle between the light's
+ * direction and p - pos at most fov / 2 (fov < 180 degrees, scenefile.c),
+ * in double: dot > 0 and dot^2 >= cos^2(fov / 2) |p - pos|^2. A point at
+ * the light itself is outside (no direction). */
+static inline int sl_spot_inside(const struct sl_light *l, const float p[3])
+{
+    double dot = 0.0, len2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double d = (double)p[k] - (double)l->pos[k];
+        dot += d * (double)l->dir[k];
+        len2 += d * d;
+    }
+    double c = cos(0.5 * (double)l->fov_deg * (3.14159265358979323846 / 180.0));
+    return dot > 0.0 && dot * dot >= c * c * len2;
 }
 
 /* 32 random bits for (x, y, k) under seed: pixel x, y, sample k. */

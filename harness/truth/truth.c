@@ -130,8 +130,9 @@ enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, 
     const int W = v->w, H = v->h;
     const int tx = (W + 3) / 4, ty = (H + 3) / 4;
     const float lx = -s->light_dir[0], ly = -s->light_dir[1], lz = -s->light_dir[2];
-    /* an area light is traced as a point at its centre (arealight.h) */
-    const int point = s->light.type == SL_LIGHT_AREA;
+    /* spot and point lights are traced to their position, an area light as
+     * a point at its centre (arealight.h) */
+    const int point = s->light.type != SL_LIGHT_DIRECTIONAL;
     uint64_t rays = 0, shadow = 0;
     /* 4x4 tiles as 16-ray packets; packets are independent, so the result
      * does not depend on the thread count or schedule, nor on which other
