@@ -132,10 +132,11 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
         [SL_OV_LIT_WRONG] = "said lit, shadowed", [SL_OV_SHADOW_WRONG] = "said shadowed, lit",
         [SL_OV_WRONG_OUTSIDE] = "wrong, outside the contour", [SL_OV_UNCERTAIN] = "uncertain",
         [SL_OV_CONTOUR] = "contour (right pixels)",
+        [SL_OV_OUTSIDE_CONE] = "outside the spot's cone (hatched)",
     };
     for (int k = 0; k < SL_OV_CLASSES; k++) {
-        if (th == 0 && (k == SL_OV_WRONG_OUTSIDE || k == SL_OV_CONTOUR))
-            continue;   /* contour 0: the whole image, nothing outside it */
+        if ((th == 0 && (k == SL_OV_WRONG_OUTSIDE || k == SL_OV_CONTOUR)) || (k == SL_OV_OUTSIDE_CONE && !count[k]))
+            continue;   /* contour 0: the whole image, nothing outside it; no spot's cone in view */
         memcpy(sh.legend_rgb[sh.nlegend], sl_overlay_colour[k], 3);
         if (k == SL_OV_CONTOUR)
             snprintf(sh.legend_text[sh.nlegend], sizeof sh.legend_text[0], "%s contour, faint", c);

@@ -34,6 +34,10 @@
  * flicker, flicker_compared: a path's frame against the frame before it
  * (temporal.h); compared 0 = not measured (no frame, or its path's first in
  * the run that computed it).
+ * n_outside_cone: the part of n_pnfl outside a spot light's cone (view.h),
+ * 0 under other lights; light: the scene's light in words for headings
+ * ("spot light, 70°": sl_light_heading). Not compared by check: baselines
+ * written before them have neither, and n_pnfl already holds the pixels.
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -108,7 +112,9 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(ms_flicker,          ms,       0,    41,  "ms_flicker",         none,      _)         \
     X(texels,              count,    0,    42,  "texels",             none,      _)         \
     X(overlay,             path,     1500, 0,   "",                   none,      _)         \
-    X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)
+    X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)         \
+    X(n_outside_cone,      count,    0,    0,   "",                   none,      _)         \
+    X(light,               text,     48,   0,   "",                   none,      _)
 /* clang-format on */
 
 /* One enumerator per column: SL_COL_<name>. */
