@@ -184,7 +184,8 @@ static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_ve
     snprintf(cf, sizeof cf, "k >= 1: inside the 2k-px contour (and every thicker one) of the verdicts it is "
              "scored on; 0 outside all");
     const struct sl_image_attr attrs[] = {
-        {"shadowlab:truth", "0 background, 1 PnFL (faces away from the light, or outside a spot light's cone), 2 lit, 3 shadowed"},
+        {"shadowlab:truth", "0 background, 1 PnFL (faces away from the light, or outside a spot light's cone), "
+                            "2 lit, 3 shadowed"},
         {"shadowlab:verdict", "0 background, 1 lit, 2 shadowed, 3 uncertain (left for a ray tracer)"},
         {"shadowlab:error", "0 right or background, 1 said lit but not lit in truth, 2 said shadowed but lit, "
                             "3 uncertain"},
