@@ -264,3 +264,15 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
     c->ms_method += 1e3 * (sl_now() - t0);
     return sl_cube_mark(cb, out, d);
 }
+
+void sl_cube_cell_costs(const struct sl_cube *cb, uint64_t *faces, double *ms_face_max)
+{
+    *faces = 0;
+    *ms_face_max = NAN;
+    for (int f = 0; f < 6 && cb->map1; f++)
+        if (cb->f[f].size > 0) {
+            (*faces)++;
+            if (isnan(*ms_face_max) || cb->cost[f].ms_method > *ms_face_max)
+                *ms_face_max = cb->cost[f].ms_method;
+        }
+}

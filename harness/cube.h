@@ -98,6 +98,10 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
  * them the cube's frames and faces again. No-op without a cube. */
 enum sl_err sl_cube_mark(const struct sl_cube *cb, struct sl_verdicts *out, struct sl_diag *d);
 
+/* A cell's per-face costs (cellcols.h): the faces holding a map and the
+ * last method run's time on the slowest face; 0 and NAN without a cube. */
+void sl_cube_cell_costs(const struct sl_cube *cb, uint64_t *faces, double *ms_face_max);
+
 /* Every face's layers back to the pool, the face index freed; map1 = 0. */
 void sl_cube_drop(struct sl_cube *cb);
 

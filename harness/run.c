@@ -612,6 +612,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     if (e)
         return e;
     sl_run_med_min_max(times, c->runs, cell->ms.method);
+    sl_cube_cell_costs(&x->cube, &cell->faces, &cell->ms_face_max);   /* a point light's (cube.h) */
     cell->cost.ms_method = cell->ms.method[SL_MED];
     int measured;   /* flicker against the path's previous frame, if any */
     if ((e = sl_temporal_cell(&x->temporal, k->map, k->method, x->vd.v, &measured, &cell->flicker,
