@@ -108,6 +108,43 @@ static void cube_six_faces(void **st)
     fixture_close(&fx);
 }
 
+/* The room (scenes/room.yaml) from its two corners: between them every
+ * face of the light's cube holds receivers, casters and shadowed pixels. */
+static void cube_room_faces(void **st)
+{
+    (void)st;
+    struct fixture fx;
+    assert_true(fixture_open(&fx, "room", 2));
+    uint32_t shadowed[6] = {0}, receivers[6] = {0}, casters[6] = {0};
+    for (int vp = 0; vp < 2; vp++) {
+        struct sl_view v;
+        assert_true(fixture_view(&fx, vp, 256, 256, &v));
+        uint8_t *face = malloc((size_t)v.w * (size_t)v.h);
+        assert_non_null(face);
+        for (size_t i = 0; i < (size_t)v.w * (size_t)v.h; i++) {
+            face[i] = (uint8_t)sl_cube_face_of(fx.scene.light.pos, v.pos + 3 * i);
+            shadowed[face[i]] += v.cls[i] == SL_C_PFL && v.truth[i] == SL_T_SHADOW;
+        }
+        for (int f = 0; f < 6; f++) {
+            struct sl_light_box b;
+            float axis[3];
+            sl_cube_axis(f, axis);
+            sl_light_fit_face(&fx.scene, &v, fx.scene.light.pos, axis, face, (uint8_t)f, 512, SL_CUBE_GUARD, &b);
+            receivers[f] += b.n_receivers;
+            casters[f] += b.n_receivers ? b.n_casters : 0;
+            sl_light_box_free(&b);
+        }
+        free(face);
+        sl_view_free(&v);
+    }
+    for (int f = 0; f < 6; f++) {
+        fprintf(stderr, "room face %d: %u receivers, %u casters, %u shadowed\n", f, receivers[f], casters[f],
+                shadowed[f]);
+        assert_true(receivers[f] > 0 && casters[f] > 0 && shadowed[f] > 0);
+    }
+    fixture_close(&fx);
+}
+
 /* Face f's frame widened by k texels on every side at the same texel size:
  * the texel (i, j) of the face is the texel (i + k, j + k) of the wide one,
  * whose frustum reaches k texels into the neighbouring faces. */
@@ -314,6 +351,7 @@ int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(cube, six_faces),
+        SL_CASE(cube, room_faces),
         SL_CASE(cube, seams),
         SL_CASE(cube, exact_point_scenes),
     };
