@@ -168,7 +168,8 @@ enum sl_err sl_cube_mark(const struct sl_cube *cb, struct sl_verdicts *out, stru
 enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, const struct sl_method_args *a,
                                struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d)
 {
-    if (!cb->map1)
+    cb->ran = 0;
+    if (!cb->map1 || !(m->needs(a->params) & ((1u << SL_LAYER_COUNT) - 1u)))
         return m->run(a, out, c, d);
     const struct sl_view *v = a->view;
     const size_t n = (size_t)v->w * (size_t)v->h;
@@ -211,6 +212,7 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
         cb->cost[f].lookups = cb->cost[f].rays = cb->cost[f].tri_tests = 0;
         if (cb->f[f].size == 0)
             continue;
+        cb->ran++;
         uint32_t npfl = 0, npnfl = 0, nbg = 0;
         for (size_t i = 0; i < n; i++) {
             cls[i] = cb->face[i] == f ? v->cls[i] : (uint8_t)SL_C_BACKGROUND;
@@ -269,7 +271,7 @@ void sl_cube_cell_costs(const struct sl_cube *cb, uint64_t *faces, double *ms_fa
 {
     *faces = 0;
     *ms_face_max = NAN;
-    for (int f = 0; f < 6 && cb->map1; f++)
+    for (int f = 0; f < 6 && cb->map1 && cb->ran; f++)
         if (cb->f[f].size > 0) {
             (*faces)++;
             if (isnan(*ms_face_max) || cb->cost[f].ms_method > *ms_face_max)

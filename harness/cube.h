@@ -66,6 +66,7 @@ struct sl_cube {
     struct sl_light_frame f[6];   /* size 0: a face without receivers (no map) */
     struct sl_cube_face_cost cost[6];
     double   ms_fit;
+    int      ran;          /* faces the last sl_cube_method_run ran on (0: it ran the method once) */
 };
 
 /* The cube of view v at map index `map` of size `size`: the faces fitted on
@@ -90,7 +91,9 @@ enum sl_err sl_cube_ensure(struct sl_cube *cb, struct sl_shadowmap_pass *sp, con
 
 /* Method m over a point light's cube (per face, merged; out gets the six
  * frames and the face per pixel for scoring), or m->run itself when the
- * cube holds nothing (not a point light: cb->map1 = 0). */
+ * cube holds nothing (not a point light: cb->map1 = 0) or m reads no layer
+ * (raytrace: its rays go to the light's position whatever the frame, so
+ * one run is the answer; it costs no face). */
 enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, const struct sl_method_args *a,
                                struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d);
 
@@ -98,8 +101,11 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
  * them the cube's frames and faces again. No-op without a cube. */
 enum sl_err sl_cube_mark(const struct sl_cube *cb, struct sl_verdicts *out, struct sl_diag *d);
 
-/* A cell's per-face costs (cellcols.h): the faces holding a map and the
- * last method run's time on the slowest face; 0 and NAN without a cube. */
+/* A cell's per-face costs (cellcols.h): the faces the last method run ran
+ * on and its time on the slowest; 0 and NAN when it ran once (no cube, or
+ * a method reading no layer). A cell that reuses the contour's NSM run (run.c)
+ * reads the cube's last run: the contour's when its label's cell is the
+ * group's first, as in every config here (nsm listed first). */
 void sl_cube_cell_costs(const struct sl_cube *cb, uint64_t *faces, double *ms_face_max);
 
 /* Every face's layers back to the pool, the face index freed; map1 = 0. */
