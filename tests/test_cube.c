@@ -167,7 +167,8 @@ static void wide_of(const struct sl_light_frame *f, int k, struct sl_light_frame
 }
 
 /* Cube seams: shadow edges that cross the floor's seams between the -y face
- * and the +x and +z faces. For NSM, texel and neighbours (4 and 9), the
+ * and the +x and +z faces. For NSM, texel, neighbours (4 and 9), coherence
+ * (9), BGSM, SGSM and CSMa (plain and conservative layers), the
  * cube's verdict of every pixel equals that of one frustum along its face's
  * axis reaching 64 texels beyond the face on every side (same texel grid):
  * a lookup across the face's edge reads the neighbouring geometry, as the
@@ -187,8 +188,9 @@ static void cube_seams(void **st)
     struct sl_shadowmap_pass sp;
     struct sl_diag d;
     assert_int_equal(sl_shadowmap_init(&sp, &d), SL_OK);
-    const char *methods[] = {"nsm", "texel", "neighbours", "neighbours"};
-    const int texels[] = {0, 0, 4, 9};
+    const char *methods[] = {"nsm", "texel", "neighbours", "neighbours", "coherence", "bgsm", "sgsm", "csm"};
+    const int texels[] = {0, 0, 4, 9, 9, 0, 0, 0};
+    enum { NM = sizeof methods / sizeof methods[0] };
     const int sizes[] = {256, 1024};
     uint8_t *cls = malloc(n);
     assert_non_null(cls);
@@ -197,8 +199,8 @@ static void cube_seams(void **st)
         struct sl_cube cb;
         memset(&cb, 0, sizeof cb);
         unsigned needs = 0;
-        struct sl_method_params p[4];
-        for (int k = 0; k < 4; k++) {
+        struct sl_method_params p[NM];
+        for (int k = 0; k < NM; k++) {
             params_of(methods[k], texels[k], &p[k]);
             needs |= sl_method_find(methods[k])->needs(&p[k]);
         }
@@ -225,7 +227,7 @@ static void cube_seams(void **st)
                     edge_lit[faces[q]], edge_shadow[faces[q]]);
             assert_true(edge_lit[faces[q]] > 0 && edge_shadow[faces[q]] > 0);
         }
-        for (int k = 0; k < 4; k++) {
+        for (int k = 0; k < NM; k++) {
             const struct sl_method *m = sl_method_find(methods[k]);
             struct vbuf cube, wide;
             vbuf_init(&cube, v.w, v.h);
