@@ -12,7 +12,7 @@
  *   independent of the code under test), every such pixel is PnFL for the
  *   methods and the truth, and every label says it shadowed without looking
  *   it up (how = pnfl) and never scores it wrong (the EXR layers, pixel by
- *   pixel);
+ *   pixel), and the overlay hatches exactly those pixels;
  * - penumbra: the optional key is parsed, checked (spot only, [0, fov/2]),
  *   stated in the heading, and ignored: the same scene without it gives the
  *   same counts.
@@ -31,6 +31,7 @@
 #include "fixture.h"
 #include "image.h"
 #include "method.h"
+#include "overlay.h"
 #include "run.h"
 #include "view.h"
 
@@ -173,6 +174,30 @@ static void outside_view(const char *scene, const char *viewpoint)
     /* about half of the view: between a third and two thirds of the image */
     assert_true(3 * recount > (uint64_t)W * H && 3 * recount < 2 * (uint64_t)W * H);
     assert_true(recount < nonbg);
+
+    /* the overlay: with the truth as verdicts, every outside pixel is drawn
+     * hatched dark grey (12 or the stripe's 56), none in an error colour */
+    {
+        struct sl_verdicts vd;
+        memset(&vd, 0, sizeof vd);
+        vd.v = calloc((size_t)W * H, 1);
+        uint8_t *band = calloc((size_t)W * H, 1), *rgb = malloc(3 * (size_t)W * H);
+        assert_true(vd.v && band && rgb);
+        for (size_t i = 0; i < (size_t)W * H; i++)
+            vd.v[i] = v.truth[i] == SL_T_BACKGROUND ? SL_V_NONE : v.truth[i] == SL_T_LIT ? SL_V_LIT : SL_V_SHADOW;
+        uint64_t count[SL_OV_CLASSES];
+        sl_overlay_build(&v, f.scene.light_dir, &vd, band, 2, rgb, NULL, count);
+        assert_int_equal(count[SL_OV_OUTSIDE_CONE], recount);
+        assert_int_equal(count[SL_OV_LIT_WRONG] + count[SL_OV_SHADOW_WRONG] + count[SL_OV_WRONG_OUTSIDE], 0);
+        for (size_t i = 0; i < (size_t)W * H; i++)
+            if (v.outside[i]) {
+                const uint8_t *o = rgb + 3 * i;
+                assert_true(o[0] == o[1] && o[1] == o[2] && (o[0] == 12 || o[0] == 56));
+            }
+        free(vd.v);
+        free(band);
+        free(rgb);
+    }
 
     /* every label on this view, with EXR layers: each outside pixel said
      * shadowed, decided as PnFL (never looked up), never an error */
