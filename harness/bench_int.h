@@ -7,6 +7,10 @@
 
 /* issue 20: the truth at 0.9x a plain loop's rays/s, at least */
 #define SL_BENCH_TARGET_TRUTH_RATIO 0.9
+/* and end to end, its set-up included, no slower than the plain loop's
+ * set-up + trace over the same rays: the set-up the trace target leaves out
+ * must not come back elsewhere */
+#define SL_BENCH_TARGET_TRUTH_WHOLE 1.0
 
 /* What the truth, layer and churn stages work on. */
 struct sl_bench_ctx {
