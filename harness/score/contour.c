@@ -1,11 +1,101 @@
 /*
  * contour.c — see contour.h. Invariant: bands only grow outward one 4-step per
  * dilation and never onto background.
+ *
+ * Rows in parallel, without branches in the inner loops (the compiler
+ * vectorises them): a neighbour outside the image counts as background
+ * (state 0, band 0), which is what the bounds checks of the plain loop
+ * meant — it neither makes an edge nor passes a band on. A dilation only
+ * turns band 0 into k + 1 while it reads band == k, so the order pixels
+ * are visited in does not change the result; what must not happen is a
+ * thread reading a row another thread is writing. Each dilation therefore
+ * runs in three steps over blocks of rows: every block's inner rows, then
+ * every block's first row, then every block's last row — no step writes a
+ * row that another block reads in the same step.
  */
 #include "contour.h"
+#include <omp.h>
+#include <stdlib.h>
 #include <string.h>
 
+/* band of row y from the states: 1 on a change of state, else 0 */
+static void edge_row(int w, const uint8_t *up, const uint8_t *s, const uint8_t *dn, uint8_t *b)
+{
+    for (int x = 0; x < w; x++) {
+        const uint8_t c = s[x], l = x > 0 ? s[x - 1] : 0, r = x + 1 < w ? s[x + 1] : 0, u = up[x], d = dn[x];
+        const int e = (l != 0 && l != c) | (r != 0 && r != c) | (u != 0 && u != c) | (d != 0 && d != c);
+        b[x] = (uint8_t)((c != 0) & e);
+    }
+}
+
+/* one dilation of row y: band 0 on a state next to band k becomes k + 1 */
+static void dilate_row(int w, uint8_t k, const uint8_t *up, const uint8_t *s, uint8_t *b, const uint8_t *dn)
+{
+    const uint8_t nb = (uint8_t)(k + 1);
+    for (int x = 0; x < w; x++) {
+        const uint8_t l = x > 0 ? b[x - 1] : 0, r = x + 1 < w ? b[x + 1] : 0;
+        const int touch = (l == k) | (r == k) | (up[x] == k) | (dn[x] == k);
+        b[x] = (uint8_t)(b[x] | ((b[x] == 0) & (s[x] != 0) & touch ? nb : 0));
+    }
+}
+
+void sl_contour_bands_mt(int w, int h, const uint8_t *state, int dilations, uint8_t *band, int threads)
+{
+    if (w <= 0 || h <= 0)
+        return;
+    if (threads <= 0)
+        threads = omp_get_max_threads();
+    uint8_t *zero = calloc((size_t)w, 1);
+    if (!zero) {
+        sl_contour_bands_plain(w, h, state, dilations, band);
+        return;
+    }
+    const size_t W = (size_t)w;
+    /* blocks of at least 3 rows (an inner row, a first and a last) */
+    int nblk = 4 * threads;
+    if (nblk > h / 3)
+        nblk = h / 3 > 0 ? h / 3 : 1;
+    if (h < 3)
+        nblk = 1;
+#pragma omp parallel num_threads(threads)
+    {
+#pragma omp for schedule(static)
+        for (int y = 0; y < h; y++)
+            edge_row(w, y > 0 ? state + (size_t)(y - 1) * W : zero, state + (size_t)y * W,
+                     y + 1 < h ? state + (size_t)(y + 1) * W : zero, band + (size_t)y * W);
+        for (int k = 1; k <= dilations; k++) {
+            for (int step = 0; step < 3; step++) {
+#pragma omp for schedule(static)
+                for (int bi = 0; bi < nblk; bi++) {
+                    const int y0 = (int)((long)h * bi / nblk), y1 = (int)((long)h * (bi + 1) / nblk);
+                    int a, z;
+                    if (nblk == 1) {
+                        if (step)
+                            continue;   /* one block: every row in the first step */
+                        a = y0, z = y1;
+                    } else if (step == 0)
+                        a = y0 + 1, z = y1 - 1;
+                    else if (step == 1)
+                        a = y0, z = y0 + 1;
+                    else
+                        a = y1 - 1, z = y1;
+                    for (int y = a; y < z; y++)
+                        dilate_row(w, (uint8_t)k, y > 0 ? band + (size_t)(y - 1) * W : zero,
+                                   state + (size_t)y * W, band + (size_t)y * W,
+                                   y + 1 < h ? band + (size_t)(y + 1) * W : zero);
+                }
+            }
+        }
+    }
+    free(zero);
+}
+
 void sl_contour_bands(int w, int h, const uint8_t *state, int dilations, uint8_t *band)
+{
+    sl_contour_bands_mt(w, h, state, dilations, band, 0);
+}
+
+void sl_contour_bands_plain(int w, int h, const uint8_t *state, int dilations, uint8_t *band)
 {
     memset(band, 0, (size_t)w * (size_t)h);
     for (int y = 0; y < h; y++)

@@ -22,6 +22,14 @@
  * ...). dilations >= 0. */
 void sl_contour_bands(int w, int h, const uint8_t *state, int dilations, uint8_t *band);
 
+/* The same on `threads` threads (<= 0: omp_get_max_threads()); the bands
+ * do not depend on the thread count. sl_contour_bands is this with 0. */
+void sl_contour_bands_mt(int w, int h, const uint8_t *state, int dilations, uint8_t *band, int threads);
+
+/* The reference: one thread, pixel by pixel, as the bands were drawn
+ * before (tests and the bench compare the two). */
+void sl_contour_bands_plain(int w, int h, const uint8_t *state, int dilations, uint8_t *band);
+
 /* Is pixel band b inside the contour of `thickness` pixels (0 = whole image)? */
 static inline int sl_in_contour(uint8_t b, int thickness)
 {
