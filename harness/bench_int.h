@@ -24,6 +24,13 @@ struct sl_bench_ctx {
     FILE *out;
 };
 
+/* issue 20: contours + figures + exactness per pixel, at most 3x one
+ * histogram pass over the same pixels */
+#define SL_BENCH_TARGET_SCORE_RATIO 3.0
+
+/* The per-cell scoring against one histogram pass (bench_score.c). */
+enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
+
 /* The truth pass against a plain rtcOccluded16 loop (bench_truth.c). */
 enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 

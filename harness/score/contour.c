@@ -18,25 +18,48 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* band of row y from the states: 1 on a change of state, else 0 */
-static void edge_row(int w, const uint8_t *up, const uint8_t *s, const uint8_t *dn, uint8_t *b)
+/* band of row y from the states: 1 on a change of state, else 0. The
+ * first and last pixels apart, so the inner loop has no bounds checks. */
+static inline uint8_t edge_px(uint8_t c, uint8_t l, uint8_t r, uint8_t u, uint8_t d)
 {
-    for (int x = 0; x < w; x++) {
-        const uint8_t c = s[x], l = x > 0 ? s[x - 1] : 0, r = x + 1 < w ? s[x + 1] : 0, u = up[x], d = dn[x];
-        const int e = (l != 0 && l != c) | (r != 0 && r != c) | (u != 0 && u != c) | (d != 0 && d != c);
-        b[x] = (uint8_t)((c != 0) & e);
-    }
+    const int e = (l != 0 && l != c) | (r != 0 && r != c) | (u != 0 && u != c) | (d != 0 && d != c);
+    return (uint8_t)((c != 0) & e);
 }
 
-/* one dilation of row y: band 0 on a state next to band k becomes k + 1 */
-static void dilate_row(int w, uint8_t k, const uint8_t *up, const uint8_t *s, uint8_t *b, const uint8_t *dn)
+static void edge_row(int w, const uint8_t *restrict up, const uint8_t *restrict s, const uint8_t *restrict dn,
+                     uint8_t *restrict b)
 {
-    const uint8_t nb = (uint8_t)(k + 1);
-    for (int x = 0; x < w; x++) {
-        const uint8_t l = x > 0 ? b[x - 1] : 0, r = x + 1 < w ? b[x + 1] : 0;
-        const int touch = (l == k) | (r == k) | (up[x] == k) | (dn[x] == k);
-        b[x] = (uint8_t)(b[x] | ((b[x] == 0) & (s[x] != 0) & touch ? nb : 0));
+    if (w == 1) {
+        b[0] = edge_px(s[0], 0, 0, up[0], dn[0]);
+        return;
     }
+    b[0] = edge_px(s[0], 0, s[1], up[0], dn[0]);
+    for (int x = 1; x < w - 1; x++)
+        b[x] = edge_px(s[x], s[x - 1], s[x + 1], up[x], dn[x]);
+    b[w - 1] = edge_px(s[w - 1], s[w - 2], 0, up[w - 1], dn[w - 1]);
+}
+
+/* one dilation of row y: band 0 on a state next to band k becomes k + 1.
+ * It reads the row as it was (old: a copy), which gives the same answer as
+ * reading it as it is being written (a pixel written turns 0 into k + 1,
+ * never into k) and lets the loop run in vector registers. */
+static inline uint8_t dil_px(uint8_t k, uint8_t c, uint8_t s, uint8_t l, uint8_t r, uint8_t u, uint8_t d)
+{
+    const int touch = (l == k) | (r == k) | (u == k) | (d == k);
+    return (uint8_t)(c | ((c == 0) & (s != 0) & touch ? k + 1 : 0));
+}
+
+static void dilate_row(int w, uint8_t k, const uint8_t *restrict up, const uint8_t *restrict s,
+                       const uint8_t *restrict old, uint8_t *restrict b, const uint8_t *restrict dn)
+{
+    if (w == 1) {
+        b[0] = dil_px(k, old[0], s[0], 0, 0, up[0], dn[0]);
+        return;
+    }
+    b[0] = dil_px(k, old[0], s[0], 0, old[1], up[0], dn[0]);
+    for (int x = 1; x < w - 1; x++)
+        b[x] = dil_px(k, old[x], s[x], old[x - 1], old[x + 1], up[x], dn[x]);
+    b[w - 1] = dil_px(k, old[w - 1], s[w - 1], old[w - 2], 0, up[w - 1], dn[w - 1]);
 }
 
 void sl_contour_bands_mt(int w, int h, const uint8_t *state, int dilations, uint8_t *band, int threads)
@@ -45,7 +68,7 @@ void sl_contour_bands_mt(int w, int h, const uint8_t *state, int dilations, uint
         return;
     if (threads <= 0)
         threads = omp_get_max_threads();
-    uint8_t *zero = calloc((size_t)w, 1);
+    uint8_t *zero = calloc((size_t)w * (size_t)(1 + threads), 1);   /* a zero row, a row copy per thread */
     if (!zero) {
         sl_contour_bands_plain(w, h, state, dilations, band);
         return;
@@ -59,6 +82,7 @@ void sl_contour_bands_mt(int w, int h, const uint8_t *state, int dilations, uint
         nblk = 1;
 #pragma omp parallel num_threads(threads)
     {
+        uint8_t *old = zero + W * (size_t)(1 + omp_get_thread_num());
 #pragma omp for schedule(static)
         for (int y = 0; y < h; y++)
             edge_row(w, y > 0 ? state + (size_t)(y - 1) * W : zero, state + (size_t)y * W,
@@ -79,10 +103,12 @@ void sl_contour_bands_mt(int w, int h, const uint8_t *state, int dilations, uint
                         a = y0, z = y0 + 1;
                     else
                         a = y1 - 1, z = y1;
-                    for (int y = a; y < z; y++)
+                    for (int y = a; y < z; y++) {
+                        memcpy(old, band + (size_t)y * W, W);
                         dilate_row(w, (uint8_t)k, y > 0 ? band + (size_t)(y - 1) * W : zero,
-                                   state + (size_t)y * W, band + (size_t)y * W,
+                                   state + (size_t)y * W, old, band + (size_t)y * W,
                                    y + 1 < h ? band + (size_t)(y + 1) * W : zero);
+                    }
                 }
             }
         }
