@@ -230,11 +230,23 @@ static uint64_t fused_span(const struct fused_tabs *T, const struct sl_view *v, 
         const unsigned t = tr[i] & 3u;
         const unsigned key = t | T->v[vv[i]] | T->how[how[i]] | T->base[bs[i]] | T->band[band[i]];
         hist[key]++;
-        /* background pixels' tests go to a slot of their own, left out */
-        tests[t ? (key >> K_BAND) : K_BANDS] += tst[i];
         if (check)
             viol += T->bad[key] & (cls[i] == SL_C_PFL);
     }
+    /* the ray-triangle tests: most methods spend none, so a quick look
+     * first (a vector loop); where some were spent, summed per region set
+     * (background pixels' to a slot of their own, left out). Summed in
+     * the key loop they cost a sixth of the pass for nothing. A key
+     * computed by vector arithmetic, then counted, measured slower here
+     * than the tables (2.5 vs 2.1 ms per 1 M pixels, one thread). */
+    unsigned any = 0;
+    for (size_t i = i0; i < i1; i++)
+        any |= tst[i];
+    if (any)
+        for (size_t i = i0; i < i1; i++) {
+            const unsigned t = tr[i] & 3u;
+            tests[t ? T->band[band[i]] >> K_BAND : K_BANDS] += tst[i];
+        }
     return viol;
 }
 
