@@ -107,10 +107,12 @@ static void contour_whole_image_region(void **st)
 static void contour_parallel_matches_plain(void **st)
 {
     (void)st;
-    static const int sz[][2] = {{1, 1}, {1, 9}, {9, 1}, {2, 2}, {5, 7}, {64, 3}, {301, 203}, {1000, 37}};
+    /* the last two cut into blocks of rows (~64 K pixels each) drawn apart */
+    static const int sz[][2] = {{1, 1},   {1, 9},      {9, 1},      {2, 2},    {5, 7},
+                                {64, 3},  {301, 203},  {1000, 37},  {1024, 300}, {7, 30000}};
     uint32_t r = 7u;
     int banded = 0;
-    for (int s = 0; s < 8; s++) {
+    for (int s = 0; s < 10; s++) {
         int w = sz[s][0], h = sz[s][1];
         size_t n = (size_t)w * (size_t)h;
         uint8_t *state = malloc(n), *a = malloc(n), *b = malloc(n);
