@@ -6,7 +6,7 @@
  * pixel (the verdicts), 256 bins, one thread. Both in the same run, per
  * million pixels, with the scoring as it was before the fused pass (the
  * plain contour loop, figures pixel by pixel, the exactness loop, one
- * thread) beside them. The input is real: the bench scene's first
+ * thread) beside them; fused is sl_score_fused, as cell.c calls it. The input is real: the bench scene's first
  * viewpoint, its truth, and NSM's verdicts from its own layer; the
  * exactness count asks all three guarantees of NSM (which has none), so
  * that it counts its wrong pixels and every pixel is checked. The fused
@@ -160,8 +160,7 @@ enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, 
         sl_figures_compute_pixelwise(&v, &vd, band0, regions, nreg, &fig[0]);
         bad_before = exact_plain(&v, &vd, exact);
         double t2 = sl_now();
-        sl_contour_bands_mt(W, H, vd.v, dil, band1, x->threads);
-        bad_fused = sl_figures_fused(&v, &vd, band1, regions, nreg, exact, x->threads, &fig[1]);
+        bad_fused = sl_score_fused(&v, &vd, vd.v, dil, band1, regions, nreg, exact, x->threads, &fig[1]);
         double t3 = sl_now();
         w[0] = 1e3 * (t1 - t0);
         w[1] = 1e3 * (t2 - t1);
@@ -174,8 +173,7 @@ enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, 
         sl_figures_compute_pixelwise(&v, &vd, band0, regions, nreg, &fig[0]);
         bad_before = exact_plain(&v, &vd, exact);
         double c2 = thread_cpu();
-        sl_contour_bands_mt(W, H, vd.v, dil, band1, 1);
-        bad_fused = sl_figures_fused(&v, &vd, band1, regions, nreg, exact, 1, &fig[1]);
+        bad_fused = sl_score_fused(&v, &vd, vd.v, dil, band1, regions, nreg, exact, 1, &fig[1]);
         double c3 = thread_cpu();
         w[3] = 1e3 * (c1 - c0);
         w[4] = 1e3 * (c2 - c1);
@@ -196,8 +194,9 @@ enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, 
             x->s.name, x->s.vp[x->vp[0]].name, W, H, S, reps);
     fprintf(out, "Per 1 M pixels. Scoring: the contour bands, the figures of every region and the exactness "
                  "count (all three guarantees asked of NSM: %llu of its pixels break one). Before: the plain "
-                 "contour loop, the figures pixel by pixel and the exactness loop, one thread. Fused: bands "
-                 "rows-in-parallel, then one histogram-of-keys pass for figures and exactness, %d threads. "
+                 "contour loop, the figures pixel by pixel and the exactness loop, one thread. Fused: one pass, "
+                 "blocks of rows on %d threads, each block's bands drawn and its keys counted (figures and "
+                 "exactness) while in cache. "
                  "Floor: a 256-bin histogram of the verdict bytes, one thread. Fused and before %s.\n\n",
             (unsigned long long)bad_fused, x->threads,
             agree ? "agree on every band, figure and violation" : "**DISAGREE** (a bug)");

@@ -15,6 +15,7 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "contour.h"
 #include "figures.h"
 
 struct rnd_cell {
@@ -152,11 +153,56 @@ static void figures_fused_exactness_count(void **st)
     drop(&c);
 }
 
+/* Bands drawn block by block inside the figure pass: the same bands as the
+ * plain contour loop, every row of them, and the same figures and
+ * violations, whatever the threads; verdicts in runs, so contours are
+ * lines, and sizes that cut into several blocks. */
+static void figures_score_fused_matches(void **st)
+{
+    (void)st;
+    static const int sizes[][2] = {{5, 3}, {1024, 300}, {333, 611}};
+    static const int regs[][4] = {{2, 4, 6, 0}, {8, 0}, {40, 2, 0}};
+    static const int nregs[] = {4, 2, 3};
+    for (int s = 0; s < 3; s++) {
+        struct rnd_cell c;
+        make(&c, sizes[s][0], sizes[s][1], 1);
+        size_t n = (size_t)c.v.w * (size_t)c.v.h;
+        for (size_t i = 1; i < n; i++)
+            if (next() % 17)
+                c.vd.v[i] = c.vd.v[i - 1];
+        uint8_t *want = malloc(n), *got = malloc(n);
+        assert_true(want && got);
+        for (int g = 0; g < 3; g++) {
+            int maxt = 0;
+            for (int r = 0; r < nregs[g]; r++)
+                maxt = regs[g][r] > maxt ? regs[g][r] : maxt;
+            const int dil = maxt / 2 - 1;
+            sl_contour_bands_plain(c.v.w, c.v.h, c.vd.v, dil, want);
+            struct sl_figures ref, f;
+            sl_figures_compute_pixelwise(&c.v, &c.vd, want, regs[g], nregs[g], &ref);
+            uint64_t bad = sl_figures_fused(&c.v, &c.vd, want, regs[g], nregs[g], SL_EXACT_LIT | SL_EXACT_PROVED, 1,
+                                            &f);
+            for (int th = 1; th <= 3; th++) {
+                memset(got, 0xCD, n);
+                assert_int_equal(sl_score_fused(&c.v, &c.vd, c.vd.v, dil, got, regs[g], nregs[g],
+                                                SL_EXACT_LIT | SL_EXACT_PROVED, th, &f), bad);
+                assert_memory_equal(want, got, n);
+                same(&ref, &f);
+            }
+            assert_true(bad > 0);
+        }
+        free(want);
+        free(got);
+        drop(&c);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(figures, fused_matches_pixelwise),
         SL_CASE(figures, fused_exactness_count),
+        SL_CASE(figures, score_fused_matches),
     };
     return sl_run_group(argc, argv, "figures", tests, NULL, NULL);
 }

@@ -250,33 +250,46 @@ static uint64_t fused_span(const struct fused_tabs *T, const struct sl_view *v, 
     return viol;
 }
 
-uint64_t sl_figures_fused(const struct sl_view *v, const struct sl_verdicts *vd, const uint8_t *band,
-                          const int *thickness, int nregions, unsigned exact, int threads, struct sl_figures *out)
+/* band given (state NULL), or drawn from state block by block into
+ * band_out just before the block is counted, while its rows are in cache */
+static uint64_t fused(const struct sl_view *v, const struct sl_verdicts *vd, const uint8_t *state, int dilations,
+                      const uint8_t *band, uint8_t *band_out, const int *thickness, int nregions, unsigned exact,
+                      int threads, struct sl_figures *out)
 {
     nregions = regions_init(thickness, nregions, out);
     if (threads <= 0)
         threads = omp_get_max_threads();
-    struct fused_tabs *T = malloc(sizeof *T);
-    uint64_t *hist = calloc((size_t)K_N + K_BANDS + 1, sizeof *hist);
-    uint32_t *th = calloc((size_t)threads * K_N, sizeof *th);
-    if (!T || !hist || !th) {
-        /* no memory for the tables: count pixel by pixel; the caller
-         * counts the violations itself */
-        free(T);
-        free(hist);
-        free(th);
-        sl_figures_compute_pixelwise(v, vd, band, thickness, nregions, out);
-        return UINT64_MAX;
-    }
-    fused_tabs_init(T, thickness, nregions, vd->has_base, exact);
     const int W = v->w, H = v->h, check = exact != 0;
-    uint64_t viol = 0;
     /* blocks of rows of ~64 K pixels, handed out as threads come free */
     const int rows = W > 0 ? (65536 + W - 1) / W : 1;
     const int nblk = W > 0 ? (H + rows - 1) / rows : 0;
+    const size_t need = state ? sl_contour_scratch(W, rows, dilations) : 0;
+    struct fused_tabs *T = malloc(sizeof *T);
+    uint64_t *hist = calloc((size_t)K_N + K_BANDS + 1, sizeof *hist);
+    uint32_t *th = calloc((size_t)threads * K_N, sizeof *th);
+    uint8_t *scratch = state ? malloc(need * (size_t)threads) : NULL;
+    if (!T || !hist || !th || (state && !scratch)) {
+        /* no memory for the tables: one thing after the other, pixel by
+         * pixel; the caller counts the violations itself */
+        free(T);
+        free(hist);
+        free(th);
+        free(scratch);
+        if (state) {
+            sl_contour_bands_plain(W, H, state, dilations, band_out);
+            band = band_out;
+        }
+        sl_figures_compute_pixelwise(v, vd, band, thickness, nregions, out);
+        return UINT64_MAX;
+    }
+    if (state)
+        band = band_out;
+    fused_tabs_init(T, thickness, nregions, vd->has_base, exact);
+    uint64_t viol = 0;
 #pragma omp parallel num_threads(threads) reduction(+ : viol)
     {
         uint32_t *h = th + (size_t)omp_get_thread_num() * K_N;
+        uint8_t *sc = scratch ? scratch + need * (size_t)omp_get_thread_num() : NULL;
         uint64_t tests[K_BANDS + 1] = {0};
         size_t since = 0;   /* pixels counted into h since it was last added up */
 #pragma omp for schedule(dynamic, 1)
@@ -291,6 +304,9 @@ uint64_t sl_figures_fused(const struct sl_view *v, const struct sl_verdicts *vd,
                 memset(h, 0, K_N * sizeof *h);
                 since = 0;
             }
+            if (sc)
+                sl_contour_bands_rows(W, H, state, dilations, (int)(i0 / (size_t)W), (int)(i1 / (size_t)W),
+                                      band_out, sc);
             viol += fused_span(T, v, vd, band, check, i0, i1, h, tests);
             since += i1 - i0;
         }
@@ -303,6 +319,7 @@ uint64_t sl_figures_fused(const struct sl_view *v, const struct sl_verdicts *vd,
         }
     }
     free(th);
+    free(scratch);
     int hints = 0;   /* Moderno's count: PnFL pixels are hinted when the method hints at all */
     for (unsigned k = 0; k < K_N && vd->has_base; k++)
         hints |= hist[k] && ((k >> K_HOW) & 7u) == 1u;
@@ -332,6 +349,19 @@ uint64_t sl_figures_fused(const struct sl_view *v, const struct sl_verdicts *vd,
     free(T);
     percentages(out);
     return check ? viol : 0;
+}
+
+uint64_t sl_figures_fused(const struct sl_view *v, const struct sl_verdicts *vd, const uint8_t *band,
+                          const int *thickness, int nregions, unsigned exact, int threads, struct sl_figures *out)
+{
+    return fused(v, vd, NULL, 0, band, NULL, thickness, nregions, exact, threads, out);
+}
+
+uint64_t sl_score_fused(const struct sl_view *v, const struct sl_verdicts *vd, const uint8_t *state, int dilations,
+                        uint8_t *band, const int *thickness, int nregions, unsigned exact, int threads,
+                        struct sl_figures *out)
+{
+    return fused(v, vd, state, dilations, band, band, thickness, nregions, exact, threads, out);
 }
 
 void sl_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, const uint8_t *band,

@@ -116,6 +116,15 @@ uint64_t sl_figures_fused(const struct sl_view *v, const struct sl_verdicts *vd,
                           const int *thickness, int nregions, unsigned exact, int threads,
                           struct sl_figures *out);
 
+/* The contour bands and the same in one pass: block by block, each block's
+ * bands drawn from the states (sl_contour_bands_rows: `dilations` as
+ * sl_contour_bands takes it) into band (w * h, every row written, as
+ * sl_contour_bands writes it) and counted while in cache. Returns as
+ * sl_figures_fused. */
+uint64_t sl_score_fused(const struct sl_view *v, const struct sl_verdicts *vd, const uint8_t *state, int dilations,
+                        uint8_t *band, const int *thickness, int nregions, unsigned exact, int threads,
+                        struct sl_figures *out);
+
 /* The reference: the same counting rules, pixel by pixel on one thread, as
  * the figures were counted before the fused pass (tests and the bench
  * compare the two). */
