@@ -278,12 +278,6 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                 snprintf(cs->viewpoints[cs->nviewpoints++], sizeof cs->viewpoints[0], "%s",
                          s.vp[s.paths[p].first + f].name);
         }
-        if (s.light.type == SL_LIGHT_POINT) {
-            sl_scene_free(&s);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has a point light: the passes handle directional, spot and "
-                               "area lights only so far", rs->scene);
-        }
         cs->light_type = s.light.type;
         sl_scene_free(&s);
         for (unsigned k = 0; k < si; k++)

@@ -92,6 +92,8 @@ void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct s
     r->soft = cl->soft;
     r->has_alias = cl->has_alias;
     r->texels = cl->texels;
+    r->faces = cl->faces;
+    r->ms_face_max = cl->ms_face_max;
     r->alias = cl->alias;
     snprintf(r->study, sizeof r->study, "%s", c->name);
     snprintf(r->config_hash, sizeof r->config_hash, "%016llx", c->hash);

@@ -20,6 +20,7 @@
 #include "cache.h"
 #include "cell.h"
 #include "contour.h"
+#include "cube.h"
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
@@ -47,30 +48,6 @@ void sl_run_result_free(struct sl_run_result *r)
  * run and no warm-up times each stage once and repeats nothing. */
 #define SL_MAX_REPS 1100   /* config: warm-up <= 100, runs <= 1000 */
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* {median, min, max} of n >= 1 times (sorted in place), NaN ones (a GPU
- * timer that failed, glctx.h) left out; all NaN: NaN (not measured). */
-static void med_min_max(double *t, int n, double out[3])
-{
-    int k = 0;
-    for (int i = 0; i < n; i++)
-        if (!isnan(t[i]))
-            t[k++] = t[i];
-    if ((n = k) == 0) {
-        out[SL_MED] = out[SL_MIN] = out[SL_MAX] = NAN;
-        return;
-    }
-    qsort(t, (size_t)n, sizeof t[0], cmp_double);
-    out[SL_MED] = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
-    out[SL_MIN] = t[0];
-    out[SL_MAX] = t[n - 1];
-}
-
 struct run_ctx {
     struct sl_gl gl;
     struct sl_rt rt;
@@ -92,7 +69,8 @@ struct run_ctx {
     uint64_t truth_rays;
     /* current frame */
     int frame_map;
-    struct sl_light_frame frame;
+    struct sl_light_frame frame;        /* a point light's: the cube's sums, no arrays (cube.h) */
+    struct sl_cube cube;                 /* a point light's six frames, per (view, map size) */
     double layer_ms[SL_LAYER_COUNT][3];   /* render time of each layer: median, min, max */
     double layer_gpu[SL_LAYER_COUNT][3];  /* its GPU time (GL_TIME_ELAPSED), the same */
     uint64_t view_bad, layer_bad[SL_LAYER_COUNT];   /* values that are not finite or out of range */
@@ -133,6 +111,7 @@ static void emit(const struct run_ctx *x, const struct sl_run_event *ev)
 static void drop_frame(struct run_ctx *x)
 {
     sl_frame_free(&x->frame);
+    sl_cube_drop(&x->cube);
     x->frame_map = -1;
     x->nsm_map = -1;
 }
@@ -330,7 +309,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
                 return e;
             times[r] = st.ms_trace + ts.ms_trace;
         }
-        med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        sl_run_med_min_max(times + c->warmup, c->runs, x->vms.truth);
         res->passes.truths_traced++;
         res->passes.soft_truths++;
         x->truth_rays = st.rays + ts.rays;
@@ -367,8 +346,8 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         if (e)
             return e;
     }
-    med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
-    med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
+    sl_run_med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
+    sl_run_med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
     unsigned long long key = sl_cache_view_key(x->scene_key, &x->scene.vp[vp], W, H);
     if (x->area)
         return area_view(x, c, k, key, cache_dir, reps, times, res, d);
@@ -389,7 +368,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
                 return e;
             times[r] = ts.ms_trace;
         }
-        med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        sl_run_med_min_max(times + c->warmup, c->runs, x->vms.truth);
         res->passes.truths_traced++;
         x->truth_rays = ts.rays;
         if (cache_dir && cache_dir[0])
@@ -423,6 +402,10 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         x->frame.depth_range = x->box.hi[2] - x->box.lo[2];
         x->frame_map = k->map;
     }
+    if (x->scene.light.type == SL_LIGHT_POINT)
+        return sl_cube_ensure(&x->cube, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map], now, needs,
+                              &(struct sl_cube_timing){c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
+                                                       res->passes.layers}, &x->frame, d);
     unsigned before = x->frame.have;
     enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, now, d);
     int reps = c->warmup + c->runs;
@@ -446,8 +429,8 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
             sl_frame_drop_layer(&again, l);   /* back to the pool for the next repetition */
         }
         if (!e) {
-            med_min_max(times + c->warmup, c->runs, x->layer_ms[l]);
-            med_min_max(gpu + c->warmup, c->runs, x->layer_gpu[l]);
+            sl_run_med_min_max(times + c->warmup, c->runs, x->layer_ms[l]);
+            sl_run_med_min_max(gpu + c->warmup, c->runs, x->layer_gpu[l]);
         }
     }
     return e;
@@ -531,7 +514,7 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
     x->nvd.has_detail = 0;
     memset(x->nvd.tests, 0, npx);
     double t0 = sl_now();
-    if ((e = m->run(&a, &x->nvd, &cost, d)))
+    if ((e = sl_cube_method_run(&x->cube, m, &a, &x->nvd, &cost, d)))
         return e;
     res->passes.contour_runs++;          /* taken back if a cell of `label` reuses it */
     x->nsm_label = label;
@@ -615,11 +598,12 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             x->vd.has_detail = x->nvd.has_detail, x->vd.nframes = 0;   /* NSM's: the cell's frame */
             res->passes.contour_runs--;
             cost = x->nsm_cost;
+            e = sl_cube_mark(&x->cube, &x->vd, d);   /* a point light's faces (cube.h) */
         } else {
             x->vd.has_base = x->vd.nframes = 0;   /* nframes: the cell's frame unless the method says */
             x->vd.has_detail = 0;
             memset(x->vd.tests, 0, npx);
-            e = cm->method->run(&a, &x->vd, &cost, d);
+            e = sl_cube_method_run(&x->cube, cm->method, &a, &x->vd, &cost, d);
         }
         if (r >= c->warmup)
             times[r - c->warmup] = cost.ms_method;
@@ -627,7 +611,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     }
     if (e)
         return e;
-    med_min_max(times, c->runs, cell->ms.method);
+    sl_run_med_min_max(times, c->runs, cell->ms.method);
+    sl_cube_cell_costs(&x->cube, &cell->faces, &cell->ms_face_max);   /* a point light's (cube.h) */
     cell->cost.ms_method = cell->ms.method[SL_MED];
     int measured;   /* flicker against the path's previous frame, if any */
     if ((e = sl_temporal_cell(&x->temporal, k->map, k->method, x->vd.v, &measured, &cell->flicker,

@@ -3,7 +3,9 @@
  */
 #include "runhelp.h"
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+#include "cellcols.h"
 
 /* G-buffer values that are not finite (positions, normals of non-background
  * pixels). A hard case must never produce one (tests/test_hard.c). */
@@ -89,4 +91,28 @@ void sl_run_alt_free(struct sl_alt_frames *a)
     for (int i = 0; i < a->n; i++)
         sl_frame_free(&a->e[i].f);
     a->n = 0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* {median, min, max} of n >= 1 times (sorted in place), NaN ones (a GPU
+ * timer that failed, glctx.h) left out; all NaN: NaN (not measured). */
+void sl_run_med_min_max(double *t, int n, double out[3])
+{
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (!isnan(t[i]))
+            t[k++] = t[i];
+    if ((n = k) == 0) {
+        out[SL_MED] = out[SL_MIN] = out[SL_MAX] = NAN;
+        return;
+    }
+    qsort(t, (size_t)n, sizeof t[0], cmp_double);
+    out[SL_MED] = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+    out[SL_MIN] = t[0];
+    out[SL_MAX] = t[n - 1];
 }

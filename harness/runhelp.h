@@ -19,6 +19,11 @@
  * pixels). A hard case must never produce one (tests/test_hard.c). */
 uint64_t sl_run_view_bad(const struct sl_view *v);
 
+/* {median, min, max} (SL_MED, SL_MIN, SL_MAX of cellcols.h) of n >= 1
+ * times (sorted in place), NaN ones (a GPU timer that failed, glctx.h)
+ * left out; all NaN: NaN (not measured). */
+void sl_run_med_min_max(double *t, int n, double out[3]);
+
 /* Shadow-map depths outside [0, 1] or not finite. */
 uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size);
 

@@ -96,7 +96,7 @@ static void list_unmapped(struct sl_light_box *out, uint32_t t, uint32_t *cap, i
 }
 
 static void fit_point(const struct sl_scene *s, const struct sl_view *v, const float c[3], const float axis[3],
-                      const uint8_t *mask, uint8_t value, struct sl_light_box *out)
+                      const uint8_t *mask, uint8_t value, int size, int guard, struct sl_light_box *out)
 {
     view_along(c, axis, out->view);
     out->persp = 1;
@@ -138,6 +138,17 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, const f
         lo[k] -= m;
         hi[k] += m;
     }
+    /* a cube face's guard band (sl_light_fit_face): `guard` texels of the
+     * final map on each side beyond the receivers, widened before the
+     * casters are chosen so the band's casters count toward the near plane
+     * as the receivers' do: the band's texels hold the geometry there, not
+     * a clipped or empty border */
+    if (guard > 0 && size > 2 * guard && out->n_receivers > 0)
+        for (int k = 0; k < 2; k++) {
+            float t = (hi[k] - lo[k]) / (float)(size - 2 * guard);
+            lo[k] -= (float)guard * t;
+            hi[k] += (float)guard * t;
+        }
     /* far at twice the farthest receiver: window depth 1 - z there is then
      * about near / (2 d), clear of the cleared 1 by many float steps (a 1e-4
      * margin, as the box has, would be near/d * 1e-4: below one step when
@@ -324,13 +335,55 @@ void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, cons
     glm_mat4_mul(out->proj, out->view, out->vp);
 }
 
+/* A point light's view as one box (lightfit.h, sl_light_fit): the six
+ * faces fitted without a guard band, their counts summed (unmapped
+ * triangles are each face's own: none listed here), the matrices those of
+ * the face with most receivers. The cube's own frames (harness/cube.c) are
+ * fitted per map size, with their guard band. */
+static void fit_cube_summary(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+{
+    size_t n = (size_t)v->w * (size_t)v->h;
+    uint8_t *face = malloc(n ? n : 1);
+    int best = -1;
+    for (size_t i = 0; face && i < n; i++)
+        face[i] = (uint8_t)sl_cube_face_of(s->light.pos, v->pos + 3 * i);
+    for (int f = 0; f < 6; f++) {
+        struct sl_light_box b;
+        float axis[3];
+        sl_cube_axis(f, axis);
+        memset(&b, 0, sizeof b);
+        /* without the selection (no memory) every face sees every PFL pixel: the counts are then the faces' sums */
+        fit_point(s, v, s->light.pos, axis, face, (uint8_t)(face ? f : 0), 0, 0, &b);
+        uint32_t r = out->n_receivers, o = out->n_outside, c = out->n_casters;
+        if (best < 0 || b.n_receivers > r) {
+            memcpy(out->view, b.view, sizeof b.view);
+            memcpy(out->proj, b.proj, sizeof b.proj);
+            memcpy(out->vp, b.vp, sizeof b.vp);
+            memcpy(out->lo, b.lo, sizeof b.lo);
+            memcpy(out->hi, b.hi, sizeof b.hi);
+            memcpy(out->eye, b.eye, sizeof b.eye);
+            out->wmin = b.wmin;
+            out->guard = b.guard;
+            best = f;
+        }
+        out->n_receivers = r + b.n_receivers;
+        out->n_outside = o + (face ? b.n_outside : 0);
+        out->n_casters = c + b.n_casters;
+        free(b.unmapped);
+    }
+    out->persp = 1;
+    free(face);
+}
+
 void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
 {
     memset(out, 0, sizeof *out);
     if (s->light.type == SL_LIGHT_AREA)
-        fit_point(s, v, s->light.pos, s->light.normal, NULL, 0, out);
+        fit_point(s, v, s->light.pos, s->light.normal, NULL, 0, 0, 0, out);
     else if (s->light.type == SL_LIGHT_SPOT)
-        fit_point(s, v, s->light.pos, s->light.dir, NULL, 0, out);
+        fit_point(s, v, s->light.pos, s->light.dir, NULL, 0, 0, 0, out);
+    else if (s->light.type == SL_LIGHT_POINT)
+        fit_cube_summary(s, v, out);
     else
         fit_dir(s, v, NULL, 0, out);
 }
@@ -339,7 +392,14 @@ void sl_light_fit_persp(const struct sl_scene *s, const struct sl_view *v, const
                         const uint8_t *mask, uint8_t value, struct sl_light_box *out)
 {
     memset(out, 0, sizeof *out);
-    fit_point(s, v, eye, axis, mask, value, out);
+    fit_point(s, v, eye, axis, mask, value, 0, 0, out);
+}
+
+void sl_light_fit_face(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
+                       const uint8_t *mask, uint8_t value, int size, int guard, struct sl_light_box *out)
+{
+    memset(out, 0, sizeof *out);
+    fit_point(s, v, eye, axis, mask, value, size, guard, out);
 }
 
 int sl_light_fit_slice(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,

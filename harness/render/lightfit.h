@@ -16,6 +16,7 @@
  */
 #ifndef SL_LIGHTFIT_H
 #define SL_LIGHTFIT_H
+#include <math.h>
 #include "frame.h"
 #include "scene.h"
 #include "view.h"
@@ -31,6 +32,35 @@ void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_l
  * this along each face's axis, over the pixels that face selects. */
 void sl_light_fit_persp(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
                         const uint8_t *mask, uint8_t value, struct sl_light_box *out);
+/* The same with a guard band of `guard` texels of a size x size map on each
+ * side beyond the receivers' tangents (a point light's cube face,
+ * harness/cube.h): lookups up to `guard` texels across the receivers' edge
+ * read the scene there. The band is added before the casters are chosen,
+ * so the near plane holds the band's casters too. guard 0, or a map of at
+ * most 2 guard texels: sl_light_fit_persp's frame. */
+void sl_light_fit_face(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
+                       const uint8_t *mask, uint8_t value, int size, int guard, struct sl_light_box *out);
+
+/* A point light's cube: face 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z (GL's
+ * cube-map order). A point p belongs to the face of the major axis of
+ * p - eye; ties go to the lower axis (x before y before z), so every point
+ * has one face whatever its direction; p = eye goes to +x (and is left
+ * outside its frame by the fit: no direction). */
+static inline int sl_cube_face_of(const float eye[3], const float p[3])
+{
+    const float d[3] = {p[0] - eye[0], p[1] - eye[1], p[2] - eye[2]};
+    int a = 0;
+    if (fabsf(d[1]) > fabsf(d[a]))
+        a = 1;
+    if (fabsf(d[2]) > fabsf(d[a]))
+        a = 2;
+    return 2 * a + (d[a] < 0.0f);
+}
+static inline void sl_cube_axis(int face, float axis[3])
+{
+    axis[0] = axis[1] = axis[2] = 0.0f;
+    axis[face / 2] = face % 2 ? -1.0f : 1.0f;
+}
 
 /* Stabilised frames for a directional light (issue 23: shadows under
  * motion), the options engines use so a shadow map does not crawl as the

@@ -34,6 +34,9 @@
  * flicker, flicker_compared: a path's frame against the frame before it
  * (temporal.h); compared 0 = not measured (no frame, or its path's first in
  * the run that computed it).
+ * faces, ms_face_max: under a point light, the faces of its cube that hold
+ * a map (harness/cube.h) and the method's time on the slowest of them (its
+ * ms_method is the sum over the faces); 0 and NULL under any other light.
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -107,6 +110,8 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(ms_gpu_map,          ms,       0,    40,  "ms_gpu_map",         none,      _)         \
     X(ms_flicker,          ms,       0,    41,  "ms_flicker",         none,      _)         \
     X(texels,              count,    0,    42,  "texels",             none,      _)         \
+    X(faces,               count,    0,    43,  "faces",              none,      _)         \
+    X(ms_face_max,         ms,       0,    44,  "ms_face_max",        none,      _)         \
     X(overlay,             path,     1500, 0,   "",                   none,      _)         \
     X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)
 /* clang-format on */
