@@ -282,7 +282,7 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
     uint64_t bad;
     if (band) {
         cell->ms.contours = in->shared_band_ms;
-        bad = sl_figures_fused(v, vd, band, in->regions, in->nregions, in->method->exact, 0, &cell->fig);
+        bad = sl_figures_fused(v, vd, band, in->regions, in->nregions, in->method->exact, in->threads, &cell->fig);
         cell->ms.figures = 1e3 * (sl_now() - t0);
     } else {
         /* the states are the verdicts themselves (0 background); regions
@@ -290,7 +290,7 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
          * draws the bands and counts: its time is the figures', and the
          * contours' is 0 (costs.csv keeps both columns) */
         int maxt = in->regions[in->nregions - 2];
-        bad = sl_score_fused(v, vd, vd->v, maxt / 2 - 1, in->band, in->regions, in->nregions, in->method->exact, 0,
+        bad = sl_score_fused(v, vd, vd->v, maxt / 2 - 1, in->band, in->regions, in->nregions, in->method->exact, in->threads,
                              &cell->fig);
         band = in->band;
         cell->ms.contours = 0.0;

@@ -113,6 +113,7 @@ struct sl_cell_inputs {
     const char *label;                        /* the method's label (overlay title); NULL: its name */
     const char *overlay_path;                 /* NULL: no overlay */
     const char *exr_path;                     /* NULL: no EXR layers */
+    int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
 };
 
 /* Score the verdicts vd (a hard method under an area light also gets vd->vis
