@@ -4,7 +4,9 @@
  * end, each with its target:
  *
  * - truth: the truth pass against a plain Embree rtcOccluded16 loop over the
- *   very same rays (target: at least 0.8x its rays/s);
+ *   very same rays: its filtered trace against the plain trace (target: at
+ *   least 0.9x its rays/s), end to end against the plain set-up + trace
+ *   (at least 1x; bench_truth.c);
  * - layers: every shadow-map layer shadowmap.c renders, and the G-buffer,
  *   against a plain raster of the same mesh at the same size and matrix
  *   (depth + one uint, trivial fragment shader, no geometry shader), timed
@@ -34,6 +36,9 @@
  *   `help run` as child processes, against the same binary with OpenImageIO,
  *   OSMesa, EGL and Embree preloaded as when they were linked (target:
  *   validate's median under 50 ms; bench_startup.c);
+ * - scoring: a cell's contours, figures and exactness count per 1 M pixels
+ *   against one histogram pass over them, the fused pass and the one before
+ *   it (target: 3x; bench_score.c);
  * - peak RSS of the process after all of it (target: under 2 GiB).
  *
  * A benchmark, not a test: a missed target is reported (MISS), not an
@@ -58,7 +63,8 @@
     X(MORAIS,  "morais")     \
     X(JOBS,    "jobs")       \
     X(CHURN,   "churn")      \
-    X(STARTUP, "startup")
+    X(STARTUP, "startup")    \
+    X(SCORING, "scoring")
 
 enum sl_bench_stage_bit {
 #define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,

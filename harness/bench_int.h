@@ -7,6 +7,10 @@
 
 /* issue 20: the truth at 0.9x a plain loop's rays/s, at least */
 #define SL_BENCH_TARGET_TRUTH_RATIO 0.9
+/* and end to end, its set-up included, no slower than the plain loop's
+ * set-up + trace over the same rays: the set-up the trace target leaves out
+ * must not come back elsewhere */
+#define SL_BENCH_TARGET_TRUTH_WHOLE 1.0
 
 /* What the truth, layer and churn stages work on. */
 struct sl_bench_ctx {
@@ -19,6 +23,13 @@ struct sl_bench_ctx {
     struct sl_gbuffer_pass gp;
     FILE *out;
 };
+
+/* issue 20: contours + figures + exactness per pixel, at most 3x one
+ * histogram pass over the same pixels */
+#define SL_BENCH_TARGET_SCORE_RATIO 3.0
+
+/* The per-cell scoring against one histogram pass (bench_score.c). */
+enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 
 /* The truth pass against a plain rtcOccluded16 loop (bench_truth.c). */
 enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);

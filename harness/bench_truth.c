@@ -5,11 +5,15 @@
  * build quality but no filter function, rtcOccluded16 over the packets on
  * the same threads. The truth pass does more per ray (reads the G-buffer,
  * skips non-PFL pixels, rejects the own triangle in a filter, writes the
- * classification), and its time is measured end to end; the plain loop's
- * set-up is timed apart, so both comparisons are printed: against the
- * trace alone and against set-up + trace. Wall time on the config's
- * threads, and the CPU time of one thread on one thread, which other work
- * on a shared machine does not inflate (wall time there moves by 2x).
+ * classification). It streams: each thread fills a chunk of packets from
+ * the G-buffer, traces them, writes their answers back (truth.c), and
+ * clocks the two apart (sl_rt_times), so the truth's filtered trace is
+ * compared with the plain trace over prebuilt packets (issue 20's target),
+ * and the truth end to end with the plain set-up + trace. Wall time on the
+ * config's threads, and the CPU time of one thread on one thread, which
+ * other work on a shared machine does not inflate (wall time there moves
+ * by 2x); the truth's CPU time is split between set-up and trace in the
+ * proportion its own clocks measured (preemption falls on both alike).
  */
 #define _GNU_SOURCE
 #include <math.h>
@@ -112,8 +116,10 @@ static void min_med(double *v, int n, double *mn, double *md)
 }
 
 /* Per repetition: 0 truth, 1 plain set-up, 2 plain trace on the config's
- * threads (wall); 3-5 the same on one thread (its CPU time). */
-#define TR_N 6
+ * threads (wall); 3-5 the same on one thread (its CPU time); 6, 7 the
+ * truth's set-up and filtered trace (wall, its share of 0 by its own
+ * clocks); 8, 9 the same on one thread (CPU, share of 3). */
+#define TR_N 10
 
 enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
 {
@@ -128,14 +134,18 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
     fprintf(out, "## Truth pass vs a plain rtcOccluded16 loop over the same rays (%s, min and median of %d "
                  "after a warm-up, Embree %s, OMP_WAIT_POLICY %s)\n\n", x->s.name, reps, rt.version,
             wait ? wait : "unset (libgomp: active)");
-    fprintf(out, "The truth pass is timed end to end (its packets are built from the G-buffer inside it, the "
-                 "own-triangle filter, the write-back). The plain loop's set-up (its packets from the same "
-                 "G-buffer) and its trace are timed apart. Wall: %d threads. CPU: the same on one thread, "
-                 "that thread's CPU time (what a loaded machine cannot inflate). Ratios are rays/s, the truth "
-                 "over the plain trace, and over the plain set-up + trace. Medians.\n\n", x->threads);
-    fprintf(out, "| viewpoint | rays | truth ms min / med | plain set-up ms | plain trace ms min / med | ratio | "
-                 "ratio with set-up | 1 thread CPU: truth ms | set-up ms | trace ms | ratio | ratio with set-up |\n");
-    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    fprintf(out, "The truth pass streams: each thread fills a chunk of packets from the G-buffer, traces them "
+                 "(rtcOccluded16, own-triangle filter), writes the answers back, and clocks set-up (fill + "
+                 "write-back) and trace apart; the truth's time is split in that proportion. The plain loop's "
+                 "set-up (its packets from the same G-buffer, all at once) and its trace are timed apart. Wall: "
+                 "%d threads. CPU: the same on one thread, that thread's CPU time (what a loaded machine cannot "
+                 "inflate). Ratios are rays/s: the truth's filtered trace over the plain trace (**trace**), the "
+                 "truth end to end over the plain set-up + trace (**whole**), and the truth end to end over the "
+                 "plain trace alone (as this bench measured before). Medians.\n\n", x->threads);
+    fprintf(out, "| viewpoint | rays | truth ms min / med | its set-up / trace | plain set-up | plain trace min / med | "
+                 "trace | whole | end to end / plain trace | 1 thread CPU: truth ms | its set-up / trace | "
+                 "plain set-up | plain trace | trace | whole | end to end / plain trace |\n");
+    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     double sum[TR_N] = {0};
     uint64_t sum_rays = 0;
     char notes[128] = "";
@@ -158,14 +168,18 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
                 break;
             rays = ts.rays;
             w[0] = ts.ms_trace;
+            const double f = ts.ms_setup + ts.ms_rays > 0 ? ts.ms_rays / (ts.ms_setup + ts.ms_rays) : 0.0;
+            w[6] = w[0] * (1.0 - f);
+            w[7] = w[0] * f;
             double t0 = sl_now();
             reset_packets(&v, &x->s, &pk);
             w[1] = 1e3 * (sl_now() - t0);
             w[2] = 1e3 * plain_loop(&plain, &pk);
             double c0 = thread_cpu();
-            if ((e = sl_truth_trace(&rt1, &x->s, &v, NULL, d)))
+            if ((e = sl_truth_trace(&rt1, &x->s, &v, &ts, d)))
                 break;
             double c1 = thread_cpu();
+            const double f1 = ts.ms_setup + ts.ms_rays > 0 ? ts.ms_rays / (ts.ms_setup + ts.ms_rays) : 0.0;
             reset_packets(&v, &x->s, &pk);
             double c2 = thread_cpu();
             plain_loop(&plain1, &pk);
@@ -173,6 +187,8 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
             w[3] = 1e3 * (c1 - c0);
             w[4] = 1e3 * (c2 - c1);
             w[5] = 1e3 * (c3 - c2);
+            w[8] = w[3] * (1.0 - f1);
+            w[9] = w[3] * f1;
             if (r >= 0)
                 for (int k = 0; k < TR_N; k++)
                     tm[(size_t)k * (size_t)reps + (size_t)r] = w[k];
@@ -194,10 +210,11 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
                 min_med(tm + (size_t)k * (size_t)reps, reps, &mn[k], &md[k]);
                 sum[k] += md[k];
             }
-            fprintf(out, "| %s | %llu | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | "
-                         "%.2f |\n", x->s.vp[vp].name, (unsigned long long)rays, mn[0], md[0], md[1], mn[2], md[2],
-                    md[2] / md[0], (md[1] + md[2]) / md[0], md[3], md[4], md[5], md[5] / md[3],
-                    (md[4] + md[5]) / md[3]);
+            fprintf(out, "| %s | %llu | %.2f / %.2f | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %.2f | "
+                         "%.2f / %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", x->s.vp[vp].name,
+                    (unsigned long long)rays, mn[0], md[0], md[6], md[7], md[1], mn[2], md[2], md[2] / md[7],
+                    (md[1] + md[2]) / md[0], md[2] / md[0], md[3], md[8], md[9], md[4], md[5], md[5] / md[9],
+                    (md[4] + md[5]) / md[3], md[5] / md[3]);
             sum_rays += rays;
         }
         free(tm);
@@ -206,27 +223,39 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
         sl_view_free(&v);
     }
     if (!e) {
-        fprintf(out, "| **all** | %llu | %.2f | %.2f | %.2f | **%.2f** | %.2f | %.2f | %.2f | %.2f | **%.2f** | %.2f |\n\n",
-                (unsigned long long)sum_rays, sum[0], sum[1], sum[2], sum[2] / sum[0], (sum[1] + sum[2]) / sum[0],
-                sum[3], sum[4], sum[5], sum[5] / sum[3], (sum[4] + sum[5]) / sum[3]);
+        fprintf(out, "| **all** | %llu | %.2f | %.2f / %.2f | %.2f | %.2f | **%.2f** | %.2f | %.2f | %.2f | %.2f / %.2f | "
+                     "%.2f | %.2f | **%.2f** | %.2f | %.2f |\n\n", (unsigned long long)sum_rays, sum[0], sum[6],
+                sum[7], sum[1], sum[2], sum[2] / sum[7], (sum[1] + sum[2]) / sum[0], sum[2] / sum[0], sum[3], sum[8],
+                sum[9], sum[4], sum[5], sum[5] / sum[9], (sum[4] + sum[5]) / sum[3], sum[5] / sum[3]);
         if (notes[0])
             fprintf(out, "Occluded rays the plain loop counts beyond the truth's shadowed pixels (rays "
                          "crossing their own triangle beyond tnear, which the truth's filter rejects): %s\n\n",
                     notes);
         const double mr = sum_rays * 1e-3;   /* Mrays/s from ms */
-        struct sl_bench_row *row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[0], mr / sum[2],
+        /* issue 20's target: the truth's filtered trace against the plain
+         * trace over the same rays, on one thread's CPU time */
+        struct sl_bench_row *row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[9], mr / sum[5],
                                                     SL_BENCH_TARGET_TRUTH_RATIO, SL_BENCH_AT_LEAST);
         if (row) {
             snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d", x->s.name, x->nvp, x->W, x->H);
-            snprintf(row->note, sizeof row->note, "%llu rays; wall, %d threads; plain set-up apart: %.2f ms",
-                     (unsigned long long)sum_rays, x->threads, sum[1]);
+            snprintf(row->note, sizeof row->note, "%llu rays; filtered trace vs plain trace, 1 thread CPU; "
+                     "set-up %.2f vs %.2f ms", (unsigned long long)sum_rays, sum[8], sum[4]);
         }
-        row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[3], mr / sum[5], SL_BENCH_TARGET_TRUTH_RATIO,
-                               SL_BENCH_AT_LEAST);
+        /* the set-up is not hidden: end to end, the truth against the plain
+         * loop's set-up + trace */
+        row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[3], mr / (sum[4] + sum[5]),
+                               SL_BENCH_TARGET_TRUTH_WHOLE, SL_BENCH_AT_LEAST);
         if (row) {
             snprintf(row->name, sizeof row->name, "truth, 1 thread, CPU time");
-            snprintf(row->note, sizeof row->note, "against the plain trace; with its set-up %.2f×",
-                     (sum[4] + sum[5]) / sum[3]);
+            snprintf(row->note, sizeof row->note, "end to end vs plain set-up + trace; vs the plain trace "
+                     "alone %.2f×", sum[5] / sum[3]);
+        }
+        row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[0], mr / (sum[1] + sum[2]),
+                               SL_BENCH_TARGET_TRUTH_WHOLE, SL_BENCH_AT_LEAST);
+        if (row) {
+            snprintf(row->name, sizeof row->name, "truth, wall, %d threads", x->threads);
+            snprintf(row->note, sizeof row->note, "end to end vs plain set-up + trace; filtered trace vs "
+                     "plain trace %.2f×; end to end vs plain trace %.2f×", sum[2] / sum[7], sum[2] / sum[0]);
         }
     }
 done:

@@ -277,21 +277,28 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
     }
     double t0 = sl_now();
     const uint8_t *band = in->shared_band;
+    /* contours, figures and the exactness count in one pass; the
+     * violations' details (where, which texel, which triangles) are looked
+     * up pixel by pixel only when there are any, which an exact method
+     * never has */
+    uint64_t bad;
     if (band) {
         cell->ms.contours = in->shared_band_ms;
+        bad = sl_figures_fused(v, vd, band, in->regions, in->nregions, in->method->exact, in->threads, &cell->fig);
+        cell->ms.figures = 1e3 * (sl_now() - t0);
     } else {
-        for (size_t i = 0; i < npx; i++)
-            in->state[i] = vd->v[i];   /* 0 background, else the verdict */
-        /* regions are the increasing contours, then 0 (whole image) */
+        /* the states are the verdicts themselves (0 background); regions
+         * are the increasing contours, then 0 (whole image). One pass
+         * draws the bands and counts: its time is the figures', and the
+         * contours' is 0 (costs.csv keeps both columns) */
         int maxt = in->regions[in->nregions - 2];
-        sl_contour_bands(W, H, in->state, maxt / 2 - 1, in->band);
+        bad = sl_score_fused(v, vd, vd->v, maxt / 2 - 1, in->band, in->regions, in->nregions, in->method->exact, in->threads,
+                             &cell->fig);
         band = in->band;
-        cell->ms.contours = 1e3 * (sl_now() - t0);
+        cell->ms.contours = 0.0;
+        cell->ms.figures = 1e3 * (sl_now() - t0);
     }
-    t0 = sl_now();
-    sl_figures_compute(v, vd, band, in->regions, in->nregions, &cell->fig);
-    cell->ms.figures = 1e3 * (sl_now() - t0);
-    if (in->method->exact)
+    if (in->method->exact && bad)
         check_exact(in, vd, cell);
     if (vd->has_detail)
         count_patterns(v, vd, band, cell);

@@ -115,12 +115,15 @@ struct sl_cell_inputs {
     const char *label;                        /* the method's label (overlay title); NULL: its name */
     const char *overlay_path;                 /* NULL: no overlay */
     const char *exr_path;                     /* NULL: no EXR layers */
+    int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
 };
 
 /* Score the verdicts vd (a hard method under an area light also gets vd->vis
  * written: its verdicts as a visible fraction) into cell: fig, soft,
  * has_soft, has_patterns, pattern, violations and violation[], nonfinite
- * (added to), ms.contours, ms.figures, ms.overlay. Errors come only from
+ * (added to), ms.contours, ms.figures, ms.overlay (bands drawn here are
+ * drawn inside the figure pass, sl_score_fused: ms.contours is then 0 and
+ * ms.figures holds both). Errors come only from
  * writing the overlay or the EXR file. */
 enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *vd, struct sl_cell *cell,
                           struct sl_diag *d);

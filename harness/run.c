@@ -522,7 +522,7 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
     for (size_t i = 0; i < npx; i++)
         x->state[i] = x->nvd.v[i];   /* 0 background, else the verdict: as a method's own contour */
     int maxt = c->regions[c->nregions - 2];
-    sl_contour_bands(x->W, x->H, x->state, maxt / 2 - 1, x->nsm_band);
+    sl_contour_bands_mt(x->W, x->H, x->state, maxt / 2 - 1, x->nsm_band, c->threads);
     x->nsm_band_ms = 1e3 * (sl_now() - t0);
     x->nsm_map = k->map;
     return SL_OK;
@@ -631,7 +631,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         snprintf(exrpath, sizeof exrpath, "%s/%s-%s-%dx%d-%d-%s.exr", exrdir, cell->scene, cell->viewpoint, W, H,
                  c->maps[k->map], cm->label);
     struct sl_cell_inputs in = {
-        .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir,
+        .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,

@@ -28,8 +28,11 @@ static void bench_parse_stages(void **st)
     assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,morais", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(LAYERS) |
                                SL_BENCH_STAGE(MORAIS));
-    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,startup", &bits, &d), SL_OK);
+    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,startup,scoring", &bits,
+                                           &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_ALL);
+    assert_int_equal(sl_bench_parse_stages("scoring", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(SCORING));
     assert_int_equal(sl_bench_parse_stages("startup", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(STARTUP));
     assert_int_equal(sl_bench_parse_stages("jobs", &bits, &d), SL_OK);
@@ -78,17 +81,27 @@ static void bench_quick_mode_rows(void **st)
     struct sl_bench_result r;
     run_bench(&o, "bench.md", md, sizeof md, &r);
 
-    /* truth (wall; one thread's CPU), G-buffer, six layers, memory, the
-     * first context; no study asked for */
+    /* truth (filtered trace, one thread's CPU; end to end, one thread's
+     * CPU and wall), G-buffer, six layers, memory, the first context; no
+     * study asked for */
     static const char *const want[] = {"depth_id 256²", "depth_id_back 256²", "bgsm 256²", "bgsm2 256²",
                                        "sgsm 256²", "sgsm_adj 256²"};
-    assert_int_equal(r.nrows, 2 + 1 + 6 + 1 + 1);
+    assert_int_equal(r.nrows, 3 + 1 + 6 + 1 + 1);
     assert_string_equal(r.rows[0].stage, "truth");
     assert_string_equal(r.rows[1].stage, "truth");
     assert_string_equal(r.rows[1].name, "truth, 1 thread, CPU time");
-    /* drop the second truth row: the rest keep the places they had */
-    memmove(&r.rows[1], &r.rows[2], sizeof r.rows[0] * (size_t)(r.nrows - 2));
-    r.nrows--;
+    assert_string_equal(r.rows[2].stage, "truth");
+    assert_non_null(strstr(r.rows[2].name, "truth, wall, "));
+    for (int i = 0; i < 3; i++) {
+        /* each against its plain counterpart and its target */
+        const struct sl_bench_row *w = &r.rows[i];
+        assert_true(isfinite(w->value) && w->value > 0 && isfinite(w->plain) && w->plain > 0);
+        assert_true(fabs(w->ratio - w->value / w->plain) < 1e-9 * w->ratio);
+        assert_int_equal(w->pass, w->ratio >= w->target);
+    }
+    /* drop the second and third truth rows: the rest keep the places they had */
+    memmove(&r.rows[1], &r.rows[3], sizeof r.rows[0] * (size_t)(r.nrows - 3));
+    r.nrows -= 2;
     assert_string_equal(r.rows[1].stage, "gbuffer");
     assert_string_equal(r.rows[1].name, "gbuffer 128x96");
     for (int i = 0; i < 6; i++) {
@@ -133,7 +146,7 @@ static void bench_quick_mode_rows(void **st)
     int lines = 0;
     for (const char *p = text; *p; p++)
         lines += *p == '\n';
-    assert_int_equal(lines, 1 + r.nrows + 1);   /* + the second truth row */
+    assert_int_equal(lines, 1 + r.nrows + 2);   /* + the second and third truth rows */
     assert_non_null(strstr(text, ",layer,\"bgsm2 256²\",ms,"));
 }
 
@@ -191,9 +204,37 @@ static void bench_backends_rows(void **st)
     assert_non_null(strstr(text, "| bgsm2 128² |"));
 }
 
+/* The scoring stage on a small view: two rows against the histogram pass,
+ * the fused pass and the one before it agreeing on every band, figure and
+ * violation (a disagreement fails the row and says so in its note and the
+ * Markdown). */
+static void bench_scoring_rows(void **st)
+{
+    (void)st;
+    char md[300];
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(SCORING), .reps = 2, .scene = "blocks", .width = 128,
+                              .height = 96, .map = 256};
+    struct sl_bench_result r;
+    run_bench(&o, "scoring.md", md, sizeof md, &r);
+    assert_int_equal(r.nrows, 2 + 1 + 1);   /* + memory, context */
+    for (int i = 0; i < 2; i++) {
+        const struct sl_bench_row *w = &r.rows[i];
+        assert_string_equal(w->stage, "scoring");
+        assert_string_equal(w->unit, "ms/Mpx");
+        assert_true(isfinite(w->value) && w->value > 0 && isfinite(w->plain) && w->plain > 0);
+        assert_true(fabs(w->ratio - w->value / w->plain) < 1e-9 * w->ratio);
+        assert_int_equal(w->pass, w->ratio <= w->target);
+        assert_null(strstr(w->note, "DISAGREES"));
+    }
+    const char *text = slurp(md);
+    assert_non_null(strstr(text, "agree on every band, figure and violation"));
+    assert_non_null(strstr(text, "| scoring | scoring 128x96, wall, "));
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
+        SL_CASE(bench, scoring_rows),
         SL_CASE(bench, parse_stages),
         SL_CASE(bench, quick_mode_rows),
         SL_CASE(bench, backends_rows),

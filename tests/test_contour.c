@@ -3,6 +3,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
@@ -100,6 +101,46 @@ static void contour_whole_image_region(void **st)
     assert_true(sl_in_contour(3, 6));
 }
 
+/* The rows-in-parallel bands equal the plain loop's, whatever the size
+ * (down to one row or column, and blocks of three rows), the states
+ * (background among them), the dilations and the thread count. */
+static void contour_parallel_matches_plain(void **st)
+{
+    (void)st;
+    /* the last two cut into blocks of rows (~64 K pixels each) drawn apart */
+    static const int sz[][2] = {{1, 1},   {1, 9},      {9, 1},      {2, 2},    {5, 7},
+                                {64, 3},  {301, 203},  {1000, 37},  {1024, 300}, {7, 30000}};
+    uint32_t r = 7u;
+    int banded = 0;
+    for (int s = 0; s < 10; s++) {
+        int w = sz[s][0], h = sz[s][1];
+        size_t n = (size_t)w * (size_t)h;
+        uint8_t *state = malloc(n), *a = malloc(n), *b = malloc(n);
+        assert_true(state && a && b);
+        for (int pass = 0; pass < 2; pass++) {
+            /* pass 0: noise; pass 1: blobs (runs of one state) */
+            for (size_t i = 0; i < n; i++) {
+                r ^= r << 13, r ^= r >> 17, r ^= r << 5;
+                state[i] = pass == 0 || i == 0 || r % 23 == 0 ? (uint8_t)(r % 4) : state[i - 1];
+            }
+            for (int dil = 0; dil <= 4; dil++) {
+                sl_contour_bands_plain(w, h, state, dil, a);
+                for (int th = 1; th <= 5; th++) {
+                    memset(b, 0xCD, n);
+                    sl_contour_bands_mt(w, h, state, dil, b, th);
+                    assert_memory_equal(a, b, n);
+                }
+                for (size_t i = 0; i < n; i++)
+                    banded += a[i] == dil + 1 && dil >= 2;
+            }
+        }
+        free(state);
+        free(a);
+        free(b);
+    }
+    assert_true(banded > 1000);   /* the dilations reached far */
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -108,6 +149,7 @@ int main(int argc, char **argv)
         SL_CASE(contour, background_never_enters),
         SL_CASE(contour, single_pixel_diamond),
         SL_CASE(contour, whole_image_region),
+        SL_CASE(contour, parallel_matches_plain),
     };
     return sl_run_group(argc, argv, "contour", tests, NULL, NULL);
 }

@@ -139,6 +139,56 @@ static void truth_primitives_matches_brute_force(void **st)
 }
 
 /* Same answer with 1 and 2 tracing threads, pixel for pixel. */
+/* The truth streams chunks of 32 4x4 packets along each 4-row strip: a
+ * viewport that is no multiple of 4 nor of a chunk (203 = 50 tiles + 3
+ * pixels: one full chunk, one cut short, a last tile 3 wide; 77 rows: a
+ * last strip one pixel high) must still match the brute force; a subset
+ * traced through sl_rt_trace gets the truth's very answers and leaves every
+ * other pixel alone; the set-up and trace clocks are both running and, summed
+ * over the threads, within the pass's wall time times its threads. */
+static void truth_odd_size_subset_times(void **st)
+{
+    (void)st;
+    struct fixture f;
+    assert_true(fixture_open(&f, "primitives", 2));
+    const int W = 203, H = 77;
+    struct sl_view v;
+    struct sl_diag d;
+    assert_int_equal(sl_gbuffer_render(&f.gp, &f.mesh, &f.scene, 0, W, H, &v, NULL, NULL, NULL, &d), SL_OK);
+    struct sl_truth_stats ts;
+    assert_int_equal(sl_truth_trace(&f.rt, &f.scene, &v, &ts, &d), SL_OK);
+    struct check c;
+    brute_force(&f.scene, &v, &c);
+    assert_int_equal(c.unexplained, 0);
+    assert_true(v.n_shadow > 100 && v.n_lit > 100);
+    assert_int_equal(ts.rays, (uint64_t)c.pfl);
+    assert_true(ts.ms_setup > 0 && ts.ms_rays > 0);
+    assert_true(ts.ms_setup + ts.ms_rays <= 2 * ts.ms_trace + 1e-3);
+
+    size_t n = (size_t)W * H;
+    uint8_t *sel = calloc(n, 1), *out = malloc(n);
+    assert_non_null(sel);
+    assert_non_null(out);
+    memset(out, 0xEE, n);
+    uint64_t want = 0, want_shadow = 0;
+    for (size_t i = 0; i < n; i++)
+        if (v.cls[i] == SL_C_PFL && i % 3 == 0) {
+            sel[i] = 1;
+            want++;
+            want_shadow += v.truth[i] == SL_T_SHADOW;
+        }
+    uint64_t rays = 0, shadow = 0;
+    assert_int_equal(sl_rt_trace(&f.rt, &f.scene, &v, sel, out, &rays, &shadow, &d), SL_OK);
+    assert_int_equal(rays, want);
+    assert_int_equal(shadow, want_shadow);
+    for (size_t i = 0; i < n; i++)
+        assert_int_equal(out[i], sel[i] ? v.truth[i] : 0xEE);
+    free(sel);
+    free(out);
+    sl_view_free(&v);
+    fixture_close(&f);
+}
+
 static void truth_thread_count_invariant(void **st)
 {
     (void)st;
@@ -161,6 +211,7 @@ int main(int argc, char **argv)
         SL_CASE(truth, blocks_matches_brute_force),
         SL_CASE(truth, primitives_matches_brute_force),
         SL_CASE(truth, thread_count_invariant),
+        SL_CASE(truth, odd_size_subset_times),
     };
     return sl_run_group(argc, argv, "truth", tests, NULL, NULL);
 }

@@ -15,12 +15,29 @@
  */
 #ifndef SL_CONTOUR_H
 #define SL_CONTOUR_H
+#include <stddef.h>
 #include <stdint.h>
 
 /* band[i] = 0 outside every contour; k >= 1: in the contour of thickness 2k
  * and every thicker one (k = 1 the change itself, k = 2 after one dilation,
  * ...). dilations >= 0. */
 void sl_contour_bands(int w, int h, const uint8_t *state, int dilations, uint8_t *band);
+
+/* The same on `threads` threads (<= 0: omp_get_max_threads()); the bands
+ * do not depend on the thread count. sl_contour_bands is this with 0. */
+void sl_contour_bands_mt(int w, int h, const uint8_t *state, int dilations, uint8_t *band, int threads);
+
+/* The bands of rows [y0, y1) only, exactly as the whole image's, into
+ * the same rows of band; scratch: sl_contour_scratch(w, y1 - y0, dilations)
+ * bytes. Blocks of rows drawn by different threads touch nothing in common
+ * but the states they read. */
+void   sl_contour_bands_rows(int w, int h, const uint8_t *state, int dilations, int y0, int y1, uint8_t *band,
+                             uint8_t *scratch);
+size_t sl_contour_scratch(int w, int rows, int dilations);
+
+/* The reference: one thread, pixel by pixel, as the bands were drawn
+ * before (tests and the bench compare the two). */
+void sl_contour_bands_plain(int w, int h, const uint8_t *state, int dilations, uint8_t *band);
 
 /* Is pixel band b inside the contour of `thickness` pixels (0 = whole image)? */
 static inline int sl_in_contour(uint8_t b, int thickness)

@@ -32,7 +32,9 @@ void        sl_rt_free(struct sl_rt *rt);
 
 struct sl_truth_stats {
     uint64_t rays;
-    double   ms_trace;
+    double   ms_trace;   /* wall clock of the whole pass */
+    /* thread time, summed over the tracing threads (sl_rt_times) */
+    double   ms_setup, ms_rays;
 };
 
 /* Trace every PFL pixel of v toward the light; fills v->truth with
@@ -57,6 +59,20 @@ enum sl_err sl_rt_trace(const struct sl_rt *rt, const struct sl_scene *s, const 
 enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, const struct sl_view *v,
                               const uint8_t *select, const float *tfar, uint8_t *out, uint64_t *rays,
                               uint64_t *shadow, struct sl_diag *d);
+
+/* Where a trace's time went, summed over its threads (each thread's clock
+ * around its own chunks, so on one thread these add up to the pass less its
+ * start and end): ms_setup fills packets from the G-buffer and writes the
+ * answers back, ms_rays is rtcOccluded16 with the own-triangle filter (what
+ * a plain loop over prebuilt packets does). */
+struct sl_rt_times {
+    double ms_setup, ms_rays;
+};
+
+/* sl_rt_trace_until, also saying where the time went (tm may be NULL). */
+enum sl_err sl_rt_trace_timed(const struct sl_rt *rt, const struct sl_scene *s, const struct sl_view *v,
+                              const uint8_t *select, const float *tfar, uint8_t *out, uint64_t *rays,
+                              uint64_t *shadow, struct sl_rt_times *tm, struct sl_diag *d);
 
 /* Turn on flush-to-zero / denormals-are-zero in the calling thread (Embree's
  * advice; tracing threads call it). */
