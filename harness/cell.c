@@ -132,10 +132,11 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
         [SL_OV_LIT_WRONG] = "said lit, shadowed", [SL_OV_SHADOW_WRONG] = "said shadowed, lit",
         [SL_OV_WRONG_OUTSIDE] = "wrong, outside the contour", [SL_OV_UNCERTAIN] = "uncertain",
         [SL_OV_CONTOUR] = "contour (right pixels)",
+        [SL_OV_OUTSIDE_CONE] = "outside the spot's cone (hatched)",
     };
     for (int k = 0; k < SL_OV_CLASSES; k++) {
-        if (th == 0 && (k == SL_OV_WRONG_OUTSIDE || k == SL_OV_CONTOUR))
-            continue;   /* contour 0: the whole image, nothing outside it */
+        if ((th == 0 && (k == SL_OV_WRONG_OUTSIDE || k == SL_OV_CONTOUR)) || (k == SL_OV_OUTSIDE_CONE && !count[k]))
+            continue;   /* contour 0: the whole image, nothing outside it; no spot's cone in view */
         memcpy(sh.legend_rgb[sh.nlegend], sl_overlay_colour[k], 3);
         if (k == SL_OV_CONTOUR)
             snprintf(sh.legend_text[sh.nlegend], sizeof sh.legend_text[0], "%s contour, faint", c);
@@ -183,7 +184,8 @@ static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_ve
     snprintf(cf, sizeof cf, "k >= 1: inside the 2k-px contour (and every thicker one) of the verdicts it is "
              "scored on; 0 outside all");
     const struct sl_image_attr attrs[] = {
-        {"shadowlab:truth", "0 background, 1 faces away from the light (PnFL), 2 lit, 3 shadowed"},
+        {"shadowlab:truth", "0 background, 1 PnFL (faces away from the light, or outside a spot light's cone), "
+                            "2 lit, 3 shadowed"},
         {"shadowlab:verdict", "0 background, 1 lit, 2 shadowed, 3 uncertain (left for a ray tracer)"},
         {"shadowlab:error", "0 right or background, 1 said lit but not lit in truth, 2 said shadowed but lit, "
                             "3 uncertain"},

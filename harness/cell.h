@@ -73,6 +73,8 @@ struct sl_cell {
     int      truth_cached;
     uint64_t truth_rays;
     uint64_t n_pfl, n_pnfl, n_background, n_truth_lit, n_truth_shadow;
+    uint64_t n_outside_cone;           /* of n_pnfl, outside a spot light's cone (view.h) */
+    char     light[48];                /* the scene's light in words (sl_light_heading) */
     int      has_soft;                 /* an area light's cell: soft figures instead of fig's regions */
     struct sl_soft_figures soft;
     uint64_t violations;               /* of the method's declared exactness; must be 0 */

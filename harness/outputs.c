@@ -50,6 +50,8 @@ void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct s
     r->n_background = cl->n_background;
     r->n_truth_lit = cl->n_truth_lit;
     r->n_truth_shadow = cl->n_truth_shadow;
+    r->n_outside_cone = cl->n_outside_cone;
+    snprintf(r->light, sizeof r->light, "%s", cl->light);
     r->truth_rays = cl->truth_rays;
     r->runs = c->runs;
     r->lookups = cl->cost.lookups;

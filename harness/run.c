@@ -547,6 +547,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     cell->n_background = x->view.n_background;
     cell->n_truth_lit = x->view.n_lit;
     cell->n_truth_shadow = x->view.n_shadow;
+    cell->n_outside_cone = x->view.n_outside_cone;
+    sl_light_heading(&x->scene.light, cell->light, sizeof cell->light);
     unsigned mneeds = cm->method->needs(&cm->params);
     struct sl_light_frame *fr = &x->frame;   /* a label's own stabilised frame, if it asks (lightfit.h) */
     enum sl_err e = cm->frame_fit.fit == SL_FIT_TIGHT ? SL_OK

@@ -89,6 +89,9 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
             snprintf(v->viewpoint, sizeof v->viewpoint, "%s", c->viewpoint);
             v->vw = c->vw;
             v->vh = c->vh;
+            snprintf(v->light, sizeof v->light, "%s", c->light);
+            v->n_outside_cone = c->n_outside_cone;
+            v->n_image = (uint64_t)c->vw * (uint64_t)c->vh;
         }
         for (k = 0; k < s->nscenes && strcmp(s->scenes[k], c->scene) != 0; k++)
             ;
@@ -217,7 +220,8 @@ static int label_has(const struct sl_report_study *s, int l, enum sl_figure f)
 
 static void view_title(const struct sl_report_view *v, char *buf, size_t n)
 {
-    snprintf(buf, n, "%s / %s / %d×%d", v->scene, v->viewpoint, v->vw, v->vh);
+    snprintf(buf, n, v->light[0] ? "%s (%s) / %s / %d×%d" : "%s%s / %s / %d×%d", v->scene, v->light, v->viewpoint,
+             v->vw, v->vh);
 }
 
 static void view_id(const struct sl_report_study *s, const struct sl_report_view *v, const char *what, char *buf,

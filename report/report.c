@@ -154,8 +154,8 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
         sl_report_slug(c->label, lb, sizeof lb);
         snprintf(v[0], sizeof v[0], "overlays/%s/%s-%s-%dx%d-%d-%s.png", s->slug, sc, vp, c->vw, c->vh,
                  c->map_size, lb);
-        snprintf(v[1], sizeof v[1], "%s / %s / %d×%d / %d² / %s", c->scene, c->viewpoint, c->vw, c->vh,
-                 c->map_size, c->label);
+        snprintf(v[1], sizeof v[1], c->light[0] ? "%s (%s) / %s / %d×%d / %d² / %s" : "%s%s / %s / %d×%d / %d² / %s",
+                 c->scene, c->light, c->viewpoint, c->vw, c->vh, c->map_size, c->label);
         snprintf(v[2], sizeof v[2], "%s", c->scene);
         snprintf(v[3], sizeof v[3], "%s %d×%d", c->viewpoint, c->vw, c->vh);
         snprintf(v[4], sizeof v[4], "%d²", c->map_size);
@@ -216,7 +216,15 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
         char anchor[160], slug[64];
         sl_report_slug(s->scenes[sc], slug, sizeof slug);
         snprintf(anchor, sizeof anchor, "%s-scene-%s", s->slug, slug);
-        sl_report_doc_heading(doc, 4, anchor, "%s / %s", s->name, s->scenes[sc]);
+        /* the light in words after the scene's name, in every heading: its first view's */
+        const char *light = "";
+        for (int v = 0; v < s->nviews && !light[0]; v++)
+            if (!strcmp(s->views[v].scene, s->scenes[sc]))
+                light = s->views[v].light;
+        char lw[64] = "";
+        if (light[0])
+            snprintf(lw, sizeof lw, " (%s)", light);
+        sl_report_doc_heading(doc, 4, anchor, "%s / %s%s", s->name, s->scenes[sc], lw);
         for (int v = 0; v < s->nviews && !e; v++) {
             const struct sl_report_view *w = &s->views[v];
             if (strcmp(w->scene, s->scenes[sc]))
@@ -224,12 +232,19 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
             char vs[32], id[200];
             sl_report_slug(w->viewpoint, vs, sizeof vs);
             snprintf(anchor, sizeof anchor, "%s-view-%s-%s-%dx%d", s->slug, slug, vs, w->vw, w->vh);
-            sl_report_doc_section_begin(doc, 5, anchor, "%s / %s / %s / %d×%d", s->name, w->scene, w->viewpoint,
-                                        w->vw, w->vh);
+            sl_report_doc_section_begin(doc, 5, anchor, "%s / %s%s / %s / %d×%d", s->name, w->scene, lw,
+                                        w->viewpoint, w->vw, w->vh);
+            if (w->n_outside_cone) {
+                /* a spot light's cone leaves part of the view unlit by definition (view.h) */
+                sl_report_doc_para(doc, "Outside the spot's cone: %llu px, %.2f%% of the image (unlit by "
+                                        "definition: counted with the PnFL pixels, never scored as errors).",
+                                   (unsigned long long)w->n_outside_cone,
+                                   100.0 * (double)w->n_outside_cone / (double)w->n_image);
+            }
             snprintf(id, sizeof id, "%s-view-%s-%s-%dx%d", s->slug, slug, vs, w->vw, w->vh);
             struct sl_report_tab t;
-            sl_report_tab_init(&t, id, 8, 2, "%s / %s / %s / %d×%d: whole image, %% of its non-background pixels",
-                               s->name, w->scene, w->viewpoint, w->vw, w->vh);
+            sl_report_tab_init(&t, id, 8, 2, "%s / %s%s / %s / %d×%d: whole image, %% of its non-background pixels",
+                               s->name, w->scene, lw, w->viewpoint, w->vw, w->vh);
             static const char *const heads[] = {"method", "map", "wrong %", "wrongly lit %", "wrongly shadowed %",
                                                 "uncertain %", "traced %", "method ms"};
             const char *rel[2 * SL_REPORT_MAXKEYS], *text[2 * SL_REPORT_MAXKEYS];

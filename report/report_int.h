@@ -147,7 +147,9 @@ enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_repor
 
 #define SL_REPORT_MAXKEYS 64
 
-struct sl_report_view { char scene[64], viewpoint[32]; int vw, vh; };
+/* light: the scene's light in words (cellcols.h), "" when unknown; n_outside_cone
+ * and n_image: a spot light's pixels outside its cone and the image's pixels */
+struct sl_report_view { char scene[64], viewpoint[32], light[48]; int vw, vh; uint64_t n_outside_cone, n_image; };
 
 struct sl_report_study {
     char  name[64], slug[64];

@@ -156,9 +156,9 @@ static void hard_invariants(void **st)
             checked_exact++;
         }
     }
-    /* four exact labels on 21 views (18 scenes with one each, point_box with two, point_wall) at two
-     * map sizes and blocks at one; raytrace at 16384² */
-    assert_int_equal(checked_exact, 4 * (21 * 2 + 1) + 1);
+    /* four exact labels on 23 views (18 scenes with one each, point_box with two, point_wall,
+     * spot_flush, spot_wide) at two map sizes and blocks at one; raytrace at 16384² */
+    assert_int_equal(checked_exact, 4 * (23 * 2 + 1) + 1);
 }
 
 static const struct sl_cell *find_cell(const struct sl_run_result *r, const struct sl_config *c, const char *scene,

@@ -273,6 +273,16 @@ static void report_build(void **st)
     int n = build_cells(c);
     snprintf(c[0].overlay, sizeof c[0].overlay, "ov.png");
     snprintf(c[1].overlay, sizeof c[1].overlay, "gone/ov2.png");
+    /* Bench under a spot light: its headings name the light, each view says
+     * how much of it lies outside the cone (100 of its 64 x 32 px) */
+    int spots = 0;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(c[i].scene, "bench")) {
+            snprintf(c[i].light, sizeof c[i].light, "spot light, 70\xC2\xB0");
+            c[i].n_outside_cone = 100;
+            spots++;
+        }
+    assert_true(spots > 0);
     struct sl_store_run runs[2];
     memset(runs, 0, sizeof runs);
     runs[0].run_id = 1;
@@ -312,6 +322,8 @@ static void report_build(void **st)
     assert_non_null(strstr(html, "gone/ov2.png"));                 /* listed as missing */
     assert_int_equal(dangling_anchors(html), 0);
     assert_non_null(strstr(html, "&lt;b&gt;not html&lt;/b&gt;"));  /* config text escaped */
+    assert_non_null(strstr(html, "moderno-mini / bench (spot light, 70\xC2\xB0) / side / 64\xC3\x97" "32"));
+    assert_non_null(strstr(html, "Outside the spot&#39;s cone: 100 px, 4.88% of the image"));
     assert_non_null(strstr(html, "Morais 2015 Table 7"));
     assert_non_null(strstr(html, "Moderno 2011 Table 23"));
     assert_non_null(strstr(html, "carry the comparison to a GPU"));

@@ -402,6 +402,36 @@ static void table_soft_and_hard(void **st)
     free(tex);
 }
 
+/* A spot light's cell: the light in the heading of every format, the
+ * pixels outside its cone named apart from the facing-away PnFL ones (a
+ * part of n_pnfl), a row of their own in CSV; a directional cell with no
+ * such pixels keeps the plain wording. */
+static void table_spot_light(void **st)
+{
+    (void)st;
+    struct sl_cell_record c[2];
+    c[0] = make("side", 1024, 100, "h/c/i");
+    snprintf(c[0].light, sizeof c[0].light, "spot light, 70\xC2\xB0");
+    c[0].n_outside_cone = 16;   /* of n_pnfl 22; the image: 11 + 22 + 33 px */
+    c[1] = make("with", 1024, 100, "h/c/i");
+    snprintf(c[1].light, sizeof c[1].light, "directional light");
+    char *md = render(SL_TABLE_MD, "t", c, 2, SL_OK);
+    assert_non_null(strstr(md, "## prim_s (spot light, 70\xC2\xB0) / side / 64x32 / nsm_a\n"));
+    assert_non_null(strstr(md, "PFL 11, PnFL 6 facing away, outside the spot's cone 16 (24.24% of the image; "));
+    assert_non_null(strstr(md, "## prim_s (directional light) / with / 64x32 / nsm_a\n"));
+    assert_non_null(strstr(md, "PFL 11, PnFL 22, background 33;"));
+    assert_int_equal(count_of(md, "outside the spot's cone"), 1);
+    free(md);
+    char *tex = render(SL_TABLE_LATEX, "t", c, 2, SL_OK);
+    assert_non_null(strstr(tex, "\\caption{prim\\_s (spot light, 70$^\\circ$) / side"));
+    assert_non_null(strstr(tex, "outside the spot's cone 16 (24.24\\% of the image"));
+    free(tex);
+    char *csv = render(SL_TABLE_CSV, "t", c, 2, SL_OK);
+    assert_non_null(strstr(csv, "prim_s,side,64x32,1024,nsm,nsm_a,image,outside_cone,16,,"));
+    assert_int_equal(count_of(csv, "outside_cone"), 1);
+    free(csv);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -414,6 +444,7 @@ int main(int argc, char **argv)
         SL_CASE(table, duplicate_map_refused),
         SL_CASE(table, empty_and_formats),
         SL_CASE(table, soft_and_hard),
+        SL_CASE(table, spot_light),
     };
     return sl_run_group(argc, argv, "table", tests, NULL, NULL);
 }

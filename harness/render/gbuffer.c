@@ -100,7 +100,8 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
     v->tri = sl_calloc(n, sizeof(uint32_t));
     v->cls = sl_calloc(n, 1);
     v->truth = sl_calloc(n, 1);
-    if (!v->pos || !v->nrm || !v->tri || !v->cls || !v->truth) {
+    v->outside = s->light.type == SL_LIGHT_SPOT ? sl_calloc(n, 1) : NULL;
+    if (!v->pos || !v->nrm || !v->tri || !v->cls || !v->truth || (s->light.type == SL_LIGHT_SPOT && !v->outside)) {
         sl_view_free(v);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "G-buffer %dx%d", w, h);
     }
@@ -181,6 +182,18 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
                 v->cls[i] = SL_C_PNFL;
                 v->truth[i] = SL_T_PNFL;
                 v->n_pnfl++;
+                /* outside a spot's cone: counted apart (view.h), whether
+                 * or not the surface also faces away. Our choice: the cone
+                 * is the light's own bound and does not depend on the
+                 * surface, so a pixel outside it gets no light whatever
+                 * its normal; counting by position alone makes the region
+                 * the cone's clean footprint (no facing-away holes in it)
+                 * and the count a recount of sl_spot_inside on the
+                 * G-buffer's positions. */
+                if (v->outside && !sl_spot_inside(&s->light, v->pos + 3 * i)) {
+                    v->outside[i] = 1;
+                    v->n_outside_cone++;
+                }
             }
         }
     }

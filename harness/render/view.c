@@ -14,5 +14,6 @@ void sl_view_free(struct sl_view *v)
     free(v->tri);
     free(v->cls);
     free(v->truth);
+    free(v->outside);
     memset(v, 0, sizeof *v);
 }

@@ -44,6 +44,15 @@ struct sl_view {
     uint8_t  *cls;         /* enum sl_class */
     uint8_t  *truth;       /* enum sl_truth; NULL in the copy methods get */
     uint64_t  n_background, n_pnfl, n_pfl, n_lit, n_shadow;
+    /* Under a spot light: 1 where the pixel lies outside the cone
+     * (sl_spot_inside false), else 0; NULL under any other light. Such a
+     * pixel is unlit by definition: its class and truth stay PnFL (methods
+     * never look it up, the figures count it as PnFL), and n_outside_cone
+     * counts it apart, a part of n_pnfl (the tables print n_pnfl -
+     * n_outside_cone as "facing away"). A pixel both facing away and
+     * outside the cone counts as outside the cone (gbuffer.c says why). */
+    uint8_t  *outside;
+    uint64_t  n_outside_cone;
 };
 
 void sl_view_free(struct sl_view *v);

@@ -37,6 +37,10 @@
  * faces, ms_face_max: under a point light, the faces of its cube that hold
  * a map (harness/cube.h) and the method's time on the slowest of them (its
  * ms_method is the sum over the faces); 0 and NULL under any other light.
+ * n_outside_cone: the part of n_pnfl outside a spot light's cone (view.h),
+ * 0 under other lights; light: the scene's light in words for headings
+ * ("spot light, 70°": sl_light_heading). Not compared by check: baselines
+ * written before them have neither, and n_pnfl already holds the pixels.
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -113,7 +117,9 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(faces,               count,    0,    43,  "faces",              none,      _)         \
     X(ms_face_max,         ms,       0,    44,  "ms_face_max",        none,      _)         \
     X(overlay,             path,     1500, 0,   "",                   none,      _)         \
-    X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)
+    X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)         \
+    X(n_outside_cone,      count,    0,    0,   "",                   none,      _)         \
+    X(light,               text,     48,   0,   "",                   none,      _)
 /* clang-format on */
 
 /* One enumerator per column: SL_COL_<name>. */

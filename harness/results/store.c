@@ -34,8 +34,8 @@
 #include <unistd.h>
 #include "util.h"
 
-#define SL_STORE_VERSION 14   /* 14: cells.faces, ms_face_max (a point light's cube, harness/cube.h);
-                               * 13: aliasing figures (aliasing.h), cells.texels;
+#define SL_STORE_VERSION 15   /* 15: cells.n_outside_cone, light (view.h); 14: cells.faces, ms_face_max
+                               * (harness/cube.h); 13: aliasing figures (aliasing.h), cells.texels;
                                * 12: cells.flicker, flicker_compared, ms_flicker (temporal.h);
                                * 11: cells.ms_gpu_gbuffer, ms_gpu_map (GL timer queries);
                                * 10: runs.gl_backend; 9: contour_from (whose image the contours are drawn from),

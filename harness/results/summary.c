@@ -135,7 +135,9 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
             }
             region_name(p->region, rn, sizeof rn);
             switch (row) {
-            case 0: fprintf(out, " %s |", p->cell->scene); break;
+            case 0:   /* with its light, as every heading names it: "lamp (spot light, 70°)" */
+                fprintf(out, p->cell->light[0] ? " %s (%s) |" : " %s |", p->cell->scene, p->cell->light);
+                break;
             case 1: fprintf(out, " %s |", p->cell->viewpoint); break;
             case 2: fprintf(out, " %s |", rn); break;
             case 3: fprintf(out, " %d² |", p->cell->map_size); break;

@@ -222,6 +222,36 @@ static int rows_shown(const struct sl_cell_record *cells, const struct group *g,
     return n;
 }
 
+/* The view's pixel counts under a hard light: PFL, PnFL, background and the
+ * truth of the PFL ones. Under a spot light the PnFL pixels outside its cone
+ * are named apart (view.h: a part of n_pnfl), never scored as errors. */
+static void view_counts(FILE *f, const struct sl_cell_record *c0, int tex)
+{
+    uint64_t out = c0->n_outside_cone <= c0->n_pnfl ? c0->n_outside_cone : c0->n_pnfl;
+    uint64_t img = c0->n_pfl + c0->n_pnfl + c0->n_background;
+    fprintf(f, "PFL %llu, PnFL %llu", (unsigned long long)c0->n_pfl, (unsigned long long)(c0->n_pnfl - out));
+    if (out)
+        fprintf(f, " facing away, outside the spot's cone %llu (%.2f%s of the image; unlit by definition, "
+                   "counted as PnFL in the figures, never as errors)",
+                (unsigned long long)out, img ? 100.0 * (double)out / (double)img : 0.0, tex ? "\\%" : "%");
+    fprintf(f, ", background %llu; truth%s: %llu PFL lit, %llu PFL shadowed.", (unsigned long long)c0->n_background,
+            point_twin(c0) ? " of the area light's centre" : "", (unsigned long long)c0->n_truth_lit,
+            (unsigned long long)c0->n_truth_shadow);
+}
+
+/* " (spot light, 70°)" after the scene's name, when the cell knows its light */
+static void light_words(FILE *f, const struct sl_cell_record *c0, int tex)
+{
+    if (!c0->light[0])
+        return;
+    fputs(" (", f);
+    if (tex)
+        sl_tex_text(f, c0->light);
+    else
+        fputs(c0->light, f);
+    fputc(')', f);
+}
+
 static void md_provenance(FILE *f, const struct sl_cell_record *c)
 {
     fprintf(f, "method `%s`; contours from `%s` (contour_from); git `%s`, config `%s`, machine `%s`", c->method,
@@ -235,15 +265,16 @@ static void md_table(FILE *f, const struct sl_cell_record *cells, const struct g
     int shown = rows_shown(cells, g, rows);
     if (shown == 0)
         return;
-    fprintf(f, "## %s / %s / %dx%d / %s\n\n", c0->scene, c0->viewpoint, c0->vw, c0->vh, c0->label);
+    fprintf(f, "## %s", c0->scene);
+    light_words(f, c0, 0);
+    fprintf(f, " / %s / %dx%d / %s\n\n", c0->viewpoint, c0->vw, c0->vh, c0->label);
     if (c0->has_soft)
         fprintf(f, "Area light: the visible fraction of the light against the area truth "
                    "(means in %% of full visibility).\n\n");
-    else
-        fprintf(f, "PFL %llu, PnFL %llu, background %llu; truth%s: %llu PFL lit, %llu PFL shadowed.\n\n",
-                (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
-                (unsigned long long)c0->n_background, point_twin(c0) ? " of the area light's centre" : "",
-                (unsigned long long)c0->n_truth_lit, (unsigned long long)c0->n_truth_shadow);
+    else {
+        view_counts(f, c0, 0);
+        fputs("\n\n", f);
+    }
     fprintf(f, "| figure |");
     int ncols = 0;
     for (int k = 0; k < g->n; k++) {
@@ -350,6 +381,12 @@ static void csv_cell(FILE *f, const struct sl_cell_record *c, int background)
     csv_key(f, c);
     fprintf(f, "image,background,%llu,,", (unsigned long long)c->fig.background);
     csv_provenance(f, c);
+    if (!c->n_outside_cone)
+        return;
+    /* a spot light's pixels outside its cone (view.h): part of PnFL, named apart */
+    csv_key(f, c);
+    fprintf(f, "image,outside_cone,%llu,,", (unsigned long long)c->n_outside_cone);
+    csv_provenance(f, c);
 }
 
 /* ---- LaTeX ---- */
@@ -439,6 +476,7 @@ static void latex_table(FILE *f, const struct sl_cell_record *cells, const struc
         int ncols = cell_cols(c);
         fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
         sl_tex_text(f, c0->scene);
+        light_words(f, c0, 1);
         fputs(" / ", f);
         sl_tex_text(f, c0->viewpoint);
         fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
@@ -447,11 +485,10 @@ static void latex_table(FILE *f, const struct sl_cell_record *cells, const struc
         if (c0->has_soft)
             fputs(". Area light: the visible fraction against the area truth (means in \\% of full visibility).",
                   f);
-        else
-            fprintf(f, ". PFL %llu, PnFL %llu, background %llu; truth%s: %llu PFL lit, %llu PFL shadowed.",
-                    (unsigned long long)c0->n_pfl, (unsigned long long)c0->n_pnfl,
-                    (unsigned long long)c0->n_background, point_twin(c0) ? " of the area light's centre" : "",
-                    (unsigned long long)c0->n_truth_lit, (unsigned long long)c0->n_truth_shadow);
+        else {
+            fputs(". ", f);
+            view_counts(f, c0, 1);
+        }
         if (shown < cell_rows(c0))
             fprintf(f, " %d of %d figures shown (%s).", shown, cell_rows(c0),
                     rows->picked ? "chosen with -{}-figures" : "the others are 0: not produced by this method");

@@ -3,6 +3,7 @@
  */
 #include "arealight.h"
 #include <math.h>
+#include <stdio.h>
 
 static void normalise(double v[3])
 {
@@ -79,4 +80,23 @@ void sl_area_jitter(uint32_t x, uint32_t y, uint32_t k, uint32_t n, uint32_t see
     double ju = sl_unit(sl_hash4(x, y, 2 * k, seed)), jv = sl_unit(sl_hash4(x, y, 2 * k + 1, seed));
     *u = ((double)cx + ju) / (double)n;
     *v = ((double)cy + jv) / (double)n;
+}
+
+void sl_light_heading(const struct sl_light *l, char *buf, size_t n)
+{
+    if (!buf || n == 0)
+        return;
+    switch (l->type) {
+    case SL_LIGHT_SPOT:
+        /* %g: 70 stays "70", 22.5 "22.5" */
+        if (l->penumbra_deg > 0.0f)
+            snprintf(buf, n, "spot light, %g\xC2\xB0, penumbra %g\xC2\xB0 ignored", (double)l->fov_deg,
+                     (double)l->penumbra_deg);
+        else
+            snprintf(buf, n, "spot light, %g\xC2\xB0", (double)l->fov_deg);
+        break;
+    case SL_LIGHT_POINT: snprintf(buf, n, "point light"); break;
+    case SL_LIGHT_AREA: snprintf(buf, n, "area light"); break;
+    default: snprintf(buf, n, "directional light"); break;
+    }
 }

@@ -20,6 +20,7 @@
 #ifndef SL_AREALIGHT_H
 #define SL_AREALIGHT_H
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include "scene.h"
 
@@ -98,6 +99,12 @@ static inline int sl_spot_inside(const struct sl_light *l, const float p[3])
     double c = cos(0.5 * (double)l->fov_deg * (3.14159265358979323846 / 180.0));
     return dot > 0.0 && dot * dot >= c * c * len2;
 }
+
+/* A light's words for the tables' and the report's headings:
+ * "directional light", "spot light, 70°" (", penumbra 5° ignored" when it
+ * has one: the hard methods ignore it), "point light", "area light" (UTF-8).
+ * Always NUL-terminated, cut to n. */
+void sl_light_heading(const struct sl_light *l, char *buf, size_t n);
 
 /* 32 random bits for (x, y, k) under seed: pixel x, y, sample k. */
 uint32_t sl_hash4(uint32_t x, uint32_t y, uint32_t k, uint32_t seed);

@@ -51,6 +51,8 @@ struct sl_light {
     float dir[3];      /* directional, spot: unit direction the light travels */
     float pos[3];      /* spot, point; area: centre */
     float fov_deg;     /* spot: full cone angle */
+    float penumbra_deg;/* spot, optional: the soft rim's angular width inside the cone's edge; the
+                        * hard methods and the truth ignore it (the cone's edge stays at fov / 2) */
     float normal[3];   /* area: unit, the side that emits */
     float up[3];       /* area: unit, in the light's plane */
     float size[2];     /* area: width (across up x normal), height (along up) */

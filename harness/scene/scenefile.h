@@ -11,6 +11,8 @@
  *   description: "..."
  *   base: bench                          # optional: take light and meshes of another scene file
  *   light: {type: directional, direction: [0.53, -0.38, 0.76]}
+ *   # or {type: spot, position: [0, 7, 0], direction: [0, -1, 0], fov: 70, penumbra: 5}:
+ *   # fov the full cone angle; penumbra (optional, [0, fov/2]) ignored by the hard methods
  *   meshes:
  *     - {name: ground, generator: plane, center: [0, 0, 0], size: 600, grid: 16}
  *     - {name: spider, file: /usr/share/assimp/models/OBJ/spider.obj,

@@ -18,6 +18,7 @@ const uint8_t sl_overlay_colour[SL_OV_CLASSES][3] = {
     [SL_OV_WRONG_OUTSIDE] = {0, 114, 178},  /* blue */
     [SL_OV_UNCERTAIN] = {204, 121, 167},    /* reddish purple */
     [SL_OV_CONTOUR] = {0, 158, 115},        /* bluish green, blended */
+    [SL_OV_OUTSIDE_CONE] = {56, 56, 56},    /* the hatching's light stripe */
 };
 
 void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const struct sl_verdicts *vd,
@@ -49,6 +50,17 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const s
             if (err)
                 err[i] = 255;
             cnt[k]++;
+            continue;
+        }
+        if (v->outside && v->outside[i]) {
+            /* outside the spot's cone, right (said shadowed or PnFL):
+             * diagonal stripes, 2 of every 8 px at 56, the rest at 12, so
+             * the cone's footprint reads apart from the background (0),
+             * the shadowed grey (31) and the lit grey (31-158) */
+            size_t x = i % (size_t)v->w, y = i / (size_t)v->w;
+            uint8_t g8 = (x + y) % 8 < 2 ? sl_overlay_colour[SL_OV_OUTSIDE_CONE][0] : 12;
+            o[0] = o[1] = o[2] = g8;
+            cnt[SL_OV_OUTSIDE_CONE]++;
             continue;
         }
         const float *nn = v->nrm + 3 * i;

@@ -33,9 +33,13 @@ enum sl_ov_class {
     SL_OV_WRONG_OUTSIDE,    /* either, outside the contour */
     SL_OV_UNCERTAIN,        /* left undecided */
     SL_OV_CONTOUR,          /* a right pixel inside the contour (faint tint) */
+    SL_OV_OUTSIDE_CONE,     /* a right pixel outside a spot light's cone (view.h): unlit by
+                             * definition, hatched dark grey, drawn over the contour's tint */
     SL_OV_CLASSES
 };
-/* Okabe–Ito colours of the classes (the contour's is blended at 35%). */
+/* Okabe–Ito colours of the classes (the contour's is blended at 35%); the
+ * outside-cone class is no colour but grey: its legend swatch is the
+ * hatching's light stripe. */
 extern const uint8_t sl_overlay_colour[SL_OV_CLASSES][3];
 
 /* rgb: 3 * w * h bytes, bottom-up rows. err (w * h, may be NULL): 255 where
