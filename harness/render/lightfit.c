@@ -186,12 +186,14 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, const f
         if (!behind && (xhi < lo[0] || xlo > hi[0] || yhi < lo[1] || ylo > hi[1]))
             continue;   /* in front, projecting beside every receiver */
         out->n_casters++;
-        if (close || outside) {
-            list_unmapped(out, t, &cap, &oom);
-            continue;
-        }
+        /* every caster brings the near plane down, unmapped ones too (to
+         * dmin at least, below): the plain layers draw them, GL clipping
+         * at the near plane, so a caster crossing the light's plane (a
+         * lamp's pole) keeps all of itself beyond dmin in those layers */
         if (dlo < near)
             near = dlo;
+        if (close || outside)
+            list_unmapped(out, t, &cap, &oom);
     }
     near = fmaxf(near * (1.0f - 1e-4f), dmin);
     lo[2] = near;
