@@ -85,7 +85,7 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
     const struct sl_view *v = in->view;
     int W = v->w, H = v->h, th = in->overlay_contour;
     uint64_t count[SL_OV_CLASSES];
-    sl_overlay_build(v, in->light_dir, vd, band, th, in->rgb, err, count);
+    sl_overlay_build(v, in->light_dir, in->light_pos, vd, band, th, in->rgb, err, count);
     struct sl_image_sheet sh;
     memset(&sh, 0, sizeof sh);
     sh.w = W;

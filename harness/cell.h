@@ -102,6 +102,7 @@ struct sl_cell_inputs {
     const struct sl_view        *view;        /* with its truth */
     const struct sl_light_frame *frame;       /* the layers the group rendered (violations name their triangles) */
     const float                 *light_dir;   /* the scene's, for the overlay's shading */
+    const float                 *light_pos;   /* a light at a point (spot, point, area): its position; else NULL */
     const int                   *regions;     /* contour thicknesses ascending, then 0 (whole image) */
     int                          nregions;
     int                          overlay_contour;   /* the contour drawn on the overlay, px */

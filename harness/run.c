@@ -632,6 +632,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
                  c->maps[k->map], cm->label);
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
+        .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,

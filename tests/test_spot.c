@@ -186,7 +186,7 @@ static void outside_view(const char *scene, const char *viewpoint)
         for (size_t i = 0; i < (size_t)W * H; i++)
             vd.v[i] = v.truth[i] == SL_T_BACKGROUND ? SL_V_NONE : v.truth[i] == SL_T_LIT ? SL_V_LIT : SL_V_SHADOW;
         uint64_t count[SL_OV_CLASSES];
-        sl_overlay_build(&v, f.scene.light_dir, &vd, band, 2, rgb, NULL, count);
+        sl_overlay_build(&v, f.scene.light_dir, f.scene.light.pos, &vd, band, 2, rgb, NULL, count);
         assert_int_equal(count[SL_OV_OUTSIDE_CONE], recount);
         assert_int_equal(count[SL_OV_LIT_WRONG] + count[SL_OV_SHADOW_WRONG] + count[SL_OV_WRONG_OUTSIDE], 0);
         for (size_t i = 0; i < (size_t)W * H; i++)

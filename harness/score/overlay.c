@@ -21,7 +21,8 @@ const uint8_t sl_overlay_colour[SL_OV_CLASSES][3] = {
     [SL_OV_OUTSIDE_CONE] = {56, 56, 56},    /* the hatching's light stripe */
 };
 
-void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const struct sl_verdicts *vd,
+void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const float *light_pos,
+                      const struct sl_verdicts *vd,
                       const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
                       uint64_t count[SL_OV_CLASSES])
 {
@@ -65,6 +66,12 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const s
         }
         const float *nn = v->nrm + 3 * i;
         float ndl = -(nn[0] * light_dir[0] + nn[1] * light_dir[1] + nn[2] * light_dir[2]);
+        if (light_pos) {
+            const float *p = v->pos + 3 * i;
+            float l[3] = {light_pos[0] - p[0], light_pos[1] - p[1], light_pos[2] - p[2]};
+            float len = sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+            ndl = len > 0.0f ? (nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2]) / len : 0.0f;
+        }
         float g = 255.0f * (0.12f + (verdict == SL_V_LIT && ndl > 0.0f ? 0.5f * ndl : 0.0f));
         if (inside && thickness > 0) {
             /* the faint tint: 65% grey, 35% bluish green */

@@ -44,8 +44,12 @@ extern const uint8_t sl_overlay_colour[SL_OV_CLASSES][3];
 
 /* rgb: 3 * w * h bytes, bottom-up rows. err (w * h, may be NULL): 255 where
  * the pixel is wrong or uncertain (the pixels the sheet never draws over),
- * else 0. count (may be NULL): pixels per class. */
-void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const struct sl_verdicts *vd,
+ * else 0. count (may be NULL): pixels per class. Lit pixels are shaded by
+ * n.l: l = -light_dir, or toward light_pos (3 floats) where it is given (a
+ * spot, point or area light: a fixed direction would leave a point light's
+ * image dark). */
+void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const float *light_pos,
+                      const struct sl_verdicts *vd,
                       const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
                       uint64_t count[SL_OV_CLASSES]);
 
