@@ -13,6 +13,11 @@
  *   methods and the truth, and every label says it shadowed without looking
  *   it up (how = pnfl) and never scores it wrong (the EXR layers, pixel by
  *   pixel), and the overlay hatches exactly those pixels;
+ * - near_plane: a caster crossing the spot's plane (the lamp's pole, an
+ *   "unmapped" triangle the conservative layers leave to the CPU) keeps
+ *   every point inside the receivers' pyramid beyond the frame's near
+ *   plane, so the plain layers draw all of it that can shadow a receiver
+ *   (sampled on a barycentric grid; the pole must reach the pyramid);
  * - penumbra: the optional key is parsed, checked (spot only, [0, fov/2]),
  *   stated in the heading, and ignored: the same scene without it gives the
  *   same counts.
@@ -30,6 +35,7 @@
 #include "config.h"
 #include "fixture.h"
 #include "image.h"
+#include "lightfit.h"
 #include "method.h"
 #include "overlay.h"
 #include "run.h"
@@ -282,6 +288,52 @@ static void lamp_file(const char *path, const char *light)
     assert_true(write_file(path, text));
 }
 
+static void spot_near_plane(void **st)
+{
+    (void)st;
+    struct fixture f;
+    assert_true(fixture_open(&f, "scenes/lamp.yaml", 2));
+    struct sl_view v;
+    assert_true(fixture_view(&f, vp_index(&f.scene, "above"), 256, 256, &v));
+    struct sl_light_box b;
+    sl_light_fit(&f.scene, &v, &b);
+    assert_int_equal(b.persp, 1);
+    assert_true(b.n_receivers > 1000 && b.n_unmapped > 0);
+    const float near = b.lo[2], dmin = b.hi[2] / 4096.0f;
+    int crossing_inside = 0, below = 0;
+    for (uint32_t t = 0; t < f.scene.nt; t++) {
+        float q[3][3];
+        int behind = 0;
+        for (int k = 0; k < 3; k++) {
+            const float *p = f.scene.pos + 3 * f.scene.idx[3 * t + k];
+            vec4 w = {p[0], p[1], p[2], 1.0f}, c;
+            glm_mat4_mulv(b.view, w, c);
+            q[k][0] = c[0], q[k][1] = c[1], q[k][2] = -c[2];
+            behind |= !(q[k][2] > 0.0f);
+        }
+        int inside = 0;
+        for (int a = 0; a <= 32; a++)
+            for (int c = 0; c <= 32 - a; c++) {
+                float u = a / 32.0f, w = c / 32.0f, z = 1.0f - u - w, x[3];
+                for (int j = 0; j < 3; j++)
+                    x[j] = u * q[0][j] + w * q[1][j] + z * q[2][j];
+                if (!(x[2] > 0.0f) || x[0] < b.lo[0] * x[2] || x[0] > b.hi[0] * x[2] || x[1] < b.lo[1] * x[2] ||
+                    x[1] > b.hi[1] * x[2])
+                    continue;
+                inside = 1;
+                below += x[2] < near * (1.0f - 1e-3f) && x[2] > dmin;
+            }
+        crossing_inside += behind && inside;
+    }
+    fprintf(stderr, "lamp/above: near %g, %u unmapped, %d crossing triangles reach the pyramid, %d points nearer\n",
+            (double)near, b.n_unmapped, crossing_inside, below);
+    assert_true(crossing_inside > 0);
+    assert_int_equal(below, 0);
+    sl_light_box_free(&b);
+    sl_view_free(&v);
+    fixture_close(&f);
+}
+
 static void spot_penumbra(void **st)
 {
     (void)st;
@@ -356,6 +408,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         SL_CASE(spot, lights_exact),
         SL_CASE(spot, outside_counted_apart),
+        SL_CASE(spot, near_plane),
         SL_CASE(spot, penumbra),
     };
     return sl_run_group(argc, argv, "spot", tests, sl_test_setup, sl_test_teardown);

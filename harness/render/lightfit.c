@@ -66,11 +66,14 @@ static void to_light(const mat4 view, const float p[3], float out[3])
  * and the GPU never loses a triangle from both. A triangle wholly behind
  * the plane, wholly beyond every receiver, or (in front) projecting outside
  * the receivers' tangents cannot block a receiver's ray and is ignored.
- * The near plane comes down to the nearest mapped caster or receiver,
- * never below far / 4096: window depth is about 1 - near / d, so at depth d
- * its float steps are d / near * 2^-24 of d; with near / d >= 1/2048 that
- * is at worst 2^-13 of the depth, enough to tell surfaces apart. The plain
- * layers clip what lies nearer; the conservative ones list it (above). */
+ * The near plane comes down to the nearest mapped caster or receiver, and
+ * to the nearest point of an unmapped caster inside the receivers' pyramid
+ * (pyramid_min_depth: the only part that can block their rays), never below
+ * far / 4096: window depth is about 1 - near / d, so at depth d its float
+ * steps are d / near * 2^-24 of d; with near / d >= 1/2048 that is at worst
+ * 2^-13 of the depth, enough to tell surfaces apart. The plain layers clip
+ * what lies nearer (only within far / 4096 of the light); the conservative
+ * ones list it (above). */
 #define SL_POINT_MAX_TAN 8.0f
 #define SL_POINT_WMIN_DIV 4096.0f
 #define SL_POINT_GUARD_CPU 3.0f
@@ -93,6 +96,48 @@ static void list_unmapped(struct sl_light_box *out, uint32_t t, uint32_t *cap, i
     if (!*oom)
         out->unmapped[out->n_unmapped] = t;
     out->n_unmapped++;
+}
+
+/* The least depth of the part of triangle t inside the pyramid of
+ * tangents lo..hi in front of the light (x/d in [lo0, hi0], y/d in
+ * [lo1, hi1], d >= 0), light space, double; FLT_MAX when no part is
+ * inside. Sutherland-Hodgman against the five planes through the eye. */
+static float pyramid_min_depth(const struct sl_scene *s, uint32_t t, const mat4 view, const float lo[2],
+                               const float hi[2])
+{
+    double poly[2][9][3];
+    int np = 3, cur = 0;
+    for (int k = 0; k < 3; k++) {
+        float q[3];
+        to_light(view, s->pos + 3 * s->idx[3 * t + k], q);
+        for (int j = 0; j < 3; j++)
+            poly[0][k][j] = q[j];
+    }
+    /* plane p: a.x + b.y + c.d >= 0 */
+    const double pl[5][3] = {{1, 0, -(double)lo[0]}, {-1, 0, hi[0]}, {0, 1, -(double)lo[1]}, {0, -1, hi[1]},
+                             {0, 0, 1}};
+    for (int p = 0; p < 5 && np > 0; p++) {
+        int nn = 0;
+        for (int k = 0; k < np; k++) {
+            const double *a = poly[cur][k], *b = poly[cur][(k + 1) % np];
+            double fa = pl[p][0] * a[0] + pl[p][1] * a[1] + pl[p][2] * a[2];
+            double fb = pl[p][0] * b[0] + pl[p][1] * b[1] + pl[p][2] * b[2];
+            if (fa >= 0.0)
+                memcpy(poly[!cur][nn++], a, sizeof poly[0][0]);
+            if ((fa >= 0.0) != (fb >= 0.0)) {
+                double u = fa / (fa - fb);
+                for (int j = 0; j < 3; j++)
+                    poly[!cur][nn][j] = a[j] + u * (b[j] - a[j]);
+                nn++;
+            }
+        }
+        np = nn;
+        cur = !cur;
+    }
+    double dmin = FLT_MAX;
+    for (int k = 0; k < np; k++)
+        dmin = poly[cur][k][2] < dmin ? poly[cur][k][2] : dmin;
+    return (float)dmin;
 }
 
 static void fit_point(const struct sl_scene *s, const struct sl_view *v, const float c[3], const float axis[3],
@@ -186,14 +231,23 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, const f
         if (!behind && (xhi < lo[0] || xlo > hi[0] || yhi < lo[1] || ylo > hi[1]))
             continue;   /* in front, projecting beside every receiver */
         out->n_casters++;
-        /* every caster brings the near plane down, unmapped ones too (to
-         * dmin at least, below): the plain layers draw them, GL clipping
-         * at the near plane, so a caster crossing the light's plane (a
-         * lamp's pole) keeps all of itself beyond dmin in those layers */
+        if (close || outside) {
+            list_unmapped(out, t, &cap, &oom);
+            /* The plain layers still draw it, GL clipping it at the near
+             * plane: the near plane comes down to the nearest point of its
+             * part that can block a receiver's ray (inside the receivers'
+             * pyramid), so a caster crossing the light's plane (a lamp's
+             * pole beside a spot) keeps that part in those layers. Not to
+             * its dlo: a floor crossing a cube face's plane reaches depth 0
+             * only far outside the face's receivers' tangents, and would
+             * pull every face's near plane to dmin for nothing. */
+            float dc = pyramid_min_depth(s, t, out->view, lo, hi);
+            if (dc < near)
+                near = dc;
+            continue;
+        }
         if (dlo < near)
             near = dlo;
-        if (close || outside)
-            list_unmapped(out, t, &cap, &oom);
     }
     near = fmaxf(near * (1.0f - 1e-4f), dmin);
     lo[2] = near;
