@@ -206,6 +206,7 @@ static void free_nsm(struct run_ctx *x)
 {
     free(x->nvd.v); free(x->nvd.how); free(x->nvd.base); free(x->nvd.detail); free(x->nvd.tests);
     free(x->nvd.vis); free(x->nsm_band);
+    sl_verdicts_drop_frames(&x->nvd);   /* a point light's faces (cube.c, sl_cube_mark) */
     memset(&x->nvd, 0, sizeof x->nvd);
     x->nsm_band = NULL;
     x->nsm_map = -1;
