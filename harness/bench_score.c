@@ -80,12 +80,7 @@ static uint64_t exact_plain(const struct sl_view *v, const struct sl_verdicts *v
             if (v->cls[i] != SL_C_PFL)
                 continue;
             uint8_t how = vd->how[i];
-            int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || how == SL_HOW_CORRECT ||
-                         how == SL_HOW_TRACED;
-            int right = (vd->v[i] == SL_V_LIT) == (v->truth[i] == SL_T_LIT);
-            bad += ((exact & SL_EXACT_LIT) && vd->v[i] == SL_V_LIT && v->truth[i] != SL_T_LIT) ||
-                   ((exact & SL_EXACT_SHADOW) && vd->v[i] == SL_V_SHADOW && v->truth[i] != SL_T_SHADOW) ||
-                   ((exact & SL_EXACT_PROVED) && proved && !right);
+            bad += (uint64_t)sl_exact_violated(exact, vd->v[i], how, v->truth[i]);
         }
     return bad;
 }

@@ -28,12 +28,7 @@ static void check_exact(const struct sl_cell_inputs *in, const struct sl_verdict
             if (v->cls[i] != SL_C_PFL)
                 continue;
             uint8_t how = vd->how[i];
-            int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || how == SL_HOW_CORRECT ||
-                         how == SL_HOW_TRACED;
-            int right = (vd->v[i] == SL_V_LIT) == (v->truth[i] == SL_T_LIT);
-            int bad = ((m->exact & SL_EXACT_LIT) && vd->v[i] == SL_V_LIT && v->truth[i] != SL_T_LIT) ||
-                      ((m->exact & SL_EXACT_SHADOW) && vd->v[i] == SL_V_SHADOW && v->truth[i] != SL_T_SHADOW) ||
-                      ((m->exact & SL_EXACT_PROVED) && proved && !right);
+            int bad = sl_exact_violated(m->exact, vd->v[i], how, v->truth[i]);
             if (!bad)
                 continue;
             if (cell->violations < SL_MAX_VIOLATIONS) {

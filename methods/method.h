@@ -199,6 +199,18 @@ struct sl_method_args {
 #define SL_EXACT_SHADOW (1u << 1)   /* a PFL pixel it calls shadowed is shadowed in truth */
 #define SL_EXACT_PROVED (1u << 2)   /* a pixel it confirms, corrects or traces agrees with the truth */
 
+/* Whether a PFL pixel's verdict v (decided `how`) breaks one of the
+ * promises in `exact` against its truth t (enum sl_truth): the one rule
+ * the cell's check, the fused scoring pass and the bench share. */
+static inline int sl_exact_violated(unsigned exact, uint8_t v, uint8_t how, uint8_t t)
+{
+    int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || how == SL_HOW_CORRECT || how == SL_HOW_TRACED;
+    int right = (v == SL_V_LIT) == (t == SL_T_LIT);
+    return ((exact & SL_EXACT_LIT) && v == SL_V_LIT && t != SL_T_LIT) ||
+           ((exact & SL_EXACT_SHADOW) && v == SL_V_SHADOW && t != SL_T_SHADOW) ||
+           ((exact & SL_EXACT_PROVED) && proved && !right);
+}
+
 /* The lights a method handles. A hard-shadow method (lights = 0) runs under
  * a directional light, and under an area light taken as a point at its
  * centre: its frame is then the point's perspective frustum (frame.h), its

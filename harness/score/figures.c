@@ -207,12 +207,7 @@ static void fused_tabs_init(struct fused_tabs *T, const int *thickness, int nreg
             continue;
         }
         const unsigned vv = v_rep[vi], how = how_rep[hi];
-        int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || how == SL_HOW_CORRECT ||
-                     how == SL_HOW_TRACED;
-        int right = (vv == SL_V_LIT) == (t == SL_T_LIT);
-        T->bad[key] = (uint8_t)(((exact & SL_EXACT_LIT) && vv == SL_V_LIT && t != SL_T_LIT) ||
-                                ((exact & SL_EXACT_SHADOW) && vv == SL_V_SHADOW && t != SL_T_SHADOW) ||
-                                ((exact & SL_EXACT_PROVED) && proved && !right));
+        T->bad[key] = (uint8_t)sl_exact_violated(exact, vv, how, t);
     }
 }
 
