@@ -297,18 +297,28 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
         check_exact(in, vd, cell);
     if (vd->has_detail)
         count_patterns(v, vd, band, cell);
-    /* the aliasing error m of every PFL pixel under the frame that served it */
-    float *am = in->frame && (in->frame->size > 0 || vd->nframes > 0) ? malloc(npx * sizeof *am) : NULL;
+    /* the aliasing error m of every PFL pixel under the frame that served it.
+     * One frame for every pixel (no per-pixel frames): m is the view's under
+     * that frame, the same for every cell sharing both (the cache; the first
+     * such cell's figures time pays for it). Per-pixel frames (zpart's
+     * slices, a cube's faces) are the method's own: computed here. */
+    int own_m = in->frame && vd->nframes > 0;
+    int cached_m = !own_m && in->frame && in->frame->size > 0;
+    float *am = own_m || (cached_m && !in->alias_cache) ? malloc(npx * sizeof *am) : NULL;
     cell->texels = 0;
     for (int k = 0; k < vd->nframes; k++)
         cell->texels += (uint64_t)vd->frames[k].size * (uint64_t)vd->frames[k].size;
     if (vd->nframes == 0 && in->frame && in->params &&
         (in->method->needs(in->params) & ((1u << SL_LAYER_COUNT) - 1u)))
         cell->texels = (uint64_t)in->frame->size * (uint64_t)in->frame->size;
-    if (am) {
-        t0 = sl_now();
-        sl_alias_image(v, in->frame, vd, 0, am);
-        sl_alias_figures_compute(v, vd, am, band, in->regions, in->nregions, &cell->alias);
+    const float *m = am;
+    t0 = sl_now();
+    if (am)
+        sl_alias_image(v, in->frame, vd, in->threads, am);
+    else if (cached_m && !(m = sl_alias_cached(in->alias_cache, v, in->frame, in->threads)))
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "aliasing error m %dx%d", v->w, v->h);
+    if (m) {
+        sl_alias_figures_compute(v, vd, m, band, in->regions, in->nregions, &cell->alias);
         cell->has_alias = 1;
         cell->ms.figures += 1e3 * (sl_now() - t0);
     }
@@ -336,7 +346,7 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
          * recount: truth (enum sl_truth), verdict (enum sl_verdict), the
          * error class, the contour band (k: inside the 2k-px contour) and
          * how (enum sl_how), each code named in the header */
-        e = write_exr(in, vd, band, cell, in->state, am, in->rgb, d);
+        e = write_exr(in, vd, band, cell, in->state, m, in->rgb, d);
     }
     free(am);
     return e;

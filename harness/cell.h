@@ -117,6 +117,8 @@ struct sl_cell_inputs {
     const char *overlay_path;                 /* NULL: no overlay */
     const char *exr_path;                     /* NULL: no EXR layers */
     int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
+    struct sl_alias_cache *alias_cache;       /* m of the view under the cell's frame, kept for the next
+                                               * cells of the view (aliasing.h); NULL: computed per cell */
 };
 
 /* Score the verdicts vd (a hard method under an area light also gets vd->vis

@@ -78,6 +78,7 @@ struct run_ctx {
     int W, H;
     uint8_t *state, *band, *rgb;
     struct sl_verdicts vd;
+    struct sl_alias_cache alias;         /* m of the view under the cells' frame (aliasing.h) */
     /* contour_from nsm: NSM's verdicts (front faces culled) and the contour
      * bands drawn from them, once per (view, map size), shared by its cells */
     struct sl_verdicts nvd;
@@ -124,6 +125,7 @@ static void drop_view(struct run_ctx *x)
     memset(&x->softmap, 0, sizeof x->softmap);
     x->soft_map = -1;
     sl_view_free(&x->view);
+    sl_alias_cache_free(&x->alias);
     x->view_scene = x->view_vp = x->view_viewport = -1;
 }
 
@@ -639,6 +641,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
+        .alias_cache = &x->alias,
     };
     return sl_cell_score(&in, &x->vd, cell, d);
 }

@@ -205,6 +205,131 @@ static void aliasing_figures_bands(void **st)
 }
 
 
+
+static int cmp_f(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+/* The medians come from a linear-time select: they equal a full sort's
+ * middle (the mean of the two middles for an even count) on values with
+ * many ties, zeros of both signs, subnormals and infinities, for odd and
+ * even counts. m is rounded to 1/1000 in the figures, so the values are
+ * spread far wider than that: a neighbour taken for the middle shows. */
+static void aliasing_median_select(void **st)
+{
+    (void)st;
+    enum { N = 4099 };
+    static float m[N], ref[N];
+    static uint8_t cls[N], truth[N], verd[N], band[N];
+    unsigned r = 12345u;
+    for (int trial = 0; trial < 12; trial++) {
+        int n = N - trial % 2 - 40 * trial;   /* odd and even counts */
+        for (int i = 0; i < n; i++) {
+            r = r * 1103515245u + 12345u;
+            unsigned k = (r >> 8) % 1000u;
+            m[i] = k < 50 ? 0.0f : k < 60 ? -0.0f : k < 70 ? 1e-40f : k < 70 + 30 * (unsigned)trial ? INFINITY
+                 : (float)(k % 97) * 0.37f + (trial > 6 ? 1e5f : 0.0f);
+            cls[i] = SL_C_PFL;
+            band[i] = 1;
+            truth[i] = SL_T_LIT;
+            verd[i] = i % 3 ? SL_V_LIT : SL_V_SHADOW;   /* every third pixel wrong */
+        }
+        struct sl_view v;
+        memset(&v, 0, sizeof v);
+        v.w = n;
+        v.h = 1;
+        v.cls = cls;
+        v.truth = truth;
+        struct sl_verdicts vd;
+        memset(&vd, 0, sizeof vd);
+        vd.w = n;
+        vd.h = 1;
+        vd.v = verd;
+        const int regions[1] = {0};
+        struct sl_alias_figures f;
+        sl_alias_figures_compute(&v, &vd, m, band, regions, 1, &f);
+        memcpy(ref, m, (size_t)n * sizeof *ref);
+        qsort(ref, (size_t)n, sizeof *ref, cmp_f);
+        double want = n % 2 ? ref[n / 2] : 0.5 * ((double)ref[n / 2 - 1] + (double)ref[n / 2]);
+        uint64_t milli = isinf(want) ? 9000000000000000ull : (uint64_t)floor(want * 1000.0 + 0.5);
+        assert_int_equal(f.n[0][SL_AFIG_m_median_milli], milli);
+        int nb = 0;
+        for (int i = 0; i < n; i += 3)
+            ref[nb++] = m[i];
+        qsort(ref, (size_t)nb, sizeof *ref, cmp_f);
+        want = nb % 2 ? ref[nb / 2] : 0.5 * ((double)ref[nb / 2 - 1] + (double)ref[nb / 2]);
+        milli = isinf(want) ? 9000000000000000ull : (uint64_t)floor(want * 1000.0 + 0.5);
+        assert_int_equal(f.n[0][SL_AFIG_wrong_m_median_milli], milli);
+    }
+}
+
+/* The m kept for a view's cells: the same values sl_alias_image writes;
+ * computed again for another frame (projection or size) or another view
+ * (serial), and not for the same ones. */
+static void aliasing_cache_keyed(void **st)
+{
+    (void)st;
+    enum { W = 16, H = 12 };
+    static float pos[3 * W * H], nrm[3 * W * H], want[W * H];
+    static uint8_t cls[W * H];
+    const float eye[3] = {0, 10, 0}, down[3] = {0, -1, 0}, up[3] = {0, 0, -1};
+    struct sl_view v;
+    memset(&v, 0, sizeof v);
+    v.w = W;
+    v.h = H;
+    v.pos = pos;
+    v.nrm = nrm;
+    v.cls = cls;
+    v.serial = 7;
+    vec3 e = {0, 10, 0}, dv = {0, -1, 0}, u = {0, 0, -1};
+    glm_look(e, dv, u, v.view);
+    glm_ortho(-1.0f, 1.0f, -0.75f, 0.75f, 0.1f, 100.0f, v.proj);
+    for (int i = 0; i < W * H; i++) {
+        float x = -1.0f + 2.0f * ((float)(i % W) + 0.5f) / W, z = -0.75f + 1.5f * ((float)(i / W) + 0.5f) / H;
+        pos[3 * i] = x, pos[3 * i + 1] = 0.0f, pos[3 * i + 2] = -z;
+        nrm[3 * i] = 0.0f, nrm[3 * i + 1] = 1.0f, nrm[3 * i + 2] = 0.0f;
+        cls[i] = i % 5 ? SL_C_PFL : SL_C_PNFL;
+    }
+    struct sl_light_frame f;
+    memset(&f, 0, sizeof f);
+    f.size = 64;
+    ortho_vp(eye, down, up, 3.0f, f.box.vp);
+    struct sl_alias_cache c;
+    memset(&c, 0, sizeof c);
+    const float *m = sl_alias_cached(&c, &v, &f, 1);
+    assert_non_null(m);
+    sl_alias_image(&v, &f, NULL, 1, want);
+    for (int i = 0; i < W * H; i++) {
+        if (i % 5 == 0) {
+            assert_true(isnan(m[i]));
+        } else {
+            assert_float_equal(m[i], want[i], 0.0);
+            assert_float_equal(m[i], (6.0 / 64.0) / (2.0 / W), 1e-4);   /* texel 6/64 over pixel 2/16: 0.75 */
+        }
+    }
+    float first = m[1];
+    /* the same view and frame: the kept values, not computed again */
+    c.m[1] = -1.0f;
+    assert_float_equal(sl_alias_cached(&c, &v, &f, 1)[1], -1.0f, 0.0);
+    /* a map twice as fine: computed again, m halves */
+    f.size = 128;
+    m = sl_alias_cached(&c, &v, &f, 1);
+    assert_float_equal(m[1], 0.5f * first, 1e-5);
+    /* another projection of the same size */
+    ortho_vp(eye, down, up, 1.5f, f.box.vp);
+    m = sl_alias_cached(&c, &v, &f, 1);
+    assert_float_equal(m[1], 0.25f * first, 1e-5);
+    /* another view (serial), same frame: computed again */
+    c.m[1] = -1.0f;
+    v.serial = 8;
+    m = sl_alias_cached(&c, &v, &f, 1);
+    assert_float_equal(m[1], 0.25f * first, 1e-5);
+    sl_alias_cache_free(&c);
+    assert_null(c.m);
+}
+
 /* The aliasing figures and the texels column go into the store with the
  * cell and come back as they were; a cell without them stays without. */
 static void aliasing_store_round_trip(void **st)
@@ -287,6 +412,8 @@ int main(int argc, char **argv)
         SL_CASE(aliasing, perspective_exact),
         SL_CASE(aliasing, figures_bands),
         SL_CASE(aliasing, store_round_trip),
+        SL_CASE(aliasing, median_select),
+        SL_CASE(aliasing, cache_keyed),
     };
     return sl_run_group(argc, argv, "aliasing", tests, sl_test_setup, sl_test_teardown);
 }

@@ -5,6 +5,7 @@
  */
 #include "gbuffer.h"
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include "arealight.h"
@@ -90,7 +91,9 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
                               struct sl_view *v, double *ms_render, double *ms_readback,
                               double *ms_gpu, struct sl_diag *d)
 {
+    static _Atomic uint64_t serials;
     memset(v, 0, sizeof *v);
+    v->serial = atomic_fetch_add(&serials, 1) + 1;
     v->w = w;
     v->h = h;
     v->vp = vp;

@@ -53,6 +53,11 @@ struct sl_view {
      * outside the cone counts as outside the cone (gbuffer.c says why). */
     uint8_t  *outside;
     uint64_t  n_outside_cone;
+    /* Unique per G-buffer render in this process (gbuffer.c), never 0: the
+     * key of what is computed from the view alone and kept across its cells
+     * (the aliasing error m, aliasing.h). A copy keeps it: copies are the
+     * same pixels. */
+    uint64_t  serial;
 };
 
 void sl_view_free(struct sl_view *v);

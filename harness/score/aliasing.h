@@ -125,6 +125,28 @@ double sl_alias_m(const mat4 cam_vp, int cw, int ch, const mat4 light_vp, int si
 void sl_alias_image(const struct sl_view *v, const struct sl_light_frame *f, const struct sl_verdicts *vd,
                     int threads, float *m);
 
+/* m of a view under one frame, kept across the view's cells: m depends on
+ * the view's pixels and the frame's projection alone, not on the method or
+ * its verdicts, so the cells of one (view, map size) group that share a
+ * frame compute it once (on the Morais study it was half the CPU time,
+ * computed again for each of its eight methods). The key is the view's
+ * serial (view.h) and the frame's view-projection and size. Owned by the
+ * caller: zero it before the first use, sl_alias_cache_free at the end. */
+struct sl_alias_cache {
+    float   *m;        /* w*h values as sl_alias_image writes them; NULL: none yet */
+    size_t   cap;      /* floats m holds */
+    uint64_t serial;   /* the view's; 0: nothing held */
+    mat4     vp;       /* the frame's view-projection */
+    int      size;     /* and its map size */
+};
+
+/* m of every pixel of v under f (sl_alias_image without per-pixel frames):
+ * the cache's values when they are this view's under the same frame, else
+ * computed into it. NULL when no memory. */
+const float *sl_alias_cached(struct sl_alias_cache *c, const struct sl_view *v, const struct sl_light_frame *f,
+                             int threads);
+void sl_alias_cache_free(struct sl_alias_cache *c);
+
 /* The figures per region (thickness[], as sl_figures_compute takes them;
  * band: the contour bands, contour.h). */
 void sl_alias_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, const float *m,
