@@ -901,8 +901,29 @@ static int cmd_list(int argc, char **argv)
     return usage_error("list: methods or scenes", sl_usage_list);
 }
 
+/* OpenMP's idle threads spin between parallel regions by default (libgomp:
+ * for up to GOMP_SPINCOUNT turns), burning a core while the main thread
+ * renders or scores alone. On a shared machine that costs: the Morais
+ * study's last 64 cells, alternating, at load 5-7 on this 2-core VM, took
+ * 24.1-27.7 s CPU spinning and 16.5-19.0 s waiting passively, and less wall
+ * time too (README, Performance). libgomp reads its policy once, as it loads,
+ * before main: so a rendering verb whose environment sets neither
+ * OMP_WAIT_POLICY nor GOMP_SPINCOUNT runs itself again with
+ * OMP_WAIT_POLICY=passive. Either variable set keeps the user's choice. */
+static void wait_passively(char **argv)
+{
+    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT"))
+        return;
+    if (setenv("OMP_WAIT_POLICY", "passive", 1))
+        return;
+    execv("/proc/self/exe", argv);
+    unsetenv("OMP_WAIT_POLICY");   /* no /proc: go on as the runtime already is */
+}
+
 int main(int argc, char **argv)
 {
+    if (argc >= 2 && (!strcmp(argv[1], "run") || !strcmp(argv[1], "bench")))
+        wait_passively(argv);
     if (argc < 2)
         return usage_error("missing command", sl_usage);
     static const struct {

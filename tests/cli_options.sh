@@ -64,14 +64,19 @@ err=$("$bin" validate "$tmp/bad.yaml" -D 'map_sizes=[512]' 2>&1); rc=$?
 [ $rc -eq 2 ] && echo "$err" | grep -q "bad.yaml:5" && ok || fail "file error under -D lost its line: '$err'"
 
 # --out=DIR, -q: only the 'written to' line on stdout; -j; -D changes the hash
-"$bin" run "$tmp/small.yaml" --out="$tmp/o" -q -j 1 --no-cache >"$tmp/q.out" 2>"$tmp/q.err" || fail "run -q: $(cat "$tmp/q.err")"
+env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$bin" run "$tmp/small.yaml" --out="$tmp/o" -q -j 1 --no-cache >"$tmp/q.out" 2>"$tmp/q.err" ||
+  fail "run -q: $(cat "$tmp/q.err")"
 [ "$(wc -l <"$tmp/q.out")" -eq 1 ] && grep -q "^written to $tmp/o/small/ and $tmp/o/shadowlab.db$" "$tmp/q.out" && ok ||
   fail "--quiet stdout: $(cat "$tmp/q.out")"
 [ -s "$tmp/q.err" ] && fail "--quiet wrote to stderr: $(head -3 "$tmp/q.err")" || ok
 [ -f "$tmp/o/small/figures.csv" ] && ok || fail "--out=DIR: no $tmp/o/small/figures.csv"
 grep -q "^threads: 1$" "$tmp/o/small/run.yaml" "$tmp/o/small/config.yaml" 2>/dev/null && ok || fail "-j 1 not in run.yaml/config.yaml"
+# OpenMP's threads wait passively unless the environment says otherwise (main.c)
+grep -q "^omp_wait_policy: passive$" "$tmp/o/small/run.yaml" && ok || fail "run without OMP_WAIT_POLICY: not passive"
 # default: the summary (one line per label) and progress lines off a terminal
-"$bin" run "$tmp/small.yaml" -o "$tmp/p" -D 'map_sizes=[256]' --no-cache >"$tmp/s.out" 2>"$tmp/s.err" || fail "run: $(cat "$tmp/s.err")"
+OMP_WAIT_POLICY=active "$bin" run "$tmp/small.yaml" -o "$tmp/p" -D 'map_sizes=[256]' --no-cache >"$tmp/s.out" 2>"$tmp/s.err" ||
+  fail "run: $(cat "$tmp/s.err")"
+grep -q "^omp_wait_policy: active$" "$tmp/p/small/run.yaml" && ok || fail "OMP_WAIT_POLICY=active not kept"
 grep -q "^small: 4 cell(s) computed, 0 already stored" "$tmp/s.out" && ok || fail "summary: $(cat "$tmp/s.out")"
 grep -q "^ff  *2  *[0-9]" "$tmp/s.out" && grep -q "^slope  *2 " "$tmp/s.out" && ok || fail "no line per label: $(cat "$tmp/s.out")"
 [ "$(wc -l <"$tmp/s.out")" -le 8 ] && ok || fail "summary longer than a screen's top: $(wc -l <"$tmp/s.out") lines"

@@ -62,6 +62,13 @@ void sl_provenance_fill(struct sl_provenance *p)
     }
     const char *lp = getenv("LP_NUM_THREADS");
     snprintf(p->lp_threads, sizeof p->lp_threads, "%s", lp ? lp : "");
+    const char *wp = getenv("OMP_WAIT_POLICY"), *sc = getenv("GOMP_SPINCOUNT");
+    if (wp)
+        snprintf(p->omp_wait, sizeof p->omp_wait, "%.32s", wp);
+    else if (sc)
+        snprintf(p->omp_wait, sizeof p->omp_wait, "GOMP_SPINCOUNT=%.20s", sc);
+    else
+        p->omp_wait[0] = 0;
 }
 
 void sl_provenance_write(const struct sl_provenance *p, FILE *f, const char *prefix)
@@ -77,4 +84,5 @@ void sl_provenance_write(const struct sl_provenance *p, FILE *f, const char *pre
     fprintf(f, "%sembree: %s\n", prefix, p->embree);
     fprintf(f, "%sthreads: %d\n", prefix, p->threads);
     fprintf(f, "%slp_num_threads: %s\n", prefix, p->lp_threads[0] ? p->lp_threads : "(unset)");
+    fprintf(f, "%somp_wait_policy: %s\n", prefix, p->omp_wait[0] ? p->omp_wait : "(unset)");
 }

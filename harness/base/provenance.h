@@ -23,6 +23,8 @@ struct sl_provenance {
     char embree[32];
     int  threads;
     char lp_threads[16];     /* LP_NUM_THREADS as set, or "" */
+    char omp_wait[40];       /* OMP_WAIT_POLICY as set (main.c sets passive for run and bench), else
+                              * "GOMP_SPINCOUNT=N" if that is set, else "" (libgomp's default: spinning) */
 };
 
 /* The git SHA of the source this binary was built from (generated at build
