@@ -55,7 +55,9 @@ cmake --build build -j "$jobs"
 
 case "${1:-run}" in
   run)   shift || true; exec build/shadowlab run "${1:-configs/default.yaml}" ;;
-  test)  cd build && exec ctest --output-on-failure -j "$jobs" ;;
+  # the tests run $jobs at a time, one per core: OpenMP's idle threads wait
+  # passively, so one test's spinning workers do not take another's core
+  test)  cd build && OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} exec ctest --output-on-failure -j "$jobs" ;;
   build) ;;
   *)     echo "usage: scripts/setup.sh run [CONFIG] | test | build" >&2; exit 2 ;;
 esac
