@@ -318,7 +318,7 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
     else if (cached_m && !(m = sl_alias_cached(in->alias_cache, v, in->frame, in->threads)))
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "aliasing error m %dx%d", v->w, v->h);
     if (m) {
-        sl_alias_figures_compute(v, vd, m, band, in->regions, in->nregions, &cell->alias);
+        sl_alias_figures_cached(in->alias_cache, v, vd, m, band, in->regions, in->nregions, &cell->alias);
         cell->has_alias = 1;
         cell->ms.figures += 1e3 * (sl_now() - t0);
     }

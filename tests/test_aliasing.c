@@ -330,6 +330,80 @@ static void aliasing_cache_keyed(void **st)
     assert_null(c.m);
 }
 
+
+/* The PFL side of the figures kept for the next cell: with other verdicts
+ * on the same bands every figure equals a fresh count; with other bands,
+ * other regions or a recomputed m (another frame) it is counted again. */
+static void aliasing_figures_cached(void **st)
+{
+    (void)st;
+    enum { W = 24, H = 20 };
+    static float pos[3 * W * H], nrm[3 * W * H];
+    static uint8_t cls[W * H], truth[W * H], v1[W * H], v2[W * H], band[W * H], band2[W * H];
+    const float eye[3] = {0, 10, 0}, down[3] = {0, -1, 0}, up[3] = {0, 0, -1};
+    struct sl_view v;
+    memset(&v, 0, sizeof v);
+    v.w = W, v.h = H, v.pos = pos, v.nrm = nrm, v.cls = cls, v.truth = truth, v.serial = 3;
+    vec3 e = {0, 10, 0}, dv = {0, -1, 0}, u = {0, 0, -1};
+    glm_look(e, dv, u, v.view);
+    glm_perspective(1.0f, (float)W / H, 0.1f, 100.0f, v.proj);
+    for (int i = 0; i < W * H; i++) {
+        float x = (float)(i % W) - W / 2, z = (float)(i / W) - H / 2;
+        pos[3 * i] = 0.4f * x, pos[3 * i + 1] = 0.02f * x * z, pos[3 * i + 2] = 0.4f * z;
+        float nx = -0.02f * z, nz = -0.02f * x, l = sqrtf(nx * nx + 1.0f + nz * nz);
+        nrm[3 * i] = nx / l, nrm[3 * i + 1] = 1.0f / l, nrm[3 * i + 2] = nz / l;
+        cls[i] = i % 7 ? SL_C_PFL : SL_C_PNFL;
+        truth[i] = i % 3 ? SL_T_LIT : SL_T_SHADOW;
+        v1[i] = i % 5 ? SL_V_LIT : SL_V_SHADOW;
+        v2[i] = i % 4 ? SL_V_SHADOW : SL_V_LIT;
+        band[i] = (uint8_t)(i % 4);
+        band2[i] = (uint8_t)((i / 3) % 4);
+    }
+    struct sl_light_frame f;
+    memset(&f, 0, sizeof f);
+    f.size = 32;
+    ortho_vp(eye, down, up, 6.0f, f.box.vp);
+    struct sl_alias_cache c;
+    memset(&c, 0, sizeof c);
+    const int regions[3] = {2, 4, 0}, regions2[2] = {2, 0};
+    struct sl_verdicts vd;
+    memset(&vd, 0, sizeof vd);
+    vd.w = W, vd.h = H;
+    struct sl_alias_figures got, want;
+    const uint8_t *vs[2] = {v1, v2}, *bands[3] = {band, band, band2};
+    uint64_t px[6];
+    for (int step = 0; step < 6; step++) {
+        if (step == 4)
+            ortho_vp(eye, down, up, 3.0f, f.box.vp);   /* another frame: m again, the PFL side again */
+        const float *m = sl_alias_cached(&c, &v, &f, 1);
+        assert_non_null(m);
+        vd.v = (uint8_t *)vs[step % 2];
+        const uint8_t *b = bands[step % 3];
+        const int *rg = step == 5 ? regions2 : regions;
+        int nr = step == 5 ? 2 : 3;
+        sl_alias_figures_cached(&c, &v, &vd, m, b, rg, nr, &got);
+        sl_alias_figures_compute(&v, &vd, m, b, rg, nr, &want);
+        assert_int_equal(got.nregions, want.nregions);
+        for (int r = 0; r < nr; r++) {
+            assert_int_equal(got.thickness[r], want.thickness[r]);
+            for (int k = 0; k < SL_AFIG_COUNT; k++) {
+                assert_int_equal(got.n[r][k], want.n[r][k]);
+                if (isnan(want.pct[r][k]))
+                    assert_true(isnan(got.pct[r][k]));
+                else
+                    assert_float_equal(got.pct[r][k], want.pct[r][k], 0.0);
+            }
+        }
+        px[step] = got.n[1][SL_AFIG_px_m_le1] + 2 * got.n[1][SL_AFIG_px_m_1_2] + 3 * got.n[1][SL_AFIG_px_m_2_4];
+    }
+    /* other bands, another frame, other regions count otherwise: a PFL side
+     * kept where it does not fit would show above */
+    assert_int_not_equal(px[2], px[1]);
+    assert_int_not_equal(px[4], px[3]);
+    assert_int_not_equal(px[5], px[4]);
+    sl_alias_cache_free(&c);
+}
+
 /* The aliasing figures and the texels column go into the store with the
  * cell and come back as they were; a cell without them stays without. */
 static void aliasing_store_round_trip(void **st)
@@ -414,6 +488,7 @@ int main(int argc, char **argv)
         SL_CASE(aliasing, store_round_trip),
         SL_CASE(aliasing, median_select),
         SL_CASE(aliasing, cache_keyed),
+        SL_CASE(aliasing, figures_cached),
     };
     return sl_run_group(argc, argv, "aliasing", tests, sl_test_setup, sl_test_teardown);
 }

@@ -262,6 +262,7 @@ const float *sl_alias_cached(struct sl_alias_cache *c, const struct sl_view *v, 
         c->cap = n;
     }
     sl_alias_image(v, f, NULL, threads, c->m);
+    c->gen++;
     c->serial = v->serial;
     c->size = f->size;
     memcpy(c->vp, f->box.vp, sizeof c->vp);
@@ -271,6 +272,7 @@ const float *sl_alias_cached(struct sl_alias_cache *c, const struct sl_view *v, 
 void sl_alias_cache_free(struct sl_alias_cache *c)
 {
     free(c->m);
+    free(c->band);
     memset(c, 0, sizeof *c);
 }
 
@@ -333,52 +335,129 @@ static uint64_t milli(double m)
     return r >= 9e15 ? (uint64_t)9e15 : (uint64_t)r;   /* an infinite median stays a storable count */
 }
 
+/* The figures of the PFL pixels, whatever the verdicts: per region the
+ * count of PFL pixels, those by band of m, those without m, and the median
+ * m. hist: 65536 counters; all: w*h floats of scratch (NULL: no median). */
+static void pfl_side(const struct sl_view *v, const float *m, const uint8_t *band, const int *thickness,
+                     int nregions, uint64_t n[][SL_AFIG_COUNT], uint64_t *pfl, float *all, uint64_t *hist)
+{
+    size_t npx = (size_t)v->w * (size_t)v->h;
+    for (int r = 0; r < nregions; r++) {
+        uint64_t *c = n[r];
+        size_t na = 0;
+        pfl[r] = 0;
+        for (size_t i = 0; i < npx; i++) {
+            if (v->cls[i] != SL_C_PFL || !sl_in_contour(band[i], thickness[r]))
+                continue;
+            pfl[r]++;
+            if (isnan(m[i])) {
+                c[SL_AFIG_m_none]++;
+                continue;
+            }
+            c[SL_AFIG_px_m_le1 + sl_alias_band(m[i])]++;
+            if (all)
+                all[na++] = m[i];
+        }
+        /* without scratch memory no median is claimed (0) */
+        c[SL_AFIG_m_median_milli] = all ? milli(median(all, na, hist)) : 0;
+    }
+}
+
+/* The wrong pixels' figures: per region their count, by band of m, and
+ * their median m. */
+static void wrong_side(const struct sl_view *v, const struct sl_verdicts *vd, const float *m, const uint8_t *band,
+                       const int *thickness, int nregions, uint64_t n[][SL_AFIG_COUNT], uint64_t *wrong, float *bad,
+                       uint64_t *hist)
+{
+    size_t npx = (size_t)v->w * (size_t)v->h;
+    for (int r = 0; r < nregions; r++) {
+        uint64_t *c = n[r];
+        size_t nb = 0;
+        wrong[r] = 0;
+        for (size_t i = 0; i < npx; i++) {
+            if (v->cls[i] != SL_C_PFL || !sl_in_contour(band[i], thickness[r]))
+                continue;
+            uint8_t t = v->truth[i], x = vd->v[i];
+            if (!((x == SL_V_LIT && t == SL_T_SHADOW) || (x == SL_V_SHADOW && t == SL_T_LIT)))
+                continue;
+            wrong[r]++;
+            if (isnan(m[i]))
+                continue;
+            c[SL_AFIG_wrong_m_le1 + sl_alias_band(m[i])]++;
+            if (bad)
+                bad[nb++] = m[i];
+        }
+        c[SL_AFIG_wrong_m_median_milli] = bad ? milli(median(bad, nb, hist)) : 0;
+    }
+}
+
+/* The PFL side from the cache when it was counted on this m (the cache's
+ * own), these bands and these regions; else counted and kept. */
+static void pfl_side_cached(struct sl_alias_cache *k, const struct sl_view *v, const float *m,
+                            const uint8_t *band, const int *thickness, int nregions, uint64_t n[][SL_AFIG_COUNT],
+                            uint64_t *pfl, float *all, uint64_t *hist)
+{
+    size_t npx = (size_t)v->w * (size_t)v->h;
+    int fits = k && m == k->m && k->pfl_gen == k->gen && k->nregions == nregions && k->band &&
+               !memcmp(k->thickness, thickness, (size_t)nregions * sizeof *thickness) &&
+               !memcmp(k->band, band, npx);
+    if (!fits) {
+        pfl_side(v, m, band, thickness, nregions, n, pfl, all, hist);
+        if (!k || m != k->m || !all)
+            return;
+        if (k->band_cap < npx) {
+            free(k->band);
+            k->band_cap = 0;
+            if (!(k->band = malloc(npx)))
+                return;
+            k->band_cap = npx;
+        }
+        memcpy(k->band, band, npx);
+        memcpy(k->thickness, thickness, (size_t)nregions * sizeof *thickness);
+        memcpy(k->pfl_n, n, (size_t)nregions * sizeof *n);
+        memcpy(k->pfl, pfl, (size_t)nregions * sizeof *pfl);
+        k->nregions = nregions;
+        k->pfl_gen = k->gen;
+        return;
+    }
+    memcpy(n, k->pfl_n, (size_t)nregions * sizeof *n);
+    memcpy(pfl, k->pfl, (size_t)nregions * sizeof *pfl);
+}
+
 void sl_alias_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, const float *m,
                               const uint8_t *band, const int *thickness, int nregions,
                               struct sl_alias_figures *out)
+{
+    sl_alias_figures_cached(NULL, v, vd, m, band, thickness, nregions, out);
+}
+
+void sl_alias_figures_cached(struct sl_alias_cache *k, const struct sl_view *v, const struct sl_verdicts *vd,
+                             const float *m, const uint8_t *band, const int *thickness, int nregions,
+                             struct sl_alias_figures *out)
 {
     memset(out, 0, sizeof *out);
     if (nregions > SL_MAX_REGIONS)
         nregions = SL_MAX_REGIONS;
     out->nregions = nregions;
+    memcpy(out->thickness, thickness, (size_t)nregions * sizeof *thickness);
     size_t npx = (size_t)v->w * (size_t)v->h;
-    float *all = malloc(npx * sizeof *all), *bad = malloc(npx * sizeof *bad);
-    uint64_t *hist = malloc(65536 * sizeof *hist);
-    for (int r = 0; r < nregions; r++) {
-        out->thickness[r] = thickness[r];
-        uint64_t *c = out->n[r], pfl = 0, wrong = 0;
-        size_t na = 0, nb = 0;
-        for (size_t i = 0; i < npx; i++) {
-            if (v->cls[i] != SL_C_PFL || !sl_in_contour(band[i], thickness[r]))
-                continue;
-            uint8_t t = v->truth[i], x = vd->v[i];
-            int w = (x == SL_V_LIT && t == SL_T_SHADOW) || (x == SL_V_SHADOW && t == SL_T_LIT);
-            pfl++;
-            wrong += w;
-            if (isnan(m[i])) {
-                c[SL_AFIG_m_none]++;
-                continue;
-            }
-            int b = sl_alias_band(m[i]);
-            c[SL_AFIG_px_m_le1 + b]++;
-            if (w)
-                c[SL_AFIG_wrong_m_le1 + b]++;
-            if (all)
-                all[na++] = m[i];
-            if (w && bad)
-                bad[nb++] = m[i];
-        }
-        /* without scratch memory no median is claimed (0) */
-        c[SL_AFIG_m_median_milli] = all ? milli(median(all, na, hist)) : 0;
-        c[SL_AFIG_wrong_m_median_milli] = bad ? milli(median(bad, nb, hist)) : 0;
-        for (int k = 0; k < SL_AFIG_COUNT; k++) {
-            double base = !strcmp(afig_of[k], "pfl") ? (double)pfl : !strcmp(afig_of[k], "wrong") ? (double)wrong
-                                                                                                 : 0.0;
-            out->pct[r][k] = base > 0.0 ? 100.0 * (double)c[k] / base : NAN;
-        }
+    float *scratch = malloc(npx * sizeof *scratch);
+    uint64_t *hist = malloc(65536 * sizeof *hist), pfl[SL_MAX_REGIONS], wrong[SL_MAX_REGIONS];
+    /* no scratch: no medians (0), the counts still */
+    if (!hist) {
+        free(scratch);
+        scratch = NULL;
     }
-    free(all);
-    free(bad);
+    uint64_t (*n)[SL_AFIG_COUNT] = out->n;
+    pfl_side_cached(k, v, m, band, thickness, nregions, n, pfl, scratch, hist);
+    wrong_side(v, vd, m, band, thickness, nregions, n, wrong, scratch, hist);
+    for (int r = 0; r < nregions; r++)
+        for (int f = 0; f < SL_AFIG_COUNT; f++) {
+            double base = !strcmp(afig_of[f], "pfl") ? (double)pfl[r] : !strcmp(afig_of[f], "wrong") ? (double)wrong[r]
+                                                                                                     : 0.0;
+            out->pct[r][f] = base > 0.0 ? 100.0 * (double)n[r][f] / base : NAN;
+        }
+    free(scratch);
     free(hist);
 }
 

@@ -138,6 +138,17 @@ struct sl_alias_cache {
     uint64_t serial;   /* the view's; 0: nothing held */
     mat4     vp;       /* the frame's view-projection */
     int      size;     /* and its map size */
+    /* The figures that do not depend on the verdicts (each region's PFL
+     * pixels by band of m, and their median), kept with the bands and
+     * regions they were counted on: the cells of a group scoring on the
+     * same bands (contour_from: nsm) count them once. */
+    uint64_t gen;                                   /* m's computations so far */
+    uint64_t pfl_gen;                               /* the one they were counted on; 0 none */
+    uint8_t *band;                                  /* w*h, the bands */
+    size_t   band_cap;
+    int      nregions, thickness[SL_MAX_REGIONS];
+    uint64_t pfl_n[SL_MAX_REGIONS][SL_AFIG_COUNT];  /* only the PFL-side figures filled */
+    uint64_t pfl[SL_MAX_REGIONS];
 };
 
 /* m of every pixel of v under f (sl_alias_image without per-pixel frames):
@@ -152,6 +163,12 @@ void sl_alias_cache_free(struct sl_alias_cache *c);
 void sl_alias_figures_compute(const struct sl_view *v, const struct sl_verdicts *vd, const float *m,
                               const uint8_t *band, const int *thickness, int nregions,
                               struct sl_alias_figures *out);
+/* The same, the PFL side (PFL pixels by band of m, their median) taken
+ * from the cache when m is the cache's own and the bands and regions are
+ * those it was counted on, else counted and kept there. k NULL: counted. */
+void sl_alias_figures_cached(struct sl_alias_cache *k, const struct sl_view *v, const struct sl_verdicts *vd,
+                             const float *m, const uint8_t *band, const int *thickness, int nregions,
+                             struct sl_alias_figures *out);
 
 /* One stored figure back into a: returns 0 if `figure` is not an aliasing
  * figure's name, else 1 (the region is added in the order met). */
