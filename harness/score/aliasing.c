@@ -364,31 +364,61 @@ static void pfl_side(const struct sl_view *v, const float *m, const uint8_t *ban
 }
 
 /* The wrong pixels' figures: per region their count, by band of m, and
- * their median m. */
+ * their median m. One pass gathers the wrong PFL pixels (a few in a
+ * hundred), the regions then count over those alone. bad: w*h floats of
+ * scratch for the gathered m (NULL: no medians). */
 static void wrong_side(const struct sl_view *v, const struct sl_verdicts *vd, const float *m, const uint8_t *band,
                        const int *thickness, int nregions, uint64_t n[][SL_AFIG_COUNT], uint64_t *wrong, float *bad,
                        uint64_t *hist)
 {
     size_t npx = (size_t)v->w * (size_t)v->h;
+    size_t nw = 0;
+    uint8_t *wband = bad ? malloc(npx) : NULL;   /* the gathered pixels' bands */
+    if (!wband)
+        bad = NULL;
+    if (!bad) {
+        /* no scratch: count region by region over every pixel, no medians */
+        for (int r = 0; r < nregions; r++) {
+            wrong[r] = 0;
+            for (size_t i = 0; i < npx; i++) {
+                uint8_t t = v->truth[i], x = vd->v[i];
+                if (v->cls[i] != SL_C_PFL || !sl_in_contour(band[i], thickness[r]) ||
+                    !((x == SL_V_LIT && t == SL_T_SHADOW) || (x == SL_V_SHADOW && t == SL_T_LIT)))
+                    continue;
+                wrong[r]++;
+                if (!isnan(m[i]))
+                    n[r][SL_AFIG_wrong_m_le1 + sl_alias_band(m[i])]++;
+            }
+            n[r][SL_AFIG_wrong_m_median_milli] = 0;
+        }
+        return;
+    }
+    for (size_t i = 0; i < npx; i++) {
+        uint8_t t = v->truth[i], x = vd->v[i];
+        if (v->cls[i] == SL_C_PFL && ((x == SL_V_LIT && t == SL_T_SHADOW) || (x == SL_V_SHADOW && t == SL_T_LIT))) {
+            bad[nw] = m[i];
+            wband[nw++] = band[i];
+        }
+    }
+    float *sel = malloc((nw + 1) * sizeof *sel);   /* a region's m (NULL: no median) */
     for (int r = 0; r < nregions; r++) {
         uint64_t *c = n[r];
         size_t nb = 0;
         wrong[r] = 0;
-        for (size_t i = 0; i < npx; i++) {
-            if (v->cls[i] != SL_C_PFL || !sl_in_contour(band[i], thickness[r]))
-                continue;
-            uint8_t t = v->truth[i], x = vd->v[i];
-            if (!((x == SL_V_LIT && t == SL_T_SHADOW) || (x == SL_V_SHADOW && t == SL_T_LIT)))
+        for (size_t j = 0; j < nw; j++) {
+            if (!sl_in_contour(wband[j], thickness[r]))
                 continue;
             wrong[r]++;
-            if (isnan(m[i]))
+            if (isnan(bad[j]))
                 continue;
-            c[SL_AFIG_wrong_m_le1 + sl_alias_band(m[i])]++;
-            if (bad)
-                bad[nb++] = m[i];
+            c[SL_AFIG_wrong_m_le1 + sl_alias_band(bad[j])]++;
+            if (sel)
+                sel[nb++] = bad[j];
         }
-        c[SL_AFIG_wrong_m_median_milli] = bad ? milli(median(bad, nb, hist)) : 0;
+        c[SL_AFIG_wrong_m_median_milli] = sel ? milli(median(sel, nb, hist)) : 0;
     }
+    free(sel);
+    free(wband);
 }
 
 /* The PFL side from the cache when it was counted on this m (the cache's
