@@ -119,6 +119,20 @@ struct sl_light_frame {
     struct sl_depth_layer layer[SL_LAYER_COUNT];
 };
 
+/* (p, 1) as a vec4 for glm_mat4_mulv, in one 16-byte store. Written as
+ * {x, y, z, 1} it was stored in two 8-byte halves, and the product's
+ * 16-byte load waited on store forwarding: perf put half the time of the
+ * per-pixel loops that project every pixel (conservative, hertel, nsm) on
+ * that wait. The same values into the same product: the same bits. */
+static inline void sl_point4(const float p[3], vec4 w)
+{
+#if defined(__SSE2__)
+    _mm_store_ps(w, _mm_setr_ps(p[0], p[1], p[2], 1.0f));
+#else
+    w[0] = p[0], w[1] = p[1], w[2] = p[2], w[3] = 1.0f;
+#endif
+}
+
 /* Project a world point into the frame: texel coordinates in [0, size) (not
  * clamped; u, v may fall outside for points outside the box) and window
  * depth. The division by w is exact for the orthographic box (w = 1). */
@@ -126,15 +140,7 @@ static inline void sl_frame_project(const struct sl_light_frame *f, const float 
                                     float *u, float *v, float *z)
 {
     vec4 w, c;
-#if defined(__SSE2__)
-    /* the point as one 16-byte store: written as {x, y, z, 1} it was stored
-     * in two 8-byte halves, and the product's 16-byte load waited on store
-     * forwarding (perf: a tenth of the conservative methods' per-pixel
-     * loop). The same values into the same product: the same bits. */
-    _mm_store_ps(w, _mm_setr_ps(p[0], p[1], p[2], 1.0f));
-#else
-    w[0] = p[0], w[1] = p[1], w[2] = p[2], w[3] = 1.0f;
-#endif
+    sl_point4(p, w);
     glm_mat4_mulv((vec4 *)f->box.vp, w, c);
     *u = (c[0] / c[3] * 0.5f + 0.5f) * (float)f->size;
     *v = (c[1] / c[3] * 0.5f + 0.5f) * (float)f->size;

@@ -30,7 +30,8 @@ void sl_temporal_match(const struct sl_temporal_frame *a, const struct sl_tempor
             continue;
         size_t q = p;
         if (!same_camera) {
-            vec4 w = {a->pos[3 * p], a->pos[3 * p + 1], a->pos[3 * p + 2], 1.0f}, h;
+            vec4 w, h;
+            sl_point4(a->pos + 3 * p, w);
             glm_mat4_mulv((vec4 *)b->vp, w, h);
             if (!(h[3] > 0.0f))
                 continue;   /* behind the later camera */
