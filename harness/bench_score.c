@@ -329,12 +329,8 @@ static int lf_fit(const struct sl_scene *s, const struct sl_view *v, int kind, i
         return 1;
     }
     sl_cube_faces(s->light.pos, v, face, threads);
-    for (int f = 0; f < 6; f++) {
-        float axis[3];
-        sl_cube_axis(f, axis);
-        /* cube.c's guard band (cube.h's SL_CUBE_GUARD, 2 texels) */
-        sl_light_fit_face_mt(s, v, s->light.pos, axis, face, (uint8_t)f, size, 2, &out[f], threads);
-    }
+    /* cube.c's guard band (cube.h's SL_CUBE_GUARD, 2 texels) */
+    sl_light_fit_cube_mt(s, v, s->light.pos, face, size, 2, out, threads);
     return 6;
 }
 

@@ -26,7 +26,8 @@ void sl_cube_drop(struct sl_cube *cb)
 }
 
 /* The faces of a new (view, map): the face of every pixel, each face's
- * frame fitted with its guard band (lightfit.h, sl_light_fit_face). */
+ * frame fitted with its guard band (lightfit.h, sl_light_fit_cube_mt: the
+ * six of sl_light_fit_face at once). */
 static enum sl_err cube_fit(struct sl_cube *cb, struct sl_shadowmap_pass *sp, const struct sl_scene *s,
                             const struct sl_view *v, int map, int size, int threads, struct sl_diag *d)
 {
@@ -39,12 +40,13 @@ static enum sl_err cube_fit(struct sl_cube *cb, struct sl_shadowmap_pass *sp, co
     sl_cube_faces(s->light.pos, v, cb->face, threads);
     /* a map too small for the band on both sides gets none (lightfit.c) */
     const int guard = size > 4 * SL_CUBE_GUARD ? SL_CUBE_GUARD : 0;
+    struct sl_light_box boxes[6];
+    sl_light_fit_cube_mt(s, v, s->light.pos, cb->face, size, guard, boxes, threads);
     for (int f = 0; f < 6; f++) {
         struct sl_light_frame *fr = &cb->f[f];
-        struct sl_light_box box;
+        struct sl_light_box box = boxes[f];
         float axis[3];
         sl_cube_axis(f, axis);
-        sl_light_fit_face_mt(s, v, s->light.pos, axis, cb->face, (uint8_t)f, size, guard, &box, threads);
         cb->cost[f].receivers = box.n_receivers;
         cb->cost[f].casters = box.n_casters;
         cb->cost[f].unmapped = box.n_unmapped;

@@ -304,8 +304,8 @@ static void same_box(const struct sl_light_box *a, const struct sl_light_box *b)
  * replaced (the directional box bit for bit; a perspective box's counts and
  * its unmapped list's order): a directional light over the bench scene's 54,200
  * triangles (its slices and stabilised boxes too), an area light, a spot
- * light and point lights (the summary box and each cube face with its guard
- * band, and the faces' selection itself), on views of 640 x 480 (ten blocks
+ * light and point lights (the summary box, each cube face with its guard
+ * band alone and the six at once, and the faces' selection itself), on views of 640 x 480 (ten blocks
  * of pixels). Unmapped triangles (the lamp's pole, the room's walls across
  * the cube's planes) are among them, so their lists' joining is checked. */
 static void lightfit_threads_bit_identical(void **st)
@@ -352,12 +352,20 @@ static void lightfit_threads_bit_identical(void **st)
                     sl_cube_faces(f.scene.light.pos, &v, face2, threads[t]);
                     assert_memory_equal(face, face2, n);
                 }
+                struct sl_light_box six[5][6];   /* the six faces at once, on 1, 2, 3, 4, 7 threads */
+                sl_light_fit_cube_mt(&f.scene, &v, f.scene.light.pos, face, 512, 2, six[0], 1);
+                for (int t = 0; t < 4; t++)
+                    sl_light_fit_cube_mt(&f.scene, &v, f.scene.light.pos, face, 512, 2, six[1 + t], threads[t]);
                 for (int fc = 0; fc < 6; fc++) {
                     float axis[3];
                     sl_cube_axis(fc, axis);
                     sl_light_fit_face(&f.scene, &v, f.scene.light.pos, axis, face, (uint8_t)fc, 512, 2, &a);
                     plain_persp_checks(&v, face, (uint8_t)fc, &a);
                     unmapped += a.n_unmapped;
+                    for (int t = 0; t < 5; t++) {
+                        same_box(&a, &six[t][fc]);
+                        sl_light_box_free(&six[t][fc]);
+                    }
                     faces += a.n_receivers > 0;
                     for (int t = 0; t < 4; t++) {
                         sl_light_fit_face_mt(&f.scene, &v, f.scene.light.pos, axis, face, (uint8_t)fc, 512, 2, &b,

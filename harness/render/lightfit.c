@@ -6,6 +6,7 @@
 #include "lightfit.h"
 #include <cglm/clipspace/ortho_rh_zo.h>
 #include <cglm/clipspace/persp_rh_zo.h>
+#include <assert.h>
 #include <float.h>
 #include <math.h>
 #include <omp.h>
@@ -274,37 +275,47 @@ static float pyramid_min_depth(const struct sl_scene *s, uint32_t t, const mat4 
     return (float)dmin;
 }
 
-/* fit_point's receivers, pixels [i0, i1): their tangents and depths */
-static void point_px(const struct sl_view *v, const mat4 view, const uint8_t *mask, uint8_t value, size_t i0,
-                     size_t i1, struct px_acc *a)
+/* fit_points' receivers, pixels [i0, i1): for each of its nf frames, the
+ * tangents and depths of the PFL pixels it selects (mask NULL: every one),
+ * into a[f * FIT_BLOCKS] */
+#define FIT_FRAMES 6
+
+static void point_px(const struct sl_view *v, int nf, const mat4 *view, const uint8_t *mask, const uint8_t *values,
+                     size_t i0, size_t i1, struct px_acc *a)
 {
-    /* the matrix and the bounds in locals: written through `a`, they
-     * would be reloaded for every pixel (a may alias the view); the same
+    /* the matrices and the bounds in locals: written through `a`, they
+     * would be reloaded for every pixel (a may alias the views); the same
      * arithmetic, so the same bits */
-    mat4 V;
-    memcpy(V, view, sizeof V);
-    struct px_acc l;
-    px_acc_init(&l);
+    mat4 V[FIT_FRAMES];
+    memcpy(V, view, (size_t)nf * sizeof *V);
+    struct px_acc l[FIT_FRAMES];
+    for (int f = 0; f < nf; f++)
+        px_acc_init(&l[f]);
     for (size_t i = i0; i < i1; i++) {
-        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
+        if (v->cls[i] != SL_C_PFL)
             continue;
-        float q[3];
-        to_light(V, v->pos + 3 * i, q);
-        if (!(q[2] > 0.0f)) {
-            /* behind the frame's plane: none under an area light or a
-             * spot (sl_point_faces); left outside for a caller whose
-             * selected pixels are not all in front */
-            l.out++;
-            continue;
+        for (int f = 0; f < nf; f++) {
+            if (mask && mask[i] != values[f])
+                continue;
+            float q[3];
+            to_light(V[f], v->pos + 3 * i, q);
+            if (!(q[2] > 0.0f)) {
+                /* behind the frame's plane: none under an area light or a
+                 * spot (sl_point_faces); left outside for a caller whose
+                 * selected pixels are not all in front */
+                l[f].out++;
+                continue;
+            }
+            float t[3] = {q[0] / q[2], q[1] / q[2], q[2]};
+            if (!(fabsf(t[0]) <= SL_POINT_MAX_TAN && fabsf(t[1]) <= SL_POINT_MAX_TAN)) {
+                l[f].out++;
+                continue;
+            }
+            px_acc_take(&l[f], t);
         }
-        float t[3] = {q[0] / q[2], q[1] / q[2], q[2]};
-        if (!(fabsf(t[0]) <= SL_POINT_MAX_TAN && fabsf(t[1]) <= SL_POINT_MAX_TAN)) {
-            l.out++;
-            continue;
-        }
-        px_acc_take(&l, t);
     }
-    *a = l;
+    for (int f = 0; f < nf; f++)
+        a[(size_t)f * FIT_BLOCKS] = l[f];
 }
 
 /* fit_point's casters, triangles [t0, t1), against the receivers'
@@ -361,69 +372,100 @@ static void point_tri(const struct sl_scene *s, const mat4 view, const float lo[
     }
 }
 
+/* nf frames from the light at c, frame f along axes[f] over the pixels
+ * with mask[i] == values[f] (mask NULL: every PFL pixel), into outs[f]
+ * (zeroed): each exactly as fitted alone, but every pass over the pixels
+ * and over the triangles made once for all of them (a point light's six
+ * cube faces: one read of the G-buffer instead of six, and two parallel
+ * regions instead of twelve — at each region's end a thread waits for the
+ * others, spinning). */
+static void fit_points(const struct sl_scene *s, const struct sl_view *v, const float c[3], int nf,
+                       const float (*axes)[3], const uint8_t *mask, const uint8_t *values, int size, int guard,
+                       int threads, struct sl_light_box *const *outs)
+{
+    mat4 views[FIT_FRAMES];
+    for (int f = 0; f < nf; f++) {
+        struct sl_light_box *out = outs[f];
+        view_along(c, axes[f], out->view);
+        out->persp = 1;
+        memcpy(out->eye, c, sizeof out->eye);
+        memcpy(views[f], out->view, sizeof views[f]);
+    }
+    threads = fit_threads(threads);
+    const struct fit_blocks pb = fit_blocks((size_t)v->w * (size_t)v->h, FIT_PX_MIN);
+    static_assert(FIT_FRAMES * FIT_BLOCKS * sizeof(struct px_acc) <= 65536, "the blocks' slots live on the stack");
+    struct px_acc pa[FIT_FRAMES * FIT_BLOCKS];
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && pb.nb > 1)
+    for (int b = 0; b < pb.nb; b++)
+        point_px(v, nf, (const mat4 *)views, mask, values, (size_t)b * pb.len, blk_end(&pb, b), pa + b);
+    float lo[FIT_FRAMES][3], hi[FIT_FRAMES][3], far[FIT_FRAMES], dmin[FIT_FRAMES];
+    for (int f = 0; f < nf; f++) {
+        struct sl_light_box *out = outs[f];
+        struct px_acc all;
+        px_acc_join(&all, pa + (size_t)f * FIT_BLOCKS, pb.nb);
+        memcpy(lo[f], all.lo, sizeof lo[f]);
+        memcpy(hi[f], all.hi, sizeof hi[f]);
+        out->n_receivers += all.in;
+        out->n_outside += all.out;
+        if (out->n_receivers == 0) {
+            /* nothing lit inside: no lookup will be trusted; any valid frustum */
+            lo[f][0] = lo[f][1] = -1.0f;
+            hi[f][0] = hi[f][1] = 1.0f;
+            lo[f][2] = hi[f][2] = 1.0f;
+        }
+        /* tangents: 1e-4 of the extent, at least 1e-6 absolute */
+        for (int k = 0; k < 2; k++) {
+            float m = fmaxf(1e-4f * (hi[f][k] - lo[f][k]), 1e-6f);
+            lo[f][k] -= m;
+            hi[f][k] += m;
+        }
+        /* a cube face's guard band (sl_light_fit_face): `guard` texels of the
+         * final map on each side beyond the receivers, widened before the
+         * casters are chosen so the band's casters count toward the near plane
+         * as the receivers' do: the band's texels hold the geometry there, not
+         * a clipped or empty border */
+        if (guard > 0 && size > 2 * guard && out->n_receivers > 0)
+            for (int k = 0; k < 2; k++) {
+                float t = (hi[f][k] - lo[f][k]) / (float)(size - 2 * guard);
+                lo[f][k] -= (float)guard * t;
+                hi[f][k] += (float)guard * t;
+            }
+        /* far at twice the farthest receiver: window depth 1 - z there is then
+         * about near / (2 d), clear of the cleared 1 by many float steps (a 1e-4
+         * margin, as the box has, would be near/d * 1e-4: below one step when
+         * near is small); the precision of depth barely depends on far */
+        far[f] = 2.0f * hi[f][2];
+        dmin[f] = far[f] / SL_POINT_WMIN_DIV;
+    }
+    const struct fit_blocks tb = fit_blocks(s->nt, FIT_TRI_MIN);
+    struct tri_acc ta[FIT_FRAMES * FIT_BLOCKS];
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && tb.nb > 1)
+    for (int b = 0; b < tb.nb; b++)
+        for (int f = 0; f < nf; f++)
+            point_tri(s, views[f], lo[f], hi[f], dmin[f], (uint32_t)((size_t)b * tb.len), (uint32_t)blk_end(&tb, b),
+                      &ta[(size_t)f * FIT_BLOCKS + (size_t)b]);
+    for (int f = 0; f < nf; f++) {
+        struct sl_light_box *out = outs[f];
+        float near = tri_acc_join(ta + (size_t)f * FIT_BLOCKS, tb.nb, lo[f][2], out);
+        near = fmaxf(near * (1.0f - 1e-4f), dmin[f]);
+        lo[f][2] = near;
+        hi[f][2] = far[f];
+        memcpy(out->lo, lo[f], sizeof lo[f]);
+        memcpy(out->hi, hi[f], sizeof hi[f]);
+        out->wmin = dmin[f] * 0.5f;
+        out->guard = SL_POINT_GUARD_GPU;
+        glm_frustum_rh_zo(lo[f][0] * near, hi[f][0] * near, lo[f][1] * near, hi[f][1] * near, near, far[f],
+                          out->proj);
+        glm_mat4_mul(out->proj, out->view, out->vp);
+    }
+}
+
 static void fit_point(const struct sl_scene *s, const struct sl_view *v, const float c[3], const float axis[3],
                       const uint8_t *mask, uint8_t value, int size, int guard, int threads,
                       struct sl_light_box *out)
 {
-    view_along(c, axis, out->view);
-    out->persp = 1;
-    memcpy(out->eye, c, sizeof out->eye);
-    threads = fit_threads(threads);
-    const struct fit_blocks pb = fit_blocks((size_t)v->w * (size_t)v->h, FIT_PX_MIN);
-    struct px_acc pa[FIT_BLOCKS], all;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && pb.nb > 1)
-    for (int b = 0; b < pb.nb; b++)
-        point_px(v, out->view, mask, value, (size_t)b * pb.len, blk_end(&pb, b), &pa[b]);
-    px_acc_join(&all, pa, pb.nb);
-    float lo[3], hi[3];
-    memcpy(lo, all.lo, sizeof lo);
-    memcpy(hi, all.hi, sizeof hi);
-    out->n_receivers += all.in;
-    out->n_outside += all.out;
-    if (out->n_receivers == 0) {
-        /* nothing lit inside: no lookup will be trusted; any valid frustum */
-        lo[0] = lo[1] = -1.0f;
-        hi[0] = hi[1] = 1.0f;
-        lo[2] = hi[2] = 1.0f;
-    }
-    /* tangents: 1e-4 of the extent, at least 1e-6 absolute */
-    for (int k = 0; k < 2; k++) {
-        float m = fmaxf(1e-4f * (hi[k] - lo[k]), 1e-6f);
-        lo[k] -= m;
-        hi[k] += m;
-    }
-    /* a cube face's guard band (sl_light_fit_face): `guard` texels of the
-     * final map on each side beyond the receivers, widened before the
-     * casters are chosen so the band's casters count toward the near plane
-     * as the receivers' do: the band's texels hold the geometry there, not
-     * a clipped or empty border */
-    if (guard > 0 && size > 2 * guard && out->n_receivers > 0)
-        for (int k = 0; k < 2; k++) {
-            float t = (hi[k] - lo[k]) / (float)(size - 2 * guard);
-            lo[k] -= (float)guard * t;
-            hi[k] += (float)guard * t;
-        }
-    /* far at twice the farthest receiver: window depth 1 - z there is then
-     * about near / (2 d), clear of the cleared 1 by many float steps (a 1e-4
-     * margin, as the box has, would be near/d * 1e-4: below one step when
-     * near is small); the precision of depth barely depends on far */
-    float far = 2.0f * hi[2];
-    float dmin = far / SL_POINT_WMIN_DIV;
-    const struct fit_blocks tb = fit_blocks(s->nt, FIT_TRI_MIN);
-    struct tri_acc ta[FIT_BLOCKS];
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && tb.nb > 1)
-    for (int b = 0; b < tb.nb; b++)
-        point_tri(s, out->view, lo, hi, dmin, (uint32_t)((size_t)b * tb.len), (uint32_t)blk_end(&tb, b), &ta[b]);
-    float near = tri_acc_join(ta, tb.nb, lo[2], out);
-    near = fmaxf(near * (1.0f - 1e-4f), dmin);
-    lo[2] = near;
-    hi[2] = far;
-    memcpy(out->lo, lo, sizeof lo);
-    memcpy(out->hi, hi, sizeof hi);
-    out->wmin = dmin * 0.5f;
-    out->guard = SL_POINT_GUARD_GPU;
-    glm_frustum_rh_zo(lo[0] * near, hi[0] * near, lo[1] * near, hi[1] * near, near, far, out->proj);
-    glm_mat4_mul(out->proj, out->view, out->vp);
+    const float ax[1][3] = {{axis[0], axis[1], axis[2]}};
+    fit_points(s, v, c, 1, ax, mask, &value, size, guard, threads, &out);
 }
 
 /* fit_dir's receivers, pixels [i0, i1), in light space */
@@ -642,29 +684,35 @@ static void fit_cube_summary(const struct sl_scene *s, const struct sl_view *v, 
     int best = -1;
     if (face)
         sl_cube_faces(s->light.pos, v, face, threads);
+    struct sl_light_box bx[6], *bp[6];
+    float axes[6][3];
+    uint8_t values[6];
     for (int f = 0; f < 6; f++) {
-        struct sl_light_box b;
-        float axis[3];
-        sl_cube_axis(f, axis);
-        memset(&b, 0, sizeof b);
-        /* without the selection (no memory) every face sees every PFL pixel: the counts are then the faces' sums */
-        fit_point(s, v, s->light.pos, axis, face, (uint8_t)(face ? f : 0), 0, 0, threads, &b);
+        sl_cube_axis(f, axes[f]);
+        values[f] = (uint8_t)f;
+        memset(&bx[f], 0, sizeof bx[f]);
+        bp[f] = &bx[f];
+    }
+    /* without the selection (no memory) every face sees every PFL pixel: the counts are then the faces' sums */
+    fit_points(s, v, s->light.pos, 6, (const float(*)[3])axes, face, values, 0, 0, threads, bp);
+    for (int f = 0; f < 6; f++) {
+        const struct sl_light_box *b = &bx[f];
         uint32_t r = out->n_receivers, o = out->n_outside, c = out->n_casters;
-        if (best < 0 || b.n_receivers > r) {
-            memcpy(out->view, b.view, sizeof b.view);
-            memcpy(out->proj, b.proj, sizeof b.proj);
-            memcpy(out->vp, b.vp, sizeof b.vp);
-            memcpy(out->lo, b.lo, sizeof b.lo);
-            memcpy(out->hi, b.hi, sizeof b.hi);
-            memcpy(out->eye, b.eye, sizeof b.eye);
-            out->wmin = b.wmin;
-            out->guard = b.guard;
+        if (best < 0 || b->n_receivers > r) {
+            memcpy(out->view, b->view, sizeof b->view);
+            memcpy(out->proj, b->proj, sizeof b->proj);
+            memcpy(out->vp, b->vp, sizeof b->vp);
+            memcpy(out->lo, b->lo, sizeof b->lo);
+            memcpy(out->hi, b->hi, sizeof b->hi);
+            memcpy(out->eye, b->eye, sizeof b->eye);
+            out->wmin = b->wmin;
+            out->guard = b->guard;
             best = f;
         }
-        out->n_receivers = r + b.n_receivers;
-        out->n_outside = o + (face ? b.n_outside : 0);
-        out->n_casters = c + b.n_casters;
-        free(b.unmapped);
+        out->n_receivers = r + b->n_receivers;
+        out->n_outside = o + (face ? b->n_outside : 0);
+        out->n_casters = c + b->n_casters;
+        free(bx[f].unmapped);
     }
     out->persp = 1;
     free(face);
@@ -707,6 +755,21 @@ void sl_light_fit_face_mt(const struct sl_scene *s, const struct sl_view *v, con
 {
     memset(out, 0, sizeof *out);
     fit_point(s, v, eye, axis, mask, value, size, guard, threads, out);
+}
+
+void sl_light_fit_cube_mt(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const uint8_t *face,
+                          int size, int guard, struct sl_light_box out[6], int threads)
+{
+    struct sl_light_box *bp[6];
+    float axes[6][3];
+    uint8_t values[6];
+    for (int f = 0; f < 6; f++) {
+        sl_cube_axis(f, axes[f]);
+        values[f] = (uint8_t)f;
+        memset(&out[f], 0, sizeof out[f]);
+        bp[f] = &out[f];
+    }
+    fit_points(s, v, eye, 6, (const float(*)[3])axes, face, values, size, guard, threads, bp);
 }
 
 void sl_light_fit_face(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],

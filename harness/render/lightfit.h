@@ -68,6 +68,11 @@ static inline int sl_cube_face_of(const float eye[3], const float p[3])
         a = 2;
     return 2 * a + (d[a] < 0.0f);
 }
+/* The six faces' frames at once: out[f] is sl_light_fit_face_mt's box for
+ * face f (axis sl_cube_axis(f), the pixels with face[i] == f) bit for bit,
+ * each pass over the pixels and triangles made once for the six. */
+void sl_light_fit_cube_mt(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const uint8_t *face,
+                          int size, int guard, struct sl_light_box out[6], int threads);
 /* face[i] = sl_cube_face_of(eye, pixel i's position) for every pixel of
  * v, on `threads` threads as above */
 void sl_cube_faces(const float eye[3], const struct sl_view *v, uint8_t *face, int threads);
