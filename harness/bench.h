@@ -64,7 +64,8 @@
     X(JOBS,    "jobs")       \
     X(CHURN,   "churn")      \
     X(STARTUP, "startup")    \
-    X(SCORING, "scoring")
+    X(SCORING, "scoring")    \
+    X(LIGHTFIT, "lightfit")
 
 enum sl_bench_stage_bit {
 #define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,

@@ -31,6 +31,13 @@ struct sl_bench_ctx {
 /* The per-cell scoring against one histogram pass (bench_score.c). */
 enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 
+/* issue 20: the light fit on T threads at least 60% efficient on the wall
+ * clock (wall <= serial / (0.6 T)); bit for bit the serial fit, always */
+#define SL_BENCH_TARGET_LIGHTFIT_EFF 0.6
+
+/* The light fit at 3840x2160, threads against one (bench_score.c). */
+enum sl_err sl_bench_lightfit(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
+
 /* The truth pass against a plain rtcOccluded16 loop (bench_truth.c). */
 enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 

@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/resource.h>
 #include "bench_int.h"
 #include "contour.h"
 #include "figures.h"
@@ -266,5 +267,169 @@ out:
     sl_shadowmap_free(&sp);
     sl_view_free(&v);
     sl_rt_free(&rt);
+    return e;
+}
+
+/* ---- the light fit on threads against one thread (issue 20) ----
+ * The fit of every view (run.c) at 3840x2160, the size the issue measured
+ * it at (180 ms on one thread): the bench scene's first viewpoint under its
+ * own directional light, then the same view under a point light above the
+ * scene's middle (its G-buffer classed again for that light) fitted as a
+ * run fits it: the view's summary box (six faces, run.c) and, for the
+ * map size of the layer stage, cube.c's faces (each pixel's face, then six
+ * frames with their guard band). Each repetition fits on one thread, then
+ * on the config's threads, and checks the boxes bit for bit. Wall time, and
+ * CPU time (user + sys of the whole process, getrusage: the threads' work
+ * summed, an idle OpenMP thread's spinning included). */
+#define LF_W 3840
+#define LF_H 2160
+#define LF_KINDS 3
+
+static const char *const lf_kind_name[LF_KINDS] = {
+    "directional (the scene's light)", "point light: the view's box (six faces)",
+    "point light: the cube's six frames (cube.c)"};
+
+static double proc_cpu(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+           1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
+static void load_now(char *buf, size_t n)
+{
+    snprintf(buf, n, "unknown");
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (!f)
+        return;
+    double a, b, c;
+    if (fscanf(f, "%lf %lf %lf", &a, &b, &c) == 3)
+        snprintf(buf, n, "%.2f %.2f %.2f", a, b, c);
+    fclose(f);
+}
+
+static int box_same(const struct sl_light_box *a, const struct sl_light_box *b)
+{
+    return memcmp(a->vp, b->vp, sizeof a->vp) == 0 && memcmp(a->view, b->view, sizeof a->view) == 0 &&
+           memcmp(a->proj, b->proj, sizeof a->proj) == 0 && memcmp(a->lo, b->lo, sizeof a->lo) == 0 &&
+           memcmp(a->hi, b->hi, sizeof a->hi) == 0 && a->n_receivers == b->n_receivers &&
+           a->n_outside == b->n_outside && a->n_casters == b->n_casters && a->n_unmapped == b->n_unmapped &&
+           (a->unmapped == NULL) == (b->unmapped == NULL) &&
+           (!a->unmapped || memcmp(a->unmapped, b->unmapped, a->n_unmapped * sizeof *a->unmapped) == 0);
+}
+
+/* One fit of a kind on `threads`, its boxes into out[0..5] (kinds 0, 1:
+ * out[0] only); how many boxes. */
+static int lf_fit(const struct sl_scene *s, const struct sl_view *v, int kind, int size, int threads, uint8_t *face,
+                  struct sl_light_box *out)
+{
+    if (kind < 2) {
+        sl_light_fit_mt(s, v, &out[0], threads);
+        return 1;
+    }
+    sl_cube_faces(s->light.pos, v, face, threads);
+    /* cube.c's guard band (cube.h's SL_CUBE_GUARD, 2 texels) */
+    sl_light_fit_cube_mt(s, v, s->light.pos, face, size, 2, out, threads);
+    return 6;
+}
+
+enum sl_err sl_bench_lightfit(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
+{
+    FILE *out = x->out;
+    const int reps = x->reps, T = x->threads;
+    const size_t npx = (size_t)LF_W * (size_t)LF_H;
+    char la0[64], la1[64];
+    load_now(la0, sizeof la0);
+    struct sl_view v[2];
+    memset(v, 0, sizeof v);
+    /* the scene under a point light: above the middle of its bounds by half their height */
+    struct sl_scene pt = x->s;
+    float bmin[3] = {INFINITY, INFINITY, INFINITY}, bmax[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = 0; i < x->s.nv; i++)
+        for (int k = 0; k < 3; k++) {
+            bmin[k] = fminf(bmin[k], x->s.pos[3 * i + k]);
+            bmax[k] = fmaxf(bmax[k], x->s.pos[3 * i + k]);
+        }
+    pt.light.type = SL_LIGHT_POINT;
+    for (int k = 0; k < 3; k++)
+        pt.light.pos[k] = 0.5f * (bmin[k] + bmax[k]);
+    pt.light.pos[1] = bmax[1] + 0.5f * (bmax[1] - bmin[1]);
+    double *tm = sl_calloc((size_t)reps * LF_KINDS * 4, sizeof *tm);   /* [kind][serial wall, cpu, mt wall, cpu] */
+    struct sl_light_box *bx = sl_calloc(12, sizeof *bx);
+    uint8_t *face = malloc(npx);
+    enum sl_err e = SL_OK;
+    int agree = 1;
+    uint32_t receivers[LF_KINDS] = {0}, unmapped[LF_KINDS] = {0};
+    if (!tm || !bx || !face) {
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "light-fit bench buffers");
+        goto out;
+    }
+    if ((e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, x->vp[0], LF_W, LF_H, &v[0], NULL, NULL, NULL, d)) ||
+        (e = sl_gbuffer_render(&x->gp, &x->mesh, &pt, x->vp[0], LF_W, LF_H, &v[1], NULL, NULL, NULL, d)))
+        goto out;
+    for (int r = -1; r < reps; r++)
+        for (int k = 0; k < LF_KINDS; k++) {
+            const struct sl_scene *s = k == 0 ? &x->s : &pt;
+            const struct sl_view *vw = &v[k == 0 ? 0 : 1];
+            double w0 = sl_now(), c0 = proc_cpu();
+            int nb = lf_fit(s, vw, k, x->S, 1, face, bx);
+            double w1 = sl_now(), c1 = proc_cpu();
+            lf_fit(s, vw, k, x->S, T, face, bx + 6);
+            double w2 = sl_now(), c2 = proc_cpu();
+            receivers[k] = unmapped[k] = 0;
+            for (int b = 0; b < nb; b++) {
+                agree &= box_same(&bx[b], &bx[6 + b]);
+                receivers[k] += bx[b].n_receivers;
+                unmapped[k] += bx[b].n_unmapped;
+                sl_light_box_free(&bx[b]);
+                sl_light_box_free(&bx[6 + b]);
+            }
+            if (r >= 0) {
+                double *t = tm + ((size_t)k * 4) * (size_t)reps + (size_t)r;
+                t[0] = 1e3 * (w1 - w0);
+                t[(size_t)reps] = 1e3 * (c1 - c0);
+                t[2 * (size_t)reps] = 1e3 * (w2 - w1);
+                t[3 * (size_t)reps] = 1e3 * (c2 - c1);
+            }
+        }
+    load_now(la1, sizeof la1);
+    fprintf(out, "## Light fit on %d threads vs one (%s, %s, %dx%d, min and median of %d after a warm-up)\n\n",
+            T, x->s.name, x->s.vp[x->vp[0]].name, LF_W, LF_H, reps);
+    fprintf(out, "Each repetition fits on one thread, then on %d, and compares the boxes bit for bit: %s. CPU: "
+                 "user + sys of the process (getrusage). The point light is at (%.1f, %.1f, %.1f); cube frames "
+                 "for %d² maps. Load average before %s, after %s.\n\n",
+            T, agree ? "identical in every repetition" : "**DIFFERENT** (a bug)", pt.light.pos[0],
+            pt.light.pos[1], pt.light.pos[2], x->S, la0, la1);
+    fprintf(out, "| fit | receivers | unmapped | 1 thread wall min / median ms | CPU min / median ms | %d threads "
+                 "wall min / median ms | CPU min / median ms | wall speed-up (medians) | CPU ratio (medians) |\n",
+            T);
+    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (int k = 0; k < LF_KINDS; k++) {
+        double mn[4], md[4];
+        for (int j = 0; j < 4; j++)
+            min_med(tm + ((size_t)k * 4 + (size_t)j) * (size_t)reps, reps, &mn[j], &md[j]);
+        fprintf(out, "| %s | %u | %u | %.1f / %.1f | %.1f / %.1f | %.1f / %.1f | %.1f / %.1f | %.2f× | %.2f |\n",
+                lf_kind_name[k], receivers[k], unmapped[k], mn[0], md[0], mn[1], md[1], mn[2], md[2], mn[3], md[3],
+                md[0] / md[2], md[3] / md[1]);
+        /* target: the threads at least 60% used on the wall clock */
+        struct sl_bench_row *row = sl_bench_add_row(res, "lightfit", "ms", md[2], md[0],
+                                                    T > 1 ? 1.0 / (SL_BENCH_TARGET_LIGHTFIT_EFF * T) : 1.0,
+                                                    SL_BENCH_AT_MOST);
+        if (row) {
+            snprintf(row->name, sizeof row->name, "light fit %s, %dx%d, wall, %d threads", k == 0 ? "dir" :
+                     k == 1 ? "point box" : "cube frames", LF_W, LF_H, T);
+            snprintf(row->note, sizeof row->note, "vs one thread; CPU %.1f vs %.1f ms%s", md[3], md[1],
+                     agree ? "" : "; BOXES DIFFER");
+            row->pass &= agree;
+        }
+    }
+    fprintf(out, "\n");
+out:
+    free(tm);
+    free(bx);
+    free(face);
+    sl_view_free(&v[0]);
+    sl_view_free(&v[1]);
     return e;
 }

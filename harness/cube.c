@@ -26,9 +26,10 @@ void sl_cube_drop(struct sl_cube *cb)
 }
 
 /* The faces of a new (view, map): the face of every pixel, each face's
- * frame fitted with its guard band (lightfit.h, sl_light_fit_face). */
+ * frame fitted with its guard band (lightfit.h, sl_light_fit_cube_mt: the
+ * six of sl_light_fit_face at once). */
 static enum sl_err cube_fit(struct sl_cube *cb, struct sl_shadowmap_pass *sp, const struct sl_scene *s,
-                            const struct sl_view *v, int map, int size, struct sl_diag *d)
+                            const struct sl_view *v, int map, int size, int threads, struct sl_diag *d)
 {
     sl_cube_drop(cb);
     double t0 = sl_now();
@@ -36,16 +37,16 @@ static enum sl_err cube_fit(struct sl_cube *cb, struct sl_shadowmap_pass *sp, co
     cb->face = malloc(cb->npx ? cb->npx : 1);
     if (!cb->face)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cube faces of %zu pixels", cb->npx);
-    for (size_t i = 0; i < cb->npx; i++)
-        cb->face[i] = (uint8_t)sl_cube_face_of(s->light.pos, v->pos + 3 * i);
+    sl_cube_faces(s->light.pos, v, cb->face, threads);
     /* a map too small for the band on both sides gets none (lightfit.c) */
     const int guard = size > 4 * SL_CUBE_GUARD ? SL_CUBE_GUARD : 0;
+    struct sl_light_box boxes[6];
+    sl_light_fit_cube_mt(s, v, s->light.pos, cb->face, size, guard, boxes, threads);
     for (int f = 0; f < 6; f++) {
         struct sl_light_frame *fr = &cb->f[f];
-        struct sl_light_box box;
+        struct sl_light_box box = boxes[f];
         float axis[3];
         sl_cube_axis(f, axis);
-        sl_light_fit_face(s, v, s->light.pos, axis, cb->face, (uint8_t)f, size, guard, &box);
         cb->cost[f].receivers = box.n_receivers;
         cb->cost[f].casters = box.n_casters;
         cb->cost[f].unmapped = box.n_unmapped;
@@ -73,7 +74,7 @@ enum sl_err sl_cube_ensure(struct sl_cube *cb, struct sl_shadowmap_pass *sp, con
 {
     now &= (1u << SL_LAYER_COUNT) - 1u;
     enum sl_err e = SL_OK;
-    if (cb->map1 != map + 1 && (e = cube_fit(cb, sp, s, v, map, size, d)))
+    if (cb->map1 != map + 1 && (e = cube_fit(cb, sp, s, v, map, size, t->threads, d)))
         return e;
     /* give back what no remaining cell reads first: six faces hold six times a frame's layers */
     for (int f = 0; f < 6; f++)

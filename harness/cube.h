@@ -83,6 +83,7 @@ struct sl_cube_timing {
     double (*layer_ms)[3], (*layer_gpu)[3];
     uint64_t *layer_bad;
     int *layers;
+    int threads;   /* of the faces' fit (lightfit.h, _mt; <= 0: every core) */
 };
 enum sl_err sl_cube_ensure(struct sl_cube *cb, struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m,
                            const struct sl_scene *s, const struct sl_view *v, int map, int size, unsigned now,

@@ -262,7 +262,7 @@ static enum sl_err view_ready(struct run_ctx *x, const struct sl_config *c, cons
                               struct sl_diag *d)
 {
     double t0 = sl_now();
-    sl_light_fit(&x->scene, &x->view, &x->box);
+    sl_light_fit_mt(&x->scene, &x->view, &x->box, c->threads);
     x->vms.fit = 1e3 * (sl_now() - t0);
     if (x->box.n_outside || x->box.n_unmapped) {
         struct sl_run_event ev = {.kind = SL_EVENT_FRUSTUM_NOTE, .config = c, .scene = x->scene.name,
@@ -408,7 +408,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
     if (x->scene.light.type == SL_LIGHT_POINT)
         return sl_cube_ensure(&x->cube, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map], now, needs,
                               &(struct sl_cube_timing){c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
-                                                       res->passes.layers}, &x->frame, d);
+                                                       res->passes.layers, c->threads}, &x->frame, d);
     unsigned before = x->frame.have;
     enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, now, d);
     int reps = c->warmup + c->runs;

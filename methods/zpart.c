@@ -144,7 +144,7 @@ enum sl_err sl_zpart_run_k(const struct sl_method_args *a, int k, double lambda,
         if (lispsm)
             sl_light_fit_lispsm(a->scene, v, out->slice, (uint8_t)s, planes[s], planes[s + 1], &box, &nopt);
         else
-            sl_light_fit_slice(a->scene, v, out->slice, (uint8_t)s, &box);
+            sl_light_fit_slice_mt(a->scene, v, out->slice, (uint8_t)s, &box, a->threads);
         if (box.n_receivers == 0)
             continue;   /* no PFL pixel here: no map (size 0 marks it) */
         frame_for(a->scene, &box, a->frame->size, &out->frames[s]);

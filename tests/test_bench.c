@@ -28,8 +28,8 @@ static void bench_parse_stages(void **st)
     assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,morais", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(LAYERS) |
                                SL_BENCH_STAGE(MORAIS));
-    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,startup,scoring", &bits,
-                                           &d), SL_OK);
+    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,startup,scoring,lightfit",
+                                           &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_ALL);
     assert_int_equal(sl_bench_parse_stages("scoring", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(SCORING));
@@ -39,6 +39,8 @@ static void bench_parse_stages(void **st)
     assert_int_equal(bits, SL_BENCH_STAGE(JOBS));
     assert_int_equal(sl_bench_parse_stages("churn", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(CHURN));
+    assert_int_equal(sl_bench_parse_stages("lightfit", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(LIGHTFIT));
     assert_int_equal(sl_bench_parse_stages("truth,layer", &bits, &d), SL_E_USAGE);
     assert_non_null(strstr(d.msg, "'layer'"));
     assert_int_equal(sl_bench_parse_stages("", &bits, &d), SL_E_USAGE);
@@ -231,10 +233,36 @@ static void bench_scoring_rows(void **st)
     assert_non_null(strstr(text, "| scoring | scoring 128x96, wall, "));
 }
 
+/* The light-fit stage (at 3840x2160 whatever the options' viewport, as
+ * the issue measured it): three rows, threads against one thread, the
+ * boxes identical in every repetition, and the load average printed. */
+static void bench_lightfit_rows(void **st)
+{
+    (void)st;
+    char md[300];
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(LIGHTFIT), .reps = 1, .scene = "blocks", .width = 128,
+                              .height = 96, .map = 256};
+    struct sl_bench_result r;
+    run_bench(&o, "lightfit.md", md, sizeof md, &r);
+    assert_int_equal(r.nrows, 3 + 1 + 1);   /* + memory, context */
+    for (int i = 0; i < 3; i++) {
+        const struct sl_bench_row *w = &r.rows[i];
+        assert_string_equal(w->stage, "lightfit");
+        assert_true(isfinite(w->value) && w->value > 0 && isfinite(w->plain) && w->plain > 0);
+        assert_int_equal(w->pass, w->ratio <= w->target);
+        assert_null(strstr(w->note, "DIFFER"));
+    }
+    const char *text = slurp(md);
+    assert_non_null(strstr(text, "identical in every repetition"));
+    assert_non_null(strstr(text, "Load average before "));
+    assert_non_null(strstr(text, "3840x2160"));
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(bench, scoring_rows),
+        SL_CASE(bench, lightfit_rows),
         SL_CASE(bench, parse_stages),
         SL_CASE(bench, quick_mode_rows),
         SL_CASE(bench, backends_rows),

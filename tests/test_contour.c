@@ -141,6 +141,67 @@ static void contour_parallel_matches_plain(void **st)
     assert_true(banded > 1000);   /* the dilations reached far */
 }
 
+/* Images of a few large areas (rectangles of states 1..3 over background,
+ * some reaching the image's borders), where most 64-pixel segments of a
+ * row lie inside one state: those are skipped by the edge and dilation
+ * passes (contour.c, SEG). Widths around multiples of the segment, so
+ * short last segments and segments at both borders are drawn too; the
+ * bands equal the plain loop's for every dilation and thread count. */
+static void contour_segments_match_plain(void **st)
+{
+    (void)st;
+    static const int ws[] = {1, 63, 64, 65, 127, 128, 129, 200, 1000};
+    static const int hs[] = {1, 2, 3, 50, 301};
+    uint32_t r = 99u;
+    long skipped = 0, drawn = 0;
+    for (int wi = 0; wi < 9; wi++)
+        for (int hi = 0; hi < 5; hi++) {
+            const int w = ws[wi], h = hs[hi];
+            const size_t n = (size_t)w * (size_t)h;
+            uint8_t *state = calloc(n, 1), *a = malloc(n), *b = malloc(n);
+            assert_true(state && a && b);
+            for (int q = 0; q < 12; q++) {
+                r ^= r << 13, r ^= r >> 17, r ^= r << 5;
+                const int x0 = (int)(r % (unsigned)w) - w / 8, y0 = (int)((r >> 8) % (unsigned)h) - h / 8;
+                const int x1 = x0 + 1 + (int)((r >> 16) % (unsigned)(w / 2 + 1));
+                const int y1 = y0 + 1 + (int)((r >> 20) % (unsigned)(h / 2 + 1));
+                const uint8_t v = q == 0 ? 2 : (uint8_t)(r % 4);   /* 0: a hole of background */
+                for (int y = y0 < 0 ? 0 : y0; y < y1 && y < h; y++)
+                    for (int x = x0 < 0 ? 0 : x0; x < x1 && x < w; x++)
+                        state[(size_t)y * (size_t)w + (size_t)x] = v;
+            }
+            /* segments the edge pass can skip: one state over 64 pixels and the rows around */
+            for (int y = 1; y + 1 < h; y++)
+                for (int x0 = 0; x0 + 64 <= w; x0 += 64) {
+                    int one = 1;
+                    const uint8_t c = state[(size_t)y * (size_t)w + (size_t)x0];
+                    for (int dy = -1; dy <= 1; dy++)
+                        for (int x = x0; x < x0 + 64; x++)
+                            one &= state[(size_t)(y + dy) * (size_t)w + (size_t)x] == c;
+                    skipped += one;
+                    drawn += !one;
+                }
+            for (int dil = 0; dil <= 4; dil++) {
+                sl_contour_bands_plain(w, h, state, dil, a);
+                for (int th = 1; th <= 3; th++) {
+                    memset(b, 0xCD, n);
+                    sl_contour_bands_mt(w, h, state, dil, b, th);
+                    assert_memory_equal(a, b, n);
+                }
+            }
+            /* one state over the whole image: no band at all */
+            memset(state, 3, n);
+            memset(b, 0xCD, n);
+            sl_contour_bands_mt(w, h, state, 2, b, 2);
+            sl_contour_bands_plain(w, h, state, 2, a);
+            assert_memory_equal(a, b, n);
+            free(state);
+            free(a);
+            free(b);
+        }
+    assert_true(skipped > 1000 && drawn > 100);   /* both kinds of segment were there */
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -150,6 +211,7 @@ int main(int argc, char **argv)
         SL_CASE(contour, single_pixel_diamond),
         SL_CASE(contour, whole_image_region),
         SL_CASE(contour, parallel_matches_plain),
+        SL_CASE(contour, segments_match_plain),
     };
     return sl_run_group(argc, argv, "contour", tests, NULL, NULL);
 }

@@ -126,6 +126,24 @@ static void figures_fused_matches_pixelwise(void **st)
     assert_true(nonzero >= 6);   /* the comparison saw real counts (of 10 cells with hints and NSM) */
 }
 
+/* the exactness check's count, pixel by pixel, as cell.c counted it */
+static uint64_t plain_bad(const struct rnd_cell *c, unsigned exact)
+{
+    uint64_t want = 0;
+    for (size_t i = 0; i < (size_t)c->v.w * (size_t)c->v.h; i++) {
+        if (c->v.cls[i] != SL_C_PFL)
+            continue;
+        uint8_t how = c->vd.how[i], x = c->vd.v[i], t = c->v.truth[i];
+        int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || how == SL_HOW_CORRECT ||
+                     how == SL_HOW_TRACED;
+        int right = (x == SL_V_LIT) == (t == SL_T_LIT);
+        want += ((exact & SL_EXACT_LIT) && x == SL_V_LIT && t != SL_T_LIT) ||
+                ((exact & SL_EXACT_SHADOW) && x == SL_V_SHADOW && t != SL_T_SHADOW) ||
+                ((exact & SL_EXACT_PROVED) && proved && !right);
+    }
+    return want;
+}
+
 static void figures_fused_exactness_count(void **st)
 {
     (void)st;
@@ -133,18 +151,7 @@ static void figures_fused_exactness_count(void **st)
     make(&c, 257, 131, 1);
     const int reg[] = {2, 0};
     for (unsigned exact = 0; exact < 8; exact++) {
-        uint64_t want = 0;
-        for (size_t i = 0; i < (size_t)c.v.w * (size_t)c.v.h; i++) {
-            if (c.v.cls[i] != SL_C_PFL)
-                continue;
-            uint8_t how = c.vd.how[i], x = c.vd.v[i], t = c.v.truth[i];
-            int proved = how == SL_HOW_CONFIRM || how == SL_HOW_CONFIRM_ADJ || how == SL_HOW_CORRECT ||
-                         how == SL_HOW_TRACED;
-            int right = (x == SL_V_LIT) == (t == SL_T_LIT);
-            want += ((exact & SL_EXACT_LIT) && x == SL_V_LIT && t != SL_T_LIT) ||
-                    ((exact & SL_EXACT_SHADOW) && x == SL_V_SHADOW && t != SL_T_SHADOW) ||
-                    ((exact & SL_EXACT_PROVED) && proved && !right);
-        }
+        const uint64_t want = plain_bad(&c, exact);
         struct sl_figures f;
         for (int th = 1; th <= 2; th++)
             assert_int_equal(sl_figures_fused(&c.v, &c.vd, c.band, reg, 2, exact, th, &f), want);
@@ -197,12 +204,75 @@ static void figures_score_fused_matches(void **st)
     }
 }
 
+/* Cells made of areas, as real images are: each array piecewise constant
+ * over tiles of its own size (so the arrays' boundaries cross), with a
+ * pixel of noise now and then and ray-triangle tests spent over whole
+ * areas. Most runs of 64 pixels then hold one value in every array and
+ * are counted whole (figures.c, SPAN_RUN); the figures, the tests and the
+ * violations equal the pixel-by-pixel ones, on any thread count. */
+static void figures_uniform_runs_match(void **st)
+{
+    (void)st;
+    static const int sizes[][2] = {{64, 64}, {1000, 300}, {333, 211}, {130, 1}};
+    static const int regs[] = {2, 4, 6, 0};
+    int tested = 0;
+    for (int s = 0; s < 4; s++)
+        for (int hb = 0; hb < 2; hb++) {
+            struct rnd_cell c;
+            make(&c, sizes[s][0], sizes[s][1], hb);
+            const int w = c.v.w, h = c.v.h;
+            const size_t n = (size_t)w * (size_t)h;
+            uint8_t *arr[7] = {c.v.truth, c.v.cls, c.vd.v, c.vd.how, c.vd.base, c.vd.tests, c.band};
+            static const int tw[7] = {640, 576, 900, 1200, 777, 1500, 450}, tht[7] = {40, 33, 61, 90, 17, 45, 29};
+            for (int k = 0; k < 7; k++) {
+                /* the first pixel of each tile sets the tile (make's value there) */
+                for (int y = 0; y < h; y++)
+                    for (int x = 0; x < w; x++) {
+                        const size_t i = (size_t)y * (size_t)w + (size_t)x;
+                        const size_t f = (size_t)(y / tht[k] * tht[k]) * (size_t)w + (size_t)(x / tw[k] * tw[k]);
+                        if (next() % 20011)
+                            arr[k][i] = arr[k][f];
+                    }
+                if (k == 0)
+                    for (size_t i = 0; i < n; i++)
+                        arr[0][i] &= 3u;   /* truth stays in its enum */
+                if (k == 5)
+                    for (size_t i = 0; i < n; i++)
+                        arr[5][i] = arr[5][i] % 3 ? 0 : arr[5][i];   /* most areas spend no test */
+            }
+            long uniform = 0, mixed = 0;
+            for (size_t i = 0; i + 64 <= n; i += 64) {
+                int one = 1;
+                for (int k = 0; k < 7; k++)
+                    for (int j = 1; j < 64; j++)
+                        one &= arr[k][i + (size_t)j] == arr[k][i];
+                uniform += one;
+                mixed += !one;
+            }
+            assert_true(n <= 4096 || (uniform > mixed && mixed > 0));
+            struct sl_figures ref, got;
+            sl_figures_compute_pixelwise(&c.v, &c.vd, c.band, regs, 4, &ref);
+            for (unsigned exact = 0; exact < 8; exact++) {
+                const uint64_t want = plain_bad(&c, exact);
+                for (int th = 1; th <= 3; th++) {
+                    memset(&got, 0xAB, sizeof got);
+                    assert_int_equal(sl_figures_fused(&c.v, &c.vd, c.band, regs, 4, exact, th, &got), want);
+                    same(&ref, &got);
+                }
+            }
+            tested += ref.r[3].n[SL_FIG_ray_tri_tests] > 0;
+            drop(&c);
+        }
+    assert_true(tested >= 4);   /* the tests' sums were compared where some were spent */
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(figures, fused_matches_pixelwise),
         SL_CASE(figures, fused_exactness_count),
         SL_CASE(figures, score_fused_matches),
+        SL_CASE(figures, uniform_runs_match),
     };
     return sl_run_group(argc, argv, "figures", tests, NULL, NULL);
 }

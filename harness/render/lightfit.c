@@ -6,10 +6,15 @@
 #include "lightfit.h"
 #include <cglm/clipspace/ortho_rh_zo.h>
 #include <cglm/clipspace/persp_rh_zo.h>
+#include <assert.h>
 #include <float.h>
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 /* A view from eye looking along dir. */
 static void view_along(const float eye_in[3], const float dir[3], mat4 view)
@@ -33,7 +38,19 @@ void sl_light_view(const float dir[3], mat4 view)
 
 static void to_light(const mat4 view, const float p[3], float out[3])
 {
-    vec4 w = {p[0], p[1], p[2], 1.0f}, c;
+    vec4 w, c;
+#if defined(__SSE2__)
+    /* the point as one 16-byte store: written as {x, y, z, 1} the compiler
+     * stored it in two 8-byte halves, and the product's 16-byte load of it
+     * waited on store forwarding (perf: a third of the fit's time). The
+     * same values into the same glm_mat4_mulv: the same bits. */
+    _mm_store_ps(w, _mm_setr_ps(p[0], p[1], p[2], 1.0f));
+#else
+    w[0] = p[0];
+    w[1] = p[1];
+    w[2] = p[2];
+    w[3] = 1.0f;
+#endif
     glm_mat4_mulv((vec4 *)view, w, c);
     out[0] = c[0];
     out[1] = c[1];
@@ -79,23 +96,141 @@ static void to_light(const mat4 view, const float p[3], float out[3])
 #define SL_POINT_GUARD_CPU 3.0f
 #define SL_POINT_GUARD_GPU 5.0f
 
-static void list_unmapped(struct sl_light_box *out, uint32_t t, uint32_t *cap, int *oom)
+/* ---- blocks: the fit on several threads, bit for bit the serial fit ----
+ * The loops over pixels and over triangles run in blocks whose bounds
+ * depend on the input's size only, never on the thread count; each block
+ * fills a slot of its own, and the slots are combined in block order on
+ * one thread. Every combination is exact: counts are integers; a least
+ * (greatest) value is kept with the serial loop's own strict test
+ * (`if (x < lo) lo = x`), which keeps the first of equal values in loop
+ * order (+0 before a later -0) and passes NaN over: taken per block, then
+ * over the blocks in order, it keeps the very value the serial loop keeps.
+ * The lists of unmapped triangles are joined in block order, so they stay
+ * in triangle order. Nothing is summed in floating point. */
+#define FIT_BLOCKS 256          /* at most: the slots live on the stack */
+#define FIT_PX_MIN 32768        /* pixels per block, at least */
+#define FIT_TRI_MIN 2048        /* triangles per block, at least */
+
+struct fit_blocks {
+    size_t n, len;
+    int nb;
+};
+
+static struct fit_blocks fit_blocks(size_t n, size_t min_len)
 {
-    if (out->n_unmapped == *cap && !*oom) {
-        uint32_t *g = realloc(out->unmapped, (*cap ? 2u * *cap : 8u) * sizeof *g);
+    size_t len = (n + FIT_BLOCKS - 1) / FIT_BLOCKS;
+    if (len < min_len)
+        len = min_len;
+    struct fit_blocks b = {n, len, (int)((n + len - 1) / len)};
+    return b;
+}
+
+static size_t blk_end(const struct fit_blocks *b, int i)
+{
+    size_t e = (size_t)(i + 1) * b->len;
+    return e < b->n ? e : b->n;
+}
+
+static int fit_threads(int threads)
+{
+    return threads > 0 ? threads : omp_get_max_threads();
+}
+
+/* a block of pixels: bounds and counts */
+struct px_acc {
+    float lo[3], hi[3];
+    uint32_t in, out;
+};
+
+static void px_acc_init(struct px_acc *a)
+{
+    for (int k = 0; k < 3; k++) {
+        a->lo[k] = FLT_MAX;
+        a->hi[k] = -FLT_MAX;
+    }
+    a->in = a->out = 0;
+}
+
+static inline void px_acc_take(struct px_acc *a, const float t[3])
+{
+    for (int k = 0; k < 3; k++) {
+        if (t[k] < a->lo[k]) a->lo[k] = t[k];
+        if (t[k] > a->hi[k]) a->hi[k] = t[k];
+    }
+    a->in++;
+}
+
+static void px_acc_join(struct px_acc *all, const struct px_acc *a, int nb)
+{
+    px_acc_init(all);
+    for (int b = 0; b < nb; b++) {
+        for (int k = 0; k < 3; k++) {
+            if (a[b].lo[k] < all->lo[k]) all->lo[k] = a[b].lo[k];
+            if (a[b].hi[k] > all->hi[k]) all->hi[k] = a[b].hi[k];
+        }
+        all->in += a[b].in;
+        all->out += a[b].out;
+    }
+}
+
+/* a block of triangles: the least depth, casters, unmapped ones */
+struct tri_acc {
+    float near;
+    uint32_t casters, n_un, cap;
+    uint32_t *un;
+    int oom;
+};
+
+static void tri_acc_init(struct tri_acc *a)
+{
+    memset(a, 0, sizeof *a);
+    a->near = FLT_MAX;
+}
+
+static void tri_acc_unmapped(struct tri_acc *a, uint32_t t)
+{
+    if (a->n_un == a->cap && !a->oom) {
+        uint32_t *g = realloc(a->un, (a->cap ? 2u * a->cap : 8u) * sizeof *g);
         if (g) {
-            out->unmapped = g;
-            *cap = *cap ? 2u * *cap : 8u;
+            a->un = g;
+            a->cap = a->cap ? 2u * a->cap : 8u;
         } else {
             /* counted but not listed: every conservative lit claim is withheld */
-            *oom = 1;
-            free(out->unmapped);
-            out->unmapped = NULL;
+            a->oom = 1;
+            free(a->un);
+            a->un = NULL;
         }
     }
-    if (!*oom)
-        out->unmapped[out->n_unmapped] = t;
-    out->n_unmapped++;
+    if (!a->oom)
+        a->un[a->n_un] = t;
+    a->n_un++;
+}
+
+/* The blocks' results in block order: near from `near` down, the casters
+ * and unmapped triangles into out (the list NULL with the count kept when
+ * a block or the joined list had no memory, as lightfit.h says). */
+static float tri_acc_join(struct tri_acc *a, int nb, float near, struct sl_light_box *out)
+{
+    uint32_t n_un = 0;
+    int oom = 0;
+    for (int b = 0; b < nb; b++) {
+        if (a[b].near < near)
+            near = a[b].near;
+        out->n_casters += a[b].casters;
+        n_un += a[b].n_un;
+        oom |= a[b].oom;
+    }
+    uint32_t *list = n_un && !oom ? malloc(n_un * sizeof *list) : NULL;
+    for (int b = 0, at = 0; b < nb; b++) {
+        if (list && a[b].n_un) {
+            memcpy(list + at, a[b].un, a[b].n_un * sizeof *list);
+            at += (int)a[b].n_un;
+        }
+        free(a[b].un);
+    }
+    out->n_unmapped = n_un;
+    out->unmapped = list;
+    return near;
 }
 
 /* The least depth of the part of triangle t inside the pyramid of
@@ -140,75 +275,61 @@ static float pyramid_min_depth(const struct sl_scene *s, uint32_t t, const mat4 
     return (float)dmin;
 }
 
-static void fit_point(const struct sl_scene *s, const struct sl_view *v, const float c[3], const float axis[3],
-                      const uint8_t *mask, uint8_t value, int size, int guard, struct sl_light_box *out)
+/* fit_points' receivers, pixels [i0, i1): for each of its nf frames, the
+ * tangents and depths of the PFL pixels it selects (mask NULL: every one),
+ * into a[f * FIT_BLOCKS] */
+#define FIT_FRAMES 6
+
+static void point_px(const struct sl_view *v, int nf, const mat4 *view, const uint8_t *mask, const uint8_t *values,
+                     size_t i0, size_t i1, struct px_acc *a)
 {
-    view_along(c, axis, out->view);
-    out->persp = 1;
-    memcpy(out->eye, c, sizeof out->eye);
-    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-    size_t n = (size_t)v->w * (size_t)v->h;
-    for (size_t i = 0; i < n; i++) {
-        if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
+    /* the matrices and the bounds in locals: written through `a`, they
+     * would be reloaded for every pixel (a may alias the views); the same
+     * arithmetic, so the same bits */
+    mat4 V[FIT_FRAMES];
+    memcpy(V, view, (size_t)nf * sizeof *V);
+    struct px_acc l[FIT_FRAMES];
+    for (int f = 0; f < nf; f++)
+        px_acc_init(&l[f]);
+    for (size_t i = i0; i < i1; i++) {
+        if (v->cls[i] != SL_C_PFL)
             continue;
-        float q[3];
-        to_light(out->view, v->pos + 3 * i, q);
-        if (!(q[2] > 0.0f)) {
-            /* behind the frame's plane: none under an area light or a
-             * spot (sl_point_faces); left outside for a caller whose
-             * selected pixels are not all in front */
-            out->n_outside++;
-            continue;
+        for (int f = 0; f < nf; f++) {
+            if (mask && mask[i] != values[f])
+                continue;
+            float q[3];
+            to_light(V[f], v->pos + 3 * i, q);
+            if (!(q[2] > 0.0f)) {
+                /* behind the frame's plane: none under an area light or a
+                 * spot (sl_point_faces); left outside for a caller whose
+                 * selected pixels are not all in front */
+                l[f].out++;
+                continue;
+            }
+            float t[3] = {q[0] / q[2], q[1] / q[2], q[2]};
+            if (!(fabsf(t[0]) <= SL_POINT_MAX_TAN && fabsf(t[1]) <= SL_POINT_MAX_TAN)) {
+                l[f].out++;
+                continue;
+            }
+            px_acc_take(&l[f], t);
         }
-        float t[3] = {q[0] / q[2], q[1] / q[2], q[2]};
-        if (!(fabsf(t[0]) <= SL_POINT_MAX_TAN && fabsf(t[1]) <= SL_POINT_MAX_TAN)) {
-            out->n_outside++;
-            continue;
-        }
-        for (int k = 0; k < 3; k++) {
-            if (t[k] < lo[k]) lo[k] = t[k];
-            if (t[k] > hi[k]) hi[k] = t[k];
-        }
-        out->n_receivers++;
     }
-    if (out->n_receivers == 0) {
-        /* nothing lit inside: no lookup will be trusted; any valid frustum */
-        lo[0] = lo[1] = -1.0f;
-        hi[0] = hi[1] = 1.0f;
-        lo[2] = hi[2] = 1.0f;
-    }
-    /* tangents: 1e-4 of the extent, at least 1e-6 absolute */
-    for (int k = 0; k < 2; k++) {
-        float m = fmaxf(1e-4f * (hi[k] - lo[k]), 1e-6f);
-        lo[k] -= m;
-        hi[k] += m;
-    }
-    /* a cube face's guard band (sl_light_fit_face): `guard` texels of the
-     * final map on each side beyond the receivers, widened before the
-     * casters are chosen so the band's casters count toward the near plane
-     * as the receivers' do: the band's texels hold the geometry there, not
-     * a clipped or empty border */
-    if (guard > 0 && size > 2 * guard && out->n_receivers > 0)
-        for (int k = 0; k < 2; k++) {
-            float t = (hi[k] - lo[k]) / (float)(size - 2 * guard);
-            lo[k] -= (float)guard * t;
-            hi[k] += (float)guard * t;
-        }
-    /* far at twice the farthest receiver: window depth 1 - z there is then
-     * about near / (2 d), clear of the cleared 1 by many float steps (a 1e-4
-     * margin, as the box has, would be near/d * 1e-4: below one step when
-     * near is small); the precision of depth barely depends on far */
-    float far = 2.0f * hi[2];
-    float dmin = far / SL_POINT_WMIN_DIV;
-    float near = lo[2];
-    uint32_t cap = 0;
-    int oom = 0;
-    for (uint32_t t = 0; t < s->nt; t++) {
+    for (int f = 0; f < nf; f++)
+        a[(size_t)f * FIT_BLOCKS] = l[f];
+}
+
+/* fit_point's casters, triangles [t0, t1), against the receivers'
+ * pyramid lo..hi (tangents; depth up to hi[2]) */
+static void point_tri(const struct sl_scene *s, const mat4 view, const float lo[3], const float hi[3], float dmin,
+                      uint32_t t0, uint32_t t1, struct tri_acc *a)
+{
+    tri_acc_init(a);
+    for (uint32_t t = t0; t < t1; t++) {
         int behind = 0, close = 0, outside = 0;
         float dlo = FLT_MAX, dhi = -FLT_MAX, xlo = FLT_MAX, xhi = -FLT_MAX, ylo = FLT_MAX, yhi = -FLT_MAX;
         for (int k = 0; k < 3; k++) {
             float q[3];
-            to_light(out->view, s->pos + 3 * s->idx[3 * t + k], q);
+            to_light(view, s->pos + 3 * s->idx[3 * t + k], q);
             float d = q[2];
             behind |= !(d > 0.0f);
             close |= !(d >= dmin);
@@ -230,9 +351,9 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, const f
             continue;   /* wholly behind the light, or beyond every receiver */
         if (!behind && (xhi < lo[0] || xlo > hi[0] || yhi < lo[1] || ylo > hi[1]))
             continue;   /* in front, projecting beside every receiver */
-        out->n_casters++;
+        a->casters++;
         if (close || outside) {
-            list_unmapped(out, t, &cap, &oom);
+            tri_acc_unmapped(a, t);
             /* The plain layers still draw it, GL clipping it at the near
              * plane: the near plane comes down to the nearest point of its
              * part that can block a receiver's ray (inside the receivers'
@@ -241,61 +362,152 @@ static void fit_point(const struct sl_scene *s, const struct sl_view *v, const f
              * its dlo: a floor crossing a cube face's plane reaches depth 0
              * only far outside the face's receivers' tangents, and would
              * pull every face's near plane to dmin for nothing. */
-            float dc = pyramid_min_depth(s, t, out->view, lo, hi);
-            if (dc < near)
-                near = dc;
+            float dc = pyramid_min_depth(s, t, view, lo, hi);
+            if (dc < a->near)
+                a->near = dc;
             continue;
         }
-        if (dlo < near)
-            near = dlo;
+        if (dlo < a->near)
+            a->near = dlo;
     }
-    near = fmaxf(near * (1.0f - 1e-4f), dmin);
-    lo[2] = near;
-    hi[2] = far;
-    memcpy(out->lo, lo, sizeof lo);
-    memcpy(out->hi, hi, sizeof hi);
-    out->wmin = dmin * 0.5f;
-    out->guard = SL_POINT_GUARD_GPU;
-    glm_frustum_rh_zo(lo[0] * near, hi[0] * near, lo[1] * near, hi[1] * near, near, far, out->proj);
-    glm_mat4_mul(out->proj, out->view, out->vp);
 }
 
-/* A directional light's box, fitted to the PFL pixels i with mask[i] ==
- * value (mask NULL: every one). */
-static void fit_dir(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
-                    struct sl_light_box *out)
+/* nf frames from the light at c, frame f along axes[f] over the pixels
+ * with mask[i] == values[f] (mask NULL: every PFL pixel), into outs[f]
+ * (zeroed): each exactly as fitted alone, but every pass over the pixels
+ * and over the triangles made once for all of them (a point light's six
+ * cube faces: one read of the G-buffer instead of six, and two parallel
+ * regions instead of twelve — at each region's end a thread waits for the
+ * others, spinning). */
+static void fit_points(const struct sl_scene *s, const struct sl_view *v, const float c[3], int nf,
+                       const float (*axes)[3], const uint8_t *mask, const uint8_t *values, int size, int guard,
+                       int threads, struct sl_light_box *const *outs)
 {
-    sl_light_view(s->light_dir, out->view);
-    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-    size_t n = (size_t)v->w * (size_t)v->h;
-    for (size_t i = 0; i < n; i++) {
+    mat4 views[FIT_FRAMES];
+    for (int f = 0; f < nf; f++) {
+        struct sl_light_box *out = outs[f];
+        view_along(c, axes[f], out->view);
+        out->persp = 1;
+        memcpy(out->eye, c, sizeof out->eye);
+        memcpy(views[f], out->view, sizeof views[f]);
+    }
+    threads = fit_threads(threads);
+    const struct fit_blocks pb = fit_blocks((size_t)v->w * (size_t)v->h, FIT_PX_MIN);
+    static_assert(FIT_FRAMES * FIT_BLOCKS * sizeof(struct px_acc) <= 65536, "the blocks' slots live on the stack");
+    struct px_acc pa[FIT_FRAMES * FIT_BLOCKS];
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && pb.nb > 1)
+    for (int b = 0; b < pb.nb; b++)
+        point_px(v, nf, (const mat4 *)views, mask, values, (size_t)b * pb.len, blk_end(&pb, b), pa + b);
+    float lo[FIT_FRAMES][3], hi[FIT_FRAMES][3], far[FIT_FRAMES], dmin[FIT_FRAMES];
+    for (int f = 0; f < nf; f++) {
+        struct sl_light_box *out = outs[f];
+        struct px_acc all;
+        px_acc_join(&all, pa + (size_t)f * FIT_BLOCKS, pb.nb);
+        memcpy(lo[f], all.lo, sizeof lo[f]);
+        memcpy(hi[f], all.hi, sizeof hi[f]);
+        out->n_receivers += all.in;
+        out->n_outside += all.out;
+        if (out->n_receivers == 0) {
+            /* nothing lit inside: no lookup will be trusted; any valid frustum */
+            lo[f][0] = lo[f][1] = -1.0f;
+            hi[f][0] = hi[f][1] = 1.0f;
+            lo[f][2] = hi[f][2] = 1.0f;
+        }
+        /* tangents: 1e-4 of the extent, at least 1e-6 absolute */
+        for (int k = 0; k < 2; k++) {
+            float m = fmaxf(1e-4f * (hi[f][k] - lo[f][k]), 1e-6f);
+            lo[f][k] -= m;
+            hi[f][k] += m;
+        }
+        /* a cube face's guard band (sl_light_fit_face): `guard` texels of the
+         * final map on each side beyond the receivers, widened before the
+         * casters are chosen so the band's casters count toward the near plane
+         * as the receivers' do: the band's texels hold the geometry there, not
+         * a clipped or empty border */
+        if (guard > 0 && size > 2 * guard && out->n_receivers > 0)
+            for (int k = 0; k < 2; k++) {
+                float t = (hi[f][k] - lo[f][k]) / (float)(size - 2 * guard);
+                lo[f][k] -= (float)guard * t;
+                hi[f][k] += (float)guard * t;
+            }
+        /* far at twice the farthest receiver: window depth 1 - z there is then
+         * about near / (2 d), clear of the cleared 1 by many float steps (a 1e-4
+         * margin, as the box has, would be near/d * 1e-4: below one step when
+         * near is small); the precision of depth barely depends on far */
+        far[f] = 2.0f * hi[f][2];
+        dmin[f] = far[f] / SL_POINT_WMIN_DIV;
+    }
+    const struct fit_blocks tb = fit_blocks(s->nt, FIT_TRI_MIN);
+    struct tri_acc ta[FIT_FRAMES * FIT_BLOCKS];
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && tb.nb > 1)
+    for (int b = 0; b < tb.nb; b++)
+        for (int f = 0; f < nf; f++)
+            point_tri(s, views[f], lo[f], hi[f], dmin[f], (uint32_t)((size_t)b * tb.len), (uint32_t)blk_end(&tb, b),
+                      &ta[(size_t)f * FIT_BLOCKS + (size_t)b]);
+    for (int f = 0; f < nf; f++) {
+        struct sl_light_box *out = outs[f];
+        float near = tri_acc_join(ta + (size_t)f * FIT_BLOCKS, tb.nb, lo[f][2], out);
+        near = fmaxf(near * (1.0f - 1e-4f), dmin[f]);
+        lo[f][2] = near;
+        hi[f][2] = far[f];
+        memcpy(out->lo, lo[f], sizeof lo[f]);
+        memcpy(out->hi, hi[f], sizeof hi[f]);
+        out->wmin = dmin[f] * 0.5f;
+        out->guard = SL_POINT_GUARD_GPU;
+        glm_frustum_rh_zo(lo[f][0] * near, hi[f][0] * near, lo[f][1] * near, hi[f][1] * near, near, far[f],
+                          out->proj);
+        glm_mat4_mul(out->proj, out->view, out->vp);
+    }
+}
+
+static void fit_point(const struct sl_scene *s, const struct sl_view *v, const float c[3], const float axis[3],
+                      const uint8_t *mask, uint8_t value, int size, int guard, int threads,
+                      struct sl_light_box *out)
+{
+    const float ax[1][3] = {{axis[0], axis[1], axis[2]}};
+    fit_points(s, v, c, 1, ax, mask, &value, size, guard, threads, &out);
+}
+
+/* fit_dir's receivers, pixels [i0, i1), in light space */
+static void dir_px(const struct sl_view *v, const mat4 view, const uint8_t *mask, uint8_t value, size_t i0,
+                   size_t i1, struct px_acc *a)
+{
+    mat4 V;   /* locals, as in point_px */
+    memcpy(V, view, sizeof V);
+    struct px_acc l;
+    px_acc_init(&l);
+    for (size_t i = i0; i < i1; i++) {
         if (v->cls[i] != SL_C_PFL || (mask && mask[i] != value))
             continue;
         float q[3];
-        to_light(out->view, v->pos + 3 * i, q);
-        for (int k = 0; k < 3; k++) {
-            if (q[k] < lo[k]) lo[k] = q[k];
-            if (q[k] > hi[k]) hi[k] = q[k];
-        }
-        out->n_receivers++;
+        to_light(V, v->pos + 3 * i, q);
+        px_acc_take(&l, q);
     }
-    if (out->n_receivers == 0) {
-        /* nothing faces the light: no lookup will happen; fit the scene */
-        for (uint32_t i = 0; i < s->nv; i++) {
-            float q[3];
-            to_light(out->view, s->pos + 3 * i, q);
-            for (int k = 0; k < 3; k++) {
-                if (q[k] < lo[k]) lo[k] = q[k];
-                if (q[k] > hi[k]) hi[k] = q[k];
-            }
-        }
+    *a = l;
+}
+
+/* the scene's vertices [i0, i1), in light space */
+static void dir_vtx(const struct sl_scene *s, const mat4 view, size_t i0, size_t i1, struct px_acc *a)
+{
+    px_acc_init(a);
+    for (size_t i = i0; i < i1; i++) {
+        float q[3];
+        to_light(view, s->pos + 3 * i, q);
+        px_acc_take(a, q);
     }
-    float near = lo[2];
-    for (uint32_t t = 0; t < s->nt; t++) {
+}
+
+/* fit_dir's casters, triangles [t0, t1): over the receivers' cross-section
+ * lo..hi, not wholly beyond the farthest receiver */
+static void dir_tri(const struct sl_scene *s, const mat4 view, const float lo[3], const float hi[3], uint32_t t0,
+                    uint32_t t1, struct tri_acc *a)
+{
+    tri_acc_init(a);
+    for (uint32_t t = t0; t < t1; t++) {
         float tl[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, th[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
         for (int c = 0; c < 3; c++) {
             float q[3];
-            to_light(out->view, s->pos + 3 * s->idx[3 * t + c], q);
+            to_light(view, s->pos + 3 * s->idx[3 * t + c], q);
             for (int k = 0; k < 3; k++) {
                 if (q[k] < tl[k]) tl[k] = q[k];
                 if (q[k] > th[k]) th[k] = q[k];
@@ -303,10 +515,44 @@ static void fit_dir(const struct sl_scene *s, const struct sl_view *v, const uin
         }
         if (th[0] < lo[0] || tl[0] > hi[0] || th[1] < lo[1] || tl[1] > hi[1] || tl[2] > hi[2])
             continue;
-        out->n_casters++;
-        if (tl[2] < near)
-            near = tl[2];
+        a->casters++;
+        if (tl[2] < a->near)
+            a->near = tl[2];
     }
+}
+
+/* A directional light's box, fitted to the PFL pixels i with mask[i] ==
+ * value (mask NULL: every one). */
+static void fit_dir(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                    int threads, struct sl_light_box *out)
+{
+    sl_light_view(s->light_dir, out->view);
+    threads = fit_threads(threads);
+    const struct fit_blocks pb = fit_blocks((size_t)v->w * (size_t)v->h, FIT_PX_MIN);
+    struct px_acc pa[FIT_BLOCKS], all;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && pb.nb > 1)
+    for (int b = 0; b < pb.nb; b++)
+        dir_px(v, out->view, mask, value, (size_t)b * pb.len, blk_end(&pb, b), &pa[b]);
+    px_acc_join(&all, pa, pb.nb);
+    out->n_receivers += all.in;
+    if (out->n_receivers == 0) {
+        /* nothing faces the light: no lookup will happen; fit the scene
+         * (its bounds go on from the receivers' empty ones, as one loop) */
+        const struct fit_blocks vb = fit_blocks(s->nv, FIT_PX_MIN);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && vb.nb > 1)
+        for (int b = 0; b < vb.nb; b++)
+            dir_vtx(s, out->view, (size_t)b * vb.len, blk_end(&vb, b), &pa[b]);
+        px_acc_join(&all, pa, vb.nb);
+    }
+    float lo[3], hi[3];
+    memcpy(lo, all.lo, sizeof lo);
+    memcpy(hi, all.hi, sizeof hi);
+    const struct fit_blocks tb = fit_blocks(s->nt, FIT_TRI_MIN);
+    struct tri_acc ta[FIT_BLOCKS];
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && tb.nb > 1)
+    for (int b = 0; b < tb.nb; b++)
+        dir_tri(s, out->view, lo, hi, (uint32_t)((size_t)b * tb.len), (uint32_t)blk_end(&tb, b), &ta[b]);
+    float near = tri_acc_join(ta, tb.nb, lo[2], out);
     lo[2] = near;
     /* Margins: 1e-4 of the extent (at least 1e-6 of the coordinates' size)
      * so points on the boundary are strictly inside after float rounding;
@@ -330,13 +576,37 @@ static void fit_dir(const struct sl_scene *s, const struct sl_view *v, const uin
  * (near + far) / 2), its radius the farthest corner's distance: not the
  * smallest enclosing sphere, but the usual engine choice and rigid with the
  * camera, which is what keeps the size fixed. */
-void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
-                         struct sl_light_box *out)
+/* the stable box's receivers, pixels [i0, i1): inside its square or not */
+static void stable_px(const struct sl_view *v, const mat4 view, const float lo[2], const float hi[2], size_t i0,
+                      size_t i1, struct px_acc *a)
+{
+    mat4 V;   /* locals, as in point_px */
+    memcpy(V, view, sizeof V);
+    const float x0 = lo[0], x1 = hi[0], y0 = lo[1], y1 = hi[1];
+    uint32_t in = 0, out = 0;
+    for (size_t i = i0; i < i1; i++) {
+        if (v->cls[i] != SL_C_PFL)
+            continue;
+        float q[3];
+        to_light(V, v->pos + 3 * i, q);
+        if (q[0] >= x0 && q[0] <= x1 && q[1] >= y0 && q[1] <= y1)
+            in++;
+        else
+            out++;
+    }
+    px_acc_init(a);
+    a->in = in;
+    a->out = out;
+}
+
+void sl_light_fit_stable_mt(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
+                            struct sl_light_box *out, int threads)
 {
     if (o->fit != SL_FIT_SPHERE || s->light.type == SL_LIGHT_AREA) {
-        sl_light_fit(s, v, out);
+        sl_light_fit_mt(s, v, out, threads);
         return;
     }
+    threads = fit_threads(threads);
     memset(out, 0, sizeof *out);
     sl_light_view(s->light_dir, out->view);
     const struct sl_viewpoint *vp = &s->vp[v->vp];
@@ -360,30 +630,30 @@ void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, cons
     hi[0] = (float)(cx + 0.5 * size * texel);
     lo[1] = (float)(cy - 0.5 * size * texel);
     hi[1] = (float)(cy + 0.5 * size * texel);
-    /* along the light: the whole scene, with the tight fit's margins */
-    lo[2] = FLT_MAX;
-    hi[2] = -FLT_MAX;
-    for (uint32_t i = 0; i < s->nv; i++) {
-        float q[3];
-        to_light(out->view, s->pos + 3 * i, q);
-        lo[2] = fminf(lo[2], q[2]);
-        hi[2] = fmaxf(hi[2], q[2]);
-    }
+    /* along the light: the whole scene, with the tight fit's margins. Its
+     * bounds by the strict test in blocks (above); fminf/fmaxf, as this
+     * loop had them, differ from it only in the sign of a zero bound,
+     * which the margin below takes away (+-0 - m = -m), so the box is the
+     * same bit for bit. */
+    const struct fit_blocks vb = fit_blocks(s->nv, FIT_PX_MIN);
+    struct px_acc pa[FIT_BLOCKS], all;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && vb.nb > 1)
+    for (int b = 0; b < vb.nb; b++)
+        dir_vtx(s, out->view, (size_t)b * vb.len, blk_end(&vb, b), &pa[b]);
+    px_acc_join(&all, pa, vb.nb);
+    lo[2] = all.lo[2];
+    hi[2] = all.hi[2];
     float ext = hi[2] - lo[2], mag = fmaxf(fabsf(lo[2]), fabsf(hi[2]));
     float m = fmaxf(1e-4f * ext, 1e-6f * mag + 1e-6f);
     lo[2] -= m;
     hi[2] += m;
-    size_t n = (size_t)v->w * (size_t)v->h;
-    for (size_t i = 0; i < n; i++) {
-        if (v->cls[i] != SL_C_PFL)
-            continue;
-        float q[3];
-        to_light(out->view, v->pos + 3 * i, q);
-        if (q[0] >= lo[0] && q[0] <= hi[0] && q[1] >= lo[1] && q[1] <= hi[1])
-            out->n_receivers++;
-        else
-            out->n_outside++;
-    }
+    const struct fit_blocks pb = fit_blocks((size_t)v->w * (size_t)v->h, FIT_PX_MIN);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (threads > 1 && pb.nb > 1)
+    for (int b = 0; b < pb.nb; b++)
+        stable_px(v, out->view, lo, hi, (size_t)b * pb.len, blk_end(&pb, b), &pa[b]);
+    px_acc_join(&all, pa, pb.nb);
+    out->n_receivers += all.in;
+    out->n_outside += all.out;
     out->n_casters = s->nt;
     memcpy(out->lo, lo, sizeof lo);
     memcpy(out->hi, hi, sizeof hi);
@@ -391,81 +661,137 @@ void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, cons
     glm_mat4_mul(out->proj, out->view, out->vp);
 }
 
+void sl_cube_faces(const float eye[3], const struct sl_view *v, uint8_t *face, int threads)
+{
+    const size_t n = (size_t)v->w * (size_t)v->h;
+    threads = fit_threads(threads);
+    /* each pixel's own face: no order to keep */
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1 && n > FIT_PX_MIN)
+    for (size_t i = 0; i < n; i++)
+        face[i] = (uint8_t)sl_cube_face_of(eye, v->pos + 3 * i);
+}
+
 /* A point light's view as one box (lightfit.h, sl_light_fit): the six
  * faces fitted without a guard band, their counts summed (unmapped
  * triangles are each face's own: none listed here), the matrices those of
  * the face with most receivers. The cube's own frames (harness/cube.c) are
  * fitted per map size, with their guard band. */
-static void fit_cube_summary(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+static void fit_cube_summary(const struct sl_scene *s, const struct sl_view *v, int threads,
+                             struct sl_light_box *out)
 {
     size_t n = (size_t)v->w * (size_t)v->h;
     uint8_t *face = malloc(n ? n : 1);
     int best = -1;
-    for (size_t i = 0; face && i < n; i++)
-        face[i] = (uint8_t)sl_cube_face_of(s->light.pos, v->pos + 3 * i);
+    if (face)
+        sl_cube_faces(s->light.pos, v, face, threads);
+    struct sl_light_box bx[6], *bp[6];
+    float axes[6][3];
+    uint8_t values[6];
     for (int f = 0; f < 6; f++) {
-        struct sl_light_box b;
-        float axis[3];
-        sl_cube_axis(f, axis);
-        memset(&b, 0, sizeof b);
-        /* without the selection (no memory) every face sees every PFL pixel: the counts are then the faces' sums */
-        fit_point(s, v, s->light.pos, axis, face, (uint8_t)(face ? f : 0), 0, 0, &b);
+        sl_cube_axis(f, axes[f]);
+        values[f] = (uint8_t)f;
+        memset(&bx[f], 0, sizeof bx[f]);
+        bp[f] = &bx[f];
+    }
+    /* without the selection (no memory) every face sees every PFL pixel: the counts are then the faces' sums */
+    fit_points(s, v, s->light.pos, 6, (const float(*)[3])axes, face, values, 0, 0, threads, bp);
+    for (int f = 0; f < 6; f++) {
+        const struct sl_light_box *b = &bx[f];
         uint32_t r = out->n_receivers, o = out->n_outside, c = out->n_casters;
-        if (best < 0 || b.n_receivers > r) {
-            memcpy(out->view, b.view, sizeof b.view);
-            memcpy(out->proj, b.proj, sizeof b.proj);
-            memcpy(out->vp, b.vp, sizeof b.vp);
-            memcpy(out->lo, b.lo, sizeof b.lo);
-            memcpy(out->hi, b.hi, sizeof b.hi);
-            memcpy(out->eye, b.eye, sizeof b.eye);
-            out->wmin = b.wmin;
-            out->guard = b.guard;
+        if (best < 0 || b->n_receivers > r) {
+            memcpy(out->view, b->view, sizeof b->view);
+            memcpy(out->proj, b->proj, sizeof b->proj);
+            memcpy(out->vp, b->vp, sizeof b->vp);
+            memcpy(out->lo, b->lo, sizeof b->lo);
+            memcpy(out->hi, b->hi, sizeof b->hi);
+            memcpy(out->eye, b->eye, sizeof b->eye);
+            out->wmin = b->wmin;
+            out->guard = b->guard;
             best = f;
         }
-        out->n_receivers = r + b.n_receivers;
-        out->n_outside = o + (face ? b.n_outside : 0);
-        out->n_casters = c + b.n_casters;
-        free(b.unmapped);
+        out->n_receivers = r + b->n_receivers;
+        out->n_outside = o + (face ? b->n_outside : 0);
+        out->n_casters = c + b->n_casters;
+        free(bx[f].unmapped);
     }
     out->persp = 1;
     free(face);
 }
 
-void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+void sl_light_fit_mt(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out, int threads)
 {
     memset(out, 0, sizeof *out);
     if (s->light.type == SL_LIGHT_AREA)
-        fit_point(s, v, s->light.pos, s->light.normal, NULL, 0, 0, 0, out);
+        fit_point(s, v, s->light.pos, s->light.normal, NULL, 0, 0, 0, threads, out);
     else if (s->light.type == SL_LIGHT_SPOT)
-        fit_point(s, v, s->light.pos, s->light.dir, NULL, 0, 0, 0, out);
+        fit_point(s, v, s->light.pos, s->light.dir, NULL, 0, 0, 0, threads, out);
     else if (s->light.type == SL_LIGHT_POINT)
-        fit_cube_summary(s, v, out);
+        fit_cube_summary(s, v, threads, out);
     else
-        fit_dir(s, v, NULL, 0, out);
+        fit_dir(s, v, NULL, 0, threads, out);
+}
+
+void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out)
+{
+    sl_light_fit_mt(s, v, out, 1);
+}
+
+void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
+                         struct sl_light_box *out)
+{
+    sl_light_fit_stable_mt(s, v, o, size, out, 1);
 }
 
 void sl_light_fit_persp(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
                         const uint8_t *mask, uint8_t value, struct sl_light_box *out)
 {
     memset(out, 0, sizeof *out);
-    fit_point(s, v, eye, axis, mask, value, 0, 0, out);
+    fit_point(s, v, eye, axis, mask, value, 0, 0, 1, out);
+}
+
+void sl_light_fit_face_mt(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
+                          const uint8_t *mask, uint8_t value, int size, int guard, struct sl_light_box *out,
+                          int threads)
+{
+    memset(out, 0, sizeof *out);
+    fit_point(s, v, eye, axis, mask, value, size, guard, threads, out);
+}
+
+void sl_light_fit_cube_mt(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const uint8_t *face,
+                          int size, int guard, struct sl_light_box out[6], int threads)
+{
+    struct sl_light_box *bp[6];
+    float axes[6][3];
+    uint8_t values[6];
+    for (int f = 0; f < 6; f++) {
+        sl_cube_axis(f, axes[f]);
+        values[f] = (uint8_t)f;
+        memset(&out[f], 0, sizeof out[f]);
+        bp[f] = &out[f];
+    }
+    fit_points(s, v, eye, 6, (const float(*)[3])axes, face, values, size, guard, threads, bp);
 }
 
 void sl_light_fit_face(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
                        const uint8_t *mask, uint8_t value, int size, int guard, struct sl_light_box *out)
 {
+    sl_light_fit_face_mt(s, v, eye, axis, mask, value, size, guard, out, 1);
+}
+
+int sl_light_fit_slice_mt(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                          struct sl_light_box *out, int threads)
+{
     memset(out, 0, sizeof *out);
-    fit_point(s, v, eye, axis, mask, value, size, guard, out);
+    if (s->light.type == SL_LIGHT_AREA)
+        return 0;
+    fit_dir(s, v, mask, value, threads, out);
+    return 1;
 }
 
 int sl_light_fit_slice(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
                        struct sl_light_box *out)
 {
-    memset(out, 0, sizeof *out);
-    if (s->light.type == SL_LIGHT_AREA)
-        return 0;
-    fit_dir(s, v, mask, value, out);
-    return 1;
+    return sl_light_fit_slice_mt(s, v, mask, value, out, 1);
 }
 
 void sl_zsplit_closed(double n, double f, int k, double *planes)

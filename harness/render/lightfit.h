@@ -23,6 +23,15 @@
 
 void sl_light_fit(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out);
 
+/* Threads (issue 20): the fits below with _mt run their loops over pixels
+ * and triangles on `threads` OpenMP threads (<= 0: omp_get_max_threads()),
+ * in blocks fixed by the input's size and combined in block order, so the
+ * box (bounds, counts, the unmapped list and its order) is bit for bit the
+ * one-thread fit's whatever the count (lightfit.c, "blocks";
+ * lightfit::threads_bit_identical checks it). The names without _mt are
+ * these on one thread. */
+void sl_light_fit_mt(const struct sl_scene *s, const struct sl_view *v, struct sl_light_box *out, int threads);
+
 /* The perspective frame of a light at `eye` looking along the unit `axis`,
  * fitted as an area light's centre is (lightfit.c, fit_point: receivers'
  * tangents up to atan(8) off the axis, the rest counted in n_outside; its
@@ -40,6 +49,9 @@ void sl_light_fit_persp(const struct sl_scene *s, const struct sl_view *v, const
  * most 2 guard texels: sl_light_fit_persp's frame. */
 void sl_light_fit_face(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
                        const uint8_t *mask, uint8_t value, int size, int guard, struct sl_light_box *out);
+void sl_light_fit_face_mt(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const float axis[3],
+                          const uint8_t *mask, uint8_t value, int size, int guard, struct sl_light_box *out,
+                          int threads);
 
 /* A point light's cube: face 0 +x, 1 -x, 2 +y, 3 -y, 4 +z, 5 -z (GL's
  * cube-map order). A point p belongs to the face of the major axis of
@@ -56,6 +68,14 @@ static inline int sl_cube_face_of(const float eye[3], const float p[3])
         a = 2;
     return 2 * a + (d[a] < 0.0f);
 }
+/* The six faces' frames at once: out[f] is sl_light_fit_face_mt's box for
+ * face f (axis sl_cube_axis(f), the pixels with face[i] == f) bit for bit,
+ * each pass over the pixels and triangles made once for the six. */
+void sl_light_fit_cube_mt(const struct sl_scene *s, const struct sl_view *v, const float eye[3], const uint8_t *face,
+                          int size, int guard, struct sl_light_box out[6], int threads);
+/* face[i] = sl_cube_face_of(eye, pixel i's position) for every pixel of
+ * v, on `threads` threads as above */
+void sl_cube_faces(const float eye[3], const struct sl_view *v, uint8_t *face, int threads);
 static inline void sl_cube_axis(int face, float axis[3])
 {
     axis[0] = axis[1] = axis[2] = 0.0f;
@@ -85,6 +105,8 @@ struct sl_fit_opts {
 };
 void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
                          struct sl_light_box *out);
+void sl_light_fit_stable_mt(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
+                            struct sl_light_box *out, int threads);
 
 /* A directional light's box fitted as sl_light_fit does, to the PFL pixels
  * i with mask[i] == value only (a depth slice's receivers, zpart); its
@@ -93,6 +115,8 @@ void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, cons
  * lights. With every PFL pixel marked it is sl_light_fit's box exactly. */
 int sl_light_fit_slice(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
                        struct sl_light_box *out);
+int sl_light_fit_slice_mt(const struct sl_scene *s, const struct sl_view *v, const uint8_t *mask, uint8_t value,
+                          struct sl_light_box *out, int threads);
 
 /* LiSPSM (Wimmer et al. 2004): a light-space perspective frame for a
  * directional light, fitted to the PFL pixels i with mask[i] == value
