@@ -12,9 +12,6 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 /* A view from eye looking along dir. */
 static void view_along(const float eye_in[3], const float dir[3], mat4 view)
@@ -39,18 +36,7 @@ void sl_light_view(const float dir[3], mat4 view)
 static void to_light(const mat4 view, const float p[3], float out[3])
 {
     vec4 w, c;
-#if defined(__SSE2__)
-    /* the point as one 16-byte store: written as {x, y, z, 1} the compiler
-     * stored it in two 8-byte halves, and the product's 16-byte load of it
-     * waited on store forwarding (perf: a third of the fit's time). The
-     * same values into the same glm_mat4_mulv: the same bits. */
-    _mm_store_ps(w, _mm_setr_ps(p[0], p[1], p[2], 1.0f));
-#else
-    w[0] = p[0];
-    w[1] = p[1];
-    w[2] = p[2];
-    w[3] = 1.0f;
-#endif
+    sl_point4(p, w);   /* one 16-byte store (frame.h): perf put a third of the fit on the stall */
     glm_mat4_mulv((vec4 *)view, w, c);
     out[0] = c[0];
     out[1] = c[1];
