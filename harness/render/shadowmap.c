@@ -131,6 +131,32 @@ static struct sl_shadowmap_target *target_get(struct sl_shadowmap_pass *p, int S
     return t;
 }
 
+/* A freed target's textures stay alive, with their memory, while the
+ * driver's state still refers to them: Mesa's state tracker hands the GL
+ * state (the framebuffer, the image units) to llvmpipe only at the next
+ * draw, so a big target freed after its layer was measured to live on
+ * through the next layer's (8192^2: 1.7 GB of OSMesa's heap for the two
+ * textures a layer needs). One point drawn into a 1x1 target with no image
+ * bound replaces those references, and the memory goes at once. */
+static void park(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m)
+{
+    if (!p->park_fbo) {
+        glCreateTextures(GL_TEXTURE_2D, 1, &p->park_tex);
+        glTextureStorage2D(p->park_tex, 1, GL_R32UI, 1, 1);
+        glCreateFramebuffers(1, &p->park_fbo);
+        glNamedFramebufferTexture(p->park_fbo, GL_COLOR_ATTACHMENT0, p->park_tex, 0);
+        glNamedFramebufferDrawBuffer(p->park_fbo, GL_COLOR_ATTACHMENT0);
+    }
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindFramebuffer(GL_FRAMEBUFFER, p->park_fbo);
+    glViewport(0, 0, 1, 1);
+    glUseProgram(p->prog_depth_id);
+    glBindVertexArray(m->vao);
+    glDrawElements(GL_POINTS, 1, GL_UNSIGNED_INT, NULL);   /* the mesh's first vertex, as a point */
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glFinish();
+}
+
 void sl_shadowmap_release_targets(struct sl_shadowmap_pass *p)
 {
     for (int i = 0; i < SL_SHADOWMAP_TARGETS; i++)
@@ -141,6 +167,10 @@ void sl_shadowmap_free(struct sl_shadowmap_pass *p)
 {
     sl_shadowmap_release_targets(p);
     sl_layer_pool_free(&p->pool);
+    if (p->park_fbo) {
+        glDeleteFramebuffers(1, &p->park_fbo);
+        glDeleteTextures(1, &p->park_tex);
+    }
     if (p->prog_depth_id)
         glDeleteProgram(p->prog_depth_id);
     for (int mode = 0; mode < 4; mode++)
@@ -285,6 +315,7 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
             glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);
             glDeleteTextures(1, &tg->tex[1]);
             tg->tex[1] = 0;
+            park(p, m);   /* its memory goes now, not at the next layer's draw */
         }
         if (!e && big && !(out->depth = layer_array(f, n)))
             e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shadow map %dx%d", S, S);
@@ -297,8 +328,10 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
         glDisable(GL_CULL_FACE);
         glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        if (big)
+        if (big) {
             target_free(tg);
+            park(p, m);
+        }
         if (!e)
             e = sl_gl_check("shadow-map pass", d);
     }

@@ -45,6 +45,7 @@ struct sl_shadowmap_pass {
     uint64_t stamps;            /* the last sl_depth_layer.stamp handed out */
     uint64_t ids_uploads;       /* BGSM2 layers that had to upload BGSM's ids (tests, bench) */
     int      big_from;          /* SL_SHADOWMAP_BIG (sl_shadowmap_init); tests lower it */
+    GLuint   park_fbo, park_tex; /* 1x1: a draw into it makes the driver let go of freed targets */
     struct sl_layer_pool pool;  /* layer arrays for the frames that take them (f->pool = &pass->pool);
                                  * freed by sl_shadowmap_free: free those frames first */
     GLuint prog_depth_id;
