@@ -16,13 +16,11 @@
  * the process's peak so far.
  *
  * Then the check: each layer rendered again the plain way — a pass of its
- * own, calloc'd arrays, a render target kept for the whole (not freed per
- * layer as big maps are), BGSM2 reading BGSM's ids where BGSM left them —
- * one layer at a time, its 64-bit hash against the measured layer's. The
- * check's own memory comes after the peak is read.
+ * own, calloc'd arrays, one layer at a time, BGSM2 uploading BGSM's ids
+ * from the frame (plain_hashes) — its 64-bit hash against the measured
+ * layer's. The check's own memory comes after the peak is read.
  */
 #define _GNU_SOURCE
-#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
@@ -127,11 +125,14 @@ static enum sl_err plain_hashes(const struct sl_bench_ctx *x, const struct sl_vi
     enum sl_err e = sl_shadowmap_init(&p, d);
     if (e)
         return e;
-    p.big_from = INT_MAX;
     struct sl_light_frame f;
     frame_init(&f, &x->s, v, S, NULL);
     const size_t n = (size_t)S * (size_t)S;
-    const int order[4] = {SL_LAYER_BGSM, SL_LAYER_BGSM2, SL_LAYER_SGSM, SL_LAYER_SGSM_ADJ};
+    /* SGSM between BGSM and BGSM2: BGSM2 then finds SGSM's ids in the
+     * target and uploads BGSM's from the frame, where the measured render
+     * reads them where BGSM left them — the two ways checked against each
+     * other */
+    const int order[4] = {SL_LAYER_BGSM, SL_LAYER_SGSM, SL_LAYER_BGSM2, SL_LAYER_SGSM_ADJ};
     for (int i = 0; i < 4 && !e; i++) {
         int l = order[i];
         if ((e = sl_shadowmap_render(&p, &x->mesh, &f, SL_NEED(l), d)))
@@ -142,6 +143,8 @@ static enum sl_err plain_hashes(const struct sl_bench_ctx *x, const struct sl_vi
         if (l != SL_LAYER_BGSM)
             sl_frame_drop_layer(&f, l);
     }
+    if (!e && p.ids_uploads != 1)
+        e = sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "bigmap: the plain BGSM2 did not upload BGSM's ids");
     sl_light_box_free(&f.box);
     sl_frame_free(&f);
     sl_shadowmap_free(&p);

@@ -46,7 +46,6 @@ static char *cons_source(const char *src, int mode, const char *pre)
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
 {
     memset(p, 0, sizeof *p);
-    p->big_from = SL_SHADOWMAP_BIG;
     p->prog_depth_id = sl_gl_program(sl_glsl_depth_id_vs, NULL, sl_glsl_depth_id_fs, d);
     if (!p->prog_depth_id)
         return SL_E_GL;
@@ -131,32 +130,6 @@ static struct sl_shadowmap_target *target_get(struct sl_shadowmap_pass *p, int S
     return t;
 }
 
-/* A freed target's textures stay alive, with their memory, while the
- * driver's state still refers to them: Mesa's state tracker hands the GL
- * state (the framebuffer, the image units) to llvmpipe only at the next
- * draw, so a big target freed after its layer was measured to live on
- * through the next layer's (8192^2: 1.7 GB of OSMesa's heap for the two
- * textures a layer needs). One point drawn into a 1x1 target with no image
- * bound replaces those references, and the memory goes at once. */
-static void park(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m)
-{
-    if (!p->park_fbo) {
-        glCreateTextures(GL_TEXTURE_2D, 1, &p->park_tex);
-        glTextureStorage2D(p->park_tex, 1, GL_R32UI, 1, 1);
-        glCreateFramebuffers(1, &p->park_fbo);
-        glNamedFramebufferTexture(p->park_fbo, GL_COLOR_ATTACHMENT0, p->park_tex, 0);
-        glNamedFramebufferDrawBuffer(p->park_fbo, GL_COLOR_ATTACHMENT0);
-    }
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindFramebuffer(GL_FRAMEBUFFER, p->park_fbo);
-    glViewport(0, 0, 1, 1);
-    glUseProgram(p->prog_depth_id);
-    glBindVertexArray(m->vao);
-    glDrawElements(GL_POINTS, 1, GL_UNSIGNED_INT, NULL);   /* the mesh's first vertex, as a point */
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glFinish();
-}
-
 void sl_shadowmap_release_targets(struct sl_shadowmap_pass *p)
 {
     for (int i = 0; i < SL_SHADOWMAP_TARGETS; i++)
@@ -167,10 +140,6 @@ void sl_shadowmap_free(struct sl_shadowmap_pass *p)
 {
     sl_shadowmap_release_targets(p);
     sl_layer_pool_free(&p->pool);
-    if (p->park_fbo) {
-        glDeleteFramebuffers(1, &p->park_fbo);
-        glDeleteTextures(1, &p->park_tex);
-    }
     if (p->prog_depth_id)
         glDeleteProgram(p->prog_depth_id);
     for (int mode = 0; mode < 4; mode++)
@@ -197,11 +166,8 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
     int S = f->size;
     size_t n = (size_t)S * (size_t)S;
     const int want_id = kind != K_BGSM2;   /* BGSM2's ids are read by no one (shadowmap.h) */
-    const int big = S >= p->big_from;
     out->stamp = ++p->stamps;
-    /* a big layer takes each array only when its texture is read back, so
-     * the layer holds two of the four (two textures, two arrays) at most */
-    if (!big && (!(out->depth = layer_array(f, n)) || (want_id && !(out->id = layer_array(f, n)))))
+    if (!(out->depth = layer_array(f, n)) || (want_id && !(out->id = layer_array(f, n))))
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shadow map %dx%d", S, S);
     /* the target's making is timed with the layer, as it was when every
      * layer made its own: the first layer of a size pays for it */
@@ -302,25 +268,10 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
         } else {
             tg->ids_stamp = out->stamp;
         }
-        /* straight into the frame's arrays (warm when they come from its
-         * pool); a big layer's id texture goes before its depth array is
-         * taken, and its target after the readback */
-        if (want_id) {
-            if (big && !(out->id = layer_array(f, n)))
-                e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shadow map %dx%d", S, S);
-            else
-                glGetTextureImage(tg->tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), out->id);
-        }
-        if (big) {
-            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);
-            glDeleteTextures(1, &tg->tex[1]);
-            tg->tex[1] = 0;
-            park(p, m);   /* its memory goes now, not at the next layer's draw */
-        }
-        if (!e && big && !(out->depth = layer_array(f, n)))
-            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shadow map %dx%d", S, S);
-        if (!e)
-            glGetTextureImage(tg->tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), out->depth);
+        /* straight into the frame's arrays (warm when they come from its pool) */
+        glGetTextureImage(tg->tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), out->depth);
+        if (want_id)
+            glGetTextureImage(tg->tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), out->id);
         double t2 = sl_now();
         out->ms_gpu = sl_gl_timer_ms(&gt, 1e3 * (t1 - t0));   /* after the readback: no extra wait */
         out->ms_render = 1e3 * (t1 - t0);
@@ -328,12 +279,7 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
         glDisable(GL_CULL_FACE);
         glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        if (big) {
-            target_free(tg);
-            park(p, m);
-        }
-        if (!e)
-            e = sl_gl_check("shadow-map pass", d);
+        e = sl_gl_check("shadow-map pass", d);
     }
     return e;
 }

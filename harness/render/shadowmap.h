@@ -31,12 +31,13 @@ struct sl_shadowmap_target {
  * of a study up to 4096^2 stays (170 MiB for 512^2..4096^2); an 8192^2 or
  * 16384^2 one pushes the others out. */
 #define SL_SHADOWMAP_KEEP_BYTES ((size_t)256 << 20)
-/* From this size up a layer's target is not kept: its textures go as soon
- * as they are read back (the id texture before the depth array is taken),
- * so a layer adds one texture's bytes at most to the layers already held —
- * at 16384^2 each texture and each array is 1 GiB, and memory, not the
- * target's making (~0.5 s), is what runs short there. */
-#define SL_SHADOWMAP_BIG 8192
+/* Big targets are kept too. Freeing one after its layer (and its id
+ * texture before the depth array is taken) was tried and measured worse:
+ * Mesa's state tracker hands the GL state to llvmpipe only at the next
+ * layer's draw, so a freed target's textures lived on until after the next
+ * one was made — 2,553 MiB peak for bench --only bigmap --map 8192 (with a
+ * 1x1 clear or draw in between, which did not release them), against
+ * 2,036 MiB kept. */
 
 struct sl_shadowmap_pass {
     struct sl_shadowmap_target tgt[SL_SHADOWMAP_TARGETS];
@@ -44,8 +45,6 @@ struct sl_shadowmap_pass {
     uint64_t targets_made;      /* render targets created, all told (tests, bench) */
     uint64_t stamps;            /* the last sl_depth_layer.stamp handed out */
     uint64_t ids_uploads;       /* BGSM2 layers that had to upload BGSM's ids (tests, bench) */
-    int      big_from;          /* SL_SHADOWMAP_BIG (sl_shadowmap_init); tests lower it */
-    GLuint   park_fbo, park_tex; /* 1x1: a draw into it makes the driver let go of freed targets */
     struct sl_layer_pool pool;  /* layer arrays for the frames that take them (f->pool = &pass->pool);
                                  * freed by sl_shadowmap_free: free those frames first */
     GLuint prog_depth_id;
