@@ -108,6 +108,7 @@ static void reuse_layers_identical(void **st)
          * SGSM's ids in the target and uploads BGSM's from the frame */
         struct sl_shadowmap_pass fresh;
         assert_int_equal(sl_shadowmap_init(&fresh, &d), SL_OK);
+        fresh.chunk = 5;   /* and in draws of 5 triangles, flushed between: the same layers */
         const unsigned first = SL_NEED(SL_LAYER_BGSM) | SL_NEED(SL_LAYER_SGSM);
         assert_int_equal(sl_shadowmap_render(&fresh, &f.mesh, &b, first, &d), SL_OK);
         assert_int_equal(sl_shadowmap_render(&fresh, &f.mesh, &b, SL_NEED(SL_LAYER_BGSM2), &d), SL_OK);

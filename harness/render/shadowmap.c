@@ -26,9 +26,6 @@ extern const char sl_glsl_cons_setup[];
 #define GL_FRAGMENT_SHADER_INVOCATIONS_ARB 0x82F4
 #endif
 
-/* Triangles per draw call of a layer (see the draw loop). */
-#define SL_SHADOWMAP_CHUNK 8192u
-
 /* How a layer is drawn. */
 enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM, K_SGSM_ADJ };
 
@@ -49,6 +46,7 @@ static char *cons_source(const char *src, int mode, const char *pre)
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
 {
     memset(p, 0, sizeof *p);
+    p->chunk = SL_SHADOWMAP_CHUNK;
     p->prog_depth_id = sl_gl_program(sl_glsl_depth_id_vs, NULL, sl_glsl_depth_id_fs, d);
     if (!p->prog_depth_id)
         return SL_E_GL;
@@ -250,10 +248,10 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
              * (57 MB for SGSM with adjacency at 4096^2 in the Morais study,
              * at its peak); a flush hands the bins over. The triangles reach
              * the framebuffer in the same order, so the layer is the same. */
-            for (uint32_t c0 = 0; c0 < m->runs[r].count; c0 += SL_SHADOWMAP_CHUNK) {
+            for (uint32_t c0 = 0; c0 < m->runs[r].count; c0 += p->chunk) {
                 const uint32_t t0 = m->runs[r].first + c0;
-                const uint32_t nt = m->runs[r].count - c0 < SL_SHADOWMAP_CHUNK ? m->runs[r].count - c0
-                                                                                : SL_SHADOWMAP_CHUNK;
+                const uint32_t nt = m->runs[r].count - c0 < p->chunk ? m->runs[r].count - c0
+                                                                                : p->chunk;
                 if (c0)
                     glFlush();
                 glUniform1ui(first_loc, t0);   /* gl_PrimitiveID restarts with every draw */

@@ -31,6 +31,10 @@ struct sl_shadowmap_target {
  * of a study up to 4096^2 stays (170 MiB for 512^2..4096^2); an 8192^2 or
  * 16384^2 one pushes the others out. */
 #define SL_SHADOWMAP_KEEP_BYTES ((size_t)256 << 20)
+/* Triangles per draw call of a layer: llvmpipe bins a whole draw before it
+ * rasterises, so the bins of a big draw at a big map size stay in memory
+ * together; a flush between chunks hands them over (shadowmap.c). */
+#define SL_SHADOWMAP_CHUNK 8192u
 /* Big targets are kept too. Freeing one after its layer (and its id
  * texture before the depth array is taken) was tried and measured worse:
  * Mesa's state tracker hands the GL state to llvmpipe only at the next
@@ -45,6 +49,7 @@ struct sl_shadowmap_pass {
     uint64_t targets_made;      /* render targets created, all told (tests, bench) */
     uint64_t stamps;            /* the last sl_depth_layer.stamp handed out */
     uint64_t ids_uploads;       /* BGSM2 layers that had to upload BGSM's ids (tests, bench) */
+    uint32_t chunk;             /* triangles per draw call, flushed between (SL_SHADOWMAP_CHUNK; tests vary it) */
     struct sl_layer_pool pool;  /* layer arrays for the frames that take them (f->pool = &pass->pool);
                                  * freed by sl_shadowmap_free: free those frames first */
     GLuint prog_depth_id;
