@@ -84,7 +84,7 @@ enum sl_err sl_bench_parse_stages(const char *list, unsigned *out, struct sl_dia
         if (!found)
             return sl_fail(d, SL_E_USAGE, NULL, 0, "--only",
                            "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs, churn, "
-                           "startup, scoring, lightfit)", (int)n, p);
+                           "startup, scoring, lightfit, bigmap)", (int)n, p);
         p += n;
         if (*p == ',')
             p++;
@@ -696,7 +696,8 @@ static enum sl_err setup(const struct sl_bench_opts *o, struct sl_bench_ctx *x, 
 
 enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_out, struct sl_diag *d)
 {
-    unsigned stages = o->stages ? o->stages : SL_BENCH_ALL;
+    /* bigmap only when named: 16384^2 layers take GBs and minutes */
+    unsigned stages = o->stages ? o->stages : SL_BENCH_ALL & ~SL_BENCH_STAGE(BIGMAP);
     FILE *out = o->out ? o->out : stdout;
     struct sl_bench_result *res = sl_calloc(1, sizeof *res);
     if (!res)
@@ -706,7 +707,8 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     x.out = out;
     enum sl_err e = SL_OK;
     int need_scene = (stages & (SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS) | SL_BENCH_STAGE(BACKENDS) |
-                                SL_BENCH_STAGE(CHURN) | SL_BENCH_STAGE(SCORING) | SL_BENCH_STAGE(LIGHTFIT))) != 0;
+                                SL_BENCH_STAGE(CHURN) | SL_BENCH_STAGE(SCORING) | SL_BENCH_STAGE(LIGHTFIT) |
+                                SL_BENCH_STAGE(BIGMAP))) != 0;
 
     /* start-up first, while this process has loaded nothing heavy (its own
      * RSS is the floor of its children's; bench_startup.c); its table is
@@ -769,6 +771,9 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
         fflush(out);
         if (!e && (stages & SL_BENCH_STAGE(LIGHTFIT)))
             e = sl_bench_lightfit(&x, res, d);
+        fflush(out);
+        if (!e && (stages & SL_BENCH_STAGE(BIGMAP)))
+            e = sl_bench_bigmap(&x, o->map > 0 ? o->map : 16384, res, d);
         fflush(out);
         sl_gbuffer_free(&x.gp);
         sl_gl_mesh_free(&x.mesh);

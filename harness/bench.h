@@ -39,6 +39,10 @@
  * - scoring: a cell's contours, figures and exactness count per 1 M pixels
  *   against one histogram pass over them, the fused pass and the one before
  *   it (target: 3x; bench_score.c);
+ * - bigmap (only when named: it takes GBs): one view's conservative layers
+ *   at 16384^2 (`--map N` for another size) as csm and csm_adj hold them,
+ *   peak RSS, wall, CPU, faults, and each layer against a plain render
+ *   (target: 6 GB; bench_mem.c);
  * - peak RSS of the process after all of it (target: under 2 GiB).
  *
  * A benchmark, not a test: a missed target is reported (MISS), not an
@@ -65,7 +69,8 @@
     X(CHURN,   "churn")      \
     X(STARTUP, "startup")    \
     X(SCORING, "scoring")    \
-    X(LIGHTFIT, "lightfit")
+    X(LIGHTFIT, "lightfit")  \
+    X(BIGMAP,  "bigmap")
 
 enum sl_bench_stage_bit {
 #define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,
@@ -83,7 +88,7 @@ struct sl_bench_opts {
     int         reps;      /* timed repetitions (after one warm-up); 0 = 7 */
     const char *scene;     /* NULL = the config's first scene, else "bench" (54,200 triangles) */
     int         width, height; /* viewport; 0 = the config's first, else 1024x1024 */
-    int         map;       /* shadow-map size of the layer stage; 0 = 2048 */
+    int         map;       /* shadow-map size of the layer stage; 0 = 2048 (bigmap: 0 = 16384) */
     const char *moderno;   /* study configs; NULL = configs/moderno-2011.yaml, */
     const char *morais;    /*                      configs/morais-2015.yaml */
     const char *csv;       /* also write the rows here as CSV; NULL = no */

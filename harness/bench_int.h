@@ -48,6 +48,10 @@ struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *s
 enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, struct sl_bench_result *res,
                           struct sl_diag *d);
 
+/* One view's conservative layers at S^2: peak RSS, and each layer against a
+ * plain render (bench_mem.c). */
+enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_result *res, struct sl_diag *d);
+
 /* NSM's layer kept vs made afresh (bench_churn.c). */
 enum sl_err sl_bench_churn(const struct sl_scene *s, const struct sl_gl_mesh *m, struct sl_gbuffer_pass *gp,
                            int vp, int W, int H, int S, int reps, FILE *out, struct sl_bench_result *res,

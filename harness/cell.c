@@ -46,7 +46,7 @@ static void check_exact(const struct sl_cell_inputs *in, const struct sl_verdict
                 o->tx = (int)(k % (uint32_t)f->size);
                 o->ty = (int)(k / (uint32_t)f->size);
                 for (int l = 0; l < SL_LAYER_COUNT; l++)
-                    if (f->have & SL_NEED(l))
+                    if ((f->have & SL_NEED(l)) && f->layer[l].id)   /* BGSM2 keeps no ids */
                         o->layer_tri[l] = f->layer[l].id[k] & ~SL_FULL;
             }
             cell->violations++;

@@ -105,12 +105,16 @@ const char sl_usage_bench[] =
     "             against the same binary with its heavy libraries preloaded (validate < 50 ms)\n"
     "    scoring  a cell's contours, figures and exactness count per 1 M pixels vs one histogram\n"
     "             pass over them, fused and as before (<= 3x)\n"
+    "    lightfit the light fit at 3840x2160 on the config's threads vs one thread (directional, a\n"
+    "             point light's cube), boxes compared bit for bit\n"
+    "    bigmap   (only when named) one view's conservative layers at 16384^2 (--map N) as csm and\n"
+    "             csm_adj hold them: peak RSS (<= 6 GB), each layer vs a plain render\n"
     "  and the peak RSS after all of it (< 2 GiB). A missed target exits 0; a failure exits 2.\n"
-    "  --only LIST     comma-separated stages (default all); `--only truth,layers` is the quick mode\n"
+    "  --only LIST     comma-separated stages (default all but bigmap); `--only truth,layers` is the quick mode\n"
     "  --reps N        timed repetitions after one warm-up (default 7)\n"
     "  --scene S       scene of the truth and layer stages (default: CONFIG's first scene, else bench)\n"
     "  --viewport WxH  their viewport (default: CONFIG's first, else 1024x1024)\n"
-    "  --map N         the layers' map size (default 2048)\n"
+    "  --map N         the layers' map size (default 2048; bigmap: 16384)\n"
     "  --csv FILE      also write the summary rows as CSV\n"
     "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
 

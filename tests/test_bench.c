@@ -28,9 +28,11 @@ static void bench_parse_stages(void **st)
     assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,morais", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(LAYERS) |
                                SL_BENCH_STAGE(MORAIS));
-    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,startup,scoring,lightfit",
+    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,startup,scoring,lightfit,bigmap",
                                            &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_ALL);
+    assert_int_equal(sl_bench_parse_stages("bigmap", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(BIGMAP));
     assert_int_equal(sl_bench_parse_stages("scoring", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(SCORING));
     assert_int_equal(sl_bench_parse_stages("startup", &bits, &d), SL_OK);
@@ -177,6 +179,43 @@ static void bench_churn_rows(void **st)
     assert_non_null(strstr(text, "| 512² | fresh |"));
 }
 
+/* The big-map stage at 1024^2: one row against 6 GB; the printed peak is
+ * above the RSS at the start by at least the five 4 MiB arrays csm holds
+ * (BGSM depth + id, BGSM2 depth, SGSM depth + id); three layers at most at
+ * once; every layer bit-identical to the plain render. */
+static void bench_bigmap_rows(void **st)
+{
+    (void)st;
+    char md[300];
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(BIGMAP), .reps = 1, .scene = "blocks", .width = 64,
+                              .height = 64, .map = 1024};
+    struct sl_bench_result r;
+    run_bench(&o, "bigmap.md", md, sizeof md, &r);
+    assert_int_equal(r.nrows, 1 + 2);   /* + memory, context */
+    assert_string_equal(r.rows[0].stage, "bigmap");
+    assert_string_equal(r.rows[0].name, "peak RSS, conservative layers 1024²");
+    assert_true(fabs(r.rows[0].target - 6e9 / 1048576.0) < 1e-6);
+    const char *text = slurp(md);
+    const char *p = strstr(text, "| peak RSS | ");
+    assert_non_null(p);
+    double peak = -1, start = -1;
+    assert_int_equal(sscanf(p, "| peak RSS | %lf MiB", &peak), 1);
+    assert_true(fabs(peak - r.rows[0].value) < 1.0);
+    p = strstr(text, "| RSS at the start (scene, view, GL driver) | ");
+    assert_non_null(p);
+    assert_int_equal(sscanf(p, "| RSS at the start (scene, view, GL driver) | %lf MiB", &start), 1);
+    printf("bench::bigmap_rows: peak %.0f MiB, start %.0f MiB\n", peak, start);
+    assert_true(start > 0 && peak >= start + 5 * 4 - 1);
+    assert_non_null(strstr(text, "| layers held at once, at most | 3 |"));
+    assert_non_null(strstr(text, "layers identical: 4 of 4"));
+    int same = 0;
+    for (const char *q = text; (q = strstr(q, "bit-identical to the plain render")); q++)
+        same++;
+    assert_int_equal(same, 4);
+    assert_non_null(strstr(text, "| load average before / after | "));
+    assert_non_null(strstr(text, "| wall / CPU (user + sys) | "));
+}
+
 /* OSMesa and EGL side by side: a row per stage (context, G-buffer, the six
  * layers), EGL's min against OSMesa's, judged at 5%. */
 static void bench_backends_rows(void **st)
@@ -267,6 +306,7 @@ int main(int argc, char **argv)
         SL_CASE(bench, quick_mode_rows),
         SL_CASE(bench, backends_rows),
         SL_CASE(bench, churn_rows),
+        SL_CASE(bench, bigmap_rows),
     };
     return sl_run_group(argc, argv, "bench", tests, sl_test_setup, sl_test_teardown);
 }

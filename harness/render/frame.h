@@ -64,7 +64,8 @@ void sl_light_box_free(struct sl_light_box *b);
 
 struct sl_depth_layer {
     float    *depth;            /* size*size window depth in [0,1], 1 = empty */
-    uint32_t *id;               /* triangle + 1, 0 = empty */
+    uint32_t *id;               /* triangle + 1, 0 = empty; NULL for BGSM2 (shadowmap.h: no one reads it) */
+    uint64_t  stamp;            /* which render made it (unique per shadow-map pass; shadowmap.h) */
     double    ms_render, ms_readback;
     double    ms_gpu;           /* GL_TIME_ELAPSED of the clears and draws (glctx.h) */
     uint64_t  gs_prims;         /* primitives the geometry shader emitted (GL query; 0 without GS) */

@@ -53,6 +53,7 @@
     X(glEnableVertexArrayAttrib) \
     X(glEndQuery) \
     X(glFinish) \
+    X(glFlush) \
     X(glFrontFace) \
     X(glGenQueries) \
     X(glGetError) \
@@ -122,6 +123,7 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glEnableVertexArrayAttrib sl_glEnableVertexArrayAttrib
 #define glEndQuery sl_glEndQuery
 #define glFinish sl_glFinish
+#define glFlush sl_glFlush
 #define glFrontFace sl_glFrontFace
 #define glGenQueries sl_glGenQueries
 #define glGetError sl_glGetError

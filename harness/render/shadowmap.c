@@ -46,6 +46,7 @@ static char *cons_source(const char *src, int mode, const char *pre)
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
 {
     memset(p, 0, sizeof *p);
+    p->chunk = SL_SHADOWMAP_CHUNK;
     p->prog_depth_id = sl_gl_program(sl_glsl_depth_id_vs, NULL, sl_glsl_depth_id_fs, d);
     if (!p->prog_depth_id)
         return SL_E_GL;
@@ -70,16 +71,14 @@ static void target_free(struct sl_shadowmap_target *t)
 {
     if (t->size) {
         glDeleteFramebuffers(1, &t->fbo);
-        glDeleteTextures(2, t->tex);
-        if (t->first_ids)
-            glDeleteTextures(1, &t->first_ids);
+        glDeleteTextures(2, t->tex);   /* a name of 0 (a texture gone already) is ignored */
     }
     memset(t, 0, sizeof *t);
 }
 
 static size_t target_bytes(const struct sl_shadowmap_target *t)
 {
-    return (size_t)t->size * (size_t)t->size * (t->first_ids ? 12u : 8u);
+    return (size_t)t->size * (size_t)t->size * 8u;
 }
 
 /* The render target of size S: kept from before, or made, the least
@@ -150,6 +149,12 @@ void sl_shadowmap_free(struct sl_shadowmap_pass *p)
     memset(p, 0, sizeof *p);
 }
 
+/* One layer array of n 32-bit elements: from the frame's pool, else zeroed. */
+static void *layer_array(struct sl_light_frame *f, size_t n)
+{
+    return f->pool ? sl_layer_pool_get(f->pool, n * 4) : sl_calloc(n, 4);
+}
+
 static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
                                 struct sl_light_frame *f, enum kind kind,
                                 struct sl_depth_layer *out, struct sl_diag *d)
@@ -161,14 +166,9 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "SGSM with adjacency without adjacency indices");
     int S = f->size;
     size_t n = (size_t)S * (size_t)S;
-    if (f->pool) {
-        out->depth = sl_layer_pool_get(f->pool, n * sizeof(float));
-        out->id = sl_layer_pool_get(f->pool, n * sizeof(uint32_t));
-    } else {
-        out->depth = sl_calloc(n, sizeof(float));
-        out->id = sl_calloc(n, sizeof(uint32_t));
-    }
-    if (!out->depth || !out->id)
+    const int want_id = kind != K_BGSM2;   /* BGSM2's ids are read by no one (shadowmap.h) */
+    out->stamp = ++p->stamps;
+    if (!(out->depth = layer_array(f, n)) || (want_id && !(out->id = layer_array(f, n))))
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shadow map %dx%d", S, S);
     /* the target's making is timed with the layer, as it was when every
      * layer made its own: the first layer of a size pays for it */
@@ -190,7 +190,14 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
         glDepthFunc(GL_LESS);
         glCullFace(GL_FRONT);
         glFrontFace(GL_CCW);
-        glClearNamedFramebufferuiv(fbo, GL_COLOR, 0, zero_u);
+        if (kind == K_BGSM2) {
+            /* no colour attachment: tex[1] keeps the first layer's ids,
+             * which this layer reads as an image (below) */
+            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);
+            glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+        } else {
+            glClearNamedFramebufferuiv(fbo, GL_COLOR, 0, zero_u);
+        }
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
         glUseProgram(prog);
         glUniformMatrix4fv(glGetUniformLocation(prog, "u_vp"), 1, GL_FALSE, (const float *)f->box.vp);
@@ -211,12 +218,13 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
                 /* the second layer leaves out, per texel, the triangle the
                  * first one stored there */
                 const struct sl_depth_layer *b = &f->layer[SL_LAYER_BGSM];
-                if (!tg->first_ids) {
-                    glCreateTextures(GL_TEXTURE_2D, 1, &tg->first_ids);
-                    glTextureStorage2D(tg->first_ids, 1, GL_R32UI, S, S);
+                first_ids = tg->tex[1];
+                if (!b->stamp || b->stamp != tg->ids_stamp) {
+                    /* another layer (or none) was drawn here since: put BGSM's ids back */
+                    glTextureSubImage2D(first_ids, 0, 0, 0, S, S, GL_RED_INTEGER, GL_UNSIGNED_INT, b->id);
+                    tg->ids_stamp = b->stamp;
+                    p->ids_uploads++;
                 }
-                first_ids = tg->first_ids;
-                glTextureSubImage2D(first_ids, 0, 0, 0, S, S, GL_RED_INTEGER, GL_UNSIGNED_INT, b->id);
                 /* read as an image: on llvmpipe imageLoad costs less per
                  * fragment than texelFetch (measured: BGSM2 -12%) */
                 glBindImageTexture(0, first_ids, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
@@ -235,13 +243,25 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
                 glEnable(GL_CULL_FACE);
             else
                 glDisable(GL_CULL_FACE);
-            glUniform1ui(first_loc, m->runs[r].first);
-            if (kind == K_SGSM_ADJ)
-                glDrawElements(GL_TRIANGLES_ADJACENCY, (GLsizei)(6 * m->runs[r].count), GL_UNSIGNED_INT,
-                               (const void *)((size_t)m->runs[r].first * 6 * sizeof(uint32_t)));
-            else
-                glDrawElements(GL_TRIANGLES, (GLsizei)(3 * m->runs[r].count), GL_UNSIGNED_INT,
-                               (const void *)((size_t)m->runs[r].first * 3 * sizeof(uint32_t)));
+            /* in chunks, each flushed: llvmpipe bins a whole draw before it
+             * rasterises, in 64 KB blocks that grow with triangles x tiles
+             * (57 MB for SGSM with adjacency at 4096^2 in the Morais study,
+             * at its peak); a flush hands the bins over. The triangles reach
+             * the framebuffer in the same order, so the layer is the same. */
+            for (uint32_t c0 = 0; c0 < m->runs[r].count; c0 += p->chunk) {
+                const uint32_t t0 = m->runs[r].first + c0;
+                const uint32_t nt = m->runs[r].count - c0 < p->chunk ? m->runs[r].count - c0
+                                                                                : p->chunk;
+                if (c0)
+                    glFlush();
+                glUniform1ui(first_loc, t0);   /* gl_PrimitiveID restarts with every draw */
+                if (kind == K_SGSM_ADJ)
+                    glDrawElements(GL_TRIANGLES_ADJACENCY, (GLsizei)(6 * nt), GL_UNSIGNED_INT,
+                                   (const void *)((size_t)t0 * 6 * sizeof(uint32_t)));
+                else
+                    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * nt), GL_UNSIGNED_INT,
+                                   (const void *)((size_t)t0 * 3 * sizeof(uint32_t)));
+            }
         }
         glEndQuery(GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB);
         glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
@@ -256,17 +276,15 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
         out->fragments = (uint64_t)frags;
         if (first_ids) {
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-            /* from 8192^2 up (256 MiB and more) the copy is not kept: memory
-             * is what runs short there, and the upload is small beside the
-             * layer's own render */
-            if (S >= 8192) {
-                glDeleteTextures(1, &tg->first_ids);
-                tg->first_ids = 0;
-            }
+            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tg->tex[1], 0);
+            glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+        } else {
+            tg->ids_stamp = out->stamp;
         }
         /* straight into the frame's arrays (warm when they come from its pool) */
         glGetTextureImage(tg->tex[0], 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(n * 4), out->depth);
-        glGetTextureImage(tg->tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), out->id);
+        if (want_id)
+            glGetTextureImage(tg->tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), out->id);
         double t2 = sl_now();
         out->ms_gpu = sl_gl_timer_ms(&gt, 1e3 * (t1 - t0));   /* after the readback: no extra wait */
         out->ms_render = 1e3 * (t1 - t0);

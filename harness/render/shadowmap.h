@@ -15,23 +15,41 @@
 #include "frame.h"
 #include "glctx.h"
 
-/* A map size's render target: depth32F + R32UI, and BGSM2's copy of the
- * first layer's ids (made when first needed). */
+/* A map size's render target: depth32F + R32UI. BGSM2 reads BGSM's ids
+ * straight from tex[1] (drawn with no colour attachment: its own ids are
+ * read by no one), so no copy of them is kept; ids_stamp says whose ids
+ * tex[1] holds, and BGSM2 uploads BGSM's from the frame when they are not
+ * the ones there. */
 struct sl_shadowmap_target {
     int      size;              /* 0: slot unused */
-    GLuint   fbo, tex[2], first_ids;
+    GLuint   fbo, tex[2];
     uint64_t used;              /* the pass's tick when last used (least recently used goes first) */
+    uint64_t ids_stamp;         /* sl_depth_layer.stamp of the layer whose ids tex[1] holds, 0: none known */
 };
 #define SL_SHADOWMAP_TARGETS 4
 /* Targets kept beside the one being made, in bytes of texture: every size
- * of a study up to 4096^2 stays (170 MiB for 512^2..4096^2, 255 MiB with
- * BGSM2's id copies); an 8192^2 or 16384^2 one pushes the others out. */
+ * of a study up to 4096^2 stays (170 MiB for 512^2..4096^2); an 8192^2 or
+ * 16384^2 one pushes the others out. */
 #define SL_SHADOWMAP_KEEP_BYTES ((size_t)256 << 20)
+/* Triangles per draw call of a layer: llvmpipe bins a whole draw before it
+ * rasterises, so the bins of a big draw at a big map size stay in memory
+ * together; a flush between chunks hands them over (shadowmap.c). */
+#define SL_SHADOWMAP_CHUNK 8192u
+/* Big targets are kept too. Freeing one after its layer (and its id
+ * texture before the depth array is taken) was tried and measured worse:
+ * Mesa's state tracker hands the GL state to llvmpipe only at the next
+ * layer's draw, so a freed target's textures lived on until after the next
+ * one was made — 2,553 MiB peak for bench --only bigmap --map 8192 (with a
+ * 1x1 clear or draw in between, which did not release them), against
+ * 2,036 MiB kept. */
 
 struct sl_shadowmap_pass {
     struct sl_shadowmap_target tgt[SL_SHADOWMAP_TARGETS];
     uint64_t tick;
     uint64_t targets_made;      /* render targets created, all told (tests, bench) */
+    uint64_t stamps;            /* the last sl_depth_layer.stamp handed out */
+    uint64_t ids_uploads;       /* BGSM2 layers that had to upload BGSM's ids (tests, bench) */
+    uint32_t chunk;             /* triangles per draw call, flushed between (SL_SHADOWMAP_CHUNK; tests vary it) */
     struct sl_layer_pool pool;  /* layer arrays for the frames that take them (f->pool = &pass->pool);
                                  * freed by sl_shadowmap_free: free those frames first */
     GLuint prog_depth_id;
@@ -50,7 +68,8 @@ void        sl_shadowmap_release_targets(struct sl_shadowmap_pass *p);
 
 /* Render the layers in `needs` (SL_NEED bits) into f, whose size, dir and box
  * are set by the caller. Layers already present are not rendered again.
- * The arrays come from f->pool when it has one. */
+ * The arrays come from f->pool when it has one. BGSM2's id array is not
+ * read back (NULL): no method reads it, and at 16384^2 it is 1 GiB. */
 enum sl_err sl_shadowmap_render(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
                                 struct sl_light_frame *f, unsigned needs, struct sl_diag *d);
 
