@@ -26,6 +26,7 @@
 #include "lightfit.h"
 #include "motion_run.h"
 #include "outputs.h"
+#include "ovwriter.h"
 #include "runhelp.h"
 #include "shadowmap.h"
 #include "scenefile.h"
@@ -100,6 +101,7 @@ struct run_ctx {
     /* where notes, violations and progress go (the library never prints) */
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
+    struct sl_ovw *ovw;                  /* overlay sheets written off the cells' path (ovwriter.h) */
 };
 
 static void emit(const struct run_ctx *x, const struct sl_run_event *ev)
@@ -639,6 +641,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
+        .ovw = x->ovw,
     };
     return sl_cell_score(&in, &x->vd, cell, d);
 }
@@ -690,6 +693,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     x.user = o->user;
     struct sl_store *st = NULL;
     int64_t run_id = 0;
+    if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_ovw_open(2, &x.ovw, d)))
+        goto out;
     if ((e = sl_gl_open(&x.gl, &(struct sl_gl_desc){.backend = c->gl}, d)) || (e = sl_shadowmap_init(&x.spass, d)))
         goto out;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
@@ -756,6 +761,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
                                   .elapsed_s = sl_now() - t_start};
         emit(&x, &ev);
     }
+    if (!e)   /* every sheet in the staging folder before it is renamed (a write error fails the run) */
+        e = sl_ovw_wait(x.ovw, d);
     res->ms_total = 1e3 * (sl_now() - t_start);
     if (e || !o->write_files)
         goto out;
@@ -773,6 +780,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         sl_out_write_patterns_md(o->table_out, c, res);
     }
 out:
+    sl_ovw_close(x.ovw);   /* no sheet is written into a folder being dropped */
     if (e)
         sl_out_stage_drop(&dirs);
     sl_store_close(st);

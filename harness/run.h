@@ -71,6 +71,8 @@ struct sl_run_opts {
     /* Set (by a signal handler) to stop after the cell under way: the run then
      * writes its folder as usual and returns SL_OK with res->interrupted. */
     const volatile int *stop;
+    int         overlay_inline;   /* 1: each cell writes its overlay itself, not the run's
+                                   * writer thread (tests: the files must be the same) */
 };
 
 /* What was computed, to prove nothing is computed twice or needlessly. */
