@@ -66,9 +66,9 @@ void sl_ovw_release(struct sl_ovw *w, struct sl_ovw_slot *slot);
  * with its diagnostic. */
 enum sl_err sl_ovw_wait(struct sl_ovw *w, struct sl_diag *d);
 
-/* Sheets written so far and the worker's time on them, ms (wall, on its own
- * thread: what the cells no longer pay). */
-void sl_ovw_stats(const struct sl_ovw *w, int *written, double *ms);
+/* Sheets written so far and the worker's time on them, ms: wall, and its
+ * thread's CPU time (ms_cpu may be NULL): what the cells no longer pay. */
+void sl_ovw_stats(const struct sl_ovw *w, int *written, double *ms, double *ms_cpu);
 
 /* Wait, stop the worker, free everything. NULL-safe. */
 void sl_ovw_close(struct sl_ovw *w);

@@ -780,6 +780,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         sl_out_write_patterns_md(o->table_out, c, res);
     }
 out:
+    if (x.ovw) {
+        sl_ovw_wait(x.ovw, NULL);
+        sl_ovw_stats(x.ovw, &res->overlays_written, &res->ms_overlay_writer, &res->ms_overlay_writer_cpu);
+    }
     sl_ovw_close(x.ovw);   /* no sheet is written into a folder being dropped */
     if (e)
         sl_out_stage_drop(&dirs);

@@ -103,6 +103,8 @@ struct sl_run_result {
     char   store_path[1100];           /* the database written, "" none */
     struct sl_pass_counts passes;
     double ms_total, ms_scene, ms_bvh;
+    int    overlays_written;           /* sheets the writer thread wrote, and its time on them, wall */
+    double ms_overlay_writer, ms_overlay_writer_cpu;   /* and CPU, ms (off the cells' path; 0 inline) */
 };
 
 enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struct sl_run_result *res,

@@ -266,8 +266,8 @@ static void ovwriter_bound_and_error(void **st)
     assert_null(c);
     assert_string_equal(d.file, bad);
     int written;
-    double ms;
-    sl_ovw_stats(w, &written, &ms);
+    double ms, cpu;
+    sl_ovw_stats(w, &written, &ms, &cpu);
     assert_int_equal(written, 1);
     sl_ovw_close(w);
     sl_ovw_close(NULL);
