@@ -119,9 +119,17 @@ static int coherence(const struct ctx *c, float u, float v, float z, int texels,
         n = 3;
     }
     int lit = 0;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++)
-            lit += lit_at(c, x0 + i, y0 + j, z);
+    if (x0 >= 0 && y0 >= 0 && x0 + n <= c->S && y0 + n <= c->S) {
+        /* the footprint inside the map (all but the border texels): no clamps */
+        const float *row = c->L->depth + (size_t)y0 * (size_t)c->S + (size_t)x0;
+        for (int j = 0; j < n; j++, row += c->S)
+            for (int i = 0; i < n; i++)
+                lit += z <= row[i];
+    } else {
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++)
+                lit += lit_at(c, x0 + i, y0 + j, z);
+    }
     *lookups += (uint64_t)(n * n);
     *shadowed = n * n - lit;
     return lit == n * n ? 1 : lit == 0 ? 2 : 0;
@@ -203,14 +211,20 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
     if (kind == K_ADJACENCY && !a->adj)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: no adjacency");
     struct ctx c = {.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size};
-    const long n = (long)v->w * v->h;
+    const int W = v->w, ntiles = sl_tiles(v->w, v->h);
     const struct sl_method_params *prm = a->params;
     out->has_base = 1;
     out->has_detail = kind == K_COHERENCE;
     uint64_t lookups = 0, tests = 0;
     double t0 = sl_now();
-#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
-    for (long i = 0; i < n; i++) {
+    /* tiles (method.h): a tile's texel and triangle reads stay in cache */
+#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4) reduction(+ : lookups, tests)
+    for (int t = 0; t < ntiles; t++) {
+    int tx0, ty0, tx1, ty1;
+    sl_tile_rect(v->w, v->h, t, &tx0, &ty0, &tx1, &ty1);
+    for (int ty = ty0; ty < ty1; ty++)
+    for (int tx = tx0; tx < tx1; tx++) {
+        const long i = (long)ty * W + tx;
         if (sl_verdict_fixed(v, (size_t)i, out)) {
             out->base[i] = out->v[i];
             continue;
@@ -255,6 +269,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             out->how[i] = SL_HOW_FALLBACK;
         }
     }
+    }
     cost->ms_method += 1e3 * (sl_now() - t0);
     cost->lookups += lookups;
     cost->tri_tests += tests;
@@ -280,10 +295,17 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain stages");
     out->has_base = 1;
     uint64_t lookups = 0, tests = 0;
+    const int W = v->w, ntiles = sl_tiles(v->w, v->h);
     for (int step = 0; step < 3; step++) {
         double t0 = sl_now();
-#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
-        for (long i = 0; i < n; i++) {
+        /* tiles (method.h): a tile's texel and triangle reads stay in cache */
+#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4) reduction(+ : lookups, tests)
+        for (int t = 0; t < ntiles; t++) {
+        int tx0, ty0, tx1, ty1;
+        sl_tile_rect(v->w, v->h, t, &tx0, &ty0, &tx1, &ty1);
+        for (int ty = ty0; ty < ty1; ty++)
+        for (int tx = tx0; tx < tx1; tx++) {
+            const long i = (long)ty * W + tx;
             if (step == 0 && sl_verdict_fixed(v, (size_t)i, out)) {
                 out->base[i] = out->v[i];
                 continue;
@@ -320,6 +342,7 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
                 stage[i] = (uint8_t)(step + 1);
             }
             out->tests[i] = clamp255(out->tests[i] + tests - before);
+        }
         }
         cost->ms_step[step] = 1e3 * (sl_now() - t0);
         cost->ms_method += cost->ms_step[step];
