@@ -8,6 +8,7 @@
  * The worker reads a slot's buffers only while it is WRITING, and a cell
  * gets a slot only when it is FREE: no buffer is ever shared.
  */
+#define _GNU_SOURCE   /* pthread_setname_np */
 #include "ovwriter.h"
 #include <pthread.h>
 #include <signal.h>
@@ -62,6 +63,7 @@ static struct slot *next_queued(struct sl_ovw *w)
 static void *worker(void *arg)
 {
     struct sl_ovw *w = arg;
+    pthread_setname_np(pthread_self(), "sl-overlays");   /* apart in perf and top */
     pthread_mutex_lock(&w->mu);
     for (;;) {
         struct slot *s;

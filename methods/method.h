@@ -243,26 +243,6 @@ struct sl_method {
 
 /* Helpers the methods share (method.c). */
 
-/* Per-pixel loops walk the frame in SL_TILE x SL_TILE tiles (tile t, row
- * major, of sl_tiles(w, h)): the pixels of a tile read texels near each
- * other, so a tile's map reads stay in cache, where a row of a 1024-wide
- * frame sweeps a whole strip of a 2048² map (16 MiB of depths, a page per
- * texel row). Each pixel's result depends on that pixel alone, so the walk's
- * order changes no verdict. */
-#define SL_TILE 32
-static inline int sl_tiles(int w, int h)
-{
-    return ((w + SL_TILE - 1) / SL_TILE) * ((h + SL_TILE - 1) / SL_TILE);
-}
-static inline void sl_tile_rect(int w, int h, int t, int *x0, int *y0, int *x1, int *y1)
-{
-    int nx = (w + SL_TILE - 1) / SL_TILE;
-    *x0 = (t % nx) * SL_TILE;
-    *y0 = (t / nx) * SL_TILE;
-    *x1 = *x0 + SL_TILE < w ? *x0 + SL_TILE : w;
-    *y1 = *y0 + SL_TILE < h ? *y0 + SL_TILE : h;
-}
-
 /* Background and PnFL pixels get their fixed verdicts (none; shadow by
  * definition); returns 1 for them, 0 for a PFL pixel the method decides. */
 static inline int sl_verdict_fixed(const struct sl_view *v, size_t i, struct sl_verdicts *out)

@@ -211,20 +211,14 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
     if (kind == K_ADJACENCY && !a->adj)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: no adjacency");
     struct ctx c = {.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size};
-    const int W = v->w, ntiles = sl_tiles(v->w, v->h);
+    const long n = (long)v->w * v->h;
     const struct sl_method_params *prm = a->params;
     out->has_base = 1;
     out->has_detail = kind == K_COHERENCE;
     uint64_t lookups = 0, tests = 0;
     double t0 = sl_now();
-    /* tiles (method.h): a tile's texel and triangle reads stay in cache */
-#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4) reduction(+ : lookups, tests)
-    for (int t = 0; t < ntiles; t++) {
-    int tx0, ty0, tx1, ty1;
-    sl_tile_rect(v->w, v->h, t, &tx0, &ty0, &tx1, &ty1);
-    for (int ty = ty0; ty < ty1; ty++)
-    for (int tx = tx0; tx < tx1; tx++) {
-        const long i = (long)ty * W + tx;
+#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
+    for (long i = 0; i < n; i++) {
         if (sl_verdict_fixed(v, (size_t)i, out)) {
             out->base[i] = out->v[i];
             continue;
@@ -269,7 +263,6 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             out->how[i] = SL_HOW_FALLBACK;
         }
     }
-    }
     cost->ms_method += 1e3 * (sl_now() - t0);
     cost->lookups += lookups;
     cost->tri_tests += tests;
@@ -295,17 +288,10 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain stages");
     out->has_base = 1;
     uint64_t lookups = 0, tests = 0;
-    const int W = v->w, ntiles = sl_tiles(v->w, v->h);
     for (int step = 0; step < 3; step++) {
         double t0 = sl_now();
-        /* tiles (method.h): a tile's texel and triangle reads stay in cache */
-#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4) reduction(+ : lookups, tests)
-        for (int t = 0; t < ntiles; t++) {
-        int tx0, ty0, tx1, ty1;
-        sl_tile_rect(v->w, v->h, t, &tx0, &ty0, &tx1, &ty1);
-        for (int ty = ty0; ty < ty1; ty++)
-        for (int tx = tx0; tx < tx1; tx++) {
-            const long i = (long)ty * W + tx;
+#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
+        for (long i = 0; i < n; i++) {
             if (step == 0 && sl_verdict_fixed(v, (size_t)i, out)) {
                 out->base[i] = out->v[i];
                 continue;
@@ -342,7 +328,6 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
                 stage[i] = (uint8_t)(step + 1);
             }
             out->tests[i] = clamp255(out->tests[i] + tests - before);
-        }
         }
         cost->ms_step[step] = 1e3 * (sl_now() - t0);
         cost->ms_method += cost->ms_step[step];
