@@ -636,12 +636,12 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
+        .ovw = x->ovw,   /* the sheet drawn into its slot, written off the cell's path */
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
-        .ovw = x->ovw,
     };
     return sl_cell_score(&in, &x->vd, cell, d);
 }
