@@ -13,6 +13,7 @@
 #include "contour.h"
 #include "image.h"
 #include "overlay.h"
+#include "ovwriter.h"
 #include "softfig.h"
 #include "util.h"
 
@@ -70,22 +71,53 @@ static void sheet_frame(const struct sl_cell_inputs *in, const struct sl_cell *c
     }
 }
 
+/* Where a sheet is drawn: with the run's writer (in->ovw), one of its slots,
+ * handed to its worker once drawn (ovwriter.h), so the cell pays for
+ * drawing, not for composing and compressing the PNG; without one, the
+ * cell's own scratch (rgb, and err: w * h), written here. */
+static enum sl_err sheet_buffers(const struct sl_cell_inputs *in, uint8_t *err, struct sl_ovw_slot **slot,
+                                 uint8_t **rgb_out, uint8_t **keep_out, struct sl_diag *d)
+{
+    *slot = NULL;
+    *rgb_out = in->rgb;
+    *keep_out = err;
+    if (!in->ovw)
+        return SL_OK;
+    enum sl_err e = sl_ovw_acquire(in->ovw, in->view->w, in->view->h, slot, d);
+    if (!e) {
+        *rgb_out = (*slot)->rgb;
+        *keep_out = (*slot)->keep;
+    }
+    return e;
+}
+
+static enum sl_err sheet_write(const struct sl_cell_inputs *in, struct sl_ovw_slot *slot,
+                               const struct sl_image_sheet *sh, struct sl_diag *d)
+{
+    return slot ? sl_ovw_submit(in->ovw, slot, in->overlay_path, sh, d) : sl_image_write_sheet(in->overlay_path, sh, d);
+}
+
 /* A hard-light cell's overlay sheet: the frame at 1:1 (cropped to the scene
  * when small), the three windows with most wrong pixels zoomed beside it (the
  * uncertain ones when none is wrong), a legend with each class's count.
- * err: w * h scratch (the error mask). */
+ * scratch: w * h (the error mask, when the cell writes the sheet itself). */
 static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct sl_verdicts *vd, const uint8_t *band,
-                                 const struct sl_cell *cell, uint8_t *err, struct sl_diag *d)
+                                 const struct sl_cell *cell, uint8_t *scratch, struct sl_diag *d)
 {
     const struct sl_view *v = in->view;
     int W = v->w, H = v->h, th = in->overlay_contour;
+    struct sl_ovw_slot *slot;
+    uint8_t *rgb, *err;
+    enum sl_err e = sheet_buffers(in, scratch, &slot, &rgb, &err, d);
+    if (e)
+        return e;
     uint64_t count[SL_OV_CLASSES];
-    sl_overlay_build(v, in->light_dir, in->light_pos, vd, band, th, in->rgb, err, count);
+    sl_overlay_build(v, in->light_dir, in->light_pos, vd, band, th, rgb, err, count);
     struct sl_image_sheet sh;
     memset(&sh, 0, sizeof sh);
     sh.w = W;
     sh.h = H;
-    sh.rgb = in->rgb;
+    sh.rgb = rgb;
     sh.keep = err;
     sheet_frame(in, cell, band, err, &sh);
     uint64_t wrong = count[SL_OV_LIT_WRONG] + count[SL_OV_SHADOW_WRONG] + count[SL_OV_WRONG_OUTSIDE];
@@ -104,8 +136,11 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
     struct sl_ov_box box[3];
     uint64_t inbox[3];
     int n = wrong || count[SL_OV_UNCERTAIN] ? sl_overlay_insets(W, H, err, s, 3, box, inbox) : 0;
-    if (n < 0)
+    if (n < 0) {
+        if (slot)
+            sl_ovw_release(in->ovw, slot);
         return sl_fail(d, SL_E_NOMEM, in->overlay_path, 0, NULL, "inset search");
+    }
     if (wrong > 0 && count[SL_OV_UNCERTAIN] > 0)
         for (size_t i = 0; i < npx; i++)
             err[i] = err[i] || vd->v[i] == SL_V_UNCERTAIN ? 255 : 0;
@@ -147,7 +182,7 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
         memcpy(sh.legend_rgb[sh.nlegend], box_white, 3);
         snprintf(sh.legend_text[sh.nlegend++], sizeof sh.legend_text[0], "white boxes: the insets' windows");
     }
-    return sl_image_write_sheet(in->overlay_path, &sh, d);
+    return sheet_write(in, slot, &sh, d);
 }
 
 /* The EXR layers, each code named in the header (shadowlab:<layer>).
@@ -217,12 +252,17 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
     if (!in->overlay_path)
         return SL_OK;
     t0 = sl_now();
-    sl_overlay_soft(W, H, v->tri, vd->vis, in->soft_truth, in->rgb);
+    struct sl_ovw_slot *slot;
+    uint8_t *rgb, *unused;
+    enum sl_err e = sheet_buffers(in, in->state, &slot, &rgb, &unused, d);
+    if (e)
+        return e;
+    sl_overlay_soft(W, H, v->tri, vd->vis, in->soft_truth, rgb);
     struct sl_image_sheet sh;
     memset(&sh, 0, sizeof sh);
     sh.w = W;
     sh.h = H;
-    sh.rgb = in->rgb;
+    sh.rgb = rgb;
     sheet_frame(in, cell, NULL, NULL, &sh);
     static const struct { uint8_t rgb[3]; const char *text; } key[] = {
         {{213, 94, 0}, "too dark (off the area truth by > 0.05)"},
@@ -234,7 +274,7 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
         snprintf(sh.legend_text[k], sizeof sh.legend_text[k], "%s", key[k].text);
     }
     sh.nlegend = 3;
-    enum sl_err e = sl_image_write_sheet(in->overlay_path, &sh, d);
+    e = sheet_write(in, slot, &sh, d);
     cell->ms.overlay = 1e3 * (sl_now() - t0);
     return e;
 }

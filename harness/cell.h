@@ -32,6 +32,8 @@
 #include "method.h"
 #include "view.h"
 
+struct sl_ovw;   /* ovwriter.h */
+
 /* Wall times of the stages of one cell, ms; view stages are shared by every
  * cell of the view and reported with each. The G-buffer render, the truth
  * (when traced, not cached), each shadow-map layer render and the method are
@@ -115,6 +117,9 @@ struct sl_cell_inputs {
     double shared_band_ms;                    /* what drawing shared_band cost, ms (ms.contours) */
     const char *label;                        /* the method's label (overlay title); NULL: its name */
     const char *overlay_path;                 /* NULL: no overlay */
+    struct sl_ovw *ovw;                       /* the run's overlay writer (ovwriter.h): the sheet is
+                                               * drawn into one of its slots and written by its
+                                               * worker; NULL: written here, in the rgb scratch */
     const char *exr_path;                     /* NULL: no EXR layers */
     int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
     struct sl_alias_cache *alias_cache;       /* m of the view under the cell's frame, kept for the next
@@ -126,8 +131,12 @@ struct sl_cell_inputs {
  * has_soft, has_patterns, pattern, violations and violation[], nonfinite
  * (added to), ms.contours, ms.figures, ms.overlay (bands drawn here are
  * drawn inside the figure pass, sl_score_fused: ms.contours is then 0 and
- * ms.figures holds both). Errors come only from
- * writing the overlay or the EXR file. */
+ * ms.figures holds both). ms.overlay is what the cell pays on its own
+ * path: drawing the overlay, its crop and insets, and, with a writer, the
+ * wait for a free slot (composing and compressing the PNG run on the
+ * writer's thread, not counted; without a writer they are). Errors come only
+ * from writing the overlay or the EXR file (with a writer, possibly an
+ * earlier cell's overlay: its file is named). */
 enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *vd, struct sl_cell *cell,
                           struct sl_diag *d);
 

@@ -29,6 +29,7 @@
 #include "lightfit.h"
 #include "motion_run.h"
 #include "outputs.h"
+#include "ovwriter.h"
 #include "runhelp.h"
 #include "shadowmap.h"
 #include "scenefile.h"
@@ -104,6 +105,7 @@ struct run_ctx {
     /* where notes, violations and progress go (the library never prints) */
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
+    struct sl_ovw *ovw;                  /* overlay sheets written off the cells' path (ovwriter.h) */
 };
 
 static void emit(const struct run_ctx *x, const struct sl_run_event *ev)
@@ -476,18 +478,6 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
     return SL_OK;
 }
 
-/* The config's first label whose run is the contour's NSM (method nsm,
- * front faces culled: the configured parameters are then exactly those),
- * -1 none. */
-static int contour_label(const struct sl_config *c)
-{
-    for (int i = 0; i < c->nmethods; i++)
-        if (strcmp(c->methods[i].method->name, "nsm") == 0 &&
-            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES && c->methods[i].frame_fit.fit == SL_FIT_TIGHT)
-            return i;
-    return -1;
-}
-
 /* contour_from nsm: the contours of the current view at the cell's map
  * size, drawn from NSM's image (front faces culled, as Moderno 2011 drew
  * them) whatever the config's methods are, once per (view, map size). The
@@ -504,7 +494,7 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
     if (!m)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "contour_from nsm: no nsm method");
     struct sl_method_params p;
-    const int label = contour_label(c);
+    const int label = sl_run_contour_label(c);
     enum sl_err e = SL_OK;
     if (label >= 0) {
         p = c->methods[label].params;
@@ -646,6 +636,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
+        .ovw = x->ovw,   /* the sheet drawn into its slot, written off the cell's path */
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
@@ -703,6 +694,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     x.user = o->user;
     struct sl_store *st = NULL;
     int64_t run_id = 0;
+    if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_ovw_open(2, &x.ovw, d)))
+        goto out;
     if ((e = sl_gl_open(&x.gl, &(struct sl_gl_desc){.backend = c->gl}, d)) || (e = sl_shadowmap_init(&x.spass, d)))
         goto out;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
@@ -769,6 +762,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
                                   .elapsed_s = sl_now() - t_start};
         emit(&x, &ev);
     }
+    if (!e)   /* every sheet in the staging folder before it is renamed (a write error fails the run) */
+        e = sl_ovw_wait(x.ovw, d);
     res->ms_total = 1e3 * (sl_now() - t_start);
     if (e || !o->write_files)
         goto out;
@@ -786,6 +781,11 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         sl_out_write_patterns_md(o->table_out, c, res);
     }
 out:
+    if (x.ovw) {
+        sl_ovw_wait(x.ovw, NULL);
+        sl_ovw_stats(x.ovw, &res->overlays_written, &res->ms_overlay_writer, &res->ms_overlay_writer_cpu);
+    }
+    sl_ovw_close(x.ovw);   /* no sheet is written into a folder being dropped */
     if (e)
         sl_out_stage_drop(&dirs);
     sl_store_close(st);

@@ -71,6 +71,8 @@ struct sl_run_opts {
     /* Set (by a signal handler) to stop after the cell under way: the run then
      * writes its folder as usual and returns SL_OK with res->interrupted. */
     const volatile int *stop;
+    int         overlay_inline;   /* 1: each cell writes its overlay itself, not the run's
+                                   * writer thread (tests: the files must be the same) */
 };
 
 /* What was computed, to prove nothing is computed twice or needlessly. */
@@ -101,6 +103,8 @@ struct sl_run_result {
     char   store_path[1100];           /* the database written, "" none */
     struct sl_pass_counts passes;
     double ms_total, ms_scene, ms_bvh;
+    int    overlays_written;           /* sheets the writer thread wrote, and its time on them, wall */
+    double ms_overlay_writer, ms_overlay_writer_cpu;   /* and CPU, ms (off the cells' path; 0 inline) */
 };
 
 enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struct sl_run_result *res,

@@ -116,3 +116,12 @@ void sl_run_med_min_max(double *t, int n, double out[3])
     out[SL_MIN] = t[0];
     out[SL_MAX] = t[n - 1];
 }
+
+int sl_run_contour_label(const struct sl_config *c)
+{
+    for (int i = 0; i < c->nmethods; i++)
+        if (strcmp(c->methods[i].method->name, "nsm") == 0 &&
+            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES && c->methods[i].frame_fit.fit == SL_FIT_TIGHT)
+            return i;
+    return -1;
+}

@@ -11,6 +11,7 @@
 #define SL_RUNHELP_H
 #include <stdint.h>
 #include "frame.h"
+#include "config.h"
 #include "lightfit.h"
 #include "shadowmap.h"
 #include "view.h"
@@ -23,6 +24,11 @@ uint64_t sl_run_view_bad(const struct sl_view *v);
  * times (sorted in place), NaN ones (a GPU timer that failed, glctx.h)
  * left out; all NaN: NaN (not measured). */
 void sl_run_med_min_max(double *t, int n, double out[3]);
+
+/* The config's first label whose run is the contour's NSM (method nsm,
+ * front faces culled: the configured parameters are then exactly those),
+ * -1 none (run.c: contour_from nsm). */
+int sl_run_contour_label(const struct sl_config *c);
 
 /* Shadow-map depths outside [0, 1] or not finite. */
 uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size);

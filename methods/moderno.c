@@ -119,9 +119,17 @@ static int coherence(const struct ctx *c, float u, float v, float z, int texels,
         n = 3;
     }
     int lit = 0;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++)
-            lit += lit_at(c, x0 + i, y0 + j, z);
+    if (x0 >= 0 && y0 >= 0 && x0 + n <= c->S && y0 + n <= c->S) {
+        /* the footprint inside the map (all but the border texels): no clamps */
+        const float *row = c->L->depth + (size_t)y0 * (size_t)c->S + (size_t)x0;
+        for (int j = 0; j < n; j++, row += c->S)
+            for (int i = 0; i < n; i++)
+                lit += z <= row[i];
+    } else {
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++)
+                lit += lit_at(c, x0 + i, y0 + j, z);
+    }
     *lookups += (uint64_t)(n * n);
     *shadowed = n * n - lit;
     return lit == n * n ? 1 : lit == 0 ? 2 : 0;

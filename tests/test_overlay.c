@@ -350,12 +350,90 @@ static void overlay_crop_small_scene(void **st)
     assert_int_equal(sl_overlay_crop(&v, NULL, NULL, 4, &b), 0);   /* without bands: the ground's box */
 }
 
+/* The greedy windows, the plain way: every window counted from scratch, in
+ * the order sl_overlay_insets promises (most errors; ties the lowest, then
+ * leftmost; none overlapping one chosen before; none holding no error). */
+static int insets_brute(int w, int h, const uint8_t *err, int s, int n, struct sl_ov_box *out, uint64_t *count)
+{
+    int got = 0;
+    for (; got < n; got++) {
+        uint64_t best = 0;
+        int bx = -1, by = -1;
+        for (int y = 0; y + s <= h; y++)
+            for (int x = 0; x + s <= w; x++) {
+                int clash = 0;
+                for (int k = 0; k < got; k++)
+                    clash |= x < out[k].x + out[k].w && out[k].x < x + s && y < out[k].y + out[k].h && out[k].y < y + s;
+                if (clash)
+                    continue;
+                uint64_t c = 0;
+                for (int j = 0; j < s; j++)
+                    for (int i = 0; i < s; i++)
+                        c += err[(size_t)(y + j) * (size_t)w + (size_t)(x + i)] != 0;
+                if (c > best) {
+                    best = c;
+                    bx = x;
+                    by = y;
+                }
+            }
+        if (bx < 0)
+            break;
+        out[got] = (struct sl_ov_box){bx, by, s, s};
+        count[got] = best;
+    }
+    return got;
+}
+
+/* The windows over masks of every shape (none, one pixel at each corner,
+ * clusters, scattered noise, ties, a full frame) are the plain search's. */
+static void overlay_insets_exact(void **st)
+{
+    (void)st;
+    enum { W = 61, H = 47 };
+    static uint8_t err[W * H];
+    unsigned seed = 12345;
+    for (int trial = 0; trial < 120; trial++) {
+        memset(err, 0, sizeof err);
+        int kind = trial % 6;
+        if (kind == 1)   /* one pixel, at a corner or an edge */
+            err[(trial / 6 % 4 < 2 ? 0 : H - 1) * W + (trial / 6 % 2 ? W - 1 : 0)] = 255;
+        for (int i = 0; kind == 2 && i < 3; i++) {   /* clusters */
+            seed = seed * 1103515245u + 12345u;
+            int cx = (int)(seed >> 8) % W, cy = (int)(seed >> 20) % H;
+            for (int y = cy - 3; y <= cy + 3; y++)
+                for (int x = cx - 4; x <= cx + 4; x++)
+                    if (x >= 0 && y >= 0 && x < W && y < H)
+                        err[y * W + x] = 255;
+        }
+        for (int i = 0; (kind == 3 || kind == 4) && i < W * H; i++) {   /* noise, sparse or dense */
+            seed = seed * 1103515245u + 12345u;
+            err[i] = (seed >> 16) % (kind == 3 ? 97u : 3u) == 0 ? 255 : 0;
+        }
+        if (kind == 5)
+            memset(err, 255, sizeof err);
+        int s = 4 + trial % 9, n = 1 + trial % 4;
+        struct sl_ov_box a[4], b[4];
+        uint64_t ca[4], cb[4];
+        int na = sl_overlay_insets(W, H, err, s, n, a, ca), nb = insets_brute(W, H, err, s, n, b, cb);
+        assert_int_equal(na, nb);
+        for (int k = 0; k < na; k++) {
+            assert_int_equal(a[k].x, b[k].x);
+            assert_int_equal(a[k].y, b[k].y);
+            assert_int_equal(a[k].w, s);
+            assert_int_equal(ca[k], cb[k]);
+        }
+        if (kind == 0)
+            assert_int_equal(na, 0);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(overlay, errors_on_top),
         SL_CASE(overlay, exr_stats),
         SL_CASE(overlay, crop_small_scene),
+        SL_CASE(overlay, insets_exact),
     };
     int rc = sl_run_group(argc, argv, "overlay", tests, sl_test_setup, sl_test_teardown);
     if (ran)

@@ -162,16 +162,46 @@ int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_
         s = h;
     if (s <= 0 || n <= 0)
         return 0;
-    /* summed-area table, (w+1) x (h+1), sat[y][x] = errors in [0,x) x [0,y) */
-    size_t sw = (size_t)w + 1;
-    uint32_t *sat = calloc(sw * ((size_t)h + 1), sizeof *sat);
+    /* only windows holding an error pixel can be chosen (one holding none
+     * never beats best = 0), and those lie within s of the errors' bounding
+     * box: the table covers that box, not the frame (a 1024² frame's table
+     * was 4 MiB of fresh pages per cell, most of them around no error).
+     * The windows are scanned in the same order as over the whole frame, so
+     * the same ones are chosen. */
+    int ex0 = w, ey0 = h, ex1 = -1, ey1 = -1;
+    for (int y = 0; y < h; y++) {
+        const uint8_t *e = err + (size_t)y * (size_t)w;
+        int first = -1, last = -1;
+        for (int x = 0; x < w; x++)
+            if (e[x]) {
+                if (first < 0)
+                    first = x;
+                last = x;
+            }
+        if (first < 0)
+            continue;
+        ex0 = first < ex0 ? first : ex0;
+        ex1 = last > ex1 ? last : ex1;
+        ey0 = y < ey0 ? y : ey0;
+        ey1 = y;
+    }
+    if (ex1 < 0)
+        return 0;
+    /* window corners x in [X0, XL], y in [Y0, YL]; the table covers
+     * [X0, XL + s) x [Y0, YL + s) */
+    const int X0 = ex0 - s + 1 > 0 ? ex0 - s + 1 : 0, Y0 = ey0 - s + 1 > 0 ? ey0 - s + 1 : 0;
+    const int XL = ex1 < w - s ? ex1 : w - s, YL = ey1 < h - s ? ey1 : h - s;
+    const int rw = XL + s - X0, rh = YL + s - Y0;
+    /* summed-area table, (rw+1) x (rh+1), sat[y][x] = errors in [X0, X0+x) x [Y0, Y0+y) */
+    size_t sw = (size_t)rw + 1;
+    uint32_t *sat = calloc(sw * ((size_t)rh + 1), sizeof *sat);
     if (!sat)
         return -1;
-    for (int y = 0; y < h; y++) {
+    for (int y = 0; y < rh; y++) {
         uint32_t run = 0;
-        const uint8_t *e = err + (size_t)y * (size_t)w;
+        const uint8_t *e = err + (size_t)(Y0 + y) * (size_t)w + (size_t)X0;
         uint32_t *above = sat + (size_t)y * sw, *row = above + sw;
-        for (int x = 0; x < w; x++) {
+        for (int x = 0; x < rw; x++) {
             run += e[x] != 0;
             row[x + 1] = above[x + 1] + run;
         }
@@ -180,10 +210,11 @@ int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_
     for (; got < n; got++) {
         uint32_t best = 0;
         int bx = -1, by = -1;
-        for (int y = 0; y + s <= h; y++) {
-            const uint32_t *lo = sat + (size_t)y * sw, *hi = lo + (size_t)s * sw;
-            for (int x = 0; x + s <= w; x++) {
-                uint32_t c = hi[x + s] - hi[x] - lo[x + s] + lo[x];
+        for (int y = Y0; y <= YL; y++) {
+            const uint32_t *lo = sat + (size_t)(y - Y0) * sw, *hi = lo + (size_t)s * sw;
+            for (int x = X0; x <= XL; x++) {
+                int r = x - X0;
+                uint32_t c = hi[r + s] - hi[r] - lo[r + s] + lo[r];
                 if (c <= best)
                     continue;
                 int clash = 0;
