@@ -365,25 +365,30 @@ static void pfl_side(const struct sl_view *v, const float *m, const uint8_t *ban
 
 /* The wrong pixels' figures: per region their count, by band of m, and
  * their median m. One pass gathers the wrong PFL pixels (a few in a
- * hundred), the regions then count over those alone. bad: w*h floats of
- * scratch for the gathered m (NULL: no medians). */
+ * hundred), the regions then count over those alone. hist NULL: no medians. */
 static void wrong_side(const struct sl_view *v, const struct sl_verdicts *vd, const float *m, const uint8_t *band,
-                       const int *thickness, int nregions, uint64_t n[][SL_AFIG_COUNT], uint64_t *wrong, float *bad,
+                       const int *thickness, int nregions, uint64_t n[][SL_AFIG_COUNT], uint64_t *wrong,
                        uint64_t *hist)
 {
     size_t npx = (size_t)v->w * (size_t)v->h;
     size_t nw = 0;
-    uint8_t *wband = bad ? malloc(npx) : NULL;   /* the gathered pixels' bands */
-    if (!wband)
+#define SL_WRONG_PFL(i)                                                                                          \
+    (v->cls[i] == SL_C_PFL && ((vd->v[i] == SL_V_LIT && v->truth[i] == SL_T_SHADOW) ||                         \
+                               (vd->v[i] == SL_V_SHADOW && v->truth[i] == SL_T_LIT)))
+    for (size_t i = 0; i < npx; i++)
+        nw += SL_WRONG_PFL(i);
+    /* the gathered pixels' m and bands, sized to them (a frame's worth of
+     * scratch held at a 4096^2 group's peak was 8 MB at 1920x1080) */
+    float *bad = hist ? malloc((nw + 1) * sizeof *bad) : NULL;
+    uint8_t *wband = bad ? malloc(nw + 1) : NULL;
+    if (!wband) {
+        free(bad);
         bad = NULL;
-    if (!bad) {
         /* no scratch: count region by region over every pixel, no medians */
         for (int r = 0; r < nregions; r++) {
             wrong[r] = 0;
             for (size_t i = 0; i < npx; i++) {
-                uint8_t t = v->truth[i], x = vd->v[i];
-                if (v->cls[i] != SL_C_PFL || !sl_in_contour(band[i], thickness[r]) ||
-                    !((x == SL_V_LIT && t == SL_T_SHADOW) || (x == SL_V_SHADOW && t == SL_T_LIT)))
+                if (!SL_WRONG_PFL(i) || !sl_in_contour(band[i], thickness[r]))
                     continue;
                 wrong[r]++;
                 if (!isnan(m[i]))
@@ -393,13 +398,13 @@ static void wrong_side(const struct sl_view *v, const struct sl_verdicts *vd, co
         }
         return;
     }
-    for (size_t i = 0; i < npx; i++) {
-        uint8_t t = v->truth[i], x = vd->v[i];
-        if (v->cls[i] == SL_C_PFL && ((x == SL_V_LIT && t == SL_T_SHADOW) || (x == SL_V_SHADOW && t == SL_T_LIT))) {
+    nw = 0;
+    for (size_t i = 0; i < npx; i++)
+        if (SL_WRONG_PFL(i)) {
             bad[nw] = m[i];
             wband[nw++] = band[i];
         }
-    }
+#undef SL_WRONG_PFL
     float *sel = malloc((nw + 1) * sizeof *sel);   /* a region's m (NULL: no median) */
     for (int r = 0; r < nregions; r++) {
         uint64_t *c = n[r];
@@ -418,6 +423,7 @@ static void wrong_side(const struct sl_view *v, const struct sl_verdicts *vd, co
         c[SL_AFIG_wrong_m_median_milli] = sel ? milli(median(sel, nb, hist)) : 0;
     }
     free(sel);
+    free(bad);
     free(wband);
 }
 
@@ -425,15 +431,17 @@ static void wrong_side(const struct sl_view *v, const struct sl_verdicts *vd, co
  * own), these bands and these regions; else counted and kept. */
 static void pfl_side_cached(struct sl_alias_cache *k, const struct sl_view *v, const float *m,
                             const uint8_t *band, const int *thickness, int nregions, uint64_t n[][SL_AFIG_COUNT],
-                            uint64_t *pfl, float *all, uint64_t *hist)
+                            uint64_t *pfl, uint64_t *hist)
 {
     size_t npx = (size_t)v->w * (size_t)v->h;
     int fits = k && m == k->m && k->pfl_gen == k->gen && k->nregions == nregions && k->band &&
                !memcmp(k->thickness, thickness, (size_t)nregions * sizeof *thickness) &&
                !memcmp(k->band, band, npx);
     if (!fits) {
+        float *all = hist ? malloc(npx * sizeof *all) : NULL;   /* no scratch: no medians (0) */
         pfl_side(v, m, band, thickness, nregions, n, pfl, all, hist);
-        if (!k || m != k->m || !all)
+        free(all);
+        if (!k || m != k->m || !all || !hist)
             return;
         if (k->band_cap < npx) {
             free(k->band);
@@ -470,24 +478,16 @@ void sl_alias_figures_cached(struct sl_alias_cache *k, const struct sl_view *v, 
         nregions = SL_MAX_REGIONS;
     out->nregions = nregions;
     memcpy(out->thickness, thickness, (size_t)nregions * sizeof *thickness);
-    size_t npx = (size_t)v->w * (size_t)v->h;
-    float *scratch = malloc(npx * sizeof *scratch);
     uint64_t *hist = malloc(65536 * sizeof *hist), pfl[SL_MAX_REGIONS], wrong[SL_MAX_REGIONS];
-    /* no scratch: no medians (0), the counts still */
-    if (!hist) {
-        free(scratch);
-        scratch = NULL;
-    }
     uint64_t (*n)[SL_AFIG_COUNT] = out->n;
-    pfl_side_cached(k, v, m, band, thickness, nregions, n, pfl, scratch, hist);
-    wrong_side(v, vd, m, band, thickness, nregions, n, wrong, scratch, hist);
+    pfl_side_cached(k, v, m, band, thickness, nregions, n, pfl, hist);
+    wrong_side(v, vd, m, band, thickness, nregions, n, wrong, hist);
     for (int r = 0; r < nregions; r++)
         for (int f = 0; f < SL_AFIG_COUNT; f++) {
             double base = !strcmp(afig_of[f], "pfl") ? (double)pfl[r] : !strcmp(afig_of[f], "wrong") ? (double)wrong[r]
                                                                                                      : 0.0;
             out->pct[r][f] = base > 0.0 ? 100.0 * (double)n[r][f] / base : NAN;
         }
-    free(scratch);
     free(hist);
 }
 
