@@ -541,7 +541,6 @@ out:
 
 /* ---- whole studies -------------------------------------------------------- */
 
-static void loadavg(char *buf, size_t n);
 
 static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw)
 {
@@ -570,13 +569,13 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
     struct sl_run_result rr;
     struct rusage ru0, ru1;
     char load0[64], load1[64];
-    loadavg(load0, sizeof load0);
+    sl_bench_loadavg(load0, sizeof load0);
     getrusage(RUSAGE_SELF, &ru0);
     double t0 = sl_now(), c0 = cpu_now();
     e = sl_run(&c, &ro, &rr, d);
     double wall = sl_now() - t0, cpu = cpu_now() - c0;
     getrusage(RUSAGE_SELF, &ru1);
-    loadavg(load1, sizeof load1);
+    sl_bench_loadavg(load1, sizeof load1);
     if (files)
         nftw(tmp, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
     if (e)
@@ -681,7 +680,7 @@ static enum sl_err write_csv(const struct sl_bench_result *res, const char *path
 /* ---- the driver -------------------------------------------------------------- */
 
 /* Other work on a shared machine skews every time: say how busy it was. */
-static void loadavg(char *buf, size_t n)
+void sl_bench_loadavg(char *buf, size_t n)
 {
     snprintf(buf, n, "unknown");
     FILE *f = fopen("/proc/loadavg", "r");
@@ -779,7 +778,7 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
         if (stages & (1u << i))
             fprintf(out, " %s", stage_names[i]);
     char la[64];
-    loadavg(la, sizeof la);
+    sl_bench_loadavg(la, sizeof la);
     fprintf(out, "\nload average at start: %s\n```\n\n", la);
     fflush(out);
 
@@ -858,7 +857,7 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
         snprintf(crow->name, sizeof crow->name, "first GL context (%s), cpu %.1f ms",
                  sl_gl_backend_name(used), ctx_cpu_ms);
     write_summary(res, out);
-    loadavg(la, sizeof la);
+    sl_bench_loadavg(la, sizeof la);
     fprintf(out, "load average at the end: %s\n\n", la);
     if (o->csv)
         e = write_csv(res, o->csv, d);

@@ -41,6 +41,9 @@ enum sl_err sl_bench_lightfit(struct sl_bench_ctx *x, struct sl_bench_result *re
 /* The truth pass against a plain rtcOccluded16 loop (bench_truth.c). */
 enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 
+/* The load average (1, 5, 15 min) as "a b c", or "unknown". */
+void sl_bench_loadavg(char *buf, size_t n);
+
 struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *stage, const char *unit,
                                       double value, double plain, double target, enum sl_bench_cmp cmp);
 

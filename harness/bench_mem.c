@@ -68,18 +68,6 @@ static double cpu_s(void)
            1e-6 * ((double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_usec);
 }
 
-static void loadavg(char *buf, size_t n)
-{
-    snprintf(buf, n, "unknown");
-    FILE *f = fopen("/proc/loadavg", "r");
-    if (!f)
-        return;
-    double a, b, c;
-    if (fscanf(f, "%lf %lf %lf", &a, &b, &c) == 3)
-        snprintf(buf, n, "%.2f %.2f %.2f", a, b, c);
-    fclose(f);
-}
-
 /* A layer's arrays hashed (FNV-1a over 32-bit words; the id array may be
  * NULL): equal hashes stand for equal layers. */
 static uint64_t layer_hash(const struct sl_depth_layer *L, size_t n)
@@ -176,7 +164,7 @@ enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_resul
     /* the programs are compiled and the view rendered: what is held now is
      * the floor the layers add to */
     char la0[64], la1[64];
-    loadavg(la0, sizeof la0);
+    sl_bench_loadavg(la0, sizeof la0);
     glFinish();
     const int reset = reset_hwm();
     const double rss0 = proc_status_bytes("VmRSS:");
@@ -203,7 +191,7 @@ enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_resul
     getrusage(RUSAGE_SELF, &ru1);
     const double hwm = proc_status_bytes("VmHWM:");
     const double peak = reset ? hwm : 1024.0 * (double)ru1.ru_maxrss;
-    loadavg(la1, sizeof la1);
+    sl_bench_loadavg(la1, sizeof la1);
     for (int l = SL_LAYER_BGSM; l < SL_LAYER_COUNT; l++)
         if (l != SL_LAYER_SGSM)
             h[l] = layer_hash(&f.layer[l], n);

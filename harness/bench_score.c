@@ -297,18 +297,6 @@ static double proc_cpu(void)
            1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
 
-static void load_now(char *buf, size_t n)
-{
-    snprintf(buf, n, "unknown");
-    FILE *f = fopen("/proc/loadavg", "r");
-    if (!f)
-        return;
-    double a, b, c;
-    if (fscanf(f, "%lf %lf %lf", &a, &b, &c) == 3)
-        snprintf(buf, n, "%.2f %.2f %.2f", a, b, c);
-    fclose(f);
-}
-
 static int box_same(const struct sl_light_box *a, const struct sl_light_box *b)
 {
     return memcmp(a->vp, b->vp, sizeof a->vp) == 0 && memcmp(a->view, b->view, sizeof a->view) == 0 &&
@@ -340,7 +328,7 @@ enum sl_err sl_bench_lightfit(struct sl_bench_ctx *x, struct sl_bench_result *re
     const int reps = x->reps, T = x->threads;
     const size_t npx = (size_t)LF_W * (size_t)LF_H;
     char la0[64], la1[64];
-    load_now(la0, sizeof la0);
+    sl_bench_loadavg(la0, sizeof la0);
     struct sl_view v[2];
     memset(v, 0, sizeof v);
     /* the scene under a point light: above the middle of its bounds by half their height */
@@ -393,7 +381,7 @@ enum sl_err sl_bench_lightfit(struct sl_bench_ctx *x, struct sl_bench_result *re
                 t[3 * (size_t)reps] = 1e3 * (c2 - c1);
             }
         }
-    load_now(la1, sizeof la1);
+    sl_bench_loadavg(la1, sizeof la1);
     fprintf(out, "## Light fit on %d threads vs one (%s, %s, %dx%d, min and median of %d after a warm-up)\n\n",
             T, x->s.name, x->s.vp[x->vp[0]].name, LF_W, LF_H, reps);
     fprintf(out, "Each repetition fits on one thread, then on %d, and compares the boxes bit for bit: %s. CPU: "
