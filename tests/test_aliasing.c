@@ -212,6 +212,15 @@ static int cmp_f(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The reference: the median of x[0..n) by a full sort (sorted in place),
+ * x 1000 rounded as the figures store it (an infinite one capped). */
+static uint64_t sorted_median_milli(float *x, int n)
+{
+    qsort(x, (size_t)n, sizeof *x, cmp_f);
+    double want = n % 2 ? x[n / 2] : 0.5 * ((double)x[n / 2 - 1] + (double)x[n / 2]);
+    return isinf(want) ? 9000000000000000ull : (uint64_t)floor(want * 1000.0 + 0.5);
+}
+
 /* The medians come from a linear-time select: they equal a full sort's
  * middle (the mean of the two middles for an even count) on values with
  * many ties, zeros of both signs, subnormals and infinities, for odd and
@@ -251,17 +260,11 @@ static void aliasing_median_select(void **st)
         struct sl_alias_figures f;
         sl_alias_figures_compute(&v, &vd, m, band, regions, 1, &f);
         memcpy(ref, m, (size_t)n * sizeof *ref);
-        qsort(ref, (size_t)n, sizeof *ref, cmp_f);
-        double want = n % 2 ? ref[n / 2] : 0.5 * ((double)ref[n / 2 - 1] + (double)ref[n / 2]);
-        uint64_t milli = isinf(want) ? 9000000000000000ull : (uint64_t)floor(want * 1000.0 + 0.5);
-        assert_int_equal(f.n[0][SL_AFIG_m_median_milli], milli);
+        assert_int_equal(f.n[0][SL_AFIG_m_median_milli], sorted_median_milli(ref, n));
         int nb = 0;
         for (int i = 0; i < n; i += 3)
             ref[nb++] = m[i];
-        qsort(ref, (size_t)nb, sizeof *ref, cmp_f);
-        want = nb % 2 ? ref[nb / 2] : 0.5 * ((double)ref[nb / 2 - 1] + (double)ref[nb / 2]);
-        milli = isinf(want) ? 9000000000000000ull : (uint64_t)floor(want * 1000.0 + 0.5);
-        assert_int_equal(f.n[0][SL_AFIG_wrong_m_median_milli], milli);
+        assert_int_equal(f.n[0][SL_AFIG_wrong_m_median_milli], sorted_median_milli(ref, nb));
     }
 }
 

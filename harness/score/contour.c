@@ -44,26 +44,13 @@ static inline uint8_t dil_px(uint8_t k, uint8_t c, uint8_t s, uint8_t l, uint8_t
  * bands before, drawn pixel by pixel in vector registers. */
 #define SEG 64
 
-/* how far p[0..SEG) strays from c, as one word: 0 when every byte is c;
- * four 16-byte vectors (GCC's vector extension: SSE2 on x86-64, NEON on
- * arm64), XORed with c's broadcast and ORed */
-typedef uint64_t seg_v2 __attribute__((vector_size(16)));
-
-static inline uint64_t seg_dev(const uint8_t *p, uint8_t c)
-{
-    const uint64_t cw = (uint64_t)c * 0x0101010101010101ull;
-    const seg_v2 b = {cw, cw};
-    seg_v2 w[SEG / 16], d = {0, 0};
-    memcpy(w, p, sizeof w);
-    for (int k = 0; k < SEG / 16; k++)
-        d |= w[k] ^ b;
-    return d[0] | d[1];
-}
+/* SEG is the 64 bytes sl_bytes64_dev (contour.h) tests at once */
+_Static_assert(SEG == 64, "segments are sl_bytes64_dev's 64 bytes");
 
 static inline uint8_t any_n(const uint8_t *p, int n)
 {
     if (n == SEG)
-        return seg_dev(p, 0) != 0;
+        return sl_bytes64_dev(p, 0) != 0;
     uint8_t a = 0;
     for (int x = 0; x < n; x++)
         a |= p[x];
@@ -95,8 +82,8 @@ static void edge_row(int w, const uint8_t *restrict up, const uint8_t *restrict 
         const uint8_t c = s[x0];
         /* one state over the segment, its neighbours left and right, and
          * the rows above and below (or all background): no change, no edge */
-        if (x1 - x0 == SEG && !seg_dev(s + x0, c) &&
-            (c == 0 || (!seg_dev(up + x0, c) && !seg_dev(dn + x0, c) && (x0 == 0 || s[x0 - 1] == c) &&
+        if (x1 - x0 == SEG && !sl_bytes64_dev(s + x0, c) &&
+            (c == 0 || (!sl_bytes64_dev(up + x0, c) && !sl_bytes64_dev(dn + x0, c) && (x0 == 0 || s[x0 - 1] == c) &&
                         (x1 == w || s[x1] == c)))) {
             memset(b + x0, 0, SEG);
             nz[j] = 0;

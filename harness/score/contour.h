@@ -17,6 +17,7 @@
 #define SL_CONTOUR_H
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 /* band[i] = 0 outside every contour; k >= 1: in the contour of thickness 2k
  * and every thicker one (k = 1 the change itself, k = 2 after one dilation,
@@ -43,6 +44,23 @@ void sl_contour_bands_plain(int w, int h, const uint8_t *state, int dilations, u
 static inline int sl_in_contour(uint8_t b, int thickness)
 {
     return thickness == 0 || (b != 0 && 2 * (int)b <= thickness);
+}
+
+/* How far the 64 bytes p[0..64) stray from c, as one word: 0 when every
+ * byte is c. Four 16-byte vectors (GCC's vector extension: SSE2 on x86-64,
+ * NEON on arm64) XORed with c's broadcast and ORed: a table-free test the
+ * contour segments and the scoring pass's uniform runs share. */
+typedef uint64_t sl_bytes64_v2 __attribute__((vector_size(16)));
+
+static inline uint64_t sl_bytes64_dev(const uint8_t *p, uint8_t c)
+{
+    const uint64_t cw = (uint64_t)c * 0x0101010101010101ull;
+    const sl_bytes64_v2 b = {cw, cw};
+    sl_bytes64_v2 w[4], d = {0, 0};
+    memcpy(w, p, sizeof w);
+    for (int k = 0; k < 4; k++)
+        d |= w[k] ^ b;
+    return d[0] | d[1];
 }
 
 #endif

@@ -219,20 +219,9 @@ static void fused_tabs_init(struct fused_tabs *T, const int *thickness, int nreg
  * run is uniform: four 16-byte vectors XORed with the first byte's
  * broadcast and ORed (GCC's vector extension: SSE2 on x86-64, NEON on
  * arm64); a table-free test, so a uniform run costs about 1/8 of a pixel's key. */
-#define SPAN_RUN 64
+#define SPAN_RUN 64   /* sl_bytes64_dev's 64 bytes (contour.h) */
 
-typedef uint64_t run_v2 __attribute__((vector_size(16)));
-
-static inline uint64_t run_dev(const uint8_t *p)
-{
-    const uint64_t cw = (uint64_t)p[0] * 0x0101010101010101ull;
-    const run_v2 b = {cw, cw};
-    run_v2 w[SPAN_RUN / 16], d = {0, 0};
-    memcpy(w, p, sizeof w);
-    for (int k = 0; k < SPAN_RUN / 16; k++)
-        d |= w[k] ^ b;
-    return d[0] | d[1];
-}
+static inline uint64_t run_dev(const uint8_t *p) { return sl_bytes64_dev(p, p[0]); }
 
 /* Pixels [i0, i1) one by one into the histogram (the runs that are not
  * uniform, and the ends); the exactness count reads the G-buffer's class
