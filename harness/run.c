@@ -754,7 +754,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             struct sl_run_event ev = {.kind = SL_EVENT_NONFINITE, .config = c, .cell = cell};
             emit(&x, &ev);
         }
-        if (st && (e = sl_out_store_cell(st, run_id, c, cell, store_path, o->write_files ? dirs.final : NULL, d)))
+        /* a stored cell is a whole one (--resume skips it): its sheet is on
+         * disk before its row, or a kill between the two loses the sheet */
+        if (st && ((e = sl_ovw_wait(x.ovw, d)) ||
+                   (e = sl_out_store_cell(st, run_id, c, cell, store_path, o->write_files ? dirs.final : NULL, d))))
             break;
         res->ncells++;
         struct sl_run_event ev = {.kind = SL_EVENT_PROGRESS, .config = c, .cell = cell,
