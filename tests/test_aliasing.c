@@ -268,6 +268,99 @@ static void aliasing_median_select(void **st)
     }
 }
 
+/* m in lanes (sl_alias_image under one frame) against the scalar sl_alias_m
+ * of each pixel, bit for bit: a perspective camera over points in front of
+ * it, beside it and behind it, normals of every kind (ties between axes,
+ * edge-on to the camera or the light), under a perspective light, an
+ * orthographic one and a singular one; 37 x 23 pixels, so the lanes' tail
+ * is scalar. */
+static void aliasing_image_lanes_match(void **st)
+{
+    (void)st;
+    enum { W = 37, H = 23, N = W * H };
+    static float pos[3 * N], nrm[3 * N], got[N];
+    static uint8_t cls[N];
+    struct sl_view v;
+    memset(&v, 0, sizeof v);
+    v.w = W;
+    v.h = H;
+    v.pos = pos;
+    v.nrm = nrm;
+    v.cls = cls;
+    vec3 e = {0.5f, 4.0f, 6.0f}, dv = {-0.1f, -0.5f, -1.0f}, u = {0, 1, 0};
+    glm_look(e, dv, u, v.view);
+    glm_perspective(0.9f, (float)W / H, 0.1f, 50.0f, v.proj);
+    mat4 cam;
+    glm_mat4_mul(v.proj, v.view, cam);
+    uint32_t r = 12345u;
+#define RND() ((r = r * 1664525u + 1013904223u) >> 8) * (1.0f / 16777216.0f)
+    for (int i = 0; i < N; i++) {
+        float *p = pos + 3 * i, *n = nrm + 3 * i;
+        for (int k = 0; k < 3; k++)
+            p[k] = 8.0f * RND() - 4.0f;
+        if (i % 7 == 3)
+            p[2] = 9.0f;                                   /* behind the camera */
+        switch (i % 6) {
+        case 0: n[0] = 0.0f, n[1] = 1.0f, n[2] = 0.0f; break;
+        case 1: n[0] = n[1] = n[2] = 0.57735026f; break;   /* ties between the axes */
+        case 2: n[0] = 0.0f, n[1] = 0.0f, n[2] = -1.0f; break;
+        case 3: n[0] = -0.70710678f, n[1] = 0.0f, n[2] = 0.70710678f; break;
+        default: {
+            float a = RND() - 0.5f, b = RND() - 0.5f, c = RND() - 0.5f, l = sqrtf(a * a + b * b + c * c);
+            n[0] = a / l, n[1] = b / l, n[2] = c / l;
+        }
+        }
+        if (i % 11 == 5) {                                 /* edge-on to the camera's beam */
+            vec3 d = {p[0] - e[0], p[1] - e[1], p[2] - e[2]}, q;
+            glm_vec3_cross(d, (vec3){0, 1, 0}, q);
+            glm_vec3_normalize(q);
+            memcpy(n, q, sizeof q);
+        }
+        cls[i] = i % 9 == 4 ? SL_C_PNFL : i % 13 == 6 ? SL_C_BACKGROUND : SL_C_PFL;
+    }
+#undef RND
+    struct sl_light_frame f;
+    memset(&f, 0, sizeof f);
+    f.size = 256;
+    mat4 lview, lproj;
+    for (int light = 0; light < 3; light++) {
+        if (light == 0) {                                  /* a spot over the scene */
+            glm_look((vec3){2.0f, 9.0f, 1.0f}, (vec3){-0.2f, -1.0f, -0.1f}, (vec3){0, 0, 1}, lview);
+            glm_perspective(1.2f, 1.0f, 0.5f, 30.0f, lproj);
+            glm_mat4_mul(lproj, lview, f.box.vp);
+        } else if (light == 1) {                           /* a directional light */
+            const float eye[3] = {0, 10, 0}, down[3] = {0.3f, -1.0f, 0.2f}, up[3] = {0, 0, -1};
+            ortho_vp(eye, down, up, 5.0f, f.box.vp);
+        } else {
+            glm_mat4_zero(f.box.vp);                       /* singular: no texel anywhere */
+        }
+        sl_alias_image(&v, &f, NULL, 2, got);
+        int finite = 0;
+        for (int i = 0; i < N; i++) {
+            if (cls[i] != SL_C_PFL) {
+                assert_true(isnan(got[i]));
+                continue;
+            }
+            float want = (float)sl_alias_m(cam, W, H, f.box.vp, f.size, pos + 3 * i, nrm + 3 * i);
+            if (isnan(want)) {
+                assert_true(isnan(got[i]));
+            } else {
+                uint32_t a, b;
+                memcpy(&a, &got[i], 4);
+                memcpy(&b, &want, 4);
+                if (a != b)
+                    fail_msg("light %d pixel %d: m %.9g in lanes, %.9g alone", light, i, got[i], want);
+            }
+            finite += isfinite(want) && want > 0.0f;
+        }
+        /* the cases are not all degenerate: most pixels have an m */
+        if (light < 2)
+            assert_true(finite > N / 3);
+        else
+            assert_int_equal(finite, 0);
+    }
+}
+
 /* The m kept for a view's cells: the same values sl_alias_image writes;
  * computed again for another frame (projection or size) or another view
  * (serial), and not for the same ones. */
@@ -492,6 +585,7 @@ int main(int argc, char **argv)
         SL_CASE(aliasing, median_select),
         SL_CASE(aliasing, cache_keyed),
         SL_CASE(aliasing, figures_cached),
+        SL_CASE(aliasing, image_lanes_match),
     };
     return sl_run_group(argc, argv, "aliasing", tests, sl_test_setup, sl_test_teardown);
 }

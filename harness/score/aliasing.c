@@ -4,7 +4,9 @@
  * the same on every thread count (each pixel's is computed alone).
  */
 #include "aliasing.h"
+#include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
@@ -203,6 +205,13 @@ static double m_of_spans(int cam_ok, const double ac[3], const double bc[3], int
     return sqrt(0.5 * (s + sqrt(disc > 0.0 ? disc : 0.0)));
 }
 
+static float m_pixel(const struct beam *cam, const struct beam *lit, const float p[3], const float nrm[3])
+{
+    double ac[3], bc[3], al[3], bl[3];
+    int okc = beam_spans(cam, p, nrm, ac, bc), okl = beam_spans(lit, p, nrm, al, bl);
+    return (float)m_of_spans(okc, ac, bc, okl, al, bl, nrm);
+}
+
 double sl_alias_m(const mat4 cam_vp, int cw, int ch, const mat4 light_vp, int size, const float p[3],
                   const float nrm[3])
 {
@@ -212,6 +221,134 @@ double sl_alias_m(const mat4 cam_vp, int cw, int ch, const mat4 light_vp, int si
     double ac[3], bc[3], al[3], bl[3];
     int okc = beam_spans(&c, p, nrm, ac, bc), okl = beam_spans(&l, p, nrm, al, bl);
     return m_of_spans(okc, ac, bc, okl, al, bl, nrm);
+}
+
+/* The same m for SL_ALIAS_LANES pixels at once, in GCC's generic vectors:
+ * every lane does the scalar code's operations in the scalar code's order
+ * (IEEE division and square root are exact-rounded per lane, and this file
+ * is built with -ffp-contract=off, CMakeLists.txt), so each pixel's m is
+ * bit for bit the scalar one (aliasing::image_lanes_match). The early
+ * returns become lane masks: a failed lane computes on and is discarded.
+ * Per pixel m is some twenty dependent divisions and square roots; in
+ * lanes they overlap (m was 13% of the Morais study's CPU). */
+#define SL_ALIAS_LANES 8
+typedef double vd_t __attribute__((vector_size(8 * SL_ALIAS_LANES)));
+typedef int64_t vl_t __attribute__((vector_size(8 * SL_ALIAS_LANES)));
+
+#define VSEL(m, a, b) ((vd_t)(((vl_t)(a) & (m)) | ((vl_t)(b) & ~(m))))
+#define VABS(x) ((vd_t)((vl_t)(x) & INT64_MAX))
+/* isfinite: NAN compares false */
+#define VFINITE(x) (VABS(x) <= DBL_MAX)
+
+static inline __attribute__((always_inline)) vl_t vbeam_hit(const struct beam *b, const vd_t q[3], const vd_t p[3],
+                                                          const vd_t n[3], vd_t hit[3])
+{
+    vd_t d[3];
+    for (int k = 0; k < 3; k++)
+        d[k] = b->parallel ? (vd_t){0} + b->dir[k] : q[k] - b->eye[k];
+    vd_t dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    vl_t ok = VABS(dn) > 1e-300;
+    vd_t t = ((p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] + (p[2] - q[2]) * n[2]) / dn;
+    if (!b->parallel)
+        ok &= 1.0 + t > 0.0;
+    for (int k = 0; k < 3; k++) {
+        hit[k] = q[k] + t * d[k];
+        ok &= VFINITE(hit[k]);
+    }
+    return ok;
+}
+
+static inline __attribute__((always_inline)) vl_t vbeam_spans(const struct beam *b, const vd_t p[3], const vd_t n[3],
+                                                            vd_t a[3], vd_t bb[3])
+{
+    if (!b->ok) {
+        for (int k = 0; k < 3; k++)
+            a[k] = bb[k] = (vd_t){0};
+        return (vl_t){0};
+    }
+    const double *m = b->vp;
+    vd_t wp = m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
+    vl_t ok = VABS(wp) > 0.0;
+    vd_t hit[4][3];
+    for (int e = 0; e < 4; e++) {
+        const double *col = b->inv + (e < 2 ? 0 : 4);
+        vd_t s = (e % 2 ? -1.0 : 1.0) * wp / (e < 2 ? b->w : b->h);
+        vd_t r = 1.0 / (1.0 + s * col[3]), q[3];
+        for (int k = 0; k < 3; k++)
+            q[k] = (p[k] + s * col[k]) * r;
+        ok &= vbeam_hit(b, q, p, n, hit[e]);
+    }
+    for (int k = 0; k < 3; k++) {
+        a[k] = hit[0][k] - hit[1][k];
+        bb[k] = hit[2][k] - hit[3][k];
+    }
+    return ok;
+}
+
+static inline __attribute__((always_inline)) vd_t vsqrt(vd_t x)
+{
+    vd_t r;
+    for (int l = 0; l < SL_ALIAS_LANES; l++)
+        r[l] = sqrt(x[l]);
+    return r;
+}
+
+/* m_of_spans, lane by lane */
+static inline __attribute__((always_inline)) vd_t vm_of_spans(vl_t cam_ok, const vd_t ac[3], const vd_t bc[3],
+                                                            vl_t lit_ok, const vd_t al[3], const vd_t bl[3],
+                                                            const vd_t n[3])
+{
+    vd_t a0 = VABS(n[0]), a1 = VABS(n[1]), a2 = VABS(n[2]);
+    vl_t x0 = (a0 <= a1) & (a0 <= a2), x1 = ~x0 & (a1 <= a2), x2 = ~x0 & ~x1;
+    vd_t one = (vd_t){0} + 1.0, zero = (vd_t){0};
+    vd_t t[3] = {VSEL(x0, one, zero), VSEL(x1, one, zero), VSEL(x2, one, zero)}, e1[3], e2[3];
+    e1[0] = n[1] * t[2] - n[2] * t[1];
+    e1[1] = n[2] * t[0] - n[0] * t[2];
+    e1[2] = n[0] * t[1] - n[1] * t[0];
+    vd_t l = vsqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    for (int k = 0; k < 3; k++)
+        e1[k] /= l;
+    e2[0] = n[1] * e1[2] - n[2] * e1[1];
+    e2[1] = n[2] * e1[0] - n[0] * e1[2];
+    e2[2] = n[0] * e1[1] - n[1] * e1[0];
+#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
+    vd_t C00 = DOT(ac, e1), C01 = DOT(bc, e1), C10 = DOT(ac, e2), C11 = DOT(bc, e2);
+    vd_t L00 = DOT(al, e1), L01 = DOT(bl, e1), L10 = DOT(al, e2), L11 = DOT(bl, e2);
+#undef DOT
+    vd_t det = C00 * C11 - C01 * C10;
+    vl_t flat = ~(VABS(det) > 0.0);
+    vd_t I00 = C11 / det, I01 = -C01 / det, I10 = -C10 / det, I11 = C00 / det;
+    vd_t T00 = I00 * L00 + I01 * L10, T01 = I00 * L01 + I01 * L11;
+    vd_t T10 = I10 * L00 + I11 * L10, T11 = I10 * L01 + I11 * L11;
+    vd_t s = T00 * T00 + T01 * T01 + T10 * T10 + T11 * T11;
+    vd_t dt = T00 * T11 - T01 * T10;
+    vd_t disc = s * s - 4.0 * dt * dt;
+    vd_t m = vsqrt(0.5 * (s + vsqrt(VSEL(disc > 0.0, disc, zero))));
+    vd_t inf = zero + INFINITY;
+    m = VSEL(flat, inf, m);
+    m = VSEL(cam_ok, m, zero);                  /* !cam_ok: 0 */
+    m = VSEL(lit_ok, m, inf);                   /* !lit_ok: infinite */
+    return VSEL(cam_ok | lit_ok, m, zero + NAN);
+}
+
+/* m of the SL_ALIAS_LANES pixels from i (all inside the image) under one
+ * light beam; NAN where not PFL. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
+static void alias_lanes(const struct sl_view *v, const struct beam *cam, const struct beam *lit, long i, float *m)
+{
+    vd_t p[3], n[3];
+    for (int l = 0; l < SL_ALIAS_LANES; l++)
+        for (int k = 0; k < 3; k++) {
+            p[k][l] = v->pos[3 * (i + l) + k];
+            n[k][l] = v->nrm[3 * (i + l) + k];
+        }
+    vd_t ac[3], bc[3], al[3], bl[3];
+    vl_t okc = vbeam_spans(cam, p, n, ac, bc), okl = vbeam_spans(lit, p, n, al, bl);
+    vd_t r = vm_of_spans(okc, ac, bc, okl, al, bl, n);
+    for (int l = 0; l < SL_ALIAS_LANES; l++)
+        m[i + l] = v->cls[i + l] == SL_C_PFL ? (float)r[l] : NAN;
 }
 
 #define SL_ALIAS_MAX_FRAMES 16
@@ -233,6 +370,21 @@ void sl_alias_image(const struct sl_view *v, const struct sl_light_frame *f, con
     }
     const long n = (long)v->w * v->h;
     const uint8_t *slice = vd && vd->nframes > 0 ? vd->slice : NULL;
+    if (!slice) {
+        /* one light frame for every pixel: in lanes, the tail alone */
+        const long nb = n / SL_ALIAS_LANES;
+#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) schedule(static)
+        for (long b = 0; b < nb; b++)
+            alias_lanes(v, &cam, &lit[0], b * SL_ALIAS_LANES, m);
+        for (long i = nb * SL_ALIAS_LANES; i < n; i++) {
+            if (v->cls[i] != SL_C_PFL) {
+                m[i] = NAN;
+                continue;
+            }
+            m[i] = m_pixel(&cam, &lit[0], v->pos + 3 * i, v->nrm + 3 * i);
+        }
+        return;
+    }
 #pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) schedule(static)
     for (long i = 0; i < n; i++) {
         int s = slice ? slice[i] : 0;
@@ -240,10 +392,7 @@ void sl_alias_image(const struct sl_view *v, const struct sl_light_frame *f, con
             m[i] = NAN;
             continue;
         }
-        const float *p = v->pos + 3 * i, *nr = v->nrm + 3 * i;
-        double ac[3], bc[3], al[3], bl[3];
-        int okc = beam_spans(&cam, p, nr, ac, bc), okl = beam_spans(&lit[s], p, nr, al, bl);
-        m[i] = (float)m_of_spans(okc, ac, bc, okl, al, bl, nr);
+        m[i] = m_pixel(&cam, &lit[s], v->pos + 3 * i, v->nrm + 3 * i);
     }
 }
 
