@@ -9,6 +9,8 @@
 #include <string.h>
 #include <sys/mman.h>
 #include "arealight.h"
+#include "util.h"
+#include "view.h"
 
 void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir[3], float *tmax)
 {
@@ -102,12 +104,67 @@ void sl_layer_pool_free(struct sl_layer_pool *p)
     memset(p, 0, sizeof *p);
 }
 
+/* One array of a layer handed back: to the pool it came from, else freed. */
+static void layer_put(struct sl_layer_pool *pool, void *a)
+{
+    if (pool)
+        sl_layer_pool_put(pool, a);
+    else
+        free(a);
+}
+
+enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
+                            struct sl_diag *d)
+{
+    struct sl_depth_layer *L = &f->layer[l];
+    if (L->per_pixel || !L->depth)
+        return SL_OK;
+    const size_t n = (size_t)v->w * (size_t)v->h;
+    float *depth = f->pix_pool ? sl_layer_pool_get(f->pix_pool, n * 4) : malloc(n * 4);
+    uint32_t *id = NULL;
+    if (depth && L->id && !(id = f->pix_pool ? sl_layer_pool_get(f->pix_pool, n * 4) : malloc(n * 4))) {
+        layer_put(f->pix_pool, depth);
+        depth = NULL;
+    }
+    if (!depth)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "layer gathered per pixel (%dx%d)", v->w, v->h);
+    const float *dd = L->depth;
+    const uint32_t *di = L->id;
+    /* the pixels sl_verdict_fixed (method.h) leaves to the method, and the
+     * projection and texel the methods compute (frame.h): the same inline
+     * code, so the same texel */
+#pragma omp parallel for num_threads(threads > 0 ? threads : 1) schedule(static)
+    for (long i = 0; i < (long)n; i++) {
+        float dv = 1.0f;
+        uint32_t iv = 0;
+        if (v->cls[i] != SL_C_BACKGROUND && v->cls[i] != SL_C_PNFL) {
+            float u, w, z;
+            sl_frame_project(f, v->pos + 3 * (size_t)i, &u, &w, &z);
+            /* inside the map or not: the clamped texel, as a reader that
+             * looks before it checks (cell.c's violation report) reads */
+            const uint32_t k = sl_frame_texel(f, u, w);
+            dv = dd[k];
+            iv = di ? di[k] : 0;
+        }
+        depth[i] = dv;
+        if (id)
+            id[i] = iv;
+    }
+    layer_put(f->pool, L->depth);
+    layer_put(f->pool, L->id);
+    L->depth = depth;
+    L->id = id;
+    L->per_pixel = 1;
+    return SL_OK;
+}
+
 void sl_frame_drop_layer(struct sl_light_frame *f, int l)
 {
     struct sl_depth_layer *L = &f->layer[l];
-    if (f->pool) {
-        sl_layer_pool_put(f->pool, L->depth);
-        sl_layer_pool_put(f->pool, L->id);
+    struct sl_layer_pool *pool = L->per_pixel ? f->pix_pool : f->pool;
+    if (pool) {
+        sl_layer_pool_put(pool, L->depth);
+        sl_layer_pool_put(pool, L->id);
     } else {
         free(L->depth);
         free(L->id);
