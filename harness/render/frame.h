@@ -127,6 +127,9 @@ struct sl_light_frame {
                                  * The pool must outlive the frame. */
     struct sl_layer_pool *pix_pool;  /* the same for layers gathered per pixel (sl_frame_gather): arrays
                                       * of a view's size, kept apart from the map-sized ones */
+    uint32_t *pix_texel;        /* sl_frame_gather's texel of each pixel (from pix_pool), for the view */
+    uint64_t  pix_serial;       /* of that serial (view.h) */
+    size_t    pix_n;            /* and that many pixels */
     float dir[3];               /* direction the light travels (persp: the frustum's axis) */
     struct sl_light_box box;
     float texel_world;          /* world units across one texel (the larger side); persp: at depth 1 */
