@@ -722,7 +722,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
                                 !(c->methods[k.method].method->lights & SL_LIGHTS_AREA);
         const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume) |
                                (nsm_contour && x.nsm_map != k.map ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
-        if ((e = ensure_frame(&x, c, &k, needs, sl_plan_group_at_pixel(c, idx, last, st, o->resume), res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
+        const unsigned at_pixel = sl_plan_group_at_pixel(c, idx, last, st, o->resume);
+        if ((e = ensure_frame(&x, c, &k, needs, at_pixel, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
             (nsm_contour && (e = ensure_contour(&x, c, &k, res, d))))
             break;
         struct sl_cell *cell = &res->cells[res->ncells];
