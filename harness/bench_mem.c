@@ -2,9 +2,11 @@
  * bench_mem.c — the `bigmap` stage of `shadowlab bench` (bench.h): the peak
  * memory of one view's conservative layers at a big map size (16384^2 by
  * default; `--map N` for another), rendered the way a run's group renders
- * them for csm and csm_adj: BGSM, BGSM2 and SGSM held at once (what csm
- * reads), SGSM given back, then SGSM with adjacency (what csm_adj reads
- * beside BGSM and BGSM2). At 16384^2 a layer array is 1 GiB and so is each
+ * them for csm and csm_adj (run.c, ensure_frame): SGSM and SGSM with
+ * adjacency first, each gathered per pixel of the view once drawn
+ * (frame.h: both methods read them at a pixel's own texel only), then BGSM
+ * and BGSM2, BGSM2 gathered too; at most three map-sized arrays at once
+ * (five before: BGSM, BGSM2 and SGSM held dense). At 16384^2 a layer array is 1 GiB and so is each
  * texture of the render target: issue 20 measured 13.9 GB (five 2 GiB
  * layers held at once, the GL target, BGSM2's id copy, a repetition's
  * scratch layer). Target: at most 6 GB (6e9 bytes: the stricter reading).
@@ -97,11 +99,12 @@ static void frame_init(struct sl_light_frame *f, const struct sl_scene *s, const
     f->depth_range = f->box.hi[2] - f->box.lo[2];
 }
 
-static int held(const struct sl_light_frame *f)
+/* Layers held at the map's size (not gathered per pixel). */
+static int dense(const struct sl_light_frame *f)
 {
     int k = 0;
     for (int l = 0; l < SL_LAYER_COUNT; l++)
-        k += (f->have & SL_NEED(l)) != 0;
+        k += (f->have & SL_NEED(l)) && !f->layer[l].per_pixel;
     return k;
 }
 
@@ -174,33 +177,34 @@ enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_resul
     const size_t n = (size_t)S * (size_t)S;
     uint64_t h[SL_LAYER_COUNT] = {0}, hp[SL_LAYER_COUNT] = {0};
     frame_init(&f, &x->s, &v, S, &p.pool);
-    /* csm: BGSM, BGSM2 and SGSM held at once */
-    const unsigned csm = SL_NEED(SL_LAYER_BGSM) | SL_NEED(SL_LAYER_BGSM2) | SL_NEED(SL_LAYER_SGSM);
-    if ((e = sl_shadowmap_render(&p, &x->mesh, &f, csm, d)))
+    f.pix_pool = &p.pix_pool;
+    /* as run.c's ensure_frame for a group of csm and csm_adj: the layers
+     * both read only at each pixel's own texel (SGSM, SGSM with adjacency,
+     * BGSM2) are gathered per pixel once drawn, SGSM's two first, each
+     * hashed first; then BGSM and BGSM2, the dense layers csm holds */
+    const int order[4] = {SL_LAYER_SGSM, SL_LAYER_SGSM_ADJ, SL_LAYER_BGSM, SL_LAYER_BGSM2};
+    int most = 0;
+    for (int i = 0; i < 4 && !e; i++) {
+        const int l = order[i];
+        if ((e = sl_shadowmap_render(&p, &x->mesh, &f, SL_NEED(l), d)))
+            break;
+        most = dense(&f) > most ? dense(&f) : most;
+        h[l] = layer_hash(&f.layer[l], n);
+        if (l != SL_LAYER_BGSM)
+            e = sl_frame_gather(&f, l, &v, 0, d);
+    }
+    if (e)
         goto out;
-    int most = held(&f);
-    h[SL_LAYER_SGSM] = layer_hash(&f.layer[SL_LAYER_SGSM], n);
-    double ms_sgsm = f.layer[SL_LAYER_SGSM].ms_render + f.layer[SL_LAYER_SGSM].ms_readback;
-    /* csm_adj: SGSM given back (its arrays stay in the pool, as a run's
-     * do), SGSM with adjacency beside BGSM and BGSM2 */
-    sl_frame_drop_layer(&f, SL_LAYER_SGSM);
-    if ((e = sl_shadowmap_render(&p, &x->mesh, &f, SL_NEED(SL_LAYER_SGSM_ADJ), d)))
-        goto out;
-    most = held(&f) > most ? held(&f) : most;
     const double t1 = sl_now(), c1 = cpu_s();
     getrusage(RUSAGE_SELF, &ru1);
     const double hwm = proc_status_bytes("VmHWM:");
     const double peak = reset ? hwm : 1024.0 * (double)ru1.ru_maxrss;
     sl_bench_loadavg(la1, sizeof la1);
-    for (int l = SL_LAYER_BGSM; l < SL_LAYER_COUNT; l++)
-        if (l != SL_LAYER_SGSM)
-            h[l] = layer_hash(&f.layer[l], n);
     double ms[SL_LAYER_COUNT];
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         ms[l] = f.layer[l].ms_render + f.layer[l].ms_readback;
-    ms[SL_LAYER_SGSM] = ms_sgsm;
     const uint64_t made = p.targets_made, uploads = p.ids_uploads;
-    const double pool_bytes = (double)p.pool.bytes;
+    const double pool_bytes = (double)p.pool.bytes, pix_bytes = (double)p.pix_pool.bytes;
     sl_light_box_free(&f.box);
     sl_frame_free(&f);
     sl_shadowmap_free(&p);   /* the pool and any target: the check's memory is its own */
@@ -212,8 +216,9 @@ enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_resul
     const double GiB = 1024.0 * 1024.0 * 1024.0;
     fprintf(out, "## Big map: one view's conservative layers at %d² (%s, %u triangles, view %dx%d)\n\n", S,
             x->s.name, x->s.nt, x->W, x->H);
-    fprintf(out, "As a run's group renders them for csm and csm_adj: BGSM, BGSM2, SGSM held at once, then SGSM "
-                 "given back and SGSM with adjacency rendered. Peak RSS: the kernel's high-water mark (VmHWM) "
+    fprintf(out, "As a run's group renders them for csm and csm_adj: SGSM, then SGSM with adjacency, each gathered "
+                 "per pixel of the view once drawn (the map-sized arrays given back), then BGSM and BGSM2 (BGSM2 "
+                 "gathered too). Peak RSS: the kernel's high-water mark (VmHWM) "
                  "%s. A layer array at this size: %.3f GiB.\n\n",
             reset ? "reset when the stage started" : "NOT reset (clear_refs refused): the process's peak so far",
             (double)n * 4.0 / GiB);
@@ -221,8 +226,9 @@ enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_resul
     fprintf(out, "| peak RSS | %.0f MiB (%.2f GB; target ≤ %.0f GB: **%s**) |\n", peak / 1048576.0, peak / 1e9,
             TARGET_BYTES / 1e9, peak <= TARGET_BYTES ? "PASS" : "MISS");
     fprintf(out, "| RSS at the start (scene, view, GL driver) | %.0f MiB |\n", rss0 / 1048576.0);
-    fprintf(out, "| layers held at once, at most | %d |\n", most);
-    fprintf(out, "| pool arrays at the end | %.0f MiB |\n", pool_bytes / 1048576.0);
+    fprintf(out, "| map-sized layers held at once, at most | %d |\n", most);
+    fprintf(out, "| pool arrays at the end: map-sized / per pixel | %.0f / %.1f MiB |\n", pool_bytes / 1048576.0,
+            pix_bytes / 1048576.0);
     fprintf(out, "| render targets made / BGSM2 id uploads | %llu / %llu |\n", (unsigned long long)made,
             (unsigned long long)uploads);
     fprintf(out, "| wall / CPU (user + sys) | %.2f s / %.2f s |\n", t1 - t0, c1 - c0);

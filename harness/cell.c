@@ -48,7 +48,7 @@ static void check_exact(const struct sl_cell_inputs *in, const struct sl_verdict
                 o->ty = (int)(k / (uint32_t)f->size);
                 for (int l = 0; l < SL_LAYER_COUNT; l++)
                     if ((f->have & SL_NEED(l)) && f->layer[l].id)   /* BGSM2 keeps no ids */
-                        o->layer_tri[l] = f->layer[l].id[k] & ~SL_FULL;
+                        o->layer_tri[l] = f->layer[l].id[sl_layer_at(&f->layer[l], k, i)] & ~SL_FULL;
             }
             cell->violations++;
         }

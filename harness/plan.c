@@ -81,6 +81,25 @@ unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, stru
     return needs;
 }
 
+unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
+{
+    struct sl_cell_key k0, k;
+    sl_plan_cell(c, from, &k0);
+    unsigned needs = 0, dense = 0;
+    for (int i = from; i < last; i++) {
+        sl_plan_cell(c, i, &k);
+        if (k.scene != k0.scene || k.viewport != k0.viewport || k.vp != k0.vp || k.map != k0.map)
+            break;
+        if (resume && sl_plan_stored(c, &k, st))
+            continue;
+        const struct sl_method *m = c->methods[k.method].method;
+        const unsigned n = m->needs(&c->methods[k.method].params);
+        needs |= n;
+        dense |= n & ~m->at_pixel;
+    }
+    return needs & ~dense & ((1u << SL_LAYER_COUNT) - 1u);
+}
+
 /* 2 where a view (scene, viewport, viewpoint) starts at cell i, 1 where only
  * its map size changes, 0 inside a (view, map size) group. */
 static int boundary_level(const struct sl_config *c, int i)

@@ -34,6 +34,11 @@ int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struc
  * will skip. */
 unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume);
 
+/* Of those layers, the ones every selected cell of the group that reads
+ * them reads only at each pixel's own texel (method.h: at_pixel): the run
+ * may hold them gathered per pixel (frame.h, sl_frame_gather). */
+unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, struct sl_store *st, int resume);
+
 /* Split the sweep into at most n slices [b[i], b[i+1]) (b holds n + 1
  * ints) for tasks or worker processes: balanced by cell count, each cut moved
  * to a view boundary (scene, viewport, viewpoint) when one lies within a

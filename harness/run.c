@@ -47,11 +47,6 @@ void sl_run_result_free(struct sl_run_result *r)
 
 /* ---- the run ---- */
 
-/* Repetitions of a timed stage: the config's warm-up runs, then its timed
- * runs; the stage's real computation is repetition 0, so a config with one
- * run and no warm-up times each stage once and repeats nothing. */
-#define SL_MAX_REPS 1100   /* config: warm-up <= 100, runs <= 1000 */
-
 struct run_ctx {
     struct sl_gl gl;
     struct sl_rt rt;
@@ -393,7 +388,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
 }
 
 static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
-                                unsigned needs, struct sl_run_result *res, struct sl_diag *d)
+                                unsigned needs, unsigned gath, struct sl_run_result *res, struct sl_diag *d)
 {
     needs &= (1u << SL_LAYER_COUNT) - 1u;   /* the frame's layers; adjacency is per scene */
     /* lazily: the layers this cell reads (BGSM2 reads BGSM) and the contour's, after giving back
@@ -409,6 +404,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         drop_frame(x);
         memset(&x->frame, 0, sizeof x->frame);
         x->frame.pool = &x->spass.pool;   /* arrays reused across layers, frames, views */
+        x->frame.pix_pool = &x->spass.pix_pool;
         x->frame.size = c->maps[k->map];
         memcpy(x->frame.dir, x->scene.light_dir, sizeof x->frame.dir);
         x->frame.box = x->box;
@@ -421,33 +417,21 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
         return sl_cube_ensure(&x->cube, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map], now, needs,
                               &(struct sl_cube_timing){c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
                                                        res->passes.layers, c->threads}, &x->frame, d);
-    unsigned before = x->frame.have;
-    enum sl_err e = sl_shadowmap_render(&x->spass, &x->mesh, &x->frame, now, d);
-    int reps = c->warmup + c->runs;
-    for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
-        if (!((x->frame.have & ~before) & SL_NEED(l)))
-            continue;
-        res->passes.layers[l]++;
-        x->layer_bad[l] = sl_run_layer_bad(&x->frame.layer[l], x->frame.size);
-        double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
-        times[0] = x->frame.layer[l].ms_render;
-        gpu[0] = x->frame.layer[l].ms_gpu;
-        for (int r = 1; r < reps && !e; r++) {
-            /* the same layer again into a scratch copy of the frame (which
-             * shares the other layers, e.g. BGSM for BGSM2), timed only */
-            struct sl_light_frame again = x->frame;
-            again.have &= ~SL_NEED(l);
-            memset(&again.layer[l], 0, sizeof again.layer[l]);
-            e = sl_shadowmap_render(&x->spass, &x->mesh, &again, SL_NEED(l), d);
-            times[r] = again.layer[l].ms_render;
-            gpu[r] = again.layer[l].ms_gpu;
-            sl_frame_drop_layer(&again, l);   /* back to the pool for the next repetition */
-        }
-        if (!e) {
-            sl_run_med_min_max(times + c->warmup, c->runs, x->layer_ms[l]);
-            sl_run_med_min_max(gpu + c->warmup, c->runs, x->layer_gpu[l]);
-        }
-    }
+    /* layers every remaining reader reads per pixel (sl_plan_group_at_pixel)
+     * are gathered per pixel once drawn, and drawn with the first cell that
+     * reads any of them, before the dense ones: their map-sized arrays are
+     * then free again for the dense layers, and a view holds the dense
+     * layers of one method, not of every method of the group. BGSM stays
+     * dense: BGSM2 reads its ids, and BGSM2's readback is the peak anyway. */
+    const unsigned gather = gath & ~SL_NEED(SL_LAYER_BGSM) & ~x->frame.have;
+    const struct sl_cube_timing t = {c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
+                                     res->passes.layers, c->threads};
+    enum sl_err e = SL_OK;
+    if (now & gather)
+        e = sl_run_render_layers(&x->spass, &x->mesh, &x->frame, gather & ~SL_NEED(SL_LAYER_BGSM2), gather,
+                                 &x->view, &t, d);
+    if (!e)
+        e = sl_run_render_layers(&x->spass, &x->mesh, &x->frame, now, gather, &x->view, &t, d);
     return e;
 }
 
@@ -738,7 +722,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
                                 !(c->methods[k.method].method->lights & SL_LIGHTS_AREA);
         const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume) |
                                (nsm_contour && x.nsm_map != k.map ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
-        if ((e = ensure_frame(&x, c, &k, needs, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
+        const unsigned at_pixel = sl_plan_group_at_pixel(c, idx, last, st, o->resume);
+        if ((e = ensure_frame(&x, c, &k, needs, at_pixel, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
             (nsm_contour && (e = ensure_contour(&x, c, &k, res, d))))
             break;
         struct sl_cell *cell = &res->cells[res->ncells];

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cellcols.h"
+#include "util.h"
 
 /* G-buffer values that are not finite (positions, normals of non-background
  * pixels). A hard case must never produce one (tests/test_hard.c). */
@@ -28,6 +29,44 @@ uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size)
     for (size_t i = 0; i < nt; i++)
         n += !(l->depth[i] >= 0.0f && l->depth[i] <= 1.0f);
     return n;
+}
+
+enum sl_err sl_run_render_layers(struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m, struct sl_light_frame *f,
+                                 unsigned set, unsigned gather, const struct sl_view *v,
+                                 const struct sl_cube_timing *t, struct sl_diag *d)
+{
+    unsigned before = f->have;
+    enum sl_err e = sl_shadowmap_render(sp, m, f, set, d);
+    int reps = t->warmup + t->runs;
+    for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
+        if (!((f->have & ~before) & SL_NEED(l)))
+            continue;
+        t->layers[l]++;
+        t->layer_bad[l] = sl_run_layer_bad(&f->layer[l], f->size);
+        double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
+        times[0] = f->layer[l].ms_render;
+        gpu[0] = f->layer[l].ms_gpu;
+        for (int r = 1; r < reps && !e; r++) {
+            /* the same layer again into a scratch copy of the frame (which
+             * shares the other layers, e.g. BGSM for BGSM2), timed only */
+            struct sl_light_frame again = *f;
+            again.have &= ~SL_NEED(l);
+            memset(&again.layer[l], 0, sizeof again.layer[l]);
+            e = sl_shadowmap_render(sp, m, &again, SL_NEED(l), d);
+            times[r] = again.layer[l].ms_render;
+            gpu[r] = again.layer[l].ms_gpu;
+            sl_frame_drop_layer(&again, l);   /* back to the pool for the next repetition */
+        }
+        if (!e) {
+            sl_run_med_min_max(times + t->warmup, t->runs, t->layer_ms[l]);
+            sl_run_med_min_max(gpu + t->warmup, t->runs, t->layer_gpu[l]);
+        }
+        /* timed as the readback: the layer's values reach the readers per pixel */
+        double t0 = sl_now();
+        if (!e && (gather & SL_NEED(l)) && !(e = sl_frame_gather(f, l, v, t->threads, d)))
+            f->layer[l].ms_readback += 1e3 * (sl_now() - t0);
+    }
+    return e;
 }
 
 /* Two fits that put the same map in the same place: a camera that moved

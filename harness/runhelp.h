@@ -12,9 +12,15 @@
 #include <stdint.h>
 #include "frame.h"
 #include "config.h"
+#include "cube.h"
 #include "lightfit.h"
 #include "shadowmap.h"
 #include "view.h"
+
+/* Repetitions of a timed stage: the config's warm-up runs, then its timed
+ * runs; the stage's real computation is repetition 0, so a config with one
+ * run and no warm-up times each stage once and repeats nothing. */
+#define SL_MAX_REPS 1100   /* config: warm-up <= 100, runs <= 1000 */
 
 /* G-buffer values that are not finite (positions, normals of non-background
  * pixels). A hard case must never produce one (tests/test_hard.c). */
@@ -32,6 +38,14 @@ int sl_run_contour_label(const struct sl_config *c);
 
 /* Shadow-map depths outside [0, 1] or not finite. */
 uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size);
+
+/* The layers in `set` that f lacks rendered into it (one render each, then
+ * t->warmup + t->runs - 1 timed repetitions into a scratch copy of the
+ * frame, timings and bad values into t), then those in `gather` gathered
+ * per pixel of v (sl_frame_gather) once their repetitions are done. */
+enum sl_err sl_run_render_layers(struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m, struct sl_light_frame *f,
+                                 unsigned set, unsigned gather, const struct sl_view *v,
+                                 const struct sl_cube_timing *t, struct sl_diag *d);
 
 /* Frames of labels whose light_frame is not the shared tight fit: one per
  * (map size, fit), fitted for each view and rendered once with the layers

@@ -86,15 +86,17 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
     if (use_sgsm) {
         const struct sl_depth_layer *sg = &f->layer[sgsm_layer];
         (*lookups)++;
+        const size_t ks = sl_layer_at(sg, k, i);   /* a layer may be gathered per pixel (frame.h) */
         float m = (float)(2.0 * sl_rt_tnear(p) / sl_frame_world_per_depth(f, z)) + 0x1p-20f;
-        if (sg->id[k] && sg->id[k] != v->tri[i] && sg->depth[k] < z - m)
+        if (sg->id[ks] && sg->id[ks] != v->tri[i] && sg->depth[ks] < z - m)
             r |= V_SHADOW;
     }
     if (use_bgsm) {
         const struct sl_depth_layer *b1 = &f->layer[SL_LAYER_BGSM], *b2 = &f->layer[SL_LAYER_BGSM2];
         (*lookups)++;
-        const uint32_t id1 = b1->id[k] & ~SL_FULL;
-        if (b1->depth[k] > z) {
+        const size_t k1 = sl_layer_at(b1, k, i);
+        const uint32_t id1 = b1->id[k1] & ~SL_FULL;
+        if (b1->depth[k1] > z) {
             r |= V_LIT;
         } else if (id1) {
             int skip = id1 == v->tri[i];
@@ -104,7 +106,7 @@ static int decide(const struct sl_method_args *a, size_t i, int use_bgsm, int us
             }
             if (skip) {
                 (*lookups)++;
-                if (b2->depth[k] > z)
+                if (b2->depth[sl_layer_at(b2, k, i)] > z)
                     r |= V_LIT;
             }
         }
@@ -171,6 +173,9 @@ static unsigned needs_sgsm(const struct sl_method_params *p) { (void)p; return S
 static unsigned needs_sgsm_adj(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_SGSM_ADJ) | SL_NEED_ADJACENCY; }
 static unsigned needs_csm(const struct sl_method_params *p) { return needs_bgsm(p) | needs_sgsm(p); }
 static unsigned needs_csm_adj(const struct sl_method_params *p) { return needs_bgsm(p) | needs_sgsm_adj(p); }
+/* every layer these methods read, they read at the pixel's own texel only
+ * (decide), through sl_layer_at: the driver may gather them per pixel */
+#define CONS_AT_PIXEL (SL_NEED(SL_LAYER_BGSM) | SL_NEED(SL_LAYER_BGSM2) | SL_NEED(SL_LAYER_SGSM) | SL_NEED(SL_LAYER_SGSM_ADJ))
 
 static enum sl_err configure_none(struct sl_method_params *p, struct sl_diag *d)
 {
@@ -187,21 +192,21 @@ static enum sl_err run_csm_adj(const struct sl_method_args *a, struct sl_verdict
 
 const struct sl_method sl_method_bgsm = {
     .name = "bgsm", .summary = "big-triangle (conservative) shadow map: its lit pixels are lit in truth",
-    .exact = SL_EXACT_LIT, .needs = needs_bgsm, .configure = configure_none, .run = run_bgsm,
+    .exact = SL_EXACT_LIT, .needs = needs_bgsm, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_bgsm,
 };
 const struct sl_method sl_method_sgsm = {
     .name = "sgsm", .summary = "small-triangle shadow map: its shadowed pixels are shadowed in truth",
-    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm, .configure = configure_none, .run = run_sgsm,
+    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_sgsm,
 };
 const struct sl_method sl_method_sgsm_adj = {
     .name = "sgsm_adj", .summary = "SGSM keeping edges between away-facing neighbours (Morais 2015 ch. 4)",
-    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm_adj, .configure = configure_none, .run = run_sgsm_adj,
+    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm_adj, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_sgsm_adj,
 };
 const struct sl_method sl_method_csm = {
     .name = "csm", .summary = "CSMa: lit by BGSM, shadowed by SGSM, the rest traced (Morais 2015)",
-    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm, .configure = configure_none, .run = run_csm,
+    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_csm,
 };
 const struct sl_method sl_method_csm_adj = {
     .name = "csm_adj", .summary = "CSMA: lit by BGSM, shadowed by SGSM with adjacency, the rest traced",
-    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm_adj, .configure = configure_none, .run = run_csm_adj,
+    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm_adj, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_csm_adj,
 };

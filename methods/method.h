@@ -234,6 +234,10 @@ struct sl_method {
     unsigned    params_ok;     /* SL_PARAM_* bits it reads */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);
+    /* Layers (SL_NEED bits) it reads only at each decided pixel's own
+     * texel, through sl_layer_at (frame.h): the driver may hand them
+     * gathered per pixel (sl_frame_gather). 0: every layer dense. */
+    unsigned    at_pixel;
     /* Fill defaults for unset keys and check values; on return `set` holds
      * exactly the keys the method reads with these parameters. */
     enum sl_err (*configure)(struct sl_method_params *p, struct sl_diag *d);

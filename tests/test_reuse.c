@@ -14,6 +14,7 @@
 #include "adjacency.h"
 #include "fixture.h"
 #include "lightfit.h"
+#include "method.h"
 #include "shadowmap.h"
 
 static void reuse_pool_serves_and_replaces(void **st)
@@ -181,12 +182,134 @@ static void reuse_gbuffer_identical(void **st)
     fixture_close(&f);
 }
 
+/* Layers gathered per pixel (frame.h, sl_frame_gather; run.c does it for
+ * layers every remaining reader reads at the pixel's own texel) give the
+ * conservative methods the very values of the dense layers: every verdict,
+ * how it was reached, the tests per pixel and the counts are the same, on
+ * two scenes and two map sizes. And BGSM2 refuses to be drawn once BGSM is
+ * gathered and its ids are gone from the target. */
+static void reuse_gathered_same_verdicts(void **st)
+{
+    (void)st;
+    const char *scenes[2] = {"primitives", "bench"};
+    const char *methods[5] = {"bgsm", "sgsm", "sgsm_adj", "csm", "csm_adj"};
+    const int cons[4] = {SL_LAYER_BGSM2, SL_LAYER_SGSM, SL_LAYER_SGSM_ADJ, SL_LAYER_BGSM};
+    const unsigned all = SL_NEED(SL_LAYER_BGSM) | SL_NEED(SL_LAYER_BGSM2) | SL_NEED(SL_LAYER_SGSM) |
+                         SL_NEED(SL_LAYER_SGSM_ADJ);
+    int decided_lit = 0, decided_shadow = 0, gathered_checked = 0;
+    for (int sc = 0; sc < 2; sc++)
+        for (int size = 256; size <= 1024; size *= 4) {
+            struct fixture f;
+            assert_true(fixture_open(&f, scenes[sc], 2));
+            struct sl_diag d;
+            struct sl_adjacency adj;
+            memset(&adj, 0, sizeof adj);
+            assert_int_equal(sl_adjacency_build(&f.scene, &adj, &d), SL_OK);
+            assert_int_equal(sl_gl_mesh_upload_adjacency(&f.mesh, &f.scene, &adj, &d), SL_OK);
+            struct sl_view v;
+            assert_true(fixture_view(&f, 0, 192, 160, &v));
+            struct sl_view mv = v;
+            mv.truth = NULL;
+            const size_t n = (size_t)v.w * (size_t)v.h, nt = (size_t)size * (size_t)size;
+            struct sl_shadowmap_pass sp;
+            assert_int_equal(sl_shadowmap_init(&sp, &d), SL_OK);
+            struct sl_light_frame fr, dense;
+            memset(&fr, 0, sizeof fr);
+            memset(&dense, 0, sizeof dense);
+            fr.pool = &sp.pool;
+            fr.pix_pool = &sp.pix_pool;
+            fit(&f, &v, size, &fr);
+            fit(&f, &v, size, &dense);
+            assert_int_equal(sl_shadowmap_render(&sp, &f.mesh, &fr, all, &d), SL_OK);
+            assert_int_equal(sl_shadowmap_render(&sp, &f.mesh, &dense, all, &d), SL_OK);
+            uint8_t *vv[2][5], *how[2][5], *tests[2][5];
+            struct sl_cost cost[2][5];
+            for (int pass = 0; pass < 2; pass++) {
+                if (pass == 1)
+                    for (int i = 0; i < 4; i++) {
+                        assert_int_equal(sl_frame_gather(&fr, cons[i], &v, 2, &d), SL_OK);
+                        assert_true(fr.layer[cons[i]].per_pixel);
+                    }
+                for (int m = 0; m < 5; m++) {
+                    const struct sl_method *me = sl_method_find(methods[m]);
+                    assert_non_null(me);
+                    struct sl_method_params p;
+                    memset(&p, 0, sizeof p);
+                    assert_int_equal(me->configure(&p, &d), SL_OK);
+                    struct sl_method_args a = {.scene = &f.scene, .view = &mv, .frame = pass ? &fr : &dense,
+                                               .params = &p, .rt = &f.rt, .adj = &adj, .threads = 2};
+                    struct sl_verdicts vd = {.w = v.w, .h = v.h, .v = calloc(n, 1), .how = calloc(n, 1),
+                                             .tests = calloc(n, 1)};
+                    assert_non_null(vd.v);
+                    assert_non_null(vd.how);
+                    assert_non_null(vd.tests);
+                    memset(&cost[pass][m], 0, sizeof cost[pass][m]);
+                    assert_int_equal(me->run(&a, &vd, &cost[pass][m], &d), SL_OK);
+                    vv[pass][m] = vd.v;
+                    how[pass][m] = vd.how;
+                    tests[pass][m] = vd.tests;
+                }
+            }
+            for (int m = 0; m < 5; m++) {
+                assert_memory_equal(vv[0][m], vv[1][m], n);
+                assert_memory_equal(how[0][m], how[1][m], n);
+                assert_memory_equal(tests[0][m], tests[1][m], n);
+                assert_int_equal(cost[0][m].lookups, cost[1][m].lookups);
+                assert_int_equal(cost[0][m].tri_tests, cost[1][m].tri_tests);
+                assert_int_equal(cost[0][m].rays, cost[1][m].rays);
+                for (size_t i = 0; i < n; i++) {
+                    decided_lit += how[0][m][i] == SL_HOW_MAP && vv[0][m][i] == SL_V_LIT;
+                    decided_shadow += how[0][m][i] == SL_HOW_MAP && vv[0][m][i] == SL_V_SHADOW;
+                }
+                for (int pass = 0; pass < 2; pass++) {
+                    free(vv[pass][m]);
+                    free(how[pass][m]);
+                    free(tests[pass][m]);
+                }
+            }
+            /* the gathered values are the dense ones at each decided pixel's texel */
+            for (size_t i = 0; i < n; i++) {
+                if (v.cls[i] != SL_C_PFL)
+                    continue;
+                float u, w, z;
+                sl_frame_project(&dense, v.pos + 3 * i, &u, &w, &z);
+                const uint32_t k = sl_frame_texel(&dense, u, w);
+                assert_true(k < nt);
+                for (int l = 0; l < 4; l++) {
+                    const struct sl_depth_layer *G = &fr.layer[cons[l]], *D = &dense.layer[cons[l]];
+                    assert_memory_equal(&G->depth[i], &D->depth[k], sizeof(float));
+                    if (D->id)
+                        assert_int_equal(G->id[i], D->id[k]);
+                    else
+                        assert_null(G->id);
+                }
+                gathered_checked++;
+            }
+            /* BGSM2 again: the target now holds the dense frame's last ids, not BGSM's */
+            sl_frame_drop_layer(&fr, SL_LAYER_BGSM2);
+            assert_int_equal(sl_shadowmap_render(&sp, &f.mesh, &fr, SL_NEED(SL_LAYER_BGSM2), &d), SL_E_INTERNAL);
+            sl_light_box_free(&fr.box);
+            sl_light_box_free(&dense.box);
+            sl_frame_free(&fr);
+            sl_frame_free(&dense);
+            sl_shadowmap_free(&sp);
+            sl_view_free(&v);
+            sl_adjacency_free(&adj);
+            fixture_close(&f);
+        }
+    /* the layers decided pixels both ways: the comparison is not vacuous */
+    assert_true(decided_lit > 1000);
+    assert_true(decided_shadow > 1000);
+    assert_true(gathered_checked > 1000);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(reuse, pool_serves_and_replaces),
         SL_CASE(reuse, layers_identical),
         SL_CASE(reuse, gbuffer_identical),
+        SL_CASE(reuse, gathered_same_verdicts),
     };
     return sl_run_group(argc, argv, "reuse", tests, sl_test_setup, sl_test_teardown);
 }

@@ -9,6 +9,8 @@
 #include <string.h>
 #include <sys/mman.h>
 #include "arealight.h"
+#include "util.h"
+#include "view.h"
 
 void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir[3], float *tmax)
 {
@@ -102,12 +104,91 @@ void sl_layer_pool_free(struct sl_layer_pool *p)
     memset(p, 0, sizeof *p);
 }
 
+/* One array of a layer handed back: to the pool it came from, else freed. */
+static void layer_put(struct sl_layer_pool *pool, void *a)
+{
+    if (pool)
+        sl_layer_pool_put(pool, a);
+    else
+        free(a);
+}
+
+/* No texel: a pixel the methods do not decide (frame.h: sl_frame_gather). */
+#define NO_TEXEL UINT32_MAX
+
+/* Each pixel's texel under f, computed once per frame and view: every
+ * gathered layer of the frame reads the same ones (projecting each pixel
+ * once, not once per layer). */
+static const uint32_t *pixel_texels(struct sl_light_frame *f, const struct sl_view *v, int threads)
+{
+    const size_t n = (size_t)v->w * (size_t)v->h;
+    if (f->pix_texel && f->pix_serial == v->serial && f->pix_n == n)
+        return f->pix_texel;
+    layer_put(f->pix_pool, f->pix_texel);
+    f->pix_texel = NULL;
+    uint32_t *k = f->pix_pool ? sl_layer_pool_get(f->pix_pool, n * 4) : malloc(n * 4);
+    if (!k)
+        return NULL;
+    /* the pixels sl_verdict_fixed (method.h) leaves to the method, and the
+     * projection and texel the methods compute (frame.h): the same inline
+     * code, so the same texel; inside the map or not (clamped), as a reader
+     * that looks before it checks (cell.c's violation report) reads */
+#pragma omp parallel for num_threads(threads > 0 ? threads : 1) schedule(static)
+    for (long i = 0; i < (long)n; i++) {
+        uint32_t t = NO_TEXEL;
+        if (v->cls[i] != SL_C_BACKGROUND && v->cls[i] != SL_C_PNFL) {
+            float u, w, z;
+            sl_frame_project(f, v->pos + 3 * (size_t)i, &u, &w, &z);
+            t = sl_frame_texel(f, u, w);
+        }
+        k[i] = t;
+    }
+    f->pix_texel = k;
+    f->pix_serial = v->serial;
+    f->pix_n = n;
+    return k;
+}
+
+enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
+                            struct sl_diag *d)
+{
+    struct sl_depth_layer *L = &f->layer[l];
+    if (L->per_pixel || !L->depth)
+        return SL_OK;
+    const size_t n = (size_t)v->w * (size_t)v->h;
+    const uint32_t *tex = pixel_texels(f, v, threads);
+    float *depth = !tex ? NULL : f->pix_pool ? sl_layer_pool_get(f->pix_pool, n * 4) : malloc(n * 4);
+    uint32_t *id = NULL;
+    if (depth && L->id && !(id = f->pix_pool ? sl_layer_pool_get(f->pix_pool, n * 4) : malloc(n * 4))) {
+        layer_put(f->pix_pool, depth);
+        depth = NULL;
+    }
+    if (!depth)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "layer gathered per pixel (%dx%d)", v->w, v->h);
+    const float *dd = L->depth;
+    const uint32_t *di = L->id;
+#pragma omp parallel for num_threads(threads > 0 ? threads : 1) schedule(static)
+    for (long i = 0; i < (long)n; i++) {
+        const uint32_t k = tex[i];
+        depth[i] = k == NO_TEXEL ? 1.0f : dd[k];
+        if (id)
+            id[i] = k == NO_TEXEL ? 0u : di[k];
+    }
+    layer_put(f->pool, L->depth);
+    layer_put(f->pool, L->id);
+    L->depth = depth;
+    L->id = id;
+    L->per_pixel = 1;
+    return SL_OK;
+}
+
 void sl_frame_drop_layer(struct sl_light_frame *f, int l)
 {
     struct sl_depth_layer *L = &f->layer[l];
-    if (f->pool) {
-        sl_layer_pool_put(f->pool, L->depth);
-        sl_layer_pool_put(f->pool, L->id);
+    struct sl_layer_pool *pool = L->per_pixel ? f->pix_pool : f->pool;
+    if (pool) {
+        sl_layer_pool_put(pool, L->depth);
+        sl_layer_pool_put(pool, L->id);
     } else {
         free(L->depth);
         free(L->id);
@@ -122,6 +203,7 @@ void sl_frame_free(struct sl_light_frame *f)
         return;
     for (int i = 0; i < SL_LAYER_COUNT; i++)
         sl_frame_drop_layer(f, i);
+    layer_put(f->pix_pool, f->pix_texel);
     memset(f, 0, sizeof *f);
 }
 

@@ -11,8 +11,10 @@
  */
 #ifndef SL_FRAME_H
 #define SL_FRAME_H
+#include <stddef.h>
 #include <stdint.h>
 #include <cglm/cglm.h>
+#include "sl_error.h"
 #if defined(__SSE2__)
 #include <xmmintrin.h>
 #endif
@@ -70,7 +72,18 @@ struct sl_depth_layer {
     double    ms_gpu;           /* GL_TIME_ELAPSED of the clears and draws (glctx.h) */
     uint64_t  gs_prims;         /* primitives the geometry shader emitted (GL query; 0 without GS) */
     uint64_t  fragments;        /* fragment shader invocations (GL query) */
+    /* 1: depth and id hold, per pixel of the view the frame was gathered
+     * for, the values at that pixel's own texel (sl_frame_gather), indexed
+     * by pixel: read them through sl_layer_at. */
+    int       per_pixel;
 };
+
+/* Where a reader finds texel k as seen from pixel i: k in a dense layer,
+ * i in one gathered per pixel. */
+static inline size_t sl_layer_at(const struct sl_depth_layer *L, uint32_t k, size_t i)
+{
+    return L->per_pixel ? i : (size_t)k;
+}
 
 /* BGSM marks a texel wholly inside its stored triangle (Hertel's "fully
  * covered"): readers of its ids mask it off. */
@@ -112,6 +125,11 @@ struct sl_light_frame {
     int   size;
     struct sl_layer_pool *pool; /* where its layer arrays come from and go back to; NULL: calloc/free.
                                  * The pool must outlive the frame. */
+    struct sl_layer_pool *pix_pool;  /* the same for layers gathered per pixel (sl_frame_gather): arrays
+                                      * of a view's size, kept apart from the map-sized ones */
+    uint32_t *pix_texel;        /* sl_frame_gather's texel of each pixel (from pix_pool), for the view */
+    uint64_t  pix_serial;       /* of that serial (view.h) */
+    size_t    pix_n;            /* and that many pixels */
     float dir[3];               /* direction the light travels (persp: the frustum's axis) */
     struct sl_light_box box;
     float texel_world;          /* world units across one texel (the larger side); persp: at depth 1 */
@@ -198,6 +216,21 @@ static inline uint32_t sl_frame_texel(const struct sl_light_frame *f, float u, f
     if (j >= f->size) j = f->size - 1;
     return (uint32_t)j * (uint32_t)f->size + (uint32_t)i;
 }
+
+/* Layer l (rendered) replaced by its values at each pixel's own texel:
+ * for every pixel of v that a method decides (neither background nor
+ * PnFL), depth[i] and id[i] (id when the layer has one) are those of
+ * texel sl_frame_texel(sl_frame_project(pos[i])), the very texel every
+ * per-pixel reader computes (clamped to the map); other pixels hold 1 and
+ * 0, read by no one. The dense arrays go back to f->pool, the
+ * new ones come from f->pix_pool. Only for readers that look a layer up at
+ * the pixel's own texel and nowhere else (method.h: at_pixel): at a big map
+ * size a view's pixels are far fewer than the map's texels (1920x1080
+ * against 4096^2: 8 MB against 64 MiB an array). SL_E_NOMEM when out of
+ * memory (the layer then stays dense). */
+struct sl_view;
+enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
+                            struct sl_diag *d);
 
 /* Give one layer's arrays back (to the pool, or free) and mark it not rendered. */
 void sl_frame_drop_layer(struct sl_light_frame *f, int layer);

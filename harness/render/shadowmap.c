@@ -141,6 +141,7 @@ void sl_shadowmap_free(struct sl_shadowmap_pass *p)
 {
     sl_shadowmap_release_targets(p);
     sl_layer_pool_free(&p->pool);
+    sl_layer_pool_free(&p->pix_pool);
     if (p->prog_depth_id)
         glDeleteProgram(p->prog_depth_id);
     for (int mode = 0; mode < 4; mode++)
@@ -297,6 +298,16 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
     return e;
 }
 
+/* Whether the target of size S still holds layer b's ids (BGSM2 reads them
+ * there; one gathered per pixel, frame.h, has no map of them to upload). */
+static int ids_in_target(const struct sl_shadowmap_pass *p, const struct sl_depth_layer *b, int S)
+{
+    for (int i = 0; i < SL_SHADOWMAP_TARGETS; i++)
+        if (p->tgt[i].size == S)
+            return b->stamp && p->tgt[i].ids_stamp == b->stamp;
+    return 0;
+}
+
 enum sl_err sl_shadowmap_render(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
                                 struct sl_light_frame *f, unsigned needs, struct sl_diag *d)
 {
@@ -318,6 +329,9 @@ enum sl_err sl_shadowmap_render(struct sl_shadowmap_pass *p, const struct sl_gl_
             /* reads the first layer's ids */
             if (!(f->have & SL_NEED(SL_LAYER_BGSM)))
                 return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "BGSM2 asked for without BGSM");
+            if (f->layer[SL_LAYER_BGSM].per_pixel && !ids_in_target(p, &f->layer[SL_LAYER_BGSM], f->size))
+                return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL,
+                               "BGSM2 asked for with BGSM gathered per pixel and its ids gone from the target");
             e = render_layer(p, m, f, K_BGSM2, &f->layer[l], d);
             break;
         case SL_LAYER_SGSM:

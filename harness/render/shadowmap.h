@@ -52,6 +52,7 @@ struct sl_shadowmap_pass {
     uint32_t chunk;             /* triangles per draw call, flushed between (SL_SHADOWMAP_CHUNK; tests vary it) */
     struct sl_layer_pool pool;  /* layer arrays for the frames that take them (f->pool = &pass->pool);
                                  * freed by sl_shadowmap_free: free those frames first */
+    struct sl_layer_pool pix_pool;  /* the same for layers gathered per pixel (f->pix_pool, frame.h) */
     GLuint prog_depth_id;
     /* conservative layers, one program each (BGSM, BGSM2, SGSM: geometry
      * shader + exact per-texel tests; SGSM with adjacency:
