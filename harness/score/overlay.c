@@ -64,15 +64,20 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const f
             cnt[SL_OV_OUTSIDE_CONE]++;
             continue;
         }
-        const float *nn = v->nrm + 3 * i;
-        float ndl = -(nn[0] * light_dir[0] + nn[1] * light_dir[1] + nn[2] * light_dir[2]);
-        if (light_pos) {
-            const float *p = v->pos + 3 * i;
-            float l[3] = {light_pos[0] - p[0], light_pos[1] - p[1], light_pos[2] - p[2]};
-            float len = sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-            ndl = len > 0.0f ? (nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2]) / len : 0.0f;
+        /* n.l only where the method says lit (the shadowed grey is the
+         * ambient alone): most of this loop's time was reading the normals */
+        float ndl = 0.0f;
+        if (verdict == SL_V_LIT) {
+            const float *nn = v->nrm + 3 * i;
+            ndl = -(nn[0] * light_dir[0] + nn[1] * light_dir[1] + nn[2] * light_dir[2]);
+            if (light_pos) {
+                const float *p = v->pos + 3 * i;
+                float l[3] = {light_pos[0] - p[0], light_pos[1] - p[1], light_pos[2] - p[2]};
+                float len = sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+                ndl = len > 0.0f ? (nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2]) / len : 0.0f;
+            }
         }
-        float g = 255.0f * (0.12f + (verdict == SL_V_LIT && ndl > 0.0f ? 0.5f * ndl : 0.0f));
+        float g = 255.0f * (0.12f + (ndl > 0.0f ? 0.5f * ndl : 0.0f));
         if (inside && thickness > 0) {
             /* the faint tint: 65% grey, 35% bluish green */
             const uint8_t *c = sl_overlay_colour[SL_OV_CONTOUR];
