@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
 #include "config.h"
@@ -427,6 +428,66 @@ static void overlay_insets_exact(void **st)
     }
 }
 
+/* The sheet's text is OpenImageIO's render_text, pixel for pixel: the sheet
+ * draws each glyph once per process and blits it (issue 20), so its title
+ * band must equal oiiotool --text of the same string on white. Kerning-prone
+ * pairs, digits, punctuation and UTF-8; two sizes (12 px at 480², 22 at
+ * 1056²), then 480² again, drawn from the glyphs already cached. */
+static void overlay_text_as_oiio(void **st)
+{
+    (void)st;
+    const char *font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+    if (access(font, R_OK) != 0)
+        skip();   /* the sheet then resolves another font: nothing to compare with */
+    static const char *const title = "Tj fj AV WA ff 0123456789 wrong/said: x4, map 2048 (\xc3\xa9\xc2\xb5\xc2\xb2)";
+    const int sizes[3] = {480, 1056, 480};
+    for (int k = 0; k < 3; k++) {
+        const int W = sizes[k], H = sizes[k];
+        unsigned char *rgb = malloc((size_t)W * (size_t)H * 3);
+        assert_non_null(rgb);
+        memset(rgb, 90, (size_t)W * (size_t)H * 3);
+        struct sl_image_sheet sh;
+        memset(&sh, 0, sizeof sh);
+        sh.w = W;
+        sh.h = H;
+        sh.rgb = rgb;
+        snprintf(sh.title, sizeof sh.title, "%s", title);
+        char path[1200], ref[1200], cmd[4000], a[200];
+        snprintf(path, sizeof path, "%s/text%d.png", sl_test_dir, k);
+        snprintf(ref, sizeof ref, "%s/text%d-ref.png", sl_test_dir, k);
+        struct sl_diag d;
+        assert_int_equal(sl_image_write_sheet(path, &sh, &d), SL_OK);
+        free(rgb);
+        assert_int_equal(sl_image_read_attr(path, "shadowlab:text", a, sizeof a, &d), SL_OK);
+        assert_string_equal(a, "1");
+        int vx, vy, vw, vh, M, top;
+        assert_int_equal(sl_image_read_attr(path, "shadowlab:view", a, sizeof a, &d), SL_OK);
+        assert_int_equal(sscanf(a, "%d %d %d %d %d %d", &vx, &vy, &vw, &vh, &M, &top), 6);
+        int fs = (vh > H ? vh : H) / 48;
+        fs = fs < 12 ? 12 : fs > 22 ? 22 : fs;
+        assert_int_equal(M, fs / 2 + 4);
+        unsigned char *got, *want;
+        int w, h, w2, h2;
+        assert_int_equal(sl_image_read_rgb8(path, &w, &h, &got, &d), SL_OK);
+        snprintf(cmd, sizeof cmd,
+                 "oiiotool --pattern constant:color=1,1,1 %dx%d 3 --text:x=%d:y=%d:font=%s:size=%d:color=0,0,0 "
+                 "'%s' -d uint8 -o %s",
+                 w, top, M, M + fs, font, fs, title, ref);
+        assert_int_equal(system(cmd), 0);
+        assert_int_equal(sl_image_read_rgb8(ref, &w2, &h2, &want, &d), SL_OK);
+        assert_int_equal(w2, w);
+        assert_int_equal(h2, top);
+        /* the band above the view: white and the title, nothing else */
+        size_t n = (size_t)w * (size_t)top * 3, ink = 0;
+        for (size_t i = 0; i < n; i++)
+            ink += got[i] < 128;
+        assert_true(ink > 100);
+        assert_memory_equal(got, want, n);
+        free(got);
+        free(want);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -434,6 +495,7 @@ int main(int argc, char **argv)
         SL_CASE(overlay, exr_stats),
         SL_CASE(overlay, crop_small_scene),
         SL_CASE(overlay, insets_exact),
+        SL_CASE(overlay, text_as_oiio),
     };
     int rc = sl_run_group(argc, argv, "overlay", tests, sl_test_setup, sl_test_teardown);
     if (ran)

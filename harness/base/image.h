@@ -4,8 +4,10 @@
  * Rows are given bottom-up (GL order) and written top-down. The file appears
  * under its name only when complete (written to a temporary, then renamed).
  *
- * The overlay sheet (sl_image_write_sheet) is composed with ImageBufAlgo:
- * the frame (or a crop of it) at 1:1, zoomed insets beside it (nearest
+ * The overlay sheet (sl_image_write_sheet) is composed in plain memory,
+ * reproducing ImageBufAlgo's drawing byte for byte (each glyph drawn by
+ * render_text once per size and process, then blitted; OpenImageIO writes
+ * the file): the frame (or a crop of it) at 1:1, zoomed insets beside it (nearest
  * neighbour) whose windows are marked on the frame, a title and a legend.
  * Text needs a TrueType font (DejaVu Sans, Debian's fonts-dejavu-core, or
  * OpenImageIO's default); without one the sheet is drawn without text and

@@ -64,15 +64,20 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const f
             cnt[SL_OV_OUTSIDE_CONE]++;
             continue;
         }
-        const float *nn = v->nrm + 3 * i;
-        float ndl = -(nn[0] * light_dir[0] + nn[1] * light_dir[1] + nn[2] * light_dir[2]);
-        if (light_pos) {
-            const float *p = v->pos + 3 * i;
-            float l[3] = {light_pos[0] - p[0], light_pos[1] - p[1], light_pos[2] - p[2]};
-            float len = sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-            ndl = len > 0.0f ? (nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2]) / len : 0.0f;
+        /* n.l only where the method says lit (the shadowed grey is the
+         * ambient alone): most of this loop's time was reading the normals */
+        float ndl = 0.0f;
+        if (verdict == SL_V_LIT) {
+            const float *nn = v->nrm + 3 * i;
+            ndl = -(nn[0] * light_dir[0] + nn[1] * light_dir[1] + nn[2] * light_dir[2]);
+            if (light_pos) {
+                const float *p = v->pos + 3 * i;
+                float l[3] = {light_pos[0] - p[0], light_pos[1] - p[1], light_pos[2] - p[2]};
+                float len = sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+                ndl = len > 0.0f ? (nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2]) / len : 0.0f;
+            }
         }
-        float g = 255.0f * (0.12f + (verdict == SL_V_LIT && ndl > 0.0f ? 0.5f * ndl : 0.0f));
+        float g = 255.0f * (0.12f + (ndl > 0.0f ? 0.5f * ndl : 0.0f));
         if (inside && thickness > 0) {
             /* the faint tint: 65% grey, 35% bluish green */
             const uint8_t *c = sl_overlay_colour[SL_OV_CONTOUR];
@@ -87,22 +92,54 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const f
         memcpy(count, cnt, sizeof cnt);
 }
 
+static int any8(const uint8_t *a, const uint8_t *b, int x)
+{
+    uint64_t wa, wb = 0;
+    memcpy(&wa, a + x, 8);
+    if (b)
+        memcpy(&wb, b + x, 8);
+    return (wa | wb) != 0;
+}
+
+/* The first and last x < n where a[x] or b[x] (b may be NULL) is nonzero,
+ * -1 when none: eight bytes at a time from each end (these scans, a byte
+ * and a branch per pixel, were most of the crop's and the insets' time:
+ * issue 20). */
+static void row_span(const uint8_t *a, const uint8_t *b, int n, int *first, int *last)
+{
+    *first = *last = -1;
+    int x = 0;
+    while (x + 8 <= n && !any8(a, b, x))
+        x += 8;
+    for (; x < n; x++)
+        if (a[x] || (b && b[x])) {
+            *first = x;
+            break;
+        }
+    if (*first < 0)
+        return;
+    int y = n;
+    while (y - 8 >= *first && !any8(a, b, y - 8))
+        y -= 8;
+    for (y--; y >= *first; y--)
+        if (a[y] || (b && b[y])) {
+            *last = y;
+            return;
+        }
+}
+
 /* Bounding box of the pixels with keep(i) true, or x1 < 0 when none. */
 static void bbox(const struct sl_view *v, const uint8_t *band, const uint8_t *err, int *x0, int *y0, int *x1, int *y1)
 {
+    _Static_assert(SL_T_BACKGROUND == 0, "the truth's background is the zero byte");
     *x0 = v->w, *y0 = v->h, *x1 = -1, *y1 = -1;
     for (int y = 0; y < v->h; y++) {
         size_t r = (size_t)y * (size_t)v->w;
-        int first = -1, last = -1;
-        for (int x = 0; x < v->w; x++) {
-            size_t i = r + (size_t)x;
-            int in = band ? band[i] != 0 || (err && err[i]) : v->truth[i] != SL_T_BACKGROUND;
-            if (in) {
-                if (first < 0)
-                    first = x;
-                last = x;
-            }
-        }
+        int first, last;
+        if (band)
+            row_span(band + r, err ? err + r : NULL, v->w, &first, &last);
+        else
+            row_span(v->truth + r, NULL, v->w, &first, &last);
         if (first < 0)
             continue;
         *x0 = first < *x0 ? first : *x0;
@@ -170,14 +207,8 @@ int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_
      * the same ones are chosen. */
     int ex0 = w, ey0 = h, ex1 = -1, ey1 = -1;
     for (int y = 0; y < h; y++) {
-        const uint8_t *e = err + (size_t)y * (size_t)w;
-        int first = -1, last = -1;
-        for (int x = 0; x < w; x++)
-            if (e[x]) {
-                if (first < 0)
-                    first = x;
-                last = x;
-            }
+        int first, last;
+        row_span(err + (size_t)y * (size_t)w, NULL, w, &first, &last);
         if (first < 0)
             continue;
         ex0 = first < ex0 ? first : ex0;
