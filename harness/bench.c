@@ -195,6 +195,7 @@ static enum sl_err plain_raster(GLuint prog, const struct sl_gl_mesh *m, const m
 /* Medians of one pass and its plain counterpart over the repetitions. */
 struct pair_ms {
     double *render, *readback, *p_render, *p_readback;
+    double *cpu, *p_cpu;   /* process CPU (user+sys, llvmpipe's threads too) of the whole call, readback included */
     uint64_t gs_prims, fragments, p_fragments;
 };
 
@@ -203,8 +204,10 @@ static void layer_row(struct sl_bench_result *res, FILE *out, const char *stage,
 {
     double mr = median(t->render, reps), mb = median(t->readback, reps);
     double pr = median(t->p_render, reps), pb = median(t->p_readback, reps);
-    fprintf(out, "| %s | %.2f | %.2f | %.2f | %.2f | **%.2f** | %llu | %llu | %llu | %.2f |\n", name, mr, pr,
-            mb, pb, mr / pr, (unsigned long long)t->gs_prims, (unsigned long long)t->fragments,
+    double mc = median(t->cpu, reps), pc = median(t->p_cpu, reps);
+    fprintf(out, "| %s | %.2f | %.2f | %.2f | %.2f | **%.2f** | %.2f | %.2f | %.2f | %llu | %llu | %llu | %.2f |\n",
+            name, mr, pr, mb, pb, mr / pr, mc, pc, pc > 0 ? mc / pc : 0.0, (unsigned long long)t->gs_prims,
+            (unsigned long long)t->fragments,
             (unsigned long long)t->p_fragments, t->p_fragments ? (double)t->fragments / (double)t->p_fragments : 0.0);
     struct sl_bench_row *row = sl_bench_add_row(res, stage, "ms", mr, pr, TARGET_RASTER_RATIO, SL_BENCH_AT_MOST);
     if (row) {
@@ -212,7 +215,8 @@ static void layer_row(struct sl_bench_result *res, FILE *out, const char *stage,
         row->gs_prims = t->gs_prims;
         row->fragments = t->fragments;
         row->plain_fragments = t->p_fragments;
-        snprintf(row->note, sizeof row->note, "readback %.2f ms, plain %.2f ms", mb, pb);
+        snprintf(row->note, sizeof row->note, "readback %.2f ms, plain %.2f ms; CPU %.2f ms, plain %.2f ms", mb, pb,
+                 mc, pc);
     }
 }
 
@@ -230,8 +234,8 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     GLuint prog = 0;
     float *depth = sl_calloc(nmax, sizeof(float));
     uint32_t *id = sl_calloc(nmax, sizeof(uint32_t));
-    double *buf = sl_calloc((size_t)reps * 4, sizeof(double));
-    struct pair_ms t = {buf, buf + reps, buf + 2 * reps, buf + 3 * reps, 0, 0, 0};
+    double *buf = sl_calloc((size_t)reps * 6, sizeof(double));
+    struct pair_ms t = {buf, buf + reps, buf + 2 * reps, buf + 3 * reps, buf + 4 * reps, buf + 5 * reps, 0, 0, 0};
     enum sl_err e = SL_OK;
     if (!depth || !id || !buf) {
         e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "plain raster buffers");
@@ -250,10 +254,11 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     fprintf(out, "Plain raster: depth32F + R32UI, the layers' vertex shader, a fragment shader writing "
                  "gl_PrimitiveID + 1, no geometry shader, one draw, nothing culled. Render = framebuffer "
                  "+ clear + draw + glFinish; readback of depth and ids apart. Fragments: fragment shader "
-                 "invocations (GL query), before any discard.\n\n");
-    fprintf(out, "| pass | render ms | plain ms | readback ms | plain readback ms | ratio | GS prims | "
-                 "fragments | plain fragments | fragment ratio |\n");
-    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+                 "invocations (GL query), before any discard. CPU: the process's user+sys time "
+                 "(llvmpipe's threads included) over the whole call, readback included.\n\n");
+    fprintf(out, "| pass | render ms | plain ms | readback ms | plain readback ms | ratio | CPU ms | plain CPU ms | "
+                 "CPU ratio | GS prims | fragments | plain fragments | fragment ratio |\n");
+    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
 
     /* the G-buffer at the viewport, against a plain raster with the camera */
     mat4 cam;
@@ -264,7 +269,9 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
         GLuint q;
         glGenQueries(1, &q);
         glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q);
+        double c0 = cpu_now();
         e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, W, H, &v, &mr, &mb, NULL, d);
+        double c1 = cpu_now();
         glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
         GLuint64 frags = 0;
         glGetQueryObjectui64v(q, GL_QUERY_RESULT, &frags);
@@ -272,9 +279,12 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
         if (e)
             break;
         glm_mat4_mul(v.proj, v.view, cam);
+        double c2 = cpu_now();
         if ((e = plain_raster(prog, &x->mesh, cam, W, H, 0, depth, id, &pm, d)))
             break;
         if (r >= 0) {
+            t.cpu[r] = 1e3 * (c1 - c0);
+            t.p_cpu[r] = 1e3 * (cpu_now() - c2);
             t.render[r] = mr;
             t.readback[r] = mb;
             t.p_render[r] = pm.render;
@@ -299,15 +309,20 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
         for (int r = -1; r < reps && !e; r++) {
             struct raster_ms pm;
+            double c0 = cpu_now();
             if ((e = plain_raster(prog, &x->mesh, f.box.vp, S, S, 1, depth, id, &pm, d)))
                 break;
+            double c1 = cpu_now();
             free(f.layer[l].depth);
             free(f.layer[l].id);
             memset(&f.layer[l], 0, sizeof f.layer[l]);
             f.have &= ~SL_NEED(l);
+            double c2 = cpu_now();
             if ((e = sl_shadowmap_render(&sp, &x->mesh, &f, SL_NEED(l), d)))
                 break;
             if (r >= 0) {
+                t.p_cpu[r] = 1e3 * (c1 - c0);
+                t.cpu[r] = 1e3 * (cpu_now() - c2);
                 t.render[r] = f.layer[l].ms_render;
                 t.readback[r] = f.layer[l].ms_readback;
                 t.p_render[r] = pm.render;
