@@ -300,7 +300,10 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     t.gs_prims = 0;
     layer_row(res, out, "gbuffer", name, &t, reps);
 
-    /* the light frame of that view, as run.c fits it */
+    /* the light frame of that view, as run.c fits it, its arrays from the
+     * pass's pool as a run's are (calloc'd afresh, a layer's readback
+     * faulted its pages in now and then: +140 ms of CPU in one repetition) */
+    f.pool = &sp.pool;
     f.size = S;
     memcpy(f.dir, x->s.light_dir, sizeof f.dir);
     sl_light_fit(&x->s, &v, &f.box);
@@ -313,10 +316,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
             if ((e = plain_raster(prog, &x->mesh, f.box.vp, S, S, 1, depth, id, &pm, d)))
                 break;
             double c1 = cpu_now();
-            free(f.layer[l].depth);
-            free(f.layer[l].id);
-            memset(&f.layer[l], 0, sizeof f.layer[l]);
-            f.have &= ~SL_NEED(l);
+            sl_frame_drop_layer(&f, l);
             double c2 = cpu_now();
             if ((e = sl_shadowmap_render(&sp, &x->mesh, &f, SL_NEED(l), d)))
                 break;
