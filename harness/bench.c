@@ -135,22 +135,44 @@ struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *s
 
 struct raster_ms { double render, readback; uint64_t fragments; };
 
+/* The plain raster's framebuffer, kept across repetitions as shadowmap.c
+ * keeps a layer's (made afresh each time, llvmpipe zeroed its textures in
+ * fresh pages now and then: its median moved between ~20 and ~200 ms of
+ * CPU from one row to the next, and a conservative layer measured "0.4x" a
+ * plain raster). Made in the warm-up repetition, timed there only. */
+struct plain_target { GLuint fbo, tex[2]; int w, h; };
+
+static void plain_target_free(struct plain_target *t)
+{
+    if (t->w) {
+        glDeleteFramebuffers(1, &t->fbo);
+        glDeleteTextures(2, t->tex);
+    }
+    memset(t, 0, sizeof *t);
+}
+
 /* The plain raster: depth32F + R32UI, trivial shaders, one draw of the
  * whole mesh, nothing culled; timed as shadowmap.c times a layer. */
 static enum sl_err plain_raster(GLuint prog, const struct sl_gl_mesh *m, const mat4 vp, int w, int h,
-                                int zero_to_one, float *depth, uint32_t *id, struct raster_ms *r,
-                                struct sl_diag *d)
+                                int zero_to_one, float *depth, uint32_t *id, struct plain_target *pt,
+                                struct raster_ms *r, struct sl_diag *d)
 {
     size_t n = (size_t)w * (size_t)h;
     double t0 = sl_now();
-    GLuint fbo, tex[2], q;
-    glCreateFramebuffers(1, &fbo);
-    glCreateTextures(GL_TEXTURE_2D, 2, tex);
-    glTextureStorage2D(tex[0], 1, GL_DEPTH_COMPONENT32F, w, h);
-    glTextureStorage2D(tex[1], 1, GL_R32UI, w, h);
-    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, tex[0], 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex[1], 0);
-    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    GLuint q;
+    if (pt->w != w || pt->h != h) {
+        plain_target_free(pt);
+        pt->w = w;
+        pt->h = h;
+        glCreateFramebuffers(1, &pt->fbo);
+        glCreateTextures(GL_TEXTURE_2D, 2, pt->tex);
+        glTextureStorage2D(pt->tex[0], 1, GL_DEPTH_COMPONENT32F, w, h);
+        glTextureStorage2D(pt->tex[1], 1, GL_R32UI, w, h);
+        glNamedFramebufferTexture(pt->fbo, GL_DEPTH_ATTACHMENT, pt->tex[0], 0);
+        glNamedFramebufferTexture(pt->fbo, GL_COLOR_ATTACHMENT0, pt->tex[1], 0);
+        glNamedFramebufferDrawBuffer(pt->fbo, GL_COLOR_ATTACHMENT0);
+    }
+    const GLuint fbo = pt->fbo, *tex = pt->tex;
     enum sl_err e = SL_OK;
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "plain raster framebuffer incomplete");
@@ -187,8 +209,6 @@ static enum sl_err plain_raster(GLuint prog, const struct sl_gl_mesh *m, const m
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         e = sl_gl_check("plain raster", d);
     }
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(2, tex);
     return e;
 }
 
@@ -232,6 +252,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     struct sl_view v;
     memset(&v, 0, sizeof v);
     GLuint prog = 0;
+    struct plain_target pt = {0};
     float *depth = sl_calloc(nmax, sizeof(float));
     uint32_t *id = sl_calloc(nmax, sizeof(uint32_t));
     double *buf = sl_calloc((size_t)reps * 6, sizeof(double));
@@ -252,8 +273,9 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     fprintf(out, "## Passes vs a plain raster of the same mesh, size and matrix (%s, %u triangles, viewpoint %s; "
                  "median of %d after a warm-up)\n\n", x->s.name, x->s.nt, x->s.vp[vp].name, reps);
     fprintf(out, "Plain raster: depth32F + R32UI, the layers' vertex shader, a fragment shader writing "
-                 "gl_PrimitiveID + 1, no geometry shader, one draw, nothing culled. Render = framebuffer "
-                 "+ clear + draw + glFinish; readback of depth and ids apart. Fragments: fragment shader "
+                 "gl_PrimitiveID + 1, no geometry shader, one draw, nothing culled, its framebuffer kept "
+                 "across repetitions as the passes keep theirs. Render = clear + draw + glFinish; readback "
+                 "of depth and ids apart. Fragments: fragment shader "
                  "invocations (GL query), before any discard. CPU: the process's user+sys time "
                  "(llvmpipe's threads included) over the whole call, readback included.\n\n");
     fprintf(out, "| pass | render ms | plain ms | readback ms | plain readback ms | ratio | CPU ms | plain CPU ms | "
@@ -280,7 +302,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
             break;
         glm_mat4_mul(v.proj, v.view, cam);
         double c2 = cpu_now();
-        if ((e = plain_raster(prog, &x->mesh, cam, W, H, 0, depth, id, &pm, d)))
+        if ((e = plain_raster(prog, &x->mesh, cam, W, H, 0, depth, id, &pt, &pm, d)))
             break;
         if (r >= 0) {
             t.cpu[r] = 1e3 * (c1 - c0);
@@ -313,7 +335,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
         for (int r = -1; r < reps && !e; r++) {
             struct raster_ms pm;
             double c0 = cpu_now();
-            if ((e = plain_raster(prog, &x->mesh, f.box.vp, S, S, 1, depth, id, &pm, d)))
+            if ((e = plain_raster(prog, &x->mesh, f.box.vp, S, S, 1, depth, id, &pt, &pm, d)))
                 break;
             double c1 = cpu_now();
             sl_frame_drop_layer(&f, l);
@@ -340,6 +362,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     if (!e)
         fputc('\n', out);
 out:
+    plain_target_free(&pt);
     if (prog)
         glDeleteProgram(prog);
     sl_frame_free(&f);
