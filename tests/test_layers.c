@@ -1,10 +1,9 @@
-/* The conservative layers' bits pinned (issue 20, i20c). Their shaders are
- * tuned for speed on llvmpipe (cons_fs.glsl: a float pre-test with a
- * rigorous error bound, the exact double test only where the float one
- * cannot decide); every such change must leave each texel of BGSM, BGSM2,
- * SGSM and SGSM with adjacency as it was, depth and id. This case renders
- * them over scenes, viewpoints and map sizes chosen to reach the shaders'
- * corners (slivers and zero-area triangles, two-sided leaves, a spot
+/* The conservative layers' bits pinned (issue 20). Their shaders and the
+ * way they are drawn are tuned for speed on llvmpipe (e.g. SGSM with
+ * adjacency drawn as two programs, shadowmap.c); every such change must
+ * leave each texel of BGSM, BGSM2, SGSM and SGSM with adjacency as it was,
+ * depth and id. This case renders them over scenes, viewpoints and map
+ * sizes chosen to reach the shaders' corners (slivers and zero-area triangles, two-sided leaves, a spot
  * light's perspective frame with unmapped triangles, big ground triangles
  * spanning the map, sub-texel foliage) and compares a hash of each layer,
  * and its GS-primitive and fragment counts, with the values the shaders of
