@@ -91,7 +91,7 @@ static void layers_golden_hashes(void **st)
                         printf("    {\"%s\", %d, %d, %d, 0x%016llxull, %llu, %llu},\n", scenes[si], vp, fr.size,
                                k, (unsigned long long)h, (unsigned long long)L->gs_prims,
                                (unsigned long long)L->fragments);
-                    for (size_t g = 0; golden[g].scene; g++)
+                    for (size_t g = 0; !print && golden[g].scene; g++)
                         if (!strcmp(golden[g].scene, scenes[si]) && golden[g].vp == vp &&
                             golden[g].size == fr.size && golden[g].layer == k) {
                             if (golden[g].hash != h)
