@@ -135,22 +135,44 @@ struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *s
 
 struct raster_ms { double render, readback; uint64_t fragments; };
 
+/* The layers' plain raster's framebuffer, kept across repetitions as
+ * shadowmap.c keeps a layer's (made afresh each time, llvmpipe zeroed its textures in
+ * fresh pages now and then: its median moved between ~20 and ~200 ms of
+ * CPU from one row to the next, and a conservative layer measured "0.4x" a
+ * plain raster). Made in the warm-up repetition, timed there only. */
+struct plain_target { GLuint fbo, tex[2]; int w, h; };
+
+static void plain_target_free(struct plain_target *t)
+{
+    if (t->w) {
+        glDeleteFramebuffers(1, &t->fbo);
+        glDeleteTextures(2, t->tex);
+    }
+    memset(t, 0, sizeof *t);
+}
+
 /* The plain raster: depth32F + R32UI, trivial shaders, one draw of the
  * whole mesh, nothing culled; timed as shadowmap.c times a layer. */
 static enum sl_err plain_raster(GLuint prog, const struct sl_gl_mesh *m, const mat4 vp, int w, int h,
-                                int zero_to_one, float *depth, uint32_t *id, struct raster_ms *r,
-                                struct sl_diag *d)
+                                int zero_to_one, float *depth, uint32_t *id, struct plain_target *pt,
+                                struct raster_ms *r, struct sl_diag *d)
 {
     size_t n = (size_t)w * (size_t)h;
     double t0 = sl_now();
-    GLuint fbo, tex[2], q;
-    glCreateFramebuffers(1, &fbo);
-    glCreateTextures(GL_TEXTURE_2D, 2, tex);
-    glTextureStorage2D(tex[0], 1, GL_DEPTH_COMPONENT32F, w, h);
-    glTextureStorage2D(tex[1], 1, GL_R32UI, w, h);
-    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, tex[0], 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex[1], 0);
-    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    GLuint q;
+    if (pt->w != w || pt->h != h) {
+        plain_target_free(pt);
+        pt->w = w;
+        pt->h = h;
+        glCreateFramebuffers(1, &pt->fbo);
+        glCreateTextures(GL_TEXTURE_2D, 2, pt->tex);
+        glTextureStorage2D(pt->tex[0], 1, GL_DEPTH_COMPONENT32F, w, h);
+        glTextureStorage2D(pt->tex[1], 1, GL_R32UI, w, h);
+        glNamedFramebufferTexture(pt->fbo, GL_DEPTH_ATTACHMENT, pt->tex[0], 0);
+        glNamedFramebufferTexture(pt->fbo, GL_COLOR_ATTACHMENT0, pt->tex[1], 0);
+        glNamedFramebufferDrawBuffer(pt->fbo, GL_COLOR_ATTACHMENT0);
+    }
+    const GLuint fbo = pt->fbo, *tex = pt->tex;
     enum sl_err e = SL_OK;
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         e = sl_fail(d, SL_E_GL, NULL, 0, NULL, "plain raster framebuffer incomplete");
@@ -187,14 +209,13 @@ static enum sl_err plain_raster(GLuint prog, const struct sl_gl_mesh *m, const m
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         e = sl_gl_check("plain raster", d);
     }
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(2, tex);
     return e;
 }
 
 /* Medians of one pass and its plain counterpart over the repetitions. */
 struct pair_ms {
     double *render, *readback, *p_render, *p_readback;
+    double *cpu, *p_cpu;   /* process CPU (user+sys, llvmpipe's threads too) of the whole call, readback included */
     uint64_t gs_prims, fragments, p_fragments;
 };
 
@@ -203,8 +224,10 @@ static void layer_row(struct sl_bench_result *res, FILE *out, const char *stage,
 {
     double mr = median(t->render, reps), mb = median(t->readback, reps);
     double pr = median(t->p_render, reps), pb = median(t->p_readback, reps);
-    fprintf(out, "| %s | %.2f | %.2f | %.2f | %.2f | **%.2f** | %llu | %llu | %llu | %.2f |\n", name, mr, pr,
-            mb, pb, mr / pr, (unsigned long long)t->gs_prims, (unsigned long long)t->fragments,
+    double mc = median(t->cpu, reps), pc = median(t->p_cpu, reps);
+    fprintf(out, "| %s | %.2f | %.2f | %.2f | %.2f | **%.2f** | %.2f | %.2f | %.2f | %llu | %llu | %llu | %.2f |\n",
+            name, mr, pr, mb, pb, mr / pr, mc, pc, pc > 0 ? mc / pc : 0.0, (unsigned long long)t->gs_prims,
+            (unsigned long long)t->fragments,
             (unsigned long long)t->p_fragments, t->p_fragments ? (double)t->fragments / (double)t->p_fragments : 0.0);
     struct sl_bench_row *row = sl_bench_add_row(res, stage, "ms", mr, pr, TARGET_RASTER_RATIO, SL_BENCH_AT_MOST);
     if (row) {
@@ -212,7 +235,8 @@ static void layer_row(struct sl_bench_result *res, FILE *out, const char *stage,
         row->gs_prims = t->gs_prims;
         row->fragments = t->fragments;
         row->plain_fragments = t->p_fragments;
-        snprintf(row->note, sizeof row->note, "readback %.2f ms, plain %.2f ms", mb, pb);
+        snprintf(row->note, sizeof row->note, "readback %.2f ms, plain %.2f ms; CPU %.2f ms, plain %.2f ms", mb, pb,
+                 mc, pc);
     }
 }
 
@@ -228,10 +252,11 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     struct sl_view v;
     memset(&v, 0, sizeof v);
     GLuint prog = 0;
+    struct plain_target pt = {0};
     float *depth = sl_calloc(nmax, sizeof(float));
     uint32_t *id = sl_calloc(nmax, sizeof(uint32_t));
-    double *buf = sl_calloc((size_t)reps * 4, sizeof(double));
-    struct pair_ms t = {buf, buf + reps, buf + 2 * reps, buf + 3 * reps, 0, 0, 0};
+    double *buf = sl_calloc((size_t)reps * 6, sizeof(double));
+    struct pair_ms t = {buf, buf + reps, buf + 2 * reps, buf + 3 * reps, buf + 4 * reps, buf + 5 * reps, 0, 0, 0};
     enum sl_err e = SL_OK;
     if (!depth || !id || !buf) {
         e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "plain raster buffers");
@@ -248,12 +273,14 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     fprintf(out, "## Passes vs a plain raster of the same mesh, size and matrix (%s, %u triangles, viewpoint %s; "
                  "median of %d after a warm-up)\n\n", x->s.name, x->s.nt, x->s.vp[vp].name, reps);
     fprintf(out, "Plain raster: depth32F + R32UI, the layers' vertex shader, a fragment shader writing "
-                 "gl_PrimitiveID + 1, no geometry shader, one draw, nothing culled. Render = framebuffer "
-                 "+ clear + draw + glFinish; readback of depth and ids apart. Fragments: fragment shader "
-                 "invocations (GL query), before any discard.\n\n");
-    fprintf(out, "| pass | render ms | plain ms | readback ms | plain readback ms | ratio | GS prims | "
-                 "fragments | plain fragments | fragment ratio |\n");
-    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+                 "gl_PrimitiveID + 1, no geometry shader, one draw, nothing culled, its framebuffer kept "
+                 "across repetitions as the passes keep theirs. Render = clear + draw + glFinish; readback "
+                 "of depth and ids apart. Fragments: fragment shader "
+                 "invocations (GL query), before any discard. CPU: the process's user+sys time "
+                 "(llvmpipe's threads included) over the whole call, readback included.\n\n");
+    fprintf(out, "| pass | render ms | plain ms | readback ms | plain readback ms | ratio | CPU ms | plain CPU ms | "
+                 "CPU ratio | GS prims | fragments | plain fragments | fragment ratio |\n");
+    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
 
     /* the G-buffer at the viewport, against a plain raster with the camera */
     mat4 cam;
@@ -264,7 +291,9 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
         GLuint q;
         glGenQueries(1, &q);
         glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q);
+        double c0 = cpu_now();
         e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, W, H, &v, &mr, &mb, NULL, d);
+        double c1 = cpu_now();
         glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
         GLuint64 frags = 0;
         glGetQueryObjectui64v(q, GL_QUERY_RESULT, &frags);
@@ -272,9 +301,18 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
         if (e)
             break;
         glm_mat4_mul(v.proj, v.view, cam);
-        if ((e = plain_raster(prog, &x->mesh, cam, W, H, 0, depth, id, &pm, d)))
+        double c2 = cpu_now();
+        /* the G-buffer's plain counterpart as before: its framebuffer made
+         * afresh each time (kept, this row's own view arrays, made afresh
+         * too, faulted in at every repetition: 20 ms of readback) */
+        struct plain_target gpt = {0};
+        e = plain_raster(prog, &x->mesh, cam, W, H, 0, depth, id, &gpt, &pm, d);
+        plain_target_free(&gpt);
+        if (e)
             break;
         if (r >= 0) {
+            t.cpu[r] = 1e3 * (c1 - c0);
+            t.p_cpu[r] = 1e3 * (cpu_now() - c2);
             t.render[r] = mr;
             t.readback[r] = mb;
             t.p_render[r] = pm.render;
@@ -290,7 +328,10 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     t.gs_prims = 0;
     layer_row(res, out, "gbuffer", name, &t, reps);
 
-    /* the light frame of that view, as run.c fits it */
+    /* the light frame of that view, as run.c fits it, its arrays from the
+     * pass's pool as a run's are (calloc'd afresh, a layer's readback
+     * faulted its pages in now and then: +140 ms of CPU in one repetition) */
+    f.pool = &sp.pool;
     f.size = S;
     memcpy(f.dir, x->s.light_dir, sizeof f.dir);
     sl_light_fit(&x->s, &v, &f.box);
@@ -299,15 +340,17 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
         for (int r = -1; r < reps && !e; r++) {
             struct raster_ms pm;
-            if ((e = plain_raster(prog, &x->mesh, f.box.vp, S, S, 1, depth, id, &pm, d)))
+            double c0 = cpu_now();
+            if ((e = plain_raster(prog, &x->mesh, f.box.vp, S, S, 1, depth, id, &pt, &pm, d)))
                 break;
-            free(f.layer[l].depth);
-            free(f.layer[l].id);
-            memset(&f.layer[l], 0, sizeof f.layer[l]);
-            f.have &= ~SL_NEED(l);
+            double c1 = cpu_now();
+            sl_frame_drop_layer(&f, l);
+            double c2 = cpu_now();
             if ((e = sl_shadowmap_render(&sp, &x->mesh, &f, SL_NEED(l), d)))
                 break;
             if (r >= 0) {
+                t.p_cpu[r] = 1e3 * (c1 - c0);
+                t.cpu[r] = 1e3 * (cpu_now() - c2);
                 t.render[r] = f.layer[l].ms_render;
                 t.readback[r] = f.layer[l].ms_readback;
                 t.p_render[r] = pm.render;
@@ -325,6 +368,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     if (!e)
         fputc('\n', out);
 out:
+    plain_target_free(&pt);
     if (prog)
         glDeleteProgram(prog);
     sl_frame_free(&f);

@@ -51,10 +51,11 @@ enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
     if (!p->prog_depth_id)
         return SL_E_GL;
     /* modes 0-2 (BGSM, BGSM2, SGSM) share cons_gs, mode 3 (SGSM with
-     * adjacency) has its own */
-    for (int mode = 0; mode < 4; mode++) {
-        char *gs = cons_source(mode == 3 ? sl_glsl_cons_adj_gs : sl_glsl_cons_gs, mode, sl_glsl_cons_setup);
-        char *fs = cons_source(sl_glsl_cons_fs, mode, NULL);
+     * adjacency) has its own; mode 4 is its GS taking the triangles that
+     * keep no edge, with SGSM's fragment shader (cons_adj_gs.glsl) */
+    for (int mode = 0; mode < 5; mode++) {
+        char *gs = cons_source(mode >= 3 ? sl_glsl_cons_adj_gs : sl_glsl_cons_gs, mode, sl_glsl_cons_setup);
+        char *fs = cons_source(sl_glsl_cons_fs, mode == 4 ? 2 : mode, NULL);
         if (gs && fs)
             p->prog_cons[mode] = sl_gl_program(sl_glsl_depth_id_vs, gs, fs, d);
         else
@@ -144,7 +145,7 @@ void sl_shadowmap_free(struct sl_shadowmap_pass *p)
     sl_layer_pool_free(&p->pix_pool);
     if (p->prog_depth_id)
         glDeleteProgram(p->prog_depth_id);
-    for (int mode = 0; mode < 4; mode++)
+    for (int mode = 0; mode < 5; mode++)
         if (p->prog_cons[mode])
             glDeleteProgram(p->prog_cons[mode]);
     memset(p, 0, sizeof *p);
@@ -154,6 +155,26 @@ void sl_shadowmap_free(struct sl_shadowmap_pass *p)
 static void *layer_array(struct sl_light_frame *f, size_t n)
 {
     return f->pool ? sl_layer_pool_get(f->pool, n * 4) : sl_calloc(n, 4);
+}
+
+/* Make prog current with the layer's uniforms; returns u_first's location. */
+static GLint use_program(GLuint prog, const struct sl_light_frame *f, int cons)
+{
+    glUseProgram(prog);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_vp"), 1, GL_FALSE, (const float *)f->box.vp);
+    if (cons) {
+        /* lambda: Morais 2015 eq. 21 with eta = 1, the half texel
+         * diagonal, grown by the coverage margin on both counts */
+        glUniform1f(glGetUniformLocation(prog, "u_size"), (float)f->size);
+        glUniform1f(glGetUniformLocation(prog, "u_lambda"),  /* -1 (unused) in the adjacency GS */
+                    (float)(0.70710678 * (1.0 + 1.0 / 1024.0) + 2.0 * SL_CONS_EPS_TEXELS));
+        glUniform1d(glGetUniformLocation(prog, "u_eps"), SL_CONS_EPS_TEXELS);
+        /* a point light's unmapped triangles (frame.h) are left out */
+        glUniform1f(glGetUniformLocation(prog, "u_wmin"), f->box.wmin);
+        glUniform1f(glGetUniformLocation(prog, "u_guard"), f->box.guard);
+        glUniform1d(glGetUniformLocation(prog, "u_zeps"), SL_CONS_EPS_DEPTH);
+    }
+    return glGetUniformLocation(prog, "u_first");
 }
 
 static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_mesh *m,
@@ -200,21 +221,12 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
             glClearNamedFramebufferuiv(fbo, GL_COLOR, 0, zero_u);
         }
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
-        glUseProgram(prog);
-        glUniformMatrix4fv(glGetUniformLocation(prog, "u_vp"), 1, GL_FALSE, (const float *)f->box.vp);
-        GLint first_loc = glGetUniformLocation(prog, "u_first");
+        /* SGSM with adjacency is drawn as two programs, the triangles that
+         * keep no edge first (cons_adj_gs.glsl); the others, one */
+        const int npass = kind == K_SGSM_ADJ ? 2 : 1;
+        GLint first_loc = use_program(npass == 2 ? p->prog_cons[4] : prog, f, cons);
         GLuint first_ids = 0;
         if (cons) {
-            /* lambda: Morais 2015 eq. 21 with eta = 1, the half texel
-             * diagonal, grown by the coverage margin on both counts */
-            glUniform1f(glGetUniformLocation(prog, "u_size"), (float)S);
-            glUniform1f(glGetUniformLocation(prog, "u_lambda"),  /* -1 (unused) in the adjacency GS */
-                        (float)(0.70710678 * (1.0 + 1.0 / 1024.0) + 2.0 * SL_CONS_EPS_TEXELS));
-            glUniform1d(glGetUniformLocation(prog, "u_eps"), SL_CONS_EPS_TEXELS);
-            /* a point light's unmapped triangles (frame.h) are left out */
-            glUniform1f(glGetUniformLocation(prog, "u_wmin"), f->box.wmin);
-            glUniform1f(glGetUniformLocation(prog, "u_guard"), f->box.guard);
-            glUniform1d(glGetUniformLocation(prog, "u_zeps"), SL_CONS_EPS_DEPTH);
             if (kind == K_BGSM2) {
                 /* the second layer leaves out, per texel, the triangle the
                  * first one stored there */
@@ -239,29 +251,41 @@ static enum sl_err render_layer(struct sl_shadowmap_pass *p, const struct sl_gl_
         /* two-sided meshes (leaves) are never culled: culling the side that
          * faces the light would remove the leaf from the map altogether; the
          * conservative layers cull nothing (see methods/conservative.c) */
-        for (int r = 0; r < m->nruns; r++) {
-            if (cull_front && !m->runs[r].two_sided)
-                glEnable(GL_CULL_FACE);
-            else
-                glDisable(GL_CULL_FACE);
-            /* in chunks, each flushed: llvmpipe bins a whole draw before it
-             * rasterises, in 64 KB blocks that grow with triangles x tiles
-             * (57 MB for SGSM with adjacency at 4096^2 in the Morais study,
-             * at its peak); a flush hands the bins over. The triangles reach
-             * the framebuffer in the same order, so the layer is the same. */
-            for (uint32_t c0 = 0; c0 < m->runs[r].count; c0 += p->chunk) {
-                const uint32_t t0 = m->runs[r].first + c0;
-                const uint32_t nt = m->runs[r].count - c0 < p->chunk ? m->runs[r].count - c0
-                                                                                : p->chunk;
-                if (c0)
-                    glFlush();
-                glUniform1ui(first_loc, t0);   /* gl_PrimitiveID restarts with every draw */
-                if (kind == K_SGSM_ADJ)
-                    glDrawElements(GL_TRIANGLES_ADJACENCY, (GLsizei)(6 * nt), GL_UNSIGNED_INT,
-                                   (const void *)((size_t)t0 * 6 * sizeof(uint32_t)));
+        for (int pass = 0; pass < npass; pass++) {
+            if (pass) {
+                glFlush();   /* as between chunks */
+                first_loc = use_program(prog, f, cons);
+            }
+            for (int r = 0; r < m->nruns; r++) {
+                if (cull_front && !m->runs[r].two_sided)
+                    glEnable(GL_CULL_FACE);
                 else
-                    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * nt), GL_UNSIGNED_INT,
-                                   (const void *)((size_t)t0 * 3 * sizeof(uint32_t)));
+                    glDisable(GL_CULL_FACE);
+                /* in chunks, each flushed: llvmpipe bins a whole draw before it
+                 * rasterises, in 64 KB blocks that grow with triangles x tiles
+                 * (57 MB for SGSM with adjacency at 4096^2 in the Morais study,
+                 * at its peak); a flush hands the bins over. The triangles reach
+                 * the framebuffer in the same order, so the layer is the same.
+                 * (SGSM with adjacency's two programs do change the order:
+                 * a triangle keeping no edge now comes before one that keeps
+                 * any. Only which id a texel keeps among triangles of exactly
+                 * equal depth there could differ, and either is a proof of the
+                 * same depth bound; layers::golden_hashes found no texel
+                 * changed over its 7 scenes.) */
+                for (uint32_t c0 = 0; c0 < m->runs[r].count; c0 += p->chunk) {
+                    const uint32_t t0 = m->runs[r].first + c0;
+                    const uint32_t nt = m->runs[r].count - c0 < p->chunk ? m->runs[r].count - c0
+                                                                                    : p->chunk;
+                    if (c0)
+                        glFlush();
+                    glUniform1ui(first_loc, t0);   /* gl_PrimitiveID restarts with every draw */
+                    if (kind == K_SGSM_ADJ)
+                        glDrawElements(GL_TRIANGLES_ADJACENCY, (GLsizei)(6 * nt), GL_UNSIGNED_INT,
+                                       (const void *)((size_t)t0 * 6 * sizeof(uint32_t)));
+                    else
+                        glDrawElements(GL_TRIANGLES, (GLsizei)(3 * nt), GL_UNSIGNED_INT,
+                                       (const void *)((size_t)t0 * 3 * sizeof(uint32_t)));
+                }
             }
         }
         glEndQuery(GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB);

@@ -56,9 +56,10 @@ struct sl_shadowmap_pass {
     GLuint prog_depth_id;
     /* conservative layers, one program each (BGSM, BGSM2, SGSM: geometry
      * shader + exact per-texel tests; SGSM with adjacency:
-     * GL_TRIANGLES_ADJACENCY input), specialised so that no layer pays for
-     * another's code */
-    GLuint prog_cons[4];
+     * GL_TRIANGLES_ADJACENCY input, drawn as two programs: [4] the
+     * triangles that keep no edge, then [3] the others), specialised so
+     * that no layer pays for another's code */
+    GLuint prog_cons[5];
 };
 
 enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d);

@@ -81,6 +81,20 @@ void main()
         if (away && exists && area2(b, a, o[i]) < 0.0)
             keep |= 1u << i;
     }
+    // SL_MODE 4 (shadowmap.c draws it first) takes the triangles that keep
+    // no edge, SL_MODE 3 the others: for a triangle that keeps none, mode
+    // 3's per-texel test is SGSM's (inside all three edges, the plane's
+    // highest depth), so those go to mode 2's fragment shader, which lacks
+    // the neighbours' part: on llvmpipe that part costs every fragment of
+    // a draw whether its triangle keeps an edge or not (a loop runs its
+    // first round, masked, for all)
+#if SL_MODE == 4
+    if (keep != 0u)
+        return;
+#else
+    if (keep == 0u)
+        return;
+#endif
     g_keep = keep;
     // the per-texel test's set-up: the triangle, then each kept neighbour,
     // which runs b -> a -> opposite (cons_fs.glsl, mode 3)
