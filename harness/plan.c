@@ -65,27 +65,15 @@ int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struc
 /* The layers wanted by the selected cells of the (view, map) group that
  * starts at cell `from` (the group's cells are contiguous in sweep order),
  * leaving out cells a resumed run will skip. */
-unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
+/* The layers the group's remaining cells from `from` need (mask), and of
+ * those the ones some cell reads beyond its pixels' own texels (*dense). */
+static unsigned group_layers(const struct sl_config *c, int from, int last, struct sl_store *st, int resume,
+                             unsigned *dense)
 {
     struct sl_cell_key k0, k;
     sl_plan_cell(c, from, &k0);
     unsigned needs = 0;
-    for (int i = from; i < last; i++) {
-        sl_plan_cell(c, i, &k);
-        if (k.scene != k0.scene || k.viewport != k0.viewport || k.vp != k0.vp || k.map != k0.map)
-            break;
-        if (resume && sl_plan_stored(c, &k, st))
-            continue;
-        needs |= c->methods[k.method].method->needs(&c->methods[k.method].params);
-    }
-    return needs;
-}
-
-unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
-{
-    struct sl_cell_key k0, k;
-    sl_plan_cell(c, from, &k0);
-    unsigned needs = 0, dense = 0;
+    *dense = 0;
     for (int i = from; i < last; i++) {
         sl_plan_cell(c, i, &k);
         if (k.scene != k0.scene || k.viewport != k0.viewport || k.vp != k0.vp || k.map != k0.map)
@@ -95,8 +83,20 @@ unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, s
         const struct sl_method *m = c->methods[k.method].method;
         const unsigned n = m->needs(&c->methods[k.method].params);
         needs |= n;
-        dense |= n & ~m->at_pixel;
+        *dense |= n & ~m->at_pixel;
     }
+    return needs;
+}
+
+unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
+{
+    unsigned dense;
+    return group_layers(c, from, last, st, resume, &dense);
+}
+
+unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
+{
+    unsigned dense, needs = group_layers(c, from, last, st, resume, &dense);
     return needs & ~dense & ((1u << SL_LAYER_COUNT) - 1u);
 }
 
