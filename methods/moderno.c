@@ -83,33 +83,6 @@ struct ctx {
     int S;
 };
 
-/* Whether the frame's matrix is affine (its last row 0, 0, 0, 1: the
- * orthographic box of a directional light): then w = 0x + 0y + 0z + 1 is
- * exactly 1 for every finite point, and x / 1 == x in IEEE arithmetic. */
-static int frame_affine(const struct sl_light_frame *f)
-{
-    const vec4 *m = (const vec4 *)f->box.vp;   /* column-major: m[column][row] */
-    return m[0][3] == 0.0f && m[1][3] == 0.0f && m[2][3] == 0.0f && m[3][3] == 1.0f;
-}
-
-/* sl_frame_project, the same bits, without its three divisions by w where
- * the frame is affine: they were the longest step of every method's
- * per-pixel projection, done once per pixel per method (issue 20). */
-static inline void project(const struct sl_light_frame *f, int affine, const float p[3], float *u, float *v,
-                           float *z)
-{
-    if (!affine) {
-        sl_frame_project(f, p, u, v, z);
-        return;
-    }
-    vec4 w, c;
-    sl_point4(p, w);
-    glm_mat4_mulv((vec4 *)f->box.vp, w, c);
-    *u = (c[0] * 0.5f + 0.5f) * (float)f->size;
-    *v = (c[1] * 0.5f + 0.5f) * (float)f->size;
-    *z = c[2];
-}
-
 /* A pixel's shadow ray: its origin, direction toward the light and end. */
 struct sray {
     const float *p;
@@ -243,7 +216,6 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
     out->has_base = 1;
     out->has_detail = kind == K_COHERENCE;
     uint64_t lookups = 0, tests = 0;
-    const int affine = frame_affine(f);
     const float *depth = c.L->depth;   /* read once: the stores to out may alias c.L for the compiler */
     const uint32_t *ids = c.L->id;
     double t0 = sl_now();
@@ -255,7 +227,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         }
         const float *p = v->pos + 3 * i;
         float u, w, z;
-        project(f, affine, p, &u, &w, &z);
+        sl_frame_project(f, p, &u, &w, &z);
         uint32_t k = sl_frame_texel(f, u, w);
         lookups++;
         const uint64_t tests_before = tests;
@@ -318,7 +290,6 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain stages");
     out->has_base = 1;
     uint64_t lookups = 0, tests = 0;
-    const int affine = frame_affine(f);
     const float *depth = c.L->depth;
     const uint32_t *ids = c.L->id;
     for (int step = 0; step < 3; step++) {
@@ -333,7 +304,7 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
                 continue;
             const float *p = v->pos + 3 * i;
             float u, w, z;
-            project(f, affine, p, &u, &w, &z);
+            sl_frame_project(f, p, &u, &w, &z);
             uint32_t k = sl_frame_texel(f, u, w);
             const uint64_t before = tests;
             if (step == 0) {                    /* NSM, then coherence over 4 texels */

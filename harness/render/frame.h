@@ -154,16 +154,24 @@ static inline void sl_point4(const float p[3], vec4 w)
 
 /* Project a world point into the frame: texel coordinates in [0, size) (not
  * clamped; u, v may fall outside for points outside the box) and window
- * depth. The division by w is exact for the orthographic box (w = 1). */
+ * depth. Where w is 1 (the orthographic box of a directional light: its last
+ * row is 0, 0, 0, 1) the three divisions are skipped: x / 1 == x in IEEE
+ * arithmetic for every x, so the bits are the same, and the divisions were
+ * the longest step of every method's per-pixel projection. */
 static inline void sl_frame_project(const struct sl_light_frame *f, const float p[3],
                                     float *u, float *v, float *z)
 {
     vec4 w, c;
     sl_point4(p, w);
     glm_mat4_mulv((vec4 *)f->box.vp, w, c);
-    *u = (c[0] / c[3] * 0.5f + 0.5f) * (float)f->size;
-    *v = (c[1] / c[3] * 0.5f + 0.5f) * (float)f->size;
-    *z = c[2] / c[3];
+    if (c[3] != 1.0f) {
+        c[0] /= c[3];
+        c[1] /= c[3];
+        c[2] /= c[3];
+    }
+    *u = (c[0] * 0.5f + 0.5f) * (float)f->size;
+    *v = (c[1] * 0.5f + 0.5f) * (float)f->size;
+    *z = c[2];
 }
 
 /* The unit direction from p toward the light, and how far a shadow ray from
