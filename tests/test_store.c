@@ -481,6 +481,57 @@ static void store_failed_put_leaves_no_cell(void **st)
 /* The database itself refuses the last row of a cell (a trigger another
  * connection installed, standing in for a full disk or a constraint of a
  * newer schema): the cell row must be rolled back too. */
+/* The figures table takes every figure name this build stores and nothing
+ * else: not a part of a name, not two names joined by the comma that
+ * delimits the CHECK's list, not an empty name. */
+static int raw_figure(const char *path, const char *figure)
+{
+    sqlite3 *raw = NULL;
+    assert_int_equal(sqlite3_open(path, &raw), SQLITE_OK);
+    sqlite3_stmt *q = NULL;
+    assert_int_equal(sqlite3_prepare_v2(raw,
+                                        "INSERT INTO figures (cell_id, scene, viewpoint, viewport, map_size, "
+                                        "label, region, figure, count) SELECT cell_id, scene, viewpoint, "
+                                        "viewport, map_size, label, '9px', ?1, 1 FROM cells LIMIT 1",
+                                        -1, &q, NULL),
+                     SQLITE_OK);
+    sqlite3_bind_text(q, 1, figure, -1, SQLITE_TRANSIENT);
+    int rc = sqlite3_step(q);
+    sqlite3_finalize(q);
+    sqlite3_close(raw);
+    return rc;
+}
+
+static void store_figure_names_checked(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p;
+    fill_prov(&p, "abc1234");
+    int64_t run = 0;
+    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
+    struct sl_figures fig;
+    make_fig(&fig, 10, thick3, 3);
+    struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &fig, NULL, 10);
+    assert_int_equal(sl_store_put_cell(s, run, HASH_A, &c, &d), SL_OK);
+    sl_store_close(s);
+    for (int k = 0; k < SL_FIG_COUNT; k++)
+        assert_int_equal(raw_figure(t.db, sl_figure_name((enum sl_figure)k)), SQLITE_DONE);
+    for (int k = 0; k < SL_SFIG_COUNT; k++)
+        assert_int_equal(raw_figure(t.db, sl_soft_figure_name((enum sl_soft_figure)k)), SQLITE_DONE);
+    for (int k = 0; k < SL_AFIG_COUNT; k++)
+        assert_int_equal(raw_figure(t.db, sl_alias_figure_name((enum sl_alias_figure)k)), SQLITE_DONE);
+    assert_int_equal(raw_figure(t.db, "background"), SQLITE_DONE);
+    const char *bad[] = {"bogus", "pixel", "ixels", "pfl,pnfl", "pixels,", ",pixels", "", "Pixels", "pixels "};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        assert_int_equal(raw_figure(t.db, bad[i]), SQLITE_CONSTRAINT);
+    tmp_remove(&t);
+}
+
 static void store_refused_last_row_rolls_back(void **st)
 {
     (void)st;
@@ -785,6 +836,7 @@ int main(int argc, char **argv)
         SL_CASE(store, has_cell_matches_key_and_hash),
         SL_CASE(store, latest_run_wins),
         SL_CASE(store, failed_put_leaves_no_cell),
+        SL_CASE(store, figure_names_checked),
         SL_CASE(store, refused_last_row_rolls_back),
         SL_CASE(store, killed_writer_leaves_whole_cells),
         SL_CASE(store, unknown_run_is_refused),
