@@ -137,10 +137,8 @@ static void drop_scene(struct run_ctx *x)
     if (x->have_adj)
         sl_adjacency_free(&x->adj);
     x->have_adj = 0;
-    if (x->gl.backend) {
-        sl_gbuffer_free(&x->gpass);
-        sl_gl_mesh_free(&x->mesh);
-    }
+    if (x->gl.backend)
+        sl_gl_mesh_free(&x->mesh);   /* the G-buffer pass is kept for the next scene */
     sl_scene_free(&x->scene);
     x->scene_i = -1;
 #ifdef __GLIBC__
@@ -167,6 +165,7 @@ static void ctx_free(struct run_ctx *x)
     if (x->gl.backend) {
         sl_softmap_pass_free(&x->softpass);
         sl_shadowmap_free(&x->spass);
+        sl_gbuffer_free(&x->gpass);
         sl_gl_free(&x->gl);
     }
 }

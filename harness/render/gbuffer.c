@@ -29,10 +29,15 @@ void sl_camera_matrices(const struct sl_viewpoint *vp, float aspect, mat4 view, 
 
 enum sl_err sl_gbuffer_init(struct sl_gbuffer_pass *p, const struct sl_scene *s, struct sl_diag *d)
 {
-    memset(p, 0, sizeof *p);
     if (s->nt >= SL_BACK_FACING)
         return sl_fail(d, SL_E_SCENE, s->path, 0, NULL, "%u triangles: the G-buffer's ids hold at most 2^31 - 1",
                        s->nt);
+    /* the program and the target do not depend on the scene: kept for the
+     * next (a new 1024 x 1024 target is 40 MB that llvmpipe zeroes, and
+     * each of its pages faults) */
+    if (p->prog)
+        return SL_OK;
+    memset(p, 0, sizeof *p);
     p->prog = sl_gl_program(sl_glsl_gbuffer_vs, NULL, sl_glsl_gbuffer_fs, d);
     return p->prog ? SL_OK : SL_E_GL;
 }

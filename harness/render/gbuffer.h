@@ -25,6 +25,8 @@ struct sl_gbuffer_pass {
     float *rgba;                /* w*h*4 readback of the positions */
 };
 
+/* p zeroed: makes the pass; p made before (for another scene): keeps it,
+ * with its target. Either way checks that s's ids fit. */
 enum sl_err sl_gbuffer_init(struct sl_gbuffer_pass *p, const struct sl_scene *s, struct sl_diag *d);
 void        sl_gbuffer_free(struct sl_gbuffer_pass *p);
 
