@@ -521,9 +521,11 @@ static void wrong_side(const struct sl_view *v, const struct sl_verdicts *vd, co
 {
     size_t npx = (size_t)v->w * (size_t)v->h;
     size_t nw = 0;
+    /* & and |, not && and ||: no branches, so the counting pass vectorises
+     * (it ran at ~1.4 ms a cell, 2% of the Moderno study) */
 #define SL_WRONG_PFL(i)                                                                                          \
-    (v->cls[i] == SL_C_PFL && ((vd->v[i] == SL_V_LIT && v->truth[i] == SL_T_SHADOW) ||                         \
-                               (vd->v[i] == SL_V_SHADOW && v->truth[i] == SL_T_LIT)))
+    ((v->cls[i] == SL_C_PFL) & (((vd->v[i] == SL_V_LIT) & (v->truth[i] == SL_T_SHADOW)) |                      \
+                                ((vd->v[i] == SL_V_SHADOW) & (v->truth[i] == SL_T_LIT))))
     for (size_t i = 0; i < npx; i++)
         nw += SL_WRONG_PFL(i);
     /* the gathered pixels' m and bands, sized to them (a frame's worth of
