@@ -3,14 +3,12 @@
  * Invariant: nothing here prints; callers get an id and an sl_diag.
  */
 #define _POSIX_C_SOURCE 200809L
-#define _DEFAULT_SOURCE   /* madvise, MADV_HUGEPAGE */
 #include "util.h"
 #include <errno.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -22,41 +20,11 @@ double sl_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Arrays from 4 MiB up are aligned to the 2 MiB of a huge page and advised
- * as such; smaller ones are not worth a huge page's zeroing. A fresh 4 KiB
- * page costs a fault (a view's ~30 arrays, 70 MB at 1024 x 1024, were
- * ~17 K faults each time a view was made); a huge page costs one per 2 MiB. */
-#define HUGE_FROM ((size_t)4 << 20)
-#define HUGE_ALIGN ((size_t)2 << 20)
-
-void *sl_alloc_huge(size_t bytes)
-{
-    if (bytes < HUGE_FROM)
-        return malloc(bytes ? bytes : 1);
-    void *p = NULL;
-    size_t n = (bytes + HUGE_ALIGN - 1) & ~(HUGE_ALIGN - 1);
-    if (n < bytes || posix_memalign(&p, HUGE_ALIGN, n))
-        return NULL;
-#if !defined(MADV_HUGEPAGE) && defined(__linux__)
-#error "MADV_HUGEPAGE undeclared: check the feature macros above"
-#endif
-#ifdef MADV_HUGEPAGE
-    madvise(p, n, MADV_HUGEPAGE);   /* advice only: a kernel without THP ignores it */
-#endif
-    return p;
-}
-
 void *sl_calloc(size_t n, size_t size)
 {
     if (size && n > SIZE_MAX / size)
         return NULL;
-    size_t bytes = (n ? n : 1) * (size ? size : 1);
-    if (bytes < HUGE_FROM)
-        return calloc(n ? n : 1, size ? size : 1);
-    void *p = sl_alloc_huge(bytes);
-    if (p)
-        memset(p, 0, bytes);   /* posix_memalign's memory is not zeroed */
-    return p;
+    return calloc(n ? n : 1, size ? size : 1);
 }
 
 enum sl_err sl_mkdirs(const char *path, struct sl_diag *d)

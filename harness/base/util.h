@@ -10,10 +10,7 @@
 #include "sl_error.h"
 
 double sl_now(void);                      /* monotonic seconds */
-void  *sl_calloc(size_t n, size_t size);  /* NULL on failure or overflow; from 4 MiB up as sl_alloc_huge, zeroed */
-/* bytes (not zeroed) from malloc, or from 4 MiB up aligned to 2 MiB and
- * advised as transparent huge pages; free() releases either */
-void  *sl_alloc_huge(size_t bytes);
+void  *sl_calloc(size_t n, size_t size);  /* NULL on failure or overflow */
 
 /* mkdir -p; SL_E_OUTPUT with diag on failure or if not writable. */
 enum sl_err sl_mkdirs(const char *path, struct sl_diag *d);

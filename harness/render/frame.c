@@ -25,6 +25,25 @@ void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir
     }
 }
 
+/* Arrays from 4 MiB up are aligned to the 2 MiB of a huge page and advised
+ * as such; smaller ones are not worth a huge page's zeroing. */
+#define HUGE_FROM ((size_t)4 << 20)
+#define HUGE_ALIGN ((size_t)2 << 20)
+
+static void *pool_alloc(size_t bytes)
+{
+    if (bytes < HUGE_FROM)
+        return malloc(bytes);
+    void *p = NULL;
+    size_t n = (bytes + HUGE_ALIGN - 1) & ~(HUGE_ALIGN - 1);
+    if (posix_memalign(&p, HUGE_ALIGN, n))
+        return NULL;
+#ifdef MADV_HUGEPAGE
+    madvise(p, n, MADV_HUGEPAGE);   /* advice only: a kernel without THP ignores it */
+#endif
+    return p;
+}
+
 void *sl_layer_pool_get(struct sl_layer_pool *p, size_t bytes)
 {
     if (!bytes)
@@ -47,7 +66,7 @@ void *sl_layer_pool_get(struct sl_layer_pool *p, size_t bytes)
     }
     /* none: replace an idle one that is too small, else take a new slot */
     int s = small >= 0 ? small : p->n < SL_POOL_SLOTS ? p->n : -1;
-    void *a = sl_alloc_huge(bytes);
+    void *a = pool_alloc(bytes);
     if (!a)
         return NULL;
     p->allocs++;
