@@ -676,14 +676,28 @@ static enum sl_err oiio_write_sheet(const char *path, const struct sl_image_shee
             draw_text(S, cx, cy2 + fs, s->inset_caption[k], fs, *font, black, all);
         int py = cy2 + (font ? line : 0);
         const int zw = r[2] * z, zh = r[3] * z;
-        for (int Y = 0; Y < zh; Y++) {
+        // the inset's columns within the sheet; each source row is zoomed
+        // once and its other z - 1 rows copied from it (a division and two
+        // bounds tests per zoomed pixel were most of composing: issue 20)
+        const int X0 = std::max(0, -cx), X1 = std::min(zw, sw - cx);
+        const unsigned char *done = nullptr;   // the last zoomed row, in the sheet
+        int done_src = -1;
+        for (int Y = 0; Y < zh && X0 < X1; Y++) {
             if (py + Y < 0 || py + Y >= sh)
                 continue;
+            unsigned char *dst = S.at(0, py + Y) + (size_t)cx * 3;
+            if (done && done_src == Y / z) {
+                std::memcpy(dst + (size_t)X0 * 3, done + (size_t)X0 * 3, (size_t)(X1 - X0) * 3);
+                continue;
+            }
             const unsigned char *src = frame_at(r[0], r[1] + Y / z);
-            unsigned char *dst = S.at(0, py + Y);
-            for (int X = 0; X < zw; X++)
-                if (cx + X >= 0 && cx + X < sw)
-                    std::memcpy(dst + (size_t)(cx + X) * 3, src + (size_t)(X / z) * 3, 3);
+            for (int X = X0; X < X1;) {
+                const unsigned char *p = src + (size_t)(X / z) * 3;
+                for (const int end = std::min(X1, (X / z + 1) * z); X < end; X++)
+                    std::memcpy(dst + (size_t)X * 3, p, 3);
+            }
+            done = dst;
+            done_src = Y / z;
         }
         draw_box(S, cx - 1, py - 1, cx + zw, py + zh, rim, all);
         where[k] = std::to_string(r[0]) + " " + std::to_string(r[1]) + " " + std::to_string(r[2]) + " " +
