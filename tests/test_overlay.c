@@ -3,7 +3,8 @@
  * every wrong or uncertain pixel shows its error colour in the 1:1 view
  * (nothing drawn over it: neither the contour nor the insets' marks), the
  * insets hold the windows with most wrong pixels and show them pixel for
- * pixel, the crop to a small scene, and the EXR read by oiiotool.
+ * pixel, the crop to a small scene, the EXR read by oiiotool, and the
+ * sheet's PNG read chunk by chunk with zlib.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -13,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include <zlib.h>
 #include "sl_test.h"
 #include "config.h"
 #include "contour.h"
@@ -412,9 +414,11 @@ static void overlay_insets_exact(void **st)
         }
         if (kind == 5)
             memset(err, 255, sizeof err);
-        int s = 4 + trial % 9, n = 1 + trial % 4;
-        struct sl_ov_box a[4], b[4];
-        uint64_t ca[4], cb[4];
+        /* up to 8 windows: several chosen ones cut the same row (each row
+         * is scanned between the chosen windows' intervals) */
+        int s = 4 + trial % 9, n = 1 + trial % 8;
+        struct sl_ov_box a[8], b[8];
+        uint64_t ca[8], cb[8];
         int na = sl_overlay_insets(W, H, err, s, n, a, ca), nb = insets_brute(W, H, err, s, n, b, cb);
         assert_int_equal(na, nb);
         for (int k = 0; k < na; k++) {
@@ -488,6 +492,139 @@ static void overlay_text_as_oiio(void **st)
     }
 }
 
+static uint32_t be32(const unsigned char *p)
+{
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+/* The sheet is a standard PNG, read here with zlib alone (not the encoder's
+ * library): the signature, IHDR first, every chunk's CRC-32 right, one
+ * zlib stream over the IDATs that inflates to exactly one filter byte and
+ * 3 * w bytes a row, rows equal to what OpenImageIO decodes, IEND last; the
+ * header's text chunks under the keys OpenImageIO wrote (Software,
+ * Description, shadowlab:*, a caller's attribute) and read back by
+ * OpenImageIO under its names (ImageDescription). */
+static void overlay_png_chunks(void **st)
+{
+    (void)st;
+    enum { W = 200, H = 150 };
+    unsigned char *rgb = malloc((size_t)W * H * 3), *keep = calloc((size_t)W * H, 1);
+    assert_non_null(rgb);
+    assert_non_null(keep);
+    for (int i = 0; i < W * H; i++) {   /* a gradient with an error square: every filter byte matters */
+        rgb[3 * i] = (unsigned char)(i % W), rgb[3 * i + 1] = (unsigned char)(i / W), rgb[3 * i + 2] = 40;
+        if (i % W >= 50 && i % W < 60 && i / W >= 70 && i / W < 80) {
+            rgb[3 * i] = 213, rgb[3 * i + 1] = 94, rgb[3 * i + 2] = 0;
+            keep[i] = 255;
+        }
+    }
+    static const struct sl_image_attr extra[1] = {{"shadowlab:probe", "a b  c"}};
+    struct sl_image_sheet sh;
+    memset(&sh, 0, sizeof sh);
+    sh.w = W, sh.h = H, sh.rgb = rgb, sh.keep = keep, sh.zoom = 4, sh.ninsets = 1;
+    sh.inset[0][0] = 48, sh.inset[0][1] = 68, sh.inset[0][2] = sh.inset[0][3] = 16;
+    snprintf(sh.inset_caption[0], sizeof sh.inset_caption[0], "1: 100 wrong");
+    sh.nlegend = 1;
+    memcpy(sh.legend_rgb[0], sl_overlay_colour[SL_OV_LIT_WRONG], 3);
+    snprintf(sh.legend_text[0], sizeof sh.legend_text[0], "said lit, shadowed: 100");
+    snprintf(sh.title, sizeof sh.title, "png/chunks  nsm  map 256  %dx%d", W, H);
+    sh.nattrs = 1, sh.attrs = extra;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/chunks.png", sl_test_dir);
+    struct sl_diag d;
+    assert_int_equal(sl_image_write_sheet(path, &sh, &d), SL_OK);
+    free(rgb);
+    free(keep);
+
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    static unsigned char b[1 << 22];
+    size_t n = fread(b, 1, sizeof b, f);
+    fclose(f);
+    assert_true(n > 8 && n < sizeof b);
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    assert_memory_equal(b, sig, 8);
+    static unsigned char z[1 << 22];
+    size_t zn = 0, p = 8;
+    int sw = 0, shh = 0, nchunks = 0, iend = 0, idat_run = 0, idat_runs = 0;
+    char keys[2048] = "";
+    while (p + 12 <= n && !iend) {
+        uint32_t len = be32(b + p);
+        assert_true(p + 12 + len <= n);
+        const unsigned char *type = b + p + 4, *data = b + p + 8;
+        uLong crc = crc32(0L, type, 4 + (uInt)len);
+        assert_int_equal(crc, be32(data + len));
+        if (nchunks++ == 0) {   /* IHDR: 8-bit RGB, deflate, adaptive filters, not interlaced */
+            assert_memory_equal(type, "IHDR", 4);
+            assert_int_equal(len, 13);
+            sw = (int)be32(data), shh = (int)be32(data + 4);
+            assert_int_equal(data[8], 8);
+            assert_int_equal(data[9], 2);
+            assert_int_equal(data[10] | data[11] | data[12], 0);
+        }
+        int is_idat = memcmp(type, "IDAT", 4) == 0;
+        if (is_idat) {   /* IDATs: consecutive, one stream */
+            assert_true(zn + len <= sizeof z);
+            memcpy(z + zn, data, len);
+            zn += len;
+            idat_runs += !idat_run;
+        }
+        idat_run = is_idat;
+        if (memcmp(type, "tEXt", 4) == 0) {
+            size_t kl = strnlen((const char *)data, len);
+            assert_true(kl >= 1 && kl <= 79 && kl < len + 1);
+            strncat(keys, (const char *)data, kl);
+            strcat(keys, ";");
+        }
+        iend = memcmp(type, "IEND", 4) == 0;
+        p += 12 + len;
+    }
+    assert_true(iend);
+    assert_int_equal(p, n);   /* nothing after IEND */
+    assert_int_equal(idat_runs, 1);
+    assert_string_equal(keys, "Software;Description;shadowlab:view;shadowlab:inset1;shadowlab:legend;"
+                              "shadowlab:text;shadowlab:probe;");
+    /* the pixels: inflate, undo each row's filter, compare with OpenImageIO's decoding */
+    size_t rowb = (size_t)sw * 3, want = (rowb + 1) * (size_t)shh;
+    unsigned char *raw = malloc(want + 1), *img = malloc(rowb * (size_t)shh);
+    assert_non_null(raw);
+    assert_non_null(img);
+    uLongf got = (uLongf)(want + 1);
+    assert_int_equal(uncompress(raw, &got, z, (uLong)zn), Z_OK);
+    assert_int_equal(got, want);
+    for (int y = 0; y < shh; y++) {
+        const unsigned char *r = raw + (size_t)y * (rowb + 1);
+        unsigned char *o = img + (size_t)y * rowb;
+        const unsigned char *up = y ? o - rowb : NULL;
+        assert_true(r[0] <= 4);
+        for (size_t i = 0; i < rowb; i++) {
+            int a = i >= 3 ? o[i - 3] : 0, u = up ? up[i] : 0, c = up && i >= 3 ? up[i - 3] : 0;
+            int pa = abs(u - c), pb = abs(a - c), pc = abs(a + u - 2 * c);
+            int pred = r[0] == 0 ? 0 : r[0] == 1 ? a : r[0] == 2 ? u : r[0] == 3 ? (a + u) / 2
+                       : pa <= pb && pa <= pc ? a : pb <= pc ? u : c;
+            o[i] = (unsigned char)(r[1 + i] + pred);
+        }
+    }
+    int w, h;
+    unsigned char *oi;
+    assert_int_equal(sl_image_read_rgb8(path, &w, &h, &oi, &d), SL_OK);
+    assert_int_equal(w, sw);
+    assert_int_equal(h, shh);
+    assert_memory_equal(img, oi, rowb * (size_t)shh);
+    free(oi);
+    free(raw);
+    free(img);
+    char a[256];
+    assert_int_equal(sl_image_read_attr(path, "ImageDescription", a, sizeof a, &d), SL_OK);
+    assert_string_equal(a, sh.title);
+    assert_int_equal(sl_image_read_attr(path, "Software", a, sizeof a, &d), SL_OK);
+    assert_int_equal(strncmp(a, "shadowlab ", 10), 0);
+    assert_int_equal(sl_image_read_attr(path, "shadowlab:probe", a, sizeof a, &d), SL_OK);
+    assert_string_equal(a, "a b  c");
+    assert_int_equal(sl_image_read_attr(path, "shadowlab:legend", a, sizeof a, &d), SL_OK);
+    assert_string_equal(a, "said lit, shadowed: 100");
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -496,6 +633,7 @@ int main(int argc, char **argv)
         SL_CASE(overlay, crop_small_scene),
         SL_CASE(overlay, insets_exact),
         SL_CASE(overlay, text_as_oiio),
+        SL_CASE(overlay, png_chunks),
     };
     int rc = sl_run_group(argc, argv, "overlay", tests, sl_test_setup, sl_test_teardown);
     if (ran)

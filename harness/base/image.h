@@ -6,8 +6,9 @@
  *
  * The overlay sheet (sl_image_write_sheet) is composed in plain memory,
  * reproducing ImageBufAlgo's drawing byte for byte (each glyph drawn by
- * render_text once per size and process, then blitted; OpenImageIO writes
- * the file): the frame (or a crop of it) at 1:1, zoomed insets beside it (nearest
+ * render_text once per size and process, then blitted), and encoded as a PNG
+ * by libdeflate in one call (the pixels and header keys OpenImageIO wrote):
+ * the frame (or a crop of it) at 1:1, zoomed insets beside it (nearest
  * neighbour) whose windows are marked on the frame, a title and a legend.
  * Text needs a TrueType font (DejaVu Sans, Debian's fonts-dejavu-core, or
  * OpenImageIO's default); without one the sheet is drawn without text and

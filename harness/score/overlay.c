@@ -186,10 +186,6 @@ int sl_overlay_crop(const struct sl_view *v, const uint8_t *band, const uint8_t 
     return small_box(v, x0, y0, x1, y1, pad > m ? pad : m, out);
 }
 
-static int overlaps(const struct sl_ov_box *a, int x, int y, int s)
-{
-    return x < a->x + a->w && a->x < x + s && y < a->y + a->h && a->y < y + s;
-}
 
 int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_ov_box *out, uint64_t *count)
 {
@@ -237,25 +233,73 @@ int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_
             row[x + 1] = above[x + 1] + run;
         }
     }
+    /* every window's count, once: the n greedy passes below then scan
+     * this table (three scans of four table reads each were most of this
+     * function's time: issue 20); cnt[y][x] for the window at (X0 + x, Y0 + y) */
+    const size_t cw = (size_t)(XL - X0 + 1), ch = (size_t)(YL - Y0 + 1);
+    uint32_t *cnt = malloc(cw * ch * sizeof *cnt);
+    int (*cut)[2] = malloc((size_t)n * sizeof *cut);   /* a row's intervals no window may start in */
+    if (!cnt || !cut) {
+        free(cnt);
+        free(cut);
+        free(sat);
+        return -1;
+    }
+    for (size_t y = 0; y < ch; y++) {
+        const uint32_t *lo = sat + y * sw, *hi = lo + (size_t)s * sw;
+        uint32_t *c = cnt + y * cw;
+        for (size_t x = 0; x < cw; x++)
+            c[x] = hi[x + (size_t)s] - hi[x] - lo[x + (size_t)s] + lo[x];
+    }
     int got = 0;
     for (; got < n; got++) {
+        /* the first window in scan order (rows, then columns) holding more
+         * than every window before it, among those overlapping none chosen:
+         * the first of the largest. In a row, the windows overlapping a
+         * chosen one are an interval of x, so each row is scanned as the
+         * segments between those intervals. */
         uint32_t best = 0;
         int bx = -1, by = -1;
         for (int y = Y0; y <= YL; y++) {
-            const uint32_t *lo = sat + (size_t)(y - Y0) * sw, *hi = lo + (size_t)s * sw;
-            for (int x = X0; x <= XL; x++) {
-                int r = x - X0;
-                uint32_t c = hi[r + s] - hi[r] - lo[r + s] + lo[r];
-                if (c <= best)
-                    continue;
-                int clash = 0;
-                for (int k = 0; k < got && !clash; k++)
-                    clash = overlaps(&out[k], x, y, s);
-                if (clash)
-                    continue;
-                best = c;
-                bx = x;
-                by = y;
+            const uint32_t *c = cnt + (size_t)(y - Y0) * cw;
+            /* the intervals this row may not use, as [a, b) in x - X0 */
+            int ncut = 0;
+            for (int k = 0; k < got; k++)
+                if (y < out[k].y + out[k].h && out[k].y < y + s) {
+                    int a = out[k].x - s + 1 - X0, b = out[k].x + out[k].w - X0;
+                    cut[ncut][0] = a < 0 ? 0 : a;
+                    cut[ncut][1] = b > (int)cw ? (int)cw : b;
+                    ncut++;
+                }
+            for (int x = 0; x < (int)cw;) {
+                /* skip any cut that covers x; then run to the next cut's start */
+                int moved = 1;
+                while (moved) {
+                    moved = 0;
+                    for (int k = 0; k < ncut; k++)
+                        if (cut[k][0] <= x && x < cut[k][1]) {
+                            x = cut[k][1];
+                            moved = 1;
+                        }
+                }
+                int end = (int)cw;
+                for (int k = 0; k < ncut; k++)
+                    if (cut[k][0] > x && cut[k][0] < end)
+                        end = cut[k][0];
+                if (x >= end)
+                    break;
+                uint32_t m = 0;
+                for (int i = x; i < end; i++)
+                    m = c[i] > m ? c[i] : m;
+                if (m > best) {
+                    int i = x;
+                    while (c[i] != m)
+                        i++;
+                    best = m;
+                    bx = X0 + i;
+                    by = y;
+                }
+                x = end;
             }
         }
         if (bx < 0)
@@ -263,6 +307,8 @@ int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_
         out[got] = (struct sl_ov_box){bx, by, s, s};
         count[got] = best;
     }
+    free(cut);
+    free(cnt);
     free(sat);
     return got;
 }
