@@ -70,13 +70,12 @@ double sl_point_tri_edge_dist_d(const double p[3], const double a[3], const doub
     return min_of(seg_dist(p, a, b), min_of(seg_dist(p, b, c), seg_dist(p, c, a)));
 }
 
-double sl_point_tri_dist_d(const double p[3], const double a[3], const double b[3],
-                           const double c[3])
+/* The distance with the plane's normal n = (b - a) x (c - a) given (the
+ * sure tests have it already): the same operations as computing it here. */
+static inline double point_tri_dist_n(const double p[3], const double a[3], const double b[3], const double c[3],
+                                      const double n[3])
 {
-    double e1[3], e2[3], n[3], ap[3];
-    SUB(e1, b, a);
-    SUB(e2, c, a);
-    CROSS(n, e1, e2);
+    double ap[3];
     double nn = DOT(n, n);
     SUB(ap, p, a);
     double h = DOT(ap, n) / nn;
@@ -91,6 +90,16 @@ double sl_point_tri_dist_d(const double p[3], const double a[3], const double b[
         return plane;
     double e = sl_point_tri_edge_dist_d(q, a, b, c);
     return sqrt(plane * plane + e * e);
+}
+
+double sl_point_tri_dist_d(const double p[3], const double a[3], const double b[3],
+                           const double c[3])
+{
+    double e1[3], e2[3], n[3];
+    SUB(e1, b, a);
+    SUB(e2, c, a);
+    CROSS(n, e1, e2);
+    return point_tri_dist_n(p, a, b, c, n);
 }
 
 /* The set-up both sure tests share: the triangle and ray in double, the
@@ -156,7 +165,9 @@ int sl_shadow_ray_tri_sure(const float p[3], const float toward[3], float tmax, 
  * answer. Most rays a method tests miss the triangle by far, and the
  * Moller-Trumbore test (two cross products and a division) rejects them
  * before the point-triangle distance (three segment distances, each with a
- * division and a square root) that the sure test pays first. */
+ * division and a square root) that the sure test pays first; of those it
+ * keeps, the edge distance drops the ones within the margin of an edge
+ * before the distance to the triangle, which reuses the normal. */
 int sl_shadow_ray_tri_hit(const float p[3], const float toward[3], float tmax, float tnear, const float af[3],
                           const float bf[3], const float cf[3])
 {
@@ -177,5 +188,5 @@ int sl_shadow_ray_tri_hit(const float p[3], const float toward[3], float tmax, f
         !(th < (double)tmax - margin))
         return 0;
     double q[3] = {o[0] + th * dir[0], o[1] + th * dir[1], o[2] + th * dir[2]};
-    return !(sl_point_tri_dist_d(q, a, b, c) > margin) && sl_point_tri_edge_dist_d(q, a, b, c) > margin;
+    return sl_point_tri_edge_dist_d(q, a, b, c) > margin && !(point_tri_dist_n(q, a, b, c, n) > margin);
 }
