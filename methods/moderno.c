@@ -21,11 +21,13 @@
  * Standalone, a method that finds no intersection leaves the pixel lit
  * (sections 4.5-4.7); in the chain it stays undecided.
  *
- * A "hit" is a sure one (sl_shadow_ray_tri_sure): the ray crosses the
- * triangle inside by a margin and beyond twice the truth's tnear, so Embree
- * meets it too: a confirmation or a correction is never wrong (the driver
- * checks it, SL_EXACT_PROVED). Rays that graze a triangle's edge count as
- * no hit, the side that can only leave a pixel undecided.
+ * A "hit" is a sure one (sl_shadow_ray_tri_sure's +1, asked as
+ * sl_shadow_ray_tri_hit: the same answer in a cheaper order): the ray
+ * crosses the triangle inside by a margin and beyond twice the truth's
+ * tnear, so Embree meets it too: a confirmation or a correction is never
+ * wrong (the driver checks it, SL_EXACT_PROVED). Rays that graze a
+ * triangle's edge count as no hit, the side that can only leave a pixel
+ * undecided.
  */
 #include <math.h>
 #include <omp.h>

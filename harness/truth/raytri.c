@@ -109,7 +109,7 @@ struct sure_in {
 };
 
 static inline void sure_setup(struct sure_in *s, const float p[3], const float toward[3], const float af[3],
-                       const float bf[3], const float cf[3])
+                              const float bf[3], const float cf[3])
 {
     double e1[3], e2[3], mag = 0.0;
     for (int k = 0; k < 3; k++) {
