@@ -21,11 +21,13 @@
  * Standalone, a method that finds no intersection leaves the pixel lit
  * (sections 4.5-4.7); in the chain it stays undecided.
  *
- * A "hit" is a sure one (sl_shadow_ray_tri_sure): the ray crosses the
- * triangle inside by a margin and beyond twice the truth's tnear, so Embree
- * meets it too: a confirmation or a correction is never wrong (the driver
- * checks it, SL_EXACT_PROVED). Rays that graze a triangle's edge count as
- * no hit, the side that can only leave a pixel undecided.
+ * A "hit" is a sure one (sl_shadow_ray_tri_sure's +1, asked as
+ * sl_shadow_ray_tri_hit: the same answer in a cheaper order): the ray
+ * crosses the triangle inside by a margin and beyond twice the truth's
+ * tnear, so Embree meets it too: a confirmation or a correction is never
+ * wrong (the driver checks it, SL_EXACT_PROVED). Rays that graze a
+ * triangle's edge count as no hit, the side that can only leave a pixel
+ * undecided.
  */
 #include <math.h>
 #include <omp.h>
@@ -83,16 +85,32 @@ struct ctx {
     int S;
 };
 
-/* A pixel's shadow ray: its origin, direction toward the light and end. */
+/* A pixel's shadow ray: its origin, direction toward the light, end and
+ * start (sl_rt_tnear), computed on the first test that needs them: most
+ * pixels test no triangle (their texels store nothing, or their own
+ * triangle), and the direction was a call per pixel for every method. */
 struct sray {
+    const struct sl_light_frame *f;
     const float *p;
-    float toward[3], tmax;
+    float toward[3], tmax, tnear;
+    int ready;
 };
 
 static void sray_of(const struct ctx *c, const float p[3], struct sray *r)
 {
+    r->f = c->a->frame;
     r->p = p;
-    sl_frame_toward(c->a->frame, p, r->toward, &r->tmax);
+    r->ready = 0;
+}
+
+static const struct sray *sray_get(struct sray *r)
+{
+    if (!r->ready) {
+        sl_frame_toward(r->f, r->p, r->toward, &r->tmax);
+        r->tnear = sl_rt_tnear(r->p);
+        r->ready = 1;
+    }
+    return r;
 }
 
 static int lit_at(const struct ctx *c, int tx, int ty, float z)
@@ -135,19 +153,20 @@ static int coherence(const struct ctx *c, float u, float v, float z, int texels,
     return lit == n * n ? 1 : lit == 0 ? 2 : 0;
 }
 
-static int sure_hit(const struct ctx *c, const struct sray *r, uint32_t tri_plus1, uint32_t own, uint64_t *tests)
+static int sure_hit(const struct ctx *c, struct sray *r, uint32_t tri_plus1, uint32_t own, uint64_t *tests)
 {
     if (!tri_plus1 || tri_plus1 == own)
         return 0;
     const struct sl_scene *s = c->a->scene;
     const uint32_t *ix = s->idx + 3 * (size_t)(tri_plus1 - 1);
+    const struct sray *g = sray_get(r);
     (*tests)++;
-    return sl_shadow_ray_tri_sure(r->p, r->toward, r->tmax, sl_rt_tnear(r->p), s->pos + 3 * ix[0],
-                                  s->pos + 3 * ix[1], s->pos + 3 * ix[2]) > 0;
+    return sl_shadow_ray_tri_hit(g->p, g->toward, g->tmax, g->tnear, s->pos + 3 * ix[0], s->pos + 3 * ix[1],
+                                 s->pos + 3 * ix[2]);
 }
 
 /* Triangles of the texel and its neighbours: 4 toward the pixel's quadrant or 9. */
-static int neighbours_hit(const struct ctx *c, const struct sray *p, float u, float v, int texels, uint32_t own,
+static int neighbours_hit(const struct ctx *c, struct sray *p, float u, float v, int texels, uint32_t own,
                           uint64_t *lookups, uint64_t *tests)
 {
     int tx = (int)floorf(u), ty = (int)floorf(v);
@@ -157,15 +176,35 @@ static int neighbours_hit(const struct ctx *c, const struct sray *p, float u, fl
         y0 = (v - (float)ty < 0.5f) ? ty - 1 : ty;
         n = 2;
     }
+    const int inside = x0 >= 0 && y0 >= 0 && x0 + n <= c->S && y0 + n <= c->S;
+    if (inside) {
+        /* Most pixels' texels all hold nothing or the pixel's own triangle,
+         * which sure_hit never tests: then the walk below would look each
+         * up and test none. One pass over them, without branches, says so. */
+        const uint32_t *row = c->L->id + (size_t)y0 * (size_t)c->S + (size_t)x0;
+        int any = 0;
+        for (int j = 0; j < n; j++, row += c->S)
+            for (int i = 0; i < n; i++)
+                any |= row[i] != 0 && row[i] != own;
+        if (!any) {
+            *lookups += (uint64_t)(n * n);
+            return 0;
+        }
+    }
     uint32_t seen[9];
     int nseen = 0;
     for (int j = 0; j < n; j++)
         for (int i = 0; i < n; i++) {
             int x = x0 + i, y = y0 + j;
-            if (x < 0 || y < 0 || x >= c->S || y >= c->S)
+            if (!inside && (x < 0 || y < 0 || x >= c->S || y >= c->S))
                 continue;
             (*lookups)++;
             uint32_t id = c->L->id[(size_t)y * (size_t)c->S + (size_t)x];
+            /* sure_hit tests neither an empty texel nor the pixel's own
+             * triangle: passing them over before the dedupe leaves the same
+             * tests in the same order, and most texels hold one of them */
+            if (!id || id == own)
+                continue;
             int dup = 0;
             for (int k = 0; k < nseen; k++)
                 dup |= seen[k] == id;
@@ -178,7 +217,7 @@ static int neighbours_hit(const struct ctx *c, const struct sray *p, float u, fl
     return 0;
 }
 
-static int adjacency_hit(const struct ctx *c, const struct sray *p, uint32_t stored, int level, uint32_t own,
+static int adjacency_hit(const struct ctx *c, struct sray *p, uint32_t stored, int level, uint32_t own,
                          uint64_t *tests)
 {
     if (!stored)

@@ -32,4 +32,9 @@ double sl_point_tri_edge_dist_d(const double p[3], const double a[3], const doub
 int sl_shadow_ray_tri_sure(const float p[3], const float toward[3], float tmax, float tnear, const float a[3],
                            const float b[3], const float c[3]);
 
+/* sl_shadow_ray_tri_sure(...) > 0, to the bit (the same tests in a cheaper
+ * order): for callers that act on a sure hit only. */
+int sl_shadow_ray_tri_hit(const float p[3], const float toward[3], float tmax, float tnear, const float a[3],
+                          const float b[3], const float c[3]);
+
 #endif
