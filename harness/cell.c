@@ -112,7 +112,7 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
     if (e)
         return e;
     uint64_t count[SL_OV_CLASSES];
-    sl_overlay_build(v, in->light_dir, in->light_pos, vd, band, th, rgb, err, count);
+    sl_overlay_build_shaded(in->overlay_shade, v, in->light_dir, in->light_pos, vd, band, th, rgb, err, count);
     struct sl_image_sheet sh;
     memset(&sh, 0, sizeof sh);
     sh.w = W;

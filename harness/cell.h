@@ -124,6 +124,8 @@ struct sl_cell_inputs {
     int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
     struct sl_alias_cache *alias_cache;       /* m of the view under the cell's frame, kept for the next
                                                * cells of the view (aliasing.h); NULL: computed per cell */
+    struct sl_overlay_shade *overlay_shade;   /* the overlay's lit colours, kept for the view's next cells
+                                               * (overlay.h); NULL: drawn per cell */
 };
 
 /* Score the verdicts vd (a hard method under an area light also gets vd->vis

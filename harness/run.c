@@ -29,6 +29,7 @@
 #include "lightfit.h"
 #include "motion_run.h"
 #include "outputs.h"
+#include "overlay.h"
 #include "ovwriter.h"
 #include "runhelp.h"
 #include "shadowmap.h"
@@ -78,6 +79,7 @@ struct run_ctx {
     uint8_t *state, *band, *rgb;
     struct sl_verdicts vd;
     struct sl_alias_cache alias;         /* m of the view under the cells' frame (aliasing.h) */
+    struct sl_overlay_shade shade;       /* the overlay's lit colours of the view (overlay.h) */
     /* contour_from nsm: NSM's verdicts (front faces culled) and the contour
      * bands drawn from them, once per (view, map size), shared by its cells */
     struct sl_verdicts nvd;
@@ -126,6 +128,7 @@ static void drop_view(struct run_ctx *x)
     x->soft_map = -1;
     sl_view_free(&x->view);
     sl_alias_cache_free(&x->alias);
+    sl_overlay_shade_free(&x->shade);
     x->view_scene = x->view_vp = x->view_viewport = -1;
 }
 
@@ -626,6 +629,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
         .alias_cache = &x->alias,
+        .overlay_shade = &x->shade,
     };
     return sl_cell_score(&in, &x->vd, cell, d);
 }

@@ -492,6 +492,97 @@ static void overlay_text_as_oiio(void **st)
     }
 }
 
+/* The lit colours kept per view (sl_overlay_build_shaded) give the very
+ * bytes and counts of sl_overlay_build, cell after cell, and are drawn
+ * afresh when the view, the bands, the thickness or the light change:
+ * were a stale shade used, the n.l greys would differ. */
+static uint32_t lcg(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return *s >> 8;
+}
+
+static float unit(uint32_t *s) { return (float)(lcg(s) & 0xffff) / 65535.0f; }
+
+static void random_view(struct sl_view *v, int w, int h, uint32_t seed, int spot)
+{
+    size_t n = (size_t)w * (size_t)h;
+    memset(v, 0, sizeof *v);
+    v->w = w;
+    v->h = h;
+    v->serial = seed;
+    v->pos = malloc(n * 3 * sizeof(float));
+    v->nrm = malloc(n * 3 * sizeof(float));
+    v->truth = malloc(n);
+    v->cls = malloc(n);
+    v->outside = spot ? malloc(n) : NULL;
+    assert_true(v->pos && v->nrm && v->truth && v->cls && (!spot || v->outside));
+    for (size_t i = 0; i < n; i++) {
+        for (int k = 0; k < 3; k++) {
+            v->pos[3 * i + k] = 40.0f * unit(&seed) - 20.0f;
+            v->nrm[3 * i + k] = 2.0f * unit(&seed) - 1.0f;
+        }
+        v->truth[i] = (uint8_t)(lcg(&seed) % 4);
+        v->cls[i] = v->truth[i] >= SL_T_LIT ? SL_C_PFL : v->truth[i] == SL_T_PNFL ? SL_C_PNFL : SL_C_BACKGROUND;
+        if (spot)
+            v->outside[i] = v->truth[i] == SL_T_PNFL && lcg(&seed) % 2;
+    }
+}
+
+static void free_view(struct sl_view *v)
+{
+    free(v->pos); free(v->nrm); free(v->truth); free(v->cls); free(v->outside);
+}
+
+static void overlay_shaded_same_bytes(void **st)
+{
+    (void)st;
+    enum { W = 37, H = 23, N = W * H };
+    struct sl_view views[2];
+    random_view(&views[0], W, H, 7u, 0);
+    random_view(&views[1], W, H, 8u, 1);
+    uint8_t v8[N], band[N], rgb0[3 * N], rgb1[3 * N], err0[N], err1[N];
+    struct sl_verdicts vd;
+    memset(&vd, 0, sizeof vd);
+    vd.v = v8;
+    vd.w = W;
+    vd.h = H;
+    const float dir[3] = {0.6f, -0.45f, 0.35f}, pos[2][3] = {{3, 40, -2}, {-5, 30, 8}};
+    struct sl_overlay_shade sh;
+    memset(&sh, 0, sizeof sh);
+    uint32_t seed = 99;
+    int redrawn = 0;
+    /* each round changes one thing, or nothing: view, light position (-1:
+     * none), thickness, new bands */
+    static const struct { int view, light, th, bands; } rounds[] = {
+        {0, -1, 2, 1}, {0, -1, 2, 0}, {0, -1, 4, 0}, {0, 0, 4, 0}, {0, 1, 4, 0}, {0, 1, 4, 1},
+        {0, 1, 4, 0},  {1, 1, 4, 0},  {1, 1, 2, 0},  {1, -1, 2, 0}, {1, -1, 2, 1}, {1, -1, 2, 0},
+    };
+    for (size_t round = 0; round < sizeof rounds / sizeof rounds[0]; round++) {
+        const struct sl_view *v = &views[rounds[round].view];
+        const float *lp = rounds[round].light < 0 ? NULL : pos[rounds[round].light];
+        int th = rounds[round].th;
+        if (rounds[round].bands)
+            for (int i = 0; i < N; i++)
+                band[i] = (uint8_t)(lcg(&seed) % 8);
+        for (int i = 0; i < N; i++)
+            v8[i] = (uint8_t)(1 + lcg(&seed) % 3);
+        uint64_t c0[SL_OV_CLASSES], c1[SL_OV_CLASSES];
+        uint64_t before = sh.serial;
+        sl_overlay_build(v, dir, lp, &vd, band, th, rgb0, err0, c0);
+        sl_overlay_build_shaded(&sh, v, dir, lp, &vd, band, th, rgb1, err1, c1);
+        redrawn += before != sh.serial;
+        assert_memory_equal(rgb0, rgb1, sizeof rgb0);
+        assert_memory_equal(err0, err1, sizeof err0);
+        assert_memory_equal(c0, c1, sizeof c0);
+        assert_true(c0[SL_OV_CONTOUR] > 0);
+    }
+    assert_int_equal(redrawn, 2);   /* serial changes: the first view, then the second */
+    sl_overlay_shade_free(&sh);
+    free_view(&views[0]);
+    free_view(&views[1]);
+}
+
 static uint32_t be32(const unsigned char *p)
 {
     return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
@@ -634,6 +725,7 @@ int main(int argc, char **argv)
         SL_CASE(overlay, insets_exact),
         SL_CASE(overlay, text_as_oiio),
         SL_CASE(overlay, png_chunks),
+        SL_CASE(overlay, shaded_same_bytes),
     };
     int rc = sl_run_group(argc, argv, "overlay", tests, sl_test_setup, sl_test_teardown);
     if (ran)

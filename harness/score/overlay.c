@@ -21,10 +21,41 @@ const uint8_t sl_overlay_colour[SL_OV_CLASSES][3] = {
     [SL_OV_OUTSIDE_CONE] = {56, 56, 56},    /* the hatching's light stripe */
 };
 
-void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const float *light_pos,
-                      const struct sl_verdicts *vd,
-                      const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
-                      uint64_t count[SL_OV_CLASSES])
+/* The colour of a pixel drawn right: grey shaded by n.l where the method
+ * says lit, the ambient alone where it says shadowed; the faint tint inside
+ * the contour. */
+static void right_colour(const struct sl_view *v, const float light_dir[3], const float *light_pos, int lit,
+                         int tint, size_t i, uint8_t *o)
+{
+    /* n.l only where the method says lit (the shadowed grey is the
+     * ambient alone): most of this loop's time was reading the normals */
+    float ndl = 0.0f;
+    if (lit) {
+        const float *nn = v->nrm + 3 * i;
+        ndl = -(nn[0] * light_dir[0] + nn[1] * light_dir[1] + nn[2] * light_dir[2]);
+        if (light_pos) {
+            const float *p = v->pos + 3 * i;
+            float l[3] = {light_pos[0] - p[0], light_pos[1] - p[1], light_pos[2] - p[2]};
+            float len = sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+            ndl = len > 0.0f ? (nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2]) / len : 0.0f;
+        }
+    }
+    float g = 255.0f * (0.12f + (ndl > 0.0f ? 0.5f * ndl : 0.0f));
+    if (tint) {
+        /* the faint tint: 65% grey, 35% bluish green */
+        const uint8_t *c = sl_overlay_colour[SL_OV_CONTOUR];
+        for (int j = 0; j < 3; j++)
+            o[j] = (uint8_t)(0.65f * g + 0.35f * (float)c[j] + 0.5f);
+        return;
+    }
+    o[0] = o[1] = o[2] = (uint8_t)(g + 0.5f);
+}
+
+/* lit: the lit colours of the view's pixels (a shade's), or NULL: each
+ * computed where needed. */
+static void build(const uint8_t *lit, const struct sl_view *v, const float light_dir[3], const float *light_pos,
+                  const struct sl_verdicts *vd, const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
+                  uint64_t count[SL_OV_CLASSES])
 {
     size_t n = (size_t)v->w * (size_t)v->h;
     uint64_t cnt[SL_OV_CLASSES] = {0};
@@ -64,32 +95,70 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const f
             cnt[SL_OV_OUTSIDE_CONE]++;
             continue;
         }
-        /* n.l only where the method says lit (the shadowed grey is the
-         * ambient alone): most of this loop's time was reading the normals */
-        float ndl = 0.0f;
-        if (verdict == SL_V_LIT) {
-            const float *nn = v->nrm + 3 * i;
-            ndl = -(nn[0] * light_dir[0] + nn[1] * light_dir[1] + nn[2] * light_dir[2]);
-            if (light_pos) {
-                const float *p = v->pos + 3 * i;
-                float l[3] = {light_pos[0] - p[0], light_pos[1] - p[1], light_pos[2] - p[2]};
-                float len = sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-                ndl = len > 0.0f ? (nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2]) / len : 0.0f;
-            }
-        }
-        float g = 255.0f * (0.12f + (ndl > 0.0f ? 0.5f * ndl : 0.0f));
-        if (inside && thickness > 0) {
-            /* the faint tint: 65% grey, 35% bluish green */
-            const uint8_t *c = sl_overlay_colour[SL_OV_CONTOUR];
-            for (int j = 0; j < 3; j++)
-                o[j] = (uint8_t)(0.65f * g + 0.35f * (float)c[j] + 0.5f);
-            cnt[SL_OV_CONTOUR]++;
-            continue;
-        }
-        o[0] = o[1] = o[2] = (uint8_t)(g + 0.5f);
+        int tint = inside && thickness > 0;
+        cnt[SL_OV_CONTOUR] += (uint64_t)tint;
+        if (lit && verdict == SL_V_LIT)
+            memcpy(o, lit + 3 * i, 3);
+        else
+            right_colour(v, light_dir, light_pos, verdict == SL_V_LIT, tint, i, o);
     }
     if (count)
         memcpy(count, cnt, sizeof cnt);
+}
+
+void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const float *light_pos,
+                      const struct sl_verdicts *vd,
+                      const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
+                      uint64_t count[SL_OV_CLASSES])
+{
+    build(NULL, v, light_dir, light_pos, vd, band, thickness, rgb, err, count);
+}
+
+void sl_overlay_shade_free(struct sl_overlay_shade *sh)
+{
+    free(sh->lit);
+    free(sh->band);
+    memset(sh, 0, sizeof *sh);
+}
+
+/* The shade's lit colours for this view, light, bands and thickness: kept,
+ * or drawn afresh. 0: no memory. */
+static int shade_ready(struct sl_overlay_shade *sh, const struct sl_view *v, const float light_dir[3],
+                       const float *light_pos, const uint8_t *band, int thickness)
+{
+    size_t n = (size_t)v->w * (size_t)v->h;
+    if (sh->lit && sh->serial == v->serial && sh->n == n && sh->thickness == thickness &&
+        !memcmp(sh->light_dir, light_dir, sizeof sh->light_dir) && sh->has_pos == (light_pos != NULL) &&
+        (!light_pos || !memcmp(sh->light_pos, light_pos, sizeof sh->light_pos)) && !memcmp(sh->band, band, n))
+        return 1;
+    if (sh->n < n) {
+        sl_overlay_shade_free(sh);
+        if (!(sh->lit = malloc(3 * n)) || !(sh->band = malloc(n))) {
+            sl_overlay_shade_free(sh);
+            return 0;
+        }
+    }
+    sh->n = n;
+    for (size_t i = 0; i < n; i++)
+        if (v->truth[i] != SL_T_BACKGROUND)
+            right_colour(v, light_dir, light_pos, 1, sl_in_contour(band[i], thickness) && thickness > 0, i,
+                         sh->lit + 3 * i);
+    memcpy(sh->band, band, n);
+    memcpy(sh->light_dir, light_dir, sizeof sh->light_dir);
+    sh->has_pos = light_pos != NULL;
+    if (light_pos)
+        memcpy(sh->light_pos, light_pos, sizeof sh->light_pos);
+    sh->serial = v->serial;
+    sh->thickness = thickness;
+    return 1;
+}
+
+void sl_overlay_build_shaded(struct sl_overlay_shade *sh, const struct sl_view *v, const float light_dir[3],
+                             const float *light_pos, const struct sl_verdicts *vd, const uint8_t *band,
+                             int thickness, uint8_t *rgb, uint8_t *err, uint64_t count[SL_OV_CLASSES])
+{
+    int kept = sh && shade_ready(sh, v, light_dir, light_pos, band, thickness);
+    build(kept ? sh->lit : NULL, v, light_dir, light_pos, vd, band, thickness, rgb, err, count);
 }
 
 static int any8(const uint8_t *a, const uint8_t *b, int x)

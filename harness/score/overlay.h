@@ -53,6 +53,26 @@ void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const f
                       const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
                       uint64_t count[SL_OV_CLASSES]);
 
+/* The lit colours of a view's pixels (n.l shading, the contour's tint),
+ * which depend on the view, the light and the bands, not on the method:
+ * drawn once and kept for the view's next cells. Zero it before first use. */
+struct sl_overlay_shade {
+    uint64_t serial;          /* the view's (view.h) */
+    size_t   n;               /* pixels held */
+    float    light_dir[3], light_pos[3];
+    int      has_pos, thickness;
+    uint8_t *band;            /* the bands they were drawn with (compared whole: cheap beside the drawing) */
+    uint8_t *lit;             /* 3 bytes a pixel */
+};
+void sl_overlay_shade_free(struct sl_overlay_shade *sh);
+
+/* sl_overlay_build, the lit colours taken from sh (drawn into it first when
+ * it holds another view, light, bands or thickness); the same bytes and
+ * counts. sh NULL, or no memory: as sl_overlay_build. */
+void sl_overlay_build_shaded(struct sl_overlay_shade *sh, const struct sl_view *v, const float light_dir[3],
+                             const float *light_pos, const struct sl_verdicts *vd, const uint8_t *band,
+                             int thickness, uint8_t *rgb, uint8_t *err, uint64_t count[SL_OV_CLASSES]);
+
 /* A rectangle of pixels, y = 0 the bottom row. */
 struct sl_ov_box { int x, y, w, h; };
 
