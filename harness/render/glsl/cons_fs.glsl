@@ -32,8 +32,13 @@
 // each is one dot product, evaluated as the per-texel test always did.
 // Likewise the plane's minimum and maximum over the square are at the
 // corners its gradient's signs pick.
-uniform double u_eps;
-uniform double u_zeps;
+// The margins are constants of the source (shadowmap.c defines SL_EPS and
+// SL_ZEPS from frame.h's values, printed exactly): llvmpipe loads a uniform
+// at a non-zero offset as a gather of one scalar per fragment (eight loads
+// per batch of eight), and u_zeps as a uniform cost BGSM ~10% of its
+// fragment shader's time.
+const double u_eps = SL_EPS;
+const double u_zeps = SL_ZEPS;
 #if SL_MODE == 1
 layout(binding = 0, r32ui) readonly uniform uimage2D u_first_ids;   // the ids of mode 0
 #endif
