@@ -193,7 +193,10 @@ void main()
     double z = plane_max(t, v[0], g_grad, (g_flags & 1u) != 0u, zhi) + u_zeps;
 #else
     // lowest depth of the plane over the square, never below zlo
-    double z = (g_flags & 1u) != 0u ? max(plane_at(v[0], g_grad, corner(t, g_grad, 1.0)), zlo) : zlo;
+    // (a compare, not max(): llvmpipe's max is NaN-aware; with no NaN here
+    // the two differ at most in the sign of a zero, which z - u_zeps drops)
+    double p = plane_at(v[0], g_grad, corner(t, g_grad, 1.0));
+    double z = (g_flags & 1u) != 0u && p > zlo ? p : zlo;
     z -= u_zeps;
 #endif
 #endif
