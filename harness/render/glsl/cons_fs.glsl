@@ -164,13 +164,10 @@ void main()
 #if SL_MODE != 2
     // box axes; the vertices, t - eps and t + 1 + eps are exact in float
     // (eps = 1/128, t < 2^17), so float decides as double would
-    // (the box's max below a bound is every vertex below it: compares
-    // instead of llvmpipe's NaN-aware min and max per fragment)
+    vec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)), hi = max(v[0].xy, max(v[1].xy, v[2].xy));
     float feps = float(u_eps);
-    vec2 below = vec2(t) - feps, above = vec2(t + 1) + feps;
-    bvec2 b0 = lessThan(v[0].xy, below), b1 = lessThan(v[1].xy, below), b2 = lessThan(v[2].xy, below);
-    bvec2 a0 = greaterThan(v[0].xy, above), a1 = greaterThan(v[1].xy, above), a2 = greaterThan(v[2].xy, above);
-    drop = (b0.x && b1.x && b2.x) || (a0.x && a1.x && a2.x) || (b0.y && b1.y && b2.y) || (a0.y && a1.y && a2.y);
+    drop = hi.x < float(t.x) - feps || lo.x > float(t.x + 1) + feps ||
+           hi.y < float(t.y) - feps || lo.y > float(t.y + 1) + feps;
 #endif
 #if SL_MODE == 1
     drop = drop || (imageLoad(u_first_ids, t).r & 0x7fffffffu) == g_tri;
