@@ -55,7 +55,12 @@ enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
      * keep no edge, with SGSM's fragment shader (cons_adj_gs.glsl) */
     for (int mode = 0; mode < 5; mode++) {
         char *gs = cons_source(mode >= 3 ? sl_glsl_cons_adj_gs : sl_glsl_cons_gs, mode, sl_glsl_cons_setup);
-        char *fs = cons_source(sl_glsl_cons_fs, mode == 4 ? 2 : mode, NULL);
+        /* the margins as constants of the fragment shader (cons_fs.glsl):
+         * %.17g gives back the same double */
+        char pre[128];
+        snprintf(pre, sizeof pre, "#define SL_EPS %.17glf\n#define SL_ZEPS %.17glf\n", SL_CONS_EPS_TEXELS,
+                 SL_CONS_EPS_DEPTH);
+        char *fs = cons_source(sl_glsl_cons_fs, mode == 4 ? 2 : mode, pre);
         if (gs && fs)
             p->prog_cons[mode] = sl_gl_program(sl_glsl_depth_id_vs, gs, fs, d);
         else
@@ -168,11 +173,9 @@ static GLint use_program(GLuint prog, const struct sl_light_frame *f, int cons)
         glUniform1f(glGetUniformLocation(prog, "u_size"), (float)f->size);
         glUniform1f(glGetUniformLocation(prog, "u_lambda"),  /* -1 (unused) in the adjacency GS */
                     (float)(0.70710678 * (1.0 + 1.0 / 1024.0) + 2.0 * SL_CONS_EPS_TEXELS));
-        glUniform1d(glGetUniformLocation(prog, "u_eps"), SL_CONS_EPS_TEXELS);
         /* a point light's unmapped triangles (frame.h) are left out */
         glUniform1f(glGetUniformLocation(prog, "u_wmin"), f->box.wmin);
         glUniform1f(glGetUniformLocation(prog, "u_guard"), f->box.guard);
-        glUniform1d(glGetUniformLocation(prog, "u_zeps"), SL_CONS_EPS_DEPTH);
     }
     return glGetUniformLocation(prog, "u_first");
 }

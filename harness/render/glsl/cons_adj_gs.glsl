@@ -37,6 +37,9 @@ flat out dvec2 g_nb2;
 flat out dvec2 g_ngrad0;   // kept edge i: the neighbour's depth plane gradient (from b)
 flat out dvec2 g_ngrad1;
 flat out dvec2 g_ngrad2;
+#if SL_MODE == 4
+flat out float g_zb;       // the vertices' farthest depth (SGSM's fragment shader's bound)
+#endif
 flat out uint g_flags;     // bits 0, 1: the triangle's |area| > 1e-12, >= 1e-12; 2 + i, 5 + i: the same of neighbour i
 
 // Window space of a clip-space vertex. The division is exact (by 1) in a
@@ -123,6 +126,9 @@ void main()
     g_na1 = na[1]; g_nb1 = nb[1]; g_ngrad1 = ng[1];
     g_na2 = na[2]; g_nb2 = nb[2]; g_ngrad2 = ng[2];
     g_flags = flags;
+#if SL_MODE == 4
+    g_zb = max(v[0].z, max(v[1].z, v[2].z));
+#endif
     float z = clamp(min(v[0].z, min(v[1].z, v[2].z)), 0.0, 1.0);
     for (int i = 0; i < 3; i++) {
         gl_Position = vec4(v[i].xy / u_size * 2.0 - 1.0, z, 1.0);

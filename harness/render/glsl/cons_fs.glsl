@@ -32,8 +32,13 @@
 // each is one dot product, evaluated as the per-texel test always did.
 // Likewise the plane's minimum and maximum over the square are at the
 // corners its gradient's signs pick.
-uniform double u_eps;
-uniform double u_zeps;
+// The margins are constants of the source (shadowmap.c defines SL_EPS and
+// SL_ZEPS from frame.h's values, printed exactly): llvmpipe loads a uniform
+// at a non-zero offset as a gather of one scalar per fragment (eight loads
+// per batch of eight): as uniforms they cost BGSM 849 M instructions a
+// layer against 794 M (valgrind, Bench 2048^2, LP_NUM_THREADS=0).
+const double u_eps = SL_EPS;
+const double u_zeps = SL_ZEPS;
 #if SL_MODE == 1
 layout(binding = 0, r32ui) readonly uniform uimage2D u_first_ids;   // the ids of mode 0
 #endif
@@ -45,6 +50,11 @@ flat in dvec2 g_e0;     // outward unit normal of edge v_i -> v_i+1 (0: zero len
 flat in dvec2 g_e1;
 flat in dvec2 g_e2;
 flat in dvec2 g_grad;   // depth plane gradient (from v0)
+#if SL_MODE != 3
+flat in float g_zb;     // the vertices' nearest depth (modes 0, 1), farthest (2): the min or max
+                        // of three floats is one of them, so double(g_zb) is what the double
+                        // min or max of the three gave, without its NaN handling per fragment
+#endif
 flat in uint g_flags;   // bit 0: |area| > 1e-12; bit 1: |area| >= 1e-12 (mode 3: bits 2 + i, 5 + i the same per neighbour)
 #if SL_MODE == 3
 flat in vec3 g_n0;      // the vertex of the neighbour across edge i opposite to it
@@ -98,8 +108,12 @@ double plane_max(ivec2 t, vec3 a, dvec2 g, bool has_plane, double zhi)
 void main()
 {
     ivec2 t = ivec2(gl_FragCoord.xy);
+#if SL_MODE == 3
     dvec3 zs = dvec3(g_v0.z, g_v1.z, g_v2.z);
     double zlo = min(zs.x, min(zs.y, zs.z)), zhi = max(zs.x, max(zs.y, zs.z));
+#else
+    double zlo = double(g_zb), zhi = zlo;
+#endif
     // One discard, at the end: on llvmpipe each discard statement costs
     // (measured: a second, early one for the box test nearly doubled the
     // time of BGSM), and an early one saves nothing, since the rest of the
@@ -176,13 +190,19 @@ void main()
     double z = plane_max(t, v[0], g_grad, (g_flags & 1u) != 0u, zhi) + u_zeps;
 #else
     // lowest depth of the plane over the square, never below zlo
-    double z = (g_flags & 1u) != 0u ? max(plane_at(v[0], g_grad, corner(t, g_grad, 1.0)), zlo) : zlo;
+    // (a compare, not max(): llvmpipe's max is NaN-aware; with no NaN here
+    // the two differ at most in the sign of a zero, which z - u_zeps drops)
+    double p = plane_at(v[0], g_grad, corner(t, g_grad, 1.0));
+    double z = (g_flags & 1u) != 0u && p > zlo ? p : zlo;
     z -= u_zeps;
 #endif
 #endif
     if (drop)
         discard;
-    gl_FragDepth = float(clamp(z, 0.0, 1.0));
+    // no clamp here: GL clamps the depth written to the depth range [0, 1]
+    // itself (llvmpipe after the conversion), and rounding to float is
+    // monotonic with 0 and 1 exact, so float(z) clamped is float(clamp(z))
+    gl_FragDepth = float(z);
 #if SL_MODE == 0
     o_tri = full ? (g_tri | 0x80000000u) : g_tri;
 #else

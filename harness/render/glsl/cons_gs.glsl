@@ -33,6 +33,7 @@ flat out dvec2 g_e1;           //                            v1 -> v2
 flat out dvec2 g_e2;           //                            v2 -> v0
 flat out dvec2 g_grad;         // depth plane gradient
 flat out uint g_flags;         // bit 0: |area| > 1e-12 (the plane is used); bit 1: |area| >= 1e-12
+flat out float g_zb;           // the vertices' nearest depth (BGSM's bound), farthest for SGSM
 
 // Window space of a clip-space vertex. The division is exact (by 1) in a
 // directional light's orthographic frustum; in a point light's perspective
@@ -70,6 +71,11 @@ void main()
     g_e2 = cons_edge_normal(v[2], v[0], ds);
     g_grad = cons_plane_grad(v[0], v[1], v[2], darea);
     g_flags = (abs(darea) > 1e-12 ? 1u : 0u) | (abs(darea) >= 1e-12 ? 2u : 0u);
+#if SL_MODE == 2
+    g_zb = max(v[0].z, max(v[1].z, v[2].z));
+#else
+    g_zb = min(v[0].z, min(v[1].z, v[2].z));
+#endif
     // every emitted vertex at the nearest depth of the triangle, clamped into
     // the box: clipping must never cut a fragment we want (cons_fs writes the
     // real conservative depth)
