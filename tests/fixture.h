@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "adjacency.h"
 #include "scenefile.h"
 #include "gbuffer.h"
 #include "glctx.h"
@@ -37,6 +38,19 @@ static inline int fixture_view(struct fixture *f, int vp, int w, int h, struct s
     if (sl_gbuffer_render(&f->gp, &f->mesh, &f->scene, vp, w, h, v, NULL, NULL, NULL, &d) ||
         sl_truth_trace(&f->rt, &f->scene, v, NULL, &d)) {
         fprintf(stderr, "fixture view: %s\n", d.msg);
+        return 0;
+    }
+    return 1;
+}
+
+/* The scene's adjacency, built and uploaded beside its mesh (adj freed by
+ * the caller with sl_adjacency_free). */
+static inline int fixture_adjacency(struct fixture *f, struct sl_adjacency *adj)
+{
+    struct sl_diag d;
+    memset(adj, 0, sizeof *adj);
+    if (sl_adjacency_build(&f->scene, adj, &d) || sl_gl_mesh_upload_adjacency(&f->mesh, &f->scene, adj, &d)) {
+        fprintf(stderr, "fixture adjacency: %s\n", d.msg);
         return 0;
     }
     return 1;

@@ -61,9 +61,7 @@ static void layers_golden_hashes(void **st)
         assert_true(fixture_open(&f, scenes[si], 2));
         struct sl_diag d;
         struct sl_adjacency adj;
-        memset(&adj, 0, sizeof adj);
-        assert_int_equal(sl_adjacency_build(&f.scene, &adj, &d), SL_OK);
-        assert_int_equal(sl_gl_mesh_upload_adjacency(&f.mesh, &f.scene, &adj, &d), SL_OK);
+        assert_true(fixture_adjacency(&f, &adj));
         struct sl_shadowmap_pass sp;
         assert_int_equal(sl_shadowmap_init(&sp, &d), SL_OK);
         int nvp = si < 2 && f.scene.nvp > 1 ? 2 : 1;

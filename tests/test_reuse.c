@@ -82,9 +82,7 @@ static void reuse_layers_identical(void **st)
     assert_true(fixture_open(&f, "primitives", 2));
     struct sl_diag d;
     struct sl_adjacency adj;
-    memset(&adj, 0, sizeof adj);
-    assert_int_equal(sl_adjacency_build(&f.scene, &adj, &d), SL_OK);
-    assert_int_equal(sl_gl_mesh_upload_adjacency(&f.mesh, &f.scene, &adj, &d), SL_OK);
+    assert_true(fixture_adjacency(&f, &adj));
     struct sl_view v;
     assert_true(fixture_view(&f, 0, 256, 256, &v));
     struct sl_shadowmap_pass kept;
@@ -203,9 +201,7 @@ static void reuse_gathered_same_verdicts(void **st)
             assert_true(fixture_open(&f, scenes[sc], 2));
             struct sl_diag d;
             struct sl_adjacency adj;
-            memset(&adj, 0, sizeof adj);
-            assert_int_equal(sl_adjacency_build(&f.scene, &adj, &d), SL_OK);
-            assert_int_equal(sl_gl_mesh_upload_adjacency(&f.mesh, &f.scene, &adj, &d), SL_OK);
+            assert_true(fixture_adjacency(&f, &adj));
             struct sl_view v;
             assert_true(fixture_view(&f, 0, 192, 160, &v));
             struct sl_view mv = v;
