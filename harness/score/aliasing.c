@@ -549,12 +549,25 @@ static void wrong_side(const struct sl_view *v, const struct sl_verdicts *vd, co
         }
         return;
     }
+    /* the gathering in runs of 64 pixels, each first tested whole by the
+     * same branch-free test (it vectorises): the wrong pixels lie along
+     * the shadows' edges, so most runs have none and cost no branch per
+     * pixel (a branch per pixel was 2.4 ms a cell, 4% of the Moderno
+     * study's samples) */
     nw = 0;
-    for (size_t i = 0; i < npx; i++)
-        if (SL_WRONG_PFL(i)) {
-            bad[nw] = m[i];
-            wband[nw++] = band[i];
-        }
+    for (size_t i0 = 0; i0 < npx; i0 += 64) {
+        size_t e = npx - i0 < 64 ? npx - i0 : 64;
+        unsigned any = 0;
+        for (size_t i = i0; i < i0 + e; i++)
+            any |= SL_WRONG_PFL(i);
+        if (!any)
+            continue;
+        for (size_t i = i0; i < i0 + e; i++)
+            if (SL_WRONG_PFL(i)) {
+                bad[nw] = m[i];
+                wband[nw++] = band[i];
+            }
+    }
 #undef SL_WRONG_PFL
     float *sel = malloc((nw + 1) * sizeof *sel);   /* a region's m (NULL: no median) */
     for (int r = 0; r < nregions; r++) {
