@@ -286,7 +286,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     mat4 cam;
     for (int r = -1; r < reps && !e; r++) {
         struct raster_ms pm;
-        sl_view_free(&v);
+        sl_gbuffer_give_back(&x->gp, &v);   /* as a run does: the arrays serve the next render */
         double mr = 0, mb = 0;
         GLuint q;
         glGenQueries(1, &q);

@@ -180,6 +180,64 @@ static void reuse_gbuffer_identical(void **st)
     fixture_close(&f);
 }
 
+/* A view rendered into arrays given back (sl_gbuffer_give_back), which
+ * hold another viewpoint's pixels, equals a fresh pass's view in every
+ * array and count; the arrays are the ones given back; a timed-only render
+ * (no view) between them changes nothing. Under a spot light too, whose
+ * outside-the-cone array must be rewritten where the pixel is inside. */
+static void reuse_gbuffer_given_back(void **st)
+{
+    (void)st;
+    const char *scenes[2] = {"primitives", "scenes/lamp.yaml"};
+    for (int si = 0; si < 2; si++) {
+        struct fixture f;
+        assert_true(fixture_open(&f, scenes[si], 2));
+        struct sl_diag d;
+        struct sl_view a, b, c;
+        const int W = 160, H = 120;
+        /* the reference: viewpoint 1 by a fresh pass */
+        struct sl_gbuffer_pass fresh;
+        assert_int_equal(sl_gbuffer_init(&fresh, &f.scene, &d), SL_OK);
+        assert_int_equal(sl_gbuffer_render(&fresh, &f.mesh, &f.scene, 1, W, H, &c, NULL, NULL, NULL, &d), SL_OK);
+        sl_gbuffer_free(&fresh);
+        /* viewpoint 0 fills the arrays, given back, then viewpoint 1 into them */
+        assert_int_equal(sl_gbuffer_render(&f.gp, &f.mesh, &f.scene, 0, W, H, &a, NULL, NULL, NULL, &d), SL_OK);
+        const void *was[3] = {a.pos, a.tri, a.cls};
+        sl_gbuffer_give_back(&f.gp, &a);
+        assert_null(a.pos);
+        assert_int_equal(sl_gbuffer_render(&f.gp, &f.mesh, &f.scene, 1, W, H, NULL, NULL, NULL, NULL, &d), SL_OK);
+        assert_int_equal(sl_gbuffer_render(&f.gp, &f.mesh, &f.scene, 1, W, H, &b, NULL, NULL, NULL, &d), SL_OK);
+        assert_ptr_equal(b.pos, was[0]);
+        assert_ptr_equal(b.tri, was[1]);
+        assert_ptr_equal(b.cls, was[2]);
+        size_t n = (size_t)W * H;
+        assert_memory_equal(b.pos, c.pos, n * 3 * sizeof(float));
+        assert_memory_equal(b.nrm, c.nrm, n * 3 * sizeof(float));
+        assert_memory_equal(b.tri, c.tri, n * sizeof(uint32_t));
+        assert_memory_equal(b.cls, c.cls, n);
+        assert_memory_equal(b.truth, c.truth, n);
+        assert_int_equal(b.outside != NULL, si == 1);
+        if (b.outside) {
+            assert_memory_equal(b.outside, c.outside, n);
+            assert_true(c.n_outside_cone > 0 && c.n_outside_cone < n);
+        }
+        assert_int_equal(b.n_background, c.n_background);
+        assert_int_equal(b.n_pfl, c.n_pfl);
+        assert_int_equal(b.n_pnfl, c.n_pnfl);
+        assert_int_equal(b.n_outside_cone, c.n_outside_cone);
+        assert_true(c.n_pfl > 0 && c.n_background + c.n_pnfl > 0);   /* more than one class to rewrite */
+        assert_true(b.serial != c.serial);
+        /* another size: new arrays, the spare ones freed */
+        sl_gbuffer_give_back(&f.gp, &b);
+        assert_int_equal(sl_gbuffer_render(&f.gp, &f.mesh, &f.scene, 1, W / 2, H / 2, &a, NULL, NULL, NULL, &d),
+                         SL_OK);
+        assert_null(f.gp.spare.pos);
+        sl_view_free(&a);
+        sl_view_free(&c);
+        fixture_close(&f);
+    }
+}
+
 /* Layers gathered per pixel (frame.h, sl_frame_gather; run.c does it for
  * layers every remaining reader reads at the pixel's own texel) give the
  * conservative methods the very values of the dense layers: every verdict,
@@ -305,6 +363,7 @@ int main(int argc, char **argv)
         SL_CASE(reuse, pool_serves_and_replaces),
         SL_CASE(reuse, layers_identical),
         SL_CASE(reuse, gbuffer_identical),
+        SL_CASE(reuse, gbuffer_given_back),
         SL_CASE(reuse, gathered_same_verdicts),
     };
     return sl_run_group(argc, argv, "reuse", tests, sl_test_setup, sl_test_teardown);

@@ -58,8 +58,50 @@ static void target_free(struct sl_gbuffer_pass *p)
 void sl_gbuffer_free(struct sl_gbuffer_pass *p)
 {
     target_free(p);
+    sl_view_free(&p->spare);
     if (p->prog) glDeleteProgram(p->prog);
     memset(p, 0, sizeof *p);
+}
+
+void sl_gbuffer_give_back(struct sl_gbuffer_pass *p, struct sl_view *v)
+{
+    if (!v->pos) {
+        sl_view_free(v);
+        return;
+    }
+    sl_view_free(&p->spare);
+    p->spare = *v;
+    memset(v, 0, sizeof *v);
+}
+
+/* v's arrays for n pixels: the spare ones when they fit, else new. Not
+ * zeroed: the render writes every element of every array. */
+static int view_arrays(struct sl_gbuffer_pass *p, struct sl_view *v, size_t n, int spot)
+{
+    struct sl_view *k = &p->spare;
+    if (k->pos && (size_t)k->w * (size_t)k->h == n) {
+        v->pos = k->pos;
+        v->nrm = k->nrm;
+        v->tri = k->tri;
+        v->cls = k->cls;
+        v->truth = k->truth;
+        v->outside = k->outside;
+        memset(k, 0, sizeof *k);
+    } else {
+        sl_view_free(k);
+        v->pos = malloc(n * 3 * sizeof(float));
+        v->nrm = malloc(n * 3 * sizeof(float));
+        v->tri = malloc(n * sizeof(uint32_t));
+        v->cls = malloc(n);
+        v->truth = malloc(n);
+    }
+    if (spot && !v->outside)
+        v->outside = malloc(n);
+    else if (!spot) {
+        free(v->outside);
+        v->outside = NULL;
+    }
+    return v->pos && v->nrm && v->tri && v->cls && v->truth && (!spot || v->outside);
 }
 
 /* The target at w x h: the kept one, or made (the old one freed). */
@@ -97,25 +139,23 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
                               double *ms_gpu, struct sl_diag *d)
 {
     static _Atomic uint64_t serials;
-    memset(v, 0, sizeof *v);
-    v->serial = atomic_fetch_add(&serials, 1) + 1;
-    v->w = w;
-    v->h = h;
-    v->vp = vp;
     size_t n = (size_t)w * (size_t)h;
-    v->pos = sl_calloc(n * 3, sizeof(float));
-    v->nrm = sl_calloc(n * 3, sizeof(float));
-    v->tri = sl_calloc(n, sizeof(uint32_t));
-    v->cls = sl_calloc(n, 1);
-    v->truth = sl_calloc(n, 1);
-    v->outside = s->light.type == SL_LIGHT_SPOT ? sl_calloc(n, 1) : NULL;
-    if (!v->pos || !v->nrm || !v->tri || !v->cls || !v->truth || (s->light.type == SL_LIGHT_SPOT && !v->outside)) {
-        sl_view_free(v);
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "G-buffer %dx%d", w, h);
+    mat4 view, proj, vpm;
+    sl_camera_matrices(&s->vp[vp], (float)w / (float)h, view, proj);
+    glm_mat4_mul(proj, view, vpm);
+    if (v) {
+        memset(v, 0, sizeof *v);
+        v->serial = atomic_fetch_add(&serials, 1) + 1;
+        v->w = w;
+        v->h = h;
+        v->vp = vp;
+        glm_mat4_copy(view, v->view);
+        glm_mat4_copy(proj, v->proj);
+        if (!view_arrays(p, v, n, s->light.type == SL_LIGHT_SPOT)) {
+            sl_view_free(v);
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "G-buffer %dx%d", w, h);
+        }
     }
-    sl_camera_matrices(&s->vp[vp], (float)w / (float)h, v->view, v->proj);
-    mat4 vpm;
-    glm_mat4_mul(v->proj, v->view, vpm);
 
     /* the target's making is timed with the render, as when each render
      * made its own: the first of a size pays for it */
@@ -146,7 +186,9 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
         glFinish();
         double t1 = sl_now();
         glGetTextureImage(p->tex[0], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba_pos);
-        glGetTextureImage(p->tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4), v->tri);
+        /* a timed repetition reads the ids over the positions, used by no one */
+        glGetTextureImage(p->tex[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, (GLsizei)(n * 4),
+                          v ? (void *)v->tri : (void *)rgba_pos);
         double t2 = sl_now();
         double gpu = sl_gl_timer_ms(&gt, 1e3 * (t1 - t0));   /* after the readback: no extra wait */
         if (ms_gpu) *ms_gpu = gpu;
@@ -156,7 +198,7 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
         e = sl_gl_check("G-buffer pass", d);
     }
 
-    if (!e) {
+    if (!e && v) {
         const float *L = s->light_dir;
         const int at_point = s->light.type != SL_LIGHT_DIRECTIONAL;
         for (size_t i = 0; i < n; i++) {
@@ -169,7 +211,12 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
                 float sg = (v->tri[i] & SL_BACK_FACING) ? -1.0f : 1.0f;
                 for (int k = 0; k < 3; k++)
                     v->nrm[3 * i + k] = sg * fn[k];
+            } else {
+                for (int k = 0; k < 3; k++)
+                    v->nrm[3 * i + k] = 0.0f;
             }
+            if (v->outside)
+                v->outside[i] = 0;
             v->tri[i] = id;
             if (v->tri[i] == 0) {
                 v->cls[i] = SL_C_BACKGROUND;
@@ -205,7 +252,7 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
             }
         }
     }
-    if (e)
+    if (e && v)
         sl_view_free(v);
     return e;
 }
