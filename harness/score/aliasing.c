@@ -270,12 +270,25 @@ static inline __attribute__((always_inline)) vl_t vbeam_spans(const struct beam 
     vd_t wp = m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
     vl_t ok = VABS(wp) > 0.0;
     vd_t hit[4][3];
+    /* Two divisions fewer than the scalar code, the same bits: an odd
+     * edge's s is (-wp) / w, which IEEE division makes exactly -(wp / w);
+     * and where the column's w term is 0 (an orthographic frame: a
+     * directional light's), r is 1 / (1 + s 0) = 1 exactly for a finite s,
+     * and a non-finite s fails the edge either way (its hit is not finite),
+     * so q is p + s col as it stands. Eight of some thirty divisions a
+     * pixel (aliasing::image_lanes_match checks the bits). */
+    vd_t sx = wp / (double)b->w, sy = wp / (double)b->h;
     for (int e = 0; e < 4; e++) {
         const double *col = b->inv + (e < 2 ? 0 : 4);
-        vd_t s = (e % 2 ? -1.0 : 1.0) * wp / (e < 2 ? b->w : b->h);
-        vd_t r = 1.0 / (1.0 + s * col[3]), q[3];
-        for (int k = 0; k < 3; k++)
-            q[k] = (p[k] + s * col[k]) * r;
+        vd_t s = e == 0 ? sx : e == 1 ? -sx : e == 2 ? sy : -sy, q[3];
+        if (col[3] == 0.0) {
+            for (int k = 0; k < 3; k++)
+                q[k] = p[k] + s * col[k];
+        } else {
+            vd_t r = 1.0 / (1.0 + s * col[3]);
+            for (int k = 0; k < 3; k++)
+                q[k] = (p[k] + s * col[k]) * r;
+        }
         ok &= vbeam_hit(b, q, p, n, hit[e]);
     }
     for (int k = 0; k < 3; k++) {
