@@ -43,13 +43,6 @@ extern const char sl_glsl_bench_plain_fs[];
 #endif
 
 #define TARGET_RASTER_RATIO  2.0     /* a pass's render time over the plain raster's, at most */
-#define TARGET_MODERNO_S     60.0
-#define TARGET_MORAIS_S      300.0
-/* issue 20: CPU time (user+sys), minor page faults, peak RSS; 0 = none */
-#define TARGET_MODERNO_CPU_S 12.0
-#define TARGET_MORAIS_CPU_S  90.0
-#define TARGET_MORAIS_FAULTS 500000.0
-#define TARGET_MORAIS_RSS_MIB 1024.0
 #define TARGET_RSS_MIB       2048.0
 #define TARGET_CONTEXT_MS    2000.0   /* the first context, driver loading included */
 
@@ -67,7 +60,7 @@ static const char *const stage_names[SL_BENCH_NSTAGES] = {
 #undef SL_BENCH_NAME
 };
 
-static const char *const layer_names[SL_LAYER_COUNT] = {
+const char *const sl_bench_layer_names[SL_LAYER_COUNT] = {
     "depth_id", "depth_id_back", "bgsm", "bgsm2", "sgsm", "sgsm_adj",
 };
 
@@ -362,7 +355,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
         }
         if (e)
             break;
-        snprintf(name, sizeof name, "%s %d²", layer_names[l], S);
+        snprintf(name, sizeof name, "%s %d²", sl_bench_layer_names[l], S);
         layer_row(res, out, "layer", name, &t, reps);
     }
     if (!e)
@@ -557,7 +550,7 @@ static enum sl_err bench_backends(struct sl_bench_ctx *x, struct sl_bench_result
         else if (s == 1)
             snprintf(name, sizeof name, "gbuffer %dx%d", x->W, x->H);
         else
-            snprintf(name, sizeof name, "%s %d²", layer_names[s - 2], x->S);
+            snprintf(name, sizeof name, "%s %d²", sl_bench_layer_names[s - 2], x->S);
         struct sl_bench_row *row = sl_bench_add_row(res, "backend", "ms", mn[1], mn[0], TARGET_BACKEND_RATIO,
                                            SL_BENCH_AT_MOST);
         char gp[2][24] = {"", ""};
@@ -585,94 +578,6 @@ out:
 
 /* ---- whole studies -------------------------------------------------------- */
 
-
-static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw)
-{
-    (void)sb, (void)flag, (void)ftw;
-    return remove(p);
-}
-
-/* files: 1 runs the study as `shadowlab run CONFIG --no-cache -o TMP` does
- * (overlays and tables written, a store), into a temporary folder removed
- * after; 0 computes only. */
-static enum sl_err bench_study(const char *path, const char *label, double target_s, const double tgt[3],
-                               enum sl_gl_backend gl, int files, FILE *out, struct sl_bench_result *res,
-                               struct sl_diag *d)
-{
-    struct sl_config c;
-    enum sl_err e = sl_config_load(path, &c, d);
-    if (e)
-        return e;
-    if (gl)
-        c.gl = gl;
-    char tmp[] = "/tmp/shadowlab-bench-XXXXXX";
-    if (files && !mkdtemp(tmp))
-        return sl_fail(d, SL_E_OUTPUT, tmp, 0, NULL, "cannot make a temporary folder: %s", strerror(errno));
-    struct sl_run_opts ro = {.out_root = files ? tmp : NULL, .table_out = NULL, .write_files = files,
-                             .store = files ? NULL : "", .cache_dir = ""};
-    struct sl_run_result rr;
-    struct rusage ru0, ru1;
-    char load0[64], load1[64];
-    sl_bench_loadavg(load0, sizeof load0);
-    getrusage(RUSAGE_SELF, &ru0);
-    double t0 = sl_now(), c0 = cpu_now();
-    e = sl_run(&c, &ro, &rr, d);
-    double wall = sl_now() - t0, cpu = cpu_now() - c0;
-    getrusage(RUSAGE_SELF, &ru1);
-    sl_bench_loadavg(load1, sizeof load1);
-    if (files)
-        nftw(tmp, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
-    if (e)
-        return e;
-    /* {CPU s, minor faults, peak RSS MiB} against tgt (0: no target, not a row) */
-    const double got[3] = {cpu, (double)(ru1.ru_minflt - ru0.ru_minflt), ru1.ru_maxrss / 1024.0};
-    static const char *const what[3][2] = {{"CPU (user+sys)", "s"}, {"minor page faults", "faults"},
-                                           {"peak RSS of the process so far", "MiB"}};
-    uint64_t viol = 0, rays = 0;
-    double ms_method = 0;
-    for (int i = 0; i < rr.ncells; i++) {
-        const struct sl_cell_key *k = &rr.cells[i].key, *p = i ? &rr.cells[i - 1].key : NULL;
-        viol += rr.cells[i].violations;
-        /* a view's truth is reported with each of its (contiguous) cells */
-        if (!p || p->scene != k->scene || p->viewport != k->viewport || p->vp != k->vp)
-            rays += rr.cells[i].truth_rays;
-        ms_method += rr.cells[i].ms.method[SL_MED];
-    }
-    int layers = 0;
-    for (int l = 0; l < SL_LAYER_COUNT; l++)
-        layers += rr.passes.layers[l];
-    fprintf(out, "## Study %s (%s): %d cells, %.1f s wall, %.1f s CPU (user+sys), %.0f minor page faults, "
-                 "peak RSS %.0f MiB\n\n", c.name, path, rr.ncells, wall, got[0], got[1], got[2]);
-    if (files)
-        fprintf(out, "Overlays and tables written (%d sheets by the writer's thread: %.1f s wall, %.1f s CPU, "
-                     "counted in the run's), a store, no truth cache; load average %s before, %s after. ",
-                rr.overlays_written, rr.ms_overlay_writer / 1e3, rr.ms_overlay_writer_cpu / 1e3, load0, load1);
-    else
-        fprintf(out, "No files, no store, no truth cache; load average %s before, %s after. ", load0, load1);
-    fprintf(out, "%d threads. Scenes loaded %d (load %.0f ms, BVH %.0f ms), "
-                 "G-buffers %d, truths traced %d (%llu rays), layer renders %d",
-            c.threads, rr.passes.scenes, rr.ms_scene, rr.ms_bvh, rr.passes.gbuffers, rr.passes.truths_traced,
-            (unsigned long long)rays, layers);
-    for (int l = 0, first = 1; l < SL_LAYER_COUNT; l++)
-        if (rr.passes.layers[l]) {
-            fprintf(out, "%s%s %d", first ? " (" : ", ", layer_names[l], rr.passes.layers[l]);
-            first = 0;
-        }
-    fprintf(out, "%s, method runs %d (their median times summed: %.0f ms); exactness violations: %llu.\n\n",
-            layers ? ")" : "", rr.passes.method_runs, ms_method, (unsigned long long)viol);
-    struct sl_bench_row *row = sl_bench_add_row(res, "study", "s", wall, 0, target_s, SL_BENCH_AT_MOST);
-    if (row)
-        snprintf(row->name, sizeof row->name, "%s, %d cells, wall", label, rr.ncells);
-    for (int k = 0; k < 3; k++)
-        if (tgt[k] > 0 && (row = sl_bench_add_row(res, "study", what[k][1], got[k], 0, tgt[k], SL_BENCH_AT_MOST)))
-            snprintf(row->name, sizeof row->name, "%s, %s", label, what[k][0]);
-    /* not a speed, but a fast layer that loses exactness is no gain */
-    row = sl_bench_add_row(res, "study", "pixels", (double)viol, 0, 0, SL_BENCH_AT_MOST);
-    if (row)
-        snprintf(row->name, sizeof row->name, "%s, exactness violations", label);
-    sl_run_result_free(&rr);
-    return SL_OK;
-}
 
 /* ---- output ---------------------------------------------------------------- */
 
@@ -798,6 +703,25 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
             goto done;
     }
 
+    /* the studies next, each in a child forked while this process is still
+     * a single thread with nothing made (bench_study.c) */
+    char *studies_md = NULL;
+    size_t studies_len = 0;
+    struct sl_bench_result study_rows;
+    memset(&study_rows, 0, sizeof study_rows);
+    if (stages & (SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(MORAIS))) {
+        FILE *mem = open_memstream(&studies_md, &studies_len);
+        if (!mem) {
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "bench studies' table");
+            goto done;
+        }
+        fflush(out);
+        e = sl_bench_studies(o, stages, mem, &study_rows, d);
+        fclose(mem);
+        if (e)
+            goto done;
+    }
+
     /* provenance first: a short-lived context for the renderer's name; the
      * process's first context, so its time includes loading the driver */
     struct sl_provenance prov;
@@ -858,26 +782,15 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
         if (e)
             goto done;
     }
-    if (stages & SL_BENCH_STAGE(MODERNO)) {
-        e = bench_study(o->moderno ? o->moderno : "configs/moderno-2011.yaml", "moderno-2011", TARGET_MODERNO_S,
-                        (const double[3]){TARGET_MODERNO_CPU_S, 0, 0}, o->gl, 0, out, res, d);
+    /* the studies' sections, measured first (above), in their turn */
+    if (studies_md) {
+        fputs(studies_md, out);
         fflush(out);
-        /* issue 20's target is the study as run, overlays on: the same again
-         * writing its files (the sheets by the run's writer thread) */
-        if (!e)
-            e = bench_study(o->moderno ? o->moderno : "configs/moderno-2011.yaml", "moderno-2011 overlays on",
-                            TARGET_MODERNO_S, (const double[3]){TARGET_MODERNO_CPU_S, 0, 0}, o->gl, 1, out, res, d);
-        fflush(out);
-        if (e)
-            goto done;
     }
-    if (stages & SL_BENCH_STAGE(MORAIS)) {
-        e = bench_study(o->morais ? o->morais : "configs/morais-2015.yaml", "morais-2015", TARGET_MORAIS_S,
-                        (const double[3]){TARGET_MORAIS_CPU_S, TARGET_MORAIS_FAULTS, TARGET_MORAIS_RSS_MIB}, o->gl,
-                        0, out, res, d);
-        fflush(out);
-        if (e)
-            goto done;
+    for (int i = 0; i < study_rows.nrows; i++) {
+        struct sl_bench_row *row = sl_bench_add_row(res, "study", "", 0, 0, 0, SL_BENCH_AT_MOST);
+        if (row)
+            *row = study_rows.rows[i];
     }
     if (stages & SL_BENCH_STAGE(JOBS)) {
         e = sl_bench_jobs(o->config ? o->config : o->morais ? o->morais : "configs/morais-2015.yaml", o->gl, out, res, d);
@@ -917,5 +830,6 @@ done:
         *res_out = *res;
     free(res);
     free(startup_md);
+    free(studies_md);
     return e;
 }

@@ -41,11 +41,19 @@ enum sl_err sl_bench_lightfit(struct sl_bench_ctx *x, struct sl_bench_result *re
 /* The truth pass against a plain rtcOccluded16 loop (bench_truth.c). */
 enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 
+/* The layers' names in the bench's rows, by SL_LAYER_* (bench.c). */
+extern const char *const sl_bench_layer_names[SL_LAYER_COUNT];
+
 /* The load average (1, 5, 15 min) as "a b c", or "unknown". */
 void sl_bench_loadavg(char *buf, size_t n);
 
 struct sl_bench_row *sl_bench_add_row(struct sl_bench_result *res, const char *stage, const char *unit,
                                       double value, double plain, double target, enum sl_bench_cmp cmp);
+
+/* The study stages of `stages` (MODERNO, MORAIS), each in a child process
+ * forked now (bench_study.c): their sections to out, their rows to res. */
+enum sl_err sl_bench_studies(const struct sl_bench_opts *o, unsigned stages, FILE *out,
+                             struct sl_bench_result *res, struct sl_diag *d);
 
 /* One study as one process against `run --jobs 2` (bench_jobs.c). */
 enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, struct sl_bench_result *res,

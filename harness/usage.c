@@ -100,6 +100,7 @@ const char sl_usage_bench[] =
     "    moderno  configs/moderno-2011.yaml end to end, no files, no cache (< 60 s); then again with its\n"
     "             overlays, tables and store written (CPU <= 12 s)\n"
     "    morais   configs/morais-2015.yaml end to end, no files, no cache (< 300 s)\n"
+    "             (each study in a child process of its own, forked before the other stages)\n"
     "    jobs     CONFIG (default configs/morais-2015.yaml) as one process vs run --jobs 2, files and\n"
     "             store, no cache: wall, CPU, views split, merge per 1,000 cells (--jobs 2 not slower)\n"
     "    startup  version, validate CONFIG (default configs/default.yaml) and help run as processes,\n"

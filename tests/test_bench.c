@@ -154,6 +154,65 @@ static void bench_quick_mode_rows(void **st)
     assert_non_null(strstr(text, ",layer,\"bgsm2 256²\",ms,"));
 }
 
+/* The study stages, each in a process of its own (bench_study.c): the
+ * rows of Moderno without and with files and of Morais, in that order, the
+ * sections of each, none run in the bench's own process; and a study that
+ * fails in its process fails the bench with its own message. */
+static void bench_studies_in_children(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    sl_test_config("tiny.yaml",
+                   "name: tiny\nscenes:\n  - {scene: blocks}\nviewports: [{width: 64, height: 48}]\n"
+                   "map_sizes: [64]\ncontours: [2]\nmethods:\n  - {label: nsm, method: nsm}\n"
+                   "outputs: {tables: true, overlays: true, overlay_contour: 2}\n",
+                   &c);
+    char cfg[300], md[300];
+    snprintf(cfg, sizeof cfg, "%s/tiny.yaml", sl_test_dir);
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(MORAIS), .reps = 1,
+                              .moderno = cfg, .morais = cfg};
+    struct sl_bench_result r;
+    run_bench(&o, "studies.md", md, sizeof md, &r);
+    static const char *const want[] = {
+        "moderno-2011, ", "moderno-2011, CPU (user+sys)", "moderno-2011, exactness violations",
+        "moderno-2011 overlays on, ", "moderno-2011 overlays on, CPU (user+sys)",
+        "moderno-2011 overlays on, exactness violations", "morais-2015, ", "morais-2015, CPU (user+sys)",
+        "morais-2015, minor page faults", "morais-2015, peak RSS of the process so far",
+        "morais-2015, exactness violations"};
+    assert_int_equal(r.nrows, 11 + 2);
+    for (int i = 0; i < 11; i++) {
+        assert_string_equal(r.rows[i].stage, "study");
+        assert_true(!strncmp(r.rows[i].name, want[i], strlen(want[i])));
+        if (strstr(want[i], "violations"))
+            assert_true(r.rows[i].value == 0.0);
+        else
+            assert_true(r.rows[i].value > 0.0);   /* measured in the child: its own time, faults, RSS */
+    }
+    assert_string_equal(r.rows[11].stage, "memory");
+    const char *text = slurp(md);
+    int sections = 0;
+    for (const char *p = text; (p = strstr(p, "## Study tiny")); p++)
+        sections++;
+    assert_int_equal(sections, 3);
+    assert_null(strstr(text, "ran in the bench's own process"));
+    assert_non_null(strstr(text, "Overlays and tables written (1 sheets"));
+
+    /* a study that fails in its process */
+    char missing[320];
+    snprintf(missing, sizeof missing, "%s/no-such.yaml", sl_test_dir);
+    o.moderno = o.morais = missing;
+    o.stages = SL_BENCH_STAGE(MORAIS);
+    FILE *out = fopen(md, "w");
+    assert_non_null(out);
+    o.out = out;
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_bench(&o, NULL, &d);
+    fclose(out);
+    assert_int_not_equal(e, SL_OK);
+    assert_non_null(strstr(d.file, "no-such.yaml"));
+}
+
 /* The churn stage: NSM's layer at S and 2S kept and made afresh, three
  * rows (both ratios 2S / S, CPU kept / fresh), each against its plain
  * counterpart, with the sizes in their names and the table printed. */
@@ -305,6 +364,7 @@ int main(int argc, char **argv)
         SL_CASE(bench, scoring_rows),
         SL_CASE(bench, lightfit_rows),
         SL_CASE(bench, parse_stages),
+        SL_CASE(bench, studies_in_children),
         SL_CASE(bench, quick_mode_rows),
         SL_CASE(bench, backends_rows),
         SL_CASE(bench, churn_rows),
