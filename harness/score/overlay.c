@@ -51,59 +51,141 @@ static void right_colour(const struct sl_view *v, const float light_dir[3], cons
     o[0] = o[1] = o[2] = (uint8_t)(g + 0.5f);
 }
 
-/* lit: the lit colours of the view's pixels (a shade's), or NULL: each
- * computed where needed. */
+/* The codes of build's first pass: the error classes (SL_OV_LIT_WRONG ..
+ * SL_OV_UNCERTAIN, 0-3) and how a pixel drawn right gets its colour. */
+enum {
+    CODE_BACKGROUND = SL_OV_UNCERTAIN + 1,   /* black */
+    CODE_DARK,                              /* right, not said lit: the ambient grey */
+    CODE_DARK_TINT,                         /* the same inside the contour */
+    CODE_LIT,                               /* right, said lit: n.l (the shade's, or computed) */
+    CODE_LIT_TINT,
+    CODE_CONE,                              /* right, outside a spot's cone: hatched */
+    CODES
+};
+/* Pixels per chunk: the codes stay in L1 between the two passes. */
+enum { CHUNK = 4096 };
+
+/* lit: the lit colours of the view's pixels (a shade's, 3 bytes a pixel
+ * and every byte written), or NULL: each computed where needed.
+ *
+ * Two passes per chunk (issue 20: the one branchy loop that decided and
+ * drew each pixel was 4% of the Moderno study's samples): the first gives
+ * each pixel a code with byte compares and selects only, which vectorise,
+ * and counts the codes; the second draws each code's colour, a constant
+ * of the code or the shade's lit colour, as one 4-byte store a pixel (its
+ * fourth byte overwritten by the next pixel's). */
 static void build(const uint8_t *lit, const struct sl_view *v, const float light_dir[3], const float *light_pos,
                   const struct sl_verdicts *vd, const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
                   uint64_t count[SL_OV_CLASSES])
 {
-    size_t n = (size_t)v->w * (size_t)v->h;
-    uint64_t cnt[SL_OV_CLASSES] = {0};
-    for (size_t i = 0; i < n; i++) {
-        uint8_t *o = rgb + 3 * i;
-        uint8_t t = v->truth[i], verdict = vd->v[i];
-        if (err)
-            err[i] = 0;
-        if (t == SL_T_BACKGROUND) {
-            o[0] = o[1] = o[2] = 0;
-            continue;
+    _Static_assert(SL_OV_LIT_WRONG == 0 && SL_OV_SHADOW_WRONG == 1 && SL_OV_WRONG_OUTSIDE == 2 &&
+                       SL_OV_UNCERTAIN == 3,
+                   "the error classes are codes 0-3");
+    _Static_assert(CODES <= 16, "the codes' counters");
+    const size_t n = (size_t)v->w * (size_t)v->h;
+    /* sl_in_contour(b, thickness) as byte compares: every pixel when the
+     * thickness is 0, else a band b with 0 < b <= thickness / 2 */
+    const uint8_t all_in = thickness == 0, tint_ok = thickness > 0;
+    const int hi = thickness / 2 > 255 ? 255 : thickness / 2 < 0 ? 0 : thickness / 2;
+    const uint8_t hi8 = (uint8_t)hi;
+    /* each constant code's colour, packed as a little-endian 4-byte word */
+    uint32_t pal[CODES] = {0};
+    for (int k = 0; k <= SL_OV_UNCERTAIN; k++)
+        pal[k] = (uint32_t)sl_overlay_colour[k][0] | (uint32_t)sl_overlay_colour[k][1] << 8 |
+                 (uint32_t)sl_overlay_colour[k][2] << 16;
+    for (int c = CODE_DARK; c <= CODE_DARK_TINT; c++) {
+        uint8_t o[3];
+        right_colour(v, light_dir, light_pos, 0, c == CODE_DARK_TINT, 0, o);
+        pal[c] = (uint32_t)o[0] | (uint32_t)o[1] << 8 | (uint32_t)o[2] << 16;
+    }
+    uint64_t tally[CODES] = {0};
+    uint8_t code[CHUNK];
+    for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
+        const size_t m = n - i0 < CHUNK ? n - i0 : CHUNK;
+        const uint8_t *t = v->truth + i0, *vv = vd->v + i0, *b = band + i0;
+        /* counts of the codes, one counter each (a counter array indexed
+         * by the code would not vectorise) */
+        uint32_t c0 = 0, c1 = 0, c2 = 0, c3 = 0, ct = 0;
+        for (size_t j = 0; j < m; j++) {
+            const uint8_t tj = t[j], vj = vv[j], bj = b[j];
+            const uint8_t in = all_in | ((bj != 0) & (bj <= hi8));
+            const uint8_t bg = tj == SL_T_BACKGROUND, tl = tj == SL_T_LIT;
+            const uint8_t said_lit = vj == SL_V_LIT;
+            const uint8_t wrong_lit = said_lit & !tl & !bg, wrong_shadow = (vj == SL_V_SHADOW) & tl;
+            const uint8_t unc = (vj == SL_V_UNCERTAIN) & !bg;
+            const uint8_t tint = in & tint_ok;
+            uint8_t k = (uint8_t)((said_lit ? CODE_LIT : CODE_DARK) + tint);
+            k = unc ? (uint8_t)SL_OV_UNCERTAIN : k;
+            k = wrong_shadow ? (in ? (uint8_t)SL_OV_SHADOW_WRONG : (uint8_t)SL_OV_WRONG_OUTSIDE) : k;
+            k = wrong_lit ? (in ? (uint8_t)SL_OV_LIT_WRONG : (uint8_t)SL_OV_WRONG_OUTSIDE) : k;
+            k = bg ? (uint8_t)CODE_BACKGROUND : k;
+            code[j] = k;
+            c0 += k == SL_OV_LIT_WRONG;
+            c1 += k == SL_OV_SHADOW_WRONG;
+            c2 += k == SL_OV_WRONG_OUTSIDE;
+            c3 += k == SL_OV_UNCERTAIN;
+            ct += (k == CODE_DARK_TINT) | (k == CODE_LIT_TINT);
         }
-        int inside = sl_in_contour(band[i], thickness);
-        int truth_lit = t == SL_T_LIT;
-        int k = -1;
-        if (verdict == SL_V_LIT && !truth_lit)
-            k = inside ? SL_OV_LIT_WRONG : SL_OV_WRONG_OUTSIDE;
-        else if (verdict == SL_V_SHADOW && truth_lit)
-            k = inside ? SL_OV_SHADOW_WRONG : SL_OV_WRONG_OUTSIDE;
-        else if (verdict == SL_V_UNCERTAIN)
-            k = SL_OV_UNCERTAIN;
-        if (k >= 0) {
-            memcpy(o, sl_overlay_colour[k], 3);
-            if (err)
-                err[i] = 255;
-            cnt[k]++;
-            continue;
-        }
-        if (v->outside && v->outside[i]) {
+        if (v->outside) {
             /* outside the spot's cone, right (said shadowed or PnFL):
              * diagonal stripes, 2 of every 8 px at 56, the rest at 12, so
              * the cone's footprint reads apart from the background (0),
-             * the shadowed grey (31) and the lit grey (31-158) */
-            size_t x = i % (size_t)v->w, y = i / (size_t)v->w;
-            uint8_t g8 = (x + y) % 8 < 2 ? sl_overlay_colour[SL_OV_OUTSIDE_CONE][0] : 12;
-            o[0] = o[1] = o[2] = g8;
-            cnt[SL_OV_OUTSIDE_CONE]++;
-            continue;
+             * the shadowed grey (31) and the lit grey (31-158); not a
+             * contour pixel then */
+            const uint8_t *out = v->outside + i0;
+            for (size_t j = 0; j < m; j++)
+                if (out[j] && code[j] >= CODE_DARK && code[j] != CODE_BACKGROUND) {
+                    ct -= code[j] == CODE_DARK_TINT || code[j] == CODE_LIT_TINT;
+                    code[j] = CODE_CONE;
+                    tally[CODE_CONE]++;
+                }
         }
-        int tint = inside && thickness > 0;
-        cnt[SL_OV_CONTOUR] += (uint64_t)tint;
-        if (lit && verdict == SL_V_LIT)
-            memcpy(o, lit + 3 * i, 3);
-        else
-            right_colour(v, light_dir, light_pos, verdict == SL_V_LIT, tint, i, o);
+        tally[SL_OV_LIT_WRONG] += c0;
+        tally[SL_OV_SHADOW_WRONG] += c1;
+        tally[SL_OV_WRONG_OUTSIDE] += c2;
+        tally[SL_OV_UNCERTAIN] += c3;
+        tally[CODE_DARK_TINT] += ct;
+        if (err)
+            for (size_t j = 0; j < m; j++)
+                err[i0 + j] = code[j] <= SL_OV_UNCERTAIN ? 255 : 0;
+        uint8_t *o = rgb + 3 * i0;
+        if (lit) {
+            /* all but the chunk's last pixel as 4-byte stores; the shade's
+             * word read over the next pixel's first byte, in the buffer */
+            const uint8_t *l = lit + 3 * i0;
+            for (size_t j = 0; j + 1 < m; j++) {
+                uint32_t w;
+                memcpy(&w, l + 3 * j, 4);
+                w = code[j] >= CODE_LIT ? w : pal[code[j]];
+                memcpy(o + 3 * j, &w, 4);
+            }
+        } else {
+            for (size_t j = 0; j + 1 < m; j++)
+                memcpy(o + 3 * j, &pal[code[j]], 4);
+        }
+        /* the chunk's last pixel, 3 bytes; without a shade, each lit
+         * colour computed; the hatching */
+        memcpy(o + 3 * (m - 1), &pal[code[m - 1]], 3);
+        if (lit && code[m - 1] >= CODE_LIT)
+            memcpy(o + 3 * (m - 1), lit + 3 * (i0 + m - 1), 3);
+        if (!lit)
+            for (size_t j = 0; j < m; j++)
+                if (code[j] == CODE_LIT || code[j] == CODE_LIT_TINT)
+                    right_colour(v, light_dir, light_pos, 1, code[j] == CODE_LIT_TINT, i0 + j, o + 3 * j);
+        if (v->outside)
+            for (size_t j = 0; j < m; j++)
+                if (code[j] == CODE_CONE) {
+                    const size_t x = (i0 + j) % (size_t)v->w, y = (i0 + j) / (size_t)v->w;
+                    const uint8_t g8 = (x + y) % 8 < 2 ? sl_overlay_colour[SL_OV_OUTSIDE_CONE][0] : 12;
+                    o[3 * j] = o[3 * j + 1] = o[3 * j + 2] = g8;
+                }
     }
-    if (count)
-        memcpy(count, cnt, sizeof cnt);
+    if (count) {
+        for (int k = 0; k <= SL_OV_UNCERTAIN; k++)
+            count[k] = tally[k];
+        count[SL_OV_CONTOUR] = tally[CODE_DARK_TINT];
+        count[SL_OV_OUTSIDE_CONE] = tally[CODE_CONE];
+    }
 }
 
 void sl_overlay_build(const struct sl_view *v, const float light_dir[3], const float *light_pos,
@@ -133,7 +215,8 @@ static int shade_ready(struct sl_overlay_shade *sh, const struct sl_view *v, con
         return 1;
     if (sh->n < n) {
         sl_overlay_shade_free(sh);
-        if (!(sh->lit = malloc(3 * n)) || !(sh->band = malloc(n))) {
+        /* lit zeroed: build reads a word of it at every pixel, background too */
+        if (!(sh->lit = calloc(3 * n, 1)) || !(sh->band = malloc(n))) {
             sl_overlay_shade_free(sh);
             return 0;
         }
