@@ -62,18 +62,56 @@ enum {
     CODE_CONE,                              /* right, outside a spot's cone: hatched */
     CODES
 };
-/* Pixels per chunk: the codes stay in L1 between the two passes. */
-enum { CHUNK = 4096 };
+/* Pixels per chunk: the codes stay in L1 between the two passes, and a
+ * byte counter per lane (16 pixels a step, 128 steps) cannot wrap. */
+enum { CHUNK = 2048 };
 
-/* lit: the lit colours of the view's pixels (a shade's, 3 bytes a pixel
- * and every byte written), or NULL: each computed where needed.
+/* 16 bytes as one value (GCC's vector extension: SSE2 on x86-64, NEON on
+ * arm64); a comparison gives 0xff or 0 per byte. */
+typedef uint8_t u8x16 __attribute__((vector_size(16)));
+
+/* The code of one pixel (the vector loop's tail), the same expressions. */
+static inline uint8_t code_of(uint8_t t, uint8_t v, uint8_t b, uint8_t all_in, uint8_t hi, uint8_t tint_ok)
+{
+    const int in = all_in || (b != 0 && b <= hi);
+    if (t == SL_T_BACKGROUND)
+        return CODE_BACKGROUND;
+    if (v == SL_V_LIT && t != SL_T_LIT)
+        return in ? SL_OV_LIT_WRONG : SL_OV_WRONG_OUTSIDE;
+    if (v == SL_V_SHADOW && t == SL_T_LIT)
+        return in ? SL_OV_SHADOW_WRONG : SL_OV_WRONG_OUTSIDE;
+    if (v == SL_V_UNCERTAIN)
+        return SL_OV_UNCERTAIN;
+    return (uint8_t)((v == SL_V_LIT ? CODE_LIT : CODE_DARK) + (in && tint_ok));
+}
+
+static inline u8x16 sel(u8x16 m, u8x16 a, u8x16 b) { return (m & a) | (~m & b); }
+
+/* Bytes equal to k from code[j] on, up to m. */
+static size_t run_end(const uint8_t *code, size_t j, size_t m, uint8_t k)
+{
+    const uint64_t kw = (uint64_t)k * 0x0101010101010101ull;
+    while (j + 8 <= m) {
+        uint64_t w;
+        memcpy(&w, code + j, 8);
+        if (w != kw)
+            break;
+        j += 8;
+    }
+    while (j < m && code[j] == k)
+        j++;
+    return j;
+}
+
+/* lit: the lit colours of the view's pixels (a shade's), or NULL: each
+ * computed where needed.
  *
  * Two passes per chunk (issue 20: the one branchy loop that decided and
  * drew each pixel was 4% of the Moderno study's samples): the first gives
- * each pixel a code with byte compares and selects only, which vectorise,
- * and counts the codes; the second draws each code's colour, a constant
- * of the code or the shade's lit colour, as one 4-byte store a pixel (its
- * fourth byte overwritten by the next pixel's). */
+ * 16 pixels at a time a code with byte compares and selects and counts
+ * the codes in byte lanes; the second draws runs of one code, which in a
+ * render are long: the shade's colours copied, a grey set, another
+ * constant colour repeated. */
 static void build(const uint8_t *lit, const struct sl_view *v, const float light_dir[3], const float *light_pos,
                   const struct sl_verdicts *vd, const uint8_t *band, int thickness, uint8_t *rgb, uint8_t *err,
                   uint64_t count[SL_OV_CLASSES])
@@ -81,104 +119,101 @@ static void build(const uint8_t *lit, const struct sl_view *v, const float light
     _Static_assert(SL_OV_LIT_WRONG == 0 && SL_OV_SHADOW_WRONG == 1 && SL_OV_WRONG_OUTSIDE == 2 &&
                        SL_OV_UNCERTAIN == 3,
                    "the error classes are codes 0-3");
-    _Static_assert(CODES <= 16, "the codes' counters");
     const size_t n = (size_t)v->w * (size_t)v->h;
     /* sl_in_contour(b, thickness) as byte compares: every pixel when the
      * thickness is 0, else a band b with 0 < b <= thickness / 2 */
     const uint8_t all_in = thickness == 0, tint_ok = thickness > 0;
-    const int hi = thickness / 2 > 255 ? 255 : thickness / 2 < 0 ? 0 : thickness / 2;
-    const uint8_t hi8 = (uint8_t)hi;
-    /* each constant code's colour, packed as a little-endian 4-byte word */
-    uint32_t pal[CODES] = {0};
+    const uint8_t hi = (uint8_t)(thickness / 2 > 255 ? 255 : thickness / 2 < 0 ? 0 : thickness / 2);
+    /* each constant code's colour */
+    uint8_t pal[CODES][3] = {{0}};
     for (int k = 0; k <= SL_OV_UNCERTAIN; k++)
-        pal[k] = (uint32_t)sl_overlay_colour[k][0] | (uint32_t)sl_overlay_colour[k][1] << 8 |
-                 (uint32_t)sl_overlay_colour[k][2] << 16;
-    for (int c = CODE_DARK; c <= CODE_DARK_TINT; c++) {
-        uint8_t o[3];
-        right_colour(v, light_dir, light_pos, 0, c == CODE_DARK_TINT, 0, o);
-        pal[c] = (uint32_t)o[0] | (uint32_t)o[1] << 8 | (uint32_t)o[2] << 16;
-    }
+        memcpy(pal[k], sl_overlay_colour[k], 3);
+    right_colour(v, light_dir, light_pos, 0, 0, 0, pal[CODE_DARK]);
+    right_colour(v, light_dir, light_pos, 0, 1, 0, pal[CODE_DARK_TINT]);
+    const u8x16 z = {0}, one = z + 1, v_hi = z + hi, v_all = all_in ? ~z : z, v_tint = tint_ok ? ~z : z;
     uint64_t tally[CODES] = {0};
     uint8_t code[CHUNK];
     for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
         const size_t m = n - i0 < CHUNK ? n - i0 : CHUNK;
         const uint8_t *t = v->truth + i0, *vv = vd->v + i0, *b = band + i0;
-        /* counts of the codes, one counter each (a counter array indexed
-         * by the code would not vectorise) */
-        uint32_t c0 = 0, c1 = 0, c2 = 0, c3 = 0, ct = 0;
-        for (size_t j = 0; j < m; j++) {
-            const uint8_t tj = t[j], vj = vv[j], bj = b[j];
-            const uint8_t in = all_in | ((bj != 0) & (bj <= hi8));
-            const uint8_t bg = tj == SL_T_BACKGROUND, tl = tj == SL_T_LIT;
-            const uint8_t said_lit = vj == SL_V_LIT;
-            const uint8_t wrong_lit = said_lit & !tl & !bg, wrong_shadow = (vj == SL_V_SHADOW) & tl;
-            const uint8_t unc = (vj == SL_V_UNCERTAIN) & !bg;
-            const uint8_t tint = in & tint_ok;
-            uint8_t k = (uint8_t)((said_lit ? CODE_LIT : CODE_DARK) + tint);
-            k = unc ? (uint8_t)SL_OV_UNCERTAIN : k;
-            k = wrong_shadow ? (in ? (uint8_t)SL_OV_SHADOW_WRONG : (uint8_t)SL_OV_WRONG_OUTSIDE) : k;
-            k = wrong_lit ? (in ? (uint8_t)SL_OV_LIT_WRONG : (uint8_t)SL_OV_WRONG_OUTSIDE) : k;
-            k = bg ? (uint8_t)CODE_BACKGROUND : k;
+        u8x16 n0 = z, n1 = z, n2 = z, n3 = z, nt = z;   /* per-lane counts, at most 128 */
+        size_t j = 0;
+        for (; j + 16 <= m; j += 16) {
+            u8x16 T, V, B;
+            memcpy(&T, t + j, 16);
+            memcpy(&V, vv + j, 16);
+            memcpy(&B, b + j, 16);
+            const u8x16 in = v_all | ((u8x16)(B != z) & (u8x16)(B <= v_hi));
+            const u8x16 bg = (u8x16)(T == z), tl = (u8x16)(T == z + SL_T_LIT);
+            const u8x16 said_lit = (u8x16)(V == z + SL_V_LIT);
+            const u8x16 wrong_lit = said_lit & ~tl, wrong_shadow = (u8x16)(V == z + SL_V_SHADOW) & tl;
+            const u8x16 unc = (u8x16)(V == z + SL_V_UNCERTAIN);
+            u8x16 k = sel(said_lit, z + CODE_LIT, z + CODE_DARK) + (in & v_tint & one);
+            k = sel(unc, z + SL_OV_UNCERTAIN, k);
+            k = sel(wrong_shadow, sel(in, z + SL_OV_SHADOW_WRONG, z + SL_OV_WRONG_OUTSIDE), k);
+            k = sel(wrong_lit, sel(in, z + SL_OV_LIT_WRONG, z + SL_OV_WRONG_OUTSIDE), k);
+            k = sel(bg, z + CODE_BACKGROUND, k);
+            memcpy(code + j, &k, 16);
+            n0 -= (u8x16)(k == z + SL_OV_LIT_WRONG);
+            n1 -= (u8x16)(k == z + SL_OV_SHADOW_WRONG);
+            n2 -= (u8x16)(k == z + SL_OV_WRONG_OUTSIDE);
+            n3 -= (u8x16)(k == z + SL_OV_UNCERTAIN);
+            nt -= (u8x16)(k == z + CODE_DARK_TINT) | (u8x16)(k == z + CODE_LIT_TINT);
+        }
+        for (int l = 0; l < 16; l++) {
+            tally[SL_OV_LIT_WRONG] += n0[l];
+            tally[SL_OV_SHADOW_WRONG] += n1[l];
+            tally[SL_OV_WRONG_OUTSIDE] += n2[l];
+            tally[SL_OV_UNCERTAIN] += n3[l];
+            tally[CODE_DARK_TINT] += nt[l];
+        }
+        for (; j < m; j++) {
+            const uint8_t k = code_of(t[j], vv[j], b[j], all_in, hi, tint_ok);
             code[j] = k;
-            c0 += k == SL_OV_LIT_WRONG;
-            c1 += k == SL_OV_SHADOW_WRONG;
-            c2 += k == SL_OV_WRONG_OUTSIDE;
-            c3 += k == SL_OV_UNCERTAIN;
-            ct += (k == CODE_DARK_TINT) | (k == CODE_LIT_TINT);
+            tally[k <= SL_OV_UNCERTAIN ? k : CODE_DARK_TINT] += k <= SL_OV_UNCERTAIN || k == CODE_DARK_TINT ||
+                                                               k == CODE_LIT_TINT;
         }
         if (v->outside) {
-            /* outside the spot's cone, right (said shadowed or PnFL):
-             * diagonal stripes, 2 of every 8 px at 56, the rest at 12, so
-             * the cone's footprint reads apart from the background (0),
-             * the shadowed grey (31) and the lit grey (31-158); not a
-             * contour pixel then */
+            /* outside the spot's cone, right (said shadowed or PnFL): not a
+             * contour pixel then, hatched below */
             const uint8_t *out = v->outside + i0;
-            for (size_t j = 0; j < m; j++)
+            for (j = 0; j < m; j++)
                 if (out[j] && code[j] >= CODE_DARK && code[j] != CODE_BACKGROUND) {
-                    ct -= code[j] == CODE_DARK_TINT || code[j] == CODE_LIT_TINT;
+                    tally[CODE_DARK_TINT] -= code[j] == CODE_DARK_TINT || code[j] == CODE_LIT_TINT;
                     code[j] = CODE_CONE;
                     tally[CODE_CONE]++;
                 }
         }
-        tally[SL_OV_LIT_WRONG] += c0;
-        tally[SL_OV_SHADOW_WRONG] += c1;
-        tally[SL_OV_WRONG_OUTSIDE] += c2;
-        tally[SL_OV_UNCERTAIN] += c3;
-        tally[CODE_DARK_TINT] += ct;
         if (err)
-            for (size_t j = 0; j < m; j++)
+            for (j = 0; j < m; j++)
                 err[i0 + j] = code[j] <= SL_OV_UNCERTAIN ? 255 : 0;
         uint8_t *o = rgb + 3 * i0;
-        if (lit) {
-            /* all but the chunk's last pixel as 4-byte stores; the shade's
-             * word read over the next pixel's first byte, in the buffer */
-            const uint8_t *l = lit + 3 * i0;
-            for (size_t j = 0; j + 1 < m; j++) {
-                uint32_t w;
-                memcpy(&w, l + 3 * j, 4);
-                w = code[j] >= CODE_LIT ? w : pal[code[j]];
-                memcpy(o + 3 * j, &w, 4);
-            }
-        } else {
-            for (size_t j = 0; j + 1 < m; j++)
-                memcpy(o + 3 * j, &pal[code[j]], 4);
-        }
-        /* the chunk's last pixel, 3 bytes; without a shade, each lit
-         * colour computed; the hatching */
-        memcpy(o + 3 * (m - 1), &pal[code[m - 1]], 3);
-        if (lit && code[m - 1] >= CODE_LIT)
-            memcpy(o + 3 * (m - 1), lit + 3 * (i0 + m - 1), 3);
-        if (!lit)
-            for (size_t j = 0; j < m; j++)
-                if (code[j] == CODE_LIT || code[j] == CODE_LIT_TINT)
-                    right_colour(v, light_dir, light_pos, 1, code[j] == CODE_LIT_TINT, i0 + j, o + 3 * j);
-        if (v->outside)
-            for (size_t j = 0; j < m; j++)
-                if (code[j] == CODE_CONE) {
-                    const size_t x = (i0 + j) % (size_t)v->w, y = (i0 + j) / (size_t)v->w;
-                    const uint8_t g8 = (x + y) % 8 < 2 ? sl_overlay_colour[SL_OV_OUTSIDE_CONE][0] : 12;
-                    o[3 * j] = o[3 * j + 1] = o[3 * j + 2] = g8;
+        for (j = 0; j < m;) {
+            const uint8_t k = code[j];
+            const size_t e = run_end(code, j + 1, m, k);
+            uint8_t *p = o + 3 * j;
+            if (k == CODE_LIT || k == CODE_LIT_TINT) {
+                if (lit)
+                    memcpy(p, lit + 3 * (i0 + j), 3 * (e - j));
+                else
+                    for (size_t q = j; q < e; q++, p += 3)
+                        right_colour(v, light_dir, light_pos, 1, k == CODE_LIT_TINT, i0 + q, p);
+            } else if (k == CODE_CONE) {
+                /* diagonal stripes, 2 of every 8 px at 56, the rest at 12,
+                 * so the cone's footprint reads apart from the background
+                 * (0), the shadowed grey (31) and the lit grey (31-158) */
+                for (size_t q = j; q < e; q++, p += 3) {
+                    const size_t x = (i0 + q) % (size_t)v->w, y = (i0 + q) / (size_t)v->w;
+                    p[0] = p[1] = p[2] = (x + y) % 8 < 2 ? sl_overlay_colour[SL_OV_OUTSIDE_CONE][0] : 12;
                 }
+            } else if (pal[k][0] == pal[k][1] && pal[k][1] == pal[k][2]) {
+                memset(p, pal[k][0], 3 * (e - j));   /* black, the ambient grey */
+            } else {
+                for (size_t q = j; q < e; q++, p += 3)
+                    memcpy(p, pal[k], 3);
+            }
+            j = e;
+        }
     }
     if (count) {
         for (int k = 0; k <= SL_OV_UNCERTAIN; k++)
@@ -215,8 +250,7 @@ static int shade_ready(struct sl_overlay_shade *sh, const struct sl_view *v, con
         return 1;
     if (sh->n < n) {
         sl_overlay_shade_free(sh);
-        /* lit zeroed: build reads a word of it at every pixel, background too */
-        if (!(sh->lit = calloc(3 * n, 1)) || !(sh->band = malloc(n))) {
+            if (!(sh->lit = malloc(3 * n)) || !(sh->band = malloc(n))) {
             sl_overlay_shade_free(sh);
             return 0;
         }
@@ -339,6 +373,64 @@ int sl_overlay_crop(const struct sl_view *v, const uint8_t *band, const uint8_t 
 }
 
 
+/* The intervals of window corners in row y that overlap one of the got
+ * windows chosen (s x s), as [a, b) in x - X0 clamped to [0, cw): in a
+ * row, the windows overlapping a chosen one are an interval of x. */
+static int row_cuts(const struct sl_ov_box *out, int got, int y, int s, int X0, int cw, int (*cut)[2])
+{
+    int ncut = 0;
+    for (int k = 0; k < got; k++)
+        if (y < out[k].y + out[k].h && out[k].y < y + s) {
+            int a = out[k].x - s + 1 - X0, b = out[k].x + out[k].w - X0;
+            cut[ncut][0] = a < 0 ? 0 : a;
+            cut[ncut][1] = b > cw ? cw : b;
+            ncut++;
+        }
+    return ncut;
+}
+
+/* The largest of c[0..cw) outside the cuts, scanned as the segments
+ * between them; with want > 0, *at: the first x outside them where
+ * c[x] == want (-1 when none). */
+static uint32_t row_allowed(const uint32_t *c, int cw, const int (*cut)[2], int ncut, uint32_t want, int *at)
+{
+    uint32_t best = 0;
+    if (at)
+        *at = -1;
+    for (int x = 0; x < cw;) {
+        /* skip any cut that covers x; then run to the next cut's start */
+        int moved = 1;
+        while (moved) {
+            moved = 0;
+            for (int k = 0; k < ncut; k++)
+                if (cut[k][0] <= x && x < cut[k][1]) {
+                    x = cut[k][1];
+                    moved = 1;
+                }
+        }
+        int end = cw;
+        for (int k = 0; k < ncut; k++)
+            if (cut[k][0] > x && cut[k][0] < end)
+                end = cut[k][0];
+        if (x >= end)
+            break;
+        if (want) {
+            for (int i = x; i < end; i++)
+                if (c[i] == want) {
+                    *at = i;
+                    return want;
+                }
+        } else {
+            uint32_t m = 0;
+            for (int i = x; i < end; i++)
+                m = c[i] > m ? c[i] : m;
+            best = m > best ? m : best;
+        }
+        x = end;
+    }
+    return best;
+}
+
 int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_ov_box *out, uint64_t *count)
 {
     if (s > w)
@@ -390,75 +482,56 @@ int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_
      * function's time: issue 20); cnt[y][x] for the window at (X0 + x, Y0 + y) */
     const size_t cw = (size_t)(XL - X0 + 1), ch = (size_t)(YL - Y0 + 1);
     uint32_t *cnt = malloc(cw * ch * sizeof *cnt);
+    uint32_t *rmax = malloc(ch * sizeof *rmax);         /* each row's largest count */
     int (*cut)[2] = malloc((size_t)n * sizeof *cut);   /* a row's intervals no window may start in */
-    if (!cnt || !cut) {
+    if (!cnt || !rmax || !cut) {
         free(cnt);
+        free(rmax);
         free(cut);
         free(sat);
         return -1;
     }
     for (size_t y = 0; y < ch; y++) {
         const uint32_t *lo = sat + y * sw, *hi = lo + (size_t)s * sw;
-        uint32_t *c = cnt + y * cw;
-        for (size_t x = 0; x < cw; x++)
+        uint32_t *c = cnt + y * cw, m = 0;
+        for (size_t x = 0; x < cw; x++) {
             c[x] = hi[x + (size_t)s] - hi[x] - lo[x + (size_t)s] + lo[x];
+            m = c[x] > m ? c[x] : m;
+        }
+        rmax[y] = m;
     }
     int got = 0;
     for (; got < n; got++) {
         /* the first window in scan order (rows, then columns) holding more
          * than every window before it, among those overlapping none chosen:
-         * the first of the largest. In a row, the windows overlapping a
-         * chosen one are an interval of x, so each row is scanned as the
-         * segments between those intervals. */
+         * the first of the largest. A row whose largest count is no more
+         * than the best so far cannot hold it, and a row no chosen window
+         * cuts holds its largest count: only the rows a chosen window cuts
+         * are scanned (issue 20: n scans of the whole table were most of
+         * this function's time), and only the best row again for where its
+         * largest count first lies. */
         uint32_t best = 0;
-        int bx = -1, by = -1;
+        int by = -1;
         for (int y = Y0; y <= YL; y++) {
-            const uint32_t *c = cnt + (size_t)(y - Y0) * cw;
-            /* the intervals this row may not use, as [a, b) in x - X0 */
-            int ncut = 0;
-            for (int k = 0; k < got; k++)
-                if (y < out[k].y + out[k].h && out[k].y < y + s) {
-                    int a = out[k].x - s + 1 - X0, b = out[k].x + out[k].w - X0;
-                    cut[ncut][0] = a < 0 ? 0 : a;
-                    cut[ncut][1] = b > (int)cw ? (int)cw : b;
-                    ncut++;
-                }
-            for (int x = 0; x < (int)cw;) {
-                /* skip any cut that covers x; then run to the next cut's start */
-                int moved = 1;
-                while (moved) {
-                    moved = 0;
-                    for (int k = 0; k < ncut; k++)
-                        if (cut[k][0] <= x && x < cut[k][1]) {
-                            x = cut[k][1];
-                            moved = 1;
-                        }
-                }
-                int end = (int)cw;
-                for (int k = 0; k < ncut; k++)
-                    if (cut[k][0] > x && cut[k][0] < end)
-                        end = cut[k][0];
-                if (x >= end)
-                    break;
-                uint32_t m = 0;
-                for (int i = x; i < end; i++)
-                    m = c[i] > m ? c[i] : m;
-                if (m > best) {
-                    int i = x;
-                    while (c[i] != m)
-                        i++;
-                    best = m;
-                    bx = X0 + i;
-                    by = y;
-                }
-                x = end;
+            if (rmax[y - Y0] <= best)
+                continue;
+            int ncut = row_cuts(out, got, y, s, X0, (int)cw, cut);
+            uint32_t m = ncut ? row_allowed(cnt + (size_t)(y - Y0) * cw, (int)cw, cut, ncut, 0, NULL)
+                              : rmax[y - Y0];
+            if (m > best) {
+                best = m;
+                by = y;
             }
         }
-        if (bx < 0)
+        if (by < 0)
             break;
-        out[got] = (struct sl_ov_box){bx, by, s, s};
+        int bx;
+        row_allowed(cnt + (size_t)(by - Y0) * cw, (int)cw, cut, row_cuts(out, got, by, s, X0, (int)cw, cut), best,
+                    &bx);
+        out[got] = (struct sl_ov_box){X0 + bx, by, s, s};
         count[got] = best;
     }
+    free(rmax);
     free(cut);
     free(cnt);
     free(sat);
