@@ -493,6 +493,57 @@ static void overlay_text_as_oiio(void **st)
     }
 }
 
+/* The sheets' glyphs come from FreeType itself, called as render_text
+ * calls it, so that writing a sheet loads no OpenImageIO (issue 20): every
+ * glyph a sheet can draw at every size a sheet uses (12-22 px) is the same
+ * as OpenImageIO's render_text draws it: placement, advance, and every
+ * coverage value. A sheet can draw code points 0-127 only, '\n' apart (a
+ * new line): its strings are decoded as OpenImageIO 2.4 decodes them, a
+ * multi-byte character as its last byte's low six bits (image_sheet.cpp;
+ * overlay::text_as_oiio draws such a title). Sizes and characters in a
+ * scrambled order: FreeType's faces are kept per size and reused,
+ * OpenImageIO's opened afresh each time. */
+static void overlay_glyphs_as_oiio(void **st)
+{
+    (void)st;
+    if (access("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", R_OK) != 0)
+        skip();   /* both take OpenImageIO's font search then: nothing to compare */
+    uint32_t cps[128];
+    int ncp = 0;
+    for (uint32_t c = 0; c < 128; c++)
+        if (c != '\n')
+            cps[ncp++] = c;
+    int compared = 0, ink = 0;
+    for (int si = 0; si < 11; si++) {
+        const int fs = 12 + (si * 7) % 11;   /* 12, 19, 15, 22, ... every size once */
+        for (int k = 0; k < ncp; k++) {
+            const uint32_t c = cps[(k * 37 + si) % ncp];   /* 37 is prime to 127 */
+            struct sl_image_glyph a, b;
+            struct sl_diag d;
+            int ra = sl_image_glyph(0, fs, c, &a, &d), rb = sl_image_glyph(1, fs, c, &b, &d);
+            assert_int_equal(ra, rb);
+            assert_int_equal(ra, 1);
+            assert_int_equal(a.left, b.left);
+            assert_int_equal(a.top, b.top);
+            assert_int_equal(a.w, b.w);
+            assert_int_equal(a.h, b.h);
+            assert_int_equal(a.adv, b.adv);
+            assert_true(a.adv > 0 || c < 32 || c == 127);   /* the controls: .notdef or nothing */
+            assert_int_equal(a.a == NULL, b.a == NULL);
+            if (a.a) {
+                assert_memory_equal(a.a, b.a, (size_t)a.w * (size_t)a.h * sizeof(float));
+                for (int i = 0; i < a.w * a.h; i++)
+                    ink += a.a[i] > 0.5f;
+            }
+            free(a.a);
+            free(b.a);
+            compared++;
+        }
+    }
+    assert_int_equal(compared, 11 * ncp);
+    assert_true(ink > 10000);
+}
+
 /* The lit colours kept per view (sl_overlay_build_shaded) give the very
  * bytes and counts of sl_overlay_build, cell after cell, and are drawn
  * afresh when the view, the bands, the thickness or the light change:
@@ -859,6 +910,7 @@ int main(int argc, char **argv)
         SL_CASE(overlay, crop_small_scene),
         SL_CASE(overlay, insets_exact),
         SL_CASE(overlay, text_as_oiio),
+        SL_CASE(overlay, glyphs_as_oiio),
         SL_CASE(overlay, png_chunks),
         SL_CASE(overlay, shaded_same_bytes),
         SL_CASE(overlay, build_as_reference),
