@@ -458,48 +458,54 @@ int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_
     }
     if (ex1 < 0)
         return 0;
-    /* window corners x in [X0, XL], y in [Y0, YL]; the table covers
+    /* window corners x in [X0, XL], y in [Y0, YL]; their pixels lie in
      * [X0, XL + s) x [Y0, YL + s) */
     const int X0 = ex0 - s + 1 > 0 ? ex0 - s + 1 : 0, Y0 = ey0 - s + 1 > 0 ? ey0 - s + 1 : 0;
     const int XL = ex1 < w - s ? ex1 : w - s, YL = ey1 < h - s ? ey1 : h - s;
-    const int rw = XL + s - X0, rh = YL + s - Y0;
-    /* summed-area table, (rw+1) x (rh+1), sat[y][x] = errors in [X0, X0+x) x [Y0, Y0+y) */
-    size_t sw = (size_t)rw + 1;
-    uint32_t *sat = calloc(sw * ((size_t)rh + 1), sizeof *sat);
-    if (!sat)
-        return -1;
-    for (int y = 0; y < rh; y++) {
-        uint32_t run = 0;
-        const uint8_t *e = err + (size_t)(Y0 + y) * (size_t)w + (size_t)X0;
-        uint32_t *above = sat + (size_t)y * sw, *row = above + sw;
-        for (int x = 0; x < rw; x++) {
-            run += e[x] != 0;
-            row[x + 1] = above[x + 1] + run;
-        }
-    }
-    /* every window's count, once: the n greedy passes below then scan
-     * this table (three scans of four table reads each were most of this
-     * function's time: issue 20); cnt[y][x] for the window at (X0 + x, Y0 + y) */
+    const int rw = XL + s - X0;
+    /* every window's count, once: the n greedy passes below then read
+     * this table (three scans of four summed-area reads each were most of
+     * this function's time: issue 20); cnt[y][x] for the window at
+     * (X0 + x, Y0 + y). Each row of it from the column sums of the rows
+     * [y, y + s), slid along x; the column sums moved down a row by adding
+     * the row below and taking off the row above (a summed-area table of
+     * the region, written and read again, was as costly as the rest). */
     const size_t cw = (size_t)(XL - X0 + 1), ch = (size_t)(YL - Y0 + 1);
     uint32_t *cnt = malloc(cw * ch * sizeof *cnt);
+    uint32_t *col = calloc((size_t)rw, sizeof *col);   /* errors in column X0 + x, rows [y, y + s) */
     uint32_t *rmax = malloc(ch * sizeof *rmax);         /* each row's largest count */
     int (*cut)[2] = malloc((size_t)n * sizeof *cut);   /* a row's intervals no window may start in */
-    if (!cnt || !rmax || !cut) {
+    if (!cnt || !col || !rmax || !cut) {
         free(cnt);
+        free(col);
         free(rmax);
         free(cut);
-        free(sat);
         return -1;
     }
+    for (int y = 0; y < s - 1; y++) {
+        const uint8_t *e = err + (size_t)(Y0 + y) * (size_t)w + (size_t)X0;
+        for (int x = 0; x < rw; x++)
+            col[x] += e[x] != 0;
+    }
     for (size_t y = 0; y < ch; y++) {
-        const uint32_t *lo = sat + y * sw, *hi = lo + (size_t)s * sw;
-        uint32_t *c = cnt + y * cw, m = 0;
-        for (size_t x = 0; x < cw; x++) {
-            c[x] = hi[x + (size_t)s] - hi[x] - lo[x + (size_t)s] + lo[x];
-            m = c[x] > m ? c[x] : m;
+        const uint8_t *in = err + (Y0 + y + (size_t)s - 1) * (size_t)w + (size_t)X0;
+        for (int x = 0; x < rw; x++)
+            col[x] += in[x] != 0;
+        uint32_t *c = cnt + y * cw, sum = 0, m;
+        for (int x = 0; x < s; x++)
+            sum += col[x];
+        c[0] = m = sum;
+        for (size_t x = 1; x < cw; x++) {
+            sum += col[x + (size_t)s - 1] - col[x - 1];
+            c[x] = sum;
+            m = sum > m ? sum : m;
         }
         rmax[y] = m;
+        const uint8_t *outr = err + (Y0 + y) * (size_t)w + (size_t)X0;
+        for (int x = 0; x < rw; x++)
+            col[x] -= outr[x] != 0;
     }
+    free(col);
     int got = 0;
     for (; got < n; got++) {
         /* the first window in scan order (rows, then columns) holding more
@@ -534,7 +540,6 @@ int sl_overlay_insets(int w, int h, const uint8_t *err, int s, int n, struct sl_
     free(rmax);
     free(cut);
     free(cnt);
-    free(sat);
     return got;
 }
 
