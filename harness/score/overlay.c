@@ -250,7 +250,7 @@ static int shade_ready(struct sl_overlay_shade *sh, const struct sl_view *v, con
         return 1;
     if (sh->n < n) {
         sl_overlay_shade_free(sh);
-            if (!(sh->lit = malloc(3 * n)) || !(sh->band = malloc(n))) {
+        if (!(sh->lit = malloc(3 * n)) || !(sh->band = malloc(n))) {
             sl_overlay_shade_free(sh);
             return 0;
         }
