@@ -20,7 +20,8 @@ PACKAGES=(
   fonts-dejavu-core     # the overlays' legend text (drawn without text when missing)
   libopenexr-dev        # OpenImageIO's CMake package asks for OpenEXR
   openimageio-tools     # ... and checks that its tools (iconvert, ...) exist
-  libdeflate-dev        # the overlay sheets' PNG compressor (harness/base/image_oiio.cpp)
+  libdeflate-dev        # the overlay sheets' PNG compressor (harness/base/image_sheet.cpp)
+  libfreetype-dev       # the overlay sheets' glyphs, without OpenImageIO (harness/base/image_sheet.cpp)
   zlib1g-dev            # overlay::png_chunks reads the sheets' PNG apart from their encoder
   libcglm-dev           # vector math
   libcyaml-dev libyaml-dev  # configs

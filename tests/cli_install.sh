@@ -15,7 +15,8 @@ cmake --install "$build" --prefix "$prefix" >"$tmp/install.log" 2>&1 || { echo "
 b=$prefix/bin/shadowlab
 share=$prefix/share/shadowlab
 module=$(find "$prefix" -name shadowlab-oiio.so)
-[ -n "$module" ] || { echo "FAIL the image module is not installed"; exit 1; }
+sheet=$(find "$prefix" -name shadowlab-sheet.so)
+[ -n "$module" ] && [ -n "$sheet" ] || { echo "FAIL the image modules are not installed"; exit 1; }
 for f in "$b" "$share/configs/default.yaml" "$share/scenes/primitives.yaml" "$share/scenes/hard/models/tiny.obj" \
          "$prefix/share/man/man1/shadowlab.1" "$prefix/share/bash-completion/completions/shadowlab"; do
   [ -e "$f" ] || { echo "FAIL not installed: $f"; exit 1; }
@@ -64,7 +65,7 @@ hide "$b" run "$share/configs/default.yaml" -o "$tmp/elsewhere/out" --no-cache >
   { echo "FAIL installed run:"; cat "$tmp/run.out" "$tmp/run.err"; exit 1; }
 grep -q "^default: 6 cell(s) computed, 0 already stored" "$tmp/run.out" || { echo "FAIL run summary:"; cat "$tmp/run.out"; exit 1; }
 grep -q "^written to $tmp/elsewhere/out/default/" "$tmp/run.out" || { echo "FAIL no 'written to'"; exit 1; }
-# the overlays went through the installed image module
+# the overlays went through the installed sheet module
 ls out/default/overlays/*.png >/dev/null 2>&1 || { echo "FAIL no overlay written by the installed binary"; exit 1; }
 [ "$(tail -n +2 out/default/figures.csv | cut -d, -f1-6 | sort -u | wc -l)" -eq 6 ] || { echo "FAIL figures.csv"; exit 1; }
 # a config elsewhere that names a scene of its own folder, and SHADOWLAB_SCENES in front of the installed folder

@@ -6,6 +6,7 @@
  * pixel, the crop to a small scene, the EXR read by oiiotool, and the
  * sheet's PNG read chunk by chunk with zlib.
  */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -492,6 +493,57 @@ static void overlay_text_as_oiio(void **st)
     }
 }
 
+/* The sheets' glyphs come from FreeType itself, called as render_text
+ * calls it, so that writing a sheet loads no OpenImageIO (issue 20): every
+ * glyph a sheet can draw at every size a sheet uses (12-22 px) is the same
+ * as OpenImageIO's render_text draws it: placement, advance, and every
+ * coverage value. A sheet can draw code points 0-127 only, '\n' apart (a
+ * new line): its strings are decoded as OpenImageIO 2.4 decodes them, a
+ * multi-byte character as its last byte's low six bits (image_sheet.cpp;
+ * overlay::text_as_oiio draws such a title). Sizes and characters in a
+ * scrambled order: FreeType's faces are kept per size and reused,
+ * OpenImageIO's opened afresh each time. */
+static void overlay_glyphs_as_oiio(void **st)
+{
+    (void)st;
+    if (access("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf", R_OK) != 0)
+        skip();   /* both take OpenImageIO's font search then: nothing to compare */
+    uint32_t cps[128];
+    int ncp = 0;
+    for (uint32_t c = 0; c < 128; c++)
+        if (c != '\n')
+            cps[ncp++] = c;
+    int compared = 0, ink = 0;
+    for (int si = 0; si < 11; si++) {
+        const int fs = 12 + (si * 7) % 11;   /* 12, 19, 15, 22, ... every size once */
+        for (int k = 0; k < ncp; k++) {
+            const uint32_t c = cps[(k * 37 + si) % ncp];   /* 37 is prime to 127 */
+            struct sl_image_glyph a, b;
+            struct sl_diag d;
+            int ra = sl_image_glyph(0, fs, c, &a, &d), rb = sl_image_glyph(1, fs, c, &b, &d);
+            assert_int_equal(ra, rb);
+            assert_int_equal(ra, 1);
+            assert_int_equal(a.left, b.left);
+            assert_int_equal(a.top, b.top);
+            assert_int_equal(a.w, b.w);
+            assert_int_equal(a.h, b.h);
+            assert_int_equal(a.adv, b.adv);
+            assert_true(a.adv > 0 || c < 32 || c == 127);   /* the controls: .notdef or nothing */
+            assert_int_equal(a.a == NULL, b.a == NULL);
+            if (a.a) {
+                assert_memory_equal(a.a, b.a, (size_t)a.w * (size_t)a.h * sizeof(float));
+                for (int i = 0; i < a.w * a.h; i++)
+                    ink += a.a[i] > 0.5f;
+            }
+            free(a.a);
+            free(b.a);
+            compared++;
+        }
+    }
+    assert_int_equal(compared, 11 * ncp);
+    assert_true(ink > 10000);
+}
+
 /* The lit colours kept per view (sl_overlay_build_shaded) give the very
  * bytes and counts of sl_overlay_build, cell after cell, and are drawn
  * afresh when the view, the bands, the thickness or the light change:
@@ -581,6 +633,140 @@ static void overlay_shaded_same_bytes(void **st)
     sl_overlay_shade_free(&sh);
     free_view(&views[0]);
     free_view(&views[1]);
+}
+
+/* The overlay's colours and counts as first written (one branchy loop per
+ * pixel, before issue 20 made it two passes of codes): the reference
+ * overlay::build_as_reference compares sl_overlay_build with. */
+static void ref_right(const struct sl_view *v, const float l0[3], const float *lp, int lit, int tint, size_t i,
+                      uint8_t *o)
+{
+    float ndl = 0.0f;
+    if (lit) {
+        const float *nn = v->nrm + 3 * i;
+        ndl = -(nn[0] * l0[0] + nn[1] * l0[1] + nn[2] * l0[2]);
+        if (lp) {
+            const float *p = v->pos + 3 * i;
+            float l[3] = {lp[0] - p[0], lp[1] - p[1], lp[2] - p[2]};
+            float len = sqrtf(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+            ndl = len > 0.0f ? (nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2]) / len : 0.0f;
+        }
+    }
+    float g = 255.0f * (0.12f + (ndl > 0.0f ? 0.5f * ndl : 0.0f));
+    if (tint) {
+        const uint8_t *c = sl_overlay_colour[SL_OV_CONTOUR];
+        for (int j = 0; j < 3; j++)
+            o[j] = (uint8_t)(0.65f * g + 0.35f * (float)c[j] + 0.5f);
+        return;
+    }
+    o[0] = o[1] = o[2] = (uint8_t)(g + 0.5f);
+}
+
+static void ref_build(const struct sl_view *v, const float l0[3], const float *lp, const uint8_t *vd,
+                      const uint8_t *band, int th, uint8_t *rgb, uint8_t *err, uint64_t cnt[SL_OV_CLASSES])
+{
+    memset(cnt, 0, SL_OV_CLASSES * sizeof *cnt);
+    for (size_t i = 0; i < (size_t)v->w * (size_t)v->h; i++) {
+        uint8_t *o = rgb + 3 * i, t = v->truth[i], verdict = vd[i];
+        err[i] = 0;
+        if (t == SL_T_BACKGROUND) {
+            o[0] = o[1] = o[2] = 0;
+            continue;
+        }
+        int inside = sl_in_contour(band[i], th), truth_lit = t == SL_T_LIT, k = -1;
+        if (verdict == SL_V_LIT && !truth_lit)
+            k = inside ? SL_OV_LIT_WRONG : SL_OV_WRONG_OUTSIDE;
+        else if (verdict == SL_V_SHADOW && truth_lit)
+            k = inside ? SL_OV_SHADOW_WRONG : SL_OV_WRONG_OUTSIDE;
+        else if (verdict == SL_V_UNCERTAIN)
+            k = SL_OV_UNCERTAIN;
+        if (k >= 0) {
+            memcpy(o, sl_overlay_colour[k], 3);
+            err[i] = 255;
+            cnt[k]++;
+            continue;
+        }
+        if (v->outside && v->outside[i]) {
+            size_t x = i % (size_t)v->w, y = i / (size_t)v->w;
+            o[0] = o[1] = o[2] = (x + y) % 8 < 2 ? sl_overlay_colour[SL_OV_OUTSIDE_CONE][0] : 12;
+            cnt[SL_OV_OUTSIDE_CONE]++;
+            continue;
+        }
+        int tint = inside && th > 0;
+        cnt[SL_OV_CONTOUR] += (uint64_t)tint;
+        ref_right(v, l0, lp, verdict == SL_V_LIT, tint, i, o);
+    }
+}
+
+/* sl_overlay_build and sl_overlay_build_shaded give the reference's bytes,
+ * error mask and counts: frames of one pixel, of less than a chunk, and of
+ * several chunks with a partial last one (97 x 131); every verdict byte the
+ * type holds that a method writes, and 0 and 4 (neither lit, shadowed nor
+ * uncertain: drawn right, dark); thicknesses 0 (the whole image) to 7 and
+ * bands 0-9; a spot's cone or none; directional and positional light; NULL
+ * err and count. */
+static void overlay_build_as_reference(void **st)
+{
+    (void)st;
+    static const int dims[][2] = {{1, 1}, {37, 23}, {97, 131}, {64, 64}};
+    const float dir[3] = {0.6f, -0.45f, 0.35f}, pos[3] = {3, 40, -2};
+    uint32_t seed = 4242;
+    int drawn_lit = 0, drawn_err = 0, drawn_cone = 0, drawn_tint = 0;
+    for (size_t di = 0; di < sizeof dims / sizeof dims[0]; di++)
+        for (int spot = 0; spot < 2; spot++)
+            for (int th = 0; th <= 7; th++) {
+                const int W = dims[di][0], H = dims[di][1];
+                const size_t N = (size_t)W * (size_t)H;
+                struct sl_view v;
+                random_view(&v, W, H, seed++, spot);
+                uint8_t *v8 = malloc(N), *band = malloc(N), *rgb0 = malloc(3 * N), *rgb1 = malloc(3 * N),
+                        *rgb2 = malloc(3 * N), *err0 = malloc(N), *err1 = malloc(N), *err2 = malloc(N);
+                assert_true(v8 && band && rgb0 && rgb1 && rgb2 && err0 && err1 && err2);
+                for (size_t i = 0; i < N; i++) {
+                    v8[i] = (uint8_t)(lcg(&seed) % 5);
+                    band[i] = (uint8_t)(lcg(&seed) % 10);
+                }
+                if (di == 3)   /* runs: a row of one truth and verdict, as in a render */
+                    for (size_t i = 0; i < N; i++) {
+                        v.truth[i] = v.truth[i - i % (size_t)W];
+                        v8[i] = v8[i - i % (size_t)W];
+                    }
+                struct sl_verdicts vd;
+                memset(&vd, 0, sizeof vd);
+                vd.v = v8;
+                vd.w = W;
+                vd.h = H;
+                const float *lp = th % 2 ? pos : NULL;
+                uint64_t c0[SL_OV_CLASSES], c1[SL_OV_CLASSES], c2[SL_OV_CLASSES];
+                ref_build(&v, dir, lp, v8, band, th, rgb0, err0, c0);
+                sl_overlay_build(&v, dir, lp, &vd, band, th, rgb1, err1, c1);
+                struct sl_overlay_shade sh;
+                memset(&sh, 0, sizeof sh);
+                sl_overlay_build_shaded(&sh, &v, dir, lp, &vd, band, th, rgb2, err2, c2);
+                assert_memory_equal(rgb0, rgb1, 3 * N);
+                assert_memory_equal(err0, err1, N);
+                assert_memory_equal(c0, c1, sizeof c0);
+                assert_memory_equal(rgb0, rgb2, 3 * N);
+                assert_memory_equal(err0, err2, N);
+                assert_memory_equal(c0, c2, sizeof c0);
+                /* without the optional outputs: the same pixels */
+                memset(rgb1, 0xa5, 3 * N);
+                sl_overlay_build_shaded(&sh, &v, dir, lp, &vd, band, th, rgb1, NULL, NULL);
+                assert_memory_equal(rgb0, rgb1, 3 * N);
+                for (size_t i = 0; i < N; i++)
+                    drawn_lit += v8[i] == SL_V_LIT && v.truth[i] == SL_T_LIT;
+                drawn_err += c0[SL_OV_LIT_WRONG] > 0 && c0[SL_OV_SHADOW_WRONG] > 0 && c0[SL_OV_UNCERTAIN] > 0;
+                drawn_cone += c0[SL_OV_OUTSIDE_CONE] > 0;
+                drawn_tint += c0[SL_OV_CONTOUR] > 0;
+                sl_overlay_shade_free(&sh);
+                free_view(&v);
+                free(v8); free(band); free(rgb0); free(rgb1); free(rgb2); free(err0); free(err1); free(err2);
+            }
+    /* the inputs reached every kind of pixel */
+    assert_true(drawn_lit > 1000);
+    assert_true(drawn_err > 10);
+    assert_true(drawn_cone > 10);
+    assert_true(drawn_tint > 10);
 }
 
 static uint32_t be32(const unsigned char *p)
@@ -724,8 +910,10 @@ int main(int argc, char **argv)
         SL_CASE(overlay, crop_small_scene),
         SL_CASE(overlay, insets_exact),
         SL_CASE(overlay, text_as_oiio),
+        SL_CASE(overlay, glyphs_as_oiio),
         SL_CASE(overlay, png_chunks),
         SL_CASE(overlay, shaded_same_bytes),
+        SL_CASE(overlay, build_as_reference),
     };
     int rc = sl_run_group(argc, argv, "overlay", tests, sl_test_setup, sl_test_teardown);
     if (ran)

@@ -5,17 +5,20 @@
  * under its name only when complete (written to a temporary, then renamed).
  *
  * The overlay sheet (sl_image_write_sheet) is composed in plain memory,
- * reproducing ImageBufAlgo's drawing byte for byte (each glyph drawn by
- * render_text once per size and process, then blitted), and encoded as a PNG
- * by libdeflate in one call (the pixels and header keys OpenImageIO wrote):
+ * reproducing ImageBufAlgo's drawing byte for byte (each glyph drawn once
+ * per size and process, by FreeType as render_text calls it, then blitted),
+ * and encoded as a PNG by libdeflate in one call (the pixels and header keys
+ * OpenImageIO wrote), in a module of its own that does not load OpenImageIO:
  * the frame (or a crop of it) at 1:1, zoomed insets beside it (nearest
  * neighbour) whose windows are marked on the frame, a title and a legend.
- * Text needs a TrueType font (DejaVu Sans, Debian's fonts-dejavu-core, or
- * OpenImageIO's default); without one the sheet is drawn without text and
+ * Text needs a TrueType font (DejaVu Sans, Debian's fonts-dejavu-core, or,
+ * when that file is missing, what OpenImageIO's font search finds, through
+ * its module); without one the sheet is drawn without text and
  * the legend and captions are still in the file's metadata.
  */
 #ifndef SL_IMAGE_H
 #define SL_IMAGE_H
+#include <stdint.h>
 #include "sl_error.h"
 #ifdef __cplusplus
 extern "C" {
@@ -78,6 +81,19 @@ struct sl_image_sheet {
  * "x y s s X Y zoom", "shadowlab:legend" (the legend's lines) and
  * "shadowlab:text" = "1" when a font was found. */
 enum sl_err sl_image_write_sheet(const char *path, const struct sl_image_sheet *s, struct sl_diag *d);
+
+/* One glyph of the sheet's font at pixel size fs, as FreeType renders it:
+ * the bitmap's placement from the pen (left, and top above the baseline),
+ * its size, the pen's advance, and its coverage / 255 (w * h floats, top
+ * row first, malloc'ed; NULL when empty). */
+struct sl_image_glyph { int left, top, w, h, adv; float *a; };
+
+/* Code point c at size fs as the sheets draw it (oiio 0: the sheet module's
+ * own source, FreeType on the font file when it is there) or as OpenImageIO's
+ * render_text draws it (oiio 1), each rendered afresh; for tests comparing
+ * the two. 1 drawn, 0 the font has no such glyph, -1 no font or no module
+ * (d says which module). */
+int sl_image_glyph(int oiio, int fs, uint32_t c, struct sl_image_glyph *g, struct sl_diag *d);
 
 #ifdef __cplusplus
 }
