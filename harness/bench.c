@@ -279,7 +279,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     mat4 cam;
     for (int r = -1; r < reps && !e; r++) {
         struct raster_ms pm;
-        sl_gbuffer_give_back(&x->gp, &v);   /* as a run does: the arrays serve the next render */
+        sl_view_free(&v);
         double mr = 0, mb = 0;
         GLuint q;
         glGenQueries(1, &q);

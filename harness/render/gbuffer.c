@@ -74,12 +74,20 @@ void sl_gbuffer_give_back(struct sl_gbuffer_pass *p, struct sl_view *v)
     memset(v, 0, sizeof *v);
 }
 
-/* v's arrays for n pixels: the spare ones when they fit, else new. Not
- * zeroed: the render writes every element of every array. */
+/* v's arrays for n pixels: the spare ones when they fit (2; 3 with a new
+ * outside array), else new and zeroed (1); 0 when out of memory. The
+ * render writes every element of every array but the normals of
+ * background pixels and the outside flags of pixels inside a spot's cone,
+ * which it zeroes in spare arrays only: in new ones those pages were never
+ * written, and writing them (a background's normals can be a third of a
+ * 12 MB array) faulted them all in, which moved the bench's G-buffer
+ * row's plain raster from ~11 to 40-80 ms. */
 static int view_arrays(struct sl_gbuffer_pass *p, struct sl_view *v, size_t n, int spot)
 {
     struct sl_view *k = &p->spare;
+    int got = 1;
     if (k->pos && (size_t)k->w * (size_t)k->h == n) {
+        got = 2;
         v->pos = k->pos;
         v->nrm = k->nrm;
         v->tri = k->tri;
@@ -89,19 +97,20 @@ static int view_arrays(struct sl_gbuffer_pass *p, struct sl_view *v, size_t n, i
         memset(k, 0, sizeof *k);
     } else {
         sl_view_free(k);
-        v->pos = malloc(n * 3 * sizeof(float));
-        v->nrm = malloc(n * 3 * sizeof(float));
-        v->tri = malloc(n * sizeof(uint32_t));
-        v->cls = malloc(n);
-        v->truth = malloc(n);
+        v->pos = sl_calloc(n * 3, sizeof(float));
+        v->nrm = sl_calloc(n * 3, sizeof(float));
+        v->tri = sl_calloc(n, sizeof(uint32_t));
+        v->cls = sl_calloc(n, 1);
+        v->truth = sl_calloc(n, 1);
     }
-    if (spot && !v->outside)
-        v->outside = malloc(n);
-    else if (!spot) {
+    if (spot && !v->outside) {
+        v->outside = sl_calloc(n, 1);
+        got = got == 2 ? 3 : got;
+    } else if (!spot) {
         free(v->outside);
         v->outside = NULL;
     }
-    return v->pos && v->nrm && v->tri && v->cls && v->truth && (!spot || v->outside);
+    return v->pos && v->nrm && v->tri && v->cls && v->truth && (!spot || v->outside) ? got : 0;
 }
 
 /* The target at w x h: the kept one, or made (the old one freed). */
@@ -141,6 +150,7 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
     static _Atomic uint64_t serials;
     size_t n = (size_t)w * (size_t)h;
     mat4 view, proj, vpm;
+    int arrays = 0;   /* view_arrays: 1 new, 2 spare, 3 spare with a new outside */
     sl_camera_matrices(&s->vp[vp], (float)w / (float)h, view, proj);
     glm_mat4_mul(proj, view, vpm);
     if (v) {
@@ -151,7 +161,7 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
         v->vp = vp;
         glm_mat4_copy(view, v->view);
         glm_mat4_copy(proj, v->proj);
-        if (!view_arrays(p, v, n, s->light.type == SL_LIGHT_SPOT)) {
+        if (!(arrays = view_arrays(p, v, n, s->light.type == SL_LIGHT_SPOT))) {
             sl_view_free(v);
             return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "G-buffer %dx%d", w, h);
         }
@@ -211,11 +221,11 @@ enum sl_err sl_gbuffer_render(struct sl_gbuffer_pass *p, const struct sl_gl_mesh
                 float sg = (v->tri[i] & SL_BACK_FACING) ? -1.0f : 1.0f;
                 for (int k = 0; k < 3; k++)
                     v->nrm[3 * i + k] = sg * fn[k];
-            } else {
+            } else if (arrays >= 2) {
                 for (int k = 0; k < 3; k++)
                     v->nrm[3 * i + k] = 0.0f;
             }
-            if (v->outside)
+            if (arrays == 2 && v->outside)
                 v->outside[i] = 0;
             v->tri[i] = id;
             if (v->tri[i] == 0) {
