@@ -78,10 +78,9 @@ void sl_gbuffer_give_back(struct sl_gbuffer_pass *p, struct sl_view *v)
  * outside array), else new and zeroed (1); 0 when out of memory. The
  * render writes every element of every array but the normals of
  * background pixels and the outside flags of pixels inside a spot's cone,
- * which it zeroes in spare arrays only: in new ones those pages were never
- * written, and writing them (a background's normals can be a third of a
- * 12 MB array) faulted them all in, which moved the bench's G-buffer
- * row's plain raster from ~11 to 40-80 ms. */
+ * which it zeroes in spare arrays only: new ones are zero already, and
+ * their untouched pages (a background's normals can be a third of a 12 MB
+ * array) need not be faulted in. */
 static int view_arrays(struct sl_gbuffer_pass *p, struct sl_view *v, size_t n, int spot)
 {
     struct sl_view *k = &p->spare;
