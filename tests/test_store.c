@@ -108,6 +108,19 @@ static void fill_prov(struct sl_provenance *p, const char *sha)
     p->threads = 2;
 }
 
+/* A fresh store in t with one run begun (study_s, config hash HASH_A, the
+ * provenance p of "abc1234"): the opening most cases share. */
+static struct sl_store *open_with_run(struct tmp *t, struct sl_provenance *p, int64_t *run)
+{
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    tmp_make(t);
+    assert_int_equal(sl_store_open(t->db, &s, &d), SL_OK);
+    fill_prov(p, "abc1234");
+    assert_int_equal(sl_store_begin_run(s, p, "study_s", "c.yaml", HASH_A, "name: study_s\n", run, &d), SL_OK);
+    return s;
+}
+
 static const struct sl_cell_record *find(const struct sl_cell_record *cells, int n, const char *vp, int map)
 {
     for (int i = 0; i < n; i++)
@@ -353,14 +366,10 @@ static void store_has_cell_matches_key_and_hash(void **st)
 {
     (void)st;
     struct tmp t;
-    tmp_make(&t);
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
     struct sl_provenance p;
-    fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
+    struct sl_store *s = open_with_run(&t, &p, &run);
     struct sl_figures f;
     make_fig(&f, 5, thick3, 3);
     struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &f, NULL, 5);
@@ -441,14 +450,10 @@ static void store_failed_put_leaves_no_cell(void **st)
 {
     (void)st;
     struct tmp t;
-    tmp_make(&t);
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
     struct sl_provenance p;
-    fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
+    struct sl_store *s = open_with_run(&t, &p, &run);
     struct sl_figures good, bad;
     make_fig(&good, 10, thick3, 3);
     make_fig(&bad, 20, thick4, 4);
@@ -506,14 +511,10 @@ static void store_figure_names_checked(void **st)
 {
     (void)st;
     struct tmp t;
-    tmp_make(&t);
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
     struct sl_provenance p;
-    fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
+    struct sl_store *s = open_with_run(&t, &p, &run);
     struct sl_figures fig;
     make_fig(&fig, 10, thick3, 3);
     struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &fig, NULL, 10);
@@ -536,14 +537,10 @@ static void store_refused_last_row_rolls_back(void **st)
 {
     (void)st;
     struct tmp t;
-    tmp_make(&t);
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
     struct sl_provenance p;
-    fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
+    struct sl_store *s = open_with_run(&t, &p, &run);
 
     sqlite3 *raw = NULL;
     assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
@@ -579,14 +576,10 @@ static void store_killed_writer_leaves_whole_cells(void **st)
 {
     (void)st;
     struct tmp t;
-    tmp_make(&t);
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
     struct sl_provenance p;
-    fill_prov(&p, "abc1234");
     int64_t run = 0;
-    assert_int_equal(sl_store_begin_run(s, &p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run, &d), SL_OK);
+    struct sl_store *s = open_with_run(&t, &p, &run);
     sl_store_close(s);
 
     pid_t pid = fork();
