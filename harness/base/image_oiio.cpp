@@ -5,6 +5,7 @@
 // C++ stays here and in image_sheet.cpp. Only sl_image_module is exported
 // (-fvisibility=hidden).
 #include "image_ops.h"
+#include "image_module.hpp"
 #include <OpenImageIO/half.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -31,20 +32,10 @@ static bool IBA_text_defined(const char *font)
     return ImageBufAlgo::text_size("Ag", 16, font).defined();
 }
 
-static std::string tmp_name(const std::string &path)
-{
-    // keep the extension so OpenImageIO picks the same format
-    size_t slash = path.find_last_of('/');
-    size_t dot = path.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-        return path + ".tmp";
-    return path.substr(0, dot) + ".tmp" + path.substr(dot);
-}
-
 static enum sl_err oiio_write_rgb8(const char *path, int w, int h,
                                            const unsigned char *rgb, struct sl_diag *d)
 {
-    std::string tmp = tmp_name(path);
+    std::string tmp = sl_image_tmp_name(path);
     auto out = ImageOutput::create(path);
     if (!out)
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "no image writer: %s", OIIO::geterror().c_str());
@@ -92,7 +83,7 @@ static enum sl_err oiio_write_layers(const char *path, int w, int h, int nlayers
                                              const unsigned char *const *layers, int nattrs,
                                              const struct sl_image_attr *attrs, struct sl_diag *d)
 {
-    std::string tmp = tmp_name(path);
+    std::string tmp = sl_image_tmp_name(path);
     auto out = ImageOutput::create(path);
     if (!out)
         return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "no image writer: %s", OIIO::geterror().c_str());

@@ -9,6 +9,7 @@
 // font search then finds another) or a run writes EXR or reads an image.
 // C++ stays here and in image_oiio.cpp. Only sl_sheet_module is exported.
 #include "image_ops.h"
+#include "image_module.hpp"
 #include <ft2build.h>
 #include FT_FREETYPE_H
 #include <libdeflate.h>
@@ -28,16 +29,6 @@
 
 // The SHA of the build that loaded the module, for the files' "Software" tag.
 static const char *module_sha = "";
-
-static std::string tmp_name(const std::string &path)
-{
-    // keep the extension: the file is renamed into place when complete
-    size_t slash = path.find_last_of('/');
-    size_t dot = path.find_last_of('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-        return path + ".tmp";
-    return path.substr(0, dot) + ".tmp" + path.substr(dot);
-}
 
 // ---- the sheet, composed in plain memory ---------------------------------
 // Issue 20: composing a sheet through ImageBuf (per-pixel getpixel/setpixel
@@ -649,7 +640,7 @@ static enum sl_err write_sheet(const char *path, const struct sl_image_sheet *s,
     text.emplace_back("shadowlab:text", font ? "1" : "0");
     for (int a = 0; a < s->nattrs; a++)
         text.emplace_back(s->attrs[a].name, s->attrs[a].value);
-    std::string tmp = tmp_name(path), why;
+    std::string tmp = sl_image_tmp_name(path), why;
     if (!png_encode(tmp, S, text, why) || std::rename(tmp.c_str(), path) != 0) {
         if (why.empty())
             why = std::string("rename: ") + std::strerror(errno);
