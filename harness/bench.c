@@ -46,7 +46,7 @@ extern const char sl_glsl_bench_plain_fs[];
 #define TARGET_RSS_MIB       2048.0
 #define TARGET_CONTEXT_MS    2000.0   /* the first context, driver loading included */
 
-static double cpu_now(void)
+double sl_bench_cpu_s(void)
 {
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
@@ -284,9 +284,9 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
         GLuint q;
         glGenQueries(1, &q);
         glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q);
-        double c0 = cpu_now();
+        double c0 = sl_bench_cpu_s();
         e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, vp, W, H, &v, &mr, &mb, NULL, d);
-        double c1 = cpu_now();
+        double c1 = sl_bench_cpu_s();
         glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
         GLuint64 frags = 0;
         glGetQueryObjectui64v(q, GL_QUERY_RESULT, &frags);
@@ -294,7 +294,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
         if (e)
             break;
         glm_mat4_mul(v.proj, v.view, cam);
-        double c2 = cpu_now();
+        double c2 = sl_bench_cpu_s();
         /* the G-buffer's plain counterpart as before: its framebuffer made
          * afresh each time (kept, this row's own view arrays, made afresh
          * too, faulted in at every repetition: 20 ms of readback) */
@@ -305,7 +305,7 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
             break;
         if (r >= 0) {
             t.cpu[r] = 1e3 * (c1 - c0);
-            t.p_cpu[r] = 1e3 * (cpu_now() - c2);
+            t.p_cpu[r] = 1e3 * (sl_bench_cpu_s() - c2);
             t.render[r] = mr;
             t.readback[r] = mb;
             t.p_render[r] = pm.render;
@@ -333,17 +333,17 @@ static enum sl_err bench_layers(struct sl_bench_ctx *x, struct sl_bench_result *
     for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
         for (int r = -1; r < reps && !e; r++) {
             struct raster_ms pm;
-            double c0 = cpu_now();
+            double c0 = sl_bench_cpu_s();
             if ((e = plain_raster(prog, &x->mesh, f.box.vp, S, S, 1, depth, id, &pt, &pm, d)))
                 break;
-            double c1 = cpu_now();
+            double c1 = sl_bench_cpu_s();
             sl_frame_drop_layer(&f, l);
-            double c2 = cpu_now();
+            double c2 = sl_bench_cpu_s();
             if ((e = sl_shadowmap_render(&sp, &x->mesh, &f, SL_NEED(l), d)))
                 break;
             if (r >= 0) {
                 t.p_cpu[r] = 1e3 * (c1 - c0);
-                t.cpu[r] = 1e3 * (cpu_now() - c2);
+                t.cpu[r] = 1e3 * (sl_bench_cpu_s() - c2);
                 t.render[r] = f.layer[l].ms_render;
                 t.readback[r] = f.layer[l].ms_readback;
                 t.p_render[r] = pm.render;
@@ -408,10 +408,10 @@ static enum sl_err backend_rep(const struct sl_bench_ctx *x, const struct sl_adj
     memset(&f, 0, sizeof f);
     memset(&v, 0, sizeof v);
     memset(out, 0, sizeof *out);
-    double t0 = sl_now(), c0 = cpu_now();
+    double t0 = sl_now(), c0 = sl_bench_cpu_s();
     enum sl_err e = sl_gl_open(&gl, &(struct sl_gl_desc){.backend = b}, d);
     out->wall[0] = 1e3 * (sl_now() - t0);
-    out->cpu[0] = 1e3 * (cpu_now() - c0);
+    out->cpu[0] = 1e3 * (sl_bench_cpu_s() - c0);
     if (e)
         return e;
     if ((e = sl_gl_mesh_upload(&mesh, &x->s, d)) || (e = sl_gl_mesh_upload_adjacency(&mesh, &x->s, adj, d)) ||
@@ -421,11 +421,11 @@ static enum sl_err backend_rep(const struct sl_bench_ctx *x, const struct sl_adj
     for (int k = 0; k < 2; k++) {
         /* the second time is timed: the first compiles the shader variants */
         sl_view_free(&v);
-        c0 = cpu_now();
+        c0 = sl_bench_cpu_s();
         if ((e = sl_gbuffer_render(&gp, &mesh, &x->s, x->vp[0], x->W, x->H, &v, &out->wall[1], &mb, &out->gpu[1],
                                    d)))
             goto out;
-        out->cpu[1] = 1e3 * (cpu_now() - c0);
+        out->cpu[1] = 1e3 * (sl_bench_cpu_s() - c0);
     }
     f.size = x->S;
     memcpy(f.dir, x->s.light_dir, sizeof f.dir);
@@ -443,9 +443,9 @@ static enum sl_err backend_rep(const struct sl_bench_ctx *x, const struct sl_adj
             f.have = 0;
         }
         int k = l % SL_LAYER_COUNT;
-        c0 = cpu_now();
+        c0 = sl_bench_cpu_s();
         e = sl_shadowmap_render(&sp, &mesh, &f, SL_NEED(k), d);   /* in order: BGSM before BGSM2 */
-        out->cpu[2 + k] = 1e3 * (cpu_now() - c0);
+        out->cpu[2 + k] = 1e3 * (sl_bench_cpu_s() - c0);
         out->wall[2 + k] = f.layer[k].ms_render;
         out->gpu[2 + k] = f.layer[k].ms_gpu;
     }
@@ -727,10 +727,10 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     struct sl_provenance prov;
     memset(&prov, 0, sizeof prov);
     const struct sl_gl_desc gdesc = {.backend = o->gl};
-    double ctx_t0 = sl_now(), ctx_c0 = cpu_now();
+    double ctx_t0 = sl_now(), ctx_c0 = sl_bench_cpu_s();
     if ((e = sl_gl_open(&x.gl, &gdesc, d)))
         goto done;
-    double ctx_ms = 1e3 * (sl_now() - ctx_t0), ctx_cpu_ms = 1e3 * (cpu_now() - ctx_c0);
+    double ctx_ms = 1e3 * (sl_now() - ctx_t0), ctx_cpu_ms = 1e3 * (sl_bench_cpu_s() - ctx_c0);
     snprintf(prov.gl_renderer, sizeof prov.gl_renderer, "%s", x.gl.renderer);
     snprintf(prov.gl_version, sizeof prov.gl_version, "%s", x.gl.version);
     sl_gl_describe(&x.gl, prov.gl_backend, sizeof prov.gl_backend);

@@ -29,10 +29,7 @@ static struct usage usage_now(void)
 {
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
-    struct usage u = {sl_now(),
-                      (double)ru.ru_utime.tv_sec + (double)ru.ru_stime.tv_sec +
-                          1e-6 * ((double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_usec),
-                      (double)ru.ru_minflt};
+    struct usage u = {sl_now(), sl_bench_cpu_s(), (double)ru.ru_minflt};
     return u;
 }
 

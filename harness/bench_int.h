@@ -44,6 +44,9 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
 /* The layers' names in the bench's rows, by SL_LAYER_* (bench.c). */
 extern const char *const sl_bench_layer_names[SL_LAYER_COUNT];
 
+/* This process's CPU time so far, user + sys, in seconds (getrusage). */
+double sl_bench_cpu_s(void);
+
 /* The load average (1, 5, 15 min) as "a b c", or "unknown". */
 void sl_bench_loadavg(char *buf, size_t n);
 

@@ -62,14 +62,6 @@ static int reset_hwm(void)
     return fclose(f) == 0 && ok;
 }
 
-static double cpu_s(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return (double)ru.ru_utime.tv_sec + (double)ru.ru_stime.tv_sec +
-           1e-6 * ((double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_usec);
-}
-
 /* A layer's arrays hashed (FNV-1a over 32-bit words; the id array may be
  * NULL): equal hashes stand for equal layers. */
 static uint64_t layer_hash(const struct sl_depth_layer *L, size_t n)
@@ -173,7 +165,7 @@ enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_resul
     const double rss0 = proc_status_bytes("VmRSS:");
     struct rusage ru0, ru1;
     getrusage(RUSAGE_SELF, &ru0);
-    const double t0 = sl_now(), c0 = cpu_s();
+    const double t0 = sl_now(), c0 = sl_bench_cpu_s();
     const size_t n = (size_t)S * (size_t)S;
     uint64_t h[SL_LAYER_COUNT] = {0}, hp[SL_LAYER_COUNT] = {0};
     frame_init(&f, &x->s, &v, S, &p.pool);
@@ -195,7 +187,7 @@ enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_resul
     }
     if (e)
         goto out;
-    const double t1 = sl_now(), c1 = cpu_s();
+    const double t1 = sl_now(), c1 = sl_bench_cpu_s();
     getrusage(RUSAGE_SELF, &ru1);
     const double hwm = proc_status_bytes("VmHWM:");
     const double peak = reset ? hwm : 1024.0 * (double)ru1.ru_maxrss;

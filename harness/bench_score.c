@@ -289,14 +289,6 @@ static const char *const lf_kind_name[LF_KINDS] = {
     "directional (the scene's light)", "point light: the view's box (six faces)",
     "point light: the cube's six frames (cube.c)"};
 
-static double proc_cpu(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
-           1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
-
 static int box_same(const struct sl_light_box *a, const struct sl_light_box *b)
 {
     return memcmp(a->vp, b->vp, sizeof a->vp) == 0 && memcmp(a->view, b->view, sizeof a->view) == 0 &&
@@ -360,11 +352,11 @@ enum sl_err sl_bench_lightfit(struct sl_bench_ctx *x, struct sl_bench_result *re
         for (int k = 0; k < LF_KINDS; k++) {
             const struct sl_scene *s = k == 0 ? &x->s : &pt;
             const struct sl_view *vw = &v[k == 0 ? 0 : 1];
-            double w0 = sl_now(), c0 = proc_cpu();
+            double w0 = sl_now(), c0 = sl_bench_cpu_s();
             int nb = lf_fit(s, vw, k, x->S, 1, face, bx);
-            double w1 = sl_now(), c1 = proc_cpu();
+            double w1 = sl_now(), c1 = sl_bench_cpu_s();
             lf_fit(s, vw, k, x->S, T, face, bx + 6);
-            double w2 = sl_now(), c2 = proc_cpu();
+            double w2 = sl_now(), c2 = sl_bench_cpu_s();
             receivers[k] = unmapped[k] = 0;
             for (int b = 0; b < nb; b++) {
                 agree &= box_same(&bx[b], &bx[6 + b]);

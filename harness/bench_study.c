@@ -34,14 +34,6 @@
 #define TARGET_MORAIS_FAULTS 500000.0
 #define TARGET_MORAIS_RSS_MIB 1024.0
 
-static double cpu_now(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
-           1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
-
 static int rm_cb(const char *p, const struct stat *sb, int flag, struct FTW *ftw)
 {
     (void)sb, (void)flag, (void)ftw;
@@ -71,9 +63,9 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
     char load0[64], load1[64];
     sl_bench_loadavg(load0, sizeof load0);
     getrusage(RUSAGE_SELF, &ru0);
-    double t0 = sl_now(), c0 = cpu_now();
+    double t0 = sl_now(), c0 = sl_bench_cpu_s();
     e = sl_run(&c, &ro, &rr, d);
-    double wall = sl_now() - t0, cpu = cpu_now() - c0;
+    double wall = sl_now() - t0, cpu = sl_bench_cpu_s() - c0;
     getrusage(RUSAGE_SELF, &ru1);
     sl_bench_loadavg(load1, sizeof load1);
     if (files)
