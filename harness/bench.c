@@ -688,6 +688,12 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
                                 SL_BENCH_STAGE(CHURN) | SL_BENCH_STAGE(SCORING) | SL_BENCH_STAGE(LIGHTFIT) |
                                 SL_BENCH_STAGE(BIGMAP))) != 0;
 
+    /* the studies' table (below): declared before any jump to done, which frees it */
+    char *studies_md = NULL;
+    size_t studies_len = 0;
+    struct sl_bench_result study_rows;
+    memset(&study_rows, 0, sizeof study_rows);
+
     /* start-up first, while this process has loaded nothing heavy (its own
      * RSS is the floor of its children's; bench_startup.c); its table is
      * printed in its turn, after the header */
@@ -705,10 +711,6 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
 
     /* the studies next, each in a child forked while this process is still
      * a single thread with nothing made (bench_study.c) */
-    char *studies_md = NULL;
-    size_t studies_len = 0;
-    struct sl_bench_result study_rows;
-    memset(&study_rows, 0, sizeof study_rows);
     if (stages & (SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(MORAIS))) {
         FILE *mem = open_memstream(&studies_md, &studies_len);
         if (!mem) {
