@@ -559,6 +559,14 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             cell->ms.map_render[j] += x->softmap.ms_near + x->softmap.ms_far;
             cell->ms.gpu_map[j] += x->softmap.ms_gpu_near + x->softmap.ms_gpu_far;
         }
+    /* each pixel's lookup in the layers the method reads around it, once
+     * for every such method of the view (frame.h: sl_frame_look); a point
+     * light's methods read the cube's faces, which make none */
+    for (int l = 0; l < SL_LAYER_COUNT && !e && x->scene.light.type != SL_LIGHT_POINT; l++)
+        if ((cm->method->looks & mneeds & fr->have & SL_NEED(l)) && !fr->layer[l].per_pixel)
+            e = sl_frame_look(fr, l, &x->view, c->threads, d);
+    if (e)
+        return e;
     /* methods get the view without its truth */
     struct sl_view mview = x->view;
     mview.truth = NULL;

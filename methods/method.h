@@ -238,6 +238,12 @@ struct sl_method {
      * texel, through sl_layer_at (frame.h): the driver may hand them
      * gathered per pixel (sl_frame_gather). 0: every layer dense. */
     unsigned    at_pixel;
+    /* Layers (SL_NEED bits, dense) it reads through sl_frame_look_of
+     * (frame.h) when the driver made each pixel's lookup in them for the
+     * view (sl_frame_look): made once, read by every such method of the
+     * view. The method computes them itself where they are not there (a
+     * point light's faces, a caller other than the driver). */
+    unsigned    looks;
     /* Fill defaults for unset keys and check values; on return `set` holds
      * exactly the keys the method reads with these parameters. */
     enum sl_err (*configure)(struct sl_method_params *p, struct sl_diag *d);

@@ -82,8 +82,52 @@ static enum sl_err conf_chain(struct sl_method_params *p, struct sl_diag *d)
 struct ctx {
     const struct sl_method_args *a;
     const struct sl_depth_layer *L;
+    const struct sl_frame_look *look;   /* the driver's lookups in L for this view, or NULL */
     int S;
 };
+
+static struct ctx ctx_of(const struct sl_method_args *a)
+{
+    const struct sl_light_frame *f = a->frame;
+    const struct sl_view *v = a->view;
+    return (struct ctx){.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size,
+                        .look = sl_frame_look_of(f, SL_LAYER_DEPTH_ID_BACK, v->serial, (size_t)v->w * v->h)};
+}
+
+/* A decided pixel's lookup in the map: texel coordinates u, w, window
+ * depth z, texel k and NSM's verdict there. Taken from the lookups the
+ * driver made once for the view (sl_frame_look: every method here makes
+ * the same ones) or, without them, made here by the same inline code. */
+struct pix {
+    float u, w, z;
+    uint32_t k;
+    uint8_t nsm;
+};
+
+static inline void pix_at(const struct ctx *c, long i, struct pix *q)
+{
+    if (c->look) {
+        const struct sl_pix_look l = c->look->px[i];
+        q->u = l.u, q->w = l.v, q->z = l.z;
+        q->k = l.k & ~SL_LOOK_SHADOW;
+        q->nsm = (l.k & SL_LOOK_SHADOW) ? SL_V_SHADOW : SL_V_LIT;
+        return;
+    }
+    const struct sl_light_frame *f = c->a->frame;
+    sl_frame_project(f, c->a->view->pos + 3 * i, &q->u, &q->w, &q->z);
+    q->k = sl_frame_texel(f, q->u, q->w);
+    q->nsm = q->z <= c->L->depth[q->k] ? SL_V_LIT : SL_V_SHADOW;
+}
+
+/* The triangle (+ 1) the map stores at pixel i's texel k. */
+static inline uint32_t stored_at(const struct ctx *c, long i, uint32_t k)
+{
+    return c->look ? c->look->id[i] : c->L->id[k];
+}
+
+/* What the lookups cost, charged to each method that reads them (as the
+ * work each would otherwise do itself). */
+static double look_ms(const struct ctx *c) { return c->look ? c->look->ms : 0.0; }
 
 /* A pixel's shadow ray: its origin, direction toward the light, end and
  * start (sl_rt_tnear), computed on the first test that needs them: most
@@ -249,14 +293,12 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: the shadow map was not rendered");
     if (kind == K_ADJACENCY && !a->adj)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: no adjacency");
-    struct ctx c = {.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size};
+    const struct ctx c = ctx_of(a);
     const long n = (long)v->w * v->h;
     const struct sl_method_params *prm = a->params;
     out->has_base = 1;
     out->has_detail = kind == K_COHERENCE;
     uint64_t lookups = 0, tests = 0;
-    const float *depth = c.L->depth;   /* read once: the stores to out may alias c.L for the compiler */
-    const uint32_t *ids = c.L->id;
     double t0 = sl_now();
 #pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
     for (long i = 0; i < n; i++) {
@@ -265,12 +307,12 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             continue;
         }
         const float *p = v->pos + 3 * i;
-        float u, w, z;
-        sl_frame_project(f, p, &u, &w, &z);
-        uint32_t k = sl_frame_texel(f, u, w);
+        struct pix q;
+        pix_at(&c, i, &q);
+        const float u = q.u, w = q.w, z = q.z;
         lookups++;
         const uint64_t tests_before = tests;
-        uint8_t nsm = z <= depth[k] ? SL_V_LIT : SL_V_SHADOW;
+        const uint8_t nsm = q.nsm;
         out->base[i] = nsm;
         const uint32_t own = v->tri[i];
         int hit = 0, coh = 0, shadowed = 0;
@@ -284,7 +326,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             continue;
         case K_TEXEL:
             sray_of(&c, p, &ray);
-            hit = sure_hit(&c, &ray, ids[k], own, &tests);
+            hit = sure_hit(&c, &ray, stored_at(&c, i, q.k), own, &tests);
             break;
         case K_NEIGHBOURS:
             sray_of(&c, p, &ray);
@@ -292,7 +334,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             break;
         case K_ADJACENCY:
             sray_of(&c, p, &ray);
-            hit = adjacency_hit(&c, &ray, ids[k], prm->level, own, &tests);
+            hit = adjacency_hit(&c, &ray, stored_at(&c, i, q.k), prm->level, own, &tests);
             break;
         }
         out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
@@ -304,7 +346,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             out->how[i] = SL_HOW_FALLBACK;
         }
     }
-    cost->ms_method += 1e3 * (sl_now() - t0);
+    cost->ms_method += 1e3 * (sl_now() - t0) + look_ms(&c);
     cost->lookups += lookups;
     cost->tri_tests += tests;
     return SL_OK;
@@ -322,15 +364,13 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
     const struct sl_light_frame *f = a->frame;
     if (!(f->have & SL_NEED(SL_LAYER_DEPTH_ID_BACK)) || !a->adj)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "chain: no shadow map or no adjacency");
-    struct ctx c = {.a = a, .L = &f->layer[SL_LAYER_DEPTH_ID_BACK], .S = f->size};
+    const struct ctx c = ctx_of(a);
     const long n = (long)v->w * v->h;
     uint8_t *stage = sl_calloc((size_t)n, 1);
     if (!stage)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "chain stages");
     out->has_base = 1;
     uint64_t lookups = 0, tests = 0;
-    const float *depth = c.L->depth;
-    const uint32_t *ids = c.L->id;
     for (int step = 0; step < 3; step++) {
         double t0 = sl_now();
 #pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups, tests)
@@ -342,13 +382,13 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
             if (step > 0 && stage[i] != step)
                 continue;
             const float *p = v->pos + 3 * i;
-            float u, w, z;
-            sl_frame_project(f, p, &u, &w, &z);
-            uint32_t k = sl_frame_texel(f, u, w);
+            struct pix q;
+            pix_at(&c, i, &q);
+            const float u = q.u, w = q.w, z = q.z;
             const uint64_t before = tests;
             if (step == 0) {                    /* NSM, then coherence over 4 texels */
                 lookups++;
-                out->base[i] = z <= depth[k] ? SL_V_LIT : SL_V_SHADOW;
+                out->base[i] = q.nsm;
                 int shadowed, coh = coherence(&c, u, w, z, 4, &lookups, &shadowed);
                 if (coh) {
                     out->v[i] = coh == 1 ? SL_V_LIT : SL_V_SHADOW;
@@ -364,7 +404,7 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
                 out->v[i] = SL_V_SHADOW;
                 out->how[i] = out->base[i] == SL_V_SHADOW ? SL_HOW_CONFIRM : SL_HOW_CORRECT;
             } else if (step == 2 && out->base[i] == SL_V_SHADOW &&
-                       adjacency_hit(&c, &ray, ids[k], 2, v->tri[i], &tests)) {
+                       adjacency_hit(&c, &ray, stored_at(&c, i, q.k), 2, v->tri[i], &tests)) {
                 out->v[i] = SL_V_SHADOW;        /* the map shadowed it: a confirmation */
                 out->how[i] = SL_HOW_CONFIRM_ADJ;
             } else {
@@ -372,7 +412,7 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
             }
             out->tests[i] = clamp255(out->tests[i] + tests - before);
         }
-        cost->ms_step[step] = 1e3 * (sl_now() - t0);
+        cost->ms_step[step] = 1e3 * (sl_now() - t0) + (step == 0 ? look_ms(&c) : 0.0);
         cost->ms_method += cost->ms_step[step];
     }
     cost->lookups += lookups;
@@ -407,23 +447,25 @@ static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts 
 const struct sl_method sl_method_coherence = {
     .name = "coherence", .summary = "texel coherence, 4 or 9 texels (Moderno 2011): hints, may be wrong",
     .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels, .run = run_coherence,
+    .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
 };
 const struct sl_method sl_method_texel = {
     .name = "texel", .summary = "a ray against the texel's stored triangle (Moderno 2011)",
     .exact = SL_EXACT_PROVED, .needs = needs_map, .configure = conf_none, .run = run_texel,
+    .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
 };
 const struct sl_method sl_method_neighbours = {
     .name = "neighbours", .summary = "rays against the triangles of 4 or 9 texels (Moderno 2011)",
     .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels,
-    .run = run_neighbours,
+    .run = run_neighbours, .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
 };
 const struct sl_method sl_method_adjacency = {
     .name = "adjacency", .summary = "rays against the stored triangle and its edge (1) or vertex (2) neighbours",
     .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_LEVEL, .needs = needs_adj, .configure = conf_level,
-    .run = run_adjacency,
+    .run = run_adjacency, .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
 };
 const struct sl_method sl_method_chain = {
     .name = "chain", .summary = "coherence(4) -> neighbours(9) -> adjacency(2) -> traced or lit (Moderno 2011)",
     .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_FINISH, .needs = needs_adj, .configure = conf_chain,
-    .run = run_chain,
+    .run = run_chain, .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
 };

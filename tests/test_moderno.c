@@ -797,6 +797,110 @@ static void moderno_contour_connectivity(void **st)
     fig_close(&g);
 }
 
+/* A method's verdicts and counts on g's view and frame, under params p. */
+struct fig_out { uint8_t *a[5]; struct sl_cost cost; };
+
+static void fig_run_params(struct fig *g, const char *method, struct sl_method_params *p, struct fig_out *o)
+{
+    const struct sl_method *m = sl_method_find(method);
+    assert_non_null(m);
+    struct sl_diag d;
+    assert_int_equal(m->configure(p, &d), SL_OK);
+    struct sl_method_args a = {.scene = &g->f.scene, .view = &g->mv, .frame = &g->fr, .params = p,
+                               .rt = &g->f.rt, .adj = &g->adj, .threads = 2};
+    memset(&o->cost, 0, sizeof o->cost);
+    g->vd.has_base = 0;
+    size_t npx = (size_t)g->v.w * g->v.h;
+    memset(g->vd.tests, 0, npx);
+    assert_int_equal(m->run(&a, &g->vd, &o->cost, &d), SL_OK);
+    const uint8_t *src[5] = {g->vd.v, g->vd.how, g->vd.base, g->vd.detail, g->vd.tests};
+    for (int k = 0; k < 5; k++) {
+        o->a[k] = malloc(npx);
+        assert_non_null(o->a[k]);
+        memcpy(o->a[k], src[k], npx);
+    }
+}
+
+/* Each method of chapter 3 gives the same verdicts, bases, details, test
+ * counts and counters from the lookups the driver makes once per view
+ * (sl_frame_look) as from its own: on two scenes at both map sizes. The lookups
+ * are those of their own code, pixel for pixel, and a frame's lookups
+ * serve only the view and layer they were made for. */
+static void moderno_lookups_as_computed(void **st)
+{
+    (void)st;
+    static const struct { const char *method; unsigned key; int value; } runs[] = {
+        {"coherence", SL_PARAM_TEXELS, 4}, {"coherence", SL_PARAM_TEXELS, 9}, {"texel", 0, 0},
+        {"neighbours", SL_PARAM_TEXELS, 4}, {"neighbours", SL_PARAM_TEXELS, 9},
+        {"adjacency", SL_PARAM_LEVEL, 1}, {"adjacency", SL_PARAM_LEVEL, 2},
+        {"chain", SL_PARAM_FINISH, 0}, {"chain", SL_PARAM_FINISH, 1},
+    };
+    static const char *scenes[] = {"bench", "trees"};
+    for (int si = 0; si < 2; si++) {
+        struct fig g;
+        fig_open(&g, scenes[si]);
+        fig_view_study(&g, 1);
+        size_t npx = (size_t)g.v.w * g.v.h;
+        for (int m = 0; m < 2; m++) {
+            fig_frame_study(&g, 1024 << m);
+            struct sl_diag d;
+            const int l = SL_LAYER_DEPTH_ID_BACK;
+            assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
+            assert_int_equal(sl_frame_look(&g.fr, l, &g.v, 2, &d), SL_OK);
+            const struct sl_frame_look *lk = sl_frame_look_of(&g.fr, l, g.v.serial, npx);
+            assert_non_null(lk);
+            /* pixel for pixel what the methods compute */
+            const struct sl_depth_layer *L = &g.fr.layer[l];
+            uint64_t shadowed = 0;
+            for (size_t i = 0; i < npx; i++) {
+                if (g.v.cls[i] != SL_C_PFL)
+                    continue;
+                float u, w, z;
+                sl_frame_project(&g.fr, g.v.pos + 3 * i, &u, &w, &z);
+                const uint32_t k = sl_frame_texel(&g.fr, u, w);
+                assert_true(lk->px[i].u == u && lk->px[i].v == w && lk->px[i].z == z);
+                assert_int_equal(lk->px[i].k & ~SL_LOOK_SHADOW, k);
+                assert_int_equal(!!(lk->px[i].k & SL_LOOK_SHADOW), !(z <= L->depth[k]));
+                assert_int_equal(lk->id[i], L->id[k]);
+                shadowed += !!(lk->px[i].k & SL_LOOK_SHADOW);
+            }
+            assert_true(shadowed > 0 && shadowed < g.v.n_pfl);
+            /* another view (serial) or layer: not these lookups */
+            assert_null(sl_frame_look_of(&g.fr, l, g.v.serial + 1, npx));
+            assert_null(sl_frame_look_of(&g.fr, SL_LAYER_DEPTH_ID, g.v.serial, npx));
+            for (size_t r = 0; r < sizeof runs / sizeof runs[0]; r++) {
+                struct sl_method_params p;
+                memset(&p, 0, sizeof p);
+                p.set = runs[r].key;
+                p.texels = runs[r].key == SL_PARAM_TEXELS ? runs[r].value : 0;
+                p.level = runs[r].key == SL_PARAM_LEVEL ? runs[r].value : 0;
+                p.finish = runs[r].key == SL_PARAM_FINISH ? runs[r].value : 0;
+                struct fig_out with, without;
+                fig_run_params(&g, runs[r].method, &p, &with);
+                /* the frame without them: the method makes its own */
+                struct sl_frame_look keep = g.fr.look;
+                g.fr.look.px = NULL;
+                fig_run_params(&g, runs[r].method, &p, &without);
+                g.fr.look = keep;
+                for (int k = 0; k < 5; k++)
+                    assert_memory_equal(with.a[k], without.a[k], npx);
+                assert_int_equal(with.cost.lookups, without.cost.lookups);
+                assert_int_equal(with.cost.tri_tests, without.cost.tri_tests);
+                assert_int_equal(with.cost.rays, without.cost.rays);
+                assert_true(with.cost.lookups > 0);
+                for (int k = 0; k < 5; k++) {
+                    free(with.a[k]);
+                    free(without.a[k]);
+                }
+            }
+            /* dropping the layer drops its lookups */
+            sl_frame_drop_layer(&g.fr, l);
+            assert_null(g.fr.look.px);
+        }
+        fig_close(&g);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -810,6 +914,7 @@ int main(int argc, char **argv)
         SL_CASE(moderno, shared_contour_primitives),
         SL_CASE(moderno, wrong_hints_where),
         SL_CASE(moderno, contour_connectivity),
+        SL_CASE(moderno, lookups_as_computed),
     };
     return sl_run_group(argc, argv, "moderno", tests, sl_test_setup, sl_test_teardown);
 }

@@ -182,8 +182,57 @@ enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_vie
     return SL_OK;
 }
 
+/* The lookups' arrays back to the pool; none kept. */
+static void look_drop(struct sl_light_frame *f)
+{
+    layer_put(f->pix_pool, f->look.px);
+    layer_put(f->pix_pool, f->look.id);
+    memset(&f->look, 0, sizeof f->look);
+}
+
+enum sl_err sl_frame_look(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
+                          struct sl_diag *d)
+{
+    const size_t n = (size_t)v->w * (size_t)v->h;
+    if (sl_frame_look_of(f, l, v->serial, n))
+        return SL_OK;
+    const struct sl_depth_layer *L = &f->layer[l];
+    if (!(f->have & SL_NEED(l)) || L->per_pixel || !L->depth || !L->id)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "lookups: layer %d is not a dense depth + id layer", l);
+    double t0 = sl_now();
+    look_drop(f);
+    struct sl_pix_look *px = f->pix_pool ? sl_layer_pool_get(f->pix_pool, n * sizeof *px) : malloc(n * sizeof *px);
+    uint32_t *id = !px ? NULL : f->pix_pool ? sl_layer_pool_get(f->pix_pool, n * 4) : malloc(n * 4);
+    if (!id) {
+        layer_put(f->pix_pool, px);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "lookups per pixel (%dx%d)", v->w, v->h);
+    }
+    const float *dd = L->depth;
+    const uint32_t *di = L->id;
+    /* the pixels sl_verdict_fixed leaves to the methods; the projection,
+     * texel and depth test of theirs (moderno.c), inline here as there */
+#pragma omp parallel for num_threads(threads > 0 ? threads : 1) schedule(static)
+    for (long i = 0; i < (long)n; i++) {
+        struct sl_pix_look q = {0};
+        uint32_t t = 0;
+        if (v->cls[i] != SL_C_BACKGROUND && v->cls[i] != SL_C_PNFL) {
+            sl_frame_project(f, v->pos + 3 * (size_t)i, &q.u, &q.v, &q.z);
+            const uint32_t k = sl_frame_texel(f, q.u, q.v);
+            q.k = k | (q.z <= dd[k] ? 0u : SL_LOOK_SHADOW);
+            t = di[k];
+        }
+        px[i] = q;
+        id[i] = t;
+    }
+    f->look = (struct sl_frame_look){.px = px, .id = id, .layer = l, .serial = v->serial, .n = n,
+                                     .ms = 1e3 * (sl_now() - t0)};
+    return SL_OK;
+}
+
 void sl_frame_drop_layer(struct sl_light_frame *f, int l)
 {
+    if (f->look.px && f->look.layer == l)
+        look_drop(f);
     struct sl_depth_layer *L = &f->layer[l];
     struct sl_layer_pool *pool = L->per_pixel ? f->pix_pool : f->pool;
     if (pool) {
@@ -203,6 +252,7 @@ void sl_frame_free(struct sl_light_frame *f)
         return;
     for (int i = 0; i < SL_LAYER_COUNT; i++)
         sl_frame_drop_layer(f, i);
+    look_drop(f);
     layer_put(f->pix_pool, f->pix_texel);
     memset(f, 0, sizeof *f);
 }

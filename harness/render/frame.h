@@ -121,6 +121,28 @@ void  sl_layer_pool_put(struct sl_layer_pool *p, void *ptr);
 /* Free every array; none may be busy. */
 void  sl_layer_pool_free(struct sl_layer_pool *p);
 
+/* One pixel's lookup in a dense layer (sl_frame_look): its texel
+ * coordinates u, v and window depth z (sl_frame_project), and its texel k
+ * (sl_frame_texel) with SL_LOOK_SHADOW set when the layer's depth there
+ * is below z (the normal shadow-map test, z <= depth[k] lit). */
+struct sl_pix_look {
+    float u, v, z;
+    uint32_t k;
+};
+#define SL_LOOK_SHADOW 0x80000000u   /* k < 16384^2 = 2^28: the top bit is free */
+
+/* The lookups of every pixel of one view in one dense layer of a frame,
+ * made once and read by each method of the view that asks (frame.h:
+ * sl_frame_look). */
+struct sl_frame_look {
+    struct sl_pix_look *px;     /* per pixel; the fixed pixels (sl_verdict_fixed) hold zeros */
+    uint32_t *id;               /* the layer's id at k, per pixel (0 for the fixed ones) */
+    int layer;                  /* which layer */
+    uint64_t serial;            /* of that view (view.h) */
+    size_t n;                   /* and that many pixels */
+    double ms;                  /* wall time of the pass that made them */
+};
+
 struct sl_light_frame {
     int   size;
     struct sl_layer_pool *pool; /* where its layer arrays come from and go back to; NULL: calloc/free.
@@ -136,6 +158,7 @@ struct sl_light_frame {
     float depth_range;          /* world units of depth from 0 to 1 (persp: far - near) */
     unsigned have;              /* SL_NEED bits of the layers rendered */
     struct sl_depth_layer layer[SL_LAYER_COUNT];
+    struct sl_frame_look look;  /* sl_frame_look's, px NULL when none */
 };
 
 /* (p, 1) as a vec4 for glm_mat4_mulv, in one 16-byte store. Written as
@@ -239,6 +262,24 @@ static inline uint32_t sl_frame_texel(const struct sl_light_frame *f, float u, f
 struct sl_view;
 enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
                             struct sl_diag *d);
+
+/* Each pixel's lookup in dense layer l for view v (struct sl_pix_look),
+ * made here once per (frame, view, layer) and kept in f->look, for the
+ * methods that look the layer up around each pixel's texel (Moderno's,
+ * method.h: looks): each computed the same projection, texel and depth
+ * test per pixel, and the depth test's load, a cache miss in a map of
+ * 4-16 MiB, was a quarter of their time. The same inline code as theirs,
+ * so the same bits. Arrays from f->pix_pool. SL_E_NOMEM when out of
+ * memory; SL_E_INTERNAL when the layer is not dense. */
+enum sl_err sl_frame_look(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
+                          struct sl_diag *d);
+/* f's lookups in layer l for view v, NULL when sl_frame_look did not make them. */
+static inline const struct sl_frame_look *sl_frame_look_of(const struct sl_light_frame *f, int l,
+                                                           uint64_t serial, size_t n)
+{
+    const struct sl_frame_look *k = &f->look;
+    return k->px && k->layer == l && k->serial == serial && k->n == n && (f->have & SL_NEED(l)) ? k : NULL;
+}
 
 /* Give one layer's arrays back (to the pool, or free) and mark it not rendered. */
 void sl_frame_drop_layer(struct sl_light_frame *f, int layer);
