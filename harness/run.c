@@ -462,6 +462,20 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
     return SL_OK;
 }
 
+/* Each pixel's lookup in the dense layers method m reads (needs) and
+ * declares (looks), once per (frame, view) for every such method of the
+ * view (frame.h: sl_frame_look); a point light's methods read the cube's
+ * faces, which make none. */
+static enum sl_err make_looks(struct run_ctx *x, const struct sl_config *c, const struct sl_method *m,
+                              unsigned needs, struct sl_light_frame *fr, struct sl_diag *d)
+{
+    enum sl_err e = SL_OK;
+    for (int l = 0; l < SL_LAYER_COUNT && !e && x->scene.light.type != SL_LIGHT_POINT; l++)
+        if ((m->looks & needs & fr->have & SL_NEED(l)) && !fr->layer[l].per_pixel)
+            e = sl_frame_look(fr, l, &x->view, c->threads, d);
+    return e;
+}
+
 /* contour_from nsm: the contours of the current view at the cell's map
  * size, drawn from NSM's image (front faces culled, as Moderno 2011 drew
  * them) whatever the config's methods are, once per (view, map size). The
@@ -490,6 +504,8 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
             return e;
     }
     size_t npx = (size_t)x->W * (size_t)x->H;
+    if ((e = make_looks(x, c, m, m->needs(&p), &x->frame, d)))
+        return e;
     struct sl_view mview = x->view;
     mview.truth = NULL;
     struct sl_method_args a = {
@@ -559,13 +575,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             cell->ms.map_render[j] += x->softmap.ms_near + x->softmap.ms_far;
             cell->ms.gpu_map[j] += x->softmap.ms_gpu_near + x->softmap.ms_gpu_far;
         }
-    /* each pixel's lookup in the layers the method reads around it, once
-     * for every such method of the view (frame.h: sl_frame_look); a point
-     * light's methods read the cube's faces, which make none */
-    for (int l = 0; l < SL_LAYER_COUNT && !e && x->scene.light.type != SL_LIGHT_POINT; l++)
-        if ((cm->method->looks & mneeds & fr->have & SL_NEED(l)) && !fr->layer[l].per_pixel)
-            e = sl_frame_look(fr, l, &x->view, c->threads, d);
-    if (e)
+    if ((e = make_looks(x, c, cm->method, mneeds, fr, d)))
         return e;
     /* methods get the view without its truth */
     struct sl_view mview = x->view;

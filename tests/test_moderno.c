@@ -821,8 +821,8 @@ static void fig_run_params(struct fig *g, const char *method, struct sl_method_p
     }
 }
 
-/* Each method of chapter 3 gives the same verdicts, bases, details, test
- * counts and counters from the lookups the driver makes once per view
+/* Each method of chapter 3, and NSM, gives the same verdicts, bases,
+ * details, test counts and counters from the lookups the driver makes once per view
  * (sl_frame_look) as from its own: on two scenes at both map sizes. The lookups
  * are those of their own code, pixel for pixel, and a frame's lookups
  * serve only the view and layer they were made for. */
@@ -834,6 +834,7 @@ static void moderno_lookups_as_computed(void **st)
         {"neighbours", SL_PARAM_TEXELS, 4}, {"neighbours", SL_PARAM_TEXELS, 9},
         {"adjacency", SL_PARAM_LEVEL, 1}, {"adjacency", SL_PARAM_LEVEL, 2},
         {"chain", SL_PARAM_FINISH, 0}, {"chain", SL_PARAM_FINISH, 1},
+        {"nsm", SL_PARAM_SELF_SHADOW, SL_SELF_FRONT_FACES},
     };
     static const char *scenes[] = {"bench", "trees"};
     for (int si = 0; si < 2; si++) {
@@ -875,6 +876,7 @@ static void moderno_lookups_as_computed(void **st)
                 p.texels = runs[r].key == SL_PARAM_TEXELS ? runs[r].value : 0;
                 p.level = runs[r].key == SL_PARAM_LEVEL ? runs[r].value : 0;
                 p.finish = runs[r].key == SL_PARAM_FINISH ? runs[r].value : 0;
+                p.self_shadow = runs[r].key == SL_PARAM_SELF_SHADOW ? runs[r].value : 0;
                 struct fig_out with, without;
                 fig_run_params(&g, runs[r].method, &p, &with);
                 /* the frame without them: the method makes its own */
