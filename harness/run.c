@@ -472,7 +472,7 @@ static enum sl_err make_looks(struct run_ctx *x, const struct sl_config *c, cons
     enum sl_err e = SL_OK;
     for (int l = 0; l < SL_LAYER_COUNT && !e && x->scene.light.type != SL_LIGHT_POINT; l++)
         if ((m->looks & needs & fr->have & SL_NEED(l)) && !fr->layer[l].per_pixel)
-            e = sl_frame_look(fr, l, &x->view, c->threads, d);
+            e = sl_frame_look(fr, l, &x->view, c->threads, m->look_parts, d);
     return e;
 }
 

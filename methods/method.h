@@ -244,6 +244,7 @@ struct sl_method {
      * view. The method computes them itself where they are not there (a
      * point light's faces, a caller other than the driver). */
     unsigned    looks;
+    unsigned    look_parts;   /* SL_LOOK_* parts of them it reads (frame.h) */
     /* Fill defaults for unset keys and check values; on return `set` holds
      * exactly the keys the method reads with these parameters. */
     enum sl_err (*configure)(struct sl_method_params *p, struct sl_diag *d);

@@ -127,7 +127,10 @@ static inline uint32_t stored_at(const struct ctx *c, long i, uint32_t k)
 
 /* What the lookups cost, charged to each method that reads them (as the
  * work each would otherwise do itself). */
-static double look_ms(const struct ctx *c) { return c->look ? c->look->ms : 0.0; }
+static double look_ms(const struct ctx *c, int pcf)
+{
+    return c->look ? c->look->ms + (pcf && c->look->pcf ? c->look->ms_pcf : 0.0) : 0.0;
+}
 
 /* A pixel's shadow ray: its origin, direction toward the light, end and
  * start (sl_rt_tnear), computed on the first test that needs them: most
@@ -157,44 +160,18 @@ static const struct sray *sray_get(struct sray *r)
     return r;
 }
 
-static int lit_at(const struct ctx *c, int tx, int ty, float z)
-{
-    if (tx < 0) tx = 0;
-    if (ty < 0) ty = 0;
-    if (tx >= c->S) tx = c->S - 1;
-    if (ty >= c->S) ty = c->S - 1;
-    return z <= c->L->depth[(size_t)ty * (size_t)c->S + (size_t)tx];
-}
-
-/* 1 all lit, 2 all shadowed, 0 not coherent; *shadowed = how many say shadow. */
-static int coherence(const struct ctx *c, float u, float v, float z, int texels, uint64_t *lookups,
+/* 1 all lit, 2 all shadowed, 0 not coherent; *shadowed = how many say shadow:
+ * the percentage-closer count of the view's lookups where the driver made
+ * them (SL_LOOK_PCF), else counted here by the same inline code. */
+static int coherence(const struct ctx *c, long i, float u, float v, float z, int texels, uint64_t *lookups,
                      int *shadowed)
 {
-    int x0, y0, n;
-    if (texels == 4) {             /* the bilinear footprint */
-        x0 = (int)floorf(u - 0.5f);
-        y0 = (int)floorf(v - 0.5f);
-        n = 2;
-    } else {
-        x0 = (int)floorf(u) - 1;
-        y0 = (int)floorf(v) - 1;
-        n = 3;
-    }
-    int lit = 0;
-    if (x0 >= 0 && y0 >= 0 && x0 + n <= c->S && y0 + n <= c->S) {
-        /* the footprint inside the map (all but the border texels): no clamps */
-        const float *row = c->L->depth + (size_t)y0 * (size_t)c->S + (size_t)x0;
-        for (int j = 0; j < n; j++, row += c->S)
-            for (int i = 0; i < n; i++)
-                lit += z <= row[i];
-    } else {
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++)
-                lit += lit_at(c, x0 + i, y0 + j, z);
-    }
-    *lookups += (uint64_t)(n * n);
-    *shadowed = n * n - lit;
-    return lit == n * n ? 1 : lit == 0 ? 2 : 0;
+    const int n = texels == 4 ? 4 : 9;
+    const int lit = c->look && c->look->pcf ? (texels == 4 ? c->look->pcf[i] & 15 : c->look->pcf[i] >> 4)
+                                            : sl_frame_pcf_lit(c->L->depth, c->S, u, v, z, texels);
+    *lookups += (uint64_t)n;
+    *shadowed = n - lit;
+    return lit == n ? 1 : lit == 0 ? 2 : 0;
 }
 
 static int sure_hit(const struct ctx *c, struct sray *r, uint32_t tri_plus1, uint32_t own, uint64_t *tests)
@@ -319,7 +296,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         struct sray ray;
         switch (kind) {
         case K_COHERENCE:
-            coh = coherence(&c, u, w, z, prm->texels, &lookups, &shadowed);
+            coh = coherence(&c, i, u, w, z, prm->texels, &lookups, &shadowed);
             out->v[i] = coh == 1 ? SL_V_LIT : coh == 2 ? SL_V_SHADOW : SL_V_UNCERTAIN;
             out->how[i] = coh ? SL_HOW_HINT : SL_HOW_NONE;
             out->detail[i] = (uint8_t)shadowed;
@@ -346,7 +323,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             out->how[i] = SL_HOW_FALLBACK;
         }
     }
-    cost->ms_method += 1e3 * (sl_now() - t0) + look_ms(&c);
+    cost->ms_method += 1e3 * (sl_now() - t0) + look_ms(&c, kind == K_COHERENCE);
     cost->lookups += lookups;
     cost->tri_tests += tests;
     return SL_OK;
@@ -389,7 +366,7 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
             if (step == 0) {                    /* NSM, then coherence over 4 texels */
                 lookups++;
                 out->base[i] = q.nsm;
-                int shadowed, coh = coherence(&c, u, w, z, 4, &lookups, &shadowed);
+                int shadowed, coh = coherence(&c, i, u, w, z, 4, &lookups, &shadowed);
                 if (coh) {
                     out->v[i] = coh == 1 ? SL_V_LIT : SL_V_SHADOW;
                     out->how[i] = SL_HOW_HINT;
@@ -412,7 +389,7 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
             }
             out->tests[i] = clamp255(out->tests[i] + tests - before);
         }
-        cost->ms_step[step] = 1e3 * (sl_now() - t0) + (step == 0 ? look_ms(&c) : 0.0);
+        cost->ms_step[step] = 1e3 * (sl_now() - t0) + (step == 0 ? look_ms(&c, 1) : 0.0);
         cost->ms_method += cost->ms_step[step];
     }
     cost->lookups += lookups;
@@ -447,7 +424,7 @@ static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts 
 const struct sl_method sl_method_coherence = {
     .name = "coherence", .summary = "texel coherence, 4 or 9 texels (Moderno 2011): hints, may be wrong",
     .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels, .run = run_coherence,
-    .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
+    .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF,
 };
 const struct sl_method sl_method_texel = {
     .name = "texel", .summary = "a ray against the texel's stored triangle (Moderno 2011)",
@@ -467,5 +444,5 @@ const struct sl_method sl_method_adjacency = {
 const struct sl_method sl_method_chain = {
     .name = "chain", .summary = "coherence(4) -> neighbours(9) -> adjacency(2) -> traced or lit (Moderno 2011)",
     .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_FINISH, .needs = needs_adj, .configure = conf_chain,
-    .run = run_chain, .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
+    .run = run_chain, .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF,
 };

@@ -823,7 +823,8 @@ static void fig_run_params(struct fig *g, const char *method, struct sl_method_p
 
 /* Each method of chapter 3, and NSM, gives the same verdicts, bases,
  * details, test counts and counters from the lookups the driver makes once per view
- * (sl_frame_look) as from its own: on two scenes at both map sizes. The lookups
+ * (sl_frame_look), with and without the percentage-closer counts, as
+ * from its own: on two scenes at both map sizes. The lookups and counts
  * are those of their own code, pixel for pixel, and a frame's lookups
  * serve only the view and layer they were made for. */
 static void moderno_lookups_as_computed(void **st)
@@ -847,7 +848,10 @@ static void moderno_lookups_as_computed(void **st)
             struct sl_diag d;
             const int l = SL_LAYER_DEPTH_ID_BACK;
             assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
-            assert_int_equal(sl_frame_look(&g.fr, l, &g.v, 2, &d), SL_OK);
+            assert_int_equal(sl_frame_look(&g.fr, l, &g.v, 2, 0, &d), SL_OK);
+            assert_null(g.fr.look.pcf);
+            assert_int_equal(sl_frame_look(&g.fr, l, &g.v, 2, SL_LOOK_PCF, &d), SL_OK);
+            assert_non_null(g.fr.look.pcf);
             const struct sl_frame_look *lk = sl_frame_look_of(&g.fr, l, g.v.serial, npx);
             assert_non_null(lk);
             /* pixel for pixel what the methods compute */
@@ -863,6 +867,8 @@ static void moderno_lookups_as_computed(void **st)
                 assert_int_equal(lk->px[i].k & ~SL_LOOK_SHADOW, k);
                 assert_int_equal(!!(lk->px[i].k & SL_LOOK_SHADOW), !(z <= L->depth[k]));
                 assert_int_equal(lk->id[i], L->id[k]);
+                assert_int_equal(lk->pcf[i] & 15, sl_frame_pcf_lit(L->depth, g.fr.size, u, w, z, 4));
+                assert_int_equal(lk->pcf[i] >> 4, sl_frame_pcf_lit(L->depth, g.fr.size, u, w, z, 9));
                 shadowed += !!(lk->px[i].k & SL_LOOK_SHADOW);
             }
             assert_true(shadowed > 0 && shadowed < g.v.n_pfl);
@@ -877,21 +883,27 @@ static void moderno_lookups_as_computed(void **st)
                 p.level = runs[r].key == SL_PARAM_LEVEL ? runs[r].value : 0;
                 p.finish = runs[r].key == SL_PARAM_FINISH ? runs[r].value : 0;
                 p.self_shadow = runs[r].key == SL_PARAM_SELF_SHADOW ? runs[r].value : 0;
-                struct fig_out with, without;
+                struct fig_out with, nopcf, without;
                 fig_run_params(&g, runs[r].method, &p, &with);
-                /* the frame without them: the method makes its own */
+                /* the lookups without their counts, then none: the method makes its own */
                 struct sl_frame_look keep = g.fr.look;
+                g.fr.look.pcf = NULL;
+                fig_run_params(&g, runs[r].method, &p, &nopcf);
                 g.fr.look.px = NULL;
                 fig_run_params(&g, runs[r].method, &p, &without);
                 g.fr.look = keep;
-                for (int k = 0; k < 5; k++)
+                for (int k = 0; k < 5; k++) {
                     assert_memory_equal(with.a[k], without.a[k], npx);
+                    assert_memory_equal(nopcf.a[k], without.a[k], npx);
+                }
                 assert_int_equal(with.cost.lookups, without.cost.lookups);
                 assert_int_equal(with.cost.tri_tests, without.cost.tri_tests);
                 assert_int_equal(with.cost.rays, without.cost.rays);
+                assert_int_equal(nopcf.cost.lookups, without.cost.lookups);
                 assert_true(with.cost.lookups > 0);
                 for (int k = 0; k < 5; k++) {
                     free(with.a[k]);
+                    free(nopcf.a[k]);
                     free(without.a[k]);
                 }
             }

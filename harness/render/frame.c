@@ -187,15 +187,41 @@ static void look_drop(struct sl_light_frame *f)
 {
     layer_put(f->pix_pool, f->look.px);
     layer_put(f->pix_pool, f->look.id);
+    layer_put(f->pix_pool, f->look.pcf);
     memset(&f->look, 0, sizeof f->look);
 }
 
+/* The percentage-closer counts added to f's lookups (sl_frame_look). */
+static enum sl_err look_pcf(struct sl_light_frame *f, const struct sl_view *v, int threads, struct sl_diag *d)
+{
+    struct sl_frame_look *k = &f->look;
+    const double t0 = sl_now();
+    uint8_t *pcf = f->pix_pool ? sl_layer_pool_get(f->pix_pool, k->n) : malloc(k->n);
+    if (!pcf)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "percentage-closer counts per pixel (%dx%d)", v->w, v->h);
+    const float *dd = f->layer[k->layer].depth;
+    const struct sl_pix_look *px = k->px;
+    const int S = f->size;
+#pragma omp parallel for num_threads(threads > 0 ? threads : 1) schedule(static)
+    for (long i = 0; i < (long)k->n; i++) {
+        uint8_t c = 0;
+        if (v->cls[i] != SL_C_BACKGROUND && v->cls[i] != SL_C_PNFL) {
+            const struct sl_pix_look q = px[i];
+            c = (uint8_t)(sl_frame_pcf_lit(dd, S, q.u, q.v, q.z, 4) | sl_frame_pcf_lit(dd, S, q.u, q.v, q.z, 9) << 4);
+        }
+        pcf[i] = c;
+    }
+    k->pcf = pcf;
+    k->ms_pcf = 1e3 * (sl_now() - t0);
+    return SL_OK;
+}
+
 enum sl_err sl_frame_look(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
-                          struct sl_diag *d)
+                          unsigned parts, struct sl_diag *d)
 {
     const size_t n = (size_t)v->w * (size_t)v->h;
     if (sl_frame_look_of(f, l, v->serial, n))
-        return SL_OK;
+        return (parts & SL_LOOK_PCF) && !f->look.pcf ? look_pcf(f, v, threads, d) : SL_OK;
     const struct sl_depth_layer *L = &f->layer[l];
     if (!(f->have & SL_NEED(l)) || L->per_pixel || !L->depth || !L->id)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "lookups: layer %d is not a dense depth + id layer", l);
@@ -226,7 +252,7 @@ enum sl_err sl_frame_look(struct sl_light_frame *f, int l, const struct sl_view 
     }
     f->look = (struct sl_frame_look){.px = px, .id = id, .layer = l, .serial = v->serial, .n = n,
                                      .ms = 1e3 * (sl_now() - t0)};
-    return SL_OK;
+    return (parts & SL_LOOK_PCF) ? look_pcf(f, v, threads, d) : SL_OK;
 }
 
 void sl_frame_drop_layer(struct sl_light_frame *f, int l)

@@ -137,10 +137,13 @@ struct sl_pix_look {
 struct sl_frame_look {
     struct sl_pix_look *px;     /* per pixel; the fixed pixels (sl_verdict_fixed) hold zeros */
     uint32_t *id;               /* the layer's id at k, per pixel (0 for the fixed ones) */
+    uint8_t *pcf;               /* with SL_LOOK_PCF, per pixel: sl_frame_pcf_lit's count over 4
+                                 * texels (bits 0-3) and over 9 (bits 4-7); else NULL */
     int layer;                  /* which layer */
     uint64_t serial;            /* of that view (view.h) */
     size_t n;                   /* and that many pixels */
     double ms;                  /* wall time of the pass that made them */
+    double ms_pcf;              /* and of the one that added pcf */
 };
 
 struct sl_light_frame {
@@ -263,6 +266,42 @@ struct sl_view;
 enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
                             struct sl_diag *d);
 
+/* Percentage-closer count at texel coordinates (u, v) and window depth z
+ * in a depth array of S x S texels: how many of the texels light the
+ * point (z <= depth), over the 2x2 of its bilinear footprint (texels 4:
+ * from floor(u - 1/2), floor(v - 1/2)) or the 3x3 around its texel
+ * (texels 9), each texel clamped to the map at its border. */
+static inline int sl_frame_pcf_lit(const float *depth, int S, float u, float v, float z, int texels)
+{
+    int x0, y0, n;
+    if (texels == 4) {
+        x0 = (int)floorf(u - 0.5f);
+        y0 = (int)floorf(v - 0.5f);
+        n = 2;
+    } else {
+        x0 = (int)floorf(u) - 1;
+        y0 = (int)floorf(v) - 1;
+        n = 3;
+    }
+    int lit = 0;
+    if (x0 >= 0 && y0 >= 0 && x0 + n <= S && y0 + n <= S) {
+        /* the footprint inside the map (all but the border texels): no clamps */
+        const float *row = depth + (size_t)y0 * (size_t)S + (size_t)x0;
+        for (int j = 0; j < n; j++, row += S)
+            for (int i = 0; i < n; i++)
+                lit += z <= row[i];
+        return lit;
+    }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int tx = x0 + i, ty = y0 + j;
+            tx = tx < 0 ? 0 : tx >= S ? S - 1 : tx;
+            ty = ty < 0 ? 0 : ty >= S ? S - 1 : ty;
+            lit += z <= depth[(size_t)ty * (size_t)S + (size_t)tx];
+        }
+    return lit;
+}
+
 /* Each pixel's lookup in dense layer l for view v (struct sl_pix_look),
  * made here once per (frame, view, layer) and kept in f->look, for the
  * methods that look the layer up around each pixel's texel (Moderno's,
@@ -272,7 +311,11 @@ enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_vie
  * so the same bits. Arrays from f->pix_pool. SL_E_NOMEM when out of
  * memory; SL_E_INTERNAL when the layer is not dense. */
 enum sl_err sl_frame_look(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
-                          struct sl_diag *d);
+                          unsigned parts, struct sl_diag *d);
+/* parts: also each pixel's percentage-closer counts (sl_frame_pcf_lit, 4
+ * and 9 texels), for the methods that test the texels around the pixel's
+ * (Moderno's coherence and its chain): added to lookups made without them */
+#define SL_LOOK_PCF 1u
 /* f's lookups in layer l for view v, NULL when sl_frame_look did not make them. */
 static inline const struct sl_frame_look *sl_frame_look_of(const struct sl_light_frame *f, int l,
                                                            uint64_t serial, size_t n)
