@@ -68,12 +68,12 @@ int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struc
 /* The layers the group's remaining cells from `from` need (mask), and of
  * those the ones some cell reads beyond its pixels' own texels (*dense). */
 static unsigned group_layers(const struct sl_config *c, int from, int last, struct sl_store *st, int resume,
-                             unsigned *dense)
+                             unsigned *dense, unsigned looks[2])
 {
     struct sl_cell_key k0, k;
     sl_plan_cell(c, from, &k0);
     unsigned needs = 0;
-    *dense = 0;
+    *dense = looks[0] = looks[1] = 0;
     for (int i = from; i < last; i++) {
         sl_plan_cell(c, i, &k);
         if (k.scene != k0.scene || k.viewport != k0.viewport || k.vp != k0.vp || k.map != k0.map)
@@ -84,20 +84,29 @@ static unsigned group_layers(const struct sl_config *c, int from, int last, stru
         const unsigned n = m->needs(&c->methods[k.method].params);
         needs |= n;
         *dense |= n & ~m->at_pixel;
+        looks[1] |= looks[0] & n & m->looks;
+        looks[0] |= n & m->looks;
     }
     return needs;
 }
 
 unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
 {
-    unsigned dense;
-    return group_layers(c, from, last, st, resume, &dense);
+    unsigned dense, looks[2];
+    return group_layers(c, from, last, st, resume, &dense, looks);
 }
 
 unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
 {
-    unsigned dense, needs = group_layers(c, from, last, st, resume, &dense);
+    unsigned dense, looks[2], needs = group_layers(c, from, last, st, resume, &dense, looks);
     return needs & ~dense & ((1u << SL_LAYER_COUNT) - 1u);
+}
+
+void sl_plan_group_looks(const struct sl_config *c, int from, int last, struct sl_store *st, int resume,
+                         unsigned looks[2])
+{
+    unsigned dense;
+    group_layers(c, from, last, st, resume, &dense, looks);
 }
 
 /* 2 where a view (scene, viewport, viewpoint) starts at cell i, 1 where only

@@ -39,6 +39,13 @@ unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, stru
  * may hold them gathered per pixel (frame.h, sl_frame_gather). */
 unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, struct sl_store *st, int resume);
 
+/* Of those layers, the ones that selected cells of the group read through
+ * the lookups the run makes per view (method.h: looks; frame.h:
+ * sl_frame_look): looks[0] read so by one cell or more, looks[1] by two or
+ * more (worth a pass of their own). */
+void sl_plan_group_looks(const struct sl_config *c, int from, int last, struct sl_store *st, int resume,
+                         unsigned looks[2]);
+
 /* Split the sweep into at most n slices [b[i], b[i+1]) (b holds n + 1
  * ints) for tasks or worker processes: balanced by cell count, each cut moved
  * to a view boundary (scene, viewport, viewpoint) when one lies within a

@@ -49,6 +49,7 @@ void sl_run_result_free(struct sl_run_result *r)
 /* ---- the run ---- */
 
 struct run_ctx {
+    unsigned looks[2];   /* layers the rest of the view's group reads through lookups (plan.h) */
     struct sl_gl gl;
     struct sl_rt rt;
     /* current scene */
@@ -464,14 +465,19 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
 
 /* Each pixel's lookup in the dense layers method m reads (needs) and
  * declares (looks), once per (frame, view) for every such method of the
- * view (frame.h: sl_frame_look); a point light's methods read the cube's
- * faces, which make none. */
+ * view (frame.h: sl_frame_look). Made only where two readers or more
+ * share them (`shared`: layers so read by the rest of the group, plan.h),
+ * on the view's own frame: one reader alone would pay a pass and its
+ * arrays for nothing. A point light's methods read the cube's faces,
+ * which make none. Lookups made already get the parts m asks for. */
 static enum sl_err make_looks(struct run_ctx *x, const struct sl_config *c, const struct sl_method *m,
-                              unsigned needs, struct sl_light_frame *fr, struct sl_diag *d)
+                              unsigned needs, struct sl_light_frame *fr, unsigned shared, struct sl_diag *d)
 {
     enum sl_err e = SL_OK;
+    const size_t n = (size_t)x->view.w * (size_t)x->view.h;
     for (int l = 0; l < SL_LAYER_COUNT && !e && x->scene.light.type != SL_LIGHT_POINT; l++)
-        if ((m->looks & needs & fr->have & SL_NEED(l)) && !fr->layer[l].per_pixel)
+        if ((m->looks & needs & fr->have & SL_NEED(l)) && !fr->layer[l].per_pixel &&
+            ((fr == &x->frame && (shared & SL_NEED(l))) || sl_frame_look_of(fr, l, x->view.serial, n)))
             e = sl_frame_look(fr, l, &x->view, c->threads, m->look_parts, d);
     return e;
 }
@@ -504,7 +510,10 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
             return e;
     }
     size_t npx = (size_t)x->W * (size_t)x->H;
-    if ((e = make_looks(x, c, m, m->needs(&p), &x->frame, d)))
+    /* this run reads the lookups too, besides the group's cells, unless
+     * it is the run of one of them (the NSM label's) */
+    const unsigned shared = x->looks[1] | (label < 0 ? x->looks[0] : 0u);
+    if ((e = make_looks(x, c, m, m->needs(&p), &x->frame, shared, d)))
         return e;
     struct sl_view mview = x->view;
     mview.truth = NULL;
@@ -575,7 +584,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             cell->ms.map_render[j] += x->softmap.ms_near + x->softmap.ms_far;
             cell->ms.gpu_map[j] += x->softmap.ms_gpu_near + x->softmap.ms_gpu_far;
         }
-    if ((e = make_looks(x, c, cm->method, mneeds, fr, d)))
+    if ((e = make_looks(x, c, cm->method, mneeds, fr, x->looks[1], d)))
         return e;
     /* methods get the view without its truth */
     struct sl_view mview = x->view;
@@ -742,6 +751,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume) |
                                (nsm_contour && x.nsm_map != k.map ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
         const unsigned at_pixel = sl_plan_group_at_pixel(c, idx, last, st, o->resume);
+        sl_plan_group_looks(c, idx, last, st, o->resume, x.looks);
         if ((e = ensure_frame(&x, c, &k, needs, at_pixel, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
             (nsm_contour && (e = ensure_contour(&x, c, &k, res, d))))
             break;

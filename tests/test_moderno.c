@@ -21,6 +21,7 @@
 #include "fixture.h"
 #include <cglm/clipspace/ortho_rh_zo.h>
 #include "lightfit.h"
+#include "plan.h"
 #include "run.h"
 #include "shadowmap.h"
 #include "raytri.h"
@@ -915,6 +916,38 @@ static void moderno_lookups_as_computed(void **st)
     }
 }
 
+/* The run makes a view's lookups only for layers two cells of its group
+ * or more read through them: NSM alone (the Morais study's back-face
+ * layer) makes none, NSM with Moderno's methods shares them; a cell's
+ * view of the group is the rest of it. */
+static void moderno_lookups_shared_only(void **st)
+{
+    (void)st;
+    static const char *head = "scenes: [{scene: primitives, viewpoints: [side]}]\n"
+                              "viewports: [{width: 64, height: 64}]\nmap_sizes: [1024]\nmethods:\n";
+    static const struct { const char *methods; int cell; unsigned once, twice; } cases[] = {
+        {"  - {label: nsm, method: nsm, self_shadow: front_faces}\n  - {label: bgsm, method: bgsm}\n", 0,
+         SL_NEED(SL_LAYER_DEPTH_ID_BACK), 0},
+        {"  - {label: nsm, method: nsm, self_shadow: front_faces}\n  - {label: t, method: texel}\n"
+         "  - {label: c, method: coherence}\n", 0, SL_NEED(SL_LAYER_DEPTH_ID_BACK), SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
+        {"  - {label: nsm, method: nsm, self_shadow: front_faces}\n  - {label: t, method: texel}\n"
+         "  - {label: c, method: coherence}\n", 2, SL_NEED(SL_LAYER_DEPTH_ID_BACK), 0},
+        {"  - {label: nsm, method: nsm, self_shadow: none}\n  - {label: t, method: texel}\n", 0,
+         SL_NEED(SL_LAYER_DEPTH_ID_BACK), 0},
+        {"  - {label: b, method: bgsm}\n  - {label: h, method: hertel}\n", 0, 0, 0},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "%s%s", head, cases[i].methods);
+        struct sl_config c;
+        sl_test_config("looks.yaml", text, &c);
+        unsigned looks[2];
+        sl_plan_group_looks(&c, cases[i].cell, c.nmethods, NULL, 0, looks);
+        assert_int_equal(looks[0], cases[i].once);
+        assert_int_equal(looks[1], cases[i].twice);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -929,6 +962,7 @@ int main(int argc, char **argv)
         SL_CASE(moderno, wrong_hints_where),
         SL_CASE(moderno, contour_connectivity),
         SL_CASE(moderno, lookups_as_computed),
+        SL_CASE(moderno, lookups_shared_only),
     };
     return sl_run_group(argc, argv, "moderno", tests, sl_test_setup, sl_test_teardown);
 }
