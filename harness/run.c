@@ -463,23 +463,13 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
     return SL_OK;
 }
 
-/* Each pixel's lookup in the dense layers method m reads (needs) and
- * declares (looks), once per (frame, view) for every such method of the
- * view (frame.h: sl_frame_look). Made only where two readers or more
- * share them (`shared`: layers so read by the rest of the group, plan.h),
- * on the view's own frame: one reader alone would pay a pass and its
- * arrays for nothing. A point light's methods read the cube's faces,
- * which make none. Lookups made already get the parts m asks for. */
+/* sl_run_make_looks for method m on fr, the view's frame or a label's own */
 static enum sl_err make_looks(struct run_ctx *x, const struct sl_config *c, const struct sl_method *m,
                               unsigned needs, struct sl_light_frame *fr, unsigned shared, struct sl_diag *d)
 {
-    enum sl_err e = SL_OK;
-    const size_t n = (size_t)x->view.w * (size_t)x->view.h;
-    for (int l = 0; l < SL_LAYER_COUNT && !e && x->scene.light.type != SL_LIGHT_POINT; l++)
-        if ((m->looks & needs & fr->have & SL_NEED(l)) && !fr->layer[l].per_pixel &&
-            ((fr == &x->frame && (shared & SL_NEED(l))) || sl_frame_look_of(fr, l, x->view.serial, n)))
-            e = sl_frame_look(fr, l, &x->view, c->threads, m->look_parts, d);
-    return e;
+    /* a point light's methods read the cube's faces, which make none */
+    return x->scene.light.type == SL_LIGHT_POINT ? SL_OK
+           : sl_run_make_looks(fr, fr == &x->frame, &x->view, m, needs, shared, c->threads, d);
 }
 
 /* contour_from nsm: the contours of the current view at the cell's map
@@ -510,10 +500,8 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
             return e;
     }
     size_t npx = (size_t)x->W * (size_t)x->H;
-    /* this run reads the lookups too, besides the group's cells, unless
-     * it is the run of one of them (the NSM label's) */
-    const unsigned shared = x->looks[1] | (label < 0 ? x->looks[0] : 0u);
-    if ((e = make_looks(x, c, m, m->needs(&p), &x->frame, shared, d)))
+    /* this run reads the lookups too, besides the group's cells, unless it is the NSM label's */
+    if ((e = make_looks(x, c, m, m->needs(&p), &x->frame, x->looks[1] | (label < 0 ? x->looks[0] : 0u), d)))
         return e;
     struct sl_view mview = x->view;
     mview.truth = NULL;

@@ -39,6 +39,17 @@ int sl_run_contour_label(const struct sl_config *c);
 /* Shadow-map depths outside [0, 1] or not finite. */
 uint64_t sl_run_layer_bad(const struct sl_depth_layer *l, int size);
 
+/* Each pixel's lookup in the dense layers method m reads (needs) and
+ * declares (looks), once per (frame, view) for every such method of the
+ * view (frame.h: sl_frame_look). Made only where two readers or more
+ * share them (`shared`: layers so read by the rest of the group, plan.h),
+ * on the view's own frame (own_frame): one reader alone would pay a pass
+ * and its arrays for nothing. Lookups made already get the parts m asks
+ * for. */
+enum sl_err sl_run_make_looks(struct sl_light_frame *f, int own_frame, const struct sl_view *v,
+                              const struct sl_method *m, unsigned needs, unsigned shared, int threads,
+                              struct sl_diag *d);
+
 /* The layers in `set` that f lacks rendered into it (one render each, then
  * t->warmup + t->runs - 1 timed repetitions into a scratch copy of the
  * frame, timings and bad values into t), then those in `gather` gathered
