@@ -908,9 +908,20 @@ static void moderno_lookups_as_computed(void **st)
                     free(without.a[k]);
                 }
             }
-            /* dropping the layer drops its lookups */
+            /* gathering the layer per pixel drops its lookups (their
+             * counts read the dense map) and none are made on it again
+             * (the first map size); dropping it drops them (the second) */
+            if (m == 0) {
+                assert_int_equal(sl_frame_gather(&g.fr, l, &g.v, 2, &d), SL_OK);
+                assert_null(g.fr.look.px);
+                assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
+                assert_int_equal(sl_frame_look(&g.fr, l, &g.v, 2, 0, &d), SL_E_INTERNAL);
+            } else {
+                assert_non_null(g.fr.look.px);
+            }
             sl_frame_drop_layer(&g.fr, l);
             assert_null(g.fr.look.px);
+            assert_int_equal(sl_frame_look(&g.fr, l, &g.v, 2, 0, &d), SL_E_INTERNAL);
         }
         fig_close(&g);
     }

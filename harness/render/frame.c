@@ -149,6 +149,15 @@ static const uint32_t *pixel_texels(struct sl_light_frame *f, const struct sl_vi
     return k;
 }
 
+/* The lookups' arrays back to the pool; none kept. */
+static void look_drop(struct sl_light_frame *f)
+{
+    layer_put(f->pix_pool, f->look.px);
+    layer_put(f->pix_pool, f->look.id);
+    layer_put(f->pix_pool, f->look.pcf);
+    memset(&f->look, 0, sizeof f->look);
+}
+
 enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_view *v, int threads,
                             struct sl_diag *d)
 {
@@ -174,21 +183,14 @@ enum sl_err sl_frame_gather(struct sl_light_frame *f, int l, const struct sl_vie
         if (id)
             id[i] = k == NO_TEXEL ? 0u : di[k];
     }
+    if (f->look.px && f->look.layer == l)
+        look_drop(f);   /* made on the dense arrays given back here */
     layer_put(f->pool, L->depth);
     layer_put(f->pool, L->id);
     L->depth = depth;
     L->id = id;
     L->per_pixel = 1;
     return SL_OK;
-}
-
-/* The lookups' arrays back to the pool; none kept. */
-static void look_drop(struct sl_light_frame *f)
-{
-    layer_put(f->pix_pool, f->look.px);
-    layer_put(f->pix_pool, f->look.id);
-    layer_put(f->pix_pool, f->look.pcf);
-    memset(&f->look, 0, sizeof f->look);
 }
 
 /* The percentage-closer counts added to f's lookups (sl_frame_look). */

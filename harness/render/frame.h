@@ -321,7 +321,8 @@ static inline const struct sl_frame_look *sl_frame_look_of(const struct sl_light
                                                            uint64_t serial, size_t n)
 {
     const struct sl_frame_look *k = &f->look;
-    return k->px && k->layer == l && k->serial == serial && k->n == n && (f->have & SL_NEED(l)) ? k : NULL;
+    return k->px && k->layer == l && k->serial == serial && k->n == n && (f->have & SL_NEED(l)) &&
+           !f->layer[l].per_pixel ? k : NULL;
 }
 
 /* Give one layer's arrays back (to the pool, or free) and mark it not rendered. */
