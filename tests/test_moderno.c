@@ -22,6 +22,7 @@
 #include <cglm/clipspace/ortho_rh_zo.h>
 #include "lightfit.h"
 #include "plan.h"
+#include "runhelp.h"
 #include "run.h"
 #include "shadowmap.h"
 #include "raytri.h"
@@ -959,6 +960,43 @@ static void moderno_lookups_shared_only(void **st)
     }
 }
 
+/* The run's rule (sl_run_make_looks): lookups on the view's own frame
+ * for a layer shared by the group, none for an unshared one or another
+ * frame, and lookups made already get the parts a later reader asks for
+ * (coherence's counts after NSM made them without). */
+static void moderno_lookups_made_by_rule(void **st)
+{
+    (void)st;
+    struct fig g;
+    fig_open(&g, "bench");
+    fig_view_study(&g, 0);
+    fig_frame_study(&g, 1024);
+    struct sl_diag d;
+    const size_t npx = (size_t)g.v.w * g.v.h;
+    const int l = SL_LAYER_DEPTH_ID_BACK;
+    const unsigned back = SL_NEED(l);
+    const struct sl_method *nsm = sl_method_find("nsm"), *coh = sl_method_find("coherence"),
+                           *bgsm = sl_method_find("bgsm");
+    assert_non_null(nsm);
+    assert_non_null(coh);
+    assert_non_null(bgsm);
+    /* not shared, or not the view's frame, or a method that reads none: none */
+    assert_int_equal(sl_run_make_looks(&g.fr, 1, &g.v, nsm, back, 0, 2, &d), SL_OK);
+    assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
+    assert_int_equal(sl_run_make_looks(&g.fr, 0, &g.v, nsm, back, back, 2, &d), SL_OK);
+    assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
+    assert_int_equal(sl_run_make_looks(&g.fr, 1, &g.v, bgsm, back, back, 2, &d), SL_OK);
+    assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
+    /* shared on the view's frame: made, without the counts NSM does not read */
+    assert_int_equal(sl_run_make_looks(&g.fr, 1, &g.v, nsm, back, back, 2, &d), SL_OK);
+    assert_non_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
+    assert_null(g.fr.look.pcf);
+    /* the group's last reader (no longer shared) still gets its part */
+    assert_int_equal(sl_run_make_looks(&g.fr, 1, &g.v, coh, back, 0, 2, &d), SL_OK);
+    assert_non_null(g.fr.look.pcf);
+    fig_close(&g);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -974,6 +1012,7 @@ int main(int argc, char **argv)
         SL_CASE(moderno, contour_connectivity),
         SL_CASE(moderno, lookups_as_computed),
         SL_CASE(moderno, lookups_shared_only),
+        SL_CASE(moderno, lookups_made_by_rule),
     };
     return sl_run_group(argc, argv, "moderno", tests, sl_test_setup, sl_test_teardown);
 }
