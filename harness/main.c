@@ -28,8 +28,6 @@
 #include "usage.h"
 #include "util.h"
 
-
-
 /* 2: bad input or usage (a config, a scene, a model, an option, a store or
  * file that cannot be read as what it should be); 3: a system failure (an
  * output that cannot be written, GL, Embree, memory, an internal error). */
@@ -57,7 +55,6 @@ static int usage_error(const char *msg, const char *text)
     return 2;
 }
 
-
 /* ---- options: getopt_long per verb ----
  * Each verb has a table of long options and a short-option string; opt_next
  * returns the next option (as getopt_long does), handles --help itself and
@@ -69,6 +66,7 @@ enum {
     OPT_CELLS = 256, OPT_RESUME, OPT_DB, OPT_NO_CACHE, OPT_GL, OPT_FORMAT, OPT_SCENE, OPT_VIEWPOINT,
     OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_FIGURES, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
     OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX, OPT_CACHE, OPT_JOBS, OPT_SIZE,
+    OPT_ALLOW_MIXED,
 };
 #define OPT_HELP {"help", no_argument, NULL, 'h'}
 enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };
@@ -326,13 +324,18 @@ static int run_jobs(const struct sl_config *c, const struct sl_jobs_opts *o)
 
 static int cmd_merge(int argc, char **argv)
 {
-    static const struct option lo[] = {OPT_HELP, {"out", required_argument, NULL, 'o'}, {0, 0, 0, 0}};
+    static const struct option lo[] = {OPT_HELP, {"out", required_argument, NULL, 'o'},
+                                       {"allow-mixed", no_argument, NULL, OPT_ALLOW_MIXED}, {0, 0, 0, 0}};
     const struct opt_parser p = {"merge", "o:", sl_usage_merge, lo};
     const char *out = NULL;
+    unsigned flags = 0;
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
-        if (c != 'o')
+        if (c == OPT_ALLOW_MIXED)
+            flags |= SL_MERGE_ALLOW_MIXED;
+        else if (c != 'o')
             return opt_exit(c);
-        out = optarg;
+        else
+            out = optarg;
     }
     int n = argc - optind;
     if (!out || n < 1)
@@ -341,9 +344,36 @@ static int cmd_merge(int argc, char **argv)
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     struct sl_shards_result r;
-    enum sl_err e = sl_shards_merge(shards, n, out, 0, &r, &d);
+    enum sl_err e = sl_shards_merge(shards, n, out, flags, &r, &d);
     int rc = e ? fail(e, &d) : print_merge(shards, &r, out);
     sl_shards_result_free(&r);
+    return rc;
+}
+
+/* Every cell against its digest: exit 0 intact, 2 naming each damaged cell. */
+static int cmd_verify(int argc, char **argv)
+{
+    static const struct option lo[] = {OPT_HELP, {0, 0, 0, 0}};
+    const struct opt_parser p = {"verify", "", sl_usage_verify, lo};
+    for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;)
+        return opt_exit(c);
+    if (argc - optind != 1)
+        return usage_error("verify: wants one STORE.db", sl_usage_verify);
+    const char *db = argv[optind];
+    struct sl_diag d = {0};
+    struct sl_store *st = NULL;
+    struct sl_store_verify v = {0};
+    enum sl_err e = sl_store_open_existing(db, &st, &d);
+    e = e ? e : sl_store_verify(st, &v, &d);
+    sl_store_close(st);
+    for (int i = 0; !e && i < v.ndamaged; i++)
+        fprintf(stderr, "shadowlab: verify: %s: damaged cell %s (cell %lld, run %lld): its rows no longer match "
+                "their digest\n", db, v.damaged[i].key, (long long)v.damaged[i].cell_id, (long long)v.damaged[i].run_id);
+    if (!e)
+        printf("%s: %ld cell(s), %ld figure row(s) checked in %.3f s (%.1f us per cell): %d damaged\n", db, v.cells,
+               v.figures, v.seconds, v.cells ? 1e6 * v.seconds / (double)v.cells : 0.0, v.ndamaged);
+    int rc = e ? fail(e, &d) : v.ndamaged ? 2 : 0;
+    sl_store_verify_free(&v);
     return rc;
 }
 
@@ -939,6 +969,7 @@ int main(int argc, char **argv)
         {"bench", cmd_bench, sl_usage_bench},
         {"submit", cmd_submit, sl_usage_submit},
         {"merge", cmd_merge, sl_usage_merge},
+        {"verify", cmd_verify, sl_usage_verify},
         {"preview", cmd_preview, sl_usage_preview},
         {"list", cmd_list, sl_usage_list},
     };

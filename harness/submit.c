@@ -53,7 +53,15 @@ static enum sl_err sweep_config(const struct sl_merge *m, const char *out_dir, s
     return e;
 }
 
-enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, int append,
+/* Not there at all (its cells are then reported missing); anything else
+ * that is there is probed, and refused unless it is a sound store. */
+static int absent(const char *p)
+{
+    struct stat sb;
+    return lstat(p, &sb) != 0 && errno == ENOENT;
+}
+
+enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, unsigned flags,
                             struct sl_shards_result *r, struct sl_diag *d)
 {
     memset(r, 0, sizeof *r);
@@ -64,10 +72,10 @@ enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, i
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "merge result");
     /* every shard there is checked before the merged store is touched: a
      * shard of another config leaves nothing half merged */
-    const char *first = NULL;
-    char hash[24] = "";
+    const char *first = NULL, *first_prov = NULL;
+    char hash[24] = "", prov[256] = "";
     for (int i = 0; i < n; i++) {
-        if (!file_exists(shards[i]))
+        if (absent(shards[i]))
             continue;
         struct sl_merge_shard p;
         enum sl_err e = sl_merge_probe(shards[i], &p, d);
@@ -83,6 +91,18 @@ enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, i
                            "holds config hash %s (study '%s'), but %s holds %s: not a shard of the same sweep",
                            p.config_hash, p.study, first, hash);
         }
+        /* numbers of two builds, GL renderers or ISAs are not one sweep
+         * unless asked: the merged runs keep each provenance either way */
+        if (!(flags & SL_MERGE_ALLOW_MIXED) && p.other[0])
+            return sl_fail(d, SL_E_USAGE, shards[i], 0, NULL, "holds cells of %s and of %s: merge with "
+                           "--allow-mixed to keep both", p.provenance, p.other);
+        if (!(flags & SL_MERGE_ALLOW_MIXED) && p.provenance[0] && first_prov && strcmp(prov, p.provenance) != 0)
+            return sl_fail(d, SL_E_USAGE, shards[i], 0, NULL, "its cells are of %s, but %s's of %s: merge with "
+                           "--allow-mixed to keep both", p.provenance, first_prov, prov);
+        if (p.provenance[0] && !first_prov) {
+            first_prov = shards[i];
+            snprintf(prov, sizeof prov, "%s", p.provenance);
+        }
     }
     char dir[1200];
     snprintf(dir, sizeof dir, "%s", out);
@@ -95,11 +115,11 @@ enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, i
     if (e)
         return e;
     struct sl_merge *m = NULL;
-    if ((e = sl_merge_open(out, append, &m, d)))
+    if ((e = sl_merge_open(out, (flags & SL_MERGE_APPEND) != 0, &m, d)))
         return e;
     double t0 = sl_now();
     for (int i = 0; i < n && !e; i++) {
-        if (!file_exists(shards[i])) {
+        if (absent(shards[i])) {
             r->absent[i] = 1;
             continue;
         }

@@ -37,11 +37,14 @@ struct sl_shards_result {
 };
 /* Merge shards[0..n) into out (created; its folder made). A shard file that
  * is not there is noted (absent) and its cells come out as missing; any
- * other shard that cannot be read, or of another config, fails the merge.
- * append: copy every cell even when the key is stored already (a fresh
- * computation, as `run --jobs` makes, supersedes an older one as a second
- * `run` would); else a stored key is a duplicate and is skipped. */
-enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, int append,
+ * other shard (a folder, a device, a damaged store, another config) fails
+ * the merge before anything is written, and so do shards whose cells come
+ * from two git SHAs, GL renderers or ISAs unless flags has
+ * SL_MERGE_ALLOW_MIXED (merge.h). SL_MERGE_APPEND: a shard's cell replaces
+ * a stored one of its key (a fresh computation, as `run --jobs` makes,
+ * supersedes an older one as a second `run` would); else a stored key is a
+ * duplicate and is skipped. */
+enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, unsigned flags,
                             struct sl_shards_result *r, struct sl_diag *d);
 void sl_shards_result_free(struct sl_shards_result *r);
 

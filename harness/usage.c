@@ -11,6 +11,7 @@ const char sl_usage[] =
     "  bench [CONFIG] [options]   every stage against its plain counterpart, the studies, their targets\n"
     "  submit CONFIG --slurm ...  the sweep as a Slurm job array plus a merge job (shadowlab submit --help)\n"
     "  merge SHARD.db... -o DB    the stores of a split sweep into one; exit 1 if a cell is missing\n"
+    "  verify DB                  every stored cell against its digest; exit 2 naming damaged ones\n"
     "  preview SCENE [options]    a quick shaded PNG per viewpoint, for framing cameras\n"
     "  list methods|scenes        what can be named in a config\n"
     "  version, -V, --version     the git SHA this binary was built from\n";
@@ -140,11 +141,24 @@ const char sl_usage_submit[] =
     "  --out DIR            default results/; must be on a filesystem every node sees\n";
 
 const char sl_usage_merge[] =
-    "usage: shadowlab merge SHARD.db... -o STORE.db\n"
+    "usage: shadowlab merge SHARD.db... -o STORE.db [--allow-mixed]\n"
     "  Copies the runs and cells of each shard (one config, the same in every shard) into STORE.db,\n"
     "  one transaction per shard; a cell already there is a duplicate and is not copied again. The\n"
     "  overlays and EXR files go under STORE.db's folder. Names the cells of the sweep no shard\n"
-    "  holds; exit 1 when any is missing, 2 when a shard holds another config or cannot be read.\n";
+    "  holds; exit 1 when any is missing. Every shard is checked first, and nothing is written when\n"
+    "  one is a folder or device, damaged (SQLite's quick_check, or a cell that fails its digest,\n"
+    "  as `verify` checks) or of another config: exit 2 naming it.\n"
+    "  --allow-mixed  merge shards whose cells come from other git SHAs, GL renderers or ISAs\n"
+    "                 (refused by default; each merged run keeps its own provenance)\n";
+
+const char sl_usage_verify[] =
+    "usage: shadowlab verify STORE.db\n"
+    "  Checks a results store: SQLite's quick_check, then each cell's digest (a CRC-32 over every\n"
+    "  column of the cell row and of each of its figure rows, written with the cell) recomputed\n"
+    "  from what is stored. Names each damaged cell (scene/viewpoint/viewport/map/label) on stderr;\n"
+    "  exit 0 when every cell is intact, 2 when one is not or the file is not a sound store.\n"
+    "  table, report, check and merge check the digest of every cell they read the same way.\n"
+    "  Opens the store read-only (a store on read-only media can be verified).\n";
 
 const char sl_usage_preview[] =
     "usage: shadowlab preview SCENE [--viewpoint V] [-o DIR] [--size WxH] [--gl osmesa|egl]\n"

@@ -13,5 +13,6 @@ extern const char sl_usage_bench[];
 extern const char sl_usage_list[];
 extern const char sl_usage_submit[];
 extern const char sl_usage_merge[];
+extern const char sl_usage_verify[];
 extern const char sl_usage_preview[];
 #endif

@@ -409,8 +409,8 @@ static void store_latest_run_wins(void **st)
     assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c2, &d), SL_OK);
     assert_int_equal(sl_store_begin_run(s, &p2, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run2, &d), SL_OK);
     assert_true(run2 > run1);
-    struct sl_cell_record c3 = make_cell("side", 1024, "nsm_a", &f3, NULL, 5000);  /* c1's key */
-    assert_int_equal(sl_store_put_cell(s, run2, HASH_A, &c3, &d), SL_OK);
+    struct sl_cell_record c3 = make_cell("side", 1024, "nsm_a", &f3, NULL, 5000);  /* c1's key, another config */
+    assert_int_equal(sl_store_put_cell(s, run2, HASH_B, &c3, &d), SL_OK);
     assert_int_equal(sl_store_count(s, "runs"), 2);
     assert_int_equal(sl_store_count(s, "cells"), 3);
 
@@ -418,7 +418,12 @@ static void store_latest_run_wins(void **st)
     int n = 0;
     assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
     assert_int_equal(n, 2);
-    assert_cell(find(cells, n, "side", 1024), 5000, &f3, "def5678");
+    const struct sl_cell_record *latest = find(cells, n, "side", 1024);   /* c3, of the other config */
+    assert_non_null(latest);
+    assert_string_equal(latest->config_hash, "fedcba9876543210");
+    assert_string_equal(latest->git_sha, "def5678");
+    assert_int_equal(latest->n_pfl, 5001);
+    assert_same_fig(&latest->fig, &f3);
     assert_cell(find(cells, n, "side", 2048), 3000, &f2, "abc1234");
     free(cells);
 
@@ -750,6 +755,149 @@ static void store_new_file_is_current_version_wal(void **st)
     tmp_remove(&t);
 }
 
+/* issue 34: one cell per config hash and key, whatever writes it. A cell
+ * computed again (a run without --resume) replaces the stored one, figures
+ * and all, in its transaction; the schema itself refuses a second row. */
+static void store_key_stored_once(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p1, p2;
+    fill_prov(&p1, "abc1234");
+    fill_prov(&p2, "def5678");
+    int64_t run1 = 0, run2 = 0;
+    assert_int_equal(sl_store_begin_run(s, &p1, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run1, &d), SL_OK);
+    struct sl_figures f1, f2;
+    make_fig(&f1, 1000, thick4, 4);
+    make_fig(&f2, 3000, thick3, 3);
+    struct sl_cell_record c1 = make_cell("side", 1024, "nsm_a", &f1, NULL, 1000);
+    struct sl_cell_record c2 = make_cell("side", 1024, "nsm_a", &f2, NULL, 3000);   /* c1's key */
+    assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
+    long figs1 = sl_store_count(s, "figures");
+    assert_int_equal(sl_store_begin_run(s, &p2, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run2, &d), SL_OK);
+    assert_int_equal(sl_store_put_cell(s, run2, HASH_A, &c2, &d), SL_OK);
+    assert_int_equal(sl_store_count(s, "cells"), 1);
+    assert_true(sl_store_count(s, "figures") < figs1);   /* 3 regions now, not 4 + 3 */
+    struct sl_cell_record *cells = NULL;
+    int n = 0;
+    assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
+    assert_int_equal(n, 1);
+    assert_cell(&cells[0], 3000, &f2, "def5678");
+    free(cells);
+    sl_store_close(s);
+    /* no path around it: a raw second row of the key breaks the schema */
+    sqlite3 *raw = NULL;
+    assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
+    char *sql = sqlite3_mprintf("CREATE TEMP TABLE c AS SELECT * FROM cells; UPDATE c SET cell_id = cell_id + 1; "
+                                "INSERT INTO cells SELECT * FROM c");
+    assert_int_not_equal(sqlite3_exec(raw, sql, NULL, NULL, NULL), SQLITE_OK);
+    assert_non_null(strstr(sqlite3_errmsg(raw), "UNIQUE"));
+    sqlite3_free(sql);
+    sqlite3_close(raw);
+    tmp_remove(&t);
+}
+
+/* issue 34: each cell's digest covers its figure rows: one changed digit of
+ * a stored percent_of, or a count, is found by verify and refused by every
+ * reader (query), naming the cell; an untouched store verifies clean. */
+static void store_digest_finds_changed_figure(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *s = NULL;
+    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_provenance p1;
+    fill_prov(&p1, "abc1234");
+    int64_t run1 = 0;
+    assert_int_equal(sl_store_begin_run(s, &p1, "study_s", "c.yaml", HASH_A, "name: study_s\n", &run1, &d), SL_OK);
+    struct sl_figures f1, f2;
+    make_fig(&f1, 1000, thick4, 4);
+    make_fig(&f2, 3000, thick3, 3);
+    struct sl_cell_record c1 = make_cell("side", 1024, "nsm_a", &f1, NULL, 1000);
+    struct sl_cell_record c2 = make_cell("side", 2048, "nsm_a", &f2, NULL, 3000);
+    assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c1, &d), SL_OK);
+    assert_int_equal(sl_store_put_cell(s, run1, HASH_A, &c2, &d), SL_OK);
+    struct sl_store_verify v;
+    assert_int_equal(sl_store_verify(s, &v, &d), SL_OK);
+    assert_int_equal(v.cells, 2);
+    assert_int_equal(v.ndamaged, 0);
+    assert_true(v.figures > 0);
+    sl_store_verify_free(&v);
+    sl_store_close(s);
+
+    static const char *const edits[] = {
+        "UPDATE figures SET percent_of = 'pixelz' WHERE rowid = (SELECT min(f.rowid) FROM figures f JOIN cells c "
+        "USING (cell_id) WHERE c.map_size = 2048 AND f.percent_of IS NOT NULL)",
+        "UPDATE figures SET count = count + 1 WHERE rowid = (SELECT max(f.rowid) FROM figures f JOIN cells c "
+        "USING (cell_id) WHERE c.map_size = 2048)",
+    };
+    for (size_t i = 0; i < sizeof edits / sizeof edits[0]; i++) {
+        char copy[160];
+        snprintf(copy, sizeof copy, "%s/edit%zu.db", t.dir, i);
+        sqlite3 *raw = NULL;
+        assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
+        char *q = sqlite3_mprintf("VACUUM INTO %Q", copy);
+        assert_int_equal(sqlite3_exec(raw, q, NULL, NULL, NULL), SQLITE_OK);
+        sqlite3_free(q);
+        sqlite3_close(raw);
+        assert_int_equal(sqlite3_open(copy, &raw), SQLITE_OK);
+        assert_int_equal(sqlite3_exec(raw, edits[i], NULL, NULL, NULL), SQLITE_OK);
+        assert_int_equal(sqlite3_changes(raw), 1);
+        sqlite3_close(raw);
+        assert_int_equal(sl_store_open_existing(copy, &s, &d), SL_OK);
+        assert_int_equal(sl_store_verify(s, &v, &d), SL_OK);
+        assert_int_equal(v.cells, 2);
+        assert_int_equal(v.ndamaged, 1);
+        assert_string_equal(v.damaged[0].key, "prim_s/side/640x480/2048/nsm_a");
+        sl_store_verify_free(&v);
+        struct sl_cell_record *cells = NULL;
+        int n = 0;
+        assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_E_IO);
+        assert_non_null(strstr(d.msg, "prim_s/side/640x480/2048/nsm_a"));
+        assert_non_null(strstr(d.msg, "damaged"));
+        assert_null(cells);
+        sl_store_close(s);
+        unlink(copy);
+    }
+    tmp_remove(&t);
+}
+
+/* issue 34: the writer's lock is the file's, not the path's: a second
+ * writer through a symbolic link to the store, or to its folder, is refused;
+ * so is a relative spelling. */
+static void store_lock_follows_links(void **st)
+{
+    (void)st;
+    struct tmp t;
+    tmp_make(&t);
+    struct sl_diag d;
+    struct sl_store *a = NULL, *b = NULL;
+    assert_int_equal(sl_store_open(t.db, &a, &d), SL_OK);
+    char link_file[160], link_dir[160], via_dir[200];
+    snprintf(link_file, sizeof link_file, "%s/alias.db", t.dir);
+    snprintf(link_dir, sizeof link_dir, "%s-dirlink", t.dir);
+    snprintf(via_dir, sizeof via_dir, "%s/shadowlab.db", link_dir);
+    assert_int_equal(symlink(t.db, link_file), 0);
+    assert_int_equal(symlink(t.dir, link_dir), 0);
+    assert_int_equal(sl_store_open(link_file, &b, &d), SL_E_IO);
+    assert_null(b);
+    assert_non_null(strstr(d.msg, "in use by another run"));
+    assert_int_equal(sl_store_open(via_dir, &b, &d), SL_E_IO);
+    assert_non_null(strstr(d.msg, "in use by another run"));
+    sl_store_close(a);
+    assert_int_equal(sl_store_open(link_file, &b, &d), SL_OK);   /* released: through the link too */
+    sl_store_close(b);
+    unlink(link_file);
+    unlink(link_dir);
+    tmp_remove(&t);
+}
+
 static void store_missing_folder_is_an_error(void **st)
 {
     (void)st;
@@ -837,6 +985,9 @@ int main(int argc, char **argv)
         SL_CASE(store, refuses_other_version),
         SL_CASE(store, new_file_is_current_version_wal),
         SL_CASE(store, missing_folder_is_an_error),
+        SL_CASE(store, key_stored_once),
+        SL_CASE(store, digest_finds_changed_figure),
+        SL_CASE(store, lock_follows_links),
         SL_CASE(store, one_writer_at_a_time),
         SL_CASE(store, failed_run_keeps_staged_overlays),
     };

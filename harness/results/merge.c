@@ -17,6 +17,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "integrity.h"
+#include "storefile.h"
 #include "util.h"
 
 struct sl_merge {
@@ -28,6 +30,7 @@ struct sl_merge {
     char *config_text;
     char config_path[512];
     char *run_cols, *cell_cols, *fig_cols;   /* comma lists without the ids we remap */
+    struct sl_integ *integ;                  /* digests of the merged cells */
 };
 
 static enum sl_err db_fail(struct sl_merge *m, struct sl_diag *d, const char *what)
@@ -71,7 +74,8 @@ enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **ou
     else
         snprintf(m->dir, sizeof m->dir, ".");
     enum sl_err e = sl_store_open(out_path, &m->store, d);
-    if (!e && sqlite3_open_v2(out_path, &m->db, SQLITE_OPEN_READWRITE, NULL) != SQLITE_OK)
+    /* URIs: shards are attached read-only (sl_storefile_ro_uri) */
+    if (!e && sqlite3_open_v2(out_path, &m->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_URI, NULL) != SQLITE_OK)
         e = db_fail(m, d, "cannot open");
     if (!e) {
         sqlite3_busy_timeout(m->db, 10000);
@@ -81,6 +85,8 @@ enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **ou
         if (!m->run_cols || !m->cell_cols || !m->fig_cols)
             e = db_fail(m, d, "cannot read the schema");
     }
+    if (!e)
+        e = sl_integ_open(m->db, "main", m->path, &m->integ, d);
     if (e) {
         sl_merge_close(m);
         return e;
@@ -93,6 +99,7 @@ void sl_merge_close(struct sl_merge *m)
 {
     if (!m)
         return;
+    sl_integ_close(m->integ);
     sqlite3_close(m->db);
     sl_store_close(m->store);
     sqlite3_free(m->run_cols);
@@ -235,19 +242,53 @@ static enum sl_err shard_hash(sqlite3 *db, const char *schema, const char *shard
     return e;
 }
 
+/* Where the shard's cells were computed: the git SHA, GL renderer and ISA
+ * of the runs that hold cells; a second one in info->other. */
+static enum sl_err shard_provenance(sqlite3 *db, const char *shard, struct sl_merge_shard *info, struct sl_diag *d)
+{
+    sqlite3_stmt *st = NULL;
+    if (sqlite3_prepare_v2(db, "SELECT DISTINCT git_sha, gl_renderer, isa FROM runs WHERE run_id IN "
+                           "(SELECT run_id FROM cells) ORDER BY run_id", -1, &st, NULL) != SQLITE_OK)
+        return sl_fail(d, SL_E_IO, shard, 0, NULL, "cannot read its runs: %s", sqlite3_errmsg(db));
+    int n = 0;
+    while (sqlite3_step(st) == SQLITE_ROW && n < 2) {
+        const char *g = (const char *)sqlite3_column_text(st, 0), *r = (const char *)sqlite3_column_text(st, 1),
+                   *i = (const char *)sqlite3_column_text(st, 2);
+        snprintf(n++ ? info->other : info->provenance, sizeof info->provenance, "git %s, GL '%s', ISA %s",
+                 g ? g : "", r ? r : "", i ? i : "");
+    }
+    sqlite3_finalize(st);
+    return SL_OK;
+}
+
 enum sl_err sl_merge_probe(const char *shard, struct sl_merge_shard *info, struct sl_diag *d)
 {
     memset(info, 0, sizeof *info);
+    struct stat sb;
+    if (stat(shard, &sb) != 0)
+        return sl_fail(d, SL_E_IO, shard, 0, NULL, "cannot read the shard: %s", strerror(errno));
+    if (!S_ISREG(sb.st_mode))
+        return sl_fail(d, SL_E_USAGE, shard, 0, NULL, "%s, not a results store: a shard is a file",
+                       S_ISDIR(sb.st_mode) ? "a folder" : "a device or special file");
     struct sl_store *probe = NULL;
     enum sl_err e = sl_store_open_existing(shard, &probe, d);   /* a results store of this version */
+    /* SQLite's page check and every cell's digest, before anything is written */
+    struct sl_store_verify v = {0};
+    if (!e && !(e = sl_store_verify(probe, &v, d)) && v.ndamaged)
+        e = sl_fail(d, SL_E_IO, shard, 0, NULL, "%d damaged cell(s), the first %s (cell %lld): its rows no "
+                    "longer match their digest (`shadowlab verify` names all); nothing merged", v.ndamaged,
+                    v.damaged[0].key, (long long)v.damaged[0].cell_id);
+    sl_store_verify_free(&v);
     sl_store_close(probe);
     if (e)
         return e;
     sqlite3 *db = NULL;
-    if (sqlite3_open_v2(shard, &db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK)
-        e = sl_fail(d, SL_E_IO, shard, 0, NULL, "cannot open: %s", db ? sqlite3_errmsg(db) : "out of memory");
-    else
-        e = shard_hash(db, "main", shard, info, d);
+    char uri[4200];
+    if (sl_storefile_ro_uri(shard, uri, sizeof uri) != 0 ||
+        sqlite3_open_v2(uri, &db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) != SQLITE_OK)
+        e = sl_fail(d, SL_E_IO, shard, 0, NULL, "cannot open: %s", db ? sqlite3_errmsg(db) : "path too long");
+    else if (!(e = shard_hash(db, "main", shard, info, d)))
+        e = shard_provenance(db, shard, info, d);
     sqlite3_close(db);
     return e;
 }
@@ -287,9 +328,9 @@ static enum sl_err merged_run(struct sl_merge *m, sqlite3_stmt *cp, sqlite3_int6
 static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct sl_merge_shard *info,
                               struct sl_diag *d)
 {
-    sqlite3_int64 premax = 0, *map = NULL;
+    sqlite3_int64 *map = NULL;
     int nmap = 0;
-    sqlite3_stmt *st = NULL, *dup = NULL, *cc = NULL, *cf = NULL, *cr = NULL;
+    sqlite3_stmt *st = NULL, *dup = NULL, *cc = NULL, *cf = NULL, *cr = NULL, *df = NULL, *dc = NULL, *dg = NULL;
     char *ins_r = sqlite3_mprintf("INSERT INTO main.runs (%s) SELECT %s FROM shard.runs WHERE run_id = ?",
                                   m->run_cols, m->run_cols);
     char *ins_c = sqlite3_mprintf("INSERT INTO main.cells (run_id, %s) SELECT ?1, %s FROM shard.cells WHERE cell_id = ?2",
@@ -297,11 +338,6 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
     char *ins_f = sqlite3_mprintf("INSERT INTO main.figures (cell_id, %s) SELECT ?1, %s FROM shard.figures "
                                   "WHERE cell_id = ?2", m->fig_cols, m->fig_cols);
     enum sl_err e = SL_OK;
-    if (sqlite3_prepare_v2(m->db, "SELECT IFNULL(MAX(cell_id), 0) FROM main.cells", -1, &st, NULL) == SQLITE_OK &&
-        sqlite3_step(st) == SQLITE_ROW)
-        premax = sqlite3_column_int64(st, 0);
-    sqlite3_finalize(st);
-    st = NULL;
     if (!ins_c || !ins_f || !ins_r || sqlite3_prepare_v2(m->db, ins_c, -1, &cc, NULL) != SQLITE_OK ||
         sqlite3_prepare_v2(m->db, ins_r, -1, &cr, NULL) != SQLITE_OK ||
         sqlite3_prepare_v2(m->db, ins_f, -1, &cf, NULL) != SQLITE_OK ||
@@ -309,22 +345,37 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
                            "SELECT cell_id, run_id, config_hash, scene, viewpoint, vw, vh, map_size, label, overlay "
                            "FROM shard.cells ORDER BY cell_id", -1, &st, NULL) != SQLITE_OK ||
         sqlite3_prepare_v2(m->db,
-                           "SELECT EXISTS (SELECT 1 FROM main.cells WHERE cell_id <= ?1 AND config_hash = ?2 AND "
-                           "scene = ?3 AND viewpoint = ?4 AND vw = ?5 AND vh = ?6 AND map_size = ?7 AND label = ?8)",
-                           -1, &dup, NULL) != SQLITE_OK)
+                           "SELECT cell_id FROM main.cells WHERE config_hash = ?1 AND scene = ?2 AND viewpoint = ?3 "
+                           "AND vw = ?4 AND vh = ?5 AND map_size = ?6 AND label = ?7",
+                           -1, &dup, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(m->db, "DELETE FROM main.figures WHERE cell_id = ?1", -1, &df, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(m->db, "DELETE FROM main.cells WHERE cell_id = ?1", -1, &dc, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(m->db, "UPDATE main.cells SET digest = ?2 WHERE cell_id = ?1", -1, &dg, NULL) != SQLITE_OK)
         e = db_fail(m, d, "cannot read the shard's cells");
     while (!e && sqlite3_step(st) == SQLITE_ROW) {
         sqlite3_int64 cell = sqlite3_column_int64(st, 0), run = sqlite3_column_int64(st, 1);
-        /* a cell already in the store before this shard: another shard (or
-         * an earlier merge of this one) brought it */
-        sqlite3_bind_int64(dup, 1, premax);
+        /* a key already in the store (the schema holds it once): another
+         * shard or an earlier merge brought it; kept, so merging is
+         * idempotent; append (run --jobs): the fresh cell replaces it, as a
+         * second `run` would */
         for (int k = 2; k <= 8; k++)
-            sqlite3_bind_value(dup, k, sqlite3_column_value(st, k));
-        int is_dup = !m->append && sqlite3_step(dup) == SQLITE_ROW && sqlite3_column_int(dup, 0);
+            sqlite3_bind_value(dup, k - 1, sqlite3_column_value(st, k));
+        sqlite3_int64 old = sqlite3_step(dup) == SQLITE_ROW ? sqlite3_column_int64(dup, 0) : 0;
         sqlite3_reset(dup);
-        if (is_dup) {
+        if (old && !m->append) {
             info->duplicates++;
             continue;
+        }
+        if (old) {
+            sqlite3_bind_int64(df, 1, old);
+            sqlite3_bind_int64(dc, 1, old);
+            int ok = sqlite3_step(df) == SQLITE_DONE && sqlite3_step(dc) == SQLITE_DONE;
+            sqlite3_reset(df);
+            sqlite3_reset(dc);
+            if (!ok) {
+                e = db_fail(m, d, "cannot replace a stored cell");
+                break;
+            }
         }
         sqlite3_int64 to_run = 0;
         if ((e = merged_run(m, cr, run, &map, &nmap, &to_run, info, d)))
@@ -348,12 +399,26 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
         const char *ov = (const char *)sqlite3_column_text(st, 9);
         if (ov && ov[0])
             e = gather_overlay(m, shard_dir, info->study, ov, to, info, d);
+        /* the copy's own digest: its cell id, run id and overlay path are the merged store's */
+        uint32_t digest = 0;
+        if (!e && sl_integ_digest(m->integ, to, &digest) != SQLITE_OK)
+            e = db_fail(m, d, "cannot digest a merged cell");
+        if (!e) {
+            sqlite3_bind_int64(dg, 1, to);
+            sqlite3_bind_int64(dg, 2, digest);
+            if (sqlite3_step(dg) != SQLITE_DONE)
+                e = db_fail(m, d, "cannot store a merged cell's digest");
+            sqlite3_reset(dg);
+        }
     }
     sqlite3_finalize(st);
     sqlite3_finalize(dup);
     sqlite3_finalize(cc);
     sqlite3_finalize(cf);
     sqlite3_finalize(cr);
+    sqlite3_finalize(df);
+    sqlite3_finalize(dc);
+    sqlite3_finalize(dg);
     sqlite3_free(ins_r);
     free(map);
     sqlite3_free(ins_c);
@@ -392,7 +457,9 @@ enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_
     else
         snprintf(shard_dir, sizeof shard_dir, ".");
 
-    char *att = sqlite3_mprintf("ATTACH DATABASE %Q AS shard", shard);
+    char uri[4200];
+    char *att = sl_storefile_ro_uri(shard, uri, sizeof uri) == 0 ? sqlite3_mprintf("ATTACH DATABASE %Q AS shard", uri)
+                                                                   : NULL;
     if (!att || exec(m->db, att) != SQLITE_OK) {
         sqlite3_free(att);
         return db_fail(m, d, "cannot attach the shard");

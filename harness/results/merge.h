@@ -10,9 +10,18 @@
  * beside results/<name>/), with the exr/ files of <study> beside them.
  *
  * A cell is the same cell when its config hash and key (scene, viewpoint,
- * viewport, map size, label) are: a cell already in the merged store is not
- * copied again (counted as a duplicate), so merging twice adds nothing. A
- * run row is copied once (matched on time, host, git SHA and config hash).
+ * viewport, map size, label) are, and the store's schema holds each such
+ * key once (UNIQUE): a cell already in the merged store is not copied again
+ * (counted as a duplicate), so merging twice adds nothing and the first
+ * copy of a key wins (two shards of one sweep holding one key computed it
+ * twice, from the same config). A run row is copied with the first of its
+ * cells copied, and keeps its provenance (git SHA, host, ISA, GL renderer).
+ *
+ * Trust: a shard is checked whole before anything is written: a regular
+ * file (not a folder or a device), a results store of this version, SQLite's
+ * quick_check, every cell's digest (integrity.h). Each copied cell gets its
+ * own digest in the merged store, in the shard's transaction. Shards are
+ * attached read-only (storefile.h), so a shard on read-only media merges.
  *
  * Owns: its own SQLite connection to the merged store, opened after
  * sl_store_open made (or checked) the schema and while that handle holds the
@@ -34,16 +43,26 @@ struct sl_merge_shard {
     int  overlays;             /* overlay files gathered */
     int  overlays_missing;     /* overlays a copied cell names but the shard's folder lacks */
     int  exr;                  /* EXR files gathered */
+    /* where its cells were computed: "git SHA, GL 'renderer', ISA isa" of
+     * its runs that hold cells, and a second such when they differ ("" if not) */
+    char provenance[256], other[256];
+};
+
+/* sl_shards_merge's flags (submit.h). */
+enum {
+    SL_MERGE_APPEND = 1,       /* sl_merge_open's append: run --jobs' fresh cells replace stored ones */
+    SL_MERGE_ALLOW_MIXED = 2,  /* shards of other git SHAs, GL renderers or ISAs merge (merge --allow-mixed) */
 };
 
 /* Open (or create) the merged store at out_path; its folder must exist.
- * append: copy every cell, even one whose key is stored already (fresh
- * results of `run --jobs`, which supersede older ones as a second `run`'s
- * would: the latest run wins in every query). */
+ * append: a shard's cell replaces the stored one of its key (fresh results
+ * of `run --jobs`, which supersede older ones as a second `run`'s would). */
 enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **out, struct sl_diag *d);
-/* Check a shard before anything is written: a results store of this
- * version whose runs are of one config; its hash and study into info
- * (config_hash "" when it holds no run). */
+/* Check a shard before anything is written: a file, a results store of
+ * this version, intact (quick_check, every digest), whose runs are of one
+ * config; its hash, study and provenance into info (config_hash "" when it
+ * holds no run). SL_E_USAGE for a folder or device, SL_E_IO naming the
+ * shard (and its first damaged cell) otherwise. */
 enum sl_err sl_merge_probe(const char *shard, struct sl_merge_shard *info, struct sl_diag *d);
 /* Copy one shard. Refused (SL_E_USAGE naming both) when it holds another
  * config hash than the first shard added, or more than one; SL_E_IO when it

@@ -27,14 +27,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <errno.h>
-#include <fcntl.h>
-#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "integrity.h"
+#include "store_int.h"
+#include "storefile.h"
 #include "util.h"
 
-#define SL_STORE_VERSION 16   /* 16: figure names by instr(); 15: cells.n_outside_cone, light (view.h);
+#define SL_STORE_VERSION 17   /* 17: cells.digest, one cell per config hash and key (UNIQUE);
+                               * 16: figure names by instr(); 15: cells.n_outside_cone, light (view.h);
                                * 14: cells.faces, ms_face_max (cube.h); 13: aliasing figures, cells.texels;
                                * 12: cells.flicker, flicker_compared, ms_flicker; 11: ms_gpu_gbuffer, ms_gpu_map;
                                * 10: runs.gl_backend; 9: contour_from, PnFL-inclusive figures; 8: soft figures;
@@ -102,7 +103,9 @@ static const char sql_cells[] =
     "  run_id         INTEGER NOT NULL REFERENCES runs (run_id),\n"
     "  config_hash    TEXT NOT NULL " SL_HEX16_CHECK("config_hash") ",\n"
     SL_CELL_COLUMNS(SL_SQL_COL)
-    "  CHECK (viewport = vw || 'x' || vh)\n"
+    "  digest         INTEGER NOT NULL CHECK (digest BETWEEN 0 AND 4294967295),\n"
+    "  CHECK (viewport = vw || 'x' || vh),\n"
+    "  UNIQUE (config_hash, scene, viewpoint, vw, vh, map_size, label)\n"
     ")";
 
 /* Figure names: instr() over a comma-delimited list, not IN (...): under a
@@ -135,9 +138,9 @@ static const struct { const char *name, *sql; } sl_tables[] = {
     {"figures", sql_figures},
 };
 
-/* resume lookup; latest-per-key query; per-run filter; ad-hoc figure queries */
+/* latest-per-key query; per-run filter; ad-hoc figure queries (the resume
+ * lookup uses the UNIQUE key's own index) */
 static const char *const sl_indexes[] = {
-    "CREATE INDEX cells_resume ON cells (config_hash, scene, viewpoint, vw, vh, map_size, label)",
     "CREATE INDEX cells_key ON cells (scene, viewpoint, vw, vh, map_size, label, run_id)",
     "CREATE INDEX cells_run ON cells (run_id)",
     "CREATE INDEX figures_key ON figures (scene, viewpoint, viewport, map_size, label, figure, region)",
@@ -150,9 +153,21 @@ static const char sql_ins_run[] =
     "gl_renderer, gl_version, gl_backend, embree, threads, lp_num_threads) "
     "VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
 
+/* digest 0 until the cell's figures are in, in the same transaction */
 static const char sql_ins_cell[] =
-    "INSERT INTO cells (run_id, config_hash" SL_CELL_COLUMNS(SL_SQL_NAME) ") VALUES (?,?"
-    SL_CELL_COLUMNS(SL_SQL_PARAM) ")";
+    "INSERT INTO cells (run_id, config_hash" SL_CELL_COLUMNS(SL_SQL_NAME) ", digest) VALUES (?,?"
+    SL_CELL_COLUMNS(SL_SQL_PARAM) ", 0)";
+
+static const char sql_set_digest[] = "UPDATE cells SET digest = ?2 WHERE cell_id = ?1";
+
+/* A cell computed again (a run without --resume) replaces the stored one of
+ * its config hash and key: its figures first (they reference it). */
+static const char sql_del_figs[] =
+    "DELETE FROM figures WHERE cell_id IN (SELECT cell_id FROM cells WHERE config_hash = ?1 AND scene = ?2 "
+    "AND viewpoint = ?3 AND vw = ?4 AND vh = ?5 AND map_size = ?6 AND label = ?7)";
+static const char sql_del_cell[] =
+    "DELETE FROM cells WHERE config_hash = ?1 AND scene = ?2 AND viewpoint = ?3 AND vw = ?4 AND vh = ?5 "
+    "AND map_size = ?6 AND label = ?7";
 
 static const char sql_ins_fig[] =
     "INSERT INTO figures (cell_id, scene, viewpoint, viewport, map_size, label, region, figure, "
@@ -173,17 +188,11 @@ static const char sql_query_cells[] =
     "  WHERE (?1 IS NULL OR scene = ?1) AND (?2 IS NULL OR viewpoint = ?2)\n"
     "    AND (?3 IS NULL OR label = ?3) AND (?4 = 0 OR map_size = ?4) AND (?5 = 0 OR run_id = ?5)\n"
     "    AND (?6 IS NULL OR run_id IN (SELECT run_id FROM runs WHERE study = ?6)))\n"
-    "SELECT l.cell_id, l.config_hash, r.git_sha, r.host, r.cpu, r.isa, r.study, l.run_id\n"
+    "SELECT l.cell_id, l.config_hash, r.git_sha, r.host, r.cpu, r.isa, r.study, l.run_id, l.digest\n"
     "       " SL_CELL_COLUMNS(SL_SQL_L_NAME) "\n"
     "FROM latest l JOIN runs r ON r.run_id = l.run_id\n"
     "WHERE l.rn = 1\n"
     "ORDER BY l.scene, l.cell_index, l.run_id, l.cell_id";
-
-static const char sql_query_runs[] =
-    "SELECT r.run_id, r.time_utc, r.git_sha, r.study, r.config_path, r.config_hash, r.config_text,\n"
-    "       r.host, r.cpu, r.isa, r.gl_renderer, r.gl_version, r.gl_backend, r.embree, r.threads, r.lp_num_threads,\n"
-    "       (SELECT count(*) FROM cells c WHERE c.run_id = r.run_id)\n"
-    "FROM runs r ORDER BY r.run_id";
 
 /* regions as figures.c orders them: contours ascending, whole image last */
 static const char sql_query_figs[] =
@@ -192,7 +201,7 @@ static const char sql_query_figs[] =
 
 enum {
     ST_BEGIN, ST_COMMIT, ST_ROLLBACK, ST_INS_RUN, ST_INS_CELL, ST_INS_FIG, ST_HAS_CELL,
-    ST_QUERY_CELLS, ST_QUERY_FIGS, ST_QUERY_RUNS, ST_COUNT
+    ST_QUERY_CELLS, ST_QUERY_FIGS, ST_SET_DIGEST, ST_DEL_FIGS, ST_DEL_CELL, ST_COUNT
 };
 static const char *const sl_stmt_sql[ST_COUNT] = {
     [ST_BEGIN] = "BEGIN IMMEDIATE",
@@ -204,14 +213,17 @@ static const char *const sl_stmt_sql[ST_COUNT] = {
     [ST_HAS_CELL] = sql_has_cell,
     [ST_QUERY_CELLS] = sql_query_cells,
     [ST_QUERY_FIGS] = sql_query_figs,
-    [ST_QUERY_RUNS] = sql_query_runs,
+    [ST_SET_DIGEST] = sql_set_digest,
+    [ST_DEL_FIGS] = sql_del_figs,
+    [ST_DEL_CELL] = sql_del_cell,
 };
 
 struct sl_store {
     sqlite3      *db;
     sqlite3_stmt *st[ST_COUNT];
     char         *path;
-    int           lockfd;   /* <path>.lock, flock()ed while open for writing; -1 if none */
+    int           lockfd;   /* <real path>.lock, flock()ed while open for writing; -1 if none */
+    struct sl_integ *integ; /* cell digests: written by put, checked by query */
 };
 
 /* ---- helpers ---- */
@@ -278,6 +290,19 @@ static int b_done(const struct binder *b)
     if (b->rc != SQLITE_OK)
         return b->rc;
     return b->i - 1 == sqlite3_bind_parameter_count(b->st) ? SQLITE_OK : SQLITE_RANGE;
+}
+
+/* A cell's config hash and key, as ?1..?7 of the key statements. */
+static void key_bind(struct binder *b, const char *hash, const char *scene, const char *viewpoint, int vw, int vh,
+                     int map_size, const char *label)
+{
+    b_text(b, hash);
+    b_text(b, scene);
+    b_text(b, viewpoint);
+    b_int(b, vw);
+    b_int(b, vh);
+    b_int(b, map_size);
+    b_text(b, label);
 }
 
 static void st_clear(sqlite3_stmt *st)
@@ -416,8 +441,6 @@ static enum sl_err check_schema(struct sl_store *s, struct sl_diag *d)
     return e;
 }
 
-static enum sl_err store_quick_check(struct sl_store *s, struct sl_diag *d);
-
 static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
 {
     sqlite3_busy_timeout(s->db, SL_STORE_BUSY_MS);
@@ -435,17 +458,24 @@ static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
             return sl_fail(d, SL_E_IO, s->path, 0, NULL,
                            "an SQLite database but not a shadowlab results store (user_version 0, "
                            "%lld schema objects); refusing to touch it", (long long)nobj);
+        if (s->lockfd < 0)   /* a reader makes no schema */
+            return sl_fail(d, SL_E_IO, s->path, 0, NULL, "an empty file, not a results store");
     } else if (ver != SL_STORE_VERSION) {
         return sl_fail(d, SL_E_IO, s->path, 0, NULL,
-                       "results store of schema version %lld; this build reads version %d",
-                       (long long)ver, SL_STORE_VERSION);
+                       "results store of schema version %lld; this build reads version %d%s",
+                       (long long)ver, SL_STORE_VERSION, ver < SL_STORE_VERSION ?
+                       " (an older store: read it with the build that wrote it, or run its config "
+                       "again into a new store)" : " (a newer build wrote it)");
     }
     enum sl_err e;
-    if (s->lockfd >= 0 && (e = store_quick_check(s, d)))   /* writers only */
+    /* Damage inside SQLite's pages goes unnoticed until a query trips on it;
+     * a writer checks first, so a run never adds to a damaged store. */
+    if (s->lockfd >= 0 && (e = sl_integ_quick_check(s->db, "main", s->path, "refusing to write into it", d)))
         return e;
     /* ours (or empty) from here on: WAL lets readers run beside a writing run */
     sqlite3_int64 ignore = 0;
-    (void)query_int(s->db, "PRAGMA journal_mode = WAL", &ignore);
+    if (s->lockfd >= 0)
+        (void)query_int(s->db, "PRAGMA journal_mode = WAL", &ignore);
     if (sqlite3_exec(s->db, "PRAGMA foreign_keys = ON", NULL, NULL, NULL) != SQLITE_OK)
         return db_fail(s, d, NULL, "cannot enable foreign keys");
     if (ver == 0 && (e = init_if_empty(s, d)))
@@ -456,72 +486,7 @@ static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
         if (sqlite3_prepare_v3(s->db, sl_stmt_sql[i], -1, SQLITE_PREPARE_PERSISTENT, &s->st[i], NULL) !=
             SQLITE_OK)
             return db_fail(s, d, NULL, "cannot prepare statement %d", i);
-    return SL_OK;
-}
-
-/*
- * One writer per store: a writer holds flock(LOCK_EX) on "<path>.lock" (with
- * its pid written inside) for as long as the store is open. A second writer
- * is refused at once, naming the holder, rather than waiting: a run can take
- * hours, and a refused run loses nothing (`--resume` later adds what is
- * missing). The lock dies with its process, so a killed run leaves none.
- * Readers (sl_store_open_existing) open read-only and take no lock: WAL
- * lets them read beside the writer.
- */
-static enum sl_err store_lock(struct sl_store *s, struct sl_diag *d)
-{
-    char lp[1100];
-    snprintf(lp, sizeof lp, "%s.lock", s->path);
-    int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0)
-        return sl_fail(d, SL_E_IO, s->path, 0, NULL, "unable to open its lock file %s: %s", lp,
-                       strerror(errno));
-    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
-        int en = errno;
-        char buf[32] = "";
-        ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
-        buf[n > 0 ? n : 0] = 0;
-        buf[strcspn(buf, "\n")] = 0;
-        close(fd);
-        if (en == EWOULDBLOCK)
-            return sl_fail(d, SL_E_IO, s->path, 0, NULL,
-                           "results store in use by another run (pid %s, lock %s); wait for it to "
-                           "finish, then `run --resume`, or write elsewhere with --out",
-                           buf[0] ? buf : "unknown", lp);
-        return sl_fail(d, SL_E_IO, s->path, 0, NULL, "cannot lock %s: %s", lp, strerror(en));
-    }
-    char pid[32];
-    int k = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
-    if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)k, 0) != k) {
-        /* the pid only makes the message better; the lock holds without it */
-    }
-    s->lockfd = fd;
-    return SL_OK;
-}
-
-/* Damage inside SQLite's pages goes unnoticed until a query trips on it;
- * a writer checks first, so a run never adds to a damaged store. */
-static enum sl_err store_quick_check(struct sl_store *s, struct sl_diag *d)
-{
-    sqlite3_stmt *q = NULL;
-    if (sqlite3_prepare_v2(s->db, "PRAGMA quick_check(1)", -1, &q, NULL) != SQLITE_OK)
-        return db_fail(s, d, NULL, "the store is damaged (quick_check could not run)");
-    int rc = sqlite3_step(q);
-    const unsigned char *t = rc == SQLITE_ROW ? sqlite3_column_text(q, 0) : NULL;
-    enum sl_err e = SL_OK;
-    if (rc != SQLITE_ROW)
-        e = db_fail(s, d, NULL, "the store is damaged (quick_check failed)");
-    else if (!t || strcmp((const char *)t, "ok") != 0) {
-        char why[200];   /* its first line: the message stays one line */
-        snprintf(why, sizeof why, "%s", t ? (const char *)t : "no answer");
-        for (char *c = why; *c; c++)
-            if (*c == '\n')
-                *c = ' ';
-        e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "the store is damaged (SQLite quick_check: %s); "
-                    "refusing to write into it", why);
-    }
-    sqlite3_finalize(q);
-    return e;
+    return sl_integ_open(s->db, "main", s->path, &s->integ, d);
 }
 
 static enum sl_err store_open(const char *path, int readonly, struct sl_store **out, struct sl_diag *d)
@@ -541,10 +506,15 @@ static enum sl_err store_open(const char *path, int readonly, struct sl_store **
     memcpy(p, path, n);
     s->path = p;
     s->lockfd = -1;
-    enum sl_err e = readonly ? SL_OK : store_lock(s, d);
+    /* One writer per file (storefile.h); readers through a read-only URI,
+     * so a store on read-only media can be read. */
+    enum sl_err e = readonly ? SL_OK : sl_storefile_lock(path, &s->lockfd, d);
+    char uri[4200];
+    if (!e && readonly && sl_storefile_ro_uri(path, uri, sizeof uri) != 0)
+        e = sl_fail(d, SL_E_IO, path, 0, NULL, "path too long");
     if (!e) {
-        int flags = readonly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
-        int rc = sqlite3_open_v2(path, &s->db, flags, NULL);
+        int rc = readonly ? sqlite3_open_v2(uri, &s->db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL)
+                          : sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL);
         e = rc == SQLITE_OK ? SL_OK : db_fail(s, d, NULL, "cannot open");
     }
     if (!e)
@@ -576,6 +546,7 @@ void sl_store_close(struct sl_store *s)
         return;
     for (int i = 0; i < ST_COUNT; i++)
         sqlite3_finalize(s->st[i]);
+    sl_integ_close(s->integ);
     sqlite3_close(s->db);
     if (s->lockfd >= 0)
         close(s->lockfd);   /* releases the flock */
@@ -696,7 +667,17 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
         return db_fail(s, d, key, "cannot start the cell's transaction");
 
     sqlite3_int64 cell_id = 0;
-    enum sl_err e = put_cell_row(s, run_id, hash, c, viewport, key, &cell_id, d);
+    enum sl_err e = SL_OK;
+    for (int k = ST_DEL_FIGS; k <= ST_DEL_CELL && !e; k++) {   /* the key once: a new computation replaces it */
+        sqlite3_stmt *del = s->st[k];
+        struct binder b = {del, 1, SQLITE_OK};
+        key_bind(&b, hash, c->scene, c->viewpoint, c->vw, c->vh, c->map_size, c->label);
+        if (b_done(&b) != SQLITE_OK || st_exec(del) != SQLITE_DONE)
+            e = db_fail(s, d, key, "cannot replace the stored cell");
+        st_clear(del);
+    }
+    if (!e)
+        e = put_cell_row(s, run_id, hash, c, viewport, key, &cell_id, d);
     for (int r = 0; r < fig->nregions && !e; r++) {
         const struct sl_region_figures *g = &fig->r[r];
         char region[16];
@@ -713,6 +694,18 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
                        c->soft.pct[k], sl_soft_figure_of((enum sl_soft_figure)k), key, d);
     if (!e)
         e = put_figure(s, cell_id, c, viewport, "image", "background", fig->background, NAN, NULL, key, d);
+    uint32_t digest = 0;   /* of the rows as stored, in their transaction */
+    if (!e && sl_integ_digest(s->integ, cell_id, &digest) != SQLITE_OK)
+        e = db_fail(s, d, key, "cannot digest the cell");
+    if (!e) {
+        sqlite3_stmt *st = s->st[ST_SET_DIGEST];
+        struct binder b = {st, 1, SQLITE_OK};
+        b_int(&b, cell_id);
+        b_int(&b, digest);
+        if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
+            e = db_fail(s, d, key, "cannot store the cell's digest");
+        st_clear(st);
+    }
     if (!e) {
         sqlite3_stmt *commit = s->st[ST_COMMIT];
         rc = st_exec(commit);
@@ -740,13 +733,7 @@ int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const 
     snprintf(hash, sizeof hash, "%016llx", config_hash);
     sqlite3_stmt *st = s->st[ST_HAS_CELL];
     struct binder b = {st, 1, SQLITE_OK};
-    b_text(&b, hash);
-    b_text(&b, scene);
-    b_text(&b, viewpoint);
-    b_int(&b, vw);
-    b_int(&b, vh);
-    b_int(&b, map_size);
-    b_text(&b, label);
+    key_bind(&b, hash, scene, viewpoint, vw, vh, map_size, label);
     /* an error reads as "not stored": the cell is recomputed and the put
      * reports the error */
     int found = b_done(&b) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0);
@@ -880,6 +867,7 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
                  isa ? isa : "");
         col_text(st, i++, c->study, sizeof c->study);
         c->run_id = sqlite3_column_int64(st, i++);
+        uint32_t want = (uint32_t)sqlite3_column_int64(st, i++), got = 0;
 #define SL_READ_text(name)     col_text(st, i++, c->name, sizeof c->name);
 #define SL_READ_path(name)     col_text(st, i++, c->name, sizeof c->name);
 #define SL_READ_dim(name)      c->name = sqlite3_column_int(st, i++);
@@ -895,7 +883,15 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
 #define SL_READ(name, kind, size, csv, head, check, key) SL_READ_##kind(name)
         SL_CELL_COLUMNS(SL_READ)
 #undef SL_READ
-        e = load_figures(s, cell_id, c, d);
+        /* a reader trusts no cell its digest does not vouch for */
+        if (sl_integ_digest(s->integ, cell_id, &got) != SQLITE_OK)
+            e = db_fail(s, d, NULL, "cannot digest cell %lld", (long long)cell_id);
+        else if (got != want)
+            e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "cell %s/%s/%dx%d/%d/%s (cell %lld) is damaged: its "
+                        "rows no longer match their digest; `shadowlab verify` names every damaged cell",
+                        c->scene, c->viewpoint, c->vw, c->vh, c->map_size, c->label, (long long)cell_id);
+        if (!e)
+            e = load_figures(s, cell_id, c, d);
     }
     if (!e && rc != SQLITE_DONE)
         e = db_fail(s, d, NULL, "cannot query cells");
@@ -907,74 +903,6 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
     *out = cells;
     *n = count;
     return SL_OK;
-}
-
-enum sl_err sl_store_runs(struct sl_store *s, struct sl_store_run **out, int *n, struct sl_diag *d)
-{
-    if (!s || !out || !n)
-        return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_runs: missing argument");
-    *out = NULL;
-    *n = 0;
-    sqlite3_stmt *st = s->st[ST_QUERY_RUNS];
-    struct sl_store_run *runs = NULL;
-    int count = 0, cap = 0, rc;
-    enum sl_err e = SL_OK;
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-        if (count == cap) {
-            int ncap = cap ? 2 * cap : 8;
-            struct sl_store_run *nr = realloc(runs, (size_t)ncap * sizeof *nr);
-            if (!nr) {
-                e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "%d runs", ncap);
-                break;
-            }
-            runs = nr;
-            cap = ncap;
-        }
-        struct sl_store_run *r = &runs[count++];
-        memset(r, 0, sizeof *r);
-        int i = 0;
-        r->run_id = sqlite3_column_int64(st, i++);
-        col_text(st, i++, r->prov.time_utc, sizeof r->prov.time_utc);
-        col_text(st, i++, r->prov.git_sha, sizeof r->prov.git_sha);
-        col_text(st, i++, r->study, sizeof r->study);
-        col_text(st, i++, r->config_path, sizeof r->config_path);
-        col_text(st, i++, r->config_hash, sizeof r->config_hash);
-        const unsigned char *text = sqlite3_column_text(st, i++);
-        col_text(st, i++, r->prov.host, sizeof r->prov.host);
-        col_text(st, i++, r->prov.cpu, sizeof r->prov.cpu);
-        col_text(st, i++, r->prov.isa, sizeof r->prov.isa);
-        col_text(st, i++, r->prov.gl_renderer, sizeof r->prov.gl_renderer);
-        col_text(st, i++, r->prov.gl_version, sizeof r->prov.gl_version);
-        col_text(st, i++, r->prov.gl_backend, sizeof r->prov.gl_backend);
-        col_text(st, i++, r->prov.embree, sizeof r->prov.embree);
-        r->prov.threads = sqlite3_column_int(st, i++);
-        col_text(st, i++, r->prov.lp_threads, sizeof r->prov.lp_threads);
-        r->ncells = sqlite3_column_int(st, i++);
-        r->config_text = strdup(text ? (const char *)text : "");
-        if (!r->config_text) {
-            e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "config text of run %lld", (long long)r->run_id);
-            break;
-        }
-    }
-    if (!e && rc != SQLITE_DONE)
-        e = db_fail(s, d, NULL, "cannot list the runs");
-    st_clear(st);
-    if (e) {
-        sl_store_runs_free(runs, count);
-        return e;
-    }
-    *out = runs;
-    *n = count;
-    return SL_OK;
-}
-
-void sl_store_runs_free(struct sl_store_run *r, int n)
-{
-    if (!r)
-        return;
-    for (int i = 0; i < n; i++)
-        free(r[i].config_text);
-    free(r);
 }
 
 long sl_store_count(struct sl_store *s, const char *table)
@@ -992,6 +920,12 @@ long sl_store_count(struct sl_store *s, const char *table)
             return query_int(s->db, sql[i][1], &v) == SQLITE_OK ? (long)v : -1;
         }
     return -1;
+}
+
+struct sqlite3 *sl_store_handle(struct sl_store *s, const char **path)
+{
+    *path = s ? s->path : NULL;
+    return s ? s->db : NULL;
 }
 
 int sl_store_version(void)

@@ -80,6 +80,23 @@ struct sl_store_run {
 enum sl_err sl_store_runs(struct sl_store *s, struct sl_store_run **out, int *n, struct sl_diag *d);
 void        sl_store_runs_free(struct sl_store_run *r, int n);   /* NULL-safe */
 
+/* `shadowlab verify`: SQLite's quick_check, then every cell's digest
+ * (integrity.h) recomputed from what is stored. */
+struct sl_store_damage {
+    int64_t cell_id, run_id;
+    char    key[200];                       /* scene/viewpoint/WxH/map/label */
+};
+struct sl_store_verify {
+    long    cells, figures;                 /* rows checked */
+    int     ndamaged;                       /* cells whose digest differs */
+    struct sl_store_damage *damaged;        /* all of them, by cell id (malloc'ed) */
+    double  seconds;
+};
+/* SL_OK when the store could be read through, damaged cells or not (r says);
+ * SL_E_IO naming the store when quick_check fails or a query does. */
+enum sl_err sl_store_verify(struct sl_store *s, struct sl_store_verify *r, struct sl_diag *d);
+void        sl_store_verify_free(struct sl_store_verify *r);   /* NULL-safe */
+
 /* The schema version this build reads and writes (PRAGMA user_version). */
 int sl_store_version(void);
 
