@@ -42,8 +42,10 @@ const char sl_usage_run[] =
     "  files are. Progress goes to stderr: one live line on a terminal, else one line every 10 s\n"
     "  or 5% of the cells. Ctrl-C (SIGINT) or SIGTERM stops after the cell under way, writes the\n"
     "  folder of what is stored and says how to --resume (exit 130 or 143).\n"
-    "  One run writes a results store at a time (a lock on DB.lock); a second is refused\n"
-    "  with exit 2, naming the holder's pid. Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
+    "  One run writes a results store at a time (a lock on DB.lock, DB's real path: a link to\n"
+    "  it takes the same lock); a second is refused with exit 2, naming the holder's pid. The\n"
+    "  store holds one cell per config hash and key: a cell computed again replaces it.\n"
+    "  Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
     "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
 
 const char sl_usage_validate[] =
@@ -79,7 +81,8 @@ const char sl_usage_check[] =
     "  method's exactness always exactly; every count exactly when the store was measured on\n"
     "  the baseline's machine; otherwise each class of figure within the baseline's tolerance\n"
     "  (percentage points). Prints what moved and by how much; exit 1 when anything is outside\n"
-    "  tolerance or a baseline cell is missing, 2 on bad input.\n"
+    "  tolerance or a baseline cell is missing, 2 on bad input (a cell of DB that fails its\n"
+    "  digest, as `shadowlab verify` checks, is named and is bad input).\n"
     "  --study NAME  only cells of that config name\n"
     "  --rows N      show at most N moved values (default 200)\n"
     "  --update      write FILE from DB instead (keeps FILE's tolerances): a deliberate refresh\n"
