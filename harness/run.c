@@ -301,10 +301,13 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
     const int cache = cache_dir && cache_dir[0];
     const unsigned long long key = sl_cache_area_key(view_key, sl_soft_truth_side(c->area_samples), c->seed);
     double t0 = sl_now();
+    uint64_t soft_rays = 0;
     enum sl_cache_read got =
-        cache ? sl_cache_area_read(cache_dir, key, &x->view, x->soft_truth, x->soft_se) : SL_CACHE_MISS;
+        cache ? sl_cache_area_read(cache_dir, key, &x->view, x->soft_truth, x->soft_se, &soft_rays) : SL_CACHE_MISS;
     x->truth_cached = got == SL_CACHE_HIT;
-    x->truth_rays = 0;
+    /* the counts of the computation, not of the cache: the area samples the
+     * entry's trace made, and one ray per lit or shadowed pixel of the centre */
+    x->truth_rays = soft_rays + x->view.n_lit + x->view.n_shadow;
     res->passes.cache_rejected += got == SL_CACHE_REJECTED;
     if (x->truth_cached) {
         res->passes.truths_cached++;
@@ -327,7 +330,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
         res->passes.soft_truths++;
         x->truth_rays = st.rays + ts.rays;
         if (cache)
-            sl_cache_area_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
+            sl_cache_area_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se, st.rays);
     }
     return view_ready(x, c, k, d);
 }
@@ -366,7 +369,8 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
     enum sl_cache_read got =
         cache_dir && cache_dir[0] ? sl_cache_truth_read(cache_dir, key, &x->view) : SL_CACHE_MISS;
     x->truth_cached = got == SL_CACHE_HIT;
-    x->truth_rays = 0;
+    /* one ray per lit or shadowed pixel, as the trace counts them */
+    x->truth_rays = x->view.n_lit + x->view.n_shadow;
     res->passes.cache_rejected += got == SL_CACHE_REJECTED;
     if (x->truth_cached) {
         res->passes.truths_cached++;

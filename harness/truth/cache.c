@@ -191,18 +191,20 @@ void sl_cache_truth_write(const char *dir, unsigned long long key, const struct 
     cache_store(dir, "truth", truth_magic, key, v->w, v->h, &part, 1);
 }
 
-static const char area_magic[8] = {'S', 'L', 'A', 'R', 'E', 'A', 'V', '1'};
+/* V2: the rays the area truth traced (a fourth part), so a cell whose truth
+ * comes from the cache stores the count of the one that traced it */
+static const char area_magic[8] = {'S', 'L', 'A', 'R', 'E', 'A', 'V', '2'};
 
 /* SL_CACHE_HIT with the visible fraction, its standard error and the centre's
  * hard truth filled when a valid entry exists: its fractions and errors in
  * [0, 1], 0 on the background, and the point truth agreeing with the view's
  * classes. Otherwise nothing is written. */
 enum sl_cache_read sl_cache_area_read(const char *dir, unsigned long long key, struct sl_view *v, float *visible,
-                                       float *se)
+                                       float *se, uint64_t *rays)
 {
     size_t n = (size_t)v->w * (size_t)v->h, nf = n * sizeof(float);
     void *buf;
-    enum sl_cache_read r = cache_load(dir, "area", area_magic, key, v->w, v->h, 3, 2 * nf + n, &buf);
+    enum sl_cache_read r = cache_load(dir, "area", area_magic, key, v->w, v->h, 4, 2 * nf + n + sizeof *rays, &buf);
     if (r != SL_CACHE_HIT)
         return r;
     const float *fv = buf, *fs = fv + n;   /* malloc'd: aligned for float */
@@ -216,6 +218,7 @@ enum sl_cache_read sl_cache_area_read(const char *dir, unsigned long long key, s
         memcpy(visible, fv, nf);
         memcpy(se, fs, nf);
         memcpy(v->truth, truth, n);
+        memcpy(rays, truth + n, sizeof *rays);
         v->n_lit = lit;
         v->n_shadow = shadow;
     }
@@ -224,10 +227,11 @@ enum sl_cache_read sl_cache_area_read(const char *dir, unsigned long long key, s
 }
 
 void sl_cache_area_write(const char *dir, unsigned long long key, const struct sl_view *v, const float *visible,
-                             const float *se)
+                             const float *se, uint64_t rays)
 {
     size_t n = (size_t)v->w * (size_t)v->h;
-    struct cache_part part[3] = {{visible, n * sizeof(float)}, {se, n * sizeof(float)}, {v->truth, n}};
-    cache_store(dir, "area", area_magic, key, v->w, v->h, part, 3);
+    struct cache_part part[4] = {{visible, n * sizeof(float)}, {se, n * sizeof(float)}, {v->truth, n},
+                                 {&rays, sizeof rays}};
+    cache_store(dir, "area", area_magic, key, v->w, v->h, part, 4);
 }
 
