@@ -80,6 +80,48 @@ YAML
   sqlite3 "$tmp/b/shadowlab.db" "SELECT COUNT(*) FROM cells WHERE truth_rays = 0" | grep -qx 0 || fail "a cell stores truth_rays 0"
   diff <(cells_of "$tmp/a/shadowlab.db") <(cells_of "$tmp/b/shadowlab.db") >"$tmp/diff" || { head "$tmp/diff"; fail "the cells' counts differ"; }
   ;;
+one_frame)
+  cat >"$tmp/one.yaml" <<'YAML'
+name: one_motion
+base: primitives
+viewpoints:
+  - {name: side, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}
+paths:
+  - {name: still, frames: 1, camera: {viewpoint: side}, light: {elevation: [25, 65], azimuth: [20, 80]}}
+  - {name: two, frames: 2, camera: {viewpoint: side}, light: {elevation: [25, 65], azimuth: [20, 80]}}
+YAML
+  for p in still two; do
+    cat >"$tmp/$p.yaml" <<YAML
+name: $p
+scenes: [{scene: $tmp/one.yaml, paths: [$p]}]
+viewports: [{width: 128, height: 128}]
+map_sizes: [256]
+methods: [{label: ff, method: nsm}]
+outputs: {tables: true, overlays: true}
+repetitions: {warmup: 0, runs: 1}
+YAML
+  done
+  # a path of one frame; then the second frame of two alone (a --cells slice), twice (--resume)
+  for run in "still.yaml --out $tmp/a" "still.yaml --out $tmp/a --resume" "two.yaml --cells 1:2 --out $tmp/b" \
+             "two.yaml --cells 1:2 --out $tmp/b --resume"; do
+    set -- $run
+    "$bin" run "$tmp/$@" -q >"$tmp/run.out" 2>&1
+    rc=$?
+    [ $rc -eq 0 ] || { cat "$tmp/run.out"; fail "run $run: exit $rc, want 0"; }
+  done
+  for p in a/still b/two; do
+    m=$tmp/$p/motion
+    n=$(sqlite3 "$tmp/${p%/*}/shadowlab.db" "SELECT COUNT(*) FROM cells")
+    [ "$n" -eq 1 ] || fail "$p: $n cell(s) stored, want 1"
+    ls "$m" | grep -q '\.png$' && fail "$p: a plot was drawn: $(ls -l "$m")"
+    ls "$m" | grep -q '\.dat$' || fail "$p: no .dat file"
+    grep -q "| not defined |" "$tmp/$p/motion.md" || { cat "$tmp/$p/motion.md"; fail "$p: flicker not marked 'not defined'"; }
+    grep -q "1 plot(s) not drawn" "$tmp/$p/motion.md" || { cat "$tmp/$p/motion.md"; fail "$p: no note on the plot"; }
+  done
+  # both frames of the two-frame path in one run: a compared pair, a plot
+  "$bin" run "$tmp/two.yaml" --out "$tmp/c" -q >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "two frames"; }
+  ls "$tmp/c/two/motion" | grep -q '\.png$' || fail "two frames: no plot"
+  ;;
 *) echo "unknown case $case_"; exit 2 ;;
 esac
 echo "1 passed, 0 failed"
