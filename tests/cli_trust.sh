@@ -21,28 +21,42 @@ case_=${2:?case}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL $*"; exit 1; }
-# the store's cells with every column but timings, ids and the overlay's
-# folder, one line per cell, sorted; and their figures
+# the store's cells with every column but timings and ids, one line per
+# cell, sorted; their figures the same; the overlays' names and bytes
 cells_of() {
   local cols
   cols=$(sqlite3 "$1" "SELECT group_concat(name, ' || ''|'' || ') FROM pragma_table_info('cells')
-                       WHERE name NOT LIKE 'ms%' AND name NOT IN ('cell_id', 'run_id', 'overlay')")
+                       WHERE name NOT LIKE 'ms%' AND name NOT IN ('cell_id', 'run_id')")
   sqlite3 "$1" "SELECT $cols FROM cells" | sort
 }
 figs_of() {
   local cols
-  cols=$(sqlite3 "$1" "SELECT group_concat('f.' || name, ' || ''|'' || ') FROM pragma_table_info('figures')
-                       WHERE name NOT LIKE 'ms%' AND name NOT IN ('cell_id')")
-  sqlite3 "$1" "SELECT c.scene || c.viewpoint || c.map_size || c.label || '|' || $cols
-                FROM figures f JOIN cells c USING (cell_id)" | sort
+  cols=$(sqlite3 "$1" "SELECT group_concat(name, ' || ''|'' || ') FROM pragma_table_info('figures')
+                       WHERE name NOT IN ('cell_id')")
+  sqlite3 "$1" "SELECT $cols FROM figures" | sort
 }
-ovl_of() { (cd "$1" && find . -name '*.png' -type f -print0 | sort -z | xargs -0 -r md5sum); }
+ovl_of() { (cd "$1" && find . -name '*.png' -print0 | sort -z | xargs -0 -r md5sum); }
+same_as() {   # $1 reference root, $2 root, $3 study, $4 what
+  diff <(cells_of "$1/shadowlab.db") <(cells_of "$2/shadowlab.db") >"$tmp/diff" ||
+    { head -4 "$tmp/diff"; fail "$4: the cells differ from an uninterrupted run's"; }
+  diff <(figs_of "$1/shadowlab.db") <(figs_of "$2/shadowlab.db") >"$tmp/diff" ||
+    { head -4 "$tmp/diff"; fail "$4: the figures differ from an uninterrupted run's"; }
+  diff <(ovl_of "$1/$3/overlays") <(ovl_of "$2/$3/overlays") >"$tmp/diff" ||
+    { head -4 "$tmp/diff"; fail "$4: the overlays differ from an uninterrupted run's ($(wc -l <"$tmp/diff") lines)"; }
+}
+in_shards() {   # cells in the workers' stores of $1
+  local n=0 f
+  for f in "$1"/.jobs-*/task-*/shadowlab.db; do
+    [ -f "$f" ] && n=$((n + $(sqlite3 "$f" 'SELECT COUNT(*) FROM cells' 2>/dev/null || echo 0)))
+  done
+  echo $n
+}
 
 # 2 views x 2 map sizes x 2 labels = 8 cells; the views split between two workers
 cat >"$tmp/small.yaml" <<'YAML'
 name: small
 scenes:
-  - {scene: primitives, viewpoints: [side, front]}
+  - {scene: primitives, viewpoints: [side, with]}
 viewports: [{width: 192, height: 192}]
 map_sizes: [256, 512]
 methods:
@@ -121,6 +135,91 @@ YAML
   # both frames of the two-frame path in one run: a compared pair, a plot
   "$bin" run "$tmp/two.yaml" --out "$tmp/c" -q >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "two frames"; }
   ls "$tmp/c/two/motion" | grep -q '\.png$' || fail "two frames: no plot"
+  ;;
+resume)
+  "$bin" run "$tmp/small.yaml" --out "$tmp/a" --jobs 2 --no-cache >"$tmp/1.out" 2>&1 || { cat "$tmp/1.out"; fail "--jobs 2"; }
+  "$bin" run "$tmp/small.yaml" --out "$tmp/a" --jobs 2 --no-cache --resume >"$tmp/2.out" 2>&1 ||
+    { cat "$tmp/2.out"; fail "--jobs 2 --resume"; }
+  n=$(sqlite3 "$tmp/a/shadowlab.db" "SELECT COUNT(*), COUNT(DISTINCT scene || viewpoint || map_size || label) FROM cells")
+  [ "$n" = "8|8" ] || fail "after --jobs 2 --resume: cells|keys = $n, want 8|8"
+  grep -q "0 copied" "$tmp/2.out" || { cat "$tmp/2.out"; fail "the resume copied cells"; }
+  # half the sweep stored by one process: the workers compute only the other half
+  "$bin" run "$tmp/small.yaml" --out "$tmp/b" --cells 0:3 --no-cache -q >/dev/null 2>&1 || fail "--cells 0:3"
+  "$bin" run "$tmp/small.yaml" --out "$tmp/b" --jobs 2 --no-cache --resume >"$tmp/3.out" 2>&1 ||
+    { cat "$tmp/3.out"; fail "--jobs 2 --resume over 3 stored cells"; }
+  n=$(sqlite3 "$tmp/b/shadowlab.db" "SELECT COUNT(*), COUNT(DISTINCT scene || viewpoint || map_size || label) FROM cells")
+  [ "$n" = "8|8" ] || fail "after --cells 0:3, then --jobs 2 --resume: cells|keys = $n, want 8|8"
+  grep -q "; 5 copied" "$tmp/3.out" || { cat "$tmp/3.out"; fail "want 5 cells computed by the workers"; }
+  "$bin" run "$tmp/small.yaml" --out "$tmp/ref" --no-cache -q >/dev/null 2>&1 || fail "one process"
+  same_as "$tmp/ref" "$tmp/b" small "--cells 0:3 then --jobs 2 --resume"
+  ;;
+kill)
+  # 3 views x 4 map sizes x 3 labels = 36 cells, about 2 s in two workers
+  cat >"$tmp/k.yaml" <<'YAML'
+name: k
+scenes:
+  - {scene: primitives, viewpoints: [side, with, against]}
+viewports: [{width: 384, height: 384}]
+map_sizes: [512, 1024, 2048, 4096]
+methods:
+  - {label: ff, method: nsm}
+  - {label: slope, method: nsm, self_shadow: slope}
+  - {label: texel, method: texel}
+outputs: {overlays: true}
+repetitions: {warmup: 0, runs: 1}
+YAML
+  "$bin" run "$tmp/k.yaml" --out "$tmp/ref" --no-cache -q >/dev/null 2>&1 || fail "uninterrupted run"
+  # start --jobs 2 in its own process group; when its workers have stored $3 cells in this attempt,
+  # send $4 to the group (g: parent and workers) or to the parent only (p)
+  attempt() {   # $1 out, $2 g|p, $3 cells, $4 signal, $5 extra flags
+    local before n
+    before=$(in_shards "$1")
+    setsid "$bin" run "$tmp/k.yaml" --out "$1" --jobs 2 --no-cache $5 >"$tmp/run.out" 2>"$tmp/run.err" &
+    local pid=$!
+    for _ in $(seq 1 500); do
+      n=$(in_shards "$1")
+      [ $((n - before)) -ge "$3" ] && break
+      sleep 0.02
+    done
+    kids=$(pgrep -P "$pid" | tr '\n' ' ')
+    if [ "$2" = g ]; then kill -"$4" -- -"$pid" 2>/dev/null; else kill -"$4" "$pid" 2>/dev/null; fi ||
+      fail "the run ended before $2 $3 $4: make the sweep longer"
+    wait "$pid" 2>/dev/null; rc=$?
+    log="$log $2:$3:$4 (exit $rc, $(in_shards "$1") in shards, $(sqlite3 "$1/shadowlab.db" 'SELECT COUNT(*) FROM cells' 2>/dev/null || echo 0) merged)"
+  }
+  live_workers() { local k c=0; for k in $kids; do kill -0 "$k" 2>/dev/null && c=$((c + 1)); done; echo $c; }
+  t0=$(date +%s.%N)
+  trial=0
+  for plan in "g:3:KILL p:4:KILL g:6:KILL" "p:2:KILL g:10:KILL" "p:5:TERM g:4:KILL p:6:TERM" "g:1:KILL p:12:TERM"; do
+    trial=$((trial + 1))
+    out=$tmp/t$trial
+    flags=""
+    log=""
+    for step in $plan; do
+      IFS=: read -r who at sig <<<"$step"
+      attempt "$out" "$who" "$at" "$sig" "$flags"
+      if [ "$sig" = TERM ]; then
+        # the parent passes SIGTERM on, waits for its workers, merges, says how to go on
+        [ $rc -eq 143 ] || [ $rc -eq 0 ] || { cat "$tmp/run.err"; fail "trial $trial $step: exit $rc, want 143"; }
+        [ "$(live_workers)" -eq 0 ] || fail "trial $trial $step: workers left running after the parent's exit"
+        [ $rc -eq 143 ] && { grep -q "interrupted (SIGTERM)" "$tmp/run.err" || { cat "$tmp/run.err"; fail "trial $trial: no message"; }; }
+      elif [ "$who" = p ]; then
+        # the workers die with their parent
+        for _ in $(seq 1 100); do [ "$(live_workers)" -eq 0 ] && break; sleep 0.02; done
+        [ "$(live_workers)" -eq 0 ] || fail "trial $trial $step: the workers outlived a SIGKILLed parent"
+      fi
+      flags=--resume
+    done
+    "$bin" run "$tmp/k.yaml" --out "$out" --jobs 2 --no-cache --resume >"$tmp/resume.out" 2>&1
+    rc=$?
+    [ $rc -eq 0 ] || { cat "$tmp/resume.out"; fail "trial $trial ($plan): the resume exits $rc"; }
+    n=$(sqlite3 "$out/shadowlab.db" "SELECT COUNT(*), COUNT(DISTINCT scene || viewpoint || map_size || label) FROM cells")
+    [ "$n" = "36|36" ] || fail "trial $trial ($plan): cells|keys = $n, want 36|36"
+    same_as "$tmp/ref" "$out" k "trial $trial ($plan)"
+    ls -a "$out" | grep -q '^\.jobs-' && fail "trial $trial: the workers' folder is left behind"
+    echo "trial $trial:$log; resumed: the same as an uninterrupted run"
+  done
+  echo "$trial trials in $(echo "$(date +%s.%N) - $t0" | bc) s"
   ;;
 *) echo "unknown case $case_"; exit 2 ;;
 esac

@@ -41,6 +41,11 @@ struct sl_merge_shard {
  * results of `run --jobs`, which supersede older ones as a second `run`'s
  * would: the latest run wins in every query). */
 enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **out, struct sl_diag *d);
+/* The same into a store the caller holds open for writing (its lock held,
+ * its schema made: `run --jobs` holds its store for the whole run); held
+ * stays the caller's. */
+enum sl_err sl_merge_open_held(struct sl_store *held, const char *out_path, int append, struct sl_merge **out,
+                               struct sl_diag *d);
 /* Check a shard before anything is written: a results store of this
  * version whose runs are of one config; its hash and study into info
  * (config_hash "" when it holds no run). */
