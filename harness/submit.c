@@ -48,9 +48,14 @@ static enum sl_err sweep_config(const struct sl_merge *m, const char *out_dir, s
         return sl_fail(d, SL_E_IO, NULL, 0, NULL, "the shards' runs carry no config: cannot name missing cells");
     char tmp[1300];
     snprintf(tmp, sizeof tmp, "%s/.merge-config-%ld.yaml", out_dir, (long)getpid());
-    FILE *f = fopen(tmp, "w");
-    if (!f)
+    unlink(tmp);
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        if (fd >= 0)
+            close(fd);
         return sl_fail(d, SL_E_OUTPUT, tmp, 0, NULL, "cannot write: %s", strerror(errno));
+    }
     fputs(text, f);
     fclose(f);
     enum sl_err e = sl_config_load(tmp, c, d);
@@ -293,9 +298,14 @@ static enum sl_err write_script(const char *path, void (*body)(FILE *, const voi
 {
     char tmp[1300];
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (!f)
+    unlink(tmp);   /* never written through a link planted there */
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        if (fd >= 0)
+            close(fd);
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+    }
     body(f, arg);
     int bad = ferror(f);
     bad |= fclose(f) != 0;
@@ -395,7 +405,7 @@ enum sl_err sl_submit(const struct sl_config *c, const struct sl_submit_opts *o,
     char slurm_dir[1200];
     snprintf(slurm_dir, sizeof slurm_dir, "%s/slurm", out);
     enum sl_err e;
-    if ((e = sl_mkdirs(slurm_dir, d)) || (e = absolute("--out", out, x.out, d)) ||
+    if ((e = sl_out_no_link(slurm_dir, d)) || (e = sl_mkdirs(slurm_dir, d)) || (e = absolute("--out", out, x.out, d)) ||
         (e = absolute("CONFIG", o->config, x.config, d)) || (e = absolute("shadowlab", "/proc/self/exe", x.exe, d)))
         return e;
     snprintf(r->merged, sizeof r->merged, "%s/shadowlab.db", x.out);

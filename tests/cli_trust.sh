@@ -221,6 +221,36 @@ YAML
   done
   echo "$trial trials in $(echo "$(date +%s.%N) - $t0" | bc) s"
   ;;
+symlinks)
+  n=0
+  for how in run jobs; do
+    for name in shadowlab.db cache small .jobs-small; do
+      [ $how = run ] && [ $name = .jobs-small ] && continue
+      n=$((n + 1))
+      out=$tmp/o$n outside=$tmp/outside$n
+      mkdir -p "$out" "$outside"
+      ln -s "$outside/$name" "$out/$name"
+      [ $name = shadowlab.db ] || mkdir "$outside/$name"
+      if [ $how = run ]; then "$bin" run "$tmp/small.yaml" --out "$out" -q >"$tmp/out" 2>&1
+      else "$bin" run "$tmp/small.yaml" --out "$out" --jobs 2 >"$tmp/out" 2>&1; fi
+      rc=$?
+      [ $rc -eq 2 ] || { cat "$tmp/out"; fail "$how with a link $name: exit $rc, want 2"; }
+      grep -q "$out/$name: is a symbolic link" "$tmp/out" || { cat "$tmp/out"; fail "$how with a link $name: not named"; }
+      [ -z "$(find "$outside" -mindepth 1 -not -path "$outside/$name")" ] && [ -z "$(ls -A "$outside/$name" 2>/dev/null)" ] ||
+        fail "$how with a link $name: written through it: $(find "$outside")"
+      echo "$how: a link named $name refused (exit 2)"
+    done
+  done
+  # submit's slurm/
+  mkdir -p "$tmp/s" "$tmp/outside_s/slurm"
+  ln -s "$tmp/outside_s/slurm" "$tmp/s/slurm"
+  "$bin" submit "$tmp/small.yaml" --slurm --out "$tmp/s" --dry-run >"$tmp/out" 2>&1
+  rc=$?
+  [ $rc -eq 2 ] || { cat "$tmp/out"; fail "submit with a link slurm/: exit $rc, want 2"; }
+  grep -q "$tmp/s/slurm: is a symbolic link" "$tmp/out" || { cat "$tmp/out"; fail "submit: slurm/ not named"; }
+  [ -z "$(ls -A "$tmp/outside_s/slurm")" ] || fail "submit wrote through the link slurm/"
+  echo "submit: a link named slurm refused (exit 2)"
+  ;;
 *) echo "unknown case $case_"; exit 2 ;;
 esac
 echo "1 passed, 0 failed"

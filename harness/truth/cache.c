@@ -5,8 +5,9 @@
  * its checksum are the expected ones and its values agree with the view's
  * classes; a file is written under a temporary name and renamed into place.
  */
-#define _XOPEN_SOURCE 700
+#define _GNU_SOURCE   /* O_NOFOLLOW, O_CLOEXEC */
 #include "cache.h"
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -133,9 +134,13 @@ static void cache_store(const char *dir, const char *kind, const char magic[8], 
         hd.bytes += part[i].n;
         hd.sum = sl_fnv1a(hd.sum, part[i].p, part[i].n);   /* FNV runs on: the parts hash as one */
     }
-    FILE *f = fopen(tmp, "wb");
-    if (!f)
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);   /* never through a link */
+    FILE *f = fd >= 0 ? fdopen(fd, "wb") : NULL;
+    if (!f) {
+        if (fd >= 0)
+            close(fd);
         return;   /* a cache that cannot be written is only a lost speed-up */
+    }
     int ok = fwrite(&hd, sizeof hd, 1, f) == 1;
     for (uint32_t i = 0; ok && i < parts; i++)
         ok = fwrite(part[i].p, 1, part[i].n, f) == part[i].n;
