@@ -66,7 +66,7 @@ enum {
     OPT_CELLS = 256, OPT_RESUME, OPT_DB, OPT_NO_CACHE, OPT_GL, OPT_FORMAT, OPT_SCENE, OPT_VIEWPOINT,
     OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_FIGURES, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
     OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX, OPT_CACHE, OPT_JOBS, OPT_SIZE,
-    OPT_ALLOW_MIXED,
+    OPT_ALLOW_MIXED, OPT_STORED_IN,
 };
 #define OPT_HELP {"help", no_argument, NULL, 'h'}
 enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };
@@ -296,7 +296,25 @@ static int print_merge(const char *const *shards, const struct sl_shards_result 
     return r->nmissing ? 1 : 0;
 }
 
-static int run_jobs(const struct sl_config *c, const struct sl_jobs_opts *o)
+/* A run stopped by SIGINT or SIGTERM: what is stored and the command that
+ * goes on; the exit status 128 + the signal. */
+static int say_interrupted(int stored, int total, const char *store_path, int resume, int argc, char **argv)
+{
+    fflush(stdout);
+    fprintf(stderr, "shadowlab: interrupted (%s): %d of %d cell(s) of this config are stored%s%s; "
+                    "to go on:\n  shadowlab", stop_signal == SIGTERM ? "SIGTERM" : "SIGINT", stored,
+            total, store_path[0] ? " in " : "", store_path);
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        int plain = strspn(a, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,") ==
+                    strlen(a);
+        fprintf(stderr, plain ? " %s" : " '%s'", a);
+    }
+    fprintf(stderr, "%s\n", resume ? "" : " --resume");
+    return 128 + (stop_signal == SIGTERM ? SIGTERM : SIGINT);
+}
+
+static int run_jobs(const struct sl_config *c, const struct sl_jobs_opts *o, int argc, char **argv)
 {
     struct sl_diag d;
     memset(&d, 0, sizeof d);
@@ -317,6 +335,18 @@ static int run_jobs(const struct sl_config *c, const struct sl_jobs_opts *o)
             shards[i] = paths[i];
         }
         rc = print_merge(shards, &r.merge, r.store);
+        for (int i = 0; i < r.overlays_missing && i < 10; i++)
+            fprintf(stderr, "shadowlab: missing overlay: %s\n", r.missing_overlay[i]);
+        if (r.overlays_missing) {
+            fprintf(stderr, "shadowlab: %d overlay(s) the store's cells of this config name are not on disk\n",
+                    r.overlays_missing);
+            rc = 1;
+        }
+        if (r.interrupted) {
+            fflush(stdout);
+            fprintf(stderr, "shadowlab: the workers' shards are kept in %s\n", r.workdir);
+            rc = say_interrupted(r.merge.total - r.merge.nmissing, r.merge.total, r.store, o->resume, argc, argv);
+        }
     }
     sl_jobs_result_free(&r);
     return rc;
@@ -420,6 +450,7 @@ static int cmd_run(int argc, char **argv)
         {"threads", required_argument, NULL, 'j'},  {"quiet", no_argument, NULL, 'q'},
         {"verbose", no_argument, NULL, 'v'},        {"define", required_argument, NULL, 'D'},
         {"cache", required_argument, NULL, OPT_CACHE}, {"jobs", required_argument, NULL, OPT_JOBS},
+        {"stored-in", required_argument, NULL, OPT_STORED_IN},
         {0, 0, 0, 0},
     };
     const struct opt_parser p = {"run", "o:j:qvD:", sl_usage_run, lo};
@@ -442,6 +473,7 @@ static int cmd_run(int argc, char **argv)
                 return usage_error("run: --cells wants A:B with 0 <= A < B (or A:)", sl_usage_run);
             break;
         case OPT_RESUME: o.resume = 1; break;
+        case OPT_STORED_IN: o.stored_in = optarg; break;
         case OPT_NO_CACHE: no_cache = 1; break;
         case OPT_CACHE: o.cache_dir = optarg; break;
         case OPT_JOBS:
@@ -469,6 +501,8 @@ static int cmd_run(int argc, char **argv)
         return usage_error("run: missing CONFIG", sl_usage_run);
     if (optind + 1 < argc)
         return usage_error("run: one config at a time", sl_usage_run);
+    if (o.stored_in && !o.resume)
+        return usage_error("run: --stored-in goes with --resume", sl_usage_run);
     const char *cfg = argv[optind];
     if (no_cache)
         o.cache_dir = "";
@@ -515,15 +549,20 @@ static int cmd_run(int argc, char **argv)
         if (ov.n || study[0] || threads)
             return usage_error("run: --jobs runs the config file as it is: no -D, -j or scene file with it",
                                sl_usage_run);
-        struct sl_jobs_opts jo = {.jobs = jobs, .out_root = o.out_root, .store = o.store, .cache = o.cache_dir,
-                                  .gl = gl ? sl_gl_backend_name(gl) : NULL, .resume = o.resume};
-        return run_jobs(&c, &jo);
+        if (o.stored_in)
+            return usage_error("run: --stored-in is for a --jobs worker, not with --jobs", sl_usage_run);
     }
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_stop;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    if (jobs > 1) {
+        struct sl_jobs_opts jo = {.jobs = jobs, .out_root = o.out_root, .store = o.store, .cache = o.cache_dir,
+                                  .gl = gl ? sl_gl_backend_name(gl) : NULL, .resume = o.resume,
+                                  .stop = &stop_signal};
+        return run_jobs(&c, &jo, argc, argv);
+    }
     struct sl_run_result r;
     e = sl_run(&c, &o, &r, &d);
     if (!e) {
@@ -542,20 +581,8 @@ static int cmd_run(int argc, char **argv)
     sl_run_result_free(&r);
     if (e)
         return fail(e, &d);
-    if (interrupted) {
-        fflush(stdout);
-        fprintf(stderr, "shadowlab: interrupted (%s): %d of %d cell(s) of this config are stored%s%s; "
-                        "to go on:\n  shadowlab", stop_signal == SIGTERM ? "SIGTERM" : "SIGINT", stored,
-                sl_plan_count(&c), store_path[0] ? " in " : "", store_path);
-        for (int i = 0; i < argc; i++) {
-            const char *a = argv[i];
-            int plain = strspn(a, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,") ==
-                        strlen(a);
-            fprintf(stderr, plain ? " %s" : " '%s'", a);
-        }
-        fprintf(stderr, "%s\n", o.resume ? "" : " --resume");
-        return 128 + (stop_signal == SIGTERM ? SIGTERM : SIGINT);
-    }
+    if (interrupted)
+        return say_interrupted(stored, sl_plan_count(&c), store_path, o.resume, argc, argv);
     return 0;
 }
 

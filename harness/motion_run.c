@@ -68,11 +68,20 @@ static enum sl_err write_tables(const char *dir, const struct sl_motion_row *row
 }
 
 /* The plot of one group: wrong pixels (left axis) and flicker (right axis)
- * per frame, one colour per label. */
+ * per frame, one colour per label; a label's flicker only where it has a
+ * compared pair (pairs[l]). A group none of whose labels has one (a path of
+ * one frame, a --cells slice of one frame) gets its .dat and no plot: its
+ * flicker is not defined, and gnuplot refuses a series of NaN only (it left
+ * a 0-byte PNG and failed the run after its cells were stored). *plotted: 0
+ * then. */
 static enum sl_err write_plot(const char *mdir, const char *name, const struct sl_cell_record *cells, int n,
-                              const struct sl_motion_row *row, char (*labels)[48], int nl, int gnuplot,
-                              struct sl_diag *d)
+                              const struct sl_motion_row *row, char (*labels)[48], const int *pairs, int nl,
+                              int gnuplot, int *plotted, struct sl_diag *d)
 {
+    int any = 0;
+    for (int l = 0; l < nl; l++)
+        any |= pairs[l] > 0;
+    *plotted = any;
     char path[1600];
     snprintf(path, sizeof path, "%s/%s.dat", mdir, name);
     FILE *f = fopen(path, "w");
@@ -85,6 +94,8 @@ static enum sl_err write_plot(const char *mdir, const char *name, const struct s
     sl_motion_series(f, cells, n, row, labels, nl);
     if (fclose(f) != 0)
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "write failed");
+    if (!any)
+        return SL_OK;
     snprintf(path, sizeof path, "%s/%s.gp", mdir, name);
     if (!(f = fopen(path, "w")))
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
@@ -98,11 +109,13 @@ static enum sl_err write_plot(const char *mdir, const char *name, const struct s
     static const char *const color[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
                                         "#000000", "#F0E442"};
     fprintf(f, "plot ");
-    for (int l = 0; l < nl; l++)
-        fprintf(f, "%s'%s.dat' using 1:%d with lines lw 2 lc rgb '%s' title '%s wrong', '%s.dat' using 1:%d axes "
-                   "x1y2 with lines dt 2 lw 1.5 lc rgb '%s' title '%s flicker'",
-                l ? ", \\\n     " : "", name, 2 + 2 * l, color[l % 8], labels[l], name, 3 + 2 * l, color[l % 8],
-                labels[l]);
+    for (int l = 0; l < nl; l++) {
+        fprintf(f, "%s'%s.dat' using 1:%d with lines lw 2 lc rgb '%s' title '%s wrong'", l ? ", \\\n     " : "",
+                name, 2 + 2 * l, color[l % 8], labels[l]);
+        if (pairs[l] > 0)
+            fprintf(f, ", '%s.dat' using 1:%d axes x1y2 with lines dt 2 lw 1.5 lc rgb '%s' title '%s flicker'", name,
+                    3 + 2 * l, color[l % 8], labels[l]);
+    }
     fprintf(f, "\n");
     if (fclose(f) != 0)
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "write failed");
@@ -195,11 +208,11 @@ enum sl_err sl_motion_outputs(struct sl_store *st, const struct sl_config *c, co
         return e;
     }
     const int gnuplot = have_program("gnuplot"), ffmpeg = have_program("ffmpeg");
-    char mdir[1200], note[600] = "";
+    char mdir[1200], note[1000] = "";
     snprintf(mdir, sizeof mdir, "%s/motion", dir);
     if (nrows && (e = sl_mkdirs(mdir, d)))
         goto out;
-    int seq_frames = 0;
+    int seq_frames = 0, unplotted = 0;
     for (int r = 0; r < nrows && !e; r++) {
         const struct sl_motion_row *row = &rows[r];
         char name[200];
@@ -207,12 +220,15 @@ enum sl_err sl_motion_outputs(struct sl_store *st, const struct sl_config *c, co
         if (r == 0 || strcmp(rows[r - 1].scene, row->scene) || strcmp(rows[r - 1].path, row->path) ||
             rows[r - 1].vw != row->vw || rows[r - 1].vh != row->vh || rows[r - 1].map_size != row->map_size) {
             char labels[32][48];
-            int nl = 0;
+            int pairs[32], nl = 0, plotted = 1;
             for (int q = r; q < nrows && nl < 32 && !strcmp(rows[q].scene, row->scene) &&
                             !strcmp(rows[q].path, row->path) && rows[q].vw == row->vw && rows[q].vh == row->vh &&
-                            rows[q].map_size == row->map_size; q++)
+                            rows[q].map_size == row->map_size; q++) {
+                pairs[nl] = rows[q].pairs;
                 snprintf(labels[nl++], sizeof labels[0], "%s", rows[q].label);
-            e = write_plot(mdir, name, cells, n, row, labels, nl, gnuplot, d);
+            }
+            e = write_plot(mdir, name, cells, n, row, labels, pairs, nl, gnuplot, &plotted, d);
+            unplotted += !plotted;
         }
         int k = 0;
         if (!e && c->overlays)
@@ -221,6 +237,10 @@ enum sl_err sl_motion_outputs(struct sl_store *st, const struct sl_config *c, co
     }
     if (!e) {
         size_t k = 0;
+        if (unplotted)
+            k += (size_t)snprintf(note + k, sizeof note - k, "%d plot(s) not drawn: a path with fewer than two "
+                                  "comparable frames here (one frame, or a slice of one) has no flicker (not "
+                                  "defined); its wrong pixels per frame are in its .dat file.\n", unplotted);
         if (!gnuplot)
             k += (size_t)snprintf(note + k, sizeof note - k, "gnuplot is not in PATH: the plots under motion/ are "
                                   "left as .dat and .gp files (`gnuplot NAME.gp` there draws them).\n");

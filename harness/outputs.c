@@ -6,15 +6,23 @@
  * and `shadowlab table` on the store can never disagree. costs.csv is
  * generated from the column list of cellcols.h: its header and its rows
  * cannot drift apart.
+ *
+ * A staging folder is claimed by its run for the run's life: an flock on
+ * its lock file SL_OUT_CLAIM, taken before the folder gets its .partial
+ * name. Whoever would carry or delete another run's staging folder takes
+ * that lock first (LOCK_NB): held means the run is alive. A process id
+ * cannot say so (a dead run's pid may be reused, a killed one not yet
+ * reaped), a lock dies with its holder.
  */
-#define _XOPEN_SOURCE 700
+#define _GNU_SOURCE   /* O_CLOEXEC, O_NOFOLLOW, flock */
 #include "outputs.h"
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <ftw.h>
 #include <limits.h>
-#include <signal.h>
 #include <stdlib.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <string.h>
@@ -402,6 +410,27 @@ static void carry_files(const char *from, const char *to, const char *sub)
     closedir(dir);
 }
 
+/* A dead run's staging folder claimed for us: the fd of its lock file,
+ * locked, or -1 while its run is alive (or it is no folder of ours: a
+ * symbolic link is never followed). A folder without the file is an older
+ * build's, whose run is gone. */
+static int claim_dead(const char *dir)
+{
+    struct stat sb;
+    if (lstat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
+        return -1;
+    char lk[1300];
+    snprintf(lk, sizeof lk, "%s/%s", dir, SL_OUT_CLAIM);
+    int fd = open(lk, O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return -1;
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        close(fd);
+        return -1;
+    }
+    return fd;
+}
+
 static void carry_previous(const char *root, const char *name, const char *final, const char *stage)
 {
     carry_files(final, stage, "overlays");
@@ -419,14 +448,14 @@ static void carry_previous(const char *root, const char *name, const char *final
         if (strcmp(own, stage) == 0)
             continue;
         /* only a dead run's folder: another run of this config may be writing
-         * its own right now (a pid that cannot be parsed counts as dead) */
-        char *end;
-        long pid = strtol(e->d_name + strlen(prefix), &end, 10);
-        if (*end == '\0' && pid > 0 && (kill((pid_t)pid, 0) == 0 || errno == EPERM))
+         * its own right now (it holds its claim) */
+        int fd = claim_dead(own);
+        if (fd < 0)
             continue;
         carry_files(own, stage, "overlays");
         carry_files(own, stage, "exr");
         rm_tree(own);   /* a killed run's leftovers: its cells are in the store */
+        close(fd);
     }
     closedir(dir);
 }
@@ -448,18 +477,72 @@ enum sl_err sl_out_begin_run(struct sl_store *st, const struct sl_config *c, con
     return e;
 }
 
+enum sl_err sl_out_no_link(const char *path, struct sl_diag *d)
+{
+    struct stat sb;
+    if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode))
+        return sl_fail(d, SL_E_USAGE, path, 0, NULL, "is a symbolic link where the run writes: a run never "
+                       "writes through one (remove it, or name the folder it points at with --out/--db/--cache)");
+    return SL_OK;
+}
+
+enum sl_err sl_out_no_store_link(const char *path, struct sl_diag *d)
+{
+    static const char *const with[] = {"", "-wal", "-shm", "-journal", ".lock"};
+    enum sl_err e = SL_OK;
+    for (size_t i = 0; i < sizeof with / sizeof with[0] && !e; i++) {
+        char p[1300];
+        snprintf(p, sizeof p, "%s%s", path, with[i]);
+        e = sl_out_no_link(p, d);
+    }
+    return e;
+}
+
+/* The staging folder made under a name no other run looks at, claimed,
+ * then renamed to its .partial name: no run ever sees it unclaimed. */
+static enum sl_err stage_make(struct sl_out_dirs *o, const char *root, const char *name, struct sl_diag *d)
+{
+    char tmp[1200], lk[1300];
+    snprintf(o->stage, sizeof o->stage, "%s/.%s.partial-%ld", root, name, (long)getpid());
+    snprintf(tmp, sizeof tmp, "%s/.%s.claiming-%ld", root, name, (long)getpid());
+    rm_tree(o->stage);   /* this pid's: a run long gone (nftw does not follow a link) */
+    rm_tree(tmp);
+    int fd = -1;
+    if (mkdir(tmp, 0777) != 0)
+        goto fail;
+    snprintf(lk, sizeof lk, "%s/%s", tmp, SL_OUT_CLAIM);
+    if ((fd = open(lk, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644)) < 0 || flock(fd, LOCK_EX) != 0 ||
+        rename(tmp, o->stage) != 0)
+        goto fail;
+    o->claim = fd + 1;
+    return SL_OK;
+fail:;
+    int en = errno;
+    if (fd >= 0)
+        close(fd);
+    rm_tree(tmp);
+    char shown[1200];
+    snprintf(shown, sizeof shown, "%s", o->stage);
+    o->stage[0] = '\0';
+    return sl_fail(d, SL_E_OUTPUT, shown, 0, NULL, "cannot make the staging folder: %s", strerror(en));
+}
+
+static void claim_release(struct sl_out_dirs *o)
+{
+    if (o->claim > 0)
+        close(o->claim - 1);
+    o->claim = 0;
+}
+
 enum sl_err sl_out_stage_begin(const struct sl_config *c, const char *root, struct sl_out_dirs *o,
                                struct sl_diag *d)
 {
     enum sl_err e;
     snprintf(o->root, sizeof o->root, "%s", root);
     snprintf(o->final, sizeof o->final, "%s/%s", root, c->name);
-    snprintf(o->stage, sizeof o->stage, "%s/.%s.partial-%ld", root, c->name, (long)getpid());
-    rm_tree(o->stage);
-    if ((e = sl_mkdirs(o->stage, d))) {
-        o->stage[0] = '\0';
+    o->claim = 0;
+    if ((e = sl_out_no_link(o->final, d)) || (e = stage_make(o, root, c->name, d)))
         return e;
-    }
     snprintf(o->overlays, sizeof o->overlays, "%s/overlays", o->stage);
     snprintf(o->exr, sizeof o->exr, "%s/exr", o->stage);
     if ((c->overlays && (e = sl_mkdirs(o->overlays, d))) || (c->exr && (e = sl_mkdirs(o->exr, d)))) {
@@ -491,10 +574,11 @@ void sl_out_stage_drop(struct sl_out_dirs *o)
     if (o->stage[0] && !has_entries(o->overlays) && !has_entries(o->exr))
         rm_tree(o->stage);
     o->stage[0] = '\0';
+    claim_release(o);   /* kept or not, it is a dead run's folder from now on */
 }
 
 enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_result *res,
-                                const struct sl_out_dirs *o, int resume, struct sl_diag *d)
+                                struct sl_out_dirs *o, int resume, struct sl_diag *d)
 {
     enum sl_err e = SL_OK;
     {
@@ -558,6 +642,13 @@ enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_r
         }
         if (had)
             rm_tree(old);
+        /* in place under its final name, which no run takes for a staging
+         * folder: the claim's file goes, then the claim */
+        char lk[1300];
+        snprintf(lk, sizeof lk, "%s/%s", o->final, SL_OUT_CLAIM);
+        unlink(lk);
+        claim_release(o);
+        o->stage[0] = '\0';
     }
     return SL_OK;
 }

@@ -43,14 +43,25 @@ void sl_out_write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_r
 /* The run's folders: results land in a hidden staging folder
  * <root>/.<name>.partial-<pid>, which replaces <root>/<name> once every file
  * is written, so a reader never sees a half-written results folder. */
+#define SL_OUT_CLAIM ".claim"   /* the staging folder's lock file (outputs.c) */
 struct sl_out_dirs {
+    int  claim;            /* fd + 1 of the staging folder's claim, flock()ed; 0 none */
     char root[1024];
     char final[1100];      /* <root>/<name> */
     char stage[1100];      /* the staging folder, "" none */
     char overlays[1200];   /* <stage>/overlays */
     char exr[1200];        /* <stage>/exr */
 };
-/* Make the staging folder (and its overlays/ and exr/ when the config asks). */
+/* SL_E_USAGE naming path when it is a symbolic link: a run never writes
+ * through one (a pre-existing link under --out could point anywhere). */
+enum sl_err sl_out_no_link(const char *path, struct sl_diag *d);
+/* The same for a store at path and the files SQLite and its lock keep
+ * beside it (-wal, -shm, -journal, .lock). */
+enum sl_err sl_out_no_store_link(const char *path, struct sl_diag *d);
+
+/* Make the staging folder (and its overlays/ and exr/ when the config asks),
+ * claimed by this run until it is finished or dropped; <root>/<name> must
+ * not be a symbolic link. */
 enum sl_err sl_out_stage_begin(const struct sl_config *c, const char *root, struct sl_out_dirs *o,
                                struct sl_diag *d);
 /* Write the run's files into the staging folder; after a resumed run, carry
@@ -58,7 +69,7 @@ enum sl_err sl_out_stage_begin(const struct sl_config *c, const char *root, stru
  * folder (or a killed run's staging folder), so what the store points at
  * is in place; then swap the staging folder into place. */
 enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_result *res,
-                                const struct sl_out_dirs *o, int resume, struct sl_diag *d);
+                                struct sl_out_dirs *o, int resume, struct sl_diag *d);
 /* Remove the staging folder (a run that failed). NULL-safe on an empty o. */
 void sl_out_stage_drop(struct sl_out_dirs *o);
 

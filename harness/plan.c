@@ -67,7 +67,7 @@ int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struc
  * leaving out cells a resumed run will skip. */
 /* The layers the group's remaining cells from `from` need (mask), and of
  * those the ones some cell reads beyond its pixels' own texels (*dense). */
-static unsigned group_layers(const struct sl_config *c, int from, int last, struct sl_store *st, int resume,
+static unsigned group_layers(const struct sl_config *c, int from, int last, const uint8_t *skip,
                              unsigned *dense, unsigned looks[2])
 {
     struct sl_cell_key k0, k;
@@ -78,7 +78,7 @@ static unsigned group_layers(const struct sl_config *c, int from, int last, stru
         sl_plan_cell(c, i, &k);
         if (k.scene != k0.scene || k.viewport != k0.viewport || k.vp != k0.vp || k.map != k0.map)
             break;
-        if (resume && sl_plan_stored(c, &k, st))
+        if (skip && skip[i])
             continue;
         const struct sl_method *m = c->methods[k.method].method;
         const unsigned n = m->needs(&c->methods[k.method].params);
@@ -90,23 +90,22 @@ static unsigned group_layers(const struct sl_config *c, int from, int last, stru
     return needs;
 }
 
-unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
+unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, const uint8_t *skip)
 {
     unsigned dense, looks[2];
-    return group_layers(c, from, last, st, resume, &dense, looks);
+    return group_layers(c, from, last, skip, &dense, looks);
 }
 
-unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, struct sl_store *st, int resume)
+unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, const uint8_t *skip)
 {
-    unsigned dense, looks[2], needs = group_layers(c, from, last, st, resume, &dense, looks);
+    unsigned dense, looks[2], needs = group_layers(c, from, last, skip, &dense, looks);
     return needs & ~dense & ((1u << SL_LAYER_COUNT) - 1u);
 }
 
-void sl_plan_group_looks(const struct sl_config *c, int from, int last, struct sl_store *st, int resume,
-                         unsigned looks[2])
+void sl_plan_group_looks(const struct sl_config *c, int from, int last, const uint8_t *skip, unsigned looks[2])
 {
     unsigned dense;
-    group_layers(c, from, last, st, resume, &dense, looks);
+    group_layers(c, from, last, skip, &dense, looks);
 }
 
 /* 2 where a view (scene, viewport, viewpoint) starts at cell i, 1 where only

@@ -30,21 +30,20 @@ int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struc
 
 /* The layers (SL_NEED bits of frame.h and method.h) wanted by the selected
  * cells of the (view, map size) group that starts at cell `from` (a group's
- * cells are contiguous in sweep order), leaving out cells a resumed run
- * will skip. */
-unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, struct sl_store *st, int resume);
+ * cells are contiguous in sweep order), leaving out the cells a resumed run
+ * will skip: skip[i] set for cell i (indexed by cell; NULL: none). */
+unsigned sl_plan_group_needs(const struct sl_config *c, int from, int last, const uint8_t *skip);
 
 /* Of those layers, the ones every selected cell of the group that reads
  * them reads only at each pixel's own texel (method.h: at_pixel): the run
  * may hold them gathered per pixel (frame.h, sl_frame_gather). */
-unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, struct sl_store *st, int resume);
+unsigned sl_plan_group_at_pixel(const struct sl_config *c, int from, int last, const uint8_t *skip);
 
 /* Of those layers, the ones that selected cells of the group read through
  * the lookups the run makes per view (method.h: looks; frame.h:
  * sl_frame_look): looks[0] read so by one cell or more, looks[1] by two or
  * more (worth a pass of their own). */
-void sl_plan_group_looks(const struct sl_config *c, int from, int last, struct sl_store *st, int resume,
-                         unsigned looks[2]);
+void sl_plan_group_looks(const struct sl_config *c, int from, int last, const uint8_t *skip, unsigned looks[2]);
 
 /* Split the sweep into at most n slices [b[i], b[i+1]) (b holds n + 1
  * ints) for tasks or worker processes: balanced by cell count, each cut moved

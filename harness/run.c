@@ -301,10 +301,13 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
     const int cache = cache_dir && cache_dir[0];
     const unsigned long long key = sl_cache_area_key(view_key, sl_soft_truth_side(c->area_samples), c->seed);
     double t0 = sl_now();
+    uint64_t soft_rays = 0;
     enum sl_cache_read got =
-        cache ? sl_cache_area_read(cache_dir, key, &x->view, x->soft_truth, x->soft_se) : SL_CACHE_MISS;
+        cache ? sl_cache_area_read(cache_dir, key, &x->view, x->soft_truth, x->soft_se, &soft_rays) : SL_CACHE_MISS;
     x->truth_cached = got == SL_CACHE_HIT;
-    x->truth_rays = 0;
+    /* the counts of the computation, not of the cache: the area samples the
+     * entry's trace made, and one ray per lit or shadowed pixel of the centre */
+    x->truth_rays = soft_rays + x->view.n_lit + x->view.n_shadow;
     res->passes.cache_rejected += got == SL_CACHE_REJECTED;
     if (x->truth_cached) {
         res->passes.truths_cached++;
@@ -327,7 +330,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
         res->passes.soft_truths++;
         x->truth_rays = st.rays + ts.rays;
         if (cache)
-            sl_cache_area_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se);
+            sl_cache_area_write(cache_dir, key, &x->view, x->soft_truth, x->soft_se, st.rays);
     }
     return view_ready(x, c, k, d);
 }
@@ -366,7 +369,8 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
     enum sl_cache_read got =
         cache_dir && cache_dir[0] ? sl_cache_truth_read(cache_dir, key, &x->view) : SL_CACHE_MISS;
     x->truth_cached = got == SL_CACHE_HIT;
-    x->truth_rays = 0;
+    /* one ray per lit or shadowed pixel, as the trace counts them */
+    x->truth_rays = x->view.n_lit + x->view.n_shadow;
     res->passes.cache_rejected += got == SL_CACHE_REJECTED;
     if (x->truth_cached) {
         res->passes.truths_cached++;
@@ -676,6 +680,12 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         return sl_fail(d, SL_E_USAGE, NULL, 0, "--resume", "--resume needs a results store");
 
     enum sl_err e = SL_OK;
+    /* what the run names itself under --out is never a symbolic link (what
+     * --db and --cache name is the caller's choice) */
+    if (!o->store && store_path[0] && (e = sl_out_no_store_link(store_path, d)))
+        return e;
+    if (!o->cache_dir && cache[0] && (e = sl_out_no_link(cache, d)))
+        return e;
     if (o->write_files) {
         /* fail on an unwritable output before any GL or Embree work */
         if ((e = sl_mkdirs(root, d)))
@@ -692,7 +702,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = x.nsm_map = x.nsm_label = -1;
     x.on_event = o->on_event;
     x.user = o->user;
-    struct sl_store *st = NULL;
+    struct sl_store *st = NULL, *also = NULL;
+    uint8_t *skip = NULL;
     int64_t run_id = 0;
     if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_ovw_open(2, &x.ovw, d)))
         goto out;
@@ -717,6 +728,23 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cell table");
         goto out;
     }
+    /* the cells a resumed run skips, decided once: held by its store, or by
+     * the store it was pointed at besides (a --jobs worker: the main one) */
+    if (o->resume) {
+        if (!(skip = sl_calloc((size_t)total, 1))) {
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cells to skip");
+            goto out;
+        }
+        if (o->stored_in && o->stored_in[0] && (e = sl_store_open_existing(o->stored_in, &also, d)))
+            goto out;
+        for (int idx = first; idx < last; idx++) {
+            struct sl_cell_key k;
+            sl_plan_cell(c, idx, &k);
+            skip[idx] = (uint8_t)(sl_plan_stored(c, &k, st) || (also && sl_plan_stored(c, &k, also)));
+        }
+        sl_store_close(also);
+        also = NULL;
+    }
     for (int idx = first; idx < last && !e; idx++) {
         if (o->stop && *o->stop) {
             res->interrupted = 1;
@@ -724,7 +752,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         struct sl_cell_key k;
         sl_plan_cell(c, idx, &k);
-        if (o->resume && sl_plan_stored(c, &k, st)) {
+        if (skip && skip[idx]) {
             res->skipped++;
             continue;
         }
@@ -736,10 +764,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
          * which reads the back-face layer */
         const int nsm_contour = c->contour_from == SL_CONTOUR_NSM &&
                                 !(c->methods[k.method].method->lights & SL_LIGHTS_AREA);
-        const unsigned needs = sl_plan_group_needs(c, idx, last, st, o->resume) |
+        const unsigned needs = sl_plan_group_needs(c, idx, last, skip) |
                                (nsm_contour && x.nsm_map != k.map ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
-        const unsigned at_pixel = sl_plan_group_at_pixel(c, idx, last, st, o->resume);
-        sl_plan_group_looks(c, idx, last, st, o->resume, x.looks);
+        const unsigned at_pixel = sl_plan_group_at_pixel(c, idx, last, skip);
+        sl_plan_group_looks(c, idx, last, skip, x.looks);
         if ((e = ensure_frame(&x, c, &k, needs, at_pixel, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
             (nsm_contour && (e = ensure_contour(&x, c, &k, res, d))))
             break;
@@ -793,7 +821,9 @@ out:
     sl_ovw_close(x.ovw);   /* no sheet is written into a folder being dropped */
     if (e)
         sl_out_stage_drop(&dirs);
+    sl_store_close(also);
     sl_store_close(st);
+    free(skip);
     ctx_free(&x);
     return e;
 }

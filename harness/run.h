@@ -61,6 +61,8 @@ struct sl_run_opts {
     int         write_files;/* 0 = compute only (tests, bench) */
     int         first, last;/* cells [first, last); last <= 0 = to the end */
     int         resume;     /* skip cells the store already holds */
+    const char *stored_in;  /* with resume: skip the cells this store holds too, opened
+                             * read-only (a --jobs worker: the run's main store) */
     const char *store;      /* database path; NULL = config's, else <out_root>/shadowlab.db
                              * when write_files; "" = no store */
     const char *cache_dir;  /* truth cache; NULL = <out_root>/cache when write_files; "" = none */

@@ -3,6 +3,7 @@
  */
 #define _GNU_SOURCE
 #include "submit.h"
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <ftw.h>
@@ -10,10 +11,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
+#include "outputs.h"
 #include "plan.h"
 #include "util.h"
 
@@ -42,9 +48,14 @@ static enum sl_err sweep_config(const struct sl_merge *m, const char *out_dir, s
         return sl_fail(d, SL_E_IO, NULL, 0, NULL, "the shards' runs carry no config: cannot name missing cells");
     char tmp[1300];
     snprintf(tmp, sizeof tmp, "%s/.merge-config-%ld.yaml", out_dir, (long)getpid());
-    FILE *f = fopen(tmp, "w");
-    if (!f)
+    unlink(tmp);
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        if (fd >= 0)
+            close(fd);
         return sl_fail(d, SL_E_OUTPUT, tmp, 0, NULL, "cannot write: %s", strerror(errno));
+    }
     fputs(text, f);
     fclose(f);
     enum sl_err e = sl_config_load(tmp, c, d);
@@ -61,8 +72,18 @@ static int absent(const char *p)
     return lstat(p, &sb) != 0 && errno == ENOENT;
 }
 
+static enum sl_err shards_merge(const char *const *shards, int n, const char *out, unsigned flags,
+                                struct sl_store *held, struct sl_shards_result *r, struct sl_diag *d);
+
 enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, unsigned flags,
                             struct sl_shards_result *r, struct sl_diag *d)
+{
+    return shards_merge(shards, n, out, flags, NULL, r, d);
+}
+
+/* held: the merged store, open and locked by the caller (run --jobs), else NULL. */
+static enum sl_err shards_merge(const char *const *shards, int n, const char *out, unsigned flags,
+                                struct sl_store *held, struct sl_shards_result *r, struct sl_diag *d)
 {
     memset(r, 0, sizeof *r);
     r->nshards = n;
@@ -115,7 +136,7 @@ enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, u
     if (e)
         return e;
     struct sl_merge *m = NULL;
-    if ((e = sl_merge_open(out, (flags & SL_MERGE_APPEND) != 0, &m, d)))
+    if ((e = sl_merge_open_held(held, out, (flags & SL_MERGE_APPEND) != 0, &m, d)))
         return e;
     double t0 = sl_now();
     for (int i = 0; i < n && !e; i++) {
@@ -297,9 +318,14 @@ static enum sl_err write_script(const char *path, void (*body)(FILE *, const voi
 {
     char tmp[1300];
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (!f)
+    unlink(tmp);   /* never written through a link planted there */
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        if (fd >= 0)
+            close(fd);
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
+    }
     body(f, arg);
     int bad = ferror(f);
     bad |= fclose(f) != 0;
@@ -399,7 +425,7 @@ enum sl_err sl_submit(const struct sl_config *c, const struct sl_submit_opts *o,
     char slurm_dir[1200];
     snprintf(slurm_dir, sizeof slurm_dir, "%s/slurm", out);
     enum sl_err e;
-    if ((e = sl_mkdirs(slurm_dir, d)) || (e = absolute("--out", out, x.out, d)) ||
+    if ((e = sl_out_no_link(slurm_dir, d)) || (e = sl_mkdirs(slurm_dir, d)) || (e = absolute("--out", out, x.out, d)) ||
         (e = absolute("CONFIG", o->config, x.config, d)) || (e = absolute("shadowlab", "/proc/self/exe", x.exe, d)))
         return e;
     snprintf(r->merged, sizeof r->merged, "%s/shadowlab.db", x.out);
@@ -434,15 +460,23 @@ static double tv_s(struct timeval t)
 }
 
 /* One worker: this binary, `run CONFIG --cells A:B` into its own folder and
- * store, its stdout and stderr into its log. */
+ * store, its stdout and stderr into its log. It dies with this process (a
+ * parent-death signal: SIGKILL, checked against the race of a parent that
+ * died before the signal was set), and it inherits the workers' folder's
+ * lock (lock_fd), so that folder stays taken until the last of them is
+ * gone. With resume it skips what its shard or the main store holds. */
 static enum sl_err spawn_worker(const struct sl_config *c, const struct sl_jobs_opts *o, const char *dir,
-                                const char *cache, struct sl_jobs_worker *w, pid_t *out, struct sl_diag *d)
+                                const char *cache, const char *main_store, struct sl_jobs_worker *w, pid_t *out,
+                                struct sl_diag *d)
 {
     char cells[64], db[1300];
     snprintf(cells, sizeof cells, "%d:%d", w->first, w->last);
     snprintf(db, sizeof db, "%s/shadowlab.db", dir);
     snprintf(w->log, sizeof w->log, "%s/run.log", dir);
-    char *argv[16];
+    enum sl_err e;
+    if ((e = sl_out_no_store_link(db, d)))
+        return e;
+    char *argv[20];
     int n = 0;
     argv[n++] = "shadowlab";
     argv[n++] = "run";
@@ -463,17 +497,22 @@ static enum sl_err spawn_worker(const struct sl_config *c, const struct sl_jobs_
         argv[n++] = "--gl";
         argv[n++] = (char *)o->gl;
     }
-    if (o->resume)
+    if (o->resume) {
         argv[n++] = "--resume";
+        argv[n++] = "--stored-in";
+        argv[n++] = (char *)main_store;
+    }
     argv[n] = NULL;
-    int fd = open(w->log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    int fd = open(w->log, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd < 0)
         return sl_fail(d, SL_E_OUTPUT, w->log, 0, NULL, "cannot write: %s", strerror(errno));
+    const pid_t parent = getpid();
     pid_t pid = fork();
     if (pid == 0) {
+        if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent)
+            _exit(127);
         dup2(fd, 1);
         dup2(fd, 2);
-        close(fd);
         execv("/proc/self/exe", argv);
         _exit(127);
     }
@@ -482,6 +521,121 @@ static enum sl_err spawn_worker(const struct sl_config *c, const struct sl_jobs_
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "fork: %s", strerror(errno));
     *out = pid;
     return SL_OK;
+}
+
+/* The workers' folder, taken: an flock on its .lock, waited for (up to 30 s)
+ * while the workers of a run just killed die (their parent-death signal);
+ * the fd is inherited by the workers (no close-on-exec). -1 on failure. */
+static int take_workdir(const char *workdir, struct sl_diag *d)
+{
+    char lk[1300];
+    snprintf(lk, sizeof lk, "%s/.lock", workdir);
+    int fd = open(lk, O_RDWR | O_CREAT | O_NOFOLLOW, 0644);
+    if (fd < 0) {
+        sl_fail(d, SL_E_OUTPUT, lk, 0, NULL, "cannot open: %s", strerror(errno));
+        return -1;
+    }
+    for (int i = 0; i < 600; i++) {
+        if (flock(fd, LOCK_EX | LOCK_NB) == 0)
+            return fd;
+        if (errno != EWOULDBLOCK && errno != EINTR)
+            break;
+        struct timespec ts = {0, 50 * 1000 * 1000};
+        nanosleep(&ts, NULL);
+    }
+    close(fd);
+    sl_fail(d, SL_E_IO, workdir, 0, "--jobs", "in use by the workers of another run (its lock %s is held)", lk);
+    return -1;
+}
+
+/* Every entry of dir but its .lock removed: the shards of an earlier run that
+ * a run without --resume does not go on from. */
+static void clear_workdir(const char *dir)
+{
+    DIR *dp = opendir(dir);
+    if (!dp)
+        return;
+    struct dirent *e;
+    while ((e = readdir(dp))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") || !strcmp(e->d_name, ".lock"))
+            continue;
+        char p[1500];
+        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+        nftw(p, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
+    }
+    closedir(dp);
+}
+
+/* The overlays the store's cells of this config name that are not on disk
+ * (paths relative to the store's folder, or absolute); the first few names
+ * into r. */
+static enum sl_err count_missing_overlays(struct sl_store *st, const struct sl_config *c, const char *store_path,
+                                          struct sl_jobs_result *r, struct sl_diag *d)
+{
+    struct sl_cell_record *cells = NULL;
+    int n = 0;
+    enum sl_err e = sl_out_stored_cells(st, c, &cells, &n, d);
+    if (e)
+        return e;
+    char dir[1200];
+    snprintf(dir, sizeof dir, "%s", store_path);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
+    for (int i = 0; i < n; i++) {
+        if (!cells[i].overlay[0])
+            continue;
+        char p[2800];
+        if (cells[i].overlay[0] == '/')
+            snprintf(p, sizeof p, "%s", cells[i].overlay);
+        else
+            snprintf(p, sizeof p, "%s/%s", dir, cells[i].overlay);
+        if (access(p, F_OK) == 0)
+            continue;
+        if (r->overlays_missing < (int)(sizeof r->missing_overlay / sizeof r->missing_overlay[0]))
+            snprintf(r->missing_overlay[r->overlays_missing], sizeof r->missing_overlay[0], "%s", p);
+        r->overlays_missing++;
+    }
+    free(cells);
+    return SL_OK;
+}
+
+/* Wait for the started workers; a stop (SIGINT or SIGTERM to this process)
+ * is passed on to each live one, which stops after its cell under way. */
+static void wait_workers(const struct sl_jobs_opts *o, pid_t *pids, int started, double t0, struct sl_jobs_result *r)
+{
+    int left = started;
+    while (left > 0) {
+        int st = 0;
+        struct rusage ru;
+        pid_t p = wait4(-1, &st, WNOHANG, &ru);
+        if (p < 0 && errno == EINTR)
+            continue;
+        if (p < 0)
+            break;
+        if (p == 0) {
+            if (o->stop && *o->stop && !r->interrupted) {
+                r->interrupted = *o->stop;
+                for (int i = 0; i < started; i++)
+                    if (pids[i] > 0)
+                        kill(pids[i], *o->stop);
+            }
+            struct timespec ts = {0, 20 * 1000 * 1000};
+            nanosleep(&ts, NULL);
+            continue;
+        }
+        for (int i = 0; i < started; i++)
+            if (pids[i] == p) {
+                r->w[i].status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+                r->w[i].wall_s = sl_now() - t0;
+                r->w[i].cpu_s = tv_s(ru.ru_utime) + tv_s(ru.ru_stime);
+                r->cpu_s += r->w[i].cpu_s;
+                pids[i] = -1;
+                left--;
+            }
+    }
 }
 
 enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o, struct sl_jobs_result *r,
@@ -505,7 +659,35 @@ enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o,
     else
         snprintf(cache, sizeof cache, "%s/cache", root);
     snprintf(r->workdir, sizeof r->workdir, "%s/.jobs-%s", root, c->name);
-    enum sl_err e = SL_OK;
+    /* where the merge gathers the overlays: <the store's folder>/<name> */
+    char store_dir[1200], gathered[1300], final[1300];
+    snprintf(store_dir, sizeof store_dir, "%s", r->store);
+    char *slash = strrchr(store_dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(store_dir, sizeof store_dir, ".");
+    snprintf(gathered, sizeof gathered, "%s/%s", store_dir, c->name);
+    snprintf(final, sizeof final, "%s/%s", root, c->name);
+    enum sl_err e;
+    /* nothing the run names itself is a symbolic link it would write through */
+    if ((!o->store && (e = sl_out_no_store_link(r->store, d))) || (!o->cache && (e = sl_out_no_link(cache, d))) ||
+        (e = sl_out_no_link(r->workdir, d)) || (e = sl_out_no_link(gathered, d)) || (e = sl_out_no_link(final, d)))
+        return e;
+    if ((e = sl_mkdirs(root, d)) || (e = sl_mkdirs(store_dir, d)))
+        return e;
+    /* the main store's writer lock for the whole run: no other run writes it
+     * while the workers read it (--resume) and the merge fills it */
+    struct sl_store *main_st = NULL;
+    if ((e = sl_store_open(r->store, &main_st, d)))
+        return e;
+    int lock = -1;
+    if ((e = sl_mkdirs(r->workdir, d)) || (lock = take_workdir(r->workdir, d)) < 0) {
+        sl_store_close(main_st);
+        return e ? e : SL_E_IO;
+    }
+    if (!o->resume)
+        clear_workdir(r->workdir);
     pid_t pids[64];
     double t0 = sl_now();
     int started = 0;
@@ -515,48 +697,44 @@ enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o,
         w->last = bounds[i + 1];
         char dir[1300];
         snprintf(dir, sizeof dir, "%s/task-%d", r->workdir, i);
-        if ((e = sl_mkdirs(dir, d)))
+        if ((e = sl_out_no_link(dir, d)) || (e = sl_mkdirs(dir, d)))
             break;
-        if (!(e = spawn_worker(c, o, dir, cache, w, &pids[i], d)))
+        if (!(e = spawn_worker(c, o, dir, cache, r->store, w, &pids[i], d)))
             started++;
     }
     /* wait for every worker started, even after a failure: none is left behind */
-    int failed = 0;
-    for (int left = started; left > 0; left--) {
-        int st = 0;
-        struct rusage ru;
-        pid_t p = wait4(-1, &st, 0, &ru);
-        if (p < 0 && errno == EINTR) {
-            left++;
-            continue;
-        }
-        if (p < 0)
-            break;
-        for (int i = 0; i < started; i++)
-            if (pids[i] == p) {
-                r->w[i].status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-                r->w[i].wall_s = sl_now() - t0;
-                r->w[i].cpu_s = tv_s(ru.ru_utime) + tv_s(ru.ru_stime);
-                r->cpu_s += r->w[i].cpu_s;
-                failed |= r->w[i].status != 0;
-            }
-    }
-    r->wall_s = sl_now() - t0;
     if (e)
-        return e;
-    if (failed)
-        return sl_fail(d, SL_E_INTERNAL, c->path, 0, "--jobs", "a worker failed (its log is named above)");
-    const char *shards[64];
-    char paths[64][1300];
-    for (int i = 0; i < r->nworkers; i++) {
-        snprintf(paths[i], sizeof paths[i], "%s/task-%d/shadowlab.db", r->workdir, i);
-        shards[i] = paths[i];
+        for (int i = 0; i < started; i++)
+            kill(pids[i], SIGTERM);
+    wait_workers(o, pids, started, t0, r);
+    r->wall_s = sl_now() - t0;
+    int failed = 0;
+    for (int i = 0; i < started; i++) {
+        int st = r->w[i].status;
+        /* a worker stopped by the signal passed on exits 128 + it: not a failure */
+        failed |= st != 0 && !(r->interrupted && st == 128 + r->interrupted);
     }
-    if ((e = sl_shards_merge(shards, r->nworkers, r->store, 1, &r->merge, d)))
-        return e;
-    if (r->merge.nmissing == 0)
-        nftw(r->workdir, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
-    return SL_OK;
+    if (!e && failed)
+        e = sl_fail(d, SL_E_INTERNAL, c->path, 0, "--jobs", "a worker failed (its log is named above)");
+    if (!e) {
+        /* what the shards hold goes into the main store, after a stop too: a
+         * resumed run skips it (on --resume, keys the store holds are not
+         * copied twice) */
+        const char *shards[64];
+        char paths[64][1300];
+        for (int i = 0; i < r->nworkers; i++) {
+            snprintf(paths[i], sizeof paths[i], "%s/task-%d/shadowlab.db", r->workdir, i);
+            shards[i] = paths[i];
+        }
+        e = shards_merge(shards, r->nworkers, r->store, o->resume ? 0u : SL_MERGE_APPEND, main_st, &r->merge, d);
+        if (!e && c->overlays)
+            e = count_missing_overlays(main_st, c, r->store, r, d);
+        if (!e && r->merge.nmissing == 0 && r->overlays_missing == 0 && !r->interrupted)
+            nftw(r->workdir, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
+    }
+    close(lock);
+    sl_store_close(main_st);
+    return e;
 }
 
 void sl_jobs_result_free(struct sl_jobs_result *r)

@@ -88,7 +88,9 @@ struct sl_jobs_opts {
     const char *store;      /* the merged store; NULL: the config's, else <out_root>/shadowlab.db */
     const char *cache;      /* NULL: <out_root>/cache, shared by the workers; "": none */
     const char *gl;         /* "osmesa", "egl" or NULL (the config's) */
-    int         resume;     /* the workers resume their shards of a killed --jobs run */
+    int         resume;     /* skip the cells the run's store holds; the workers resume their
+                             * shards of a killed --jobs run */
+    const volatile int *stop;   /* set to SIGINT or SIGTERM by a handler: passed on to the workers */
 };
 struct sl_jobs_worker {
     int    first, last;
@@ -102,11 +104,18 @@ struct sl_jobs_result {
     double wall_s, cpu_s;   /* the workers, start to last exit; their user+sys */
     char   store[1200], workdir[1200];
     struct sl_shards_result merge;
+    int    interrupted;        /* the signal passed on to the workers, 0 none */
+    int    overlays_missing;   /* overlays the store's cells of this config name, not on disk */
+    char   missing_overlay[10][1300];   /* the first of them */
 };
 /* Fork `jobs` workers (this binary, /proc/self/exe) over the slices, wait,
- * merge their stores into the run's store (append), and remove their folder
- * when every one succeeded and nothing is missing. SL_E_INTERNAL when a
- * worker failed (its log is named in r). */
+ * merge their stores into the run's store (append; with resume only the
+ * keys it lacks), and remove their folder when every one succeeded and
+ * nothing is missing. The run's store is held open (its writer lock) from
+ * the start to the end; the workers die with this process; a stop is
+ * passed on to them and what they stored is merged (r->interrupted). A
+ * symbolic link where the run writes is refused (SL_E_USAGE). SL_E_INTERNAL
+ * when a worker failed (its log is named in r). */
 enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o, struct sl_jobs_result *r,
                         struct sl_diag *d);
 void sl_jobs_result_free(struct sl_jobs_result *r);

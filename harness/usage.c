@@ -18,7 +18,8 @@ const char sl_usage[] =
 
 const char sl_usage_run[] =
     "usage: shadowlab run CONFIG|SCENE [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
-    "                     [--cache DIR] [--gl osmesa|egl] [--jobs N] [-j N] [-D KEY=VALUE]... [-q|-v]\n"
+    "                     [--cache DIR] [--gl osmesa|egl] [--jobs N] [--stored-in DB] [-j N] [-D KEY=VALUE]...\n"
+    "                     [-q|-v]\n"
     "  -o, --out DIR     output root (default results/): tables and overlays go to DIR/<name>/\n"
     "  --cells A:B       compute only cells A..B-1 of the sweep (scene x viewport x viewpoint x map x method)\n"
     "  --resume          skip cells the results store already holds for this config\n"
@@ -26,7 +27,9 @@ const char sl_usage_run[] =
     "  --no-cache        trace the truth even when DIR/cache holds it\n"
     "  --cache DIR       the truth cache (default DIR/cache; written atomically, may be shared)\n"
     "  --jobs N          N worker processes over slices of the sweep (whole views kept together),\n"
-    "                    their stores merged into DB; the same cells as one process\n"
+    "                    their stores merged into DB; the same cells as one process (the workers\n"
+    "                    die with it; SIGINT/SIGTERM is passed on to them)\n"
+    "  --stored-in DB    with --resume: skip the cells DB holds too (a --jobs worker: the main store)\n"
     "  --gl B            the GL context: osmesa (the default where built) or egl (GPU machines;\n"
     "                    SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
     "  -j, --threads N   threads of the truth and the CPU passes (the config's 'threads') and of\n"

@@ -954,7 +954,7 @@ static void moderno_lookups_shared_only(void **st)
         struct sl_config c;
         sl_test_config("looks.yaml", text, &c);
         unsigned looks[2];
-        sl_plan_group_looks(&c, cases[i].cell, c.nmethods, NULL, 0, looks);
+        sl_plan_group_looks(&c, cases[i].cell, c.nmethods, NULL, looks);
         assert_int_equal(looks[0], cases[i].once);
         assert_int_equal(looks[1], cases[i].twice);
     }

@@ -62,6 +62,12 @@ static char *columns(sqlite3 *db, const char *table, const char *skip1, const ch
 
 enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **out, struct sl_diag *d)
 {
+    return sl_merge_open_held(NULL, out_path, append, out, d);
+}
+
+enum sl_err sl_merge_open_held(struct sl_store *held, const char *out_path, int append, struct sl_merge **out,
+                               struct sl_diag *d)
+{
     struct sl_merge *m = sl_calloc(1, sizeof *m);
     if (!m)
         return sl_fail(d, SL_E_NOMEM, out_path, 0, NULL, "merge");
@@ -73,7 +79,7 @@ enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **ou
         *slash = '\0';
     else
         snprintf(m->dir, sizeof m->dir, ".");
-    enum sl_err e = sl_store_open(out_path, &m->store, d);
+    enum sl_err e = held ? SL_OK : sl_store_open(out_path, &m->store, d);   /* held: the caller's lock */
     /* URIs: shards are attached read-only (sl_storefile_ro_uri) */
     if (!e && sqlite3_open_v2(out_path, &m->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_URI, NULL) != SQLITE_OK)
         e = db_fail(m, d, "cannot open");

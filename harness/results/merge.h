@@ -58,6 +58,11 @@ enum {
  * append: a shard's cell replaces the stored one of its key (fresh results
  * of `run --jobs`, which supersede older ones as a second `run`'s would). */
 enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **out, struct sl_diag *d);
+/* The same into a store the caller holds open for writing (its lock held,
+ * its schema made: `run --jobs` holds its store for the whole run); held
+ * stays the caller's. */
+enum sl_err sl_merge_open_held(struct sl_store *held, const char *out_path, int append, struct sl_merge **out,
+                               struct sl_diag *d);
 /* Check a shard before anything is written: a file, a results store of
  * this version, intact (quick_check, every digest), whose runs are of one
  * config; its hash, study and provenance into info (config_hash "" when it

@@ -157,8 +157,11 @@ void sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_r
         }
         const char *sep = tex ? " & " : " | ";
         fprintf(f, "%s%s%s%d%s", tex ? "" : "| ", r->label, sep, r->frames, sep);
-        fprintf(f, "%.1f%s%llu (%d)%s%llu%s", r->mean_wrong, sep, (unsigned long long)r->worst_wrong, r->worst_frame,
-                sep, (unsigned long long)r->flicker, sep);
+        fprintf(f, "%.1f%s%llu (%d)%s", r->mean_wrong, sep, (unsigned long long)r->worst_wrong, r->worst_frame, sep);
+        if (r->pairs)
+            fprintf(f, "%llu%s", (unsigned long long)r->flicker, sep);
+        else   /* no compared pair: fewer than two comparable frames */
+            fprintf(f, "not defined%s", sep);
         num(f, r->mean_flicker, "%.1f");
         fputs(sep, f);
         if (r->pairs)

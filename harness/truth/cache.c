@@ -5,8 +5,9 @@
  * its checksum are the expected ones and its values agree with the view's
  * classes; a file is written under a temporary name and renamed into place.
  */
-#define _XOPEN_SOURCE 700
+#define _GNU_SOURCE   /* O_NOFOLLOW, O_CLOEXEC */
 #include "cache.h"
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -133,9 +134,13 @@ static void cache_store(const char *dir, const char *kind, const char magic[8], 
         hd.bytes += part[i].n;
         hd.sum = sl_fnv1a(hd.sum, part[i].p, part[i].n);   /* FNV runs on: the parts hash as one */
     }
-    FILE *f = fopen(tmp, "wb");
-    if (!f)
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);   /* never through a link */
+    FILE *f = fd >= 0 ? fdopen(fd, "wb") : NULL;
+    if (!f) {
+        if (fd >= 0)
+            close(fd);
         return;   /* a cache that cannot be written is only a lost speed-up */
+    }
     int ok = fwrite(&hd, sizeof hd, 1, f) == 1;
     for (uint32_t i = 0; ok && i < parts; i++)
         ok = fwrite(part[i].p, 1, part[i].n, f) == part[i].n;
@@ -191,18 +196,20 @@ void sl_cache_truth_write(const char *dir, unsigned long long key, const struct 
     cache_store(dir, "truth", truth_magic, key, v->w, v->h, &part, 1);
 }
 
-static const char area_magic[8] = {'S', 'L', 'A', 'R', 'E', 'A', 'V', '1'};
+/* V2: the rays the area truth traced (a fourth part), so a cell whose truth
+ * comes from the cache stores the count of the one that traced it */
+static const char area_magic[8] = {'S', 'L', 'A', 'R', 'E', 'A', 'V', '2'};
 
 /* SL_CACHE_HIT with the visible fraction, its standard error and the centre's
  * hard truth filled when a valid entry exists: its fractions and errors in
  * [0, 1], 0 on the background, and the point truth agreeing with the view's
  * classes. Otherwise nothing is written. */
 enum sl_cache_read sl_cache_area_read(const char *dir, unsigned long long key, struct sl_view *v, float *visible,
-                                       float *se)
+                                       float *se, uint64_t *rays)
 {
     size_t n = (size_t)v->w * (size_t)v->h, nf = n * sizeof(float);
     void *buf;
-    enum sl_cache_read r = cache_load(dir, "area", area_magic, key, v->w, v->h, 3, 2 * nf + n, &buf);
+    enum sl_cache_read r = cache_load(dir, "area", area_magic, key, v->w, v->h, 4, 2 * nf + n + sizeof *rays, &buf);
     if (r != SL_CACHE_HIT)
         return r;
     const float *fv = buf, *fs = fv + n;   /* malloc'd: aligned for float */
@@ -216,6 +223,7 @@ enum sl_cache_read sl_cache_area_read(const char *dir, unsigned long long key, s
         memcpy(visible, fv, nf);
         memcpy(se, fs, nf);
         memcpy(v->truth, truth, n);
+        memcpy(rays, truth + n, sizeof *rays);
         v->n_lit = lit;
         v->n_shadow = shadow;
     }
@@ -224,10 +232,11 @@ enum sl_cache_read sl_cache_area_read(const char *dir, unsigned long long key, s
 }
 
 void sl_cache_area_write(const char *dir, unsigned long long key, const struct sl_view *v, const float *visible,
-                             const float *se)
+                             const float *se, uint64_t rays)
 {
     size_t n = (size_t)v->w * (size_t)v->h;
-    struct cache_part part[3] = {{visible, n * sizeof(float)}, {se, n * sizeof(float)}, {v->truth, n}};
-    cache_store(dir, "area", area_magic, key, v->w, v->h, part, 3);
+    struct cache_part part[4] = {{visible, n * sizeof(float)}, {se, n * sizeof(float)}, {v->truth, n},
+                                 {&rays, sizeof rays}};
+    cache_store(dir, "area", area_magic, key, v->w, v->h, part, 4);
 }
 

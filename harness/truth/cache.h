@@ -4,7 +4,10 @@
  *
  * One file per view and kind of truth in the cache folder, named by its key:
  * truth-<key>.bin (the hard truth) and area-<key>.bin (an area light's
- * visible fraction, its standard error and the hard truth of its centre).
+ * visible fraction, its standard error, the hard truth of its centre and
+ * the number of rays its area samples traced: a cell whose truth is read
+ * stores the counts of one that traced it; the hard truth's rays are its
+ * lit and shadowed pixels, n_lit + n_shadow, one ray each).
  * Every file is a fixed header then the payload:
  *   magic[8] (the kind), format version, number of parts, key, width,
  *   height, payload length, FNV-1a 64 of the payload
@@ -46,13 +49,14 @@ unsigned long long sl_cache_area_key(unsigned long long view, int side, uint32_t
 enum sl_cache_read sl_cache_truth_read(const char *dir, unsigned long long key, struct sl_view *v);
 void               sl_cache_truth_write(const char *dir, unsigned long long key, const struct sl_view *v);
 
-/* SL_CACHE_HIT with the visible fraction, its standard error and the
- * centre's hard truth filled when a valid entry exists; otherwise nothing
- * is written. A cache that cannot be written is only a lost speed-up: the
+/* SL_CACHE_HIT with the visible fraction, its standard error, the
+ * centre's hard truth and *rays (the area samples traced, the centre's rays
+ * not included) filled when a valid entry exists; otherwise nothing is
+ * written. A cache that cannot be written is only a lost speed-up: the
  * writers report nothing. */
 enum sl_cache_read sl_cache_area_read(const char *dir, unsigned long long key, struct sl_view *v, float *visible,
-                                      float *se);
+                                      float *se, uint64_t *rays);
 void               sl_cache_area_write(const char *dir, unsigned long long key, const struct sl_view *v,
-                                       const float *visible, const float *se);
+                                       const float *visible, const float *se, uint64_t rays);
 
 #endif
