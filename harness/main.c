@@ -816,8 +816,7 @@ static int cmd_bench(int argc, char **argv)
         {"reps", required_argument, NULL, OPT_REPS},         {"only", required_argument, NULL, OPT_ONLY},
         {"scene", required_argument, NULL, OPT_SCENE},       {"viewport", required_argument, NULL, OPT_VIEWPORT},
         {"map", required_argument, NULL, OPT_MAP},           {"csv", required_argument, NULL, OPT_CSV},
-        {"gl", required_argument, NULL, OPT_GL},             {"markdown", required_argument, NULL, OPT_MARKDOWN},
-        {0, 0, 0, 0},
+        {"gl", required_argument, NULL, OPT_GL}, {"markdown", required_argument, NULL, OPT_MARKDOWN}, {0, 0, 0, 0},
     };
     const struct opt_parser p = {"bench", "", sl_usage_bench, lo};
     struct sl_bench_opts o = {.config = NULL, .reps = 0, .out = stdout};
