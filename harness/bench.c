@@ -15,14 +15,16 @@
  * Studies run last, after this file's GL context and BVHs are freed: sl_run
  * makes its own (one OSMesa context at a time).
  */
-#define _GNU_SOURCE   /* open_memstream */
+#define _GNU_SOURCE   /* open_memstream, fopencookie */
 #include "bench_int.h"
 #include <errno.h>
+#include <fcntl.h>
 #include <ftw.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <unistd.h>
 #include <omp.h>
 #include "adjacency.h"
 #include "gbuffer.h"
@@ -626,6 +628,114 @@ static enum sl_err write_csv(const struct sl_bench_result *res, const char *path
     return fclose(f) == 0 ? SL_OK : sl_fail(d, SL_E_IO, path, 0, NULL, "cannot write the CSV");
 }
 
+/* ---- --markdown FILE: the same text, under a header, into a file ---------- */
+
+/* The bench's Markdown goes to its stream as the stages finish (a run of
+ * every stage takes minutes) and, with --markdown, also into memory: a
+ * stream that writes each block to both. The real stream is flushed with
+ * every block, so nothing of it sits in a buffer when a study is forked. */
+struct tee { FILE *a, *b; };
+
+static ssize_t tee_write(void *c, const char *buf, size_t n)
+{
+    struct tee *t = c;
+    if (fwrite(buf, 1, n, t->a) != n || fwrite(buf, 1, n, t->b) != n)
+        return -1;
+    fflush(t->a);
+    return (ssize_t)n;
+}
+
+static int tee_close(void *c)
+{
+    (void)c;
+    return 0;
+}
+
+/* The command line that made this process, as a shell would read it back. */
+static void command_line(char *buf, size_t n)
+{
+    snprintf(buf, n, "(unknown)");
+    FILE *f = fopen("/proc/self/cmdline", "rb");
+    if (!f)
+        return;
+    char raw[2048];
+    size_t len = fread(raw, 1, sizeof raw - 1, f);
+    fclose(f);
+    raw[len] = '\0';
+    size_t o = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < len && o + 4 < n;) {
+        const char *arg = raw + i;
+        size_t al = strlen(arg);
+        int quote = al == 0 || strpbrk(arg, " \t'\"$`\\*?;&|<>()[]{}") != NULL;
+        if (o)
+            buf[o++] = ' ';
+        if (quote && o + 1 < n)
+            buf[o++] = '\'';
+        for (size_t k = 0; k < al && o + 6 < n; k++) {
+            if (arg[k] == '\'') {
+                memcpy(buf + o, "'\\''", 4);
+                o += 4;
+            } else {
+                buf[o++] = arg[k];
+            }
+        }
+        if (quote && o + 1 < n)
+            buf[o++] = '\'';
+        buf[o] = '\0';
+        i += al + 1;
+    }
+}
+
+/* FILE gets the header and then body, or is left as it was: written under
+ * a temporary name in its own folder, synced, renamed over it. */
+static enum sl_err write_markdown(const char *path, const struct sl_provenance *p, const char *stages,
+                                  const char *load0, const char *load1, const char *body, size_t len,
+                                  struct sl_diag *d)
+{
+    char tmp[4096];
+    if (snprintf(tmp, sizeof tmp, "%s.tmp-XXXXXX", path) >= (int)sizeof tmp)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "path too long");
+    int fd = mkstemp(tmp);
+    if (fd < 0)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write the Markdown: %s", strerror(errno));
+    FILE *f = fdopen(fd, "w");
+    if (!f) {
+        close(fd);
+        unlink(tmp);
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write the Markdown: %s", strerror(errno));
+    }
+    fchmod(fd, 0644);
+    char cmd[2048];
+    command_line(cmd, sizeof cmd);
+    fprintf(f, "# Performance\n\n");
+    fprintf(f, "Written by `shadowlab bench --markdown`; regenerate it, on a quiet machine, with the command "
+               "below rather than editing it. What each stage measures and its target: `shadowlab help bench` "
+               "and the man page; a missed target is a MISS, not an error.\n\n");
+    fprintf(f, "| | |\n|---|---|\n");
+    fprintf(f, "| command | `%s` |\n", cmd);
+    fprintf(f, "| stages | %s |\n", stages);
+    fprintf(f, "| git SHA | `%s` |\n", p->git_sha);
+    fprintf(f, "| time (UTC) | %s |\n", p->time_utc);
+    fprintf(f, "| machine | %s |\n", p->host);
+    fprintf(f, "| CPU | %s (%s), %d threads |\n", p->cpu, p->isa, p->threads);
+    fprintf(f, "| GL renderer | %s, %s |\n", p->gl_renderer, p->gl_version);
+    fprintf(f, "| GL backend | %s |\n", p->gl_backend[0] ? p->gl_backend : "(unknown)");
+    fprintf(f, "| Embree | %s |\n", p->embree);
+    fprintf(f, "| load average (1, 5, 15 min) | %s at the start, %s at the end |\n\n", load0, load1);
+    fwrite(body, 1, len, f);
+    int bad = ferror(f) != 0;
+    bad |= fflush(f) != 0;
+    bad |= fsync(fd) != 0;
+    bad |= fclose(f) != 0;
+    if (bad || rename(tmp, path) != 0) {
+        int err = errno;
+        unlink(tmp);
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write the Markdown: %s", strerror(err));
+    }
+    return SL_OK;
+}
+
 /* ---- the driver -------------------------------------------------------------- */
 
 /* Other work on a shared machine skews every time: say how busy it was. */
@@ -680,6 +790,27 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     struct sl_bench_result *res = sl_calloc(1, sizeof *res);
     if (!res)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "bench rows");
+    /* --markdown: everything written to out is also kept for the file */
+    char *md_body = NULL;
+    size_t md_len = 0;
+    FILE *md_mem = NULL, *md_tee = NULL;
+    struct tee md_t = {out, NULL};
+    if (o->markdown) {
+        md_mem = open_memstream(&md_body, &md_len);
+        md_t.b = md_mem;
+        md_tee = md_mem ? fopencookie(&md_t, "w", (cookie_io_functions_t){.write = tee_write, .close = tee_close})
+                        : NULL;
+        if (!md_tee) {
+            if (md_mem)
+                fclose(md_mem);
+            free(md_body);
+            free(res);
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "bench Markdown");
+        }
+        out = md_tee;
+    }
+    char load0[64] = "unknown", stage_list[256] = "";
+    int have_prov = 0;
     struct sl_bench_ctx x;
     memset(&x, 0, sizeof x);
     x.out = out;
@@ -745,10 +876,15 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     sl_provenance_write(&prov, out, "");
     fprintf(out, "stages:");
     for (int i = 0; i < SL_BENCH_NSTAGES; i++)
-        if (stages & (1u << i))
+        if (stages & (1u << i)) {
             fprintf(out, " %s", stage_names[i]);
+            size_t sl = strlen(stage_list);
+            snprintf(stage_list + sl, sizeof stage_list - sl, "%s%s", sl ? ", " : "", stage_names[i]);
+        }
+    have_prov = 1;
     char la[64];
     sl_bench_loadavg(la, sizeof la);
+    snprintf(load0, sizeof load0, "%s", la);
     fprintf(out, "\nload average at start: %s\n```\n\n", la);
     fflush(out);
 
@@ -820,7 +956,20 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     fprintf(out, "load average at the end: %s\n\n", la);
     if (o->csv)
         e = write_csv(res, o->csv, d);
+    if (!e && md_tee) {
+        fclose(md_tee);
+        md_tee = NULL;
+        fclose(md_mem);
+        md_mem = NULL;
+        if (have_prov)
+            e = write_markdown(o->markdown, &prov, stage_list, load0, la, md_body, md_len, d);
+    }
 done:
+    if (md_tee)
+        fclose(md_tee);
+    if (md_mem)
+        fclose(md_mem);
+    free(md_body);
     if (x.gl.backend) {
         sl_gbuffer_free(&x.gp);
         sl_gl_mesh_free(&x.mesh);

@@ -47,7 +47,9 @@
  *
  * A benchmark, not a test: a missed target is reported (MISS), not an
  * error; only a stage that fails to run returns one. Prints Markdown (and
- * optionally CSV); the rows are also returned for tests.
+ * optionally CSV, and the same Markdown under a provenance header into a
+ * file: doc/performance.md is written so); the rows are also returned for
+ * tests.
  * Owns: its own GL context and BVHs for the truth and layer stages (freed
  * before the studies, which make their own). Does not: write results files.
  */
@@ -92,6 +94,9 @@ struct sl_bench_opts {
     const char *moderno;   /* study configs; NULL = configs/moderno-2011.yaml, */
     const char *morais;    /*                      configs/morais-2015.yaml */
     const char *csv;       /* also write the rows here as CSV; NULL = no */
+    const char *markdown;  /* also write the Markdown here, under a header (machine, CPU, GL, git
+                            * SHA, load average, the command: /proc/self/cmdline), atomically
+                            * (a temporary file renamed) and only when every stage ran; NULL = no */
     FILE       *out;       /* Markdown; NULL = stdout */
     enum sl_gl_backend gl; /* GL context of every stage; SL_GL_DEFAULT = OSMesa where built
                             * (the studies: their config's 'gl') */

@@ -66,7 +66,7 @@ enum {
     OPT_CELLS = 256, OPT_RESUME, OPT_DB, OPT_NO_CACHE, OPT_GL, OPT_FORMAT, OPT_SCENE, OPT_VIEWPOINT,
     OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_FIGURES, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
     OPT_ROWS, OPT_UPDATE, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX, OPT_CACHE, OPT_JOBS, OPT_SIZE,
-    OPT_ALLOW_MIXED, OPT_STORED_IN,
+    OPT_ALLOW_MIXED, OPT_STORED_IN, OPT_MARKDOWN,
 };
 #define OPT_HELP {"help", no_argument, NULL, 'h'}
 enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };
@@ -843,7 +843,7 @@ static int cmd_bench(int argc, char **argv)
         {"reps", required_argument, NULL, OPT_REPS},         {"only", required_argument, NULL, OPT_ONLY},
         {"scene", required_argument, NULL, OPT_SCENE},       {"viewport", required_argument, NULL, OPT_VIEWPORT},
         {"map", required_argument, NULL, OPT_MAP},           {"csv", required_argument, NULL, OPT_CSV},
-        {"gl", required_argument, NULL, OPT_GL},             {0, 0, 0, 0},
+        {"gl", required_argument, NULL, OPT_GL}, {"markdown", required_argument, NULL, OPT_MARKDOWN}, {0, 0, 0, 0},
     };
     const struct opt_parser p = {"bench", "", sl_usage_bench, lo};
     struct sl_bench_opts o = {.config = NULL, .reps = 0, .out = stdout};
@@ -874,6 +874,7 @@ static int cmd_bench(int argc, char **argv)
                 return usage_error("bench: --map must be 16..16384", sl_usage_bench);
             break;
         case OPT_CSV: o.csv = optarg; break;
+        case OPT_MARKDOWN: o.markdown = optarg; break;
         case OPT_GL:
             if (!(o.gl = sl_gl_backend_parse(optarg)))
                 return usage_error("bench: --gl wants osmesa or egl", sl_usage_bench);

@@ -96,7 +96,7 @@ const char sl_usage_check[] =
 
 const char sl_usage_bench[] =
     "usage: shadowlab bench [CONFIG] [--only LIST] [--reps N] [--scene S] [--viewport WxH] [--map N]\n"
-    "                       [--csv FILE] [--gl osmesa|egl]\n"
+    "                       [--csv FILE] [--markdown FILE] [--gl osmesa|egl]\n"
     "  Each measurement against its target, as a Markdown table with PASS/MISS:\n"
     "    truth    the truth pass vs a plain Embree rtcOccluded16 loop over the same rays: its filtered\n"
     "             trace vs the plain trace (>= 0.9x), end to end vs set-up + trace (>= 1x)\n"
@@ -125,6 +125,8 @@ const char sl_usage_bench[] =
     "  --viewport WxH  their viewport (default: CONFIG's first, else 1024x1024)\n"
     "  --map N         the layers' map size (default 2048; bigmap: 16384)\n"
     "  --csv FILE      also write the summary rows as CSV\n"
+    "  --markdown FILE also write the Markdown to FILE (atomically, when every stage ran), under a\n"
+    "                  header: machine, CPU, GL renderer and backend, git SHA, load, this command\n"
     "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
 
 const char sl_usage_list[] =

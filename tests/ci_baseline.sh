@@ -2,7 +2,7 @@
 # ci::baseline — the CI experiment (configs/ci.yaml) against its committed
 # baseline (tests/baselines/ci.yaml): exit 1 when a figure moved beyond its
 # tolerance or an exactness invariant broke. The table of what moved is
-# printed either way. To refresh the baseline deliberately, see the README.
+# printed either way. To refresh the baseline deliberately, see doc/guide.md, "Refreshing a baseline".
 set -u
 bin=${1:?usage: ci_baseline.sh path/to/shadowlab}
 tmp=$(mktemp -d)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# layout::flow — the code's rooms follow the data flow (README: Layout):
+# layout::flow — the code's rooms follow the data flow (doc/layout.md):
 # every quoted #include of a stage resolves in that stage or a stage before
 # it (the CMake libraries enforce it at build time; this names the file and
 # the header when an arrow runs back up); only main.c prints to stderr. No

@@ -378,6 +378,55 @@ static void bench_lightfit_rows(void **st)
     assert_non_null(strstr(text, "3840x2160"));
 }
 
+/* --markdown FILE: the very text the stream got, under a header naming the
+ * command, stages, git SHA, machine, CPU, GL renderer and backend and the
+ * load average; written under a temporary name and renamed (none is left);
+ * a FILE that cannot be written is an output error. */
+static void bench_markdown_file(void **st)
+{
+    (void)st;
+    char md[300], file[300];
+    snprintf(file, sizeof file, "%s/performance.md", sl_test_dir);
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(TRUTH), .reps = 1, .scene = "blocks", .width = 64,
+                              .height = 48, .map = 128, .markdown = file};
+    struct sl_bench_result r;
+    run_bench(&o, "stream.md", md, sizeof md, &r);
+    assert_true(r.nrows > 0);
+    static char stream[1 << 16];
+    snprintf(stream, sizeof stream, "%s", slurp(md));
+    const char *text = slurp(file);
+    assert_true(strncmp(text, "# Performance\n", 14) == 0);
+    static const char *const want[] = {"| command | `", "test_bench", "| stages | truth |", "| git SHA | `",
+                                       "| time (UTC) | ", "| machine | ", "| CPU | ", "| GL renderer | ",
+                                       "| GL backend | ", "| Embree | ",
+                                       "| load average (1, 5, 15 min) | "};
+    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++)
+        if (!strstr(text, want[i]))
+            fail_msg("no '%s' in the Markdown file", want[i]);
+    /* the body is the stream's text, whole, at the end */
+    const char *body = strstr(text, "# shadowlab bench\n");
+    assert_non_null(body);
+    assert_string_equal(body, stream);
+    assert_non_null(strstr(body, "## Summary"));
+    DIR *dir = opendir(sl_test_dir);
+    assert_non_null(dir);
+    for (struct dirent *de; (de = readdir(dir));)
+        if (strstr(de->d_name, ".tmp-"))
+            fail_msg("temporary file left: %s", de->d_name);
+    closedir(dir);
+
+    char bad[300];
+    snprintf(bad, sizeof bad, "%s/no-such-folder/performance.md", sl_test_dir);
+    o.markdown = bad;
+    FILE *out = fopen(md, "w");
+    assert_non_null(out);
+    o.out = out;
+    struct sl_diag d;
+    assert_int_equal(sl_bench(&o, NULL, &d), SL_E_OUTPUT);
+    fclose(out);
+    assert_non_null(strstr(d.msg, "cannot write the Markdown"));
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -389,6 +438,7 @@ int main(int argc, char **argv)
         SL_CASE(bench, backends_rows),
         SL_CASE(bench, churn_rows),
         SL_CASE(bench, bigmap_rows),
+        SL_CASE(bench, markdown_file),
     };
     return sl_run_group(argc, argv, "bench", tests, sl_test_setup, sl_test_teardown);
 }
