@@ -848,7 +848,7 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
     fprintf(f, "# shadowlab baseline: the figures and counters of every cell of a results store,\n"
                "# compared by `shadowlab check DB --baseline THIS_FILE`. Written by\n"
                "# `shadowlab check DB --baseline THIS_FILE --update`: refresh it deliberately\n"
-               "# (README, \"Refreshing a baseline\"), never to make a failing check pass.\n");
+               "# (doc/guide.md, \"Refreshing a baseline\"), never to make a failing check pass.\n");
     fprintf(f, "shadowlab_baseline: %d\n", SL_BASELINE_VERSION);
     fprintf(f, "study: ");
     yq(f, run->study);
