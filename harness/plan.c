@@ -55,11 +55,16 @@ void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k)
     }
 }
 
-int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
+int64_t sl_plan_stored_id(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
 {
     const struct sl_config_scene *cs = &c->scenes[k->scene];
-    return sl_store_has_cell(st, c->hash, cs->name, cs->viewpoints[k->vp], c->viewport_w[k->viewport],
-                             c->viewport_h[k->viewport], c->maps[k->map], c->methods[k->method].label);
+    return sl_store_cell_id(st, c->hash, cs->name, cs->viewpoints[k->vp], c->viewport_w[k->viewport],
+                            c->viewport_h[k->viewport], c->maps[k->map], c->methods[k->method].label);
+}
+
+int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
+{
+    return sl_plan_stored_id(c, k, st) != 0;
 }
 
 /* The layers wanted by the selected cells of the (view, map) group that

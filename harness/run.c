@@ -633,9 +633,11 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         sl_out_overlay_name(c, cell, name, sizeof name);
         snprintf(ovpath, sizeof ovpath, "%s/%s", ovdir, name);
     }
-    if (exrdir)
-        snprintf(exrpath, sizeof exrpath, "%s/%s-%s-%dx%d-%d-%s.exr", exrdir, cell->scene, cell->viewpoint, W, H,
-                 c->maps[k->map], cm->label);
+    if (exrdir) {
+        char name[400];
+        sl_out_exr_name(c, cell, name, sizeof name);
+        snprintf(exrpath, sizeof exrpath, "%s/%s", exrdir, name);
+    }
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
@@ -649,6 +651,38 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .overlay_shade = &x->shade,
     };
     return sl_cell_score(&in, &x->vd, cell, d);
+}
+
+/* skip[idx] for the cells of [first, last) a resumed run skips: a cell st
+ * (or also) holds whose files the config asks for are where that store's
+ * results folder keeps them. This run's: its results folder and dead runs'
+ * staging folders (what sl_out_stage_finish carries). also's (the main
+ * store of run --jobs): <its folder>/<name>, where the merge gathers them. */
+static enum sl_err resume_skips(const struct sl_config *c, const struct sl_run_opts *o, const struct sl_out_dirs *dirs,
+                                struct sl_store *st, struct sl_store *also, int first, int last, uint8_t *skip,
+                                struct sl_diag *d)
+{
+    const int files = o->write_files && (c->overlays || c->exr);
+    struct sl_out_kept own = {0}, gath = {0};
+    enum sl_err e = SL_OK;
+    if (files && !(e = sl_out_kept_find(c, dirs->root, dirs->final, dirs->stage, &own, d)) && also) {
+        char gathered[1300];
+        const char *slash = strrchr(o->stored_in, '/');
+        if (slash)
+            snprintf(gathered, sizeof gathered, "%.*s/%s", (int)(slash - o->stored_in), o->stored_in, c->name);
+        else
+            snprintf(gathered, sizeof gathered, "%s", c->name);
+        e = sl_out_kept_find(c, NULL, gathered, NULL, &gath, d);
+    }
+    for (int idx = first; idx < last && !e; idx++) {
+        struct sl_cell_key k;
+        sl_plan_cell(c, idx, &k);
+        skip[idx] = (uint8_t)((sl_plan_stored(c, &k, st) && (!files || sl_out_kept_whole(c, &k, &own))) ||
+                              (also && sl_plan_stored(c, &k, also) && (!files || sl_out_kept_whole(c, &k, &gath))));
+    }
+    sl_out_kept_free(&own);
+    sl_out_kept_free(&gath);
+    return e;
 }
 
 enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struct sl_run_result *res,
@@ -729,7 +763,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         goto out;
     }
     /* the cells a resumed run skips, decided once: held by its store, or by
-     * the store it was pointed at besides (a --jobs worker: the main one) */
+     * the store it was pointed at besides (a --jobs worker: the main one),
+     * with their files (overlay, EXR) where the store's results folder keeps
+     * them; a held cell whose files are lost is computed again (its row is
+     * replaced, its files written again) */
     if (o->resume) {
         if (!(skip = sl_calloc((size_t)total, 1))) {
             e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cells to skip");
@@ -737,11 +774,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         if (o->stored_in && o->stored_in[0] && (e = sl_store_open_existing(o->stored_in, &also, d)))
             goto out;
-        for (int idx = first; idx < last; idx++) {
-            struct sl_cell_key k;
-            sl_plan_cell(c, idx, &k);
-            skip[idx] = (uint8_t)(sl_plan_stored(c, &k, st) || (also && sl_plan_stored(c, &k, also)));
-        }
+        if ((e = resume_skips(c, o, &dirs, st, also, first, last, skip, d)))
+            goto out;
         sl_store_close(also);
         also = NULL;
     }

@@ -9,6 +9,11 @@
 #                 --resume: the store row for row (counts and figures, no
 #                 timings or ids) and the overlays byte for byte equal an
 #                 uninterrupted run's; a SIGTERM leaves no worker running
+#   repair        overlays (and an EXR file) of stored cells deleted from the
+#                 results folder, then --resume (one process, and --jobs 2):
+#                 exit 0, just those cells recomputed, the files back byte
+#                 for byte (an EXR file but its header's time), the rows one
+#                 per key, equal to before, verified
 #   symlinks      a symlink where the run would write (store, cache, results
 #                 folder, .jobs-NAME, slurm/) is refused naming it, exit 2,
 #                 nothing written through it
@@ -220,6 +225,58 @@ YAML
     echo "trial $trial:$log; resumed: the same as an uninterrupted run"
   done
   echo "$trial trials in $(echo "$(date +%s.%N) - $t0" | bc) s"
+  ;;
+repair)
+  sed 's/outputs: {overlays: true}/outputs: {overlays: true, exr: true}/; s/^name: small/name: rep/' \
+    "$tmp/small.yaml" >"$tmp/rep.yaml"
+  grep -q 'exr: true' "$tmp/rep.yaml" || fail "no EXR in the config"
+  # an EXR file's header carries the time it was written (capDate): left out
+  exr_of() {
+    local f
+    for f in $(cd "$1" && ls *.exr | sort); do
+      echo "$f $(perl -0777 -pe 's/capDate\0string\0....\d{4}:\d\d:\d\d \d\d:\d\d:\d\d//s' "$1/$f" | md5sum)"
+    done
+  }
+  for how in run jobs; do
+    out=$tmp/$how
+    flags=--no-cache
+    [ $how = jobs ] && flags="--no-cache --jobs 2"
+    "$bin" run "$tmp/rep.yaml" --out "$out" $flags >"$tmp/1.out" 2>&1 || { cat "$tmp/1.out"; fail "$how: first run"; }
+    ovl_of "$out/rep/overlays" >"$tmp/ovl.before"
+    exr_of "$out/rep/exr" >"$tmp/exr.before"
+    cells_of "$out/shadowlab.db" >"$tmp/cells.before"
+    [ "$(wc -l <"$tmp/ovl.before")" -eq 8 ] && [ "$(wc -l <"$tmp/exr.before")" -eq 8 ] ||
+      fail "$how: want 8 overlays and 8 EXR files: $(cat "$tmp/ovl.before" "$tmp/exr.before")"
+    # two overlays lost, then the EXR file of a third cell
+    for pass in png exr; do
+      if [ $pass = png ]; then
+        gone=$(ls "$out/rep/overlays" | sort | sed -n '2p;7p'); want=2
+        for f in $gone; do rm "$out/rep/overlays/$f"; done
+      else
+        gone=$(ls "$out/rep/exr" | sort | sed -n '4p'); want=1
+        for f in $gone; do rm "$out/rep/exr/$f"; done
+      fi
+      "$bin" run "$tmp/rep.yaml" --out "$out" $flags --resume >"$tmp/2.out" 2>&1
+      rc=$?
+      [ $rc -eq 0 ] || { cat "$tmp/2.out"; fail "$how: --resume after losing $pass files $gone: exit $rc, want 0"; }
+      if [ $how = run ]; then
+        grep -q "rep: $want cell(s) computed, $((8 - want)) already stored" "$tmp/2.out" ||
+          { cat "$tmp/2.out"; fail "$how: want $want cell(s) recomputed"; }
+      else
+        grep -q "; $want copied" "$tmp/2.out" || { cat "$tmp/2.out"; fail "$how: want $want cell(s) recomputed and copied"; }
+      fi
+      diff "$tmp/ovl.before" <(ovl_of "$out/rep/overlays") >"$tmp/diff" ||
+        { cat "$tmp/diff"; fail "$how: the overlays are not back as they were ($pass lost: $gone)"; }
+      diff "$tmp/exr.before" <(exr_of "$out/rep/exr") >"$tmp/diff" ||
+        { cat "$tmp/diff"; fail "$how: the EXR files are not back as they were ($pass lost: $gone)"; }
+      n=$(sqlite3 "$out/shadowlab.db" "SELECT COUNT(*), COUNT(DISTINCT scene || viewpoint || map_size || label) FROM cells")
+      [ "$n" = "8|8" ] || fail "$how: cells|keys = $n, want 8|8"
+      diff "$tmp/cells.before" <(cells_of "$out/shadowlab.db") >"$tmp/diff" ||
+        { head -4 "$tmp/diff"; fail "$how: the recomputed rows differ from the first run's"; }
+      "$bin" verify "$out/shadowlab.db" >"$tmp/v.out" 2>&1 || { cat "$tmp/v.out"; fail "$how: verify"; }
+      echo "$how: lost $pass $(echo $gone): --resume recomputed $want cell(s), files back byte for byte, store verified"
+    done
+  done
   ;;
 symlinks)
   n=0
