@@ -55,6 +55,24 @@ void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k)
     }
 }
 
+/* The set bits of mask below bit b. */
+static int below(unsigned mask, int b)
+{
+    return popcount(b >= 32 ? mask : mask & ((1u << b) - 1u));
+}
+
+int sl_plan_index(const struct sl_config *c, const struct sl_cell_key *k)
+{
+    int base = 0;
+    for (int s = 0; s < k->scene; s++)
+        base += c->nviewports * c->scenes[s].nviewpoints * popcount(c->scenes[s].map_mask) *
+                popcount(c->scenes[s].method_mask);
+    const struct sl_config_scene *cs = &c->scenes[k->scene];
+    int nm = popcount(cs->map_mask), nl = popcount(cs->method_mask);
+    return base + ((k->viewport * cs->nviewpoints + k->vp) * nm + below(cs->map_mask, k->map)) * nl +
+           below(cs->method_mask, k->method);
+}
+
 int64_t sl_plan_stored_id(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
 {
     const struct sl_config_scene *cs = &c->scenes[k->scene];
