@@ -70,7 +70,9 @@ static enum sl_err write_tables(const char *dir, const struct sl_motion_row *row
 /* The plot of one group: wrong pixels (left axis) and flicker (right axis)
  * per frame, one colour per label; a label's flicker only where it has a
  * compared pair (pairs[l]). A group none of whose labels has one (a path of
- * one frame, a --cells slice of one frame) gets its .dat and no plot: its
+ * one frame, a --cells slice holding only its first frame: any later frame
+ * is compared with the one before it, recomputed when this run did not
+ * compute it, run.c) gets its .dat and no plot: its
  * flicker is not defined, and gnuplot refuses a series of NaN only (it left
  * a 0-byte PNG and failed the run after its cells were stored). *plotted: 0
  * then. */
@@ -239,8 +241,8 @@ enum sl_err sl_motion_outputs(struct sl_store *st, const struct sl_config *c, co
         size_t k = 0;
         if (unplotted)
             k += (size_t)snprintf(note + k, sizeof note - k, "%d plot(s) not drawn: a path with fewer than two "
-                                  "comparable frames here (one frame, or a slice of one) has no flicker (not "
-                                  "defined); its wrong pixels per frame are in its .dat file.\n", unplotted);
+                                  "comparable frames here (one frame, or a slice holding only its first) has no "
+                                  "flicker (not defined); its wrong pixels per frame are in its .dat file.\n", unplotted);
         if (!gnuplot)
             k += (size_t)snprintf(note + k, sizeof note - k, "gnuplot is not in PATH: the plots under motion/ are "
                                   "left as .dat and .gp files (`gnuplot NAME.gp` there draws them).\n");

@@ -33,10 +33,24 @@ static void machine_of(const struct sl_provenance *p, char *out, size_t n)
     snprintf(out, n, "%s/%s/%s", p->host, p->cpu, p->isa);
 }
 
+/* A cell's file name from its key: "scene-viewpoint-WxH-map-label.ext" (the
+ * scene's own name, as the cell's record keeps it). */
+static void key_file_name(const struct sl_config *c, const struct sl_cell_key *k, const char *ext, char *out,
+                          size_t n)
+{
+    const struct sl_config_scene *cs = &c->scenes[k->scene];
+    snprintf(out, n, "%s-%s-%dx%d-%d-%s.%s", cs->name, cs->viewpoints[k->vp], c->viewport_w[k->viewport],
+             c->viewport_h[k->viewport], c->maps[k->map], c->methods[k->method].label, ext);
+}
+
 void sl_out_overlay_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n)
 {
-    snprintf(out, n, "%s-%s-%dx%d-%d-%s.png", cl->scene, cl->viewpoint, c->viewport_w[cl->key.viewport],
-             c->viewport_h[cl->key.viewport], c->maps[cl->key.map], c->methods[cl->key.method].label);
+    key_file_name(c, &cl->key, "png", out, n);
+}
+
+void sl_out_exr_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n)
+{
+    key_file_name(c, &cl->key, "exr", out, n);
 }
 
 void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct sl_cell_record *r)
@@ -316,8 +330,10 @@ void sl_out_write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_r
 {
     fprintf(f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
     sl_provenance_write(&res->prov, f, "");
-    fprintf(f, "cells_computed: %d\ncells_skipped: %d\nms_total: %.1f\n", res->ncells, res->skipped,
-            res->ms_total);
+    fprintf(f, "cells_computed: %d\ncells_skipped: %d\n", res->ncells, res->skipped);
+    if (res->warmed)   /* path frames scored again for the next frame's flicker only (doc/motion.md) */
+        fprintf(f, "cells_warmed_up: %d\n", res->warmed);
+    fprintf(f, "ms_total: %.1f\n", res->ms_total);
 }
 
 /* ---- the run's folder: staged, then swapped into place ---- */
@@ -429,6 +445,70 @@ static int claim_dead(const char *dir)
         return -1;
     }
     return fd;
+}
+
+static enum sl_err kept_add(struct sl_out_kept *k, const char *dir, struct sl_diag *d)
+{
+    char (*p)[1200] = realloc(k->dir, (size_t)(k->n + 1) * sizeof *p);
+    if (!p)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "folders to carry from");
+    k->dir = p;
+    snprintf(k->dir[k->n++], sizeof k->dir[0], "%s", dir);
+    return SL_OK;
+}
+
+enum sl_err sl_out_kept_find(const struct sl_config *c, const char *root, const char *final, const char *own,
+                             struct sl_out_kept *k, struct sl_diag *d)
+{
+    memset(k, 0, sizeof *k);
+    enum sl_err e = kept_add(k, final, d);
+    DIR *dir = root && !e ? opendir(root) : NULL;
+    if (!dir)
+        return e;
+    char prefix[200], path[1200];
+    snprintf(prefix, sizeof prefix, ".%s.partial-", c->name);
+    struct dirent *de;
+    while (!e && (de = readdir(dir))) {
+        if (strncmp(de->d_name, prefix, strlen(prefix)) != 0)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", root, de->d_name);
+        if (own && strcmp(path, own) == 0)
+            continue;
+        /* claimable now (its run is dead) is what carry_previous will find:
+         * the claim is let go at once, carry_previous takes it again */
+        int fd = claim_dead(path);
+        if (fd < 0)
+            continue;
+        close(fd);
+        e = kept_add(k, path, d);
+    }
+    closedir(dir);
+    return e;
+}
+
+static int kept_has(const struct sl_out_kept *k, const char *sub, const char *name)
+{
+    for (int i = 0; i < k->n; i++) {
+        char p[1700];
+        snprintf(p, sizeof p, "%s/%s/%s", k->dir[i], sub, name);
+        if (access(p, F_OK) == 0)
+            return 1;
+    }
+    return 0;
+}
+
+int sl_out_kept_whole(const struct sl_config *c, const struct sl_cell_key *key, const struct sl_out_kept *k)
+{
+    char png[400], exr[400];
+    key_file_name(c, key, "png", png, sizeof png);
+    key_file_name(c, key, "exr", exr, sizeof exr);
+    return (!c->overlays || kept_has(k, "overlays", png)) && (!c->exr || kept_has(k, "exr", exr));
+}
+
+void sl_out_kept_free(struct sl_out_kept *k)
+{
+    free(k->dir);
+    memset(k, 0, sizeof *k);
 }
 
 static void carry_previous(const char *root, const char *name, const char *final, const char *stage)

@@ -20,8 +20,10 @@
 #include <stdio.h>
 #include "run.h"
 
-/* The overlay's file name inside the run's overlays/ folder. */
+/* The overlay's file name inside the run's overlays/ folder, and the EXR
+ * file's inside exr/. */
 void sl_out_overlay_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n);
+void sl_out_exr_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n);
 
 /* cl as a record: key, counts, costs and figures; study and config_hash from
  * c. No overlay, run_id, git SHA or machine (the caller's). */
@@ -88,6 +90,26 @@ enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct 
  * order; *cells malloc'ed (free it), *n their number. */
 enum sl_err sl_out_stored_cells(struct sl_store *st, const struct sl_config *c, struct sl_cell_record **cells,
                                 int *n, struct sl_diag *d);
+
+/* The files a stored cell's key names in a results folder: its overlay
+ * (overlays/NAME.png, when the config asks for overlays) and its EXR file
+ * (exr/NAME.exr, when it asks for EXR files). A resumed run treats a
+ * stored cell whose files are in none of the folders it carries from as not
+ * stored: it recomputes the cell, which replaces its row, and writes the
+ * files again (a lost overlay is repaired, not only reported). */
+struct sl_out_kept {
+    int   n;
+    char (*dir)[1200];   /* folders holding overlays/ and exr/ */
+};
+/* The folders the files of a skipped cell can come from: final, and every
+ * dead run's claimable staging folder <root>/.<name>.partial-* but `own`
+ * (those carry_previous carries from; NULL root: final only). */
+enum sl_err sl_out_kept_find(const struct sl_config *c, const char *root, const char *final, const char *own,
+                             struct sl_out_kept *k, struct sl_diag *d);
+/* 1 when every file the config asks for of the cell of key `key` is in one
+ * of k's folders (always 1 when it asks for none). */
+int  sl_out_kept_whole(const struct sl_config *c, const struct sl_cell_key *key, const struct sl_out_kept *k);
+void sl_out_kept_free(struct sl_out_kept *k);   /* NULL-safe on a zeroed k */
 
 /* Rebuild dir's figures.csv, table.md and table.tex from the store's cells of
  * this config when it holds more than `computed`; *stored = how many it holds. */

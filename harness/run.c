@@ -27,6 +27,7 @@
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
+#include "motion.h"
 #include "motion_run.h"
 #include "outputs.h"
 #include "overlay.h"
@@ -633,9 +634,11 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         sl_out_overlay_name(c, cell, name, sizeof name);
         snprintf(ovpath, sizeof ovpath, "%s/%s", ovdir, name);
     }
-    if (exrdir)
-        snprintf(exrpath, sizeof exrpath, "%s/%s-%s-%dx%d-%d-%s.exr", exrdir, cell->scene, cell->viewpoint, W, H,
-                 c->maps[k->map], cm->label);
+    if (exrdir) {
+        char name[400];
+        sl_out_exr_name(c, cell, name, sizeof name);
+        snprintf(exrpath, sizeof exrpath, "%s/%s", exrdir, name);
+    }
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
@@ -649,6 +652,89 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .overlay_shade = &x->shade,
     };
     return sl_cell_score(&in, &x->vd, cell, d);
+}
+
+/* skip[idx] for the cells of [first, last) a resumed run skips: a cell st
+ * (or also) holds whose files the config asks for are where that store's
+ * results folder keeps them. This run's: its results folder and dead runs'
+ * staging folders (what sl_out_stage_finish carries). also's (the main
+ * store of run --jobs): <its folder>/<name>, where the merge gathers them. */
+static enum sl_err resume_skips(const struct sl_config *c, const struct sl_run_opts *o, const struct sl_out_dirs *dirs,
+                                struct sl_store *st, struct sl_store *also, int first, int last, uint8_t *skip,
+                                struct sl_diag *d)
+{
+    const int files = o->write_files && (c->overlays || c->exr);
+    struct sl_out_kept own = {0}, gath = {0};
+    enum sl_err e = SL_OK;
+    if (files && !(e = sl_out_kept_find(c, dirs->root, dirs->final, dirs->stage, &own, d)) && also) {
+        char gathered[1300];
+        const char *slash = strrchr(o->stored_in, '/');
+        if (slash)
+            snprintf(gathered, sizeof gathered, "%.*s/%s", (int)(slash - o->stored_in), o->stored_in, c->name);
+        else
+            snprintf(gathered, sizeof gathered, "%s", c->name);
+        e = sl_out_kept_find(c, NULL, gathered, NULL, &gath, d);
+    }
+    for (int idx = first; idx < last && !e; idx++) {
+        struct sl_cell_key k;
+        sl_plan_cell(c, idx, &k);
+        skip[idx] = (uint8_t)((sl_plan_stored(c, &k, st) && (!files || sl_out_kept_whole(c, &k, &own))) ||
+                              (also && sl_plan_stored(c, &k, also) && (!files || sl_out_kept_whole(c, &k, &gath))));
+    }
+    sl_out_kept_free(&own);
+    sl_out_kept_free(&gath);
+    return e;
+}
+
+/* The sweep index of the cell of idx's key on the frame before idx's in its
+ * path, -1 when idx is no frame of a path or its path's first. */
+static int prev_frame_cell(const struct sl_config *c, int idx)
+{
+    struct sl_cell_key k;
+    sl_plan_cell(c, idx, &k);
+    const struct sl_config_scene *cs = &c->scenes[k.scene];
+    char path[64], other[64];
+    int f = sl_motion_frame_of(cs->viewpoints[k.vp], path, sizeof path);
+    if (f <= 0)
+        return -1;
+    for (int v = cs->nnamed; v < cs->nviewpoints; v++)
+        if (sl_motion_frame_of(cs->viewpoints[v], other, sizeof other) == f - 1 && strcmp(other, path) == 0) {
+            k.vp = v;
+            return sl_plan_index(c, &k);
+        }
+    return -1;
+}
+
+/* Flicker of a path's frame is counted against the frame before it
+ * (temporal.h): its verdicts must be in this process when the frame is
+ * scored, whoever computed and stored that frame (a --cells slice or a
+ * --jobs worker starting mid-path, a resume after a kill). So a computed
+ * frame whose previous frame this run does not compute gets that frame
+ * computed first as a warm-up cell: scored for its verdicts only, neither
+ * stored nor written nor counted. Recomputing it gives the verdicts the run
+ * that stored it had (a cell's verdicts depend on its key and config only),
+ * so the stored flicker counts are the same however the sweep is split or
+ * resumed. The cost: one frame's cells per slice start or resume point, of
+ * the labels and map sizes computed after it.
+ * warm[i] for such cells (indexed by cell); off[i] for every cell of
+ * [*lo, last) this run does not score (skipped or outside the slice, not a
+ * warm-up), which the group planner reads; *lo: the first cell scored. */
+static void warm_up_cells(const struct sl_config *c, int first, int last, const uint8_t *skip, uint8_t *warm,
+                          uint8_t *off, int *lo)
+{
+    *lo = first;
+    for (int i = first; i < last; i++) {
+        if (skip && skip[i])
+            continue;
+        int p = prev_frame_cell(c, i);
+        if (p >= 0 && (p < first || (skip && skip[p]))) {
+            warm[p] = 1;
+            if (p < *lo)
+                *lo = p;
+        }
+    }
+    for (int i = *lo; i < last; i++)
+        off[i] = (uint8_t)(!warm[i] && (i < first || (skip && skip[i])));
 }
 
 enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struct sl_run_result *res,
@@ -703,7 +789,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     x.on_event = o->on_event;
     x.user = o->user;
     struct sl_store *st = NULL, *also = NULL;
-    uint8_t *skip = NULL;
+    uint8_t *skip = NULL, *warm = NULL, *off = NULL;
+    struct sl_cell *wcell = NULL;   /* a warm-up cell's (warm_up_cells) */
     int64_t run_id = 0;
     if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_ovw_open(2, &x.ovw, d)))
         goto out;
@@ -729,7 +816,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         goto out;
     }
     /* the cells a resumed run skips, decided once: held by its store, or by
-     * the store it was pointed at besides (a --jobs worker: the main one) */
+     * the store it was pointed at besides (a --jobs worker: the main one),
+     * with their files (overlay, EXR) where the store's results folder keeps
+     * them; a held cell whose files are lost is computed again (its row is
+     * replaced, its files written again) */
     if (o->resume) {
         if (!(skip = sl_calloc((size_t)total, 1))) {
             e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cells to skip");
@@ -737,23 +827,30 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         if (o->stored_in && o->stored_in[0] && (e = sl_store_open_existing(o->stored_in, &also, d)))
             goto out;
-        for (int idx = first; idx < last; idx++) {
-            struct sl_cell_key k;
-            sl_plan_cell(c, idx, &k);
-            skip[idx] = (uint8_t)(sl_plan_stored(c, &k, st) || (also && sl_plan_stored(c, &k, also)));
-        }
+        if ((e = resume_skips(c, o, &dirs, st, also, first, last, skip, d)))
+            goto out;
         sl_store_close(also);
         also = NULL;
     }
-    for (int idx = first; idx < last && !e; idx++) {
+    if (!(warm = sl_calloc((size_t)total, 1)) || !(off = sl_calloc((size_t)total, 1)) ||
+        !(wcell = sl_calloc(1, sizeof *wcell))) {
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "warm-up cells");
+        goto out;
+    }
+    int lo = first;
+    if (sl_motion_config_has_paths(c))
+        warm_up_cells(c, first, last, skip, warm, off, &lo);
+    else if (skip)
+        memcpy(off + first, skip + first, (size_t)(last - first));
+    for (int idx = lo; idx < last && !e; idx++) {
         if (o->stop && *o->stop) {
             res->interrupted = 1;
             break;
         }
         struct sl_cell_key k;
         sl_plan_cell(c, idx, &k);
-        if (skip && skip[idx]) {
-            res->skipped++;
+        if (off[idx]) {
+            res->skipped += idx >= first;
             continue;
         }
         if ((e = ensure_scene(&x, c, k.scene, res, d)) ||
@@ -764,13 +861,21 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
          * which reads the back-face layer */
         const int nsm_contour = c->contour_from == SL_CONTOUR_NSM &&
                                 !(c->methods[k.method].method->lights & SL_LIGHTS_AREA);
-        const unsigned needs = sl_plan_group_needs(c, idx, last, skip) |
+        const unsigned needs = sl_plan_group_needs(c, idx, last, off) |
                                (nsm_contour && x.nsm_map != k.map ? SL_NEED(SL_LAYER_DEPTH_ID_BACK) : 0u);
-        const unsigned at_pixel = sl_plan_group_at_pixel(c, idx, last, skip);
-        sl_plan_group_looks(c, idx, last, skip, x.looks);
+        const unsigned at_pixel = sl_plan_group_at_pixel(c, idx, last, off);
+        sl_plan_group_looks(c, idx, last, off, x.looks);
         if ((e = ensure_frame(&x, c, &k, needs, at_pixel, res, d)) || (x.area && (e = ensure_soft(&x, c, &k, needs, res, d))) ||
             (nsm_contour && (e = ensure_contour(&x, c, &k, res, d))))
             break;
+        if (warm[idx]) {   /* its verdicts for the next frame's flicker, nothing else */
+            memset(wcell, 0, sizeof *wcell);
+            wcell->index = idx;
+            e = run_cell(&x, c, &k, wcell, NULL, NULL, res, d);
+            res->warmed += !e;
+            res->skipped += idx >= first;   /* in the slice: a stored cell (--resume) */
+            continue;
+        }
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;
         if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? dirs.overlays : NULL,
@@ -824,6 +929,9 @@ out:
     sl_store_close(also);
     sl_store_close(st);
     free(skip);
+    free(warm);
+    free(off);
+    free(wcell);
     ctx_free(&x);
     return e;
 }

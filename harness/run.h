@@ -100,6 +100,7 @@ struct sl_run_result {
     int    ncells;                     /* computed by this invocation */
     struct sl_cell *cells;
     int    skipped;                    /* already in the store (--resume) */
+    int    warmed;                     /* path frames scored for the next frame's flicker only (run.c) */
     int    interrupted;                /* stopped by o->stop before the end */
     int    stored_total;               /* cells of this config in the store after the run, -1 unknown */
     char   store_path[1100];           /* the database written, "" none */

@@ -73,17 +73,20 @@ static int absent(const char *p)
 }
 
 static enum sl_err shards_merge(const char *const *shards, int n, const char *out, unsigned flags,
-                                struct sl_store *held, struct sl_shards_result *r, struct sl_diag *d);
+                                struct sl_store *held, const int64_t *replace, int nreplace,
+                                struct sl_shards_result *r, struct sl_diag *d);
 
 enum sl_err sl_shards_merge(const char *const *shards, int n, const char *out, unsigned flags,
                             struct sl_shards_result *r, struct sl_diag *d)
 {
-    return shards_merge(shards, n, out, flags, NULL, r, d);
+    return shards_merge(shards, n, out, flags, NULL, NULL, 0, r, d);
 }
 
-/* held: the merged store, open and locked by the caller (run --jobs), else NULL. */
+/* held: the merged store, open and locked by the caller (run --jobs), else
+ * NULL; replace: its cells a shard's copy replaces (sl_merge_replace). */
 static enum sl_err shards_merge(const char *const *shards, int n, const char *out, unsigned flags,
-                                struct sl_store *held, struct sl_shards_result *r, struct sl_diag *d)
+                                struct sl_store *held, const int64_t *replace, int nreplace,
+                                struct sl_shards_result *r, struct sl_diag *d)
 {
     memset(r, 0, sizeof *r);
     r->nshards = n;
@@ -138,6 +141,10 @@ static enum sl_err shards_merge(const char *const *shards, int n, const char *ou
     struct sl_merge *m = NULL;
     if ((e = sl_merge_open_held(held, out, (flags & SL_MERGE_APPEND) != 0, &m, d)))
         return e;
+    if ((e = sl_merge_replace(m, replace, nreplace, d))) {
+        sl_merge_close(m);
+        return e;
+    }
     double t0 = sl_now();
     for (int i = 0; i < n && !e; i++) {
         if (absent(shards[i])) {
@@ -602,6 +609,34 @@ static enum sl_err count_missing_overlays(struct sl_store *st, const struct sl_c
     return SL_OK;
 }
 
+/* The main store's cells of this config whose overlay or EXR file is not in
+ * gathered (<the store's folder>/<name>, where the merge puts them): their
+ * ids into *ids (malloc'ed), their number into *n. The workers of a resumed
+ * run compute those cells again (they test the same, run.c), and the merge
+ * replaces them with the fresh copies. */
+static enum sl_err files_lost(struct sl_store *st, const struct sl_config *c, const char *gathered, int64_t **ids,
+                              int *n, struct sl_diag *d)
+{
+    *ids = NULL;
+    *n = 0;
+    if (!c->overlays && !c->exr)
+        return SL_OK;
+    const int total = sl_plan_count(c);
+    struct sl_out_kept kept = {0};
+    enum sl_err e = sl_out_kept_find(c, NULL, gathered, NULL, &kept, d);
+    if (!e && !(*ids = sl_calloc((size_t)total + 1, sizeof **ids)))
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cells to recompute");
+    for (int i = 0; !e && i < total; i++) {
+        struct sl_cell_key k;
+        sl_plan_cell(c, i, &k);
+        int64_t id = sl_plan_stored_id(c, &k, st);
+        if (id && !sl_out_kept_whole(c, &k, &kept))
+            (*ids)[(*n)++] = id;
+    }
+    sl_out_kept_free(&kept);
+    return e;
+}
+
 /* Wait for the started workers; a stop (SIGINT or SIGTERM to this process)
  * is passed on to each live one, which stops after its cell under way. */
 static void wait_workers(const struct sl_jobs_opts *o, pid_t *pids, int started, double t0, struct sl_jobs_result *r)
@@ -688,6 +723,13 @@ enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o,
     }
     if (!o->resume)
         clear_workdir(r->workdir);
+    int64_t *lost = NULL;
+    int nlost = 0;
+    if (o->resume && (e = files_lost(main_st, c, gathered, &lost, &nlost, d))) {
+        close(lock);
+        sl_store_close(main_st);
+        return e;
+    }
     pid_t pids[64];
     double t0 = sl_now();
     int started = 0;
@@ -726,12 +768,14 @@ enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o,
             snprintf(paths[i], sizeof paths[i], "%s/task-%d/shadowlab.db", r->workdir, i);
             shards[i] = paths[i];
         }
-        e = shards_merge(shards, r->nworkers, r->store, o->resume ? 0u : SL_MERGE_APPEND, main_st, &r->merge, d);
+        e = shards_merge(shards, r->nworkers, r->store, o->resume ? 0u : SL_MERGE_APPEND, main_st, lost, nlost,
+                         &r->merge, d);
         if (!e && c->overlays)
             e = count_missing_overlays(main_st, c, r->store, r, d);
         if (!e && r->merge.nmissing == 0 && r->overlays_missing == 0 && !r->interrupted)
             nftw(r->workdir, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
     }
+    free(lost);
     close(lock);
     sl_store_close(main_st);
     return e;

@@ -9,12 +9,23 @@
 #                 --resume: the store row for row (counts and figures, no
 #                 timings or ids) and the overlays byte for byte equal an
 #                 uninterrupted run's; a SIGTERM leaves no worker running
+#   repair        overlays (and an EXR file) of stored cells deleted from the
+#                 results folder, then --resume (one process, and --jobs 2):
+#                 exit 0, just those cells recomputed, the files back byte
+#                 for byte (an EXR file but its header's time), the rows one
+#                 per key, equal to before, verified
 #   symlinks      a symlink where the run would write (store, cache, results
 #                 folder, .jobs-NAME, slurm/) is refused naming it, exit 2,
 #                 nothing written through it
-#   one_frame     (motion::one_frame) a path of one frame, and a --cells slice
-#                 of one frame: computed, flicker not defined, no plot, exit 0,
-#                 and --resume exits 0 too
+#   one_frame     (motion::one_frame) a path of one frame: computed, flicker
+#                 not defined, no plot, exit 0, and --resume exits 0 too; a
+#                 --cells slice holding the second frame of two alone: its
+#                 flicker against the first (computed as a warm-up, not
+#                 stored) is the whole run's
+#   split         (motion::split) a path's sweep run whole, as --cells slices
+#                 cut inside frames, as --jobs 2, and killed then resumed
+#                 (one process, and --jobs 2): the same cells and figures,
+#                 flicker included (doc/motion.md)
 set -u
 bin=${1:?usage: cli_trust.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -124,17 +135,88 @@ YAML
     [ $rc -eq 0 ] || { cat "$tmp/run.out"; fail "run $run: exit $rc, want 0"; }
   done
   for p in a/still b/two; do
-    m=$tmp/$p/motion
     n=$(sqlite3 "$tmp/${p%/*}/shadowlab.db" "SELECT COUNT(*) FROM cells")
     [ "$n" -eq 1 ] || fail "$p: $n cell(s) stored, want 1"
-    ls "$m" | grep -q '\.png$' && fail "$p: a plot was drawn: $(ls -l "$m")"
-    ls "$m" | grep -q '\.dat$' || fail "$p: no .dat file"
-    grep -q "| not defined |" "$tmp/$p/motion.md" || { cat "$tmp/$p/motion.md"; fail "$p: flicker not marked 'not defined'"; }
-    grep -q "1 plot(s) not drawn" "$tmp/$p/motion.md" || { cat "$tmp/$p/motion.md"; fail "$p: no note on the plot"; }
   done
+  m=$tmp/a/still/motion
+  ls "$m" | grep -q '\.png$' && fail "a/still: a plot was drawn: $(ls -l "$m")"
+  ls "$m" | grep -q '\.dat$' || fail "a/still: no .dat file"
+  grep -q "| not defined |" "$tmp/a/still/motion.md" || { cat "$tmp/a/still/motion.md"; fail "a/still: flicker not marked 'not defined'"; }
+  grep -q "1 plot(s) not drawn" "$tmp/a/still/motion.md" || { cat "$tmp/a/still/motion.md"; fail "a/still: no note on the plot"; }
   # both frames of the two-frame path in one run: a compared pair, a plot
   "$bin" run "$tmp/two.yaml" --out "$tmp/c" -q >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "two frames"; }
   ls "$tmp/c/two/motion" | grep -q '\.png$' || fail "two frames: no plot"
+  # the slice's frame 1 was compared with frame 0 as the whole run's was
+  q="SELECT flicker, flicker_compared FROM cells WHERE viewpoint LIKE '%.001'"
+  whole=$(sqlite3 "$tmp/c/shadowlab.db" "$q") slice=$(sqlite3 "$tmp/b/shadowlab.db" "$q")
+  echo "frame 1 flicker|compared: whole run $whole, slice --cells 1:2 $slice"
+  [ "${whole#*|}" -gt 0 ] || fail "the whole run compared no pixel of frame 1"
+  [ "$whole" = "$slice" ] || fail "frame 1's flicker: $slice in a slice of one frame, $whole in the whole run"
+  ls "$tmp/b/two/motion" | grep -q '\.png$' || fail "the slice's pair: no plot"
+  ;;
+split)
+  cat >"$tmp/m.yaml" <<'YAML'
+name: m_motion
+base: primitives
+viewpoints:
+  - {name: side, position: [35, 50, -43], direction: [-1, -1.2, 1], fov: 60, near: 20, far: 250}
+paths:
+  - {name: sun, frames: 6, camera: {viewpoint: side}, light: {elevation: [25, 65], azimuth: [20, 80]}}
+YAML
+  # 6 frames x 2 map sizes x 2 labels = 24 cells, 4 per frame
+  cat >"$tmp/split.yaml" <<YAML
+name: split
+scenes: [{scene: $tmp/m.yaml, paths: [sun]}]
+viewports: [{width: 160, height: 160}]
+map_sizes: [256, 512]
+methods: [{label: ff, method: nsm}, {label: texel, method: texel}]
+outputs: {tables: true, overlays: true}
+repetitions: {warmup: 0, runs: 1}
+YAML
+  go() { "$bin" run "$tmp/split.yaml" --no-cache -q "$@" >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "run $*"; }; }
+  go --out "$tmp/ref"
+  q="SELECT COUNT(*), SUM(flicker_compared > 0), SUM(flicker) > 0 FROM cells"
+  n=$(sqlite3 "$tmp/ref/shadowlab.db" "$q")
+  [ "$n" = "24|20|1" ] || fail "whole run: cells|compared|any flicker = $n, want 24|20|1"
+  # slices cut inside frames 1, 3 and 4, each its own run into one store (the
+  # later ones with --resume, which carries the earlier ones' overlays)
+  go --out "$tmp/slices" --cells 0:5
+  for cut in 5:14 14:17 17:24; do go --out "$tmp/slices" --cells $cut --resume; done
+  same_as "$tmp/ref" "$tmp/slices" split "--cells 0:5, 5:14, 14:17, 17:24"
+  echo "slices: the same cells and figures as the whole run"
+  go --out "$tmp/jobs" --jobs 2
+  same_as "$tmp/ref" "$tmp/jobs" split "--jobs 2"
+  echo "--jobs 2: the same"
+  go --out "$tmp/jobs3" --jobs 3
+  same_as "$tmp/ref" "$tmp/jobs3" split "--jobs 3"
+  echo "--jobs 3: the same"
+  # killed when 7, then 15 cells are stored (frames 1 and 3 begun), resumed
+  for how in run jobs; do
+    out=$tmp/k$how
+    flags=""
+    log=""
+    [ $how = jobs ] && flags="--jobs 2"
+    for at in 7 15; do
+      setsid "$bin" run "$tmp/split.yaml" --out "$out" --no-cache -q $flags $( [ $at = 15 ] && echo --resume ) \
+        >"$tmp/run.out" 2>&1 &
+      pid=$!
+      for _ in $(seq 1 1000); do
+        n=$(sqlite3 "$out/shadowlab.db" "SELECT COUNT(*) FROM cells" 2>/dev/null || echo 0)
+        [ $how = jobs ] && n=$((n + $(in_shards "$out")))
+        [ "$n" -ge $at ] && break
+        sleep 0.01
+      done
+      kill -KILL -- -"$pid" 2>/dev/null || fail "$how: the run ended before $at cells: make the sweep longer"
+      wait "$pid" 2>/dev/null
+      sleep 0.05
+      n=$(sqlite3 "$out/shadowlab.db" "SELECT COUNT(*) FROM cells" 2>/dev/null || echo 0)
+      log="$log killed at $n stored + $(in_shards "$out") in shards;"
+      [ $((n + $(in_shards "$out"))) -lt 24 ] || fail "$how: every cell was stored before the kill at $at"
+    done
+    go --out "$out" $flags --resume
+    same_as "$tmp/ref" "$out" split "$how killed at 7 and 15 cells, resumed"
+    echo "$how$log resumed: the same"
+  done
   ;;
 resume)
   "$bin" run "$tmp/small.yaml" --out "$tmp/a" --jobs 2 --no-cache >"$tmp/1.out" 2>&1 || { cat "$tmp/1.out"; fail "--jobs 2"; }
@@ -220,6 +302,58 @@ YAML
     echo "trial $trial:$log; resumed: the same as an uninterrupted run"
   done
   echo "$trial trials in $(echo "$(date +%s.%N) - $t0" | bc) s"
+  ;;
+repair)
+  sed 's/outputs: {overlays: true}/outputs: {overlays: true, exr: true}/; s/^name: small/name: rep/' \
+    "$tmp/small.yaml" >"$tmp/rep.yaml"
+  grep -q 'exr: true' "$tmp/rep.yaml" || fail "no EXR in the config"
+  # an EXR file's header carries the time it was written (capDate): left out
+  exr_of() {
+    local f
+    for f in $(cd "$1" && ls *.exr | sort); do
+      echo "$f $(perl -0777 -pe 's/capDate\0string\0....\d{4}:\d\d:\d\d \d\d:\d\d:\d\d//s' "$1/$f" | md5sum)"
+    done
+  }
+  for how in run jobs; do
+    out=$tmp/$how
+    flags=--no-cache
+    [ $how = jobs ] && flags="--no-cache --jobs 2"
+    "$bin" run "$tmp/rep.yaml" --out "$out" $flags >"$tmp/1.out" 2>&1 || { cat "$tmp/1.out"; fail "$how: first run"; }
+    ovl_of "$out/rep/overlays" >"$tmp/ovl.before"
+    exr_of "$out/rep/exr" >"$tmp/exr.before"
+    cells_of "$out/shadowlab.db" >"$tmp/cells.before"
+    [ "$(wc -l <"$tmp/ovl.before")" -eq 8 ] && [ "$(wc -l <"$tmp/exr.before")" -eq 8 ] ||
+      fail "$how: want 8 overlays and 8 EXR files: $(cat "$tmp/ovl.before" "$tmp/exr.before")"
+    # two overlays lost, then the EXR file of a third cell
+    for pass in png exr; do
+      if [ $pass = png ]; then
+        gone=$(ls "$out/rep/overlays" | sort | sed -n '2p;7p'); want=2
+        for f in $gone; do rm "$out/rep/overlays/$f"; done
+      else
+        gone=$(ls "$out/rep/exr" | sort | sed -n '4p'); want=1
+        for f in $gone; do rm "$out/rep/exr/$f"; done
+      fi
+      "$bin" run "$tmp/rep.yaml" --out "$out" $flags --resume >"$tmp/2.out" 2>&1
+      rc=$?
+      [ $rc -eq 0 ] || { cat "$tmp/2.out"; fail "$how: --resume after losing $pass files $gone: exit $rc, want 0"; }
+      if [ $how = run ]; then
+        grep -q "rep: $want cell(s) computed, $((8 - want)) already stored" "$tmp/2.out" ||
+          { cat "$tmp/2.out"; fail "$how: want $want cell(s) recomputed"; }
+      else
+        grep -q "; $want copied" "$tmp/2.out" || { cat "$tmp/2.out"; fail "$how: want $want cell(s) recomputed and copied"; }
+      fi
+      diff "$tmp/ovl.before" <(ovl_of "$out/rep/overlays") >"$tmp/diff" ||
+        { cat "$tmp/diff"; fail "$how: the overlays are not back as they were ($pass lost: $gone)"; }
+      diff "$tmp/exr.before" <(exr_of "$out/rep/exr") >"$tmp/diff" ||
+        { cat "$tmp/diff"; fail "$how: the EXR files are not back as they were ($pass lost: $gone)"; }
+      n=$(sqlite3 "$out/shadowlab.db" "SELECT COUNT(*), COUNT(DISTINCT scene || viewpoint || map_size || label) FROM cells")
+      [ "$n" = "8|8" ] || fail "$how: cells|keys = $n, want 8|8"
+      diff "$tmp/cells.before" <(cells_of "$out/shadowlab.db") >"$tmp/diff" ||
+        { head -4 "$tmp/diff"; fail "$how: the recomputed rows differ from the first run's"; }
+      "$bin" verify "$out/shadowlab.db" >"$tmp/v.out" 2>&1 || { cat "$tmp/v.out"; fail "$how: verify"; }
+      echo "$how: lost $pass $(echo $gone): --resume recomputed $want cell(s), files back byte for byte, store verified"
+    done
+  done
   ;;
 symlinks)
   n=0

@@ -31,6 +31,8 @@ struct sl_merge {
     char config_path[512];
     char *run_cols, *cell_cols, *fig_cols;   /* comma lists without the ids we remap */
     struct sl_integ *integ;                  /* digests of the merged cells */
+    int64_t *replace;                        /* stored cells a shard's copy replaces (sorted) */
+    int nreplace;
 };
 
 static enum sl_err db_fail(struct sl_merge *m, struct sl_diag *d, const char *what)
@@ -112,7 +114,34 @@ void sl_merge_close(struct sl_merge *m)
     sqlite3_free(m->cell_cols);
     sqlite3_free(m->fig_cols);
     free(m->config_text);
+    free(m->replace);
     free(m);
+}
+
+static int id_cmp(const void *a, const void *b)
+{
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return (x > y) - (x < y);
+}
+
+enum sl_err sl_merge_replace(struct sl_merge *m, const int64_t *ids, int n, struct sl_diag *d)
+{
+    free(m->replace);
+    m->replace = NULL;
+    m->nreplace = 0;
+    if (n <= 0)
+        return SL_OK;
+    if (!(m->replace = sl_calloc((size_t)n, sizeof *m->replace)))
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cells to replace");
+    memcpy(m->replace, ids, (size_t)n * sizeof *ids);
+    qsort(m->replace, (size_t)n, sizeof *m->replace, id_cmp);
+    m->nreplace = n;
+    return SL_OK;
+}
+
+static int replaced(const struct sl_merge *m, int64_t id)
+{
+    return m->nreplace && bsearch(&id, m->replace, (size_t)m->nreplace, sizeof id, id_cmp) != NULL;
 }
 
 const char *sl_merge_config_hash(const struct sl_merge *m)
@@ -363,12 +392,13 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
         /* a key already in the store (the schema holds it once): another
          * shard or an earlier merge brought it; kept, so merging is
          * idempotent; append (run --jobs): the fresh cell replaces it, as a
-         * second `run` would */
+         * second `run` would; so does one of the cells a resume recomputes
+         * because its files were lost (sl_merge_replace) */
         for (int k = 2; k <= 8; k++)
             sqlite3_bind_value(dup, k - 1, sqlite3_column_value(st, k));
         sqlite3_int64 old = sqlite3_step(dup) == SQLITE_ROW ? sqlite3_column_int64(dup, 0) : 0;
         sqlite3_reset(dup);
-        if (old && !m->append) {
+        if (old && !m->append && !replaced(m, old)) {
             info->duplicates++;
             continue;
         }

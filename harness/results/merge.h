@@ -63,6 +63,11 @@ enum sl_err sl_merge_open(const char *out_path, int append, struct sl_merge **ou
  * stays the caller's. */
 enum sl_err sl_merge_open_held(struct sl_store *held, const char *out_path, int append, struct sl_merge **out,
                                struct sl_diag *d);
+/* Cells of the merged store (by cell_id) that a shard's cell of their key
+ * replaces though append is off: `run --jobs --resume` recomputes a stored
+ * cell whose overlay or EXR file is lost, and its fresh copy supersedes the
+ * stored one. ids is copied; call before sl_merge_add. */
+enum sl_err sl_merge_replace(struct sl_merge *m, const int64_t *ids, int n, struct sl_diag *d);
 /* Check a shard before anything is written: a file, a results store of
  * this version, intact (quick_check, every digest), whose runs are of one
  * config; its hash, study and provenance into info (config_hash "" when it

@@ -174,8 +174,8 @@ static const char sql_ins_fig[] =
     "count, percent, percent_of) VALUES (?,?,?,?,?,?,?,?,?,?,?)";
 
 static const char sql_has_cell[] =
-    "SELECT EXISTS (SELECT 1 FROM cells WHERE config_hash = ?1 AND scene = ?2 AND viewpoint = ?3 "
-    "AND vw = ?4 AND vh = ?5 AND map_size = ?6 AND label = ?7)";
+    "SELECT COALESCE((SELECT cell_id FROM cells WHERE config_hash = ?1 AND scene = ?2 AND viewpoint = ?3 "
+    "AND vw = ?4 AND vh = ?5 AND map_size = ?6 AND label = ?7), 0)";
 
 /* Latest cell per key: highest run, then highest cell id within the run.
  * Filters are on key columns, so filtering before ranking does not change
@@ -724,8 +724,8 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
 
 /* ---- reading ---- */
 
-int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const char *scene,
-                      const char *viewpoint, int vw, int vh, int map_size, const char *label)
+int64_t sl_store_cell_id(struct sl_store *s, unsigned long long config_hash, const char *scene,
+                         const char *viewpoint, int vw, int vh, int map_size, const char *label)
 {
     if (!s || !scene || !viewpoint || !label)
         return 0;
@@ -736,9 +736,15 @@ int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const 
     key_bind(&b, hash, scene, viewpoint, vw, vh, map_size, label);
     /* an error reads as "not stored": the cell is recomputed and the put
      * reports the error */
-    int found = b_done(&b) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0);
+    int64_t id = b_done(&b) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int64(st, 0) : 0;
     st_clear(st);
-    return found;
+    return id;
+}
+
+int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const char *scene,
+                      const char *viewpoint, int vw, int vh, int map_size, const char *label)
+{
+    return sl_store_cell_id(s, config_hash, scene, viewpoint, vw, vh, map_size, label) != 0;
 }
 
 static void col_text(sqlite3_stmt *st, int i, char *buf, size_t n)

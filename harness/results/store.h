@@ -44,6 +44,9 @@ enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p
  * the error). */
 int sl_store_has_cell(struct sl_store *s, unsigned long long config_hash, const char *scene,
                       const char *viewpoint, int vw, int vh, int map_size, const char *label);
+/* The same cell's id (its row in cells), 0 when it is not stored. */
+int64_t sl_store_cell_id(struct sl_store *s, unsigned long long config_hash, const char *scene,
+                         const char *viewpoint, int vw, int vh, int map_size, const char *label);
 
 /* Append one cell (its columns of cellcols.h, its figures, its soft figures
  * when has_soft) in one transaction. NAN stage times are stored as NULL (not

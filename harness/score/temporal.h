@@ -89,7 +89,9 @@ enum sl_err sl_temporal_view(struct sl_temporal *t, int scene, int viewport, con
 /* A cell of the current view: its verdicts are kept for the next frame and,
  * when the previous frame holds the same (map, label), compared with them.
  * *measured = 1 with *flicker and *compared set when compared, else 0
- * (the view is no frame, or the first of its path in this run); *ms (when
+ * (the view is no frame, or the first of its path; a run scores the frame
+ * before the first it computes of a path as warm-up cells, run.c, so the
+ * counts do not depend on where a slice or a resume begins); *ms (when
  * not NULL): the wall time it took, keeping the verdicts included, plus
  * the view's copies and match (shared by its cells, reported with each as
  * view stages are). */
