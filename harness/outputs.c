@@ -331,7 +331,7 @@ void sl_out_write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_r
     fprintf(f, "config: %s\nconfig_hash: %016llx\n", c->path, c->hash);
     sl_provenance_write(&res->prov, f, "");
     fprintf(f, "cells_computed: %d\ncells_skipped: %d\n", res->ncells, res->skipped);
-    if (res->warmed)   /* path frames scored again for the next frame's flicker only (doc/motion.md) */
+    if (res->warmed)   /* path frames scored again for the next frame's flicker only (doc/guide.md, Errors over motion) */
         fprintf(f, "cells_warmed_up: %d\n", res->warmed);
     fprintf(f, "ms_total: %.1f\n", res->ms_total);
 }

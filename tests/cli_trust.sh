@@ -25,7 +25,7 @@
 #   split         (motion::split) a path's sweep run whole, as --cells slices
 #                 cut inside frames, as --jobs 2, and killed then resumed
 #                 (one process, and --jobs 2): the same cells and figures,
-#                 flicker included (doc/motion.md)
+#                 flicker included (doc/guide.md, Errors over motion)
 set -u
 bin=${1:?usage: cli_trust.sh path/to/shadowlab CASE}
 case_=${2:?case}
