@@ -229,6 +229,9 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown scene '%s' (known: %s)", rs->scene, known);
         }
         struct sl_scene s;
+        enum sl_err re = sl_yaml_ref_check(d, SL_E_CONFIG, file, ix, key, cs->path);
+        if (re)
+            return re;
         if (sl_scene_load(cs->path, &s, &sd) != SL_OK) {
             /* the scene file's own error names its file, line and key */
             *d = sd;
@@ -716,6 +719,13 @@ static enum sl_err ov_edit(unsigned char **text, size_t *len, void *user, struct
         }
         snprintf(path, sizeof path, "%.*s", (int)(eq - o->ov[i]), o->ov[i]);
         yaml_document_t val;
+        int deep_line;
+        if (sl_yaml_depth((const unsigned char *)eq + 1, strlen(eq + 1), SL_YAML_MAX_DEPTH, &deep_line, NULL, 0) >
+            SL_YAML_MAX_DEPTH) {
+            yaml_document_delete(&doc);
+            return sl_fail(d, SL_E_CONFIG, src, 0, path, "the value is nested more than %d levels deep",
+                           SL_YAML_MAX_DEPTH);
+        }
         if (!ov_parse(&val, (const unsigned char *)eq + 1, strlen(eq + 1))) {
             yaml_document_delete(&doc);
             return sl_fail(d, SL_E_CONFIG, src, 0, path, "the value '%s' is not YAML", eq + 1);

