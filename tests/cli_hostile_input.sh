@@ -9,6 +9,7 @@
 # The big files are made here, not committed.
 set -u
 bin=${1:?usage: cli_hostile_input.sh path/to/shadowlab}
+case $bin in /*) ;; *) bin=$PWD/$bin ;; esac   # some cases run in another folder
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 pass=0 fail=0
@@ -23,16 +24,16 @@ case_() { # name stderr_pattern -- command...   (want: exit 2, pattern on line 1
   t1=$(date +%s%N)
   ms=$(((t1 - t0) / 1000000))
   if [ "$rc" -ne 2 ]; then
-    echo "FAIL $name: exit $rc (want 2) after ${ms} ms"; head -c 600 "$tmp/err"; fail=$((fail + 1)); return
+    echo "FAIL $name: exit $rc (want 2) after ${ms} ms"; head -c 600 "$tmp/err"; fail=$((fail + 1)); return 1
   fi
   if ! grep -Eq -- "$pat" <(head -n 1 "$tmp/err"); then
-    echo "FAIL $name: first stderr line does not match /$pat/:"; head -c 600 "$tmp/err"; fail=$((fail + 1)); return
+    echo "FAIL $name: first stderr line does not match /$pat/:"; head -c 600 "$tmp/err"; fail=$((fail + 1)); return 1
   fi
   if [ "$ms" -gt $((limit * 1000)) ]; then
-    echo "FAIL $name: ${ms} ms (at most ${limit} s)"; fail=$((fail + 1)); return
+    echo "FAIL $name: ${ms} ms (at most ${limit} s)"; fail=$((fail + 1)); return 1
   fi
   if [ -d "$tmp/res" ] && [ -n "$(ls -A "$tmp/res")" ]; then
-    echo "FAIL $name: wrote into --out:"; ls -la "$tmp/res"; fail=$((fail + 1)); return
+    echo "FAIL $name: wrote into --out:"; ls -la "$tmp/res"; fail=$((fail + 1)); return 1
   fi
   echo "ok   $name (${ms} ms): $(head -n 1 "$tmp/err" | cut -c1-160)"
   pass=$((pass + 1))
@@ -92,6 +93,58 @@ for m in fifo.yaml:FIFO folder.ply:folder /dev/zero:"character device"; do
 done
 case_ "a FIFO as baseline" "fifo\.yaml: cannot read: a FIFO" -- \
   "$bin" check "$tmp/empty.db" --baseline "$tmp/fifo.yaml"
+
+
+# ---- numbers: range-checked before any cast, whole numbers only, the same
+# message form for -D, the file's own keys and the options
+case_ "-D repetitions.warmup=4294967295 (was -1)" \
+  "^shadowlab: -D repetitions\.warmup=4294967295: 'repetitions\.warmup': warmup 4294967295: at most 100" -- \
+  "$bin" validate configs/default.yaml -D repetitions.warmup=4294967295
+case_ "-D threads=4294967295" "'threads': threads 4294967295: at most 256" -- \
+  "$bin" validate configs/default.yaml -D threads=4294967295
+case_ "-D seed=7.9 (was 7)" "^shadowlab: -D seed=7\.9: 'seed': '7\.9' is not a whole number" -- \
+  "$bin" validate configs/default.yaml -D seed=7.9
+case_ "-D map_sizes=[512, 1e3]" "'map_sizes\[1\]': '1e3' is not a whole number" -- \
+  "$bin" validate configs/default.yaml -D "map_sizes=[512, 1e3]"
+{ echo "$cfg_head"; echo 'seed: 7.9'; } >"$tmp/seed.yaml"
+case_ "seed: 7.9 in the file" "$tmp/seed\.yaml:4: 'seed': '7\.9' is not a whole number" -- "$bin" validate "$tmp/seed.yaml"
+{ echo "$cfg_head"; echo 'area_samples: 4294967295'; } >"$tmp/samples.yaml"
+case_ "area_samples: 4294967295 in the file" "$tmp/samples\.yaml:4: 'area_samples': area_samples 4294967295:" -- \
+  "$bin" validate "$tmp/samples.yaml"
+case_ "--cells 4294967298:4294967300 (was the slice 2:4)" "'--cells': cells 4294967298:4294967300 outside the sweep of 6 cells" -- \
+  "$bin" run configs/default.yaml --cells 4294967298:4294967300 --out "$tmp/res"
+case_ "--cells 0:99999999999999999999" "'--cells': cells 0:99999999999999999999 outside the sweep of 6 cells" -- \
+  "$bin" run configs/default.yaml --cells 0:99999999999999999999 --out "$tmp/res"
+case_ "--cells 1.5:3" "run: --cells 1\.5:3: '1\.5' is not a whole number" -- \
+  "$bin" run configs/default.yaml --cells 1.5:3 --out "$tmp/res"
+case_ "--jobs 4294967297 (was 1)" "run: --jobs '4294967297' must be in 1\.\.64" -- \
+  "$bin" run configs/default.yaml --jobs 4294967297 --out "$tmp/res"
+case_ "-j 2.5" "run: -j/--threads '2\.5' is not a whole number" -- \
+  "$bin" run configs/default.yaml -j 2.5 --out "$tmp/res"
+case_ "bench --reps 4294967297 (was 1)" "bench: --reps '4294967297' must be in 1\.\.1000" -- \
+  "$bin" bench --reps 4294967297
+case_ "table --map 1e3" "table: --map '1e3' is not a whole number" -- "$bin" table "$tmp/empty.db" --map 1e3
+
+# ---- store: paths stay under --out (--db on the command line may go elsewhere)
+small='scenes: [{scene: primitives, viewpoints: [side]}]
+viewports: [{width: 64, height: 64}]
+map_sizes: [64]
+methods: [{method: nsm}]'
+mkdir -p "$tmp/wd/a/b"
+for st in ../../x.db /tmp/shadowlab-x.db "r/../../x.db"; do
+  { echo "$small"; echo "store: $st"; } >"$tmp/wd/a/b/st.yaml"
+  case_ "store: $st" "st\.yaml:5: 'store': '$st' leaves the output folder" -- \
+    "$bin" validate "$tmp/wd/a/b/st.yaml"
+  (cd "$tmp/wd/a/b" && case_ "run with store: $st" "st\.yaml:5: 'store': '$st' leaves the output folder" -- \
+    "$bin" run st.yaml --out res) && pass=$((pass + 1)) || fail=$((fail + 1))
+done
+{ echo "$small"; echo "store: elsewhere/x.db"; } >"$tmp/wd/a/b/st.yaml"
+(cd "$tmp/wd/a/b" && case_ "run with store: beside --out" "st\.yaml:5: 'store': 'elsewhere/x\.db' is not under --out res" -- \
+  "$bin" run st.yaml --out res) && pass=$((pass + 1)) || fail=$((fail + 1))
+if [ -n "$(find "$tmp/wd" -name '*.db')" ] || [ -e /tmp/shadowlab-x.db ]; then
+  echo "FAIL store: a database was written: $(find "$tmp/wd" /tmp/shadowlab-x.db -name '*.db' 2>/dev/null)"
+  fail=$((fail + 1))
+fi
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -457,6 +457,8 @@ static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float 
      * reason rather than a format guess, and an empty one says so. */
     int fd;
     struct sl_diag od;
+    if (!sl_file_type_bad(path) && access(path, R_OK) != 0)
+        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "cannot open: %s", strerror(errno));
     if (sl_open_regular(path, &fd, NULL, &od))   /* no FIFO or device: assimp would block or never end */
         return sl_fail(d, SL_E_SCENE, path, 0, NULL, "%s", od.msg);
     unsigned char c0;
