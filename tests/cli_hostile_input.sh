@@ -131,7 +131,7 @@ viewports: [{width: 64, height: 64}]
 map_sizes: [64]
 methods: [{method: nsm}]'
 mkdir -p "$tmp/wd/a/b"
-for st in ../../x.db /tmp/shadowlab-x.db "r/../../x.db"; do
+for st in ../../x.db "$tmp/abs.db" "r/../../x.db"; do
   { echo "$small"; echo "store: $st"; } >"$tmp/wd/a/b/st.yaml"
   case_ "store: $st" "st\.yaml:5: 'store': '$st' leaves the output folder" -- \
     "$bin" validate "$tmp/wd/a/b/st.yaml"
@@ -141,10 +141,33 @@ done
 { echo "$small"; echo "store: elsewhere/x.db"; } >"$tmp/wd/a/b/st.yaml"
 (cd "$tmp/wd/a/b" && case_ "run with store: beside --out" "st\.yaml:5: 'store': 'elsewhere/x\.db' is not under --out res" -- \
   "$bin" run st.yaml --out res) && pass=$((pass + 1)) || fail=$((fail + 1))
-if [ -n "$(find "$tmp/wd" -name '*.db')" ] || [ -e /tmp/shadowlab-x.db ]; then
-  echo "FAIL store: a database was written: $(find "$tmp/wd" /tmp/shadowlab-x.db -name '*.db' 2>/dev/null)"
+if [ -n "$(find "$tmp/wd" -name '*.db')" ] || [ -e "$tmp/abs.db" ]; then
+  echo "FAIL store: a database was written: $(find "$tmp/wd" "$tmp/abs.db" -name '*.db' 2>/dev/null)"
   fail=$((fail + 1))
 fi
+
+
+# ---- geometry overflow: blamed on the entry that caused it, not on the
+# ground triangle that float precision collapsed
+printf 'v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nf 1 2 3\n' >"$tmp/big.obj"
+scene_with() { # the second mesh entry
+  printf 'light: {type: directional, direction: [0, -1, 0]}\nmeshes:\n  - {name: ground, generator: plane, center: [0, 0, 0], size: 10}\n  - %s\nviewpoints:\n  - {name: a, position: [0, 5, 5], direction: [0, -1, -1], fov: 60, near: 0.1, far: 100}\n' "$1"
+}
+scene_with '{name: big, file: big.obj}' >"$tmp/g_file.yaml"
+case_ "a model reaching 1e30" "$tmp/g_file\.yaml:4: 'meshes\[1\]\.file': mesh 'big' reaches 1e\+30 units.*triangle 0 of mesh 'ground'" -- \
+  "$bin" validate "$tmp/g_file.yaml"
+scene_with '{name: box, generator: box, min: [0, 0, 0], max: [1, 1, 1], transform: {translate: [1e9, 0, 0]}}' \
+  >"$tmp/g_tr.yaml"
+case_ "translate 1e9" "$tmp/g_tr\.yaml:4: 'meshes\[1\]\.transform\.translate': mesh 'box' reaches 1e\+09 units.*triangle 0 of mesh 'ground'" -- \
+  "$bin" validate "$tmp/g_tr.yaml"
+scene_with '{name: box, generator: box, min: [0, 0, 0], max: [1, 1, 1], transform: {scale: [1e9, 1e9, 1e9]}}' \
+  >"$tmp/g_sc.yaml"
+case_ "scale 1e9" "$tmp/g_sc\.yaml:4: 'meshes\[1\]\.transform\.scale': mesh 'box' reaches 1e\+09 units" -- \
+  "$bin" validate "$tmp/g_sc.yaml"
+scene_with '{name: box, generator: box, min: [0, 0, 0], max: [1, 1, 1], transform: {translate: [0, 0, -1e31]}}' \
+  >"$tmp/g_tr31.yaml"
+case_ "translate 1e31" "$tmp/g_tr31\.yaml:4: 'meshes\[1\]\.transform\.translate': the mesh's coordinates reach 1e\+31" -- \
+  "$bin" validate "$tmp/g_tr31.yaml"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -468,8 +468,31 @@ struct build {
     struct sl_mesh all;
     struct sl_mesh_range *ranges;
     struct shift { double t[3]; uint32_t v0, nv; } *shift;   /* per range: translation, its vertices */
+    /* per range, for an error found only once the scene is put together (a
+     * triangle that float precision collapses in the local frame): the
+     * entry's reach (largest |world coordinate|) and where to blame it */
+    struct blame { double reach; char file[512]; char key[96]; int line; } *blame;
     int nranges, cap;
 };
+
+/* Past this a coordinate is refused: float holds 3.4e38, but the products
+ * of the projection and the truth's ray tests overflow long before. */
+#define SL_MAX_COORD 1e30
+
+/* What grew an entry's coordinates: its translation when that dominates,
+ * else its scale when it has one, else the model's own coordinates (file)
+ * or the generator's parameters (the entry). */
+static void blame_key(const struct raw_mesh *r, unsigned i, double ext, double shift, char *key, size_t n)
+{
+    if (r->transform && r->transform->translate && shift >= ext)
+        snprintf(key, n, "meshes[%u].transform.translate", i);
+    else if (r->transform && r->transform->scale)
+        snprintf(key, n, "meshes[%u].transform.scale", i);
+    else if (r->file)
+        snprintf(key, n, "meshes[%u].file", i);
+    else
+        snprintf(key, n, "meshes[%u]", i);
+}
 
 static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const char *file,
                              const struct sl_yaml_pos *pos, unsigned i, struct sl_diag *d)
@@ -541,6 +564,26 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
         sl_mesh_free(&m);
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "mesh has no triangle");
     }
+    /* overflow is the entry's: non-finite or past SL_MAX_COORD once placed */
+    double ext = 0.0, sh = 0.0;
+    for (uint32_t v = 0; v < 3 * m.nv; v++) {
+        double a = fabs((double)m.pos[v]);
+        ext = !(a <= ext) ? a : ext;   /* NaN sticks */
+    }
+    for (int k = 0; k < 3; k++)
+        sh = fabs(shift[k]) > sh ? fabs(shift[k]) : sh;
+    blame_key(r, i, ext, sh, key, sizeof key);
+    if (!(ext + sh <= (double)(float)SL_MAX_COORD)) {   /* 1e30 as a float is 1.00000002e30 */
+        sl_mesh_free(&m);
+        int line = sl_yaml_line(pos, key);
+        if (!line) {
+            char ek[32];
+            snprintf(ek, sizeof ek, "meshes[%u]", i);
+            line = sl_yaml_line(pos, ek);
+        }
+        return sl_fail(d, SL_E_SCENE, file, line, key, "the mesh's coordinates reach %.3g once placed: at most "
+                       "%g (float range; precision is lost long before)", ext + sh, SL_MAX_COORD);
+    }
     /* append as one range */
     if (b->nranges == b->cap) {
         int cap = b->cap ? 2 * b->cap : 16;
@@ -548,12 +591,25 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
         if (p)
             b->ranges = p;
         void *q = p ? realloc(b->shift, (size_t)cap * sizeof *b->shift) : NULL;
-        if (!q) {
+        if (q)
+            b->shift = q;
+        void *w = q ? realloc(b->blame, (size_t)cap * sizeof *b->blame) : NULL;
+        if (!w) {
             sl_mesh_free(&m);
             return sl_fail(d, SL_E_NOMEM, file, 0, NULL, "mesh ranges");
         }
-        b->shift = q;
+        b->blame = w;
         b->cap = cap;
+    }
+    struct blame *bl = &b->blame[b->nranges];
+    bl->reach = ext + sh;
+    snprintf(bl->file, sizeof bl->file, "%s", file);
+    snprintf(bl->key, sizeof bl->key, "%s", key);
+    bl->line = sl_yaml_line(pos, key);
+    if (!bl->line) {
+        char ek[32];
+        snprintf(ek, sizeof ek, "meshes[%u]", i);
+        bl->line = sl_yaml_line(pos, ek);
     }
     memcpy(b->shift[b->nranges].t, shift, sizeof shift);
     b->shift[b->nranges].v0 = b->all.nv;
@@ -844,6 +900,34 @@ static void rebase(struct build *b, struct sl_scene *out, struct sl_light *light
         light->pos[k] = (float)((double)light->pos[k] - out->origin[k]);
 }
 
+/* Each entry's triangles have area on their own (generators make none
+ * without, models are welded and checked); one that has none in the local
+ * frame was collapsed by float precision, because the scene spans far more
+ * than its detail: the entry that reaches farthest made the span, and is
+ * named (its translation, scale or model file), with the collapsed one. */
+static enum sl_err collapsed(const struct build *b, struct sl_diag *d)
+{
+    for (int r = 0; r < b->nranges; r++) {
+        const struct sl_mesh_range *rg = &b->ranges[r];
+        for (uint32_t t = rg->first; t < rg->first + rg->count; t++) {
+            const uint32_t *ix = b->all.idx + 3 * (size_t)t;
+            double n[3];
+            if (sl_tri_normal_d(b->all.pos + 3 * (size_t)ix[0], b->all.pos + 3 * (size_t)ix[1],
+                                b->all.pos + 3 * (size_t)ix[2], n) > 0.0)
+                continue;
+            int far = 0;
+            for (int k = 1; k < b->nranges; k++)
+                far = b->blame[k].reach > b->blame[far].reach ? k : far;
+            const struct blame *bl = &b->blame[far];
+            return sl_fail(d, SL_E_SCENE, bl->file, bl->line, bl->key, "mesh '%s' reaches %g units: so far out, "
+                           "float precision collapses triangle %u of mesh '%s' to zero area (keep the scene's "
+                           "extent within about 1e6 times its smallest detail)", b->ranges[far].name, bl->reach,
+                           t - rg->first, rg->name);
+        }
+    }
+    return SL_OK;
+}
+
 enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag *d)
 {
     memset(out, 0, sizeof *out);
@@ -856,9 +940,12 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     enum sl_err e = load_into(path, &b, &light, &have_light, out, &ch, d);
     if (!e) {
         rebase(&b, out, &light);
-        e = sl_scene_from_mesh(out, &b.all, d);
+        e = collapsed(&b, d);
     }
+    if (!e)
+        e = sl_scene_from_mesh(out, &b.all, d);
     free(b.shift);
+    free(b.blame);
     sl_mesh_free(&b.all);
     if (e) {
         free(b.ranges);
