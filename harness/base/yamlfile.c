@@ -28,7 +28,38 @@ struct sl_yaml_pos {
     char err[128];
     int int_line;         /* first integer key whose text is not a whole number: line, path, text */
     char int_path[128], int_text[32];
+    int *slot;            /* hash of path -> entry index + 1 (0: empty), nslot a power of two */
+    size_t nslot;
 };
+
+static uint64_t path_hash(const char *p)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (; *p; p++)
+        h = (h ^ (unsigned char)*p) * 1099511628211ull;
+    return h;
+}
+
+/* After pos_build: a lookup by path costs O(1), so a loader that asks the
+ * line of every entry (4096 meshes) stays linear in the file. The first
+ * entry of a path wins, as the linear search it replaces did. */
+static void pos_hash(struct sl_yaml_pos *ix)
+{
+    size_t n = 16;
+    while (n < 2 * (size_t)ix->n)
+        n *= 2;
+    ix->slot = calloc(n, sizeof *ix->slot);
+    if (!ix->slot)
+        return;   /* sl_yaml_line falls back to the linear search */
+    ix->nslot = n;
+    for (int i = 0; i < ix->n; i++) {
+        size_t k = (size_t)path_hash(ix->e[i].path) & (n - 1);
+        while (ix->slot[k] && strcmp(ix->e[ix->slot[k] - 1].path, ix->e[i].path) != 0)
+            k = (k + 1) & (n - 1);
+        if (!ix->slot[k])
+            ix->slot[k] = i + 1;
+    }
+}
 
 static void pos_add(struct sl_yaml_pos *ix, const char *path, int line)
 {
@@ -234,6 +265,13 @@ int sl_yaml_line(const struct sl_yaml_pos *ix, const char *path)
 {
     if (!ix)
         return 0;
+    if (ix->slot) {
+        size_t k = (size_t)path_hash(path) & (ix->nslot - 1);
+        for (; ix->slot[k]; k = (k + 1) & (ix->nslot - 1))
+            if (strcmp(ix->e[ix->slot[k] - 1].path, path) == 0)
+                return ix->e[ix->slot[k] - 1].line;
+        return 0;
+    }
     for (int i = 0; i < ix->n; i++)
         if (strcmp(ix->e[i].path, path) == 0)
             return ix->e[i].line;
@@ -473,6 +511,7 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
      * the schemas' entry limits let through (132 bytes each) */
     ix->max = (int)(max_bytes / 64 > 65536 ? (max_bytes / 64 < (1u << 22) ? max_bytes / 64 : (1u << 22)) : 65536);
     pos_build(text, len, schema, ix);
+    pos_hash(ix);
     cyaml_err_t ce = cyaml_load_data(text, len, cfg, schema, (cyaml_data_t **)out, NULL);
     free(text);
     if (ce == CYAML_OK && *out && ix->int_line) {
@@ -482,6 +521,7 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
                                 "'%s' is not a whole number (an integer in decimal digits is expected)",
                                 ix->int_text);
         free(ix->e);
+        free(ix->slot);
         free(ix);
         return e;
     }
@@ -492,6 +532,7 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
     if (ce == CYAML_OK) {
         /* an empty document loads as nothing at all */
         free(ix->e);
+        free(ix->slot);
         free(ix);
         return sl_fail(d, kind, path, 0, NULL, "empty file: no YAML mapping");
     }
@@ -550,6 +591,7 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
                     lg.first[0] ? lg.first : cyaml_strerror(ce));
     }
     free(ix->e);
+    free(ix->slot);
     free(ix);
     return e;
 }
@@ -563,6 +605,7 @@ void sl_yaml_free(const cyaml_schema_value_t *schema, void *data, struct sl_yaml
     }
     if (pos) {
         free(pos->e);
+        free(pos->slot);
         free(pos);
     }
 }
