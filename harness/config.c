@@ -9,6 +9,7 @@
 #include <cyaml/cyaml.h>
 #include "figures.h"
 #include <errno.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -45,7 +46,10 @@
 static const char self_shadow_known[] = SL_SELF_SHADOW(SELF_KNOWN);
 #undef SELF_KNOWN
 
-#define COPY_UINT(name, type, a, b)   p->name = (type)*rm->name;
+#define COPY_UINT(name, type, a, b)                                                               \
+    if (*rm->name > INT_MAX)   /* the method's own range check sees an int */                     \
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, #name " %u: must be in 0..%d", *rm->name, INT_MAX); \
+    p->name = (type)*rm->name;
 #define COPY_FLOAT(name, type, a, b)  p->name = (type)*rm->name;
 #define COPY_BOOL(name, type, a, b)   p->name = *rm->name ? 1 : 0;
 #define COPY_WORDS(name, type, a, b)                                                             \
@@ -229,6 +233,9 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown scene '%s' (known: %s)", rs->scene, known);
         }
         struct sl_scene s;
+        enum sl_err re = sl_yaml_ref_check(d, SL_E_CONFIG, file, ix, key, cs->path);
+        if (re)
+            return re;
         if (sl_scene_load(cs->path, &s, &sd) != SL_OK) {
             /* the scene file's own error names its file, line and key */
             *d = sd;
@@ -493,18 +500,34 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
     c->tables = r->outputs && r->outputs->tables ? *r->outputs->tables : 1;
     c->overlays = r->outputs && r->outputs->overlays ? *r->outputs->overlays : 1;
     c->exr = r->outputs && r->outputs->exr ? *r->outputs->exr : 0;
-    c->warmup = r->repetitions && r->repetitions->warmup ? (int)*r->repetitions->warmup : 0;
-    c->runs = r->repetitions && r->repetitions->runs ? (int)*r->repetitions->runs : 1;
-    if (c->warmup > 100)
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.warmup", "warmup %d: at most 100", c->warmup);
-    if (c->runs < 1 || c->runs > 1000)
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.runs", "runs %d: must be 1..1000", c->runs);
+    /* ranges are checked on the unsigned values libcyaml read, before any
+     * cast to int (4294967295 would be -1 and pass "at most 100") */
+    unsigned warmup = r->repetitions && r->repetitions->warmup ? *r->repetitions->warmup : 0u;
+    unsigned runs = r->repetitions && r->repetitions->runs ? *r->repetitions->runs : 1u;
+    if (warmup > 100)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.warmup", "warmup %u: at most 100", warmup);
+    if (runs < 1 || runs > 1000)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.runs", "runs %u: must be 1..1000", runs);
+    c->warmup = (int)warmup;
+    c->runs = (int)runs;
     c->seed = r->seed ? *r->seed : 1u;
-    c->area_samples = r->area_samples ? (int)*r->area_samples : 32;
-    if (c->area_samples < 2 || c->area_samples > 1024)
+    unsigned samples = r->area_samples ? *r->area_samples : 32u;
+    if (samples < 2 || samples > 1024)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "area_samples",
-                           "area_samples %d: samples per side of an area light's truth, 2..1024", c->area_samples);
+                           "area_samples %u: samples per side of an area light's truth, 2..1024", samples);
+    c->area_samples = (int)samples;
     snprintf(c->store, sizeof c->store, "%s", r->store ? r->store : "");
+    c->store_line = sl_yaml_line(ix, "store");
+    if (r->store) {
+        /* a run writes only under --out: a store path may not leave it (an
+         * explicit --db on the command line may) */
+        int up = 0;
+        for (const char *q = r->store; *q; q += strcspn(q, "/"), q += *q == '/')
+            up |= strncmp(q, "..", 2) == 0 && (q[2] == '/' || q[2] == '\0');
+        if (r->store[0] == '/' || up)
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "store", "'%s' leaves the output folder: give a path "
+                               "relative to it without '..', or --db on the command line", r->store);
+    }
     c->gl = sl_gl_backend_resolve(r->gl ? sl_gl_backend_parse(r->gl) : SL_GL_DEFAULT);
     if (r->gl && sl_gl_backend_parse(r->gl) == SL_GL_DEFAULT)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "gl", "gl '%s': osmesa or egl", r->gl);
@@ -531,9 +554,9 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                                r->contour_from);
     }
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    c->threads = r->threads && *r->threads ? (int)*r->threads : (int)(cores > 0 ? cores : 1);
-    if (c->threads > 256)
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "threads", "threads %d: at most 256", c->threads);
+    if (r->threads && *r->threads > 256)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "threads", "threads %u: at most 256", *r->threads);
+    c->threads = r->threads && *r->threads ? (int)*r->threads : (int)(cores > 256 ? 256 : cores > 0 ? cores : 1);
     return SL_OK;
 }
 
@@ -716,6 +739,13 @@ static enum sl_err ov_edit(unsigned char **text, size_t *len, void *user, struct
         }
         snprintf(path, sizeof path, "%.*s", (int)(eq - o->ov[i]), o->ov[i]);
         yaml_document_t val;
+        int deep_line;
+        if (sl_yaml_depth((const unsigned char *)eq + 1, strlen(eq + 1), SL_YAML_MAX_DEPTH, &deep_line, NULL, 0) >
+            SL_YAML_MAX_DEPTH) {
+            yaml_document_delete(&doc);
+            return sl_fail(d, SL_E_CONFIG, src, 0, path, "the value is nested more than %d levels deep",
+                           SL_YAML_MAX_DEPTH);
+        }
         if (!ov_parse(&val, (const unsigned char *)eq + 1, strlen(eq + 1))) {
             yaml_document_delete(&doc);
             return sl_fail(d, SL_E_CONFIG, src, 0, path, "the value '%s' is not YAML", eq + 1);

@@ -93,7 +93,8 @@ struct sl_config {
     int  warmup, runs;                /* repetitions for timing */
     unsigned seed;
     int  area_samples;                /* area-light truth: samples per side of the light (0 = 32) */
-    char store[512];                  /* "" = <output root>/shadowlab.db */
+    char store[512];                  /* "" = <output root>/shadowlab.db; relative, no '..' (validate) */
+    int  store_line;                  /* its line in the config file (0: none or -D) */
     int  threads;                     /* resolved: >= 1 */
     enum sl_gl_backend gl;            /* 'gl: osmesa|egl'; resolved (never SL_GL_DEFAULT); the
                                        * command line's --gl replaces it */

@@ -4,7 +4,9 @@
  * that leaves no result).
  */
 #define _GNU_SOURCE   /* getopt_long, setenv, sigaction */
+#include <errno.h>
 #include <getopt.h>
+#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -115,22 +117,119 @@ static int add_override(struct overrides *o, const char *verb, const char *arg, 
     return 1;
 }
 
-/* "A:B" -> [A, B); "A:" -> [A, end) */
-static int parse_cells(const char *s, int *a, int *b)
+/* An integer an option takes: decimal digits (a sign allowed), all of the
+ * text, in lo..hi; no atoi (4294967297 would be 1) and no float ("7.9").
+ * Returns 0 with msg in the form of a config key's ("'7.9' is not a whole
+ * number", "... must be in 1..64"). */
+static int opt_int(const char *s, long long lo, long long hi, long long *out, char *msg, size_t n)
 {
     char *end;
-    long x = strtol(s, &end, 10);
-    if (end == s || *end != ':' || x < 0)
+    errno = 0;
+    long long v = strtoll(s, &end, 10);
+    if (end == s || *end || (*s != '-' && *s != '+' && (*s < '0' || *s > '9'))) {
+        snprintf(msg, n, "'%s' is not a whole number (an integer in decimal digits is expected)", s);
         return 0;
-    const char *t = end + 1;
-    long y = 0;
-    if (*t) {
-        y = strtol(t, &end, 10);
-        if (end == t || *end || y <= x)
+    }
+    if (errno == ERANGE || v < lo || v > hi) {
+        snprintf(msg, n, "'%s' must be in %lld..%lld", s, lo, hi);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+/* usage_error for an integer option: "VERB: --OPT: MSG" */
+static int opt_int_or_usage(const char *verb, const char *opt, const char *s, long long lo, long long hi,
+                            long long *out, const char *help)
+{
+    char msg[200], line[300];
+    if (opt_int(s, lo, hi, out, msg, sizeof msg))
+        return 1;
+    snprintf(line, sizeof line, "%s: %s %s", verb, opt, msg);
+    usage_error(line, help);
+    return 0;
+}
+
+/* "A:B" -> [A, B); "A:" -> [A, end). Each bound a whole number that fits an
+ * int (the sweep's size bounds them further once the config is read). */
+static int parse_cells(const char *s, int *a, int *b, char *msg, size_t n)
+{
+    char first[32];
+    const char *colon = strchr(s, ':');
+    if (!colon || colon == s || (size_t)(colon - s) >= sizeof first) {
+        snprintf(msg, n, "--cells wants A:B with 0 <= A < B (or A:)");
+        return 0;
+    }
+    snprintf(first, sizeof first, "%.*s", (int)(colon - s), s);
+    long long x, y = 0;
+    char m[200];
+    /* a whole number past int is past any sweep: INT_MAX stands for it, and
+     * the check against the sweep names the text as given */
+    const char *t[2] = {first, colon + 1};
+    long long *v[2] = {&x, &y};
+    for (int i = 0; i < 2 && (i == 0 || colon[1]); i++) {
+        size_t k = strlen(t[i]);
+        if (k && strspn(t[i], "0123456789") == k && (k > 10 || strtoll(t[i], NULL, 10) > INT_MAX))
+            *v[i] = INT_MAX;
+        else if (!opt_int(t[i], 0, INT_MAX, v[i], m, sizeof m)) {
+            snprintf(msg, n, "--cells %s: %s", s, m);
             return 0;
+        }
+    }
+    if (colon[1] && (y <= x && x != INT_MAX)) {
+        snprintf(msg, n, "--cells wants A:B with 0 <= A < B (or A:)");
+        return 0;
     }
     *a = (int)x;
     *b = (int)y;
+    return 1;
+}
+
+/* Is path (relative, no "..") inside the folder root, as text? "./" and
+ * repeated slashes are skipped on both sides. */
+static int under_out(const char *path, const char *root)
+{
+    const char *p = path, *r = root;
+    for (;;) {
+        while (*r == '/' && r != root && r[-1] == '/')
+            r++;
+        while (r[0] == '.' && r[1] == '/')
+            r += 2;
+        while (p[0] == '.' && p[1] == '/')
+            p += 2;
+        while (*p == '/')
+            p++;
+        size_t kr = strcspn(r, "/"), kp = strcspn(p, "/");
+        if (!kr) {
+            while (*r == '/')
+                r++;
+            if (!*r)
+                return *p != '\0';   /* the root is used up: path goes on inside it */
+            continue;
+        }
+        if (kr != kp || strncmp(r, p, kr) != 0)
+            return 0;
+        r += kr;
+        p += kp;
+        if (!*p)
+            return 0;   /* path is the root itself */
+    }
+}
+
+/* "WxH", each a whole number in lo..hi */
+static int parse_wxh(const char *s, long long lo, long long hi, int *w, int *h)
+{
+    char a[32];
+    const char *x = strchr(s, 'x');
+    long long vw, vh;
+    char msg[200];
+    if (!x || x == s || (size_t)(x - s) >= sizeof a)
+        return 0;
+    snprintf(a, sizeof a, "%.*s", (int)(x - s), s);
+    if (!opt_int(a, lo, hi, &vw, msg, sizeof msg) || !opt_int(x + 1, lo, hi, &vh, msg, sizeof msg))
+        return 0;
+    *w = (int)vw;
+    *h = (int)vh;
     return 1;
 }
 
@@ -458,6 +557,7 @@ static int cmd_run(int argc, char **argv)
     struct event_state es = {.tty = isatty(2)};
     o.user = &es;
     int no_cache = 0, verbose = 0, threads = 0, jobs = 1;
+    const char *cells = NULL;
     enum sl_gl_backend gl = SL_GL_DEFAULT;
     struct overrides ov = {.n = 0};
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
@@ -468,23 +568,30 @@ static int cmd_run(int argc, char **argv)
                 return usage_error("run: --gl wants osmesa or egl", sl_usage_run);
             break;
         case OPT_DB: o.store = optarg; break;
-        case OPT_CELLS:
-            if (!parse_cells(optarg, &o.first, &o.last))
-                return usage_error("run: --cells wants A:B with 0 <= A < B (or A:)", sl_usage_run);
+        case OPT_CELLS: {
+            char msg[300], line[320];
+            if (!parse_cells(optarg, &o.first, &o.last, msg, sizeof msg)) {
+                snprintf(line, sizeof line, "run: %s", msg);
+                return usage_error(line, sl_usage_run);
+            }
+            cells = optarg;
             break;
+        }
         case OPT_RESUME: o.resume = 1; break;
         case OPT_STORED_IN: o.stored_in = optarg; break;
         case OPT_NO_CACHE: no_cache = 1; break;
         case OPT_CACHE: o.cache_dir = optarg; break;
-        case OPT_JOBS:
-            if ((jobs = atoi(optarg)) < 1 || jobs > 64)
-                return usage_error("run: --jobs wants 1..64", sl_usage_run);
+        case OPT_JOBS: {
+            long long v;
+            if (!opt_int_or_usage("run", "--jobs", optarg, 1, 64, &v, sl_usage_run))
+                return 2;
+            jobs = (int)v;
             break;
+        }
         case 'j': {
-            char *end;
-            long v = strtol(optarg, &end, 10);
-            if (*end || end == optarg || v < 1 || v > 256)
-                return usage_error("run: -j/--threads wants a number of threads, 1..256", sl_usage_run);
+            long long v;
+            if (!opt_int_or_usage("run", "-j/--threads", optarg, 1, 256, &v, sl_usage_run))
+                return 2;
             threads = (int)v;
             break;
         }
@@ -538,6 +645,19 @@ static int cmd_run(int argc, char **argv)
     }
     if (e)
         return fail(e, &d);
+    if (cells && (o.first >= sl_plan_count(&c) || o.last > sl_plan_count(&c))) {
+        /* checked here, where the text is at hand: --cells 0:99999999999 names itself */
+        sl_fail(&d, SL_E_USAGE, c.path, 0, "--cells", "cells %s outside the sweep of %d cells (0:%d)", cells,
+                sl_plan_count(&c), sl_plan_count(&c));
+        return fail(SL_E_USAGE, &d);
+    }
+    if (!o.store && c.store[0] && !under_out(c.store, o.out_root ? o.out_root : "results")) {
+        /* a config's store: stays under --out (validate refused '..' and /);
+         * --db is the way to put it elsewhere */
+        sl_fail(&d, SL_E_CONFIG, c.path, c.store_line, "store", "'%s' is not under --out %s: a run writes only "
+                "there (give --db PATH to put the store elsewhere)", c.store, o.out_root ? o.out_root : "results");
+        return fail(SL_E_CONFIG, &d);
+    }
     if (gl)
         c.gl = gl;
     if (threads)
@@ -670,19 +790,51 @@ static int cmd_table(int argc, char **argv)
         case OPT_SCENE: f.scene = v; break;
         case OPT_VIEWPOINT: f.viewpoint = v; break;
         case OPT_LABEL: f.label = v; break;
-        case OPT_MAP: f.map_size = atoi(v); break;
-        case OPT_RUN: f.run_id = atoll(v); break;
+        case OPT_MAP: {
+            long long x;
+            if (!opt_int_or_usage("table", "--map", v, 1, 16384, &x, sl_usage_table))
+                return 2;
+            f.map_size = (int)x;
+            break;
+        }
+        case OPT_RUN: {
+            long long x;
+            if (!opt_int_or_usage("table", "--run", v, 1, LLONG_MAX, &x, sl_usage_table))
+                return 2;
+            f.run_id = x;
+            break;
+        }
         case OPT_SUMMARY: summary = v; break;
         case OPT_FIGURES: figures = v; break;
         case OPT_REGION:
-            so.region = !strcmp(v, "image") ? 0 : !strcmp(v, "contours") ? -1 : atoi(v);
-            if (so.region < -1 || (so.region > 0 && so.region % 2))
+            if (!strcmp(v, "image") || !strcmp(v, "contours"))
+                so.region = !strcmp(v, "image") ? 0 : -1;
+            else {
+                long long x;
+                if (!opt_int_or_usage("table", "--region", v, 0, 64, &x, sl_usage_table))
+                    return 2;
+                so.region = (int)x;
+            }
+            if (so.region > 0 && so.region % 2)
                 return usage_error("table: --region N (even), image or contours", sl_usage_table);
             break;
         case OPT_LOWER: so.lower_is_better = 1; break;
         case OPT_AVG:
-            if (sscanf(v, "%63[^/]/%31[^/]/%d/%d", avg_scene, avg_vp, &so.avg_region, &so.avg_map) < 3)
+        {
+            char nr[32] = "", nm[32] = "";
+            long long x;
+            int k = sscanf(v, "%63[^/]/%31[^/]/%31[^/]/%31s", avg_scene, avg_vp, nr, nm);
+            if (k < 3)
                 return usage_error("table: --average-case SCENE/VIEWPOINT/N[/MAP]", sl_usage_table);
+            if (!opt_int_or_usage("table", "--average-case N", nr, 0, 64, &x, sl_usage_table))
+                return 2;
+            so.avg_region = (int)x;
+            if (k == 4) {
+                if (!opt_int_or_usage("table", "--average-case MAP", nm, 1, 16384, &x, sl_usage_table))
+                    return 2;
+                so.avg_map = (int)x;
+            }
+        }
             so.avg_scene = avg_scene;
             so.avg_viewpoint = avg_vp;
             break;
@@ -783,10 +935,9 @@ static int cmd_check(int argc, char **argv)
         case OPT_BASELINE: baseline = optarg; break;
         case OPT_STUDY: o.study = optarg; break;
         case OPT_ROWS: {
-            char *end;
-            long v = strtol(optarg, &end, 10);
-            if (*end || v < 1 || v > 1000000)
-                return usage_error("check: --rows wants a positive number", sl_usage_check);
+            long long v;
+            if (!opt_int_or_usage("check", "--rows", optarg, 1, 1000000, &v, sl_usage_check))
+                return 2;
             o.max_rows = (int)v;
             break;
         }
@@ -851,28 +1002,30 @@ static int cmd_bench(int argc, char **argv)
     memset(&d, 0, sizeof d);
     for (int c; (c = opt_next(&p, argc, argv)) != OPT_DONE;) {
         switch (c) {
-        case OPT_REPS:
-            o.reps = atoi(optarg);
-            if (o.reps < 1 || o.reps > 1000)
-                return usage_error("bench: --reps must be 1..1000", sl_usage_bench);
+        case OPT_REPS: {
+            long long v;
+            if (!opt_int_or_usage("bench", "--reps", optarg, 1, 1000, &v, sl_usage_bench))
+                return 2;
+            o.reps = (int)v;
             break;
+        }
         case OPT_ONLY:
             if (sl_bench_parse_stages(optarg, &o.stages, &d))
                 return usage_error(d.msg, sl_usage_bench);
             break;
         case OPT_SCENE: o.scene = optarg; break;
         case OPT_VIEWPORT: {
-            char tail;
-            if (sscanf(optarg, "%dx%d%c", &o.width, &o.height, &tail) != 2 || o.width < 1 || o.height < 1 ||
-                o.width > 16384 || o.height > 16384)
+            if (!parse_wxh(optarg, 1, 16384, &o.width, &o.height))
                 return usage_error("bench: --viewport wants WxH, 1..16384 each", sl_usage_bench);
             break;
         }
-        case OPT_MAP:
-            o.map = atoi(optarg);
-            if (o.map < 16 || o.map > 16384)
-                return usage_error("bench: --map must be 16..16384", sl_usage_bench);
+        case OPT_MAP: {
+            long long v;
+            if (!opt_int_or_usage("bench", "--map", optarg, 16, 16384, &v, sl_usage_bench))
+                return 2;
+            o.map = (int)v;
             break;
+        }
         case OPT_CSV: o.csv = optarg; break;
         case OPT_MARKDOWN: o.markdown = optarg; break;
         case OPT_GL:
@@ -903,7 +1056,7 @@ static int cmd_preview(int argc, char **argv)
         else if (c == OPT_VIEWPOINT)
             o.viewpoint = optarg;
         else if (c == OPT_SIZE) {
-            if (sscanf(optarg, "%dx%d", &o.w, &o.h) != 2 || o.w < 16 || o.h < 16 || o.w > 8192 || o.h > 8192)
+            if (!parse_wxh(optarg, 16, 8192, &o.w, &o.h))
                 return usage_error("preview: --size wants WxH, 16..8192 each", sl_usage_preview);
         } else if (c == OPT_GL) {
             if (!(o.gl = sl_gl_backend_parse(optarg)))

@@ -22,16 +22,7 @@
 
 int sl_file_is_scene(const char *path)
 {
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return 0;
-    char line[512];
-    int scene = 0;
-    while (!scene && fgets(line, sizeof line, f))
-        scene = strncmp(line, "meshes:", 7) == 0 || strncmp(line, "light:", 6) == 0 ||
-                strncmp(line, "base:", 5) == 0;
-    fclose(f);
-    return scene;
+    return sl_scene_sniff(path, NULL, 0);
 }
 
 /* CSM is Morais 2015's conservative pair, exact, so the default study shows

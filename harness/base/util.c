@@ -5,6 +5,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "util.h"
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -95,18 +96,58 @@ unsigned long long sl_fnv1a(unsigned long long h, const void *p, size_t n)
     return h;
 }
 
+static const char *type_name(mode_t m)
+{
+    return S_ISREG(m) ? NULL : S_ISDIR(m) ? "a folder" : S_ISFIFO(m) ? "a FIFO" : S_ISCHR(m) ? "a character device"
+         : S_ISBLK(m) ? "a block device" : S_ISSOCK(m) ? "a socket" : "not a regular file";
+}
+
+const char *sl_file_type_bad(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) != 0 ? NULL : type_name(st.st_mode);
+}
+
+enum sl_err sl_open_regular(const char *path, int *fd, long long *size, struct sl_diag *d)
+{
+    *fd = -1;
+    const char *bad = sl_file_type_bad(path);
+    if (bad)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s, not a regular file", bad);
+    int f = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (f < 0)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(errno));
+    struct stat st;
+    if (fstat(f, &st) != 0 || (bad = type_name(st.st_mode)) != NULL) {
+        int err = errno;
+        close(f);
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s%s", bad ? bad : strerror(err),
+                       bad ? ", not a regular file" : "");
+    }
+    *fd = f;
+    if (size)
+        *size = (long long)st.st_size;
+    return SL_OK;
+}
+
 enum sl_err sl_hash_file(const char *path, unsigned long long *out, struct sl_diag *d)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot open: %s", strerror(errno));
+    int fd;
+    enum sl_err e = sl_open_regular(path, &fd, NULL, d);
+    if (e)
+        return e;
     uint64_t h = 1469598103934665603ull;
-    int c;
-    while ((c = fgetc(f)) != EOF) {
-        h ^= (uint64_t)(unsigned char)c;
-        h *= 1099511628211ull;
-    }
-    fclose(f);
+    unsigned char buf[65536];
+    ssize_t n;
+    while ((n = read(fd, buf, sizeof buf)) > 0)
+        for (ssize_t i = 0; i < n; i++) {
+            h ^= (uint64_t)buf[i];
+            h *= 1099511628211ull;
+        }
+    int err = n < 0 ? errno : 0;
+    close(fd);
+    if (err)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(err));
     *out = h;
     return SL_OK;
 }

@@ -27,6 +27,19 @@ void        sl_out_abort(struct sl_outfile *o);
 #define SL_FNV_SEED 1469598103934665603ull
 unsigned long long sl_fnv1a(unsigned long long h, const void *p, size_t n);
 
+/* Input files by type: a path read as a file (a config, a scene, a model,
+ * a baseline) must be a regular file. A FIFO would block the open or the
+ * read, a device (/dev/zero) never ends, a folder has no text: these are
+ * refused by their type, from stat(), before any open or read.
+ * sl_file_type_bad: NULL when path is a regular file or does not exist (the
+ * open then gives the system's reason), else what it is ("a FIFO", ...).
+ * sl_open_regular: the same check, then open(O_RDONLY | O_NONBLOCK) (so a
+ * path swapped for a FIFO after the stat cannot block) and fstat() again on
+ * what was opened; on success *fd is open on a regular file of *size bytes.
+ * Errors: SL_E_IO naming path. */
+const char *sl_file_type_bad(const char *path);
+enum sl_err sl_open_regular(const char *path, int *fd, long long *size, struct sl_diag *d);
+
 /* FNV-1a 64 over a file's bytes (config hash written beside results). */
 enum sl_err sl_hash_file(const char *path, unsigned long long *out, struct sl_diag *d);
 

@@ -26,7 +26,40 @@ struct sl_yaml_pos {
     yaml_event_type_t root_type;
     int err_line;         /* libyaml's own error: line (0 if none) and text */
     char err[128];
+    int int_line;         /* first integer key whose text is not a whole number: line, path, text */
+    char int_path[128], int_text[32];
+    int *slot;            /* hash of path -> entry index + 1 (0: empty), nslot a power of two */
+    size_t nslot;
 };
+
+static uint64_t path_hash(const char *p)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (; *p; p++)
+        h = (h ^ (unsigned char)*p) * 1099511628211ull;
+    return h;
+}
+
+/* After pos_build: a lookup by path costs O(1), so a loader that asks the
+ * line of every entry (4096 meshes) stays linear in the file. The first
+ * entry of a path wins, as the linear search it replaces did. */
+static void pos_hash(struct sl_yaml_pos *ix)
+{
+    size_t n = 16;
+    while (n < 2 * (size_t)ix->n)
+        n *= 2;
+    ix->slot = calloc(n, sizeof *ix->slot);
+    if (!ix->slot)
+        return;   /* sl_yaml_line falls back to the linear search */
+    ix->nslot = n;
+    for (int i = 0; i < ix->n; i++) {
+        size_t k = (size_t)path_hash(ix->e[i].path) & (n - 1);
+        while (ix->slot[k] && strcmp(ix->e[ix->slot[k] - 1].path, ix->e[i].path) != 0)
+            k = (k + 1) & (n - 1);
+        if (!ix->slot[k])
+            ix->slot[k] = i + 1;
+    }
+}
 
 static void pos_add(struct sl_yaml_pos *ix, const char *path, int line)
 {
@@ -45,20 +78,59 @@ static void pos_add(struct sl_yaml_pos *ix, const char *path, int line)
     ix->n++;
 }
 
-/* Walk the event stream keeping, per nesting level, the path and whether the
- * next scalar of a mapping is a key. Errors of the YAML syntax itself are
- * left to libcyaml, which reports them with their line; libyaml's own line
- * is kept as a fallback for errors libcyaml gives none for. The index keeps
- * at most ix->max entries, so a huge file costs bounded memory here: the
- * schema's entry limits (checked by libcyaml) reject such a file anyway,
- * and only its lines beyond the cap go unnamed. */
-static void pos_build(const unsigned char *text, size_t len, struct sl_yaml_pos *ix)
+/* Is t a whole number in decimal ([+-]digits)? libcyaml reads integers with
+ * strtoll(.., 0) and ignores what follows the digits: "7.9" and "1e3" would
+ * load as 7 and 1, "010" as 8. */
+static int is_decimal(const char *t)
+{
+    if (*t == '+' || *t == '-')
+        t++;
+    if (!*t || (t[0] == '0' && t[1]))
+        return 0;
+    for (; *t; t++)
+        if (*t < '0' || *t > '9')
+            return 0;
+    return 1;
+}
+
+/* The schema of the value under key in a mapping's schema (NULL if none). */
+static const cyaml_schema_value_t *field_schema(const cyaml_schema_value_t *m, const char *key)
+{
+    if (!m || m->type != CYAML_MAPPING)
+        return NULL;
+    for (const cyaml_schema_field_t *f = m->mapping.fields; f && f->key; f++)
+        if (strcmp(f->key, key) == 0)
+            return &f->value;
+    return NULL;
+}
+
+/* Walk the event stream keeping, per nesting level, the path, whether the
+ * next scalar of a mapping is a key, and the schema of what comes next (so
+ * that a scalar given where the schema wants an integer is checked to be a
+ * whole number). Errors of the YAML syntax itself are left to libcyaml,
+ * which reports them with their line; libyaml's own line is kept as a
+ * fallback for errors libcyaml gives none for. The nesting is at most
+ * SL_YAML_MAX_DEPTH here (sl_yaml_depth ran first) plus what -D overrides
+ * graft, so the stack is fixed; levels past it are counted, not kept. The
+ * index keeps at most ix->max entries, so a huge file costs bounded memory
+ * here: the schema's entry limits (checked by libcyaml) reject such a file
+ * anyway, and only its lines beyond the cap go unnamed. One pass, constant
+ * work per event: linear in the file. */
+static void pos_build(const unsigned char *text, size_t len, const cyaml_schema_value_t *schema,
+                      struct sl_yaml_pos *ix)
 {
     yaml_parser_t p;
     yaml_parser_initialize(&p);
     yaml_parser_set_input_string(&p, text, len);
-    struct { char path[128]; int is_map, want_key, index; char key[64]; } st[32];
-    int depth = -1;
+    enum { NST = 2 * SL_YAML_MAX_DEPTH };
+    struct {
+        char path[128];
+        int is_map, want_key, index;
+        char key[64];
+        const cyaml_schema_value_t *sv;   /* this container's schema */
+        const cyaml_schema_value_t *next; /* a mapping's: the schema of the value of `key` */
+    } st[NST];
+    int depth = -1, over = 0;
     for (;;) {
         yaml_event_t ev;
         if (!yaml_parser_parse(&p, &ev)) {
@@ -73,36 +145,61 @@ static void pos_build(const unsigned char *text, size_t len, struct sl_yaml_pos 
             ix->root_line = line;
             ix->root_type = t;
         }
+        int start = t == YAML_MAPPING_START_EVENT || t == YAML_SEQUENCE_START_EVENT;
+        if (over) {   /* inside levels the stack does not keep */
+            over += start;
+            over -= t == YAML_MAPPING_END_EVENT || t == YAML_SEQUENCE_END_EVENT;
+            yaml_event_delete(&ev);
+            continue;
+        }
         char here[128] = "";
         int is_value = 0;
-        if (depth >= 0 && (t == YAML_SCALAR_EVENT || t == YAML_MAPPING_START_EVENT ||
-                           t == YAML_SEQUENCE_START_EVENT)) {
+        const cyaml_schema_value_t *vs = NULL;   /* the schema of this value */
+        if (depth >= 0 && (t == YAML_SCALAR_EVENT || start)) {
             if (st[depth].is_map && st[depth].want_key && t == YAML_SCALAR_EVENT) {
                 snprintf(st[depth].key, sizeof st[depth].key, "%s", (const char *)ev.data.scalar.value);
                 snprintf(here, sizeof here, "%s%s%s", st[depth].path, st[depth].path[0] ? "." : "",
                          st[depth].key);
                 pos_add(ix, here, line);
                 st[depth].want_key = 0;
+                st[depth].next = field_schema(st[depth].sv, st[depth].key);
             } else if (st[depth].is_map) {
                 snprintf(here, sizeof here, "%s%s%s", st[depth].path, st[depth].path[0] ? "." : "",
                          st[depth].key);
                 st[depth].want_key = 1;
                 is_value = 1;
+                vs = st[depth].next;
             } else {
                 snprintf(here, sizeof here, "%s[%d]", st[depth].path, st[depth].index++);
                 pos_add(ix, here, line);
                 is_value = 1;
+                vs = st[depth].sv && (st[depth].sv->type == CYAML_SEQUENCE ||
+                                      st[depth].sv->type == CYAML_SEQUENCE_FIXED) ? st[depth].sv->sequence.entry
+                                                                                  : NULL;
             }
         } else if (depth < 0) {
             is_value = 1;
+            vs = schema;
         }
-        if ((t == YAML_MAPPING_START_EVENT || t == YAML_SEQUENCE_START_EVENT) && is_value && depth < 31) {
-            depth++;
-            snprintf(st[depth].path, sizeof st[depth].path, "%s", here);
-            st[depth].is_map = t == YAML_MAPPING_START_EVENT;
-            st[depth].want_key = 1;
-            st[depth].index = 0;
-            st[depth].key[0] = '\0';
+        if (t == YAML_SCALAR_EVENT && is_value && vs && (vs->type == CYAML_INT || vs->type == CYAML_UINT) &&
+            !ix->int_line && !is_decimal((const char *)ev.data.scalar.value)) {
+            ix->int_line = line;
+            snprintf(ix->int_path, sizeof ix->int_path, "%s", here);
+            snprintf(ix->int_text, sizeof ix->int_text, "%s", (const char *)ev.data.scalar.value);
+        }
+        if (start && is_value) {
+            if (depth + 1 < NST) {
+                depth++;
+                snprintf(st[depth].path, sizeof st[depth].path, "%s", here);
+                st[depth].is_map = t == YAML_MAPPING_START_EVENT;
+                st[depth].want_key = 1;
+                st[depth].index = 0;
+                st[depth].key[0] = '\0';
+                st[depth].sv = vs;
+                st[depth].next = NULL;
+            } else {
+                over = 1;
+            }
         } else if (t == YAML_MAPPING_END_EVENT || t == YAML_SEQUENCE_END_EVENT) {
             if (depth >= 0)
                 depth--;
@@ -115,10 +212,66 @@ static void pos_build(const unsigned char *text, size_t len, struct sl_yaml_pos 
     yaml_parser_delete(&p);
 }
 
+int sl_yaml_depth(const unsigned char *text, size_t len, int max, int *line, char *key, size_t nkey)
+{
+    /* libyaml's scanner checks every open flow level ('[' or '{') for each
+     * token it reads, so a file nested N deep costs N² before any schema
+     * sees it (200,000 levels: minutes); stopping at the first level past
+     * max costs at most a line's worth of tokens. Block nesting ("- - - x",
+     * indentation) is counted the same way. */
+    yaml_parser_t p;
+    if (!yaml_parser_initialize(&p))
+        return -1;
+    yaml_parser_set_input_string(&p, text, len);
+    int depth = 0, deepest = 0, top_map = 0, want_key = 1;
+    *line = 0;
+    if (key && nkey)
+        key[0] = '\0';
+    for (;;) {
+        yaml_event_t ev;
+        if (!yaml_parser_parse(&p, &ev))
+            break;   /* a syntax error: the loader names it */
+        yaml_event_type_t t = ev.type;
+        if (depth == 0 && t == YAML_MAPPING_START_EVENT)
+            top_map = 1;
+        if (depth == 1 && top_map && (t == YAML_SCALAR_EVENT || t == YAML_ALIAS_EVENT ||
+                                      t == YAML_MAPPING_START_EVENT || t == YAML_SEQUENCE_START_EVENT)) {
+            /* the top-level key the nesting is under names it */
+            if (want_key && t == YAML_SCALAR_EVENT && key && nkey)
+                snprintf(key, nkey, "%s", (const char *)ev.data.scalar.value);
+            want_key = !want_key;
+        }
+        if (t == YAML_MAPPING_START_EVENT || t == YAML_SEQUENCE_START_EVENT) {
+            if (++depth > deepest)
+                deepest = depth;
+            if (depth > max) {
+                *line = (int)ev.start_mark.line + 1;
+                yaml_event_delete(&ev);
+                break;
+            }
+        } else if (t == YAML_MAPPING_END_EVENT || t == YAML_SEQUENCE_END_EVENT) {
+            depth--;
+        }
+        int end = t == YAML_STREAM_END_EVENT;
+        yaml_event_delete(&ev);
+        if (end)
+            break;
+    }
+    yaml_parser_delete(&p);
+    return deepest;
+}
+
 int sl_yaml_line(const struct sl_yaml_pos *ix, const char *path)
 {
     if (!ix)
         return 0;
+    if (ix->slot) {
+        size_t k = (size_t)path_hash(path) & (ix->nslot - 1);
+        for (; ix->slot[k]; k = (k + 1) & (ix->nslot - 1))
+            if (strcmp(ix->e[ix->slot[k] - 1].path, path) == 0)
+                return ix->e[ix->slot[k] - 1].line;
+        return 0;
+    }
     for (int i = 0; i < ix->n; i++)
         if (strcmp(ix->e[i].path, path) == 0)
             return ix->e[i].line;
@@ -211,6 +364,14 @@ enum sl_err sl_yaml_bad(struct sl_diag *d, enum sl_err kind, const char *file,
 }
 
 
+enum sl_err sl_yaml_ref_check(struct sl_diag *d, enum sl_err kind, const char *file,
+                              const struct sl_yaml_pos *ix, const char *key, const char *target)
+{
+    const char *bad = sl_file_type_bad(target);
+    return bad ? sl_yaml_bad(d, kind, file, ix, key, "%s is %s, not a regular file: refused unread", target, bad)
+               : SL_OK;
+}
+
 /* Read the whole file, refusing it before reading when it is over
  * max_bytes (the caller's limit for its kind of file). */
 static enum sl_err read_text(const char *path, size_t max_bytes, unsigned char **text, size_t *len,
@@ -218,39 +379,42 @@ static enum sl_err read_text(const char *path, size_t max_bytes, unsigned char *
 {
     *text = NULL;
     *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(errno));
-    struct stat st;
-    if (fstat(fileno(f), &st) != 0) {
-        int err = errno;
-        fclose(f);
-        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(err));
+    int fd;
+    long long size;
+    enum sl_err e = sl_open_regular(path, &fd, &size, d);   /* no FIFO, device or folder */
+    if (e)
+        return e;
+    if ((unsigned long long)size > (unsigned long long)max_bytes) {
+        close(fd);
+        return sl_fail(d, kind, path, 0, NULL, "file of %lld bytes: at most %zu MiB are read for this kind of file",
+                       size, max_bytes >> 20);
     }
-    if (!S_ISREG(st.st_mode)) {
-        fclose(f);
-        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s",
-                       S_ISDIR(st.st_mode) ? strerror(EISDIR) : "not a regular file");
-    }
-    if ((uintmax_t)st.st_size > (uintmax_t)max_bytes) {
-        fclose(f);
-        return sl_fail(d, kind, path, 0, NULL, "file of %jd bytes: at most %zu MiB are read for this kind of file",
-                       (intmax_t)st.st_size, max_bytes >> 20);
-    }
-    /* +1 so a file that grew since fstat is seen as over the limit */
-    unsigned char *buf = malloc(max_bytes + 1 < (size_t)st.st_size + 1 ? max_bytes + 1 : (size_t)st.st_size + 1);
+    /* +1 so a file that grew since fstat is seen as over the limit; the
+     * reads stop there whatever the file does */
+    size_t cap = (size_t)size + 1;
+    unsigned char *buf = malloc(cap);
     if (!buf) {
-        fclose(f);
+        close(fd);
         return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "reading the file");
     }
-    size_t n = fread(buf, 1, (size_t)st.st_size + 1, f);
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(EIO));
+    size_t n = 0;
+    int err = 0;
+    while (n < cap) {
+        ssize_t k = read(fd, buf + n, cap - n);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k < 0)
+            err = errno;
+        if (k <= 0)
+            break;
+        n += (size_t)k;
     }
-    if (n > (size_t)st.st_size) {
+    close(fd);
+    if (err) {
+        free(buf);
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(err));
+    }
+    if (n > (size_t)size) {
         free(buf);
         return sl_fail(d, kind, path, 0, NULL, "the file grew while being read");
     }
@@ -324,6 +488,11 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
     enum sl_err re = read_text(path, max_bytes, &text, &len, kind, d);
     if (!re)
         re = check_text(path, text, len, kind, d);
+    int deep_line = 0;
+    char deep_key[64];
+    if (!re && sl_yaml_depth(text, len, SL_YAML_MAX_DEPTH, &deep_line, deep_key, sizeof deep_key) > SL_YAML_MAX_DEPTH)
+        re = sl_fail(d, kind, path, deep_line, deep_key[0] ? deep_key : NULL, "nested more than %d levels deep: "
+                     "refused before it is read further", SL_YAML_MAX_DEPTH);
     if (!re && edit)
         re = edit(&text, &len, edit_user, d);
     if (re) {
@@ -341,9 +510,21 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
     /* one entry per 64 bytes of the limit, at least 65536: far more than
      * the schemas' entry limits let through (132 bytes each) */
     ix->max = (int)(max_bytes / 64 > 65536 ? (max_bytes / 64 < (1u << 22) ? max_bytes / 64 : (1u << 22)) : 65536);
-    pos_build(text, len, ix);
+    pos_build(text, len, schema, ix);
+    pos_hash(ix);
     cyaml_err_t ce = cyaml_load_data(text, len, cfg, schema, (cyaml_data_t **)out, NULL);
     free(text);
+    if (ce == CYAML_OK && *out && ix->int_line) {
+        cyaml_free(cfg, schema, *out, 0);
+        *out = NULL;
+        enum sl_err e = sl_fail(d, kind, path, ix->int_line, ix->int_path[0] ? ix->int_path : NULL,
+                                "'%s' is not a whole number (an integer in decimal digits is expected)",
+                                ix->int_text);
+        free(ix->e);
+        free(ix->slot);
+        free(ix);
+        return e;
+    }
     if (ce == CYAML_OK && *out) {
         *pos = ix;
         return SL_OK;
@@ -351,6 +532,7 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
     if (ce == CYAML_OK) {
         /* an empty document loads as nothing at all */
         free(ix->e);
+        free(ix->slot);
         free(ix);
         return sl_fail(d, kind, path, 0, NULL, "empty file: no YAML mapping");
     }
@@ -409,6 +591,7 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
                     lg.first[0] ? lg.first : cyaml_strerror(ce));
     }
     free(ix->e);
+    free(ix->slot);
     free(ix);
     return e;
 }
@@ -422,6 +605,7 @@ void sl_yaml_free(const cyaml_schema_value_t *schema, void *data, struct sl_yaml
     }
     if (pos) {
         free(pos->e);
+        free(pos->slot);
         free(pos);
     }
 }

@@ -34,6 +34,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "util.h"
 
 /* Deeper node trees than this are treated as corrupt. Real files nest a few
@@ -445,22 +446,42 @@ static enum sl_err dropped_faces(const struct aiScene *sc, const char *path, str
                    why && why[0] ? why : "");
 }
 
+static enum sl_err load_assimp(struct sl_mesh *m, const char *path, const float xform[16],
+                               struct sl_mesh_load_stats *st, struct sl_diag *d);
+
 /* In the reader's process: assimp reads the file, its result is checked and
- * welded into m. sl_mesh_load_file runs this in a child (meshio_child.c). */
+ * welded into m. sl_mesh_load_file runs this in a child (meshio_child.c);
+ * sl_mesh_load_file_here in this process, input after input, so the log's
+ * state starts afresh and its stream is detached each time. */
 static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float xform[16],
+                               struct sl_mesh_load_stats *st, struct sl_diag *d)
+{
+    g_ai_error[0] = '\0';
+    g_ai_dropped = 0;
+    struct aiLogStream ls = {.callback = ai_log, .user = NULL};
+    aiAttachLogStream(&ls);
+    enum sl_err e = load_assimp(m, path, xform, st, d);
+    aiDetachAllLogStreams();
+    return e;
+}
+
+static enum sl_err load_assimp(struct sl_mesh *m, const char *path, const float xform[16],
                                struct sl_mesh_load_stats *st, struct sl_diag *d)
 {
     if (!m || !path)
         return sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "sl_mesh_load_file: NULL argument");
     /* Opened here first so a missing or unreadable file gets the system's
      * reason rather than a format guess, and an empty one says so. */
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    int fd;
+    struct sl_diag od;
+    if (!sl_file_type_bad(path) && access(path, R_OK) != 0)
         return sl_fail(d, SL_E_SCENE, path, 0, NULL, "cannot open: %s", strerror(errno));
+    if (sl_open_regular(path, &fd, NULL, &od))   /* no FIFO or device: assimp would block or never end */
+        return sl_fail(d, SL_E_SCENE, path, 0, NULL, "%s", od.msg);
     unsigned char c0;
-    size_t got = fread(&c0, 1, 1, f);
-    int rerr = ferror(f) ? errno : 0;
-    fclose(f);
+    ssize_t got = read(fd, &c0, 1);
+    int rerr = got < 0 ? errno : 0;
+    close(fd);
     if (rerr)
         return sl_fail(d, SL_E_SCENE, path, 0, NULL, "cannot read: %s", strerror(rerr));
     if (got == 0)
@@ -491,8 +512,6 @@ static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float 
     enum sl_err e = sl_mesh_precheck(path, d);
     if (e)
         return e;
-    struct aiLogStream ls = {.callback = ai_log, .user = NULL};
-    aiAttachLogStream(&ls);
     const struct aiScene *sc = aiImportFile(path, 0);
     if (g_ai_dropped) {
         e = dropped_faces(sc, path, d);
@@ -560,18 +579,32 @@ static enum sl_err load_direct(struct sl_mesh *m, const char *path, const float 
     return e;
 }
 
-enum sl_err sl_mesh_load_file(struct sl_mesh *m, const char *path, const float xform[16],
-                              struct sl_mesh_load_stats *st, struct sl_diag *d)
+static enum sl_err load_file(struct sl_mesh *m, const char *path, const float xform[16],
+                             struct sl_mesh_load_stats *st, int in_child, struct sl_diag *d)
 {
     if (!m || !path)
         return sl_fail(d, SL_E_INTERNAL, path, 0, NULL, "sl_mesh_load_file: NULL argument");
     struct sl_mesh got = {0};
     struct sl_mesh_load_stats s;
-    enum sl_err e = sl_mesh_read_in_child(load_direct, path, xform, &got, &s, d);
+    memset(&s, 0, sizeof s);
+    enum sl_err e = in_child ? sl_mesh_read_in_child(load_direct, path, xform, &got, &s, d)
+                             : load_direct(&got, path, xform, &s, d);
     if (!e && !mesh_append(m, &got))
         e = sl_fail(d, SL_E_NOMEM, path, 0, NULL, "out of memory appending %u triangles", got.nt);
     if (!e && st)
         *st = s;
     sl_mesh_free(&got);
     return e;
+}
+
+enum sl_err sl_mesh_load_file(struct sl_mesh *m, const char *path, const float xform[16],
+                              struct sl_mesh_load_stats *st, struct sl_diag *d)
+{
+    return load_file(m, path, xform, st, 1, d);
+}
+
+enum sl_err sl_mesh_load_file_here(struct sl_mesh *m, const char *path, const float xform[16],
+                                   struct sl_mesh_load_stats *st, struct sl_diag *d)
+{
+    return load_file(m, path, xform, st, 0, d);
 }

@@ -31,6 +31,13 @@ struct sl_mesh_load_stats {
 
 enum sl_err sl_mesh_load_file(struct sl_mesh *m, const char *path, const float xform[16],
                               struct sl_mesh_load_stats *st, struct sl_diag *d);
+/* The same reader in this process, without the child: no isolation (a
+ * crash or a loop in assimp is this process's) and no limits. For the fuzz
+ * entries, where each input's fork of a sanitized process cost ~0.5 s and
+ * the reader's coverage and sanitizer reports stayed in the child; never
+ * for files a user gives. */
+enum sl_err sl_mesh_load_file_here(struct sl_mesh *m, const char *path, const float xform[16],
+                                   struct sl_mesh_load_stats *st, struct sl_diag *d);
 
 /* Weld vertices of m with bit-identical positions (all of m, in place) and
  * drop triangles that become degenerate (two equal indices) or have zero

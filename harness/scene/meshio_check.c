@@ -60,6 +60,7 @@ struct ply_head {
     struct ply_elem el[PLY_MAX_ELEMS];
     unsigned long long nvert;   /* the 'vertex' element's count */
     long data;                  /* offset of the first data byte */
+    char why[160];              /* ply_header -1: what is wrong with the header */
 };
 
 /* 1 with size and kind set, 0 for a type name we do not know. */
@@ -81,22 +82,39 @@ static int ply_type(const char *t, int *size, int *sgn, int *flt)
     return 0;
 }
 
-/* 1: header read whole and understood; 0: leave the file to assimp. */
+/* 1: header read whole and understood; 0: leave the file to assimp; -1: a
+ * header no PLY reader can take (h->why), refused here: assimp's PLY reader
+ * crashes on some (an unknown format word, NUL bytes in the header). */
 static int ply_header(FILE *f, struct ply_head *h)
 {
     char line[1024];
     memset(h, 0, sizeof *h);
     struct ply_elem *cur = NULL;
+    long at = ftell(f);
     while (fgets(line, sizeof line, f)) {
         size_t len = strlen(line);
-        if (!len || line[len - 1] != '\n')
-            return 0;   /* a header line of 1 KiB, or no end_header */
+        long next = ftell(f);
+        if (at >= 0 && next >= 0 && (long)len < next - at) {
+            snprintf(h->why, sizeof h->why, "a NUL byte in the header (at byte %ld)", at + (long)len);
+            return -1;
+        }
+        at = next;
+        if (!len || line[len - 1] != '\n') {
+            if (feof(f))
+                snprintf(h->why, sizeof h->why, "the header has no end_header line");
+            return feof(f) ? -1 : 0;   /* no end_header, or a header line of 1 KiB */
+        }
         char a[64], b[64], c[64], e[64];
         if (!strncmp(line, "format ", 7)) {
             if (sscanf(line + 7, "%63s", a) != 1)
                 return 0;
             h->fmt = !strcmp(a, "ascii") ? PLY_ASCII : !strcmp(a, "binary_little_endian") ? PLY_LE
                      : !strcmp(a, "binary_big_endian") ? PLY_BE : PLY_UNKNOWN;
+            if (h->fmt == PLY_UNKNOWN) {
+                snprintf(h->why, sizeof h->why, "format '%.63s' is none of ascii, binary_little_endian, "
+                         "binary_big_endian", a);
+                return -1;
+            }
         } else if (!strncmp(line, "element ", 8)) {
             unsigned long long n;
             if (h->nelems >= PLY_MAX_ELEMS || sscanf(line + 8, "%63s %llu", a, &n) != 2)
@@ -132,6 +150,10 @@ static int ply_header(FILE *f, struct ply_head *h)
             h->data = ftell(f);
             return h->fmt != PLY_UNKNOWN && h->data > 0;
         }
+    }
+    if (feof(f)) {
+        snprintf(h->why, sizeof h->why, "the header has no end_header line");
+        return -1;
     }
     return 0;
 }
@@ -235,7 +257,15 @@ static enum sl_err ply_check(FILE *f, const char *path, struct sl_diag *d)
         return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "PLY header");
     enum sl_err e = SL_OK;
     struct stat sb;
-    if (ply_header(f, h)) {
+    char magic[5] = "";
+    int is_ply = fread(magic, 1, 4, f) == 4 && (!memcmp(magic, "ply\n", 4) || !memcmp(magic, "ply\r", 4));
+    rewind(f);
+    int got = ply_header(f, h);
+    if (got < 0 && !is_ply)
+        got = 0;   /* not a PLY file at all: assimp says what it is */
+    if (got < 0)
+        e = sl_fail(d, SL_E_SCENE, path, 0, NULL, "corrupt PLY header: %s", h->why);
+    else if (got) {
         if (h->fmt == PLY_ASCII)
             e = ply_ascii_check(f, h, path, d);
         else if (fstat(fileno(f), &sb) == 0 && (unsigned long long)sb.st_size >= (unsigned long long)h->data)

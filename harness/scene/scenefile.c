@@ -468,8 +468,31 @@ struct build {
     struct sl_mesh all;
     struct sl_mesh_range *ranges;
     struct shift { double t[3]; uint32_t v0, nv; } *shift;   /* per range: translation, its vertices */
+    /* per range, for an error found only once the scene is put together (a
+     * triangle that float precision collapses in the local frame): the
+     * entry's reach (largest |world coordinate|) and where to blame it */
+    struct blame { double reach; char file[512]; char key[96]; int line; } *blame;
     int nranges, cap;
 };
+
+/* Past this a coordinate is refused: float holds 3.4e38, but the products
+ * of the projection and the truth's ray tests overflow long before. */
+#define SL_MAX_COORD 1e30
+
+/* What grew an entry's coordinates: its translation when that dominates,
+ * else its scale when it has one, else the model's own coordinates (file)
+ * or the generator's parameters (the entry). */
+static void blame_key(const struct raw_mesh *r, unsigned i, double ext, double shift, char *key, size_t n)
+{
+    if (r->transform && r->transform->translate && shift >= ext)
+        snprintf(key, n, "meshes[%u].transform.translate", i);
+    else if (r->transform && r->transform->scale)
+        snprintf(key, n, "meshes[%u].transform.scale", i);
+    else if (r->file)
+        snprintf(key, n, "meshes[%u].file", i);
+    else
+        snprintf(key, n, "meshes[%u]", i);
+}
 
 static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const char *file,
                              const struct sl_yaml_pos *pos, unsigned i, struct sl_diag *d)
@@ -530,14 +553,36 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
             snprintf(path, sizeof path, "%s/%s", dir, r->file);
         struct sl_mesh_load_stats st;
         struct sl_diag md;
+        snprintf(key, sizeof key, "meshes[%u].file", i);
+        if ((e = sl_yaml_ref_check(d, SL_E_SCENE, file, pos, key, path)))
+            return e;
         if ((e = sl_mesh_load_file(&m, path, (const float *)x, &st, &md))) {
-            snprintf(key, sizeof key, "meshes[%u].file", i);
             return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "%s: %s", md.file[0] ? md.file : path, md.msg);
         }
     }
     if (m.nt == 0) {
         sl_mesh_free(&m);
         return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "mesh has no triangle");
+    }
+    /* overflow is the entry's: non-finite or past SL_MAX_COORD once placed */
+    double ext = 0.0, sh = 0.0;
+    for (uint32_t v = 0; v < 3 * m.nv; v++) {
+        double a = fabs((double)m.pos[v]);
+        ext = !(a <= ext) ? a : ext;   /* NaN sticks */
+    }
+    for (int k = 0; k < 3; k++)
+        sh = fabs(shift[k]) > sh ? fabs(shift[k]) : sh;
+    blame_key(r, i, ext, sh, key, sizeof key);
+    if (!(ext + sh <= (double)(float)SL_MAX_COORD)) {   /* 1e30 as a float is 1.00000002e30 */
+        sl_mesh_free(&m);
+        int line = sl_yaml_line(pos, key);
+        if (!line) {
+            char ek[32];
+            snprintf(ek, sizeof ek, "meshes[%u]", i);
+            line = sl_yaml_line(pos, ek);
+        }
+        return sl_fail(d, SL_E_SCENE, file, line, key, "the mesh's coordinates reach %.3g once placed: at most "
+                       "%g (float range; precision is lost long before)", ext + sh, SL_MAX_COORD);
     }
     /* append as one range */
     if (b->nranges == b->cap) {
@@ -546,12 +591,25 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
         if (p)
             b->ranges = p;
         void *q = p ? realloc(b->shift, (size_t)cap * sizeof *b->shift) : NULL;
-        if (!q) {
+        if (q)
+            b->shift = q;
+        void *w = q ? realloc(b->blame, (size_t)cap * sizeof *b->blame) : NULL;
+        if (!w) {
             sl_mesh_free(&m);
             return sl_fail(d, SL_E_NOMEM, file, 0, NULL, "mesh ranges");
         }
-        b->shift = q;
+        b->blame = w;
         b->cap = cap;
+    }
+    struct blame *bl = &b->blame[b->nranges];
+    bl->reach = ext + sh;
+    snprintf(bl->file, sizeof bl->file, "%s", file);
+    snprintf(bl->key, sizeof bl->key, "%s", key);
+    bl->line = sl_yaml_line(pos, key);
+    if (!bl->line) {
+        char ek[32];
+        snprintf(ek, sizeof ek, "meshes[%u]", i);
+        bl->line = sl_yaml_line(pos, ek);
     }
     memcpy(b->shift[b->nranges].t, shift, sizeof shift);
     b->shift[b->nranges].v0 = b->all.nv;
@@ -764,6 +822,8 @@ static enum sl_err load_into(const char *path, struct build *b, struct sl_light 
         } else if (!e && depth >= 4)
             e = sl_yaml_bad(d, SL_E_SCENE, path, pos, "base", "scenes based on scenes more than 4 deep");
         else if (!e)
+            e = sl_yaml_ref_check(d, SL_E_SCENE, path, pos, "base", bpath);
+        if (!e)
             e = load_into(bpath, b, light, have_light, NULL, ch, d);
     }
     if (!e && r->light) {
@@ -840,6 +900,34 @@ static void rebase(struct build *b, struct sl_scene *out, struct sl_light *light
         light->pos[k] = (float)((double)light->pos[k] - out->origin[k]);
 }
 
+/* Each entry's triangles have area on their own (generators make none
+ * without, models are welded and checked); one that has none in the local
+ * frame was collapsed by float precision, because the scene spans far more
+ * than its detail: the entry that reaches farthest made the span, and is
+ * named (its translation, scale or model file), with the collapsed one. */
+static enum sl_err collapsed(const struct build *b, struct sl_diag *d)
+{
+    for (int r = 0; r < b->nranges; r++) {
+        const struct sl_mesh_range *rg = &b->ranges[r];
+        for (uint32_t t = rg->first; t < rg->first + rg->count; t++) {
+            const uint32_t *ix = b->all.idx + 3 * (size_t)t;
+            double n[3];
+            if (sl_tri_normal_d(b->all.pos + 3 * (size_t)ix[0], b->all.pos + 3 * (size_t)ix[1],
+                                b->all.pos + 3 * (size_t)ix[2], n) > 0.0)
+                continue;
+            int far = 0;
+            for (int k = 1; k < b->nranges; k++)
+                far = b->blame[k].reach > b->blame[far].reach ? k : far;
+            const struct blame *bl = &b->blame[far];
+            return sl_fail(d, SL_E_SCENE, bl->file, bl->line, bl->key, "mesh '%s' reaches %g units: so far out, "
+                           "float precision collapses triangle %u of mesh '%s' to zero area (keep the scene's "
+                           "extent within about 1e6 times its smallest detail)", b->ranges[far].name, bl->reach,
+                           t - rg->first, rg->name);
+        }
+    }
+    return SL_OK;
+}
+
 enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag *d)
 {
     memset(out, 0, sizeof *out);
@@ -852,9 +940,12 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     enum sl_err e = load_into(path, &b, &light, &have_light, out, &ch, d);
     if (!e) {
         rebase(&b, out, &light);
-        e = sl_scene_from_mesh(out, &b.all, d);
+        e = collapsed(&b, d);
     }
+    if (!e)
+        e = sl_scene_from_mesh(out, &b.all, d);
     free(b.shift);
+    free(b.blame);
     sl_mesh_free(&b.all);
     if (e) {
         free(b.ranges);
@@ -874,19 +965,25 @@ enum sl_err sl_scene_load(const char *path, struct sl_scene *out, struct sl_diag
     return SL_OK;
 }
 
-/* A scene file has a top-level meshes, light or base key (a config has not). */
-static int scene_file_info(const char *path, char *descr, size_t n)
+int sl_scene_sniff(const char *path, char *descr, size_t n)
 {
-    FILE *f = fopen(path, "r");
-    if (!f)
+    if (descr && n)
+        descr[0] = '\0';
+    int fd;
+    struct sl_diag d;
+    if (sl_open_regular(path, &fd, NULL, &d))
+        return 0;   /* not a regular file: not a scene (its loader says why) */
+    FILE *f = fdopen(fd, "r");
+    if (!f) {
+        close(fd);
         return 0;
+    }
     char line[512];
     int scene = 0;
-    descr[0] = '\0';
-    while (fgets(line, sizeof line, f)) {
+    while ((!scene || (descr && !descr[0])) && ftell(f) < (long)SL_SCENE_MAX_BYTES && fgets(line, sizeof line, f)) {
         scene |= strncmp(line, "meshes:", 7) == 0 || strncmp(line, "light:", 6) == 0 ||
                  strncmp(line, "base:", 5) == 0;
-        if (strncmp(line, "description:", 12) == 0 && !descr[0]) {
+        if (descr && n && strncmp(line, "description:", 12) == 0 && !descr[0]) {
             char *v = line + 12;
             while (*v == ' ' || *v == '"')
                 v++;
@@ -920,7 +1017,7 @@ int sl_scene_list_where(char (*names)[64], char (*descr)[160], char (*paths)[102
                 dup = strcmp(names[k], name) == 0;
             char path[1100];
             snprintf(path, sizeof path, "%s/%s", dirs[di], de->d_name);
-            if (dup || !scene_file_info(path, descr[n], 160))
+            if (dup || !sl_scene_sniff(path, descr[n], 160))
                 continue;   /* configs and other YAML files are not scenes */
             snprintf(names[n], 64, "%s", name);
             if (paths)

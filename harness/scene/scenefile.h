@@ -52,6 +52,12 @@
  * tree"). Returns how many (at most max). */
 int sl_scene_dirs(const char *rel_dir, char (*dirs)[1024], const char **origin, int max);
 
+/* Is path a scene file (a top-level meshes, light or base key; a config has
+ * none)? Reads only a regular file (a FIFO or a device is no scene: its
+ * loader then refuses it by type) and at most SL_SCENE_MAX_BYTES of it;
+ * descr (if not NULL) gets its description line. */
+int sl_scene_sniff(const char *path, char *descr, size_t n);
+
 /* The last folder of that path: installed, else the source tree's. */
 const char *sl_scenes_dir(void);
 
