@@ -185,37 +185,6 @@ static int parse_cells(const char *s, int *a, int *b, char *msg, size_t n)
     return 1;
 }
 
-/* Is path (relative, no "..") inside the folder root, as text? "./" and
- * repeated slashes are skipped on both sides. */
-static int under_out(const char *path, const char *root)
-{
-    const char *p = path, *r = root;
-    for (;;) {
-        while (*r == '/' && r != root && r[-1] == '/')
-            r++;
-        while (r[0] == '.' && r[1] == '/')
-            r += 2;
-        while (p[0] == '.' && p[1] == '/')
-            p += 2;
-        while (*p == '/')
-            p++;
-        size_t kr = strcspn(r, "/"), kp = strcspn(p, "/");
-        if (!kr) {
-            while (*r == '/')
-                r++;
-            if (!*r)
-                return *p != '\0';   /* the root is used up: path goes on inside it */
-            continue;
-        }
-        if (kr != kp || strncmp(r, p, kr) != 0)
-            return 0;
-        r += kr;
-        p += kp;
-        if (!*p)
-            return 0;   /* path is the root itself */
-    }
-}
-
 /* "WxH", each a whole number in lo..hi */
 static int parse_wxh(const char *s, long long lo, long long hi, int *w, int *h)
 {
@@ -650,13 +619,6 @@ static int cmd_run(int argc, char **argv)
         sl_fail(&d, SL_E_USAGE, c.path, 0, "--cells", "cells %s outside the sweep of %d cells (0:%d)", cells,
                 sl_plan_count(&c), sl_plan_count(&c));
         return fail(SL_E_USAGE, &d);
-    }
-    if (!o.store && c.store[0] && !under_out(c.store, o.out_root ? o.out_root : "results")) {
-        /* a config's store: stays under --out (validate refused '..' and /);
-         * --db is the way to put it elsewhere */
-        sl_fail(&d, SL_E_CONFIG, c.path, c.store_line, "store", "'%s' is not under --out %s: a run writes only "
-                "there (give --db PATH to put the store elsewhere)", c.store, o.out_root ? o.out_root : "results");
-        return fail(SL_E_CONFIG, &d);
     }
     if (gl)
         c.gl = gl;

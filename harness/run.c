@@ -755,7 +755,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (o->store)
         snprintf(store_path, sizeof store_path, "%s", o->store);
     else if (c->store[0])
-        snprintf(store_path, sizeof store_path, "%s", c->store);
+        snprintf(store_path, sizeof store_path, "%s/%s", root, c->store);   /* under --out (config.c) */
     else if (o->write_files)
         snprintf(store_path, sizeof store_path, "%s/shadowlab.db", root);
     if (o->cache_dir)
@@ -776,6 +776,13 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         /* fail on an unwritable output before any GL or Embree work */
         if ((e = sl_mkdirs(root, d)))
             return e;
+        if (!o->store && strchr(c->store, '/')) {   /* store: sub/x.db: its folder under --out */
+            char dir[1100];
+            snprintf(dir, sizeof dir, "%s", store_path);
+            *strrchr(dir, '/') = '\0';
+            if ((e = sl_mkdirs(dir, d)))
+                return e;
+        }
         if ((e = sl_out_stage_begin(c, root, &dirs, d)))
             return e;
         snprintf(res->out_dir, sizeof res->out_dir, "%s", dirs.final);

@@ -685,7 +685,7 @@ enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o,
     if (o->store)
         snprintf(r->store, sizeof r->store, "%s", o->store);
     else if (c->store[0])
-        snprintf(r->store, sizeof r->store, "%s", c->store);
+        snprintf(r->store, sizeof r->store, "%s/%s", root, c->store);   /* under --out (config.c) */
     else
         snprintf(r->store, sizeof r->store, "%s/shadowlab.db", root);
     char cache[1200];
