@@ -1,22 +1,15 @@
-/* The help text of every verb (see usage.h). */
-#include "usage.h"
+/*
+ * usage.c — the table of verbs and the help text of each: the one source of
+ * `shadowlab --help`, `shadowlab VERB --help` and the dispatch in main.c.
+ * The top-level help is built from the table's rows (synopsis and summary),
+ * so a verb cannot be dispatched without being listed, nor listed without
+ * being dispatched. doc/shadowlab.1 is written by hand beside these texts.
+ */
+#include <stdio.h>
+#include <string.h>
+#include "cli.h"
 
-const char sl_usage[] =
-    "usage: shadowlab <command> [--help] ...      (shadowlab help COMMAND = shadowlab COMMAND --help)\n"
-    "  run CONFIG|SCENE [options] run an experiment (shadowlab run --help)\n"
-    "  validate FILE [-D K=V]     check a config or a scene file without GL or Embree\n"
-    "  table DB [options]         regenerate tables from a results store\n"
-    "  report DB [-o DIR]         HTML and Markdown report of a results store (needs gnuplot)\n"
-    "  check DB --baseline FILE   compare a results store with a committed baseline (exit 1 if outside)\n"
-    "  bench [CONFIG] [options]   every stage against its plain counterpart, the studies, their targets\n"
-    "  submit CONFIG --slurm ...  the sweep as a Slurm job array plus a merge job (shadowlab submit --help)\n"
-    "  merge SHARD.db... -o DB    the stores of a split sweep into one; exit 1 if a cell is missing\n"
-    "  verify DB                  every stored cell against its digest; exit 2 naming damaged ones\n"
-    "  preview SCENE [options]    a quick shaded PNG per viewpoint, for framing cameras\n"
-    "  list methods|scenes        what can be named in a config\n"
-    "  version, -V, --version     the git SHA this binary was built from\n";
-
-const char sl_usage_run[] =
+const char cli_usage_run[] =
     "usage: shadowlab run CONFIG|SCENE [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
     "                     [--cache DIR] [--gl osmesa|egl] [--jobs N] [--stored-in DB] [-j N] [-D KEY=VALUE]...\n"
     "                     [-q|-v]\n"
@@ -51,12 +44,12 @@ const char sl_usage_run[] =
     "  Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
     "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
 
-const char sl_usage_validate[] =
+const char cli_usage_validate[] =
     "usage: shadowlab validate FILE [-D KEY=VALUE]...\n"
     "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
     "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
 
-const char sl_usage_table[] =
+const char cli_usage_table[] =
     "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
     "                          [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
     "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
@@ -67,7 +60,7 @@ const char sl_usage_table[] =
     "  md and latex leave out the figures a method does not produce (0 in every column past\n"
     "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n";
 
-const char sl_usage_report[] =
+const char cli_usage_report[] =
     "usage: shadowlab report RESULTS_DB [-o DIR] [--self-contained] [--latex]\n"
     "  Writes DIR/report.html (offline; it links its images, plots and .tex beside it) and\n"
     "  DIR/report.md: a contents tree, a summary first, then the thesis-style tables of every\n"
@@ -77,7 +70,7 @@ const char sl_usage_report[] =
     "  --self-contained  report.html is one file: images and plots embedded, nothing outside it\n"
     "  --latex           also DIR/report.tex: a pdflatex document that \\inputs the tables and plots\n";
 
-const char sl_usage_check[] =
+const char cli_usage_check[] =
     "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
     "                          [--format text|md] [--json FILE] [--junit FILE]\n"
     "  Compares the latest stored cell of each key with the baseline FILE: violations of a\n"
@@ -94,7 +87,7 @@ const char sl_usage_check[] =
     "  --json FILE   also write every compared cell and class with its verdict as JSON\n"
     "  --junit FILE  also write JUnit XML: one testcase per cell and class of figure\n";
 
-const char sl_usage_bench[] =
+const char cli_usage_bench[] =
     "usage: shadowlab bench [CONFIG] [--only LIST] [--reps N] [--scene S] [--viewport WxH] [--map N]\n"
     "                       [--csv FILE] [--markdown FILE] [--gl osmesa|egl]\n"
     "  Each measurement against its target, as a Markdown table with PASS/MISS:\n"
@@ -129,13 +122,13 @@ const char sl_usage_bench[] =
     "                  header: machine, CPU, GL renderer and backend, git SHA, load, this command\n"
     "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
 
-const char sl_usage_list[] =
+const char cli_usage_list[] =
     "usage: shadowlab list methods|scenes\n"
     "  scenes: the scene files a config can name, each with where it was found; a name is looked\n"
     "  up in the config's folder, then in each folder of SHADOWLAB_SCENES (colon-separated), then\n"
     "  in the installed share/shadowlab/scenes (or, not installed, the source tree's scenes/)\n";
 
-const char sl_usage_submit[] =
+const char cli_usage_submit[] =
     "usage: shadowlab submit CONFIG --slurm [--tasks N | --cells-per-task K] [--max-running T]\n"
     "                        [--out DIR] [--partition P] [--time HH:MM:SS] [--mem M] [--dry-run]\n"
     "  Writes DIR/slurm/array.sh, an sbatch job array whose task i runs\n"
@@ -148,7 +141,7 @@ const char sl_usage_submit[] =
     "  --max-running T      at most T tasks at once (--array=0-(N-1)%T)\n"
     "  --out DIR            default results/; must be on a filesystem every node sees\n";
 
-const char sl_usage_merge[] =
+const char cli_usage_merge[] =
     "usage: shadowlab merge SHARD.db... -o STORE.db [--allow-mixed]\n"
     "  Copies the runs and cells of each shard (one config, the same in every shard) into STORE.db,\n"
     "  one transaction per shard; a cell already there is a duplicate and is not copied again. The\n"
@@ -159,7 +152,7 @@ const char sl_usage_merge[] =
     "  --allow-mixed  merge shards whose cells come from other git SHAs, GL renderers or ISAs\n"
     "                 (refused by default; each merged run keeps its own provenance)\n";
 
-const char sl_usage_verify[] =
+const char cli_usage_verify[] =
     "usage: shadowlab verify STORE.db\n"
     "  Checks a results store: SQLite's quick_check, then each cell's digest (a CRC-32 over every\n"
     "  column of the cell row and of each of its figure rows, written with the cell) recomputed\n"
@@ -168,7 +161,7 @@ const char sl_usage_verify[] =
     "  table, report, check and merge check the digest of every cell they read the same way.\n"
     "  Opens the store read-only (a store on read-only media can be verified).\n";
 
-const char sl_usage_preview[] =
+const char cli_usage_preview[] =
     "usage: shadowlab preview SCENE [--viewpoint V] [-o DIR] [--size WxH] [--gl osmesa|egl]\n"
     "  Writes DIR/<scene>-<viewpoint>.png for each viewpoint of SCENE (a scene file or a built-in\n"
     "  scene's name): the G-buffer only, faces shaded by their angle to the light, faces turned\n"
@@ -176,3 +169,61 @@ const char sl_usage_preview[] =
     "  --viewpoint V  only that viewpoint\n"
     "  -o, --out DIR  output folder (default: the current one)\n"
     "  --size WxH     image size (default 512x512)\n";
+
+/* In the order `shadowlab --help` lists them. run and bench render with
+ * OpenMP on the CPU passes: they wait passively (main.c). */
+const struct cli_verb cli_verbs[] = {
+    {"run", cli_run, cli_usage_run, "CONFIG|SCENE [options]", "run an experiment (shadowlab run --help)", 1},
+    {"validate", cli_validate, cli_usage_validate, "FILE [-D K=V]",
+     "check a config or a scene file without GL or Embree", 0},
+    {"table", cli_table, cli_usage_table, "DB [options]", "regenerate tables from a results store", 0},
+    {"report", cli_report, cli_usage_report, "DB [-o DIR]",
+     "HTML and Markdown report of a results store (needs gnuplot)", 0},
+    {"check", cli_check, cli_usage_check, "DB --baseline FILE",
+     "compare a results store with a committed baseline (exit 1 if outside)", 0},
+    {"bench", cli_bench, cli_usage_bench, "[CONFIG] [options]",
+     "every stage against its plain counterpart, the studies, their targets", 1},
+    {"submit", cli_submit, cli_usage_submit, "CONFIG --slurm ...",
+     "the sweep as a Slurm job array plus a merge job (shadowlab submit --help)", 0},
+    {"merge", cli_merge, cli_usage_merge, "SHARD.db... -o DB",
+     "the stores of a split sweep into one; exit 1 if a cell is missing", 0},
+    {"verify", cli_verify, cli_usage_verify, "DB", "every stored cell against its digest; exit 2 naming damaged ones",
+     0},
+    {"preview", cli_preview, cli_usage_preview, "SCENE [options]",
+     "a quick shaded PNG per viewpoint, for framing cameras", 0},
+    {"list", cli_list, cli_usage_list, "methods|scenes", "what can be named in a config", 0},
+    {NULL, NULL, NULL, NULL, NULL, 0},
+};
+
+const struct cli_verb *cli_verb_find(const char *name)
+{
+    for (const struct cli_verb *v = cli_verbs; v->name; v++)
+        if (!strcmp(v->name, name))
+            return v;
+    return NULL;
+}
+
+/* "  NAME SYNOPSIS" in 26 columns, then the summary; version is not a verb
+ * of the table (main.c answers it, and its -V / --version forms) */
+static void usage_line(char *buf, size_t size, size_t *len, const char *left, const char *summary)
+{
+    int k = snprintf(buf + *len, size - *len, "  %-26s %s\n", left, summary);
+    if (k > 0 && (size_t)k < size - *len)
+        *len += (size_t)k;
+}
+
+const char *cli_usage(void)
+{
+    static char text[4096];
+    if (text[0])
+        return text;
+    size_t len = (size_t)snprintf(text, sizeof text, "usage: shadowlab <command> [--help] ...      "
+                                                     "(shadowlab help COMMAND = shadowlab COMMAND --help)\n");
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        char left[64];
+        snprintf(left, sizeof left, "%s %s", v->name, v->synopsis);
+        usage_line(text, sizeof text, &len, left, v->summary);
+    }
+    usage_line(text, sizeof text, &len, "version, -V, --version", "the git SHA this binary was built from");
+    return text;
+}

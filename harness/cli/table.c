@@ -1,0 +1,138 @@
+/*
+ * table.c — `shadowlab table`: the stored cells of a results store,
+ * filtered, as thesis-style tables, or with --summary (and its --region,
+ * --lower-is-better, --average-case) one figure's average, best and worst
+ * per map size.
+ */
+#define _GNU_SOURCE   /* getopt_long */
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "cli.h"
+#include "store.h"
+#include "summary.h"
+#include "table.h"
+
+int cli_table(int argc, char **argv)
+{
+    static const struct option lo[] = {
+        OPT_HELP,
+        {"format", required_argument, NULL, OPT_FORMAT},     {"scene", required_argument, NULL, OPT_SCENE},
+        {"viewpoint", required_argument, NULL, OPT_VIEWPOINT}, {"label", required_argument, NULL, OPT_LABEL},
+        {"map", required_argument, NULL, OPT_MAP},           {"run", required_argument, NULL, OPT_RUN},
+        {"summary", required_argument, NULL, OPT_SUMMARY},   {"region", required_argument, NULL, OPT_REGION},
+        {"figures", required_argument, NULL, OPT_FIGURES},
+        {"lower-is-better", no_argument, NULL, OPT_LOWER},   {"average-case", required_argument, NULL, OPT_AVG},
+        {0, 0, 0, 0},
+    };
+    const struct cli_parser p = {"table", "", cli_usage_table, lo};
+    struct sl_store_filter f = {0};
+    int fmt = SL_TABLE_MD;
+    struct sl_summary_opts so = {.figure = -1, .region = -1};
+    const char *summary = NULL, *figures = NULL;
+    char avg_scene[64] = "", avg_vp[32] = "";
+    for (int c; (c = cli_opt_next(&p, argc, argv)) != OPT_DONE;) {
+        const char *v = optarg;
+        switch (c) {
+        case OPT_FORMAT:
+            fmt = sl_table_format_parse(v);
+            if (fmt < 0)
+                return cli_usage_error("table: --format md, csv or latex", cli_usage_table);
+            break;
+        case OPT_SCENE: f.scene = v; break;
+        case OPT_VIEWPOINT: f.viewpoint = v; break;
+        case OPT_LABEL: f.label = v; break;
+        case OPT_MAP: {
+            long long x;
+            if (!cli_opt_int_or_usage("table", "--map", v, 1, 16384, &x, cli_usage_table))
+                return 2;
+            f.map_size = (int)x;
+            break;
+        }
+        case OPT_RUN: {
+            long long x;
+            if (!cli_opt_int_or_usage("table", "--run", v, 1, LLONG_MAX, &x, cli_usage_table))
+                return 2;
+            f.run_id = x;
+            break;
+        }
+        case OPT_SUMMARY: summary = v; break;
+        case OPT_FIGURES: figures = v; break;
+        case OPT_REGION:
+            if (!strcmp(v, "image") || !strcmp(v, "contours"))
+                so.region = !strcmp(v, "image") ? 0 : -1;
+            else {
+                long long x;
+                if (!cli_opt_int_or_usage("table", "--region", v, 0, 64, &x, cli_usage_table))
+                    return 2;
+                so.region = (int)x;
+            }
+            if (so.region > 0 && so.region % 2)
+                return cli_usage_error("table: --region N (even), image or contours", cli_usage_table);
+            break;
+        case OPT_LOWER: so.lower_is_better = 1; break;
+        case OPT_AVG:
+        {
+            char nr[32] = "", nm[32] = "";
+            long long x;
+            int k = sscanf(v, "%63[^/]/%31[^/]/%31[^/]/%31s", avg_scene, avg_vp, nr, nm);
+            if (k < 3)
+                return cli_usage_error("table: --average-case SCENE/VIEWPOINT/N[/MAP]", cli_usage_table);
+            if (!cli_opt_int_or_usage("table", "--average-case N", nr, 0, 64, &x, cli_usage_table))
+                return 2;
+            so.avg_region = (int)x;
+            if (k == 4) {
+                if (!cli_opt_int_or_usage("table", "--average-case MAP", nm, 1, 16384, &x, cli_usage_table))
+                    return 2;
+                so.avg_map = (int)x;
+            }
+        }
+            so.avg_scene = avg_scene;
+            so.avg_viewpoint = avg_vp;
+            break;
+        default: return cli_opt_exit(c);
+        }
+    }
+    if (optind >= argc)
+        return cli_usage_error("table: missing DB", cli_usage_table);
+    if (optind + 1 < argc)
+        return cli_usage_error("table: one DB", cli_usage_table);
+    const char *db = argv[optind];
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    FILE *probe = fopen(db, "rb");
+    if (!probe) {
+        sl_fail(&d, SL_E_IO, db, 0, NULL, "cannot read the results store");
+        return cli_fail(SL_E_IO, &d);
+    }
+    fclose(probe);
+    struct sl_store *st = NULL;
+    struct sl_cell_record *cells = NULL;
+    int n = 0;
+    enum sl_err e = sl_store_open_existing(db, &st, &d);
+    if (!e)
+        e = sl_store_query(st, &f, &cells, &n, &d);
+    if (!e && n == 0)
+        e = sl_fail(&d, SL_E_USAGE, db, 0, NULL, "no stored cell matches");
+    if (!e && summary) {
+        for (int k = 0; k < SL_FIG_COUNT; k++)
+            if (!strcmp(sl_figure_name((enum sl_figure)k), summary))
+                so.figure = k;
+        if (so.figure < 0)
+            e = sl_fail(&d, SL_E_USAGE, NULL, 0, "--summary", "unknown figure '%s'", summary);
+        else
+            e = sl_summary_write(stdout, (enum sl_table_format)fmt, cells, n, &so, &d);
+    } else if (!e) {
+        /* the terminal's tables: only what the methods produce, unless --figures says */
+        struct sl_table_rows rows = {0};
+        e = sl_table_figures_parse(figures, &rows, &d);
+        if (!figures)
+            rows.produced = fmt != SL_TABLE_CSV;
+        if (!e)
+            e = sl_table_write_rows(stdout, (enum sl_table_format)fmt, db, cells, n, &rows, &d);
+    }
+    free(cells);
+    sl_store_close(st);
+    return e ? cli_fail(e, &d) : 0;
+}
