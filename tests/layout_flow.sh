@@ -9,19 +9,30 @@
 # concept ends, never to meet a count).
 set -u
 cd "$(dirname "$0")/.."
-order=(harness/base harness/scene harness/render harness/truth methods harness/score harness/results report harness harness/cli)
+order=(harness/base harness/scene harness/render harness/truth methods harness/score harness/results report harness harness/bench harness/cli)
 fail=0
 for i in "${!order[@]}"; do
   dir=${order[$i]}
   allowed=("${order[@]:0:$((i + 1))}")
   for f in "$dir"/*.[ch] "$dir"/*.cpp; do
     [ -f "$f" ] || continue
+    # main.c, the program's entry, is checked below against every stage
+    [ "$f" = harness/main.c ] && continue
     for h in $(grep -oE '^#include "[^"]+"' "$f" | sed 's/#include "//; s/"$//'); do
       ok=0
       for a in "${allowed[@]}"; do [ -f "$a/$h" ] && ok=1; done
       [ -f "build/$h" ] && ok=1   # generated
       if [ $ok -eq 0 ]; then echo "FAIL $f includes \"$h\", which is not in $dir or a stage before it"; fail=1; fi
     done
+  done
+done
+# main.c, the program's entry, sits above every stage (the CLI included)
+for f in harness/main.c; do
+  for h in $(grep -oE '^#include "[^"]+"' "$f" | sed 's/#include "//; s/"$//'); do
+    ok=0
+    for a in "${order[@]}"; do [ -f "$a/$h" ] && ok=1; done
+    [ -f "build/$h" ] && ok=1
+    if [ $ok -eq 0 ]; then echo "FAIL $f includes \"$h\", which is in no stage"; fail=1; fi
   done
 done
 hits=$(grep -rln 'fprintf(stderr' harness methods report | grep -vE '^harness/(main\.c$|cli/)')

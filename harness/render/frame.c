@@ -1,6 +1,6 @@
 /*
  * frame.c — see frame.h: a frame's rays toward the light, the layer-array
- * pool and the frees.
+ * pool, the frees and the layers' names.
  */
 #define _GNU_SOURCE
 #include "frame.h"
@@ -11,6 +11,18 @@
 #include "arealight.h"
 #include "util.h"
 #include "view.h"
+
+const char *const sl_layer_names[SL_LAYER_COUNT] = {
+#define SL_LAYER_NAME(id, name, title) name,
+    SL_LAYERS(SL_LAYER_NAME)
+#undef SL_LAYER_NAME
+};
+
+const char *const sl_layer_titles[SL_LAYER_COUNT] = {
+#define SL_LAYER_TITLE(id, name, title) title,
+    SL_LAYERS(SL_LAYER_TITLE)
+#undef SL_LAYER_TITLE
+};
 
 void sl_frame_toward(const struct sl_light_frame *f, const float p[3], float dir[3], float *tmax)
 {

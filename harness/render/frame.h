@@ -19,16 +19,32 @@
 #include <xmmintrin.h>
 #endif
 
+/* The layers: id, name (the bench's rows, lower case), title (prose).
+ * One list: the enum and both spellings are made from it. */
+#define SL_LAYERS(X)                                                         \
+    /* nearest surface, both faces: depth + id */                            \
+    X(DEPTH_ID,      "depth_id",      "depth_id")                            \
+    /* front faces culled (Moderno 2011): depth + id */                      \
+    X(DEPTH_ID_BACK, "depth_id_back", "depth_id_back")                       \
+    /* conservative: every triangle touching a texel, its lowest depth       \
+     * there; the id carries SL_FULL when the triangle covers the texel */   \
+    X(BGSM,          "bgsm",          "BGSM")                                \
+    /* the same without the triangle BGSM stored at the texel (needs BGSM) */\
+    X(BGSM2,         "bgsm2",         "BGSM2")                               \
+    /* triangles covering the whole texel, their highest depth there */      \
+    X(SGSM,          "sgsm",          "SGSM")                                \
+    /* the same, a triangle extended across edges to away-facing neighbours */\
+    X(SGSM_ADJ,      "sgsm_adj",      "SGSM with adjacency")
+
 enum sl_layer_id {
-    SL_LAYER_DEPTH_ID = 0,      /* nearest surface, both faces: depth + id */
-    SL_LAYER_DEPTH_ID_BACK,     /* front faces culled (Moderno 2011): depth + id */
-    SL_LAYER_BGSM,              /* conservative: every triangle touching a texel, its lowest depth there;
-                                 * the id carries SL_FULL when the triangle covers the whole texel */
-    SL_LAYER_BGSM2,             /* the same without the triangle BGSM stored at the texel (needs BGSM) */
-    SL_LAYER_SGSM,              /* triangles covering the whole texel, their highest depth there */
-    SL_LAYER_SGSM_ADJ,          /* the same, a triangle extended across edges to away-facing neighbours */
+#define SL_LAYER_ID(id, name, title) SL_LAYER_##id,
+    SL_LAYERS(SL_LAYER_ID)
+#undef SL_LAYER_ID
     SL_LAYER_COUNT
 };
+/* "bgsm" and "BGSM", by SL_LAYER_* (frame.c) */
+extern const char *const sl_layer_names[SL_LAYER_COUNT];
+extern const char *const sl_layer_titles[SL_LAYER_COUNT];
 #define SL_NEED(layer) (1u << (layer))
 
 /* The light's frustum in light view space. A directional light's is an

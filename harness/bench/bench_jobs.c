@@ -19,7 +19,7 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <unistd.h>
-#include "bench_int.h"
+#include "bench_stages.h"
 #include "submit.h"
 #include "util.h"
 

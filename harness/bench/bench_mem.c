@@ -27,7 +27,7 @@
 #include <string.h>
 #include <sys/resource.h>
 #include "adjacency.h"
-#include "bench_int.h"
+#include "bench_stages.h"
 #include "lightfit.h"
 #include "shadowmap.h"
 #include "util.h"
@@ -75,9 +75,6 @@ static uint64_t layer_hash(const struct sl_depth_layer *L, size_t n)
         h = (h ^ L->id[i]) * 1099511628211ull;
     return h;
 }
-
-static const char *const names[SL_LAYER_COUNT] = {"depth_id", "depth_id_back", "BGSM", "BGSM2", "SGSM",
-                                                  "SGSM with adjacency"};
 
 static void frame_init(struct sl_light_frame *f, const struct sl_scene *s, const struct sl_view *v, int S,
                        struct sl_layer_pool *pool)
@@ -228,7 +225,7 @@ enum sl_err sl_bench_bigmap(struct sl_bench_ctx *x, int S, struct sl_bench_resul
             ru1.ru_majflt - ru0.ru_majflt);
     fprintf(out, "| load average before / after | %s / %s |\n", la0, la1);
     for (int l = SL_LAYER_BGSM; l < SL_LAYER_COUNT; l++)
-        fprintf(out, "| %s | %.0f ms render + readback; %s the plain render (hash %016llx) |\n", names[l], ms[l],
+        fprintf(out, "| %s | %.0f ms render + readback; %s the plain render (hash %016llx) |\n", sl_layer_titles[l], ms[l],
                 h[l] == hp[l] ? "bit-identical to" : "**DIFFERS from**", (unsigned long long)h[l]);
     fprintf(out, "\nlayers identical: %d of 4\n\n", same);
     struct sl_bench_row *row = sl_bench_add_row(res, "bigmap", "MiB", peak / 1048576.0, 0,

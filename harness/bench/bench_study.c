@@ -13,7 +13,7 @@
  * is its own.
  */
 #define _GNU_SOURCE   /* open_memstream, mkdtemp, nftw */
-#include "bench_int.h"
+#include "bench_stages.h"
 #include <dirent.h>
 #include <errno.h>
 #include <ftw.h>
@@ -103,7 +103,7 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
             (unsigned long long)rays, layers);
     for (int l = 0, first = 1; l < SL_LAYER_COUNT; l++)
         if (rr.passes.layers[l]) {
-            fprintf(out, "%s%s %d", first ? " (" : ", ", sl_bench_layer_names[l], rr.passes.layers[l]);
+            fprintf(out, "%s%s %d", first ? " (" : ", ", sl_layer_names[l], rr.passes.layers[l]);
             first = 0;
         }
     fprintf(out, "%s, method runs %d (their median times summed: %.0f ms); exactness violations: %llu.\n\n",

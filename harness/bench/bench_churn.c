@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
-#include "bench_int.h"
+#include "bench_stages.h"
 #include "gbuffer.h"
 #include "lightfit.h"
 #include "shadowmap.h"

@@ -21,7 +21,7 @@
 #include <string.h>
 #include <time.h>
 #include <omp.h>
-#include "bench_int.h"
+#include "bench_stages.h"
 #include "truth.h"
 #include "util.h"
 

@@ -29,7 +29,7 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
-#include "bench_int.h"
+#include "bench_stages.h"
 #include "util.h"
 
 #ifndef SL_EAGER_LIBS
@@ -41,25 +41,6 @@
 extern char **environ;
 
 struct sample { double wall_ms, cpu_ms, rss_mib; };
-
-int sl_bench_spawn_self(char *const *argv, char *const *envp, struct rusage *ru)
-{
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-    pid_t pid;
-    int rc = posix_spawn(&pid, "/proc/self/exe", &fa, NULL, argv, envp);
-    posix_spawn_file_actions_destroy(&fa);
-    if (rc)
-        return -1;
-    int st;
-    struct rusage own;
-    while (wait4(pid, &st, 0, ru ? ru : &own) < 0)
-        if (errno != EINTR)
-            return -1;
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
-}
 
 /* argv run as a child of this binary, output discarded; preload = NULL for
  * the binary as it is. -1 when it did not run or exit 0. */

@@ -21,8 +21,9 @@
 #include <string.h>
 #include <time.h>
 #include <sys/resource.h>
-#include "bench_int.h"
+#include "bench_stages.h"
 #include "contour.h"
+#include "cube.h"
 #include "figures.h"
 #include "method.h"
 #include "lightfit.h"
@@ -145,7 +146,7 @@ enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, 
         (e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, x->vp[0], W, H, &v, NULL, NULL, NULL, d)) ||
         (e = sl_truth_trace(&rt, &x->s, &v, NULL, d)) || (e = sl_shadowmap_init(&sp, d)))
         goto out;
-    /* the light frame of that view, as run.c fits it (bench.c's layers) */
+    /* the light frame of that view, as run.c fits it (bench_layers.c) */
     f.size = S;
     memcpy(f.dir, x->s.light_dir, sizeof f.dir);
     sl_light_fit(&x->s, &v, &f.box);
@@ -309,8 +310,10 @@ static int lf_fit(const struct sl_scene *s, const struct sl_view *v, int kind, i
         return 1;
     }
     sl_cube_faces(s->light.pos, v, face, threads);
-    /* cube.c's guard band (cube.h's SL_CUBE_GUARD, 2 texels) */
-    sl_light_fit_cube_mt(s, v, s->light.pos, face, size, 2, out, threads);
+    /* cube.c's guard band, as it picks it: cube.h's SL_CUBE_GUARD texels
+     * (none on a map too small to hold it) */
+    const int guard = size > 4 * SL_CUBE_GUARD ? SL_CUBE_GUARD : 0;
+    sl_light_fit_cube_mt(s, v, s->light.pos, face, size, guard, out, threads);
     return 6;
 }
 
