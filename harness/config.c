@@ -422,7 +422,7 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                            cm->method->name, pk[k].name);
             }
         struct sl_diag md;
-        if (cm->method->configure(p, &md) != SL_OK) {
+        if (sl_method_configure(cm->method, p, &md) != SL_OK) {
             snprintf(key, sizeof key, "methods[%u]%s%s", i, md.key[0] ? "." : "", md.key);
             int line = sl_yaml_line(ix, key);
             if (!line) {

@@ -44,11 +44,9 @@
 #include "shadowmap.h"
 #include "view.h"
 
-/* Guard band, texels: one texel of 3x3 neighbourhood, one of the
- * conservative enlargement (half a diagonal and its margins, rounded up),
- * and two more against the rounding of a receiver's texel at the band's
- * own edge. */
-#define SL_CUBE_GUARD 4
+/* Guard band, texels: the reach every method's lookup is allowed
+ * (frame.h, SL_GUARD_TEXELS, where a method author reads it). */
+#define SL_CUBE_GUARD SL_GUARD_TEXELS
 
 struct sl_cube_face_cost {
     uint32_t receivers;   /* PFL pixels the face holds */

@@ -106,9 +106,9 @@ static unsigned group_layers(const struct sl_config *c, int from, int last, cons
         const struct sl_method *m = c->methods[k.method].method;
         const unsigned n = m->needs(&c->methods[k.method].params);
         needs |= n;
-        *dense |= n & ~m->at_pixel;
-        looks[1] |= looks[0] & n & m->looks;
-        looks[0] |= n & m->looks;
+        *dense |= n & ~sl_method_at_pixel(m);
+        looks[1] |= looks[0] & n & sl_method_looks(m);
+        looks[0] |= n & sl_method_looks(m);
     }
     return needs;
 }

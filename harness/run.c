@@ -501,7 +501,7 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
         memset(&p, 0, sizeof p);
         p.self_shadow = SL_SELF_FRONT_FACES;
         p.set = SL_PARAM_SELF_SHADOW;
-        if ((e = m->configure ? m->configure(&p, d) : SL_OK))
+        if ((e = sl_method_configure(m, &p, d)))
             return e;
     }
     size_t npx = (size_t)x->W * (size_t)x->H;

@@ -172,8 +172,8 @@ enum sl_err sl_run_make_looks(struct sl_light_frame *f, int own_frame, const str
     enum sl_err e = SL_OK;
     const size_t n = (size_t)v->w * (size_t)v->h;
     for (int l = 0; l < SL_LAYER_COUNT && !e; l++)
-        if ((m->looks & needs & f->have & SL_NEED(l)) && !f->layer[l].per_pixel &&
+        if ((sl_method_looks(m) & needs & f->have & SL_NEED(l)) && !f->layer[l].per_pixel &&
             ((own_frame && (shared & SL_NEED(l))) || sl_frame_look_of(f, l, v->serial, n)))
-            e = sl_frame_look(f, l, v, threads, m->look_parts, d);
+            e = sl_frame_look(f, l, v, threads, sl_method_look_parts(m), d);
     return e;
 }

@@ -177,13 +177,6 @@ static unsigned needs_csm_adj(const struct sl_method_params *p) { return needs_b
  * (decide), through sl_layer_at: the driver may gather them per pixel */
 #define CONS_AT_PIXEL (SL_NEED(SL_LAYER_BGSM) | SL_NEED(SL_LAYER_BGSM2) | SL_NEED(SL_LAYER_SGSM) | SL_NEED(SL_LAYER_SGSM_ADJ))
 
-static enum sl_err configure_none(struct sl_method_params *p, struct sl_diag *d)
-{
-    (void)d;
-    p->set = 0;
-    return SL_OK;
-}
-
 static enum sl_err run_bgsm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_BGSM, SL_LAYER_SGSM, d); }
 static enum sl_err run_sgsm(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_SGSM, SL_LAYER_SGSM, d); }
 static enum sl_err run_sgsm_adj(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_SGSM, SL_LAYER_SGSM_ADJ, d); }
@@ -192,21 +185,26 @@ static enum sl_err run_csm_adj(const struct sl_method_args *a, struct sl_verdict
 
 const struct sl_method sl_method_bgsm = {
     .name = "bgsm", .summary = "big-triangle (conservative) shadow map: its lit pixels are lit in truth",
-    .exact = SL_EXACT_LIT, .needs = needs_bgsm, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_bgsm,
+    .exact = SL_EXACT_LIT, .needs = needs_bgsm, .run = run_bgsm,
+    .fast = {.at_pixel = CONS_AT_PIXEL},
 };
 const struct sl_method sl_method_sgsm = {
     .name = "sgsm", .summary = "small-triangle shadow map: its shadowed pixels are shadowed in truth",
-    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_sgsm,
+    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm, .run = run_sgsm,
+    .fast = {.at_pixel = CONS_AT_PIXEL},
 };
 const struct sl_method sl_method_sgsm_adj = {
     .name = "sgsm_adj", .summary = "SGSM keeping edges between away-facing neighbours (Morais 2015 ch. 4)",
-    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm_adj, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_sgsm_adj,
+    .exact = SL_EXACT_SHADOW, .needs = needs_sgsm_adj, .run = run_sgsm_adj,
+    .fast = {.at_pixel = CONS_AT_PIXEL},
 };
 const struct sl_method sl_method_csm = {
     .name = "csm", .summary = "CSMa: lit by BGSM, shadowed by SGSM, the rest traced (Morais 2015)",
-    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_csm,
+    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm, .run = run_csm,
+    .fast = {.at_pixel = CONS_AT_PIXEL},
 };
 const struct sl_method sl_method_csm_adj = {
     .name = "csm_adj", .summary = "CSMA: lit by BGSM, shadowed by SGSM with adjacency, the rest traced",
-    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm_adj, .at_pixel = CONS_AT_PIXEL, .configure = configure_none, .run = run_csm_adj,
+    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm_adj, .run = run_csm_adj,
+    .fast = {.at_pixel = CONS_AT_PIXEL},
 };

@@ -35,13 +35,6 @@
 
 static unsigned h_needs(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_BGSM); }
 
-static enum sl_err h_configure(struct sl_method_params *p, struct sl_diag *d)
-{
-    (void)d;
-    p->set = 0;
-    return SL_OK;
-}
-
 /* How far the pixel's shadow ray runs before reaching window depth zs (the
  * stored depth, zs <= z, the pixel's), with room for rounding (2^-16 of
  * window depth) and the truth's tnear. Along a directional light depth falls
@@ -128,5 +121,5 @@ static enum sl_err h_run(const struct sl_method_args *a, struct sl_verdicts *out
 
 const struct sl_method sl_method_hertel = {
     .name = "hertel", .summary = "Hertel 2009: conservative map + stored-triangle test + rays cut at the stored depth",
-    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = h_needs, .configure = h_configure, .run = h_run,
+    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = h_needs, .run = h_run,
 };

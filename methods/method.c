@@ -10,6 +10,16 @@
 #include "truth.h"
 #include "util.h"
 
+enum sl_err sl_method_configure(const struct sl_method *m, struct sl_method_params *p, struct sl_diag *d)
+{
+    if (m->configure)
+        return m->configure(p, d);
+    /* no configure: the zeros are the defaults, and the keys it reads are
+     * those of params_ok the config gave (config.c refused the others) */
+    p->set &= m->params_ok;
+    return SL_OK;
+}
+
 int sl_method_unmapped_missed(const struct sl_method_args *a, const float p[3], uint32_t own, uint64_t *tests)
 {
     const struct sl_light_box *b = &a->frame->box;

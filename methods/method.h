@@ -7,7 +7,42 @@
  * was decided, plus its cost counters. It never renders what the frame
  * builder renders, never talks to the store, returns an error id, never exits.
  *
- * Methods are const values in the plain table of registry.c.
+ * Methods are const values in the plain table of registry.c; adding one is
+ * its own file in methods/ (CMake picks it up) and one line there
+ * (doc/adding-a-method.md walks through a 3x3 PCF method).
+ *
+ * The face. struct sl_method has a core every method fills (name, summary,
+ * exact, lights, params_ok, needs, run; configure may be NULL) and an
+ * optional fast path (struct sl_method_fast, zero: none) that only lets the
+ * driver hand the same layers more cheaply. A method that leaves the fast
+ * path zero gets every layer dense and computes every lookup itself, and
+ * its verdicts are the same; the driver reads the fast path through
+ * sl_method_at_pixel/_looks/_look_parts below and nowhere else.
+ *
+ * Rules a method author needs, all in this header and frame.h:
+ * - Layers arrive dense (f->layer[l].depth/id indexed by texel, S x S) unless
+ *   the method lists the layer in fast.at_pixel and every method of the
+ *   cell's group that needs it does too: then the driver may gather it
+ *   (sl_frame_gather), indexed by pixel, f->layer[l].per_pixel set. A method
+ *   that lists a layer in at_pixel reads it only at each decided pixel's
+ *   own texel and always through sl_layer_at(L, k, i) (frame.h), which
+ *   serves both forms; one that reads a neighbour's texel leaves at_pixel 0.
+ * - A lookup may reach SL_LOOK_REACH (frame.h: 1) texels beyond the
+ *   receiver's own texel, a 3x3 neighbourhood, and no further: under a
+ *   point light each cube face is rendered with a guard band of
+ *   SL_GUARD_TEXELS (frame.h) around its receivers, sized for that reach,
+ *   so such a lookup never reads a border, a clamp or another face's map
+ *   (cube.h). A wider footprint needs SL_LOOK_REACH raised first.
+ * - Zero means the default: a method's parameters arrive zeroed but for
+ *   the keys the config gave (`set`); configure fills in the rest and
+ *   leaves in `set` exactly the keys it reads. A NULL configure takes the
+ *   zeros as the defaults and reads the keys of params_ok the config gave.
+ * - Costs (struct sl_cost) are machine-independent counts beside the time:
+ *   `lookups` one per shadow-map texel read (a 3x3 PCF is 9 a pixel),
+ *   `rays` one per ray given to Embree (sl_method_trace_left counts its
+ *   own), `tri_tests` one per ray-triangle test outside Embree; ms_method
+ *   the method's own per-pixel work, its ray step included. Add to them:
+ *   the driver zeroes them and sums a cube's faces.
  */
 #ifndef SL_METHOD_H
 #define SL_METHOD_H
@@ -225,6 +260,25 @@ static inline int sl_exact_violated(unsigned exact, uint8_t v, uint8_t how, uint
  * not run it unless its list names it, which is then an error. */
 #define SL_LIGHTS_DIRECTIONAL (1u << 2)
 
+/* The optional fast path: how a method lets the driver hand its layers
+ * more cheaply. Zero (the default) is no fast path: every layer dense, every
+ * lookup the method's own. An embedded value rather than a pointer: a
+ * method gives `.fast = {...}` beside its core, no second object, and the
+ * zero of a designated initialiser is already "none". */
+struct sl_method_fast {
+    /* Layers (SL_NEED bits) it reads only at each decided pixel's own
+     * texel, through sl_layer_at (frame.h): the driver may hand them
+     * gathered per pixel (sl_frame_gather). 0: every layer dense. */
+    unsigned at_pixel;
+    /* Layers (SL_NEED bits, dense) it reads through sl_frame_look_of
+     * (frame.h) when the driver made each pixel's lookup in them for the
+     * view (sl_frame_look): made once, read by every such method of the
+     * view. The method computes them itself where they are not there (a
+     * point light's faces, a caller other than the driver). */
+    unsigned looks;
+    unsigned look_parts;   /* SL_LOOK_* parts of them it reads (frame.h) */
+};
+
 struct sl_method {
     const char *name;          /* config key */
     const char *summary;
@@ -234,23 +288,22 @@ struct sl_method {
     unsigned    params_ok;     /* SL_PARAM_* bits it reads */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);
-    /* Layers (SL_NEED bits) it reads only at each decided pixel's own
-     * texel, through sl_layer_at (frame.h): the driver may hand them
-     * gathered per pixel (sl_frame_gather). 0: every layer dense. */
-    unsigned    at_pixel;
-    /* Layers (SL_NEED bits, dense) it reads through sl_frame_look_of
-     * (frame.h) when the driver made each pixel's lookup in them for the
-     * view (sl_frame_look): made once, read by every such method of the
-     * view. The method computes them itself where they are not there (a
-     * point light's faces, a caller other than the driver). */
-    unsigned    looks;
-    unsigned    look_parts;   /* SL_LOOK_* parts of them it reads (frame.h) */
     /* Fill defaults for unset keys and check values; on return `set` holds
-     * exactly the keys the method reads with these parameters. */
+     * exactly the keys the method reads with these parameters. NULL: the
+     * zeros are the defaults, any value is fine, and it reads the keys of
+     * params_ok the config gave (sl_method_configure). */
     enum sl_err (*configure)(struct sl_method_params *p, struct sl_diag *d);
     enum sl_err (*run)(const struct sl_method_args *a, struct sl_verdicts *out,
                        struct sl_cost *c, struct sl_diag *d);
+    struct sl_method_fast fast;   /* optional; zero: none */
 };
+
+/* The driver's reads of the face: configure with NULL meaning the defaults,
+ * and the fast path, zero where a method gives none. */
+enum sl_err sl_method_configure(const struct sl_method *m, struct sl_method_params *p, struct sl_diag *d);
+static inline unsigned sl_method_at_pixel(const struct sl_method *m) { return m->fast.at_pixel; }
+static inline unsigned sl_method_looks(const struct sl_method *m) { return m->fast.looks; }
+static inline unsigned sl_method_look_parts(const struct sl_method *m) { return m->fast.look_parts; }
 
 /* Helpers the methods share (method.c). */
 

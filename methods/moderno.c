@@ -63,13 +63,6 @@ static enum sl_err conf_level(struct sl_method_params *p, struct sl_diag *d)
     return SL_OK;
 }
 
-static enum sl_err conf_none(struct sl_method_params *p, struct sl_diag *d)
-{
-    (void)d;
-    p->set = 0;
-    return SL_OK;
-}
-
 static enum sl_err conf_chain(struct sl_method_params *p, struct sl_diag *d)
 {
     (void)d;
@@ -424,25 +417,25 @@ static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts 
 const struct sl_method sl_method_coherence = {
     .name = "coherence", .summary = "texel coherence, 4 or 9 texels (Moderno 2011): hints, may be wrong",
     .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels, .run = run_coherence,
-    .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF,
+    .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF},
 };
 const struct sl_method sl_method_texel = {
     .name = "texel", .summary = "a ray against the texel's stored triangle (Moderno 2011)",
-    .exact = SL_EXACT_PROVED, .needs = needs_map, .configure = conf_none, .run = run_texel,
-    .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
+    .exact = SL_EXACT_PROVED, .needs = needs_map, .run = run_texel,
+    .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };
 const struct sl_method sl_method_neighbours = {
     .name = "neighbours", .summary = "rays against the triangles of 4 or 9 texels (Moderno 2011)",
     .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels,
-    .run = run_neighbours, .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
+    .run = run_neighbours, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };
 const struct sl_method sl_method_adjacency = {
     .name = "adjacency", .summary = "rays against the stored triangle and its edge (1) or vertex (2) neighbours",
     .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_LEVEL, .needs = needs_adj, .configure = conf_level,
-    .run = run_adjacency, .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK),
+    .run = run_adjacency, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };
 const struct sl_method sl_method_chain = {
     .name = "chain", .summary = "coherence(4) -> neighbours(9) -> adjacency(2) -> traced or lit (Moderno 2011)",
     .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_FINISH, .needs = needs_adj, .configure = conf_chain,
-    .run = run_chain, .looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF,
+    .run = run_chain, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF},
 };

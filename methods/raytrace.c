@@ -10,13 +10,6 @@
 
 static unsigned rt_needs(const struct sl_method_params *p) { (void)p; return 0; }
 
-static enum sl_err rt_configure(struct sl_method_params *p, struct sl_diag *d)
-{
-    (void)d;
-    p->set = 0;
-    return SL_OK;
-}
-
 static enum sl_err rt_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
                           struct sl_diag *d)
 {
@@ -29,5 +22,5 @@ static enum sl_err rt_run(const struct sl_method_args *a, struct sl_verdicts *ou
 
 const struct sl_method sl_method_raytrace = {
     .name = "raytrace", .summary = "every PFL pixel traced with Embree (the reference, for costs)",
-    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = rt_needs, .configure = rt_configure, .run = rt_run,
+    .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = rt_needs, .run = rt_run,
 };

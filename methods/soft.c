@@ -24,13 +24,6 @@
 
 static unsigned point_needs(const struct sl_method_params *p) { (void)p; return 0; }
 
-static enum sl_err point_configure(struct sl_method_params *p, struct sl_diag *d)
-{
-    (void)d;
-    p->set = 0;
-    return SL_OK;
-}
-
 static enum sl_err point_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
                              struct sl_diag *d)
 {
@@ -86,7 +79,6 @@ const struct sl_method sl_method_hard_point = {
     .summary = "area light as a point at its centre, one exact ray per pixel: the hard-shadow approximation",
     .lights = SL_LIGHTS_AREA,
     .needs = point_needs,
-    .configure = point_configure,
     .run = point_run,
 };
 
@@ -144,13 +136,6 @@ static enum sl_err mc_run(const struct sl_method_args *a, struct sl_verdicts *ou
  * per pixel to the light's centre tested against the near layer alone,
  * which is a conventional shadow map from the centre (with Curtis's bias):
  * hard_point's answer plus the map's own aliasing. */
-static enum sl_err pm_configure(struct sl_method_params *p, struct sl_diag *d)
-{
-    (void)d;
-    p->set = 0;
-    return SL_OK;
-}
-
 static enum sl_err pm_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
                           struct sl_diag *d)
 {
@@ -203,6 +188,5 @@ const struct sl_method sl_method_point_map = {
     .summary = "area light as a point at its centre through a shadow map (soft_mc's near layer): the hard map approximation",
     .lights = SL_LIGHTS_AREA,
     .needs = mc_needs,
-    .configure = pm_configure,
     .run = pm_run,
 };

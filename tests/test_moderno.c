@@ -185,7 +185,7 @@ static void fig_run(struct fig *g, const char *method, int key, int value)
     if (key == SL_PARAM_TEXELS) { p.set = key; p.texels = value; }
     if (key == SL_PARAM_LEVEL) { p.set = key; p.level = value; }
     struct sl_diag d;
-    assert_int_equal(m->configure(&p, &d), SL_OK);
+    assert_int_equal(sl_method_configure(m, &p, &d), SL_OK);
     struct sl_method_args a = {.scene = &g->f.scene, .view = &g->mv, .frame = &g->fr, .params = &p,
                                .rt = &g->f.rt, .adj = &g->adj, .threads = 1};
     struct sl_cost c = {0};
@@ -807,7 +807,7 @@ static void fig_run_params(struct fig *g, const char *method, struct sl_method_p
     const struct sl_method *m = sl_method_find(method);
     assert_non_null(m);
     struct sl_diag d;
-    assert_int_equal(m->configure(p, &d), SL_OK);
+    assert_int_equal(sl_method_configure(m, p, &d), SL_OK);
     struct sl_method_args a = {.scene = &g->f.scene, .view = &g->mv, .frame = &g->fr, .params = p,
                                .rt = &g->f.rt, .adj = &g->adj, .threads = 2};
     memset(&o->cost, 0, sizeof o->cost);

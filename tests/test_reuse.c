@@ -289,7 +289,7 @@ static void reuse_gathered_same_verdicts(void **st)
                     assert_non_null(me);
                     struct sl_method_params p;
                     memset(&p, 0, sizeof p);
-                    assert_int_equal(me->configure(&p, &d), SL_OK);
+                    assert_int_equal(sl_method_configure(me, &p, &d), SL_OK);
                     struct sl_method_args a = {.scene = &f.scene, .view = &mv, .frame = pass ? &fr : &dense,
                                                .params = &p, .rt = &f.rt, .adj = &adj, .threads = 2};
                     struct sl_verdicts vd = {.w = v.w, .h = v.h, .v = calloc(n, 1), .how = calloc(n, 1),

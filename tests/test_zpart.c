@@ -194,7 +194,7 @@ static void bench_run(struct bench *g, const char *method, const struct sl_metho
     assert_non_null(m);
     struct sl_method_params p = *given;
     struct sl_diag d;
-    assert_int_equal(m->configure(&p, &d), SL_OK);
+    assert_int_equal(sl_method_configure(m, &p, &d), SL_OK);
     struct sl_method_args a = {.scene = &g->f.scene, .view = &g->mv, .frame = &g->fr, .params = &p,
                                .rt = &g->f.rt, .threads = 2, .spass = &g->sp, .mesh = &g->f.mesh};
     struct sl_cost c = {0};

@@ -142,7 +142,7 @@ enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, 
     memset(&p, 0, sizeof p);
     struct sl_cost cost;
     memset(&cost, 0, sizeof cost);
-    if ((e = m->configure(&p, d)) || (e = sl_rt_build(&rt, &x->s, x->threads, 1, d)) ||
+    if ((e = sl_method_configure(m, &p, d)) || (e = sl_rt_build(&rt, &x->s, x->threads, 1, d)) ||
         (e = sl_gbuffer_render(&x->gp, &x->mesh, &x->s, x->vp[0], W, H, &v, NULL, NULL, NULL, d)) ||
         (e = sl_truth_trace(&rt, &x->s, &v, NULL, d)) || (e = sl_shadowmap_init(&sp, d)))
         goto out;

@@ -47,6 +47,16 @@ extern const char *const sl_layer_names[SL_LAYER_COUNT];
 extern const char *const sl_layer_titles[SL_LAYER_COUNT];
 #define SL_NEED(layer) (1u << (layer))
 
+/* How far a method's lookup may reach: SL_LOOK_REACH texels beyond the
+ * receiver's own texel (a 3x3 neighbourhood, method.h). A point light's
+ * cube faces are each rendered with a guard band of SL_GUARD_TEXELS around
+ * their receivers (cube.h): that reach, one texel of the conservative
+ * layers' enlargement (half a diagonal and its margins, rounded up), and
+ * two more against the rounding of a receiver's texel at the band's own
+ * edge. A wider footprint needs both raised together. */
+#define SL_LOOK_REACH   1
+#define SL_GUARD_TEXELS (SL_LOOK_REACH + 1 + 2)
+
 /* The light's frustum in light view space. A directional light's is an
  * orthographic box: x, y across the light, depth = distance along the light
  * direction (positive away from the light). An area light taken as a point
