@@ -1,7 +1,8 @@
 /*
  * registry.c — the plain table of methods. Adding a method: write
- * methods/<name>.c defining `const struct sl_method sl_method_<name>` and add
- * one line here.
+ * methods/<name>.c defining `const struct sl_method sl_method_<name>` (CMake
+ * compiles every .c file of methods/) and add its two lines here
+ * (doc/adding-a-method.md).
  */
 #include <string.h>
 #include "method.h"
