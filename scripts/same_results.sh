@@ -6,8 +6,9 @@
 # compare, per study folder: figures.csv, motion.csv and patterns.csv with
 # the git SHA column left out, every cell of the store (every column but
 # timings, ids and the digest that covers them) and every overlay PNG byte
-# for byte (a PNG that differs in bytes is decoded with idiff, so only a
-# pixel difference fails). Prints one line per study; exit 0 when all match.
+# for byte (a PNG that differs in bytes, as its text chunks name the git
+# SHA, is compared by its header and inflated image data, so only a pixel
+# difference fails). Prints one line per study; exit 0 when all match.
 set -u
 a=${1:?usage: same_results.sh OUT_A OUT_B [STUDY...]}
 b=${2:?usage: same_results.sh OUT_A OUT_B [STUDY...]}
@@ -37,16 +38,33 @@ for s in "${studies[@]}"; do
   n=0 px=0
   if [ -d "$a/$s/overlays" ] || [ -d "$b/$s/overlays" ]; then
     cmp -s <(cd "$a/$s/overlays" 2>/dev/null && ls) <(cd "$b/$s/overlays" 2>/dev/null && ls) || bad="$bad overlay-names"
-    for p in "$a/$s/overlays"/*.png; do
-      [ -f "$p" ] || continue
-      n=$((n + 1))
-      q="$b/$s/overlays/$(basename "$p")"
-      [ -f "$q" ] || continue
-      if ! cmp -s "$p" "$q"; then
-        px=$((px + 1))
-        idiff -q "$p" "$q" >/dev/null 2>&1 || bad="$bad $(basename "$p")"
-      fi
-    done
+    # PNGs whose bytes differ (their text chunks name the git SHA) are
+    # compared by their decoded image data and header (IHDR + inflated IDAT)
+    read -r n px diff < <(python3 - "$a/$s/overlays" "$b/$s/overlays" <<'PY'
+import os, sys, zlib
+def image(path):
+    d = open(path, "rb").read()
+    i, ihdr, idat = 8, b"", []
+    while i < len(d):
+        n = int.from_bytes(d[i:i + 4], "big"); t = d[i + 4:i + 8]
+        if t == b"IHDR": ihdr = d[i + 8:i + 8 + n]
+        if t == b"IDAT": idat.append(d[i + 8:i + 8 + n])
+        i += 12 + n
+    return ihdr, zlib.decompress(b"".join(idat))
+a, b = sys.argv[1:3]
+n = px = 0; bad = []
+for f in sorted(os.listdir(a)) if os.path.isdir(a) else []:
+    if not f.endswith(".png"): continue
+    n += 1
+    q = os.path.join(b, f)
+    if not os.path.exists(q): continue
+    if open(os.path.join(a, f), "rb").read() != open(q, "rb").read():
+        px += 1
+        if image(os.path.join(a, f)) != image(q): bad.append(f)
+print(n, px, ",".join(bad) or "-")
+PY
+)
+    [ "$diff" = "-" ] || bad="$bad pixels:$diff"
   fi
   if [ -z "$bad" ]; then
     echo "same  $s ($n overlays, $px differing only in bytes)"
