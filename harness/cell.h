@@ -90,7 +90,7 @@ struct sl_cell {
     uint64_t pattern[SL_MAX_REGIONS][10][2];
     uint64_t texels;                   /* texels of the shadow maps the method looked up (each map once,
                                         * whatever its layers): size^2, k size^2 for zpart's k slices */
-    uint64_t faces;                    /* a point light: its cube's faces with a map (cube.h); else 0 */
+    uint64_t faces;                    /* a point light: its cube's faces with a map (lightframe.h); else 0 */
     double   ms_face_max;              /* and the method's time on the slowest face (NAN: no cube) */
     int      has_alias;                /* a hard cell: its wrong pixels by aliasing error m (aliasing.h) */
     struct sl_alias_figures alias;

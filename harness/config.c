@@ -919,3 +919,12 @@ void sl_config_write(const struct sl_config *c, FILE *f)
     fprintf(f, "threads: %d\n", c->threads);
     fprintf(f, "gl: %s\n", sl_gl_backend_name(sl_gl_backend_resolve(c->gl)));
 }
+
+int sl_config_contour_label(const struct sl_config *c)
+{
+    for (int i = 0; i < c->nmethods; i++)
+        if (strcmp(c->methods[i].method->name, "nsm") == 0 &&
+            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES && c->methods[i].frame_fit.fit == SL_FIT_TIGHT)
+            return i;
+    return -1;
+}

@@ -114,4 +114,10 @@ enum sl_err sl_config_load_with(const char *path, const char *const *overrides, 
 /* Write the filled-in config (every default explicit) as YAML. */
 void sl_config_write(const struct sl_config *c, FILE *f);
 
+/* The config's first label whose run is the contour's NSM (method nsm,
+ * front faces culled: the configured parameters are then exactly those),
+ * -1 none (run.c: contour_from nsm). */
+int sl_config_contour_label(const struct sl_config *c);
+
+
 #endif

@@ -23,16 +23,16 @@
 #include "cache.h"
 #include "cell.h"
 #include "contour.h"
-#include "cube.h"
+#include "cuberun.h"
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
+#include "lightframe.h"
 #include "motion.h"
 #include "motion_run.h"
 #include "outputs.h"
 #include "overlay.h"
 #include "ovwriter.h"
-#include "runhelp.h"
 #include "shadowmap.h"
 #include "scenefile.h"
 #include "temporal.h"
@@ -71,7 +71,7 @@ struct run_ctx {
     uint64_t truth_rays;
     /* current frame */
     int frame_map;
-    struct sl_light_frame frame;        /* a point light's: the cube's sums, no arrays (cube.h) */
+    struct sl_light_frame frame;        /* a point light's: the cube's sums, no arrays (cuberun.h) */
     struct sl_cube cube;                 /* a point light's six frames, per (view, map size) */
     double layer_ms[SL_LAYER_COUNT][3];   /* render time of each layer: median, min, max */
     double layer_gpu[SL_LAYER_COUNT][3];  /* its GPU time (GL_TIME_ELAPSED), the same */
@@ -100,7 +100,7 @@ struct run_ctx {
     int soft_map;                        /* map index the layers are for, -1 none */
     uint8_t *receivers;                  /* per scene range: a pure receiver */
     struct sl_temporal temporal;         /* a path's previous frame, for flicker (temporal.h) */
-    struct sl_alt_frames alt;            /* labels' own stabilised light frames (runhelp.h) */
+    struct sl_alt_frames alt;            /* labels' own stabilised light frames (lightframe.h) */
     /* where notes, violations and progress go (the library never prints) */
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
@@ -137,7 +137,7 @@ static void drop_view(struct run_ctx *x)
 static void drop_scene(struct run_ctx *x)
 {
     drop_view(x);
-    sl_run_alt_free(&x->alt);   /* a label's own frame may outlive a view (runhelp.h), not its scene */
+    sl_alt_frames_free(&x->alt);   /* a label's own frame may outlive a view (lightframe.h), not its scene */
     sl_rt_free(&x->rt);
     if (x->have_adj)
         sl_adjacency_free(&x->adj);
@@ -219,7 +219,7 @@ static void free_nsm(struct run_ctx *x)
 {
     free(x->nvd.v); free(x->nvd.how); free(x->nvd.base); free(x->nvd.detail); free(x->nvd.tests);
     free(x->nvd.vis); free(x->nsm_band);
-    sl_verdicts_drop_frames(&x->nvd);   /* a point light's faces (cube.c, sl_cube_mark) */
+    sl_verdicts_drop_frames(&x->nvd);   /* a point light's faces (cuberun.c, sl_cube_mark) */
     memset(&x->nvd, 0, sizeof x->nvd);
     x->nsm_band = NULL;
     x->nsm_map = -1;
@@ -280,7 +280,7 @@ static enum sl_err view_ready(struct run_ctx *x, const struct sl_config *c, cons
                                   .viewpoint = c->scenes[k->scene].viewpoints[k->vp], .box = &x->box};
         emit(x, &ev);
     }
-    x->view_bad = sl_run_view_bad(&x->view);
+    x->view_bad = sl_view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
     x->view_viewport = k->viewport;
@@ -326,7 +326,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
                 return e;
             times[r] = st.ms_trace + ts.ms_trace;
         }
-        sl_run_med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        sl_med_min_max(times + c->warmup, c->runs, x->vms.truth);
         res->passes.truths_traced++;
         res->passes.soft_truths++;
         x->truth_rays = st.rays + ts.rays;
@@ -361,8 +361,8 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         if (e)
             return e;
     }
-    sl_run_med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
-    sl_run_med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
+    sl_med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
+    sl_med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
     unsigned long long key = sl_cache_view_key(x->scene_key, &x->scene.vp[vp], W, H);
     if (x->area)
         return area_view(x, c, k, key, cache_dir, reps, times, res, d);
@@ -384,7 +384,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
                 return e;
             times[r] = ts.ms_trace;
         }
-        sl_run_med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        sl_med_min_max(times + c->warmup, c->runs, x->vms.truth);
         res->passes.truths_traced++;
         x->truth_rays = ts.rays;
         if (cache_dir && cache_dir[0])
@@ -421,7 +421,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
     }
     if (x->scene.light.type == SL_LIGHT_POINT)
         return sl_cube_ensure(&x->cube, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map], now, needs,
-                              &(struct sl_cube_timing){c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
+                              &(struct sl_layer_timing){c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
                                                        res->passes.layers, c->threads}, &x->frame, d);
     /* layers every remaining reader reads per pixel (sl_plan_group_at_pixel)
      * are gathered per pixel once drawn, and drawn with the first cell that
@@ -430,14 +430,14 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
      * layers of one method, not of every method of the group. BGSM stays
      * dense: BGSM2 reads its ids, and BGSM2's readback is the peak anyway. */
     const unsigned gather = gath & ~SL_NEED(SL_LAYER_BGSM) & ~x->frame.have;
-    const struct sl_cube_timing t = {c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
+    const struct sl_layer_timing t = {c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
                                      res->passes.layers, c->threads};
     enum sl_err e = SL_OK;
     if (now & gather)
-        e = sl_run_render_layers(&x->spass, &x->mesh, &x->frame, gather & ~SL_NEED(SL_LAYER_BGSM2), gather,
-                                 &x->view, &t, d);
+        e = sl_frame_render_timed(&x->spass, &x->mesh, &x->frame, gather & ~SL_NEED(SL_LAYER_BGSM2), gather,
+                                  &x->view, &t, d);
     if (!e)
-        e = sl_run_render_layers(&x->spass, &x->mesh, &x->frame, now, gather, &x->view, &t, d);
+        e = sl_frame_render_timed(&x->spass, &x->mesh, &x->frame, now, gather, &x->view, &t, d);
     return e;
 }
 
@@ -468,13 +468,13 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
     return SL_OK;
 }
 
-/* sl_run_make_looks for method m on fr, the view's frame or a label's own */
+/* sl_method_make_looks for method m on fr, the view's frame or a label's own */
 static enum sl_err make_looks(struct run_ctx *x, const struct sl_config *c, const struct sl_method *m,
                               unsigned needs, struct sl_light_frame *fr, unsigned shared, struct sl_diag *d)
 {
     /* a point light's methods read the cube's faces, which make none */
     return x->scene.light.type == SL_LIGHT_POINT ? SL_OK
-           : sl_run_make_looks(fr, fr == &x->frame, &x->view, m, needs, shared, c->threads, d);
+           : sl_method_make_looks(fr, fr == &x->frame, &x->view, m, needs, shared, c->threads, d);
 }
 
 /* contour_from nsm: the contours of the current view at the cell's map
@@ -493,7 +493,7 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
     if (!m)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "contour_from nsm: no nsm method");
     struct sl_method_params p;
-    const int label = sl_run_contour_label(c);
+    const int label = sl_config_contour_label(c);
     enum sl_err e = SL_OK;
     if (label >= 0) {
         p = c->methods[label].params;
@@ -557,8 +557,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     unsigned mneeds = cm->method->needs(&cm->params);
     struct sl_light_frame *fr = &x->frame;   /* a label's own stabilised frame, if it asks (lightfit.h) */
     enum sl_err e = cm->frame_fit.fit == SL_FIT_TIGHT ? SL_OK
-                    : sl_run_alt_frame(&x->alt, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map],
-                                       &cm->frame_fit, mneeds, &fr, res->passes.layers, d);
+                    : sl_alt_frame(&x->alt, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map],
+                                   &cm->frame_fit, mneeds, &fr, res->passes.layers, d);
     if (e)
         return e;
     for (int l = 0; l < SL_LAYER_COUNT; l++)
@@ -607,7 +607,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             x->vd.has_detail = x->nvd.has_detail, x->vd.nframes = 0;   /* NSM's: the cell's frame */
             res->passes.contour_runs--;
             cost = x->nsm_cost;
-            e = sl_cube_mark(&x->cube, &x->vd, d);   /* a point light's faces (cube.h) */
+            e = sl_cube_mark(&x->cube, &x->vd, d);   /* a point light's faces (cuberun.h) */
         } else {
             x->vd.has_base = x->vd.nframes = 0;   /* nframes: the cell's frame unless the method says */
             x->vd.has_detail = 0;
@@ -620,8 +620,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     }
     if (e)
         return e;
-    sl_run_med_min_max(times, c->runs, cell->ms.method);
-    sl_cube_cell_costs(&x->cube, &cell->faces, &cell->ms_face_max);   /* a point light's (cube.h) */
+    sl_med_min_max(times, c->runs, cell->ms.method);
+    sl_cube_cell_costs(&x->cube, &cell->faces, &cell->ms_face_max);   /* a point light's (cuberun.h) */
     cell->cost.ms_method = cell->ms.method[SL_MED];
     int measured;   /* flicker against the path's previous frame, if any */
     if ((e = sl_temporal_cell(&x->temporal, k->map, k->method, x->vd.v, &measured, &cell->flicker,

@@ -287,4 +287,16 @@ const struct sl_method *sl_method_find(const char *name);
 int                     sl_method_count(void);
 const struct sl_method *sl_method_at(int i);
 
+/* Each pixel's lookup in the dense layers method m reads (needs) and
+ * declares (looks), once per (frame, view) for every such method of the
+ * view (frame.h: sl_frame_look). Made only where two readers or more
+ * share them (`shared`: layers so read by the rest of the group, plan.h),
+ * on the view's own frame (own_frame): one reader alone would pay a pass
+ * and its arrays for nothing. Lookups made already get the parts m asks
+ * for. */
+enum sl_err sl_method_make_looks(struct sl_light_frame *f, int own_frame, const struct sl_view *v,
+                                 const struct sl_method *m, unsigned needs, unsigned shared, int threads,
+                                 struct sl_diag *d);
+
+
 #endif

@@ -43,7 +43,7 @@ void sl_light_fit_persp(const struct sl_scene *s, const struct sl_view *v, const
                         const uint8_t *mask, uint8_t value, struct sl_light_box *out);
 /* The same with a guard band of `guard` texels of a size x size map on each
  * side beyond the receivers' tangents (a point light's cube face,
- * harness/cube.h): lookups up to `guard` texels across the receivers' edge
+ * harness/render/lightframe.h): lookups up to `guard` texels across the receivers' edge
  * read the scene there. The band is added before the casters are chosen,
  * so the near plane holds the band's casters too. guard 0, or a map of at
  * most 2 guard texels: sl_light_fit_persp's frame. */
