@@ -9,16 +9,9 @@
  */
 #ifndef SL_PLAN_H
 #define SL_PLAN_H
+#include "cellkey.h"
 #include "config.h"
 #include "store.h"
-
-struct sl_cell_key {
-    int scene;      /* index into config scenes */
-    int viewport;   /* index into config viewports */
-    int vp;         /* index into that scene's config viewpoints */
-    int map;        /* index into config map sizes */
-    int method;     /* index into config methods */
-};
 
 /* Number of cells of the sweep, and the key of the cell at `index`. */
 int  sl_plan_count(const struct sl_config *c);

@@ -105,6 +105,7 @@ struct run_ctx {
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
     struct sl_ovw *ovw;                  /* overlay sheets written off the cells' path (ovwriter.h) */
+    struct sl_sheet_sink sheets;         /* ovw as the sink the cells hand their sheets to */
 };
 
 static void emit(const struct run_ctx *x, const struct sl_run_event *ev)
@@ -642,7 +643,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
-        .ovw = x->ovw,   /* the sheet drawn into its slot, written off the cell's path */
+        .sheets = x->ovw ? &x->sheets : NULL,   /* the sheet drawn into its slot, written off the cell's path */
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
@@ -801,6 +802,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     int64_t run_id = 0;
     if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_ovw_open(2, &x.ovw, d)))
         goto out;
+    x.sheets = sl_ovw_sink(x.ovw);
     if ((e = sl_gl_open(&x.gl, &(struct sl_gl_desc){.backend = c->gl}, d)) || (e = sl_shadowmap_init(&x.spass, d)))
         goto out;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
