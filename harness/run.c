@@ -39,14 +39,6 @@
 #include "truth.h"
 #include "util.h"
 
-void sl_run_result_free(struct sl_run_result *r)
-{
-    if (!r)
-        return;
-    free(r->cells);
-    memset(r, 0, sizeof *r);
-}
-
 /* ---- the run ---- */
 
 struct run_ctx {
@@ -679,8 +671,8 @@ static enum sl_err resume_skips(const struct sl_config *c, const struct sl_run_o
     for (int idx = first; idx < last && !e; idx++) {
         struct sl_cell_key k;
         sl_plan_cell(c, idx, &k);
-        skip[idx] = (uint8_t)((sl_plan_stored(c, &k, st) && (!files || sl_out_kept_whole(c, &k, &own))) ||
-                              (also && sl_plan_stored(c, &k, also) && (!files || sl_out_kept_whole(c, &k, &gath))));
+        skip[idx] = (uint8_t)((sl_out_stored(c, &k, st) && (!files || sl_out_kept_whole(c, &k, &own))) ||
+                              (also && sl_out_stored(c, &k, also) && (!files || sl_out_kept_whole(c, &k, &gath))));
     }
     sl_out_kept_free(&own);
     sl_out_kept_free(&gath);
