@@ -30,9 +30,9 @@
 #include "lightframe.h"
 #include "motion.h"
 #include "motion_run.h"
+#include "cellsink.h"
 #include "outputs.h"
 #include "overlay.h"
-#include "ovwriter.h"
 #include "shadowmap.h"
 #include "scenefile.h"
 #include "temporal.h"
@@ -96,8 +96,7 @@ struct run_ctx {
     /* where notes, violations and progress go (the library never prints) */
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
-    struct sl_ovw *ovw;                  /* overlay sheets written off the cells' path (ovwriter.h) */
-    struct sl_sheet_sink sheets;         /* ovw as the sink the cells hand their sheets to */
+    const struct sl_cell_sink *sink;     /* where finished cells go; their sheets (cellsink.h) */
 };
 
 static void emit(const struct run_ctx *x, const struct sl_run_event *ev)
@@ -635,7 +634,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
-        .sheets = x->ovw ? &x->sheets : NULL,   /* the sheet drawn into its slot, written off the cell's path */
+        .sheets = sl_sink_sheets(x->sink),   /* the sheet drawn into its slot, written off the cell's path */
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
@@ -742,15 +741,19 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (first >= total || last > total || first >= last)
         return sl_fail(d, SL_E_USAGE, c->path, 0, "--cells", "cells %d:%d outside the sweep of %d cells",
                        first, last, total);
-    struct sl_out_dirs dirs;
-    memset(&dirs, 0, sizeof dirs);
-    char store_path[1100] = "", cache[1100] = "";
+    struct sl_cell_sink sink;
+    memset(&sink, 0, sizeof sink);
+    sink.config = c;
+    sink.write_files = o->write_files;
+    struct sl_out_dirs *const dirs = &sink.dirs;
+    char *const store_path = sink.store_path;
+    char cache[1100] = "";
     if (o->store)
-        snprintf(store_path, sizeof store_path, "%s", o->store);
+        snprintf(store_path, sizeof sink.store_path, "%s", o->store);
     else if (c->store[0])
-        snprintf(store_path, sizeof store_path, "%s/%s", root, c->store);   /* under --out (config.c) */
+        snprintf(store_path, sizeof sink.store_path, "%s/%s", root, c->store);   /* under --out (config.c) */
     else if (o->write_files)
-        snprintf(store_path, sizeof store_path, "%s/shadowlab.db", root);
+        snprintf(store_path, sizeof sink.store_path, "%s/shadowlab.db", root);
     if (o->cache_dir)
         snprintf(cache, sizeof cache, "%s", o->cache_dir);
     else if (o->write_files)
@@ -776,9 +779,9 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             if ((e = sl_mkdirs(dir, d)))
                 return e;
         }
-        if ((e = sl_out_stage_begin(c, root, &dirs, d)))
+        if ((e = sl_out_stage_begin(c, root, dirs, d)))
             return e;
-        snprintf(res->out_dir, sizeof res->out_dir, "%s", dirs.final);
+        snprintf(res->out_dir, sizeof res->out_dir, "%s", dirs->final);
     }
     if (cache[0] && sl_mkdirs(cache, NULL) != SL_OK)
         cache[0] = '\0';   /* no cache is only slower */
@@ -788,13 +791,12 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = x.nsm_map = x.nsm_label = -1;
     x.on_event = o->on_event;
     x.user = o->user;
-    struct sl_store *st = NULL, *also = NULL;
+    x.sink = &sink;
+    struct sl_store *also = NULL;
     uint8_t *skip = NULL, *warm = NULL, *off = NULL;
     struct sl_cell *wcell = NULL;   /* a warm-up cell's (warm_up_cells) */
-    int64_t run_id = 0;
-    if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_ovw_open(2, &x.ovw, d)))
+    if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_sink_open_overlays(&sink, d)))
         goto out;
-    x.sheets = sl_ovw_sink(x.ovw);
     if ((e = sl_gl_open(&x.gl, &(struct sl_gl_desc){.backend = c->gl}, d)) || (e = sl_shadowmap_init(&x.spass, d)))
         goto out;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
@@ -805,8 +807,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     res->prov.threads = c->threads;
     sl_provenance_fill(&res->prov);
     if (store_path[0]) {
-        if ((e = sl_store_open(store_path, &st, d)) ||
-            (e = sl_out_begin_run(st, c, &res->prov, &run_id, d)))
+        if ((e = sl_sink_open_store(&sink, &res->prov, d)))
             goto out;
         snprintf(res->store_path, sizeof res->store_path, "%s", store_path);
     }
@@ -828,7 +829,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         if (o->stored_in && o->stored_in[0] && (e = sl_store_open_existing(o->stored_in, &also, d)))
             goto out;
-        if ((e = resume_skips(c, o, &dirs, st, also, first, last, skip, d)))
+        if ((e = resume_skips(c, o, dirs, sink.st, also, first, last, skip, d)))
             goto out;
         sl_store_close(also);
         also = NULL;
@@ -879,8 +880,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;
-        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? dirs.overlays : NULL,
-                          o->write_files && c->exr ? dirs.exr : NULL, res, d)))
+        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? dirs->overlays : NULL,
+                          o->write_files && c->exr ? dirs->exr : NULL, res, d)))
             break;
         if (cell->violations) {
             struct sl_run_event ev = {.kind = SL_EVENT_VIOLATIONS, .config = c, .cell = cell};
@@ -892,8 +893,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         /* a stored cell is a whole one (--resume skips it): its sheet is on
          * disk before its row, or a kill between the two loses the sheet */
-        if (st && ((e = sl_ovw_wait(x.ovw, d)) ||
-                   (e = sl_out_store_cell(st, run_id, c, cell, store_path, o->write_files ? dirs.final : NULL, d))))
+        if ((e = sl_sink_put(&sink, cell, d)))
             break;
         res->ncells++;
         struct sl_run_event ev = {.kind = SL_EVENT_PROGRESS, .config = c, .cell = cell,
@@ -902,33 +902,13 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         emit(&x, &ev);
     }
     if (!e)   /* every sheet in the staging folder before it is renamed (a write error fails the run) */
-        e = sl_ovw_wait(x.ovw, d);
+        e = sl_sink_drain(&sink, d);
     res->ms_total = 1e3 * (sl_now() - t_start);
-    if (e || !o->write_files)
-        goto out;
-
-    if ((e = sl_out_stage_finish(c, res, &dirs, o->resume, d)))
-        goto out;
-    res->stored_total = -1;
-    if (st && c->tables)
-        e = sl_out_rebuild_from_store(st, c, res->ncells, dirs.final, &res->stored_total, d);
-    if (!e && c->tables)   /* a config naming paths: the temporal tables, plots, overlay sequences */
-        e = sl_motion_outputs(st, c, res, dirs.final, d);
-    if (!e && o->table_out && c->tables) {
-        e = sl_out_print_tables(o->table_out, c, res, d);
-        sl_out_write_costs_md(o->table_out, c, res);
-        sl_out_write_patterns_md(o->table_out, c, res);
-    }
+    if (!e)
+        e = sl_sink_finish(&sink, res, o->resume, o->table_out, d);
 out:
-    if (x.ovw) {
-        sl_ovw_wait(x.ovw, NULL);
-        sl_ovw_stats(x.ovw, &res->overlays_written, &res->ms_overlay_writer, &res->ms_overlay_writer_cpu);
-    }
-    sl_ovw_close(x.ovw);   /* no sheet is written into a folder being dropped */
-    if (e)
-        sl_out_stage_drop(&dirs);
     sl_store_close(also);
-    sl_store_close(st);
+    sl_sink_close(&sink, res, e != SL_OK);
     free(skip);
     free(warm);
     free(off);
