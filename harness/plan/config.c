@@ -17,13 +17,14 @@
 #include <string.h>
 #include <unistd.h>
 #include <yaml.h>
+#include "method.h"
 #include "scene.h"
 #include "scenefile.h"
 #include "util.h"
 #include "yamlfile.h"
 
 /* ---- method knobs ----
- * The keys of a method entry are SL_KNOBS (method.h). Per kind of knob, in
+ * The keys of a method entry are SL_KNOBS (knobs.h). Per kind of knob, in
  * one place: what libcyaml fills (RAW_), its schema entry (SCHEMA_), the
  * copy into struct sl_method_params with the check of a word (COPY_, inside
  * validate: p, rm, key, file, ix, d in scope), and its text in the

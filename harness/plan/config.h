@@ -32,11 +32,17 @@
  */
 #ifndef SL_CONFIG_H
 #define SL_CONFIG_H
-#include "glctx.h"
-#include "lightfit.h"
-#include "method.h"
-#include "scene.h"
+#include <stdio.h>
+#include "fitopts.h"
+/* Not the config's own: harness/bench_int.h reads SL_LAYER_COUNT through
+ * bench.h -> config.h; drop this line once bench_int.h includes frame.h. */
+#include "frame.h"
+#include "glbackend.h"
+#include "knobs.h"
+#include "scenelimits.h"
 #include "sl_error.h"
+
+struct sl_method;   /* method.h */
 
 #define SL_CFG_MAX 32
 /* A config is refused unread above 4 MiB: with at most SL_CFG_MAX entries
@@ -55,7 +61,7 @@ struct sl_config_method {
     char                     label[48];
     const struct sl_method  *method;
     struct sl_method_params  params;
-    struct sl_fit_opts       frame_fit;   /* 'light_frame: {fit: tight|sphere, snap: bool}' (lightfit.h);
+    struct sl_fit_opts       frame_fit;   /* 'light_frame: {fit: tight|sphere, snap: bool}' (fitopts.h, lightfit.h);
                                            * zero: the tight fit every other label shares */
 };
 

@@ -7,6 +7,7 @@
  */
 #include "plan.h"
 #include <string.h>
+#include "method.h"
 
 static int popcount(unsigned m)
 {

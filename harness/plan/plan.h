@@ -9,6 +9,7 @@
  */
 #ifndef SL_PLAN_H
 #define SL_PLAN_H
+#include <stdint.h>
 #include "cellkey.h"
 #include "config.h"
 

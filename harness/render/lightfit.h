@@ -17,6 +17,7 @@
 #ifndef SL_LIGHTFIT_H
 #define SL_LIGHTFIT_H
 #include <math.h>
+#include "fitopts.h"
 #include "frame.h"
 #include "scene.h"
 #include "view.h"
@@ -98,11 +99,6 @@ static inline void sl_cube_axis(int face, float axis[3])
  * shifts the map by whole texels instead of resampling it. The box holds
  * every PFL pixel of the view (they lie in the frustum, so in the sphere);
  * n_receivers counts them. Area lights are refused by config.c. */
-enum sl_fit_kind { SL_FIT_TIGHT = 0, SL_FIT_SPHERE = 1 };
-struct sl_fit_opts {
-    int fit;     /* enum sl_fit_kind */
-    int snap;    /* 1: whole texels (SL_FIT_SPHERE) */
-};
 void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
                          struct sl_light_box *out);
 void sl_light_fit_stable_mt(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
