@@ -80,3 +80,16 @@ void sl_verdicts_drop_frames(struct sl_verdicts *vd)
     vd->slice = NULL;
     vd->nframes = vd->nown = 0;
 }
+
+enum sl_err sl_method_make_looks(struct sl_light_frame *f, int own_frame, const struct sl_view *v,
+                                 const struct sl_method *m, unsigned needs, unsigned shared, int threads,
+                                 struct sl_diag *d)
+{
+    enum sl_err e = SL_OK;
+    const size_t n = (size_t)v->w * (size_t)v->h;
+    for (int l = 0; l < SL_LAYER_COUNT && !e; l++)
+        if ((sl_method_looks(m) & needs & f->have & SL_NEED(l)) && !f->layer[l].per_pixel &&
+            ((own_frame && (shared & SL_NEED(l))) || sl_frame_look_of(f, l, v->serial, n)))
+            e = sl_frame_look(f, l, v, threads, sl_method_look_parts(m), d);
+    return e;
+}

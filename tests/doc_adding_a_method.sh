@@ -6,7 +6,7 @@
 #   and works;
 # - its registry lines have the form registry.c's lines have (an extern
 #   declaration and a table entry), and the knob its config uses is one of
-#   method.h's SL_KNOBS;
+#   knobs.h's SL_KNOBS (method.h includes it);
 # - the fast-path rules it cites are named in method.h.
 # Usage: doc_adding_a_method.sh   (run from the source tree)
 set -u
@@ -46,7 +46,7 @@ grep -q 'sl_method_pcf3' methods/registry.c && bad "the example is in the shippe
 
 # the config's knob, and the names the doc cites from method.h and frame.h
 grep -q 'method: pcf3, bias: ' "$doc" || bad "no config entry 'method: pcf3, bias: ...'"
-grep -q 'X(SL_PARAM_BIAS, *[0-9]*, bias,' methods/method.h || bad "method.h: no knob bias"
+grep -q 'X(SL_PARAM_BIAS, *[0-9]*, bias,' methods/knobs.h || bad "knobs.h: no knob bias"
 for name in sl_method_fast at_pixel looks look_parts sl_method_configure sl_layer_at; do
     grep -q "$name" methods/method.h || bad "method.h does not name $name"
 done

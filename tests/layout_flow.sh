@@ -9,7 +9,7 @@
 # concept ends, never to meet a count).
 set -u
 cd "$(dirname "$0")/.."
-order=(harness/base harness/scene harness/render harness/truth methods harness/score harness/results report harness harness/bench harness/cli)
+order=(harness/base harness/scene harness/render harness/truth methods harness/score harness/plan harness/results report harness/run harness/cluster harness/bench harness/cli harness)
 fail=0
 for i in "${!order[@]}"; do
   dir=${order[$i]}

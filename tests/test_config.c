@@ -9,6 +9,7 @@
 #include <cmocka.h>
 #include "sl_test.h"
 #include "config.h"
+#include "method.h"
 
 static void config_default_loads(void **st)
 {

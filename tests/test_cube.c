@@ -1,4 +1,4 @@
-/* cube::* — a point light's cube of shadow maps (harness/cube.h, issue 22):
+/* cube::* — a point light's cube of shadow maps (harness/render/lightframe.h, methods/cuberun.h, issue 22):
  * every face holding receivers and casters; lookups across a seam equal to
  * those of one wide frustum along the face's axis; every exactness promise
  * kept on the point scenes at two map sizes through the driver. */
@@ -11,7 +11,7 @@
 #include <cmocka.h>
 #include "sl_test.h"
 #include <cglm/clipspace/persp_rh_zo.h>
-#include "cube.h"
+#include "cuberun.h"
 #include "fixture.h"
 #include "lightfit.h"
 #include "method.h"
@@ -78,7 +78,7 @@ static void cube_six_faces(void **st)
     memset(&cb, 0, sizeof cb);
     const unsigned needs = SL_NEED(SL_LAYER_DEPTH_ID);
     int layers[SL_LAYER_COUNT] = {0};
-    struct sl_cube_timing t = {.warmup = 0, .runs = 1, .layers = layers};
+    struct sl_layer_timing t = {.warmup = 0, .runs = 1, .layers = layers};
     assert_int_equal(sl_cube_ensure(&cb, &sp, &fx.mesh, &fx.scene, &v, 0, 256, needs, needs, &t, NULL, &d), SL_OK);
     uint32_t shadowed[6] = {0}, pfl[6] = {0};
     for (size_t i = 0; i < (size_t)v.w * (size_t)v.h; i++) {
@@ -204,7 +204,7 @@ static void cube_seams(void **st)
             params_of(methods[k], texels[k], &p[k]);
             needs |= sl_method_find(methods[k])->needs(&p[k]);
         }
-        struct sl_cube_timing t = {.warmup = 0, .runs = 1};
+        struct sl_layer_timing t = {.warmup = 0, .runs = 1};
         assert_int_equal(sl_cube_ensure(&cb, &sp, &fx.mesh, &fx.scene, &v, 0, size, needs, needs, &t, NULL, &d),
                          SL_OK);
         /* the seam exercised: edge pixels (texel within 2 of the band) lit and shadowed, per face */

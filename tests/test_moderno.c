@@ -22,7 +22,7 @@
 #include <cglm/clipspace/ortho_rh_zo.h>
 #include "lightfit.h"
 #include "plan.h"
-#include "runhelp.h"
+#include "lightframe.h"
 #include "run.h"
 #include "shadowmap.h"
 #include "raytri.h"
@@ -960,7 +960,7 @@ static void moderno_lookups_shared_only(void **st)
     }
 }
 
-/* The run's rule (sl_run_make_looks): lookups on the view's own frame
+/* The run's rule (sl_method_make_looks): lookups on the view's own frame
  * for a layer shared by the group, none for an unshared one or another
  * frame, and lookups made already get the parts a later reader asks for
  * (coherence's counts after NSM made them without). */
@@ -981,18 +981,18 @@ static void moderno_lookups_made_by_rule(void **st)
     assert_non_null(coh);
     assert_non_null(bgsm);
     /* not shared, or not the view's frame, or a method that reads none: none */
-    assert_int_equal(sl_run_make_looks(&g.fr, 1, &g.v, nsm, back, 0, 2, &d), SL_OK);
+    assert_int_equal(sl_method_make_looks(&g.fr, 1, &g.v, nsm, back, 0, 2, &d), SL_OK);
     assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
-    assert_int_equal(sl_run_make_looks(&g.fr, 0, &g.v, nsm, back, back, 2, &d), SL_OK);
+    assert_int_equal(sl_method_make_looks(&g.fr, 0, &g.v, nsm, back, back, 2, &d), SL_OK);
     assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
-    assert_int_equal(sl_run_make_looks(&g.fr, 1, &g.v, bgsm, back, back, 2, &d), SL_OK);
+    assert_int_equal(sl_method_make_looks(&g.fr, 1, &g.v, bgsm, back, back, 2, &d), SL_OK);
     assert_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
     /* shared on the view's frame: made, without the counts NSM does not read */
-    assert_int_equal(sl_run_make_looks(&g.fr, 1, &g.v, nsm, back, back, 2, &d), SL_OK);
+    assert_int_equal(sl_method_make_looks(&g.fr, 1, &g.v, nsm, back, back, 2, &d), SL_OK);
     assert_non_null(sl_frame_look_of(&g.fr, l, g.v.serial, npx));
     assert_null(g.fr.look.pcf);
     /* the group's last reader (no longer shared) still gets its part */
-    assert_int_equal(sl_run_make_looks(&g.fr, 1, &g.v, coh, back, 0, 2, &d), SL_OK);
+    assert_int_equal(sl_method_make_looks(&g.fr, 1, &g.v, coh, back, 0, 2, &d), SL_OK);
     assert_non_null(g.fr.look.pcf);
     fig_close(&g);
 }

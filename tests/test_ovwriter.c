@@ -1,6 +1,6 @@
 /*
  * ovwriter::* — overlay sheets written by the run's worker thread
- * (harness/ovwriter.h): the same bytes as a cell writing them itself, a
+ * (harness/results/ovwriter.h): the same bytes as a cell writing them itself, a
  * worker's write error still fails the run with the image error naming the
  * file, every sheet in the folder when it is renamed into place (an
  * interrupted run too), and the queue's bound and sticky error on their own.

@@ -6,6 +6,7 @@
 #include "util.h"
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -150,4 +151,26 @@ enum sl_err sl_hash_file(const char *path, unsigned long long *out, struct sl_di
         return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(err));
     *out = h;
     return SL_OK;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+void sl_med_min_max(double *t, int n, double out[3])
+{
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (!isnan(t[i]))
+            t[k++] = t[i];
+    if ((n = k) == 0) {
+        out[0] = out[1] = out[2] = NAN;
+        return;
+    }
+    qsort(t, (size_t)n, sizeof t[0], cmp_double);
+    out[0] = n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+    out[1] = t[0];
+    out[2] = t[n - 1];
 }

@@ -43,4 +43,9 @@ enum sl_err sl_open_regular(const char *path, int *fd, long long *size, struct s
 /* FNV-1a 64 over a file's bytes (config hash written beside results). */
 enum sl_err sl_hash_file(const char *path, unsigned long long *out, struct sl_diag *d);
 
+/* {median, min, max} (out[0], out[1], out[2]: SL_MED, SL_MIN, SL_MAX of
+ * cellcols.h) of n >= 1 times (sorted in place), NaN ones (a GPU timer
+ * that failed, glctx.h) left out; all NaN: NaN (not measured). */
+void sl_med_min_max(double *t, int n, double out[3]);
+
 #endif

@@ -23,7 +23,7 @@
 #include <sys/resource.h>
 #include "bench_stages.h"
 #include "contour.h"
-#include "cube.h"
+#include "lightframe.h"
 #include "figures.h"
 #include "method.h"
 #include "lightfit.h"
@@ -277,7 +277,7 @@ out:
  * own directional light, then the same view under a point light above the
  * scene's middle (its G-buffer classed again for that light) fitted as a
  * run fits it: the view's summary box (six faces, run.c) and, for the
- * map size of the layer stage, cube.c's faces (each pixel's face, then six
+ * map size of the layer stage, lightframe.c's faces (each pixel's face, then six
  * frames with their guard band). Each repetition fits on one thread, then
  * on the config's threads, and checks the boxes bit for bit. Wall time, and
  * CPU time (user + sys of the whole process, getrusage: the threads' work
@@ -288,7 +288,7 @@ out:
 
 static const char *const lf_kind_name[LF_KINDS] = {
     "directional (the scene's light)", "point light: the view's box (six faces)",
-    "point light: the cube's six frames (cube.c)"};
+    "point light: the cube's six frames (lightframe.c)"};
 
 static int box_same(const struct sl_light_box *a, const struct sl_light_box *b)
 {
@@ -310,7 +310,7 @@ static int lf_fit(const struct sl_scene *s, const struct sl_view *v, int kind, i
         return 1;
     }
     sl_cube_faces(s->light.pos, v, face, threads);
-    /* cube.c's guard band, as it picks it: cube.h's SL_CUBE_GUARD texels
+    /* lightframe.c's guard band, as it picks it: lightframe.h's SL_CUBE_GUARD texels
      * (none on a map too small to hold it) */
     const int guard = size > 4 * SL_CUBE_GUARD ? SL_CUBE_GUARD : 0;
     sl_light_fit_cube_mt(s, v, s->light.pos, face, size, guard, out, threads);

@@ -4,6 +4,7 @@
  * what bench.c runs, in its order. A stage calls bench_row.h's helpers and
  * no other stage. */
 #include "bench_row.h"
+#include "frame.h"   /* SL_LAYER_COUNT, the layer names */
 
 /* issue 20: the truth at 0.9x a plain loop's rays/s, at least */
 #define SL_BENCH_TARGET_TRUTH_RATIO 0.9

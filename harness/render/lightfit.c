@@ -660,7 +660,7 @@ void sl_cube_faces(const float eye[3], const struct sl_view *v, uint8_t *face, i
 /* A point light's view as one box (lightfit.h, sl_light_fit): the six
  * faces fitted without a guard band, their counts summed (unmapped
  * triangles are each face's own: none listed here), the matrices those of
- * the face with most receivers. The cube's own frames (harness/cube.c) are
+ * the face with most receivers. The cube's own frames (harness/render/lightframe.c) are
  * fitted per map size, with their guard band. */
 static void fit_cube_summary(const struct sl_scene *s, const struct sl_view *v, int threads,
                              struct sl_light_box *out)

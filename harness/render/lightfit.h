@@ -17,6 +17,7 @@
 #ifndef SL_LIGHTFIT_H
 #define SL_LIGHTFIT_H
 #include <math.h>
+#include "fitopts.h"
 #include "frame.h"
 #include "scene.h"
 #include "view.h"
@@ -43,7 +44,7 @@ void sl_light_fit_persp(const struct sl_scene *s, const struct sl_view *v, const
                         const uint8_t *mask, uint8_t value, struct sl_light_box *out);
 /* The same with a guard band of `guard` texels of a size x size map on each
  * side beyond the receivers' tangents (a point light's cube face,
- * harness/cube.h): lookups up to `guard` texels across the receivers' edge
+ * harness/render/lightframe.h): lookups up to `guard` texels across the receivers' edge
  * read the scene there. The band is added before the casters are chosen,
  * so the near plane holds the band's casters too. guard 0, or a map of at
  * most 2 guard texels: sl_light_fit_persp's frame. */
@@ -98,11 +99,6 @@ static inline void sl_cube_axis(int face, float axis[3])
  * shifts the map by whole texels instead of resampling it. The box holds
  * every PFL pixel of the view (they lie in the frustum, so in the sphere);
  * n_receivers counts them. Area lights are refused by config.c. */
-enum sl_fit_kind { SL_FIT_TIGHT = 0, SL_FIT_SPHERE = 1 };
-struct sl_fit_opts {
-    int fit;     /* enum sl_fit_kind */
-    int snap;    /* 1: whole texels (SL_FIT_SPHERE) */
-};
 void sl_light_fit_stable(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,
                          struct sl_light_box *out);
 void sl_light_fit_stable_mt(const struct sl_scene *s, const struct sl_view *v, const struct sl_fit_opts *o, int size,

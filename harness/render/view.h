@@ -62,4 +62,8 @@ struct sl_view {
 
 void sl_view_free(struct sl_view *v);
 
+/* G-buffer values that are not finite (positions, normals of non-background
+ * pixels). A hard case must never produce one (tests/test_hard.c). */
+uint64_t sl_view_bad(const struct sl_view *v);
+
 #endif

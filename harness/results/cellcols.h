@@ -35,7 +35,7 @@
  * (temporal.h); compared 0 = not measured (no frame, or its path's first in
  * the run that computed it).
  * faces, ms_face_max: under a point light, the faces of its cube that hold
- * a map (harness/cube.h) and the method's time on the slowest of them (its
+ * a map (harness/render/lightframe.h) and the method's time on the slowest of them (its
  * ms_method is the sum over the faces); 0 and NULL under any other light.
  * n_outside_cone: the part of n_pnfl outside a spot light's cone (view.h),
  * 0 under other lights; light: the scene's light in words for headings

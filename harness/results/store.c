@@ -36,7 +36,7 @@
 
 #define SL_STORE_VERSION 17   /* 17: cells.digest, one cell per config hash and key (UNIQUE);
                                * 16: figure names by instr(); 15: cells.n_outside_cone, light (view.h);
-                               * 14: cells.faces, ms_face_max (cube.h); 13: aliasing figures, cells.texels;
+                               * 14: cells.faces, ms_face_max (lightframe.h); 13: aliasing figures, cells.texels;
                                * 12: cells.flicker, flicker_compared, ms_flicker; 11: ms_gpu_gbuffer, ms_gpu_map;
                                * 10: runs.gl_backend; 9: contour_from, PnFL-inclusive figures; 8: soft figures;
                                * 7: study, config text, costs, overlay path; 2-6: traced, hints, confirmed, ... */

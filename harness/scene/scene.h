@@ -15,15 +15,9 @@
 #ifndef SL_SCENE_H
 #define SL_SCENE_H
 #include <stdint.h>
+#include "scenelimits.h"
 #include "sl_error.h"
 
-#define SL_MAX_VIEWPOINTS 16
-/* Paths (pathfile.h): at most SL_MAX_PATHS per scene file, their frames
- * together at most SL_MAX_FRAMES; each frame is a viewpoint held after the
- * named ones (vp[nvp .. nvp + nframes)), named "<path>.<frame>" (orbit.007). */
-#define SL_MAX_PATHS 8
-#define SL_MAX_FRAMES 480
-#define SL_MAX_VIEWS (SL_MAX_VIEWPOINTS + SL_MAX_FRAMES)
 
 struct sl_viewpoint {
     char  name[32];

@@ -32,11 +32,14 @@
  */
 #ifndef SL_CONFIG_H
 #define SL_CONFIG_H
-#include "glctx.h"
-#include "lightfit.h"
-#include "method.h"
-#include "scene.h"
+#include <stdio.h>
+#include "fitopts.h"
+#include "glbackend.h"
+#include "knobs.h"
+#include "scenelimits.h"
 #include "sl_error.h"
+
+struct sl_method;   /* method.h */
 
 #define SL_CFG_MAX 32
 /* A config is refused unread above 4 MiB: with at most SL_CFG_MAX entries
@@ -55,7 +58,7 @@ struct sl_config_method {
     char                     label[48];
     const struct sl_method  *method;
     struct sl_method_params  params;
-    struct sl_fit_opts       frame_fit;   /* 'light_frame: {fit: tight|sphere, snap: bool}' (lightfit.h);
+    struct sl_fit_opts       frame_fit;   /* 'light_frame: {fit: tight|sphere, snap: bool}' (fitopts.h, lightfit.h);
                                            * zero: the tight fit every other label shares */
 };
 
@@ -113,5 +116,11 @@ enum sl_err sl_config_load_with(const char *path, const char *const *overrides, 
 
 /* Write the filled-in config (every default explicit) as YAML. */
 void sl_config_write(const struct sl_config *c, FILE *f);
+
+/* The config's first label whose run is the contour's NSM (method nsm,
+ * front faces culled: the configured parameters are then exactly those),
+ * -1 none (run.c: contour_from nsm). */
+int sl_config_contour_label(const struct sl_config *c);
+
 
 #endif

@@ -17,13 +17,14 @@
 #include <string.h>
 #include <unistd.h>
 #include <yaml.h>
+#include "method.h"
 #include "scene.h"
 #include "scenefile.h"
 #include "util.h"
 #include "yamlfile.h"
 
 /* ---- method knobs ----
- * The keys of a method entry are SL_KNOBS (method.h). Per kind of knob, in
+ * The keys of a method entry are SL_KNOBS (knobs.h). Per kind of knob, in
  * one place: what libcyaml fills (RAW_), its schema entry (SCHEMA_), the
  * copy into struct sl_method_params with the check of a word (COPY_, inside
  * validate: p, rm, key, file, ix, d in scope), and its text in the
@@ -918,4 +919,13 @@ void sl_config_write(const struct sl_config *c, FILE *f)
         fprintf(f, "store: %s\n", c->store);
     fprintf(f, "threads: %d\n", c->threads);
     fprintf(f, "gl: %s\n", sl_gl_backend_name(sl_gl_backend_resolve(c->gl)));
+}
+
+int sl_config_contour_label(const struct sl_config *c)
+{
+    for (int i = 0; i < c->nmethods; i++)
+        if (strcmp(c->methods[i].method->name, "nsm") == 0 &&
+            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES && c->methods[i].frame_fit.fit == SL_FIT_TIGHT)
+            return i;
+    return -1;
 }

@@ -789,3 +789,15 @@ enum sl_err sl_out_rebuild_from_store(struct sl_store *st, const struct sl_confi
     free(cells);
     return e;
 }
+
+int64_t sl_out_stored_id(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
+{
+    const struct sl_config_scene *cs = &c->scenes[k->scene];
+    return sl_store_cell_id(st, c->hash, cs->name, cs->viewpoints[k->vp], c->viewport_w[k->viewport],
+                           c->viewport_h[k->viewport], c->maps[k->map], c->methods[k->method].label);
+}
+
+int sl_out_stored(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
+{
+    return sl_out_stored_id(c, k, st) != 0;
+}

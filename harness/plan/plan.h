@@ -9,16 +9,9 @@
  */
 #ifndef SL_PLAN_H
 #define SL_PLAN_H
+#include <stdint.h>
+#include "cellkey.h"
 #include "config.h"
-#include "store.h"
-
-struct sl_cell_key {
-    int scene;      /* index into config scenes */
-    int viewport;   /* index into config viewports */
-    int vp;         /* index into that scene's config viewpoints */
-    int map;        /* index into config map sizes */
-    int method;     /* index into config methods */
-};
 
 /* Number of cells of the sweep, and the key of the cell at `index`. */
 int  sl_plan_count(const struct sl_config *c);
@@ -26,12 +19,6 @@ void sl_plan_cell(const struct sl_config *c, int index, struct sl_cell_key *k);
 
 /* The index of the cell of key k (the inverse of sl_plan_cell). */
 int  sl_plan_index(const struct sl_config *c, const struct sl_cell_key *k);
-
-/* 1 when the store holds the cell of key k for this config (a resumed run
- * skips it). */
-int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st);
-/* Its row's id in the store, 0 when not stored. */
-int64_t sl_plan_stored_id(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st);
 
 /* The layers (SL_NEED bits of frame.h and method.h) wanted by the selected
  * cells of the (view, map size) group that starts at cell `from` (a group's

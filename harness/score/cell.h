@@ -24,15 +24,14 @@
 #define SL_CELL_H
 #include <stdint.h>
 #include "aliasing.h"
-#include "config.h"
+#include "cellkey.h"
 #include "frame.h"
 #include "figures.h"
-#include "plan.h"
 #include "softfig.h"
 #include "method.h"
 #include "view.h"
 
-struct sl_ovw;   /* ovwriter.h */
+struct sl_sheet_sink;   /* sheetsink.h */
 
 /* Wall times of the stages of one cell, ms; view stages are shared by every
  * cell of the view and reported with each. The G-buffer render, the truth
@@ -90,7 +89,7 @@ struct sl_cell {
     uint64_t pattern[SL_MAX_REGIONS][10][2];
     uint64_t texels;                   /* texels of the shadow maps the method looked up (each map once,
                                         * whatever its layers): size^2, k size^2 for zpart's k slices */
-    uint64_t faces;                    /* a point light: its cube's faces with a map (cube.h); else 0 */
+    uint64_t faces;                    /* a point light: its cube's faces with a map (lightframe.h); else 0 */
     double   ms_face_max;              /* and the method's time on the slowest face (NAN: no cube) */
     int      has_alias;                /* a hard cell: its wrong pixels by aliasing error m (aliasing.h) */
     struct sl_alias_figures alias;
@@ -117,9 +116,9 @@ struct sl_cell_inputs {
     double shared_band_ms;                    /* what drawing shared_band cost, ms (ms.contours) */
     const char *label;                        /* the method's label (overlay title); NULL: its name */
     const char *overlay_path;                 /* NULL: no overlay */
-    struct sl_ovw *ovw;                       /* the run's overlay writer (ovwriter.h): the sheet is
-                                               * drawn into one of its slots and written by its
-                                               * worker; NULL: written here, in the rgb scratch */
+    const struct sl_sheet_sink *sheets;       /* where the sheet goes (sheetsink.h; the run's overlay
+                                               * writer): drawn into one of its slots and written by
+                                               * it; NULL: written here, in the rgb scratch */
     const char *exr_path;                     /* NULL: no EXR layers */
     int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
     struct sl_alias_cache *alias_cache;       /* m of the view under the cell's frame, kept for the next

@@ -23,29 +23,21 @@
 #include "cache.h"
 #include "cell.h"
 #include "contour.h"
-#include "cube.h"
+#include "cuberun.h"
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
+#include "lightframe.h"
 #include "motion.h"
 #include "motion_run.h"
+#include "cellsink.h"
 #include "outputs.h"
 #include "overlay.h"
-#include "ovwriter.h"
-#include "runhelp.h"
 #include "shadowmap.h"
 #include "scenefile.h"
 #include "temporal.h"
 #include "truth.h"
 #include "util.h"
-
-void sl_run_result_free(struct sl_run_result *r)
-{
-    if (!r)
-        return;
-    free(r->cells);
-    memset(r, 0, sizeof *r);
-}
 
 /* ---- the run ---- */
 
@@ -71,7 +63,7 @@ struct run_ctx {
     uint64_t truth_rays;
     /* current frame */
     int frame_map;
-    struct sl_light_frame frame;        /* a point light's: the cube's sums, no arrays (cube.h) */
+    struct sl_light_frame frame;        /* a point light's: the cube's sums, no arrays (cuberun.h) */
     struct sl_cube cube;                 /* a point light's six frames, per (view, map size) */
     double layer_ms[SL_LAYER_COUNT][3];   /* render time of each layer: median, min, max */
     double layer_gpu[SL_LAYER_COUNT][3];  /* its GPU time (GL_TIME_ELAPSED), the same */
@@ -100,11 +92,11 @@ struct run_ctx {
     int soft_map;                        /* map index the layers are for, -1 none */
     uint8_t *receivers;                  /* per scene range: a pure receiver */
     struct sl_temporal temporal;         /* a path's previous frame, for flicker (temporal.h) */
-    struct sl_alt_frames alt;            /* labels' own stabilised light frames (runhelp.h) */
+    struct sl_alt_frames alt;            /* labels' own stabilised light frames (lightframe.h) */
     /* where notes, violations and progress go (the library never prints) */
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
-    struct sl_ovw *ovw;                  /* overlay sheets written off the cells' path (ovwriter.h) */
+    const struct sl_cell_sink *sink;     /* where finished cells go; their sheets (cellsink.h) */
 };
 
 static void emit(const struct run_ctx *x, const struct sl_run_event *ev)
@@ -137,7 +129,7 @@ static void drop_view(struct run_ctx *x)
 static void drop_scene(struct run_ctx *x)
 {
     drop_view(x);
-    sl_run_alt_free(&x->alt);   /* a label's own frame may outlive a view (runhelp.h), not its scene */
+    sl_alt_frames_free(&x->alt);   /* a label's own frame may outlive a view (lightframe.h), not its scene */
     sl_rt_free(&x->rt);
     if (x->have_adj)
         sl_adjacency_free(&x->adj);
@@ -219,7 +211,7 @@ static void free_nsm(struct run_ctx *x)
 {
     free(x->nvd.v); free(x->nvd.how); free(x->nvd.base); free(x->nvd.detail); free(x->nvd.tests);
     free(x->nvd.vis); free(x->nsm_band);
-    sl_verdicts_drop_frames(&x->nvd);   /* a point light's faces (cube.c, sl_cube_mark) */
+    sl_verdicts_drop_frames(&x->nvd);   /* a point light's faces (cuberun.c, sl_cube_mark) */
     memset(&x->nvd, 0, sizeof x->nvd);
     x->nsm_band = NULL;
     x->nsm_map = -1;
@@ -280,7 +272,7 @@ static enum sl_err view_ready(struct run_ctx *x, const struct sl_config *c, cons
                                   .viewpoint = c->scenes[k->scene].viewpoints[k->vp], .box = &x->box};
         emit(x, &ev);
     }
-    x->view_bad = sl_run_view_bad(&x->view);
+    x->view_bad = sl_view_bad(&x->view);
     x->view_scene = k->scene;
     x->view_vp = k->vp;
     x->view_viewport = k->viewport;
@@ -326,7 +318,7 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
                 return e;
             times[r] = st.ms_trace + ts.ms_trace;
         }
-        sl_run_med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        sl_med_min_max(times + c->warmup, c->runs, x->vms.truth);
         res->passes.truths_traced++;
         res->passes.soft_truths++;
         x->truth_rays = st.rays + ts.rays;
@@ -361,8 +353,8 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         if (e)
             return e;
     }
-    sl_run_med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
-    sl_run_med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
+    sl_med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
+    sl_med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
     unsigned long long key = sl_cache_view_key(x->scene_key, &x->scene.vp[vp], W, H);
     if (x->area)
         return area_view(x, c, k, key, cache_dir, reps, times, res, d);
@@ -384,7 +376,7 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
                 return e;
             times[r] = ts.ms_trace;
         }
-        sl_run_med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        sl_med_min_max(times + c->warmup, c->runs, x->vms.truth);
         res->passes.truths_traced++;
         x->truth_rays = ts.rays;
         if (cache_dir && cache_dir[0])
@@ -421,7 +413,7 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
     }
     if (x->scene.light.type == SL_LIGHT_POINT)
         return sl_cube_ensure(&x->cube, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map], now, needs,
-                              &(struct sl_cube_timing){c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
+                              &(struct sl_layer_timing){c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
                                                        res->passes.layers, c->threads}, &x->frame, d);
     /* layers every remaining reader reads per pixel (sl_plan_group_at_pixel)
      * are gathered per pixel once drawn, and drawn with the first cell that
@@ -430,14 +422,14 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
      * layers of one method, not of every method of the group. BGSM stays
      * dense: BGSM2 reads its ids, and BGSM2's readback is the peak anyway. */
     const unsigned gather = gath & ~SL_NEED(SL_LAYER_BGSM) & ~x->frame.have;
-    const struct sl_cube_timing t = {c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
+    const struct sl_layer_timing t = {c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
                                      res->passes.layers, c->threads};
     enum sl_err e = SL_OK;
     if (now & gather)
-        e = sl_run_render_layers(&x->spass, &x->mesh, &x->frame, gather & ~SL_NEED(SL_LAYER_BGSM2), gather,
-                                 &x->view, &t, d);
+        e = sl_frame_render_timed(&x->spass, &x->mesh, &x->frame, gather & ~SL_NEED(SL_LAYER_BGSM2), gather,
+                                  &x->view, &t, d);
     if (!e)
-        e = sl_run_render_layers(&x->spass, &x->mesh, &x->frame, now, gather, &x->view, &t, d);
+        e = sl_frame_render_timed(&x->spass, &x->mesh, &x->frame, now, gather, &x->view, &t, d);
     return e;
 }
 
@@ -468,13 +460,13 @@ static enum sl_err ensure_soft(struct run_ctx *x, const struct sl_config *c, con
     return SL_OK;
 }
 
-/* sl_run_make_looks for method m on fr, the view's frame or a label's own */
+/* sl_method_make_looks for method m on fr, the view's frame or a label's own */
 static enum sl_err make_looks(struct run_ctx *x, const struct sl_config *c, const struct sl_method *m,
                               unsigned needs, struct sl_light_frame *fr, unsigned shared, struct sl_diag *d)
 {
     /* a point light's methods read the cube's faces, which make none */
     return x->scene.light.type == SL_LIGHT_POINT ? SL_OK
-           : sl_run_make_looks(fr, fr == &x->frame, &x->view, m, needs, shared, c->threads, d);
+           : sl_method_make_looks(fr, fr == &x->frame, &x->view, m, needs, shared, c->threads, d);
 }
 
 /* contour_from nsm: the contours of the current view at the cell's map
@@ -493,7 +485,7 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
     if (!m)
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "contour_from nsm: no nsm method");
     struct sl_method_params p;
-    const int label = sl_run_contour_label(c);
+    const int label = sl_config_contour_label(c);
     enum sl_err e = SL_OK;
     if (label >= 0) {
         p = c->methods[label].params;
@@ -557,8 +549,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     unsigned mneeds = cm->method->needs(&cm->params);
     struct sl_light_frame *fr = &x->frame;   /* a label's own stabilised frame, if it asks (lightfit.h) */
     enum sl_err e = cm->frame_fit.fit == SL_FIT_TIGHT ? SL_OK
-                    : sl_run_alt_frame(&x->alt, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map],
-                                       &cm->frame_fit, mneeds, &fr, res->passes.layers, d);
+                    : sl_alt_frame(&x->alt, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map],
+                                   &cm->frame_fit, mneeds, &fr, res->passes.layers, d);
     if (e)
         return e;
     for (int l = 0; l < SL_LAYER_COUNT; l++)
@@ -607,7 +599,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             x->vd.has_detail = x->nvd.has_detail, x->vd.nframes = 0;   /* NSM's: the cell's frame */
             res->passes.contour_runs--;
             cost = x->nsm_cost;
-            e = sl_cube_mark(&x->cube, &x->vd, d);   /* a point light's faces (cube.h) */
+            e = sl_cube_mark(&x->cube, &x->vd, d);   /* a point light's faces (cuberun.h) */
         } else {
             x->vd.has_base = x->vd.nframes = 0;   /* nframes: the cell's frame unless the method says */
             x->vd.has_detail = 0;
@@ -620,8 +612,8 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     }
     if (e)
         return e;
-    sl_run_med_min_max(times, c->runs, cell->ms.method);
-    sl_cube_cell_costs(&x->cube, &cell->faces, &cell->ms_face_max);   /* a point light's (cube.h) */
+    sl_med_min_max(times, c->runs, cell->ms.method);
+    sl_cube_cell_costs(&x->cube, &cell->faces, &cell->ms_face_max);   /* a point light's (cuberun.h) */
     cell->cost.ms_method = cell->ms.method[SL_MED];
     int measured;   /* flicker against the path's previous frame, if any */
     if ((e = sl_temporal_cell(&x->temporal, k->map, k->method, x->vd.v, &measured, &cell->flicker,
@@ -642,7 +634,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
-        .ovw = x->ovw,   /* the sheet drawn into its slot, written off the cell's path */
+        .sheets = sl_sink_sheets(x->sink),   /* the sheet drawn into its slot, written off the cell's path */
         .regions = c->regions, .nregions = c->nregions, .overlay_contour = c->overlay_contour,
         .soft_truth = x->area ? x->soft_truth : NULL, .soft_se = x->area ? x->soft_se : NULL,
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
@@ -678,8 +670,8 @@ static enum sl_err resume_skips(const struct sl_config *c, const struct sl_run_o
     for (int idx = first; idx < last && !e; idx++) {
         struct sl_cell_key k;
         sl_plan_cell(c, idx, &k);
-        skip[idx] = (uint8_t)((sl_plan_stored(c, &k, st) && (!files || sl_out_kept_whole(c, &k, &own))) ||
-                              (also && sl_plan_stored(c, &k, also) && (!files || sl_out_kept_whole(c, &k, &gath))));
+        skip[idx] = (uint8_t)((sl_out_stored(c, &k, st) && (!files || sl_out_kept_whole(c, &k, &own))) ||
+                              (also && sl_out_stored(c, &k, also) && (!files || sl_out_kept_whole(c, &k, &gath))));
     }
     sl_out_kept_free(&own);
     sl_out_kept_free(&gath);
@@ -749,15 +741,19 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (first >= total || last > total || first >= last)
         return sl_fail(d, SL_E_USAGE, c->path, 0, "--cells", "cells %d:%d outside the sweep of %d cells",
                        first, last, total);
-    struct sl_out_dirs dirs;
-    memset(&dirs, 0, sizeof dirs);
-    char store_path[1100] = "", cache[1100] = "";
+    struct sl_cell_sink sink;
+    memset(&sink, 0, sizeof sink);
+    sink.config = c;
+    sink.write_files = o->write_files;
+    struct sl_out_dirs *const dirs = &sink.dirs;
+    char *const store_path = sink.store_path;
+    char cache[1100] = "";
     if (o->store)
-        snprintf(store_path, sizeof store_path, "%s", o->store);
+        snprintf(store_path, sizeof sink.store_path, "%s", o->store);
     else if (c->store[0])
-        snprintf(store_path, sizeof store_path, "%s/%s", root, c->store);   /* under --out (config.c) */
+        snprintf(store_path, sizeof sink.store_path, "%s/%s", root, c->store);   /* under --out (config.c) */
     else if (o->write_files)
-        snprintf(store_path, sizeof store_path, "%s/shadowlab.db", root);
+        snprintf(store_path, sizeof sink.store_path, "%s/shadowlab.db", root);
     if (o->cache_dir)
         snprintf(cache, sizeof cache, "%s", o->cache_dir);
     else if (o->write_files)
@@ -783,9 +779,9 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             if ((e = sl_mkdirs(dir, d)))
                 return e;
         }
-        if ((e = sl_out_stage_begin(c, root, &dirs, d)))
+        if ((e = sl_out_stage_begin(c, root, dirs, d)))
             return e;
-        snprintf(res->out_dir, sizeof res->out_dir, "%s", dirs.final);
+        snprintf(res->out_dir, sizeof res->out_dir, "%s", dirs->final);
     }
     if (cache[0] && sl_mkdirs(cache, NULL) != SL_OK)
         cache[0] = '\0';   /* no cache is only slower */
@@ -795,11 +791,11 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = x.nsm_map = x.nsm_label = -1;
     x.on_event = o->on_event;
     x.user = o->user;
-    struct sl_store *st = NULL, *also = NULL;
+    x.sink = &sink;
+    struct sl_store *also = NULL;
     uint8_t *skip = NULL, *warm = NULL, *off = NULL;
     struct sl_cell *wcell = NULL;   /* a warm-up cell's (warm_up_cells) */
-    int64_t run_id = 0;
-    if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_ovw_open(2, &x.ovw, d)))
+    if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_sink_open_overlays(&sink, d)))
         goto out;
     if ((e = sl_gl_open(&x.gl, &(struct sl_gl_desc){.backend = c->gl}, d)) || (e = sl_shadowmap_init(&x.spass, d)))
         goto out;
@@ -811,8 +807,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     res->prov.threads = c->threads;
     sl_provenance_fill(&res->prov);
     if (store_path[0]) {
-        if ((e = sl_store_open(store_path, &st, d)) ||
-            (e = sl_out_begin_run(st, c, &res->prov, &run_id, d)))
+        if ((e = sl_sink_open_store(&sink, &res->prov, d)))
             goto out;
         snprintf(res->store_path, sizeof res->store_path, "%s", store_path);
     }
@@ -834,7 +829,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         if (o->stored_in && o->stored_in[0] && (e = sl_store_open_existing(o->stored_in, &also, d)))
             goto out;
-        if ((e = resume_skips(c, o, &dirs, st, also, first, last, skip, d)))
+        if ((e = resume_skips(c, o, dirs, sink.st, also, first, last, skip, d)))
             goto out;
         sl_store_close(also);
         also = NULL;
@@ -885,8 +880,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;
-        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? dirs.overlays : NULL,
-                          o->write_files && c->exr ? dirs.exr : NULL, res, d)))
+        if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? dirs->overlays : NULL,
+                          o->write_files && c->exr ? dirs->exr : NULL, res, d)))
             break;
         if (cell->violations) {
             struct sl_run_event ev = {.kind = SL_EVENT_VIOLATIONS, .config = c, .cell = cell};
@@ -898,8 +893,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         }
         /* a stored cell is a whole one (--resume skips it): its sheet is on
          * disk before its row, or a kill between the two loses the sheet */
-        if (st && ((e = sl_ovw_wait(x.ovw, d)) ||
-                   (e = sl_out_store_cell(st, run_id, c, cell, store_path, o->write_files ? dirs.final : NULL, d))))
+        if ((e = sl_sink_put(&sink, cell, d)))
             break;
         res->ncells++;
         struct sl_run_event ev = {.kind = SL_EVENT_PROGRESS, .config = c, .cell = cell,
@@ -908,33 +902,13 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         emit(&x, &ev);
     }
     if (!e)   /* every sheet in the staging folder before it is renamed (a write error fails the run) */
-        e = sl_ovw_wait(x.ovw, d);
+        e = sl_sink_drain(&sink, d);
     res->ms_total = 1e3 * (sl_now() - t_start);
-    if (e || !o->write_files)
-        goto out;
-
-    if ((e = sl_out_stage_finish(c, res, &dirs, o->resume, d)))
-        goto out;
-    res->stored_total = -1;
-    if (st && c->tables)
-        e = sl_out_rebuild_from_store(st, c, res->ncells, dirs.final, &res->stored_total, d);
-    if (!e && c->tables)   /* a config naming paths: the temporal tables, plots, overlay sequences */
-        e = sl_motion_outputs(st, c, res, dirs.final, d);
-    if (!e && o->table_out && c->tables) {
-        e = sl_out_print_tables(o->table_out, c, res, d);
-        sl_out_write_costs_md(o->table_out, c, res);
-        sl_out_write_patterns_md(o->table_out, c, res);
-    }
+    if (!e)
+        e = sl_sink_finish(&sink, res, o->resume, o->table_out, d);
 out:
-    if (x.ovw) {
-        sl_ovw_wait(x.ovw, NULL);
-        sl_ovw_stats(x.ovw, &res->overlays_written, &res->ms_overlay_writer, &res->ms_overlay_writer_cpu);
-    }
-    sl_ovw_close(x.ovw);   /* no sheet is written into a folder being dropped */
-    if (e)
-        sl_out_stage_drop(&dirs);
     sl_store_close(also);
-    sl_store_close(st);
+    sl_sink_close(&sink, res, e != SL_OK);
     free(skip);
     free(warm);
     free(off);

@@ -13,7 +13,7 @@
 #include "contour.h"
 #include "image.h"
 #include "overlay.h"
-#include "ovwriter.h"
+#include "sheetsink.h"
 #include "softfig.h"
 #include "util.h"
 
@@ -71,30 +71,32 @@ static void sheet_frame(const struct sl_cell_inputs *in, const struct sl_cell *c
     }
 }
 
-/* Where a sheet is drawn: with the run's writer (in->ovw), one of its slots,
- * handed to its worker once drawn (ovwriter.h), so the cell pays for
+/* Where a sheet is drawn: with the run's sink (in->sheets), one of its slots,
+ * handed back once drawn (the overlay writer's worker: ovwriter.h), so the cell pays for
  * drawing, not for composing and compressing the PNG; without one, the
  * cell's own scratch (rgb, and err: w * h), written here. */
-static enum sl_err sheet_buffers(const struct sl_cell_inputs *in, uint8_t *err, struct sl_ovw_slot **slot,
-                                 uint8_t **rgb_out, uint8_t **keep_out, struct sl_diag *d)
+static enum sl_err sheet_buffers(const struct sl_cell_inputs *in, uint8_t *err, void **slot, uint8_t **rgb_out,
+                                 uint8_t **keep_out, struct sl_diag *d)
 {
     *slot = NULL;
     *rgb_out = in->rgb;
     *keep_out = err;
-    if (!in->ovw)
+    if (!in->sheets)
         return SL_OK;
-    enum sl_err e = sl_ovw_acquire(in->ovw, in->view->w, in->view->h, slot, d);
+    unsigned char *rgb, *keep;
+    enum sl_err e = in->sheets->acquire(in->sheets->ctx, in->view->w, in->view->h, slot, &rgb, &keep, d);
     if (!e) {
-        *rgb_out = (*slot)->rgb;
-        *keep_out = (*slot)->keep;
+        *rgb_out = rgb;
+        *keep_out = keep;
     }
     return e;
 }
 
-static enum sl_err sheet_write(const struct sl_cell_inputs *in, struct sl_ovw_slot *slot,
-                               const struct sl_image_sheet *sh, struct sl_diag *d)
+static enum sl_err sheet_write(const struct sl_cell_inputs *in, void *slot, const struct sl_image_sheet *sh,
+                               struct sl_diag *d)
 {
-    return slot ? sl_ovw_submit(in->ovw, slot, in->overlay_path, sh, d) : sl_image_write_sheet(in->overlay_path, sh, d);
+    return slot ? in->sheets->submit(in->sheets->ctx, slot, in->overlay_path, sh, d)
+                : sl_image_write_sheet(in->overlay_path, sh, d);
 }
 
 /* A hard-light cell's overlay sheet: the frame at 1:1 (cropped to the scene
@@ -106,7 +108,7 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
 {
     const struct sl_view *v = in->view;
     int W = v->w, H = v->h, th = in->overlay_contour;
-    struct sl_ovw_slot *slot;
+    void *slot;
     uint8_t *rgb, *err;
     enum sl_err e = sheet_buffers(in, scratch, &slot, &rgb, &err, d);
     if (e)
@@ -138,7 +140,7 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
     int n = wrong || count[SL_OV_UNCERTAIN] ? sl_overlay_insets(W, H, err, s, 3, box, inbox) : 0;
     if (n < 0) {
         if (slot)
-            sl_ovw_release(in->ovw, slot);
+            in->sheets->release(in->sheets->ctx, slot);
         return sl_fail(d, SL_E_NOMEM, in->overlay_path, 0, NULL, "inset search");
     }
     if (wrong > 0 && count[SL_OV_UNCERTAIN] > 0)
@@ -252,7 +254,7 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
     if (!in->overlay_path)
         return SL_OK;
     t0 = sl_now();
-    struct sl_ovw_slot *slot;
+    void *slot;
     uint8_t *rgb, *unused;
     enum sl_err e = sheet_buffers(in, in->state, &slot, &rgb, &unused, d);
     if (e)

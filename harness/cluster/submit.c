@@ -169,7 +169,7 @@ static enum sl_err shards_merge(const char *const *shards, int n, const char *ou
             for (int i = 0; !e && i < r->total; i++) {
                 struct sl_cell_key k;
                 sl_plan_cell(&r->config, i, &k);
-                if (!sl_plan_stored(&r->config, &k, st))
+                if (!sl_out_stored(&r->config, &k, st))
                     r->missing[r->nmissing++] = i;
             }
         }
@@ -629,7 +629,7 @@ static enum sl_err files_lost(struct sl_store *st, const struct sl_config *c, co
     for (int i = 0; !e && i < total; i++) {
         struct sl_cell_key k;
         sl_plan_cell(c, i, &k);
-        int64_t id = sl_plan_stored_id(c, &k, st);
+        int64_t id = sl_out_stored_id(c, &k, st);
         if (id && !sl_out_kept_whole(c, &k, &kept))
             (*ids)[(*n)++] = id;
     }

@@ -18,7 +18,13 @@
 #ifndef SL_OUTPUTS_H
 #define SL_OUTPUTS_H
 #include <stdio.h>
-#include "run.h"
+#include "cellcols.h"
+#include "config.h"
+#include "plan.h"
+#include "provenance.h"
+#include "runresult.h"
+#include "store.h"
+#include "table.h"
 
 /* The overlay's file name inside the run's overlays/ folder, and the EXR
  * file's inside exr/. */
@@ -90,6 +96,12 @@ enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct 
  * order; *cells malloc'ed (free it), *n their number. */
 enum sl_err sl_out_stored_cells(struct sl_store *st, const struct sl_config *c, struct sl_cell_record **cells,
                                 int *n, struct sl_diag *d);
+
+/* 1 when the store holds the cell of key k for this config (a resumed run
+ * skips it). */
+int     sl_out_stored(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st);
+/* Its row's id in the store, 0 when not stored. */
+int64_t sl_out_stored_id(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st);
 
 /* The files a stored cell's key names in a results folder: its overlay
  * (overlays/NAME.png, when the config asks for overlays) and its EXR file

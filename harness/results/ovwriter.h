@@ -30,6 +30,7 @@
 #ifndef SL_OVWRITER_H
 #define SL_OVWRITER_H
 #include "image.h"
+#include "sheetsink.h"
 #include "sl_error.h"
 
 #define SL_OVW_MAX_DEPTH 4
@@ -72,5 +73,9 @@ void sl_ovw_stats(const struct sl_ovw *w, int *written, double *ms, double *ms_c
 
 /* Wait, stop the worker, free everything. NULL-safe. */
 void sl_ovw_close(struct sl_ovw *w);
+
+/* The writer as the sink scoring hands its sheets to (sheetsink.h):
+ * acquire, submit and release of this writer. */
+struct sl_sheet_sink sl_ovw_sink(struct sl_ovw *w);
 
 #endif

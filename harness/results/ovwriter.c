@@ -257,3 +257,32 @@ void sl_ovw_close(struct sl_ovw *w)
     pthread_mutex_destroy(&w->mu);
     free(w);
 }
+
+static enum sl_err sink_acquire(void *ctx, int width, int height, void **slot, unsigned char **rgb,
+                                unsigned char **keep, struct sl_diag *d)
+{
+    struct sl_ovw_slot *s;
+    enum sl_err e = sl_ovw_acquire(ctx, width, height, &s, d);
+    *slot = e ? NULL : s;
+    if (!e) {
+        *rgb = s->rgb;
+        *keep = s->keep;
+    }
+    return e;
+}
+
+static enum sl_err sink_submit(void *ctx, void *slot, const char *path, const struct sl_image_sheet *s,
+                               struct sl_diag *d)
+{
+    return sl_ovw_submit(ctx, slot, path, s, d);
+}
+
+static void sink_release(void *ctx, void *slot)
+{
+    sl_ovw_release(ctx, slot);
+}
+
+struct sl_sheet_sink sl_ovw_sink(struct sl_ovw *w)
+{
+    return (struct sl_sheet_sink){.ctx = w, .acquire = sink_acquire, .submit = sink_submit, .release = sink_release};
+}

@@ -17,7 +17,7 @@
 #ifndef SL_MOTION_RUN_H
 #define SL_MOTION_RUN_H
 #include "config.h"
-#include "run.h"
+#include "runresult.h"
 #include "store.h"
 
 /* 1 when any scene entry of the config names a path. */

@@ -7,6 +7,7 @@
  */
 #include "plan.h"
 #include <string.h>
+#include "method.h"
 
 static int popcount(unsigned m)
 {
@@ -71,18 +72,6 @@ int sl_plan_index(const struct sl_config *c, const struct sl_cell_key *k)
     int nm = popcount(cs->map_mask), nl = popcount(cs->method_mask);
     return base + ((k->viewport * cs->nviewpoints + k->vp) * nm + below(cs->map_mask, k->map)) * nl +
            below(cs->method_mask, k->method);
-}
-
-int64_t sl_plan_stored_id(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
-{
-    const struct sl_config_scene *cs = &c->scenes[k->scene];
-    return sl_store_cell_id(st, c->hash, cs->name, cs->viewpoints[k->vp], c->viewport_w[k->viewport],
-                            c->viewport_h[k->viewport], c->maps[k->map], c->methods[k->method].label);
-}
-
-int sl_plan_stored(const struct sl_config *c, const struct sl_cell_key *k, struct sl_store *st)
-{
-    return sl_plan_stored_id(c, k, st) != 0;
 }
 
 /* The layers wanted by the selected cells of the (view, map) group that
