@@ -567,6 +567,8 @@ static void meshio_bad_files_fail_and_leave_mesh(void **st)
          "corrupt PLY header: the header has no end_header line"},
         {"tests/bad/models/fuzz_loop_plyy.ply", NULL, "corrupt PLY header: a NUL byte in the header (at byte 197)"},
         {"tests/bad/models/fuzz_crash_skin.gltf", NULL, "skin 0 (line 28) has no inverseBindMatrices"},
+        /* a second format line naming no format, no end_header token */
+        {"tests/bad/models/fuzz_crash_format2.ply", NULL, "corrupt PLY header: format '' is none of ascii"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         struct sl_mesh m = {0};

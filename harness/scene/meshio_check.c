@@ -127,14 +127,18 @@ static int ply_header(FILE *f, struct ply_head *h)
                 for (int k = 0; k < el->nprops && el->row >= 0; k++)
                     el->row = el->props[k].list ? -1 : el->row + el->props[k].size;
             }
+            if (h->fmt == PLY_UNKNOWN) {
+                snprintf(h->why, sizeof h->why, "no format line before end_header");
+                return -1;
+            }
             h->data = ftell(f);
-            return h->fmt != PLY_UNKNOWN && h->data > 0;
+            return h->data > 0;
         }
         if (opaque)
             continue;
         if (!strncmp(line, "format ", 7)) {
             if (sscanf(line + 7, "%63s", a) != 1)
-                return 0;
+                a[0] = '\0';   /* refused below, as no format */
             h->fmt = !strcmp(a, "ascii") ? PLY_ASCII : !strcmp(a, "binary_little_endian") ? PLY_LE
                      : !strcmp(a, "binary_big_endian") ? PLY_BE : PLY_UNKNOWN;
             if (h->fmt == PLY_UNKNOWN) {
