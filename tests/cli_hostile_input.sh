@@ -152,6 +152,22 @@ else
   fail=$((fail + 1))
 fi
 
+# ---- aliases: refused at the first one, never expanded (a 7 MB baseline of
+# '- *c' lines, each a copy of one anchored cell, took 22 s and 3.2 GB before)
+n=$(grep -n '^cells:' tests/baselines/ci.yaml | cut -d: -f1)
+m=$(awk -v n="$n" 'NR > n + 1 && /^  - cell:/ { print NR; exit }' tests/baselines/ci.yaml)
+{ sed -n "1,${n}p" tests/baselines/ci.yaml; echo '  - &c'
+  sed -n "$((n + 1)),$((m - 1))p" tests/baselines/ci.yaml | sed '1s/^  - /    /'
+  yes '  - *c' | head -n 1000000; } >"$tmp/laughs.yaml"
+case_ "baseline of 1,000,000 aliases of one cell" \
+  "$tmp/laughs\.yaml:$((m + 1)): 'cells\[1\]': an alias \(\*c\): YAML anchors and aliases are not read" -- \
+  "$bin" check "$tmp/empty.db" --baseline "$tmp/laughs.yaml"
+{ echo "$cfg_head"; echo 'viewports: &v [{name: a}]'; echo 'contours: *v'; } >"$tmp/alias_cfg.yaml"
+case_ "config with an alias" "$tmp/alias_cfg\.yaml:5: 'contours': an alias \(\*v\)" -- \
+  "$bin" validate "$tmp/alias_cfg.yaml"
+{ echo 'light: &l {type: directional, direction: [0, -1, 0]}'; echo 'meshes: [*l]'; } >"$tmp/alias_scene.yaml"
+case_ "scene with an alias" "$tmp/alias_scene\.yaml:2: 'meshes\[0\]': an alias \(\*l\)" -- \
+  "$bin" validate "$tmp/alias_scene.yaml"
 
 # ---- geometry overflow: blamed on the entry that caused it, not on the
 # ground triangle that float precision collapsed

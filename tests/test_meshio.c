@@ -554,6 +554,21 @@ static void meshio_bad_files_fail_and_leave_mesh(void **st)
          * child's crash path tested) */
         {"tests/bad/models/fuzz_crash_format.ply", NULL,
          "corrupt PLY header: format 'binary_littla_endian' is none of ascii"},
+        /* found by the in-process mesh entries (issue 34), each refused by
+         * a byte check of its class before assimp reads it: a binary PLY
+         * header with a property before any element (assimp read past the
+         * end), an ASCII one whose end_header is not a token and one whose
+         * magic is "plyy" with no end_header (assimp looped, 25 s and
+         * more), a glTF skin without inverseBindMatrices (assimp read
+         * through a NULL pointer) */
+        {"tests/bad/models/fuzz_crash_noelem.ply", NULL,
+         "corrupt PLY header: line 3: a property before any element"},
+        {"tests/bad/models/fuzz_loop_end_header.ply", NULL,
+         "corrupt PLY header: the header has no end_header line"},
+        {"tests/bad/models/fuzz_loop_plyy.ply", NULL, "corrupt PLY header: a NUL byte in the header (at byte 197)"},
+        {"tests/bad/models/fuzz_crash_skin.gltf", NULL, "skin 0 (line 28) has no inverseBindMatrices"},
+        /* a second format line naming no format, no end_header token */
+        {"tests/bad/models/fuzz_crash_format2.ply", NULL, "corrupt PLY header: format '' is none of ascii"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         struct sl_mesh m = {0};

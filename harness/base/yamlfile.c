@@ -28,6 +28,8 @@ struct sl_yaml_pos {
     char err[128];
     int int_line;         /* first integer key whose text is not a whole number: line, path, text */
     char int_path[128], int_text[32];
+    int alias_line;       /* first alias (*name): line, path, anchor name; see pos_build */
+    char alias_path[128], alias_name[32];
     int *slot;            /* hash of path -> entry index + 1 (0: empty), nslot a power of two */
     size_t nslot;
 };
@@ -146,6 +148,17 @@ static void pos_build(const unsigned char *text, size_t len, const cyaml_schema_
             ix->root_type = t;
         }
         int start = t == YAML_MAPPING_START_EVENT || t == YAML_SEQUENCE_START_EVENT;
+        if (t == YAML_ALIAS_EVENT && !ix->alias_line) {
+            /* refused by the loader: name the key it stands for */
+            ix->alias_line = line;
+            snprintf(ix->alias_name, sizeof ix->alias_name, "%s", (const char *)ev.data.alias.anchor);
+            if (depth >= 0 && !over && st[depth].is_map)
+                snprintf(ix->alias_path, sizeof ix->alias_path, "%s%s%s", st[depth].path,
+                         st[depth].path[0] && !st[depth].want_key ? "." : "",
+                         st[depth].want_key ? "" : st[depth].key);
+            else if (depth >= 0 && !over)
+                snprintf(ix->alias_path, sizeof ix->alias_path, "%s[%d]", st[depth].path, st[depth].index);
+        }
         if (over) {   /* inside levels the stack does not keep */
             over += start;
             over -= t == YAML_MAPPING_END_EVENT || t == YAML_SEQUENCE_END_EVENT;
@@ -347,7 +360,7 @@ static const cyaml_config_t *cy_config(struct cy_log *lg)
     c.log_ctx = lg;
     c.mem_fn = cyaml_mem;
     c.log_level = CYAML_LOG_ERROR;
-    c.flags = CYAML_CFG_DEFAULT;
+    c.flags = CYAML_CFG_NO_ALIAS;   /* refused before, by pos_build; never expanded */
     return &c;
 }
 
@@ -512,6 +525,19 @@ enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *sc
     ix->max = (int)(max_bytes / 64 > 65536 ? (max_bytes / 64 < (1u << 22) ? max_bytes / 64 : (1u << 22)) : 65536);
     pos_build(text, len, schema, ix);
     pos_hash(ix);
+    if (ix->alias_line) {
+        /* libcyaml would expand each alias into a copy of its anchor's
+         * node: a 7 MB baseline of '- *c' lines took 3.2 GB and 22 s, and
+         * the amplification has no bound. No file of shadowlab needs one. */
+        free(text);
+        enum sl_err e = sl_fail(d, kind, path, ix->alias_line, ix->alias_path[0] ? ix->alias_path : NULL,
+                                "an alias (*%s): YAML anchors and aliases are not read, write the value "
+                                "out (an alias can expand a small file into gigabytes)", ix->alias_name);
+        free(ix->e);
+        free(ix->slot);
+        free(ix);
+        return e;
+    }
     cyaml_err_t ce = cyaml_load_data(text, len, cfg, schema, (cyaml_data_t **)out, NULL);
     free(text);
     if (ce == CYAML_OK && *out && ix->int_line) {

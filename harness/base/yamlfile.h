@@ -21,7 +21,9 @@ struct sl_yaml_pos;
  * max_bytes (refused before it is read, so a huge file costs nothing), for
  * nesting past SL_YAML_MAX_DEPTH and for a value that is not a whole
  * number where the schema wants an integer ("7.9", "1e3": libcyaml alone
- * would read 7 and 1). Only a regular file is opened (sl_open_regular). On
+ * would read 7 and 1), and for an alias (*name: refused at its line, never
+ * expanded, since each alias copies its anchor's node and a few bytes can
+ * stand for gigabytes). Only a regular file is opened (sl_open_regular). On
  * success *pos is the position index (free both with sl_yaml_free). */
 enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, void **out,
                          struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind, struct sl_diag *d);

@@ -448,6 +448,8 @@ static enum sl_err dropped_faces(const struct aiScene *sc, const char *path, str
 
 static enum sl_err load_assimp(struct sl_mesh *m, const char *path, const float xform[16],
                                struct sl_mesh_load_stats *st, struct sl_diag *d);
+static enum sl_err read_scene(struct sl_mesh *m, const char *path, const void *data, size_t size,
+                              const float xform[16], struct sl_mesh_load_stats *st, struct sl_diag *d);
 
 /* In the reader's process: assimp reads the file, its result is checked and
  * welded into m. sl_mesh_load_file runs this in a child (meshio_child.c);
@@ -486,6 +488,14 @@ static enum sl_err load_assimp(struct sl_mesh *m, const char *path, const float 
         return sl_fail(d, SL_E_SCENE, path, 0, NULL, "cannot read: %s", strerror(rerr));
     if (got == 0)
         return sl_fail(d, SL_E_SCENE, path, 0, NULL, "no triangles (empty file)");
+    return read_scene(m, path, NULL, 0, xform, st, d);
+}
+
+/* The file at path (data NULL), or size bytes at data named path (its
+ * extension is assimp's format hint): checked, read, checked, welded. */
+static enum sl_err read_scene(struct sl_mesh *m, const char *path, const void *data, size_t size,
+                              const float xform[16], struct sl_mesh_load_stats *st, struct sl_diag *d)
+{
 
     /*
      * The file is read without post-processing first and checked (pointers,
@@ -509,10 +519,12 @@ static enum sl_err load_assimp(struct sl_mesh *m, const char *path, const float 
      * transforms ourselves, in double, composed with xform), and anything
      * that generates normals or tangents (the scene computes face normals).
      */
-    enum sl_err e = sl_mesh_precheck(path, d);
+    enum sl_err e = data ? sl_mesh_precheck_mem(data, size, path, d) : sl_mesh_precheck(path, d);
     if (e)
         return e;
-    const struct aiScene *sc = aiImportFile(path, 0);
+    const char *dot = strrchr(path, '.');
+    const struct aiScene *sc = data ? aiImportFileFromMemory(data, (unsigned)size, 0, dot ? dot + 1 : "")
+                                    : aiImportFile(path, 0);
     if (g_ai_dropped) {
         e = dropped_faces(sc, path, d);
         if (sc)
@@ -607,4 +619,29 @@ enum sl_err sl_mesh_load_file_here(struct sl_mesh *m, const char *path, const fl
                                    struct sl_mesh_load_stats *st, struct sl_diag *d)
 {
     return load_file(m, path, xform, st, 0, d);
+}
+
+enum sl_err sl_mesh_load_mem_here(struct sl_mesh *m, const void *data, size_t size, const char *name,
+                                  const float xform[16], struct sl_mesh_load_stats *st, struct sl_diag *d)
+{
+    if (!m || !name || (!data && size))
+        return sl_fail(d, SL_E_INTERNAL, name, 0, NULL, "sl_mesh_load_mem_here: NULL argument");
+    if (!size || size > 0xffffffffu)
+        return sl_fail(d, SL_E_SCENE, name, 0, NULL, size ? "file of %zu bytes" : "no triangles (empty file)",
+                       size);
+    g_ai_error[0] = '\0';
+    g_ai_dropped = 0;
+    struct aiLogStream ls = {.callback = ai_log, .user = NULL};
+    aiAttachLogStream(&ls);
+    struct sl_mesh got = {0};
+    struct sl_mesh_load_stats s;
+    memset(&s, 0, sizeof s);
+    enum sl_err e = read_scene(&got, name, data, size, xform, &s, d);
+    aiDetachAllLogStreams();
+    if (!e && !mesh_append(m, &got))
+        e = sl_fail(d, SL_E_NOMEM, name, 0, NULL, "out of memory appending %u triangles", got.nt);
+    if (!e && st)
+        *st = s;
+    sl_mesh_free(&got);
+    return e;
 }

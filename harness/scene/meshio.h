@@ -17,6 +17,7 @@
  */
 #ifndef SL_MESHIO_H
 #define SL_MESHIO_H
+#include <stddef.h>
 #include <stdint.h>
 #include "scene.h"
 #include "sl_error.h"
@@ -38,6 +39,12 @@ enum sl_err sl_mesh_load_file(struct sl_mesh *m, const char *path, const float x
  * for files a user gives. */
 enum sl_err sl_mesh_load_file_here(struct sl_mesh *m, const char *path, const float xform[16],
                                    struct sl_mesh_load_stats *st, struct sl_diag *d);
+/* The same, in this process, on size bytes at data: `name` stands for the
+ * file in messages and gives assimp its format hint (its extension). For
+ * the fuzz entries (no temporary file per input). */
+enum sl_err sl_mesh_load_mem_here(struct sl_mesh *m, const void *data, size_t size, const char *name,
+                                  const float xform[16], struct sl_mesh_load_stats *st,
+                                  struct sl_diag *d);
 
 /* Weld vertices of m with bit-identical positions (all of m, in place) and
  * drop triangles that become degenerate (two equal indices) or have zero

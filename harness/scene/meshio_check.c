@@ -83,14 +83,20 @@ static int ply_type(const char *t, int *size, int *sgn, int *flt)
 }
 
 /* 1: header read whole and understood; 0: leave the file to assimp; -1: a
- * header no PLY reader can take (h->why), refused here: assimp's PLY reader
- * crashes on some (an unknown format word, NUL bytes in the header). */
+ * header no PLY reader can take (h->why), refused here. assimp's PLY reader
+ * crashes or reads past the end on such headers (an unknown format word,
+ * NUL bytes, no end_header, a property before any element, a property type
+ * it skips: its binary rows then have another size than the file's), so
+ * these are refused whether or not the rest is understood: the header is
+ * scanned to its end_header in any case. Limits of ours (elements,
+ * properties, a line of 1 KiB) only stop the understanding (0). */
 static int ply_header(FILE *f, struct ply_head *h)
 {
     char line[1024];
     memset(h, 0, sizeof *h);
     struct ply_elem *cur = NULL;
     long at = ftell(f);
+    int lineno = 0, opaque = 0, cont = 0;   /* cont: this piece continues a long line */
     while (fgets(line, sizeof line, f)) {
         size_t len = strlen(line);
         long next = ftell(f);
@@ -99,15 +105,40 @@ static int ply_header(FILE *f, struct ply_head *h)
             return -1;
         }
         at = next;
-        if (!len || line[len - 1] != '\n') {
-            if (feof(f))
-                snprintf(h->why, sizeof h->why, "the header has no end_header line");
-            return feof(f) ? -1 : 0;   /* no end_header, or a header line of 1 KiB */
-        }
+        int piece = cont;
+        lineno += !cont;
+        cont = !len || line[len - 1] != '\n';
+        if (cont && feof(f))
+            break;   /* the last line, without end_header */
+        if (piece)
+            continue;
+        if (cont)
+            opaque = 1;   /* a header line of 1 KiB: not ours to judge */
         char a[64], b[64], c[64], e[64];
+        /* a token, as assimp reads it: "end_header\x0e..." is not one, and
+         * assimp's ASCII reader then takes the body for header lines
+         * (25 s and more on a 2 KiB file) */
+        if (!strncmp(line, "end_header", 10) && strchr(" \t\r\n", line[10])) {
+            if (opaque)
+                return 0;
+            for (int i = 0; i < h->nelems; i++) {
+                struct ply_elem *el = &h->el[i];
+                el->row = 0;
+                for (int k = 0; k < el->nprops && el->row >= 0; k++)
+                    el->row = el->props[k].list ? -1 : el->row + el->props[k].size;
+            }
+            if (h->fmt == PLY_UNKNOWN) {
+                snprintf(h->why, sizeof h->why, "no format line before end_header");
+                return -1;
+            }
+            h->data = ftell(f);
+            return h->data > 0;
+        }
+        if (opaque)
+            continue;
         if (!strncmp(line, "format ", 7)) {
             if (sscanf(line + 7, "%63s", a) != 1)
-                return 0;
+                a[0] = '\0';   /* refused below, as no format */
             h->fmt = !strcmp(a, "ascii") ? PLY_ASCII : !strcmp(a, "binary_little_endian") ? PLY_LE
                      : !strcmp(a, "binary_big_endian") ? PLY_BE : PLY_UNKNOWN;
             if (h->fmt == PLY_UNKNOWN) {
@@ -117,41 +148,55 @@ static int ply_header(FILE *f, struct ply_head *h)
             }
         } else if (!strncmp(line, "element ", 8)) {
             unsigned long long n;
-            if (h->nelems >= PLY_MAX_ELEMS || sscanf(line + 8, "%63s %llu", a, &n) != 2)
-                return 0;
+            if (sscanf(line + 8, "%63s %llu", a, &n) != 2) {
+                snprintf(h->why, sizeof h->why, "line %d: an element without a name and a count", lineno);
+                return -1;
+            }
+            if (h->nelems >= PLY_MAX_ELEMS) {
+                opaque = 1;
+                continue;
+            }
             cur = &h->el[h->nelems++];
             snprintf(cur->name, sizeof cur->name, "%s", a);
             cur->n = n;
             if (!strcmp(a, "vertex"))
                 h->nvert = n;
         } else if (!strncmp(line, "property ", 9)) {
-            if (!cur || cur->nprops >= PLY_MAX_PROPS)
-                return 0;
+            if (!cur) {
+                snprintf(h->why, sizeof h->why, "line %d: a property before any element", lineno);
+                return -1;
+            }
+            if (cur->nprops >= PLY_MAX_PROPS) {
+                opaque = 1;
+                continue;
+            }
             struct ply_prop *p = &cur->props[cur->nprops++];
-            int s, g, fl;
+            int s = 0, g, fl;
+            const char *bad = NULL;
             if (sscanf(line + 9, "list %63s %63s %63s", a, b, c) == 3) {
-                if (!ply_type(a, &p->count_size, &g, &fl) || fl || !ply_type(b, &p->size, &p->is_signed,
-                                                                          &p->is_float))
-                    return 0;
+                if (!ply_type(a, &p->count_size, &g, &fl) || fl)
+                    bad = a;
+                else if (!ply_type(b, &p->size, &p->is_signed, &p->is_float))
+                    bad = b;
                 p->list = 1;
                 p->is_index = !strcmp(cur->name, "face") &&
                               (!strcmp(c, "vertex_indices") || !strcmp(c, "vertex_index"));
-            } else if (sscanf(line + 9, "%63s %63s", a, e) == 2 && ply_type(a, &s, &g, &fl)) {
+            } else if (sscanf(line + 9, "%63s %63s", a, e) == 2 && strcmp(a, "list")) {
+                if (!ply_type(a, &s, &g, &fl))
+                    bad = a;
                 p->size = s;
-            } else
-                return 0;
-        } else if (!strncmp(line, "end_header", 10)) {
-            for (int i = 0; i < h->nelems; i++) {
-                struct ply_elem *el = &h->el[i];
-                el->row = 0;
-                for (int k = 0; k < el->nprops && el->row >= 0; k++)
-                    el->row = el->props[k].list ? -1 : el->row + el->props[k].size;
+            } else {
+                snprintf(h->why, sizeof h->why, "line %d: a property without a type and a name", lineno);
+                return -1;
             }
-            h->data = ftell(f);
-            return h->fmt != PLY_UNKNOWN && h->data > 0;
+            if (bad) {
+                snprintf(h->why, sizeof h->why, "line %d: property type '%.40s' is not a PLY type%s", lineno,
+                         bad, p->list && bad == a ? " for a list's count" : "");
+                return -1;
+            }
         }
     }
-    if (feof(f)) {
+    if (feof(f) || cont) {
         snprintf(h->why, sizeof h->why, "the header has no end_header line");
         return -1;
     }
@@ -250,15 +295,16 @@ static enum sl_err ply_binary_check(FILE *f, const struct ply_head *h, unsigned 
     return SL_OK;
 }
 
-static enum sl_err ply_check(FILE *f, const char *path, struct sl_diag *d)
+static enum sl_err ply_check(FILE *f, unsigned long long size, const char *path, struct sl_diag *d)
 {
     struct ply_head *h = malloc(sizeof *h);
     if (!h)
         return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "PLY header");
     enum sl_err e = SL_OK;
-    struct stat sb;
     char magic[5] = "";
-    int is_ply = fread(magic, 1, 4, f) == 4 && (!memcmp(magic, "ply\n", 4) || !memcmp(magic, "ply\r", 4));
+    /* assimp's PLY reader takes a .ply file whose first line starts with
+     * 'ply' in any case ("plyy" too): all of those are checked */
+    int is_ply = fread(magic, 1, 3, f) == 3 && !strncasecmp(magic, "ply", 3);
     rewind(f);
     int got = ply_header(f, h);
     if (got < 0 && !is_ply)
@@ -268,8 +314,8 @@ static enum sl_err ply_check(FILE *f, const char *path, struct sl_diag *d)
     else if (got) {
         if (h->fmt == PLY_ASCII)
             e = ply_ascii_check(f, h, path, d);
-        else if (fstat(fileno(f), &sb) == 0 && (unsigned long long)sb.st_size >= (unsigned long long)h->data)
-            e = ply_binary_check(f, h, (unsigned long long)sb.st_size, path, d);
+        else if (size >= (unsigned long long)h->data)
+            e = ply_binary_check(f, h, size, path, d);
     }
     free(h);
     return e;
@@ -343,18 +389,118 @@ static enum sl_err obj_check(FILE *f, const char *path, struct sl_diag *d)
     return SL_OK;
 }
 
+/* ----------------------------------------------------------------- glTF */
+
+/*
+ * assimp 5.2's glTF 2 reader dereferences a skin's inverseBindMatrices
+ * without looking (a NULL read: the reader crashes) when a skinned node's
+ * skin has none, which glTF 2.0 allows (identity matrices). We read no
+ * skin, but assimp cannot be told to skip them, so such a file is refused
+ * naming the skin. The JSON is only scanned (strings, nesting, the keys of
+ * each top-level "skins" entry); a text this scan does not follow (nested
+ * past its stack, or cut) passes to assimp unchanged.
+ */
+#define GLTF_MAX_DEPTH 64
+
+static enum sl_err gltf_check(FILE *f, const char *path, struct sl_diag *d)
+{
+    char key[32] = "";           /* the last key read, truncated */
+    int depth = 0, line = 1, in_skins = 0, skin = -1, has_ibm = 0, skin_line = 0;
+    unsigned char is_obj[GLTF_MAX_DEPTH + 1], want_key[GLTF_MAX_DEPTH + 1];
+    int c;
+    while ((c = getc(f)) != EOF) {
+        if (c == '\n')
+            line++;
+        else if (c == '"') {
+            size_t n = 0;
+            int esc = 0;
+            char buf[32];
+            while ((c = getc(f)) != EOF && (esc || c != '"')) {
+                esc = !esc && c == '\\';
+                if (c == '\n')
+                    line++;
+                if (n + 1 < sizeof buf)
+                    buf[n++] = (char)c;
+            }
+            if (c == EOF)
+                return SL_OK;
+            buf[n] = '\0';
+            if (depth && is_obj[depth] && want_key[depth]) {
+                snprintf(key, sizeof key, "%s", buf);
+                want_key[depth] = 0;
+                if (depth == 3 && in_skins && !strcmp(buf, "inverseBindMatrices"))
+                    has_ibm = 1;
+            }
+        } else if (c == '{' || c == '[') {
+            if (depth == GLTF_MAX_DEPTH)
+                return SL_OK;
+            depth++;
+            is_obj[depth] = c == '{';
+            want_key[depth] = c == '{';
+            if (depth == 2 && c == '[' && !strcmp(key, "skins"))
+                in_skins = 1;
+            if (depth == 3 && in_skins && c == '{') {
+                skin++;
+                has_ibm = 0;
+                skin_line = line;
+            }
+        } else if (c == '}' || c == ']') {
+            if (depth == 3 && in_skins && c == '}' && !has_ibm)
+                return sl_fail(d, SL_E_SCENE, path, skin_line, NULL, "skin %d (line %d) has no "
+                               "inverseBindMatrices: assimp's glTF reader crashes on such a skin (add "
+                               "the matrices, or remove the skin: shadowlab does not read skins)",
+                               skin, skin_line);
+            if (depth == 2)
+                in_skins = 0;
+            if (depth)
+                depth--;
+        } else if (c == ',' && depth && is_obj[depth]) {
+            want_key[depth] = 1;
+        }
+    }
+    return SL_OK;
+}
+
+/* 'p' (PLY), 'o' (OBJ), 'g' (glTF JSON) or 0 (not checked), by the name's
+ * extension */
+static int check_kind(const char *name)
+{
+    const char *dot = strrchr(name, '.');
+    return !dot ? 0 : !strcasecmp(dot, ".ply") ? 'p' : !strcasecmp(dot, ".obj") ? 'o'
+                    : !strcasecmp(dot, ".gltf") ? 'g' : 0;
+}
+
+static enum sl_err check_stream(FILE *f, int kind, unsigned long long size, const char *name,
+                                struct sl_diag *d)
+{
+    return kind == 'p' ? ply_check(f, size, name, d) : kind == 'o' ? obj_check(f, name, d)
+                                                                   : gltf_check(f, name, d);
+}
+
 enum sl_err sl_mesh_precheck(const char *path, struct sl_diag *d)
 {
-    const char *dot = strrchr(path, '.');
-    if (!dot)
-        return SL_OK;
-    int ply = !strcasecmp(dot, ".ply"), obj = !strcasecmp(dot, ".obj");
-    if (!ply && !obj)
+    int kind = check_kind(path);
+    if (!kind)
         return SL_OK;
     FILE *f = fopen(path, "rb");
     if (!f)
         return SL_OK;   /* the reader reports it */
-    enum sl_err e = ply ? ply_check(f, path, d) : obj_check(f, path, d);
+    struct stat sb;
+    enum sl_err e = fstat(fileno(f), &sb) == 0 ? check_stream(f, kind, (unsigned long long)sb.st_size, path, d)
+                                               : SL_OK;
+    fclose(f);
+    return e;
+}
+
+enum sl_err sl_mesh_precheck_mem(const void *data, size_t size, const char *name, struct sl_diag *d)
+{
+    int kind = check_kind(name);
+    if (!kind || !size)
+        return SL_OK;
+    FILE *f = fmemopen((void *)data, size, "rb");
+    if (!f)
+        return SL_OK;
+    enum sl_err e = check_stream(f, kind, size, name, d);
     fclose(f);
     return e;
 }
