@@ -33,8 +33,8 @@ wait "$pid" 2>/dev/null
 stored=$(cells "$tmp/a/shadowlab.db")
 echo "killed after $stored of 36 cells"
 [ -e "$tmp/a/sweep" ] && { echo "FAIL a killed run left results/sweep/"; exit 1; }
-# every stored cell is whole: 4 regions x every figure of harness/score/figures.h + background
-nfig=$(grep -c '^    X(' harness/score/figures.h)
+# every stored cell is whole: 4 regions x every figure of harness/score/figrec.h + background
+nfig=$(grep -A200 "define SL_FIGURES(X)" harness/score/figrec.h | sed "/^enum/q" | grep -c "^    X(")
 rows=$("$bin" table "$tmp/a/shadowlab.db" --format csv | tail -n +2 | wc -l)
 [ "$rows" -eq $((stored * (4 * nfig + 1))) ] || { echo "FAIL $rows figure rows for $stored cells ($nfig figures)"; exit 1; }
 

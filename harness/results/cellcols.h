@@ -51,8 +51,7 @@
 #ifndef SL_CELLCOLS_H
 #define SL_CELLCOLS_H
 #include <stdint.h>
-#include "aliasing.h"
-#include "figures.h"
+#include "figrec.h"
 #include "softfig.h"
 
 /* Stages timed over the config's repetitions keep {median, min, max}. */

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cyaml/cyaml.h>
-#include "figures.h"
+#include "figrec.h"
 #include "store.h"
 #include "table.h"
 #include "util.h"

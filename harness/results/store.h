@@ -20,9 +20,9 @@
 #ifndef SL_STORE_H
 #define SL_STORE_H
 #include <stdint.h>
-#include "method.h"
-#include "provenance.h"
 #include "cellcols.h"
+#include "provenance.h"
+#include "sl_error.h"
 
 struct sl_store;
 

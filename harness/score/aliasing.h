@@ -42,49 +42,11 @@
 #include <math.h>
 #include <stdint.h>
 #include <cglm/cglm.h>
+#include "figrec.h"
 #include "figures.h"
 #include "frame.h"
 #include "method.h"
 #include "view.h"
-
-/* The bands: m <= 1, (1, 2], (2, 4], (4, 8], > 8. */
-#define SL_ALIAS_BANDS 5
-
-/* name, what it counts, the figure of the region its percentage is taken of */
-#define SL_ALIAS_FIGURES(X)                                                                   \
-    X(px_m_le1,    "PFL pixels with m <= 1",                          "pfl")                  \
-    X(px_m_1_2,    "PFL pixels with 1 < m <= 2",                      "pfl")                  \
-    X(px_m_2_4,    "PFL pixels with 2 < m <= 4",                      "pfl")                  \
-    X(px_m_4_8,    "PFL pixels with 4 < m <= 8",                      "pfl")                  \
-    X(px_m_gt8,    "PFL pixels with m > 8",                           "pfl")                  \
-    X(wrong_m_le1, "wrong pixels with m <= 1",                        "wrong")                \
-    X(wrong_m_1_2, "wrong pixels with 1 < m <= 2",                    "wrong")                \
-    X(wrong_m_2_4, "wrong pixels with 2 < m <= 4",                    "wrong")                \
-    X(wrong_m_4_8, "wrong pixels with 4 < m <= 8",                    "wrong")                \
-    X(wrong_m_gt8, "wrong pixels with m > 8",                         "wrong")                \
-    X(m_none,      "PFL pixels whose m is undefined (both footprints infinite)", "pfl")       \
-    X(m_median_milli, "median m of the PFL pixels, x 1000 (rounded)", "")                     \
-    X(wrong_m_median_milli, "median m of the wrong pixels, x 1000 (rounded; 0: none wrong)", "")
-
-enum sl_alias_figure {
-#define SL_AFIG_ENUM(name, text, of) SL_AFIG_##name,
-    SL_ALIAS_FIGURES(SL_AFIG_ENUM)
-#undef SL_AFIG_ENUM
-    SL_AFIG_COUNT
-};
-
-const char *sl_alias_figure_name(enum sl_alias_figure f);
-const char *sl_alias_figure_text(enum sl_alias_figure f);
-const char *sl_alias_figure_of(enum sl_alias_figure f);   /* "pfl", "wrong" or "" */
-int         sl_alias_figure_parse(const char *name);      /* -1 if unknown */
-
-/* Per region, in the order of the cell's figures (fig.r[]). */
-struct sl_alias_figures {
-    int      nregions;
-    int      thickness[SL_MAX_REGIONS];
-    uint64_t n[SL_MAX_REGIONS][SL_AFIG_COUNT];
-    double   pct[SL_MAX_REGIONS][SL_AFIG_COUNT];   /* of the region's pfl / wrong; NAN when none */
-};
 
 /* The band of m (0 .. SL_ALIAS_BANDS-1); m must not be NAN. */
 static inline int sl_alias_band(double m)
@@ -169,9 +131,5 @@ void sl_alias_figures_compute(const struct sl_view *v, const struct sl_verdicts 
 void sl_alias_figures_cached(struct sl_alias_cache *k, const struct sl_view *v, const struct sl_verdicts *vd,
                              const float *m, const uint8_t *band, const int *thickness, int nregions,
                              struct sl_alias_figures *out);
-
-/* One stored figure back into a: returns 0 if `figure` is not an aliasing
- * figure's name, else 1 (the region is added in the order met). */
-int sl_alias_figures_put(struct sl_alias_figures *a, int thickness, const char *figure, uint64_t count, double pct);
 
 #endif
