@@ -1,0 +1,35 @@
+# fuzz/classify.awk — read one sanitizer report (ASan, UBSan, LSan, or a
+# libFuzzer timeout/out-of-memory stack) and print one line: "assimp" when
+# every stack that matters first reaches code of libassimp, else
+# "ours <frame>" (shadowlab's code, or a frame it cannot place: that fails).
+# Frames of the sanitizers and libFuzzer are skipped, and so are the system
+# libraries assimp calls (libc, libm, libgcc_s, libstdc++, libz): the first
+# frame left decides. Which stacks matter: the first of an ASan report (the
+# others say where the memory came from), each of a leak report.
+function skip(l) {
+  if (l ~ / in (__asan|__lsan|__ubsan|__sanitizer|__interceptor_|__cxa_|__gxx_|_Unwind_|__libc_|__GI_|__restore_rt|fuzzer::|std::terminate|abort|raise|gsignal)/) return 1
+  if (l ~ / in (malloc|calloc|realloc|free|posix_memalign|memalign|aligned_alloc|valloc|operator new|operator delete)([ (<]|$)/) return 1
+  if (l ~ /compiler-rt|\/lib\/clang\/|\/sanitizer_common\/|\/asan\/|\/ubsan\/|\/fuzzer\/Fuzzer/) return 1
+  if (l ~ /\((\/usr)?\/lib[^ ]*\/(libc\.so|libc-|libm\.so|libm-|libgcc_s|libstdc\+\+|libz\.so|ld-linux|libpthread)/) return 1
+  if (l ~ /<unknown module>/) return 1
+  return 0
+}
+BEGIN { verdict = ""; nstack = 0; inframe = 0; decided = 0 }
+/LeakSanitizer/ { leak = 1 }
+/runtime error:/ && verdict == "" { verdict = "ours " $0 }
+/^ *#[0-9]+ 0x/ {
+  if (!inframe) { nstack++; decided = 0 }
+  inframe = 1
+  if (decided || (nstack > 1 && !leak)) next
+  if (skip($0)) next
+  decided = 1
+  sub(/^ */, "")
+  if ($0 ~ /libassimp/) { nassimp++ } else if (verdict == "") { verdict = "ours " $0 }
+  next
+}
+{ inframe = 0 }
+END {
+  if (verdict != "") print verdict
+  else if (nassimp > 0) print "assimp"
+  else print "ours (no stack that names a module)"
+}
