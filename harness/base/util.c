@@ -174,3 +174,13 @@ void sl_med_min_max(double *t, int n, double out[3])
     out[1] = t[0];
     out[2] = t[n - 1];
 }
+
+void sl_path_dir(const char *path, char *out, size_t n)
+{
+    snprintf(out, n, "%s", path);
+    char *slash = strrchr(out, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(out, n, ".");
+}

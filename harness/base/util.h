@@ -12,6 +12,10 @@
 double sl_now(void);                      /* monotonic seconds */
 void  *sl_calloc(size_t n, size_t size);  /* NULL on failure or overflow */
 
+/* The folder a path names its file in ("a/b/c.db" -> "a/b"; "c.db" -> ".")
+ * into out; a path longer than out is cut. */
+void sl_path_dir(const char *path, char *out, size_t n);
+
 /* mkdir -p; SL_E_OUTPUT with diag on failure or if not writable. */
 enum sl_err sl_mkdirs(const char *path, struct sl_diag *d);
 

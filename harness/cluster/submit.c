@@ -129,12 +129,7 @@ static enum sl_err shards_merge(const char *const *shards, int n, const char *ou
         }
     }
     char dir[1200];
-    snprintf(dir, sizeof dir, "%s", out);
-    char *slash = strrchr(dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(dir, sizeof dir, ".");
+    sl_path_dir(out, dir, sizeof dir);
     enum sl_err e = sl_mkdirs(dir, d);
     if (e)
         return e;
@@ -585,12 +580,7 @@ static enum sl_err count_missing_overlays(struct sl_store *st, const struct sl_c
     if (e)
         return e;
     char dir[1200];
-    snprintf(dir, sizeof dir, "%s", store_path);
-    char *slash = strrchr(dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(dir, sizeof dir, ".");
+    sl_path_dir(store_path, dir, sizeof dir);
     for (int i = 0; i < n; i++) {
         if (!cells[i].overlay[0])
             continue;
@@ -696,12 +686,7 @@ enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o,
     snprintf(r->workdir, sizeof r->workdir, "%s/.jobs-%s", root, c->name);
     /* where the merge gathers the overlays: <the store's folder>/<name> */
     char store_dir[1200], gathered[1300], final[1300];
-    snprintf(store_dir, sizeof store_dir, "%s", r->store);
-    char *slash = strrchr(store_dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(store_dir, sizeof store_dir, ".");
+    sl_path_dir(r->store, store_dir, sizeof store_dir);
     snprintf(gathered, sizeof gathered, "%s/%s", store_dir, c->name);
     snprintf(final, sizeof final, "%s/%s", root, c->name);
     enum sl_err e;

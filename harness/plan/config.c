@@ -213,12 +213,7 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "name", "'%s': use letters, digits, '-', '_' and '.' only", c->name);
 
     char cfg_dir[512];
-    snprintf(cfg_dir, sizeof cfg_dir, "%s", file);
-    char *slash = strrchr(cfg_dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(cfg_dir, sizeof cfg_dir, ".");
+    sl_path_dir(file, cfg_dir, sizeof cfg_dir);
     for (unsigned si = 0; si < r->scenes_count; si++) {
         const struct raw_scene_ref *rs = &r->scenes[si];
         struct sl_config_scene *cs = &c->scenes[si];

@@ -75,12 +75,7 @@ enum sl_err sl_merge_open_held(struct sl_store *held, const char *out_path, int 
         return sl_fail(d, SL_E_NOMEM, out_path, 0, NULL, "merge");
     m->append = append;
     snprintf(m->path, sizeof m->path, "%s", out_path);
-    snprintf(m->dir, sizeof m->dir, "%s", out_path);
-    char *slash = strrchr(m->dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(m->dir, sizeof m->dir, ".");
+    sl_path_dir(out_path, m->dir, sizeof m->dir);
     enum sl_err e = held ? SL_OK : sl_store_open(out_path, &m->store, d);   /* held: the caller's lock */
     /* URIs: shards are attached read-only (sl_storefile_ro_uri) */
     if (!e && sqlite3_open_v2(out_path, &m->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_URI, NULL) != SQLITE_OK)
@@ -486,12 +481,7 @@ enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_
     if (e)
         return e;
     char shard_dir[1100];
-    snprintf(shard_dir, sizeof shard_dir, "%s", shard);
-    char *slash = strrchr(shard_dir, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(shard_dir, sizeof shard_dir, ".");
+    sl_path_dir(shard, shard_dir, sizeof shard_dir);
 
     char uri[4200];
     char *att = sl_storefile_ro_uri(shard, uri, sizeof uri) == 0 ? sqlite3_mprintf("ATTACH DATABASE %Q AS shard", uri)

@@ -357,12 +357,7 @@ static void overlay_store_path(const char *store_path, const char *final, const 
                                size_t n)
 {
     char dbdir[PATH_MAX], fin[PATH_MAX], tmp[1200];
-    snprintf(tmp, sizeof tmp, "%s", store_path);
-    char *slash = strrchr(tmp, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(tmp, sizeof tmp, ".");
+    sl_path_dir(store_path, tmp, sizeof tmp);
     if (!realpath(tmp, dbdir) || !realpath(final, fin)) {
         /* the results folder does not exist yet on a first run: resolve its parent */
         char parent[1200];

@@ -774,8 +774,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
             return e;
         if (!o->store && strchr(c->store, '/')) {   /* store: sub/x.db: its folder under --out */
             char dir[1100];
-            snprintf(dir, sizeof dir, "%s", store_path);
-            *strrchr(dir, '/') = '\0';
+            sl_path_dir(store_path, dir, sizeof dir);
             if ((e = sl_mkdirs(dir, d)))
                 return e;
         }

@@ -227,16 +227,6 @@ static int unit3(const float *in, float *out)
     return 1;
 }
 
-static void dir_of(const char *path, char *out, size_t n)
-{
-    snprintf(out, n, "%s", path);
-    char *slash = strrchr(out, '/');
-    if (slash)
-        *slash = '\0';
-    else
-        snprintf(out, n, ".");
-}
-
 /* The installed share folder, found from the binary's own place
  * (<prefix>/bin/shadowlab -> <prefix>/share/shadowlab/scenes), so an
  * installed tree can be moved or installed under any prefix. "" if absent. */
@@ -546,7 +536,7 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
                                    "place a model file with 'transform'", params[k]);
             }
         char dir[512], path[1024];
-        dir_of(file, dir, sizeof dir);
+        sl_path_dir(file, dir, sizeof dir);
         if (r->file[0] == '/')
             snprintf(path, sizeof path, "%s", r->file);
         else
@@ -802,7 +792,7 @@ static enum sl_err load_into(const char *path, struct build *b, struct sl_light 
         return e;
     if (r->base) {
         char dir[512], bpath[1024];
-        dir_of(path, dir, sizeof dir);
+        sl_path_dir(path, dir, sizeof dir);
         struct sl_diag bd;
         char real[1024];
         int cycle = 0;
