@@ -184,3 +184,9 @@ void sl_path_dir(const char *path, char *out, size_t n)
     else
         snprintf(out, n, ".");
 }
+
+void sl_known_add(char *buf, size_t n, const char *name)
+{
+    size_t len = strlen(buf);
+    snprintf(buf + len, n - len, "%s%s", len ? ", " : "", name);
+}

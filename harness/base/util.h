@@ -16,6 +16,11 @@ void  *sl_calloc(size_t n, size_t size);  /* NULL on failure or overflow */
  * into out; a path longer than out is cut. */
 void sl_path_dir(const char *path, char *out, size_t n);
 
+/* The "a, b, c" of a message's "(known: a, b, c)": appends name to the list
+ * in buf (n bytes, "" to start), after ", " unless buf is empty; a list
+ * longer than buf is cut. One helper, so every such list reads alike. */
+void sl_known_add(char *buf, size_t n, const char *name);
+
 /* mkdir -p; SL_E_OUTPUT with diag on failure or if not writable. */
 enum sl_err sl_mkdirs(const char *path, struct sl_diag *d);
 

@@ -27,8 +27,8 @@
  * The keys of a method entry are SL_KNOBS (knobs.h). Per kind of knob, in
  * one place: what libcyaml fills (RAW_), its schema entry (SCHEMA_), the
  * copy into struct sl_method_params with the check of a word (COPY_, inside
- * validate: p, rm, key, file, ix, d in scope), and its text in the
- * filled-in config (WRITE_, inside sl_config_write: p, f in scope). */
+ * method_knobs: p, rm, key, file, ix, d in scope), and its text in the
+ * filled-in config (WRITE_, inside write_methods: p, f in scope). */
 #define RAW_UINT   unsigned
 #define RAW_FLOAT  float
 #define RAW_BOOL   bool
@@ -41,11 +41,18 @@
 #define SCHEMA_WORDS(name)  CYAML_FIELD_STRING_PTR(#name, KNOB_OPT, struct raw_method, name, 1, 15)
 #define SCHEMA_POLICY(name) CYAML_FIELD_STRING_PTR(#name, KNOB_OPT, struct raw_method, name, 1, 63)
 
-/* "none, constant, ..., triangle_id, ": the self-shadow policies a config
- * may name (printed without the last ", ") */
-#define SELF_KNOWN(id, text) text ", "
-static const char self_shadow_known[] = SL_SELF_SHADOW(SELF_KNOWN);
-#undef SELF_KNOWN
+/* "none, constant, ..., triangle_id": the self-shadow policies a config
+ * may name, for the message that refuses another */
+static const char *self_shadow_known(char *buf, size_t n)
+{
+#define SELF_NAME(id, text) text,
+    static const char *const names[] = {SL_SELF_SHADOW(SELF_NAME)};
+#undef SELF_NAME
+    buf[0] = '\0';
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        sl_known_add(buf, n, names[i]);
+    return buf;
+}
 
 #define COPY_UINT(name, type, a, b)                                                               \
     if (*rm->name > INT_MAX)   /* the method's own range check sees an int */                     \
@@ -62,10 +69,11 @@ static const char self_shadow_known[] = SL_SELF_SHADOW(SELF_KNOWN);
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, #name " '%s': " a " or " b, rm->name);
 #define COPY_POLICY(name, type, a, b)                                                            \
     p->name = sl_self_shadow_parse(rm->name);                                                    \
-    if (p->name < 0)                                                                             \
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,                                        \
-                           "unknown self-shadow policy '%s' (known: %.*s)", rm->name,            \
-                           (int)sizeof self_shadow_known - 3, self_shadow_known);
+    if (p->name < 0) {                                                                           \
+        char known[128];                                                                         \
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown self-shadow policy '%s' (known: %s)", \
+                           rm->name, self_shadow_known(known, sizeof known));                    \
+    }
 #define WRITE_UINT(name, a, b)   fprintf(f, ", " #name ": %d", p->name);
 #define WRITE_FLOAT(name, a, b)  fprintf(f, ", " #name ": %g", (double)p->name);
 #define WRITE_BOOL(name, a, b)   fprintf(f, ", " #name ": %s", p->name ? "true" : "false");
@@ -93,22 +101,6 @@ struct raw_scene_ref {
     char **methods; unsigned methods_count;
 };
 struct raw_reps { unsigned *warmup; unsigned *runs; };
-struct raw_config {
-    char *name;
-    struct raw_scene_ref *scenes; unsigned scenes_count;
-    struct raw_viewport *viewports; unsigned viewports_count;
-    unsigned *map_sizes; unsigned map_sizes_count;
-    unsigned *contours; unsigned contours_count;
-    struct raw_method *methods; unsigned methods_count;
-    struct raw_outputs *outputs;
-    struct raw_reps *repetitions;
-    unsigned *seed;
-    unsigned *area_samples;
-    char *store;
-    unsigned *threads;
-    char *contour_from;
-    char *gl;
-};
 
 static const cyaml_schema_value_t str_schema = {
     CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 1, 63),
@@ -169,29 +161,66 @@ static const cyaml_schema_field_t outputs_fields[] = {
     CYAML_FIELD_UINT_PTR("overlay_contour", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, overlay_contour),
     CYAML_FIELD_END,
 };
+
+/* ---- the top-level keys ----
+ * One line per key a config file may give, in the order the filled-in
+ * config writes them; the only place a top-level key is listed. From this
+ * list come struct raw_config (what libcyaml fills), its schema, and
+ * sl_config_write (one write_<key> function per key, below: a key without
+ * one does not compile).
+ *   X(key, kind, need, type, args)
+ *   UINT    an unsigned integer            type: unsigned
+ *   STRING  1..max bytes                   type: char; args: max
+ *   SEQ     a list of 1..max entries       type: an entry's; args: its schema, max
+ *   MAP     a mapping of fields            type: the mapping's; args: its fields
+ * need: REQUIRED or OPTIONAL. The schema takes this order too; libcyaml's
+ * field order shows only in which missing required key it names first
+ * (scenes, then map_sizes, then methods).
+ * Bespoke, beside the list:
+ * - the checks and defaults (validate: one check_<concept> function each)
+ *   run in an order of their own, not this one: a scene's own map sizes and
+ *   methods draw on the top-level lists, and a config with several errors
+ *   must keep naming the same first one;
+ * - struct sl_config (config.h) holds resolved values, not one field per
+ *   key: contours become regions (the whole image added), outputs and
+ *   repetitions their fields, scenes their resolved files and masks. */
+#define CONFIG_KEYS(X)                                                                             \
+    X(name,         STRING, OPTIONAL, char, 63)                                                    \
+    X(scenes,       SEQ,    REQUIRED, struct raw_scene_ref, &scene_ref_schema, SL_CFG_MAX)         \
+    X(viewports,    SEQ,    OPTIONAL, struct raw_viewport, &viewport_schema, SL_CFG_MAX)           \
+    X(map_sizes,    SEQ,    REQUIRED, unsigned, &uint_schema, SL_CFG_MAX)                          \
+    X(contours,     SEQ,    OPTIONAL, unsigned, &uint_schema, SL_MAX_REGIONS - 1) /* + the whole image */ \
+    X(contour_from, STRING, OPTIONAL, char, 15)                                                    \
+    X(methods,      SEQ,    REQUIRED, struct raw_method, &method_schema, SL_CFG_MAX)               \
+    X(outputs,      MAP,    OPTIONAL, struct raw_outputs, outputs_fields)                          \
+    X(repetitions,  MAP,    OPTIONAL, struct raw_reps, reps_fields)                                \
+    X(seed,         UINT,   OPTIONAL, unsigned)                                                    \
+    X(area_samples, UINT,   OPTIONAL, unsigned)                                                    \
+    X(store,        STRING, OPTIONAL, char, 511)                                                   \
+    X(threads,      UINT,   OPTIONAL, unsigned)                                                    \
+    X(gl,           STRING, OPTIONAL, char, 15)
+
+#define CFG_RAW_UINT(key, type)                type *key;
+#define CFG_RAW_STRING(key, type, max)         type *key;
+#define CFG_RAW_SEQ(key, type, schema, max)    type *key; unsigned key##_count;
+#define CFG_RAW_MAP(key, type, fields)         type *key;
+struct raw_config {
+#define RAW_KEY(key, kind, need, ...) CFG_RAW_##kind(key, __VA_ARGS__)
+    CONFIG_KEYS(RAW_KEY)
+#undef RAW_KEY
+};
+
+#define CFG_REQUIRED CYAML_FLAG_POINTER
+#define CFG_OPTIONAL (CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL)
+#define CFG_SCHEMA_UINT(key, need, type) CYAML_FIELD_UINT_PTR(#key, need, struct raw_config, key),
+#define CFG_SCHEMA_STRING(key, need, type, max) CYAML_FIELD_STRING_PTR(#key, need, struct raw_config, key, 1, max),
+#define CFG_SCHEMA_SEQ(key, need, type, schema, max) \
+    CYAML_FIELD_SEQUENCE(#key, need, struct raw_config, key, schema, 1, max),
+#define CFG_SCHEMA_MAP(key, need, type, fields) CYAML_FIELD_MAPPING_PTR(#key, need, struct raw_config, key, fields),
 static const cyaml_schema_field_t config_fields[] = {
-    CYAML_FIELD_STRING_PTR("name", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, name, 1, 63),
-    CYAML_FIELD_SEQUENCE("scenes", CYAML_FLAG_POINTER, struct raw_config, scenes, &scene_ref_schema,
-                         1, SL_CFG_MAX),
-    CYAML_FIELD_SEQUENCE("viewports", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
-                         viewports, &viewport_schema, 1, SL_CFG_MAX),
-    CYAML_FIELD_SEQUENCE("map_sizes", CYAML_FLAG_POINTER, struct raw_config, map_sizes, &uint_schema,
-                         1, SL_CFG_MAX),
-    CYAML_FIELD_SEQUENCE("contours", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
-                         contours, &uint_schema, 1, SL_MAX_REGIONS - 1),   /* + the whole image */
-    CYAML_FIELD_SEQUENCE("methods", CYAML_FLAG_POINTER, struct raw_config, methods, &method_schema,
-                         1, SL_CFG_MAX),
-    CYAML_FIELD_MAPPING_PTR("outputs", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
-                            outputs, outputs_fields),
-    CYAML_FIELD_MAPPING_PTR("repetitions", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
-                            repetitions, reps_fields),
-    CYAML_FIELD_UINT_PTR("seed", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, seed),
-    CYAML_FIELD_UINT_PTR("area_samples", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, area_samples),
-    CYAML_FIELD_STRING_PTR("store", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, store, 1, 511),
-    CYAML_FIELD_UINT_PTR("threads", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, threads),
-    CYAML_FIELD_STRING_PTR("contour_from", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config,
-                           contour_from, 1, 15),
-    CYAML_FIELD_STRING_PTR("gl", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_config, gl, 1, 15),
+#define SCHEMA_KEY(key, kind, need, ...) CFG_SCHEMA_##kind(key, CFG_##need, __VA_ARGS__)
+    CONFIG_KEYS(SCHEMA_KEY)
+#undef SCHEMA_KEY
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t config_schema = {
@@ -202,93 +231,154 @@ const char *sl_contour_from_name(int policy) { return policy == SL_CONTOUR_OWN ?
 
 static int is_pow2(unsigned v) { return v && !(v & (v - 1)); }
 
-static enum sl_err validate(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
-                            struct sl_config *c, struct sl_diag *d)
+/* ---- validate: the checks, one function per concept ----
+ * Each reads the raw config r, fills its part of c, and on a bad value
+ * names file, line and key in d. They run in the order of `checks` in
+ * validate: later ones read what earlier ones filled in (the scenes' lights,
+ * the map sizes, the labels), and that order decides which error a config
+ * with several reports. */
+typedef enum sl_err check_fn(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                             struct sl_config *c, struct sl_diag *d);
+
+/* A name that names files: letters, digits, '-', '_' and '.' */
+static int is_file_word(char ch)
 {
-    char key[96];
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '-' ||
+           ch == '_' || ch == '.';
+}
+
+static enum sl_err check_name(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                              struct sl_config *c, struct sl_diag *d)
+{
     snprintf(c->name, sizeof c->name, "%s", r->name ? r->name : "default");
     for (const char *p = c->name; *p; p++)
-        if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-              *p == '-' || *p == '_' || *p == '.') || c->name[0] == '.')
+        if (!is_file_word(*p) || c->name[0] == '.')
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "name", "'%s': use letters, digits, '-', '_' and '.' only", c->name);
+    return SL_OK;
+}
 
+/* A scene entry's named viewpoints (default: all of the scene's, unless it
+ * names paths). */
+static enum sl_err scene_viewpoints(const struct raw_scene_ref *rs, unsigned si, const struct sl_scene *s,
+                                    const char *file, const struct sl_yaml_pos *ix, struct sl_config_scene *cs,
+                                    struct sl_diag *d)
+{
+    char key[96];
+    cs->nviewpoints = (int)rs->viewpoints_count;
+    for (unsigned i = 0; i < rs->viewpoints_count; i++) {
+        snprintf(key, sizeof key, "scenes[%u].viewpoints[%u]", si, i);
+        if (sl_scene_find_viewpoint(s, rs->viewpoints[i]) < 0) {
+            char known[256] = "";
+            for (int k = 0; k < s->nvp; k++)
+                sl_known_add(known, sizeof known, s->vp[k].name);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has no viewpoint '%s' (it has: %s)",
+                               rs->scene, rs->viewpoints[i], known);
+        }
+        snprintf(cs->viewpoints[i], sizeof cs->viewpoints[i], "%s", rs->viewpoints[i]);
+    }
+    cs->nnamed = cs->nviewpoints;
+    if (!cs->nviewpoints && !rs->paths_count) {
+        cs->nnamed = cs->nviewpoints = s->nvp;
+        for (int k = 0; k < s->nvp; k++)
+            snprintf(cs->viewpoints[k], sizeof cs->viewpoints[k], "%s", s->vp[k].name);
+    }
+    return SL_OK;
+}
+
+/* A path's frames follow the viewpoints, in the path's order: each is a
+ * view of the sweep (pathfile.h). */
+static enum sl_err scene_paths(const struct raw_scene_ref *rs, unsigned si, const struct sl_scene *s,
+                               const char *file, const struct sl_yaml_pos *ix, struct sl_config_scene *cs,
+                               struct sl_diag *d)
+{
+    char key[96];
+    for (unsigned i = 0; i < rs->paths_count; i++) {
+        snprintf(key, sizeof key, "scenes[%u].paths[%u]", si, i);
+        int p = sl_scene_find_path(s, rs->paths[i]);
+        for (unsigned k = 0; p >= 0 && k < i; k++)
+            if (strcmp(rs->paths[k], rs->paths[i]) == 0)
+                p = -2;
+        if (p < 0) {
+            char known[256] = "";
+            for (int k = 0; k < s->npaths; k++)
+                sl_known_add(known, sizeof known, s->paths[k].name);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, p == -2 ? "path '%s' listed twice"
+                               : "scene '%s' has no path '%s' (it has: %s)", p == -2 ? rs->paths[i] : rs->scene,
+                               rs->paths[i], known[0] ? known : "none");
+        }
+        snprintf(cs->paths[cs->npaths++], sizeof cs->paths[0], "%s", s->paths[p].name);
+        for (int f = 0; f < s->paths[p].count; f++)
+            snprintf(cs->viewpoints[cs->nviewpoints++], sizeof cs->viewpoints[0], "%s",
+                     s->vp[s->paths[p].first + f].name);
+    }
+    return SL_OK;
+}
+
+/* Scene entry si: its file resolved and loaded, its views, its light. */
+static enum sl_err check_scene(const struct raw_config *r, unsigned si, const char *cfg_dir, const char *file,
+                               const struct sl_yaml_pos *ix, struct sl_config *c, struct sl_diag *d)
+{
+    const struct raw_scene_ref *rs = &r->scenes[si];
+    struct sl_config_scene *cs = &c->scenes[si];
+    char key[96];
+    snprintf(cs->ref, sizeof cs->ref, "%s", rs->scene);
+    snprintf(key, sizeof key, "scenes[%u].scene", si);
+    struct sl_diag sd;
+    /* a name resolves in the scenes folder; a path relative to this file */
+    if (sl_scene_resolve(rs->scene, cfg_dir, cs->path, sizeof cs->path, &sd) != SL_OK) {
+        char names[64][64], descr[64][160], known[512] = "";
+        int n = sl_scene_list(names, descr, 64);
+        for (int i = 0; i < n; i++)
+            sl_known_add(known, sizeof known, names[i]);
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown scene '%s' (known: %s)", rs->scene, known);
+    }
+    struct sl_scene s;
+    enum sl_err re = sl_yaml_ref_check(d, SL_E_CONFIG, file, ix, key, cs->path);
+    if (re)
+        return re;
+    if (sl_scene_load(cs->path, &s, &sd) != SL_OK) {
+        /* the scene file's own error names its file, line and key */
+        *d = sd;
+        return SL_E_SCENE;
+    }
+    snprintf(cs->name, sizeof cs->name, "%s", s.name);
+    re = scene_viewpoints(rs, si, &s, file, ix, cs, d);
+    if (!re)
+        re = scene_paths(rs, si, &s, file, ix, cs, d);
+    cs->light_type = s.light.type;
+    sl_scene_free(&s);
+    if (re)
+        return re;
+    /* a scene listed twice is named at the entry's last viewpoint or path
+     * when it lists any (cli::bad_input expects that key) */
+    if (rs->paths_count)
+        snprintf(key, sizeof key, "scenes[%u].paths[%u]", si, rs->paths_count - 1);
+    else if (rs->viewpoints_count)
+        snprintf(key, sizeof key, "scenes[%u].viewpoints[%u]", si, rs->viewpoints_count - 1);
+    for (unsigned k = 0; k < si; k++)
+        if (strcmp(c->scenes[k].path, cs->path) == 0)
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' listed twice", rs->scene);
+    return SL_OK;
+}
+
+static enum sl_err check_scenes(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                struct sl_config *c, struct sl_diag *d)
+{
     char cfg_dir[512];
     sl_path_dir(file, cfg_dir, sizeof cfg_dir);
     for (unsigned si = 0; si < r->scenes_count; si++) {
-        const struct raw_scene_ref *rs = &r->scenes[si];
-        struct sl_config_scene *cs = &c->scenes[si];
-        snprintf(cs->ref, sizeof cs->ref, "%s", rs->scene);
-        snprintf(key, sizeof key, "scenes[%u].scene", si);
-        struct sl_diag sd;
-        /* a name resolves in the scenes folder; a path relative to this file */
-        if (sl_scene_resolve(rs->scene, cfg_dir, cs->path, sizeof cs->path, &sd) != SL_OK) {
-            char names[64][64], descr[64][160], known[512] = "";
-            int n = sl_scene_list(names, descr, 64);
-            for (int i = 0; i < n; i++)
-                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", i ? ", " : "", names[i]);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown scene '%s' (known: %s)", rs->scene, known);
-        }
-        struct sl_scene s;
-        enum sl_err re = sl_yaml_ref_check(d, SL_E_CONFIG, file, ix, key, cs->path);
-        if (re)
-            return re;
-        if (sl_scene_load(cs->path, &s, &sd) != SL_OK) {
-            /* the scene file's own error names its file, line and key */
-            *d = sd;
-            return SL_E_SCENE;
-        }
-        snprintf(cs->name, sizeof cs->name, "%s", s.name);
-        cs->nviewpoints = (int)rs->viewpoints_count;
-        for (unsigned i = 0; i < rs->viewpoints_count; i++) {
-            snprintf(key, sizeof key, "scenes[%u].viewpoints[%u]", si, i);
-            if (sl_scene_find_viewpoint(&s, rs->viewpoints[i]) < 0) {
-                char known[256] = "";
-                for (int k = 0; k < s.nvp; k++)
-                    snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "",
-                             s.vp[k].name);
-                sl_scene_free(&s);
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has no viewpoint '%s' (it has: %s)",
-                                   rs->scene, rs->viewpoints[i], known);
-            }
-            snprintf(cs->viewpoints[i], sizeof cs->viewpoints[i], "%s", rs->viewpoints[i]);
-        }
-        cs->nnamed = cs->nviewpoints;
-        if (!cs->nviewpoints && !rs->paths_count) {
-            cs->nnamed = cs->nviewpoints = s.nvp;
-            for (int k = 0; k < s.nvp; k++)
-                snprintf(cs->viewpoints[k], sizeof cs->viewpoints[k], "%s", s.vp[k].name);
-        }
-        /* a path's frames follow the viewpoints, in the path's order: each is
-         * a view of the sweep (pathfile.h) */
-        for (unsigned i = 0; i < rs->paths_count; i++) {
-            snprintf(key, sizeof key, "scenes[%u].paths[%u]", si, i);
-            int p = sl_scene_find_path(&s, rs->paths[i]);
-            for (unsigned k = 0; p >= 0 && k < i; k++)
-                if (strcmp(rs->paths[k], rs->paths[i]) == 0)
-                    p = -2;
-            if (p < 0) {
-                char known[256] = "";
-                for (int k = 0; k < s.npaths; k++)
-                    snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "",
-                             s.paths[k].name);
-                sl_scene_free(&s);
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, p == -2 ? "path '%s' listed twice"
-                                   : "scene '%s' has no path '%s' (it has: %s)", p == -2 ? rs->paths[i] : rs->scene,
-                                   rs->paths[i], known[0] ? known : "none");
-            }
-            snprintf(cs->paths[cs->npaths++], sizeof cs->paths[0], "%s", s.paths[p].name);
-            for (int f = 0; f < s.paths[p].count; f++)
-                snprintf(cs->viewpoints[cs->nviewpoints++], sizeof cs->viewpoints[0], "%s",
-                         s.vp[s.paths[p].first + f].name);
-        }
-        cs->light_type = s.light.type;
-        sl_scene_free(&s);
-        for (unsigned k = 0; k < si; k++)
-            if (strcmp(c->scenes[k].path, cs->path) == 0)
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' listed twice", rs->scene);
+        enum sl_err e = check_scene(r, si, cfg_dir, file, ix, c, d);
+        if (e)
+            return e;
     }
     c->nscenes = (int)r->scenes_count;
+    return SL_OK;
+}
 
+static enum sl_err check_viewports(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                   struct sl_config *c, struct sl_diag *d)
+{
+    char key[96];
     if (r->viewports_count == 0) {
         c->nviewports = 1;
         c->viewport_w[0] = c->viewport_h[0] = 1024;
@@ -303,6 +393,13 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         c->viewport_h[i] = (int)r->viewports[i].height;
         c->nviewports = (int)i + 1;
     }
+    return SL_OK;
+}
+
+static enum sl_err check_map_sizes(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                   struct sl_config *c, struct sl_diag *d)
+{
+    char key[96];
     for (unsigned i = 0; i < r->map_sizes_count; i++) {
         snprintf(key, sizeof key, "map_sizes[%u]", i);
         unsigned m = r->map_sizes[i];
@@ -314,9 +411,16 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         c->maps[i] = (int)m;
     }
     c->nmaps = (int)r->map_sizes_count;   /* distinct powers of two 64..16384: at most 9 */
-    /* a scene may have map sizes of its own (e.g. one scene at 16384² in a
-     * sweep at 512²): c->maps is then the union, and each scene's mask says
-     * which of them it is swept at */
+    return SL_OK;
+}
+
+/* A scene may have map sizes of its own (e.g. one scene at 16384² in a
+ * sweep at 512²): c->maps is then the union, and each scene's mask says
+ * which of them it is swept at. */
+static enum sl_err check_scene_map_sizes(const struct raw_config *r, const char *file,
+                                         const struct sl_yaml_pos *ix, struct sl_config *c, struct sl_diag *d)
+{
+    char key[96];
     for (unsigned si = 0; si < r->scenes_count; si++) {
         const struct raw_scene_ref *rs = &r->scenes[si];
         struct sl_config_scene *cs = &c->scenes[si];
@@ -339,7 +443,14 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
             cs->map_mask |= 1u << k;
         }
     }
+    return SL_OK;
+}
 
+/* The regions: the contours, then 0 (the whole image). */
+static enum sl_err check_contours(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                  struct sl_config *c, struct sl_diag *d)
+{
+    char key[96];
     static const unsigned default_contours[] = {2, 4, 6};
     const unsigned *ct = r->contours_count ? r->contours : default_contours;
     unsigned nct = r->contours_count ? r->contours_count : 3;
@@ -353,7 +464,100 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
     }
     c->regions[nct] = 0;
     c->nregions = (int)nct + 1;
+    return SL_OK;
+}
 
+/* Method entry i's label: its method's name unless given; labels name
+ * files, so no '..', no hidden file, and each is the config's only one. */
+static enum sl_err method_label(const struct raw_method *rm, unsigned i, const char *file,
+                                const struct sl_yaml_pos *ix, struct sl_config *c, struct sl_diag *d)
+{
+    struct sl_config_method *cm = &c->methods[i];
+    char key[96];
+    snprintf(cm->label, sizeof cm->label, "%s", rm->label ? rm->label : rm->method);
+    snprintf(key, sizeof key, "methods[%u].label", i);
+    if (cm->label[0] == '.')
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s': must not start with '.'", cm->label);
+    for (const char *p = cm->label; *p; p++)
+        if (!is_file_word(*p))
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s': use letters, digits, '-', '_' and '.'", cm->label);
+    for (unsigned k = 0; k < i; k++)
+        if (strcmp(c->methods[k].label, cm->label) == 0)
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
+                       "label '%s' used twice: give each entry its own label", cm->label);
+    return SL_OK;
+}
+
+/* light_frame: a stabilised frame of this label's own (lightfit.h). */
+static enum sl_err method_light_frame(const struct raw_method *rm, unsigned i, const char *file,
+                                      const struct sl_yaml_pos *ix, struct sl_config_method *cm, struct sl_diag *d)
+{
+    char key[96];
+    memset(&cm->frame_fit, 0, sizeof cm->frame_fit);
+    if (!rm->light_frame)
+        return SL_OK;
+    const struct raw_lframe *lf = rm->light_frame;
+    snprintf(key, sizeof key, "methods[%u].light_frame%s", i, lf->fit ? ".fit" : "");
+    if (lf->fit && strcmp(lf->fit, "tight") && strcmp(lf->fit, "sphere"))
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "fit '%s': tight or sphere", lf->fit);
+    cm->frame_fit.fit = lf->fit && !strcmp(lf->fit, "sphere") ? SL_FIT_SPHERE : SL_FIT_TIGHT;
+    cm->frame_fit.snap = lf->snap && *lf->snap;
+    snprintf(key, sizeof key, "methods[%u].light_frame", i);
+    if (cm->frame_fit.snap && cm->frame_fit.fit != SL_FIT_SPHERE)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "snap needs a fixed-size frame: fit: sphere "
+                           "(a tight box changes its texel size from view to view)");
+    if (cm->frame_fit.fit != SL_FIT_TIGHT && (cm->method->lights & SL_LIGHTS_AREA))
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "method '%s' reads the area light's own "
+                           "layers: light_frame applies to hard-shadow methods", cm->method->name);
+    return SL_OK;
+}
+
+/* The knobs (SL_KNOBS) entry i gives: each one's bit and value (a word
+ * checked), each one its method takes, then the method's own check of the
+ * values (configure). */
+static enum sl_err method_knobs(const struct raw_method *rm, unsigned i, const char *file,
+                                const struct sl_yaml_pos *ix, struct sl_config_method *cm, struct sl_diag *d)
+{
+    char key[96];
+    struct sl_method_params *p = &cm->params;
+    memset(p, 0, sizeof *p);
+#define COPY_KNOB(id, bit, name, type, kind, a, b, doc)                                                  \
+    if (rm->name) {                                                                                      \
+        p->set |= id;                                                                                    \
+        snprintf(key, sizeof key, "methods[%u]." #name, i);                                              \
+        COPY_##kind(name, type, a, b)                                                                    \
+    }
+    SL_KNOBS(COPY_KNOB)
+#undef COPY_KNOB
+    static const struct { unsigned bit; const char *name; } pk[] = {
+#define NAME_KNOB(id, bit, name, ...) {id, #name},
+        SL_KNOBS(NAME_KNOB)
+#undef NAME_KNOB
+    };
+    for (size_t k = 0; k < sizeof pk / sizeof pk[0]; k++)
+        if ((p->set & pk[k].bit) && !(cm->method->params_ok & pk[k].bit)) {
+            snprintf(key, sizeof key, "methods[%u].%s", i, pk[k].name);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "method '%s' takes no parameter '%s'",
+                       cm->method->name, pk[k].name);
+        }
+    struct sl_diag md;
+    if (sl_method_configure(cm->method, p, &md) != SL_OK) {
+        snprintf(key, sizeof key, "methods[%u]%s%s", i, md.key[0] ? "." : "", md.key);
+        int line = sl_yaml_line(ix, key);
+        if (!line) {
+            snprintf(key, sizeof key, "methods[%u]", i);
+            line = sl_yaml_line(ix, key);
+            snprintf(key, sizeof key, "methods[%u]%s%s", i, md.key[0] ? "." : "", md.key);
+        }
+        return sl_fail(d, SL_E_CONFIG, file, line, key, "%s", md.msg);
+    }
+    return SL_OK;
+}
+
+static enum sl_err check_methods(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                 struct sl_config *c, struct sl_diag *d)
+{
+    char key[96];
     for (unsigned i = 0; i < r->methods_count; i++) {
         const struct raw_method *rm = &r->methods[i];
         struct sl_config_method *cm = &c->methods[i];
@@ -362,142 +566,104 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         if (!cm->method) {
             char known[256] = "";
             for (int k = 0; k < sl_method_count(); k++)
-                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", k ? ", " : "",
-                         sl_method_at(k)->name);
+                sl_known_add(known, sizeof known, sl_method_at(k)->name);
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown method '%s' (known: %s)", rm->method, known);
         }
-        snprintf(cm->label, sizeof cm->label, "%s", rm->label ? rm->label : rm->method);
-        snprintf(key, sizeof key, "methods[%u].label", i);
-        if (cm->label[0] == '.')   /* labels name files: no '..', no hidden file */
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s': must not start with '.'", cm->label);
-        for (const char *p = cm->label; *p; p++)
-            if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') ||
-                  *p == '-' || *p == '_' || *p == '.'))
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s': use letters, digits, '-', '_' and '.'", cm->label);
-        for (unsigned k = 0; k < i; k++)
-            if (strcmp(c->methods[k].label, cm->label) == 0)
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
-                           "label '%s' used twice: give each entry its own label", cm->label);
-        /* light_frame: a stabilised frame of this label's own (lightfit.h) */
-        memset(&cm->frame_fit, 0, sizeof cm->frame_fit);
-        if (rm->light_frame) {
-            const struct raw_lframe *lf = rm->light_frame;
-            snprintf(key, sizeof key, "methods[%u].light_frame%s", i, lf->fit ? ".fit" : "");
-            if (lf->fit && strcmp(lf->fit, "tight") && strcmp(lf->fit, "sphere"))
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "fit '%s': tight or sphere", lf->fit);
-            cm->frame_fit.fit = lf->fit && !strcmp(lf->fit, "sphere") ? SL_FIT_SPHERE : SL_FIT_TIGHT;
-            cm->frame_fit.snap = lf->snap && *lf->snap;
-            snprintf(key, sizeof key, "methods[%u].light_frame", i);
-            if (cm->frame_fit.snap && cm->frame_fit.fit != SL_FIT_SPHERE)
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "snap needs a fixed-size frame: fit: sphere "
-                                   "(a tight box changes its texel size from view to view)");
-            if (cm->frame_fit.fit != SL_FIT_TIGHT && (cm->method->lights & SL_LIGHTS_AREA))
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "method '%s' reads the area light's own "
-                                   "layers: light_frame applies to hard-shadow methods", cm->method->name);
-        }
-        struct sl_method_params *p = &cm->params;
-        memset(p, 0, sizeof *p);
-        /* each knob the entry gives: its bit, and its value (a word checked) */
-#define COPY_KNOB(id, bit, name, type, kind, a, b, doc)                                                  \
-        if (rm->name) {                                                                                  \
-            p->set |= id;                                                                                \
-            snprintf(key, sizeof key, "methods[%u]." #name, i);                                          \
-            COPY_##kind(name, type, a, b)                                                                \
-        }
-        SL_KNOBS(COPY_KNOB)
-#undef COPY_KNOB
-        static const struct { unsigned bit; const char *name; } pk[] = {
-#define NAME_KNOB(id, bit, name, ...) {id, #name},
-            SL_KNOBS(NAME_KNOB)
-#undef NAME_KNOB
-        };
-        for (size_t k = 0; k < sizeof pk / sizeof pk[0]; k++)
-            if ((p->set & pk[k].bit) && !(cm->method->params_ok & pk[k].bit)) {
-                snprintf(key, sizeof key, "methods[%u].%s", i, pk[k].name);
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "method '%s' takes no parameter '%s'",
-                           cm->method->name, pk[k].name);
-            }
-        struct sl_diag md;
-        if (sl_method_configure(cm->method, p, &md) != SL_OK) {
-            snprintf(key, sizeof key, "methods[%u]%s%s", i, md.key[0] ? "." : "", md.key);
-            int line = sl_yaml_line(ix, key);
-            if (!line) {
-                snprintf(key, sizeof key, "methods[%u]", i);
-                line = sl_yaml_line(ix, key);
-                snprintf(key, sizeof key, "methods[%u]%s%s", i, md.key[0] ? "." : "", md.key);
-            }
-            return sl_fail(d, SL_E_CONFIG, file, line, key, "%s", md.msg);
-        }
+        enum sl_err e = method_label(rm, i, file, ix, c, d);
+        if (!e)
+            e = method_light_frame(rm, i, file, ix, cm, d);
+        if (!e)
+            e = method_knobs(rm, i, file, ix, cm, d);
+        if (e)
+            return e;
     }
     c->nmethods = (int)r->methods_count;
-    /* a scene may run a subset of the method labels (e.g. only the cheap ones
-     * at 16384²) */
-    for (unsigned si = 0; si < r->scenes_count; si++) {
-        const struct raw_scene_ref *rs = &r->scenes[si];
-        struct sl_config_scene *cs = &c->scenes[si];
-        const int area = cs->light_type == SL_LIGHT_AREA, dirl = cs->light_type == SL_LIGHT_DIRECTIONAL;
-        static const char *const light_names[] = {"a directional", "a spot", "a point", "an area"};
-        const char *lname = light_names[cs->light_type & 3];
-        /* without a list, a scene runs every label that handles its light, so one
-         * config can mix scenes of every light: the hard-shadow methods handle
-         * all (a spot or point light at its position, an area light as a point
-         * at its centre), the soft ones area lights only, zpart and lispsm
-         * directional lights only */
-        cs->method_mask = 0u;
-        for (int k = 0; k < c->nmethods && !rs->methods_count; k++) {
-            unsigned lights = c->methods[k].method->lights;
-            if (!((lights & SL_LIGHTS_AREA) && !area) && !((lights & SL_LIGHTS_DIRECTIONAL) && !dirl))
-                cs->method_mask |= 1u << k;
-        }
-        if (!rs->methods_count && !cs->method_mask) {
-            snprintf(key, sizeof key, "scenes[%u]", si);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has %s light and no method of this config handles it (hard-shadow "
-                               "methods handle every light; hard_point, point_map, soft_mc need an area light; "
-                               "zpart, lispsm a directional one)", cs->name, lname);
-        }
-        for (unsigned i = 0; i < rs->methods_count; i++) {
-            snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
-            int k = 0;
-            while (k < c->nmethods && strcmp(c->methods[k].label, rs->methods[i]) != 0)
-                k++;
-            if (k == c->nmethods)
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "no method labelled '%s' in this config",
-                                   rs->methods[i]);
-            if (cs->method_mask & (1u << k))
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s' listed twice", rs->methods[i]);
+    return SL_OK;
+}
+
+/* Scene entry si's labels: those its list names, each of which must handle
+ * its light, or without a list every label that handles its light, so one
+ * config can mix scenes of every light: the hard-shadow methods handle all
+ * (a spot or point light at its position, an area light as a point at its
+ * centre), the soft ones area lights only, zpart and lispsm directional
+ * lights only. */
+static enum sl_err scene_methods(const struct raw_scene_ref *rs, unsigned si, const char *file,
+                                 const struct sl_yaml_pos *ix, struct sl_config *c, struct sl_diag *d)
+{
+    char key[96];
+    struct sl_config_scene *cs = &c->scenes[si];
+    const int area = cs->light_type == SL_LIGHT_AREA, dirl = cs->light_type == SL_LIGHT_DIRECTIONAL;
+    static const char *const light_names[] = {"a directional", "a spot", "a point", "an area"};
+    const char *lname = light_names[cs->light_type & 3];
+    cs->method_mask = 0u;
+    for (int k = 0; k < c->nmethods && !rs->methods_count; k++) {
+        unsigned lights = c->methods[k].method->lights;
+        if (!((lights & SL_LIGHTS_AREA) && !area) && !((lights & SL_LIGHTS_DIRECTIONAL) && !dirl))
             cs->method_mask |= 1u << k;
+    }
+    if (!rs->methods_count && !cs->method_mask) {
+        snprintf(key, sizeof key, "scenes[%u]", si);
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                           "scene '%s' has %s light and no method of this config handles it (hard-shadow "
+                           "methods handle every light; hard_point, point_map, soft_mc need an area light; "
+                           "zpart, lispsm a directional one)", cs->name, lname);
+    }
+    for (unsigned i = 0; i < rs->methods_count; i++) {
+        snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
+        int k = 0;
+        while (k < c->nmethods && strcmp(c->methods[k].label, rs->methods[i]) != 0)
+            k++;
+        if (k == c->nmethods)
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "no method labelled '%s' in this config",
+                               rs->methods[i]);
+        if (cs->method_mask & (1u << k))
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s' listed twice", rs->methods[i]);
+        cs->method_mask |= 1u << k;
+    }
+    /* every label a scene's list names must handle its light */
+    for (int k = 0; k < c->nmethods; k++) {
+        if (!(cs->method_mask & (1u << k)))
+            continue;
+        if (!dirl && c->methods[k].frame_fit.fit != SL_FIT_TIGHT) {
+            snprintf(key, sizeof key, "methods[%d].light_frame", k);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has %s light: light_frame "
+                               "fits a directional light's frame only (label %s)", cs->name, lname,
+                               c->methods[k].label);
         }
-        /* every label a scene's list names must handle its light */
-        for (int k = 0; k < c->nmethods; k++) {
-            if (!(cs->method_mask & (1u << k)))
-                continue;
-            if (!dirl && c->methods[k].frame_fit.fit != SL_FIT_TIGHT) {
-                snprintf(key, sizeof key, "methods[%d].light_frame", k);
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has %s light: light_frame "
-                                   "fits a directional light's frame only (label %s)", cs->name, lname,
-                                   c->methods[k].label);
-            }
-            if (!area && (c->methods[k].method->lights & SL_LIGHTS_AREA)) {
-                snprintf(key, sizeof key, "scenes[%u].methods", si);
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                                   "scene '%s' has %s light but method '%s' (label %s) handles area "
-                                   "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
-            }
-            if (!dirl && (c->methods[k].method->lights & SL_LIGHTS_DIRECTIONAL)) {
-                snprintf(key, sizeof key, "scenes[%u].methods", si);
-                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                                   "scene '%s' has %s light but method '%s' (label %s) handles directional "
-                                   "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
-            }
+        if (!area && (c->methods[k].method->lights & SL_LIGHTS_AREA)) {
+            snprintf(key, sizeof key, "scenes[%u].methods", si);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                               "scene '%s' has %s light but method '%s' (label %s) handles area "
+                               "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
+        }
+        if (!dirl && (c->methods[k].method->lights & SL_LIGHTS_DIRECTIONAL)) {
+            snprintf(key, sizeof key, "scenes[%u].methods", si);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                               "scene '%s' has %s light but method '%s' (label %s) handles directional "
+                               "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
         }
     }
+    return SL_OK;
+}
 
-    c->tables = r->outputs && r->outputs->tables ? *r->outputs->tables : 1;
-    c->overlays = r->outputs && r->outputs->overlays ? *r->outputs->overlays : 1;
-    c->exr = r->outputs && r->outputs->exr ? *r->outputs->exr : 0;
-    /* ranges are checked on the unsigned values libcyaml read, before any
-     * cast to int (4294967295 would be -1 and pass "at most 100") */
+/* A scene may run a subset of the method labels (e.g. only the cheap ones
+ * at 16384²). */
+static enum sl_err check_scene_methods(const struct raw_config *r, const char *file,
+                                       const struct sl_yaml_pos *ix, struct sl_config *c, struct sl_diag *d)
+{
+    for (unsigned si = 0; si < r->scenes_count; si++) {
+        enum sl_err e = scene_methods(&r->scenes[si], si, file, ix, c, d);
+        if (e)
+            return e;
+    }
+    return SL_OK;
+}
+
+/* Ranges are checked on the unsigned values libcyaml read, before any
+ * cast to int (4294967295 would be -1 and pass "at most 100"). */
+static enum sl_err check_repetitions(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                     struct sl_config *c, struct sl_diag *d)
+{
     unsigned warmup = r->repetitions && r->repetitions->warmup ? *r->repetitions->warmup : 0u;
     unsigned runs = r->repetitions && r->repetitions->runs ? *r->repetitions->runs : 1u;
     if (warmup > 100)
@@ -506,27 +672,57 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.runs", "runs %u: must be 1..1000", runs);
     c->warmup = (int)warmup;
     c->runs = (int)runs;
+    return SL_OK;
+}
+
+/* The seed and the area-light truth's sampling: what the random parts
+ * draw on. */
+static enum sl_err check_sampling(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                  struct sl_config *c, struct sl_diag *d)
+{
     c->seed = r->seed ? *r->seed : 1u;
     unsigned samples = r->area_samples ? *r->area_samples : 32u;
     if (samples < 2 || samples > 1024)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "area_samples",
                            "area_samples %u: samples per side of an area light's truth, 2..1024", samples);
     c->area_samples = (int)samples;
+    return SL_OK;
+}
+
+/* A run writes only under --out: a store path may not leave it (an
+ * explicit --db on the command line may). */
+static enum sl_err check_store(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                               struct sl_config *c, struct sl_diag *d)
+{
     snprintf(c->store, sizeof c->store, "%s", r->store ? r->store : "");
     c->store_line = sl_yaml_line(ix, "store");
-    if (r->store) {
-        /* a run writes only under --out: a store path may not leave it (an
-         * explicit --db on the command line may) */
-        int up = 0;
-        for (const char *q = r->store; *q; q += strcspn(q, "/"), q += *q == '/')
-            up |= strncmp(q, "..", 2) == 0 && (q[2] == '/' || q[2] == '\0');
-        if (r->store[0] == '/' || up)
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "store", "'%s' leaves the output folder: give a path "
-                               "relative to it without '..', or --db on the command line", r->store);
-    }
+    if (!r->store)
+        return SL_OK;
+    int up = 0;
+    for (const char *q = r->store; *q; q += strcspn(q, "/"), q += *q == '/')
+        up |= strncmp(q, "..", 2) == 0 && (q[2] == '/' || q[2] == '\0');
+    if (r->store[0] == '/' || up)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "store", "'%s' leaves the output folder: give a path "
+                           "relative to it without '..', or --db on the command line", r->store);
+    return SL_OK;
+}
+
+static enum sl_err check_gl(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                            struct sl_config *c, struct sl_diag *d)
+{
     c->gl = sl_gl_backend_resolve(r->gl ? sl_gl_backend_parse(r->gl) : SL_GL_DEFAULT);
     if (r->gl && sl_gl_backend_parse(r->gl) == SL_GL_DEFAULT)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "gl", "gl '%s': osmesa or egl", r->gl);
+    return SL_OK;
+}
+
+/* What a run writes; the overlay's contour is one of the regions. */
+static enum sl_err check_outputs(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                 struct sl_config *c, struct sl_diag *d)
+{
+    c->tables = r->outputs && r->outputs->tables ? *r->outputs->tables : 1;
+    c->overlays = r->outputs && r->outputs->overlays ? *r->outputs->overlays : 1;
+    c->exr = r->outputs && r->outputs->exr ? *r->outputs->exr : 0;
     c->overlay_contour = c->regions[0];
     if (r->outputs && r->outputs->overlay_contour) {
         unsigned t = *r->outputs->overlay_contour;
@@ -538,21 +734,49 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
                        "overlay_contour %u is not one of the contours (or 0: the whole image)", t);
         c->overlay_contour = (int)t;
     }
+    return SL_OK;
+}
+
+static enum sl_err check_contour_from(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                      struct sl_config *c, struct sl_diag *d)
+{
     c->contour_from = SL_CONTOUR_NSM;
-    if (r->contour_from) {
-        if (strcmp(r->contour_from, "nsm") == 0)
-            c->contour_from = SL_CONTOUR_NSM;
-        else if (strcmp(r->contour_from, "own") == 0)
-            c->contour_from = SL_CONTOUR_OWN;
-        else
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "contour_from",
-                               "'%s': nsm (NSM's image, shared by every method) or own (each method's)",
-                               r->contour_from);
-    }
+    if (!r->contour_from)
+        return SL_OK;
+    if (strcmp(r->contour_from, "nsm") == 0)
+        c->contour_from = SL_CONTOUR_NSM;
+    else if (strcmp(r->contour_from, "own") == 0)
+        c->contour_from = SL_CONTOUR_OWN;
+    else
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "contour_from",
+                           "'%s': nsm (NSM's image, shared by every method) or own (each method's)",
+                           r->contour_from);
+    return SL_OK;
+}
+
+static enum sl_err check_threads(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                 struct sl_config *c, struct sl_diag *d)
+{
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     if (r->threads && *r->threads > 256)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "threads", "threads %u: at most 256", *r->threads);
     c->threads = r->threads && *r->threads ? (int)*r->threads : (int)(cores > 256 ? 256 : cores > 0 ? cores : 1);
+    return SL_OK;
+}
+
+static enum sl_err validate(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                            struct sl_config *c, struct sl_diag *d)
+{
+    static check_fn *const checks[] = {
+        check_name,     check_scenes,  check_viewports,   check_map_sizes, check_scene_map_sizes,
+        check_contours, check_methods, check_scene_methods, check_repetitions, check_sampling,
+        check_store,    check_gl,      check_outputs,     check_contour_from, check_threads,
+    };
+    for (size_t i = 0; i < sizeof checks / sizeof checks[0]; i++) {
+        enum sl_err e = checks[i](r, file, ix, c, d);
+        if (e)
+            return e;
+    }
     return SL_OK;
 }
 
@@ -855,10 +1079,13 @@ enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_di
     return e;
 }
 
-void sl_config_write(const struct sl_config *c, FILE *f)
+/* ---- the filled-in config: one write_<key> per CONFIG_KEYS line ---- */
+
+static void write_name(const struct sl_config *c, FILE *f) { fprintf(f, "name: %s\n", c->name); }
+
+static void write_scenes(const struct sl_config *c, FILE *f)
 {
-    fprintf(f, "# filled-in config: every default explicit\n");
-    fprintf(f, "name: %s\nscenes:\n", c->name);
+    fprintf(f, "scenes:\n");
     for (int s = 0; s < c->nscenes; s++) {
         fprintf(f, "  - {scene: %s, ", c->scenes[s].ref);
         if (c->scenes[s].nnamed) {
@@ -883,16 +1110,41 @@ void sl_config_write(const struct sl_config *c, FILE *f)
                 fprintf(f, "%s%s", k++ ? ", " : "", c->methods[i].label);
         fprintf(f, "]}\n");
     }
+}
+
+static void write_viewports(const struct sl_config *c, FILE *f)
+{
     fprintf(f, "viewports:\n");
     for (int i = 0; i < c->nviewports; i++)
         fprintf(f, "  - {width: %d, height: %d}\n", c->viewport_w[i], c->viewport_h[i]);
+}
+
+static void write_map_sizes(const struct sl_config *c, FILE *f)
+{
     fprintf(f, "map_sizes: [");
     for (int i = 0; i < c->nmaps; i++)
         fprintf(f, "%s%d", i ? ", " : "", c->maps[i]);
-    fprintf(f, "]\ncontours: [");
+    fprintf(f, "]\n");
+}
+
+/* the regions without the last, the whole image (validate adds it) */
+static void write_contours(const struct sl_config *c, FILE *f)
+{
+    fprintf(f, "contours: [");
     for (int i = 0; i + 1 < c->nregions; i++)
         fprintf(f, "%s%d", i ? ", " : "", c->regions[i]);
-    fprintf(f, "]\ncontour_from: %s\nmethods:\n", sl_contour_from_name(c->contour_from));
+    fprintf(f, "]\n");
+}
+
+static void write_contour_from(const struct sl_config *c, FILE *f)
+{
+    fprintf(f, "contour_from: %s\n", sl_contour_from_name(c->contour_from));
+}
+
+/* a knob only where the entry gave it */
+static void write_methods(const struct sl_config *c, FILE *f)
+{
+    fprintf(f, "methods:\n");
     for (int i = 0; i < c->nmethods; i++) {
         const struct sl_method_params *p = &c->methods[i].params;
         fprintf(f, "  - {label: %s, method: %s", c->methods[i].label, c->methods[i].method->name);
@@ -905,15 +1157,47 @@ void sl_config_write(const struct sl_config *c, FILE *f)
             fprintf(f, ", light_frame: {fit: sphere, snap: %s}", c->methods[i].frame_fit.snap ? "true" : "false");
         fprintf(f, "}\n");
     }
+}
+
+static void write_outputs(const struct sl_config *c, FILE *f)
+{
     fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",
             c->tables ? "true" : "false", c->overlays ? "true" : "false", c->overlay_contour,
             c->exr ? "true" : "false");
-    fprintf(f, "repetitions: {warmup: %d, runs: %d}\nseed: %u\narea_samples: %d\n", c->warmup, c->runs, c->seed,
-            c->area_samples);
+}
+
+static void write_repetitions(const struct sl_config *c, FILE *f)
+{
+    fprintf(f, "repetitions: {warmup: %d, runs: %d}\n", c->warmup, c->runs);
+}
+
+static void write_seed(const struct sl_config *c, FILE *f) { fprintf(f, "seed: %u\n", c->seed); }
+
+static void write_area_samples(const struct sl_config *c, FILE *f)
+{
+    fprintf(f, "area_samples: %d\n", c->area_samples);
+}
+
+/* "" (the default, <output root>/shadowlab.db) is left out */
+static void write_store(const struct sl_config *c, FILE *f)
+{
     if (c->store[0])
         fprintf(f, "store: %s\n", c->store);
-    fprintf(f, "threads: %d\n", c->threads);
+}
+
+static void write_threads(const struct sl_config *c, FILE *f) { fprintf(f, "threads: %d\n", c->threads); }
+
+static void write_gl(const struct sl_config *c, FILE *f)
+{
     fprintf(f, "gl: %s\n", sl_gl_backend_name(sl_gl_backend_resolve(c->gl)));
+}
+
+void sl_config_write(const struct sl_config *c, FILE *f)
+{
+    fprintf(f, "# filled-in config: every default explicit\n");
+#define WRITE_KEY(key, ...) write_##key(c, f);
+    CONFIG_KEYS(WRITE_KEY)
+#undef WRITE_KEY
 }
 
 int sl_config_contour_label(const struct sl_config *c)

@@ -506,8 +506,7 @@ static enum sl_err add_entry(struct build *b, const struct raw_mesh *r, const ch
         if (!g->name) {
             char known[256] = "";
             for (const struct generator *k = generators; k->name; k++)
-                snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s",
-                         k == generators ? "" : ", ", k->name);
+                sl_known_add(known, sizeof known, k->name);
             snprintf(key, sizeof key, "meshes[%u].generator", i);
             return sl_yaml_bad(d, SL_E_SCENE, file, pos, key, "unknown generator '%s' (known: %s)",
                                r->generator, known);
