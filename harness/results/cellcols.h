@@ -5,11 +5,12 @@
  * SL_CELL_COLUMNS is the one list of a cell's key, counts and costs. From it
  * come the fields of struct sl_cell_record, the results store's `cells`
  * table (schema, INSERT, SELECT: store.c), the run's costs.csv (header and
- * row: outputs.c) and the counters a baseline compares (check.c). Adding a
+ * row: outputs.c), the copy of a scored cell into its record (sl_out_record,
+ * outputs.c) and the counters a baseline compares (check.c). Adding a
  * counter is one line here (a stored column also changes the store's schema
  * text: bump its version, see store.c).
  *
- * X(name, kind, size, csv, head, check, key):
+ * X(name, kind, size, csv, head, check, key, from):
  *   name   the record's field and the store's column;
  *   kind   how it is held, stored and written:
  *            text      char[size], TEXT NOT NULL
@@ -30,7 +31,13 @@
  *   csv    position in costs.csv (1 = first), 0 = not written there, under
  *          the header `head`; git_sha, config_hash and machine follow;
  *   check  class of check.h a baseline compares it under (none = not
- *          compared), as the counter `key`.
+ *          compared), as the counter `key`;
+ *   from   where a run takes the value from its scored cell, an expression
+ *          in cl (const struct sl_cell *, score/cell.h), s (&cl->ms), k
+ *          (&cl->key), c (the config) and cm (the cell's config method);
+ *          _ for the kinds with no field (viewport, wrong) and for the
+ *          overlay's path, which names where the run writes the PNG and is
+ *          set by the caller that knows it (outputs.c).
  * flicker, flicker_compared: a path's frame against the frame before it
  * (temporal.h); compared 0 = not measured (no frame, or its path's first in
  * the run that computed it).
@@ -45,11 +52,14 @@
  *
  * The record is what the store returns and takes, what the tables, the
  * summaries, the report and the baseline check read, and what the run builds
- * from its cells. Does not: read, write or format anything (the store, the
- * tables and the run's outputs do); decide a cell's figures (figures.h).
+ * from its cells; its regions (fig.r[].thickness) have one name everywhere
+ * they are written or read (sl_region_name). Does not: read, write or format
+ * a record (the store, the tables and the run's outputs do); decide a cell's
+ * figures (figures.h).
  */
 #ifndef SL_CELLCOLS_H
 #define SL_CELLCOLS_H
+#include <stddef.h>
 #include <stdint.h>
 #include "figrec.h"
 #include "softfig.h"
@@ -59,71 +69,71 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
 
 /* clang-format off */
 #define SL_CELL_COLUMNS(X)                                                                  \
-    /* name                kind      size  csv  head                  check      key */    \
-    X(scene,               text,     64,   2,   "scene",              none,      _)         \
-    X(viewpoint,           text,     32,   3,   "viewpoint",          none,      _)         \
-    X(viewport,            viewport, 0,    4,   "viewport",           none,      _)         \
-    X(vw,                  dim,      0,    0,   "",                   none,      _)         \
-    X(vh,                  dim,      0,    0,   "",                   none,      _)         \
-    X(map_size,            dim,      0,    5,   "map_size",           none,      _)         \
-    X(method,              text,     32,   0,   "",                   none,      _)         \
-    X(label,               text,     48,   6,   "label",              none,      _)         \
-    X(contour_from,        text,     8,    0,   "",                   none,      _)         \
-    X(cell_index,          index,    0,    1,   "cell",               none,      _)         \
-    X(n_pfl,               count,    0,    0,   "",                   view,      n_pfl)     \
-    X(n_pnfl,              count,    0,    0,   "",                   view,      n_pnfl)    \
-    X(n_background,        count,    0,    0,   "",                   view,      n_background) \
-    X(n_truth_lit,         count,    0,    0,   "",                   view,      n_truth_lit) \
-    X(n_truth_shadow,      count,    0,    0,   "",                   view,      n_truth_shadow) \
-    X(n_wrong_image,       wrong,    0,    0,   "",                   error,     wrong_image) \
-    X(truth_rays,          count,    0,    16,  "truth_rays",         cost,      truth_rays) \
-    X(runs,                runs,     0,    7,   "runs",               none,      _)         \
-    X(lookups,             count,    0,    30,  "lookups",            cost,      lookups)   \
-    X(rays,                count,    0,    31,  "rays",               cost,      rays)      \
-    X(tri_tests,           count,    0,    32,  "tri_tests",          cost,      tri_tests) \
-    X(gs_prims,            count,    0,    33,  "gs_prims",           cost,      gs_prims)  \
-    X(fragments,           count,    0,    34,  "fragments",          cost,      fragments) \
-    X(violations,          count,    0,    35,  "violations",         invariant, violations) \
-    X(flicker,             count,    0,    0,   "",                   none,      _)         \
-    X(flicker_compared,    count,    0,    0,   "",                   none,      _)         \
-    X(ms_gbuffer_render,   ms,       0,    8,   "ms_gbuffer_render",  none,      _)         \
-    X(ms_gbuffer_render_min, ms,     0,    9,   "ms_gbuffer_render_min", none,   _)         \
-    X(ms_gbuffer_render_max, ms,     0,    10,  "ms_gbuffer_render_max", none,   _)         \
-    X(ms_gbuffer_readback, ms,       0,    11,  "ms_gbuffer_readback", none,     _)         \
-    X(ms_truth,            ms,       0,    12,  "ms_truth",           none,      _)         \
-    X(ms_truth_min,        ms,       0,    13,  "ms_truth_min",       none,      _)         \
-    X(ms_truth_max,        ms,       0,    14,  "ms_truth_max",       none,      _)         \
-    X(ms_fit,              ms,       0,    17,  "ms_fit",             none,      _)         \
-    X(ms_map_render,       ms,       0,    18,  "ms_map_render",      none,      _)         \
-    X(ms_map_render_min,   ms,       0,    19,  "ms_map_render_min",  none,      _)         \
-    X(ms_map_render_max,   ms,       0,    20,  "ms_map_render_max",  none,      _)         \
-    X(ms_map_readback,     ms,       0,    21,  "ms_map_readback",    none,      _)         \
-    X(ms_method,           ms,       0,    22,  "ms_method",          none,      _)         \
-    X(ms_method_min,       ms,       0,    23,  "ms_method_min",      none,      _)         \
-    X(ms_method_max,       ms,       0,    24,  "ms_method_max",      none,      _)         \
-    X(ms_ray_step,         ms,       0,    25,  "ms_ray_step",        none,      _)         \
-    X(ms_step1,            ms,       0,    26,  "ms_step1",           none,      _)         \
-    X(ms_step2,            ms,       0,    27,  "ms_step2",           none,      _)         \
-    X(ms_step3,            ms,       0,    28,  "ms_step3",           none,      _)         \
-    X(ms_step4,            ms,       0,    29,  "ms_step4",           none,      _)         \
-    X(ms_contours,         ms,       0,    36,  "ms_contours",        none,      _)         \
-    X(ms_figures,          ms,       0,    37,  "ms_figures",         none,      _)         \
-    X(ms_overlay,          ms,       0,    38,  "ms_overlay",         none,      _)         \
-    X(ms_gpu_gbuffer,      ms,       0,    39,  "ms_gpu_gbuffer",     none,      _)         \
-    X(ms_gpu_map,          ms,       0,    40,  "ms_gpu_map",         none,      _)         \
-    X(ms_flicker,          ms,       0,    41,  "ms_flicker",         none,      _)         \
-    X(texels,              count,    0,    42,  "texels",             none,      _)         \
-    X(faces,               count,    0,    43,  "faces",              none,      _)         \
-    X(ms_face_max,         ms,       0,    44,  "ms_face_max",        none,      _)         \
-    X(overlay,             path,     1500, 0,   "",                   none,      _)         \
-    X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _)         \
-    X(n_outside_cone,      count,    0,    0,   "",                   none,      _)         \
-    X(light,               text,     48,   0,   "",                   none,      _)
+    /* name                kind      size  csv  head                  check      key            from */    \
+    X(scene,               text,     64,   2,   "scene",              none,      _,              cl->scene) \
+    X(viewpoint,           text,     32,   3,   "viewpoint",          none,      _,              cl->viewpoint) \
+    X(viewport,            viewport, 0,    4,   "viewport",           none,      _,              _) \
+    X(vw,                  dim,      0,    0,   "",                   none,      _,              c->viewport_w[k->viewport]) \
+    X(vh,                  dim,      0,    0,   "",                   none,      _,              c->viewport_h[k->viewport]) \
+    X(map_size,            dim,      0,    5,   "map_size",           none,      _,              c->maps[k->map]) \
+    X(method,              text,     32,   0,   "",                   none,      _,              cm->method->name) \
+    X(label,               text,     48,   6,   "label",              none,      _,              cm->label) \
+    X(contour_from,        text,     8,    0,   "",                   none,      _,              sl_contour_from_name(c->contour_from)) \
+    X(cell_index,          index,    0,    1,   "cell",               none,      _,              cl->index) \
+    X(n_pfl,               count,    0,    0,   "",                   view,      n_pfl,          cl->n_pfl) \
+    X(n_pnfl,              count,    0,    0,   "",                   view,      n_pnfl,         cl->n_pnfl) \
+    X(n_background,        count,    0,    0,   "",                   view,      n_background,   cl->n_background) \
+    X(n_truth_lit,         count,    0,    0,   "",                   view,      n_truth_lit,    cl->n_truth_lit) \
+    X(n_truth_shadow,      count,    0,    0,   "",                   view,      n_truth_shadow, cl->n_truth_shadow) \
+    X(n_wrong_image,       wrong,    0,    0,   "",                   error,     wrong_image,    _) \
+    X(truth_rays,          count,    0,    16,  "truth_rays",         cost,      truth_rays,     cl->truth_rays) \
+    X(runs,                runs,     0,    7,   "runs",               none,      _,              c->runs) \
+    X(lookups,             count,    0,    30,  "lookups",            cost,      lookups,        cl->cost.lookups) \
+    X(rays,                count,    0,    31,  "rays",               cost,      rays,           cl->cost.rays) \
+    X(tri_tests,           count,    0,    32,  "tri_tests",          cost,      tri_tests,      cl->cost.tri_tests) \
+    X(gs_prims,            count,    0,    33,  "gs_prims",           cost,      gs_prims,       cl->gs_prims) \
+    X(fragments,           count,    0,    34,  "fragments",          cost,      fragments,      cl->fragments) \
+    X(violations,          count,    0,    35,  "violations",         invariant, violations,     cl->violations) \
+    X(flicker,             count,    0,    0,   "",                   none,      _,              cl->flicker) \
+    X(flicker_compared,    count,    0,    0,   "",                   none,      _,              cl->flicker_compared) \
+    X(ms_gbuffer_render,   ms,       0,    8,   "ms_gbuffer_render",  none,      _,              s->gbuffer_render[SL_MED]) \
+    X(ms_gbuffer_render_min, ms,     0,    9,   "ms_gbuffer_render_min", none,   _,              s->gbuffer_render[SL_MIN]) \
+    X(ms_gbuffer_render_max, ms,     0,    10,  "ms_gbuffer_render_max", none,   _,              s->gbuffer_render[SL_MAX]) \
+    X(ms_gbuffer_readback, ms,       0,    11,  "ms_gbuffer_readback", none,     _,              s->gbuffer_readback) \
+    X(ms_truth,            ms,       0,    12,  "ms_truth",           none,      _,              s->truth[SL_MED]) \
+    X(ms_truth_min,        ms,       0,    13,  "ms_truth_min",       none,      _,              s->truth[SL_MIN]) \
+    X(ms_truth_max,        ms,       0,    14,  "ms_truth_max",       none,      _,              s->truth[SL_MAX]) \
+    X(ms_fit,              ms,       0,    17,  "ms_fit",             none,      _,              s->fit) \
+    X(ms_map_render,       ms,       0,    18,  "ms_map_render",      none,      _,              s->map_render[SL_MED]) \
+    X(ms_map_render_min,   ms,       0,    19,  "ms_map_render_min",  none,      _,              s->map_render[SL_MIN]) \
+    X(ms_map_render_max,   ms,       0,    20,  "ms_map_render_max",  none,      _,              s->map_render[SL_MAX]) \
+    X(ms_map_readback,     ms,       0,    21,  "ms_map_readback",    none,      _,              s->map_readback) \
+    X(ms_method,           ms,       0,    22,  "ms_method",          none,      _,              s->method[SL_MED]) \
+    X(ms_method_min,       ms,       0,    23,  "ms_method_min",      none,      _,              s->method[SL_MIN]) \
+    X(ms_method_max,       ms,       0,    24,  "ms_method_max",      none,      _,              s->method[SL_MAX]) \
+    X(ms_ray_step,         ms,       0,    25,  "ms_ray_step",        none,      _,              cl->cost.ms_trace) \
+    X(ms_step1,            ms,       0,    26,  "ms_step1",           none,      _,              cl->cost.ms_step[0]) \
+    X(ms_step2,            ms,       0,    27,  "ms_step2",           none,      _,              cl->cost.ms_step[1]) \
+    X(ms_step3,            ms,       0,    28,  "ms_step3",           none,      _,              cl->cost.ms_step[2]) \
+    X(ms_step4,            ms,       0,    29,  "ms_step4",           none,      _,              cl->cost.ms_step[3]) \
+    X(ms_contours,         ms,       0,    36,  "ms_contours",        none,      _,              s->contours) \
+    X(ms_figures,          ms,       0,    37,  "ms_figures",         none,      _,              s->figures) \
+    X(ms_overlay,          ms,       0,    38,  "ms_overlay",         none,      _,              s->overlay) \
+    X(ms_gpu_gbuffer,      ms,       0,    39,  "ms_gpu_gbuffer",     none,      _,              s->gpu_gbuffer[SL_MED]) \
+    X(ms_gpu_map,          ms,       0,    40,  "ms_gpu_map",         none,      _,              s->gpu_map[SL_MED]) \
+    X(ms_flicker,          ms,       0,    41,  "ms_flicker",         none,      _,              s->flicker) \
+    X(texels,              count,    0,    42,  "texels",             none,      _,              cl->texels) \
+    X(faces,               count,    0,    43,  "faces",              none,      _,              cl->faces) \
+    X(ms_face_max,         ms,       0,    44,  "ms_face_max",        none,      _,              cl->ms_face_max) \
+    X(overlay,             path,     1500, 0,   "",                   none,      _,              _) \
+    X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _,              cl->truth_cached) \
+    X(n_outside_cone,      count,    0,    0,   "",                   none,      _,              cl->n_outside_cone) \
+    X(light,               text,     48,   0,   "",                   none,      _,              cl->light)
 /* clang-format on */
 
 /* One enumerator per column: SL_COL_<name>. */
 enum sl_cell_col {
-#define SL_COL_ENUM(name, kind, size, csv, head, check, key) SL_COL_##name,
+#define SL_COL_ENUM(name, kind, size, csv, head, check, key, from) SL_COL_##name,
     SL_CELL_COLUMNS(SL_COL_ENUM)
 #undef SL_COL_ENUM
     SL_COL_COUNT
@@ -147,7 +157,7 @@ enum sl_cell_col {
 
 struct sl_cell_record {
     /* key, counts and costs: one field per column above */
-#define SL_CELL_FIELD(name, kind, size, csv, head, check, key) SL_CELL_FIELD_##kind(name, size)
+#define SL_CELL_FIELD(name, kind, size, csv, head, check, key, from) SL_CELL_FIELD_##kind(name, size)
     SL_CELL_COLUMNS(SL_CELL_FIELD)
 #undef SL_CELL_FIELD
     struct sl_figures fig;             /* hard shadows (fig.nregions = 0 for a soft method's cell) */
@@ -166,5 +176,11 @@ struct sl_cell_record {
 /* *r with nothing known: zero keys and counts, every stage time NAN (not
  * measured), no figures. */
 void sl_cell_record_init(struct sl_cell_record *r);
+
+/* A region's name in the tables, the summaries, the store's figures and the
+ * baselines: "image" for the whole image (thickness 0), else "<t>px". */
+void sl_region_name(int thickness, char *out, size_t n);
+/* The thickness a region name stands for; -1 if it names none (NULL too). */
+int sl_region_thickness(const char *name);
 
 #endif

@@ -73,7 +73,7 @@ static enum sl_check_class figure_class(enum sl_figure f)
 #define BL_IF_soft(...) __VA_ARGS__
 
 enum {
-#define BL_CNT_ENUM(name, kind, size, csv, head, cls, key) BL_IF_##cls(BL_C_##key,)
+#define BL_CNT_ENUM(name, kind, size, csv, head, cls, key, from) BL_IF_##cls(BL_C_##key,)
     SL_CELL_COLUMNS(BL_CNT_ENUM)
 #undef BL_CNT_ENUM
     BL_C_COUNT
@@ -88,7 +88,7 @@ struct bl_tol {
 #undef BL_TOL_MEMBER
 };
 struct bl_counters {
-#define BL_CNT_MEMBER(name, kind, size, csv, head, cls, key) BL_IF_##cls(uint64_t key;)
+#define BL_CNT_MEMBER(name, kind, size, csv, head, cls, key, from) BL_IF_##cls(uint64_t key;)
     SL_CELL_COLUMNS(BL_CNT_MEMBER)
 #undef BL_CNT_MEMBER
 };
@@ -141,7 +141,7 @@ static const cyaml_schema_field_t tol_fields[] = {
     CYAML_FIELD_END
 };
 static const cyaml_schema_field_t counter_fields[] = {
-#define BL_CNT_FIELD(name, kind, size, csv, head, cls, key) \
+#define BL_CNT_FIELD(name, kind, size, csv, head, cls, key, from) \
     BL_IF_##cls(CYAML_FIELD_UINT(#key, CYAML_FLAG_DEFAULT, struct bl_counters, key),)
     SL_CELL_COLUMNS(BL_CNT_FIELD)
 #undef BL_CNT_FIELD
@@ -229,7 +229,7 @@ static const uint64_t *bl_fig(const struct bl_figs *f, int k, unsigned *n)
 static uint64_t bl_counter(const struct bl_counters *c, int k)
 {
     const uint64_t v[BL_C_COUNT] = {
-#define BL_CNT_VAL(name, kind, size, csv, head, cls, key) BL_IF_##cls(c->key,)
+#define BL_CNT_VAL(name, kind, size, csv, head, cls, key, from) BL_IF_##cls(c->key,)
         SL_CELL_COLUMNS(BL_CNT_VAL)
 #undef BL_CNT_VAL
     };
@@ -237,12 +237,12 @@ static uint64_t bl_counter(const struct bl_counters *c, int k)
 }
 
 static const char *const counter_name[BL_C_COUNT] = {
-#define BL_CNT_NAME(name, kind, size, csv, head, cls, key) BL_IF_##cls(#key,)
+#define BL_CNT_NAME(name, kind, size, csv, head, cls, key, from) BL_IF_##cls(#key,)
     SL_CELL_COLUMNS(BL_CNT_NAME)
 #undef BL_CNT_NAME
 };
 static const enum sl_check_class counter_class[BL_C_COUNT] = {
-#define BL_CNT_CLS(name, kind, size, csv, head, cls, key) BL_IF_##cls(SL_CC_##cls,)
+#define BL_CNT_CLS(name, kind, size, csv, head, cls, key, from) BL_IF_##cls(SL_CC_##cls,)
     SL_CELL_COLUMNS(BL_CNT_CLS)
 #undef BL_CNT_CLS
 };
@@ -251,7 +251,7 @@ static const enum sl_check_class counter_class[BL_C_COUNT] = {
 static uint64_t cell_counter(const struct sl_cell_record *c, int k)
 {
     const uint64_t v[BL_C_COUNT] = {
-#define BL_CNT_CELL(name, kind, size, csv, head, cls, key) \
+#define BL_CNT_CELL(name, kind, size, csv, head, cls, key, from) \
         BL_IF_##cls([BL_C_##key] = SL_CELL_U64_##kind(c, name),)
         SL_CELL_COLUMNS(BL_CNT_CELL)
 #undef BL_CNT_CELL
@@ -262,14 +262,6 @@ static uint64_t cell_counter(const struct sl_cell_record *c, int k)
 static void cell_key(const struct sl_cell_record *c, char *out, size_t n)
 {
     snprintf(out, n, "%s/%s/%dx%d/%d/%s", c->scene, c->viewpoint, c->vw, c->vh, c->map_size, c->label);
-}
-
-static void region_name(int t, char *out, size_t n)
-{
-    if (t == 0)
-        snprintf(out, n, "image");
-    else
-        snprintf(out, n, "%dpx", t);
 }
 
 /* ---- comparing ---- */
@@ -465,7 +457,7 @@ static enum sl_err compare_cell(struct cmp *m, const char *file, const struct sl
         int found = -1;
         char name[16];
         for (int j = 0; j < c->fig.nregions && found < 0; j++) {
-            region_name(c->fig.r[j].thickness, name, sizeof name);
+            sl_region_name(c->fig.r[j].thickness, name, sizeof name);
             if (strcmp(name, b->regions[r]) == 0)
                 found = j;
         }
@@ -856,6 +848,10 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
     yq(f, run->config_path);
     fprintf(f, "\nconfig_hash: ");
     yq(f, run->config_hash);
+    /* Not sl_provenance_write (run.yaml's and bench's writer): the baseline
+     * keeps only what decides whether counts must be exact (the machine:
+     * block its schema reads back, bl_machine), its values quoted, and its
+     * bytes are the baseline format's. */
     fprintf(f, "\ngit_sha: ");
     yq(f, run->prov.git_sha);
     fprintf(f, "\nmeasured: ");
@@ -907,7 +903,7 @@ enum sl_err sl_check_write_baseline(const char *db, const char *baseline, const 
         fprintf(f, "    regions: [");
         for (int r = 0; r < c->fig.nregions; r++) {
             char name[16];
-            region_name(c->fig.r[r].thickness, name, sizeof name);
+            sl_region_name(c->fig.r[r].thickness, name, sizeof name);
             fprintf(f, "%s%s", r ? ", " : "", name);
         }
         fprintf(f, "]\n    figures:\n");

@@ -39,32 +39,38 @@ static int have_program(const char *prog)
     return 0;
 }
 
+/* The motion table and its note, for sl_out_write_formats. */
+struct motion_tables {
+    const struct sl_motion_row *rows;
+    int                         n;
+    const char                 *note;
+};
+
+static enum sl_err write_motion_table(FILE *f, enum sl_table_format fmt, const void *arg, struct sl_diag *d)
+{
+    const struct motion_tables *t = arg;
+    (void)d;
+    if (fmt == SL_TABLE_MD)
+        fprintf(f, "# Errors over motion\n\nPer path, map size and label: the whole image's wrong pixels per "
+                   "frame (mean, worst), and flicker: pixels whose verdict changes between consecutive "
+                   "frames while their truth does not, compared by surface point (reprojected through "
+                   "the G-buffer onto the same triangle; pixel for pixel when the camera holds still). "
+                   "Per 1,000 contour pixels: of the thinnest contour of the later frame of each "
+                   "compared pair.\n\n");
+    sl_motion_write(f, fmt, t->rows, t->n);
+    if (fmt == SL_TABLE_MD && t->note[0])
+        fprintf(f, "\n%s", t->note);
+    return SL_OK;
+}
+
 static enum sl_err write_tables(const char *dir, const struct sl_motion_row *rows, int n, const char *note,
                                 struct sl_diag *d)
 {
-    static const struct { const char *name; enum sl_table_format fmt; } files[] = {
+    static const struct sl_out_format_file files[] = {
         {"motion.md", SL_TABLE_MD}, {"motion.csv", SL_TABLE_CSV}, {"motion.tex", SL_TABLE_LATEX},
     };
-    enum sl_err e = SL_OK;
-    for (size_t i = 0; i < sizeof files / sizeof files[0] && !e; i++) {
-        struct sl_outfile of;
-        char path[1300];
-        snprintf(path, sizeof path, "%s/%s", dir, files[i].name);
-        if ((e = sl_out_open(&of, path, d)))
-            break;
-        if (files[i].fmt == SL_TABLE_MD)
-            fprintf(of.f, "# Errors over motion\n\nPer path, map size and label: the whole image's wrong pixels per "
-                          "frame (mean, worst), and flicker: pixels whose verdict changes between consecutive "
-                          "frames while their truth does not, compared by surface point (reprojected through "
-                          "the G-buffer onto the same triangle; pixel for pixel when the camera holds still). "
-                          "Per 1,000 contour pixels: of the thinnest contour of the later frame of each "
-                          "compared pair.\n\n");
-        sl_motion_write(of.f, files[i].fmt, rows, n);
-        if (files[i].fmt == SL_TABLE_MD && note[0])
-            fprintf(of.f, "\n%s", note);
-        e = sl_out_commit(&of, d);
-    }
-    return e;
+    const struct motion_tables t = {rows, n, note};
+    return sl_out_write_formats(dir, files, (int)(sizeof files / sizeof files[0]), write_motion_table, &t, d);
 }
 
 /* The plot of one group: wrong pixels (left axis) and flicker (right axis)

@@ -53,71 +53,31 @@ void sl_out_exr_name(const struct sl_config *c, const struct sl_cell *cl, char *
     key_file_name(c, &cl->key, "exr", out, n);
 }
 
+/* The record's columns come from the list (cellcols.h, its `from`); the
+ * figures, the study and the config hash are the record's own, not columns. */
 void sl_out_record(const struct sl_config *c, const struct sl_cell *cl, struct sl_cell_record *r)
 {
     const struct sl_config_method *cm = &c->methods[cl->key.method];
+    const struct sl_cell_key *k = &cl->key;
     const struct sl_stage_ms *s = &cl->ms;
     memset(r, 0, sizeof *r);
-    snprintf(r->scene, sizeof r->scene, "%s", cl->scene);
-    snprintf(r->viewpoint, sizeof r->viewpoint, "%s", cl->viewpoint);
-    snprintf(r->method, sizeof r->method, "%s", cm->method->name);
-    snprintf(r->label, sizeof r->label, "%s", cm->label);
-    snprintf(r->contour_from, sizeof r->contour_from, "%s", sl_contour_from_name(c->contour_from));
-    r->vw = c->viewport_w[cl->key.viewport];
-    r->vh = c->viewport_h[cl->key.viewport];
-    r->map_size = c->maps[cl->key.map];
-    r->cell_index = cl->index;
-    r->n_pfl = cl->n_pfl;
-    r->n_pnfl = cl->n_pnfl;
-    r->n_background = cl->n_background;
-    r->n_truth_lit = cl->n_truth_lit;
-    r->n_truth_shadow = cl->n_truth_shadow;
-    r->n_outside_cone = cl->n_outside_cone;
-    snprintf(r->light, sizeof r->light, "%s", cl->light);
-    r->truth_rays = cl->truth_rays;
-    r->runs = c->runs;
-    r->lookups = cl->cost.lookups;
-    r->rays = cl->cost.rays;
-    r->tri_tests = cl->cost.tri_tests;
-    r->gs_prims = cl->gs_prims;
-    r->fragments = cl->fragments;
-    r->violations = cl->violations;
-    r->flicker = cl->flicker;
-    r->flicker_compared = cl->flicker_compared;
-    r->ms_flicker = s->flicker;
-    r->ms_gbuffer_render = s->gbuffer_render[SL_MED];
-    r->ms_gbuffer_render_min = s->gbuffer_render[SL_MIN];
-    r->ms_gbuffer_render_max = s->gbuffer_render[SL_MAX];
-    r->ms_gbuffer_readback = s->gbuffer_readback;
-    r->ms_truth = s->truth[SL_MED];
-    r->ms_truth_min = s->truth[SL_MIN];
-    r->ms_truth_max = s->truth[SL_MAX];
-    r->ms_fit = s->fit;
-    r->ms_map_render = s->map_render[SL_MED];
-    r->ms_map_render_min = s->map_render[SL_MIN];
-    r->ms_map_render_max = s->map_render[SL_MAX];
-    r->ms_map_readback = s->map_readback;
-    r->ms_gpu_gbuffer = s->gpu_gbuffer[SL_MED];
-    r->ms_gpu_map = s->gpu_map[SL_MED];
-    r->ms_method = s->method[SL_MED];
-    r->ms_method_min = s->method[SL_MIN];
-    r->ms_method_max = s->method[SL_MAX];
-    r->ms_ray_step = cl->cost.ms_trace;
-    r->ms_step1 = cl->cost.ms_step[0];
-    r->ms_step2 = cl->cost.ms_step[1];
-    r->ms_step3 = cl->cost.ms_step[2];
-    r->ms_step4 = cl->cost.ms_step[3];
-    r->ms_contours = s->contours;
-    r->ms_figures = s->figures;
-    r->ms_overlay = s->overlay;
-    r->truth_cached = cl->truth_cached;
+#define SL_FROM_text(name, from)     snprintf(r->name, sizeof r->name, "%s", from);
+#define SL_FROM_path(name, from)
+#define SL_FROM_dim(name, from)      r->name = from;
+#define SL_FROM_index(name, from)    r->name = from;
+#define SL_FROM_runs(name, from)     r->name = from;
+#define SL_FROM_count(name, from)    r->name = from;
+#define SL_FROM_ms(name, from)       r->name = from;
+#define SL_FROM_viewport(name, from)
+#define SL_FROM_wrong(name, from)
+#define SL_FROM_flag(name, from)     r->name = from;
+#define SL_FROM(name, kind, size, csv, head, check, key, from) SL_FROM_##kind(name, from)
+    SL_CELL_COLUMNS(SL_FROM)
+#undef SL_FROM
     r->fig = cl->fig;
     r->has_soft = cl->has_soft;
     r->soft = cl->soft;
     r->has_alias = cl->has_alias;
-    r->texels = cl->texels;
-    r->faces = cl->faces;
-    r->ms_face_max = cl->ms_face_max;
     r->alias = cl->alias;
     snprintf(r->study, sizeof r->study, "%s", c->name);
     snprintf(r->config_hash, sizeof r->config_hash, "%016llx", c->hash);
@@ -175,12 +135,12 @@ enum sl_err sl_out_print_tables(FILE *f, const struct sl_config *c, const struct
 /* ---- costs.csv: the columns of cellcols.h with a csv position ---- */
 
 static const int csv_pos[SL_COL_COUNT] = {
-#define SL_CSV_POS(name, kind, size, csv, head, check, key) [SL_COL_##name] = csv,
+#define SL_CSV_POS(name, kind, size, csv, head, check, key, from) [SL_COL_##name] = csv,
     SL_CELL_COLUMNS(SL_CSV_POS)
 #undef SL_CSV_POS
 };
 static const char *const csv_head[SL_COL_COUNT] = {
-#define SL_CSV_HEAD(name, kind, size, csv, head, check, key) [SL_COL_##name] = head,
+#define SL_CSV_HEAD(name, kind, size, csv, head, check, key, from) [SL_COL_##name] = head,
     SL_CELL_COLUMNS(SL_CSV_HEAD)
 #undef SL_CSV_HEAD
 };
@@ -214,7 +174,7 @@ static void csv_value(FILE *f, const struct sl_cell_record *r, enum sl_cell_col 
 #define SL_CSV_ms(name)       fprintf(f, "%.3f", r->name);
 #define SL_CSV_viewport(name) fprintf(f, "%dx%d", r->vw, r->vh);
     switch (col) {
-#define SL_CSV_CASE(name, kind, size, csv, head, check, key) \
+#define SL_CSV_CASE(name, kind, size, csv, head, check, key, from) \
     case SL_COL_##name: SL_CSV_##kind(name) break;
     SL_CELL_COLUMNS(SL_CSV_CASE)
 #undef SL_CSV_CASE
@@ -277,10 +237,7 @@ void sl_out_write_patterns_csv(FILE *f, const struct sl_config *c, const struct 
         for (int r = 0; r < cl->fig.nregions; r++)
             for (int k = 0; k <= n; k++) {
                 char rn[16];
-                if (cl->fig.r[r].thickness)
-                    snprintf(rn, sizeof rn, "%dpx", cl->fig.r[r].thickness);
-                else
-                    snprintf(rn, sizeof rn, "image");
+                sl_region_name(cl->fig.r[r].thickness, rn, sizeof rn);
                 fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d,%s,%d,%llu,%llu,%s,%016llx\n", cl->index, cl->scene,
                         cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
                         c->maps[cl->key.map], c->methods[cl->key.method].label, n, rn, k,
@@ -652,43 +609,55 @@ void sl_out_stage_drop(struct sl_out_dirs *o)
     claim_release(o);   /* kept or not, it is a dead run's folder from now on */
 }
 
+/* The run's cells and result, for sl_out_write_formats: table.md also
+ * gets the costs and the texel patterns. */
+struct run_tables {
+    const struct sl_config     *c;
+    const struct sl_run_result *res;
+};
+
+static enum sl_err write_run_table(FILE *f, enum sl_table_format fmt, const void *arg, struct sl_diag *d)
+{
+    const struct run_tables *t = arg;
+    enum sl_err e = sl_out_write_tables(f, fmt, t->c, t->res, d);
+    if (fmt == SL_TABLE_MD) {
+        sl_out_write_costs_md(f, t->c, t->res);
+        sl_out_write_patterns_md(f, t->c, t->res);
+    }
+    return e;
+}
+
 enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_result *res,
                                 struct sl_out_dirs *o, int resume, struct sl_diag *d)
 {
     enum sl_err e = SL_OK;
-    {
-        struct { const char *name; int kind; } files[] = {
-            {"figures.csv", 0}, {"table.md", 1}, {"table.tex", 2}, {"costs.csv", 3},
-            {"config.yaml", 4}, {"run.yaml", 5}, {"patterns.csv", 6},
+    if (c->tables) {
+        static const struct sl_out_format_file tables[] = {
+            {"figures.csv", SL_TABLE_CSV}, {"table.md", SL_TABLE_MD}, {"table.tex", SL_TABLE_LATEX},
         };
+        const struct run_tables t = {c, res};
+        if ((e = sl_out_write_formats(o->stage, tables, (int)(sizeof tables / sizeof tables[0]), write_run_table,
+                                      &t, d)))
+            return e;
+    }
+    {
+        static const char *const files[] = {"costs.csv", "config.yaml", "run.yaml", "patterns.csv"};
         for (size_t f = 0; f < sizeof files / sizeof files[0] && !e; f++) {
-            if (!c->tables && files[f].kind <= 2)
-                continue;
             struct sl_outfile of;
             char path[1300];
-            snprintf(path, sizeof path, "%s/%s", o->stage, files[f].name);
+            snprintf(path, sizeof path, "%s/%s", o->stage, files[f]);
             if ((e = sl_out_open(&of, path, d)))
                 break;
-            switch (files[f].kind) {
-            case 0: e = sl_out_write_tables(of.f, SL_TABLE_CSV, c, res, d); break;
+            switch (f) {
+            case 0: sl_out_write_costs_csv(of.f, c, res); break;
             case 1:
-                e = sl_out_write_tables(of.f, SL_TABLE_MD, c, res, d);
-                sl_out_write_costs_md(of.f, c, res);
-                sl_out_write_patterns_md(of.f, c, res);
-                break;
-            case 2: e = sl_out_write_tables(of.f, SL_TABLE_LATEX, c, res, d); break;
-            case 3: sl_out_write_costs_csv(of.f, c, res); break;
-            case 4:
                 fprintf(of.f, "# from %s (hash %016llx), git %s\n", c->path, c->hash, res->prov.git_sha);
                 sl_config_write(c, of.f);
                 break;
-            case 5: sl_out_write_run_yaml(of.f, c, res); break;
-            case 6: sl_out_write_patterns_csv(of.f, c, res); break;
+            case 2: sl_out_write_run_yaml(of.f, c, res); break;
+            case 3: sl_out_write_patterns_csv(of.f, c, res); break;
             }
-            if (e)
-                sl_out_abort(&of);
-            else
-                e = sl_out_commit(&of, d);
+            e = sl_out_commit(&of, d);
         }
         if (e)
             return e;
@@ -746,6 +715,38 @@ enum sl_err sl_out_stored_cells(struct sl_store *st, const struct sl_config *c, 
     return SL_OK;
 }
 
+enum sl_err sl_out_write_formats(const char *dir, const struct sl_out_format_file *files, int nfiles,
+                                 sl_out_format_writer write, const void *arg, struct sl_diag *d)
+{
+    enum sl_err e = SL_OK;
+    for (int i = 0; i < nfiles && !e; i++) {
+        struct sl_outfile of;
+        char path[1300];
+        snprintf(path, sizeof path, "%s/%s", dir, files[i].name);
+        if ((e = sl_out_open(&of, path, d)))
+            break;
+        e = write(of.f, files[i].fmt, arg, d);
+        if (e)
+            sl_out_abort(&of);
+        else
+            e = sl_out_commit(&of, d);
+    }
+    return e;
+}
+
+/* The stored cells of a rebuild and their title, for sl_out_write_formats. */
+struct stored_tables {
+    const char                  *title;
+    const struct sl_cell_record *cells;
+    int                          n;
+};
+
+static enum sl_err write_stored_table(FILE *f, enum sl_table_format fmt, const void *arg, struct sl_diag *d)
+{
+    const struct stored_tables *t = arg;
+    return sl_table_write(f, fmt, t->title, t->cells, t->n, d);
+}
+
 /* The run folder's figures.csv, table.md and table.tex from the store, when
  * it holds more cells of this config (same hash) than this run computed: a
  * resumed, split or interrupted run then still leaves tables of every
@@ -764,23 +765,13 @@ enum sl_err sl_out_rebuild_from_store(struct sl_store *st, const struct sl_confi
         free(cells);
         return SL_OK;
     }
-    static const struct { const char *name; enum sl_table_format fmt; } files[] = {
+    static const struct sl_out_format_file files[] = {
         {"figures.csv", SL_TABLE_CSV}, {"table.md", SL_TABLE_MD}, {"table.tex", SL_TABLE_LATEX},
     };
     char title[256];
     snprintf(title, sizeof title, "shadowlab: %s (every stored cell of this config)", c->name);
-    for (size_t i = 0; i < sizeof files / sizeof files[0] && !e; i++) {
-        struct sl_outfile of;
-        char path[1300];
-        snprintf(path, sizeof path, "%s/%s", dir, files[i].name);
-        if ((e = sl_out_open(&of, path, d)))
-            break;
-        e = sl_table_write(of.f, files[i].fmt, title, cells, k, d);
-        if (e)
-            sl_out_abort(&of);
-        else
-            e = sl_out_commit(&of, d);
-    }
+    const struct stored_tables t = {title, cells, k};
+    e = sl_out_write_formats(dir, files, (int)(sizeof files / sizeof files[0]), write_stored_table, &t, d);
     free(cells);
     return e;
 }

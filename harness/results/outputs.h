@@ -123,6 +123,20 @@ enum sl_err sl_out_kept_find(const struct sl_config *c, const char *root, const 
 int  sl_out_kept_whole(const struct sl_config *c, const struct sl_cell_key *key, const struct sl_out_kept *k);
 void sl_out_kept_free(struct sl_out_kept *k);   /* NULL-safe on a zeroed k */
 
+/* One table written in several formats, a file each: dir/files[i].name by
+ * write(f, files[i].fmt, arg, d), in the order given. The first failure
+ * stops the loop; the file it was writing is not left behind (the files
+ * before it are). Serves the run's figures.csv/table.md/table.tex from the
+ * store and motion.md/csv/tex. */
+struct sl_out_format_file {
+    const char          *name;
+    enum sl_table_format fmt;
+};
+typedef enum sl_err (*sl_out_format_writer)(FILE *f, enum sl_table_format fmt, const void *arg,
+                                            struct sl_diag *d);
+enum sl_err sl_out_write_formats(const char *dir, const struct sl_out_format_file *files, int nfiles,
+                                 sl_out_format_writer write, const void *arg, struct sl_diag *d);
+
 /* Rebuild dir's figures.csv, table.md and table.tex from the store's cells of
  * this config when it holds more than `computed`; *stored = how many it holds. */
 enum sl_err sl_out_rebuild_from_store(struct sl_store *st, const struct sl_config *c, int computed,

@@ -71,11 +71,11 @@
 #define SL_SQL_STORED_wrong(...) __VA_ARGS__
 #define SL_SQL_STORED_ms(...) __VA_ARGS__
 #define SL_SQL_STORED_viewport(...) __VA_ARGS__
-#define SL_SQL_COL(name, kind, size, csv, head, check, key) \
+#define SL_SQL_COL(name, kind, size, csv, head, check, key, from) \
     SL_SQL_STORED(kind, "  " #name " " SL_SQL_DECL_##kind(name) ",\n")
-#define SL_SQL_NAME(name, kind, size, csv, head, check, key) SL_SQL_STORED(kind, ", " #name)
-#define SL_SQL_L_NAME(name, kind, size, csv, head, check, key) SL_SQL_STORED(kind, ", l." #name)
-#define SL_SQL_PARAM(name, kind, size, csv, head, check, key) SL_SQL_STORED(kind, ",?")
+#define SL_SQL_NAME(name, kind, size, csv, head, check, key, from) SL_SQL_STORED(kind, ", " #name)
+#define SL_SQL_L_NAME(name, kind, size, csv, head, check, key, from) SL_SQL_STORED(kind, ", l." #name)
+#define SL_SQL_PARAM(name, kind, size, csv, head, check, key, from) SL_SQL_STORED(kind, ",?")
 
 static const char sql_runs[] =
     "CREATE TABLE runs (\n"
@@ -317,27 +317,6 @@ static int st_exec(sqlite3_stmt *st)
 {
     int rc = sqlite3_step(st);
     return rc == SQLITE_ROW ? SQLITE_DONE : rc;
-}
-
-static void region_name(int t, char *buf, size_t n)
-{
-    if (t == 0)
-        snprintf(buf, n, "image");
-    else
-        snprintf(buf, n, "%dpx", t);
-}
-
-/* Thickness of a region name, -1 if not one. */
-static int region_thickness(const char *r)
-{
-    if (!r)
-        return -1;
-    if (strcmp(r, "image") == 0)
-        return 0;
-    int t = 0, k = 0;
-    while (r[k] >= '0' && r[k] <= '9' && t < 100000)
-        t = 10 * t + (r[k++] - '0');
-    return (k > 0 && t > 0 && strcmp(r + k, "px") == 0) ? t : -1;
 }
 
 /* a == b ignoring white space (sqlite_master keeps the CREATE text, but may
@@ -633,7 +612,7 @@ static enum sl_err put_cell_row(struct sl_store *s, int64_t run_id, const char *
 #define SL_BIND_ms(name)       b_real(&b, c->name);
 #define SL_BIND_viewport(name) b_text(&b, viewport);
 #define SL_BIND_flag(name)
-#define SL_BIND(name, kind, size, csv, head, check, key) SL_BIND_##kind(name)
+#define SL_BIND(name, kind, size, csv, head, check, key, from) SL_BIND_##kind(name)
     SL_CELL_COLUMNS(SL_BIND)
 #undef SL_BIND
     enum sl_err e = SL_OK;
@@ -681,7 +660,7 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
     for (int r = 0; r < fig->nregions && !e; r++) {
         const struct sl_region_figures *g = &fig->r[r];
         char region[16];
-        region_name(g->thickness, region, sizeof region);
+        sl_region_name(g->thickness, region, sizeof region);
         for (int k = 0; k < SL_FIG_COUNT && !e; k++)
             e = put_figure(s, cell_id, c, viewport, region, sl_figure_name((enum sl_figure)k), g->n[k],
                            g->pct[k], sl_figure_of((enum sl_figure)k), key, d);
@@ -790,7 +769,7 @@ static enum sl_err load_figures(struct sl_store *s, sqlite3_int64 cell_id, struc
             c->soft.pct[sk] = pct;
             continue;
         }
-        int t = region_thickness(region), k = 0;
+        int t = sl_region_thickness(region), k = 0;
         if (figure && t >= 0 && sl_alias_figures_put(&c->alias, t, figure, count, pct))
             continue;   /* has_alias: set below */
         while (k < SL_FIG_COUNT && (!figure || strcmp(figure, sl_figure_name((enum sl_figure)k)) != 0))
@@ -886,7 +865,7 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
         i++;
 #define SL_READ_viewport(name) i++;
 #define SL_READ_flag(name)
-#define SL_READ(name, kind, size, csv, head, check, key) SL_READ_##kind(name)
+#define SL_READ(name, kind, size, csv, head, check, key, from) SL_READ_##kind(name)
         SL_CELL_COLUMNS(SL_READ)
 #undef SL_READ
         /* a reader trusts no cell its digest does not vouch for */

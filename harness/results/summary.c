@@ -11,14 +11,6 @@
 
 struct pick { const struct sl_cell_record *cell; int region; double v; };
 
-static void region_name(int t, char *buf, size_t n)
-{
-    if (t == 0)
-        snprintf(buf, n, "image");
-    else
-        snprintf(buf, n, "%dpx", t);
-}
-
 static int wanted(const struct sl_summary_opts *o, int thickness)
 {
     return o->region < 0 ? thickness != 0 : thickness == o->region;
@@ -93,13 +85,13 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
             for (int w = 0; w < 2; w++) {
                 if (!p[w]->cell)
                     continue;
-                region_name(p[w]->region, rn, sizeof rn);
+                sl_region_name(p[w]->region, rn, sizeof rn);
                 fprintf(out, "%s,%s,%s,%d,%s,%s,%s,%.4f\n", name, cells[0].label, w ? "worst" : "best", maps[k],
                         p[w]->cell->scene, p[w]->cell->viewpoint, rn, p[w]->v);
             }
         }
         if (avgcase.cell) {
-            region_name(avgcase.region, rn, sizeof rn);
+            sl_region_name(avgcase.region, rn, sizeof rn);
             fprintf(out, "%s,%s,average case,%d,%s,%s,%s,%.4f\n", name, cells[0].label, avgcase.cell->map_size,
                     avgcase.cell->scene, avgcase.cell->viewpoint, rn, avgcase.v);
         }
@@ -133,7 +125,7 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
                 fprintf(out, " |");
                 continue;
             }
-            region_name(p->region, rn, sizeof rn);
+            sl_region_name(p->region, rn, sizeof rn);
             switch (row) {
             case 0:   /* with its light, as every heading names it: "lamp (spot light, 70°)" */
                 fprintf(out, p->cell->light[0] ? " %s (%s) |" : " %s |", p->cell->scene, p->cell->light);

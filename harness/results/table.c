@@ -37,14 +37,6 @@ static int same_table(const struct sl_cell_record *a, const struct sl_cell_recor
            strcmp(a->viewpoint, b->viewpoint) == 0 && strcmp(a->label, b->label) == 0;
 }
 
-static void region_name(int t, char *buf, size_t n)
-{
-    if (t == 0)
-        snprintf(buf, n, "image");
-    else
-        snprintf(buf, n, "%dpx", t);
-}
-
 /* The cells of one table, by index into the caller's array. */
 struct group {
     const int *idx;
@@ -281,7 +273,7 @@ static void md_table(FILE *f, const struct sl_cell_record *cells, const struct g
         const struct sl_cell_record *c = &cells[g->idx[k]];
         for (int r = 0; r < cell_cols(c); r++, ncols++) {
             char rn[16];
-            region_name(col_thickness(c, r), rn, sizeof rn);
+            sl_region_name(col_thickness(c, r), rn, sizeof rn);
             fprintf(f, " %d² %s |", c->map_size, rn);
         }
     }
@@ -363,7 +355,7 @@ static void csv_cell(FILE *f, const struct sl_cell_record *c, int background)
 {
     for (int r = 0; r < cell_cols(c); r++) {
         char rn[16];
-        region_name(col_thickness(c, r), rn, sizeof rn);
+        sl_region_name(col_thickness(c, r), rn, sizeof rn);
         for (int k = 0; k < cell_rows(c); k++) {
             uint64_t n;
             double pct;
@@ -507,7 +499,7 @@ static void latex_table(FILE *f, const struct sl_cell_record *cells, const struc
         fputs("}\n\\toprule\nfigure", f);
         for (int r = 0; r < ncols; r++) {
             char rn[16];
-            region_name(col_thickness(c, r), rn, sizeof rn);
+            sl_region_name(col_thickness(c, r), rn, sizeof rn);
             fprintf(f, " & %s", rn);
         }
         fputs(" \\\\\n\\midrule\n", f);
