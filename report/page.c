@@ -1,8 +1,8 @@
 /*
  * page.c — the report's pages as files (see report_int.h, doc): the
  * contents tree put in front of the bodies doc.c wrote, the LaTeX document
- * around its \\inputs, data: URIs for the self-contained page, and the
- * overlay gallery with its filters.
+ * around its \\inputs, and the overlay gallery with its filters (its
+ * thumbnails' src through doc.c's sl_report_doc_src, as every image's).
  *
  * Invariants:
  * - The pages are registered last-moved (SL_REPORT_PAGE), so the folder
@@ -20,63 +20,6 @@
 #define html_text sl_report_html_text
 #define md_text sl_report_md_text
 #define SL_REPORT_PAGE 2   /* keep value of the pages: moved after every other file */
-
-/* ---- data: URIs ---- */
-
-char *sl_report_doc_uri(struct sl_report_doc *doc, const char *rel)
-{
-    if (!doc->self_contained || rel[0] == '#')
-        return NULL;
-    const char *ext = strrchr(rel, '.');
-    const char *mime = !ext                      ? NULL
-                       : !strcmp(ext, ".png")    ? "image/png"
-                       : !strcmp(ext, ".svg")    ? "image/svg+xml"
-                       : !strcmp(ext, ".jpg")    ? "image/jpeg"
-                                                 : NULL;
-    if (!mime)
-        return NULL;
-    char path[1400];
-    snprintf(path, sizeof path, "%s/%s", doc->out->stage, rel);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    size_t cap = 65536, len = 0;
-    unsigned char *buf = malloc(cap);
-    size_t got;
-    while (buf && (got = fread(buf + len, 1, cap - len, f)) > 0) {
-        len += got;
-        if (len == cap) {
-            unsigned char *b = realloc(buf, cap * 2);
-            if (!b) {
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            buf = b;
-            cap *= 2;
-        }
-    }
-    fclose(f);
-    if (!buf)
-        return NULL;
-    static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    size_t head = strlen(mime) + 14, n = head + 4 * ((len + 2) / 3) + 1;
-    char *uri = malloc(n);
-    if (uri) {
-        size_t k = (size_t)snprintf(uri, n, "data:%s;base64,", mime);
-        for (size_t i = 0; i < len; i += 3) {
-            unsigned v = (unsigned)buf[i] << 16 | (i + 1 < len ? (unsigned)buf[i + 1] << 8 : 0u) |
-                         (i + 2 < len ? buf[i + 2] : 0u);
-            uri[k++] = b64[v >> 18 & 63];
-            uri[k++] = b64[v >> 12 & 63];
-            uri[k++] = i + 1 < len ? b64[v >> 6 & 63] : '=';
-            uri[k++] = i + 2 < len ? b64[v & 63] : '=';
-        }
-        uri[k] = '\0';
-    }
-    free(buf);
-    return uri;
-}
 
 /* the distinct values of one key of the thumbnails, in order of first appearance */
 static void filter_select(FILE *f, const struct sl_report_thumb *t, int n, size_t off, const char *key,

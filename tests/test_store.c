@@ -108,17 +108,62 @@ static void fill_prov(struct sl_provenance *p, const char *sha)
     p->threads = 2;
 }
 
-/* A fresh store in t with one run begun (study_s, config hash HASH_A, the
- * provenance p of "abc1234"): the opening most cases share. */
-static struct sl_store *open_with_run(struct tmp *t, struct sl_provenance *p, int64_t *run)
+/* The fixture of most cases: a temp folder (fx_temp), the store opened in
+ * it (fx_store), and one run begun (fx_run: study_s, config hash HASH_A,
+ * the provenance p of "abc1234"). The teardown closes the store the fixture
+ * opened (a case that closes it itself says so with fx_close) and removes
+ * the folder. */
+struct fx {
+    struct tmp t;
+    struct sl_store *s;
+    struct sl_provenance p;
+    int64_t run;
+};
+
+static int fx_temp(void **st)
 {
+    struct fx *x = calloc(1, sizeof *x);
+    assert_non_null(x);
+    *st = x;
+    tmp_make(&x->t);
+    return 0;
+}
+
+static int fx_store(void **st)
+{
+    fx_temp(st);
+    struct fx *x = *st;
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    tmp_make(t);
-    assert_int_equal(sl_store_open(t->db, &s, &d), SL_OK);
-    fill_prov(p, "abc1234");
-    assert_int_equal(sl_store_begin_run(s, p, "study_s", "c.yaml", HASH_A, "name: study_s\n", run, &d), SL_OK);
-    return s;
+    assert_int_equal(sl_store_open(x->t.db, &x->s, &d), SL_OK);
+    return 0;
+}
+
+static int fx_run(void **st)
+{
+    fx_store(st);
+    struct fx *x = *st;
+    struct sl_diag d;
+    fill_prov(&x->p, "abc1234");
+    assert_int_equal(sl_store_begin_run(x->s, &x->p, "study_s", "c.yaml", HASH_A, "name: study_s\n", &x->run, &d),
+                     SL_OK);
+    return 0;
+}
+
+static void fx_close(struct fx *x)
+{
+    sl_store_close(x->s);
+    x->s = NULL;
+}
+
+static int fx_teardown(void **st)
+{
+    struct fx *x = *st;
+    if (x) {
+        fx_close(x);
+        tmp_remove(&x->t);
+        free(x);
+    }
+    return 0;
 }
 
 static const struct sl_cell_record *find(const struct sl_cell_record *cells, int n, const char *vp, int map)
@@ -172,12 +217,10 @@ static const int thick3[] = {2, 6, 0};
 
 static void store_round_trip(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_store *s = x->s;
     struct sl_provenance p;
     fill_prov(&p, "abc1234");
     int64_t run1 = 0;
@@ -296,7 +339,7 @@ static void store_round_trip(void **st)
     sqlite3_close(raw);
 
     /* survives closing: a fresh handle reads the same */
-    sl_store_close(s);
+    fx_close(x);
     s = NULL;
     assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
     assert_int_equal(sl_store_query(s, NULL, &cells, &n, &d), SL_OK);
@@ -304,19 +347,15 @@ static void store_round_trip(void **st)
     assert_cell(find(cells, n, "side", 2048), 3000, &f2, "abc1234");
     free(cells);
     sl_store_close(s);
-    tmp_remove(&t);
 }
 
 /* A soft-shadow cell (area light): no region of hard figures, the soft
  * figures of the whole image, back as stored; and the tables render them. */
 static void store_soft_cell(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_store *s = x->s;
     struct sl_provenance p;
     fill_prov(&p, "abc1234");
     int64_t run = 0;
@@ -358,18 +397,14 @@ static void store_soft_cell(void **st)
     assert_null(strstr(md, "| wrong |"));
     free(md);
     free(cells);
-    sl_store_close(s);
-    tmp_remove(&t);
 }
 
 static void store_has_cell_matches_key_and_hash(void **st)
 {
-    (void)st;
-    struct tmp t;
+    struct fx *x = *st;
     struct sl_diag d;
-    struct sl_provenance p;
-    int64_t run = 0;
-    struct sl_store *s = open_with_run(&t, &p, &run);
+    int64_t run = x->run;
+    struct sl_store *s = x->s;
     struct sl_figures f;
     make_fig(&f, 5, thick3, 3);
     struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &f, NULL, 5);
@@ -382,18 +417,13 @@ static void store_has_cell_matches_key_and_hash(void **st)
     assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "side", 480, 640, 1024, "nsm_a"));
     assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "side", 640, 480, 2048, "nsm_a"));
     assert_false(sl_store_has_cell(s, HASH_A, "prim_s", "side", 640, 480, 1024, "nsm_b"));
-    sl_store_close(s);
-    tmp_remove(&t);
 }
 
 static void store_latest_run_wins(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_store *s = x->s;
     struct sl_provenance p1, p2;
     fill_prov(&p1, "abc1234");
     fill_prov(&p2, "def5678");
@@ -444,8 +474,6 @@ static void store_latest_run_wins(void **st)
     assert_int_equal(sl_store_query(s, &none, &cells, &n, &d), SL_OK);
     assert_int_equal(n, 0);
     free(cells);
-    sl_store_close(s);
-    tmp_remove(&t);
 }
 
 /* A count that does not fit SQLite's signed 64 bits fails the last region's
@@ -453,12 +481,11 @@ static void store_latest_run_wins(void **st)
  * cell must be gone, and the store must be usable afterwards. */
 static void store_failed_put_leaves_no_cell(void **st)
 {
-    (void)st;
-    struct tmp t;
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
-    struct sl_provenance p;
-    int64_t run = 0;
-    struct sl_store *s = open_with_run(&t, &p, &run);
+    int64_t run = x->run;
+    struct sl_store *s = x->s;
     struct sl_figures good, bad;
     make_fig(&good, 10, thick3, 3);
     make_fig(&bad, 20, thick4, 4);
@@ -484,8 +511,6 @@ static void store_failed_put_leaves_no_cell(void **st)
     assert_int_equal(sl_store_put_cell(s, run, HASH_A, &cb, &d), SL_OK);
     assert_int_equal(sl_store_count(s, "cells"), 2);
     assert_int_equal(sl_store_count(s, "figures"), 3 * SL_FIG_COUNT + 1 + 4 * SL_FIG_COUNT + 1);
-    sl_store_close(s);
-    tmp_remove(&t);
 }
 
 /* The database itself refuses the last row of a cell (a trigger another
@@ -514,17 +539,16 @@ static int raw_figure(const char *path, const char *figure)
 
 static void store_figure_names_checked(void **st)
 {
-    (void)st;
-    struct tmp t;
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
-    struct sl_provenance p;
-    int64_t run = 0;
-    struct sl_store *s = open_with_run(&t, &p, &run);
+    int64_t run = x->run;
+    struct sl_store *s = x->s;
     struct sl_figures fig;
     make_fig(&fig, 10, thick3, 3);
     struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &fig, NULL, 10);
     assert_int_equal(sl_store_put_cell(s, run, HASH_A, &c, &d), SL_OK);
-    sl_store_close(s);
+    fx_close(x);
     for (int k = 0; k < SL_FIG_COUNT; k++)
         assert_int_equal(raw_figure(t.db, sl_figure_name((enum sl_figure)k)), SQLITE_DONE);
     for (int k = 0; k < SL_SFIG_COUNT; k++)
@@ -535,17 +559,15 @@ static void store_figure_names_checked(void **st)
     const char *bad[] = {"bogus", "pixel", "ixels", "pfl,pnfl", "pixels,", ",pixels", "", "Pixels", "pixels "};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
         assert_int_equal(raw_figure(t.db, bad[i]), SQLITE_CONSTRAINT);
-    tmp_remove(&t);
 }
 
 static void store_refused_last_row_rolls_back(void **st)
 {
-    (void)st;
-    struct tmp t;
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
-    struct sl_provenance p;
-    int64_t run = 0;
-    struct sl_store *s = open_with_run(&t, &p, &run);
+    int64_t run = x->run;
+    struct sl_store *s = x->s;
 
     sqlite3 *raw = NULL;
     assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
@@ -565,8 +587,6 @@ static void store_refused_last_row_rolls_back(void **st)
     assert_string_equal(d.key, "prim_s/side/640x480/1024/nsm_a");
     assert_int_equal(sl_store_count(s, "cells"), 0);
     assert_int_equal(sl_store_count(s, "figures"), 0);
-    sl_store_close(s);
-    tmp_remove(&t);
 }
 
 static void sleep_ms(long ms)
@@ -579,13 +599,12 @@ static void sleep_ms(long ms)
  * that is there has all its figure rows, and no figure row lacks its cell. */
 static void store_killed_writer_leaves_whole_cells(void **st)
 {
-    (void)st;
-    struct tmp t;
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
-    struct sl_provenance p;
-    int64_t run = 0;
-    struct sl_store *s = open_with_run(&t, &p, &run);
-    sl_store_close(s);
+    int64_t run = x->run;
+    struct sl_store *s = NULL;
+    fx_close(x);
 
     pid_t pid = fork();
     assert_true(pid >= 0);
@@ -629,17 +648,13 @@ static void store_killed_writer_leaves_whole_cells(void **st)
         assert_same_fig(&out[i].fig, &want);
     free(out);
     sl_store_close(s);
-    tmp_remove(&t);
 }
 
 static void store_unknown_run_is_refused(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_store *s = x->s;
     struct sl_figures f;
     make_fig(&f, 10, thick3, 3);
     struct sl_cell_record c = make_cell("side", 1024, "nsm_a", &f, NULL, 10);
@@ -647,8 +662,6 @@ static void store_unknown_run_is_refused(void **st)
     assert_non_null(strstr(d.msg, "FOREIGN KEY"));
     assert_int_equal(sl_store_count(s, "cells"), 0);
     assert_int_equal(sl_store_put_cell(s, 77, HASH_A, NULL, &d), SL_E_USAGE);
-    sl_store_close(s);
-    tmp_remove(&t);
 }
 
 static void write_file(const char *path, const char *text)
@@ -661,9 +674,8 @@ static void write_file(const char *path, const char *text)
 
 static void store_refuses_non_database(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
+    struct tmp t = x->t;
     const char *text = "scene,viewpoint\nprimitives,side\n";
     write_file(t.db, text);
     struct sl_diag d;
@@ -680,7 +692,6 @@ static void store_refuses_non_database(void **st)
     fclose(f);
     assert_int_equal(got, strlen(text));
     assert_string_equal(buf, text);
-    tmp_remove(&t);
 }
 
 static void raw_exec(const char *path, const char *sql)
@@ -693,9 +704,10 @@ static void raw_exec(const char *path, const char *sql)
 
 static void store_refuses_other_version(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
+    struct tmp t = x->t;
+    /* t is a copy of the fixture's folder: removed and made again below, the
+     * last one removed here (the teardown then finds the first gone) */
     raw_exec(t.db, "CREATE TABLE runs (x); PRAGMA user_version = 7");
     struct sl_diag d;
     struct sl_store *s = NULL;
@@ -727,9 +739,8 @@ static void store_refuses_other_version(void **st)
 /* A new store is this build's version, in WAL mode, and an empty file becomes one. */
 static void store_new_file_is_current_version_wal(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
+    struct tmp t = x->t;
     write_file(t.db, "");
     struct sl_diag d;
     struct sl_store *s = NULL;
@@ -752,7 +763,6 @@ static void store_new_file_is_current_version_wal(void **st)
     assert_int_equal(sl_store_count(s, "runs"), 0);
     sl_store_close(s);
     sl_store_close(NULL);
-    tmp_remove(&t);
 }
 
 /* issue 34: one cell per config hash and key, whatever writes it. A cell
@@ -760,12 +770,10 @@ static void store_new_file_is_current_version_wal(void **st)
  * and all, in its transaction; the schema itself refuses a second row. */
 static void store_key_stored_once(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_store *s = x->s;
     struct sl_provenance p1, p2;
     fill_prov(&p1, "abc1234");
     fill_prov(&p2, "def5678");
@@ -788,7 +796,7 @@ static void store_key_stored_once(void **st)
     assert_int_equal(n, 1);
     assert_cell(&cells[0], 3000, &f2, "def5678");
     free(cells);
-    sl_store_close(s);
+    fx_close(x);
     /* no path around it: a raw second row of the key breaks the schema */
     sqlite3 *raw = NULL;
     assert_int_equal(sqlite3_open(t.db, &raw), SQLITE_OK);
@@ -798,7 +806,6 @@ static void store_key_stored_once(void **st)
     assert_non_null(strstr(sqlite3_errmsg(raw), "UNIQUE"));
     sqlite3_free(sql);
     sqlite3_close(raw);
-    tmp_remove(&t);
 }
 
 /* issue 34: each cell's digest covers its figure rows: one changed digit of
@@ -806,12 +813,10 @@ static void store_key_stored_once(void **st)
  * reader (query), naming the cell; an untouched store verifies clean. */
 static void store_digest_finds_changed_figure(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
-    struct sl_store *s = NULL;
-    assert_int_equal(sl_store_open(t.db, &s, &d), SL_OK);
+    struct sl_store *s = x->s;
     struct sl_provenance p1;
     fill_prov(&p1, "abc1234");
     int64_t run1 = 0;
@@ -829,7 +834,7 @@ static void store_digest_finds_changed_figure(void **st)
     assert_int_equal(v.ndamaged, 0);
     assert_true(v.figures > 0);
     sl_store_verify_free(&v);
-    sl_store_close(s);
+    fx_close(x);
 
     static const char *const edits[] = {
         "UPDATE figures SET percent_of = 'pixelz' WHERE rowid = (SELECT min(f.rowid) FROM figures f JOIN cells c "
@@ -865,7 +870,6 @@ static void store_digest_finds_changed_figure(void **st)
         sl_store_close(s);
         unlink(copy);
     }
-    tmp_remove(&t);
 }
 
 /* issue 34: the writer's lock is the file's, not the path's: a second
@@ -873,9 +877,8 @@ static void store_digest_finds_changed_figure(void **st)
  * so is a relative spelling. */
 static void store_lock_follows_links(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
     struct sl_store *a = NULL, *b = NULL;
     assert_int_equal(sl_store_open(t.db, &a, &d), SL_OK);
@@ -895,7 +898,6 @@ static void store_lock_follows_links(void **st)
     sl_store_close(b);
     unlink(link_file);
     unlink(link_dir);
-    tmp_remove(&t);
 }
 
 static void store_missing_folder_is_an_error(void **st)
@@ -914,9 +916,8 @@ static void store_missing_folder_is_an_error(void **st)
  * a reader is not. */
 static void store_one_writer_at_a_time(void **st)
 {
-    (void)st;
-    struct tmp t;
-    tmp_make(&t);
+    struct fx *x = *st;
+    struct tmp t = x->t;
     struct sl_diag d;
     struct sl_store *a = NULL, *b = NULL, *r = NULL;
     assert_int_equal(sl_store_open(t.db, &a, &d), SL_OK);
@@ -930,7 +931,6 @@ static void store_one_writer_at_a_time(void **st)
     sl_store_close(a);
     assert_int_equal(sl_store_open(t.db, &b, &d), SL_OK);   /* released on close */
     sl_store_close(b);
-    tmp_remove(&t);
 }
 
 /* issue 15: a run that failed after cells went into the store keeps the
@@ -969,26 +969,37 @@ static void store_failed_run_keeps_staged_overlays(void **st)
     free(c);
 }
 
+/* A case with its fixture: cmocka's per-case setup and teardown
+ * (setup_func, teardown_func of the CMUnitTest) on the SL_CASE entry that
+ * ctest lists (tests/CMakeLists.txt reads the SL_CASE(module, fn) text). */
+static struct CMUnitTest fx_case(struct CMUnitTest c, CMFixtureFunction setup)
+{
+    c.setup_func = setup;
+    c.teardown_func = fx_teardown;
+    return c;
+}
+#define SL_FX(setup, c) fx_case((struct CMUnitTest)c, setup)
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        SL_CASE(store, round_trip),
-        SL_CASE(store, soft_cell),
-        SL_CASE(store, has_cell_matches_key_and_hash),
-        SL_CASE(store, latest_run_wins),
-        SL_CASE(store, failed_put_leaves_no_cell),
-        SL_CASE(store, figure_names_checked),
-        SL_CASE(store, refused_last_row_rolls_back),
-        SL_CASE(store, killed_writer_leaves_whole_cells),
-        SL_CASE(store, unknown_run_is_refused),
-        SL_CASE(store, refuses_non_database),
-        SL_CASE(store, refuses_other_version),
-        SL_CASE(store, new_file_is_current_version_wal),
+        SL_FX(fx_store, SL_CASE(store, round_trip)),
+        SL_FX(fx_store, SL_CASE(store, soft_cell)),
+        SL_FX(fx_run, SL_CASE(store, has_cell_matches_key_and_hash)),
+        SL_FX(fx_store, SL_CASE(store, latest_run_wins)),
+        SL_FX(fx_run, SL_CASE(store, failed_put_leaves_no_cell)),
+        SL_FX(fx_run, SL_CASE(store, figure_names_checked)),
+        SL_FX(fx_run, SL_CASE(store, refused_last_row_rolls_back)),
+        SL_FX(fx_run, SL_CASE(store, killed_writer_leaves_whole_cells)),
+        SL_FX(fx_store, SL_CASE(store, unknown_run_is_refused)),
+        SL_FX(fx_temp, SL_CASE(store, refuses_non_database)),
+        SL_FX(fx_temp, SL_CASE(store, refuses_other_version)),
+        SL_FX(fx_temp, SL_CASE(store, new_file_is_current_version_wal)),
         SL_CASE(store, missing_folder_is_an_error),
-        SL_CASE(store, key_stored_once),
-        SL_CASE(store, digest_finds_changed_figure),
-        SL_CASE(store, lock_follows_links),
-        SL_CASE(store, one_writer_at_a_time),
+        SL_FX(fx_store, SL_CASE(store, key_stored_once)),
+        SL_FX(fx_store, SL_CASE(store, digest_finds_changed_figure)),
+        SL_FX(fx_temp, SL_CASE(store, lock_follows_links)),
+        SL_FX(fx_temp, SL_CASE(store, one_writer_at_a_time)),
         SL_CASE(store, failed_run_keeps_staged_overlays),
     };
     return sl_run_group(argc, argv, "store", tests, NULL, NULL);
