@@ -206,15 +206,6 @@ enum sl_err sl_integ_verify(struct sqlite3 *db, const char *schema, const char *
     return e;
 }
 
-enum sl_err sl_store_verify(struct sl_store *s, struct sl_store_verify *r, struct sl_diag *d)
-{
-    const char *path = NULL;
-    struct sqlite3 *db = sl_store_handle(s, &path);
-    if (!db || !r)
-        return sl_fail(d, SL_E_USAGE, path, 0, NULL, "sl_store_verify: missing argument");
-    return sl_integ_verify(db, "main", path, r, d);
-}
-
 void sl_store_verify_free(struct sl_store_verify *r)
 {
     if (!r)

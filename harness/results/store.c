@@ -907,6 +907,17 @@ long sl_store_count(struct sl_store *s, const char *table)
     return -1;
 }
 
+/* The store's own check of every cell's digest (integrity.h does the work
+ * on a database handle; it never calls back into the store). */
+enum sl_err sl_store_verify(struct sl_store *s, struct sl_store_verify *r, struct sl_diag *d)
+{
+    const char *path = NULL;
+    struct sqlite3 *db = sl_store_handle(s, &path);
+    if (!db || !r)
+        return sl_fail(d, SL_E_USAGE, path, 0, NULL, "sl_store_verify: missing argument");
+    return sl_integ_verify(db, "main", path, r, d);
+}
+
 struct sqlite3 *sl_store_handle(struct sl_store *s, const char **path)
 {
     *path = s ? s->path : NULL;
