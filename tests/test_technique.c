@@ -399,6 +399,112 @@ static void technique_upload_lookups(void **st)
     assert_true(vis[0] == 1.0f && vis[1] == 0.0f && vis[3] == 1.0f);
 }
 
+/* Post passes, formats, several maps, a float uniform: a package of two
+ * maps, m1 (rg32f, blurred by `radius`) and m2 (rgba16f, linear, mipmaps). */
+static void post_fill(int map, int i, int j, float *out)
+{
+    if (map == 0) {            /* g = 1 at the frame's texel (3, 5), else 0 */
+        out[0] = 0.0f;
+        out[1] = i == 3 && j == 5 ? 1.0f : 0.0f;
+    } else {                   /* b = 0.25 everywhere */
+        out[0] = out[1] = out[3] = 0.0f;
+        out[2] = 0.25f;
+    }
+}
+
+static void post_lookup(const char *dir, int radius, int which, double gain, const struct hand *pts, int np,
+                        float *vis)
+{
+    struct sl_technique t;
+    struct sl_diag d;
+    assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
+    struct sl_tech_values v;
+    sl_tech_defaults(&t, &v);
+    assert_int_equal(sl_tech_value_set(&t, &v, "radius", radius, &d), SL_OK);
+    assert_int_equal(sl_tech_value_set(&t, &v, "which", which, &d), SL_OK);
+    assert_int_equal(sl_tech_value_set(&t, &v, "gain", gain, &d), SL_OK);
+    struct sl_techpass p;
+    enum sl_err e = sl_techpass_init(&p, &t, &d);
+    if (e)
+        fprintf(stderr, "%s:%d: %s\n", d.file, d.line, d.msg);
+    assert_int_equal(e, SL_OK);
+    struct sl_light_frame f;
+    hand_frame(&f, 8);
+    int g, N;
+    assert_int_equal(sl_techpass_size(&p, &f, &v, &g, &N, &d), SL_OK);
+    assert_int_equal(g, radius);   /* reach 0 + the blur radius */
+    const int ch[2] = {2, 4};
+    float *tex[2];
+    for (int m = 0; m < 2; m++) {
+        tex[m] = calloc((size_t)N * (size_t)N * (size_t)ch[m], sizeof(float));
+        for (int j = 0; j < N; j++)
+            for (int i = 0; i < N; i++)
+                post_fill(m, i - g, j - g, tex[m] + ((size_t)j * (size_t)N + (size_t)i) * (size_t)ch[m]);
+    }
+    const float *maps[2] = {tex[0], tex[1]};
+    assert_int_equal(sl_techpass_upload(&p, &f, &v, maps, &d), SL_OK);
+    float *pos = calloc((size_t)np * 3, sizeof(float)), *nrm = calloc((size_t)np * 3, sizeof(float));
+    for (int i = 0; i < np; i++) {
+        pos[3 * i] = pts[i].x;
+        pos[3 * i + 1] = pts[i].y;
+        pos[3 * i + 2] = pts[i].z;
+        nrm[3 * i + 2] = -1.0f;
+    }
+    assert_int_equal(sl_techpass_lookup(&p, &f, &v, pos, nrm, NULL, np, 1, vis, &d), SL_OK);
+    free(pos);
+    free(nrm);
+    free(tex[0]);
+    free(tex[1]);
+    sl_techpass_free(&p);
+    sl_tech_free(&t);
+}
+
+static void technique_post_passes(void **st)
+{
+    (void)st;
+    assert_true(gl_open());
+    char dir[600];
+    package(dir, sizeof dir, "posts",
+            HEAD("posts")
+            "maps:\n"
+            "  - {name: m1, format: rg32f, post: blur, blur: radius}\n"
+            "  - {name: m2, format: rgba16f, filter: linear, post: mipmaps}\n"
+            SHADERS
+            "params:\n"
+            "  - {name: radius, type: int, default: 1, min: 0, max: 4}\n"
+            "  - {name: which, type: int, default: 0, min: 0, max: 1}\n"
+            "  - {name: gain, type: float, default: 1.0, min: 0, max: 10}\n",
+            "float sl_lookup(vec3 w, vec3 n, vec2 uv, float z, float ndotl)\n"
+            "{\n"
+            "    ivec2 t = clamp(sl_home_texel, ivec2(0), textureSize(m1, 0) - 1);\n"
+            "    if (which == 0)\n"
+            "        return gain * texelFetch(m1, t, 0).g;\n"
+            "    return gain * textureLod(m2, uv, 10.0).b;   // the top mip level: the mean\n"
+            "}\n");
+    write_file(dir, "map.glsl", "void sl_map(float z)\n{\n    out_m1 = vec4(z);\n    out_m2 = vec4(z);\n}\n");
+    const struct hand pts[4] = {
+        {3.5f, 5.5f, 0.5f},   /* the texel itself */
+        {4.5f, 6.5f, 0.5f},   /* a diagonal neighbour: inside the 3 x 3 box */
+        {5.5f, 5.5f, 0.5f},   /* two texels off: outside it */
+        {0.5f, 0.5f, 0.5f},   /* a corner of the frame, the guard band beyond */
+    };
+    float vis[4];
+    post_lookup(dir, 1, 0, 1.0, pts, 4, vis);
+    assert_float_equal(vis[0], 1.0f / 9.0f, 1e-6f);
+    assert_float_equal(vis[1], 1.0f / 9.0f, 1e-6f);
+    assert_true(vis[2] == 0.0f && vis[3] == 0.0f);
+    post_lookup(dir, 1, 0, 2.0, pts, 4, vis);   /* the float uniform */
+    assert_float_equal(vis[0], 2.0f / 9.0f, 1e-6f);
+    post_lookup(dir, 2, 0, 1.0, pts, 4, vis);   /* 5 x 5 */
+    assert_float_equal(vis[0], 1.0f / 25.0f, 1e-6f);
+    assert_float_equal(vis[2], 1.0f / 25.0f, 1e-6f);
+    post_lookup(dir, 0, 0, 1.0, pts, 4, vis);   /* radius 0: no blur */
+    assert_true(vis[0] == 1.0f && vis[1] == 0.0f);
+    post_lookup(dir, 1, 1, 1.0, pts, 4, vis);   /* the mipmaps of m2 */
+    for (int i = 0; i < 4; i++)
+        assert_float_equal(vis[i], 0.25f, 1e-6f);
+}
+
 static void technique_map_too_big(void **st)
 {
     (void)st;
@@ -419,8 +525,11 @@ static void technique_map_too_big(void **st)
     sl_tech_free(&t);
 }
 
-/* nsm_glsl rendered over a scene against the C depth layer, every pixel. */
-static void rendered_case(const char *scene, int S)
+/* A package (nsm_glsl's shaders) rendered over a scene against the C depth
+ * layer `layer`, every pixel: differences at most max_differ. set/set_vals:
+ * parameter values (NULL-terminated names). */
+static void rendered_case(const char *scene, int S, const char *pkg, int layer, const char *const *set,
+                          const double *set_vals, size_t max_differ)
 {
     gl_close();
     struct fixture fx;
@@ -437,11 +546,13 @@ static void rendered_case(const char *scene, int S)
     fr.depth_range = fr.box.hi[2] - fr.box.lo[2];
     struct sl_shadowmap_pass sp;
     assert_int_equal(sl_shadowmap_init(&sp, &d), SL_OK);
-    assert_int_equal(sl_shadowmap_render(&sp, &fx.mesh, &fr, SL_NEED(SL_LAYER_DEPTH_ID), &d), SL_OK);
+    assert_int_equal(sl_shadowmap_render(&sp, &fx.mesh, &fr, SL_NEED(layer), &d), SL_OK);
     struct sl_technique t;
-    assert_int_equal(sl_tech_load("techniques/nsm", &t, &d), SL_OK);
+    assert_int_equal(sl_tech_load(pkg, &t, &d), SL_OK);
     struct sl_tech_values vals;
     sl_tech_defaults(&t, &vals);
+    for (int i = 0; set && set[i]; i++)
+        assert_int_equal(sl_tech_value_set(&t, &vals, set[i], set_vals[i], &d), SL_OK);
     struct sl_techpass p;
     assert_int_equal(sl_techpass_init(&p, &t, &d), SL_OK);
     assert_int_equal(sl_techpass_render(&p, &fx.mesh, &fr, &vals, &d), SL_OK);
@@ -455,11 +566,11 @@ static void rendered_case(const char *scene, int S)
     }
     assert_int_equal(sl_techpass_lookup(&p, &fr, &vals, v.pos, v.nrm, mask, v.w, v.h, vis, &d), SL_OK);
     assert_int_equal(p.costs.pixels, looked);
-    assert_int_equal(p.costs.lookups, looked);
-    assert_int_equal(p.costs.guard, 0);
-    assert_int_equal(p.costs.map_size, S);
+    assert_int_equal(p.costs.lookups, (uint64_t)llround(sl_tech_taps(&t, &vals) * (double)looked));
+    assert_int_equal(p.costs.guard, sl_tech_guard(&t, &vals));
+    assert_int_equal(p.costs.map_size, S + 2 * sl_tech_guard(&t, &vals));
     size_t lit = 0, shadowed = 0, differ = 0;
-    const float *depth = fr.layer[SL_LAYER_DEPTH_ID].depth;
+    const float *depth = fr.layer[layer].depth;
     for (size_t i = 0; i < n; i++) {
         if (!mask[i])
             continue;
@@ -475,10 +586,10 @@ static void rendered_case(const char *scene, int S)
             differ++;
         }
     }
-    fprintf(stderr, "  %s: %zu pixels looked up, %zu lit, %zu shadowed, %zu differ; map %.2f ms, lookup %.2f ms\n",
-            scene, looked, lit, shadowed, differ, p.costs.ms_map, p.costs.ms_lookup);
+    fprintf(stderr, "  %s %s: %zu pixels looked up, %zu lit, %zu shadowed, %zu differ; map %.2f ms, lookup %.2f ms\n",
+            t.name, scene, looked, lit, shadowed, differ, p.costs.ms_map, p.costs.ms_lookup);
     assert_true(lit > 100 && shadowed > 100);
-    assert_int_equal(differ, 0);
+    assert_true(differ <= max_differ);
     free(mask);
     free(vis);
     sl_techpass_free(&p);
@@ -493,8 +604,31 @@ static void rendered_case(const char *scene, int S)
 static void technique_rendered_nsm(void **st)
 {
     (void)st;
-    rendered_case("primitives", 512);
-    rendered_case("scenes/primitives_spot.yaml", 512);
+    rendered_case("primitives", 512, "techniques/nsm", SL_LAYER_DEPTH_ID, NULL, NULL, 0);
+    rendered_case("scenes/primitives_spot.yaml", 512, "techniques/nsm", SL_LAYER_DEPTH_ID, NULL, NULL, 0);
+    /* front faces culled: the C layer of Moderno's front_faces policy */
+    char dir[600];
+    snprintf(dir, sizeof dir, "%s/nsm_back", sl_test_dir);
+    mkdir(dir, 0755);
+    char cmd[1400];
+    snprintf(cmd, sizeof cmd, "cp techniques/nsm/*.glsl %s/ && sed 's/^cull: none/cull: front/; "
+             "s/^name: nsm_glsl/name: nsm_back/' techniques/nsm/technique.yaml > %s/technique.yaml", dir, dir);
+    assert_int_equal(system(cmd), 0);
+    rendered_case("primitives", 512, dir, SL_LAYER_DEPTH_ID_BACK, NULL, NULL, 0);
+    rendered_case("scenes/trees.yaml", 512, dir, SL_LAYER_DEPTH_ID_BACK, NULL, NULL, 0);
+}
+
+/* pcf with kernel 1 reads the texel nsm reads, in a map with a guard band
+ * of 1 texel: drawn with the frame's matrix scaled by S / (S + 2), its
+ * texels may round otherwise than the C layer's in the last bits, which
+ * decides only points on their own surface (z == stored): a few at most
+ * (none on llvmpipe, Mesa 22.3). */
+static void technique_rendered_pcf(void **st)
+{
+    (void)st;
+    const char *k1[] = {"kernel", NULL};
+    const double one[] = {1};
+    rendered_case("primitives", 512, "techniques/pcf", SL_LAYER_DEPTH_ID, k1, one, 30720 / 100);
 }
 
 int main(int argc, char **argv)
@@ -505,8 +639,10 @@ int main(int argc, char **argv)
         SL_CASE(technique, set_scan),
         SL_CASE(technique, glsl_error),
         SL_CASE(technique, upload_lookups),
+        SL_CASE(technique, post_passes),
         SL_CASE(technique, map_too_big),
         SL_CASE(technique, rendered_nsm),
+        SL_CASE(technique, rendered_pcf),
     };
     int r = sl_run_group(argc, argv, "technique", tests, sl_test_setup, sl_test_teardown);
     gl_close();
