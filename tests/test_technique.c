@@ -265,11 +265,13 @@ static void technique_glsl_error(void **st)
     snprintf(file, sizeof file, "%s/lookup.glsl", dir);
     assert_string_equal(d.file, file);
     assert_int_equal(d.line, 4);
-    assert_non_null(strstr(d.msg, "GLSL: error: `undeclared_name' undeclared"));
+    /* the driver's own words (Mesa: "`undeclared_name' undeclared") name the identifier */
+    assert_true(strncmp(d.msg, "GLSL: ", 6) == 0);
+    assert_non_null(strstr(d.msg, "undeclared_name"));
     sl_tech_free(&t);
     /* the log forms of both drivers */
-    assert_int_equal(sl_techpass_glsl_error("p/l.glsl", "0:1000003(1): error: in prelude\n1:7(12): error: `q' undeclared\n",
-                                            &d), SL_E_PACKAGE);
+    const char *mesa = "0:1000003(1): error: in prelude\n1:7(12): error: `q' undeclared\n";
+    assert_int_equal(sl_techpass_glsl_error("p/l.glsl", mesa, &d), SL_E_PACKAGE);
     assert_int_equal(d.line, 7);
     assert_string_equal(d.msg, "GLSL: error: `q' undeclared");
     assert_int_equal(sl_techpass_glsl_error("p/l.glsl", "0:2000004(3): error: no function sl_lookup\n", &d),
