@@ -28,11 +28,13 @@
 #define SL_TECHNIQUES_INSTALL_DIR "/usr/local/share/shadowlab/techniques"
 #endif
 
-const char *const sl_tech_type_names[3] = {"int", "float", "bool"};
-const char *const sl_tech_format_names[4] = {"r32f", "rg32f", "rgba32f", "rgba16f"};
-const char *const sl_tech_filter_names[2] = {"nearest", "linear"};
-const char *const sl_tech_post_names[4] = {"none", "blur", "mipmaps", "blur_mipmaps"};
-const char *const sl_tech_cull_names[3] = {"none", "front", "back"};
+#define NAME_(id, name) name,
+const char *const sl_tech_type_names[3] = {SL_TECH_TYPES(NAME_)};
+const char *const sl_tech_format_names[4] = {SL_TECH_FORMATS(NAME_)};
+const char *const sl_tech_filter_names[2] = {SL_TECH_FILTERS(NAME_)};
+const char *const sl_tech_post_names[4] = {SL_TECH_POSTS(NAME_)};
+const char *const sl_tech_cull_names[3] = {SL_TECH_CULLS(NAME_)};
+#undef NAME_
 
 /* ---- the schema: enums and numbers of a type given by another key are read
  * as strings and checked below, so each error names its own key ---- */
