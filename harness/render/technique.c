@@ -526,7 +526,7 @@ enum sl_err sl_tech_load(const char *dir, struct sl_technique *t, struct sl_diag
     struct raw_tech *r = NULL;
     struct sl_yaml_pos *pos = NULL;
     enum sl_err e = sl_yaml_load(t->file, &tech_schema, (void **)&r, &pos, SL_TECH_MAX_YAML, SL_E_PACKAGE, d);
-    if (e == SL_E_IO && d)   /* a package that cannot be read is a bad package (exit 2) */
+    if (e == SL_E_IO)   /* a package that cannot be read is a bad package (exit 2), as its diag says */
         e = SL_E_PACKAGE;
     if (!e)
         e = fill(t, r, pos, d);
