@@ -8,6 +8,7 @@
  */
 #ifndef SL_KNOBS_H
 #define SL_KNOBS_H
+#include "technique.h"
 
 /* Self-shadow policies of the depth comparison (nsm). */
 #define SL_SELF_SHADOW(X)                                        \
@@ -96,6 +97,11 @@ struct sl_method_params {
 #define SL_KNOB_FIELD(id, bit, name, type, ...) type name;
     SL_KNOBS(SL_KNOB_FIELD)
 #undef SL_KNOB_FIELD
+    /* A technique package's method (methods/package.h): the package and
+     * its parameters' values (every one set: the config fills in the
+     * defaults); NULL and empty for a C method. */
+    const struct sl_technique *tech;
+    struct sl_tech_values      pkg;
 };
 
 #endif

@@ -100,6 +100,8 @@ struct sl_verdicts {
     int      has_detail;
     uint8_t *tests;  /* ray-triangle tests spent on each pixel (saturating at 255), zeroed before a run */
     float   *vis;    /* soft methods (area lights): the visible fraction of the light per pixel, 0..1 */
+    int      has_vis; /* a hard method wrote a fractional visibility into vis (a technique package):
+                       * scored as it is, not from its verdicts; zeroed before a run */
     /* A method that looks up light frames of its own (zpart, lispsm: fitted
      * and rendered by the method through a->spass) hands them to scoring
      * here: pixel i was served by frames[slice[i]] (slice NULL: frames[0];
@@ -171,6 +173,11 @@ static inline int sl_exact_violated(unsigned exact, uint8_t v, uint8_t how, uint
  * fits are orthographic in light space); a scene with an area light does
  * not run it unless its list names it, which is then an error. */
 #define SL_LIGHTS_DIRECTIONAL (1u << 2)
+/* A hard-shadow method that cannot run over a point light's cube faces
+ * (a technique package renders one map per frame: the cube's six are not
+ * yet its frames); a scene with a point light runs it only if named, then
+ * an error. */
+#define SL_LIGHTS_NO_POINT (1u << 3)
 
 /* The optional fast path: how a method lets the driver hand its layers
  * more cheaply. Zero (the default) is no fast path: every layer dense, every

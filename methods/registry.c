@@ -6,6 +6,7 @@
  */
 #include <string.h>
 #include "method.h"
+#include "package.h"
 
 extern const struct sl_method sl_method_nsm;
 extern const struct sl_method sl_method_bgsm;
@@ -53,7 +54,7 @@ const struct sl_method *sl_method_find(const char *name)
     for (int i = 0; sl_methods[i]; i++)
         if (strcmp(sl_methods[i]->name, name) == 0)
             return sl_methods[i];
-    return NULL;
+    return sl_package_find(name);   /* then the technique packages loaded (package.h) */
 }
 
 int sl_method_count(void)

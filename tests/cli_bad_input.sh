@@ -56,7 +56,7 @@ check "scene over 16 MiB" 2 "^shadowlab: $tmp/huge_scene\.yaml: file of 16777[0-
 check "missing config" 2 "no_such\.yaml: cannot read: No such file" -- "$bin" run tests/bad/no_such.yaml --out "$tmp/results"
 check "unknown command" 2 "unknown command" -- "$bin" frobnicate
 check "run without config" 2 "missing CONFIG" -- "$bin" run
-check "list nonsense" 2 "list: methods or scenes" -- "$bin" list trees
+check "list nonsense" 2 "list: methods, scenes or techniques" -- "$bin" list trees
 check "a folder as config" 2 "tests/bad.*(cannot read|Is a directory|invalid config)" -- "$bin" validate tests/bad
 check "bad --cells" 2 "--cells wants A:B" -- "$bin" run configs/default.yaml --cells 5:2 --out "$tmp/results"
 check "--cells beyond the sweep" 2 "outside the sweep of 6 cells" -- "$bin" run configs/default.yaml --cells 10:20 --out "$tmp/results"

@@ -79,6 +79,10 @@ trap 'rm -f "$objs"' EXIT
 find "$build/CMakeFiles/" -path '*.dir/*' -name '*.o' | while read -r o; do
   src=${o#*.dir/}; src=${src%.o}
   [ -f "$src" ] || continue
+  # an object a target no longer builds (a file moved to another library)
+  # stays in a reused build folder: only those the target's build.make names
+  tdir=${o%%.dir/*}.dir
+  grep -qF "${o#"$tdir"/}" "$tdir/build.make" 2>/dev/null || continue
   nm --defined-only -g "$o" | awk -v s="$src" '$2 == "T" { print "T", s, $3 }'
   nm -u "$o" | awk -v s="$src" '{ print "U", s, $NF }'
 done | sort -u > "$objs"

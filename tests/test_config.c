@@ -153,6 +153,154 @@ static void config_overrides(void **st)
     }
 }
 
+/* A config written to a temporary file (the scene resolves by name). */
+static void write_tmp(char *path, const char *text)
+{
+    strcpy(path, "/tmp/shadowlab-sweep-XXXXXX.yaml");
+    int fd = mkstemps(path, 5);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fputs(text, f);
+    fclose(f);
+}
+
+/* Sweeps: a knob given as a list is one label per value (several lists
+ * multiply, the first varying slowest), each with its value; a scene's
+ * list names the sweep by its entry's label; the flow mapping's other keys
+ * keep their lines (an error after the sweep names its own line). */
+static void config_sweeps(void **st)
+{
+    (void)st;
+    char path[64];
+    write_tmp(path, "name: sweep\n"
+                    "scenes:\n"
+                    "  - {scene: primitives, viewpoints: [side], methods: [b, plain]}\n"
+                    "map_sizes: [512]\n"
+                    "methods:\n"
+                    "  - {label: b, method: nsm, self_shadow: constant, bias: [0.5, 1, 2]}\n"
+                    "  - label: plain\n"
+                    "    method: nsm\n"
+                    "    self_shadow: [none, slope]\n"
+                    "    slope: [1, 3]\n");
+    struct sl_config c;
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_config_load(path, &c, &d);
+    if (e)
+        printf("%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
+    assert_int_equal(e, SL_E_CONFIG);   /* slope applies to self_shadow slope, not none */
+    assert_string_equal(d.key, "methods[1].slope");
+    write_tmp(path, "name: sweep\n"
+                    "scenes:\n"
+                    "  - {scene: primitives, viewpoints: [side], methods: [b, plain]}\n"
+                    "map_sizes: [512]\n"
+                    "methods:\n"
+                    "  - {label: b, method: nsm, self_shadow: constant, bias: [0.5, 1, 2]}\n"
+                    "  - label: plain\n"
+                    "    method: nsm\n"
+                    "    self_shadow: slope\n"
+                    "    bias: [0, 0.25]\n"
+                    "    slope: [1, 3]\n"
+                    "  - {label: c, method: coherence, texels: 4}\n");
+    memset(&d, 0, sizeof d);
+    e = sl_config_load(path, &c, &d);
+    if (e)
+        printf("%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(c.nmethods, 3 + 4 + 1);
+    assert_string_equal(c.methods[0].label, "b[bias=0.5]");
+    assert_string_equal(c.methods[2].label, "b[bias=2]");
+    assert_true(c.methods[0].params.bias == 0.5f && c.methods[1].params.bias == 1.0f && c.methods[2].params.bias == 2.0f);
+    assert_int_equal(c.methods[0].params.self_shadow, SL_SELF_CONSTANT);
+    assert_string_equal(c.methods[3].label, "plain[bias=0][slope=1]");
+    assert_string_equal(c.methods[4].label, "plain[bias=0][slope=3]");
+    assert_string_equal(c.methods[6].label, "plain[bias=0.25][slope=3]");
+    assert_true(c.methods[6].params.bias == 0.25f && c.methods[6].params.slope == 3.0f);
+    assert_string_equal(c.methods[7].label, "c");
+    assert_int_equal(c.methods[7].params.texels, 4);
+    /* the scene named both sweeps by their labels: all seven, not c */
+    assert_int_equal(c.scenes[0].method_mask, 0x7fu);
+    /* an error after a blanked flow-mapping key keeps its line */
+    write_tmp(path, "name: sweep\n"
+                    "scenes:\n"
+                    "  - {scene: primitives}\n"
+                    "map_sizes: [512]\n"
+                    "methods:\n"
+                    "  - {label: b, method: nsm, self_shadow: constant, bias: [0.5, x]}\n");
+    memset(&d, 0, sizeof d);
+    assert_int_equal(sl_config_load(path, &c, &d), SL_E_CONFIG);
+    assert_int_equal(d.line, 6);
+    assert_string_equal(d.key, "methods[0].bias");
+    assert_non_null(strstr(d.msg, "'x'"));
+    write_tmp(path, "name: sweep\n"
+                    "scenes:\n"
+                    "  - {scene: primitives}\n"
+                    "map_sizes: [512]\n"
+                    "methods:\n"
+                    "  - {label: b, method: nsm, self_shadow: constant, bias: [0.5, 1]}\n"
+                    "  - {label: q, method: nsm, self_shadow: constant, bias: 1, texels: 4}\n");
+    memset(&d, 0, sizeof d);
+    assert_int_equal(sl_config_load(path, &c, &d), SL_E_CONFIG);
+    assert_int_equal(d.line, 7);
+    assert_string_equal(d.key, "methods[1].texels");
+    remove(path);
+}
+
+/* Technique packages (the source tree's techniques/): named like a method,
+ * their parameters as keys, checked against the package's declaration at
+ * their lines, swept like knobs; a config's `techniques:` folder adds a
+ * package. */
+static void config_packages(void **st)
+{
+    (void)st;
+    char path[64];
+    write_tmp(path, "name: pk\n"
+                    "scenes:\n"
+                    "  - {scene: primitives}\n"
+                    "map_sizes: [512]\n"
+                    "methods:\n"
+                    "  - {label: pcf, method: pcf, kernel: [1, 3, 5]}\n"
+                    "  - method: pcf\n"
+                    "    label: p7\n"
+                    "    kernel: 7\n");
+    struct sl_config c;
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_config_load(path, &c, &d);
+    if (e)
+        printf("%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(c.nmethods, 4);
+    assert_string_equal(c.methods[1].label, "pcf[kernel=3]");
+    assert_string_equal(c.methods[1].method->name, "pcf");
+    assert_non_null(c.methods[1].params.tech);
+    int k = sl_tech_param_index(c.methods[1].params.tech, "kernel");
+    assert_true(k >= 0);
+    assert_true(c.methods[0].params.pkg.v[k] == 1.0 && c.methods[2].params.pkg.v[k] == 5.0);
+    assert_true(c.methods[3].params.pkg.v[k] == 7.0);
+    static const struct { const char *entry; const char *key; const char *msg; } bad[] = {
+        {"  - {method: pcf, kernal: 3}\n", "methods[0].kernal", "no parameter 'kernal'"},
+        {"  - {method: pcf, kernel: 11}\n", "methods[0].kernel", "outside [1, 9]"},
+        {"  - {method: pcf, kernel: 2.5}\n", "methods[0].kernel", "2.5"},
+        {"  - {method: pcf, kernel: [3, x]}\n", "methods[0].kernel", "'x'"},
+        {"  - {method: pcf, kernel: {a: 1}}\n", "methods[0].kernel", "not a mapping"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char text[512];
+        snprintf(text, sizeof text, "name: pk\nscenes:\n  - {scene: primitives}\nmap_sizes: [512]\nmethods:\n%s",
+                 bad[i].entry);
+        write_tmp(path, text);
+        memset(&d, 0, sizeof d);
+        e = sl_config_load(path, &c, &d);
+        printf("config::packages %s -> %s:%d '%s': %s\n", bad[i].entry, d.file, d.line, d.key, d.msg);
+        assert_int_equal(e, SL_E_CONFIG);
+        assert_int_equal(d.line, 6);
+        assert_string_equal(d.key, bad[i].key);
+        assert_non_null(strstr(d.msg, bad[i].msg));
+    }
+    remove(path);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -161,6 +309,8 @@ int main(int argc, char **argv)
         SL_CASE(config, bad_inputs),
         SL_CASE(config, syntax_error_has_line),
         SL_CASE(config, overrides),
+        SL_CASE(config, sweeps),
+        SL_CASE(config, packages),
     };
     return sl_run_group(argc, argv, "config", tests, NULL, NULL);
 }

@@ -971,7 +971,7 @@ static void store_failed_run_keeps_staged_overlays(void **st)
 
 /* A case with its fixture: cmocka's per-case setup and teardown
  * (setup_func, teardown_func of the CMUnitTest) on the SL_CASE entry that
- * ctest lists (tests/CMakeLists.txt reads the SL_CASE(module, fn) text). */
+ * ctest lists (tests/CMakeLists.txt reads the literal case macro of each entry). */
 static struct CMUnitTest fx_case(struct CMUnitTest c, CMFixtureFunction setup)
 {
     c.setup_func = setup;

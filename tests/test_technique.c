@@ -134,11 +134,14 @@ static void technique_shipped(void **st)
     sl_tech_defaults(&t, &v);
     assert_int_equal(v.n, 2);
     assert_true(v.v[0] == 3 && v.v[1] == 0);
-    assert_int_equal(sl_tech_reach(&t, &v), 2);
+    assert_int_equal(sl_tech_reach(&t, &v), 1);   /* a 3x3 box: one texel around the home texel */
     assert_true(sl_tech_taps(&t, &v) == 9);
     assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 5, &d), SL_OK);
-    assert_int_equal(sl_tech_reach(&t, &v), 3);
-    assert_int_equal(sl_tech_guard(&t, &v), 3);
+    assert_int_equal(sl_tech_reach(&t, &v), 2);
+    assert_int_equal(sl_tech_guard(&t, &v), 2);
+    assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 1, &d), SL_OK);
+    assert_int_equal(sl_tech_guard(&t, &v), 0);   /* kernel 1: the frame's own map, no band */
+    assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 5, &d), SL_OK);
     assert_true(sl_tech_taps(&t, &v) == 25);
     assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 11, &d), SL_E_METHOD);
     assert_string_equal(d.key, "kernel");

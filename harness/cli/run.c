@@ -161,14 +161,17 @@ static void print_summary(const struct sl_config *c, const struct sl_run_result 
     printf("%-20s %6s %14s %12s\n", "label", "cells", "wrong pixels", "of pixels");
     for (int m = 0; m < c->nmethods; m++) {
         uint64_t wrong = 0, pixels = 0;
-        double mae = 0;
-        int n = 0, nsoft = 0;
+        double mae = 0, frac = 0;
+        int n = 0, nsoft = 0, nfrac = 0;
         for (int i = 0; i < r->ncells; i++) {
             const struct sl_cell *cl = &r->cells[i];
             if (cl->key.method != m)
                 continue;
             n++;
-            if (cl->has_soft) {
+            if (cl->has_frac) {
+                nfrac++;
+                frac += cl->soft.pct[SL_SFIG_soft_mae];
+            } else if (cl->has_soft) {
                 nsoft++;
                 mae += cl->soft.pct[SL_SFIG_soft_mae];
                 continue;
@@ -182,6 +185,9 @@ static void print_summary(const struct sl_config *c, const struct sl_run_result 
         if (nsoft == n)
             printf("%-20s %6d %14s %11.3f%% mean absolute error of visibility\n", c->methods[m].label, n, "-",
                    mae / nsoft);
+        else if (nfrac)
+            printf("%-20s %6d %14llu %11.3f%%   mean |v - truth| %.3f%% of PFL\n", c->methods[m].label, n,
+                   (unsigned long long)wrong, pixels ? 100.0 * (double)wrong / (double)pixels : 0.0, frac / nfrac);
         else
             printf("%-20s %6d %14llu %11.3f%%\n", c->methods[m].label, n, (unsigned long long)wrong,
                    pixels ? 100.0 * (double)wrong / (double)pixels : 0.0);

@@ -5,10 +5,13 @@
  * tree never escapes this file.
  */
 #define _POSIX_C_SOURCE 200809L
+#define _DEFAULT_SOURCE   /* realpath */
 #include "config.h"
 #include <cyaml/cyaml.h>
 #include "figures.h"
 #include <errno.h>
+#include <math.h>
+#include <sys/stat.h>
 #include <limits.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -17,7 +20,9 @@
 #include <string.h>
 #include <unistd.h>
 #include <yaml.h>
+#include "extras.h"
 #include "method.h"
+#include "package.h"
 #include "scene.h"
 #include "scenefile.h"
 #include "util.h"
@@ -104,6 +109,9 @@ struct raw_reps { unsigned *warmup; unsigned *runs; };
 
 static const cyaml_schema_value_t str_schema = {
     CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 1, 63),
+};
+static const cyaml_schema_value_t path_schema = {
+    CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 1, 511),
 };
 static const cyaml_schema_value_t uint_schema = {
     CYAML_VALUE_UINT(CYAML_FLAG_DEFAULT, unsigned),
@@ -192,6 +200,7 @@ static const cyaml_schema_field_t outputs_fields[] = {
     X(contours,     SEQ,    OPTIONAL, unsigned, &uint_schema, SL_MAX_REGIONS - 1) /* + the whole image */ \
     X(contour_from, STRING, OPTIONAL, char, 15)                                                    \
     X(methods,      SEQ,    REQUIRED, struct raw_method, &method_schema, SL_CFG_MAX)               \
+    X(techniques,   SEQ,    OPTIONAL, char *, &path_schema, 8)                                     \
     X(outputs,      MAP,    OPTIONAL, struct raw_outputs, outputs_fields)                          \
     X(repetitions,  MAP,    OPTIONAL, struct raw_reps, reps_fields)                                \
     X(seed,         UINT,   OPTIONAL, unsigned)                                                    \
@@ -467,12 +476,15 @@ static enum sl_err check_contours(const struct raw_config *r, const char *file, 
     return SL_OK;
 }
 
-/* Method entry i's label: its method's name unless given; labels name
- * files, so no '..', no hidden file, and each is the config's only one. */
-static enum sl_err method_label(const struct raw_method *rm, unsigned i, const char *file,
-                                const struct sl_yaml_pos *ix, struct sl_config *c, struct sl_diag *d)
+/* Method entry i's label: its method's name unless given, then `suffix`
+ * (a sweep's "[key=value]..."), into slot n of the config's labels; labels
+ * name files, so no '..', no hidden file, and each is the config's only
+ * one. */
+static enum sl_err method_label(const struct raw_method *rm, unsigned i, int n, const char *suffix,
+                                const char *file, const struct sl_yaml_pos *ix, struct sl_config *c,
+                                struct sl_diag *d)
 {
-    struct sl_config_method *cm = &c->methods[i];
+    struct sl_config_method *cm = &c->methods[n];
     char key[96];
     snprintf(cm->label, sizeof cm->label, "%s", rm->label ? rm->label : rm->method);
     snprintf(key, sizeof key, "methods[%u].label", i);
@@ -481,7 +493,11 @@ static enum sl_err method_label(const struct raw_method *rm, unsigned i, const c
     for (const char *p = cm->label; *p; p++)
         if (!is_file_word(*p))
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s': use letters, digits, '-', '_' and '.'", cm->label);
-    for (unsigned k = 0; k < i; k++)
+    if (strlen(cm->label) + strlen(suffix) >= sizeof cm->label)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
+                           "label '%s%s': longer than %zu characters", cm->label, suffix, sizeof cm->label - 1);
+    strcat(cm->label, suffix);
+    for (int k = 0; k < n; k++)
         if (strcmp(c->methods[k].label, cm->label) == 0)
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
                        "label '%s' used twice: give each entry its own label", cm->label);
@@ -554,30 +570,286 @@ static enum sl_err method_knobs(const struct raw_method *rm, unsigned i, const c
     return SL_OK;
 }
 
+/* ---- sweeps and technique packages (extras.h) ----
+ * A method entry's keys the schema cannot hold were taken out of the text
+ * before libcyaml read it: a package's parameters, and any knob or
+ * parameter given as a list (a sweep). Config loading is single-threaded:
+ * the entries' extras reach check_methods through this pointer, set by
+ * the loaders around validate. */
+static const struct sl_method_extras *cfg_extras;
+
+/* Which keys the text pass takes: every key of an entry whose method is
+ * not a C method (a package's parameters; an unknown method is refused
+ * later by name), and a C method's knob given as a list. */
+static int take_extra(const char *method, const char *key, int is_list, void *user)
+{
+    (void)user;
+    int c_method = 0;
+    for (int k = 0; k < sl_method_count() && !c_method; k++)
+        c_method = !strcmp(sl_method_at(k)->name, method);
+    if (!c_method)
+        return 1;
+#define KNOB_IS(id, bit, name, ...) || !strcmp(key, #name)
+    return is_list && (0 SL_KNOBS(KNOB_IS));
+#undef KNOB_IS
+}
+
+static enum sl_err extras_edit(unsigned char **text, size_t *len, void *user, struct sl_diag *d)
+{
+    const char *file = user;
+    static struct sl_method_extras x[SL_CFG_MAX];
+    enum sl_err e = sl_extras_take(*text, *len, take_extra, NULL, x, SL_CFG_MAX, file, d);
+    cfg_extras = x;
+    return e;
+}
+
+/* A knob's value written in a sweep's list, as libcyaml would read it. */
+static int parse_uint(const char *t, unsigned *out)
+{
+    char *end;
+    errno = 0;
+    unsigned long v = strtoul(t, &end, 10);
+    if (!*t || *t == '-' || *end || errno || v > UINT_MAX)
+        return 0;
+    *out = (unsigned)v;
+    return 1;
+}
+static int parse_double(const char *t, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(t, &end);
+    if (!*t || *end || errno || !isfinite(v))
+        return 0;
+    *out = v;
+    return 1;
+}
+static int parse_bool(const char *t, int *out)
+{
+    if (!strcmp(t, "true") || !strcmp(t, "True") || !strcmp(t, "TRUE") || !strcmp(t, "yes"))
+        return *out = 1, 1;
+    if (!strcmp(t, "false") || !strcmp(t, "False") || !strcmp(t, "FALSE") || !strcmp(t, "no"))
+        return *out = 0, 1;
+    return 0;
+}
+
+/* One value per knob, held for a raw entry whose swept knobs point here. */
+struct knob_vals {
+#define VAL_UINT(name)   unsigned name;
+#define VAL_FLOAT(name)  float name;
+#define VAL_BOOL(name)   bool name;
+#define VAL_WORDS(name)  char name[64];
+#define VAL_POLICY(name) char name[64];
+#define KNOB_VAL(id, bit, name, type, kind, a, b, doc) VAL_##kind(name)
+    SL_KNOBS(KNOB_VAL)
+#undef KNOB_VAL
+};
+
+/* Knob `key` of rm set to text t (a sweep's value): 1 done, 0 not a knob,
+ * -1 not a value of the knob's kind. */
+static int sweep_knob(struct raw_method *rm, struct knob_vals *kv, const char *key, const char *t)
+{
+    double x;
+    int b;
+#define SET_UINT(name)   if (!parse_uint(t, &kv->name)) return -1; rm->name = &kv->name;
+#define SET_FLOAT(name)  if (!parse_double(t, &x)) return -1; kv->name = (float)x; rm->name = &kv->name;
+#define SET_BOOL(name)   if (!parse_bool(t, &b)) return -1; kv->name = b; rm->name = &kv->name;
+#define SET_WORDS(name)  snprintf(kv->name, sizeof kv->name, "%s", t); rm->name = kv->name;
+#define SET_POLICY(name) snprintf(kv->name, sizeof kv->name, "%s", t); rm->name = kv->name;
+#define SWEEP_KNOB(id, bit, name, type, kind, a, b_, doc) \
+    if (!strcmp(key, #name)) {                            \
+        SET_##kind(name)                                  \
+        return 1;                                         \
+    }
+    SL_KNOBS(SWEEP_KNOB)
+#undef SWEEP_KNOB
+    (void)x;
+    (void)b;
+    return 0;
+}
+
+/* Parameter `name` of package t set to text s, checked: its type and
+ * range, named at the key's line. */
+static enum sl_err package_value(const struct sl_technique *t, struct sl_tech_values *v, const char *key,
+                                 int line, const char *name, const char *s, const char *file, struct sl_diag *d)
+{
+    int k = sl_tech_param_index(t, name);
+    if (k < 0) {
+        char known[512] = "";
+        for (int j = 0; j < t->nparams; j++)
+            sl_known_add(known, sizeof known, t->param[j].name);
+        return sl_fail(d, SL_E_CONFIG, file, line, key, "technique '%s' has no parameter '%s' (it has: %s)", t->name,
+                       name, t->nparams ? known : "none");
+    }
+    double x;
+    int b;
+    if (t->param[k].type == SL_TECH_BOOL) {
+        if (!parse_bool(s, &b))
+            return sl_fail(d, SL_E_CONFIG, file, line, key, "'%s': true or false", s);
+        x = b;
+    } else if (!parse_double(s, &x)) {
+        return sl_fail(d, SL_E_CONFIG, file, line, key, "'%s': not a number", s);
+    }
+    struct sl_diag md;
+    memset(&md, 0, sizeof md);
+    if (sl_tech_value_set(t, v, name, x, &md))
+        return sl_fail(d, SL_E_CONFIG, file, line, key, "%s", md.msg);
+    return SL_OK;
+}
+
+/* A sweep's value in a label: "[key=value]", the value a file word. */
+static enum sl_err label_part(char *suffix, size_t n, const struct sl_extra_key *xk, const char *value, unsigned i,
+                              const char *file, struct sl_diag *d)
+{
+    char key[96];
+    snprintf(key, sizeof key, "methods[%u].%s", i, xk->key);
+    for (const char *p = value; *p; p++)
+        if (!is_file_word(*p) && *p != '+')
+            return sl_fail(d, SL_E_CONFIG, file, xk->line, key, "swept value '%s': it names files in the "
+                           "label, so letters, digits, '-', '+', '_' and '.' only", value);
+    size_t l = strlen(suffix);
+    snprintf(suffix + l, n - l, "[%s=%s]", xk->key, value);
+    return SL_OK;
+}
+
+/* The technique folders the config names (`techniques:`), relative to it. */
+static enum sl_err load_packages(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                 struct sl_config *c, struct sl_diag *d)
+{
+    char dir[512];
+    sl_path_dir(file, dir, sizeof dir);
+    const char *dirs[8];
+    unsigned n = r->techniques_count < 8 ? r->techniques_count : 8;
+    for (unsigned k = 0; k < n; k++) {
+        dirs[k] = r->techniques[k];
+        char full[1100], key[64];
+        snprintf(full, sizeof full, "%s/%s", dir, dirs[k]);
+        snprintf(key, sizeof key, "techniques[%u]", k);
+        struct stat st;
+        const char *where = dirs[k][0] == '/' ? dirs[k] : full;
+        if (stat(where, &st) || !S_ISDIR(st.st_mode))
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "'%s': no such folder (relative to the config)", dirs[k]);
+        /* the filled-in config names it whole: it is written elsewhere */
+        char *real = realpath(where, NULL);
+        snprintf(c->techniques[c->ntechniques++], sizeof c->techniques[0], "%s", real ? real : where);
+        free(real);
+    }
+    const char *c_names[64];
+    int nc = 0;
+    for (int k = 0; k < sl_method_count() && nc < 63; k++)
+        c_names[nc++] = sl_method_at(k)->name;
+    c_names[nc] = NULL;
+    return sl_packages_load(dirs, (int)n, dir, c_names, d);
+}
+
+/* Entry i expanded into labels from slot c->nmethods on: one per
+ * combination of its swept values (the first swept key varies slowest). */
+static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const struct sl_method_extras *x,
+                                const char *file, const struct sl_yaml_pos *ix, struct sl_config *c,
+                                struct sl_diag *d)
+{
+    char key[96];
+    const struct sl_method *m = sl_method_find(rm->method);
+    const struct sl_technique *t = m ? sl_package_of(m) : NULL;
+    int nx = x ? x->n : 0;
+    /* combinations: the product of the lists' lengths */
+    int total = 1;
+    for (int k = 0; k < nx; k++)
+        if (x->k[k].is_list) {
+            total *= x->k[k].nvalues;
+            if (c->nmethods + total > SL_CFG_MAX) {
+                snprintf(key, sizeof key, "methods[%u].%s", i, x->k[k].key);
+                return sl_fail(d, SL_E_CONFIG, file, x->k[k].line, key,
+                               "the sweeps make more than %d labels in all", SL_CFG_MAX);
+            }
+        }
+    for (int combo = 0; combo < total; combo++) {
+        int n = c->nmethods;
+        struct sl_config_method *cm = &c->methods[n];
+        cm->method = m;
+        struct raw_method rm2 = *rm;
+        struct knob_vals kv;
+        char suffix[64] = "";
+        struct sl_tech_values tv;
+        memset(&tv, 0, sizeof tv);
+        if (t)
+            sl_tech_defaults(t, &tv);
+        int rest = combo;
+        /* the value each key has in this combination */
+        const char *val[SL_EXTRA_KEYS];
+        for (int k = nx - 1; k >= 0; k--) {
+            const struct sl_extra_key *xk = &x->k[k];
+            int pick = 0;
+            if (xk->is_list) {
+                pick = rest % xk->nvalues;
+                rest /= xk->nvalues;
+            }
+            val[k] = xk->value[pick];
+        }
+        for (int k = 0; k < nx; k++) {
+            const struct sl_extra_key *xk = &x->k[k];
+            snprintf(key, sizeof key, "methods[%u].%s", i, xk->key);
+            enum sl_err e = SL_OK;
+            if (xk->is_list)
+                e = label_part(suffix, sizeof suffix, xk, val[k], i, file, d);
+            if (!e && t) {
+                e = package_value(t, &tv, key, xk->line, xk->key, val[k], file, d);
+            } else if (!e) {
+                int ok = sweep_knob(&rm2, &kv, xk->key, val[k]);
+                if (ok < 0)
+                    e = sl_fail(d, SL_E_CONFIG, file, xk->line, key, "'%s' is not a value of %s", val[k], xk->key);
+            }
+            if (e)
+                return e;
+        }
+        enum sl_err e = method_label(&rm2, i, n, suffix, file, ix, c, d);
+        if (!e)
+            e = method_light_frame(&rm2, i, file, ix, cm, d);
+        if (!e)
+            e = method_knobs(&rm2, i, file, ix, cm, d);
+        if (e)
+            return e;
+        cm->params.tech = t;
+        cm->params.pkg = tv;
+        c->nmethods++;
+    }
+    return SL_OK;
+}
+
 static enum sl_err check_methods(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                                  struct sl_config *c, struct sl_diag *d)
 {
     char key[96];
+    /* packages only when an entry names no C method: a broken package on
+     * the search path does not stop a config that uses none */
+    int want = 0;
     for (unsigned i = 0; i < r->methods_count; i++) {
-        const struct raw_method *rm = &r->methods[i];
-        struct sl_config_method *cm = &c->methods[i];
-        snprintf(key, sizeof key, "methods[%u].method", i);
-        cm->method = sl_method_find(rm->method);
-        if (!cm->method) {
-            char known[256] = "";
-            for (int k = 0; k < sl_method_count(); k++)
-                sl_known_add(known, sizeof known, sl_method_at(k)->name);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown method '%s' (known: %s)", rm->method, known);
-        }
-        enum sl_err e = method_label(rm, i, file, ix, c, d);
-        if (!e)
-            e = method_light_frame(rm, i, file, ix, cm, d);
-        if (!e)
-            e = method_knobs(rm, i, file, ix, cm, d);
+        int c_method = 0;
+        for (int k = 0; k < sl_method_count() && !c_method; k++)
+            c_method = !strcmp(sl_method_at(k)->name, r->methods[i].method);
+        want |= !c_method;
+    }
+    if (want) {
+        enum sl_err e = load_packages(r, file, ix, c, d);
         if (e)
             return e;
     }
-    c->nmethods = (int)r->methods_count;
+    c->nmethods = 0;
+    for (unsigned i = 0; i < r->methods_count; i++) {
+        const struct raw_method *rm = &r->methods[i];
+        snprintf(key, sizeof key, "methods[%u].method", i);
+        if (!sl_method_find(rm->method)) {
+            char known[1024] = "";
+            for (int k = 0; k < sl_method_count(); k++)
+                sl_known_add(known, sizeof known, sl_method_at(k)->name);
+            for (int k = 0; k < sl_package_count(); k++)
+                sl_known_add(known, sizeof known, sl_package_at(k)->name);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown method '%s' (known: %s)", rm->method, known);
+        }
+        enum sl_err e = method_entry(rm, i, cfg_extras && i < SL_CFG_MAX ? &cfg_extras[i] : NULL, file, ix, c, d);
+        if (e)
+            return e;
+    }
     return SL_OK;
 }
 
@@ -598,7 +870,8 @@ static enum sl_err scene_methods(const struct raw_scene_ref *rs, unsigned si, co
     cs->method_mask = 0u;
     for (int k = 0; k < c->nmethods && !rs->methods_count; k++) {
         unsigned lights = c->methods[k].method->lights;
-        if (!((lights & SL_LIGHTS_AREA) && !area) && !((lights & SL_LIGHTS_DIRECTIONAL) && !dirl))
+        if (!((lights & SL_LIGHTS_AREA) && !area) && !((lights & SL_LIGHTS_DIRECTIONAL) && !dirl) &&
+            !((lights & SL_LIGHTS_NO_POINT) && cs->light_type == SL_LIGHT_POINT))
             cs->method_mask |= 1u << k;
     }
     if (!rs->methods_count && !cs->method_mask) {
@@ -610,15 +883,23 @@ static enum sl_err scene_methods(const struct raw_scene_ref *rs, unsigned si, co
     }
     for (unsigned i = 0; i < rs->methods_count; i++) {
         snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
-        int k = 0;
-        while (k < c->nmethods && strcmp(c->methods[k].label, rs->methods[i]) != 0)
-            k++;
-        if (k == c->nmethods)
+        /* a label, or a swept entry's label without its "[key=value]"
+         * parts: every label of the sweep */
+        unsigned hit = 0u;
+        int exact = 0;
+        size_t nl = strlen(rs->methods[i]);
+        for (int k = 0; k < c->nmethods; k++)
+            if (strcmp(c->methods[k].label, rs->methods[i]) == 0)
+                hit = 1u << k, exact = 1;
+        for (int k = 0; k < c->nmethods && !exact; k++)
+            if (!strncmp(c->methods[k].label, rs->methods[i], nl) && c->methods[k].label[nl] == '[')
+                hit |= 1u << k;
+        if (!hit)
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "no method labelled '%s' in this config",
                                rs->methods[i]);
-        if (cs->method_mask & (1u << k))
+        if (cs->method_mask & hit)
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s' listed twice", rs->methods[i]);
-        cs->method_mask |= 1u << k;
+        cs->method_mask |= hit;
     }
     /* every label a scene's list names must handle its light */
     for (int k = 0; k < c->nmethods; k++) {
@@ -635,6 +916,13 @@ static enum sl_err scene_methods(const struct raw_scene_ref *rs, unsigned si, co
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
                                "scene '%s' has %s light but method '%s' (label %s) handles area "
                                "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
+        }
+        if (cs->light_type == SL_LIGHT_POINT && (c->methods[k].method->lights & SL_LIGHTS_NO_POINT)) {
+            snprintf(key, sizeof key, "scenes[%u].methods", si);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                               "scene '%s' has a point light but method '%s' (label %s) does not run over a "
+                               "point light's cube faces (technique packages: directional, spot and area "
+                               "lights)", cs->name, c->methods[k].method->name, c->methods[k].label);
         }
         if (!dirl && (c->methods[k].method->lights & SL_LIGHTS_DIRECTIONAL)) {
             snprintf(key, sizeof key, "scenes[%u].methods", si);
@@ -789,6 +1077,7 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
 struct ov_ctx {
     const char *const *ov;
     int n;
+    const char *path;   /* the config file, for the extras' messages */
 };
 
 static int ov_copy(yaml_document_t *dst, yaml_document_t *src, int idx)
@@ -1002,6 +1291,15 @@ static enum sl_err ov_edit(unsigned char **text, size_t *len, void *user, struct
     return SL_OK;
 }
 
+/* The overrides, then the method entries' extras (sweeps, a package's
+ * parameters) taken out of the text the overrides made. */
+static enum sl_err ov_then_extras(unsigned char **text, size_t *len, void *user, struct sl_diag *d)
+{
+    const struct ov_ctx *o = user;
+    enum sl_err e = ov_edit(text, len, user, d);
+    return e ? e : extras_edit(text, len, (void *)o->path, d);
+}
+
 /* Does an error at `key` concern the override of `path`? */
 static int ov_concerns(const char *key, const char *path)
 {
@@ -1022,9 +1320,9 @@ enum sl_err sl_config_load_with(const char *path, const char *const *overrides, 
     snprintf(out->path, sizeof out->path, "%s", path);
     struct raw_config *raw = NULL;
     struct sl_yaml_pos *ix = NULL;
-    struct ov_ctx oc = {overrides, n};
+    struct ov_ctx oc = {overrides, n, path};
     enum sl_err e = sl_yaml_load_edited(path, &config_schema, (void **)&raw, &ix, SL_CONFIG_MAX_BYTES, SL_E_CONFIG,
-                                        ov_edit, &oc, d);
+                                        ov_then_extras, &oc, d);
     if (!e)
         e = sl_hash_file(path, &out->hash, d);
     if (!e) {
@@ -1037,6 +1335,7 @@ enum sl_err sl_config_load_with(const char *path, const char *const *overrides, 
          * positions are looked up only by key from here on */
         e = validate(raw, path, ix, out, d);
     }
+    cfg_extras = NULL;
     sl_yaml_free(&config_schema, raw, ix);
     if (!e || d->file[0] == '-')
         return e;
@@ -1069,12 +1368,16 @@ enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_di
     snprintf(out->path, sizeof out->path, "%s", path);
     struct raw_config *raw = NULL;
     struct sl_yaml_pos *ix = NULL;
-    enum sl_err e = sl_yaml_load(path, &config_schema, (void **)&raw, &ix, SL_CONFIG_MAX_BYTES, SL_E_CONFIG, d);
-    if (e)
+    enum sl_err e = sl_yaml_load_edited(path, &config_schema, (void **)&raw, &ix, SL_CONFIG_MAX_BYTES, SL_E_CONFIG,
+                                        extras_edit, (void *)path, d);
+    if (e) {
+        cfg_extras = NULL;
         return e;
+    }
     e = sl_hash_file(path, &out->hash, d);
     if (!e)
         e = validate(raw, path, ix, out, d);
+    cfg_extras = NULL;
     sl_yaml_free(&config_schema, raw, ix);
     return e;
 }
@@ -1153,10 +1456,26 @@ static void write_methods(const struct sl_config *c, FILE *f)
             WRITE_##kind(name, a, b)
         SL_KNOBS(WRITE_KNOB)
 #undef WRITE_KNOB
+        const struct sl_technique *t = p->tech;
+        for (int k = 0; t && k < t->nparams; k++) {
+            if (t->param[k].type == SL_TECH_BOOL)
+                fprintf(f, ", %s: %s", t->param[k].name, p->pkg.v[k] != 0.0 ? "true" : "false");
+            else
+                fprintf(f, ", %s: %.9g", t->param[k].name, p->pkg.v[k]);
+        }
         if (c->methods[i].frame_fit.fit != SL_FIT_TIGHT)
             fprintf(f, ", light_frame: {fit: sphere, snap: %s}", c->methods[i].frame_fit.snap ? "true" : "false");
         fprintf(f, "}\n");
     }
+}
+
+static void write_techniques(const struct sl_config *c, FILE *f)
+{
+    if (!c->ntechniques)
+        return;   /* none named: the search path alone (as before the key came) */
+    fprintf(f, "techniques:\n");
+    for (int i = 0; i < c->ntechniques; i++)
+        fprintf(f, "  - %s\n", c->techniques[i]);
 }
 
 static void write_outputs(const struct sl_config *c, FILE *f)

@@ -89,7 +89,9 @@ struct sl_config {
     int  nregions;                    /* contours then 0 (whole image) */
     int  regions[SL_CFG_MAX];
     int  nmethods;
-    struct sl_config_method methods[SL_CFG_MAX];
+    struct sl_config_method methods[SL_CFG_MAX];   /* a sweep's entry expanded: one per label */
+    int  ntechniques;                 /* 'techniques:' folders of packages, resolved (absolute) */
+    char techniques[8][512];
     int  tables, overlays, exr;
     int  overlay_contour;
     int  contour_from;                /* enum sl_contour_from */

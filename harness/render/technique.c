@@ -474,8 +474,10 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
             s->power = *rs[k]->power;
         const double lim = k == 0 ? 1024.0 : 1e6;
         snprintf(key, sizeof key, "%s.texels", sname[k]);
-        if (!(s->texels >= 0.0 && s->texels <= lim))
-            return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "%g: texels is in [0, %g]", s->texels, lim);
+        /* a negative constant offsets a scaled parameter (pcf: 0.5 kernel
+         * - 0.5); the sum is taken as 0 where it falls below */
+        if (!(s->texels >= -lim && s->texels <= lim))
+            return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "%g: texels is in [-%g, %g]", s->texels, lim, lim);
         snprintf(key, sizeof key, "%s.scale", sname[k]);
         if (!(s->scale >= 0.0 && s->scale <= lim))
             return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "%g: scale is in [0, %g]", s->scale, lim);

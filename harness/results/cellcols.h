@@ -48,6 +48,10 @@
  * 0 under other lights; light: the scene's light in words for headings
  * ("spot light, 70°": sl_light_heading). Not compared by check: baselines
  * written before them have neither, and n_pnfl already holds the pixels.
+ * frac: 1 when the cell's soft figures are a hard light's fractional
+ * errors (a method that writes a visibility, a technique package: its
+ * visibility against the 0/1 truth over the PFL pixels, score/cell.c), not
+ * an area light's; 0 otherwise.
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -128,7 +132,8 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(overlay,             path,     1500, 0,   "",                   none,      _,              _) \
     X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _,              cl->truth_cached) \
     X(n_outside_cone,      count,    0,    0,   "",                   none,      _,              cl->n_outside_cone) \
-    X(light,               text,     48,   0,   "",                   none,      _,              cl->light)
+    X(light,               text,     48,   0,   "",                   none,      _,              cl->light) \
+    X(frac,                runs,     0,    0,   "",                   none,      _,              cl->has_frac)
 /* clang-format on */
 
 /* One enumerator per column: SL_COL_<name>. */

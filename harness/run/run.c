@@ -24,6 +24,7 @@
 #include "cell.h"
 #include "contour.h"
 #include "cuberun.h"
+#include "package.h"
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
@@ -161,6 +162,7 @@ static void ctx_free(struct run_ctx *x)
     sl_softmap_nbuf_free(&x->nbuf);
     if (x->gl.backend) {
         sl_softmap_pass_free(&x->softpass);
+        sl_packages_release_gl();   /* their GL objects, while the context is current */
         sl_shadowmap_free(&x->spass);
         sl_gbuffer_free(&x->gpass);
         sl_gl_free(&x->gl);
@@ -509,6 +511,7 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
     struct sl_cost cost = {0};
     x->nvd.has_base = 0;
     x->nvd.has_detail = 0;
+    x->nvd.has_vis = 0;
     memset(x->nvd.tests, 0, npx);
     double t0 = sl_now();
     if ((e = sl_cube_method_run(&x->cube, m, &a, &x->nvd, &cost, d)))
@@ -597,12 +600,14 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             memcpy(x->vd.tests, x->nvd.tests, npx);
             x->vd.has_base = x->nvd.has_base;
             x->vd.has_detail = x->nvd.has_detail, x->vd.nframes = 0;   /* NSM's: the cell's frame */
+            x->vd.has_vis = 0;
             res->passes.contour_runs--;
             cost = x->nsm_cost;
             e = sl_cube_mark(&x->cube, &x->vd, d);   /* a point light's faces (cuberun.h) */
         } else {
             x->vd.has_base = x->vd.nframes = 0;   /* nframes: the cell's frame unless the method says */
             x->vd.has_detail = 0;
+            x->vd.has_vis = 0;
             memset(x->vd.tests, 0, npx);
             e = sl_cube_method_run(&x->cube, cm->method, &a, &x->vd, &cost, d);
         }
@@ -797,6 +802,12 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_sink_open_overlays(&sink, d)))
         goto out;
     if ((e = sl_gl_open(&x.gl, &(struct sl_gl_desc){.backend = c->gl}, d)) || (e = sl_shadowmap_init(&x.spass, d)))
+        goto out;
+    /* technique packages' shaders compiled before the first cell: a GLSL
+     * error stops the run with nothing written (package.h) */
+    for (int m = 0; m < c->nmethods && !e; m++)
+        e = sl_package_prepare(c->methods[m].method, d);
+    if (e)
         goto out;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
     snprintf(res->prov.gl_version, sizeof res->prov.gl_version, "%s", x.gl.version);

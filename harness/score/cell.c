@@ -281,6 +281,35 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
     return e;
 }
 
+/* A hard light's cell whose method wrote a fractional visibility: its soft
+ * figures against the 0/1 truth over the PFL pixels (has_soft beside the
+ * hard figures, as a hard method under an area light has both). */
+static enum sl_err fractional_score(const struct sl_view *v, const struct sl_verdicts *vd, struct sl_cell *cell,
+                                    struct sl_diag *d)
+{
+    size_t npx = (size_t)v->w * (size_t)v->h;
+    double t0 = sl_now();
+    float *t = malloc(npx * sizeof *t);
+    uint32_t *pfl = malloc(npx * sizeof *pfl);
+    if (!t || !pfl) {
+        free(t);
+        free(pfl);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "fractional figures %dx%d", v->w, v->h);
+    }
+    for (size_t i = 0; i < npx; i++) {
+        pfl[i] = v->cls[i] == SL_C_PFL;
+        t[i] = v->truth[i] == SL_T_LIT ? 1.0f : 0.0f;
+        cell->nonfinite += pfl[i] && !(vd->vis[i] >= 0.0f && vd->vis[i] <= 1.0f);
+    }
+    sl_soft_figures_compute(v->w, v->h, pfl, vd->vis, t, NULL, &cell->soft);
+    cell->has_soft = 1;
+    cell->has_frac = 1;
+    free(t);
+    free(pfl);
+    cell->ms.figures += 1e3 * (sl_now() - t0);
+    return SL_OK;
+}
+
 /* Texel coherence's patterns (Moderno 2011 Tables 20/22): per region, PFL
  * pixels by how many of the tested texels say shadow, and how many of those
  * are shadowed in truth. */
@@ -370,11 +399,22 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
         /* a hard method under an area light: its verdicts as a visible
          * fraction, scored against the area truth. A pixel it leaves
          * uncertain counts as half lit: the method says neither, and 0.5 is
-         * the guess whose worst error is smallest. */
-        for (size_t i = 0; i < npx; i++)
-            vd->vis[i] = vd->v[i] == SL_V_LIT ? 1.0f : vd->v[i] == SL_V_UNCERTAIN ? 0.5f : 0.0f;
+         * the guess whose worst error is smallest. A method that wrote a
+         * fractional visibility of its own (has_vis: a technique package)
+         * is scored on that. */
+        if (!vd->has_vis)
+            for (size_t i = 0; i < npx; i++)
+                vd->vis[i] = vd->v[i] == SL_V_LIT ? 1.0f : vd->v[i] == SL_V_UNCERTAIN ? 0.5f : 0.0f;
         e = soft_score(in, vd, cell, d);
         overlay = NULL;   /* the overlay is the soft one: the error against the area truth */
+    } else if (vd->has_vis) {
+        /* a fractional visibility under a hard light: the errors its hard
+         * verdict hides, as the soft figures against the 0/1 truth over
+         * the PFL pixels (mean |v - truth|, signed bias, within 0.05 and
+         * 0.1). With a 0/1 truth the bias splits them: light leaking (the
+         * visibility summed where the truth is shadowed) is (mae + bias) / 2
+         * of the PFL pixels, over-darkening (1 - v where lit) (mae - bias) / 2. */
+        e = fractional_score(v, vd, cell, d);
     }
     /* the scratch state is free once the bands are drawn: the overlay's
      * error mask, then the EXR's error classes */

@@ -77,6 +77,9 @@ struct sl_cell {
     uint64_t n_outside_cone;           /* of n_pnfl, outside a spot light's cone (view.h) */
     char     light[48];                /* the scene's light in words (sl_light_heading) */
     int      has_soft;                 /* an area light's cell: soft figures instead of fig's regions */
+    int      has_frac;                 /* with has_soft under a hard light: the soft figures are the
+                                        * fractional errors of a method's visibility (vd->has_vis)
+                                        * against the 0/1 truth over the PFL pixels */
     struct sl_soft_figures soft;
     uint64_t violations;               /* of the method's declared exactness; must be 0 */
     uint64_t flicker, flicker_compared;/* against the previous frame of its path (temporal.h); 0, 0 none */

@@ -1,10 +1,11 @@
 // pcf lookup: the mean of the plain depth test (lit iff z <= stored) over
 // the kernel x kernel texels centred on the texel the point lands in, or
-// over 16 Poisson-disc taps of radius kernel / 2 texels around the point.
+// over 16 Poisson-disc taps of radius (kernel - 1) / 2 texels around the
+// point (kernel 1: every tap in the home texel, as the box).
 // Taps are clamped to the map (the guard band keeps them off its border).
 
 // a 16-point Poisson disc (as in Fernando's PCSS sample), scaled by 1 / 1.25
-// into the unit disc so that no tap lies beyond kernel / 2 texels
+// into the unit disc so that no tap lies beyond (kernel - 1) / 2 texels
 const vec2 pcf_disc[16] = vec2[16](
     vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
     vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
@@ -23,7 +24,7 @@ float sl_lookup(vec3 world, vec3 normal, vec2 uv, float z, float ndotl)
     ivec2 hi = textureSize(depth, 0) - 1;
     float lit = 0.0;
     if (poisson) {
-        float r = 0.5 * float(kernel) / 1.25;
+        float r = 0.5 * float(kernel - 1) / 1.25;
         for (int i = 0; i < 16; i++)
             lit += pcf_tap(ivec2(floor(sl_map_pos + r * pcf_disc[i])), hi, z);
         return lit / 16.0;

@@ -1,0 +1,55 @@
+/*
+ * package.h — technique packages (render/technique.h: a folder of
+ * technique.yaml + GLSL) as methods: each package found along the search
+ * path becomes a struct sl_method named like the package, found by
+ * sl_method_find after the C methods, whose run renders the package's maps
+ * for the cell's light frame and runs its lookup over the G-buffer on the
+ * GL (render/techpass.h), the visibility read back and scored on the CPU.
+ *
+ * A package method is a hard-shadow method (lights 0: any light but a
+ * point light's cube, an area light as a point at its centre), exact in
+ * nothing; its verdict is lit iff the visibility >= the package's
+ * threshold, and it hands the visibility itself to scoring (vd->vis,
+ * has_vis) for the fractional figures. Its parameters are the package's,
+ * given in the config entry like knobs (struct sl_method_params: tech,
+ * pkg); costs: `lookups` the package's taps per pixel looked up, ms_method
+ * the map pass, the post passes, the lookup pass and the readback, each
+ * also apart in ms_step[0..3].
+ *
+ * Owns: the packages loaded (for the process's life: configs keep
+ * pointers to their methods) and their GL passes (sl_packages_release_gl
+ * before the GL context goes).
+ */
+#ifndef SL_PACKAGE_H
+#define SL_PACKAGE_H
+#include "method.h"
+#include "technique.h"
+
+/* Load the packages along the search path (sl_tech_dirs: the config's
+ * `techniques:` folders relative to rel_dir, SHADOWLAB_TECHNIQUES, the
+ * source tree's, the installed ones) and make a method of each one not yet
+ * loaded under its name (the first loaded wins: a later search path finds
+ * the name taken and keeps the first). SL_E_PACKAGE for a broken package
+ * or one named like a C method (c_names, NULL-terminated: the registry's,
+ * which the caller reads, so this file never calls the registry that
+ * calls it). */
+enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *rel_dir,
+                             const char *const *c_names, struct sl_diag *d);
+
+/* The package method of that name, NULL if none is loaded. */
+const struct sl_method *sl_package_find(const char *name);
+/* A method's package, NULL for a C method. */
+const struct sl_technique *sl_package_of(const struct sl_method *m);
+/* Packages loaded, and the i-th (listing). */
+int                        sl_package_count(void);
+const struct sl_technique *sl_package_at(int i);
+
+/* Compile m's GL programs now (a package method; others: nothing), so a
+ * GLSL error stops a run before its first cell: SL_E_PACKAGE naming the
+ * package file and line. The GL context must be current. */
+enum sl_err sl_package_prepare(const struct sl_method *m, struct sl_diag *d);
+
+/* Free every package's GL objects (the GL context still current). */
+void sl_packages_release_gl(void);
+
+#endif
