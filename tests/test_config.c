@@ -220,6 +220,26 @@ static void config_sweeps(void **st)
     assert_int_equal(c.methods[7].params.texels, 4);
     /* the scene named both sweeps by their labels: all seven, not c */
     assert_int_equal(c.scenes[0].method_mask, 0x7fu);
+    /* the filled-in config names each label, and reads back to the same */
+    char back[64];
+    strcpy(back, "/tmp/shadowlab-sweep-XXXXXX.yaml");
+    int fd = mkstemps(back, 5);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    sl_config_write(&c, f);
+    fclose(f);
+    struct sl_config b;
+    memset(&d, 0, sizeof d);
+    e = sl_config_load(back, &b, &d);
+    if (e)
+        printf("%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+    remove(back);
+    assert_int_equal(b.nmethods, c.nmethods);
+    for (int k = 0; k < c.nmethods; k++) {
+        assert_string_equal(b.methods[k].label, c.methods[k].label);
+        assert_memory_equal(&b.methods[k].params, &c.methods[k].params, sizeof b.methods[k].params);
+    }
     /* an error after a blanked flow-mapping key keeps its line */
     write_tmp(path, "name: sweep\n"
                     "scenes:\n"

@@ -490,9 +490,13 @@ static enum sl_err method_label(const struct raw_method *rm, unsigned i, int n, 
     snprintf(key, sizeof key, "methods[%u].label", i);
     if (cm->label[0] == '.')
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s': must not start with '.'", cm->label);
+    /* '[', ']', '=' and '+': a sweep's labels ("pcf[kernel=3]"), which the
+     * filled-in config names one by one */
     for (const char *p = cm->label; *p; p++)
-        if (!is_file_word(*p))
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "label '%s': use letters, digits, '-', '_' and '.'", cm->label);
+        if (!is_file_word(*p) && !strchr("[]=+", *p))
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
+                               "label '%s': use letters, digits, '-', '_', '.' (and a sweep's '[', ']', '=', '+')",
+                               cm->label);
     if (strlen(cm->label) + strlen(suffix) >= sizeof cm->label)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
                            "label '%s%s': longer than %zu characters", cm->label, suffix, sizeof cm->label - 1);
@@ -1410,7 +1414,8 @@ static void write_scenes(const struct sl_config *c, FILE *f)
         fprintf(f, "], methods: [");
         for (int i = 0, k = 0; i < c->nmethods; i++)
             if (c->scenes[s].method_mask & (1u << i))
-                fprintf(f, "%s%s", k++ ? ", " : "", c->methods[i].label);
+                fprintf(f, strpbrk(c->methods[i].label, "[]{},:#") ? "%s\"%s\"" : "%s%s", k++ ? ", " : "",
+                        c->methods[i].label);
         fprintf(f, "]}\n");
     }
 }
@@ -1450,7 +1455,9 @@ static void write_methods(const struct sl_config *c, FILE *f)
     fprintf(f, "methods:\n");
     for (int i = 0; i < c->nmethods; i++) {
         const struct sl_method_params *p = &c->methods[i].params;
-        fprintf(f, "  - {label: %s, method: %s", c->methods[i].label, c->methods[i].method->name);
+        /* a sweep's label holds '[' and ']', flow indicators: quoted */
+        const char *q = strpbrk(c->methods[i].label, "[]{},:#") ? "\"" : "";
+        fprintf(f, "  - {label: %s%s%s, method: %s", q, c->methods[i].label, q, c->methods[i].method->name);
 #define WRITE_KNOB(id, bit, name, type, kind, a, b, doc) \
         if (p->set & id)                                 \
             WRITE_##kind(name, a, b)
