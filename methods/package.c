@@ -5,8 +5,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lightfit.h"
 #include "techpass.h"
 #include "util.h"
+#include "zpart.h"
+
+#define CASCADES_MAX 8
 
 struct pkg {
     struct sl_method    m;
@@ -32,10 +36,23 @@ static unsigned pkg_needs(const struct sl_method_params *p)
     return 0;   /* the maps are its own (techpass.h), rendered in run */
 }
 
+/* The knobs a package entry may give beside its own parameters: cascades
+ * (partitions, lambda: the z-partitioning of zpart.c, seed 004 eq. 62).
+ * partitions 1 (the default) is the cell's own light frame. */
 static enum sl_err pkg_configure(struct sl_method_params *p, struct sl_diag *d)
 {
-    if (p->set)   /* the config gives a package no knob (config.c takes its keys as parameters) */
-        return sl_fail(d, SL_E_METHOD, NULL, 0, NULL, "a technique package takes its own parameters only");
+    if (!(p->set & SL_PARAM_PARTITIONS))
+        p->partitions = 1;
+    if (!(p->set & SL_PARAM_LAMBDA))
+        p->lambda = 0.5f;
+    if (p->partitions < 1 || p->partitions > CASCADES_MAX)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "partitions", "partitions must be 1 to %d", CASCADES_MAX);
+    if (!(p->lambda >= 0.0f && p->lambda <= 1.0f))
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "lambda", "lambda must be in [0, 1]");
+    if ((p->set & SL_PARAM_LAMBDA) && p->partitions == 1)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "lambda", "lambda splits cascades: give partitions 2 to %d",
+                       CASCADES_MAX);
+    p->set &= SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA;
     return SL_OK;
 }
 
@@ -47,6 +64,92 @@ static enum sl_err pkg_ready(struct pkg *k, struct sl_diag *d)
     if (!e)
         k->ready = 1;
     return e;
+}
+
+/* The package over frame f for the pixels mask marks: maps, lookup, the
+ * visibility of those pixels into vis; costs added. */
+static enum sl_err pkg_frame(struct pkg *k, const struct sl_method_args *a, const struct sl_light_frame *f,
+                             const uint8_t *mask, float *vis, struct sl_cost *c, struct sl_diag *d)
+{
+    const struct sl_view *v = a->view;
+    const struct sl_tech_values *tv = &a->params->pkg;
+    enum sl_err e = sl_techpass_render(&k->pass, a->mesh, f, tv, d);
+    if (!e)
+        e = sl_techpass_lookup(&k->pass, f, tv, v->pos, v->nrm, mask, v->w, v->h, vis, d);
+    if (e)
+        return e;
+    const struct sl_techpass_costs *pc = &k->pass.costs;
+    c->ms_step[0] += pc->ms_map;
+    c->ms_step[1] += pc->ms_post;
+    c->ms_step[2] += pc->ms_lookup;
+    c->ms_step[3] += pc->ms_readback;
+    c->ms_method += pc->ms_map + pc->ms_post + pc->ms_lookup + pc->ms_readback;
+    c->lookups += pc->lookups;
+    return SL_OK;
+}
+
+/* A frame for box b at map size `size`, as the driver builds the cell's. */
+static void frame_for(const struct sl_scene *s, const struct sl_light_box *b, int size, struct sl_light_frame *f)
+{
+    memset(f, 0, sizeof *f);
+    f->size = size;
+    memcpy(f->dir, s->light_dir, sizeof f->dir);
+    f->box = *b;
+    f->texel_world = fmaxf(b->hi[0] - b->lo[0], b->hi[1] - b->lo[1]) / (float)size;
+    f->depth_range = b->hi[2] - b->lo[2];
+}
+
+/* Cascades: the view's depth split into p->partitions slices (zpart.h,
+ * lambda between uniform and logarithmic), each slice's PFL pixels fitted
+ * a tight light frame of the cell's map size and served by the package's
+ * maps for it; the slices' frames go to scoring (vd->frames, slice) as
+ * zpart's do, for the aliasing error m. Directional lights only (the fits
+ * are orthographic). */
+static enum sl_err pkg_cascades(struct pkg *k, const struct sl_method_args *a, uint8_t *mask,
+                                struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d)
+{
+    const struct sl_view *v = a->view;
+    const int n = a->params->partitions;
+    if (a->scene->light.type != SL_LIGHT_DIRECTIONAL)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, "partitions", "%s: cascades need a directional light", k->t.name);
+    size_t npx = (size_t)v->w * (size_t)v->h;
+    double planes[CASCADES_MAX + 1];
+    sl_verdicts_drop_frames(out);
+    out->slice = malloc(npx);
+    out->frames = calloc((size_t)n, sizeof *out->frames);
+    float *part = malloc(npx * sizeof *part);
+    if (!out->slice || !out->frames || !part) {
+        free(part);
+        sl_verdicts_drop_frames(out);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cascades of %zu pixels", npx);
+    }
+    out->nown = n;
+    sl_zpart_slices(v, n, a->params->lambda, planes, out->slice);
+    enum sl_err e = SL_OK;
+    for (int s = 0; s < n && !e; s++) {
+        struct sl_light_box box;
+        sl_light_fit_slice_mt(a->scene, v, out->slice, (uint8_t)s, &box, a->threads);
+        if (box.n_receivers == 0)
+            continue;   /* no PFL pixel in the slice: no map (size 0 marks it) */
+        frame_for(a->scene, &box, a->frame->size, &out->frames[s]);
+        size_t any = 0;
+        for (size_t i = 0; i < npx; i++)
+            any += mask[i] = v->cls[i] == SL_C_PFL && out->slice[i] == s;
+        if (!any)
+            continue;
+        if ((e = pkg_frame(k, a, &out->frames[s], mask, part, c, d)))
+            break;
+        for (size_t i = 0; i < npx; i++)
+            if (mask[i])
+                out->vis[i] = part[i];
+    }
+    free(part);
+    if (e) {
+        sl_verdicts_drop_frames(out);
+        return e;
+    }
+    out->nframes = n;
+    return SL_OK;
 }
 
 static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
@@ -64,20 +167,20 @@ static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *o
     if (e)
         return e;
     const struct sl_view *v = a->view;
-    const struct sl_tech_values *tv = &a->params->pkg;
     size_t npx = (size_t)v->w * (size_t)v->h;
     uint8_t *mask = malloc(npx);
     if (!mask)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "lookup mask %dx%d", v->w, v->h);
-    for (size_t i = 0; i < npx; i++)
-        mask[i] = v->cls[i] == SL_C_PFL;
-    e = sl_techpass_render(&k->pass, a->mesh, a->frame, tv, d);
-    if (!e)
-        e = sl_techpass_lookup(&k->pass, a->frame, tv, v->pos, v->nrm, mask, v->w, v->h, out->vis, d);
+    if (a->params->partitions > 1) {
+        e = pkg_cascades(k, a, mask, out, c, d);
+    } else {
+        for (size_t i = 0; i < npx; i++)
+            mask[i] = v->cls[i] == SL_C_PFL;
+        e = pkg_frame(k, a, a->frame, mask, out->vis, c, d);
+    }
     free(mask);
     if (e)
         return e;
-    const struct sl_techpass_costs *pc = &k->pass.costs;
     const float thr = (float)k->t.threshold;
     for (size_t i = 0; i < npx; i++) {
         if (sl_verdict_fixed(v, i, out)) {
@@ -88,12 +191,6 @@ static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *o
         out->how[i] = SL_HOW_MAP;
     }
     out->has_vis = 1;
-    c->ms_step[0] += pc->ms_map;
-    c->ms_step[1] += pc->ms_post;
-    c->ms_step[2] += pc->ms_lookup;
-    c->ms_step[3] += pc->ms_readback;
-    c->ms_method += pc->ms_map + pc->ms_post + pc->ms_lookup + pc->ms_readback;
-    c->lookups += pc->lookups;
     return SL_OK;
 }
 
@@ -129,7 +226,7 @@ enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *
             .summary = k->t.summary,
             .exact = 0,
             .lights = SL_LIGHTS_NO_POINT,
-            .params_ok = 0,
+            .params_ok = SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA,   /* cascades */
             .needs = pkg_needs,
             .configure = pkg_configure,
             .run = pkg_run,

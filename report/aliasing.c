@@ -22,7 +22,7 @@ static const char *const band_name[SL_ALIAS_BANDS] = {"m ≤ 1", "1–2", "2–4
 int sl_report_aliasing_applies(const struct sl_report_study *s)
 {
     for (int i = 0; i < s->n; i++)
-        if (s->cells[i].has_alias && !s->cells[i].has_soft)
+        if (s->cells[i].has_alias && (!s->cells[i].has_soft || s->cells[i].frac))
             return 1;
     return 0;
 }
@@ -72,7 +72,7 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
     for (int l = 0; l < s->nlabels; l++)
         for (int m = 0; m < s->nmaps; m++) {
             const struct sl_cell_record *c = sl_report_study_cell(s, v, s->labels[l], s->maps[m]);
-            int r = c && c->has_alias && !c->has_soft ? image_region(c) : -1;
+            int r = c && c->has_alias && (!c->has_soft || c->frac) ? image_region(c) : -1;
             if (r < 0)
                 continue;
             const uint64_t *n = c->alias.n[r];
@@ -133,7 +133,7 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
         int any = 0;
         for (int i = 0; i < s->n; i++) {
             const struct sl_cell_record *c = &s->cells[i];
-            int r = c->has_alias && !c->has_soft && strcmp(c->label, s->labels[l]) == 0 ? image_region(c) : -1;
+            int r = c->has_alias && (!c->has_soft || c->frac) && strcmp(c->label, s->labels[l]) == 0 ? image_region(c) : -1;
             if (r < 0)
                 continue;
             any = 1;
@@ -174,7 +174,7 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
     for (int l = 0; l < s->nlabels && b < nblocks; l++) {
         int has = 0;
         for (int i = 0; i < s->n && !has; i++)
-            has = s->cells[i].has_alias && !s->cells[i].has_soft && strcmp(s->cells[i].label, s->labels[l]) == 0;
+            has = s->cells[i].has_alias && (!s->cells[i].has_soft || s->cells[i].frac) && strcmp(s->cells[i].label, s->labels[l]) == 0;
         if (!has)
             continue;
         fprintf(m, "%sDATA index %d using 1:2 with linespoints lw 1.5 pt %d lc rgb '%s' title ", b ? ", \\\n  " : "",

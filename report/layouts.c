@@ -77,7 +77,7 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
     for (int i = 0; i < s->n; i++) {
         const struct sl_cell_record *c = &s->cells[i];
         int k;
-        s->curtis |= c->has_soft;
+        s->curtis |= c->has_soft && !c->frac;   /* frac: a hard light's fractional errors */
         hard |= !c->has_soft || c->fig.nregions > 0;   /* a hard method under an area light has both */
         for (k = 0; k < s->nviews && !same_view(&s->views[k], c); k++)
             ;

@@ -382,7 +382,7 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
                        "figure tables, the plots and the costs only." : "");
     int point = 0;   /* hard figures of cells under an area light */
     for (int i = 0; i < s->n && !point; i++)
-        point = s->cells[i].has_soft && s->cells[i].fig.nregions > 0;
+        point = s->cells[i].has_soft && s->cells[i].fig.nregions > 0 && !s->cells[i].frac;
     if (point && (s->moderno || s->morais))
         sl_report_doc_para(doc, "Under an area light the hard-shadow methods take the light for a point at its "
                                 "centre: their wrong pixels and decisions in the hard-shadow tables and plots are "

@@ -582,6 +582,10 @@ static enum sl_err method_knobs(const struct raw_method *rm, unsigned i, const c
  * the loaders around validate. */
 static const struct sl_method_extras *cfg_extras;
 
+/* The knobs a package entry takes beside its own parameters: its cascades
+ * (methods/package.h); any other key of the entry is the package's. */
+static int cascade_knob(const char *key) { return !strcmp(key, "partitions") || !strcmp(key, "lambda"); }
+
 /* Which keys the text pass takes: every key of an entry whose method is
  * not a C method (a package's parameters; an unknown method is refused
  * later by name), and a C method's knob given as a list. */
@@ -591,11 +595,12 @@ static int take_extra(const char *method, const char *key, int is_list, void *us
     int c_method = 0;
     for (int k = 0; k < sl_method_count() && !c_method; k++)
         c_method = !strcmp(sl_method_at(k)->name, method);
-    if (!c_method)
-        return 1;
 #define KNOB_IS(id, bit, name, ...) || !strcmp(key, #name)
-    return is_list && (0 SL_KNOBS(KNOB_IS));
+    int knob = 0 SL_KNOBS(KNOB_IS);
 #undef KNOB_IS
+    if (!c_method)   /* a package's keys, but its cascades' knobs given as one value */
+        return is_list || !cascade_knob(key);
+    return is_list && knob;
 }
 
 static enum sl_err extras_edit(unsigned char **text, size_t *len, void *user, struct sl_diag *d)
@@ -796,10 +801,11 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
             enum sl_err e = SL_OK;
             if (xk->is_list)
                 e = label_part(suffix, sizeof suffix, xk, val[k], i, file, d);
-            if (!e && t) {
+            int knob = !t || cascade_knob(xk->key) ? sweep_knob(&rm2, &kv, xk->key, val[k]) : 0;
+            if (!e && t && !knob) {
                 e = package_value(t, &tv, key, xk->line, xk->key, val[k], file, d);
             } else if (!e) {
-                int ok = sweep_knob(&rm2, &kv, xk->key, val[k]);
+                int ok = knob;
                 if (ok < 0)
                     e = sl_fail(d, SL_E_CONFIG, file, xk->line, key, "'%s' is not a value of %s", val[k], xk->key);
             }
