@@ -1,0 +1,18 @@
+// ESM lookup: visibility = exp(c z_f) exp(-c d) = exp(-c (d - z_f)), z_f the
+// occluders' depth filtered in exponential space, clamped to 1 (a receiver in
+// front of its filtered occluders, or on them, is lit). Evaluated in log
+// space, log(m) - c (d - 1/2), so no intermediate exponential can overflow.
+
+// The coarsest mip level whose bilinear footprint stays inside the declared
+// reach blur + 1 (see vsm/lookup.glsl for the arithmetic).
+float esm_lod(vec2 uv)
+{
+    float max_lod = floor(log2((float(blur) + 2.0) / 1.5));
+    return clamp(textureQueryLod(warped, uv).y, 0.0, max_lod);
+}
+
+float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl)
+{
+    float m = textureLod(warped, uv, esm_lod(uv)).r;
+    return exp(min(log(m) - c * (depth - 0.5), 0.0));
+}
