@@ -21,6 +21,7 @@ extern "C" {
     X(SL_E_SCENE,       "unknown or invalid scene")                         \
     X(SL_E_METHOD,      "unknown method or bad method parameter")           \
     X(SL_E_BASELINE,    "invalid baseline file")                            \
+    X(SL_E_PACKAGE,     "invalid technique package")                        \
     X(SL_E_OUTPUT,      "output directory not writable")                    \
     X(SL_E_GL,          "OpenGL failure")                                   \
     X(SL_E_EMBREE,      "Embree failure")                                   \

@@ -1,0 +1,155 @@
+/*
+ * technique.h — shadow technique packages (issue 36): a folder holding
+ * technique.yaml and the two GLSL files it names, loaded at run time.
+ *
+ * What it does: reads and checks technique.yaml against its schema (libcyaml
+ * through sl_yaml_load: unknown keys, missing keys, types, ranges, a default
+ * outside [min, max], names that are no GLSL identifiers, a `blur:` or
+ * `reach.param` naming no parameter), checks the shader paths (relative, no
+ * `..`, no symbolic link on the way, a regular file inside the package
+ * folder, at most SL_TECH_MAX_SHADER bytes) and reads both sources. Packages
+ * are untrusted input: every error is `FILE:LINE: 'KEY': message` with the id
+ * SL_E_PACKAGE (exit 2). Also: the set of packages found along a search path
+ * (first name wins; a C method's name is refused), the search path itself,
+ * parameter values (defaults, checked setting), the guard band a package's
+ * lookup needs (reach, blur) and the texel reads it counts (taps).
+ * The contract packages are written against: /work/shared/t36/contract.md
+ * (doc/techniques.md once merged).
+ *
+ * Owns: each sl_technique's shader sources (sl_tech_free), a set's
+ * techniques (sl_tech_set_free).
+ * Does not: touch GL (techpass.h compiles and runs a package), know the C
+ * methods (their names come in as an argument), read configs.
+ */
+#ifndef SL_TECHNIQUE_H
+#define SL_TECHNIQUE_H
+#include <stddef.h>
+#include "sl_error.h"
+
+#define SL_TECH_MAX_PARAMS 16
+#define SL_TECH_MAX_MAPS 4
+#define SL_TECH_NAME_MAX 32                       /* names: at most 31 characters */
+#define SL_TECH_MAX_YAML ((size_t)64 << 10)       /* technique.yaml: refused unread above this */
+#define SL_TECH_MAX_SHADER ((size_t)256 << 10)    /* each GLSL file */
+#define SL_TECH_MAX_SET 256                       /* packages in one set */
+#define SL_TECH_MAX_DIRS 32                       /* folders of a search path */
+#define SL_TECH_MAX_MAP_SIZE 16384                /* guarded map side, texels (GL's own limit may be lower) */
+
+enum sl_tech_type { SL_TECH_INT, SL_TECH_FLOAT, SL_TECH_BOOL };
+enum sl_tech_format { SL_TECH_R32F, SL_TECH_RG32F, SL_TECH_RGBA32F, SL_TECH_RGBA16F };
+enum sl_tech_filter { SL_TECH_NEAREST, SL_TECH_LINEAR };
+enum sl_tech_post { SL_TECH_POST_NONE, SL_TECH_POST_BLUR, SL_TECH_POST_MIPMAPS, SL_TECH_POST_BLUR_MIPMAPS };
+enum sl_tech_cull { SL_TECH_CULL_NONE, SL_TECH_CULL_FRONT, SL_TECH_CULL_BACK };
+
+/* the YAML spellings, by enum value */
+extern const char *const sl_tech_type_names[3];     /* int float bool */
+extern const char *const sl_tech_format_names[4];   /* r32f rg32f rgba32f rgba16f */
+extern const char *const sl_tech_filter_names[2];   /* nearest linear */
+extern const char *const sl_tech_post_names[4];     /* none blur mipmaps blur_mipmaps */
+extern const char *const sl_tech_cull_names[3];     /* none front back */
+
+struct sl_tech_param {
+    char name[SL_TECH_NAME_MAX];
+    enum sl_tech_type type;
+    double def;                 /* bool: 0 or 1 */
+    double min, max;            /* -inf / +inf when not given (bool: 0, 1) */
+    int has_min, has_max;
+    char doc[200];
+};
+
+struct sl_tech_map {
+    char name[SL_TECH_NAME_MAX];
+    enum sl_tech_format format;
+    enum sl_tech_filter filter;
+    enum sl_tech_post post;
+    int blur;                   /* index of the int parameter giving the blur radius; -1 without blur */
+};
+
+/* reach and taps: texels + scale * value(param)^power (param -1: texels alone) */
+struct sl_tech_scaled {
+    double texels, scale, power;
+    int param;
+};
+
+struct sl_technique {
+    char name[SL_TECH_NAME_MAX];
+    char summary[200];
+    char cite[500];
+    char dir[1024];             /* the package folder, as found */
+    char file[1100];            /* dir/technique.yaml: what errors name */
+    const char *origin;         /* where it was found (sl_tech_dirs' origins); NULL when loaded alone */
+    double threshold;           /* lit iff visibility >= threshold (default 0.5) */
+    enum sl_tech_cull cull;
+    int nmaps;
+    struct sl_tech_map map[SL_TECH_MAX_MAPS];
+    int nparams;
+    struct sl_tech_param param[SL_TECH_MAX_PARAMS];
+    struct sl_tech_scaled reach;   /* default 0 texels */
+    struct sl_tech_scaled taps;    /* default 1 texel */
+    char map_shader[256], lookup_shader[256];   /* as written, relative to dir */
+    char *map_src, *lookup_src;    /* their text, NUL-terminated (owned) */
+};
+
+/* Load the package in folder dir (dir/technique.yaml). Every failure is
+ * SL_E_PACKAGE naming technique.yaml's line and key (SL_E_IO for a folder
+ * that cannot be read, SL_E_NOMEM). On failure *t holds nothing to free. */
+enum sl_err sl_tech_load(const char *dir, struct sl_technique *t, struct sl_diag *d);
+void        sl_tech_free(struct sl_technique *t);
+
+/* The index of a parameter (or map) by name, -1 if none. */
+int sl_tech_param_index(const struct sl_technique *t, const char *name);
+int sl_tech_map_index(const struct sl_technique *t, const char *name);
+
+/* ---- parameter values: in the order of t->param ---- */
+struct sl_tech_values {
+    int n;
+    double v[SL_TECH_MAX_PARAMS];
+};
+void sl_tech_defaults(const struct sl_technique *t, struct sl_tech_values *v);
+/* Set parameter `name` to x, checked against its type (int: a whole number;
+ * bool: 0 or 1) and range: SL_E_METHOD naming the key otherwise, or when t
+ * has no such parameter. */
+enum sl_err sl_tech_value_set(const struct sl_technique *t, struct sl_tech_values *v, const char *name,
+                              double x, struct sl_diag *d);
+
+/* How far the lookup reads beyond the texel a point lands in, texels:
+ * ceil(reach.texels + reach.scale * value^power), at least 0. */
+int sl_tech_reach(const struct sl_technique *t, const struct sl_tech_values *v);
+/* The guard band g of the maps: reach plus the largest blur radius of a
+ * blurred map (its box reads that far beyond the texels the lookup reads). */
+int sl_tech_guard(const struct sl_technique *t, const struct sl_tech_values *v);
+/* Texel reads per looked-up pixel (taps), at least 0. */
+double sl_tech_taps(const struct sl_technique *t, const struct sl_tech_values *v);
+/* The parameter the guard band grows with (reach's, else a blurred map's
+ * radius), -1 when it is fixed: what an error about the map size names. */
+int sl_tech_guard_param(const struct sl_technique *t);
+
+/* ---- where packages come from ---- */
+
+/* The search path, in order, each folder with its origin: config_dirs (the
+ * config's `techniques:` folders, relative to rel_dir when not absolute:
+ * "config"), each folder of SHADOWLAB_TECHNIQUES (colon-separated:
+ * "SHADOWLAB_TECHNIQUES"), the source tree's techniques/ ("source tree",
+ * compiled in), <prefix>/share/shadowlab/techniques ("installed"). Returns
+ * how many (at most max). */
+int sl_tech_dirs(const char *const *config_dirs, int nconfig, const char *rel_dir, char (*dirs)[1024],
+                 const char **origin, int max);
+
+struct sl_tech_set {
+    int n;
+    struct sl_technique *t;     /* n of them, in the order found */
+};
+
+/* Scan the folders in order: a folder holding technique.yaml is one
+ * package, else each of its subfolders holding one is (in name order); a
+ * folder that does not exist is skipped. The first package of a name wins,
+ * later ones of that name are left out. A package that fails to load fails
+ * the scan (packages are input: a broken one is an error, not skipped); so
+ * does one named like a C method (c_names, NULL-terminated; may be NULL),
+ * naming its file, line and 'name'. On failure *s is empty. */
+enum sl_err sl_tech_set_scan(struct sl_tech_set *s, char (*dirs)[1024], const char *const *origin, int ndirs,
+                             const char *const *c_names, struct sl_diag *d);
+const struct sl_technique *sl_tech_find(const struct sl_tech_set *s, const char *name);
+void sl_tech_set_free(struct sl_tech_set *s);
+
+#endif

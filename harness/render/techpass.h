@@ -1,0 +1,115 @@
+/*
+ * techpass.h — a technique package (technique.h) on the GL: its map pass
+ * per light frame, the post passes, and its lookup over a grid of points.
+ *
+ * Map pass: the package's map shader (`#version 450 core`, the harness
+ * prelude, `#line 1 1`, the package file, the harness main calling
+ * sl_map(gl_FragCoord.z)) into maps of S + 2g texels, g the guard band
+ * (sl_tech_guard): the light frame's clip x, y scaled by S / (S + 2g), so a
+ * texel is as wide as the frame's and texel (i, j) of the frame is texel
+ * (i + g, j + g) of the maps (with g = 0 the frame's own matrix, unscaled:
+ * the same bits as the C depth layers' pass). First a fullscreen pass of
+ * sl_map(1.0) (empty texels), then the scene with a depth test (depth
+ * cleared to 1, GL_LESS) and the package's culling (two-sided runs never
+ * culled, as shadowmap.c). Post passes per map: a separable box blur of
+ * radius r (2r + 1 taps, clamped inside the guarded map; harness shader,
+ * two passes through a ping-pong texture), then mipmaps.
+ *
+ * Lookup pass: a fullscreen triangle over a w x h R32F target; per pixel
+ * the G-buffer's position and normal (CPU arrays, 3 floats a pixel, index
+ * y * w + x), skipped where mask is 0; the light-clip position computed as
+ * sl_frame_project computes it on the CPU (the same float operations in the
+ * same order, with the frame's own matrix and size, division correctly
+ * rounded), so a package that compares depths with texels picks the texel
+ * and the depth a C method would; then sl_lookup, clamped to [0, 1].
+ *
+ * Prelude additions to the contract (set by the harness before sl_lookup):
+ *   ivec2 sl_home_texel;  the texel the point lands in, in the guarded map:
+ *                         (floor(u) + g, floor(v) + g), not clamped
+ *   vec2  sl_map_pos;     (u + g, v + g): the point in texels of the guarded
+ *                         map (uv * sl_map_size up to rounding)
+ *
+ * GLSL errors of a package name its file and line: `DIR/lookup.glsl:LINE:
+ * GLSL: message`, SL_E_PACKAGE.
+ *
+ * Owns: the programs, the maps, their ping-pong and depth buffers, the
+ * lookup's G-buffer textures and target, kept across calls and remade when
+ * a size changes (sl_techpass_free).
+ * Does not: own the technique (borrowed, must outlive the pass), decide
+ * verdicts (a caller applies the threshold), read the truth.
+ */
+#ifndef SL_TECHPASS_H
+#define SL_TECHPASS_H
+#include <stdint.h>
+#include "frame.h"
+#include "glctx.h"
+#include "technique.h"
+
+/* What the last map/post/lookup calls cost: wall ms and GL_TIME_ELAPSED ms
+ * (sl_gl_timer; NaN when not measured). */
+struct sl_techpass_costs {
+    double ms_map, gpu_map;         /* the map pass (empty texels + the scene) */
+    double ms_post, gpu_post;       /* every post pass together (blur, mipmaps) */
+    double ms_lookup, gpu_lookup;   /* the lookup pass, G-buffer upload included */
+    double ms_readback;             /* the visibility read back */
+    uint64_t lookups;               /* taps x pixels looked up */
+    uint64_t pixels;                /* pixels looked up */
+    int guard;                      /* g, texels */
+    int map_size;                   /* S + 2g */
+};
+
+struct sl_techpass {
+    const struct sl_technique *t;
+    GLuint prog_map, prog_empty, prog_lookup, prog_blur;
+    GLuint vao_empty;               /* for the fullscreen triangles */
+    /* the maps of the last frame, size N = S + 2g */
+    int size, guard, levels;
+    GLuint map_tex[SL_TECH_MAX_MAPS], ping_tex[SL_TECH_MAX_MAPS];
+    GLuint map_fbo, blur_fbo, depth_rb;
+    float light_vp[16];             /* the guarded map's matrix (column-major) */
+    /* the lookup's inputs and target, size lw x lh */
+    int lw, lh;
+    GLuint g_pos, g_nrm, g_mask, out_tex, out_fbo;
+    uint8_t *ones;                  /* lw * lh ones: the mask when none is given */
+    struct sl_techpass_costs costs;
+    int max_tex;                    /* GL_MAX_TEXTURE_SIZE */
+};
+
+/* Compile the package's programs (map, empty-texel and lookup) and the
+ * harness's blur. SL_E_PACKAGE with the package file's line for a GLSL
+ * error in it, SL_E_GL for the harness's own. */
+enum sl_err sl_techpass_init(struct sl_techpass *p, const struct sl_technique *t, struct sl_diag *d);
+void        sl_techpass_free(struct sl_techpass *p);
+
+/* The guard band and map size for frame f at values v, checked: SL_E_METHOD
+ * naming the parameter (sl_tech_guard_param) when S + 2g exceeds the GL's
+ * maximum texture size or SL_TECH_MAX_MAP_SIZE. */
+enum sl_err sl_techpass_size(struct sl_techpass *p, const struct sl_light_frame *f,
+                             const struct sl_tech_values *v, int *guard, int *size, struct sl_diag *d);
+
+/* Render the maps of light frame f (f->size, f->box.vp, ...) with mesh m,
+ * then the post passes. */
+enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m, const struct sl_light_frame *f,
+                               const struct sl_tech_values *v, struct sl_diag *d);
+
+/* For tests: the guarded maps' texels given directly, texels[i] holding
+ * N * N * channels floats of map i (N = S + 2g from sl_techpass_size, rows
+ * from the bottom, channels as its format: 1, 2, 4 or 4), then the post
+ * passes, as if rendered. */
+enum sl_err sl_techpass_upload(struct sl_techpass *p, const struct sl_light_frame *f,
+                               const struct sl_tech_values *v, const float *const *texels, struct sl_diag *d);
+
+/* Look up the points of a w x h grid in the maps of frame f (rendered or
+ * uploaded last): pos, nrm 3 floats per point, mask NULL (all) or 0 = skip;
+ * vis gets w * h visibilities in [0, 1] (skipped points: 0). */
+enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_frame *f,
+                               const struct sl_tech_values *v, const float *pos, const float *nrm,
+                               const uint8_t *mask, int w, int h, float *vis, struct sl_diag *d);
+
+/* Map an info log of the driver to the package's file: the first line
+ * naming source string 1 ("1:LINE(COL): ..." Mesa, "1(LINE) : ..." NVIDIA)
+ * becomes file:LINE in d, with "GLSL: <message>"; a log naming no line of
+ * it gives line 0 and the whole first line. Returns SL_E_PACKAGE. */
+enum sl_err sl_techpass_glsl_error(const char *file, const char *log, struct sl_diag *d);
+
+#endif
