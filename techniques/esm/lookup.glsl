@@ -7,7 +7,8 @@
 // reach blur + 1 (see vsm/lookup.glsl for the arithmetic).
 float esm_lod(vec2 uv)
 {
-    float max_lod = floor(log2((float(blur) + 2.0) / 1.5));
+    float max_lod = min(floor(log2((float(blur) + 2.0) / 1.5)),
+                        float(findLSB(int(sl_map_size))));
     return clamp(textureQueryLod(warped, uv).y, 0.0, max_lod);
 }
 

@@ -17,7 +17,8 @@
 float msm_lod(vec2 uv)
 {
     // the coarsest mip level within reach blur + 1 (see vsm/lookup.glsl)
-    float max_lod = floor(log2((float(blur) + 2.0) / 1.5));
+    float max_lod = min(floor(log2((float(blur) + 2.0) / 1.5)),
+                        float(findLSB(int(sl_map_size))));
     return clamp(textureQueryLod(moments, uv).y, 0.0, max_lod);
 }
 

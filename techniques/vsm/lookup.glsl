@@ -9,11 +9,15 @@
 // The coarsest mip level whose bilinear footprint stays inside the declared
 // reach R = blur + 1 texels: a bilinear read of level L touches texels up to
 // 1.5 * 2^L - 1 away from the one the point lands in (L >= 1; 1 at L = 0), so
-// L = floor(log2((R + 1) / 1.5)). The level itself comes from the screen-space
-// derivatives as a texture() call would choose it, clamped to that.
+// L = floor(log2((R + 1) / 1.5)). And no deeper than the number of times the
+// map's side halves exactly: a level of an odd-sided one is resampled, not a
+// 2 x 2 box (Mesa blits it bilinearly), and its footprint drifts off the
+// blocks the bound above assumes. The level itself comes from the
+// screen-space derivatives as a texture() call would choose it, clamped.
 float vsm_lod(vec2 uv)
 {
-    float max_lod = floor(log2((float(blur) + 2.0) / 1.5));
+    float max_lod = min(floor(log2((float(blur) + 2.0) / 1.5)),
+                        float(findLSB(int(sl_map_size))));
     return clamp(textureQueryLod(moments, uv).y, 0.0, max_lod);
 }
 
