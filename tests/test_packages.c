@@ -184,24 +184,37 @@ static void pkg_upload(struct pkg *k, depth_fn fn, const void *arg)
 }
 
 /* Visibility at frame texel coordinates (u, v) and window depth z, the
- * surface facing the light (ndotl = 1). The point fills a 2 x 2 quad: zero
- * derivatives, mip level 0; the four results must agree. */
-static double pkg_lookup(struct pkg *k, double u, double v, double z)
+ * surface facing the light (ndotl = 1). The point fills a 4 x 2 grid, two
+ * 2 x 2 quads: zero derivatives, mip level 0; the eight results must agree.
+ * (4 wide, not 2: the runner uploads the byte mask with the default unpack
+ * alignment of 4, so a grid less than 4 wide reads its mask's second row
+ * from beyond the array and loses points at random.) */
+#define QW 4
+#define QH 2
+static void quad_grid(double u, double v, double z, float *pos, float *nrm)
 {
-    float pos[4 * 3], nrm[4 * 3], vis[4];
-    for (int q = 0; q < 4; q++) {
+    for (int q = 0; q < QW * QH; q++) {
         pos[3 * q + 0] = (float)(u / S * 2 - 1);
         pos[3 * q + 1] = (float)(v / S * 2 - 1);
         pos[3 * q + 2] = (float)z;
         nrm[3 * q + 0] = nrm[3 * q + 1] = 0.0f;
         nrm[3 * q + 2] = -1.0f;
     }
+}
+
+static double pkg_lookup(struct pkg *k, double u, double v, double z)
+{
+    float pos[QW * QH * 3], nrm[QW * QH * 3], vis[QW * QH];
+    quad_grid(u, v, z, pos, nrm);
     struct sl_diag d;
-    enum sl_err e = sl_techpass_lookup(&k->p, &k->f, &k->v, pos, nrm, NULL, 2, 2, vis, &d);
+    enum sl_err e = sl_techpass_lookup(&k->p, &k->f, &k->v, pos, nrm, NULL, QW, QH, vis, &d);
     diag_print(e, &d);
     assert_int_equal(e, SL_OK);
-    for (int q = 1; q < 4; q++)
+    for (int q = 1; q < QW * QH; q++) {
+        if (vis[q] != vis[0])
+            fprintf(stderr, "lookup %d of the grid: %.9g, lookup 0: %.9g\n", q, vis[q], vis[0]);
         assert_true(vis[q] == vis[0]);
+    }
     return vis[0];
 }
 
@@ -546,50 +559,117 @@ static void packages_pcss_penumbra(void **st)
     pkg_close(&k);
 }
 
+/* PCSS, perspective: the light at the origin looking along +z, near 1, far
+ * 10, half-width tan 0.5 (a texel at depth 1 is 1 / S world units wide). A
+ * blocker at distance 2.5 left of the edge, a receiver plane at 5 right of
+ * it, both as window depths d = A + B / z. Fernando's penumbra in texels of
+ * the receiver, w = light_size (5 - 2.5) / (2.5 * 5) = light_size / 5:
+ * light_size 40 gives w = 8, the 5/8 of the directional case; 20 gives
+ * w = 4, 3/4. The shader recovers the distances from sl_light_vp alone. */
+static void packages_pcss_perspective(void **st)
+{
+    (void)st;
+    const double n = 1, fa = 10, t = 0.5, A = fa / (fa - n), B = -fa * n / (fa - n);
+    const double a[2] = {A + B / 2.5, A + B / 5};
+    struct pkg k;
+    pkg_open(&k, "pcss");
+    struct sl_light_frame *f = &k.f;
+    glm_mat4_zero(f->box.proj);
+    f->box.proj[0][0] = f->box.proj[1][1] = (float)(1 / t);
+    f->box.proj[2][2] = (float)A;
+    f->box.proj[3][2] = (float)B;
+    f->box.proj[2][3] = 1.0f;
+    glm_mat4_copy(f->box.proj, f->box.vp);
+    f->box.persp = 1;
+    f->box.lo[0] = f->box.lo[1] = (float)-t;
+    f->box.hi[0] = f->box.hi[1] = (float)t;
+    f->box.lo[2] = (float)n;
+    f->box.hi[2] = (float)fa;
+    f->texel_world = (float)(2 * t / S);
+    f->depth_range = (float)(fa - n);
+    pkg_set(&k, "light_size", 40);
+    pkg_upload(&k, halves, a);
+    printf("  pcss perspective (guard %d, map %d), blocker %.7f, receiver %.7f\n", k.g, k.n, a[0], a[1]);
+    /* a point on the receiver plane z = 5 seen through frame texel u */
+    float pos[QW * QH * 3], nrm[QW * QH * 3], vis[QW * QH];
+    const double us[] = {EDGE + 1.25, EDGE - 1.75, EDGE + 1.25}, ls[] = {40, 40, 20}, want[] = {0.625, 0.25, 0.75};
+    for (int i = 0; i < 3; i++) {
+        pkg_set(&k, "light_size", ls[i]);
+        quad_grid(0, 0, 5, pos, nrm);
+        for (int q = 0; q < QW * QH; q++) {
+            pos[3 * q + 0] = (float)((us[i] / S * 2 - 1) * t * 5);
+            pos[3 * q + 1] = (float)((20.5 / S * 2 - 1) * t * 5);
+        }
+        struct sl_diag d;
+        enum sl_err e = sl_techpass_lookup(&k.p, &k.f, &k.v, pos, nrm, NULL, QW, QH, vis, &d);
+        diag_print(e, &d);
+        assert_int_equal(e, SL_OK);
+        char what[80];
+        snprintf(what, sizeof what, "light_size %.0f, u %.2f", ls[i], us[i]);
+        expect_near(what, vis[0], want[i], 0);
+    }
+    pkg_close(&k);
+}
+
 /* Each package reads nothing beyond its guard band (reach + blur) around
  * the point's texel: the same lookup on a map whose texels farther than the
  * guard are replaced by depth 0.05 (a near occluder everywhere else) must
  * give the same visibility. The point's quad neighbours sit 24 texels away,
  * so the screen-space derivatives ask for a coarse mip level and the lookup's
  * clamp to its reach is what keeps the result. */
+/* a receiver depth where the package's visibility over the noise field is
+ * neither 0 nor 1 (ESM's exponential is 1 unless the receiver is behind
+ * nearly everything) */
+static double z_of(const char *name)
+{
+    return !strcmp(name, "esm") ? 0.8 : 0.55;
+}
+
 static void packages_reach(void **st)
 {
     (void)st;
-    static const char *const names[] = {"vsm", "esm", "evsm", "msm", "pcss"};
-    for (int i = 0; i < 5; i++) {
+    static const struct {
+        const char *name;
+        int blur;   /* -1: none */
+    } runs[] = {{"vsm", 0}, {"vsm", 1}, {"vsm", 4}, {"esm", 1}, {"esm", 8}, {"evsm", 1},
+                {"evsm", 3}, {"msm", 1}, {"msm", 2}, {"pcss", -1}};
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        const char *const name = runs[i].name;
         struct pkg k;
-        pkg_open(&k, names[i]);
-        if (!strcmp(names[i], "pcss"))
+        pkg_open(&k, name);
+        if (runs[i].blur >= 0)
+            pkg_set(&k, "blur", runs[i].blur);
+        else
             pkg_set(&k, "light_size", 40);
         int ki = 20, kj = 21;   /* the point's frame texel */
-        float pos[4 * 3], nrm[4 * 3], vis[2][4];
-        for (int q = 0; q < 4; q++) {
-            double u = ki + 0.3 + 24 * (q & 1), v = kj + 0.6 + 24 * (q >> 1);
-            pos[3 * q + 0] = (float)(u / S * 2 - 1);
-            pos[3 * q + 1] = (float)(v / S * 2 - 1);
-            pos[3 * q + 2] = 0.55f;
-            nrm[3 * q + 0] = nrm[3 * q + 1] = 0.0f;
-            nrm[3 * q + 2] = -1.0f;
-        }
+        /* the point at grid (0, 0); its quad's other three 24 texels off in u, v or both */
+        float pos[QW * QH * 3], nrm[QW * QH * 3], vis[2][QW * QH];
+        quad_grid(0, 0, z_of(name), pos, nrm);
+        for (int y = 0; y < QH; y++)
+            for (int x = 0; x < QW; x++) {
+                double u = ki + 0.3 + 24 * (x & 1), v = kj + 0.6 + 24 * y;
+                pos[3 * (y * QW + x) + 0] = (float)(u / S * 2 - 1);
+                pos[3 * (y * QW + x) + 1] = (float)(v / S * 2 - 1);
+            }
         for (int poisoned = 0; poisoned < 2; poisoned++) {
             struct sl_diag d;
             if (poisoned)
                 pkg_upload_poisoned(&k, noise, NULL, k.g, ki, kj, 0.05);   /* keep exactly the guard band */
             else
                 pkg_upload(&k, noise, NULL);
-            enum sl_err e = sl_techpass_lookup(&k.p, &k.f, &k.v, pos, nrm, NULL, 2, 2, vis[poisoned], &d);
+            enum sl_err e = sl_techpass_lookup(&k.p, &k.f, &k.v, pos, nrm, NULL, QW, QH, vis[poisoned], &d);
             diag_print(e, &d);
             assert_int_equal(e, SL_OK);
         }
-        printf("  %-5s guard %2d: %.7f clean, %.7f with everything beyond the guard at 0.05\n", names[i], k.g,
-               vis[0][0], vis[1][0]);
+        printf("  %-5s blur %2d guard %2d: %.7f clean, %.7f with everything beyond the guard at 0.05\n", name,
+               runs[i].blur, k.g, vis[0][0], vis[1][0]);
         assert_true(vis[0][0] == vis[1][0]);
         /* and the poison does change the result once it comes close (the
          * home texel alone kept): the comparison above can fail */
         pkg_upload_poisoned(&k, noise, NULL, 0, ki, kj, 0.05);
         struct sl_diag d;
-        float near[4];
-        assert_int_equal(sl_techpass_lookup(&k.p, &k.f, &k.v, pos, nrm, NULL, 2, 2, near, &d), SL_OK);
+        float near[QW * QH];
+        assert_int_equal(sl_techpass_lookup(&k.p, &k.f, &k.v, pos, nrm, NULL, QW, QH, near, &d), SL_OK);
         assert_true(near[0] != vis[0][0]);
         pkg_close(&k);
     }
@@ -604,6 +684,7 @@ int main(int argc, char **argv)
         SL_CASE(packages, evsm_bound),
         SL_CASE(packages, msm_hamburger),
         SL_CASE(packages, pcss_penumbra),
+        SL_CASE(packages, pcss_perspective),
         SL_CASE(packages, reach),
     };
     return sl_run_group(argc, argv, "packages", tests, group_setup, group_teardown);

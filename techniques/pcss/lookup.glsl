@@ -72,7 +72,10 @@ float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl)
 
     // 3. PCF of radius w / 2
     float radius = clamp(0.5 * w, 0.0, float(max_filter));
-    int k = int(ceil(radius));
+    // taps a half side; the 1e-3 keeps a radius a rounding above a whole
+    // number (0.6 - 0.2 in float is 0.40000001) from adding a ring of taps.
+    // Every tap stays inside the radius whatever k is.
+    int k = int(ceil(radius - 1e-3));
     if (k == 0)
         return texture(zmap, uv).r < depth - slope * bias ? 0.0 : 1.0;
     float step = radius / float(k);
