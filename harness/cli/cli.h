@@ -3,7 +3,7 @@
 /*
  * cli: the command line, one file per verb (run.c, validate.c, table.c,
  * report.c, check.c, store.c for merge and verify, submit.c, bench.c,
- * preview.c, list.c) and the table of verbs with their help texts
+ * preview.c, list.c for list and show) and the table of verbs with their help texts
  * (usage.c). This header is what the verbs share: the option parser, the
  * error printing and the exit codes. The CLI is the only code that prints
  * errors and chooses exit codes (the library stages return sl_err ids and
@@ -43,6 +43,7 @@ int cli_merge(int argc, char **argv);
 int cli_verify(int argc, char **argv);
 int cli_preview(int argc, char **argv);
 int cli_list(int argc, char **argv);
+int cli_show(int argc, char **argv);
 
 /* the help text of each verb (usage.c) */
 extern const char cli_usage_run[];
@@ -52,6 +53,7 @@ extern const char cli_usage_report[];
 extern const char cli_usage_check[];
 extern const char cli_usage_bench[];
 extern const char cli_usage_list[];
+extern const char cli_usage_show[];
 extern const char cli_usage_submit[];
 extern const char cli_usage_merge[];
 extern const char cli_usage_verify[];

@@ -1,13 +1,146 @@
 /*
- * list.c — `shadowlab list methods|scenes`: what a config can name, and
- * where each scene file was found.
+ * list.c — `shadowlab list methods|scenes|techniques`: what a config can
+ * name, and where each scene file and technique package was found; `shadowlab
+ * show technique NAME`: one package's parameters, maps, reach and citation.
+ * Packages are read as a run reads them (technique.h: the search path
+ * without a config, C method names refused), with no GL.
  */
 #define _GNU_SOURCE   /* getopt_long */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include "cli.h"
 #include "method.h"
 #include "scenefile.h"
+#include "technique.h"
+
+/* The packages of the search path (no config: SHADOWLAB_TECHNIQUES, the
+ * source tree, the installed ones); exit code on failure, else 0. */
+static int tech_scan(struct sl_tech_set *s, char (*dirs)[1024], const char **origin, int *nd)
+{
+    static const char *c_names[64];
+    int nc = 0;
+    for (int i = 0; i < sl_method_count() && nc < 63; i++)
+        c_names[nc++] = sl_method_at(i)->name;
+    c_names[nc] = NULL;
+    *nd = sl_tech_dirs(NULL, 0, NULL, dirs, origin, SL_TECH_MAX_DIRS);
+    struct sl_diag d;
+    enum sl_err e = sl_tech_set_scan(s, dirs, origin, *nd, c_names, &d);
+    return e ? cli_fail(e, &d) : 0;
+}
+
+static int list_techniques(void)
+{
+    struct sl_tech_set s;
+    char dirs[SL_TECH_MAX_DIRS][1024];
+    const char *origin[SL_TECH_MAX_DIRS];
+    int nd, rc = tech_scan(&s, dirs, origin, &nd);
+    if (rc)
+        return rc;
+    for (int i = 0; i < s.n; i++)
+        printf("%-14s %-60s [%s: %s]\n", s.t[i].name, s.t[i].summary, s.t[i].origin, s.t[i].dir);
+    if (s.n == 0) {
+        fprintf(stderr, "shadowlab: no technique packages in");
+        for (int i = 0; i < nd; i++)
+            fprintf(stderr, "%s %s (%s)", i ? "," : "", dirs[i], origin[i]);
+        fputc('\n', stderr);
+    }
+    sl_tech_set_free(&s);
+    return 0;
+}
+
+/* a parameter's range as written: "[1, 9]", "[0, inf)", "" (bool) */
+static void range_text(const struct sl_tech_param *p, char *buf, size_t n)
+{
+    if (p->type == SL_TECH_BOOL) {
+        buf[0] = '\0';
+        return;
+    }
+    char lo[32] = "-inf", hi[32] = "inf";
+    if (p->has_min)
+        snprintf(lo, sizeof lo, "%g", p->min);
+    if (p->has_max)
+        snprintf(hi, sizeof hi, "%g", p->max);
+    snprintf(buf, n, "%s%s, %s%s", p->has_min ? "[" : "(", lo, hi, p->has_max ? "]" : ")");
+}
+
+static void scaled_text(const struct sl_technique *t, const struct sl_tech_scaled *x, char *buf, size_t n)
+{
+    if (x->param < 0)
+        snprintf(buf, n, "%g", x->texels);
+    else if (x->power == 1.0)
+        snprintf(buf, n, "%g + %g x %s", x->texels, x->scale, t->param[x->param].name);
+    else
+        snprintf(buf, n, "%g + %g x %s^%g", x->texels, x->scale, t->param[x->param].name, x->power);
+}
+
+static void show_technique(const struct sl_technique *t)
+{
+    struct sl_tech_values v;
+    sl_tech_defaults(t, &v);
+    printf("%s — %s\n", t->name, t->summary);
+    printf("  package    %s (%s)\n", t->dir, t->origin ? t->origin : "given");
+    printf("  shaders    %s, %s\n", t->map_shader, t->lookup_shader);
+    printf("  cite       %s\n", t->cite[0] ? t->cite : "(none given)");
+    printf("  threshold  %g (lit iff visibility >= it)\n", t->threshold);
+    printf("  cull       %s\n", sl_tech_cull_names[t->cull]);
+    printf("  maps\n");
+    for (int i = 0; i < t->nmaps; i++) {
+        const struct sl_tech_map *m = &t->map[i];
+        printf("    %-12s %-8s filter %-8s post %s%s%s\n", m->name, sl_tech_format_names[m->format],
+               sl_tech_filter_names[m->filter], sl_tech_post_names[m->post], m->blur >= 0 ? ", radius " : "",
+               m->blur >= 0 ? t->param[m->blur].name : "");
+    }
+    char buf[160];
+    scaled_text(t, &t->reach, buf, sizeof buf);
+    printf("  reach      ceil(%s) texels (%d at the defaults; guard band %d)\n", buf, sl_tech_reach(t, &v),
+           sl_tech_guard(t, &v));
+    scaled_text(t, &t->taps, buf, sizeof buf);
+    printf("  taps       %s texel reads a pixel (%g at the defaults)\n", buf, sl_tech_taps(t, &v));
+    printf("  parameters%s\n", t->nparams ? "" : " none");
+    for (int i = 0; i < t->nparams; i++) {
+        const struct sl_tech_param *p = &t->param[i];
+        char range[80], def[40];
+        range_text(p, range, sizeof range);
+        if (p->type == SL_TECH_BOOL)
+            snprintf(def, sizeof def, "%s", p->def != 0 ? "true" : "false");
+        else
+            snprintf(def, sizeof def, "%g", p->def);
+        printf("    %-12s %-5s default %-8s %-12s %s\n", p->name, sl_tech_type_names[p->type], def, range, p->doc);
+    }
+}
+
+int cli_show(int argc, char **argv)
+{
+    static const struct option lo[] = {OPT_HELP, {0, 0, 0, 0}};
+    const struct cli_parser p = {"show", "", cli_usage_show, lo};
+    for (int c; (c = cli_opt_next(&p, argc, argv)) != OPT_DONE;)
+        return cli_opt_exit(c);
+    argc -= optind - 1;
+    argv += optind - 1;
+    if (argc != 3 || strcmp(argv[1], "technique") != 0)
+        return cli_usage_error("show: technique NAME", cli_usage_show);
+    struct sl_tech_set s;
+    char dirs[SL_TECH_MAX_DIRS][1024];
+    const char *origin[SL_TECH_MAX_DIRS];
+    int nd, rc = tech_scan(&s, dirs, origin, &nd);
+    if (rc)
+        return rc;
+    const struct sl_technique *t = sl_tech_find(&s, argv[2]);
+    if (!t) {
+        struct sl_diag d;
+        char names[600] = "";
+        for (int i = 0; i < s.n; i++)
+            snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "", s.t[i].name);
+        sl_fail(&d, SL_E_METHOD, NULL, 0, argv[2], "no technique package of that name (found: %s; "
+                "`shadowlab list techniques` says where)", s.n ? names : "none");
+        sl_tech_set_free(&s);
+        return cli_fail(SL_E_METHOD, &d);
+    }
+    show_technique(t);
+    sl_tech_set_free(&s);
+    return 0;
+}
 
 int cli_list(int argc, char **argv)
 {
@@ -39,5 +172,7 @@ int cli_list(int argc, char **argv)
         }
         return 0;
     }
-    return cli_usage_error("list: methods or scenes", cli_usage_list);
+    if (argc == 2 && strcmp(argv[1], "techniques") == 0)
+        return list_techniques();
+    return cli_usage_error("list: methods, scenes or techniques", cli_usage_list);
 }

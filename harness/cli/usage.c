@@ -123,10 +123,20 @@ const char cli_usage_bench[] =
     "  --gl B          the GL context of every stage: osmesa (default where built) or egl\n";
 
 const char cli_usage_list[] =
-    "usage: shadowlab list methods|scenes\n"
+    "usage: shadowlab list methods|scenes|techniques\n"
     "  scenes: the scene files a config can name, each with where it was found; a name is looked\n"
     "  up in the config's folder, then in each folder of SHADOWLAB_SCENES (colon-separated), then\n"
-    "  in the installed share/shadowlab/scenes (or, not installed, the source tree's scenes/)\n";
+    "  in the installed share/shadowlab/scenes (or, not installed, the source tree's scenes/)\n"
+    "  techniques: the technique packages (technique.yaml + GLSL) a config can name as a method,\n"
+    "  each with where it was found: the config's `techniques:` folders, then each folder of\n"
+    "  SHADOWLAB_TECHNIQUES (colon-separated), the source tree's techniques/, the installed\n"
+    "  share/shadowlab/techniques; the first package of a name wins. A broken package is an error\n"
+    "  naming its file, line and key (exit 2).\n";
+
+const char cli_usage_show[] =
+    "usage: shadowlab show technique NAME\n"
+    "  A technique package's summary, folder, shaders, citation, maps (format, filter, post\n"
+    "  passes), reach and texel reads, and its parameters with type, default, range and doc.\n";
 
 const char cli_usage_submit[] =
     "usage: shadowlab submit CONFIG --slurm [--tasks N | --cells-per-task K] [--max-running T]\n"
@@ -191,7 +201,9 @@ const struct cli_verb cli_verbs[] = {
      0},
     {"preview", cli_preview, cli_usage_preview, "SCENE [options]",
      "a quick shaded PNG per viewpoint, for framing cameras", 0},
-    {"list", cli_list, cli_usage_list, "methods|scenes", "what can be named in a config", 0},
+    {"list", cli_list, cli_usage_list, "methods|scenes|techniques", "what can be named in a config", 0},
+    {"show", cli_show, cli_usage_show, "technique NAME", "a technique package's parameters, maps, reach, citation",
+     0},
     {NULL, NULL, NULL, NULL, NULL, 0},
 };
 

@@ -24,6 +24,7 @@
     X(glBeginQuery) \
     X(glBindFramebuffer) \
     X(glBindImageTexture) \
+    X(glBindTextureUnit) \
     X(glBindVertexArray) \
     X(glCheckNamedFramebufferStatus) \
     X(glClearNamedFramebufferfv) \
@@ -48,6 +49,7 @@
     X(glDeleteVertexArrays) \
     X(glDepthFunc) \
     X(glDisable) \
+    X(glDrawArrays) \
     X(glDrawElements) \
     X(glEnable) \
     X(glEnableVertexArrayAttrib) \
@@ -56,7 +58,9 @@
     X(glFlush) \
     X(glFrontFace) \
     X(glGenQueries) \
+    X(glGenerateTextureMipmap) \
     X(glGetError) \
+    X(glGetIntegerv) \
     X(glGetProgramInfoLog) \
     X(glGetProgramiv) \
     X(glGetQueryObjectui64v) \
@@ -73,11 +77,16 @@
     X(glNamedFramebufferTexture) \
     X(glNamedRenderbufferStorage) \
     X(glShaderSource) \
+    X(glTextureParameteri) \
     X(glTextureStorage2D) \
     X(glTextureSubImage2D) \
     X(glUniform1d) \
     X(glUniform1f) \
+    X(glUniform1i) \
     X(glUniform1ui) \
+    X(glUniform2f) \
+    X(glUniform2i) \
+    X(glUniform3f) \
     X(glUniformMatrix4fv) \
     X(glUseProgram) \
     X(glVertexArrayAttribBinding) \
@@ -94,6 +103,7 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glBeginQuery sl_glBeginQuery
 #define glBindFramebuffer sl_glBindFramebuffer
 #define glBindImageTexture sl_glBindImageTexture
+#define glBindTextureUnit sl_glBindTextureUnit
 #define glBindVertexArray sl_glBindVertexArray
 #define glCheckNamedFramebufferStatus sl_glCheckNamedFramebufferStatus
 #define glClearNamedFramebufferfv sl_glClearNamedFramebufferfv
@@ -118,6 +128,7 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glDeleteVertexArrays sl_glDeleteVertexArrays
 #define glDepthFunc sl_glDepthFunc
 #define glDisable sl_glDisable
+#define glDrawArrays sl_glDrawArrays
 #define glDrawElements sl_glDrawElements
 #define glEnable sl_glEnable
 #define glEnableVertexArrayAttrib sl_glEnableVertexArrayAttrib
@@ -126,7 +137,9 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glFlush sl_glFlush
 #define glFrontFace sl_glFrontFace
 #define glGenQueries sl_glGenQueries
+#define glGenerateTextureMipmap sl_glGenerateTextureMipmap
 #define glGetError sl_glGetError
+#define glGetIntegerv sl_glGetIntegerv
 #define glGetProgramInfoLog sl_glGetProgramInfoLog
 #define glGetProgramiv sl_glGetProgramiv
 #define glGetQueryObjectui64v sl_glGetQueryObjectui64v
@@ -143,11 +156,16 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glNamedFramebufferTexture sl_glNamedFramebufferTexture
 #define glNamedRenderbufferStorage sl_glNamedRenderbufferStorage
 #define glShaderSource sl_glShaderSource
+#define glTextureParameteri sl_glTextureParameteri
 #define glTextureStorage2D sl_glTextureStorage2D
 #define glTextureSubImage2D sl_glTextureSubImage2D
 #define glUniform1d sl_glUniform1d
 #define glUniform1f sl_glUniform1f
+#define glUniform1i sl_glUniform1i
 #define glUniform1ui sl_glUniform1ui
+#define glUniform2f sl_glUniform2f
+#define glUniform2i sl_glUniform2i
+#define glUniform3f sl_glUniform3f
 #define glUniformMatrix4fv sl_glUniformMatrix4fv
 #define glUseProgram sl_glUseProgram
 #define glVertexArrayAttribBinding sl_glVertexArrayAttribBinding

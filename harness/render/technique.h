@@ -28,7 +28,7 @@
 
 #define SL_TECH_MAX_PARAMS 16
 #define SL_TECH_MAX_MAPS 4
-#define SL_TECH_NAME_MAX 32                       /* names: at most 31 characters */
+#define SL_TECH_NAME_MAX 40                       /* names: at most 32 characters */
 #define SL_TECH_MAX_YAML ((size_t)64 << 10)       /* technique.yaml: refused unread above this */
 #define SL_TECH_MAX_SHADER ((size_t)256 << 10)    /* each GLSL file */
 #define SL_TECH_MAX_SET 256                       /* packages in one set */

@@ -1,0 +1,806 @@
+/*
+ * techpass.c — see techpass.h.
+ * Invariants: the lookup's projection is sl_frame_project's, operation for
+ * operation: cglm's glm_mat4_mulv sums m[3] + m[2] z + m[1] y + m[0] x in
+ * that order, each product rounded before its sum unless the C build fuses
+ * them (__FMA__: then fma, as cglm does), all `precise` so the GLSL compiler
+ * may not fuse or reorder; the divisions by w are correctly rounded (a
+ * driver's a / b may be off by an ulp or two: the quotient is corrected
+ * against its exact fma residual). Texel (i, j) of the light frame is texel
+ * (i + g, j + g) of the guarded maps, and a point's home texel is floor(u) +
+ * g of the u the CPU computes, never floor of a rounded u + g. Lines 1 to
+ * 999,999 of every package shader are the package's file and nothing else
+ * (`#line 1 1` before it; the prelude and the harness main numbered from
+ * SL_LINE_PRELUDE and SL_LINE_MAIN), so the driver's line numbers there
+ * are the file's.
+ */
+#include "techpass.h"
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "shadowmap.h"
+#include "util.h"
+
+#if defined(__FMA__)
+#define SL_CPU_FMA 1   /* cglm fuses its products (glmm_fmadd): so does the lookup */
+#else
+#define SL_CPU_FMA 0
+#endif
+
+/* ---- sources ---- */
+
+/* Line numbers of the harness's parts of a package shader: the prelude
+ * from SL_LINE_PRELUDE (source string 0), the package's file from 1
+ * (string 1), the harness main from SL_LINE_MAIN (string 2). A log line is
+ * the package's by its line number below SL_LINE_PRELUDE: Mesa 22 reports
+ * the first errors after `#line 1 1` with source string 0 still. */
+#define SL_LINE_PRELUDE 1000000
+#define SL_LINE_MAIN 2000000
+
+/* The scene's vertices: gl_Position computed as the C depth layers'
+ * depth_id_vs.glsl computes it, so a map of g = 0 holds their depths. */
+static const char vs_scene[] =
+    "#version 450 core\n"
+    "layout(location = 0) in vec3 a_pos;\n"
+    "uniform mat4 sl_light_vp;\n"
+    "out vec3 sl_world;\n"
+    "void main()\n"
+    "{\n"
+    "    sl_world = a_pos;\n"
+    "    gl_Position = sl_light_vp * vec4(a_pos, 1.0);\n"
+    "}\n";
+
+/* One triangle covering the viewport (vertices 0, 1, 2: no buffer). */
+static const char vs_full[] =
+    "#version 450 core\n"
+    "out vec3 sl_world;\n"
+    "void main()\n"
+    "{\n"
+    "    vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);\n"
+    "    sl_world = vec3(0.0);\n"
+    "    gl_Position = vec4(p, 0.0, 1.0);\n"
+    "}\n";
+
+/* Separable box blur, 2r + 1 taps along sl_dir, clamped inside the map. */
+static const char fs_blur[] =
+    "#version 450 core\n"
+    "uniform sampler2D sl_src;\n"
+    "uniform ivec2 sl_dir;\n"
+    "uniform int sl_radius;\n"
+    "layout(location = 0) out vec4 sl_out;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy), hi = textureSize(sl_src, 0) - 1;\n"
+    "    vec4 s = vec4(0.0);\n"
+    "    for (int k = -sl_radius; k <= sl_radius; k++)\n"
+    "        s += texelFetch(sl_src, clamp(px + k * sl_dir, ivec2(0), hi), 0);\n"
+    "    sl_out = s / float(2 * sl_radius + 1);\n"
+    "}\n";
+
+/* The lookup's main, after the package (source string 2). */
+static const char lookup_main[] =
+    "uniform sampler2D sl_gpos;\n"
+    "uniform sampler2D sl_gnrm;\n"
+    "uniform usampler2D sl_gmask;\n"
+    "uniform mat4 sl_frame_vp;\n"
+    "uniform float sl_frame_size;\n"
+    "uniform int sl_guard;\n"
+    "layout(location = 0) out float sl_visibility;\n"
+    "// a / b correctly rounded: the quotient nearest among the driver's and its\n"
+    "// neighbours, by the exact residual a - q b (one fma)\n"
+    "float sl_div(float a, float b)\n"
+    "{\n"
+    "    precise float q = a / b;\n"
+    "    for (int k = 0; k < 2; k++) {\n"
+    "        precise float r = abs(fma(-q, b, a));\n"
+    "        float up = uintBitsToFloat(floatBitsToUint(q) + 1u);\n"
+    "        float dn = uintBitsToFloat(floatBitsToUint(q) - 1u);\n"
+    "        precise float ru = abs(fma(-up, b, a));\n"
+    "        precise float rd = abs(fma(-dn, b, a));\n"
+    "        if (ru < r) { q = up; r = ru; }\n"
+    "        if (rd < r) q = dn;\n"
+    "    }\n"
+    "    return q;\n"
+    "}\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    if (texelFetch(sl_gmask, px, 0).r == 0u)\n"
+    "        discard;\n"
+    "    vec3 p = texelFetch(sl_gpos, px, 0).xyz;\n"
+    "    vec3 n = texelFetch(sl_gnrm, px, 0).xyz;\n"
+    "    precise vec4 c = sl_frame_vp[3];\n"
+    "#if SL_CPU_FMA\n"
+    "    c = fma(sl_frame_vp[2], vec4(p.z), c);\n"
+    "    c = fma(sl_frame_vp[1], vec4(p.y), c);\n"
+    "    c = fma(sl_frame_vp[0], vec4(p.x), c);\n"
+    "#else\n"
+    "    c = c + sl_frame_vp[2] * p.z;\n"
+    "    c = c + sl_frame_vp[1] * p.y;\n"
+    "    c = c + sl_frame_vp[0] * p.x;\n"
+    "#endif\n"
+    "    if (c.w != 1.0) {\n"
+    "        c.x = sl_div(c.x, c.w);\n"
+    "        c.y = sl_div(c.y, c.w);\n"
+    "        c.z = sl_div(c.z, c.w);\n"
+    "    }\n"
+    "    precise float u = (c.x * 0.5 + 0.5) * sl_frame_size;\n"
+    "    precise float v = (c.y * 0.5 + 0.5) * sl_frame_size;\n"
+    "    sl_home_texel = ivec2(int(floor(u)), int(floor(v))) + ivec2(sl_guard);\n"
+    "    precise vec2 mp = vec2(u + float(sl_guard), v + float(sl_guard));\n"
+    "    sl_map_pos = mp;\n"
+    "    vec2 uv = mp / sl_map_size;\n"
+    "    vec3 toward = sl_persp != 0 ? normalize(sl_light_pos - p) : -sl_light_dir;\n"
+    "    sl_visibility = clamp(sl_lookup(p, n, uv, c.z, dot(n, toward)), 0.0, 1.0);\n"
+    "}\n";
+
+/* A growing string; oom sticks. */
+struct sbuf { char *s; size_t n, cap; int oom; };
+
+static void sb_printf(struct sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void sb_printf(struct sbuf *b, const char *fmt, ...)
+{
+    if (b->oom)
+        return;
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int k = vsnprintf(b->s ? b->s + b->n : NULL, b->s ? b->cap - b->n : 0, fmt, ap);
+        va_end(ap);
+        if (k < 0) {
+            b->oom = 1;
+            return;
+        }
+        if (b->s && b->n + (size_t)k < b->cap) {
+            b->n += (size_t)k;
+            return;
+        }
+        size_t cap = b->cap ? 2 * b->cap : 4096;
+        while (cap < b->n + (size_t)k + 1)
+            cap *= 2;
+        char *p = realloc(b->s, cap);
+        if (!p) {
+            b->oom = 1;
+            return;
+        }
+        b->s = p;
+        b->cap = cap;
+    }
+}
+
+static const char *glsl_type(enum sl_tech_type t)
+{
+    return t == SL_TECH_INT ? "int" : t == SL_TECH_FLOAT ? "float" : "bool";
+}
+
+static void params_decl(struct sbuf *b, const struct sl_technique *t)
+{
+    for (int i = 0; i < t->nparams; i++)
+        sb_printf(b, "uniform %s %s;\n", glsl_type(t->param[i].type), t->param[i].name);
+}
+
+static char *map_fs_source(const struct sl_technique *t)
+{
+    struct sbuf b = {0};
+    sb_printf(&b, "#version 450 core\n#line %d 0\n"
+                  "in vec3 sl_world;\n"
+                  "uniform mat4 sl_light_vp;\n"
+                  "uniform int sl_persp;\n", SL_LINE_PRELUDE);
+    for (int i = 0; i < t->nmaps; i++)
+        sb_printf(&b, "layout(location = %d) out vec4 out_%s;\n", i, t->map[i].name);
+    params_decl(&b, t);
+    sb_printf(&b, "void sl_map(float depth);\n#line 1 1\n%s\n#line %d 2\n"
+                  "uniform int sl_empty;\n"
+                  "void main()\n"
+                  "{\n"
+                  "    sl_map(sl_empty != 0 ? 1.0 : gl_FragCoord.z);\n"
+                  "}\n", t->map_src, SL_LINE_MAIN);
+    if (b.oom) {
+        free(b.s);
+        return NULL;
+    }
+    return b.s;
+}
+
+static char *lookup_fs_source(const struct sl_technique *t)
+{
+    struct sbuf b = {0};
+    sb_printf(&b, "#version 450 core\n#line %d 0\n#define SL_CPU_FMA %d\n", SL_LINE_PRELUDE, SL_CPU_FMA);
+    for (int i = 0; i < t->nmaps; i++)
+        sb_printf(&b, "uniform sampler2D %s;\n", t->map[i].name);
+    sb_printf(&b, "uniform mat4 sl_light_vp;\n"
+                  "uniform vec3 sl_light_dir;\n"
+                  "uniform vec3 sl_light_pos;\n"
+                  "uniform int sl_persp;\n"
+                  "uniform vec2 sl_texel;\n"
+                  "uniform float sl_map_size;\n"
+                  "uniform float sl_texel_world;\n"
+                  "uniform float sl_depth_range;\n");
+    params_decl(&b, t);
+    sb_printf(&b, "ivec2 sl_home_texel;\n"
+                  "vec2 sl_map_pos;\n"
+                  "float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl);\n"
+                  "#line 1 1\n%s\n#line %d 2\n%s", t->lookup_src, SL_LINE_MAIN, lookup_main);
+    if (b.oom) {
+        free(b.s);
+        return NULL;
+    }
+    return b.s;
+}
+
+/* ---- compiling, with the driver's log mapped to the package's file ---- */
+
+/* "1:12(5): error: x" (Mesa), "1(12) : error C0000: x" (NVIDIA), "ERROR:
+ * 1:12: x" (others): the source string, the line and where the message
+ * starts; 0 if the line is none of these. */
+static int log_line(const char *s, int *str, int *line, const char **msg)
+{
+    if (!strncmp(s, "ERROR: ", 7))
+        s += 7;
+    char *e;
+    long a = strtol(s, &e, 10);
+    if (e == s)
+        return 0;
+    long b;
+    if (*e == ':') {
+        const char *q = e + 1;
+        b = strtol(q, &e, 10);
+        if (e == q)
+            return 0;
+        if (*e == '(') {
+            while (*e && *e != ')')
+                e++;
+            if (*e)
+                e++;
+        }
+    } else if (*e == '(') {
+        const char *q = e + 1;
+        b = strtol(q, &e, 10);
+        if (e == q || *e != ')')
+            return 0;
+        e++;
+    } else {
+        return 0;
+    }
+    while (*e == ' ' || *e == ':')
+        e++;
+    *str = (int)a;
+    *line = (int)b;
+    *msg = e;
+    return 1;
+}
+
+enum sl_err sl_techpass_glsl_error(const char *file, const char *log, struct sl_diag *d)
+{
+    const char *first = NULL;
+    size_t first_n = 0;
+    for (const char *s = log; s && *s;) {
+        size_t n = strcspn(s, "\n");
+        char line[600];
+        snprintf(line, sizeof line, "%.*s", (int)(n < sizeof line ? n : sizeof line - 1), s);
+        int str, ln;
+        const char *msg;
+        if (log_line(line, &str, &ln, &msg) && (str == 0 || str == 1) && ln >= 1 && ln < SL_LINE_PRELUDE)
+            return sl_fail(d, SL_E_PACKAGE, file, ln, NULL, "GLSL: %s", msg);
+        if (!first && n) {
+            first = s;
+            first_n = n;
+        }
+        s += n + (s[n] == '\n');
+    }
+    return sl_fail(d, SL_E_PACKAGE, file, 0, NULL, "GLSL: %.*s", (int)(first_n < 400 ? first_n : 400),
+                   first ? first : "(no log)");
+}
+
+static GLuint compile(GLenum type, const char *src, char *log, size_t nlog)
+{
+    GLuint s = glCreateShader(type);
+    glShaderSource(s, 1, &src, NULL);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        glGetShaderInfoLog(s, (GLsizei)nlog, NULL, log);
+        glDeleteShader(s);
+        return 0;
+    }
+    return s;
+}
+
+static GLuint link(GLuint vs, GLuint fs, char *log, size_t nlog)
+{
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glLinkProgram(p);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        glGetProgramInfoLog(p, (GLsizei)nlog, NULL, log);
+        glDeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
+/* vs + fs linked; a failure of fs (the package's) is mapped to its file. */
+static enum sl_err build(const char *vs_src, const char *fs_src, GLuint *prog, GLuint *fs_keep, const char *file,
+                         struct sl_diag *d)
+{
+    char log[4096] = "";
+    GLuint fs = fs_keep && *fs_keep ? *fs_keep : compile(GL_FRAGMENT_SHADER, fs_src, log, sizeof log);
+    if (fs_keep)
+        *fs_keep = fs;   /* the caller deletes it */
+    if (!fs)
+        return file ? sl_techpass_glsl_error(file, log, d) : sl_fail(d, SL_E_GL, NULL, 0, NULL, "shader: %s", log);
+    GLuint vs = compile(GL_VERTEX_SHADER, vs_src, log, sizeof log);
+    if (!vs) {
+        if (!fs_keep)
+            glDeleteShader(fs);
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "harness vertex shader: %s", log);
+    }
+    *prog = link(vs, fs, log, sizeof log);
+    glDeleteShader(vs);
+    if (!fs_keep)
+        glDeleteShader(fs);
+    if (!*prog)
+        return file ? sl_techpass_glsl_error(file, log, d) : sl_fail(d, SL_E_GL, NULL, 0, NULL, "link: %s", log);
+    return SL_OK;
+}
+
+enum sl_err sl_techpass_init(struct sl_techpass *p, const struct sl_technique *t, struct sl_diag *d)
+{
+    memset(p, 0, sizeof *p);
+    p->t = t;
+    char map_file[1400], lookup_file[1400];
+    snprintf(map_file, sizeof map_file, "%s/%s", t->dir, t->map_shader);
+    snprintf(lookup_file, sizeof lookup_file, "%s/%s", t->dir, t->lookup_shader);
+    char *mfs = map_fs_source(t), *lfs = lookup_fs_source(t);
+    enum sl_err e = mfs && lfs ? SL_OK : sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shader source");
+    GLuint fs = 0;
+    if (!e)
+        e = build(vs_scene, mfs, &p->prog_map, &fs, map_file, d);
+    if (!e)
+        e = build(vs_full, mfs, &p->prog_empty, &fs, map_file, d);
+    if (fs)
+        glDeleteShader(fs);
+    if (!e)
+        e = build(vs_full, lfs, &p->prog_lookup, NULL, lookup_file, d);
+    if (!e)
+        e = build(vs_full, fs_blur, &p->prog_blur, NULL, NULL, d);
+    free(mfs);
+    free(lfs);
+    if (!e) {
+        glCreateVertexArrays(1, &p->vao_empty);
+        GLint mx = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &mx);
+        p->max_tex = mx;
+        glUseProgram(p->prog_empty);
+        glUniform1i(glGetUniformLocation(p->prog_empty, "sl_empty"), 1);
+        glUseProgram(p->prog_map);
+        glUniform1i(glGetUniformLocation(p->prog_map, "sl_empty"), 0);
+        glUseProgram(0);
+        e = sl_gl_check("technique programs", d);
+    }
+    if (e)
+        sl_techpass_free(p);
+    return e;
+}
+
+static void maps_free(struct sl_techpass *p)
+{
+    glDeleteTextures(SL_TECH_MAX_MAPS, p->map_tex);
+    glDeleteTextures(SL_TECH_MAX_MAPS, p->ping_tex);
+    glDeleteFramebuffers(1, &p->map_fbo);
+    glDeleteFramebuffers(1, &p->blur_fbo);
+    glDeleteRenderbuffers(1, &p->depth_rb);
+    memset(p->map_tex, 0, sizeof p->map_tex);
+    memset(p->ping_tex, 0, sizeof p->ping_tex);
+    p->map_fbo = p->blur_fbo = p->depth_rb = 0;
+    p->size = 0;
+}
+
+static void lookup_free(struct sl_techpass *p)
+{
+    GLuint tex[4] = {p->g_pos, p->g_nrm, p->g_mask, p->out_tex};
+    glDeleteTextures(4, tex);
+    glDeleteFramebuffers(1, &p->out_fbo);
+    p->g_pos = p->g_nrm = p->g_mask = p->out_tex = p->out_fbo = 0;
+    free(p->ones);
+    p->ones = NULL;
+    p->lw = p->lh = 0;
+}
+
+void sl_techpass_free(struct sl_techpass *p)
+{
+    if (p->size)
+        maps_free(p);
+    if (p->lw)
+        lookup_free(p);
+    GLuint progs[4] = {p->prog_map, p->prog_empty, p->prog_lookup, p->prog_blur};
+    for (int i = 0; i < 4; i++)
+        if (progs[i])
+            glDeleteProgram(progs[i]);
+    if (p->vao_empty)
+        glDeleteVertexArrays(1, &p->vao_empty);
+    memset(p, 0, sizeof *p);
+}
+
+/* ---- maps ---- */
+
+static const GLenum fmt_internal[4] = {GL_R32F, GL_RG32F, GL_RGBA32F, GL_RGBA16F};
+static const GLenum fmt_upload[4] = {GL_RED, GL_RG, GL_RGBA, GL_RGBA};
+
+static int has_mips(const struct sl_tech_map *m)
+{
+    return m->post == SL_TECH_POST_MIPMAPS || m->post == SL_TECH_POST_BLUR_MIPMAPS;
+}
+
+static int mip_levels(int n)
+{
+    int l = 1;
+    while (n > 1) {
+        n >>= 1;
+        l++;
+    }
+    return l;
+}
+
+enum sl_err sl_techpass_size(struct sl_techpass *p, const struct sl_light_frame *f,
+                             const struct sl_tech_values *v, int *guard, int *size, struct sl_diag *d)
+{
+    const struct sl_technique *t = p->t;
+    int g = sl_tech_guard(t, v);
+    long long n = (long long)f->size + 2ll * g;
+    int mx = p->max_tex > 0 && p->max_tex < SL_TECH_MAX_MAP_SIZE ? p->max_tex : SL_TECH_MAX_MAP_SIZE;
+    if (f->size < 1 || n > mx) {
+        int gp = sl_tech_guard_param(t);
+        if (gp >= 0)
+            return sl_fail(d, SL_E_METHOD, t->file, 0, t->param[gp].name, "%s = %g gives a guard band of %d texels: "
+                           "the maps would be %d + 2 x %d = %lld texels wide, over the limit of %d",
+                           t->param[gp].name, v->v[gp], g, f->size, g, n, mx);
+        return sl_fail(d, SL_E_METHOD, t->file, 0, NULL, "map size %d + 2 x %d (guard band) = %lld texels: over "
+                       "the limit of %d", f->size, g, n, mx);
+    }
+    *guard = g;
+    *size = (int)n;
+    return SL_OK;
+}
+
+static enum sl_err maps_make(struct sl_techpass *p, int N, struct sl_diag *d)
+{
+    if (p->size == N)
+        return SL_OK;
+    if (p->size)
+        maps_free(p);
+    const struct sl_technique *t = p->t;
+    glCreateTextures(GL_TEXTURE_2D, t->nmaps, p->map_tex);
+    glCreateTextures(GL_TEXTURE_2D, t->nmaps, p->ping_tex);
+    glCreateFramebuffers(1, &p->map_fbo);
+    glCreateFramebuffers(1, &p->blur_fbo);
+    glCreateRenderbuffers(1, &p->depth_rb);
+    GLenum bufs[SL_TECH_MAX_MAPS];
+    for (int i = 0; i < t->nmaps; i++) {
+        const struct sl_tech_map *m = &t->map[i];
+        const int mips = has_mips(m), lin = m->filter == SL_TECH_LINEAR;
+        glTextureStorage2D(p->map_tex[i], mips ? mip_levels(N) : 1, fmt_internal[m->format], N, N);
+        glTextureParameteri(p->map_tex[i], GL_TEXTURE_MIN_FILTER,
+                            mips ? (lin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST)
+                                 : (lin ? GL_LINEAR : GL_NEAREST));
+        glTextureParameteri(p->map_tex[i], GL_TEXTURE_MAG_FILTER, lin ? GL_LINEAR : GL_NEAREST);
+        glTextureParameteri(p->map_tex[i], GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(p->map_tex[i], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTextureStorage2D(p->ping_tex[i], 1, fmt_internal[m->format], N, N);
+        glTextureParameteri(p->ping_tex[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(p->ping_tex[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glNamedFramebufferTexture(p->map_fbo, GL_COLOR_ATTACHMENT0 + (GLenum)i, p->map_tex[i], 0);
+        bufs[i] = GL_COLOR_ATTACHMENT0 + (GLenum)i;
+    }
+    glNamedRenderbufferStorage(p->depth_rb, GL_DEPTH_COMPONENT32F, N, N);
+    glNamedFramebufferRenderbuffer(p->map_fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p->depth_rb);
+    glNamedFramebufferDrawBuffers(p->map_fbo, t->nmaps, bufs);
+    p->size = N;
+    if (glCheckNamedFramebufferStatus(p->map_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        maps_free(p);
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "technique %s: map framebuffer incomplete (%dx%d)", t->name, N, N);
+    }
+    return sl_gl_check("technique maps", d);
+}
+
+/* The guarded map's matrix: x, y of the frame's clip scaled by S / N (the
+ * frame's own matrix, unscaled, when N == S). */
+static void guarded_vp(struct sl_techpass *p, const struct sl_light_frame *f, int N)
+{
+    const float *vp = (const float *)f->box.vp;
+    memcpy(p->light_vp, vp, sizeof p->light_vp);
+    if (N == f->size)
+        return;
+    const float s = (float)f->size / (float)N;
+    for (int c = 0; c < 4; c++) {
+        p->light_vp[4 * c + 0] = vp[4 * c + 0] * s;
+        p->light_vp[4 * c + 1] = vp[4 * c + 1] * s;
+    }
+}
+
+static void set_params(GLuint prog, const struct sl_technique *t, const struct sl_tech_values *v)
+{
+    for (int i = 0; i < t->nparams; i++) {
+        GLint loc = glGetUniformLocation(prog, t->param[i].name);
+        double x = i < v->n ? v->v[i] : t->param[i].def;
+        if (t->param[i].type == SL_TECH_FLOAT)
+            glUniform1f(loc, (float)x);
+        else
+            glUniform1i(loc, (GLint)x);
+    }
+}
+
+static void set_light(GLuint prog, const struct sl_techpass *p, const struct sl_light_frame *f)
+{
+    glUniformMatrix4fv(glGetUniformLocation(prog, "sl_light_vp"), 1, GL_FALSE, p->light_vp);
+    glUniform1i(glGetUniformLocation(prog, "sl_persp"), f->box.persp);
+}
+
+/* Blur and mipmaps, timed together. */
+static enum sl_err post_passes(struct sl_techpass *p, const struct sl_tech_values *v, struct sl_diag *d)
+{
+    const struct sl_technique *t = p->t;
+    const int N = p->size;
+    int any = 0;
+    for (int i = 0; i < t->nmaps; i++)
+        any |= t->map[i].post != SL_TECH_POST_NONE;
+    p->costs.ms_post = 0.0;
+    p->costs.gpu_post = 0.0;
+    if (!any)
+        return SL_OK;
+    double t0 = sl_now();
+    struct sl_gl_timer gt;
+    sl_gl_timer_begin(&gt);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glViewport(0, 0, N, N);
+    glBindVertexArray(p->vao_empty);
+    for (int i = 0; i < t->nmaps; i++) {
+        const struct sl_tech_map *m = &t->map[i];
+        int r = m->blur >= 0 && m->blur < v->n ? (int)v->v[m->blur] : 0;
+        if (r > 0) {
+            glUseProgram(p->prog_blur);
+            glUniform1i(glGetUniformLocation(p->prog_blur, "sl_src"), 0);
+            glUniform1i(glGetUniformLocation(p->prog_blur, "sl_radius"), r);
+            GLint dir = glGetUniformLocation(p->prog_blur, "sl_dir");
+            glBindFramebuffer(GL_FRAMEBUFFER, p->blur_fbo);
+            for (int pass = 0; pass < 2; pass++) {
+                GLuint src = pass ? p->ping_tex[i] : p->map_tex[i], dst = pass ? p->map_tex[i] : p->ping_tex[i];
+                glNamedFramebufferTexture(p->blur_fbo, GL_COLOR_ATTACHMENT0, dst, 0);
+                glNamedFramebufferDrawBuffer(p->blur_fbo, GL_COLOR_ATTACHMENT0);
+                glBindTextureUnit(0, src);
+                glUniform2i(dir, pass ? 0 : 1, pass ? 1 : 0);
+                glDrawArrays(GL_TRIANGLES, 0, 3);
+            }
+            glNamedFramebufferTexture(p->blur_fbo, GL_COLOR_ATTACHMENT0, 0, 0);
+            glBindTextureUnit(0, 0);
+        }
+        if (has_mips(m))
+            glGenerateTextureMipmap(p->map_tex[i]);
+    }
+    sl_gl_timer_end(&gt);
+    glFinish();
+    double ms = 1e3 * (sl_now() - t0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    p->costs.ms_post = ms;
+    p->costs.gpu_post = sl_gl_timer_ms(&gt, ms);
+    return sl_gl_check("technique post passes", d);
+}
+
+static enum sl_err maps_ready(struct sl_techpass *p, const struct sl_light_frame *f, const struct sl_tech_values *v,
+                              struct sl_diag *d)
+{
+    int g = 0, N = 0;
+    enum sl_err e = sl_techpass_size(p, f, v, &g, &N, d);
+    if (!e)
+        e = maps_make(p, N, d);
+    if (e)
+        return e;
+    p->guard = g;
+    p->costs.guard = g;
+    p->costs.map_size = N;
+    guarded_vp(p, f, N);
+    return SL_OK;
+}
+
+enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m, const struct sl_light_frame *f,
+                               const struct sl_tech_values *v, struct sl_diag *d)
+{
+    const struct sl_technique *t = p->t;
+    double t0 = sl_now();   /* a new size's maps are made inside the timed pass, as in shadowmap.c */
+    enum sl_err e = maps_ready(p, f, v, d);
+    if (e)
+        return e;
+    const int N = p->size;
+    struct sl_gl_timer gt;
+    sl_gl_timer_begin(&gt);
+    glBindFramebuffer(GL_FRAMEBUFFER, p->map_fbo);
+    glViewport(0, 0, N, N);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    /* empty texels: sl_map(1.0) everywhere */
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(p->prog_empty);
+    set_light(p->prog_empty, p, f);
+    set_params(p->prog_empty, t, v);
+    glBindVertexArray(p->vao_empty);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    /* the scene, nearest fragment wins */
+    const float one = 1.0f;
+    glClearNamedFramebufferfv(p->map_fbo, GL_DEPTH, 0, &one);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glFrontFace(GL_CCW);
+    if (t->cull != SL_TECH_CULL_NONE)
+        glCullFace(t->cull == SL_TECH_CULL_FRONT ? GL_FRONT : GL_BACK);
+    glUseProgram(p->prog_map);
+    set_light(p->prog_map, p, f);
+    set_params(p->prog_map, t, v);
+    glBindVertexArray(m->vao);
+    const uint32_t chunk = SL_SHADOWMAP_CHUNK;
+    for (int r = 0; r < m->nruns; r++) {
+        /* two-sided meshes (leaves) are never culled, as in shadowmap.c */
+        if (t->cull != SL_TECH_CULL_NONE && !m->runs[r].two_sided)
+            glEnable(GL_CULL_FACE);
+        else
+            glDisable(GL_CULL_FACE);
+        /* in flushed chunks, as shadowmap.c draws (llvmpipe's bins) */
+        for (uint32_t c0 = 0; c0 < m->runs[r].count; c0 += chunk) {
+            const uint32_t t0i = m->runs[r].first + c0;
+            const uint32_t nt = m->runs[r].count - c0 < chunk ? m->runs[r].count - c0 : chunk;
+            if (c0)
+                glFlush();
+            glDrawElements(GL_TRIANGLES, (GLsizei)(3 * nt), GL_UNSIGNED_INT,
+                           (const void *)((size_t)t0i * 3 * sizeof(uint32_t)));
+        }
+    }
+    sl_gl_timer_end(&gt);
+    glFinish();
+    double ms = 1e3 * (sl_now() - t0);
+    glDisable(GL_CULL_FACE);
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    p->costs.ms_map = ms;
+    p->costs.gpu_map = sl_gl_timer_ms(&gt, ms);
+    e = sl_gl_check("technique map pass", d);
+    return e ? e : post_passes(p, v, d);
+}
+
+enum sl_err sl_techpass_upload(struct sl_techpass *p, const struct sl_light_frame *f,
+                               const struct sl_tech_values *v, const float *const *texels, struct sl_diag *d)
+{
+    enum sl_err e = maps_ready(p, f, v, d);
+    if (e)
+        return e;
+    const int N = p->size;
+    for (int i = 0; i < p->t->nmaps; i++) {
+        const struct sl_tech_map *m = &p->t->map[i];
+        glTextureSubImage2D(p->map_tex[i], 0, 0, 0, N, N, fmt_upload[m->format], GL_FLOAT, texels[i]);
+    }
+    p->costs.ms_map = p->costs.gpu_map = 0.0;
+    e = sl_gl_check("technique map upload", d);
+    return e ? e : post_passes(p, v, d);
+}
+
+/* ---- lookup ---- */
+
+static enum sl_err lookup_make(struct sl_techpass *p, int w, int h, struct sl_diag *d)
+{
+    if (p->lw == w && p->lh == h)
+        return SL_OK;
+    if (p->lw)
+        lookup_free(p);
+    p->ones = malloc((size_t)w * (size_t)h);
+    if (!p->ones)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "lookup mask %dx%d", w, h);
+    memset(p->ones, 1, (size_t)w * (size_t)h);
+    GLuint tex[4];
+    glCreateTextures(GL_TEXTURE_2D, 4, tex);
+    p->g_pos = tex[0];
+    p->g_nrm = tex[1];
+    p->g_mask = tex[2];
+    p->out_tex = tex[3];
+    glTextureStorage2D(p->g_pos, 1, GL_RGB32F, w, h);
+    glTextureStorage2D(p->g_nrm, 1, GL_RGB32F, w, h);
+    glTextureStorage2D(p->g_mask, 1, GL_R8UI, w, h);
+    glTextureStorage2D(p->out_tex, 1, GL_R32F, w, h);
+    for (int i = 0; i < 4; i++) {
+        glTextureParameteri(tex[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(tex[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glCreateFramebuffers(1, &p->out_fbo);
+    glNamedFramebufferTexture(p->out_fbo, GL_COLOR_ATTACHMENT0, p->out_tex, 0);
+    glNamedFramebufferDrawBuffer(p->out_fbo, GL_COLOR_ATTACHMENT0);
+    p->lw = w;
+    p->lh = h;
+    if (glCheckNamedFramebufferStatus(p->out_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        lookup_free(p);
+        return sl_fail(d, SL_E_GL, NULL, 0, NULL, "lookup framebuffer incomplete (%dx%d)", w, h);
+    }
+    return sl_gl_check("technique lookup target", d);
+}
+
+enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_frame *f,
+                               const struct sl_tech_values *v, const float *pos, const float *nrm,
+                               const uint8_t *mask, int w, int h, float *vis, struct sl_diag *d)
+{
+    const struct sl_technique *t = p->t;
+    if (!p->size)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "technique %s: lookup before its maps", t->name);
+    if (w < 1 || h < 1)
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "lookup grid %dx%d", w, h);
+    double t0 = sl_now();
+    enum sl_err e = lookup_make(p, w, h, d);
+    if (e)
+        return e;
+    const size_t n = (size_t)w * (size_t)h;
+    uint64_t pixels = 0;
+    if (mask) {
+        for (size_t i = 0; i < n; i++)
+            pixels += mask[i] != 0;
+    } else {
+        pixels = n;
+    }
+    struct sl_gl_timer gt;
+    sl_gl_timer_begin(&gt);
+    glTextureSubImage2D(p->g_pos, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, pos);
+    glTextureSubImage2D(p->g_nrm, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, nrm);
+    glTextureSubImage2D(p->g_mask, 0, 0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_BYTE, mask ? mask : p->ones);
+    glBindFramebuffer(GL_FRAMEBUFFER, p->out_fbo);
+    glViewport(0, 0, w, h);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(p->out_fbo, GL_COLOR, 0, zero);
+    const GLuint prog = p->prog_lookup;
+    glUseProgram(prog);
+    set_light(prog, p, f);
+    set_params(prog, t, v);
+    for (int i = 0; i < t->nmaps; i++) {
+        glBindTextureUnit((GLuint)i, p->map_tex[i]);
+        glUniform1i(glGetUniformLocation(prog, t->map[i].name), i);
+    }
+    glBindTextureUnit(4, p->g_pos);
+    glBindTextureUnit(5, p->g_nrm);
+    glBindTextureUnit(6, p->g_mask);
+    glUniform1i(glGetUniformLocation(prog, "sl_gpos"), 4);
+    glUniform1i(glGetUniformLocation(prog, "sl_gnrm"), 5);
+    glUniform1i(glGetUniformLocation(prog, "sl_gmask"), 6);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "sl_frame_vp"), 1, GL_FALSE, (const float *)f->box.vp);
+    glUniform1f(glGetUniformLocation(prog, "sl_frame_size"), (float)f->size);
+    glUniform1i(glGetUniformLocation(prog, "sl_guard"), p->guard);
+    glUniform3f(glGetUniformLocation(prog, "sl_light_dir"), f->dir[0], f->dir[1], f->dir[2]);
+    glUniform3f(glGetUniformLocation(prog, "sl_light_pos"), f->box.eye[0], f->box.eye[1], f->box.eye[2]);
+    glUniform2f(glGetUniformLocation(prog, "sl_texel"), 1.0f / (float)p->size, 1.0f / (float)p->size);
+    glUniform1f(glGetUniformLocation(prog, "sl_map_size"), (float)p->size);
+    glUniform1f(glGetUniformLocation(prog, "sl_texel_world"), f->texel_world);
+    glUniform1f(glGetUniformLocation(prog, "sl_depth_range"), f->depth_range);
+    glBindVertexArray(p->vao_empty);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    sl_gl_timer_end(&gt);
+    glFinish();
+    double t1 = sl_now();
+    glGetTextureImage(p->out_tex, 0, GL_RED, GL_FLOAT, (GLsizei)(n * sizeof(float)), vis);
+    double t2 = sl_now();
+    for (int i = 0; i < 7; i++)
+        glBindTextureUnit((GLuint)i, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    p->costs.ms_lookup = 1e3 * (t1 - t0);
+    p->costs.gpu_lookup = sl_gl_timer_ms(&gt, p->costs.ms_lookup);
+    p->costs.ms_readback = 1e3 * (t2 - t1);
+    p->costs.pixels = pixels;
+    p->costs.lookups = (uint64_t)llround(sl_tech_taps(t, v) * (double)pixels);
+    return sl_gl_check("technique lookup pass", d);
+}

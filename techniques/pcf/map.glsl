@@ -1,0 +1,5 @@
+// pcf map: the nearest surface's window depth (as nsm_glsl's)
+void sl_map(float z)
+{
+    out_depth = vec4(z, 0.0, 0.0, 0.0);
+}
