@@ -566,48 +566,102 @@ static void packages_pcss_penumbra(void **st)
  * the receiver, w = light_size (5 - 2.5) / (2.5 * 5) = light_size / 5:
  * light_size 40 gives w = 8, the 5/8 of the directional case; 20 gives
  * w = 4, 3/4. The shader recovers the distances from sl_light_vp alone. */
-static void packages_pcss_perspective(void **st)
+/* The light at the origin looking along +z, near 1, far 10, half-width
+ * tan 0.5 (a texel at depth 1 is 1 / S world units wide). */
+#define PN 1.0
+#define PF 10.0
+#define PT 0.5
+#define PA (PF / (PF - PN))          /* window depth d = PA + PB / z */
+#define PB (-PF * PN / (PF - PN))
+
+static void persp_frame(struct pkg *k)
 {
-    (void)st;
-    const double n = 1, fa = 10, t = 0.5, A = fa / (fa - n), B = -fa * n / (fa - n);
-    const double a[2] = {A + B / 2.5, A + B / 5};
-    struct pkg k;
-    pkg_open(&k, "pcss");
-    struct sl_light_frame *f = &k.f;
+    struct sl_light_frame *f = &k->f;
     glm_mat4_zero(f->box.proj);
-    f->box.proj[0][0] = f->box.proj[1][1] = (float)(1 / t);
-    f->box.proj[2][2] = (float)A;
-    f->box.proj[3][2] = (float)B;
+    f->box.proj[0][0] = f->box.proj[1][1] = (float)(1 / PT);
+    f->box.proj[2][2] = (float)PA;
+    f->box.proj[3][2] = (float)PB;
     f->box.proj[2][3] = 1.0f;
     glm_mat4_copy(f->box.proj, f->box.vp);
     f->box.persp = 1;
-    f->box.lo[0] = f->box.lo[1] = (float)-t;
-    f->box.hi[0] = f->box.hi[1] = (float)t;
-    f->box.lo[2] = (float)n;
-    f->box.hi[2] = (float)fa;
-    f->texel_world = (float)(2 * t / S);
-    f->depth_range = (float)(fa - n);
+    f->box.lo[0] = f->box.lo[1] = (float)-PT;
+    f->box.hi[0] = f->box.hi[1] = (float)PT;
+    f->box.lo[2] = (float)PN;
+    f->box.hi[2] = (float)PF;
+    f->texel_world = (float)(2 * PT / S);
+    f->depth_range = (float)(PF - PN);
+}
+
+/* a 4 x 2 grid of one point at distance z through frame texel (u, v) */
+static double persp_lookup(struct pkg *k, double u, double v, double z)
+{
+    float pos[QW * QH * 3], nrm[QW * QH * 3], vis[QW * QH];
+    quad_grid(0, 0, z, pos, nrm);
+    for (int q = 0; q < QW * QH; q++) {
+        pos[3 * q + 0] = (float)((u / S * 2 - 1) * PT * z);
+        pos[3 * q + 1] = (float)((v / S * 2 - 1) * PT * z);
+    }
+    struct sl_diag d;
+    enum sl_err e = sl_techpass_lookup(&k->p, &k->f, &k->v, pos, nrm, NULL, QW, QH, vis, &d);
+    diag_print(e, &d);
+    assert_int_equal(e, SL_OK);
+    for (int q = 1; q < QW * QH; q++)
+        assert_true(vis[q] == vis[0]);
+    return vis[0];
+}
+
+static void packages_pcss_perspective(void **st)
+{
+    (void)st;
+    const double a[2] = {PA + PB / 2.5, PA + PB / 5};
+    struct pkg k;
+    pkg_open(&k, "pcss");
+    persp_frame(&k);
     pkg_set(&k, "light_size", 40);
     pkg_upload(&k, halves, a);
     printf("  pcss perspective (guard %d, map %d), blocker %.7f, receiver %.7f\n", k.g, k.n, a[0], a[1]);
-    /* a point on the receiver plane z = 5 seen through frame texel u */
-    float pos[QW * QH * 3], nrm[QW * QH * 3], vis[QW * QH];
     const double us[] = {EDGE + 1.25, EDGE - 1.75, EDGE + 1.25}, ls[] = {40, 40, 20}, want[] = {0.625, 0.25, 0.75};
     for (int i = 0; i < 3; i++) {
         pkg_set(&k, "light_size", ls[i]);
-        quad_grid(0, 0, 5, pos, nrm);
-        for (int q = 0; q < QW * QH; q++) {
-            pos[3 * q + 0] = (float)((us[i] / S * 2 - 1) * t * 5);
-            pos[3 * q + 1] = (float)((20.5 / S * 2 - 1) * t * 5);
-        }
-        struct sl_diag d;
-        enum sl_err e = sl_techpass_lookup(&k.p, &k.f, &k.v, pos, nrm, NULL, QW, QH, vis, &d);
-        diag_print(e, &d);
-        assert_int_equal(e, SL_OK);
         char what[80];
         snprintf(what, sizeof what, "light_size %.0f, u %.2f", ls[i], us[i]);
-        expect_near(what, vis[0], want[i], 0);
+        expect_near(what, persp_lookup(&k, us[i], 20.5, 5), want[i], 0);
     }
+    pkg_close(&k);
+}
+
+/* The filtered packages under a perspective light take their moments of the
+ * distance normalised between the near and far planes, not of window depth:
+ * halves at distances 3 and 7 (normalised 2/9, 6/9: mean 4/9, variance
+ * 4/81), a receiver at 9 (8/9) gets VSM's 0.2 again, (4/81) / (4/81 +
+ * 16/81); of window depths (0.741, 0.952, 0.988) it would be 0.36. ESM with
+ * c = 20 on the same: (e^(20 (2/9 - 8/9)) + e^(20 (6/9 - 8/9))) / 2. */
+static double persp_norm(double z)
+{
+    return (z - PN) / (PF - PN);
+}
+
+static void packages_perspective_depth(void **st)
+{
+    (void)st;
+    /* the map holds what sl_map writes: the test gives it window depths and
+     * map_texel applies the package's warp to the normalised distance */
+    const double zn[2] = {persp_norm(3), persp_norm(7)};
+    struct pkg k;
+    pkg_open(&k, "vsm");
+    persp_frame(&k);
+    pkg_set(&k, "bleed", 0);
+    pkg_upload(&k, halves, zn);
+    printf("  vsm perspective (guard %d, map %d)\n", k.g, k.n);
+    expect_near("distances 3 | 7, receiver 9", persp_lookup(&k, EDGE, 20.5, 9), 0.2, 1e-4);
+    expect_near("distances 3 | 7, receiver 5 (the mean)", persp_lookup(&k, EDGE, 20.5, 5), 1.0, 1e-4);
+    pkg_close(&k);
+    pkg_open(&k, "esm");
+    persp_frame(&k);
+    pkg_set(&k, "c", 20);
+    pkg_upload(&k, halves, zn);
+    double want = 0.5 * (exp(20 * (zn[0] - persp_norm(9))) + exp(20 * (zn[1] - persp_norm(9))));
+    expect_near("esm c 20, distances 3 | 7, receiver 9", persp_lookup(&k, EDGE, 20.5, 9), want, 1e-4 * want);
     pkg_close(&k);
 }
 
@@ -685,6 +739,7 @@ int main(int argc, char **argv)
         SL_CASE(packages, msm_hamburger),
         SL_CASE(packages, pcss_penumbra),
         SL_CASE(packages, pcss_perspective),
+        SL_CASE(packages, perspective_depth),
         SL_CASE(packages, reach),
     };
     return sl_run_group(argc, argv, "packages", tests, group_setup, group_teardown);

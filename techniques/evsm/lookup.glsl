@@ -23,10 +23,22 @@ float evsm_chebyshev(vec2 m, float x, float min_var)
     return var / (var + dm * dm);
 }
 
+// The depth the moments are taken of (window depth, or for a perspective
+// light the normalised distance along its axis): as in map.glsl.
+float evsm_linear(float d)
+{
+    if (sl_persp == 0)
+        return d;
+    vec3 r2 = vec3(sl_light_vp[0][2], sl_light_vp[1][2], sl_light_vp[2][2]);
+    vec3 r3 = vec3(sl_light_vp[0][3], sl_light_vp[1][3], sl_light_vp[2][3]);
+    float a = dot(r2, r3) / dot(r3, r3);
+    return d * (1.0 - a) / (d - a);
+}
+
 float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl)
 {
     vec4 m = textureLod(warped, uv, evsm_lod(uv));
-    float w = 2.0 * depth - 1.0;
+    float w = 2.0 * evsm_linear(depth) - 1.0;
     float ep = exp(positive * w);
     float sd = sqrt(min_variance);
     float sp = sd * 2.0 * positive * ep;

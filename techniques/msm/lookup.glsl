@@ -50,9 +50,21 @@ float msm_shadow(vec4 m, float zf)
     return 1.0 - (z2 * z3 - b.x * (z2 + z3) + b.y) / ((zf - z2) * (zf - z3));
 }
 
+// The depth the moments are taken of (window depth, or for a perspective
+// light the normalised distance along its axis): as in map.glsl.
+float msm_linear(float d)
+{
+    if (sl_persp == 0)
+        return d;
+    vec3 r2 = vec3(sl_light_vp[0][2], sl_light_vp[1][2], sl_light_vp[2][2]);
+    vec3 r3 = vec3(sl_light_vp[0][3], sl_light_vp[1][3], sl_light_vp[2][3]);
+    float a = dot(r2, r3) / dot(r3, r3);
+    return d * (1.0 - a) / (d - a);
+}
+
 float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl)
 {
     vec4 m = textureLod(moments, uv, msm_lod(uv));
-    float v = 1.0 - clamp(msm_shadow(m, depth), 0.0, 1.0);
+    float v = 1.0 - clamp(msm_shadow(m, msm_linear(depth)), 0.0, 1.0);
     return clamp((v - bleed) / (1.0 - bleed), 0.0, 1.0);
 }

@@ -21,13 +21,26 @@ float vsm_lod(vec2 uv)
     return clamp(textureQueryLod(moments, uv).y, 0.0, max_lod);
 }
 
+// The depth the moments are taken of (window depth, or for a perspective
+// light the normalised distance along its axis): as in map.glsl.
+float vsm_linear(float d)
+{
+    if (sl_persp == 0)
+        return d;
+    vec3 r2 = vec3(sl_light_vp[0][2], sl_light_vp[1][2], sl_light_vp[2][2]);
+    vec3 r3 = vec3(sl_light_vp[0][3], sl_light_vp[1][3], sl_light_vp[2][3]);
+    float a = dot(r2, r3) / dot(r3, r3);
+    return d * (1.0 - a) / (d - a);
+}
+
 float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl)
 {
     vec2 m = textureLod(moments, uv, vsm_lod(uv)).xy;
-    if (depth <= m.x)
+    float z = vsm_linear(depth);
+    if (z <= m.x)
         return 1.0;
     float var = max(m.y - m.x * m.x, min_variance);
-    float dm = depth - m.x;
+    float dm = z - m.x;
     float p = var / (var + dm * dm);
     return clamp((p - bleed) / (1.0 - bleed), 0.0, 1.0);
 }
