@@ -32,6 +32,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <cmocka.h>
 #include "sl_test.h"
 #include "fixture.h"
@@ -95,12 +96,11 @@ static void diag_print(enum sl_err e, const struct sl_diag *d)
     }
 }
 
-static void pkg_open(struct pkg *k, const char *name)
+/* The package in folder dir on the identity frame (above), defaults set. */
+static void pkg_open_dir(struct pkg *k, const char *dir)
 {
     gl_open();
     memset(k, 0, sizeof *k);
-    char dir[300];
-    snprintf(dir, sizeof dir, "techniques/%s", name);
     struct sl_diag d;
     enum sl_err e = sl_tech_load(dir, &k->t, &d);
     diag_print(e, &d);
@@ -121,6 +121,14 @@ static void pkg_open(struct pkg *k, const char *name)
     f->box.hi[0] = f->box.hi[1] = f->box.hi[2] = 1.0f;
     f->texel_world = 2.0f / (float)S;
     f->depth_range = 1.0f;
+}
+
+/* A shipped package, techniques/<name>. */
+static void pkg_open(struct pkg *k, const char *name)
+{
+    char dir[300];
+    snprintf(dir, sizeof dir, "techniques/%s", name);
+    pkg_open_dir(k, dir);
 }
 
 static void pkg_close(struct pkg *k)
@@ -744,6 +752,76 @@ static void packages_reach(void **st)
     }
 }
 
+/* The worked example of doc/techniques.md, as printed there: its
+ * technique.yaml and two GLSL blocks written into a package folder, loaded,
+ * compiled and looked up. A tent-weighted 3 x 3 PCF at a texel whose left
+ * column is blocked (halves 0.2 | 0.6, receiver 0.5): weights 1 2 1 / 2 4 2
+ * / 1 2 1, the left column's 4 of 16 in shadow: 0.75. */
+static char *doc_block(const char *text, const char *lang, int nth)
+{
+    char fence[32];
+    snprintf(fence, sizeof fence, "```%s\n", lang);
+    const char *p = text;
+    for (int i = 0; i <= nth; i++) {
+        p = strstr(p, fence);
+        if (!p)
+            return NULL;
+        p += strlen(fence);
+    }
+    const char *end = strstr(p, "```");
+    if (!end)
+        return NULL;
+    char *out = malloc((size_t)(end - p) + 1);
+    memcpy(out, p, (size_t)(end - p));
+    out[end - p] = 0;
+    return out;
+}
+
+static void write_file(const char *dir, const char *name, const char *text)
+{
+    char path[700];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static void packages_doc_example(void **st)
+{
+    (void)st;
+    FILE *f = fopen("doc/techniques.md", "r");
+    assert_non_null(f);
+    static char doc[1 << 17];
+    size_t n = fread(doc, 1, sizeof doc - 1, f);
+    fclose(f);
+    doc[n] = 0;
+    const char *ex = strstr(doc, "## Worked example");
+    assert_non_null(ex);
+    char *yaml = doc_block(ex, "yaml", 0), *map = doc_block(ex, "glsl", 0), *lookup = doc_block(ex, "glsl", 1);
+    assert_true(yaml && map && lookup);
+    char dir[600];
+    snprintf(dir, sizeof dir, "%s/my_techniques", sl_test_dir);
+    mkdir(dir, 0755);
+    snprintf(dir, sizeof dir, "%s/my_techniques/my_pcf", sl_test_dir);
+    mkdir(dir, 0755);
+    write_file(dir, "technique.yaml", yaml);
+    write_file(dir, "map.glsl", map);
+    write_file(dir, "lookup.glsl", lookup);
+    free(yaml);
+    free(map);
+    free(lookup);
+    struct pkg k;
+    pkg_open_dir(&k, dir);
+    assert_string_equal(k.t.name, "my_pcf");
+    static const double a[2] = {0.2, 0.6};
+    pkg_upload(&k, halves, a);
+    expect_near("doc's my_pcf, kernel 3, left column blocked", pkg_lookup(&k, EDGE + 0.5, 20.5, 0.5), 0.75, 0);
+    pkg_set(&k, "kernel", 5);   /* h = 2: columns -2, -1 blocked: (1 2 3 2 1) x (1 + 2) / 81 */
+    expect_near("kernel 5, two columns blocked", pkg_lookup(&k, EDGE + 0.5, 20.5, 0.5), 1 - 3.0 * 9 / 81, 1e-6);
+    pkg_close(&k);
+}
+
 /* The packages on real scenes against the ray-traced truth: Primitives
  * under its directional light and under a spot light (the perspective
  * path), a 1024 map, every PFL pixel's hard verdict (visibility >= 0.5)
@@ -850,6 +928,7 @@ int main(int argc, char **argv)
         SL_CASE(packages, perspective_depth),
         SL_CASE(packages, reach),
         SL_CASE(packages, rendered),
+        SL_CASE(packages, doc_example),
     };
     return sl_run_group(argc, argv, "packages", tests, sl_test_setup, group_teardown);
 }
