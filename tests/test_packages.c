@@ -544,6 +544,16 @@ static void packages_msm_hamburger(void **st)
     assert_true(G5 > 0.05 && G5 < 0.95);
     /* in front of everything: lit */
     expect_near("z 0.1 (in front of all): 1", pkg_lookup(&k, EDGE, EDGE, 0.1), 1.0, 1e-4);
+    /* an empty region (all depth 1, the far plane): with the bias its moments
+     * are those of depths 0 and 1, a singular Hankel matrix; a receiver in it
+     * is lit, not NaN. And one depth with no bias at all: a step. */
+    static const double empty[4] = {1, 1, 1, 1}, one[4] = {0.4, 0.4, 0.4, 0.4};
+    pkg_upload(&k, quadrants, empty);
+    expect_near("empty region, z 0.5: 1", pkg_lookup(&k, EDGE, EDGE, 0.5), 1.0, 1e-4);
+    pkg_set(&k, "moment_bias", 0);
+    pkg_upload(&k, quadrants, one);
+    expect_near("no bias, one depth 0.4, z 0.5: 0", pkg_lookup(&k, EDGE, EDGE, 0.5), 0.0, 1e-4);
+    expect_near("no bias, one depth 0.4, z 0.3: 1", pkg_lookup(&k, EDGE, EDGE, 0.3), 1.0, 1e-4);
     pkg_close(&k);
 }
 

@@ -1,10 +1,11 @@
 // EVSM lookup: VSM's Chebyshev bound in each warped space. Both warps are
 // increasing in depth, so "d > mean" keeps its meaning, and the true
 // visibility lies below each bound: take the smaller.
-// min_variance is given in window depth squared, like vsm's, and carried into
-// a warp by the warp's slope at the receiver: var_w = min_variance * (dw/dd)^2
-// with dw/dd = 2 c e (w = 2d - 1), formed as (sqrt(min_variance) dw/dd)^2:
-// (dw/dd)^2 alone reaches (84 e^42)^2 = 2e40, beyond FLT_MAX.
+// min_variance is given in depth squared, like vsm's, and carried into a warp
+// by the warp's slope at the receiver: var_w = min_variance * (de/dz)^2 with
+// de/dz = 2 c e (e = exp(c w), w = 2z - 1), formed as
+// (sqrt(min_variance) de/dz)^2: (de/dz)^2 alone reaches (84 e^42)^2 = 2e40,
+// beyond FLT_MAX.
 
 float evsm_lod(vec2 uv)
 {

@@ -30,6 +30,13 @@ float msm_shadow(vec4 m, float zf)
     float l32d22 = b.z - b.x * b.y;
     float l32 = l32d22 / d22;
     float d33 = (b.w - b.y * b.y) - l32 * l32d22;
+    // B singular: moments of at most two depths, as a region of one depth
+    // gives with moment_bias 0, or one at depth 0 or 1 with any bias (the
+    // bias vector is the moments of depths 0 and 1, weight 1/2 each: an empty
+    // region, all far plane, is exactly that). Its shadow is a step at the
+    // region's (unbiased) mean.
+    if (!(d22 > 0.0) || !(d33 > 0.0))
+        return zf > m.x ? 1.0 : 0.0;
     // forward: L y = (1, zf, zf^2)
     float y1 = zf - b.x;
     float y2 = zf * zf - b.y - l32 * y1;
