@@ -265,11 +265,13 @@ static void technique_glsl_error(void **st)
     snprintf(file, sizeof file, "%s/lookup.glsl", dir);
     assert_string_equal(d.file, file);
     assert_int_equal(d.line, 4);
-    assert_non_null(strstr(d.msg, "GLSL: error: `undeclared_name' undeclared"));
+    /* the driver's own words (Mesa: "`undeclared_name' undeclared") name the identifier */
+    assert_true(strncmp(d.msg, "GLSL: ", 6) == 0);
+    assert_non_null(strstr(d.msg, "undeclared_name"));
     sl_tech_free(&t);
     /* the log forms of both drivers */
-    assert_int_equal(sl_techpass_glsl_error("p/l.glsl", "0:1000003(1): error: in prelude\n1:7(12): error: `q' undeclared\n",
-                                            &d), SL_E_PACKAGE);
+    const char *mesa = "0:1000003(1): error: in prelude\n1:7(12): error: `q' undeclared\n";
+    assert_int_equal(sl_techpass_glsl_error("p/l.glsl", mesa, &d), SL_E_PACKAGE);
     assert_int_equal(d.line, 7);
     assert_string_equal(d.msg, "GLSL: error: `q' undeclared");
     assert_int_equal(sl_techpass_glsl_error("p/l.glsl", "0:2000004(3): error: no function sl_lookup\n", &d),
@@ -532,9 +534,20 @@ static void rendered_case(const char *scene, int S, const char *pkg, int layer, 
                           const double *set_vals, size_t max_differ)
 {
     gl_close();
+    /* the fixture's context, mesh and G-buffer; no truth (nothing here traces) */
     struct fixture fx;
-    assert_true(fixture_open(&fx, scene, 2));
     struct sl_diag d;
+    memset(&fx, 0, sizeof fx);
+    enum sl_err fe = sl_scene_build(scene, &fx.scene, &d);
+    if (!fe)
+        fe = sl_gl_init(&fx.gl, &d);
+    if (!fe)
+        fe = sl_gl_mesh_upload(&fx.mesh, &fx.scene, &d);
+    if (!fe)
+        fe = sl_gbuffer_init(&fx.gp, &fx.scene, &d);
+    if (fe)
+        fprintf(stderr, "%s: %s\n", scene, d.msg);
+    assert_int_equal(fe, SL_OK);
     struct sl_view v;
     assert_int_equal(sl_gbuffer_render(&fx.gp, &fx.mesh, &fx.scene, 0, 192, 160, &v, NULL, NULL, NULL, &d), SL_OK);
     struct sl_light_frame fr;
@@ -598,7 +611,7 @@ static void rendered_case(const char *scene, int S, const char *pkg, int layer, 
     sl_light_box_free(&fr.box);
     sl_frame_free(&fr);
     sl_view_free(&v);
-    fixture_close(&fx);
+    fixture_close(&fx);   /* rt zeroed: its free is a no-op */
 }
 
 static void technique_rendered_nsm(void **st)

@@ -28,11 +28,13 @@
 #define SL_TECHNIQUES_INSTALL_DIR "/usr/local/share/shadowlab/techniques"
 #endif
 
-const char *const sl_tech_type_names[3] = {"int", "float", "bool"};
-const char *const sl_tech_format_names[4] = {"r32f", "rg32f", "rgba32f", "rgba16f"};
-const char *const sl_tech_filter_names[2] = {"nearest", "linear"};
-const char *const sl_tech_post_names[4] = {"none", "blur", "mipmaps", "blur_mipmaps"};
-const char *const sl_tech_cull_names[3] = {"none", "front", "back"};
+#define NAME_(id, name) name,
+const char *const sl_tech_type_names[3] = {SL_TECH_TYPES(NAME_)};
+const char *const sl_tech_format_names[4] = {SL_TECH_FORMATS(NAME_)};
+const char *const sl_tech_filter_names[2] = {SL_TECH_FILTERS(NAME_)};
+const char *const sl_tech_post_names[4] = {SL_TECH_POSTS(NAME_)};
+const char *const sl_tech_cull_names[3] = {SL_TECH_CULLS(NAME_)};
+#undef NAME_
 
 /* ---- the schema: enums and numbers of a type given by another key are read
  * as strings and checked below, so each error names its own key ---- */
@@ -524,7 +526,7 @@ enum sl_err sl_tech_load(const char *dir, struct sl_technique *t, struct sl_diag
     struct raw_tech *r = NULL;
     struct sl_yaml_pos *pos = NULL;
     enum sl_err e = sl_yaml_load(t->file, &tech_schema, (void **)&r, &pos, SL_TECH_MAX_YAML, SL_E_PACKAGE, d);
-    if (e == SL_E_IO && d)   /* a package that cannot be read is a bad package (exit 2) */
+    if (e == SL_E_IO)   /* a package that cannot be read is a bad package (exit 2), as its diag says */
         e = SL_E_PACKAGE;
     if (!e)
         e = fill(t, r, pos, d);

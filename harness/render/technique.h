@@ -13,8 +13,8 @@
  * (first name wins; a C method's name is refused), the search path itself,
  * parameter values (defaults, checked setting), the guard band a package's
  * lookup needs (reach, blur) and the texel reads it counts (taps).
- * The contract packages are written against: /work/shared/t36/contract.md
- * (doc/techniques.md once merged).
+ * What a package may hold and what its shaders see is issue 36's package
+ * contract (techpass.h: the passes and the preludes).
  *
  * Owns: each sl_technique's shader sources (sl_tech_free), a set's
  * techniques (sl_tech_set_free).
@@ -35,11 +35,25 @@
 #define SL_TECH_MAX_DIRS 32                       /* folders of a search path */
 #define SL_TECH_MAX_MAP_SIZE 16384                /* guarded map side, texels (GL's own limit may be lower) */
 
-enum sl_tech_type { SL_TECH_INT, SL_TECH_FLOAT, SL_TECH_BOOL };
-enum sl_tech_format { SL_TECH_R32F, SL_TECH_RG32F, SL_TECH_RGBA32F, SL_TECH_RGBA16F };
-enum sl_tech_filter { SL_TECH_NEAREST, SL_TECH_LINEAR };
-enum sl_tech_post { SL_TECH_POST_NONE, SL_TECH_POST_BLUR, SL_TECH_POST_MIPMAPS, SL_TECH_POST_BLUR_MIPMAPS };
-enum sl_tech_cull { SL_TECH_CULL_NONE, SL_TECH_CULL_FRONT, SL_TECH_CULL_BACK };
+/* The closed sets of technique.yaml, each one list: the enum (SL_TECH_<ID>,
+ * SL_TECH_POST_<ID>, SL_TECH_CULL_<ID>) and the YAML spelling together. */
+#define SL_TECH_TYPES(X) X(INT, "int") X(FLOAT, "float") X(BOOL, "bool")
+#define SL_TECH_FORMATS(X) X(R32F, "r32f") X(RG32F, "rg32f") X(RGBA32F, "rgba32f") X(RGBA16F, "rgba16f")
+#define SL_TECH_FILTERS(X) X(NEAREST, "nearest") X(LINEAR, "linear")
+#define SL_TECH_POSTS(X) X(NONE, "none") X(BLUR, "blur") X(MIPMAPS, "mipmaps") X(BLUR_MIPMAPS, "blur_mipmaps")
+#define SL_TECH_CULLS(X) X(NONE, "none") X(FRONT, "front") X(BACK, "back")
+
+#define SL_TECH_ENUM_(id, name) SL_TECH_##id,
+#define SL_TECH_POST_ENUM_(id, name) SL_TECH_POST_##id,
+#define SL_TECH_CULL_ENUM_(id, name) SL_TECH_CULL_##id,
+enum sl_tech_type { SL_TECH_TYPES(SL_TECH_ENUM_) };
+enum sl_tech_format { SL_TECH_FORMATS(SL_TECH_ENUM_) };
+enum sl_tech_filter { SL_TECH_FILTERS(SL_TECH_ENUM_) };
+enum sl_tech_post { SL_TECH_POSTS(SL_TECH_POST_ENUM_) };
+enum sl_tech_cull { SL_TECH_CULLS(SL_TECH_CULL_ENUM_) };
+#undef SL_TECH_ENUM_
+#undef SL_TECH_POST_ENUM_
+#undef SL_TECH_CULL_ENUM_
 
 /* the YAML spellings, by enum value */
 extern const char *const sl_tech_type_names[3];     /* int float bool */
