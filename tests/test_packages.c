@@ -61,6 +61,9 @@ static void gl_open(void)
         fprintf(stderr, "gl: %s\n", d.msg);
     assert_int_equal(e, SL_OK);
     gl_is_open = 1;
+    char what[400];
+    sl_gl_describe(&gl, what, sizeof what);
+    printf("  GL: %s, %s (%s)\n", gl.renderer, gl.version, what);
 }
 
 static void gl_close(void)
@@ -845,7 +848,7 @@ static void packages_rendered(void **st)
 {
     (void)st;
     gl_close();
-    static const char *const scenes[] = {"primitives", "scenes/primitives_spot.yaml"};
+    static const char *const scenes[] = {"scenes/primitives.yaml", "scenes/primitives_spot.yaml"};
     static const char *const names[] = {"vsm", "esm", "evsm", "msm", "pcss"};
     for (int si = 0; si < 2; si++) {
         struct fixture fx;
