@@ -76,6 +76,7 @@
     X(glNamedFramebufferRenderbuffer) \
     X(glNamedFramebufferTexture) \
     X(glNamedRenderbufferStorage) \
+    X(glPixelStorei) \
     X(glShaderSource) \
     X(glTextureParameteri) \
     X(glTextureStorage2D) \
@@ -155,6 +156,7 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glNamedFramebufferRenderbuffer sl_glNamedFramebufferRenderbuffer
 #define glNamedFramebufferTexture sl_glNamedFramebufferTexture
 #define glNamedRenderbufferStorage sl_glNamedRenderbufferStorage
+#define glPixelStorei sl_glPixelStorei
 #define glShaderSource sl_glShaderSource
 #define glTextureParameteri sl_glTextureParameteri
 #define glTextureStorage2D sl_glTextureStorage2D

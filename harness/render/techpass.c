@@ -755,7 +755,11 @@ enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_fram
     sl_gl_timer_begin(&gt);
     glTextureSubImage2D(p->g_pos, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, pos);
     glTextureSubImage2D(p->g_nrm, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, nrm);
+    /* the mask's rows are w bytes: packed, not padded to 4 (GL's default
+     * alignment would read a width not a multiple of 4 past each row) */
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage2D(p->g_mask, 0, 0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_BYTE, mask ? mask : p->ones);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glBindFramebuffer(GL_FRAMEBUFFER, p->out_fbo);
     glViewport(0, 0, w, h);
     glDisable(GL_DEPTH_TEST);
