@@ -112,7 +112,7 @@ map_sizes: [1024]
 methods:
   - {label: c, method: nsm, self_shadow: none}
   - {label: glsl, method: nsm_glsl}
-  - {label: pcf1, method: pcf, kernel: 1}
+  - {label: pcf1, method: pcf, kernel: 1, bias: 0}
 outputs: {overlays: false}
 YAML
   "$bin" run "$tmp/c.yaml" --no-cache -q -o "$tmp/out" || fail "run"

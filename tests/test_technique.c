@@ -129,11 +129,11 @@ static void technique_shipped(void **st)
     struct sl_diag d;
     assert_int_equal(sl_tech_load("techniques/pcf", &t, &d), SL_OK);
     assert_string_equal(t.name, "pcf");
-    assert_int_equal(t.nparams, 2);
+    assert_int_equal(t.nparams, 3);
     struct sl_tech_values v;
     sl_tech_defaults(&t, &v);
-    assert_int_equal(v.n, 2);
-    assert_true(v.v[0] == 3 && v.v[1] == 0);
+    assert_int_equal(v.n, 3);
+    assert_true(v.v[0] == 3 && v.v[1] == 1 && v.v[2] == 0);   /* kernel 3, bias 1 texel, no disc */
     assert_int_equal(sl_tech_reach(&t, &v), 1);   /* a 3x3 box: one texel around the home texel */
     assert_true(sl_tech_taps(&t, &v) == 9);
     assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 5, &d), SL_OK);
@@ -379,14 +379,16 @@ static void technique_upload_lookups(void **st)
     for (int i = 0; i < 5; i++)
         assert_true(vis[i] == want[i]);
     /* pcf with kernel 1 is nsm (its guard band of 1 texel shifts the texels) */
-    const char *k1[] = {"kernel", NULL};
-    const double one[] = {1};
+    const char *k1[] = {"kernel", "bias", NULL};
+    const double one[] = {1, 0};
     hand_lookup("techniques/pcf", k1, one, one_texel, pts, 5, NULL, vis);
     for (int i = 0; i < 5; i++)
         assert_true(vis[i] == want[i]);
     /* pcf 3x3: 3 of the 9 texels nearer than the point: 6/9 lit */
     const struct hand at[2] = {{3.5f, 5.5f, 0.6f}, {3.5f, 5.5f, 0.4f}};
-    hand_lookup("techniques/pcf", NULL, NULL, three_of_nine, at, 2, NULL, vis);
+    const char *b0[] = {"bias", NULL};
+    const double zero[] = {0};
+    hand_lookup("techniques/pcf", b0, zero, three_of_nine, at, 2, NULL, vis);
     assert_float_equal(vis[0], 6.0f / 9.0f, 1e-6f);
     assert_true(vis[1] == 1.0f);
     /* a mask: the first point skipped (0), the second looked up */
@@ -398,8 +400,8 @@ static void technique_upload_lookups(void **st)
     assert_true(vis[0] == 1.0f);
     /* the Poisson disc over empty texels: lit; over the nearer texel alone
      * with kernel 1 (radius 0.5 around the texel's centre): all taps in it */
-    const char *pk[] = {"poisson", "kernel", NULL};
-    const double pv[] = {1, 1};
+    const char *pk[] = {"poisson", "kernel", "bias", NULL};
+    const double pv[] = {1, 1, 0};
     hand_lookup("techniques/pcf", pk, pv, one_texel, pts, 4, NULL, vis);
     assert_true(vis[0] == 1.0f && vis[1] == 0.0f && vis[3] == 1.0f);
 }
@@ -634,17 +636,15 @@ static void technique_rendered_nsm(void **st)
     rendered_case("scenes/trees.yaml", 512, dir, SL_LAYER_DEPTH_ID_BACK, NULL, NULL, 0);
 }
 
-/* pcf with kernel 1 reads the texel nsm reads, in a map with a guard band
- * of 1 texel: drawn with the frame's matrix scaled by S / (S + 2), its
- * texels may round otherwise than the C layer's in the last bits, which
- * decides only points on their own surface (z == stored): a few at most
- * (none on llvmpipe, Mesa 22.3). */
+/* pcf with kernel 1 and bias 0, rendered: its reach is 0 ((kernel - 1) / 2),
+ * so no guard band and the frame's own matrix: the C depth layer's texel
+ * and depth at every point, as the nsm package. */
 static void technique_rendered_pcf(void **st)
 {
     (void)st;
-    const char *k1[] = {"kernel", NULL};
-    const double one[] = {1};
-    rendered_case("primitives", 512, "techniques/pcf", SL_LAYER_DEPTH_ID, k1, one, 30720 / 100);
+    const char *k1[] = {"kernel", "bias", NULL};
+    const double one[] = {1, 0};
+    rendered_case("primitives", 512, "techniques/pcf", SL_LAYER_DEPTH_ID, k1, one, 0);
 }
 
 int main(int argc, char **argv)

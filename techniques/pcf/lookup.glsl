@@ -14,25 +14,49 @@ const vec2 pcf_disc[16] = vec2[16](
     vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
     vec2(0.14383161, -0.14100790));
 
-float pcf_tap(ivec2 t, ivec2 hi, float z)
+// Depth bias (Reeves et al.'s "bias", slope-scaled as in pcss): a tap at
+// offset o texels from the point is lit iff stored >= z - slope (bias + |o|),
+// slope the receiver's change of window depth across one texel (tan of the
+// light's angle to the normal, clamped at 10). bias 0 at kernel 1 is the
+// plain test: the nsm package.
+float pcf_slope(float z, float ndotl)
 {
-    return z <= texelFetch(depth, clamp(t, ivec2(0), hi), 0).r ? 1.0 : 0.0;
+    float cosl = max(ndotl, 0.0995);   // tan clamped at 10
+    float tanl = sqrt(1.0 - cosl * cosl) / cosl;
+    if (sl_persp == 0)
+        return tanl * sl_texel_world / sl_depth_range;
+    // perspective: window depth d = A + B / distance; d' = -B / distance^2
+    vec3 axis = normalize(sl_light_dir);
+    vec4 p1 = sl_light_vp * vec4(sl_light_pos + axis, 1.0);
+    vec4 p2 = sl_light_vp * vec4(sl_light_pos + 2.0 * axis, 1.0);
+    float d1 = p1.z / p1.w, d2 = p2.z / p2.w;
+    float b = 2.0 * (d1 - d2), a = d1 - b;
+    float dist = b / (z - a);
+    return tanl * sl_texel_world * abs(b) / dist;
+}
+
+float pcf_tap(ivec2 t, ivec2 hi, float z, float eps)
+{
+    return texelFetch(depth, clamp(t, ivec2(0), hi), 0).r < z - eps ? 0.0 : 1.0;
 }
 
 float sl_lookup(vec3 world, vec3 normal, vec2 uv, float z, float ndotl)
 {
     ivec2 hi = textureSize(depth, 0) - 1;
+    float slope = bias > 0.0 ? pcf_slope(z, ndotl) : 0.0;
     float lit = 0.0;
     if (poisson) {
         float r = 0.5 * float(kernel - 1) / 1.25;
-        for (int i = 0; i < 16; i++)
-            lit += pcf_tap(ivec2(floor(sl_map_pos + r * pcf_disc[i])), hi, z);
+        for (int i = 0; i < 16; i++) {
+            vec2 o = r * pcf_disc[i];
+            lit += pcf_tap(ivec2(floor(sl_map_pos + o)), hi, z, slope * (bias + length(o)));
+        }
         return lit / 16.0;
     }
     int h = kernel / 2;
     for (int j = -h; j <= h; j++)
         for (int i = -h; i <= h; i++)
-            lit += pcf_tap(sl_home_texel + ivec2(i, j), hi, z);
+            lit += pcf_tap(sl_home_texel + ivec2(i, j), hi, z, slope * (bias + length(vec2(i, j))));
     float n = float(2 * h + 1);
     return lit / (n * n);
 }
