@@ -237,6 +237,37 @@ static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_ve
                                  (int)(sizeof attrs / sizeof attrs[0]), attrs, d);
 }
 
+/* The soft overlay of a visibility against a truth over the pixels tri
+ * marks: the error heat map (sl_overlay_soft), framed and keyed. */
+static enum sl_err soft_overlay(const struct sl_cell_inputs *in, const uint32_t *tri, const float *vis,
+                                const float *truth, const char *const key_text[3], struct sl_cell *cell,
+                                struct sl_diag *d)
+{
+    const struct sl_view *v = in->view;
+    double t0 = sl_now();
+    void *slot;
+    uint8_t *rgb, *unused;
+    enum sl_err e = sheet_buffers(in, in->state, &slot, &rgb, &unused, d);
+    if (e)
+        return e;
+    sl_overlay_soft(v->w, v->h, tri, vis, truth, rgb);
+    struct sl_image_sheet sh;
+    memset(&sh, 0, sizeof sh);
+    sh.w = v->w;
+    sh.h = v->h;
+    sh.rgb = rgb;
+    sheet_frame(in, cell, NULL, NULL, &sh);
+    static const uint8_t key_rgb[3][3] = {{213, 94, 0}, {0, 114, 178}, {220, 220, 220}};
+    for (int k = 0; k < 3; k++) {
+        memcpy(sh.legend_rgb[k], key_rgb[k], 3);
+        snprintf(sh.legend_text[k], sizeof sh.legend_text[k], "%s", key_text[k]);
+    }
+    sh.nlegend = 3;
+    e = sheet_write(in, slot, &sh, d);
+    cell->ms.overlay = 1e3 * (sl_now() - t0);
+    return e;
+}
+
 /* An area light's cell: the soft figures of the visible fraction vd->vis
  * against the area truth, and the error heat map as its overlay. */
 static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_verdicts *vd, struct sl_cell *cell,
@@ -253,40 +284,21 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
     cell->ms.figures += 1e3 * (sl_now() - t0);
     if (!in->overlay_path)
         return SL_OK;
-    t0 = sl_now();
-    void *slot;
-    uint8_t *rgb, *unused;
-    enum sl_err e = sheet_buffers(in, in->state, &slot, &rgb, &unused, d);
-    if (e)
-        return e;
-    sl_overlay_soft(W, H, v->tri, vd->vis, in->soft_truth, rgb);
-    struct sl_image_sheet sh;
-    memset(&sh, 0, sizeof sh);
-    sh.w = W;
-    sh.h = H;
-    sh.rgb = rgb;
-    sheet_frame(in, cell, NULL, NULL, &sh);
-    static const struct { uint8_t rgb[3]; const char *text; } key[] = {
-        {{213, 94, 0}, "too dark (off the area truth by > 0.05)"},
-        {{0, 114, 178}, "too light (off by > 0.05)"},
-        {{220, 220, 220}, "grey: the visible fraction"},
+    static const char *const key[3] = {
+        "too dark (off the area truth by > 0.05)",
+        "too light (off by > 0.05)",
+        "grey: the visible fraction",
     };
-    for (int k = 0; k < 3; k++) {
-        memcpy(sh.legend_rgb[k], key[k].rgb, 3);
-        snprintf(sh.legend_text[k], sizeof sh.legend_text[k], "%s", key[k].text);
-    }
-    sh.nlegend = 3;
-    e = sheet_write(in, slot, &sh, d);
-    cell->ms.overlay = 1e3 * (sl_now() - t0);
-    return e;
+    return soft_overlay(in, v->tri, vd->vis, in->soft_truth, key, cell, d);
 }
 
 /* A hard light's cell whose method wrote a fractional visibility: its soft
  * figures against the 0/1 truth over the PFL pixels (has_soft beside the
  * hard figures, as a hard method under an area light has both). */
-static enum sl_err fractional_score(const struct sl_view *v, const struct sl_verdicts *vd, struct sl_cell *cell,
-                                    struct sl_diag *d)
+static enum sl_err fractional_score(const struct sl_cell_inputs *in, const struct sl_verdicts *vd,
+                                    struct sl_cell *cell, struct sl_diag *d)
 {
+    const struct sl_view *v = in->view;
     size_t npx = (size_t)v->w * (size_t)v->h;
     double t0 = sl_now();
     float *t = malloc(npx * sizeof *t);
@@ -304,10 +316,22 @@ static enum sl_err fractional_score(const struct sl_view *v, const struct sl_ver
     sl_soft_figures_compute(v->w, v->h, pfl, vd->vis, t, NULL, &cell->soft);
     cell->has_soft = 1;
     cell->has_frac = 1;
+    cell->ms.figures += 1e3 * (sl_now() - t0);
+    enum sl_err e = SL_OK;
+    if (in->overlay_path) {
+        /* the overlay shows what the hard verdict hides: where the
+         * visibility leaks light into the shadow and where it darkens the
+         * light (the hard errors are among them, off by >= the threshold) */
+        static const char *const key[3] = {
+            "too dark: over-darkening (lit in truth, visibility < 0.95)",
+            "too light: light leaking (shadowed in truth, visibility > 0.05)",
+            "grey: the visibility (PFL pixels)",
+        };
+        e = soft_overlay(in, pfl, vd->vis, t, key, cell, d);
+    }
     free(t);
     free(pfl);
-    cell->ms.figures += 1e3 * (sl_now() - t0);
-    return SL_OK;
+    return e;
 }
 
 /* Texel coherence's patterns (Moderno 2011 Tables 20/22): per region, PFL
@@ -414,7 +438,8 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
          * 0.1). With a 0/1 truth the bias splits them: light leaking (the
          * visibility summed where the truth is shadowed) is (mae + bias) / 2
          * of the PFL pixels, over-darkening (1 - v where lit) (mae - bias) / 2. */
-        e = fractional_score(v, vd, cell, d);
+        e = fractional_score(in, vd, cell, d);
+        overlay = NULL;   /* the overlay is the fractional one */
     }
     /* the scratch state is free once the bands are drawn: the overlay's
      * error mask, then the EXR's error classes */
