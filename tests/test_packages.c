@@ -355,7 +355,7 @@ static void packages_load(void **st)
         {"esm", "c", 80},             {"esm", "blur", 1},            {"evsm", "positive", 40},
         {"evsm", "negative", 5},      {"evsm", "moments", 4},        {"evsm", "min_variance", 1e-6},
         {"msm", "moment_bias", 3e-5}, {"msm", "bleed", 0},           {"msm", "blur", 1},
-        {"pcss", "light_size", 8},    {"pcss", "search", 4},         {"pcss", "max_filter", 8},
+        {"pcss", "light_size", 0},    {"pcss", "search", 4},         {"pcss", "max_filter", 8},
     };
     for (size_t i = 0; i < sizeof defs / sizeof defs[0]; i++) {
         struct sl_technique t;

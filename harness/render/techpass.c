@@ -217,7 +217,8 @@ static char *lookup_fs_source(const struct sl_technique *t)
                   "uniform vec2 sl_texel;\n"
                   "uniform float sl_map_size;\n"
                   "uniform float sl_texel_world;\n"
-                  "uniform float sl_depth_range;\n");
+                  "uniform float sl_depth_range;\n"
+                  "uniform float sl_light_width;\n");
     params_decl(&b, t);
     sb_printf(&b, "ivec2 sl_home_texel;\n"
                   "vec2 sl_map_pos;\n"
@@ -789,6 +790,7 @@ enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_fram
     glUniform1f(glGetUniformLocation(prog, "sl_map_size"), (float)p->size);
     glUniform1f(glGetUniformLocation(prog, "sl_texel_world"), f->texel_world);
     glUniform1f(glGetUniformLocation(prog, "sl_depth_range"), f->depth_range);
+    glUniform1f(glGetUniformLocation(prog, "sl_light_width"), p->light_width);
     glBindVertexArray(p->vao_empty);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     sl_gl_timer_end(&gt);

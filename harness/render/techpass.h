@@ -72,6 +72,9 @@ struct sl_techpass {
     GLuint g_pos, g_nrm, g_mask, out_tex, out_fbo;
     uint8_t *ones;                  /* lw * lh ones: the mask when none is given */
     struct sl_techpass_costs costs;
+    /* the lookup's sl_light_width: an area light's width in world units
+     * (the larger side), 0 for a light without one; the caller sets it */
+    float light_width;
     int max_tex;                    /* GL_MAX_TEXTURE_SIZE */
 };
 

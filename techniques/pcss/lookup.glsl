@@ -61,13 +61,16 @@ float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl)
         return 1.0;
     float zb = sum / float(n);
 
-    // 2. penumbra width in texels
+    // 2. penumbra width in texels; light_size 0 (the default): an area
+    // light's own width (sl_light_width) in texels of the map at depth 1,
+    // 8 under a light without a width
     float w;
+    float ls = light_size > 0.0 ? light_size : sl_light_width > 0.0 ? sl_light_width / sl_texel_world : 8.0;
     if (sl_persp != 0) {
         float zbl = ab.y / (zb - ab.x);
-        w = light_size * (zr - zbl) / (zbl * zr);
+        w = ls * (zr - zbl) / (zbl * zr);
     } else {
-        w = light_size * (depth - zb) * sl_depth_range;
+        w = ls * (depth - zb) * sl_depth_range;
     }
 
     // 3. PCF of radius w / 2
