@@ -96,4 +96,16 @@ out=$("$bin" check "$tmp/s/shadowlab.db" --baseline "$tmp/sb2.yaml" --format md)
 [ $rc -eq 1 ] || fail "a moved soft MAE: exit $rc, want 1"
 echo "$out" | grep -q '| soft_mae | soft | 99 |' || fail "the moved soft MAE is not named: $out"
 
+# issue 37: a store of another config (a -D override) is said to differ
+# before any figure, with both hashes; the exit status is the figures' alone
+"$bin" run "$tmp/c.yaml" --out "$tmp/d" --no-cache -D 'methods[0].self_shadow=none' >/dev/null 2>&1 || fail "run -D"
+out=$("$bin" check "$tmp/d/shadowlab.db" --baseline "$tmp/b.yaml"); rc=$?
+[ $rc -eq 1 ] || fail "another config's store: exit $rc, not 1 (its nsm figures moved)"
+first=$(echo "$out" | sed -n 3,4p)
+bh=$(sed -n 's/^config_hash: "\(.*\)"/\1/p' "$tmp/b.yaml")
+echo "$first" | grep -q "^Before the figures, what differs from the baseline:" || fail "the difference is not said first: $out"
+echo "$first" | grep -q "^- config hash: 2 of the store's 2 cell(s) have [0-9a-f]*, the baseline $bh" ||
+  fail "the config hashes are not named: $first"
+out=$("$bin" check "$db" --baseline "$tmp/b.yaml")
+echo "$out" | grep -q "what differs from the baseline" && fail "its own baseline said to differ: $out"
 [ $fails -eq 0 ] && echo "cli::check passed" || exit 1

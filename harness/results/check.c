@@ -647,6 +647,40 @@ static void write_junit(FILE *f, const char *db, const char *baseline, const str
     fprintf(f, "  </testsuite>\n</testsuites>\n");
 }
 
+/* What differs before any figure is compared, first: a config hash other
+ * than the baseline's (another config, other -D overrides: every figure may
+ * move for that reason alone) and a git SHA other than the baseline's (other
+ * code). Said, not failed: the exit status is the figures'. */
+static void say_provenance(FILE *out, const struct bl_file *b, const struct sl_cell_record *cells, int n,
+                           const struct sl_store_run *runs, int nruns, struct sl_check_result *r)
+{
+    int other_hash = 0, other_sha = 0;
+    const char *hash = NULL, *sha = NULL;
+    for (int j = 0; b->config_hash && b->config_hash[0] && j < n; j++)
+        if (strcmp(cells[j].config_hash, b->config_hash)) {
+            other_hash++;
+            hash = cells[j].config_hash;
+        }
+    for (int j = 0; b->git_sha && b->git_sha[0] && j < nruns; j++)
+        if (strcmp(runs[j].prov.git_sha, b->git_sha)) {
+            other_sha++;
+            sha = runs[j].prov.git_sha;
+        }
+    r->config_differs = other_hash > 0;
+    r->sha_differs = other_sha > 0;
+    if (!other_hash && !other_sha)
+        return;
+    fprintf(out, "Before the figures, what differs from the baseline:\n");
+    if (other_hash)
+        fprintf(out, "- config hash: %d of the store's %d cell(s) have %s, the baseline %s: another config or "
+                     "other -D overrides, so figures may move for that reason alone\n",
+                other_hash, n, hash, b->config_hash);
+    if (other_sha)
+        fprintf(out, "- git SHA: %d of the store's %d run(s) at %s, the baseline at %s: other code\n", other_sha,
+                nruns, sha, b->git_sha);
+    fprintf(out, "\n");
+}
+
 enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check_opts *o, FILE *out,
                      struct sl_check_result *r, struct sl_diag *d)
 {
@@ -713,6 +747,7 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
     }
     fprintf(out, o->format == SL_CHECK_MD ? "## shadowlab check: %s against %s\n\n" : "shadowlab check: %s against %s\n\n",
             db, baseline);
+    say_provenance(out, b, cells, n, runs, nruns, r);
     for (unsigned i = 0; i < b->cells_count && !e; i++) {
         const struct bl_cell *bc = &b->cells[i];
         m.cur = &stats[i];

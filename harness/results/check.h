@@ -64,6 +64,8 @@ struct sl_check_result {
     long moved;                 /* values that differ at all */
     long failed;                /* values outside tolerance */
     int exact_counts;           /* counts were compared exactly */
+    int config_differs;         /* some store cell's config hash is not the baseline's */
+    int sha_differs;            /* some run's git SHA is not the baseline's */
 };
 
 /* Compare; prints the table of what moved and a summary to out. SL_OK when
