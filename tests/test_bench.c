@@ -306,6 +306,13 @@ static void bench_techniques_rows(void **st)
     assert_non_null(strstr(text, "| pcf kernel=3 | map | 1 map r32f, 130² (S 128 + 2 × guard 1), cull none | "));
     assert_non_null(strstr(text, "| pcf kernel=5 | lookup | 25 taps × "));
     assert_non_null(strstr(text, "| nsm_glsl | lookup | 1 tap × "));
+    /* what a lookup pays before its reads, the plain lookup reading none */
+    const char *fl = strstr(text, "| pcf kernel=3 | lookup | ");
+    assert_non_null(fl);
+    char fline[400];
+    snprintf(fline, sizeof fline, "%.*s", (int)strcspn(fl, "\n"), fl);
+    assert_non_null(strstr(fline, "; floor (no reads) "));
+    assert_non_null(strstr(fline, " ms, above it "));
     assert_non_null(strstr(text, "Whole stage: wall "));
     assert_non_null(strstr(text, "load average before "));
     /* a package with post passes has its row, with what they do */

@@ -15,6 +15,9 @@
  * texel. Both run through techpass.c (the code a study runs), so the plain
  * passes carry the same harness work — the empty-texel pass, the G-buffer
  * upload, the projection — and the ratios are the packages' own shaders'.
+ * A third plain lookup reading no texel gives that harness work alone (the
+ * floor): on a GPU it is most of a lookup (the G-buffer upload), so the
+ * lookup row also says what each costs above it.
  *
  * Each repetition renders and looks up with both, the package first on odd
  * repetitions, so drift of a shared VM hits both. Times are techpass.c's
@@ -46,7 +49,8 @@ static const struct { const char *pkg, *param; int n; double v[4]; } sweeps[] = 
     {NULL, NULL, 0, {0}},
 };
 
-enum { M_MAP, M_POST, M_LOOKUP, M_PMAP, M_PLOOKUP, M_N };   /* what is timed */
+/* what is timed; FLOOR: the plain lookup reading nothing, what every lookup pays before its reads */
+enum { M_MAP, M_POST, M_LOOKUP, M_PMAP, M_PLOOKUP, M_FLOOR, M_N };
 enum { K_WALL, K_GPU, K_CPU, K_N };
 
 struct times {
@@ -204,11 +208,13 @@ static enum sl_err one_setting(const struct scene_in *in, const struct setting *
     const struct sl_bench_ctx *x = in->x;
     const struct sl_technique *t = st->t;
     const struct sl_tech_values *v = &st->v;
-    struct sl_techpass pk, pp;
+    struct sl_techpass pk, pp, pf;
     memset(&pk, 0, sizeof pk);
     memset(&pp, 0, sizeof pp);
-    struct sl_technique plain;
+    memset(&pf, 0, sizeof pf);
+    struct sl_technique plain, floor_pkg;
     memset(&plain, 0, sizeof plain);
+    memset(&floor_pkg, 0, sizeof floor_pkg);
     int g = 0, N = 0;
     const int taps = (int)llround(sl_tech_taps(t, v));
     enum sl_err e = sl_techpass_init(&pk, t, d);
@@ -218,6 +224,13 @@ static enum sl_err one_setting(const struct scene_in *in, const struct setting *
         e = plain_package(t, g, taps, &plain, d);
     if (!e)
         e = sl_techpass_init(&pp, &plain, d);
+    if (!e)
+        e = plain_package(t, g, 0, &floor_pkg, d);
+    if (!e)
+        e = sl_techpass_init(&pf, &floor_pkg, d);
+    /* the floor's maps once: its lookup reads none of them */
+    if (!e)
+        e = sl_techpass_render(&pf, &x->mesh, in->f, v, d);
     for (int r = -1; r < x->reps && !e; r++) {   /* r = -1: a warm-up, not kept (maps and targets made there) */
         for (int o = 0; o < 2 && !e; o++) {
             const int is_pkg = (o == 0) == (r % 2 != 0);   /* the package first on odd repetitions */
@@ -246,6 +259,15 @@ static enum sl_err one_setting(const struct scene_in *in, const struct setting *
                 TV(tm, M_POST, K_CPU, r) = NAN;   /* inside the render call's */
             }
         }
+        double c3 = sl_bench_cpu_s();
+        if (e || (e = sl_techpass_lookup(&pf, in->f, v, in->view->pos, in->view->nrm, in->mask, in->view->w,
+                                         in->view->h, in->vis, d)))
+            break;
+        if (r >= 0) {
+            TV(tm, M_FLOOR, K_WALL, r) = pf.costs.ms_lookup;
+            TV(tm, M_FLOOR, K_GPU, r) = pf.costs.gpu_lookup;
+            TV(tm, M_FLOOR, K_CPU, r) = 1e3 * (sl_bench_cpu_s() - c3);
+        }
     }
     if (!e) {
         if (pk.costs.map_size != N || pp.costs.map_size != N)
@@ -273,7 +295,7 @@ static enum sl_err one_setting(const struct scene_in *in, const struct setting *
         }
         if (e)
             goto out;
-        char what[200], fmts[96] = "";
+        char what[320], fmts[96] = "";
         for (int i = 0, k = 0; i < t->nmaps; i++)
             k += snprintf(fmts + k, sizeof fmts - (size_t)k, "%s%s", i ? "+" : "", sl_tech_format_names[t->map[i].format]);
         /* map */
@@ -293,24 +315,34 @@ static enum sl_err one_setting(const struct scene_in *in, const struct setting *
         if (post[0])
             print_pair(out, st->label, "post", post, tm, M_POST, -1, 0, 0);
         /* lookup */
-        snprintf(what, sizeof what, "%d tap%s × %llu PFL px of %dx%d (%.3g M texel reads)", taps, taps == 1 ? "" : "s",
-                 (unsigned long long)pixels, in->view->w, in->view->h, 1e-6 * (double)pk.costs.lookups);
+        const double above = wall[M_LOOKUP] - wall[M_FLOOR], p_above = wall[M_PLOOKUP] - wall[M_FLOOR];
+        char rest[32] = "";
+        if (p_above > 0)
+            snprintf(rest, sizeof rest, " = %.2fx", above / p_above);
+        snprintf(what, sizeof what, "%d tap%s × %llu PFL px of %dx%d (%.3g M texel reads); floor (no reads) %.2f ms, "
+                 "above it %.2f vs %.2f ms%s", taps, taps == 1 ? "" : "s", (unsigned long long)pixels, in->view->w,
+                 in->view->h, 1e-6 * (double)pk.costs.lookups, wall[M_FLOOR], above, p_above, rest);
         double rl = wall[M_LOOKUP] / wall[M_PLOOKUP];
         print_pair(out, st->label, "lookup", what, tm, M_LOOKUP, M_PLOOKUP, TARGET_LOOKUP_RATIO, rl);
         row = sl_bench_add_row(res, "technique", "ms", wall[M_LOOKUP], wall[M_PLOOKUP], TARGET_LOOKUP_RATIO,
                                SL_BENCH_AT_MOST);
         if (row) {
             snprintf(row->name, sizeof row->name, "%s lookup %d tap%s", st->label, taps, taps == 1 ? "" : "s");
-            snprintf(row->note, sizeof row->note, "%llu px, G-buffer upload included in both", (unsigned long long)pixels);
+            snprintf(row->note, sizeof row->note, "%llu px; floor (G-buffer upload, projection, no reads) %.2f ms in both",
+                     (unsigned long long)pixels, wall[M_FLOOR]);
         }
     }
 out:
+    if (pf.prog_map)
+        sl_techpass_free(&pf);
     if (pp.prog_map)
         sl_techpass_free(&pp);
     if (pk.prog_map)
         sl_techpass_free(&pk);
     free(plain.map_src);
     free(plain.lookup_src);
+    free(floor_pkg.map_src);
+    free(floor_pkg.lookup_src);
     return e;
 }
 
@@ -415,7 +447,8 @@ enum sl_err sl_bench_techniques(struct sl_bench_ctx *x, struct sl_bench_result *
                  "a map shader writing the fragment's depth into every channel, no post pass. Plain lookup: "
                  "as many texelFetch reads of the first map per pixel as the package counts (taps, rounded), "
                  "a plain loop over a square around the home texel. Both through techpass.c: the empty-texel "
-                 "pass, the G-buffer upload and the projection are in both. Wall: the pass + glFinish; "
+                 "pass, the G-buffer upload and the projection are in both; the floor, that lookup reading no "
+                 "texel, is what they cost alone (on a GPU most of a lookup). Wall: the pass + glFinish; "
                  "GPU: GL_TIME_ELAPSED (— = not measured); CPU: user + sys of the process over the whole "
                  "call (a render call's includes its post passes). Medians unless named.\n\n",
             where, set.n, nst);
