@@ -317,7 +317,7 @@ static enum sl_err one_setting(const struct scene_in *in, const struct setting *
         /* lookup */
         const double above = wall[M_LOOKUP] - wall[M_FLOOR], p_above = wall[M_PLOOKUP] - wall[M_FLOOR];
         char rest[32] = "";
-        if (p_above > 0)
+        if (above > 0 && p_above > 0)   /* else within the noise of the floor */
             snprintf(rest, sizeof rest, " = %.2fx", above / p_above);
         snprintf(what, sizeof what, "%d tap%s × %llu PFL px of %dx%d (%.3g M texel reads); floor (no reads) %.2f ms, "
                  "above it %.2f vs %.2f ms%s", taps, taps == 1 ? "" : "s", (unsigned long long)pixels, in->view->w,
