@@ -29,8 +29,8 @@ static void bench_parse_stages(void **st)
     assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,morais", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(LAYERS) |
                                SL_BENCH_STAGE(MORAIS));
-    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,startup,scoring,lightfit,bigmap",
-                                           &bits, &d), SL_OK);
+    assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,techniques,startup,scoring,"
+                                           "lightfit,bigmap", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_ALL);
     assert_int_equal(sl_bench_parse_stages("bigmap", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(BIGMAP));
@@ -44,8 +44,13 @@ static void bench_parse_stages(void **st)
     assert_int_equal(bits, SL_BENCH_STAGE(CHURN));
     assert_int_equal(sl_bench_parse_stages("lightfit", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(LIGHTFIT));
+    assert_int_equal(sl_bench_parse_stages("techniques", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(TECHNIQUES));
     assert_int_equal(sl_bench_parse_stages("truth,layer", &bits, &d), SL_E_USAGE);
     assert_non_null(strstr(d.msg, "'layer'"));
+    /* every stage named in the message, in the order of SL_BENCH_STAGES */
+    assert_non_null(strstr(d.msg, "(known: truth, layers, backends, moderno, morais, jobs, churn, techniques, "
+                                  "startup, scoring, lightfit, bigmap)"));
     assert_int_equal(sl_bench_parse_stages("", &bits, &d), SL_E_USAGE);
 }
 
@@ -258,6 +263,69 @@ static void bench_churn_rows(void **st)
     assert_non_null(strstr(text, "| 512² | fresh |"));
 }
 
+/* The techniques stage on a tiny size: two rows per setting of each
+ * package of the source tree (its map against the plain map, its lookup
+ * against the plain lookup), pcf at kernel 3 and 5 and nsm_glsl among them,
+ * each against its plain counterpart and its target; the table printed,
+ * post passes (when a package has them) on rows of their own. */
+static void bench_techniques_rows(void **st)
+{
+    (void)st;
+    char md[300];
+    struct sl_bench_opts o = {.stages = SL_BENCH_STAGE(TECHNIQUES), .reps = 2, .scene = "blocks", .width = 64,
+                              .height = 48, .map = 128};
+    struct sl_bench_result r;
+    run_bench(&o, "techniques.md", md, sizeof md, &r);
+    int ntech = r.nrows - 2;   /* + memory, context */
+    assert_true(ntech >= 6 && ntech % 2 == 0);
+    assert_string_equal(r.rows[ntech].stage, "memory");
+    assert_string_equal(r.rows[ntech + 1].stage, "context");
+    static const char *const want[] = {"nsm_glsl map 128²", "nsm_glsl lookup 1 tap", "pcf kernel=3 map 130²",
+                                       "pcf kernel=3 lookup 9 taps", "pcf kernel=5 map 132²",
+                                       "pcf kernel=5 lookup 25 taps"};
+    for (size_t k = 0; k < sizeof want / sizeof want[0]; k++) {
+        int found = 0;
+        for (int i = 0; i < ntech; i++)
+            found += !strcmp(r.rows[i].name, want[k]);
+        if (found != 1)
+            fail_msg("row '%s' found %d times", want[k], found);
+    }
+    for (int i = 0; i < ntech; i++) {
+        const struct sl_bench_row *w = &r.rows[i];
+        assert_string_equal(w->stage, "technique");
+        /* map, then lookup, of the same setting */
+        const int lookup = i % 2;
+        assert_non_null(strstr(w->name, lookup ? " lookup " : " map "));
+        assert_true(fabs(w->target - (lookup ? 1.5 : 1.3)) < 1e-12);
+        assert_true(isfinite(w->value) && w->value > 0 && isfinite(w->plain) && w->plain > 0);
+        assert_true(fabs(w->ratio - w->value / w->plain) < 1e-9 * w->ratio);
+        assert_int_equal(w->pass, w->ratio <= w->target);
+    }
+    const char *text = slurp(md);
+    assert_non_null(strstr(text, "## Technique packages vs plain passes"));
+    assert_non_null(strstr(text, "| pcf kernel=3 | map | 1 map r32f, 130² (S 128 + 2 × guard 1), cull none | "));
+    assert_non_null(strstr(text, "| pcf kernel=5 | lookup | 25 taps × "));
+    assert_non_null(strstr(text, "| nsm_glsl | lookup | 1 tap × "));
+    /* what a lookup pays before its reads, the plain lookup reading none */
+    const char *fl = strstr(text, "| pcf kernel=3 | lookup | ");
+    assert_non_null(fl);
+    char fline[400];
+    snprintf(fline, sizeof fline, "%.*s", (int)strcspn(fl, "\n"), fl);
+    assert_non_null(strstr(fline, "; floor (no reads) "));
+    assert_non_null(strstr(fline, " ms, above it "));
+    assert_non_null(strstr(text, "Whole stage: wall "));
+    assert_non_null(strstr(text, "load average before "));
+    /* a package with post passes has its row, with what they do */
+    const char *post = strstr(text, " | post | ");
+    if (post) {
+        char line[300];
+        snprintf(line, sizeof line, "%.*s", (int)strcspn(post, "\n"), post);
+        assert_true(strstr(line, "blur") || strstr(line, "mipmaps") || strstr(line, "nothing at this setting"));
+        assert_non_null(strstr(line, " | — | — |  |  | "));   /* no plain counterpart, no target */
+    }
+    printf("bench::techniques_rows: %d settings%s\n", ntech / 2, post ? ", post passes among them" : "");
+}
+
 /* The big-map stage at 1024^2: one row against 6 GB; the printed peak is
  * above the RSS at the start by at least the five 4 MiB arrays csm holds
  * (BGSM depth + id, BGSM2 depth, SGSM depth + id); three layers at most at
@@ -437,6 +505,7 @@ int main(int argc, char **argv)
         SL_CASE(bench, quick_mode_rows),
         SL_CASE(bench, backends_rows),
         SL_CASE(bench, churn_rows),
+        SL_CASE(bench, techniques_rows),
         SL_CASE(bench, bigmap_rows),
         SL_CASE(bench, markdown_file),
     };

@@ -43,10 +43,13 @@ enum sl_err sl_bench_parse_stages(const char *list, unsigned *out, struct sl_dia
                 *out |= 1u << i;
                 found = 1;
             }
-        if (!found)
-            return sl_fail(d, SL_E_USAGE, NULL, 0, "--only",
-                           "unknown stage '%.*s' (known: truth, layers, backends, moderno, morais, jobs, churn, "
-                           "startup, scoring, lightfit, bigmap)", (int)n, p);
+        if (!found) {
+            /* the names as SL_BENCH_STAGES lists them, so the message cannot drift */
+            char known[256] = "";
+            for (int i = 0, k = 0; i < SL_BENCH_NSTAGES && k < (int)sizeof known; i++)
+                k += snprintf(known + k, sizeof known - (size_t)k, "%s%s", i ? ", " : "", stage_names[i]);
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "--only", "unknown stage '%.*s' (known: %s)", (int)n, p, known);
+        }
         p += n;
         if (*p == ',')
             p++;
@@ -147,7 +150,8 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     x.out = out;
     enum sl_err e = SL_OK;
     int need_scene = (stages & (SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(LAYERS) | SL_BENCH_STAGE(BACKENDS) |
-                                SL_BENCH_STAGE(CHURN) | SL_BENCH_STAGE(SCORING) | SL_BENCH_STAGE(LIGHTFIT) |
+                                SL_BENCH_STAGE(CHURN) | SL_BENCH_STAGE(TECHNIQUES) |
+                                SL_BENCH_STAGE(SCORING) | SL_BENCH_STAGE(LIGHTFIT) |
                                 SL_BENCH_STAGE(BIGMAP))) != 0;
 
     /* the studies' table (below): declared before any jump to done, which frees it */
@@ -231,6 +235,9 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
         fflush(out);
         if (!e && (stages & SL_BENCH_STAGE(CHURN)))
             e = sl_bench_churn(&x.s, &x.mesh, &x.gp, x.vp[0], x.W, x.H, x.S, x.reps, out, res, d);
+        fflush(out);
+        if (!e && (stages & SL_BENCH_STAGE(TECHNIQUES)))
+            e = sl_bench_techniques(&x, res, d);
         fflush(out);
         if (!e && (stages & SL_BENCH_STAGE(SCORING)))
             e = sl_bench_score(&x, res, d);

@@ -28,6 +28,12 @@
  *   target and pooled arrays against a target and arrays made afresh, wall,
  *   CPU and minor page faults (target: 2S at most 5x S;
  *   bench_churn.c);
+ * - techniques: each technique package of the source tree's techniques/
+ *   (pcf at kernel 3 and 5, the others at their defaults) at the layers'
+ *   map size and viewport: its map pass against a plain package's writing
+ *   the same maps (target: 1.3x), its post passes (blur, mipmaps) on rows of
+ *   their own, its lookup against a plain one reading as many texels per
+ *   pixel (target: 1.5x); wall, GPU and CPU time (bench_techniques.c);
  * - the studies' CPU time (user + sys), minor page faults and the peak RSS
  *   after each (targets: Moderno 12 s CPU; Morais 90 s CPU, 0.5 M faults,
  *   1 GiB; the RSS is the process's peak so far: run a study alone to read
@@ -69,6 +75,7 @@
     X(MORAIS,  "morais")     \
     X(JOBS,    "jobs")       \
     X(CHURN,   "churn")      \
+    X(TECHNIQUES, "techniques") \
     X(STARTUP, "startup")    \
     X(SCORING, "scoring")    \
     X(LIGHTFIT, "lightfit")  \
@@ -121,7 +128,7 @@ struct sl_bench_row {
 
 struct sl_bench_result {
     int nrows;
-    struct sl_bench_row rows[48];
+    struct sl_bench_row rows[96];
 };
 
 /* "truth,layers" -> bits; SL_E_USAGE naming the unknown one otherwise. */

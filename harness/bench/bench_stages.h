@@ -57,6 +57,10 @@ enum sl_err sl_bench_churn(const struct sl_scene *s, const struct sl_gl_mesh *m,
                            int vp, int W, int H, int S, int reps, FILE *out, struct sl_bench_result *res,
                            struct sl_diag *d);
 
+/* Each technique package of the source tree against plain passes of the
+ * same maps and texel reads (bench_techniques.c). */
+enum sl_err sl_bench_techniques(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
+
 /* Start-up of version, validate CONFIG and help, lazy against the same
  * binary with its heavy libraries preloaded (bench_startup.c). */
 enum sl_err sl_bench_startup(const char *config, int reps, FILE *out, struct sl_bench_result *res,
