@@ -41,7 +41,7 @@ int main(int argc, char **argv)
         return cli_usage_error("missing command", cli_usage());
     const char *cmd = argv[1];
     if (!strcmp(cmd, "version") || !strcmp(cmd, "-V") || !strcmp(cmd, "--version")) {
-        printf("shadowlab %s\n", sl_git_sha());
+        printf("shadowlab %s (git %s)\n", SL_VERSION, sl_git_sha());
         return 0;
     }
     int help = !strcmp(cmd, "-h") || !strcmp(cmd, "--help") || !strcmp(cmd, "help");

@@ -236,6 +236,6 @@ const char *cli_usage(void)
         snprintf(left, sizeof left, "%s %s", v->name, v->synopsis);
         usage_line(text, sizeof text, &len, left, v->summary);
     }
-    usage_line(text, sizeof text, &len, "version, -V, --version", "the git SHA this binary was built from");
+    usage_line(text, sizeof text, &len, "version, -V, --version", "the version and the git SHA this binary was built from");
     return text;
 }

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# doc::package_* — what a lab installs and cites agrees with the binary
+# (issue 37, item 6). One case per argument:
+#   version     `shadowlab --version` prints "shadowlab X.Y.Z (git SHA)"; X.Y.Z is
+#               CMakeLists.txt's project(VERSION), CITATION.cff's version and the
+#               man page's; LICENSE is MIT; CITATION.cff is CFF 1.2.0 with its keys
+# Usage: doc_package.sh SHADOWLAB_BINARY CASE   (run from the source tree)
+set -u
+bin=${1:?usage: doc_package.sh path/to/shadowlab CASE}
+case_=${2:?usage: doc_package.sh path/to/shadowlab CASE}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0; passes=0
+fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+ok() { passes=$((passes + 1)); }
+
+cmake_version() { sed -n 's/^project(shadowlab VERSION \([0-9][0-9.]*\) .*/\1/p' CMakeLists.txt; }
+
+case $case_ in
+version)
+  v=$("$bin" --version)
+  echo "$v" | grep -Eq '^shadowlab [0-9]+\.[0-9]+\.[0-9]+ \(git ([0-9a-f]{7,40}(-dirty)?|unknown)\)$' && ok ||
+    fail "--version prints '$v', not 'shadowlab X.Y.Z (git SHA)'"
+  bv=$(echo "$v" | awk '{ print $2 }')
+  cv=$(cmake_version)
+  [ -n "$cv" ] && [ "$bv" = "$cv" ] && ok || fail "the binary says $bv, CMakeLists.txt's project(VERSION) '$cv'"
+  ffv=$(sed -n 's/^version: *"\{0,1\}\([^"]*\)"\{0,1\} *$/\1/p' CITATION.cff)
+  [ "$ffv" = "$cv" ] && ok || fail "CITATION.cff's version '$ffv' is not CMakeLists.txt's '$cv'"
+  grep -q '^cff-version: 1\.2\.0$' CITATION.cff && ok || fail "CITATION.cff: no 'cff-version: 1.2.0'"
+  grep -q '^license: MIT$' CITATION.cff && ok || fail "CITATION.cff: no 'license: MIT'"
+  # the keys CFF 1.2.0 requires, the authors entity, and the references' types
+  if python3 -c 'import yaml' 2>/dev/null; then
+    python3 - <<'PY' && ok || fail "CITATION.cff is not valid CFF 1.2.0 (above)"
+import sys, yaml
+d = yaml.safe_load(open("CITATION.cff", encoding="utf-8"))
+bad = []
+for k in ("cff-version", "message", "title", "authors"):
+    if k not in d:
+        bad.append("missing required key " + k)
+known = {"abstract", "authors", "cff-version", "commit", "contact", "date-released", "doi", "identifiers",
+         "keywords", "license", "license-url", "message", "preferred-citation", "references", "repository",
+         "repository-artifact", "repository-code", "title", "type", "url", "version"}
+bad += ["unknown key " + k for k in d if k not in known]
+if d.get("type") not in (None, "software", "dataset"):
+    bad.append("type must be software or dataset")
+if d.get("authors") != [{"name": "the shadowlab authors"}]:
+    bad.append("authors must be the entity 'the shadowlab authors'")
+if not isinstance(d.get("version"), str):
+    bad.append("version must be a string (quoted)")
+for r in d.get("references", []):
+    for k in ("type", "title", "authors"):
+        if k not in r:
+            bad.append("a reference lacks " + k + ": " + str(r.get("title")))
+    if not isinstance(r.get("year"), int):
+        bad.append("a reference's year is not a number: " + str(r.get("title")))
+    for a in r.get("authors", []):
+        if not ("family-names" in a or "name" in a):
+            bad.append("an author of " + r["title"] + " has neither family-names nor name")
+for b in bad:
+    print("  " + b)
+sys.exit(1 if bad else 0)
+PY
+  fi
+  head -n 1 LICENSE | grep -q '^MIT License$' && ok || fail "LICENSE is not the MIT licence"
+  grep -q '^Copyright (c) 2026 the shadowlab authors$' LICENSE && ok || fail "LICENSE: no copyright line"
+  # the man page carries the same version (it is written by the binary: doc::package_man)
+  grep -q "^\.TH SHADOWLAB 1 .*\"shadowlab $cv\"" doc/shadowlab.1 && ok ||
+    fail "doc/shadowlab.1's .TH line does not name shadowlab $cv"
+  ;;
+*) echo "doc_package.sh: unknown case $case_" >&2; exit 2 ;;
+esac
+echo "doc::package_$case_: $passes passed, $fails failed"
+[ $fails -eq 0 ]
