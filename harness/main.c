@@ -49,6 +49,10 @@ int main(int argc, char **argv)
         fputs(cli_usage(), stdout);
         return 0;
     }
+    if (help && !strcmp(argv[2], "--man")) {
+        cli_man(stdout);
+        return 0;
+    }
     if (help)
         v = cli_verb_find(argv[2]);   /* help VERB = VERB --help */
     if (!v) {

@@ -4,6 +4,9 @@
 #   version     `shadowlab --version` prints "shadowlab X.Y.Z (git SHA)"; X.Y.Z is
 #               CMakeLists.txt's project(VERSION), CITATION.cff's version and the
 #               man page's; LICENSE is MIT; CITATION.cff is CFF 1.2.0 with its keys
+#   man         doc/shadowlab.1 is what `shadowlab help --man` writes (from usage.c's
+#               table and help texts) byte for byte; groff reads it without a warning;
+#               it has every verb and the environment, --jobs, --cache and config sections
 # Usage: doc_package.sh SHADOWLAB_BINARY CASE   (run from the source tree)
 set -u
 bin=${1:?usage: doc_package.sh path/to/shadowlab CASE}
@@ -66,6 +69,25 @@ PY
   # the man page carries the same version (it is written by the binary: doc::package_man)
   grep -q "^\.TH SHADOWLAB 1 .*\"shadowlab $cv\"" doc/shadowlab.1 && ok ||
     fail "doc/shadowlab.1's .TH line does not name shadowlab $cv"
+  ;;
+man)
+  "$bin" help --man >"$tmp/shadowlab.1" && ok || fail "help --man failed"
+  if cmp -s "$tmp/shadowlab.1" doc/shadowlab.1; then ok; else
+    fail "doc/shadowlab.1 is not what the binary writes: run 'build/shadowlab help --man > doc/shadowlab.1' (edit harness/cli/usage.c, not the page)"
+    diff -u doc/shadowlab.1 "$tmp/shadowlab.1" | head -n 40
+  fi
+  if command -v groff >/dev/null; then
+    w=$(groff -man -ww -z -K utf8 "$tmp/shadowlab.1" 2>&1)
+    [ -z "$w" ] && ok || fail "groff warns: $w"
+  fi
+  for verb in $("$bin" --help | awk 'NR > 1 && $1 !~ /^-|,$/ { print $1 }' | sort -u); do
+    [ "$verb" = help ] && continue
+    grep -q "^\.SS $verb\( \|\$\|,\)" "$tmp/shadowlab.1" && ok || fail "the man page has no section for '$verb'"
+  done
+  for want in SHADOWLAB_GL SHADOWLAB_SCENES SHADOWLAB_TECHNIQUES '\\-\\-jobs N' '\\-\\-cache DIR' \
+              '^\.SH CONFIGURATION' 'doc/guide\.md' '^\.SH ENVIRONMENT' '^\.SH EXIT STATUS'; do
+    grep -q -- "$want" "$tmp/shadowlab.1" && ok || fail "the man page lacks $want"
+  done
   ;;
 *) echo "doc_package.sh: unknown case $case_" >&2; exit 2 ;;
 esac

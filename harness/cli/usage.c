@@ -3,7 +3,10 @@
  * `shadowlab --help`, `shadowlab VERB --help` and the dispatch in main.c.
  * The top-level help is built from the table's rows (synopsis and summary),
  * so a verb cannot be dispatched without being listed, nor listed without
- * being dispatched. doc/shadowlab.1 is written by hand beside these texts.
+ * being dispatched. The man page (doc/shadowlab.1) is written from the same
+ * rows and texts by `shadowlab help --man` (cli_man, below), with the
+ * sections only it has (environment, configuration, files, exit status) kept
+ * here too; doc::package_man fails when the committed page differs.
  */
 #include <stdio.h>
 #include <string.h>
@@ -103,6 +106,8 @@ const char cli_usage_bench[] =
     "             (each study in a child process of its own, forked before the other stages)\n"
     "    jobs     CONFIG (default configs/morais-2015.yaml) as one process vs run --jobs 2, files and\n"
     "             store, no cache: wall, CPU, views split, merge per 1,000 cells (--jobs 2 not slower)\n"
+    "    churn    NSM's layer at the map size S and 2S through the pass's kept render target and pooled\n"
+    "             arrays vs ones made afresh: wall, CPU, minor page faults (2S at most 5x S)\n"
     "    startup  version, validate CONFIG (default configs/default.yaml) and help run as processes,\n"
     "             against the same binary with its heavy libraries preloaded (validate < 50 ms)\n"
     "    scoring  a cell's contours, figures and exactness count per 1 M pixels vs one histogram\n"
@@ -237,5 +242,238 @@ const char *cli_usage(void)
         usage_line(text, sizeof text, &len, left, v->summary);
     }
     usage_line(text, sizeof text, &len, "version, -V, --version", "the version and the git SHA this binary was built from");
+    usage_line(text, sizeof text, &len, "help --man", "this reference as a man page (roff: doc/shadowlab.1)");
+    usage_line(text, sizeof text, &len, "help --bash-completion", "the bash completion script for these verbs");
     return text;
+}
+
+/* ---- the man page -------------------------------------------------------
+ * `shadowlab help --man` writes doc/shadowlab.1: each verb's row and help
+ * text above, and the sections below, which only the man page has. Text is
+ * plain (no roff in it): man_text escapes it, a blank line starts a
+ * paragraph. The page carries no date, so the same binary writes the same
+ * bytes (doc::package_man compares them with the committed page). */
+
+/* the environment variables the program reads, in the ENVIRONMENT section */
+static const struct {
+    const char *name, *text;
+} man_env[] = {
+    {"SHADOWLAB_GL", "The GL context when neither --gl nor the config's 'gl' names one: osmesa or egl (any "
+                     "other value is an error). CI runs the rendering tests a second time with "
+                     "SHADOWLAB_GL=egl."},
+    {"SHADOWLAB_EGL_DEVICE", "The EGL device (its index) to use with --gl egl."},
+    {"SHADOWLAB_SCENES", "Colon-separated folders searched for scene names after the config's own folder and "
+                         "before the installed share/shadowlab/scenes (or, not installed, the source tree's "
+                         "scenes/)."},
+    {"SHADOWLAB_TECHNIQUES", "Colon-separated folders searched for technique packages after a config's "
+                             "'techniques:' folders and before the source tree's techniques/ and the installed "
+                             "share/shadowlab/techniques; the first package of a name wins."},
+    {"SHADOWLAB_MODULE_DIR", "A folder searched first for the modules loaded on first use "
+                             "(shadowlab-oiio.so, shadowlab-sheet.so); otherwise beside the binary, then "
+                             "lib/shadowlab under its prefix."},
+    {"OMP_WAIT_POLICY, GOMP_SPINCOUNT", "run and bench set OMP_WAIT_POLICY=passive for themselves when neither "
+                                        "is set (idle OpenMP threads then do not spin); either one set keeps "
+                                        "the user's choice."},
+    {"LP_NUM_THREADS", "llvmpipe's threads; -j/--threads sets it."},
+    {"NO_COLOR", "When set and not empty, check prints no colour."},
+};
+
+static const char man_description[] =
+    "shadowlab renders shadow techniques with OpenGL (OSMesa or EGL, no window), compares every pixel with "
+    "an exact ray-traced truth (Embree) and writes thesis-style tables, error overlays and a results store "
+    "(SQLite). An experiment is a YAML config: scenes, viewports, map sizes, contours and method labels; it "
+    "expands to a sweep of cells (scene x viewport x viewpoint x map size x label). Every output carries the "
+    "git SHA, the config hash and the machine.\n"
+    "\n"
+    "Each command's reference below is its --help text (shadowlab help COMMAND prints the same).\n";
+
+static const char man_config[] =
+    "A config is a YAML file; the reference, with every key, its default and its range, is the Configs "
+    "section of doc/guide.md in the source tree, and "
+    "shadowlab validate CONFIG prints a config with every default filled in. In short:\n"
+    "\n"
+    "    name: study                  # output folder under the --out root\n"
+    "    scenes: [{scene: primitives, viewpoints: [side]}]\n"
+    "    viewports: [{width: 512, height: 512}]\n"
+    "    map_sizes: [1024, 2048]      # powers of two, 64..16384\n"
+    "    contours: [2, 4]\n"
+    "    methods:\n"
+    "      - {label: nsm, method: nsm}\n"
+    "      - {label: bias-1, method: nsm, self_shadow: constant, bias: 1}\n"
+    "\n"
+    "Unknown keys are errors (in a research config they are typos), reported with file, line and key, exit "
+    "2. -D KEY=VALUE replaces a key by its path for one run, checked as the file is; the config hash of the "
+    "results covers the overrides. A method is a built-in (shadowlab list methods) or a technique package "
+    "(shadowlab list techniques, doc/techniques.md). A scene file is YAML too (meshes, light, viewpoints; "
+    "doc/guide.md, Scenes and models).\n";
+
+static const char man_files[] =
+    "PREFIX/share/shadowlab/configs/\n"
+    "    The shipped experiments (default.yaml, ci.yaml, the theses' studies).\n"
+    "PREFIX/share/shadowlab/scenes/\n"
+    "    The shipped scenes.\n"
+    "PREFIX/share/shadowlab/techniques/\n"
+    "    The shipped technique packages.\n"
+    "DIR/shadowlab.db, DIR/shadowlab.db.lock\n"
+    "    The results store of a run with --out DIR (doc/store.md), and the lock a writer holds on it while it "
+    "writes (removed when it closes the store).\n"
+    "DIR/cache/\n"
+    "    The truth cache (--cache), shared between runs.\n";
+
+static const char man_exit[] =
+    "0 done; 1 a check failed (check, merge with a missing cell); 2 bad input or usage; 3 a system failure "
+    "(output not writable, GL, Embree, memory); 130 or 143 interrupted by SIGINT or SIGTERM.\n";
+
+static const char man_examples[] =
+    "shadowlab run /usr/local/share/shadowlab/configs/default.yaml -o /tmp/r\n"
+    "shadowlab run my.yaml -D map_sizes=[2048] -j 8 -q\n"
+    "shadowlab run configs/morais-2015.yaml --jobs 4 --cache /scratch/cache\n"
+    "shadowlab table /tmp/r/shadowlab.db --label nsm --format latex\n"
+    "shadowlab check /tmp/r/shadowlab.db --baseline base.yaml --junit junit.xml\n";
+
+static const char man_see_also[] =
+    "README.md and doc/ in the source tree: guide.md (the user guide and the config reference), methods.md, "
+    "techniques.md, store.md, testing.md, performance.md, glossary.md (PFL, PnFL and the other terms), "
+    "references.md (the theses and papers).\n";
+
+/* one character of plain text in roff: backslash and minus escaped, a
+ * control character at the start of a line made text */
+static void man_char(FILE *f, char c, int bol)
+{
+    if (bol && (c == '.' || c == '\''))
+        fputs("\\&", f);
+    if (c == '\\')
+        fputs("\\e", f);
+    else if (c == '-')
+        fputs("\\-", f);
+    else
+        fputc(c, f);
+}
+
+static void man_line(FILE *f, const char *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        man_char(f, s[i], i == 0);
+    fputc('\n', f);
+}
+
+/* paragraphs: a blank line is .PP; a line starting with a space, and the
+ * lines after it up to a blank one, keep their layout (.nf) */
+static void man_text(FILE *f, const char *s)
+{
+    int nf = 0;
+    while (*s) {
+        size_t n = strcspn(s, "\n");
+        if (n == 0) {
+            if (nf)
+                fputs(".fi\n", f);
+            nf = 0;
+            fputs(".PP\n", f);
+        } else {
+            if (!nf && s[0] == ' ') {
+                fputs(".nf\n", f);
+                nf = 1;
+            }
+            man_line(f, s, n);
+        }
+        s += n + (s[n] == '\n');
+    }
+    if (nf)
+        fputs(".fi\n", f);
+}
+
+/* the arguments of a verb's "usage: shadowlab VERB ..." lines (the first and
+ * the indented ones that go on with '[' or '-'), spaces collapsed */
+static void man_synopsis(FILE *f, const char *usage)
+{
+    const char *s = strchr(usage, ' ');   /* past "usage:" */
+    s = s ? strchr(s + 1, ' ') : NULL;    /* past "shadowlab" */
+    s = s ? strchr(s + 1, ' ') : NULL;    /* past the verb */
+    char buf[1024];
+    size_t len = 0;
+    for (int first = 1; s && *s; first = 0) {
+        size_t n = strcspn(s, "\n"), k = strspn(s, " ");
+        if (!first && (k < 8 || (s[k] != '[' && s[k] != '-')))
+            break;
+        for (size_t i = k; i < n && len + 2 < sizeof buf; i++)
+            if (s[i] != ' ' || (len && buf[len - 1] != ' '))
+                buf[len++] = s[i];
+        if (len && buf[len - 1] != ' ' && len + 2 < sizeof buf)
+            buf[len++] = ' ';
+        s += n + (s[n] == '\n');
+    }
+    while (len && buf[len - 1] == ' ')
+        len--;
+    man_line(f, buf, len);
+}
+
+/* a verb's help text as it prints, kept in its layout */
+static void man_verbatim(FILE *f, const char *s)
+{
+    fputs(".nf\n", f);
+    while (*s) {
+        size_t n = strcspn(s, "\n");
+        man_line(f, s, n);
+        s += n + (s[n] == '\n');
+    }
+    fputs(".fi\n", f);
+}
+
+void cli_man(FILE *f)
+{
+    fputs(".\\\" shadowlab(1): generated by `shadowlab help --man` from harness/cli/usage.c (the table of verbs\n"
+          ".\\\" and their --help texts); do not edit: edit usage.c, then build/shadowlab help --man > doc/shadowlab.1\n",
+          f);
+    fprintf(f, ".TH SHADOWLAB 1 \"\" \"shadowlab %s\" \"User Commands\"\n", SL_VERSION);
+    fputs(".SH NAME\nshadowlab \\- measure how wrong shadow maps are, pixel by pixel, against a ray-traced "
+          "truth\n.SH SYNOPSIS\n",
+          f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        fprintf(f, ".B shadowlab %s\n", v->name);
+        man_synopsis(f, v->usage);
+        fputs(".br\n", f);
+    }
+    fputs(".B shadowlab version\\fR|\\fB\\-V\\fR|\\fB\\-\\-version\n.br\n"
+          ".B shadowlab help\n.RI [ COMMAND \\fR|\\fB\\-\\-man\\fR|\\fB\\-\\-bash\\-completion ]\n",
+          f);
+    fputs(".SH DESCRIPTION\n", f);
+    man_text(f, man_description);
+    fputs(".SH COMMANDS\n", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        fprintf(f, ".SS %s\n", v->name);
+        man_text(f, v->summary);
+        fputs(".PP\n", f);
+        man_verbatim(f, v->usage);
+    }
+    fputs(".SS version, \\-V, \\-\\-version\nPrints \"shadowlab VERSION (git SHA)\": the release and the "
+          "commit this binary was built from (\"\\-dirty\" when tracked files had uncommitted changes).\n"
+          ".SS help\nhelp prints the list of commands; help COMMAND the command's help (as COMMAND \\-\\-help); "
+          "help \\-\\-man this page; help \\-\\-bash\\-completion the bash completion script.\n",
+          f);
+    fputs(".SH CONFIGURATION\n", f);
+    man_text(f, man_config);
+    fputs(".SH ENVIRONMENT\n", f);
+    for (size_t i = 0; i < sizeof man_env / sizeof man_env[0]; i++) {
+        fputs(".TP\n.B ", f);
+        man_line(f, man_env[i].name, strlen(man_env[i].name));
+        man_text(f, man_env[i].text);
+    }
+    fputs(".SH FILES\n", f);
+    for (const char *s = man_files; *s;) {
+        size_t n = strcspn(s, "\n");
+        if (s[0] == ' ') {
+            size_t k = strspn(s, " ");
+            man_line(f, s + k, n - k);
+        } else {
+            fputs(".TP\n.I ", f);
+            man_line(f, s, n);
+        }
+        s += n + (s[n] == '\n');
+    }
+    fputs(".SH EXIT STATUS\n", f);
+    man_text(f, man_exit);
+    fputs(".SH EXAMPLES\n", f);
+    man_verbatim(f, man_examples);
+    fputs(".SH SEE ALSO\n", f);
+    man_text(f, man_see_also);
 }
