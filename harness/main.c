@@ -53,6 +53,10 @@ int main(int argc, char **argv)
         cli_man(stdout);
         return 0;
     }
+    if (help && !strcmp(argv[2], "--bash-completion")) {
+        cli_completion(stdout);
+        return 0;
+    }
     if (help)
         v = cli_verb_find(argv[2]);   /* help VERB = VERB --help */
     if (!v) {

@@ -7,6 +7,11 @@
 #   man         doc/shadowlab.1 is what `shadowlab help --man` writes (from usage.c's
 #               table and help texts) byte for byte; groff reads it without a warning;
 #               it has every verb and the environment, --jobs, --cache and config sections
+#   completion  scripts/shadowlab.bash-completion is what `shadowlab help --bash-completion`
+#               writes; every long option a verb's parser accepts (its struct option
+#               table in harness/cli/, submit's in harness/cluster/submit.c) is in the
+#               verb's --help and completes; verbs, bench stages, --scene, --summary,
+#               --figures, -D and show technique complete
 # Usage: doc_package.sh SHADOWLAB_BINARY CASE   (run from the source tree)
 set -u
 bin=${1:?usage: doc_package.sh path/to/shadowlab CASE}
@@ -88,6 +93,74 @@ man)
               '^\.SH CONFIGURATION' 'doc/guide\.md' '^\.SH ENVIRONMENT' '^\.SH EXIT STATUS'; do
     grep -q -- "$want" "$tmp/shadowlab.1" && ok || fail "the man page lacks $want"
   done
+  ;;
+completion)
+  comp=scripts/shadowlab.bash-completion
+  "$bin" help --bash-completion >"$tmp/comp" && ok || fail "help --bash-completion failed"
+  if cmp -s "$tmp/comp" "$comp"; then ok; else
+    fail "$comp is not what the binary writes: run 'build/shadowlab help --bash-completion > $comp' (edit harness/cli/usage.c, not the script)"
+    diff -u "$comp" "$tmp/comp" | head -n 40
+  fi
+  bash -n "$comp" && ok || fail "$comp is not valid bash"
+  # the completion as bash runs it: complete WORDS... (the last one is completed);
+  # `shadowlab` on PATH is the binary under test (scene, label, key and technique lists)
+  mkdir -p "$tmp/bin"; ln -s "$(readlink -f "$bin")" "$tmp/bin/shadowlab"
+  complete_() {
+    PATH="$tmp/bin:$PATH" bash -c 'source "$1"; shift; COMP_WORDS=("$@"); COMP_CWORD=$(($# - 1)); _shadowlab
+      printf "%s\n" "${COMPREPLY[@]}"' _ "$comp" "$@"
+  }
+  has() { # has WORD COMPLETION-WORDS...: the completion offers WORD
+    local w=$1; shift
+    complete_ "$@" | grep -qxF -- "$w" && ok || fail "completing '$*' does not offer '$w'"
+  }
+  # the options each verb's parser accepts, read from its source
+  opts_of() { grep -oE '\{"[a-z][a-z-]*", *(no|required|optional)_argument' "$@" | sed 's/{"\([a-z-]*\)".*/--\1/' | sort -u; }
+  for pair in run:run validate:validate table:table report:report check:check bench:bench \
+              preview:preview "store:merge verify" list:list "list:show"; do
+    file=harness/cli/${pair%%:*}.c verbs=${pair#*:}
+    for o in $(opts_of "$file"); do
+      [ "$o" = --help ] && continue
+      found=0
+      for v in $verbs; do "$bin" help "$v" | grep -q -- "$o\b" && found=1; done
+      [ $found = 1 ] && ok || fail "$o (accepted by $file) is not in 'shadowlab help $verbs'"
+      for v in $verbs; do
+        "$bin" help "$v" | grep -q -- "$o\b" || continue
+        has "$o" shadowlab "$v" "${o:0:3}"
+      done
+    done
+  done
+  for o in $(grep -oE 'strcmp\(a, "--[a-z-]+"\)' harness/cluster/submit.c | sed 's/.*"\(--[a-z-]*\)".*/\1/' | sort -u); do
+    "$bin" help submit | grep -q -- "$o\b" && ok || fail "$o (accepted by submit) is not in 'shadowlab help submit'"
+    has "$o" shadowlab submit "${o:0:3}"
+  done
+  # every verb, and help's
+  for verb in $("$bin" --help | awk 'NR > 1 && $1 !~ /^-|,$/ { print $1 }' | sort -u); do
+    has "$verb" shadowlab "${verb:0:2}"
+    [ "$verb" = help ] || has "$verb" shadowlab help "${verb:0:2}"
+  done
+  has --man shadowlab help --m
+  # every bench stage (bench.h's list) after --only, also after a comma
+  for st in $(sed -n 's/^ *X([A-Z]*, *"\([a-z]*\)").*/\1/p' harness/bench/bench.h); do
+    has "$st" shadowlab bench --only "${st:0:2}"
+    "$bin" help bench | grep -qE "^    $st " && ok || fail "bench's help does not describe stage $st"
+  done
+  has truth,layers shadowlab bench --only truth,la
+  # values: the scenes, figures, config keys, techniques, listed values
+  has primitives shadowlab run x.yaml --scene pri
+  has primitives shadowlab table x.db --scene pri
+  has wrong shadowlab table x.db --summary wro
+  has wrong_caught shadowlab table x.db --summary wrong_c
+  has pfl,wrong shadowlab table x.db --figures pfl,wro
+  has map_sizes= shadowlab run configs/default.yaml -D map_s
+  has methods= shadowlab validate configs/default.yaml --define meth
+  has pcf shadowlab show technique pc
+  has technique shadowlab show te
+  has latex shadowlab table x.db --format la
+  has md shadowlab check x.db --format m
+  has egl shadowlab run x.yaml --gl e
+  has contours shadowlab table x.db --region con
+  has scenes shadowlab list sc
+  has configs/default.yaml shadowlab run configs/def
   ;;
 *) echo "doc_package.sh: unknown case $case_" >&2; exit 2 ;;
 esac

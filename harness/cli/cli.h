@@ -35,6 +35,9 @@ const char *cli_usage(void);                /* `shadowlab --help`, built from cl
 /* `shadowlab help --man`: the man page (roff), from cli_verbs and their help
  * texts (doc/shadowlab.1 is this output) */
 void cli_man(FILE *f);
+/* `shadowlab help --bash-completion`: the bash completion script, from the
+ * same rows (scripts/shadowlab.bash-completion is this output) */
+void cli_completion(FILE *f);
 
 int cli_run(int argc, char **argv);
 int cli_validate(int argc, char **argv);

@@ -8,9 +8,13 @@
  * sections only it has (environment, configuration, files, exit status) kept
  * here too; doc::package_man fails when the committed page differs.
  */
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
+#include "bench.h"
 #include "cli.h"
+#include "figrec.h"
+#include "softfig.h"
 
 const char cli_usage_run[] =
     "usage: shadowlab run CONFIG|SCENE [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
@@ -30,7 +34,7 @@ const char cli_usage_run[] =
     "                    SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
     "  -j, --threads N   threads of the truth and the CPU passes (the config's 'threads') and of\n"
     "                    llvmpipe (LP_NUM_THREADS), 1..256\n"
-    "  -D KEY=VALUE      replace a config key by its path, the value in YAML, checked as the file is:\n"
+    "  -D, --define K=V  replace a config key by its path, the value in YAML, checked as the file is:\n"
     "                    -D map_sizes=[512,1024] -D 'methods[0].bias=0.01' -D outputs.exr=true\n"
     "                    (the results' config hash covers the overrides)\n"
     "  -q, --quiet       print only the 'written to' line (and errors)\n"
@@ -48,7 +52,7 @@ const char cli_usage_run[] =
     "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
 
 const char cli_usage_validate[] =
-    "usage: shadowlab validate FILE [-D KEY=VALUE]...\n"
+    "usage: shadowlab validate FILE [-D|--define KEY=VALUE]...\n"
     "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
     "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
 
@@ -164,8 +168,9 @@ const char cli_usage_merge[] =
     "  holds; exit 1 when any is missing. Every shard is checked first, and nothing is written when\n"
     "  one is a folder or device, damaged (SQLite's quick_check, or a cell that fails its digest,\n"
     "  as `verify` checks) or of another config: exit 2 naming it.\n"
-    "  --allow-mixed  merge shards whose cells come from other git SHAs, GL renderers or ISAs\n"
-    "                 (refused by default; each merged run keeps its own provenance)\n";
+    "  -o, --out STORE.db  the store the shards are merged into\n"
+    "  --allow-mixed       merge shards whose cells come from other git SHAs, GL renderers or ISAs\n"
+    "                      (refused by default; each merged run keeps its own provenance)\n";
 
 const char cli_usage_verify[] =
     "usage: shadowlab verify STORE.db\n"
@@ -476,4 +481,267 @@ void cli_man(FILE *f)
     man_verbatim(f, man_examples);
     fputs(".SH SEE ALSO\n", f);
     man_text(f, man_see_also);
+}
+
+/* ---- the bash completion -------------------------------------------------
+ * `shadowlab help --bash-completion` writes scripts/shadowlab.bash-completion
+ * from the same rows: the verbs, and each verb's options as its help text
+ * names them (the "usage:" lines and the option lines "  -x, --long ARG"),
+ * with the values a "a|b|c" argument lists; the bench's stages from bench.h's
+ * list and the figure names from figrec.h/softfig.h. What depends on the
+ * files at hand (scene names, a store's labels, a config's keys for -D,
+ * technique names) the script asks the binary for as it completes.
+ * doc::package_completion fails when the committed script differs, and when
+ * an option a verb's parser accepts is missing from its help or here. */
+struct comp_opt {
+    char name[40];
+    int  arg;            /* takes a value */
+    char values[96];     /* the words of an "a|b|c" value, space-separated */
+};
+
+static int comp_is_word_char(char c) { return isalnum((unsigned char)c) || c == '-'; }
+
+/* the option at s (a '-'): its name, and whether a value follows ("--x ARG") */
+static const char *comp_scan(const char *s, struct comp_opt *o, int *n, int max)
+{
+    size_t k = 0;
+    while (s[k] == '-')
+        k++;
+    size_t e = k;
+    while (comp_is_word_char(s[e]))
+        e++;
+    if (e == k || k > 2 || e >= sizeof o[0].name)
+        return s + (e ? e : 1);
+    struct comp_opt *p = NULL;
+    for (int i = 0; i < *n; i++)
+        if (strlen(o[i].name) == e && !strncmp(o[i].name, s, e))
+            p = &o[i];
+    if (!p && *n < max) {
+        p = &o[(*n)++];
+        memset(p, 0, sizeof *p);
+        memcpy(p->name, s, e);
+    }
+    if (p && s[e] == ' ' && s[e + 1] && !strchr(" [-|", s[e + 1])) {
+        p->arg = 1;
+        const char *a = s + e + 1;
+        size_t an = strcspn(a, " ]\n");
+        if (memchr(a, '|', an) && !p->values[0]) {
+            /* the lowercase words of "a|b|c" (N|image|contours: image contours) */
+            for (const char *w = a; w < a + an;) {
+                size_t wn = strcspn(w, "|] \n");
+                int lower = wn > 0;
+                for (size_t i = 0; i < wn; i++)
+                    lower &= islower((unsigned char)w[i]) != 0;
+                size_t used = strlen(p->values);
+                if (lower && used + wn + 2 < sizeof p->values)
+                    snprintf(p->values + used, sizeof p->values - used, "%s%.*s", used ? " " : "", (int)wn, w);
+                w += wn + (w[wn] == '|');
+                if (w[-1] != '|')
+                    break;
+            }
+        }
+    }
+    return s + e;
+}
+
+/* the options a verb's help text names; --help always */
+static int comp_options(const char *usage, struct comp_opt *o, int max)
+{
+    int n = 0;
+    int synopsis = 1;
+    for (const char *s = usage; *s;) {
+        size_t len = strcspn(s, "\n"), ind = strspn(s, " ");
+        if (s != usage && !(synopsis && ind >= 8 && (s[ind] == '[' || s[ind] == '-')))
+            synopsis = 0;
+        if (synopsis) {
+            for (size_t i = 0; i < len;)
+                if (s[i] == '-' && i > 0 && strchr(" [|", s[i - 1]))
+                    i = (size_t)(comp_scan(s + i, o, &n, max) - s);
+                else
+                    i++;
+        } else if (ind == 2 && s[2] == '-') {
+            /* "  -o, --out DIR   text": the leading options */
+            const char *p = s + 2;
+            while (*p == '-') {
+                p = comp_scan(p, o, &n, max);
+                if (p[0] == ',' && p[1] == ' ')
+                    p += 2;
+                else if (p[0] == ' ' && p[1] != ' ' && p[1] != '-')
+                    break;
+                else if (p[0] == ' ' && p[1] == '-')
+                    p++;
+                else
+                    break;
+            }
+        }
+        s += len + (s[len] == '\n');
+    }
+    struct comp_opt help = {"--help", 0, ""};
+    int have = 0;
+    for (int i = 0; i < n; i++)
+        have |= !strcmp(o[i].name, "--help");
+    if (!have && n < max)
+        o[n++] = help;
+    return n;
+}
+
+/* the first argument a verb's synopsis names: "CONFIG|SCENE", "DB", "methods|scenes" */
+static void comp_first_arg(const char *usage, char *out, size_t n)
+{
+    const char *s = strchr(usage, ' ');
+    s = s ? strchr(s + 1, ' ') : NULL;
+    s = s ? strchr(s + 1, ' ') : NULL;
+    out[0] = 0;
+    if (s)
+        snprintf(out, n, "%.*s", (int)strcspn(s + 1, " \n"), s + 1);
+}
+
+void cli_completion(FILE *f)
+{
+    fputs("# bash completion for shadowlab: generated by `shadowlab help --bash-completion` from\n"
+          "# harness/cli/usage.c (the table of verbs and their --help texts); do not edit: edit usage.c,\n"
+          "# then build/shadowlab help --bash-completion > scripts/shadowlab.bash-completion\n"
+          "# Installed as share/bash-completion/completions/shadowlab.\n",
+          f);
+    /* a comma-separated list: complete its last item */
+    fputs("_shadowlab_list()\n{\n"
+          "    local pre=\"\" last=$cur\n"
+          "    case $cur in *,*) pre=${cur%,*},; last=${cur##*,} ;; esac\n"
+          "    COMPREPLY=($(compgen -P \"$pre\" -W \"$1\" -- \"$last\"))\n"
+          "    compopt -o nospace 2>/dev/null\n}\n\n",
+          f);
+    fputs("_shadowlab()\n{\n"
+          "    local cur prev verb i db cfg\n"
+          "    cur=${COMP_WORDS[COMP_CWORD]}\n"
+          "    prev=${COMP_WORDS[COMP_CWORD-1]}\n"
+          "    verb=${COMP_WORDS[1]}\n",
+          f);
+    fputs("    if [ \"$COMP_CWORD\" -eq 1 ]; then\n        COMPREPLY=($(compgen -W \"", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++)
+        fprintf(f, "%s ", v->name);
+    fputs("version help -V --version --help\" -- \"$cur\"))\n        return\n    fi\n", f);
+    fputs("    # the store and the config named on the line\n"
+          "    for ((i = 2; i < COMP_CWORD; i++)); do\n"
+          "        case ${COMP_WORDS[i]} in *.db) db=${COMP_WORDS[i]} ;; *.yaml|*.yml) cfg=${COMP_WORDS[i]} ;; esac\n"
+          "    done\n",
+          f);
+    /* values listed in a help text ("--format md|csv|latex"), per verb */
+    fputs("    case \"$verb $prev\" in\n", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        struct comp_opt o[48];
+        int n = comp_options(v->usage, o, 48);
+        for (int i = 0; i < n; i++)
+            if (o[i].values[0] && strcmp(o[i].name, "--figures"))
+                fprintf(f, "        \"%s %s\") COMPREPLY=($(compgen -W \"%s\" -- \"$cur\")); return ;;\n", v->name,
+                        o[i].name, o[i].values);
+    }
+    fputs("    esac\n", f);
+    /* values that need a list of their own, whatever the verb */
+    fputs("    case $prev in\n"
+          "        -o|--out|--cache) COMPREPLY=($(compgen -d -- \"$cur\")); return ;;\n"
+          "        --db|--stored-in) COMPREPLY=($(compgen -f -X '!*.db' -- \"$cur\") $(compgen -d -- \"$cur\")); "
+          "return ;;\n"
+          "        --baseline|--json|--junit|--csv|--markdown) COMPREPLY=($(compgen -f -- \"$cur\")); return ;;\n"
+          "        --scene)\n"
+          "            COMPREPLY=($(compgen -W \"$(shadowlab list scenes 2>/dev/null | awk '{ print $1 }')\" -- "
+          "\"$cur\")); return ;;\n"
+          "        --label)\n"
+          "            # the labels the store named on the line holds\n"
+          "            [ -n \"$db\" ] && COMPREPLY=($(compgen -W \"$(shadowlab table \"$db\" --format csv 2>/dev/null |\n"
+          "                awk -F, 'NR > 1 { print $6 }' | sort -u)\" -- \"$cur\"))\n"
+          "            return ;;\n"
+          "        -D|--define)\n"
+          "            # the top-level keys of the config named on the line, as validate fills it in\n"
+          "            [ -n \"$cfg\" ] && COMPREPLY=($(compgen -W \"$(shadowlab validate \"$cfg\" 2>/dev/null |\n"
+          "                awk '/^[a-z_]+:/ { sub(/:.*/, \"=\"); print }')\" -- \"$cur\"))\n"
+          "            compopt -o nospace 2>/dev/null\n"
+          "            return ;;\n",
+          f);
+    fputs("        --only) _shadowlab_list \"", f);
+    static const char *const stages[] = {
+#define SL_COMP_STAGE(id, name) name,
+        SL_BENCH_STAGES(SL_COMP_STAGE)
+#undef SL_COMP_STAGE
+    };
+    for (size_t i = 0; i < sizeof stages / sizeof stages[0]; i++)
+        fprintf(f, "%s%s", i ? " " : "", stages[i]);
+    fputs("\"; return ;;\n        --summary) COMPREPLY=($(compgen -W \"", f);
+    for (int k = 0; k < SL_FIG_COUNT; k++)
+        fprintf(f, "%s%s", k ? " " : "", sl_figure_name((enum sl_figure)k));
+    fputs("\" -- \"$cur\")); return ;;\n        --figures) _shadowlab_list \"all", f);
+    for (int k = 0; k < SL_FIG_COUNT; k++)
+        fprintf(f, " %s", sl_figure_name((enum sl_figure)k));
+    for (int k = 0; k < SL_SFIG_COUNT; k++)
+        fprintf(f, " %s", sl_soft_figure_name((enum sl_soft_figure)k));
+    fputs("\"; return ;;\n", f);
+    /* every other option that takes a value: nothing to offer */
+    fputs("        ", f);
+    int first = 1;
+    char seen[2048] = " ";
+    static const char *const listed[] = {"-o", "--out", "--cache", "--db", "--stored-in", "--baseline", "--json",
+                                         "--junit", "--csv", "--markdown", "--scene", "--label", "-D", "--define",
+                                         "--only", "--summary", "--figures", "--gl", "--format"};
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        struct comp_opt o[48];
+        int n = comp_options(v->usage, o, 48);
+        for (int i = 0; i < n; i++) {
+            if (!o[i].arg || o[i].values[0])
+                continue;
+            int skip = 0;
+            for (size_t j = 0; j < sizeof listed / sizeof listed[0]; j++)
+                skip |= !strcmp(listed[j], o[i].name);
+            char key[48];
+            snprintf(key, sizeof key, " %s ", o[i].name);
+            if (skip || strstr(seen, key) || strlen(seen) + strlen(key) >= sizeof seen)
+                continue;
+            strcat(seen, key + 1);
+            fprintf(f, "%s%s", first ? "" : "|", o[i].name);
+            first = 0;
+        }
+    }
+    fputs(") return ;;\n    esac\n", f);
+    /* options, then the verb's arguments */
+    fputs("    case $verb in\n", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        struct comp_opt o[48];
+        int n = comp_options(v->usage, o, 48);
+        fprintf(f, "        %s)\n            case $cur in -*) COMPREPLY=($(compgen -W \"", v->name);
+        for (int i = 0; i < n; i++)
+            fprintf(f, "%s%s", i ? " " : "", o[i].name);
+        fputs("\" -- \"$cur\")); return ;; esac\n", f);
+        char a[64];
+        comp_first_arg(v->usage, a, sizeof a);
+        int lower = a[0] != 0;
+        for (const char *c = a; *c; c++)
+            lower &= islower((unsigned char)*c) || *c == '|';
+        if (lower && strchr(a, '|')) {
+            char w[64];
+            snprintf(w, sizeof w, "%s", a);
+            for (char *c = w; *c; c++)
+                if (*c == '|')
+                    *c = ' ';
+            fprintf(f, "            [ \"$COMP_CWORD\" -eq 2 ] && COMPREPLY=($(compgen -W \"%s\" -- \"$cur\"))\n", w);
+        } else if (lower) {
+            /* "show technique NAME": the word, then the names `list` gives for it */
+            fprintf(f, "            if [ \"$COMP_CWORD\" -eq 2 ]; then COMPREPLY=($(compgen -W \"%s\" -- \"$cur\"))\n"
+                       "            else COMPREPLY=($(compgen -W \"$(shadowlab list \"${COMP_WORDS[2]}s\" 2>/dev/null |"
+                       " awk '{ print $1 }')\" -- \"$cur\")); fi\n",
+                    a);
+        } else if (strstr(a, "DB") || strstr(a, ".db")) {
+            fputs("            COMPREPLY=($(compgen -f -X '!*.db' -- \"$cur\") $(compgen -d -- \"$cur\"))\n", f);
+        } else if (!strcmp(a, "SCENE")) {
+            /* a scene file, or a scene's name */
+            fputs("            COMPREPLY=($(compgen -f -X '!*.yaml' -- \"$cur\") $(compgen -d -- \"$cur\")\n"
+                  "                $(compgen -W \"$(shadowlab list scenes 2>/dev/null | awk '{ print $1 }')\" -- \"$cur\"))\n",
+                  f);
+        } else if (strstr(a, "CONFIG") || strstr(a, "FILE") || strstr(a, "SCENE")) {
+            fputs("            COMPREPLY=($(compgen -f -X '!*.yaml' -- \"$cur\") $(compgen -d -- \"$cur\"))\n",
+                  f);
+        }
+        fputs("            ;;\n", f);
+    }
+    fputs("        help) COMPREPLY=($(compgen -W \"", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++)
+        fprintf(f, "%s ", v->name);
+    fputs("--man --bash-completion\" -- \"$cur\")) ;;\n    esac\n}\ncomplete -F _shadowlab shadowlab\n", f);
 }
