@@ -12,6 +12,10 @@
 #               table in harness/cli/, submit's in harness/cluster/submit.c) is in the
 #               verb's --help and completes; verbs, bench stages, --scene, --summary,
 #               --figures, -D and show technique complete
+#   setup       scripts/setup.sh: `run` installs no test-only tool (Slurm, munge,
+#               Chromium, clang, TeX Live, the sqlite3 shell), `test` installs them;
+#               a bad mode exits 2 before installing anything; the guide's cmake
+#               recipe names what CMake looks for
 # Usage: doc_package.sh SHADOWLAB_BINARY CASE   (run from the source tree)
 set -u
 bin=${1:?usage: doc_package.sh path/to/shadowlab CASE}
@@ -161,6 +165,25 @@ completion)
   has contours shadowlab table x.db --region con
   has scenes shadowlab list sc
   has configs/default.yaml shadowlab run configs/def
+  ;;
+setup)
+  bash -n scripts/setup.sh && ok || fail "scripts/setup.sh is not valid bash"
+  eval "$(sed -n '/^RUN_PACKAGES=(/,/^)/p; /^TEST_PACKAGES=(/,/^)/p' scripts/setup.sh)"
+  [ ${#RUN_PACKAGES[@]} -gt 10 ] && ok || fail "no RUN_PACKAGES list in scripts/setup.sh"
+  for p in slurm-wlm munge chromium clang libclang-rt-14-dev texlive-latex-recommended lmodern sqlite3; do
+    printf '%s\n' "${RUN_PACKAGES[@]}" | grep -qx -- "$p" && fail "setup.sh run installs $p (tests only)" || ok
+    printf '%s\n' "${TEST_PACKAGES[@]}" | grep -qx -- "$p" && ok || fail "setup.sh test does not install $p"
+  done
+  for p in libembree-dev libosmesa6-dev libegl-dev libopenimageio-dev libcyaml-dev libsqlite3-dev libcmocka-dev gnuplot-nox; do
+    printf '%s\n' "${RUN_PACKAGES[@]}" | grep -qx -- "$p" && ok || fail "setup.sh run does not install $p"
+  done
+  out=$(bash scripts/setup.sh bogus 2>&1); rc=$?
+  [ $rc -eq 2 ] && ! echo "$out" | grep -q "installing" && ok || fail "setup.sh bogus: rc $rc, '$out'"
+  # the guide's recipe names every pkg-config module and CMake package CMakeLists.txt asks for
+  for m in $(sed -n 's/^pkg_check_modules([A-Z]* \(REQUIRED \)\{0,1\}IMPORTED_TARGET \([a-z0-9.-]*\)).*/\2/p' CMakeLists.txt) \
+           $(sed -n 's/^find_package(\([A-Za-z]*\) .*/\1/p' CMakeLists.txt | grep -v -e PkgConfig -e OpenGL -e OpenMP); do
+    grep -q "\`$m\`" doc/guide.md && ok || fail "doc/guide.md's cmake recipe does not name $m"
+  done
   ;;
 *) echo "doc_package.sh: unknown case $case_" >&2; exit 2 ;;
 esac
