@@ -46,10 +46,10 @@ const char cli_usage_run[] =
     "  or 5% of the cells. Ctrl-C (SIGINT) or SIGTERM stops after the cell under way, writes the\n"
     "  folder of what is stored and says how to --resume (exit 130 or 143).\n"
     "  One run writes a results store at a time (a lock on DB.lock, DB's real path: a link to\n"
-    "  it takes the same lock); a second is refused with exit 2, naming the holder's pid. The\n"
-    "  store holds one cell per config hash and key: a cell computed again replaces it.\n"
-    "  Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
-    "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
+    "  it takes the same lock; removed when the run ends); a second is refused with exit 2,\n"
+    "  naming the holder's pid. The store holds one cell per config hash and key: a cell computed\n"
+    "  again replaces it. Exit codes: 0 done, 1 a check failed, 2 bad input or usage, 3 a system\n"
+    "  failure (output not writable, GL, Embree, memory).\n";
 
 const char cli_usage_validate[] =
     "usage: shadowlab validate FILE [-D|--define KEY=VALUE]...\n"
