@@ -41,12 +41,20 @@ int main(int argc, char **argv)
         return cli_usage_error("missing command", cli_usage());
     const char *cmd = argv[1];
     if (!strcmp(cmd, "version") || !strcmp(cmd, "-V") || !strcmp(cmd, "--version")) {
-        printf("shadowlab %s\n", sl_git_sha());
+        printf("shadowlab %s (git %s)\n", SL_VERSION, sl_git_sha());
         return 0;
     }
     int help = !strcmp(cmd, "-h") || !strcmp(cmd, "--help") || !strcmp(cmd, "help");
     if (help && argc == 2) {
         fputs(cli_usage(), stdout);
+        return 0;
+    }
+    if (help && !strcmp(argv[2], "--man")) {
+        cli_man(stdout);
+        return 0;
+    }
+    if (help && !strcmp(argv[2], "--bash-completion")) {
+        cli_completion(stdout);
         return 0;
     }
     if (help)

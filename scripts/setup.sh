@@ -5,12 +5,17 @@
 #   scripts/setup.sh test           install, build, run the whole test suite through ctest
 #   scripts/setup.sh build          install and build only
 #
-# Installs only the Debian packages that are missing (as root, or through sudo).
+# Installs only the Debian packages that are missing (as root, or through
+# sudo): `run` and `build` what building and running shadowlab needs (every
+# verb, report's plots included), `test` that and the tools only the tests
+# and CI use (the sqlite3 shell, Chromium, TeX Live, Slurm and munge, clang).
+# Other distributions: the same packages by name and the plain cmake
+# commands, doc/guide.md#installing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# Every package shadowlab needs, by name.
-PACKAGES=(
+# What building and running shadowlab needs, by name.
+RUN_PACKAGES=(
   build-essential cmake pkg-config git
   libosmesa6-dev        # OpenGL 4.5 core without a window (llvmpipe)
   libegl-dev            # EGL (libglvnd): the GL context on GPU machines and where OSMesa is gone
@@ -22,21 +27,31 @@ PACKAGES=(
   openimageio-tools     # ... and checks that its tools (iconvert, ...) exist
   libdeflate-dev        # the overlay sheets' PNG compressor (harness/base/image_sheet.cpp)
   libfreetype-dev       # the overlay sheets' glyphs, without OpenImageIO (harness/base/image_sheet.cpp)
-  zlib1g-dev            # overlay::png_chunks reads the sheets' PNG apart from their encoder
+  zlib1g-dev            # the store's cell digests (CRC-32); overlay::png_chunks reads the sheets' PNG
   libcglm-dev           # vector math
   libcyaml-dev libyaml-dev  # configs
   libassimp-dev         # model files
-  assimp-testmodels     # third-party models the model scenes and tests load
+  assimp-testmodels     # third-party models the model scenes (configs/models.yaml) and tests load
   libsqlite3-dev        # results store
-  sqlite3               # the store from the shell (tests: cli::hostile, cli::report)
-  libcmocka-dev         # unit tests
+  libcmocka-dev         # unit tests: CMakeLists.txt asks for it even to build the binary alone
   gnuplot-nox           # the report's plots (shadowlab report)
+)
+# What only the tests and CI add.
+TEST_PACKAGES=(
+  sqlite3               # the store from the shell (tests: cli::hostile, cli::report)
   chromium              # the report's rendering test (cli::report)
   texlive-latex-recommended lmodern  # pdflatex, booktabs, fonts: report --latex compiles (cli::report)
-  slurm-wlm munge       # the Slurm job-array test (slurm::array) and `shadowlab submit`
+  slurm-wlm munge       # the Slurm job-array test (slurm::array); `shadowlab submit` needs only sbatch
   clang                 # the libFuzzer entries (-DSL_FUZZ=ON, fuzz/; CI's fuzz step) ...
   libclang-rt-14-dev    # ... whose libFuzzer and sanitizer runtimes clang only recommends
 )
+
+mode=${1:-run}
+case $mode in
+  run|build) PACKAGES=("${RUN_PACKAGES[@]}") ;;
+  test)      PACKAGES=("${RUN_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
+  *)         echo "usage: scripts/setup.sh run [CONFIG] | test | build" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -56,11 +71,10 @@ jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo ${SL_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j "$jobs"
 
-case "${1:-run}" in
+case $mode in
   run)   shift || true; exec build/shadowlab run "${1:-configs/default.yaml}" ;;
   # the tests run $jobs at a time, one per core: OpenMP's idle threads wait
   # passively, so one test's spinning workers do not take another's core
   test)  cd build && OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} exec ctest --output-on-failure -j "$jobs" ;;
   build) ;;
-  *)     echo "usage: scripts/setup.sh run [CONFIG] | test | build" >&2; exit 2 ;;
 esac

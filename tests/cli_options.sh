@@ -4,7 +4,8 @@
 # -D overriding a key and refused at a bad path or value with the option
 # named, -j, --quiet (one line on stdout), off-terminal progress lines,
 # check --json/--junit read back by python3's json and xml modules, the
-# plain check table and its colour rules, list scenes (scenes only, origin).
+# plain check table and its colour rules, list scenes (scenes only, origin),
+# and on a terminal the live progress line cleared before the summary.
 set -u
 bin=${1:?usage: cli_options.sh path/to/shadowlab}
 tmp=$(mktemp -d)
@@ -181,6 +182,16 @@ done
 [ $rc -eq 2 ] && grep -q "no such viewpoint (the scene has: side, with, against)" "$tmp/pv2.err" && ok ||
   fail "preview --viewpoint nope: exit $rc, $(cat "$tmp/pv2.err")"
 [ ! -e "$tmp/pv2" ] && ok || fail "preview with a bad viewpoint made its folder"
+
+# on a terminal: the live progress line is cleared ("\r\033[K") before the
+# summary, so the summary's first line starts clean (issue 37)
+if command -v script >/dev/null; then
+  script -qec "'$bin' run '$tmp/small.yaml' -o '$tmp/tty' --no-cache" /dev/null >"$tmp/tty.out" 2>&1
+  grep -qa $'\r\[8/8\]' "$tmp/tty.out" && ok || fail "no live progress line on a terminal: $(od -c "$tmp/tty.out" | head)"
+  grep -qa $'\r\033\[K''small: 8 cell(s) computed' "$tmp/tty.out" && ok ||
+    fail "the progress line is not cleared before the summary: $(od -c "$tmp/tty.out" | tail -n 12)"
+  grep -qa 'left   '$'\r''\?$' "$tmp/tty.out" && fail "a progress line left on its own line" || ok
+fi
 
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]

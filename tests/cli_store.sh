@@ -14,6 +14,10 @@
 #                  naming it, nothing written
 #   merge_mixed    shards of two git SHAs: exit 2 naming both; --allow-mixed
 #                  merges and keeps both runs' provenance
+#   lock_cleanup   no .lock file is left after a run, a --jobs run or a merge
+#                  (issue 37); a writer running still refuses a second one;
+#                  writers started together: each one done or refused 'in use',
+#                  one cell per key, no lock left, the store verifies
 set -u
 bin=${1:?usage: cli_store.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -170,6 +174,45 @@ merge_mixed)
     fail "--allow-mixed: $(cat "$tmp/e")"
   [ "$(sqlite3 "$tmp/m/shadowlab.db" 'SELECT count(DISTINCT git_sha) FROM runs')" -eq 2 ] || fail "the merged runs lost a provenance"
   "$bin" verify "$tmp/m/shadowlab.db" >/dev/null || fail "the merged store does not verify"
+  ;;
+lock_cleanup)
+  nolock() { local l; l=$(find "$tmp" -name '*.lock' | head -n 3); [ -z "$l" ] || fail "$1 left $l"; }
+  run -o "$tmp/r"
+  nolock "a run"
+  run -o "$tmp/j" --jobs 2
+  nolock "run --jobs 2"
+  "$bin" merge "$tmp/r/shadowlab.db" -o "$tmp/m/shadowlab.db" >/dev/null 2>&1 || fail "merge"
+  nolock "a merge"
+  # a writer at work (the lock held) refuses a second; then neither leaves a lock
+  sed 's/viewports: .*/viewports: [{width: 256, height: 256}]/' "$tmp/tiny.yaml" >"$tmp/slow.yaml"
+  "$bin" run "$tmp/slow.yaml" -q -o "$tmp/w" --no-cache >"$tmp/a.out" 2>&1 &
+  a=$!
+  for _ in $(seq 200); do [ -e "$tmp/w/shadowlab.db.lock" ] && break; sleep 0.05; done
+  [ -e "$tmp/w/shadowlab.db.lock" ] || fail "no lock while the first writer runs"
+  "$bin" run "$tmp/tiny.yaml" -q -o "$tmp/w" >"$tmp/b.out" 2>&1; rc=$?
+  wait $a || { cat "$tmp/a.out"; fail "the first writer"; }
+  [ $rc -eq 2 ] && grep -q "in use by another run" "$tmp/b.out" || fail "a second writer while one runs: exit $rc: $(cat "$tmp/b.out")"
+  nolock "two writers, one refused"
+  # writers started together, each done (0) or refused (2, 'in use'), three times over
+  for round in 1 2 3; do
+    pids=()
+    for i in 1 2 3 4; do
+      "$bin" run "$tmp/tiny.yaml" -q -o "$tmp/c" --no-cache >"$tmp/c$i.out" 2>&1 & pids+=($!)
+    done
+    done_=0
+    for i in 1 2 3 4; do
+      wait "${pids[$((i - 1))]}"; rc=$?
+      if [ $rc -eq 0 ]; then done_=$((done_ + 1))
+      elif [ $rc -ne 2 ] || ! grep -q "in use by another run" "$tmp/c$i.out"; then
+        cat "$tmp/c$i.out"; fail "round $round, writer $i: exit $rc"
+      fi
+    done
+    [ $done_ -ge 1 ] || fail "round $round: no writer got the store"
+    nolock "round $round of writers started together"
+  done
+  n=$(cells "$tmp/c/shadowlab.db") k=$(keys "$tmp/c/shadowlab.db")
+  [ "$n" -eq 8 ] && [ "$k" -eq 8 ] || fail "writers started together: $n cells for $k keys, want 8 for 8"
+  "$bin" verify "$tmp/c/shadowlab.db" >/dev/null || fail "the store after writers started together does not verify"
   ;;
 *) echo "unknown case $case_"; exit 2 ;;
 esac

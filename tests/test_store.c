@@ -12,6 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <signal.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -19,6 +21,7 @@
 #include "sl_test.h"
 #include "outputs.h"
 #include "store.h"
+#include "storefile.h"
 #include "table.h"
 
 #define HASH_A 0x0123456789abcdefull
@@ -933,6 +936,48 @@ static void store_one_writer_at_a_time(void **st)
     sl_store_close(b);
 }
 
+/* issue 37: a clean close leaves no lock file; the removal does not let two
+ * writers in. A late writer that opened the old lock file just before the
+ * holder removed it can flock it once the holder is gone (simulated here by
+ * hand): sl_storefile_lock_current says that lock is on a file no longer at
+ * the path, which is why sl_storefile_lock takes it again; the writers that
+ * go through sl_storefile_lock still exclude each other. */
+static void store_lock_file_removed_on_close(void **st)
+{
+    struct fx *x = *st;
+    struct tmp t = x->t;
+    struct sl_diag d;
+    char lock[200];
+    snprintf(lock, sizeof lock, "%s.lock", t.db);
+    struct sl_store *a = NULL, *b = NULL, *c = NULL;
+    assert_int_equal(sl_store_open(t.db, &a, &d), SL_OK);
+    assert_int_equal(access(lock, F_OK), 0);
+    int late = open(lock, O_RDWR);   /* a second writer, between its open and its flock */
+    assert_true(late >= 0);
+    sl_store_close(a);
+    assert_int_not_equal(access(lock, F_OK), 0);   /* removed by the clean close */
+    assert_int_equal(flock(late, LOCK_EX | LOCK_NB), 0);   /* the old file: free now */
+    assert_int_equal(sl_storefile_lock_current(late, lock), 0);   /* ... and not the lock any more */
+    assert_int_equal(sl_store_open(t.db, &b, &d), SL_OK);   /* a new lock file, not blocked by the old */
+    assert_int_equal(access(lock, F_OK), 0);
+    assert_int_equal(sl_store_open(t.db, &c, &d), SL_E_IO);   /* and it excludes the next writer */
+    assert_non_null(strstr(d.msg, "in use by another run"));
+    int fd = -1;
+    char lp[4200];
+    assert_int_equal(sl_storefile_lock(t.db, &fd, lp, sizeof lp, &d), SL_E_IO);
+    assert_int_equal(fd, -1);
+    close(late);
+    sl_store_close(b);
+    assert_int_not_equal(access(lock, F_OK), 0);
+    /* a lock file left by a killed writer is locked again, and removed after */
+    int stale = open(lock, O_RDWR | O_CREAT, 0644);
+    assert_true(stale >= 0);
+    close(stale);
+    assert_int_equal(sl_store_open(t.db, &b, &d), SL_OK);
+    sl_store_close(b);
+    assert_int_not_equal(access(lock, F_OK), 0);
+}
+
 /* issue 15: a run that failed after cells went into the store keeps the
  * staged overlays the store points at; an empty staging folder goes. */
 static void store_failed_run_keeps_staged_overlays(void **st)
@@ -1000,6 +1045,7 @@ int main(int argc, char **argv)
         SL_FX(fx_store, SL_CASE(store, digest_finds_changed_figure)),
         SL_FX(fx_temp, SL_CASE(store, lock_follows_links)),
         SL_FX(fx_temp, SL_CASE(store, one_writer_at_a_time)),
+        SL_FX(fx_temp, SL_CASE(store, lock_file_removed_on_close)),
         SL_CASE(store, failed_run_keeps_staged_overlays),
     };
     return sl_run_group(argc, argv, "store", tests, NULL, NULL);

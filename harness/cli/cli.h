@@ -14,6 +14,7 @@
  */
 #include <getopt.h>
 #include <stddef.h>
+#include <stdio.h>
 #include "sl_error.h"
 
 /* ---- the verbs ----
@@ -31,6 +32,12 @@ struct cli_verb {
 extern const struct cli_verb cli_verbs[];   /* ends with a row whose name is NULL */
 const struct cli_verb *cli_verb_find(const char *name);
 const char *cli_usage(void);                /* `shadowlab --help`, built from cli_verbs */
+/* `shadowlab help --man`: the man page (roff), from cli_verbs and their help
+ * texts (doc/shadowlab.1 is this output) */
+void cli_man(FILE *f);
+/* `shadowlab help --bash-completion`: the bash completion script, from the
+ * same rows (scripts/shadowlab.bash-completion is this output) */
+void cli_completion(FILE *f);
 
 int cli_run(int argc, char **argv);
 int cli_validate(int argc, char **argv);

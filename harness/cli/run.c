@@ -67,6 +67,7 @@ static void on_stop(int sig)
  * else a line every 10 s or 5% of the cells (CI logs, nohup, batch jobs). */
 struct event_state {
     int    tty, quiet;
+    int    shown;   /* the live line is on the terminal (clear_progress) */
     double last_s;
     int    last_done;
 };
@@ -81,6 +82,19 @@ static void fmt_dur(double s, char *out, size_t n)
         snprintf(out, n, "%dh%02dm", (int)s / 3600, ((int)s % 3600) / 60);
 }
 
+/* The live line on a terminal is cleared before anything else is printed (a
+ * note, the summary, an error): "\r\033[K" goes back to the line's start and
+ * erases it, so what follows starts on a clean line and no stale progress
+ * is left above the summary. */
+static void clear_progress(struct event_state *es)
+{
+    if (es->tty && es->shown) {
+        fputs("\r\033[K", stderr);
+        fflush(stderr);
+        es->shown = 0;
+    }
+}
+
 static void print_progress(const struct sl_run_event *ev, struct event_state *es)
 {
     const struct sl_config *c = ev->config;
@@ -90,8 +104,7 @@ static void print_progress(const struct sl_run_event *ev, struct event_state *es
     if (es->tty) {
         fprintf(stderr, "\r[%d/%d] %s/%s %d² %-16s %6.1fs elapsed, ~%.0fs left   ", ev->done, ev->total, cl->scene,
                 cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label, el, eta);
-        if (ev->done == ev->total)
-            fputc('\n', stderr);
+        es->shown = 1;
         fflush(stderr);
         return;
     }
@@ -113,6 +126,8 @@ static void print_event(const struct sl_run_event *ev, void *user)
     struct event_state *es = user;
     const struct sl_config *c = ev->config;
     const struct sl_cell *cl = ev->cell;
+    if (ev->kind != SL_EVENT_PROGRESS)
+        clear_progress(es);
     switch (ev->kind) {
     case SL_EVENT_FRUSTUM_NOTE:
         if (es->quiet)
@@ -389,6 +404,7 @@ int cli_run(int argc, char **argv)
     }
     struct sl_run_result r;
     e = sl_run(&c, &o, &r, &d);
+    clear_progress(&es);   /* before the summary, an error or the interrupted note */
     if (!e) {
         if (!es.quiet && !verbose)
             print_summary(&c, &r);

@@ -3,11 +3,18 @@
  * `shadowlab --help`, `shadowlab VERB --help` and the dispatch in main.c.
  * The top-level help is built from the table's rows (synopsis and summary),
  * so a verb cannot be dispatched without being listed, nor listed without
- * being dispatched. doc/shadowlab.1 is written by hand beside these texts.
+ * being dispatched. The man page (doc/shadowlab.1) is written from the same
+ * rows and texts by `shadowlab help --man` (cli_man, below), with the
+ * sections only it has (environment, configuration, files, exit status) kept
+ * here too; doc::package_man fails when the committed page differs.
  */
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
+#include "bench.h"
 #include "cli.h"
+#include "figrec.h"
+#include "softfig.h"
 
 const char cli_usage_run[] =
     "usage: shadowlab run CONFIG|SCENE [-o DIR] [--cells A:B] [--resume] [--db FILE] [--no-cache]\n"
@@ -27,7 +34,7 @@ const char cli_usage_run[] =
     "                    SHADOWLAB_EGL_DEVICE=N picks an EGL device); replaces the config's 'gl'\n"
     "  -j, --threads N   threads of the truth and the CPU passes (the config's 'threads') and of\n"
     "                    llvmpipe (LP_NUM_THREADS), 1..256\n"
-    "  -D KEY=VALUE      replace a config key by its path, the value in YAML, checked as the file is:\n"
+    "  -D, --define K=V  replace a config key by its path, the value in YAML, checked as the file is:\n"
     "                    -D map_sizes=[512,1024] -D 'methods[0].bias=0.01' -D outputs.exr=true\n"
     "                    (the results' config hash covers the overrides)\n"
     "  -q, --quiet       print only the 'written to' line (and errors)\n"
@@ -39,13 +46,13 @@ const char cli_usage_run[] =
     "  or 5% of the cells. Ctrl-C (SIGINT) or SIGTERM stops after the cell under way, writes the\n"
     "  folder of what is stored and says how to --resume (exit 130 or 143).\n"
     "  One run writes a results store at a time (a lock on DB.lock, DB's real path: a link to\n"
-    "  it takes the same lock); a second is refused with exit 2, naming the holder's pid. The\n"
-    "  store holds one cell per config hash and key: a cell computed again replaces it.\n"
-    "  Exit codes: 0 done, 1 a check failed, 2 bad input or\n"
-    "  usage, 3 a system failure (output not writable, GL, Embree, memory).\n";
+    "  it takes the same lock; removed when the run ends); a second is refused with exit 2,\n"
+    "  naming the holder's pid. The store holds one cell per config hash and key: a cell computed\n"
+    "  again replaces it. Exit codes: 0 done, 1 a check failed, 2 bad input or usage, 3 a system\n"
+    "  failure (output not writable, GL, Embree, memory).\n";
 
 const char cli_usage_validate[] =
-    "usage: shadowlab validate FILE [-D KEY=VALUE]...\n"
+    "usage: shadowlab validate FILE [-D|--define KEY=VALUE]...\n"
     "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
     "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
 
@@ -103,6 +110,8 @@ const char cli_usage_bench[] =
     "             (each study in a child process of its own, forked before the other stages)\n"
     "    jobs     CONFIG (default configs/morais-2015.yaml) as one process vs run --jobs 2, files and\n"
     "             store, no cache: wall, CPU, views split, merge per 1,000 cells (--jobs 2 not slower)\n"
+    "    churn    NSM's layer at the map size S and 2S through the pass's kept render target and pooled\n"
+    "             arrays vs ones made afresh: wall, CPU, minor page faults (2S at most 5x S)\n"
     "    techniques each technique package of the source tree (pcf at kernel 3 and 5) at the map size\n"
     "             and viewport: its map pass vs a plain one writing the same maps (<= 1.3x), its post\n"
     "             passes, its lookup vs a plain one reading as many texels (<= 1.5x)\n"
@@ -162,8 +171,9 @@ const char cli_usage_merge[] =
     "  holds; exit 1 when any is missing. Every shard is checked first, and nothing is written when\n"
     "  one is a folder or device, damaged (SQLite's quick_check, or a cell that fails its digest,\n"
     "  as `verify` checks) or of another config: exit 2 naming it.\n"
-    "  --allow-mixed  merge shards whose cells come from other git SHAs, GL renderers or ISAs\n"
-    "                 (refused by default; each merged run keeps its own provenance)\n";
+    "  -o, --out STORE.db  the store the shards are merged into\n"
+    "  --allow-mixed       merge shards whose cells come from other git SHAs, GL renderers or ISAs\n"
+    "                      (refused by default; each merged run keeps its own provenance)\n";
 
 const char cli_usage_verify[] =
     "usage: shadowlab verify STORE.db\n"
@@ -239,6 +249,502 @@ const char *cli_usage(void)
         snprintf(left, sizeof left, "%s %s", v->name, v->synopsis);
         usage_line(text, sizeof text, &len, left, v->summary);
     }
-    usage_line(text, sizeof text, &len, "version, -V, --version", "the git SHA this binary was built from");
+    usage_line(text, sizeof text, &len, "version, -V, --version", "the version and the git SHA this binary was built from");
+    usage_line(text, sizeof text, &len, "help --man", "this reference as a man page (roff: doc/shadowlab.1)");
+    usage_line(text, sizeof text, &len, "help --bash-completion", "the bash completion script for these verbs");
     return text;
+}
+
+/* ---- the man page -------------------------------------------------------
+ * `shadowlab help --man` writes doc/shadowlab.1: each verb's row and help
+ * text above, and the sections below, which only the man page has. Text is
+ * plain (no roff in it): man_text escapes it, a blank line starts a
+ * paragraph. The page carries no date, so the same binary writes the same
+ * bytes (doc::package_man compares them with the committed page). */
+
+/* the environment variables the program reads, in the ENVIRONMENT section */
+static const struct {
+    const char *name, *text;
+} man_env[] = {
+    {"SHADOWLAB_GL", "The GL context when neither --gl nor the config's 'gl' names one: osmesa or egl (any "
+                     "other value is an error). CI runs the rendering tests a second time with "
+                     "SHADOWLAB_GL=egl."},
+    {"SHADOWLAB_EGL_DEVICE", "The EGL device (its index) to use with --gl egl."},
+    {"SHADOWLAB_SCENES", "Colon-separated folders searched for scene names after the config's own folder and "
+                         "before the installed share/shadowlab/scenes (or, not installed, the source tree's "
+                         "scenes/)."},
+    {"SHADOWLAB_TECHNIQUES", "Colon-separated folders searched for technique packages after a config's "
+                             "'techniques:' folders and before the source tree's techniques/ and the installed "
+                             "share/shadowlab/techniques; the first package of a name wins."},
+    {"SHADOWLAB_MODULE_DIR", "A folder searched first for the modules loaded on first use "
+                             "(shadowlab-oiio.so, shadowlab-sheet.so); otherwise beside the binary, then "
+                             "lib/shadowlab under its prefix."},
+    {"OMP_WAIT_POLICY, GOMP_SPINCOUNT", "run and bench set OMP_WAIT_POLICY=passive for themselves when neither "
+                                        "is set (idle OpenMP threads then do not spin); either one set keeps "
+                                        "the user's choice."},
+    {"LP_NUM_THREADS", "llvmpipe's threads; -j/--threads sets it."},
+    {"NO_COLOR", "When set and not empty, check prints no colour."},
+};
+
+static const char man_description[] =
+    "shadowlab renders shadow techniques with OpenGL (OSMesa or EGL, no window), compares every pixel with "
+    "an exact ray-traced truth (Embree) and writes thesis-style tables, error overlays and a results store "
+    "(SQLite). An experiment is a YAML config: scenes, viewports, map sizes, contours and method labels; it "
+    "expands to a sweep of cells (scene x viewport x viewpoint x map size x label). Every output carries the "
+    "git SHA, the config hash and the machine.\n"
+    "\n"
+    "Each command's reference below is its --help text (shadowlab help COMMAND prints the same).\n";
+
+static const char man_config[] =
+    "A config is a YAML file; the reference, with every key, its default and its range, is the Configs "
+    "section of doc/guide.md in the source tree, and "
+    "shadowlab validate CONFIG prints a config with every default filled in. In short:\n"
+    "\n"
+    "    name: study                  # output folder under the --out root\n"
+    "    scenes: [{scene: primitives, viewpoints: [side]}]\n"
+    "    viewports: [{width: 512, height: 512}]\n"
+    "    map_sizes: [1024, 2048]      # powers of two, 64..16384\n"
+    "    contours: [2, 4]\n"
+    "    methods:\n"
+    "      - {label: nsm, method: nsm}\n"
+    "      - {label: bias-1, method: nsm, self_shadow: constant, bias: 1}\n"
+    "\n"
+    "Unknown keys are errors (in a research config they are typos), reported with file, line and key, exit "
+    "2. -D KEY=VALUE replaces a key by its path for one run, checked as the file is; the config hash of the "
+    "results covers the overrides. A method is a built-in (shadowlab list methods) or a technique package "
+    "(shadowlab list techniques, doc/techniques.md). A scene file is YAML too (meshes, light, viewpoints; "
+    "doc/guide.md, Scenes and models).\n";
+
+static const char man_files[] =
+    "PREFIX/share/shadowlab/configs/\n"
+    "    The shipped experiments (default.yaml, ci.yaml, the theses' studies).\n"
+    "PREFIX/share/shadowlab/scenes/\n"
+    "    The shipped scenes.\n"
+    "PREFIX/share/shadowlab/techniques/\n"
+    "    The shipped technique packages.\n"
+    "DIR/shadowlab.db, DIR/shadowlab.db.lock\n"
+    "    The results store of a run with --out DIR (doc/store.md), and the lock a writer holds on it while it "
+    "writes (removed when it closes the store).\n"
+    "DIR/cache/\n"
+    "    The truth cache (--cache), shared between runs.\n";
+
+static const char man_exit[] =
+    "0 done; 1 a check failed (check, merge with a missing cell); 2 bad input or usage; 3 a system failure "
+    "(output not writable, GL, Embree, memory); 130 or 143 interrupted by SIGINT or SIGTERM.\n";
+
+static const char man_examples[] =
+    "shadowlab run /usr/local/share/shadowlab/configs/default.yaml -o /tmp/r\n"
+    "shadowlab run my.yaml -D map_sizes=[2048] -j 8 -q\n"
+    "shadowlab run configs/morais-2015.yaml --jobs 4 --cache /scratch/cache\n"
+    "shadowlab table /tmp/r/shadowlab.db --label nsm --format latex\n"
+    "shadowlab check /tmp/r/shadowlab.db --baseline base.yaml --junit junit.xml\n";
+
+static const char man_see_also[] =
+    "README.md and doc/ in the source tree: guide.md (the user guide and the config reference), methods.md, "
+    "techniques.md, store.md, testing.md, performance.md, glossary.md (PFL, PnFL and the other terms), "
+    "references.md (the theses and papers).\n";
+
+/* one character of plain text in roff: backslash and minus escaped, a
+ * control character at the start of a line made text */
+static void man_char(FILE *f, char c, int bol)
+{
+    if (bol && (c == '.' || c == '\''))
+        fputs("\\&", f);
+    if (c == '\\')
+        fputs("\\e", f);
+    else if (c == '-')
+        fputs("\\-", f);
+    else
+        fputc(c, f);
+}
+
+static void man_line(FILE *f, const char *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        man_char(f, s[i], i == 0);
+    fputc('\n', f);
+}
+
+/* paragraphs: a blank line is .PP; a line starting with a space, and the
+ * lines after it up to a blank one, keep their layout (.nf) */
+static void man_text(FILE *f, const char *s)
+{
+    int nf = 0;
+    while (*s) {
+        size_t n = strcspn(s, "\n");
+        if (n == 0) {
+            if (nf)
+                fputs(".fi\n", f);
+            nf = 0;
+            fputs(".PP\n", f);
+        } else {
+            if (!nf && s[0] == ' ') {
+                fputs(".nf\n", f);
+                nf = 1;
+            }
+            man_line(f, s, n);
+        }
+        s += n + (s[n] == '\n');
+    }
+    if (nf)
+        fputs(".fi\n", f);
+}
+
+/* the arguments of a verb's "usage: shadowlab VERB ..." lines (the first and
+ * the indented ones that go on with '[' or '-'), spaces collapsed */
+static void man_synopsis(FILE *f, const char *usage)
+{
+    const char *s = strchr(usage, ' ');   /* past "usage:" */
+    s = s ? strchr(s + 1, ' ') : NULL;    /* past "shadowlab" */
+    s = s ? strchr(s + 1, ' ') : NULL;    /* past the verb */
+    char buf[1024];
+    size_t len = 0;
+    for (int first = 1; s && *s; first = 0) {
+        size_t n = strcspn(s, "\n"), k = strspn(s, " ");
+        if (!first && (k < 8 || (s[k] != '[' && s[k] != '-')))
+            break;
+        for (size_t i = k; i < n && len + 2 < sizeof buf; i++)
+            if (s[i] != ' ' || (len && buf[len - 1] != ' '))
+                buf[len++] = s[i];
+        if (len && buf[len - 1] != ' ' && len + 2 < sizeof buf)
+            buf[len++] = ' ';
+        s += n + (s[n] == '\n');
+    }
+    while (len && buf[len - 1] == ' ')
+        len--;
+    man_line(f, buf, len);
+}
+
+/* a verb's help text as it prints, kept in its layout */
+static void man_verbatim(FILE *f, const char *s)
+{
+    fputs(".nf\n", f);
+    while (*s) {
+        size_t n = strcspn(s, "\n");
+        man_line(f, s, n);
+        s += n + (s[n] == '\n');
+    }
+    fputs(".fi\n", f);
+}
+
+void cli_man(FILE *f)
+{
+    fputs(".\\\" shadowlab(1): generated by `shadowlab help --man` from harness/cli/usage.c (the table of verbs\n"
+          ".\\\" and their --help texts); do not edit: edit usage.c, then build/shadowlab help --man > doc/shadowlab.1\n",
+          f);
+    fprintf(f, ".TH SHADOWLAB 1 \"\" \"shadowlab %s\" \"User Commands\"\n", SL_VERSION);
+    fputs(".SH NAME\nshadowlab \\- measure how wrong shadow maps are, pixel by pixel, against a ray-traced "
+          "truth\n.SH SYNOPSIS\n",
+          f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        fprintf(f, ".B shadowlab %s\n", v->name);
+        man_synopsis(f, v->usage);
+        fputs(".br\n", f);
+    }
+    fputs(".B shadowlab version\\fR|\\fB\\-V\\fR|\\fB\\-\\-version\n.br\n"
+          ".B shadowlab help\n.RI [ COMMAND \\fR|\\fB\\-\\-man\\fR|\\fB\\-\\-bash\\-completion ]\n",
+          f);
+    fputs(".SH DESCRIPTION\n", f);
+    man_text(f, man_description);
+    fputs(".SH COMMANDS\n", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        fprintf(f, ".SS %s\n", v->name);
+        man_text(f, v->summary);
+        fputs(".PP\n", f);
+        man_verbatim(f, v->usage);
+    }
+    fputs(".SS version, \\-V, \\-\\-version\nPrints \"shadowlab VERSION (git SHA)\": the release and the "
+          "commit this binary was built from (\"\\-dirty\" when tracked files had uncommitted changes).\n"
+          ".SS help\nhelp prints the list of commands; help COMMAND the command's help (as COMMAND \\-\\-help); "
+          "help \\-\\-man this page; help \\-\\-bash\\-completion the bash completion script.\n",
+          f);
+    fputs(".SH CONFIGURATION\n", f);
+    man_text(f, man_config);
+    fputs(".SH ENVIRONMENT\n", f);
+    for (size_t i = 0; i < sizeof man_env / sizeof man_env[0]; i++) {
+        fputs(".TP\n.B ", f);
+        man_line(f, man_env[i].name, strlen(man_env[i].name));
+        man_text(f, man_env[i].text);
+    }
+    fputs(".SH FILES\n", f);
+    for (const char *s = man_files; *s;) {
+        size_t n = strcspn(s, "\n");
+        if (s[0] == ' ') {
+            size_t k = strspn(s, " ");
+            man_line(f, s + k, n - k);
+        } else {
+            fputs(".TP\n.I ", f);
+            man_line(f, s, n);
+        }
+        s += n + (s[n] == '\n');
+    }
+    fputs(".SH EXIT STATUS\n", f);
+    man_text(f, man_exit);
+    fputs(".SH EXAMPLES\n", f);
+    man_verbatim(f, man_examples);
+    fputs(".SH SEE ALSO\n", f);
+    man_text(f, man_see_also);
+}
+
+/* ---- the bash completion -------------------------------------------------
+ * `shadowlab help --bash-completion` writes scripts/shadowlab.bash-completion
+ * from the same rows: the verbs, and each verb's options as its help text
+ * names them (the "usage:" lines and the option lines "  -x, --long ARG"),
+ * with the values a "a|b|c" argument lists; the bench's stages from bench.h's
+ * list and the figure names from figrec.h/softfig.h. What depends on the
+ * files at hand (scene names, a store's labels, a config's keys for -D,
+ * technique names) the script asks the binary for as it completes.
+ * doc::package_completion fails when the committed script differs, and when
+ * an option a verb's parser accepts is missing from its help or here. */
+struct comp_opt {
+    char name[40];
+    int  arg;            /* takes a value */
+    char values[96];     /* the words of an "a|b|c" value, space-separated */
+};
+
+static int comp_is_word_char(char c) { return isalnum((unsigned char)c) || c == '-'; }
+
+/* the option at s (a '-'): its name, and whether a value follows ("--x ARG") */
+static const char *comp_scan(const char *s, struct comp_opt *o, int *n, int max)
+{
+    size_t k = 0;
+    while (s[k] == '-')
+        k++;
+    size_t e = k;
+    while (comp_is_word_char(s[e]))
+        e++;
+    if (e == k || k > 2 || e >= sizeof o[0].name)
+        return s + (e ? e : 1);
+    struct comp_opt *p = NULL;
+    for (int i = 0; i < *n; i++)
+        if (strlen(o[i].name) == e && !strncmp(o[i].name, s, e))
+            p = &o[i];
+    if (!p && *n < max) {
+        p = &o[(*n)++];
+        memset(p, 0, sizeof *p);
+        memcpy(p->name, s, e);
+    }
+    if (p && s[e] == ' ' && s[e + 1] && !strchr(" [-|", s[e + 1])) {
+        p->arg = 1;
+        const char *a = s + e + 1;
+        size_t an = strcspn(a, " ]\n");
+        if (memchr(a, '|', an) && !p->values[0]) {
+            /* the lowercase words of "a|b|c" (N|image|contours: image contours) */
+            for (const char *w = a; w < a + an;) {
+                size_t wn = strcspn(w, "|] \n");
+                int lower = wn > 0;
+                for (size_t i = 0; i < wn; i++)
+                    lower &= islower((unsigned char)w[i]) != 0;
+                size_t used = strlen(p->values);
+                if (lower && used + wn + 2 < sizeof p->values)
+                    snprintf(p->values + used, sizeof p->values - used, "%s%.*s", used ? " " : "", (int)wn, w);
+                w += wn + (w[wn] == '|');
+                if (w[-1] != '|')
+                    break;
+            }
+        }
+    }
+    return s + e;
+}
+
+/* the options a verb's help text names; --help always */
+static int comp_options(const char *usage, struct comp_opt *o, int max)
+{
+    int n = 0;
+    int synopsis = 1;
+    for (const char *s = usage; *s;) {
+        size_t len = strcspn(s, "\n"), ind = strspn(s, " ");
+        if (s != usage && !(synopsis && ind >= 8 && (s[ind] == '[' || s[ind] == '-')))
+            synopsis = 0;
+        if (synopsis) {
+            for (size_t i = 0; i < len;)
+                if (s[i] == '-' && i > 0 && strchr(" [|", s[i - 1]))
+                    i = (size_t)(comp_scan(s + i, o, &n, max) - s);
+                else
+                    i++;
+        } else if (ind == 2 && s[2] == '-') {
+            /* "  -o, --out DIR   text": the leading options */
+            const char *p = s + 2;
+            while (*p == '-') {
+                p = comp_scan(p, o, &n, max);
+                if (p[0] == ',' && p[1] == ' ')
+                    p += 2;
+                else if (p[0] == ' ' && p[1] != ' ' && p[1] != '-')
+                    break;
+                else if (p[0] == ' ' && p[1] == '-')
+                    p++;
+                else
+                    break;
+            }
+        }
+        s += len + (s[len] == '\n');
+    }
+    struct comp_opt help = {"--help", 0, ""};
+    int have = 0;
+    for (int i = 0; i < n; i++)
+        have |= !strcmp(o[i].name, "--help");
+    if (!have && n < max)
+        o[n++] = help;
+    return n;
+}
+
+/* the first argument a verb's synopsis names: "CONFIG|SCENE", "DB", "methods|scenes" */
+static void comp_first_arg(const char *usage, char *out, size_t n)
+{
+    const char *s = strchr(usage, ' ');
+    s = s ? strchr(s + 1, ' ') : NULL;
+    s = s ? strchr(s + 1, ' ') : NULL;
+    out[0] = 0;
+    if (s)
+        snprintf(out, n, "%.*s", (int)strcspn(s + 1, " \n"), s + 1);
+}
+
+void cli_completion(FILE *f)
+{
+    fputs("# bash completion for shadowlab: generated by `shadowlab help --bash-completion` from\n"
+          "# harness/cli/usage.c (the table of verbs and their --help texts); do not edit: edit usage.c,\n"
+          "# then build/shadowlab help --bash-completion > scripts/shadowlab.bash-completion\n"
+          "# Installed as share/bash-completion/completions/shadowlab.\n",
+          f);
+    /* a comma-separated list: complete its last item */
+    fputs("_shadowlab_list()\n{\n"
+          "    local pre=\"\" last=$cur\n"
+          "    case $cur in *,*) pre=${cur%,*},; last=${cur##*,} ;; esac\n"
+          "    COMPREPLY=($(compgen -P \"$pre\" -W \"$1\" -- \"$last\"))\n"
+          "    compopt -o nospace 2>/dev/null\n}\n\n",
+          f);
+    fputs("_shadowlab()\n{\n"
+          "    local cur prev verb i db cfg\n"
+          "    cur=${COMP_WORDS[COMP_CWORD]}\n"
+          "    prev=${COMP_WORDS[COMP_CWORD-1]}\n"
+          "    verb=${COMP_WORDS[1]}\n",
+          f);
+    fputs("    if [ \"$COMP_CWORD\" -eq 1 ]; then\n        COMPREPLY=($(compgen -W \"", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++)
+        fprintf(f, "%s ", v->name);
+    fputs("version help -V --version --help\" -- \"$cur\"))\n        return\n    fi\n", f);
+    fputs("    # the store and the config named on the line\n"
+          "    for ((i = 2; i < COMP_CWORD; i++)); do\n"
+          "        case ${COMP_WORDS[i]} in *.db) db=${COMP_WORDS[i]} ;; *.yaml|*.yml) cfg=${COMP_WORDS[i]} ;; esac\n"
+          "    done\n",
+          f);
+    /* values listed in a help text ("--format md|csv|latex"), per verb */
+    fputs("    case \"$verb $prev\" in\n", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        struct comp_opt o[48];
+        int n = comp_options(v->usage, o, 48);
+        for (int i = 0; i < n; i++)
+            if (o[i].values[0] && strcmp(o[i].name, "--figures"))
+                fprintf(f, "        \"%s %s\") COMPREPLY=($(compgen -W \"%s\" -- \"$cur\")); return ;;\n", v->name,
+                        o[i].name, o[i].values);
+    }
+    fputs("    esac\n", f);
+    /* values that need a list of their own, whatever the verb */
+    fputs("    case $prev in\n"
+          "        -o|--out|--cache) COMPREPLY=($(compgen -d -- \"$cur\")); return ;;\n"
+          "        --db|--stored-in) COMPREPLY=($(compgen -f -X '!*.db' -- \"$cur\") $(compgen -d -- \"$cur\")); "
+          "return ;;\n"
+          "        --baseline|--json|--junit|--csv|--markdown) COMPREPLY=($(compgen -f -- \"$cur\")); return ;;\n"
+          "        --scene)\n"
+          "            COMPREPLY=($(compgen -W \"$(shadowlab list scenes 2>/dev/null | awk '{ print $1 }')\" -- "
+          "\"$cur\")); return ;;\n"
+          "        --label)\n"
+          "            # the labels the store named on the line holds\n"
+          "            [ -n \"$db\" ] && COMPREPLY=($(compgen -W \"$(shadowlab table \"$db\" --format csv 2>/dev/null |\n"
+          "                awk -F, 'NR > 1 { print $6 }' | sort -u)\" -- \"$cur\"))\n"
+          "            return ;;\n"
+          "        -D|--define)\n"
+          "            # the top-level keys of the config named on the line, as validate fills it in\n"
+          "            [ -n \"$cfg\" ] && COMPREPLY=($(compgen -W \"$(shadowlab validate \"$cfg\" 2>/dev/null |\n"
+          "                awk '/^[a-z_]+:/ { sub(/:.*/, \"=\"); print }')\" -- \"$cur\"))\n"
+          "            compopt -o nospace 2>/dev/null\n"
+          "            return ;;\n",
+          f);
+    fputs("        --only) _shadowlab_list \"", f);
+    static const char *const stages[] = {
+#define SL_COMP_STAGE(id, name) name,
+        SL_BENCH_STAGES(SL_COMP_STAGE)
+#undef SL_COMP_STAGE
+    };
+    for (size_t i = 0; i < sizeof stages / sizeof stages[0]; i++)
+        fprintf(f, "%s%s", i ? " " : "", stages[i]);
+    fputs("\"; return ;;\n        --summary) COMPREPLY=($(compgen -W \"", f);
+    for (int k = 0; k < SL_FIG_COUNT; k++)
+        fprintf(f, "%s%s", k ? " " : "", sl_figure_name((enum sl_figure)k));
+    fputs("\" -- \"$cur\")); return ;;\n        --figures) _shadowlab_list \"all", f);
+    for (int k = 0; k < SL_FIG_COUNT; k++)
+        fprintf(f, " %s", sl_figure_name((enum sl_figure)k));
+    for (int k = 0; k < SL_SFIG_COUNT; k++)
+        fprintf(f, " %s", sl_soft_figure_name((enum sl_soft_figure)k));
+    fputs("\"; return ;;\n", f);
+    /* every other option that takes a value: nothing to offer */
+    fputs("        ", f);
+    int first = 1;
+    char seen[2048] = " ";
+    static const char *const listed[] = {"-o", "--out", "--cache", "--db", "--stored-in", "--baseline", "--json",
+                                         "--junit", "--csv", "--markdown", "--scene", "--label", "-D", "--define",
+                                         "--only", "--summary", "--figures", "--gl", "--format"};
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        struct comp_opt o[48];
+        int n = comp_options(v->usage, o, 48);
+        for (int i = 0; i < n; i++) {
+            if (!o[i].arg || o[i].values[0])
+                continue;
+            int skip = 0;
+            for (size_t j = 0; j < sizeof listed / sizeof listed[0]; j++)
+                skip |= !strcmp(listed[j], o[i].name);
+            char key[48];
+            snprintf(key, sizeof key, " %s ", o[i].name);
+            if (skip || strstr(seen, key) || strlen(seen) + strlen(key) >= sizeof seen)
+                continue;
+            strcat(seen, key + 1);
+            fprintf(f, "%s%s", first ? "" : "|", o[i].name);
+            first = 0;
+        }
+    }
+    fputs(") return ;;\n    esac\n", f);
+    /* options, then the verb's arguments */
+    fputs("    case $verb in\n", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++) {
+        struct comp_opt o[48];
+        int n = comp_options(v->usage, o, 48);
+        fprintf(f, "        %s)\n            case $cur in -*) COMPREPLY=($(compgen -W \"", v->name);
+        for (int i = 0; i < n; i++)
+            fprintf(f, "%s%s", i ? " " : "", o[i].name);
+        fputs("\" -- \"$cur\")); return ;; esac\n", f);
+        char a[64];
+        comp_first_arg(v->usage, a, sizeof a);
+        int lower = a[0] != 0;
+        for (const char *c = a; *c; c++)
+            lower &= islower((unsigned char)*c) || *c == '|';
+        if (lower && strchr(a, '|')) {
+            char w[64];
+            snprintf(w, sizeof w, "%s", a);
+            for (char *c = w; *c; c++)
+                if (*c == '|')
+                    *c = ' ';
+            fprintf(f, "            [ \"$COMP_CWORD\" -eq 2 ] && COMPREPLY=($(compgen -W \"%s\" -- \"$cur\"))\n", w);
+        } else if (lower) {
+            /* "show technique NAME": the word, then the names `list` gives for it */
+            fprintf(f, "            if [ \"$COMP_CWORD\" -eq 2 ]; then COMPREPLY=($(compgen -W \"%s\" -- \"$cur\"))\n"
+                       "            else COMPREPLY=($(compgen -W \"$(shadowlab list \"${COMP_WORDS[2]}s\" 2>/dev/null |"
+                       " awk '{ print $1 }')\" -- \"$cur\")); fi\n",
+                    a);
+        } else if (strstr(a, "DB") || strstr(a, ".db")) {
+            fputs("            COMPREPLY=($(compgen -f -X '!*.db' -- \"$cur\") $(compgen -d -- \"$cur\"))\n", f);
+        } else if (!strcmp(a, "SCENE")) {
+            /* a scene file, or a scene's name */
+            fputs("            COMPREPLY=($(compgen -f -X '!*.yaml' -- \"$cur\") $(compgen -d -- \"$cur\")\n"
+                  "                $(compgen -W \"$(shadowlab list scenes 2>/dev/null | awk '{ print $1 }')\" -- \"$cur\"))\n",
+                  f);
+        } else if (strstr(a, "CONFIG") || strstr(a, "FILE") || strstr(a, "SCENE")) {
+            fputs("            COMPREPLY=($(compgen -f -X '!*.yaml' -- \"$cur\") $(compgen -d -- \"$cur\"))\n",
+                  f);
+        }
+        fputs("            ;;\n", f);
+    }
+    fputs("        help) COMPREPLY=($(compgen -W \"", f);
+    for (const struct cli_verb *v = cli_verbs; v->name; v++)
+        fprintf(f, "%s ", v->name);
+    fputs("--man --bash-completion\" -- \"$cur\")) ;;\n    esac\n}\ncomplete -F _shadowlab shadowlab\n", f);
 }

@@ -224,6 +224,7 @@ struct sl_store {
     sqlite3_stmt *st[ST_COUNT];
     char         *path;
     int           lockfd;   /* <real path>.lock, flock()ed while open for writing; -1 if none */
+    char          lockpath[4200];   /* its name, removed on close (storefile.h) */
     struct sl_integ *integ; /* cell digests: written by put, checked by query */
 };
 
@@ -488,7 +489,7 @@ static enum sl_err store_open(const char *path, int readonly, struct sl_store **
     s->lockfd = -1;
     /* One writer per file (storefile.h); readers through a read-only URI,
      * so a store on read-only media can be read. */
-    enum sl_err e = readonly ? SL_OK : sl_storefile_lock(path, &s->lockfd, d);
+    enum sl_err e = readonly ? SL_OK : sl_storefile_lock(path, &s->lockfd, s->lockpath, sizeof s->lockpath, d);
     char uri[4200];
     if (!e && readonly && sl_storefile_ro_uri(path, uri, sizeof uri) != 0)
         e = sl_fail(d, SL_E_IO, path, 0, NULL, "path too long");
@@ -528,8 +529,7 @@ void sl_store_close(struct sl_store *s)
         sqlite3_finalize(s->st[i]);
     sl_integ_close(s->integ);
     sqlite3_close(s->db);
-    if (s->lockfd >= 0)
-        close(s->lockfd);   /* releases the flock */
+    sl_storefile_unlock(s->lockfd, s->lockpath);   /* after SQLite let go of the file; -1: none */
     free(s->path);
     free(s);
 }

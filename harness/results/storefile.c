@@ -6,6 +6,10 @@
  *   from the text the user typed: two spellings of one file, one lock.
  * - A refused writer leaves the lock file as it found it (the holder's pid
  *   stays readable in it).
+ * - A writer that closes cleanly removes the lock file, while it still holds
+ *   the lock; the lock a writer takes is always on the file at the lock's
+ *   path at that moment (the check after flock, below), so the removal
+ *   cannot let two writers in.
  * Nothing here prints.
  */
 #define _XOPEN_SOURCE 700
@@ -45,37 +49,77 @@ static int real_path(const char *path, char *out, size_t n)
     return snprintf(out, n, "%s%s%s", buf, strcmp(buf, "/") ? "/" : "", base) < (int)n ? 0 : -1;
 }
 
-enum sl_err sl_storefile_lock(const char *path, int *fd_out, struct sl_diag *d)
+int sl_storefile_lock_current(int fd, const char *lockpath)
+{
+    struct stat held, named;
+    return fstat(fd, &held) == 0 && stat(lockpath, &named) == 0 && held.st_dev == named.st_dev &&
+           held.st_ino == named.st_ino;
+}
+
+/* Removing the lock file on close is a classic race: a second writer may
+ * have opened the file (by its name) just before the holder unlinked it, and
+ * take its flock just after the holder closed it; it would then hold a lock
+ * on a file no longer at the path, while a third writer creates a new file
+ * there and locks that one: two writers at once. So after flock succeeds,
+ * the lock is checked to be on the file the path names now (fstat of the
+ * descriptor against stat of the path: same device and inode); when it is
+ * not, the descriptor is dropped and the lock taken again on the new file.
+ * The holder unlinks only while it holds the flock, so the file at the path
+ * can change only between a writer's open and its flock: a few tries are
+ * plenty (each one is a writer that got in and left between two calls). */
+enum sl_err sl_storefile_lock(const char *path, int *fd_out, char *lockpath, size_t lockpath_n, struct sl_diag *d)
 {
     *fd_out = -1;
+    if (lockpath_n)
+        lockpath[0] = 0;
     char real[PATH_MAX], lp[PATH_MAX + 8];
     if (real_path(path, real, sizeof real) != 0)
         return sl_fail(d, SL_E_IO, path, 0, NULL, "unable to open its folder: %s", strerror(errno));
     snprintf(lp, sizeof lp, "%s.lock", real);
-    int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    for (int attempt = 0; attempt < 100; attempt++) {
+        int fd = open(lp, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        if (fd < 0)
+            return sl_fail(d, SL_E_IO, path, 0, NULL, "unable to open its lock file %s: %s", lp, strerror(errno));
+        if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            int en = errno;
+            char buf[32] = "";
+            ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
+            buf[n > 0 ? n : 0] = 0;
+            buf[strcspn(buf, "\n")] = 0;
+            close(fd);
+            if (en == EWOULDBLOCK)
+                return sl_fail(d, SL_E_IO, path, 0, NULL,
+                               "results store in use by another run (pid %s, lock %s); wait for it to "
+                               "finish, then `run --resume`, or write elsewhere with --out",
+                               buf[0] ? buf : "unknown", lp);
+            return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot lock %s: %s", lp, strerror(en));
+        }
+        if (!sl_storefile_lock_current(fd, lp)) {
+            close(fd);   /* a file its last holder removed: lock the one at the path now */
+            continue;
+        }
+        char pid[32];
+        int k = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+        if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)k, 0) != k) {
+            /* the pid only makes the message better; the lock holds without it */
+        }
+        if (lockpath_n)
+            snprintf(lockpath, lockpath_n, "%s", lp);
+        *fd_out = fd;
+        return SL_OK;
+    }
+    return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot lock %s: its file kept being replaced", lp);
+}
+
+void sl_storefile_unlock(int fd, const char *lockpath)
+{
     if (fd < 0)
-        return sl_fail(d, SL_E_IO, path, 0, NULL, "unable to open its lock file %s: %s", lp, strerror(errno));
-    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
-        int en = errno;
-        char buf[32] = "";
-        ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
-        buf[n > 0 ? n : 0] = 0;
-        buf[strcspn(buf, "\n")] = 0;
-        close(fd);
-        if (en == EWOULDBLOCK)
-            return sl_fail(d, SL_E_IO, path, 0, NULL,
-                           "results store in use by another run (pid %s, lock %s); wait for it to "
-                           "finish, then `run --resume`, or write elsewhere with --out",
-                           buf[0] ? buf : "unknown", lp);
-        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot lock %s: %s", lp, strerror(en));
-    }
-    char pid[32];
-    int k = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
-    if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)k, 0) != k) {
-        /* the pid only makes the message better; the lock holds without it */
-    }
-    *fd_out = fd;
-    return SL_OK;
+        return;
+    /* unlinked while still held (see sl_storefile_lock), and only when the
+     * path still names the file this descriptor locks */
+    if (lockpath && lockpath[0] && sl_storefile_lock_current(fd, lockpath))
+        unlink(lockpath);
+    close(fd);   /* releases the flock */
 }
 
 /* Read-only media: the folder is on a read-only mount, or it cannot take a

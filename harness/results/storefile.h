@@ -24,9 +24,18 @@
 #include <stddef.h>
 #include "sl_error.h"
 
-/* Take the writer's lock of the store at path; *fd holds it until closed.
- * SL_E_IO naming the holder's pid when another writer holds it. */
-enum sl_err sl_storefile_lock(const char *path, int *fd, struct sl_diag *d);
+/* Take the writer's lock of the store at path (a flock on "<real path>.lock",
+ * made if missing): *fd holds it, lockpath (lockpath_n bytes) gets the lock
+ * file's name for sl_storefile_unlock. SL_E_IO naming the holder's pid when
+ * another writer holds it. */
+enum sl_err sl_storefile_lock(const char *path, int *fd, char *lockpath, size_t lockpath_n, struct sl_diag *d);
+/* Release it: the lock file is removed first, while still held, then fd is
+ * closed (no .lock is left behind a clean close; one left by a killed writer
+ * is simply locked again by the next). */
+void sl_storefile_unlock(int fd, const char *lockpath);
+/* 1 when fd (a lock taken on lockpath) is on the file lockpath names now,
+ * 0 when that file was removed or replaced since it was opened */
+int sl_storefile_lock_current(int fd, const char *lockpath);
 
 /* The URI a reader opens path with (SQLITE_OPEN_URI | SQLITE_OPEN_READONLY);
  * 0 on success, -1 when it does not fit in n. */
