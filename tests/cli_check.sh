@@ -104,7 +104,7 @@ out=$("$bin" check "$tmp/d/shadowlab.db" --baseline "$tmp/b.yaml"); rc=$?
 first=$(echo "$out" | sed -n 3,4p)
 bh=$(sed -n 's/^config_hash: "\(.*\)"/\1/p' "$tmp/b.yaml")
 echo "$first" | grep -q "^Before the figures, what differs from the baseline:" || fail "the difference is not said first: $out"
-echo "$first" | grep -q "^- config hash: 2 of the store's 2 cell(s) have [0-9a-f]*, the baseline $bh" ||
+echo "$first" | grep -q "^- config hash: the store's 2 cell(s) have [0-9a-f]*, the baseline $bh" ||
   fail "the config hashes are not named: $first"
 out=$("$bin" check "$db" --baseline "$tmp/b.yaml")
 echo "$out" | grep -q "what differs from the baseline" && fail "its own baseline said to differ: $out"

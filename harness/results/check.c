@@ -666,18 +666,21 @@ static void say_provenance(FILE *out, const struct bl_file *b, const struct sl_c
             other_sha++;
             sha = runs[j].prov.git_sha;
         }
-    r->config_differs = other_hash > 0;
-    r->sha_differs = other_sha > 0;
-    if (!other_hash && !other_sha)
+    /* said when none matches: a store that mixes configs or builds (the
+     * baseline itself written from such a store holds both) is not a store
+     * of another config */
+    r->config_differs = n > 0 && other_hash == n;
+    r->sha_differs = nruns > 0 && other_sha == nruns;
+    if (!r->config_differs && !r->sha_differs)
         return;
     fprintf(out, "Before the figures, what differs from the baseline:\n");
-    if (other_hash)
-        fprintf(out, "- config hash: %d of the store's %d cell(s) have %s, the baseline %s: another config or "
-                     "other -D overrides, so figures may move for that reason alone\n",
-                other_hash, n, hash, b->config_hash);
-    if (other_sha)
-        fprintf(out, "- git SHA: %d of the store's %d run(s) at %s, the baseline at %s: other code\n", other_sha,
-                nruns, sha, b->git_sha);
+    if (r->config_differs)
+        fprintf(out, "- config hash: the store's %d cell(s) have %s, the baseline %s: another config or other -D "
+                     "overrides, so figures may move for that reason alone\n",
+                n, hash, b->config_hash);
+    if (r->sha_differs)
+        fprintf(out, "- git SHA: the store's %d run(s) at %s, the baseline at %s: other code\n", nruns, sha,
+                b->git_sha);
     fprintf(out, "\n");
 }
 
