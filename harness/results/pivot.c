@@ -825,7 +825,10 @@ static void tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *
     else {
         fputs("pivot-", f);
         tex_key(f, p->figure ? p->figure : "wrong");
-        fprintf(f, "-%s-%s", sl_pivot_key_name(pv->rk), sl_pivot_key_name(pv->ck));
+        fputc('-', f);
+        tex_key(f, sl_pivot_key_name(pv->rk));
+        fputc('-', f);
+        tex_key(f, sl_pivot_key_name(pv->ck));
     }
     if (parts > 1)
         fprintf(f, "-%d", part + 1);
