@@ -1,6 +1,7 @@
 /* table::* — the Markdown, CSV and LaTeX renderers on a known set of cells:
  * exact rows, grouping and order from cells given out of order, CSV quoting,
- * LaTeX escaping, refused duplicates. */
+ * LaTeX escaping, refused duplicates; the pivot (pivot.h): aggregates,
+ * where, number text, and LaTeX that is transposed or split to fit. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,6 +13,7 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "pivot.h"
 #include "summary.h"
 #include "table.h"
 
@@ -432,6 +434,120 @@ static void table_spot_light(void **st)
     free(csv);
 }
 
+static __attribute__((noinline)) char *pivot(enum sl_table_format fmt, const struct sl_cell_record *c, int n,
+                                             const struct sl_pivot_desc *p, struct sl_pivot_info *info,
+                                             enum sl_err want)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    struct sl_diag d;
+    assert_int_equal(sl_pivot_write(f, fmt, c, n, p, info, &d), want);
+    fclose(f);
+    return buf;
+}
+
+/* wrong (figure 10) is 10.25 % in the 2 px region and 20.25 % in the image of
+ * every cell; its count base + 10 r + 10 */
+static void table_pivot_values(void **st)
+{
+    (void)st;
+    struct sl_cell_record c[3];
+    int n = three_cells(c);
+    struct sl_pivot_desc p = {0};
+    char *csv = pivot(SL_TABLE_CSV, c, n, &p, NULL, SL_OK);
+    assert_string_equal(csv, "label,1024,2048\nnsm_a,20.25,20.25\n");
+    free(csv);
+    p.of = "count";
+    p.agg = SL_AGG_SUM;
+    csv = pivot(SL_TABLE_CSV, c, n, &p, NULL, SL_OK);
+    assert_string_equal(csv, "label,1024,2048\nnsm_a,1540,2020\n");   /* (500+20) + (1000+20); 2000+20 */
+    free(csv);
+    p.agg = SL_AGG_MEDIAN;
+    p.rows = SL_PK_viewpoint;
+    p.cols = SL_PK_region;
+    csv = pivot(SL_TABLE_CSV, c, n, &p, NULL, SL_OK);
+    assert_string_equal(csv, "viewpoint,2px,image\nside,1510,1520\nwith,510,520\n");
+    free(csv);
+    /* a base of another figure: wrong of pfl (figure 1) */
+    struct sl_pivot_desc q = {.of = "pfl", .agg = SL_AGG_MAX};
+    assert_int_equal(sl_pivot_where_parse(&q, "viewpoint=with", NULL), SL_OK);
+    csv = pivot(SL_TABLE_CSV, c, n, &q, NULL, SL_OK);
+    assert_string_equal(csv, "label,1024\nnsm_a,101.7612524\n");   /* 520 / 511 */
+    free(csv);
+    /* refused: an unknown figure, rows = cols, a time of a base */
+    struct sl_pivot_desc bad = {.figure = "nope"};
+    free(pivot(SL_TABLE_CSV, c, n, &bad, NULL, SL_E_USAGE));
+    bad = (struct sl_pivot_desc){.rows = SL_PK_scene, .cols = SL_PK_scene};
+    free(pivot(SL_TABLE_CSV, c, n, &bad, NULL, SL_E_USAGE));
+    bad = (struct sl_pivot_desc){.figure = "ms_method", .of = "pixels"};
+    free(pivot(SL_TABLE_CSV, c, n, &bad, NULL, SL_E_USAGE));
+    struct sl_diag d;
+    assert_int_equal(sl_pivot_where_parse(&bad, "colour=red", &d), SL_E_USAGE);
+    assert_int_equal(sl_pivot_where_parse(&bad, "label", &d), SL_E_USAGE);
+    char num[64];
+    sl_tex_number(num, sizeof num, 1234567.891, 2);
+    assert_string_equal(num, "1\\,234\\,567.89");
+    sl_tex_number(num, sizeof num, -1234, 0);
+    assert_string_equal(num, "$-$1\\,234");
+    sl_tex_number(num, sizeof num, -0.001, 2);
+    assert_string_equal(num, "0.00");
+    sl_tex_number(num, sizeof num, 999, 0);
+    assert_string_equal(num, "999");
+    sl_tex_number(num, sizeof num, NAN, 0);
+    assert_string_equal(num, "--");
+}
+
+/* 12 labels as columns do not fit \columnwidth: transposed (2 map sizes as
+ * columns); 12 labels x 12 scenes fit neither way: split, each part with the
+ * row names, no part over 8 numeric columns, never scaled. */
+static void table_pivot_latex_fits(void **st)
+{
+    (void)st;
+    enum { L = 12, S = 12 };
+    struct sl_cell_record *c = calloc(L * S * 2, sizeof *c);
+    assert_non_null(c);
+    int n = 0;
+    for (int s = 0; s < S; s++)
+        for (int l = 0; l < L; l++)
+            for (int m = 0; m < 2; m++) {
+                c[n] = make("side", 1024 << m, 100000, "h");
+                snprintf(c[n].scene, sizeof c[n].scene, "scene_%02d", s);
+                snprintf(c[n].label, sizeof c[n].label, "label_%02d", l);
+                n++;
+            }
+    struct sl_pivot_desc p = {.rows = SL_PK_map_size, .cols = SL_PK_label, .of = "count"};
+    struct sl_pivot_info info;
+    char *tex = pivot(SL_TABLE_LATEX, c, n, &p, &info, SL_OK);
+    assert_int_equal(info.transposed, 1);
+    assert_int_equal(info.parts, 1);
+    assert_non_null(strstr(tex, "\\begin{tabular}{lrr}\n"));
+    assert_non_null(strstr(tex, "\nlabel\\_00 & 100\\,020.0 & 100\\,020.0 \\\\\n"));
+    assert_null(strstr(tex, "resizebox"));
+    free(tex);
+    p = (struct sl_pivot_desc){.rows = SL_PK_label, .cols = SL_PK_scene};
+    tex = pivot(SL_TABLE_LATEX, c, n, &p, &info, SL_OK);
+    assert_int_equal(info.transposed, 0);
+    assert_true(info.parts >= 2);
+    assert_int_equal(count_of(tex, "\\begin{table}"), info.parts);
+    assert_int_equal(count_of(tex, "\\toprule"), info.parts);
+    assert_int_equal(count_of(tex, "\nlabel\\_05 & "), info.parts);
+    assert_null(strstr(tex, "{lrrrrrrrrr"));   /* never more than 8 numeric columns */
+    assert_null(strstr(tex, "resizebox"));
+    free(tex);
+    /* md, csv and json are never split */
+    char *md = pivot(SL_TABLE_MD, c, n, &p, &info, SL_OK);
+    assert_int_equal(info.parts, 1);
+    assert_non_null(strstr(md, "| label \\ scene | scene_00 |"));
+    free(md);
+    char *js = pivot(SL_TABLE_JSON, c, n, &p, &info, SL_OK);
+    assert_non_null(strstr(js, "\"columns\": [\"scene_00\", "));
+    assert_non_null(strstr(js, "\"n\": [2, 2, "));
+    free(js);
+    free(c);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -445,6 +561,8 @@ int main(int argc, char **argv)
         SL_CASE(table, empty_and_formats),
         SL_CASE(table, soft_and_hard),
         SL_CASE(table, spot_light),
+        SL_CASE(table, pivot_values),
+        SL_CASE(table, pivot_latex_fits),
     };
     return sl_run_group(argc, argv, "table", tests, NULL, NULL);
 }

@@ -575,7 +575,7 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
     const char *name = p->figure ? p->figure : "wrong";
     const char *text = pv->g.src == SRC_HARD   ? sl_figure_text((enum sl_figure)pv->g.k)
                        : pv->g.src == SRC_SOFT ? sl_soft_figure_text((enum sl_soft_figure)pv->g.k)
-                                               : (cols[pv->g.k].is_ms ? "time (median over the repetitions)" : "count");
+                                               : (cols[pv->g.k].is_ms ? "time (median over the repetitions)" : "counter");
     char over[256];
     over_words(pv, p, over, sizeof over);
     size_t o = (size_t)snprintf(out, n, "%s%s: %s, %s; %s over %s", p->caption ? p->caption : "", name, text,
