@@ -8,9 +8,10 @@
 #           '_' escaped in LaTeX, thin-space thousands separators;
 #           json parses; bad keys/aggregates exit 2
 #   latex   the run's table.tex and table-detail.tex, a motion run's
-#           motion.tex and the pivots' LaTeX (one transposed, one split)
+#           motion.tex and two pivots' LaTeX (one transposed into a longtable)
 #           compile in a plain article with booktabs and longtable: 0 errors,
-#           no overfull box, no \resizebox/\scalebox (exit 77 without pdflatex)
+#           no overfull box, no float taller than the page, no
+#           \resizebox/\scalebox (exit 77 without pdflatex)
 set -u
 bin=${1:?usage: cli_tables.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -131,8 +132,11 @@ outputs: {overlays: false}
 YAML
   "$bin" run "$tmp/motion.yaml" -q -o "$tmp/m" >"$tmp/m.out" 2>&1 || { cat "$tmp/m.out"; fail "motion run"; }
   [ -s "$tmp/m/motion_tex/motion.tex" ] || fail "no motion.tex"
-  # pivots: 12 columns (label x viewpoint... as columns: transposed); a split one
-  "$bin" table "$db" --rows map_size --cols label --figure wrong --format latex >"$tmp/p1.tex" 2>"$tmp/p1.err" || fail "p1"
+  # pivots: the motion run's 120 frames as columns do not fit: transposed, and
+  # 120 rows are a longtable, not a float taller than the page
+  "$bin" table "$tmp/m/shadowlab.db" --rows label --cols viewpoint --figure wrong --of count --agg sum \
+    --format latex >"$tmp/p1.tex" 2>"$tmp/p1.err" || fail "p1"
+  grep -q 'transposed' "$tmp/p1.err" && grep -q 'begin{longtable}' "$tmp/p1.tex" || fail "p1 not a transposed longtable"
   "$bin" table "$db" --rows viewpoint --cols region --figure wrong_caught --of count --agg sum --format latex \
     >"$tmp/p2.tex" 2>"$tmp/p2.err" || fail "p2"
   cp "$dir/table.tex" "$dir/table-detail.tex" "$tmp/m/motion_tex/motion.tex" "$tmp/"
@@ -152,6 +156,7 @@ TEX
   errs=$(grep -c '^!' "$tmp/doc.log"); over=$(grep -c 'Overfull' "$tmp/doc.log")
   [ "$errs" -eq 0 ] || { grep -A3 '^!' "$tmp/doc.log" | head; fail "$errs LaTeX errors"; }
   [ "$over" -eq 0 ] || { grep -A2 'Overfull' "$tmp/doc.log" | head; fail "$over overfull boxes"; }
+  ! grep -q 'Float too large' "$tmp/doc.log" || fail "a float taller than the page"
   ! grep -qE 'resizebox|scalebox' "$tmp"/table.tex "$tmp"/table-detail.tex "$tmp"/motion.tex "$tmp"/p?.tex ||
     fail "a table is scaled"
   grep -q 'longtable' "$tmp/table-detail.tex" && grep -q 'longtable' "$tmp/motion.tex" || fail "no longtable"

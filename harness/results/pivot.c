@@ -120,6 +120,7 @@ static void plain_number(char *out, size_t n, double v, int dec)
 #define TEX_COLSEP      12.0
 #define TEX_MAXNUM      8
 #define TEX_LABELMAX    130.0      /* a wider row name is wrapped in a \parbox of this width */
+#define TEX_MAXROWS     40         /* more rows: a longtable, not a float */
 
 static double text_pt(const char *s)
 {
@@ -565,7 +566,7 @@ static void over_words(const struct pivot *pv, const struct sl_pivot_desc *p, ch
                               pv->key[k].n);
     }
     if (!o)
-        snprintf(out, n, "one cell each");
+        snprintf(out, n, "nothing: one cell an entry");
     (void)p;
 }
 
@@ -580,7 +581,7 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
     over_words(pv, p, over, sizeof over);
     size_t o = (size_t)snprintf(out, n, "%s%s: %s, %s; %s over %s", p->caption ? p->caption : "", name, text,
                                 pv->g.unit, agg_names[p->agg], over);
-    if (pv->maxn > 1 || p->agg != SL_AGG_MEAN)
+    if (pv->maxn > 1)
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, ", at most %d values an entry", pv->maxn);
     if (pv->region_default && pv->g.src == SRC_HARD)
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, "; the whole image");
@@ -810,12 +811,33 @@ static int fits(const struct view *v, int c0, int c1, int dec)
     return w <= TEX_BUDGET;
 }
 
+static void tex_header(FILE *f, const struct view *v, int c0, int c1)
+{
+    fprintf(f, "\\toprule\n & \\multicolumn{%d}{c}{", c1 - c0);
+    tex_str(f, key_head(v->ck));
+    fprintf(f, "} \\\\\n\\cmidrule(l){2-%d}\n", c1 - c0 + 1);
+    tex_str(f, key_head(v->rk));
+    for (int c = c0; c < c1; c++) {
+        fputs(" & ", f);
+        key_tex(f, v->ck, view_ckey(v, c), 0);
+    }
+    fputs(" \\\\\n\\midrule\n", f);
+}
+
+/* One table of columns [c0, c1): a float, or a longtable (no float, breaks
+ * across pages) when it has more rows than a page holds. */
 static void tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p, const char *cap, int c0,
                      int c1, int part, int parts, int dec)
 {
     const struct pivot *pv = v->pv;
     int wrap = rowname_pt(v) >= TEX_LABELMAX;
-    fputs("\\begin{table}[htbp]\n\\centering\n\\small\n\\caption{", f);
+    int lt = v->nr > TEX_MAXROWS;
+    fputs(lt ? "{\\small\n\\begin{longtable}{l" : "\\begin{table}[htbp]\n\\centering\n\\small\n\\caption{", f);
+    if (lt) {
+        for (int c = c0; c < c1; c++)
+            fputc('r', f);
+        fputs("}\n\\caption{", f);
+    }
     tex_str(f, cap);
     if (parts > 1)
         fprintf(f, " (Part %d of %d.)", part + 1, parts);
@@ -832,18 +854,19 @@ static void tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *
     }
     if (parts > 1)
         fprintf(f, "-%d", part + 1);
-    fputs("}\n\\begin{tabular}{l", f);
-    for (int c = c0; c < c1; c++)
-        fputc('r', f);
-    fprintf(f, "}\n\\toprule\n & \\multicolumn{%d}{c}{", c1 - c0);
-    tex_str(f, key_head(v->ck));
-    fprintf(f, "} \\\\\n\\cmidrule(l){2-%d}\n", c1 - c0 + 1);
-    tex_str(f, key_head(v->rk));
-    for (int c = c0; c < c1; c++) {
-        fputs(" & ", f);
-        key_tex(f, v->ck, view_ckey(v, c), 0);
+    if (lt) {
+        fputs("}\\\\\n", f);
+        tex_header(f, v, c0, c1);
+        fputs("\\endfirsthead\n", f);
+        tex_header(f, v, c0, c1);
+        fputs("\\endhead\n\\bottomrule\n\\endfoot\n", f);
+    } else {
+        fputs("}\n\\begin{tabular}{l", f);
+        for (int c = c0; c < c1; c++)
+            fputc('r', f);
+        fputs("}\n", f);
+        tex_header(f, v, c0, c1);
     }
-    fputs(" \\\\\n\\midrule\n", f);
     for (int r = 0; r < v->nr; r++) {
         if (v->rk == SL_PK_map_size || v->rk == SL_PK_viewport)
             key_tex(f, v->rk, view_rkey(v, r), 0);
@@ -856,7 +879,7 @@ static void tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *
         }
         fputs(" \\\\\n", f);
     }
-    fputs("\\bottomrule\n\\end{tabular}\n\\end{table}\n\n", f);
+    fputs(lt ? "\\end{longtable}}\n\n" : "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n", f);
 }
 
 static void write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p, struct sl_pivot_info *info)
@@ -882,6 +905,8 @@ static void write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_des
         c = e;
     }
     starts[parts] = v.nc;
+    if (v.nr > TEX_MAXROWS)
+        fprintf(f, "%% %d rows: a longtable, needs \\usepackage{longtable}\n", v.nr);
     if (parts > 1)
         fprintf(f, "%% %d columns do not fit \\columnwidth: split into %d tables\n", v.nc, parts);
     else if (info->transposed)

@@ -18,7 +18,8 @@
  * thousands separators, never scaled. A table estimated wider than a plain
  * article's \columnwidth (or of more than 8 numeric columns) is transposed
  * when that fits, else split into several tables by columns; the info says
- * so and the caller tells the user. Markdown, CSV and JSON are never split.
+ * so and the caller tells the user. A table of more than 40 rows is a
+ * longtable (it breaks across pages; \usepackage{longtable}), not a float. Markdown, CSV and JSON are never split.
  *
  * Also the run's LaTeX (sl_pivot_tex_summary, sl_pivot_tex_detail): a few
  * summary tables per study and a per-view appendix of longtables.
