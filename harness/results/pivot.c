@@ -398,23 +398,20 @@ static void pivot_free(struct pivot *pv)
     free(pv->cnt);
 }
 
-static const double *g_ord;
-static int ord_cmp(const void *a, const void *b)
-{
-    double x = g_ord[*(const int *)a], y = g_ord[*(const int *)b];
-    return x < y ? -1 : x > y;
-}
-
+/* display order of a key's values: by first appearance, or by their numeric
+ * order (insertion sort: stable, a few hundred values at most) */
 static int *perm_of(const struct keyset *k, enum sl_pivot_key key)
 {
     int *p = malloc((size_t)(k->n ? k->n : 1) * sizeof *p);
     if (!p)
         return NULL;
-    for (int i = 0; i < k->n; i++)
-        p[i] = i;
-    if (by_order(key)) {
-        g_ord = k->ord;
-        qsort(p, (size_t)k->n, sizeof *p, ord_cmp);
+    for (int i = 0; i < k->n; i++) {
+        int j = i;
+        while (by_order(key) && j > 0 && k->ord[p[j - 1]] > k->ord[i]) {
+            p[j] = p[j - 1];
+            j--;
+        }
+        p[j] = i;
     }
     return p;
 }
@@ -882,7 +879,7 @@ static void tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *
     fputs(lt ? "\\end{longtable}}\n\n" : "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n", f);
 }
 
-static void write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p, struct sl_pivot_info *info)
+static int write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p, struct sl_pivot_info *info)
 {
     int dec = decimals(pv, p->agg);
     char cap[1024];
@@ -896,8 +893,10 @@ static void write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_des
         }
     }
     /* parts: greedy runs of columns that fit, at least one column each */
-    int starts[1024], parts = 0;
-    for (int c = 0; c < v.nc && parts < 1023;) {
+    int *starts = malloc(((size_t)v.nc + 1) * sizeof *starts), parts = 0;
+    if (!starts)
+        return -1;
+    for (int c = 0; c < v.nc;) {
         int e = c + 1;
         while (e < v.nc && fits(&v, c, e + 1, dec))
             e++;
@@ -914,6 +913,8 @@ static void write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_des
     for (int k = 0; k < parts; k++)
         tex_part(f, &v, p, cap, starts[k], starts[k + 1], k, parts, dec);
     info->parts = parts;
+    free(starts);
+    return 0;
 }
 
 enum sl_err sl_pivot_write(FILE *out, enum sl_table_format fmt, const struct sl_cell_record *cells, int ncells,
@@ -938,8 +939,8 @@ enum sl_err sl_pivot_write(FILE *out, enum sl_table_format fmt, const struct sl_
     case SL_TABLE_CSV: write_csv(out, &pv); info->parts = pv.nr > 0; break;
     case SL_TABLE_JSON: write_json(out, &pv, p); info->parts = pv.nr > 0; break;
     case SL_TABLE_LATEX:
-        if (pv.nr > 0)
-            write_tex(out, &pv, p, info);
+        if (pv.nr > 0 && write_tex(out, &pv, p, info) != 0)
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot of %d columns", pv.nc);
         break;
     default: e = sl_fail(d, SL_E_USAGE, NULL, 0, "--format", "a pivot is md, csv, latex or json");
     }
