@@ -548,6 +548,36 @@ static void table_pivot_latex_fits(void **st)
     free(c);
 }
 
+/* The run's LaTeX: a few summary floats of the study, and a longtable per
+ * view with every label and map size; no scaling anywhere. */
+static void table_run_latex(void **st)
+{
+    (void)st;
+    struct sl_cell_record c[3];
+    int n = three_cells(c);
+    for (int i = 0; i < n; i++)
+        snprintf(c[i].study, sizeof c[i].study, "prim_study");
+    char *sum = render(SL_TABLE_LATEX_SUMMARY, "shadowlab: prim", c, n, SL_OK);
+    /* wrong, uncertain and ms_method by label x map size; one scene: no label x scene */
+    assert_int_equal(count_of(sum, "\\begin{table}"), 3);
+    assert_non_null(strstr(sum, "\\label{tab:prim-study-wrong-map-size}\n"));
+    assert_non_null(strstr(sum, "\nnsm\\_a & 20.25 & 20.25 \\\\\n"));
+    assert_non_null(strstr(sum, "mean over viewpoint (2), at most 2 values an entry"));
+    assert_non_null(strstr(sum, "% git abc1234, config 0123456789abcdef, machine h/c/i\n"));
+    assert_null(strstr(sum, "resizebox"));
+    free(sum);
+    char *det = render(SL_TABLE_LATEX_DETAIL, "shadowlab: prim", c, n, SL_OK);
+    assert_int_equal(count_of(det, "\\begin{longtable}"), count_of(det, "\\end{longtable}"));
+    assert_true(count_of(det, "\\begin{longtable}") >= 2);   /* a view each: side, with */
+    assert_before(det, "prim\\_s / side / 64$\\times$32", "prim\\_s / with / 64$\\times$32");
+    /* side: the 1024 before the 2048 whatever the cells' order; wrong 1020 (20.25 %) */
+    assert_before(det, "\nnsm\\_a & 1\\,024 & ", "\nnsm\\_a & 2\\,048 & ");
+    assert_non_null(strstr(det, " & 1\\,020 & 20.25"));
+    assert_null(strstr(det, "\\begin{table}"));
+    assert_null(strstr(det, "resizebox"));
+    free(det);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -563,6 +593,7 @@ int main(int argc, char **argv)
         SL_CASE(table, spot_light),
         SL_CASE(table, pivot_values),
         SL_CASE(table, pivot_latex_fits),
+        SL_CASE(table, run_latex),
     };
     return sl_run_group(argc, argv, "table", tests, NULL, NULL);
 }
