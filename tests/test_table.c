@@ -1,6 +1,7 @@
 /* table::* — the Markdown, CSV and LaTeX renderers on a known set of cells:
  * exact rows, grouping and order from cells given out of order, CSV quoting,
- * LaTeX escaping, refused duplicates. */
+ * LaTeX escaping, refused duplicates; the pivot (pivot.h): aggregates,
+ * where, number text, and LaTeX that is transposed or split to fit. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,6 +13,7 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "pivot.h"
 #include "summary.h"
 #include "table.h"
 
@@ -432,6 +434,150 @@ static void table_spot_light(void **st)
     free(csv);
 }
 
+static __attribute__((noinline)) char *pivot(enum sl_table_format fmt, const struct sl_cell_record *c, int n,
+                                             const struct sl_pivot_desc *p, struct sl_pivot_info *info,
+                                             enum sl_err want)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_non_null(f);
+    struct sl_diag d;
+    assert_int_equal(sl_pivot_write(f, fmt, c, n, p, info, &d), want);
+    fclose(f);
+    return buf;
+}
+
+/* wrong (figure 10) is 10.25 % in the 2 px region and 20.25 % in the image of
+ * every cell; its count base + 10 r + 10 */
+static void table_pivot_values(void **st)
+{
+    (void)st;
+    struct sl_cell_record c[3];
+    int n = three_cells(c);
+    struct sl_pivot_desc p = {0};
+    char *csv = pivot(SL_TABLE_CSV, c, n, &p, NULL, SL_OK);
+    assert_string_equal(csv, "label,1024,2048\nnsm_a,20.25,20.25\n");
+    free(csv);
+    p.of = "count";
+    p.agg = SL_AGG_SUM;
+    csv = pivot(SL_TABLE_CSV, c, n, &p, NULL, SL_OK);
+    assert_string_equal(csv, "label,1024,2048\nnsm_a,1540,2020\n");   /* (500+20) + (1000+20); 2000+20 */
+    free(csv);
+    p.agg = SL_AGG_MEDIAN;
+    p.rows = SL_PK_viewpoint;
+    p.cols = SL_PK_region;
+    csv = pivot(SL_TABLE_CSV, c, n, &p, NULL, SL_OK);
+    assert_string_equal(csv, "viewpoint,2px,image\nside,1510,1520\nwith,510,520\n");
+    free(csv);
+    /* a base of another figure: wrong of pfl (figure 1) */
+    struct sl_pivot_desc q = {.of = "pfl", .agg = SL_AGG_MAX};
+    assert_int_equal(sl_pivot_where_parse(&q, "viewpoint=with", NULL), SL_OK);
+    csv = pivot(SL_TABLE_CSV, c, n, &q, NULL, SL_OK);
+    assert_string_equal(csv, "label,1024\nnsm_a,101.7612524\n");   /* 520 / 511 */
+    free(csv);
+    /* refused: an unknown figure, rows = cols, a time of a base */
+    struct sl_pivot_desc bad = {.figure = "nope"};
+    free(pivot(SL_TABLE_CSV, c, n, &bad, NULL, SL_E_USAGE));
+    bad = (struct sl_pivot_desc){.rows = SL_PK_scene, .cols = SL_PK_scene};
+    free(pivot(SL_TABLE_CSV, c, n, &bad, NULL, SL_E_USAGE));
+    bad = (struct sl_pivot_desc){.figure = "ms_method", .of = "pixels"};
+    free(pivot(SL_TABLE_CSV, c, n, &bad, NULL, SL_E_USAGE));
+    struct sl_diag d;
+    assert_int_equal(sl_pivot_where_parse(&bad, "colour=red", &d), SL_E_USAGE);
+    assert_int_equal(sl_pivot_where_parse(&bad, "label", &d), SL_E_USAGE);
+    char num[64];
+    sl_tex_number(num, sizeof num, 1234567.891, 2);
+    assert_string_equal(num, "1\\,234\\,567.89");
+    sl_tex_number(num, sizeof num, -1234, 0);
+    assert_string_equal(num, "$-$1\\,234");
+    sl_tex_number(num, sizeof num, -0.001, 2);
+    assert_string_equal(num, "0.00");
+    sl_tex_number(num, sizeof num, 999, 0);
+    assert_string_equal(num, "999");
+    sl_tex_number(num, sizeof num, NAN, 0);
+    assert_string_equal(num, "--");
+}
+
+/* 12 labels as columns do not fit \columnwidth: transposed (2 map sizes as
+ * columns); 12 labels x 12 scenes fit neither way: split, each part with the
+ * row names, no part over 8 numeric columns, never scaled. */
+static void table_pivot_latex_fits(void **st)
+{
+    (void)st;
+    enum { L = 12, S = 12 };
+    struct sl_cell_record *c = calloc(L * S * 2, sizeof *c);
+    assert_non_null(c);
+    int n = 0;
+    for (int s = 0; s < S; s++)
+        for (int l = 0; l < L; l++)
+            for (int m = 0; m < 2; m++) {
+                c[n] = make("side", 1024 << m, 100000, "h");
+                snprintf(c[n].scene, sizeof c[n].scene, "scene_%02d", s);
+                snprintf(c[n].label, sizeof c[n].label, "label_%02d", l);
+                n++;
+            }
+    struct sl_pivot_desc p = {.rows = SL_PK_map_size, .cols = SL_PK_label, .of = "count"};
+    struct sl_pivot_info info;
+    char *tex = pivot(SL_TABLE_LATEX, c, n, &p, &info, SL_OK);
+    assert_int_equal(info.transposed, 1);
+    assert_int_equal(info.parts, 1);
+    assert_non_null(strstr(tex, "\\begin{tabular}{lrr}\n"));
+    assert_non_null(strstr(tex, "\nlabel\\_00 & 100\\,020.0 & 100\\,020.0 \\\\\n"));
+    assert_null(strstr(tex, "resizebox"));
+    free(tex);
+    p = (struct sl_pivot_desc){.rows = SL_PK_label, .cols = SL_PK_scene};
+    tex = pivot(SL_TABLE_LATEX, c, n, &p, &info, SL_OK);
+    assert_int_equal(info.transposed, 0);
+    assert_true(info.parts >= 2);
+    assert_int_equal(count_of(tex, "\\begin{table}"), info.parts);
+    assert_int_equal(count_of(tex, "\\toprule"), info.parts);
+    assert_int_equal(count_of(tex, "\nlabel\\_05 & "), info.parts);
+    assert_null(strstr(tex, "{lrrrrrrrrr"));   /* never more than 8 numeric columns */
+    assert_null(strstr(tex, "resizebox"));
+    free(tex);
+    /* md, csv and json are never split */
+    char *md = pivot(SL_TABLE_MD, c, n, &p, &info, SL_OK);
+    assert_int_equal(info.parts, 1);
+    assert_non_null(strstr(md, "| label \\ scene | scene_00 |"));
+    free(md);
+    char *js = pivot(SL_TABLE_JSON, c, n, &p, &info, SL_OK);
+    assert_non_null(strstr(js, "\"columns\": [\"scene_00\", "));
+    assert_non_null(strstr(js, "\"n\": [2, 2, "));
+    free(js);
+    free(c);
+}
+
+/* The run's LaTeX: a few summary floats of the study, and a longtable per
+ * view with every label and map size; no scaling anywhere. */
+static void table_run_latex(void **st)
+{
+    (void)st;
+    struct sl_cell_record c[3];
+    int n = three_cells(c);
+    for (int i = 0; i < n; i++)
+        snprintf(c[i].study, sizeof c[i].study, "prim_study");
+    char *sum = render(SL_TABLE_LATEX_SUMMARY, "shadowlab: prim", c, n, SL_OK);
+    /* wrong, uncertain and ms_method by label x map size; one scene: no label x scene */
+    assert_int_equal(count_of(sum, "\\begin{table}"), 3);
+    assert_non_null(strstr(sum, "\\label{tab:prim-study-wrong-map-size}\n"));
+    assert_non_null(strstr(sum, "\nnsm\\_a & 20.25 & 20.25 \\\\\n"));
+    assert_non_null(strstr(sum, "mean over viewpoint (2), at most 2 values an entry"));
+    assert_non_null(strstr(sum, "% git abc1234, config 0123456789abcdef, machine h/c/i\n"));
+    assert_null(strstr(sum, "resizebox"));
+    free(sum);
+    char *det = render(SL_TABLE_LATEX_DETAIL, "shadowlab: prim", c, n, SL_OK);
+    assert_int_equal(count_of(det, "\\begin{longtable}"), count_of(det, "\\end{longtable}"));
+    assert_true(count_of(det, "\\begin{longtable}") >= 2);   /* a view each: side, with */
+    assert_before(det, "prim\\_s / side / 64$\\times$32", "prim\\_s / with / 64$\\times$32");
+    /* side: the 1024 before the 2048 whatever the cells' order; wrong 1020 (20.25 %) */
+    assert_before(det, "\nnsm\\_a & 1\\,024 & ", "\nnsm\\_a & 2\\,048 & ");
+    assert_non_null(strstr(det, " & 1\\,020 & 20.25"));
+    assert_null(strstr(det, "\\begin{table}"));
+    assert_null(strstr(det, "resizebox"));
+    free(det);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -445,6 +591,9 @@ int main(int argc, char **argv)
         SL_CASE(table, empty_and_formats),
         SL_CASE(table, soft_and_hard),
         SL_CASE(table, spot_light),
+        SL_CASE(table, pivot_values),
+        SL_CASE(table, pivot_latex_fits),
+        SL_CASE(table, run_latex),
     };
     return sl_run_group(argc, argv, "table", tests, NULL, NULL);
 }

@@ -2,7 +2,8 @@
  * table.c — `shadowlab table`: the stored cells of a results store,
  * filtered, as thesis-style tables, or with --summary (and its --region,
  * --lower-is-better, --average-case) one figure's average, best and worst
- * per map size.
+ * per map size, or with --rows/--cols/--figure/--of/--agg/--where one pivot
+ * table a paper takes (pivot.h).
  */
 #define _GNU_SOURCE   /* getopt_long */
 #include <limits.h>
@@ -11,6 +12,7 @@
 #include <string.h>
 #include "cli.h"
 #include "store.h"
+#include "pivot.h"
 #include "summary.h"
 #include "table.h"
 
@@ -24,6 +26,9 @@ int cli_table(int argc, char **argv)
         {"summary", required_argument, NULL, OPT_SUMMARY},   {"region", required_argument, NULL, OPT_REGION},
         {"figures", required_argument, NULL, OPT_FIGURES},
         {"lower-is-better", no_argument, NULL, OPT_LOWER},   {"average-case", required_argument, NULL, OPT_AVG},
+        {"rows", required_argument, NULL, OPT_ROWS},          {"cols", required_argument, NULL, OPT_COLS},
+        {"figure", required_argument, NULL, OPT_FIGURE},      {"of", required_argument, NULL, OPT_OF},
+        {"agg", required_argument, NULL, OPT_AGG},            {"where", required_argument, NULL, OPT_WHERE},
         {0, 0, 0, 0},
     };
     const struct cli_parser p = {"table", "", cli_usage_table, lo};
@@ -32,13 +37,42 @@ int cli_table(int argc, char **argv)
     struct sl_summary_opts so = {.figure = -1, .region = -1};
     const char *summary = NULL, *figures = NULL;
     char avg_scene[64] = "", avg_vp[32] = "";
+    struct sl_pivot_desc pd = {0};
+    int pivot = 0;
+    struct sl_diag pdg;
+    memset(&pdg, 0, sizeof pdg);
     for (int c; (c = cli_opt_next(&p, argc, argv)) != OPT_DONE;) {
         const char *v = optarg;
         switch (c) {
         case OPT_FORMAT:
             fmt = sl_table_format_parse(v);
             if (fmt < 0)
-                return cli_usage_error("table: --format md, csv or latex", cli_usage_table);
+                return cli_usage_error("table: --format md, csv, latex or json", cli_usage_table);
+            break;
+        case OPT_ROWS:
+        case OPT_COLS: {
+            int k = sl_pivot_key_parse(v);
+            if (k < 0)
+                return cli_usage_error("table: --rows/--cols label, method, scene, viewpoint, viewport, map_size "
+                                       "or region", cli_usage_table);
+            *(c == OPT_ROWS ? &pd.rows : &pd.cols) = (enum sl_pivot_key)k;
+            pivot = 1;
+            break;
+        }
+        case OPT_FIGURE: pd.figure = v; pivot = 1; break;
+        case OPT_OF: pd.of = v; pivot = 1; break;
+        case OPT_AGG: {
+            int a = sl_pivot_agg_parse(v);
+            if (a < 0)
+                return cli_usage_error("table: --agg mean, median, sum, min or max", cli_usage_table);
+            pd.agg = (enum sl_pivot_agg)a;
+            pivot = 1;
+            break;
+        }
+        case OPT_WHERE:
+            if (sl_pivot_where_parse(&pd, v, &pdg))
+                return cli_fail(SL_E_USAGE, &pdg);
+            pivot = 1;
             break;
         case OPT_SCENE: f.scene = v; break;
         case OPT_VIEWPOINT: f.viewpoint = v; break;
@@ -96,6 +130,11 @@ int cli_table(int argc, char **argv)
     }
     if (optind >= argc)
         return cli_usage_error("table: missing DB", cli_usage_table);
+    if (pivot && (summary || figures))
+        return cli_usage_error("table: a pivot (--rows, --cols, --figure, --of, --agg, --where) takes no "
+                               "--summary or --figures", cli_usage_table);
+    if (!pivot && fmt == SL_TABLE_JSON)
+        return cli_usage_error("table: --format json is a pivot's (--rows, --cols, --figure)", cli_usage_table);
     if (optind + 1 < argc)
         return cli_usage_error("table: one DB", cli_usage_table);
     const char *db = argv[optind];
@@ -115,7 +154,18 @@ int cli_table(int argc, char **argv)
         e = sl_store_query(st, &f, &cells, &n, &d);
     if (!e && n == 0)
         e = sl_fail(&d, SL_E_USAGE, db, 0, NULL, "no stored cell matches");
-    if (!e && summary) {
+    if (!e && pivot) {
+        struct sl_pivot_info info;
+        e = sl_pivot_write(stdout, (enum sl_table_format)fmt, cells, n, &pd, &info, &d);
+        if (!e && info.nrows == 0)
+            e = sl_fail(&d, SL_E_USAGE, db, 0, NULL, "no stored value of %s matches", pd.figure ? pd.figure : "wrong");
+        if (!e && info.parts > 1)
+            fprintf(stderr, "table: %d columns do not fit \\columnwidth: split into %d tables\n",
+                    info.transposed ? info.nrows : info.ncols, info.parts);
+        else if (!e && info.transposed)
+            fprintf(stderr, "table: %d columns do not fit \\columnwidth: transposed (%s as rows)\n", info.ncols,
+                    sl_pivot_key_name(pd.cols ? pd.cols : SL_PK_map_size));
+    } else if (!e && summary) {
         for (int k = 0; k < SL_FIG_COUNT; k++)
             if (!strcmp(sl_figure_name((enum sl_figure)k), summary))
                 so.figure = k;

@@ -61,11 +61,27 @@ const char cli_usage_table[] =
     "                          [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
     "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
     "                           [--average-case SCENE/VIEWPOINT/N[/MAP]]]\n"
+    "       shadowlab table DB --rows R --cols C [--figure F] [--of BASE] [--agg A]\n"
+    "                          [--where KEY=VALUE]... [--format md|csv|latex|json]\n"
     "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
     "  --summary, the average, best and worst per map size of one figure's percentage over\n"
     "  the cells of one label (as the theses' summary tables), md or csv.\n"
     "  md and latex leave out the figures a method does not produce (0 in every column past\n"
-    "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n";
+    "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n"
+    "  A pivot (any of --rows, --cols, --figure, --of, --agg, --where): one table a paper takes.\n"
+    "  --rows R, --cols C  label, method, scene, viewpoint, viewport, map_size or region\n"
+    "                      (default label x map_size)\n"
+    "  --figure F      a figure of figures.h or softfig.h (default wrong), or a counter or time\n"
+    "                  of the cell (ms_method, rays, lookups, ...)\n"
+    "  --of BASE       the figure's percentage of its own base (the default: figures.csv's\n"
+    "                  percent_of), 'count', or of another figure of the region (--of pfl)\n"
+    "  --agg A         mean (default), median, sum, min or max over what is left\n"
+    "  --where K=V     keep the cells whose key K is V; a key given twice keeps either value\n"
+    "                  (--where label=nsm --where label=chain); the region is 'image' unless\n"
+    "                  it is a row, a column or a --where\n"
+    "  latex: booktabs, names escaped, thin-space thousands separators, never scaled; a table\n"
+    "  wider than a plain article's \\columnwidth is transposed or split into several tables,\n"
+    "  and stderr says so. json: the columns, and per row the values (null: none) and counts.\n";
 
 const char cli_usage_report[] =
     "usage: shadowlab report RESULTS_DB [-o DIR] [--self-contained] [--latex]\n"

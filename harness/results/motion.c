@@ -4,6 +4,7 @@
  * flicker counts only when that frame was compared (flicker_compared > 0).
  */
 #include "motion.h"
+#include "pivot.h"
 #include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
@@ -119,6 +120,78 @@ static void num(FILE *f, double v, const char *fmt)
         fprintf(f, fmt, v);
 }
 
+/* a number for LaTeX, "--" when not defined */
+static void tex_num(FILE *f, double v, int dec)
+{
+    char s[64];
+    sl_tex_number(s, sizeof s, v, dec);
+    fputs(s, f);
+}
+
+static void tex_caption(FILE *f, const struct sl_motion_row *r, const char *what)
+{
+    fputs("\\caption{", f);
+    sl_tex_text(f, r->scene);
+    fputs(", path ", f);
+    sl_tex_text(f, r->path);
+    fprintf(f, ", %d$\\times$%d, map %d\\textsuperscript{2}: %s}\\\\\n", r->vw, r->vh, r->map_size, what);
+}
+
+static void tex_head(FILE *f, const char *cols)
+{
+    for (int pass = 0; pass < 2; pass++)
+        fprintf(f, "\\toprule\n%s \\\\\n\\midrule\n%s\n", cols, pass ? "\\endhead" : "\\endfirsthead");
+    fputs("\\bottomrule\n\\endfoot\n", f);
+}
+
+/* Per group (scene, path, viewport, map size) two longtables that each fit
+ * a plain article's \\columnwidth at \\small (the eight columns side by side
+ * ran 222 pt too wide): the wrong pixels per frame, then the flicker. */
+static void motion_tex(FILE *f, const struct sl_motion_row *rows, int n)
+{
+    fputs("% shadowlab motion tables; needs \\usepackage{booktabs,longtable}\n\n", f);
+    for (int i = 0; i < n;) {
+        int e = i + 1;
+        while (e < n && row_cmp(&rows[i], &rows[e]) == 0)
+            e++;
+        fputs("{\\small\\setlength{\\tabcolsep}{4pt}\n\\begin{longtable}{lrrrr}\n", f);
+        tex_caption(f, &rows[i], "the whole image's wrong pixels per frame (mean, worst and the frame of the worst)");
+        tex_head(f, "label & frames & mean & worst & frame");
+        for (int k = i; k < e; k++) {
+            const struct sl_motion_row *r = &rows[k];
+            sl_tex_text(f, r->label);
+            fprintf(f, " & %d & ", r->frames);
+            tex_num(f, r->mean_wrong, 1);
+            fputs(" & ", f);
+            tex_num(f, (double)r->worst_wrong, 0);
+            fprintf(f, " & %d \\\\\n", r->worst_frame);
+        }
+        fputs("\\end{longtable}\n\\begin{longtable}{lrrrrrr}\n", f);
+        tex_caption(f, &rows[i], "flicker, pixels whose verdict changes between consecutive frames while their truth "
+                                 "does not: in all, per compared pair, at worst (and its frame), and per 1,000 "
+                                 "pixels of the thinnest contour; -- where no pair was compared");
+        tex_head(f, "label & pairs & flicker & per pair & worst & frame & per 1,000");
+        for (int k = i; k < e; k++) {
+            const struct sl_motion_row *r = &rows[k];
+            sl_tex_text(f, r->label);
+            fprintf(f, " & %d & ", r->pairs);
+            tex_num(f, r->pairs ? (double)r->flicker : NAN, 0);
+            fputs(" & ", f);
+            tex_num(f, r->mean_flicker, 1);
+            fputs(" & ", f);
+            tex_num(f, r->pairs ? (double)r->worst_flicker : NAN, 0);
+            if (r->pairs)
+                fprintf(f, " & %d & ", r->worst_flicker_frame);
+            else
+                fputs(" & -- & ", f);
+            tex_num(f, r->per_1000, 2);
+            fputs(" \\\\\n", f);
+        }
+        fputs("\\end{longtable}}\n\n", f);
+        i = e;
+    }
+}
+
 void sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_row *rows, int n)
 {
     if (fmt == SL_TABLE_CSV) {
@@ -139,24 +212,20 @@ void sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_r
         }
         return;
     }
-    const int tex = fmt == SL_TABLE_LATEX;
+    if (fmt == SL_TABLE_LATEX) {
+        motion_tex(f, rows, n);
+        return;
+    }
+    /* Markdown */
     for (int i = 0; i < n; i++) {
         const struct sl_motion_row *r = &rows[i];
-        if (i == 0 || row_cmp(&rows[i - 1], r) != 0) {
-            if (i && tex)
-                fprintf(f, "\\bottomrule\n\\end{tabular}\n\n");
-            if (tex)
-                fprintf(f, "%% %s, path %s, %dx%d, map %d^2\n\\begin{tabular}{lrrrrrrr}\n\\toprule\nlabel & frames & "
-                           "mean wrong & worst wrong (frame) & flicker & mean per pair & worst (frame) & "
-                           "per 1,000 contour px \\\\\n\\midrule\n", r->scene, r->path, r->vw, r->vh, r->map_size);
-            else
-                fprintf(f, "%s### %s, path %s, %dx%d, map %d²\n\n| label | frames | mean wrong | worst wrong "
-                           "(frame) | flicker | mean per pair | worst (frame) | per 1,000 contour px |\n"
-                           "|---|---:|---:|---:|---:|---:|---:|---:|\n", i ? "\n" : "", r->scene, r->path, r->vw,
-                        r->vh, r->map_size);
-        }
-        const char *sep = tex ? " & " : " | ";
-        fprintf(f, "%s%s%s%d%s", tex ? "" : "| ", r->label, sep, r->frames, sep);
+        if (i == 0 || row_cmp(&rows[i - 1], r) != 0)
+            fprintf(f, "%s### %s, path %s, %dx%d, map %d²\n\n| label | frames | mean wrong | worst wrong "
+                       "(frame) | flicker | mean per pair | worst (frame) | per 1,000 contour px |\n"
+                       "|---|---:|---:|---:|---:|---:|---:|---:|\n", i ? "\n" : "", r->scene, r->path, r->vw,
+                    r->vh, r->map_size);
+        const char *sep = " | ";
+        fprintf(f, "| %s%s%d%s", r->label, sep, r->frames, sep);
         fprintf(f, "%.1f%s%llu (%d)%s", r->mean_wrong, sep, (unsigned long long)r->worst_wrong, r->worst_frame, sep);
         if (r->pairs)
             fprintf(f, "%llu%s", (unsigned long long)r->flicker, sep);
@@ -170,10 +239,8 @@ void sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_r
             fputs("n/a", f);
         fputs(sep, f);
         num(f, r->per_1000, "%.2f");
-        fputs(tex ? " \\\\\n" : " |\n", f);
+        fputs(" |\n", f);
     }
-    if (n && tex)
-        fprintf(f, "\\bottomrule\n\\end{tabular}\n");
 }
 
 int sl_motion_series(FILE *f, const struct sl_cell_record *cells, int ncells, const struct sl_motion_row *row,

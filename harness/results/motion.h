@@ -45,7 +45,8 @@ int sl_motion_frame_of(const char *viewpoint, char *path, size_t n);
 enum sl_err sl_motion_rows(const struct sl_cell_record *cells, int ncells, struct sl_motion_row **rows,
                            int *nrows, struct sl_diag *d);
 
-/* The table (Markdown or CSV; LaTeX as a booktabs tabular). */
+/* The table (Markdown or CSV; LaTeX: per group two booktabs longtables, the
+ * wrong pixels and the flicker, escaped, each fitting \columnwidth). */
 void sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_row *rows, int n);
 
 /* The per-frame series of one (scene, path, viewport, map size) for a plot:

@@ -633,7 +633,8 @@ enum sl_err sl_out_stage_finish(const struct sl_config *c, const struct sl_run_r
     enum sl_err e = SL_OK;
     if (c->tables) {
         static const struct sl_out_format_file tables[] = {
-            {"figures.csv", SL_TABLE_CSV}, {"table.md", SL_TABLE_MD}, {"table.tex", SL_TABLE_LATEX},
+            {"figures.csv", SL_TABLE_CSV}, {"table.md", SL_TABLE_MD}, {"table.tex", SL_TABLE_LATEX_SUMMARY},
+            {"table-detail.tex", SL_TABLE_LATEX_DETAIL},
         };
         const struct run_tables t = {c, res};
         if ((e = sl_out_write_formats(o->stage, tables, (int)(sizeof tables / sizeof tables[0]), write_run_table,
@@ -747,7 +748,7 @@ static enum sl_err write_stored_table(FILE *f, enum sl_table_format fmt, const v
     return sl_table_write(f, fmt, t->title, t->cells, t->n, d);
 }
 
-/* The run folder's figures.csv, table.md and table.tex from the store, when
+/* The run folder's figures.csv, table.md, table.tex and table-detail.tex from the store, when
  * it holds more cells of this config (same hash) than this run computed: a
  * resumed, split or interrupted run then still leaves tables of every
  * stored cell, as `shadowlab table DB` would print them. */
@@ -766,7 +767,8 @@ enum sl_err sl_out_rebuild_from_store(struct sl_store *st, const struct sl_confi
         return SL_OK;
     }
     static const struct sl_out_format_file files[] = {
-        {"figures.csv", SL_TABLE_CSV}, {"table.md", SL_TABLE_MD}, {"table.tex", SL_TABLE_LATEX},
+        {"figures.csv", SL_TABLE_CSV}, {"table.md", SL_TABLE_MD}, {"table.tex", SL_TABLE_LATEX_SUMMARY},
+            {"table-detail.tex", SL_TABLE_LATEX_DETAIL},
     };
     char title[256];
     snprintf(title, sizeof title, "shadowlab: %s (every stored cell of this config)", c->name);

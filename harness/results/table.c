@@ -11,6 +11,7 @@
  */
 #include "table.h"
 #include <math.h>
+#include "pivot.h"
 #include <stdlib.h>
 #include <string.h>
 #include "util.h"
@@ -21,6 +22,7 @@ int sl_table_format_parse(const char *name)
         {"md", SL_TABLE_MD},
         {"csv", SL_TABLE_CSV},
         {"latex", SL_TABLE_LATEX},
+        {"json", SL_TABLE_JSON},
         {NULL, SL_TABLE_MD},
     };
     for (int i = 0; name && formats[i].name; i++)
@@ -561,6 +563,12 @@ enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char 
 {
     if (!out || ncells < 0 || (ncells > 0 && !cells))
         return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_table_write: bad arguments");
+    if (fmt == SL_TABLE_LATEX_SUMMARY)
+        return sl_pivot_tex_summary(out, title, cells, ncells, d);
+    if (fmt == SL_TABLE_LATEX_DETAIL)
+        return sl_pivot_tex_detail(out, title, cells, ncells, d);
+    if (fmt == SL_TABLE_JSON)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--format", "json is a pivot's format (--rows, --cols, --figure)");
     if (fmt != SL_TABLE_MD && fmt != SL_TABLE_CSV && fmt != SL_TABLE_LATEX)
         return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "unknown table format %d (md, csv, latex)", (int)fmt);
     struct layout l;
@@ -617,6 +625,9 @@ enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char 
                 latex_table(out, twin, &l.groups[g], rows);
         }
         break;
+    case SL_TABLE_JSON:
+    case SL_TABLE_LATEX_SUMMARY:
+    case SL_TABLE_LATEX_DETAIL: break;   /* answered above */
     }
     free(twin);
     layout_free(&l);

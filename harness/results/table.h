@@ -12,6 +12,9 @@
  * (wrong pixels and the share caught per contour) in one place.
  * CSV is the long form: one line per (cell, region, figure).
  * A cell is a struct sl_cell_record (cellcols.h), as the store returns it.
+ * LaTeX here is the thesis' per-cell floats (`shadowlab table --format latex`,
+ * the report); a paper takes pivot.h's tables, and a run writes those
+ * (SL_TABLE_LATEX_SUMMARY, SL_TABLE_LATEX_DETAIL).
  * Does not: read files or the database.
  */
 #ifndef SL_TABLE_H
@@ -21,8 +24,13 @@
 #include "cellcols.h"
 #include "sl_error.h"
 
-enum sl_table_format { SL_TABLE_MD = 0, SL_TABLE_CSV, SL_TABLE_LATEX };
-int sl_table_format_parse(const char *name);     /* -1 if unknown: md, csv, latex */
+/* JSON: pivots only (pivot.h). LATEX_SUMMARY and LATEX_DETAIL: the run's
+ * table.tex and table-detail.tex (pivot.h: sl_pivot_tex_summary, _detail),
+ * no names of their own. */
+enum sl_table_format {
+    SL_TABLE_MD = 0, SL_TABLE_CSV, SL_TABLE_LATEX, SL_TABLE_JSON, SL_TABLE_LATEX_SUMMARY, SL_TABLE_LATEX_DETAIL
+};
+int sl_table_format_parse(const char *name);     /* -1 if unknown: md, csv, latex, json */
 
 /* Render cells (any order; grouped and sorted by the renderer). `title` heads
  * the output (Markdown/LaTeX), NULL for none. Two cells of one table with the

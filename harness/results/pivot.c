@@ -1,0 +1,1283 @@
+/*
+ * pivot.c — see pivot.h.
+ *
+ * Invariants: a pivot is built in one pass over (cell, region) points: each
+ * point has a string for every key of SL_PIVOT_KEYS and one value (NaN when
+ * its base is 0: it enters no aggregate, its keys still make a row or
+ * column). Keys are ordered as the tables order them: map sizes ascending,
+ * regions by thickness with the image last, everything else by first
+ * appearance. LaTeX widths are estimated from the plain text of each cell at
+ * \small in a plain article (10 pt, \columnwidth 345 pt); what does not fit
+ * is transposed or split, never scaled. Nothing here prints to a terminal.
+ */
+#include "pivot.h"
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+#include "util.h"
+
+const char *sl_pivot_key_name(enum sl_pivot_key k)
+{
+    static const char *const names[] = {
+        "default",
+#define SL_PK_NAME(name) #name,
+        SL_PIVOT_KEYS(SL_PK_NAME)
+#undef SL_PK_NAME
+    };
+    return k > 0 && k < SL_PK_COUNT ? names[k] : "?";
+}
+
+int sl_pivot_key_parse(const char *name)
+{
+    for (int k = 1; name && k < SL_PK_COUNT; k++)
+        if (strcmp(name, sl_pivot_key_name((enum sl_pivot_key)k)) == 0)
+            return k;
+    return -1;
+}
+
+static const char *const agg_names[] = {"mean", "median", "sum", "min", "max", NULL};
+
+int sl_pivot_agg_parse(const char *name)
+{
+    for (int k = 0; name && agg_names[k]; k++)
+        if (strcmp(name, agg_names[k]) == 0)
+            return k;
+    return -1;
+}
+
+enum sl_err sl_pivot_where_parse(struct sl_pivot_desc *p, const char *kv, struct sl_diag *d)
+{
+    const char *eq = strchr(kv, '=');
+    char key[32];
+    if (!eq || (size_t)(eq - kv) >= sizeof key)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--where", "'%s' is not KEY=VALUE", kv);
+    memcpy(key, kv, (size_t)(eq - kv));
+    key[eq - kv] = '\0';
+    int k = sl_pivot_key_parse(key);
+    if (k < 0)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--where",
+                       "unknown key '%s' (label, method, scene, viewpoint, viewport, map_size, region)", key);
+    if (p->nwhere >= SL_PIVOT_MAX_WHERE)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--where", "at most %d", SL_PIVOT_MAX_WHERE);
+    p->where[p->nwhere].key = (enum sl_pivot_key)k;
+    p->where[p->nwhere].value = eq + 1;
+    p->nwhere++;
+    return SL_OK;
+}
+
+/* ---- numbers ---- */
+
+/* digits of |v| with `dec` decimals, groups of three split by sep */
+static void grouped(char *out, size_t n, double v, int dec, const char *sep)
+{
+    char raw[64];
+    snprintf(raw, sizeof raw, "%.*f", dec, fabs(v));
+    const char *dot = strchr(raw, '.');
+    size_t ilen = dot ? (size_t)(dot - raw) : strlen(raw);
+    size_t o = 0;
+    for (size_t i = 0; i < ilen && o + 8 < n; i++) {
+        if (i > 0 && (ilen - i) % 3 == 0 && ilen >= 4)
+            o += (size_t)snprintf(out + o, n - o, "%s", sep);
+        out[o++] = raw[i];
+    }
+    out[o] = '\0';
+    if (dot)
+        snprintf(out + o, n - o, "%s", dot);
+}
+
+void sl_tex_number(char *out, size_t n, double v, int dec)
+{
+    if (isnan(v)) {
+        snprintf(out, n, "--");
+        return;
+    }
+    char g[80];
+    grouped(g, sizeof g, v, dec, "\\,");
+    /* a value that rounds to zero has no sign */
+    char z[64];
+    snprintf(z, sizeof z, "%.*f", dec, fabs(v));
+    int zero = strspn(z, "0.") == strlen(z);
+    snprintf(out, n, "%s%s", v < 0 && !zero ? "$-$" : "", g);
+}
+
+/* the same without markup, for Markdown and for the width estimate */
+static void plain_number(char *out, size_t n, double v, int dec)
+{
+    if (isnan(v)) {
+        snprintf(out, n, "-");
+        return;
+    }
+    snprintf(out, n, "%.*f", dec, v);
+}
+
+/* ---- width estimate (pt) ---- */
+
+/* \small in a 10 pt article (9 pt Computer Modern): digits 4.5 pt, lower
+ * case about as wide, capitals and m/w wider; a column adds 2 \tabcolsep */
+#define TEX_COLUMNWIDTH 345.0
+#define TEX_BUDGET      335.0
+#define TEX_COLSEP      12.0
+#define TEX_MAXNUM      8
+#define TEX_LABELMAX    130.0      /* a wider row name is wrapped in a \parbox of this width */
+#define TEX_MAXROWS     40         /* more rows: a longtable, not a float */
+
+static double text_pt(const char *s)
+{
+    double w = 0;
+    for (const unsigned char *u = (const unsigned char *)s; *u; u++) {
+        if ((*u & 0xC0) == 0x80)
+            continue;
+        if (*u == '.' || *u == ',' || *u == ' ' || *u == '(' || *u == ')' || *u == 'i' || *u == 'l')
+            w += 2.6;
+        else if ((*u >= 'A' && *u <= 'Z') || *u == 'm' || *u == 'w' || *u == '%' || *u == '_')
+            w += 6.8;
+        else
+            w += 4.6;
+    }
+    return w;
+}
+
+/* thousands separators in a number's text: a thin space each */
+static double number_pt(const char *plain)
+{
+    size_t ilen = strcspn(plain, ".");
+    if (plain[0] == '-')
+        ilen--;
+    return text_pt(plain) + (ilen >= 4 ? (double)((ilen - 1) / 3) * 1.5 : 0.0);
+}
+
+/* ---- LaTeX text ---- */
+
+static void tex_str(FILE *f, const char *s) { sl_tex_text(f, s); }
+
+/* a name that may be wrapped: break points after _ - / */
+static void tex_breakable(FILE *f, const char *s)
+{
+    char one[2] = {0, 0};
+    for (; *s; s++) {
+        one[0] = *s;
+        sl_tex_text(f, one);
+        if (*s == '_' || *s == '-' || *s == '/')
+            fputs("\\allowbreak{}", f);
+    }
+}
+
+static void tex_key(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        char ch = *s;
+        int ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9');
+        fputc(ok ? ch : '-', f);
+    }
+}
+
+/* A row's name cell: as is, or wrapped when wider than TEX_LABELMAX. */
+static void tex_rowname(FILE *f, const char *plain, int wrap)
+{
+    if (wrap && text_pt(plain) > TEX_LABELMAX) {
+        fprintf(f, "\\parbox[t]{%.0fpt}{\\raggedright ", TEX_LABELMAX);
+        tex_breakable(f, plain);
+        fputc('}', f);
+    } else
+        tex_str(f, plain);
+}
+
+/* ---- the figure ---- */
+
+enum src { SRC_HARD, SRC_SOFT, SRC_COL };
+
+/* the counters and times of cellcols.h, by name */
+struct colref {
+    const char *name;
+    size_t      off;
+    int         is_ms;
+};
+#define PV_COL_text(name)
+#define PV_COL_path(name)
+#define PV_COL_dim(name)
+#define PV_COL_index(name)
+#define PV_COL_runs(name)
+#define PV_COL_viewport(name)
+#define PV_COL_wrong(name)
+#define PV_COL_flag(name)
+#define PV_COL_count(name) {#name, offsetof(struct sl_cell_record, name), 0},
+#define PV_COL_ms(name)    {#name, offsetof(struct sl_cell_record, name), 1},
+static const struct colref cols[] = {
+#define PV_COL(name, kind, size, csv, head, check, key, from) PV_COL_##kind(name)
+    SL_CELL_COLUMNS(PV_COL)
+#undef PV_COL
+};
+
+struct fig {
+    enum src src;
+    int      k;              /* figure or column */
+    int      base;           /* SRC_HARD with --of FIGURE: that figure, else -1 */
+    int      count;          /* a count, not a percentage */
+    char     unit[64];       /* plain: "% of pixels", "count", "ms" */
+    int      is_int;         /* values are whole numbers (a count, not averaged) */
+};
+
+static enum sl_err fig_resolve(const struct sl_pivot_desc *p, struct fig *g, struct sl_diag *d)
+{
+    const char *name = p->figure ? p->figure : "wrong";
+    memset(g, 0, sizeof *g);
+    g->k = -1;
+    g->base = -1;
+    const char *own = "";
+    for (int k = 0; k < SL_FIG_COUNT && g->k < 0; k++)
+        if (!strcmp(name, sl_figure_name((enum sl_figure)k)))
+            g->src = SRC_HARD, g->k = k, own = sl_figure_of((enum sl_figure)k);
+    for (int k = 0; k < SL_SFIG_COUNT && g->k < 0; k++)
+        if (!strcmp(name, sl_soft_figure_name((enum sl_soft_figure)k)))
+            g->src = SRC_SOFT, g->k = k, own = sl_soft_figure_of((enum sl_soft_figure)k);
+    for (size_t k = 0; k < sizeof cols / sizeof cols[0] && g->k < 0; k++)
+        if (!strcmp(name, cols[k].name))
+            g->src = SRC_COL, g->k = (int)k;
+    if (g->k < 0)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--figure",
+                       "unknown figure '%s' (a name of figures.h or softfig.h, e.g. wrong, uncertain, soft_mae; "
+                       "or a counter or time: ms_method, rays, lookups, ...)", name);
+    const char *of = p->of;
+    if (g->src == SRC_COL) {
+        if (of && strcmp(of, "count"))
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "--of", "%s is a %s: only --of count", name,
+                           cols[g->k].is_ms ? "time" : "counter");
+        g->count = 1;
+        snprintf(g->unit, sizeof g->unit, "%s", cols[g->k].is_ms ? "ms" : "count");
+        g->is_int = !cols[g->k].is_ms;
+        return SL_OK;
+    }
+    if ((of && !strcmp(of, "count")) || (!of && !own[0])) {
+        g->count = 1;
+        g->is_int = 1;
+        snprintf(g->unit, sizeof g->unit, "count");
+        return SL_OK;
+    }
+    if (of) {
+        for (int k = 0; k < SL_FIG_COUNT && g->src == SRC_HARD && g->base < 0; k++)
+            if (!strcmp(of, sl_figure_name((enum sl_figure)k)))
+                g->base = k;
+        if (g->base < 0)
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "--of",
+                           "'%s' is no base of %s (count, or a figure of figures.h of a figures.h figure)", of,
+                           name);
+        own = of;
+    }
+    if (g->src == SRC_SOFT && !strcmp(own, "visibility"))
+        snprintf(g->unit, sizeof g->unit, "%% of full visibility");
+    else
+        snprintf(g->unit, sizeof g->unit, "%% of %s", own);
+    return SL_OK;
+}
+
+/* the value of point (cell c, region r): NaN when it has no base */
+static double fig_value(const struct fig *g, const struct sl_cell_record *c, int r)
+{
+    switch (g->src) {
+    case SRC_COL:
+        if (cols[g->k].is_ms)
+            return *(const double *)(const void *)((const char *)c + cols[g->k].off);
+        return (double)*(const uint64_t *)(const void *)((const char *)c + cols[g->k].off);
+    case SRC_SOFT:
+        return g->count ? (double)c->soft.n[g->k] : c->soft.pct[g->k];
+    case SRC_HARD:
+        if (g->count)
+            return (double)c->fig.r[r].n[g->k];
+        if (g->base >= 0)
+            return c->fig.r[r].n[g->base] ? 100.0 * (double)c->fig.r[r].n[g->k] / (double)c->fig.r[r].n[g->base]
+                                          : NAN;
+        return c->fig.r[r].pct[g->k];
+    }
+    return NAN;
+}
+
+/* the regions a cell has for this figure: hard figures per region; the
+ * rest once, for the whole image (r = -1) */
+static int fig_regions(const struct fig *g, const struct sl_cell_record *c)
+{
+    if (g->src == SRC_HARD)
+        return c->fig.nregions;
+    if (g->src == SRC_SOFT)
+        return c->has_soft ? 1 : 0;
+    return 1;
+}
+
+/* ---- keys ---- */
+
+#define KEYLEN 80
+
+struct keyset {
+    char (*v)[KEYLEN];
+    double *ord;
+    int     n, cap;
+};
+
+static int keyset_add(struct keyset *k, const char *s, double ord)
+{
+    for (int i = 0; i < k->n; i++)
+        if (!strcmp(k->v[i], s))
+            return i;
+    if (k->n == k->cap) {
+        int cap = k->cap ? 2 * k->cap : 16;
+        char (*v)[KEYLEN] = realloc(k->v, (size_t)cap * sizeof *v);
+        if (v)
+            k->v = v;
+        double *o = realloc(k->ord, (size_t)cap * sizeof *o);
+        if (o)
+            k->ord = o;
+        if (!v || !o)
+            return -1;
+        k->cap = cap;
+    }
+    snprintf(k->v[k->n], KEYLEN, "%s", s);
+    k->ord[k->n] = ord;
+    return k->n++;
+}
+
+static void keyset_free(struct keyset *k)
+{
+    free(k->v);
+    free(k->ord);
+}
+
+static void point_key(const struct sl_cell_record *c, int r, enum sl_pivot_key k, char *out, double *ord)
+{
+    *ord = 0;
+    switch (k) {
+    case SL_PK_label: snprintf(out, KEYLEN, "%s", c->label); break;
+    case SL_PK_method: snprintf(out, KEYLEN, "%s", c->method); break;
+    case SL_PK_scene: snprintf(out, KEYLEN, "%s", c->scene); break;
+    case SL_PK_viewpoint: snprintf(out, KEYLEN, "%s", c->viewpoint); break;
+    case SL_PK_viewport:
+        snprintf(out, KEYLEN, "%dx%d", c->vw, c->vh);
+        *ord = (double)c->vw * 1e6 + c->vh;
+        break;
+    case SL_PK_map_size:
+        snprintf(out, KEYLEN, "%d", c->map_size);
+        *ord = c->map_size;
+        break;
+    case SL_PK_region: {
+        int t = r >= 0 ? c->fig.r[r].thickness : 0;
+        sl_region_name(t, out, KEYLEN);
+        *ord = t ? t : 1e9;
+        break;
+    }
+    default: out[0] = '\0';
+    }
+}
+
+static const char *key_head(enum sl_pivot_key k)
+{
+    return k == SL_PK_map_size ? "map size" : sl_pivot_key_name(k);
+}
+
+/* keys ordered by first appearance unless they have a numeric order */
+static int by_order(enum sl_pivot_key k) { return k == SL_PK_viewport || k == SL_PK_map_size || k == SL_PK_region; }
+
+/* ---- the pivot ---- */
+
+struct pivot {
+    struct fig    g;
+    enum sl_pivot_key rk, ck;
+    struct keyset key[SL_PK_COUNT];    /* every key's values among the points */
+    int          *rperm, *cperm;       /* display order -> key index */
+    double       *val;                 /* nrows x ncols (key index), NaN: none */
+    int          *cnt;                 /* values aggregated */
+    int           nr, nc, maxn, region_default;
+    int           varies[SL_PK_COUNT];  /* the key has two values inside one entry */
+};
+
+static void pivot_free(struct pivot *pv)
+{
+    for (int k = 0; k < SL_PK_COUNT; k++)
+        keyset_free(&pv->key[k]);
+    free(pv->rperm);
+    free(pv->cperm);
+    free(pv->val);
+    free(pv->cnt);
+}
+
+/* display order of a key's values: by first appearance, or by their numeric
+ * order (insertion sort: stable, a few hundred values at most) */
+static int *perm_of(const struct keyset *k, enum sl_pivot_key key)
+{
+    int *p = malloc((size_t)(k->n ? k->n : 1) * sizeof *p);
+    if (!p)
+        return NULL;
+    for (int i = 0; i < k->n; i++) {
+        int j = i;
+        while (by_order(key) && j > 0 && k->ord[p[j - 1]] > k->ord[i]) {
+            p[j] = p[j - 1];
+            j--;
+        }
+        p[j] = i;
+    }
+    return p;
+}
+
+static int dbl_cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double aggregate(enum sl_pivot_agg a, double *v, int n)
+{
+    if (n == 0)
+        return NAN;
+    double s = 0, lo = v[0], hi = v[0];
+    for (int i = 0; i < n; i++) {
+        s += v[i];
+        lo = v[i] < lo ? v[i] : lo;
+        hi = v[i] > hi ? v[i] : hi;
+    }
+    switch (a) {
+    case SL_AGG_SUM: return s;
+    case SL_AGG_MIN: return lo;
+    case SL_AGG_MAX: return hi;
+    case SL_AGG_MEDIAN:
+        qsort(v, (size_t)n, sizeof *v, dbl_cmp);
+        return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    default: return s / n;
+    }
+}
+
+static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, const struct sl_pivot_desc *p,
+                               struct pivot *pv, struct sl_diag *d)
+{
+    memset(pv, 0, sizeof *pv);
+    enum sl_err e = fig_resolve(p, &pv->g, d);
+    if (e)
+        return e;
+    pv->rk = p->rows ? p->rows : SL_PK_label;
+    pv->ck = p->cols ? p->cols : SL_PK_map_size;
+    if (pv->rk == pv->ck)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--cols", "rows and columns are both %s", sl_pivot_key_name(pv->rk));
+    pv->region_default = pv->rk != SL_PK_region && pv->ck != SL_PK_region;
+    for (int w = 0; w < p->nwhere; w++)
+        if (p->where[w].key == SL_PK_region)
+            pv->region_default = 0;
+    /* points: (row key, column key, value) */
+    int cap = 0, np = 0;
+    for (int i = 0; i < ncells; i++)
+        cap += fig_regions(&pv->g, &cells[i]);
+    int *pr = malloc((size_t)(cap ? cap : 1) * sizeof *pr), *pc = malloc((size_t)(cap ? cap : 1) * sizeof *pc);
+    double *pval = malloc((size_t)(cap ? cap : 1) * sizeof *pval);
+    int (*pk)[SL_PK_COUNT] = malloc((size_t)(cap ? cap : 1) * sizeof *pk);
+    if (!pr || !pc || !pval || !pk) {
+        free(pr), free(pc), free(pval), free(pk);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot of %d cells", ncells);
+    }
+    for (int i = 0; i < ncells && !e; i++) {
+        const struct sl_cell_record *c = &cells[i];
+        int nreg = fig_regions(&pv->g, c);
+        for (int r = 0; r < nreg && !e; r++) {
+            int reg = pv->g.src == SRC_HARD ? r : -1;
+            char ks[SL_PK_COUNT][KEYLEN];
+            double ord[SL_PK_COUNT];
+            for (int k = 1; k < SL_PK_COUNT; k++)
+                point_key(c, reg, (enum sl_pivot_key)k, ks[k], &ord[k]);
+            int keep = !pv->region_default || !strcmp(ks[SL_PK_region], "image");
+            /* a key given twice is either value; different keys all hold */
+            for (int k = 1; k < SL_PK_COUNT && keep; k++) {
+                int asked = 0, hit = 0;
+                for (int w = 0; w < p->nwhere; w++)
+                    if ((int)p->where[w].key == k)
+                        asked = 1, hit |= !strcmp(ks[k], p->where[w].value);
+                keep = !asked || hit;
+            }
+            if (!keep)
+                continue;
+            int idx[SL_PK_COUNT] = {0};
+            for (int k = 1; k < SL_PK_COUNT && !e; k++)
+                if ((idx[k] = keyset_add(&pv->key[k], ks[k], ord[k])) < 0)
+                    e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot keys");
+            memcpy(pk[np], idx, sizeof idx);
+            pr[np] = idx[pv->rk];
+            pc[np] = idx[pv->ck];
+            pval[np] = fig_value(&pv->g, c, reg);
+            np++;
+        }
+    }
+    if (!e) {
+        pv->nr = pv->key[pv->rk].n;
+        pv->nc = pv->key[pv->ck].n;
+        size_t ne = (size_t)pv->nr * (size_t)pv->nc + 1;
+        pv->val = malloc(ne * sizeof *pv->val);
+        pv->cnt = calloc(ne, sizeof *pv->cnt);
+        pv->rperm = perm_of(&pv->key[pv->rk], pv->rk);
+        pv->cperm = perm_of(&pv->key[pv->ck], pv->ck);
+        double *tmp = malloc((size_t)(np ? np : 1) * sizeof *tmp);
+        if (!pv->val || !pv->cnt || !pv->rperm || !pv->cperm || !tmp)
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot of %d cells", ncells);
+        for (int r = 0; r < pv->nr && !e; r++)
+            for (int c = 0; c < pv->nc; c++) {
+                int n = 0;
+                for (int i = 0; i < np; i++)
+                    if (pr[i] == r && pc[i] == c && !isnan(pval[i]))
+                        tmp[n++] = pval[i];
+                pv->val[r * pv->nc + c] = aggregate(p->agg, tmp, n);
+                pv->cnt[r * pv->nc + c] = n;
+                pv->maxn = n > pv->maxn ? n : pv->maxn;
+            }
+        free(tmp);
+        /* what the entries aggregate over: keys with two values in one entry */
+        int *first = malloc((size_t)pv->nr * (size_t)pv->nc * sizeof *first + 1);
+        for (int k = 1; k < SL_PK_COUNT && first && !e; k++) {
+            for (int i = 0; i < pv->nr * pv->nc; i++)
+                first[i] = -1;
+            for (int i = 0; i < np && !pv->varies[k]; i++) {
+                int *f0 = &first[pr[i] * pv->nc + pc[i]];
+                if (*f0 < 0)
+                    *f0 = pk[i][k];
+                else if (*f0 != pk[i][k])
+                    pv->varies[k] = 1;
+            }
+        }
+        free(first);
+    }
+    free(pr), free(pc), free(pval), free(pk);
+    if (e)
+        pivot_free(pv);
+    return e;
+}
+
+/* decimals of an entry: percentages and times 2, whole counts 0, a mean of counts 1 */
+static int decimals(const struct pivot *pv, enum sl_pivot_agg a)
+{
+    if (!pv->g.count || !pv->g.is_int)
+        return 2;
+    return a == SL_AGG_MEAN || a == SL_AGG_MEDIAN ? 1 : 0;
+}
+
+/* what the entries aggregate over: the keys with several values that are neither rows nor columns */
+static void over_words(const struct pivot *pv, const struct sl_pivot_desc *p, char *out, size_t n)
+{
+    size_t o = 0;
+    out[0] = '\0';
+    for (int k = 1; k < SL_PK_COUNT; k++) {
+        if (k == (int)pv->rk || k == (int)pv->ck || !pv->varies[k])
+            continue;
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s (%d)", o ? ", " : "", key_head((enum sl_pivot_key)k),
+                              pv->key[k].n);
+    }
+    if (!o)
+        snprintf(out, n, "nothing: one cell an entry");
+    (void)p;
+}
+
+/* the caption's plain words (escaped by the caller for LaTeX) */
+static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p, char *out, size_t n)
+{
+    const char *name = p->figure ? p->figure : "wrong";
+    const char *text = pv->g.src == SRC_HARD   ? sl_figure_text((enum sl_figure)pv->g.k)
+                       : pv->g.src == SRC_SOFT ? sl_soft_figure_text((enum sl_soft_figure)pv->g.k)
+                                               : (cols[pv->g.k].is_ms ? "time (median over the repetitions)" : "counter");
+    char over[256];
+    over_words(pv, p, over, sizeof over);
+    size_t o = (size_t)snprintf(out, n, "%s%s: %s, %s; %s over %s", p->caption ? p->caption : "", name, text,
+                                pv->g.unit, agg_names[p->agg], over);
+    if (pv->maxn > 1)
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, ", at most %d values an entry", pv->maxn);
+    if (pv->region_default && pv->g.src == SRC_HARD)
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "; the whole image");
+    for (int w = 0; w < p->nwhere; w++)
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s = %s", w ? ", " : "; ",
+                              sl_pivot_key_name(p->where[w].key), p->where[w].value);
+    snprintf(out + o, o < n ? n - o : 0, ".");
+}
+
+/* a key's value for people: map sizes squared */
+static void key_plain(enum sl_pivot_key k, const char *v, char *out, size_t n)
+{
+    snprintf(out, n, k == SL_PK_map_size ? "%s\xC2\xB2" : "%s", v);
+}
+
+static void key_tex(FILE *f, enum sl_pivot_key k, const char *v, int breakable)
+{
+    if (k == SL_PK_map_size) {
+        char num[64];
+        sl_tex_number(num, sizeof num, atof(v), 0);
+        fprintf(f, "%s\\textsuperscript{2}", num);
+    } else if (k == SL_PK_viewport) {
+        int w = 0, h = 0;
+        sscanf(v, "%dx%d", &w, &h);
+        fprintf(f, "%d$\\times$%d", w, h);
+    } else if (breakable)
+        tex_breakable(f, v);
+    else
+        tex_str(f, v);
+}
+
+
+/* ---- Markdown, CSV, JSON ---- */
+
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char ch = (unsigned char)*s;
+        if (ch == '"' || ch == '\\')
+            fprintf(f, "\\%c", ch);
+        else if (ch < 0x20)
+            fprintf(f, "\\u%04x", ch);
+        else
+            fputc(ch, f);
+    }
+    fputc('"', f);
+}
+
+static void csv_field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+static void write_md(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p)
+{
+    char cap[1024];
+    caption_words(pv, p, cap, sizeof cap);
+    fprintf(f, "%s\n\n| %s \\ %s |", cap, sl_pivot_key_name(pv->rk), sl_pivot_key_name(pv->ck));
+    for (int c = 0; c < pv->nc; c++) {
+        char k[KEYLEN + 4];
+        key_plain(pv->ck, pv->key[pv->ck].v[pv->cperm[c]], k, sizeof k);
+        fprintf(f, " %s |", k);
+    }
+    fputs("\n|---|", f);
+    for (int c = 0; c < pv->nc; c++)
+        fputs("---:|", f);
+    fputc('\n', f);
+    int dec = decimals(pv, p->agg);
+    for (int r = 0; r < pv->nr; r++) {
+        char k[KEYLEN + 4];
+        key_plain(pv->rk, pv->key[pv->rk].v[pv->rperm[r]], k, sizeof k);
+        fprintf(f, "| %s |", k);
+        for (int c = 0; c < pv->nc; c++) {
+            char v[64];
+            plain_number(v, sizeof v, pv->val[pv->rperm[r] * pv->nc + pv->cperm[c]], dec);
+            fprintf(f, " %s |", v);
+        }
+        fputc('\n', f);
+    }
+}
+
+static void write_csv(FILE *f, const struct pivot *pv)
+{
+    csv_field(f, sl_pivot_key_name(pv->rk));
+    for (int c = 0; c < pv->nc; c++) {
+        fputc(',', f);
+        csv_field(f, pv->key[pv->ck].v[pv->cperm[c]]);
+    }
+    fputc('\n', f);
+    for (int r = 0; r < pv->nr; r++) {
+        csv_field(f, pv->key[pv->rk].v[pv->rperm[r]]);
+        for (int c = 0; c < pv->nc; c++) {
+            double v = pv->val[pv->rperm[r] * pv->nc + pv->cperm[c]];
+            fputc(',', f);
+            if (!isnan(v))
+                fprintf(f, "%.10g", v);
+        }
+        fputc('\n', f);
+    }
+}
+
+static void write_json(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p)
+{
+    fputs("{\"figure\": ", f);
+    json_str(f, p->figure ? p->figure : "wrong");
+    fputs(", \"unit\": ", f);
+    json_str(f, pv->g.unit);
+    fprintf(f, ", \"agg\": \"%s\", \"rows\": \"%s\", \"cols\": \"%s\", \"where\": {", agg_names[p->agg],
+            sl_pivot_key_name(pv->rk), sl_pivot_key_name(pv->ck));
+    int nw = 0;
+    if (pv->region_default && pv->g.src == SRC_HARD)
+        fprintf(f, "\"region\": \"image\""), nw++;
+    for (int w = 0; w < p->nwhere; w++, nw++) {
+        fprintf(f, "%s\"%s\": ", nw ? ", " : "", sl_pivot_key_name(p->where[w].key));
+        json_str(f, p->where[w].value);
+    }
+    fputs("},\n \"columns\": [", f);
+    for (int c = 0; c < pv->nc; c++) {
+        if (c)
+            fputs(", ", f);
+        json_str(f, pv->key[pv->ck].v[pv->cperm[c]]);
+    }
+    fputs("],\n \"table\": [", f);
+    for (int r = 0; r < pv->nr; r++) {
+        fputs(r ? ",\n  {\"row\": " : "\n  {\"row\": ", f);
+        json_str(f, pv->key[pv->rk].v[pv->rperm[r]]);
+        fputs(", \"values\": [", f);
+        for (int c = 0; c < pv->nc; c++) {
+            double v = pv->val[pv->rperm[r] * pv->nc + pv->cperm[c]];
+            if (isnan(v))
+                fprintf(f, "%snull", c ? ", " : "");
+            else
+                fprintf(f, "%s%.17g", c ? ", " : "", v);
+        }
+        fputs("], \"n\": [", f);
+        for (int c = 0; c < pv->nc; c++)
+            fprintf(f, "%s%d", c ? ", " : "", pv->cnt[pv->rperm[r] * pv->nc + pv->cperm[c]]);
+        fputs("]}", f);
+    }
+    fputs("\n]}\n", f);
+}
+
+/* ---- LaTeX ---- */
+
+/* One orientation of the table: rows x cols of entry (i, j) of the pivot. */
+struct view {
+    const struct pivot *pv;
+    int                 t;          /* transposed */
+    enum sl_pivot_key   rk, ck;
+    int                 nr, nc;
+};
+
+static struct view view_of(const struct pivot *pv, int t)
+{
+    struct view v = {pv, t, t ? pv->ck : pv->rk, t ? pv->rk : pv->ck, t ? pv->nc : pv->nr, t ? pv->nr : pv->nc};
+    return v;
+}
+static const char *view_rkey(const struct view *v, int r)
+{
+    const struct pivot *pv = v->pv;
+    return v->t ? pv->key[pv->ck].v[pv->cperm[r]] : pv->key[pv->rk].v[pv->rperm[r]];
+}
+static const char *view_ckey(const struct view *v, int c)
+{
+    const struct pivot *pv = v->pv;
+    return v->t ? pv->key[pv->rk].v[pv->rperm[c]] : pv->key[pv->ck].v[pv->cperm[c]];
+}
+static double view_val(const struct view *v, int r, int c)
+{
+    const struct pivot *pv = v->pv;
+    int pr = v->t ? pv->rperm[c] : pv->rperm[r], pc = v->t ? pv->cperm[r] : pv->cperm[c];
+    return pv->val[pr * pv->nc + pc];
+}
+
+static double rowname_pt(const struct view *v)
+{
+    double w = text_pt(key_head(v->rk));
+    for (int r = 0; r < v->nr; r++) {
+        char k[KEYLEN + 4];
+        key_plain(v->rk, view_rkey(v, r), k, sizeof k);
+        double x = text_pt(k);
+        w = x > w ? x : w;
+    }
+    return w > TEX_LABELMAX ? TEX_LABELMAX : w;
+}
+
+static double col_pt(const struct view *v, int c, int dec)
+{
+    char k[KEYLEN + 4];
+    key_plain(v->ck, view_ckey(v, c), k, sizeof k);
+    double w = text_pt(k);
+    for (int r = 0; r < v->nr; r++) {
+        char s[64];
+        plain_number(s, sizeof s, view_val(v, r, c), dec);
+        double x = number_pt(s);
+        w = x > w ? x : w;
+    }
+    return w;
+}
+
+/* Columns [c0, c1) with the row names fit the budget? */
+static int fits(const struct view *v, int c0, int c1, int dec)
+{
+    if (c1 - c0 > TEX_MAXNUM)
+        return 0;
+    double w = rowname_pt(v) + TEX_COLSEP, heads = 0;
+    for (int c = c0; c < c1; c++) {
+        double x = col_pt(v, c, dec) + TEX_COLSEP;
+        w += x;
+        heads += x;
+    }
+    /* the spanning heading is no wider than the columns under it */
+    double span = text_pt(key_head(v->ck)) + TEX_COLSEP;
+    if (span > heads)
+        w += span - heads;
+    return w <= TEX_BUDGET;
+}
+
+static void tex_header(FILE *f, const struct view *v, int c0, int c1)
+{
+    fprintf(f, "\\toprule\n & \\multicolumn{%d}{c}{", c1 - c0);
+    tex_str(f, key_head(v->ck));
+    fprintf(f, "} \\\\\n\\cmidrule(l){2-%d}\n", c1 - c0 + 1);
+    tex_str(f, key_head(v->rk));
+    for (int c = c0; c < c1; c++) {
+        fputs(" & ", f);
+        key_tex(f, v->ck, view_ckey(v, c), 0);
+    }
+    fputs(" \\\\\n\\midrule\n", f);
+}
+
+/* One table of columns [c0, c1): a float, or a longtable (no float, breaks
+ * across pages) when it has more rows than a page holds. */
+static void tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p, const char *cap, int c0,
+                     int c1, int part, int parts, int dec)
+{
+    const struct pivot *pv = v->pv;
+    int wrap = rowname_pt(v) >= TEX_LABELMAX;
+    int lt = v->nr > TEX_MAXROWS;
+    fputs(lt ? "{\\small\n\\begin{longtable}{l" : "\\begin{table}[htbp]\n\\centering\n\\small\n\\caption{", f);
+    if (lt) {
+        for (int c = c0; c < c1; c++)
+            fputc('r', f);
+        fputs("}\n\\caption{", f);
+    }
+    tex_str(f, cap);
+    if (parts > 1)
+        fprintf(f, " (Part %d of %d.)", part + 1, parts);
+    fputs("}\n\\label{tab:", f);
+    if (p->tex_label)
+        tex_key(f, p->tex_label);
+    else {
+        fputs("pivot-", f);
+        tex_key(f, p->figure ? p->figure : "wrong");
+        fputc('-', f);
+        tex_key(f, sl_pivot_key_name(pv->rk));
+        fputc('-', f);
+        tex_key(f, sl_pivot_key_name(pv->ck));
+    }
+    if (parts > 1)
+        fprintf(f, "-%d", part + 1);
+    if (lt) {
+        fputs("}\\\\\n", f);
+        tex_header(f, v, c0, c1);
+        fputs("\\endfirsthead\n", f);
+        tex_header(f, v, c0, c1);
+        fputs("\\endhead\n\\bottomrule\n\\endfoot\n", f);
+    } else {
+        fputs("}\n\\begin{tabular}{l", f);
+        for (int c = c0; c < c1; c++)
+            fputc('r', f);
+        fputs("}\n", f);
+        tex_header(f, v, c0, c1);
+    }
+    for (int r = 0; r < v->nr; r++) {
+        if (v->rk == SL_PK_map_size || v->rk == SL_PK_viewport)
+            key_tex(f, v->rk, view_rkey(v, r), 0);
+        else
+            tex_rowname(f, view_rkey(v, r), wrap);
+        for (int c = c0; c < c1; c++) {
+            char s[96];
+            sl_tex_number(s, sizeof s, view_val(v, r, c), dec);
+            fprintf(f, " & %s", s);
+        }
+        fputs(" \\\\\n", f);
+    }
+    fputs(lt ? "\\end{longtable}}\n\n" : "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n", f);
+}
+
+static int write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p, struct sl_pivot_info *info)
+{
+    int dec = decimals(pv, p->agg);
+    char cap[1024];
+    caption_words(pv, p, cap, sizeof cap);
+    struct view v = view_of(pv, 0);
+    if (!fits(&v, 0, v.nc, dec)) {
+        struct view t = view_of(pv, 1);
+        if (fits(&t, 0, t.nc, dec)) {
+            v = t;
+            info->transposed = 1;
+        }
+    }
+    /* parts: greedy runs of columns that fit, at least one column each */
+    int *starts = malloc(((size_t)v.nc + 1) * sizeof *starts), parts = 0;
+    if (!starts)
+        return -1;
+    for (int c = 0; c < v.nc;) {
+        int e = c + 1;
+        while (e < v.nc && fits(&v, c, e + 1, dec))
+            e++;
+        starts[parts++] = c;
+        c = e;
+    }
+    starts[parts] = v.nc;
+    if (v.nr > TEX_MAXROWS)
+        fprintf(f, "%% %d rows: a longtable, needs \\usepackage{longtable}\n", v.nr);
+    if (parts > 1)
+        fprintf(f, "%% %d columns do not fit \\columnwidth: split into %d tables\n", v.nc, parts);
+    else if (info->transposed)
+        fprintf(f, "%% %s as columns did not fit \\columnwidth: transposed\n", sl_pivot_key_name(pv->ck));
+    for (int k = 0; k < parts; k++)
+        tex_part(f, &v, p, cap, starts[k], starts[k + 1], k, parts, dec);
+    info->parts = parts;
+    free(starts);
+    return 0;
+}
+
+enum sl_err sl_pivot_write(FILE *out, enum sl_table_format fmt, const struct sl_cell_record *cells, int ncells,
+                           const struct sl_pivot_desc *p, struct sl_pivot_info *info, struct sl_diag *d)
+{
+    struct sl_pivot_info none;
+    if (!info)
+        info = &none;
+    memset(info, 0, sizeof *info);
+    if (!out || !p || ncells < 0 || (ncells && !cells))
+        return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_pivot_write: bad arguments");
+    if ((unsigned)p->agg > SL_AGG_MAX || (unsigned)p->rows >= SL_PK_COUNT || (unsigned)p->cols >= SL_PK_COUNT)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, NULL, "sl_pivot_write: bad description");
+    struct pivot pv;
+    enum sl_err e = pivot_build(cells, ncells, p, &pv, d);
+    if (e)
+        return e;
+    info->nrows = pv.nr;
+    info->ncols = pv.nc;
+    switch (fmt) {
+    case SL_TABLE_MD: write_md(out, &pv, p); info->parts = pv.nr > 0; break;
+    case SL_TABLE_CSV: write_csv(out, &pv); info->parts = pv.nr > 0; break;
+    case SL_TABLE_JSON: write_json(out, &pv, p); info->parts = pv.nr > 0; break;
+    case SL_TABLE_LATEX:
+        if (pv.nr > 0 && write_tex(out, &pv, p, info) != 0)
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot of %d columns", pv.nc);
+        break;
+    default: e = sl_fail(d, SL_E_USAGE, NULL, 0, "--format", "a pivot is md, csv, latex or json");
+    }
+    pivot_free(&pv);
+    if (!e && (ferror(out) || fflush(out) != 0))
+        e = sl_fail(d, SL_E_IO, NULL, 0, NULL, "writing the table failed");
+    return e;
+}
+
+/* ---- the run's LaTeX ---- */
+
+/* provenance as comments: each distinct git SHA, config hash and machine */
+static void tex_head(FILE *f, const char *what, const char *title, const struct sl_cell_record *cells, int n)
+{
+    fprintf(f, "%% shadowlab %s; needs \\usepackage{booktabs%s}\n", what,
+            strstr(what, "detail") ? ",longtable" : "");
+    if (title) {
+        fputs("% from: ", f);
+        for (const char *t = title; *t; t++)
+            fputc(*t == '\n' || *t == '\r' ? ' ' : *t, f);
+        fputc('\n', f);
+    }
+    for (int i = 0; i < n; i++) {
+        int seen = 0;
+        for (int j = 0; j < i && !seen; j++)
+            seen = !strcmp(cells[i].git_sha, cells[j].git_sha) && !strcmp(cells[i].config_hash, cells[j].config_hash) &&
+                   !strcmp(cells[i].machine, cells[j].machine);
+        if (seen)
+            continue;
+        fputs("% git ", f);
+        for (const char *t = cells[i].git_sha; *t; t++)
+            fputc(*t == '\n' ? ' ' : *t, f);
+        fprintf(f, ", config %s, machine ", cells[i].config_hash);
+        for (const char *t = cells[i].machine; *t; t++)
+            fputc(*t == '\n' || *t == '\r' ? ' ' : *t, f);
+        fputc('\n', f);
+    }
+    fputc('\n', f);
+}
+
+enum sl_err sl_pivot_tex_summary(FILE *out, const char *title, const struct sl_cell_record *cells, int ncells,
+                                 struct sl_diag *d)
+{
+    tex_head(out, "summary tables (table-detail.tex has every view)", title, cells, ncells);
+    /* one study at a time: the store may hold several */
+    enum sl_err e = SL_OK;
+    for (int i = 0; i < ncells && !e; i++) {
+        int seen = 0;
+        for (int j = 0; j < i && !seen; j++)
+            seen = !strcmp(cells[i].study, cells[j].study);
+        if (seen)
+            continue;
+        const char *study = cells[i].study;
+        int nscenes = 0, soft = 0;
+        for (int j = 0; j < ncells; j++) {
+            if (strcmp(cells[j].study, study))
+                continue;
+            soft |= cells[j].has_soft;
+            int dup = 0;
+            for (int k = 0; k < j && !dup; k++)
+                dup = !strcmp(cells[k].study, study) && !strcmp(cells[k].scene, cells[j].scene);
+            nscenes += !dup;
+        }
+        static const struct {
+            const char *figure;
+            enum sl_pivot_key cols;
+            int soft, scenes;
+        } tabs[] = {
+            {"wrong", SL_PK_map_size, 0, 0},   {"uncertain", SL_PK_map_size, 0, 0},
+            {"ms_method", SL_PK_map_size, 0, 0}, {"soft_mae", SL_PK_map_size, 1, 0},
+            {"wrong", SL_PK_scene, 0, 1},
+        };
+        char cap[128], key[160];
+        snprintf(cap, sizeof cap, "%s: ", study[0] ? study : "shadowlab");
+        for (size_t t = 0; t < sizeof tabs / sizeof tabs[0] && !e; t++) {
+            if ((tabs[t].soft && !soft) || (tabs[t].scenes && nscenes < 2))
+                continue;
+            snprintf(key, sizeof key, "%s-%s-%s", study, tabs[t].figure, sl_pivot_key_name(tabs[t].cols));
+            struct sl_pivot_desc p = {.rows = SL_PK_label, .cols = tabs[t].cols, .figure = tabs[t].figure,
+                                      .caption = cap, .tex_label = key};
+            /* the study's cells only: a where on a field that is not a key */
+            struct sl_cell_record *sub = malloc((size_t)ncells * sizeof *sub);
+            if (!sub)
+                return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "summary tables");
+            int k = 0;
+            for (int j = 0; j < ncells; j++)
+                if (!strcmp(cells[j].study, study))
+                    sub[k++] = cells[j];
+            e = sl_pivot_write(out, SL_TABLE_LATEX, sub, k, &p, NULL, d);
+            free(sub);
+        }
+    }
+    if (!e && (ferror(out) || fflush(out) != 0))
+        e = sl_fail(d, SL_E_IO, NULL, 0, NULL, "writing the tables failed");
+    return e;
+}
+
+/* ---- the per-view detail ---- */
+
+static int same_view(const struct sl_cell_record *a, const struct sl_cell_record *b)
+{
+    return a->vw == b->vw && a->vh == b->vh && !strcmp(a->scene, b->scene) && !strcmp(a->viewpoint, b->viewpoint) &&
+           !strcmp(a->study, b->study);
+}
+
+/* one column of a detail table: heading and the value of a cell */
+struct dcol {
+    char   head[48];           /* plain; escaped when written */
+    int    dec;
+    double (*get)(const struct sl_cell_record *c, int arg);
+    int    arg;
+    int    what;               /* the caption's words that name it (index into the caller's list) */
+};
+
+static int image_region(const struct sl_cell_record *c)
+{
+    for (int r = 0; r < c->fig.nregions; r++)
+        if (c->fig.r[r].thickness == 0)
+            return r;
+    return c->fig.nregions - 1;
+}
+static double get_pct(const struct sl_cell_record *c, int k) { return c->fig.r[image_region(c)].pct[k]; }
+static double get_n(const struct sl_cell_record *c, int k) { return (double)c->fig.r[image_region(c)].n[k]; }
+static double get_caught(const struct sl_cell_record *c, int t)
+{
+    for (int r = 0; r < c->fig.nregions; r++)
+        if (c->fig.r[r].thickness == t)
+            return c->fig.r[r].pct[SL_FIG_wrong_caught];
+    return NAN;
+}
+static double get_soft(const struct sl_cell_record *c, int k) { return c->soft.pct[k]; }
+static double get_ms(const struct sl_cell_record *c, int k) { (void)k; return c->ms_method; }
+static double get_map(const struct sl_cell_record *c, int k) { (void)k; return c->map_size; }
+
+static double dcol_pt(const struct dcol *col, const struct sl_cell_record *cells, const int *idx, int n)
+{
+    double w = text_pt(col->head);
+    for (int i = 0; i < n; i++) {
+        char s[64];
+        plain_number(s, sizeof s, col->get(&cells[idx[i]], col->arg), col->dec);
+        double x = number_pt(s);
+        w = x > w ? x : w;
+    }
+    return w;
+}
+
+/* A longtable of the view's cells idx[0..n) over columns dc[0..nc) (label
+ * first, implicit); its caption names what its columns hold. */
+static void detail_longtable(FILE *f, const struct sl_cell_record *cells, const int *idx, int n,
+                             const struct dcol *dc, int nc, const char *const *words, const char *kind, int part,
+                             int wrap)
+{
+    const struct sl_cell_record *v = &cells[idx[0]];
+    fputs("{\\small\n\\begin{longtable}{l", f);
+    for (int c = 0; c < nc; c++)
+        fputc('r', f);
+    fputs("}\n\\caption{", f);
+    tex_str(f, v->scene);
+    fputs(" / ", f);
+    tex_str(f, v->viewpoint);
+    fprintf(f, " / %d$\\times$%d: ", v->vw, v->vh);
+    int said = 0;
+    for (int w = 0; words[w]; w++) {
+        int has = 0;
+        for (int c = 0; c < nc; c++)
+            has |= dc[c].what == w;
+        if (!has || !words[w][0])
+            continue;
+        fputs(said++ ? "; " : "", f);
+        tex_str(f, words[w]);
+    }
+    fputs(".}\\label{tab:detail-", f);
+    tex_key(f, v->study);
+    fputc('-', f);
+    tex_key(f, v->scene);
+    fputc('-', f);
+    tex_key(f, v->viewpoint);
+    fprintf(f, "-%dx%d-%s-%d}\\\\\n", v->vw, v->vh, kind, part + 1);
+    for (int pass = 0; pass < 2; pass++) {
+        fputs("\\toprule\nlabel", f);
+        for (int c = 0; c < nc; c++) {
+            fputs(" & ", f);
+            tex_str(f, dc[c].head);
+        }
+        fputs(pass ? " \\\\\n\\midrule\n\\endhead\n" : " \\\\\n\\midrule\n\\endfirsthead\n", f);
+    }
+    fputs("\\bottomrule\n\\endfoot\n", f);
+    for (int i = 0; i < n; i++) {
+        const struct sl_cell_record *c = &cells[idx[i]];
+        tex_rowname(f, c->label, wrap);
+        for (int k = 0; k < nc; k++) {
+            char s[96];
+            sl_tex_number(s, sizeof s, dc[k].get(c, dc[k].arg), dc[k].dec);
+            fprintf(f, " & %s", s);
+        }
+        fputs(" \\\\\n", f);
+    }
+    fputs("\\end{longtable}}\n\n", f);
+}
+
+/* the columns in groups that each fit beside the label; the first nkeep
+ * (the map size) repeat in every group */
+static void detail_tables(FILE *f, const struct sl_cell_record *cells, const int *idx, int n, const struct dcol *dc,
+                          int ndc, int nkeep, const char *const *words, const char *kind)
+{
+    double lw = text_pt("label");
+    for (int i = 0; i < n; i++) {
+        double x = text_pt(cells[idx[i]].label);
+        lw = x > lw ? x : lw;
+    }
+    int wrap = lw > TEX_LABELMAX;
+    if (wrap)
+        lw = TEX_LABELMAX;
+    double keep = lw + TEX_COLSEP;
+    for (int c = 0; c < nkeep; c++)
+        keep += dcol_pt(&dc[c], cells, idx, n) + TEX_COLSEP;
+    int c = nkeep, part = 0;
+    while (c < ndc) {
+        double w = keep;
+        int e = c;
+        while (e < ndc && (e == c || w + dcol_pt(&dc[e], cells, idx, n) + TEX_COLSEP <= TEX_BUDGET)) {
+            w += dcol_pt(&dc[e], cells, idx, n) + TEX_COLSEP;
+            e++;
+        }
+        struct dcol sel[SL_MAX_REGIONS + 16];
+        int ns = 0;
+        for (int k = 0; k < nkeep; k++)
+            sel[ns++] = dc[k];
+        for (int k = c; k < e; k++)
+            sel[ns++] = dc[k];
+        detail_longtable(f, cells, idx, n, sel, ns, words, kind, part, wrap);
+        part++;
+        c = e;
+    }
+}
+
+static void detail_view(FILE *f, const struct sl_cell_record *cells, const int *idx, int n)
+{
+    /* the hard cells, then the area light's */
+    int *h = malloc((size_t)n * sizeof *h), *s = malloc((size_t)n * sizeof *s);
+    if (!h || !s) {
+        free(h), free(s);
+        return;
+    }
+    int nh = 0, ns = 0;
+    for (int i = 0; i < n; i++) {
+        if (cells[idx[i]].fig.nregions > 0)
+            h[nh++] = idx[i];
+        if (cells[idx[i]].has_soft)
+            s[ns++] = idx[i];
+    }
+    if (nh) {
+        static const char *const words[] = {
+            "",   /* the map size: in every part */
+            "pixels in light, in shadow, undecided and wrong (% of the image's pixels; wrong also as a count)",
+            "the method's time (ms)",
+            "the share of the wrong pixels inside each contour (% of the image's wrong pixels)",
+            NULL,
+        };
+        struct dcol dc[SL_MAX_REGIONS + 16];
+        int k = 0;
+        dc[k++] = (struct dcol){"map", 0, get_map, 0, 0};
+        dc[k++] = (struct dcol){"light %", 2, get_pct, SL_FIG_light, 1};
+        dc[k++] = (struct dcol){"shadow %", 2, get_pct, SL_FIG_shadow, 1};
+        dc[k++] = (struct dcol){"undecided %", 2, get_pct, SL_FIG_uncertain, 1};
+        dc[k++] = (struct dcol){"wrong", 0, get_n, SL_FIG_wrong, 1};
+        dc[k++] = (struct dcol){"wrong %", 2, get_pct, SL_FIG_wrong, 1};
+        dc[k++] = (struct dcol){"ms", 2, get_ms, 0, 2};
+        const struct sl_cell_record *c0 = &cells[h[0]];
+        for (int r = 0; r < c0->fig.nregions; r++) {
+            if (!c0->fig.r[r].thickness)
+                continue;
+            dc[k] = (struct dcol){"", 2, get_caught, c0->fig.r[r].thickness, 3};
+            snprintf(dc[k].head, sizeof dc[k].head, "in %dpx %%", c0->fig.r[r].thickness);
+            k++;
+        }
+        detail_tables(f, cells, h, nh, dc, k, 1, words, "hard");
+    }
+    if (ns) {
+        static const char *const words[] = {
+            "",   /* the map size: in every part */
+            "an area light: the visible fraction against the area truth (MAE, RMSE, bias in % of full visibility; "
+            "pixels within 0.05 and classed right in % of the pixels)",
+            "the method's time (ms)",
+            NULL,
+        };
+        struct dcol dc[8];
+        int k = 0;
+        dc[k++] = (struct dcol){"map", 0, get_map, 0, 0};
+        dc[k++] = (struct dcol){"MAE %", 3, get_soft, SL_SFIG_soft_mae, 1};
+        dc[k++] = (struct dcol){"RMSE %", 3, get_soft, SL_SFIG_soft_rmse, 1};
+        dc[k++] = (struct dcol){"bias %", 3, get_soft, SL_SFIG_soft_bias, 1};
+        dc[k++] = (struct dcol){"within 0.05 %", 2, get_soft, SL_SFIG_soft_within_005, 1};
+        dc[k++] = (struct dcol){"class right %", 2, get_soft, SL_SFIG_soft_class_right, 1};
+        dc[k++] = (struct dcol){"ms", 2, get_ms, 0, 2};
+        detail_tables(f, cells, s, ns, dc, k, 1, words, "soft");
+    }
+    free(h), free(s);
+}
+
+enum sl_err sl_pivot_tex_detail(FILE *out, const char *title, const struct sl_cell_record *cells, int ncells,
+                                struct sl_diag *d)
+{
+    tex_head(out, "detail tables, one longtable per view", title, cells, ncells);
+    int *idx = malloc((size_t)(ncells ? ncells : 1) * sizeof *idx);
+    char *done = calloc((size_t)(ncells ? ncells : 1), 1);
+    if (!idx || !done) {
+        free(idx), free(done);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "detail tables");
+    }
+    for (int i = 0; i < ncells; i++) {
+        if (done[i])
+            continue;
+        /* the view's cells: labels in order of appearance, map sizes ascending */
+        int n = 0;
+        for (int j = i; j < ncells; j++)
+            if (!done[j] && same_view(&cells[i], &cells[j])) {
+                int lab = -1;
+                for (int k = 0; k < n && lab < 0; k++)
+                    if (!strcmp(cells[idx[k]].label, cells[j].label))
+                        lab = k;
+                int at = n;
+                if (lab >= 0) {
+                    at = lab;
+                    while (at < n && !strcmp(cells[idx[at]].label, cells[j].label) &&
+                           cells[idx[at]].map_size <= cells[j].map_size)
+                        at++;
+                }
+                memmove(idx + at + 1, idx + at, (size_t)(n - at) * sizeof *idx);
+                idx[at] = j;
+                n++;
+                done[j] = 1;
+            }
+        detail_view(out, cells, idx, n);
+    }
+    free(idx), free(done);
+    if (ferror(out) || fflush(out) != 0)
+        return sl_fail(d, SL_E_IO, NULL, 0, NULL, "writing the detail tables failed");
+    return SL_OK;
+}
