@@ -559,9 +559,11 @@ int sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_z
     if (strcmp(axis, "x") != 0 && strcmp(axis, "y") != 0)
         return -1;
     double lo = INFINITY, hi = -INFINITY, pos = INFINITY;
+    int zeros = 0;
     for (int i = 0; i < n; i++) {
         if (!isfinite(v[i]))
             continue;
+        zeros |= v[i] == 0.0;
         lo = fmin(lo, v[i]);
         hi = fmax(hi, v[i]);
         if (v[i] > 0.0)
@@ -576,9 +578,11 @@ int sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_z
          * exact method's wrong pixels) cannot sit on a log axis, so it is
          * drawn at a tick labelled 0 below the smallest value */
         double zero = pos / 4.0;
-        fprintf(m, "set logscale %s\nset %srange [%.6g:%.6g]\nset format %s '%%g'\nset %stics add ('0' %.6g)\n"
-                   "%sZERO = %.6g\n%sZERO_OF(c) = column(c) == 0 ? %sZERO : column(c)\n",
-                axis, axis, zero / 1.6, hi * 2.0, axis, axis, zero, up, zero, up, up);
+        fprintf(m, "set logscale %s\nset %srange [%.6g:%.6g]\nset format %s '%%g'\n", axis, axis,
+                zeros ? zero / 1.6 : pos / 2.0, hi * 2.0, axis);
+        if (zeros)
+            fprintf(m, "set %stics add ('0' %.6g)\n", axis, zero);
+        fprintf(m, "%sZERO = %.6g\n%sZERO_OF(c) = column(c) == 0 ? %sZERO : column(c)\n", up, zero, up, up);
         return 1;
     }
     fprintf(m, "unset logscale %s\nset format %s '%%g'\n%sZERO = 0\n%sZERO_OF(c) = column(c)\n", axis, axis, up,
@@ -707,7 +711,7 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
         logy |= sl_report_axis(m, "y", ys[panel], npts, 1) == 1;
         /* the front's rings first, light and wide, so the markers sit on top of them */
         /* XZERO_OF/YZERO_OF(c): column c, a zero moved to the log axis's 0 tick (sl_report_axis) */
-        fprintf(m, "plot DATA index %d using (XZERO_OF(1)):(YZERO_OF(%d)) with points pt 6 ps 2.6 lw 2 lc rgb '#b0b0b0' "
+        fprintf(m, "plot DATA index %d using (XZERO_OF(1)):(YZERO_OF(%d)) with points pt 6 ps 2.3 lw 2 lc rgb '#b0b0b0' "
                    "title 'Pareto front (wrong + undecided)'",
                 nblocks, 2 + panel);
         int b = 0;

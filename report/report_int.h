@@ -192,11 +192,6 @@ enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_s
 enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 /* Soft shadows: per view, rows label x map size, the soft figures and their cost */
 enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
-/* The theses whose sections a study can get (layouts.c holds the one table
- * of their methods). sl_report_family_of: 2 the method is the thesis's own
- * (it brings the sections), 1 a baseline its tables list beside its own, 0 none. */
-enum sl_report_family { SL_REPORT_MODERNO, SL_REPORT_MORAIS, SL_REPORT_CURTIS, SL_REPORT_NFAMILIES };
-int sl_report_family_of(const char *method, enum sl_report_family f);
 /* family_of(method, MODERNO / MORAIS) > 0: the layout's tables list the method */
 int sl_report_is_moderno(const char *method);
 int sl_report_is_morais(const char *method);
