@@ -69,22 +69,16 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
     char id[160];
     snprintf(id, sizeof id, "%s-fractional", s->slug);
     struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 11, 2, "%s: fractional errors against the 0/1 truth, per label and map size",
+    sl_report_tab_init(&t, id, 12, 2, "%s: fractional errors against the 0/1 truth, per label and map size",
                        s->name);
-    static const char *const head[] = {"label",
-                                       "map",
-                                       "cells",
-                                       "PFL pixels",
-                                       "wrong % (hard)",
-                                       "mean |v − truth|",
-                                       "bias",
-                                       "leaking",
-                                       "over-darkening",
-                                       "within 0.05",
-                                       "leaking, per shadowed px / over-darkening, per lit px"};
-    for (int k = 0; k < 11; k++)
+    static const char *const head[] = {"label",   "map",     "cells",          "PFL pixels",
+                                       "wrong % (hard)", "|v − t|", "bias",           "leaking",
+                                       "over-darkening", "within 0.05", "leaking", "over-darkening"};
+    for (int k = 0; k < 12; k++)
         sl_report_tab_head(&t, k, "%s", head[k]);
-    t.wrap = 1;
+    sl_report_tab_group(&t, 5, "%s", "");
+    sl_report_tab_group(&t, 5, "%% of visibility per PFL pixel");
+    sl_report_tab_group(&t, 2, "per truth-shadowed / truth-lit pixel");
     int any = 0;
     for (int l = 0; l < s->nlabels; l++) {
         int first = 1;
@@ -105,7 +99,7 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
             else
                 sl_report_tab_cell(&t, 4, "–");
             if (!r.px) {
-                for (int k = 5; k < 11; k++)
+                for (int k = 5; k < 12; k++)
                     sl_report_tab_cell(&t, k, "–");
                 continue;
             }
@@ -116,20 +110,22 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
             sl_report_tab_cell(&t, 7, "%.3f", leak);
             sl_report_tab_cell(&t, 8, "%.3f", dark);
             sl_report_tab_cell(&t, 9, "%.2f%%", 100.0 * (double)r.within / px);
-            char a[64] = "–", b[64] = "–";
             if (r.umbra)
-                snprintf(a, sizeof a, "%.2f (of %llu)", leak * px / (double)r.umbra, (unsigned long long)r.umbra);
+                sl_report_tab_cell(&t, 10, "%.2f (of %llu)", leak * px / (double)r.umbra, (unsigned long long)r.umbra);
+            else
+                sl_report_tab_cell(&t, 10, "–");
             if (r.lit)
-                snprintf(b, sizeof b, "%.2f (of %llu)", dark * px / (double)r.lit, (unsigned long long)r.lit);
-            sl_report_tab_cell(&t, 10, "%s / %s", a, b);
+                sl_report_tab_cell(&t, 11, "%.2f (of %llu)", dark * px / (double)r.lit, (unsigned long long)r.lit);
+            else
+                sl_report_tab_cell(&t, 11, "–");
         }
     }
     snprintf(t.note, sizeof t.note,
-             "Mean |v − truth|, bias, leaking and over-darkening in %% of full visibility per PFL pixel (leaking + "
-             "over-darkening = mean |v − truth|); within 0.05: share of the PFL pixels. The last column says the "
-             "same per pixel where it can happen: the visibility a truth-shadowed pixel gets on average, and what "
-             "a truth-lit pixel loses (%% of full visibility; the pixel counts after \"of\"). Pooled over the "
-             "study's views, weighted by their PFL pixels.");
+             "|v − t|: the mean |v − truth|; it, the bias (method − truth), leaking and over-darkening in %% of "
+             "full visibility per PFL pixel (leaking + over-darkening = |v − t|); within 0.05: share of the PFL "
+             "pixels. The last two columns say the same per pixel where it can happen: the visibility a "
+             "truth-shadowed pixel gets on average, and what a truth-lit pixel loses (%% of full visibility; the "
+             "pixel counts after \"of\"). Pooled over the study's views, weighted by their PFL pixels.");
     enum sl_err e = SL_OK;
     if (any)
         e = sl_report_doc_table(doc, &t, d);

@@ -69,17 +69,18 @@ lacks "$md" "Moderno 2011's layout"
 lacks "$md" "soft shadows (area lights)"
 nbias=0
 for label in pcf5 vsm esm; do
-  # the page's row: | label | map | cells | PFL | wrong | mae | bias | leaking | over-darkening | within | per px |
+  # the page's row: | label | map | cells | PFL | wrong | mae | bias | leaking | over-darkening | within |
+  #                  per shadowed px | per lit px |
   row=$(sed -n '/^### tech: fractional errors/,/^### /p' "$md" | grep -F "| $label | 256² |" | head -1)
   [ -n "$row" ] || { fail "no fractional row for $label"; continue; }
-  IFS='|' read -r _ _ _ _ px _ mae bias leak dark within perpx _ <<<"$row"
+  IFS='|' read -r _ _ _ _ px _ mae bias leak dark within pshadow plit _ <<<"$row"
   q() { sqlite3 "$db" "select $1 from figures where label='$label' and region='image' and figure='$2'"; }
   smae=$(q percent soft_mae); sbias=$(q percent soft_bias); spx=$(q count soft_pixels)
   sumb=$(q count soft_truth_umbra); slit=$(q count soft_truth_lit)
-  res=$(awk -v mae="$mae" -v bias="$bias" -v leak="$leak" -v dark="$dark" -v px="$px" -v perpx="$perpx" \
+  res=$(awk -v mae="$mae" -v bias="$bias" -v leak="$leak" -v dark="$dark" -v px="$px" -v pshadow="$pshadow" -v plit="$plit" \
             -v smae="$smae" -v sbias="$sbias" -v spx="$spx" -v sumb="$sumb" -v slit="$slit" 'function abs(x) { return x < 0 ? -x : x }
     BEGIN {
-      split(perpx, a, " "); pl = a[1]; n = split(perpx, b, "/ "); split(b[2], c, " "); pd = c[1]
+      pl = pshadow + 0; pd = plit + 0
       e = ""
       if (px + 0 != spx + 0) e = e " PFL " px " vs " spx
       if (abs(mae - smae) > 0.0006) e = e " mae " mae " vs " smae

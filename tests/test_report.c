@@ -482,7 +482,7 @@ static void report_any_study(void **st)
     /* label, map, cells, PFL, wrong % (20 of 2000 px, whole image), mae, bias, leaking, over-darkening, within,
      * per px: 2.25 * 4000 / 400, 1.75 * 4000 / 3600 */
     assert_non_null(strstr(md, "| pkg | 512² | 2 | 4000 | 1.000 | 4.000 | +0.500 | 2.250 | 1.750 | 50.00% | "
-                               "22.50 (of 400) / 1.94 (of 3600) |"));
+                               "22.50 (of 400) | 1.94 (of 3600) |"));
     free(md);
 }
 
