@@ -577,9 +577,9 @@ int sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_z
         /* more than two decades: log, a factor 2 of room above; a zero (an
          * exact method's wrong pixels) cannot sit on a log axis, so it is
          * drawn at a tick labelled 0 below the smallest value */
-        double zero = pos / 4.0;
+        double zero = pow(10.0, floor(log10(pos)) - 0.5);   /* half a decade under the lowest decade tick */
         fprintf(m, "set logscale %s\nset %srange [%.6g:%.6g]\nset format %s '%%g'\n", axis, axis,
-                zeros ? zero / 1.6 : pos / 2.0, hi * 2.0, axis);
+                zeros ? zero / 1.8 : pos / 2.0, hi * 2.0, axis);
         if (zeros)
             fprintf(m, "set %stics add ('0' %.6g)\n", axis, zero);
         fprintf(m, "%sZERO = %.6g\n%sZERO_OF(c) = column(c) == 0 ? %sZERO : column(c)\n", up, zero, up, up);
@@ -822,8 +822,13 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
             sl_report_tab_cell(&t, 0, "%s", p[k].label);
             sl_report_tab_cell(&t, 1, "%d²", p[k].map_size);
             sl_report_tab_cell(&t, 2, "%d", p[k].ncells);
-            sl_report_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
-            sl_report_tab_cell(&t, 4, "%.4f", p[k].uncertain_pct);
+            if (isnan(p[k].wrong_pct)) {   /* a soft method: no hard verdicts (the soft table has its errors) */
+                sl_report_tab_cell(&t, 3, "–");
+                sl_report_tab_cell(&t, 4, "–");
+            } else {
+                sl_report_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
+                sl_report_tab_cell(&t, 4, "%.4f", p[k].uncertain_pct);
+            }
             sl_report_tab_cell(&t, 5, "%.3f", p[k].ms_layers);
             sl_report_tab_cell(&t, 6, "%.3f", p[k].ms_step);
             sl_report_tab_cell(&t, 7, "%.3f", p[k].ms);
@@ -831,7 +836,10 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
                 sl_report_tab_cell(&t, 8, "%.3f–%.3f (%d runs)", p[k].ms_min, p[k].ms_max, p[k].reps);
             else
                 sl_report_tab_cell(&t, 8, "1 run");
-            sl_report_tab_cell(&t, 9, "%.4f", p[k].rays_per_px);
+            if (isnan(p[k].rays_per_px))
+                sl_report_tab_cell(&t, 9, "–");
+            else
+                sl_report_tab_cell(&t, 9, "%.4f", p[k].rays_per_px);
             sl_report_tab_cell(&t, 10, "%s", p[k].front_ms ? "yes" : "");
             sl_report_tab_cell(&t, 11, "%s", p[k].front_rays ? "yes" : "");
         }
