@@ -573,24 +573,34 @@ int sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_z
         return -1;   /* nothing but zeros (or nothing): the caller drops the panel */
     char up[8];
     snprintf(up, sizeof up, "%c", axis[0] == 'x' ? 'X' : 'Y');
+    /* tics start afresh: another panel's may be set */
+    fprintf(m, "unset %stics\nset %stics nomirror\nset format %s '%%g'\n", axis, axis, axis);
     if (lo >= 0.0 && hi / pos > 100.0) {
         /* more than two decades: log, a factor 2 of room above; a zero (an
          * exact method's wrong pixels) cannot sit on a log axis, so it is
-         * drawn at a tick labelled 0 below the smallest value */
-        double zero = pow(10.0, floor(log10(pos)) - 0.5);   /* half a decade under the lowest decade tick */
-        fprintf(m, "set logscale %s\nset %srange [%.6g:%.6g]\nset format %s '%%g'\n", axis, axis,
-                zeros ? zero / 1.8 : pos / 2.0, hi * 2.0, axis);
+         * drawn at a tick labelled 0 half a decade under the lowest decade */
+        double zero = pow(10.0, floor(log10(pos)) - 0.5);
+        fprintf(m, "set logscale %s\nset %srange [%.6g:%.6g]\n", axis, axis, zeros ? zero / 1.8 : pos / 2.0,
+                hi * 2.0);
         if (zeros)
             fprintf(m, "set %stics add ('0' %.6g)\n", axis, zero);
         fprintf(m, "%sZERO = %.6g\n%sZERO_OF(c) = column(c) == 0 ? %sZERO : column(c)\n", up, zero, up, up);
         return 1;
     }
-    fprintf(m, "unset logscale %s\nset format %s '%%g'\n%sZERO = 0\n%sZERO_OF(c) = column(c)\n", axis, axis, up,
+    fprintf(m, "unset logscale %s\n%sZERO = 0\n%sZERO_OF(c) = column(c) == 0 ? %sZERO : column(c)\n", axis, up, up,
             up);
     double a, b;
-    if (from_zero && lo >= 0.0) {
+    if (lo >= 0.0 && (from_zero || zeros)) {
         a = 0.0;
-        b = hi * 1.08;
+        b = hi * 1.06;
+        if (lo < 0.03 * hi) {
+            /* points at (or next to) 0: the axis a little below, so they do not
+             * sit on its line, and tics from 0 up, so no negative value is labelled */
+            a = -0.03 * b;
+            double raw = b / 6.0, mag = pow(10.0, floor(log10(raw))), r = raw / mag;
+            double step = (r < 1.5 ? 1.0 : r < 3.5 ? 2.0 : r < 7.5 ? 5.0 : 10.0) * mag;
+            fprintf(m, "set %stics 0, %.6g\n", axis, step);
+        }
     } else {
         double pad = hi > lo ? 0.06 * (hi - lo) : 0.1 * fabs(hi);
         a = lo - pad;
