@@ -376,8 +376,9 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
     if (!s->moderno && !s->morais && !s->curtis)
         sl_report_doc_para(doc, "No method of Moderno 2011, Morais 2015 or Curtis 2009 ran in this study (the "
                                 "list is in report/layouts.c): it gets the sections every study gets, this summary "
-                                "with its plots, %sthe costs, the overlays and the figure tables, and no thesis "
-                                "section.", s->frac ? "the fractional errors, " : "");
+                                "with its plots, %s%sthe costs, the overlays and the figure tables, and no thesis "
+                                "section.", s->area ? "the soft-shadow table of its area-light cells, " : "",
+                           s->frac ? "the fractional errors, " : "");
     else
         sl_report_doc_para(doc, "Thesis sections, from the methods that ran: %s%s%s%s%s%s%s",
                            s->moderno ? "Moderno 2011's tables" : "", s->moderno && (s->morais || s->curtis) ? ", " : "",
@@ -385,12 +386,13 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
                            s->curtis ? "Curtis 2009's soft-shadow table" : "", ".",
                            other[0] ? "" : " Every method belongs to one of them.");
     if (other[0] && (s->moderno || s->morais || s->curtis))
-        sl_report_doc_para(doc, "Methods of no thesis (%s) appear in the summary, the plots, %sthe costs and the "
-                                "figure tables.", other, s->frac ? "the fractional errors, " : "");
+        sl_report_doc_para(doc, "Methods of no thesis (%s) appear in the summary, the plots, %s%sthe costs and "
+                                "the figure tables.", other, s->area ? "the soft-shadow table, " : "",
+                           s->frac ? "the fractional errors, " : "");
     int point = 0;   /* hard figures of cells under an area light */
     for (int i = 0; i < s->n && !point; i++)
         point = s->cells[i].has_soft && s->cells[i].fig.nregions > 0 && !s->cells[i].frac;
-    if (point && (s->moderno || s->morais))
+    if (point)
         sl_report_doc_para(doc, "Under an area light the hard-shadow methods take the light for a point at its "
                                 "centre: their wrong pixels and decisions in the hard-shadow tables and plots are "
                                 "counted against that point's own truth; the soft-shadow table scores the same "
