@@ -440,10 +440,8 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
     for (int l = 0; l < s->nlabels; l++)
         if (strcmp(s->methods[l], "chain") == 0)
             chains[nchains++] = l;
-    if (nchains == 0) {
-        sl_report_doc_para(doc, "No cell of this study ran the chain: Moderno's Figures 31/32 are not drawn.");
-        return SL_OK;
-    }
+    if (nchains == 0)
+        return SL_OK;   /* report.c asks only when a chain label ran */
     sl_report_doc_para(doc,
                        "Share of the region's PFL pixels each step of the chain decides (Moderno 2011 Figures "
                        "31/32), per chain variant, map size and region, pooled over the scene's viewpoints and "
@@ -539,8 +537,8 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
 
 /* Okabe-Ito's colour-blind-safe palette (its yellow swapped for grey: too
  * faint on white) and twelve markers, filled first: label k gets colour
- * k % 8 and marker k % 12, so 24 labels differ in colour, marker or both
- * and the first eight in both. pt 6 (the open circle) is left out: it is
+ * k % 8 and marker (k + k / 24) % 12, so 96 labels (more than a study may
+ * hold) differ in colour, marker or both, and the first eight in both. pt 6 (the open circle) is left out: it is
  * the Pareto front's ring. Every plot of the report takes its styles here. */
 static const char *const okabe[8] = {"#E69F00", "#56B4E9", "#009E73", "#999999",
                                      "#0072B2", "#D55E00", "#CC79A7", "#000000"};
@@ -551,7 +549,7 @@ void sl_report_style(int k, const char **colour, int *pt)
     if (k < 0)
         k = 0;
     *colour = okabe[k % 8];
-    *pt = markers[k % 12];
+    *pt = markers[(k + k / 24) % 12];
 }
 
 int sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_zero)
