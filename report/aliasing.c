@@ -127,7 +127,8 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
     sl_report_tab_head(&t, 0, "method");
     for (int b = 0; b < SL_ALIAS_BANDS; b++)
         sl_report_tab_head(&t, 1 + b, "%s", band_name[b]);
-    int nblocks = 0;
+    int nblocks = 0, nrates = 0;
+    double rates[SL_REPORT_MAXKEYS * SL_ALIAS_BANDS];
     for (int l = 0; l < s->nlabels; l++) {
         uint64_t w[SL_ALIAS_BANDS] = {0}, p[SL_ALIAS_BANDS] = {0};
         int any = 0;
@@ -154,6 +155,7 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
             }
             double rate = 100.0 * (double)w[b] / (double)p[b];
             fprintf(dm, "%d %.6g\n", b, rate);
+            rates[nrates++] = rate;
             sl_report_tab_cell(&t, 1 + b, "%.3f (%llu / %llu)", rate, (unsigned long long)w[b],
                                (unsigned long long)p[b]);
         }
@@ -163,13 +165,12 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
     snprintf(title, sizeof title, "%s: error rate against the aliasing error m", s->name);
     fputs("set title ", m);
     sl_report_gp_quote(m, title);
-    fputs("\nset grid\nset border 3\nset tics nomirror\nset logscale y\nset yrange [*:*]\n"
-          "set xrange [-0.3:4.3]\nset xtics ('m ≤ 1' 0, '1–2' 1, '2–4' 2, '4–8' 3, '> 8' 4)\n"
+    fputs("\nset grid\nset border 3\nset tics nomirror\n", m);
+    int logy = sl_report_axis(m, "y", rates, nrates, 1);
+    fputs("set xrange [-0.3:4.3]\nset xtics ('m ≤ 1' 0, '1–2' 1, '2–4' 2, '4–8' 3, '> 8' 4)\n"
           "set xlabel 'aliasing error m of the pixel (texel footprint / pixel footprint, seed 004 eq. 61)'\n"
           "set ylabel 'wrong pixels, % of the band''s PFL pixels'\n"
           "set key outside right top Left reverse samplen 1.5\nplot ", m);
-    static const char *const col[8] = {"#E69F00", "#56B4E9", "#009E73", "#999999",
-                                       "#0072B2", "#D55E00", "#CC79A7", "#000000"};
     int b = 0;
     for (int l = 0; l < s->nlabels && b < nblocks; l++) {
         int has = 0;
@@ -177,8 +178,11 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
             has = s->cells[i].has_alias && (!s->cells[i].has_soft || s->cells[i].frac) && strcmp(s->cells[i].label, s->labels[l]) == 0;
         if (!has)
             continue;
-        fprintf(m, "%sDATA index %d using 1:2 with linespoints lw 1.5 pt %d lc rgb '%s' title ", b ? ", \\\n  " : "",
-                b, 5 + 2 * (b % 4), col[b % 8]);
+        const char *col;
+        int pt;
+        sl_report_style(b, &col, &pt);
+        fprintf(m, "%sDATA index %d using 1:(YZERO_OF(2)) with linespoints lw 1.5 pt %d lc rgb '%s' title ", b ? ", \\\n  " : "",
+                b, pt, col);
         sl_report_gp_quote(m, s->labels[l]);
         b++;
     }
@@ -189,12 +193,15 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
     enum sl_err e = SL_OK;
     if (bad || !body || !data)
         e = sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
+    else if (nblocks > 0 && logy < 0)
+        sl_report_doc_para(doc, "No method of this study gets a pixel wrong in any band of m: the error-rate plot "
+                                "is not drawn.");
     else if (nblocks > 0) {
         char name[160], cap[400];
         snprintf(name, sizeof name, "%s-aliasing-rate", s->slug);
         snprintf(cap, sizeof cap, "%s: per method, its wrong pixels over its PFL pixels in each band of m, pooled "
-                 "over the study's views and map sizes (whole image; log scale; a band without pixels is left out).",
-                 title);
+                 "over the study's views and map sizes (whole image; %s; a band without pixels is left out).",
+                 title, logy == 1 ? "log scale, a zero rate at the tick labelled 0" : "linear scale");
         e = sl_report_plot_draw(doc, gnuplot, name, 900, 560, data, body, cap, d);
         if (!e)
             e = sl_report_doc_table(doc, &t, d);

@@ -1,22 +1,29 @@
 /*
  * layouts.c — the thesis tables and the cost section of one study.
  *
- * Which layout a method gets (the choice the report makes per family):
- * - Moderno 2011 (nsm, coherence, texel, neighbours, adjacency, chain): the
- *   thesis measures everything inside contours of 2/4/6 px and the whole
- *   image, and against NSM; its tables are the summaries over the study
- *   (Tables 5-15: average, best and worst per map size, average case), and
- *   per view the errors caught per contour (Tables 17/18), the hints (Table
- *   19) and the changes against NSM (Table 23).
- * - Morais 2015 (nsm, bgsm, sgsm, sgsm_adj, csm, csm_adj, hertel,
- *   raytrace): the thesis counts the whole image, per view and map size,
- *   light/shadow correct/incorrect and the uncertain pixels with PFL/PnFL
- *   (Table 7 and its siblings), and times the shadow-map rendering and the
- *   ray step per viewport and map size (Tables 25/26).
- * - nsm is in both: a study whose other methods are Morais's gets Morais's
- *   tables, one with Moderno's (or with nsm alone) Moderno's, one with both
- *   families gets both. Methods of neither family appear in the full
- *   figure tables (report.c) and in the plots and costs only.
+ * Which thesis's sections a study gets is decided by the methods its cells
+ * ran, from one table (family_methods below; report/README.md lists it):
+ * - Moderno 2011 (own: coherence, texel, neighbours, adjacency, chain; nsm
+ *   tabulated beside them): the thesis measures everything inside contours
+ *   of 2/4/6 px and the whole image, and against NSM; its tables are the
+ *   summaries over the study (Tables 5-15: average, best and worst per map
+ *   size, average case), and per view the errors caught per contour (Tables
+ *   17/18), the hints (Table 19) and the changes against NSM (Table 23);
+ *   with it come the fidelity section (scene primitives) and the chain's
+ *   steps (a chain label). The aliasing section (seed 004) is no thesis's:
+ *   any study with aliasing figures gets it.
+ * - Morais 2015 (own: bgsm, sgsm, sgsm_adj, csm, csm_adj; nsm, hertel and
+ *   raytrace beside them): the thesis counts the whole image, per view and
+ *   map size, light/shadow correct/incorrect and the uncertain pixels with
+ *   PFL/PnFL (Table 7 and its siblings), and times the shadow-map rendering
+ *   and the ray step per viewport and map size (Tables 25/26).
+ * - Curtis 2009 (own: soft_mc, point_map, hard_point) names the soft-shadow
+ *   table of the cells under an area light (a study with area-light cells
+ *   and none of Curtis's methods gets the same table, unnamed).
+ * A study that ran only methods of no row (its own methods, technique
+ * packages, nsm variants) gets no thesis section: the summary, the plots,
+ * the fractional errors (when it has frac cells), the costs, the overlays
+ * and the figure tables, which every study gets.
  * Values are printed as the seeds print them: "count (percent%)" with the
  * percentage of figures.h's base, or "count of base (percent%)".
  */
@@ -26,24 +33,36 @@
 #include "report_int.h"
 #include "util.h"
 
-int sl_report_is_moderno(const char *m)
+/* The one list of which thesis a method belongs to. own: running it makes
+ * the study a study of that thesis (its sections appear); shared: a
+ * baseline the thesis's tables list beside its own once they appear, but
+ * that brings no thesis section by itself (a study of NSM biases is nobody's
+ * thesis). A method of no row is the researcher's own: it gets the sections
+ * every study gets (summary, plots, figure tables, overlays, costs). */
+static const struct {
+    enum sl_report_family family;
+    const char *method;
+    int own;
+} family_methods[] = {
+    {SL_REPORT_MODERNO, "coherence", 1},  {SL_REPORT_MODERNO, "texel", 1},   {SL_REPORT_MODERNO, "neighbours", 1},
+    {SL_REPORT_MODERNO, "adjacency", 1},  {SL_REPORT_MODERNO, "chain", 1},   {SL_REPORT_MODERNO, "nsm", 0},
+    {SL_REPORT_MORAIS, "bgsm", 1},        {SL_REPORT_MORAIS, "sgsm", 1},     {SL_REPORT_MORAIS, "sgsm_adj", 1},
+    {SL_REPORT_MORAIS, "csm", 1},         {SL_REPORT_MORAIS, "csm_adj", 1},  {SL_REPORT_MORAIS, "nsm", 0},
+    {SL_REPORT_MORAIS, "hertel", 0},      {SL_REPORT_MORAIS, "raytrace", 0},
+    {SL_REPORT_CURTIS, "soft_mc", 1},     {SL_REPORT_CURTIS, "point_map", 1}, {SL_REPORT_CURTIS, "hard_point", 1},
+    {SL_REPORT_NFAMILIES, NULL, 0},
+};
+
+int sl_report_family_of(const char *m, enum sl_report_family f)
 {
-    static const char *const names[] = {"nsm", "coherence", "texel", "neighbours", "adjacency", "chain", NULL};
-    for (int i = 0; names[i]; i++)
-        if (strcmp(m, names[i]) == 0)
-            return 1;
+    for (int i = 0; family_methods[i].method; i++)
+        if (family_methods[i].family == f && strcmp(m, family_methods[i].method) == 0)
+            return family_methods[i].own ? 2 : 1;
     return 0;
 }
 
-int sl_report_is_morais(const char *m)
-{
-    static const char *const names[] = {"nsm", "bgsm", "sgsm", "sgsm_adj", "csm", "csm_adj", "hertel",
-                                        "raytrace", NULL};
-    for (int i = 0; names[i]; i++)
-        if (strcmp(m, names[i]) == 0)
-            return 1;
-    return 0;
-}
+int sl_report_is_moderno(const char *m) { return sl_report_family_of(m, SL_REPORT_MODERNO) > 0; }
+int sl_report_is_morais(const char *m) { return sl_report_family_of(m, SL_REPORT_MORAIS) > 0; }
 
 /* ---- study keys ---- */
 
@@ -72,12 +91,13 @@ static int same_view(const struct sl_report_view *v, const struct sl_cell_record
 enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
 {
     s->nviews = s->nscenes = s->nlabels = s->nmaps = s->nregions = 0;
-    int has_image = 0, moderno_only = 0, morais_only = 0, hard = 0;
-    s->curtis = 0;
+    int has_image = 0, moderno_own = 0, morais_own = 0, curtis_own = 0, hard = 0;
+    s->curtis = s->area = s->frac = 0;
     for (int i = 0; i < s->n; i++) {
         const struct sl_cell_record *c = &s->cells[i];
         int k;
-        s->curtis |= c->has_soft && !c->frac;   /* frac: a hard light's fractional errors */
+        s->area |= c->has_soft && !c->frac;   /* frac: a hard light's fractional errors, never an area light's */
+        s->frac |= c->has_soft && c->frac;
         hard |= !c->has_soft || c->fig.nregions > 0;   /* a hard method under an area light has both */
         for (k = 0; k < s->nviews && !same_view(&s->views[k], c); k++)
             ;
@@ -108,8 +128,9 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
             snprintf(s->labels[k], sizeof s->labels[0], "%s", c->label);
             snprintf(s->methods[k], sizeof s->methods[0], "%s", c->method);
             s->nlabels++;
-            moderno_only |= sl_report_is_moderno(c->method) && !sl_report_is_morais(c->method);
-            morais_only |= sl_report_is_morais(c->method) && !sl_report_is_moderno(c->method);
+            moderno_own |= sl_report_family_of(c->method, SL_REPORT_MODERNO) == 2;
+            morais_own |= sl_report_family_of(c->method, SL_REPORT_MORAIS) == 2;
+            curtis_own |= sl_report_family_of(c->method, SL_REPORT_CURTIS) == 2;
         }
         for (k = 0; k < s->nmaps && s->maps[k] != c->map_size; k++)
             ;
@@ -143,8 +164,9 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
     }
     if (has_image)
         s->regions[s->nregions++] = 0;
-    s->morais = hard && morais_only;
-    s->moderno = hard && (moderno_only || !morais_only);
+    s->morais = hard && morais_own;
+    s->moderno = hard && moderno_own;
+    s->curtis = s->area && curtis_own;
     return SL_OK;
 }
 
@@ -865,8 +887,8 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
         char title[200];
         view_title(vw, title, sizeof title);
         struct sl_report_tab t;
-        sl_report_tab_init(&t, id, 11, 2, "%s: the visible fraction of the light against the area truth "
-                           "(Curtis 2009)", title);
+        sl_report_tab_init(&t, id, 11, 2, "%s: the visible fraction of the light against the area truth%s", title,
+                           s->curtis ? " (Curtis 2009)" : "");
         static const char *const head[] = {"label", "map", "MAE", "RMSE", "bias", "within 0.05", "within 0.1",
                                            "class right", "penumbra right", "rays / pixel", "method ms"};
         for (int k = 0; k < 11; k++)
@@ -876,7 +898,7 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
         for (int l = 0; l < s->nlabels; l++)
             for (int m = 0; m < s->nmaps; m++) {
                 const struct sl_cell_record *c = sl_report_study_cell(s, vw, s->labels[l], s->maps[m]);
-                if (!c || !c->has_soft)
+                if (!c || !c->has_soft || c->frac)   /* frac: a hard light's, fractional.c */
                     continue;
                 const struct sl_soft_figures *f = &c->soft;
                 sl_report_tab_row(&t, m == 0);

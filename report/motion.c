@@ -66,7 +66,7 @@ static enum sl_err group(struct sl_report_doc *doc, const struct sl_report_study
     sl_report_tab_free(&t);
     if (e)
         return e;
-    /* the plot: wrong pixels per frame (left axis, solid) and flicker (right, dashed) */
+    /* the plot: wrong pixels per frame and flicker, one panel each */
     char *data = NULL, *body = NULL;
     size_t dlen = 0, blen = 0;
     FILE *dm = open_memstream(&data, &dlen), *m = open_memstream(&body, &blen);
@@ -79,15 +79,25 @@ static enum sl_err group(struct sl_report_doc *doc, const struct sl_report_study
     }
     fprintf(dm, "# frame, then per label: wrong pixels, flicker against the frame before (NaN: not compared)\n");
     sl_motion_series(dm, s->cells, s->n, r0, labels, nl);
-    fprintf(m, "set datafile missing '-'\nset key outside right top\nset grid\nset xlabel 'frame'\n"
-               "set ylabel 'wrong pixels (solid)'\nset y2label 'flicker, pixels (dashed)'\nset ytics nomirror\n"
-               "set y2tics\nset yrange [0:*]\nset y2range [0:*]\nplot ");
-    static const char *const color[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
-                                        "#000000", "#F0E442"};
-    for (int l = 0; l < nl; l++)
-        fprintf(m, "%sDATA using 1:%d with lines lw 2 lc rgb '%s' title '%s wrong', DATA using 1:%d axes x1y2 "
-                   "with lines dt 2 lw 1.5 lc rgb '%s' title '%s flicker'",
-                l ? ", \\\n     " : "", 2 + 2 * l, color[l % 8], labels[l], 3 + 2 * l, color[l % 8], labels[l]);
+    /* two panels, one scale each (wrong pixels above, flicker below), one style per label */
+    fprintf(m, "set datafile missing '-'\nset grid\nset border 3\nset tics nomirror\nset yrange [0:*]\n"
+               "set lmargin at screen 0.08\nset rmargin at screen 0.80\nset multiplot\n");
+    for (int panel = 0; panel < 2; panel++) {
+        fprintf(m, "%sset tmargin at screen %s\nset bmargin at screen %s\nset xlabel '%s'\nset ylabel '%s'\nplot ",
+                panel ? "unset key\n" : "set key at screen 0.81, screen 0.95 left top Left reverse samplen 1.5\n",
+                panel ? "0.47" : "0.95", panel ? "0.12" : "0.53", panel ? "frame" : "",
+                panel ? "flicker against the frame before, pixels" : "wrong pixels");
+        for (int l = 0; l < nl; l++) {
+            const char *col;
+            int pt;
+            sl_report_style(l, &col, &pt);
+            fprintf(m, "%sDATA using 1:%d with linespoints lw 1.5 pt %d ps 0.6 lc rgb '%s' title ", l ? ", \\\n     " : "",
+                    2 + 2 * l + panel, pt, col);
+            sl_report_gp_quote(m, labels[l]);
+        }
+        fputc('\n', m);
+    }
+    fputs("unset multiplot", m);
     fputc('\n', m);
     int bad = ferror(dm) || ferror(m);
     fclose(dm);

@@ -440,10 +440,8 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
     for (int l = 0; l < s->nlabels; l++)
         if (strcmp(s->methods[l], "chain") == 0)
             chains[nchains++] = l;
-    if (nchains == 0) {
-        sl_report_doc_para(doc, "No cell of this study ran the chain: Moderno's Figures 31/32 are not drawn.");
-        return SL_OK;
-    }
+    if (nchains == 0)
+        return SL_OK;   /* report.c asks only when a chain label ran */
     sl_report_doc_para(doc,
                        "Share of the region's PFL pixels each step of the chain decides (Moderno 2011 Figures "
                        "31/32), per chain variant, map size and region, pooled over the scene's viewpoints and "
@@ -538,11 +536,79 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
 /* ---- accuracy against cost ---- */
 
 /* Okabe-Ito's colour-blind-safe palette (its yellow swapped for grey: too
- * faint on white) and filled markers; method k gets colour k % 8 and
- * marker (k + k / 8) % 8, so up to 64 methods differ in one or the other. */
+ * faint on white) and twelve markers, filled first: label k gets colour
+ * k % 8 and marker (k + k / 24) % 12, so 96 labels (more than a study may
+ * hold) differ in colour, marker or both, and the first eight in both. pt 6 (the open circle) is left out: it is
+ * the Pareto front's ring. Every plot of the report takes its styles here. */
 static const char *const okabe[8] = {"#E69F00", "#56B4E9", "#009E73", "#999999",
                                      "#0072B2", "#D55E00", "#CC79A7", "#000000"};
-static const int markers[8] = {7, 5, 9, 11, 13, 15, 4, 6};
+static const int markers[12] = {7, 5, 9, 11, 13, 15, 4, 8, 10, 12, 1, 2};
+
+void sl_report_style(int k, const char **colour, int *pt)
+{
+    if (k < 0)
+        k = 0;
+    *colour = okabe[k % 8];
+    *pt = markers[(k + k / 24) % 12];
+}
+
+int sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_zero)
+{
+    if (strcmp(axis, "x") != 0 && strcmp(axis, "y") != 0)
+        return -1;
+    double lo = INFINITY, hi = -INFINITY, pos = INFINITY;
+    int zeros = 0;
+    for (int i = 0; i < n; i++) {
+        if (!isfinite(v[i]))
+            continue;
+        zeros |= v[i] == 0.0;
+        lo = fmin(lo, v[i]);
+        hi = fmax(hi, v[i]);
+        if (v[i] > 0.0)
+            pos = fmin(pos, v[i]);
+    }
+    if (!(hi > 0.0))
+        return -1;   /* nothing but zeros (or nothing): the caller drops the panel */
+    char up[8];
+    snprintf(up, sizeof up, "%c", axis[0] == 'x' ? 'X' : 'Y');
+    /* tics start afresh: another panel's may be set */
+    fprintf(m, "unset %stics\nset %stics nomirror\nset format %s '%%g'\n", axis, axis, axis);
+    if (lo >= 0.0 && hi / pos > 100.0) {
+        /* more than two decades: log, a factor 2 of room above; a zero (an
+         * exact method's wrong pixels) cannot sit on a log axis, so it is
+         * drawn at a tick labelled 0 half a decade under the lowest decade */
+        double zero = pow(10.0, floor(log10(pos)) - 0.5);
+        fprintf(m, "set logscale %s\nset %srange [%.6g:%.6g]\n", axis, axis, zeros ? zero / 1.8 : pos / 2.0,
+                hi * 2.0);
+        if (zeros)
+            fprintf(m, "set %stics add ('0' %.6g)\n", axis, zero);
+        fprintf(m, "%sZERO = %.6g\n%sZERO_OF(c) = column(c) == 0 ? %sZERO : column(c)\n", up, zero, up, up);
+        return 1;
+    }
+    fprintf(m, "unset logscale %s\n%sZERO = 0\n%sZERO_OF(c) = column(c) == 0 ? %sZERO : column(c)\n", axis, up, up,
+            up);
+    double a, b;
+    if (lo >= 0.0 && (from_zero || zeros)) {
+        a = 0.0;
+        b = hi * 1.06;
+        if (lo < 0.03 * hi) {
+            /* points at (or next to) 0: the axis a little below, so they do not
+             * sit on its line, and tics from 0 up, so no negative value is labelled */
+            a = -0.03 * b;
+            double raw = b / 6.0, mag = pow(10.0, floor(log10(raw))), r = raw / mag;
+            double step = (r < 1.5 ? 1.0 : r < 3.5 ? 2.0 : r < 7.5 ? 5.0 : 10.0) * mag;
+            fprintf(m, "set %stics 0, %.6g\n", axis, step);
+        }
+    } else {
+        double pad = hi > lo ? 0.06 * (hi - lo) : 0.1 * fabs(hi);
+        a = lo - pad;
+        b = hi + pad;
+        if (lo >= 0.0 && a < 0.0)
+            a = 0.0;   /* never below zero for a count or a time */
+    }
+    fprintf(m, "set %srange [%.6g:%.6g]\n", axis, a, b);
+    return 0;
+}
 
 /* Two panels over one cost axis (which: 0 method time, 1 rays per pixel):
  * wrong pixels above, undecided pixels below, one colour and marker per
@@ -559,8 +625,21 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
     enum sl_err oe = open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
     if (oe)
         return oe;
-    double lo = INFINITY, hi = 0.0;
     int npts = 0, nblocks = 0, bars = 0, any_rays = 0;
+    double *xs = sl_calloc((size_t)(2 * np + 1), sizeof *xs), *ys[2];
+    ys[0] = sl_calloc((size_t)np + 1, sizeof *ys[0]);
+    ys[1] = sl_calloc((size_t)np + 1, sizeof *ys[1]);
+    if (!xs || !ys[0] || !ys[1]) {
+        free(xs);
+        free(ys[0]);
+        free(ys[1]);
+        fclose(m);
+        fclose(dm);
+        free(body);
+        free(data);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot points");
+    }
+    int nx = 0;
     const char *plabel = NULL;
     /* one block per label: x, wrong %, uncertain %, x min, x max, map size */
     for (int k = 0; k < np; k++) {
@@ -582,8 +661,10 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
         if (!which && p[k].reps > 1 && xh > xl)
             bars = 1;
         fprintf(dm, "%.6g %.6g %.6g %.6g %.6g %d\n", x, p[k].wrong_pct, p[k].uncertain_pct, xl, xh, p[k].map_size);
-        lo = fmin(lo, fmin(x, xl));
-        hi = fmax(hi, fmax(x, xh));
+        xs[nx++] = xl;
+        xs[nx++] = xh;
+        ys[0][npts] = p[k].wrong_pct;
+        ys[1][npts] = p[k].uncertain_pct;
         npts++;
     }
     fputs("\n\n# Pareto front of (cost, wrong% + uncertain%): x wrong% uncertain%\n", dm);
@@ -597,28 +678,50 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
     }
     if (nfront == 0)
         fputs("NaN NaN NaN\n", dm);
-    int logx = lo > 0.0 && hi / lo >= 20.0;
+    /* a panel whose values are all zero says nothing: dropped (the table keeps its zeros) */
+    int show[2], nshow = 0, logy = 0;
+    for (int panel = 0; panel < 2; panel++) {
+        double hi = 0.0;
+        for (int i = 0; i < npts; i++)
+            hi = fmax(hi, ys[panel][i]);
+        show[panel] = hi > 0.0;
+        nshow += show[panel];
+    }
     char title[200];
     snprintf(title, sizeof title, "%s: wrong and undecided pixels against %s", s->name,
              which ? "shadow rays per pixel" : "method time");
     fputs("set multiplot title ", m);
     gp_quote(m, title);
     fputs("\nset lmargin at screen 0.10\nset rmargin at screen 0.66\n"
-          "set grid\nset border 3\nset tics nomirror\nset yrange [0:*]\n"
-          "set offsets graph 0.03, graph 0.03, graph 0.06, 0\n"
+          "set grid\nset border 3\nset tics nomirror\n"
           "set key at screen 0.68, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box\n", m);
-    if (logx)
-        fputs("set logscale x\n", m);
+    int logx = sl_report_axis(m, "x", xs, nx, 0) == 1;
+    static const char *const ylab[2] = {"wrong pixels, % of non-background", "undecided pixels, % of non-background"};
+    int drawn = 0;
     for (int panel = 0; panel < 2; panel++) {
-        if (panel == 0)
-            fputs("set tmargin at screen 0.90\nset bmargin at screen 0.54\nset xlabel ''\n"
-                  "set ylabel 'wrong pixels, % of non-background'\n", m);
+        if (!show[panel])
+            continue;
+        int last = drawn == nshow - 1;
+        if (nshow == 2)
+            fprintf(m, "set tmargin at screen %s\nset bmargin at screen %s\n", drawn ? "0.46" : "0.90",
+                    drawn ? "0.10" : "0.54");
         else
-            fprintf(m, "unset key\nset tmargin at screen 0.46\nset bmargin at screen 0.10\nset xlabel '%s'\n"
-                       "set ylabel 'undecided pixels, %% of non-background'\n",
+            fputs("set tmargin at screen 0.90\nset bmargin at screen 0.10\n", m);
+        if (drawn)
+            fputs("unset key\n", m);
+        if (last)
+            fprintf(m, "set xlabel '%s'\n",
                     which ? "shadow rays per non-background pixel (mean over views)"
                           : "method time per cell, ms: its shadow-map layers + its per-pixel step (mean over views)");
-        fputs("plot ", m);
+        else
+            fputs("set xlabel ''\n", m);
+        fprintf(m, "set ylabel '%s'\n", ylab[panel]);
+        logy |= sl_report_axis(m, "y", ys[panel], npts, 1) == 1;
+        /* the front's rings first, light and wide, so the markers sit on top of them */
+        /* XZERO_OF/YZERO_OF(c): column c, a zero moved to the log axis's 0 tick (sl_report_axis) */
+        fprintf(m, "plot DATA index %d using (XZERO_OF(1)):(YZERO_OF(%d)) with points pt 6 ps 2.3 lw 2 lc rgb '#b0b0b0' "
+                   "title 'Pareto front (wrong + undecided)'",
+                nblocks, 2 + panel);
         int b = 0;
         plabel = NULL;
         for (int k = 0; k < np; k++) {
@@ -628,23 +731,26 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
             if (plabel && strcmp(plabel, p[k].label) == 0)
                 continue;
             plabel = p[k].label;
-            const char *col = okabe[b % 8];
-            int pt = markers[(b + b / 8) % 8];
-            fprintf(m, "%sDATA index %d using 1:%d with lines lw 1 lc rgb '%s' notitle, ", b ? ", \\\n  " : "", b,
-                    2 + panel, col);
+            const char *col;
+            int pt;
+            sl_report_style(b, &col, &pt);
+            fprintf(m, ", \\\n  DATA index %d using (XZERO_OF(1)):(YZERO_OF(%d)) with lines lw 1 lc rgb '%s' notitle, ",
+                    b, 2 + panel, col);
             if (bars)
-                fprintf(m, "DATA index %d using 1:%d:4:5 with xerrorbars pt %d ps 1.1 lc rgb '%s' title ", b,
-                        2 + panel, pt, col);
+                fprintf(m, "DATA index %d using (XZERO_OF(1)):(YZERO_OF(%d)):4:5 with xerrorbars pt %d ps 1.1 "
+                           "lc rgb '%s' title ", b, 2 + panel, pt, col);
             else
-                fprintf(m, "DATA index %d using 1:%d with points pt %d ps 1.1 lc rgb '%s' title ", b, 2 + panel, pt,
-                        col);
+                fprintf(m, "DATA index %d using (XZERO_OF(1)):(YZERO_OF(%d)) with points pt %d ps 1.1 lc rgb '%s' "
+                           "title ", b, 2 + panel, pt, col);
             gp_quote(m, p[k].label);
             b++;
         }
-        fprintf(m, ", \\\n  DATA index %d using 1:%d with points pt 6 ps 2.2 lw 1.2 lc rgb '#000000' "
-                   "title 'Pareto front (wrong + undecided)'\n",
-                nblocks, 2 + panel);
+        fputc('\n', m);
+        drawn++;
     }
+    free(xs);
+    free(ys[0]);
+    free(ys[1]);
     fputs("unset multiplot\n", m);
     int bad = ferror(m) | ferror(dm);
     bad |= fclose(m) != 0;
@@ -661,16 +767,26 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
     } else if (npts == 0) {
         sl_report_doc_para(doc, "No cell of this study has a %s stored: that plot is not drawn.",
                            which ? "ray count" : "method time");
+    } else if (nshow == 0) {
+        sl_report_doc_para(doc, "Every method of this study gets every pixel right and leaves none undecided: "
+                                "the plot against %s would show only zeros and is not drawn (the table has the "
+                                "costs).", which ? "rays" : "time");
     } else {
         char name[160];
         snprintf(name, sizeof name, "%s-accuracy-%s", s->slug, which ? "rays" : "time");
         e = gp_run(doc, gnuplot, name, 900, 640, data, body, d);
         if (!e) {
-            char cap[400];
-            snprintf(cap, sizeof cap, "%s. Above the pixels the method gets wrong, below those it leaves undecided; "
-                     "each method's map sizes joined from the smallest map to the largest%s; ringed: the Pareto "
-                     "front of cost against wrong + undecided.", title,
-                     bars ? ", bars from the fastest to the slowest timed repetition" : "");
+            char cap[700];
+            snprintf(cap, sizeof cap, "%s. %s; each method's map sizes joined from the smallest map to the "
+                     "largest%s; ringed in grey: the Pareto front of cost against wrong + undecided.%s%s", title,
+                     nshow == 2 ? "Above the pixels the method gets wrong, below those it leaves undecided"
+                     : show[0]  ? "The pixels the method gets wrong (no method leaves a pixel undecided: that "
+                                  "panel is dropped)"
+                                : "The pixels the method leaves undecided (no method gets one wrong: that panel "
+                                  "is dropped)",
+                     bars ? ", bars from the fastest to the slowest timed repetition" : "",
+                     logx || logy ? " Log scale where the values span more than two decades; a zero is drawn "
+                                    "at the tick labelled 0 below the smallest value." : "", "");
             plot_show(doc, name, cap);
         }
     }
@@ -714,8 +830,13 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
             sl_report_tab_cell(&t, 0, "%s", p[k].label);
             sl_report_tab_cell(&t, 1, "%d²", p[k].map_size);
             sl_report_tab_cell(&t, 2, "%d", p[k].ncells);
-            sl_report_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
-            sl_report_tab_cell(&t, 4, "%.4f", p[k].uncertain_pct);
+            if (isnan(p[k].wrong_pct)) {   /* a soft method: no hard verdicts (the soft table has its errors) */
+                sl_report_tab_cell(&t, 3, "–");
+                sl_report_tab_cell(&t, 4, "–");
+            } else {
+                sl_report_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
+                sl_report_tab_cell(&t, 4, "%.4f", p[k].uncertain_pct);
+            }
             sl_report_tab_cell(&t, 5, "%.3f", p[k].ms_layers);
             sl_report_tab_cell(&t, 6, "%.3f", p[k].ms_step);
             sl_report_tab_cell(&t, 7, "%.3f", p[k].ms);
@@ -723,7 +844,10 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
                 sl_report_tab_cell(&t, 8, "%.3f–%.3f (%d runs)", p[k].ms_min, p[k].ms_max, p[k].reps);
             else
                 sl_report_tab_cell(&t, 8, "1 run");
-            sl_report_tab_cell(&t, 9, "%.4f", p[k].rays_per_px);
+            if (isnan(p[k].rays_per_px))
+                sl_report_tab_cell(&t, 9, "–");
+            else
+                sl_report_tab_cell(&t, 9, "%.4f", p[k].rays_per_px);
             sl_report_tab_cell(&t, 10, "%s", p[k].front_ms ? "yes" : "");
             sl_report_tab_cell(&t, 11, "%s", p[k].front_rays ? "yes" : "");
         }

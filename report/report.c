@@ -348,7 +348,9 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
     for (int l = 0; l < s->nlabels; l++) {
         k += (size_t)snprintf(labels + k, k < sizeof labels ? sizeof labels - k : 0, "%s%s (%s)", l ? ", " : "",
                               s->labels[l], s->methods[l]);
-        if (!sl_report_is_moderno(s->methods[l]) && !sl_report_is_morais(s->methods[l]))
+        if (!sl_report_family_of(s->methods[l], SL_REPORT_MODERNO) &&
+            !sl_report_family_of(s->methods[l], SL_REPORT_MORAIS) &&
+            !sl_report_family_of(s->methods[l], SL_REPORT_CURTIS))
             ko += (size_t)snprintf(other + ko, ko < sizeof other ? sizeof other - ko : 0, "%s%s", ko ? ", " : "",
                                    s->labels[l]);
         if (k >= sizeof labels || ko >= sizeof other)
@@ -371,19 +373,26 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
     }
     sl_report_doc_para(doc, "%d cell(s) from run(s) %s; %d view(s) of the scene(s) %s; shadow maps %s; methods %s.",
                        s->n, runs, s->nviews, scenes, maps, labels);
-    sl_report_doc_para(doc, "Layout: %s.%s%s%s",
-                       s->moderno && s->morais ? "both theses' tables, Moderno 2011's for its methods and "
-                                                 "Morais 2015's for its own (nsm is in both)"
-                       : s->morais             ? "Morais 2015's tables (its methods: whole image, light/shadow "
-                                                 "correct/incorrect and uncertain per map size)"
-                                               : "Moderno 2011's tables (its methods: errors by contour, hints, "
-                                                 "changes against NSM)",
-                       other[0] ? " Methods of neither thesis (" : "", other, other[0] ? ") appear in the "
-                       "figure tables, the plots and the costs only." : "");
+    if (!s->moderno && !s->morais && !s->curtis)
+        sl_report_doc_para(doc, "No method of Moderno 2011, Morais 2015 or Curtis 2009 ran in this study (the "
+                                "list is in report/layouts.c): it gets the sections every study gets, this summary "
+                                "with its plots, %s%sthe costs, the overlays and the figure tables, and no thesis "
+                                "section.", s->area ? "the soft-shadow table of its area-light cells, " : "",
+                           s->frac ? "the fractional errors, " : "");
+    else
+        sl_report_doc_para(doc, "Thesis sections, from the methods that ran: %s%s%s%s%s%s%s",
+                           s->moderno ? "Moderno 2011's tables" : "", s->moderno && (s->morais || s->curtis) ? ", " : "",
+                           s->morais ? "Morais 2015's tables" : "", s->morais && s->curtis ? ", " : "",
+                           s->curtis ? "Curtis 2009's soft-shadow table" : "", ".",
+                           other[0] ? "" : " Every method belongs to one of them.");
+    if (other[0] && (s->moderno || s->morais || s->curtis))
+        sl_report_doc_para(doc, "Methods of no thesis (%s) appear in the summary, the plots, %s%sthe costs and "
+                                "the figure tables.", other, s->area ? "the soft-shadow table, " : "",
+                           s->frac ? "the fractional errors, " : "");
     int point = 0;   /* hard figures of cells under an area light */
     for (int i = 0; i < s->n && !point; i++)
         point = s->cells[i].has_soft && s->cells[i].fig.nregions > 0 && !s->cells[i].frac;
-    if (point && (s->moderno || s->morais))
+    if (point)
         sl_report_doc_para(doc, "Under an area light the hard-shadow methods take the light for a point at its "
                                 "centre: their wrong pixels and decisions in the hard-shadow tables and plots are "
                                 "counted against that point's own truth; the soft-shadow table scores the same "
@@ -391,7 +400,16 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
     return sl_report_plot_accuracy(doc, s, gnuplot, d);
 }
 
-/* The study's detail: the thesis tables, costs, overlays, views, figures. */
+static int has_chain(const struct sl_report_study *s)
+{
+    for (int l = 0; l < s->nlabels; l++)
+        if (strcmp(s->methods[l], "chain") == 0)
+            return 1;
+    return 0;
+}
+
+/* The study's detail: the thesis tables (only where the thesis's methods
+ * ran, layouts.c), costs, overlays, views, figures. */
 static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_study *s, const char *gnuplot,
                                  const char *source_dir, struct sl_diag *d)
 {
@@ -403,7 +421,7 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
         sl_report_doc_heading(doc, 3, NULL, "%s: tables in Moderno 2011's layout", s->name);
         e = sl_report_moderno(doc, s, d);
     }
-    if (!e && sl_report_fidelity_applies(s->cells, s->n)) {
+    if (!e && s->moderno && sl_report_fidelity_applies(s->cells, s->n)) {
         sl_report_doc_heading(doc, 3, NULL, "%s: fidelity to Moderno 2011 (Primitives)", s->name);
         e = sl_report_fidelity(doc, s, d);
     }
@@ -411,17 +429,24 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
         sl_report_doc_heading(doc, 3, NULL, "%s: tables in Morais 2015's layout", s->name);
         e = sl_report_morais(doc, s, d);
     }
-    if (!e && s->curtis) {
-        sl_report_doc_heading(doc, 3, NULL, "%s: soft shadows (area lights), Curtis 2009", s->name);
+    if (!e && s->area) {   /* the only table of an area light's soft figures: any study that has them */
+        sl_report_doc_heading(doc, 3, NULL, "%s: soft shadows (area lights)%s", s->name,
+                              s->curtis ? ", Curtis 2009" : "");
         e = sl_report_curtis(doc, s, d);
+    }
+    if (!e && s->frac) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: fractional errors", s->name);
+        e = sl_report_fractional(doc, s, d);
     }
     if (!e)   /* a heading of its own when the study has paths */
         e = sl_report_motion(doc, s, gnuplot, d);
+    /* not a thesis's: any shadow map's pixels have an aliasing error m, and
+     * seed 004's own study (configs/aliasing.yaml) runs none of the theses' methods */
     if (!e && sl_report_aliasing_applies(s)) {
-        sl_report_doc_heading(doc, 3, NULL, "%s: aliasing error m (seed 004)", s->name);
+        sl_report_doc_heading(doc, 3, NULL, "%s: aliasing error m", s->name);
         e = sl_report_aliasing(doc, s, gnuplot, d);
     }
-    if (!e) {
+    if (!e && has_chain(s)) {
         sl_report_doc_heading(doc, 3, NULL, "%s: the chain's steps per scene", s->name);
         e = sl_report_plot_chain(doc, s, gnuplot, d);
     }

@@ -163,8 +163,10 @@ struct sl_report_study {
     int   nlabels;
     int   maps[SL_REPORT_MAXKEYS], nmaps;          /* ascending */
     int   regions[SL_MAX_REGIONS], nregions;       /* contours ascending, whole image (0) last */
-    int   moderno, morais;                         /* layouts chosen for it */
-    int   curtis;                                  /* it has soft cells (area lights): Curtis 2009's table */
+    int   moderno, morais;                         /* a thesis's own method ran: its sections (layouts.c) */
+    int   area;                                    /* cells under an area light (has_soft, not frac) */
+    int   curtis;                                  /* area cells and a Curtis 2009 method among the labels */
+    int   frac;                                    /* cells with a hard light's fractional errors (frac) */
 };
 
 /* Fill the keys of s from its cells; SL_E_USAGE when they exceed the limits. */
@@ -190,7 +192,7 @@ enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_s
 enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 /* Soft shadows: per view, rows label x map size, the soft figures and their cost */
 enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
-/* 1 if the method belongs to the layout (Moderno: coherence ... chain; Morais: bgsm ... raytrace; nsm both) */
+/* family_of(method, MODERNO / MORAIS) > 0: the layout's tables list the method */
 int sl_report_is_moderno(const char *method);
 int sl_report_is_morais(const char *method);
 
@@ -208,6 +210,9 @@ struct sl_thesis_datum {
 extern const struct sl_thesis_datum sl_thesis[];
 extern const int sl_nthesis;
 
+/* fractional.c: a hard light's fractional errors (frac cells) per label and map size */
+enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+
 /* fidelity.c: Moderno 2011's Primitives numbers and claims beside the study's */
 enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 
@@ -217,6 +222,17 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
                                  struct sl_diag *d);
 enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_report_study *s,
                                     const char *gnuplot, struct sl_diag *d);
+
+/* The colour and gnuplot marker of the k-th label of a plot (Okabe-Ito, twelve
+ * markers), the same in every plot. */
+void sl_report_style(int k, const char **colour, int *pt);
+/* `set {axis}range` (and logscale when the positive values span more than two
+ * decades) from the values: padded, never below 0 for values >= 0, from 0
+ * when from_zero and linear. Defines the gnuplot function XZERO_OF(c) (YZERO_OF
+ * for y): column c, with a 0 moved onto a log axis's tick labelled 0 below its
+ * smallest value. Returns 1 log, 0 linear, -1 when every value is 0 or none is
+ * finite (nothing written: drop the panel). */
+int  sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_zero);
 
 /* For sections outside plots.c: a string quoted for gnuplot (the plot
  * itself: sl_report_plot_draw above). */

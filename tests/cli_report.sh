@@ -66,6 +66,12 @@ html="$rep/report.html"; md="$rep/report.md"
 grep -q "soft shadows (area lights), Curtis 2009" "$md" && grep -q "^| mc | 256² | " "$md" &&
   grep -q "^| point | 256² | " "$md" && ok || fail "no soft-shadow table for the area-light cells"
 grep -q "$(basename "$gone")" "$html" && ok || fail "the missing overlay is not listed"
+# the thesis studies keep their sections (issue 37 item 3: they appear where the theses' own methods ran)
+for want in "### mini: tables in Moderno 2011's layout" "### mini: fidelity to Moderno 2011 (Primitives)" \
+            "### mini: tables in Morais 2015's layout" "### mini: the chain's steps per scene" \
+            "Thesis sections, from the methods that ran: Moderno 2011's tables, Morais 2015's tables, Curtis 2009's"; do
+  grep -q -F "$want" "$md" && ok || fail "the thesis study lost '$want'"
+done
 ls -a "$rep" | grep -q staging && fail "a staging folder was left" || ok
 
 # every local reference exists (HTML src/href, Markdown links and images)

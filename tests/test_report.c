@@ -426,6 +426,66 @@ static void report_self_contained(void **st)
     free(tex);
 }
 
+/* A study of no thesis's method (nsm and a technique package with a hard
+ * light's fractional errors): no thesis section, no area-light table, and
+ * the fractional errors computed from mae and bias (leaking = (mae + bias)
+ * / 2, over-darkening = (mae - bias) / 2), pooled over views by PFL pixels. */
+static void report_any_study(void **st)
+{
+    (void)st;
+    static struct sl_cell_record c[4];
+    int n = 0;
+    const char *vps[] = {"side", "with"};
+    for (int v = 0; v < 2; v++) {
+        c[n++] = cell("own", "primitives", vps[v], "nsm", "nsm", 512, 40, 1.0, 0);
+        struct sl_cell_record *f = &c[n++];
+        *f = cell("own", "primitives", vps[v], "pkg", "pcf", 512, 20, 3.0, 0);
+        f->has_soft = 1;
+        f->frac = 1;
+        /* view 1: mae 10, bias -4 over 1000 px; view 2: mae 2, bias +2 over 3000 px:
+         * pooled mae 4, bias 0.5, leaking 2.25, over-darkening 1.75 */
+        uint64_t px = v ? 3000 : 1000;
+        f->soft.n[SL_SFIG_soft_pixels] = px;
+        f->soft.pct[SL_SFIG_soft_mae] = v ? 2.0 : 10.0;
+        f->soft.pct[SL_SFIG_soft_bias] = v ? 2.0 : -4.0;
+        f->soft.n[SL_SFIG_soft_truth_umbra] = px / 10;   /* 400 pooled */
+        f->soft.n[SL_SFIG_soft_truth_lit] = px - px / 10;   /* 3600 */
+        f->soft.n[SL_SFIG_soft_within_005] = px / 2;
+    }
+    assert_int_equal(sl_report_family_of("coherence", SL_REPORT_MODERNO), 2);
+    assert_int_equal(sl_report_family_of("nsm", SL_REPORT_MODERNO), 1);
+    assert_int_equal(sl_report_family_of("nsm", SL_REPORT_MORAIS), 1);
+    assert_int_equal(sl_report_family_of("csm_adj", SL_REPORT_MORAIS), 2);
+    assert_int_equal(sl_report_family_of("soft_mc", SL_REPORT_CURTIS), 2);
+    assert_int_equal(sl_report_family_of("pcf", SL_REPORT_MODERNO), 0);
+    char out[400];
+    snprintf(out, sizeof out, "%s/any", sl_test_dir);
+    struct sl_report_input in = {c, n, NULL, 0, "test cells", sl_test_dir};
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_report_build(&in, out, NULL, &d);
+    if (e)
+        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
+    char path[600];
+    snprintf(path, sizeof path, "%s/report.md", out);
+    char *md = slurp(path);
+    assert_non_null(md);
+    assert_null(strstr(md, "Moderno 2011's layout"));
+    assert_null(strstr(md, "fidelity to Moderno"));
+    assert_null(strstr(md, "Morais 2015's layout"));
+    assert_null(strstr(md, "chain"));
+    assert_null(strstr(md, "soft shadows (area lights)"));
+    assert_non_null(strstr(md, "No method of Moderno 2011, Morais 2015 or Curtis 2009 ran"));
+    assert_non_null(strstr(md, "### own: fractional errors"));
+    assert_non_null(strstr(md, "### own: cost"));
+    /* label, map, cells, PFL, wrong % (20 of 2000 px, whole image), mae, bias, leaking, over-darkening, within,
+     * per px: 2.25 * 4000 / 400, 1.75 * 4000 / 3600 */
+    assert_non_null(strstr(md, "| pkg | 512² | 2 | 4000 | 1.000 | 4.000 | +0.500 | 2.250 | 1.750 | 50.00% | "
+                               "22.50 (of 400) | 1.94 (of 3600) |"));
+    free(md);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -433,6 +493,7 @@ int main(int argc, char **argv)
         SL_CASE(report, points),
         SL_CASE(report, build),
         SL_CASE(report, self_contained),
+        SL_CASE(report, any_study),
     };
     return sl_run_group(argc, argv, "report", tests, sl_test_setup, sl_test_teardown);
 }

@@ -1,0 +1,136 @@
+/*
+ * fractional.c — the fractional errors of a study's frac cells (issue 36):
+ * a method that writes a visibility in 0..1 (a technique package: pcf,
+ * vsm, msm ...) under a hard light, scored against the 0/1 truth over the
+ * PFL pixels (the cell's soft figures, softfig.h, with frac = 1).
+ *
+ * With a 0/1 truth t and the method's v, the error v - t is >= 0 where the
+ * truth is shadowed (light leaking) and <= 0 where it is lit
+ * (over-darkening), so over the PFL pixels
+ *   mae  = mean |v - t| = leak + dark,   bias = mean (v - t) = leak - dark,
+ *   leak = (mae + bias) / 2,             dark = (mae - bias) / 2,
+ * both in percent of full visibility per PFL pixel. Said per pixel where it
+ * can happen: leak * pixels / (truth-shadowed pixels) is the visibility a
+ * truth-shadowed pixel gets on average, dark * pixels / (truth-lit pixels)
+ * what a truth-lit pixel loses.
+ *
+ * One row per label and map size, pooled over the study's views with each
+ * view weighted by its PFL pixels (the means) or summed (the counts). Cells
+ * without frac (area lights: layouts.c's soft table) are never read here.
+ * Reads the cells' records only; nothing here prints.
+ */
+#include <math.h>
+#include <string.h>
+#include "report_int.h"
+
+struct frac_row {
+    int      ncells;
+    uint64_t px, umbra, lit, within, img_px, img_wrong;
+    double   mae, bias;   /* sums of pct * px */
+};
+
+static int frac_row(const struct sl_report_study *s, const char *label, int map, struct frac_row *r)
+{
+    memset(r, 0, sizeof *r);
+    for (int i = 0; i < s->n; i++) {
+        const struct sl_cell_record *c = &s->cells[i];
+        if (!c->has_soft || !c->frac || c->map_size != map || strcmp(c->label, label) != 0)
+            continue;
+        const struct sl_soft_figures *f = &c->soft;
+        uint64_t px = f->n[SL_SFIG_soft_pixels];
+        r->ncells++;
+        if (px > 0 && !isnan(f->pct[SL_SFIG_soft_mae]) && !isnan(f->pct[SL_SFIG_soft_bias])) {
+            r->px += px;
+            r->mae += f->pct[SL_SFIG_soft_mae] * (double)px;
+            r->bias += f->pct[SL_SFIG_soft_bias] * (double)px;
+            r->umbra += f->n[SL_SFIG_soft_truth_umbra];
+            r->lit += f->n[SL_SFIG_soft_truth_lit];
+            r->within += f->n[SL_SFIG_soft_within_005];
+        }
+        int g = sl_report_region(c, 0);
+        if (g >= 0) {
+            r->img_px += c->fig.r[g].n[SL_FIG_pixels];
+            r->img_wrong += c->fig.r[g].n[SL_FIG_wrong];
+        }
+    }
+    return r->ncells;
+}
+
+enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
+{
+    sl_report_doc_para(doc,
+                       "Methods that write a visibility between 0 and 1 (technique packages) under a hard light, "
+                       "against the ray-traced 0/1 truth over the PFL pixels. With a 0/1 truth every error is one of "
+                       "two kinds: light leaking (the method gives light where the truth is shadowed) and over-darkening (it takes light where the "
+                       "truth is lit); the mean |v − truth| is their sum and the signed bias (method − truth) "
+                       "their difference, so leaking = (|v − truth| + bias) / 2 and over-darkening = "
+                       "(|v − truth| − bias) / 2. Wrong %%: the same cells' hard figures (their "
+                       "lit/shadowed verdicts), whole image.");
+    char id[160];
+    snprintf(id, sizeof id, "%s-fractional", s->slug);
+    struct sl_report_tab t;
+    sl_report_tab_init(&t, id, 12, 2, "%s: fractional errors against the 0/1 truth, per label and map size",
+                       s->name);
+    static const char *const head[] = {"label",   "map",     "cells",          "PFL pixels",
+                                       "wrong % (hard)", "|v − t|", "bias",           "leaking",
+                                       "over-darkening", "within 0.05", "leaking", "over-darkening"};
+    for (int k = 0; k < 12; k++)
+        sl_report_tab_head(&t, k, "%s", head[k]);
+    sl_report_tab_group(&t, 5, "%s", "");
+    sl_report_tab_group(&t, 5, "%% of visibility per PFL pixel");
+    sl_report_tab_group(&t, 2, "per truth-shadowed / truth-lit pixel");
+    int any = 0;
+    for (int l = 0; l < s->nlabels; l++) {
+        int first = 1;
+        for (int m = 0; m < s->nmaps; m++) {
+            struct frac_row r;
+            if (!frac_row(s, s->labels[l], s->maps[m], &r))
+                continue;
+            sl_report_tab_row(&t, first);
+            if (first)
+                sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+            first = 0;
+            any = 1;
+            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
+            sl_report_tab_cell(&t, 2, "%d", r.ncells);
+            sl_report_tab_cell(&t, 3, "%llu", (unsigned long long)r.px);
+            if (r.img_px)
+                sl_report_tab_cell(&t, 4, "%.3f", 100.0 * (double)r.img_wrong / (double)r.img_px);
+            else
+                sl_report_tab_cell(&t, 4, "–");
+            if (!r.px) {
+                for (int k = 5; k < 12; k++)
+                    sl_report_tab_cell(&t, k, "–");
+                continue;
+            }
+            double px = (double)r.px, mae = r.mae / px, bias = r.bias / px;
+            double leak = (mae + bias) / 2.0, dark = (mae - bias) / 2.0;
+            sl_report_tab_cell(&t, 5, "%.3f", mae);
+            sl_report_tab_cell(&t, 6, "%+.3f", bias);
+            sl_report_tab_cell(&t, 7, "%.3f", leak);
+            sl_report_tab_cell(&t, 8, "%.3f", dark);
+            sl_report_tab_cell(&t, 9, "%.2f%%", 100.0 * (double)r.within / px);
+            if (r.umbra)
+                sl_report_tab_cell(&t, 10, "%.2f (of %llu)", leak * px / (double)r.umbra, (unsigned long long)r.umbra);
+            else
+                sl_report_tab_cell(&t, 10, "–");
+            if (r.lit)
+                sl_report_tab_cell(&t, 11, "%.2f (of %llu)", dark * px / (double)r.lit, (unsigned long long)r.lit);
+            else
+                sl_report_tab_cell(&t, 11, "–");
+        }
+    }
+    snprintf(t.note, sizeof t.note,
+             "|v − t|: the mean |v − truth|; it, the bias (method − truth), leaking and over-darkening in %% of "
+             "full visibility per PFL pixel (leaking + over-darkening = |v − t|); within 0.05: share of the PFL "
+             "pixels. The last two columns say the same per pixel where it can happen: the visibility a "
+             "truth-shadowed pixel gets on average, and what a truth-lit pixel loses (%% of full visibility; the "
+             "pixel counts after \"of\"). Pooled over the study's views, weighted by their PFL pixels.");
+    enum sl_err e = SL_OK;
+    if (any)
+        e = sl_report_doc_table(doc, &t, d);
+    else
+        sl_report_doc_para(doc, "No frac cell of this study has PFL pixels.");
+    sl_report_tab_free(&t);
+    return e;
+}
