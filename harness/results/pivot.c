@@ -68,39 +68,6 @@ enum sl_err sl_pivot_where_parse(struct sl_pivot_desc *p, const char *kv, struct
 
 /* ---- numbers ---- */
 
-/* digits of |v| with `dec` decimals, groups of three split by sep */
-static void grouped(char *out, size_t n, double v, int dec, const char *sep)
-{
-    char raw[64];
-    snprintf(raw, sizeof raw, "%.*f", dec, fabs(v));
-    const char *dot = strchr(raw, '.');
-    size_t ilen = dot ? (size_t)(dot - raw) : strlen(raw);
-    size_t o = 0;
-    for (size_t i = 0; i < ilen && o + 8 < n; i++) {
-        if (i > 0 && (ilen - i) % 3 == 0 && ilen >= 4)
-            o += (size_t)snprintf(out + o, n - o, "%s", sep);
-        out[o++] = raw[i];
-    }
-    out[o] = '\0';
-    if (dot)
-        snprintf(out + o, n - o, "%s", dot);
-}
-
-void sl_tex_number(char *out, size_t n, double v, int dec)
-{
-    if (isnan(v)) {
-        snprintf(out, n, "--");
-        return;
-    }
-    char g[80];
-    grouped(g, sizeof g, v, dec, "\\,");
-    /* a value that rounds to zero has no sign */
-    char z[64];
-    snprintf(z, sizeof z, "%.*f", dec, fabs(v));
-    int zero = strspn(z, "0.") == strlen(z);
-    snprintf(out, n, "%s%s", v < 0 && !zero ? "$-$" : "", g);
-}
-
 /* the same without markup, for Markdown and for the width estimate */
 static void plain_number(char *out, size_t n, double v, int dec)
 {

@@ -88,8 +88,5 @@ enum sl_err sl_pivot_tex_summary(FILE *out, const char *title, const struct sl_c
 enum sl_err sl_pivot_tex_detail(FILE *out, const char *title, const struct sl_cell_record *cells, int ncells,
                                 struct sl_diag *d);
 
-/* v as LaTeX: thin-space thousands separators, `dec` decimals, $-$ for a
- * minus; "--" for NaN. */
-void sl_tex_number(char *out, size_t n, double v, int dec);
 
 #endif

@@ -385,48 +385,6 @@ static void csv_cell(FILE *f, const struct sl_cell_record *c, int background)
 
 /* ---- LaTeX ---- */
 
-/* LaTeX: the ten specials, and the non-ASCII signs the report writes; any
- * other non-ASCII character becomes '?', so a name can never stop pdflatex
- * (inputenc has no glyph for most of them). */
-void sl_tex_text(FILE *f, const char *s)
-{
-    static const struct { const char *utf8, *tex; } signs[] = {
-        {"\xC2\xB2", "\\textsuperscript{2}"}, {"\xC3\x97", "$\\times$"},   {"\xE2\x80\x93", "--"},
-        {"\xE2\x80\x94", "---"},              {"\xE2\x86\x92", "$\\to$"},  {"\xE2\x89\xA4", "$\\le$"},
-        {"\xE2\x89\xA5", "$\\ge$"},           {"\xC2\xB1", "$\\pm$"},      {"\xC2\xB5", "$\\mu$"},
-        {"\xC2\xB7", "$\\cdot$"},             {"\xE2\x80\x99", "'"},       {"\xE2\x80\x98", "`"},
-        {"\xE2\x80\x9C", "``"},               {"\xE2\x80\x9D", "''"},      {"\xE2\x80\xA6", "\\ldots{}"},
-        {"\xC2\xA0", "~"},                    {"\xE2\x89\x88", "$\\approx$"}, {"\xC2\xB0", "$^\\circ$"},
-    };
-    for (; s && *s; s++) {
-        const unsigned char *u = (const unsigned char *)s;
-        if (u[0] >= 0x80) {
-            size_t len = 1;
-            while (len < 4 && (u[len] & 0xC0) == 0x80)
-                len++;
-            const char *tex = "?";
-            for (size_t k = 0; k < sizeof signs / sizeof signs[0]; k++)
-                if (strlen(signs[k].utf8) == len && memcmp(signs[k].utf8, s, len) == 0)
-                    tex = signs[k].tex;
-            fputs(tex, f);
-            s += len - 1;
-            continue;
-        }
-        switch (*s) {
-        case '_': case '%': case '&': case '#': case '$': case '{': case '}':
-            fputc('\\', f);
-            fputc(*s, f);
-            break;
-        case '\\': fputs("\\textbackslash{}", f); break;
-        case '~':  fputs("\\textasciitilde{}", f); break;
-        case '^':  fputs("\\textasciicircum{}", f); break;
-        case '<':  fputs("\\textless{}", f); break;
-        case '>':  fputs("\\textgreater{}", f); break;
-        case '\n': fputc(' ', f); break;
-        default:   fputc(*s, f);
-        }
-    }
-}
 
 /* \label keys: letters, digits and '-' only */
 static void tex_key(FILE *f, const char *s)

@@ -19,6 +19,7 @@
  */
 #ifndef SL_TABLE_H
 #define SL_TABLE_H
+#include "tex.h"   /* sl_tex_text: the tables' and the report's LaTeX text */
 #include <stdint.h>
 #include <stdio.h>
 #include "cellcols.h"
@@ -60,8 +61,5 @@ enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char 
  * produced. An unknown name is SL_E_USAGE (key "--figures") listing them. */
 enum sl_err sl_table_figures_parse(const char *list, struct sl_table_rows *rows, struct sl_diag *d);
 
-/* s as LaTeX text: the ten specials escaped, and the few non-ASCII signs
- * shadowlab writes (², ×, –, →) as LaTeX. Shared by the tables and the report. */
-void sl_tex_text(FILE *f, const char *s);
 
 #endif
