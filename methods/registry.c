@@ -15,6 +15,7 @@ extern const struct sl_method sl_method_csm;
 extern const struct sl_method sl_method_sgsm_adj;
 extern const struct sl_method sl_method_csm_adj;
 extern const struct sl_method sl_method_hertel;
+extern const struct sl_method sl_method_hertel_exact;
 extern const struct sl_method sl_method_coherence;
 extern const struct sl_method sl_method_texel;
 extern const struct sl_method sl_method_neighbours;
@@ -40,6 +41,7 @@ static const struct sl_method *const sl_methods[] = {
     &sl_method_csm,
     &sl_method_csm_adj,
     &sl_method_hertel,
+    &sl_method_hertel_exact,
     &sl_method_raytrace,
     &sl_method_hard_point,
     &sl_method_soft_mc,

@@ -1,7 +1,9 @@
 /*
  * conservative::* — the conservative shadow maps are exact by construction:
  * bgsm lit => lit, sgsm / sgsm_adj shadow => shadow, csm and csm_adj equal
- * the truth, on every scene of the study at two map sizes; the geometry
+ * the truth, on every scene of the study at two map sizes, and so does
+ * hertel_exact (hertel, as published, traces fewer rays, counted as its
+ * traced pixels, and makes no promise); the geometry
  * shader's enlargement stays finite and near its triangle at sharp angles;
  * the adjacency cases all occur and never cost undecided pixels.
  * A violation prints its pixel, scene, layer and triangle ids (run.c).
@@ -41,15 +43,15 @@ static void conservative_invariants_on_every_scene(void **st)
              "  - {scene: spider}\n  - {scene: %s/tests/scenes/slivers.yaml}\n"
              "viewports: [{width: 192, height: 160}]\nmap_sizes: [256, 2048]\n"
              "methods:\n  - {method: bgsm}\n  - {method: sgsm}\n  - {method: sgsm_adj}\n"
-             "  - {method: csm}\n  - {method: csm_adj}\n  - {method: hertel}\n", cwd);
+             "  - {method: csm}\n  - {method: csm_adj}\n  - {method: hertel_exact}\n  - {method: hertel}\n", cwd);
     struct sl_config c;
     sl_test_config("c.yaml", text, &c);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     struct sl_run_result r;
     struct sl_diag d;
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
-    assert_int_equal(r.ncells, (3 + 3 + 3 + 3 + 2 + 1) * 2 * 6);
-    uint64_t violations = 0, traced_csm = 0, traced_adj = 0, pfl = 0;
+    assert_int_equal(r.ncells, (3 + 3 + 3 + 3 + 2 + 1) * 2 * 7);
+    uint64_t violations = 0, traced_csm = 0, traced_adj = 0, pfl = 0, rays_paper = 0, rays_exact = 0, wrong_paper = 0;
     for (int i = 0; i < r.ncells; i++) {
         const struct sl_cell *cl = &r.cells[i];
         const struct sl_region_figures *img = &cl->fig.r[cl->fig.nregions - 1];
@@ -58,7 +60,7 @@ static void conservative_invariants_on_every_scene(void **st)
             assert_int_equal(img->n[SL_FIG_light_incorrect], 0);
         if (label_is(&c, cl, "sgsm") || label_is(&c, cl, "sgsm_adj"))
             assert_int_equal(img->n[SL_FIG_shadow_incorrect], 0);
-        if (label_is(&c, cl, "csm") || label_is(&c, cl, "csm_adj") || label_is(&c, cl, "hertel")) {
+        if (label_is(&c, cl, "csm") || label_is(&c, cl, "csm_adj") || label_is(&c, cl, "hertel_exact")) {
             assert_int_equal(cl->fig.wrong_image, 0);                 /* the truth, pixel for pixel */
             assert_int_equal(img->n[SL_FIG_uncertain], 0);
             assert_int_equal(cl->cost.rays, img->n[SL_FIG_traced]);
@@ -75,13 +77,28 @@ static void conservative_invariants_on_every_scene(void **st)
         }
         if (label_is(&c, cl, "csm_adj"))
             traced_adj += img->n[SL_FIG_traced];
+        if (label_is(&c, cl, "hertel")) {
+            /* every pixel decided, every ray a traced pixel, and never more
+             * rays than hertel_exact (the cell before) spends */
+            const struct sl_cell *ex = &r.cells[i - 1];
+            assert_true(label_is(&c, ex, "hertel_exact"));
+            assert_int_equal(img->n[SL_FIG_uncertain], 0);
+            assert_int_equal(cl->cost.rays, img->n[SL_FIG_traced]);
+            assert_true(cl->cost.rays <= ex->cost.rays);
+            rays_paper += cl->cost.rays;
+            rays_exact += ex->cost.rays;
+            wrong_paper += cl->fig.wrong_image;
+        }
     }
     printf("conservative::invariants: %d cells, %llu violations; csm traced %llu of %llu PFL pixels, "
            "csm_adj %llu\n", r.ncells, (unsigned long long)violations, (unsigned long long)traced_csm,
            (unsigned long long)pfl, (unsigned long long)traced_adj);
+    printf("conservative::invariants: hertel %llu rays (%llu wrong pixels), hertel_exact %llu rays\n",
+           (unsigned long long)rays_paper, (unsigned long long)wrong_paper, (unsigned long long)rays_exact);
     assert_int_equal(violations, 0);
     assert_true(traced_adj < traced_csm);
-    /* bgsm, csm, csm_adj and hertel share one BGSM layer per view and map */
+    assert_true(rays_paper < rays_exact);
+    /* bgsm, csm, csm_adj, hertel_exact and hertel share one BGSM layer per view and map */
     assert_int_equal(r.passes.layers[SL_LAYER_BGSM], 15 * 2);
     assert_int_equal(r.passes.layers[SL_LAYER_BGSM2], 15 * 2);
     sl_run_result_free(&r);

@@ -319,6 +319,7 @@ static void cube_exact_point_scenes(void **st)
                    "  - {label: csm, method: csm}\n"
                    "  - {label: csm_adj, method: csm_adj}\n"
                    "  - {label: hertel, method: hertel}\n"
+                   "  - {label: hertel_exact, method: hertel_exact}\n"
                    "  - {label: raytrace, method: raytrace}\n"
                    "outputs: {tables: false, overlays: false}\n",
                    cwd, cwd);
@@ -328,7 +329,7 @@ static void cube_exact_point_scenes(void **st)
     struct sl_diag d;
     assert_int_equal(sl_run(&c, &o, &r, &d), SL_OK);
     const int views = 2 + 2 + 1 + 1;
-    assert_int_equal(r.ncells, views * 2 * 16);
+    assert_int_equal(r.ncells, views * 2 * 17);
     uint64_t lit_claims = 0, shadow_claims = 0;
     for (int i = 0; i < r.ncells; i++) {
         const struct sl_cell *cl = &r.cells[i];

@@ -4,7 +4,7 @@
  *
  * - every cell: no non-finite G-buffer value or shadow-map depth, no
  *   violation of a method's declared exactness (bgsm lit => lit, sgsm shadow
- *   => shadow, csm/csm_adj/hertel == truth, no wrong confirmation or
+ *   => shadow, csm/csm_adj/hertel_exact == truth, no wrong confirmation or
  *   correction), figures that add up, percentages finite;
  * - determinism: the same counts in two runs, with 1 and 2 threads, and for
  *   a method run alone or inside the sweep;
@@ -150,7 +150,7 @@ static void hard_invariants(void **st)
             assert_int_equal(img->n[SL_FIG_light_incorrect], 0);
         if (!strcmp(m, "sgsm") || !strcmp(m, "sgsm_adj"))
             assert_int_equal(img->n[SL_FIG_shadow_incorrect], 0);
-        if (!strcmp(m, "csm") || !strcmp(m, "csm_adj") || !strcmp(m, "hertel") || !strcmp(m, "raytrace")) {
+        if (!strcmp(m, "csm") || !strcmp(m, "csm_adj") || !strcmp(m, "hertel_exact") || !strcmp(m, "raytrace")) {
             assert_int_equal(img->n[SL_FIG_wrong], 0);
             assert_int_equal(img->n[SL_FIG_uncertain], 0);
             checked_exact++;
@@ -205,7 +205,7 @@ static void hard_deterministic(void **st)
         "methods:\n  - {label: nsm, method: nsm}\n  - {label: chain, method: chain}\n"
         "  - {label: adjacency2, method: adjacency, level: 2}\n  - {label: bgsm, method: bgsm}\n"
         "  - {label: sgsm_adj, method: sgsm_adj}\n  - {label: csm_adj, method: csm_adj}\n"
-        "  - {label: hertel, method: hertel}\n";
+        "  - {label: hertel, method: hertel_exact}\n";
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     struct sl_diag d;
     struct sl_config one, two;

@@ -250,7 +250,7 @@ static void motion_run_flicker(void **st)
     (void)st;
     struct sl_run_result res;
     run_paths("{label: nsm, method: nsm}, {label: chain, method: chain}, {label: coherence, method: coherence}, "
-              "{label: csm, method: csm}, {label: hertel, method: hertel}", &res);
+              "{label: csm, method: csm}, {label: hertel, method: hertel_exact}", &res);
     uint64_t nsm_moving = 0;
     int compared = 0;
     for (int i = 0; i < res.ncells; i++) {

@@ -280,7 +280,7 @@ static void soft_hard_methods(void **st)
                    "  - {label: adjacency, method: adjacency, level: 2}\n  - {label: chain, method: chain}\n"
                    "  - {label: bgsm, method: bgsm}\n  - {label: sgsm, method: sgsm}\n"
                    "  - {label: sgsm_adj, method: sgsm_adj}\n  - {label: csm, method: csm}\n"
-                   "  - {label: csm_adj, method: csm_adj}\n  - {label: hertel, method: hertel}\n"
+                   "  - {label: csm_adj, method: csm_adj}\n  - {label: hertel, method: hertel_exact}\n"
                    "  - {label: raytrace, method: raytrace}\n"
                    "area_samples: 8\n", &c);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};

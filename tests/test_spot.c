@@ -3,7 +3,7 @@
  *
  * - lights_exact: configs/lights.yaml's spot scenes (every hard label at
  *   two map sizes; its point scenes are cube::'s) keep every exact promise with 0 violations (bgsm lit
- *   => lit, sgsm/sgsm_adj shadow => shadow, csm, csm_adj, hertel, raytrace
+ *   => lit, sgsm/sgsm_adj shadow => shadow, csm, csm_adj, hertel_exact, raytrace
  *   equal to the truth), and every cell names its light and counts the
  *   pixels outside the cone apart, as a part of PnFL;
  * - outside_counted_apart: on views whose cone leaves about half of the view
@@ -101,7 +101,7 @@ static void spot_lights_exact(void **st)
             assert_int_equal(img->n[SL_FIG_light_incorrect], 0);
         if (!strcmp(m, "sgsm") || !strcmp(m, "sgsm_adj"))
             assert_int_equal(img->n[SL_FIG_shadow_incorrect], 0);
-        if (!strcmp(m, "csm") || !strcmp(m, "csm_adj") || !strcmp(m, "hertel") || !strcmp(m, "raytrace")) {
+        if (!strcmp(m, "csm") || !strcmp(m, "csm_adj") || !strcmp(m, "hertel_exact") || !strcmp(m, "raytrace")) {
             assert_int_equal(img->n[SL_FIG_wrong], 0);
             assert_int_equal(img->n[SL_FIG_uncertain], 0);
             assert_int_equal(cl->fig.wrong_image, 0);
