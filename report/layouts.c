@@ -12,7 +12,7 @@
  *   with it come the fidelity section (scene primitives) and the chain's
  *   steps (a chain label). The aliasing section (seed 004) is no thesis's:
  *   any study with aliasing figures gets it.
- * - Morais 2015 (own: bgsm, sgsm, sgsm_adj, csm, csm_adj; nsm, hertel and
+ * - Morais 2015 (own: bgsm, sgsm, sgsm_adj, csm, csm_adj; nsm, hertel, hertel_exact and
  *   raytrace beside them): the thesis counts the whole image, per view and
  *   map size, light/shadow correct/incorrect and the uncertain pixels with
  *   PFL/PnFL (Table 7 and its siblings), and times the shadow-map rendering
@@ -48,7 +48,7 @@ static const struct {
     {SL_REPORT_MODERNO, "adjacency", 1},  {SL_REPORT_MODERNO, "chain", 1},   {SL_REPORT_MODERNO, "nsm", 0},
     {SL_REPORT_MORAIS, "bgsm", 1},        {SL_REPORT_MORAIS, "sgsm", 1},     {SL_REPORT_MORAIS, "sgsm_adj", 1},
     {SL_REPORT_MORAIS, "csm", 1},         {SL_REPORT_MORAIS, "csm_adj", 1},  {SL_REPORT_MORAIS, "nsm", 0},
-    {SL_REPORT_MORAIS, "hertel", 0},      {SL_REPORT_MORAIS, "raytrace", 0},
+    {SL_REPORT_MORAIS, "hertel", 0},      {SL_REPORT_MORAIS, "hertel_exact", 0}, {SL_REPORT_MORAIS, "raytrace", 0},
     {SL_REPORT_CURTIS, "soft_mc", 1},     {SL_REPORT_CURTIS, "point_map", 1}, {SL_REPORT_CURTIS, "hard_point", 1},
     {SL_REPORT_NFAMILIES, NULL, 0},
 };
