@@ -43,6 +43,7 @@ const struct sl_method sl_method_lispsm = {
     .name = "lispsm",
     .summary = "light space perspective shadow maps (Wimmer et al. 2004), NSM's lookup",
     .lights = SL_LIGHTS_DIRECTIONAL,
+    .figures = SL_FIGS_ALIASING,
     .params_ok = SL_PARAM_SELF_SHADOW,
     .needs = lispsm_needs,
     .configure = lispsm_configure,

@@ -179,6 +179,11 @@ static inline int sl_exact_violated(unsigned exact, uint8_t v, uint8_t how, uint
  * an error. */
 #define SL_LIGHTS_NO_POINT (1u << 3)
 
+/* Optional figure families (struct sl_method.figures). The aliasing error m
+ * of every PFL pixel (seed 004, score/aliasing.h): a tenth of the Morais
+ * study's CPU, read by the aliasing study's methods (zpart, lispsm). */
+#define SL_FIGS_ALIASING (1u << 0)
+
 /* The optional fast path: how a method lets the driver hand its layers
  * more cheaply. Zero (the default) is no fast path: every layer dense, every
  * lookup the method's own. An embedded value rather than a pointer: a
@@ -205,6 +210,9 @@ struct sl_method {
     unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only;
                                 * SL_LIGHTS_DIRECTIONAL: hard shadows, directional lights only */
     unsigned    params_ok;     /* SL_PARAM_* bits it reads */
+    unsigned    figures;       /* optional figure families its study reads (SL_FIGS_*): computed for
+                                * a config's cells only where one of its methods asks, or the config
+                                * does (outputs.aliasing); 0: the figures every method gets */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);
     /* Fill defaults for unset keys and check values; on return `set` holds

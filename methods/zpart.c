@@ -197,6 +197,7 @@ const struct sl_method sl_method_zpart = {
     .summary = "z-partitioned shadow maps: NSM over k view-depth slices (partitions 1..8, lambda 0..1, "
                "warp uniform|lispsm)",
     .lights = SL_LIGHTS_DIRECTIONAL,
+    .figures = SL_FIGS_ALIASING,
     .params_ok = SL_PARAM_SELF_SHADOW | SL_PARAM_BIAS | SL_PARAM_SLOPE | SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA |
                  SL_PARAM_WARP,
     .needs = zpart_needs,

@@ -321,6 +321,28 @@ static void config_packages(void **st)
     remove(path);
 }
 
+/* outputs.aliasing: auto (the default) computes the aliasing error m only
+ * where a method's study reads it (zpart, lispsm); true and false force it. */
+static void config_aliasing_on_demand(void **st)
+{
+    (void)st;
+    struct sl_config c;
+    struct sl_diag d;
+    assert_int_equal(sl_config_load("configs/default.yaml", &c, &d), SL_OK);
+    assert_int_equal(c.aliasing, 0);   /* nsm alone */
+    assert_int_equal(sl_config_load("configs/aliasing.yaml", &c, &d), SL_OK);
+    assert_int_equal(c.aliasing, 1);   /* zpart, lispsm */
+    const char *on[] = {"outputs.aliasing=true"};
+    assert_int_equal(sl_config_load_with("configs/default.yaml", on, 1, &c, &d), SL_OK);
+    assert_int_equal(c.aliasing, 1);
+    const char *off[] = {"outputs.aliasing=false"};
+    assert_int_equal(sl_config_load_with("configs/aliasing.yaml", off, 1, &c, &d), SL_OK);
+    assert_int_equal(c.aliasing, 0);
+    const char *bad[] = {"outputs.aliasing=sometimes"};
+    assert_int_equal(sl_config_load_with("configs/default.yaml", bad, 1, &c, &d), SL_E_CONFIG);
+    assert_string_equal(d.key, "outputs.aliasing");
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -331,6 +353,7 @@ int main(int argc, char **argv)
         SL_CASE(config, overrides),
         SL_CASE(config, sweeps),
         SL_CASE(config, packages),
+        SL_CASE(config, aliasing_on_demand),
     };
     return sl_run_group(argc, argv, "config", tests, NULL, NULL);
 }

@@ -97,7 +97,7 @@ struct raw_method {
     SL_KNOBS(RAW_KNOB)
 #undef RAW_KNOB
 };
-struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bool *exr; };
+struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bool *exr; char *aliasing; };
 struct raw_scene_ref {
     char *scene;
     char **viewpoints; unsigned viewpoints_count;
@@ -166,6 +166,7 @@ static const cyaml_schema_field_t outputs_fields[] = {
     CYAML_FIELD_BOOL_PTR("tables", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, tables),
     CYAML_FIELD_BOOL_PTR("overlays", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, overlays),
     CYAML_FIELD_BOOL_PTR("exr", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, exr),
+    CYAML_FIELD_STRING_PTR("aliasing", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, aliasing, 1, 15),
     CYAML_FIELD_UINT_PTR("overlay_contour", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, overlay_contour),
     CYAML_FIELD_END,
 };
@@ -1021,6 +1022,18 @@ static enum sl_err check_outputs(const struct raw_config *r, const char *file, c
     c->tables = r->outputs && r->outputs->tables ? *r->outputs->tables : 1;
     c->overlays = r->outputs && r->outputs->overlays ? *r->outputs->overlays : 1;
     c->exr = r->outputs && r->outputs->exr ? *r->outputs->exr : 0;
+    /* the aliasing error m: auto (the default) where a method's study reads
+     * it (method.h, SL_FIGS_ALIASING: zpart, lispsm), else as the config says */
+    const char *al = r->outputs && r->outputs->aliasing ? r->outputs->aliasing : "auto";
+    if (!strcmp(al, "auto")) {
+        c->aliasing = 0;
+        for (int k = 0; k < c->nmethods; k++)
+            c->aliasing |= (c->methods[k].method->figures & SL_FIGS_ALIASING) != 0;
+    } else if (!strcmp(al, "true") || !strcmp(al, "false")) {
+        c->aliasing = !strcmp(al, "true");
+    } else {
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "outputs.aliasing", "'%s': auto, true or false", al);
+    }
     c->overlay_contour = c->regions[0];
     if (r->outputs && r->outputs->overlay_contour) {
         unsigned t = *r->outputs->overlay_contour;
@@ -1493,9 +1506,9 @@ static void write_techniques(const struct sl_config *c, FILE *f)
 
 static void write_outputs(const struct sl_config *c, FILE *f)
 {
-    fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s}\n",
+    fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s, aliasing: %s}\n",
             c->tables ? "true" : "false", c->overlays ? "true" : "false", c->overlay_contour,
-            c->exr ? "true" : "false");
+            c->exr ? "true" : "false", c->aliasing ? "true" : "false");
 }
 
 static void write_repetitions(const struct sl_config *c, FILE *f)

@@ -93,6 +93,7 @@ struct sl_config {
     int  ntechniques;                 /* 'techniques:' folders of packages, resolved (absolute) */
     char techniques[8][512];
     int  tables, overlays, exr;
+    int  aliasing;                    /* resolved: the aliasing error m's figures (outputs.aliasing) */
     int  overlay_contour;
     int  contour_from;                /* enum sl_contour_from */
     int  warmup, runs;                /* repetitions for timing */

@@ -397,8 +397,8 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
      * that frame, the same for every cell sharing both (the cache; the first
      * such cell's figures time pays for it). Per-pixel frames (zpart's
      * slices, a cube's faces) are the method's own: computed here. */
-    int own_m = in->frame && vd->nframes > 0;
-    int cached_m = !own_m && in->frame && in->frame->size > 0;
+    int own_m = in->aliasing && in->frame && vd->nframes > 0;
+    int cached_m = in->aliasing && !own_m && in->frame && in->frame->size > 0;
     float *am = own_m || (cached_m && !in->alias_cache) ? malloc(npx * sizeof *am) : NULL;
     cell->texels = 0;
     for (int k = 0; k < vd->nframes; k++)

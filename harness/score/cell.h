@@ -124,6 +124,7 @@ struct sl_cell_inputs {
                                                * it; NULL: written here, in the rgb scratch */
     const char *exr_path;                     /* NULL: no EXR layers */
     int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
+    int aliasing;                             /* the aliasing error m's figures wanted (config) */
     struct sl_alias_cache *alias_cache;       /* m of the view under the cell's frame, kept for the next
                                                * cells of the view (aliasing.h); NULL: computed per cell */
     struct sl_overlay_shade *overlay_shade;   /* the overlay's lit colours, kept for the view's next cells
