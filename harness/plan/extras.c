@@ -25,19 +25,27 @@ struct walk {
     yaml_event_t  ev;
     int           have;       /* ev holds an event */
     int           bad;        /* the parser failed: leave the text alone */
+    int           ended;      /* the stream's end was read */
 };
 
+/* The next event; 0 at an error and after the stream's end (libyaml then
+ * hands out empty events forever: a walk inside a node the text never
+ * closed must stop there, not loop). */
 static int next(struct walk *w)
 {
     if (w->have)
         yaml_event_delete(&w->ev);
     w->have = 0;
+    if (w->ended || w->bad)
+        return 0;
     if (!yaml_parser_parse(&w->p, &w->ev)) {
         w->bad = 1;
         return 0;
     }
     w->have = 1;
-    return 1;
+    if (w->ev.type == YAML_STREAM_END_EVENT || w->ev.type == YAML_NO_EVENT)
+        w->ended = 1;
+    return w->ev.type != YAML_NO_EVENT;
 }
 
 /* Skip the node whose first event is current; on return the current event
