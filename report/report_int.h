@@ -94,6 +94,7 @@ struct sl_report_doc {
     size_t html_len, md_len, tex_len;
     struct sl_report_out *out;
     int   ntables;
+    int   tex_floats;   /* floats since the last \\clearpage */
     int   self_contained;   /* images and plots as data: URIs */
     int   gp_pdf;           /* gnuplot's pdfcairo terminal: 0 not asked yet, 1 there, -1 not */
     struct sl_report_heading *heads;

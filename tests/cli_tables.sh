@@ -8,7 +8,8 @@
 #           '_' escaped in LaTeX, thin-space thousands separators;
 #           json parses; bad keys/aggregates exit 2
 #   latex   the run's table.tex and table-detail.tex, a motion run's
-#           motion.tex and two pivots' LaTeX (one transposed into a longtable)
+#           motion.tex, two pivots' LaTeX (one transposed into a longtable) and
+#           the plain `table --format latex` (also --figures all)
 #           compile in a plain article with booktabs and longtable: 0 errors,
 #           no overfull box, no float taller than the page, no
 #           \resizebox/\scalebox (exit 77 without pdflatex)
@@ -139,6 +140,9 @@ YAML
   grep -q 'transposed' "$tmp/p1.err" && grep -q 'begin{longtable}' "$tmp/p1.tex" || fail "p1 not a transposed longtable"
   "$bin" table "$db" --rows viewpoint --cols region --figure wrong_caught --of count --agg sum --format latex \
     >"$tmp/p2.tex" 2>"$tmp/p2.err" || fail "p2"
+  # the plain tables (one float per cell; every figure: wider than the line, split by regions)
+  "$bin" table "$db" --format latex >"$tmp/t1.tex" 2>&1 || fail "t1"
+  "$bin" table "$db" --format latex --figures all >"$tmp/t2.tex" 2>&1 || fail "t2"
   cp "$dir/table.tex" "$dir/table-detail.tex" "$tmp/m/motion_tex/motion.tex" "$tmp/"
   cat >"$tmp/doc.tex" <<'TEX'
 \documentclass{article}
@@ -149,6 +153,10 @@ YAML
 \input{motion.tex}
 \input{p1.tex}
 \input{p2.tex}
+\clearpage
+\input{t1.tex}
+\clearpage
+\input{t2.tex}
 \end{document}
 TEX
   (cd "$tmp" && pdflatex -interaction=nonstopmode doc.tex >/dev/null 2>&1 && pdflatex -interaction=nonstopmode doc.tex >/dev/null 2>&1)
@@ -157,7 +165,7 @@ TEX
   [ "$errs" -eq 0 ] || { grep -A3 '^!' "$tmp/doc.log" | head; fail "$errs LaTeX errors"; }
   [ "$over" -eq 0 ] || { grep -A2 'Overfull' "$tmp/doc.log" | head; fail "$over overfull boxes"; }
   ! grep -q 'Float too large' "$tmp/doc.log" || fail "a float taller than the page"
-  ! grep -qE 'resizebox|scalebox' "$tmp"/table.tex "$tmp"/table-detail.tex "$tmp"/motion.tex "$tmp"/p?.tex ||
+  ! grep -qE 'resizebox|scalebox' "$tmp"/table.tex "$tmp"/table-detail.tex "$tmp"/motion.tex "$tmp"/p?.tex "$tmp"/t?.tex ||
     fail "a table is scaled"
   grep -q 'longtable' "$tmp/table-detail.tex" && grep -q 'longtable' "$tmp/motion.tex" || fail "no longtable"
   [ "$(grep -c '\\begin{table}' "$tmp/table.tex")" -le 6 ] || fail "table.tex has more than a handful of floats"

@@ -177,11 +177,10 @@ static void table_latex_booktabs(void **st)
     /* no heading: the file is \input into a document; the source is a comment */
     assert_null(strstr(tex, "\\section"));
     assert_non_null(strstr(tex, "\n% from: Primitives 50%\n"));
-    /* one float per map size, scaled down to the line only when wider */
+    /* one float per map size, never scaled: two regions fit the line as they are */
     assert_non_null(strstr(tex, "\\caption{prim\\_s / side / 64$\\times$32 / nsm\\_a / $1024^2$ map. PFL 11, "
                                 "PnFL 22, background 33; truth: 44 PFL lit, 55 PFL shadowed.}\n"
                                 "\\label{tab:prim-s-side-64x32-nsm-a-1024}\n"
-                                "\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%\n"
                                 "\\begin{tabular}{lrr}\n\\toprule\n"
                                 "figure & 2px & image \\\\\n\\midrule\n"
                                 "pixels & 1000 & 1010 \\\\\n"));
@@ -199,7 +198,7 @@ static void table_latex_booktabs(void **st)
             name[o++] = *q;
         }
         name[o] = '\0';
-        snprintf(last, sizeof last, "\n%s & %d (%d.25\\%%) & %d (%d.25\\%%) \\\\\n\\bottomrule\n\\end{tabular}}\n",
+        snprintf(last, sizeof last, "\n%s & %d (%d.25\\%%) & %d (%d.25\\%%) \\\\\n\\bottomrule\n\\end{tabular}\n",
                  name, 2000 + K, K, 2010 + K, 10 + K);
         assert_non_null(strstr(tex, last));
     }
@@ -548,6 +547,45 @@ static void table_pivot_latex_fits(void **st)
     free(c);
 }
 
+/* Five regions of nine-digit counts are wider than the line: never scaled;
+ * a few rows are stacked (the count above its percentage) in one float,
+ * every row split by regions into floats that each repeat the figure names. */
+static void table_latex_wide(void **st)
+{
+    (void)st;
+    struct sl_cell_record c = make("side", 1024, 100000000, "h");
+    c.fig.nregions = 5;
+    for (int r = 0; r < 5; r++) {
+        c.fig.r[r].thickness = r < 4 ? 2 * (r + 1) : 0;
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            c.fig.r[r].n[k] = 100000000u + 10u * (uint64_t)r + (uint64_t)k;
+            c.fig.r[r].pct[k] = k == SL_FIG_pixels ? NAN : 10.0 * r + k + 0.25;
+        }
+    }
+    char *tex = render(SL_TABLE_LATEX, NULL, &c, 1, SL_OK);
+    int floats = count_of(tex, "\\begin{table}");
+    assert_true(floats >= 2);
+    assert_int_equal(count_of(tex, "\nfigure & "), floats);
+    assert_int_equal(count_of(tex, "\nwrong & "), floats);
+    assert_non_null(strstr(tex, "(part 1 of "));
+    assert_null(strstr(tex, "resizebox"));
+    assert_null(strstr(tex, "scalebox"));
+    free(tex);
+    struct sl_table_rows rows;
+    struct sl_diag d;
+    assert_int_equal(sl_table_figures_parse("wrong,light_incorrect", &rows, &d), SL_OK);
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_int_equal(sl_table_write_rows(f, SL_TABLE_LATEX, NULL, &c, 1, &rows, &d), SL_OK);
+    fclose(f);
+    assert_int_equal(count_of(buf, "\\begin{table}"), 1);
+    assert_non_null(strstr(buf, "\nfigure & 2px & 4px & 6px & 8px & image \\\\\n"));
+    assert_non_null(strstr(buf, "\\begin{tabular}[t]{@{}r@{}}100000010\\\\ (10.25\\%)\\end{tabular}"));
+    assert_null(strstr(buf, "resizebox"));
+    free(buf);
+}
+
 /* The run's LaTeX: a few summary floats of the study, and a longtable per
  * view with every label and map size; no scaling anywhere. */
 static void table_run_latex(void **st)
@@ -586,6 +624,7 @@ int main(int argc, char **argv)
         SL_CASE(table, markdown_mixed_provenance),
         SL_CASE(table, csv_long_form),
         SL_CASE(table, latex_booktabs),
+        SL_CASE(table, latex_wide),
         SL_CASE(table, rows_produced_and_picked),
         SL_CASE(table, duplicate_map_refused),
         SL_CASE(table, empty_and_formats),

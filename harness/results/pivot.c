@@ -15,6 +15,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include "tex.h"
 #include "util.h"
 
 const char *sl_pivot_key_name(enum sl_pivot_key k)
@@ -78,41 +79,16 @@ static void plain_number(char *out, size_t n, double v, int dec)
     snprintf(out, n, "%.*f", dec, v);
 }
 
-/* ---- width estimate (pt) ---- */
+/* ---- width estimate (pt): tex.h ---- */
 
-/* \small in a 10 pt article (9 pt Computer Modern): digits 4.5 pt, lower
- * case about as wide, capitals and m/w wider; a column adds 2 \tabcolsep */
-#define TEX_COLUMNWIDTH 345.0
-#define TEX_BUDGET      335.0
+#define TEX_BUDGET      SL_TEX_BUDGET
 #define TEX_COLSEP      12.0
 #define TEX_MAXNUM      8
 #define TEX_LABELMAX    130.0      /* a wider row name is wrapped in a \parbox of this width */
 #define TEX_MAXROWS     40         /* more rows: a longtable, not a float */
 
-static double text_pt(const char *s)
-{
-    double w = 0;
-    for (const unsigned char *u = (const unsigned char *)s; *u; u++) {
-        if ((*u & 0xC0) == 0x80)
-            continue;
-        if (*u == '.' || *u == ',' || *u == ' ' || *u == '(' || *u == ')' || *u == 'i' || *u == 'l')
-            w += 2.6;
-        else if ((*u >= 'A' && *u <= 'Z') || *u == 'm' || *u == 'w' || *u == '%' || *u == '_')
-            w += 6.8;
-        else
-            w += 4.6;
-    }
-    return w;
-}
-
-/* thousands separators in a number's text: a thin space each */
-static double number_pt(const char *plain)
-{
-    size_t ilen = strcspn(plain, ".");
-    if (plain[0] == '-')
-        ilen--;
-    return text_pt(plain) + (ilen >= 4 ? (double)((ilen - 1) / 3) * 1.5 : 0.0);
-}
+static double text_pt(const char *s) { return sl_tex_text_pt(s); }
+static double number_pt(const char *plain) { return sl_tex_number_pt(plain); }
 
 /* ---- LaTeX text ---- */
 
