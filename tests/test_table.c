@@ -358,12 +358,40 @@ static void table_summary_rows(void **st)
     fclose(f);
     assert_non_null(strstr(buf, "wrong_caught,nsm,best,1024,bench,with,2px,60.0000\n"));
     free(buf);
-    /* one label at a time; a count is no percentage */
-    snprintf(c[3].label, sizeof c[3].label, "other");
+    /* several labels: a summary each, in the cells' order, one CSV header */
+    snprintf(c[3].label, sizeof c[3].label, "other_x");
+    o.lower_is_better = 0;
     f = open_memstream(&buf, &len);
-    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_E_USAGE);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_OK);
     fclose(f);
+    assert_int_equal(count_of(buf, "figure,label,kind,"), 1);
+    assert_non_null(strstr(buf, "wrong_caught,nsm,average,,,,,87.3333\n"));   /* (90+95+60+80+99+100)/6 */
+    assert_non_null(strstr(buf, "wrong_caught,other_x,average,,,,,77.5000\n"));
+    assert_non_null(strstr(buf, "wrong_caught,other_x,average case,2048,bench,with,2px,70.0000\n"));
+    assert_before(buf, "wrong_caught,nsm,average", "wrong_caught,other_x,average");
     free(buf);
+    /* a later figure of the same output has no header */
+    o.continued = 1;
+    f = open_memstream(&buf, &len);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_OK);
+    fclose(f);
+    assert_null(strstr(buf, "figure,label,kind,"));
+    free(buf);
+    o.continued = 0;
+    /* LaTeX: a booktabs float per label, names escaped, numbers as LaTeX, never scaled */
+    f = open_memstream(&buf, &len);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_LATEX, c, 4, &o, &d), SL_OK);
+    fclose(f);
+    assert_int_equal(count_of(buf, "\\begin{table}"), 2);
+    assert_int_equal(count_of(buf, "\\toprule"), 2);
+    assert_non_null(strstr(buf, "\\caption{Summary of wrong\\_caught (\\% of wrong\\_image), label other\\_x: "));
+    assert_non_null(strstr(buf, "\naverage &  &  &  &  & 87.33 \\\\\n"));
+    assert_non_null(strstr(buf, "\n$1024^2$ best & prim & side & 4px & $1024^2$ & 95.00 \\\\\n"));
+    assert_non_null(strstr(buf, "\naverage case & bench & with & 2px & $2048^2$ & 70.00 \\\\\n"));
+    assert_null(strstr(buf, "resizebox"));
+    assert_null(strstr(buf, "scalebox"));
+    free(buf);
+    /* a count is no percentage */
     o.figure = SL_FIG_pixels;
     f = open_memstream(&buf, &len);
     assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 3, &o, &d), SL_E_USAGE);

@@ -57,15 +57,16 @@ const char cli_usage_validate[] =
     "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
 
 const char cli_usage_table[] =
-    "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
-    "                          [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
-    "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
-    "                           [--average-case SCENE/VIEWPOINT/N[/MAP]]]\n"
+    "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V]\n"
+    "                          [--label L,L,...]... [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
+    "                          [--summary FIGURE,FIGURE,...]... [--region N|image|contours]\n"
+    "                          [--lower-is-better] [--average-case SCENE/VIEWPOINT/N[/MAP]]\n"
     "       shadowlab table DB --rows R --cols C [--figure F] [--of BASE] [--agg A]\n"
     "                          [--where KEY=VALUE]... [--format md|csv|latex|json]\n"
-    "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
-    "  --summary, the average, best and worst per map size of one figure's percentage over\n"
-    "  the cells of one label (as the theses' summary tables), md or csv.\n"
+    "  Renders the latest stored cell of each key, filtered, as thesis-style tables; --label\n"
+    "  keeps the labels named (a,b or repeated). With --summary, per figure named and per label,\n"
+    "  the average, best and worst per map size of the figure's percentage over the label's\n"
+    "  cells (as the theses' summary tables): md, csv or latex (a booktabs float each).\n"
     "  md and latex leave out the figures a method does not produce (0 in every column past\n"
     "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n"
     "  A pivot (any of --rows, --cols, --figure, --of, --agg, --where): one table a paper takes.\n"
@@ -666,9 +667,9 @@ void cli_completion(FILE *f)
           "            COMPREPLY=($(compgen -W \"$(shadowlab list scenes 2>/dev/null | awk '{ print $1 }')\" -- "
           "\"$cur\")); return ;;\n"
           "        --label)\n"
-          "            # the labels the store named on the line holds\n"
-          "            [ -n \"$db\" ] && COMPREPLY=($(compgen -W \"$(shadowlab table \"$db\" --format csv 2>/dev/null |\n"
-          "                awk -F, 'NR > 1 { print $6 }' | sort -u)\" -- \"$cur\"))\n"
+          "            # the labels the store named on the line holds (a,b: a list)\n"
+          "            [ -n \"$db\" ] && _shadowlab_list \"$(shadowlab table \"$db\" --format csv 2>/dev/null |\n"
+          "                awk -F, 'NR > 1 { print $6 }' | sort -u)\"\n"
           "            return ;;\n"
           "        -D|--define)\n"
           "            # the top-level keys of the config named on the line, as validate fills it in\n"
@@ -685,10 +686,10 @@ void cli_completion(FILE *f)
     };
     for (size_t i = 0; i < sizeof stages / sizeof stages[0]; i++)
         fprintf(f, "%s%s", i ? " " : "", stages[i]);
-    fputs("\"; return ;;\n        --summary) COMPREPLY=($(compgen -W \"", f);
+    fputs("\"; return ;;\n        --summary) _shadowlab_list \"", f);
     for (int k = 0; k < SL_FIG_COUNT; k++)
         fprintf(f, "%s%s", k ? " " : "", sl_figure_name((enum sl_figure)k));
-    fputs("\" -- \"$cur\")); return ;;\n        --figures) _shadowlab_list \"all", f);
+    fputs("\"; return ;;\n        --figures) _shadowlab_list \"all", f);
     for (int k = 0; k < SL_FIG_COUNT; k++)
         fprintf(f, " %s", sl_figure_name((enum sl_figure)k));
     for (int k = 0; k < SL_SFIG_COUNT; k++)
