@@ -294,6 +294,14 @@ void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
     t->oom |= !*slot;
 }
 
+void sl_report_tab_once(struct sl_report_tab *t)
+{
+    static const char once[] = SL_REPORT_ONCE " timed once (repetitions runs: 1): one measurement, no median.";
+    size_t n = strlen(t->note);
+    if (!strstr(t->note, once))
+        snprintf(t->note + n, sizeof t->note - n, "%s%s", n ? " " : "", once);
+}
+
 void sl_report_tab_free(struct sl_report_tab *t)
 {
     for (int k = 0; k < SL_REPORT_MAXCOLS; k++)

@@ -503,6 +503,27 @@ static void table_pivot_values(void **st)
     csv = pivot(SL_TABLE_CSV, c, n, &q, NULL, SL_OK);
     assert_string_equal(csv, "label,1024\nnsm_a,101.7612524\n");   /* 520 / 511 */
     free(csv);
+    /* a time: an entry with a cell timed once (runs 1) carries a dagger, its
+     * table a footnote; md and LaTeX (CSV keeps plain numbers) */
+    for (int i = 0; i < n; i++)
+        c[i].runs = 3, c[i].ms_method = 1.5 + i;
+    struct sl_pivot_desc tm = {.figure = "ms_method"};
+    char *md = pivot(SL_TABLE_MD, c, n, &tm, NULL, SL_OK);
+    assert_null(strstr(md, "\xE2\x80\xA0"));
+    free(md);
+    c[1].runs = 1;   /* the 1024 of "with" */
+    md = pivot(SL_TABLE_MD, c, n, &tm, NULL, SL_OK);
+    assert_non_null(strstr(md, "timed once"));
+    assert_non_null(strstr(md, "| nsm_a | 3.00\xE2\x80\xA0 | 1.50 |"));   /* 1024: mean of 2.5 (once) and 3.5 */
+    free(md);
+    char *tex = pivot(SL_TABLE_LATEX, c, n, &tm, NULL, SL_OK);
+    assert_non_null(strstr(tex, "nsm\\_a & 3.00$^\\dagger$ & 1.50 \\\\"));
+    assert_non_null(strstr(tex, "$^\\dagger$ timed once"));
+    free(tex);
+    csv = pivot(SL_TABLE_CSV, c, n, &tm, NULL, SL_OK);
+    assert_string_equal(csv, "label,1024,2048\nnsm_a,3,1.5\n");
+    free(csv);
+    c[1].runs = 3;
     /* refused: an unknown figure, rows = cols, a time of a base */
     struct sl_pivot_desc bad = {.figure = "nope"};
     free(pivot(SL_TABLE_CSV, c, n, &bad, NULL, SL_E_USAGE));

@@ -19,6 +19,7 @@ void sl_tex_text(FILE *f, const char *s)
         {"\xC2\xB7", "$\\cdot$"},             {"\xE2\x80\x99", "'"},       {"\xE2\x80\x98", "`"},
         {"\xE2\x80\x9C", "``"},               {"\xE2\x80\x9D", "''"},      {"\xE2\x80\xA6", "\\ldots{}"},
         {"\xC2\xA0", "~"},                    {"\xE2\x89\x88", "$\\approx$"}, {"\xC2\xB0", "$^\\circ$"},
+        {"\xE2\x80\xA0", "$^\\dagger$"},
     };
     for (; s && *s; s++) {
         const unsigned char *u = (const unsigned char *)s;
