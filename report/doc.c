@@ -815,6 +815,24 @@ static void md_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
 #define TEX_COLSEP 8.0      /* 2 \tabcolsep of 4 pt */
 #define TEX_MINWRAP 40.0    /* a wrapped column is no narrower (pt) */
 
+/* Where a stacked cell breaks: before " (" ("v" above "(where)"); a
+ * heading (stack 2) also after ": " ("step ms:" above "median [min-max]").
+ * *first: the first line's length; returns the second line, NULL: one line. */
+static const char *stack_cut(const char *v, int stack, int *first)
+{
+    const char *cut = stack ? strstr(v, " (") : NULL;
+    if (cut) {
+        *first = (int)(cut - v);
+        return cut + 1;
+    }
+    cut = stack == 2 ? strstr(v, ": ") : NULL;
+    if (cut) {
+        *first = (int)(cut - v) + 1;
+        return cut + 2;
+    }
+    return NULL;
+}
+
 /* the plain width (pt, \footnotesize) of a cell; stacked, "v (where)" counts
  * as its longer line; word: its longest word */
 static double cell_pt(const char *v, int stack, int word)
@@ -832,18 +850,19 @@ static double cell_pt(const char *v, int stack, int word)
         }
         return w * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
     }
-    const char *cut = stack ? strstr(v, " (") : NULL;
-    if (!cut)
+    int len;
+    const char *second = stack_cut(v, stack, &len);
+    if (!second)
         return sl_tex_text_pt(v) * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
-    snprintf(buf, sizeof buf, "%.*s", (int)(cut - v), v);
-    double a = sl_tex_text_pt(buf), b = sl_tex_text_pt(cut + 1);
+    snprintf(buf, sizeof buf, "%.*s", len, v);
+    double a = sl_tex_text_pt(buf), b = sl_tex_text_pt(second);
     return (a > b ? a : b) * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
 }
 
 /* as printed (stacked or not), or (word) its longest word */
 static double col_pt(const struct sl_report_tab *t, int c, int stack, int word)
 {
-    double w = t->head[c] ? cell_pt(t->head[c], stack, word) : 0;
+    double w = t->head[c] ? cell_pt(t->head[c], stack ? 2 : 0, word) : 0;
     for (int r = 0; r < t->nrows; r++) {
         double x = cell_pt(tab_at(t, r, c), stack, word);
         w = x > w ? x : w;
@@ -863,17 +882,18 @@ static void tex_cell(FILE *f, const char *v, int stack, char align, double pbox)
         fputs("\\strut}", f);
         return;
     }
-    const char *cut = stack ? strstr(v, " (") : NULL;
-    if (!cut) {
+    int len;
+    const char *second = stack_cut(v, stack, &len);
+    if (!second) {
         sl_tex_text(f, v);
         return;
     }
     char first[512];
-    snprintf(first, sizeof first, "%.*s", (int)(cut - v), v);
+    snprintf(first, sizeof first, "%.*s", len, v);
     fprintf(f, "\\begin{tabular}[t]{@{}%c@{}}", align);
     sl_tex_text(f, first);
     fputs("\\\\ ", f);
-    sl_tex_text(f, cut + 1);
+    sl_tex_text(f, second);
     fputs("\\end{tabular}", f);
 }
 
@@ -986,7 +1006,8 @@ static void tex_part(FILE *f, const struct sl_report_tab *t, const struct tex_la
         if (!first)
             fputs(" & ", f);
         first = 0;
-        tex_cell(f, t->head[c] ? t->head[c] : "", lo->stack && !lo->wraps[c], c < t->nkeys ? 'l' : 'r', box[c]);
+        tex_cell(f, t->head[c] ? t->head[c] : "", lo->stack && !lo->wraps[c] ? 2 : 0, c < t->nkeys ? 'l' : 'r',
+                 box[c]);
     }
     fputs(" \\\\\n\\midrule\n", f);
     for (int r = from; r < to; r++) {
