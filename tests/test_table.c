@@ -523,6 +523,9 @@ static void table_pivot_values(void **st)
     csv = pivot(SL_TABLE_CSV, c, n, &tm, NULL, SL_OK);
     assert_string_equal(csv, "label,1024,2048\nnsm_a,3,1.5\n");
     free(csv);
+    char *js = pivot(SL_TABLE_JSON, c, n, &tm, NULL, SL_OK);
+    assert_non_null(strstr(js, "\"n\": [2, 1], \"timed_once\": [true, false]}"));
+    free(js);
     c[1].runs = 3;
     /* refused: an unknown figure, rows = cols, a time of a base */
     struct sl_pivot_desc bad = {.figure = "nope"};

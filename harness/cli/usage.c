@@ -83,7 +83,9 @@ const char cli_usage_table[] =
     "                  it is a row, a column or a --where\n"
     "  latex: booktabs, names escaped, thin-space thousands separators, never scaled; a table\n"
     "  wider than a plain article's \\columnwidth is transposed or split into several tables,\n"
-    "  and stderr says so. json: the columns, and per row the values (null: none) and counts.\n";
+    "  and stderr says so. json: the columns, and per row the values (null: none) and counts.\n"
+    "  A time of a cell timed once (repetitions runs: 1) is marked with a dagger in md and latex\n"
+    "  (and a footnote); json: per row timed_once.\n";
 
 const char cli_usage_report[] =
     "usage: shadowlab report RESULTS_DB [-o DIR] [--self-contained] [--latex]\n"

@@ -526,6 +526,11 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
     const char *text = pv->g.src == SRC_HARD   ? sl_figure_text((enum sl_figure)pv->g.k)
                        : pv->g.src == SRC_SOFT ? sl_soft_figure_text((enum sl_soft_figure)pv->g.k)
                                                : (cols[pv->g.k].is_ms ? "time (median over the repetitions)" : "counter");
+    /* the names the tables and the report give these times (guide.md) */
+    if (pv->g.src == SRC_COL && !strcmp(name, "ms_method"))
+        text = "step ms, the method's per-pixel step (median over the repetitions)";
+    else if (pv->g.src == SRC_COL && !strcmp(name, "ms_map_render"))
+        text = "layers ms, the shadow-map render of the layers the method reads (median over the repetitions)";
     char over[256];
     over_words(pv, p, over, sizeof over);
     size_t o = (size_t)snprintf(out, n, "%s%s: %s, %s; %s over %s", p->caption ? p->caption : "", name, text,
@@ -681,6 +686,12 @@ static void write_json(FILE *f, const struct pivot *pv, const struct sl_pivot_de
         fputs("], \"n\": [", f);
         for (int c = 0; c < pv->nc; c++)
             fprintf(f, "%s%d", c ? ", " : "", pv->cnt[pv->rperm[r] * pv->nc + pv->cperm[c]]);
+        /* a time: which entries hold a cell timed once (repetitions runs: 1) */
+        if (pv->any_once) {
+            fputs("], \"timed_once\": [", f);
+            for (int c = 0; c < pv->nc; c++)
+                fprintf(f, "%s%s", c ? ", " : "", pv->once[pv->rperm[r] * pv->nc + pv->cperm[c]] ? "true" : "false");
+        }
         fputs("]}", f);
     }
     fputs("\n]}\n", f);
