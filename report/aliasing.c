@@ -58,17 +58,17 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
                        "%s / %s / %s %dx%d: wrong pixels, memory, time and aliasing error m", s->name, v->scene,
                        v->viewpoint, v->vw, v->vh);
     static const char *const heads[] = {"method", "map", "texels", "wrong", "wrong % of PFL", "median m",
-                                        "median m (wrong)", "ms"};
+                                        "median m (wrong)", "layers + step ms"};
     for (int k = 0; k < 8; k++)
         sl_report_tab_head(&t, k, "%s", heads[k]);
     for (int b = 0; b < SL_ALIAS_BANDS; b++)
         sl_report_tab_head(&t, 8 + b, "wrong, %s (share of PFL)", band_name[b]);
     snprintf(t.note, sizeof t.note,
              "Whole image, PFL pixels. texels: the shadow-map texels the method looks up (k maps for k slices); "
-             "ms: its layers' render plus its per-pixel step, medians (zpart and lispsm render their own maps "
+             "layers + step ms: its layers' render plus its per-pixel step, medians (zpart and lispsm render their own maps "
              "inside their step). The band columns: the wrong pixels whose m falls in the band, and in brackets "
              "the band's share of all PFL pixels of the view.");
-    int rows = 0;
+    int rows = 0, once = 0;
     for (int l = 0; l < s->nlabels; l++)
         for (int m = 0; m < s->nmaps; m++) {
             const struct sl_cell_record *c = sl_report_study_cell(s, v, s->labels[l], s->maps[m]);
@@ -92,12 +92,15 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
             sl_report_tab_cell(&t, 5, "%.3f", milli(n[SL_AFIG_m_median_milli]));
             if (wrong)
                 sl_report_tab_cell(&t, 6, "%.3f", milli(n[SL_AFIG_wrong_m_median_milli]));
-            sl_report_tab_cell(&t, 7, "%.1f", cell_ms(c));
+            sl_report_tab_cell(&t, 7, "%.1f%s", cell_ms(c), c->runs == 1 ? SL_REPORT_ONCE : "");
+            once |= c->runs == 1;
             for (int b = 0; b < SL_ALIAS_BANDS; b++)
                 sl_report_tab_cell(&t, 8 + b, "%llu (%.1f%%)", (unsigned long long)n[SL_AFIG_wrong_m_le1 + b],
                                    isnan(pct[SL_AFIG_px_m_le1 + b]) ? 0.0 : pct[SL_AFIG_px_m_le1 + b]);
             rows++;
         }
+    if (once)
+        sl_report_tab_once(&t);
     enum sl_err e = rows ? sl_report_doc_table(doc, &t, d) : SL_OK;
     sl_report_tab_free(&t);
     return e;

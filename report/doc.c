@@ -294,6 +294,14 @@ void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
     t->oom |= !*slot;
 }
 
+void sl_report_tab_once(struct sl_report_tab *t)
+{
+    static const char once[] = SL_REPORT_ONCE " timed once (repetitions runs: 1): one measurement, no median.";
+    size_t n = strlen(t->note);
+    if (!strstr(t->note, once))
+        snprintf(t->note + n, sizeof t->note - n, "%s%s", n ? " " : "", once);
+}
+
 void sl_report_tab_free(struct sl_report_tab *t)
 {
     for (int k = 0; k < SL_REPORT_MAXCOLS; k++)
@@ -441,8 +449,10 @@ static void tex_heading(struct sl_report_doc *doc, int level, const char *text)
     static const char *const cmd[] = {"section", "section", "section", "subsection", "subsubsection", "paragraph"};
     if (!doc->tex || level < 2)
         return;
-    if (level == 2)
+    if (level == 2) {
         fputs("\\clearpage\n", doc->tex);
+        doc->tex_floats = 0;
+    }
     fprintf(doc->tex, "\\%s{", cmd[level > 5 ? 5 : level]);
     tex_para(doc->tex, text);
     fputs("}\n\n", doc->tex);
@@ -789,68 +799,174 @@ static void md_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
     fprintf(f, "[LaTeX](%s)\n\n", texrel);
 }
 
-/* Rows of a table per float: a longer one is split into parts ("continued"),
- * each a float of its own, since a longtable cannot be scaled to the line. */
-#define TEX_ROWS 40
+/* Lines of a table per float (a stacked or wrapped row takes more than one):
+ * a longer one is split into parts, each a float of its own that fits a
+ * page. */
+#define TEX_LINES 44
 
-/* Characters of s as shown (UTF-8 sequences count one); up to n bytes. */
-static int shown_len(const char *s, size_t n)
-{
-    int k = 0;
-    for (size_t i = 0; i < n && s[i]; i++)
-        k += ((unsigned char)s[i] & 0xC0) != 0x80;
-    return k;
-}
+/* Nothing is scaled: a table is fitted to the line (an A4 article's 345 pt,
+ * \footnotesize, widths estimated by tex.h). A table wider than the line
+ * has its "value (where)" cells and headings stacked onto two lines
+ * (Moderno's summary tables); text that may wrap (the key columns, and every column of a text
+ * table: t->wrap) is set in a \parbox as narrow as its longest word allows;
+ * what is still too wide is split by columns into several floats, each
+ * repeating the key columns (the first column when all are keys), cut at a
+ * group's edge where one is near. */
+#define TEX_COLSEP 8.0      /* 2 \tabcolsep of 4 pt */
+#define TEX_MINWRAP 40.0    /* a wrapped column is no narrower (pt) */
 
-/* Width of column c in characters; stacked: a cell "v (where)" counts as its
- * longer line. */
-static int col_chars(const struct sl_report_tab *t, int c, int stack)
-{
-    int w = t->head[c] ? shown_len(t->head[c], strlen(t->head[c])) : 0;
-    for (int r = 0; r < t->nrows; r++) {
-        const char *v = tab_at(t, r, c), *cut = stack ? strstr(v, " (") : NULL;
-        int len = cut ? shown_len(v, (size_t)(cut - v)) : shown_len(v, strlen(v));
-        if (cut && shown_len(cut + 1, strlen(cut + 1)) > len)
-            len = shown_len(cut + 1, strlen(cut + 1));
-        if (len > w)
-            w = len;
-    }
-    return w;
-}
-
-/* A cell; stacked, "v (where)" as two lines (v above its "(where)"). */
-static void tex_cell(FILE *f, const char *v, int stack, char align)
+/* Where a stacked cell breaks: before " (" ("v" above "(where)"); a
+ * heading (stack 2) also after ": " ("step ms:" above "median [min-max]").
+ * *first: the first line's length; returns the second line, NULL: one line. */
+static const char *stack_cut(const char *v, int stack, int *first)
 {
     const char *cut = stack ? strstr(v, " (") : NULL;
-    if (!cut) {
+    if (cut) {
+        *first = (int)(cut - v);
+        return cut + 1;
+    }
+    cut = stack == 2 ? strstr(v, ": ") : NULL;
+    if (cut) {
+        *first = (int)(cut - v) + 1;
+        return cut + 2;
+    }
+    return NULL;
+}
+
+/* the plain width (pt, \footnotesize) of a cell; stacked, "v (where)" counts
+ * as its longer line; word: its longest word */
+static double cell_pt(const char *v, int stack, int word)
+{
+    char buf[512];
+    double w = 0;
+    if (word) {
+        for (const char *p = v; *p;) {
+            size_t n = strcspn(p, " ");
+            snprintf(buf, sizeof buf, "%.*s", (int)(n < sizeof buf ? n : sizeof buf - 1), p);
+            double x = sl_tex_text_pt(buf);
+            w = x > w ? x : w;
+            p += n;
+            p += *p == ' ';
+        }
+        return w * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
+    }
+    int len;
+    const char *second = stack_cut(v, stack, &len);
+    if (!second)
+        return sl_tex_text_pt(v) * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
+    snprintf(buf, sizeof buf, "%.*s", len, v);
+    double a = sl_tex_text_pt(buf), b = sl_tex_text_pt(second);
+    return (a > b ? a : b) * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
+}
+
+/* as printed (stacked or not), or (word) its longest word */
+static double col_pt(const struct sl_report_tab *t, int c, int stack, int word)
+{
+    double w = t->head[c] ? cell_pt(t->head[c], stack ? 2 : 0, word) : 0;
+    for (int r = 0; r < t->nrows; r++) {
+        double x = cell_pt(tab_at(t, r, c), stack, word);
+        w = x > w ? x : w;
+    }
+    if (word && w < TEX_MINWRAP)
+        w = TEX_MINWRAP;
+    return w + TEX_COLSEP;
+}
+
+/* A cell; stacked, "v (where)" as two lines (v above its "(where)");
+ * wrapped (pbox > 0), a ragged \parbox of that width. */
+static void tex_cell(FILE *f, const char *v, int stack, char align, double pbox)
+{
+    if (pbox > 0 && v[0]) {
+        fprintf(f, "\\parbox[t]{%.1fpt}{\\raggedright ", pbox);
+        sl_tex_text(f, v);
+        fputs("\\strut}", f);
+        return;
+    }
+    int len;
+    const char *second = stack_cut(v, stack, &len);
+    if (!second) {
         sl_tex_text(f, v);
         return;
     }
     char first[512];
-    snprintf(first, sizeof first, "%.*s", (int)(cut - v), v);
+    snprintf(first, sizeof first, "%.*s", len, v);
     fprintf(f, "\\begin{tabular}[t]{@{}%c@{}}", align);
     sl_tex_text(f, first);
     fputs("\\\\ ", f);
-    sl_tex_text(f, cut + 1);
+    sl_tex_text(f, second);
     fputs("\\end{tabular}", f);
 }
 
-/* About 80 characters of footnotesize digits and column gaps fill an A4
- * article's 345 pt line. A table wider than that has its "value (where)"
- * cells stacked onto two lines before anything is scaled: Moderno's summary
- * tables otherwise shrank to a 5 pt font. */
-#define TEX_LINE_CHARS 80
+struct tex_layout {
+    int    stack;
+    int    nfixed;                      /* columns repeated in every part */
+    int    wraps[SL_REPORT_MAXCOLS];    /* may be set in a \parbox */
+    double w[SL_REPORT_MAXCOLS];        /* as printed */
+    double minw[SL_REPORT_MAXCOLS];     /* wrapped as far as it goes */
+    int    cut[SL_REPORT_MAXCOLS + 1];  /* columns [cut[k], cut[k+1]) per column part */
+    int    ncut;
+};
 
-static void tex_part(FILE *f, const struct sl_report_tab *t, int from, int to, int part, int parts)
+static int in_part(const struct tex_layout *lo, int cp, int c)
 {
-    int wide = 0;
+    return c < lo->nfixed || (c >= lo->cut[cp] && c < lo->cut[cp + 1]);
+}
+
+/* a group's heading wider than its columns widens them evenly */
+static void group_spread(const struct sl_report_tab *t, double *w)
+{
+    for (int g = 0, gs = 0; g < t->ngroups; gs += t->span[g], g++) {
+        int n = 0;
+        double under = 0;
+        for (int c = gs; c < gs + t->span[g] && c < t->ncols; c++, n++)
+            under += w[c];
+        double head = sl_tex_text_pt(t->group[g]) * SL_TEX_FOOTNOTE + TEX_COLSEP;
+        for (int c = gs; n && head > under && c < gs + t->span[g] && c < t->ncols; c++)
+            w[c] += (head - under) / n;
+    }
+}
+
+/* The \parbox widths of part cp (0: not wrapped): the wrapping columns share
+ * what the others leave, each no narrower than its longest word, the
+ * narrowest kept whole first. */
+static void part_boxes(const struct tex_layout *lo, const struct sl_report_tab *t, int cp, double *box)
+{
+    double fixed = 0, nat = 0;
+    for (int c = 0; c < t->ncols; c++) {
+        box[c] = 0;
+        if (in_part(lo, cp, c)) {
+            nat += lo->w[c];
+            fixed += lo->wraps[c] ? 0 : lo->w[c];
+        }
+    }
+    if (nat <= SL_TEX_BUDGET)
+        return;
+    /* the cap C: sum over wrapping columns of clamp(w, minw, C) = what is left */
+    double left = SL_TEX_BUDGET - fixed, lo_c = 0, hi_c = SL_TEX_BUDGET;
+    for (int it = 0; it < 40; it++) {
+        double mid = (lo_c + hi_c) / 2, sum = 0;
+        for (int c = 0; c < t->ncols; c++)
+            if (in_part(lo, cp, c) && lo->wraps[c]) {
+                double x = lo->w[c] < mid ? lo->w[c] : mid;
+                sum += x > lo->minw[c] ? x : lo->minw[c];
+            }
+        if (sum > left)
+            hi_c = mid;
+        else
+            lo_c = mid;
+    }
     for (int c = 0; c < t->ncols; c++)
-        wide += col_chars(t, c, 0) + 2;
-    int stack = wide > TEX_LINE_CHARS;
-    char spec[SL_REPORT_MAXCOLS + 1];
-    for (int c = 0; c < t->ncols; c++)
-        spec[c] = c < t->nkeys ? 'l' : 'r';
-    spec[t->ncols] = '\0';
+        if (in_part(lo, cp, c) && lo->wraps[c] && lo->w[c] > lo_c) {
+            double x = lo_c > lo->minw[c] ? lo_c : lo->minw[c];
+            box[c] = x - TEX_COLSEP;
+        }
+}
+
+static void tex_part(FILE *f, const struct sl_report_tab *t, const struct tex_layout *lo, int cp, int from, int to,
+                     int part, int parts)
+{
+    double box[SL_REPORT_MAXCOLS];
+    part_boxes(lo, t, cp, box);
     fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
     sl_tex_text(f, t->title);
     if (parts > 1)
@@ -858,41 +974,57 @@ static void tex_part(FILE *f, const struct sl_report_tab *t, int from, int to, i
     fputc('}', f);
     if (part == 0)
         fprintf(f, "\n\\label{tab:%s}", t->id);
-    /* scaled down to the line only when wider, never up */
-    fprintf(f, "\n\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%%\n\\begin{tabular}{%s}\n",
-            spec);
-    fputs("\\toprule\n", f);
+    fputs("\n\\begin{tabular}{", f);
+    for (int c = 0; c < t->ncols; c++)
+        if (in_part(lo, cp, c))
+            fputc(c < t->nkeys || box[c] > 0 ? 'l' : 'r', f);
+    fputs("}\n\\toprule\n", f);
     if (t->ngroups) {
-        for (int g = 0; g < t->ngroups; g++) {
-            fprintf(f, "%s\\multicolumn{%d}{c}{", g ? " & " : "", t->span[g]);
+        int first = 1, col = 1;
+        char rules[512] = "";
+        size_t rl = 0;
+        for (int g = 0, gs = 0; g < t->ngroups; gs += t->span[g], g++) {
+            int n = 0;
+            for (int c = gs; c < gs + t->span[g] && c < t->ncols; c++)
+                n += in_part(lo, cp, c);
+            if (n == 0)
+                continue;
+            fprintf(f, "%s\\multicolumn{%d}{c}{", first ? "" : " & ", n);
+            first = 0;
             sl_tex_text(f, t->group[g]);
             fputc('}', f);
+            if (t->group[g][0] && rl < sizeof rules - 32)
+                rl += (size_t)snprintf(rules + rl, sizeof rules - rl, "\\cmidrule(lr){%d-%d}", col, col + n - 1);
+            col += n;
         }
-        fputs(" \\\\\n", f);
-        for (int g = 0, col = 1; g < t->ngroups; g++) {
-            if (t->group[g][0])
-                fprintf(f, "\\cmidrule(lr){%d-%d}", col, col + t->span[g] - 1);
-            col += t->span[g];
-        }
-        fputc('\n', f);
+        fprintf(f, " \\\\\n%s\n", rules);
     }
+    int first = 1;
     for (int c = 0; c < t->ncols; c++) {
-        if (c)
+        if (!in_part(lo, cp, c))
+            continue;
+        if (!first)
             fputs(" & ", f);
-        sl_tex_text(f, t->head[c] ? t->head[c] : "");
+        first = 0;
+        tex_cell(f, t->head[c] ? t->head[c] : "", lo->stack && !lo->wraps[c] ? 2 : 0, c < t->nkeys ? 'l' : 'r',
+                 box[c]);
     }
     fputs(" \\\\\n\\midrule\n", f);
     for (int r = from; r < to; r++) {
         if (t->rule[r] && r > from)
             fputs("\\addlinespace\n", f);
+        first = 1;
         for (int c = 0; c < t->ncols; c++) {
-            if (c)
+            if (!in_part(lo, cp, c))
+                continue;
+            if (!first)
                 fputs(" & ", f);
-            tex_cell(f, tab_at(t, r, c), stack, c < t->nkeys ? 'l' : 'r');
+            first = 0;
+            tex_cell(f, tab_at(t, r, c), lo->stack && !lo->wraps[c], c < t->nkeys ? 'l' : 'r', box[c]);
         }
         fputs(" \\\\\n", f);
     }
-    fputs("\\bottomrule\n\\end{tabular}}\n", f);
+    fputs("\\bottomrule\n\\end{tabular}\n", f);
     if (t->note[0] && part == parts - 1) {
         fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
         sl_tex_text(f, t->note);
@@ -901,14 +1033,114 @@ static void tex_part(FILE *f, const struct sl_report_tab *t, int from, int to, i
     fputs("\\end{table}\n", f);
 }
 
-static void tex_table(FILE *f, const struct sl_report_tab *t)
+static void tex_fit(const struct sl_report_tab *t, struct tex_layout *lo)
 {
-    fputs("% shadowlab report table; needs \\usepackage{booktabs,graphicx}\n", f);
-    int parts = t->nrows > TEX_ROWS ? (t->nrows + TEX_ROWS - 1) / TEX_ROWS : 1;
-    for (int p = 0; p < parts; p++) {
-        int to = (p + 1) * TEX_ROWS;
-        tex_part(f, t, p * TEX_ROWS, to < t->nrows ? to : t->nrows, p, parts);
+    memset(lo, 0, sizeof *lo);
+    lo->nfixed = t->nkeys < t->ncols ? t->nkeys : 1;
+    double all = 0;
+    for (int c = 0; c < t->ncols; c++)
+        all += col_pt(t, c, 0, 0);
+    lo->stack = all > SL_TEX_BUDGET;
+    for (int c = 0; c < t->ncols; c++) {
+        lo->wraps[c] = t->wrap || c < t->nkeys;
+        lo->w[c] = col_pt(t, c, lo->stack && !lo->wraps[c], 0);
+        lo->minw[c] = lo->wraps[c] ? col_pt(t, c, 0, 1) : lo->w[c];
+        if (lo->minw[c] > lo->w[c])
+            lo->minw[c] = lo->w[c];
     }
+    group_spread(t, lo->w);
+    group_spread(t, lo->minw);
+    /* a group's edges: where a cut keeps the groups whole */
+    unsigned char edge[SL_REPORT_MAXCOLS + 1] = {0};
+    for (int g = 0, gs = 0; g < t->ngroups && gs + t->span[g] <= SL_REPORT_MAXCOLS; g++)
+        edge[gs += t->span[g]] = 1;
+    double keys = 0;
+    for (int c = 0; c < lo->nfixed; c++)
+        keys += lo->minw[c];
+    lo->cut[0] = lo->nfixed;
+    double sum = keys;
+    for (int c = lo->nfixed; c < t->ncols; c++) {
+        int start = lo->cut[lo->ncut];
+        if (c > start && sum + lo->minw[c] > SL_TEX_BUDGET) {
+            int at = c;
+            for (int e = c; t->ngroups && e > start; e--)
+                if (edge[e]) {
+                    at = e;
+                    break;
+                }
+            lo->cut[++lo->ncut] = at;
+            sum = keys;
+            for (int k = at; k < c; k++)
+                sum += lo->minw[k];
+        }
+        sum += lo->minw[c];
+    }
+    lo->cut[++lo->ncut] = t->ncols;
+}
+
+/* Lines row r takes in part cp: a stacked cell two, a wrapped one as many
+ * as its text needs at its box's width (a third more: words do not fill a
+ * line); the space before a block half a line. */
+static double row_lines(const struct sl_report_tab *t, const struct tex_layout *lo, int cp, const double *box, int r)
+{
+    double lines = 1;
+    for (int c = 0; c < t->ncols; c++) {
+        if (!in_part(lo, cp, c))
+            continue;
+        const char *v = tab_at(t, r, c);
+        double n = 1;
+        if (box[c] > 0)
+            n = (double)(int)(cell_pt(v, 0, 0) * 1.33 / box[c]) + 1;
+        else if (lo->stack && !lo->wraps[c] && strstr(v, " ("))
+            n = 2;
+        lines = n > lines ? n : lines;
+    }
+    return lines + (t->rule[r] ? 0.5 : 0);
+}
+
+/* the rows [cut[k], cut[k+1]) of each float of part cp; returns how many */
+static int row_cuts(const struct sl_report_tab *t, const struct tex_layout *lo, int cp, int *cut)
+{
+    double box[SL_REPORT_MAXCOLS];
+    part_boxes(lo, t, cp, box);
+    int n = 0;
+    double lines = 0;
+    cut[0] = 0;
+    for (int r = 0; r < t->nrows; r++) {
+        double k = row_lines(t, lo, cp, box, r);
+        if (r > cut[n] && lines + k > TEX_LINES) {
+            cut[++n] = r;
+            lines = 0;
+        }
+        lines += k;
+    }
+    cut[++n] = t->nrows;
+    return n;
+}
+
+/* returns the floats written since its last \\clearpage */
+static int tex_table(FILE *f, const struct sl_report_tab *t)
+{
+    fputs("% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n", f);
+    struct tex_layout lo;
+    tex_fit(t, &lo);
+    int *cut = malloc(((size_t)t->nrows + 2) * sizeof *cut);
+    if (!cut)
+        return 0;
+    int parts = 0;
+    for (int cp = 0; cp < lo.ncut; cp++)
+        parts += row_cuts(t, &lo, cp, cut);
+    for (int cp = 0, part = 0; cp < lo.ncut; cp++) {
+        int n = row_cuts(t, &lo, cp, cut);
+        for (int p = 0; p < n; p++, part++) {
+            /* LaTeX holds at most 18 floats it has not placed */
+            if (part > 0 && part % 8 == 0)
+                fputs("\\clearpage\n", f);
+            tex_part(f, t, &lo, cp, cut[p], cut[p + 1], part, parts);
+        }
+    }
+    free(cut);
+    return parts % 8 ? parts % 8 : 8;
 }
 
 enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_report_tab *t, struct sl_diag *d)
@@ -926,7 +1158,7 @@ enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_repor
     FILE *f = fopen(path, "w");
     if (!f)
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
-    tex_table(f, t);
+    int floats = tex_table(f, t);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad)
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "write failed");
@@ -935,10 +1167,13 @@ enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_repor
     doc->ntables++;
     if (doc->tex) {
         fprintf(doc->tex, "\\input{%s}\n", rel);
-        /* a float per table: flushed every few tables so LaTeX never holds
+        /* a float per table part: flushed every few so LaTeX never holds
          * more than its 18 unprocessed floats */
-        if (doc->ntables % 8 == 0)
+        doc->tex_floats += floats;
+        if (doc->tex_floats >= 8) {
             fputs("\\clearpage\n", doc->tex);
+            doc->tex_floats = 0;
+        }
     }
     return SL_OK;
 }

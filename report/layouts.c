@@ -700,7 +700,7 @@ static enum sl_err morais_times(struct sl_report_doc *doc, const struct sl_repor
     sl_report_tab_head(&t, 1, "map");
     for (int k = 0; k < ncols; k++)
         sl_report_tab_head(&t, 2 + k, "%s", s->labels[cols[k]]);
-    int runs = 0;
+    int runs = 0, once = 0;
     for (int v = 0; v < s->nviews; v++) {
         const struct sl_report_view *vw = &s->views[v];
         if (strcmp(vw->scene, scene) || strcmp(vw->viewpoint, viewpoint))
@@ -714,7 +714,9 @@ static enum sl_err morais_times(struct sl_report_doc *doc, const struct sl_repor
                 const struct sl_cell_record *c = sl_report_study_cell(s, vw, s->labels[cols[k]], s->maps[m]);
                 char buf[32];
                 fmt_ms(buf, sizeof buf, c ? (stage ? c->ms_method : c->ms_map_render) : 0.0);
-                sl_report_tab_cell(&t, 2 + k, "%s", buf);
+                int one = c && c->runs == 1 && strcmp(buf, "–") != 0;
+                sl_report_tab_cell(&t, 2 + k, "%s%s", buf, one ? SL_REPORT_ONCE : "");
+                once |= one;
                 if (c && c->runs > runs)
                     runs = c->runs;
             }
@@ -722,6 +724,8 @@ static enum sl_err morais_times(struct sl_report_doc *doc, const struct sl_repor
     }
     snprintf(t.note, sizeof t.note, "Medians over %d timed repetition(s) per cell on this machine (CPU: llvmpipe "
              "and Embree); – where the method has no such stage or no time was stored.", runs);
+    if (once)
+        sl_report_tab_once(&t);
     enum sl_err e = sl_report_doc_table(doc, &t, d);
     sl_report_tab_free(&t);
     return e;
@@ -790,15 +794,15 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
     snprintf(id, sizeof id, "%s-costs", s->slug);
     struct sl_report_tab t;
     sl_report_tab_init(&t, id, 11, 2, "%s: cost per method and map size", s->name);
-    static const char *const heads[] = {"method", "map", "cells", "method ms: median [min–max]",
-                                        "map render ms: median [min–max]", "rays", "rays / pixel",
+    static const char *const heads[] = {"method", "map", "cells", "step ms: median [min–max]",
+                                        "layers ms: median [min–max]", "rays", "rays / pixel",
                                         "ray-tri tests", "lookups", "GS prims", "fragments"};
     for (int k = 0; k < 11; k++)
         sl_report_tab_head(&t, k, "%s", heads[k]);
-    int runs = 0;
+    int runs = 0, once = 0;
     for (int l = 0; l < s->nlabels; l++)
         for (int m = 0; m < s->nmaps; m++) {
-            int n = 0, nmap = 0, cells = 0;
+            int n = 0, nmap = 0, cells = 0, one = 0;
             double lo = INFINITY, hi = 0.0, mlo = INFINITY, mhi = 0.0;
             double rays = 0.0, px = 0.0, tests = 0.0, lookups = 0.0, gs = 0.0, frags = 0.0;
             for (int i = 0; i < s->n; i++) {
@@ -825,6 +829,7 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
                 frags += (double)k->fragments;
                 if (k->runs > runs)
                     runs = k->runs;
+                one |= k->runs == 1;
                 cells++;
             }
             if (cells == 0)
@@ -835,10 +840,12 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
                 sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
             sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
             sl_report_tab_cell(&t, 2, "%d", cells);
+            /* a cell timed once makes its row's times one measurement each */
             fmt_range(buf, sizeof buf, median(meth, n), lo, hi);
-            sl_report_tab_cell(&t, 3, "%s", buf);
+            sl_report_tab_cell(&t, 3, "%s%s", buf, one && n ? SL_REPORT_ONCE : "");
             fmt_range(buf, sizeof buf, median(map, nmap), mlo, mhi);
-            sl_report_tab_cell(&t, 4, "%s", buf);
+            sl_report_tab_cell(&t, 4, "%s%s", buf, one && nmap ? SL_REPORT_ONCE : "");
+            once |= one && (n || nmap);
             fmt_count(buf, sizeof buf, rays / cells);
             sl_report_tab_cell(&t, 5, "%s", buf);
             sl_report_tab_cell(&t, 6, "%.3f", px > 0.0 ? rays / px : 0.0);
@@ -857,7 +864,10 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
              "Times: the median over the cells (scenes, viewpoints, viewports) of each cell's median over %d "
              "timed repetition(s), in brackets the lowest and highest single repetition. Counters: mean per cell "
              "(rays / pixel: over all non-background pixels). GS prims and fragments are GL query counts of the "
-             "layers the method reads.", runs);
+             "layers the method reads. step ms: the method's per-pixel step (ray step included); layers "
+             "ms: the shadow-map render of the layers it reads.", runs);
+    if (once)
+        sl_report_tab_once(&t);
     enum sl_err e = sl_report_doc_table(doc, &t, d);
     sl_report_tab_free(&t);
     if (!e)
@@ -890,10 +900,10 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
         sl_report_tab_init(&t, id, 11, 2, "%s: the visible fraction of the light against the area truth%s", title,
                            s->curtis ? " (Curtis 2009)" : "");
         static const char *const head[] = {"label", "map", "MAE", "RMSE", "bias", "within 0.05", "within 0.1",
-                                           "class right", "penumbra right", "rays / pixel", "method ms"};
+                                           "class right", "penumbra right", "rays / pixel", "step ms"};
         for (int k = 0; k < 11; k++)
             sl_report_tab_head(&t, k, "%s", head[k]);
-        int any = 0;
+        int any = 0, once = 0;
         double stderr_mean = NAN;
         for (int l = 0; l < s->nlabels; l++)
             for (int m = 0; m < s->nmaps; m++) {
@@ -920,12 +930,16 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
                 sl_report_tab_cell(&t, 9, "%.2f", px ? (double)c->rays / (double)px : 0.0);
                 char buf[32];
                 fmt_ms(buf, sizeof buf, c->ms_method);
-                sl_report_tab_cell(&t, 10, "%s", buf);
+                int one = c->runs == 1 && strcmp(buf, "–") != 0;
+                sl_report_tab_cell(&t, 10, "%s%s", buf, one ? SL_REPORT_ONCE : "");
+                once |= one;
                 stderr_mean = f->pct[SL_SFIG_soft_truth_stderr];
             }
         snprintf(t.note, sizeof t.note, "Errors in %% of full visibility (MAE, RMSE; bias > 0: too light); "
                  "within: share of pixels; class: lit / umbra / penumbra as the truth classes them; the "
                  "truth's own mean standard error here: %.3f.", stderr_mean);
+        if (once)
+            sl_report_tab_once(&t);
         if (any)
             e = sl_report_doc_table(doc, &t, d);
         sl_report_tab_free(&t);

@@ -821,10 +821,11 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
         sl_report_tab_init(&t, id, 12, 2, "%s: wrong and undecided pixels against cost, with the Pareto fronts",
                            s->name);
         static const char *const heads[] = {"method", "map", "cells", "wrong %", "undecided %", "layers ms",
-                                            "step ms", "method ms", "min–max ms", "rays / pixel", "front (time)",
+                                            "step ms", "layers + step ms", "min–max ms", "rays / pixel", "front (time)",
                                             "front (rays)"};
         for (int k = 0; k < 12; k++)
             sl_report_tab_head(&t, k, "%s", heads[k]);
+        int once = 0;
         for (int k = 0; k < np; k++) {
             sl_report_tab_row(&t, k == 0 || strcmp(p[k].label, p[k - 1].label) != 0);
             sl_report_tab_cell(&t, 0, "%s", p[k].label);
@@ -837,9 +838,11 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
                 sl_report_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
                 sl_report_tab_cell(&t, 4, "%.4f", p[k].uncertain_pct);
             }
-            sl_report_tab_cell(&t, 5, "%.3f", p[k].ms_layers);
-            sl_report_tab_cell(&t, 6, "%.3f", p[k].ms_step);
-            sl_report_tab_cell(&t, 7, "%.3f", p[k].ms);
+            const char *one = p[k].reps == 1 ? SL_REPORT_ONCE : "";
+            once |= p[k].reps == 1;
+            sl_report_tab_cell(&t, 5, "%.3f%s", p[k].ms_layers, one);
+            sl_report_tab_cell(&t, 6, "%.3f%s", p[k].ms_step, one);
+            sl_report_tab_cell(&t, 7, "%.3f%s", p[k].ms, one);
             if (p[k].reps > 1)
                 sl_report_tab_cell(&t, 8, "%.3f–%.3f (%d runs)", p[k].ms_min, p[k].ms_max, p[k].reps);
             else
@@ -851,6 +854,11 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
             sl_report_tab_cell(&t, 10, "%s", p[k].front_ms ? "yes" : "");
             sl_report_tab_cell(&t, 11, "%s", p[k].front_rays ? "yes" : "");
         }
+        snprintf(t.note, sizeof t.note, "Means over the cells: layers ms (the shadow-map render of the layers "
+                 "the method reads), step ms (its per-pixel step, ray step included) and their sum, each cell's "
+                 "the median over its timed repetitions.");
+        if (once)
+            sl_report_tab_once(&t);
         e = sl_report_doc_table(doc, &t, d);
         sl_report_tab_free(&t);
     }

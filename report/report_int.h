@@ -71,6 +71,12 @@ void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 void sl_report_tab_free(struct sl_report_tab *t);
 
+/* A time measured once (repetitions runs: 1) is marked in every table that
+ * prints it: SL_REPORT_ONCE after the value, and the table's note says what
+ * the mark means (sl_report_tab_once, after the note is written). */
+#define SL_REPORT_ONCE "\xE2\x80\xA0"   /* † */
+void sl_report_tab_once(struct sl_report_tab *t);
+
 /* ---- doc ---- */
 
 /* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation). */
@@ -94,6 +100,7 @@ struct sl_report_doc {
     size_t html_len, md_len, tex_len;
     struct sl_report_out *out;
     int   ntables;
+    int   tex_floats;   /* floats since the last \\clearpage */
     int   self_contained;   /* images and plots as data: URIs */
     int   gp_pdf;           /* gnuplot's pdfcairo terminal: 0 not asked yet, 1 there, -1 not */
     struct sl_report_heading *heads;

@@ -149,6 +149,9 @@ if command -v pdflatex >/dev/null; then
   (cd "$tmp/tex" && for pass in 1 2; do pdflatex -interaction=nonstopmode -halt-on-error report.tex >/dev/null 2>&1 || exit 1; done) &&
     [ -s "$tmp/tex/report.pdf" ] && ok || { grep -A3 '^!' "$tmp/tex/report.log" | head; fail "pdflatex report.tex"; }
   grep -q 'Overfull \\hbox' "$tmp/tex/report.log" && { grep -A2 'Overfull' "$tmp/tex/report.log" | head; fail "Overfull hbox"; } || ok
+  ! grep -q 'Float too large' "$tmp/tex/report.log" && ok || fail "a report table taller than the page"
+  # fitted, never scaled: a wide table is stacked, wrapped or split
+  ! grep -lE 'resizebox|scalebox' "$tmp/tex/report.tex" "$tmp"/tex/tex/*.tex && ok || fail "a report table is scaled"
   grep -q 'includegraphics.*plots/mini-accuracy-time.pdf' "$tmp/tex/report.tex" && ok || fail "report.tex lacks the plots"
 else
   fail "pdflatex is not installed (Debian: apt-get install texlive-latex-recommended; scripts/setup.sh does)"

@@ -8,7 +8,8 @@
 #           '_' escaped in LaTeX, thin-space thousands separators;
 #           json parses; bad keys/aggregates exit 2
 #   latex   the run's table.tex and table-detail.tex, a motion run's
-#           motion.tex and two pivots' LaTeX (one transposed into a longtable)
+#           motion.tex, two pivots' LaTeX (one transposed into a longtable) and
+#           the plain `table --format latex` (also --figures all) and --summary
 #           compile in a plain article with booktabs and longtable: 0 errors,
 #           no overfull box, no float taller than the page, no
 #           \resizebox/\scalebox (exit 77 without pdflatex)
@@ -111,6 +112,20 @@ PY
     "$bin" table "$db" $bad >/dev/null 2>&1; rc=$?
     [ "$rc" -eq 2 ] || fail "table $bad: exit $rc, want 2"
   done
+  # --label a,b (or repeated) keeps those labels; --summary of several figures and labels
+  "$bin" table "$db" --label nsm,csm --format csv | cut -d, -f6 | sed 1d | sort -u | tr '\n' ' ' | grep -qx 'csm nsm ' ||
+    fail "--label nsm,csm"
+  "$bin" table "$db" --label nsm --label csm --format csv | cut -d, -f6 | sed 1d | sort -u | tr '\n' ' ' |
+    grep -qx 'csm nsm ' || fail "--label repeated"
+  "$bin" table "$db" --summary wrong,light_incorrect --label nsm,nsm_front --format csv >"$tmp/s.csv" || fail "summary csv"
+  [ "$(grep -c '^figure,label,' "$tmp/s.csv")" -eq 1 ] && [ "$(grep -c ',average,' "$tmp/s.csv")" -eq 4 ] &&
+    grep -q '^light_incorrect,nsm_front,average,' "$tmp/s.csv" || fail "summary of 2 figures x 2 labels: $(cat "$tmp/s.csv")"
+  "$bin" table "$db" --summary wrong --summary light_incorrect --label nsm,nsm_front --format latex >"$tmp/s.tex" ||
+    fail "summary latex"
+  [ "$(grep -c '\\begin{table}' "$tmp/s.tex")" -eq 4 ] && grep -q 'label nsm\\_front' "$tmp/s.tex" &&
+    grep -q '\\toprule' "$tmp/s.tex" && ! grep -qE 'resizebox|scalebox' "$tmp/s.tex" || fail "summary latex: $(cat "$tmp/s.tex")"
+  "$bin" table "$db" --summary wrong,pixels >/dev/null 2>&1; [ $? -eq 2 ] || fail "--summary of a count"
+  "$bin" table "$db" --summary wrong,nope >/dev/null 2>&1; [ $? -eq 2 ] || fail "--summary of an unknown figure"
   # the existing table keeps its options
   "$bin" table "$db" --label nsm --format csv | head -1 | grep -q '^scene,viewpoint,viewport,map_size' ||
     fail "plain table changed"
@@ -139,6 +154,10 @@ YAML
   grep -q 'transposed' "$tmp/p1.err" && grep -q 'begin{longtable}' "$tmp/p1.tex" || fail "p1 not a transposed longtable"
   "$bin" table "$db" --rows viewpoint --cols region --figure wrong_caught --of count --agg sum --format latex \
     >"$tmp/p2.tex" 2>"$tmp/p2.err" || fail "p2"
+  # the plain tables (one float per cell; every figure: wider than the line, split by regions)
+  "$bin" table "$db" --format latex >"$tmp/t1.tex" 2>&1 || fail "t1"
+  "$bin" table "$db" --format latex --figures all >"$tmp/t2.tex" 2>&1 || fail "t2"
+  "$bin" table "$db" --summary wrong,light_incorrect --format latex >"$tmp/t3.tex" 2>&1 || fail "t3"
   cp "$dir/table.tex" "$dir/table-detail.tex" "$tmp/m/motion_tex/motion.tex" "$tmp/"
   cat >"$tmp/doc.tex" <<'TEX'
 \documentclass{article}
@@ -149,6 +168,12 @@ YAML
 \input{motion.tex}
 \input{p1.tex}
 \input{p2.tex}
+\clearpage
+\input{t1.tex}
+\clearpage
+\input{t2.tex}
+\clearpage
+\input{t3.tex}
 \end{document}
 TEX
   (cd "$tmp" && pdflatex -interaction=nonstopmode doc.tex >/dev/null 2>&1 && pdflatex -interaction=nonstopmode doc.tex >/dev/null 2>&1)
@@ -157,7 +182,7 @@ TEX
   [ "$errs" -eq 0 ] || { grep -A3 '^!' "$tmp/doc.log" | head; fail "$errs LaTeX errors"; }
   [ "$over" -eq 0 ] || { grep -A2 'Overfull' "$tmp/doc.log" | head; fail "$over overfull boxes"; }
   ! grep -q 'Float too large' "$tmp/doc.log" || fail "a float taller than the page"
-  ! grep -qE 'resizebox|scalebox' "$tmp"/table.tex "$tmp"/table-detail.tex "$tmp"/motion.tex "$tmp"/p?.tex ||
+  ! grep -qE 'resizebox|scalebox' "$tmp"/table.tex "$tmp"/table-detail.tex "$tmp"/motion.tex "$tmp"/p?.tex "$tmp"/t?.tex ||
     fail "a table is scaled"
   grep -q 'longtable' "$tmp/table-detail.tex" && grep -q 'longtable' "$tmp/motion.tex" || fail "no longtable"
   [ "$(grep -c '\\begin{table}' "$tmp/table.tex")" -le 6 ] || fail "table.tex has more than a handful of floats"

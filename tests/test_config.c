@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
 #include "config.h"
@@ -162,6 +163,40 @@ static void write_tmp(char *path, const char *text)
     FILE *f = fdopen(fd, "w");
     fputs(text, f);
     fclose(f);
+}
+
+/* Repetitions left out: {warmup: 1, runs: 3} (a time from one run has no
+ * median), written out as such; given, as given. */
+static void config_repetitions_default(void **st)
+{
+    (void)st;
+    char path[64];
+    write_tmp(path, "name: reps\n"
+                    "scenes: [{scene: primitives, viewpoints: [side]}]\n"
+                    "map_sizes: [512]\n"
+                    "methods: [{label: nsm, method: nsm}]\n");
+    struct sl_config c;
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    assert_int_equal(c.warmup, 1);
+    assert_int_equal(c.runs, 3);
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    sl_config_write(&c, f);
+    fclose(f);
+    assert_non_null(strstr(buf, "\nrepetitions: {warmup: 1, runs: 3}\n"));
+    free(buf);
+    write_tmp(path, "name: reps\n"
+                    "scenes: [{scene: primitives, viewpoints: [side]}]\n"
+                    "map_sizes: [512]\n"
+                    "methods: [{label: nsm, method: nsm}]\n"
+                    "repetitions: {runs: 1}\n");
+    assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    assert_int_equal(c.warmup, 1);
+    assert_int_equal(c.runs, 1);
+    unlink(path);
 }
 
 /* Sweeps: a knob given as a list is one label per value (several lists
@@ -355,6 +390,7 @@ int main(int argc, char **argv)
         SL_CASE(config, default_loads),
         SL_CASE(config, written_reads_back),
         SL_CASE(config, bad_inputs),
+        SL_CASE(config, repetitions_default),
         SL_CASE(config, syntax_error_has_line),
         SL_CASE(config, overrides),
         SL_CASE(config, sweeps),

@@ -140,7 +140,10 @@ static void sweep_each_pass_once(void **st)
     assert_int_equal(r.passes.truths_cached, 0);
     assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID_BACK], 12);   /* ff and ff2 share it */
     assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID], 12);        /* none */
-    assert_int_equal(r.passes.method_runs, 36);
+    /* each method's step timed as often as the repetitions say (default
+     * {warmup: 1, runs: 3}), computed once */
+    assert_int_equal(c.warmup + c.runs, 4);
+    assert_int_equal(r.passes.method_runs, 36 * 4);
     sl_run_result_free(&r);
 
     /* only the front-face methods of one (view, map): no plain depth layer */
@@ -166,7 +169,8 @@ static void sweep_repetitions(void **st)
         "  - {label: c, method: csm}\n";
     char text[600];
     struct sl_config one, rep;
-    sl_test_config("one.yaml", cfg, &one);
+    snprintf(text, sizeof text, "%srepetitions: {warmup: 0, runs: 1}\n", cfg);
+    sl_test_config("one.yaml", text, &one);
     snprintf(text, sizeof text, "%srepetitions: {warmup: 1, runs: 4}\n", cfg);
     sl_test_config("rep.yaml", text, &rep);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};

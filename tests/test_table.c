@@ -177,11 +177,10 @@ static void table_latex_booktabs(void **st)
     /* no heading: the file is \input into a document; the source is a comment */
     assert_null(strstr(tex, "\\section"));
     assert_non_null(strstr(tex, "\n% from: Primitives 50%\n"));
-    /* one float per map size, scaled down to the line only when wider */
+    /* one float per map size, never scaled: two regions fit the line as they are */
     assert_non_null(strstr(tex, "\\caption{prim\\_s / side / 64$\\times$32 / nsm\\_a / $1024^2$ map. PFL 11, "
                                 "PnFL 22, background 33; truth: 44 PFL lit, 55 PFL shadowed.}\n"
                                 "\\label{tab:prim-s-side-64x32-nsm-a-1024}\n"
-                                "\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%\n"
                                 "\\begin{tabular}{lrr}\n\\toprule\n"
                                 "figure & 2px & image \\\\\n\\midrule\n"
                                 "pixels & 1000 & 1010 \\\\\n"));
@@ -199,7 +198,7 @@ static void table_latex_booktabs(void **st)
             name[o++] = *q;
         }
         name[o] = '\0';
-        snprintf(last, sizeof last, "\n%s & %d (%d.25\\%%) & %d (%d.25\\%%) \\\\\n\\bottomrule\n\\end{tabular}}\n",
+        snprintf(last, sizeof last, "\n%s & %d (%d.25\\%%) & %d (%d.25\\%%) \\\\\n\\bottomrule\n\\end{tabular}\n",
                  name, 2000 + K, K, 2010 + K, 10 + K);
         assert_non_null(strstr(tex, last));
     }
@@ -359,12 +358,40 @@ static void table_summary_rows(void **st)
     fclose(f);
     assert_non_null(strstr(buf, "wrong_caught,nsm,best,1024,bench,with,2px,60.0000\n"));
     free(buf);
-    /* one label at a time; a count is no percentage */
-    snprintf(c[3].label, sizeof c[3].label, "other");
+    /* several labels: a summary each, in the cells' order, one CSV header */
+    snprintf(c[3].label, sizeof c[3].label, "other_x");
+    o.lower_is_better = 0;
     f = open_memstream(&buf, &len);
-    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_E_USAGE);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_OK);
     fclose(f);
+    assert_int_equal(count_of(buf, "figure,label,kind,"), 1);
+    assert_non_null(strstr(buf, "wrong_caught,nsm,average,,,,,87.3333\n"));   /* (90+95+60+80+99+100)/6 */
+    assert_non_null(strstr(buf, "wrong_caught,other_x,average,,,,,77.5000\n"));
+    assert_non_null(strstr(buf, "wrong_caught,other_x,average case,2048,bench,with,2px,70.0000\n"));
+    assert_before(buf, "wrong_caught,nsm,average", "wrong_caught,other_x,average");
     free(buf);
+    /* a later figure of the same output has no header */
+    o.continued = 1;
+    f = open_memstream(&buf, &len);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 4, &o, &d), SL_OK);
+    fclose(f);
+    assert_null(strstr(buf, "figure,label,kind,"));
+    free(buf);
+    o.continued = 0;
+    /* LaTeX: a booktabs float per label, names escaped, numbers as LaTeX, never scaled */
+    f = open_memstream(&buf, &len);
+    assert_int_equal(sl_summary_write(f, SL_TABLE_LATEX, c, 4, &o, &d), SL_OK);
+    fclose(f);
+    assert_int_equal(count_of(buf, "\\begin{table}"), 2);
+    assert_int_equal(count_of(buf, "\\toprule"), 2);
+    assert_non_null(strstr(buf, "\\caption{Summary of wrong\\_caught (\\% of wrong\\_image), label other\\_x: "));
+    assert_non_null(strstr(buf, "\naverage &  &  &  &  & 87.33 \\\\\n"));
+    assert_non_null(strstr(buf, "\n$1024^2$ best & prim & side & 4px & $1024^2$ & 95.00 \\\\\n"));
+    assert_non_null(strstr(buf, "\naverage case & bench & with & 2px & $2048^2$ & 70.00 \\\\\n"));
+    assert_null(strstr(buf, "resizebox"));
+    assert_null(strstr(buf, "scalebox"));
+    free(buf);
+    /* a count is no percentage */
     o.figure = SL_FIG_pixels;
     f = open_memstream(&buf, &len);
     assert_int_equal(sl_summary_write(f, SL_TABLE_CSV, c, 3, &o, &d), SL_E_USAGE);
@@ -476,6 +503,30 @@ static void table_pivot_values(void **st)
     csv = pivot(SL_TABLE_CSV, c, n, &q, NULL, SL_OK);
     assert_string_equal(csv, "label,1024\nnsm_a,101.7612524\n");   /* 520 / 511 */
     free(csv);
+    /* a time: an entry with a cell timed once (runs 1) carries a dagger, its
+     * table a footnote; md and LaTeX (CSV keeps plain numbers) */
+    for (int i = 0; i < n; i++)
+        c[i].runs = 3, c[i].ms_method = 1.5 + i;
+    struct sl_pivot_desc tm = {.figure = "ms_method"};
+    char *md = pivot(SL_TABLE_MD, c, n, &tm, NULL, SL_OK);
+    assert_null(strstr(md, "\xE2\x80\xA0"));
+    free(md);
+    c[1].runs = 1;   /* the 1024 of "with" */
+    md = pivot(SL_TABLE_MD, c, n, &tm, NULL, SL_OK);
+    assert_non_null(strstr(md, "timed once"));
+    assert_non_null(strstr(md, "| nsm_a | 3.00\xE2\x80\xA0 | 1.50 |"));   /* 1024: mean of 2.5 (once) and 3.5 */
+    free(md);
+    char *tex = pivot(SL_TABLE_LATEX, c, n, &tm, NULL, SL_OK);
+    assert_non_null(strstr(tex, "nsm\\_a & 3.00$^\\dagger$ & 1.50 \\\\"));
+    assert_non_null(strstr(tex, "$^\\dagger$ timed once"));
+    free(tex);
+    csv = pivot(SL_TABLE_CSV, c, n, &tm, NULL, SL_OK);
+    assert_string_equal(csv, "label,1024,2048\nnsm_a,3,1.5\n");
+    free(csv);
+    char *js = pivot(SL_TABLE_JSON, c, n, &tm, NULL, SL_OK);
+    assert_non_null(strstr(js, "\"n\": [2, 1], \"timed_once\": [true, false]}"));
+    free(js);
+    c[1].runs = 3;
     /* refused: an unknown figure, rows = cols, a time of a base */
     struct sl_pivot_desc bad = {.figure = "nope"};
     free(pivot(SL_TABLE_CSV, c, n, &bad, NULL, SL_E_USAGE));
@@ -548,6 +599,45 @@ static void table_pivot_latex_fits(void **st)
     free(c);
 }
 
+/* Five regions of nine-digit counts are wider than the line: never scaled;
+ * a few rows are stacked (the count above its percentage) in one float,
+ * every row split by regions into floats that each repeat the figure names. */
+static void table_latex_wide(void **st)
+{
+    (void)st;
+    struct sl_cell_record c = make("side", 1024, 100000000, "h");
+    c.fig.nregions = 5;
+    for (int r = 0; r < 5; r++) {
+        c.fig.r[r].thickness = r < 4 ? 2 * (r + 1) : 0;
+        for (int k = 0; k < SL_FIG_COUNT; k++) {
+            c.fig.r[r].n[k] = 100000000u + 10u * (uint64_t)r + (uint64_t)k;
+            c.fig.r[r].pct[k] = k == SL_FIG_pixels ? NAN : 10.0 * r + k + 0.25;
+        }
+    }
+    char *tex = render(SL_TABLE_LATEX, NULL, &c, 1, SL_OK);
+    int floats = count_of(tex, "\\begin{table}");
+    assert_true(floats >= 2);
+    assert_int_equal(count_of(tex, "\nfigure & "), floats);
+    assert_int_equal(count_of(tex, "\nwrong & "), floats);
+    assert_non_null(strstr(tex, "(part 1 of "));
+    assert_null(strstr(tex, "resizebox"));
+    assert_null(strstr(tex, "scalebox"));
+    free(tex);
+    struct sl_table_rows rows;
+    struct sl_diag d;
+    assert_int_equal(sl_table_figures_parse("wrong,light_incorrect", &rows, &d), SL_OK);
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    assert_int_equal(sl_table_write_rows(f, SL_TABLE_LATEX, NULL, &c, 1, &rows, &d), SL_OK);
+    fclose(f);
+    assert_int_equal(count_of(buf, "\\begin{table}"), 1);
+    assert_non_null(strstr(buf, "\nfigure & 2px & 4px & 6px & 8px & image \\\\\n"));
+    assert_non_null(strstr(buf, "\\begin{tabular}[t]{@{}r@{}}100000010\\\\ (10.25\\%)\\end{tabular}"));
+    assert_null(strstr(buf, "resizebox"));
+    free(buf);
+}
+
 /* The run's LaTeX: a few summary floats of the study, and a longtable per
  * view with every label and map size; no scaling anywhere. */
 static void table_run_latex(void **st)
@@ -586,6 +676,7 @@ int main(int argc, char **argv)
         SL_CASE(table, markdown_mixed_provenance),
         SL_CASE(table, csv_long_form),
         SL_CASE(table, latex_booktabs),
+        SL_CASE(table, latex_wide),
         SL_CASE(table, rows_produced_and_picked),
         SL_CASE(table, duplicate_map_refused),
         SL_CASE(table, empty_and_formats),

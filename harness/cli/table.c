@@ -35,7 +35,8 @@ int cli_table(int argc, char **argv)
     struct sl_store_filter f = {0};
     int fmt = SL_TABLE_MD;
     struct sl_summary_opts so = {.figure = -1, .region = -1};
-    const char *summary = NULL, *figures = NULL;
+    const char *figures = NULL;
+    char summary[512] = "", labels[512] = "";   /* repeated or "a,b": joined by ',' */
     char avg_scene[64] = "", avg_vp[32] = "";
     struct sl_pivot_desc pd = {0};
     int pivot = 0;
@@ -76,7 +77,16 @@ int cli_table(int argc, char **argv)
             break;
         case OPT_SCENE: f.scene = v; break;
         case OPT_VIEWPOINT: f.viewpoint = v; break;
-        case OPT_LABEL: f.label = v; break;
+        case OPT_LABEL:
+        case OPT_SUMMARY: {
+            char *to = c == OPT_LABEL ? labels : summary;
+            size_t len = strlen(to);
+            if (len + strlen(v) + 2 > sizeof labels)
+                return cli_usage_error(c == OPT_LABEL ? "table: --label: too many labels"
+                                                      : "table: --summary: too many figures", cli_usage_table);
+            snprintf(to + len, sizeof labels - len, "%s%s", len ? "," : "", v);
+            break;
+        }
         case OPT_MAP: {
             long long x;
             if (!cli_opt_int_or_usage("table", "--map", v, 1, 16384, &x, cli_usage_table))
@@ -91,7 +101,6 @@ int cli_table(int argc, char **argv)
             f.run_id = x;
             break;
         }
-        case OPT_SUMMARY: summary = v; break;
         case OPT_FIGURES: figures = v; break;
         case OPT_REGION:
             if (!strcmp(v, "image") || !strcmp(v, "contours"))
@@ -130,7 +139,9 @@ int cli_table(int argc, char **argv)
     }
     if (optind >= argc)
         return cli_usage_error("table: missing DB", cli_usage_table);
-    if (pivot && (summary || figures))
+    if (labels[0])
+        f.label = labels;
+    if (pivot && (summary[0] || figures))
         return cli_usage_error("table: a pivot (--rows, --cols, --figure, --of, --agg, --where) takes no "
                                "--summary or --figures", cli_usage_table);
     if (!pivot && fmt == SL_TABLE_JSON)
@@ -165,14 +176,30 @@ int cli_table(int argc, char **argv)
         else if (!e && info.transposed)
             fprintf(stderr, "table: %d columns do not fit \\columnwidth: transposed (%s as rows)\n", info.ncols,
                     sl_pivot_key_name(pd.cols ? pd.cols : SL_PK_map_size));
-    } else if (!e && summary) {
-        for (int k = 0; k < SL_FIG_COUNT; k++)
-            if (!strcmp(sl_figure_name((enum sl_figure)k), summary))
-                so.figure = k;
-        if (so.figure < 0)
-            e = sl_fail(&d, SL_E_USAGE, NULL, 0, "--summary", "unknown figure '%s'", summary);
-        else
+    } else if (!e && summary[0]) {
+        /* every figure checked before anything is written */
+        int figs[SL_FIG_COUNT], nfigs = 0;
+        for (const char *q = summary; *q && !e;) {
+            size_t len = strcspn(q, ",");
+            int k = 0;
+            while (k < SL_FIG_COUNT && !(strlen(sl_figure_name((enum sl_figure)k)) == len &&
+                                         !strncmp(sl_figure_name((enum sl_figure)k), q, len)))
+                k++;
+            if (k == SL_FIG_COUNT)
+                e = sl_fail(&d, SL_E_USAGE, NULL, 0, "--summary", "unknown figure '%.*s'", (int)len, q);
+            else if (!sl_figure_of((enum sl_figure)k)[0])
+                e = sl_fail(&d, SL_E_USAGE, NULL, 0, "--summary", "'%s' is a count, not a percentage",
+                            sl_figure_name((enum sl_figure)k));
+            else if (nfigs < SL_FIG_COUNT)
+                figs[nfigs++] = k;
+            q += len;
+            q += *q == ',';
+        }
+        for (int k = 0; k < nfigs && !e; k++) {
+            so.figure = figs[k];
+            so.continued = k > 0;
             e = sl_summary_write(stdout, (enum sl_table_format)fmt, cells, n, &so, &d);
+        }
     } else if (!e) {
         /* the terminal's tables: only what the methods produce, unless --figures says */
         struct sl_table_rows rows = {0};

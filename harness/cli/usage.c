@@ -35,8 +35,8 @@ const char cli_usage_run[] =
     "  -j, --threads N   threads of the truth and the CPU passes (the config's 'threads') and of\n"
     "                    llvmpipe (LP_NUM_THREADS), 1..256\n"
     "  -D, --define K=V  replace a config key by its path, the value in YAML, checked as the file is:\n"
-    "                    -D map_sizes=[512,1024] -D 'methods[0].bias=0.01' -D outputs.exr=true\n"
-    "                    (the results' config hash covers the overrides)\n"
+    "                    -D map_sizes=[512,1024] -D 'methods[0].self_shadow=slope'\n"
+    "                    -D outputs.exr=true (the results' config hash covers the overrides)\n"
     "  -q, --quiet       print only the 'written to' line (and errors)\n"
     "  -v, --verbose     print every table of the run (the Markdown of table.md) as well\n"
     "  SCENE: a scene file given for a config runs a default study of it (every viewpoint; nsm,\n"
@@ -57,15 +57,16 @@ const char cli_usage_validate[] =
     "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
 
 const char cli_usage_table[] =
-    "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V] [--label L]\n"
-    "                          [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
-    "                          [--summary FIGURE [--region N|image|contours] [--lower-is-better]\n"
-    "                           [--average-case SCENE/VIEWPOINT/N[/MAP]]]\n"
+    "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V]\n"
+    "                          [--label L,L,...]... [--map N] [--run ID] [--figures NAME,NAME,...|all]\n"
+    "                          [--summary FIGURE,FIGURE,...]... [--region N|image|contours]\n"
+    "                          [--lower-is-better] [--average-case SCENE/VIEWPOINT/N[/MAP]]\n"
     "       shadowlab table DB --rows R --cols C [--figure F] [--of BASE] [--agg A]\n"
     "                          [--where KEY=VALUE]... [--format md|csv|latex|json]\n"
-    "  Renders the latest stored cell of each key, filtered, as thesis-style tables; with\n"
-    "  --summary, the average, best and worst per map size of one figure's percentage over\n"
-    "  the cells of one label (as the theses' summary tables), md or csv.\n"
+    "  Renders the latest stored cell of each key, filtered, as thesis-style tables; --label\n"
+    "  keeps the labels named (a,b or repeated). With --summary, per figure named and per label,\n"
+    "  the average, best and worst per map size of the figure's percentage over the label's\n"
+    "  cells (as the theses' summary tables): md, csv or latex (a booktabs float each).\n"
     "  md and latex leave out the figures a method does not produce (0 in every column past\n"
     "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n"
     "  A pivot (any of --rows, --cols, --figure, --of, --agg, --where): one table a paper takes.\n"
@@ -82,7 +83,9 @@ const char cli_usage_table[] =
     "                  it is a row, a column or a --where\n"
     "  latex: booktabs, names escaped, thin-space thousands separators, never scaled; a table\n"
     "  wider than a plain article's \\columnwidth is transposed or split into several tables,\n"
-    "  and stderr says so. json: the columns, and per row the values (null: none) and counts.\n";
+    "  and stderr says so. json: the columns, and per row the values (null: none) and counts.\n"
+    "  A time of a cell timed once (repetitions runs: 1) is marked with a dagger in md and latex\n"
+    "  (and a footnote); json: per row timed_once.\n";
 
 const char cli_usage_report[] =
     "usage: shadowlab report RESULTS_DB [-o DIR] [--self-contained] [--latex]\n"
@@ -666,9 +669,9 @@ void cli_completion(FILE *f)
           "            COMPREPLY=($(compgen -W \"$(shadowlab list scenes 2>/dev/null | awk '{ print $1 }')\" -- "
           "\"$cur\")); return ;;\n"
           "        --label)\n"
-          "            # the labels the store named on the line holds\n"
-          "            [ -n \"$db\" ] && COMPREPLY=($(compgen -W \"$(shadowlab table \"$db\" --format csv 2>/dev/null |\n"
-          "                awk -F, 'NR > 1 { print $6 }' | sort -u)\" -- \"$cur\"))\n"
+          "            # the labels the store named on the line holds (a,b: a list)\n"
+          "            [ -n \"$db\" ] && _shadowlab_list \"$(shadowlab table \"$db\" --format csv 2>/dev/null |\n"
+          "                awk -F, 'NR > 1 { print $6 }' | sort -u)\"\n"
           "            return ;;\n"
           "        -D|--define)\n"
           "            # the top-level keys of the config named on the line, as validate fills it in\n"
@@ -685,10 +688,10 @@ void cli_completion(FILE *f)
     };
     for (size_t i = 0; i < sizeof stages / sizeof stages[0]; i++)
         fprintf(f, "%s%s", i ? " " : "", stages[i]);
-    fputs("\"; return ;;\n        --summary) COMPREPLY=($(compgen -W \"", f);
+    fputs("\"; return ;;\n        --summary) _shadowlab_list \"", f);
     for (int k = 0; k < SL_FIG_COUNT; k++)
         fprintf(f, "%s%s", k ? " " : "", sl_figure_name((enum sl_figure)k));
-    fputs("\" -- \"$cur\")); return ;;\n        --figures) _shadowlab_list \"all", f);
+    fputs("\"; return ;;\n        --figures) _shadowlab_list \"all", f);
     for (int k = 0; k < SL_FIG_COUNT; k++)
         fprintf(f, " %s", sl_figure_name((enum sl_figure)k));
     for (int k = 0; k < SL_SFIG_COUNT; k++)

@@ -963,8 +963,11 @@ static enum sl_err check_scene_methods(const struct raw_config *r, const char *f
 static enum sl_err check_repetitions(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                                      struct sl_config *c, struct sl_diag *d)
 {
-    unsigned warmup = r->repetitions && r->repetitions->warmup ? *r->repetitions->warmup : 0u;
-    unsigned runs = r->repetitions && r->repetitions->runs ? *r->repetitions->runs : 1u;
+    /* default {warmup: 1, runs: 3}: a time from one run has no median and
+     * carries the first run's cold caches; one timed once is marked so in
+     * every table that prints it */
+    unsigned warmup = r->repetitions && r->repetitions->warmup ? *r->repetitions->warmup : 1u;
+    unsigned runs = r->repetitions && r->repetitions->runs ? *r->repetitions->runs : 3u;
     if (warmup > 100)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.warmup", "warmup %u: at most 100", warmup);
     if (runs < 1 || runs > 1000)

@@ -25,7 +25,7 @@
  *     - {label: nsm_snap, method: nsm, light_frame: {fit: sphere, snap: true}}   # a stabilised
  *                              # frame of its own (lightfit.h); default fit tight, snap false
  *   outputs: {tables: true, overlays: true, overlay_contour: 2, exr: false}
- *   repetitions: {warmup: 0, runs: 1}   # timed runs of each cell's method; median kept
+ *   repetitions: {warmup: 1, runs: 3}   # timed runs of each cell's method; median kept
  *   seed: 1                    # for anything random
  *   store: results/shadowlab.db   # default: <output root>/shadowlab.db
  *   threads: 0                 # 0 = every core

@@ -207,8 +207,13 @@ void sl_out_write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_
 void sl_out_write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
 {
     fprintf(f, "\n## Cost per cell (ms; G-buffer and truth are shared by the cells of a view)\n\n");
-    fprintf(f, "| cell | scene | viewpoint | map | label | G-buffer | truth | fit | map render | readback "
-               "| method (median of %d) | of which rays | rays | lookups | ray-tri tests | GS prims | contours | figures | overlay |\n", c->runs);
+    /* the names of the report's cost tables: layers (the shadow-map render of
+     * the layers a method reads), step (its per-pixel step); † a time
+     * measured once (repetitions runs: 1) */
+    const char *once = c->runs == 1 ? "†" : "";
+    fprintf(f, "| cell | scene | viewpoint | map | label | G-buffer%s | truth%s | fit | layers%s | readback "
+               "| step (median of %d)%s | of which rays | rays | lookups | ray-tri tests | GS prims | contours | figures | overlay |\n",
+            once, once, once, c->runs, once);
     fprintf(f, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
@@ -221,6 +226,8 @@ void sl_out_write_costs_md(FILE *f, const struct sl_config *c, const struct sl_r
                 (unsigned long long)cl->cost.lookups, (unsigned long long)cl->cost.tri_tests,
                 (unsigned long long)cl->gs_prims, s->contours, s->figures, s->overlay);
     }
+    if (c->runs == 1)
+        fprintf(f, "\n† timed once (repetitions runs: 1): one measurement, no median.\n");
     fprintf(f, "\nTotal %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.\n",
             res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
 }

@@ -15,6 +15,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include "tex.h"
 #include "util.h"
 
 const char *sl_pivot_key_name(enum sl_pivot_key k)
@@ -78,41 +79,16 @@ static void plain_number(char *out, size_t n, double v, int dec)
     snprintf(out, n, "%.*f", dec, v);
 }
 
-/* ---- width estimate (pt) ---- */
+/* ---- width estimate (pt): tex.h ---- */
 
-/* \small in a 10 pt article (9 pt Computer Modern): digits 4.5 pt, lower
- * case about as wide, capitals and m/w wider; a column adds 2 \tabcolsep */
-#define TEX_COLUMNWIDTH 345.0
-#define TEX_BUDGET      335.0
+#define TEX_BUDGET      SL_TEX_BUDGET
 #define TEX_COLSEP      12.0
 #define TEX_MAXNUM      8
 #define TEX_LABELMAX    130.0      /* a wider row name is wrapped in a \parbox of this width */
 #define TEX_MAXROWS     40         /* more rows: a longtable, not a float */
 
-static double text_pt(const char *s)
-{
-    double w = 0;
-    for (const unsigned char *u = (const unsigned char *)s; *u; u++) {
-        if ((*u & 0xC0) == 0x80)
-            continue;
-        if (*u == '.' || *u == ',' || *u == ' ' || *u == '(' || *u == ')' || *u == 'i' || *u == 'l')
-            w += 2.6;
-        else if ((*u >= 'A' && *u <= 'Z') || *u == 'm' || *u == 'w' || *u == '%' || *u == '_')
-            w += 6.8;
-        else
-            w += 4.6;
-    }
-    return w;
-}
-
-/* thousands separators in a number's text: a thin space each */
-static double number_pt(const char *plain)
-{
-    size_t ilen = strcspn(plain, ".");
-    if (plain[0] == '-')
-        ilen--;
-    return text_pt(plain) + (ilen >= 4 ? (double)((ilen - 1) / 3) * 1.5 : 0.0);
-}
+static double text_pt(const char *s) { return sl_tex_text_pt(s); }
+static double number_pt(const char *plain) { return sl_tex_number_pt(plain); }
 
 /* ---- LaTeX text ---- */
 
@@ -351,6 +327,8 @@ struct pivot {
     int          *rperm, *cperm;       /* display order -> key index */
     double       *val;                 /* nrows x ncols (key index), NaN: none */
     int          *cnt;                 /* values aggregated */
+    unsigned char *once;               /* a time: a cell of the entry was timed once (runs 1) */
+    int           any_once;
     int           nr, nc, maxn, region_default;
     int           varies[SL_PK_COUNT];  /* the key has two values inside one entry */
 };
@@ -363,6 +341,7 @@ static void pivot_free(struct pivot *pv)
     free(pv->cperm);
     free(pv->val);
     free(pv->cnt);
+    free(pv->once);
 }
 
 /* display order of a key's values: by first appearance, or by their numeric
@@ -432,8 +411,9 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
     int *pr = malloc((size_t)(cap ? cap : 1) * sizeof *pr), *pc = malloc((size_t)(cap ? cap : 1) * sizeof *pc);
     double *pval = malloc((size_t)(cap ? cap : 1) * sizeof *pval);
     int (*pk)[SL_PK_COUNT] = malloc((size_t)(cap ? cap : 1) * sizeof *pk);
-    if (!pr || !pc || !pval || !pk) {
-        free(pr), free(pc), free(pval), free(pk);
+    unsigned char *ponce = malloc((size_t)(cap ? cap : 1));
+    if (!pr || !pc || !pval || !pk || !ponce) {
+        free(pr), free(pc), free(pval), free(pk), free(ponce);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot of %d cells", ncells);
     }
     for (int i = 0; i < ncells && !e; i++) {
@@ -464,6 +444,7 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
             pr[np] = idx[pv->rk];
             pc[np] = idx[pv->ck];
             pval[np] = fig_value(&pv->g, c, reg);
+            ponce[np] = pv->g.src == SRC_COL && cols[pv->g.k].is_ms && c->runs == 1;
             np++;
         }
     }
@@ -473,17 +454,21 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
         size_t ne = (size_t)pv->nr * (size_t)pv->nc + 1;
         pv->val = malloc(ne * sizeof *pv->val);
         pv->cnt = calloc(ne, sizeof *pv->cnt);
+        pv->once = calloc(ne, 1);
         pv->rperm = perm_of(&pv->key[pv->rk], pv->rk);
         pv->cperm = perm_of(&pv->key[pv->ck], pv->ck);
         double *tmp = malloc((size_t)(np ? np : 1) * sizeof *tmp);
-        if (!pv->val || !pv->cnt || !pv->rperm || !pv->cperm || !tmp)
+        if (!pv->val || !pv->cnt || !pv->once || !pv->rperm || !pv->cperm || !tmp)
             e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot of %d cells", ncells);
         for (int r = 0; r < pv->nr && !e; r++)
             for (int c = 0; c < pv->nc; c++) {
                 int n = 0;
                 for (int i = 0; i < np; i++)
-                    if (pr[i] == r && pc[i] == c && !isnan(pval[i]))
+                    if (pr[i] == r && pc[i] == c && !isnan(pval[i])) {
                         tmp[n++] = pval[i];
+                        pv->once[r * pv->nc + c] |= ponce[i];
+                        pv->any_once |= ponce[i];
+                    }
                 pv->val[r * pv->nc + c] = aggregate(p->agg, tmp, n);
                 pv->cnt[r * pv->nc + c] = n;
                 pv->maxn = n > pv->maxn ? n : pv->maxn;
@@ -504,7 +489,7 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
         }
         free(first);
     }
-    free(pr), free(pc), free(pval), free(pk);
+    free(pr), free(pc), free(pval), free(pk), free(ponce);
     if (e)
         pivot_free(pv);
     return e;
@@ -541,6 +526,11 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
     const char *text = pv->g.src == SRC_HARD   ? sl_figure_text((enum sl_figure)pv->g.k)
                        : pv->g.src == SRC_SOFT ? sl_soft_figure_text((enum sl_soft_figure)pv->g.k)
                                                : (cols[pv->g.k].is_ms ? "time (median over the repetitions)" : "counter");
+    /* the names the tables and the report give these times (guide.md) */
+    if (pv->g.src == SRC_COL && !strcmp(name, "ms_method"))
+        text = "step ms, the method's per-pixel step (median over the repetitions)";
+    else if (pv->g.src == SRC_COL && !strcmp(name, "ms_map_render"))
+        text = "layers ms, the shadow-map render of the layers the method reads (median over the repetitions)";
     char over[256];
     over_words(pv, p, over, sizeof over);
     size_t o = (size_t)snprintf(out, n, "%s%s: %s, %s; %s over %s", p->caption ? p->caption : "", name, text,
@@ -552,7 +542,9 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
     for (int w = 0; w < p->nwhere; w++)
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s = %s", w ? ", " : "; ",
                               sl_pivot_key_name(p->where[w].key), p->where[w].value);
-    snprintf(out + o, o < n ? n - o : 0, ".");
+    o += (size_t)snprintf(out + o, o < n ? n - o : 0, ".");
+    if (pv->any_once)
+        snprintf(out + o, o < n ? n - o : 0, " \xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.");
 }
 
 /* a key's value for people: map sizes squared */
@@ -632,7 +624,7 @@ static void write_md(FILE *f, const struct pivot *pv, const struct sl_pivot_desc
         for (int c = 0; c < pv->nc; c++) {
             char v[64];
             plain_number(v, sizeof v, pv->val[pv->rperm[r] * pv->nc + pv->cperm[c]], dec);
-            fprintf(f, " %s |", v);
+            fprintf(f, " %s%s |", v, pv->once[pv->rperm[r] * pv->nc + pv->cperm[c]] ? "\xE2\x80\xA0" : "");
         }
         fputc('\n', f);
     }
@@ -694,6 +686,12 @@ static void write_json(FILE *f, const struct pivot *pv, const struct sl_pivot_de
         fputs("], \"n\": [", f);
         for (int c = 0; c < pv->nc; c++)
             fprintf(f, "%s%d", c ? ", " : "", pv->cnt[pv->rperm[r] * pv->nc + pv->cperm[c]]);
+        /* a time: which entries hold a cell timed once (repetitions runs: 1) */
+        if (pv->any_once) {
+            fputs("], \"timed_once\": [", f);
+            for (int c = 0; c < pv->nc; c++)
+                fprintf(f, "%s%s", c ? ", " : "", pv->once[pv->rperm[r] * pv->nc + pv->cperm[c]] ? "true" : "false");
+        }
         fputs("]}", f);
     }
     fputs("\n]}\n", f);
@@ -730,6 +728,12 @@ static double view_val(const struct view *v, int r, int c)
     int pr = v->t ? pv->rperm[c] : pv->rperm[r], pc = v->t ? pv->cperm[r] : pv->cperm[c];
     return pv->val[pr * pv->nc + pc];
 }
+static int view_once(const struct view *v, int r, int c)
+{
+    const struct pivot *pv = v->pv;
+    int pr = v->t ? pv->rperm[c] : pv->rperm[r], pc = v->t ? pv->cperm[r] : pv->cperm[c];
+    return pv->once[pr * pv->nc + pc];
+}
 
 static double rowname_pt(const struct view *v)
 {
@@ -751,7 +755,7 @@ static double col_pt(const struct view *v, int c, int dec)
     for (int r = 0; r < v->nr; r++) {
         char s[64];
         plain_number(s, sizeof s, view_val(v, r, c), dec);
-        double x = number_pt(s);
+        double x = number_pt(s) + (view_once(v, r, c) ? 4.0 : 0.0);   /* the dagger */
         w = x > w ? x : w;
     }
     return w;
@@ -839,7 +843,7 @@ static void tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *
         for (int c = c0; c < c1; c++) {
             char s[96];
             sl_tex_number(s, sizeof s, view_val(v, r, c), dec);
-            fprintf(f, " & %s", s);
+            fprintf(f, " & %s%s", s, view_once(v, r, c) ? "$^\\dagger$" : "");
         }
         fputs(" \\\\\n", f);
     }
@@ -1048,7 +1052,7 @@ static double dcol_pt(const struct dcol *col, const struct sl_cell_record *cells
     for (int i = 0; i < n; i++) {
         char s[64];
         plain_number(s, sizeof s, col->get(&cells[idx[i]], col->arg), col->dec);
-        double x = number_pt(s);
+        double x = number_pt(s) + (col->get == get_ms && cells[idx[i]].runs == 1 ? 4.0 : 0.0);
         w = x > w ? x : w;
     }
     return w;
@@ -1101,7 +1105,7 @@ static void detail_longtable(FILE *f, const struct sl_cell_record *cells, const 
         for (int k = 0; k < nc; k++) {
             char s[96];
             sl_tex_number(s, sizeof s, dc[k].get(c, dc[k].arg), dc[k].dec);
-            fprintf(f, " & %s", s);
+            fprintf(f, " & %s%s", s, dc[k].get == get_ms && c->runs == 1 ? "$^\\dagger$" : "");
         }
         fputs(" \\\\\n", f);
     }
@@ -1163,7 +1167,7 @@ static void detail_view(FILE *f, const struct sl_cell_record *cells, const int *
         static const char *const words[] = {
             "",   /* the map size: in every part */
             "pixels in light, in shadow, undecided and wrong (% of the image's pixels; wrong also as a count)",
-            "the method's time (ms)",
+            "step ms: the method's per-pixel step, the median over its timed runs (\xE2\x80\xA0: timed once, no median)",
             "the share of the wrong pixels inside each contour (% of the image's wrong pixels)",
             NULL,
         };
@@ -1175,7 +1179,7 @@ static void detail_view(FILE *f, const struct sl_cell_record *cells, const int *
         dc[k++] = (struct dcol){"undecided %", 2, get_pct, SL_FIG_uncertain, 1};
         dc[k++] = (struct dcol){"wrong", 0, get_n, SL_FIG_wrong, 1};
         dc[k++] = (struct dcol){"wrong %", 2, get_pct, SL_FIG_wrong, 1};
-        dc[k++] = (struct dcol){"ms", 2, get_ms, 0, 2};
+        dc[k++] = (struct dcol){"step ms", 2, get_ms, 0, 2};
         const struct sl_cell_record *c0 = &cells[h[0]];
         for (int r = 0; r < c0->fig.nregions; r++) {
             if (!c0->fig.r[r].thickness)
@@ -1191,7 +1195,7 @@ static void detail_view(FILE *f, const struct sl_cell_record *cells, const int *
             "",   /* the map size: in every part */
             "an area light: the visible fraction against the area truth (MAE, RMSE, bias in % of full visibility; "
             "pixels within 0.05 and classed right in % of the pixels)",
-            "the method's time (ms)",
+            "step ms: the method's per-pixel step, the median over its timed runs (\xE2\x80\xA0: timed once, no median)",
             NULL,
         };
         struct dcol dc[8];
@@ -1202,7 +1206,7 @@ static void detail_view(FILE *f, const struct sl_cell_record *cells, const int *
         dc[k++] = (struct dcol){"bias %", 3, get_soft, SL_SFIG_soft_bias, 1};
         dc[k++] = (struct dcol){"within 0.05 %", 2, get_soft, SL_SFIG_soft_within_005, 1};
         dc[k++] = (struct dcol){"class right %", 2, get_soft, SL_SFIG_soft_class_right, 1};
-        dc[k++] = (struct dcol){"ms", 2, get_ms, 0, 2};
+        dc[k++] = (struct dcol){"step ms", 2, get_ms, 0, 2};
         detail_tables(f, cells, s, ns, dc, k, 1, words, "soft");
     }
     free(h), free(s);

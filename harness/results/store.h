@@ -62,7 +62,7 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
  * "host/cpu/isa" of its run. *out is malloc'ed (free), NULL when *n is 0 or on error. */
 struct sl_store_filter {
     const char *study;                      /* the config's name */
-    const char *scene, *viewpoint, *label;
+    const char *scene, *viewpoint, *label;  /* label: one, or several "a,b" (labels have no ',') */
     int         map_size;
     int64_t     run_id;                     /* 0 = all runs */
 };

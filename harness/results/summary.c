@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "tex.h"
 #include "util.h"
 
 struct pick { const struct sl_cell_record *cell; int region; double v; };
@@ -16,111 +17,108 @@ static int wanted(const struct sl_summary_opts *o, int thickness)
     return o->region < 0 ? thickness != 0 : thickness == o->region;
 }
 
-enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct sl_cell_record *cells, int n,
-                             const struct sl_summary_opts *o, struct sl_diag *d)
+/* One label's summary of one figure (cells[idx[0..n)]). */
+struct sum {
+    int         maps[64], nmaps;
+    struct pick best[64], worst[64], avgcase;
+    double      avg;
+    long        count;
+};
+
+static void summarise(const struct sl_cell_record *cells, const int *idx, int n, const struct sl_summary_opts *o,
+                      struct sum *s)
 {
-    if (o->figure < 0 || o->figure >= SL_FIG_COUNT)
-        return sl_fail(d, SL_E_USAGE, NULL, 0, "--summary", "unknown figure");
-    if (!sl_figure_of((enum sl_figure)o->figure)[0])
-        return sl_fail(d, SL_E_USAGE, NULL, 0, "--summary", "'%s' is a count, not a percentage",
-                       sl_figure_name((enum sl_figure)o->figure));
-    for (int i = 1; i < n; i++)
-        if (strcmp(cells[i].label, cells[0].label) != 0)
-            return sl_fail(d, SL_E_USAGE, NULL, 0, "--label",
-                           "cells of several labels ('%s', '%s'): summarise one at a time", cells[0].label,
-                           cells[i].label);
-    /* map sizes, ascending */
-    int maps[64], nmaps = 0;
+    memset(s, 0, sizeof *s);
     for (int i = 0; i < n; i++) {
-        int m = cells[i].map_size, k = 0;
-        while (k < nmaps && maps[k] != m)
+        int m = cells[idx[i]].map_size, k = 0;
+        while (k < s->nmaps && s->maps[k] != m)
             k++;
-        if (k == nmaps && nmaps < 64)
-            maps[nmaps++] = m;
+        if (k == s->nmaps && s->nmaps < 64)
+            s->maps[s->nmaps++] = m;
     }
-    for (int a = 1; a < nmaps; a++)
-        for (int b = a; b > 0 && maps[b - 1] > maps[b]; b--) {
-            int t = maps[b]; maps[b] = maps[b - 1]; maps[b - 1] = t;
+    for (int a = 1; a < s->nmaps; a++)
+        for (int b = a; b > 0 && s->maps[b - 1] > s->maps[b]; b--) {
+            int t = s->maps[b]; s->maps[b] = s->maps[b - 1]; s->maps[b - 1] = t;
         }
     double sum = 0.0;
-    long count = 0;
-    struct pick best[64], worst[64], avgcase = {NULL, 0, NAN};
-    for (int k = 0; k < nmaps; k++)
-        best[k] = worst[k] = (struct pick){NULL, 0, NAN};
+    s->avgcase = (struct pick){NULL, 0, NAN};
+    for (int k = 0; k < s->nmaps; k++)
+        s->best[k] = s->worst[k] = (struct pick){NULL, 0, NAN};
     for (int i = 0; i < n; i++) {
-        const struct sl_cell_record *c = &cells[i];
+        const struct sl_cell_record *c = &cells[idx[i]];
         int k = 0;
-        while (maps[k] != c->map_size)
+        while (k < s->nmaps && s->maps[k] != c->map_size)
             k++;
+        if (k == s->nmaps)
+            continue;   /* past 64 map sizes */
         for (int r = 0; r < c->fig.nregions; r++) {
             int t = c->fig.r[r].thickness;
             double v = c->fig.r[r].pct[o->figure];
             if (o->avg_scene && !strcmp(c->scene, o->avg_scene) && o->avg_viewpoint &&
                 !strcmp(c->viewpoint, o->avg_viewpoint) && t == o->avg_region &&
-                (!o->avg_map || o->avg_map == c->map_size) && !avgcase.cell)
-                avgcase = (struct pick){c, t, v};
+                (!o->avg_map || o->avg_map == c->map_size) && !s->avgcase.cell)
+                s->avgcase = (struct pick){c, t, v};
             if (!wanted(o, t) || isnan(v))
                 continue;
             sum += v;
-            count++;
-            int better = o->lower_is_better ? v < best[k].v : v > best[k].v;
-            int worse = o->lower_is_better ? v > worst[k].v : v < worst[k].v;
-            if (!best[k].cell || better)
-                best[k] = (struct pick){c, t, v};
-            if (!worst[k].cell || worse)
-                worst[k] = (struct pick){c, t, v};
+            s->count++;
+            int better = o->lower_is_better ? v < s->best[k].v : v > s->best[k].v;
+            int worse = o->lower_is_better ? v > s->worst[k].v : v < s->worst[k].v;
+            if (!s->best[k].cell || better)
+                s->best[k] = (struct pick){c, t, v};
+            if (!s->worst[k].cell || worse)
+                s->worst[k] = (struct pick){c, t, v};
         }
     }
-    if (!count)
-        return sl_fail(d, SL_E_USAGE, NULL, 0, "--summary", "no cell has a value for '%s' in that region",
-                       sl_figure_name((enum sl_figure)o->figure));
-    const char *name = sl_figure_name((enum sl_figure)o->figure);
-    double avg = sum / (double)count;
+    s->avg = s->count ? sum / (double)s->count : NAN;
+}
+
+static void write_csv(FILE *out, const char *name, const char *label, const struct sum *s)
+{
     char rn[16];
-    if (fmt == SL_TABLE_CSV) {
-        fprintf(out, "figure,label,kind,map_size,scene,viewpoint,region,percent\n");
-        fprintf(out, "%s,%s,average,,,,,%.4f\n", name, cells[0].label, avg);
-        for (int k = 0; k < nmaps; k++) {
-            const struct pick *p[2] = {&best[k], &worst[k]};
-            for (int w = 0; w < 2; w++) {
-                if (!p[w]->cell)
-                    continue;
-                sl_region_name(p[w]->region, rn, sizeof rn);
-                fprintf(out, "%s,%s,%s,%d,%s,%s,%s,%.4f\n", name, cells[0].label, w ? "worst" : "best", maps[k],
-                        p[w]->cell->scene, p[w]->cell->viewpoint, rn, p[w]->v);
-            }
+    fprintf(out, "%s,%s,average,,,,,%.4f\n", name, label, s->avg);
+    for (int k = 0; k < s->nmaps; k++) {
+        const struct pick *p[2] = {&s->best[k], &s->worst[k]};
+        for (int w = 0; w < 2; w++) {
+            if (!p[w]->cell)
+                continue;
+            sl_region_name(p[w]->region, rn, sizeof rn);
+            fprintf(out, "%s,%s,%s,%d,%s,%s,%s,%.4f\n", name, label, w ? "worst" : "best", s->maps[k],
+                    p[w]->cell->scene, p[w]->cell->viewpoint, rn, p[w]->v);
         }
-        if (avgcase.cell) {
-            sl_region_name(avgcase.region, rn, sizeof rn);
-            fprintf(out, "%s,%s,average case,%d,%s,%s,%s,%.4f\n", name, cells[0].label, avgcase.cell->map_size,
-                    avgcase.cell->scene, avgcase.cell->viewpoint, rn, avgcase.v);
-        }
-        return SL_OK;
     }
-    if (fmt != SL_TABLE_MD)
-        return sl_fail(d, SL_E_USAGE, NULL, 0, "--format", "summaries come as md or csv");
-    fprintf(out, "## Summary of %s (%% of %s), label %s\n\n", name, sl_figure_of((enum sl_figure)o->figure),
-            cells[0].label);
+    if (s->avgcase.cell) {
+        sl_region_name(s->avgcase.region, rn, sizeof rn);
+        fprintf(out, "%s,%s,average case,%d,%s,%s,%s,%.4f\n", name, label, s->avgcase.cell->map_size,
+                s->avgcase.cell->scene, s->avgcase.cell->viewpoint, rn, s->avgcase.v);
+    }
+}
+
+static void write_md(FILE *out, const char *name, const char *of, const char *label, const struct sum *s)
+{
+    char rn[16];
+    fprintf(out, "## Summary of %s (%% of %s), label %s\n\n", name, of, label);
     fprintf(out, "| | average |");
-    for (int k = 0; k < nmaps; k++)
-        fprintf(out, " %d² best | %d² worst |", maps[k], maps[k]);
-    if (avgcase.cell)
+    for (int k = 0; k < s->nmaps; k++)
+        fprintf(out, " %d² best | %d² worst |", s->maps[k], s->maps[k]);
+    if (s->avgcase.cell)
         fprintf(out, " average case |");
     fprintf(out, "\n|---|---:|");
-    for (int k = 0; k < nmaps; k++)
+    for (int k = 0; k < s->nmaps; k++)
         fprintf(out, "---:|---:|");
-    if (avgcase.cell)
+    if (s->avgcase.cell)
         fprintf(out, "---:|");
     const char *rows[] = {"scene", "viewpoint", "contour", "map", "value"};
     for (int row = 0; row < 5; row++) {
         fprintf(out, "\n| %s |", rows[row]);
         if (row == 4)
-            fprintf(out, " %.2f |", avg);
+            fprintf(out, " %.2f |", s->avg);
         else
             fprintf(out, " |");
-        int cols = 2 * nmaps + (avgcase.cell ? 1 : 0);
+        int cols = 2 * s->nmaps + (s->avgcase.cell ? 1 : 0);
         for (int col = 0; col < cols; col++) {
-            const struct pick *p = col < 2 * nmaps ? (col % 2 ? &worst[col / 2] : &best[col / 2]) : &avgcase;
+            const struct pick *p = col < 2 * s->nmaps ? (col % 2 ? &s->worst[col / 2] : &s->best[col / 2])
+                                                      : &s->avgcase;
             if (!p->cell) {
                 fprintf(out, " |");
                 continue;
@@ -137,6 +135,137 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
             }
         }
     }
-    fprintf(out, "\n\nAverage over %ld (cell, region) values.\n", count);
-    return SL_OK;
+    fprintf(out, "\n\nAverage over %ld (cell, region) values.\n\n", s->count);
+}
+
+/* LaTeX: a booktabs float per label, transposed against the Markdown (a row
+ * per value: the average, each map size's best and worst, the average
+ * case; where it was as columns) so that it is narrow; the scene (with its
+ * light) wrapped in a \parbox when the estimate is wider than the line.
+ * Never scaled. */
+#define TEX_COLSEP 8.0   /* 2 \tabcolsep of 4 pt */
+
+static const struct pick *tex_pick(const struct sum *s, int k)
+{
+    return k < 2 * s->nmaps ? (k % 2 ? &s->worst[k / 2] : &s->best[k / 2]) : &s->avgcase;
+}
+
+static void write_tex(FILE *out, const char *name, const char *of, const char *label, const struct sum *s)
+{
+    char scene[200], rn[16], num[48];
+    const double f = SL_TEX_FOOTNOTE * SL_TEX_SLACK;
+    double scene_pt = sl_tex_text_pt("scene"), first_pt = sl_tex_text_pt("average case"), vp_pt = 0;
+    for (int k = 0; k <= 2 * s->nmaps; k++) {
+        const struct pick *p = tex_pick(s, k);
+        if (!p->cell)
+            continue;
+        snprintf(scene, sizeof scene, p->cell->light[0] ? "%s (%s)" : "%s", p->cell->scene, p->cell->light);
+        double x = sl_tex_text_pt(scene), y = sl_tex_text_pt(p->cell->viewpoint);
+        scene_pt = x > scene_pt ? x : scene_pt;
+        vp_pt = y > vp_pt ? y : vp_pt;
+        snprintf(num, sizeof num, "%d\xC2\xB2 worst", s->maps[k / 2 < s->nmaps ? k / 2 : 0]);
+        x = sl_tex_text_pt(num);
+        first_pt = x > first_pt ? x : first_pt;
+    }
+    vp_pt = vp_pt > sl_tex_text_pt("viewpoint") ? vp_pt : sl_tex_text_pt("viewpoint");
+    double rest = (first_pt + vp_pt + sl_tex_text_pt("contour") + sl_tex_text_pt("16384x") +
+                   sl_tex_text_pt("100.00")) * f + 6 * TEX_COLSEP;
+    double box = rest + scene_pt * f > SL_TEX_BUDGET ? SL_TEX_BUDGET - rest : 0;
+    if (box > 0 && box < 60)
+        box = 60;
+    fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{Summary of ",
+          out);
+    sl_tex_text(out, name);
+    fputs(" (\\% of ", out);
+    sl_tex_text(out, of);
+    fputs("), label ", out);
+    sl_tex_text(out, label);
+    fprintf(out, ": average over %ld (cell, region) values; each map size's best and worst cell.}\n", s->count);
+    fputs("\\label{tab:summary-", out);
+    for (const char *t = name; *t; t++)
+        fputc((*t >= 'a' && *t <= 'z') || (*t >= '0' && *t <= '9') ? *t : '-', out);
+    fputc('-', out);
+    for (const char *t = label; *t; t++)
+        fputc((*t >= 'a' && *t <= 'z') || (*t >= 'A' && *t <= 'Z') || (*t >= '0' && *t <= '9') ? *t : '-', out);
+    fputs("}\n\\begin{tabular}{lllllr}\n\\toprule\n & scene & viewpoint & contour & map & \\% \\\\\n\\midrule\n",
+          out);
+    sl_tex_number(num, sizeof num, s->avg, 2);
+    fprintf(out, "average &  &  &  &  & %s \\\\\n", num);
+    for (int k = 0; k <= 2 * s->nmaps; k++) {
+        const struct pick *p = tex_pick(s, k);
+        if (!p->cell)
+            continue;
+        if (k < 2 * s->nmaps)
+            fprintf(out, "$%d^2$ %s & ", s->maps[k / 2], k % 2 ? "worst" : "best");
+        else
+            fputs("average case & ", out);
+        snprintf(scene, sizeof scene, p->cell->light[0] ? "%s (%s)" : "%s", p->cell->scene, p->cell->light);
+        if (box > 0)
+            fprintf(out, "\\parbox[t]{%.1fpt}{\\raggedright ", box - TEX_COLSEP);
+        sl_tex_text(out, scene);
+        if (box > 0)
+            fputs("\\strut}", out);
+        fputs(" & ", out);
+        sl_tex_text(out, p->cell->viewpoint);
+        sl_region_name(p->region, rn, sizeof rn);
+        sl_tex_number(num, sizeof num, p->v, 2);
+        fprintf(out, " & %s & $%d^2$ & %s \\\\\n", rn, p->cell->map_size, num);
+    }
+    fputs("\\bottomrule\n\\end{tabular}\n\\end{table}\n\n", out);
+}
+
+enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct sl_cell_record *cells, int n,
+                             const struct sl_summary_opts *o, struct sl_diag *d)
+{
+    if (o->figure < 0 || o->figure >= SL_FIG_COUNT)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--summary", "unknown figure");
+    if (!sl_figure_of((enum sl_figure)o->figure)[0])
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--summary", "'%s' is a count, not a percentage",
+                       sl_figure_name((enum sl_figure)o->figure));
+    if (fmt != SL_TABLE_CSV && fmt != SL_TABLE_MD && fmt != SL_TABLE_LATEX)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--format", "summaries come as md, csv or latex");
+    const char *name = sl_figure_name((enum sl_figure)o->figure), *of = sl_figure_of((enum sl_figure)o->figure);
+    int *idx = malloc((size_t)(n > 0 ? n : 1) * sizeof *idx);
+    unsigned char *done = calloc((size_t)(n > 0 ? n : 1), 1);
+    struct sum *s = malloc(sizeof *s);
+    if (!idx || !done || !s) {
+        free(idx), free(done), free(s);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "summary");
+    }
+    enum sl_err e = SL_OK;
+    if (fmt == SL_TABLE_CSV && !o->continued)
+        fprintf(out, "figure,label,kind,map_size,scene,viewpoint,region,percent\n");
+    if (fmt == SL_TABLE_LATEX && !o->continued)
+        fputs("% shadowlab table --summary; needs \\usepackage{booktabs}\n", out);
+    /* a summary per label, in the cells' order */
+    int any = 0, floats = 0;
+    for (int i = 0; i < n && !e; i++) {
+        if (done[i])
+            continue;
+        int m = 0;
+        for (int j = i; j < n; j++)
+            if (!done[j] && !strcmp(cells[j].label, cells[i].label))
+                idx[m++] = j, done[j] = 1;
+        summarise(cells, idx, m, o, s);
+        if (!s->count)
+            continue;   /* this label has no value there: said below if none has */
+        any = 1;
+        if (fmt == SL_TABLE_CSV)
+            write_csv(out, name, cells[i].label, s);
+        else if (fmt == SL_TABLE_MD)
+            write_md(out, name, of, cells[i].label, s);
+        else {
+            /* LaTeX holds at most 18 floats it has not placed */
+            if ((floats > 0 || o->continued) && floats % 8 == 0)
+                fputs("\\clearpage\n\n", out);
+            write_tex(out, name, of, cells[i].label, s);
+            floats++;
+        }
+    }
+    if (!any)
+        e = sl_fail(d, SL_E_USAGE, NULL, 0, "--summary", "no cell has a value for '%s' in that region", name);
+    free(idx);
+    free(done);
+    free(s);
+    return e;
 }

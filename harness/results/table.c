@@ -412,68 +412,168 @@ static void tex_provenance(FILE *f, const struct sl_cell_record *c)
 
 /* One float per map size (a cell), so a table has 1 + its regions columns:
  * split by map size because two map sizes side by side were 60-294 pt wider
- * than an A4 article's \textwidth; what is still too wide (long figure names
- * beside four or five regions) is scaled down to \linewidth by the
- * \resizebox guard, never up. */
-static void latex_table(FILE *f, const struct sl_cell_record *cells, const struct group *g,
-                        const struct sl_table_rows *rows)
+ * than an A4 article's \textwidth. Nothing is scaled: what is still wider
+ * than the line (long figure names beside four or five regions:
+ * "1028918 (99.84%)" is 70 pt) has its cells stacked, the count above its
+ * percentage, when the rows then still fit a page (LATEX_LINES); else it is
+ * split by regions into several floats, each with the figure names. */
+#define LATEX_COLSEP 8.0   /* 2 \tabcolsep of 4 pt */
+#define LATEX_LINES  44    /* \footnotesize lines a float may hold */
+
+/* Estimated width (pt, \footnotesize) of region column r of cell c over the
+ * rows shown, its heading included; stacked, a cell's longer line. */
+static double latex_col_pt(const struct sl_cell_record *cells, const struct group *g, const struct sl_cell_record *c,
+                           int r, const struct sl_table_rows *rows, int stack)
+{
+    char rn[16];
+    sl_region_name(col_thickness(c, r), rn, sizeof rn);
+    double w = sl_tex_text_pt(rn);
+    for (int fi = 0; fi < cell_rows(&cells[g->idx[0]]); fi++) {
+        if (!row_shown(cells, g, fi, rows))
+            continue;
+        uint64_t n;
+        double pct;
+        char v[64];
+        cell_value(c, r, fi, &n, &pct);
+        value_text(c, fi, n, pct, 0, v, sizeof v);
+        char *cut = stack ? strstr(v, " (") : NULL;
+        double x;
+        if (cut) {
+            *cut = '\0';
+            double a = sl_tex_text_pt(v), b = sl_tex_text_pt(cut + 1);
+            x = a > b ? a : b;
+        } else
+            x = sl_tex_text_pt(v);
+        w = x > w ? x : w;
+    }
+    return w * SL_TEX_FOOTNOTE * SL_TEX_SLACK + LATEX_COLSEP;
+}
+
+/* the region columns cut into runs that fit beside the names; returns the runs */
+static int latex_cuts(const struct sl_cell_record *cells, const struct group *g, const struct sl_cell_record *c,
+                      const struct sl_table_rows *rows, int stack, double name_pt, int *cut)
+{
+    int parts = 0;
+    cut[0] = 0;
+    double w = name_pt;
+    for (int r = 0; r < cell_cols(c); r++) {
+        double x = latex_col_pt(cells, g, c, r, rows, stack);
+        if (r > cut[parts] && w + x > SL_TEX_BUDGET) {
+            cut[++parts] = r;
+            w = name_pt;
+        }
+        w += x;
+    }
+    cut[++parts] = cell_cols(c);
+    return parts;
+}
+
+static void latex_caption(FILE *f, const struct sl_cell_record *c0, const struct sl_cell_record *c, int shown,
+                          const struct sl_table_rows *rows, int part, int parts, int r0, int r1)
+{
+    fputs("\\caption{", f);
+    sl_tex_text(f, c0->scene);
+    light_words(f, c0, 1);
+    fputs(" / ", f);
+    sl_tex_text(f, c0->viewpoint);
+    fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
+    sl_tex_text(f, c0->label);
+    fprintf(f, " / $%d^2$ map", c->map_size);
+    if (parts > 1) {
+        char a[16], b[16];
+        sl_region_name(col_thickness(c, r0), a, sizeof a);
+        sl_region_name(col_thickness(c, r1 - 1), b, sizeof b);
+        fprintf(f, " (part %d of %d: %s%s%s)", part + 1, parts, a, r1 - r0 > 1 ? "--" : "", r1 - r0 > 1 ? b : "");
+    }
+    if (part > 0) {
+        fputs("}\n", f);
+        return;
+    }
+    if (c0->has_soft)
+        fputs(". Area light: the visible fraction against the area truth (means in \\% of full visibility).", f);
+    else {
+        fputs(". ", f);
+        view_counts(f, c0, 1);
+    }
+    if (shown < cell_rows(c0))
+        fprintf(f, " %d of %d figures shown (%s).", shown, cell_rows(c0),
+                rows->picked ? "chosen with -{}-figures" : "the others are 0: not produced by this method");
+    fputs("}\n\\label{tab:", f);
+    tex_key(f, c0->scene);
+    fputc('-', f);
+    tex_key(f, c0->viewpoint);
+    fprintf(f, "-%dx%d-", c0->vw, c0->vh);
+    tex_key(f, c0->label);
+    fprintf(f, "-%d", c->map_size);
+    if (point_twin(c0))
+        fputs("-point", f);
+    fputs("}\n", f);
+}
+
+/* Writes the floats of one table; returns how many. */
+static int latex_table(FILE *f, const struct sl_cell_record *cells, const struct group *g,
+                       const struct sl_table_rows *rows)
 {
     const struct sl_cell_record *c0 = &cells[g->idx[0]];
-    int shown = rows_shown(cells, g, rows);
+    int shown = rows_shown(cells, g, rows), floats = 0;
     if (shown == 0)
-        return;
+        return 0;
+    double name_pt = sl_tex_text_pt("figure");
+    for (int fi = 0; fi < cell_rows(c0); fi++)
+        if (row_shown(cells, g, fi, rows) && sl_tex_text_pt(row_name(c0, fi)) > name_pt)
+            name_pt = sl_tex_text_pt(row_name(c0, fi));
+    name_pt = name_pt * SL_TEX_FOOTNOTE * SL_TEX_SLACK + LATEX_COLSEP;
     for (int k = 0; k < g->n; k++) {
         const struct sl_cell_record *c = &cells[g->idx[k]];
-        struct group one = {&g->idx[k], 1};
-        int ncols = cell_cols(c);
-        fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
-        sl_tex_text(f, c0->scene);
-        light_words(f, c0, 1);
-        fputs(" / ", f);
-        sl_tex_text(f, c0->viewpoint);
-        fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
-        sl_tex_text(f, c0->label);
-        fprintf(f, " / $%d^2$ map", c->map_size);
-        if (c0->has_soft)
-            fputs(". Area light: the visible fraction against the area truth (means in \\% of full visibility).",
-                  f);
-        else {
-            fputs(". ", f);
-            view_counts(f, c0, 1);
+        int cut[SL_MAX_REGIONS + 2], stack = 0;
+        int parts = latex_cuts(cells, g, c, rows, 0, name_pt, cut);
+        if (parts > 1 && 2 * shown <= LATEX_LINES && latex_cuts(cells, g, c, rows, 1, name_pt, cut) == 1)
+            stack = 1, parts = 1;
+        else
+            parts = latex_cuts(cells, g, c, rows, 0, name_pt, cut);
+        for (int p = 0; p < parts; p++, floats++) {
+            int r0 = cut[p], r1 = cut[p + 1];
+            fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n", f);
+            latex_caption(f, c0, c, shown, rows, p, parts, r0, r1);
+            fputs("\\begin{tabular}{l", f);
+            for (int r = r0; r < r1; r++)
+                fputc('r', f);
+            fputs("}\n\\toprule\nfigure", f);
+            for (int r = r0; r < r1; r++) {
+                char rn[16];
+                sl_region_name(col_thickness(c, r), rn, sizeof rn);
+                fprintf(f, " & %s", rn);
+            }
+            fputs(" \\\\\n\\midrule\n", f);
+            for (int fi = 0; fi < cell_rows(c0); fi++) {
+                if (!row_shown(cells, g, fi, rows))
+                    continue;
+                sl_tex_text(f, row_name(c0, fi));
+                for (int r = r0; r < r1; r++) {
+                    uint64_t n;
+                    double pct;
+                    char v[64];
+                    cell_value(c, r, fi, &n, &pct);
+                    value_text(c, fi, n, pct, 1, v, sizeof v);
+                    char *cut2 = stack ? strstr(v, " (") : NULL;
+                    if (cut2) {
+                        *cut2 = '\0';
+                        fprintf(f, " & \\begin{tabular}[t]{@{}r@{}}%s\\\\ %s\\end{tabular}", v, cut2 + 1);
+                    } else
+                        fprintf(f, " & %s", v);
+                }
+                fputs(" \\\\\n", f);
+            }
+            fputs("\\bottomrule\n\\end{tabular}\n", f);
+            if (p == parts - 1) {
+                fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
+                tex_provenance(f, c);
+                fputs("\\par}\n", f);
+            }
+            fputs("\\end{table}\n\n", f);
         }
-        if (shown < cell_rows(c0))
-            fprintf(f, " %d of %d figures shown (%s).", shown, cell_rows(c0),
-                    rows->picked ? "chosen with -{}-figures" : "the others are 0: not produced by this method");
-        fputs("}\n\\label{tab:", f);
-        tex_key(f, c0->scene);
-        fputc('-', f);
-        tex_key(f, c0->viewpoint);
-        fprintf(f, "-%dx%d-", c0->vw, c0->vh);
-        tex_key(f, c0->label);
-        fprintf(f, "-%d", c->map_size);
-        if (point_twin(c0))
-            fputs("-point", f);
-        fputs("}\n\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%\n\\begin{tabular}{l", f);
-        for (int r = 0; r < ncols; r++)
-            fputc('r', f);
-        fputs("}\n\\toprule\nfigure", f);
-        for (int r = 0; r < ncols; r++) {
-            char rn[16];
-            sl_region_name(col_thickness(c, r), rn, sizeof rn);
-            fprintf(f, " & %s", rn);
-        }
-        fputs(" \\\\\n\\midrule\n", f);
-        for (int fi = 0; fi < cell_rows(c0); fi++) {
-            if (!row_shown(cells, g, fi, rows))
-                continue;
-            sl_tex_text(f, row_name(c0, fi));
-            row_values(f, cells, &one, fi, 1);
-            fputs(" \\\\\n", f);
-        }
-        fputs("\\bottomrule\n\\end{tabular}}\n\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
-        tex_provenance(f, c);
-        fputs("\\par}\n\\end{table}\n\n", f);
     }
+    return floats;
 }
 
 /* ---- entry ---- */
@@ -569,7 +669,7 @@ enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char 
     case SL_TABLE_LATEX:
         /* no heading: the file is \\input into the reader's own document; the
          * source is a comment (one line: a title holds no line break here) */
-        fputs("% shadowlab tables; needs \\usepackage{booktabs,graphicx}\n", out);
+        fputs("% shadowlab tables; needs \\usepackage{booktabs}; wider tables are split, never scaled\n", out);
         if (title) {
             fputs("% from: ", out);
             for (const char *t = title; *t; t++)
@@ -577,10 +677,16 @@ enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char 
             fputc('\n', out);
         }
         fputs("\n", out);
-        for (int g = 0; g < l.ngroups; g++) {
-            latex_table(out, cells, &l.groups[g], rows);
+        /* LaTeX holds at most 18 floats it has not placed: a page break
+         * every few lets a long file of floats alone compile */
+        for (int g = 0, floats = 0; g < l.ngroups; g++) {
+            floats += latex_table(out, cells, &l.groups[g], rows);
             if (dual(&cells[l.groups[g].idx[0]]))
-                latex_table(out, twin, &l.groups[g], rows);
+                floats += latex_table(out, twin, &l.groups[g], rows);
+            if (floats >= 8 && g + 1 < l.ngroups) {
+                fputs("\\clearpage\n\n", out);
+                floats = 0;
+            }
         }
         break;
     case SL_TABLE_JSON:

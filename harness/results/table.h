@@ -46,8 +46,10 @@ enum sl_err sl_table_write(FILE *out, enum sl_table_format fmt, const char *titl
  * shown: a zero there is a result) that is 0 in every column of the table.
  * `pick` (figure names, see sl_table_figures_parse) shows those rows only,
  * in figures.h's order; a soft table none of whose figures is picked is left
- * out. LaTeX always splits a table by map size (one float each, scaled down
- * to \linewidth only when still too wide) and never writes a heading. */
+ * out. LaTeX always splits a table by map size (one float each) and never
+ * writes a heading or scales: a float still wider than the line has its
+ * cells stacked (count above percentage) when its rows then fit a page, else
+ * it is split by regions into floats that each repeat the figure names. */
 struct sl_table_rows {
     int           produced;
     int           picked;                /* pick_hard/pick_soft are set */

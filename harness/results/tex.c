@@ -19,6 +19,7 @@ void sl_tex_text(FILE *f, const char *s)
         {"\xC2\xB7", "$\\cdot$"},             {"\xE2\x80\x99", "'"},       {"\xE2\x80\x98", "`"},
         {"\xE2\x80\x9C", "``"},               {"\xE2\x80\x9D", "''"},      {"\xE2\x80\xA6", "\\ldots{}"},
         {"\xC2\xA0", "~"},                    {"\xE2\x89\x88", "$\\approx$"}, {"\xC2\xB0", "$^\\circ$"},
+        {"\xE2\x80\xA0", "$^\\dagger$"},
     };
     for (; s && *s; s++) {
         const unsigned char *u = (const unsigned char *)s;
@@ -83,3 +84,27 @@ void sl_tex_number(char *out, size_t n, double v, int dec)
     snprintf(out, n, "%s%s", v < 0 && !zero ? "$-$" : "", g);
 }
 
+
+double sl_tex_text_pt(const char *s)
+{
+    double w = 0;
+    for (const unsigned char *u = (const unsigned char *)s; u && *u; u++) {
+        if ((*u & 0xC0) == 0x80)
+            continue;
+        if (*u == '.' || *u == ',' || *u == ' ' || *u == '(' || *u == ')' || *u == 'i' || *u == 'l')
+            w += 2.6;
+        else if ((*u >= 'A' && *u <= 'Z') || *u == 'm' || *u == 'w' || *u == '%' || *u == '_')
+            w += 6.8;
+        else
+            w += 4.6;
+    }
+    return w;
+}
+
+double sl_tex_number_pt(const char *plain)
+{
+    size_t ilen = strcspn(plain, ".");
+    if (plain[0] == '-')
+        ilen--;
+    return sl_tex_text_pt(plain) + (ilen >= 4 ? (double)((ilen - 1) / 3) * 1.5 : 0.0);
+}
