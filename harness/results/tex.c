@@ -46,6 +46,10 @@ void sl_tex_text(FILE *f, const char *s)
         case '<':  fputs("\\textless{}", f); break;
         case '>':  fputs("\\textgreater{}", f); break;
         case '\n': fputc(' ', f); break;
+        /* a path may break after each '/' where a paragraph or a wrapped
+         * cell needs it (a long temporary folder's path ran 1.4 pt past a
+         * report cell); in an l column nothing breaks, as before */
+        case '/':  fputs("/\\allowbreak{}", f); break;
         default:   fputc(*s, f);
         }
     }
