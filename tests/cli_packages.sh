@@ -53,6 +53,13 @@ YAML
   SHADOWLAB_TECHNIQUES="$tmp/pk" "$bin" validate "$tmp/e.yaml" >/dev/null || fail "SHADOWLAB_TECHNIQUES not searched"
   SHADOWLAB_TECHNIQUES="$tmp/pk" "$bin" list techniques | grep -q "^my_pcf .*SHADOWLAB_TECHNIQUES" ||
     fail "list techniques does not show the copy and where it was found"
+  # an edited package is another study: --resume computes its cells again
+  # (the config hash covers the package's files), an unchanged one does not
+  "$bin" run "$tmp/c.yaml" --no-cache --resume -o "$tmp/out" >"$tmp/r1" 2>&1 || fail "resume"
+  grep -q "0 cell(s) computed, 4 already stored" "$tmp/r1" || { cat "$tmp/r1"; fail "an unchanged package's cells were computed again"; }
+  echo "// edited" >>"$tmp/pk/my_pcf/lookup.glsl"
+  "$bin" run "$tmp/c.yaml" --no-cache --resume -o "$tmp/out" >"$tmp/r2" 2>&1 || fail "resume after the edit"
+  grep -q "4 cell(s) computed, 0 already stored" "$tmp/r2" || { cat "$tmp/r2"; fail "cells of the edited package taken as stored"; }
   echo "ok copy: $(echo "$a" | wc -l) figure rows equal"
   ;;
 broken)

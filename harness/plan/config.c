@@ -827,6 +827,36 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
     return SL_OK;
 }
 
+/* The config's hash covers the packages its labels run: their
+ * technique.yaml and both shaders, byte for byte. A package edited between
+ * two runs is another study: --resume and merge key cells by the config
+ * hash, so cells of the old shaders are never taken for the new ones. */
+static enum sl_err hash_packages(struct sl_config *c, struct sl_diag *d)
+{
+    for (int i = 0; i < c->nmethods; i++) {
+        const struct sl_technique *t = c->methods[i].params.tech;
+        int seen = 0;
+        for (int k = 0; k < i && !seen; k++)
+            seen = c->methods[k].params.tech == t;
+        if (!t || seen)
+            continue;
+        unsigned long long h = 0;
+        enum sl_err e = sl_hash_file(t->file, &h, d);
+        if (e)
+            return e;
+        const char *parts[2] = {t->map_src, t->lookup_src};
+        for (int k = 0; k < 8; k++)
+            c->hash = (c->hash ^ ((h >> (8 * k)) & 0xffu)) * 1099511628211ull;
+        for (int p = 0; p < 2; p++)
+            for (const unsigned char *q = (const unsigned char *)(parts[p] ? parts[p] : ""); ; q++) {
+                c->hash = (c->hash ^ *q) * 1099511628211ull;   /* the NUL ends each part */
+                if (!*q)
+                    break;
+            }
+    }
+    return SL_OK;
+}
+
 static enum sl_err check_methods(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                                  struct sl_config *c, struct sl_diag *d)
 {
@@ -861,7 +891,7 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
         if (e)
             return e;
     }
-    return SL_OK;
+    return hash_packages(c, d);
 }
 
 /* Scene entry si's labels: those its list names, each of which must handle
