@@ -190,3 +190,18 @@ void sl_known_add(char *buf, size_t n, const char *name)
     size_t len = strlen(buf);
     snprintf(buf + len, n - len, "%s%s", len ? ", " : "", name);
 }
+
+void sl_csv_field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}

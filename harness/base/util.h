@@ -50,6 +50,10 @@ const char *sl_file_type_bad(const char *path);
 enum sl_err sl_open_regular(const char *path, int *fd, long long *size, struct sl_diag *d);
 
 /* FNV-1a 64 over a file's bytes (config hash written beside results). */
+/* s as one CSV field (RFC 4180): quoted when it holds a comma, a quote or a
+ * line break, its quotes doubled. Shared by the run's tables and the pivots. */
+void sl_csv_field(FILE *f, const char *s);
+
 enum sl_err sl_hash_file(const char *path, unsigned long long *out, struct sl_diag *d);
 
 /* {median, min, max} (out[0], out[1], out[2]: SL_MED, SL_MIN, SL_MAX of

@@ -587,20 +587,6 @@ static void json_str(FILE *f, const char *s)
     fputc('"', f);
 }
 
-static void csv_field(FILE *f, const char *s)
-{
-    if (!strpbrk(s, ",\"\r\n")) {
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
 
 static void write_md(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p)
 {
@@ -632,14 +618,14 @@ static void write_md(FILE *f, const struct pivot *pv, const struct sl_pivot_desc
 
 static void write_csv(FILE *f, const struct pivot *pv)
 {
-    csv_field(f, sl_pivot_key_name(pv->rk));
+    sl_csv_field(f, sl_pivot_key_name(pv->rk));
     for (int c = 0; c < pv->nc; c++) {
         fputc(',', f);
-        csv_field(f, pv->key[pv->ck].v[pv->cperm[c]]);
+        sl_csv_field(f, pv->key[pv->ck].v[pv->cperm[c]]);
     }
     fputc('\n', f);
     for (int r = 0; r < pv->nr; r++) {
-        csv_field(f, pv->key[pv->rk].v[pv->rperm[r]]);
+        sl_csv_field(f, pv->key[pv->rk].v[pv->rperm[r]]);
         for (int c = 0; c < pv->nc; c++) {
             double v = pv->val[pv->rperm[r] * pv->nc + pv->cperm[c]];
             fputc(',', f);

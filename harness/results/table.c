@@ -312,32 +312,17 @@ static void md_table(FILE *f, const struct sl_cell_record *cells, const struct g
 
 /* ---- CSV ---- */
 
-/* RFC 4180: quote a field holding a comma, quote or line break; double quotes. */
-static void csv_field(FILE *f, const char *s)
-{
-    if (!strpbrk(s, ",\"\r\n")) {
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
 
 /* scene,viewpoint,viewport,map_size,method,label, */
 static void csv_key(FILE *f, const struct sl_cell_record *c)
 {
-    csv_field(f, c->scene);
+    sl_csv_field(f, c->scene);
     fputc(',', f);
-    csv_field(f, c->viewpoint);
+    sl_csv_field(f, c->viewpoint);
     fprintf(f, ",%dx%d,%d,", c->vw, c->vh, c->map_size);
-    csv_field(f, c->method);
+    sl_csv_field(f, c->method);
     fputc(',', f);
-    csv_field(f, c->label);
+    sl_csv_field(f, c->label);
     fputc(',', f);
 }
 
@@ -345,11 +330,11 @@ static void csv_key(FILE *f, const struct sl_cell_record *c)
 static void csv_provenance(FILE *f, const struct sl_cell_record *c)
 {
     fputc(',', f);
-    csv_field(f, c->git_sha);
+    sl_csv_field(f, c->git_sha);
     fputc(',', f);
-    csv_field(f, c->config_hash);
+    sl_csv_field(f, c->config_hash);
     fputc(',', f);
-    csv_field(f, c->machine);
+    sl_csv_field(f, c->machine);
     fputc('\n', f);
 }
 
