@@ -27,3 +27,14 @@ rest() { sqlite3 "$1" "SELECT region, figure, count FROM figures WHERE NOT $is_m
 [ "$(rest "$tmp/a/shadowlab.db")" = "$(rest "$tmp/b/shadowlab.db")" ] || fail "the other figures moved"
 grep -q 'aliasing: false' "$tmp/a/fig/config.yaml" || fail "config.yaml does not say aliasing: false"
 echo "ok: $(n "$tmp/b/shadowlab.db") aliasing figure rows only when asked"
+# figures.csv holds every figure the store holds for its cells, the
+# aliasing figures included (region, figure, count the same, row for row)
+for r in a b; do
+    csv=$tmp/$r/fig/figures.csv
+    [ -s "$csv" ] || fail "no $csv"
+    want=$(sqlite3 -separator , "$tmp/$r/shadowlab.db" "SELECT region, figure, count FROM figures" | sort)
+    got=$(tail -n +2 "$csv" | cut -d, -f7-9 | sort)
+    [ "$want" = "$got" ] || fail "$r: figures.csv differs from the store: $(diff <(echo "$want") <(echo "$got") | head -5)"
+done
+grep -q ',wrong_m_' "$tmp/b/fig/figures.csv" || fail "figures.csv lacks the aliasing figures"
+echo "ok: figures.csv holds the store's $(tail -n +2 "$tmp/b/fig/figures.csv" | wc -l) figure rows"

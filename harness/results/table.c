@@ -354,6 +354,20 @@ static void csv_cell(FILE *f, const struct sl_cell_record *c, int background)
             fprintf(f, ",%s", row_of(c, k));
             csv_provenance(f, c);
         }
+        /* a hard cell's aliasing figures (by error m), stored per region like its
+         * figures: the file holds every figure the store holds for the cell */
+        for (int k = 0; !c->has_soft && c->has_alias && r < c->alias.nregions && k < SL_AFIG_COUNT; k++) {
+            double pct = c->alias.pct[r][k];
+            char an[16];
+            sl_region_name(c->alias.thickness[r], an, sizeof an);
+            csv_key(f, c);
+            fprintf(f, "%s,%s,%llu,", an, sl_alias_figure_name((enum sl_alias_figure)k),
+                    (unsigned long long)c->alias.n[r][k]);
+            if (!isnan(pct))
+                fprintf(f, "%.4f", pct);
+            fprintf(f, ",%s", sl_alias_figure_of((enum sl_alias_figure)k));
+            csv_provenance(f, c);
+        }
     }
     if (!background)
         return;
