@@ -191,6 +191,11 @@ if command -v script >/dev/null; then
   grep -qa $'\r\033\[K''small: 8 cell(s) computed' "$tmp/tty.out" && ok ||
     fail "the progress line is not cleared before the summary: $(od -c "$tmp/tty.out" | tail -n 12)"
   grep -qa 'left   '$'\r''\?$' "$tmp/tty.out" && fail "a progress line left on its own line" || ok
+  # -v: the tables (stdout) come after the cleared line, not glued to its end
+  script -qec "'$bin' run '$tmp/small.yaml' -o '$tmp/tty-v' --no-cache -v" /dev/null >"$tmp/tty-v.out" 2>&1
+  grep -qa $'\r\033\[K''# ' "$tmp/tty-v.out" && ok ||
+    fail "-v: the progress line is not cleared before the tables: $(grep -a -m1 -B1 '^# ' "$tmp/tty-v.out" | od -c | tail -n 6)"
+  grep -qa 'left   # ' "$tmp/tty-v.out" && fail "-v: a table glued to the progress line" || ok
 fi
 
 echo "$passes passed, $fails failed"

@@ -339,8 +339,6 @@ int cli_run(int argc, char **argv)
     const char *cfg = argv[optind];
     if (no_cache)
         o.cache_dir = "";
-    if (verbose && !es.quiet)
-        o.table_out = stdout;
     if (threads) {
         /* llvmpipe reads it when the GL context is made */
         char t[8];
@@ -402,9 +400,24 @@ int cli_run(int argc, char **argv)
                                   .stop = &stop_signal};
         return run_jobs(&c, &jo, argc, argv);
     }
+    /* -v's tables: gathered in memory and printed after the run, once the
+     * live progress line (stderr, on the same terminal) is cleared */
+    char *tables = NULL;
+    size_t tables_len = 0;
+    FILE *tables_f = NULL;
+    if (verbose && !es.quiet) {
+        tables_f = open_memstream(&tables, &tables_len);
+        o.table_out = tables_f ? tables_f : stdout;
+    }
     struct sl_run_result r;
     e = sl_run(&c, &o, &r, &d);
-    clear_progress(&es);   /* before the summary, an error or the interrupted note */
+    clear_progress(&es);   /* before the tables, the summary, an error or the interrupted note */
+    if (tables_f) {
+        fclose(tables_f);
+        if (!e && tables)
+            fwrite(tables, 1, tables_len, stdout);
+        free(tables);
+    }
     if (!e) {
         if (!es.quiet && !verbose)
             print_summary(&c, &r);
