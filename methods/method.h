@@ -206,6 +206,17 @@ struct sl_method_fast {
 struct sl_method {
     const char *name;          /* config key */
     const char *summary;
+    /* Where the method comes from, as data the run stores beside each cell
+     * (cells.family, cells.beside) and the report reads — the report keeps
+     * no list of methods. family: the work it is from ("moderno-2011",
+     * "morais-2015", "curtis-2009", "hertel-2009", "seed-004"; a technique
+     * package's `family:`, else "package"); NULL: none (a baseline). beside:
+     * the space-separated theses whose tables list it beside their own
+     * methods without making a study theirs (nsm: "moderno-2011
+     * morais-2015"); NULL: none. A study gets a thesis's sections when a
+     * method of that family ran. */
+    const char *family;
+    const char *beside;
     unsigned    exact;         /* SL_EXACT_* */
     unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only;
                                 * SL_LIGHTS_DIRECTIONAL: hard shadows, directional lights only */
@@ -224,6 +235,10 @@ struct sl_method {
                        struct sl_cost *c, struct sl_diag *d);
     struct sl_method_fast fast;   /* optional; zero: none */
 };
+
+/* family and beside as text, "" for none (what the store holds). */
+static inline const char *sl_method_family(const struct sl_method *m) { return m && m->family ? m->family : ""; }
+static inline const char *sl_method_beside(const struct sl_method *m) { return m && m->beside ? m->beside : ""; }
 
 /* The driver's reads of the face: configure with NULL meaning the defaults,
  * and the fast path, zero where a method gives none. */

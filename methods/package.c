@@ -226,6 +226,7 @@ enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *
         k->m = (struct sl_method){
             .name = k->t.name,
             .summary = k->t.summary,
+            .family = k->t.family,
             .exact = 0,
             .lights = SL_LIGHTS_NO_POINT,
             .params_ok = SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA,   /* cascades */

@@ -2,7 +2,8 @@
  * layouts.c — the thesis tables and the cost section of one study.
  *
  * Which thesis's sections a study gets is decided by the methods its cells
- * ran, from one table (family_methods below; report/README.md lists it):
+ * ran, from their own metadata (sl_method.family/beside, stored per cell;
+ * family_ids below; report/README.md):
  * - Moderno 2011 (own: coherence, texel, neighbours, adjacency, chain; nsm
  *   tabulated beside them): the thesis measures everything inside contours
  *   of 2/4/6 px and the whole image, and against NSM; its tables are the
@@ -33,36 +34,48 @@
 #include "report_int.h"
 #include "util.h"
 
-/* The one list of which thesis a method belongs to. own: running it makes
- * the study a study of that thesis (its sections appear); shared: a
- * baseline the thesis's tables list beside its own once they appear, but
- * that brings no thesis section by itself (a study of NSM biases is nobody's
- * thesis). A method of no row is the researcher's own: it gets the sections
- * every study gets (summary, plots, figure tables, overlays, costs). */
-static const struct {
-    enum sl_report_family family;
-    const char *method;
-    int own;
-} family_methods[] = {
-    {SL_REPORT_MODERNO, "coherence", 1},  {SL_REPORT_MODERNO, "texel", 1},   {SL_REPORT_MODERNO, "neighbours", 1},
-    {SL_REPORT_MODERNO, "adjacency", 1},  {SL_REPORT_MODERNO, "chain", 1},   {SL_REPORT_MODERNO, "nsm", 0},
-    {SL_REPORT_MORAIS, "bgsm", 1},        {SL_REPORT_MORAIS, "sgsm", 1},     {SL_REPORT_MORAIS, "sgsm_adj", 1},
-    {SL_REPORT_MORAIS, "csm", 1},         {SL_REPORT_MORAIS, "csm_adj", 1},  {SL_REPORT_MORAIS, "nsm", 0},
-    {SL_REPORT_MORAIS, "hertel", 0},      {SL_REPORT_MORAIS, "hertel_exact", 0}, {SL_REPORT_MORAIS, "raytrace", 0},
-    {SL_REPORT_CURTIS, "soft_mc", 1},     {SL_REPORT_CURTIS, "point_map", 1}, {SL_REPORT_CURTIS, "hard_point", 1},
-    {SL_REPORT_NFAMILIES, NULL, 0},
-};
+/* The theses whose sections the report can draw, by the name a method's
+ * family (method.h: sl_method.family, stored as cells.family/beside) gives
+ * them. The report keeps no list of methods: a method says where it comes
+ * from, and a study gets a thesis's sections when a method of that family
+ * ran (own); a method that names the thesis in `beside` is a baseline its
+ * tables list beside the thesis's own methods, bringing no section by
+ * itself (a study of NSM biases is nobody's thesis). A method of neither
+ * (the researcher's own, a technique package) gets the sections every
+ * study gets (summary, plots, figure tables, overlays, costs). */
+static const char *const family_ids[SL_REPORT_NFAMILIES] = {"moderno-2011", "morais-2015", "curtis-2009"};
 
-int sl_report_family_of(const char *m, enum sl_report_family f)
+const char *sl_report_family_id(enum sl_report_family f)
 {
-    for (int i = 0; family_methods[i].method; i++)
-        if (family_methods[i].family == f && strcmp(m, family_methods[i].method) == 0)
-            return family_methods[i].own ? 2 : 1;
+    return f >= 0 && f < SL_REPORT_NFAMILIES ? family_ids[f] : "";
+}
+
+int sl_report_family_of(const char *family, const char *beside, enum sl_report_family f)
+{
+    const char *id = sl_report_family_id(f);
+    size_t n = strlen(id);
+    if (!n)
+        return 0;
+    if (family && strcmp(family, id) == 0)
+        return 2;
+    for (const char *p = beside ? beside : ""; *p;) {   /* space-separated words */
+        while (*p == ' ')
+            p++;
+        size_t w = strcspn(p, " ");
+        if (w == n && strncmp(p, id, n) == 0)
+            return 1;
+        p += w;
+    }
     return 0;
 }
 
-int sl_report_is_moderno(const char *m) { return sl_report_family_of(m, SL_REPORT_MODERNO) > 0; }
-int sl_report_is_morais(const char *m) { return sl_report_family_of(m, SL_REPORT_MORAIS) > 0; }
+int sl_report_label_in(const struct sl_report_study *s, int l, enum sl_report_family f)
+{
+    return sl_report_family_of(s->family[l], s->beside[l], f);
+}
+
+int sl_report_is_moderno(const struct sl_report_study *s, int l) { return sl_report_label_in(s, l, SL_REPORT_MODERNO) > 0; }
+int sl_report_is_morais(const struct sl_report_study *s, int l) { return sl_report_label_in(s, l, SL_REPORT_MORAIS) > 0; }
 
 /* ---- study keys ---- */
 
@@ -127,10 +140,12 @@ enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d)
                 return sl_fail(d, SL_E_USAGE, NULL, 0, s->name, "more than %d method labels in one study", k);
             snprintf(s->labels[k], sizeof s->labels[0], "%s", c->label);
             snprintf(s->methods[k], sizeof s->methods[0], "%s", c->method);
+            snprintf(s->family[k], sizeof s->family[0], "%s", c->family);
+            snprintf(s->beside[k], sizeof s->beside[0], "%s", c->beside);
             s->nlabels++;
-            moderno_own |= sl_report_family_of(c->method, SL_REPORT_MODERNO) == 2;
-            morais_own |= sl_report_family_of(c->method, SL_REPORT_MORAIS) == 2;
-            curtis_own |= sl_report_family_of(c->method, SL_REPORT_CURTIS) == 2;
+            moderno_own |= sl_report_label_in(s, k, SL_REPORT_MODERNO) == 2;
+            morais_own |= sl_report_label_in(s, k, SL_REPORT_MORAIS) == 2;
+            curtis_own |= sl_report_label_in(s, k, SL_REPORT_CURTIS) == 2;
         }
         for (k = 0; k < s->nmaps && s->maps[k] != c->map_size; k++)
             ;
@@ -224,10 +239,6 @@ static void fmt_count(char *buf, size_t n, double v)
         snprintf(buf, n, "%.0f", v);
 }
 
-static int label_is(const struct sl_report_study *s, int l, int (*family)(const char *))
-{
-    return family(s->methods[l]);
-}
 
 /* 1 if a cell of the label has figure f > 0 in some region */
 static int label_has(const struct sl_report_study *s, int l, enum sl_figure f)
@@ -306,7 +317,7 @@ static const struct {
 static int summary_wants(const struct sl_report_study *s, int l, int which)
 {
     const char *m = moderno_summaries[which].method;
-    return label_is(s, l, sl_report_is_moderno) && (!m || strcmp(s->methods[l], m) == 0) &&
+    return sl_report_is_moderno(s, l) && (!m || strcmp(s->methods[l], m) == 0) &&
            (moderno_summaries[which].always || label_has(s, l, moderno_summaries[which].fig));
 }
 
@@ -442,12 +453,12 @@ static int view_rows(struct sl_report_tab *t, const struct sl_report_study *s, c
 
 static int want_moderno(const struct sl_report_study *s, int l)
 {
-    return sl_report_is_moderno(s->methods[l]);
+    return sl_report_is_moderno(s, l);
 }
 
 static int want_vs_nsm(const struct sl_report_study *s, int l)
 {
-    if (!sl_report_is_moderno(s->methods[l]))
+    if (!sl_report_is_moderno(s, l))
         return 0;
     return label_has(s, l, SL_FIG_fixed_ls) || label_has(s, l, SL_FIG_fixed_sl) ||
            label_has(s, l, SL_FIG_broken_ls) || label_has(s, l, SL_FIG_broken_sl) ||
@@ -456,7 +467,7 @@ static int want_vs_nsm(const struct sl_report_study *s, int l)
 
 static int want_hints(const struct sl_report_study *s, int l)
 {
-    return sl_report_is_moderno(s->methods[l]) && label_has(s, l, SL_FIG_hinted);
+    return sl_report_is_moderno(s, l) && label_has(s, l, SL_FIG_hinted);
 }
 
 static void fill_errors(struct sl_report_tab *t, const struct sl_cell_record *c, int r)
@@ -646,7 +657,7 @@ static enum sl_err morais_view(struct sl_report_doc *doc, const struct sl_report
     }
     int any = 0;
     for (int l = 0; l < s->nlabels; l++) {
-        if (!sl_report_is_morais(s->methods[l]))
+        if (!sl_report_is_morais(s, l))
             continue;
         int has = 0;
         for (int k = 0; k < nmaps; k++)
@@ -683,7 +694,7 @@ static enum sl_err morais_times(struct sl_report_doc *doc, const struct sl_repor
 {
     int cols[SL_REPORT_MAXCOLS], ncols = 0;
     for (int l = 0; l < s->nlabels && ncols < SL_REPORT_MAXCOLS - 2; l++)
-        if (sl_report_is_morais(s->methods[l]))
+        if (sl_report_is_morais(s, l))
             cols[ncols++] = l;
     if (ncols == 0)
         return SL_OK;

@@ -355,9 +355,8 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
     for (int l = 0; l < s->nlabels; l++) {
         k += (size_t)snprintf(labels + k, k < sizeof labels ? sizeof labels - k : 0, "%s%s (%s)", l ? ", " : "",
                               s->labels[l], s->methods[l]);
-        if (!sl_report_family_of(s->methods[l], SL_REPORT_MODERNO) &&
-            !sl_report_family_of(s->methods[l], SL_REPORT_MORAIS) &&
-            !sl_report_family_of(s->methods[l], SL_REPORT_CURTIS))
+        if (!sl_report_label_in(s, l, SL_REPORT_MODERNO) && !sl_report_label_in(s, l, SL_REPORT_MORAIS) &&
+            !sl_report_label_in(s, l, SL_REPORT_CURTIS))
             ko += (size_t)snprintf(other + ko, ko < sizeof other ? sizeof other - ko : 0, "%s%s", ko ? ", " : "",
                                    s->labels[l]);
         if (k >= sizeof labels || ko >= sizeof other)
@@ -381,8 +380,8 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
     sl_report_doc_para(doc, "%d cell(s) from run(s) %s; %d view(s) of the scene(s) %s; shadow maps %s; methods %s.",
                        s->n, runs, s->nviews, scenes, maps, labels);
     if (!s->moderno && !s->morais && !s->curtis)
-        sl_report_doc_para(doc, "No method of Moderno 2011, Morais 2015 or Curtis 2009 ran in this study (the "
-                                "list is in report/layouts.c): it gets the sections every study gets, this summary "
+        sl_report_doc_para(doc, "No method of Moderno 2011, Morais 2015 or Curtis 2009 ran in this study (each "
+                                "method says which work it comes from): it gets the sections every study gets, this summary "
                                 "with its plots, %s%sthe costs, the overlays and the figure tables, and no thesis "
                                 "section.", s->area ? "the soft-shadow table of its area-light cells, " : "",
                            s->frac ? "the fractional errors, " : "");

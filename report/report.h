@@ -125,11 +125,15 @@ struct sl_report_fidelity_claim {
     char        measured[200];
 };
 
-/* The theses whose sections a study can get (layouts.c holds the one table
- * of their methods). sl_report_family_of: 2 the method is the thesis's own
- * (it brings the sections), 1 a baseline its tables list beside its own, 0 none. */
+/* The theses whose sections a study can get, named as a method's family
+ * names them (sl_report_family_id: "moderno-2011", ...). sl_report_family_of
+ * reads a method's own metadata as a cell stores it (cells.family, beside:
+ * method.h): 2 the method is the thesis's own (it brings the sections), 1 a
+ * baseline its tables list beside its own (the thesis is a word of beside),
+ * 0 none. */
 enum sl_report_family { SL_REPORT_MODERNO, SL_REPORT_MORAIS, SL_REPORT_CURTIS, SL_REPORT_NFAMILIES };
-int sl_report_family_of(const char *method, enum sl_report_family f);
+const char *sl_report_family_id(enum sl_report_family f);
+int sl_report_family_of(const char *family, const char *beside, enum sl_report_family f);
 
 /* 1 if the cells hold hard-shadow cells of scene primitives. */
 int sl_report_fidelity_applies(const struct sl_cell_record *c, int n);

@@ -167,6 +167,7 @@ struct sl_report_study {
     char  scenes[SL_REPORT_MAXKEYS][64];
     int   nscenes;
     char  labels[SL_REPORT_MAXKEYS][48], methods[SL_REPORT_MAXKEYS][32];
+    char  family[SL_REPORT_MAXKEYS][40], beside[SL_REPORT_MAXKEYS][64];   /* the label's method's (cells.family) */
     int   nlabels;
     int   maps[SL_REPORT_MAXKEYS], nmaps;          /* ascending */
     int   regions[SL_MAX_REGIONS], nregions;       /* contours ascending, whole image (0) last */
@@ -200,8 +201,10 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
 /* Soft shadows: per view, rows label x map size, the soft figures and their cost */
 enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 /* family_of(method, MODERNO / MORAIS) > 0: the layout's tables list the method */
-int sl_report_is_moderno(const char *method);
-int sl_report_is_morais(const char *method);
+/* sl_report_family_of for label l of the study; is_*: > 0 */
+int sl_report_label_in(const struct sl_report_study *s, int l, enum sl_report_family f);
+int sl_report_is_moderno(const struct sl_report_study *s, int l);
+int sl_report_is_morais(const struct sl_report_study *s, int l);
 
 /* fidelity_thesis.c: Moderno 2011's published Primitives numbers, one datum a row */
 struct sl_thesis_datum {

@@ -60,6 +60,17 @@ YAML
   echo "// edited" >>"$tmp/pk/my_pcf/lookup.glsl"
   "$bin" run "$tmp/c.yaml" --no-cache --resume -o "$tmp/out" >"$tmp/r2" 2>&1 || fail "resume after the edit"
   grep -q "4 cell(s) computed, 0 already stored" "$tmp/r2" || { cat "$tmp/r2"; fail "cells of the edited package taken as stored"; }
+  # where a method comes from is the method's own metadata, stored per cell:
+  # a package's `family:` (else "package"), a built-in's sl_method.family
+  fam=$(sqlite3 "$tmp/out/shadowlab.db" "SELECT DISTINCT label || '=' || family FROM cells ORDER BY 1" | tr '\n' ' ')
+  [ "$fam" = "copied=filtered shipped=filtered " ] || fail "cells.family: $fam"
+  sed -i '/^family:/d' "$tmp/pk/my_pcf/technique.yaml"
+  "$bin" run "$tmp/c.yaml" --no-cache -q -o "$tmp/nofam" >/dev/null || fail "run without family"
+  [ "$(sqlite3 "$tmp/nofam/shadowlab.db" "SELECT family FROM cells WHERE label = 'copied' LIMIT 1")" = package ] ||
+    fail "a package without family: is not 'package'"
+  echo "family: Filtered" >>"$tmp/pk/my_pcf/technique.yaml"
+  out=$("$bin" validate "$tmp/c.yaml" 2>&1); rc=$?
+  [ $rc -eq 2 ] && echo "$out" | grep -q "my_pcf/technique.yaml.*family" || fail "a bad family: rc $rc: $out"
   echo "ok copy: $(echo "$a" | wc -l) figure rows equal"
   ;;
 broken)

@@ -16,6 +16,7 @@
 #include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "method.h"
 #include "report.h"
 
 /* ---- Pareto ---- */
@@ -52,6 +53,10 @@ static struct sl_cell_record cell(const char *study, const char *scene, const ch
     snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
     snprintf(c.label, sizeof c.label, "%s", label);
     snprintf(c.method, sizeof c.method, "%s", method);
+    /* where the method comes from, as a run stores it: from the method itself */
+    const struct sl_method *m = sl_method_find(method);
+    snprintf(c.family, sizeof c.family, "%s", sl_method_family(m));
+    snprintf(c.beside, sizeof c.beside, "%s", sl_method_beside(m));
     c.vw = 64;
     c.vh = 32;
     c.map_size = map;
@@ -479,12 +484,20 @@ static void report_any_study(void **st)
         f->soft.n[SL_SFIG_soft_truth_lit] = px - px / 10;   /* 3600 */
         f->soft.n[SL_SFIG_soft_within_005] = px / 2;
     }
-    assert_int_equal(sl_report_family_of("coherence", SL_REPORT_MODERNO), 2);
-    assert_int_equal(sl_report_family_of("nsm", SL_REPORT_MODERNO), 1);
-    assert_int_equal(sl_report_family_of("nsm", SL_REPORT_MORAIS), 1);
-    assert_int_equal(sl_report_family_of("csm_adj", SL_REPORT_MORAIS), 2);
-    assert_int_equal(sl_report_family_of("soft_mc", SL_REPORT_CURTIS), 2);
-    assert_int_equal(sl_report_family_of("pcf", SL_REPORT_MODERNO), 0);
+    /* a study's thesis sections come from the methods' own metadata */
+    assert_int_equal(sl_report_family_of("moderno-2011", "", SL_REPORT_MODERNO), 2);
+    assert_int_equal(sl_report_family_of("", "moderno-2011 morais-2015", SL_REPORT_MODERNO), 1);
+    assert_int_equal(sl_report_family_of("", "moderno-2011 morais-2015", SL_REPORT_MORAIS), 1);
+    assert_int_equal(sl_report_family_of("", "moderno-2011 morais-2015", SL_REPORT_CURTIS), 0);
+    assert_int_equal(sl_report_family_of("", "moderno-2011x", SL_REPORT_MODERNO), 0);   /* words, not prefixes */
+    assert_int_equal(sl_report_family_of("package", "", SL_REPORT_MODERNO), 0);
+    const struct sl_method *nsm = sl_method_find("nsm"), *coh = sl_method_find("coherence"),
+                           *csma = sl_method_find("csm_adj"), *smc = sl_method_find("soft_mc");
+    assert_int_equal(sl_report_family_of(sl_method_family(coh), sl_method_beside(coh), SL_REPORT_MODERNO), 2);
+    assert_int_equal(sl_report_family_of(sl_method_family(nsm), sl_method_beside(nsm), SL_REPORT_MODERNO), 1);
+    assert_int_equal(sl_report_family_of(sl_method_family(nsm), sl_method_beside(nsm), SL_REPORT_MORAIS), 1);
+    assert_int_equal(sl_report_family_of(sl_method_family(csma), sl_method_beside(csma), SL_REPORT_MORAIS), 2);
+    assert_int_equal(sl_report_family_of(sl_method_family(smc), sl_method_beside(smc), SL_REPORT_CURTIS), 2);
     char out[400];
     snprintf(out, sizeof out, "%s/any", sl_test_dir);
     struct sl_report_input in = {c, n, NULL, 0, "test cells", sl_test_dir};
@@ -513,6 +526,39 @@ static void report_any_study(void **st)
     free(md);
 }
 
+/* A study's thesis sections follow the methods' own metadata, not their
+ * names: a method the report has never heard of that says it is Morais
+ * 2015's brings Morais's tables; the same cells saying nothing bring none. */
+static void report_family_from_metadata(void **st)
+{
+    (void)st;
+    static struct sl_cell_record c[2];
+    char out[400], path[600];
+    for (int said = 0; said < 2; said++) {
+        c[0] = cell("fam", "bench", "against", "nsm", "nsm", 512, 40, 1.0, 0);
+        c[1] = cell("fam", "bench", "against", "mine", "my_conservative", 512, 0, 2.0, 100);
+        assert_string_equal(c[1].family, "");   /* no such method: nothing said */
+        if (said)
+            snprintf(c[1].family, sizeof c[1].family, "morais-2015");
+        snprintf(out, sizeof out, "%s/fam%d", sl_test_dir, said);
+        struct sl_report_input in = {c, 2, NULL, 0, "test cells", sl_test_dir};
+        struct sl_diag d;
+        memset(&d, 0, sizeof d);
+        assert_int_equal(sl_report_build(&in, out, NULL, &d), SL_OK);
+        snprintf(path, sizeof path, "%s/report.md", out);
+        char *md = slurp(path);
+        assert_non_null(md);
+        if (said) {
+            assert_non_null(strstr(md, "fam: tables in Morais 2015's layout"));
+            assert_null(strstr(md, "No method of Moderno 2011, Morais 2015 or Curtis 2009 ran"));
+        } else {
+            assert_null(strstr(md, "Morais 2015's layout"));
+            assert_non_null(strstr(md, "No method of Moderno 2011, Morais 2015 or Curtis 2009 ran"));
+        }
+        free(md);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -521,6 +567,7 @@ int main(int argc, char **argv)
         SL_CASE(report, build),
         SL_CASE(report, self_contained),
         SL_CASE(report, any_study),
+        SL_CASE(report, family_from_metadata),
     };
     return sl_run_group(argc, argv, "report", tests, sl_test_setup, sl_test_teardown);
 }

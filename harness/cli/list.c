@@ -82,6 +82,7 @@ static void show_technique(const struct sl_technique *t)
     printf("  package    %s (%s)\n", t->dir, t->origin ? t->origin : "given");
     printf("  shaders    %s, %s\n", t->map_shader, t->lookup_shader);
     printf("  cite       %s\n", t->cite[0] ? t->cite : "(none given)");
+    printf("  family     %s\n", t->family);
     printf("  threshold  %g (lit iff visibility >= it)\n", t->threshold);
     printf("  cull       %s\n", sl_tech_cull_names[t->cull]);
     printf("  maps\n");

@@ -89,6 +89,8 @@ struct sl_technique {
     char name[SL_TECH_NAME_MAX];
     char summary[200];
     char cite[500];
+    char family[SL_TECH_NAME_MAX];   /* `family:` (e.g. filtered), "package" when not given: the
+                                      * report's grouping (sl_method.family) */
     char dir[1024];             /* the package folder, as found */
     char file[1100];            /* dir/technique.yaml: what errors name */
     const char *origin;         /* where it was found (sl_tech_dirs' origins); NULL when loaded alone */

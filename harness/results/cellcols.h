@@ -52,6 +52,9 @@
  * errors (a method that writes a visibility, a technique package: its
  * visibility against the 0/1 truth over the PFL pixels, score/cell.c), not
  * an area light's; 0 otherwise.
+ * family, beside: the cell's method's sl_method.family and .beside (method.h,
+ * "" for none): where it comes from, which the report reads to decide a
+ * study's thesis sections (it keeps no list of methods).
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -133,7 +136,9 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(truth_cached,        flag,     0,    15,  "truth_cached",       none,      _,              cl->truth_cached) \
     X(n_outside_cone,      count,    0,    0,   "",                   none,      _,              cl->n_outside_cone) \
     X(light,               text,     48,   0,   "",                   none,      _,              cl->light) \
-    X(frac,                runs,     0,    0,   "",                   none,      _,              cl->has_frac)
+    X(frac,                runs,     0,    0,   "",                   none,      _,              cl->has_frac) \
+    X(family,              text,     40,   0,   "",                   none,      _,              sl_method_family(cm->method)) \
+    X(beside,              text,     64,   0,   "",                   none,      _,              sl_method_beside(cm->method))
 /* clang-format on */
 
 /* One enumerator per column: SL_COL_<name>. */
