@@ -53,6 +53,8 @@ int main(int argc, char **argv)
         cli_man(stdout);
         return 0;
     }
+    if (help && !strcmp(argv[2], "--config"))
+        return cli_config_reference(stdout);
     if (help && !strcmp(argv[2], "--bash-completion")) {
         cli_completion(stdout);
         return 0;

@@ -48,7 +48,7 @@ int         sl_self_shadow_parse(const char *name);   /* -1 if unknown */
  */
 #define SL_KNOBS(X)                                                                                       \
     X(SL_PARAM_SELF_SHADOW, 0, self_shadow, int,   POLICY, 0, 0,                                          \
-      "nsm: enum sl_self_shadow, the depth comparison's self-shadow policy")                             \
+      "nsm: the self-shadow policy: front_faces (default; Moderno 2011), none, constant, slope, triangle_id (Hertel 2009)")                             \
     X(SL_PARAM_BIAS,        1, bias,        float, FLOAT,  0, 0,                                          \
       "nsm with self_shadow constant or slope: depth bias in texels, 0..1000")                           \
     X(SL_PARAM_SLOPE,       2, slope,       float, FLOAT,  0, 0,                                          \
@@ -58,21 +58,21 @@ int         sl_self_shadow_parse(const char *name);   /* -1 if unknown */
     X(SL_PARAM_LEVEL,       4, level,       int,   UINT,   0, 0,                                          \
       "adjacency: 1 (edge) or 2 (vertex)")                                                               \
     X(SL_PARAM_FINISH,      5, finish,      int,   WORDS,  "trace", "lit",                                \
-      "chain: 0 trace the pixels left, 1 leave them lit")                                                \
+      "chain: trace (default: the pixels left are traced) or lit (they are left lit)")                                                \
     X(SL_PARAM_GRID,        6, grid,        int,   UINT,   0, 0,                                          \
       "soft_mc: rays per pixel = grid x grid (jittered points on the light), 1..16")                     \
     X(SL_PARAM_SEARCH,      7, search,      int,   WORDS,  "linear", "hierarchical",                      \
-      "soft_mc: 0 linear + binary refinement, 1 hierarchical (N-buffer)")                                \
+      "soft_mc: linear (+ binary refinement) or hierarchical (N-buffer)")                                \
     X(SL_PARAM_LAYERS,      8, layers,      int,   UINT,   0, 0,                                          \
       "soft_mc: 1 (near only), 2 (near and far) or 3 (and the camera's depth)")                          \
     X(SL_PARAM_BLUR,        9, blur,        int,   BOOL,   0, 0,                                          \
-      "soft_mc: 1 the depth-sensitive screen-space blur, 0 none")                                        \
+      "soft_mc: true: the depth-sensitive screen-space blur; false: none")                                        \
     X(SL_PARAM_PARTITIONS, 10, partitions,  int,   UINT,   0, 0,                                          \
       "zpart: shadow maps over the view's depth slices, 1..8")                                           \
     X(SL_PARAM_LAMBDA,     11, lambda,      float, FLOAT,  0, 0,                                          \
       "zpart: split planes, 0 uniform .. 1 logarithmic (seed 004 eq. 62)")                             \
     X(SL_PARAM_WARP,       12, warp,        int,   WORDS,  "uniform", "lispsm",                           \
-      "zpart: each slice's map 0 uniform (orthographic), 1 LiSPSM (Wimmer et al. 2004)")
+      "zpart: each slice's map uniform (orthographic) or lispsm (Wimmer et al. 2004)")
 
 enum sl_param {
 #define SL_KNOB_BIT(id, bit, ...) id = 1 << (bit),

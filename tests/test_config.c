@@ -22,8 +22,8 @@ static void config_default_loads(void **st)
     assert_string_equal(c.scenes[0].name, "primitives");
     assert_int_equal(c.scenes[0].nviewpoints, 3);
     assert_string_equal(c.scenes[0].viewpoints[2], "against");
-    assert_int_equal(c.runs, 1);
-    assert_int_equal(c.warmup, 0);
+    assert_int_equal(c.runs, 3);   /* the default repetitions {1, 3}: default.yaml gives none */
+    assert_int_equal(c.warmup, 1);
     assert_int_equal(c.nmaps, 2);
     assert_int_equal(c.maps[0], 1024);
     assert_int_equal(c.maps[1], 2048);

@@ -35,6 +35,7 @@ const char *cli_usage(void);                /* `shadowlab --help`, built from cl
 /* `shadowlab help --man`: the man page (roff), from cli_verbs and their help
  * texts (doc/shadowlab.1 is this output) */
 void cli_man(FILE *f);
+int  cli_config_reference(FILE *f);   /* help --config: doc/config.md */
 /* `shadowlab help --bash-completion`: the bash completion script, from the
  * same rows (scripts/shadowlab.bash-completion is this output) */
 void cli_completion(FILE *f);

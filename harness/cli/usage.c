@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "bench.h"
+#include "config.h"
 #include "cli.h"
 #include "figrec.h"
 #include "softfig.h"
@@ -272,6 +273,7 @@ const char *cli_usage(void)
     usage_line(text, sizeof text, &len, "version, -V, --version", "the version and the git SHA this binary was built from");
     usage_line(text, sizeof text, &len, "help --man", "this reference as a man page (roff: doc/shadowlab.1)");
     usage_line(text, sizeof text, &len, "help --bash-completion", "the bash completion script for these verbs");
+    usage_line(text, sizeof text, &len, "help --config", "every config key, from the parser's schema (doc/config.md)");
     return text;
 }
 
@@ -316,8 +318,8 @@ static const char man_description[] =
     "Each command's reference below is its --help text (shadowlab help COMMAND prints the same).\n";
 
 static const char man_config[] =
-    "A config is a YAML file; the reference, with every key, its default and its range, is the Configs "
-    "section of doc/guide.md in the source tree, and "
+    "A config is a YAML file; every key is listed below (and in doc/config.md: both written by shadowlab "
+    "help \\-\\-config from the parser's own schema), the Configs section of doc/guide.md explains them, and "
     "shadowlab validate CONFIG prints a config with every default filled in. In short:\n"
     "\n"
     "    name: study                  # output folder under the --out root\n"
@@ -480,6 +482,10 @@ void cli_man(FILE *f)
           f);
     fputs(".SH CONFIGURATION\n", f);
     man_text(f, man_config);
+    fputs(".PP\nThe keys (a list's entries are key[]):\n", f);
+    struct sl_diag d;
+    if (sl_config_reference(f, 1, &d))   /* a key without its text: the man page says so, the test fails */
+        fprintf(f, ".PP\nINCOMPLETE: %s\n", d.msg);
     fputs(".SH ENVIRONMENT\n", f);
     for (size_t i = 0; i < sizeof man_env / sizeof man_env[0]; i++) {
         fputs(".TP\n.B ", f);
@@ -504,6 +510,23 @@ void cli_man(FILE *f)
     man_verbatim(f, man_examples);
     fputs(".SH SEE ALSO\n", f);
     man_text(f, man_see_also);
+}
+
+/* `shadowlab help --config`: doc/config.md, every key from the parser's own
+ * schema (sl_config_reference); 1 when a key lacks its text. */
+int cli_config_reference(FILE *f)
+{
+    struct sl_diag d;
+    fputs("# Config reference\n\n"
+          "Every key a config file may give, written by `shadowlab help --config` from the parser's own\n"
+          "schema (harness/plan/config.c; do not edit: regenerate). A list's entries are `key[]`; a\n"
+          "method entry also takes its technique package's parameters (`shadowlab show technique NAME`).\n"
+          "The guide's [Configs](guide.md#configs) section explains them with examples.\n\n", f);
+    if (sl_config_reference(f, 0, &d)) {
+        fprintf(stderr, "shadowlab: %s\n", d.msg);
+        return 1;
+    }
+    return 0;
 }
 
 /* ---- the bash completion -------------------------------------------------
@@ -766,5 +789,5 @@ void cli_completion(FILE *f)
     fputs("        help) COMPREPLY=($(compgen -W \"", f);
     for (const struct cli_verb *v = cli_verbs; v->name; v++)
         fprintf(f, "%s ", v->name);
-    fputs("--man --bash-completion\" -- \"$cur\")) ;;\n    esac\n}\ncomplete -F _shadowlab shadowlab\n", f);
+    fputs("--man --bash-completion --config\" -- \"$cur\")) ;;\n    esac\n}\ncomplete -F _shadowlab shadowlab\n", f);
 }

@@ -237,6 +237,157 @@ static const cyaml_schema_value_t config_schema = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, struct raw_config, config_fields),
 };
 
+/* ---- the config reference: every key of the schema above, documented ----
+ * `shadowlab help --config` (doc/config.md) and the man page's
+ * CONFIGURATION section are written from the libcyaml schema itself, walked
+ * key by key, with the one line of text each path has here (a method's
+ * knobs: their SL_KNOBS text). A schema key with no text here, or a text
+ * for a key the schema has not, is an error of the generator, so the
+ * reference cannot drift from what the parser takes. */
+static const struct { const char *path, *doc; } key_docs[] = {
+    {"name", "the study's name: its folder under --out and its name in the store (default: the file's name)"},
+    {"scenes", "the scenes, each by name (scenes/*.yaml; hard/tiny is scenes/hard/tiny.yaml) or by path (ending .yaml, relative to the config)"},
+    {"scenes[].scene", "the scene's name or path"},
+    {"scenes[].viewpoints", "the scene's viewpoints to run (default: all of them)"},
+    {"scenes[].paths", "the scene's paths of frames to run (errors over motion; default: none)"},
+    {"scenes[].map_sizes", "this scene's own map sizes (default: the top-level map_sizes)"},
+    {"scenes[].methods", "the labels this scene runs (default: every label that handles its light)"},
+    {"viewports", "the image sizes (default: one of 1024 x 1024)"},
+    {"viewports[].width", "pixels, 16..8192"},
+    {"viewports[].height", "pixels, 16..8192"},
+    {"map_sizes", "shadow-map sizes: powers of two, 64..16384"},
+    {"contours", "contour thicknesses in pixels: even, 2..64, increasing (default [2, 4, 6]); the whole image is always added"},
+    {"contour_from", "nsm (default: one contour per view and map, from NSM's image, shared by every method) or own (each method's own image)"},
+    {"methods", "the labelled methods; one method may appear under several labels, and a knob given as a list sweeps (one label per value)"},
+    {"methods[].label", "the label tables and the store use (default: the method's name): letters, digits, -, _, . (not first)"},
+    {"methods[].method", "a built-in method (shadowlab list methods) or a technique package (shadowlab list techniques); a package's parameters are keys of this entry too (shadowlab show technique NAME)"},
+    {"methods[].light_frame", "this label's own light frame (errors over motion)"},
+    {"methods[].light_frame.fit", "tight (default: the view's receivers) or sphere (their bounding sphere: stable under camera rotation)"},
+    {"methods[].light_frame.snap", "true: the frame moves in whole texels (no crawling under camera motion); default false"},
+    {"techniques", "folders of technique packages, relative to the config (searched before SHADOWLAB_TECHNIQUES and the built-in ones)"},
+    {"outputs", "what a run writes beside the store"},
+    {"outputs.tables", "table.md, table.tex, table-detail.tex, figures.csv (default true)"},
+    {"outputs.overlays", "an error-overlay PNG per cell (default true)"},
+    {"outputs.exr", "the truth, verdicts and error as OpenEXR layers per cell (default false)"},
+    {"outputs.aliasing", "the aliasing error m per pixel: auto (default: where a method that reads it runs: zpart, lispsm), true or false"},
+    {"outputs.overlay_contour", "the contour thickness the overlays draw, one of contours or 0 for the whole image (default: the thinnest)"},
+    {"repetitions", "how often the timed stages run (computed once, timed this often)"},
+    {"repetitions.warmup", "untimed runs first (default 1)"},
+    {"repetitions.runs", "timed runs: median, min and max kept (default 3; 1 is marked \"timed once\")"},
+    {"seed", "for anything random (default 1)"},
+    {"area_samples", "area lights: truth samples per side of the light (default 32: 1,024 a pixel)"},
+    {"store", "the results store, relative to the output root (default shadowlab.db); no \"..\", not absolute"},
+    {"threads", "CPU threads (default 0: every core)"},
+    {"gl", "the GL backend: osmesa or egl (default: SHADOWLAB_GL, else osmesa)"},
+};
+
+static const char *knob_doc(const char *key)
+{
+#define KNOB_DOC(id, bit, name, type, kind, a, b, doc) if (!strcmp(key, #name)) return doc;
+    SL_KNOBS(KNOB_DOC)
+#undef KNOB_DOC
+    return NULL;
+}
+
+static const char *key_doc(const char *path)
+{
+    for (size_t i = 0; i < sizeof key_docs / sizeof key_docs[0]; i++)
+        if (!strcmp(key_docs[i].path, path))
+            return key_docs[i].doc;
+    if (!strncmp(path, "methods[].", 10))
+        return knob_doc(path + 10);
+    return NULL;
+}
+
+static const char *value_kind(const cyaml_schema_value_t *v)
+{
+    switch (v->type) {
+    case CYAML_INT:
+    case CYAML_UINT: return "integer";
+    case CYAML_BOOL: return "true or false";
+    case CYAML_FLOAT: return "number";
+    case CYAML_STRING: return "text";
+    case CYAML_MAPPING: return "mapping";
+    case CYAML_SEQUENCE:
+    case CYAML_SEQUENCE_FIXED: return "list";
+    default: return "value";
+    }
+}
+
+struct ref_walk {
+    FILE *f;
+    int   roff;
+    int   seen[sizeof key_docs / sizeof key_docs[0]];
+    char  missing[128];   /* the first schema path with no text */
+};
+
+static void ref_row(struct ref_walk *w, const char *path, const cyaml_schema_value_t *v, int required,
+                    const char *doc)
+{
+    char kind[64];
+    if (v->type == CYAML_SEQUENCE || v->type == CYAML_SEQUENCE_FIXED)
+        snprintf(kind, sizeof kind, "list of %s", value_kind(v->sequence.entry));
+    else
+        snprintf(kind, sizeof kind, "%s", value_kind(v));
+    if (w->roff) {
+        fprintf(w->f, ".TP\n.B %s\n(%s%s) ", path, kind, required ? ", required" : "");
+        for (const char *p = doc; *p; p++) {   /* roff: a leading '.' or '\'' and every '\\' and '-' escaped */
+            if (*p == '\\' || *p == '-')
+                fputc('\\', w->f);
+            fputc(*p, w->f);
+        }
+        fputc('\n', w->f);
+    } else {
+        fprintf(w->f, "| `%s` | %s%s | ", path, kind, required ? ", **required**" : "");
+        for (const char *p = doc; *p; p++)
+            fputs(*p == '|' ? "\\|" : (char[2]){*p, 0}, w->f);
+        fputs(" |\n", w->f);
+    }
+}
+
+static void ref_fields(struct ref_walk *w, const cyaml_schema_field_t *fl, const char *prefix)
+{
+    for (; fl->key; fl++) {
+        char path[128];
+        snprintf(path, sizeof path, "%s%s%s", prefix, prefix[0] ? "." : "", fl->key);
+        const char *doc = key_doc(path);
+        for (size_t i = 0; i < sizeof key_docs / sizeof key_docs[0]; i++)
+            w->seen[i] |= !strcmp(key_docs[i].path, path);
+        if (!doc) {
+            if (!w->missing[0])
+                snprintf(w->missing, sizeof w->missing, "%s", path);
+            continue;
+        }
+        ref_row(w, path, &fl->value, !(fl->value.flags & CYAML_FLAG_OPTIONAL), doc);
+        if (fl->value.type == CYAML_MAPPING)
+            ref_fields(w, fl->value.mapping.fields, path);
+        else if ((fl->value.type == CYAML_SEQUENCE || fl->value.type == CYAML_SEQUENCE_FIXED) &&
+                 fl->value.sequence.entry->type == CYAML_MAPPING) {
+            char item[140];
+            snprintf(item, sizeof item, "%s[]", path);
+            ref_fields(w, fl->value.sequence.entry->mapping.fields, item);
+        }
+    }
+}
+
+
+enum sl_err sl_config_reference(FILE *f, int roff, struct sl_diag *d)
+{
+    struct ref_walk w = {.f = f, .roff = roff};
+    if (!roff)
+        fputs("| key | value | meaning |\n|---|---|---|\n", f);
+    ref_fields(&w, config_fields, "");
+    if (w.missing[0])
+        return sl_fail(d, SL_E_USAGE, NULL, 0, w.missing,
+                       "the config key '%s' has no text in the reference (key_docs, config.c)", w.missing);
+    for (size_t i = 0; i < sizeof key_docs / sizeof key_docs[0]; i++)
+        if (!w.seen[i])
+            return sl_fail(d, SL_E_USAGE, NULL, 0, key_docs[i].path,
+                           "the reference documents '%s', which the config schema has not (key_docs, config.c)",
+                           key_docs[i].path);
+    return SL_OK;
+}
+
 const char *sl_contour_from_name(int policy) { return policy == SL_CONTOUR_OWN ? "own" : "nsm"; }
 
 static int is_pow2(unsigned v) { return v && !(v & (v - 1)); }

@@ -120,6 +120,12 @@ enum sl_err sl_config_load_with(const char *path, const char *const *overrides, 
 /* Write the filled-in config (every default explicit) as YAML. */
 void sl_config_write(const struct sl_config *c, FILE *f);
 
+/* The reference of every key a config file may give, from the parser's own
+ * schema: a Markdown table (roff 0: doc/config.md) or man-page paragraphs
+ * (roff 1). Fails (SL_E_USAGE, naming the key) when a key of the schema has
+ * no text or a text names no key: the reference cannot drift. */
+enum sl_err sl_config_reference(FILE *f, int roff, struct sl_diag *d);
+
 /* The config's first label whose run is the contour's NSM (method nsm,
  * front faces culled: the configured parameters are then exactly those),
  * -1 none (run.c: contour_from nsm). */
