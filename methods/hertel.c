@@ -172,14 +172,14 @@ static enum sl_err h_run_exact(const struct sl_method_args *a, struct sl_verdict
 }
 
 const struct sl_method sl_method_hertel = {
-    .name = "hertel", .family = "hertel-2009", .beside = "morais-2015", .summary = "Hertel 2009 as published: fully covered texels decided by the stored depth "
+    .name = "hertel", .display = "Hertel 2009", .family = "hertel-2009", .beside = "morais-2015", .summary = "Hertel 2009 as published: fully covered texels decided by the stored depth "
                                  "(own triangle: lit), the rest by the stored-triangle test and rays cut at the "
                                  "stored depth",
     .exact = 0, .needs = h_needs, .run = h_run,
 };
 
 const struct sl_method sl_method_hertel_exact = {
-    .name = "hertel_exact", .family = "hertel-2009", .beside = "morais-2015", .summary = "Hertel 2009 made exact: every pixel the map does not light gets the "
+    .name = "hertel_exact", .display = "Hertel 2009, exact", .family = "hertel-2009", .beside = "morais-2015", .summary = "Hertel 2009 made exact: every pixel the map does not light gets the "
                                        "stored-triangle test, then a ray cut at the stored depth",
     .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = h_needs, .run = h_run_exact,
 };

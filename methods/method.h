@@ -217,6 +217,9 @@ struct sl_method {
      * method of that family ran. */
     const char *family;
     const char *beside;
+    /* The method's name for people (LaTeX tables: "Texel coherence"); NULL:
+     * its name. A config's `display:` overrides it per label. */
+    const char *display;
     unsigned    exact;         /* SL_EXACT_* */
     unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only;
                                 * SL_LIGHTS_DIRECTIONAL: hard shadows, directional lights only */

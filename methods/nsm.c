@@ -147,7 +147,7 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
 }
 
 const struct sl_method sl_method_nsm = {
-    .name = "nsm", .beside = "moderno-2011 morais-2015",
+    .name = "nsm", .display = "NSM", .beside = "moderno-2011 morais-2015",
     .summary = "normal shadow mapping (self_shadow: front_faces|none|constant|slope|triangle_id)",
     .params_ok = SL_PARAM_SELF_SHADOW | SL_PARAM_BIAS | SL_PARAM_SLOPE,
     .needs = nsm_needs,

@@ -227,6 +227,7 @@ enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *
             .name = k->t.name,
             .summary = k->t.summary,
             .family = k->t.family,
+            .display = k->t.display[0] ? k->t.display : NULL,
             .exact = 0,
             .lights = SL_LIGHTS_NO_POINT,
             .params_ok = SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA,   /* cascades */

@@ -193,7 +193,7 @@ static enum sl_err zpart_run(const struct sl_method_args *a, struct sl_verdicts 
 }
 
 const struct sl_method sl_method_zpart = {
-    .name = "zpart", .family = "seed-004",
+    .name = "zpart", .display = "z-partitioned SM", .family = "seed-004",
     .summary = "z-partitioned shadow maps: NSM over k view-depth slices (partitions 1..8, lambda 0..1, "
                "warp uniform|lispsm)",
     .lights = SL_LIGHTS_DIRECTIONAL,

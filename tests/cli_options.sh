@@ -157,7 +157,7 @@ echo "$out" | grep -q "^  mesh torus .* triangles, bounds (" && ok || fail "vali
 cp scenes/blocks.yaml "$tmp/myscene.yaml"
 "$bin" run "$tmp/myscene.yaml" -o "$tmp/st" -D 'viewports=[{width: 128, height: 128}]' -D 'map_sizes=[256]' \
   >"$tmp/st.out" 2>"$tmp/st.err" || fail "run SCENE: $(cat "$tmp/st.err")"
-grep -q "is a scene: a default study" "$tmp/st.err" && grep -q "^  - {label: csm, method: csm}" "$tmp/st.err" && ok ||
+grep -q "is a scene: a default study" "$tmp/st.err" && grep -q "^  - {label: csm, method: csm, display: \"CSMa\"}" "$tmp/st.err" && ok ||
   fail "run SCENE: config not printed"
 for l in nsm csm raytrace; do grep -q "^$l  *1 " "$tmp/st.out" && ok || fail "run SCENE: no $l line"; done
 grep -q "^myscene: 3 cell(s) computed" "$tmp/st.out" && ok || fail "run SCENE summary: $(cat "$tmp/st.out")"

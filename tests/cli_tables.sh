@@ -102,6 +102,19 @@ PY
   # LaTeX: escaped display names, thin spaces, booktabs, no scaling
   "$bin" table "$db" --figure pixels --agg sum --format latex >"$tmp/p.tex" 2>"$tmp/p.err" || fail "latex"
   grep -q '^nsm\\_front & ' "$tmp/p.tex" || fail "latex label not escaped"
+  # display names: a label that is its method's name prints the method's own
+  # (nsm: NSM, csm: CSMa), any other label itself; md, csv and json keep labels
+  grep -q '^NSM & ' "$tmp/p.tex" && grep -q '^CSMa & ' "$tmp/p.tex" || fail "latex rows are not the display names"
+  grep -q '^| csm |' "$tmp/p.md" || fail "md rows are not the labels"
+  # `display:` in the config: the filled-in config keeps it (quoted), LaTeX escapes it
+  "$bin" validate "$tmp/tiny.yaml" -D 'methods[1].display=Front faces & 50%' >"$tmp/v.txt" || fail "validate display"
+  grep -qF '{label: nsm_front, method: nsm, display: "Front faces & 50%"' "$tmp/v.txt" || fail "display not in the filled-in config"
+  "$bin" validate "$tmp/tiny.yaml" -D "methods[1].display=$(printf 'x%.0s' $(seq 60))" >/dev/null 2>"$tmp/v.err"; rc=$?
+  [ $rc -eq 2 ] && grep -q 'methods\[1\]\.display' "$tmp/v.err" || fail "a too-long display: rc $rc, $(cat "$tmp/v.err")"
+  "$bin" run "$tmp/tiny.yaml" -q -o "$tmp/rd" -D 'methods[1].display=Front faces & 50%' --cells 0:4 >/dev/null 2>&1 ||
+    fail "run with a display"
+  "$bin" table "$tmp/rd/shadowlab.db" --figure wrong --format latex | grep -q '^Front faces \\& 50\\% & ' ||
+    fail "the config's display not in LaTeX: $("$bin" table "$tmp/rd/shadowlab.db" --figure wrong --format latex | grep ' & ' | head -3)"
   grep -qE ' & [0-9]{1,3}\\,[0-9]{3}' "$tmp/p.tex" || fail "no thin-space thousands separator"
   grep -q '\\toprule' "$tmp/p.tex" && ! grep -qE 'resizebox|scalebox' "$tmp/p.tex" || fail "latex not booktabs/scaled"
   [ ! -s "$tmp/p.err" ] || fail "a two-column table said: $(cat "$tmp/p.err")"

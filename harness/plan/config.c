@@ -91,6 +91,7 @@ struct raw_viewport { unsigned width, height; };
 struct raw_lframe { char *fit; bool *snap; };
 struct raw_method {
     char  *label;
+    char  *display;
     char  *method;
     struct raw_lframe *light_frame;
 #define RAW_KNOB(id, bit, name, type, kind, a, b, doc) RAW_##kind *name;
@@ -133,6 +134,7 @@ static const cyaml_schema_field_t method_fields[] = {
     CYAML_FIELD_MAPPING_PTR("light_frame", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, light_frame,
                             lframe_fields),
     CYAML_FIELD_STRING_PTR("label", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, label, 1, 47),
+    CYAML_FIELD_STRING_PTR("display", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, display, 1, 47),
     CYAML_FIELD_STRING_PTR("method", CYAML_FLAG_POINTER, struct raw_method, method, 1, 63),
 #define SCHEMA_KNOB(id, bit, name, type, kind, a, b, doc) SCHEMA_##kind(name),
     SL_KNOBS(SCHEMA_KNOB)
@@ -259,6 +261,7 @@ static const struct { const char *path, *doc; } key_docs[] = {
     {"contours", "contour thicknesses in pixels: even, 2..64, increasing (default [2, 4, 6]); the whole image is always added"},
     {"contour_from", "nsm (default: one contour per view and map, from NSM's image, shared by every method) or own (each method's own image)"},
     {"methods", "the labelled methods; one method may appear under several labels, and a knob given as a list sweeps (one label per value)"},
+    {"methods[].display", "the name LaTeX tables print for the label (default: the method's own display name when the label is the method's name, else the label); a sweep adds its [key=value]"},
     {"methods[].label", "the label tables and the store use (default: the method's name): letters, digits, -, _, . (not first)"},
     {"methods[].method", "a built-in method (shadowlab list methods) or a technique package (shadowlab list techniques); a package's parameters are keys of this entry too (shadowlab show technique NAME)"},
     {"methods[].light_frame", "this label's own light frame (errors over motion)"},
@@ -653,6 +656,27 @@ static enum sl_err method_label(const struct raw_method *rm, unsigned i, int n, 
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
                            "label '%s%s': longer than %zu characters", cm->label, suffix, sizeof cm->label - 1);
     strcat(cm->label, suffix);
+    /* the name people read in LaTeX tables: `display:` as given, else the
+     * method's own when the label is the method's name, else the label */
+    const char *disp = rm->display ? rm->display
+                       : (!rm->label || !strcmp(rm->label, rm->method)) && cm->method && cm->method->display
+                           ? cm->method->display
+                                                                         : NULL;
+    if (disp) {
+        for (const char *p = disp; *p; p++)
+            if ((unsigned char)*p < 0x20)
+                return sl_yaml_bad(d, SL_E_CONFIG, file, ix, (snprintf(key, sizeof key, "methods[%u].display", i), key),
+                                   "display '%s': one line of text, no control characters", disp);
+        if (strlen(disp) + strlen(suffix) + 1 >= sizeof cm->display)
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, (snprintf(key, sizeof key, "methods[%u].display", i), key),
+                               "display '%s%s': longer than %zu characters", disp, suffix, sizeof cm->display - 2);
+        char buf[sizeof cm->display];
+        snprintf(buf, sizeof buf, "%s%s%s", disp, suffix[0] ? " " : "", suffix);
+        memcpy(cm->display, buf, sizeof buf);
+    } else {
+        _Static_assert(sizeof cm->label <= sizeof cm->display, "a label fits the display name");
+        memcpy(cm->display, cm->label, strlen(cm->label) + 1);
+    }
     for (int k = 0; k < n; k++)
         if (strcmp(c->methods[k].label, cm->label) == 0)
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, rm->label ? key : (snprintf(key, sizeof key, "methods[%u]", i), key),
@@ -1661,6 +1685,12 @@ static void write_methods(const struct sl_config *c, FILE *f)
         /* a sweep's label holds '[' and ']', flow indicators: quoted */
         const char *q = strpbrk(c->methods[i].label, "[]{},:#") ? "\"" : "";
         fprintf(f, "  - {label: %s%s%s, method: %s", q, c->methods[i].label, q, c->methods[i].method->name);
+        if (strcmp(c->methods[i].display, c->methods[i].label) != 0) {   /* given, or the method's own */
+            fputs(", display: \"", f);
+            for (const char *p = c->methods[i].display; *p; p++)
+                fprintf(f, *p == '"' || *p == '\\' ? "\\%c" : "%c", *p);
+            fputc('"', f);
+        }
 #define WRITE_KNOB(id, bit, name, type, kind, a, b, doc) \
         if (p->set & id)                                 \
             WRITE_##kind(name, a, b)

@@ -56,6 +56,7 @@ const char *sl_contour_from_name(int policy);   /* "nsm", "own" */
 
 struct sl_config_method {
     char                     label[48];
+    char                     display[64];   /* the label's name in LaTeX tables ('display:', else the method's) */
     const struct sl_method  *method;
     struct sl_method_params  params;
     struct sl_fit_opts       frame_fit;   /* 'light_frame: {fit: tight|sphere, snap: bool}' (fitopts.h, lightfit.h);

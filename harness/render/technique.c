@@ -43,7 +43,7 @@ struct raw_param { char *name, *type, *def, *min, *max, *doc; };
 struct raw_map { char *name, *format, *filter, *post, *blur; };
 struct raw_scaled { double *texels; char *param; double *scale, *power; };
 struct raw_tech {
-    char *name, *summary, *cite, *family, *cull, *map_shader, *lookup_shader;
+    char *name, *summary, *cite, *family, *display, *cull, *map_shader, *lookup_shader;
     double *threshold;
     struct raw_map *maps;
     unsigned maps_count;
@@ -98,6 +98,7 @@ static const cyaml_schema_field_t tech_fields[] = {
     STR("summary", struct raw_tech, summary, 199),
     OPT_STR("cite", struct raw_tech, cite, 499),
     OPT_STR("family", struct raw_tech, family, 31),
+    OPT_STR("display", struct raw_tech, display, 47),
     OPT_DOUBLE("threshold", struct raw_tech, threshold),
     OPT_STR("cull", struct raw_tech, cull, 16),
     CYAML_FIELD_SEQUENCE("maps", CYAML_FLAG_POINTER, struct raw_tech, maps, &map_schema, 1, SL_TECH_MAX_MAPS),
@@ -326,6 +327,10 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
         return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, "family",
                            "'%s': a family is a name like a technique's, [a-z][a-z0-9_]{0,31}", r->family);
     snprintf(t->family, sizeof t->family, "%s", r->family ? r->family : "package");
+    for (const char *p = r->display ? r->display : ""; *p; p++)
+        if ((unsigned char)*p < 0x20)
+            return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, "display", "one line of text, no control characters");
+    snprintf(t->display, sizeof t->display, "%s", r->display ? r->display : "");
     t->threshold = r->threshold ? *r->threshold : 0.5;
     if (!(t->threshold >= 0.0 && t->threshold <= 1.0))
         return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, "threshold", "%g: a threshold is in [0, 1]", t->threshold);

@@ -89,6 +89,7 @@ struct sl_technique {
     char name[SL_TECH_NAME_MAX];
     char summary[200];
     char cite[500];
+    char display[48];                /* `display:`, the name LaTeX tables print; "": the name */
     char family[SL_TECH_NAME_MAX];   /* `family:` (e.g. filtered), "package" when not given: the
                                       * report's grouping (sl_method.family) */
     char dir[1024];             /* the package folder, as found */

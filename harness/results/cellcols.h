@@ -54,7 +54,9 @@
  * an area light's; 0 otherwise.
  * family, beside: the cell's method's sl_method.family and .beside (method.h,
  * "" for none): where it comes from, which the report reads to decide a
- * study's thesis sections (it keeps no list of methods).
+ * study's thesis sections (it keeps no list of methods). display: the
+ * label's name for people (config.h: `display:`, else the method's own,
+ * else the label), which LaTeX tables print.
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -138,7 +140,8 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(light,               text,     48,   0,   "",                   none,      _,              cl->light) \
     X(frac,                runs,     0,    0,   "",                   none,      _,              cl->has_frac) \
     X(family,              text,     40,   0,   "",                   none,      _,              sl_method_family(cm->method)) \
-    X(beside,              text,     64,   0,   "",                   none,      _,              sl_method_beside(cm->method))
+    X(beside,              text,     64,   0,   "",                   none,      _,              sl_method_beside(cm->method)) \
+    X(display,             text,     64,   0,   "",                   none,      _,              cm->display)
 /* clang-format on */
 
 /* One enumerator per column: SL_COL_<name>. */

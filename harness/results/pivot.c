@@ -331,6 +331,7 @@ struct pivot {
     int           any_once;
     int           nr, nc, maxn, region_default;
     int           varies[SL_PK_COUNT];  /* the key has two values inside one entry */
+    char        (*ldisp)[KEYLEN];       /* per label key: its display name (cells.display) */
 };
 
 static void pivot_free(struct pivot *pv)
@@ -342,6 +343,7 @@ static void pivot_free(struct pivot *pv)
     free(pv->val);
     free(pv->cnt);
     free(pv->once);
+    free(pv->ldisp);
 }
 
 /* display order of a key's values: by first appearance, or by their numeric
@@ -488,6 +490,17 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
             }
         }
         free(first);
+        /* each label's display name: the first of its cells that has one */
+        const struct keyset *lk = &pv->key[SL_PK_label];
+        pv->ldisp = calloc((size_t)lk->n + 1, sizeof *pv->ldisp);
+        if (!pv->ldisp)
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot labels");
+        for (int i = 0; i < lk->n && !e; i++)
+            for (int j = 0; j < ncells; j++)
+                if (cells[j].display[0] && !strcmp(cells[j].label, lk->v[i])) {
+                    snprintf(pv->ldisp[i], KEYLEN, "%s", cells[j].display);
+                    break;
+                }
     }
     free(pr), free(pc), free(pval), free(pk), free(ponce);
     if (e)
@@ -698,15 +711,21 @@ static struct view view_of(const struct pivot *pv, int t)
     struct view v = {pv, t, t ? pv->ck : pv->rk, t ? pv->rk : pv->ck, t ? pv->nc : pv->nr, t ? pv->nr : pv->nc};
     return v;
 }
+/* A key's text in LaTeX: a label's display name (`display:` in the config,
+ * else its method's own), every other key's value. */
+static const char *tex_key_text(const struct pivot *pv, enum sl_pivot_key k, int i)
+{
+    return k == SL_PK_label && pv->ldisp && pv->ldisp[i][0] ? pv->ldisp[i] : pv->key[k].v[i];
+}
 static const char *view_rkey(const struct view *v, int r)
 {
     const struct pivot *pv = v->pv;
-    return v->t ? pv->key[pv->ck].v[pv->cperm[r]] : pv->key[pv->rk].v[pv->rperm[r]];
+    return v->t ? tex_key_text(pv, pv->ck, pv->cperm[r]) : tex_key_text(pv, pv->rk, pv->rperm[r]);
 }
 static const char *view_ckey(const struct view *v, int c)
 {
     const struct pivot *pv = v->pv;
-    return v->t ? pv->key[pv->rk].v[pv->rperm[c]] : pv->key[pv->ck].v[pv->cperm[c]];
+    return v->t ? tex_key_text(pv, pv->rk, pv->rperm[c]) : tex_key_text(pv, pv->ck, pv->cperm[c]);
 }
 static double view_val(const struct view *v, int r, int c)
 {
@@ -1087,7 +1106,7 @@ static void detail_longtable(FILE *f, const struct sl_cell_record *cells, const 
     fputs("\\bottomrule\n\\endfoot\n", f);
     for (int i = 0; i < n; i++) {
         const struct sl_cell_record *c = &cells[idx[i]];
-        tex_rowname(f, c->label, wrap);
+        tex_rowname(f, c->display[0] ? c->display : c->label, wrap);
         for (int k = 0; k < nc; k++) {
             char s[96];
             sl_tex_number(s, sizeof s, dc[k].get(c, dc[k].arg), dc[k].dec);
@@ -1105,7 +1124,7 @@ static void detail_tables(FILE *f, const struct sl_cell_record *cells, const int
 {
     double lw = text_pt("label");
     for (int i = 0; i < n; i++) {
-        double x = text_pt(cells[idx[i]].label);
+        double x = text_pt(cells[idx[i]].display[0] ? cells[idx[i]].display : cells[idx[i]].label);
         lw = x > lw ? x : lw;
     }
     int wrap = lw > TEX_LABELMAX;
