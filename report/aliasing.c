@@ -57,17 +57,18 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
     sl_report_tab_init(&t, id, 8 + SL_ALIAS_BANDS, 2,
                        "%s / %s / %s %dx%d: wrong pixels, memory, time and aliasing error m", s->name, v->scene,
                        v->viewpoint, v->vw, v->vh);
-    static const char *const heads[] = {"method", "map", "texels", "wrong", "wrong % of PFL", "median m",
-                                        "median m (wrong)", "layers + step ms"};
+    static const char *const heads[] = {"method", "map", "texels", "wrong", "wrong %", "m median",
+                                        "m median, wrong", "layers + step ms"};
     for (int k = 0; k < 8; k++)
         sl_report_tab_head(&t, k, "%s", heads[k]);
     for (int b = 0; b < SL_ALIAS_BANDS; b++)
-        sl_report_tab_head(&t, 8 + b, "wrong, %s (share of PFL)", band_name[b]);
+        sl_report_tab_head(&t, 8 + b, "%s%s", strncmp(band_name[b], "m ", 2) ? "m " : "", band_name[b]);
     snprintf(t.note, sizeof t.note,
              "Whole image, PFL pixels. texels: the shadow-map texels the method looks up (k maps for k slices); "
+             "wrong %%: of the PFL pixels; m median: over the PFL pixels, and over the wrong ones; "
              "layers + step ms: its layers' render plus its per-pixel step, medians (zpart and lispsm render their own maps "
-             "inside their step). The band columns: the wrong pixels whose m falls in the band, and in brackets "
-             "the band's share of all PFL pixels of the view.");
+             "inside their step). The band columns (m <= 1, 1-2, 2-4, 4-8, > 8): the wrong pixels whose m falls in "
+             "the band, and in brackets the band's share of all PFL pixels of the view.");
     int rows = 0, once = 0;
     for (int l = 0; l < s->nlabels; l++)
         for (int m = 0; m < s->nmaps; m++) {
