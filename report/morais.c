@@ -315,7 +315,7 @@ static enum sl_err case_times(struct sl_report_doc *doc, const struct sl_report_
                               const struct sl_report_view **v, int nv, struct sl_diag *d)
 {
     static const char *const meth[2][3] = {{"nsm", "csm", "csm_adj"}, {"raytrace", "csm", "csm_adj"}};
-    static const char *const head[2][3] = {{"NSM", "CSMa", "CSMA"}, {"full trace (OptiX Prime)", "CSMa", "CSMA"}};
+    static const char *const head[2][3] = {{"NSM", "CSMa", "CSMA"}, {"full trace", "CSMa", "CSMA"}};
     int table = cases[k].time_table + stage;
     int l[3], nl = 0;
     for (int j = 0; j < 3; j++)
@@ -365,7 +365,7 @@ static enum sl_err case_times(struct sl_report_doc *doc, const struct sl_report_
     snprintf(t.note, sizeof t.note, "ours: medians over %d timed repetition(s) per cell on this machine (llvmpipe "
              "and Embree on CPU cores); thesis: his GPU and OptiX Prime. Different machines: read each column's trend, "
              "not the ratio. %s", runs,
-             stage ? "Ours: the rays' time alone (ms_ray_step); the full trace traces every PFL pixel."
+             stage ? "Ours: the rays' time alone (ms_ray_step); the full trace (raytrace; his OptiX Prime) traces every PFL pixel."
                    : "Ours: the render of the layers the method reads (ms_map_render).");
     notes_append(&t, &nt);
     if (once)
@@ -496,8 +496,8 @@ static enum sl_err other_view(struct sl_report_doc *doc, const struct sl_report_
     sl_report_view_title(v, vt, sizeof vt);
     sl_report_view_id(s, v, "morais", id, sizeof id);
     struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 2 + nmaps, 2, "%s: pixels per method and map size (Morais 2015's rows, not one of "
-                       "his cases)", vt);
+    sl_report_tab_init(&t, id, 2 + nmaps, 2, "%s: pixels per method and map size (as in Morais 2015 Tables 7-24; not "
+                       "one of his cases)", vt);
     sl_report_tab_group(&t, 2, "%s", "");
     sl_report_tab_group(&t, nmaps, "shadow map size");
     sl_report_tab_head(&t, 0, "method");
@@ -559,7 +559,7 @@ static enum sl_err other_times(struct sl_report_doc *doc, const struct sl_report
     char id[160];
     snprintf(id, sizeof id, "%s-%s-%s-%s", s->slug, stage ? "raystep" : "maprender", scene, viewpoint);
     struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 2 + ncols, 2, "%s / %s: %s, ms (as Morais 2015 Tables 25-30)", scene, viewpoint,
+    sl_report_tab_init(&t, id, 2 + ncols, 2, "%s / %s: %s, ms (as in Morais 2015 Tables 25-30)", scene, viewpoint,
                        stage ? "the ray-tracing step" : "shadow-map rendering of the layers the method reads");
     sl_report_tab_group(&t, 2, "%s", "");
     sl_report_tab_group(&t, ncols, "execution time (ms, median)");
