@@ -27,8 +27,6 @@
  * label of a method is taken), so a config's labels may differ from the
  * thesis's names.
  */
-#include <math.h>
-#include <stdlib.h>
 #include <string.h>
 #include "report_int.h"
 
@@ -67,7 +65,8 @@ int sl_morais_counts(const struct sl_cell_record *c, struct sl_morais_counts *ou
     b[SL_MR_shadow_correct] = b[SL_MR_shadow_incorrect] = o[SL_MR_shadow];
     /* the traced pixels are the maps' uncertain ones, PFL only (sl_method_trace_left) */
     o[SL_MR_shadow_uncertain] = n[SL_FIG_traced_shadow];
-    o[SL_MR_light_uncertain] = n[SL_FIG_traced] >= n[SL_FIG_traced_shadow] ? n[SL_FIG_traced] - n[SL_FIG_traced_shadow] : 0;
+    o[SL_MR_light_uncertain] =
+        n[SL_FIG_traced] >= n[SL_FIG_traced_shadow] ? n[SL_FIG_traced] - n[SL_FIG_traced_shadow] : 0;
     /* of the final image's light and shadow, as the thesis's numbers are (morais_thesis.c) */
     b[SL_MR_light_uncertain] = o[SL_MR_light];
     b[SL_MR_shadow_uncertain] = o[SL_MR_shadow];
@@ -365,7 +364,8 @@ static enum sl_err case_times(struct sl_report_doc *doc, const struct sl_report_
     snprintf(t.note, sizeof t.note, "ours: medians over %d timed repetition(s) per cell on this machine (llvmpipe "
              "and Embree on CPU cores); thesis: his GPU and OptiX Prime. Different machines: read each column's trend, "
              "not the ratio. %s", runs,
-             stage ? "Ours: the rays' time alone (ms_ray_step); the full trace (raytrace; his OptiX Prime) traces every PFL pixel."
+             stage ? "Ours: the rays' time alone (ms_ray_step); the full trace (raytrace; his OptiX Prime) traces "
+                     "every PFL pixel."
                    : "Ours: the render of the layers the method reads (ms_map_render).");
     notes_append(&t, &nt);
     if (once)
@@ -602,6 +602,18 @@ enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_s
 {
     enum sl_err e = SL_OK;
     int hertel = label_of(s, "hertel") >= 0 || label_of(s, "hertel_exact") >= 0, hertel_cases = 0;
+    int ncases = 0;
+    for (int k = 0; k < NCASES; k++) {
+        const struct sl_report_view *v[8];
+        ncases += case_views(s, k, v, 8) > 0;
+    }
+    if (ncases)
+        sl_report_doc_para(doc, "Counted as Morais counts them: pixels facing the light (PFL) only, PnFL left "
+                           "out. Under each of our rows (\"ours\") the thesis's printed row (\"thesis\") for "
+                           "the same case, viewport and map size, where he prints one; * marks a printed value "
+                           "that is a typo or a copy error of the thesis, explained under its table. His scenes "
+                           "are rebuilt from his Tables 1-3 (camera and light), not his geometry: the shares "
+                           "differ where the scenes do.");
     for (int k = 0; k < NCASES && !e; k++) {
         const struct sl_report_view *v[8];
         int nv = case_views(s, k, v, 8);
