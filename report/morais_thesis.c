@@ -3,15 +3,19 @@
  * three cases, transcribed once (morais.c prints them beside the study's).
  * Side-Trees is his best case (scene trees, viewpoint side), Against-Flowers
  * his worst (flowers, against), Against-Bench his average (bench, against);
- * the viewpoints are his Tables 1-3, as the scenes' YAML files have them. One row per
- * printed value: table, scene, viewpoint, viewport, map size (0: none), the
- * method as configs/morais-2015.yaml names it ("raytrace" for OptiX Prime),
- * the row, the count and the percentage as printed, and a note where the
- * printed value is a typo, an OCR artefact or an error of the thesis, saying
- * how it was read. morais::transcription checks every count against the
- * thesis's own sums and every percentage against its base (morais.c, the
- * row's base); the values flagged here are the only ones that fail it, and
- * they are kept as printed except the one stray digit (Table 19).
+ * the viewpoints are his Tables 1-3, as the scenes' YAML files have them.
+ * One row per printed value: table, scene, viewpoint, viewport, map size
+ * (0: none), the method as configs/morais-2015.yaml names it ("raytrace"
+ * for OptiX Prime), the row, the count and the percentage as printed, and a
+ * note where the printed value is a typo, an OCR artefact, a rounding slip
+ * or a copy error of the thesis, saying how it was read.
+ * The rows were generated from the seed's text (each table's rows in order,
+ * the viewport from the row's place) and then checked: morais::transcription
+ * recomputes every percentage from its base and the thesis's own sums
+ * (light + shadow = Tables 4-6's PFL, light = correct + incorrect, PFL +
+ * PnFL = the viewport); every value that fails carries a note, and every
+ * value is kept as printed but one stray digit (Table 19, 512x512, 2048^2:
+ * "1168949" for 168949). A few notes only record the print (a '%' missing).
  * The bases, as the thesis prints them: Tables 4-6, PFL and PnFL of the
  * viewport's pixels, light and shadow of PFL; Tables 7-18, light and shadow
  * of PFL (PnFL left out), light correct/incorrect of the light, shadow
@@ -20,9 +24,9 @@
  * shadow, correct/incorrect as in 7-18. The uncertain base is read from the
  * numbers: Table 20, 512x512, 4096^2 prints 4577 as 3,49%, which is 4577 of
  * the final light 131001 (3.494%), not of the truth's 130890 (3.497%); so
- * every uncertain percentage of Tables 20 and 23 (Tables 19, 21, 22 and 24
- * cannot tell, their final light being the truth's). For an exact method
- * the two bases are the same.
+ * are the other uncertain percentages of Tables 20 and 23 (in 19, 21, 22
+ * and 24 the two bases differ by a few pixels and cannot be told apart).
+ * For an exact method the two bases are the same.
  */
 #include "report_int.h"
 

@@ -292,6 +292,7 @@ static void morais_section(void **st)
     /* Hertel: traced share of PFL, and his Table 2 */
     assert_non_null(strstr(md, "| 512×512 | 512² | 5000 (2.02%) | 0 (0.00%) | 0 | 7.25 |"));
     assert_non_null(strstr(md, "Hertel 2009 Table 2"));
+    assert_non_null(strstr(md, "Hertel's Table 2 traces 20.5-58.0% of the rays"));   /* 198576/967655, 32079/55294 */
     /* the other view: our rows, no thesis */
     assert_non_null(strstr(md, "flowers / side / 512×512: pixels per method and map size (as in Morais 2015 Tables 7-24; not one of his cases)"));
     free(md);
