@@ -1,5 +1,6 @@
 /*
- * layouts.c — the thesis tables (Moderno's, Curtis's) and the cost section of one study.
+ * layouts.c — Moderno's and Curtis's thesis tables and the cost section of one
+ * study (Morais's are morais.c's).
  *
  * Which thesis's sections a study gets is decided by the methods its cells
  * ran, from one table (family_methods below; report/README.md lists it):

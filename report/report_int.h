@@ -5,7 +5,8 @@
  *          Markdown, booktabs LaTeX) so the three can never disagree
  *   doc    the two pages written in step (HTML and Markdown)
  *   study  one config's cells and the keys they span
- * and the sections: layouts.c (thesis tables, costs), plots.c (gnuplot).
+ * and the sections: layouts.c (Moderno's and Curtis's thesis tables, costs),
+ * morais.c (Morais's tables, his numbers in morais_thesis.c), plots.c (gnuplot).
  * Nothing here prints; every fallible call returns an sl_err.
  */
 #ifndef SL_REPORT_INT_H
