@@ -1,5 +1,6 @@
 /*
- * layouts.c — the thesis tables and the cost section of one study.
+ * layouts.c — Moderno's and Curtis's thesis tables and the cost section of one
+ * study (Morais's are morais.c's).
  *
  * Which thesis's sections a study gets is decided by the methods its cells
  * ran, from their own metadata (sl_method.family/beside, stored per cell;
@@ -14,10 +15,7 @@
  *   steps (a chain label). The aliasing section (seed 004) is no thesis's:
  *   any study with aliasing figures gets it.
  * - Morais 2015 (own: bgsm, sgsm, sgsm_adj, csm, csm_adj; nsm, hertel, hertel_exact and
- *   raytrace beside them): the thesis counts the whole image, per view and
- *   map size, light/shadow correct/incorrect and the uncertain pixels with
- *   PFL/PnFL (Table 7 and its siblings), and times the shadow-map rendering
- *   and the ray step per viewport and map size (Tables 25/26).
+ *   raytrace beside them): its tables are morais.c's.
  * - Curtis 2009 (own: soft_mc, point_map, hard_point) names the soft-shadow
  *   table of the cells under an area light (a study with area-light cells
  *   and none of Curtis's methods gets the same table, unnamed).
@@ -198,14 +196,6 @@ const struct sl_cell_record *sl_report_study_cell(const struct sl_report_study *
 
 /* ---- value formats ---- */
 
-static void fmt_np(char *buf, size_t n, uint64_t v, double pct)
-{
-    if (isnan(pct))
-        snprintf(buf, n, "%llu", (unsigned long long)v);
-    else
-        snprintf(buf, n, "%llu (%.2f%%)", (unsigned long long)v, pct);
-}
-
 static void fmt_of(char *buf, size_t n, uint64_t v, uint64_t base)
 {
     if (base == 0)
@@ -215,7 +205,7 @@ static void fmt_of(char *buf, size_t n, uint64_t v, uint64_t base)
                  100.0 * (double)v / (double)base);
 }
 
-static void fmt_ms(char *buf, size_t n, double ms)
+void sl_report_fmt_ms(char *buf, size_t n, double ms)
 {
     if (!(ms > 0.0))
         snprintf(buf, n, "–");
@@ -251,14 +241,14 @@ static int label_has(const struct sl_report_study *s, int l, enum sl_figure f)
     return 0;
 }
 
-static void view_title(const struct sl_report_view *v, char *buf, size_t n)
+void sl_report_view_title(const struct sl_report_view *v, char *buf, size_t n)
 {
     snprintf(buf, n, v->light[0] ? "%s (%s) / %s / %d×%d" : "%s%s / %s / %d×%d", v->scene, v->light, v->viewpoint,
              v->vw, v->vh);
 }
 
-static void view_id(const struct sl_report_study *s, const struct sl_report_view *v, const char *what, char *buf,
-                    size_t n)
+void sl_report_view_id(const struct sl_report_study *s, const struct sl_report_view *v, const char *what, char *buf,
+                       size_t n)
 {
     snprintf(buf, n, "%s-%s-%s-%s-%dx%d", s->slug, what, v->scene, v->viewpoint, v->vw, v->vh);
 }
@@ -537,11 +527,11 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
                                 const struct sl_report_view *v, struct sl_diag *d)
 {
     char vt[160], id[160];
-    view_title(v, vt, sizeof vt);
+    sl_report_view_title(v, vt, sizeof vt);
     enum sl_err e = SL_OK;
     struct sl_report_tab t;
 
-    view_id(s, v, "errors", id, sizeof id);
+    sl_report_view_id(s, v, "errors", id, sizeof id);
     sl_report_tab_init(&t, id, 7, 3, "%s: wrong pixels by contour (Moderno 2011 Tables 17/18)", vt);
     key_heads(&t);
     sl_report_tab_head(&t, 3, "caught (of the image's wrong)");
@@ -554,7 +544,7 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
     sl_report_tab_free(&t);
 
     if (!e) {
-        view_id(s, v, "hints", id, sizeof id);
+        sl_report_view_id(s, v, "hints", id, sizeof id);
         sl_report_tab_init(&t, id, 9, 3, "%s: texel coherence hints of NSM's light and shadow (Moderno 2011 Table 19)", vt);
         key_heads(&t);
         sl_report_tab_group(&t, 3, "%s", "");
@@ -573,7 +563,7 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
     }
 
     if (!e) {
-        view_id(s, v, "vs-nsm", id, sizeof id);
+        sl_report_view_id(s, v, "vs-nsm", id, sizeof id);
         sl_report_tab_init(&t, id, 11, 3, "%s: pixel changes against NSM (Moderno 2011 Table 23)", vt);
         key_heads(&t);
         sl_report_tab_group(&t, 3, "%s", "");
@@ -610,158 +600,6 @@ enum sl_err sl_report_moderno(struct sl_report_doc *doc, const struct sl_report_
     return e;
 }
 
-/* ---- Morais 2015: Table 7 per view, Tables 25/26 per scene and viewpoint ---- */
-
-static enum sl_err morais_view(struct sl_report_doc *doc, const struct sl_report_study *s,
-                               const struct sl_report_view *v, struct sl_diag *d)
-{
-    static const struct { enum sl_figure f; const char *name; } rows[] = {
-        /* Morais 2015 Table 7's six rows in its order, then what it has no row for */
-        {SL_FIG_light, "pixels in light"},
-        {SL_FIG_shadow, "pixels in shadow"},
-        {SL_FIG_light_correct, "light – correct"},
-        {SL_FIG_light_incorrect, "light – incorrect"},
-        {SL_FIG_shadow_correct, "shadow – correct"},
-        {SL_FIG_shadow_incorrect, "shadow – incorrect"},
-        {SL_FIG_uncertain, "uncertain (no row in the thesis)"},
-    };
-    int nmaps = s->nmaps > SL_REPORT_MAXCOLS - 2 ? SL_REPORT_MAXCOLS - 2 : s->nmaps;
-    char vt[160], id[160], buf[96];
-    view_title(v, vt, sizeof vt);
-    view_id(s, v, "table7", id, sizeof id);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 2 + nmaps, 2, "%s: pixels per method and shadow-map size (Morais 2015 Table 7)", vt);
-    sl_report_tab_group(&t, 2, "%s", "");
-    sl_report_tab_group(&t, nmaps, "shadow map size");
-    sl_report_tab_head(&t, 0, "method");
-    sl_report_tab_head(&t, 1, "pixel type");
-    for (int k = 0; k < nmaps; k++)
-        sl_report_tab_head(&t, 2 + k, "%d²", s->maps[k]);
-    /* PFL and PnFL do not depend on the method: from the first cell of each map size */
-    for (int p = 0; p < 2; p++) {
-        sl_report_tab_row(&t, 0);
-        if (p == 0)
-            sl_report_tab_cell(&t, 0, "(view)");
-        sl_report_tab_cell(&t, 1, p ? "PnFL" : "PFL");
-        for (int k = 0; k < nmaps; k++)
-            for (int l = 0; l < s->nlabels; l++) {
-                const struct sl_cell_record *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
-                int r = c ? sl_report_region(c, 0) : -1;
-                if (r < 0)
-                    continue;
-                enum sl_figure f = p ? SL_FIG_pnfl : SL_FIG_pfl;
-                fmt_np(buf, sizeof buf, c->fig.r[r].n[f], c->fig.r[r].pct[f]);
-                sl_report_tab_cell(&t, 2 + k, "%s", buf);
-                break;
-            }
-    }
-    int any = 0;
-    for (int l = 0; l < s->nlabels; l++) {
-        if (!sl_report_is_morais(s, l))
-            continue;
-        int has = 0;
-        for (int k = 0; k < nmaps; k++)
-            has |= sl_report_study_cell(s, v, s->labels[l], s->maps[k]) != NULL;
-        if (!has)
-            continue;
-        any = 1;
-        for (size_t q = 0; q < sizeof rows / sizeof rows[0]; q++) {
-            sl_report_tab_row(&t, q == 0);
-            if (q == 0)
-                sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
-            sl_report_tab_cell(&t, 1, "%s", rows[q].name);
-            for (int k = 0; k < nmaps; k++) {
-                const struct sl_cell_record *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
-                int r = c ? sl_report_region(c, 0) : -1;
-                if (r < 0)
-                    continue;
-                fmt_np(buf, sizeof buf, c->fig.r[r].n[rows[q].f], c->fig.r[r].pct[rows[q].f]);
-                sl_report_tab_cell(&t, 2 + k, "%s", buf);
-            }
-        }
-    }
-    snprintf(t.note, sizeof t.note,
-             "Whole image, background excluded. Light, shadow and uncertain: %% of the pixels (PnFL count as "
-             "shadow); correct/incorrect: %% of the method's light or shadow pixels.");
-    enum sl_err e = any ? sl_report_doc_table(doc, &t, d) : SL_OK;
-    sl_report_tab_free(&t);
-    return e;
-}
-
-/* Tables 25/26: rows viewport x map size, a column per Morais label; `stage` 0 map render, 1 method */
-static enum sl_err morais_times(struct sl_report_doc *doc, const struct sl_report_study *s, const char *scene,
-                                const char *viewpoint, int stage, struct sl_diag *d)
-{
-    int cols[SL_REPORT_MAXCOLS], ncols = 0;
-    for (int l = 0; l < s->nlabels && ncols < SL_REPORT_MAXCOLS - 2; l++)
-        if (sl_report_is_morais(s, l))
-            cols[ncols++] = l;
-    if (ncols == 0)
-        return SL_OK;
-    char id[160];
-    snprintf(id, sizeof id, "%s-%s-%s-%s", s->slug, stage ? "table26" : "table25", scene, viewpoint);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 2 + ncols, 2, "%s / %s: %s, ms (Morais 2015 Table %s)", scene, viewpoint,
-                       stage ? "the method's per-pixel step, ray step included"
-                             : "shadow-map rendering of the layers the method reads",
-                       stage ? "26" : "25");
-    sl_report_tab_group(&t, 2, "%s", "");
-    sl_report_tab_group(&t, ncols, "execution time (ms, median)");
-    sl_report_tab_head(&t, 0, "viewport");
-    sl_report_tab_head(&t, 1, "map");
-    for (int k = 0; k < ncols; k++)
-        sl_report_tab_head(&t, 2 + k, "%s", s->labels[cols[k]]);
-    int runs = 0, once = 0;
-    for (int v = 0; v < s->nviews; v++) {
-        const struct sl_report_view *vw = &s->views[v];
-        if (strcmp(vw->scene, scene) || strcmp(vw->viewpoint, viewpoint))
-            continue;
-        for (int m = 0; m < s->nmaps; m++) {
-            sl_report_tab_row(&t, m == 0);
-            if (m == 0)
-                sl_report_tab_cell(&t, 0, "%d×%d", vw->vw, vw->vh);
-            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
-            for (int k = 0; k < ncols; k++) {
-                const struct sl_cell_record *c = sl_report_study_cell(s, vw, s->labels[cols[k]], s->maps[m]);
-                char buf[32];
-                fmt_ms(buf, sizeof buf, c ? (stage ? c->ms_method : c->ms_map_render) : 0.0);
-                int one = c && c->runs == 1 && strcmp(buf, "–") != 0;
-                sl_report_tab_cell(&t, 2 + k, "%s%s", buf, one ? SL_REPORT_ONCE : "");
-                once |= one;
-                if (c && c->runs > runs)
-                    runs = c->runs;
-            }
-        }
-    }
-    snprintf(t.note, sizeof t.note, "Medians over %d timed repetition(s) per cell on this machine (CPU: llvmpipe "
-             "and Embree); – where the method has no such stage or no time was stored.", runs);
-    if (once)
-        sl_report_tab_once(&t);
-    enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
-    return e;
-}
-
-enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
-{
-    enum sl_err e = SL_OK;
-    for (int v = 0; v < s->nviews && !e; v++)
-        e = morais_view(doc, s, &s->views[v], d);
-    /* timing tables per (scene, viewpoint), in order of first appearance */
-    for (int v = 0; v < s->nviews && !e; v++) {
-        int seen = 0;
-        for (int u = 0; u < v && !seen; u++)
-            seen = !strcmp(s->views[u].scene, s->views[v].scene) &&
-                   !strcmp(s->views[u].viewpoint, s->views[v].viewpoint);
-        if (seen)
-            continue;
-        e = morais_times(doc, s, s->views[v].scene, s->views[v].viewpoint, 0, d);
-        if (!e)
-            e = morais_times(doc, s, s->views[v].scene, s->views[v].viewpoint, 1, d);
-    }
-    return e;
-}
-
 /* ---- costs ---- */
 
 static int cmp_double(const void *a, const void *b)
@@ -782,13 +620,13 @@ static double median(double *v, int n)
 static void fmt_range(char *buf, size_t n, double med, double lo, double hi)
 {
     char a[32], b[32], c[32];
-    fmt_ms(a, sizeof a, med);
+    sl_report_fmt_ms(a, sizeof a, med);
     if (!(med > 0.0)) {
         snprintf(buf, n, "–");
         return;
     }
-    fmt_ms(b, sizeof b, lo);
-    fmt_ms(c, sizeof c, hi);
+    sl_report_fmt_ms(b, sizeof b, lo);
+    sl_report_fmt_ms(c, sizeof c, hi);
     snprintf(buf, n, "%s [%s–%s]", a, b, c);
 }
 
@@ -904,9 +742,9 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
     for (int v = 0; v < s->nviews && !e; v++) {
         const struct sl_report_view *vw = &s->views[v];
         char id[160];
-        view_id(s, vw, "soft", id, sizeof id);
+        sl_report_view_id(s, vw, "soft", id, sizeof id);
         char title[200];
-        view_title(vw, title, sizeof title);
+        sl_report_view_title(vw, title, sizeof title);
         struct sl_report_tab t;
         sl_report_tab_init(&t, id, 11, 2, "%s: the visible fraction of the light against the area truth%s", title,
                            s->curtis ? " (Curtis 2009)" : "");
@@ -940,7 +778,7 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
                 uint64_t px = f->n[SL_SFIG_soft_pixels];
                 sl_report_tab_cell(&t, 9, "%.2f", px ? (double)c->rays / (double)px : 0.0);
                 char buf[32];
-                fmt_ms(buf, sizeof buf, c->ms_method);
+                sl_report_fmt_ms(buf, sizeof buf, c->ms_method);
                 int one = c->runs == 1 && strcmp(buf, "–") != 0;
                 sl_report_tab_cell(&t, 10, "%s%s", buf, one ? SL_REPORT_ONCE : "");
                 once |= one;

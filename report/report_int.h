@@ -5,7 +5,8 @@
  *          Markdown, booktabs LaTeX) so the three can never disagree
  *   doc    the two pages written in step (HTML and Markdown)
  *   study  one config's cells and the keys they span
- * and the sections: layouts.c (thesis tables, costs), plots.c (gnuplot).
+ * and the sections: layouts.c (Moderno's and Curtis's thesis tables, costs),
+ * morais.c (Morais's tables, his numbers in morais_thesis.c), plots.c (gnuplot).
  * Nothing here prints; every fallible call returns an sl_err.
  */
 #ifndef SL_REPORT_INT_H
@@ -195,8 +196,13 @@ enum sl_err sl_report_motion(struct sl_report_doc *doc, const struct sl_report_s
                              struct sl_diag *d);
 
 /* layouts.c */
+/* ms as the tables print it: "–" when not > 0, else 2, 1 or 0 decimals by size */
+void sl_report_fmt_ms(char *buf, size_t n, double ms);
+/* A view's title ("scene (light) / viewpoint / WxH") and a table id "slug-what-scene-viewpoint-WxH". */
+void sl_report_view_title(const struct sl_report_view *v, char *buf, size_t n);
+void sl_report_view_id(const struct sl_report_study *s, const struct sl_report_view *v, const char *what, char *buf,
+                       size_t n);
 enum sl_err sl_report_moderno(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
-enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 /* Soft shadows: per view, rows label x map size, the soft figures and their cost */
 enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
@@ -219,6 +225,59 @@ struct sl_thesis_datum {
 };
 extern const struct sl_thesis_datum sl_thesis[];
 extern const int sl_nthesis;
+
+/* ---- Morais 2015 (morais.c, morais_thesis.c) ---- */
+
+/* The rows of Morais's tables. light .. shadow_uncertain are counted as he
+ * counts them, over the pixels facing the light (PFL) only: light + shadow +
+ * undecided = PFL, PnFL left out (Tables 7-24); pfl .. truth_shadow are
+ * the truth's (Tables 4-6). */
+enum sl_morais_row {
+    SL_MR_light, SL_MR_shadow, SL_MR_light_correct, SL_MR_light_incorrect, SL_MR_shadow_correct,
+    SL_MR_shadow_incorrect, SL_MR_light_uncertain, SL_MR_shadow_uncertain,
+    SL_MR_pfl, SL_MR_pnfl, SL_MR_truth_light, SL_MR_truth_shadow,
+    SL_MR_COUNT
+};
+const char *sl_morais_row_name(enum sl_morais_row r);   /* as the thesis names it */
+
+/* One cell's (whole image's) rows on Morais's base: n[] the counts, base[]
+ * the count each percentage is taken of (0: no percentage). From the stored
+ * figures by figures.h's counting rules: PnFL pixels are always shadow and
+ * never wrong, so shadow - pnfl and shadow_correct - pnfl are the PFL
+ * counts; traced pixels are PFL pixels (a method traces no other), split by
+ * the truth into traced_shadow and the rest, as shares of the final light
+ * and shadow (the thesis's base). Returns 0 when the cell has no
+ * whole-image region. */
+struct sl_morais_counts { uint64_t n[SL_MR_COUNT], base[SL_MR_COUNT]; };
+int sl_morais_counts(const struct sl_cell_record *c, struct sl_morais_counts *out);
+
+/* morais_thesis.c: Morais 2015's printed numbers, each a row; a NULL scene ends the list */
+struct sl_morais_datum {
+    int         table;
+    const char *scene, *viewpoint;   /* as scenes/ names them (trees/side, flowers/against, bench/against) */
+    int         vw, vh, map_size;    /* map_size 0: Tables 4-6 (the truth, no map) */
+    const char *method;              /* configs/morais-2015.yaml's method; "raytrace" = OptiX Prime */
+    enum sl_morais_row row;
+    uint64_t    n;
+    double      pct;                 /* as printed */
+    const char *note;                /* a typo, OCR artefact or error of the thesis and how it was read */
+};
+struct sl_morais_time {
+    int         table;
+    const char *scene, *viewpoint;
+    int         vw, vh, map_size;
+    int         stage;               /* 0: shadow-map rendering (Tables 25/27/29), 1: ray-tracing step (26/28/30) */
+    const char *method;              /* nsm, csm (CSMa), csm_adj (CSMA), raytrace (OptiX Prime) */
+    double      ms;
+    const char *note;
+};
+extern const struct sl_morais_datum sl_morais_thesis[];
+extern const struct sl_morais_time sl_morais_times[];
+
+/* Tables 4-30 for the thesis's three cases, beside the thesis's numbers;
+ * Hertel 2009's classification (hertel, hertel_exact) per case; every other
+ * view in the same rows without a thesis column. */
+enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 
 /* fractional.c: a hard light's fractional errors (frac cells) per label and map size */
 enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
