@@ -271,10 +271,10 @@ int sl_report_fidelity_claims(const struct sl_cell_record *c, int n, struct sl_r
 
 static const char *table_title(int table)
 {
-    /* the "with" (30-33) and "against" (46-49) viewpoints' tables are the side's 16-19 again */
-    if (table >= 46 && table <= 49)
+    /* the "with" (30-35) and "against" (46-51) viewpoints' tables are the side's 16-21 again */
+    if (table >= 46 && table <= 51)
         table -= 30;
-    else if (table >= 30 && table <= 33)
+    else if (table >= 30 && table <= 35)
         table -= 14;
     switch (table) {
     case 16: return "pixels in the contour and wrong pixels per approach";

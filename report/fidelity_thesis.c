@@ -8,8 +8,8 @@
 #include "report_int.h"
 
 /* Moderno 2011, appendix, Primitives scene, side viewpoint: Tables 16-19,
- * 21, 23, 24 and 26; "with" viewpoint: Tables 30-33, "against": 46-49 (the
- * side's 16-19 again). Viewport 1024 x 1024; contours 2, 4, 6 px and the whole
+ * 21, 23, 24 and 26; "with" viewpoint: Tables 30-33 and 35, "against": 46-49
+ * and 51 (the side's 16-19 and 21 again). Viewport 1024 x 1024; contours 2, 4, 6 px and the whole
  * image (0). fidelity::transcription_sums checks the thesis's own sums on
  * every one (pixels = light + shadow, the classes of 23/24/26 = NSM's light
  * and shadow). Not transcribed, as no cell holds their quantity:
@@ -24,8 +24,8 @@
  * - Table 29 (the chain, step by step): its coherence rows are Table 19's,
  *   its other rows mix the steps' counts over NSM's split in ways no single
  *   figure matches;
- * - the "with" and "against" viewpoints' Tables 34-45 and 50-61 (the
- *   side's 20-29 again): left for a later transcription. */
+ * - the "with" and "against" viewpoints' Tables 34, 36-45, 50 and 52-61
+ *   (the side's 20 and 22-29 again): left for a later transcription. */
 const struct sl_thesis_datum sl_thesis[] = {
     /* Table 16 (seed lines 2011-2046): pixels in contour and wrong pixels per approach, side viewpoint. */
     {16, "side", 1024, 2, "nsm", SL_FIG_pixels, 11000, NULL},
@@ -644,6 +644,39 @@ const struct sl_thesis_datum sl_thesis[] = {
     {33, "with", 2048, 0, "coherence4", SL_FIG_hinted_light_wrong, 6, NULL},
     {33, "with", 2048, 0, "coherence4", SL_FIG_hinted_shadow_moderno, 45637, NULL},
     {33, "with", 2048, 0, "coherence4", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    /* Table 35 (seed lines 2457-2470): the "with" viewpoint's Table 21 (coherence9). */
+    {35, "with", 1024, 2, "coherence9", SL_FIG_hinted_light, 4948, NULL},
+    {35, "with", 1024, 2, "coherence9", SL_FIG_hinted_light_wrong, 2, NULL},
+    {35, "with", 1024, 2, "coherence9", SL_FIG_hinted_shadow_moderno, 3906, NULL},
+    {35, "with", 1024, 2, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {35, "with", 1024, 4, "coherence9", SL_FIG_hinted_light, 10267, NULL},
+    {35, "with", 1024, 4, "coherence9", SL_FIG_hinted_light_wrong, 5, NULL},
+    {35, "with", 1024, 4, "coherence9", SL_FIG_hinted_shadow_moderno, 7245, NULL},
+    {35, "with", 1024, 4, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {35, "with", 1024, 6, "coherence9", SL_FIG_hinted_light, 15853, NULL},
+    {35, "with", 1024, 6, "coherence9", SL_FIG_hinted_light_wrong, 6, NULL},
+    {35, "with", 1024, 6, "coherence9", SL_FIG_hinted_shadow_moderno, 10536, NULL},
+    {35, "with", 1024, 6, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {35, "with", 1024, 0, "coherence9", SL_FIG_hinted_light, 994244, NULL},
+    {35, "with", 1024, 0, "coherence9", SL_FIG_hinted_light_wrong, 6, NULL},
+    {35, "with", 1024, 0, "coherence9", SL_FIG_hinted_shadow_moderno, 41372, NULL},
+    {35, "with", 1024, 0, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {35, "with", 2048, 2, "coherence9", SL_FIG_hinted_light, 4945, NULL},
+    {35, "with", 2048, 2, "coherence9", SL_FIG_hinted_light_wrong, 0, NULL},
+    {35, "with", 2048, 2, "coherence9", SL_FIG_hinted_shadow_moderno, 3989, NULL},
+    {35, "with", 2048, 2, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {35, "with", 2048, 4, "coherence9", SL_FIG_hinted_light, 10628, NULL},
+    {35, "with", 2048, 4, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {35, "with", 2048, 4, "coherence9", SL_FIG_hinted_shadow_moderno, 7755, NULL},
+    {35, "with", 2048, 4, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {35, "with", 2048, 6, "coherence9", SL_FIG_hinted_light, 17344, NULL},
+    {35, "with", 2048, 6, "coherence9", SL_FIG_hinted_light_wrong, 3, NULL},
+    {35, "with", 2048, 6, "coherence9", SL_FIG_hinted_shadow_moderno, 12030, NULL},
+    {35, "with", 2048, 6, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {35, "with", 2048, 0, "coherence9", SL_FIG_hinted_light, 997546, NULL},
+    {35, "with", 2048, 0, "coherence9", SL_FIG_hinted_light_wrong, 3, NULL},
+    {35, "with", 2048, 0, "coherence9", SL_FIG_hinted_shadow_moderno, 44238, NULL},
+    {35, "with", 2048, 0, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
     /* Table 46 (seed lines 2713-2729): the "against" viewpoint's Table 16. */
     {46, "against", 1024, 2, "nsm", SL_FIG_pixels, 11229, NULL},
     {46, "against", 1024, 4, "nsm", SL_FIG_pixels, 22196, NULL},
@@ -774,6 +807,39 @@ const struct sl_thesis_datum sl_thesis[] = {
     {49, "against", 2048, 0, "coherence4", SL_FIG_hinted_light_wrong, 1, NULL},
     {49, "against", 2048, 0, "coherence4", SL_FIG_hinted_shadow_moderno, 124459, NULL},
     {49, "against", 2048, 0, "coherence4", SL_FIG_hinted_shadow_wrong_moderno, 1, NULL},
+    /* Table 51 (seed lines 2799-2812): the "against" viewpoint's Table 21 (coherence9). */
+    {51, "against", 1024, 2, "coherence9", SL_FIG_hinted_light, 2103, NULL},
+    {51, "against", 1024, 2, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {51, "against", 1024, 2, "coherence9", SL_FIG_hinted_shadow_moderno, 2266, NULL},
+    {51, "against", 1024, 2, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {51, "against", 1024, 4, "coherence9", SL_FIG_hinted_light, 4376, NULL},
+    {51, "against", 1024, 4, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {51, "against", 1024, 4, "coherence9", SL_FIG_hinted_shadow_moderno, 4449, NULL},
+    {51, "against", 1024, 4, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {51, "against", 1024, 6, "coherence9", SL_FIG_hinted_light, 6749, NULL},
+    {51, "against", 1024, 6, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {51, "against", 1024, 6, "coherence9", SL_FIG_hinted_shadow_moderno, 6575, NULL},
+    {51, "against", 1024, 6, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {51, "against", 1024, 0, "coherence9", SL_FIG_hinted_light, 895539, NULL},
+    {51, "against", 1024, 0, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {51, "against", 1024, 0, "coherence9", SL_FIG_hinted_shadow_moderno, 108429, NULL},
+    {51, "against", 1024, 0, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 1, NULL},
+    {51, "against", 2048, 2, "coherence9", SL_FIG_hinted_light, 2220, NULL},
+    {51, "against", 2048, 2, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {51, "against", 2048, 2, "coherence9", SL_FIG_hinted_shadow_moderno, 2295, NULL},
+    {51, "against", 2048, 2, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {51, "against", 2048, 4, "coherence9", SL_FIG_hinted_light, 4711, NULL},
+    {51, "against", 2048, 4, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {51, "against", 2048, 4, "coherence9", SL_FIG_hinted_shadow_moderno, 4595, NULL},
+    {51, "against", 2048, 4, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {51, "against", 2048, 6, "coherence9", SL_FIG_hinted_light, 8118, NULL},
+    {51, "against", 2048, 6, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {51, "against", 2048, 6, "coherence9", SL_FIG_hinted_shadow_moderno, 7632, NULL},
+    {51, "against", 2048, 6, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 0, NULL},
+    {51, "against", 2048, 0, "coherence9", SL_FIG_hinted_light, 907160, NULL},
+    {51, "against", 2048, 0, "coherence9", SL_FIG_hinted_light_wrong, 1, NULL},
+    {51, "against", 2048, 0, "coherence9", SL_FIG_hinted_shadow_moderno, 118950, NULL},
+    {51, "against", 2048, 0, "coherence9", SL_FIG_hinted_shadow_wrong_moderno, 1, NULL},
 };
 
 const int sl_nthesis = (int)(sizeof sl_thesis / sizeof sl_thesis[0]);

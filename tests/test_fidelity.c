@@ -279,9 +279,7 @@ static void fidelity_transcription_sums(void **st)
             static const char *const appr[] = {"texel", "neighbours4", "neighbours9", "adjacency1", "adjacency2"};
             for (int a = 0; a < 5; a++)     /* every approach's errors are counted on the same pixels */
                 assert_true(th(r, n, t16, m, c, appr[a], SL_FIG_wrong) <= L + S);
-            for (int k = t19; k <= t19 + 2; k += 2) {
-                if (v && k != t19)
-                    continue;               /* the other viewpoints' coherence9 tables are not transcribed */
+            for (int k = t19; k <= t19 + 2; k += 2) {     /* coherence4 (19, 33, 49) and coherence9 (21, 35, 51) */
                 const char *lab = k == t19 ? "coherence4" : "coherence9";
                 assert_true(th(r, n, k, m, c, lab, SL_FIG_hinted_light) <= L);
                 assert_true(th(r, n, k, m, c, lab, SL_FIG_hinted_shadow_moderno) <= S);
