@@ -516,10 +516,13 @@ static void moderno_shared_contour_primitives(void **st)
  * - wrong shadow, "far": a real occluder over the footprint that the ray
  *   passes beside;
  * - wrong lit, "culled": the occluder that shades the pixel (the first
- *   triangle its ray surely meets, found by brute force) is one-sided and
- *   faces the light: front-face culling left it out of the map, which holds
- *   the occluder's far side, deeper than the pixel (the thesis's map has
- *   the same blind spot where an occluder is thin along the light);
+ *   triangle in index order that its ray surely meets, by brute force; not
+ *   the nearest: a ray through a closed mesh meets both its lit side and
+ *   its far side, and moderno::wrong_hints_gap measures the nearest) is
+ *   one-sided and faces the light: front-face culling left it out of the
+ *   map, which holds the occluder's far side, deeper than the pixel (the
+ *   thesis's map has the same blind spot where an occluder is thin along
+ *   the light);
  * - wrong lit, "unstored": the occluder is two-sided (a leaf, a petal, a
  *   stem: never culled) yet in none of the 3 x 3 texels around the pixel:
  *   smaller or thinner than a texel, it falls between texel centres;
