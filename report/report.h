@@ -115,7 +115,7 @@ struct sl_report_fidelity_row {
     double         ratio;          /* value / thesis; NAN when not measured or the thesis's is 0 */
     const char    *note;           /* NULL or the typo / transcription note */
 };
-#define SL_REPORT_FIDELITY_MAXROWS 1024
+#define SL_REPORT_FIDELITY_MAXROWS 2048
 #define SL_REPORT_FIDELITY_NCLAIMS 7
 /* A claim's table datum agrees with the thesis's when ours / thesis lies in
  * [1/band, band]: a stated choice, printed beside every claim. Counts of the

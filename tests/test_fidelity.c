@@ -371,7 +371,10 @@ static uint64_t th(const struct sl_report_fidelity_row *r, int n, int table, int
  * hints of Tables 19/21 lie within NSM's light and shadow; and the eight
  * classes of Tables 23, 24 and 26 add up to NSM's light (L->S corrected and
  * turned bad, L->L kept) and its shadow (the S-> classes), approach by
- * approach; every table is there for both map sizes and all four regions. */
+ * approach, the corrected and kept-wrong ones to NSM's wrongly lit and
+ * wrongly shadowed; the same for the "with" (30-42) and "against" (46-58)
+ * viewpoints' copies; every table is there for both map sizes and all four
+ * regions. */
 static void fidelity_transcription_sums(void **st)
 {
     (void)st;
@@ -379,8 +382,9 @@ static void fidelity_transcription_sums(void **st)
     int n = sl_report_fidelity_rows(NULL, 0, r, SL_REPORT_FIDELITY_MAXROWS);
     assert_true(n < SL_REPORT_FIDELITY_MAXROWS);
     static const int regions[] = {2, 4, 6, 0};
-    static const struct { int table; const char *label; } classes[] = {
-        {23, "texel"}, {24, "neighbours4"}, {24, "neighbours9"}, {26, "adjacency1"}, {26, "adjacency2"}};
+    static const char *const class_labels[] = {"texel", "neighbours4", "neighbours9", "adjacency1", "adjacency2"};
+    /* per view: the tables of the eight classes, approach by approach */
+    static const int class_tables[3][5] = {{23, 24, 24, 26, 26}, {37, 38, 39, 41, 42}, {53, 54, 55, 57, 58}};
     /* the side's Tables 16-19 and the "with" / "against" viewpoints' copies of them */
     static const int sets[3][4] = {{16, 17, 18, 19}, {30, 31, 32, 33}, {46, 47, 48, 49}};
     int checked = 0;
@@ -405,9 +409,9 @@ static void fidelity_transcription_sums(void **st)
                 assert_true(th(r, n, k, m, c, lab, SL_FIG_hinted_light_wrong) <=
                             th(r, n, t18, m, c, "nsm", SL_FIG_light_incorrect));
             }
-            for (size_t a = 0; a < sizeof classes / sizeof classes[0] && v == 0; a++) {
-                const int t = classes[a].table;
-                const char *lab = classes[a].label;
+            for (int a = 0; a < 5; a++) {
+                const int t = class_tables[v][a];
+                const char *lab = class_labels[a];
                 assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_ls) + th(r, n, t, m, c, lab, SL_FIG_broken_ls) +
                                      th(r, n, t, m, c, lab, SL_FIG_kept_ll_right) +
                                      th(r, n, t, m, c, lab, SL_FIG_kept_ll_wrong), L);
@@ -416,11 +420,13 @@ static void fidelity_transcription_sums(void **st)
                                      th(r, n, t, m, c, lab, SL_FIG_kept_ss_wrong), S);
                 /* what NSM got wrong in light, an approach keeps or corrects */
                 assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_ls) + th(r, n, t, m, c, lab, SL_FIG_kept_ll_wrong),
-                                 th(r, n, 18, m, c, "nsm", SL_FIG_light_incorrect));
+                                 th(r, n, t18, m, c, "nsm", SL_FIG_light_incorrect));
+                assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_sl) + th(r, n, t, m, c, lab, SL_FIG_kept_ss_wrong),
+                                 th(r, n, t18, m, c, "nsm", SL_FIG_shadow_incorrect));
                 checked++;
             }
         }
-    assert_int_equal(checked, 2 * 4 * 5);     /* the classes: side only */
+    assert_int_equal(checked, 3 * 2 * 4 * 5);     /* the classes: every view, map, region and approach */
 }
 
 int main(int argc, char **argv)
