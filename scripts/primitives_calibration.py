@@ -5,7 +5,8 @@ shadowlab, each view's figures beside Moderno 2011's appendix.
 
   scripts/primitives_calibration.py [--build build] variants
       the scene as it is, its objects scaled / spread, without the torus,
-      and torus proportions and tessellations: truth-shadowed area and 2 px
+      torus proportions and tessellations, the torus standing on its rim
+      (turned 0, 35, 90 degrees about y): truth-shadowed area and 2 px
       contour as fractions of the thesis's, NSM's wrong pixels likewise,
       and coherence-4's wrong hints (lit+shadow) per view at maps 1024/2048
   scripts/primitives_calibration.py [--build build] search SEED ITERATIONS
@@ -53,7 +54,13 @@ BASE = dict(tx=6, tz=-14, tR=6, tr=1.5, tseg=48, tring=24, sx=-14, sz=-10, sr=5,
 
 def scene_text(P):
     m = ["{name: ground, generator: plane, center: [0, 0, 0], size: 600, grid: 16}"]
-    if P.get("torus", True):
+    if P.get("torus", True) and P.get("stand") is not None:
+        # standing on its rim, its ring's plane turned by `stand` degrees about y
+        m.append(f"{{name: torus, generator: torus, center: [0, 0, 0], major_radius: {P['tR']:.3f}, "
+                 f"minor_radius: {P['tr']:.3f}, segments: {int(P['tseg'])}, rings: {int(P['tring'])}, "
+                 f"transform: {{translate: [{P['tx']:.3f}, {P['tR'] + P['tr']:.3f}, {P['tz']:.3f}], "
+                 f"rotate: [90, {P['stand']}, 0]}}}}")
+    elif P.get("torus", True):
         m.append(f"{{name: torus, generator: torus, center: [{P['tx']:.3f}, {P['tr']:.3f}, {P['tz']:.3f}], "
                  f"major_radius: {P['tR']:.3f}, minor_radius: {P['tr']:.3f}, segments: {int(P['tseg'])}, "
                  f"rings: {int(P['tring'])}}}")
@@ -128,6 +135,8 @@ def variants(binary):
                               (6, 1.5, 48, 12), (6, 1.5, 24, 24), (6, 1.5, 64, 32), (6, 1.5, 96, 48),
                               (6, 3, 48, 24), (6, 2, 48, 24), (4, 2, 48, 24), (6, 1, 48, 24)]:
         runs.append((f"torus R {R} r {r} {seg}x{ring}", dict(BASE, tR=R, tr=r, tseg=seg, tring=ring)))
+    for yaw in (0, 35, 90):
+        runs.append((f"torus standing, turned {yaw} degrees", dict(BASE, stand=yaw)))
     for tag, P in runs:
         res = run(binary, P)
         print(line(tag, res) if res else f"{tag}: failed")
