@@ -156,14 +156,14 @@ static void rest_on(struct sl_report_fidelity_claim *cl, const struct sl_cell_re
     double far_d = -1;
     for (int i = 0; i < nr; i++) {
         const struct sl_report_fidelity_row *r = &rows[i];
-        int in = 0;
-        for (const int *t = tables; *t && !in; t++)
-            in = *t == r->table;
-        for (const char *const *l = labels; *l && in == 1; l++)
-            in += !strcmp(*l, r->label);
-        for (const enum sl_figure *f = figs; *f != SL_FIG_COUNT && in == 2; f++)
-            in += *f == r->fig;
-        if (in != 3)
+        int table = 0, label = 0, fig = 0;
+        for (const int *t = tables; *t; t++)
+            table |= *t == r->table;
+        for (const char *const *l = labels; *l; l++)
+            label |= !strcmp(*l, r->label);
+        for (const enum sl_figure *f = figs; *f != SL_FIG_COUNT; f++)
+            fig |= *f == r->fig;
+        if (!table || !label || !fig)
             continue;
         cl->data++;
         if (!r->measured) {
