@@ -115,14 +115,27 @@ struct sl_report_fidelity_row {
     double         ratio;          /* value / thesis; NAN when not measured or the thesis's is 0 */
     const char    *note;           /* NULL or the typo / transcription note */
 };
-#define SL_REPORT_FIDELITY_MAXROWS 1024
+#define SL_REPORT_FIDELITY_MAXROWS 2048
 #define SL_REPORT_FIDELITY_NCLAIMS 7
+/* A claim's table datum agrees with the thesis's when ours / thesis lies in
+ * [1/band, band]: a stated choice, printed beside every claim. Counts of the
+ * same scene, view and approach within a factor of two; a thesis's 0 agrees
+ * only with 0 (scenes/CALIBRATION.md says why Primitives' counts differ). */
+#define SL_REPORT_FIDELITY_BAND 2.0
 
-/* A qualitative claim of the thesis, measured on the cells. */
+/* A qualitative claim of the thesis, measured on the cells, and the
+ * appendix tables it rests on (Primitives, every viewpoint), each datum of
+ * them against the study's within the claim's band. Verdict: 0 when a
+ * measured datum falls outside the band or the claim's own test fails; -1
+ * when neither failed but a datum or the test is not measured; 1 only when
+ * the test holds and every datum is measured and within the band. */
 struct sl_report_fidelity_claim {
     const char *claim, *thesis;
     int         verdict;           /* 1 reproduced, 0 not, -1 not measured */
     char        measured[200];
+    double      band;              /* a datum agrees when ours / thesis lies in [1/band, band]; 0: no table datum */
+    int         data, within, unmeasured;   /* the tables' data, those within the band, those not measured */
+    char        tables[360];       /* the tables, the band and the datum furthest from the thesis's */
 };
 
 /* The theses whose sections a study can get, named as a method's family

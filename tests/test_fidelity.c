@@ -161,15 +161,27 @@ static void fidelity_claims(void **st)
     /* 1: with's 6 px rose, its image fell */
     assert_int_equal(cl[0].verdict, 0);
     assert_non_null(strstr(cl[0].measured, "1 of 2"));
-    /* 2: 95 of 100 caught at 2048 = 2 x 1024 */
-    assert_int_equal(cl[1].verdict, 1);
+    /* 2: 95 of 100 caught at 2048 = 2 x 1024, but Table 31's 628 is 6.6x
+     * the 95 counted, and the 1024 cells caught none of Table 17's 1769 and
+     * 31's 1221 (the first of those is named): not reproduced */
+    assert_int_equal(cl[1].verdict, 0);
     assert_non_null(strstr(cl[1].measured, "95.00%"));
-    /* 3: no coherence9 cell */
+    assert_int_equal(cl[1].data, 3 * 2 * 3);         /* Tables 17, 31, 47: 3 contours, 2 maps */
+    assert_int_equal(cl[1].data - cl[1].unmeasured, 3);   /* side 1024 2 px, with 1024 and 2048 6 px */
+    assert_int_equal(cl[1].within, 0);
+    assert_non_null(strstr(cl[1].tables, "furthest: Table 17 side 1024 2 px nsm wrong_caught 0 against 1769"));
+    /* 3: no coherence9 cell; coherence4's two measured data (3 and 0 wrong
+     * hints, the thesis's) within the band, the rest not measured */
     assert_int_equal(cl[2].verdict, -1);
     assert_string_equal(cl[2].measured, "not measured");
-    /* 4, 5 */
-    assert_int_equal(cl[3].verdict, 1);
+    assert_int_equal(cl[2].within, 2);
+    assert_int_equal(cl[2].data - cl[2].unmeasured, 2);
+    assert_int_equal(cl[2].data, 2 * 2 * 4 * 2 * 3);   /* 2 figures, 2 maps, 4 regions, 2 labels, 3 views */
+    /* 4: 9 neighbours beat 4 on the cells, but their 10 and 20 wrong
+     * pixels are far from Table 30's 729 and 892: not reproduced */
+    assert_int_equal(cl[3].verdict, 0);
     assert_non_null(strstr(cl[3].measured, "neighbours9 1.00%, neighbours4 2.00%"));
+    assert_int_equal(cl[3].within, 0);
     assert_int_equal(cl[4].verdict, 0);
     assert_non_null(strstr(cl[4].measured, "adjacency2 3.00%, adjacency1 2.00%"));
     /* 6: a quarter traced */
@@ -191,8 +203,115 @@ static void fidelity_claims(void **st)
     assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
     assert_int_equal(cl[2].verdict, 0);
     assert_non_null(strstr(cl[2].measured, "4 texels 0.05% / 0.00%, 9 texels 2.01% / 0.00%"));
+    assert_int_equal(cl[2].within, 3);     /* coherence9's 0 wrong shadow hints, as Table 21's */
     assert_int_equal(cl[6].verdict, 1);
     assert_non_null(strstr(cl[6].measured, "chain_lit 2.00%"));
+}
+
+/* Cells of every Primitives view, both maps and all four regions for the
+ * labels given, their figures the thesis's own (every transcribed datum of
+ * those labels, Tables 16/30/46's pixels and Tables 18/32/48's NSM light and
+ * shadow as the denominators). Returns the count. */
+static int from_thesis(struct sl_cell_record *c, const char *const *labels, const char *const *methods, int nl)
+{
+    static const int regions[] = {2, 4, 6, 0};
+    static const char *const views[] = {"side", "with", "against"};
+    static const int t16[] = {16, 30, 46}, t18[] = {18, 32, 48};
+    static struct sl_report_fidelity_row r[SL_REPORT_FIDELITY_MAXROWS];
+    const int nr = sl_report_fidelity_rows(NULL, 0, r, SL_REPORT_FIDELITY_MAXROWS);
+    int n = 0;
+    for (int l = 0; l < nl; l++)
+        for (int v = 0; v < 3; v++)
+            for (int m = 1024; m <= 2048; m *= 2, n++) {
+                c[n] = cell(views[v], labels[l], methods[l], m, regions, 4);
+                for (int g = 0; g < 4; g++) {
+                    uint64_t *x = c[n].fig.r[g].n;
+                    for (int i = 0; i < nr; i++) {
+                        if (strcmp(r[i].viewpoint, views[v]) || r[i].map_size != m || r[i].contour != regions[g])
+                            continue;
+                        if (!strcmp(r[i].label, labels[l]))
+                            x[r[i].fig] = r[i].thesis;
+                        if (r[i].table == t16[v] && r[i].fig == SL_FIG_pixels)
+                            x[SL_FIG_pixels] = r[i].thesis;
+                        if (r[i].table == t18[v] && r[i].fig == SL_FIG_light)
+                            x[SL_FIG_nsm_light] = r[i].thesis;
+                        if (r[i].table == t18[v] && r[i].fig == SL_FIG_shadow)
+                            x[SL_FIG_nsm_shadow_moderno] = r[i].thesis;
+                    }
+                    assert_true(x[SL_FIG_pixels] > 0 && x[SL_FIG_nsm_light] > 0);
+                }
+            }
+    return n;
+}
+
+/* Issue 38: a claim is reproduced only when its own test holds and every
+ * datum of the Primitives tables it rests on (all three views) is within
+ * the band. Cells that are the thesis's numbers reproduce it; one datum
+ * moved beyond the band makes it "not reproduced" though the claim's own
+ * test still holds (coherence's wrong hints at 72, our side/1024 count,
+ * against Table 19's 3: still 0.01% of NSM's light); a datum at the
+ * band's edge agrees; a missing view leaves it "not measured". */
+static void fidelity_claim_bands(void **st)
+{
+    (void)st;
+    static struct sl_cell_record c[64];
+    static const char *const lab[] = {"coherence4", "coherence9", "neighbours4", "neighbours9"};
+    static const char *const met[] = {"coherence", "coherence", "neighbours", "neighbours"};
+    int n = from_thesis(c, lab, met, 4);
+    assert_int_equal(n, 4 * 3 * 2);
+    struct sl_report_fidelity_claim cl[SL_REPORT_FIDELITY_NCLAIMS];
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    /* 3 (coherence) and 4 (neighbours): every datum the thesis's */
+    assert_int_equal(cl[2].data, 2 * 2 * 4 * 2 * 3);
+    assert_int_equal(cl[2].unmeasured, 0);
+    assert_int_equal(cl[2].within, cl[2].data);
+    assert_int_equal(cl[2].verdict, 1);
+    assert_int_equal(cl[3].data, 2 * 4 * 2 * 3);
+    assert_int_equal(cl[3].within, cl[3].data);
+    assert_int_equal(cl[3].verdict, 1);
+    assert_non_null(strstr(cl[2].tables, "Tables 19, 21, 33, 35, 49, 51"));
+    assert_non_null(strstr(cl[2].tables, "band 0.5-2x"));
+
+    /* side 1024, image: coherence4's wrong lit hints 72 against the thesis's 3 */
+    struct sl_cell_record *side = NULL;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(c[i].viewpoint, "side") && c[i].map_size == 1024 && !strcmp(c[i].label, "coherence4"))
+            side = &c[i];
+    assert_non_null(side);
+    assert_int_equal(side->fig.r[3].thickness, 0);
+    assert_int_equal(side->fig.r[3].n[SL_FIG_hinted_light_wrong], 3);
+    side->fig.r[3].n[SL_FIG_hinted_light_wrong] = 72;
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    assert_non_null(strstr(cl[2].measured, "4 texels 0."));     /* the claim's own test: still < 1% */
+    assert_int_equal(cl[2].within, cl[2].data - 1);
+    assert_int_equal(cl[2].verdict, 0);
+    assert_non_null(strstr(cl[2].tables, "furthest: Table 19 side 1024 image coherence4 hinted_light_wrong 72 against 3"));
+    /* at the band's edge (6 = 2 x 3): within */
+    side->fig.r[3].n[SL_FIG_hinted_light_wrong] = 6;
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    assert_int_equal(cl[2].verdict, 1);
+    side->fig.r[3].n[SL_FIG_hinted_light_wrong] = 7;
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    assert_int_equal(cl[2].verdict, 0);
+    /* a thesis's 0 agrees only with 0: one wrong shadow hint on side/2048's 2 px */
+    side->fig.r[3].n[SL_FIG_hinted_light_wrong] = 3;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(c[i].viewpoint, "side") && c[i].map_size == 2048 && !strcmp(c[i].label, "coherence9"))
+            c[i].fig.r[0].n[SL_FIG_hinted_shadow_wrong_moderno] = 1;
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    assert_int_equal(cl[2].verdict, 0);
+    assert_int_equal(cl[2].within, cl[2].data - 1);
+
+    /* the "against" cells gone: neighbours' data there not measured, the
+     * rest within the band: not measured, not reproduced */
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (strcmp(c[i].viewpoint, "against"))
+            c[m++] = c[i];
+    assert_int_equal(sl_report_fidelity_claims(c, m, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    assert_int_equal(cl[3].unmeasured, 2 * 4 * 2);
+    assert_int_equal(cl[3].within, cl[3].data - cl[3].unmeasured);
+    assert_int_equal(cl[3].verdict, -1);
 }
 
 static void fidelity_section(void **st)
@@ -257,7 +376,10 @@ static uint64_t th(const struct sl_report_fidelity_row *r, int n, int table, int
  * hints of Tables 19/21 lie within NSM's light and shadow; and the eight
  * classes of Tables 23, 24 and 26 add up to NSM's light (L->S corrected and
  * turned bad, L->L kept) and its shadow (the S-> classes), approach by
- * approach; every table is there for both map sizes and all four regions. */
+ * approach, the corrected and kept-wrong ones to NSM's wrongly lit and
+ * wrongly shadowed; the same for the "with" (30-42) and "against" (46-58)
+ * viewpoints' copies; every table is there for both map sizes and all four
+ * regions. */
 static void fidelity_transcription_sums(void **st)
 {
     (void)st;
@@ -265,8 +387,9 @@ static void fidelity_transcription_sums(void **st)
     int n = sl_report_fidelity_rows(NULL, 0, r, SL_REPORT_FIDELITY_MAXROWS);
     assert_true(n < SL_REPORT_FIDELITY_MAXROWS);
     static const int regions[] = {2, 4, 6, 0};
-    static const struct { int table; const char *label; } classes[] = {
-        {23, "texel"}, {24, "neighbours4"}, {24, "neighbours9"}, {26, "adjacency1"}, {26, "adjacency2"}};
+    static const char *const class_labels[] = {"texel", "neighbours4", "neighbours9", "adjacency1", "adjacency2"};
+    /* per view: the tables of the eight classes, approach by approach */
+    static const int class_tables[3][5] = {{23, 24, 24, 26, 26}, {37, 38, 39, 41, 42}, {53, 54, 55, 57, 58}};
     /* the side's Tables 16-19 and the "with" / "against" viewpoints' copies of them */
     static const int sets[3][4] = {{16, 17, 18, 19}, {30, 31, 32, 33}, {46, 47, 48, 49}};
     int checked = 0;
@@ -284,18 +407,16 @@ static void fidelity_transcription_sums(void **st)
             static const char *const appr[] = {"texel", "neighbours4", "neighbours9", "adjacency1", "adjacency2"};
             for (int a = 0; a < 5; a++)     /* every approach's errors are counted on the same pixels */
                 assert_true(th(r, n, t16, m, c, appr[a], SL_FIG_wrong) <= L + S);
-            for (int k = t19; k <= t19 + 2; k += 2) {
-                if (v && k != t19)
-                    continue;               /* the other viewpoints' coherence9 tables are not transcribed */
+            for (int k = t19; k <= t19 + 2; k += 2) {     /* coherence4 (19, 33, 49) and coherence9 (21, 35, 51) */
                 const char *lab = k == t19 ? "coherence4" : "coherence9";
                 assert_true(th(r, n, k, m, c, lab, SL_FIG_hinted_light) <= L);
                 assert_true(th(r, n, k, m, c, lab, SL_FIG_hinted_shadow_moderno) <= S);
                 assert_true(th(r, n, k, m, c, lab, SL_FIG_hinted_light_wrong) <=
                             th(r, n, t18, m, c, "nsm", SL_FIG_light_incorrect));
             }
-            for (size_t a = 0; a < sizeof classes / sizeof classes[0] && v == 0; a++) {
-                const int t = classes[a].table;
-                const char *lab = classes[a].label;
+            for (int a = 0; a < 5; a++) {
+                const int t = class_tables[v][a];
+                const char *lab = class_labels[a];
                 assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_ls) + th(r, n, t, m, c, lab, SL_FIG_broken_ls) +
                                      th(r, n, t, m, c, lab, SL_FIG_kept_ll_right) +
                                      th(r, n, t, m, c, lab, SL_FIG_kept_ll_wrong), L);
@@ -304,11 +425,13 @@ static void fidelity_transcription_sums(void **st)
                                      th(r, n, t, m, c, lab, SL_FIG_kept_ss_wrong), S);
                 /* what NSM got wrong in light, an approach keeps or corrects */
                 assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_ls) + th(r, n, t, m, c, lab, SL_FIG_kept_ll_wrong),
-                                 th(r, n, 18, m, c, "nsm", SL_FIG_light_incorrect));
+                                 th(r, n, t18, m, c, "nsm", SL_FIG_light_incorrect));
+                assert_int_equal(th(r, n, t, m, c, lab, SL_FIG_fixed_sl) + th(r, n, t, m, c, lab, SL_FIG_kept_ss_wrong),
+                                 th(r, n, t18, m, c, "nsm", SL_FIG_shadow_incorrect));
                 checked++;
             }
         }
-    assert_int_equal(checked, 2 * 4 * 5);     /* the classes: side only */
+    assert_int_equal(checked, 3 * 2 * 4 * 5);     /* the classes: every view, map, region and approach */
 }
 
 int main(int argc, char **argv)
@@ -317,6 +440,7 @@ int main(int argc, char **argv)
         SL_CASE(fidelity, rows),
         SL_CASE(fidelity, transcription_sums),
         SL_CASE(fidelity, claims),
+        SL_CASE(fidelity, claim_bands),
         SL_CASE(fidelity, section),
     };
     return sl_run_group(argc, argv, "fidelity", tests, sl_test_setup, sl_test_teardown);
