@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# scene::calibration_square, scene::calibration_wide — issue 38: the Bench,
+# Trees and Flowers scenes cast the shadow the theses measured. A truth-only
+# run (the raytrace method alone, one map size: the truth does not depend on
+# it) of the published views; each view's figures from the store, against
+# the thesis's within the band of scenes/CALIBRATION.md:
+#   shadow % of PFL  (n_truth_shadow / n_pfl)            within +-15% relative
+#   PnFL % of pixels (n_pnfl / all pixels)                within +-1 point
+#   Moderno's shadow (n_truth_shadow + n_pnfl) / pixels   within +-15% relative
+# Morais 2015 Tables 4-6 (seed 000) give the first two for three views at
+# 512x512, 1024x1024 and 1920x1080; Moderno 2011's appendix (seed 003, the
+# "Whole Image" rows, truth = defined-lit - wrongly-lit + wrongly-shadowed)
+# the third for all nine views at 1024x1024, its shadow counting the pixels
+# that face away from the light. Case square: 512x512 and 1024x1024; case
+# wide: 1920x1080, whose aspect moves the thesis's own figures.
+#
+# Rows marked "known" are outside their band today (CALIBRATION.md says why):
+# printed, and a known row that comes inside fails too, so the mark is
+# dropped with it. Every other row must be inside, or the test fails.
+set -u
+bin=${1:?usage: scene_calibration.sh path/to/shadowlab square|wide}
+case=${2:?usage: scene_calibration.sh path/to/shadowlab square|wide}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+
+# scene view viewport figure thesis [known]
+# figure: sh (shadow % of PFL), pn (PnFL % of pixels), mo (Moderno's shadow %)
+targets_square='
+trees   side    512x512   sh 35.55
+trees   side    512x512   pn 0.00
+flowers against 512x512   sh 47.01
+flowers against 512x512   pn 5.78
+bench   against 512x512   sh 40.97
+bench   against 512x512   pn 2.38
+trees   side    1024x1024 sh 35.55
+trees   side    1024x1024 pn 0.00
+flowers against 1024x1024 sh 47.01
+flowers against 1024x1024 pn 5.79
+bench   against 1024x1024 sh 40.97
+bench   against 1024x1024 pn 2.38
+bench   side    1024x1024 mo 30.75
+bench   with    1024x1024 mo 35.08 known
+bench   against 1024x1024 mo 42.38
+trees   with    1024x1024 mo 37.50
+trees   side    1024x1024 mo 35.55
+trees   against 1024x1024 mo 40.25
+flowers side    1024x1024 mo 39.08
+flowers against 1024x1024 mo 50.39
+flowers with    1024x1024 mo 41.80
+'
+# Table 4's 1920x1080 percentages (36.62 / 63.38) are Table 6's, copied: its
+# own counts give 753160 / 2073445 = 36.32% (CALIBRATION.md, "Table 4")
+targets_wide='
+trees   side    1920x1080 sh 36.32
+trees   side    1920x1080 pn 0.01
+flowers against 1920x1080 sh 30.25 known
+flowers against 1920x1080 pn 3.26
+bench   against 1920x1080 sh 36.62
+bench   against 1920x1080 pn 1.34
+'
+case $case in
+square) targets=$targets_square
+        viewports='[{width: 512, height: 512}, {width: 1024, height: 1024}]'
+        scenes='[{scene: bench}, {scene: trees}, {scene: flowers}]' ;;
+wide)   targets=$targets_wide
+        viewports='[{width: 1920, height: 1080}]'
+        scenes='[{scene: bench, viewpoints: [against]}, {scene: trees, viewpoints: [side]}, {scene: flowers, viewpoints: [against]}]' ;;
+*) echo "unknown case '$case' (square, wide)"; exit 2 ;;
+esac
+cat >"$tmp/c.yaml" <<YAML
+name: calibration
+scenes: $scenes
+viewports: $viewports
+map_sizes: [512]
+methods: [{label: raytrace, method: raytrace}]
+outputs: {tables: false, overlays: false}
+repetitions: {warmup: 0, runs: 1}
+YAML
+"$bin" run "$tmp/c.yaml" --no-cache -q -o "$tmp/out" || { echo "FAIL run"; exit 1; }
+db=$tmp/out/shadowlab.db
+checked=0
+while read -r scene view vp fig thesis known; do
+    [ -n "$scene" ] || continue
+    row=$(sqlite3 -separator ' ' "$db" "SELECT n_pfl, n_pnfl, n_background, n_truth_shadow FROM cells
+          WHERE scene='$scene' AND viewpoint='$view' AND viewport='$vp' AND label='raytrace'")
+    [ -n "$row" ] || { echo "FAIL $scene/$view $vp: no cell in the store"; fail=1; continue; }
+    verdict=$(echo "$row" | awk -v fig="$fig" -v t="$thesis" '{
+        pfl = $1; pnfl = $2; all = $1 + $2 + $3; sh = $4
+        if (fig == "sh") { v = 100 * sh / pfl; band = 0.15 * t }
+        else if (fig == "pn") { v = 100 * pnfl / all; band = 1.0 }
+        else { v = 100 * (sh + pnfl) / all; band = 0.15 * t }
+        d = v - t; if (d < 0) d = -d
+        printf "%s %.2f %.2f\n", (d <= band ? "in" : "out"), v, band }')
+    set -- $verdict
+    line=$(printf '%-8s %-8s %-10s %s ours %6.2f thesis %6.2f +-%.2f' "$scene" "$view" "$vp" "$fig" "$2" "$thesis" "$3")
+    if [ "$1" = in ] && [ "$known" = known ]; then
+        echo "FAIL  $line: inside its band though marked known (drop the mark, update CALIBRATION.md)"; fail=1
+    elif [ "$1" = in ]; then
+        echo "ok    $line"
+    elif [ "$known" = known ]; then
+        echo "known $line (outside its band; scenes/CALIBRATION.md)"
+    else
+        echo "FAIL  $line"; fail=1
+    fi
+    checked=$((checked + 1))
+done <<<"$targets"
+[ "$checked" -gt 0 ] || { echo "FAIL nothing checked"; exit 1; }
+exit $fail
