@@ -247,7 +247,7 @@ static const cyaml_schema_value_t config_schema = {
  * for a key the schema has not, is an error of the generator, so the
  * reference cannot drift from what the parser takes. */
 static const struct { const char *path, *doc; } key_docs[] = {
-    {"name", "the study's name: its folder under --out and its name in the store (default: the file's name)"},
+    {"name", "the study's name: its folder under --out and its name in the store (default: default); letters, digits, -, _, ."},
     {"scenes", "the scenes, each by name (scenes/*.yaml; hard/tiny is scenes/hard/tiny.yaml) or by path (ending .yaml, relative to the config)"},
     {"scenes[].scene", "the scene's name or path"},
     {"scenes[].viewpoints", "the scene's viewpoints to run (default: all of them)"},
@@ -278,7 +278,7 @@ static const struct { const char *path, *doc; } key_docs[] = {
     {"repetitions.warmup", "untimed runs first (default 1)"},
     {"repetitions.runs", "timed runs: median, min and max kept (default 3; 1 is marked \"timed once\")"},
     {"seed", "for anything random (default 1)"},
-    {"area_samples", "area lights: truth samples per side of the light (default 32: 1,024 a pixel)"},
+    {"area_samples", "area lights: truth samples per side of the light, 2..1024 (default 32: 1,024 a pixel)"},
     {"store", "the results store, relative to the output root (default shadowlab.db); no \"..\", not absolute"},
     {"threads", "CPU threads (default 0: every core)"},
     {"gl", "the GL backend: osmesa or egl (default: SHADOWLAB_GL, else osmesa)"},
