@@ -277,8 +277,14 @@ void sl_report_tab_row(struct sl_report_tab *t, int block)
     }
     for (int k = 0; k < t->ncols; k++)
         t->cell[(size_t)t->nrows * (size_t)t->ncols + (size_t)k] = NULL;
-    t->rule[t->nrows] = (unsigned char)(block && t->nrows > 0);
+    t->rule[t->nrows] = (unsigned char)(block && t->nrows > 0 ? SL_TAB_BLOCK : 0);
     t->nrows++;
+}
+
+void sl_report_tab_muted(struct sl_report_tab *t)
+{
+    if (t->nrows > 0 && !t->oom)
+        t->rule[t->nrows - 1] |= SL_TAB_MUTED;
 }
 
 void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
@@ -736,7 +742,9 @@ static void html_table(FILE *f, const struct sl_report_tab *t, const char *texre
     }
     fputs("</tr>\n</thead>\n<tbody>\n", f);
     for (int r = 0; r < t->nrows; r++) {
-        fputs(t->rule[r] ? "<tr class=\"blk\">" : "<tr>", f);
+        static const char *const tr[4] = {"<tr>", "<tr class=\"blk\">", "<tr class=\"muted\">",
+                                          "<tr class=\"blk muted\">"};
+        fputs(tr[t->rule[r] & 3], f);
         for (int c = 0; c < t->ncols; c++) {
             fputs(c < t->nkeys ? "<td class=\"k\">" : "<td>", f);
             html_text(f, tab_at(t, r, c));
@@ -1011,7 +1019,7 @@ static void tex_part(FILE *f, const struct sl_report_tab *t, const struct tex_la
     }
     fputs(" \\\\\n\\midrule\n", f);
     for (int r = from; r < to; r++) {
-        if (t->rule[r] && r > from)
+        if ((t->rule[r] & SL_TAB_BLOCK) && r > from)
             fputs("\\addlinespace\n", f);
         first = 1;
         for (int c = 0; c < t->ncols; c++) {
@@ -1095,7 +1103,7 @@ static double row_lines(const struct sl_report_tab *t, const struct tex_layout *
             n = 2;
         lines = n > lines ? n : lines;
     }
-    return lines + (t->rule[r] ? 0.5 : 0);
+    return lines + ((t->rule[r] & SL_TAB_BLOCK) ? 0.5 : 0);
 }
 
 /* the rows [cut[k], cut[k+1]) of each float of part cp; returns how many */

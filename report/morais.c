@@ -214,6 +214,8 @@ static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_
             if (src == 0)
                 sl_report_tab_cell(&t, 0, "%s", row_names[r]);
             sl_report_tab_cell(&t, 1, src ? "thesis" : "ours");
+            if (src)
+                sl_report_tab_muted(&t);
             for (int i = 0; i < nv; i++) {
                 char buf[64];
                 if (src == 0) {
@@ -279,6 +281,8 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
                 if (src == 0)
                     sl_report_tab_cell(&t, 1, "%s", row_names[rows[q]]);
                 sl_report_tab_cell(&t, 2, src ? "thesis" : "ours");
+                if (src)
+                    sl_report_tab_muted(&t);
                 for (int m = 0; m < nmaps; m++) {
                     char buf[64];
                     if (src == 0) {

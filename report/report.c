@@ -36,7 +36,7 @@ static const char css[] =
     "th,td{padding:.2em .6em;text-align:right;white-space:nowrap}"
     "th.k,td.k{text-align:left}table.wrap td{white-space:normal;min-width:5em}thead tr:last-child th{border-bottom:1.5px solid #333}"
     "thead tr:first-child th{border-top:2px solid #333}th.grp{border-bottom:1px solid #999;text-align:center}"
-    "tbody tr:last-child td{border-bottom:2px solid #333}tr.blk td{border-top:1px solid #ccc}"
+    "tbody tr:last-child td{border-bottom:2px solid #333}tr.blk td{border-top:1px solid #ccc}tr.muted td{color:#777}"
     "tbody tr:hover td{background:#f5f8ff}"
     ".note{font-size:12px;color:#555;margin:.3em 0}"
     "figure{margin:1em 0}figure img{max-width:100%;height:auto;border:1px solid #ddd}"

@@ -57,7 +57,8 @@ struct sl_report_tab {
     int   span[SL_REPORT_MAXCOLS];
     int   nrows, cap;
     char **cell;            /* nrows * ncols; NULL = empty */
-    unsigned char *rule;    /* 1: a block starts at this row */
+    unsigned char *rule;    /* SL_TAB_BLOCK: a block starts at this row; SL_TAB_MUTED: a row set back
+                             * (grey in HTML: the thesis's numbers under ours) */
     int   oom;
 };
 
@@ -67,7 +68,9 @@ void sl_report_tab_head(struct sl_report_tab *t, int col, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 void sl_report_tab_group(struct sl_report_tab *t, int span, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2 };
 void sl_report_tab_row(struct sl_report_tab *t, int block);   /* block: a rule before it */
+void sl_report_tab_muted(struct sl_report_tab *t);            /* the last row started: set back */
 void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 void sl_report_tab_free(struct sl_report_tab *t);

@@ -115,6 +115,16 @@ check('**Hertel 2009 Table 2: ' in md, 'no Hertel 2009 Table 2')
 print('%d passed, %d failed' % (passes, fails))
 sys.exit(1 if fails else 0)
 PY
+# in the HTML every thesis row is set back (grey), no row of ours is
+python3 - "$tmp/rep/report.html" <<'PY' || { echo "FAIL thesis rows not set back in the HTML"; exit 1; }
+import re, sys
+rows = re.findall(r'<tr( class="[^"]*")?>(.*?)</tr>', open(sys.argv[1]).read(), re.S)
+src = [('muted' in (c or ''), re.findall(r'<td class="k">(thesis|ours)</td>', r)) for c, r in rows]
+src = [(m, s[0]) for m, s in src if s]
+bad = [s for m, s in src if m != (s == 'thesis')]
+print('%d ours/thesis rows, %d muted, %d wrong' % (len(src), sum(m for m, s in src), len(bad)))
+sys.exit(1 if bad or sum(m for m, s in src) < 50 else 0)
+PY
 if command -v pdflatex >/dev/null; then
   (cd "$tmp/rep" && for pass in 1 2; do pdflatex -interaction=nonstopmode -halt-on-error report.tex >/dev/null 2>&1 || exit 1; done) ||
     { grep -A3 '^!' "$tmp/rep/report.log" | head; echo "FAIL pdflatex report.tex"; exit 1; }
