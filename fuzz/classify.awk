@@ -2,13 +2,18 @@
 # libFuzzer timeout/out-of-memory stack) and print one line: "assimp" when
 # every stack that matters first reaches code of libassimp, else
 # "ours <frame>" (shadowlab's code, or a frame it cannot place: that fails).
-# Frames of the sanitizers and libFuzzer are skipped, and so are the system
+# Frames of the sanitizers (their interceptors of libc's string functions
+# too) and libFuzzer are skipped, and so are the system
 # libraries assimp calls (libc, libm, libgcc_s, libstdc++, libz): the first
 # frame left decides. Which stacks matter: the first of an ASan report (the
 # others say where the memory came from), each of a leak report.
 function skip(l) {
   if (l ~ / in (__asan|__lsan|__ubsan|__sanitizer|__interceptor_|__cxa_|__gxx_|_Unwind_|__libc_|__GI_|__restore_rt|fuzzer::|std::terminate|abort|raise|gsignal)/) return 1
   if (l ~ / in (malloc|calloc|realloc|free|posix_memalign|memalign|aligned_alloc|valloc|operator new|operator delete)([ (<]|$)/) return 1
+  # ASan's interceptors of the libc string and memory functions show as the
+  # bare libc name in the fuzz binary ("in strncmp (build-fuzz/...+0x...)",
+  # no source line): the sanitizer's frame, the caller decides
+  if (l ~ / in (strn?cmp|strn?casecmp|strn?len|strn?cpy|stpn?cpy|strn?cat|strr?chr|strstr|strcasestr|strspn|strcspn|strpbrk|strtok|strn?dup|memcmp|bcmp|memcpy|memmove|memset|memr?chr|memmem|ato[ifl]l?|strto[a-z]+) \(/ && l !~ /\.[ch](pp)?:[0-9]+/) return 1
   if (l ~ /compiler-rt|\/lib\/clang\/|\/sanitizer_common\/|\/asan\/|\/ubsan\/|\/fuzzer\/Fuzzer/) return 1
   if (l ~ /\((\/usr)?\/lib[^ ]*\/(libc\.so|libc-|libm\.so|libm-|libgcc_s|libstdc\+\+|libz\.so|ld-linux|libpthread)/) return 1
   if (l ~ /<unknown module>/) return 1
