@@ -1,13 +1,15 @@
 /* Shared by the cmocka tests: case names module::case (the function is
  * module_case), main's run of the group or of one case, a temporary folder
- * per test program, and configs written there from text. Include after
- * <cmocka.h>. */
+ * per test program, configs written there from text, and a made-up cell's
+ * method named as a run stores it. Include after <cmocka.h>. */
 #ifndef SL_TEST_H
 #define SL_TEST_H
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "config.h"
+#include "method.h"
+#include "store.h"
 
 #define SL_CASE(module, fn) { #module "::" #fn, module##_##fn, NULL, NULL, NULL }
 
@@ -76,6 +78,17 @@ static inline void sl_test_config(const char *name, const char *text, struct sl_
     if (e)
         fprintf(stderr, "%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
     assert_int_equal(e, SL_OK);
+}
+
+/* A cell's method, with where it comes from as a run stores it (cells.family,
+ * beside: harness/results/cellcols.h): the method's own metadata, "" for a
+ * name that is no method. */
+static inline void sl_test_cell_method(struct sl_cell_record *c, const char *method)
+{
+    const struct sl_method *m = sl_method_find(method);
+    snprintf(c->method, sizeof c->method, "%s", method);
+    snprintf(c->family, sizeof c->family, "%s", sl_method_family(m));
+    snprintf(c->beside, sizeof c->beside, "%s", sl_method_beside(m));
 }
 
 #endif

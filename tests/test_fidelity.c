@@ -14,7 +14,6 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
-#include "method.h"
 #include "report.h"
 
 /* A Primitives cell, 1024 x 1024, with regions thick[0..nr) (0 = image). */
@@ -27,11 +26,7 @@ static struct sl_cell_record cell(const char *vp, const char *label, const char 
     snprintf(c.scene, sizeof c.scene, "primitives");
     snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
     snprintf(c.label, sizeof c.label, "%s", label);
-    snprintf(c.method, sizeof c.method, "%s", method);
-    /* where the method comes from, as a run stores it: from the method itself */
-    const struct sl_method *m = sl_method_find(method);
-    snprintf(c.family, sizeof c.family, "%s", sl_method_family(m));
-    snprintf(c.beside, sizeof c.beside, "%s", sl_method_beside(m));
+    sl_test_cell_method(&c, method);
     snprintf(c.contour_from, sizeof c.contour_from, "nsm");
     c.vw = c.vh = 1024;
     c.map_size = map;

@@ -21,7 +21,6 @@
 #include <string.h>
 #include <cmocka.h>
 #include "sl_test.h"
-#include "method.h"
 #include "report_int.h"
 
 static const struct sl_morais_datum *find(int table, int vw, int map, enum sl_morais_row row)
@@ -134,11 +133,7 @@ static struct sl_cell_record cell(const char *scene, const char *vp, const char 
     snprintf(c.scene, sizeof c.scene, "%s", scene);
     snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
     snprintf(c.label, sizeof c.label, "%s", method);
-    snprintf(c.method, sizeof c.method, "%s", method);
-    /* where the method comes from, as a run stores it: from the method itself */
-    const struct sl_method *m = sl_method_find(method);
-    snprintf(c.family, sizeof c.family, "%s", sl_method_family(m));
-    snprintf(c.beside, sizeof c.beside, "%s", sl_method_beside(m));
+    sl_test_cell_method(&c, method);
     snprintf(c.contour_from, sizeof c.contour_from, "nsm");
     c.vw = c.vh = 512;
     c.map_size = map;

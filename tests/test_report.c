@@ -52,11 +52,7 @@ static struct sl_cell_record cell(const char *study, const char *scene, const ch
     snprintf(c.scene, sizeof c.scene, "%s", scene);
     snprintf(c.viewpoint, sizeof c.viewpoint, "%s", vp);
     snprintf(c.label, sizeof c.label, "%s", label);
-    snprintf(c.method, sizeof c.method, "%s", method);
-    /* where the method comes from, as a run stores it: from the method itself */
-    const struct sl_method *m = sl_method_find(method);
-    snprintf(c.family, sizeof c.family, "%s", sl_method_family(m));
-    snprintf(c.beside, sizeof c.beside, "%s", sl_method_beside(m));
+    sl_test_cell_method(&c, method);
     c.vw = 64;
     c.vh = 32;
     c.map_size = map;
