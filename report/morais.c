@@ -193,6 +193,51 @@ static const struct sl_cell_record *any_cell(const struct sl_report_study *s, co
     return NULL;
 }
 
+/* A column of a table whose rows of ours have the thesis's under them: our
+ * counts there (has: a cell was counted) and where the thesis's value stands
+ * (its viewport and map size, 0 in a table without maps). */
+struct mcol {
+    struct sl_morais_counts mc;
+    int has, vw, vh, map;
+};
+
+static void mcol_set(struct mcol *m, const struct sl_cell_record *c, const struct sl_report_view *v, int map)
+{
+    m->has = c && sl_morais_counts(c, &m->mc);
+    m->vw = v->vw;
+    m->vh = v->vh;
+    m->map = map;
+}
+
+/* The values of pixel type r from column `col` on, the source named in the
+ * column before: ours (thesis 0) from the columns' counts, or the thesis's
+ * Table `table` (thesis 1), set back, its notes gathered in nt. Returns
+ * whether a value of ours was written. */
+static int source_row(struct sl_report_tab *t, int thesis, int col, enum sl_morais_row r, const struct mcol *c,
+                      int n, int table, struct notes *nt)
+{
+    sl_report_tab_cell(t, col - 1, thesis ? "thesis" : "ours");
+    if (thesis)
+        sl_report_tab_muted(t);
+    int any = 0;
+    for (int j = 0; j < n; j++) {
+        char buf[64];
+        if (!thesis) {
+            if (!c[j].has)
+                continue;
+            fmt_count(buf, sizeof buf, c[j].mc.n[r], c[j].mc.base[r]);
+            any = 1;
+        } else {
+            const struct sl_morais_datum *th = thesis_find(table, c[j].vw, c[j].vh, c[j].map, r);
+            if (!th)
+                continue;
+            thesis_value(buf, sizeof buf, th, nt);
+        }
+        sl_report_tab_cell(t, col + j, "%s", buf);
+    }
+    return any;
+}
+
 /* Tables 4-6: the truth of a case per viewport */
 static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_study *s, int k,
                               const struct sl_report_view **v, int nv, struct sl_diag *d)
@@ -206,6 +251,9 @@ static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_
     sl_report_tab_head(&t, 1, "source");
     for (int i = 0; i < nv; i++)
         sl_report_tab_head(&t, 2 + i, "%d×%d", v[i]->vw, v[i]->vh);
+    struct mcol col[SL_REPORT_MAXCOLS];   /* nv <= 8 (case_views) */
+    for (int i = 0; i < nv; i++)
+        mcol_set(&col[i], any_cell(s, v[i]), v[i], 0);
     struct notes nt = {{0}, 0, 0, 0};
     int any = 0;
     for (int r = SL_MR_pfl; r <= SL_MR_truth_shadow; r++)
@@ -213,27 +261,7 @@ static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_
             sl_report_tab_row(&t, src == 0);
             if (src == 0)
                 sl_report_tab_cell(&t, 0, "%s", row_names[r]);
-            sl_report_tab_cell(&t, 1, src ? "thesis" : "ours");
-            if (src)
-                sl_report_tab_muted(&t);
-            for (int i = 0; i < nv; i++) {
-                char buf[64];
-                if (src == 0) {
-                    const struct sl_cell_record *c = any_cell(s, v[i]);
-                    struct sl_morais_counts mc;
-                    if (!c || !sl_morais_counts(c, &mc))
-                        continue;
-                    fmt_count(buf, sizeof buf, mc.n[r], mc.base[r]);
-                    any = 1;
-                } else {
-                    const struct sl_morais_datum *th =
-                        thesis_find(cases[k].truth_table, v[i]->vw, v[i]->vh, 0, (enum sl_morais_row)r);
-                    if (!th)
-                        continue;
-                    thesis_value(buf, sizeof buf, th, &nt);
-                }
-                sl_report_tab_cell(&t, 2 + i, "%s", buf);
-            }
+            any |= source_row(&t, src, 2, (enum sl_morais_row)r, col, nv, cases[k].truth_table, &nt);
         }
     snprintf(t.note, sizeof t.note, "PFL and PnFL: %% of the view's pixels (background excluded: the thesis's "
              "views have none); light and shadow: %% of PFL, by the truth (ours: Embree, his: OptiX Prime).");
@@ -272,7 +300,10 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
         sl_report_tab_head(&t, 3 + m, "%d²", s->maps[m]);
     struct notes nt = {{0}, 0, 0, 0};
     int any = 0;
-    for (int i = 0; i < nv; i++)
+    for (int i = 0; i < nv; i++) {
+        struct mcol col[SL_REPORT_MAXCOLS];
+        for (int m = 0; m < nmaps; m++)
+            mcol_set(&col[m], sl_report_study_cell(s, v[i], s->labels[l], s->maps[m]), v[i], s->maps[m]);
         for (int q = 0; q < 6; q++)
             for (int src = 0; src < 2; src++) {
                 sl_report_tab_row(&t, q == 0 && src == 0);
@@ -280,27 +311,9 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
                     sl_report_tab_cell(&t, 0, "%d×%d", v[i]->vw, v[i]->vh);
                 if (src == 0)
                     sl_report_tab_cell(&t, 1, "%s", row_names[rows[q]]);
-                sl_report_tab_cell(&t, 2, src ? "thesis" : "ours");
-                if (src)
-                    sl_report_tab_muted(&t);
-                for (int m = 0; m < nmaps; m++) {
-                    char buf[64];
-                    if (src == 0) {
-                        const struct sl_cell_record *c = sl_report_study_cell(s, v[i], s->labels[l], s->maps[m]);
-                        struct sl_morais_counts mc;
-                        if (!c || !sl_morais_counts(c, &mc))
-                            continue;
-                        fmt_count(buf, sizeof buf, mc.n[rows[q]], mc.base[rows[q]]);
-                        any = 1;
-                    } else {
-                        const struct sl_morais_datum *th = thesis_find(table, v[i]->vw, v[i]->vh, s->maps[m], rows[q]);
-                        if (!th)
-                            continue;
-                        thesis_value(buf, sizeof buf, th, &nt);
-                    }
-                    sl_report_tab_cell(&t, 3 + m, "%s", buf);
-                }
+                any |= source_row(&t, src, 3, rows[q], col, nmaps, table, &nt);
             }
+    }
     snprintf(t.note, sizeof t.note, "%s", mm->csm
              ? "Pixels facing the light only (PnFL left out). Uncertain: the pixels the two maps leave undecided "
                "and a ray decides, split by its answer (the truth's), % of the final image's light or shadow "
