@@ -1,7 +1,8 @@
 /* Shared by the cmocka tests: case names module::case (the function is
  * module_case), main's run of the group or of one case, a temporary folder
- * per test program, configs written there from text, and a made-up cell's
- * method named as a run stores it. Include after <cmocka.h>. */
+ * per test program, configs written there from text, a file read whole, and
+ * a made-up cell's method named as a run stores it. Include after
+ * <cmocka.h>. */
 #ifndef SL_TEST_H
 #define SL_TEST_H
 #include <stdio.h>
@@ -78,6 +79,27 @@ static inline void sl_test_config(const char *name, const char *text, struct sl_
     if (e)
         fprintf(stderr, "%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
     assert_int_equal(e, SL_OK);
+}
+
+/* The whole of the file at path as a string (free it), NULL if it cannot be
+ * read. */
+static inline char *sl_test_slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = malloc((size_t)n + 1);
+    if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
+        free(s);
+        s = NULL;
+    }
+    if (s)
+        s[n] = '\0';
+    fclose(f);
+    return s;
 }
 
 /* A cell's method, with where it comes from as a run stores it (cells.family,

@@ -331,16 +331,13 @@ static void fidelity_section(void **st)
         fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
     assert_int_equal(e, SL_OK);
     snprintf(path, sizeof path, "%s/report.md", out);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    static char md[1 << 22];
-    size_t len = fread(md, 1, sizeof md - 1, f);
-    fclose(f);
-    md[len] = 0;
+    char *md = sl_test_slurp(path);
+    assert_non_null(md);
     assert_non_null(strstr(md, "fidelity to Moderno 2011 (Primitives)"));
     assert_non_null(strstr(md, "| 1024 | 2 px | nsm | pixels | 11000 | 5500 | 0.50 |"));
     assert_non_null(strstr(md, "| 2048 | 2 px | nsm | wrong | 1111 | not measured |"));
     assert_non_null(strstr(md, "not reproduced"));
+    free(md);
 
     /* no Primitives cell: no section */
     for (int i = 0; i < n; i++)
@@ -349,12 +346,10 @@ static void fidelity_section(void **st)
     snprintf(out, sizeof out, "%s/rep2", sl_test_dir);
     assert_int_equal(sl_report_build(&in, out, NULL, &d), SL_OK);
     snprintf(path, sizeof path, "%s/report.md", out);
-    f = fopen(path, "rb");
-    assert_non_null(f);
-    len = fread(md, 1, sizeof md - 1, f);
-    fclose(f);
-    md[len] = 0;
+    md = sl_test_slurp(path);
+    assert_non_null(md);
     assert_null(strstr(md, "fidelity to Moderno"));
+    free(md);
 }
 
 static uint64_t th(const struct sl_report_fidelity_row *r, int n, int table, int map, int contour, const char *label,

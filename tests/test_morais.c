@@ -212,25 +212,6 @@ static void morais_counts(void **st)
     assert_int_equal(sl_morais_counts(&c, &m), 0);
 }
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = malloc((size_t)n + 1);
-    if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
-        free(s);
-        s = NULL;
-    }
-    if (s)
-        s[n] = '\0';
-    fclose(f);
-    return s;
-}
-
 static void morais_section(void **st)
 {
     (void)st;
@@ -264,11 +245,11 @@ static void morais_section(void **st)
     assert_int_equal(e, SL_OK);
     char path[400];
     snprintf(path, sizeof path, "%s/tex/mor-table8-flowers-against.tex", out);
-    char *tex = slurp(path);
+    char *tex = sl_test_slurp(path);
     assert_non_null(tex);
     free(tex);
     snprintf(path, sizeof path, "%s/report.md", out);
-    char *md = slurp(path);
+    char *md = sl_test_slurp(path);
     assert_non_null(md);
     assert_non_null(strstr(md, "Against-Flowers (worst case): NSM (label nsm), Morais 2015 Table 8"));
     /* ours on his base, then his row beside it: the same numbers */

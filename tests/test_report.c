@@ -181,25 +181,6 @@ static int exists(const char *dir, const char *rel)
     return stat(p, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
 }
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *s = malloc((size_t)n + 1);
-    if (s && fread(s, 1, (size_t)n, f) != (size_t)n) {
-        free(s);
-        s = NULL;
-    }
-    if (s)
-        s[n] = '\0';
-    fclose(f);
-    return s;
-}
-
 /* every src="..." and href="..." that is not an anchor names a file of dir */
 static int count_refs(const char *html, const char *dir, int *missing)
 {
@@ -320,7 +301,7 @@ static void report_build(void **st)
     assert_true(exists(out, "data/morais-mini-figures.csv"));
     char path[600];
     snprintf(path, sizeof path, "%s/report.html", out);
-    char *html = slurp(path);
+    char *html = sl_test_slurp(path);
     assert_non_null(html);
     int missing = 0;
     int refs = count_refs(html, out, &missing);
@@ -343,9 +324,9 @@ static void report_build(void **st)
     {
         char tp[600];
         snprintf(tp, sizeof tp, "%s/tex/morais-mini-costs.tex", out);
-        char *mc = slurp(tp);
+        char *mc = sl_test_slurp(tp);
         snprintf(tp, sizeof tp, "%s/tex/moderno-mini-costs.tex", out);
-        char *dc = slurp(tp);
+        char *dc = sl_test_slurp(tp);
         assert_non_null(mc);
         assert_non_null(dc);
         assert_non_null(strstr(mc, "$^\\dagger$ timed once"));
@@ -357,7 +338,7 @@ static void report_build(void **st)
     assert_null(strstr(html, "https://"));
     free(html);
     snprintf(path, sizeof path, "%s/report.md", out);
-    char *md = slurp(path);
+    char *md = sl_test_slurp(path);
     assert_non_null(md);
     assert_non_null(strstr(md, "](plots/moderno-mini-chain-bench.svg)"));
     assert_non_null(strstr(md, "````yaml"));   /* the fence outgrows the text's ``` */
@@ -425,7 +406,7 @@ static void report_self_contained(void **st)
     assert_false(exists(out, "plots/plain-accuracy-rays.svg"));
     char path[600];
     snprintf(path, sizeof path, "%s/report.html", out);
-    char *html = slurp(path);
+    char *html = sl_test_slurp(path);
     assert_non_null(html);
     assert_non_null(strstr(html, "No method of this study casts shadow rays"));
     for (const char *p = strstr(html, "src=\""); p; p = strstr(p + 1, "src=\""))
@@ -438,14 +419,14 @@ static void report_self_contained(void **st)
     assert_non_null(strstr(html, "<details class=\"sec\" id=\"plain-view-bench-side-64x32\">"));
     free(html);
     snprintf(path, sizeof path, "%s/report.tex", out);
-    char *tex = slurp(path);
+    char *tex = sl_test_slurp(path);
     assert_non_null(tex);
     assert_non_null(strstr(tex, "\\begin{document}"));
     assert_non_null(strstr(tex, "\\input{tex/plain-accuracy.tex}"));
     assert_null(strstr(tex, "\\section*{"));
     free(tex);
     snprintf(path, sizeof path, "%s/tex/plain-accuracy.tex", out);
-    tex = slurp(path);
+    tex = sl_test_slurp(path);
     assert_non_null(tex);
     /* fitted to the line, never scaled */
     assert_non_null(strstr(tex, "\\begin{tabular}{"));
@@ -506,7 +487,7 @@ static void report_any_study(void **st)
     assert_int_equal(e, SL_OK);
     char path[600];
     snprintf(path, sizeof path, "%s/report.md", out);
-    char *md = slurp(path);
+    char *md = sl_test_slurp(path);
     assert_non_null(md);
     assert_null(strstr(md, "Moderno 2011's layout"));
     assert_null(strstr(md, "fidelity to Moderno"));
@@ -543,7 +524,7 @@ static void report_family_from_metadata(void **st)
         memset(&d, 0, sizeof d);
         assert_int_equal(sl_report_build(&in, out, NULL, &d), SL_OK);
         snprintf(path, sizeof path, "%s/report.md", out);
-        char *md = slurp(path);
+        char *md = sl_test_slurp(path);
         assert_non_null(md);
         if (said) {
             assert_non_null(strstr(md, "fam: tables in Morais 2015's layout"));
