@@ -1,8 +1,8 @@
 /* Shared by the cmocka tests: case names module::case (the function is
  * module_case), main's run of the group or of one case, a temporary folder
- * per test program, configs written there from text, a file read whole, and
- * a made-up cell's method named as a run stores it. Include after
- * <cmocka.h>. */
+ * per test program, configs written there from text, a file read whole, a
+ * made-up cell's method named as a run stores it, and a report that must
+ * build. Include after <cmocka.h>. */
 #ifndef SL_TEST_H
 #define SL_TEST_H
 #include <stdio.h>
@@ -10,6 +10,7 @@
 #include <string.h>
 #include "config.h"
 #include "method.h"
+#include "report.h"
 #include "store.h"
 
 #define SL_CASE(module, fn) { #module "::" #fn, module##_##fn, NULL, NULL, NULL }
@@ -111,6 +112,18 @@ static inline void sl_test_cell_method(struct sl_cell_record *c, const char *met
     snprintf(c->method, sizeof c->method, "%s", method);
     snprintf(c->family, sizeof c->family, "%s", sl_method_family(m));
     snprintf(c->beside, sizeof c->beside, "%s", sl_method_beside(m));
+}
+
+/* The report of `in` written to out (gnuplot from PATH), which must build:
+ * the diagnostic printed when it does not. */
+static inline void sl_test_report(const struct sl_report_input *in, const char *out)
+{
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
+    enum sl_err e = sl_report_build(in, out, NULL, &d);
+    if (e)
+        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
+    assert_int_equal(e, SL_OK);
 }
 
 #endif

@@ -324,12 +324,7 @@ static void fidelity_section(void **st)
     snprintf(run.config_path, sizeof run.config_path, "configs/x.yaml");
     run.ncells = n;
     struct sl_report_input in = {c, n, &run, 1, "test cells", sl_test_dir};
-    struct sl_diag d;
-    memset(&d, 0, sizeof d);
-    enum sl_err e = sl_report_build(&in, out, NULL, &d);
-    if (e)
-        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
-    assert_int_equal(e, SL_OK);
+    sl_test_report(&in, out);
     snprintf(path, sizeof path, "%s/report.md", out);
     char *md = sl_test_slurp(path);
     assert_non_null(md);
@@ -344,7 +339,7 @@ static void fidelity_section(void **st)
         snprintf(c[i].scene, sizeof c[i].scene, "bench");
     assert_false(sl_report_fidelity_applies(c, n));
     snprintf(out, sizeof out, "%s/rep2", sl_test_dir);
-    assert_int_equal(sl_report_build(&in, out, NULL, &d), SL_OK);
+    sl_test_report(&in, out);
     snprintf(path, sizeof path, "%s/report.md", out);
     md = sl_test_slurp(path);
     assert_non_null(md);

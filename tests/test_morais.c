@@ -237,12 +237,7 @@ static void morais_section(void **st)
     struct sl_report_input in = {c, n, &run, 1, "test cells", sl_test_dir};
     char out[300];
     snprintf(out, sizeof out, "%s/out", sl_test_dir);
-    struct sl_diag d;
-    memset(&d, 0, sizeof d);
-    enum sl_err e = sl_report_build(&in, out, NULL, &d);
-    if (e)
-        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
-    assert_int_equal(e, SL_OK);
+    sl_test_report(&in, out);
     char path[400];
     snprintf(path, sizeof path, "%s/tex/mor-table8-flowers-against.tex", out);
     char *tex = sl_test_slurp(path);

@@ -283,12 +283,7 @@ static void report_build(void **st)
     runs[1].run_id = 2;
     runs[1].config_text = NULL;
     struct sl_report_input in = {c, n, runs, 2, "test cells", src};
-    struct sl_diag d;
-    memset(&d, 0, sizeof d);
-    enum sl_err e = sl_report_build(&in, out, NULL, &d);
-    if (e)
-        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
-    assert_int_equal(e, SL_OK);
+    sl_test_report(&in, out);
     assert_true(exists(out, "report.html"));
     assert_true(exists(out, "report.md"));
     assert_true(exists(out, "overlays/moderno-mini/bench-side-64x32-512-nsm.png"));
@@ -349,11 +344,13 @@ static void report_build(void **st)
     assert_int_equal(system(cmd), 0);
 
     /* a gnuplot that fails leaves the earlier report whole and no staging */
+    struct sl_diag d;
+    memset(&d, 0, sizeof d);
     struct stat before, after;
     snprintf(path, sizeof path, "%s/report.html", out);
     assert_int_equal(stat(path, &before), 0);
     c[2].fig.r[0].n[SL_FIG_pixels] = 1;   /* a changed report, were it written */
-    e = sl_report_build(&in, out, "/bin/false", &d);
+    enum sl_err e = sl_report_build(&in, out, "/bin/false", &d);
     assert_int_equal(e, SL_E_IO);
     assert_string_equal(d.key, "plots/moderno-mini-accuracy-time.svg");   /* the summary's plot comes first */
     assert_int_equal(stat(path, &after), 0);
@@ -479,12 +476,7 @@ static void report_any_study(void **st)
     char out[400];
     snprintf(out, sizeof out, "%s/any", sl_test_dir);
     struct sl_report_input in = {c, n, NULL, 0, "test cells", sl_test_dir};
-    struct sl_diag d;
-    memset(&d, 0, sizeof d);
-    enum sl_err e = sl_report_build(&in, out, NULL, &d);
-    if (e)
-        fprintf(stderr, "%s: %s: %s\n", d.file, d.key, d.msg);
-    assert_int_equal(e, SL_OK);
+    sl_test_report(&in, out);
     char path[600];
     snprintf(path, sizeof path, "%s/report.md", out);
     char *md = sl_test_slurp(path);
@@ -520,9 +512,7 @@ static void report_family_from_metadata(void **st)
             snprintf(c[1].family, sizeof c[1].family, "morais-2015");
         snprintf(out, sizeof out, "%s/fam%d", sl_test_dir, said);
         struct sl_report_input in = {c, 2, NULL, 0, "test cells", sl_test_dir};
-        struct sl_diag d;
-        memset(&d, 0, sizeof d);
-        assert_int_equal(sl_report_build(&in, out, NULL, &d), SL_OK);
+        sl_test_report(&in, out);
         snprintf(path, sizeof path, "%s/report.md", out);
         char *md = sl_test_slurp(path);
         assert_non_null(md);
