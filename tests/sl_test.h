@@ -67,14 +67,22 @@ static inline int sl_test_teardown(void **st)
 }
 
 /* Write `text` as <dir>/<name> and load it as a config, which must be valid. */
+/* Writes text to dir/name (the test fails if it cannot). */
+static inline void sl_test_write(const char *dir, const char *name, const char *text)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
 static inline void sl_test_config(const char *name, const char *text, struct sl_config *c)
 {
     char path[300];
     snprintf(path, sizeof path, "%s/%s", sl_test_dir, name);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
+    sl_test_write(sl_test_dir, name, text);
     struct sl_diag d;
     enum sl_err e = sl_config_load(path, c, &d);
     if (e)

@@ -790,16 +790,6 @@ static char *doc_block(const char *text, const char *lang, int nth)
     return out;
 }
 
-static void write_file(const char *dir, const char *name, const char *text)
-{
-    char path[700];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
-
 static void packages_doc_example(void **st)
 {
     (void)st;
@@ -818,9 +808,9 @@ static void packages_doc_example(void **st)
     mkdir(dir, 0755);
     snprintf(dir, sizeof dir, "%s/my_techniques/my_pcf", sl_test_dir);
     mkdir(dir, 0755);
-    write_file(dir, "technique.yaml", yaml);
-    write_file(dir, "map.glsl", map);
-    write_file(dir, "lookup.glsl", lookup);
+    sl_test_write(dir, "technique.yaml", yaml);
+    sl_test_write(dir, "map.glsl", map);
+    sl_test_write(dir, "lookup.glsl", lookup);
     free(yaml);
     free(map);
     free(lookup);

@@ -20,16 +20,6 @@
 
 /* ---- packages written into the test folder ---- */
 
-static void write_file(const char *dir, const char *name, const char *text)
-{
-    char path[600];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
-
 static const char good_map[] = "void sl_map(float z)\n{\n    out_depth = vec4(z);\n}\n";
 static const char good_lookup[] =
     "float sl_lookup(vec3 w, vec3 n, vec2 uv, float z, float ndotl)\n"
@@ -42,9 +32,9 @@ static void package(char *dir, size_t n, const char *name, const char *yaml, con
 {
     snprintf(dir, n, "%s/%s", sl_test_dir, name);
     mkdir(dir, 0755);
-    write_file(dir, "technique.yaml", yaml);
-    write_file(dir, "map.glsl", good_map);
-    write_file(dir, "lookup.glsl", lookup ? lookup : good_lookup);
+    sl_test_write(dir, "technique.yaml", yaml);
+    sl_test_write(dir, "map.glsl", good_map);
+    sl_test_write(dir, "lookup.glsl", lookup ? lookup : good_lookup);
 }
 
 /* A package of name `name` whose lines are head + the rest below. */
@@ -170,16 +160,16 @@ static void technique_set_scan(void **st)
     mkdir(b, 0755);
     snprintf(dir, sizeof dir, "%s/one", a);
     mkdir(dir, 0755);
-    write_file(dir, "technique.yaml", HEAD("twin") MAPS SHADERS);
-    write_file(dir, "map.glsl", good_map);
-    write_file(dir, "lookup.glsl", good_lookup);
+    sl_test_write(dir, "technique.yaml", HEAD("twin") MAPS SHADERS);
+    sl_test_write(dir, "map.glsl", good_map);
+    sl_test_write(dir, "lookup.glsl", good_lookup);
     snprintf(dir, sizeof dir, "%s/two", b);   /* b is itself a folder of packages */
     mkdir(dir, 0755);
-    write_file(dir, "technique.yaml", HEAD("twin") "summary2: x\n" MAPS SHADERS);   /* never read: a is first */
+    sl_test_write(dir, "technique.yaml", HEAD("twin") "summary2: x\n" MAPS SHADERS);   /* never read: a is first */
     /* b is a package folder of its own, not a folder of packages */
-    write_file(b, "technique.yaml", HEAD("other") MAPS SHADERS);
-    write_file(b, "map.glsl", good_map);
-    write_file(b, "lookup.glsl", good_lookup);
+    sl_test_write(b, "technique.yaml", HEAD("other") MAPS SHADERS);
+    sl_test_write(b, "map.glsl", good_map);
+    sl_test_write(b, "lookup.glsl", good_lookup);
     char dirs[SL_TECH_MAX_DIRS][1024];
     const char *origin[SL_TECH_MAX_DIRS];
     setenv("SHADOWLAB_TECHNIQUES", b, 1);
@@ -207,9 +197,9 @@ static void technique_set_scan(void **st)
     /* a package named like a C method */
     snprintf(dir, sizeof dir, "%s/c", root);
     mkdir(dir, 0755);
-    write_file(dir, "technique.yaml", "# shadows C\nname: nsm\nsummary: x\n" MAPS SHADERS);
-    write_file(dir, "map.glsl", good_map);
-    write_file(dir, "lookup.glsl", good_lookup);
+    sl_test_write(dir, "technique.yaml", "# shadows C\nname: nsm\nsummary: x\n" MAPS SHADERS);
+    sl_test_write(dir, "map.glsl", good_map);
+    sl_test_write(dir, "lookup.glsl", good_lookup);
     char cdirs[1][1024];
     snprintf(cdirs[0], sizeof cdirs[0], "%s", dir);
     assert_int_equal(sl_tech_set_scan(&s, cdirs, origin, 1, c_names, &d), SL_E_PACKAGE);
@@ -488,7 +478,7 @@ static void technique_post_passes(void **st)
             "        return gain * texelFetch(m1, t, 0).g;\n"
             "    return gain * textureLod(m2, uv, 10.0).b;   // the top mip level: the mean\n"
             "}\n");
-    write_file(dir, "map.glsl", "void sl_map(float z)\n{\n    out_m1 = vec4(z);\n    out_m2 = vec4(z);\n}\n");
+    sl_test_write(dir, "map.glsl", "void sl_map(float z)\n{\n    out_m1 = vec4(z);\n    out_m2 = vec4(z);\n}\n");
     const struct hand pts[4] = {
         {3.5f, 5.5f, 0.5f},   /* the texel itself */
         {4.5f, 6.5f, 0.5f},   /* a diagonal neighbour: inside the 3 x 3 box */
