@@ -374,45 +374,55 @@ void sl_gen_tree(struct sl_mesh *m, float cx, float y0, float cz, float height, 
  * own depth and shadow themselves at every map size; scaled 16.3 in the
  * Bench scenes that was NSM's acne on the petals (scenes/CALIBRATION.md).
  *
- * A petal or a leaf is a flat diamond a-b-c-d made a tetrahedron
- * (thin_tetra): its midrib a-c raised T/2 along the normal, the diagonal
- * b-d across it lowered T/2; the two faces on the midrib are its top, the
- * two on b-d its underside, back to back, T apart where the diagonals
- * cross and meeting at the outline. 4 triangles, as the open diamond's 2
- * drawn from both sides. (Two parallel diamonds T apart, 4 triangles too,
- * leave the outline open: a shadow ray that enters the top face near the
- * rim leaves through the gap, not the face the map keeps, and the map
- * misses a band 2.25 T wide at the far edge of every petal's shadow under
- * the Bench light; measured on flowers/against 512x512: 3,400-4,300
- * pixels said lit and shadowed at every map size from 512^2 to 4096^2,
- * where these tetrahedra give 1,590 falling to 255. Closing the diamond
- * with side walls takes 12 triangles a petal.) The blossom's cone is a
- * closed double cone (its twin pointing down, T below the rim).
+ * A petal or a leaf is a flat diamond made a tetrahedron (thin_tetra):
+ * the diagonal across it raised T/2 along its normal, the one along it
+ * (base to tip) lowered T/2; the two faces on the upper diagonal are its
+ * top, the two on the lower its underside, back to back, T apart where
+ * the diagonals cross and meeting at the outline, which is the diamond's.
+ * 4 triangles, as the open diamond's 2 drawn from both sides. Why these:
+ * - two parallel diamonds T apart (4 triangles too) leave the outline
+ *   open: a shadow ray that enters the top face near the rim leaves
+ *   through the gap, not the face the map keeps, and the map misses a band
+ *   2.25 T wide at the far edge of every petal's shadow under the Bench
+ *   light. Measured on flowers/against 512x512 (T = 2 mm): 3,400-4,300
+ *   pixels said lit and shadowed at every map size from 512^2 to 4096^2,
+ *   against 1,600 falling to 230 with the tetrahedra. Closing the diamond
+ *   with side walls takes 12 triangles a petal;
+ * - folded along the diagonal across, not along the midrib: the faces
+ *   tilt T over half the length, not half the width, and fewer turn from
+ *   the light (bench/against, pixels facing away at 1024x1024, T = 2 mm:
+ *   3.40% folded across, 3.46% along the midrib; 3.33% with the open
+ *   flowers, the band's top 3.38%).
+ * The blossom's cone is a closed double cone (its twin points down, T
+ * below the rim).
  *
- * Why T = 2 mm. A lit face is shadowed by the face behind it where that
+ * Why T = 1.5 mm. A lit face is shadowed by the face behind it where that
  * face, sampled at a texel's centre up to half a texel away, comes nearer
  * the light than the pixel; it stays behind while the part is thicker than
  * (|n_x| w_x + |n_y| w_y) / 2, n the face's unit normal in the light's
  * frame and w_x, w_y the texel's sides in world units (the depth slope
  * times half a texel, measured along the normal). Over the 22,400 petal,
  * leaf and cone triangles of the Bench scenes' flowers (scaled 16.3), in
- * the tight frames sl_light_fit gives the studies' views, the most that
- * asks for (the median is about 3/4 of it), in scene units:
- *   flowers/against 512x512 (Morais Tables 5 and 8): maps 512^2 0.030,
- *     1024^2 0.015, 2048^2 0.0075, 4096^2 0.0038;
+ * the tight frames sl_light_fit gives the studies' views, that asks for at
+ * most (median, about 3/4 of it), in scene units:
+ *   flowers/against 512x512 (Morais Tables 5 and 8): maps 512^2 0.030
+ *     (0.022), 1024^2 0.015, 2048^2 0.0075, 4096^2 0.0038;
  *   flowers/side and /with 512x512 and 1024x1024: 512^2 0.038,
  *     1024^2 0.019; the Flowers views at 1920x1080: 512^2 0.053,
  *     1024^2 0.026;
- *   bench/with 768x768 (the aliasing study): 1024^2 0.045, 2048^2 0.023.
- * 2 mm is 0.033 units after the scale: as thick as the coarsest map of
- * Morais's study asks at flowers/against, and twice to eight times what
- * its finer maps ask, so NSM's errors on the petals are their rims' and
- * fall with map size (flowers/against, shadow incorrect, maps 512^2 to
- * 4096^2: 3,866 / 2,229 / 1,146 / 572). Thicker tetrahedra tilt their
- * faces more and turn them from the light: at 3 and 4 mm the view's
- * pixels facing away rose from 5.6% to 6.6% and 7.9% (Morais: 5.78%).
+ *   bench/with 768x768 (the aliasing study): 1024^2 0.045 (0.032),
+ *     2048^2 0.023.
+ * 1.5 mm is 0.0245 units after the scale: the median petal's need at
+ * Morais's coarsest map on flowers/against, 1.6 times the most its 1024^2
+ * map asks and 3 to 6 times its finer maps', so NSM's errors on the petals
+ * are near their rims and fall with map size (flowers/against, shadow
+ * incorrect, maps 512^2 to 4096^2: 4,237 / 2,550 / 1,415 / 704). Thicker
+ * is cleaner at 512^2 (2 mm: 3,532 / 2,047 / 1,100 / 528) but tilts the
+ * faces further from the light: bench/against's pixels facing away rise
+ * to 3.38% at 1.75 mm and 3.40% at 2 mm, out of the band that holds them
+ * to the thesis's 2.38% (scenes/CALIBRATION.md); 1.5 mm gives 3.36%.
  */
-#define SL_FLOWER_THICKNESS  0.002
+#define SL_FLOWER_THICKNESS  0.0015
 
 /* Ring of 3 stem vertices around the point a, angle offset ph, radius rs. */
 static uint32_t stem_ring(struct sl_mesh *m, const double a[3], double ph, double rs)
@@ -474,7 +484,7 @@ static void thin_tetra(struct sl_mesh *m, const double *const q[4], const double
  *   1 cm below y0), leaning up to 4 cm: 6 sides and 2 end caps, 8
  *   triangles (the stem is straight: one segment is its whole surface);
  * - two stem leaves, 4-5.5 cm diamonds, each a tetrahedron: 8 triangles;
- * - blossom: a low double cone (radius 1.2 cm, 4 mm up, 2 mm down), 16
+ * - blossom: a low double cone (radius 1.2 cm, 4 mm up, 1.5 mm down), 16
  *   triangles, and 8 petals from its rim, diamonds 3-4.5 cm long and
  *   1.4-2.2 cm wide tilted up, each a tetrahedron: 32 triangles.
  * Thin parts are SL_FLOWER_THICKNESS thick (above, with why), every face
@@ -527,7 +537,7 @@ void sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width
             s2[0] = q[0] + 0.5 * L * dir[0] - 0.5 * W * dir[1];
             s2[1] = q[1] + 0.175 * L;
             s2[2] = q[2] + 0.5 * L * dir[1] + 0.5 * W * dir[0];
-            const double *dia[4] = {q, s1, tip, s2};
+            const double *dia[4] = {s1, tip, s2, q};
             thin_tetra(m, dia, up, T);
         }
 
@@ -560,7 +570,7 @@ void sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width
                 s[1] = o[1] + 0.5 * lift * L;
                 s[2] = o[2] + 0.5 * L * d[1] + w * pp[1];
             }
-            const double *dia[4] = {o, s1, tip, s2};
+            const double *dia[4] = {s1, tip, s2, o};
             thin_tetra(m, dia, up, T);
         }
     }
