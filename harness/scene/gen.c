@@ -391,7 +391,7 @@ void sl_gen_tree(struct sl_mesh *m, float cx, float y0, float cz, float height, 
  * - folded along the diagonal across, not along the midrib: the faces
  *   tilt T over half the length, not half the width, and fewer turn from
  *   the light (bench/against, pixels facing away at 1024x1024, T = 2 mm:
- *   3.40% folded across, 3.46% along the midrib; 3.33% with the open
+ *   3.40% folded across, 3.45% along the midrib; 3.32% with the open
  *   flowers, the band's top 3.38%).
  * The blossom's cone is a closed double cone (its twin points down, T
  * below the rim).
