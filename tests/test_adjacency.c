@@ -261,8 +261,8 @@ static void adjacency_matches_brute_force_mixed(void **st)
     struct sl_diag d;
     assert_int_equal(sl_adjacency_build(&s, &a, &d), SL_OK);
     assert_int_equal(a.nonmanifold_edges, 1);
-    /* open: 54 per flower, 2 of the hinge triangle */
-    assert_int_equal(a.open_edges, 3 * 54 + 2);
+    /* open: the hinge triangle's 2 (flowers are closed solids) */
+    assert_int_equal(a.open_edges, 2);
     check_symmetric(&s, &a);
     check_against_brute(&s, &a);
     sl_adjacency_free(&a);
@@ -289,8 +289,8 @@ static void adjacency_bench_scene_scale(void **st)
     struct sl_adjacency a;
     struct sl_diag d;
     assert_int_equal(sl_adjacency_build(&s, &a, &d), SL_OK);
-    /* plane 4*16, leaves 3 each, flowers 54 each, solids none */
-    assert_int_equal(a.open_edges, 64 + 2 * 960 * 3 + 812 * 54);
+    /* plane 4*16, leaves 3 each, flowers and solids none */
+    assert_int_equal(a.open_edges, 64 + 2 * 960 * 3);
     assert_int_equal(a.nonmanifold_edges, 0);
     check_symmetric(&s, &a);
     uint32_t sides_open = 0;

@@ -1,6 +1,7 @@
 /* gen::* — the Bench/Trees/Flowers props: documented triangle counts,
- * closed and outward-wound solids, determinism by seed, and the sizes that
- * make "Trees" big-triangle and "Flowers" sub-texel scenes. */
+ * closed and outward-wound solids (the flowers' thin parts too), determinism
+ * by seed, and the sizes that make "Trees" big-triangle and "Flowers"
+ * small-triangle scenes. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -234,8 +235,11 @@ static int cmp_double(const void *x, const void *y)
 }
 
 /* A shadow-map texel over a 100-unit scene at 1024^2 is ~0.1 unit wide, 0.01
- * square units. Bounds: median triangle area below 3e-4 (3% of a texel),
- * every triangle below 5e-4 (5%) and no edge longer than 0.07 unit. */
+ * square units (the Bench scenes scale the bed 16.3 times: this is about
+ * the generator, not those scenes). Bounds on the petals, leaves, blossom
+ * and the stems' caps: median triangle area below 3e-4 (3% of a texel),
+ * every one below 5e-4 (5%) and no edge longer than 0.07 unit. The stems'
+ * 6 sides are one segment, long slivers never wider than 1.05 cm. */
 static void gen_flowers_far_below_a_texel(void **st)
 {
     (void)st;
@@ -245,19 +249,26 @@ static void gen_flowers_far_below_a_texel(void **st)
     assert_int_equal(m.nt, 51968);
     double *ar = malloc(m.nt * sizeof *ar), emax = 0;
     assert_non_null(ar);
+    uint32_t n = 0;
     for (uint32_t t = 0; t < m.nt; t++) {
-        ar[t] = tri_area(&m, t);
-        assert_true(ar[t] > 1e-6);
+        assert_true(tri_area(&m, t) > 1e-6);
+        if (t % 64 < 6) {   /* a stem's side: its shortest edge is across the stem */
+            double e = fmin(edge_len(&m, t, 0), fmin(edge_len(&m, t, 1), edge_len(&m, t, 2)));
+            assert_true(e < 0.0105);
+            continue;
+        }
+        ar[n++] = tri_area(&m, t);
         for (int k = 0; k < 3; k++)
             if (edge_len(&m, t, k) > emax)
                 emax = edge_len(&m, t, k);
     }
-    qsort(ar, m.nt, sizeof *ar, cmp_double);
-    double median = ar[m.nt / 2];
-    assert_true(median < 3e-4);      /* measured 1.9e-4 */
+    assert_int_equal(n, 58 * 812);
+    qsort(ar, n, sizeof *ar, cmp_double);
+    double median = ar[n / 2];
+    assert_true(median < 3e-4);      /* measured 1.6e-4 */
     assert_true(median > 5e-5);      /* not degenerate slivers either */
-    assert_true(ar[m.nt - 1] < 5e-4);
-    assert_true(emax < 0.07);
+    assert_true(ar[n - 1] < 5e-4);   /* measured 2.8e-4 */
+    assert_true(emax < 0.07);        /* measured 0.058 */
     free(ar);
     /* planted in the bed: stems start 1 cm under y0, every flower inside
      * the bed's rectangle, nothing taller than 0.45 */
@@ -269,7 +280,82 @@ static void gen_flowers_far_below_a_texel(void **st)
     }
     uint32_t open, nonman;
     weld_and_edges(&m, &open, &nonman);
-    assert_int_equal(open, 54 * 812);     /* stem ends 6, leaves 8, blossom 8 + 32 */
+    assert_int_equal(open, 0);
+    assert_int_equal(nonman, 0);
+    sl_mesh_free(&m);
+}
+
+/* The flowers are drawn one-sided, so front-face culling must find a face
+ * behind every lit one (gen.c, "closed thin solids"): each flower is 12
+ * closed convex parts, every face wound away from its part's inside: the
+ * stem [0, 8), two leaves [8, 12) and [12, 16), the double cone [16, 32)
+ * (8 faces up, 8 down) and 8 petals [32 + 4i, 36 + 4i). A leaf or petal is
+ * a tetrahedron whose two diagonals, (v0, v2) across it on top and
+ * (v1, v3) along it underneath, cross over the same point of its diamond
+ * 1.5 mm apart: its top and underside are back to back at the thickness.
+ * The open flowers (one surface, two-sided) had 54 open edges a flower and
+ * no volume. */
+static void gen_flowers_closed_thin_solids(void **st)
+{
+    (void)st;
+    struct sl_mesh m = {0};
+    const int count = 60;
+    sl_gen_flowers(&m, 1, 0.5f, -2, 1.3f, 0.45f, count, 7);
+    assert_int_equal(m.nt, 64 * count);
+    for (uint32_t f = 0; f < (uint32_t)count; f++) {
+        uint32_t part[13] = {0, 8, 12, 16, 32};
+        for (int i = 1; i <= 8; i++)
+            part[4 + i] = 32 + 4 * (uint32_t)i;
+        for (int p = 0; p < 12; p++) {
+            uint32_t t0 = 64 * f + part[p], t1 = 64 * f + part[p + 1];
+            assert_true(volume(&m, t0, t1) > 0.0);
+            /* convex: every face looks away from the part's centre */
+            double c[3] = {0, 0, 0};
+            for (uint32_t t = t0; t < t1; t++)
+                for (int k = 0; k < 3; k++)
+                    for (int j = 0; j < 3; j++)
+                        c[j] += P(&m, t, k)[j] / (3.0 * (t1 - t0));
+            int ups = 0;
+            for (uint32_t t = t0; t < t1; t++) {
+                double nn[3], dot = 0;
+                tri_normal(&m, t, nn);
+                for (int j = 0; j < 3; j++)
+                    dot += nn[j] * ((P(&m, t, 0)[j] + P(&m, t, 1)[j] + P(&m, t, 2)[j]) / 3.0 - c[j]);
+                assert_true(dot > 0.0);
+                ups += nn[1] > 0.0;
+            }
+            if (p == 3)
+                assert_int_equal(ups, 8);
+            if (p == 1 || p == 2 || p >= 4) {
+                uint32_t v0 = m.idx[3 * (size_t)t0];
+                for (uint32_t t = t0; t < t1; t++)
+                    for (int k = 0; k < 3; k++)
+                        v0 = m.idx[3 * (size_t)t + k] < v0 ? m.idx[3 * (size_t)t + k] : v0;
+                const float *q[4];
+                for (int k = 0; k < 4; k++)
+                    q[k] = m.pos + 3 * (size_t)(v0 + (uint32_t)k);
+                double d1[3], d2[3], mid[3], n[3];
+                for (int j = 0; j < 3; j++) {
+                    d1[j] = (double)q[2][j] - q[0][j];
+                    d2[j] = (double)q[3][j] - q[1][j];
+                    mid[j] = 0.5 * ((double)q[0][j] + q[2][j] - q[1][j] - q[3][j]);
+                }
+                n[0] = d1[1] * d2[2] - d1[2] * d2[1];
+                n[1] = d1[2] * d2[0] - d1[0] * d2[2];
+                n[2] = d1[0] * d2[1] - d1[1] * d2[0];
+                double ln = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+                double along = fabs(mid[0] * n[0] + mid[1] * n[1] + mid[2] * n[2]) / ln;
+                double gap = sqrt(mid[0] * mid[0] + mid[1] * mid[1] + mid[2] * mid[2]);
+                assert_true(mid[1] > 0.0);                        /* v0-v2 on top */
+                assert_true(fabs(gap - 0.0015) < 2e-5);           /* 1.5 mm apart */
+                assert_true(along > 0.999 * gap);                 /* straight across */
+                assert_true(fabs(volume(&m, t0, t1) - ln * 0.0015 / 6.0) < 0.01 * ln * 0.0015 / 6.0);
+            }
+        }
+    }
+    uint32_t open, nonman;
+    weld_and_edges(&m, &open, &nonman);
+    assert_int_equal(open, 0);
     assert_int_equal(nonman, 0);
     sl_mesh_free(&m);
 }
@@ -327,6 +413,7 @@ int main(int argc, char **argv)
         SL_CASE(gen, bench_lamp_box_closed),
         SL_CASE(gen, deterministic_by_seed),
         SL_CASE(gen, flowers_far_below_a_texel),
+        SL_CASE(gen, flowers_closed_thin_solids),
         SL_CASE(gen, tree_leaves_are_large),
         SL_CASE(gen, bench_scene_budget),
     };

@@ -361,9 +361,68 @@ void sl_gen_tree(struct sl_mesh *m, float cx, float y0, float cz, float height, 
     }
 }
 
-#define SL_FLOWER_STEM_SEGS  6
 #define SL_FLOWER_PETALS     8
-#define SL_FLOWER_TRIS       (SL_FLOWER_STEM_SEGS * 6 + 4 + SL_FLOWER_PETALS * 3)
+
+/*
+ * The flowers' thin parts (petals, leaves, the blossom's cone) are closed
+ * thin solids, so the mesh is drawn one-sided and the shadow pass's
+ * front-face culling works on it as on any closed solid: the faces toward
+ * the light are culled and the map keeps the ones behind them, deeper by
+ * the part's thickness, so a lit face is not shadowed by itself where the
+ * part is thicker than the depth the map's texel spreads over it. Open
+ * surfaces drawn two-sided (these flowers before) keep the lit face at its
+ * own depth and shadow themselves at every map size; scaled 16.3 in the
+ * Bench scenes that was NSM's acne on the petals (scenes/CALIBRATION.md).
+ *
+ * A petal or a leaf is a flat diamond made a tetrahedron (thin_tetra):
+ * the diagonal across it raised T/2 along its normal, the one along it
+ * (base to tip) lowered T/2; the two faces on the upper diagonal are its
+ * top, the two on the lower its underside, back to back, T apart where
+ * the diagonals cross and meeting at the outline, which is the diamond's.
+ * 4 triangles, as the open diamond's 2 drawn from both sides. Why these:
+ * - two parallel diamonds T apart (4 triangles too) leave the outline
+ *   open: a shadow ray that enters the top face near the rim leaves
+ *   through the gap, not the face the map keeps, and the map misses a band
+ *   2.25 T wide at the far edge of every petal's shadow under the Bench
+ *   light. Measured on flowers/against 512x512 (T = 2 mm): 3,400-4,300
+ *   pixels said lit and shadowed at every map size from 512^2 to 4096^2,
+ *   against 1,600 falling to 230 with the tetrahedra. Closing the diamond
+ *   with side walls takes 12 triangles a petal;
+ * - folded along the diagonal across, not along the midrib: the faces
+ *   tilt T over half the length, not half the width, and fewer turn from
+ *   the light (bench/against, pixels facing away at 1024x1024, T = 2 mm:
+ *   3.40% folded across, 3.45% along the midrib; 3.32% with the open
+ *   flowers, the band's top 3.38%).
+ * The blossom's cone is a closed double cone (its twin points down, T
+ * below the rim).
+ *
+ * Why T = 1.5 mm. A lit face is shadowed by the face behind it where that
+ * face, sampled at a texel's centre up to half a texel away, comes nearer
+ * the light than the pixel; it stays behind while the part is thicker than
+ * (|n_x| w_x + |n_y| w_y) / 2, n the face's unit normal in the light's
+ * frame and w_x, w_y the texel's sides in world units (the depth slope
+ * times half a texel, measured along the normal). Over the 22,400 petal,
+ * leaf and cone triangles of the Bench scenes' flowers (scaled 16.3), in
+ * the tight frames sl_light_fit gives the studies' views, that asks for at
+ * most (median, about 3/4 of it), in scene units:
+ *   flowers/against 512x512 (Morais Tables 5 and 8): maps 512^2 0.030
+ *     (0.022), 1024^2 0.015, 2048^2 0.0075, 4096^2 0.0038;
+ *   flowers/side and /with 512x512 and 1024x1024: 512^2 0.038,
+ *     1024^2 0.019; the Flowers views at 1920x1080: 512^2 0.053,
+ *     1024^2 0.026;
+ *   bench/with 768x768 (the aliasing study): 1024^2 0.045 (0.032),
+ *     2048^2 0.023.
+ * 1.5 mm is 0.0245 units after the scale: the median petal's need at
+ * Morais's coarsest map on flowers/against, 1.6 times the most its 1024^2
+ * map asks and 3 to 6 times its finer maps', so NSM's errors on the petals
+ * are near their rims and fall with map size (flowers/against, shadow
+ * incorrect, maps 512^2 to 4096^2: 4,237 / 2,550 / 1,415 / 704). Thicker
+ * is cleaner at 512^2 (2 mm: 3,532 / 2,047 / 1,100 / 528) but tilts the
+ * faces further from the light: bench/against's pixels facing away rise
+ * to 3.38% at 1.75 mm and 3.40% at 2 mm, out of the band that holds them
+ * to the thesis's 2.38% (scenes/CALIBRATION.md); 1.5 mm gives 3.36%.
+ */
+#define SL_FLOWER_THICKNESS  0.0015
 
 /* Ring of 3 stem vertices around the point a, angle offset ph, radius rs. */
 static uint32_t stem_ring(struct sl_mesh *m, const double a[3], double ph, double rs)
@@ -377,23 +436,67 @@ static uint32_t stem_ring(struct sl_mesh *m, const double a[3], double ph, doubl
     return first;
 }
 
+/* Tetrahedron over the flat diamond q[0..3] (in order around it; a
+ * parallelogram, q0 + q2 = q1 + q3): the diagonal q0-q2 moved T/2 along
+ * the diamond's normal on the side of `up`, q1-q3 moved T/2 the other way;
+ * 4 triangles (the faces without q3, q2, q1, q0 in turn), each wound away
+ * from the vertex it does not hold. */
+static void thin_tetra(struct sl_mesh *m, const double *const q[4], const double up[3], double T)
+{
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = q[1][k] - q[0][k];
+        e2[k] = q[2][k] - q[0][k];
+    }
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    double ln = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (n[0] * up[0] + n[1] * up[1] + n[2] * up[2] < 0.0)
+        ln = -ln;
+    double p[4][3], c[3] = {0, 0, 0};
+    uint32_t v[4];
+    for (int i = 0; i < 4; i++) {
+        double s = (i & 1) ? -0.5 * T : 0.5 * T;
+        for (int k = 0; k < 3; k++) {
+            p[i][k] = q[i][k] + s * n[k] / ln;
+            c[k] += 0.25 * p[i][k];
+        }
+        v[i] = vtx_d(m, p[i]);
+    }
+    for (int skip = 3; skip >= 0; skip--) {
+        uint32_t f[3];
+        double out[3];
+        for (int i = 0, j = 0; i < 4; i++)
+            if (i != skip)
+                f[j++] = v[i];
+        for (int k = 0; k < 3; k++)
+            out[k] = c[k] - p[skip][k];
+        tri_facing(m, f[0], f[1], f[2], out);
+    }
+}
+
 /*
  * Bed of `count` flowers planted at y0 in the width (x) by depth (z)
  * rectangle centred at (cx, cz), positions uniform (a margin of 10 cm keeps
- * every flower inside when the bed is wider and deeper than 0.4). Each flower is made of tiny triangles, far below a
- * shadow-map texel of a 100-unit scene (~0.1 unit at 1024^2):
- * - stem: an open triangular prism of radius 4-6 mm, 0.22-0.38 tall (from
- *   1 cm below y0), leaning up to 4 cm, in 6 segments: 36 triangles;
- * - two stem leaves, 5 cm diamonds of 2 triangles: 4 triangles;
- * - blossom: a low cone of 8 triangles (radius 1.2 cm) and 8 petals of 2
- *   triangles, 3-4.5 cm long and 1.4-2.2 cm wide, tilted up: 24 triangles.
- * Leaves and petals face up (+y) and are meant to be two-sided.
- * Triangles: 64 * count. Areas are ~5e-5 to ~3e-4 square units.
+ * every flower inside when the bed is wider and deeper than 0.4). Metres;
+ * the Bench scenes scale the bed 16.3 times (scenes/bench.yaml). Each
+ * flower is 12 closed solids:
+ * - stem: a closed triangular prism of radius 4-6 mm, 0.22-0.38 tall (from
+ *   1 cm below y0), leaning up to 4 cm: 6 sides and 2 end caps, 8
+ *   triangles (the stem is straight: one segment is its whole surface);
+ * - two stem leaves, 4-5.5 cm diamonds, each a tetrahedron: 8 triangles;
+ * - blossom: a low double cone (radius 1.2 cm, 4 mm up, 1.5 mm down), 16
+ *   triangles, and 8 petals from its rim, diamonds 3-4.5 cm long and
+ *   1.4-2.2 cm wide tilted up, each a tetrahedron: 32 triangles.
+ * Thin parts are SL_FLOWER_THICKNESS thick (above, with why), every face
+ * wound outward: the mesh is meant to be drawn one-sided. The seed draws
+ * what it drew for the open flowers (same places, sizes and turns).
+ * Triangles: 64 * count, as before (the Bench scene stays at 54,200).
  */
 void sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width, float depth,
                     int count, uint32_t seed)
 {
-    static const double up[3] = {0.0, 1.0, 0.0};
+    static const double up[3] = {0.0, 1.0, 0.0}, down[3] = {0.0, -1.0, 0.0};
+    const double T = SL_FLOWER_THICKNESS;
     struct gen_rng r;
     gen_rng_seed(&r, seed, 2);
     /* reach from the stem base: lean 4 cm + blossom 1.2 + petal 4.5 cm */
@@ -406,64 +509,58 @@ void sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width
         double ph = gen_rng_range(&r, 0.0, 2.0 * SL_PI);
         double top[3] = {b[0] + lean[0], b[1] + hs, b[2] + lean[1]};
 
-        /* stem: rings j = 0..SEGS, sides wound like sl_gen_cylinder's */
-        uint32_t ring[SL_FLOWER_STEM_SEGS + 1];
-        for (int j = 0; j <= SL_FLOWER_STEM_SEGS; j++) {
-            double t = (double)j / SL_FLOWER_STEM_SEGS, a[3];
-            for (int k = 0; k < 3; k++)
-                a[k] = b[k] + t * (top[k] - b[k]);
-            ring[j] = stem_ring(m, a, ph, rs);
+        /* stem: sides wound like sl_gen_cylinder's, caps facing out */
+        uint32_t r0 = stem_ring(m, b, ph, rs), r1 = stem_ring(m, top, ph, rs);
+        for (uint32_t k = 0; k < 3; k++) {
+            uint32_t b0 = r0 + k, b1 = r0 + (k + 1) % 3, t0 = r1 + k, t1 = r1 + (k + 1) % 3;
+            sl_mesh_tri(m, b0, b1, t1);
+            sl_mesh_tri(m, b0, t1, t0);
         }
-        for (int j = 0; j < SL_FLOWER_STEM_SEGS; j++)
-            for (uint32_t k = 0; k < 3; k++) {
-                uint32_t b0 = ring[j] + k, b1 = ring[j] + (k + 1) % 3;
-                uint32_t t0 = ring[j + 1] + k, t1 = ring[j + 1] + (k + 1) % 3;
-                sl_mesh_tri(m, b0, b1, t1);
-                sl_mesh_tri(m, b0, t1, t0);
-            }
+        tri_facing(m, r0, r0 + 1, r0 + 2, down);
+        tri_facing(m, r1, r1 + 1, r1 + 2, up);
 
         /* two leaves on opposite sides, at 35% and 60% of the stem */
         double la = gen_rng_range(&r, 0.0, 2.0 * SL_PI);
         for (int l = 0; l < 2; l++) {
-            double t = l ? 0.60 : 0.35, dir[2] = {cos(la + l * SL_PI), -sin(la + l * SL_PI)};
+            double tl = l ? 0.60 : 0.35, dir[2] = {cos(la + l * SL_PI), -sin(la + l * SL_PI)};
             double L = gen_rng_range(&r, 0.04, 0.055), W = gen_rng_range(&r, 0.012, 0.018);
             double q[3], s1[3], s2[3], tip[3];
             for (int k = 0; k < 3; k++)
-                q[k] = b[k] + t * (top[k] - b[k]);
+                q[k] = b[k] + tl * (top[k] - b[k]);
             tip[0] = q[0] + L * dir[0];
             tip[1] = q[1] + 0.35 * L;
             tip[2] = q[2] + L * dir[1];
+            /* the sides halfway up the tip's rise: a flat diamond */
             s1[0] = q[0] + 0.5 * L * dir[0] + 0.5 * W * dir[1];
-            s1[1] = q[1] + 0.15 * L;
+            s1[1] = q[1] + 0.175 * L;
             s1[2] = q[2] + 0.5 * L * dir[1] - 0.5 * W * dir[0];
             s2[0] = q[0] + 0.5 * L * dir[0] - 0.5 * W * dir[1];
-            s2[1] = q[1] + 0.15 * L;
+            s2[1] = q[1] + 0.175 * L;
             s2[2] = q[2] + 0.5 * L * dir[1] + 0.5 * W * dir[0];
-            uint32_t vq = vtx_d(m, q), v1 = vtx_d(m, s1), vt = vtx_d(m, tip), v2 = vtx_d(m, s2);
-            quad_facing(m, vq, v1, vt, v2, up);
+            const double *dia[4] = {s1, tip, s2, q};
+            thin_tetra(m, dia, up, T);
         }
 
-        /* blossom: centre cone, then petals from its rim */
+        /* blossom: the double cone, then petals from its rim */
         double rc = 0.012, ph0 = gen_rng_range(&r, 0.0, 2.0 * SL_PI);
-        double cpt[3] = {top[0], top[1] + 0.004, top[2]};
-        uint32_t vc = vtx_d(m, cpt), rim = m->nv;
+        double cpt[3] = {top[0], top[1] + 0.004, top[2]}, cpb[3] = {top[0], top[1] - T, top[2]};
+        uint32_t vc = vtx_d(m, cpt), vb = vtx_d(m, cpb), rim = m->nv;
         for (int i = 0; i < SL_FLOWER_PETALS; i++) {
             double an = ph0 + i * (2.0 * SL_PI / SL_FLOWER_PETALS);
             double p[3] = {top[0] + rc * cos(an), top[1], top[2] - rc * sin(an)};
             vtx_d(m, p);
         }
-        for (uint32_t i = 0; i < SL_FLOWER_PETALS; i++)
-            tri_facing(m, vc, rim + i, rim + (i + 1) % SL_FLOWER_PETALS, up);
+        for (uint32_t i = 0; i < SL_FLOWER_PETALS; i++) {
+            uint32_t a = rim + i, c = rim + (i + 1) % SL_FLOWER_PETALS;
+            tri_facing(m, vc, a, c, up);
+            tri_facing(m, vb, c, a, down);
+        }
         for (int i = 0; i < SL_FLOWER_PETALS; i++) {
             double an = ph0 + i * (2.0 * SL_PI / SL_FLOWER_PETALS);
             double d[2] = {cos(an), -sin(an)}, pp[2] = {-d[1], d[0]};
             double L = gen_rng_range(&r, 0.03, 0.045), W = gen_rng_range(&r, 0.014, 0.022);
             double lift = gen_rng_range(&r, 0.1, 0.5);   /* tip rises lift * L */
-            if (m->oom)
-                return;
-            /* copied: vtx_d below may move m->pos */
-            const float *in = m->pos + 3 * (size_t)(rim + (uint32_t)i);
-            double o[3] = {in[0], in[1], in[2]}, s1[3], s2[3], tip[3];
+            double o[3] = {top[0] + rc * cos(an), top[1], top[2] - rc * sin(an)}, s1[3], s2[3], tip[3];
             tip[0] = o[0] + L * d[0];
             tip[1] = o[1] + lift * L;
             tip[2] = o[2] + L * d[1];
@@ -473,8 +570,8 @@ void sl_gen_flowers(struct sl_mesh *m, float cx, float y0, float cz, float width
                 s[1] = o[1] + 0.5 * lift * L;
                 s[2] = o[2] + 0.5 * L * d[1] + w * pp[1];
             }
-            uint32_t v1 = vtx_d(m, s1), vt = vtx_d(m, tip), v2 = vtx_d(m, s2);
-            quad_facing(m, rim + (uint32_t)i, v1, vt, v2, up);
+            const double *dia[4] = {s1, tip, s2, o};
+            thin_tetra(m, dia, up, T);
         }
     }
 }

@@ -23,8 +23,10 @@ void sl_gen_pyramid(struct sl_mesh *m, float cx, float y0, float cz, float base,
 void sl_gen_box(struct sl_mesh *m, const float lo[3], const float hi[3]);
 /* Props of the Bench, Trees and Flowers scenes (metres; gen.c says each
  * one's shape). Triangle counts: cone 2n; tree 1024 (64 trunk + 960 open
- * leaves, two-sided); flowers 64 * count (tiny, two-sided petals and
- * leaves); bench 240 (20 closed boxes); lamp 172; flower box 28 (one closed
+ * leaves, two-sided); flowers 64 * count (12 closed solids a flower: a
+ * prism stem, and petals, leaves and a blossom cone as thin solids 1.5 mm
+ * thick, one-sided: front-face culling keeps the faces behind the lit
+ * ones); bench 240 (20 closed boxes); lamp 172; flower box 28 (one closed
  * hollow solid; returns the soil height y0 + 0.8 h). Seeded ones give the
  * same mesh for the same seed. */
 void  sl_gen_cone(struct sl_mesh *m, float cx, float y0, float cz, float r, float h, int n);
