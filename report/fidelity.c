@@ -427,13 +427,15 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
                             "thesis's, makes them. Their count follows our torus's tessellation and proportions, "
                             "which the thesis does not give (41 to 253 over twelve of them, 10 to 101 with the torus "
                             "standing; 3 without it: scenes/CALIBRATION.md); moderno::wrong_hints_gap prints the "
-                            "breakdown. On Bench, Trees and Flowers over 97%% lie under two-sided, sub-texel geometry "
-                            "(flowers, leaves: occluders that fall between texel centres, or that cover all four "
-                            "centres while the pixel's ray passes between them, or a leaf's self-shadowing, as "
-                            "two-sided meshes are not culled); our generated flowers are finer than a texel at "
-                            "both map sizes, which is why the rate does not fall from 1024 to 2048 in the thin "
-                            "contours. The test moderno::wrong_hints_where prints the classes per view, map and "
-                            "contour; its counts equal the study's cells.");
+                            "breakdown. On Trees they all lie under the leaves, two-sided and thinner than a texel "
+                            "(occluders that fall between texel centres, or that cover all four centres while the "
+                            "pixel's ray passes between them). On Flowers and Bench, whose flowers are closed thin "
+                            "solids drawn one-sided, under a tenth involve two-sided geometry: the wrong lit hints "
+                            "are mostly front-face culling's blind spot, as on Primitives, and the wrong shadow "
+                            "hints mostly a petal's own far face within two texels of depth, where the part is "
+                            "thinner than the depth a texel spreads over it (scenes/CALIBRATION.md). The test "
+                            "moderno::wrong_hints_where prints the classes per view, map and contour; its counts "
+                            "equal the study's cells.");
     static struct sl_report_fidelity_row rows[SL_REPORT_FIDELITY_MAXROWS];
     int nr = sl_report_fidelity_rows(s->cells, s->n, rows, SL_REPORT_FIDELITY_MAXROWS);
     enum sl_err e = SL_OK;
