@@ -30,16 +30,18 @@ extern const char sl_glsl_cons_setup[];
 enum kind { K_DEPTH, K_DEPTH_BACK, K_BGSM, K_BGSM2, K_SGSM, K_SGSM_ADJ };
 
 /* A conservative-layer shader specialised for one layer: the file's
- * #version line, SL_MODE, then `pre` (shared code, NULL = none), then the
- * rest of the file. The caller frees it. */
-static char *cons_source(const char *src, int mode, const char *pre)
+ * #version line, SL_MODE, then `pre` and `pre2` (shared code, NULL = none),
+ * then the rest of the file. The caller frees it. */
+static char *cons_source(const char *src, int mode, const char *pre, const char *pre2)
 {
     const char *body = strchr(src, '\n');
     body = body ? body + 1 : src;
-    size_t n = (size_t)(body - src) + 32 + (pre ? strlen(pre) : 0) + strlen(body) + 1;
+    pre = pre ? pre : "";
+    pre2 = pre2 ? pre2 : "";
+    size_t n = (size_t)(body - src) + 32 + strlen(pre) + strlen(pre2) + strlen(body) + 1;
     char *out = malloc(n);
     if (out)
-        snprintf(out, n, "%.*s#define SL_MODE %d\n%s%s", (int)(body - src), src, mode, pre ? pre : "", body);
+        snprintf(out, n, "%.*s#define SL_MODE %d\n%s%s%s", (int)(body - src), src, mode, pre, pre2, body);
     return out;
 }
 
@@ -53,14 +55,15 @@ enum sl_err sl_shadowmap_init(struct sl_shadowmap_pass *p, struct sl_diag *d)
     /* modes 0-2 (BGSM, BGSM2, SGSM) share cons_gs, mode 3 (SGSM with
      * adjacency) has its own; mode 4 is its GS taking the triangles that
      * keep no edge, with SGSM's fragment shader (cons_adj_gs.glsl) */
+    /* the margins as constants of the fragment shader (cons_fs.glsl), and
+     * of the geometry shader, which turns BGSM's box test into integer
+     * bounds (cons_gs.glsl): %.17g gives back the same double */
+    char pre[128];
+    snprintf(pre, sizeof pre, "#define SL_EPS %.17glf\n#define SL_ZEPS %.17glf\n", SL_CONS_EPS_TEXELS,
+             SL_CONS_EPS_DEPTH);
     for (int mode = 0; mode < 5; mode++) {
-        char *gs = cons_source(mode >= 3 ? sl_glsl_cons_adj_gs : sl_glsl_cons_gs, mode, sl_glsl_cons_setup);
-        /* the margins as constants of the fragment shader (cons_fs.glsl):
-         * %.17g gives back the same double */
-        char pre[128];
-        snprintf(pre, sizeof pre, "#define SL_EPS %.17glf\n#define SL_ZEPS %.17glf\n", SL_CONS_EPS_TEXELS,
-                 SL_CONS_EPS_DEPTH);
-        char *fs = cons_source(sl_glsl_cons_fs, mode == 4 ? 2 : mode, pre);
+        char *gs = cons_source(mode >= 3 ? sl_glsl_cons_adj_gs : sl_glsl_cons_gs, mode, pre, sl_glsl_cons_setup);
+        char *fs = cons_source(sl_glsl_cons_fs, mode == 4 ? 2 : mode, pre, NULL);
         if (gs && fs)
             p->prog_cons[mode] = sl_gl_program(sl_glsl_depth_id_vs, gs, fs, d);
         else

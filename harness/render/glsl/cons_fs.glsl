@@ -55,6 +55,9 @@ flat in float g_zb;     // the vertices' nearest depth (modes 0, 1), farthest (2
                         // of three floats is one of them, so double(g_zb) is what the double
                         // min or max of the three gave, without its NaN handling per fragment
 #endif
+#if SL_MODE == 0 || SL_MODE == 1
+flat in ivec4 g_box;    // texel indices x first, last, y first, last of the box test
+#endif
 flat in uint g_flags;   // bit 0: |area| > 1e-12; bit 1: |area| >= 1e-12 (mode 3: bits 2 + i, 5 + i the same per neighbour)
 #if SL_MODE == 3
 flat in vec3 g_n0;      // the vertex of the neighbour across edge i opposite to it
@@ -73,21 +76,28 @@ flat in dvec2 g_ngrad2;
 #endif
 layout(location = 0) out uint o_tri;
 
+// A texel's corner coordinates: lo = t, hi = t + 1, in double (exact:
+// t < 2^14). Made once per fragment and shared by every corner below.
+struct texel { dvec2 lo, hi; };
+
 // The corner of texel t at which dot(n, q) is smallest (sgn = 1) or
-// largest (sgn = -1).
-dvec2 corner(ivec2 t, dvec2 n, double sgn)
+// largest (sgn = -1). It picks lo or hi per axis, where this once added
+// 0.0 or 1.0 to dvec2(t) per corner: t + 0.0 is t and t + 1.0 is hi, both
+// exact, so the corner and every distance from it are the same doubles,
+// for one select per axis instead of a select and an addition.
+dvec2 corner(texel t, dvec2 n, double sgn)
 {
-    return dvec2(t) + dvec2(sgn * n.x < 0.0 ? 1.0 : 0.0, sgn * n.y < 0.0 ? 1.0 : 0.0);
+    return dvec2(sgn * n.x < 0.0 ? t.hi.x : t.lo.x, sgn * n.y < 0.0 ? t.hi.y : t.lo.y);
 }
 
 // Lowest signed distance of the texel's corners outside the edge through a.
-double dist_min(ivec2 t, vec3 a, dvec2 n)
+double dist_min(texel t, vec3 a, dvec2 n)
 {
     return dot(n, corner(t, n, 1.0) - dvec2(a.xy));
 }
 
 // Highest.
-double dist_max(ivec2 t, vec3 a, dvec2 n)
+double dist_max(texel t, vec3 a, dvec2 n)
 {
     return dot(n, corner(t, n, -1.0) - dvec2(a.xy));
 }
@@ -100,14 +110,17 @@ double plane_at(vec3 a, dvec2 g, dvec2 q)
 
 // Highest depth of the plane over the texel, never beyond zhi; zhi when the
 // plane is degenerate.
-double plane_max(ivec2 t, vec3 a, dvec2 g, bool has_plane, double zhi)
+double plane_max(texel t, vec3 a, dvec2 g, bool has_plane, double zhi)
 {
     return has_plane ? min(plane_at(a, g, corner(t, g, -1.0)), zhi) : zhi;
 }
 
 void main()
 {
-    ivec2 t = ivec2(gl_FragCoord.xy);
+    ivec2 it = ivec2(gl_FragCoord.xy);
+    texel t;
+    t.lo = dvec2(it);
+    t.hi = t.lo + 1.0;
 #if SL_MODE == 3
     dvec3 zs = dvec3(g_v0.z, g_v1.z, g_v2.z);
     double zlo = min(zs.x, min(zs.y, zs.z)), zhi = max(zs.x, max(zs.y, zs.z));
@@ -162,15 +175,13 @@ void main()
 #else
     vec3 v[3] = vec3[3](g_v0, g_v1, g_v2);
 #if SL_MODE != 2
-    // box axes; the vertices, t - eps and t + 1 + eps are exact in float
-    // (eps = 1/128, t < 2^17), so float decides as double would
-    vec2 lo = min(v[0].xy, min(v[1].xy, v[2].xy)), hi = max(v[0].xy, max(v[1].xy, v[2].xy));
-    float feps = float(u_eps);
-    drop = hi.x < float(t.x) - feps || lo.x > float(t.x + 1) + feps ||
-           hi.y < float(t.y) - feps || lo.y > float(t.y + 1) + feps;
+    // box axes: the square [t - eps, t + 1 + eps] misses the vertices'
+    // range, as integer bounds on t from the geometry shader (cons_gs.glsl
+    // says why they decide exactly as the float comparisons did)
+    drop = it.x < g_box.x || it.x > g_box.y || it.y < g_box.z || it.y > g_box.w;
 #endif
 #if SL_MODE == 1
-    drop = drop || (imageLoad(u_first_ids, t).r & 0x7fffffffu) == g_tri;
+    drop = drop || (imageLoad(u_first_ids, it).r & 0x7fffffffu) == g_tri;
 #endif
     // edge axes: signed distances of the corners outside each edge, in texels
     dvec2 e[3] = dvec2[3](g_e0, g_e1, g_e2);

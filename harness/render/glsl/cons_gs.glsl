@@ -34,6 +34,9 @@ flat out dvec2 g_e2;           //                            v2 -> v0
 flat out dvec2 g_grad;         // depth plane gradient
 flat out uint g_flags;         // bit 0: |area| > 1e-12 (the plane is used); bit 1: |area| >= 1e-12
 flat out float g_zb;           // the vertices' nearest depth (BGSM's bound), farthest for SGSM
+#if SL_MODE != 2
+flat out ivec4 g_box;          // BGSM's box test: texel indices x first, last, y first, last
+#endif
 
 // Window space of a clip-space vertex. The division is exact (by 1) in a
 // directional light's orthographic frustum; in a point light's perspective
@@ -43,6 +46,38 @@ bool unmapped(vec4 c)
 {
     return u_guard > 0.0 && (c.w < u_wmin || abs(c.x / c.w) > u_guard || abs(c.y / c.w) > u_guard);
 }
+
+#if SL_MODE != 2
+// BGSM's box test (cons_fs.glsl) drops texel i along an axis when the
+// square [i - eps, i + 1 + eps] misses the vertices' range [lo, hi]:
+// hi < i - eps or lo > i + 1 + eps, each side exact in float (the vertices
+// are floats; i - eps and i + 1 + eps are too, eps = 1/128, i < 2^14), so
+// the test is one of reals. For an integer i and a real x, i > x exactly
+// when i > floor(x), and i < x exactly when i < ceil(x); so i is dropped
+// exactly when i < ceil(lo - 1 - eps) or i > floor(hi + eps): two integers
+// per axis, once per triangle, where the fragment shader computed the
+// range and four float comparisons per texel.
+// In double, lo - (1 + eps) and hi + eps are exact for 2^-28 <= |x| < 2^44
+// (1 + eps = 1.0078125 is a double; the operands' bits span at most 53);
+// below, the sum lies within 2^-28 of -1 - eps or eps, far from an
+// integer, and rounds inside that interval, so floor and ceil are the
+// same; above, both lie beyond the clamp to +-2^20, far outside every
+// texel index (maps are at most 2^14), on the same side. A NaN bound (all
+// three vertices NaN: min and max return the other operand) compared
+// false, dropping nothing: the far bound does the same (such a triangle
+// has no window position, and llvmpipe rasterises none of it anyway).
+const double SL_BOX_FAR = 1048576.0;
+
+int box_first(float lo)
+{
+    return isnan(lo) ? -int(SL_BOX_FAR) : int(clamp(ceil(double(lo) - (1.0 + SL_EPS)), -SL_BOX_FAR, SL_BOX_FAR));
+}
+
+int box_last(float hi)
+{
+    return isnan(hi) ? int(SL_BOX_FAR) : int(clamp(floor(double(hi) + SL_EPS), -SL_BOX_FAR, SL_BOX_FAR));
+}
+#endif
 
 vec3 win(vec4 c) { return vec3((c.xy / c.w * 0.5 + 0.5) * u_size, c.z / c.w); }
 
@@ -75,6 +110,9 @@ void main()
     g_zb = max(v[0].z, max(v[1].z, v[2].z));
 #else
     g_zb = min(v[0].z, min(v[1].z, v[2].z));
+    // the same min and max as the fragment shader's box test took per texel
+    vec2 blo = min(v[0].xy, min(v[1].xy, v[2].xy)), bhi = max(v[0].xy, max(v[1].xy, v[2].xy));
+    g_box = ivec4(box_first(blo.x), box_last(bhi.x), box_first(blo.y), box_last(bhi.y));
 #endif
     // every emitted vertex at the nearest depth of the triangle, clamped into
     // the box: clipping must never cut a fragment we want (cons_fs writes the
