@@ -54,15 +54,15 @@ TARGETS = [
 ]
 VP = {0: "256x256", 1: "480x270"}
 
-# The props' numbers: trees built at the origin, scaled [s*x, s*y, s*z]
-# (the generator's height h times the scale is the tree's), turned r degrees
-# about y and moved to (x, z); the lamp at (x, z), h tall; the bench 4 long,
-# scaled s, turned r, at (x, z). LIMITS bound the search.
+# The props' numbers, PARAMS those of scenes/bench.yaml: each tree built
+# h tall at the origin, scaled [sx, sy, sz] (h times sy is its height),
+# turned r degrees about y and moved to (x, z); the lamp at (x, z), h tall;
+# the bench 4 long, scaled s, turned r, at (x, z). LIMITS bound the search.
 PARAMS = dict(ax=-20.4, az=-35.5, ah=57.2, asx=1.5, asy=1.0, asz=1.04, ar=24.0,
               bx=-60.8, bz=-15.5, bh=18.1, bsx=2.33, bsy=1.0, bsz=1.49, br=37.5,
               lx=25.7, lz=-49.8, lh=42.7, nx=-12.2, nz=11.8, ns=7.25, nr=-21.5)
 LIMITS = dict(ax=(-60, 80), az=(-80, 40), ah=(20, 70), asx=(0.4, 3), asy=(0.2, 1.5), asz=(0.4, 3),
-              ar=(-90, 90), bx=(-90, 40), bz=(-90, 40), bh=(20, 70), bsx=(0.4, 3), bsy=(0.2, 1.5),
+              ar=(-90, 90), bx=(-90, 40), bz=(-90, 40), bh=(10, 70), bsx=(0.4, 3), bsy=(0.2, 1.5),
               bsz=(0.4, 3), br=(-90, 90), lx=(-60, 60), lz=(-60, 30), lh=(6, 45),
               nx=(-30, 20), nz=(5, 30), ns=(5, 8.5), nr=(-90, 90))
 
