@@ -205,7 +205,7 @@ static void hard_deterministic(void **st)
         "methods:\n  - {label: nsm, method: nsm}\n  - {label: chain, method: chain}\n"
         "  - {label: adjacency2, method: adjacency, level: 2}\n  - {label: bgsm, method: bgsm}\n"
         "  - {label: sgsm_adj, method: sgsm_adj}\n  - {label: csm_adj, method: csm_adj}\n"
-        "  - {label: hertel, method: hertel_exact}\n";
+        "  - {label: hertel_exact, method: hertel_exact}\n";
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
     struct sl_diag d;
     struct sl_config one, two;
@@ -230,7 +230,7 @@ static void hard_deterministic(void **st)
     sl_run_result_free(&c);
 
     /* each label alone */
-    static const char *const alone[] = {"chain", "sgsm_adj", "csm_adj", "hertel"};
+    static const char *const alone[] = {"chain", "sgsm_adj", "csm_adj", "hertel_exact"};
     for (size_t k = 0; k < sizeof alone / sizeof alone[0]; k++) {
         struct sl_config lone;
         const char *line = strstr(rest, alone[k]) - strlen("  - {label: ");

@@ -269,7 +269,7 @@ static void soft_hard_methods(void **st)
     struct sl_config c;
     static const char *const labels[] = {"point", "nsm", "slope", "coherence", "texel", "neighbours",
                                          "adjacency", "chain", "bgsm", "sgsm", "sgsm_adj", "csm", "csm_adj",
-                                         "hertel", "raytrace"};
+                                         "hertel_exact", "raytrace"};
     enum { NL = sizeof labels / sizeof labels[0] };
     sl_test_config("hardarea.yaml",
                    "scenes: [{scene: curtis_box}]\nviewports: [{width: 160, height: 120}]\nmap_sizes: [256, 2048]\n"
@@ -280,7 +280,7 @@ static void soft_hard_methods(void **st)
                    "  - {label: adjacency, method: adjacency, level: 2}\n  - {label: chain, method: chain}\n"
                    "  - {label: bgsm, method: bgsm}\n  - {label: sgsm, method: sgsm}\n"
                    "  - {label: sgsm_adj, method: sgsm_adj}\n  - {label: csm, method: csm}\n"
-                   "  - {label: csm_adj, method: csm_adj}\n  - {label: hertel, method: hertel_exact}\n"
+                   "  - {label: csm_adj, method: csm_adj}\n  - {label: hertel_exact, method: hertel_exact}\n"
                    "  - {label: raytrace, method: raytrace}\n"
                    "area_samples: 8\n", &c);
     struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
@@ -310,7 +310,7 @@ static void soft_hard_methods(void **st)
             assert_int_equal(n[SL_SFIG_soft_truth_lit] + n[SL_SFIG_soft_truth_umbra] +
                              n[SL_SFIG_soft_truth_penumbra], n[SL_SFIG_soft_pixels]);
             int exact = !strcmp(label, "chain") || !strcmp(label, "csm") || !strcmp(label, "csm_adj") ||
-                        !strcmp(label, "hertel") || !strcmp(label, "raytrace");
+                        !strcmp(label, "hertel_exact") || !strcmp(label, "raytrace");
             printf("soft::hard_methods: %s %d %-10s wrong %5llu uncertain %5llu MAE %.3f (hard_point %.3f)\n",
                    cl->viewpoint, map, label, (unsigned long long)img->n[SL_FIG_wrong],
                    (unsigned long long)img->n[SL_FIG_uncertain], cl->soft.pct[SL_SFIG_soft_mae],
