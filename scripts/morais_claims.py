@@ -53,16 +53,17 @@ def main(path):
     print(f"CSMA traces fewer rays than CSMa in {fewer} of {len(rows)} (view, viewport, map) keys, "
           f"as many in {same}, more in {more}; rays {sum(b for _, b in rows):,} against {sum(a for a, _ in rows):,}")
 
-    t, _ = fig("hertel", "traced")
-    p, k = fig("hertel", "pfl")
-    print(f"hertel traces {pct(t, p)} of PFL ({t:,} of {p:,}) over {k} cells")
+    def traced(label, where=""):
+        """the label's traced pixels as a share of its PFL, and both counts"""
+        t, k = fig(label, "traced", where)
+        p, _ = fig(label, "pfl", where)
+        return pct(t, p), t, p, k
+
+    share, t, p, k = traced("hertel")
+    print(f"hertel traces {share} of PFL ({t:,} of {p:,}) over {k} cells")
     for m in sorted(r[0] for r in db.execute("SELECT DISTINCT map_size FROM cells")):
-        t, _ = fig("hertel", "traced", f"AND c.map_size = {m}")
-        p, _ = fig("hertel", "pfl", f"AND c.map_size = {m}")
-        print(f"  map {m}^2: {pct(t, p)}")
-    t, _ = fig("hertel_exact", "traced")
-    p, _ = fig("hertel_exact", "pfl")
-    print(f"hertel_exact traces {pct(t, p)} of PFL")
+        print(f"  map {m}^2: {traced('hertel', f'AND c.map_size = {int(m)}')[0]}")
+    print(f"hertel_exact traces {traced('hertel_exact')[0]} of PFL")
     w, _ = cells("hertel", "n_wrong_image")
     px, _ = fig("hertel", "pixels")
     li, _ = fig("hertel", "light_incorrect")
