@@ -2,7 +2,8 @@
 # cli::check — `shadowlab check` against baselines written with --update and
 # then edited: a store equals its own baseline (exit 0, nothing moved); a
 # figure moved beyond its class tolerance fails (exit 1) and is named; a move
-# within tolerance passes when counts are not exact; a violation fails at any
+# within tolerance passes when counts are not exact and fails under --exact;
+# a violation fails at any
 # tolerance; a missing cell fails; a bad baseline is exit 2 naming file and line.
 set -u
 bin=${1:?usage: cli_check.sh path/to/shadowlab}
@@ -44,6 +45,11 @@ sed -e 's/^counts: same_machine/counts: tolerance/' -e 's/^  error: .*/  error: 
 out=$("$bin" check "$db" --baseline "$tmp/loose.yaml" --format md); rc=$?
 [ $rc -eq 0 ] || fail "a move within tolerance: exit $rc, want 0: $out"
 echo "$out" | grep -q '| wrong | error | .* | ok |' || fail "a move within tolerance is not listed as ok"
+# ... and fails under --exact, whatever the baseline's count mode (CI's platform matrix)
+out=$("$bin" check "$db" --baseline "$tmp/loose.yaml" --exact --format md); rc=$?
+[ $rc -eq 1 ] || fail "--exact, a move within tolerance: exit $rc, want 1: $out"
+echo "$out" | grep -q 'Counts compared exactly (--exact)' || fail "--exact not said: $out"
+"$bin" check "$db" --baseline "$tmp/b.yaml" --exact >/dev/null || fail "--exact against its own baseline"
 
 # a violation fails whatever the tolerances
 sed -e 's/violations: 0}/violations: 1}/' "$tmp/loose.yaml" >"$tmp/viol.yaml"

@@ -72,6 +72,10 @@ env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$bin" run "$tmp/small.yaml" --out="$tm
 [ -s "$tmp/q.err" ] && fail "--quiet wrote to stderr: $(head -3 "$tmp/q.err")" || ok
 [ -f "$tmp/o/small/figures.csv" ] && ok || fail "--out=DIR: no $tmp/o/small/figures.csv"
 grep -q "^threads: 1$" "$tmp/o/small/run.yaml" "$tmp/o/small/config.yaml" 2>/dev/null && ok || fail "-j 1 not in run.yaml/config.yaml"
+# threads: 0 is the cores this process may use (its affinity mask, as under
+# taskset or a Slurm allocation), not every core of the machine
+taskset -c 0 "$bin" validate "$tmp/small.yaml" 2>/dev/null | grep -q "^threads: 1$" && ok ||
+  fail "validate under taskset -c 0: threads not 1: $(taskset -c 0 "$bin" validate "$tmp/small.yaml" 2>&1 | grep threads)"
 # OpenMP's threads wait passively unless the environment says otherwise (main.c)
 grep -q "^omp_wait_policy: passive$" "$tmp/o/small/run.yaml" && ok || fail "run without OMP_WAIT_POLICY: not passive"
 # default: the summary (one line per label) and progress lines off a terminal

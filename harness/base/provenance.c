@@ -11,8 +11,8 @@
 
 void sl_provenance_fill(struct sl_provenance *p)
 {
-    char gl_r[128], gl_v[128], gl_b[192], emb[32];
-    int threads = p->threads;
+    char gl_r[128], gl_v[128], gl_b[192], emb[sizeof p->embree];
+    int threads = p->threads, packets = p->embree_packets;
     memcpy(gl_r, p->gl_renderer, sizeof gl_r);
     memcpy(gl_v, p->gl_version, sizeof gl_v);
     memcpy(gl_b, p->gl_backend, sizeof gl_b);
@@ -23,6 +23,16 @@ void sl_provenance_fill(struct sl_provenance *p)
     memcpy(p->gl_backend, gl_b, sizeof gl_b);
     memcpy(p->embree, emb, sizeof emb);
     p->threads = threads;
+    p->embree_packets = packets;
+    /* how Embree was told to trace (truth.h, sl_rt_env_config) */
+    const char *ec = getenv("SHADOWLAB_EMBREE_CONFIG");
+    if (ec && *ec) {
+        snprintf(p->embree_config, sizeof p->embree_config, "%s", ec);
+        if (p->embree[0]) {
+            size_t len = strlen(p->embree);
+            snprintf(p->embree + len, sizeof p->embree - len, " %s", p->embree_config);
+        }
+    }
     snprintf(p->git_sha, sizeof p->git_sha, "%s", sl_git_sha());
     time_t now = time(NULL);
     struct tm tm;
@@ -82,6 +92,9 @@ void sl_provenance_write(const struct sl_provenance *p, FILE *f, const char *pre
     fprintf(f, "%sgl_version: %s\n", prefix, p->gl_version);
     fprintf(f, "%sgl_backend: %s\n", prefix, p->gl_backend[0] ? p->gl_backend : "(unknown)");
     fprintf(f, "%sembree: %s\n", prefix, p->embree);
+    fprintf(f, "%sembree_config: %s\n", prefix, p->embree_config[0] ? p->embree_config : "(unset)");
+    if (p->embree_packets)
+        fprintf(f, "%sembree_packets: %d\n", prefix, p->embree_packets);
     fprintf(f, "%sthreads: %d\n", prefix, p->threads);
     fprintf(f, "%slp_num_threads: %s\n", prefix, p->lp_threads[0] ? p->lp_threads : "(unset)");
     fprintf(f, "%somp_wait_policy: %s\n", prefix, p->omp_wait[0] ? p->omp_wait : "(unset)");

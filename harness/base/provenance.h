@@ -1,7 +1,8 @@
 /*
  * provenance.h — where a number came from: git SHA (built in), host, CPU
- * model and instruction set (llvmpipe and Embree pick code paths by ISA, so
- * results can differ between CPUs), GL backend and renderer, Embree version, threads,
+ * model and instruction set (llvmpipe and Embree pick code paths by ISA; the
+ * results are meant to be the same on each, and CI checks that they are),
+ * GL backend and renderer, Embree version and device config, threads,
  * UTC time. Written beside every result.
  */
 #ifndef SL_PROVENANCE_H
@@ -20,7 +21,10 @@ struct sl_provenance {
     char gl_renderer[128];
     char gl_version[128];
     char gl_backend[192];    /* "osmesa", or "egl " + the EGL device and vendor used */
-    char embree[32];
+    char embree[200];        /* the version, then SHADOWLAB_EMBREE_CONFIG when set ("3.13.5 isa=avx2"): the
+                              * store's runs.embree, so `check` counts a forced ISA as another machine */
+    char embree_config[160]; /* SHADOWLAB_EMBREE_CONFIG as set, or "" */
+    int  embree_packets;     /* rays per packet the truth used (the device's native width), 0 = not traced */
     int  threads;
     char lp_threads[16];     /* LP_NUM_THREADS as set, or "" */
     char omp_wait[40];       /* OMP_WAIT_POLICY as set (main.c sets passive for run and bench), else

@@ -2,8 +2,9 @@
  * util.c — clock, allocation, hashing, folders, atomic files.
  * Invariant: nothing here prints; callers get an id and an sl_diag.
  */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE   /* sched_getaffinity, CPU_COUNT */
 #include "util.h"
+#include <sched.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -14,6 +15,19 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+
+int sl_cpu_count(void)
+{
+    /* the cores this process may run on (taskset, a Slurm or container
+     * allocation), not the machine's: 64 threads on the 4 cores a job was
+     * given would only take turns */
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0)
+        return CPU_COUNT(&set);
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n > 0 ? (int)(n > 1 << 20 ? 1 << 20 : n) : 1;
+}
 
 double sl_now(void)
 {

@@ -10,6 +10,7 @@
 #include "sl_error.h"
 
 double sl_now(void);                      /* monotonic seconds */
+int    sl_cpu_count(void);                 /* cores this process may run on (its affinity mask), >= 1 */
 void  *sl_calloc(size_t n, size_t size);  /* NULL on failure or overflow */
 
 /* The folder a path names its file in ("a/b/c.db" -> "a/b"; "c.db" -> ".")

@@ -159,6 +159,8 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     size_t studies_len = 0;
     struct sl_bench_result study_rows;
     memset(&study_rows, 0, sizeof study_rows);
+    if ((e = sl_rt_check_env(d)))
+        goto done;
 
     /* start-up first, while this process has loaded nothing heavy (its own
      * RSS is the floor of its children's; bench_startup.c); its table is

@@ -2,8 +2,10 @@
  * bench_truth.c — the `truth` stage of `shadowlab bench` (bench.h): the
  * truth pass against the plain thing anyone would write with Embree alone:
  * rays prepared in advance as 4x4 packets, a scene with the same flags and
- * build quality but no filter function, rtcOccluded16 over the packets on
- * the same threads. The truth pass does more per ray (reads the G-buffer,
+ * build quality but no filter function, rtcOccluded4/8/16 over the packets
+ * on the same threads, in packets of the width the device runs natively
+ * (the truth's own, packet.h: 16 under AVX-512, 8 under AVX2, 4 under
+ * SSE; SHADOWLAB_EMBREE_CONFIG=isa=... measures each on one machine). The truth pass does more per ray (reads the G-buffer,
  * skips non-PFL pixels, rejects the own triangle in a filter, writes the
  * classification). It streams: each thread fills a chunk of packets from
  * the G-buffer, traces them, writes their answers back (truth.c), and
@@ -22,6 +24,7 @@
 #include <time.h>
 #include <omp.h>
 #include "bench_stages.h"
+#include "packet.h"
 #include "truth.h"
 #include "util.h"
 
@@ -31,53 +34,50 @@ static int cmp_d(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-struct packets { struct RTCRay16 *r; int (*valid)[16]; int n; uint64_t rays; };
+struct packets { struct sl_rt_tile *t; int n; uint64_t rays; };
 
 static int build_packets(const struct sl_view *v, struct packets *p)
 {
     int tx = (v->w + 3) / 4, ty = (v->h + 3) / 4;
     p->n = tx * ty;
-    p->r = aligned_alloc(64, sizeof *p->r * (size_t)p->n);
-    p->valid = aligned_alloc(64, sizeof *p->valid * (size_t)p->n);
-    if (!p->r || !p->valid)
+    p->t = aligned_alloc(64, sizeof *p->t * (size_t)p->n);
+    if (!p->t)
         return 0;
     p->rays = 0;
     for (int t = 0; t < p->n; t++) {
         int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
         for (int k = 0; k < 16; k++) {
             int x = x0 + (k & 3), y = y0 + (k >> 2);
-            p->valid[t][k] = 0;
+            p->t[t].valid[k] = 0;
             if (x >= v->w || y >= v->h)
                 continue;
             size_t i = (size_t)y * (size_t)v->w + (size_t)x;
             if (v->cls[i] != SL_C_PFL)
                 continue;
-            p->valid[t][k] = -1;
+            p->t[t].valid[k] = -1;
             p->rays++;
         }
     }
     return 1;
 }
 
-static void reset_packets(const struct sl_view *v, const struct sl_scene *s, struct packets *p)
+/* Every lane written, as Embree's contract asks (packet.h): a traced
+ * pixel's ray, or a dead ray. */
+static void reset_packets(const struct sl_view *v, const struct sl_scene *s, int shift, struct packets *p)
 {
     int tx = (v->w + 3) / 4;
+    const float dir[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]};
     for (int t = 0; t < p->n; t++) {
         int x0 = (t % tx) * 4, y0 = (t / tx) * 4;
-        struct RTCRay16 *r = &p->r[t];
+        struct sl_rt_tile *r = &p->t[t];
         for (int k = 0; k < 16; k++) {
-            if (!p->valid[t][k])
+            if (!r->valid[k]) {
+                sl_tile_kill(r, shift, k);
                 continue;
+            }
             size_t i = (size_t)(y0 + (k >> 2)) * (size_t)v->w + (size_t)(x0 + (k & 3));
             const float *q = v->pos + 3 * i;
-            r->org_x[k] = q[0]; r->org_y[k] = q[1]; r->org_z[k] = q[2];
-            r->tnear[k] = sl_rt_tnear(q);
-            r->dir_x[k] = -s->light_dir[0]; r->dir_y[k] = -s->light_dir[1]; r->dir_z[k] = -s->light_dir[2];
-            r->time[k] = 0.0f;
-            r->tfar[k] = INFINITY;
-            r->mask[k] = 0xffffffffu;
-            r->id[k] = v->tri[i];
-            r->flags[k] = 0;
+            sl_tile_ray(r, shift, k, q, dir, sl_rt_tnear(q), INFINITY, v->tri[i]);
         }
     }
 }
@@ -93,7 +93,7 @@ static double plain_loop(const struct sl_rt *rt, struct packets *p)
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 #pragma omp for schedule(dynamic, 4)
         for (int t = 0; t < p->n; t++)
-            rtcOccluded16(p->valid[t], rt->scene, &ctx, &p->r[t]);
+            sl_rt_occluded_tile(rt, &ctx, &p->t[t]);
     }
     return sl_now() - t0;
 }
@@ -131,17 +131,17 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
     FILE *out = x->out;
     int reps = x->reps;
     const char *wait = getenv("OMP_WAIT_POLICY");
-    fprintf(out, "## Truth pass vs a plain rtcOccluded16 loop over the same rays (%s, min and median of %d "
-                 "after a warm-up, Embree %s, OMP_WAIT_POLICY %s)\n\n", x->s.name, reps, rt.version,
-            wait ? wait : "unset (libgomp: active)");
+    fprintf(out, "## Truth pass vs a plain rtcOccluded%d loop over the same rays (%s, min and median of %d "
+                 "after a warm-up, Embree %s, device config '%s', OMP_WAIT_POLICY %s)\n\n", 1 << rt.shift, x->s.name,
+            reps, rt.version, rt.config, wait ? wait : "unset (libgomp: active)");
     fprintf(out, "The truth pass streams: each thread fills a chunk of packets from the G-buffer, traces them "
-                 "(rtcOccluded16, own-triangle filter), writes the answers back, and clocks set-up (fill + "
-                 "write-back) and trace apart; the truth's time is split in that proportion. The plain loop's "
+                 "(rtcOccluded%d, the device's native width, own-triangle filter), writes the answers back, "
+                 "and clocks set-up (fill + write-back) and trace apart; the truth's time is split in that proportion. The plain loop's "
                  "set-up (its packets from the same G-buffer, all at once) and its trace are timed apart. Wall: "
                  "%d threads. CPU: the same on one thread, that thread's CPU time (what a loaded machine cannot "
                  "inflate). Ratios are rays/s: the truth's filtered trace over the plain trace (**trace**), the "
                  "truth end to end over the plain set-up + trace (**whole**), and the truth end to end over the "
-                 "plain trace alone (as this bench measured before). Medians.\n\n", x->threads);
+                 "plain trace alone (as this bench measured before). Medians.\n\n", 1 << rt.shift, x->threads);
     fprintf(out, "| viewpoint | rays | truth ms min / med | its set-up / trace | plain set-up | plain trace min / med | "
                  "trace | whole | end to end / plain trace | 1 thread CPU: truth ms | its set-up / trace | "
                  "plain set-up | plain trace | trace | whole | end to end / plain trace |\n");
@@ -172,7 +172,7 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
             w[6] = w[0] * (1.0 - f);
             w[7] = w[0] * f;
             double t0 = sl_now();
-            reset_packets(&v, &x->s, &pk);
+            reset_packets(&v, &x->s, plain.shift, &pk);
             w[1] = 1e3 * (sl_now() - t0);
             w[2] = 1e3 * plain_loop(&plain, &pk);
             double c0 = thread_cpu();
@@ -180,7 +180,7 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
                 break;
             double c1 = thread_cpu();
             const double f1 = ts.ms_setup + ts.ms_rays > 0 ? ts.ms_rays / (ts.ms_setup + ts.ms_rays) : 0.0;
-            reset_packets(&v, &x->s, &pk);
+            reset_packets(&v, &x->s, plain.shift, &pk);
             double c2 = thread_cpu();
             plain_loop(&plain1, &pk);
             double c3 = thread_cpu();
@@ -199,7 +199,7 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
             uint64_t plain_occ = 0;
             for (int t = 0; t < pk.n; t++)
                 for (int k = 0; k < 16; k++)
-                    plain_occ += pk.valid[t][k] && pk.r[t].tfar[k] == -INFINITY;
+                    plain_occ += pk.t[t].valid[k] && sl_tile_occluded(&pk.t[t], plain.shift, k);
             if (plain_occ != v.n_shadow) {
                 size_t len = strlen(notes);
                 snprintf(notes + len, sizeof notes - len, "%s%s: plain +%lld occluded", len ? "; " : "",
@@ -218,8 +218,7 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
             sum_rays += rays;
         }
         free(tm);
-        free(pk.r);
-        free(pk.valid);
+        free(pk.t);
         sl_view_free(&v);
     }
     if (!e) {
@@ -237,7 +236,8 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
         struct sl_bench_row *row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[9], mr / sum[5],
                                                     SL_BENCH_TARGET_TRUTH_RATIO, SL_BENCH_AT_LEAST);
         if (row) {
-            snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d", x->s.name, x->nvp, x->W, x->H);
+            snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d, packets of %d", x->s.name, x->nvp,
+                     x->W, x->H, 1 << rt.shift);
             snprintf(row->note, sizeof row->note, "%llu rays; filtered trace vs plain trace, 1 thread CPU; "
                      "set-up %.2f vs %.2f ms", (unsigned long long)sum_rays, sum[8], sum[4]);
         }

@@ -18,7 +18,8 @@ int cli_check(int argc, char **argv)
         {"baseline", required_argument, NULL, OPT_BASELINE}, {"study", required_argument, NULL, OPT_STUDY},
         {"rows", required_argument, NULL, OPT_ROWS},         {"update", no_argument, NULL, OPT_UPDATE},
         {"format", required_argument, NULL, OPT_FORMAT},     {"json", required_argument, NULL, OPT_JSON},
-        {"junit", required_argument, NULL, OPT_JUNIT},       {0, 0, 0, 0},
+        {"junit", required_argument, NULL, OPT_JUNIT},       {"exact", no_argument, NULL, OPT_EXACT},
+        {0, 0, 0, 0},
     };
     const struct cli_parser p = {"check", "", cli_usage_check, lo};
     const char *baseline = NULL, *json = NULL, *junit = NULL;
@@ -36,6 +37,7 @@ int cli_check(int argc, char **argv)
             break;
         }
         case OPT_UPDATE: update = 1; break;
+        case OPT_EXACT: o.exact = 1; break;
         case OPT_FORMAT:
             if (strcmp(optarg, "text") && strcmp(optarg, "md"))
                 return cli_usage_error("check: --format text or md", cli_usage_check);

@@ -99,7 +99,7 @@ const char cli_usage_report[] =
     "  --latex           also DIR/report.tex: a pdflatex document that \\inputs the tables and plots\n";
 
 const char cli_usage_check[] =
-    "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update]\n"
+    "usage: shadowlab check DB --baseline FILE [--study NAME] [--rows N] [--update] [--exact]\n"
     "                          [--format text|md] [--json FILE] [--junit FILE]\n"
     "  Compares the latest stored cell of each key with the baseline FILE: violations of a\n"
     "  method's exactness always exactly; every count exactly when the store was measured on\n"
@@ -110,6 +110,8 @@ const char cli_usage_check[] =
     "  --study NAME  only cells of that config name\n"
     "  --rows N      show at most N moved values (default 200)\n"
     "  --update      write FILE from DB instead (keeps FILE's tolerances): a deliberate refresh\n"
+    "  --exact       every count exactly, whatever machine measured DB: results are meant to be\n"
+    "                the same on every ISA and llvmpipe width (CI's platform matrix)\n"
     "  --format F    text (default: a plain table; colour on a terminal unless NO_COLOR is set)\n"
     "                or md (Markdown)\n"
     "  --json FILE   also write every compared cell and class with its verdict as JSON\n"
@@ -292,6 +294,14 @@ static const struct {
                      "other value is an error). CI runs the rendering tests a second time with "
                      "SHADOWLAB_GL=egl."},
     {"SHADOWLAB_EGL_DEVICE", "The EGL device (its index) to use with --gl egl."},
+    {"SHADOWLAB_EMBREE_CONFIG", "Appended to the device config given to Embree (rtcNewDevice) for every "
+                                "ray trace: key=value pairs separated by commas, e.g. isa=sse4.2 or "
+                                "isa=avx2 to run Embree's SSE or AVX2 kernels on any CPU that has them, or "
+                                "threads=1. Keys and ISA names Embree 3 does not document are refused (exit "
+                                "2). Recorded in run.yaml (embree_config, beside embree_packets: the packet "
+                                "width the truth used) and in the store's runs.embree. For testing and for "
+                                "machines that need it; the results are the same under every ISA (CI "
+                                "checks it)."},
     {"SHADOWLAB_SCENES", "Colon-separated folders searched for scene names after the config's own folder and "
                          "before the installed share/shadowlab/scenes (or, not installed, the source tree's "
                          "scenes/)."},

@@ -1276,7 +1276,7 @@ static enum sl_err check_contour_from(const struct raw_config *r, const char *fi
 static enum sl_err check_threads(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                                  struct sl_config *c, struct sl_diag *d)
 {
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long cores = sl_cpu_count();
     if (r->threads && *r->threads > 256)
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "threads", "threads %u: at most 256", *r->threads);
     c->threads = r->threads && *r->threads ? (int)*r->threads : (int)(cores > 256 ? 256 : cores > 0 ? cores : 1);

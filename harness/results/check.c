@@ -732,7 +732,7 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
     }
     if ((e = load_store(db, o->study, &cells, &n, &runs, &nruns, d)))
         goto done;
-    m.exact = strcmp(counts, "exact") == 0 ||
+    m.exact = o->exact || strcmp(counts, "exact") == 0 ||
               (strcmp(counts, "same_machine") == 0 && same_machine(b->machine, runs, nruns, cells, n));
     r->exact_counts = m.exact;
     r->cells = (int)b->cells_count;
@@ -786,7 +786,8 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
                 r->compared, r->cells, r->moved, r->failed, r->missing);
         if (m.exact)
             fprintf(out, "Counts compared exactly (%s).\n",
-                    strcmp(counts, "exact") == 0 ? "the baseline says counts: exact"
+                    o->exact                     ? "--exact"
+                    : strcmp(counts, "exact") == 0 ? "the baseline says counts: exact"
                                                  : "same CPU, ISA, GL renderer and Embree as the baseline");
         else
             fprintf(out, "Counts compared within the tolerances (%s):\n",

@@ -54,6 +54,9 @@ struct sl_check_opts {
                                  * no NO_COLOR) */
     FILE       *json;           /* also every compared cell and class with its verdict, as JSON */
     FILE       *junit;          /* also JUnit XML: one testcase per (baseline cell, class) */
+    int         exact;          /* every count exactly, whatever machine and whatever the baseline's
+                                 * counts: mode (CI's platform matrix: another ISA or llvmpipe width
+                                 * must give the same counts) */
 };
 
 struct sl_check_result {

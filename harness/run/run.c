@@ -184,6 +184,7 @@ static enum sl_err ensure_scene(struct run_ctx *x, const struct sl_config *c, in
         (e = sl_rt_build(&x->rt, &x->scene, c->threads, 1, d)))
         return e;
     res->ms_bvh += x->rt.ms_build;
+    res->prov.embree_packets = 1 << x->rt.shift;
     res->passes.scenes++;
     x->area = x->scene.light.type == SL_LIGHT_AREA;
     free(x->receivers);
@@ -766,7 +767,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     if (o->resume && !store_path[0])
         return sl_fail(d, SL_E_USAGE, NULL, 0, "--resume", "--resume needs a results store");
 
-    enum sl_err e = SL_OK;
+    /* a bad SHADOWLAB_EMBREE_CONFIG is refused before anything is written */
+    enum sl_err e = sl_rt_check_env(d);
+    if (e)
+        return e;
     /* what the run names itself under --out is never a symbolic link (what
      * --db and --cache name is the caller's choice) */
     if (!o->store && store_path[0] && (e = sl_out_no_store_link(store_path, d)))

@@ -17,7 +17,8 @@
 #define SL_RTC_FUNCS(X)                                                                                 \
     X(rtcAttachGeometry) X(rtcCommitGeometry) X(rtcCommitScene) X(rtcGetDeviceError)                   \
     X(rtcGetDeviceProperty) X(rtcNewDevice) X(rtcNewGeometry) X(rtcNewScene) X(rtcOccluded1)           \
-    X(rtcOccluded16) X(rtcReleaseDevice) X(rtcReleaseGeometry) X(rtcReleaseScene)                      \
+    X(rtcOccluded4) X(rtcOccluded8) X(rtcOccluded16) X(rtcReleaseDevice) X(rtcReleaseGeometry)         \
+    X(rtcReleaseScene)                                                                                 \
     X(rtcSetGeometryOccludedFilterFunction) X(rtcSetNewGeometryBuffer) X(rtcSetSceneBuildQuality)      \
     X(rtcSetSceneFlags)
 
@@ -40,6 +41,8 @@ int sl_rtc_load(char *why, size_t n);
 #define rtcNewGeometry sl_rtc.rtcNewGeometry
 #define rtcNewScene sl_rtc.rtcNewScene
 #define rtcOccluded1 sl_rtc.rtcOccluded1
+#define rtcOccluded4 sl_rtc.rtcOccluded4
+#define rtcOccluded8 sl_rtc.rtcOccluded8
 #define rtcOccluded16 sl_rtc.rtcOccluded16
 #define rtcReleaseDevice sl_rtc.rtcReleaseDevice
 #define rtcReleaseGeometry sl_rtc.rtcReleaseGeometry

@@ -28,8 +28,8 @@
  * any group disagreed. n >= 2 so that every group has two cells.
  *
  * Packets: 16 consecutive samples of one pixel (cells in row order, so
- * neighbouring cells of the grid) per rtcOccluded16, all from the same origin toward nearby
- * points: coherent. Pixels are independent and each one's counts are
+ * neighbouring cells of the grid) per tile of 16 rays (one to four packets of the device's
+ * native width, packet.h), all from the same origin toward nearby points: coherent. Pixels are independent and each one's counts are
  * integers summed in sample order, so the result does not depend on the
  * thread count or schedule.
  */
@@ -38,6 +38,7 @@
 #include <omp.h>
 #include <string.h>
 #include "arealight.h"
+#include "packet.h"
 #include "util.h"
 
 int sl_soft_truth_side(int samples_per_side)
@@ -75,26 +76,15 @@ static void trace_pixel(const struct sl_rt *rt, struct RTCIntersectContext *ctx,
     uint32_t visible = 0, mixed = 0, rays = 0;
     uint32_t group = UINT32_MAX;   /* current group of cells, numbered in sample order */
     unsigned seen = 0;             /* bit 0: a hidden sample in it, bit 1: a visible one */
+    const int shift = rt->shift;
     for (uint32_t k0 = 0; k0 < N; k0 += 16) {
-        /* Embree loads the packet and its mask with 64-byte aligned vector loads */
-        _Alignas(64) struct RTCRay16 r;
-        _Alignas(64) int valid[16];
+        /* 16 lanes in packets of the device's width, every lane written
+         * (packet.h): a sample past N or facing away is a dead lane */
+        struct sl_rt_tile t;
         int any = 0;
+        sl_tile_kill_all(&t, shift);
         for (int l = 0; l < 16; l++) {
             const uint32_t k = k0 + (uint32_t)l;
-            valid[l] = 0;
-            r.org_x[l] = pf[0];
-            r.org_y[l] = pf[1];
-            r.org_z[l] = pf[2];
-            r.dir_x[l] = 0.0f;
-            r.dir_y[l] = 1.0f;
-            r.dir_z[l] = 0.0f;
-            r.tnear[l] = tnear;
-            r.tfar[l] = 0.0f;
-            r.time[l] = 0.0f;
-            r.mask[l] = 0xffffffffu;
-            r.id[l] = v->tri[i];
-            r.flags[l] = 0;
             if (k >= N)
                 continue;
             double u, w, q[3], dq[3];
@@ -108,15 +98,12 @@ static void trace_pixel(const struct sl_rt *rt, struct RTCIntersectContext *ctx,
                 continue;
             const double dist = sqrt(dq[0] * dq[0] + dq[1] * dq[1] + dq[2] * dq[2]);
             const float qf[3] = {(float)q[0], (float)q[1], (float)q[2]};
-            r.dir_x[l] = (float)(dq[0] / dist);
-            r.dir_y[l] = (float)(dq[1] / dist);
-            r.dir_z[l] = (float)(dq[2] / dist);
-            r.tfar[l] = (float)dist - sl_rt_tnear(qf);
-            valid[l] = -1;
+            const float dir[3] = {(float)(dq[0] / dist), (float)(dq[1] / dist), (float)(dq[2] / dist)};
+            sl_tile_ray(&t, shift, l, pf, dir, tnear, (float)dist - sl_rt_tnear(qf), v->tri[i]);
             any = 1;
         }
         if (any)
-            rtcOccluded16(valid, rt->scene, ctx, &r);
+            sl_rt_occluded_tile(rt, ctx, &t);
         for (int l = 0; l < 16 && k0 + (uint32_t)l < N; l++) {
             const uint32_t k = k0 + (uint32_t)l, cx = k % n, cy = k / n;
             const uint32_t g = cy * half + (cx / 2 < half - 1 ? cx / 2 : half - 1);
@@ -126,10 +113,10 @@ static void trace_pixel(const struct sl_rt *rt, struct RTCIntersectContext *ctx,
                 seen = 0;
             }
             /* an occluded ray comes back with tfar = -inf */
-            const int vis = valid[l] && r.tfar[l] != -INFINITY;
+            const int vis = t.valid[l] && !sl_tile_occluded(&t, shift, l);
             seen |= vis ? 2u : 1u;
             visible += (uint32_t)vis;
-            rays += (uint32_t)(valid[l] != 0);
+            rays += (uint32_t)(t.valid[l] != 0);
         }
     }
     mixed += seen == 3u;

@@ -25,6 +25,7 @@
 #include <pmmintrin.h>
 #endif
 #include "arealight.h"
+#include "packet.h"
 #include "util.h"
 
 void sl_rt_thread_init(void)
@@ -60,25 +61,108 @@ static void own_triangle_filter(const struct RTCFilterFunctionNArguments *args)
     }
 }
 
+/* The packet width the device runs natively (packet.h): 16, 8 or 4, as
+ * log2; -1 when it has none (an Embree built without packets). */
+static int native_shift(RTCDevice dev)
+{
+    if (rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED))
+        return 4;
+    if (rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED))
+        return 3;
+    if (rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED))
+        return 2;
+    return -1;
+}
+
+const char *sl_rt_env_config(void)
+{
+    const char *env = getenv("SHADOWLAB_EMBREE_CONFIG");
+    return env && *env ? env : NULL;
+}
+
+/* rtcNewDevice(3)'s configuration, Embree 3.13: the keys it documents and
+ * the ISA names it takes. Embree itself ignores a key it does not know and
+ * reads an ISA name it does not know as sse2, so a typo (isa=avx-2) would
+ * silently trace with other kernels than asked: refused here instead. */
+static const char *const rtc_keys[] = {"threads", "user_threads", "set_affinity", "start_threads", "isa",
+                                       "max_isa", "hugepages", "enable_selockmemoryprivilege", "verbose",
+                                       "frequency_level", NULL};
+static const char *const rtc_isas[] = {"sse2", "sse4.2", "avx", "avx2", "avx512", NULL};
+
+static int in_list(const char *const *list, const char *s, size_t n)
+{
+    for (int i = 0; list[i]; i++)
+        if (strlen(list[i]) == n && strncmp(list[i], s, n) == 0)
+            return 1;
+    return 0;
+}
+
+enum sl_err sl_rt_check_env(struct sl_diag *d)
+{
+    const char *user = sl_rt_env_config();
+    if (!user)
+        return SL_OK;
+    const size_t max = sizeof((struct sl_rt *)0)->config - 16;
+    if (strlen(user) > max)
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_EMBREE_CONFIG",
+                       "'%.40s...': at most %zu characters of Embree's device config (e.g. isa=avx2)", user, max);
+    for (const char *t = user; *t;) {
+        const size_t len = strcspn(t, ","), key = strcspn(t, "=,");
+        if (key == len || key == 0 || !in_list(rtc_keys, t, key))
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_EMBREE_CONFIG",
+                           "'%.*s' in '%s': Embree's device config is key=value pairs separated by commas, the "
+                           "keys threads, user_threads, set_affinity, start_threads, isa, max_isa, hugepages, "
+                           "verbose, frequency_level (rtcNewDevice(3))", (int)len, t, user);
+        const char *val = t + key + 1;
+        const size_t vlen = len - key - 1;
+        const int isa = (key == 3 && strncmp(t, "isa", 3) == 0) || (key == 7 && strncmp(t, "max_isa", 7) == 0);
+        if (isa && !in_list(rtc_isas, val, vlen))
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_EMBREE_CONFIG",
+                           "'%.*s' in '%s': the ISA is sse2, sse4.2, avx, avx2 or avx512", (int)len, t, user);
+        for (size_t i = 0; i < vlen; i++)
+            if (!(val[i] == '.' || val[i] == '_' || (val[i] >= '0' && val[i] <= '9') ||
+                  (val[i] >= 'a' && val[i] <= 'z')))
+                return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_EMBREE_CONFIG",
+                               "'%.*s' in '%s': a value is a number or a lower-case name", (int)len, t, user);
+        t += len + (t[len] == ',');
+    }
+    return SL_OK;
+}
+
 enum sl_err sl_rt_build(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
                         struct sl_diag *d)
 {
     memset(rt, 0, sizeof *rt);
     rt->threads = threads;
-    char cfg[64];
-    snprintf(cfg, sizeof cfg, "threads=%d", threads);
+    /* the user's SHADOWLAB_EMBREE_CONFIG after ours: Embree reads the
+     * string left to right, so a 'threads=' in it wins too */
+    const char *user = sl_rt_env_config();
+    enum sl_err ce = sl_rt_check_env(d);
+    if (ce)
+        return ce;
+    snprintf(rt->config, sizeof rt->config, "threads=%d%s%s", threads, user ? "," : "", user ? user : "");
     char why[300];
     if (sl_rtc_load(why, sizeof why))
         return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "%s", why);
     double t0 = sl_now();
-    rt->device = rtcNewDevice(cfg);
-    if (!rt->device)
+    rt->device = rtcNewDevice(rt->config);
+    if (!rt->device) {
+        if (user)
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_EMBREE_CONFIG",
+                           "'%s': Embree refused the device config '%s' (error %d; e.g. isa=sse4.2, isa=avx2, "
+                           "threads=1)", user, rt->config, (int)rtcGetDeviceError(NULL));
         return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "rtcNewDevice failed (error %d)",
                        (int)rtcGetDeviceError(NULL));
+    }
     snprintf(rt->version, sizeof rt->version, "%d.%d.%d",
              (int)rtcGetDeviceProperty(rt->device, RTC_DEVICE_PROPERTY_VERSION_MAJOR),
              (int)rtcGetDeviceProperty(rt->device, RTC_DEVICE_PROPERTY_VERSION_MINOR),
              (int)rtcGetDeviceProperty(rt->device, RTC_DEVICE_PROPERTY_VERSION_PATCH));
+    rt->shift = native_shift(rt->device);
+    if (rt->shift < 0) {
+        sl_rt_free(rt);
+        return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "this Embree has no native ray packets (4, 8 or 16 wide)");
+    }
     rt->scene = rtcNewScene(rt->device);
     rtcSetSceneFlags(rt->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(rt->scene, RTC_BUILD_QUALITY_HIGH);
@@ -131,33 +215,57 @@ enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, 
     return sl_rt_trace_timed(rt, s, v, select, tfar, out, rays_out, shadow_out, NULL, d);
 }
 
-/* Tiles per chunk: a thread fills the packets of SL_RT_CHUNK 4x4 tiles side
+/* Tiles per chunk: a thread fills the rays of SL_RT_CHUNK 4x4 tiles side
  * by side (a 4-row strip, 4*SL_RT_CHUNK pixels wide), traces them, then
- * writes their answers back. 32 packets are 24 KiB: they stay in L1/L2
- * between set-up and trace, where packets built for the whole view (48 MB
+ * writes their answers back. 32 tiles are 26 KiB: they stay in L1/L2
+ * between set-up and trace, where rays built for the whole view (48 MB
  * at 1024x1024) go out to memory and back. Filling a strip row by row reads
  * the G-buffer in address order. The chunk is also what the set-up and
  * trace clocks time: ~4 clock reads per 512 pixels. */
 #define SL_RT_CHUNK 32
 
 struct rt_chunk {
-    _Alignas(64) struct RTCRay16 r[SL_RT_CHUNK];
-    _Alignas(64) int valid[SL_RT_CHUNK][16];
+    struct sl_rt_tile t[SL_RT_CHUNK];
     int any[SL_RT_CHUNK];
 };
 
-/* Fill the packets of tiles [t0, t0+n) of tile row ty0 (4-pixel tiles). What
- * a lane holds is exactly what the per-tile loop wrote before (same origin,
- * tnear, tfar, direction, id), so each ray and its answer are unchanged; a
- * lane that is not traced is left as it was (never read for its answer). */
-static void chunk_fill(struct rt_chunk *c, const struct sl_scene *s, const struct sl_view *v,
+void sl_rt_occluded_tile(const struct sl_rt *rt, struct RTCIntersectContext *ctx, struct sl_rt_tile *t)
+{
+    switch (rt->shift) {
+    case 4:
+        rtcOccluded16(t->valid, rt->scene, ctx, (struct RTCRay16 *)t->w);
+        break;
+    case 3:
+        /* a packet with no active lane is not handed to Embree at all */
+        for (int p = 0; p < 2; p++)
+            if (t->valid[8 * p] | t->valid[8 * p + 1] | t->valid[8 * p + 2] | t->valid[8 * p + 3] |
+                t->valid[8 * p + 4] | t->valid[8 * p + 5] | t->valid[8 * p + 6] | t->valid[8 * p + 7])
+                rtcOccluded8(t->valid + 8 * p, rt->scene, ctx, (struct RTCRay8 *)(t->w + 8 * SL_RAY_FIELDS * p));
+        break;
+    default:
+        for (int p = 0; p < 4; p++)
+            if (t->valid[4 * p] | t->valid[4 * p + 1] | t->valid[4 * p + 2] | t->valid[4 * p + 3])
+                rtcOccluded4(t->valid + 4 * p, rt->scene, ctx, (struct RTCRay4 *)(t->w + 4 * SL_RAY_FIELDS * p));
+        break;
+    }
+}
+
+/* Fill the packets of tiles [t0, t0+n) of tile row ty0 (4-pixel tiles):
+ * every lane dead first (packet.h: a lane outside the image or not traced
+ * is a dead ray, never garbage), then each traced pixel's ray in its lane,
+ * (row, x & 3) of its tile. What an active lane holds is the same ray on
+ * every packet width, so each ray and its answer are too. */
+static void chunk_fill(struct rt_chunk *c, int shift, const struct sl_scene *s, const struct sl_view *v,
                        const uint8_t *select, const float *tfar, int point, int ty0, int t0, int n)
 {
     const int W = v->w, H = v->h;
     const int y0 = ty0 * 4, ny = H - y0 < 4 ? H - y0 : 4;
     const int x0 = t0 * 4, x1 = (t0 + n) * 4 < W ? (t0 + n) * 4 : W;
-    memset(c->valid, 0, sizeof c->valid[0] * (size_t)n);
-    memset(c->any, 0, sizeof c->any[0] * (size_t)n);
+    const float ldir[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]};
+    for (int pk = 0; pk < n; pk++) {
+        sl_tile_kill_all(&c->t[pk], shift);
+        c->any[pk] = 0;
+    }
     for (int row = 0; row < ny; row++) {
         const size_t base = (size_t)(y0 + row) * (size_t)W;
         const uint8_t *cls = v->cls + base;
@@ -166,25 +274,18 @@ static void chunk_fill(struct rt_chunk *c, const struct sl_scene *s, const struc
                 continue;
             const size_t i = base + (size_t)x;
             const int pk = (x - x0) >> 2, k = row * 4 + (x & 3);
-            struct RTCRay16 *r = &c->r[pk];
             const float *p = v->pos + 3 * i;
-            c->valid[pk][k] = -1;
-            c->any[pk] = 1;
-            r->org_x[k] = p[0];
-            r->org_y[k] = p[1];
-            r->org_z[k] = p[2];
-            r->tnear[k] = sl_rt_tnear(p);
-            r->tfar[k] = tfar ? tfar[i] : INFINITY;
+            float end = tfar ? tfar[i] : INFINITY;
             if (point) {
-                float dir[3], end = 0.0f;   /* a pixel at the light itself: an empty ray */
-                if (!sl_point_ray(s->light.pos, p, dir, &end))
+                float dir[3], to = 0.0f;   /* a pixel at the light itself: an empty ray */
+                if (!sl_point_ray(s->light.pos, p, dir, &to))
                     dir[0] = dir[1] = 0.0f, dir[2] = 1.0f;
-                r->dir_x[k] = dir[0];
-                r->dir_y[k] = dir[1];
-                r->dir_z[k] = dir[2];
-                r->tfar[k] = end < r->tfar[k] ? end : r->tfar[k];
+                end = to < end ? to : end;
+                sl_tile_ray(&c->t[pk], shift, k, p, dir, sl_rt_tnear(p), end, v->tri[i]);
+            } else {
+                sl_tile_ray(&c->t[pk], shift, k, p, ldir, sl_rt_tnear(p), end, v->tri[i]);
             }
-            r->id[k] = v->tri[i];
+            c->any[pk] = 1;
         }
     }
 }
@@ -196,7 +297,7 @@ enum sl_err sl_rt_trace_timed(const struct sl_rt *rt, const struct sl_scene *s, 
     const int W = v->w, H = v->h;
     const int tx = (W + 3) / 4, ty = (H + 3) / 4;
     const int cx = (tx + SL_RT_CHUNK - 1) / SL_RT_CHUNK;   /* chunks per tile row */
-    const float lx = -s->light_dir[0], ly = -s->light_dir[1], lz = -s->light_dir[2];
+    const int shift = rt->shift;
     /* spot and point lights are traced to their position, an area light as
      * a point at its centre (arealight.h) */
     const int point = s->light.type != SL_LIGHT_DIRECTIONAL;
@@ -205,40 +306,27 @@ enum sl_err sl_rt_trace_timed(const struct sl_rt *rt, const struct sl_scene *s, 
     struct rt_chunk *chunks = aligned_alloc(64, sizeof *chunks * (size_t)(rt->threads > 0 ? rt->threads : 1));
     if (!chunks)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "ray packets for %d threads", rt->threads);
-    /* 4x4 tiles as 16-ray packets; packets are independent, so the result
-     * does not depend on the thread count or schedule, nor on which other
-     * pixels are traced with it: a method tracing a subset gets, ray for ray,
-     * the truth's answer. */
+    /* 4x4 tiles as 16 rays (one to four packets, packet.h); rays are
+     * independent, so the result does not depend on the thread count or
+     * schedule, nor on which other pixels are traced with it: a method
+     * tracing a subset gets, ray for ray, the truth's answer. */
 #pragma omp parallel num_threads(rt->threads) reduction(+ : rays, shadow, set_s, trace_s)
     {
         sl_rt_thread_init();
         struct RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        /* Embree loads the packet and its mask with 64-byte aligned
-         * vector loads. What is the same for every ray of a directional
-         * light (direction, time, mask, flags) is written once per thread,
-         * not once per packet. */
         struct rt_chunk *c = &chunks[omp_get_thread_num()];
-        for (int pk = 0; pk < SL_RT_CHUNK; pk++)
-            for (int k = 0; k < 16; k++) {
-                c->r[pk].dir_x[k] = lx;
-                c->r[pk].dir_y[k] = ly;
-                c->r[pk].dir_z[k] = lz;
-                c->r[pk].time[k] = 0.0f;
-                c->r[pk].mask[k] = 0xffffffffu;
-                c->r[pk].flags[k] = 0;
-            }
 #pragma omp for schedule(dynamic, 1)
         for (int ch = 0; ch < cx * ty; ch++) {
             const int ty0 = ch / cx, t0 = (ch % cx) * SL_RT_CHUNK;
             const int n = tx - t0 < SL_RT_CHUNK ? tx - t0 : SL_RT_CHUNK;
             const double a = sl_now();
-            chunk_fill(c, s, v, select, tfar, point, ty0, t0, n);
+            chunk_fill(c, shift, s, v, select, tfar, point, ty0, t0, n);
             const double b = sl_now();
             for (int pk = 0; pk < n; pk++)
                 if (c->any[pk])
-                    rtcOccluded16(c->valid[pk], rt->scene, &ctx, &c->r[pk]);
+                    sl_rt_occluded_tile(rt, &ctx, &c->t[pk]);
             const double e = sl_now();
             const int y0 = ty0 * 4, ny = H - y0 < 4 ? H - y0 : 4;
             const int x0 = t0 * 4, x1 = (t0 + n) * 4 < W ? (t0 + n) * 4 : W;
@@ -246,9 +334,9 @@ enum sl_err sl_rt_trace_timed(const struct sl_rt *rt, const struct sl_scene *s, 
                 uint8_t *o = out + (size_t)(y0 + row) * (size_t)W;
                 for (int x = x0; x < x1; x++) {
                     const int pk = (x - x0) >> 2, k = row * 4 + (x & 3);
-                    if (!c->valid[pk][k])
+                    if (!c->t[pk].valid[k])
                         continue;
-                    const int occluded = c->r[pk].tfar[k] == -INFINITY;
+                    const int occluded = sl_tile_occluded(&c->t[pk], shift, k);
                     o[x] = occluded ? SL_T_SHADOW : SL_T_LIT;
                     shadow += (uint64_t)occluded;
                     rays++;

@@ -22,9 +22,26 @@ struct sl_rt {
     RTCDevice device;
     RTCScene  scene;
     int       threads;
+    int       shift;        /* packets of 1 << shift rays: the device's native width (packet.h) */
     double    ms_build;
     char      version[32];
+    char      config[160];  /* the device config given to rtcNewDevice ("threads=N[,SHADOWLAB_EMBREE_CONFIG]") */
 };
+
+struct sl_rt_tile;
+
+/* SHADOWLAB_EMBREE_CONFIG when set and not empty, else NULL: appended to
+ * the device config of every BVH (sl_rt_build), e.g. isa=sse4.2 to run
+ * Embree's SSE kernels on any CPU; recorded in the run's provenance. */
+const char *sl_rt_env_config(void);
+/* SL_E_USAGE naming SHADOWLAB_EMBREE_CONFIG when it is not a device config
+ * Embree documents (rtcNewDevice(3): key=value pairs, known keys, known ISA
+ * names); loads nothing, so a verb checks it before it writes anything. */
+enum sl_err sl_rt_check_env(struct sl_diag *d);
+
+/* Trace the 16 rays of a tile (packet.h) in packets of the device's native
+ * width; active lanes come back with tfar = -inf where occluded. */
+void sl_rt_occluded_tile(const struct sl_rt *rt, struct RTCIntersectContext *ctx, struct sl_rt_tile *t);
 
 enum sl_err sl_rt_build(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
                         struct sl_diag *d);
@@ -63,8 +80,9 @@ enum sl_err sl_rt_trace_until(const struct sl_rt *rt, const struct sl_scene *s, 
 /* Where a trace's time went, summed over its threads (each thread's clock
  * around its own chunks, so on one thread these add up to the pass less its
  * start and end): ms_setup fills packets from the G-buffer and writes the
- * answers back, ms_rays is rtcOccluded16 with the own-triangle filter (what
- * a plain loop over prebuilt packets does). */
+ * answers back, ms_rays is rtcOccluded4/8/16 with the own-triangle filter (what
+ * a plain loop over prebuilt packets does), in packets of the device's
+ * native width (packet.h). */
 struct sl_rt_times {
     double ms_setup, ms_rays;
 };
