@@ -121,13 +121,19 @@ static void min_med(double *v, int n, double *mn, double *md)
  * clocks); 8, 9 the same on one thread (CPU, share of 3). */
 #define TR_N 10
 
-enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
+/* The stage under one device config: Embree's own choice of kernels (isa
+ * NULL: its three rows) or the kernels of `isa` (its trace row alone). */
+static enum sl_err truth_variant(struct sl_bench_ctx *x, struct sl_bench_result *res, const char *isa,
+                                 int *width, struct sl_diag *d)
 {
     struct sl_rt rt = {0}, plain = {0}, rt1 = {0}, plain1 = {0};
     enum sl_err e;
-    if ((e = sl_rt_build(&rt, &x->s, x->threads, 1, d)) || (e = sl_rt_build(&plain, &x->s, x->threads, 0, d)) ||
-        (e = sl_rt_build(&rt1, &x->s, 1, 1, d)) || (e = sl_rt_build(&plain1, &x->s, 1, 0, d)))
+    if ((e = sl_rt_build_isa(&rt, &x->s, x->threads, 1, isa, d)) ||
+        (e = sl_rt_build_isa(&plain, &x->s, x->threads, 0, isa, d)) ||
+        (e = sl_rt_build_isa(&rt1, &x->s, 1, 1, isa, d)) || (e = sl_rt_build_isa(&plain1, &x->s, 1, 0, isa, d)))
         goto done;
+    if (width)
+        *width = 1 << rt.shift;
     FILE *out = x->out;
     int reps = x->reps;
     const char *wait = getenv("OMP_WAIT_POLICY");
@@ -236,11 +242,13 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
         struct sl_bench_row *row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[9], mr / sum[5],
                                                     SL_BENCH_TARGET_TRUTH_RATIO, SL_BENCH_AT_LEAST);
         if (row) {
-            snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d, packets of %d", x->s.name, x->nvp,
-                     x->W, x->H, 1 << rt.shift);
+            snprintf(row->name, sizeof row->name, "truth %s, %d viewpoints, %dx%d, packets of %d%s%s", x->s.name,
+                     x->nvp, x->W, x->H, 1 << rt.shift, isa ? ", isa=" : "", isa ? isa : "");
             snprintf(row->note, sizeof row->note, "%llu rays; filtered trace vs plain trace, 1 thread CPU; "
                      "set-up %.2f vs %.2f ms", (unsigned long long)sum_rays, sum[8], sum[4]);
         }
+        if (isa)
+            goto done;
         /* the set-up is not hidden: end to end, the truth against the plain
          * loop's set-up + trace */
         row = sl_bench_add_row(res, "truth", "Mrays/s", mr / sum[3], mr / (sum[4] + sum[5]),
@@ -263,5 +271,24 @@ done:
     sl_rt_free(&rt1);
     sl_rt_free(&plain);
     sl_rt_free(&rt);
+    return e;
+}
+
+enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d)
+{
+    int native = 0;
+    enum sl_err e = truth_variant(x, res, NULL, &native, d);
+    /* The narrower packets this CPU also runs, each with Embree's kernels
+     * for that ISA: what a machine without AVX-512 (AMD EPYC: AVX2, 8) or
+     * without AVX (SSE4.2, 4) gets, measured here against the plain loop
+     * of the same width. Not when SHADOWLAB_EMBREE_CONFIG already says how
+     * to trace. */
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_cpu_init();
+    if (!e && !sl_rt_env_config() && native > 8 && __builtin_cpu_supports("avx2"))
+        e = truth_variant(x, res, "avx2", NULL, d);
+    if (!e && !sl_rt_env_config() && native > 4 && __builtin_cpu_supports("sse4.2"))
+        e = truth_variant(x, res, "sse4.2", NULL, d);
+#endif
     return e;
 }

@@ -74,15 +74,18 @@ static inline float sl_tile_get(const struct sl_rt_tile *t, int shift, int f, in
 }
 
 /* A dead ray's fields: origin 0, tnear 1, direction +z, time 0, tfar 0,
- * mask, id and flags 0 (whose bits are those of 0.0f). */
-static const float sl_dead_ray[SL_RAY_FIELDS] = {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 0.0f,
-                                                 0.0f, 0.0f, 0.0f, 0.0f};
+ * every mask bit, id 0, flags 0. tnear > tfar is what makes it dead on
+ * every path; the mask is the active rays' so that a lane turned active
+ * by sl_tile_start need not write it again. */
+static const union sl_ray_word sl_dead_ray[SL_RAY_FIELDS] = {
+    {.f = 0.0f}, {.f = 0.0f}, {.f = 0.0f}, {.f = 1.0f}, {.f = 0.0f}, {.f = 0.0f},
+    {.f = 1.0f}, {.f = 0.0f}, {.f = 0.0f}, {.u = 0xffffffffu}, {.u = 0u}, {.u = 0u}};
 
 /* Lane k as a dead ray, inactive (see above). */
 static inline void sl_tile_kill(struct sl_rt_tile *t, int shift, int k)
 {
     for (int f = 0; f < SL_RAY_FIELDS; f++)
-        t->w[sl_tile_at(shift, f, k)].f = sl_dead_ray[f];
+        t->w[sl_tile_at(shift, f, k)] = sl_dead_ray[f];
     t->valid[k] = 0;
 }
 
@@ -95,9 +98,51 @@ static inline void sl_tile_kill_all(struct sl_rt_tile *t, int shift)
     for (int p = 0; p < SL_RT_LANES >> shift; p++)
         for (int f = 0; f < SL_RAY_FIELDS; f++)
             for (int l = 0; l < width; l++)
-                (w++)->f = sl_dead_ray[f];
+                *w++ = sl_dead_ray[f];
     for (int k = 0; k < SL_RT_LANES; k++)
         t->valid[k] = 0;
+}
+
+/* Every lane dead again, cheaply: tnear 1 > tfar 0 and not valid, the other
+ * fields left as they are. Only for a tile every lane of which was written
+ * whole since it was made (sl_tile_kill_all, then rays): its origins and
+ * directions are finite and its time, mask and flags a ray's. */
+static inline void sl_tile_disarm(struct sl_rt_tile *t, int shift)
+{
+    const int width = 1 << shift;
+    for (int p = 0; p < SL_RT_LANES >> shift; p++) {
+        union sl_ray_word *w = t->w + (size_t)p * SL_RAY_FIELDS * (size_t)width;
+        for (int l = 0; l < width; l++) {
+            w[SL_RAY_TNEAR * width + l].f = 1.0f;
+            w[SL_RAY_TFAR * width + l].f = 0.0f;
+        }
+    }
+    for (int k = 0; k < SL_RT_LANES; k++)
+        t->valid[k] = 0;
+}
+
+/* The same direction in every lane (a directional light's). */
+static inline void sl_tile_dir_all(struct sl_rt_tile *t, int shift, const float dir[3])
+{
+    for (int k = 0; k < SL_RT_LANES; k++)
+        for (int c = 0; c < 3; c++)
+            t->w[sl_tile_at(shift, SL_RAY_DIR_X + c, k)].f = dir[c];
+}
+
+/* Lane k active with origin o, segment [tnear, tfar] and the own
+ * triangle's id; its direction, time (0), mask (every bit) and flags (0)
+ * are the ones the lane holds (sl_tile_kill_all, sl_tile_dir_all). */
+static inline void sl_tile_start(struct sl_rt_tile *t, int shift, int k, const float o[3], float tnear, float tfar,
+                                 unsigned id)
+{
+    union sl_ray_word *w = t->w + sl_tile_at(shift, 0, k);   /* field f is w[f << shift] */
+    w[SL_RAY_ORG_X << shift].f = o[0];
+    w[SL_RAY_ORG_Y << shift].f = o[1];
+    w[SL_RAY_ORG_Z << shift].f = o[2];
+    w[SL_RAY_TNEAR << shift].f = tnear;
+    w[SL_RAY_TFAR << shift].f = tfar;
+    w[SL_RAY_ID << shift].u = id;
+    t->valid[k] = -1;
 }
 
 /* Lane k as an active ray: origin o, direction dir, [tnear, tfar], the own

@@ -132,15 +132,25 @@ enum sl_err sl_rt_check_env(struct sl_diag *d)
 enum sl_err sl_rt_build(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
                         struct sl_diag *d)
 {
+    return sl_rt_build_isa(rt, s, threads, own_filter, NULL, d);
+}
+
+enum sl_err sl_rt_build_isa(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
+                            const char *isa, struct sl_diag *d)
+{
     memset(rt, 0, sizeof *rt);
     rt->threads = threads;
-    /* the user's SHADOWLAB_EMBREE_CONFIG after ours: Embree reads the
-     * string left to right, so a 'threads=' in it wins too */
+    /* the user's SHADOWLAB_EMBREE_CONFIG after ours, then the caller's ISA:
+     * Embree reads the string left to right, the last value of a key wins */
     const char *user = sl_rt_env_config();
     enum sl_err ce = sl_rt_check_env(d);
     if (ce)
         return ce;
-    snprintf(rt->config, sizeof rt->config, "threads=%d%s%s", threads, user ? "," : "", user ? user : "");
+    if (isa && !in_list(rtc_isas, isa, strlen(isa)))
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "sl_rt_build_isa: no ISA '%s'", isa);
+    int len = snprintf(rt->config, sizeof rt->config, "threads=%d%s%s", threads, user ? "," : "", user ? user : "");
+    if (isa && len > 0 && (size_t)len < sizeof rt->config)
+        snprintf(rt->config + len, sizeof rt->config - (size_t)len, ",isa=%s", isa);
     char why[300];
     if (sl_rtc_load(why, sizeof why))
         return sl_fail(d, SL_E_EMBREE, NULL, 0, NULL, "%s", why);
@@ -251,8 +261,9 @@ void sl_rt_occluded_tile(const struct sl_rt *rt, struct RTCIntersectContext *ctx
 }
 
 /* Fill the packets of tiles [t0, t0+n) of tile row ty0 (4-pixel tiles):
- * every lane dead first (packet.h: a lane outside the image or not traced
- * is a dead ray, never garbage), then each traced pixel's ray in its lane,
+ * every lane disarmed first (packet.h: a lane outside the image or not
+ * traced is a dead ray, never garbage; the chunk's tiles were written whole
+ * when the thread began), then each traced pixel's ray in its lane,
  * (row, x & 3) of its tile. What an active lane holds is the same ray on
  * every packet width, so each ray and its answer are too. */
 static void chunk_fill(struct rt_chunk *c, int shift, const struct sl_scene *s, const struct sl_view *v,
@@ -261,9 +272,8 @@ static void chunk_fill(struct rt_chunk *c, int shift, const struct sl_scene *s, 
     const int W = v->w, H = v->h;
     const int y0 = ty0 * 4, ny = H - y0 < 4 ? H - y0 : 4;
     const int x0 = t0 * 4, x1 = (t0 + n) * 4 < W ? (t0 + n) * 4 : W;
-    const float ldir[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]};
     for (int pk = 0; pk < n; pk++) {
-        sl_tile_kill_all(&c->t[pk], shift);
+        sl_tile_disarm(&c->t[pk], shift);
         c->any[pk] = 0;
     }
     for (int row = 0; row < ny; row++) {
@@ -281,10 +291,10 @@ static void chunk_fill(struct rt_chunk *c, int shift, const struct sl_scene *s, 
                 if (!sl_point_ray(s->light.pos, p, dir, &to))
                     dir[0] = dir[1] = 0.0f, dir[2] = 1.0f;
                 end = to < end ? to : end;
-                sl_tile_ray(&c->t[pk], shift, k, p, dir, sl_rt_tnear(p), end, v->tri[i]);
-            } else {
-                sl_tile_ray(&c->t[pk], shift, k, p, ldir, sl_rt_tnear(p), end, v->tri[i]);
+                for (int a = 0; a < 3; a++)
+                    sl_tile_set(&c->t[pk], shift, SL_RAY_DIR_X + a, k, dir[a]);
             }
+            sl_tile_start(&c->t[pk], shift, k, p, sl_rt_tnear(p), end, v->tri[i]);
             c->any[pk] = 1;
         }
     }
@@ -316,7 +326,17 @@ enum sl_err sl_rt_trace_timed(const struct sl_rt *rt, const struct sl_scene *s, 
         struct RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        /* Embree loads the packet and its mask with aligned vector loads
+         * (packet.h). Every lane written whole once per thread; what is
+         * the same for every ray of a directional light (its direction) is
+         * written here too, not once per chunk. */
         struct rt_chunk *c = &chunks[omp_get_thread_num()];
+        const float ldir[3] = {-s->light_dir[0], -s->light_dir[1], -s->light_dir[2]};
+        for (int pk = 0; pk < SL_RT_CHUNK; pk++) {
+            sl_tile_kill_all(&c->t[pk], shift);
+            if (!point)
+                sl_tile_dir_all(&c->t[pk], shift, ldir);
+        }
 #pragma omp for schedule(dynamic, 1)
         for (int ch = 0; ch < cx * ty; ch++) {
             const int ty0 = ch / cx, t0 = (ch % cx) * SL_RT_CHUNK;

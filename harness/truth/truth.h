@@ -45,6 +45,11 @@ void sl_rt_occluded_tile(const struct sl_rt *rt, struct RTCIntersectContext *ctx
 
 enum sl_err sl_rt_build(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
                         struct sl_diag *d);
+/* The same with Embree's kernels for `isa` (sse2, sse4.2, avx, avx2, avx512;
+ * NULL = as sl_rt_build), after SHADOWLAB_EMBREE_CONFIG: the bench's truth
+ * stage measures each packet width the CPU runs on one machine. */
+enum sl_err sl_rt_build_isa(struct sl_rt *rt, const struct sl_scene *s, int threads, int own_filter,
+                            const char *isa, struct sl_diag *d);
 void        sl_rt_free(struct sl_rt *rt);
 
 struct sl_truth_stats {
