@@ -3,10 +3,11 @@
  * thing anyone would write for the same job, and the whole studies end to
  * end, each with its target:
  *
- * - truth: the truth pass against a plain Embree rtcOccluded16 loop over the
- *   very same rays: its filtered trace against the plain trace (target: at
- *   least 0.9x its rays/s), end to end against the plain set-up + trace
- *   (at least 1x; bench_truth.c);
+ * - truth: the truth pass against a plain Embree packet loop over the very
+ *   same rays, both in the device's native width: its filtered trace
+ *   against the plain trace (target: at least 0.9x its rays/s), end to end
+ *   against the plain set-up + trace (at least 1x), and the trace again at
+ *   each narrower width the CPU runs (bench_truth.c);
  * - layers: every shadow-map layer shadowmap.c renders, and the G-buffer,
  *   against a plain raster of the same mesh at the same size and matrix
  *   (depth + one uint, trivial fragment shader, no geometry shader), timed

@@ -27,7 +27,7 @@ enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, 
 /* The light fit at 3840x2160, threads against one (bench_score.c). */
 enum sl_err sl_bench_lightfit(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 
-/* The truth pass against a plain rtcOccluded16 loop (bench_truth.c). */
+/* The truth pass against a plain Embree packet loop of the same width, at each width the CPU runs (bench_truth.c). */
 enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, struct sl_diag *d);
 
 /* Each layer shadowmap.c renders, and the G-buffer, against a plain raster
