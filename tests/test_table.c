@@ -550,6 +550,84 @@ static void table_pivot_values(void **st)
     assert_string_equal(num, "--");
 }
 
+/* LaTeX text for every code point that can occur (tex.c): the report's
+ * |v − t| (U+2212, printed '?' before), accented letters by their
+ * decomposition, Greek, letters LaTeX names, anything else as a visible
+ * [U+XXXX], invalid UTF-8 as [U+FFFD]; never '?'. Where pdflatex is
+ * installed the text compiles in the report's preamble (T1, utf8). */
+static void table_latex_unicode(void **st)
+{
+    (void)st;
+    static const struct { const char *in, *tex; } want[] = {
+        {"|v \xE2\x88\x92 t|", "|v $-$ t|"},
+        {"caf\xC3\xA9 na\xC3\xAFve", "caf\\'{e} na\\\"{\\i}ve"},
+        {"\xC3\x86r\xC3\xB8 Stra\xC3\x9F" "e", "\\AE{}r\\o{} Stra\\ss{}e"},
+        {"\xC5\x81\xC3\xB3" "d\xC5\xBA \xC4\x85", "\\L{}\\'{o}d\\'{z} \\k{a}"},
+        {"\xC7\x98", "\\'{\\\"{u}}"},                       /* ǘ: two marks, the last outermost */
+        {"\xCE\xB1\xCE\xB2 \xCE\xA9 \xCE\x91", "$\\alpha$$\\beta$ $\\Omega$ A"},
+        {"2048\xC2\xB2 \xC3\x97 \xE2\x89\xA4 \xE2\x88\x9E", "2048\\textsuperscript{2} $\\times$ $\\le$ $\\infty$"},
+        {"\xE6\x97\xA5 \xE2\x98\x83 \xF0\x9F\x98\x80", "\\textsf{[U+65E5]} \\textsf{[U+2603]} \\textsf{[U+1F600]}"},
+        {"a\xFF" "b\xE2\x88", "a\\textsf{[U+FFFD]}b\\textsf{[U+FFFD]}\\textsf{[U+FFFD]}"},
+        {"50% of a_b", "50\\% of a\\_b"},
+    };
+    char *all = NULL;
+    size_t all_len = 0;
+    FILE *doc = open_memstream(&all, &all_len);
+    assert_non_null(doc);
+    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
+        char *out = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&out, &len);
+        assert_non_null(f);
+        sl_tex_text(f, want[i].in);
+        fclose(f);
+        assert_string_equal(out, want[i].tex);
+        assert_null(strchr(out, '?'));
+        fprintf(doc, "%s\\par\n", out);
+        free(out);
+    }
+    fclose(doc);
+    /* every code point of a few blocks (Latin-1, Latin Extended-A and B,
+     * Greek, punctuation, arrows, maths): never '?', and it compiles */
+    char *block = NULL;
+    size_t block_len = 0;
+    FILE *b = open_memstream(&block, &block_len);
+    assert_non_null(b);
+    static const unsigned ranges[][2] = {{0xA0, 0x24F}, {0x370, 0x3FF}, {0x2000, 0x206F}, {0x2190, 0x21FF},
+                                         {0x2200, 0x22FF}};
+    for (size_t r = 0; r < sizeof ranges / sizeof ranges[0]; r++)
+        for (unsigned c = ranges[r][0]; c <= ranges[r][1]; c++) {
+            char u[5] = {0};
+            if (c < 0x800)
+                u[0] = (char)(0xC0 | (c >> 6)), u[1] = (char)(0x80 | (c & 0x3F));
+            else
+                u[0] = (char)(0xE0 | (c >> 12)), u[1] = (char)(0x80 | ((c >> 6) & 0x3F)),
+                u[2] = (char)(0x80 | (c & 0x3F));
+            sl_tex_text(b, u);
+            fputc(' ', b);
+        }
+    fclose(b);
+    assert_null(strchr(block, '?'));
+    if (system("command -v pdflatex >/dev/null 2>&1") == 0) {
+        char dir[600], cmd[1400];
+        snprintf(dir, sizeof dir, "%s/unicode-tex", sl_test_dir);
+        snprintf(cmd, sizeof cmd, "mkdir -p '%s'", dir);
+        assert_int_equal(system(cmd), 0);
+        char path[700];
+        snprintf(path, sizeof path, "%s/u.tex", dir);
+        FILE *t = fopen(path, "w");
+        assert_non_null(t);
+        fprintf(t, "\\documentclass{article}\n\\usepackage[utf8]{inputenc}\n\\usepackage[T1]{fontenc}\n"
+                   "\\usepackage{lmodern}\n\\begin{document}\n%s\n%s\n\\end{document}\n", all, block);
+        assert_int_equal(fclose(t), 0);
+        snprintf(cmd, sizeof cmd, "cd '%s' && pdflatex -interaction=nonstopmode -halt-on-error u.tex >/dev/null 2>&1 || "
+                 "{ grep -A3 '^!' u.log | head -8; exit 1; }", dir);
+        assert_int_equal(system(cmd), 0);
+    }
+    free(block);
+    free(all);
+}
+
 /* 12 labels as columns do not fit \columnwidth: transposed (2 map sizes as
  * columns); 12 labels x 12 scenes fit neither way: split, each part with the
  * row names, no part over 8 numeric columns, never scaled. */
@@ -677,6 +755,7 @@ int main(int argc, char **argv)
         SL_CASE(table, csv_long_form),
         SL_CASE(table, latex_booktabs),
         SL_CASE(table, latex_wide),
+        SL_CASE(table, latex_unicode),
         SL_CASE(table, rows_produced_and_picked),
         SL_CASE(table, duplicate_map_refused),
         SL_CASE(table, empty_and_formats),
