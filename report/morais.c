@@ -180,7 +180,7 @@ static void notes_append(struct sl_report_tab *t, const struct notes *nt)
     size_t l = strlen(t->note);
     if (nt->n)
         snprintf(t->note + l, sizeof t->note - l, " * The thesis's value as printed, read so: %s%s.", nt->text,
-                 nt->dropped ? "; more in report/morais_thesis.c" : "");
+                 nt->dropped ? "; more in report/theses/" : "");
 }
 
 /* the study's views of a case, in their order (viewports) */
