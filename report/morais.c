@@ -114,8 +114,9 @@ static int label_of(const struct sl_report_study *s, const char *m)
     return -1;
 }
 
-/* The thesis's rows (theses.h), loaded by sl_report_morais before any
- * table is filled: here they are there, or the lookups find nothing. */
+/* The thesis's rows (theses.h): sl_report_morais reads them before any
+ * table is filled, so these lookups find them in memory (and nothing when
+ * they could not be read). */
 static const struct sl_morais_datum *thesis_find(int table, int vw, int vh, int map, enum sl_morais_row row)
 {
     const struct sl_morais_datum *rows;
