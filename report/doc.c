@@ -304,7 +304,8 @@ void sl_report_tab_once(struct sl_report_tab *t)
 {
     static const char once[] = SL_REPORT_ONCE " timed once (repetitions runs: 1): one measurement, no median.";
     size_t n = strlen(t->note);
-    if (!strstr(t->note, once))
+    /* whole or not at all: cut short it could end inside the mark's UTF-8 bytes */
+    if (!strstr(t->note, once) && n + 1 + strlen(once) < sizeof t->note)
         snprintf(t->note + n, sizeof t->note - n, "%s%s", n ? " " : "", once);
 }
 

@@ -5,8 +5,8 @@
  * ratios, and the thesis's qualitative claims marked reproduced or not with
  * the measured value.
  *
- * The thesis's numbers are transcribed once, in `sl_thesis[]`
- * (fidelity_thesis.c), from the
+ * The thesis's numbers are transcribed once, in the data file
+ * report/theses/moderno-2011.csv (read by theses.c on first use), from the
  * seed ../shared/seeds/003_20b9757907a30ff5.txt (an OCR of the thesis): one
  * row per datum (table, viewpoint, map size, contour, the cell's label, the
  * figure of figures.h, value). Every transcribed table was checked for its
@@ -70,9 +70,13 @@ static const struct sl_cell_record *find(const struct sl_cell_record *c, int n, 
 
 int sl_report_fidelity_rows(const struct sl_cell_record *c, int n, struct sl_report_fidelity_row *out, int max)
 {
+    const struct sl_thesis_datum *th;
+    int nth;
+    if (sl_theses_moderno(&th, &nth, NULL))
+        return -1;
     int k = 0;
-    for (int i = 0; i < sl_nthesis && k < max; i++, k++) {
-        const struct sl_thesis_datum *t = &sl_thesis[i];
+    for (int i = 0; i < nth && k < max; i++, k++) {
+        const struct sl_thesis_datum *t = &th[i];
         struct sl_report_fidelity_row *r = &out[k];
         memset(r, 0, sizeof *r);
         r->table = t->table;
@@ -436,9 +440,15 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
                             "thinner than the depth a texel spreads over it (scenes/CALIBRATION.md). The test "
                             "moderno::wrong_hints_where prints the classes per view, map and contour; its counts "
                             "equal the study's cells.");
+    /* the thesis's numbers, read on first use: a missing or damaged file
+     * stops the report here rather than print the section without them */
+    const struct sl_thesis_datum *th;
+    int nth;
+    enum sl_err e = sl_theses_moderno(&th, &nth, d);
+    if (e)
+        return e;
     static struct sl_report_fidelity_row rows[SL_REPORT_FIDELITY_MAXROWS];
     int nr = sl_report_fidelity_rows(s->cells, s->n, rows, SL_REPORT_FIDELITY_MAXROWS);
-    enum sl_err e = SL_OK;
     for (int a = 0; a < nr && !e;) {
         int b = a;
         while (b < nr && rows[b].table == rows[a].table)

@@ -15,9 +15,10 @@
  * adjacency 16-18, CSMa 19-21, CSMA 22-24; rows viewport x pixel type,
  * columns map sizes), the map rendering times (25/27/29) and the ray step
  * (26/28/30). Each of ours has the thesis's row under it where the thesis
- * prints one (morais_thesis.c): a reader compares on the page. Times come
- * from another machine (his GPU and OptiX Prime, ours llvmpipe and Embree):
- * both are printed, no ratio. Hertel's hybrid (hertel, as published, and
+ * prints one (report/theses/morais-2015.csv and morais-2015-times.csv, read
+ * by theses.c): a reader compares on the page. Times come from another
+ * machine (his GPU and OptiX Prime, ours llvmpipe and Embree): both are
+ * printed, no ratio. Hertel's hybrid (hertel, as published, and
  * hertel_exact) gets a table per case: rays traced as a share of PFL, wrong
  * pixels, violations and the ray step, and Hertel's Table 2 (his share of
  * view samples traced) once.
@@ -31,9 +32,9 @@
 #include "report_int.h"
 
 static const char *const row_names[SL_MR_COUNT] = {
-    "Pixels in Light", "Pixels in Shadow", "Light – Correct", "Light – Incorrect", "Shadow – Correct",
-    "Shadow – Incorrect", "Light – Uncertain", "Shadow – Uncertain", "PFL", "PnFL", "PFL – in Light",
-    "PFL – in Shadow",
+#define SL_MR_NAME(id, text) text,
+    SL_MORAIS_ROWS(SL_MR_NAME)
+#undef SL_MR_NAME
 };
 
 const char *sl_morais_row_name(enum sl_morais_row r) { return r < SL_MR_COUNT ? row_names[r] : "?"; }
@@ -67,7 +68,7 @@ int sl_morais_counts(const struct sl_cell_record *c, struct sl_morais_counts *ou
     o[SL_MR_shadow_uncertain] = n[SL_FIG_traced_shadow];
     o[SL_MR_light_uncertain] =
         n[SL_FIG_traced] >= n[SL_FIG_traced_shadow] ? n[SL_FIG_traced] - n[SL_FIG_traced_shadow] : 0;
-    /* of the final image's light and shadow, as the thesis's numbers are (morais_thesis.c) */
+    /* of the final image's light and shadow, as the thesis's numbers are (morais-2015.csv) */
     b[SL_MR_light_uncertain] = o[SL_MR_light];
     b[SL_MR_shadow_uncertain] = o[SL_MR_shadow];
     return 1;
@@ -113,9 +114,16 @@ static int label_of(const struct sl_report_study *s, const char *m)
     return -1;
 }
 
+/* The thesis's rows (theses.h): sl_report_morais reads them before any
+ * table is filled, so these lookups find them in memory (and nothing when
+ * they could not be read). */
 static const struct sl_morais_datum *thesis_find(int table, int vw, int vh, int map, enum sl_morais_row row)
 {
-    for (const struct sl_morais_datum *t = sl_morais_thesis; t->scene; t++)
+    const struct sl_morais_datum *rows;
+    int n;
+    if (sl_theses_morais(&rows, &n, NULL))
+        return NULL;
+    for (const struct sl_morais_datum *t = rows; t->scene; t++)
         if (t->table == table && t->vw == vw && t->vh == vh && t->map_size == map && t->row == row)
             return t;
     return NULL;
@@ -123,7 +131,11 @@ static const struct sl_morais_datum *thesis_find(int table, int vw, int vh, int 
 
 static const struct sl_morais_time *thesis_time(int table, int vw, int vh, int map, const char *method)
 {
-    for (const struct sl_morais_time *t = sl_morais_times; t->scene; t++)
+    const struct sl_morais_time *rows;
+    int n;
+    if (sl_theses_morais_times(&rows, &n, NULL))
+        return NULL;
+    for (const struct sl_morais_time *t = rows; t->scene; t++)
         if (t->table == table && t->vw == vw && t->vh == vh && t->map_size == map && !strcmp(t->method, method))
             return t;
     return NULL;
@@ -169,7 +181,7 @@ static void notes_append(struct sl_report_tab *t, const struct notes *nt)
     size_t l = strlen(t->note);
     if (nt->n)
         snprintf(t->note + l, sizeof t->note - l, " * The thesis's value as printed, read so: %s%s.", nt->text,
-                 nt->dropped ? "; more in report/morais_thesis.c" : "");
+                 nt->dropped ? "; more in report/theses/" : "");
 }
 
 /* the study's views of a case, in their order (viewports) */
@@ -636,7 +648,16 @@ static enum sl_err other_times(struct sl_report_doc *doc, const struct sl_report
 
 enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
 {
-    enum sl_err e = SL_OK;
+    /* the thesis's numbers, read on first use: a missing or damaged file
+     * stops the report here rather than print tables without them */
+    const struct sl_morais_datum *rows;
+    const struct sl_morais_time *times;
+    int nrows, ntimes;
+    enum sl_err e = sl_theses_morais(&rows, &nrows, d);
+    if (!e)
+        e = sl_theses_morais_times(&times, &ntimes, d);
+    if (e)
+        return e;
     int hertel = label_of(s, "hertel") >= 0 || label_of(s, "hertel_exact") >= 0, hertel_cases = 0;
     int ncases = 0;
     for (int k = 0; k < NCASES; k++) {

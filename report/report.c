@@ -663,6 +663,7 @@ enum sl_err sl_report_build_with(const struct sl_report_input *in, const char *o
     }
     free(head);
     sl_report_doc_free(&doc);
+    sl_theses_free();   /* the theses' numbers the sections read (theses.h); the next report reads them anew */
     if (!e)
         e = sl_report_out_commit(&out, d);
     else

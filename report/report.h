@@ -150,7 +150,9 @@ int sl_report_family_of(const char *family, const char *beside, enum sl_report_f
 
 /* 1 if the cells hold hard-shadow cells of scene primitives. */
 int sl_report_fidelity_applies(const struct sl_cell_record *c, int n);
-/* Every transcribed datum (at most max) against the cells; returns the count. */
+/* Every transcribed datum (at most max) against the cells; returns the
+ * count, -1 when report/theses/moderno-2011.csv cannot be read (theses.h:
+ * sl_theses_moderno says why). */
 int sl_report_fidelity_rows(const struct sl_cell_record *c, int n, struct sl_report_fidelity_row *out, int max);
 /* The claims (max >= SL_REPORT_FIDELITY_NCLAIMS, else 0); returns the count. */
 int sl_report_fidelity_claims(const struct sl_cell_record *c, int n, struct sl_report_fidelity_claim *out, int max);

@@ -6,13 +6,15 @@
  *   doc    the two pages written in step (HTML and Markdown)
  *   study  one config's cells and the keys they span
  * and the sections: layouts.c (Moderno's and Curtis's thesis tables, costs),
- * morais.c (Morais's tables, his numbers in morais_thesis.c), plots.c (gnuplot).
+ * morais.c (Morais's tables), plots.c (gnuplot); the theses' numbers are
+ * data files read by theses.c (theses.h).
  * Nothing here prints; every fallible call returns an sl_err.
  */
 #ifndef SL_REPORT_INT_H
 #define SL_REPORT_INT_H
 #include <stdio.h>
 #include "report.h"
+#include "theses.h"
 
 /* ---- out ---- */
 
@@ -215,32 +217,8 @@ int sl_report_label_in(const struct sl_report_study *s, int l, enum sl_report_fa
 int sl_report_is_moderno(const struct sl_report_study *s, int l);
 int sl_report_is_morais(const struct sl_report_study *s, int l);
 
-/* fidelity_thesis.c: Moderno 2011's published Primitives numbers, one datum a row */
-struct sl_thesis_datum {
-    int         table;
-    const char *viewpoint;
-    int         map_size;
-    int         contour;        /* px; 0 = whole image */
-    const char *label;          /* the cell's label in configs/moderno-2011.yaml */
-    enum sl_figure fig;
-    uint64_t    value;
-    const char *note;           /* a typo or an OCR garble and how it was resolved; NULL = none */
-};
-extern const struct sl_thesis_datum sl_thesis[];
-extern const int sl_nthesis;
+/* ---- Morais 2015 (morais.c; his numbers: theses.h) ---- */
 
-/* ---- Morais 2015 (morais.c, morais_thesis.c) ---- */
-
-/* The rows of Morais's tables. light .. shadow_uncertain are counted as he
- * counts them, over the pixels facing the light (PFL) only: light + shadow +
- * undecided = PFL, PnFL left out (Tables 7-24); pfl .. truth_shadow are
- * the truth's (Tables 4-6). */
-enum sl_morais_row {
-    SL_MR_light, SL_MR_shadow, SL_MR_light_correct, SL_MR_light_incorrect, SL_MR_shadow_correct,
-    SL_MR_shadow_incorrect, SL_MR_light_uncertain, SL_MR_shadow_uncertain,
-    SL_MR_pfl, SL_MR_pnfl, SL_MR_truth_light, SL_MR_truth_shadow,
-    SL_MR_COUNT
-};
 const char *sl_morais_row_name(enum sl_morais_row r);   /* as the thesis names it */
 
 /* One cell's (whole image's) rows on Morais's base: n[] the counts, base[]
@@ -253,29 +231,6 @@ const char *sl_morais_row_name(enum sl_morais_row r);   /* as the thesis names i
  * whole-image region. */
 struct sl_morais_counts { uint64_t n[SL_MR_COUNT], base[SL_MR_COUNT]; };
 int sl_morais_counts(const struct sl_cell_record *c, struct sl_morais_counts *out);
-
-/* morais_thesis.c: Morais 2015's printed numbers, each a row; a NULL scene ends the list */
-struct sl_morais_datum {
-    int         table;
-    const char *scene, *viewpoint;   /* as scenes/ names them (trees/side, flowers/against, bench/against) */
-    int         vw, vh, map_size;    /* map_size 0: Tables 4-6 (the truth, no map) */
-    const char *method;              /* configs/morais-2015.yaml's method; "raytrace" = OptiX Prime */
-    enum sl_morais_row row;
-    uint64_t    n;
-    double      pct;                 /* as printed */
-    const char *note;                /* a typo, OCR artefact or error of the thesis and how it was read */
-};
-struct sl_morais_time {
-    int         table;
-    const char *scene, *viewpoint;
-    int         vw, vh, map_size;
-    int         stage;               /* 0: shadow-map rendering (Tables 25/27/29), 1: ray-tracing step (26/28/30) */
-    const char *method;              /* nsm, csm (CSMa), csm_adj (CSMA), raytrace (OptiX Prime) */
-    double      ms;
-    const char *note;
-};
-extern const struct sl_morais_datum sl_morais_thesis[];
-extern const struct sl_morais_time sl_morais_times[];
 
 /* Tables 4-30 for the thesis's three cases, beside the thesis's numbers;
  * Hertel 2009's classification (hertel, hertel_exact) per case; every other

@@ -3,8 +3,10 @@
 # binary, started from another folder with the source tree hidden (an empty
 # folder mounted over it in a private mount namespace, so a binary that still
 # looked into the tree it was built from would find nothing there), runs the
-# shipped default config and finds every scene in <prefix>/share/shadowlab.
-# The man page and the bash completion are installed and load.
+# shipped default config and finds every scene in <prefix>/share/shadowlab,
+# and its report of a study of both theses' methods finds the theses' data
+# files there (share/shadowlab/theses). The man page and the bash completion
+# are installed and load.
 set -u
 build=${1:?usage: cli_install.sh BUILD_DIR SOURCE_DIR}
 src=${2:?usage: cli_install.sh BUILD_DIR SOURCE_DIR}
@@ -77,4 +79,28 @@ SHADOWLAB_SCENES=$tmp/extra hide "$b" validate own.yaml >"$tmp/v.out" 2>&1 || { 
 grep -q "ok: 2 scene(s), 2 cell(s)" "$tmp/v.out" || { echo "FAIL search path: $(cat "$tmp/v.out")"; exit 1; }
 hide "$b" validate own.yaml >"$tmp/v.out" 2>&1 && { echo "FAIL 'extra' found without SHADOWLAB_SCENES"; exit 1; }
 grep -q "unknown scene 'extra'" "$tmp/v.out" || { echo "FAIL: $(cat "$tmp/v.out")"; exit 1; }
+# the report of a study of both theses' methods reads the theses' numbers
+# from <prefix>/share/shadowlab/theses (report/theses.h): the Morais section
+# reads its two files whatever the views, the fidelity section prints
+# Moderno's Table 16
+for f in moderno-2011.csv morais-2015.csv morais-2015-times.csv; do
+  [ -s "$share/theses/$f" ] || { echo "FAIL not installed: $share/theses/$f"; exit 1; }
+done
+if command -v gnuplot >/dev/null; then
+  printf 'name: theses\nscenes: [{scene: primitives, viewpoints: [side]}]\nviewports: [{width: 64, height: 64}]\nmap_sizes: [256]\ncontours: [2]\nmethods: [{method: nsm}, {method: texel}, {method: csm}]\nrepetitions: {warmup: 0, runs: 1}\n' >"$tmp/elsewhere/theses.yaml"
+  hide "$b" run theses.yaml -o "$tmp/elsewhere/th" --no-cache -q >"$tmp/th.out" 2>&1 ||
+    { echo "FAIL installed run of theses.yaml:"; cat "$tmp/th.out"; exit 1; }
+  hide "$b" report "$tmp/elsewhere/th/shadowlab.db" -o "$tmp/elsewhere/threp" >"$tmp/th.out" 2>&1 ||
+    { echo "FAIL installed report:"; cat "$tmp/th.out"; exit 1; }
+  grep -q "^### theses: tables in Morais 2015's layout" "$tmp/elsewhere/threp/report.md" &&
+    grep -q "^| 1024 | 2 px | nsm | pixels | 11000 | not measured |" "$tmp/elsewhere/threp/report.md" ||
+    { echo "FAIL the installed report lacks the theses' sections or Moderno's Table 16"; exit 1; }
+  # SHADOWLAB_THESES in front of the installed folder: an empty one stops the report (exit 2, the file named)
+  SHADOWLAB_THESES=$tmp/empty hide "$b" report "$tmp/elsewhere/th/shadowlab.db" -o "$tmp/elsewhere/threp2" \
+    >"$tmp/th.out" 2>&1; rc=$?
+  [ "$rc" -eq 2 ] && grep -q "$tmp/empty/moderno-2011.csv: cannot open" "$tmp/th.out" ||
+    { echo "FAIL SHADOWLAB_THESES=empty: exit $rc:"; cat "$tmp/th.out"; exit 1; }
+else
+  echo "note: no gnuplot here; the installed report is not run"
+fi
 echo "1 passed, 0 failed"

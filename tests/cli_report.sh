@@ -5,7 +5,8 @@
 # (OpenImageIO stats), that every file the HTML and the Markdown reference
 # exists, that each table has its .tex, that the page needs no network; then
 # the refusals: missing, empty, foreign and cell-less databases, no gnuplot,
-# and a failing gnuplot, which must leave the earlier report untouched.
+# a damaged or missing thesis data file, and a failing gnuplot, which must
+# leave the earlier report untouched.
 # Also: every anchor resolves and the contents reach the views
 # (report_anchors.py), plots kept as .dat/.gp/.pdf, --self-contained refers
 # to nothing outside itself and renders alone, --latex compiles with
@@ -185,6 +186,21 @@ refuse "foreign file" "text.db" "$bin" report "$tmp/text.db" --out "$tmp/x3"
   echo "PRAGMA user_version = $(sqlite3 "$db" 'PRAGMA user_version');"; } | sqlite3 "$tmp/store.db"
 refuse "store without cells" "no cells" "$bin" report "$tmp/store.db" --out "$tmp/x4"
 refuse "no gnuplot" "gnuplot" env PATH=/nonexistent "$bin" report "$db" --out "$tmp/x5"
+# a damaged or missing thesis data file (report/theses.h; SHADOWLAB_THESES in
+# front of the source tree's report/theses/): the file, line and column named
+mkdir -p "$tmp/theses"
+cp report/theses/*.csv "$tmp/theses/"
+ln=$(grep -n -m1 '^16,side,1024,2,nsm,pixels,11000,$' "$tmp/theses/moderno-2011.csv" | cut -d: -f1)
+sed -i "${ln}s/,11000,/,11x00,/" "$tmp/theses/moderno-2011.csv"
+refuse "damaged thesis file" "theses/moderno-2011.csv:$ln: 'value': '11x00' is not a count" \
+  env SHADOWLAB_THESES="$tmp/theses" "$bin" report "$db" --out "$tmp/x6"
+cp report/theses/moderno-2011.csv "$tmp/theses/"
+rm "$tmp/theses/morais-2015-times.csv"
+refuse "missing thesis file" "theses/morais-2015-times.csv: cannot open" \
+  env SHADOWLAB_THESES="$tmp/theses" "$bin" report "$db" --out "$tmp/x7"
+# these two stop once the folder is made (a section reads the file on first
+# use): it is left empty, its staging folder removed
+for x in x6 x7; do [ -z "$(ls -A "$tmp/$x")" ] && ok || fail "refused report $x left files in $tmp/$x"; done
 for x in x1 x2 x3 x4 x5; do [ -e "$tmp/$x" ] && fail "refused report $x still wrote $tmp/$x"; done
 "$bin" report >/dev/null 2>"$tmp/r.err"; rc=$?
 [ "$rc" -eq 2 ] && head -1 "$tmp/r.err" | grep -q "missing RESULTS_DB" && ok || fail "usage: exit $rc"

@@ -1,5 +1,6 @@
 /* morais::* — Morais 2015's tables (report/morais.c) on his base, and his
- * transcribed numbers (report/morais_thesis.c):
+ * transcribed numbers (report/theses/morais-2015.csv and
+ * morais-2015-times.csv, as report/theses.c loads them):
  * - transcription: every printed percentage is its count's share of the
  *   row's base, and the counts add up as the thesis's own sums, except the
  *   values a note explains (the thesis's typos and copy errors); spot values
@@ -23,9 +24,21 @@
 #include "sl_test.h"
 #include "report_int.h"
 
+/* The loaded rows (theses.h), which must load. */
+static const struct sl_morais_datum *thesis(void)
+{
+    const struct sl_morais_datum *rows;
+    int n;
+    struct sl_diag d;
+    enum sl_err e = sl_theses_morais(&rows, &n, &d);
+    if (e)
+        fail_msg("%s:%d: %s: %s", d.file, d.line, d.key, d.msg);
+    return rows;
+}
+
 static const struct sl_morais_datum *find(int table, int vw, int map, enum sl_morais_row row)
 {
-    for (const struct sl_morais_datum *t = sl_morais_thesis; t->scene; t++)
+    for (const struct sl_morais_datum *t = thesis(); t->scene; t++)
         if (t->table == table && t->vw == vw && t->map_size == map && t->row == row)
             return t;
     return NULL;
@@ -51,7 +64,7 @@ static void morais_transcription(void **st)
     (void)st;
     int n = 0, checked = 0, noted = 0;
     int per_table[31] = {0};
-    for (const struct sl_morais_datum *t = sl_morais_thesis; t->scene; t++, n++) {
+    for (const struct sl_morais_datum *t = thesis(); t->scene; t++, n++) {
         assert_true(t->table >= 4 && t->table <= 24);
         per_table[t->table]++;
         noted += t->note != NULL;
@@ -77,7 +90,7 @@ static void morais_transcription(void **st)
     assert_int_equal(n, 3 * 12 + 18 * 72);
     assert_true(checked > n - 2 * noted - 10);   /* a note skips its row and the rows it is the base of */
     /* the thesis's own sums: each table's light + shadow are the case's PFL (Tables 4-6) */
-    for (const struct sl_morais_datum *t = sl_morais_thesis; t->scene; t++) {
+    for (const struct sl_morais_datum *t = thesis(); t->scene; t++) {
         if (t->table < 7 || t->table > 18 || t->row != SL_MR_light)
             continue;
         const struct sl_morais_datum *s = find(t->table, t->vw, t->map_size, SL_MR_shadow);
@@ -105,8 +118,12 @@ static void morais_transcription(void **st)
     assert_int_equal(find(19, 512, 2048, SL_MR_light_correct)->n, 168949);   /* printed 1168949 */
     assert_non_null(find(19, 512, 2048, SL_MR_light_correct)->note);
     /* Tables 25-30: 3 viewports x 4 maps x 3 columns each */
-    int times[31] = {0}, nt = 0;
-    for (const struct sl_morais_time *t = sl_morais_times; t->scene; t++, nt++) {
+    int times[31] = {0}, nt = 0, ntimes;
+    const struct sl_morais_time *tt;
+    struct sl_diag d;
+    if (sl_theses_morais_times(&tt, &ntimes, &d))
+        fail_msg("%s:%d: %s: %s", d.file, d.line, d.key, d.msg);
+    for (const struct sl_morais_time *t = tt; t->scene; t++, nt++) {
         assert_true(t->table >= 25 && t->table <= 30);
         assert_int_equal(t->stage, (t->table - 25) % 2);
         assert_true(t->ms > 0.0);
@@ -115,6 +132,7 @@ static void morais_transcription(void **st)
     for (int k = 25; k <= 30; k++)
         assert_int_equal(times[k], 36);
     assert_int_equal(nt, 216);
+    assert_int_equal(ntimes, 216);
 }
 
 /* ---- cells ---- */

@@ -310,6 +310,10 @@ static const struct {
     {"SHADOWLAB_TECHNIQUES", "Colon-separated folders searched for technique packages after a config's "
                              "'techniques:' folders and before the source tree's techniques/ and the installed "
                              "share/shadowlab/techniques; the first package of a name wins."},
+    {"SHADOWLAB_THESES", "The folder report reads the theses' data files from (moderno-2011.csv, "
+                         "morais-2015.csv, morais-2015-times.csv) instead of the installed "
+                         "share/shadowlab/theses (or, not installed, the source tree's report/theses/); a "
+                         "damaged file stops the report with its file, line and column (exit 2)."},
     {"SHADOWLAB_MODULE_DIR", "A folder searched first for the modules loaded on first use "
                              "(shadowlab-oiio.so, shadowlab-sheet.so); otherwise beside the binary, then "
                              "lib/shadowlab under its prefix."},
@@ -356,6 +360,9 @@ static const char man_files[] =
     "    The shipped scenes.\n"
     "PREFIX/share/shadowlab/techniques/\n"
     "    The shipped technique packages.\n"
+    "PREFIX/share/shadowlab/theses/\n"
+    "    The theses' printed numbers that report puts beside a study's: one CSV file per thesis, "
+    "README.md there gives their columns.\n"
     "DIR/shadowlab.db, DIR/shadowlab.db.lock\n"
     "    The results store of a run with --out DIR (doc/store.md), and the lock a writer holds on it while it "
     "writes (removed when it closes the store).\n"
