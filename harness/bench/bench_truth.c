@@ -283,12 +283,9 @@ enum sl_err sl_bench_truth(struct sl_bench_ctx *x, struct sl_bench_result *res, 
      * without AVX (SSE4.2, 4) gets, measured here against the plain loop
      * of the same width. Not when SHADOWLAB_EMBREE_CONFIG already says how
      * to trace. */
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_cpu_init();
-    if (!e && !sl_rt_env_config() && native > 8 && __builtin_cpu_supports("avx2"))
+    if (!e && !sl_rt_env_config() && native > 8 && sl_rt_cpu_runs("avx2"))
         e = truth_variant(x, res, "avx2", NULL, d);
-    if (!e && !sl_rt_env_config() && native > 4 && __builtin_cpu_supports("sse4.2"))
+    if (!e && !sl_rt_env_config() && native > 4 && sl_rt_cpu_runs("sse4.2"))
         e = truth_variant(x, res, "sse4.2", NULL, d);
-#endif
     return e;
 }

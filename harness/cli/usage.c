@@ -299,8 +299,8 @@ static const struct {
     {"SHADOWLAB_EMBREE_CONFIG", "Appended to the device config given to Embree (rtcNewDevice) for every "
                                 "ray trace: key=value pairs separated by commas, e.g. isa=sse4.2 or "
                                 "isa=avx2 to run Embree's SSE or AVX2 kernels on any CPU that has them, or "
-                                "threads=1. Keys and ISA names Embree 3 does not document are refused (exit "
-                                "2). Recorded in run.yaml (embree_config, beside embree_packets: the packet "
+                                "threads=1. Keys and ISA names Embree 3 does not document, and an isa= this "
+                                "CPU cannot run, are refused (exit 2). Recorded in run.yaml (embree_config, beside embree_packets: the packet "
                                 "width the truth used) and in the store's runs.embree. For testing and for "
                                 "machines that need it; the results are the same under every ISA (CI "
                                 "checks it)."},

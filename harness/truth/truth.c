@@ -97,6 +97,37 @@ static int in_list(const char *const *list, const char *s, size_t n)
     return 0;
 }
 
+/* Whether this CPU runs Embree's kernels for `isa` (n bytes). Embree 3
+ * takes 'isa=' as given, without asking the CPU: kernels it lacks would
+ * stop the program on an illegal instruction. Its AVX-512 kernels are
+ * Skylake-X's (F, CD, BW, DQ, VL). Only x86 is asked; elsewhere any name
+ * passes to Embree. */
+static int cpu_runs(const char *isa, size_t n)
+{
+    if (!isa)
+        return 0;
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_cpu_init();
+    if (n == 6 && strncmp(isa, "sse4.2", 6) == 0)
+        return __builtin_cpu_supports("sse4.2");
+    if (n == 3 && strncmp(isa, "avx", 3) == 0)
+        return __builtin_cpu_supports("avx");
+    if (n == 4 && strncmp(isa, "avx2", 4) == 0)
+        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    if (n == 6 && strncmp(isa, "avx512", 6) == 0)
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+               __builtin_cpu_supports("avx512vl");
+#endif
+    (void)isa, (void)n;
+    return 1;
+}
+
+int sl_rt_cpu_runs(const char *isa)
+{
+    return isa && cpu_runs(isa, strlen(isa));
+}
+
 enum sl_err sl_rt_check_env(struct sl_diag *d)
 {
     const char *user = sl_rt_env_config();
@@ -119,6 +150,10 @@ enum sl_err sl_rt_check_env(struct sl_diag *d)
         if (isa && !in_list(rtc_isas, val, vlen))
             return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_EMBREE_CONFIG",
                            "'%.*s' in '%s': the ISA is sse2, sse4.2, avx, avx2 or avx512", (int)len, t, user);
+        if (isa && key == 3 && !cpu_runs(val, vlen))
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "SHADOWLAB_EMBREE_CONFIG",
+                           "'%.*s' in '%s': this CPU does not run Embree's %.*s kernels (max_isa= caps the "
+                           "choice instead)", (int)len, t, user, (int)vlen, val);
         for (size_t i = 0; i < vlen; i++)
             if (!(val[i] == '.' || val[i] == '_' || (val[i] >= '0' && val[i] <= '9') ||
                   (val[i] >= 'a' && val[i] <= 'z')))

@@ -38,6 +38,10 @@ const char *sl_rt_env_config(void);
  * Embree documents (rtcNewDevice(3): key=value pairs, known keys, known ISA
  * names); loads nothing, so a verb checks it before it writes anything. */
 enum sl_err sl_rt_check_env(struct sl_diag *d);
+/* Whether this CPU runs Embree's kernels for isa (sse4.2, avx, avx2,
+ * avx512): an isa= the CPU lacks is refused (Embree would take it and stop
+ * on an illegal instruction). */
+int sl_rt_cpu_runs(const char *isa);
 
 /* Trace the 16 rays of a tile (packet.h) in packets of the device's native
  * width; active lanes come back with tfar = -inf where occluded. */
