@@ -12,7 +12,8 @@
 # It also checks the packet width each run says it used (run.yaml,
 # embree_packets): 4 under SSE4.2, 8 under AVX2 — the device's native width
 # (harness/truth/packet.h) — and that a SHADOWLAB_EMBREE_CONFIG Embree does
-# not document is refused (exit 2) before anything is written.
+# not document is refused (exit 2) before anything is written, by run and by
+# bench.
 #
 # On the code before packet.h (16-wide packets with unwritten lanes) the
 # forced runs abort in Embree's assertions (exit 134), so this test fails
@@ -104,4 +105,14 @@ for bad in isa=avx-2 isa=AVX2 nonsense=1 isa ",isa=avx2"; do
         echo "ok: SHADOWLAB_EMBREE_CONFIG='$bad' refused: $(head -1 "$tmp/bad.log")"
     fi
 done
+# ... by bench too, before any stage
+SHADOWLAB_EMBREE_CONFIG=isa=avx-2 "$bin" bench --only truth --reps 1 >"$tmp/bench.log" 2>&1
+rc=$?
+if [ $rc != 2 ] || ! grep -q "SHADOWLAB_EMBREE_CONFIG" "$tmp/bench.log"; then
+    echo "FAIL: bench with SHADOWLAB_EMBREE_CONFIG='isa=avx-2': exit $rc (want 2):"
+    cat "$tmp/bench.log"
+    fails=1
+else
+    echo "ok: bench refuses SHADOWLAB_EMBREE_CONFIG='isa=avx-2': $(head -1 "$tmp/bench.log")"
+fi
 exit $fails

@@ -159,14 +159,16 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
     size_t studies_len = 0;
     struct sl_bench_result study_rows;
     memset(&study_rows, 0, sizeof study_rows);
-    if ((e = sl_rt_check_env(d)))
-        goto done;
 
     /* start-up first, while this process has loaded nothing heavy (its own
      * RSS is the floor of its children's; bench_startup.c); its table is
      * printed in its turn, after the header */
     char *startup_md = NULL;
     size_t startup_len = 0;
+    /* a bad SHADOWLAB_EMBREE_CONFIG stops the bench before any stage (after
+     * the declarations that done frees) */
+    if ((e = sl_rt_check_env(d)))
+        goto done;
     if (stages & SL_BENCH_STAGE(STARTUP)) {
         FILE *mem = open_memstream(&startup_md, &startup_len);
         if (!mem)
