@@ -24,6 +24,7 @@
  */
 #define _DEFAULT_SOURCE
 #include "theses.h"
+#include "util.h"
 #include <errno.h>
 #include <math.h>
 #include <stddef.h>
@@ -123,31 +124,15 @@ const char *sl_thesis_file_name(enum sl_thesis_kind k)
 
 /* ---- where the files are ---- */
 
-/* <prefix>/share/shadowlab/theses beside an installed binary
- * (<prefix>/bin/shadowlab), "" when there is none: an installed binary never
- * reads the tree it was built from, as scenes/ (scenefile.c) */
+/* The installed share folder (util.h, sl_share_dir), once. */
 static const char *installed_dir(void)
 {
     static char dir[1024];
     static int done;
-    if (done)
-        return dir;
-    done = 1;
-    char exe[900];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n <= 0)
-        return dir;
-    exe[n] = '\0';
-    for (int up = 0; up < 2; up++) {   /* <prefix>/bin/shadowlab -> <prefix> */
-        char *slash = strrchr(exe, '/');
-        if (!slash)
-            return dir;
-        *slash = '\0';
+    if (!done) {
+        done = 1;
+        sl_share_dir("theses", dir, sizeof dir);
     }
-    snprintf(dir, sizeof dir, "%s/share/shadowlab/theses", exe);
-    struct stat st;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-        dir[0] = '\0';
     return dir;
 }
 

@@ -29,6 +29,27 @@ int sl_cpu_count(void)
     return n > 0 ? (int)(n > 1 << 20 ? 1 << 20 : n) : 1;
 }
 
+int sl_share_dir(const char *sub, char *dir, size_t n)
+{
+    dir[0] = '\0';
+    char exe[900];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len <= 0)
+        return 0;
+    exe[len] = '\0';
+    for (int up = 0; up < 2; up++) {   /* <prefix>/bin/shadowlab -> <prefix> */
+        char *slash = strrchr(exe, '/');
+        if (!slash)
+            return 0;
+        *slash = '\0';
+    }
+    snprintf(dir, n, "%s/share/shadowlab/%s", exe, sub);
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
+        dir[0] = '\0';
+    return dir[0] != '\0';
+}
+
 double sl_now(void)
 {
     struct timespec ts;

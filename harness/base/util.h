@@ -10,7 +10,11 @@
 #include "sl_error.h"
 
 double sl_now(void);                      /* monotonic seconds */
-int    sl_cpu_count(void);                 /* cores this process may run on (its affinity mask), >= 1 */
+int    sl_cpu_count(void);
+/* <prefix>/share/shadowlab/SUB beside an installed binary (<prefix>/bin/shadowlab),
+ * found from the binary's own place so the tree can move; "" (and 0) when that
+ * folder does not exist: an installed binary never reads its source tree. */
+int    sl_share_dir(const char *sub, char *dir, size_t n);                 /* cores this process may run on (its affinity mask), >= 1 */
 void  *sl_calloc(size_t n, size_t size);  /* NULL on failure or overflow */
 
 /* The folder a path names its file in ("a/b/c.db" -> "a/b"; "c.db" -> ".")

@@ -227,33 +227,15 @@ static int unit3(const float *in, float *out)
     return 1;
 }
 
-/* The installed share folder, found from the binary's own place
- * (<prefix>/bin/shadowlab -> <prefix>/share/shadowlab/scenes), so an
- * installed tree can be moved or installed under any prefix. "" if absent. */
+/* The installed share folder (util.h, sl_share_dir), once. */
 static const char *installed_dir(void)
 {
     static char dir[1024];
     static int done;
-    if (done)
-        return dir;
-    done = 1;
-    char exe[900];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n <= 0)
-        return dir;
-    exe[n] = '\0';
-    char *slash = strrchr(exe, '/');
-    if (!slash)
-        return dir;
-    *slash = '\0';                /* <prefix>/bin */
-    slash = strrchr(exe, '/');
-    if (!slash)
-        return dir;
-    *slash = '\0';                /* <prefix> */
-    snprintf(dir, sizeof dir, "%s/share/shadowlab/scenes", exe);
-    struct stat st;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-        dir[0] = '\0';
+    if (!done) {
+        done = 1;
+        sl_share_dir("scenes", dir, sizeof dir);
+    }
     return dir;
 }
 
