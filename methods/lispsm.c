@@ -21,12 +21,15 @@ static unsigned lispsm_needs(const struct sl_method_params *p)
     return 0;   /* renders its own frame */
 }
 
+static const struct sl_param lispsm_params[] = {SL_SELF_SHADOW_DECL};
+
 static enum sl_err lispsm_configure(struct sl_method_params *p, struct sl_diag *d)
 {
     enum sl_err e = sl_method_nsm.configure(p, d);
     if (e)
         return e;
-    if (p->self_shadow == SL_SELF_CONSTANT || p->self_shadow == SL_SELF_SLOPE)
+    int policy = (int)sl_method_param(p, "self_shadow");
+    if (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE)
         return sl_fail(d, SL_E_METHOD, NULL, 0, "self_shadow",
                        "lispsm takes self_shadow front_faces, none or triangle_id: a depth bias in texels "
                        "assumes a uniform map");
@@ -44,7 +47,7 @@ const struct sl_method sl_method_lispsm = {
     .summary = "light space perspective shadow maps (Wimmer et al. 2004), NSM's lookup",
     .lights = SL_LIGHTS_DIRECTIONAL,
     .figures = SL_FIGS_ALIASING,
-    .params_ok = SL_PARAM_SELF_SHADOW,
+    SL_METHOD_PARAMS(lispsm_params),
     .needs = lispsm_needs,
     .configure = lispsm_configure,
     .run = lispsm_run,

@@ -5,19 +5,21 @@
  * answer. The table of methods and its lookups are in registry.c.
  */
 #include <stdlib.h>
+#include <string.h>
 #include "method.h"
 #include "raytri.h"
 #include "truth.h"
 #include "util.h"
 
+void sl_method_params_init(const struct sl_method *m, struct sl_method_params *p)
+{
+    memset(p, 0, sizeof *p);
+    sl_params_init(&p->values, m->params, m->nparams);
+}
+
 enum sl_err sl_method_configure(const struct sl_method *m, struct sl_method_params *p, struct sl_diag *d)
 {
-    if (m->configure)
-        return m->configure(p, d);
-    /* no configure: the zeros are the defaults, and the keys it reads are
-     * those of params_ok the config gave (config.c refused the others) */
-    p->set &= m->params_ok;
-    return SL_OK;
+    return m->configure ? m->configure(p, d) : SL_OK;
 }
 
 int sl_method_unmapped_missed(const struct sl_method_args *a, const float p[3], uint32_t own, uint64_t *tests)

@@ -12,7 +12,7 @@
  * (doc/adding-a-method.md walks through a 3x3 PCF method).
  *
  * The face. struct sl_method has a core every method fills (name, summary,
- * exact, lights, params_ok, needs, run; configure may be NULL) and an
+ * exact, lights, params, needs, run; configure may be NULL) and an
  * optional fast path (struct sl_method_fast, zero: none) that only lets the
  * driver hand the same layers more cheaply. A method that leaves the fast
  * path zero gets every layer dense and computes every lookup itself, and
@@ -33,10 +33,14 @@
  *   SL_GUARD_TEXELS (frame.h) around its receivers, sized for that reach,
  *   so such a lookup never reads a border, a clamp or another face's map
  *   (cube.h). A wider footprint needs SL_LOOK_REACH raised first.
- * - Zero means the default: a method's parameters arrive zeroed but for
- *   the keys the config gave (`set`); configure fills in the rest and
- *   leaves in `set` exactly the keys it reads. A NULL configure takes the
- *   zeros as the defaults and reads the keys of params_ok the config gave.
+ * - Parameters are declared, one line each, in the method's `params`
+ *   (base/params.h: name, type, default, range or choices, doc, unit). A
+ *   config's values arrive checked against them, the rest at their
+ *   defaults; the method reads each by name (sl_method_param). configure
+ *   (optional) checks what one parameter says of another, derives a default
+ *   that depends on another (sl_params_derive) and marks the ones that do
+ *   not apply to the values given (sl_params_off: nsm's bias under
+ *   front_faces), which a config may then not give.
  * - Costs (struct sl_cost) are machine-independent counts beside the time:
  *   `lookups` one per shadow-map texel read (a 3x3 PCF is 9 a pixel),
  *   `rays` one per ray given to Embree (sl_method_trace_left counts its
@@ -48,7 +52,8 @@
 #define SL_METHOD_H
 #include <stdint.h>
 #include "frame.h"
-#include "knobs.h"
+#include "methodparams.h"
+#include "selfshadow.h"
 #include "scene.h"
 #include "sl_error.h"
 #include "view.h"
@@ -223,16 +228,16 @@ struct sl_method {
     unsigned    exact;         /* SL_EXACT_* */
     unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only;
                                 * SL_LIGHTS_DIRECTIONAL: hard shadows, directional lights only */
-    unsigned    params_ok;     /* SL_PARAM_* bits it reads */
+    const struct sl_param *params;   /* its parameters, declared (base/params.h); NULL: none */
+    int         nparams;
     unsigned    figures;       /* optional figure families its study reads (SL_FIGS_*): computed for
                                 * a config's cells only where one of its methods asks, or the config
                                 * does (outputs.aliasing); 0: the figures every method gets */
     /* Layers the method reads, given its parameters. */
     unsigned (*needs)(const struct sl_method_params *p);
-    /* Fill defaults for unset keys and check values; on return `set` holds
-     * exactly the keys the method reads with these parameters. NULL: the
-     * zeros are the defaults, any value is fine, and it reads the keys of
-     * params_ok the config gave (sl_method_configure). */
+    /* Check the values against each other, derive dependent defaults, mark
+     * the parameters that do not apply (see the rules above). NULL: the
+     * declarations say all. */
     enum sl_err (*configure)(struct sl_method_params *p, struct sl_diag *d);
     enum sl_err (*run)(const struct sl_method_args *a, struct sl_verdicts *out,
                        struct sl_cost *c, struct sl_diag *d);
@@ -243,8 +248,27 @@ struct sl_method {
 static inline const char *sl_method_family(const struct sl_method *m) { return m && m->family ? m->family : ""; }
 static inline const char *sl_method_beside(const struct sl_method *m) { return m && m->beside ? m->beside : ""; }
 
-/* The driver's reads of the face: configure with NULL meaning the defaults,
- * and the fast path, zero where a method gives none. */
+/* A C method's declarations in its struct: `SL_METHOD_PARAMS(arr)` gives
+ * .params and .nparams of a const array. */
+#define SL_METHOD_PARAMS(arr) .params = (arr), .nparams = (int)(sizeof(arr) / sizeof((arr)[0]))
+
+/* The parameters of m at their defaults, nothing given (a package's
+ * method: its package's and its cascades', methods/package.h). */
+void sl_method_params_init(const struct sl_method *m, struct sl_method_params *p);
+/* Give one by name (checked against its declaration: base/params.h). */
+static inline enum sl_err sl_method_param_put(struct sl_method_params *p, const char *name, double x,
+                                              struct sl_diag *d)
+{
+    return sl_params_put(&p->values, name, x, d);
+}
+/* A parameter's value by name (NaN for a name m does not declare). */
+static inline double sl_method_param(const struct sl_method_params *p, const char *name)
+{
+    return sl_params_get(&p->values, name);
+}
+
+/* The driver's reads of the face: configure with NULL meaning the
+ * declarations say all, and the fast path, zero where a method gives none. */
 enum sl_err sl_method_configure(const struct sl_method *m, struct sl_method_params *p, struct sl_diag *d);
 static inline unsigned sl_method_at_pixel(const struct sl_method *m) { return m->fast.at_pixel; }
 static inline unsigned sl_method_looks(const struct sl_method *m) { return m->fast.looks; }

@@ -43,32 +43,23 @@ enum kind { K_COHERENCE, K_TEXEL, K_NEIGHBOURS, K_ADJACENCY };
 static unsigned needs_map(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_DEPTH_ID_BACK); }
 static unsigned needs_adj(const struct sl_method_params *p) { (void)p; return SL_NEED(SL_LAYER_DEPTH_ID_BACK) | SL_NEED_ADJACENCY; }
 
+/* texels: 4 (2x2) or 9 (3x3), declared as the range 4..9 and checked here */
+static const struct sl_param texels_params[] = {
+    SL_PARAM_INT_DECL("texels", 4, 4, 9, "texels", "texels tested: 4 (2x2) or 9 (3x3)"),
+};
+static const struct sl_param level_params[] = {
+    SL_PARAM_INT_DECL("level", 2, 1, 2, "", "1: the stored triangle's edge neighbours; 2: and its vertex neighbours"),
+};
+static const struct sl_param chain_params[] = {
+    SL_PARAM_CHOICE_DECL("finish", 0, "what the chain does with the pixels its steps leave: trace them or leave them lit",
+                         "trace", "lit"),
+};
+
 static enum sl_err conf_texels(struct sl_method_params *p, struct sl_diag *d)
 {
-    if (!(p->set & SL_PARAM_TEXELS))
-        p->texels = 4;
-    if (p->texels != 4 && p->texels != 9)
+    int texels = (int)sl_method_param(p, "texels");
+    if (texels != 4 && texels != 9)
         return sl_fail(d, SL_E_METHOD, NULL, 0, "texels", "texels must be 4 or 9");
-    p->set = SL_PARAM_TEXELS;
-    return SL_OK;
-}
-
-static enum sl_err conf_level(struct sl_method_params *p, struct sl_diag *d)
-{
-    if (!(p->set & SL_PARAM_LEVEL))
-        p->level = 2;
-    if (p->level != 1 && p->level != 2)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "level", "level must be 1 (edges) or 2 (vertices)");
-    p->set = SL_PARAM_LEVEL;
-    return SL_OK;
-}
-
-static enum sl_err conf_chain(struct sl_method_params *p, struct sl_diag *d)
-{
-    (void)d;
-    if (!(p->set & SL_PARAM_FINISH))
-        p->finish = 0;
-    p->set = SL_PARAM_FINISH;
     return SL_OK;
 }
 
@@ -265,7 +256,8 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "moderno: no adjacency");
     const struct ctx c = ctx_of(a);
     const long n = (long)v->w * v->h;
-    const struct sl_method_params *prm = a->params;
+    const int texels = kind == K_COHERENCE || kind == K_NEIGHBOURS ? (int)sl_method_param(a->params, "texels") : 0;
+    const int level = kind == K_ADJACENCY ? (int)sl_method_param(a->params, "level") : 0;
     out->has_base = 1;
     out->has_detail = kind == K_COHERENCE;
     uint64_t lookups = 0, tests = 0;
@@ -289,7 +281,7 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
         struct sray ray;
         switch (kind) {
         case K_COHERENCE:
-            coh = coherence(&c, i, u, w, z, prm->texels, &lookups, &shadowed);
+            coh = coherence(&c, i, u, w, z, texels, &lookups, &shadowed);
             out->v[i] = coh == 1 ? SL_V_LIT : coh == 2 ? SL_V_SHADOW : SL_V_UNCERTAIN;
             out->how[i] = coh ? SL_HOW_HINT : SL_HOW_NONE;
             out->detail[i] = (uint8_t)shadowed;
@@ -300,11 +292,11 @@ static enum sl_err run_kind(const struct sl_method_args *a, struct sl_verdicts *
             break;
         case K_NEIGHBOURS:
             sray_of(&c, p, &ray);
-            hit = neighbours_hit(&c, &ray, u, w, prm->texels, own, &lookups, &tests);
+            hit = neighbours_hit(&c, &ray, u, w, texels, own, &lookups, &tests);
             break;
         case K_ADJACENCY:
             sray_of(&c, p, &ray);
-            hit = adjacency_hit(&c, &ray, stored_at(&c, i, q.k), prm->level, own, &tests);
+            hit = adjacency_hit(&c, &ray, stored_at(&c, i, q.k), level, own, &tests);
             break;
         }
         out->tests[i] = (uint8_t)(tests - tests_before > 255 ? 255 : tests - tests_before);
@@ -395,7 +387,7 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
             out->v[i] = SL_V_LIT;
             out->how[i] = SL_HOW_FALLBACK;
         }
-    if (a->params->finish == 0) {
+    if (sl_method_param(a->params, "finish") == 0) {   /* trace */
         for (long i = 0; i < n; i++)
             stage[i] = stage[i] == 3;
         double ms_method = cost->ms_method;
@@ -416,7 +408,7 @@ static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts 
 
 const struct sl_method sl_method_coherence = {
     .name = "coherence", .display = "Texel coherence", .family = "moderno-2011", .summary = "texel coherence, 4 or 9 texels (Moderno 2011): hints, may be wrong",
-    .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels, .run = run_coherence,
+    SL_METHOD_PARAMS(texels_params), .needs = needs_map, .configure = conf_texels, .run = run_coherence,
     .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF},
 };
 const struct sl_method sl_method_texel = {
@@ -426,16 +418,16 @@ const struct sl_method sl_method_texel = {
 };
 const struct sl_method sl_method_neighbours = {
     .name = "neighbours", .display = "Neighbour texels", .family = "moderno-2011", .summary = "rays against the triangles of 4 or 9 texels (Moderno 2011)",
-    .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_TEXELS, .needs = needs_map, .configure = conf_texels,
+    .exact = SL_EXACT_PROVED, SL_METHOD_PARAMS(texels_params), .needs = needs_map, .configure = conf_texels,
     .run = run_neighbours, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };
 const struct sl_method sl_method_adjacency = {
     .name = "adjacency", .display = "Adjacent geometry", .family = "moderno-2011", .summary = "rays against the stored triangle and its edge (1) or vertex (2) neighbours",
-    .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_LEVEL, .needs = needs_adj, .configure = conf_level,
+    .exact = SL_EXACT_PROVED, SL_METHOD_PARAMS(level_params), .needs = needs_adj,
     .run = run_adjacency, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };
 const struct sl_method sl_method_chain = {
     .name = "chain", .display = "Moderno chain", .family = "moderno-2011", .summary = "coherence(4) -> neighbours(9) -> adjacency(2) -> traced or lit (Moderno 2011)",
-    .exact = SL_EXACT_PROVED, .params_ok = SL_PARAM_FINISH, .needs = needs_adj, .configure = conf_chain,
+    .exact = SL_EXACT_PROVED, SL_METHOD_PARAMS(chain_params), .needs = needs_adj,
     .run = run_chain, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF},
 };

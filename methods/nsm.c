@@ -30,7 +30,7 @@
 
 static int policy_of(const struct sl_method_params *p)
 {
-    return p->self_shadow;
+    return (int)sl_method_param(p, "self_shadow");
 }
 
 static unsigned nsm_needs(const struct sl_method_params *p)
@@ -39,32 +39,31 @@ static unsigned nsm_needs(const struct sl_method_params *p)
                                                : SL_NEED(SL_LAYER_DEPTH_ID);
 }
 
+static const struct sl_param nsm_params[] = {SL_SELF_SHADOW_DECL, SL_DEPTH_BIAS_DECLS};
+
+/* bias applies to the constant and slope policies, slope to slope alone;
+ * bias defaults to 1 texel under constant and to 0 under slope (the slope
+ * term carries it). */
 static enum sl_err nsm_configure(struct sl_method_params *p, struct sl_diag *d)
 {
-    if (!(p->set & SL_PARAM_SELF_SHADOW))
-        p->self_shadow = SL_SELF_FRONT_FACES;
-    if (p->self_shadow < 0 || p->self_shadow >= SL_SELF_COUNT)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "self_shadow", "unknown self-shadow policy");
-    int uses_bias = p->self_shadow == SL_SELF_CONSTANT || p->self_shadow == SL_SELF_SLOPE;
-    int uses_slope = p->self_shadow == SL_SELF_SLOPE;
-    if ((p->set & SL_PARAM_BIAS) && !uses_bias)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "bias",
-                       "bias applies to self_shadow constant or slope, not %s",
-                       sl_self_shadow_name(p->self_shadow));
-    if ((p->set & SL_PARAM_SLOPE) && !uses_slope)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "slope",
-                       "slope applies to self_shadow slope, not %s",
-                       sl_self_shadow_name(p->self_shadow));
-    if (!(p->set & SL_PARAM_BIAS))
-        p->bias = p->self_shadow == SL_SELF_CONSTANT ? 1.0f : 0.0f;
-    if (!(p->set & SL_PARAM_SLOPE))
-        p->slope = uses_slope ? 1.0f : 0.0f;
-    /* the filled-in parameters are exactly the keys this policy reads */
-    p->set = SL_PARAM_SELF_SHADOW | (uses_bias ? SL_PARAM_BIAS : 0u) | (uses_slope ? SL_PARAM_SLOPE : 0u);
-    if (!(p->bias >= 0.0f && p->bias <= 1000.0f))
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "bias", "bias must be in [0, 1000] texels");
-    if (!(p->slope >= 0.0f && p->slope <= 1000.0f))
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "slope", "slope must be in [0, 1000]");
+    struct sl_params *s = &p->values;
+    int policy = policy_of(p);
+    int uses_bias = policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE;
+    int uses_slope = policy == SL_SELF_SLOPE;
+    char when[96];
+    snprintf(when, sizeof when, "self_shadow constant or slope, not %s", sl_self_shadow_name(policy));
+    enum sl_err e = SL_OK;
+    if (!uses_bias)
+        e = sl_params_off(s, "bias", when, d);
+    snprintf(when, sizeof when, "self_shadow slope, not %s", sl_self_shadow_name(policy));
+    if (!e && !uses_slope)
+        e = sl_params_off(s, "slope", when, d);
+    if (e)
+        return e;
+    if (!sl_params_given(s, "bias"))
+        sl_params_derive(s, "bias", policy == SL_SELF_CONSTANT ? 1.0 : 0.0);
+    if (!uses_slope)
+        sl_params_derive(s, "slope", 0.0);
     return SL_OK;
 }
 
@@ -85,8 +84,8 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
      * scale at the pixel's depth, and the slope toward the light point) */
     const int persp = f->box.persp;
     const float texel_z = f->texel_world / f->depth_range;
-    const float bias_texels = (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE) ? a->params->bias : 0.0f;
-    const float slope_texels = policy == SL_SELF_SLOPE ? a->params->slope : 0.0f;
+    const float bias_texels = (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE) ? (float)sl_method_param(a->params, "bias") : 0.0f;
+    const float slope_texels = policy == SL_SELF_SLOPE ? (float)sl_method_param(a->params, "slope") : 0.0f;
     const float bias = bias_texels * texel_z;
     const float slope = slope_texels * texel_z;
     const float *Ld = a->scene->light_dir;
@@ -149,7 +148,7 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
 const struct sl_method sl_method_nsm = {
     .name = "nsm", .display = "NSM", .beside = "moderno-2011 morais-2015",
     .summary = "normal shadow mapping (self_shadow: front_faces|none|constant|slope|triangle_id)",
-    .params_ok = SL_PARAM_SELF_SHADOW | SL_PARAM_BIAS | SL_PARAM_SLOPE,
+    SL_METHOD_PARAMS(nsm_params),
     .needs = nsm_needs,
     .configure = nsm_configure,
     .run = nsm_run,

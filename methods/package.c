@@ -15,6 +15,8 @@
 struct pkg {
     struct sl_method    m;
     struct sl_technique t;      /* the package (sources owned) */
+    /* m's parameters: the package's own, in its order, then the cascades' */
+    struct sl_param     decl[SL_TECH_MAX_PARAMS + 2];
     struct sl_techpass  pass;   /* its GL programs and maps, once prepared */
     int                 ready;
 };
@@ -36,23 +38,24 @@ static unsigned pkg_needs(const struct sl_method_params *p)
     return 0;   /* the maps are its own (techpass.h), rendered in run */
 }
 
-/* The knobs a package entry may give beside its own parameters: cascades
+/* The parameters a package entry may give beside its own: cascades
  * (partitions, lambda: the z-partitioning of zpart.c, seed 004 eq. 62).
  * partitions 1 (the default) is the cell's own light frame. */
+static const struct sl_param cascade_params[2] = {
+    SL_PARAM_INT_DECL("partitions", 1, 1, CASCADES_MAX, "",
+                      "cascades: the package's maps over the view's depth slices (1: the cell's own frame)"),
+    SL_PARAM_FLOAT_DECL("lambda", 0.5, 0, 1, "", "cascades' split planes, 0 uniform .. 1 logarithmic (seed 004 eq. 62)"),
+};
+
 static enum sl_err pkg_configure(struct sl_method_params *p, struct sl_diag *d)
 {
-    if (!(p->set & SL_PARAM_PARTITIONS))
-        p->partitions = 1;
-    if (!(p->set & SL_PARAM_LAMBDA))
-        p->lambda = 0.5f;
-    if (p->partitions < 1 || p->partitions > CASCADES_MAX)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "partitions", "partitions must be 1 to %d", CASCADES_MAX);
-    if (!(p->lambda >= 0.0f && p->lambda <= 1.0f))
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "lambda", "lambda must be in [0, 1]");
-    if ((p->set & SL_PARAM_LAMBDA) && p->partitions == 1)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "lambda", "lambda splits cascades: give partitions 2 to %d",
-                       CASCADES_MAX);
-    p->set &= SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA;
+    struct sl_params *s = &p->values;
+    if (sl_params_get(s, "partitions") == 1) {
+        if (sl_params_given(s, "lambda"))
+            return sl_fail(d, SL_E_METHOD, NULL, 0, "lambda", "lambda splits cascades: give partitions 2 to %d",
+                           CASCADES_MAX);
+        return sl_params_off(s, "lambda", "cascades", d);
+    }
     return SL_OK;
 }
 
@@ -72,7 +75,7 @@ static enum sl_err pkg_frame(struct pkg *k, const struct sl_method_args *a, cons
                              const uint8_t *mask, float *vis, struct sl_cost *c, struct sl_diag *d)
 {
     const struct sl_view *v = a->view;
-    const struct sl_tech_values *tv = &a->params->pkg;
+    const struct sl_params *tv = &a->params->values;   /* the package's come first */
     const struct sl_light *L = &a->scene->light;
     k->pass.light_width = L->type == SL_LIGHT_AREA ? fmaxf(L->size[0], L->size[1]) : 0.0f;
     enum sl_err e = sl_techpass_render(&k->pass, a->mesh, f, tv, d);
@@ -111,7 +114,7 @@ static enum sl_err pkg_cascades(struct pkg *k, const struct sl_method_args *a, u
                                 struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d)
 {
     const struct sl_view *v = a->view;
-    const int n = a->params->partitions;
+    const int n = (int)sl_method_param(a->params, "partitions");
     if (a->scene->light.type != SL_LIGHT_DIRECTIONAL)
         return sl_fail(d, SL_E_METHOD, NULL, 0, "partitions", "%s: cascades need a directional light", k->t.name);
     size_t npx = (size_t)v->w * (size_t)v->h;
@@ -126,7 +129,7 @@ static enum sl_err pkg_cascades(struct pkg *k, const struct sl_method_args *a, u
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cascades of %zu pixels", npx);
     }
     out->nown = n;
-    sl_zpart_slices(v, n, a->params->lambda, planes, out->slice);
+    sl_zpart_slices(v, n, (float)sl_method_param(a->params, "lambda"), planes, out->slice);
     enum sl_err e = SL_OK;
     for (int s = 0; s < n && !e; s++) {
         struct sl_light_box box;
@@ -173,7 +176,7 @@ static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *o
     uint8_t *mask = malloc(npx);
     if (!mask)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "lookup mask %dx%d", v->w, v->h);
-    if (a->params->partitions > 1) {
+    if (sl_method_param(a->params, "partitions") > 1) {
         e = pkg_cascades(k, a, mask, out, c, d);
     } else {
         for (size_t i = 0; i < npx; i++)
@@ -223,6 +226,8 @@ enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *
         }
         k->t = s.t[i];              /* takes the sources over */
         s.t[i].map_src = s.t[i].lookup_src = NULL;
+        memcpy(k->decl, k->t.param, (size_t)k->t.nparams * sizeof k->decl[0]);
+        memcpy(k->decl + k->t.nparams, cascade_params, sizeof cascade_params);
         k->m = (struct sl_method){
             .name = k->t.name,
             .summary = k->t.summary,
@@ -230,7 +235,8 @@ enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *
             .display = k->t.display[0] ? k->t.display : NULL,
             .exact = 0,
             .lights = SL_LIGHTS_NO_POINT,
-            .params_ok = SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA,   /* cascades */
+            .params = k->decl,
+            .nparams = k->t.nparams + 2,
             .needs = pkg_needs,
             .configure = pkg_configure,
             .run = pkg_run,

@@ -11,8 +11,9 @@
  * nothing; its verdict is lit iff the visibility >= the package's
  * threshold, and it hands the visibility itself to scoring (vd->vis,
  * has_vis) for the fractional figures. Its parameters are the package's,
- * given in the config entry like knobs (struct sl_method_params: tech,
- * pkg); costs: `lookups` the package's taps per pixel looked up, ms_method
+ * in the package's order, then the cascades' (partitions, lambda), given
+ * in the config entry like a C method's (struct sl_method_params: tech,
+ * values); costs: `lookups` the package's taps per pixel looked up, ms_method
  * the map pass, the post passes, the lookup pass and the readback, each
  * also apart in ms_step[0..3].
  *

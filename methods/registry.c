@@ -80,10 +80,3 @@ const char *sl_self_shadow_name(enum sl_self_shadow s)
     return (s >= 0 && s < SL_SELF_COUNT) ? sl_self_names[s] : "?";
 }
 
-int sl_self_shadow_parse(const char *name)
-{
-    for (int i = 0; i < SL_SELF_COUNT; i++)
-        if (strcmp(sl_self_names[i], name) == 0)
-            return i;
-    return -1;
-}

@@ -96,25 +96,26 @@ const struct sl_method sl_method_hard_point = {
  */
 static unsigned mc_needs(const struct sl_method_params *p) { (void)p; return SL_NEED_SOFT; }
 
+static const struct sl_param mc_params[] = {
+    SL_PARAM_INT_DECL("grid", 3, 1, 16, "", "rays per pixel = grid x grid (jittered points on the light)"),
+    SL_PARAM_CHOICE_DECL("search", 1, "the occluder search: linear (+ binary refinement) or hierarchical (N-buffer); "
+                         "default hierarchical, linear under layers 3", "linear", "hierarchical"),
+    SL_PARAM_INT_DECL("layers", 2, 1, 3, "", "1 (near only), 2 (near and far) or 3 (and the camera's depth)"),
+    SL_PARAM_BOOL_DECL("blur", 0, "true: the depth-sensitive screen-space blur; false: none"),
+};
+
+/* layers 3 reads the camera's depth, which only the linear search can
+ * use: search defaults to linear there, and hierarchical is refused */
 static enum sl_err mc_configure(struct sl_method_params *p, struct sl_diag *d)
 {
-    if (!(p->set & SL_PARAM_GRID))
-        p->grid = 3;
-    if (!(p->set & SL_PARAM_LAYERS))
-        p->layers = 2;
-    if (!(p->set & SL_PARAM_SEARCH))
-        p->search = p->layers == 3 ? 0 : 1;
-    if (!(p->set & SL_PARAM_BLUR))
-        p->blur = 0;
-    if (p->grid < 1 || p->grid > 16)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "grid", "grid %d: 1..16 (rays per pixel = grid^2)", p->grid);
-    if (p->layers < 1 || p->layers > 3)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "layers", "layers %d: 1, 2 or 3", p->layers);
-    if (p->layers == 3 && p->search)
+    struct sl_params *s = &p->values;
+    int layers = (int)sl_params_get(s, "layers");
+    if (!sl_params_given(s, "search"))
+        sl_params_derive(s, "search", layers == 3 ? 0 : 1);
+    if (layers == 3 && sl_params_get(s, "search") != 0)
         return sl_fail(d, SL_E_METHOD, NULL, 0, "layers",
                        "layers 3 (the camera's depth as a third layer) needs search: linear; the hierarchical "
                        "search cannot use it");
-    p->set = SL_PARAM_GRID | SL_PARAM_SEARCH | SL_PARAM_LAYERS | SL_PARAM_BLUR;
     return SL_OK;
 }
 
@@ -126,8 +127,10 @@ static enum sl_err mc_run(const struct sl_method_args *a, struct sl_verdicts *ou
 {
     const struct sl_method_params *p = a->params;
     struct sl_softmc_desc desc = {
-        .grid = p->grid, .seed = a->seed + 1u, .search = p->search ? SL_SOFTMC_HIER : SL_SOFTMC_LINEAR,
-        .layers = p->layers, .blur_radius = p->blur ? 4 : 0, .threads = a->threads,
+        .grid = (int)sl_method_param(p, "grid"), .seed = a->seed + 1u,
+        .search = sl_method_param(p, "search") != 0 ? SL_SOFTMC_HIER : SL_SOFTMC_LINEAR,
+        .layers = (int)sl_method_param(p, "layers"), .blur_radius = sl_method_param(p, "blur") != 0 ? 4 : 0,
+        .threads = a->threads,
     };
     return mc_desc_run(a, &desc, out, c, d);
 }
@@ -177,7 +180,7 @@ const struct sl_method sl_method_soft_mc = {
     .summary = "Curtis 2009: rays to jittered points on an area light through near/far layers, or near/far + "
                "the camera's depth with layers 3 and linear search (grid, search, layers, blur)",
     .lights = SL_LIGHTS_AREA,
-    .params_ok = SL_PARAM_GRID | SL_PARAM_SEARCH | SL_PARAM_LAYERS | SL_PARAM_BLUR,
+    SL_METHOD_PARAMS(mc_params),
     .needs = mc_needs,
     .configure = mc_configure,
     .run = mc_run,

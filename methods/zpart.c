@@ -46,28 +46,25 @@ static unsigned zpart_needs(const struct sl_method_params *p)
     return 0;   /* no layer of the cell's frame: it renders its own */
 }
 
+static const struct sl_param zpart_params[] = {
+    SL_SELF_SHADOW_DECL,
+    SL_DEPTH_BIAS_DECLS,
+    SL_PARAM_INT_DECL("partitions", 4, 1, ZPART_MAX, "", "shadow maps over the view's depth slices"),
+    SL_PARAM_FLOAT_DECL("lambda", 0.5, 0, 1, "", "split planes, 0 uniform .. 1 logarithmic (seed 004 eq. 62)"),
+    SL_PARAM_CHOICE_DECL("warp", 0, "each slice's map uniform (orthographic) or lispsm (Wimmer et al. 2004)",
+                         "uniform", "lispsm"),
+};
+
 static enum sl_err zpart_configure(struct sl_method_params *p, struct sl_diag *d)
 {
-    unsigned set = p->set;
-    p->set &= SL_PARAM_SELF_SHADOW | SL_PARAM_BIAS | SL_PARAM_SLOPE;
     enum sl_err e = sl_method_nsm.configure(p, d);
     if (e)
         return e;
-    if (!(set & SL_PARAM_PARTITIONS))
-        p->partitions = 4;
-    if (!(set & SL_PARAM_LAMBDA))
-        p->lambda = 0.5f;
-    if (!(set & SL_PARAM_WARP))
-        p->warp = 0;
-    p->set |= SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA | SL_PARAM_WARP;
-    if (p->warp && (p->self_shadow == SL_SELF_CONSTANT || p->self_shadow == SL_SELF_SLOPE))
+    int policy = (int)sl_method_param(p, "self_shadow");
+    if (sl_method_param(p, "warp") != 0 && (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE))
         return sl_fail(d, SL_E_METHOD, NULL, 0, "self_shadow",
                        "warp lispsm takes self_shadow front_faces, none or triangle_id: a depth bias in "
                        "texels assumes a uniform map");
-    if (p->partitions < 1 || p->partitions > ZPART_MAX)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "partitions", "partitions must be 1 to %d", ZPART_MAX);
-    if (!(p->lambda >= 0.0f && p->lambda <= 1.0f))
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "lambda", "lambda must be in [0, 1]");
     return SL_OK;
 }
 
@@ -189,7 +186,8 @@ static enum sl_err zpart_run(const struct sl_method_args *a, struct sl_verdicts 
                              struct sl_diag *d)
 {
     const struct sl_method_params *p = a->params;
-    return sl_zpart_run_k(a, p->partitions, p->lambda, p->warp, out, c, d);
+    return sl_zpart_run_k(a, (int)sl_method_param(p, "partitions"), (float)sl_method_param(p, "lambda"),
+                          (int)sl_method_param(p, "warp"), out, c, d);
 }
 
 const struct sl_method sl_method_zpart = {
@@ -198,8 +196,7 @@ const struct sl_method sl_method_zpart = {
                "warp uniform|lispsm)",
     .lights = SL_LIGHTS_DIRECTIONAL,
     .figures = SL_FIGS_ALIASING,
-    .params_ok = SL_PARAM_SELF_SHADOW | SL_PARAM_BIAS | SL_PARAM_SLOPE | SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA |
-                 SL_PARAM_WARP,
+    SL_METHOD_PARAMS(zpart_params),
     .needs = zpart_needs,
     .configure = zpart_configure,
     .run = zpart_run,

@@ -5,8 +5,8 @@
 #   project's flags and runs (example_method::*): the doc's code compiles
 #   and works;
 # - its registry lines have the form registry.c's lines have (an extern
-#   declaration and a table entry), and the knob its config uses is one of
-#   knobs.h's SL_KNOBS (method.h includes it);
+#   declaration and a table entry), and the parameter its config uses is
+#   one the method declares;
 # - the fast-path rules it cites are named in method.h.
 # Usage: doc_adding_a_method.sh   (run from the source tree)
 set -u
@@ -46,8 +46,8 @@ grep -q 'sl_method_pcf3' methods/registry.c && bad "the example is in the shippe
 
 # the config's knob, and the names the doc cites from method.h and frame.h
 grep -q 'method: pcf3, bias: ' "$doc" || bad "no config entry 'method: pcf3, bias: ...'"
-grep -q 'X(SL_PARAM_BIAS, *[0-9]*, bias,' methods/knobs.h || bad "knobs.h: no knob bias"
-for name in sl_method_fast at_pixel looks look_parts sl_method_configure sl_layer_at; do
+grep -q 'SL_PARAM_FLOAT_DECL("bias",' "$src" || bad "pcf3.c does not declare its parameter bias"
+for name in sl_method_fast at_pixel looks look_parts sl_method_configure sl_method_param SL_METHOD_PARAMS sl_layer_at; do
     grep -q "$name" methods/method.h || bad "method.h does not name $name"
 done
 for name in SL_LOOK_REACH SL_GUARD_TEXELS sl_frame_pcf_lit; do

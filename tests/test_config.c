@@ -9,8 +9,12 @@
 #include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
+
 #include "config.h"
 #include "method.h"
+
+/* a label's parameter by name (its value set: base/params.h) */
+#define PV(cm, name) sl_params_get(&(cm).params.values, name)
 
 static void config_default_loads(void **st)
 {
@@ -31,7 +35,7 @@ static void config_default_loads(void **st)
     assert_int_equal(c.regions[3], 0);
     assert_int_equal(c.nmethods, 1);
     assert_string_equal(c.methods[0].method->name, "nsm");
-    assert_int_equal(c.methods[0].params.self_shadow, SL_SELF_FRONT_FACES);
+    assert_int_equal(PV(c.methods[0], "self_shadow"), SL_SELF_FRONT_FACES);
     assert_true(c.threads >= 1);
 }
 
@@ -121,8 +125,8 @@ static void config_overrides(void **st)
     assert_int_equal(sl_config_load_with("configs/default.yaml", ok, 6, &b, &d), SL_OK);
     assert_int_equal(b.nmaps, 3);
     assert_int_equal(b.maps[2], 4096);
-    assert_int_equal(b.methods[0].params.self_shadow, sl_self_shadow_parse("slope"));
-    assert_true(b.methods[0].params.bias > 0.0099f && b.methods[0].params.bias < 0.0101f);
+    assert_int_equal(PV(b.methods[0], "self_shadow"), SL_SELF_SLOPE);
+    assert_true(PV(b.methods[0], "bias") > 0.0099f && PV(b.methods[0], "bias") < 0.0101f);
     assert_int_equal(b.viewport_w[0], 256);
     assert_int_equal(b.viewport_h[0], 128);
     assert_int_equal(b.exr, 1);
@@ -245,14 +249,14 @@ static void config_sweeps(void **st)
     assert_int_equal(c.nmethods, 3 + 4 + 1);
     assert_string_equal(c.methods[0].label, "b[bias=0.5]");
     assert_string_equal(c.methods[2].label, "b[bias=2]");
-    assert_true(c.methods[0].params.bias == 0.5f && c.methods[1].params.bias == 1.0f && c.methods[2].params.bias == 2.0f);
-    assert_int_equal(c.methods[0].params.self_shadow, SL_SELF_CONSTANT);
+    assert_true(PV(c.methods[0], "bias") == 0.5f && PV(c.methods[1], "bias") == 1.0f && PV(c.methods[2], "bias") == 2.0f);
+    assert_int_equal(PV(c.methods[0], "self_shadow"), SL_SELF_CONSTANT);
     assert_string_equal(c.methods[3].label, "plain[bias=0][slope=1]");
     assert_string_equal(c.methods[4].label, "plain[bias=0][slope=3]");
     assert_string_equal(c.methods[6].label, "plain[bias=0.25][slope=3]");
-    assert_true(c.methods[6].params.bias == 0.25f && c.methods[6].params.slope == 3.0f);
+    assert_true(PV(c.methods[6], "bias") == 0.25f && PV(c.methods[6], "slope") == 3.0f);
     assert_string_equal(c.methods[7].label, "c");
-    assert_int_equal(c.methods[7].params.texels, 4);
+    assert_int_equal(PV(c.methods[7], "texels"), 4);
     /* the scene named both sweeps by their labels: all seven, not c */
     assert_int_equal(c.scenes[0].method_mask, 0x7fu);
     /* the filled-in config names each label, and reads back to the same */
@@ -335,10 +339,10 @@ static void config_packages(void **st)
     assert_string_equal(c.methods[1].label, "pcf[kernel=3]");
     assert_string_equal(c.methods[1].method->name, "pcf");
     assert_non_null(c.methods[1].params.tech);
-    int k = sl_tech_param_index(c.methods[1].params.tech, "kernel");
+    int k = sl_param_index(c.methods[1].params.values.decl, c.methods[1].params.values.n, "kernel");
     assert_true(k >= 0);
-    assert_true(c.methods[0].params.pkg.v[k] == 1.0 && c.methods[2].params.pkg.v[k] == 5.0);
-    assert_true(c.methods[3].params.pkg.v[k] == 7.0);
+    assert_true(c.methods[0].params.values.v[k] == 1.0 && c.methods[2].params.values.v[k] == 5.0);
+    assert_true(c.methods[3].params.values.v[k] == 7.0);
     static const struct { const char *entry; const char *key; const char *msg; } bad[] = {
         {"  - {method: pcf, kernal: 3}\n", "methods[0].kernal", "no parameter 'kernal'"},
         {"  - {method: pcf, kernel: 11}\n", "methods[0].kernel", "outside [1, 9]"},

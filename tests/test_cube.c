@@ -17,6 +17,7 @@
 #include "method.h"
 #include "run.h"
 #include "shadowmap.h"
+#include "test_params.h"
 
 struct vbuf {
     struct sl_verdicts vd;
@@ -48,17 +49,10 @@ static void params_of(const char *method, int texels, struct sl_method_params *p
 {
     const struct sl_method *m = sl_method_find(method);
     assert_non_null(m);
-    memset(p, 0, sizeof *p);
-    if (texels) {
-        p->texels = texels;
-        p->set = SL_PARAM_TEXELS;
-    }
-    if (strcmp(method, "nsm") == 0) {
-        p->self_shadow = SL_SELF_FRONT_FACES;
-        p->set = SL_PARAM_SELF_SHADOW;
-    }
-    struct sl_diag d;
-    assert_int_equal(sl_method_configure(m, p, &d), SL_OK);
+    char spec[32] = "";
+    if (texels)
+        snprintf(spec, sizeof spec, "texels=%d", texels);
+    sl_test_params(m, p, spec);   /* nsm: its default, front_faces */
 }
 
 /* A point light with receivers and casters on all six faces: each face's

@@ -24,13 +24,16 @@ static void example_method_pcf3_configure(void **state)
     (void)state;
     const struct sl_method *m = &sl_method_pcf3;
     struct sl_diag d;
-    struct sl_method_params p = {0};
+    struct sl_method_params p;
+    sl_method_params_init(m, &p);
     assert_int_equal(sl_method_configure(m, &p, &d), SL_OK);
-    assert_true(p.bias == 1.0f);
-    assert_int_equal(p.set, SL_PARAM_BIAS);
-    p = (struct sl_method_params){.set = SL_PARAM_BIAS, .bias = -1.0f};
-    assert_int_equal(sl_method_configure(m, &p, &d), SL_E_METHOD);
+    assert_true(sl_method_param(&p, "bias") == 1.0);   /* its declared default */
+    assert_int_equal(p.values.given, 0);
+    assert_int_equal(sl_method_param_put(&p, "bias", -1.0, &d), SL_E_METHOD);   /* below its range */
     assert_string_equal(d.key, "bias");
+    assert_int_equal(sl_method_param_put(&p, "kernel", 3, &d), SL_E_METHOD);    /* not declared */
+    assert_int_equal(sl_method_param_put(&p, "bias", 2.5, &d), SL_OK);
+    assert_true(sl_method_param(&p, "bias") == 2.5 && p.values.given == 1u);
     /* no fast path: the driver hands its layer dense */
     assert_int_equal(sl_method_at_pixel(m) | sl_method_looks(m) | sl_method_look_parts(m), 0);
     assert_null(sl_method_find("pcf3"));   /* an example, not in the shipped table */
@@ -63,7 +66,8 @@ static void example_method_pcf3_plane_lit(void **state)
     assert_int_equal(sl_shadowmap_render(&sp, &f.mesh, &fr, SL_NEED(SL_LAYER_DEPTH_ID), &d), SL_OK);
 
     const struct sl_method *m = &sl_method_pcf3;
-    struct sl_method_params p = {0};
+    struct sl_method_params p;
+    sl_method_params_init(m, &p);
     assert_int_equal(sl_method_configure(m, &p, &d), SL_OK);
     assert_int_equal(m->needs(&p) & ~fr.have, 0);
     const size_t n = (size_t)v.w * (size_t)v.h;

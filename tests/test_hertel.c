@@ -35,6 +35,7 @@
 #include "method.h"
 #include "raytri.h"
 #include "shadowmap.h"
+#include "test_params.h"
 
 static void fit(const struct fixture *f, const struct sl_view *v, int size, struct sl_light_frame *fr)
 {
@@ -56,9 +57,8 @@ static void run_method(const char *name, struct fixture *f, const struct sl_view
     const struct sl_method *m = sl_method_find(name);
     assert_non_null(m);
     struct sl_method_params p;
-    memset(&p, 0, sizeof p);
     struct sl_diag d;
-    assert_int_equal(sl_method_configure(m, &p, &d), SL_OK);
+    sl_test_params(m, &p, NULL);
     const size_t n = (size_t)mv->w * (size_t)mv->h;
     struct sl_verdicts vd = {.w = mv->w, .h = mv->h, .v = calloc(n, 1), .how = calloc(n, 1), .tests = calloc(n, 1)};
     assert_non_null(vd.v);

@@ -28,6 +28,7 @@
 #include "raytri.h"
 #include "arealight.h"
 #include <math.h>
+#include "test_params.h"
 
 static uint64_t img(const struct sl_cell *c, enum sl_figure f)
 {
@@ -103,7 +104,7 @@ static void moderno_coherence_patterns(void **st)
     for (int i = 0; i < r.ncells; i++) {
         const struct sl_cell *cl = &r.cells[i];
         assert_true(cl->has_patterns);
-        int n = c.methods[cl->key.method].params.texels;
+        int n = (int)sl_params_get(&c.methods[cl->key.method].params.values, "texels");
         int g = cl->fig.nregions - 1;
         const struct sl_region_figures *f = &cl->fig.r[g];
         uint64_t all = 0, mid = 0;
@@ -176,16 +177,13 @@ static void fig_open(struct fig *g, const char *scene)
     g->vd.tests = calloc(n, 1);
 }
 
-static void fig_run(struct fig *g, const char *method, int key, int value)
+static void fig_run(struct fig *g, const char *method, const char *spec)
 {
     const struct sl_method *m = sl_method_find(method);
     assert_non_null(m);
     struct sl_method_params p;
-    memset(&p, 0, sizeof p);
-    if (key == SL_PARAM_TEXELS) { p.set = key; p.texels = value; }
-    if (key == SL_PARAM_LEVEL) { p.set = key; p.level = value; }
     struct sl_diag d;
-    assert_int_equal(sl_method_configure(m, &p, &d), SL_OK);
+    sl_test_params(m, &p, spec);
     struct sl_method_args a = {.scene = &g->f.scene, .view = &g->mv, .frame = &g->fr, .params = &p,
                                .rt = &g->f.rt, .adj = &g->adj, .threads = 1};
     struct sl_cost c = {0};
@@ -274,11 +272,11 @@ static void moderno_figure16_no_texel_centre(void **st)
     fig_all_shadowed(&g, lo, hi);
     for (size_t k = 0; k < 16 * 16; k++)
         assert_int_equal(g.fr.layer[SL_LAYER_DEPTH_ID_BACK].id[k], 0);   /* stored nowhere */
-    fig_run(&g, "nsm", 0, 0);
+    fig_run(&g, "nsm", NULL);
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_MAP);
-    fig_run(&g, "texel", 0, 0);
+    fig_run(&g, "texel", NULL);
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
-    fig_run(&g, "neighbours", SL_PARAM_TEXELS, 9);
+    fig_run(&g, "neighbours", "texels=9");
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
     fig_close(&g);
 }
@@ -293,9 +291,9 @@ static void moderno_figure19_lit_but_shadowed(void **st)
     fig_open(&g, "tests/scenes/fig19.yaml");
     const float lo[3] = {0.05f, 2.99f, 0.4f}, hi[3] = {0.15f, 3.01f, 0.6f};
     fig_all_shadowed(&g, lo, hi);
-    fig_run(&g, "nsm", 0, 0);
+    fig_run(&g, "nsm", NULL);
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_MAP);
-    fig_run(&g, "texel", 0, 0);
+    fig_run(&g, "texel", NULL);
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CORRECT);
     fig_close(&g);
 }
@@ -310,13 +308,13 @@ static void moderno_figure22_neighbour_texel(void **st)
     fig_open(&g, "tests/scenes/fig22.yaml");
     const float lo[3] = {0.75f, -0.01f, 0.11f}, hi[3] = {0.95f, 0.01f, 0.18f};
     fig_all_shadowed(&g, lo, hi);
-    fig_run(&g, "nsm", 0, 0);
+    fig_run(&g, "nsm", NULL);
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_MAP);
-    fig_run(&g, "texel", 0, 0);
+    fig_run(&g, "texel", NULL);
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
-    fig_run(&g, "neighbours", SL_PARAM_TEXELS, 4);
+    fig_run(&g, "neighbours", "texels=4");
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CORRECT);
-    fig_run(&g, "neighbours", SL_PARAM_TEXELS, 9);
+    fig_run(&g, "neighbours", "texels=9");
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CORRECT);
     fig_close(&g);
 }
@@ -331,13 +329,13 @@ static void moderno_figure29_adjacent_geometry(void **st)
     fig_open(&g, "tests/scenes/fig29.yaml");
     const float lo[3] = {0.35f, -0.01f, 0.17f}, hi[3] = {0.5f, 0.01f, 0.26f};
     fig_all_shadowed(&g, lo, hi);
-    fig_run(&g, "nsm", 0, 0);
+    fig_run(&g, "nsm", NULL);
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_MAP);
-    fig_run(&g, "texel", 0, 0);
+    fig_run(&g, "texel", NULL);
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
-    fig_run(&g, "neighbours", SL_PARAM_TEXELS, 9);
+    fig_run(&g, "neighbours", "texels=9");
     ALL(&g, lo, hi, SL_V_LIT, SL_HOW_FALLBACK);
-    fig_run(&g, "adjacency", SL_PARAM_LEVEL, 1);
+    fig_run(&g, "adjacency", "level=1");
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CONFIRM);
     for (int i = 0; i < g.v.w * g.v.h; i++) {                  /* under the second triangle: */
         const float *p = g.v.pos + 3 * i;                       /* the stored one missed, its neighbour hit */
@@ -345,7 +343,7 @@ static void moderno_figure29_adjacent_geometry(void **st)
             p[1] >= lo[1] && p[1] <= hi[1])
             assert_true(g.vd.tests[i] >= 2);
     }
-    fig_run(&g, "adjacency", SL_PARAM_LEVEL, 2);
+    fig_run(&g, "adjacency", "level=2");
     ALL(&g, lo, hi, SL_V_SHADOW, SL_HOW_CONFIRM);
     fig_close(&g);
 }
@@ -555,11 +553,11 @@ static void wrong_hints_classify(struct fig *g, int thickness, struct hint_class
     const int S = f->size, W = v->w, H = v->h;
     size_t n = (size_t)W * H;
     uint8_t *state = calloc(n, 1), *band = calloc(n, 1), *nsm = calloc(n, 1);
-    fig_run(g, "nsm", 0, 0);
+    fig_run(g, "nsm", NULL);
     memcpy(state, g->vd.v, n);
     memcpy(nsm, g->vd.v, n);
     sl_contour_bands(W, H, state, thickness / 2 - 1, band);
-    fig_run(g, "coherence", SL_PARAM_TEXELS, 4);
+    fig_run(g, "coherence", "texels=4");
     memset(hc, 0, sizeof *hc);
     const float texel_z = f->texel_world / f->depth_range;     /* one texel of world, in window depth */
     for (size_t i = 0; i < n; i++) {
@@ -796,7 +794,7 @@ static void moderno_wrong_hints_gap(void **st)
         fig_view_study(&g, vp);
         for (int S = 1024; S <= 2048; S *= 2) {
             fig_frame_study(&g, S);
-            fig_run(&g, "coherence", SL_PARAM_TEXELS, 4);
+            fig_run(&g, "coherence", "texels=4");
             uint64_t n_here = 0, own_here = 0, h_here[5] = {0, 0, 0, 0, 0};
             const size_t n = (size_t)g.v.w * g.v.h;
             /* the same 2 x 2 footprint on the culled map and on one that
@@ -946,7 +944,7 @@ static void moderno_contour_connectivity(void **st)
     uint8_t *band = calloc(npx, 1);
     for (int m = 0; m < 2; m++) {
         fig_frame_study(&g, 1024 << m);
-        fig_run(&g, "nsm", 0, 0);
+        fig_run(&g, "nsm", NULL);
         sl_contour_bands(g.v.w, g.v.h, g.vd.v, 2, band);
         uint64_t n4[3] = {0, 0, 0}, n8[3];
         for (size_t i = 0; i < npx; i++)
@@ -1005,12 +1003,12 @@ static void fig_run_params(struct fig *g, const char *method, struct sl_method_p
 static void moderno_lookups_as_computed(void **st)
 {
     (void)st;
-    static const struct { const char *method; unsigned key; int value; } runs[] = {
-        {"coherence", SL_PARAM_TEXELS, 4}, {"coherence", SL_PARAM_TEXELS, 9}, {"texel", 0, 0},
-        {"neighbours", SL_PARAM_TEXELS, 4}, {"neighbours", SL_PARAM_TEXELS, 9},
-        {"adjacency", SL_PARAM_LEVEL, 1}, {"adjacency", SL_PARAM_LEVEL, 2},
-        {"chain", SL_PARAM_FINISH, 0}, {"chain", SL_PARAM_FINISH, 1},
-        {"nsm", SL_PARAM_SELF_SHADOW, SL_SELF_FRONT_FACES},
+    static const struct { const char *method; const char *spec; } runs[] = {
+        {"coherence", "texels=4"}, {"coherence", "texels=9"}, {"texel", NULL},
+        {"neighbours", "texels=4"}, {"neighbours", "texels=9"},
+        {"adjacency", "level=1"}, {"adjacency", "level=2"},
+        {"chain", "finish=trace"}, {"chain", "finish=lit"},
+        {"nsm", "self_shadow=front_faces"},
     };
     static const char *scenes[] = {"bench", "trees"};
     for (int si = 0; si < 2; si++) {
@@ -1052,12 +1050,7 @@ static void moderno_lookups_as_computed(void **st)
             assert_null(sl_frame_look_of(&g.fr, SL_LAYER_DEPTH_ID, g.v.serial, npx));
             for (size_t r = 0; r < sizeof runs / sizeof runs[0]; r++) {
                 struct sl_method_params p;
-                memset(&p, 0, sizeof p);
-                p.set = runs[r].key;
-                p.texels = runs[r].key == SL_PARAM_TEXELS ? runs[r].value : 0;
-                p.level = runs[r].key == SL_PARAM_LEVEL ? runs[r].value : 0;
-                p.finish = runs[r].key == SL_PARAM_FINISH ? runs[r].value : 0;
-                p.self_shadow = runs[r].key == SL_PARAM_SELF_SHADOW ? runs[r].value : 0;
+                sl_test_params(sl_method_find(runs[r].method), &p, runs[r].spec);
                 struct fig_out with, nopcf, without;
                 fig_run_params(&g, runs[r].method, &p, &with);
                 /* the lookups without their counts, then none: the method makes its own */

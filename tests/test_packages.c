@@ -84,7 +84,7 @@ static int group_teardown(void **st)
 struct pkg {
     struct sl_technique t;
     struct sl_techpass p;
-    struct sl_tech_values v;
+    struct sl_params v;
     struct sl_light_frame f;
     int g, n;           /* guard band, guarded map size */
     int channels;       /* of map 0 */
@@ -143,7 +143,7 @@ static void pkg_close(struct pkg *k)
 static void pkg_set(struct pkg *k, const char *name, double x)
 {
     struct sl_diag d;
-    enum sl_err e = sl_tech_value_set(&k->t, &k->v, name, x, &d);
+    enum sl_err e = sl_params_put(&k->v, name, x, &d);
     diag_print(e, &d);
     assert_int_equal(e, SL_OK);
 }
@@ -369,7 +369,7 @@ static void packages_load(void **st)
         int p = sl_tech_param_index(&t, defs[i].param);
         assert_true(p >= 0);
         assert_true(t.param[p].def == defs[i].def);
-        struct sl_tech_values v;
+        struct sl_params v;
         sl_tech_defaults(&t, &v);
         if (!strcmp(defs[i].pkg, "pcss")) {
             assert_int_equal(sl_tech_guard(&t, &v), 16);        /* max(search, max_filter) at their maxima */

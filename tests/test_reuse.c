@@ -16,6 +16,7 @@
 #include "lightfit.h"
 #include "method.h"
 #include "shadowmap.h"
+#include "test_params.h"
 
 static void reuse_pool_serves_and_replaces(void **st)
 {
@@ -288,8 +289,7 @@ static void reuse_gathered_same_verdicts(void **st)
                     const struct sl_method *me = sl_method_find(methods[m]);
                     assert_non_null(me);
                     struct sl_method_params p;
-                    memset(&p, 0, sizeof p);
-                    assert_int_equal(sl_method_configure(me, &p, &d), SL_OK);
+                    sl_test_params(me, &p, NULL);
                     struct sl_method_args a = {.scene = &f.scene, .view = &mv, .frame = pass ? &fr : &dense,
                                                .params = &p, .rt = &f.rt, .adj = &adj, .threads = 2};
                     struct sl_verdicts vd = {.w = v.w, .h = v.h, .v = calloc(n, 1), .how = calloc(n, 1),

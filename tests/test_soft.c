@@ -166,15 +166,15 @@ static void soft_three_layers(void **st)
                    "map_sizes: [1024]\nmethods:\n  - {label: lin, method: soft_mc, search: linear}\n"
                    "  - {label: three, method: soft_mc, layers: 3}\n  - {label: hier, method: soft_mc}\n"
                    "area_samples: 16\nthreads: 2\n", &c);
-    assert_int_equal(c.methods[1].params.layers, 3);
-    assert_int_equal(c.methods[1].params.search, 0);        /* linear */
-    assert_int_equal(c.methods[2].params.layers, 2);
-    assert_int_equal(c.methods[2].params.search, 1);        /* hierarchical, as before */
+    assert_int_equal(sl_params_get(&c.methods[1].params.values, "layers"), 3);
+    assert_int_equal(sl_params_get(&c.methods[1].params.values, "search"), 0);        /* linear */
+    assert_int_equal(sl_params_get(&c.methods[2].params.values, "layers"), 2);
+    assert_int_equal(sl_params_get(&c.methods[2].params.values, "search"), 1);        /* hierarchical, as before */
     struct sl_config one;
     sl_test_config("one.yaml",
                    "scenes: [{scene: curtis_box}]\nmap_sizes: [512]\nmethods: [{method: soft_mc, layers: 1}]\n",
                    &one);
-    assert_int_equal(one.methods[0].params.search, 1);
+    assert_int_equal(sl_params_get(&one.methods[0].params.values, "search"), 1);
     /* refused, with the key named */
     char path[300];
     snprintf(path, sizeof path, "%s/hier3.yaml", sl_test_dir);

@@ -120,24 +120,24 @@ static void technique_shipped(void **st)
     assert_int_equal(sl_tech_load("techniques/pcf", &t, &d), SL_OK);
     assert_string_equal(t.name, "pcf");
     assert_int_equal(t.nparams, 3);
-    struct sl_tech_values v;
+    struct sl_params v;
     sl_tech_defaults(&t, &v);
     assert_int_equal(v.n, 3);
     assert_true(v.v[0] == 3 && v.v[1] == 1 && v.v[2] == 0);   /* kernel 3, bias 1 texel, no disc */
     assert_int_equal(sl_tech_reach(&t, &v), 1);   /* a 3x3 box: one texel around the home texel */
     assert_true(sl_tech_taps(&t, &v) == 9);
-    assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 5, &d), SL_OK);
+    assert_int_equal(sl_params_put(&v, "kernel", 5, &d), SL_OK);
     assert_int_equal(sl_tech_reach(&t, &v), 2);
     assert_int_equal(sl_tech_guard(&t, &v), 2);
-    assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 1, &d), SL_OK);
+    assert_int_equal(sl_params_put(&v, "kernel", 1, &d), SL_OK);
     assert_int_equal(sl_tech_guard(&t, &v), 0);   /* kernel 1: the frame's own map, no band */
-    assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 5, &d), SL_OK);
+    assert_int_equal(sl_params_put(&v, "kernel", 5, &d), SL_OK);
     assert_true(sl_tech_taps(&t, &v) == 25);
-    assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 11, &d), SL_E_METHOD);
+    assert_int_equal(sl_params_put(&v, "kernel", 11, &d), SL_E_METHOD);
     assert_string_equal(d.key, "kernel");
-    assert_int_equal(sl_tech_value_set(&t, &v, "kernel", 2.5, &d), SL_E_METHOD);
-    assert_int_equal(sl_tech_value_set(&t, &v, "poisson", 2, &d), SL_E_METHOD);
-    assert_int_equal(sl_tech_value_set(&t, &v, "nope", 1, &d), SL_E_METHOD);
+    assert_int_equal(sl_params_put(&v, "kernel", 2.5, &d), SL_E_METHOD);
+    assert_int_equal(sl_params_put(&v, "poisson", 2, &d), SL_E_METHOD);
+    assert_int_equal(sl_params_put(&v, "nope", 1, &d), SL_E_METHOD);
     sl_tech_free(&t);
     assert_int_equal(sl_tech_load("techniques/nsm", &t, &d), SL_OK);
     assert_string_equal(t.name, "nsm_glsl");
@@ -302,10 +302,10 @@ static void hand_lookup(const char *dir, const char *const *set, const double *v
     struct sl_technique t;
     struct sl_diag d;
     assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
-    struct sl_tech_values v;
+    struct sl_params v;
     sl_tech_defaults(&t, &v);
     for (int i = 0; set && set[i]; i++)
-        assert_int_equal(sl_tech_value_set(&t, &v, set[i], vals[i], &d), SL_OK);
+        assert_int_equal(sl_params_put(&v, set[i], vals[i], &d), SL_OK);
     struct sl_techpass p;
     if (sl_techpass_init(&p, &t, &d))
         fprintf(stderr, "%s:%d: %s\n", d.file, d.line, d.msg);
@@ -415,11 +415,11 @@ static void post_lookup(const char *dir, int radius, int which, double gain, con
     struct sl_technique t;
     struct sl_diag d;
     assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
-    struct sl_tech_values v;
+    struct sl_params v;
     sl_tech_defaults(&t, &v);
-    assert_int_equal(sl_tech_value_set(&t, &v, "radius", radius, &d), SL_OK);
-    assert_int_equal(sl_tech_value_set(&t, &v, "which", which, &d), SL_OK);
-    assert_int_equal(sl_tech_value_set(&t, &v, "gain", gain, &d), SL_OK);
+    assert_int_equal(sl_params_put(&v, "radius", radius, &d), SL_OK);
+    assert_int_equal(sl_params_put(&v, "which", which, &d), SL_OK);
+    assert_int_equal(sl_params_put(&v, "gain", gain, &d), SL_OK);
     struct sl_techpass p;
     enum sl_err e = sl_techpass_init(&p, &t, &d);
     if (e)
@@ -509,7 +509,7 @@ static void technique_map_too_big(void **st)
     struct sl_technique t;
     struct sl_diag d;
     assert_int_equal(sl_tech_load("techniques/pcf", &t, &d), SL_OK);
-    struct sl_tech_values v;
+    struct sl_params v;
     sl_tech_defaults(&t, &v);
     struct sl_techpass p;
     assert_int_equal(sl_techpass_init(&p, &t, &d), SL_OK);
@@ -557,10 +557,10 @@ static void rendered_case(const char *scene, int S, const char *pkg, int layer, 
     assert_int_equal(sl_shadowmap_render(&sp, &fx.mesh, &fr, SL_NEED(layer), &d), SL_OK);
     struct sl_technique t;
     assert_int_equal(sl_tech_load(pkg, &t, &d), SL_OK);
-    struct sl_tech_values vals;
+    struct sl_params vals;
     sl_tech_defaults(&t, &vals);
     for (int i = 0; set && set[i]; i++)
-        assert_int_equal(sl_tech_value_set(&t, &vals, set[i], set_vals[i], &d), SL_OK);
+        assert_int_equal(sl_params_put(&vals, set[i], set_vals[i], &d), SL_OK);
     struct sl_techpass p;
     assert_int_equal(sl_techpass_init(&p, &t, &d), SL_OK);
     assert_int_equal(sl_techpass_render(&p, &fx.mesh, &fr, &vals, &d), SL_OK);

@@ -16,6 +16,7 @@
 #include "raytri.h"
 #include "shadowmap.h"
 #include "zpart.h"
+#include "test_params.h"
 
 /* eq. 62 at lambda = 1 is eq. 63 (appendix B); lambda = 0 is the uniform
  * split; every blend is increasing from n to f and lies between the two. */
@@ -188,13 +189,13 @@ static void bench_close(struct bench *g)
 }
 
 /* Run a method into g->vd (nframes reset first, as the driver does). */
-static void bench_run(struct bench *g, const char *method, const struct sl_method_params *given)
+static void bench_run(struct bench *g, const char *method, const char *spec)
 {
     const struct sl_method *m = sl_method_find(method);
     assert_non_null(m);
-    struct sl_method_params p = *given;
+    struct sl_method_params p;
     struct sl_diag d;
-    assert_int_equal(sl_method_configure(m, &p, &d), SL_OK);
+    sl_test_params(m, &p, spec);
     struct sl_method_args a = {.scene = &g->f.scene, .view = &g->mv, .frame = &g->fr, .params = &p,
                                .rt = &g->f.rt, .threads = 2, .spass = &g->sp, .mesh = &g->f.mesh};
     struct sl_cost c = {0};
@@ -210,15 +211,15 @@ static void zpart_one_is_nsm(void **st)
     bench_open(&g, "primitives", 160, 512);
     size_t n = (size_t)g.v.w * (size_t)g.v.h;
     uint8_t *nv = malloc(n), *nh = malloc(n);
-    const int pol[] = {SL_SELF_FRONT_FACES, SL_SELF_NONE, SL_SELF_SLOPE};
+    const char *const pol[] = {"front_faces", "none", "slope"};
     for (size_t k = 0; k < sizeof pol / sizeof pol[0]; k++) {
-        struct sl_method_params p = {.set = SL_PARAM_SELF_SHADOW, .self_shadow = pol[k]};
-        bench_run(&g, "nsm", &p);
+        char spec[64];
+        snprintf(spec, sizeof spec, "self_shadow=%s", pol[k]);
+        bench_run(&g, "nsm", spec);
         memcpy(nv, g.vd.v, n);
         memcpy(nh, g.vd.how, n);
-        p.set |= SL_PARAM_PARTITIONS;
-        p.partitions = 1;
-        bench_run(&g, "zpart", &p);
+        snprintf(spec, sizeof spec, "self_shadow=%s partitions=1", pol[k]);
+        bench_run(&g, "zpart", spec);
         assert_int_equal(g.vd.nframes, 1);
         assert_memory_equal(nv, g.vd.v, n);
         assert_memory_equal(nh, g.vd.how, n);
@@ -262,15 +263,11 @@ static void zpart_deep_scene(void **st)
     (void)st;
     struct bench g;
     bench_open(&g, "street", 256, 1024);
-    struct sl_method_params p = {0};
     long w_nsm, w_z;
     double m_nsm, m_z;
-    bench_run(&g, "nsm", &p);
+    bench_run(&g, "nsm", NULL);
     wrong_and_median(&g, &w_nsm, &m_nsm);
-    p.set = SL_PARAM_PARTITIONS | SL_PARAM_LAMBDA;
-    p.partitions = 4;
-    p.lambda = 0.5f;
-    bench_run(&g, "zpart", &p);
+    bench_run(&g, "zpart", "partitions=4 lambda=0.5");
     wrong_and_median(&g, &w_z, &m_z);
     print_message("street 256^2, map 1024: nsm %ld wrong (median m %.3f), zpart k=4 %ld (median m %.3f)\n", w_nsm,
                   m_nsm, w_z, m_z);
@@ -360,12 +357,11 @@ static void lispsm_street(void **st)
     (void)st;
     struct bench g;
     bench_open(&g, "street", 192, 1024);
-    struct sl_method_params p = {0};
     long w_nsm, w_l, w_zl;
     double m_nsm, m_l, m_zl;
-    bench_run(&g, "nsm", &p);
+    bench_run(&g, "nsm", NULL);
     wrong_and_median(&g, &w_nsm, &m_nsm);
-    bench_run(&g, "lispsm", &p);
+    bench_run(&g, "lispsm", NULL);
     assert_int_equal(g.vd.nframes, 1);
     /* warped (not the uniform fallback): its vp is not the box's */
     assert_true(memcmp(g.vd.frames[0].box.vp, g.fr.box.vp, sizeof g.fr.box.vp) != 0);
@@ -383,10 +379,7 @@ static void lispsm_street(void **st)
     }
     assert_true(checked > 50);
     wrong_and_median(&g, &w_l, &m_l);
-    p.set = SL_PARAM_PARTITIONS | SL_PARAM_WARP;
-    p.partitions = 4;
-    p.warp = 1;
-    bench_run(&g, "zpart", &p);
+    bench_run(&g, "zpart", "partitions=4 warp=lispsm");
     wrong_and_median(&g, &w_zl, &m_zl);
     print_message("street 192^2, map 1024: nsm %ld (median m %.3f), lispsm %ld (%.3f), zpart 4 lispsm %ld (%.3f)\n",
                   w_nsm, m_nsm, w_l, m_l, w_zl, m_zl);

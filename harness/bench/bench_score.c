@@ -139,7 +139,7 @@ enum sl_err sl_bench_score(struct sl_bench_ctx *x, struct sl_bench_result *res, 
         goto out;
     }
     struct sl_method_params p;
-    memset(&p, 0, sizeof p);
+    sl_method_params_init(m, &p);
     struct sl_cost cost;
     memset(&cost, 0, sizeof cost);
     if ((e = sl_method_configure(m, &p, d)) || (e = sl_rt_build(&rt, &x->s, x->threads, 1, d)) ||

@@ -135,7 +135,7 @@ static enum sl_err plain_package(const struct sl_technique *t, int g, int taps, 
 
 struct setting {
     const struct sl_technique *t;
-    struct sl_tech_values v;
+    struct sl_params v;
     char label[96];
 };
 
@@ -148,7 +148,7 @@ struct scene_in {
 };
 
 /* What the post passes of t do at v, in words. */
-static void post_text(const struct sl_technique *t, const struct sl_tech_values *v, char *buf, size_t n)
+static void post_text(const struct sl_technique *t, const struct sl_params *v, char *buf, size_t n)
 {
     size_t k = 0;
     buf[0] = '\0';
@@ -207,7 +207,7 @@ static enum sl_err one_setting(const struct scene_in *in, const struct setting *
 {
     const struct sl_bench_ctx *x = in->x;
     const struct sl_technique *t = st->t;
-    const struct sl_tech_values *v = &st->v;
+    const struct sl_params *v = &st->v;
     struct sl_techpass pk, pp, pf;
     memset(&pk, 0, sizeof pk);
     memset(&pp, 0, sizeof pp);

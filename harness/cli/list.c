@@ -1,7 +1,9 @@
 /*
  * list.c — `shadowlab list methods|scenes|techniques`: what a config can
  * name, and where each scene file and technique package was found; `shadowlab
- * show technique NAME`: one package's parameters, maps, reach and citation.
+ * show method NAME`: a built-in method's parameters from its declarations;
+ * `shadowlab show technique NAME`: one package's parameters, maps, reach and
+ * citation.
  * Packages are read as a run reads them (technique.h: the search path
  * without a config, C method names refused), with no GL.
  */
@@ -13,6 +15,7 @@
 #include "method.h"
 #include "scenefile.h"
 #include "technique.h"
+#include "util.h"
 
 /* The packages of the search path (no config: SHADOWLAB_TECHNIQUES, the
  * source tree, the installed ones); exit code on failure, else 0. */
@@ -49,19 +52,19 @@ static int list_techniques(void)
     return 0;
 }
 
-/* a parameter's range as written: "[1, 9]", "[0, inf)", "" (bool) */
-static void range_text(const struct sl_tech_param *p, char *buf, size_t n)
+/* The parameters block `show method` and `show technique` share: one
+ * line each, name, type, default, range or words, unit, doc. */
+static void show_params(const struct sl_param *decl, int n)
 {
-    if (p->type == SL_TECH_BOOL) {
-        buf[0] = '\0';
-        return;
+    printf("  parameters%s\n", n ? "" : " none");
+    for (int i = 0; i < n; i++) {
+        const struct sl_param *p = &decl[i];
+        char range[160], def[64];
+        sl_param_range_text(p, range, sizeof range);
+        sl_param_text(p, p->def, def, sizeof def);
+        printf("    %-12s %-5s default %-8s %-12s %s%s%s%s\n", p->name, sl_param_type_names[p->type], def, range,
+               p->unit[0] ? "(" : "", p->unit, p->unit[0] ? ") " : "", p->doc);
     }
-    char lo[32] = "-inf", hi[32] = "inf";
-    if (p->has_min)
-        snprintf(lo, sizeof lo, "%g", p->min);
-    if (p->has_max)
-        snprintf(hi, sizeof hi, "%g", p->max);
-    snprintf(buf, n, "%s%s, %s%s", p->has_min ? "[" : "(", lo, hi, p->has_max ? "]" : ")");
 }
 
 static void scaled_text(const struct sl_technique *t, const struct sl_tech_scaled *x, char *buf, size_t n)
@@ -76,7 +79,7 @@ static void scaled_text(const struct sl_technique *t, const struct sl_tech_scale
 
 static void show_technique(const struct sl_technique *t)
 {
-    struct sl_tech_values v;
+    struct sl_params v;
     sl_tech_defaults(t, &v);
     printf("%s — %s\n", t->name, t->summary);
     printf("  package    %s (%s)\n", t->dir, t->origin ? t->origin : "given");
@@ -98,17 +101,19 @@ static void show_technique(const struct sl_technique *t)
            sl_tech_guard(t, &v));
     scaled_text(t, &t->taps, buf, sizeof buf);
     printf("  taps       %s texel reads a pixel (%g at the defaults)\n", buf, sl_tech_taps(t, &v));
-    printf("  parameters%s\n", t->nparams ? "" : " none");
-    for (int i = 0; i < t->nparams; i++) {
-        const struct sl_tech_param *p = &t->param[i];
-        char range[80], def[40];
-        range_text(p, range, sizeof range);
-        if (p->type == SL_TECH_BOOL)
-            snprintf(def, sizeof def, "%s", p->def != 0 ? "true" : "false");
-        else
-            snprintf(def, sizeof def, "%g", p->def);
-        printf("    %-12s %-5s default %-8s %-12s %s\n", p->name, sl_tech_type_names[p->type], def, range, p->doc);
-    }
+    show_params(t->param, t->nparams);
+}
+
+static void show_method(const struct sl_method *m)
+{
+    printf("%s — %s\n", m->name, m->summary);
+    printf("  display    %s\n", m->display ? m->display : m->name);
+    printf("  family     %s\n", m->family ? m->family : "(none: a baseline)");
+    printf("  exact      %s%s%s%s\n", m->exact ? "" : "nothing", m->exact & SL_EXACT_LIT ? "lit " : "",
+           m->exact & SL_EXACT_SHADOW ? "shadow " : "", m->exact & SL_EXACT_PROVED ? "proved" : "");
+    printf("  lights     %s\n", m->lights & SL_LIGHTS_AREA ? "area (soft shadows)"
+                                : m->lights & SL_LIGHTS_DIRECTIONAL ? "directional" : "any (hard shadows)");
+    show_params(m->params, m->nparams);
 }
 
 int cli_show(int argc, char **argv)
@@ -119,8 +124,25 @@ int cli_show(int argc, char **argv)
         return cli_opt_exit(c);
     argc -= optind - 1;
     argv += optind - 1;
-    if (argc != 3 || strcmp(argv[1], "technique") != 0)
-        return cli_usage_error("show: technique NAME", cli_usage_show);
+    if (argc != 3 || (strcmp(argv[1], "technique") != 0 && strcmp(argv[1], "method") != 0))
+        return cli_usage_error("show: method NAME or technique NAME", cli_usage_show);
+    if (!strcmp(argv[1], "method")) {
+        const struct sl_method *m = NULL;
+        char names[600] = "";
+        for (int i = 0; i < sl_method_count(); i++) {
+            if (!strcmp(sl_method_at(i)->name, argv[2]))
+                m = sl_method_at(i);
+            sl_known_add(names, sizeof names, sl_method_at(i)->name);
+        }
+        if (!m) {
+            struct sl_diag d;
+            sl_fail(&d, SL_E_METHOD, NULL, 0, argv[2], "no built-in method of that name (there are: %s; a "
+                    "technique package: `shadowlab show technique NAME`)", names);
+            return cli_fail(SL_E_METHOD, &d);
+        }
+        show_method(m);
+        return 0;
+    }
     struct sl_tech_set s;
     char dirs[SL_TECH_MAX_DIRS][1024];
     const char *origin[SL_TECH_MAX_DIRS];

@@ -171,9 +171,11 @@ const char cli_usage_list[] =
     "  naming its file, line and key (exit 2).\n";
 
 const char cli_usage_show[] =
-    "usage: shadowlab show technique NAME\n"
-    "  A technique package's summary, folder, shaders, citation, maps (format, filter, post\n"
-    "  passes), reach and texel reads, and its parameters with type, default, range and doc.\n";
+    "usage: shadowlab show method|technique NAME\n"
+    "  method: a built-in method's summary, family, exactness, lights and its parameters (the keys\n"
+    "  a config's method entry may give) with type, default, range or words, unit and doc.\n"
+    "  technique: a technique package's summary, folder, shaders, citation, maps (format, filter,\n"
+    "  post passes), reach and texel reads, and its parameters in the same form.\n";
 
 const char cli_usage_submit[] =
     "usage: shadowlab submit CONFIG --slurm [--tasks N | --cells-per-task K] [--max-running T]\n"
@@ -240,7 +242,7 @@ const struct cli_verb cli_verbs[] = {
     {"preview", cli_preview, cli_usage_preview, "SCENE [options]",
      "a quick shaded PNG per viewpoint, for framing cameras", 0},
     {"list", cli_list, cli_usage_list, "methods|scenes|techniques", "what can be named in a config", 0},
-    {"show", cli_show, cli_usage_show, "technique NAME", "a technique package's parameters, maps, reach, citation",
+    {"show", cli_show, cli_usage_show, "method|technique NAME", "a method's or a technique package's parameters",
      0},
     {NULL, NULL, NULL, NULL, NULL, 0},
 };
@@ -539,7 +541,8 @@ int cli_config_reference(FILE *f)
     fputs("# Config reference\n\n"
           "Every key a config file may give, written by `shadowlab help --config` from the parser's own\n"
           "schema (harness/plan/config.c; do not edit: regenerate). A list's entries are `key[]`; a\n"
-          "method entry also takes its technique package's parameters (`shadowlab show technique NAME`).\n"
+          "method entry also takes its method's parameters (listed below; a technique package's:\n"
+          "`shadowlab show technique NAME`).\n"
           "The guide's [Configs](guide.md#configs) section explains them with examples.\n\n", f);
     if (sl_config_reference(f, 0, &d)) {
         fprintf(stderr, "shadowlab: %s\n", d.msg);
@@ -779,7 +782,7 @@ void cli_completion(FILE *f)
         int lower = a[0] != 0;
         for (const char *c = a; *c; c++)
             lower &= islower((unsigned char)*c) || *c == '|';
-        if (lower && strchr(a, '|')) {
+        if (lower && strchr(a, '|') && !strstr(v->synopsis, " NAME")) {
             char w[64];
             snprintf(w, sizeof w, "%s", a);
             for (char *c = w; *c; c++)
@@ -787,6 +790,9 @@ void cli_completion(FILE *f)
                     *c = ' ';
             fprintf(f, "            [ \"$COMP_CWORD\" -eq 2 ] && COMPREPLY=($(compgen -W \"%s\" -- \"$cur\"))\n", w);
         } else if (lower) {
+            for (char *c = a; *c; c++)   /* "show method|technique NAME": either word first */
+                if (*c == '|')
+                    *c = ' ';
             /* "show technique NAME": the word, then the names `list` gives for it */
             fprintf(f, "            if [ \"$COMP_CWORD\" -eq 2 ]; then COMPREPLY=($(compgen -W \"%s\" -- \"$cur\"))\n"
                        "            else COMPREPLY=($(compgen -W \"$(shadowlab list \"${COMP_WORDS[2]}s\" 2>/dev/null |"

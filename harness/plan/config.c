@@ -28,63 +28,6 @@
 #include "util.h"
 #include "yamlfile.h"
 
-/* ---- method knobs ----
- * The keys of a method entry are SL_KNOBS (knobs.h). Per kind of knob, in
- * one place: what libcyaml fills (RAW_), its schema entry (SCHEMA_), the
- * copy into struct sl_method_params with the check of a word (COPY_, inside
- * method_knobs: p, rm, key, file, ix, d in scope), and its text in the
- * filled-in config (WRITE_, inside write_methods: p, f in scope). */
-#define RAW_UINT   unsigned
-#define RAW_FLOAT  float
-#define RAW_BOOL   bool
-#define RAW_WORDS  char
-#define RAW_POLICY char
-#define KNOB_OPT (CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL)
-#define SCHEMA_UINT(name)   CYAML_FIELD_UINT_PTR(#name, KNOB_OPT, struct raw_method, name)
-#define SCHEMA_FLOAT(name)  CYAML_FIELD_FLOAT_PTR(#name, KNOB_OPT, struct raw_method, name)
-#define SCHEMA_BOOL(name)   CYAML_FIELD_BOOL_PTR(#name, KNOB_OPT, struct raw_method, name)
-#define SCHEMA_WORDS(name)  CYAML_FIELD_STRING_PTR(#name, KNOB_OPT, struct raw_method, name, 1, 15)
-#define SCHEMA_POLICY(name) CYAML_FIELD_STRING_PTR(#name, KNOB_OPT, struct raw_method, name, 1, 63)
-
-/* "none, constant, ..., triangle_id": the self-shadow policies a config
- * may name, for the message that refuses another */
-static const char *self_shadow_known(char *buf, size_t n)
-{
-#define SELF_NAME(id, text) text,
-    static const char *const names[] = {SL_SELF_SHADOW(SELF_NAME)};
-#undef SELF_NAME
-    buf[0] = '\0';
-    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
-        sl_known_add(buf, n, names[i]);
-    return buf;
-}
-
-#define COPY_UINT(name, type, a, b)                                                               \
-    if (*rm->name > INT_MAX)   /* the method's own range check sees an int */                     \
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, #name " %u: must be in 0..%d", *rm->name, INT_MAX); \
-    p->name = (type)*rm->name;
-#define COPY_FLOAT(name, type, a, b)  p->name = (type)*rm->name;
-#define COPY_BOOL(name, type, a, b)   p->name = *rm->name ? 1 : 0;
-#define COPY_WORDS(name, type, a, b)                                                             \
-    if (strcmp(rm->name, a) == 0)                                                                \
-        p->name = 0;                                                                             \
-    else if (strcmp(rm->name, b) == 0)                                                           \
-        p->name = 1;                                                                             \
-    else                                                                                         \
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, #name " '%s': " a " or " b, rm->name);
-#define COPY_POLICY(name, type, a, b)                                                            \
-    p->name = sl_self_shadow_parse(rm->name);                                                    \
-    if (p->name < 0) {                                                                           \
-        char known[128];                                                                         \
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown self-shadow policy '%s' (known: %s)", \
-                           rm->name, self_shadow_known(known, sizeof known));                    \
-    }
-#define WRITE_UINT(name, a, b)   fprintf(f, ", " #name ": %d", p->name);
-#define WRITE_FLOAT(name, a, b)  fprintf(f, ", " #name ": %g", (double)p->name);
-#define WRITE_BOOL(name, a, b)   fprintf(f, ", " #name ": %s", p->name ? "true" : "false");
-#define WRITE_WORDS(name, a, b)  fprintf(f, ", " #name ": %s", p->name ? b : a);
-#define WRITE_POLICY(name, a, b) fprintf(f, ", " #name ": %s", sl_self_shadow_name(p->name));
-
 /* ---- raw schema (what libcyaml fills) ---- */
 
 struct raw_viewport { unsigned width, height; };
@@ -94,9 +37,8 @@ struct raw_method {
     char  *display;
     char  *method;
     struct raw_lframe *light_frame;
-#define RAW_KNOB(id, bit, name, type, kind, a, b, doc) RAW_##kind *name;
-    SL_KNOBS(RAW_KNOB)
-#undef RAW_KNOB
+    /* every other key is a parameter of the method, taken from the entry
+     * before the schema reads it (below: method_entry) */
 };
 struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bool *exr; char *aliasing; };
 struct raw_scene_ref {
@@ -136,9 +78,6 @@ static const cyaml_schema_field_t method_fields[] = {
     CYAML_FIELD_STRING_PTR("label", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, label, 1, 47),
     CYAML_FIELD_STRING_PTR("display", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_method, display, 1, 47),
     CYAML_FIELD_STRING_PTR("method", CYAML_FLAG_POINTER, struct raw_method, method, 1, 63),
-#define SCHEMA_KNOB(id, bit, name, type, kind, a, b, doc) SCHEMA_##kind(name),
-    SL_KNOBS(SCHEMA_KNOB)
-#undef SCHEMA_KNOB
     CYAML_FIELD_END,
 };
 static const cyaml_schema_value_t method_schema = {
@@ -242,8 +181,9 @@ static const cyaml_schema_value_t config_schema = {
 /* ---- the config reference: every key of the schema above, documented ----
  * `shadowlab help --config` (doc/config.md) and the man page's
  * CONFIGURATION section are written from the libcyaml schema itself, walked
- * key by key, with the one line of text each path has here (a method's
- * knobs: their SL_KNOBS text). A schema key with no text here, or a text
+ * key by key, with the one line of text each path has here, then each
+ * built-in method's parameters from its declarations (base/params.h). A
+ * schema key with no text here, or a text
  * for a key the schema has not, is an error of the generator, so the
  * reference cannot drift from what the parser takes. */
 static const struct { const char *path, *doc; } key_docs[] = {
@@ -260,10 +200,10 @@ static const struct { const char *path, *doc; } key_docs[] = {
     {"map_sizes", "shadow-map sizes: powers of two, 64..16384"},
     {"contours", "contour thicknesses in pixels: even, 2..64, increasing (default [2, 4, 6]); the whole image is always added"},
     {"contour_from", "nsm (default: one contour per view and map, from NSM's image, shared by every method) or own (each method's own image)"},
-    {"methods", "the labelled methods; one method may appear under several labels, and a knob given as a list sweeps (one label per value)"},
+    {"methods", "the labelled methods; one method may appear under several labels, and a parameter given as a list sweeps (one label per value)"},
     {"methods[].display", "the name LaTeX tables print for the label (default: the method's own display name when the label is the method's name, else the label); a sweep adds its [key=value]"},
     {"methods[].label", "the label tables and the store use (default: the method's name): letters, digits, -, _, . (not first)"},
-    {"methods[].method", "a built-in method (shadowlab list methods) or a technique package (shadowlab list techniques); a package's parameters are keys of this entry too (shadowlab show technique NAME)"},
+    {"methods[].method", "a built-in method (shadowlab list methods) or a technique package (shadowlab list techniques); its parameters are keys of this entry too (below; shadowlab show method NAME, shadowlab show technique NAME)"},
     {"methods[].light_frame", "this label's own light frame (errors over motion)"},
     {"methods[].light_frame.fit", "tight (default: the view's receivers) or sphere (their bounding sphere: stable under camera rotation)"},
     {"methods[].light_frame.snap", "true: the frame moves in whole texels (no crawling under camera motion); default false"},
@@ -284,21 +224,11 @@ static const struct { const char *path, *doc; } key_docs[] = {
     {"gl", "the GL backend: osmesa or egl (default: SHADOWLAB_GL, else osmesa)"},
 };
 
-static const char *knob_doc(const char *key)
-{
-#define KNOB_DOC(id, bit, name, type, kind, a, b, doc) if (!strcmp(key, #name)) return doc;
-    SL_KNOBS(KNOB_DOC)
-#undef KNOB_DOC
-    return NULL;
-}
-
 static const char *key_doc(const char *path)
 {
     for (size_t i = 0; i < sizeof key_docs / sizeof key_docs[0]; i++)
         if (!strcmp(key_docs[i].path, path))
             return key_docs[i].doc;
-    if (!strncmp(path, "methods[].", 10))
-        return knob_doc(path + 10);
     return NULL;
 }
 
@@ -374,12 +304,50 @@ static void ref_fields(struct ref_walk *w, const cyaml_schema_field_t *fl, const
 }
 
 
+/* Each built-in method's parameters, from its declarations: the keys a
+ * `methods:` entry naming it may give (a package's: show technique NAME). */
+static void method_params_reference(FILE *f, int roff)
+{
+    if (roff)
+        fputs(".PP\nThe parameters of the built-in methods, keys of a \\fBmethods\\fR entry naming the method:\n", f);
+    else
+        fputs("\nThe parameters of the built-in methods, keys of a `methods:` entry naming the method "
+              "(`shadowlab show method NAME`; a package's: `shadowlab show technique NAME`):\n\n"
+              "| method | key | value | default | meaning |\n|---|---|---|---|---|\n", f);
+    for (int k = 0; k < sl_method_count(); k++) {
+        const struct sl_method *m = sl_method_at(k);
+        for (int j = 0; j < m->nparams; j++) {
+            const struct sl_param *p = &m->params[j];
+            char range[160], def[64], kind[200];
+            sl_param_range_text(p, range, sizeof range);
+            sl_param_text(p, p->def, def, sizeof def);
+            snprintf(kind, sizeof kind, "%s%s%s%s%s", sl_param_type_names[p->type], range[0] ? " " : "", range,
+                     p->unit[0] ? " " : "", p->unit);
+            if (roff) {
+                fprintf(f, ".TP\n.B %s.%s\n(%s, default %s) ", m->name, p->name, kind, def);
+                for (const char *q = p->doc; *q; q++) {
+                    if (*q == '\\' || *q == '-')
+                        fputc('\\', f);
+                    fputc(*q, f);
+                }
+                fputc('\n', f);
+            } else {
+                fprintf(f, "| `%s` | `%s` | %s | %s | ", m->name, p->name, kind, def);
+                for (const char *q = p->doc; *q; q++)
+                    fputs(*q == '|' ? "\\|" : (char[2]){*q, 0}, f);
+                fputs(" |\n", f);
+            }
+        }
+    }
+}
+
 enum sl_err sl_config_reference(FILE *f, int roff, struct sl_diag *d)
 {
     struct ref_walk w = {.f = f, .roff = roff};
     if (!roff)
         fputs("| key | value | meaning |\n|---|---|---|\n", f);
     ref_fields(&w, config_fields, "");
+    method_params_reference(f, roff);
     if (w.missing[0])
         return sl_fail(d, SL_E_USAGE, NULL, 0, w.missing,
                        "the config key '%s' has no text in the reference (key_docs, config.c)", w.missing);
@@ -708,46 +676,24 @@ static enum sl_err method_light_frame(const struct raw_method *rm, unsigned i, c
     return SL_OK;
 }
 
-/* The knobs (SL_KNOBS) entry i gives: each one's bit and value (a word
- * checked), each one its method takes, then the method's own check of the
- * values (configure). */
-static enum sl_err method_knobs(const struct raw_method *rm, unsigned i, const char *file,
-                                const struct sl_yaml_pos *ix, struct sl_config_method *cm, struct sl_diag *d)
+/* The method's own check of entry i's values against each other
+ * (configure), its error named at the key's line. */
+static enum sl_err method_configure(unsigned i, const struct sl_method_extras *x, const char *file,
+                                    const struct sl_yaml_pos *ix, struct sl_config_method *cm, struct sl_diag *d)
 {
     char key[96];
-    struct sl_method_params *p = &cm->params;
-    memset(p, 0, sizeof *p);
-#define COPY_KNOB(id, bit, name, type, kind, a, b, doc)                                                  \
-    if (rm->name) {                                                                                      \
-        p->set |= id;                                                                                    \
-        snprintf(key, sizeof key, "methods[%u]." #name, i);                                              \
-        COPY_##kind(name, type, a, b)                                                                    \
-    }
-    SL_KNOBS(COPY_KNOB)
-#undef COPY_KNOB
-    static const struct { unsigned bit; const char *name; } pk[] = {
-#define NAME_KNOB(id, bit, name, ...) {id, #name},
-        SL_KNOBS(NAME_KNOB)
-#undef NAME_KNOB
-    };
-    for (size_t k = 0; k < sizeof pk / sizeof pk[0]; k++)
-        if ((p->set & pk[k].bit) && !(cm->method->params_ok & pk[k].bit)) {
-            snprintf(key, sizeof key, "methods[%u].%s", i, pk[k].name);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "method '%s' takes no parameter '%s'",
-                       cm->method->name, pk[k].name);
-        }
     struct sl_diag md;
-    if (sl_method_configure(cm->method, p, &md) != SL_OK) {
-        snprintf(key, sizeof key, "methods[%u]%s%s", i, md.key[0] ? "." : "", md.key);
-        int line = sl_yaml_line(ix, key);
-        if (!line) {
-            snprintf(key, sizeof key, "methods[%u]", i);
-            line = sl_yaml_line(ix, key);
-            snprintf(key, sizeof key, "methods[%u]%s%s", i, md.key[0] ? "." : "", md.key);
-        }
-        return sl_fail(d, SL_E_CONFIG, file, line, key, "%s", md.msg);
-    }
-    return SL_OK;
+    if (sl_method_configure(cm->method, &cm->params, &md) == SL_OK)
+        return SL_OK;
+    int line = 0;
+    for (int k = 0; x && k < x->n && !line; k++)
+        if (!strcmp(x->k[k].key, md.key))
+            line = x->k[k].line;
+    snprintf(key, sizeof key, "methods[%u]", i);
+    if (!line)
+        line = sl_yaml_line(ix, key);
+    snprintf(key, sizeof key, "methods[%u]%s%s", i, md.key[0] ? "." : "", md.key);
+    return sl_fail(d, SL_E_CONFIG, file, line, key, "%s", md.msg);
 }
 
 /* ---- sweeps and technique packages (extras.h) ----
@@ -758,25 +704,16 @@ static enum sl_err method_knobs(const struct raw_method *rm, unsigned i, const c
  * the loaders around validate. */
 static const struct sl_method_extras *cfg_extras;
 
-/* The knobs a package entry takes beside its own parameters: its cascades
- * (methods/package.h); any other key of the entry is the package's. */
-static int cascade_knob(const char *key) { return !strcmp(key, "partitions") || !strcmp(key, "lambda"); }
-
-/* Which keys the text pass takes: every key of an entry whose method is
- * not a C method (a package's parameters; an unknown method is refused
- * later by name), and a C method's knob given as a list. */
+/* The keys of a method entry that the schema reads; every other key is a
+ * parameter of its method (its declarations: base/params.h), taken out
+ * with its value as written and checked against the method's declaration
+ * in method_entry. */
 static int take_extra(const char *method, const char *key, int is_list, void *user)
 {
+    (void)method;
+    (void)is_list;
     (void)user;
-    int c_method = 0;
-    for (int k = 0; k < sl_method_count() && !c_method; k++)
-        c_method = !strcmp(sl_method_at(k)->name, method);
-#define KNOB_IS(id, bit, name, ...) || !strcmp(key, #name)
-    int knob = 0 SL_KNOBS(KNOB_IS);
-#undef KNOB_IS
-    if (!c_method)   /* a package's keys, but its cascades' knobs given as one value */
-        return is_list || !cascade_knob(key);
-    return is_list && knob;
+    return strcmp(key, "label") && strcmp(key, "display") && strcmp(key, "method") && strcmp(key, "light_frame");
 }
 
 static enum sl_err extras_edit(unsigned char **text, size_t *len, void *user, struct sl_diag *d)
@@ -786,100 +723,6 @@ static enum sl_err extras_edit(unsigned char **text, size_t *len, void *user, st
     enum sl_err e = sl_extras_take(*text, *len, take_extra, NULL, x, SL_CFG_MAX, file, d);
     cfg_extras = x;
     return e;
-}
-
-/* A knob's value written in a sweep's list, as libcyaml would read it. */
-static int parse_uint(const char *t, unsigned *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long v = strtoul(t, &end, 10);
-    if (!*t || *t == '-' || *end || errno || v > UINT_MAX)
-        return 0;
-    *out = (unsigned)v;
-    return 1;
-}
-static int parse_double(const char *t, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(t, &end);
-    if (!*t || *end || errno || !isfinite(v))
-        return 0;
-    *out = v;
-    return 1;
-}
-static int parse_bool(const char *t, int *out)
-{
-    if (!strcmp(t, "true") || !strcmp(t, "True") || !strcmp(t, "TRUE") || !strcmp(t, "yes"))
-        return *out = 1, 1;
-    if (!strcmp(t, "false") || !strcmp(t, "False") || !strcmp(t, "FALSE") || !strcmp(t, "no"))
-        return *out = 0, 1;
-    return 0;
-}
-
-/* One value per knob, held for a raw entry whose swept knobs point here. */
-struct knob_vals {
-#define VAL_UINT(name)   unsigned name;
-#define VAL_FLOAT(name)  float name;
-#define VAL_BOOL(name)   bool name;
-#define VAL_WORDS(name)  char name[64];
-#define VAL_POLICY(name) char name[64];
-#define KNOB_VAL(id, bit, name, type, kind, a, b, doc) VAL_##kind(name)
-    SL_KNOBS(KNOB_VAL)
-#undef KNOB_VAL
-};
-
-/* Knob `key` of rm set to text t (a sweep's value): 1 done, 0 not a knob,
- * -1 not a value of the knob's kind. */
-static int sweep_knob(struct raw_method *rm, struct knob_vals *kv, const char *key, const char *t)
-{
-    double x;
-    int b;
-#define SET_UINT(name)   if (!parse_uint(t, &kv->name)) return -1; rm->name = &kv->name;
-#define SET_FLOAT(name)  if (!parse_double(t, &x)) return -1; kv->name = (float)x; rm->name = &kv->name;
-#define SET_BOOL(name)   if (!parse_bool(t, &b)) return -1; kv->name = b; rm->name = &kv->name;
-#define SET_WORDS(name)  snprintf(kv->name, sizeof kv->name, "%s", t); rm->name = kv->name;
-#define SET_POLICY(name) snprintf(kv->name, sizeof kv->name, "%s", t); rm->name = kv->name;
-#define SWEEP_KNOB(id, bit, name, type, kind, a, b_, doc) \
-    if (!strcmp(key, #name)) {                            \
-        SET_##kind(name)                                  \
-        return 1;                                         \
-    }
-    SL_KNOBS(SWEEP_KNOB)
-#undef SWEEP_KNOB
-    (void)x;
-    (void)b;
-    return 0;
-}
-
-/* Parameter `name` of package t set to text s, checked: its type and
- * range, named at the key's line. */
-static enum sl_err package_value(const struct sl_technique *t, struct sl_tech_values *v, const char *key,
-                                 int line, const char *name, const char *s, const char *file, struct sl_diag *d)
-{
-    int k = sl_tech_param_index(t, name);
-    if (k < 0) {
-        char known[512] = "";
-        for (int j = 0; j < t->nparams; j++)
-            sl_known_add(known, sizeof known, t->param[j].name);
-        return sl_fail(d, SL_E_CONFIG, file, line, key, "technique '%s' has no parameter '%s' (it has: %s)", t->name,
-                       name, t->nparams ? known : "none");
-    }
-    double x;
-    int b;
-    if (t->param[k].type == SL_TECH_BOOL) {
-        if (!parse_bool(s, &b))
-            return sl_fail(d, SL_E_CONFIG, file, line, key, "'%s': true or false", s);
-        x = b;
-    } else if (!parse_double(s, &x)) {
-        return sl_fail(d, SL_E_CONFIG, file, line, key, "'%s': not a number", s);
-    }
-    struct sl_diag md;
-    memset(&md, 0, sizeof md);
-    if (sl_tech_value_set(t, v, name, x, &md))
-        return sl_fail(d, SL_E_CONFIG, file, line, key, "%s", md.msg);
-    return SL_OK;
 }
 
 /* A sweep's value in a label: "[key=value]", the value a file word. */
@@ -952,13 +795,9 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
         int n = c->nmethods;
         struct sl_config_method *cm = &c->methods[n];
         cm->method = m;
-        struct raw_method rm2 = *rm;
-        struct knob_vals kv;
+        sl_method_params_init(m, &cm->params);
+        cm->params.tech = t;
         char suffix[64] = "";
-        struct sl_tech_values tv;
-        memset(&tv, 0, sizeof tv);
-        if (t)
-            sl_tech_defaults(t, &tv);
         int rest = combo;
         /* the value each key has in this combination */
         const char *val[SL_EXTRA_KEYS];
@@ -977,26 +816,23 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
             enum sl_err e = SL_OK;
             if (xk->is_list)
                 e = label_part(suffix, sizeof suffix, xk, val[k], i, file, d);
-            int knob = !t || cascade_knob(xk->key) ? sweep_knob(&rm2, &kv, xk->key, val[k]) : 0;
-            if (!e && t && !knob) {
-                e = package_value(t, &tv, key, xk->line, xk->key, val[k], file, d);
-            } else if (!e) {
-                int ok = knob;
-                if (ok < 0)
-                    e = sl_fail(d, SL_E_CONFIG, file, xk->line, key, "'%s' is not a value of %s", val[k], xk->key);
+            struct sl_diag md;
+            if (!e && sl_params_put_text(&cm->params.values, xk->key, val[k], &md)) {
+                if (sl_param_index(m->params, m->nparams, xk->key) < 0)   /* "no parameter 'x' (it has: ...)" */
+                    e = sl_fail(d, SL_E_CONFIG, file, xk->line, key, "method '%s' has %s", m->name, md.msg);
+                else
+                    e = sl_fail(d, SL_E_CONFIG, file, xk->line, key, "%s", md.msg);
             }
             if (e)
                 return e;
         }
-        enum sl_err e = method_label(&rm2, i, n, suffix, file, ix, c, d);
+        enum sl_err e = method_label(rm, i, n, suffix, file, ix, c, d);
         if (!e)
-            e = method_light_frame(&rm2, i, file, ix, cm, d);
+            e = method_light_frame(rm, i, file, ix, cm, d);
         if (!e)
-            e = method_knobs(&rm2, i, file, ix, cm, d);
+            e = method_configure(i, x, file, ix, cm, d);
         if (e)
             return e;
-        cm->params.tech = t;
-        cm->params.pkg = tv;
         c->nmethods++;
     }
     return SL_OK;
@@ -1676,7 +1512,7 @@ static void write_contour_from(const struct sl_config *c, FILE *f)
     fprintf(f, "contour_from: %s\n", sl_contour_from_name(c->contour_from));
 }
 
-/* a knob only where the entry gave it */
+/* every parameter that applies to the label's values, in its method's order */
 static void write_methods(const struct sl_config *c, FILE *f)
 {
     fprintf(f, "methods:\n");
@@ -1691,17 +1527,13 @@ static void write_methods(const struct sl_config *c, FILE *f)
                 fprintf(f, *p == '"' || *p == '\\' ? "\\%c" : "%c", *p);
             fputc('"', f);
         }
-#define WRITE_KNOB(id, bit, name, type, kind, a, b, doc) \
-        if (p->set & id)                                 \
-            WRITE_##kind(name, a, b)
-        SL_KNOBS(WRITE_KNOB)
-#undef WRITE_KNOB
-        const struct sl_technique *t = p->tech;
-        for (int k = 0; t && k < t->nparams; k++) {
-            if (t->param[k].type == SL_TECH_BOOL)
-                fprintf(f, ", %s: %s", t->param[k].name, p->pkg.v[k] != 0.0 ? "true" : "false");
-            else
-                fprintf(f, ", %s: %.9g", t->param[k].name, p->pkg.v[k]);
+        const struct sl_params *s = &p->values;
+        for (int k = 0; k < s->n; k++) {
+            if (s->off >> k & 1u)
+                continue;   /* does not apply to these values */
+            char v[64];
+            sl_param_text(&s->decl[k], s->v[k], v, sizeof v);
+            fprintf(f, ", %s: %s", s->decl[k].name, v);
         }
         if (c->methods[i].frame_fit.fit != SL_FIT_TIGHT)
             fprintf(f, ", light_frame: {fit: sphere, snap: %s}", c->methods[i].frame_fit.snap ? "true" : "false");
@@ -1763,7 +1595,8 @@ int sl_config_contour_label(const struct sl_config *c)
 {
     for (int i = 0; i < c->nmethods; i++)
         if (strcmp(c->methods[i].method->name, "nsm") == 0 &&
-            c->methods[i].params.self_shadow == SL_SELF_FRONT_FACES && c->methods[i].frame_fit.fit == SL_FIT_TIGHT)
+            sl_params_get(&c->methods[i].params.values, "self_shadow") == SL_SELF_FRONT_FACES &&
+            c->methods[i].frame_fit.fit == SL_FIT_TIGHT)
             return i;
     return -1;
 }

@@ -35,7 +35,7 @@
 #include <stdio.h>
 #include "fitopts.h"
 #include "glbackend.h"
-#include "knobs.h"
+#include "methodparams.h"
 #include "scenelimits.h"
 #include "sl_error.h"
 

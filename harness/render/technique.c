@@ -29,7 +29,6 @@
 #endif
 
 #define NAME_(id, name) name,
-const char *const sl_tech_type_names[3] = {SL_TECH_TYPES(NAME_)};
 const char *const sl_tech_format_names[4] = {SL_TECH_FORMATS(NAME_)};
 const char *const sl_tech_filter_names[2] = {SL_TECH_FILTERS(NAME_)};
 const char *const sl_tech_post_names[4] = {SL_TECH_POSTS(NAME_)};
@@ -191,44 +190,6 @@ static void one_of(char *buf, size_t size, const char *const *names, int n)
         k += (size_t)snprintf(buf + k, size - k, "%s%s", i == 0 ? "" : i == n - 1 ? " or " : ", ", names[i]);
 }
 
-/* A value of the parameter's type from its text: 0 and *x, else why not. */
-static const char *value_of(const char *s, enum sl_tech_type type, double *x)
-{
-    if (type == SL_TECH_BOOL) {
-        if (!strcmp(s, "true") || !strcmp(s, "True") || !strcmp(s, "TRUE")) {
-            *x = 1;
-            return NULL;
-        }
-        if (!strcmp(s, "false") || !strcmp(s, "False") || !strcmp(s, "FALSE")) {
-            *x = 0;
-            return NULL;
-        }
-        return "is not a bool (true or false)";
-    }
-    char *end;
-    errno = 0;
-    if (type == SL_TECH_INT) {
-        const char *t = s + (*s == '+' || *s == '-');
-        if (!*t || (t[0] == '0' && t[1]))
-            return "is not an int (decimal digits)";
-        for (const char *p = t; *p; p++)
-            if (*p < '0' || *p > '9')
-                return "is not an int (decimal digits)";
-        long long v = strtoll(s, &end, 10);
-        if (errno || v < -(1ll << 31) || v > (1ll << 31) - 1)
-            return "is outside the range of a GLSL int";
-        *x = (double)v;
-        return NULL;
-    }
-    double v = strtod(s, &end);
-    if (end == s || *end || errno == ERANGE || !isfinite(v))
-        return "is not a finite float";
-    if (fabs(v) > 3.4e38)
-        return "is outside the range of a GLSL float";
-    *x = v;
-    return NULL;
-}
-
 /* Read a shader of the package: `rel` a relative path of plain components
  * (no `..`, no `.`, no empty one), each on the way a folder and no link,
  * the last a regular file of at most SL_TECH_MAX_SHADER bytes. */
@@ -347,7 +308,7 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
     t->nparams = (int)r->params_count;
     for (int i = 0; i < t->nparams; i++) {
         const struct raw_param *rp = &r->params[i];
-        struct sl_tech_param *p = &t->param[i];
+        struct sl_param *p = &t->param[i];
         const char *why = ident_bad(rp->name);
         snprintf(key, sizeof key, "params[%d].name", i);
         if (why)
@@ -357,16 +318,16 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' names params[%d] already", rp->name, j);
         snprintf(p->name, sizeof p->name, "%s", rp->name);
         snprintf(key, sizeof key, "params[%d].type", i);
-        int ty = pick(rp->type, sl_tech_type_names, 3);
-        one_of(list, sizeof list, sl_tech_type_names, 3);
+        int ty = pick(rp->type, sl_param_type_names, 3);
+        one_of(list, sizeof list, sl_param_type_names, 3);
         if (ty < 0)
             return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s': a parameter's type is %s", rp->type, list);
-        p->type = (enum sl_tech_type)ty;
+        p->type = (enum sl_param_type)ty;
         p->has_min = rp->min != NULL;
         p->has_max = rp->max != NULL;
-        p->min = p->type == SL_TECH_BOOL ? 0 : -INFINITY;
-        p->max = p->type == SL_TECH_BOOL ? 1 : INFINITY;
-        if (p->type == SL_TECH_BOOL && (rp->min || rp->max)) {
+        p->min = p->type == SL_PARAM_BOOL ? 0 : -INFINITY;
+        p->max = p->type == SL_PARAM_BOOL ? 1 : INFINITY;
+        if (p->type == SL_PARAM_BOOL && (rp->min || rp->max)) {
             snprintf(key, sizeof key, "params[%d].%s", i, rp->min ? "min" : "max");
             return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "a bool parameter has no range");
         }
@@ -377,9 +338,9 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
             if (!text[k])
                 continue;
             snprintf(key, sizeof key, "params[%d].%s", i, what[k]);
-            if ((why = value_of(text[k], p->type, dst[k])))
+            if ((why = sl_param_parse(p, text[k], dst[k])))
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' %s (the parameter is %s)", text[k], why,
-                                   sl_tech_type_names[p->type]);
+                                   sl_param_type_names[p->type]);
         }
         if (p->min > p->max) {
             snprintf(key, sizeof key, "params[%d].max", i);
@@ -454,10 +415,10 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
             m->blur = sl_tech_param_index(t, rm->blur);
             if (m->blur < 0)
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' names no parameter", rm->blur);
-            const struct sl_tech_param *bp = &t->param[m->blur];
-            if (bp->type != SL_TECH_INT)
+            const struct sl_param *bp = &t->param[m->blur];
+            if (bp->type != SL_PARAM_INT)
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' is a %s parameter: a blur radius is an "
-                                   "int", rm->blur, sl_tech_type_names[bp->type]);
+                                   "int", rm->blur, sl_param_type_names[bp->type]);
             if (!bp->has_min || !bp->has_max || bp->min < 0 || bp->max > 64)
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' needs a range within [0, 64] (min and "
                                    "max): a blur radius is bounded", rm->blur);
@@ -499,8 +460,8 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
             s->param = sl_tech_param_index(t, rs[k]->param);
             if (s->param < 0)
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' names no parameter", rs[k]->param);
-            const struct sl_tech_param *p = &t->param[s->param];
-            if (p->type == SL_TECH_BOOL)
+            const struct sl_param *p = &t->param[s->param];
+            if (p->type == SL_PARAM_BOOL)
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' is a bool: %s scales with an int or "
                                    "float parameter", rs[k]->param, sname[k]);
             if (!p->has_min || !p->has_max || p->min < 0)
@@ -577,36 +538,12 @@ int sl_tech_map_index(const struct sl_technique *t, const char *name)
 
 /* ---- values ---- */
 
-void sl_tech_defaults(const struct sl_technique *t, struct sl_tech_values *v)
+void sl_tech_defaults(const struct sl_technique *t, struct sl_params *v)
 {
-    memset(v, 0, sizeof *v);
-    v->n = t->nparams;
-    for (int i = 0; i < t->nparams; i++)
-        v->v[i] = t->param[i].def;
+    sl_params_init(v, t->param, t->nparams);
 }
 
-enum sl_err sl_tech_value_set(const struct sl_technique *t, struct sl_tech_values *v, const char *name,
-                              double x, struct sl_diag *d)
-{
-    int i = sl_tech_param_index(t, name);
-    if (i < 0)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "technique %s has no parameter '%s'", t->name, name);
-    const struct sl_tech_param *p = &t->param[i];
-    if (!isfinite(x))
-        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "not a finite number");
-    if (p->type == SL_TECH_BOOL && x != 0.0 && x != 1.0)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "%g: a bool is true or false", x);
-    if (p->type == SL_TECH_INT && x != floor(x))
-        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "%g: an int is a whole number", x);
-    if (x < p->min || x > p->max)
-        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "%g is outside [%g, %g] (%s)", x, p->min, p->max, t->name);
-    if (v->n != t->nparams)
-        sl_tech_defaults(t, v);
-    v->v[i] = x;
-    return SL_OK;
-}
-
-static double scaled(const struct sl_tech_scaled *s, const struct sl_tech_values *v)
+static double scaled(const struct sl_tech_scaled *s, const struct sl_params *v)
 {
     double x = s->texels;
     if (s->param >= 0 && s->param < v->n) {
@@ -616,13 +553,13 @@ static double scaled(const struct sl_tech_scaled *s, const struct sl_tech_values
     return x >= 0 ? x : 0;   /* NaN: 0 */
 }
 
-int sl_tech_reach(const struct sl_technique *t, const struct sl_tech_values *v)
+int sl_tech_reach(const struct sl_technique *t, const struct sl_params *v)
 {
     double x = ceil(scaled(&t->reach, v));
     return x < 1e6 ? (int)x : 1000000;
 }
 
-int sl_tech_guard(const struct sl_technique *t, const struct sl_tech_values *v)
+int sl_tech_guard(const struct sl_technique *t, const struct sl_params *v)
 {
     int g = sl_tech_reach(t, v), blur = 0;
     for (int i = 0; i < t->nmaps; i++)
@@ -631,7 +568,7 @@ int sl_tech_guard(const struct sl_technique *t, const struct sl_tech_values *v)
     return g + blur;
 }
 
-double sl_tech_taps(const struct sl_technique *t, const struct sl_tech_values *v)
+double sl_tech_taps(const struct sl_technique *t, const struct sl_params *v)
 {
     return scaled(&t->taps, v);
 }

@@ -24,6 +24,7 @@
 #ifndef SL_TECHNIQUE_H
 #define SL_TECHNIQUE_H
 #include <stddef.h>
+#include "params.h"
 #include "sl_error.h"
 
 #define SL_TECH_MAX_PARAMS 16
@@ -37,7 +38,6 @@
 
 /* The closed sets of technique.yaml, each one list: the enum (SL_TECH_<ID>,
  * SL_TECH_POST_<ID>, SL_TECH_CULL_<ID>) and the YAML spelling together. */
-#define SL_TECH_TYPES(X) X(INT, "int") X(FLOAT, "float") X(BOOL, "bool")
 #define SL_TECH_FORMATS(X) X(R32F, "r32f") X(RG32F, "rg32f") X(RGBA32F, "rgba32f") X(RGBA16F, "rgba16f")
 #define SL_TECH_FILTERS(X) X(NEAREST, "nearest") X(LINEAR, "linear")
 #define SL_TECH_POSTS(X) X(NONE, "none") X(BLUR, "blur") X(MIPMAPS, "mipmaps") X(BLUR_MIPMAPS, "blur_mipmaps")
@@ -46,7 +46,6 @@
 #define SL_TECH_ENUM_(id, name) SL_TECH_##id,
 #define SL_TECH_POST_ENUM_(id, name) SL_TECH_POST_##id,
 #define SL_TECH_CULL_ENUM_(id, name) SL_TECH_CULL_##id,
-enum sl_tech_type { SL_TECH_TYPES(SL_TECH_ENUM_) };
 enum sl_tech_format { SL_TECH_FORMATS(SL_TECH_ENUM_) };
 enum sl_tech_filter { SL_TECH_FILTERS(SL_TECH_ENUM_) };
 enum sl_tech_post { SL_TECH_POSTS(SL_TECH_POST_ENUM_) };
@@ -56,20 +55,14 @@ enum sl_tech_cull { SL_TECH_CULLS(SL_TECH_CULL_ENUM_) };
 #undef SL_TECH_CULL_ENUM_
 
 /* the YAML spellings, by enum value */
-extern const char *const sl_tech_type_names[3];     /* int float bool */
 extern const char *const sl_tech_format_names[4];   /* r32f rg32f rgba32f rgba16f */
 extern const char *const sl_tech_filter_names[2];   /* nearest linear */
 extern const char *const sl_tech_post_names[4];     /* none blur mipmaps blur_mipmaps */
 extern const char *const sl_tech_cull_names[3];     /* none front back */
 
-struct sl_tech_param {
-    char name[SL_TECH_NAME_MAX];
-    enum sl_tech_type type;
-    double def;                 /* bool: 0 or 1 */
-    double min, max;            /* -inf / +inf when not given (bool: 0, 1) */
-    int has_min, has_max;
-    char doc[200];
-};
+/* A package's parameters are declared in the one form every method uses
+ * (base/params.h): int, float or bool (no choice: technique.yaml has no
+ * words), min/max -inf/+inf when not given, no unit. */
 
 struct sl_tech_map {
     char name[SL_TECH_NAME_MAX];
@@ -100,7 +93,7 @@ struct sl_technique {
     int nmaps;
     struct sl_tech_map map[SL_TECH_MAX_MAPS];
     int nparams;
-    struct sl_tech_param param[SL_TECH_MAX_PARAMS];
+    struct sl_param param[SL_TECH_MAX_PARAMS];
     struct sl_tech_scaled reach;   /* default 0 texels */
     struct sl_tech_scaled taps;    /* default 1 texel */
     char map_shader[256], lookup_shader[256];   /* as written, relative to dir */
@@ -117,26 +110,19 @@ void        sl_tech_free(struct sl_technique *t);
 int sl_tech_param_index(const struct sl_technique *t, const char *name);
 int sl_tech_map_index(const struct sl_technique *t, const char *name);
 
-/* ---- parameter values: in the order of t->param ---- */
-struct sl_tech_values {
-    int n;
-    double v[SL_TECH_MAX_PARAMS];
-};
-void sl_tech_defaults(const struct sl_technique *t, struct sl_tech_values *v);
-/* Set parameter `name` to x, checked against its type (int: a whole number;
- * bool: 0 or 1) and range: SL_E_METHOD naming the key otherwise, or when t
- * has no such parameter. */
-enum sl_err sl_tech_value_set(const struct sl_technique *t, struct sl_tech_values *v, const char *name,
-                              double x, struct sl_diag *d);
+/* ---- parameter values: a set over t->param (base/params.h), in its order ---- */
+/* The set of t's parameters at their defaults (sl_params_init over t->param);
+ * a config's values are given with sl_params_put. */
+void sl_tech_defaults(const struct sl_technique *t, struct sl_params *v);
 
 /* How far the lookup reads beyond the texel a point lands in, texels:
  * ceil(reach.texels + reach.scale * value^power), at least 0. */
-int sl_tech_reach(const struct sl_technique *t, const struct sl_tech_values *v);
+int sl_tech_reach(const struct sl_technique *t, const struct sl_params *v);
 /* The guard band g of the maps: reach plus the largest blur radius of a
  * blurred map (its box reads that far beyond the texels the lookup reads). */
-int sl_tech_guard(const struct sl_technique *t, const struct sl_tech_values *v);
+int sl_tech_guard(const struct sl_technique *t, const struct sl_params *v);
 /* Texel reads per looked-up pixel (taps), at least 0. */
-double sl_tech_taps(const struct sl_technique *t, const struct sl_tech_values *v);
+double sl_tech_taps(const struct sl_technique *t, const struct sl_params *v);
 /* The parameter the guard band grows with (reach's, else a blurred map's
  * radius), -1 when it is fixed: what an error about the map size names. */
 int sl_tech_guard_param(const struct sl_technique *t);

@@ -170,9 +170,9 @@ static void sb_printf(struct sbuf *b, const char *fmt, ...)
     }
 }
 
-static const char *glsl_type(enum sl_tech_type t)
+static const char *glsl_type(enum sl_param_type t)
 {
-    return t == SL_TECH_INT ? "int" : t == SL_TECH_FLOAT ? "float" : "bool";
+    return t == SL_PARAM_INT ? "int" : t == SL_PARAM_FLOAT ? "float" : "bool";
 }
 
 static void params_decl(struct sbuf *b, const struct sl_technique *t)
@@ -450,7 +450,7 @@ static int mip_levels(int n)
 }
 
 enum sl_err sl_techpass_size(struct sl_techpass *p, const struct sl_light_frame *f,
-                             const struct sl_tech_values *v, int *guard, int *size, struct sl_diag *d)
+                             const struct sl_params *v, int *guard, int *size, struct sl_diag *d)
 {
     const struct sl_technique *t = p->t;
     int g = sl_tech_guard(t, v);
@@ -525,12 +525,12 @@ static void guarded_vp(struct sl_techpass *p, const struct sl_light_frame *f, in
     }
 }
 
-static void set_params(GLuint prog, const struct sl_technique *t, const struct sl_tech_values *v)
+static void set_params(GLuint prog, const struct sl_technique *t, const struct sl_params *v)
 {
     for (int i = 0; i < t->nparams; i++) {
         GLint loc = glGetUniformLocation(prog, t->param[i].name);
         double x = i < v->n ? v->v[i] : t->param[i].def;
-        if (t->param[i].type == SL_TECH_FLOAT)
+        if (t->param[i].type == SL_PARAM_FLOAT)
             glUniform1f(loc, (float)x);
         else
             glUniform1i(loc, (GLint)x);
@@ -544,7 +544,7 @@ static void set_light(GLuint prog, const struct sl_techpass *p, const struct sl_
 }
 
 /* Blur and mipmaps, timed together. */
-static enum sl_err post_passes(struct sl_techpass *p, const struct sl_tech_values *v, struct sl_diag *d)
+static enum sl_err post_passes(struct sl_techpass *p, const struct sl_params *v, struct sl_diag *d)
 {
     const struct sl_technique *t = p->t;
     const int N = p->size;
@@ -596,7 +596,7 @@ static enum sl_err post_passes(struct sl_techpass *p, const struct sl_tech_value
     return sl_gl_check("technique post passes", d);
 }
 
-static enum sl_err maps_ready(struct sl_techpass *p, const struct sl_light_frame *f, const struct sl_tech_values *v,
+static enum sl_err maps_ready(struct sl_techpass *p, const struct sl_light_frame *f, const struct sl_params *v,
                               struct sl_diag *d)
 {
     int g = 0, N = 0;
@@ -613,7 +613,7 @@ static enum sl_err maps_ready(struct sl_techpass *p, const struct sl_light_frame
 }
 
 enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m, const struct sl_light_frame *f,
-                               const struct sl_tech_values *v, struct sl_diag *d)
+                               const struct sl_params *v, struct sl_diag *d)
 {
     const struct sl_technique *t = p->t;
     double t0 = sl_now();   /* a new size's maps are made inside the timed pass, as in shadowmap.c */
@@ -678,7 +678,7 @@ enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m
 }
 
 enum sl_err sl_techpass_upload(struct sl_techpass *p, const struct sl_light_frame *f,
-                               const struct sl_tech_values *v, const float *const *texels, struct sl_diag *d)
+                               const struct sl_params *v, const float *const *texels, struct sl_diag *d)
 {
     enum sl_err e = maps_ready(p, f, v, d);
     if (e)
@@ -732,7 +732,7 @@ static enum sl_err lookup_make(struct sl_techpass *p, int w, int h, struct sl_di
 }
 
 enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_frame *f,
-                               const struct sl_tech_values *v, const float *pos, const float *nrm,
+                               const struct sl_params *v, const float *pos, const float *nrm,
                                const uint8_t *mask, int w, int h, float *vis, struct sl_diag *d)
 {
     const struct sl_technique *t = p->t;

@@ -88,25 +88,25 @@ void        sl_techpass_free(struct sl_techpass *p);
  * naming the parameter (sl_tech_guard_param) when S + 2g exceeds the GL's
  * maximum texture size or SL_TECH_MAX_MAP_SIZE. */
 enum sl_err sl_techpass_size(struct sl_techpass *p, const struct sl_light_frame *f,
-                             const struct sl_tech_values *v, int *guard, int *size, struct sl_diag *d);
+                             const struct sl_params *v, int *guard, int *size, struct sl_diag *d);
 
 /* Render the maps of light frame f (f->size, f->box.vp, ...) with mesh m,
  * then the post passes. */
 enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m, const struct sl_light_frame *f,
-                               const struct sl_tech_values *v, struct sl_diag *d);
+                               const struct sl_params *v, struct sl_diag *d);
 
 /* For tests: the guarded maps' texels given directly, texels[i] holding
  * N * N * channels floats of map i (N = S + 2g from sl_techpass_size, rows
  * from the bottom, channels as its format: 1, 2, 4 or 4), then the post
  * passes, as if rendered. */
 enum sl_err sl_techpass_upload(struct sl_techpass *p, const struct sl_light_frame *f,
-                               const struct sl_tech_values *v, const float *const *texels, struct sl_diag *d);
+                               const struct sl_params *v, const float *const *texels, struct sl_diag *d);
 
 /* Look up the points of a w x h grid in the maps of frame f (rendered or
  * uploaded last): pos, nrm 3 floats per point, mask NULL (all) or 0 = skip;
  * vis gets w * h visibilities in [0, 1] (skipped points: 0). */
 enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_frame *f,
-                               const struct sl_tech_values *v, const float *pos, const float *nrm,
+                               const struct sl_params *v, const float *pos, const float *nrm,
                                const uint8_t *mask, int w, int h, float *vis, struct sl_diag *d);
 
 /* Map an info log of the driver to the package's file: the first line

@@ -240,7 +240,7 @@ void sl_out_write_patterns_csv(FILE *f, const struct sl_config *c, const struct 
         const struct sl_cell *cl = &res->cells[i];
         if (!cl->has_patterns)
             continue;
-        int n = c->methods[cl->key.method].params.texels;
+        int n = (int)sl_params_get(&c->methods[cl->key.method].params.values, "texels");
         for (int r = 0; r < cl->fig.nregions; r++)
             for (int k = 0; k <= n; k++) {
                 char rn[16];
@@ -269,7 +269,7 @@ void sl_out_write_patterns_md(FILE *f, const struct sl_config *c, const struct s
         const struct sl_cell *cl = &res->cells[i];
         if (!cl->has_patterns)
             continue;
-        int n = c->methods[cl->key.method].params.texels;
+        int n = (int)sl_params_get(&c->methods[cl->key.method].params.values, "texels");
         for (int r = 0; r < cl->fig.nregions; r++) {
             char rn[16];
             if (cl->fig.r[r].thickness)

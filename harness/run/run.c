@@ -493,9 +493,7 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
     if (label >= 0) {
         p = c->methods[label].params;
     } else {
-        memset(&p, 0, sizeof p);
-        p.self_shadow = SL_SELF_FRONT_FACES;
-        p.set = SL_PARAM_SELF_SHADOW;
+        sl_method_params_init(m, &p);   /* its defaults: front_faces */
         if ((e = sl_method_configure(m, &p, d)))
             return e;
     }

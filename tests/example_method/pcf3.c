@@ -1,7 +1,7 @@
 /*
  * pcf3.c — percentage-closer filtering over the 3x3 texels around each
  * pixel's own, taken as a hard shadow: a PFL pixel is lit when at least 5
- * of the 9 texels light it. Knob: bias (texels, default 1). It reads the
+ * of the 9 texels light it. Parameter: bias (texels, default 1). It reads the
  * depth layer dense (a neighbour's texel: no fast path) and counts 9
  * lookups a pixel. The worked example of doc/adding-a-method.md.
  */
@@ -15,15 +15,10 @@ static unsigned pcf3_needs(const struct sl_method_params *p)
     return SL_NEED(SL_LAYER_DEPTH_ID);
 }
 
-static enum sl_err pcf3_configure(struct sl_method_params *p, struct sl_diag *d)
-{
-    if (!(p->set & SL_PARAM_BIAS))
-        p->bias = 1.0f;
-    if (!(p->bias >= 0.0f && p->bias <= 1000.0f))
-        return sl_fail(d, SL_E_METHOD, NULL, 0, "bias", "bias must be in [0, 1000] texels");
-    p->set = SL_PARAM_BIAS;   /* the keys it reads */
-    return SL_OK;
-}
+/* its parameters: one line each (name, default, range, unit, doc) */
+static const struct sl_param pcf3_params[] = {
+    SL_PARAM_FLOAT_DECL("bias", 1, 0, 1000, "texels", "depth bias of the 9 comparisons"),
+};
 
 static enum sl_err pcf3_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
                             struct sl_diag *d)
@@ -33,7 +28,7 @@ static enum sl_err pcf3_run(const struct sl_method_args *a, struct sl_verdicts *
     if (!(f->have & SL_NEED(SL_LAYER_DEPTH_ID)))
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "pcf3: depth layer not rendered");
     const float *depth = f->layer[SL_LAYER_DEPTH_ID].depth;
-    const float bias = a->params->bias;
+    const float bias = (float)sl_method_param(a->params, "bias");
     const long n = (long)v->w * v->h;
     uint64_t lookups = 0;
     double t0 = sl_now();
@@ -59,5 +54,5 @@ static enum sl_err pcf3_run(const struct sl_method_args *a, struct sl_verdicts *
 
 const struct sl_method sl_method_pcf3 = {
     .name = "pcf3", .summary = "3x3 percentage-closer filtering, lit when 5 of the 9 texels light the pixel",
-    .params_ok = SL_PARAM_BIAS, .needs = pcf3_needs, .configure = pcf3_configure, .run = pcf3_run,
+    SL_METHOD_PARAMS(pcf3_params), .needs = pcf3_needs, .run = pcf3_run,
 };
