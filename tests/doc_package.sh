@@ -100,7 +100,7 @@ man)
   ;;
 config)
   # doc/config.md is what the binary writes from the parser's schema, and it
-  # holds every top-level key of CONFIG_KEYS and every method knob of SL_KNOBS
+  # holds every top-level key of CONFIG_KEYS and every built-in method's parameters
   "$bin" help --config >"$tmp/config.md" && ok || fail "help --config failed (a key without its text?)"
   if cmp -s "$tmp/config.md" doc/config.md; then ok; else
     fail "doc/config.md is not what the binary writes: run 'build/shadowlab help --config > doc/config.md' (edit key_docs in harness/plan/config.c)"
@@ -109,9 +109,11 @@ config)
   keys=$(sed -n '/^#define CONFIG_KEYS(X)/,/^$/p' harness/plan/config.c | grep -oE '^ *X\([a-z_]+' | sed 's/.*(//')
   [ "$(echo "$keys" | wc -l)" -ge 10 ] && ok || fail "CONFIG_KEYS not found in config.c"
   for k in $keys; do grep -q "^| \`$k\` |" "$tmp/config.md" && ok || fail "doc/config.md lacks the key $k"; done
-  knobs=$(sed -n '/^#define SL_KNOBS(X)/,/^$/p' methods/knobs.h | grep -oE 'X\(SL_PARAM_[A-Z_]+, *[0-9]+, *[a-z_]+' | sed 's/.*, *//')
-  [ "$(echo "$knobs" | wc -l)" -ge 10 ] && ok || fail "SL_KNOBS not found in knobs.h"
-  for k in $knobs; do grep -q "^| \`methods\[\]\.$k\` |" "$tmp/config.md" && ok || fail "doc/config.md lacks the knob $k"; done
+  # every built-in method's declared parameters (their SL_PARAM_*_DECL lines,
+  # by name) have a row of their method's table
+  params=$(grep -ohE 'SL_PARAM_[A-Z]+_DECL\("[a-z_]+"' methods/*.c methods/selfshadow.h | sed 's/.*("//; s/"//' | sort -u)
+  [ "$(echo "$params" | wc -l)" -ge 10 ] && ok || fail "no method parameter declarations found in methods/"
+  for k in $params; do grep -qE "^\| \`[a-z_0-9]+\` \| \`$k\` \|" "$tmp/config.md" && ok || fail "doc/config.md lacks the method parameter $k"; done
   # the man page carries the same keys
   "$bin" help --man | grep -q '^\.B outputs\.aliasing$' && ok || fail "the man page lacks the config keys"
   ;;
