@@ -8,7 +8,13 @@
 # timings, ids and the digest that covers them) and every overlay PNG byte
 # for byte (a PNG that differs in bytes, as its text chunks name the git
 # SHA, is compared by its header and inflated image data, so only a pixel
-# difference fails). Prints one line per study; exit 0 when all match.
+# difference fails), the run's tables (table.md, table.tex, table-detail.tex)
+# byte for byte with each side's git SHA read from its run.yaml and put back
+# as one word, and costs.csv's counts (every column but times, the git SHA
+# and the machine). With BIN_A and BIN_B set (the two binaries), also the
+# tables each binary renders from its own store: `shadowlab table` in every
+# format (md, csv, latex), its --summary, and a pivot in every format
+# (json too). Prints one line per study; exit 0 when all match.
 set -u
 a=${1:?usage: same_results.sh OUT_A OUT_B [STUDY...]}
 b=${2:?usage: same_results.sh OUT_A OUT_B [STUDY...]}
@@ -23,6 +29,23 @@ no_sha() {
   awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "git_sha") skip = i }
            { out = ""; for (i = 1; i <= NF; i++) if (i != skip) out = out (out == "" ? "" : ",") $i; print out }' "$1"
 }
+# a file with the git SHA its run.yaml names (12 hex digits) put back as SHA
+sha_of() { sed -n 's/^git_sha: //p' "$1/run.yaml" 2>/dev/null | head -n 1; }
+unsha() {
+  [ -f "$2" ] || { echo "(absent)"; return; }
+  if [ -n "$1" ]; then sed "s/$1/SHA/g" "$2"; else cat "$2"; fi
+}
+# costs.csv's counts: the columns but times (ms*), git_sha and machine
+counts_of() {
+  [ -f "$1" ] || { echo "(absent)"; return; }
+  python3 - "$1" <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1], newline="")))
+keep = [i for i, h in enumerate(rows[0]) if not h.startswith("ms") and h not in ("git_sha", "machine")]
+for r in rows:
+    print(",".join(r[i] for i in keep))
+PY
+}
 cells_of() {
   local cols
   cols=$(sqlite3 "$1" "SELECT group_concat(name, ' || ''|'' || ') FROM pragma_table_info('cells')
@@ -35,6 +58,11 @@ for s in "${studies[@]}"; do
   for f in figures.csv motion.csv patterns.csv; do
     cmp -s <(no_sha "$a/$s/$f") <(no_sha "$b/$s/$f") || bad="$bad $f"
   done
+  sa=$(sha_of "$a/$s") sb=$(sha_of "$b/$s")
+  for f in table.md table.tex table-detail.tex; do
+    cmp -s <(unsha "$sa" "$a/$s/$f") <(unsha "$sb" "$b/$s/$f") || bad="$bad $f"
+  done
+  cmp -s <(counts_of "$a/$s/costs.csv") <(counts_of "$b/$s/costs.csv") || bad="$bad costs.csv-counts"
   n=0 px=0
   if [ -d "$a/$s/overlays" ] || [ -d "$b/$s/overlays" ]; then
     cmp -s <(cd "$a/$s/overlays" 2>/dev/null && ls) <(cd "$b/$s/overlays" 2>/dev/null && ls) || bad="$bad overlay-names"
@@ -78,5 +106,28 @@ if cmp -s <(cells_of "$a/shadowlab.db") <(cells_of "$b/shadowlab.db"); then
 else
   echo "DIFF  store: the cells differ"
   fail=1
+fi
+# the tables each binary renders from its own store, in every format
+if [ -n "${BIN_A:-}" ] && [ -n "${BIN_B:-}" ]; then
+  tabs() {   # tabs BIN DB: every table form, the git SHAs of the store's runs put back as SHA
+    local bin=$1 db=$2 shas
+    shas=$(sqlite3 "$db" "SELECT DISTINCT git_sha FROM runs" 2>/dev/null | tr '\n' ' ')
+    {
+      for f in md csv latex; do
+        echo "== table --format $f"; "$bin" table "$db" --format "$f" 2>&1
+        echo "== table --summary wrong --format $f"; "$bin" table "$db" --summary wrong --format "$f" 2>&1
+      done
+      for f in md csv latex json; do
+        echo "== pivot --format $f"; "$bin" table "$db" --rows label --cols map_size --figure wrong --format "$f" 2>&1
+      done
+    } | { if [ -n "${shas// /}" ]; then sed -E "s/$(echo $shas | sed 's/ /|/g')/SHA/g"; else cat; fi; }
+  }
+  if cmp -s <(tabs "$BIN_A" "$a/shadowlab.db") <(tabs "$BIN_B" "$b/shadowlab.db"); then
+    echo "same  tables ($(tabs "$BIN_A" "$a/shadowlab.db" | wc -l) lines in every format)"
+  else
+    echo "DIFF  tables: 'shadowlab table' renders the stores differently"
+    diff <(tabs "$BIN_A" "$a/shadowlab.db") <(tabs "$BIN_B" "$b/shadowlab.db") | head -n 20
+    fail=1
+  fi
 fi
 exit $fail
