@@ -21,8 +21,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const char *path = fuzz_file(data, size, ".yaml");
     struct sl_config *c = calloc(1, sizeof *c);
     struct sl_diag d;
-    if (c)
-        (void)sl_config_load(path, c, &d);
+    if (c && sl_config_load(path, c, &d) == SL_OK)
+        sl_config_free(c);
     free(c);
     unlink(path);
     return 0;

@@ -305,6 +305,9 @@ enum sl_err sl_method_trace_left(const struct sl_method_args *a, const uint8_t *
  * only then. Always 1 for a directional light; tests are counted in *tests. */
 int sl_method_unmapped_missed(const struct sl_method_args *a, const float p[3], uint32_t own, uint64_t *tests);
 
+/* The built-in methods (registry.c): by name (NULL if none: a technique
+ * package's method is found in the config's session, plan/session.h), how
+ * many, the i-th. */
 const struct sl_method *sl_method_find(const char *name);
 int                     sl_method_count(void);
 const struct sl_method *sl_method_at(int i);

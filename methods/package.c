@@ -3,6 +3,7 @@
  */
 #include "package.h"
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include "lightfit.h"
@@ -21,15 +22,18 @@ struct pkg {
     int                 ready;
 };
 
-static struct pkg *pkgs[SL_TECH_MAX_SET];
-static int         npkgs;
+static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
+                           struct sl_diag *d);
 
+/* The package a package method or its technique belongs to: the method and
+ * the technique are members of one struct pkg (no table to search). */
+static struct pkg *pkg_of_method(const struct sl_method *m)
+{
+    return m && m->run == pkg_run ? (struct pkg *)(void *)((char *)(void *)m - offsetof(struct pkg, m)) : NULL;
+}
 static struct pkg *pkg_of_tech(const struct sl_technique *t)
 {
-    for (int i = 0; i < npkgs; i++)
-        if (&pkgs[i]->t == t)
-            return pkgs[i];
-    return NULL;
+    return t ? (struct pkg *)(void *)((char *)(void *)t - offsetof(struct pkg, t)) : NULL;
 }
 
 static unsigned pkg_needs(const struct sl_method_params *p)
@@ -199,7 +203,7 @@ static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *o
     return SL_OK;
 }
 
-enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *rel_dir,
+enum sl_err sl_packages_load(struct sl_packages *set, const char *const *config_dirs, int n, const char *rel_dir,
                              const char *const *c_names, struct sl_diag *d)
 {
     char (*dirs)[1024] = malloc(SL_TECH_MAX_DIRS * sizeof *dirs);
@@ -213,9 +217,9 @@ enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *
     if (e)
         return e;
     for (int i = 0; i < s.n && !e; i++) {
-        if (sl_package_find(s.t[i].name))
+        if (sl_packages_find(set, s.t[i].name))
             continue;   /* loaded from an earlier search path: the first wins */
-        if (npkgs == SL_TECH_MAX_SET) {
+        if (set->n == SL_TECH_MAX_SET) {
             e = sl_fail(d, SL_E_PACKAGE, s.t[i].file, 0, "name", "more than %d technique packages", SL_TECH_MAX_SET);
             break;
         }
@@ -241,44 +245,53 @@ enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *
             .configure = pkg_configure,
             .run = pkg_run,
         };
-        pkgs[npkgs++] = k;
+        set->pkg[set->n++] = k;
     }
     sl_tech_set_free(&s);
     return e;
 }
 
-const struct sl_method *sl_package_find(const char *name)
+const struct sl_method *sl_packages_find(const struct sl_packages *set, const char *name)
 {
-    for (int i = 0; i < npkgs; i++)
-        if (!strcmp(pkgs[i]->t.name, name))
-            return &pkgs[i]->m;
+    for (int i = 0; set && i < set->n; i++)
+        if (!strcmp(set->pkg[i]->t.name, name))
+            return &set->pkg[i]->m;
     return NULL;
 }
 
 const struct sl_technique *sl_package_of(const struct sl_method *m)
 {
-    for (int i = 0; i < npkgs; i++)
-        if (&pkgs[i]->m == m)
-            return &pkgs[i]->t;
-    return NULL;
+    struct pkg *k = pkg_of_method(m);
+    return k ? &k->t : NULL;
 }
 
-int sl_package_count(void) { return npkgs; }
-const struct sl_technique *sl_package_at(int i) { return i >= 0 && i < npkgs ? &pkgs[i]->t : NULL; }
+int sl_packages_count(const struct sl_packages *set) { return set ? set->n : 0; }
+const struct sl_technique *sl_packages_at(const struct sl_packages *set, int i)
+{
+    return set && i >= 0 && i < set->n ? &set->pkg[i]->t : NULL;
+}
 
 enum sl_err sl_package_prepare(const struct sl_method *m, struct sl_diag *d)
 {
-    for (int i = 0; i < npkgs; i++)
-        if (&pkgs[i]->m == m)
-            return pkg_ready(pkgs[i], d);
-    return SL_OK;
+    struct pkg *k = pkg_of_method(m);
+    return k ? pkg_ready(k, d) : SL_OK;
 }
 
-void sl_packages_release_gl(void)
+void sl_packages_release_gl(struct sl_packages *set)
 {
-    for (int i = 0; i < npkgs; i++)
-        if (pkgs[i]->ready) {
-            sl_techpass_free(&pkgs[i]->pass);
-            pkgs[i]->ready = 0;
+    for (int i = 0; set && i < set->n; i++)
+        if (set->pkg[i]->ready) {
+            sl_techpass_free(&set->pkg[i]->pass);
+            set->pkg[i]->ready = 0;
         }
+}
+
+void sl_packages_free(struct sl_packages *set)
+{
+    for (int i = 0; set && i < set->n; i++) {
+        sl_tech_free(&set->pkg[i]->t);
+        free(set->pkg[i]);
+    }
+    if (set)
+        set->n = 0;
 }

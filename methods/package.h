@@ -17,40 +17,55 @@
  * the map pass, the post passes, the lookup pass and the readback, each
  * also apart in ms_step[0..3].
  *
- * Owns: the packages loaded (for the process's life: configs keep
- * pointers to their methods) and their GL passes (sl_packages_release_gl
- * before the GL context goes).
+ * Owns: nothing of its own: a set (struct sl_packages) owns the packages
+ * loaded into it and their GL passes (sl_packages_release_gl before the GL
+ * context goes, sl_packages_free after); a config's set lives in its
+ * session (plan/session.h), so two configs loaded in one process never
+ * share or shadow each other's packages.
  */
 #ifndef SL_PACKAGE_H
 #define SL_PACKAGE_H
 #include "method.h"
 #include "technique.h"
 
+/* A set of loaded packages, each a method: what one config resolved
+ * (plan/session.h owns one per loaded config). Zero is the empty set. */
+struct pkg;
+struct sl_packages {
+    struct pkg *pkg[SL_TECH_MAX_SET];
+    int         n;
+};
+
 /* Load the packages along the search path (sl_tech_dirs: the config's
  * `techniques:` folders relative to rel_dir, SHADOWLAB_TECHNIQUES, the
- * source tree's, the installed ones) and make a method of each one not yet
- * loaded under its name (the first loaded wins: a later search path finds
- * the name taken and keeps the first). SL_E_PACKAGE for a broken package
- * or one named like a C method (c_names, NULL-terminated: the registry's,
- * which the caller reads, so this file never calls the registry that
- * calls it). */
-enum sl_err sl_packages_load(const char *const *config_dirs, int n, const char *rel_dir,
+ * source tree's, the installed ones) into set, a method of each one not
+ * yet in it under its name (the first loaded wins: a later search path
+ * finds the name taken and keeps the first). SL_E_PACKAGE for a broken
+ * package or one named like a C method (c_names, NULL-terminated: the
+ * registry's, which the caller reads, so this file never calls the
+ * registry that calls it). */
+enum sl_err sl_packages_load(struct sl_packages *set, const char *const *config_dirs, int n, const char *rel_dir,
                              const char *const *c_names, struct sl_diag *d);
+/* Free the set's packages (their GL objects released first:
+ * sl_packages_release_gl); the set is empty after. */
+void sl_packages_free(struct sl_packages *set);
 
-/* The package method of that name, NULL if none is loaded. */
-const struct sl_method *sl_package_find(const char *name);
-/* A method's package, NULL for a C method. */
+/* The set's package method of that name, NULL if none (or set NULL). */
+const struct sl_method *sl_packages_find(const struct sl_packages *set, const char *name);
+/* Packages in the set, and the i-th (listing). */
+int                        sl_packages_count(const struct sl_packages *set);
+const struct sl_technique *sl_packages_at(const struct sl_packages *set, int i);
+
+/* A method's package, NULL for a C method (the method is a member of its
+ * package's record: no table is searched). */
 const struct sl_technique *sl_package_of(const struct sl_method *m);
-/* Packages loaded, and the i-th (listing). */
-int                        sl_package_count(void);
-const struct sl_technique *sl_package_at(int i);
 
 /* Compile m's GL programs now (a package method; others: nothing), so a
  * GLSL error stops a run before its first cell: SL_E_PACKAGE naming the
  * package file and line. The GL context must be current. */
 enum sl_err sl_package_prepare(const struct sl_method *m, struct sl_diag *d);
 
-/* Free every package's GL objects (the GL context still current). */
-void sl_packages_release_gl(void);
+/* Free every package's GL objects in set (the GL context still current). */
+void sl_packages_release_gl(struct sl_packages *set);
 
 #endif

@@ -6,7 +6,6 @@
  */
 #include <string.h>
 #include "method.h"
-#include "package.h"
 
 extern const struct sl_method sl_method_nsm;
 extern const struct sl_method sl_method_bgsm;
@@ -56,7 +55,7 @@ const struct sl_method *sl_method_find(const char *name)
     for (int i = 0; sl_methods[i]; i++)
         if (strcmp(sl_methods[i]->name, name) == 0)
             return sl_methods[i];
-    return sl_package_find(name);   /* then the technique packages loaded (package.h) */
+    return NULL;   /* a technique package's: the config's session (plan/session.h) */
 }
 
 int sl_method_count(void)

@@ -12,6 +12,8 @@
 
 #include "config.h"
 #include "method.h"
+#include "package.h"
+#include "session.h"
 
 /* a label's parameter by name (its value set: base/params.h) */
 #define PV(cm, name) sl_params_get(&(cm).params.values, name)
@@ -343,6 +345,8 @@ static void config_packages(void **st)
     assert_true(k >= 0);
     assert_true(c.methods[0].params.values.v[k] == 1.0 && c.methods[2].params.values.v[k] == 5.0);
     assert_true(c.methods[3].params.values.v[k] == 7.0);
+    sl_config_free(&c);
+    assert_null(c.session);
     static const struct { const char *entry; const char *key; const char *msg; } bad[] = {
         {"  - {method: pcf, kernal: 3}\n", "methods[0].kernal", "no parameter 'kernal'"},
         {"  - {method: pcf, kernel: 11}\n", "methods[0].kernel", "outside [1, 9]"},
@@ -364,6 +368,44 @@ static void config_packages(void **st)
         assert_non_null(strstr(d.msg, bad[i].msg));
     }
     remove(path);
+}
+
+/* Each loaded config has its own packages (its session): a package found
+ * in one config's `techniques:` folder is not found by another config
+ * loaded later in the same process, the same package name loaded twice is
+ * two methods, and freeing one config leaves the other's intact. */
+static void config_sessions(void **st)
+{
+    (void)st;
+    char dir[400], sh[600];
+    snprintf(dir, sizeof dir, "%s/pk/mine", sl_test_dir);
+    snprintf(sh, sizeof sh, "mkdir -p %s && cp techniques/pcf/*.glsl %s/ && "
+             "sed 's/^name: pcf$/name: mine/' techniques/pcf/technique.yaml > %s/technique.yaml", dir, dir, dir);
+    assert_int_equal(system(sh), 0);
+    struct sl_config a, b, p1;
+    struct sl_diag d;
+    sl_test_config("sa.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\ntechniques: [pk]\n"
+                   "methods: [{method: mine, kernel: 5}, {method: pcf}]\n", &a);
+    assert_non_null(a.session);
+    assert_string_equal(a.methods[0].method->name, "mine");
+    assert_int_equal(sl_session_method(a.session, "nsm"), sl_method_find("nsm"));   /* built-ins: shared */
+    /* a config without the folder: 'mine' is unknown to it */
+    char path[400];
+    snprintf(path, sizeof path, "%s/sb.yaml", sl_test_dir);
+    write_tmp(path, "scenes: [{scene: primitives}]\nmap_sizes: [512]\nmethods: [{method: mine}]\n");
+    memset(&d, 0, sizeof d);
+    assert_int_equal(sl_config_load(path, &b, &d), SL_E_CONFIG);
+    assert_string_equal(d.key, "methods[0].method");
+    assert_non_null(strstr(d.msg, "unknown method 'mine'"));
+    assert_null(b.session);
+    /* pcf in two configs: two methods, each its own config's */
+    sl_test_config("sp.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\nmethods: [{method: pcf}]\n", &p1);
+    assert_true(p1.methods[0].method != a.methods[1].method);
+    assert_ptr_equal(p1.methods[0].params.tech, sl_package_of(p1.methods[0].method));
+    sl_config_free(&a);
+    assert_string_equal(p1.methods[0].method->name, "pcf");   /* still there */
+    assert_true(sl_method_param(&p1.methods[0].params, "kernel") == 3);
+    sl_config_free(&p1);
 }
 
 /* outputs.aliasing: auto (the default) computes the aliasing error m only
@@ -399,6 +441,7 @@ int main(int argc, char **argv)
         SL_CASE(config, overrides),
         SL_CASE(config, sweeps),
         SL_CASE(config, packages),
+        SL_CASE(config, sessions),
         SL_CASE(config, aliasing_on_demand),
     };
     return sl_run_group(argc, argv, "config", tests, NULL, NULL);

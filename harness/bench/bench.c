@@ -92,6 +92,8 @@ static enum sl_err setup(const struct sl_bench_opts *o, struct sl_bench_ctx *x, 
     enum sl_err e;
     if (have_cfg && (e = sl_config_load(o->config, &c, d)))
         return e;
+    if (have_cfg)
+        sl_config_free(&c);   /* its values only (scenes, viewpoints, sizes): no package runs here */
     const char *ref = o->scene ? o->scene : have_cfg ? c.scenes[0].path : "bench";
     if ((e = sl_scene_build(ref, &x->s, d)))
         return e;

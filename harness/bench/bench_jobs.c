@@ -67,6 +67,7 @@ enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, st
     enum sl_err e = sl_config_load(path, &c, d);
     if (e)
         return e;
+    sl_config_free(&c);   /* its values only from here on: the runs are child processes */
     char tmp[] = "/tmp/shadowlab-bench-jobs.XXXXXX";
     if (!mkdtemp(tmp))
         return sl_fail(d, SL_E_OUTPUT, tmp, 0, NULL, "cannot make a temporary folder");

@@ -71,6 +71,7 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
     getrusage(RUSAGE_SELF, &ru0);
     double t0 = sl_now(), c0 = sl_bench_cpu_s();
     e = sl_run(&c, &ro, &rr, d);
+    sl_config_free(&c);   /* its packages: the run is done with them (names and counts are the config's own) */
     double wall = sl_now() - t0, cpu = sl_bench_cpu_s() - c0;
     getrusage(RUSAGE_SELF, &ru1);
     sl_bench_loadavg(load1, sizeof load1);

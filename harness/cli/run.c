@@ -369,11 +369,13 @@ int cli_run(int argc, char **argv)
     }
     if (e)
         return cli_fail(e, &d);
+    int rc = 0;
     if (cells && (o.first >= sl_plan_count(&c) || o.last > sl_plan_count(&c))) {
         /* checked here, where the text is at hand: --cells 0:99999999999 names itself */
         sl_fail(&d, SL_E_USAGE, c.path, 0, "--cells", "cells %s outside the sweep of %d cells (0:%d)", cells,
                 sl_plan_count(&c), sl_plan_count(&c));
-        return cli_fail(SL_E_USAGE, &d);
+        rc = cli_fail(SL_E_USAGE, &d);
+        goto out;
     }
     if (gl)
         c.gl = gl;
@@ -381,13 +383,15 @@ int cli_run(int argc, char **argv)
         c.threads = threads;
     if (jobs > 1) {
         /* the workers read the config file again: what only this command line says cannot reach them */
-        if (o.first || o.last)
-            return cli_usage_error("run: --jobs splits the whole sweep; --cells is for one task", cli_usage_run);
-        if (ov.n || study[0] || threads)
-            return cli_usage_error("run: --jobs runs the config file as it is: no -D, -j or scene file with it",
-                               cli_usage_run);
-        if (o.stored_in)
-            return cli_usage_error("run: --stored-in is for a --jobs worker, not with --jobs", cli_usage_run);
+        const char *why = o.first || o.last ? "run: --jobs splits the whole sweep; --cells is for one task"
+                          : ov.n || study[0] || threads
+                              ? "run: --jobs runs the config file as it is: no -D, -j or scene file with it"
+                          : o.stored_in ? "run: --stored-in is for a --jobs worker, not with --jobs"
+                                        : NULL;
+        if (why) {
+            rc = cli_usage_error(why, cli_usage_run);
+            goto out;
+        }
     }
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -398,7 +402,8 @@ int cli_run(int argc, char **argv)
         struct sl_jobs_opts jo = {.jobs = jobs, .out_root = o.out_root, .store = o.store, .cache = o.cache_dir,
                                   .gl = gl ? sl_gl_backend_name(gl) : NULL, .resume = o.resume,
                                   .stop = &stop_signal};
-        return run_jobs(&c, &jo, argc, argv);
+        rc = run_jobs(&c, &jo, argc, argv);
+        goto out;
     }
     /* -v's tables: gathered in memory and printed after the run, once the
      * live progress line (stderr, on the same terminal) is cleared */
@@ -433,8 +438,10 @@ int cli_run(int argc, char **argv)
     snprintf(store_path, sizeof store_path, "%s", r.store_path);
     sl_run_result_free(&r);
     if (e)
-        return cli_fail(e, &d);
-    if (interrupted)
-        return say_interrupted(stored, sl_plan_count(&c), store_path, o.resume, argc, argv);
-    return 0;
+        rc = cli_fail(e, &d);
+    else if (interrupted)
+        rc = say_interrupted(stored, sl_plan_count(&c), store_path, o.resume, argc, argv);
+out:
+    sl_config_free(&c);
+    return rc;
 }

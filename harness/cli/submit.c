@@ -30,7 +30,9 @@ int cli_submit(int argc, char **argv)
     if ((e = sl_config_load(o.config, &c, &d)))
         return cli_fail(e, &d);
     static struct sl_submit_result r;
-    if ((e = sl_submit(&c, &o, &r, &d)))
+    e = sl_submit(&c, &o, &r, &d);
+    sl_config_free(&c);
+    if (e)
         return cli_fail(e, &d);
     printf("%d task(s) over %d cell(s):", r.ntasks, r.total);
     for (int i = 0; i < r.ntasks; i++)

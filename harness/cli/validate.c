@@ -65,5 +65,6 @@ int cli_validate(int argc, char **argv)
         return cli_fail(e, &d);
     printf("%s: ok: %d scene(s), %d cell(s)\n", file, c.nscenes, sl_plan_count(&c));
     sl_config_write(&c, stdout);
+    sl_config_free(&c);
     return 0;
 }

@@ -41,8 +41,11 @@ static enum sl_err sweep_config(const struct sl_merge *m, const char *out_dir, s
     unsigned long long want = strtoull(sl_merge_config_hash(m), NULL, 16);
     const char *path = sl_merge_config_path(m);
     struct sl_diag ignore;
-    if (path && file_exists(path) && sl_config_load(path, c, &ignore) == SL_OK && c->hash == want)
-        return SL_OK;
+    if (path && file_exists(path) && sl_config_load(path, c, &ignore) == SL_OK) {
+        if (c->hash == want)
+            return SL_OK;
+        sl_config_free(c);   /* another file now: the runs' own text below */
+    }
     const char *text = sl_merge_config_text(m);
     if (!text)
         return sl_fail(d, SL_E_IO, NULL, 0, NULL, "the shards' runs carry no config: cannot name missing cells");
@@ -178,6 +181,7 @@ static enum sl_err shards_merge(const char *const *shards, int n, const char *ou
 
 void sl_shards_result_free(struct sl_shards_result *r)
 {
+    sl_config_free(&r->config);
     free(r->shard);
     free(r->absent);
     free(r->missing);

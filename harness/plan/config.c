@@ -23,6 +23,7 @@
 #include "extras.h"
 #include "method.h"
 #include "package.h"
+#include "session.h"
 #include "scene.h"
 #include "scenefile.h"
 #include "util.h"
@@ -767,7 +768,9 @@ static enum sl_err load_packages(const struct raw_config *r, const char *file, c
     for (int k = 0; k < sl_method_count() && nc < 63; k++)
         c_names[nc++] = sl_method_at(k)->name;
     c_names[nc] = NULL;
-    return sl_packages_load(dirs, (int)n, dir, c_names, d);
+    if (!c->session && !(c->session = calloc(1, sizeof *c->session)))
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "the config's session");
+    return sl_packages_load(&c->session->packages, dirs, (int)n, dir, c_names, d);
 }
 
 /* Entry i expanded into labels from slot c->nmethods on: one per
@@ -777,7 +780,7 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
                                 struct sl_diag *d)
 {
     char key[96];
-    const struct sl_method *m = sl_method_find(rm->method);
+    const struct sl_method *m = sl_session_method(c->session, rm->method);
     const struct sl_technique *t = m ? sl_package_of(m) : NULL;
     int nx = x ? x->n : 0;
     /* combinations: the product of the lists' lengths */
@@ -890,12 +893,12 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
     for (unsigned i = 0; i < r->methods_count; i++) {
         const struct raw_method *rm = &r->methods[i];
         snprintf(key, sizeof key, "methods[%u].method", i);
-        if (!sl_method_find(rm->method)) {
+        if (!sl_session_method(c->session, rm->method)) {
             char known[1024] = "";
             for (int k = 0; k < sl_method_count(); k++)
                 sl_known_add(known, sizeof known, sl_method_at(k)->name);
-            for (int k = 0; k < sl_package_count(); k++)
-                sl_known_add(known, sizeof known, sl_package_at(k)->name);
+            for (int k = 0; k < sl_packages_count(c->session ? &c->session->packages : NULL); k++)
+                sl_known_add(known, sizeof known, sl_packages_at(&c->session->packages, k)->name);
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown method '%s' (known: %s)", rm->method, known);
         }
         enum sl_err e = method_entry(rm, i, cfg_extras && i < SL_CFG_MAX ? &cfg_extras[i] : NULL, file, ix, c, d);
@@ -1129,10 +1132,27 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
     };
     for (size_t i = 0; i < sizeof checks / sizeof checks[0]; i++) {
         enum sl_err e = checks[i](r, file, ix, c, d);
-        if (e)
+        if (e) {
+            sl_config_free(c);   /* a failed load holds nothing */
             return e;
+        }
     }
     return SL_OK;
+}
+
+void sl_config_free(struct sl_config *c)
+{
+    if (c->session) {
+        sl_packages_free(&c->session->packages);
+        free(c->session);
+        c->session = NULL;
+    }
+}
+
+const struct sl_method *sl_session_method(const struct sl_session *s, const char *name)
+{
+    const struct sl_method *m = sl_method_find(name);
+    return m ? m : sl_packages_find(s ? &s->packages : NULL, name);
 }
 
 /* ---- -D key=value: a config key replaced by its path ----

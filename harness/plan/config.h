@@ -39,7 +39,8 @@
 #include "scenelimits.h"
 #include "sl_error.h"
 
-struct sl_method;   /* method.h */
+struct sl_method;    /* method.h */
+struct sl_session;   /* session.h: what the load resolved besides values (the packages) */
 
 #define SL_CFG_MAX 32
 /* A config is refused unread above 4 MiB: with at most SL_CFG_MAX entries
@@ -105,10 +106,14 @@ struct sl_config {
     int  threads;                     /* resolved: >= 1 */
     enum sl_gl_backend gl;            /* 'gl: osmesa|egl'; resolved (never SL_GL_DEFAULT); the
                                        * command line's --gl replaces it */
+    struct sl_session *session;       /* the technique packages the labels run (owned; NULL: none);
+                                       * a copy of the struct shares it: free one copy */
 };
 
-/* Parse and validate; on failure d names file, line and key. */
+/* Parse and validate; on failure d names file, line and key and *out holds
+ * nothing to free. On success free with sl_config_free (its session). */
 enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_diag *d);
+void        sl_config_free(struct sl_config *c);
 
 /* The same with command-line overrides, each "key.path[i]=YAML value"
  * (-D): applied to the file's YAML before the schema and every check, so an

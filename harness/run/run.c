@@ -25,6 +25,7 @@
 #include "contour.h"
 #include "cuberun.h"
 #include "package.h"
+#include "session.h"
 #include "gbuffer.h"
 #include "glctx.h"
 #include "lightfit.h"
@@ -43,6 +44,7 @@
 /* ---- the run ---- */
 
 struct run_ctx {
+    struct sl_session *session;   /* the config's packages (their GL objects are released with the context) */
     unsigned looks[2];   /* layers the rest of the view's group reads through lookups (plan.h) */
     struct sl_gl gl;
     struct sl_rt rt;
@@ -162,7 +164,8 @@ static void ctx_free(struct run_ctx *x)
     sl_softmap_nbuf_free(&x->nbuf);
     if (x->gl.backend) {
         sl_softmap_pass_free(&x->softpass);
-        sl_packages_release_gl();   /* their GL objects, while the context is current */
+        if (x->session)
+            sl_packages_release_gl(&x->session->packages);   /* their GL objects, while the context is current */
         sl_shadowmap_free(&x->spass);
         sl_gbuffer_free(&x->gpass);
         sl_gl_free(&x->gl);
@@ -794,6 +797,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
 
     struct run_ctx x;
     memset(&x, 0, sizeof x);
+    x.session = c->session;
     x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = x.nsm_map = x.nsm_label = -1;
     x.on_event = o->on_event;
     x.user = o->user;
