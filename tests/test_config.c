@@ -148,6 +148,10 @@ static void config_overrides(void **st)
         {"scenes[0].scene=nope", "scenes[0].scene", "unknown scene 'nope'"},
         {"name=[", "name", "not YAML"},
         {"map_sizes.x=1", "map_sizes.x", "not a mapping"},
+        {"seed=7.9", "seed", "'7.9' is not a whole number"},
+        {"methods[0].bias=[]", "methods[0].bias", "an empty list sweeps nothing"},
+        {"repetitions.runs=0", "repetitions.runs", "runs 0: must be 1..1000"},
+        {"methods[0]={label: x}", "methods[0].method", "missing required key"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         memset(&d, 0, sizeof d);
@@ -157,7 +161,25 @@ static void config_overrides(void **st)
         assert_string_equal(d.file, src);
         assert_string_equal(d.key, bad[i].key);
         assert_non_null(strstr(d.msg, bad[i].msg));
+        assert_int_equal(d.line, 0);   /* the override has no line of the file */
     }
+    /* a key the file lacks is created (default.yaml gives no repetitions) */
+    const char *mk[] = {"repetitions.runs=5"};
+    assert_int_equal(sl_config_load_with("configs/default.yaml", mk, 1, &c, &d), SL_OK);
+    assert_int_equal(c.runs, 5);
+    assert_int_equal(c.warmup, 1);
+    /* a sweep given by -D: one label per value */
+    const char *sw[] = {"methods[0].self_shadow=slope", "methods[0].bias=[0.01, 0.02]"};
+    assert_int_equal(sl_config_load_with("configs/default.yaml", sw, 2, &c, &d), SL_OK);
+    assert_int_equal(c.nmethods, 2);
+    assert_string_equal(c.methods[1].label, "nsm[bias=0.02]");
+    /* the file's own error under -D keeps the file's line and name */
+    const char *other[] = {"seed=3", "methods[0].self_shadow=slope"};
+    memset(&d, 0, sizeof d);
+    assert_int_equal(sl_config_load_with("tests/bad/bad_bias.yaml", other, 2, &c, &d), SL_E_CONFIG);
+    assert_string_equal(d.file, "tests/bad/bad_bias.yaml");
+    assert_int_equal(d.line, 4);
+    assert_string_equal(d.key, "methods[0].bias");
 }
 
 /* A config written to a temporary file (the scene resolves by name). */

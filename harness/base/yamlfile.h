@@ -1,53 +1,57 @@
 /*
- * yamlfile.h — YAML files read with libcyaml against a schema, with errors
- * that name file, line and key.
+ * yamlfile.h — YAML files bound to C structs by a libcyaml schema, with
+ * errors that name file, line and key.
  *
- * libcyaml's own backtrace gives the line of type errors; a position index
- * built with libyaml (dotted key path -> line, e.g. "methods[1].bias") gives
- * it for unknown keys and for values that fail the caller's own checks
- * (sl_yaml_bad). Shared by configs and scene files.
+ * A file is read once into a positioned node tree (ytree.h); the tree is
+ * then bound to the caller's structs, driven by the caller's libcyaml
+ * schema tables (cyaml_schema_value_t / cyaml_schema_field_t stay the
+ * declarations of every file's keys, and `shadowlab help --config` is
+ * written from them). libcyaml's loader is no longer used: it reads text
+ * only and reports no node positions, so naming a key's line took a second
+ * libyaml pass beside it, and a -D override meant writing the edited
+ * config out as text and loading it again. The binding here walks the
+ * tree, so each key's line is the node's own, -D values are edited into
+ * the tree, and the memory it allocates is laid out as libcyaml's would be
+ * (cyaml_free frees it: sl_yaml_free).
+ *
+ * Supported, as the schemas use them: mappings (fields required or
+ * CYAML_FLAG_OPTIONAL, each at most once, an unknown key refused), sequences
+ * (their count field, min and max entries), strings (min and max length),
+ * INT, UINT, FLOAT and BOOL of any size, and CYAML_FLAG_POINTER on any of
+ * them. Values are read as libcyaml read them (its error texts too), plus
+ * one check libcyaml lacks: an integer field takes a whole number in
+ * decimal digits ("7.9" and "1e3" are refused, libcyaml would read 7 and
+ * 1). A mapping's value the caller took out of the tree (struct sl_ynode's
+ * taken: a config's sweeps and package parameters) is not bound.
+ *
+ * Owns: the bound data (sl_yaml_free). Does not: check values beyond the
+ * schema (the callers do, naming the key with sl_yaml_bad).
  */
 #ifndef SL_YAMLFILE_H
 #define SL_YAMLFILE_H
 #include <stddef.h>
 #include <cyaml/cyaml.h>
 #include "sl_error.h"
+#include "ytree.h"
 
-struct sl_yaml_pos;
-
-/* Load path into *out. Errors: SL_E_IO (unreadable), `kind` (the file's own
- * error id, e.g. SL_E_CONFIG or SL_E_SCENE) for YAML and schema errors, for
- * bytes that are not UTF-8 text (named with their line), for a file over
- * max_bytes (refused before it is read, so a huge file costs nothing), for
- * nesting past SL_YAML_MAX_DEPTH and for a value that is not a whole
- * number where the schema wants an integer ("7.9", "1e3": libcyaml alone
- * would read 7 and 1), and for an alias (*name: refused at its line, never
- * expanded, since each alias copies its anchor's node and a few bytes can
- * stand for gigabytes). Only a regular file is opened (sl_open_regular). On
- * success *pos is the position index (free both with sl_yaml_free). */
+/* Load path into *out: sl_ytree_read, then sl_yaml_bind. Errors: those
+ * of both. On success *pos is the file's tree (free both with
+ * sl_yaml_free). */
 enum sl_err sl_yaml_load(const char *path, const cyaml_schema_value_t *schema, void **out,
                          struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind, struct sl_diag *d);
-/* The same, with the checked text handed to edit() before it is parsed
- * (the command line's -D overrides): edit may replace *text (malloc'd; the
- * old one freed by it) and *len, or fail with its own diag. */
-typedef enum sl_err (*sl_yaml_edit_fn)(unsigned char **text, size_t *len, void *user, struct sl_diag *d);
-enum sl_err sl_yaml_load_edited(const char *path, const cyaml_schema_value_t *schema, void **out,
-                                struct sl_yaml_pos **pos, size_t max_bytes, enum sl_err kind,
-                                sl_yaml_edit_fn edit, void *edit_user, struct sl_diag *d);
-void        sl_yaml_free(const cyaml_schema_value_t *schema, void *data, struct sl_yaml_pos *pos);
 
-/* Nesting: a file nested deeper than this (mappings and sequences, flow
- * or block) is refused with the line where it goes past it, before it is
- * parsed further: libyaml's cost grows with the square of the nesting, and
- * libyaml's emitter (used for -D) recurses once per level. No schema of
- * shadowlab nests past 6. */
-#define SL_YAML_MAX_DEPTH 64
-/* The nesting of text: the deepest level seen, stopping at the first one
- * past max (its line in *line, else 0, and in key, if not NULL, the
- * top-level key it is under, else ""); -1 if libyaml cannot start. */
-int sl_yaml_depth(const unsigned char *text, size_t len, int max, int *line, char *key, size_t nkey);
+/* Bind the tree to schema (a mapping with CYAML_FLAG_POINTER) into *out.
+ * Errors (`kind`, naming the node's file or -D value, its line and key):
+ * an empty file, a root that is not a mapping, an unknown or repeated key,
+ * a missing required key, a value of the wrong kind or out of range, too
+ * few or too many entries. *out is NULL on error. */
+enum sl_err sl_yaml_bind(const struct sl_yaml_pos *t, const cyaml_schema_value_t *schema, void **out,
+                         enum sl_err kind, struct sl_diag *d);
 
-/* Line of a dotted key path, 0 if unknown. */
+void sl_yaml_free(const cyaml_schema_value_t *schema, void *data, struct sl_yaml_pos *pos);
+
+/* Line of a dotted key path ("methods[1].bias": a mapping value's is its
+ * key's), 0 if unknown or given by a -D value. */
 int sl_yaml_line(const struct sl_yaml_pos *pos, const char *path);
 
 /* Fail with `kind`, naming file, the key's line and the key. */

@@ -19,8 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include <yaml.h>
-#include "extras.h"
 #include "method.h"
 #include "package.h"
 #include "session.h"
@@ -677,6 +675,30 @@ static enum sl_err method_light_frame(const struct raw_method *rm, unsigned i, c
     return SL_OK;
 }
 
+
+/* ---- sweeps and technique packages ----
+ * A method entry's keys the schema cannot hold are taken out of the
+ * config's tree before it is bound (take_extras, marking the pairs
+ * taken): a package's parameters, and any knob or parameter given as a
+ * list (a sweep). They stay in the tree, which the loader hands down to
+ * check_methods: entry_extras reads entry i's back, each with its line
+ * and its values as written. */
+#define SL_EXTRA_KEYS   16   /* taken keys per method entry */
+#define SL_EXTRA_VALUES 16   /* values of one list */
+
+struct sl_extra_key {
+    char key[32];
+    int  line;                          /* 1-based, of the key; 0 if a -D value gave it */
+    int  is_list;                       /* written as a sequence (a sweep) */
+    int  nvalues;                       /* 1 for a scalar */
+    char value[SL_EXTRA_VALUES][64];    /* each as written (plain, quoted text unquoted) */
+};
+
+struct sl_method_extras {
+    int  n;
+    struct sl_extra_key k[SL_EXTRA_KEYS];
+};
+
 /* The method's own check of entry i's values against each other
  * (configure), its error named at the key's line. */
 static enum sl_err method_configure(unsigned i, const struct sl_method_extras *x, const char *file,
@@ -697,33 +719,101 @@ static enum sl_err method_configure(unsigned i, const struct sl_method_extras *x
     return sl_fail(d, SL_E_CONFIG, file, line, key, "%s", md.msg);
 }
 
-/* ---- sweeps and technique packages (extras.h) ----
- * A method entry's keys the schema cannot hold were taken out of the text
- * before libcyaml read it: a package's parameters, and any knob or
- * parameter given as a list (a sweep). Config loading is single-threaded:
- * the entries' extras reach check_methods through this pointer, set by
- * the loaders around validate. */
-static const struct sl_method_extras *cfg_extras;
-
 /* The keys of a method entry that the schema reads; every other key is a
  * parameter of its method (its declarations: base/params.h), taken out
  * with its value as written and checked against the method's declaration
  * in method_entry. */
-static int take_extra(const char *method, const char *key, int is_list, void *user)
+static int take_extra(const char *method, const char *key, int is_list)
 {
     (void)method;
     (void)is_list;
-    (void)user;
     return strcmp(key, "label") && strcmp(key, "display") && strcmp(key, "method") && strcmp(key, "light_frame");
 }
 
-static enum sl_err extras_edit(unsigned char **text, size_t *len, void *user, struct sl_diag *d)
+/* A value a key may take out: 0 a scalar, 1 a list of scalars, 2 neither. */
+static int extra_kind(const struct sl_ynode *v)
 {
-    const char *file = user;
-    static struct sl_method_extras x[SL_CFG_MAX];
-    enum sl_err e = sl_extras_take(*text, *len, take_extra, NULL, x, SL_CFG_MAX, file, d);
-    cfg_extras = x;
-    return e;
+    if (v->kind == SL_YSCALAR)
+        return 0;
+    if (v->kind == SL_YMAP)
+        return 2;
+    for (unsigned i = 0; i < v->n; i++)
+        if (v->kid[i]->kind != SL_YSCALAR)
+            return 2;
+    return 1;
+}
+
+/* Take each method entry's extras out of the tree (the first SL_CFG_MAX
+ * entries: the schema refuses more). Errors (SL_E_CONFIG, naming the file
+ * or the -D value, the key's line and methods[i].key): a taken key whose
+ * value is a mapping, a list nested or empty or longer than
+ * SL_EXTRA_VALUES, a value longer than 63 bytes, more than SL_EXTRA_KEYS
+ * taken keys. */
+static enum sl_err take_extras(struct sl_yaml_pos *t, struct sl_diag *d)
+{
+    struct sl_ynode *ms = sl_ynode_get(sl_ytree_root(t), "methods");
+    if (!ms || ms->kind != SL_YSEQ)
+        return SL_OK;   /* the schema names what is wrong */
+    for (unsigned i = 0; i < ms->n && i < SL_CFG_MAX; i++) {
+        struct sl_ynode *m = ms->kid[i];
+        if (m->kind != SL_YMAP)
+            continue;
+        const char *method = "";
+        for (unsigned p = 0; p < m->n; p++)   /* the last `method:` (the schema refuses two) */
+            if (m->kid[2 * p]->text && !strcmp(m->kid[2 * p]->text, "method") && m->kid[2 * p + 1]->kind == SL_YSCALAR)
+                method = m->kid[2 * p + 1]->text;
+        int taken = 0;
+        for (unsigned p = 0; p < m->n; p++) {
+            const struct sl_ynode *k = m->kid[2 * p];
+            struct sl_ynode *v = m->kid[2 * p + 1];
+            if (!k->text || !strcmp(k->text, "method") || !strcmp(k->text, "label") || !strcmp(k->text, "light_frame"))
+                continue;
+            int kind = extra_kind(v);
+            if (!take_extra(method, k->text, kind == 1))
+                continue;
+            char key[80];
+            snprintf(key, sizeof key, "methods[%u].%.31s", i, k->text);
+            const char *src = sl_ynode_source(t, v);
+            int line = sl_ynode_line(v);
+            int toolong = kind == 0 ? strlen(v->text) >= 64 : v->n > SL_EXTRA_VALUES;
+            for (unsigned j = 0; kind == 1 && j < v->n; j++)
+                toolong |= strlen(v->kid[j]->text) >= 64;
+            if (kind == 2)
+                return sl_fail(d, SL_E_CONFIG, src, line, key,
+                               "a value or a list of values (a sweep), not a mapping or a nested list");
+            if (kind == 1 && v->n == 0)
+                return sl_fail(d, SL_E_CONFIG, src, line, key, "an empty list sweeps nothing");
+            if (toolong)
+                return sl_fail(d, SL_E_CONFIG, src, line, key, "at most %d values of at most 63 bytes each",
+                               SL_EXTRA_VALUES);
+            if (taken == SL_EXTRA_KEYS)
+                return sl_fail(d, SL_E_CONFIG, src, line, key, "more than %d parameters or sweeps in one entry",
+                               SL_EXTRA_KEYS);
+            taken++;
+            v->taken = 1;
+        }
+    }
+    return SL_OK;
+}
+
+/* Entry i's taken keys, in the entry's order (take_extras checked them). */
+static void entry_extras(const struct sl_yaml_pos *t, unsigned i, struct sl_method_extras *x)
+{
+    memset(x, 0, sizeof *x);
+    const struct sl_ynode *ms = sl_ynode_get(sl_ytree_root(t), "methods");
+    const struct sl_ynode *m = ms && ms->kind == SL_YSEQ && i < ms->n ? ms->kid[i] : NULL;
+    for (unsigned p = 0; m && m->kind == SL_YMAP && p < m->n && x->n < SL_EXTRA_KEYS; p++) {
+        const struct sl_ynode *v = m->kid[2 * p + 1];
+        if (!v->taken)
+            continue;
+        struct sl_extra_key *e = &x->k[x->n++];
+        snprintf(e->key, sizeof e->key, "%s", m->kid[2 * p]->text);
+        e->line = sl_ynode_line(v);
+        e->is_list = v->kind == SL_YSEQ;
+        e->nvalues = e->is_list ? (int)v->n : 1;
+        for (int j = 0; j < e->nvalues; j++)
+            snprintf(e->value[j], sizeof e->value[j], "%s", e->is_list ? v->kid[j]->text : v->text);
+    }
 }
 
 /* A sweep's value in a label: "[key=value]", the value a file word. */
@@ -901,7 +991,9 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
                 sl_known_add(known, sizeof known, sl_packages_at(&c->session->packages, k)->name);
             return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown method '%s' (known: %s)", rm->method, known);
         }
-        enum sl_err e = method_entry(rm, i, cfg_extras && i < SL_CFG_MAX ? &cfg_extras[i] : NULL, file, ix, c, d);
+        struct sl_method_extras x;
+        entry_extras(ix, i, &x);
+        enum sl_err e = method_entry(rm, i, &x, file, ix, c, d);
         if (e)
             return e;
     }
@@ -1156,317 +1248,103 @@ const struct sl_method *sl_session_method(const struct sl_session *s, const char
 }
 
 /* ---- -D key=value: a config key replaced by its path ----
- * The file is parsed into a libyaml document, each override's value (itself
- * YAML: 0.01, [512, 1024], {width: 512, height: 512}) is grafted at its
- * path, and the document is written back out as text that goes through the
- * same libcyaml schema and checks as the file itself: an override is valid
- * exactly when the same text in the file would be. */
-struct ov_ctx {
-    const char *const *ov;
-    int n;
-    const char *path;   /* the config file, for the extras' messages */
-};
-
-static int ov_copy(yaml_document_t *dst, yaml_document_t *src, int idx)
+ * Each override's value (itself YAML: 0.01, [512, 1024], {width: 512,
+ * height: 512}) is parsed into nodes whose origin is the override, and
+ * grafted into the config's tree at its path (sl_ytree_set) before the
+ * tree is bound: it goes through the same schema and checks as the file,
+ * so an override is valid exactly when the same text in the file would
+ * be, and an error about it names the -D value and the key. */
+static enum sl_err apply_overrides(struct sl_yaml_pos *t, const char *const *ov, int n, struct sl_diag *d)
 {
-    yaml_node_t *n = yaml_document_get_node(src, idx);
-    if (!n)
-        return 0;
-    if (n->type == YAML_SCALAR_NODE)
-        return yaml_document_add_scalar(dst, NULL, n->data.scalar.value, (int)n->data.scalar.length,
-                                        YAML_ANY_SCALAR_STYLE);
-    if (n->type == YAML_SEQUENCE_NODE) {
-        int s = yaml_document_add_sequence(dst, NULL, YAML_FLOW_SEQUENCE_STYLE);
-        for (yaml_node_item_t *it = n->data.sequence.items.start; s && it < n->data.sequence.items.top; it++) {
-            int c = ov_copy(dst, src, *it);
-            if (!c || !yaml_document_append_sequence_item(dst, s, c))
-                return 0;
-        }
-        return s;
-    }
-    int m = yaml_document_add_mapping(dst, NULL, YAML_FLOW_MAPPING_STYLE);
-    for (yaml_node_pair_t *pr = n->data.mapping.pairs.start; m && pr < n->data.mapping.pairs.top; pr++) {
-        int k = ov_copy(dst, src, pr->key), v = ov_copy(dst, src, pr->value);
-        if (!k || !v || !yaml_document_append_mapping_pair(dst, m, k, v))
-            return 0;
-    }
-    return m;
-}
-
-static int ov_parse(yaml_document_t *doc, const unsigned char *text, size_t len)
-{
-    yaml_parser_t p;
-    if (!yaml_parser_initialize(&p))
-        return 0;
-    yaml_parser_set_input_string(&p, text, len);
-    int ok = yaml_parser_load(&p, doc);
-    yaml_parser_delete(&p);
-    if (ok && !yaml_document_get_root_node(doc)) {
-        yaml_document_delete(doc);
-        ok = 0;
-    }
-    return ok;
-}
-
-static int ov_emit(void *user, unsigned char *buf, size_t size)
-{
-    return fwrite(buf, 1, size, user) == size;
-}
-
-/* Set path (a.b[2].c) in doc to a copy of val's root; 0 with msg on failure. */
-static int ov_set(yaml_document_t *doc, const char *path, yaml_document_t *val, char *msg, size_t nmsg)
-{
-    int node = 1;   /* the root */
-    const char *p = path;
-    while (*p) {
-        char name[64];
-        size_t k = strcspn(p, ".[");
-        if (k == 0 || k >= sizeof name) {
-            snprintf(msg, nmsg, "not a key path (name.name[index])");
-            return 0;
-        }
-        memcpy(name, p, k);
-        name[k] = '\0';
-        p += k;
-        int idx = -1;
-        if (*p == '[') {
-            char *end;
-            long v = strtol(p + 1, &end, 10);
-            if (end == p + 1 || *end != ']' || v < 0 || v > 1000) {
-                snprintf(msg, nmsg, "an index is [N], N >= 0");
-                return 0;
-            }
-            idx = (int)v;
-            p = end + 1;
-        }
-        if (*p == '.')
-            p++;
-        else if (*p) {
-            snprintf(msg, nmsg, "not a key path (name.name[index])");
-            return 0;
-        }
-        yaml_node_t *m = yaml_document_get_node(doc, node);
-        if (!m || m->type != YAML_MAPPING_NODE) {
-            snprintf(msg, nmsg, "'%s' is inside a value that is not a mapping", name);
-            return 0;
-        }
-        yaml_node_pair_t *hit = NULL;
-        for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
-            yaml_node_t *kn = yaml_document_get_node(doc, pr->key);
-            if (kn && kn->type == YAML_SCALAR_NODE && strcmp((const char *)kn->data.scalar.value, name) == 0)
-                hit = pr;
-        }
-        int last = !*p;
-        if (!hit) {
-            if (idx >= 0) {
-                snprintf(msg, nmsg, "the config has no '%s' list to index", name);
-                return 0;
-            }
-            /* a new key: the schema check after this says whether it exists */
-            int kn = yaml_document_add_scalar(doc, NULL, (yaml_char_t *)name, -1, YAML_PLAIN_SCALAR_STYLE);
-            int vn = last ? ov_copy(doc, val, 1) : yaml_document_add_mapping(doc, NULL, YAML_BLOCK_MAPPING_STYLE);
-            if (!kn || !vn || !yaml_document_append_mapping_pair(doc, node, kn, vn)) {
-                snprintf(msg, nmsg, "out of memory");
-                return 0;
-            }
-            node = vn;
-            continue;
-        }
-        if (idx < 0) {
-            if (last && !(hit->value = ov_copy(doc, val, 1))) {
-                snprintf(msg, nmsg, "out of memory");
-                return 0;
-            }
-            node = hit->value;
-            continue;
-        }
-        yaml_node_t *sq = yaml_document_get_node(doc, hit->value);
-        if (!sq || sq->type != YAML_SEQUENCE_NODE) {
-            snprintf(msg, nmsg, "'%s' is not a list", name);
-            return 0;
-        }
-        int count = (int)(sq->data.sequence.items.top - sq->data.sequence.items.start);
-        if (idx > count || (idx == count && !last)) {
-            snprintf(msg, nmsg, "'%s' has %d entr%s (an index past them adds one only as the last step)", name,
-                     count, count == 1 ? "y" : "ies");
-            return 0;
-        }
-        if (idx == count) {
-            int vn = ov_copy(doc, val, 1);
-            if (!vn || !yaml_document_append_sequence_item(doc, hit->value, vn)) {
-                snprintf(msg, nmsg, "out of memory");
-                return 0;
-            }
-            node = vn;
-        } else if (last) {
-            int vn = ov_copy(doc, val, 1);
-            if (!vn) {
-                snprintf(msg, nmsg, "out of memory");
-                return 0;
-            }
-            sq = yaml_document_get_node(doc, hit->value);   /* adding nodes may move the node table */
-            sq->data.sequence.items.start[idx] = vn;
-        } else {
-            node = sq->data.sequence.items.start[idx];
-        }
-    }
-    return 1;
-}
-
-static enum sl_err ov_edit(unsigned char **text, size_t *len, void *user, struct sl_diag *d)
-{
-    const struct ov_ctx *o = user;
-    yaml_document_t doc;
-    if (!ov_parse(&doc, *text, *len))
-        return SL_OK;   /* not YAML: the loader names the file's own error */
-    yaml_node_t *root = yaml_document_get_root_node(&doc);
-    if (root->type != YAML_MAPPING_NODE) {
-        yaml_document_delete(&doc);
-        return SL_OK;
-    }
-    for (int i = 0; i < o->n; i++) {
-        const char *eq = strchr(o->ov[i], '=');
-        char path[96], msg[300];
-        char src[200];
-        snprintf(src, sizeof src, "-D %s", o->ov[i]);
-        if (!eq || eq == o->ov[i] || (size_t)(eq - o->ov[i]) >= sizeof path) {
-            yaml_document_delete(&doc);
+    const struct sl_ynode *root = sl_ytree_root(t);
+    if (!root || root->kind != SL_YMAP)
+        return SL_OK;   /* the binding names the file's own error */
+    for (int i = 0; i < n; i++) {
+        const char *eq = strchr(ov[i], '=');
+        char path[96], msg[300], src[200];
+        snprintf(src, sizeof src, "-D %s", ov[i]);
+        if (!eq || eq == ov[i] || (size_t)(eq - ov[i]) >= sizeof path)
             return sl_fail(d, SL_E_USAGE, src, 0, NULL, "-D wants KEY=VALUE (e.g. -D map_sizes=[512,1024])");
-        }
-        snprintf(path, sizeof path, "%.*s", (int)(eq - o->ov[i]), o->ov[i]);
-        yaml_document_t val;
-        int deep_line;
-        if (sl_yaml_depth((const unsigned char *)eq + 1, strlen(eq + 1), SL_YAML_MAX_DEPTH, &deep_line, NULL, 0) >
-            SL_YAML_MAX_DEPTH) {
-            yaml_document_delete(&doc);
-            return sl_fail(d, SL_E_CONFIG, src, 0, path, "the value is nested more than %d levels deep",
-                           SL_YAML_MAX_DEPTH);
-        }
-        if (!ov_parse(&val, (const unsigned char *)eq + 1, strlen(eq + 1))) {
-            yaml_document_delete(&doc);
-            return sl_fail(d, SL_E_CONFIG, src, 0, path, "the value '%s' is not YAML", eq + 1);
-        }
-        int ok = ov_set(&doc, path, &val, msg, sizeof msg);
-        yaml_document_delete(&val);
-        if (!ok) {
-            yaml_document_delete(&doc);
+        snprintf(path, sizeof path, "%.*s", (int)(eq - ov[i]), ov[i]);
+        struct sl_ynode *val;
+        enum sl_err e = sl_ytree_value(t, eq + 1, src, path, &val, d);
+        if (e)
+            return e;
+        if (!sl_ytree_set(t, path, val, msg, sizeof msg))
             return sl_fail(d, SL_E_CONFIG, src, 0, path, "%s", msg);
-        }
     }
-    char *out = NULL;
-    size_t n = 0;
-    FILE *mf = open_memstream(&out, &n);
-    yaml_emitter_t em;
-    int ok = mf && yaml_emitter_initialize(&em);
-    if (ok) {
-        yaml_emitter_set_output(&em, ov_emit, mf);
-        yaml_emitter_set_unicode(&em, 1);
-        ok = yaml_emitter_open(&em) && yaml_emitter_dump(&em, &doc) && yaml_emitter_close(&em);
-        yaml_emitter_delete(&em);
-    } else {
-        yaml_document_delete(&doc);
-    }
-    if (mf)
-        fclose(mf);
-    if (!ok) {
-        free(out);
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "writing the config with its -D overrides");
-    }
-    free(*text);
-    *text = (unsigned char *)out;
-    *len = n;
     return SL_OK;
 }
 
-/* The overrides, then the method entries' extras (sweeps, a package's
- * parameters) taken out of the text the overrides made. */
-static enum sl_err ov_then_extras(unsigned char **text, size_t *len, void *user, struct sl_diag *d)
+/* An error at a key a -D value gave (or inside it) names that override,
+ * as one at a key above an override's path does (the value it checks
+ * includes the override); any other keeps the file's own line. */
+static void ov_blame(const struct sl_yaml_pos *t, const char *const *ov, int n, struct sl_diag *d)
 {
-    const struct ov_ctx *o = user;
-    enum sl_err e = ov_edit(text, len, user, d);
-    return e ? e : extras_edit(text, len, (void *)o->path, d);
-}
-
-/* Does an error at `key` concern the override of `path`? */
-static int ov_concerns(const char *key, const char *path)
-{
-    size_t k = strlen(key), p = strlen(path);
-    if (!k)
-        return 0;
-    if (k >= p)
-        return strncmp(key, path, p) == 0 && (key[p] == '\0' || key[p] == '.' || key[p] == '[');
-    return strncmp(key, path, k) == 0 && (path[k] == '.' || path[k] == '[');
+    if (!d || !d->key[0] || d->file[0] == '-')
+        return;
+    char path[96];
+    snprintf(path, sizeof path, "%s", d->key);
+    const struct sl_ynode *node = NULL;
+    for (size_t k = strlen(path); !node && k > 0; k--) {   /* the deepest node the key's path reaches */
+        if (path[k] && path[k] != '.' && path[k] != '[')
+            continue;
+        path[k] = '\0';
+        node = sl_ytree_find(t, path);
+    }
+    if (node && node->origin) {
+        snprintf(d->file, sizeof d->file, "%s", sl_ynode_source(t, node));
+        d->line = 0;
+        return;
+    }
+    size_t k = strlen(d->key);
+    for (int i = 0; i < n; i++) {
+        const char *eq = strchr(ov[i], '=');
+        if (eq && (size_t)(eq - ov[i]) > k && strncmp(ov[i], d->key, k) == 0 && (ov[i][k] == '.' || ov[i][k] == '[')) {
+            snprintf(d->file, sizeof d->file, "-D %s", ov[i]);
+            d->line = 0;
+            return;
+        }
+    }
 }
 
 enum sl_err sl_config_load_with(const char *path, const char *const *overrides, int n, struct sl_config *out,
                                 struct sl_diag *d)
 {
-    if (n <= 0)
-        return sl_config_load(path, out, d);
     memset(out, 0, sizeof *out);
     snprintf(out->path, sizeof out->path, "%s", path);
+    /* one read: the tree, edited by the overrides, its extras taken out,
+     * bound to the schema, then checked with the tree's positions */
+    struct sl_yaml_pos *t = NULL;
     struct raw_config *raw = NULL;
-    struct sl_yaml_pos *ix = NULL;
-    struct ov_ctx oc = {overrides, n, path};
-    enum sl_err e = sl_yaml_load_edited(path, &config_schema, (void **)&raw, &ix, SL_CONFIG_MAX_BYTES, SL_E_CONFIG,
-                                        ov_then_extras, &oc, d);
+    enum sl_err e = sl_ytree_read(path, SL_CONFIG_MAX_BYTES, SL_E_CONFIG, &t, d);
+    if (e)
+        return e;
+    if (n > 0)
+        e = apply_overrides(t, overrides, n, d);
     if (!e)
-        e = sl_hash_file(path, &out->hash, d);
+        e = take_extras(t, d);
+    if (!e)
+        e = sl_yaml_bind(t, &config_schema, (void **)&raw, SL_E_CONFIG, d);
     if (!e) {
-        /* the same file with the same overrides hashes alike (so --resume
-         * finds its cells); with other overrides it does not */
+        /* the file's bytes as read; the same file with the same overrides
+         * hashes alike (so --resume finds its cells), with other overrides
+         * it does not */
+        out->hash = sl_ytree_hash(t);
         for (int i = 0; i < n; i++)
             for (size_t k = 0, len = strlen(overrides[i]); k <= len; k++)   /* the NUL separates them */
                 out->hash = (out->hash ^ (unsigned char)overrides[i][k]) * 1099511628211ull;
-        /* line numbers of the written-out text mean nothing to the user:
-         * positions are looked up only by key from here on */
-        e = validate(raw, path, ix, out, d);
+        e = validate(raw, path, t, out, d);
     }
-    cfg_extras = NULL;
-    sl_yaml_free(&config_schema, raw, ix);
-    if (!e || d->file[0] == '-')
-        return e;
-    /* an error at an overridden key is the override's */
-    for (int i = 0; i < n; i++) {
-        const char *eq = strchr(overrides[i], '=');
-        char p[96];
-        snprintf(p, sizeof p, "%.*s", eq ? (int)(eq - overrides[i]) : 0, overrides[i]);
-        if (ov_concerns(d->key, p)) {
-            snprintf(d->file, sizeof d->file, "-D %s", overrides[i]);
-            d->line = 0;
-            return e;
-        }
-    }
-    /* else the file's own error, with its own line, if the file alone has it */
-    struct sl_config *alone = malloc(sizeof *alone);
-    struct sl_diag d2;
-    memset(&d2, 0, sizeof d2);
-    if (alone && sl_config_load(path, alone, &d2) != SL_OK)
-        *d = d2;
-    else
-        d->line = 0;
-    free(alone);
+    if (e && n > 0)
+        ov_blame(t, overrides, n, d);
+    sl_yaml_free(&config_schema, raw, t);
     return e;
 }
 
 enum sl_err sl_config_load(const char *path, struct sl_config *out, struct sl_diag *d)
 {
-    memset(out, 0, sizeof *out);
-    snprintf(out->path, sizeof out->path, "%s", path);
-    struct raw_config *raw = NULL;
-    struct sl_yaml_pos *ix = NULL;
-    enum sl_err e = sl_yaml_load_edited(path, &config_schema, (void **)&raw, &ix, SL_CONFIG_MAX_BYTES, SL_E_CONFIG,
-                                        extras_edit, (void *)path, d);
-    if (e) {
-        cfg_extras = NULL;
-        return e;
-    }
-    e = sl_hash_file(path, &out->hash, d);
-    if (!e)
-        e = validate(raw, path, ix, out, d);
-    cfg_extras = NULL;
-    sl_yaml_free(&config_schema, raw, ix);
-    return e;
+    return sl_config_load_with(path, NULL, 0, out, d);
 }
 
 /* ---- the filled-in config: one write_<key> per CONFIG_KEYS line ---- */
