@@ -98,9 +98,9 @@ case_ "a FIFO as baseline" "fifo\.yaml: cannot read: a FIFO" -- \
 # ---- numbers: range-checked before any cast, whole numbers only, the same
 # message form for -D, the file's own keys and the options
 case_ "-D repetitions.warmup=4294967295 (was -1)" \
-  "^shadowlab: -D repetitions\.warmup=4294967295: 'repetitions\.warmup': warmup 4294967295: at most 100" -- \
+  "^shadowlab: -D repetitions\.warmup=4294967295: 'repetitions\.warmup': 4294967295 is outside \[0, 100\]" -- \
   "$bin" validate configs/default.yaml -D repetitions.warmup=4294967295
-case_ "-D threads=4294967295" "'threads': threads 4294967295: at most 256" -- \
+case_ "-D threads=4294967295" "'threads': 4294967295 is outside \[0, 256\]" -- \
   "$bin" validate configs/default.yaml -D threads=4294967295
 case_ "-D seed=7.9 (was 7)" "^shadowlab: -D seed=7\.9: 'seed': '7\.9' is not a whole number" -- \
   "$bin" validate configs/default.yaml -D seed=7.9
@@ -109,7 +109,7 @@ case_ "-D map_sizes=[512, 1e3]" "'map_sizes\[1\]': '1e3' is not a whole number" 
 { echo "$cfg_head"; echo 'seed: 7.9'; } >"$tmp/seed.yaml"
 case_ "seed: 7.9 in the file" "$tmp/seed\.yaml:4: 'seed': '7\.9' is not a whole number" -- "$bin" validate "$tmp/seed.yaml"
 { echo "$cfg_head"; echo 'area_samples: 4294967295'; } >"$tmp/samples.yaml"
-case_ "area_samples: 4294967295 in the file" "$tmp/samples\.yaml:4: 'area_samples': area_samples 4294967295:" -- \
+case_ "area_samples: 4294967295 in the file" "$tmp/samples\.yaml:4: 'area_samples': 4294967295 is outside \[2, 1024\]" -- \
   "$bin" validate "$tmp/samples.yaml"
 case_ "--cells 4294967298:4294967300 (was the slice 2:4)" "'--cells': cells 4294967298:4294967300 outside the sweep of 6 cells" -- \
   "$bin" run configs/default.yaml --cells 4294967298:4294967300 --out "$tmp/res"

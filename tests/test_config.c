@@ -150,7 +150,7 @@ static void config_overrides(void **st)
         {"map_sizes.x=1", "map_sizes.x", "not a mapping"},
         {"seed=7.9", "seed", "'7.9' is not a whole number"},
         {"methods[0].bias=[]", "methods[0].bias", "an empty list sweeps nothing"},
-        {"repetitions.runs=0", "repetitions.runs", "runs 0: must be 1..1000"},
+        {"repetitions.runs=0", "repetitions.runs", "0 is outside [1, 1000]"},
         {"methods[0]={label: x}", "methods[0].method", "missing required key"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {

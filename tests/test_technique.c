@@ -78,7 +78,7 @@ static void technique_loader_errors(void **st)
                "params:\n  - {name: k, type: int, default: 3}\n  - {name: r, type: int, default: 11, min: 1, max: 9}\n",
                9, "params[1].default", "outside [1, 9]");
     expect_bad("bad_int", HEAD("bad_int") MAPS SHADERS
-               "params:\n  - {name: k, type: int, default: 2.5}\n", 8, "params[0].default", "is not an int");
+               "params:\n  - {name: k, type: int, default: 2.5}\n", 8, "params[0].default", "is not a whole number");
     expect_bad("unknown_key", HEAD("unknown_key") "colour: red\n" MAPS SHADERS, 3, "colour", "unknown key");
     expect_bad("dotdot", HEAD("dotdot") MAPS "map_shader: ../x/map.glsl\nlookup_shader: lookup.glsl\n", 5,
                "map_shader", "'..'");

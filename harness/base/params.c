@@ -44,13 +44,13 @@ const char *sl_param_parse(const struct sl_param *p, const char *s, double *x)
     case SL_PARAM_INT: {
         const char *t = s + (*s == '+' || *s == '-');
         if (!*t || (t[0] == '0' && t[1]))
-            return "is not an int (decimal digits)";
+            return "is not a whole number (decimal digits)";
         for (const char *q = t; *q; q++)
             if (*q < '0' || *q > '9')
-                return "is not an int (decimal digits)";
+                return "is not a whole number (decimal digits)";
         errno = 0;
         long long v = strtoll(s, NULL, 10);
-        if (errno || v < -(1ll << 31) || v > (1ll << 31) - 1)
+        if (errno || v < -(1ll << 32) || v > (1ll << 32))
             return "is outside the range of a 32-bit int";
         *x = (double)v;
         return NULL;
@@ -94,9 +94,9 @@ void sl_param_range_text(const struct sl_param *p, char *buf, size_t n)
     }
     char lo[32] = "-inf", hi[32] = "inf";
     if (p->has_min)
-        snprintf(lo, sizeof lo, "%g", p->min);
+        snprintf(lo, sizeof lo, "%.10g", p->min);
     if (p->has_max)
-        snprintf(hi, sizeof hi, "%g", p->max);
+        snprintf(hi, sizeof hi, "%.10g", p->max);
     snprintf(buf, n, "%s%s, %s%s", p->has_min ? "[" : "(", lo, hi, p->has_max ? "]" : ")");
 }
 
@@ -142,10 +142,12 @@ enum sl_err sl_params_put(struct sl_params *s, const char *name, double x, struc
             sl_param_range_text(p, words, sizeof words);
             return sl_fail(d, SL_E_METHOD, NULL, 0, name, "choice %g: one of %s", x, words);
         }
-    } else if ((p->has_min && x < p->min) || (p->has_max && x > p->max)) {
+    } else if ((p->has_min && x < p->min) || (p->has_max && x > p->max) ||
+               /* an int without a bound on a side is a 32-bit int on that side (a GLSL int) */
+               (p->type == SL_PARAM_INT && ((!p->has_min && x < -2147483648.0) || (!p->has_max && x > 2147483647.0)))) {
         char range[80];
         sl_param_range_text(p, range, sizeof range);
-        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "%g is outside %s%s%s", x, range, p->unit[0] ? " " : "",
+        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "%.10g is outside %s%s%s", x, range, p->unit[0] ? " " : "",
                        p->unit);
     }
     s->v[i] = x;

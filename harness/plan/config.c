@@ -39,7 +39,6 @@ struct raw_method {
     /* every other key is a parameter of the method, taken from the entry
      * before the schema reads it (below: method_entry) */
 };
-struct raw_outputs { bool *tables; bool *overlays; unsigned *overlay_contour; bool *exr; char *aliasing; };
 struct raw_scene_ref {
     char *scene;
     char **viewpoints; unsigned viewpoints_count;
@@ -47,7 +46,6 @@ struct raw_scene_ref {
     unsigned *map_sizes; unsigned map_sizes_count;
     char **methods; unsigned methods_count;
 };
-struct raw_reps { unsigned *warmup; unsigned *runs; };
 
 static const cyaml_schema_value_t str_schema = {
     CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 1, 63),
@@ -97,19 +95,47 @@ static const cyaml_schema_field_t scene_ref_fields[] = {
 static const cyaml_schema_value_t scene_ref_schema = {
     CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, struct raw_scene_ref, scene_ref_fields),
 };
-static const cyaml_schema_field_t reps_fields[] = {
-    CYAML_FIELD_UINT_PTR("warmup", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_reps, warmup),
-    CYAML_FIELD_UINT_PTR("runs", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_reps, runs),
-    CYAML_FIELD_END,
+/* ---- the settings: the keys whose value is one scalar ----
+ * One line each: the field of struct sl_config (config.h) it sets and its
+ * declaration (base/params.h: the key's path, type, default, range or
+ * words, doc), the one form every method's parameters take too. From this
+ * line come the check of its value (take_settings: at its line, before the
+ * schema binds the rest of the tree), its field, its text in the filled-in
+ * config and its row in the reference; a group of them (outputs.*,
+ * repetitions.*) is a mapping of those keys and no other. A new setting
+ * is its line here, its field, and the code that reads it. What the
+ * declaration cannot say is checked where it is resolved (check_outputs:
+ * overlay_contour is one of the contours; check_threads: 0 is every core;
+ * check_gl: default is SHADOWLAB_GL, else the build's). */
+#define CONFIG_SETTINGS(X)                                                                                  \
+    X(contour_from, SL_PARAM_CHOICE_DECL("contour_from", SL_CONTOUR_NSM,                                   \
+        "nsm (default: one contour per view and map, from NSM's image, shared by every method) or own "     \
+        "(each method's own image)", "nsm", "own"))                                                         \
+    X(tables, SL_PARAM_BOOL_DECL("outputs.tables", 1, "table.md, table.tex, table-detail.tex, figures.csv (default true)")) \
+    X(overlays, SL_PARAM_BOOL_DECL("outputs.overlays", 1, "an error-overlay PNG per cell (default true)"))  \
+    X(overlay_contour, SL_PARAM_INT_DECL("outputs.overlay_contour", 0, 0, 64, "pixels",                     \
+        "the contour thickness the overlays draw, one of contours or 0 for the whole image (default: the "  \
+        "thinnest)"))                                                                                       \
+    X(exr, SL_PARAM_BOOL_DECL("outputs.exr", 0, "the truth, verdicts and error as OpenEXR layers per cell (default false)")) \
+    X(aliasing, SL_PARAM_CHOICE_DECL("outputs.aliasing", 2, "the aliasing error m per pixel: auto (default: where " \
+        "a method that reads it runs: zpart, lispsm), true or false", "false", "true", "auto"))             \
+    X(warmup, SL_PARAM_INT_DECL("repetitions.warmup", 1, 0, 100, "", "untimed runs first (default 1)"))     \
+    X(runs, SL_PARAM_INT_DECL("repetitions.runs", 3, 1, 1000, "",                                           \
+        "timed runs: median, min and max kept (default 3; 1 is marked \"timed once\")"))                    \
+    X(seed, SL_PARAM_INT_DECL("seed", 1, 0, 4294967295.0, "", "for anything random (default 1)"))           \
+    X(area_samples, SL_PARAM_INT_DECL("area_samples", 32, 2, 1024, "",                                      \
+        "area lights: truth samples per side of the light (default 32: 1,024 a pixel)"))                   \
+    X(threads, SL_PARAM_INT_DECL("threads", 0, 0, 256, "", "CPU threads (default 0: every core)"))          \
+    X(gl, SL_PARAM_CHOICE_DECL("gl", SL_GL_DEFAULT, "the GL backend: osmesa or egl (default: SHADOWLAB_GL, "  \
+        "else osmesa)", "default", "osmesa", "egl"))
+
+static const struct sl_param config_settings[] = {
+#define SETTING_DECL(field, decl) decl,
+    CONFIG_SETTINGS(SETTING_DECL)
+#undef SETTING_DECL
 };
-static const cyaml_schema_field_t outputs_fields[] = {
-    CYAML_FIELD_BOOL_PTR("tables", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, tables),
-    CYAML_FIELD_BOOL_PTR("overlays", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, overlays),
-    CYAML_FIELD_BOOL_PTR("exr", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, exr),
-    CYAML_FIELD_STRING_PTR("aliasing", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, aliasing, 1, 15),
-    CYAML_FIELD_UINT_PTR("overlay_contour", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_outputs, overlay_contour),
-    CYAML_FIELD_END,
-};
+#define CONFIG_NSETTINGS ((int)(sizeof config_settings / sizeof config_settings[0]))
+_Static_assert(sizeof config_settings / sizeof config_settings[0] <= SL_PARAM_MAX, "settings: at most SL_PARAM_MAX");
 
 /* ---- the top-level keys ----
  * One line per key a config file may give, in the order the filled-in
@@ -122,6 +148,8 @@ static const cyaml_schema_field_t outputs_fields[] = {
  *   STRING  1..max bytes                   type: char; args: max
  *   SEQ     a list of 1..max entries       type: an entry's; args: its schema, max
  *   MAP     a mapping of fields            type: the mapping's; args: its fields
+ *   SETTINGS a setting (CONFIG_SETTINGS above), or a mapping of them: the
+ *           declarations say all, and the schema never sees it
  * need: REQUIRED or OPTIONAL. The schema takes this order too; libcyaml's
  * field order shows only in which missing required key it names first
  * (scenes, then map_sizes, then methods).
@@ -139,21 +167,22 @@ static const cyaml_schema_field_t outputs_fields[] = {
     X(viewports,    SEQ,    OPTIONAL, struct raw_viewport, &viewport_schema, SL_CFG_MAX)           \
     X(map_sizes,    SEQ,    REQUIRED, unsigned, &uint_schema, SL_CFG_MAX)                          \
     X(contours,     SEQ,    OPTIONAL, unsigned, &uint_schema, SL_MAX_REGIONS - 1) /* + the whole image */ \
-    X(contour_from, STRING, OPTIONAL, char, 15)                                                    \
+    X(contour_from, SETTINGS, OPTIONAL, -)                                                         \
     X(methods,      SEQ,    REQUIRED, struct raw_method, &method_schema, SL_CFG_MAX)               \
     X(techniques,   SEQ,    OPTIONAL, char *, &path_schema, 8)                                     \
-    X(outputs,      MAP,    OPTIONAL, struct raw_outputs, outputs_fields)                          \
-    X(repetitions,  MAP,    OPTIONAL, struct raw_reps, reps_fields)                                \
-    X(seed,         UINT,   OPTIONAL, unsigned)                                                    \
-    X(area_samples, UINT,   OPTIONAL, unsigned)                                                    \
+    X(outputs,      SETTINGS, OPTIONAL, -)                                                         \
+    X(repetitions,  SETTINGS, OPTIONAL, -)                                                         \
+    X(seed,         SETTINGS, OPTIONAL, -)                                                         \
+    X(area_samples, SETTINGS, OPTIONAL, -)                                                         \
     X(store,        STRING, OPTIONAL, char, 511)                                                   \
-    X(threads,      UINT,   OPTIONAL, unsigned)                                                    \
-    X(gl,           STRING, OPTIONAL, char, 15)
+    X(threads,      SETTINGS, OPTIONAL, -)                                                         \
+    X(gl,           SETTINGS, OPTIONAL, -)
 
 #define CFG_RAW_UINT(key, type)                type *key;
 #define CFG_RAW_STRING(key, type, max)         type *key;
 #define CFG_RAW_SEQ(key, type, schema, max)    type *key; unsigned key##_count;
 #define CFG_RAW_MAP(key, type, fields)         type *key;
+#define CFG_RAW_SETTINGS(key, unused)          /* taken from the tree: config_settings */
 struct raw_config {
 #define RAW_KEY(key, kind, need, ...) CFG_RAW_##kind(key, __VA_ARGS__)
     CONFIG_KEYS(RAW_KEY)
@@ -167,6 +196,7 @@ struct raw_config {
 #define CFG_SCHEMA_SEQ(key, need, type, schema, max) \
     CYAML_FIELD_SEQUENCE(#key, need, struct raw_config, key, schema, 1, max),
 #define CFG_SCHEMA_MAP(key, need, type, fields) CYAML_FIELD_MAPPING_PTR(#key, need, struct raw_config, key, fields),
+#define CFG_SCHEMA_SETTINGS(key, need, unused)
 static const cyaml_schema_field_t config_fields[] = {
 #define SCHEMA_KEY(key, kind, need, ...) CFG_SCHEMA_##kind(key, CFG_##need, __VA_ARGS__)
     CONFIG_KEYS(SCHEMA_KEY)
@@ -198,7 +228,6 @@ static const struct { const char *path, *doc; } key_docs[] = {
     {"viewports[].height", "pixels, 16..8192"},
     {"map_sizes", "shadow-map sizes: powers of two, 64..16384"},
     {"contours", "contour thicknesses in pixels: even, 2..64, increasing (default [2, 4, 6]); the whole image is always added"},
-    {"contour_from", "nsm (default: one contour per view and map, from NSM's image, shared by every method) or own (each method's own image)"},
     {"methods", "the labelled methods; one method may appear under several labels, and a parameter given as a list sweeps (one label per value)"},
     {"methods[].display", "the name LaTeX tables print for the label (default: the method's own display name when the label is the method's name, else the label); a sweep adds its [key=value]"},
     {"methods[].label", "the label tables and the store use (default: the method's name): letters, digits, -, _, . (not first)"},
@@ -208,19 +237,8 @@ static const struct { const char *path, *doc; } key_docs[] = {
     {"methods[].light_frame.snap", "true: the frame moves in whole texels (no crawling under camera motion); default false"},
     {"techniques", "folders of technique packages, relative to the config (searched before SHADOWLAB_TECHNIQUES and the built-in ones)"},
     {"outputs", "what a run writes beside the store"},
-    {"outputs.tables", "table.md, table.tex, table-detail.tex, figures.csv (default true)"},
-    {"outputs.overlays", "an error-overlay PNG per cell (default true)"},
-    {"outputs.exr", "the truth, verdicts and error as OpenEXR layers per cell (default false)"},
-    {"outputs.aliasing", "the aliasing error m per pixel: auto (default: where a method that reads it runs: zpart, lispsm), true or false"},
-    {"outputs.overlay_contour", "the contour thickness the overlays draw, one of contours or 0 for the whole image (default: the thinnest)"},
     {"repetitions", "how often the timed stages run (computed once, timed this often)"},
-    {"repetitions.warmup", "untimed runs first (default 1)"},
-    {"repetitions.runs", "timed runs: median, min and max kept (default 3; 1 is marked \"timed once\")"},
-    {"seed", "for anything random (default 1)"},
-    {"area_samples", "area lights: truth samples per side of the light, 2..1024 (default 32: 1,024 a pixel)"},
     {"store", "the results store, relative to the output root (default shadowlab.db); no \"..\", not absolute"},
-    {"threads", "CPU threads (default 0: every core)"},
-    {"gl", "the GL backend: osmesa or egl (default: SHADOWLAB_GL, else osmesa)"},
 };
 
 static const char *key_doc(const char *path)
@@ -253,14 +271,8 @@ struct ref_walk {
     char  missing[128];   /* the first schema path with no text */
 };
 
-static void ref_row(struct ref_walk *w, const char *path, const cyaml_schema_value_t *v, int required,
-                    const char *doc)
+static void ref_row(struct ref_walk *w, const char *path, const char *kind, int required, const char *doc)
 {
-    char kind[64];
-    if (v->type == CYAML_SEQUENCE || v->type == CYAML_SEQUENCE_FIXED)
-        snprintf(kind, sizeof kind, "list of %s", value_kind(v->sequence.entry));
-    else
-        snprintf(kind, sizeof kind, "%s", value_kind(v));
     if (w->roff) {
         fprintf(w->f, ".TP\n.B %s\n(%s%s) ", path, kind, required ? ", required" : "");
         for (const char *p = doc; *p; p++) {   /* roff: a leading '.' or '\'' and every '\\' and '-' escaped */
@@ -277,9 +289,11 @@ static void ref_row(struct ref_walk *w, const char *path, const cyaml_schema_val
     }
 }
 
-static void ref_fields(struct ref_walk *w, const cyaml_schema_field_t *fl, const char *prefix)
+static void ref_fields(struct ref_walk *w, const cyaml_schema_field_t *fl, const char *prefix, const char *only)
 {
     for (; fl->key; fl++) {
+        if (only && strcmp(fl->key, only))
+            continue;
         char path[128];
         snprintf(path, sizeof path, "%s%s%s", prefix, prefix[0] ? "." : "", fl->key);
         const char *doc = key_doc(path);
@@ -290,18 +304,48 @@ static void ref_fields(struct ref_walk *w, const cyaml_schema_field_t *fl, const
                 snprintf(w->missing, sizeof w->missing, "%s", path);
             continue;
         }
-        ref_row(w, path, &fl->value, !(fl->value.flags & CYAML_FLAG_OPTIONAL), doc);
+        char kind[64];
+        if (fl->value.type == CYAML_SEQUENCE || fl->value.type == CYAML_SEQUENCE_FIXED)
+            snprintf(kind, sizeof kind, "list of %s", value_kind(fl->value.sequence.entry));
+        else
+            snprintf(kind, sizeof kind, "%s", value_kind(&fl->value));
+        ref_row(w, path, kind, !(fl->value.flags & CYAML_FLAG_OPTIONAL), doc);
         if (fl->value.type == CYAML_MAPPING)
-            ref_fields(w, fl->value.mapping.fields, path);
+            ref_fields(w, fl->value.mapping.fields, path, NULL);
         else if ((fl->value.type == CYAML_SEQUENCE || fl->value.type == CYAML_SEQUENCE_FIXED) &&
                  fl->value.sequence.entry->type == CYAML_MAPPING) {
             char item[140];
             snprintf(item, sizeof item, "%s[]", path);
-            ref_fields(w, fl->value.sequence.entry->mapping.fields, item);
+            ref_fields(w, fl->value.sequence.entry->mapping.fields, item, NULL);
         }
     }
 }
 
+/* The settings under top-level key `key` (CONFIG_SETTINGS): the key's own
+ * declaration, or the group's row (its text in key_docs) and each of its
+ * keys' declarations. */
+static void ref_settings(struct ref_walk *w, const char *key)
+{
+    size_t n = strlen(key);
+    for (int k = 0; k < CONFIG_NSETTINGS; k++) {
+        const struct sl_param *p = &config_settings[k];
+        if (!strcmp(p->name, key) || (!strncmp(p->name, key, n) && p->name[n] == '.')) {
+            if (p->name[n] == '.' && (k == 0 || strncmp(config_settings[k - 1].name, p->name, n + 1))) {
+                const char *doc = key_doc(key);   /* the group's own row, before its first key */
+                for (size_t i = 0; i < sizeof key_docs / sizeof key_docs[0]; i++)
+                    w->seen[i] |= !strcmp(key_docs[i].path, key);
+                if (!doc && !w->missing[0])
+                    snprintf(w->missing, sizeof w->missing, "%s", key);
+                ref_row(w, key, "mapping", 0, doc ? doc : "");
+            }
+            char range[160], kind[200];
+            sl_param_range_text(p, range, sizeof range);
+            snprintf(kind, sizeof kind, "%s%s%s%s%s", sl_param_type_names[p->type], range[0] ? " " : "", range,
+                     p->unit[0] ? " " : "", p->unit);
+            ref_row(w, p->name, kind, 0, p->doc);
+        }
+    }
+}
 
 /* Each built-in method's parameters, from its declarations: the keys a
  * `methods:` entry naming it may give (a package's: show technique NAME). */
@@ -345,7 +389,20 @@ enum sl_err sl_config_reference(FILE *f, int roff, struct sl_diag *d)
     struct ref_walk w = {.f = f, .roff = roff};
     if (!roff)
         fputs("| key | value | meaning |\n|---|---|---|\n", f);
-    ref_fields(&w, config_fields, "");
+    /* the keys in CONFIG_KEYS' order: the schema's, and the settings */
+#define REF_KEY(key, kind, ...) REF_##kind(key)
+#define REF_STRING(key) ref_fields(&w, config_fields, "", #key);
+#define REF_SEQ(key) REF_STRING(key)
+#define REF_MAP(key) REF_STRING(key)
+#define REF_UINT(key) REF_STRING(key)
+#define REF_SETTINGS(key) ref_settings(&w, #key);
+    CONFIG_KEYS(REF_KEY)
+#undef REF_KEY
+#undef REF_STRING
+#undef REF_SEQ
+#undef REF_MAP
+#undef REF_UINT
+#undef REF_SETTINGS
     method_params_reference(f, roff);
     if (w.missing[0])
         return sl_fail(d, SL_E_USAGE, NULL, 0, w.missing,
@@ -674,7 +731,6 @@ static enum sl_err method_light_frame(const struct raw_method *rm, unsigned i, c
                            "layers: light_frame applies to hard-shadow methods", cm->method->name);
     return SL_OK;
 }
-
 
 /* ---- sweeps and technique packages ----
  * A method entry's keys the schema cannot hold are taken out of the
@@ -1094,39 +1150,6 @@ static enum sl_err check_scene_methods(const struct raw_config *r, const char *f
     return SL_OK;
 }
 
-/* Ranges are checked on the unsigned values libcyaml read, before any
- * cast to int (4294967295 would be -1 and pass "at most 100"). */
-static enum sl_err check_repetitions(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
-                                     struct sl_config *c, struct sl_diag *d)
-{
-    /* default {warmup: 1, runs: 3}: a time from one run has no median and
-     * carries the first run's cold caches; one timed once is marked so in
-     * every table that prints it */
-    unsigned warmup = r->repetitions && r->repetitions->warmup ? *r->repetitions->warmup : 1u;
-    unsigned runs = r->repetitions && r->repetitions->runs ? *r->repetitions->runs : 3u;
-    if (warmup > 100)
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.warmup", "warmup %u: at most 100", warmup);
-    if (runs < 1 || runs > 1000)
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "repetitions.runs", "runs %u: must be 1..1000", runs);
-    c->warmup = (int)warmup;
-    c->runs = (int)runs;
-    return SL_OK;
-}
-
-/* The seed and the area-light truth's sampling: what the random parts
- * draw on. */
-static enum sl_err check_sampling(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
-                                  struct sl_config *c, struct sl_diag *d)
-{
-    c->seed = r->seed ? *r->seed : 1u;
-    unsigned samples = r->area_samples ? *r->area_samples : 32u;
-    if (samples < 2 || samples > 1024)
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "area_samples",
-                           "area_samples %u: samples per side of an area light's truth, 2..1024", samples);
-    c->area_samples = (int)samples;
-    return SL_OK;
-}
-
 /* A run writes only under --out: a store path may not leave it (an
  * explicit --db on the command line may). */
 static enum sl_err check_store(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
@@ -1145,12 +1168,12 @@ static enum sl_err check_store(const struct raw_config *r, const char *file, con
     return SL_OK;
 }
 
+/* gl: default is SHADOWLAB_GL, else the build's (glbackend.h) */
 static enum sl_err check_gl(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                             struct sl_config *c, struct sl_diag *d)
 {
-    c->gl = sl_gl_backend_resolve(r->gl ? sl_gl_backend_parse(r->gl) : SL_GL_DEFAULT);
-    if (r->gl && sl_gl_backend_parse(r->gl) == SL_GL_DEFAULT)
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "gl", "gl '%s': osmesa or egl", r->gl);
+    (void)r, (void)file, (void)ix, (void)d;
+    c->gl = sl_gl_backend_resolve(c->gl);
     return SL_OK;
 }
 
@@ -1158,69 +1181,120 @@ static enum sl_err check_gl(const struct raw_config *r, const char *file, const 
 static enum sl_err check_outputs(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                                  struct sl_config *c, struct sl_diag *d)
 {
-    c->tables = r->outputs && r->outputs->tables ? *r->outputs->tables : 1;
-    c->overlays = r->outputs && r->outputs->overlays ? *r->outputs->overlays : 1;
-    c->exr = r->outputs && r->outputs->exr ? *r->outputs->exr : 0;
+    (void)r;
     /* the aliasing error m: auto (the default) where a method's study reads
      * it (method.h, SL_FIGS_ALIASING: zpart, lispsm), else as the config says */
-    const char *al = r->outputs && r->outputs->aliasing ? r->outputs->aliasing : "auto";
-    if (!strcmp(al, "auto")) {
+    if (c->aliasing == 2) {
         c->aliasing = 0;
         for (int k = 0; k < c->nmethods; k++)
             c->aliasing |= (c->methods[k].method->figures & SL_FIGS_ALIASING) != 0;
-    } else if (!strcmp(al, "true") || !strcmp(al, "false")) {
-        c->aliasing = !strcmp(al, "true");
-    } else {
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "outputs.aliasing", "'%s': auto, true or false", al);
     }
-    c->overlay_contour = c->regions[0];
-    if (r->outputs && r->outputs->overlay_contour) {
-        unsigned t = *r->outputs->overlay_contour;
-        int found = 0;
-        for (int k = 0; k < c->nregions; k++)
-            found |= c->regions[k] == (int)t;
-        if (!found)
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "outputs.overlay_contour",
-                       "overlay_contour %u is not one of the contours (or 0: the whole image)", t);
-        c->overlay_contour = (int)t;
-    }
-    return SL_OK;
-}
-
-static enum sl_err check_contour_from(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
-                                      struct sl_config *c, struct sl_diag *d)
-{
-    c->contour_from = SL_CONTOUR_NSM;
-    if (!r->contour_from)
+    if (!sl_params_given(&c->settings, "outputs.overlay_contour")) {
+        c->overlay_contour = c->regions[0];   /* the thinnest */
         return SL_OK;
-    if (strcmp(r->contour_from, "nsm") == 0)
-        c->contour_from = SL_CONTOUR_NSM;
-    else if (strcmp(r->contour_from, "own") == 0)
-        c->contour_from = SL_CONTOUR_OWN;
-    else
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "contour_from",
-                           "'%s': nsm (NSM's image, shared by every method) or own (each method's)",
-                           r->contour_from);
+    }
+    int found = 0;
+    for (int k = 0; k < c->nregions; k++)
+        found |= c->regions[k] == c->overlay_contour;
+    if (!found)
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "outputs.overlay_contour",
+                           "overlay_contour %d is not one of the contours (or 0: the whole image)", c->overlay_contour);
     return SL_OK;
 }
 
 static enum sl_err check_threads(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                                  struct sl_config *c, struct sl_diag *d)
 {
-    long cores = sl_cpu_count();
-    if (r->threads && *r->threads > 256)
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, "threads", "threads %u: at most 256", *r->threads);
-    c->threads = r->threads && *r->threads ? (int)*r->threads : (int)(cores > 256 ? 256 : cores > 0 ? cores : 1);
+    (void)r, (void)file, (void)ix, (void)d;
+    long cores = sl_cpu_count();   /* 0: every core this process may run on */
+    if (!c->threads)
+        c->threads = (int)(cores > 256 ? 256 : cores > 0 ? cores : 1);
     return SL_OK;
+}
+
+/* One setting's value node: a scalar, checked against its declaration. */
+static enum sl_err setting_value(const struct sl_yaml_pos *t, struct sl_params *s, const char *path,
+                                 const struct sl_ynode *v, struct sl_diag *d)
+{
+    const char *src = sl_ynode_source(t, v);
+    if (v->kind != SL_YSCALAR)
+        return sl_fail(d, SL_E_CONFIG, src, sl_ynode_line(v), path, "one value, not a %s",
+                       v->kind == SL_YMAP ? "mapping" : "list");
+    struct sl_diag md;
+    if (sl_params_put_text(s, path, v->text, &md))
+        return sl_fail(d, SL_E_CONFIG, src, sl_ynode_line(v), path, "%s", md.msg);
+    return SL_OK;
+}
+
+/* The settings (CONFIG_SETTINGS) from the tree, before the schema binds
+ * the rest: each key given checked at its line and taken out of the
+ * schema's view, a group's other keys refused; their values into
+ * c->settings and each one's field (the defaults where none is given). */
+static enum sl_err take_settings(struct sl_yaml_pos *t, struct sl_config *c, struct sl_diag *d)
+{
+    struct sl_params *s = &c->settings;
+    sl_params_init(s, config_settings, CONFIG_NSETTINGS);
+    struct sl_ynode *root = sl_ytree_root(t);
+    for (unsigned p = 0; root && root->kind == SL_YMAP && p < root->n; p++) {
+        const char *key = root->kid[2 * p]->text;
+        struct sl_ynode *v = root->kid[2 * p + 1];
+        if (!key)
+            continue;
+        size_t n = strlen(key);
+        int own = sl_param_index(config_settings, CONFIG_NSETTINGS, key), group = 0;
+        char known[256] = "";
+        for (int k = 0; k < CONFIG_NSETTINGS; k++)
+            if (!strncmp(config_settings[k].name, key, n) && config_settings[k].name[n] == '.') {
+                group = 1;
+                sl_known_add(known, sizeof known, config_settings[k].name + n + 1);
+            }
+        enum sl_err e = SL_OK;
+        if (own >= 0) {
+            e = setting_value(t, s, key, v, d);
+        } else if (group && v->kind != SL_YMAP) {
+            e = sl_fail(d, SL_E_CONFIG, sl_ynode_source(t, v), sl_ynode_line(v), key, "a mapping of %s", known);
+        } else if (group) {
+            for (unsigned q = 0; !e && q < v->n; q++) {
+                char path[96];
+                snprintf(path, sizeof path, "%s.%s", key, v->kid[2 * q]->text ? v->kid[2 * q]->text : "");
+                if (sl_param_index(config_settings, CONFIG_NSETTINGS, path) < 0)
+                    e = sl_fail(d, SL_E_CONFIG, sl_ynode_source(t, v->kid[2 * q]), sl_ynode_line(v->kid[2 * q]),
+                                path, "unknown key '%s' (%s has: %s)", v->kid[2 * q]->text ? v->kid[2 * q]->text : "", key, known);
+                else
+                    e = setting_value(t, s, path, v->kid[2 * q + 1], d);
+            }
+        } else {
+            continue;   /* the schema's */
+        }
+        if (e)
+            return e;
+        v->taken = 1;
+    }
+    int k = 0;
+#define SETTING_STORE(field, decl) c->field = s->v[k++];
+    CONFIG_SETTINGS(SETTING_STORE)
+#undef SETTING_STORE
+    return SL_OK;
+}
+
+/* A setting's value as its field holds it now (resolved, or set since by
+ * the command line: --gl, -j), in its declarations' order. */
+static double setting_field(const struct sl_config *c, int i)
+{
+    int k = 0;
+#define SETTING_READ(field, decl) if (i == k++) return (double)c->field;
+    CONFIG_SETTINGS(SETTING_READ)
+#undef SETTING_READ
+    return 0;
 }
 
 static enum sl_err validate(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                             struct sl_config *c, struct sl_diag *d)
 {
     static check_fn *const checks[] = {
-        check_name,     check_scenes,  check_viewports,   check_map_sizes, check_scene_map_sizes,
-        check_contours, check_methods, check_scene_methods, check_repetitions, check_sampling,
-        check_store,    check_gl,      check_outputs,     check_contour_from, check_threads,
+        check_name,     check_scenes,  check_viewports,     check_map_sizes, check_scene_map_sizes,
+        check_contours, check_methods, check_scene_methods, check_store,     check_gl,
+        check_outputs,  check_threads,
     };
     for (size_t i = 0; i < sizeof checks / sizeof checks[0]; i++) {
         enum sl_err e = checks[i](r, file, ix, c, d);
@@ -1325,6 +1399,8 @@ enum sl_err sl_config_load_with(const char *path, const char *const *overrides, 
     if (!e)
         e = take_extras(t, d);
     if (!e)
+        e = take_settings(t, out, d);
+    if (!e)
         e = sl_yaml_bind(t, &config_schema, (void **)&raw, SL_E_CONFIG, d);
     if (!e) {
         /* the file's bytes as read; the same file with the same overrides
@@ -1405,11 +1481,6 @@ static void write_contours(const struct sl_config *c, FILE *f)
     fprintf(f, "]\n");
 }
 
-static void write_contour_from(const struct sl_config *c, FILE *f)
-{
-    fprintf(f, "contour_from: %s\n", sl_contour_from_name(c->contour_from));
-}
-
 /* every parameter that applies to the label's values, in its method's order */
 static void write_methods(const struct sl_config *c, FILE *f)
 {
@@ -1448,25 +1519,6 @@ static void write_techniques(const struct sl_config *c, FILE *f)
         fprintf(f, "  - %s\n", c->techniques[i]);
 }
 
-static void write_outputs(const struct sl_config *c, FILE *f)
-{
-    fprintf(f, "outputs: {tables: %s, overlays: %s, overlay_contour: %d, exr: %s, aliasing: %s}\n",
-            c->tables ? "true" : "false", c->overlays ? "true" : "false", c->overlay_contour,
-            c->exr ? "true" : "false", c->aliasing ? "true" : "false");
-}
-
-static void write_repetitions(const struct sl_config *c, FILE *f)
-{
-    fprintf(f, "repetitions: {warmup: %d, runs: %d}\n", c->warmup, c->runs);
-}
-
-static void write_seed(const struct sl_config *c, FILE *f) { fprintf(f, "seed: %u\n", c->seed); }
-
-static void write_area_samples(const struct sl_config *c, FILE *f)
-{
-    fprintf(f, "area_samples: %d\n", c->area_samples);
-}
-
 /* "" (the default, <output root>/shadowlab.db) is left out */
 static void write_store(const struct sl_config *c, FILE *f)
 {
@@ -1474,19 +1526,46 @@ static void write_store(const struct sl_config *c, FILE *f)
         fprintf(f, "store: %s\n", c->store);
 }
 
-static void write_threads(const struct sl_config *c, FILE *f) { fprintf(f, "threads: %d\n", c->threads); }
-
-static void write_gl(const struct sl_config *c, FILE *f)
+/* The settings under top-level key `key`: "key: value", or a group's
+ * "key: {a: value, b: value}" in its declarations' order. */
+static void write_settings(const struct sl_config *c, FILE *f, const char *key)
 {
-    fprintf(f, "gl: %s\n", sl_gl_backend_name(sl_gl_backend_resolve(c->gl)));
+    size_t n = strlen(key);
+    int in_group = 0;
+    for (int k = 0; k < CONFIG_NSETTINGS; k++) {
+        const struct sl_param *p = &config_settings[k];
+        char v[64];
+        sl_param_text(p, setting_field(c, k), v, sizeof v);
+        if (!strcmp(p->name, key))
+            fprintf(f, "%s: %s\n", key, v);
+        else if (!strncmp(p->name, key, n) && p->name[n] == '.') {
+            if (!in_group++)
+                fprintf(f, "%s: {", key);
+            else
+                fputs(", ", f);
+            fprintf(f, "%s: %s", p->name + n + 1, v);
+        }
+    }
+    if (in_group)
+        fputs("}\n", f);
 }
 
 void sl_config_write(const struct sl_config *c, FILE *f)
 {
     fprintf(f, "# filled-in config: every default explicit\n");
-#define WRITE_KEY(key, ...) write_##key(c, f);
+#define WRITE_KEY(key, kind, ...) WRITE_##kind(key)
+#define WRITE_STRING(key) write_##key(c, f);
+#define WRITE_SEQ(key) write_##key(c, f);
+#define WRITE_MAP(key) write_##key(c, f);
+#define WRITE_UINT(key) write_##key(c, f);
+#define WRITE_SETTINGS(key) write_settings(c, f, #key);
     CONFIG_KEYS(WRITE_KEY)
 #undef WRITE_KEY
+#undef WRITE_STRING
+#undef WRITE_SEQ
+#undef WRITE_MAP
+#undef WRITE_UINT
+#undef WRITE_SETTINGS
 }
 
 int sl_config_contour_label(const struct sl_config *c)

@@ -106,6 +106,8 @@ struct sl_config {
     int  threads;                     /* resolved: >= 1 */
     enum sl_gl_backend gl;            /* 'gl: osmesa|egl'; resolved (never SL_GL_DEFAULT); the
                                        * command line's --gl replaces it */
+    struct sl_params settings;        /* the settings as the config gave them (config.c: CONFIG_SETTINGS;
+                                       * given: which); the fields above hold them resolved */
     struct sl_session *session;       /* the technique packages the labels run (owned; NULL: none);
                                        * a copy of the struct shares it: free one copy */
 };
