@@ -103,6 +103,18 @@ static const struct col times_cols[] = {
     COL("note", C_NOTE, 0, 0, 0, sl_morais_time, note, 0),
 };
 
+static const struct col hertel_cols[] = {
+    COL("table", C_INT, 2, 2, 0, sl_hertel_row, table, 0),
+    COL("scene", C_NOTE, 0, 0, 0, sl_hertel_row, scene, 1),
+    COL("triangles", C_INT, 1, 1e8, 0, sl_hertel_row, tris, 0),
+    COL("rt_class_ms", C_DEC, 0, 1e7, 0, sl_hertel_row, rt_class, 0),
+    COL("rt_insec_ms", C_DEC, 0, 1e7, 0, sl_hertel_row, rt_insec, 0),
+    COL("rt_opt_ms", C_DEC, 0, 1e7, 0, sl_hertel_row, rt_opt, 0),
+    COL("rays", C_U64, 0, 0, 0, sl_hertel_row, rays, 0),
+    COL("insec_rays", C_U64, 0, 0, 0, sl_hertel_row, insec, 0),
+    COL("note", C_NOTE, 0, 0, 0, sl_hertel_row, note, 0),
+};
+
 static const struct schema {
     const char       *file;
     const struct col *cols;
@@ -115,6 +127,8 @@ static const struct schema {
                           sizeof(struct sl_morais_datum)},
     [SL_THESIS_MORAIS_TIMES] = {"morais-2015-times.csv", times_cols, (int)(sizeof times_cols / sizeof times_cols[0]),
                                 sizeof(struct sl_morais_time)},
+    [SL_THESIS_HERTEL] = {"hertel-2009.csv", hertel_cols, (int)(sizeof hertel_cols / sizeof hertel_cols[0]),
+                          sizeof(struct sl_hertel_row)},
 };
 
 const char *sl_thesis_file_name(enum sl_thesis_kind k)
@@ -362,6 +376,11 @@ static int same_key(const struct schema *s, const char *a, const char *b)
         switch (k->type) {
         case C_INT:  if (*(const int *)x != *(const int *)y) return 0; break;
         case C_NAME: if (strcmp(*(const char *const *)x, *(const char *const *)y)) return 0; break;
+        case C_NOTE: {   /* a free-text key (Hertel's scene names): NULL is the empty text */
+            const char *p = *(const char *const *)x, *q = *(const char *const *)y;
+            if (strcmp(p ? p : "", q ? q : "")) return 0;
+            break;
+        }
         case C_FIG:  if (*(const enum sl_figure *)x != *(const enum sl_figure *)y) return 0; break;
         case C_ROW:  if (*(const enum sl_morais_row *)x != *(const enum sl_morais_row *)y) return 0; break;
         default:     break;   /* no key of these types */
@@ -556,6 +575,14 @@ enum sl_err sl_theses_morais_times(const struct sl_morais_time **rows, int *n, s
 {
     const void *r;
     enum sl_err e = get(SL_THESIS_MORAIS_TIMES, &r, n, d);
+    *rows = r;
+    return e;
+}
+
+enum sl_err sl_theses_hertel(const struct sl_hertel_row **rows, int *n, struct sl_diag *d)
+{
+    const void *r;
+    enum sl_err e = get(SL_THESIS_HERTEL, &r, n, d);
     *rows = r;
     return e;
 }

@@ -93,9 +93,20 @@ struct sl_morais_time {
     const char *note;
 };
 
+/* Hertel 2009's Table 2 (seed 002): his scenes, times on his GPU and the
+ * rays traced; hertel-2009.csv. */
+struct sl_hertel_row {
+    int         table;
+    const char *scene;               /* his scene's name as printed */
+    int         tris;
+    double      rt_class, rt_insec, rt_opt;   /* ms: every ray, the uncertain only, cut at the stored depth */
+    uint64_t    rays, insec;         /* "# rays", "# insec. rays" */
+    const char *note;
+};
+
 /* ---- loading ---- */
 
-enum sl_thesis_kind { SL_THESIS_MODERNO, SL_THESIS_MORAIS, SL_THESIS_MORAIS_TIMES, SL_THESIS_NKINDS };
+enum sl_thesis_kind { SL_THESIS_MODERNO, SL_THESIS_MORAIS, SL_THESIS_MORAIS_TIMES, SL_THESIS_HERTEL, SL_THESIS_NKINDS };
 
 /* One data file read: rows (struct sl_thesis_datum, sl_morais_datum or
  * sl_morais_time by kind) n of them and a zeroed row after them; their
@@ -123,6 +134,7 @@ void        sl_thesis_file_free(struct sl_thesis_file *f);
 enum sl_err sl_theses_moderno(const struct sl_thesis_datum **rows, int *n, struct sl_diag *d);
 enum sl_err sl_theses_morais(const struct sl_morais_datum **rows, int *n, struct sl_diag *d);
 enum sl_err sl_theses_morais_times(const struct sl_morais_time **rows, int *n, struct sl_diag *d);
+enum sl_err sl_theses_hertel(const struct sl_hertel_row **rows, int *n, struct sl_diag *d);
 /* Drop the process's copies (a later call reads the files again). */
 void        sl_theses_free(void);
 

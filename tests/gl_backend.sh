@@ -23,7 +23,7 @@ expect() { # expect CODE PATTERN -- command...
 expect 2 "usage: shadowlab run" -- "$bin" run configs/ci.yaml --gl nonsense --out "$tmp/o"
 expect 2 "usage: shadowlab run" -- "$bin" run configs/ci.yaml --gl --out "$tmp/o"
 sed 's/^name: .*/&\ngl: vulkan/' configs/ci.yaml >"$tmp/bad.yaml"
-expect 2 "gl 'vulkan': osmesa or egl" -- "$bin" validate "$tmp/bad.yaml"
+expect 2 "'gl': 'vulkan': one of default, osmesa, egl" -- "$bin" validate "$tmp/bad.yaml"
 case ";$backends;" in
 *";egl;"*)
     expect 2 "SHADOWLAB_EGL_DEVICE.*no EGL device 99" -- env SHADOWLAB_EGL_DEVICE=99 "$bin" run configs/ci.yaml --gl egl --out "$tmp/o"

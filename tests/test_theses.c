@@ -75,6 +75,13 @@ static void theses_shipped(void **st)
     assert_int_equal(n, 216);
     assert_null(mt[n].scene);
     assert_true(mt[0].ms == 1.57);
+    const struct sl_hertel_row *he;
+    assert_int_equal(sl_theses_hertel(&he, &n, &d), SL_OK);
+    assert_int_equal(n, 4);
+    assert_null(he[n].scene);
+    assert_string_equal(he[1].scene, "Village");
+    assert_int_equal(he[1].tris, 247432);
+    assert_true(he[2].rt_insec == 2670 && he[3].rays == 198576 && he[3].insec == 967655);
     /* loaded once: the same rows again */
     const struct sl_thesis_datum *again;
     assert_int_equal(sl_theses_moderno(&again, &n, &d), SL_OK);

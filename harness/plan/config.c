@@ -126,8 +126,8 @@ static const cyaml_schema_value_t scene_ref_schema = {
     X(area_samples, SL_PARAM_INT_DECL("area_samples", 32, 2, 1024, "",                                      \
         "area lights: truth samples per side of the light (default 32: 1,024 a pixel)"))                   \
     X(threads, SL_PARAM_INT_DECL("threads", 0, 0, 256, "", "CPU threads (default 0: every core)"))          \
-    X(gl, SL_PARAM_CHOICE_DECL("gl", SL_GL_DEFAULT, "the GL backend: osmesa or egl (default: SHADOWLAB_GL, "  \
-        "else osmesa)", "default", "osmesa", "egl"))
+    X(gl, SL_PARAM_CHOICE_DECL("gl", SL_GL_DEFAULT, "the GL backend: osmesa or egl; default (the "  \
+        "default): SHADOWLAB_GL, else osmesa", "default", "osmesa", "egl"))
 
 static const struct sl_param config_settings[] = {
 #define SETTING_DECL(field, decl) decl,
