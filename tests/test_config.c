@@ -321,7 +321,7 @@ static void config_sweeps(void **st)
     assert_int_equal(d.line, 7);
     assert_string_equal(d.key, "methods[1].texels");
     /* a method entry the text never closes (fuzz_config's input): the
-     * extras' walk stops at the stream's end, the loader names the error */
+     * tree's parse names the syntax error, nothing is bound */
     write_tmp(path, "scenes: [{scene: primitives}]\nmap_sizes: [1024]\nmethods:\n  - label: nsm\n"
                     "    method: nsm\n    stives}]\nmap_sizes: [1024]\nmethods 2.0\n");
     memset(&d, 0, sizeof d);

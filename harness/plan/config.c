@@ -1095,7 +1095,7 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
  * technique.yaml and both shaders, byte for byte. A package edited between
  * two runs is another study: --resume and merge key cells by the config
  * hash, so cells of the old shaders are never taken for the new ones. */
-static enum sl_err hash_packages(struct sl_config *c, struct sl_diag *d)
+static void hash_packages(struct sl_config *c)
 {
     for (int i = 0; i < c->nmethods; i++) {
         const struct sl_technique *t = c->methods[i].params.tech;
@@ -1104,10 +1104,7 @@ static enum sl_err hash_packages(struct sl_config *c, struct sl_diag *d)
             seen = c->methods[k].params.tech == t;
         if (!t || seen)
             continue;
-        unsigned long long h = 0;
-        enum sl_err e = sl_hash_file(t->file, &h, d);
-        if (e)
-            return e;
+        unsigned long long h = t->file_hash;   /* technique.yaml as it was read */
         const char *parts[2] = {t->map_src, t->lookup_src};
         for (int k = 0; k < 8; k++)
             c->hash = (c->hash ^ ((h >> (8 * k)) & 0xffu)) * 1099511628211ull;
@@ -1118,7 +1115,6 @@ static enum sl_err hash_packages(struct sl_config *c, struct sl_diag *d)
                     break;
             }
     }
-    return SL_OK;
 }
 
 static enum sl_err check_methods(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
@@ -1157,7 +1153,8 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
         if (e)
             return e;
     }
-    return hash_packages(c, d);
+    hash_packages(c);
+    return SL_OK;
 }
 
 /* Scene entry si's labels: those its list names, each of which must handle
@@ -1254,7 +1251,7 @@ static enum sl_err check_scene_methods(const struct raw_config *r, const char *f
     return SL_OK;
 }
 
-/* Ranges are checked on the unsigned values libcyaml read, before any
+/* Ranges are checked on the unsigned values the schema read, before any
  * cast to int (4294967295 would be -1 and pass "at most 100"). */
 static enum sl_err check_repetitions(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
                                      struct sl_config *c, struct sl_diag *d)
@@ -1424,7 +1421,8 @@ static enum sl_err apply_overrides(struct sl_yaml_pos *t, const char *const *ov,
  * includes the override); any other keeps the file's own line. */
 static void ov_blame(const struct sl_yaml_pos *t, const char *const *ov, int n, struct sl_diag *d)
 {
-    if (!d || !d->key[0] || d->file[0] == '-')
+    /* only the config's own errors: a scene file's key is no key of the config */
+    if (!d || !d->key[0] || strcmp(d->file, sl_ytree_file(t)) != 0)
         return;
     char path[96];
     snprintf(path, sizeof path, "%s", d->key);
