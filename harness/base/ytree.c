@@ -21,6 +21,8 @@
 #define SRC_MAX 255   /* the file and up to 254 -D values (origin is a byte) */
 
 struct chunk { struct chunk *next; unsigned used; struct sl_ynode node[1024]; };
+/* scalars' texts, packed: a malloc each would double a small scalar's cost */
+struct tchunk { struct tchunk *next; size_t used, cap; char buf[]; };
 
 struct sl_yaml_pos {
     struct sl_ynode *root;
@@ -28,6 +30,7 @@ struct sl_yaml_pos {
     int              nsrc;
     unsigned long long hash;
     struct chunk    *chunks;
+    struct tchunk   *texts;
     size_t           nodes, max_nodes;
 };
 
@@ -55,6 +58,31 @@ static struct sl_ynode *node_new(struct sl_yaml_pos *t, int kind, int line, int 
     return n;
 }
 
+/* A copy of s[0..len) (NUL added) in the text arena. */
+static char *text_new(struct sl_yaml_pos *t, const char *s, size_t len)
+{
+    struct tchunk *c = t->texts;
+    if (!c || c->cap - c->used < len + 1) {
+        size_t cap = len + 1 > 65536 ? len + 1 : 65536;
+        if (!(c = malloc(sizeof *c + cap)))
+            return NULL;
+        c->used = 0;
+        c->cap = cap;
+        if (t->texts && len + 1 > 65536) {   /* a big one: behind the open chunk, which stays open */
+            c->next = t->texts->next;
+            t->texts->next = c;
+        } else {
+            c->next = t->texts;
+            t->texts = c;
+        }
+    }
+    char *p = c->buf + c->used;
+    memcpy(p, s, len);
+    p[len] = '\0';
+    c->used += len + 1;
+    return p;
+}
+
 static int slot_push(struct sl_ynode *p, unsigned used, struct sl_ynode *k)
 {
     if (used == p->cap) {
@@ -75,10 +103,12 @@ void sl_ytree_free(struct sl_yaml_pos *t)
         return;
     for (struct chunk *c = t->chunks, *next; c; c = next) {
         next = c->next;
-        for (unsigned i = 0; i < c->used; i++) {
-            free(c->node[i].text);
+        for (unsigned i = 0; i < c->used; i++)
             free(c->node[i].kid);
-        }
+        free(c);
+    }
+    for (struct tchunk *c = t->texts, *next; c; c = next) {
+        next = c->next;
         free(c);
     }
     for (int i = 0; i < t->nsrc; i++)
@@ -336,10 +366,13 @@ static void build_run(struct build *b, const unsigned char *text, size_t len)
                 yaml_event_delete(&ev);
                 break;
             }
+            if (et == YAML_SCALAR_EVENT &&
+                !(n->text = text_new(b->t, (const char *)ev.data.scalar.value, ev.data.scalar.length))) {
+                b->err = B_NOMEM;
+                yaml_event_delete(&ev);
+                break;
+            }
             if (et == YAML_SCALAR_EVENT) {
-                /* the parser's own copy of the text becomes the node's */
-                n->text = (char *)ev.data.scalar.value;
-                ev.data.scalar.value = NULL;
                 n->quoted = ev.data.scalar.style != YAML_PLAIN_SCALAR_STYLE &&
                             ev.data.scalar.style != YAML_ANY_SCALAR_STYLE;
             }
@@ -397,9 +430,11 @@ enum sl_err sl_ytree_read(const char *path, size_t max_bytes, enum sl_err kind, 
         return e;
     }
     /* a node takes at least two bytes of YAML ("1,"), so a file within its
-     * limit has at most max_bytes / 2 of them; a quarter of that keeps a
-     * hostile file's tree (64 bytes a node) within 8 times its size and is
-     * far above any file shadowlab writes or ships */
+     * limit could hold max_bytes / 2 of them; a quarter of that keeps a
+     * hostile file's tree (about 70 bytes a node: 60 MB of "[1,1,...]"
+     * takes 0.6 GB and 3 s to refuse) within 10 times its size, and is
+     * above what the files shadowlab writes or ships hold at their size
+     * (6 bytes or more a node: ci.yaml's baseline, the scenes) */
     size_t max_nodes = max_bytes / 8 > 65536 ? max_bytes / 8 : 65536;
     struct sl_yaml_pos *t = tree_new(max_nodes);
     if (!t || src_add(t, path) != 0) {
@@ -582,7 +617,7 @@ struct sl_ynode *sl_ytree_find(const struct sl_yaml_pos *t, const char *path)
 static struct sl_ynode *key_new(struct sl_yaml_pos *t, const char *name, int origin)
 {
     struct sl_ynode *k = node_new(t, SL_YSCALAR, 0, 0, origin);
-    if (k && !(k->text = strdup(name)))
+    if (k && !(k->text = text_new(t, name, strlen(name))))
         return NULL;
     return k;
 }
