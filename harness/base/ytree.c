@@ -222,7 +222,6 @@ struct build {
     struct sl_ynode *open[SL_YAML_MAX_DEPTH];   /* the containers open now */
     int depth;
     int done;              /* the first document's root is complete: later ones are only checked */
-    int over;              /* later documents: their nesting */
     /* the error */
     enum build_err err;
     int line;
@@ -250,8 +249,9 @@ static void pending_path(const struct build *b, char *buf, size_t n)
 /* Add node to the open container (or make it the root). */
 static int attach(struct build *b, struct sl_ynode *n)
 {
-    if (!b->depth) {
-        b->root = n;
+    if (!b->depth) {   /* a later document's root is checked, not kept */
+        if (!b->root)
+            b->root = n;
         return 1;
     }
     struct sl_ynode *p = b->open[b->depth - 1];
@@ -334,21 +334,12 @@ static void build_run(struct build *b, const unsigned char *text, size_t len)
         if (et == YAML_ALIAS_EVENT) {
             b->err = B_ALIAS;
             b->line = line;
-            if (!b->done)
-                pending_path(b, b->key, sizeof b->key);
+            pending_path(b, b->key, sizeof b->key);
             snprintf(b->what, sizeof b->what, "%.31s", (const char *)ev.data.alias.anchor);
             yaml_event_delete(&ev);
             break;
         }
-        if (b->done) {   /* a later document: its nesting is still bounded */
-            b->over += start - end;
-            if (b->over > SL_YAML_MAX_DEPTH) {
-                b->err = B_DEPTH;
-                b->line = line;
-                yaml_event_delete(&ev);
-                break;
-            }
-        } else if (start || et == YAML_SCALAR_EVENT) {
+        if (start || et == YAML_SCALAR_EVENT) {
             if (start && b->depth == SL_YAML_MAX_DEPTH) {
                 b->err = B_DEPTH;
                 b->line = line;
@@ -544,10 +535,11 @@ size_t sl_ynode_path(const struct sl_ynode *n, char *buf, size_t size)
     if (k >= size)
         k = size - 1;
     int w;
+    const struct sl_ynode *name = n->key ? n->key : n;   /* a key names itself */
     if (n->parent->kind == SL_YSEQ)
         w = snprintf(buf + k, size - k, "[%u]", n->index);
     else
-        w = snprintf(buf + k, size - k, "%s%s", k ? "." : "", n->key && n->key->text ? n->key->text : "?");
+        w = snprintf(buf + k, size - k, "%s%s", k ? "." : "", name->text ? name->text : "?");
     return w < 0 ? k : k + (size_t)w < size ? k + (size_t)w : size - 1;
 }
 
