@@ -48,7 +48,7 @@ echo "$out" | grep -q 'exr: true' && ok || fail "-D outputs.exr not applied"
 echo "$out" | grep -q "ok: 1 scene(s), 4 cell(s)" && ok || fail "-D map_sizes: want 4 cells: $(echo "$out" | head -1)"
 err=$("$bin" validate "$tmp/small.yaml" -D 'methods[0].bias=0.01' 2>&1); rc=$?
 [ $rc -eq 2 ] && echo "$err" | grep -q "^shadowlab: -D methods\[0\].bias=0.01: 'methods\[0\].bias': bias applies to" && ok ||
-  fail "a knob the method does not take: rc $rc '$err'"
+  fail "a parameter the method does not take: rc $rc '$err'"
 err=$("$bin" validate "$tmp/small.yaml" -D 'methods[7].bias=1' 2>&1); rc=$?
 [ $rc -eq 2 ] && echo "$err" | grep -q "'methods\[7\].bias': 'methods' has 2 entries" && ok || fail "bad index: '$err'"
 err=$("$bin" validate "$tmp/small.yaml" -D 'nokey=3' 2>&1); rc=$?

@@ -44,7 +44,7 @@ else
 fi
 grep -q 'sl_method_pcf3' methods/registry.c && bad "the example is in the shipped registry"
 
-# the config's knob, and the names the doc cites from method.h and frame.h
+# the config's parameter, and the names the doc cites from method.h and frame.h
 grep -q 'method: pcf3, bias: ' "$doc" || bad "no config entry 'method: pcf3, bias: ...'"
 grep -q 'SL_PARAM_FLOAT_DECL("bias",' "$src" || bad "pcf3.c does not declare its parameter bias"
 for name in sl_method_fast at_pixel looks look_parts sl_method_configure sl_method_param SL_METHOD_PARAMS sl_layer_at; do

@@ -227,7 +227,7 @@ static void config_repetitions_default(void **st)
     unlink(path);
 }
 
-/* Sweeps: a knob given as a list is one label per value (several lists
+/* Sweeps: a parameter given as a list is one label per value (several lists
  * multiply, the first varying slowest), each with its value; a scene's
  * list names the sweep by its entry's label; the flow mapping's other keys
  * keep their lines (an error after the sweep names its own line). */
@@ -327,7 +327,7 @@ static void config_sweeps(void **st)
     assert_int_equal(d.line, 7);
     assert_string_equal(d.key, "methods[1].texels");
     /* a method entry the text never closes (fuzz_config's input): the
-     * extras' walk stops at the stream's end, the loader names the error */
+     * tree's parse names the syntax error, nothing is bound */
     write_tmp(path, "scenes: [{scene: primitives}]\nmap_sizes: [1024]\nmethods:\n  - label: nsm\n"
                     "    method: nsm\n    stives}]\nmap_sizes: [1024]\nmethods 2.0\n");
     memset(&d, 0, sizeof d);
@@ -337,7 +337,7 @@ static void config_sweeps(void **st)
 
 /* Technique packages (the source tree's techniques/): named like a method,
  * their parameters as keys, checked against the package's declaration at
- * their lines, swept like knobs; a config's `techniques:` folder adds a
+ * their lines, swept like a C method's; a config's `techniques:` folder adds a
  * package. */
 static void config_packages(void **st)
 {

@@ -92,6 +92,7 @@ static void ytree_refusals(void **st)
     static const struct { const char *text; int line; const char *key, *msg; } bad[] = {
         {"a: &x [1]\nb: *x\n", 2, "b", "an alias (*x)"},
         {"a:\n  - [1, 2]\n  - *y\n", 3, "a[1]", "an alias (*y)"},
+        {"a: 1\n---\nb: *z\n", 3, "b", "an alias (*z)"},   /* a later document is checked too */
         {"a: 1\nb: [1, 2\nc: 3\n", 2, "b[1]", "libyaml: did not find expected ',' or ']'"},
         {"a: 1\nb: 2\n\xff\n", 3, NULL, "byte 0xff at column 1 is not UTF-8 text"},
         {"a: 1\nb: x\x01y\n", 2, NULL, "control character"},
@@ -291,6 +292,7 @@ static void ytree_bind(void **st)
         {"name: [x]\nitems: [{size: 1}]\n", 1, "name", "Expecting STRING, got event: SEQUENCE_START"},
         {"name: x\nname: y\nitems: [{size: 1}]\n", 2, "name", "Mapping field already seen: name"},
         {"- name: x\n", 1, NULL, "the file is a sequence"},
+        {"name: x\nitems:\n  - ? [a]\n    : 1\n", 3, "items[0]", "a key is a plain word"},
         {"", 0, NULL, "empty file"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {

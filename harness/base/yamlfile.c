@@ -206,8 +206,10 @@ static enum sl_err bind_map(struct bind *b, const cyaml_schema_value_t *s, const
         const struct sl_ynode *k = n->kid[2 * i], *v = n->kid[2 * i + 1];
         if (v->taken)
             continue;
-        if (k->kind != SL_YSCALAR)
-            return fail_at(b, k, k->line, NULL, "a key is a plain word, not a mapping or a list");
+        if (k->kind != SL_YSCALAR) {
+            sl_ynode_path(n, key, sizeof key);
+            return fail_at(b, k, k->line, key, "a key is a plain word, not a mapping or a list");
+        }
         key_path(n, k->text, key, sizeof key);
         unsigned j = 0;
         while (j < nf && strcmp(f[j].key, k->text) != 0)

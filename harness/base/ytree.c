@@ -21,6 +21,8 @@
 #define SRC_MAX 255   /* the file and up to 254 -D values (origin is a byte) */
 
 struct chunk { struct chunk *next; unsigned used; struct sl_ynode node[1024]; };
+/* scalars' texts, packed: a malloc each would double a small scalar's cost */
+struct tchunk { struct tchunk *next; size_t used, cap; char buf[]; };
 
 struct sl_yaml_pos {
     struct sl_ynode *root;
@@ -28,6 +30,7 @@ struct sl_yaml_pos {
     int              nsrc;
     unsigned long long hash;
     struct chunk    *chunks;
+    struct tchunk   *texts;
     size_t           nodes, max_nodes;
 };
 
@@ -55,6 +58,31 @@ static struct sl_ynode *node_new(struct sl_yaml_pos *t, int kind, int line, int 
     return n;
 }
 
+/* A copy of s[0..len) (NUL added) in the text arena. */
+static char *text_new(struct sl_yaml_pos *t, const char *s, size_t len)
+{
+    struct tchunk *c = t->texts;
+    if (!c || c->cap - c->used < len + 1) {
+        size_t cap = len + 1 > 65536 ? len + 1 : 65536;
+        if (!(c = malloc(sizeof *c + cap)))
+            return NULL;
+        c->used = 0;
+        c->cap = cap;
+        if (t->texts && len + 1 > 65536) {   /* a big one: behind the open chunk, which stays open */
+            c->next = t->texts->next;
+            t->texts->next = c;
+        } else {
+            c->next = t->texts;
+            t->texts = c;
+        }
+    }
+    char *p = c->buf + c->used;
+    memcpy(p, s, len);
+    p[len] = '\0';
+    c->used += len + 1;
+    return p;
+}
+
 static int slot_push(struct sl_ynode *p, unsigned used, struct sl_ynode *k)
 {
     if (used == p->cap) {
@@ -75,10 +103,12 @@ void sl_ytree_free(struct sl_yaml_pos *t)
         return;
     for (struct chunk *c = t->chunks, *next; c; c = next) {
         next = c->next;
-        for (unsigned i = 0; i < c->used; i++) {
-            free(c->node[i].text);
+        for (unsigned i = 0; i < c->used; i++)
             free(c->node[i].kid);
-        }
+        free(c);
+    }
+    for (struct tchunk *c = t->texts, *next; c; c = next) {
+        next = c->next;
         free(c);
     }
     for (int i = 0; i < t->nsrc; i++)
@@ -192,7 +222,6 @@ struct build {
     struct sl_ynode *open[SL_YAML_MAX_DEPTH];   /* the containers open now */
     int depth;
     int done;              /* the first document's root is complete: later ones are only checked */
-    int over;              /* later documents: their nesting */
     /* the error */
     enum build_err err;
     int line;
@@ -220,8 +249,9 @@ static void pending_path(const struct build *b, char *buf, size_t n)
 /* Add node to the open container (or make it the root). */
 static int attach(struct build *b, struct sl_ynode *n)
 {
-    if (!b->depth) {
-        b->root = n;
+    if (!b->depth) {   /* a later document's root is checked, not kept */
+        if (!b->root)
+            b->root = n;
         return 1;
     }
     struct sl_ynode *p = b->open[b->depth - 1];
@@ -304,21 +334,12 @@ static void build_run(struct build *b, const unsigned char *text, size_t len)
         if (et == YAML_ALIAS_EVENT) {
             b->err = B_ALIAS;
             b->line = line;
-            if (!b->done)
-                pending_path(b, b->key, sizeof b->key);
+            pending_path(b, b->key, sizeof b->key);
             snprintf(b->what, sizeof b->what, "%.31s", (const char *)ev.data.alias.anchor);
             yaml_event_delete(&ev);
             break;
         }
-        if (b->done) {   /* a later document: its nesting is still bounded */
-            b->over += start - end;
-            if (b->over > SL_YAML_MAX_DEPTH) {
-                b->err = B_DEPTH;
-                b->line = line;
-                yaml_event_delete(&ev);
-                break;
-            }
-        } else if (start || et == YAML_SCALAR_EVENT) {
+        if (start || et == YAML_SCALAR_EVENT) {
             if (start && b->depth == SL_YAML_MAX_DEPTH) {
                 b->err = B_DEPTH;
                 b->line = line;
@@ -336,10 +357,13 @@ static void build_run(struct build *b, const unsigned char *text, size_t len)
                 yaml_event_delete(&ev);
                 break;
             }
+            if (et == YAML_SCALAR_EVENT &&
+                !(n->text = text_new(b->t, (const char *)ev.data.scalar.value, ev.data.scalar.length))) {
+                b->err = B_NOMEM;
+                yaml_event_delete(&ev);
+                break;
+            }
             if (et == YAML_SCALAR_EVENT) {
-                /* the parser's own copy of the text becomes the node's */
-                n->text = (char *)ev.data.scalar.value;
-                ev.data.scalar.value = NULL;
                 n->quoted = ev.data.scalar.style != YAML_PLAIN_SCALAR_STYLE &&
                             ev.data.scalar.style != YAML_ANY_SCALAR_STYLE;
             }
@@ -397,9 +421,11 @@ enum sl_err sl_ytree_read(const char *path, size_t max_bytes, enum sl_err kind, 
         return e;
     }
     /* a node takes at least two bytes of YAML ("1,"), so a file within its
-     * limit has at most max_bytes / 2 of them; a quarter of that keeps a
-     * hostile file's tree (64 bytes a node) within 8 times its size and is
-     * far above any file shadowlab writes or ships */
+     * limit could hold max_bytes / 2 of them; a quarter of that keeps a
+     * hostile file's tree (about 70 bytes a node: 60 MB of "[1,1,...]"
+     * takes 0.6 GB and 3 s to refuse) within 10 times its size, and is
+     * above what the files shadowlab writes or ships hold at their size
+     * (6 bytes or more a node: ci.yaml's baseline, the scenes) */
     size_t max_nodes = max_bytes / 8 > 65536 ? max_bytes / 8 : 65536;
     struct sl_yaml_pos *t = tree_new(max_nodes);
     if (!t || src_add(t, path) != 0) {
@@ -509,10 +535,11 @@ size_t sl_ynode_path(const struct sl_ynode *n, char *buf, size_t size)
     if (k >= size)
         k = size - 1;
     int w;
+    const struct sl_ynode *name = n->key ? n->key : n;   /* a key names itself */
     if (n->parent->kind == SL_YSEQ)
         w = snprintf(buf + k, size - k, "[%u]", n->index);
     else
-        w = snprintf(buf + k, size - k, "%s%s", k ? "." : "", n->key && n->key->text ? n->key->text : "?");
+        w = snprintf(buf + k, size - k, "%s%s", k ? "." : "", name->text ? name->text : "?");
     return w < 0 ? k : k + (size_t)w < size ? k + (size_t)w : size - 1;
 }
 
@@ -582,7 +609,7 @@ struct sl_ynode *sl_ytree_find(const struct sl_yaml_pos *t, const char *path)
 static struct sl_ynode *key_new(struct sl_yaml_pos *t, const char *name, int origin)
 {
     struct sl_ynode *k = node_new(t, SL_YSCALAR, 0, 0, origin);
-    if (k && !(k->text = strdup(name)))
+    if (k && !(k->text = text_new(t, name, strlen(name))))
         return NULL;
     return k;
 }

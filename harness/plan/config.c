@@ -732,11 +732,11 @@ static enum sl_err method_light_frame(const struct raw_method *rm, unsigned i, c
     return SL_OK;
 }
 
-/* ---- sweeps and technique packages ----
- * A method entry's keys the schema cannot hold are taken out of the
+/* ---- a method entry's parameters ----
+ * A method entry's keys but label, display, method and light_frame are
+ * its method's parameters (declared: base/params.h), taken out of the
  * config's tree before it is bound (take_extras, marking the pairs
- * taken): a package's parameters, and any knob or parameter given as a
- * list (a sweep). They stay in the tree, which the loader hands down to
+ * taken), each a value or a list of values (a sweep). They stay in the tree, which the loader hands down to
  * check_methods: entry_extras reads entry i's back, each with its line
  * and its values as written. */
 #define SL_EXTRA_KEYS   16   /* taken keys per method entry */
@@ -991,7 +991,7 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
  * technique.yaml and both shaders, byte for byte. A package edited between
  * two runs is another study: --resume and merge key cells by the config
  * hash, so cells of the old shaders are never taken for the new ones. */
-static enum sl_err hash_packages(struct sl_config *c, struct sl_diag *d)
+static void hash_packages(struct sl_config *c)
 {
     for (int i = 0; i < c->nmethods; i++) {
         const struct sl_technique *t = c->methods[i].params.tech;
@@ -1000,10 +1000,7 @@ static enum sl_err hash_packages(struct sl_config *c, struct sl_diag *d)
             seen = c->methods[k].params.tech == t;
         if (!t || seen)
             continue;
-        unsigned long long h = 0;
-        enum sl_err e = sl_hash_file(t->file, &h, d);
-        if (e)
-            return e;
+        unsigned long long h = t->file_hash;   /* technique.yaml as it was read */
         const char *parts[2] = {t->map_src, t->lookup_src};
         for (int k = 0; k < 8; k++)
             c->hash = (c->hash ^ ((h >> (8 * k)) & 0xffu)) * 1099511628211ull;
@@ -1014,7 +1011,6 @@ static enum sl_err hash_packages(struct sl_config *c, struct sl_diag *d)
                     break;
             }
     }
-    return SL_OK;
 }
 
 static enum sl_err check_methods(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
@@ -1053,7 +1049,8 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
         if (e)
             return e;
     }
-    return hash_packages(c, d);
+    hash_packages(c);
+    return SL_OK;
 }
 
 /* Scene entry si's labels: those its list names, each of which must handle
@@ -1355,7 +1352,8 @@ static enum sl_err apply_overrides(struct sl_yaml_pos *t, const char *const *ov,
  * includes the override); any other keeps the file's own line. */
 static void ov_blame(const struct sl_yaml_pos *t, const char *const *ov, int n, struct sl_diag *d)
 {
-    if (!d || !d->key[0] || d->file[0] == '-')
+    /* only the config's own errors: a scene file's key is no key of the config */
+    if (!d || !d->key[0] || strcmp(d->file, sl_ytree_file(t)) != 0)
         return;
     char path[96];
     snprintf(path, sizeof path, "%s", d->key);

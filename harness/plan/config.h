@@ -1,12 +1,14 @@
 /*
- * config.h — experiment files (YAML, read with libcyaml against a schema):
+ * config.h — experiment files (YAML bound to a libcyaml schema, yamlfile.h):
  * parse, then validate with defaults filled in, then hand the run a plain
  * struct. Touches no GL and no Embree, so `shadowlab validate` is cheap.
  *
- * Every error names the file, the line and the key (dotted path, e.g.
- * methods[1].self_shadow): libcyaml's own backtrace gives the line of type
- * errors; a position index built with libyaml gives it for unknown keys and
- * for values that fail our checks.
+ * The file is read once into a positioned node tree (ytree.h); -D
+ * overrides are grafted into that tree, a method entry's sweeps and package
+ * parameters are taken out of it, and the rest is bound to the schema and
+ * checked. Every error names the file, the line and the key (dotted path,
+ * e.g. methods[1].self_shadow), each line the node's own; an error at a
+ * value a -D override gave names the override ("-D KEY=VALUE") instead.
  *
  * Schema (all keys but scene, map_sizes and methods optional):
  *   name: default              # experiment name, output folder under results/

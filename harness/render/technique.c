@@ -501,8 +501,11 @@ enum sl_err sl_tech_load(const char *dir, struct sl_technique *t, struct sl_diag
     enum sl_err e = sl_yaml_load(t->file, &tech_schema, (void **)&r, &pos, SL_TECH_MAX_YAML, SL_E_PACKAGE, d);
     if (e == SL_E_IO)   /* a package that cannot be read is a bad package (exit 2), as its diag says */
         e = SL_E_PACKAGE;
-    if (!e)
+    if (!e) {
+        t->name_line = sl_yaml_line(pos, "name");
+        t->file_hash = sl_ytree_hash(pos);
         e = fill(t, r, pos, d);
+    }
     sl_yaml_free(&tech_schema, r, pos);
     if (e) {
         sl_tech_free(t);
@@ -639,16 +642,7 @@ static enum sl_err add_one(struct sl_tech_set *s, const char *dir, const char *o
         return e;
     for (int i = 0; c_names && c_names[i]; i++)
         if (!strcmp(c_names[i], t.name)) {
-            struct sl_yaml_pos *pos = NULL;
-            struct raw_tech *r = NULL;
-            int line = 0;
-            struct sl_diag tmp;
-            /* the line of `name:` (the file loaded a moment ago) */
-            if (!sl_yaml_load(t.file, &tech_schema, (void **)&r, &pos, SL_TECH_MAX_YAML, SL_E_PACKAGE, &tmp)) {
-                line = sl_yaml_line(pos, "name");
-                sl_yaml_free(&tech_schema, r, pos);
-            }
-            e = sl_fail(d, SL_E_PACKAGE, t.file, line, "name", "'%s' is the name of a C method: a package may not "
+            e = sl_fail(d, SL_E_PACKAGE, t.file, t.name_line, "name", "'%s' is the name of a C method: a package may not "
                         "shadow one (rename it, e.g. %s_glsl)", t.name, t.name);
             sl_tech_free(&t);
             return e;

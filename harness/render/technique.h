@@ -2,8 +2,8 @@
  * technique.h — shadow technique packages (issue 36): a folder holding
  * technique.yaml and the two GLSL files it names, loaded at run time.
  *
- * What it does: reads and checks technique.yaml against its schema (libcyaml
- * through sl_yaml_load: unknown keys, missing keys, types, ranges, a default
+ * What it does: reads and checks technique.yaml against its schema (a libcyaml
+ * schema bound by sl_yaml_load: unknown keys, missing keys, types, ranges, a default
  * outside [min, max], names that are no GLSL identifiers, a `blur:` or
  * `reach.param` naming no parameter), checks the shader paths (relative, no
  * `..`, no symbolic link on the way, a regular file inside the package
@@ -87,6 +87,9 @@ struct sl_technique {
                                       * report's grouping (sl_method.family) */
     char dir[1024];             /* the package folder, as found */
     char file[1100];            /* dir/technique.yaml: what errors name */
+    int name_line;              /* the line of its `name:` */
+    unsigned long long file_hash;   /* FNV-1a of technique.yaml's bytes as read (sl_hash_file's):
+                                     * a config's hash covers it without reading the file again */
     const char *origin;         /* where it was found (sl_tech_dirs' origins); NULL when loaded alone */
     double threshold;           /* lit iff visibility >= threshold (default 0.5) */
     enum sl_tech_cull cull;
