@@ -202,5 +202,22 @@ if command -v script >/dev/null; then
   grep -qa 'left   # ' "$tmp/tty-v.out" && fail "-v: a table glued to the progress line" || ok
 fi
 
+# show method: a built-in method's parameters, from its declarations
+out=$("$bin" show method nsm 2>&1) && ok || fail "show method nsm: $out"
+echo "$out" | grep -qE '^    self_shadow +choice default front_faces +none, constant, slope, front_faces, triangle_id' && ok ||
+  fail "show method nsm: no self_shadow line: $out"
+echo "$out" | grep -qE '^    bias +float +default 1 +\[0, 1000\] +\(texels\)' && ok || fail "show method nsm: no bias line: $out"
+out=$("$bin" show method soft_mc 2>&1)
+echo "$out" | grep -qE '^    grid +int +default 3 +\[1, 16\]' && echo "$out" | grep -qE '^    blur +bool +default false' && ok ||
+  fail "show method soft_mc: $out"
+"$bin" show method texel | grep -q '^  parameters none$' && ok || fail "show method texel: parameters none"
+err=$("$bin" show method pcf 2>&1); rc=$?
+[ $rc -eq 2 ] && echo "$err" | grep -q "no built-in method of that name" && echo "$err" | grep -q "show technique NAME" && ok ||
+  fail "show method pcf (a package): rc $rc '$err'"
+# a C method's parameter swept as a list, like a package's
+out=$("$bin" validate "$tmp/small.yaml" -D 'methods[1].bias=[0.5, 2]' 2>&1) && ok || fail "-D a C method's sweep: $out"
+echo "$out" | grep -q 'label: "slope\[bias=0.5\]", method: nsm, self_shadow: slope, bias: 0.5, slope: 1' && ok ||
+  fail "a C method's sweep is not two labels: $out"
+
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]

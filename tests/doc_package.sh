@@ -178,6 +178,8 @@ completion)
   has methods= shadowlab validate configs/default.yaml --define meth
   has pcf shadowlab show technique pc
   has technique shadowlab show te
+  has method shadowlab show me
+  has soft_mc shadowlab show method soft
   has latex shadowlab table x.db --format la
   has md shadowlab check x.db --format m
   has egl shadowlab run x.yaml --gl e
