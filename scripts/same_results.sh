@@ -9,8 +9,10 @@
 # for byte (a PNG that differs in bytes, as its text chunks name the git
 # SHA, is compared by its header and inflated image data, so only a pixel
 # difference fails), the run's tables (table.md, table.tex, table-detail.tex)
-# byte for byte with each side's git SHA read from its run.yaml and put back
-# as one word, and costs.csv's counts (every column but times, the git SHA
+# byte for byte but their tables of times (two runs never time alike: the
+# cost section of table.md, each LaTeX table whose caption names ms), with
+# each side's git SHA read from its run.yaml put back as one word, and
+# costs.csv's counts (every column but times, the git SHA
 # and the machine). With BIN_A and BIN_B set (the two binaries), also the
 # tables each binary renders from its own store: `shadowlab table` in every
 # format (md, csv, latex), its --summary, and a pivot in every format
@@ -33,7 +35,20 @@ no_sha() {
 sha_of() { sed -n 's/^git_sha: //p' "$1/run.yaml" 2>/dev/null | head -n 1; }
 unsha() {
   [ -f "$2" ] || { echo "(absent)"; return; }
-  if [ -n "$1" ]; then sed "s/$1/SHA/g" "$2"; else cat "$2"; fi
+  python3 - "$1" "$2" <<'PY'
+import re, sys
+sha, path = sys.argv[1:3]
+text = open(path, encoding="utf-8").read()
+if sha:
+    text = text.replace(sha, "SHA")
+if path.endswith(".md"):   # the cost section: times
+    text = re.sub(r"\n## Cost per cell.*?(?=\n## |\Z)", "\n## Cost per cell (times)\n", text, flags=re.S)
+else:                       # a table whose caption names a time
+    parts = re.split(r"(\\begin\{(?:table|longtable)\*?\}.*?\\end\{(?:table|longtable)\*?\})", text, flags=re.S)
+    text = "".join("(a table of times)\n" if re.search(r"\\caption\{[^\n]*(ms\\_|step ms|, ms[;.]| ms\b)", p) else p
+                   for p in parts)
+sys.stdout.write(text)
+PY
 }
 # costs.csv's counts: the columns but times (ms*), git_sha and machine
 counts_of() {
@@ -46,11 +61,15 @@ for r in rows:
     print(",".join(r[i] for i in keep))
 PY
 }
+# the store's cells of the studies compared (all of them without a list)
 cells_of() {
-  local cols
+  local cols where=""
   cols=$(sqlite3 "$1" "SELECT group_concat(name, ' || ''|'' || ') FROM pragma_table_info('cells')
                        WHERE name NOT LIKE 'ms%' AND name NOT IN ('cell_id', 'run_id', 'digest')")
-  sqlite3 "$1" "SELECT $cols FROM cells" | sort
+  if [ ${#studies[@]} -gt 0 ]; then
+    where="WHERE run_id IN (SELECT run_id FROM runs WHERE study IN ($(printf "'%s'," "${studies[@]}" | sed 's/,$//')))"
+  fi
+  sqlite3 "$1" "SELECT $cols FROM cells $where" | sort
 }
 fail=0
 for s in "${studies[@]}"; do
