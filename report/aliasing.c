@@ -63,7 +63,7 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
         sl_tab_head(&t, k, "%s", heads[k]);
     for (int b = 0; b < SL_ALIAS_BANDS; b++)
         sl_tab_head(&t, 8 + b, "%s%s", strncmp(band_name[b], "m ", 2) ? "m " : "", band_name[b]);
-    snprintf(t.note, sizeof t.note,
+    sl_tab_notef(&t,
              "Whole image, PFL pixels. texels: the shadow-map texels the method looks up (k maps for k slices); "
              "wrong %%: of the PFL pixels; m median: over the PFL pixels, and over the wrong ones; "
              "layers + step ms: its layers' render plus its per-pixel step, medians (zpart and lispsm render their own maps "

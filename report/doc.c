@@ -570,7 +570,9 @@ void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int
 
 void sl_report_tab_once(struct sl_tab *t)
 {
-    sl_tab_note(t, SL_REPORT_ONCE " timed once (repetitions runs: 1): one measurement, no median.");
+    static const char once[] = SL_REPORT_ONCE " timed once (repetitions runs: 1): one measurement, no median.";
+    if (!t->note || !strstr(t->note, once))
+        sl_tab_note_cat(t, "%s%s", t->note && t->note[0] ? " " : "", once);
 }
 
 enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_tab *t, struct sl_diag *d)

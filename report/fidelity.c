@@ -463,7 +463,7 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
         for (int h = 0; h < 8; h++)
             sl_tab_head(&t, h, "%s", heads[h]);
         t.wrap = 1;
-        snprintf(t.note, sizeof t.note, "Transcribed from the thesis's appendix (report/fidelity.c cites the lines "
+        sl_tab_notef(&t, "Transcribed from the thesis's appendix (report/fidelity.c cites the lines "
                                         "of the seed). Ratio: shadowlab / thesis; none where the thesis has 0.");
         int prev_map = 0, prev_c = -1;
         for (int i = a; i < b; i++) {
@@ -508,7 +508,7 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
     sl_tab_head(&t, 3, "tables it rests on, band");
     sl_tab_head(&t, 4, "verdict");
     t.wrap = 1;
-    snprintf(t.note, sizeof t.note, "Measured: means over the study's cells of the label (every scene, viewpoint and "
+    sl_tab_notef(&t, "Measured: means over the study's cells of the label (every scene, viewpoint and "
                                     "map size) and its 2, 4 and 6 px contours, on NSM's contour; the thesis's are "
                                     "over its four scenes. Reproduced only when that holds and every datum of the "
                                     "Primitives tables the claim rests on (side, with and against) is measured and "

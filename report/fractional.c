@@ -120,7 +120,7 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
                 sl_tab_cell(&t, 11, "–");
         }
     }
-    snprintf(t.note, sizeof t.note,
+    sl_tab_notef(&t,
              "|v − t|: the mean |v − truth|; it, the bias (method − truth), leaking and over-darkening in %% of "
              "full visibility per PFL pixel (leaking + over-darkening = |v − t|); within 0.05: share of the PFL "
              "pixels. The last two columns say the same per pixel where it can happen: the visibility a "

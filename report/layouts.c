@@ -397,7 +397,7 @@ static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_re
             sl_tab_cell(&t, 2 + 2 * nmaps, "%s", buf);
         }
     }
-    snprintf(t.note, sizeof t.note,
+    sl_tab_notef(&t,
              "Average over every (cell, %s) value of the label; best and worst name the cell's scene/viewpoint "
              "and %s. %s.", contours ? "contour" : "region", contours ? "contour" : "region",
              lower ? "Lower is better" : "Higher is better");
@@ -538,7 +538,7 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
     sl_tab_head(&t, 4, "wrongly lit (of light)");
     sl_tab_head(&t, 5, "wrongly shadowed (of shadow)");
     sl_tab_head(&t, 6, "wrong (of pixels)");
-    snprintf(t.note, sizeof t.note, "PnFL pixels count as shadow. %s", contour_note(s));
+    sl_tab_notef(&t, "PnFL pixels count as shadow. %s", contour_note(s));
     if (view_rows(&t, s, v, want_moderno, fill_errors))
         e = sl_report_doc_table(doc, &t, d);
     sl_tab_free(&t);
@@ -555,7 +555,7 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
             sl_tab_head(&t, 4 + 3 * k, "wrongly hinted");
             sl_tab_head(&t, 5 + 3 * k, "undecided");
         }
-        snprintf(t.note, sizeof t.note, "Percentages of NSM's pixels in light (in shadow, PnFL with them: hinted, "
+        sl_tab_notef(&t, "Percentages of NSM's pixels in light (in shadow, PnFL with them: hinted, "
                  "as Moderno counts them) in the region. %s", contour_note(s));
         if (view_rows(&t, s, v, want_hints, fill_hints))
             e = sl_report_doc_table(doc, &t, d);
@@ -579,7 +579,7 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
         sl_tab_head(&t, 8, "S→S");
         sl_tab_head(&t, 9, "L→L");
         sl_tab_head(&t, 10, "S→S");
-        snprintf(t.note, sizeof t.note,
+        sl_tab_notef(&t,
                  "L→S: NSM put it in light, the method in shadow. Maintained: the same verdict as NSM. PnFL pixels "
                  "are maintained correct S→S, as Moderno counts them; with no pixel left undecided the classes add "
                  "up to the region's pixels. %s", contour_note(s));
@@ -709,7 +709,7 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
         }
     free(meth);
     free(map);
-    snprintf(t.note, sizeof t.note,
+    sl_tab_notef(&t,
              "Times: the median over the cells (scenes, viewpoints, viewports) of each cell's median over %d "
              "timed repetition(s), in brackets the lowest and highest single repetition. Counters: mean per cell "
              "(rays / pixel: over all non-background pixels). GS prims and fragments are GL query counts of the "
@@ -784,7 +784,7 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
                 once |= one;
                 stderr_mean = f->pct[SL_SFIG_soft_truth_stderr];
             }
-        snprintf(t.note, sizeof t.note, "Errors in %% of full visibility (MAE, RMSE; bias > 0: too light); "
+        sl_tab_notef(&t, "Errors in %% of full visibility (MAE, RMSE; bias > 0: too light); "
                  "within: share of pixels; class: lit / umbra / penumbra as the truth classes them; the "
                  "truth's own mean standard error here: %.3f.", stderr_mean);
         if (once)

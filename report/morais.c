@@ -178,10 +178,9 @@ static void thesis_value(char *buf, size_t n, const struct sl_morais_datum *t, s
 
 static void notes_append(struct sl_tab *t, const struct notes *nt)
 {
-    size_t l = strlen(t->note);
     if (nt->n)
-        snprintf(t->note + l, sizeof t->note - l, " * The thesis's value as printed, read so: %s%s.", nt->text,
-                 nt->dropped ? "; more in report/theses/" : "");
+        sl_tab_note_cat(t, " * The thesis's value as printed, read so: %s%s.", nt->text,
+                        nt->dropped ? "; more in report/theses/" : "");
 }
 
 /* the study's views of a case, in their order (viewports) */
@@ -275,7 +274,7 @@ static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_
                 sl_tab_cell(&t, 0, "%s", row_names[r]);
             any |= source_row(&t, src, 2, (enum sl_morais_row)r, col, nv, cases[k].truth_table, &nt);
         }
-    snprintf(t.note, sizeof t.note, "PFL and PnFL: %% of the view's pixels (background excluded: the thesis's "
+    sl_tab_notef(&t, "PFL and PnFL: %% of the view's pixels (background excluded: the thesis's "
              "views have none); light and shadow: %% of PFL, by the truth (ours: Embree, his: OptiX Prime).");
     notes_append(&t, &nt);
     enum sl_err e = any ? sl_report_doc_table(doc, &t, d) : SL_OK;
@@ -326,7 +325,7 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
                 any |= source_row(&t, src, 3, rows[q], col, nmaps, table, &nt);
             }
     }
-    snprintf(t.note, sizeof t.note, "%s", mm->csm
+    sl_tab_notef(&t, "%s", mm->csm
              ? "Pixels facing the light only (PnFL left out). Uncertain: the pixels the two maps leave undecided "
                "and a ray decides, split by its answer (the truth's), % of the final image's light or shadow "
                "(the thesis's base); correct/incorrect: % of the final light or shadow."
@@ -390,7 +389,7 @@ static enum sl_err case_times(struct sl_report_doc *doc, const struct sl_report_
                 }
             }
         }
-    snprintf(t.note, sizeof t.note, "ours: medians over %d timed repetition(s) per cell on this machine (llvmpipe "
+    sl_tab_notef(&t, "ours: medians over %d timed repetition(s) per cell on this machine (llvmpipe "
              "and Embree on CPU cores); thesis: his GPU and OptiX Prime. Different machines: read each column's trend, "
              "not the ratio. %s", runs,
              stage ? "Ours: the rays' time alone (ms_ray_step); the full trace (raytrace; his OptiX Prime) traces "
@@ -487,7 +486,7 @@ static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report
         tlo = time < tlo ? time : tlo;
         thi = time > thi ? time : thi;
     }
-    snprintf(t.note, sizeof t.note, "traced: pixels decided by a shadow ray, %% of PFL (Hertel's \"uncertain\" "
+    sl_tab_notef(&t, "traced: pixels decided by a shadow ray, %% of PFL (Hertel's \"uncertain\" "
              "view samples); wrong: %% of PFL; violations: pixels breaking the method's exactness guarantee "
              "(hertel promises none, so its errors show as wrong pixels); of full trace: the ray step against "
              "the raytrace label's on the same view and machine (noisy: one median of a few repetitions each). "
@@ -521,7 +520,7 @@ static enum sl_err hertel_thesis(struct sl_report_doc *doc, const struct sl_repo
         sl_tab_cell(&t, 6, "%ld", hertel_table2[i].insec);
         sl_tab_cell(&t, 7, "%.1f%%", 100.0 * (double)hertel_table2[i].rays / (double)hertel_table2[i].insec);
     }
-    snprintf(t.note, sizeof t.note, "As printed (1280×1024, a 1K² map; RT class: every ray, insec: the uncertain "
+    sl_tab_notef(&t, "As printed (1280×1024, a 1K² map; RT class: every ray, insec: the uncertain "
              "only, opt: with the ray cut at the stored depth). The caption calls the last two columns the rays "
              "without and with the classification, but \"# rays\" is the smaller in every row; the last column "
              "reads it as the traced share. Compare with \"traced (of PFL)\" above: a share of view samples, on "
@@ -586,7 +585,7 @@ static enum sl_err other_view(struct sl_report_doc *doc, const struct sl_report_
         }
         any = 1;
     }
-    snprintf(t.note, sizeof t.note, "Pixels facing the light only (PnFL left out), as Morais counts them: light "
+    sl_tab_notef(&t, "Pixels facing the light only (PnFL left out), as Morais counts them: light "
              "and shadow %% of PFL, correct/incorrect %% of the method's light or shadow, uncertain (traced) %% "
              "of the final light or shadow.");
     enum sl_err e = any ? sl_report_doc_table(doc, &t, d) : SL_OK;
@@ -637,7 +636,7 @@ static enum sl_err other_times(struct sl_report_doc *doc, const struct sl_report
             }
         }
     }
-    snprintf(t.note, sizeof t.note, "Medians over %d timed repetition(s) per cell on this machine (CPU: llvmpipe "
+    sl_tab_notef(&t, "Medians over %d timed repetition(s) per cell on this machine (CPU: llvmpipe "
              "and Embree); – where the method has no such stage or no time was stored.", runs);
     if (once)
         sl_report_tab_once(&t);

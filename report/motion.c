@@ -33,7 +33,7 @@ static enum sl_err group(struct sl_report_doc *doc, const struct sl_report_study
                                         "mean per pair", "worst flicker (frame)", "per 1,000 contour px"};
     for (int c = 0; c < 8; c++)
         sl_tab_head(&t, c, "%s", head[c]);
-    snprintf(t.note, sizeof t.note, "Wrong: the whole image's wrong pixels per frame. Flicker: pixels whose "
+    sl_tab_notef(&t, "Wrong: the whole image's wrong pixels per frame. Flicker: pixels whose "
              "verdict changes from one frame to the next while their truth does not, compared by surface point "
              "(reprojected through the G-buffer onto the same triangle; pixel for pixel when the camera holds "
              "still); %d pairs of frames compared of %d frames. Per 1,000 contour px: of the thinnest contour of "

@@ -854,7 +854,7 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
             sl_tab_cell(&t, 10, "%s", p[k].front_ms ? "yes" : "");
             sl_tab_cell(&t, 11, "%s", p[k].front_rays ? "yes" : "");
         }
-        snprintf(t.note, sizeof t.note, "Means over the cells: layers ms (the shadow-map render of the layers "
+        sl_tab_notef(&t, "Means over the cells: layers ms (the shadow-map render of the layers "
                  "the method reads), step ms (its per-pixel step, ray step included) and their sum, each cell's "
                  "the median over its timed repetitions.");
         if (once)

@@ -288,7 +288,7 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
                     }
                 }
             /* layers + step ms: the same sum as the accuracy table's, so one name */
-            snprintf(t.note, sizeof t.note, "layers + step ms: the shadow-map render of the layers the method "
+            sl_tab_notef(&t, "layers + step ms: the shadow-map render of the layers the method "
                      "reads plus its per-pixel step, medians over the timed repetitions.");
             if (once)
                 sl_report_tab_once(&t);

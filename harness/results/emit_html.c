@@ -60,7 +60,7 @@ int sl_emit_html(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
         fputs("</tr>\n", f);
     }
     fputs("</tbody>\n</table>\n<p class=\"note\">", f);
-    if (t->note[0]) {
+    if (sl_tab_has_note(t)) {
         sl_emit_html_text(f, t->note);
         fputc(' ', f);
     }

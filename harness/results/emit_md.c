@@ -55,7 +55,7 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     if (t->oom)
         return -1;
     o = o ? o : &none;
-    int under = t->note[0] || o->link;
+    int under = sl_tab_has_note(t) || o->link;
     if (t->level == 0 || t->title[0]) {
         if (t->level > 0) {
             if (!o->first && !under)
@@ -92,10 +92,10 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     if (!under)
         return 0;
     fputc('\n', f);
-    if (t->note[0])
+    if (sl_tab_has_note(t))
         text(f, t, t->note);
     if (o->link) {
-        if (t->note[0])
+        if (sl_tab_has_note(t))
             fputc(' ', f);
         fprintf(f, "[LaTeX](%s)", o->link);
     }

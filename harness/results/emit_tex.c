@@ -476,7 +476,7 @@ static void tex_part(FILE *f, const struct sl_tab *t, const struct tex_layout *l
         fputs(" \\\\\n", f);
     }
     fputs("\\bottomrule\n\\end{tabular}\n", f);
-    if (t->note[0] && part == parts - 1) {
+    if (sl_tab_has_note(t) && part == parts - 1) {
         fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
         sl_tex_text(f, t->note);
         fputs("\\par}\n", f);

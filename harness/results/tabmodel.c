@@ -132,13 +132,35 @@ void sl_tab_cell(struct sl_tab *t, int col, const char *fmt, ...)
     t->oom |= !*slot;
 }
 
-void sl_tab_note(struct sl_tab *t, const char *text)
+void sl_tab_notef(struct sl_tab *t, const char *fmt, ...)
 {
-    size_t n = strlen(t->note);
-    /* whole or not at all: cut short it could end inside a UTF-8 sequence */
-    if (text && text[0] && !strstr(t->note, text) && n + 1 + strlen(text) < sizeof t->note)
-        snprintf(t->note + n, sizeof t->note - n, "%s%s", n ? " " : "", text);
+    va_list ap;
+    va_start(ap, fmt);
+    free(t->note);
+    t->note = vformat(fmt, ap);
+    va_end(ap);
+    t->oom |= !t->note;
 }
+
+void sl_tab_note_cat(struct sl_tab *t, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    char *more = vformat(fmt, ap);
+    va_end(ap);
+    size_t n = t->note ? strlen(t->note) : 0, m = more ? strlen(more) : 0;
+    char *s = more ? realloc(t->note, n + m + 1) : NULL;
+    if (!s) {
+        free(more);
+        t->oom = 1;
+        return;
+    }
+    memcpy(s + n, more, m + 1);
+    t->note = s;
+    free(more);
+}
+
+int sl_tab_has_note(const struct sl_tab *t) { return t->note && t->note[0]; }
 
 void sl_tab_free(struct sl_tab *t)
 {
@@ -150,6 +172,7 @@ void sl_tab_free(struct sl_tab *t)
         free(t->cell[i]);
     free(t->cell);
     free(t->rule);
+    free(t->note);
     memset(t, 0, sizeof *t);
 }
 

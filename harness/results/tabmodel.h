@@ -28,7 +28,7 @@ enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2 };
 struct sl_tab {
     char  id[160];          /* its label: a slug (letters, digits, '.', '_', '-') */
     char  title[320];       /* its caption */
-    char  note[1024];       /* printed under it */
+    char *note;             /* printed under it; NULL: none */
     int   ncols, nkeys;     /* the first nkeys columns are keys (left aligned) */
     int   wrap;             /* long cells may wrap (text tables): HTML class, LaTeX \parbox */
     int   level;            /* 0: the title is the table's caption; k > 0: a heading of level k (Markdown "##") */
@@ -60,9 +60,11 @@ void sl_tab_group(struct sl_tab *t, int span, const char *fmt, ...) __attribute_
 void sl_tab_row(struct sl_tab *t, int block);   /* block: a rule before it */
 void sl_tab_muted(struct sl_tab *t);            /* the last row started: set back */
 void sl_tab_cell(struct sl_tab *t, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-/* Appends to the note, after a space when it holds text; a text that is
- * already there or does not fit whole is not added. */
-void sl_tab_note(struct sl_tab *t, const char *text);
+/* The note: set (notef) or appended to as it is (note_cat); printf-formatted. */
+void sl_tab_notef(struct sl_tab *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void sl_tab_note_cat(struct sl_tab *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* 1 if the table has a note that is not empty. */
+int sl_tab_has_note(const struct sl_tab *t);
 void sl_tab_free(struct sl_tab *t);
 
 /* Cell r, c ("" when empty). */
