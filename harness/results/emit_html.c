@@ -5,7 +5,8 @@
  * a block's first row of class "blk", a muted row "muted", a text table
  * (t->wrap) of class "wrap"; under it a paragraph of class "note" with the
  * note and the companion file (o->link: linked, or named when the page must
- * refer to nothing outside). Every text is escaped (& < > " ').
+ * refer to nothing outside); the intro, where there is one, is a paragraph
+ * of class "intro" before the table. Every text is escaped (& < > " ').
  */
 #include "emit.h"
 
@@ -29,6 +30,11 @@ int sl_emit_html(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     if (t->oom)
         return -1;
     o = o ? o : &none;
+    if (t->intro && t->intro[0]) {
+        fputs("<p class=\"intro\">", f);
+        sl_emit_html_text(f, t->intro);
+        fputs("</p>\n", f);
+    }
     fputs(t->wrap ? "<div class=\"tab\"><table class=\"wrap\">\n<caption>" : "<div class=\"tab\"><table>\n<caption>", f);
     sl_emit_html_text(f, t->title);
     fputs("</caption>\n<thead>\n", f);

@@ -1,6 +1,6 @@
 /*
  * emit_json.c — a table (tabmodel.h) as one JSON object:
- *   {"id": ..., "title": ..., "columns": [{"name": ..., "key": true|false,
+ *   {"id": ..., "title": ..., "intro": ... (where there is one), "columns": [{"name": ..., "key": true|false,
  *    "group": ..., "unit": ...}], "rows": [[...], ...], "blocks": [row, ...],
  *    "note": ...}
  * A key cell is a string; a value cell that is a number as a whole (strtod
@@ -58,6 +58,10 @@ int sl_emit_json(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     str(f, t->id);
     fputs(", \"title\": ", f);
     str(f, t->title);
+    if (t->intro && t->intro[0]) {
+        fputs(", \"intro\": ", f);
+        str(f, t->intro);
+    }
     fputs(",\n \"columns\": [", f);
     int g = 0, left = t->ngroups ? t->span[0] : 0;
     for (int c = 0; c < t->ncols; c++) {

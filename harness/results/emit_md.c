@@ -2,7 +2,7 @@
  * emit_md.c — a table (tabmodel.h) as a GitHub/CommonMark pipe table.
  *
  * The title: a bold line (level 0, the report's) or a heading of its level
- * ("## title"). Markdown has no spanning cells: a column group's name goes
+ * ("## title"), then the intro as a paragraph. Markdown has no spanning cells: a column group's name goes
  * in front of each of its columns' heads. Keys are left aligned, values
  * right aligned ("---:"). Under the table: the note and the link, then a
  * blank line; a table with neither ends at its last row, and the next one
@@ -70,6 +70,10 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
             text(f, t, t->title);
             fputs("**\n\n", f);
         }
+    }
+    if (t->intro && t->intro[0]) {
+        text(f, t, t->intro);
+        fputs("\n\n", f);
     }
     fputc('|', f);
     int g = 0, left = t->ngroups ? t->span[0] : 0;

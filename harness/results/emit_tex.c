@@ -420,6 +420,10 @@ static void tex_part(FILE *f, const struct sl_tab *t, const struct tex_layout *l
     part_boxes(lo, t, cp, box);
     fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
     sl_tex_text(f, t->title);
+    if (t->intro && t->intro[0] && part == 0) {
+        fputs(". ", f);
+        sl_tex_text(f, t->intro);
+    }
     if (parts > 1)
         fprintf(f, " (part %d of %d)", part + 1, parts);
     fputc('}', f);

@@ -132,6 +132,19 @@ void sl_tab_cell(struct sl_tab *t, int col, const char *fmt, ...)
     t->oom |= !*slot;
 }
 
+void sl_tab_intro(struct sl_tab *t, const char *text)
+{
+    free(t->intro);
+    t->intro = NULL;
+    if (!text)
+        return;
+    size_t n = strlen(text) + 1;
+    t->intro = malloc(n);
+    if (t->intro)
+        memcpy(t->intro, text, n);
+    t->oom |= !t->intro;
+}
+
 void sl_tab_notef(struct sl_tab *t, const char *fmt, ...)
 {
     va_list ap;
@@ -173,6 +186,7 @@ void sl_tab_free(struct sl_tab *t)
     free(t->cell);
     free(t->rule);
     free(t->note);
+    free(t->intro);
     memset(t, 0, sizeof *t);
 }
 

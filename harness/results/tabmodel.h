@@ -3,7 +3,8 @@
  * strings (rows x columns; the first nkeys columns are keys, left aligned,
  * the others values, right aligned), its column heads and optional column
  * groups (a row of spanning heads above them), rules before a block of rows,
- * rows set back (muted), a caption (title), a label (id), a note under it,
+ * rows set back (muted), a caption (title), a label (id), a paragraph
+ * between the title and the table (intro), a note under it,
  * and optionally a unit per column. An emitter (emit.h: one file per
  * format) writes it; the writer never writes a format's syntax itself.
  *
@@ -28,6 +29,7 @@ enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2 };
 struct sl_tab {
     char  id[160];          /* its label: a slug (letters, digits, '.', '_', '-') */
     char  title[320];       /* its caption */
+    char *intro;            /* a paragraph between the title and the table (a view's counts); NULL: none */
     char *note;             /* printed under it; NULL: none */
     int   ncols, nkeys;     /* the first nkeys columns are keys (left aligned) */
     int   wrap;             /* long cells may wrap (text tables): HTML class, LaTeX \parbox */
@@ -60,6 +62,8 @@ void sl_tab_group(struct sl_tab *t, int span, const char *fmt, ...) __attribute_
 void sl_tab_row(struct sl_tab *t, int block);   /* block: a rule before it */
 void sl_tab_muted(struct sl_tab *t);            /* the last row started: set back */
 void sl_tab_cell(struct sl_tab *t, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* The intro: a copy of text (NULL: none). */
+void sl_tab_intro(struct sl_tab *t, const char *text);
 /* The note: set (notef) or appended to as it is (note_cat); printf-formatted. */
 void sl_tab_notef(struct sl_tab *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void sl_tab_note_cat(struct sl_tab *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
