@@ -26,7 +26,8 @@ struct sl_emit_opts {
 };
 
 /* Writes t; returns the floats it took (LaTeX, since its last \clearpage;
- * 0 for a format without floats), or -1 when t is out of memory. */
+ * 0 for a format without floats), or -1 when t cannot be written (out of
+ * memory; LaTeX: wider than SL_TAB_MAXCOLS columns). */
 typedef int (*sl_emit_fn)(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
 
 int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);

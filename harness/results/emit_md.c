@@ -1,8 +1,8 @@
 /*
  * emit_md.c — a table (tabmodel.h) as a GitHub/CommonMark pipe table.
  *
- * The title: a bold line (level 0, the report's) or a heading of its level
- * ("## title"), then the intro as a paragraph. Markdown has no spanning cells: a column group's name goes
+ * The title (where there is one): a bold line (level 0, the report's) or a
+ * heading of its level ("## title"), then the intro as a paragraph. Markdown has no spanning cells: a column group's name goes
  * in front of each of its columns' heads. Keys are left aligned, values
  * right aligned ("---:"). Under the table: the note and the link, then a
  * blank line; a table with neither ends at its last row, and the next one
@@ -56,7 +56,7 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
         return -1;
     o = o ? o : &none;
     int under = sl_tab_has_note(t) || o->link;
-    if (t->level == 0 || t->title[0]) {
+    if (t->title[0]) {
         if (t->level > 0) {
             if (!o->first && !under)
                 fputc('\n', f);

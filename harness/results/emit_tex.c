@@ -575,7 +575,7 @@ static int row_cuts(const struct sl_tab *t, const struct tex_layout *lo, int cp,
 
 int sl_emit_tex(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
 {
-    if (t->oom)
+    if (t->oom || t->ncols > SL_TAB_MAXCOLS || t->ngroups > SL_TAB_MAXCOLS)
         return -1;
     if (!o || o->first)
         fputs("% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n", f);

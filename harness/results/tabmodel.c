@@ -43,9 +43,11 @@ void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const c
 {
     memset(t, 0, sizeof *t);
     sl_tab_slug(id, t->id, sizeof t->id);
-    t->ncols = ncols < 1 ? 1 : ncols > SL_TAB_MAXCOLS ? SL_TAB_MAXCOLS : ncols;
-    t->oom = ncols != t->ncols;
+    t->ncols = ncols < 1 ? 1 : ncols;
     t->nkeys = nkeys;
+    t->head = calloc((size_t)t->ncols, sizeof *t->head);
+    t->unit = calloc((size_t)t->ncols, sizeof *t->unit);
+    t->oom = !t->head || !t->unit;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(t->title, sizeof t->title, fmt, ap);
@@ -54,7 +56,7 @@ void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const c
 
 void sl_tab_head(struct sl_tab *t, int col, const char *fmt, ...)
 {
-    if (col < 0 || col >= t->ncols)
+    if (t->oom || col < 0 || col >= t->ncols)
         return;
     va_list ap;
     va_start(ap, fmt);
@@ -66,7 +68,7 @@ void sl_tab_head(struct sl_tab *t, int col, const char *fmt, ...)
 
 void sl_tab_unit(struct sl_tab *t, int col, const char *unit)
 {
-    if (col < 0 || col >= t->ncols || !unit)
+    if (t->oom || col < 0 || col >= t->ncols || !unit)
         return;
     free(t->unit[col]);
     size_t n = strlen(unit) + 1;
@@ -177,10 +179,12 @@ int sl_tab_has_note(const struct sl_tab *t) { return t->note && t->note[0]; }
 
 void sl_tab_free(struct sl_tab *t)
 {
-    for (int k = 0; k < SL_TAB_MAXCOLS; k++) {
-        free(t->head[k]);
-        free(t->unit[k]);
+    for (int k = 0; k < t->ncols; k++) {
+        free(t->head ? t->head[k] : NULL);
+        free(t->unit ? t->unit[k] : NULL);
     }
+    free(t->head);
+    free(t->unit);
     for (size_t i = 0; t->cell && i < (size_t)t->nrows * (size_t)t->ncols; i++)
         free(t->cell[i]);
     free(t->cell);

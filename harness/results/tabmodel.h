@@ -21,6 +21,8 @@
 #define SL_TABMODEL_H
 #include <stddef.h>
 
+/* Column groups a table may have; LaTeX lays out at most this many columns
+ * (emit_tex.c refuses a wider table), the other formats any number. */
 #define SL_TAB_MAXCOLS 64
 
 /* rule[] flags of a row */
@@ -36,8 +38,8 @@ struct sl_tab {
     int   level;            /* 0: the title is the table's caption; k > 0: a heading of level k (Markdown "##") */
     int   plain;            /* cells are names and numbers written as they are in Markdown (no escapes; an empty
                              * cell as "| |"): the run's tables, whose Markdown predates the model */
-    char *head[SL_TAB_MAXCOLS];
-    char *unit[SL_TAB_MAXCOLS];   /* NULL: none (JSON's columns name it) */
+    char **head;            /* ncols heads; NULL = empty */
+    char **unit;            /* ncols units; NULL: none (JSON's columns name it) */
     int   ngroups;          /* optional row above the header: spans over columns */
     char  group[SL_TAB_MAXCOLS][64];
     int   span[SL_TAB_MAXCOLS];
@@ -52,8 +54,8 @@ struct sl_tab {
  * never starting with '.'. */
 void sl_tab_slug(const char *s, char *buf, size_t n);
 
-/* A table of ncols columns (at most SL_TAB_MAXCOLS, else oom) whose first
- * nkeys are keys; id is slugged; the title is printf-formatted. */
+/* A table of ncols columns (at least 1) whose first nkeys are keys; id is
+ * slugged; the title is printf-formatted. */
 void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 void sl_tab_head(struct sl_tab *t, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
