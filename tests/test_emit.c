@@ -107,7 +107,7 @@ static void emit_markdown(void **state)
     t.note = NULL;
     sl_tab_group(&t, 2, "key");
     sl_tab_group(&t, 1, "%s", "");
-    const struct sl_emit_opts later = {.first = 0};
+    const struct sl_emit_opts later = {.gap = 1};
     s = render(sl_emit_md, &t, &later);
     assert_string_equal(s, "\n### Wrong pixels <all> & 512\xC2\xB2\n\n"
                            "| key label | key map | wrong % |\n|---|---|---:|\n"

@@ -23,6 +23,8 @@ struct sl_emit_opts {
     const char *link;        /* a file beside the page (the table's .tex), linked under the table */
     int         link_named;  /* HTML: name it, do not link it (a page that refers to nothing outside) */
     int         first;       /* the first table of its stream: CSV writes its header, JSON no comma before it */
+    int         gap;         /* Markdown: a blank line before it (after text that ends without one) */
+    int         tight;       /* Markdown: the stream ends after its note: no blank line after it */
 };
 
 /* Writes t; returns the floats it took (LaTeX, since its last \clearpage;

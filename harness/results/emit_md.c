@@ -4,9 +4,10 @@
  * The title (where there is one): a bold line (level 0, the report's) or a
  * heading of its level ("## title"), then the intro as a paragraph. Markdown has no spanning cells: a column group's name goes
  * in front of each of its columns' heads. Keys are left aligned, values
- * right aligned ("---:"). Under the table: the note and the link, then a
- * blank line; a table with neither ends at its last row, and the next one
- * of the stream (not o->first) opens with a blank line. Text is escaped
+ * right aligned ("---:"), unless the table aligns a column itself. Under the
+ * table: the note and the link, then a blank line (none where the stream
+ * ends: o->tight); a table with neither ends at its last row, so the next
+ * one asks for a blank line before it (o->gap). Text is escaped
  * (CommonMark punctuation, a line break as a space) unless the table is
  * plain (t->plain: names and numbers as they are; an empty cell "| |").
  */
@@ -56,10 +57,10 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
         return -1;
     o = o ? o : &none;
     int under = sl_tab_has_note(t) || o->link;
+    if (o->gap)
+        fputc('\n', f);
     if (t->title[0]) {
         if (t->level > 0) {
-            if (!o->first && !under)
-                fputc('\n', f);
             for (int k = 0; k < t->level; k++)
                 fputc('#', f);
             fputc(' ', f);
@@ -85,7 +86,7 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     }
     fputs("\n|", f);
     for (int c = 0; c < t->ncols; c++)
-        fputs(c < t->nkeys ? "---|" : "---:|", f);
+        fputs(sl_tab_left(t, c) ? "---|" : "---:|", f);
     fputc('\n', f);
     for (int r = 0; r < t->nrows; r++) {
         fputc('|', f);
@@ -103,6 +104,6 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
             fputc(' ', f);
         fprintf(f, "[LaTeX](%s)", o->link);
     }
-    fputs("\n\n", f);
+    fputs(o->tight ? "\n" : "\n\n", f);
     return 0;
 }

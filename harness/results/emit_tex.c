@@ -432,7 +432,7 @@ static void tex_part(FILE *f, const struct sl_tab *t, const struct tex_layout *l
     fputs("\n\\begin{tabular}{", f);
     for (int c = 0; c < t->ncols; c++)
         if (in_part(lo, cp, c))
-            fputc(c < t->nkeys || box[c] > 0 ? 'l' : 'r', f);
+            fputc(sl_tab_left(t, c) || box[c] > 0 ? 'l' : 'r', f);
     fputs("}\n\\toprule\n", f);
     if (t->ngroups) {
         int first = 1, col = 1;
@@ -461,7 +461,7 @@ static void tex_part(FILE *f, const struct sl_tab *t, const struct tex_layout *l
         if (!first)
             fputs(" & ", f);
         first = 0;
-        tex_cell(f, t->head[c] ? t->head[c] : "", lo->stack && !lo->wraps[c] ? 2 : 0, c < t->nkeys ? 'l' : 'r',
+        tex_cell(f, t->head[c] ? t->head[c] : "", lo->stack && !lo->wraps[c] ? 2 : 0, sl_tab_left(t, c) ? 'l' : 'r',
                  box[c]);
     }
     fputs(" \\\\\n\\midrule\n", f);
@@ -475,7 +475,7 @@ static void tex_part(FILE *f, const struct sl_tab *t, const struct tex_layout *l
             if (!first)
                 fputs(" & ", f);
             first = 0;
-            tex_cell(f, sl_tab_at(t, r, c), lo->stack && !lo->wraps[c], c < t->nkeys ? 'l' : 'r', box[c]);
+            tex_cell(f, sl_tab_at(t, r, c), lo->stack && !lo->wraps[c], sl_tab_left(t, c) ? 'l' : 'r', box[c]);
         }
         fputs(" \\\\\n", f);
     }

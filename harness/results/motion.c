@@ -287,7 +287,7 @@ enum sl_err sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_m
         while (e < n && row_cmp(&rows[i], &rows[e]) == 0)
             e++;
         group_table(&t, rows, i, e);
-        const struct sl_emit_opts o = {.first = i == 0};
+        const struct sl_emit_opts o = {.first = i == 0, .gap = i > 0};
         bad = sl_emit_md(f, &t, &o) < 0;
         sl_tab_free(&t);
     }

@@ -47,7 +47,8 @@ void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const c
     t->nkeys = nkeys;
     t->head = calloc((size_t)t->ncols, sizeof *t->head);
     t->unit = calloc((size_t)t->ncols, sizeof *t->unit);
-    t->oom = !t->head || !t->unit;
+    t->align = calloc((size_t)t->ncols, 1);
+    t->oom = !t->head || !t->unit || !t->align;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(t->title, sizeof t->title, fmt, ap);
@@ -76,6 +77,17 @@ void sl_tab_unit(struct sl_tab *t, int col, const char *unit)
     if (t->unit[col])
         memcpy(t->unit[col], unit, n);
     t->oom |= !t->unit[col];
+}
+
+void sl_tab_align(struct sl_tab *t, int col, char lr)
+{
+    if (!t->oom && col >= 0 && col < t->ncols && (lr == 'l' || lr == 'r'))
+        t->align[col] = lr;
+}
+
+int sl_tab_left(const struct sl_tab *t, int c)
+{
+    return t->align && t->align[c] ? t->align[c] == 'l' : c < t->nkeys;
 }
 
 void sl_tab_group(struct sl_tab *t, int span, const char *fmt, ...)
@@ -185,6 +197,7 @@ void sl_tab_free(struct sl_tab *t)
     }
     free(t->head);
     free(t->unit);
+    free(t->align);
     for (size_t i = 0; t->cell && i < (size_t)t->nrows * (size_t)t->ncols; i++)
         free(t->cell[i]);
     free(t->cell);

@@ -40,6 +40,7 @@ struct sl_tab {
                              * cell as "| |"): the run's tables, whose Markdown predates the model */
     char **head;            /* ncols heads; NULL = empty */
     char **unit;            /* ncols units; NULL: none (JSON's columns name it) */
+    char  *align;           /* ncols: 'l' or 'r'; 0: by nkeys (keys left, values right) */
     int   ngroups;          /* optional row above the header: spans over columns */
     char  group[SL_TAB_MAXCOLS][64];
     int   span[SL_TAB_MAXCOLS];
@@ -60,6 +61,9 @@ void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const c
     __attribute__((format(printf, 5, 6)));
 void sl_tab_head(struct sl_tab *t, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 void sl_tab_unit(struct sl_tab *t, int col, const char *unit);
+void sl_tab_align(struct sl_tab *t, int col, char lr);   /* 'l' or 'r' */
+/* Whether column c is left aligned: its align, else whether it is a key. */
+int sl_tab_left(const struct sl_tab *t, int c);
 void sl_tab_group(struct sl_tab *t, int span, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 void sl_tab_row(struct sl_tab *t, int block);   /* block: a rule before it */
 void sl_tab_muted(struct sl_tab *t);            /* the last row started: set back */
