@@ -17,8 +17,9 @@
 #include <stdio.h>
 #include "tabmodel.h"
 
-/* What a page around a table adds (the report's): a companion file named
- * under it. Zero: nothing. */
+/* Where a table sits in its stream, and what a page around it adds (the
+ * report's: a companion file named under it). Zero: a table alone, nothing
+ * around it. */
 struct sl_emit_opts {
     const char *link;        /* a file beside the page (the table's .tex), linked under the table */
     int         link_named;  /* HTML: name it, do not link it (a page that refers to nothing outside) */
