@@ -2,8 +2,9 @@
  * emit_md.c — a table (tabmodel.h) as a GitHub/CommonMark pipe table.
  *
  * The title (where there is one): a bold line (level 0, the report's) or a
- * heading of its level ("## title"), then the intro as a paragraph. Markdown has no spanning cells: a column group's name goes
- * in front of each of its columns' heads. Keys are left aligned, values
+ * heading of its level ("## title"), then the intro as a paragraph.
+ * Markdown has no spanning cells: a column group's name goes in front of
+ * each of its columns' heads. Keys are left aligned, values
  * right aligned ("---:"), unless the table aligns a column itself. Under the
  * table: the note and the link, then a blank line (none where the stream
  * ends: o->tight); a table with neither ends at its last row, so the next
