@@ -262,7 +262,7 @@ static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_
     sl_tab_head(&t, 1, "source");
     for (int i = 0; i < nv; i++)
         sl_tab_head(&t, 2 + i, "%d×%d", v[i]->vw, v[i]->vh);
-    struct mcol col[SL_TAB_MAXCOLS];   /* nv <= 8 (case_views) */
+    struct mcol col[SL_REPORT_MAXCOLS];   /* nv <= 8 (case_views) */
     for (int i = 0; i < nv; i++)
         mcol_set(&col[i], any_cell(s, v[i]), v[i], 0);
     struct notes nt = {{0}, 0, 0, 0};
@@ -291,7 +291,7 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
     if (l < 0)
         return SL_OK;
     int table = mm->first + k;
-    int nmaps = s->nmaps > SL_TAB_MAXCOLS - 3 ? SL_TAB_MAXCOLS - 3 : s->nmaps;
+    int nmaps = s->nmaps > SL_REPORT_MAXCOLS - 3 ? SL_REPORT_MAXCOLS - 3 : s->nmaps;
     static const enum sl_morais_row plain[6] = {SL_MR_light, SL_MR_shadow, SL_MR_light_correct,
                                                 SL_MR_light_incorrect, SL_MR_shadow_correct, SL_MR_shadow_incorrect};
     static const enum sl_morais_row csm[6] = {SL_MR_light_uncertain, SL_MR_shadow_uncertain, SL_MR_light_correct,
@@ -312,7 +312,7 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
     struct notes nt = {{0}, 0, 0, 0};
     int any = 0;
     for (int i = 0; i < nv; i++) {
-        struct mcol col[SL_TAB_MAXCOLS];
+        struct mcol col[SL_REPORT_MAXCOLS];
         for (int m = 0; m < nmaps; m++)
             mcol_set(&col[m], sl_report_study_cell(s, v[i], s->labels[l], s->maps[m]), v[i], s->maps[m]);
         for (int q = 0; q < 6; q++)
@@ -538,7 +538,7 @@ static enum sl_err other_view(struct sl_report_doc *doc, const struct sl_report_
     static const enum sl_morais_row rows[] = {SL_MR_light, SL_MR_shadow, SL_MR_light_correct, SL_MR_light_incorrect,
                                               SL_MR_shadow_correct, SL_MR_shadow_incorrect, SL_MR_light_uncertain,
                                               SL_MR_shadow_uncertain};
-    int nmaps = s->nmaps > SL_TAB_MAXCOLS - 2 ? SL_TAB_MAXCOLS - 2 : s->nmaps;
+    int nmaps = s->nmaps > SL_REPORT_MAXCOLS - 2 ? SL_REPORT_MAXCOLS - 2 : s->nmaps;
     char vt[160], id[160], buf[64];
     sl_report_view_title(v, vt, sizeof vt);
     sl_report_view_id(s, v, "morais", id, sizeof id);
@@ -555,7 +555,7 @@ static enum sl_err other_view(struct sl_report_doc *doc, const struct sl_report_
     for (int l = 0; l < s->nlabels; l++) {
         if (!sl_report_is_morais(s, l))
             continue;
-        struct sl_morais_counts mc[SL_TAB_MAXCOLS];
+        struct sl_morais_counts mc[SL_REPORT_MAXCOLS];
         int has = 0, traced = 0;
         for (int k = 0; k < nmaps; k++) {
             const struct sl_cell_record *c = sl_report_study_cell(s, v, s->labels[l], s->maps[k]);
@@ -597,8 +597,8 @@ static enum sl_err other_view(struct sl_report_doc *doc, const struct sl_report_
 static enum sl_err other_times(struct sl_report_doc *doc, const struct sl_report_study *s, const char *scene,
                                const char *viewpoint, int stage, struct sl_diag *d)
 {
-    int cols[SL_TAB_MAXCOLS], ncols = 0;
-    for (int l = 0; l < s->nlabels && ncols < SL_TAB_MAXCOLS - 2; l++)
+    int cols[SL_REPORT_MAXCOLS], ncols = 0;
+    for (int l = 0; l < s->nlabels && ncols < SL_REPORT_MAXCOLS - 2; l++)
         if (sl_report_is_morais(s, l))
             cols[ncols++] = l;
     if (ncols == 0)

@@ -44,7 +44,11 @@ enum sl_err sl_report_out_commit(struct sl_report_out *o, struct sl_diag *d);
 void        sl_report_out_abort(struct sl_report_out *o);   /* also frees */
 
 /* The report's tables are the one table model (tabmodel.h), written by the
- * emitters (emit.h): HTML and Markdown into the pages, LaTeX into tex/. */
+ * emitters (emit.h): HTML and Markdown into the pages, LaTeX into tex/.
+ * SL_REPORT_MAXCOLS: the columns a table of Morais's layout holds at most
+ * (its map sizes and labels past that are left out), as when the report's
+ * tables had at most 24. */
+#define SL_REPORT_MAXCOLS 24
 
 /* A time measured once (repetitions runs: 1) is marked in every table that
  * prints it: SL_REPORT_ONCE after the value, and the table's note says what
