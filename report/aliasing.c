@@ -51,19 +51,19 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
 {
     char id[160], slug[128], vs[128];
     snprintf(vs, sizeof vs, "%s-%s-%dx%d", v->scene, v->viewpoint, v->vw, v->vh);
-    sl_report_slug(vs, slug, sizeof slug);
+    sl_tab_slug(vs, slug, sizeof slug);
     snprintf(id, sizeof id, "%s-aliasing-%s", s->slug, slug);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 8 + SL_ALIAS_BANDS, 2,
+    struct sl_tab t;
+    sl_tab_init(&t, id, 8 + SL_ALIAS_BANDS, 2,
                        "%s / %s / %s %dx%d: wrong pixels, memory, time and aliasing error m", s->name, v->scene,
                        v->viewpoint, v->vw, v->vh);
     static const char *const heads[] = {"method", "map", "texels", "wrong", "wrong %", "m median",
                                         "m median, wrong", "layers + step ms"};
     for (int k = 0; k < 8; k++)
-        sl_report_tab_head(&t, k, "%s", heads[k]);
+        sl_tab_head(&t, k, "%s", heads[k]);
     for (int b = 0; b < SL_ALIAS_BANDS; b++)
-        sl_report_tab_head(&t, 8 + b, "%s%s", strncmp(band_name[b], "m ", 2) ? "m " : "", band_name[b]);
-    snprintf(t.note, sizeof t.note,
+        sl_tab_head(&t, 8 + b, "%s%s", strncmp(band_name[b], "m ", 2) ? "m " : "", band_name[b]);
+    sl_tab_notef(&t,
              "Whole image, PFL pixels. texels: the shadow-map texels the method looks up (k maps for k slices); "
              "wrong %%: of the PFL pixels; m median: over the PFL pixels, and over the wrong ones; "
              "layers + step ms: its layers' render plus its per-pixel step, medians (zpart and lispsm render their own maps "
@@ -84,26 +84,26 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
                 pfl += n[SL_AFIG_px_m_le1 + b];
             }
             pfl += n[SL_AFIG_m_none];
-            sl_report_tab_row(&t, m == 0);
-            sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
-            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
-            sl_report_tab_cell(&t, 2, "%.2fM", (double)c->texels / 1048576.0);
-            sl_report_tab_cell(&t, 3, "%llu", (unsigned long long)wrong);
-            sl_report_tab_cell(&t, 4, "%.3f", pfl ? 100.0 * (double)wrong / (double)pfl : 0.0);
-            sl_report_tab_cell(&t, 5, "%.3f", milli(n[SL_AFIG_m_median_milli]));
+            sl_tab_row(&t, m == 0);
+            sl_tab_cell(&t, 0, "%s", s->labels[l]);
+            sl_tab_cell(&t, 1, "%d²", s->maps[m]);
+            sl_tab_cell(&t, 2, "%.2fM", (double)c->texels / 1048576.0);
+            sl_tab_cell(&t, 3, "%llu", (unsigned long long)wrong);
+            sl_tab_cell(&t, 4, "%.3f", pfl ? 100.0 * (double)wrong / (double)pfl : 0.0);
+            sl_tab_cell(&t, 5, "%.3f", milli(n[SL_AFIG_m_median_milli]));
             if (wrong)
-                sl_report_tab_cell(&t, 6, "%.3f", milli(n[SL_AFIG_wrong_m_median_milli]));
-            sl_report_tab_cell(&t, 7, "%.1f%s", cell_ms(c), c->runs == 1 ? SL_REPORT_ONCE : "");
+                sl_tab_cell(&t, 6, "%.3f", milli(n[SL_AFIG_wrong_m_median_milli]));
+            sl_tab_cell(&t, 7, "%.1f%s", cell_ms(c), c->runs == 1 ? SL_REPORT_ONCE : "");
             once |= c->runs == 1;
             for (int b = 0; b < SL_ALIAS_BANDS; b++)
-                sl_report_tab_cell(&t, 8 + b, "%llu (%.1f%%)", (unsigned long long)n[SL_AFIG_wrong_m_le1 + b],
+                sl_tab_cell(&t, 8 + b, "%llu (%.1f%%)", (unsigned long long)n[SL_AFIG_wrong_m_le1 + b],
                                    isnan(pct[SL_AFIG_px_m_le1 + b]) ? 0.0 : pct[SL_AFIG_px_m_le1 + b]);
             rows++;
         }
     if (once)
         sl_report_tab_once(&t);
     enum sl_err e = rows ? sl_report_doc_table(doc, &t, d) : SL_OK;
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 
@@ -125,12 +125,12 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
     }
     char id[160];
     snprintf(id, sizeof id, "%s-aliasing-rate", s->slug);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 1 + SL_ALIAS_BANDS, 1, "%s: error rate by aliasing error m, %% of the band's PFL "
+    struct sl_tab t;
+    sl_tab_init(&t, id, 1 + SL_ALIAS_BANDS, 1, "%s: error rate by aliasing error m, %% of the band's PFL "
                        "pixels (all views and map sizes)", s->name);
-    sl_report_tab_head(&t, 0, "method");
+    sl_tab_head(&t, 0, "method");
     for (int b = 0; b < SL_ALIAS_BANDS; b++)
-        sl_report_tab_head(&t, 1 + b, "%s", band_name[b]);
+        sl_tab_head(&t, 1 + b, "%s", band_name[b]);
     int nblocks = 0, nrates = 0;
     double rates[SL_REPORT_MAXKEYS * SL_ALIAS_BANDS];
     for (int l = 0; l < s->nlabels; l++) {
@@ -150,8 +150,8 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
         if (!any)
             continue;
         fprintf(dm, "%s# %s: band wrong/PFL %%\n", nblocks ? "\n\n" : "", s->labels[l]);
-        sl_report_tab_row(&t, 0);
-        sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+        sl_tab_row(&t, 0);
+        sl_tab_cell(&t, 0, "%s", s->labels[l]);
         for (int b = 0; b < SL_ALIAS_BANDS; b++) {
             if (p[b] == 0) {
                 fprintf(dm, "%d NaN\n", b);
@@ -160,7 +160,7 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
             double rate = 100.0 * (double)w[b] / (double)p[b];
             fprintf(dm, "%d %.6g\n", b, rate);
             rates[nrates++] = rate;
-            sl_report_tab_cell(&t, 1 + b, "%.3f (%llu / %llu)", rate, (unsigned long long)w[b],
+            sl_tab_cell(&t, 1 + b, "%.3f (%llu / %llu)", rate, (unsigned long long)w[b],
                                (unsigned long long)p[b]);
         }
         nblocks++;
@@ -210,7 +210,7 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
         if (!e)
             e = sl_report_doc_table(doc, &t, d);
     }
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     free(body);
     free(data);
     return e;

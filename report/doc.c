@@ -1,6 +1,6 @@
 /*
- * doc.c — the staging folder, the table grid and the two pages (see
- * report_int.h).
+ * doc.c — the staging folder and the two pages (see report_int.h); a
+ * table goes into them through the emitters (emit.h).
  *
  * Invariants:
  * - Every file of the report is registered with sl_report_out_path before
@@ -8,8 +8,9 @@
  *   exactly those (never anything it did not write: no recursive deletes).
  * - Registered paths are relative, made of [A-Za-z0-9._-] and '/', and never
  *   start with '.' or contain "..": a cell's names cannot escape the folder.
- * - Text reaches a page only through the escapers here (html_text, md_text,
- *   sl_tex_text in table.c), so a label or path can never break a page or a table.
+ * - Text reaches a page only through the emitters' escapers (emit.h:
+ *   html_text, md_text; sl_tex_text in emit_tex.c), so a label or path can
+ *   never break a page or a table.
  * - Write errors on the pages are found by ferror at the end (report.c).
  */
 #define _POSIX_C_SOURCE 200809L
@@ -24,23 +25,6 @@
 #include "util.h"
 
 /* ---- out ---- */
-
-void sl_report_slug(const char *s, char *buf, size_t n)
-{
-    size_t k = 0;
-    for (; s && *s && k + 1 < n; s++) {
-        char c = *s;
-        int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-                 c == '-' || c == '.';
-        buf[k++] = ok ? c : '-';
-    }
-    if (k > 0 && buf[0] == '.')
-        buf[0] = '-';
-    if (k == 0 && n > 1)
-        buf[k++] = '-';
-    if (n)
-        buf[k < n ? k : n - 1] = '\0';
-}
 
 static int rel_ok(const char *rel)
 {
@@ -203,8 +187,6 @@ void sl_report_out_abort(struct sl_report_out *o)
     out_free(o);
 }
 
-/* ---- tab ---- */
-
 static char *vformat(const char *fmt, va_list ap)
 {
     va_list aq;
@@ -219,145 +201,10 @@ static char *vformat(const char *fmt, va_list ap)
     return s;
 }
 
-void sl_report_tab_init(struct sl_report_tab *t, const char *id, int ncols, int nkeys, const char *fmt, ...)
-{
-    memset(t, 0, sizeof *t);
-    sl_report_slug(id, t->id, sizeof t->id);
-    t->ncols = ncols < 1 ? 1 : ncols > SL_REPORT_MAXCOLS ? SL_REPORT_MAXCOLS : ncols;
-    t->oom = ncols != t->ncols;
-    t->nkeys = nkeys;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(t->title, sizeof t->title, fmt, ap);
-    va_end(ap);
-}
-
-void sl_report_tab_head(struct sl_report_tab *t, int col, const char *fmt, ...)
-{
-    if (col < 0 || col >= t->ncols)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    free(t->head[col]);
-    t->head[col] = vformat(fmt, ap);
-    va_end(ap);
-    t->oom |= !t->head[col];
-}
-
-void sl_report_tab_group(struct sl_report_tab *t, int span, const char *fmt, ...)
-{
-    if (t->ngroups >= SL_REPORT_MAXCOLS)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(t->group[t->ngroups], sizeof t->group[0], fmt, ap);
-    va_end(ap);
-    t->span[t->ngroups++] = span;
-}
-
-void sl_report_tab_row(struct sl_report_tab *t, int block)
-{
-    if (t->oom)
-        return;
-    if (t->nrows == t->cap) {
-        int cap = t->cap ? 2 * t->cap : 16;
-        char **c = realloc(t->cell, (size_t)cap * (size_t)t->ncols * sizeof *c);
-        if (!c) {
-            t->oom = 1;
-            return;
-        }
-        t->cell = c;
-        unsigned char *r = realloc(t->rule, (size_t)cap);
-        if (!r) {
-            t->oom = 1;
-            return;
-        }
-        t->rule = r;
-        t->cap = cap;
-    }
-    for (int k = 0; k < t->ncols; k++)
-        t->cell[(size_t)t->nrows * (size_t)t->ncols + (size_t)k] = NULL;
-    t->rule[t->nrows] = (unsigned char)(block && t->nrows > 0 ? SL_TAB_BLOCK : 0);
-    t->nrows++;
-}
-
-void sl_report_tab_muted(struct sl_report_tab *t)
-{
-    if (t->nrows > 0 && !t->oom)
-        t->rule[t->nrows - 1] |= SL_TAB_MUTED;
-}
-
-void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
-{
-    if (t->oom || t->nrows == 0 || col < 0 || col >= t->ncols)
-        return;
-    char **slot = &t->cell[(size_t)(t->nrows - 1) * (size_t)t->ncols + (size_t)col];
-    va_list ap;
-    va_start(ap, fmt);
-    free(*slot);
-    *slot = vformat(fmt, ap);
-    va_end(ap);
-    t->oom |= !*slot;
-}
-
-void sl_report_tab_once(struct sl_report_tab *t)
-{
-    static const char once[] = SL_REPORT_ONCE " timed once (repetitions runs: 1): one measurement, no median.";
-    size_t n = strlen(t->note);
-    /* whole or not at all: cut short it could end inside the mark's UTF-8 bytes */
-    if (!strstr(t->note, once) && n + 1 + strlen(once) < sizeof t->note)
-        snprintf(t->note + n, sizeof t->note - n, "%s%s", n ? " " : "", once);
-}
-
-void sl_report_tab_free(struct sl_report_tab *t)
-{
-    for (int k = 0; k < SL_REPORT_MAXCOLS; k++)
-        free(t->head[k]);
-    for (size_t i = 0; t->cell && i < (size_t)t->nrows * (size_t)t->ncols; i++)
-        free(t->cell[i]);
-    free(t->cell);
-    free(t->rule);
-    memset(t, 0, sizeof *t);
-}
-
-static const char *tab_at(const struct sl_report_tab *t, int r, int c)
-{
-    const char *s = t->cell[(size_t)r * (size_t)t->ncols + (size_t)c];
-    return s ? s : "";
-}
-
 /* ---- escapers ---- */
 
-void sl_report_html_text(FILE *f, const char *s)
-{
-    for (; s && *s; s++) {
-        switch (*s) {
-        case '&': fputs("&amp;", f); break;
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '"': fputs("&quot;", f); break;
-        case '\'': fputs("&#39;", f); break;
-        default: fputc(*s, f);
-        }
-    }
-}
-
-/* CommonMark: backslash-escape the punctuation that could start markup */
-void sl_report_md_text(FILE *f, const char *s)
-{
-    for (; s && *s; s++) {
-        if (strchr("\\`*_[]<>|#!", *s))
-            fputc('\\', f);
-        if (*s == '\n')
-            fputc(' ', f);
-        else
-            fputc(*s, f);
-    }
-}
-
-
-#define html_text sl_report_html_text
-#define md_text sl_report_md_text
+#define html_text sl_emit_html_text
+#define md_text sl_emit_md_text
 
 /* ---- doc ---- */
 
@@ -721,438 +568,14 @@ void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int
     fputc('\n', doc->md);
 }
 
-static void html_table(FILE *f, const struct sl_report_tab *t, const char *texrel, int self_contained)
+void sl_report_tab_once(struct sl_tab *t)
 {
-    fputs(t->wrap ? "<div class=\"tab\"><table class=\"wrap\">\n<caption>" : "<div class=\"tab\"><table>\n<caption>", f);
-    html_text(f, t->title);
-    fputs("</caption>\n<thead>\n", f);
-    if (t->ngroups) {
-        fputs("<tr>", f);
-        for (int g = 0; g < t->ngroups; g++) {
-            fprintf(f, "<th colspan=\"%d\"%s>", t->span[g], t->group[g][0] ? " class=\"grp\"" : "");
-            html_text(f, t->group[g]);
-            fputs("</th>", f);
-        }
-        fputs("</tr>\n", f);
-    }
-    fputs("<tr>", f);
-    for (int c = 0; c < t->ncols; c++) {
-        fputs(c < t->nkeys ? "<th class=\"k\">" : "<th>", f);
-        html_text(f, t->head[c] ? t->head[c] : "");
-        fputs("</th>", f);
-    }
-    fputs("</tr>\n</thead>\n<tbody>\n", f);
-    for (int r = 0; r < t->nrows; r++) {
-        static const char *const tr[4] = {"<tr>", "<tr class=\"blk\">", "<tr class=\"muted\">",
-                                          "<tr class=\"blk muted\">"};
-        fputs(tr[t->rule[r] & 3], f);
-        for (int c = 0; c < t->ncols; c++) {
-            fputs(c < t->nkeys ? "<td class=\"k\">" : "<td>", f);
-            html_text(f, tab_at(t, r, c));
-            fputs("</td>", f);
-        }
-        fputs("</tr>\n", f);
-    }
-    fputs("</tbody>\n</table>\n<p class=\"note\">", f);
-    if (t->note[0]) {
-        html_text(f, t->note);
-        fputc(' ', f);
-    }
-    if (self_contained) {   /* named, not linked: the one file refers to nothing outside */
-        fputs("LaTeX: <code>", f);
-        html_text(f, texrel);
-        fputs("</code></p></div>\n", f);
-    } else {
-        fputs("<a href=\"", f);
-        html_text(f, texrel);
-        fputs("\">LaTeX</a></p></div>\n", f);
-    }
+    static const char once[] = SL_REPORT_ONCE " timed once (repetitions runs: 1): one measurement, no median.";
+    if (!t->note || !strstr(t->note, once))
+        sl_tab_note_cat(t, "%s%s", t->note && t->note[0] ? " " : "", once);
 }
 
-static void md_table(FILE *f, const struct sl_report_tab *t, const char *texrel)
-{
-    fputs("**", f);
-    md_text(f, t->title);
-    fputs("**\n\n|", f);
-    /* Markdown has no spanning cells: the group goes in front of its columns' heads */
-    int g = 0, left = t->ngroups ? t->span[0] : 0;
-    for (int c = 0; c < t->ncols; c++) {
-        fputc(' ', f);
-        if (t->ngroups && g < t->ngroups && t->group[g][0]) {
-            md_text(f, t->group[g]);
-            fputc(' ', f);
-        }
-        md_text(f, t->head[c] ? t->head[c] : "");
-        fputs(" |", f);
-        if (t->ngroups && --left == 0 && ++g < t->ngroups)
-            left = t->span[g];
-    }
-    fputs("\n|", f);
-    for (int c = 0; c < t->ncols; c++)
-        fputs(c < t->nkeys ? "---|" : "---:|", f);
-    fputc('\n', f);
-    for (int r = 0; r < t->nrows; r++) {
-        fputc('|', f);
-        for (int c = 0; c < t->ncols; c++) {
-            fputc(' ', f);
-            md_text(f, tab_at(t, r, c));
-            fputs(" |", f);
-        }
-        fputc('\n', f);
-    }
-    fputc('\n', f);
-    if (t->note[0]) {
-        md_text(f, t->note);
-        fputc(' ', f);
-    }
-    fprintf(f, "[LaTeX](%s)\n\n", texrel);
-}
-
-/* Lines of a table per float (a stacked or wrapped row takes more than one):
- * a longer one is split into parts, each a float of its own that fits a
- * page. */
-#define TEX_LINES 44
-
-/* Nothing is scaled: a table is fitted to the line (an A4 article's 345 pt,
- * \footnotesize, widths estimated by tex.h). A table wider than the line
- * has its "value (where)" cells and headings stacked onto two lines
- * (Moderno's summary tables); text that may wrap (the key columns, and every column of a text
- * table: t->wrap) is set in a \parbox as narrow as its longest word allows;
- * what is still too wide is split by columns into several floats, each
- * repeating the key columns (the first column when all are keys), cut at a
- * group's edge where one is near. */
-#define TEX_COLSEP 8.0      /* 2 \tabcolsep of 4 pt */
-#define TEX_MINWRAP 40.0    /* a wrapped column is no narrower (pt) */
-
-/* Where a stacked cell breaks: before " (" ("v" above "(where)"); a
- * heading (stack 2) also after ": " ("step ms:" above "median [min-max]").
- * *first: the first line's length; returns the second line, NULL: one line. */
-static const char *stack_cut(const char *v, int stack, int *first)
-{
-    const char *cut = stack ? strstr(v, " (") : NULL;
-    if (cut) {
-        *first = (int)(cut - v);
-        return cut + 1;
-    }
-    cut = stack == 2 ? strstr(v, ": ") : NULL;
-    if (cut) {
-        *first = (int)(cut - v) + 1;
-        return cut + 2;
-    }
-    return NULL;
-}
-
-/* the plain width (pt, \footnotesize) of a cell; stacked, "v (where)" counts
- * as its longer line; word: its longest word */
-static double cell_pt(const char *v, int stack, int word)
-{
-    char buf[512];
-    double w = 0;
-    if (word) {
-        for (const char *p = v; *p;) {
-            size_t n = strcspn(p, " ");
-            snprintf(buf, sizeof buf, "%.*s", (int)(n < sizeof buf ? n : sizeof buf - 1), p);
-            double x = sl_tex_text_pt(buf);
-            w = x > w ? x : w;
-            p += n;
-            p += *p == ' ';
-        }
-        return w * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
-    }
-    int len;
-    const char *second = stack_cut(v, stack, &len);
-    if (!second)
-        return sl_tex_text_pt(v) * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
-    snprintf(buf, sizeof buf, "%.*s", len, v);
-    double a = sl_tex_text_pt(buf), b = sl_tex_text_pt(second);
-    return (a > b ? a : b) * SL_TEX_FOOTNOTE * SL_TEX_SLACK;
-}
-
-/* as printed (stacked or not), or (word) its longest word */
-static double col_pt(const struct sl_report_tab *t, int c, int stack, int word)
-{
-    double w = t->head[c] ? cell_pt(t->head[c], stack ? 2 : 0, word) : 0;
-    for (int r = 0; r < t->nrows; r++) {
-        double x = cell_pt(tab_at(t, r, c), stack, word);
-        w = x > w ? x : w;
-    }
-    if (word && w < TEX_MINWRAP)
-        w = TEX_MINWRAP;
-    return w + TEX_COLSEP;
-}
-
-/* A cell; stacked, "v (where)" as two lines (v above its "(where)");
- * wrapped (pbox > 0), a ragged \parbox of that width. */
-static void tex_cell(FILE *f, const char *v, int stack, char align, double pbox)
-{
-    if (pbox > 0 && v[0]) {
-        fprintf(f, "\\parbox[t]{%.1fpt}{\\raggedright ", pbox);
-        sl_tex_text(f, v);
-        fputs("\\strut}", f);
-        return;
-    }
-    int len;
-    const char *second = stack_cut(v, stack, &len);
-    if (!second) {
-        sl_tex_text(f, v);
-        return;
-    }
-    char first[512];
-    snprintf(first, sizeof first, "%.*s", len, v);
-    fprintf(f, "\\begin{tabular}[t]{@{}%c@{}}", align);
-    sl_tex_text(f, first);
-    fputs("\\\\ ", f);
-    sl_tex_text(f, second);
-    fputs("\\end{tabular}", f);
-}
-
-struct tex_layout {
-    int    stack;
-    int    nfixed;                      /* columns repeated in every part */
-    int    wraps[SL_REPORT_MAXCOLS];    /* may be set in a \parbox */
-    double w[SL_REPORT_MAXCOLS];        /* as printed */
-    double minw[SL_REPORT_MAXCOLS];     /* wrapped as far as it goes */
-    int    cut[SL_REPORT_MAXCOLS + 1];  /* columns [cut[k], cut[k+1]) per column part */
-    int    ncut;
-};
-
-static int in_part(const struct tex_layout *lo, int cp, int c)
-{
-    return c < lo->nfixed || (c >= lo->cut[cp] && c < lo->cut[cp + 1]);
-}
-
-/* a group's heading wider than its columns widens them evenly */
-static void group_spread(const struct sl_report_tab *t, double *w)
-{
-    for (int g = 0, gs = 0; g < t->ngroups; gs += t->span[g], g++) {
-        int n = 0;
-        double under = 0;
-        for (int c = gs; c < gs + t->span[g] && c < t->ncols; c++, n++)
-            under += w[c];
-        double head = sl_tex_text_pt(t->group[g]) * SL_TEX_FOOTNOTE + TEX_COLSEP;
-        for (int c = gs; n && head > under && c < gs + t->span[g] && c < t->ncols; c++)
-            w[c] += (head - under) / n;
-    }
-}
-
-/* The \parbox widths of part cp (0: not wrapped): the wrapping columns share
- * what the others leave, each no narrower than its longest word, the
- * narrowest kept whole first. */
-static void part_boxes(const struct tex_layout *lo, const struct sl_report_tab *t, int cp, double *box)
-{
-    double fixed = 0, nat = 0;
-    for (int c = 0; c < t->ncols; c++) {
-        box[c] = 0;
-        if (in_part(lo, cp, c)) {
-            nat += lo->w[c];
-            fixed += lo->wraps[c] ? 0 : lo->w[c];
-        }
-    }
-    if (nat <= SL_TEX_BUDGET)
-        return;
-    /* the cap C: sum over wrapping columns of clamp(w, minw, C) = what is left */
-    double left = SL_TEX_BUDGET - fixed, lo_c = 0, hi_c = SL_TEX_BUDGET;
-    for (int it = 0; it < 40; it++) {
-        double mid = (lo_c + hi_c) / 2, sum = 0;
-        for (int c = 0; c < t->ncols; c++)
-            if (in_part(lo, cp, c) && lo->wraps[c]) {
-                double x = lo->w[c] < mid ? lo->w[c] : mid;
-                sum += x > lo->minw[c] ? x : lo->minw[c];
-            }
-        if (sum > left)
-            hi_c = mid;
-        else
-            lo_c = mid;
-    }
-    for (int c = 0; c < t->ncols; c++)
-        if (in_part(lo, cp, c) && lo->wraps[c] && lo->w[c] > lo_c) {
-            double x = lo_c > lo->minw[c] ? lo_c : lo->minw[c];
-            box[c] = x - TEX_COLSEP;
-        }
-}
-
-static void tex_part(FILE *f, const struct sl_report_tab *t, const struct tex_layout *lo, int cp, int from, int to,
-                     int part, int parts)
-{
-    double box[SL_REPORT_MAXCOLS];
-    part_boxes(lo, t, cp, box);
-    fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
-    sl_tex_text(f, t->title);
-    if (parts > 1)
-        fprintf(f, " (part %d of %d)", part + 1, parts);
-    fputc('}', f);
-    if (part == 0)
-        fprintf(f, "\n\\label{tab:%s}", t->id);
-    fputs("\n\\begin{tabular}{", f);
-    for (int c = 0; c < t->ncols; c++)
-        if (in_part(lo, cp, c))
-            fputc(c < t->nkeys || box[c] > 0 ? 'l' : 'r', f);
-    fputs("}\n\\toprule\n", f);
-    if (t->ngroups) {
-        int first = 1, col = 1;
-        char rules[512] = "";
-        size_t rl = 0;
-        for (int g = 0, gs = 0; g < t->ngroups; gs += t->span[g], g++) {
-            int n = 0;
-            for (int c = gs; c < gs + t->span[g] && c < t->ncols; c++)
-                n += in_part(lo, cp, c);
-            if (n == 0)
-                continue;
-            fprintf(f, "%s\\multicolumn{%d}{c}{", first ? "" : " & ", n);
-            first = 0;
-            sl_tex_text(f, t->group[g]);
-            fputc('}', f);
-            if (t->group[g][0] && rl < sizeof rules - 32)
-                rl += (size_t)snprintf(rules + rl, sizeof rules - rl, "\\cmidrule(lr){%d-%d}", col, col + n - 1);
-            col += n;
-        }
-        fprintf(f, " \\\\\n%s\n", rules);
-    }
-    int first = 1;
-    for (int c = 0; c < t->ncols; c++) {
-        if (!in_part(lo, cp, c))
-            continue;
-        if (!first)
-            fputs(" & ", f);
-        first = 0;
-        tex_cell(f, t->head[c] ? t->head[c] : "", lo->stack && !lo->wraps[c] ? 2 : 0, c < t->nkeys ? 'l' : 'r',
-                 box[c]);
-    }
-    fputs(" \\\\\n\\midrule\n", f);
-    for (int r = from; r < to; r++) {
-        if ((t->rule[r] & SL_TAB_BLOCK) && r > from)
-            fputs("\\addlinespace\n", f);
-        first = 1;
-        for (int c = 0; c < t->ncols; c++) {
-            if (!in_part(lo, cp, c))
-                continue;
-            if (!first)
-                fputs(" & ", f);
-            first = 0;
-            tex_cell(f, tab_at(t, r, c), lo->stack && !lo->wraps[c], c < t->nkeys ? 'l' : 'r', box[c]);
-        }
-        fputs(" \\\\\n", f);
-    }
-    fputs("\\bottomrule\n\\end{tabular}\n", f);
-    if (t->note[0] && part == parts - 1) {
-        fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
-        sl_tex_text(f, t->note);
-        fputs("\\par}\n", f);
-    }
-    fputs("\\end{table}\n", f);
-}
-
-static void tex_fit(const struct sl_report_tab *t, struct tex_layout *lo)
-{
-    memset(lo, 0, sizeof *lo);
-    lo->nfixed = t->nkeys < t->ncols ? t->nkeys : 1;
-    double all = 0;
-    for (int c = 0; c < t->ncols; c++)
-        all += col_pt(t, c, 0, 0);
-    lo->stack = all > SL_TEX_BUDGET;
-    for (int c = 0; c < t->ncols; c++) {
-        lo->wraps[c] = t->wrap || c < t->nkeys;
-        lo->w[c] = col_pt(t, c, lo->stack && !lo->wraps[c], 0);
-        lo->minw[c] = lo->wraps[c] ? col_pt(t, c, 0, 1) : lo->w[c];
-        if (lo->minw[c] > lo->w[c])
-            lo->minw[c] = lo->w[c];
-    }
-    group_spread(t, lo->w);
-    group_spread(t, lo->minw);
-    /* a group's edges: where a cut keeps the groups whole */
-    unsigned char edge[SL_REPORT_MAXCOLS + 1] = {0};
-    for (int g = 0, gs = 0; g < t->ngroups && gs + t->span[g] <= SL_REPORT_MAXCOLS; g++)
-        edge[gs += t->span[g]] = 1;
-    double keys = 0;
-    for (int c = 0; c < lo->nfixed; c++)
-        keys += lo->minw[c];
-    lo->cut[0] = lo->nfixed;
-    double sum = keys;
-    for (int c = lo->nfixed; c < t->ncols; c++) {
-        int start = lo->cut[lo->ncut];
-        if (c > start && sum + lo->minw[c] > SL_TEX_BUDGET) {
-            int at = c;
-            for (int e = c; t->ngroups && e > start; e--)
-                if (edge[e]) {
-                    at = e;
-                    break;
-                }
-            lo->cut[++lo->ncut] = at;
-            sum = keys;
-            for (int k = at; k < c; k++)
-                sum += lo->minw[k];
-        }
-        sum += lo->minw[c];
-    }
-    lo->cut[++lo->ncut] = t->ncols;
-}
-
-/* Lines row r takes in part cp: a stacked cell two, a wrapped one as many
- * as its text needs at its box's width (a third more: words do not fill a
- * line); the space before a block half a line. */
-static double row_lines(const struct sl_report_tab *t, const struct tex_layout *lo, int cp, const double *box, int r)
-{
-    double lines = 1;
-    for (int c = 0; c < t->ncols; c++) {
-        if (!in_part(lo, cp, c))
-            continue;
-        const char *v = tab_at(t, r, c);
-        double n = 1;
-        if (box[c] > 0)
-            n = (double)(int)(cell_pt(v, 0, 0) * 1.33 / box[c]) + 1;
-        else if (lo->stack && !lo->wraps[c] && strstr(v, " ("))
-            n = 2;
-        lines = n > lines ? n : lines;
-    }
-    return lines + ((t->rule[r] & SL_TAB_BLOCK) ? 0.5 : 0);
-}
-
-/* the rows [cut[k], cut[k+1]) of each float of part cp; returns how many */
-static int row_cuts(const struct sl_report_tab *t, const struct tex_layout *lo, int cp, int *cut)
-{
-    double box[SL_REPORT_MAXCOLS];
-    part_boxes(lo, t, cp, box);
-    int n = 0;
-    double lines = 0;
-    cut[0] = 0;
-    for (int r = 0; r < t->nrows; r++) {
-        double k = row_lines(t, lo, cp, box, r);
-        if (r > cut[n] && lines + k > TEX_LINES) {
-            cut[++n] = r;
-            lines = 0;
-        }
-        lines += k;
-    }
-    cut[++n] = t->nrows;
-    return n;
-}
-
-/* returns the floats written since its last \\clearpage */
-static int tex_table(FILE *f, const struct sl_report_tab *t)
-{
-    fputs("% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n", f);
-    struct tex_layout lo;
-    tex_fit(t, &lo);
-    int *cut = malloc(((size_t)t->nrows + 2) * sizeof *cut);
-    if (!cut)
-        return 0;
-    int parts = 0;
-    for (int cp = 0; cp < lo.ncut; cp++)
-        parts += row_cuts(t, &lo, cp, cut);
-    for (int cp = 0, part = 0; cp < lo.ncut; cp++) {
-        int n = row_cuts(t, &lo, cp, cut);
-        for (int p = 0; p < n; p++, part++) {
-            /* LaTeX holds at most 18 floats it has not placed */
-            if (part > 0 && part % 8 == 0)
-                fputs("\\clearpage\n", f);
-            tex_part(f, t, &lo, cp, cut[p], cut[p + 1], part, parts);
-        }
-    }
-    free(cut);
-    return parts % 8 ? parts % 8 : 8;
-}
-
-enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_report_tab *t, struct sl_diag *d)
+enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_tab *t, struct sl_diag *d)
 {
     if (t->oom)
         return sl_fail(d, SL_E_NOMEM, NULL, 0, t->id, "report table");
@@ -1167,12 +590,13 @@ enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_repor
     FILE *f = fopen(path, "w");
     if (!f)
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write: %s", strerror(errno));
-    int floats = tex_table(f, t);
-    int bad = ferror(f);
+    const struct sl_emit_opts own = {.first = 1}, page = {.link = rel, .link_named = doc->self_contained};
+    int floats = sl_emit_tex(f, t, &own);
+    int bad = ferror(f) || floats < 0;
     if (fclose(f) != 0 || bad)
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "write failed");
-    html_table(doc->html, t, rel, doc->self_contained);
-    md_table(doc->md, t, rel);
+    sl_emit_html(doc->html, t, &page);
+    sl_emit_md(doc->md, t, &page);
     doc->ntables++;
     if (doc->tex) {
         fprintf(doc->tex, "\\input{%s}\n", rel);

@@ -455,42 +455,42 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
             b++;
         char id[160];
         snprintf(id, sizeof id, "%s-fidelity-table%d", s->slug, rows[a].table);
-        struct sl_report_tab t;
-        sl_report_tab_init(&t, id, 8, 4, "Primitives, %s: Moderno 2011 Table %d (%s) against shadowlab",
+        struct sl_tab t;
+        sl_tab_init(&t, id, 8, 4, "Primitives, %s: Moderno 2011 Table %d (%s) against shadowlab",
                            rows[a].viewpoint, rows[a].table, table_title(rows[a].table));
         static const char *const heads[] = {"map", "contour", "approach", "figure", "thesis", "shadowlab",
                                             "ratio", "note"};
         for (int h = 0; h < 8; h++)
-            sl_report_tab_head(&t, h, "%s", heads[h]);
+            sl_tab_head(&t, h, "%s", heads[h]);
         t.wrap = 1;
-        snprintf(t.note, sizeof t.note, "Transcribed from the thesis's appendix (report/fidelity.c cites the lines "
+        sl_tab_notef(&t, "Transcribed from the thesis's appendix (report/fidelity.c cites the lines "
                                         "of the seed). Ratio: shadowlab / thesis; none where the thesis has 0.");
         int prev_map = 0, prev_c = -1;
         for (int i = a; i < b; i++) {
             const struct sl_report_fidelity_row *r = &rows[i];
             char reg[16];
             sl_report_region_name(r->contour, reg, sizeof reg);
-            sl_report_tab_row(&t, r->map_size != prev_map || r->contour != prev_c);
+            sl_tab_row(&t, r->map_size != prev_map || r->contour != prev_c);
             prev_map = r->map_size;
             prev_c = r->contour;
-            sl_report_tab_cell(&t, 0, "%d", r->map_size);
-            sl_report_tab_cell(&t, 1, "%s", reg);
-            sl_report_tab_cell(&t, 2, "%s", r->label);
-            sl_report_tab_cell(&t, 3, "%s", sl_figure_name(r->fig));
-            sl_report_tab_cell(&t, 4, "%llu", (unsigned long long)r->thesis);
+            sl_tab_cell(&t, 0, "%d", r->map_size);
+            sl_tab_cell(&t, 1, "%s", reg);
+            sl_tab_cell(&t, 2, "%s", r->label);
+            sl_tab_cell(&t, 3, "%s", sl_figure_name(r->fig));
+            sl_tab_cell(&t, 4, "%llu", (unsigned long long)r->thesis);
             if (r->measured)
-                sl_report_tab_cell(&t, 5, "%llu", (unsigned long long)r->value);
+                sl_tab_cell(&t, 5, "%llu", (unsigned long long)r->value);
             else
-                sl_report_tab_cell(&t, 5, "not measured");
+                sl_tab_cell(&t, 5, "not measured");
             if (!isnan(r->ratio))
-                sl_report_tab_cell(&t, 6, "%.2f", r->ratio);
+                sl_tab_cell(&t, 6, "%.2f", r->ratio);
             else
-                sl_report_tab_cell(&t, 6, "%s", r->measured ? "-" : "");
+                sl_tab_cell(&t, 6, "%s", r->measured ? "-" : "");
             if (r->note)
-                sl_report_tab_cell(&t, 7, "%s", r->note);
+                sl_tab_cell(&t, 7, "%s", r->note);
         }
         e = sl_report_doc_table(doc, &t, d);
-        sl_report_tab_free(&t);
+        sl_tab_free(&t);
         a = b;
     }
     if (e)
@@ -500,30 +500,30 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
     int nc = sl_report_fidelity_claims(s->cells, s->n, cl, SL_REPORT_FIDELITY_NCLAIMS);
     char id[160];
     snprintf(id, sizeof id, "%s-fidelity-claims", s->slug);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 5, 1, "%s: Moderno 2011's claims, measured on this study", s->name);
-    sl_report_tab_head(&t, 0, "claim");
-    sl_report_tab_head(&t, 1, "thesis");
-    sl_report_tab_head(&t, 2, "measured");
-    sl_report_tab_head(&t, 3, "tables it rests on, band");
-    sl_report_tab_head(&t, 4, "verdict");
+    struct sl_tab t;
+    sl_tab_init(&t, id, 5, 1, "%s: Moderno 2011's claims, measured on this study", s->name);
+    sl_tab_head(&t, 0, "claim");
+    sl_tab_head(&t, 1, "thesis");
+    sl_tab_head(&t, 2, "measured");
+    sl_tab_head(&t, 3, "tables it rests on, band");
+    sl_tab_head(&t, 4, "verdict");
     t.wrap = 1;
-    snprintf(t.note, sizeof t.note, "Measured: means over the study's cells of the label (every scene, viewpoint and "
+    sl_tab_notef(&t, "Measured: means over the study's cells of the label (every scene, viewpoint and "
                                     "map size) and its 2, 4 and 6 px contours, on NSM's contour; the thesis's are "
                                     "over its four scenes. Reproduced only when that holds and every datum of the "
                                     "Primitives tables the claim rests on (side, with and against) is measured and "
                                     "within the band of the thesis's; not reproduced when a measured datum is "
                                     "outside it or the claim fails.");
     for (int i = 0; i < nc; i++) {
-        sl_report_tab_row(&t, 0);
-        sl_report_tab_cell(&t, 0, "%s", cl[i].claim);
-        sl_report_tab_cell(&t, 1, "%s", cl[i].thesis);
-        sl_report_tab_cell(&t, 2, "%s", cl[i].measured);
-        sl_report_tab_cell(&t, 3, "%s", cl[i].tables);
-        sl_report_tab_cell(&t, 4, "%s", cl[i].verdict < 0 ? "not measured"
+        sl_tab_row(&t, 0);
+        sl_tab_cell(&t, 0, "%s", cl[i].claim);
+        sl_tab_cell(&t, 1, "%s", cl[i].thesis);
+        sl_tab_cell(&t, 2, "%s", cl[i].measured);
+        sl_tab_cell(&t, 3, "%s", cl[i].tables);
+        sl_tab_cell(&t, 4, "%s", cl[i].verdict < 0 ? "not measured"
                                         : cl[i].verdict ? "reproduced" : "not reproduced");
     }
     e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }

@@ -68,17 +68,17 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
                        "lit/shadowed verdicts), whole image.");
     char id[160];
     snprintf(id, sizeof id, "%s-fractional", s->slug);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 12, 2, "%s: fractional errors against the 0/1 truth, per label and map size",
+    struct sl_tab t;
+    sl_tab_init(&t, id, 12, 2, "%s: fractional errors against the 0/1 truth, per label and map size",
                        s->name);
     static const char *const head[] = {"label",   "map",     "cells",          "PFL pixels",
                                        "wrong % (hard)", "|v − t|", "bias",           "leaking",
                                        "over-darkening", "within 0.05", "leaking", "over-darkening"};
     for (int k = 0; k < 12; k++)
-        sl_report_tab_head(&t, k, "%s", head[k]);
-    sl_report_tab_group(&t, 5, "%s", "");
-    sl_report_tab_group(&t, 5, "%% of visibility per PFL pixel");
-    sl_report_tab_group(&t, 2, "per truth-shadowed / truth-lit pixel");
+        sl_tab_head(&t, k, "%s", head[k]);
+    sl_tab_group(&t, 5, "%s", "");
+    sl_tab_group(&t, 5, "%% of visibility per PFL pixel");
+    sl_tab_group(&t, 2, "per truth-shadowed / truth-lit pixel");
     int any = 0;
     for (int l = 0; l < s->nlabels; l++) {
         int first = 1;
@@ -86,41 +86,41 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
             struct frac_row r;
             if (!frac_row(s, s->labels[l], s->maps[m], &r))
                 continue;
-            sl_report_tab_row(&t, first);
+            sl_tab_row(&t, first);
             if (first)
-                sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+                sl_tab_cell(&t, 0, "%s", s->labels[l]);
             first = 0;
             any = 1;
-            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
-            sl_report_tab_cell(&t, 2, "%d", r.ncells);
-            sl_report_tab_cell(&t, 3, "%llu", (unsigned long long)r.px);
+            sl_tab_cell(&t, 1, "%d²", s->maps[m]);
+            sl_tab_cell(&t, 2, "%d", r.ncells);
+            sl_tab_cell(&t, 3, "%llu", (unsigned long long)r.px);
             if (r.img_px)
-                sl_report_tab_cell(&t, 4, "%.3f", 100.0 * (double)r.img_wrong / (double)r.img_px);
+                sl_tab_cell(&t, 4, "%.3f", 100.0 * (double)r.img_wrong / (double)r.img_px);
             else
-                sl_report_tab_cell(&t, 4, "–");
+                sl_tab_cell(&t, 4, "–");
             if (!r.px) {
                 for (int k = 5; k < 12; k++)
-                    sl_report_tab_cell(&t, k, "–");
+                    sl_tab_cell(&t, k, "–");
                 continue;
             }
             double px = (double)r.px, mae = r.mae / px, bias = r.bias / px;
             double leak = (mae + bias) / 2.0, dark = (mae - bias) / 2.0;
-            sl_report_tab_cell(&t, 5, "%.3f", mae);
-            sl_report_tab_cell(&t, 6, "%+.3f", bias);
-            sl_report_tab_cell(&t, 7, "%.3f", leak);
-            sl_report_tab_cell(&t, 8, "%.3f", dark);
-            sl_report_tab_cell(&t, 9, "%.2f%%", 100.0 * (double)r.within / px);
+            sl_tab_cell(&t, 5, "%.3f", mae);
+            sl_tab_cell(&t, 6, "%+.3f", bias);
+            sl_tab_cell(&t, 7, "%.3f", leak);
+            sl_tab_cell(&t, 8, "%.3f", dark);
+            sl_tab_cell(&t, 9, "%.2f%%", 100.0 * (double)r.within / px);
             if (r.umbra)
-                sl_report_tab_cell(&t, 10, "%.2f (of %llu)", leak * px / (double)r.umbra, (unsigned long long)r.umbra);
+                sl_tab_cell(&t, 10, "%.2f (of %llu)", leak * px / (double)r.umbra, (unsigned long long)r.umbra);
             else
-                sl_report_tab_cell(&t, 10, "–");
+                sl_tab_cell(&t, 10, "–");
             if (r.lit)
-                sl_report_tab_cell(&t, 11, "%.2f (of %llu)", dark * px / (double)r.lit, (unsigned long long)r.lit);
+                sl_tab_cell(&t, 11, "%.2f (of %llu)", dark * px / (double)r.lit, (unsigned long long)r.lit);
             else
-                sl_report_tab_cell(&t, 11, "–");
+                sl_tab_cell(&t, 11, "–");
         }
     }
-    snprintf(t.note, sizeof t.note,
+    sl_tab_notef(&t,
              "|v − t|: the mean |v − truth|; it, the bias (method − truth), leaking and over-darkening in %% of "
              "full visibility per PFL pixel (leaking + over-darkening = |v − t|); within 0.05: share of the PFL "
              "pixels. The last two columns say the same per pixel where it can happen: the visibility a "
@@ -131,6 +131,6 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
         e = sl_report_doc_table(doc, &t, d);
     else
         sl_report_doc_para(doc, "No frac cell of this study has PFL pixels.");
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }

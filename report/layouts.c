@@ -329,23 +329,23 @@ static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_re
         nrows += summary_wants(s, l, which);
     if (nrows == 0)
         return SL_OK;
-    struct sl_report_tab t;
+    struct sl_tab t;
     char id[160];
     snprintf(id, sizeof id, "%s-summary-%s", s->slug, sl_figure_name(f));
-    sl_report_tab_init(&t, id, 2 + 2 * nmaps + has_avgcase, 1, "%s", moderno_summaries[which].title);
-    sl_report_tab_group(&t, 2, "%s", "");
+    sl_tab_init(&t, id, 2 + 2 * nmaps + has_avgcase, 1, "%s", moderno_summaries[which].title);
+    sl_tab_group(&t, 2, "%s", "");
     for (int k = 0; k < nmaps; k++)
-        sl_report_tab_group(&t, 2, "%d²", s->maps[k]);
+        sl_tab_group(&t, 2, "%d²", s->maps[k]);
     if (has_avgcase)
-        sl_report_tab_group(&t, 1, "%s", "");
-    sl_report_tab_head(&t, 0, "method");
-    sl_report_tab_head(&t, 1, "average");
+        sl_tab_group(&t, 1, "%s", "");
+    sl_tab_head(&t, 0, "method");
+    sl_tab_head(&t, 1, "average");
     for (int k = 0; k < nmaps; k++) {
-        sl_report_tab_head(&t, 2 + 2 * k, "best");
-        sl_report_tab_head(&t, 3 + 2 * k, "worst");
+        sl_tab_head(&t, 2 + 2 * k, "best");
+        sl_tab_head(&t, 3 + 2 * k, "worst");
     }
     if (has_avgcase)
-        sl_report_tab_head(&t, 2 + 2 * nmaps, "average case (bench/with, 2 px)");
+        sl_tab_head(&t, 2 + 2 * nmaps, "average case (bench/with, 2 px)");
     for (int l = 0; l < s->nlabels; l++) {
         if (!summary_wants(s, l, which))
             continue;
@@ -380,38 +380,38 @@ static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_re
             }
         }
         char buf[160];
-        sl_report_tab_row(&t, 0);
-        sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+        sl_tab_row(&t, 0);
+        sl_tab_cell(&t, 0, "%s", s->labels[l]);
         if (count)
-            sl_report_tab_cell(&t, 1, "%.2f", sum / (double)count);
+            sl_tab_cell(&t, 1, "%.2f", sum / (double)count);
         else
-            sl_report_tab_cell(&t, 1, "–");
+            sl_tab_cell(&t, 1, "–");
         for (int k = 0; k < nmaps; k++) {
             pick_text(&best[k], buf, sizeof buf);
-            sl_report_tab_cell(&t, 2 + 2 * k, "%s", buf);
+            sl_tab_cell(&t, 2 + 2 * k, "%s", buf);
             pick_text(&worst[k], buf, sizeof buf);
-            sl_report_tab_cell(&t, 3 + 2 * k, "%s", buf);
+            sl_tab_cell(&t, 3 + 2 * k, "%s", buf);
         }
         if (has_avgcase) {
             pick_text(&avgcase, buf, sizeof buf);
-            sl_report_tab_cell(&t, 2 + 2 * nmaps, "%s", buf);
+            sl_tab_cell(&t, 2 + 2 * nmaps, "%s", buf);
         }
     }
-    snprintf(t.note, sizeof t.note,
+    sl_tab_notef(&t,
              "Average over every (cell, %s) value of the label; best and worst name the cell's scene/viewpoint "
              "and %s. %s.", contours ? "contour" : "region", contours ? "contour" : "region",
              lower ? "Lower is better" : "Higher is better");
     enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 
 /* ---- Moderno 2011: per view ---- */
 
 /* Rows label x map x region for the labels `want` accepts; fill(t, cell, region index, col0). */
-typedef void (*row_fill)(struct sl_report_tab *t, const struct sl_cell_record *c, int r);
+typedef void (*row_fill)(struct sl_tab *t, const struct sl_cell_record *c, int r);
 
-static int view_rows(struct sl_report_tab *t, const struct sl_report_study *s, const struct sl_report_view *v,
+static int view_rows(struct sl_tab *t, const struct sl_report_study *s, const struct sl_report_view *v,
                      int (*want)(const struct sl_report_study *, int), row_fill fill)
 {
     int rows = 0;
@@ -426,12 +426,12 @@ static int view_rows(struct sl_report_tab *t, const struct sl_report_study *s, c
             for (int r = 0; r < c->fig.nregions && r < SL_MAX_REGIONS; r++) {
                 char rn[16];
                 sl_report_region_name(c->fig.r[r].thickness, rn, sizeof rn);
-                sl_report_tab_row(t, first_of_label);
+                sl_tab_row(t, first_of_label);
                 if (first_of_label)
-                    sl_report_tab_cell(t, 0, "%s", s->labels[l]);
+                    sl_tab_cell(t, 0, "%s", s->labels[l]);
                 if (r == 0)
-                    sl_report_tab_cell(t, 1, "%d²", c->map_size);
-                sl_report_tab_cell(t, 2, "%s", rn);
+                    sl_tab_cell(t, 1, "%d²", c->map_size);
+                sl_tab_cell(t, 2, "%s", rn);
                 fill(t, c, r);
                 first_of_label = 0;
                 rows++;
@@ -460,30 +460,30 @@ static int want_hints(const struct sl_report_study *s, int l)
     return sl_report_is_moderno(s, l) && label_has(s, l, SL_FIG_hinted);
 }
 
-static void fill_errors(struct sl_report_tab *t, const struct sl_cell_record *c, int r)
+static void fill_errors(struct sl_tab *t, const struct sl_cell_record *c, int r)
 {
     const struct sl_region_figures *g = &c->fig.r[r];
     char buf[96];
     fmt_of(buf, sizeof buf, g->n[SL_FIG_wrong_caught], c->fig.wrong_image);
-    sl_report_tab_cell(t, 3, "%s", buf);
+    sl_tab_cell(t, 3, "%s", buf);
     fmt_of(buf, sizeof buf, g->n[SL_FIG_light_incorrect], g->n[SL_FIG_light]);
-    sl_report_tab_cell(t, 4, "%s", buf);
+    sl_tab_cell(t, 4, "%s", buf);
     fmt_of(buf, sizeof buf, g->n[SL_FIG_shadow_incorrect], g->n[SL_FIG_shadow]);
-    sl_report_tab_cell(t, 5, "%s", buf);
+    sl_tab_cell(t, 5, "%s", buf);
     fmt_of(buf, sizeof buf, g->n[SL_FIG_wrong], g->n[SL_FIG_pixels]);
-    sl_report_tab_cell(t, 6, "%s", buf);
+    sl_tab_cell(t, 6, "%s", buf);
 }
 
-static void fill_vs_nsm(struct sl_report_tab *t, const struct sl_cell_record *c, int r)
+static void fill_vs_nsm(struct sl_tab *t, const struct sl_cell_record *c, int r)
 {
     static const enum sl_figure cols[] = {SL_FIG_fixed_ls, SL_FIG_fixed_sl, SL_FIG_broken_ls, SL_FIG_broken_sl,
                                           SL_FIG_kept_ll_right, SL_FIG_kept_ss_right_moderno,
                                           SL_FIG_kept_ll_wrong, SL_FIG_kept_ss_wrong};
     for (int k = 0; k < 8; k++)
-        sl_report_tab_cell(t, 3 + k, "%llu", (unsigned long long)c->fig.r[r].n[cols[k]]);
+        sl_tab_cell(t, 3 + k, "%llu", (unsigned long long)c->fig.r[r].n[cols[k]]);
 }
 
-static void fill_hints(struct sl_report_tab *t, const struct sl_cell_record *c, int r)
+static void fill_hints(struct sl_tab *t, const struct sl_cell_record *c, int r)
 {
     const uint64_t *n = c->fig.r[r].n;
     char buf[96];
@@ -493,11 +493,11 @@ static void fill_hints(struct sl_report_tab *t, const struct sl_cell_record *c, 
     uint64_t wrong[2] = {n[SL_FIG_hinted_light_wrong], n[SL_FIG_hinted_shadow_wrong_moderno]};
     for (int k = 0; k < 2; k++) {
         fmt_of(buf, sizeof buf, hinted[k], base[k]);
-        sl_report_tab_cell(t, 3 + 3 * k, "%s", buf);
+        sl_tab_cell(t, 3 + 3 * k, "%s", buf);
         fmt_of(buf, sizeof buf, wrong[k], base[k]);
-        sl_report_tab_cell(t, 4 + 3 * k, "%s", buf);
+        sl_tab_cell(t, 4 + 3 * k, "%s", buf);
         fmt_of(buf, sizeof buf, base[k] > hinted[k] ? base[k] - hinted[k] : 0, base[k]);
-        sl_report_tab_cell(t, 5 + 3 * k, "%s", buf);
+        sl_tab_cell(t, 5 + 3 * k, "%s", buf);
     }
 }
 
@@ -516,11 +516,11 @@ static const char *contour_note(const struct sl_report_study *s)
                  "(contour_from: nsm, the thesis's).";
 }
 
-static void key_heads(struct sl_report_tab *t)
+static void key_heads(struct sl_tab *t)
 {
-    sl_report_tab_head(t, 0, "method");
-    sl_report_tab_head(t, 1, "map");
-    sl_report_tab_head(t, 2, "region");
+    sl_tab_head(t, 0, "method");
+    sl_tab_head(t, 1, "map");
+    sl_tab_head(t, 2, "region");
 }
 
 static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_report_study *s,
@@ -529,63 +529,63 @@ static enum sl_err moderno_view(struct sl_report_doc *doc, const struct sl_repor
     char vt[160], id[160];
     sl_report_view_title(v, vt, sizeof vt);
     enum sl_err e = SL_OK;
-    struct sl_report_tab t;
+    struct sl_tab t;
 
     sl_report_view_id(s, v, "errors", id, sizeof id);
-    sl_report_tab_init(&t, id, 7, 3, "%s: wrong pixels by contour (Moderno 2011 Tables 17/18)", vt);
+    sl_tab_init(&t, id, 7, 3, "%s: wrong pixels by contour (Moderno 2011 Tables 17/18)", vt);
     key_heads(&t);
-    sl_report_tab_head(&t, 3, "caught (of the image's wrong)");
-    sl_report_tab_head(&t, 4, "wrongly lit (of light)");
-    sl_report_tab_head(&t, 5, "wrongly shadowed (of shadow)");
-    sl_report_tab_head(&t, 6, "wrong (of pixels)");
-    snprintf(t.note, sizeof t.note, "PnFL pixels count as shadow. %s", contour_note(s));
+    sl_tab_head(&t, 3, "caught (of the image's wrong)");
+    sl_tab_head(&t, 4, "wrongly lit (of light)");
+    sl_tab_head(&t, 5, "wrongly shadowed (of shadow)");
+    sl_tab_head(&t, 6, "wrong (of pixels)");
+    sl_tab_notef(&t, "PnFL pixels count as shadow. %s", contour_note(s));
     if (view_rows(&t, s, v, want_moderno, fill_errors))
         e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
 
     if (!e) {
         sl_report_view_id(s, v, "hints", id, sizeof id);
-        sl_report_tab_init(&t, id, 9, 3, "%s: texel coherence hints of NSM's light and shadow (Moderno 2011 Table 19)", vt);
+        sl_tab_init(&t, id, 9, 3, "%s: texel coherence hints of NSM's light and shadow (Moderno 2011 Table 19)", vt);
         key_heads(&t);
-        sl_report_tab_group(&t, 3, "%s", "");
-        sl_report_tab_group(&t, 3, "NSM light");
-        sl_report_tab_group(&t, 3, "NSM shadow");
+        sl_tab_group(&t, 3, "%s", "");
+        sl_tab_group(&t, 3, "NSM light");
+        sl_tab_group(&t, 3, "NSM shadow");
         for (int k = 0; k < 2; k++) {
-            sl_report_tab_head(&t, 3 + 3 * k, "hinted");
-            sl_report_tab_head(&t, 4 + 3 * k, "wrongly hinted");
-            sl_report_tab_head(&t, 5 + 3 * k, "undecided");
+            sl_tab_head(&t, 3 + 3 * k, "hinted");
+            sl_tab_head(&t, 4 + 3 * k, "wrongly hinted");
+            sl_tab_head(&t, 5 + 3 * k, "undecided");
         }
-        snprintf(t.note, sizeof t.note, "Percentages of NSM's pixels in light (in shadow, PnFL with them: hinted, "
+        sl_tab_notef(&t, "Percentages of NSM's pixels in light (in shadow, PnFL with them: hinted, "
                  "as Moderno counts them) in the region. %s", contour_note(s));
         if (view_rows(&t, s, v, want_hints, fill_hints))
             e = sl_report_doc_table(doc, &t, d);
-        sl_report_tab_free(&t);
+        sl_tab_free(&t);
     }
 
     if (!e) {
         sl_report_view_id(s, v, "vs-nsm", id, sizeof id);
-        sl_report_tab_init(&t, id, 11, 3, "%s: pixel changes against NSM (Moderno 2011 Table 23)", vt);
+        sl_tab_init(&t, id, 11, 3, "%s: pixel changes against NSM (Moderno 2011 Table 23)", vt);
         key_heads(&t);
-        sl_report_tab_group(&t, 3, "%s", "");
-        sl_report_tab_group(&t, 2, "corrected");
-        sl_report_tab_group(&t, 2, "turned bad");
-        sl_report_tab_group(&t, 2, "maintained correct");
-        sl_report_tab_head(&t, 3, "L→S");
-        sl_report_tab_head(&t, 4, "S→L");
-        sl_report_tab_head(&t, 5, "L→S");
-        sl_report_tab_head(&t, 6, "S→L");
-        sl_report_tab_group(&t, 2, "maintained incorrect");
-        sl_report_tab_head(&t, 7, "L→L");
-        sl_report_tab_head(&t, 8, "S→S");
-        sl_report_tab_head(&t, 9, "L→L");
-        sl_report_tab_head(&t, 10, "S→S");
-        snprintf(t.note, sizeof t.note,
+        sl_tab_group(&t, 3, "%s", "");
+        sl_tab_group(&t, 2, "corrected");
+        sl_tab_group(&t, 2, "turned bad");
+        sl_tab_group(&t, 2, "maintained correct");
+        sl_tab_head(&t, 3, "L→S");
+        sl_tab_head(&t, 4, "S→L");
+        sl_tab_head(&t, 5, "L→S");
+        sl_tab_head(&t, 6, "S→L");
+        sl_tab_group(&t, 2, "maintained incorrect");
+        sl_tab_head(&t, 7, "L→L");
+        sl_tab_head(&t, 8, "S→S");
+        sl_tab_head(&t, 9, "L→L");
+        sl_tab_head(&t, 10, "S→S");
+        sl_tab_notef(&t,
                  "L→S: NSM put it in light, the method in shadow. Maintained: the same verdict as NSM. PnFL pixels "
                  "are maintained correct S→S, as Moderno counts them; with no pixel left undecided the classes add "
                  "up to the region's pixels. %s", contour_note(s));
         if (view_rows(&t, s, v, want_vs_nsm, fill_vs_nsm))
             e = sl_report_doc_table(doc, &t, d);
-        sl_report_tab_free(&t);
+        sl_tab_free(&t);
     }
     return e;
 }
@@ -641,13 +641,13 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
     }
     char id[160];
     snprintf(id, sizeof id, "%s-costs", s->slug);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 11, 2, "%s: cost per method and map size", s->name);
+    struct sl_tab t;
+    sl_tab_init(&t, id, 11, 2, "%s: cost per method and map size", s->name);
     static const char *const heads[] = {"method", "map", "cells", "step ms: median [min–max]",
                                         "layers ms: median [min–max]", "rays", "rays / pixel",
                                         "ray-tri tests", "lookups", "GS prims", "fragments"};
     for (int k = 0; k < 11; k++)
-        sl_report_tab_head(&t, k, "%s", heads[k]);
+        sl_tab_head(&t, k, "%s", heads[k]);
     int runs = 0, once = 0;
     for (int l = 0; l < s->nlabels; l++)
         for (int m = 0; m < s->nmaps; m++) {
@@ -684,32 +684,32 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
             if (cells == 0)
                 continue;
             char buf[96];
-            sl_report_tab_row(&t, m == 0);
+            sl_tab_row(&t, m == 0);
             if (m == 0)
-                sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
-            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
-            sl_report_tab_cell(&t, 2, "%d", cells);
+                sl_tab_cell(&t, 0, "%s", s->labels[l]);
+            sl_tab_cell(&t, 1, "%d²", s->maps[m]);
+            sl_tab_cell(&t, 2, "%d", cells);
             /* a cell timed once makes its row's times one measurement each */
             fmt_range(buf, sizeof buf, median(meth, n), lo, hi);
-            sl_report_tab_cell(&t, 3, "%s%s", buf, one && n ? SL_REPORT_ONCE : "");
+            sl_tab_cell(&t, 3, "%s%s", buf, one && n ? SL_REPORT_ONCE : "");
             fmt_range(buf, sizeof buf, median(map, nmap), mlo, mhi);
-            sl_report_tab_cell(&t, 4, "%s%s", buf, one && nmap ? SL_REPORT_ONCE : "");
+            sl_tab_cell(&t, 4, "%s%s", buf, one && nmap ? SL_REPORT_ONCE : "");
             once |= one && (n || nmap);
             fmt_count(buf, sizeof buf, rays / cells);
-            sl_report_tab_cell(&t, 5, "%s", buf);
-            sl_report_tab_cell(&t, 6, "%.3f", px > 0.0 ? rays / px : 0.0);
+            sl_tab_cell(&t, 5, "%s", buf);
+            sl_tab_cell(&t, 6, "%.3f", px > 0.0 ? rays / px : 0.0);
             fmt_count(buf, sizeof buf, tests / cells);
-            sl_report_tab_cell(&t, 7, "%s", buf);
+            sl_tab_cell(&t, 7, "%s", buf);
             fmt_count(buf, sizeof buf, lookups / cells);
-            sl_report_tab_cell(&t, 8, "%s", buf);
+            sl_tab_cell(&t, 8, "%s", buf);
             fmt_count(buf, sizeof buf, gs / cells);
-            sl_report_tab_cell(&t, 9, "%s", buf);
+            sl_tab_cell(&t, 9, "%s", buf);
             fmt_count(buf, sizeof buf, frags / cells);
-            sl_report_tab_cell(&t, 10, "%s", buf);
+            sl_tab_cell(&t, 10, "%s", buf);
         }
     free(meth);
     free(map);
-    snprintf(t.note, sizeof t.note,
+    sl_tab_notef(&t,
              "Times: the median over the cells (scenes, viewpoints, viewports) of each cell's median over %d "
              "timed repetition(s), in brackets the lowest and highest single repetition. Counters: mean per cell "
              "(rays / pixel: over all non-background pixels). GS prims and fragments are GL query counts of the "
@@ -718,7 +718,7 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
     if (once)
         sl_report_tab_once(&t);
     enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     if (!e)
         sl_report_doc_para(doc,
                            "These times come from one CPU-only machine: OpenGL runs on llvmpipe and the rays on "
@@ -745,13 +745,13 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
         sl_report_view_id(s, vw, "soft", id, sizeof id);
         char title[200];
         sl_report_view_title(vw, title, sizeof title);
-        struct sl_report_tab t;
-        sl_report_tab_init(&t, id, 11, 2, "%s: the visible fraction of the light against the area truth%s", title,
+        struct sl_tab t;
+        sl_tab_init(&t, id, 11, 2, "%s: the visible fraction of the light against the area truth%s", title,
                            s->curtis ? " (Curtis 2009)" : "");
         static const char *const head[] = {"label", "map", "MAE", "RMSE", "bias", "within 0.05", "within 0.1",
                                            "class right", "penumbra right", "rays / pixel", "step ms"};
         for (int k = 0; k < 11; k++)
-            sl_report_tab_head(&t, k, "%s", head[k]);
+            sl_tab_head(&t, k, "%s", head[k]);
         int any = 0, once = 0;
         double stderr_mean = NAN;
         for (int l = 0; l < s->nlabels; l++)
@@ -760,38 +760,38 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
                 if (!c || !c->has_soft || c->frac)   /* frac: a hard light's, fractional.c */
                     continue;
                 const struct sl_soft_figures *f = &c->soft;
-                sl_report_tab_row(&t, m == 0);
+                sl_tab_row(&t, m == 0);
                 if (m == 0 || !any)
-                    sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+                    sl_tab_cell(&t, 0, "%s", s->labels[l]);
                 any = 1;
-                sl_report_tab_cell(&t, 1, "%d²", c->map_size);
-                sl_report_tab_cell(&t, 2, "%.2f", f->pct[SL_SFIG_soft_mae]);
-                sl_report_tab_cell(&t, 3, "%.2f", f->pct[SL_SFIG_soft_rmse]);
-                sl_report_tab_cell(&t, 4, "%+.2f", f->pct[SL_SFIG_soft_bias]);
-                sl_report_tab_cell(&t, 5, "%.2f%%", f->pct[SL_SFIG_soft_within_005]);
-                sl_report_tab_cell(&t, 6, "%.2f%%", f->pct[SL_SFIG_soft_within_010]);
-                sl_report_tab_cell(&t, 7, "%.2f%%", f->pct[SL_SFIG_soft_class_right]);
+                sl_tab_cell(&t, 1, "%d²", c->map_size);
+                sl_tab_cell(&t, 2, "%.2f", f->pct[SL_SFIG_soft_mae]);
+                sl_tab_cell(&t, 3, "%.2f", f->pct[SL_SFIG_soft_rmse]);
+                sl_tab_cell(&t, 4, "%+.2f", f->pct[SL_SFIG_soft_bias]);
+                sl_tab_cell(&t, 5, "%.2f%%", f->pct[SL_SFIG_soft_within_005]);
+                sl_tab_cell(&t, 6, "%.2f%%", f->pct[SL_SFIG_soft_within_010]);
+                sl_tab_cell(&t, 7, "%.2f%%", f->pct[SL_SFIG_soft_class_right]);
                 if (isnan(f->pct[SL_SFIG_soft_penumbra_right]))
-                    sl_report_tab_cell(&t, 8, "–");
+                    sl_tab_cell(&t, 8, "–");
                 else
-                    sl_report_tab_cell(&t, 8, "%.2f%%", f->pct[SL_SFIG_soft_penumbra_right]);
+                    sl_tab_cell(&t, 8, "%.2f%%", f->pct[SL_SFIG_soft_penumbra_right]);
                 uint64_t px = f->n[SL_SFIG_soft_pixels];
-                sl_report_tab_cell(&t, 9, "%.2f", px ? (double)c->rays / (double)px : 0.0);
+                sl_tab_cell(&t, 9, "%.2f", px ? (double)c->rays / (double)px : 0.0);
                 char buf[32];
                 sl_report_fmt_ms(buf, sizeof buf, c->ms_method);
                 int one = c->runs == 1 && strcmp(buf, "–") != 0;
-                sl_report_tab_cell(&t, 10, "%s%s", buf, one ? SL_REPORT_ONCE : "");
+                sl_tab_cell(&t, 10, "%s%s", buf, one ? SL_REPORT_ONCE : "");
                 once |= one;
                 stderr_mean = f->pct[SL_SFIG_soft_truth_stderr];
             }
-        snprintf(t.note, sizeof t.note, "Errors in %% of full visibility (MAE, RMSE; bias > 0: too light); "
+        sl_tab_notef(&t, "Errors in %% of full visibility (MAE, RMSE; bias > 0: too light); "
                  "within: share of pixels; class: lit / umbra / penumbra as the truth classes them; the "
                  "truth's own mean standard error here: %.3f.", stderr_mean);
         if (once)
             sl_report_tab_once(&t);
         if (any)
             e = sl_report_doc_table(doc, &t, d);
-        sl_report_tab_free(&t);
+        sl_tab_free(&t);
     }
     return e;
 }

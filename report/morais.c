@@ -176,12 +176,11 @@ static void thesis_value(char *buf, size_t n, const struct sl_morais_datum *t, s
         note_add(nt, t->table, t->vw, t->vh, t->map_size, t->note);
 }
 
-static void notes_append(struct sl_report_tab *t, const struct notes *nt)
+static void notes_append(struct sl_tab *t, const struct notes *nt)
 {
-    size_t l = strlen(t->note);
     if (nt->n)
-        snprintf(t->note + l, sizeof t->note - l, " * The thesis's value as printed, read so: %s%s.", nt->text,
-                 nt->dropped ? "; more in report/theses/" : "");
+        sl_tab_note_cat(t, " * The thesis's value as printed, read so: %s%s.", nt->text,
+                        nt->dropped ? "; more in report/theses/" : "");
 }
 
 /* the study's views of a case, in their order (viewports) */
@@ -225,12 +224,12 @@ static void mcol_set(struct mcol *m, const struct sl_cell_record *c, const struc
  * column before: ours (thesis 0) from the columns' counts, or the thesis's
  * Table `table` (thesis 1), set back, its notes gathered in nt. Returns
  * whether a value of ours was written. */
-static int source_row(struct sl_report_tab *t, int thesis, int col, enum sl_morais_row r, const struct mcol *c,
+static int source_row(struct sl_tab *t, int thesis, int col, enum sl_morais_row r, const struct mcol *c,
                       int n, int table, struct notes *nt)
 {
-    sl_report_tab_cell(t, col - 1, thesis ? "thesis" : "ours");
+    sl_tab_cell(t, col - 1, thesis ? "thesis" : "ours");
     if (thesis)
-        sl_report_tab_muted(t);
+        sl_tab_muted(t);
     int any = 0;
     for (int j = 0; j < n; j++) {
         char buf[64];
@@ -245,7 +244,7 @@ static int source_row(struct sl_report_tab *t, int thesis, int col, enum sl_mora
                 continue;
             thesis_value(buf, sizeof buf, th, nt);
         }
-        sl_report_tab_cell(t, col + j, "%s", buf);
+        sl_tab_cell(t, col + j, "%s", buf);
     }
     return any;
 }
@@ -256,13 +255,13 @@ static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_
 {
     char id[160];
     snprintf(id, sizeof id, "%s-table%d-%s-%s", s->slug, cases[k].truth_table, cases[k].scene, cases[k].viewpoint);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 2 + nv, 2, "%s: the truth's pixels (Morais 2015 Table %d)", cases[k].name,
+    struct sl_tab t;
+    sl_tab_init(&t, id, 2 + nv, 2, "%s: the truth's pixels (Morais 2015 Table %d)", cases[k].name,
                        cases[k].truth_table);
-    sl_report_tab_head(&t, 0, "pixel type");
-    sl_report_tab_head(&t, 1, "source");
+    sl_tab_head(&t, 0, "pixel type");
+    sl_tab_head(&t, 1, "source");
     for (int i = 0; i < nv; i++)
-        sl_report_tab_head(&t, 2 + i, "%d×%d", v[i]->vw, v[i]->vh);
+        sl_tab_head(&t, 2 + i, "%d×%d", v[i]->vw, v[i]->vh);
     struct mcol col[SL_REPORT_MAXCOLS];   /* nv <= 8 (case_views) */
     for (int i = 0; i < nv; i++)
         mcol_set(&col[i], any_cell(s, v[i]), v[i], 0);
@@ -270,16 +269,16 @@ static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_
     int any = 0;
     for (int r = SL_MR_pfl; r <= SL_MR_truth_shadow; r++)
         for (int src = 0; src < 2; src++) {
-            sl_report_tab_row(&t, src == 0);
+            sl_tab_row(&t, src == 0);
             if (src == 0)
-                sl_report_tab_cell(&t, 0, "%s", row_names[r]);
+                sl_tab_cell(&t, 0, "%s", row_names[r]);
             any |= source_row(&t, src, 2, (enum sl_morais_row)r, col, nv, cases[k].truth_table, &nt);
         }
-    snprintf(t.note, sizeof t.note, "PFL and PnFL: %% of the view's pixels (background excluded: the thesis's "
+    sl_tab_notef(&t, "PFL and PnFL: %% of the view's pixels (background excluded: the thesis's "
              "views have none); light and shadow: %% of PFL, by the truth (ours: Embree, his: OptiX Prime).");
     notes_append(&t, &nt);
     enum sl_err e = any ? sl_report_doc_table(doc, &t, d) : SL_OK;
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 
@@ -300,16 +299,16 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
     const enum sl_morais_row *rows = mm->csm ? csm : plain;
     char id[160];
     snprintf(id, sizeof id, "%s-table%d-%s-%s", s->slug, table, cases[k].scene, cases[k].viewpoint);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 3 + nmaps, 3, "%s: %s (label %s), Morais 2015 Table %d", cases[k].name, mm->name,
+    struct sl_tab t;
+    sl_tab_init(&t, id, 3 + nmaps, 3, "%s: %s (label %s), Morais 2015 Table %d", cases[k].name, mm->name,
                        s->labels[l], table);
-    sl_report_tab_group(&t, 3, "%s", "");
-    sl_report_tab_group(&t, nmaps, "shadow map size");
-    sl_report_tab_head(&t, 0, "viewport");
-    sl_report_tab_head(&t, 1, "pixel type");
-    sl_report_tab_head(&t, 2, "source");
+    sl_tab_group(&t, 3, "%s", "");
+    sl_tab_group(&t, nmaps, "shadow map size");
+    sl_tab_head(&t, 0, "viewport");
+    sl_tab_head(&t, 1, "pixel type");
+    sl_tab_head(&t, 2, "source");
     for (int m = 0; m < nmaps; m++)
-        sl_report_tab_head(&t, 3 + m, "%d²", s->maps[m]);
+        sl_tab_head(&t, 3 + m, "%d²", s->maps[m]);
     struct notes nt = {{0}, 0, 0, 0};
     int any = 0;
     for (int i = 0; i < nv; i++) {
@@ -318,15 +317,15 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
             mcol_set(&col[m], sl_report_study_cell(s, v[i], s->labels[l], s->maps[m]), v[i], s->maps[m]);
         for (int q = 0; q < 6; q++)
             for (int src = 0; src < 2; src++) {
-                sl_report_tab_row(&t, q == 0 && src == 0);
+                sl_tab_row(&t, q == 0 && src == 0);
                 if (q == 0 && src == 0)
-                    sl_report_tab_cell(&t, 0, "%d×%d", v[i]->vw, v[i]->vh);
+                    sl_tab_cell(&t, 0, "%d×%d", v[i]->vw, v[i]->vh);
                 if (src == 0)
-                    sl_report_tab_cell(&t, 1, "%s", row_names[rows[q]]);
+                    sl_tab_cell(&t, 1, "%s", row_names[rows[q]]);
                 any |= source_row(&t, src, 3, rows[q], col, nmaps, table, &nt);
             }
     }
-    snprintf(t.note, sizeof t.note, "%s", mm->csm
+    sl_tab_notef(&t, "%s", mm->csm
              ? "Pixels facing the light only (PnFL left out). Uncertain: the pixels the two maps leave undecided "
                "and a ray decides, split by its answer (the truth's), % of the final image's light or shadow "
                "(the thesis's base); correct/incorrect: % of the final light or shadow."
@@ -334,7 +333,7 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
                "the method's light or shadow.");
     notes_append(&t, &nt);
     enum sl_err e = any ? sl_report_doc_table(doc, &t, d) : SL_OK;
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 
@@ -352,45 +351,45 @@ static enum sl_err case_times(struct sl_report_doc *doc, const struct sl_report_
         return SL_OK;
     char id[160];
     snprintf(id, sizeof id, "%s-table%d-%s-%s", s->slug, table, cases[k].scene, cases[k].viewpoint);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 8, 2, "%s: %s, ms (Morais 2015 Table %d)", cases[k].name,
+    struct sl_tab t;
+    sl_tab_init(&t, id, 8, 2, "%s: %s, ms (Morais 2015 Table %d)", cases[k].name,
                        stage ? "the ray-tracing step" : "the shadow-map rendering", table);
-    sl_report_tab_group(&t, 2, "%s", "");
+    sl_tab_group(&t, 2, "%s", "");
     for (int j = 0; j < 3; j++)
-        sl_report_tab_group(&t, 2, "%s", head[stage][j]);
-    sl_report_tab_head(&t, 0, "viewport");
-    sl_report_tab_head(&t, 1, "map");
+        sl_tab_group(&t, 2, "%s", head[stage][j]);
+    sl_tab_head(&t, 0, "viewport");
+    sl_tab_head(&t, 1, "map");
     for (int j = 0; j < 3; j++) {
-        sl_report_tab_head(&t, 2 + 2 * j, "ours");
-        sl_report_tab_head(&t, 3 + 2 * j, "thesis");
+        sl_tab_head(&t, 2 + 2 * j, "ours");
+        sl_tab_head(&t, 3 + 2 * j, "thesis");
     }
     int runs = 0, once = 0;
     struct notes nt = {{0}, 0, 0, 0};
     for (int i = 0; i < nv; i++)
         for (int m = 0; m < s->nmaps; m++) {
-            sl_report_tab_row(&t, m == 0);
+            sl_tab_row(&t, m == 0);
             if (m == 0)
-                sl_report_tab_cell(&t, 0, "%d×%d", v[i]->vw, v[i]->vh);
-            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
+                sl_tab_cell(&t, 0, "%d×%d", v[i]->vw, v[i]->vh);
+            sl_tab_cell(&t, 1, "%d²", s->maps[m]);
             for (int j = 0; j < 3; j++) {
                 char buf[48];
                 const struct sl_cell_record *c = l[j] >= 0 ? sl_report_study_cell(s, v[i], s->labels[l[j]], s->maps[m])
                                                            : NULL;
                 sl_report_fmt_ms(buf, sizeof buf, c ? (stage ? c->ms_ray_step : c->ms_map_render) : 0.0);
                 int one = c && c->runs == 1 && strcmp(buf, "–") != 0;
-                sl_report_tab_cell(&t, 2 + 2 * j, "%s%s", buf, one ? SL_REPORT_ONCE : "");
+                sl_tab_cell(&t, 2 + 2 * j, "%s%s", buf, one ? SL_REPORT_ONCE : "");
                 once |= one;
                 if (c && c->runs > runs)
                     runs = c->runs;
                 const struct sl_morais_time *th = thesis_time(table, v[i]->vw, v[i]->vh, s->maps[m], meth[stage][j]);
                 if (th) {
-                    sl_report_tab_cell(&t, 3 + 2 * j, "%.2f%s", th->ms, th->note ? "*" : "");
+                    sl_tab_cell(&t, 3 + 2 * j, "%.2f%s", th->ms, th->note ? "*" : "");
                     if (th->note)
                         note_add(&nt, table, th->vw, th->vh, th->map_size, th->note);
                 }
             }
         }
-    snprintf(t.note, sizeof t.note, "ours: medians over %d timed repetition(s) per cell on this machine (llvmpipe "
+    sl_tab_notef(&t, "ours: medians over %d timed repetition(s) per cell on this machine (llvmpipe "
              "and Embree on CPU cores); thesis: his GPU and OptiX Prime. Different machines: read each column's trend, "
              "not the ratio. %s", runs,
              stage ? "Ours: the rays' time alone (ms_ray_step); the full trace (raytrace; his OptiX Prime) traces "
@@ -400,7 +399,7 @@ static enum sl_err case_times(struct sl_report_doc *doc, const struct sl_report_
     if (once)
         sl_report_tab_once(&t);
     enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 
@@ -431,29 +430,29 @@ static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report
         return SL_OK;
     char id[160];
     snprintf(id, sizeof id, "%s-hertel-%s-%s", s->slug, cases[k].scene, cases[k].viewpoint);
-    struct sl_report_tab t;
+    struct sl_tab t;
     int rt = label_of(s, "raytrace");
-    sl_report_tab_init(&t, id, 12, 2, "%s: Hertel 2009's classification, as published (hertel) and exact "
+    sl_tab_init(&t, id, 12, 2, "%s: Hertel 2009's classification, as published (hertel) and exact "
                        "(hertel_exact)", cases[k].name);
-    sl_report_tab_group(&t, 2, "%s", "");
+    sl_tab_group(&t, 2, "%s", "");
     for (int j = 0; j < 2; j++)
-        sl_report_tab_group(&t, 5, "%s", l[j] >= 0 ? s->labels[l[j]] : meth[j]);
-    sl_report_tab_head(&t, 0, "viewport");
-    sl_report_tab_head(&t, 1, "map");
+        sl_tab_group(&t, 5, "%s", l[j] >= 0 ? s->labels[l[j]] : meth[j]);
+    sl_tab_head(&t, 0, "viewport");
+    sl_tab_head(&t, 1, "map");
     for (int j = 0; j < 2; j++) {
-        sl_report_tab_head(&t, 2 + 5 * j, "traced (of PFL)");
-        sl_report_tab_head(&t, 3 + 5 * j, "wrong");
-        sl_report_tab_head(&t, 4 + 5 * j, "violations");
-        sl_report_tab_head(&t, 5 + 5 * j, "ray step ms");
-        sl_report_tab_head(&t, 6 + 5 * j, "of full trace");
+        sl_tab_head(&t, 2 + 5 * j, "traced (of PFL)");
+        sl_tab_head(&t, 3 + 5 * j, "wrong");
+        sl_tab_head(&t, 4 + 5 * j, "violations");
+        sl_tab_head(&t, 5 + 5 * j, "ray step ms");
+        sl_tab_head(&t, 6 + 5 * j, "of full trace");
     }
     int once = 0;
     for (int i = 0; i < nv; i++)
         for (int m = 0; m < s->nmaps; m++) {
-            sl_report_tab_row(&t, m == 0);
+            sl_tab_row(&t, m == 0);
             if (m == 0)
-                sl_report_tab_cell(&t, 0, "%d×%d", v[i]->vw, v[i]->vh);
-            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
+                sl_tab_cell(&t, 0, "%d×%d", v[i]->vw, v[i]->vh);
+            sl_tab_cell(&t, 1, "%d²", s->maps[m]);
             for (int j = 0; j < 2; j++) {
                 const struct sl_cell_record *c = l[j] >= 0 ? sl_report_study_cell(s, v[i], s->labels[l[j]], s->maps[m])
                                                            : NULL;
@@ -463,19 +462,19 @@ static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report
                 const uint64_t *n = c->fig.r[r].n;
                 char buf[64];
                 fmt_count(buf, sizeof buf, n[SL_FIG_traced], n[SL_FIG_pfl]);
-                sl_report_tab_cell(&t, 2 + 5 * j, "%s", buf);
+                sl_tab_cell(&t, 2 + 5 * j, "%s", buf);
                 fmt_count(buf, sizeof buf, n[SL_FIG_wrong], n[SL_FIG_pfl]);
-                sl_report_tab_cell(&t, 3 + 5 * j, "%s", buf);
-                sl_report_tab_cell(&t, 4 + 5 * j, "%llu", (unsigned long long)c->violations);
+                sl_tab_cell(&t, 3 + 5 * j, "%s", buf);
+                sl_tab_cell(&t, 4 + 5 * j, "%llu", (unsigned long long)c->violations);
                 sl_report_fmt_ms(buf, sizeof buf, c->ms_ray_step);
                 int one = c->runs == 1 && strcmp(buf, "–") != 0;
-                sl_report_tab_cell(&t, 5 + 5 * j, "%s%s", buf, one ? SL_REPORT_ONCE : "");
+                sl_tab_cell(&t, 5 + 5 * j, "%s%s", buf, one ? SL_REPORT_ONCE : "");
                 once |= one;
                 /* the same machine's full trace of the view: a ratio that carries (his RT insec / RT class) */
                 const struct sl_cell_record *full = rt >= 0 ? sl_report_study_cell(s, v[i], s->labels[rt], s->maps[m])
                                                             : NULL;
                 if (full && full->ms_ray_step > 0.0 && c->ms_ray_step > 0.0)
-                    sl_report_tab_cell(&t, 6 + 5 * j, "%.0f%%", 100.0 * c->ms_ray_step / full->ms_ray_step);
+                    sl_tab_cell(&t, 6 + 5 * j, "%.0f%%", 100.0 * c->ms_ray_step / full->ms_ray_step);
             }
         }
     double lo = 100.0, hi = 0.0, tlo = 100.0, thi = 0.0;
@@ -487,7 +486,7 @@ static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report
         tlo = time < tlo ? time : tlo;
         thi = time > thi ? time : thi;
     }
-    snprintf(t.note, sizeof t.note, "traced: pixels decided by a shadow ray, %% of PFL (Hertel's \"uncertain\" "
+    sl_tab_notef(&t, "traced: pixels decided by a shadow ray, %% of PFL (Hertel's \"uncertain\" "
              "view samples); wrong: %% of PFL; violations: pixels breaking the method's exactness guarantee "
              "(hertel promises none, so its errors show as wrong pixels); of full trace: the ray step against "
              "the raytrace label's on the same view and machine (noisy: one median of a few repetitions each). "
@@ -496,7 +495,7 @@ static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report
     if (once)
         sl_report_tab_once(&t);
     enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 
@@ -504,30 +503,30 @@ static enum sl_err hertel_thesis(struct sl_report_doc *doc, const struct sl_repo
 {
     char id[160];
     snprintf(id, sizeof id, "%s-hertel-table2", s->slug);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 8, 1, "Hertel 2009 Table 2: his scenes, ms on his GPU and the rays traced");
+    struct sl_tab t;
+    sl_tab_init(&t, id, 8, 1, "Hertel 2009 Table 2: his scenes, ms on his GPU and the rays traced");
     static const char *const head[] = {"scene (triangles)", "RT class ms", "RT insec ms", "RT opt ms",
                                        "RT insec / class", "# rays", "# insec. rays", "rays / insec. rays"};
     for (int k = 0; k < 8; k++)
-        sl_report_tab_head(&t, k, "%s", head[k]);
+        sl_tab_head(&t, k, "%s", head[k]);
     for (size_t i = 0; i < sizeof hertel_table2 / sizeof hertel_table2[0]; i++) {
-        sl_report_tab_row(&t, 0);
-        sl_report_tab_cell(&t, 0, "%s (%d)", hertel_table2[i].scene, hertel_table2[i].tris);
-        sl_report_tab_cell(&t, 1, "%.0f", hertel_table2[i].rt_class);
-        sl_report_tab_cell(&t, 2, "%.0f", hertel_table2[i].rt_insec);
-        sl_report_tab_cell(&t, 3, "%.0f", hertel_table2[i].rt_opt);
-        sl_report_tab_cell(&t, 4, "%.0f%%", 100.0 * hertel_table2[i].rt_insec / hertel_table2[i].rt_class);
-        sl_report_tab_cell(&t, 5, "%ld", hertel_table2[i].rays);
-        sl_report_tab_cell(&t, 6, "%ld", hertel_table2[i].insec);
-        sl_report_tab_cell(&t, 7, "%.1f%%", 100.0 * (double)hertel_table2[i].rays / (double)hertel_table2[i].insec);
+        sl_tab_row(&t, 0);
+        sl_tab_cell(&t, 0, "%s (%d)", hertel_table2[i].scene, hertel_table2[i].tris);
+        sl_tab_cell(&t, 1, "%.0f", hertel_table2[i].rt_class);
+        sl_tab_cell(&t, 2, "%.0f", hertel_table2[i].rt_insec);
+        sl_tab_cell(&t, 3, "%.0f", hertel_table2[i].rt_opt);
+        sl_tab_cell(&t, 4, "%.0f%%", 100.0 * hertel_table2[i].rt_insec / hertel_table2[i].rt_class);
+        sl_tab_cell(&t, 5, "%ld", hertel_table2[i].rays);
+        sl_tab_cell(&t, 6, "%ld", hertel_table2[i].insec);
+        sl_tab_cell(&t, 7, "%.1f%%", 100.0 * (double)hertel_table2[i].rays / (double)hertel_table2[i].insec);
     }
-    snprintf(t.note, sizeof t.note, "As printed (1280×1024, a 1K² map; RT class: every ray, insec: the uncertain "
+    sl_tab_notef(&t, "As printed (1280×1024, a 1K² map; RT class: every ray, insec: the uncertain "
              "only, opt: with the ray cut at the stored depth). The caption calls the last two columns the rays "
              "without and with the classification, but \"# rays\" is the smaller in every row; the last column "
              "reads it as the traced share. Compare with \"traced (of PFL)\" above: a share of view samples, on "
              "other scenes.");
     enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 
@@ -543,15 +542,15 @@ static enum sl_err other_view(struct sl_report_doc *doc, const struct sl_report_
     char vt[160], id[160], buf[64];
     sl_report_view_title(v, vt, sizeof vt);
     sl_report_view_id(s, v, "morais", id, sizeof id);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 2 + nmaps, 2, "%s: pixels per method and map size (as in Morais 2015 Tables 7-24; not "
+    struct sl_tab t;
+    sl_tab_init(&t, id, 2 + nmaps, 2, "%s: pixels per method and map size (as in Morais 2015 Tables 7-24; not "
                        "one of his cases)", vt);
-    sl_report_tab_group(&t, 2, "%s", "");
-    sl_report_tab_group(&t, nmaps, "shadow map size");
-    sl_report_tab_head(&t, 0, "method");
-    sl_report_tab_head(&t, 1, "pixel type");
+    sl_tab_group(&t, 2, "%s", "");
+    sl_tab_group(&t, nmaps, "shadow map size");
+    sl_tab_head(&t, 0, "method");
+    sl_tab_head(&t, 1, "pixel type");
     for (int k = 0; k < nmaps; k++)
-        sl_report_tab_head(&t, 2 + k, "%d²", s->maps[k]);
+        sl_tab_head(&t, 2 + k, "%d²", s->maps[k]);
     int any = 0;
     for (int l = 0; l < s->nlabels; l++) {
         if (!sl_report_is_morais(s, l))
@@ -572,25 +571,25 @@ static enum sl_err other_view(struct sl_report_doc *doc, const struct sl_report_
         for (size_t q = 0; q < sizeof rows / sizeof rows[0]; q++) {
             if (!traced && (rows[q] == SL_MR_light_uncertain || rows[q] == SL_MR_shadow_uncertain))
                 continue;
-            sl_report_tab_row(&t, first);
+            sl_tab_row(&t, first);
             if (first)
-                sl_report_tab_cell(&t, 0, "%s", s->labels[l]);
+                sl_tab_cell(&t, 0, "%s", s->labels[l]);
             first = 0;
-            sl_report_tab_cell(&t, 1, "%s", row_names[rows[q]]);
+            sl_tab_cell(&t, 1, "%s", row_names[rows[q]]);
             for (int k = 0; k < nmaps; k++) {
                 if (mc[k].base[SL_MR_pfl] == UINT64_MAX)
                     continue;
                 fmt_count(buf, sizeof buf, mc[k].n[rows[q]], mc[k].base[rows[q]]);
-                sl_report_tab_cell(&t, 2 + k, "%s", buf);
+                sl_tab_cell(&t, 2 + k, "%s", buf);
             }
         }
         any = 1;
     }
-    snprintf(t.note, sizeof t.note, "Pixels facing the light only (PnFL left out), as Morais counts them: light "
+    sl_tab_notef(&t, "Pixels facing the light only (PnFL left out), as Morais counts them: light "
              "and shadow %% of PFL, correct/incorrect %% of the method's light or shadow, uncertain (traced) %% "
              "of the final light or shadow.");
     enum sl_err e = any ? sl_report_doc_table(doc, &t, d) : SL_OK;
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 
@@ -606,43 +605,43 @@ static enum sl_err other_times(struct sl_report_doc *doc, const struct sl_report
         return SL_OK;
     char id[160];
     snprintf(id, sizeof id, "%s-%s-%s-%s", s->slug, stage ? "raystep" : "maprender", scene, viewpoint);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 2 + ncols, 2, "%s / %s: %s, ms (as in Morais 2015 Tables 25-30)", scene, viewpoint,
+    struct sl_tab t;
+    sl_tab_init(&t, id, 2 + ncols, 2, "%s / %s: %s, ms (as in Morais 2015 Tables 25-30)", scene, viewpoint,
                        stage ? "the ray-tracing step" : "shadow-map rendering of the layers the method reads");
-    sl_report_tab_group(&t, 2, "%s", "");
-    sl_report_tab_group(&t, ncols, "execution time (ms, median)");
-    sl_report_tab_head(&t, 0, "viewport");
-    sl_report_tab_head(&t, 1, "map");
+    sl_tab_group(&t, 2, "%s", "");
+    sl_tab_group(&t, ncols, "execution time (ms, median)");
+    sl_tab_head(&t, 0, "viewport");
+    sl_tab_head(&t, 1, "map");
     for (int k = 0; k < ncols; k++)
-        sl_report_tab_head(&t, 2 + k, "%s", s->labels[cols[k]]);
+        sl_tab_head(&t, 2 + k, "%s", s->labels[cols[k]]);
     int runs = 0, once = 0;
     for (int v = 0; v < s->nviews; v++) {
         const struct sl_report_view *vw = &s->views[v];
         if (strcmp(vw->scene, scene) || strcmp(vw->viewpoint, viewpoint))
             continue;
         for (int m = 0; m < s->nmaps; m++) {
-            sl_report_tab_row(&t, m == 0);
+            sl_tab_row(&t, m == 0);
             if (m == 0)
-                sl_report_tab_cell(&t, 0, "%d×%d", vw->vw, vw->vh);
-            sl_report_tab_cell(&t, 1, "%d²", s->maps[m]);
+                sl_tab_cell(&t, 0, "%d×%d", vw->vw, vw->vh);
+            sl_tab_cell(&t, 1, "%d²", s->maps[m]);
             for (int k = 0; k < ncols; k++) {
                 const struct sl_cell_record *c = sl_report_study_cell(s, vw, s->labels[cols[k]], s->maps[m]);
                 char buf[32];
                 sl_report_fmt_ms(buf, sizeof buf, c ? (stage ? c->ms_ray_step : c->ms_map_render) : 0.0);
                 int one = c && c->runs == 1 && strcmp(buf, "–") != 0;
-                sl_report_tab_cell(&t, 2 + k, "%s%s", buf, one ? SL_REPORT_ONCE : "");
+                sl_tab_cell(&t, 2 + k, "%s%s", buf, one ? SL_REPORT_ONCE : "");
                 once |= one;
                 if (c && c->runs > runs)
                     runs = c->runs;
             }
         }
     }
-    snprintf(t.note, sizeof t.note, "Medians over %d timed repetition(s) per cell on this machine (CPU: llvmpipe "
+    sl_tab_notef(&t, "Medians over %d timed repetition(s) per cell on this machine (CPU: llvmpipe "
              "and Embree); – where the method has no such stage or no time was stored.", runs);
     if (once)
         sl_report_tab_once(&t);
     enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     return e;
 }
 

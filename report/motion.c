@@ -24,16 +24,16 @@ static enum sl_err group(struct sl_report_doc *doc, const struct sl_report_study
     const struct sl_motion_row *r0 = &rows[0];
     char id[200], slug[160], raw[160];
     snprintf(raw, sizeof raw, "%s-%s-%dx%d-%d", r0->scene, r0->path, r0->vw, r0->vh, r0->map_size);
-    sl_report_slug(raw, slug, sizeof slug);
+    sl_tab_slug(raw, slug, sizeof slug);
     snprintf(id, sizeof id, "%s-motion-%s", s->slug, slug);
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, id, 8, 1, "%s / %s, path %s, %dx%d, map %d²: errors over motion", s->name, r0->scene,
+    struct sl_tab t;
+    sl_tab_init(&t, id, 8, 1, "%s / %s, path %s, %dx%d, map %d²: errors over motion", s->name, r0->scene,
                        r0->path, r0->vw, r0->vh, r0->map_size);
     static const char *const head[8] = {"label", "frames", "mean wrong", "worst wrong (frame)", "flicker",
                                         "mean per pair", "worst flicker (frame)", "per 1,000 contour px"};
     for (int c = 0; c < 8; c++)
-        sl_report_tab_head(&t, c, "%s", head[c]);
-    snprintf(t.note, sizeof t.note, "Wrong: the whole image's wrong pixels per frame. Flicker: pixels whose "
+        sl_tab_head(&t, c, "%s", head[c]);
+    sl_tab_notef(&t, "Wrong: the whole image's wrong pixels per frame. Flicker: pixels whose "
              "verdict changes from one frame to the next while their truth does not, compared by surface point "
              "(reprojected through the G-buffer onto the same triangle; pixel for pixel when the camera holds "
              "still); %d pairs of frames compared of %d frames. Per 1,000 contour px: of the thinnest contour of "
@@ -42,28 +42,28 @@ static enum sl_err group(struct sl_report_doc *doc, const struct sl_report_study
     int nl = 0;
     for (int i = 0; i < n; i++) {
         const struct sl_motion_row *r = &rows[i];
-        sl_report_tab_row(&t, 0);
-        sl_report_tab_cell(&t, 0, "%s", r->label);
-        sl_report_tab_cell(&t, 1, "%d", r->frames);
-        sl_report_tab_cell(&t, 2, "%.1f", r->mean_wrong);
-        sl_report_tab_cell(&t, 3, "%llu (%d)", (unsigned long long)r->worst_wrong, r->worst_frame);
-        sl_report_tab_cell(&t, 4, "%llu", (unsigned long long)r->flicker);
+        sl_tab_row(&t, 0);
+        sl_tab_cell(&t, 0, "%s", r->label);
+        sl_tab_cell(&t, 1, "%d", r->frames);
+        sl_tab_cell(&t, 2, "%.1f", r->mean_wrong);
+        sl_tab_cell(&t, 3, "%llu (%d)", (unsigned long long)r->worst_wrong, r->worst_frame);
+        sl_tab_cell(&t, 4, "%llu", (unsigned long long)r->flicker);
         if (r->pairs) {
-            sl_report_tab_cell(&t, 5, "%.1f", r->mean_flicker);
-            sl_report_tab_cell(&t, 6, "%llu (%d)", (unsigned long long)r->worst_flicker, r->worst_flicker_frame);
+            sl_tab_cell(&t, 5, "%.1f", r->mean_flicker);
+            sl_tab_cell(&t, 6, "%llu (%d)", (unsigned long long)r->worst_flicker, r->worst_flicker_frame);
         } else {
-            sl_report_tab_cell(&t, 5, "n/a");
-            sl_report_tab_cell(&t, 6, "n/a");
+            sl_tab_cell(&t, 5, "n/a");
+            sl_tab_cell(&t, 6, "n/a");
         }
         if (isnan(r->per_1000))
-            sl_report_tab_cell(&t, 7, "n/a");
+            sl_tab_cell(&t, 7, "n/a");
         else
-            sl_report_tab_cell(&t, 7, "%.2f", r->per_1000);
+            sl_tab_cell(&t, 7, "%.2f", r->per_1000);
         if (nl < 32)
             snprintf(labels[nl++], sizeof labels[0], "%s", r->label);
     }
     enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     if (e)
         return e;
     /* the plot: wrong pixels per frame and flicker, one panel each */

@@ -17,8 +17,8 @@
 #include "report_int.h"
 #include "table.h"
 
-#define html_text sl_report_html_text
-#define md_text sl_report_md_text
+#define html_text sl_emit_html_text
+#define md_text sl_emit_md_text
 #define SL_REPORT_PAGE 2   /* keep value of the pages: moved after every other file */
 
 /* the distinct values of one key of the thumbnails, in order of first appearance */

@@ -457,16 +457,16 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
         if ((e = open_script(&m, &body, &blen, &dm, &data, &dlen, scene, d)))
             return e;
         char id[160], slug[64];
-        sl_report_slug(scene, slug, sizeof slug);
+        sl_tab_slug(scene, slug, sizeof slug);
         snprintf(id, sizeof id, "%s-chain-%s", s->slug, slug);
-        struct sl_report_tab t;
-        sl_report_tab_init(&t, id, 3 + ST_N, 3, "%s / %s: pixels decided by each step of the chain, %% of PFL",
+        struct sl_tab t;
+        sl_tab_init(&t, id, 3 + ST_N, 3, "%s / %s: pixels decided by each step of the chain, %% of PFL",
                            s->name, scene);
-        sl_report_tab_head(&t, 0, "method");
-        sl_report_tab_head(&t, 1, "map");
-        sl_report_tab_head(&t, 2, "region (PFL)");
+        sl_tab_head(&t, 0, "method");
+        sl_tab_head(&t, 1, "map");
+        sl_tab_head(&t, 2, "region (PFL)");
         for (int k = 0; k < ST_N; k++)
-            sl_report_tab_head(&t, 3 + k, "%s", steps[k].name);
+            sl_tab_head(&t, 3 + k, "%s", steps[k].name);
         fprintf(dm, "# %s / %s: %% of PFL per step:", s->name, scene);
         for (int k = 0; k < ST_N; k++)
             fprintf(dm, " %s;", steps[k].name);
@@ -486,12 +486,12 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
                     for (int j = 0; j < ST_N; j++)
                         fprintf(dm, " %.4f", share[j]);
                     fputc('\n', dm);
-                    sl_report_tab_row(&t, r == 0);
-                    sl_report_tab_cell(&t, 0, "%s", s->labels[chains[q]]);
-                    sl_report_tab_cell(&t, 1, "%d²", s->maps[k]);
-                    sl_report_tab_cell(&t, 2, "%s (%llu)", rn, (unsigned long long)pfl);
+                    sl_tab_row(&t, r == 0);
+                    sl_tab_cell(&t, 0, "%s", s->labels[chains[q]]);
+                    sl_tab_cell(&t, 1, "%d²", s->maps[k]);
+                    sl_tab_cell(&t, 2, "%s (%llu)", rn, (unsigned long long)pfl);
                     for (int j = 0; j < ST_N; j++)
-                        sl_report_tab_cell(&t, 3 + j, "%.2f", share[j]);
+                        sl_tab_cell(&t, 3 + j, "%.2f", share[j]);
                     bars++;
                 }
         fputs("set style data histograms\nset style histogram rowstacked\n"
@@ -515,7 +515,7 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
         if (bad || !body || !data) {
             free(body);
             free(data);
-            sl_report_tab_free(&t);
+            sl_tab_free(&t);
             return sl_fail(d, SL_E_NOMEM, NULL, 0, scene, "plot script");
         }
         if (bars > 0) {
@@ -528,7 +528,7 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
         }
         free(body);
         free(data);
-        sl_report_tab_free(&t);
+        sl_tab_free(&t);
     }
     return e;
 }
@@ -817,50 +817,50 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
     if (!e) {
         char id[160];
         snprintf(id, sizeof id, "%s-accuracy", s->slug);
-        struct sl_report_tab t;
-        sl_report_tab_init(&t, id, 12, 2, "%s: wrong and undecided pixels against cost, with the Pareto fronts",
+        struct sl_tab t;
+        sl_tab_init(&t, id, 12, 2, "%s: wrong and undecided pixels against cost, with the Pareto fronts",
                            s->name);
         static const char *const heads[] = {"method", "map", "cells", "wrong %", "undecided %", "layers ms",
                                             "step ms", "layers + step ms", "min–max ms", "rays / pixel", "front (time)",
                                             "front (rays)"};
         for (int k = 0; k < 12; k++)
-            sl_report_tab_head(&t, k, "%s", heads[k]);
+            sl_tab_head(&t, k, "%s", heads[k]);
         int once = 0;
         for (int k = 0; k < np; k++) {
-            sl_report_tab_row(&t, k == 0 || strcmp(p[k].label, p[k - 1].label) != 0);
-            sl_report_tab_cell(&t, 0, "%s", p[k].label);
-            sl_report_tab_cell(&t, 1, "%d²", p[k].map_size);
-            sl_report_tab_cell(&t, 2, "%d", p[k].ncells);
+            sl_tab_row(&t, k == 0 || strcmp(p[k].label, p[k - 1].label) != 0);
+            sl_tab_cell(&t, 0, "%s", p[k].label);
+            sl_tab_cell(&t, 1, "%d²", p[k].map_size);
+            sl_tab_cell(&t, 2, "%d", p[k].ncells);
             if (isnan(p[k].wrong_pct)) {   /* a soft method: no hard verdicts (the soft table has its errors) */
-                sl_report_tab_cell(&t, 3, "–");
-                sl_report_tab_cell(&t, 4, "–");
+                sl_tab_cell(&t, 3, "–");
+                sl_tab_cell(&t, 4, "–");
             } else {
-                sl_report_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
-                sl_report_tab_cell(&t, 4, "%.4f", p[k].uncertain_pct);
+                sl_tab_cell(&t, 3, "%.4f", p[k].wrong_pct);
+                sl_tab_cell(&t, 4, "%.4f", p[k].uncertain_pct);
             }
             const char *one = p[k].reps == 1 ? SL_REPORT_ONCE : "";
             once |= p[k].reps == 1;
-            sl_report_tab_cell(&t, 5, "%.3f%s", p[k].ms_layers, one);
-            sl_report_tab_cell(&t, 6, "%.3f%s", p[k].ms_step, one);
-            sl_report_tab_cell(&t, 7, "%.3f%s", p[k].ms, one);
+            sl_tab_cell(&t, 5, "%.3f%s", p[k].ms_layers, one);
+            sl_tab_cell(&t, 6, "%.3f%s", p[k].ms_step, one);
+            sl_tab_cell(&t, 7, "%.3f%s", p[k].ms, one);
             if (p[k].reps > 1)
-                sl_report_tab_cell(&t, 8, "%.3f–%.3f (%d runs)", p[k].ms_min, p[k].ms_max, p[k].reps);
+                sl_tab_cell(&t, 8, "%.3f–%.3f (%d runs)", p[k].ms_min, p[k].ms_max, p[k].reps);
             else
-                sl_report_tab_cell(&t, 8, "1 run");
+                sl_tab_cell(&t, 8, "1 run");
             if (isnan(p[k].rays_per_px))
-                sl_report_tab_cell(&t, 9, "–");
+                sl_tab_cell(&t, 9, "–");
             else
-                sl_report_tab_cell(&t, 9, "%.4f", p[k].rays_per_px);
-            sl_report_tab_cell(&t, 10, "%s", p[k].front_ms ? "yes" : "");
-            sl_report_tab_cell(&t, 11, "%s", p[k].front_rays ? "yes" : "");
+                sl_tab_cell(&t, 9, "%.4f", p[k].rays_per_px);
+            sl_tab_cell(&t, 10, "%s", p[k].front_ms ? "yes" : "");
+            sl_tab_cell(&t, 11, "%s", p[k].front_rays ? "yes" : "");
         }
-        snprintf(t.note, sizeof t.note, "Means over the cells: layers ms (the shadow-map render of the layers "
+        sl_tab_notef(&t, "Means over the cells: layers ms (the shadow-map render of the layers "
                  "the method reads), step ms (its per-pixel step, ray step included) and their sum, each cell's "
                  "the median over its timed repetitions.");
         if (once)
             sl_report_tab_once(&t);
         e = sl_report_doc_table(doc, &t, d);
-        sl_report_tab_free(&t);
+        sl_tab_free(&t);
     }
     free(p);
     return e;

@@ -103,9 +103,9 @@ static enum sl_err copy_file(const char *from, const char *to, int *missing, cha
 static void overlay_id(const struct sl_report_study *s, const struct sl_cell_record *c, char *buf, size_t n)
 {
     char sc[64], vp[32], lb[48];
-    sl_report_slug(c->scene, sc, sizeof sc);
-    sl_report_slug(c->viewpoint, vp, sizeof vp);
-    sl_report_slug(c->label, lb, sizeof lb);
+    sl_tab_slug(c->scene, sc, sizeof sc);
+    sl_tab_slug(c->viewpoint, vp, sizeof vp);
+    sl_tab_slug(c->label, lb, sizeof lb);
     snprintf(buf, n, "ov-%s-%s-%s-%dx%d-%d-%s", s->slug, sc, vp, c->vw, c->vh, c->map_size, lb);
 }
 
@@ -150,9 +150,9 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
             snprintf(src, sizeof src, "%s", c->overlay);
         else
             snprintf(src, sizeof src, "%s/%s", source_dir, c->overlay);
-        sl_report_slug(c->scene, sc, sizeof sc);
-        sl_report_slug(c->viewpoint, vp, sizeof vp);
-        sl_report_slug(c->label, lb, sizeof lb);
+        sl_tab_slug(c->scene, sc, sizeof sc);
+        sl_tab_slug(c->viewpoint, vp, sizeof vp);
+        sl_tab_slug(c->label, lb, sizeof lb);
         snprintf(v[0], sizeof v[0], "overlays/%s/%s-%s-%dx%d-%d-%s.png", s->slug, sc, vp, c->vw, c->vh,
                  c->map_size, lb);
         snprintf(v[1], sizeof v[1], c->light[0] ? "%s (%s) / %s / %d×%d / %d² / %s" : "%s%s / %s / %d×%d / %d² / %s",
@@ -215,7 +215,7 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
     enum sl_err e = SL_OK;
     for (int sc = 0; sc < s->nscenes && !e; sc++) {
         char anchor[160], slug[64];
-        sl_report_slug(s->scenes[sc], slug, sizeof slug);
+        sl_tab_slug(s->scenes[sc], slug, sizeof slug);
         snprintf(anchor, sizeof anchor, "%s-scene-%s", s->slug, slug);
         /* the light in words after the scene's name, in every heading: its first view's */
         const char *light = "";
@@ -231,7 +231,7 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
             if (strcmp(w->scene, s->scenes[sc]))
                 continue;
             char vs[32], id[200];
-            sl_report_slug(w->viewpoint, vs, sizeof vs);
+            sl_tab_slug(w->viewpoint, vs, sizeof vs);
             snprintf(anchor, sizeof anchor, "%s-view-%s-%s-%dx%d", s->slug, slug, vs, w->vw, w->vh);
             sl_report_doc_section_begin(doc, 5, anchor, "%s / %s%s / %s / %d×%d", s->name, w->scene, lw,
                                         w->viewpoint, w->vw, w->vh);
@@ -243,8 +243,8 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
                                    100.0 * (double)w->n_outside_cone / (double)w->n_image);
             }
             snprintf(id, sizeof id, "%s-view-%s-%s-%dx%d", s->slug, slug, vs, w->vw, w->vh);
-            struct sl_report_tab t;
-            sl_report_tab_init(&t, id, 8, 2, "%s / %s%s / %s / %d×%d: whole image, %% of its non-background pixels",
+            struct sl_tab t;
+            sl_tab_init(&t, id, 8, 2, "%s / %s%s / %s / %d×%d: whole image, %% of its non-background pixels",
                                s->name, w->scene, lw, w->viewpoint, w->vw, w->vh);
             static const char *const heads[] = {"method", "map", "wrong %", "wrongly lit %", "wrongly shadowed %",
                                                 "uncertain %", "traced %", "layers + step ms"};
@@ -252,7 +252,7 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
             char rels[2 * SL_REPORT_MAXKEYS][200], texts[2 * SL_REPORT_MAXKEYS][80];
             int nl = 0, once = 0;
             for (int k = 0; k < 8; k++)
-                sl_report_tab_head(&t, k, "%s", heads[k]);
+                sl_tab_head(&t, k, "%s", heads[k]);
             for (int l = 0; l < s->nlabels; l++)
                 for (int m = 0; m < s->nmaps; m++) {
                     const struct sl_cell_record *c = sl_report_study_cell(s, w, s->labels[l], s->maps[m]);
@@ -261,20 +261,20 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
                         continue;
                     const uint64_t *n = c->fig.r[r].n;
                     double px = n[SL_FIG_pixels] ? (double)n[SL_FIG_pixels] : NAN;
-                    sl_report_tab_row(&t, m == 0);
-                    sl_report_tab_cell(&t, 0, "%s", c->label);
-                    sl_report_tab_cell(&t, 1, "%d²", c->map_size);
-                    sl_report_tab_cell(&t, 2, "%.3f", 100.0 * (double)n[SL_FIG_wrong] / px);
-                    sl_report_tab_cell(&t, 3, "%.3f", 100.0 * (double)n[SL_FIG_light_incorrect] / px);
-                    sl_report_tab_cell(&t, 4, "%.3f", 100.0 * (double)n[SL_FIG_shadow_incorrect] / px);
-                    sl_report_tab_cell(&t, 5, "%.3f", 100.0 * (double)n[SL_FIG_uncertain] / px);
-                    sl_report_tab_cell(&t, 6, "%.3f", 100.0 * (double)n[SL_FIG_traced] / px);
-                    sl_report_tab_cell(&t, 7, "%.3f%s", c->ms_map_render + c->ms_method,
+                    sl_tab_row(&t, m == 0);
+                    sl_tab_cell(&t, 0, "%s", c->label);
+                    sl_tab_cell(&t, 1, "%d²", c->map_size);
+                    sl_tab_cell(&t, 2, "%.3f", 100.0 * (double)n[SL_FIG_wrong] / px);
+                    sl_tab_cell(&t, 3, "%.3f", 100.0 * (double)n[SL_FIG_light_incorrect] / px);
+                    sl_tab_cell(&t, 4, "%.3f", 100.0 * (double)n[SL_FIG_shadow_incorrect] / px);
+                    sl_tab_cell(&t, 5, "%.3f", 100.0 * (double)n[SL_FIG_uncertain] / px);
+                    sl_tab_cell(&t, 6, "%.3f", 100.0 * (double)n[SL_FIG_traced] / px);
+                    sl_tab_cell(&t, 7, "%.3f%s", c->ms_map_render + c->ms_method,
                                        c->runs == 1 ? SL_REPORT_ONCE : "");
                     once |= c->runs == 1;
                     char ov[200], file[300], sc2[64], lb[48];
-                    sl_report_slug(c->label, lb, sizeof lb);
-                    sl_report_slug(c->scene, sc2, sizeof sc2);
+                    sl_tab_slug(c->label, lb, sizeof lb);
+                    sl_tab_slug(c->scene, sc2, sizeof sc2);
                     snprintf(file, sizeof file, "overlays/%s/%s-%s-%dx%d-%d-%s.png", s->slug, sc2, vs, c->vw,
                              c->vh, c->map_size, lb);
                     /* only overlays the gallery holds: a link never points at nothing */
@@ -288,12 +288,12 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
                     }
                 }
             /* layers + step ms: the same sum as the accuracy table's, so one name */
-            snprintf(t.note, sizeof t.note, "layers + step ms: the shadow-map render of the layers the method "
+            sl_tab_notef(&t, "layers + step ms: the shadow-map render of the layers the method "
                      "reads plus its per-pixel step, medians over the timed repetitions.");
             if (once)
                 sl_report_tab_once(&t);
             e = sl_report_doc_table(doc, &t, d);
-            sl_report_tab_free(&t);
+            sl_tab_free(&t);
             if (!e && nl)
                 sl_report_doc_links(doc, "Overlays:", rel, text, nl);
             sl_report_doc_section_end(doc);
@@ -489,32 +489,32 @@ static enum sl_err section_provenance(struct sl_report_doc *doc, const struct sl
         sl_report_doc_para(doc, "The store lists no runs.");
         return SL_OK;
     }
-    struct sl_report_tab t;
-    sl_report_tab_init(&t, "provenance-runs", 12, 12, "Runs in the results store");
+    struct sl_tab t;
+    sl_tab_init(&t, "provenance-runs", 12, 12, "Runs in the results store");
     t.wrap = 1;
     static const char *const heads[] = {"run", "study", "time (UTC)", "git SHA", "config", "config hash", "host",
                                         "CPU", "ISA", "GL renderer", "Embree", "threads"};
     for (int k = 0; k < 12; k++)
-        sl_report_tab_head(&t, k, "%s", heads[k]);
+        sl_tab_head(&t, k, "%s", heads[k]);
     for (int i = 0; i < in->nruns; i++) {
         const struct sl_store_run *r = &in->runs[i];
-        sl_report_tab_row(&t, 0);
-        sl_report_tab_cell(&t, 0, "%lld (%d cells)", (long long)r->run_id, r->ncells);
-        sl_report_tab_cell(&t, 1, "%s", r->study);
-        sl_report_tab_cell(&t, 2, "%s", r->prov.time_utc);
-        sl_report_tab_cell(&t, 3, "%s", r->prov.git_sha);
-        sl_report_tab_cell(&t, 4, "%s", r->config_path);
-        sl_report_tab_cell(&t, 5, "%s", r->config_hash);
-        sl_report_tab_cell(&t, 6, "%s", r->prov.host);
-        sl_report_tab_cell(&t, 7, "%s", r->prov.cpu);
-        sl_report_tab_cell(&t, 8, "%s", r->prov.isa);
-        sl_report_tab_cell(&t, 9, "%s (%s)", r->prov.gl_renderer, r->prov.gl_version);
-        sl_report_tab_cell(&t, 10, "%s", r->prov.embree);
-        sl_report_tab_cell(&t, 11, "%d (LP_NUM_THREADS %s)", r->prov.threads,
+        sl_tab_row(&t, 0);
+        sl_tab_cell(&t, 0, "%lld (%d cells)", (long long)r->run_id, r->ncells);
+        sl_tab_cell(&t, 1, "%s", r->study);
+        sl_tab_cell(&t, 2, "%s", r->prov.time_utc);
+        sl_tab_cell(&t, 3, "%s", r->prov.git_sha);
+        sl_tab_cell(&t, 4, "%s", r->config_path);
+        sl_tab_cell(&t, 5, "%s", r->config_hash);
+        sl_tab_cell(&t, 6, "%s", r->prov.host);
+        sl_tab_cell(&t, 7, "%s", r->prov.cpu);
+        sl_tab_cell(&t, 8, "%s", r->prov.isa);
+        sl_tab_cell(&t, 9, "%s (%s)", r->prov.gl_renderer, r->prov.gl_version);
+        sl_tab_cell(&t, 10, "%s", r->prov.embree);
+        sl_tab_cell(&t, 11, "%d (LP_NUM_THREADS %s)", r->prov.threads,
                            r->prov.lp_threads[0] ? r->prov.lp_threads : "unset");
     }
     enum sl_err e = sl_report_doc_table(doc, &t, d);
-    sl_report_tab_free(&t);
+    sl_tab_free(&t);
     for (int i = 0; i < in->nruns && !e; i++) {
         const struct sl_store_run *r = &in->runs[i];
         char summary[800];
@@ -613,7 +613,7 @@ enum sl_err sl_report_build_with(const struct sl_report_input *in, const char *o
             continue;
         struct sl_report_study *s = &studies[nstudies++];
         snprintf(s->name, sizeof s->name, "%s", in->cells[i].study[0] ? in->cells[i].study : "(unnamed)");
-        sl_report_slug(in->cells[i].study[0] ? in->cells[i].study : "unnamed", s->slug, sizeof s->slug);
+        sl_tab_slug(in->cells[i].study[0] ? in->cells[i].study : "unnamed", s->slug, sizeof s->slug);
         s->cells = cells + pos;
         for (int j = i; j < in->ncells; j++)
             if (strcmp(in->cells[j].study, in->cells[i].study) == 0)

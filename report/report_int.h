@@ -1,8 +1,9 @@
 /*
  * report_int.h — the report's parts, shared by the files of report/ only:
  *   out    the staging folder and the list of files to move into place
- *   tab    a table as a grid of strings, rendered three ways (HTML,
- *          Markdown, booktabs LaTeX) so the three can never disagree
+ *   tab    the tables: the one table model (results/tabmodel.h), written by
+ *          the emitters (emit.h) in HTML, Markdown and LaTeX, so the three
+ *          can never disagree
  *   doc    the two pages written in step (HTML and Markdown)
  *   study  one config's cells and the keys they span
  * and the sections: layouts.c (Moderno's and Curtis's thesis tables, costs),
@@ -13,7 +14,9 @@
 #ifndef SL_REPORT_INT_H
 #define SL_REPORT_INT_H
 #include <stdio.h>
+#include "emit.h"
 #include "report.h"
+#include "tabmodel.h"
 #include "theses.h"
 
 /* ---- out ---- */
@@ -40,54 +43,20 @@ int         sl_report_out_has(const struct sl_report_out *o, const char *rel);
 enum sl_err sl_report_out_commit(struct sl_report_out *o, struct sl_diag *d);
 void        sl_report_out_abort(struct sl_report_out *o);   /* also frees */
 
-/* "a b/c" -> "a-b-c": letters, digits, '.', '_' and '-' only. */
-void sl_report_slug(const char *s, char *buf, size_t n);
-
-/* ---- tab ---- */
-
+/* The report's tables are the one table model (tabmodel.h), written by the
+ * emitters (emit.h): HTML and Markdown into the pages, LaTeX into tex/.
+ * SL_REPORT_MAXCOLS: the columns a table of Morais's layout holds at most
+ * (its map sizes and labels past that are left out), as when the report's
+ * tables had at most 24. */
 #define SL_REPORT_MAXCOLS 24
-
-struct sl_report_tab {
-    char  id[160];          /* file stem of the .tex (a slug) */
-    char  title[320];
-    char  note[1024];       /* printed under the table */
-    int   ncols, nkeys;     /* the first nkeys columns are keys (left aligned) */
-    int   wrap;             /* HTML: long cells may wrap (text tables) */
-    char *head[SL_REPORT_MAXCOLS];
-    int   ngroups;          /* optional row above the header: spans over columns */
-    char  group[SL_REPORT_MAXCOLS][64];
-    int   span[SL_REPORT_MAXCOLS];
-    int   nrows, cap;
-    char **cell;            /* nrows * ncols; NULL = empty */
-    unsigned char *rule;    /* SL_TAB_BLOCK: a block starts at this row; SL_TAB_MUTED: a row set back
-                             * (grey in HTML: the thesis's numbers under ours) */
-    int   oom;
-};
-
-void sl_report_tab_init(struct sl_report_tab *t, const char *id, int ncols, int nkeys, const char *fmt, ...)
-    __attribute__((format(printf, 5, 6)));
-void sl_report_tab_head(struct sl_report_tab *t, int col, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-void sl_report_tab_group(struct sl_report_tab *t, int span, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2 };
-void sl_report_tab_row(struct sl_report_tab *t, int block);   /* block: a rule before it */
-void sl_report_tab_muted(struct sl_report_tab *t);            /* the last row started: set back */
-void sl_report_tab_cell(struct sl_report_tab *t, int col, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-void sl_report_tab_free(struct sl_report_tab *t);
 
 /* A time measured once (repetitions runs: 1) is marked in every table that
  * prints it: SL_REPORT_ONCE after the value, and the table's note says what
  * the mark means (sl_report_tab_once, after the note is written). */
 #define SL_REPORT_ONCE "\xE2\x80\xA0"   /* † */
-void sl_report_tab_once(struct sl_report_tab *t);
+void sl_report_tab_once(struct sl_tab *t);
 
 /* ---- doc ---- */
-
-/* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation). */
-void sl_report_html_text(FILE *f, const char *s);
-void sl_report_md_text(FILE *f, const char *s);
 
 /* A heading as the contents tree lists it. */
 struct sl_report_heading {
@@ -154,7 +123,7 @@ void sl_report_doc_image(struct sl_report_doc *doc, const char *rel, const char 
 void sl_report_doc_details(struct sl_report_doc *doc, const char *summary, const char *text);
 void sl_report_doc_list(struct sl_report_doc *doc, const char *const *items, int n);
 /* The table in both pages, its .tex in tex/<id>.tex linked under it. */
-enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_report_tab *t, struct sl_diag *d);
+enum sl_err sl_report_doc_table(struct sl_report_doc *doc, const struct sl_tab *t, struct sl_diag *d);
 
 /* ---- study ---- */
 

@@ -28,7 +28,7 @@ RUN_PACKAGES=(
   libdeflate-dev        # the overlay sheets' PNG compressor (harness/base/image_sheet.cpp)
   libfreetype-dev       # the overlay sheets' glyphs, without OpenImageIO (harness/base/image_sheet.cpp)
   zlib1g-dev            # the store's cell digests (CRC-32); overlay::png_chunks reads the sheets' PNG
-  libunistring-dev      # LaTeX text: UTF-8 decoding and Unicode decomposition (harness/results/tex.c)
+  libunistring-dev      # LaTeX text: UTF-8 decoding and Unicode decomposition (harness/results/emit_tex.c)
   libcglm-dev           # vector math
   libcyaml-dev libyaml-dev  # configs
   libassimp-dev         # model files

@@ -550,7 +550,7 @@ static void table_pivot_values(void **st)
     assert_string_equal(num, "--");
 }
 
-/* LaTeX text for every code point that can occur (tex.c): the report's
+/* LaTeX text for every code point that can occur (emit_tex.c): the report's
  * |v − t| (U+2212, printed '?' before), accented letters by their
  * decomposition, Greek, letters LaTeX names, anything else as a visible
  * [U+XXXX], invalid UTF-8 as [U+FFFD]; never '?'. Where pdflatex is

@@ -4,6 +4,7 @@
  * flicker counts only when that frame was compared (flicker_compared > 0).
  */
 #include "motion.h"
+#include "emit.h"
 #include "pivot.h"
 #include <ctype.h>
 #include <math.h>
@@ -112,14 +113,6 @@ enum sl_err sl_motion_rows(const struct sl_cell_record *cells, int ncells, struc
     return SL_OK;
 }
 
-static void num(FILE *f, double v, const char *fmt)
-{
-    if (isnan(v))
-        fputs("n/a", f);
-    else
-        fprintf(f, fmt, v);
-}
-
 /* a number for LaTeX, "--" when not defined */
 static void tex_num(FILE *f, double v, int dec)
 {
@@ -192,55 +185,113 @@ static void motion_tex(FILE *f, const struct sl_motion_row *rows, int n)
     }
 }
 
-void sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_row *rows, int n)
+/* "v" with fmt, or "n/a" where not defined */
+static void num_text(char *out, size_t n, double v, const char *fmt)
 {
-    if (fmt == SL_TABLE_CSV) {
-        fprintf(f, "scene,path,viewport,map_size,label,frames,pairs,mean_wrong,worst_wrong,worst_frame,flicker,"
-                   "mean_flicker,worst_flicker,worst_flicker_frame,compared,contour_px,flicker_per_1000_contour\n");
-        for (int i = 0; i < n; i++) {
-            const struct sl_motion_row *r = &rows[i];
-            fprintf(f, "%s,%s,%dx%d,%d,%s,%d,%d,%.2f,%llu,%d,%llu,", r->scene, r->path, r->vw, r->vh, r->map_size,
-                    r->label, r->frames, r->pairs, r->mean_wrong, (unsigned long long)r->worst_wrong, r->worst_frame,
-                    (unsigned long long)r->flicker);
-            if (!isnan(r->mean_flicker))
-                fprintf(f, "%.2f", r->mean_flicker);
-            fprintf(f, ",%llu,%d,%llu,%llu,", (unsigned long long)r->worst_flicker, r->worst_flicker_frame,
-                    (unsigned long long)r->compared, (unsigned long long)r->contour_px);
-            if (!isnan(r->per_1000))
-                fprintf(f, "%.3f", r->per_1000);
-            fputc('\n', f);
-        }
-        return;
-    }
-    if (fmt == SL_TABLE_LATEX) {
-        motion_tex(f, rows, n);
-        return;
-    }
-    /* Markdown */
+    if (isnan(v))
+        snprintf(out, n, "n/a");
+    else
+        snprintf(out, n, fmt, v);
+}
+
+/* The data table (CSV): a line per row, every sum and count as it is, an
+ * undefined mean empty. */
+static void data_table(struct sl_tab *t, const struct sl_motion_row *rows, int n)
+{
+    static const char *const heads[] = {"scene", "path", "viewport", "map_size", "label", "frames", "pairs",
+                                        "mean_wrong", "worst_wrong", "worst_frame", "flicker", "mean_flicker",
+                                        "worst_flicker", "worst_flicker_frame", "compared", "contour_px",
+                                        "flicker_per_1000_contour"};
+    sl_tab_init(t, "motion", 17, 5, "motion");
+    for (int k = 0; k < 17; k++)
+        sl_tab_head(t, k, "%s", heads[k]);
     for (int i = 0; i < n; i++) {
         const struct sl_motion_row *r = &rows[i];
-        if (i == 0 || row_cmp(&rows[i - 1], r) != 0)
-            fprintf(f, "%s### %s, path %s, %dx%d, map %d²\n\n| label | frames | mean wrong | worst wrong "
-                       "(frame) | flicker | mean per pair | worst (frame) | per 1,000 contour px |\n"
-                       "|---|---:|---:|---:|---:|---:|---:|---:|\n", i ? "\n" : "", r->scene, r->path, r->vw,
-                    r->vh, r->map_size);
-        const char *sep = " | ";
-        fprintf(f, "| %s%s%d%s", r->label, sep, r->frames, sep);
-        fprintf(f, "%.1f%s%llu (%d)%s", r->mean_wrong, sep, (unsigned long long)r->worst_wrong, r->worst_frame, sep);
-        if (r->pairs)
-            fprintf(f, "%llu%s", (unsigned long long)r->flicker, sep);
-        else   /* no compared pair: fewer than two comparable frames */
-            fprintf(f, "not defined%s", sep);
-        num(f, r->mean_flicker, "%.1f");
-        fputs(sep, f);
-        if (r->pairs)
-            fprintf(f, "%llu (%d)", (unsigned long long)r->worst_flicker, r->worst_flicker_frame);
-        else
-            fputs("n/a", f);
-        fputs(sep, f);
-        num(f, r->per_1000, "%.2f");
-        fputs(" |\n", f);
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%s", r->scene);
+        sl_tab_cell(t, 1, "%s", r->path);
+        sl_tab_cell(t, 2, "%dx%d", r->vw, r->vh);
+        sl_tab_cell(t, 3, "%d", r->map_size);
+        sl_tab_cell(t, 4, "%s", r->label);
+        sl_tab_cell(t, 5, "%d", r->frames);
+        sl_tab_cell(t, 6, "%d", r->pairs);
+        sl_tab_cell(t, 7, "%.2f", r->mean_wrong);
+        sl_tab_cell(t, 8, "%llu", (unsigned long long)r->worst_wrong);
+        sl_tab_cell(t, 9, "%d", r->worst_frame);
+        sl_tab_cell(t, 10, "%llu", (unsigned long long)r->flicker);
+        if (!isnan(r->mean_flicker))
+            sl_tab_cell(t, 11, "%.2f", r->mean_flicker);
+        sl_tab_cell(t, 12, "%llu", (unsigned long long)r->worst_flicker);
+        sl_tab_cell(t, 13, "%d", r->worst_flicker_frame);
+        sl_tab_cell(t, 14, "%llu", (unsigned long long)r->compared);
+        sl_tab_cell(t, 15, "%llu", (unsigned long long)r->contour_px);
+        if (!isnan(r->per_1000))
+            sl_tab_cell(t, 16, "%.3f", r->per_1000);
     }
+}
+
+/* The reading table of one group (scene, path, viewport, map size): rows
+ * [i, e), a label each. */
+static void group_table(struct sl_tab *t, const struct sl_motion_row *rows, int i, int e)
+{
+    static const char *const heads[] = {"label", "frames", "mean wrong", "worst wrong (frame)", "flicker",
+                                        "mean per pair", "worst (frame)", "per 1,000 contour px"};
+    const struct sl_motion_row *g = &rows[i];
+    char id[160];
+    snprintf(id, sizeof id, "motion-%s-%s-%dx%d-%d", g->scene, g->path, g->vw, g->vh, g->map_size);
+    sl_tab_init(t, id, 8, 1, "%s, path %s, %dx%d, map %d\xC2\xB2", g->scene, g->path, g->vw, g->vh, g->map_size);
+    t->level = 3;
+    t->plain = 1;
+    for (int k = 0; k < 8; k++)
+        sl_tab_head(t, k, "%s", heads[k]);
+    for (int k = i; k < e; k++) {
+        const struct sl_motion_row *r = &rows[k];
+        char v[48];
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%s", r->label);
+        sl_tab_cell(t, 1, "%d", r->frames);
+        sl_tab_cell(t, 2, "%.1f", r->mean_wrong);
+        sl_tab_cell(t, 3, "%llu (%d)", (unsigned long long)r->worst_wrong, r->worst_frame);
+        if (r->pairs)
+            sl_tab_cell(t, 4, "%llu", (unsigned long long)r->flicker);
+        else   /* no compared pair: fewer than two comparable frames */
+            sl_tab_cell(t, 4, "not defined");
+        num_text(v, sizeof v, r->mean_flicker, "%.1f");
+        sl_tab_cell(t, 5, "%s", v);
+        if (r->pairs)
+            sl_tab_cell(t, 6, "%llu (%d)", (unsigned long long)r->worst_flicker, r->worst_flicker_frame);
+        else
+            sl_tab_cell(t, 6, "n/a");
+        num_text(v, sizeof v, r->per_1000, "%.2f");
+        sl_tab_cell(t, 7, "%s", v);
+    }
+}
+
+enum sl_err sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_row *rows, int n,
+                            struct sl_diag *d)
+{
+    if (fmt == SL_TABLE_LATEX) {
+        motion_tex(f, rows, n);
+        return SL_OK;
+    }
+    struct sl_tab t;
+    int bad = 0;
+    if (fmt == SL_TABLE_CSV) {
+        data_table(&t, rows, n);
+        bad = sl_emit_csv(f, &t, NULL) < 0;
+        sl_tab_free(&t);
+    }
+    /* Markdown: a table per group */
+    for (int i = 0, e; fmt == SL_TABLE_MD && i < n && !bad; i = e) {
+        e = i + 1;
+        while (e < n && row_cmp(&rows[i], &rows[e]) == 0)
+            e++;
+        group_table(&t, rows, i, e);
+        const struct sl_emit_opts o = {.first = i == 0, .gap = i > 0};
+        bad = sl_emit_md(f, &t, &o) < 0;
+        sl_tab_free(&t);
+    }
+    return bad ? sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "motion tables") : SL_OK;
 }
 
 int sl_motion_series(FILE *f, const struct sl_cell_record *cells, int ncells, const struct sl_motion_row *row,

@@ -45,9 +45,13 @@ int sl_motion_frame_of(const char *viewpoint, char *path, size_t n);
 enum sl_err sl_motion_rows(const struct sl_cell_record *cells, int ncells, struct sl_motion_row **rows,
                            int *nrows, struct sl_diag *d);
 
-/* The table (Markdown or CSV; LaTeX: per group two booktabs longtables, the
- * wrong pixels and the flicker, escaped, each fitting \columnwidth). */
-void sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_row *rows, int n);
+/* The tables, built as the table model (tabmodel.h) and written by its
+ * emitter: Markdown, a table per (scene, path, viewport, map size); CSV, one
+ * data table of every row. LaTeX (still written here): per group two booktabs
+ * longtables, the wrong pixels and the flicker, escaped, each fitting
+ * \columnwidth. SL_E_NOMEM when the model cannot be built. */
+enum sl_err sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_row *rows, int n,
+                            struct sl_diag *d);
 
 /* The per-frame series of one (scene, path, viewport, map size) for a plot:
  * one line per frame "frame wrong_1 flicker_1 wrong_2 flicker_2 ..." in the

@@ -49,7 +49,6 @@ struct motion_tables {
 static enum sl_err write_motion_table(FILE *f, enum sl_table_format fmt, const void *arg, struct sl_diag *d)
 {
     const struct motion_tables *t = arg;
-    (void)d;
     if (fmt == SL_TABLE_MD)
         fprintf(f, "# Errors over motion\n\nPer path, map size and label: the whole image's wrong pixels per "
                    "frame (mean, worst), and flicker: pixels whose verdict changes between consecutive "
@@ -57,10 +56,10 @@ static enum sl_err write_motion_table(FILE *f, enum sl_table_format fmt, const v
                    "the G-buffer onto the same triangle; pixel for pixel when the camera holds still). "
                    "Per 1,000 contour pixels: of the thinnest contour of the later frame of each "
                    "compared pair.\n\n");
-    sl_motion_write(f, fmt, t->rows, t->n);
+    enum sl_err e = sl_motion_write(f, fmt, t->rows, t->n, d);
     if (fmt == SL_TABLE_MD && t->note[0])
         fprintf(f, "\n%s", t->note);
-    return SL_OK;
+    return e;
 }
 
 static enum sl_err write_tables(const char *dir, const struct sl_motion_row *rows, int n, const char *note,

@@ -27,6 +27,7 @@
 #include <unistd.h>
 #include <string.h>
 #include "util.h"
+#include "emit.h"
 
 static void machine_of(const struct sl_provenance *p, char *out, size_t n)
 {
@@ -204,67 +205,105 @@ void sl_out_write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_
     }
 }
 
-void sl_out_write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+/* The cost table in the model: a row per cell computed, its times (ms) and
+ * counters; under it what the dagger means and the run's total. */
+static void costs_model(struct sl_tab *t, const struct sl_config *c, const struct sl_run_result *res)
 {
-    fprintf(f, "\n## Cost per cell (ms; G-buffer and truth are shared by the cells of a view)\n\n");
     /* the names of the report's cost tables: layers (the shadow-map render of
      * the layers a method reads), step (its per-pixel step); † a time
      * measured once (repetitions runs: 1) */
-    const char *once = c->runs == 1 ? "†" : "";
-    fprintf(f, "| cell | scene | viewpoint | map | label | G-buffer%s | truth%s | fit | layers%s | readback "
-               "| step (median of %d)%s | of which rays | rays | lookups | ray-tri tests | GS prims | contours | figures | overlay |\n",
-            once, once, once, c->runs, once);
-    fprintf(f, "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    const char *once = c->runs == 1 ? "\xE2\x80\xA0" : "";
+    static const char lr[] = "rllrlrrrrrrrrrrrrrr";
+    sl_tab_init(t, "costs", 19, 5, "Cost per cell (ms; G-buffer and truth are shared by the cells of a view)");
+    t->level = 2;
+    t->plain = 1;
+    static const char *const heads[19] = {"cell", "scene", "viewpoint", "map", "label", "G-buffer", "truth", "fit",
+                                          "layers", "readback", "", "of which rays", "rays", "lookups",
+                                          "ray-tri tests", "GS prims", "contours", "figures", "overlay"};
+    for (int k = 0; k < 19; k++) {
+        if (k == 10)
+            sl_tab_head(t, k, "step (median of %d)%s", c->runs, once);
+        else
+            sl_tab_head(t, k, "%s%s", heads[k], k == 5 || k == 6 || k == 8 ? once : "");
+        sl_tab_align(t, k, lr[k]);
+    }
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
         const struct sl_stage_ms *s = &cl->ms;
-        fprintf(f, "| %d | %s | %s | %d | %s | %.1f | %.1f%s | %.1f | %.1f | %.1f | %.1f | %.1f | %llu | %llu | %llu | %llu | %.1f | %.1f | %.1f |\n",
-                cl->index, cl->scene, cl->viewpoint, c->maps[cl->key.map], c->methods[cl->key.method].label,
-                s->gbuffer_render[SL_MED] + s->gbuffer_readback, s->truth[SL_MED], cl->truth_cached ? " (cached)" : "",
-                s->fit, s->map_render[SL_MED], s->map_readback, s->method[SL_MED], cl->cost.ms_trace,
-                (unsigned long long)cl->cost.rays,
-                (unsigned long long)cl->cost.lookups, (unsigned long long)cl->cost.tri_tests,
-                (unsigned long long)cl->gs_prims, s->contours, s->figures, s->overlay);
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%d", cl->index);
+        sl_tab_cell(t, 1, "%s", cl->scene);
+        sl_tab_cell(t, 2, "%s", cl->viewpoint);
+        sl_tab_cell(t, 3, "%d", c->maps[cl->key.map]);
+        sl_tab_cell(t, 4, "%s", c->methods[cl->key.method].label);
+        sl_tab_cell(t, 5, "%.1f", s->gbuffer_render[SL_MED] + s->gbuffer_readback);
+        sl_tab_cell(t, 6, "%.1f%s", s->truth[SL_MED], cl->truth_cached ? " (cached)" : "");
+        sl_tab_cell(t, 7, "%.1f", s->fit);
+        sl_tab_cell(t, 8, "%.1f", s->map_render[SL_MED]);
+        sl_tab_cell(t, 9, "%.1f", s->map_readback);
+        sl_tab_cell(t, 10, "%.1f", s->method[SL_MED]);
+        sl_tab_cell(t, 11, "%.1f", cl->cost.ms_trace);
+        sl_tab_cell(t, 12, "%llu", (unsigned long long)cl->cost.rays);
+        sl_tab_cell(t, 13, "%llu", (unsigned long long)cl->cost.lookups);
+        sl_tab_cell(t, 14, "%llu", (unsigned long long)cl->cost.tri_tests);
+        sl_tab_cell(t, 15, "%llu", (unsigned long long)cl->gs_prims);
+        sl_tab_cell(t, 16, "%.1f", s->contours);
+        sl_tab_cell(t, 17, "%.1f", s->figures);
+        sl_tab_cell(t, 18, "%.1f", s->overlay);
     }
     if (c->runs == 1)
-        fprintf(f, "\n† timed once (repetitions runs: 1): one measurement, no median.\n");
-    fprintf(f, "\nTotal %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.\n",
-            res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
+        sl_tab_notef(t, "\xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.\n\n");
+    sl_tab_note_cat(t, "Total %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.",
+                    res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
 }
 
-void sl_out_write_patterns_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
-{
-    fprintf(f, "cell,scene,viewpoint,viewport,map_size,label,texels,region,shadowed_texels,pixels,"
-               "shadowed_in_truth,git_sha,config_hash\n");
-    for (int i = 0; i < res->ncells; i++) {
-        const struct sl_cell *cl = &res->cells[i];
-        if (!cl->has_patterns)
-            continue;
-        int n = (int)sl_params_get(&c->methods[cl->key.method].params.values, "texels");
-        for (int r = 0; r < cl->fig.nregions; r++)
-            for (int k = 0; k <= n; k++) {
-                char rn[16];
-                sl_region_name(cl->fig.r[r].thickness, rn, sizeof rn);
-                fprintf(f, "%d,%s,%s,%dx%d,%d,%s,%d,%s,%d,%llu,%llu,%s,%016llx\n", cl->index, cl->scene,
-                        cl->viewpoint, c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport],
-                        c->maps[cl->key.map], c->methods[cl->key.method].label, n, rn, k,
-                        (unsigned long long)cl->pattern[r][k][0], (unsigned long long)cl->pattern[r][k][1],
-                        res->prov.git_sha, c->hash);
-            }
-    }
-}
-
-void sl_out_write_patterns_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+static int any_patterns(const struct sl_run_result *res)
 {
     int any = 0;
     for (int i = 0; i < res->ncells; i++)
         any |= res->cells[i].has_patterns;
-    if (!any)
-        return;
-    fprintf(f, "\n## Texel coherence: undecided pixels by how many texels say shadow "
-               "(pixels, of which shadowed in truth)\n\n");
-    fprintf(f, "| cell | scene | viewpoint | map | label | region | 1 | 2 | 3 | 4 | 5 | 6 | 7 | 8 |\n");
-    fprintf(f, "|---:|---|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    return any;
+}
+
+void sl_out_write_costs_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    struct sl_tab t;
+    /* after the figures' tables, which end with a blank line: one more; the
+     * texel patterns follow it when there are any, else the file ends */
+    const struct sl_emit_opts o = {.first = 1, .gap = 1, .tight = !any_patterns(res)};
+    costs_model(&t, c, res);
+    sl_emit_md(f, &t, &o);
+    sl_tab_free(&t);
+}
+
+/* The texel-coherence patterns in the model: per cell and region of a
+ * coherence method, the undecided pixels by how many of its texels say
+ * shadow. data: the long form (CSV: a line per count, from 0), else a row
+ * per region with a column per count from 1 to 8. */
+static void patterns_model(struct sl_tab *t, const struct sl_config *c, const struct sl_run_result *res, int data)
+{
+    static const char *const dheads[] = {"cell", "scene", "viewpoint", "viewport", "map_size", "label", "texels",
+                                         "region", "shadowed_texels", "pixels", "shadowed_in_truth", "git_sha",
+                                         "config_hash"};
+    static const char *const heads[] = {"cell", "scene", "viewpoint", "map", "label", "region"};
+    static const char lr[] = "rllrll";
+    if (data) {
+        sl_tab_init(t, "patterns", 13, 8, "patterns");
+        for (int k = 0; k < 13; k++)
+            sl_tab_head(t, k, "%s", dheads[k]);
+    } else {
+        sl_tab_init(t, "patterns", 14, 6, "Texel coherence: undecided pixels by how many texels say shadow "
+                                          "(pixels, of which shadowed in truth)");
+        t->level = 2;
+        t->plain = 1;
+        for (int k = 0; k < 14; k++) {
+            if (k < 6)
+                sl_tab_head(t, k, "%s", heads[k]);
+            else
+                sl_tab_head(t, k, "%d", k - 5);
+            sl_tab_align(t, k, k < 6 ? lr[k] : 'r');
+        }
+    }
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
         if (!cl->has_patterns)
@@ -272,22 +311,58 @@ void sl_out_write_patterns_md(FILE *f, const struct sl_config *c, const struct s
         int n = (int)sl_params_get(&c->methods[cl->key.method].params.values, "texels");
         for (int r = 0; r < cl->fig.nregions; r++) {
             char rn[16];
-            if (cl->fig.r[r].thickness)
+            if (data)
+                sl_region_name(cl->fig.r[r].thickness, rn, sizeof rn);
+            else if (cl->fig.r[r].thickness)
                 snprintf(rn, sizeof rn, "%d px", cl->fig.r[r].thickness);
             else
                 snprintf(rn, sizeof rn, "image");
-            fprintf(f, "| %d | %s | %s | %d | %s | %s |", cl->index, cl->scene, cl->viewpoint,
-                    c->maps[cl->key.map], c->methods[cl->key.method].label, rn);
-            for (int k = 1; k <= 8; k++) {
-                if (k < n)
-                    fprintf(f, " %llu (%llu) |", (unsigned long long)cl->pattern[r][k][0],
-                            (unsigned long long)cl->pattern[r][k][1]);
-                else
-                    fprintf(f, " |");
+            for (int k = 0; k <= (data ? n : 0); k++) {
+                sl_tab_row(t, 0);
+                sl_tab_cell(t, 0, "%d", cl->index);
+                sl_tab_cell(t, 1, "%s", cl->scene);
+                sl_tab_cell(t, 2, "%s", cl->viewpoint);
+                if (!data) {
+                    sl_tab_cell(t, 3, "%d", c->maps[cl->key.map]);
+                    sl_tab_cell(t, 4, "%s", c->methods[cl->key.method].label);
+                    sl_tab_cell(t, 5, "%s", rn);
+                    for (int j = 1; j <= 8; j++)
+                        if (j < n)
+                            sl_tab_cell(t, 5 + j, "%llu (%llu)", (unsigned long long)cl->pattern[r][j][0],
+                                        (unsigned long long)cl->pattern[r][j][1]);
+                    continue;
+                }
+                sl_tab_cell(t, 3, "%dx%d", c->viewport_w[cl->key.viewport], c->viewport_h[cl->key.viewport]);
+                sl_tab_cell(t, 4, "%d", c->maps[cl->key.map]);
+                sl_tab_cell(t, 5, "%s", c->methods[cl->key.method].label);
+                sl_tab_cell(t, 6, "%d", n);
+                sl_tab_cell(t, 7, "%s", rn);
+                sl_tab_cell(t, 8, "%d", k);
+                sl_tab_cell(t, 9, "%llu", (unsigned long long)cl->pattern[r][k][0]);
+                sl_tab_cell(t, 10, "%llu", (unsigned long long)cl->pattern[r][k][1]);
+                sl_tab_cell(t, 11, "%s", res->prov.git_sha);
+                sl_tab_cell(t, 12, "%016llx", c->hash);
             }
-            fprintf(f, "\n");
         }
     }
+}
+
+void sl_out_write_patterns_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    struct sl_tab t;
+    patterns_model(&t, c, res, 1);
+    sl_emit_csv(f, &t, NULL);
+    sl_tab_free(&t);
+}
+
+void sl_out_write_patterns_md(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    if (!any_patterns(res))
+        return;
+    struct sl_tab t;
+    patterns_model(&t, c, res, 0);
+    sl_emit_md(f, &t, NULL);
+    sl_tab_free(&t);
 }
 
 void sl_out_write_run_yaml(FILE *f, const struct sl_config *c, const struct sl_run_result *res)

@@ -11,6 +11,7 @@
  * is transposed or split, never scaled. Nothing here prints to a terminal.
  */
 #include "pivot.h"
+#include "emit.h"
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -601,54 +602,73 @@ static void json_str(FILE *f, const char *s)
 }
 
 
-static void write_md(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p)
+/* The reading table (Markdown): the caption as a paragraph above it, the
+ * row key's values down the first column (map sizes squared), an entry per
+ * column, a dagger on an entry timed once. */
+static void read_table(struct sl_tab *t, const struct pivot *pv, const struct sl_pivot_desc *p)
 {
     char cap[1024];
     caption_words(pv, p, cap, sizeof cap);
-    fprintf(f, "%s\n\n| %s \\ %s |", cap, sl_pivot_key_name(pv->rk), sl_pivot_key_name(pv->ck));
+    sl_tab_init(t, "pivot", 1 + pv->nc, 1, "%s", "");
+    t->level = 1;   /* no heading: the caption is the intro */
+    t->plain = 1;
+    sl_tab_intro(t, cap);
+    sl_tab_head(t, 0, "%s \\ %s", sl_pivot_key_name(pv->rk), sl_pivot_key_name(pv->ck));
     for (int c = 0; c < pv->nc; c++) {
         char k[KEYLEN + 4];
         key_plain(pv->ck, pv->key[pv->ck].v[pv->cperm[c]], k, sizeof k);
-        fprintf(f, " %s |", k);
+        sl_tab_head(t, 1 + c, "%s", k);
     }
-    fputs("\n|---|", f);
-    for (int c = 0; c < pv->nc; c++)
-        fputs("---:|", f);
-    fputc('\n', f);
     int dec = decimals(pv, p->agg);
     for (int r = 0; r < pv->nr; r++) {
         char k[KEYLEN + 4];
         key_plain(pv->rk, pv->key[pv->rk].v[pv->rperm[r]], k, sizeof k);
-        fprintf(f, "| %s |", k);
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%s", k);
         for (int c = 0; c < pv->nc; c++) {
             char v[64];
             plain_number(v, sizeof v, pv->val[pv->rperm[r] * pv->nc + pv->cperm[c]], dec);
-            fprintf(f, " %s%s |", v, pv->once[pv->rperm[r] * pv->nc + pv->cperm[c]] ? "\xE2\x80\xA0" : "");
+            sl_tab_cell(t, 1 + c, "%s%s", v, pv->once[pv->rperm[r] * pv->nc + pv->cperm[c]] ? "\xE2\x80\xA0" : "");
         }
-        fputc('\n', f);
     }
 }
 
-static void write_csv(FILE *f, const struct pivot *pv)
+/* The data table (CSV): the keys as they are stored, the entries with 10
+ * significant digits, an entry with no value empty. */
+static void data_table(struct sl_tab *t, const struct pivot *pv)
 {
-    sl_csv_field(f, sl_pivot_key_name(pv->rk));
-    for (int c = 0; c < pv->nc; c++) {
-        fputc(',', f);
-        sl_csv_field(f, pv->key[pv->ck].v[pv->cperm[c]]);
-    }
-    fputc('\n', f);
+    sl_tab_init(t, "pivot", 1 + pv->nc, 1, "pivot");
+    sl_tab_head(t, 0, "%s", sl_pivot_key_name(pv->rk));
+    for (int c = 0; c < pv->nc; c++)
+        sl_tab_head(t, 1 + c, "%s", pv->key[pv->ck].v[pv->cperm[c]]);
     for (int r = 0; r < pv->nr; r++) {
-        sl_csv_field(f, pv->key[pv->rk].v[pv->rperm[r]]);
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%s", pv->key[pv->rk].v[pv->rperm[r]]);
         for (int c = 0; c < pv->nc; c++) {
             double v = pv->val[pv->rperm[r] * pv->nc + pv->cperm[c]];
-            fputc(',', f);
             if (!isnan(v))
-                fprintf(f, "%.10g", v);
+                sl_tab_cell(t, 1 + c, "%.10g", v);
         }
-        fputc('\n', f);
     }
 }
 
+/* md or csv through the model; -1 out of memory */
+static int write_model(FILE *f, enum sl_table_format fmt, const struct pivot *pv, const struct sl_pivot_desc *p)
+{
+    struct sl_tab t;
+    const struct sl_emit_opts o = {.first = 1};
+    if (fmt == SL_TABLE_CSV)
+        data_table(&t, pv);
+    else
+        read_table(&t, pv, p);
+    int k = (fmt == SL_TABLE_CSV ? sl_emit_csv : sl_emit_md)(f, &t, &o);
+    sl_tab_free(&t);
+    return k;
+}
+
+/* JSON keeps its own schema (the figure, its unit, the aggregate, the keys
+ * and the where, then per row the values, the counts and which were timed
+ * once): scripts read it. */
 static void write_json(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p)
 {
     fputs("{\"figure\": ", f);
@@ -911,8 +931,12 @@ enum sl_err sl_pivot_write(FILE *out, enum sl_table_format fmt, const struct sl_
     info->nrows = pv.nr;
     info->ncols = pv.nc;
     switch (fmt) {
-    case SL_TABLE_MD: write_md(out, &pv, p); info->parts = pv.nr > 0; break;
-    case SL_TABLE_CSV: write_csv(out, &pv); info->parts = pv.nr > 0; break;
+    case SL_TABLE_MD:
+    case SL_TABLE_CSV:
+        if (write_model(out, fmt, &pv, p) < 0)
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "pivot of %d columns", pv.nc);
+        info->parts = pv.nr > 0;
+        break;
     case SL_TABLE_JSON: write_json(out, &pv, p); info->parts = pv.nr > 0; break;
     case SL_TABLE_LATEX:
         if (pv.nr > 0 && write_tex(out, &pv, p, info) != 0)

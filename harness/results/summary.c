@@ -4,6 +4,7 @@
  * average runs over; ties keep the first cell in the caller's order.
  */
 #include "summary.h"
+#include "emit.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -73,69 +74,90 @@ static void summarise(const struct sl_cell_record *cells, const int *idx, int n,
     s->avg = s->count ? sum / (double)s->count : NAN;
 }
 
-static void write_csv(FILE *out, const char *name, const char *label, const struct sum *s)
+/* The data table (CSV): a line for the average, each map size's best and
+ * worst, the average case. */
+static void data_head(struct sl_tab *t)
+{
+    static const char *const heads[] = {"figure", "label", "kind", "map_size", "scene", "viewpoint", "region",
+                                        "percent"};
+    sl_tab_init(t, "summary", 8, 7, "summary");
+    for (int k = 0; k < 8; k++)
+        sl_tab_head(t, k, "%s", heads[k]);
+}
+
+static void data_table(struct sl_tab *t, const char *name, const char *label, const struct sum *s)
 {
     char rn[16];
-    fprintf(out, "%s,%s,average,,,,,%.4f\n", name, label, s->avg);
-    for (int k = 0; k < s->nmaps; k++) {
+    data_head(t);
+    sl_tab_row(t, 0);
+    sl_tab_cell(t, 0, "%s", name);
+    sl_tab_cell(t, 1, "%s", label);
+    sl_tab_cell(t, 2, "average");
+    sl_tab_cell(t, 7, "%.4f", s->avg);
+    for (int k = 0; k <= s->nmaps; k++) {
         const struct pick *p[2] = {&s->best[k], &s->worst[k]};
-        for (int w = 0; w < 2; w++) {
-            if (!p[w]->cell)
+        for (int w = 0; w < (k < s->nmaps ? 2 : 1); w++) {
+            const struct pick *q = k < s->nmaps ? p[w] : &s->avgcase;
+            if (!q->cell)
                 continue;
-            sl_region_name(p[w]->region, rn, sizeof rn);
-            fprintf(out, "%s,%s,%s,%d,%s,%s,%s,%.4f\n", name, label, w ? "worst" : "best", s->maps[k],
-                    p[w]->cell->scene, p[w]->cell->viewpoint, rn, p[w]->v);
+            sl_region_name(q->region, rn, sizeof rn);
+            sl_tab_row(t, 0);
+            sl_tab_cell(t, 0, "%s", name);
+            sl_tab_cell(t, 1, "%s", label);
+            sl_tab_cell(t, 2, "%s", k == s->nmaps ? "average case" : w ? "worst" : "best");
+            sl_tab_cell(t, 3, "%d", k < s->nmaps ? s->maps[k] : q->cell->map_size);
+            sl_tab_cell(t, 4, "%s", q->cell->scene);
+            sl_tab_cell(t, 5, "%s", q->cell->viewpoint);
+            sl_tab_cell(t, 6, "%s", rn);
+            sl_tab_cell(t, 7, "%.4f", q->v);
         }
-    }
-    if (s->avgcase.cell) {
-        sl_region_name(s->avgcase.region, rn, sizeof rn);
-        fprintf(out, "%s,%s,average case,%d,%s,%s,%s,%.4f\n", name, label, s->avgcase.cell->map_size,
-                s->avgcase.cell->scene, s->avgcase.cell->viewpoint, rn, s->avgcase.v);
     }
 }
 
-static void write_md(FILE *out, const char *name, const char *of, const char *label, const struct sum *s)
+/* The reading table: a column for the average, each map size's best and
+ * worst and the average case; a row for each thing that says where. */
+static void read_table(struct sl_tab *t, const char *name, const char *of, const char *label, const struct sum *s)
 {
-    char rn[16];
-    fprintf(out, "## Summary of %s (%% of %s), label %s\n\n", name, of, label);
-    fprintf(out, "| | average |");
-    for (int k = 0; k < s->nmaps; k++)
-        fprintf(out, " %d² best | %d² worst |", s->maps[k], s->maps[k]);
+    char rn[16], id[160];
+    int cols = 2 * s->nmaps + (s->avgcase.cell ? 1 : 0);
+    snprintf(id, sizeof id, "summary-%s-%s", name, label);
+    sl_tab_init(t, id, 2 + cols, 1, "Summary of %s (%% of %s), label %s", name, of, label);
+    t->level = 2;
+    t->plain = 1;
+    sl_tab_head(t, 1, "average");
+    for (int k = 0; k < s->nmaps; k++) {
+        sl_tab_head(t, 2 + 2 * k, "%d\xC2\xB2 best", s->maps[k]);
+        sl_tab_head(t, 3 + 2 * k, "%d\xC2\xB2 worst", s->maps[k]);
+    }
     if (s->avgcase.cell)
-        fprintf(out, " average case |");
-    fprintf(out, "\n|---|---:|");
-    for (int k = 0; k < s->nmaps; k++)
-        fprintf(out, "---:|---:|");
-    if (s->avgcase.cell)
-        fprintf(out, "---:|");
+        sl_tab_head(t, 2 + cols - 1, "average case");
     const char *rows[] = {"scene", "viewpoint", "contour", "map", "value"};
     for (int row = 0; row < 5; row++) {
-        fprintf(out, "\n| %s |", rows[row]);
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%s", rows[row]);
         if (row == 4)
-            fprintf(out, " %.2f |", s->avg);
-        else
-            fprintf(out, " |");
-        int cols = 2 * s->nmaps + (s->avgcase.cell ? 1 : 0);
+            sl_tab_cell(t, 1, "%.2f", s->avg);
         for (int col = 0; col < cols; col++) {
             const struct pick *p = col < 2 * s->nmaps ? (col % 2 ? &s->worst[col / 2] : &s->best[col / 2])
                                                       : &s->avgcase;
-            if (!p->cell) {
-                fprintf(out, " |");
+            if (!p->cell)
                 continue;
-            }
             sl_region_name(p->region, rn, sizeof rn);
             switch (row) {
             case 0:   /* with its light, as every heading names it: "lamp (spot light, 70°)" */
-                fprintf(out, p->cell->light[0] ? " %s (%s) |" : " %s |", p->cell->scene, p->cell->light);
+                if (p->cell->light[0])
+                    sl_tab_cell(t, 2 + col, "%s (%s)", p->cell->scene, p->cell->light);
+                else
+                    sl_tab_cell(t, 2 + col, "%s", p->cell->scene);
                 break;
-            case 1: fprintf(out, " %s |", p->cell->viewpoint); break;
-            case 2: fprintf(out, " %s |", rn); break;
-            case 3: fprintf(out, " %d² |", p->cell->map_size); break;
-            case 4: fprintf(out, " %.2f |", p->v); break;
+            case 1: sl_tab_cell(t, 2 + col, "%s", p->cell->viewpoint); break;
+            case 2: sl_tab_cell(t, 2 + col, "%s", rn); break;
+            case 3: sl_tab_cell(t, 2 + col, "%d\xC2\xB2", p->cell->map_size); break;
+            case 4: sl_tab_cell(t, 2 + col, "%.2f", p->v); break;
             }
         }
     }
-    fprintf(out, "\n\nAverage over %ld (cell, region) values.\n\n", s->count);
+    sl_tab_notef(t, "Average over %ld (cell, region) values.", s->count);
 }
 
 /* LaTeX: a booktabs float per label, transposed against the Markdown (a row
@@ -233,8 +255,15 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "summary");
     }
     enum sl_err e = SL_OK;
-    if (fmt == SL_TABLE_CSV && !o->continued)
-        fprintf(out, "figure,label,kind,map_size,scene,viewpoint,region,percent\n");
+    if (fmt == SL_TABLE_CSV && !o->continued) {
+        /* the header, whether or not a label has a value */
+        struct sl_tab t;
+        const struct sl_emit_opts head = {.first = 1};
+        data_head(&t);
+        if (sl_emit_csv(out, &t, &head) < 0)
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "summary table");
+        sl_tab_free(&t);
+    }
     if (fmt == SL_TABLE_LATEX && !o->continued)
         fputs("% shadowlab table --summary; needs \\usepackage{booktabs}\n", out);
     /* a summary per label, in the cells' order */
@@ -249,12 +278,19 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
         summarise(cells, idx, m, o, s);
         if (!s->count)
             continue;   /* this label has no value there: said below if none has */
-        any = 1;
-        if (fmt == SL_TABLE_CSV)
-            write_csv(out, name, cells[i].label, s);
-        else if (fmt == SL_TABLE_MD)
-            write_md(out, name, of, cells[i].label, s);
-        else {
+        if (fmt == SL_TABLE_CSV || fmt == SL_TABLE_MD) {
+            struct sl_tab t;
+            const struct sl_emit_opts eo = {.first = fmt == SL_TABLE_MD && !o->continued && !any};
+            if (fmt == SL_TABLE_CSV)
+                data_table(&t, name, cells[i].label, s);
+            else
+                read_table(&t, name, of, cells[i].label, s);
+            if ((fmt == SL_TABLE_CSV ? sl_emit_csv : sl_emit_md)(out, &t, &eo) < 0)
+                e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "summary table");
+            sl_tab_free(&t);
+            any = 1;
+        } else {
+            any = 1;
             /* LaTeX holds at most 18 floats it has not placed */
             if ((floats > 0 || o->continued) && floats % 8 == 0)
                 fputs("\\clearpage\n\n", out);

@@ -9,7 +9,9 @@
  * is NaN has no base and is printed as the count alone (CSV: empty).
  * Nothing here prints to stdout/stderr or reads files; it writes to `out`.
  */
+#define _POSIX_C_SOURCE 200809L   /* open_memstream */
 #include "table.h"
+#include "emit.h"
 #include <math.h>
 #include "pivot.h"
 #include <stdlib.h>
@@ -168,22 +170,6 @@ static void value_text(const struct sl_cell_record *c, int k, uint64_t n, double
         snprintf(out, sz, "%llu (%.2f%s)", (unsigned long long)n, pct, pc);
 }
 
-/* One row's values across a table's cells and columns: Markdown or LaTeX cells. */
-static void row_values(FILE *f, const struct sl_cell_record *cells, const struct group *g, int fi, int tex)
-{
-    for (int k = 0; k < g->n; k++) {
-        const struct sl_cell_record *c = &cells[g->idx[k]];
-        for (int r = 0; r < cell_cols(c); r++) {
-            uint64_t n;
-            double pct;
-            char v[64];
-            cell_value(c, r, fi, &n, &pct);
-            value_text(c, fi, n, pct, tex, v, sizeof v);
-            fprintf(f, tex ? " & %s" : " %s |", v);
-        }
-    }
-}
-
 /* Whether figure row fi of a table is shown (table.h: struct sl_table_rows). */
 static int row_shown(const struct sl_cell_record *cells, const struct group *g, int fi,
                      const struct sl_table_rows *rows)
@@ -252,134 +238,174 @@ static void md_provenance(FILE *f, const struct sl_cell_record *c)
             c->contour_from, c->git_sha, c->config_hash, c->machine);
 }
 
-static void md_table(FILE *f, const struct sl_cell_record *cells, const struct group *g,
-                     const struct sl_table_rows *rows)
+/* One table in the model: its heading names the view and the label, the
+ * view's counts above it, a column per map size and region, a row per figure
+ * shown; under it which rows are shown and the provenance (once when every
+ * map size shares it). Returns 0 when no row is shown (nothing to write), -1
+ * out of memory. */
+static int md_model(struct sl_tab *t, const struct sl_cell_record *cells, const struct group *g,
+                    const struct sl_table_rows *rows)
 {
     const struct sl_cell_record *c0 = &cells[g->idx[0]];
-    int shown = rows_shown(cells, g, rows);
+    int shown = rows_shown(cells, g, rows), ncols = 0;
     if (shown == 0)
-        return;
-    fprintf(f, "## %s", c0->scene);
-    light_words(f, c0, 0);
-    fprintf(f, " / %s / %dx%d / %s\n\n", c0->viewpoint, c0->vw, c0->vh, c0->label);
-    if (c0->has_soft)
-        fprintf(f, "Area light: the visible fraction of the light against the area truth "
-                   "(means in %% of full visibility).\n\n");
-    else {
-        view_counts(f, c0, 0);
-        fputs("\n\n", f);
-    }
-    fprintf(f, "| figure |");
-    int ncols = 0;
-    for (int k = 0; k < g->n; k++) {
-        const struct sl_cell_record *c = &cells[g->idx[k]];
-        for (int r = 0; r < cell_cols(c); r++, ncols++) {
-            char rn[16];
-            sl_region_name(col_thickness(c, r), rn, sizeof rn);
-            fprintf(f, " %d² %s |", c->map_size, rn);
-        }
-    }
-    fprintf(f, "\n|---|");
-    for (int k = 0; k < ncols; k++)
-        fprintf(f, "---:|");
-    fprintf(f, "\n");
-    for (int fi = 0; fi < cell_rows(c0); fi++) {
-        if (!row_shown(cells, g, fi, rows))
-            continue;
-        fprintf(f, "| %s |", row_name(c0, fi));
-        row_values(f, cells, g, fi, 0);
-        fprintf(f, "\n");
-    }
-    fprintf(f, "\n");
-    if (shown < cell_rows(c0))
-        fprintf(f, "(%d of %d figures shown: %s; table.md and `shadowlab table --figures all` have every row.)\n\n",
+        return 0;
+    for (int k = 0; k < g->n; k++)
+        ncols += cell_cols(&cells[g->idx[k]]);
+    char *light = NULL, *intro = NULL, *note = NULL;
+    size_t nl = 0, ni = 0, nn = 0;
+    FILE *fl = open_memstream(&light, &nl), *fi = open_memstream(&intro, &ni), *fn = open_memstream(&note, &nn);
+    if (fl)
+        light_words(fl, c0, 0);
+    if (fi && c0->has_soft)
+        fputs("Area light: the visible fraction of the light against the area truth "
+              "(means in % of full visibility).", fi);
+    else if (fi)
+        view_counts(fi, c0, 0);
+    if (fn && shown < cell_rows(c0))
+        fprintf(fn, "(%d of %d figures shown: %s; table.md and `shadowlab table --figures all` have every row.)\n\n",
                 shown, cell_rows(c0),
                 rows->picked ? "those picked with --figures" : "the rest are 0 in every column, not produced by "
                 "this method");
-    if (same_provenance(cells, g)) {
-        md_provenance(f, c0);
-        fprintf(f, "\n\n");
-    } else {
-        for (int k = 0; k < g->n; k++) {
+    if (fn && same_provenance(cells, g))
+        md_provenance(fn, c0);
+    else
+        for (int k = 0; fn && k < g->n; k++) {
             const struct sl_cell_record *c = &cells[g->idx[k]];
-            fprintf(f, "- %d²: ", c->map_size);
-            md_provenance(f, c);
-            fprintf(f, "\n");
+            fprintf(fn, "%s- %d\xC2\xB2: ", k ? "\n" : "", c->map_size);
+            md_provenance(fn, c);
         }
-        fprintf(f, "\n");
+    int bad = !fl || fclose(fl) != 0;
+    bad |= !fi || fclose(fi) != 0;
+    bad |= !fn || fclose(fn) != 0;
+    char id[160];
+    snprintf(id, sizeof id, "%s-%s-%dx%d-%s", c0->scene, c0->viewpoint, c0->vw, c0->vh, c0->label);
+    sl_tab_init(t, id, 1 + ncols, 1, "%s%s / %s / %dx%d / %s", c0->scene, light ? light : "", c0->viewpoint, c0->vw,
+                c0->vh, c0->label);
+    t->level = 2;
+    t->plain = 1;
+    t->oom |= bad;
+    if (!bad) {
+        sl_tab_intro(t, intro);
+        sl_tab_notef(t, "%s", note);
     }
+    free(light);
+    free(intro);
+    free(note);
+    sl_tab_head(t, 0, "figure");
+    for (int k = 0, col = 1; k < g->n; k++) {
+        const struct sl_cell_record *c = &cells[g->idx[k]];
+        for (int r = 0; r < cell_cols(c); r++, col++) {
+            char rn[16];
+            sl_region_name(col_thickness(c, r), rn, sizeof rn);
+            sl_tab_head(t, col, "%d\xC2\xB2 %s", c->map_size, rn);
+        }
+    }
+    for (int fi2 = 0; fi2 < cell_rows(c0); fi2++) {
+        if (!row_shown(cells, g, fi2, rows))
+            continue;
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%s", row_name(c0, fi2));
+        for (int k = 0, col = 1; k < g->n; k++) {
+            const struct sl_cell_record *c = &cells[g->idx[k]];
+            for (int r = 0; r < cell_cols(c); r++, col++) {
+                uint64_t n;
+                double pct;
+                char v[64];
+                cell_value(c, r, fi2, &n, &pct);
+                value_text(c, fi2, n, pct, 0, v, sizeof v);
+                sl_tab_cell(t, col, "%s", v);
+            }
+        }
+    }
+    return t->oom ? -1 : 1;
+}
+
+static int md_table(FILE *f, const struct sl_cell_record *cells, const struct group *g,
+                    const struct sl_table_rows *rows)
+{
+    struct sl_tab t;
+    int k = md_model(&t, cells, g, rows);
+    if (k > 0)
+        k = sl_emit_md(f, &t, NULL) < 0 ? -1 : 1;
+    if (k != 0)
+        sl_tab_free(&t);
+    return k;
 }
 
 /* ---- CSV ---- */
 
 
-/* scene,viewpoint,viewport,map_size,method,label, */
-static void csv_key(FILE *f, const struct sl_cell_record *c)
+/* The long form: a line per (cell, region, figure), the aliasing figures
+ * (by error m) of a hard cell's region after its figures, then the image's
+ * background pixels and a spot light's pixels outside its cone. */
+static const char *const csv_heads[] = {"scene", "viewpoint", "viewport", "map_size", "method", "label", "region",
+                                        "figure", "count", "percent", "percent_of", "git_sha", "config_hash",
+                                        "machine"};
+
+/* a line of cell c: its key, then region, figure, count, percent (NaN:
+ * empty), percent_of, then its provenance */
+static void csv_line(struct sl_tab *t, const struct sl_cell_record *c, const char *region, const char *figure,
+                     uint64_t n, double pct, const char *of)
 {
-    sl_csv_field(f, c->scene);
-    fputc(',', f);
-    sl_csv_field(f, c->viewpoint);
-    fprintf(f, ",%dx%d,%d,", c->vw, c->vh, c->map_size);
-    sl_csv_field(f, c->method);
-    fputc(',', f);
-    sl_csv_field(f, c->label);
-    fputc(',', f);
+    sl_tab_row(t, 0);
+    sl_tab_cell(t, 0, "%s", c->scene);
+    sl_tab_cell(t, 1, "%s", c->viewpoint);
+    sl_tab_cell(t, 2, "%dx%d", c->vw, c->vh);
+    sl_tab_cell(t, 3, "%d", c->map_size);
+    sl_tab_cell(t, 4, "%s", c->method);
+    sl_tab_cell(t, 5, "%s", c->label);
+    sl_tab_cell(t, 6, "%s", region);
+    sl_tab_cell(t, 7, "%s", figure);
+    sl_tab_cell(t, 8, "%llu", (unsigned long long)n);
+    if (!isnan(pct))
+        sl_tab_cell(t, 9, "%.4f", pct);
+    sl_tab_cell(t, 10, "%s", of);
+    sl_tab_cell(t, 11, "%s", c->git_sha);
+    sl_tab_cell(t, 12, "%s", c->config_hash);
+    sl_tab_cell(t, 13, "%s", c->machine);
 }
 
-/* ,git_sha,config_hash,machine\n */
-static void csv_provenance(FILE *f, const struct sl_cell_record *c)
+static void csv_model(struct sl_tab *t, const struct sl_cell_record *c, int background)
 {
-    fputc(',', f);
-    sl_csv_field(f, c->git_sha);
-    fputc(',', f);
-    sl_csv_field(f, c->config_hash);
-    fputc(',', f);
-    sl_csv_field(f, c->machine);
-    fputc('\n', f);
-}
-
-static void csv_cell(FILE *f, const struct sl_cell_record *c, int background)
-{
-    for (int r = 0; r < cell_cols(c); r++) {
+    sl_tab_init(t, "figures", 14, 8, "figures");
+    for (int k = 0; k < 14; k++)
+        sl_tab_head(t, k, "%s", csv_heads[k]);
+    for (int r = 0; c && r < cell_cols(c); r++) {
         char rn[16];
         sl_region_name(col_thickness(c, r), rn, sizeof rn);
         for (int k = 0; k < cell_rows(c); k++) {
             uint64_t n;
             double pct;
             cell_value(c, r, k, &n, &pct);
-            csv_key(f, c);
-            fprintf(f, "%s,%s,%llu,", rn, row_name(c, k), (unsigned long long)n);
-            if (!isnan(pct))
-                fprintf(f, "%.4f", pct);
-            fprintf(f, ",%s", row_of(c, k));
-            csv_provenance(f, c);
+            csv_line(t, c, rn, row_name(c, k), n, pct, row_of(c, k));
         }
         /* a hard cell's aliasing figures (by error m), stored per region like its
          * figures: the file holds every figure the store holds for the cell */
         for (int k = 0; !c->has_soft && c->has_alias && r < c->alias.nregions && k < SL_AFIG_COUNT; k++) {
-            double pct = c->alias.pct[r][k];
             char an[16];
             sl_region_name(c->alias.thickness[r], an, sizeof an);
-            csv_key(f, c);
-            fprintf(f, "%s,%s,%llu,", an, sl_alias_figure_name((enum sl_alias_figure)k),
-                    (unsigned long long)c->alias.n[r][k]);
-            if (!isnan(pct))
-                fprintf(f, "%.4f", pct);
-            fprintf(f, ",%s", sl_alias_figure_of((enum sl_alias_figure)k));
-            csv_provenance(f, c);
+            csv_line(t, c, an, sl_alias_figure_name((enum sl_alias_figure)k), c->alias.n[r][k], c->alias.pct[r][k],
+                     sl_alias_figure_of((enum sl_alias_figure)k));
         }
     }
-    if (!background)
+    if (!c || !background)
         return;
-    csv_key(f, c);
-    fprintf(f, "image,background,%llu,,", (unsigned long long)c->fig.background);
-    csv_provenance(f, c);
-    if (!c->n_outside_cone)
-        return;
+    csv_line(t, c, "image", "background", c->fig.background, NAN, "");
     /* a spot light's pixels outside its cone (view.h): part of PnFL, named apart */
-    csv_key(f, c);
-    fprintf(f, "image,outside_cone,%llu,,", (unsigned long long)c->n_outside_cone);
-    csv_provenance(f, c);
+    if (c->n_outside_cone)
+        csv_line(t, c, "image", "outside_cone", c->n_outside_cone, NAN, "");
+}
+
+/* cell c's lines (NULL: the header alone); -1 out of memory */
+static int csv_cell(FILE *f, const struct sl_cell_record *c, int background)
+{
+    struct sl_tab t;
+    const struct sl_emit_opts o = {.first = !c};
+    csv_model(&t, c, background);
+    int k = sl_emit_csv(f, &t, &o);
+    sl_tab_free(&t);
+    return k;
 }
 
 /* ---- LaTeX ---- */
@@ -645,24 +671,24 @@ enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char 
             for (int j = 0; j < ncells; j++)
                 twin[j].has_soft = twin[j].has_soft && !dual(&cells[j]);
         }
+    int oom = 0;
     switch (fmt) {
     case SL_TABLE_MD:
         if (title)
             fprintf(out, "# %s\n\n", title);
         fputs(md_note, out);
-        for (int g = 0; g < l.ngroups; g++) {
-            md_table(out, cells, &l.groups[g], rows);
+        for (int g = 0; g < l.ngroups && !oom; g++) {
+            oom |= md_table(out, cells, &l.groups[g], rows) < 0;
             if (dual(&cells[l.groups[g].idx[0]]))
-                md_table(out, twin, &l.groups[g], rows);
+                oom |= md_table(out, twin, &l.groups[g], rows) < 0;
         }
         break;
     case SL_TABLE_CSV:
-        fputs("scene,viewpoint,viewport,map_size,method,label,region,figure,count,percent,percent_of,"
-              "git_sha,config_hash,machine\n", out);
-        for (int i = 0; i < ncells; i++) {
-            csv_cell(out, &cells[l.order[i]], 1);
+        oom |= csv_cell(out, NULL, 0) < 0;
+        for (int i = 0; i < ncells && !oom; i++) {
+            oom |= csv_cell(out, &cells[l.order[i]], 1) < 0;
             if (dual(&cells[l.order[i]]))
-                csv_cell(out, &twin[l.order[i]], 0);
+                oom |= csv_cell(out, &twin[l.order[i]], 0) < 0;
         }
         break;
     case SL_TABLE_LATEX:
@@ -694,6 +720,8 @@ enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char 
     }
     free(twin);
     layout_free(&l);
+    if (oom)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "tables");
     if (ferror(out) || fflush(out) != 0)
         return sl_fail(d, SL_E_IO, NULL, 0, NULL, "writing the tables failed");
     return SL_OK;

@@ -11,7 +11,7 @@
 /* s (UTF-8) as LaTeX text: the ten specials escaped; every non-ASCII code
  * point as LaTeX reads it (signs and symbols, Greek, accented letters by
  * their decomposition) or, with no LaTeX form, as a visible \textsf{[U+XXXX]};
- * never '?' (tex.c). */
+ * never '?' (emit_tex.c). */
 void sl_tex_text(FILE *f, const char *s);
 
 /* v with dec decimals as LaTeX: thousands separated by thin spaces (\,), a

@@ -1,0 +1,55 @@
+/*
+ * emit.h — one emitter per table format, each in its own file, each owning
+ * its format's escaping and number formatting: emit_md.c (Markdown),
+ * emit_csv.c (CSV, RFC 4180), emit_tex.c (LaTeX booktabs, fitted to the
+ * line and never scaled; also tex.h's text and numbers), emit_html.c (an
+ * HTML table) and emit_json.c (an object per table). Each writes one table
+ * of the model (tabmodel.h) to a stream.
+ *
+ * Adding a format: a file emit_<name>.c with one function of the sl_emit_fn
+ * type, its declaration here, and its line in sl_emitters (emit.c). The
+ * writers build models and never change for a new format.
+ *
+ * Does not: open files, decide what a table holds.
+ */
+#ifndef SL_EMIT_H
+#define SL_EMIT_H
+#include <stdio.h>
+#include "tabmodel.h"
+
+/* Where a table sits in its stream, and what a page around it adds (the
+ * report's: a companion file named under it). Zero: a table alone, nothing
+ * around it. */
+struct sl_emit_opts {
+    const char *link;        /* a file beside the page (the table's .tex), linked under the table */
+    int         link_named;  /* HTML: name it, do not link it (a page that refers to nothing outside) */
+    int         first;       /* the first table of its stream: CSV writes its header, JSON no comma before it */
+    int         gap;         /* Markdown: a blank line before it (after text that ends without one) */
+    int         tight;       /* Markdown: the stream ends after its note: no blank line after it */
+};
+
+/* Writes t; returns the floats it took (LaTeX, since its last \clearpage;
+ * 0 for a format without floats), or -1 when t cannot be written (out of
+ * memory; LaTeX: wider than SL_TAB_MAXCOLS columns). */
+typedef int (*sl_emit_fn)(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
+
+int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
+int sl_emit_csv(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
+int sl_emit_tex(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
+int sl_emit_html(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
+int sl_emit_json(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
+
+/* The emitters by name ("md", "csv", "latex", "html", "json"), a
+ * sentinel-terminated table; sl_emit_find returns NULL for an unknown name. */
+struct sl_emitter {
+    const char *name;
+    sl_emit_fn  emit;
+};
+extern const struct sl_emitter sl_emitters[];
+sl_emit_fn sl_emit_find(const char *name);
+
+/* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation). */
+void sl_emit_html_text(FILE *f, const char *s);
+void sl_emit_md_text(FILE *f, const char *s);
+
+#endif

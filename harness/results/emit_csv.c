@@ -1,0 +1,56 @@
+/*
+ * emit_csv.c — a table (tabmodel.h) as CSV (RFC 4180): a header line of the
+ * column heads (a column group's name in front of its columns' heads) when
+ * the table is the stream's first (o->first; the tables of one stream share
+ * its columns), then a line per row. A field holding a comma, a quote or a
+ * line break is quoted, its quotes doubled; an empty cell is an empty field.
+ * Title, note, rules and muted rows are not written: CSV is data.
+ */
+#include "emit.h"
+#include <string.h>
+
+static void field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+int sl_emit_csv(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
+{
+    if (t->oom)
+        return -1;
+    if (!o || o->first) {
+        int g = 0, left = t->ngroups ? t->span[0] : 0;
+        for (int c = 0; c < t->ncols; c++) {
+            if (c)
+                fputc(',', f);
+            if (t->ngroups && g < t->ngroups && t->group[g][0]) {
+                char h[400];
+                snprintf(h, sizeof h, "%s %s", t->group[g], t->head[c] ? t->head[c] : "");
+                field(f, h);
+            } else
+                field(f, t->head[c] ? t->head[c] : "");
+            if (t->ngroups && --left == 0 && ++g < t->ngroups)
+                left = t->span[g];
+        }
+        fputc('\n', f);
+    }
+    for (int r = 0; r < t->nrows; r++) {
+        for (int c = 0; c < t->ncols; c++) {
+            if (c)
+                fputc(',', f);
+            field(f, sl_tab_at(t, r, c));
+        }
+        fputc('\n', f);
+    }
+    return 0;
+}

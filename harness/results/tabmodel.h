@@ -1,0 +1,83 @@
+/*
+ * tabmodel.h — the one table model every table writer builds: a grid of
+ * strings (rows x columns; the first nkeys columns are keys, left aligned,
+ * the others values, right aligned), its column heads and optional column
+ * groups (a row of spanning heads above them), rules before a block of rows,
+ * rows set back (muted), a caption (title), a label (id), a paragraph
+ * between the title and the table (intro), a note under it,
+ * and optionally a unit per column. An emitter (emit.h: one file per
+ * format) writes it; the writer never writes a format's syntax itself.
+ *
+ * Cells are plain UTF-8 text as a reader sees it ("512²", "12.50 (3.1%)",
+ * "–"): each emitter escapes it for its format (Markdown's punctuation,
+ * HTML's entities, LaTeX's specials and non-ASCII signs, CSV's quotes,
+ * JSON's string escapes), so a writer formats its numbers once.
+ *
+ * Owns: its strings (free with sl_tab_free). Does not: write anything, know
+ * any format. A failed allocation is remembered (oom) and makes every later
+ * call a no-op; emitters refuse such a table.
+ */
+#ifndef SL_TABMODEL_H
+#define SL_TABMODEL_H
+#include <stddef.h>
+
+/* Column groups a table may have; LaTeX lays out at most this many columns
+ * (emit_tex.c refuses a wider table), the other formats any number. */
+#define SL_TAB_MAXCOLS 64
+
+/* rule[] flags of a row */
+enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2 };
+
+struct sl_tab {
+    char  id[160];          /* its label: a slug (letters, digits, '.', '_', '-') */
+    char  title[320];       /* its caption */
+    char *intro;            /* a paragraph between the title and the table (a view's counts); NULL: none */
+    char *note;             /* printed under it; NULL: none */
+    int   ncols, nkeys;     /* the first nkeys columns are keys (left aligned) */
+    int   wrap;             /* long cells may wrap (text tables): HTML class, LaTeX \parbox */
+    int   level;            /* 0: the title is the table's caption; k > 0: a heading of level k (Markdown "##") */
+    int   plain;            /* cells are names and numbers written as they are in Markdown (no escapes; an empty
+                             * cell as "| |"): the run's tables, whose Markdown predates the model */
+    char **head;            /* ncols heads; NULL = empty */
+    char **unit;            /* ncols units; NULL: none (JSON's columns name it) */
+    char  *align;           /* ncols: 'l' or 'r'; 0: by nkeys (keys left, values right) */
+    int   ngroups;          /* optional row above the header: spans over columns */
+    char  group[SL_TAB_MAXCOLS][64];
+    int   span[SL_TAB_MAXCOLS];
+    int   nrows, cap;
+    char **cell;            /* nrows * ncols; NULL = empty */
+    unsigned char *rule;    /* SL_TAB_BLOCK: a block starts at this row; SL_TAB_MUTED: a row set back
+                             * (grey in HTML: the thesis's numbers under ours) */
+    int   oom;
+};
+
+/* "a b/c" -> "a-b-c": letters, digits, '.', '_' and '-' only; never empty,
+ * never starting with '.'. */
+void sl_tab_slug(const char *s, char *buf, size_t n);
+
+/* A table of ncols columns (at least 1) whose first nkeys are keys; id is
+ * slugged; the title is printf-formatted. */
+void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+void sl_tab_head(struct sl_tab *t, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+void sl_tab_unit(struct sl_tab *t, int col, const char *unit);
+void sl_tab_align(struct sl_tab *t, int col, char lr);   /* 'l' or 'r' */
+/* Whether column c is left aligned: its align, else whether it is a key. */
+int sl_tab_left(const struct sl_tab *t, int c);
+void sl_tab_group(struct sl_tab *t, int span, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+void sl_tab_row(struct sl_tab *t, int block);   /* block: a rule before it */
+void sl_tab_muted(struct sl_tab *t);            /* the last row started: set back */
+void sl_tab_cell(struct sl_tab *t, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* The intro: a copy of text (NULL: none). */
+void sl_tab_intro(struct sl_tab *t, const char *text);
+/* The note: set (notef) or appended to as it is (note_cat); printf-formatted. */
+void sl_tab_notef(struct sl_tab *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void sl_tab_note_cat(struct sl_tab *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* 1 if the table has a note that is not empty. */
+int sl_tab_has_note(const struct sl_tab *t);
+void sl_tab_free(struct sl_tab *t);
+
+/* Cell r, c ("" when empty). */
+const char *sl_tab_at(const struct sl_tab *t, int r, int c);
+
+#endif
