@@ -403,23 +403,6 @@ static enum sl_err case_times(struct sl_report_doc *doc, const struct sl_report_
     return e;
 }
 
-/* Hertel 2009 Table 2 (seed 002): 1280x1024 view port, 1K x 1K conservative
- * map, GeForce 8800 GTS. Its caption says the last two columns are the rays
- * "without and with" the classification, but the printed "# rays" is the
- * smaller in every row: read as the rays traced after the classification
- * and the rays a full trace casts (its own scenes, not Morais's). */
-static const struct {
-    const char *scene;
-    int tris;
-    double rt_class, rt_insec, rt_opt;
-    long rays, insec;
-} hertel_table2[] = {
-    {"4 Buildings", 11154, 158, 114, 95, 32079, 55294},
-    {"Village", 247432, 422, 288, 217, 236350, 905290},
-    {"Tree on Snow", 78646, 3115, 2670, 2585, 342105, 623890},
-    {"Kitchen", 103351, 956, 641, 610, 198576, 967655},
-};
-
 /* Hertel 2009's hybrid on a case: hertel (as published) and hertel_exact */
 static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report_study *s, int k,
                                const struct sl_report_view **v, int nv, struct sl_diag *d)
@@ -477,10 +460,16 @@ static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report
                     sl_tab_cell(&t, 6 + 5 * j, "%.0f%%", 100.0 * c->ms_ray_step / full->ms_ray_step);
             }
         }
+    /* Hertel's Table 2 (report/theses/hertel-2009.csv): the share of the
+     * rays he traced and of their time, over his scenes */
     double lo = 100.0, hi = 0.0, tlo = 100.0, thi = 0.0;
-    for (size_t i = 0; i < sizeof hertel_table2 / sizeof hertel_table2[0]; i++) {
-        double share = 100.0 * (double)hertel_table2[i].rays / (double)hertel_table2[i].insec;
-        double time = 100.0 * hertel_table2[i].rt_insec / hertel_table2[i].rt_class;
+    const struct sl_hertel_row *h;
+    int nh = 0;
+    if (sl_theses_hertel(&h, &nh, NULL))
+        nh = 0;
+    for (int i = 0; i < nh; i++) {
+        double share = 100.0 * (double)h[i].rays / (double)h[i].insec;
+        double time = 100.0 * h[i].rt_insec / h[i].rt_class;
         lo = share < lo ? share : lo;
         hi = share > hi ? share : hi;
         tlo = time < tlo ? time : tlo;
@@ -489,9 +478,11 @@ static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report
     sl_tab_notef(&t, "traced: pixels decided by a shadow ray, %% of PFL (Hertel's \"uncertain\" "
              "view samples); wrong: %% of PFL; violations: pixels breaking the method's exactness guarantee "
              "(hertel promises none, so its errors show as wrong pixels); of full trace: the ray step against "
-             "the raytrace label's on the same view and machine (noisy: one median of a few repetitions each). "
-             "Hertel's Table 2 traces %.1f-%.1f%% of the rays a full trace casts and takes %.0f-%.0f%% of its "
-             "time (RT insec / RT class), on his scenes (the table \"Hertel 2009 Table 2\").", lo, hi, tlo, thi);
+             "the raytrace label's on the same view and machine (noisy: one median of a few repetitions each).");
+    if (nh)
+        sl_tab_note_cat(&t, " Hertel's Table 2 traces %.1f-%.1f%% of the rays a full trace casts and takes "
+                        "%.0f-%.0f%% of its time (RT insec / RT class), on his scenes (the table \"Hertel 2009 "
+                        "Table 2\").", lo, hi, tlo, thi);
     if (once)
         sl_report_tab_once(&t);
     enum sl_err e = sl_report_doc_table(doc, &t, d);
@@ -501,6 +492,11 @@ static enum sl_err case_hertel(struct sl_report_doc *doc, const struct sl_report
 
 static enum sl_err hertel_thesis(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
 {
+    const struct sl_hertel_row *h;   /* report/theses/hertel-2009.csv: as printed */
+    int nh;
+    enum sl_err er = sl_theses_hertel(&h, &nh, d);
+    if (er)
+        return er;
     char id[160];
     snprintf(id, sizeof id, "%s-hertel-table2", s->slug);
     struct sl_tab t;
@@ -509,16 +505,16 @@ static enum sl_err hertel_thesis(struct sl_report_doc *doc, const struct sl_repo
                                        "RT insec / class", "# rays", "# insec. rays", "rays / insec. rays"};
     for (int k = 0; k < 8; k++)
         sl_tab_head(&t, k, "%s", head[k]);
-    for (size_t i = 0; i < sizeof hertel_table2 / sizeof hertel_table2[0]; i++) {
+    for (int i = 0; i < nh; i++) {
         sl_tab_row(&t, 0);
-        sl_tab_cell(&t, 0, "%s (%d)", hertel_table2[i].scene, hertel_table2[i].tris);
-        sl_tab_cell(&t, 1, "%.0f", hertel_table2[i].rt_class);
-        sl_tab_cell(&t, 2, "%.0f", hertel_table2[i].rt_insec);
-        sl_tab_cell(&t, 3, "%.0f", hertel_table2[i].rt_opt);
-        sl_tab_cell(&t, 4, "%.0f%%", 100.0 * hertel_table2[i].rt_insec / hertel_table2[i].rt_class);
-        sl_tab_cell(&t, 5, "%ld", hertel_table2[i].rays);
-        sl_tab_cell(&t, 6, "%ld", hertel_table2[i].insec);
-        sl_tab_cell(&t, 7, "%.1f%%", 100.0 * (double)hertel_table2[i].rays / (double)hertel_table2[i].insec);
+        sl_tab_cell(&t, 0, "%s (%d)", h[i].scene, h[i].tris);
+        sl_tab_cell(&t, 1, "%.0f", h[i].rt_class);
+        sl_tab_cell(&t, 2, "%.0f", h[i].rt_insec);
+        sl_tab_cell(&t, 3, "%.0f", h[i].rt_opt);
+        sl_tab_cell(&t, 4, "%.0f%%", 100.0 * h[i].rt_insec / h[i].rt_class);
+        sl_tab_cell(&t, 5, "%llu", (unsigned long long)h[i].rays);
+        sl_tab_cell(&t, 6, "%llu", (unsigned long long)h[i].insec);
+        sl_tab_cell(&t, 7, "%.1f%%", 100.0 * (double)h[i].rays / (double)h[i].insec);
     }
     sl_tab_notef(&t, "As printed (1280×1024, a 1K² map; RT class: every ray, insec: the uncertain "
              "only, opt: with the ray cut at the stored depth). The caption calls the last two columns the rays "
