@@ -26,6 +26,10 @@ struct sl_emit_opts {
     int         first;       /* the first table of its stream: CSV writes its header, JSON no comma before it */
     int         gap;         /* Markdown: a blank line before it (after text that ends without one) */
     int         tight;       /* Markdown: the stream ends after its note: no blank line after it */
+    const char *comment;     /* LaTeX: the first table's comment line, without "% " (NULL: the report's);
+                              * before a longtable, a blank line follows it */
+    int         cont, more;  /* LaTeX longtable: it continues the previous table's {\small ...} group
+                              * (cont), the next one continues its own (more); neither: a group of its own */
 };
 
 /* Writes t; returns the floats it took (LaTeX, since its last \clearpage;
@@ -47,6 +51,12 @@ struct sl_emitter {
 };
 extern const struct sl_emitter sl_emitters[];
 sl_emit_fn sl_emit_find(const char *name);
+
+/* The comment line a stream of LaTeX tables opens with (sl_emit_tex writes
+ * it before the first table: o->comment; NULL: the report's), and before
+ * longtables a blank line: a stream with no table still names what it
+ * needs. */
+void sl_emit_tex_comment(FILE *f, const char *comment, int longtable);
 
 /* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation). */
 void sl_emit_html_text(FILE *f, const char *s);

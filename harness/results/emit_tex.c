@@ -43,7 +43,7 @@ static const struct tex_sym tex_signs[] = {
     {0x00B6, "\\P{}"},                {0x00B7, "$\\cdot$"},          {0x00B9, "\\textsuperscript{1}"},
     {0x00BB, "$\\gg$"},               {0x00BC, "$\\frac{1}{4}$"},    {0x00BD, "$\\frac{1}{2}$"},
     {0x00BE, "$\\frac{3}{4}$"},       {0x00BF, "\\textquestiondown{}"}, {0x00D7, "$\\times$"},
-    {0x00F7, "$\\div$"},              {0x2010, "-"},                 {0x2011, "-"},
+    {0x00F7, "$\\div$"},              {0x2009, "\\,"},                 {0x2010, "-"},                 {0x2011, "-"},
     {0x2012, "--"},                   {0x2013, "--"},                {0x2014, "---"},
     {0x2015, "---"},                  {0x2016, "$\\|$"},             {0x2018, "`"},
     {0x2019, "'"},                    {0x201A, ","},                 {0x201C, "``"},
@@ -573,12 +573,73 @@ static int row_cuts(const struct sl_tab *t, const struct tex_layout *lo, int cp,
     return n;
 }
 
+void sl_emit_tex_comment(FILE *f, const char *comment, int longtable)
+{
+    if (comment)
+        fprintf(f, "%% %s\n%s", comment, longtable ? "\n" : "");
+    else
+        fputs("% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n", f);
+}
+
+/* A row of cells (the heads: r = -1) joined by " & ", ended by " \\". */
+static void long_row(FILE *f, const struct sl_tab *t, int r)
+{
+    for (int c = 0; c < t->ncols; c++) {
+        if (c)
+            fputs(" & ", f);
+        sl_tex_text(f, r < 0 ? (t->head[c] ? t->head[c] : "") : sl_tab_at(t, r, c));
+    }
+    fputs(" \\\\\n", f);
+}
+
+/* A longtable at \small: the caption (and label) in the table, the heads on
+ * every page, a rule under the last; no float, so nothing to clear. */
+static int tex_long(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
+{
+    if (!o || !o->cont)
+        fputs("{\\small\\setlength{\\tabcolsep}{4pt}\n", f);
+    fputs("\\begin{longtable}{", f);
+    for (int c = 0; c < t->ncols; c++)
+        fputc(sl_tab_left(t, c) ? 'l' : 'r', f);
+    fputs("}\n\\caption{", f);
+    sl_tex_text(f, t->title);
+    if (t->intro && t->intro[0]) {
+        fputs(". ", f);
+        sl_tex_text(f, t->intro);
+    }
+    fputc('}', f);
+    if (!t->nolabel)
+        fprintf(f, "\\label{tab:%s}", t->id);
+    fputs("\\\\\n", f);
+    for (int pass = 0; pass < 2; pass++) {
+        fputs("\\toprule\n", f);
+        long_row(f, t, -1);
+        fprintf(f, "\\midrule\n%s\n", pass ? "\\endhead" : "\\endfirsthead");
+    }
+    fputs("\\bottomrule\n\\endfoot\n", f);
+    for (int r = 0; r < t->nrows; r++) {
+        if ((t->rule[r] & SL_TAB_BLOCK) && r > 0)
+            fputs("\\addlinespace\n", f);
+        long_row(f, t, r);
+    }
+    fputs("\\end{longtable}", f);
+    if (sl_tab_has_note(t)) {
+        fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
+        sl_tex_text(f, t->note);
+        fputs("\\par}\n", f);
+    }
+    fputs(o && o->more ? "\n" : "}\n\n", f);
+    return 0;
+}
+
 int sl_emit_tex(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
 {
     if (t->oom || t->ncols > SL_TAB_MAXCOLS || t->ngroups > SL_TAB_MAXCOLS)
         return -1;
     if (!o || o->first)
-        fputs("% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n", f);
+        sl_emit_tex_comment(f, o ? o->comment : NULL, t->longtable);
+    if (t->longtable)
+        return tex_long(f, t, o);
     struct tex_layout lo;
     tex_fit(t, &lo);
     int *cut = malloc(((size_t)t->nrows + 2) * sizeof *cut);
