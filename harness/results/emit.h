@@ -30,6 +30,9 @@ struct sl_emit_opts {
                               * before a longtable, a blank line follows it */
     int         cont, more;  /* LaTeX longtable: it continues the previous table's {\small ...} group
                               * (cont), the next one continues its own (more); neither: a group of its own */
+    int         clear;       /* LaTeX, fixed: a \clearpage and a blank line before it (the writer counts
+                              * its floats: LaTeX holds at most 18 it has not placed) */
+    int         blank;       /* LaTeX, fixed: a blank line after it */
 };
 
 /* Writes t; returns the floats it took (LaTeX, since its last \clearpage;

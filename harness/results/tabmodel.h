@@ -51,6 +51,11 @@ struct sl_tab {
     int   longtable;        /* LaTeX: a longtable at \small (its heads repeated on every page), not a
                              * float fitted to the line: nothing stacked, wrapped or split */
     int   nolabel;          /* LaTeX: no \label (a table nothing refers to) */
+    int   fixed;            /* LaTeX: one float laid out by its writer, not fitted to the line: nothing
+                             * stacked or split; a cell (not a head) wrapped only in its column's parbox */
+    double parbox[SL_TAB_MAXCOLS];  /* LaTeX, fixed: the width (pt) of a ragged \parbox around the column's
+                             * cells that are not empty; 0: none */
+    int   squares;          /* LaTeX: a number squared ("512²") in math, $512^2$, not 512\textsuperscript{2} */
     int   oom;
 };
 
