@@ -55,11 +55,14 @@ struct sl_emitter {
 extern const struct sl_emitter sl_emitters[];
 sl_emit_fn sl_emit_find(const char *name);
 
-/* The comment line a stream of LaTeX tables opens with (sl_emit_tex writes
- * it before the first table: o->comment; NULL: the report's), and before
- * longtables a blank line: a stream with no table still names what it
- * needs. */
-void sl_emit_tex_comment(FILE *f, const char *comment, int longtable);
+/* A comment line of a stream of LaTeX tables (sl_emit_tex writes one before
+ * the first table: o->comment, NULL: the report's; before longtables a
+ * blank line follows it); blank: a blank line after it. A writer calls it
+ * for a stream with no table, or for a second line (what it is from). */
+void sl_emit_tex_comment(FILE *f, const char *comment, int blank);
+/* A \clearpage and a blank line, where a writer that counts its floats needs
+ * one (LaTeX holds at most 18 it has not placed). */
+void sl_emit_tex_clearpage(FILE *f);
 
 /* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation). */
 void sl_emit_html_text(FILE *f, const char *s);

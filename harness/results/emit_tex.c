@@ -43,7 +43,10 @@ static const struct tex_sym tex_signs[] = {
     {0x00B6, "\\P{}"},                {0x00B7, "$\\cdot$"},          {0x00B9, "\\textsuperscript{1}"},
     {0x00BB, "$\\gg$"},               {0x00BC, "$\\frac{1}{4}$"},    {0x00BD, "$\\frac{1}{2}$"},
     {0x00BE, "$\\frac{3}{4}$"},       {0x00BF, "\\textquestiondown{}"}, {0x00D7, "$\\times$"},
-    {0x00F7, "$\\div$"},              {0x2009, "\\,"},                 {0x2010, "-"},                 {0x2011, "-"},
+    {0x00F7, "$\\div$"},              {0x2010, "-"},                 {0x2011, "-"},
+    /* a thin space (sl_tab_number's thousands); a zero width non-joiner,
+     * what keeps two signs apart: "-{}-" is two hyphens, not a dash */
+    {0x2009, "\\,"},                 {0x200C, "{}"},
     {0x2012, "--"},                   {0x2013, "--"},                {0x2014, "---"},
     {0x2015, "---"},                  {0x2016, "$\\|$"},             {0x2018, "`"},
     {0x2019, "'"},                    {0x201A, ","},                 {0x201C, "``"},
@@ -573,10 +576,15 @@ static int row_cuts(const struct sl_tab *t, const struct tex_layout *lo, int cp,
     return n;
 }
 
-void sl_emit_tex_comment(FILE *f, const char *comment, int longtable)
+void sl_emit_tex_clearpage(FILE *f)
+{
+    fputs("\\clearpage\n\n", f);
+}
+
+void sl_emit_tex_comment(FILE *f, const char *comment, int blank)
 {
     if (comment)
-        fprintf(f, "%% %s\n%s", comment, longtable ? "\n" : "");
+        fprintf(f, "%% %s\n%s", comment, blank ? "\n" : "");
     else
         fputs("% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n", f);
 }
@@ -618,7 +626,9 @@ static void long_row(FILE *f, const struct sl_tab *t, int r)
         if (c)
             fputs(" & ", f);
         const char *v = r < 0 ? (t->head[c] ? t->head[c] : "") : sl_tab_at(t, r, c);
-        if (r >= 0 && t->fixed && t->parbox[c] > 0 && v[0]) {
+        if (r >= 0 && t->fixed && t->stack && !sl_tab_left(t, c))
+            tex_cell(f, v, 1, 'r', 0);
+        else if (r >= 0 && t->fixed && t->parbox[c] > 0 && v[0]) {
             fprintf(f, "\\parbox[t]{%.1fpt}{\\raggedright ", t->parbox[c]);
             tab_text(f, v, t->squares);
             fputs("\\strut}", f);
@@ -626,6 +636,31 @@ static void long_row(FILE *f, const struct sl_tab *t, int r)
             tab_text(f, v, t->squares);
     }
     fputs(" \\\\\n", f);
+}
+
+/* the note; t->code: its `spans` as \texttt */
+static void note_text(FILE *f, const struct sl_tab *t)
+{
+    const char *s = t->note;
+    char *buf = malloc(strlen(s) + 1);
+    if (!t->code || !buf) {
+        free(buf);
+        tab_text(f, s, t->squares);
+        return;
+    }
+    for (int code = 0; *s; code = !code) {
+        size_t n = strcspn(s, "`");
+        memcpy(buf, s, n);
+        buf[n] = '\0';
+        if (code) {
+            fputs("\\texttt{", f);
+            sl_tex_text(f, buf);
+            fputc('}', f);
+        } else
+            tab_text(f, buf, t->squares);
+        s += n + (s[n] == '`');
+    }
+    free(buf);
 }
 
 /* One float as its writer laid it out (t->fixed): the fitted floats' frame,
@@ -657,7 +692,7 @@ static int tex_fixed(FILE *f, const struct sl_tab *t, const struct sl_emit_opts 
     fputs("\\bottomrule\n\\end{tabular}\n", f);
     if (sl_tab_has_note(t)) {
         fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
-        tab_text(f, t->note, t->squares);
+        note_text(f, t);
         fputs("\\par}\n", f);
     }
     fputs("\\end{table}\n", f);

@@ -29,7 +29,7 @@
 enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2 };
 
 struct sl_tab {
-    char  id[160];          /* its label: a slug (letters, digits, '.', '_', '-') */
+    char  id[256];          /* its label: a slug (letters, digits, '.', '_', '-') */
     char  title[512];       /* its caption */
     char *intro;            /* a paragraph between the title and the table (a view's counts); NULL: none */
     char *note;             /* printed under it; NULL: none */
@@ -56,6 +56,8 @@ struct sl_tab {
     double parbox[SL_TAB_MAXCOLS];  /* LaTeX, fixed: the width (pt) of a ragged \parbox around the column's
                              * cells that are not empty; 0: none */
     int   squares;          /* LaTeX: a number squared ("512²") in math, $512^2$, not 512\textsuperscript{2} */
+    int   stack;            /* LaTeX, fixed: a value cell "v (where)" as two lines, v above "(where)" */
+    int   code;             /* LaTeX, fixed: a `span` of the note in backquotes is code, \texttt */
     int   oom;
 };
 
