@@ -26,6 +26,13 @@ struct sl_emit_opts {
     int         first;       /* the first table of its stream: CSV writes its header, JSON no comma before it */
     int         gap;         /* Markdown: a blank line before it (after text that ends without one) */
     int         tight;       /* Markdown: the stream ends after its note: no blank line after it */
+    const char *comment;     /* LaTeX: the first table's comment line, without "% " (NULL: the report's);
+                              * before a longtable, a blank line follows it */
+    int         cont, more;  /* LaTeX longtable: it continues the previous table's {\small ...} group
+                              * (cont), the next one continues its own (more); neither: a group of its own */
+    int         clear;       /* LaTeX, fixed: a \clearpage and a blank line before it (the writer counts
+                              * its floats: LaTeX holds at most 18 it has not placed) */
+    int         blank;       /* LaTeX, fixed: a blank line after it */
 };
 
 /* Writes t; returns the floats it took (LaTeX, since its last \clearpage;
@@ -47,6 +54,15 @@ struct sl_emitter {
 };
 extern const struct sl_emitter sl_emitters[];
 sl_emit_fn sl_emit_find(const char *name);
+
+/* A comment line of a stream of LaTeX tables (sl_emit_tex writes one before
+ * the first table: o->comment, NULL: the report's; before longtables a
+ * blank line follows it); blank: a blank line after it. A writer calls it
+ * for a stream with no table, or for a second line (what it is from). */
+void sl_emit_tex_comment(FILE *f, const char *comment, int blank);
+/* A \clearpage and a blank line, where a writer that counts its floats needs
+ * one (LaTeX holds at most 18 it has not placed). */
+void sl_emit_tex_clearpage(FILE *f);
 
 /* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation). */
 void sl_emit_html_text(FILE *f, const char *s);

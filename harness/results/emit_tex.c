@@ -44,6 +44,9 @@ static const struct tex_sym tex_signs[] = {
     {0x00BB, "$\\gg$"},               {0x00BC, "$\\frac{1}{4}$"},    {0x00BD, "$\\frac{1}{2}$"},
     {0x00BE, "$\\frac{3}{4}$"},       {0x00BF, "\\textquestiondown{}"}, {0x00D7, "$\\times$"},
     {0x00F7, "$\\div$"},              {0x2010, "-"},                 {0x2011, "-"},
+    /* a thin space (sl_tab_number's thousands); a zero width non-joiner,
+     * what keeps two signs apart: "-{}-" is two hyphens, not a dash */
+    {0x2009, "\\,"},                 {0x200C, "{}"},
     {0x2012, "--"},                   {0x2013, "--"},                {0x2014, "---"},
     {0x2015, "---"},                  {0x2016, "$\\|$"},             {0x2018, "`"},
     {0x2019, "'"},                    {0x201A, ","},                 {0x201C, "``"},
@@ -573,12 +576,181 @@ static int row_cuts(const struct sl_tab *t, const struct tex_layout *lo, int cp,
     return n;
 }
 
+void sl_emit_tex_clearpage(FILE *f)
+{
+    fputs("\\clearpage\n\n", f);
+}
+
+void sl_emit_tex_comment(FILE *f, const char *comment, int blank)
+{
+    if (comment)
+        fprintf(f, "%% %s\n%s", comment, blank ? "\n" : "");
+    else
+        fputs("% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n", f);
+}
+
+/* s as LaTeX text; squares: a run of digits followed by "²" as $N^2$ */
+static void tab_text(FILE *f, const char *s, int squares)
+{
+    const char *seg = s, *p = s;
+    while (squares && *p) {
+        if (*p < '0' || *p > '9' || (p > s && p[-1] >= '0' && p[-1] <= '9')) {
+            p++;
+            continue;
+        }
+        const char *q = p;
+        while (*q >= '0' && *q <= '9')
+            q++;
+        if (strncmp(q, "\xC2\xB2", 2) != 0) {
+            p = q;
+            continue;
+        }
+        char *before = malloc((size_t)(p - seg) + 1);
+        if (before) {
+            memcpy(before, seg, (size_t)(p - seg));
+            before[p - seg] = '\0';
+            sl_tex_text(f, before);
+            free(before);
+        }
+        fprintf(f, "$%.*s^2$", (int)(q - p), p);
+        seg = p = q + 2;
+    }
+    sl_tex_text(f, seg);
+}
+
+/* A row of cells (the heads: r = -1) joined by " & ", ended by " \\"; a
+ * cell that is not empty in its column's \parbox where it has one. */
+static void long_row(FILE *f, const struct sl_tab *t, int r)
+{
+    for (int c = 0; c < t->ncols; c++) {
+        if (c)
+            fputs(" & ", f);
+        const char *v = r < 0 ? (t->head[c] ? t->head[c] : "") : sl_tab_at(t, r, c);
+        if (r >= 0 && t->fixed && t->stack && !sl_tab_left(t, c))
+            tex_cell(f, v, 1, 'r', 0);
+        else if (r >= 0 && t->fixed && t->parbox[c] > 0 && v[0]) {
+            fprintf(f, "\\parbox[t]{%.1fpt}{\\raggedright ", t->parbox[c]);
+            tab_text(f, v, t->squares);
+            fputs("\\strut}", f);
+        } else
+            tab_text(f, v, t->squares);
+    }
+    fputs(" \\\\\n", f);
+}
+
+/* the note; t->code: its `spans` as \texttt */
+static void note_text(FILE *f, const struct sl_tab *t)
+{
+    const char *s = t->note;
+    char *buf = malloc(strlen(s) + 1);
+    if (!t->code || !buf) {
+        free(buf);
+        tab_text(f, s, t->squares);
+        return;
+    }
+    for (int code = 0; *s; code = !code) {
+        size_t n = strcspn(s, "`");
+        memcpy(buf, s, n);
+        buf[n] = '\0';
+        if (code) {
+            fputs("\\texttt{", f);
+            sl_tex_text(f, buf);
+            fputc('}', f);
+        } else
+            tab_text(f, buf, t->squares);
+        s += n + (s[n] == '`');
+    }
+    free(buf);
+}
+
+/* One float as its writer laid it out (t->fixed): the fitted floats' frame,
+ * nothing stacked, wrapped (but in a column's parbox) or split. */
+static int tex_fixed(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
+{
+    if (o && o->clear)
+        fputs("\\clearpage\n\n", f);
+    fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
+    tab_text(f, t->title, t->squares);
+    if (t->intro && t->intro[0]) {
+        fputs(". ", f);
+        tab_text(f, t->intro, t->squares);
+    }
+    fputc('}', f);
+    if (!t->nolabel)
+        fprintf(f, "\n\\label{tab:%s}", t->id);
+    fputs("\n\\begin{tabular}{", f);
+    for (int c = 0; c < t->ncols; c++)
+        fputc(sl_tab_left(t, c) ? 'l' : 'r', f);
+    fputs("}\n\\toprule\n", f);
+    long_row(f, t, -1);
+    fputs("\\midrule\n", f);
+    for (int r = 0; r < t->nrows; r++) {
+        if ((t->rule[r] & SL_TAB_BLOCK) && r > 0)
+            fputs("\\addlinespace\n", f);
+        long_row(f, t, r);
+    }
+    fputs("\\bottomrule\n\\end{tabular}\n", f);
+    if (sl_tab_has_note(t)) {
+        fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
+        note_text(f, t);
+        fputs("\\par}\n", f);
+    }
+    fputs("\\end{table}\n", f);
+    if (o && o->blank)
+        fputc('\n', f);
+    return 1;
+}
+
+/* A longtable at \small: the caption (and label) in the table, the heads on
+ * every page, a rule under the last; no float, so nothing to clear. */
+static int tex_long(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
+{
+    if (!o || !o->cont)
+        fputs("{\\small\\setlength{\\tabcolsep}{4pt}\n", f);
+    fputs("\\begin{longtable}{", f);
+    for (int c = 0; c < t->ncols; c++)
+        fputc(sl_tab_left(t, c) ? 'l' : 'r', f);
+    fputs("}\n\\caption{", f);
+    tab_text(f, t->title, t->squares);
+    if (t->intro && t->intro[0]) {
+        fputs(". ", f);
+        tab_text(f, t->intro, t->squares);
+    }
+    fputc('}', f);
+    if (!t->nolabel)
+        fprintf(f, "\\label{tab:%s}", t->id);
+    fputs("\\\\\n", f);
+    for (int pass = 0; pass < 2; pass++) {
+        fputs("\\toprule\n", f);
+        long_row(f, t, -1);
+        fprintf(f, "\\midrule\n%s\n", pass ? "\\endhead" : "\\endfirsthead");
+    }
+    fputs("\\bottomrule\n\\endfoot\n", f);
+    for (int r = 0; r < t->nrows; r++) {
+        if ((t->rule[r] & SL_TAB_BLOCK) && r > 0)
+            fputs("\\addlinespace\n", f);
+        long_row(f, t, r);
+    }
+    fputs("\\end{longtable}", f);
+    if (sl_tab_has_note(t)) {
+        fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
+        tab_text(f, t->note, t->squares);
+        fputs("\\par}\n", f);
+    }
+    fputs(o && o->more ? "\n" : "}\n\n", f);
+    return 0;
+}
+
 int sl_emit_tex(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
 {
     if (t->oom || t->ncols > SL_TAB_MAXCOLS || t->ngroups > SL_TAB_MAXCOLS)
         return -1;
     if (!o || o->first)
-        fputs("% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n", f);
+        sl_emit_tex_comment(f, o ? o->comment : NULL, t->longtable);
+    if (t->longtable)
+        return tex_long(f, t, o);
+    if (t->fixed)
+        return tex_fixed(f, t, o);
     struct tex_layout lo;
     tex_fit(t, &lo);
     int *cut = malloc(((size_t)t->nrows + 2) * sizeof *cut);

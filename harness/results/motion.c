@@ -113,75 +113,56 @@ enum sl_err sl_motion_rows(const struct sl_cell_record *cells, int ncells, struc
     return SL_OK;
 }
 
-/* a number for LaTeX, "--" when not defined */
-static void tex_num(FILE *f, double v, int dec)
+/* The LaTeX tables of one group (scene, path, viewport, map size), rows
+ * [i, e): two longtables that each fit a plain article's \\columnwidth at
+ * \\small (the eight columns side by side ran 222 pt too wide): the wrong
+ * pixels per frame (wrong, what = 0), then the flicker (what = 1). Numbers
+ * as sl_tab_number writes them; a frame or a count as it is. */
+static void tex_table(struct sl_tab *t, const struct sl_motion_row *rows, int i, int e, int what)
 {
-    char s[64];
-    sl_tex_number(s, sizeof s, v, dec);
-    fputs(s, f);
-}
-
-static void tex_caption(FILE *f, const struct sl_motion_row *r, const char *what)
-{
-    fputs("\\caption{", f);
-    sl_tex_text(f, r->scene);
-    fputs(", path ", f);
-    sl_tex_text(f, r->path);
-    fprintf(f, ", %d$\\times$%d, map %d\\textsuperscript{2}: %s}\\\\\n", r->vw, r->vh, r->map_size, what);
-}
-
-static void tex_head(FILE *f, const char *cols)
-{
-    for (int pass = 0; pass < 2; pass++)
-        fprintf(f, "\\toprule\n%s \\\\\n\\midrule\n%s\n", cols, pass ? "\\endhead" : "\\endfirsthead");
-    fputs("\\bottomrule\n\\endfoot\n", f);
-}
-
-/* Per group (scene, path, viewport, map size) two longtables that each fit
- * a plain article's \\columnwidth at \\small (the eight columns side by side
- * ran 222 pt too wide): the wrong pixels per frame, then the flicker. */
-static void motion_tex(FILE *f, const struct sl_motion_row *rows, int n)
-{
-    fputs("% shadowlab motion tables; needs \\usepackage{booktabs,longtable}\n\n", f);
-    for (int i = 0; i < n;) {
-        int e = i + 1;
-        while (e < n && row_cmp(&rows[i], &rows[e]) == 0)
-            e++;
-        fputs("{\\small\\setlength{\\tabcolsep}{4pt}\n\\begin{longtable}{lrrrr}\n", f);
-        tex_caption(f, &rows[i], "the whole image's wrong pixels per frame (mean, worst and the frame of the worst)");
-        tex_head(f, "label & frames & mean & worst & frame");
-        for (int k = i; k < e; k++) {
-            const struct sl_motion_row *r = &rows[k];
-            sl_tex_text(f, r->label);
-            fprintf(f, " & %d & ", r->frames);
-            tex_num(f, r->mean_wrong, 1);
-            fputs(" & ", f);
-            tex_num(f, (double)r->worst_wrong, 0);
-            fprintf(f, " & %d \\\\\n", r->worst_frame);
+    static const char *const heads[2][7] = {{"label", "frames", "mean", "worst", "frame"},
+                                            {"label", "pairs", "flicker", "per pair", "worst", "frame",
+                                             "per 1,000"}};
+    static const char *const whats[2] = {
+        "the whole image's wrong pixels per frame (mean, worst and the frame of the worst)",
+        "flicker, pixels whose verdict changes between consecutive frames while their truth does not: in all, "
+        "per compared pair, at worst (and its frame), and per 1,000 pixels of the thinnest contour; -- where no "
+        "pair was compared"};
+    const struct sl_motion_row *g = &rows[i];
+    int ncols = what ? 7 : 5;
+    sl_tab_init(t, "motion", ncols, 1, "%s, path %s, %d\xC3\x97%d, map %d\xC2\xB2: %s", g->scene, g->path, g->vw,
+                g->vh, g->map_size, whats[what]);
+    t->longtable = 1;
+    t->nolabel = 1;
+    for (int k = 0; k < ncols; k++)
+        sl_tab_head(t, k, "%s", heads[what][k]);
+    for (int k = i; k < e; k++) {
+        const struct sl_motion_row *r = &rows[k];
+        char v[64];
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%s", r->label);
+        if (!what) {
+            sl_tab_cell(t, 1, "%d", r->frames);
+            sl_tab_number(v, sizeof v, r->mean_wrong, 1);
+            sl_tab_cell(t, 2, "%s", v);
+            sl_tab_number(v, sizeof v, (double)r->worst_wrong, 0);
+            sl_tab_cell(t, 3, "%s", v);
+            sl_tab_cell(t, 4, "%d", r->worst_frame);
+            continue;
         }
-        fputs("\\end{longtable}\n\\begin{longtable}{lrrrrrr}\n", f);
-        tex_caption(f, &rows[i], "flicker, pixels whose verdict changes between consecutive frames while their truth "
-                                 "does not: in all, per compared pair, at worst (and its frame), and per 1,000 "
-                                 "pixels of the thinnest contour; -- where no pair was compared");
-        tex_head(f, "label & pairs & flicker & per pair & worst & frame & per 1,000");
-        for (int k = i; k < e; k++) {
-            const struct sl_motion_row *r = &rows[k];
-            sl_tex_text(f, r->label);
-            fprintf(f, " & %d & ", r->pairs);
-            tex_num(f, r->pairs ? (double)r->flicker : NAN, 0);
-            fputs(" & ", f);
-            tex_num(f, r->mean_flicker, 1);
-            fputs(" & ", f);
-            tex_num(f, r->pairs ? (double)r->worst_flicker : NAN, 0);
-            if (r->pairs)
-                fprintf(f, " & %d & ", r->worst_flicker_frame);
-            else
-                fputs(" & -- & ", f);
-            tex_num(f, r->per_1000, 2);
-            fputs(" \\\\\n", f);
-        }
-        fputs("\\end{longtable}}\n\n", f);
-        i = e;
+        sl_tab_cell(t, 1, "%d", r->pairs);
+        sl_tab_number(v, sizeof v, r->pairs ? (double)r->flicker : NAN, 0);
+        sl_tab_cell(t, 2, "%s", v);
+        sl_tab_number(v, sizeof v, r->mean_flicker, 1);
+        sl_tab_cell(t, 3, "%s", v);
+        sl_tab_number(v, sizeof v, r->pairs ? (double)r->worst_flicker : NAN, 0);
+        sl_tab_cell(t, 4, "%s", v);
+        if (r->pairs)
+            sl_tab_cell(t, 5, "%d", r->worst_flicker_frame);
+        else
+            sl_tab_cell(t, 5, "\xE2\x80\x93");
+        sl_tab_number(v, sizeof v, r->per_1000, 2);
+        sl_tab_cell(t, 6, "%s", v);
     }
 }
 
@@ -270,12 +251,25 @@ static void group_table(struct sl_tab *t, const struct sl_motion_row *rows, int 
 enum sl_err sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_row *rows, int n,
                             struct sl_diag *d)
 {
-    if (fmt == SL_TABLE_LATEX) {
-        motion_tex(f, rows, n);
-        return SL_OK;
-    }
     struct sl_tab t;
     int bad = 0;
+    /* LaTeX: two longtables per group in one {\small ...} group */
+    if (fmt == SL_TABLE_LATEX && n == 0)
+        sl_emit_tex_comment(f, "shadowlab motion tables; needs \\usepackage{booktabs,longtable}", 1);
+    for (int i = 0, e; fmt == SL_TABLE_LATEX && i < n && !bad; i = e) {
+        e = i + 1;
+        while (e < n && row_cmp(&rows[i], &rows[e]) == 0)
+            e++;
+        for (int what = 0; what < 2 && !bad; what++) {
+            tex_table(&t, rows, i, e, what);
+            const struct sl_emit_opts o = {.first = i == 0 && what == 0,
+                                           .comment = "shadowlab motion tables; needs \\usepackage{booktabs,longtable}",
+                                           .cont = what == 1,
+                                           .more = what == 0};
+            bad = sl_emit_tex(f, &t, &o) < 0;
+            sl_tab_free(&t);
+        }
+    }
     if (fmt == SL_TABLE_CSV) {
         data_table(&t, rows, n);
         bad = sl_emit_csv(f, &t, NULL) < 0;

@@ -172,7 +172,7 @@ static const struct pick *tex_pick(const struct sum *s, int k)
     return k < 2 * s->nmaps ? (k % 2 ? &s->worst[k / 2] : &s->best[k / 2]) : &s->avgcase;
 }
 
-static void write_tex(FILE *out, const char *name, const char *of, const char *label, const struct sum *s)
+static void write_tex(struct sl_tab *t, const char *name, const char *of, const char *label, const struct sum *s)
 {
     char scene[200], rn[16], num[48];
     const double f = SL_TEX_FOOTNOTE * SL_TEX_SLACK;
@@ -195,45 +195,48 @@ static void write_tex(FILE *out, const char *name, const char *of, const char *l
     double box = rest + scene_pt * f > SL_TEX_BUDGET ? SL_TEX_BUDGET - rest : 0;
     if (box > 0 && box < 60)
         box = 60;
-    fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{Summary of ",
-          out);
-    sl_tex_text(out, name);
-    fputs(" (\\% of ", out);
-    sl_tex_text(out, of);
-    fputs("), label ", out);
-    sl_tex_text(out, label);
-    fprintf(out, ": average over %ld (cell, region) values; each map size's best and worst cell.}\n", s->count);
-    fputs("\\label{tab:summary-", out);
-    for (const char *t = name; *t; t++)
-        fputc((*t >= 'a' && *t <= 'z') || (*t >= '0' && *t <= '9') ? *t : '-', out);
-    fputc('-', out);
-    for (const char *t = label; *t; t++)
-        fputc((*t >= 'a' && *t <= 'z') || (*t >= 'A' && *t <= 'Z') || (*t >= '0' && *t <= '9') ? *t : '-', out);
-    fputs("}\n\\begin{tabular}{lllllr}\n\\toprule\n & scene & viewpoint & contour & map & \\% \\\\\n\\midrule\n",
-          out);
-    sl_tex_number(num, sizeof num, s->avg, 2);
-    fprintf(out, "average &  &  &  &  & %s \\\\\n", num);
-    for (int k = 0; k <= 2 * s->nmaps; k++) {
-        const struct pick *p = tex_pick(s, k);
+    /* its label: the figure's name in lower case letters and digits, the
+     * label's in letters and digits, anything else '-' */
+    char id[160];
+    size_t k = (size_t)snprintf(id, sizeof id, "summary-");
+    for (const char *c = name; *c && k + 2 < sizeof id; c++)
+        id[k++] = (*c >= 'a' && *c <= 'z') || (*c >= '0' && *c <= '9') ? *c : '-';
+    id[k++] = '-';
+    for (const char *c = label; *c && k + 1 < sizeof id; c++)
+        id[k++] = (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') ? *c : '-';
+    id[k] = '\0';
+    sl_tab_init(t, id, 6, 5,
+                "Summary of %s (%% of %s), label %s: average over %ld (cell, region) values; each map size's best "
+                "and worst cell.",
+                name, of, label, s->count);
+    t->fixed = 1;
+    t->squares = 1;
+    t->parbox[1] = box > 0 ? box - TEX_COLSEP : 0;
+    static const char *const heads[] = {"", "scene", "viewpoint", "contour", "map", "%"};
+    for (int c = 0; c < 6; c++)
+        sl_tab_head(t, c, "%s", heads[c]);
+    sl_tab_row(t, 0);
+    sl_tab_cell(t, 0, "average");
+    sl_tab_number(num, sizeof num, s->avg, 2);
+    sl_tab_cell(t, 5, "%s", num);
+    for (int j = 0; j <= 2 * s->nmaps; j++) {
+        const struct pick *p = tex_pick(s, j);
         if (!p->cell)
             continue;
-        if (k < 2 * s->nmaps)
-            fprintf(out, "$%d^2$ %s & ", s->maps[k / 2], k % 2 ? "worst" : "best");
+        sl_tab_row(t, 0);
+        if (j < 2 * s->nmaps)
+            sl_tab_cell(t, 0, "%d\xC2\xB2 %s", s->maps[j / 2], j % 2 ? "worst" : "best");
         else
-            fputs("average case & ", out);
+            sl_tab_cell(t, 0, "average case");
         snprintf(scene, sizeof scene, p->cell->light[0] ? "%s (%s)" : "%s", p->cell->scene, p->cell->light);
-        if (box > 0)
-            fprintf(out, "\\parbox[t]{%.1fpt}{\\raggedright ", box - TEX_COLSEP);
-        sl_tex_text(out, scene);
-        if (box > 0)
-            fputs("\\strut}", out);
-        fputs(" & ", out);
-        sl_tex_text(out, p->cell->viewpoint);
+        sl_tab_cell(t, 1, "%s", scene);
+        sl_tab_cell(t, 2, "%s", p->cell->viewpoint);
         sl_region_name(p->region, rn, sizeof rn);
-        sl_tex_number(num, sizeof num, p->v, 2);
-        fprintf(out, " & %s & $%d^2$ & %s \\\\\n", rn, p->cell->map_size, num);
+        sl_tab_cell(t, 3, "%s", rn);
+        sl_tab_cell(t, 4, "%d\xC2\xB2", p->cell->map_size);
+        sl_tab_number(num, sizeof num, p->v, 2);
+        sl_tab_cell(t, 5, "%s", num);
     }
-    fputs("\\bottomrule\n\\end{tabular}\n\\end{table}\n\n", out);
 }
 
 enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct sl_cell_record *cells, int n,
@@ -265,7 +268,7 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
         sl_tab_free(&t);
     }
     if (fmt == SL_TABLE_LATEX && !o->continued)
-        fputs("% shadowlab table --summary; needs \\usepackage{booktabs}\n", out);
+        sl_emit_tex_comment(out, "shadowlab table --summary; needs \\usepackage{booktabs}", 0);
     /* a summary per label, in the cells' order */
     int any = 0, floats = 0;
     for (int i = 0; i < n && !e; i++) {
@@ -292,9 +295,12 @@ enum sl_err sl_summary_write(FILE *out, enum sl_table_format fmt, const struct s
         } else {
             any = 1;
             /* LaTeX holds at most 18 floats it has not placed */
-            if ((floats > 0 || o->continued) && floats % 8 == 0)
-                fputs("\\clearpage\n\n", out);
-            write_tex(out, name, of, cells[i].label, s);
+            struct sl_tab t;
+            const struct sl_emit_opts eo = {.clear = (floats > 0 || o->continued) && floats % 8 == 0, .blank = 1};
+            write_tex(&t, name, of, cells[i].label, s);
+            if (sl_emit_tex(out, &t, &eo) < 0)
+                e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "summary table");
+            sl_tab_free(&t);
             floats++;
         }
     }

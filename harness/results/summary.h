@@ -6,8 +6,8 @@
  * viewpoint, 2-pixel contour). Values are the figure's percentage. One
  * summary per label of the cells given (in their order), as Markdown, CSV
  * (one header) or LaTeX (a booktabs float each, escaped, fitted to the line,
- * never scaled). Markdown and CSV are the table model (tabmodel.h) written
- * by its emitters (emit.h).
+ * never scaled). All three are the table model (tabmodel.h) written by its
+ * emitters (emit.h); the LaTeX float is the model's fixed layout.
  * Does not: query the store or choose cells (the caller filters).
  */
 #ifndef SL_SUMMARY_H

@@ -411,28 +411,16 @@ static int csv_cell(FILE *f, const struct sl_cell_record *c, int background)
 /* ---- LaTeX ---- */
 
 
-/* \label keys: letters, digits and '-' only */
-static void tex_key(FILE *f, const char *s)
+/* \label keys: letters, digits and '-' only, appended to buf */
+static void tex_key(char *buf, size_t n, const char *s)
 {
-    for (; *s; s++) {
+    size_t k = strlen(buf);
+    for (; *s && k + 1 < n; s++) {
         char ch = *s;
         int ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9');
-        fputc(ok ? ch : '-', f);
+        buf[k++] = ok ? ch : '-';
     }
-}
-
-static void tex_provenance(FILE *f, const struct sl_cell_record *c)
-{
-    fputs("method \\texttt{", f);
-    sl_tex_text(f, c->method);
-    fputs("}; contours from \\texttt{", f);
-    sl_tex_text(f, c->contour_from);
-    fputs("} (contour\\_from); git \\texttt{", f);
-    sl_tex_text(f, c->git_sha);
-    fputs("}, config \\texttt{", f);
-    sl_tex_text(f, c->config_hash);
-    fputs("}, machine ", f);
-    sl_tex_text(f, c->machine);
+    buf[k] = '\0';
 }
 
 /* One float per map size (a cell), so a table has 1 + its regions columns:
@@ -493,46 +481,84 @@ static int latex_cuts(const struct sl_cell_record *cells, const struct group *g,
     return parts;
 }
 
-static void latex_caption(FILE *f, const struct sl_cell_record *c0, const struct sl_cell_record *c, int shown,
-                          const struct sl_table_rows *rows, int part, int parts, int r0, int r1)
+/* The model of float p of parts (region columns [r0, r1)) of cell c: one
+ * float as laid out here (the emitter's fixed layout), its caption's
+ * counts (the intro) and its label on the first part only, the
+ * provenance under the last. */
+static void latex_model(struct sl_tab *t, const struct sl_cell_record *cells, const struct group *g,
+                        const struct sl_cell_record *c, int shown, const struct sl_table_rows *rows, int stack, int p,
+                        int parts, int r0, int r1)
 {
-    fputs("\\caption{", f);
-    sl_tex_text(f, c0->scene);
-    light_words(f, c0, 1);
-    fputs(" / ", f);
-    sl_tex_text(f, c0->viewpoint);
-    fprintf(f, " / %d$\\times$%d / ", c0->vw, c0->vh);
-    sl_tex_text(f, c0->label);
-    fprintf(f, " / $%d^2$ map", c->map_size);
+    const struct sl_cell_record *c0 = &cells[g->idx[0]];
+    char id[256] = "", num[48], part[96] = "";
+    tex_key(id, sizeof id, c0->scene);
+    tex_key(id, sizeof id, "-");
+    tex_key(id, sizeof id, c0->viewpoint);
+    snprintf(num, sizeof num, "-%dx%d-", c0->vw, c0->vh);
+    tex_key(id, sizeof id, num);
+    tex_key(id, sizeof id, c0->label);
+    snprintf(num, sizeof num, "-%d%s", c->map_size, point_twin(c0) ? "-point" : "");
+    tex_key(id, sizeof id, num);
     if (parts > 1) {
         char a[16], b[16];
         sl_region_name(col_thickness(c, r0), a, sizeof a);
         sl_region_name(col_thickness(c, r1 - 1), b, sizeof b);
-        fprintf(f, " (part %d of %d: %s%s%s)", part + 1, parts, a, r1 - r0 > 1 ? "--" : "", r1 - r0 > 1 ? b : "");
+        snprintf(part, sizeof part, " (part %d of %d: %s%s%s)", p + 1, parts, a, r1 - r0 > 1 ? "\xE2\x80\x93" : "",
+                 r1 - r0 > 1 ? b : "");
     }
-    if (part > 0) {
-        fputs("}\n", f);
-        return;
+    /* " ∕ " (U+2215): a separator, not a path's '/', which LaTeX may break after */
+    sl_tab_init(t, id, 1 + r1 - r0, 1, "%s%s%s%s \xE2\x88\x95 %s \xE2\x88\x95 %d\xC3\x97%d \xE2\x88\x95 %s \xE2\x88\x95 %d\xC2\xB2 map%s", c0->scene,
+                c0->light[0] ? " (" : "", c0->light, c0->light[0] ? ")" : "", c0->viewpoint, c0->vw, c0->vh,
+                c0->label, c->map_size, part);
+    t->fixed = 1;
+    t->squares = 1;
+    t->stack = stack;
+    t->code = 1;
+    t->nolabel = p > 0;
+    if (p == 0) {
+        char *intro = NULL;
+        size_t len = 0;
+        FILE *m = open_memstream(&intro, &len);
+        if (m) {
+            if (c0->has_soft)
+                fputs("Area light: the visible fraction against the area truth (means in % of full visibility).", m);
+            else
+                view_counts(m, c0, 0);
+            /* "-\u200C-": two hyphens LaTeX does not join into a dash */
+            if (shown < cell_rows(c0))
+                fprintf(m, " %d of %d figures shown (%s).", shown, cell_rows(c0),
+                        rows->picked ? "chosen with -\xE2\x80\x8C-figures"
+                                     : "the others are 0: not produced by this method");
+            fclose(m);
+        }
+        if (!m || !intro)
+            t->oom = 1;
+        sl_tab_intro(t, intro);
+        free(intro);
     }
-    if (c0->has_soft)
-        fputs(". Area light: the visible fraction against the area truth (means in \\% of full visibility).", f);
-    else {
-        fputs(". ", f);
-        view_counts(f, c0, 1);
+    sl_tab_head(t, 0, "figure");
+    for (int r = r0; r < r1; r++) {
+        char rn[16];
+        sl_region_name(col_thickness(c, r), rn, sizeof rn);
+        sl_tab_head(t, 1 + r - r0, "%s", rn);
     }
-    if (shown < cell_rows(c0))
-        fprintf(f, " %d of %d figures shown (%s).", shown, cell_rows(c0),
-                rows->picked ? "chosen with -{}-figures" : "the others are 0: not produced by this method");
-    fputs("}\n\\label{tab:", f);
-    tex_key(f, c0->scene);
-    fputc('-', f);
-    tex_key(f, c0->viewpoint);
-    fprintf(f, "-%dx%d-", c0->vw, c0->vh);
-    tex_key(f, c0->label);
-    fprintf(f, "-%d", c->map_size);
-    if (point_twin(c0))
-        fputs("-point", f);
-    fputs("}\n", f);
+    for (int fi = 0; fi < cell_rows(c0); fi++) {
+        if (!row_shown(cells, g, fi, rows))
+            continue;
+        sl_tab_row(t, 0);
+        sl_tab_cell(t, 0, "%s", row_name(c0, fi));
+        for (int r = r0; r < r1; r++) {
+            uint64_t n;
+            double pct;
+            char v[64];
+            cell_value(c, r, fi, &n, &pct);
+            value_text(c, fi, n, pct, 0, v, sizeof v);
+            sl_tab_cell(t, 1 + r - r0, "%s", v);
+        }
+    }
+    if (p == parts - 1)
+        sl_tab_notef(t, "method `%s`; contours from `%s` (contour_from); git `%s`, config `%s`, machine %s",
+                     c->method, c->contour_from, c->git_sha, c->config_hash, c->machine);
 }
 
 /* Writes the floats of one table; returns how many. */
@@ -556,46 +582,13 @@ static int latex_table(FILE *f, const struct sl_cell_record *cells, const struct
             stack = 1, parts = 1;
         else
             parts = latex_cuts(cells, g, c, rows, 0, name_pt, cut);
-        for (int p = 0; p < parts; p++, floats++) {
-            int r0 = cut[p], r1 = cut[p + 1];
-            fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n", f);
-            latex_caption(f, c0, c, shown, rows, p, parts, r0, r1);
-            fputs("\\begin{tabular}{l", f);
-            for (int r = r0; r < r1; r++)
-                fputc('r', f);
-            fputs("}\n\\toprule\nfigure", f);
-            for (int r = r0; r < r1; r++) {
-                char rn[16];
-                sl_region_name(col_thickness(c, r), rn, sizeof rn);
-                fprintf(f, " & %s", rn);
-            }
-            fputs(" \\\\\n\\midrule\n", f);
-            for (int fi = 0; fi < cell_rows(c0); fi++) {
-                if (!row_shown(cells, g, fi, rows))
-                    continue;
-                sl_tex_text(f, row_name(c0, fi));
-                for (int r = r0; r < r1; r++) {
-                    uint64_t n;
-                    double pct;
-                    char v[64];
-                    cell_value(c, r, fi, &n, &pct);
-                    value_text(c, fi, n, pct, 1, v, sizeof v);
-                    char *cut2 = stack ? strstr(v, " (") : NULL;
-                    if (cut2) {
-                        *cut2 = '\0';
-                        fprintf(f, " & \\begin{tabular}[t]{@{}r@{}}%s\\\\ %s\\end{tabular}", v, cut2 + 1);
-                    } else
-                        fprintf(f, " & %s", v);
-                }
-                fputs(" \\\\\n", f);
-            }
-            fputs("\\bottomrule\n\\end{tabular}\n", f);
-            if (p == parts - 1) {
-                fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
-                tex_provenance(f, c);
-                fputs("\\par}\n", f);
-            }
-            fputs("\\end{table}\n\n", f);
+        for (int p = 0; p < parts && floats >= 0; p++, floats++) {
+            struct sl_tab t;
+            const struct sl_emit_opts o = {.blank = 1};
+            latex_model(&t, cells, g, c, shown, rows, stack, p, parts, cut[p], cut[p + 1]);
+            if (sl_emit_tex(f, &t, &o) < 0)
+                floats = -2;   /* -1 after the loop's ++ */
+            sl_tab_free(&t);
         }
     }
     return floats;
@@ -694,22 +687,31 @@ enum sl_err sl_table_write_rows(FILE *out, enum sl_table_format fmt, const char 
     case SL_TABLE_LATEX:
         /* no heading: the file is \\input into the reader's own document; the
          * source is a comment (one line: a title holds no line break here) */
-        fputs("% shadowlab tables; needs \\usepackage{booktabs}; wider tables are split, never scaled\n", out);
+        sl_emit_tex_comment(out, "shadowlab tables; needs \\usepackage{booktabs}; wider tables are split, never scaled",
+                            !title);
         if (title) {
-            fputs("% from: ", out);
-            for (const char *t = title; *t; t++)
-                fputc(*t == '\n' || *t == '\r' ? ' ' : *t, out);
-            fputc('\n', out);
+            char *from = malloc(strlen(title) + 8);
+            if (from) {
+                snprintf(from, strlen(title) + 8, "from: %s", title);
+                for (char *t = from; *t; t++)
+                    *t = *t == '\n' || *t == '\r' ? ' ' : *t;
+                sl_emit_tex_comment(out, from, 1);
+            }
+            oom |= !from;
+            free(from);
         }
-        fputs("\n", out);
         /* LaTeX holds at most 18 floats it has not placed: a page break
          * every few lets a long file of floats alone compile */
-        for (int g = 0, floats = 0; g < l.ngroups; g++) {
-            floats += latex_table(out, cells, &l.groups[g], rows);
-            if (dual(&cells[l.groups[g].idx[0]]))
-                floats += latex_table(out, twin, &l.groups[g], rows);
+        for (int g = 0, floats = 0; g < l.ngroups && !oom; g++) {
+            int k = latex_table(out, cells, &l.groups[g], rows);
+            if (k >= 0 && dual(&cells[l.groups[g].idx[0]])) {
+                int k2 = latex_table(out, twin, &l.groups[g], rows);
+                k = k2 < 0 ? -1 : k + k2;
+            }
+            oom |= k < 0;
+            floats += k;
             if (floats >= 8 && g + 1 < l.ngroups) {
-                fputs("\\clearpage\n\n", out);
+                sl_emit_tex_clearpage(out);
                 floats = 0;
             }
         }

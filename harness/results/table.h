@@ -12,9 +12,10 @@
  * (wrong pixels and the share caught per contour) in one place.
  * CSV is the long form: one line per (cell, region, figure).
  * A cell is a struct sl_cell_record (cellcols.h), as the store returns it.
- * Markdown and CSV are built as the table model (tabmodel.h) and written by
- * its emitters (emit.h); LaTeX here is the thesis' per-cell floats (`shadowlab table --format latex`,
- * the report); a paper takes pivot.h's tables, and a run writes those
+ * Markdown, CSV and LaTeX are built as the table model (tabmodel.h) and
+ * written by its emitters (emit.h); LaTeX here is the thesis' per-cell floats
+ * (the model's fixed layout: `shadowlab table --format latex`, the report); a
+ * paper takes pivot.h's tables, and a run writes those
  * (SL_TABLE_LATEX_SUMMARY, SL_TABLE_LATEX_DETAIL).
  * Does not: read files or the database.
  */

@@ -3,6 +3,7 @@
  * rule nrows flags; a row's slots are NULL until a cell is set.
  */
 #include "tabmodel.h"
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -211,4 +212,28 @@ const char *sl_tab_at(const struct sl_tab *t, int r, int c)
 {
     const char *s = t->cell[(size_t)r * (size_t)t->ncols + (size_t)c];
     return s ? s : "";
+}
+
+void sl_tab_number(char *out, size_t n, double v, int dec)
+{
+    if (isnan(v)) {
+        snprintf(out, n, "\xE2\x80\x93");
+        return;
+    }
+    char raw[64];
+    snprintf(raw, sizeof raw, "%.*f", dec, fabs(v));
+    /* a value that rounds to zero has no sign */
+    int zero = strspn(raw, "0.") == strlen(raw);
+    size_t o = (size_t)snprintf(out, n, "%s", v < 0 && !zero ? "\xE2\x88\x92" : "");
+    const char *dot = strchr(raw, '.');
+    size_t ilen = dot ? (size_t)(dot - raw) : strlen(raw);
+    for (size_t i = 0; i < ilen && o + 8 < n; i++) {
+        if (i > 0 && (ilen - i) % 3 == 0 && ilen >= 4)
+            o += (size_t)snprintf(out + o, n - o, "\xE2\x80\x89");
+        out[o++] = raw[i];
+    }
+    if (o < n)
+        out[o] = '\0';
+    if (dot && o < n)
+        snprintf(out + o, n - o, "%s", dot);
 }

@@ -29,8 +29,8 @@
 enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2 };
 
 struct sl_tab {
-    char  id[160];          /* its label: a slug (letters, digits, '.', '_', '-') */
-    char  title[320];       /* its caption */
+    char  id[256];          /* its label: a slug (letters, digits, '.', '_', '-') */
+    char  title[512];       /* its caption */
     char *intro;            /* a paragraph between the title and the table (a view's counts); NULL: none */
     char *note;             /* printed under it; NULL: none */
     int   ncols, nkeys;     /* the first nkeys columns are keys (left aligned) */
@@ -48,6 +48,16 @@ struct sl_tab {
     char **cell;            /* nrows * ncols; NULL = empty */
     unsigned char *rule;    /* SL_TAB_BLOCK: a block starts at this row; SL_TAB_MUTED: a row set back
                              * (grey in HTML: the thesis's numbers under ours) */
+    int   longtable;        /* LaTeX: a longtable at \small (its heads repeated on every page), not a
+                             * float fitted to the line: nothing stacked, wrapped or split */
+    int   nolabel;          /* LaTeX: no \label (a table nothing refers to) */
+    int   fixed;            /* LaTeX: one float laid out by its writer, not fitted to the line: nothing
+                             * stacked or split; a cell (not a head) wrapped only in its column's parbox */
+    double parbox[SL_TAB_MAXCOLS];  /* LaTeX, fixed: the width (pt) of a ragged \parbox around the column's
+                             * cells that are not empty; 0: none */
+    int   squares;          /* LaTeX: a number squared ("512²") in math, $512^2$, not 512\textsuperscript{2} */
+    int   stack;            /* LaTeX, fixed: a value cell "v (where)" as two lines, v above "(where)" */
+    int   code;             /* LaTeX, fixed: a `span` of the note in backquotes is code, \texttt */
     int   oom;
 };
 
@@ -76,6 +86,12 @@ void sl_tab_note_cat(struct sl_tab *t, const char *fmt, ...) __attribute__((form
 /* 1 if the table has a note that is not empty. */
 int sl_tab_has_note(const struct sl_tab *t);
 void sl_tab_free(struct sl_tab *t);
+
+/* v with dec decimals as a reader reads it, for a cell: the thousands (of
+ * four digits or more) split by thin spaces (U+2009), a minus sign (U+2212)
+ * unless it rounds to zero, an en dash (U+2013) for NaN. LaTeX writes them
+ * as \, and $-$ and --, sl_tex_number's forms. */
+void sl_tab_number(char *out, size_t n, double v, int dec);
 
 /* Cell r, c ("" when empty). */
 const char *sl_tab_at(const struct sl_tab *t, int r, int c);
