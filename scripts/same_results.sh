@@ -139,7 +139,8 @@ if [ -n "${BIN_A:-}" ] && [ -n "${BIN_B:-}" ]; then
       for f in md csv latex json; do
         echo "== pivot --format $f"; "$bin" table "$db" --rows label --cols map_size --figure wrong --format "$f" 2>&1
       done
-    } | { if [ -n "${shas// /}" ]; then sed -E "s/$(echo $shas | sed 's/ /|/g')/SHA/g"; else cat; fi; }
+    } | sed "s#$db#DB#g" |   # the store's path, which the tables name
+      { if [ -n "${shas// /}" ]; then sed -E "s/$(echo $shas | sed 's/ /|/g')/SHA/g"; else cat; fi; }
   }
   if cmp -s <(tabs "$BIN_A" "$a/shadowlab.db") <(tabs "$BIN_B" "$b/shadowlab.db"); then
     echo "same  tables ($(tabs "$BIN_A" "$a/shadowlab.db" | wc -l) lines in every format)"
