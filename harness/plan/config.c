@@ -1252,11 +1252,13 @@ static enum sl_err take_settings(struct sl_yaml_pos *t, struct sl_config *c, str
             e = sl_fail(d, SL_E_CONFIG, sl_ynode_source(t, v), sl_ynode_line(v), key, "a mapping of %s", known);
         } else if (group) {
             for (unsigned q = 0; !e && q < v->n; q++) {
+                const struct sl_ynode *kn = v->kid[2 * q];
+                const char *sub = kn->text ? kn->text : "";
                 char path[96];
-                snprintf(path, sizeof path, "%s.%s", key, v->kid[2 * q]->text ? v->kid[2 * q]->text : "");
+                snprintf(path, sizeof path, "%s.%s", key, sub);
                 if (sl_param_index(config_settings, CONFIG_NSETTINGS, path) < 0)
-                    e = sl_fail(d, SL_E_CONFIG, sl_ynode_source(t, v->kid[2 * q]), sl_ynode_line(v->kid[2 * q]),
-                                path, "unknown key '%s' (%s has: %s)", v->kid[2 * q]->text ? v->kid[2 * q]->text : "", key, known);
+                    e = sl_fail(d, SL_E_CONFIG, sl_ynode_source(t, kn), sl_ynode_line(kn), path,
+                                "unknown key '%s' (%s has: %s)", sub, key, known);
                 else
                     e = setting_value(t, s, path, v->kid[2 * q + 1], d);
             }
