@@ -79,6 +79,12 @@ static void technique_loader_errors(void **st)
                9, "params[1].default", "outside [1, 9]");
     expect_bad("bad_int", HEAD("bad_int") MAPS SHADERS
                "params:\n  - {name: k, type: int, default: 2.5}\n", 8, "params[0].default", "is not a whole number");
+    /* a name a config's method entry gives itself: the cascades' partitions would shadow it */
+    expect_bad("entry_key", HEAD("entry_key") MAPS SHADERS
+               "params:\n  - {name: partitions, type: int, default: 5}\n", 8, "params[0].name", "cascades");
+    expect_bad("entry_key2", HEAD("entry_key2") MAPS SHADERS
+               "params:\n  - {name: k, type: int, default: 1}\n  - {name: label, type: int, default: 1}\n", 9,
+               "params[1].name", "method entry");
     expect_bad("unknown_key", HEAD("unknown_key") "colour: red\n" MAPS SHADERS, 3, "colour", "unknown key");
     expect_bad("dotdot", HEAD("dotdot") MAPS "map_shader: ../x/map.glsl\nlookup_shader: lookup.glsl\n", 5,
                "map_shader", "'..'");

@@ -316,6 +316,14 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
         for (int j = 0; j < i; j++)
             if (!strcmp(t->param[j].name, rp->name))
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' names params[%d] already", rp->name, j);
+        /* a config's method entry names these itself: the entry's own keys,
+         * and the cascades every package takes (methods/package.c) */
+        static const char *const entry_keys[] = {"label", "display", "method", "light_frame", "partitions", "lambda"};
+        for (size_t j = 0; j < sizeof entry_keys / sizeof entry_keys[0]; j++)
+            if (!strcmp(rp->name, entry_keys[j]))
+                return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' is a key of the config's method entry "
+                                   "(label, display, method, light_frame; partitions and lambda: the cascades)",
+                                   rp->name);
         snprintf(p->name, sizeof p->name, "%s", rp->name);
         snprintf(key, sizeof key, "params[%d].type", i);
         int ty = pick(rp->type, sl_param_type_names, 3);
