@@ -187,20 +187,6 @@ void sl_report_out_abort(struct sl_report_out *o)
     out_free(o);
 }
 
-static char *vformat(const char *fmt, va_list ap)
-{
-    va_list aq;
-    va_copy(aq, ap);
-    int len = vsnprintf(NULL, 0, fmt, aq);
-    va_end(aq);
-    if (len < 0)
-        return NULL;
-    char *s = malloc((size_t)len + 1);
-    if (s)
-        vsnprintf(s, (size_t)len + 1, fmt, ap);
-    return s;
-}
-
 /* ---- escapers ---- */
 
 #define html_text sl_emit_html_text
@@ -379,7 +365,7 @@ void sl_report_doc_para(struct sl_report_doc *doc, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    char *text = vformat(fmt, ap);
+    char *text = sl_vformat(fmt, ap);
     va_end(ap);
     fputs("<p>", doc->html);
     html_text(doc->html, text ? text : "(out of memory)");

@@ -5,6 +5,7 @@
  */
 #ifndef SL_UTIL_H
 #define SL_UTIL_H
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include "sl_error.h"
@@ -25,6 +26,9 @@ void sl_path_dir(const char *path, char *out, size_t n);
  * in buf (n bytes, "" to start), after ", " unless buf is empty; a list
  * longer than buf is cut. One helper, so every such list reads alike. */
 void sl_known_add(char *buf, size_t n, const char *name);
+
+/* vsnprintf into a string of its own length (free it); NULL on failure. */
+char *sl_vformat(const char *fmt, va_list ap);
 
 /* mkdir -p; SL_E_OUTPUT with diag on failure or if not writable. */
 enum sl_err sl_mkdirs(const char *path, struct sl_diag *d);

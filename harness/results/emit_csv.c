@@ -8,21 +8,7 @@
  */
 #include "emit.h"
 #include <string.h>
-
-static void field(FILE *f, const char *s)
-{
-    if (!strpbrk(s, ",\"\r\n")) {
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
+#include "util.h"   /* sl_csv_field: RFC 4180 quoting, shared with the run's CSV files */
 
 int sl_emit_csv(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
 {
@@ -36,9 +22,9 @@ int sl_emit_csv(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
             if (t->ngroups && g < t->ngroups && t->group[g][0]) {
                 char h[400];
                 snprintf(h, sizeof h, "%s %s", t->group[g], t->head[c] ? t->head[c] : "");
-                field(f, h);
+                sl_csv_field(f, h);
             } else
-                field(f, t->head[c] ? t->head[c] : "");
+                sl_csv_field(f, t->head[c] ? t->head[c] : "");
             if (t->ngroups && --left == 0 && ++g < t->ngroups)
                 left = t->span[g];
         }
@@ -48,7 +34,7 @@ int sl_emit_csv(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
         for (int c = 0; c < t->ncols; c++) {
             if (c)
                 fputc(',', f);
-            field(f, sl_tab_at(t, r, c));
+            sl_csv_field(f, sl_tab_at(t, r, c));
         }
         fputc('\n', f);
     }

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "util.h"
 
 void sl_tab_slug(const char *s, char *buf, size_t n)
 {
@@ -24,20 +25,6 @@ void sl_tab_slug(const char *s, char *buf, size_t n)
         buf[k++] = '-';
     if (n)
         buf[k < n ? k : n - 1] = '\0';
-}
-
-static char *vformat(const char *fmt, va_list ap)
-{
-    va_list aq;
-    va_copy(aq, ap);
-    int len = vsnprintf(NULL, 0, fmt, aq);
-    va_end(aq);
-    if (len < 0)
-        return NULL;
-    char *s = malloc((size_t)len + 1);
-    if (s)
-        vsnprintf(s, (size_t)len + 1, fmt, ap);
-    return s;
 }
 
 void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const char *fmt, ...)
@@ -63,7 +50,7 @@ void sl_tab_head(struct sl_tab *t, int col, const char *fmt, ...)
     va_list ap;
     va_start(ap, fmt);
     free(t->head[col]);
-    t->head[col] = vformat(fmt, ap);
+    t->head[col] = sl_vformat(fmt, ap);
     va_end(ap);
     t->oom |= !t->head[col];
 }
@@ -142,7 +129,7 @@ void sl_tab_cell(struct sl_tab *t, int col, const char *fmt, ...)
     va_list ap;
     va_start(ap, fmt);
     free(*slot);
-    *slot = vformat(fmt, ap);
+    *slot = sl_vformat(fmt, ap);
     va_end(ap);
     t->oom |= !*slot;
 }
@@ -165,7 +152,7 @@ void sl_tab_notef(struct sl_tab *t, const char *fmt, ...)
     va_list ap;
     va_start(ap, fmt);
     free(t->note);
-    t->note = vformat(fmt, ap);
+    t->note = sl_vformat(fmt, ap);
     va_end(ap);
     t->oom |= !t->note;
 }
@@ -174,7 +161,7 @@ void sl_tab_note_cat(struct sl_tab *t, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    char *more = vformat(fmt, ap);
+    char *more = sl_vformat(fmt, ap);
     va_end(ap);
     size_t n = t->note ? strlen(t->note) : 0, m = more ? strlen(more) : 0;
     char *s = more ? realloc(t->note, n + m + 1) : NULL;
