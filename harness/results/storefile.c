@@ -23,6 +23,7 @@
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
+#include <time.h>
 #include <unistd.h>
 
 /* The real path of path into out: of the file itself when it is there, else
@@ -82,10 +83,18 @@ enum sl_err sl_storefile_lock(const char *path, int *fd_out, char *lockpath, siz
             return sl_fail(d, SL_E_IO, path, 0, NULL, "unable to open its lock file %s: %s", lp, strerror(errno));
         if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
             int en = errno;
+            /* The holder writes its pid just after its flock: a writer
+             * refused in between would read nothing, so the pid is read
+             * again for up to ~0.2 s before the message says "unknown". */
             char buf[32] = "";
-            ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
-            buf[n > 0 ? n : 0] = 0;
-            buf[strcspn(buf, "\n")] = 0;
+            for (int tries = 0; tries < 100 && en == EWOULDBLOCK; tries++) {
+                ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
+                buf[n > 0 ? n : 0] = 0;
+                buf[strcspn(buf, "\n")] = 0;
+                if (buf[0])
+                    break;
+                nanosleep(&(struct timespec){.tv_nsec = 2000000}, NULL);
+            }
             close(fd);
             if (en == EWOULDBLOCK)
                 return sl_fail(d, SL_E_IO, path, 0, NULL,
@@ -100,7 +109,9 @@ enum sl_err sl_storefile_lock(const char *path, int *fd_out, char *lockpath, siz
         }
         char pid[32];
         int k = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
-        if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)k, 0) != k) {
+        /* written before the truncation, so the file is never seen empty
+         * once it held a pid */
+        if (pwrite(fd, pid, (size_t)k, 0) != k || ftruncate(fd, k) != 0) {
             /* the pid only makes the message better; the lock holds without it */
         }
         if (lockpath_n)
