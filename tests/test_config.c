@@ -39,6 +39,7 @@ static void config_default_loads(void **st)
     assert_string_equal(c.methods[0].method->name, "nsm");
     assert_int_equal(PV(c.methods[0], "self_shadow"), SL_SELF_FRONT_FACES);
     assert_true(c.threads >= 1);
+    sl_config_free(&c);
 }
 
 /* The filled-in config written beside results reads back to the same plan. */
@@ -62,6 +63,8 @@ static void config_written_reads_back(void **st)
     assert_int_equal(a.nregions, b.nregions);
     assert_int_equal(a.nmethods, b.nmethods);
     assert_memory_equal(&a.methods[0].params, &b.methods[0].params, sizeof a.methods[0].params);
+    sl_config_free(&a);
+    sl_config_free(&b);
 }
 
 struct bad_case { const char *file; enum sl_err err; int line; const char *key; const char *msg_part; };
@@ -101,6 +104,7 @@ static void config_bad_inputs(void **st)
         if (bc->key)
             assert_string_equal(d.key, bc->key);
         assert_non_null(strstr(d.msg, bc->msg_part));
+        sl_config_free(&c);   /* a failed load holds nothing; one that passes must be freed */
     }
 }
 
@@ -112,6 +116,7 @@ static void config_syntax_error_has_line(void **st)
     struct sl_diag d;
     assert_int_equal(sl_config_load("tests/bad/syntax.yaml", &c, &d), SL_E_CONFIG);
     assert_true(d.line >= 2 && d.line <= 3);
+    sl_config_free(&c);
 }
 
 /* -D overrides: applied by key path, checked as the file is, the error naming
@@ -137,6 +142,7 @@ static void config_overrides(void **st)
     assert_true(a.hash != b.hash);
     assert_int_equal(sl_config_load_with("configs/default.yaml", ok, 6, &c, &d), SL_OK);
     assert_true(b.hash == c.hash);   /* the same overrides: the same study (--resume finds it) */
+    sl_config_free(&c);
     assert_int_equal(sl_config_load_with("configs/default.yaml", NULL, 0, &c, &d), SL_OK);
     assert_true(a.hash == c.hash);
     static const struct { const char *ov, *key, *msg; } bad[] = {
@@ -155,6 +161,7 @@ static void config_overrides(void **st)
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         memset(&d, 0, sizeof d);
+        sl_config_free(&c);
         assert_int_not_equal(sl_config_load_with("configs/default.yaml", &bad[i].ov, 1, &c, &d), SL_OK);
         char src[200];
         snprintf(src, sizeof src, "-D %s", bad[i].ov);
@@ -165,21 +172,27 @@ static void config_overrides(void **st)
     }
     /* a key the file lacks is created (default.yaml gives no repetitions) */
     const char *mk[] = {"repetitions.runs=5"};
+    sl_config_free(&c);
     assert_int_equal(sl_config_load_with("configs/default.yaml", mk, 1, &c, &d), SL_OK);
     assert_int_equal(c.runs, 5);
     assert_int_equal(c.warmup, 1);
     /* a sweep given by -D: one label per value */
     const char *sw[] = {"methods[0].self_shadow=slope", "methods[0].bias=[0.01, 0.02]"};
+    sl_config_free(&c);
     assert_int_equal(sl_config_load_with("configs/default.yaml", sw, 2, &c, &d), SL_OK);
     assert_int_equal(c.nmethods, 2);
     assert_string_equal(c.methods[1].label, "nsm[bias=0.02]");
     /* the file's own error under -D keeps the file's line and name */
     const char *other[] = {"seed=3", "methods[0].self_shadow=slope"};
     memset(&d, 0, sizeof d);
+    sl_config_free(&c);
     assert_int_equal(sl_config_load_with("tests/bad/bad_bias.yaml", other, 2, &c, &d), SL_E_CONFIG);
     assert_string_equal(d.file, "tests/bad/bad_bias.yaml");
     assert_int_equal(d.line, 4);
     assert_string_equal(d.key, "methods[0].bias");
+    sl_config_free(&a);
+    sl_config_free(&b);
+    sl_config_free(&c);
 }
 
 /* A config written to a temporary file (the scene resolves by name). */
@@ -221,10 +234,12 @@ static void config_repetitions_default(void **st)
                     "map_sizes: [512]\n"
                     "methods: [{label: nsm, method: nsm}]\n"
                     "repetitions: {runs: 1}\n");
+    sl_config_free(&c);
     assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
     assert_int_equal(c.warmup, 1);
     assert_int_equal(c.runs, 1);
     unlink(path);
+    sl_config_free(&c);
 }
 
 /* Sweeps: a parameter given as a list is one label per value (several lists
@@ -266,6 +281,7 @@ static void config_sweeps(void **st)
                     "    slope: [1, 3]\n"
                     "  - {label: c, method: coherence, texels: 4}\n");
     memset(&d, 0, sizeof d);
+    sl_config_free(&c);
     e = sl_config_load(path, &c, &d);
     if (e)
         printf("%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
@@ -311,6 +327,7 @@ static void config_sweeps(void **st)
                     "methods:\n"
                     "  - {label: b, method: nsm, self_shadow: constant, bias: [0.5, x]}\n");
     memset(&d, 0, sizeof d);
+    sl_config_free(&c);
     assert_int_equal(sl_config_load(path, &c, &d), SL_E_CONFIG);
     assert_int_equal(d.line, 6);
     assert_string_equal(d.key, "methods[0].bias");
@@ -323,6 +340,7 @@ static void config_sweeps(void **st)
                     "  - {label: b, method: nsm, self_shadow: constant, bias: [0.5, 1]}\n"
                     "  - {label: q, method: nsm, self_shadow: constant, bias: 1, texels: 4}\n");
     memset(&d, 0, sizeof d);
+    sl_config_free(&c);
     assert_int_equal(sl_config_load(path, &c, &d), SL_E_CONFIG);
     assert_int_equal(d.line, 7);
     assert_string_equal(d.key, "methods[1].texels");
@@ -331,8 +349,11 @@ static void config_sweeps(void **st)
     write_tmp(path, "scenes: [{scene: primitives}]\nmap_sizes: [1024]\nmethods:\n  - label: nsm\n"
                     "    method: nsm\n    stives}]\nmap_sizes: [1024]\nmethods 2.0\n");
     memset(&d, 0, sizeof d);
+    sl_config_free(&c);
     assert_int_equal(sl_config_load(path, &c, &d), SL_E_CONFIG);
     remove(path);
+    sl_config_free(&b);
+    sl_config_free(&c);
 }
 
 /* Technique packages (the source tree's techniques/): named like a method,
@@ -390,6 +411,7 @@ static void config_packages(void **st)
         assert_non_null(strstr(d.msg, bad[i].msg));
     }
     remove(path);
+    sl_config_free(&c);
 }
 
 /* Each loaded config has its own packages (its session): a package found
@@ -428,6 +450,7 @@ static void config_sessions(void **st)
     assert_string_equal(p1.methods[0].method->name, "pcf");   /* still there */
     assert_true(sl_method_param(&p1.methods[0].params, "kernel") == 3);
     sl_config_free(&p1);
+    sl_config_free(&b);
 }
 
 /* outputs.aliasing: auto (the default) computes the aliasing error m only
@@ -439,17 +462,22 @@ static void config_aliasing_on_demand(void **st)
     struct sl_diag d;
     assert_int_equal(sl_config_load("configs/default.yaml", &c, &d), SL_OK);
     assert_int_equal(c.aliasing, 0);   /* nsm alone */
+    sl_config_free(&c);
     assert_int_equal(sl_config_load("configs/aliasing.yaml", &c, &d), SL_OK);
     assert_int_equal(c.aliasing, 1);   /* zpart, lispsm */
     const char *on[] = {"outputs.aliasing=true"};
+    sl_config_free(&c);
     assert_int_equal(sl_config_load_with("configs/default.yaml", on, 1, &c, &d), SL_OK);
     assert_int_equal(c.aliasing, 1);
     const char *off[] = {"outputs.aliasing=false"};
+    sl_config_free(&c);
     assert_int_equal(sl_config_load_with("configs/aliasing.yaml", off, 1, &c, &d), SL_OK);
     assert_int_equal(c.aliasing, 0);
     const char *bad[] = {"outputs.aliasing=sometimes"};
+    sl_config_free(&c);
     assert_int_equal(sl_config_load_with("configs/default.yaml", bad, 1, &c, &d), SL_E_CONFIG);
     assert_string_equal(d.key, "outputs.aliasing");
+    sl_config_free(&c);
 }
 
 int main(int argc, char **argv)

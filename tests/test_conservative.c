@@ -102,6 +102,7 @@ static void conservative_invariants_on_every_scene(void **st)
     assert_int_equal(r.passes.layers[SL_LAYER_BGSM], 15 * 2);
     assert_int_equal(r.passes.layers[SL_LAYER_BGSM2], 15 * 2);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* Exact square-triangle overlap in double, with the layers' margin. */
@@ -290,6 +291,7 @@ static void conservative_adjacency_cases(void **st)
     assert_true(r.cells[1].fig.r[r.cells[1].fig.nregions - 1].n[SL_FIG_shadow] >
                 r.cells[0].fig.r[r.cells[0].fig.nregions - 1].n[SL_FIG_shadow]);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 

@@ -342,6 +342,7 @@ static void cube_exact_point_scenes(void **st)
     /* the promises were put to the test: bgsm claimed light, sgsm shadow */
     assert_true(lit_claims > 1000 && shadow_claims > 1000);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 int main(int argc, char **argv)

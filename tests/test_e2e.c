@@ -146,6 +146,7 @@ static void e2e_default_experiment(void **st)
     snprintf(cmd, sizeof cmd, "ls -A %s | grep -q partial", sl_test_dir);
     assert_int_not_equal(system(cmd), 0);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 static int write_config(const char *path, const char *text)
@@ -196,6 +197,7 @@ static void e2e_self_shadow_policies(void **st)
     assert_true(ws[3] * 4 < ws[1]);
     assert_true(ws[4] * 4 < ws[1]);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* Same figures on a second run and with one thread instead of two. */
@@ -223,6 +225,7 @@ static void e2e_deterministic(void **st)
     sl_run_result_free(&a);
     sl_run_result_free(&b);
     sl_run_result_free(&t1);
+    sl_config_free(&c);
 }
 
 /* The EXR layers hold the very pixels the figures count. */
@@ -266,6 +269,7 @@ static void e2e_exr_layers(void **st)
     free(verdict);
     free(contour);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* A two-sided leaf facing the light stays in the front-face-culled map; the
@@ -299,6 +303,7 @@ static void e2e_two_sided_leaf(void **st)
         wrong[one] = f->r[f->nregions - 1].n[SL_FIG_light_incorrect];
         shadow[one] = r.cells[0].n_truth_shadow;
         sl_run_result_free(&r);
+        sl_config_free(&c);
     }
     printf("e2e::two_sided_leaf: truth shadow %llu px; wrongly lit two-sided %llu, one-sided %llu\n",
            (unsigned long long)shadow[0], (unsigned long long)wrong[0], (unsigned long long)wrong[1]);
@@ -310,6 +315,45 @@ static void e2e_two_sided_leaf(void **st)
 
 
 
+/* Each scene file is read once, by the config's load (plan/session.h): the
+ * run takes the scene the load read, so the file gone after the load does
+ * not stop it, and the scene's reading time is still the run's ms_scene; a
+ * second run of the same config reads the file again (the first took the
+ * scene), and so fails once it is gone, naming the file. */
+static void e2e_scene_read_once(void **st)
+{
+    (void)st;
+    char scene[1200], path[1200];
+    snprintf(scene, sizeof scene, "%s/once.yaml", sl_test_dir);
+    snprintf(path, sizeof path, "%s/once-config.yaml", sl_test_dir);
+    assert_true(write_config(scene,
+        "name: once\nlight: {type: directional, direction: [0.5, -0.7, 0.5]}\nmeshes:\n"
+        "  - {name: ground, generator: plane, center: [0, 0, 0], size: 40, grid: 2}\n"
+        "  - {name: box, generator: sphere, center: [0, 4, 0], radius: 3, segments: 8, rings: 8}\n"
+        "viewpoints:\n  - {name: top, position: [0, 30, -30], direction: [0, -1, 1], fov: 60, near: 1, far: 100}\n"));
+    assert_true(write_config(path,
+        "scenes: [{scene: once.yaml}]\nviewports: [{width: 64, height: 64}]\nmap_sizes: [256]\n"
+        "methods: [{method: nsm}]\n"));
+    struct sl_config c;
+    struct sl_diag d;
+    assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    assert_int_equal(remove(scene), 0);
+    struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result r;
+    enum sl_err e = sl_run(&c, &o, &r, &d);
+    if (e)
+        fprintf(stderr, "e2e::scene_read_once: %s: %s\n", d.file, d.msg);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(r.ncells, 1);
+    assert_true(r.ms_scene > 0);   /* the load's reading, counted for the run */
+    sl_run_result_free(&r);
+    memset(&d, 0, sizeof d);
+    assert_int_not_equal(sl_run(&c, &o, &r, &d), SL_OK);
+    printf("e2e::scene_read_once: a second run reads the file again: %s: %s\n", d.file, d.msg);
+    assert_non_null(strstr(d.file, "once.yaml"));
+    sl_config_free(&c);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -318,6 +362,7 @@ int main(int argc, char **argv)
         SL_CASE(e2e, deterministic),
         SL_CASE(e2e, exr_layers),
         SL_CASE(e2e, two_sided_leaf),
+        SL_CASE(e2e, scene_read_once),
     };
     return sl_run_group(argc, argv, "e2e", tests, sl_test_setup, sl_test_teardown);
 }

@@ -122,6 +122,7 @@ static void gputime_cells(void **st)
     free(got);
     sl_store_close(s);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 int main(int argc, char **argv)

@@ -110,6 +110,7 @@ static int setup(void **st)
 static int teardown(void **st)
 {
     sl_run_result_free(&all);
+    sl_config_free(&hard);
     return sl_test_teardown(st);
 }
 
@@ -245,8 +246,11 @@ static void hard_deterministic(void **st)
             assert_same_cell(&r.cells[i], find_cell(&a, &one, r.cells[i].scene, lone.maps[r.cells[i].key.map],
                                                     alone[k]));
         sl_run_result_free(&r);
+        sl_config_free(&lone);
     }
     sl_run_result_free(&a);
+    sl_config_free(&one);
+    sl_config_free(&two);
 }
 
 /* hard/far (1e5 from the origin) and its twin at the origin: every count. */
@@ -296,6 +300,7 @@ static void hard_far_is_its_twin(void **st)
         assert_same_cell(&r.cells[i], &r.cells[i + 8]);
     }
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* A scene and its rigid offset by delta (in the scene's local frame, after

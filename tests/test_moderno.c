@@ -500,6 +500,9 @@ static void moderno_shared_contour_primitives(void **st)
     sl_run_result_free(&rn);
     sl_run_result_free(&r);
     sl_run_result_free(&ro);
+    sl_config_free(&c);
+    sl_config_free(&cn);
+    sl_config_free(&co);
 }
 
 /* Where coherence(4)'s wrong hints sit (issue 14, item 4), measured on a
@@ -1123,6 +1126,7 @@ static void moderno_lookups_shared_only(void **st)
         sl_plan_group_looks(&c, cases[i].cell, c.nmethods, NULL, looks);
         assert_int_equal(looks[0], cases[i].once);
         assert_int_equal(looks[1], cases[i].twice);
+        sl_config_free(&c);
     }
 }
 

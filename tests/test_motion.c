@@ -236,6 +236,7 @@ static void run_paths_of(const char *paths, const char *methods, struct sl_run_r
         fprintf(stderr, "%s:%d '%s': %s\n", d.file, d.line, d.key, d.msg);
     assert_int_equal(e, SL_OK);
     assert_int_equal(res->ncells, sl_plan_count(&c));
+    sl_config_free(&c);
 }
 
 static void run_paths(const char *methods, struct sl_run_result *res)

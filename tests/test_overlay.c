@@ -62,6 +62,7 @@ static void run_once(void)
     assert_int_equal(e, SL_OK);
     assert_int_equal(run.ncells, 2);
     ran = 1;
+    sl_config_free(&c);
 }
 
 struct layers {

@@ -88,6 +88,7 @@ static void run_into(const char *name, const char *body, const char *sub, int in
     if (e)
         fprintf(stderr, "%s: %s\n", d.file, d.msg);
     assert_int_equal(e, SL_OK);
+    sl_config_free(&c);
 }
 
 /* The worker writes the very bytes a cell writes itself, one sheet per cell,
@@ -191,6 +192,7 @@ static void ovwriter_write_error(void **st)
         snprintf(fin, sizeof fin, "%s/overr", root);
         assert_int_not_equal(stat(fin, &sb), 0);   /* nothing half-written under the final name */
         sl_run_result_free(&r);
+        sl_config_free(&c);
     }
 }
 
@@ -224,6 +226,7 @@ static void ovwriter_complete_at_rename(void **st)
     assert_true(w >= 64 && h >= 64);
     free(rgb);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* The writer alone: at most depth slots out at once (a third acquire waits

@@ -58,6 +58,7 @@ static void slices_morais(void **st)
         if (864 / want >= 128)
             assert_int_equal(inside, 0);
     }
+    sl_config_free(&c);
 }
 
 static void slices_ci_by_view(void **st)
@@ -82,6 +83,7 @@ static void slices_ci_by_view(void **st)
         assert_int_equal(many[i], i);
     assert_int_equal(sl_plan_split_views(&c, many, n, NULL), total - 4);
     free(many);
+    sl_config_free(&c);
 }
 
 int main(int argc, char **argv)

@@ -90,6 +90,7 @@ static void soft_driver(void **st)
     assert_same_figures(&a, &b);
     sl_run_result_free(&a);
     sl_run_result_free(&b);
+    sl_config_free(&c);
 }
 
 /* soft_mc through the driver: its layers once per (view, map size), output
@@ -223,6 +224,7 @@ static void soft_three_layers(void **st)
     assert_same_figures(&a, &b);
     sl_run_result_free(&a);
     sl_run_result_free(&b);
+    sl_config_free(&bad);
 }
 
 /* point_map, the light as a point through a shadow map, is hard_point plus
@@ -520,6 +522,7 @@ static void soft_truth_cache(void **st)
     assert_same_figures(&a, &b);
     sl_run_result_free(&b);
     sl_run_result_free(&a);
+    sl_config_free(&c);
 }
 
 /* No cache ("" — what `run --no-cache` passes): a filled cache is not read
@@ -564,6 +567,7 @@ static void soft_truth_no_cache(void **st)
     assert_int_equal(b.passes.soft_truths, 2);
     assert_int_equal(b.passes.truths_cached, 0);
     sl_run_result_free(&b);
+    sl_config_free(&c);
 }
 
 int main(int argc, char **argv)

@@ -112,6 +112,7 @@ static void spot_lights_exact(void **st)
     assert_int_equal(exact, 4 * 3 * 2 * 2);
     assert_int_equal(spots, r.ncells);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* The index of viewpoint `name` in the scene, -1 if none. */
@@ -265,6 +266,7 @@ static void outside_view(const char *scene, const char *viewpoint)
     sl_run_result_free(&r);
     sl_view_free(&v);
     fixture_close(&f);
+    sl_config_free(&c);
 }
 
 static void spot_outside_counted_apart(void **st)
@@ -385,6 +387,7 @@ static void spot_penumbra(void **st)
         assert_int_equal(sl_config_load(cpath, &c, &d), SL_OK);
         struct sl_run_opts o = {.write_files = 0, .store = "", .cache_dir = ""};
         assert_int_equal(sl_run(&c, &o, &r[k], &d), SL_OK);
+        sl_config_free(&c);
     }
     assert_int_equal(r[0].ncells, 3);
     assert_int_equal(r[1].ncells, 3);

@@ -54,6 +54,7 @@ static void sweep_plan_order(void **st)
     assert_int_equal(k.viewport, 1);
     assert_int_equal(k.map, 1);
     assert_int_equal(k.method, 2);
+    sl_config_free(&c);
 }
 
 /* A scene with map sizes of its own: swept at those only, the others at the
@@ -155,6 +156,7 @@ static void sweep_each_pass_once(void **st)
     assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID_BACK], 1);
     assert_int_equal(r.passes.gbuffers, 1);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* Repetitions time each stage again but compute it once: the pass counts
@@ -200,6 +202,8 @@ static void sweep_repetitions(void **st)
     }
     sl_run_result_free(&a);
     sl_run_result_free(&b);
+    sl_config_free(&one);
+    sl_config_free(&rep);
 }
 
 /* A second run reads every truth from the cache, and gets the same figures;

@@ -520,21 +520,27 @@ static enum sl_err check_scene(const struct raw_config *r, unsigned si, const ch
             sl_known_add(known, sizeof known, names[i]);
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown scene '%s' (known: %s)", rs->scene, known);
     }
-    struct sl_scene s;
     enum sl_err re = sl_yaml_ref_check(d, SL_E_CONFIG, file, ix, key, cs->path);
     if (re)
         return re;
-    if (sl_scene_load(cs->path, &s, &sd) != SL_OK) {
+    /* read once, here: the session keeps it for the run (session.h) */
+    struct sl_session_scene *ss = &c->session->scenes[si];
+    double t0 = sl_now();
+    if (sl_scene_load(cs->path, &ss->scene, &sd) != SL_OK) {
         /* the scene file's own error names its file, line and key */
         *d = sd;
         return SL_E_SCENE;
     }
-    snprintf(cs->name, sizeof cs->name, "%s", s.name);
-    re = scene_viewpoints(rs, si, &s, file, ix, cs, d);
+    ss->ms_load = 1e3 * (sl_now() - t0);
+    ss->held = 1;
+    snprintf(ss->path, sizeof ss->path, "%s", cs->path);
+    c->session->nscenes = (int)si + 1;
+    const struct sl_scene *s = &ss->scene;
+    snprintf(cs->name, sizeof cs->name, "%s", s->name);
+    re = scene_viewpoints(rs, si, s, file, ix, cs, d);
     if (!re)
-        re = scene_paths(rs, si, &s, file, ix, cs, d);
-    cs->light_type = s.light.type;
-    sl_scene_free(&s);
+        re = scene_paths(rs, si, s, file, ix, cs, d);
+    cs->light_type = s->light.type;
     if (re)
         return re;
     /* a scene listed twice is named at the entry's last viewpoint or path
@@ -554,6 +560,8 @@ static enum sl_err check_scenes(const struct raw_config *r, const char *file, co
 {
     char cfg_dir[512];
     sl_path_dir(file, cfg_dir, sizeof cfg_dir);
+    if (sl_session_reserve_scenes(c->session, (int)r->scenes_count) != 0)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "the config's scenes");
     for (unsigned si = 0; si < r->scenes_count; si++) {
         enum sl_err e = check_scene(r, si, cfg_dir, file, ix, c, d);
         if (e)
@@ -914,8 +922,6 @@ static enum sl_err load_packages(const struct raw_config *r, const char *file, c
     for (int k = 0; k < sl_method_count() && nc < 63; k++)
         c_names[nc++] = sl_method_at(k)->name;
     c_names[nc] = NULL;
-    if (!c->session && !(c->session = calloc(1, sizeof *c->session)))
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "the config's session");
     return sl_packages_load(&c->session->packages, dirs, (int)n, dir, c_names, d);
 }
 
@@ -1308,16 +1314,10 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
 void sl_config_free(struct sl_config *c)
 {
     if (c->session) {
-        sl_packages_free(&c->session->packages);
+        sl_session_free(c->session);
         free(c->session);
         c->session = NULL;
     }
-}
-
-const struct sl_method *sl_session_method(const struct sl_session *s, const char *name)
-{
-    const struct sl_method *m = sl_method_find(name);
-    return m ? m : sl_packages_find(s ? &s->packages : NULL, name);
 }
 
 /* ---- -D key=value: a config key replaced by its path ----
@@ -1410,7 +1410,10 @@ enum sl_err sl_config_load_with(const char *path, const char *const *overrides, 
         for (int i = 0; i < n; i++)
             for (size_t k = 0, len = strlen(overrides[i]); k <= len; k++)   /* the NUL separates them */
                 out->hash = (out->hash ^ (unsigned char)overrides[i][k]) * 1099511628211ull;
-        e = validate(raw, path, t, out, d);
+        if (!(out->session = calloc(1, sizeof *out->session)))
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "the config's session");
+        else
+            e = validate(raw, path, t, out, d);
     }
     if (e && n > 0)
         ov_blame(t, overrides, n, d);

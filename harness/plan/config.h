@@ -42,7 +42,7 @@
 #include "sl_error.h"
 
 struct sl_method;    /* method.h */
-struct sl_session;   /* session.h: what the load resolved besides values (the packages) */
+struct sl_session;   /* session.h: what the load resolved besides values (scenes, packages) */
 
 #define SL_CFG_MAX 32
 /* A config is refused unread above 4 MiB: with at most SL_CFG_MAX entries
@@ -110,8 +110,8 @@ struct sl_config {
                                        * command line's --gl replaces it */
     struct sl_params settings;        /* the settings as the config gave them (config.c: CONFIG_SETTINGS;
                                        * given: which); the fields above hold them resolved */
-    struct sl_session *session;       /* the technique packages the labels run (owned; NULL: none);
-                                       * a copy of the struct shares it: free one copy */
+    struct sl_session *session;       /* the scenes read and the technique packages the labels run
+                                       * (owned); a copy of the struct shares it: free one copy */
 };
 
 /* Parse and validate; on failure d names file, line and key and *out holds
