@@ -140,10 +140,12 @@ _Static_assert(sizeof config_settings / sizeof config_settings[0] <= SL_PARAM_MA
 /* ---- the top-level keys ----
  * One line per key a config file may give, in the order the filled-in
  * config writes them; the only place a top-level key is listed. From this
- * list come struct raw_config (what libcyaml fills), its schema, and
- * sl_config_write (one write_<key> function per key, below: a key without
- * one does not compile).
- *   X(key, kind, need, type, args)
+ * list come struct raw_config (what libcyaml fills), its schema, its text
+ * in the reference, and sl_config_write (one write_<key> function per key,
+ * below: a key without one does not compile).
+ *   X(key, kind, need, doc, type, args)
+ * doc: the key's line in the reference (a SETTINGS group's row; "" for a
+ * single setting, whose declaration has its text).
  *   UINT    an unsigned integer            type: unsigned
  *   STRING  1..max bytes                   type: char; args: max
  *   SEQ     a list of 1..max entries       type: an entry's; args: its schema, max
@@ -162,21 +164,32 @@ _Static_assert(sizeof config_settings / sizeof config_settings[0] <= SL_PARAM_MA
  *   key: contours become regions (the whole image added), outputs and
  *   repetitions their fields, scenes their resolved files and masks. */
 #define CONFIG_KEYS(X)                                                                             \
-    X(name,         STRING, OPTIONAL, char, 63)                                                    \
-    X(scenes,       SEQ,    REQUIRED, struct raw_scene_ref, &scene_ref_schema, SL_CFG_MAX)         \
-    X(viewports,    SEQ,    OPTIONAL, struct raw_viewport, &viewport_schema, SL_CFG_MAX)           \
-    X(map_sizes,    SEQ,    REQUIRED, unsigned, &uint_schema, SL_CFG_MAX)                          \
-    X(contours,     SEQ,    OPTIONAL, unsigned, &uint_schema, SL_MAX_REGIONS - 1) /* + the whole image */ \
-    X(contour_from, SETTINGS, OPTIONAL, -)                                                         \
-    X(methods,      SEQ,    REQUIRED, struct raw_method, &method_schema, SL_CFG_MAX)               \
-    X(techniques,   SEQ,    OPTIONAL, char *, &path_schema, 8)                                     \
-    X(outputs,      SETTINGS, OPTIONAL, -)                                                         \
-    X(repetitions,  SETTINGS, OPTIONAL, -)                                                         \
-    X(seed,         SETTINGS, OPTIONAL, -)                                                         \
-    X(area_samples, SETTINGS, OPTIONAL, -)                                                         \
-    X(store,        STRING, OPTIONAL, char, 511)                                                   \
-    X(threads,      SETTINGS, OPTIONAL, -)                                                         \
-    X(gl,           SETTINGS, OPTIONAL, -)
+    X(name,         STRING, OPTIONAL, "the study's name: its folder under --out and its name in the store "   \
+      "(default: default); letters, digits, -, _, .", char, 63)                                    \
+    X(scenes,       SEQ,    REQUIRED, "the scenes, each by name (scenes/*.yaml; hard/tiny is "              \
+      "scenes/hard/tiny.yaml) or by path (ending .yaml, relative to the config)",                 \
+      struct raw_scene_ref, &scene_ref_schema, SL_CFG_MAX)                                         \
+    X(viewports,    SEQ,    OPTIONAL, "the image sizes (default: one of 1024 x 1024)",                    \
+      struct raw_viewport, &viewport_schema, SL_CFG_MAX)                                           \
+    X(map_sizes,    SEQ,    REQUIRED, "shadow-map sizes: powers of two, 64..16384",                       \
+      unsigned, &uint_schema, SL_CFG_MAX)                                                          \
+    X(contours,     SEQ,    OPTIONAL, "contour thicknesses in pixels: even, 2..64, increasing (default "   \
+      "[2, 4, 6]); the whole image is always added",                                               \
+      unsigned, &uint_schema, SL_MAX_REGIONS - 1) /* + the whole image */                          \
+    X(contour_from, SETTINGS, OPTIONAL, "", -)                                                        \
+    X(methods,      SEQ,    REQUIRED, "the labelled methods; one method may appear under several labels, " \
+      "and a parameter given as a list sweeps (one label per value)",                              \
+      struct raw_method, &method_schema, SL_CFG_MAX)                                               \
+    X(techniques,   SEQ,    OPTIONAL, "folders of technique packages, relative to the config (searched "   \
+      "before SHADOWLAB_TECHNIQUES and the built-in ones)", char *, &path_schema, 8)               \
+    X(outputs,      SETTINGS, OPTIONAL, "what a run writes beside the store", -)                      \
+    X(repetitions,  SETTINGS, OPTIONAL, "how often the timed stages run (computed once, timed this often)", -) \
+    X(seed,         SETTINGS, OPTIONAL, "", -)                                                        \
+    X(area_samples, SETTINGS, OPTIONAL, "", -)                                                        \
+    X(store,        STRING, OPTIONAL, "the results store, relative to the output root (default "           \
+      "shadowlab.db); no \"..\", not absolute", char, 511)                                         \
+    X(threads,      SETTINGS, OPTIONAL, "", -)                                                        \
+    X(gl,           SETTINGS, OPTIONAL, "", -)
 
 #define CFG_RAW_UINT(key, type)                type *key;
 #define CFG_RAW_STRING(key, type, max)         type *key;
@@ -184,7 +197,7 @@ _Static_assert(sizeof config_settings / sizeof config_settings[0] <= SL_PARAM_MA
 #define CFG_RAW_MAP(key, type, fields)         type *key;
 #define CFG_RAW_SETTINGS(key, unused)          /* taken from the tree: config_settings */
 struct raw_config {
-#define RAW_KEY(key, kind, need, ...) CFG_RAW_##kind(key, __VA_ARGS__)
+#define RAW_KEY(key, kind, need, doc, ...) CFG_RAW_##kind(key, __VA_ARGS__)
     CONFIG_KEYS(RAW_KEY)
 #undef RAW_KEY
 };
@@ -198,7 +211,7 @@ struct raw_config {
 #define CFG_SCHEMA_MAP(key, need, type, fields) CYAML_FIELD_MAPPING_PTR(#key, need, struct raw_config, key, fields),
 #define CFG_SCHEMA_SETTINGS(key, need, unused)
 static const cyaml_schema_field_t config_fields[] = {
-#define SCHEMA_KEY(key, kind, need, ...) CFG_SCHEMA_##kind(key, CFG_##need, __VA_ARGS__)
+#define SCHEMA_KEY(key, kind, need, doc, ...) CFG_SCHEMA_##kind(key, CFG_##need, __VA_ARGS__)
     CONFIG_KEYS(SCHEMA_KEY)
 #undef SCHEMA_KEY
     CYAML_FIELD_END,
@@ -215,34 +228,35 @@ static const cyaml_schema_value_t config_schema = {
  * schema key with no text here, or a text
  * for a key the schema has not, is an error of the generator, so the
  * reference cannot drift from what the parser takes. */
+/* the top-level keys' text: their CONFIG_KEYS lines */
+static const struct { const char *path, *doc; } top_docs[] = {
+#define TOP_DOC(key, kind, need, doc, ...) {#key, doc},
+    CONFIG_KEYS(TOP_DOC)
+#undef TOP_DOC
+};
+
+/* the keys of a key's entries and mappings, by path */
 static const struct { const char *path, *doc; } key_docs[] = {
-    {"name", "the study's name: its folder under --out and its name in the store (default: default); letters, digits, -, _, ."},
-    {"scenes", "the scenes, each by name (scenes/*.yaml; hard/tiny is scenes/hard/tiny.yaml) or by path (ending .yaml, relative to the config)"},
     {"scenes[].scene", "the scene's name or path"},
     {"scenes[].viewpoints", "the scene's viewpoints to run (default: all of them)"},
     {"scenes[].paths", "the scene's paths of frames to run (errors over motion; default: none)"},
     {"scenes[].map_sizes", "this scene's own map sizes (default: the top-level map_sizes)"},
     {"scenes[].methods", "the labels this scene runs (default: every label that handles its light)"},
-    {"viewports", "the image sizes (default: one of 1024 x 1024)"},
     {"viewports[].width", "pixels, 16..8192"},
     {"viewports[].height", "pixels, 16..8192"},
-    {"map_sizes", "shadow-map sizes: powers of two, 64..16384"},
-    {"contours", "contour thicknesses in pixels: even, 2..64, increasing (default [2, 4, 6]); the whole image is always added"},
-    {"methods", "the labelled methods; one method may appear under several labels, and a parameter given as a list sweeps (one label per value)"},
     {"methods[].display", "the name LaTeX tables print for the label (default: the method's own display name when the label is the method's name, else the label); a sweep adds its [key=value]"},
     {"methods[].label", "the label tables and the store use (default: the method's name): letters, digits, -, _, . (not first)"},
     {"methods[].method", "a built-in method (shadowlab list methods) or a technique package (shadowlab list techniques); its parameters are keys of this entry too (below; shadowlab show method NAME, shadowlab show technique NAME)"},
     {"methods[].light_frame", "this label's own light frame (errors over motion)"},
     {"methods[].light_frame.fit", "tight (default: the view's receivers) or sphere (their bounding sphere: stable under camera rotation)"},
     {"methods[].light_frame.snap", "true: the frame moves in whole texels (no crawling under camera motion); default false"},
-    {"techniques", "folders of technique packages, relative to the config (searched before SHADOWLAB_TECHNIQUES and the built-in ones)"},
-    {"outputs", "what a run writes beside the store"},
-    {"repetitions", "how often the timed stages run (computed once, timed this often)"},
-    {"store", "the results store, relative to the output root (default shadowlab.db); no \"..\", not absolute"},
 };
 
 static const char *key_doc(const char *path)
 {
+    for (size_t i = 0; i < sizeof top_docs / sizeof top_docs[0]; i++)
+        if (!strcmp(top_docs[i].path, path))
+            return top_docs[i].doc[0] ? top_docs[i].doc : NULL;
     for (size_t i = 0; i < sizeof key_docs / sizeof key_docs[0]; i++)
         if (!strcmp(key_docs[i].path, path))
             return key_docs[i].doc;
