@@ -264,6 +264,7 @@ static void bench_studies_in_children(void **st)
     fclose(out);
     assert_int_not_equal(e, SL_OK);
     assert_non_null(strstr(d.file, "no-such.yaml"));
+    sl_config_free(&c);
 }
 
 /* The churn stage: NSM's layer at S and 2S kept and made afresh, three

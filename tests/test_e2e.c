@@ -351,6 +351,7 @@ static void e2e_scene_read_once(void **st)
     assert_int_not_equal(sl_run(&c, &o, &r, &d), SL_OK);
     printf("e2e::scene_read_once: a second run reads the file again: %s: %s\n", d.file, d.msg);
     assert_non_null(strstr(d.file, "once.yaml"));
+    sl_run_result_free(&r);
     sl_config_free(&c);
 }
 

@@ -82,6 +82,7 @@ static void moderno_proofs_never_wrong(void **st)
     assert_true(adj_step > 0);      /* the adjacency step confirms what neighbours could not */
     printf("moderno::proofs: the chain's adjacency step confirmed %llu pixels\n", (unsigned long long)adj_step);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 
@@ -134,6 +135,7 @@ static void moderno_coherence_patterns(void **st)
     assert_true(lean[0][0] > 0 && lean[1][0] > 0);
     assert_true(lean[1][1] * lean[0][0] > lean[0][1] * lean[1][0]);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* A constructed case: the scene, its view and truth, and the shadow map

@@ -84,6 +84,7 @@ static void motion_config_paths(void **st)
     assert_string_equal(c.scenes[0].viewpoints[1], "sun.000");
     assert_string_equal(c.scenes[0].viewpoints[60], "sun.059");
     assert_int_equal(sl_plan_count(&c), 61);
+    sl_config_free(&c);
 }
 
 /* ---- flicker on constructed frames ---- */

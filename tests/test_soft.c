@@ -143,6 +143,7 @@ static void soft_mc_driver(void **st)
     assert_true(moved > a.ncells / 2);
     sl_run_result_free(&a);
     sl_run_result_free(&b);
+    sl_config_free(&c);
 }
 
 /* soft_mc with layers: 3 (Curtis 3.4, the camera's depth) through the
@@ -225,6 +226,8 @@ static void soft_three_layers(void **st)
     sl_run_result_free(&a);
     sl_run_result_free(&b);
     sl_config_free(&bad);
+    sl_config_free(&c);
+    sl_config_free(&one);
 }
 
 /* point_map, the light as a point through a shadow map, is hard_point plus
@@ -255,6 +258,7 @@ static void soft_point_map(void **st)
         assert_true(map->cost.rays <= map->soft.n[SL_SFIG_soft_pixels]);
     }
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* The hard-shadow methods under an area light taken as a point at its
@@ -341,6 +345,7 @@ static void soft_hard_methods(void **st)
         }
     }
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* No area light, no soft pass. */
@@ -359,6 +364,7 @@ static void soft_none_without_area_light(void **st)
     assert_int_equal(r.passes.truths_traced, 1);
     assert_false(r.cells[0].has_soft);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* Files in `dir` whose name starts with `prefix` and ends in .bin (no temporaries). */

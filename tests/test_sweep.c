@@ -97,6 +97,7 @@ static void sweep_scene_map_sizes(void **st)
     assert_int_equal(k.method, 1);
 
     /* a subset of the labels for one scene */
+    sl_config_free(&c);
     sl_test_config("m.yaml",
                    "scenes:\n  - {scene: primitives, viewpoints: [side]}\n"
                    "  - {scene: blocks, map_sizes: [1024], methods: [c, a]}\n"
@@ -120,6 +121,7 @@ static void sweep_scene_map_sizes(void **st)
     assert_int_equal(r.passes.layers[SL_LAYER_BGSM], 0);
     assert_int_equal(r.passes.layers[SL_LAYER_DEPTH_ID_BACK], 1);
     sl_run_result_free(&r);
+    sl_config_free(&c);
 }
 
 /* Every stage once: per view one G-buffer and one truth, per (view, map)
@@ -275,6 +277,7 @@ static void sweep_truth_cache(void **st)
     assert_int_equal(b.passes.cache_rejected, 0);
     sl_run_result_free(&a);
     sl_run_result_free(&b);
+    sl_config_free(&c);
 }
 
 /* Cells 0..4, then --resume: the store ends with the cells of one
@@ -331,6 +334,7 @@ static void sweep_cells_then_resume(void **st)
     free(b);
     sl_store_close(s1);
     sl_store_close(s2);
+    sl_config_free(&c);
 }
 
 
