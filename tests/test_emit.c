@@ -2,7 +2,9 @@
  * small table: every format's exact text, its escaping (Markdown
  * punctuation, HTML entities, LaTeX specials and signs, CSV quotes, JSON
  * strings and numbers), groups, rules and muted rows, the note and the
- * link, the table of emitters, and the example emitter of doc/layout.md
+ * link, the layouts a writer asks for (a verdict column, a terminal's
+ * widths and colour, a quoted CSV column, LaTeX at \small with groups and
+ * folded names), the table of emitters, and the example emitter of doc/layout.md
  * (tests/example_emitter/emit_tsv.c, built here): a new format is one file. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
@@ -209,12 +211,13 @@ static void emit_emitters(void **state)
     assert_ptr_equal(sl_emit_find("latex"), sl_emit_tex);
     assert_ptr_equal(sl_emit_find("html"), sl_emit_html);
     assert_ptr_equal(sl_emit_find("json"), sl_emit_json);
+    assert_ptr_equal(sl_emit_find("term"), sl_emit_term);
     assert_null(sl_emit_find("tsv"));   /* the doc's example is not shipped */
     assert_null(sl_emit_find(NULL));
     int n = 0;
     while (sl_emitters[n].name)
         n++;
-    assert_int_equal(n, 5);
+    assert_int_equal(n, 6);
     /* an out-of-memory model is refused by every emitter */
     struct sl_tab t;
     small(&t);
@@ -226,6 +229,137 @@ static void emit_emitters(void **state)
     assert_int_equal(sl_emit_tsv(f, &t, NULL), -1);
     fclose(f);
     t.oom = 0;
+    sl_tab_free(&t);
+}
+
+/* A table with a verdict column: an ok row and a failing one with an empty
+ * cell (check's table of what moved) */
+static void verdict(struct sl_tab *t)
+{
+    sl_tab_init(t, "moved", 4, 1, "%s", "");
+    t->plain = 1;
+    t->padded = 1;
+    t->verdict = 1;
+    static const char *const heads[] = {"cell", "now", "moved", ""};
+    for (int k = 0; k < 4; k++)
+        sl_tab_head(t, k, "%s", heads[k]);
+    sl_tab_align(t, 3, 'l');
+    t->termw[0] = 8;
+    t->termw[1] = 5;
+    sl_tab_row(t, 0);
+    sl_tab_cell(t, 0, "\xC3\xA9t\xC3\xA9_a");
+    sl_tab_cell(t, 1, "12");
+    sl_tab_cell(t, 2, "+0.1 pp");
+    sl_tab_cell(t, 3, "ok");
+    sl_tab_row(t, 0);
+    sl_tab_alert(t);
+    sl_tab_cell(t, 0, "b");
+    sl_tab_cell(t, 1, "missing");
+    sl_tab_cell(t, 3, "FAIL");
+}
+
+/* Markdown of a padded plain table: an empty head "| |", an empty cell
+ * "|  |", the alert row's verdict bold */
+static void emit_verdict_markdown(void **state)
+{
+    (void)state;
+    struct sl_tab t;
+    verdict(&t);
+    char *s = render(sl_emit_md, &t, NULL);
+    assert_string_equal(s, "| cell | now | moved | |\n|---|---:|---:|---|\n"
+                           "| \xC3\xA9t\xC3\xA9_a | 12 | +0.1 pp | ok |\n| b | missing |  | **FAIL** |\n");
+    free(s);
+    sl_tab_free(&t);
+}
+
+/* The terminal: fixed widths counted in characters (a longer cell runs
+ * over), the widest cell where no width is set, the last column unpadded,
+ * the verdict in colour only when asked */
+static void emit_terminal(void **state)
+{
+    (void)state;
+    struct sl_tab t;
+    verdict(&t);
+    char *s = render(sl_emit_term, &t, NULL);
+    assert_string_equal(s, "cell       now   moved \n"
+                           "\xC3\xA9t\xC3\xA9_a       12 +0.1 pp ok\n"
+                           "b        missing         FAIL\n");
+    free(s);
+    const struct sl_emit_opts color = {.color = 1};
+    s = render(sl_emit_term, &t, &color);
+    assert_non_null(strstr(s, " \033[32mok\033[0m\n"));
+    assert_non_null(strstr(s, " \033[1;31mFAIL\033[0m\n"));
+    assert_null(strstr(s, "cell       now   moved \033"));   /* the heads are not coloured */
+    free(s);
+    sl_tab_free(&t);
+}
+
+/* CSV: a quoted column quotes every field (its quotes doubled), the others
+ * only where RFC 4180 needs it; the header is not quoted */
+static void emit_csv_quote(void **state)
+{
+    (void)state;
+    struct sl_tab t;
+    sl_tab_init(&t, "costs", 3, 0, "costs");
+    sl_tab_head(&t, 0, "label");
+    sl_tab_head(&t, 1, "n");
+    sl_tab_head(&t, 2, "machine");
+    sl_tab_quote(&t, 2);
+    sl_tab_row(&t, 0);
+    sl_tab_cell(&t, 0, "a,b");
+    sl_tab_cell(&t, 1, "3");
+    sl_tab_cell(&t, 2, "h/c/i");
+    sl_tab_row(&t, 0);
+    sl_tab_cell(&t, 0, "c");
+    sl_tab_cell(&t, 2, "h \"x\"");
+    char *s = render(sl_emit_csv, &t, NULL);
+    assert_string_equal(s, "label,n,machine\n\"a,b\",3,\"h/c/i\"\nc,,\"h \"\"x\"\"\"\n");
+    free(s);
+    sl_tab_free(&t);
+}
+
+/* LaTeX laid out by its writer at \small (a pivot): the column key's group
+ * over the values with a rule trimmed where a column is beside it, a long
+ * row name folded into a \parbox with breaks after '_' and '-' (whole
+ * characters: an accent stays a letter); a longtable the same */
+static void emit_latex_layout(void **state)
+{
+    (void)state;
+    struct sl_tab t;
+    sl_tab_init(&t, "pivot-wrong-label-map-size", 3, 1, "wrong: 50%%");
+    t.fixed = 1;
+    t.small = 1;
+    t.fold[0] = 40;
+    sl_tab_group(&t, 1, "%s", "");
+    sl_tab_group(&t, 2, "map size");
+    sl_tab_head(&t, 0, "label");
+    sl_tab_head(&t, 1, "512\xC2\xB2");
+    sl_tab_head(&t, 2, "1\xE2\x80\x89" "024\xC2\xB2");
+    sl_tab_row(&t, 0);
+    sl_tab_cell(&t, 0, "nsm");
+    sl_tab_cell(&t, 1, "\xE2\x88\x92" "1.50\xE2\x80\xA0");
+    sl_tab_cell(&t, 2, "\xE2\x80\x93");
+    sl_tab_row(&t, 0);
+    sl_tab_cell(&t, 0, "\xC3\xBC" "ber_lang-name/x");
+    const struct sl_emit_opts blank = {.blank = 1};
+    char *s = render(sl_emit_tex, &t, &blank);
+    assert_string_equal(s, "\\begin{table}[htbp]\n\\centering\n\\small\n\\caption{wrong: 50\\%}\n"
+                           "\\label{tab:pivot-wrong-label-map-size}\n\\begin{tabular}{lrr}\n\\toprule\n"
+                           " & \\multicolumn{2}{c}{map size} \\\\\n\\cmidrule(l){2-3}\n"
+                           "label & 512\\textsuperscript{2} & 1\\,024\\textsuperscript{2} \\\\\n\\midrule\n"
+                           "nsm & $-$1.50$^\\dagger$ & -- \\\\\n"
+                           "\\parbox[t]{40pt}{\\raggedright \\\"{u}ber\\_\\allowbreak{}lang-\\allowbreak{}name/"
+                           "\\allowbreak{}x} &  &  \\\\\n"
+                           "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n");
+    free(s);
+    t.fixed = 0;
+    t.longtable = 1;
+    const struct sl_emit_opts alone = {0};
+    s = render(sl_emit_tex, &t, &alone);
+    assert_true(strncmp(s, "{\\small\n\\begin{longtable}{lrr}\n\\caption{wrong: 50\\%}"
+                           "\\label{tab:pivot-wrong-label-map-size}\\\\\n\\toprule\n & \\multicolumn{2}", 120) == 0);
+    assert_non_null(strstr(s, "\\midrule\n\\endhead\n\\bottomrule\n\\endfoot\n"));
+    free(s);
     sl_tab_free(&t);
 }
 
@@ -260,6 +394,10 @@ int main(int argc, char **argv)
         SL_CASE(emit, json),
         SL_CASE(emit, latex),
         SL_CASE(emit, emitters),
+        SL_CASE(emit, verdict_markdown),
+        SL_CASE(emit, terminal),
+        SL_CASE(emit, csv_quote),
+        SL_CASE(emit, latex_layout),
         SL_CASE(emit, example_tsv),
     };
     return sl_run_group(argc, argv, "emit", tests, NULL, NULL);

@@ -10,6 +10,7 @@
  */
 #define _XOPEN_SOURCE 700
 #include "check.h"
+#include "emit.h"
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -284,31 +285,39 @@ struct cmp {
     int rows, max_rows;
     long hidden;
     struct cell_stats *cur;               /* the baseline cell being compared */
+    struct sl_tab tab;                    /* what moved: its rows */
 };
 
-/* One row of the table of what moved: Markdown, or plain columns for a
- * terminal (FAIL in red, ok in green when asked); the header before the
- * first row of either kind (a moved value or a missing cell). */
+/* The table of what moved, in the model: a row per moved value or missing
+ * cell, its last column the verdict (FAIL: an alert row). Written once the
+ * cells are compared: Markdown, or columns of fixed widths for a terminal
+ * (FAIL in red, ok in green when asked). */
+static void moved_table(struct sl_tab *t)
+{
+    static const char *const heads[] = {"cell", "region", "figure", "class", "baseline",
+                                        "now",  "moved",  "tolerance", ""};
+    static const int width[] = {40, 6, 24, 9, 12, 12, 14, 10, 0};
+    sl_tab_init(t, "moved", 9, 4, "%s", "");
+    t->plain = 1;
+    t->padded = 1;
+    t->verdict = 1;
+    for (int k = 0; k < 9; k++) {
+        sl_tab_head(t, k, "%s", heads[k]);
+        t->termw[k] = width[k];
+    }
+    sl_tab_align(t, 8, 'l');
+}
+
 static void table_row(struct cmp *m, const char *cell, const char *region, const char *what, const char *cls,
                       const char *a, const char *b, const char *moved, const char *tol, int bad)
 {
-    int md = m->o->format == SL_CHECK_MD;
-    if (m->rows++ == 0) {
-        if (md)
-            fprintf(m->out, "| cell | region | figure | class | baseline | now | moved | tolerance | |\n"
-                            "|---|---|---|---|---:|---:|---:|---:|---|\n");
-        else
-            fprintf(m->out, "%-40s %-6s %-24s %-9s %12s %12s %14s %10s %s\n", "cell", "region", "figure", "class",
-                    "baseline", "now", "moved", "tolerance", "");
-    }
-    if (md) {
-        fprintf(m->out, "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", cell, region, what, cls, a, b, moved, tol,
-                bad ? "**FAIL**" : "ok");
-        return;
-    }
-    const char *on = !m->o->color ? "" : bad ? "\033[1;31m" : "\033[32m", *off = m->o->color ? "\033[0m" : "";
-    fprintf(m->out, "%-40s %-6s %-24s %-9s %12s %12s %14s %10s %s%s%s\n", cell, region, what, cls, a, b, moved, tol,
-            on, bad ? "FAIL" : "ok", off);
+    const char *v[] = {cell, region, what, cls, a, b, moved, tol, bad ? "FAIL" : "ok"};
+    m->rows++;
+    sl_tab_row(&m->tab, 0);
+    if (bad)
+        sl_tab_alert(&m->tab);
+    for (int k = 0; k < 9; k++)
+        sl_tab_cell(&m->tab, k, "%s", v[k]);
 }
 
 static void stat_fail(struct cmp *m, enum sl_check_class cls, double moved, const char *fmt, ...)
@@ -533,21 +542,6 @@ static enum sl_err load_store(const char *db, const char *study, struct sl_cell_
 
 /* ---- --json and --junit ---- */
 
-static void json_str(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
-}
-
 static void xml_str(FILE *f, const char *s)
 {
     for (; *s; s++) {
@@ -574,9 +568,9 @@ static void write_json(FILE *f, const char *db, const char *baseline, const stru
                        const struct cell_stats *st, unsigned n)
 {
     fprintf(f, "{\n  \"db\": ");
-    json_str(f, db);
+    sl_emit_json_text(f, db);
     fprintf(f, ",\n  \"baseline\": ");
-    json_str(f, baseline);
+    sl_emit_json_text(f, baseline);
     fprintf(f, ",\n  \"exact_counts\": %s,\n  \"cells\": %d,\n  \"missing\": %d,\n  \"extra\": %d,\n"
                "  \"compared\": %ld,\n  \"moved\": %ld,\n  \"failed\": %ld,\n  \"passed\": %s,\n",
             m->exact ? "true" : "false", m->r->cells, m->r->missing, m->r->extra, m->r->compared, m->r->moved,
@@ -588,7 +582,7 @@ static void write_json(FILE *f, const char *db, const char *baseline, const stru
     for (unsigned i = 0; i < n; i++) {
         const struct cell_stats *s = &st[i];
         fprintf(f, "%s\n    {\"cell\": ", i ? "," : "");
-        json_str(f, s->cell ? s->cell : "");
+        sl_emit_json_text(f, s->cell ? s->cell : "");
         fprintf(f, ", \"missing\": %s, \"classes\": {", s->missing ? "true" : "false");
         for (int k = 0, w = 0; k < SL_CC_COUNT; k++) {
             if (!class_applies(s, k))
@@ -599,7 +593,7 @@ static void write_json(FILE *f, const char *db, const char *baseline, const stru
                     s->missing || s->failed[k] ? "false" : "true");
             if (s->failed[k]) {
                 fprintf(f, ", \"first_failure\": ");
-                json_str(f, s->first_fail[k]);
+                sl_emit_json_text(f, s->first_fail[k]);
             }
             fputc('}', f);
         }
@@ -700,6 +694,7 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
     struct sl_store_run *runs = NULL;
     int n = 0, nruns = 0;
     struct cmp m = {.out = out, .o = o, .r = r, .max_rows = o->max_rows > 0 ? o->max_rows : 200};
+    moved_table(&m.tab);
     if (b->version != SL_BASELINE_VERSION) {
         e = sl_yaml_bad(d, SL_E_BASELINE, baseline, pos, "shadowlab_baseline", "version %u: this build reads %d",
                         b->version, SL_BASELINE_VERSION);
@@ -771,6 +766,11 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
         seen[found] = 1;
         e = compare_cell(&m, baseline, pos, i, bc, &cells[found], d);
     }
+    if (m.rows) {
+        const struct sl_emit_opts eo = {.first = 1, .color = o->color};
+        if ((o->format == SL_CHECK_MD ? sl_emit_md : sl_emit_term)(out, &m.tab, &eo) < 0 && !e)
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "check: the table of what moved");
+    }
     if (!e) {
         if (m.hidden)
             fprintf(out, "\n... and %ld more moved values not shown\n", m.hidden);
@@ -804,6 +804,7 @@ enum sl_err sl_check(const char *db, const char *baseline, const struct sl_check
     free(stats);
     free(seen);
 done:
+    sl_tab_free(&m.tab);
     free(cells);
     sl_store_runs_free(runs, nruns);
     sl_yaml_free(&file_schema, b, pos);

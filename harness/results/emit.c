@@ -10,6 +10,7 @@ const struct sl_emitter sl_emitters[] = {
     {"latex", sl_emit_tex},
     {"html", sl_emit_html},
     {"json", sl_emit_json},
+    {"term", sl_emit_term},
     {NULL, NULL},
 };
 

@@ -33,6 +33,7 @@ struct sl_emit_opts {
     int         clear;       /* LaTeX, fixed: a \clearpage and a blank line before it (the writer counts
                               * its floats: LaTeX holds at most 18 it has not placed) */
     int         blank;       /* LaTeX, fixed: a blank line after it */
+    int         color;       /* terminal: a verdict column in colour (the caller decides: a TTY, no NO_COLOR) */
 };
 
 /* Writes t; returns the floats it took (LaTeX, since its last \clearpage;
@@ -45,8 +46,9 @@ int sl_emit_csv(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
 int sl_emit_tex(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
 int sl_emit_html(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
 int sl_emit_json(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
+int sl_emit_term(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o);
 
-/* The emitters by name ("md", "csv", "latex", "html", "json"), a
+/* The emitters by name ("md", "csv", "latex", "html", "json", "term"), a
  * sentinel-terminated table; sl_emit_find returns NULL for an unknown name. */
 struct sl_emitter {
     const char *name;
@@ -64,8 +66,10 @@ void sl_emit_tex_comment(FILE *f, const char *comment, int blank);
  * one (LaTeX holds at most 18 it has not placed). */
 void sl_emit_tex_clearpage(FILE *f);
 
-/* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation). */
+/* Text escaped for HTML (& < > " ') and for CommonMark (markup punctuation);
+ * a JSON string, quoted (" \ and the control characters escaped). */
 void sl_emit_html_text(FILE *f, const char *s);
 void sl_emit_md_text(FILE *f, const char *s);
+void sl_emit_json_text(FILE *f, const char *s);
 
 #endif

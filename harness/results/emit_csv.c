@@ -3,12 +3,25 @@
  * column heads (a column group's name in front of its columns' heads) when
  * the table is the stream's first (o->first; the tables of one stream share
  * its columns), then a line per row. A field holding a comma, a quote or a
- * line break is quoted, its quotes doubled; an empty cell is an empty field.
+ * line break is quoted, its quotes doubled (every field of a column the
+ * table quotes: t->quote); an empty cell is an empty field.
  * Title, note, rules and muted rows are not written: CSV is data.
  */
 #include "emit.h"
 #include <string.h>
 #include "util.h"   /* sl_csv_field: RFC 4180 quoting, shared with the run's CSV files */
+
+/* v quoted whether or not it needs it, its quotes doubled */
+static void quoted(FILE *f, const char *v)
+{
+    fputc('"', f);
+    for (; *v; v++) {
+        if (*v == '"')
+            fputc('"', f);
+        fputc(*v, f);
+    }
+    fputc('"', f);
+}
 
 int sl_emit_csv(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
 {
@@ -34,7 +47,11 @@ int sl_emit_csv(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
         for (int c = 0; c < t->ncols; c++) {
             if (c)
                 fputc(',', f);
-            sl_csv_field(f, sl_tab_at(t, r, c));
+            const char *v = sl_tab_at(t, r, c);
+            if (t->quote && t->quote[c])
+                quoted(f, v);
+            else
+                sl_csv_field(f, v);
         }
         fputc('\n', f);
     }

@@ -14,7 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-static void str(FILE *f, const char *s)
+void sl_emit_json_text(FILE *f, const char *s)
 {
     fputc('"', f);
     for (; s && *s; s++) {
@@ -55,26 +55,26 @@ int sl_emit_json(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     if (o && !o->first)
         fputs(",\n", f);
     fputs("{\"id\": ", f);
-    str(f, t->id);
+    sl_emit_json_text(f, t->id);
     fputs(", \"title\": ", f);
-    str(f, t->title);
+    sl_emit_json_text(f, t->title);
     if (t->intro && t->intro[0]) {
         fputs(", \"intro\": ", f);
-        str(f, t->intro);
+        sl_emit_json_text(f, t->intro);
     }
     fputs(",\n \"columns\": [", f);
     int g = 0, left = t->ngroups ? t->span[0] : 0;
     for (int c = 0; c < t->ncols; c++) {
         fputs(c ? ",\n  {\"name\": " : "\n  {\"name\": ", f);
-        str(f, t->head[c] ? t->head[c] : "");
+        sl_emit_json_text(f, t->head[c] ? t->head[c] : "");
         fprintf(f, ", \"key\": %s", c < t->nkeys ? "true" : "false");
         if (t->ngroups && g < t->ngroups && t->group[g][0]) {
             fputs(", \"group\": ", f);
-            str(f, t->group[g]);
+            sl_emit_json_text(f, t->group[g]);
         }
         if (t->unit[c]) {
             fputs(", \"unit\": ", f);
-            str(f, t->unit[c]);
+            sl_emit_json_text(f, t->unit[c]);
         }
         fputc('}', f);
         if (t->ngroups && --left == 0 && ++g < t->ngroups)
@@ -92,7 +92,7 @@ int sl_emit_json(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
             else if (c >= t->nkeys && is_number(v))
                 fputs(v, f);
             else
-                str(f, v);
+                sl_emit_json_text(f, v);
         }
         fputc(']', f);
     }
@@ -101,7 +101,7 @@ int sl_emit_json(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
         if (t->rule[r] & SL_TAB_BLOCK)
             fprintf(f, "%s%d", n++ ? ", " : "", r);
     fputs("],\n \"note\": ", f);
-    str(f, t->note);
+    sl_emit_json_text(f, t->note);
     fputs("}\n", f);
     return 0;
 }

@@ -10,7 +10,9 @@
  * ends: o->tight); a table with neither ends at its last row, so the next
  * one asks for a blank line before it (o->gap). Text is escaped
  * (CommonMark punctuation, a line break as a space) unless the table is
- * plain (t->plain: names and numbers as they are; an empty cell "| |").
+ * plain (t->plain: names and numbers as they are; an empty cell "| |", or
+ * in a padded table's rows "|  |"). A verdict column's cell of an alert row
+ * is bold.
  */
 #include "emit.h"
 #include <string.h>
@@ -35,20 +37,22 @@ static void text(FILE *f, const struct sl_tab *t, const char *s)
         sl_emit_md_text(f, s);
 }
 
-/* " v |"; plain and empty: " |" */
-static void cell(FILE *f, const struct sl_tab *t, const char *pre, const char *v)
+/* " v |"; plain and empty: " |" (a row's cell of a padded table: "  |");
+ * bold: " **v** |" */
+static void cell(FILE *f, const struct sl_tab *t, const char *pre, const char *v, int head, int bold)
 {
     fputc(' ', f);
     if (pre) {
         text(f, t, pre);
         fputc(' ', f);
     }
-    if (t->plain && !pre && !v[0]) {
+    if (t->plain && !pre && !v[0] && (head || !t->padded)) {
         fputc('|', f);
         return;
     }
+    fputs(bold ? "**" : "", f);
     text(f, t, v);
-    fputs(" |", f);
+    fputs(bold ? "** |" : " |", f);
 }
 
 int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
@@ -81,7 +85,7 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     int g = 0, left = t->ngroups ? t->span[0] : 0;
     for (int c = 0; c < t->ncols; c++) {
         const char *grp = t->ngroups && g < t->ngroups && t->group[g][0] ? t->group[g] : NULL;
-        cell(f, t, grp, t->head[c] ? t->head[c] : "");
+        cell(f, t, grp, t->head[c] ? t->head[c] : "", 1, 0);
         if (t->ngroups && --left == 0 && ++g < t->ngroups)
             left = t->span[g];
     }
@@ -92,7 +96,8 @@ int sl_emit_md(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     for (int r = 0; r < t->nrows; r++) {
         fputc('|', f);
         for (int c = 0; c < t->ncols; c++)
-            cell(f, t, NULL, sl_tab_at(t, r, c));
+            cell(f, t, NULL, sl_tab_at(t, r, c), 0,
+                 t->verdict && c == t->ncols - 1 && (t->rule[r] & SL_TAB_ALERT));
         fputc('\n', f);
     }
     if (!under)

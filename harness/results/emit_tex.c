@@ -618,15 +618,42 @@ static void tab_text(FILE *f, const char *s, int squares)
     sl_tex_text(f, seg);
 }
 
+/* s with a break allowed after each '_' and '-' (sl_tex_text allows one
+ * after '/'), cut between whole characters */
+static void tex_breakable(FILE *f, const char *s, int squares)
+{
+    char *buf = malloc(strlen(s) + 1);
+    if (!buf) {
+        tab_text(f, s, squares);
+        return;
+    }
+    while (*s) {
+        size_t n = strcspn(s, "_-");
+        n += s[n] != '\0';
+        memcpy(buf, s, n);
+        buf[n] = '\0';
+        tab_text(f, buf, squares);
+        if (buf[n - 1] == '_' || buf[n - 1] == '-')
+            fputs("\\allowbreak{}", f);
+        s += n;
+    }
+    free(buf);
+}
+
 /* A row of cells (the heads: r = -1) joined by " & ", ended by " \\"; a
- * cell that is not empty in its column's \parbox where it has one. */
+ * cell that is not empty in its column's \parbox where it has one, one
+ * wider than its column's fold in a \parbox of that width. */
 static void long_row(FILE *f, const struct sl_tab *t, int r)
 {
     for (int c = 0; c < t->ncols; c++) {
         if (c)
             fputs(" & ", f);
         const char *v = r < 0 ? (t->head[c] ? t->head[c] : "") : sl_tab_at(t, r, c);
-        if (r >= 0 && t->fixed && t->stack && !sl_tab_left(t, c))
+        if (r >= 0 && t->fold[c] > 0 && sl_tex_text_pt(v) > t->fold[c]) {
+            fprintf(f, "\\parbox[t]{%gpt}{\\raggedright ", t->fold[c]);
+            tex_breakable(f, v, t->squares);
+            fputc('}', f);
+        } else if (r >= 0 && t->fixed && t->stack && !sl_tab_left(t, c))
             tex_cell(f, v, 1, 'r', 0);
         else if (r >= 0 && t->fixed && t->parbox[c] > 0 && v[0]) {
             fprintf(f, "\\parbox[t]{%.1fpt}{\\raggedright ", t->parbox[c]);
@@ -663,13 +690,40 @@ static void note_text(FILE *f, const struct sl_tab *t)
     free(buf);
 }
 
+/* The row of column groups above the heads (where the table has them): a
+ * group's name over its columns, an unnamed group of one column an empty
+ * cell; a rule under each named group, trimmed on a side where a column
+ * is beside it. */
+static void group_row(FILE *f, const struct sl_tab *t)
+{
+    if (!t->ngroups)
+        return;
+    char rules[1024] = "";
+    size_t rl = 0;
+    for (int g = 0, gs = 0; g < t->ngroups; gs += t->span[g], g++) {
+        if (g)
+            fputs(" & ", f);
+        if (t->span[g] == 1 && !t->group[g][0])
+            continue;
+        fprintf(f, "\\multicolumn{%d}{c}{", t->span[g]);
+        tab_text(f, t->group[g], t->squares);
+        fputc('}', f);
+        int a = gs + 1, b = gs + t->span[g], l = a > 1, rt = b < t->ncols;
+        if (t->group[g][0] && rl < sizeof rules - 48)
+            rl += (size_t)snprintf(rules + rl, sizeof rules - rl, "\\cmidrule%s%s%s%s{%d-%d}", l || rt ? "(" : "",
+                                   l ? "l" : "", rt ? "r" : "", l || rt ? ")" : "", a, b);
+    }
+    fprintf(f, " \\\\\n%s\n", rules);
+}
+
 /* One float as its writer laid it out (t->fixed): the fitted floats' frame,
  * nothing stacked, wrapped (but in a column's parbox) or split. */
 static int tex_fixed(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
 {
     if (o && o->clear)
         fputs("\\clearpage\n\n", f);
-    fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
+    fputs("\\begin{table}[htbp]\n\\centering\n", f);
+    fputs(t->small ? "\\small\n\\caption{" : "\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
     tab_text(f, t->title, t->squares);
     if (t->intro && t->intro[0]) {
         fputs(". ", f);
@@ -682,6 +736,7 @@ static int tex_fixed(FILE *f, const struct sl_tab *t, const struct sl_emit_opts 
     for (int c = 0; c < t->ncols; c++)
         fputc(sl_tab_left(t, c) ? 'l' : 'r', f);
     fputs("}\n\\toprule\n", f);
+    group_row(f, t);
     long_row(f, t, -1);
     fputs("\\midrule\n", f);
     for (int r = 0; r < t->nrows; r++) {
@@ -706,7 +761,7 @@ static int tex_fixed(FILE *f, const struct sl_tab *t, const struct sl_emit_opts 
 static int tex_long(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
 {
     if (!o || !o->cont)
-        fputs("{\\small\\setlength{\\tabcolsep}{4pt}\n", f);
+        fputs(t->small ? "{\\small\n" : "{\\small\\setlength{\\tabcolsep}{4pt}\n", f);
     fputs("\\begin{longtable}{", f);
     for (int c = 0; c < t->ncols; c++)
         fputc(sl_tab_left(t, c) ? 'l' : 'r', f);
@@ -722,6 +777,7 @@ static int tex_long(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *
     fputs("\\\\\n", f);
     for (int pass = 0; pass < 2; pass++) {
         fputs("\\toprule\n", f);
+        group_row(f, t);
         long_row(f, t, -1);
         fprintf(f, "\\midrule\n%s\n", pass ? "\\endhead" : "\\endfirsthead");
     }

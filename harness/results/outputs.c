@@ -162,18 +162,19 @@ static int csv_order(enum sl_cell_col order[SL_COL_COUNT])
     return n;
 }
 
-static void csv_value(FILE *f, const struct sl_cell_record *r, enum sl_cell_col col)
+/* cell j of the last row: the column's value as costs.csv has always written it */
+static void csv_cell(struct sl_tab *t, int j, const struct sl_cell_record *r, enum sl_cell_col col)
 {
-#define SL_CSV_text(name)     fprintf(f, "%s", r->name);
-#define SL_CSV_path(name)     fprintf(f, "%s", r->name);
-#define SL_CSV_dim(name)      fprintf(f, "%d", r->name);
-#define SL_CSV_index(name)    fprintf(f, "%d", r->name);
-#define SL_CSV_runs(name)     fprintf(f, "%d", r->name);
-#define SL_CSV_flag(name)     fprintf(f, "%d", r->name);
-#define SL_CSV_count(name)    fprintf(f, "%llu", (unsigned long long)SL_CELL_U64_count(r, name));
-#define SL_CSV_wrong(name)    fprintf(f, "%llu", (unsigned long long)SL_CELL_U64_wrong(r, name));
-#define SL_CSV_ms(name)       fprintf(f, "%.3f", r->name);
-#define SL_CSV_viewport(name) fprintf(f, "%dx%d", r->vw, r->vh);
+#define SL_CSV_text(name)     sl_tab_cell(t, j, "%s", r->name);
+#define SL_CSV_path(name)     sl_tab_cell(t, j, "%s", r->name);
+#define SL_CSV_dim(name)      sl_tab_cell(t, j, "%d", r->name);
+#define SL_CSV_index(name)    sl_tab_cell(t, j, "%d", r->name);
+#define SL_CSV_runs(name)     sl_tab_cell(t, j, "%d", r->name);
+#define SL_CSV_flag(name)     sl_tab_cell(t, j, "%d", r->name);
+#define SL_CSV_count(name)    sl_tab_cell(t, j, "%llu", (unsigned long long)SL_CELL_U64_count(r, name));
+#define SL_CSV_wrong(name)    sl_tab_cell(t, j, "%llu", (unsigned long long)SL_CELL_U64_wrong(r, name));
+#define SL_CSV_ms(name)       sl_tab_cell(t, j, "%.3f", r->name);
+#define SL_CSV_viewport(name) sl_tab_cell(t, j, "%dx%d", r->vw, r->vh);
     switch (col) {
 #define SL_CSV_CASE(name, kind, size, csv, head, check, key, from) \
     case SL_COL_##name: SL_CSV_##kind(name) break;
@@ -184,25 +185,41 @@ static void csv_value(FILE *f, const struct sl_cell_record *r, enum sl_cell_col 
     }
 }
 
-void sl_out_write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+/* costs.csv in the model: a row per cell, the columns of cellcols.h with a
+ * csv position, then the provenance (the machine always quoted: the file
+ * has always quoted it, and scripts that split on commas expect it so) */
+static void costs_csv_model(struct sl_tab *t, const struct sl_config *c, const struct sl_run_result *res)
 {
     char machine[300];
     machine_of(&res->prov, machine, sizeof machine);
     enum sl_cell_col order[SL_COL_COUNT];
     int ncols = csv_order(order);
+    sl_tab_init(t, "costs", ncols + 3, 0, "costs");
     for (int j = 0; j < ncols; j++)
-        fprintf(f, "%s%s", j ? "," : "", csv_head[order[j]]);
-    fprintf(f, ",git_sha,config_hash,machine\n");
+        sl_tab_head(t, j, "%s", csv_head[order[j]]);
+    sl_tab_head(t, ncols, "git_sha");
+    sl_tab_head(t, ncols + 1, "config_hash");
+    sl_tab_head(t, ncols + 2, "machine");
+    sl_tab_quote(t, ncols + 2);
     for (int i = 0; i < res->ncells; i++) {
         struct sl_cell_record r;
         sl_out_record(c, &res->cells[i], &r);
-        for (int j = 0; j < ncols; j++) {
-            if (j)
-                fputc(',', f);
-            csv_value(f, &r, order[j]);
-        }
-        fprintf(f, ",%s,%016llx,\"%s\"\n", res->prov.git_sha, c->hash, machine);
+        sl_tab_row(t, 0);
+        for (int j = 0; j < ncols; j++)
+            csv_cell(t, j, &r, order[j]);
+        sl_tab_cell(t, ncols, "%s", res->prov.git_sha);
+        sl_tab_cell(t, ncols + 1, "%016llx", c->hash);
+        sl_tab_cell(t, ncols + 2, "%s", machine);
     }
+}
+
+void sl_out_write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_run_result *res)
+{
+    struct sl_tab t;
+    const struct sl_emit_opts o = {.first = 1};
+    costs_csv_model(&t, c, res);
+    sl_emit_csv(f, &t, &o);
+    sl_tab_free(&t);
 }
 
 /* The cost table in the model: a row per cell computed, its times (ms) and

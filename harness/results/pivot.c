@@ -16,7 +16,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include "tex.h"
+#include "tex.h"   /* the width estimates: the writer lays out its floats */
 #include "util.h"
 
 const char *sl_pivot_key_name(enum sl_pivot_key k)
@@ -91,40 +91,16 @@ static void plain_number(char *out, size_t n, double v, int dec)
 static double text_pt(const char *s) { return sl_tex_text_pt(s); }
 static double number_pt(const char *plain) { return sl_tex_number_pt(plain); }
 
-/* ---- LaTeX text ---- */
-
-static void tex_str(FILE *f, const char *s) { sl_tex_text(f, s); }
-
-/* a name that may be wrapped: break points after _ - / */
-static void tex_breakable(FILE *f, const char *s)
+/* A \label key: letters and digits, anything else '-' (appended to out) */
+static void label_key(char *out, size_t n, const char *s)
 {
-    char one[2] = {0, 0};
-    for (; *s; s++) {
-        one[0] = *s;
-        sl_tex_text(f, one);
-        if (*s == '_' || *s == '-' || *s == '/')
-            fputs("\\allowbreak{}", f);
-    }
-}
-
-static void tex_key(FILE *f, const char *s)
-{
-    for (; *s; s++) {
+    size_t o = strlen(out);
+    for (; *s && o + 1 < n; s++) {
         char ch = *s;
         int ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9');
-        fputc(ok ? ch : '-', f);
+        out[o++] = ok ? ch : '-';
     }
-}
-
-/* A row's name cell: as is, or wrapped when wider than TEX_LABELMAX. */
-static void tex_rowname(FILE *f, const char *plain, int wrap)
-{
-    if (wrap && text_pt(plain) > TEX_LABELMAX) {
-        fprintf(f, "\\parbox[t]{%.0fpt}{\\raggedright ", TEX_LABELMAX);
-        tex_breakable(f, plain);
-        fputc('}', f);
-    } else
-        tex_str(f, plain);
+    out[o] = '\0';
 }
 
 /* ---- the figure ---- */
@@ -567,40 +543,23 @@ static void key_plain(enum sl_pivot_key k, const char *v, char *out, size_t n)
     snprintf(out, n, k == SL_PK_map_size ? "%s\xC2\xB2" : "%s", v);
 }
 
-static void key_tex(FILE *f, enum sl_pivot_key k, const char *v, int breakable)
+/* a key's value in a LaTeX table's model: map sizes squared with their
+ * thousands split ("1 024²"), a viewport's "x" a times sign */
+static void key_cell(enum sl_pivot_key k, const char *v, char *out, size_t n)
 {
     if (k == SL_PK_map_size) {
         char num[64];
-        sl_tex_number(num, sizeof num, atof(v), 0);
-        fprintf(f, "%s\\textsuperscript{2}", num);
+        sl_tab_number(num, sizeof num, atof(v), 0);
+        snprintf(out, n, "%s\xC2\xB2", num);
     } else if (k == SL_PK_viewport) {
         int w = 0, h = 0;
         sscanf(v, "%dx%d", &w, &h);
-        fprintf(f, "%d$\\times$%d", w, h);
-    } else if (breakable)
-        tex_breakable(f, v);
-    else
-        tex_str(f, v);
+        snprintf(out, n, "%d\xC3\x97%d", w, h);
+    } else
+        snprintf(out, n, "%s", v);
 }
-
 
 /* ---- Markdown, CSV, JSON ---- */
-
-static void json_str(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char ch = (unsigned char)*s;
-        if (ch == '"' || ch == '\\')
-            fprintf(f, "\\%c", ch);
-        else if (ch < 0x20)
-            fprintf(f, "\\u%04x", ch);
-        else
-            fputc(ch, f);
-    }
-    fputc('"', f);
-}
-
 
 /* The reading table (Markdown): the caption as a paragraph above it, the
  * row key's values down the first column (map sizes squared), an entry per
@@ -672,9 +631,9 @@ static int write_model(FILE *f, enum sl_table_format fmt, const struct pivot *pv
 static void write_json(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p)
 {
     fputs("{\"figure\": ", f);
-    json_str(f, p->figure ? p->figure : "wrong");
+    sl_emit_json_text(f, p->figure ? p->figure : "wrong");
     fputs(", \"unit\": ", f);
-    json_str(f, pv->g.unit);
+    sl_emit_json_text(f, pv->g.unit);
     fprintf(f, ", \"agg\": \"%s\", \"rows\": \"%s\", \"cols\": \"%s\", \"where\": {", agg_names[p->agg],
             sl_pivot_key_name(pv->rk), sl_pivot_key_name(pv->ck));
     int nw = 0;
@@ -682,18 +641,18 @@ static void write_json(FILE *f, const struct pivot *pv, const struct sl_pivot_de
         fprintf(f, "\"region\": \"image\""), nw++;
     for (int w = 0; w < p->nwhere; w++, nw++) {
         fprintf(f, "%s\"%s\": ", nw ? ", " : "", sl_pivot_key_name(p->where[w].key));
-        json_str(f, p->where[w].value);
+        sl_emit_json_text(f, p->where[w].value);
     }
     fputs("},\n \"columns\": [", f);
     for (int c = 0; c < pv->nc; c++) {
         if (c)
             fputs(", ", f);
-        json_str(f, pv->key[pv->ck].v[pv->cperm[c]]);
+        sl_emit_json_text(f, pv->key[pv->ck].v[pv->cperm[c]]);
     }
     fputs("],\n \"table\": [", f);
     for (int r = 0; r < pv->nr; r++) {
         fputs(r ? ",\n  {\"row\": " : "\n  {\"row\": ", f);
-        json_str(f, pv->key[pv->rk].v[pv->rperm[r]]);
+        sl_emit_json_text(f, pv->key[pv->rk].v[pv->rperm[r]]);
         fputs(", \"values\": [", f);
         for (int c = 0; c < pv->nc; c++) {
             double v = pv->val[pv->rperm[r] * pv->nc + pv->cperm[c]];
@@ -804,75 +763,58 @@ static int fits(const struct view *v, int c0, int c1, int dec)
     return w <= TEX_BUDGET;
 }
 
-static void tex_header(FILE *f, const struct view *v, int c0, int c1)
-{
-    fprintf(f, "\\toprule\n & \\multicolumn{%d}{c}{", c1 - c0);
-    tex_str(f, key_head(v->ck));
-    fprintf(f, "} \\\\\n\\cmidrule(l){2-%d}\n", c1 - c0 + 1);
-    tex_str(f, key_head(v->rk));
-    for (int c = c0; c < c1; c++) {
-        fputs(" & ", f);
-        key_tex(f, v->ck, view_ckey(v, c), 0);
-    }
-    fputs(" \\\\\n\\midrule\n", f);
-}
-
-/* One table of columns [c0, c1): a float, or a longtable (no float, breaks
- * across pages) when it has more rows than a page holds. */
-static void tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p, const char *cap, int c0,
-                     int c1, int part, int parts, int dec)
+/* One table of columns [c0, c1) in the model: a float, or a longtable (no
+ * float, breaks across pages) when it has more rows than a page holds; the
+ * column key's name spans the columns, a long row name is wrapped. */
+static int tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p, const char *cap, int c0,
+                    int c1, int part, int parts, int dec)
 {
     const struct pivot *pv = v->pv;
-    int wrap = rowname_pt(v) >= TEX_LABELMAX;
-    int lt = v->nr > TEX_MAXROWS;
-    fputs(lt ? "{\\small\n\\begin{longtable}{l" : "\\begin{table}[htbp]\n\\centering\n\\small\n\\caption{", f);
-    if (lt) {
-        for (int c = c0; c < c1; c++)
-            fputc('r', f);
-        fputs("}\n\\caption{", f);
-    }
-    tex_str(f, cap);
-    if (parts > 1)
-        fprintf(f, " (Part %d of %d.)", part + 1, parts);
-    fputs("}\n\\label{tab:", f);
+    char id[256] = "";
     if (p->tex_label)
-        tex_key(f, p->tex_label);
+        label_key(id, sizeof id, p->tex_label);
     else {
-        fputs("pivot-", f);
-        tex_key(f, p->figure ? p->figure : "wrong");
-        fputc('-', f);
-        tex_key(f, sl_pivot_key_name(pv->rk));
-        fputc('-', f);
-        tex_key(f, sl_pivot_key_name(pv->ck));
+        snprintf(id, sizeof id, "pivot-");
+        label_key(id, sizeof id, p->figure ? p->figure : "wrong");
+        label_key(id, sizeof id, "-");
+        label_key(id, sizeof id, sl_pivot_key_name(pv->rk));
+        label_key(id, sizeof id, "-");
+        label_key(id, sizeof id, sl_pivot_key_name(pv->ck));
     }
     if (parts > 1)
-        fprintf(f, "-%d", part + 1);
-    if (lt) {
-        fputs("}\\\\\n", f);
-        tex_header(f, v, c0, c1);
-        fputs("\\endfirsthead\n", f);
-        tex_header(f, v, c0, c1);
-        fputs("\\endhead\n\\bottomrule\n\\endfoot\n", f);
-    } else {
-        fputs("}\n\\begin{tabular}{l", f);
-        for (int c = c0; c < c1; c++)
-            fputc('r', f);
-        fputs("}\n", f);
-        tex_header(f, v, c0, c1);
+        snprintf(id + strlen(id), sizeof id - strlen(id), "-%d", part + 1);
+    struct sl_tab t;
+    if (parts > 1)
+        sl_tab_init(&t, id, 1 + c1 - c0, 1, "%s (Part %d of %d.)", cap, part + 1, parts);
+    else
+        sl_tab_init(&t, id, 1 + c1 - c0, 1, "%s", cap);
+    t.small = 1;
+    t.longtable = v->nr > TEX_MAXROWS;
+    t.fixed = !t.longtable;
+    if (v->rk != SL_PK_map_size && v->rk != SL_PK_viewport)
+        t.fold[0] = TEX_LABELMAX;
+    sl_tab_group(&t, 1, "%s", "");
+    sl_tab_group(&t, c1 - c0, "%s", key_head(v->ck));
+    sl_tab_head(&t, 0, "%s", key_head(v->rk));
+    char k[KEYLEN + 16];
+    for (int c = c0; c < c1; c++) {
+        key_cell(v->ck, view_ckey(v, c), k, sizeof k);
+        sl_tab_head(&t, 1 + c - c0, "%s", k);
     }
     for (int r = 0; r < v->nr; r++) {
-        if (v->rk == SL_PK_map_size || v->rk == SL_PK_viewport)
-            key_tex(f, v->rk, view_rkey(v, r), 0);
-        else
-            tex_rowname(f, view_rkey(v, r), wrap);
+        sl_tab_row(&t, 0);
+        key_cell(v->rk, view_rkey(v, r), k, sizeof k);
+        sl_tab_cell(&t, 0, "%s", k);
         for (int c = c0; c < c1; c++) {
             char s[96];
-            sl_tex_number(s, sizeof s, view_val(v, r, c), dec);
-            fprintf(f, " & %s%s", s, view_once(v, r, c) ? "$^\\dagger$" : "");
+            sl_tab_number(s, sizeof s, view_val(v, r, c), dec);
+            sl_tab_cell(&t, 1 + c - c0, "%s%s", s, view_once(v, r, c) ? "\xE2\x80\xA0" : "");
         }
-        fputs(" \\\\\n", f);
     }
-    fputs(lt ? "\\end{longtable}}\n\n" : "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n", f);
+    const struct sl_emit_opts o = {.blank = 1};
+    int e = sl_emit_tex(f, &t, &o) < 0 ? -1 : 0;
+    sl_tab_free(&t);
+    return e;
 }
 
 static int write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p, struct sl_pivot_info *info)
@@ -900,17 +842,23 @@ static int write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_desc
         c = e;
     }
     starts[parts] = v.nc;
-    if (v.nr > TEX_MAXROWS)
-        fprintf(f, "%% %d rows: a longtable, needs \\usepackage{longtable}\n", v.nr);
+    char line[256];
+    if (v.nr > TEX_MAXROWS) {
+        snprintf(line, sizeof line, "%d rows: a longtable, needs \\usepackage{longtable}", v.nr);
+        sl_emit_tex_comment(f, line, 0);
+    }
     if (parts > 1)
-        fprintf(f, "%% %d columns do not fit \\columnwidth: split into %d tables\n", v.nc, parts);
+        snprintf(line, sizeof line, "%d columns do not fit \\columnwidth: split into %d tables", v.nc, parts);
     else if (info->transposed)
-        fprintf(f, "%% %s as columns did not fit \\columnwidth: transposed\n", sl_pivot_key_name(pv->ck));
-    for (int k = 0; k < parts; k++)
-        tex_part(f, &v, p, cap, starts[k], starts[k + 1], k, parts, dec);
+        snprintf(line, sizeof line, "%s as columns did not fit \\columnwidth: transposed", sl_pivot_key_name(pv->ck));
+    if (parts > 1 || info->transposed)
+        sl_emit_tex_comment(f, line, 0);
+    int e = 0;
+    for (int k = 0; k < parts && !e; k++)
+        e = tex_part(f, &v, p, cap, starts[k], starts[k + 1], k, parts, dec);
     info->parts = parts;
     free(starts);
-    return 0;
+    return e;
 }
 
 enum sl_err sl_pivot_write(FILE *out, enum sl_table_format fmt, const struct sl_cell_record *cells, int ncells,
@@ -952,16 +900,27 @@ enum sl_err sl_pivot_write(FILE *out, enum sl_table_format fmt, const struct sl_
 
 /* ---- the run's LaTeX ---- */
 
-/* provenance as comments: each distinct git SHA, config hash and machine */
+/* s with its line breaks as spaces, appended to out: a comment is one line */
+static void one_line(char *out, size_t n, const char *s)
+{
+    size_t o = strlen(out);
+    for (; *s && o + 1 < n; s++)
+        out[o++] = *s == '\n' || *s == '\r' ? ' ' : *s;
+    out[o] = '\0';
+}
+
+/* provenance as comments: each distinct git SHA, config hash and machine;
+ * a blank line after them */
 static void tex_head(FILE *f, const char *what, const char *title, const struct sl_cell_record *cells, int n)
 {
-    fprintf(f, "%% shadowlab %s; needs \\usepackage{booktabs%s}\n", what,
-            strstr(what, "detail") ? ",longtable" : "");
+    char line[1200];
+    snprintf(line, sizeof line, "shadowlab %s; needs \\usepackage{booktabs%s}", what,
+             strstr(what, "detail") ? ",longtable" : "");
+    sl_emit_tex_comment(f, line, 0);
     if (title) {
-        fputs("% from: ", f);
-        for (const char *t = title; *t; t++)
-            fputc(*t == '\n' || *t == '\r' ? ' ' : *t, f);
-        fputc('\n', f);
+        snprintf(line, sizeof line, "from: ");
+        one_line(line, sizeof line, title);
+        sl_emit_tex_comment(f, line, 0);
     }
     for (int i = 0; i < n; i++) {
         int seen = 0;
@@ -970,13 +929,11 @@ static void tex_head(FILE *f, const char *what, const char *title, const struct 
                    !strcmp(cells[i].machine, cells[j].machine);
         if (seen)
             continue;
-        fputs("% git ", f);
-        for (const char *t = cells[i].git_sha; *t; t++)
-            fputc(*t == '\n' ? ' ' : *t, f);
-        fprintf(f, ", config %s, machine ", cells[i].config_hash);
-        for (const char *t = cells[i].machine; *t; t++)
-            fputc(*t == '\n' || *t == '\r' ? ' ' : *t, f);
-        fputc('\n', f);
+        snprintf(line, sizeof line, "git ");
+        one_line(line, sizeof line, cells[i].git_sha);
+        snprintf(line + strlen(line), sizeof line - strlen(line), ", config %s, machine ", cells[i].config_hash);
+        one_line(line, sizeof line, cells[i].machine);
+        sl_emit_tex_comment(f, line, 0);
     }
     fputc('\n', f);
 }
@@ -1088,20 +1045,16 @@ static double dcol_pt(const struct dcol *col, const struct sl_cell_record *cells
 }
 
 /* A longtable of the view's cells idx[0..n) over columns dc[0..nc) (label
- * first, implicit); its caption names what its columns hold. */
-static void detail_longtable(FILE *f, const struct sl_cell_record *cells, const int *idx, int n,
-                             const struct dcol *dc, int nc, const char *const *words, const char *kind, int part,
-                             int wrap)
+ * first, implicit); its caption names what its columns hold. A long label
+ * is wrapped. */
+static int detail_longtable(FILE *f, const struct sl_cell_record *cells, const int *idx, int n,
+                            const struct dcol *dc, int nc, const char *const *words, const char *kind, int part)
 {
     const struct sl_cell_record *v = &cells[idx[0]];
-    fputs("{\\small\n\\begin{longtable}{l", f);
-    for (int c = 0; c < nc; c++)
-        fputc('r', f);
-    fputs("}\n\\caption{", f);
-    tex_str(f, v->scene);
-    fputs(" / ", f);
-    tex_str(f, v->viewpoint);
-    fprintf(f, " / %d$\\times$%d: ", v->vw, v->vh);
+    /* the scene, viewpoint and viewport apart by a slash that is no break (U+2215) */
+    char cap[1024];
+    size_t o = (size_t)snprintf(cap, sizeof cap, "%s \xE2\x88\x95 %s \xE2\x88\x95 %d\xC3\x97%d: ", v->scene,
+                                v->viewpoint, v->vw, v->vh);
     int said = 0;
     for (int w = 0; words[w]; w++) {
         int has = 0;
@@ -1109,41 +1062,42 @@ static void detail_longtable(FILE *f, const struct sl_cell_record *cells, const 
             has |= dc[c].what == w;
         if (!has || !words[w][0])
             continue;
-        fputs(said++ ? "; " : "", f);
-        tex_str(f, words[w]);
+        o += (size_t)snprintf(cap + o, o < sizeof cap ? sizeof cap - o : 0, "%s%s", said++ ? "; " : "", words[w]);
     }
-    fputs(".}\\label{tab:detail-", f);
-    tex_key(f, v->study);
-    fputc('-', f);
-    tex_key(f, v->scene);
-    fputc('-', f);
-    tex_key(f, v->viewpoint);
-    fprintf(f, "-%dx%d-%s-%d}\\\\\n", v->vw, v->vh, kind, part + 1);
-    for (int pass = 0; pass < 2; pass++) {
-        fputs("\\toprule\nlabel", f);
-        for (int c = 0; c < nc; c++) {
-            fputs(" & ", f);
-            tex_str(f, dc[c].head);
-        }
-        fputs(pass ? " \\\\\n\\midrule\n\\endhead\n" : " \\\\\n\\midrule\n\\endfirsthead\n", f);
-    }
-    fputs("\\bottomrule\n\\endfoot\n", f);
+    char id[256] = "detail-";
+    label_key(id, sizeof id, v->study);
+    label_key(id, sizeof id, "-");
+    label_key(id, sizeof id, v->scene);
+    label_key(id, sizeof id, "-");
+    label_key(id, sizeof id, v->viewpoint);
+    snprintf(id + strlen(id), sizeof id - strlen(id), "-%dx%d-%s-%d", v->vw, v->vh, kind, part + 1);
+    struct sl_tab t;
+    sl_tab_init(&t, id, 1 + nc, 1, "%s.", cap);
+    t.small = 1;
+    t.longtable = 1;
+    t.fold[0] = TEX_LABELMAX;
+    sl_tab_head(&t, 0, "label");
+    for (int c = 0; c < nc; c++)
+        sl_tab_head(&t, 1 + c, "%s", dc[c].head);
     for (int i = 0; i < n; i++) {
         const struct sl_cell_record *c = &cells[idx[i]];
-        tex_rowname(f, c->display[0] ? c->display : c->label, wrap);
+        sl_tab_row(&t, 0);
+        sl_tab_cell(&t, 0, "%s", c->display[0] ? c->display : c->label);
         for (int k = 0; k < nc; k++) {
             char s[96];
-            sl_tex_number(s, sizeof s, dc[k].get(c, dc[k].arg), dc[k].dec);
-            fprintf(f, " & %s%s", s, dc[k].get == get_ms && c->runs == 1 ? "$^\\dagger$" : "");
+            sl_tab_number(s, sizeof s, dc[k].get(c, dc[k].arg), dc[k].dec);
+            sl_tab_cell(&t, 1 + k, "%s%s", s, dc[k].get == get_ms && c->runs == 1 ? "\xE2\x80\xA0" : "");
         }
-        fputs(" \\\\\n", f);
     }
-    fputs("\\end{longtable}}\n\n", f);
+    const struct sl_emit_opts eo = {0};
+    int e = sl_emit_tex(f, &t, &eo) < 0 ? -1 : 0;
+    sl_tab_free(&t);
+    return e;
 }
 
 /* the columns in groups that each fit beside the label; the first nkeep
  * (the map size) repeat in every group */
-static void detail_tables(FILE *f, const struct sl_cell_record *cells, const int *idx, int n, const struct dcol *dc,
+static int detail_tables(FILE *f, const struct sl_cell_record *cells, const int *idx, int n, const struct dcol *dc,
                           int ndc, int nkeep, const char *const *words, const char *kind)
 {
     double lw = text_pt("label");
@@ -1157,8 +1111,8 @@ static void detail_tables(FILE *f, const struct sl_cell_record *cells, const int
     double keep = lw + TEX_COLSEP;
     for (int c = 0; c < nkeep; c++)
         keep += dcol_pt(&dc[c], cells, idx, n) + TEX_COLSEP;
-    int c = nkeep, part = 0;
-    while (c < ndc) {
+    int c = nkeep, part = 0, err = 0;
+    while (c < ndc && !err) {
         double w = keep;
         int e = c;
         while (e < ndc && (e == c || w + dcol_pt(&dc[e], cells, idx, n) + TEX_COLSEP <= TEX_BUDGET)) {
@@ -1171,19 +1125,21 @@ static void detail_tables(FILE *f, const struct sl_cell_record *cells, const int
             sel[ns++] = dc[k];
         for (int k = c; k < e; k++)
             sel[ns++] = dc[k];
-        detail_longtable(f, cells, idx, n, sel, ns, words, kind, part, wrap);
+        err = detail_longtable(f, cells, idx, n, sel, ns, words, kind, part);
         part++;
         c = e;
     }
+    return err;
 }
 
-static void detail_view(FILE *f, const struct sl_cell_record *cells, const int *idx, int n)
+/* -1: out of memory */
+static int detail_view(FILE *f, const struct sl_cell_record *cells, const int *idx, int n)
 {
     /* the hard cells, then the area light's */
-    int *h = malloc((size_t)n * sizeof *h), *s = malloc((size_t)n * sizeof *s);
+    int *h = malloc((size_t)n * sizeof *h), *s = malloc((size_t)n * sizeof *s), err = 0;
     if (!h || !s) {
         free(h), free(s);
-        return;
+        return -1;
     }
     int nh = 0, ns = 0;
     for (int i = 0; i < n; i++) {
@@ -1217,9 +1173,9 @@ static void detail_view(FILE *f, const struct sl_cell_record *cells, const int *
             snprintf(dc[k].head, sizeof dc[k].head, "in %dpx %%", c0->fig.r[r].thickness);
             k++;
         }
-        detail_tables(f, cells, h, nh, dc, k, 1, words, "hard");
+        err = detail_tables(f, cells, h, nh, dc, k, 1, words, "hard");
     }
-    if (ns) {
+    if (ns && !err) {
         static const char *const words[] = {
             "",   /* the map size: in every part */
             "an area light: the visible fraction against the area truth (MAE, RMSE, bias in % of full visibility; "
@@ -1236,9 +1192,10 @@ static void detail_view(FILE *f, const struct sl_cell_record *cells, const int *
         dc[k++] = (struct dcol){"within 0.05 %", 2, get_soft, SL_SFIG_soft_within_005, 1};
         dc[k++] = (struct dcol){"class right %", 2, get_soft, SL_SFIG_soft_class_right, 1};
         dc[k++] = (struct dcol){"step ms", 2, get_ms, 0, 2};
-        detail_tables(f, cells, s, ns, dc, k, 1, words, "soft");
+        err = detail_tables(f, cells, s, ns, dc, k, 1, words, "soft");
     }
     free(h), free(s);
+    return err;
 }
 
 enum sl_err sl_pivot_tex_detail(FILE *out, const char *title, const struct sl_cell_record *cells, int ncells,
@@ -1274,7 +1231,10 @@ enum sl_err sl_pivot_tex_detail(FILE *out, const char *title, const struct sl_ce
                 n++;
                 done[j] = 1;
             }
-        detail_view(out, cells, idx, n);
+        if (detail_view(out, cells, idx, n) < 0) {
+            free(idx), free(done);
+            return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "detail tables");
+        }
     }
     free(idx), free(done);
     if (ferror(out) || fflush(out) != 0)

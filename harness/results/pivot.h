@@ -19,10 +19,11 @@
  * article's \columnwidth (or of more than 8 numeric columns) is transposed
  * when that fits, else split into several tables by columns; the info says
  * so and the caller tells the user. A table of more than 40 rows is a
- * longtable (it breaks across pages; \usepackage{longtable}), not a float. Markdown, CSV and JSON are never split.
- * Markdown and CSV are the table model (tabmodel.h) written by its emitters
- * (emit.h); JSON keeps its own schema (per row the values, counts and
- * timed_once), which scripts read.
+ * longtable (it breaks across pages; \usepackage{longtable}), not a float.
+ * Markdown, CSV and JSON are never split. Markdown, CSV and each LaTeX
+ * table are the table model (tabmodel.h) written by its emitters (emit.h);
+ * JSON is not a table but the aggregation's record (per row the values at
+ * full precision, their counts and timed_once), which scripts read.
  *
  * Also the run's LaTeX (sl_pivot_tex_summary, sl_pivot_tex_detail): a few
  * summary tables per study and a per-view appendix of longtables.

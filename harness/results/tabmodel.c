@@ -36,7 +36,8 @@ void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const c
     t->head = calloc((size_t)t->ncols, sizeof *t->head);
     t->unit = calloc((size_t)t->ncols, sizeof *t->unit);
     t->align = calloc((size_t)t->ncols, 1);
-    t->oom = !t->head || !t->unit || !t->align;
+    t->quote = calloc((size_t)t->ncols, 1);
+    t->oom = !t->head || !t->unit || !t->align || !t->quote;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(t->title, sizeof t->title, fmt, ap);
@@ -71,6 +72,12 @@ void sl_tab_align(struct sl_tab *t, int col, char lr)
 {
     if (!t->oom && col >= 0 && col < t->ncols && (lr == 'l' || lr == 'r'))
         t->align[col] = lr;
+}
+
+void sl_tab_quote(struct sl_tab *t, int col)
+{
+    if (!t->oom && col >= 0 && col < t->ncols)
+        t->quote[col] = 1;
 }
 
 int sl_tab_left(const struct sl_tab *t, int c)
@@ -119,6 +126,12 @@ void sl_tab_muted(struct sl_tab *t)
 {
     if (t->nrows > 0 && !t->oom)
         t->rule[t->nrows - 1] |= SL_TAB_MUTED;
+}
+
+void sl_tab_alert(struct sl_tab *t)
+{
+    if (t->nrows > 0 && !t->oom)
+        t->rule[t->nrows - 1] |= SL_TAB_ALERT;
 }
 
 void sl_tab_cell(struct sl_tab *t, int col, const char *fmt, ...)
@@ -186,6 +199,7 @@ void sl_tab_free(struct sl_tab *t)
     free(t->head);
     free(t->unit);
     free(t->align);
+    free(t->quote);
     for (size_t i = 0; t->cell && i < (size_t)t->nrows * (size_t)t->ncols; i++)
         free(t->cell[i]);
     free(t->cell);

@@ -26,11 +26,11 @@
 #define SL_TAB_MAXCOLS 64
 
 /* rule[] flags of a row */
-enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2 };
+enum { SL_TAB_BLOCK = 1, SL_TAB_MUTED = 2, SL_TAB_ALERT = 4 };
 
 struct sl_tab {
     char  id[256];          /* its label: a slug (letters, digits, '.', '_', '-') */
-    char  title[512];       /* its caption */
+    char  title[1536];      /* its caption (a pivot's names its figure, aggregate and every --where) */
     char *intro;            /* a paragraph between the title and the table (a view's counts); NULL: none */
     char *note;             /* printed under it; NULL: none */
     int   ncols, nkeys;     /* the first nkeys columns are keys (left aligned) */
@@ -38,16 +38,25 @@ struct sl_tab {
     int   level;            /* 0: the title is the table's caption; k > 0: a heading of level k (Markdown "##") */
     int   plain;            /* cells are names and numbers written as they are in Markdown (no escapes; an empty
                              * cell as "| |"): the run's tables, whose Markdown predates the model */
+    int   padded;           /* plain Markdown: a row's empty cell as "|  |", padded like the others (check's
+                             * table of what moved, as CI logs have it); an empty head stays "| |" */
+    int   verdict;          /* the last column is a row's verdict ("ok", "FAIL"): an SL_TAB_ALERT row's is
+                             * bold in Markdown, bold red in a terminal (o->color; the others green) */
     char **head;            /* ncols heads; NULL = empty */
     char **unit;            /* ncols units; NULL: none (JSON's columns name it) */
     char  *align;           /* ncols: 'l' or 'r'; 0: by nkeys (keys left, values right) */
+    char  *quote;           /* ncols: CSV, 1: every field of the column quoted, not only those that need it
+                             * (costs.csv's machine, as scripts that read the file have always had it) */
     int   ngroups;          /* optional row above the header: spans over columns */
     char  group[SL_TAB_MAXCOLS][64];
     int   span[SL_TAB_MAXCOLS];
     int   nrows, cap;
     char **cell;            /* nrows * ncols; NULL = empty */
     unsigned char *rule;    /* SL_TAB_BLOCK: a block starts at this row; SL_TAB_MUTED: a row set back
-                             * (grey in HTML: the thesis's numbers under ours) */
+                             * (grey in HTML: the thesis's numbers under ours); SL_TAB_ALERT: a row that
+                             * fails (its verdict) */
+    int   termw[SL_TAB_MAXCOLS];   /* terminal: a column's width in characters (a longer cell runs over);
+                             * 0: its widest cell; the last column is never padded */
     int   longtable;        /* LaTeX: a longtable at \small (its heads repeated on every page), not a
                              * float fitted to the line: nothing stacked, wrapped or split */
     int   nolabel;          /* LaTeX: no \label (a table nothing refers to) */
@@ -55,6 +64,11 @@ struct sl_tab {
                              * stacked or split; a cell (not a head) wrapped only in its column's parbox */
     double parbox[SL_TAB_MAXCOLS];  /* LaTeX, fixed: the width (pt) of a ragged \parbox around the column's
                              * cells that are not empty; 0: none */
+    double fold[SL_TAB_MAXCOLS];    /* LaTeX, fixed or longtable: a cell estimated wider than this (pt, tex.h)
+                             * set in a ragged \parbox[t] of this width, a break allowed after '_', '-'
+                             * and '/' (the pivots' long row names); 0: none */
+    int   small;            /* LaTeX, fixed or longtable: at \small with LaTeX's own \tabcolsep (the pivots,
+                             * whose writer estimates their widths so), not \footnotesize with 4 pt */
     int   squares;          /* LaTeX: a number squared ("512²") in math, $512^2$, not 512\textsuperscript{2} */
     int   stack;            /* LaTeX, fixed: a value cell "v (where)" as two lines, v above "(where)" */
     int   code;             /* LaTeX, fixed: a `span` of the note in backquotes is code, \texttt */
@@ -72,11 +86,13 @@ void sl_tab_init(struct sl_tab *t, const char *id, int ncols, int nkeys, const c
 void sl_tab_head(struct sl_tab *t, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 void sl_tab_unit(struct sl_tab *t, int col, const char *unit);
 void sl_tab_align(struct sl_tab *t, int col, char lr);   /* 'l' or 'r' */
+void sl_tab_quote(struct sl_tab *t, int col);            /* CSV: quote every field of the column */
 /* Whether column c is left aligned: its align, else whether it is a key. */
 int sl_tab_left(const struct sl_tab *t, int c);
 void sl_tab_group(struct sl_tab *t, int span, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 void sl_tab_row(struct sl_tab *t, int block);   /* block: a rule before it */
 void sl_tab_muted(struct sl_tab *t);            /* the last row started: set back */
+void sl_tab_alert(struct sl_tab *t);            /* the last row started: it fails */
 void sl_tab_cell(struct sl_tab *t, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 /* The intro: a copy of text (NULL: none). */
 void sl_tab_intro(struct sl_tab *t, const char *text);
