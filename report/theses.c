@@ -427,13 +427,13 @@ static enum sl_err check_page(const struct schema *s, const char *rows, int n, c
             continue;
         if (row_int(o, p) == row_int(row, p))
             return SL_OK;
-        char a[16] = "empty", b[16] = "empty";
+        char a[24] = "no page", b[24] = "no page";
         if (row_int(row, p))
-            snprintf(a, sizeof a, "%d", row_int(row, p));
+            snprintf(a, sizeof a, "page %d", row_int(row, p));
         if (row_int(o, p))
-            snprintf(b, sizeof b, "%d", row_int(o, p));
-        return sl_fail(d, SL_E_DATA, path, ln, p->name, "%s, but line %d puts Table %d on page %s (a table has one "
-                       "page)", a, lines[j], row_int(row, tc), b);
+            snprintf(b, sizeof b, "page %d", row_int(o, p));
+        return sl_fail(d, SL_E_DATA, path, ln, p->name, "Table %d is on %s here, on %s at line %d (a table has one "
+                       "page)", row_int(row, tc), a, b, lines[j]);
     }
     return SL_OK;
 }

@@ -266,9 +266,9 @@ static const struct bad {
     {SL_THESIS_MORAIS_TIMES, TIMES_HEAD "25,10000,trees,side,512,512,512,0,nsm,1.57,\n", 0, 2, "page",
      "10000 is out of range (1..9999)"},
     {SL_THESIS_MORAIS, MORAIS_HEAD MORAIS_ROW "# Table 4 again\n4,47,trees,side,512,512,0,raytrace,pnfl,0,0.00,\n", 0,
-     4, "page", "47, but line 2 puts Table 4 on page 46"},
+     4, "page", "Table 4 is on page 47 here, on page 46 at line 2"},
     {SL_THESIS_MODERNO, MODERNO_HEAD MODERNO_ROW "16,100,side,1024,4,nsm,pixels,1,\n", 0, 3, "page",
-     "100, but line 2 puts Table 16 on page empty"},
+     "Table 16 is on page 100 here, on no page at line 2"},
     {SL_THESIS_HERTEL, "table,page,scene,triangles,rt_class_ms,rt_insec_ms,rt_opt_ms,rays,insec_rays,note\n"
                        "2,,Village,247432,422,288,217,236350,905290,\n2,p. 3,Kitchen,103351,956,641,610,198576,967655,\n",
      0, 3, "page", "'p. 3' is not a whole number"},
