@@ -80,6 +80,7 @@ int sl_report_fidelity_rows(const struct sl_cell_record *c, int n, struct sl_rep
         struct sl_report_fidelity_row *r = &out[k];
         memset(r, 0, sizeof *r);
         r->table = t->table;
+        r->page = t->page;
         r->viewpoint = t->viewpoint;
         r->map_size = t->map_size;
         r->contour = t->contour;
@@ -191,8 +192,11 @@ static void rest_on(struct sl_report_fidelity_claim *cl, const struct sl_cell_re
         const struct sl_report_fidelity_row *r = &rows[far];
         char reg[16];
         sl_report_region_name(r->contour, reg, sizeof reg);
-        snprintf(cl->tables + k, sizeof cl->tables - (size_t)k, "; furthest: Table %d %s %d %s %s %s %llu against %llu",
-                 r->table, r->viewpoint, r->map_size, reg, r->label, sl_figure_name(r->fig),
+        char at[32] = "";
+        if (r->page)
+            snprintf(at, sizeof at, ", p. %d,", r->page);
+        snprintf(cl->tables + k, sizeof cl->tables - (size_t)k, "; furthest: Table %d%s %s %d %s %s %s %llu against %llu",
+                 r->table, at, r->viewpoint, r->map_size, reg, r->label, sl_figure_name(r->fig),
                  (unsigned long long)r->value, (unsigned long long)r->thesis);
     }
 }
@@ -456,8 +460,9 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
         char id[160];
         snprintf(id, sizeof id, "%s-fidelity-table%d", s->slug, rows[a].table);
         struct sl_tab t;
-        sl_tab_init(&t, id, 8, 4, "Primitives, %s: Moderno 2011 Table %d (%s) against shadowlab",
-                           rows[a].viewpoint, rows[a].table, table_title(rows[a].table));
+        char cite[40];
+        sl_tab_init(&t, id, 8, 4, "Primitives, %s: Moderno 2011 %s (%s) against shadowlab", rows[a].viewpoint,
+                    sl_thesis_cite(SL_THESIS_MODERNO, rows[a].table, cite, sizeof cite), table_title(rows[a].table));
         static const char *const heads[] = {"map", "contour", "approach", "figure", "thesis", "shadowlab",
                                             "ratio", "note"};
         for (int h = 0; h < 8; h++)

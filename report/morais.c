@@ -256,8 +256,9 @@ static enum sl_err case_truth(struct sl_report_doc *doc, const struct sl_report_
     char id[160];
     snprintf(id, sizeof id, "%s-table%d-%s-%s", s->slug, cases[k].truth_table, cases[k].scene, cases[k].viewpoint);
     struct sl_tab t;
-    sl_tab_init(&t, id, 2 + nv, 2, "%s: the truth's pixels (Morais 2015 Table %d)", cases[k].name,
-                       cases[k].truth_table);
+    char cite[40];
+    sl_tab_init(&t, id, 2 + nv, 2, "%s: the truth's pixels (Morais 2015 %s)", cases[k].name,
+                sl_thesis_cite(SL_THESIS_MORAIS, cases[k].truth_table, cite, sizeof cite));
     sl_tab_head(&t, 0, "pixel type");
     sl_tab_head(&t, 1, "source");
     for (int i = 0; i < nv; i++)
@@ -300,8 +301,9 @@ static enum sl_err case_method(struct sl_report_doc *doc, const struct sl_report
     char id[160];
     snprintf(id, sizeof id, "%s-table%d-%s-%s", s->slug, table, cases[k].scene, cases[k].viewpoint);
     struct sl_tab t;
-    sl_tab_init(&t, id, 3 + nmaps, 3, "%s: %s (label %s), Morais 2015 Table %d", cases[k].name, mm->name,
-                       s->labels[l], table);
+    char cite[40];
+    sl_tab_init(&t, id, 3 + nmaps, 3, "%s: %s (label %s), Morais 2015 %s", cases[k].name, mm->name,
+                s->labels[l], sl_thesis_cite(SL_THESIS_MORAIS, table, cite, sizeof cite));
     sl_tab_group(&t, 3, "%s", "");
     sl_tab_group(&t, nmaps, "shadow map size");
     sl_tab_head(&t, 0, "viewport");
@@ -352,8 +354,10 @@ static enum sl_err case_times(struct sl_report_doc *doc, const struct sl_report_
     char id[160];
     snprintf(id, sizeof id, "%s-table%d-%s-%s", s->slug, table, cases[k].scene, cases[k].viewpoint);
     struct sl_tab t;
-    sl_tab_init(&t, id, 8, 2, "%s: %s, ms (Morais 2015 Table %d)", cases[k].name,
-                       stage ? "the ray-tracing step" : "the shadow-map rendering", table);
+    char cite[40];
+    sl_tab_init(&t, id, 8, 2, "%s: %s, ms (Morais 2015 %s)", cases[k].name,
+                stage ? "the ray-tracing step" : "the shadow-map rendering",
+                sl_thesis_cite(SL_THESIS_MORAIS_TIMES, table, cite, sizeof cite));
     sl_tab_group(&t, 2, "%s", "");
     for (int j = 0; j < 3; j++)
         sl_tab_group(&t, 2, "%s", head[stage][j]);
@@ -500,7 +504,9 @@ static enum sl_err hertel_thesis(struct sl_report_doc *doc, const struct sl_repo
     char id[160];
     snprintf(id, sizeof id, "%s-hertel-table2", s->slug);
     struct sl_tab t;
-    sl_tab_init(&t, id, 8, 1, "Hertel 2009 Table 2: his scenes, ms on his GPU and the rays traced");
+    char cite[40];
+    sl_tab_init(&t, id, 8, 1, "Hertel 2009 %s: his scenes, ms on his GPU and the rays traced",
+                sl_thesis_cite(SL_THESIS_HERTEL, 2, cite, sizeof cite));
     static const char *const head[] = {"scene (triangles)", "RT class ms", "RT insec ms", "RT opt ms",
                                        "RT insec / class", "# rays", "# insec. rays", "rays / insec. rays"};
     for (int k = 0; k < 8; k++)

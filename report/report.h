@@ -105,6 +105,7 @@ int sl_report_pareto(const double *x, const double *y, int n, unsigned char *fro
 /* One number of Moderno 2011's appendix (Primitives) beside shadowlab's. */
 struct sl_report_fidelity_row {
     int            table;          /* the thesis's table number */
+    int            page;           /* the table's printed page; 0 = not known */
     const char    *viewpoint;
     int            map_size, contour;   /* contour 0 = whole image */
     const char    *label;          /* the cell's label (configs/moderno-2011.yaml) */

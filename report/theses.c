@@ -14,9 +14,11 @@
  * column says: a count is decimal digits (no sign, no exponent) within its
  * range, a percentage or a time decimal digits with an optional fraction,
  * a name [A-Za-z0-9_.-], an enum one of the names the code gives it
- * (sl_figure_name, SL_MORAIS_ROWS), a note any text (empty: none). Two
- * rows with the same key (the fields a section looks a value up by) are
- * refused, since the section would only ever find the first.
+ * (sl_figure_name, SL_MORAIS_ROWS), a page 1-9999 or empty (the thesis's
+ * text does not say), a note any text (empty: none). Two rows with the
+ * same key (the fields a section looks a value up by) are refused, since
+ * the section would only ever find the first; so are two rows of one
+ * table with different pages (a table is cited at one page).
  * Invariants: a file is kept only when every line passed; the strings of
  * its rows are its buffer's fields, unquoted in place (an unquoted field is
  * never longer than its quoted form); the rows end in a zeroed row.
@@ -54,12 +56,12 @@ const char *sl_morais_row_id(enum sl_morais_row r) { return (unsigned)r < SL_MR_
 
 /* ---- the schemas ---- */
 
-enum col_type { C_INT, C_U64, C_DEC, C_NAME, C_FIG, C_ROW, C_NOTE };
+enum col_type { C_INT, C_PAGE, C_U64, C_DEC, C_NAME, C_FIG, C_ROW, C_NOTE };
 
 struct col {
     const char   *name;
     enum col_type type;
-    double        lo, hi;      /* C_INT, C_DEC: the range */
+    double        lo, hi;      /* C_INT, C_PAGE, C_DEC: the range */
     int           pow2;        /* C_INT: 0 or a power of two */
     size_t        off;         /* into the row */
     int           key;         /* part of the row's key */
@@ -69,6 +71,7 @@ struct col {
 
 static const struct col moderno_cols[] = {
     COL("table", C_INT, 1, 99, 0, sl_thesis_datum, table, 1),
+    COL("page", C_PAGE, 1, 9999, 0, sl_thesis_datum, page, 0),
     COL("viewpoint", C_NAME, 0, 0, 0, sl_thesis_datum, viewpoint, 1),
     COL("map_size", C_INT, 16, 16384, 1, sl_thesis_datum, map_size, 1),
     COL("contour", C_INT, 0, 64, 0, sl_thesis_datum, contour, 1),
@@ -79,6 +82,7 @@ static const struct col moderno_cols[] = {
 };
 static const struct col morais_cols[] = {
     COL("table", C_INT, 4, 24, 0, sl_morais_datum, table, 1),
+    COL("page", C_PAGE, 1, 9999, 0, sl_morais_datum, page, 0),
     COL("scene", C_NAME, 0, 0, 0, sl_morais_datum, scene, 0),
     COL("viewpoint", C_NAME, 0, 0, 0, sl_morais_datum, viewpoint, 0),
     COL("width", C_INT, 1, 16384, 0, sl_morais_datum, vw, 1),
@@ -92,6 +96,7 @@ static const struct col morais_cols[] = {
 };
 static const struct col times_cols[] = {
     COL("table", C_INT, 25, 30, 0, sl_morais_time, table, 1),
+    COL("page", C_PAGE, 1, 9999, 0, sl_morais_time, page, 0),
     COL("scene", C_NAME, 0, 0, 0, sl_morais_time, scene, 0),
     COL("viewpoint", C_NAME, 0, 0, 0, sl_morais_time, viewpoint, 0),
     COL("width", C_INT, 1, 16384, 0, sl_morais_time, vw, 1),
@@ -105,6 +110,7 @@ static const struct col times_cols[] = {
 
 static const struct col hertel_cols[] = {
     COL("table", C_INT, 2, 2, 0, sl_hertel_row, table, 0),
+    COL("page", C_PAGE, 1, 9999, 0, sl_hertel_row, page, 0),
     COL("scene", C_NOTE, 0, 0, 0, sl_hertel_row, scene, 1),
     COL("triangles", C_INT, 1, 1e8, 0, sl_hertel_row, tris, 0),
     COL("rt_class_ms", C_DEC, 0, 1e7, 0, sl_hertel_row, rt_class, 0),
@@ -304,12 +310,17 @@ static enum sl_err field_value(const struct col *c, char *f, void *row, const ch
 {
     char b[64];
     char *at = (char *)row + c->off;
+    if (c->type == C_PAGE && !*f) {   /* the thesis's text does not say */
+        *(int *)at = 0;
+        return SL_OK;
+    }
     switch (c->type) {
-    case C_INT: {
+    case C_INT:
+    case C_PAGE: {
         uint64_t v;
         if (!parse_u64(f, &v))
-            return sl_fail(d, SL_E_DATA, path, ln, c->name, "'%s' is not a whole number (digits 0-9)",
-                           shown(f, b, sizeof b));
+            return sl_fail(d, SL_E_DATA, path, ln, c->name, "'%s' is not a whole number (digits 0-9%s)",
+                           shown(f, b, sizeof b), c->type == C_PAGE ? ", or empty: not known" : "");
         if ((double)v < c->lo || (double)v > c->hi || (c->pow2 && v && (v & (v - 1))))
             return sl_fail(d, SL_E_DATA, path, ln, c->name, "%llu is out of range (%.0f..%.0f%s)",
                            (unsigned long long)v, c->lo, c->hi,
@@ -387,6 +398,44 @@ static int same_key(const struct schema *s, const char *a, const char *b)
         }
     }
     return 1;
+}
+
+/* The schema's page column, -1 when it has none. */
+static int page_col(const struct schema *s)
+{
+    for (int c = 0; c < s->ncols; c++)
+        if (s->cols[c].type == C_PAGE)
+            return c;
+    return -1;
+}
+
+/* An int column of a row: its table (every schema's first column), its page. */
+static int row_int(const char *row, const struct col *c) { return *(const int *)(row + c->off); }
+
+/* A row's page against the first earlier row of its table: a table is on
+ * one page, so a second page is a transcription slip. */
+static enum sl_err check_page(const struct schema *s, const char *rows, int n, const int *lines, const char *row,
+                              const char *path, int ln, struct sl_diag *d)
+{
+    const int pc = page_col(s);
+    if (pc < 0)
+        return SL_OK;
+    const struct col *tc = &s->cols[0], *p = &s->cols[pc];
+    for (int j = 0; j < n; j++) {
+        const char *o = rows + (size_t)j * s->size;
+        if (row_int(o, tc) != row_int(row, tc))
+            continue;
+        if (row_int(o, p) == row_int(row, p))
+            return SL_OK;
+        char a[24] = "no page", b[24] = "no page";
+        if (row_int(row, p))
+            snprintf(a, sizeof a, "page %d", row_int(row, p));
+        if (row_int(o, p))
+            snprintf(b, sizeof b, "page %d", row_int(o, p));
+        return sl_fail(d, SL_E_DATA, path, ln, p->name, "Table %d is on %s here, on %s at line %d (a table has one "
+                       "page)", row_int(row, tc), a, b, lines[j]);
+    }
+    return SL_OK;
 }
 
 static enum sl_err read_all(const char *path, char **buf, size_t *len, struct sl_diag *d)
@@ -503,6 +552,8 @@ enum sl_err sl_thesis_file_load(enum sl_thesis_kind k, const char *path, struct 
             if (same_key(s, rows + (size_t)j * s->size, row))
                 e = sl_fail(d, SL_E_DATA, path, ln, "", "the same table, place and %s as line %d",
                             k == SL_THESIS_MODERNO ? "figure" : k == SL_THESIS_MORAIS ? "row" : "method", lines[j]);
+        if (!e)
+            e = check_page(s, rows, n, lines, row, path, ln, d);
         lines[n++] = ln;
     }
     if (!e && !header)
@@ -585,6 +636,32 @@ enum sl_err sl_theses_hertel(const struct sl_hertel_row **rows, int *n, struct s
     enum sl_err e = get(SL_THESIS_HERTEL, &r, n, d);
     *rows = r;
     return e;
+}
+
+int sl_thesis_page(enum sl_thesis_kind k, int table)
+{
+    const void *rows;
+    int n;
+    if ((unsigned)k >= SL_THESIS_NKINDS || get(k, &rows, &n, NULL))
+        return 0;
+    const struct schema *s = &schemas[k];
+    const int pc = page_col(s);
+    for (int i = 0; i < n && pc >= 0; i++) {
+        const char *r = (const char *)rows + (size_t)i * s->size;
+        if (row_int(r, &s->cols[0]) == table)
+            return row_int(r, &s->cols[pc]);
+    }
+    return 0;
+}
+
+const char *sl_thesis_cite(enum sl_thesis_kind k, int table, char *buf, size_t n)
+{
+    const int page = sl_thesis_page(k, table);
+    if (page)
+        snprintf(buf, n, "Table %d, p. %d", table, page);
+    else
+        snprintf(buf, n, "Table %d", table);
+    return buf;
 }
 
 void sl_theses_free(void)

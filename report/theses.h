@@ -11,7 +11,9 @@
  * (a binary that is not installed), as scenes are found.
  * A file is read whole on first use and checked before any row is kept:
  * its header row exactly, each field's type and range, each enum by the
- * name the code has for it (SL_FIGURES, SL_MORAIS_ROWS). A damaged file is
+ * name the code has for it (SL_FIGURES, SL_MORAIS_ROWS), and one page per
+ * table (the page the thesis prints it on; 0 where its text does not
+ * say). A damaged file is
  * an SL_E_DATA naming the file, its line and the column; nothing is kept
  * of it. The rows stay until sl_theses_free (the report calls it when it
  * is done), their strings pointing into the file's own buffer.
@@ -21,6 +23,7 @@
  */
 #ifndef SL_THESES_H
 #define SL_THESES_H
+#include <stddef.h>
 #include <stdint.h>
 #include "sl_error.h"
 #include "figrec.h"
@@ -31,6 +34,7 @@
  * contour, the cell's label, the figure of figrec.h and the value. */
 struct sl_thesis_datum {
     int         table;
+    int         page;           /* the table's printed page; 0 = not known */
     const char *viewpoint;
     int         map_size;
     int         contour;        /* px; 0 = whole image */
@@ -73,6 +77,7 @@ enum sl_morais_row {
  * scene is NULL. */
 struct sl_morais_datum {
     int         table;
+    int         page;                /* the table's printed page; 0 = not known */
     const char *scene, *viewpoint;   /* as scenes/ names them (trees/side, flowers/against, bench/against) */
     int         vw, vh, map_size;    /* map_size 0: Tables 4-6 (the truth, no map) */
     const char *method;              /* configs/morais-2015.yaml's method; "raytrace" = OptiX Prime */
@@ -85,6 +90,7 @@ struct sl_morais_datum {
  * scene is NULL. */
 struct sl_morais_time {
     int         table;
+    int         page;                /* the table's printed page; 0 = not known */
     const char *scene, *viewpoint;
     int         vw, vh, map_size;
     int         stage;               /* 0: shadow-map rendering (Tables 25/27/29), 1: ray-tracing step (26/28/30) */
@@ -97,6 +103,7 @@ struct sl_morais_time {
  * rays traced; hertel-2009.csv. */
 struct sl_hertel_row {
     int         table;
+    int         page;                /* the table's printed page; 0 = not known */
     const char *scene;               /* his scene's name as printed */
     int         tris;
     double      rt_class, rt_insec, rt_opt;   /* ms: every ray, the uncertain only, cut at the stored depth */
@@ -135,6 +142,13 @@ enum sl_err sl_theses_moderno(const struct sl_thesis_datum **rows, int *n, struc
 enum sl_err sl_theses_morais(const struct sl_morais_datum **rows, int *n, struct sl_diag *d);
 enum sl_err sl_theses_morais_times(const struct sl_morais_time **rows, int *n, struct sl_diag *d);
 enum sl_err sl_theses_hertel(const struct sl_hertel_row **rows, int *n, struct sl_diag *d);
+/* The page the thesis prints table `table` on, from the process's copy of
+ * kind k's file (read on first use); 0 when its text does not say, the
+ * file has no such table or cannot be read. */
+int         sl_thesis_page(enum sl_thesis_kind k, int table);
+/* "Table N, p. P" (or "Table N" when the page is not known) into buf, the
+ * way the report cites a thesis's table; returns buf. */
+const char *sl_thesis_cite(enum sl_thesis_kind k, int table, char *buf, size_t n);
 /* Drop the process's copies (a later call reads the files again). */
 void        sl_theses_free(void);
 

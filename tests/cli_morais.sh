@@ -52,6 +52,8 @@ def check(cond, what):
         fails += 1
         print('FAIL', what)
 cases = {'Against-Flowers': ('flowers', 5, 8), 'Side-Trees': ('trees', 4, 7)}
+# the pages his List of Tables prints (report/theses/morais-2015.csv)
+page = {4: 46, 5: 47, 7: 50, 8: 51, 10: 55, 11: 57, 19: 73, 20: 74, 22: 79, 23: 80}
 cell = re.compile(r'^(\d+) \(([\d.]+)%\)')
 def table(title):
     i = md.find('**' + title + '**')
@@ -67,7 +69,7 @@ def table(title):
     return rows[2:]   # header and rule
 for name, (scene, truth_t, first) in cases.items():
     prefix = name + (' (worst case)' if scene == 'flowers' else ' (best case)')
-    t = table(prefix + ": the truth's pixels (Morais 2015 Table %d)" % truth_t)
+    t = table(prefix + ": the truth's pixels (Morais 2015 Table %d, p. %d)" % (truth_t, page[truth_t]))
     check(t is not None, prefix + ': no Table %d' % truth_t)
     if t is None:
         continue
@@ -75,9 +77,9 @@ for name, (scene, truth_t, first) in cases.items():
     check(t[0][0] == 'PFL' and t[0][1] == 'ours' and t[1][1] == 'thesis', prefix + ': truth rows')
     for label, off, csm in (('nsm', 0, 0), ('bgsm', 3, 0), ('csm', 12, 1), ('csm_adj', 15, 1)):
         num = first + off
-        t = table(re.sub(r'\s+', ' ', '%s: %s (label %s), Morais 2015 Table %d' % (
+        t = table(re.sub(r'\s+', ' ', '%s: %s (label %s), Morais 2015 Table %d, p. %d' % (
             prefix, {'nsm': 'NSM', 'bgsm': 'BGSM', 'csm': 'CSMa (CSM without adjacency)',
-                     'csm_adj': 'CSMA (CSM with adjacency)'}[label], label.replace('_', '\\_'), num)))
+                     'csm_adj': 'CSMA (CSM with adjacency)'}[label], label.replace('_', '\\_'), num, page[num])))
         check(t is not None, '%s: no Table %d' % (prefix, num))
         if t is None:
             continue

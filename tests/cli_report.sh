@@ -190,7 +190,7 @@ refuse "no gnuplot" "gnuplot" env PATH=/nonexistent "$bin" report "$db" --out "$
 # front of the source tree's report/theses/): the file, line and column named
 mkdir -p "$tmp/theses"
 cp report/theses/*.csv "$tmp/theses/"
-ln=$(grep -n -m1 '^16,side,1024,2,nsm,pixels,11000,$' "$tmp/theses/moderno-2011.csv" | cut -d: -f1)
+ln=$(grep -n -m1 '^16,,side,1024,2,nsm,pixels,11000,$' "$tmp/theses/moderno-2011.csv" | cut -d: -f1)
 sed -i "${ln}s/,11000,/,11x00,/" "$tmp/theses/moderno-2011.csv"
 refuse "damaged thesis file" "theses/moderno-2011.csv:$ln: 'value': '11x00' is not a count" \
   env SHADOWLAB_THESES="$tmp/theses" "$bin" report "$db" --out "$tmp/x6"

@@ -296,6 +296,15 @@ static void fidelity_claim_bands(void **st)
     assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
     assert_int_equal(cl[2].verdict, 0);
     assert_int_equal(cl[2].within, cl[2].data - 1);
+    /* the furthest in a table whose page the thesis's index prints: cited with it */
+    for (int i = 0; i < n; i++)
+        if (!strcmp(c[i].viewpoint, "with") && c[i].map_size == 1024 && !strcmp(c[i].label, "coherence4"))
+            c[i].fig.r[3].n[SL_FIG_hinted_light_wrong] = c[i].fig.r[3].n[SL_FIG_hinted_light_wrong] * 100 + 500;
+    assert_int_equal(sl_report_fidelity_claims(c, n, cl, SL_REPORT_FIDELITY_NCLAIMS), SL_REPORT_FIDELITY_NCLAIMS);
+    assert_non_null(strstr(cl[2].tables, "furthest: Table 33, p. 112, with 1024 image coherence4 hinted_light_wrong "));
+    for (int i = 0; i < n; i++)
+        if (!strcmp(c[i].viewpoint, "with") && c[i].map_size == 1024 && !strcmp(c[i].label, "coherence4"))
+            c[i].fig.r[3].n[SL_FIG_hinted_light_wrong] = (c[i].fig.r[3].n[SL_FIG_hinted_light_wrong] - 500) / 100;
 
     /* the "against" cells gone: neighbours' data there not measured, the
      * rest within the band: not measured, not reproduced */
@@ -332,7 +341,24 @@ static void fidelity_section(void **st)
     assert_non_null(strstr(md, "| 1024 | 2 px | nsm | pixels | 11000 | 5500 | 0.50 |"));
     assert_non_null(strstr(md, "| 2048 | 2 px | nsm | wrong | 1111 | not measured |"));
     assert_non_null(strstr(md, "not reproduced"));
+    /* each table cited with its printed page where the thesis's index gives one */
+    assert_non_null(strstr(md, "Primitives, with: Moderno 2011 Table 30, p. 111 (pixels in the contour"));
+    assert_non_null(strstr(md, "Primitives, against: Moderno 2011 Table 53, p. 131 (single texel"));
+    assert_non_null(strstr(md, "Primitives, side: Moderno 2011 Table 16 (pixels in the contour"));
     free(md);
+    static struct sl_report_fidelity_row rows[SL_REPORT_FIDELITY_MAXROWS];
+    int nr = sl_report_fidelity_rows(c, n, rows, SL_REPORT_FIDELITY_MAXROWS);
+    assert_int_equal(nr, 1434);
+    int in26 = 0, on100 = 0;
+    for (int i = 0; i < nr; i++)
+        if (rows[i].table == 26) {
+            in26++;
+            on100 += rows[i].page == 100;
+        }
+    assert_true(in26 > 0);
+    assert_int_equal(on100, in26);
+    assert_int_equal(rows[0].table, 16);
+    assert_int_equal(rows[0].page, 0);
 
     /* no Primitives cell: no section */
     for (int i = 0; i < n; i++)

@@ -1,13 +1,16 @@
 /* theses::* — the theses' data files (the CSV files of report/theses/) and
  * their reader (report/theses.c):
- * - shipped: the three files load from the source tree with their row
+ * - shipped: the four files load from the source tree with their row
  *   counts, the arrays end in a zeroed row, every SL_MORAIS_ROWS name is
- *   its enum's, and SHADOWLAB_THESES moves the folder;
+ *   its enum's, the pages the seeds print are the rows' (Morais Table 7 on
+ *   p. 50, Moderno 16 without one) and cited so, and SHADOWLAB_THESES moves
+ *   the folder;
  * - quoting: RFC 4180 quotes (a comma, a doubled quote), CRLF line ends, a
  *   byte-order mark, comment lines before and inside the rows, an empty
  *   note read as none;
  * - damaged: a bad header, a non-number count, an unknown enum name, an
- *   unterminated quote, a missing column and the other malformed files are
+ *   unterminated quote, a missing column, a page that is no page or a
+ *   second page for one table, and the other malformed files are
  *   each refused (SL_E_DATA) with the file, the line and the column named,
  *   and nothing kept;
  * - mangled: the shipped file cut short and with bytes overwritten, again
@@ -82,6 +85,33 @@ static void theses_shipped(void **st)
     assert_string_equal(he[1].scene, "Village");
     assert_int_equal(he[1].tris, 247432);
     assert_true(he[2].rt_insec == 2670 && he[3].rays == 198576 && he[3].insec == 967655);
+    /* the pages the seeds print (the files' "# page:" lines say where) */
+    assert_int_equal(sl_theses_morais(&ma, &n, &d), SL_OK);
+    int seen7 = 0;
+    for (int i = 0; i < n; i++)
+        if (ma[i].table == 7) {
+            assert_int_equal(ma[i].page, 50);
+            seen7++;
+        }
+    assert_int_equal(seen7, 72);   /* 3 viewports x 4 maps x 6 rows, all on p. 50 */
+    static const struct { enum sl_thesis_kind k; int table, page; } pages[] = {
+        {SL_THESIS_MORAIS, 4, 46},        {SL_THESIS_MORAIS, 7, 50},         {SL_THESIS_MORAIS, 19, 73},
+        {SL_THESIS_MORAIS, 24, 82},       {SL_THESIS_MORAIS_TIMES, 25, 84},  {SL_THESIS_MORAIS_TIMES, 30, 95},
+        {SL_THESIS_MODERNO, 16, 0},       {SL_THESIS_MODERNO, 26, 100},      {SL_THESIS_MODERNO, 30, 111},
+        {SL_THESIS_MODERNO, 47, 127},     {SL_THESIS_MODERNO, 53, 131},      {SL_THESIS_MODERNO, 58, 0},
+        {SL_THESIS_HERTEL, 2, 0},         {SL_THESIS_MORAIS, 3, 0},          /* no such table in the file */
+    };
+    for (size_t i = 0; i < sizeof pages / sizeof pages[0]; i++)
+        if (sl_thesis_page(pages[i].k, pages[i].table) != pages[i].page)
+            fail_msg("%s Table %d: page %d, wanted %d", sl_thesis_file_name(pages[i].k), pages[i].table,
+                     sl_thesis_page(pages[i].k, pages[i].table), pages[i].page);
+    assert_int_equal(mo[0].page, 0);   /* Table 16: the index lost it */
+    assert_int_equal(mt[0].page, 84);
+    assert_int_equal(he[0].page, 0);
+    char cite[40];
+    assert_string_equal(sl_thesis_cite(SL_THESIS_MORAIS, 7, cite, sizeof cite), "Table 7, p. 50");
+    assert_string_equal(sl_thesis_cite(SL_THESIS_MODERNO, 16, cite, sizeof cite), "Table 16");
+    assert_string_equal(sl_thesis_cite(SL_THESIS_HERTEL, 2, cite, sizeof cite), "Table 2");
     /* loaded once: the same rows again */
     const struct sl_thesis_datum *again;
     assert_int_equal(sl_theses_moderno(&again, &n, &d), SL_OK);
@@ -94,8 +124,8 @@ static void theses_shipped(void **st)
     /* SHADOWLAB_THESES: another folder, read after the copies are dropped */
     sl_theses_free();
     char path[1200];
-    static const char one[] = "table,viewpoint,map_size,contour,label,figure,value,note\n"
-                              "16,side,1024,2,nsm,pixels,7,\n";
+    static const char one[] = "table,page,viewpoint,map_size,contour,label,figure,value,note\n"
+                              "16,,side,1024,2,nsm,pixels,7,\n";
     put("moderno-2011.csv", one, sizeof one - 1, path, sizeof path);
     setenv("SHADOWLAB_THESES", sl_test_dir, 1);
     assert_string_equal(sl_theses_dir(), sl_test_dir);
@@ -117,13 +147,13 @@ static void theses_quoting(void **st)
     (void)st;
     static const char text[] =
         "\xEF\xBB\xBF# a comment before the header, after a byte-order mark\r\n"
-        "table,viewpoint,map_size,contour,label,figure,value,note\r\n"
+        "table,page,viewpoint,map_size,contour,label,figure,value,note\r\n"
         "# Table 16\r\n"
-        "16,side,1024,2,nsm,pixels,11000,\"a, b\"\r\n"
-        "16,side,1024,4,nsm,pixels,21482,\"say \"\"21482\"\", not 21842\"\n"
-        "16,side,1024,6,nsm,pixels,31683,\n"
-        "16,side,1024,0,nsm,pixels,1048576,\"\"\n"
-        "16,side,2048,0,nsm,pixels,1048576,plain text, no: one field too many";
+        "16,,side,1024,2,nsm,pixels,11000,\"a, b\"\r\n"
+        "16,,side,1024,4,nsm,pixels,21482,\"say \"\"21482\"\", not 21842\"\n"
+        "16,,side,1024,6,nsm,pixels,31683,\n"
+        "16,,side,1024,0,nsm,pixels,1048576,\"\"\n"
+        "16,,side,2048,0,nsm,pixels,1048576,plain text, no: one field too many";
     char path[1200];
     struct sl_thesis_file f;
     struct sl_diag d;
@@ -150,13 +180,13 @@ static void theses_quoting(void **st)
     sl_thesis_file_free(&f);   /* twice: nothing */
 }
 
-#define MODERNO_HEAD "table,viewpoint,map_size,contour,label,figure,value,note\n"
-#define MODERNO_ROW "16,side,1024,2,nsm,pixels,11000,\n"
-#define MORAIS_HEAD "table,scene,viewpoint,width,height,map_size,method,row,count,percent,note\n"
-#define MORAIS_ROW "4,trees,side,512,512,0,raytrace,pfl,262144,100.00,\n"
-#define TIMES_HEAD "table,scene,viewpoint,width,height,map_size,stage,method,ms,note\n"
-#define TIMES_ROW "25,trees,side,512,512,512,0,nsm,1.57,\n"
-#define WITH_NUL MODERNO_HEAD "16,side,1024,2,nsm,pixels,1,a\0b\n"
+#define MODERNO_HEAD "table,page,viewpoint,map_size,contour,label,figure,value,note\n"
+#define MODERNO_ROW "16,,side,1024,2,nsm,pixels,11000,\n"
+#define MORAIS_HEAD "table,page,scene,viewpoint,width,height,map_size,method,row,count,percent,note\n"
+#define MORAIS_ROW "4,46,trees,side,512,512,0,raytrace,pfl,262144,100.00,\n"
+#define TIMES_HEAD "table,page,scene,viewpoint,width,height,map_size,stage,method,ms,note\n"
+#define TIMES_ROW "25,84,trees,side,512,512,512,0,nsm,1.57,\n"
+#define WITH_NUL MODERNO_HEAD "16,,side,1024,2,nsm,pixels,1,a\0b\n"
 
 static const struct bad {
     enum sl_thesis_kind kind;
@@ -166,65 +196,82 @@ static const struct bad {
     const char *key, *msg;
 } bads[] = {
     /* the five the issue names */
-    {SL_THESIS_MODERNO, "table,viewpoint,map,contour,label,figure,value,note\n" MODERNO_ROW, 0, 1, "map_size",
-     "header: column 3 is 'map', expected 'map_size'"},
-    {SL_THESIS_MORAIS, MORAIS_HEAD MORAIS_ROW "4,trees,side,512,512,0,raytrace,pnfl,12x,0.00,\n", 0, 3, "count",
+    {SL_THESIS_MODERNO, "table,page,viewpoint,map,contour,label,figure,value,note\n" MODERNO_ROW, 0, 1, "map_size",
+     "header: column 4 is 'map', expected 'map_size'"},
+    {SL_THESIS_MORAIS, MORAIS_HEAD MORAIS_ROW "4,46,trees,side,512,512,0,raytrace,pnfl,12x,0.00,\n", 0, 3, "count",
      "'12x' is not a count"},
-    {SL_THESIS_MORAIS, MORAIS_HEAD "# Table 4\n" MORAIS_ROW "4,trees,side,512,512,0,raytrace,lite,1,0.00,\n", 0, 4,
+    {SL_THESIS_MORAIS, MORAIS_HEAD "# Table 4\n" MORAIS_ROW "4,46,trees,side,512,512,0,raytrace,lite,1,0.00,\n", 0, 4,
      "row", "unknown row 'lite'"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,wrongs,1,\n", 0, 2, "figure", "unknown figure 'wrongs'"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD MODERNO_ROW "16,side,1024,4,nsm,pixels,1,\"printed 1, read 2\n" MODERNO_ROW, 0,
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,wrongs,1,\n", 0, 2, "figure", "unknown figure 'wrongs'"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD MODERNO_ROW "16,,side,1024,4,nsm,pixels,1,\"printed 1, read 2\n" MODERNO_ROW, 0,
      3, "note", "not closed on its line"},
-    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD "25,trees,side,512,512,512,0,1.57,\n", 0, 2, "note",
-     "9 fields, the header has 10 (this column is missing)"},
+    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD "25,84,trees,side,512,512,512,0,1.57,\n", 0, 2, "note",
+     "10 fields, the header has 11 (this column is missing)"},
     /* the header */
-    {SL_THESIS_MODERNO, "table,viewpoint,map_size,contour,label,figure,value\n" MODERNO_ROW, 0, 1, "note",
-     "header: column 8 is missing"},
-    {SL_THESIS_MODERNO, "table,viewpoint,map_size,contour,label,figure,value,note,extra\n" MODERNO_ROW, 0, 1, "",
-     "header: more than the 8 columns"},
+    {SL_THESIS_MODERNO, "table,page,viewpoint,map_size,contour,label,figure,value\n" MODERNO_ROW, 0, 1, "note",
+     "header: column 9 is missing"},
+    {SL_THESIS_MODERNO, "table,page,viewpoint,map_size,contour,label,figure,value,note,extra\n" MODERNO_ROW, 0, 1, "",
+     "header: more than the 9 columns"},
     {SL_THESIS_MORAIS_TIMES, MORAIS_HEAD MORAIS_ROW, 0, 1, "stage", "expected 'stage'"},   /* another file's */
     {SL_THESIS_MODERNO, "", 0, 0, "", "no header row"},
     {SL_THESIS_MODERNO, "# only a comment\n", 0, 1, "", "no header row"},
     {SL_THESIS_MODERNO, MODERNO_HEAD "# no rows\n", 0, 2, "", "no rows"},
     /* the records */
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,11000,,\n", 0, 2, "",
-     "9 fields, the header has 8"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,11000,,,\n", 0, 2, "",
-     "more than 8 fields"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,11000,,\n", 0, 2, "",
+     "10 fields, the header has 9"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,11000,,,\n", 0, 2, "",
+     "more than 9 fields"},
     {SL_THESIS_MODERNO, MODERNO_HEAD MODERNO_ROW "\n" MODERNO_ROW, 0, 3, "", "an empty line"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,11000,\"a\"b\n", 0, 2, "note",
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,11000,\"a\"b\n", 0, 2, "note",
      "text after a closing quote"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,11000,a \"b\"\n", 0, 2, "note",
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,11000,a \"b\"\n", 0, 2, "note",
      "a quote inside an unquoted field"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,11000,\"a\n", 0, 2, "note", "not closed"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,11000,\"", 0, 2, "note", "not closed"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,,\n", 0, 2, "value", "'' is not a count"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,-5,\n", 0, 2, "value", "'-5' is not a count"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,18446744073709551616,\n", 0, 2, "value",
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,11000,\"a\n", 0, 2, "note", "not closed"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,11000,\"", 0, 2, "note", "not closed"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,,\n", 0, 2, "value", "'' is not a count"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,-5,\n", 0, 2, "value", "'-5' is not a count"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,18446744073709551616,\n", 0, 2, "value",
      "is not a count"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1000,2,nsm,pixels,1,\n", 0, 2, "map_size", "a power of two"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "0,side,1024,2,nsm,pixels,1,\n", 0, 2, "table", "out of range"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2.5,nsm,pixels,1,\n", 0, 2, "contour", "not a whole number"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,si de,1024,2,nsm,pixels,1,\n", 0, 2, "viewpoint", "not a name"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,1024,2,nsm,pixels,1,\n", 0, 2, "viewpoint", "not a name"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1000,2,nsm,pixels,1,\n", 0, 2, "map_size", "a power of two"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "0,,side,1024,2,nsm,pixels,1,\n", 0, 2, "table", "out of range"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2.5,nsm,pixels,1,\n", 0, 2, "contour", "not a whole number"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,si de,1024,2,nsm,pixels,1,\n", 0, 2, "viewpoint", "not a name"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,,1024,2,nsm,pixels,1,\n", 0, 2, "viewpoint", "not a name"},
     {SL_THESIS_MODERNO, MODERNO_HEAD MODERNO_ROW "# again\n" MODERNO_ROW, 0, 4, "", "as line 2"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,1,caf\xc3\n", 0, 2, "note", "not UTF-8"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,1,a\tb\n", 0, 2, "note", "a control character"},
-    {SL_THESIS_MODERNO, MODERNO_HEAD "16,side,1024,2,nsm,pixels,1,a\rb\n", 0, 2, "note", "a control character"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,1,caf\xc3\n", 0, 2, "note", "not UTF-8"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,1,a\tb\n", 0, 2, "note", "a control character"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,,side,1024,2,nsm,pixels,1,a\rb\n", 0, 2, "note", "a control character"},
     {SL_THESIS_MODERNO, WITH_NUL, sizeof WITH_NUL - 1, 2, "", "a NUL byte"},
-    {SL_THESIS_MORAIS, MORAIS_HEAD "4,trees,side,512,512,0,raytrace,pfl,1,100.5,\n", 0, 2, "percent",
+    {SL_THESIS_MORAIS, MORAIS_HEAD "4,46,trees,side,512,512,0,raytrace,pfl,1,100.5,\n", 0, 2, "percent",
      "out of range"},
-    {SL_THESIS_MORAIS, MORAIS_HEAD "4,trees,side,512,512,0,raytrace,pfl,1,1e2,\n", 0, 2, "percent",
+    {SL_THESIS_MORAIS, MORAIS_HEAD "4,46,trees,side,512,512,0,raytrace,pfl,1,1e2,\n", 0, 2, "percent",
      "not a decimal number"},
-    {SL_THESIS_MORAIS, MORAIS_HEAD "4,trees,side,512,512,0,raytrace,pfl,1,.5,\n", 0, 2, "percent",
+    {SL_THESIS_MORAIS, MORAIS_HEAD "4,46,trees,side,512,512,0,raytrace,pfl,1,.5,\n", 0, 2, "percent",
      "not a decimal number"},
-    {SL_THESIS_MORAIS, MORAIS_HEAD "4,trees,side,512,512,0,raytrace,pfl,1,5.,\n", 0, 2, "percent",
+    {SL_THESIS_MORAIS, MORAIS_HEAD "4,46,trees,side,512,512,0,raytrace,pfl,1,5.,\n", 0, 2, "percent",
      "not a decimal number"},
-    {SL_THESIS_MORAIS, MORAIS_HEAD "25,trees,side,512,512,0,raytrace,pfl,1,5,\n", 0, 2, "table", "out of range"},
-    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD "25,trees,side,512,512,512,2,nsm,1.57,\n", 0, 2, "stage", "out of range"},
-    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD "25,trees,side,512,512,0,0,nsm,1.57,\n", 0, 2, "map_size", "out of range"},
-    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD TIMES_ROW "25,trees,side,512,512,512,0,nsm,2.00,\n", 0, 3, "",
+    {SL_THESIS_MORAIS, MORAIS_HEAD "25,84,trees,side,512,512,0,raytrace,pfl,1,5,\n", 0, 2, "table", "out of range"},
+    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD "25,84,trees,side,512,512,512,2,nsm,1.57,\n", 0, 2, "stage", "out of range"},
+    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD "25,84,trees,side,512,512,0,0,nsm,1.57,\n", 0, 2, "map_size", "out of range"},
+    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD TIMES_ROW "25,84,trees,side,512,512,512,0,nsm,2.00,\n", 0, 3, "",
      "as line 2"},
+    /* the page: digits 1-9999 or empty, one per table */
+    {SL_THESIS_MORAIS, MORAIS_HEAD "4,p46,trees,side,512,512,0,raytrace,pfl,1,5,\n", 0, 2, "page",
+     "'p46' is not a whole number (digits 0-9, or empty: not known)"},
+    {SL_THESIS_MORAIS, MORAIS_HEAD "4,46.5,trees,side,512,512,0,raytrace,pfl,1,5,\n", 0, 2, "page",
+     "not a whole number"},
+    {SL_THESIS_MORAIS, MORAIS_HEAD "4,-46,trees,side,512,512,0,raytrace,pfl,1,5,\n", 0, 2, "page",
+     "not a whole number"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD "16,0,side,1024,2,nsm,pixels,1,\n", 0, 2, "page", "0 is out of range (1..9999)"},
+    {SL_THESIS_MORAIS_TIMES, TIMES_HEAD "25,10000,trees,side,512,512,512,0,nsm,1.57,\n", 0, 2, "page",
+     "10000 is out of range (1..9999)"},
+    {SL_THESIS_MORAIS, MORAIS_HEAD MORAIS_ROW "# Table 4 again\n4,47,trees,side,512,512,0,raytrace,pnfl,0,0.00,\n", 0,
+     4, "page", "Table 4 is on page 47 here, on page 46 at line 2"},
+    {SL_THESIS_MODERNO, MODERNO_HEAD MODERNO_ROW "16,100,side,1024,4,nsm,pixels,1,\n", 0, 3, "page",
+     "Table 16 is on page 100 here, on no page at line 2"},
+    {SL_THESIS_HERTEL, "table,page,scene,triangles,rt_class_ms,rt_insec_ms,rt_opt_ms,rays,insec_rays,note\n"
+                       "2,,Village,247432,422,288,217,236350,905290,\n2,p. 3,Kitchen,103351,956,641,610,198576,967655,\n",
+     0, 3, "page", "'p. 3' is not a whole number"},
 };
 
 static void theses_damaged(void **st)
