@@ -313,7 +313,7 @@ static const struct {
                              "'techniques:' folders and before the source tree's techniques/ and the installed "
                              "share/shadowlab/techniques; the first package of a name wins."},
     {"SHADOWLAB_THESES", "The folder report reads the theses' data files from (moderno-2011.csv, "
-                         "morais-2015.csv, morais-2015-times.csv) instead of the installed "
+                         "morais-2015.csv, morais-2015-times.csv, hertel-2009.csv) instead of the installed "
                          "share/shadowlab/theses (or, not installed, the source tree's report/theses/); a "
                          "damaged file stops the report with its file, line and column (exit 2)."},
     {"SHADOWLAB_MODULE_DIR", "A folder searched first for the modules loaded on first use "
