@@ -39,9 +39,10 @@ struct sl_packages {
 /* Load the packages along the search path (sl_tech_dirs: the config's
  * `techniques:` folders relative to rel_dir, SHADOWLAB_TECHNIQUES, the
  * source tree's, the installed ones) into set, a method of each one not
- * yet in it under its name (the first loaded wins: a later search path
- * finds the name taken and keeps the first). SL_E_PACKAGE for a broken
- * package or one named like a C method (c_names, NULL-terminated: the
+ * yet in it under its name (a later search path finds the name taken and
+ * keeps the first). SL_E_PACKAGE for a broken package, two different
+ * packages of one name along the path (sl_tech_set_scan), or one named
+ * like a C method (c_names, NULL-terminated: the
  * registry's, which the caller reads, so this file never calls the
  * registry that calls it). */
 enum sl_err sl_packages_load(struct sl_packages *set, const char *const *config_dirs, int n, const char *rel_dir,

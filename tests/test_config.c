@@ -453,6 +453,105 @@ static void config_sessions(void **st)
     sl_config_free(&b);
 }
 
+/* <test dir>/<folder>/<sub>: the shipped pcf renamed `name`, with `extra`
+ * appended to its technique.yaml. */
+static void pcf_copy(const char *folder, const char *sub, const char *name, const char *extra)
+{
+    char dir[400], sh[1200];
+    snprintf(dir, sizeof dir, "%s/%s/%s", sl_test_dir, folder, sub);
+    snprintf(sh, sizeof sh, "mkdir -p %s && cp techniques/pcf/*.glsl %s/ && "
+             "sed 's/^name: pcf$/name: %s/' techniques/pcf/technique.yaml > %s/technique.yaml && printf '%s' >> "
+             "%s/technique.yaml", dir, dir, name, dir, extra, dir);
+    assert_int_equal(system(sh), 0);
+}
+
+/* The load's error for config text (written as <test dir>/<name>). */
+static enum sl_err load_bad(const char *name, const char *text, struct sl_diag *d)
+{
+    char path[400];
+    snprintf(path, sizeof path, "%s/%s", sl_test_dir, name);
+    sl_test_write(sl_test_dir, name, text);
+    struct sl_config c;
+    memset(d, 0, sizeof *d);
+    enum sl_err e = sl_config_load(path, &c, d);
+    printf("config::package_rules %s -> %s:%d '%s': %s\n", name, d->file, d->line, d->key, d->msg);
+    if (!e)
+        sl_config_free(&c);
+    return e;
+}
+
+/* The name and value rules hold for a config's own `techniques:` folder as
+ * for the other sources: a package named like a C method is refused even
+ * when every entry names a C method (it would run under the package's
+ * name); a parameter named like a cascade key is refused; two different
+ * packages of one name along the path are an error naming both; swept
+ * values that parse to one value are refused, a package's and a C
+ * method's alike. */
+static void config_package_rules(void **st)
+{
+    (void)st;
+    struct sl_diag d;
+    char want[600];
+    pcf_copy("pn", "nsm", "nsm", "");
+    enum sl_err e = load_bad("pn.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\ntechniques: [pn]\n"
+                             "methods: [{method: nsm}]\n", &d);
+    assert_int_equal(e, SL_E_PACKAGE);
+    snprintf(want, sizeof want, "%s/pn/nsm/technique.yaml", sl_test_dir);
+    assert_string_equal(d.file, want);
+    assert_string_equal(d.key, "name");
+    assert_true(d.line > 0);
+    assert_non_null(strstr(d.msg, "C method"));
+
+    pcf_copy("pp", "mine", "mine", "  - {name: partitions, type: int, default: 2, min: 1, max: 4}\n");
+    e = load_bad("pp.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\ntechniques: [pp]\n"
+                 "methods: [{method: mine}]\n", &d);
+    assert_int_equal(e, SL_E_PACKAGE);
+    snprintf(want, sizeof want, "%s/pp/mine/technique.yaml", sl_test_dir);
+    assert_string_equal(d.file, want);
+    assert_non_null(strstr(d.key, ".name"));
+    assert_non_null(strstr(d.msg, "cascades"));
+
+    /* two packages named twin: one in the config's folder, one beside it;
+     * and the shipped pcf shadowed by a different pcf */
+    pcf_copy("pt", "a", "twin", "");
+    pcf_copy("pt", "b", "twin", "# another\n");
+    e = load_bad("pt.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\ntechniques: [pt]\n"
+                 "methods: [{method: twin}]\n", &d);
+    assert_int_equal(e, SL_E_PACKAGE);
+    snprintf(want, sizeof want, "%s/pt/b/technique.yaml", sl_test_dir);
+    assert_string_equal(d.file, want);
+    assert_string_equal(d.key, "name");
+    snprintf(want, sizeof want, "%s/pt/a/technique.yaml", sl_test_dir);
+    assert_non_null(strstr(d.msg, want));
+    pcf_copy("pq", "pcf", "pcf", "# mine\n");
+    e = load_bad("pq.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\ntechniques: [pq]\n"
+                 "methods: [{method: pcf}]\n", &d);
+    assert_int_equal(e, SL_E_PACKAGE);
+    snprintf(want, sizeof want, "%s/pq/pcf/technique.yaml (config)", sl_test_dir);
+    assert_non_null(strstr(d.msg, want));
+    assert_non_null(strstr(d.msg, "(source tree)"));
+    assert_non_null(strstr(d.file, "techniques/pcf/technique.yaml"));
+    /* the same package twice (one folder named twice) is one package */
+    pcf_copy("ps", "same", "same", "");
+    struct sl_config c;
+    sl_test_config("ps.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\ntechniques: [ps, ps/same]\n"
+                   "methods: [{method: same}]\n", &c);
+    sl_config_free(&c);
+
+    /* sweeps: 0.5 and 0.50, 1 and 1.0 are one value */
+    e = load_bad("sw.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\nmethods:\n"
+                 "  - {method: pcf, kernel: 3, bias: [0.5, 2, 0.50]}\n", &d);
+    assert_int_equal(e, SL_E_CONFIG);
+    assert_int_equal(d.line, 4);
+    assert_string_equal(d.key, "methods[0].bias");
+    assert_non_null(strstr(d.msg, "'0.5' and '0.50'"));
+    e = load_bad("sc.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\nmethods:\n"
+                 "  - {method: nsm}\n  - {label: b, method: nsm, self_shadow: constant, bias: [1, 1.0]}\n", &d);
+    assert_int_equal(e, SL_E_CONFIG);
+    assert_int_equal(d.line, 5);
+    assert_string_equal(d.key, "methods[1].bias");
+}
+
 /* outputs.aliasing: auto (the default) computes the aliasing error m only
  * where a method's study reads it (zpart, lispsm); true and false force it. */
 static void config_aliasing_on_demand(void **st)
@@ -491,6 +590,7 @@ int main(int argc, char **argv)
         SL_CASE(config, overrides),
         SL_CASE(config, sweeps),
         SL_CASE(config, packages),
+        SL_CASE(config, package_rules),
         SL_CASE(config, sessions),
         SL_CASE(config, aliasing_on_demand),
     };

@@ -153,7 +153,9 @@ static void technique_shipped(void **st)
     sl_tech_free(&t);
 }
 
-/* The search path and the set: first name wins, a C method's name refused. */
+/* The search path and the set: one package a name (the same package found
+ * twice is kept once, two different ones are an error naming both), a C
+ * method's name refused. */
 static void technique_set_scan(void **st)
 {
     (void)st;
@@ -169,9 +171,9 @@ static void technique_set_scan(void **st)
     sl_test_write(dir, "technique.yaml", HEAD("twin") MAPS SHADERS);
     sl_test_write(dir, "map.glsl", good_map);
     sl_test_write(dir, "lookup.glsl", good_lookup);
-    snprintf(dir, sizeof dir, "%s/two", b);   /* b is itself a folder of packages */
+    snprintf(dir, sizeof dir, "%s/two", b);   /* never read: b is a package itself (below) */
     mkdir(dir, 0755);
-    sl_test_write(dir, "technique.yaml", HEAD("twin") "summary2: x\n" MAPS SHADERS);   /* never read: a is first */
+    sl_test_write(dir, "technique.yaml", HEAD("twin") "summary2: x\n" MAPS SHADERS);
     /* b is a package folder of its own, not a folder of packages */
     sl_test_write(b, "technique.yaml", HEAD("other") MAPS SHADERS);
     sl_test_write(b, "map.glsl", good_map);
@@ -200,6 +202,33 @@ static void technique_set_scan(void **st)
     assert_non_null(sl_tech_find(&s, "nsm_glsl"));
     assert_string_equal(sl_tech_find(&s, "pcf")->origin, "source tree");
     sl_tech_set_free(&s);
+    /* twin again in a folder after a: the same package byte for byte is
+     * kept once; a different one is an error naming both files */
+    char file[800], tdirs[2][1024];
+    snprintf(tdirs[0], sizeof tdirs[0], "%s", a);
+    snprintf(tdirs[1], sizeof tdirs[1], "%s/t", root);
+    snprintf(dir, sizeof dir, "%s/t/twin", root);
+    mkdir(tdirs[1], 0755);
+    mkdir(dir, 0755);
+    sl_test_write(dir, "technique.yaml", HEAD("twin") MAPS SHADERS);
+    sl_test_write(dir, "map.glsl", good_map);
+    sl_test_write(dir, "lookup.glsl", good_lookup);
+    const char *torigin[2] = {"config", "SHADOWLAB_TECHNIQUES"};
+    assert_int_equal(sl_tech_set_scan(&s, tdirs, torigin, 2, c_names, &d), SL_OK);
+    assert_int_equal(s.n, 1);
+    assert_string_equal(s.t[0].origin, "config");
+    sl_tech_set_free(&s);
+    sl_test_write(dir, "lookup.glsl", "// changed\n" "float sl_lookup(vec3 w, vec3 n, vec2 uv, float z, float l)\n"
+                  "{\n    return 1.0;\n}\n");
+    assert_int_equal(sl_tech_set_scan(&s, tdirs, torigin, 2, c_names, &d), SL_E_PACKAGE);
+    snprintf(file, sizeof file, "%s/technique.yaml", dir);
+    assert_string_equal(d.file, file);
+    assert_int_equal(d.line, 1);
+    assert_string_equal(d.key, "name");
+    snprintf(file, sizeof file, "%s/one/technique.yaml (config)", a);
+    assert_non_null(strstr(d.msg, file));
+    assert_non_null(strstr(d.msg, "(SHADOWLAB_TECHNIQUES)"));
+    assert_int_equal(s.n, 0);
     /* a package named like a C method */
     snprintf(dir, sizeof dir, "%s/c", root);
     mkdir(dir, 0755);

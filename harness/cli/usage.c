@@ -167,8 +167,8 @@ const char cli_usage_list[] =
     "  techniques: the technique packages (technique.yaml + GLSL) a config can name as a method,\n"
     "  each with where it was found: the config's `techniques:` folders, then each folder of\n"
     "  SHADOWLAB_TECHNIQUES (colon-separated), the source tree's techniques/, the installed\n"
-    "  share/shadowlab/techniques; the first package of a name wins. A broken package is an error\n"
-    "  naming its file, line and key (exit 2).\n";
+    "  share/shadowlab/techniques. Two different packages of one name, a package named like a\n"
+    "  built-in method, or a broken package is an error naming its file, line and key (exit 2).\n";
 
 const char cli_usage_show[] =
     "usage: shadowlab show method|technique NAME\n"
@@ -311,7 +311,8 @@ static const struct {
                          "scenes/)."},
     {"SHADOWLAB_TECHNIQUES", "Colon-separated folders searched for technique packages after a config's "
                              "'techniques:' folders and before the source tree's techniques/ and the installed "
-                             "share/shadowlab/techniques; the first package of a name wins."},
+                             "share/shadowlab/techniques; two different packages of one name along them are an error "
+                             "naming both."},
     {"SHADOWLAB_THESES", "The folder report reads the theses' data files from (moderno-2011.csv, "
                          "morais-2015.csv, morais-2015-times.csv, hertel-2009.csv) instead of the installed "
                          "share/shadowlab/theses (or, not installed, the source tree's report/theses/); a "

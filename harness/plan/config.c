@@ -960,6 +960,23 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
                                "the sweeps make more than %d labels in all", SL_CFG_MAX);
             }
         }
+    /* a sweep's values are distinct after parsing: 0.5 and 0.50 would be
+     * two labels of one method, scored twice under two names */
+    for (int k = 0; k < nx; k++) {
+        const struct sl_extra_key *xk = &x->k[k];
+        int pi = sl_param_index(m->params, m->nparams, xk->key);
+        double v[SL_EXTRA_VALUES];
+        for (int j = 0; xk->is_list && pi >= 0 && j < xk->nvalues; j++) {
+            if (sl_param_parse(&m->params[pi], xk->value[j], &v[j]))
+                break;   /* not a value: the combination below names why */
+            for (int q = 0; q < j; q++)
+                if (v[q] == v[j]) {
+                    snprintf(key, sizeof key, "methods[%u].%s", i, xk->key);
+                    return sl_fail(d, SL_E_CONFIG, file, xk->line, key, "swept values '%s' and '%s' are one "
+                                   "value: each value of a sweep makes its own label", xk->value[q], xk->value[j]);
+                }
+        }
+    }
     for (int combo = 0; combo < total; combo++) {
         int n = c->nmethods;
         struct sl_config_method *cm = &c->methods[n];
@@ -1039,7 +1056,11 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
     char key[96];
     /* packages only when an entry names no C method: a broken package on
      * the search path does not stop a config that uses none */
-    int want = 0;
+    /* ... but always when the config or SHADOWLAB_TECHNIQUES names folders
+     * of its own: a package there named like a C method is an error, not a
+     * package silently left for the C method of that name */
+    const char *env = getenv("SHADOWLAB_TECHNIQUES");
+    int want = r->techniques_count > 0 || (env && *env);
     for (unsigned i = 0; i < r->methods_count; i++) {
         int c_method = 0;
         for (int k = 0; k < sl_method_count() && !c_method; k++)

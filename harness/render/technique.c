@@ -655,9 +655,19 @@ static enum sl_err add_one(struct sl_tech_set *s, const char *dir, const char *o
             sl_tech_free(&t);
             return e;
         }
-    if (sl_tech_find(s, t.name)) {   /* first name wins */
+    const struct sl_technique *had = sl_tech_find(s, t.name);
+    if (had) {
+        /* the same package reached twice (a folder named twice, the source
+         * tree's and its installed copy) is one package; two different
+         * packages of one name would leave the choice to the search order */
+        int same = had->file_hash == t.file_hash && !strcmp(had->map_src, t.map_src) &&
+                   !strcmp(had->lookup_src, t.lookup_src);
+        if (!same)
+            e = sl_fail(d, SL_E_PACKAGE, t.file, t.name_line, "name", "'%s' names two packages on the search "
+                        "path: %s (%s) and this one (%s); rename one", t.name, had->file,
+                        had->origin ? had->origin : "given", origin ? origin : "given");
         sl_tech_free(&t);
-        return SL_OK;
+        return e;
     }
     if (s->n >= SL_TECH_MAX_SET) {
         sl_tech_free(&t);

@@ -10,7 +10,7 @@
  * folder, at most SL_TECH_MAX_SHADER bytes) and reads both sources. Packages
  * are untrusted input: every error is `FILE:LINE: 'KEY': message` with the id
  * SL_E_PACKAGE (exit 2). Also: the set of packages found along a search path
- * (first name wins; a C method's name is refused), the search path itself,
+ * (one package a name; a C method's name is refused), the search path itself,
  * parameter values (defaults, checked setting), the guard band a package's
  * lookup needs (reach, blur) and the texel reads it counts (taps).
  * What a package may hold and what its shaders see is issue 36's package
@@ -148,9 +148,12 @@ struct sl_tech_set {
 
 /* Scan the folders in order: a folder holding technique.yaml is one
  * package, else each of its subfolders holding one is (in name order); a
- * folder that does not exist is skipped. The first package of a name wins,
- * later ones of that name are left out. A package that fails to load fails
- * the scan (packages are input: a broken one is an error, not skipped); so
+ * folder that does not exist is skipped. A name is one package: a second
+ * package of a name fails the scan naming both files, unless it is the
+ * same package (technique.yaml and both shaders byte for byte: one folder
+ * reached twice, the source tree's package and its installed copy), which
+ * is kept once, as first found. A package that fails to load fails the
+ * scan (packages are input: a broken one is an error, not skipped); so
  * does one named like a C method (c_names, NULL-terminated; may be NULL),
  * naming its file, line and 'name'. On failure *s is empty. */
 enum sl_err sl_tech_set_scan(struct sl_tech_set *s, char (*dirs)[1024], const char *const *origin, int ndirs,
