@@ -277,6 +277,17 @@ enum sl_err sl_package_prepare(const struct sl_method *m, struct sl_diag *d)
     return k ? pkg_ready(k, d) : SL_OK;
 }
 
+enum sl_err sl_package_fits(const struct sl_method *m, const struct sl_method_params *p, int size, struct sl_diag *d)
+{
+    struct pkg *k = pkg_of_method(m);
+    if (!k)
+        return SL_OK;
+    enum sl_err e = pkg_ready(k, d);
+    struct sl_light_frame f = {.size = size};
+    int g, n;
+    return e ? e : sl_techpass_size(&k->pass, &f, &p->values, &g, &n, d);
+}
+
 void sl_packages_release_gl(struct sl_packages *set)
 {
     for (int i = 0; set && i < set->n; i++)

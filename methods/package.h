@@ -66,6 +66,13 @@ const struct sl_technique *sl_package_of(const struct sl_method *m);
  * package file and line. The GL context must be current. */
 enum sl_err sl_package_prepare(const struct sl_method *m, struct sl_diag *d);
 
+/* Whether m's maps at map size `size` and values p fit the GL's maximum
+ * texture size (and SL_TECH_MAX_MAP_SIZE): SL_E_METHOD naming the
+ * parameter that grows the guard band (techpass.h's sl_techpass_size),
+ * SL_OK for a method that is no package. After sl_package_prepare, so a
+ * run checks every label and map size before its first truth. */
+enum sl_err sl_package_fits(const struct sl_method *m, const struct sl_method_params *p, int size, struct sl_diag *d);
+
 /* Free every package's GL objects in set (the GL context still current). */
 void sl_packages_release_gl(struct sl_packages *set);
 

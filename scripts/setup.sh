@@ -21,6 +21,7 @@ RUN_PACKAGES=(
   libegl-dev            # EGL (libglvnd): the GL context on GPU machines and where OSMesa is gone
   libegl-mesa0          # Mesa's EGL vendor (llvmpipe, surfaceless or the software device)
   libembree-dev         # ray tracing: the ground truth
+  glslang-dev           # technique packages' shaders compiled at validate, without GL (harness/render/techcheck.h)
   libopenimageio-dev    # images (overlays)
   fonts-dejavu-core     # the overlays' legend text (drawn without text when missing)
   libopenexr-dev        # OpenImageIO's CMake package asks for OpenEXR

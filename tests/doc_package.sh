@@ -196,7 +196,7 @@ setup)
     printf '%s\n' "${TEST_PACKAGES[@]}" | grep -qx -- "$p" && ok || fail "setup.sh test does not install $p"
   done
   for p in libembree-dev libosmesa6-dev libegl-dev libopenimageio-dev libcyaml-dev libsqlite3-dev libcmocka-dev gnuplot-nox \
-           libunistring-dev; do
+           libunistring-dev glslang-dev; do
     printf '%s\n' "${RUN_PACKAGES[@]}" | grep -qx -- "$p" && ok || fail "setup.sh run does not install $p"
   done
   out=$(bash scripts/setup.sh bogus 2>&1); rc=$?

@@ -552,6 +552,49 @@ static void config_package_rules(void **st)
     assert_string_equal(d.key, "methods[1].bias");
 }
 
+/* What a config alone decides is checked at load, before any GL or truth:
+ * a package's GLSL errors (glslang) at the package file's line, after
+ * lines reading the harness's sl_map_pos and sl_home_texel; a guard band
+ * too wide for a map size a scene runs the label at, naming the entry's
+ * key and line (a scene that does not run the label at that size is not
+ * refused). */
+static void config_package_checks(void **st)
+{
+    (void)st;
+    struct sl_diag d;
+    char want[600];
+    pcf_copy("pg", "late", "late", "");
+    char dir[400];
+    snprintf(dir, sizeof dir, "%s/pg/late", sl_test_dir);
+    sl_test_write(dir, "lookup.glsl", "float sl_lookup(vec3 w, vec3 n, vec2 uv, float z, float ndotl)\n"
+                                      "{\n"
+                                      "    vec2 p = sl_map_pos;\n"
+                                      "    ivec2 h = sl_home_texel;\n"
+                                      "    float x = p.x + float(h.y);\n"
+                                      "    return x + undeclared_name;\n"
+                                      "}\n");
+    enum sl_err e = load_bad("pg.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [512]\ntechniques: [pg]\n"
+                             "methods: [{method: late}]\n", &d);
+    assert_int_equal(e, SL_E_PACKAGE);
+    snprintf(want, sizeof want, "%s/lookup.glsl", dir);
+    assert_string_equal(d.file, want);
+    assert_int_equal(d.line, 6);
+    assert_non_null(strstr(d.msg, "undeclared_name"));
+
+    e = load_bad("gb.yaml", "scenes: [{scene: primitives}]\nmap_sizes: [1024, 16384]\nmethods:\n"
+                 "  - {method: nsm}\n  - method: pcf\n    kernel: 9\n", &d);
+    assert_int_equal(e, SL_E_CONFIG);
+    assert_int_equal(d.line, 6);
+    assert_string_equal(d.key, "methods[1].kernel");
+    assert_non_null(strstr(d.msg, "16384 + 2 x 4 = 16392"));
+    /* the same label where the 16384 scene does not run it: loads */
+    struct sl_config c;
+    sl_test_config("gb2.yaml", "scenes:\n  - {scene: primitives, map_sizes: [16384], methods: [nsm]}\n"
+                   "  - {scene: bench, map_sizes: [1024]}\nmap_sizes: [1024]\nmethods:\n"
+                   "  - {method: nsm}\n  - {method: pcf, kernel: 9}\n", &c);
+    sl_config_free(&c);
+}
+
 /* outputs.aliasing: auto (the default) computes the aliasing error m only
  * where a method's study reads it (zpart, lispsm); true and false force it. */
 static void config_aliasing_on_demand(void **st)
@@ -591,6 +634,7 @@ int main(int argc, char **argv)
         SL_CASE(config, sweeps),
         SL_CASE(config, packages),
         SL_CASE(config, package_rules),
+        SL_CASE(config, package_checks),
         SL_CASE(config, sessions),
         SL_CASE(config, aliasing_on_demand),
     };

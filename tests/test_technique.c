@@ -15,7 +15,9 @@
 #include "fixture.h"
 #include "lightfit.h"
 #include "shadowmap.h"
+#include "techcheck.h"
 #include "techpass.h"
+#include "techsrc.h"
 #include "technique.h"
 
 /* ---- packages written into the test folder ---- */
@@ -25,6 +27,17 @@ static const char good_lookup[] =
     "float sl_lookup(vec3 w, vec3 n, vec2 uv, float z, float ndotl)\n"
     "{\n"
     "    return z <= texture(depth, uv).r ? 1.0 : 0.0;\n"
+    "}\n";
+
+/* A lookup whose line 6 is an error after lines 3 and 4 read the harness's
+ * sl_map_pos and sl_home_texel (which a driver may warn about) */
+static const char late_error[] =
+    "float sl_lookup(vec3 w, vec3 n, vec2 uv, float z, float ndotl)\n"
+    "{\n"
+    "    vec2 p = sl_map_pos;\n"
+    "    ivec2 h = sl_home_texel;\n"
+    "    float x = p.x + float(h.y);\n"
+    "    return x + undeclared_name;\n"
     "}\n";
 
 /* <test dir>/<name>/ with technique.yaml = yaml and both shaders */
@@ -297,18 +310,129 @@ static void technique_glsl_error(void **st)
     assert_true(strncmp(d.msg, "GLSL: ", 6) == 0);
     assert_non_null(strstr(d.msg, "undeclared_name"));
     sl_tech_free(&t);
+    /* the error after reads of sl_map_pos and sl_home_texel: its own line */
+    package(dir, sizeof dir, "late_error_gl", HEAD("late_error_gl") MAPS SHADERS, late_error);
+    assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
+    e = sl_techpass_init(&p, &t, &d);
+    sl_diag_format(&d, e, text, sizeof text);
+    fprintf(stderr, "  %s\n", text);
+    assert_int_equal(e, SL_E_PACKAGE);
+    snprintf(file, sizeof file, "%s/lookup.glsl", dir);
+    assert_string_equal(d.file, file);
+    assert_int_equal(d.line, 6);
+    assert_true(strncmp(d.msg, "GLSL: ", 6) == 0);
+    assert_non_null(strstr(d.msg, "undeclared_name"));
+    sl_tech_free(&t);
+    /* the prelude and the harness main draw no word from the driver: a
+     * shipped package's log names no line of theirs */
+    static const char *const shipped[] = {"nsm", "pcf", "vsm", "esm", "evsm", "msm", "pcss", NULL};
+    for (int i = 0; shipped[i]; i++) {
+        char pdir[64];
+        snprintf(pdir, sizeof pdir, "techniques/%s", shipped[i]);
+        assert_int_equal(sl_tech_load(pdir, &t, &d), SL_OK);
+        for (int stage = 0; stage < 2; stage++) {
+            char *src = sl_techsrc(&t, stage ? SL_TECHSRC_LOOKUP : SL_TECHSRC_MAP);
+            assert_non_null(src);
+            GLuint sh = glCreateShader(GL_FRAGMENT_SHADER);
+            glShaderSource(sh, 1, (const char *const *)&src, NULL);
+            glCompileShader(sh);
+            GLint ok = 0;
+            char log[4096] = "";
+            glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+            glGetShaderInfoLog(sh, (GLsizei)sizeof log, NULL, log);
+            glDeleteShader(sh);
+            free(src);
+            if (log[0])
+                fprintf(stderr, "  %s %s log: %s\n", shipped[i], stage ? "lookup" : "map", log);
+            assert_true(ok);
+            assert_null(strstr(log, "1000"));   /* a prelude line: 1000000 on */
+            assert_null(strstr(log, "2000"));   /* the harness main's: 2000000 on */
+        }
+        sl_tech_free(&t);
+    }
     /* the log forms of both drivers */
     const char *mesa = "0:1000003(1): error: in prelude\n1:7(12): error: `q' undeclared\n";
-    assert_int_equal(sl_techpass_glsl_error("p/l.glsl", mesa, &d), SL_E_PACKAGE);
+    assert_int_equal(sl_techsrc_log_error("p/l.glsl", mesa, &d), SL_E_PACKAGE);
     assert_int_equal(d.line, 7);
     assert_string_equal(d.msg, "GLSL: error: `q' undeclared");
-    assert_int_equal(sl_techpass_glsl_error("p/l.glsl", "0:2000004(3): error: no function sl_lookup\n", &d),
+    assert_int_equal(sl_techsrc_log_error("p/l.glsl", "0:2000004(3): error: no function sl_lookup\n", &d),
                      SL_E_PACKAGE);
     assert_int_equal(d.line, 0);   /* the harness main's: the package file named, no line */
-    assert_int_equal(sl_techpass_glsl_error("p/l.glsl", "1(9) : error C1008: undefined variable \"q\"\n", &d),
+    assert_int_equal(sl_techsrc_log_error("p/l.glsl", "1(9) : error C1008: undefined variable \"q\"\n", &d),
                      SL_E_PACKAGE);
     assert_int_equal(d.line, 9);
     assert_string_equal(d.msg, "GLSL: error C1008: undefined variable \"q\"");
+}
+
+/* The log of a compile read back: errors first (every one, up to four),
+ * then warnings, each at its line of the package file. */
+static void technique_log_order(void **st)
+{
+    (void)st;
+    struct sl_diag d;
+    const char *mesa = "0:1000003(1): warning: in prelude\n"
+                       "1:58(12): warning: `sl_map_pos' used uninitialized\n"
+                       "1:67(5): error: `q' undeclared\n"
+                       "1:70(5): error: `r' undeclared\n";
+    assert_int_equal(sl_techsrc_log_error("p/l.glsl", mesa, &d), SL_E_PACKAGE);
+    assert_int_equal(d.line, 67);
+    assert_string_equal(d.msg, "GLSL: error: `q' undeclared; line 70: error: `r' undeclared; "
+                               "line 58: warning: `sl_map_pos' used uninitialized");
+    const char *glslang = "WARNING: 1:3: 'x' : something\nERROR: 1:6: 'undeclared_name' : undeclared identifier\n"
+                          "ERROR: 1:6: '' : compilation terminated\nERROR: 2 compilation errors.  No code generated.\n";
+    assert_int_equal(sl_techsrc_log_error("p/l.glsl", glslang, &d), SL_E_PACKAGE);
+    assert_int_equal(d.line, 6);
+    assert_string_equal(d.msg, "GLSL: error: 'undeclared_name' : undeclared identifier; line 3: warning: 'x' : "
+                               "something");
+}
+
+/* glslang, no GL: an error on line 6 after lines reading sl_map_pos and
+ * sl_home_texel is reported at line 6 of the lookup; a typo in the map
+ * shader at its line; a missing sl_lookup (the harness main's call) names
+ * the file; every shipped package compiles. */
+static void technique_glslang(void **st)
+{
+    (void)st;
+    char dir[600], file[700];
+    struct sl_technique t;
+    struct sl_diag d;
+    package(dir, sizeof dir, "late_error", HEAD("late_error") MAPS SHADERS, late_error);
+    assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
+    enum sl_err e = sl_techcheck(&t, &d);
+    char text[1200];
+    sl_diag_format(&d, e, text, sizeof text);
+    fprintf(stderr, "  %s\n", text);
+    assert_int_equal(e, SL_E_PACKAGE);
+    snprintf(file, sizeof file, "%s/lookup.glsl", dir);
+    assert_string_equal(d.file, file);
+    assert_int_equal(d.line, 6);
+    assert_non_null(strstr(d.msg, "undeclared_name"));
+    sl_tech_free(&t);
+    package(dir, sizeof dir, "typo", HEAD("typo") MAPS SHADERS, NULL);
+    sl_test_write(dir, "map.glsl", "void sl_map(float z)\n{\n    out_depth = vec4(z)\n}\n");   /* no ';' */
+    assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
+    assert_int_equal(sl_techcheck(&t, &d), SL_E_PACKAGE);
+    snprintf(file, sizeof file, "%s/map.glsl", dir);
+    assert_string_equal(d.file, file);
+    assert_true(d.line == 3 || d.line == 4);
+    sl_tech_free(&t);
+    package(dir, sizeof dir, "no_lookup", HEAD("no_lookup") MAPS SHADERS, "float other(float x) { return x; }\n");
+    assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
+    assert_int_equal(sl_techcheck(&t, &d), SL_E_PACKAGE);
+    snprintf(file, sizeof file, "%s/lookup.glsl", dir);
+    assert_string_equal(d.file, file);
+    fprintf(stderr, "  no sl_lookup: %s\n", d.msg);
+    sl_tech_free(&t);
+    static const char *const shipped[] = {"nsm", "pcf", "vsm", "esm", "evsm", "msm", "pcss", NULL};
+    for (int i = 0; shipped[i]; i++) {
+        snprintf(dir, sizeof dir, "techniques/%s", shipped[i]);
+        assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
+        e = sl_techcheck(&t, &d);
+        if (e)
+            fprintf(stderr, "  %s: %s:%d %s\n", shipped[i], d.file, d.line, d.msg);
+        assert_int_equal(e, SL_OK);
+        sl_tech_free(&t);
+    }
 }
 
 /* A light frame of S x S texels over world x, y in [0, S): texel (i, j) is
@@ -679,6 +803,8 @@ int main(int argc, char **argv)
         SL_CASE(technique, shipped),
         SL_CASE(technique, set_scan),
         SL_CASE(technique, glsl_error),
+        SL_CASE(technique, log_order),
+        SL_CASE(technique, glslang),
         SL_CASE(technique, upload_lookups),
         SL_CASE(technique, post_passes),
         SL_CASE(technique, map_too_big),

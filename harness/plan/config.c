@@ -22,6 +22,7 @@
 #include "method.h"
 #include "package.h"
 #include "session.h"
+#include "techcheck.h"
 #include "scene.h"
 #include "scenefile.h"
 #include "util.h"
@@ -981,6 +982,7 @@ static enum sl_err method_entry(const struct raw_method *rm, unsigned i, const s
         int n = c->nmethods;
         struct sl_config_method *cm = &c->methods[n];
         cm->method = m;
+        cm->entry = (int)i;
         sl_method_params_init(m, &cm->params);
         cm->params.tech = t;
         char suffix[64] = "";
@@ -1188,6 +1190,64 @@ static enum sl_err check_scene_methods(const struct raw_config *r, const char *f
     return SL_OK;
 }
 
+/* What a config alone decides about the packages its labels run, checked
+ * before any scene is rendered or any truth traced: each package's shaders
+ * compile (glslang, techcheck.h: errors at the package file's line), and at
+ * every map size a scene runs a package label at, its maps (the size plus
+ * twice the guard band) stay within SL_TECH_MAX_MAP_SIZE. A GL whose
+ * maximum texture size is smaller is checked when the run opens it
+ * (sl_package_fits), still before the first truth. */
+static enum sl_err check_packages(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
+                                  struct sl_config *c, struct sl_diag *d)
+{
+    (void)r;
+    for (int k = 0; k < c->nmethods; k++) {
+        const struct sl_technique *t = c->methods[k].params.tech;
+        int seen = 0;
+        for (int j = 0; j < k && !seen; j++)
+            seen = c->methods[j].params.tech == t;
+        enum sl_err e = t && !seen ? sl_techcheck(t, d) : SL_OK;
+        if (e)
+            return e;
+    }
+    for (int si = 0; si < c->nscenes; si++)
+        for (int mi = 0; mi < c->nmaps; mi++) {
+            if (!(c->scenes[si].map_mask & (1u << mi)))
+                continue;
+            for (int k = 0; k < c->nmethods; k++) {
+                const struct sl_config_method *cm = &c->methods[k];
+                const struct sl_technique *t = cm->params.tech;
+                if (!t || !(c->scenes[si].method_mask & (1u << k)))
+                    continue;
+                int g = sl_tech_guard(t, &cm->params.values);
+                long long n = (long long)c->maps[mi] + 2ll * g;
+                if (n <= SL_TECH_MAX_MAP_SIZE)
+                    continue;
+                /* the key that grows the band, at its line when the entry gives it */
+                int gp = sl_tech_guard_param(t), line = 0;
+                char key[96], what[96];
+                struct sl_method_extras x;
+                entry_extras(ix, (unsigned)cm->entry, &x);
+                for (int q = 0; gp >= 0 && q < x.n && !line; q++)
+                    if (!strcmp(x.k[q].key, t->param[gp].name))
+                        line = x.k[q].line;
+                snprintf(key, sizeof key, "methods[%d]", cm->entry);
+                if (!line)
+                    line = sl_yaml_line(ix, key);
+                snprintf(key, sizeof key, "methods[%d].%s", cm->entry, gp >= 0 ? t->param[gp].name : "method");
+                if (gp >= 0)
+                    snprintf(what, sizeof what, "%s = %g", t->param[gp].name, cm->params.values.v[gp]);
+                else
+                    snprintf(what, sizeof what, "package %s's reach", t->name);
+                return sl_fail(d, SL_E_CONFIG, file, line, key, "%s gives label %s a guard band of %d texels: at map "
+                               "size %d (scene '%s') its maps would be %d + 2 x %d = %lld texels wide, over the "
+                               "limit of %d", what, cm->label, g, c->maps[mi], c->scenes[si].name, c->maps[mi], g, n,
+                               SL_TECH_MAX_MAP_SIZE);
+            }
+        }
+    return SL_OK;
+}
+
 /* A run writes only under --out: a store path may not leave it (an
  * explicit --db on the command line may). */
 static enum sl_err check_store(const struct raw_config *r, const char *file, const struct sl_yaml_pos *ix,
@@ -1333,7 +1393,7 @@ static enum sl_err validate(const struct raw_config *r, const char *file, const 
 {
     static check_fn *const checks[] = {
         check_name,     check_scenes,  check_viewports,     check_map_sizes, check_scene_map_sizes,
-        check_contours, check_methods, check_scene_methods, check_store,     check_gl,
+        check_contours, check_methods, check_scene_methods, check_packages, check_store, check_gl,
         check_outputs,  check_threads,
     };
     for (size_t i = 0; i < sizeof checks / sizeof checks[0]; i++) {

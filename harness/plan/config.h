@@ -64,6 +64,7 @@ struct sl_config_method {
     struct sl_method_params  params;
     struct sl_fit_opts       frame_fit;   /* 'light_frame: {fit: tight|sphere, snap: bool}' (fitopts.h, lightfit.h);
                                            * zero: the tight fit every other label shares */
+    int                      entry;       /* the `methods:` entry it comes from (a sweep's labels share one) */
 };
 
 struct sl_config_scene {

@@ -1,43 +1,20 @@
 /*
  * techpass.c — see techpass.h.
- * Invariants: the lookup's projection is sl_frame_project's, operation for
- * operation: cglm's glm_mat4_mulv sums m[3] + m[2] z + m[1] y + m[0] x in
- * that order, each product rounded before its sum unless the C build fuses
- * them (__FMA__: then fma, as cglm does), all `precise` so the GLSL compiler
- * may not fuse or reorder; the divisions by w are correctly rounded (a
- * driver's a / b may be off by an ulp or two: the quotient is corrected
- * against its exact fma residual). Texel (i, j) of the light frame is texel
- * (i + g, j + g) of the guarded maps, and a point's home texel is floor(u) +
- * g of the u the CPU computes, never floor of a rounded u + g. Lines 1 to
- * 999,999 of every package shader are the package's file and nothing else
- * (`#line 1 1` before it; the prelude and the harness main numbered from
- * SL_LINE_PRELUDE and SL_LINE_MAIN), so the driver's line numbers there
- * are the file's.
+ * Invariants: texel (i, j) of the light frame is texel (i + g, j + g) of
+ * the guarded maps; the package's shaders are techsrc.h's text, compiled as
+ * it is, so the driver's line numbers below SL_TECHSRC_LINE_PRELUDE are the
+ * package file's.
  */
 #include "techpass.h"
+#include "techsrc.h"
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "shadowmap.h"
 #include "util.h"
 
-#if defined(__FMA__)
-#define SL_CPU_FMA 1   /* cglm fuses its products (glmm_fmadd): so does the lookup */
-#else
-#define SL_CPU_FMA 0
-#endif
-
 /* ---- sources ---- */
-
-/* Line numbers of the harness's parts of a package shader: the prelude
- * from SL_LINE_PRELUDE (source string 0), the package's file from 1
- * (string 1), the harness main from SL_LINE_MAIN (string 2). A log line is
- * the package's by its line number below SL_LINE_PRELUDE: Mesa 22 reports
- * the first errors after `#line 1 1` with source string 0 still. */
-#define SL_LINE_PRELUDE 1000000
-#define SL_LINE_MAIN 2000000
 
 /* The scene's vertices: gl_Position computed as the C depth layers'
  * depth_id_vs.glsl computes it, so a map of g = 0 holds their depths. */
@@ -79,221 +56,7 @@ static const char fs_blur[] =
     "    sl_out = s / float(2 * sl_radius + 1);\n"
     "}\n";
 
-/* The lookup's main, after the package (source string 2). */
-static const char lookup_main[] =
-    "uniform sampler2D sl_gpos;\n"
-    "uniform sampler2D sl_gnrm;\n"
-    "uniform usampler2D sl_gmask;\n"
-    "uniform mat4 sl_frame_vp;\n"
-    "uniform float sl_frame_size;\n"
-    "uniform int sl_guard;\n"
-    "layout(location = 0) out float sl_visibility;\n"
-    "// a / b correctly rounded: the quotient nearest among the driver's and its\n"
-    "// neighbours, by the exact residual a - q b (one fma)\n"
-    "float sl_div(float a, float b)\n"
-    "{\n"
-    "    precise float q = a / b;\n"
-    "    for (int k = 0; k < 2; k++) {\n"
-    "        precise float r = abs(fma(-q, b, a));\n"
-    "        float up = uintBitsToFloat(floatBitsToUint(q) + 1u);\n"
-    "        float dn = uintBitsToFloat(floatBitsToUint(q) - 1u);\n"
-    "        precise float ru = abs(fma(-up, b, a));\n"
-    "        precise float rd = abs(fma(-dn, b, a));\n"
-    "        if (ru < r) { q = up; r = ru; }\n"
-    "        if (rd < r) q = dn;\n"
-    "    }\n"
-    "    return q;\n"
-    "}\n"
-    "void main()\n"
-    "{\n"
-    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
-    "    if (texelFetch(sl_gmask, px, 0).r == 0u)\n"
-    "        discard;\n"
-    "    vec3 p = texelFetch(sl_gpos, px, 0).xyz;\n"
-    "    vec3 n = texelFetch(sl_gnrm, px, 0).xyz;\n"
-    "    precise vec4 c = sl_frame_vp[3];\n"
-    "#if SL_CPU_FMA\n"
-    "    c = fma(sl_frame_vp[2], vec4(p.z), c);\n"
-    "    c = fma(sl_frame_vp[1], vec4(p.y), c);\n"
-    "    c = fma(sl_frame_vp[0], vec4(p.x), c);\n"
-    "#else\n"
-    "    c = c + sl_frame_vp[2] * p.z;\n"
-    "    c = c + sl_frame_vp[1] * p.y;\n"
-    "    c = c + sl_frame_vp[0] * p.x;\n"
-    "#endif\n"
-    "    if (c.w != 1.0) {\n"
-    "        c.x = sl_div(c.x, c.w);\n"
-    "        c.y = sl_div(c.y, c.w);\n"
-    "        c.z = sl_div(c.z, c.w);\n"
-    "    }\n"
-    "    precise float u = (c.x * 0.5 + 0.5) * sl_frame_size;\n"
-    "    precise float v = (c.y * 0.5 + 0.5) * sl_frame_size;\n"
-    "    sl_home_texel = ivec2(int(floor(u)), int(floor(v))) + ivec2(sl_guard);\n"
-    "    precise vec2 mp = vec2(u + float(sl_guard), v + float(sl_guard));\n"
-    "    sl_map_pos = mp;\n"
-    "    vec2 uv = mp / sl_map_size;\n"
-    "    vec3 toward = sl_persp != 0 ? normalize(sl_light_pos - p) : -sl_light_dir;\n"
-    "    sl_visibility = clamp(sl_lookup(p, n, uv, c.z, dot(n, toward)), 0.0, 1.0);\n"
-    "}\n";
-
-/* A growing string; oom sticks. */
-struct sbuf { char *s; size_t n, cap; int oom; };
-
-static void sb_printf(struct sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void sb_printf(struct sbuf *b, const char *fmt, ...)
-{
-    if (b->oom)
-        return;
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        int k = vsnprintf(b->s ? b->s + b->n : NULL, b->s ? b->cap - b->n : 0, fmt, ap);
-        va_end(ap);
-        if (k < 0) {
-            b->oom = 1;
-            return;
-        }
-        if (b->s && b->n + (size_t)k < b->cap) {
-            b->n += (size_t)k;
-            return;
-        }
-        size_t cap = b->cap ? 2 * b->cap : 4096;
-        while (cap < b->n + (size_t)k + 1)
-            cap *= 2;
-        char *p = realloc(b->s, cap);
-        if (!p) {
-            b->oom = 1;
-            return;
-        }
-        b->s = p;
-        b->cap = cap;
-    }
-}
-
-static const char *glsl_type(enum sl_param_type t)
-{
-    return t == SL_PARAM_INT ? "int" : t == SL_PARAM_FLOAT ? "float" : "bool";
-}
-
-static void params_decl(struct sbuf *b, const struct sl_technique *t)
-{
-    for (int i = 0; i < t->nparams; i++)
-        sb_printf(b, "uniform %s %s;\n", glsl_type(t->param[i].type), t->param[i].name);
-}
-
-static char *map_fs_source(const struct sl_technique *t)
-{
-    struct sbuf b = {0};
-    sb_printf(&b, "#version 450 core\n#line %d 0\n"
-                  "in vec3 sl_world;\n"
-                  "uniform mat4 sl_light_vp;\n"
-                  "uniform int sl_persp;\n", SL_LINE_PRELUDE);
-    for (int i = 0; i < t->nmaps; i++)
-        sb_printf(&b, "layout(location = %d) out vec4 out_%s;\n", i, t->map[i].name);
-    params_decl(&b, t);
-    sb_printf(&b, "void sl_map(float depth);\n#line 1 1\n%s\n#line %d 2\n"
-                  "uniform int sl_empty;\n"
-                  "void main()\n"
-                  "{\n"
-                  "    sl_map(sl_empty != 0 ? 1.0 : gl_FragCoord.z);\n"
-                  "}\n", t->map_src, SL_LINE_MAIN);
-    if (b.oom) {
-        free(b.s);
-        return NULL;
-    }
-    return b.s;
-}
-
-static char *lookup_fs_source(const struct sl_technique *t)
-{
-    struct sbuf b = {0};
-    sb_printf(&b, "#version 450 core\n#line %d 0\n#define SL_CPU_FMA %d\n", SL_LINE_PRELUDE, SL_CPU_FMA);
-    for (int i = 0; i < t->nmaps; i++)
-        sb_printf(&b, "uniform sampler2D %s;\n", t->map[i].name);
-    sb_printf(&b, "uniform mat4 sl_light_vp;\n"
-                  "uniform vec3 sl_light_dir;\n"
-                  "uniform vec3 sl_light_pos;\n"
-                  "uniform int sl_persp;\n"
-                  "uniform vec2 sl_texel;\n"
-                  "uniform float sl_map_size;\n"
-                  "uniform float sl_texel_world;\n"
-                  "uniform float sl_depth_range;\n"
-                  "uniform float sl_light_width;\n");
-    params_decl(&b, t);
-    sb_printf(&b, "ivec2 sl_home_texel;\n"
-                  "vec2 sl_map_pos;\n"
-                  "float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl);\n"
-                  "#line 1 1\n%s\n#line %d 2\n%s", t->lookup_src, SL_LINE_MAIN, lookup_main);
-    if (b.oom) {
-        free(b.s);
-        return NULL;
-    }
-    return b.s;
-}
-
 /* ---- compiling, with the driver's log mapped to the package's file ---- */
-
-/* "1:12(5): error: x" (Mesa), "1(12) : error C0000: x" (NVIDIA), "ERROR:
- * 1:12: x" (others): the source string, the line and where the message
- * starts; 0 if the line is none of these. */
-static int log_line(const char *s, int *str, int *line, const char **msg)
-{
-    if (!strncmp(s, "ERROR: ", 7))
-        s += 7;
-    char *e;
-    long a = strtol(s, &e, 10);
-    if (e == s)
-        return 0;
-    long b;
-    if (*e == ':') {
-        const char *q = e + 1;
-        b = strtol(q, &e, 10);
-        if (e == q)
-            return 0;
-        if (*e == '(') {
-            while (*e && *e != ')')
-                e++;
-            if (*e)
-                e++;
-        }
-    } else if (*e == '(') {
-        const char *q = e + 1;
-        b = strtol(q, &e, 10);
-        if (e == q || *e != ')')
-            return 0;
-        e++;
-    } else {
-        return 0;
-    }
-    while (*e == ' ' || *e == ':')
-        e++;
-    *str = (int)a;
-    *line = (int)b;
-    *msg = e;
-    return 1;
-}
-
-enum sl_err sl_techpass_glsl_error(const char *file, const char *log, struct sl_diag *d)
-{
-    const char *first = NULL;
-    size_t first_n = 0;
-    for (const char *s = log; s && *s;) {
-        size_t n = strcspn(s, "\n");
-        char line[600];
-        snprintf(line, sizeof line, "%.*s", (int)(n < sizeof line ? n : sizeof line - 1), s);
-        int str, ln;
-        const char *msg;
-        if (log_line(line, &str, &ln, &msg) && (str == 0 || str == 1) && ln >= 1 && ln < SL_LINE_PRELUDE)
-            return sl_fail(d, SL_E_PACKAGE, file, ln, NULL, "GLSL: %s", msg);
-        if (!first && n) {
-            first = s;
-            first_n = n;
-        }
-        s += n + (s[n] == '\n');
-    }
-    return sl_fail(d, SL_E_PACKAGE, file, 0, NULL, "GLSL: %.*s", (int)(first_n < 400 ? first_n : 400),
-                   first ? first : "(no log)");
-}
 
 static GLuint compile(GLenum type, const char *src, char *log, size_t nlog)
 {
@@ -335,7 +98,7 @@ static enum sl_err build(const char *vs_src, const char *fs_src, GLuint *prog, G
     if (fs_keep)
         *fs_keep = fs;   /* the caller deletes it */
     if (!fs)
-        return file ? sl_techpass_glsl_error(file, log, d) : sl_fail(d, SL_E_GL, NULL, 0, NULL, "shader: %s", log);
+        return file ? sl_techsrc_log_error(file, log, d) : sl_fail(d, SL_E_GL, NULL, 0, NULL, "shader: %s", log);
     GLuint vs = compile(GL_VERTEX_SHADER, vs_src, log, sizeof log);
     if (!vs) {
         if (!fs_keep)
@@ -347,7 +110,7 @@ static enum sl_err build(const char *vs_src, const char *fs_src, GLuint *prog, G
     if (!fs_keep)
         glDeleteShader(fs);
     if (!*prog)
-        return file ? sl_techpass_glsl_error(file, log, d) : sl_fail(d, SL_E_GL, NULL, 0, NULL, "link: %s", log);
+        return file ? sl_techsrc_log_error(file, log, d) : sl_fail(d, SL_E_GL, NULL, 0, NULL, "link: %s", log);
     return SL_OK;
 }
 
@@ -358,7 +121,7 @@ enum sl_err sl_techpass_init(struct sl_techpass *p, const struct sl_technique *t
     char map_file[1400], lookup_file[1400];
     snprintf(map_file, sizeof map_file, "%s/%s", t->dir, t->map_shader);
     snprintf(lookup_file, sizeof lookup_file, "%s/%s", t->dir, t->lookup_shader);
-    char *mfs = map_fs_source(t), *lfs = lookup_fs_source(t);
+    char *mfs = sl_techsrc(t, SL_TECHSRC_MAP), *lfs = sl_techsrc(t, SL_TECHSRC_LOOKUP);
     enum sl_err e = mfs && lfs ? SL_OK : sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shader source");
     GLuint fs = 0;
     if (!e)

@@ -30,7 +30,9 @@
  *                         map (uv * sl_map_size up to rounding)
  *
  * GLSL errors of a package name its file and line: `DIR/lookup.glsl:LINE:
- * GLSL: message`, SL_E_PACKAGE.
+ * GLSL: message`, SL_E_PACKAGE, the driver's log read by
+ * sl_techsrc_log_error (its errors first, then its warnings). The shaders'
+ * text is techsrc.h's, which techcheck.h compiles without GL at validate.
  *
  * Owns: the programs, the maps, their ping-pong and depth buffers, the
  * lookup's G-buffer textures and target, kept across calls and remade when
@@ -108,11 +110,5 @@ enum sl_err sl_techpass_upload(struct sl_techpass *p, const struct sl_light_fram
 enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_frame *f,
                                const struct sl_params *v, const float *pos, const float *nrm,
                                const uint8_t *mask, int w, int h, float *vis, struct sl_diag *d);
-
-/* Map an info log of the driver to the package's file: the first line
- * naming source string 1 ("1:LINE(COL): ..." Mesa, "1(LINE) : ..." NVIDIA)
- * becomes file:LINE in d, with "GLSL: <message>"; a log naming no line of
- * it gives line 0 and the whole first line. Returns SL_E_PACKAGE. */
-enum sl_err sl_techpass_glsl_error(const char *file, const char *log, struct sl_diag *d);
 
 #endif

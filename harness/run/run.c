@@ -814,6 +814,14 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
      * error stops the run with nothing written (package.h) */
     for (int m = 0; m < c->nmethods && !e; m++)
         e = sl_package_prepare(c->methods[m].method, d);
+    /* and their maps within this GL's texture size at every map size a
+     * scene runs them at, before any truth is traced (validate checked
+     * the harness's own limit) */
+    for (int s = 0; s < c->nscenes && !e; s++)
+        for (int k = 0; k < c->nmaps && !e; k++)
+            for (int m = 0; m < c->nmethods && !e; m++)
+                if ((c->scenes[s].map_mask & (1u << k)) && (c->scenes[s].method_mask & (1u << m)))
+                    e = sl_package_fits(c->methods[m].method, &c->methods[m].params, c->maps[k], d);
     if (e)
         goto out;
     snprintf(res->prov.gl_renderer, sizeof res->prov.gl_renderer, "%s", x.gl.renderer);
