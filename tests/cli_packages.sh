@@ -5,7 +5,11 @@
 #              config's `techniques:` gives the shipped pcf's figures, every
 #              count of every region; SHADOWLAB_TECHNIQUES finds it too
 #   broken     a GLSL error in the copy: exit 2, the message names the
-#              package's file and line, nothing written under --out; a YAML
+#              package's file and line, nothing written under --out, at run
+#              and at validate (glslang, no GL); an error after lines reading
+#              sl_map_pos and sl_home_texel: its own line, at validate and
+#              run; a guard band too wide for a 16384 map: refused at
+#              validate naming the config's line and the parameter; a YAML
 #              error in its technique.yaml: exit 2 naming that file's line
 #   sweep      `kernel: [1, 3, 5]` makes three labels (validate prints them)
 #   nsm_cross  the nsm package (the GL lookup) and the C nsm (self_shadow
@@ -92,8 +96,35 @@ YAML
   [ "$(wc -l <"$tmp/e")" -le 2 ] || { cat "$tmp/e"; fail "more than one message"; }
   [ -z "$(ls -A "$tmp/out" 2>/dev/null)" ] || { find "$tmp/out"; fail "a broken package left files under --out"; }
   echo "ok broken shader: $(head -1 "$tmp/e")"
-  # a YAML error in the package: its own file and line, exit 2, before GL
+  # validate finds it too, without GL (glslang), at the same line; and an
+  # error after lines reading the harness's sl_map_pos and sl_home_texel is
+  # reported at its own line, not at a warning about them
+  "$bin" validate "$tmp/c.yaml" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] || { cat "$tmp/e"; fail "validate of a broken shader: exit $rc, not 2"; }
+  head -1 "$tmp/e" | grep -q "pk/my_pcf/lookup.glsl:20: .*GLSL: error" || { cat "$tmp/e"; fail "validate names not lookup.glsl:20"; }
   sed -i '20d' "$tmp/pk/my_pcf/lookup.glsl"
+  body=$(grep -n '^{' "$tmp/pk/my_pcf/lookup.glsl" | head -1 | cut -d: -f1)
+  sed -i "$((body))a\    vec2 sl_p = sl_map_pos;\n    ivec2 sl_h = sl_home_texel;\n    float typo = sl_p.x + float(sl_h.y) + undeclared_name;" \
+    "$tmp/pk/my_pcf/lookup.glsl"
+  line=$(grep -n 'undeclared_name' "$tmp/pk/my_pcf/lookup.glsl" | cut -d: -f1)
+  for verb in validate run; do
+    args=(); [ $verb = run ] && args=(--no-cache -o "$tmp/out")
+    "$bin" $verb "$tmp/c.yaml" "${args[@]}" >"$tmp/o" 2>"$tmp/e"; rc=$?
+    [ $rc -eq 2 ] || { cat "$tmp/e"; fail "$verb: an error after harness reads: exit $rc, not 2"; }
+    head -1 "$tmp/e" | grep -q "pk/my_pcf/lookup.glsl:$line: .*GLSL: error: .*undeclared_name" ||
+      { cat "$tmp/e"; fail "$verb names not lookup.glsl:$line"; }
+  done
+  [ -z "$(ls -A "$tmp/out" 2>/dev/null)" ] || { find "$tmp/out"; fail "a broken package left files under --out"; }
+  echo "ok error after harness reads: $(head -1 "$tmp/e")"
+  # a guard band too wide for a 16384 map: refused at validate, before any truth
+  sed -i "/undeclared_name/d; /sl_p = sl_map_pos/d; /sl_h = sl_home_texel/d" "$tmp/pk/my_pcf/lookup.glsl"
+  sed 's/^map_sizes: \[64\]/map_sizes: [16384]/; s/{label: copied, method: my_pcf}/{label: copied, method: my_pcf, kernel: 9}/' \
+    "$tmp/c.yaml" >"$tmp/wide.yaml"
+  "$bin" validate "$tmp/wide.yaml" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] && head -1 "$tmp/e" | grep -q "wide.yaml:8: 'methods\[1\]\.kernel': kernel = 9 gives label copied a guard band of 4" ||
+    { cat "$tmp/e"; fail "a guard band too wide: rc $rc"; }
+  echo "ok guard band: $(head -1 "$tmp/e")"
+  # a YAML error in the package: its own file and line, exit 2, before GL
   sed -i 's/^  - {name: kernel, type: int,/  - {name: kernel, type: integer,/' "$tmp/pk/my_pcf/technique.yaml"
   line=$(grep -n 'type: integer' "$tmp/pk/my_pcf/technique.yaml" | cut -d: -f1)
   "$bin" validate "$tmp/c.yaml" >"$tmp/o" 2>"$tmp/e"; rc=$?

@@ -259,6 +259,9 @@ enum sl_err sl_techsrc_log_error(const char *file, const char *log, struct sl_di
             continue;
         if (strstr(msg, "compilation terminated"))
             continue;   /* glslang's note after its last error */
+        if (!strncmp(msg, "'' : ", 5))
+            for (msg += 5; *msg == ' ';)
+                msg++;   /* glslang's token of a syntax error, when it has none */
         const int own = (str == 0 || str == 1) && ln >= 1 && ln < SL_TECHSRC_LINE_PRELUDE;
         struct logmsg m = {own ? ln : 0, is_err, ""};
         snprintf(m.text, sizeof m.text, "%s%s", is_err && strncmp(msg, "error", 5) ? "error: " :
