@@ -55,7 +55,9 @@ const char cli_usage_run[] =
 const char cli_usage_validate[] =
     "usage: shadowlab validate FILE [-D|--define KEY=VALUE]...\n"
     "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
-    "  'light' or 'base'); loads the scenes and model files it names; touches no GL or Embree.\n";
+    "  'light' or 'base'); loads the scenes and model files it names, compiles the shaders of\n"
+    "  the technique packages its labels run (glslang) and checks their maps' size against every\n"
+    "  map size; touches no GL or Embree.\n";
 
 const char cli_usage_table[] =
     "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V]\n"
