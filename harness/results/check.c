@@ -141,9 +141,17 @@ static const cyaml_schema_field_t tol_fields[] = {
 #undef BL_TOL_FIELD
     CYAML_FIELD_END
 };
+/* An invariant may be absent (0: a baseline written before it held none,
+ * so a cell that has some fails); every other counter is required. */
+#define BL_FLAG_invariant CYAML_FLAG_OPTIONAL
+#define BL_FLAG_view CYAML_FLAG_DEFAULT
+#define BL_FLAG_error CYAML_FLAG_DEFAULT
+#define BL_FLAG_decision CYAML_FLAG_DEFAULT
+#define BL_FLAG_cost CYAML_FLAG_DEFAULT
+#define BL_FLAG_soft CYAML_FLAG_DEFAULT
 static const cyaml_schema_field_t counter_fields[] = {
 #define BL_CNT_FIELD(name, kind, size, csv, head, cls, key, from) \
-    BL_IF_##cls(CYAML_FIELD_UINT(#key, CYAML_FLAG_DEFAULT, struct bl_counters, key),)
+    BL_IF_##cls(CYAML_FIELD_UINT(#key, BL_FLAG_##cls, struct bl_counters, key),)
     SL_CELL_COLUMNS(BL_CNT_FIELD)
 #undef BL_CNT_FIELD
     CYAML_FIELD_END

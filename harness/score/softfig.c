@@ -48,8 +48,8 @@ void sl_soft_figures_compute(int w, int h, const uint32_t *tri, const float *v, 
     uint64_t *n = out->n;
     size_t np = (size_t)w * (size_t)h;
     for (size_t i = 0; i < np; i++) {
-        if (!tri[i])
-            continue;
+        if (!tri[i] || !isfinite(v[i]))
+            continue;   /* not finite: no error to take (the cell counts it, nonfinite) */
         n[SL_SFIG_soft_pixels]++;
         double e = (double)v[i] - (double)t[i];
         sum_abs += fabs(e);

@@ -3,7 +3,9 @@
  * 2009): a method's visible fraction of the light per pixel against the
  * area truth's.
  *
- * Every non-background pixel counts; a pixel is lit when its visible fraction
+ * Every non-background pixel counts but one whose method visibility is
+ * not finite (NaN, +-inf: no error can be taken of it; the cell counts it
+ * apart, nonfinite); a pixel is lit when its visible fraction
  * is 1, in umbra when it is 0, in penumbra otherwise (the truth's estimate,
  * from its samples: a pixel with every sample visible is lit). The errors are
  * in units of visibility (0..1) and reported as percentages of full
