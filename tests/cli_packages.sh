@@ -16,7 +16,8 @@
 #              an rgba16f map holding +inf (inf_map): the cells store their
 #              counts, the run's summary, stderr and table.md flag them, the
 #              pixels are uncertain (not wrong); check fails against a
-#              baseline without the counts and passes against one holding them
+#              baseline without the counts and passes against one holding them;
+#              `table --figure leaking` pivots, leaking + over_dark = soft_mae
 set -u
 bin=${1:?usage: cli_packages.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -194,6 +195,16 @@ YAML
     [ $rc -eq 1 ] || { echo "$out"; fail "check against the $b baseline: exit $rc, not 1"; }
     echo "$out" | grep -q "nonfinite" || { echo "$out"; fail "check's table does not name nonfinite"; }
   done
+  # the fractional figures are figures: the pivot takes leaking and
+  # over_dark, and their sum is soft_mae (the non-finite pixels left out)
+  "$bin" table "$db" --figure leaking --rows label --cols map_size --format csv >"$tmp/leak.csv" 2>&1 ||
+    { cat "$tmp/leak.csv"; fail "table --figure leaking"; }
+  grep -q '^nsm,[0-9.]*$' "$tmp/leak.csv" || { cat "$tmp/leak.csv"; fail "no leaking row for nsm"; }
+  bad=$(sqlite3 "$db" "SELECT c.label FROM cells c JOIN figures m ON m.cell_id = c.cell_id AND m.figure = 'soft_mae'
+                       JOIN figures l ON l.cell_id = c.cell_id AND l.figure = 'leaking'
+                       JOIN figures o ON o.cell_id = c.cell_id AND o.figure = 'over_dark'
+                       WHERE abs(l.percent + o.percent - m.percent) > 1e-9 OR m.percent IS NULL")
+  [ -z "$bad" ] || fail "leaking + over_dark != soft_mae: $bad"
   echo "ok nonfinite: NaN $(nf nan), -inf $(nf ninf) pixels; $(nf map) map texels"
   ;;
 *) fail "unknown case $case_" ;;
