@@ -106,7 +106,11 @@ struct sl_verdicts {
     uint8_t *tests;  /* ray-triangle tests spent on each pixel (saturating at 255), zeroed before a run */
     float   *vis;    /* soft methods (area lights): the visible fraction of the light per pixel, 0..1 */
     int      has_vis; /* a hard method wrote a fractional visibility into vis (a technique package):
-                       * scored as it is, not from its verdicts; zeroed before a run */
+                       * scored as it is, not from its verdicts; zeroed before a run.
+                       * A pixel whose visibility is not finite holds NaN there and
+                       * the verdict SL_V_UNCERTAIN: counted, never scored as a shadow */
+    uint64_t nonfinite; /* values the method read that are not finite, beyond the driver's
+                         * layers (a package's map texels); zeroed before a run */
     /* A method that looks up light frames of its own (zpart, lispsm: fitted
      * and rendered by the method through a->spass) hands them to scoring
      * here: pixel i was served by frames[slice[i]] (slice NULL: frames[0];

@@ -76,7 +76,8 @@ static enum sl_err pkg_ready(struct pkg *k, struct sl_diag *d)
 /* The package over frame f for the pixels mask marks: maps, lookup, the
  * visibility of those pixels into vis; costs added. */
 static enum sl_err pkg_frame(struct pkg *k, const struct sl_method_args *a, const struct sl_light_frame *f,
-                             const uint8_t *mask, float *vis, struct sl_cost *c, struct sl_diag *d)
+                             const uint8_t *mask, float *vis, struct sl_verdicts *out, struct sl_cost *c,
+                             struct sl_diag *d)
 {
     const struct sl_view *v = a->view;
     const struct sl_params *tv = &a->params->values;   /* the package's come first */
@@ -94,6 +95,7 @@ static enum sl_err pkg_frame(struct pkg *k, const struct sl_method_args *a, cons
     c->ms_step[3] += pc->ms_readback;
     c->ms_method += pc->ms_map + pc->ms_post + pc->ms_lookup + pc->ms_readback;
     c->lookups += pc->lookups;
+    out->nonfinite += pc->map_nonfinite;
     return SL_OK;
 }
 
@@ -146,7 +148,7 @@ static enum sl_err pkg_cascades(struct pkg *k, const struct sl_method_args *a, u
             any += mask[i] = v->cls[i] == SL_C_PFL && out->slice[i] == s;
         if (!any)
             continue;
-        if ((e = pkg_frame(k, a, &out->frames[s], mask, part, c, d)))
+        if ((e = pkg_frame(k, a, &out->frames[s], mask, part, out, c, d)))
             break;
         for (size_t i = 0; i < npx; i++)
             if (mask[i])
@@ -185,7 +187,7 @@ static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *o
     } else {
         for (size_t i = 0; i < npx; i++)
             mask[i] = v->cls[i] == SL_C_PFL;
-        e = pkg_frame(k, a, a->frame, mask, out->vis, c, d);
+        e = pkg_frame(k, a, a->frame, mask, out->vis, out, c, d);
     }
     free(mask);
     if (e)
@@ -196,7 +198,8 @@ static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *o
             out->vis[i] = 0.0f;
             continue;
         }
-        out->v[i] = out->vis[i] >= thr ? SL_V_LIT : SL_V_SHADOW;
+        /* NaN (a lookup not finite, techpass.h) is neither: uncertain */
+        out->v[i] = out->vis[i] >= thr ? SL_V_LIT : out->vis[i] < thr ? SL_V_SHADOW : SL_V_UNCERTAIN;
         out->how[i] = SL_HOW_MAP;
     }
     out->has_vis = 1;

@@ -9,7 +9,8 @@
  * A package method is a hard-shadow method (lights 0: any light but a
  * point light's cube, an area light as a point at its centre), exact in
  * nothing; its verdict is lit iff the visibility >= the package's
- * threshold, and it hands the visibility itself to scoring (vd->vis,
+ * threshold (uncertain where the lookup was not finite: NaN in vis, and the
+ * maps' texels not finite counted in vd->nonfinite), and it hands the visibility itself to scoring (vd->vis,
  * has_vis) for the fractional figures. Its parameters are the package's,
  * in the package's order, then the cascades' (partitions, lambda), given
  * in the config entry like a C method's (struct sl_method_params: tech,

@@ -395,6 +395,26 @@ static enum sl_err section_summary(struct sl_report_doc *doc, struct sl_report_s
         sl_report_doc_para(doc, "Methods of no thesis (%s) appear in the summary, the plots, %s%sthe costs and "
                                 "the figure tables.", other, s->area ? "the soft-shadow table, " : "",
                            s->frac ? "the fractional errors, " : "");
+    /* values not finite are a result of their own, left out of the figures:
+     * said before any figure is read */
+    uint64_t nonfinite = 0;
+    int nbad = 0;
+    char badcells[1024] = "";
+    k = 0;
+    for (int i = 0; i < s->n; i++) {
+        const struct sl_cell_record *c = &s->cells[i];
+        if (!c->nonfinite)
+            continue;
+        nonfinite += c->nonfinite;
+        if (nbad++ < 8 && k < sizeof badcells)
+            k += (size_t)snprintf(badcells + k, sizeof badcells - k, "%s%s/%s %d² %s (%llu)", nbad > 1 ? ", " : "",
+                                  c->scene, c->viewpoint, c->map_size, c->label, (unsigned long long)c->nonfinite);
+    }
+    if (nbad)
+        sl_report_doc_para(doc, "NON-FINITE: %d cell(s) hold %llu value(s) not finite (NaN, ±inf) or out of range: "
+                                "%s%s. Their pixels are left out of the figures (a package's verdict there is "
+                                "uncertain), so those cells' figures describe the rest of the image only.",
+                           nbad, (unsigned long long)nonfinite, badcells, nbad > 8 ? ", ..." : "");
     int point = 0;   /* hard figures of cells under an area light */
     for (int i = 0; i < s->n && !point; i++)
         point = s->cells[i].has_soft && s->cells[i].fig.nregions > 0 && !s->cells[i].frac;

@@ -52,7 +52,7 @@ echo "$out" | grep -q 'Counts compared exactly (--exact)' || fail "--exact not s
 "$bin" check "$db" --baseline "$tmp/b.yaml" --exact >/dev/null || fail "--exact against its own baseline"
 
 # a violation fails whatever the tolerances
-sed -e 's/violations: 0}/violations: 1}/' "$tmp/loose.yaml" >"$tmp/viol.yaml"
+sed -e 's/violations: 0\([,}]\)/violations: 1\1/' "$tmp/loose.yaml" >"$tmp/viol.yaml"
 "$bin" check "$db" --baseline "$tmp/viol.yaml" --format md >"$tmp/viol.out"; rc=$?
 [ $rc -eq 1 ] || fail "a violation: exit $rc, want 1"
 grep -q '| violations | invariant | 1 | 0 | .* | exact | \*\*FAIL\*\* |' "$tmp/viol.out" || fail "violation row missing"

@@ -16,6 +16,12 @@
 #              none: the same plain test of the same layer) agree on every
 #              figure of every region of the default scene's three views and
 #              Moderno 2011's four scenes; pcf with kernel 1 agrees with both
+#   nonfinite  a lookup returning NaN or -inf (tests/techniques/nonfinite) and
+#              an rgba16f map holding +inf (inf_map): the cells store their
+#              counts, the run's summary, stderr and table.md flag them, the
+#              pixels are uncertain (not wrong); check fails against a
+#              baseline without the counts and passes against one holding them;
+#              `table --figure leaking` pivots, leaking + over_dark = soft_mae
 set -u
 bin=${1:?usage: cli_packages.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -25,9 +31,9 @@ fail() { echo "FAIL $*"; exit 1; }
 # figures.csv rows of one label, without the label and method columns (and the
 # provenance after percent_of), sorted
 rows() { awk -F, -v l="$2" 'NR > 1 && $6 == l { print $1","$2","$3","$4","$7","$8","$9","$10 }' "$1" | sort; }
-# the same without the fractional figures (soft_*: a package's visibility,
-# which a C method has not)
-hard_rows() { rows "$1" "$2" | awk -F, '$6 !~ /^soft_/'; }
+# the same without the fractional figures (soft_*, leaking, over_dark: a
+# package's visibility, which a C method has not)
+hard_rows() { rows "$1" "$2" | awk -F, '$6 !~ /^(soft_|leaking$|over_dark$)/'; }
 
 mkdir -p "$tmp/pk"
 cp -r techniques/pcf "$tmp/pk/my_pcf"
@@ -171,6 +177,66 @@ YAML
     [ "$a" = "$b" ] || { diff <(echo "$a") <(echo "$b") | head -20; fail "$l differs from the C nsm"; }
   done
   echo "ok nsm_cross: $(echo "$a" | wc -l) figure rows equal over $(cut -d, -f1,2 <<<"$a" | sort -u | wc -l) views"
+  ;;
+nonfinite)
+  # tests/techniques: a lookup returning NaN, -inf or +inf on the map's left
+  # half, and an rgba16f map holding +inf in its first 64 columns
+  cat >"$tmp/c.yaml" <<YAML
+name: nonfinite
+techniques: [$PWD/tests/techniques]
+scenes: [{scene: primitives, viewpoints: [side]}]
+viewports: [{width: 128, height: 128}]
+map_sizes: [256]
+methods:
+  - {label: nsm, method: nsm_glsl}
+  - {label: nan, method: nonfinite, value: 0}
+  - {label: ninf, method: nonfinite, value: 1}
+  - {label: map, method: inf_map}
+outputs: {overlays: false}
+YAML
+  "$bin" run "$tmp/c.yaml" --no-cache -o "$tmp/out" >"$tmp/o" 2>"$tmp/e" || { cat "$tmp/e"; fail "run"; }
+  db="$tmp/out/shadowlab.db"
+  nf() { sqlite3 "$db" "SELECT nonfinite FROM cells WHERE label = '$1'"; }
+  [ "$(nf nsm)" = 0 ] || fail "nsm_glsl has $(nf nsm) values not finite"
+  # the lookup's: every PFL pixel on the left half, and no other
+  for l in nan ninf; do
+    n=$(nf $l); pfl=$(sqlite3 "$db" "SELECT n_pfl FROM cells WHERE label = '$l'")
+    [ "$n" -gt 0 ] && [ "$n" -lt "$pfl" ] || fail "$l: $n values not finite of $pfl PFL pixels"
+    # a result, not a shadow: uncertain, and not among the wrong pixels
+    unc=$(sqlite3 "$db" "SELECT count FROM figures f JOIN cells c USING (cell_id) WHERE c.label = '$l' AND region = 'image' AND figure = 'uncertain'")
+    [ "$unc" = "$n" ] || fail "$l: $unc uncertain pixels, $n not finite"
+    grep -q "^$l .*NON-FINITE: $n value(s) in 1 cell(s)" "$tmp/o" || { cat "$tmp/o"; fail "the summary does not flag $l"; }
+    grep -q "NON-FINITE: primitives/side map 256 '$l': $n value" "$tmp/e" || { cat "$tmp/e"; fail "no NON-FINITE line for $l"; }
+  done
+  [ "$(nf nan)" = "$(nf ninf)" ] || fail "NaN and -inf counted apart: $(nf nan) vs $(nf ninf)"
+  # the map's: 64 columns of a 256² map (no guard band)
+  [ "$(nf map)" = 16384 ] || fail "inf_map: $(nf map) texels not finite, not 64 x 256"
+  grep -q "^nsm .*NON-FINITE" "$tmp/o" && fail "the summary flags nsm_glsl"
+  grep -q "NON-FINITE: 256²: $(nf nan) value(s)" "$tmp/out/nonfinite/table.md" ||
+    fail "table.md has no NON-FINITE note"
+  # check: the store against its own baseline passes (it holds the counts);
+  # against one without them (written before the counter, or holding 0) fails
+  "$bin" check "$db" --baseline "$tmp/b.yaml" --update >/dev/null 2>&1 || fail "check --update"
+  grep -q "nonfinite: $(nf nan)" "$tmp/b.yaml" || fail "the baseline does not hold the count"
+  "$bin" check "$db" --baseline "$tmp/b.yaml" --exact >/dev/null || fail "check against its own baseline"
+  sed 's/, nonfinite: [0-9]*//' "$tmp/b.yaml" >"$tmp/old.yaml"
+  sed 's/nonfinite: [0-9]*/nonfinite: 0/' "$tmp/b.yaml" >"$tmp/zero.yaml"
+  for b in old zero; do
+    out=$("$bin" check "$db" --baseline "$tmp/$b.yaml" --format md); rc=$?
+    [ $rc -eq 1 ] || { echo "$out"; fail "check against the $b baseline: exit $rc, not 1"; }
+    echo "$out" | grep -q "nonfinite" || { echo "$out"; fail "check's table does not name nonfinite"; }
+  done
+  # the fractional figures are figures: the pivot takes leaking and
+  # over_dark, and their sum is soft_mae (the non-finite pixels left out)
+  "$bin" table "$db" --figure leaking --rows label --cols map_size --format csv >"$tmp/leak.csv" 2>&1 ||
+    { cat "$tmp/leak.csv"; fail "table --figure leaking"; }
+  grep -q '^nsm,[0-9.]*$' "$tmp/leak.csv" || { cat "$tmp/leak.csv"; fail "no leaking row for nsm"; }
+  bad=$(sqlite3 "$db" "SELECT c.label FROM cells c JOIN figures m ON m.cell_id = c.cell_id AND m.figure = 'soft_mae'
+                       JOIN figures l ON l.cell_id = c.cell_id AND l.figure = 'leaking'
+                       JOIN figures o ON o.cell_id = c.cell_id AND o.figure = 'over_dark'
+                       WHERE abs(l.percent + o.percent - m.percent) > 1e-9 OR m.percent IS NULL")
+  [ -z "$bad" ] || fail "leaking + over_dark != soft_mae: $bad"
+  echo "ok nonfinite: NaN $(nf nan), -inf $(nf ninf) pixels; $(nf map) map texels"
   ;;
 *) fail "unknown case $case_" ;;
 esac

@@ -155,8 +155,9 @@ static void print_event(const struct sl_run_event *ev, void *user)
         break;
     }
     case SL_EVENT_NONFINITE:
-        fprintf(stderr, "shadowlab: NON-FINITE: %s/%s map %d '%s': %llu G-buffer or shadow-map value(s) "
-                        "not finite or out of range\n", cl->scene, cl->viewpoint, c->maps[cl->key.map],
+        fprintf(stderr, "shadowlab: NON-FINITE: %s/%s map %d '%s': %llu value(s) not finite or out of range "
+                        "(G-buffer, shadow maps, the method's visibility)\n", cl->scene, cl->viewpoint,
+                c->maps[cl->key.map],
                 c->methods[cl->key.method].label, (unsigned long long)cl->nonfinite);
         break;
     case SL_EVENT_PROGRESS:
@@ -175,14 +176,16 @@ static void print_summary(const struct sl_config *c, const struct sl_run_result 
         return;
     printf("%-20s %6s %14s %12s\n", "label", "cells", "wrong pixels", "of pixels");
     for (int m = 0; m < c->nmethods; m++) {
-        uint64_t wrong = 0, pixels = 0;
+        uint64_t wrong = 0, pixels = 0, nonfinite = 0;
         double mae = 0, frac = 0;
-        int n = 0, nsoft = 0, nfrac = 0;
+        int n = 0, nsoft = 0, nfrac = 0, nbad = 0;
         for (int i = 0; i < r->ncells; i++) {
             const struct sl_cell *cl = &r->cells[i];
             if (cl->key.method != m)
                 continue;
             n++;
+            nonfinite += cl->nonfinite;
+            nbad += cl->nonfinite > 0;
             if (cl->has_frac) {
                 nfrac++;
                 frac += cl->soft.pct[SL_SFIG_soft_mae];
@@ -198,14 +201,18 @@ static void print_summary(const struct sl_config *c, const struct sl_run_result 
         if (!n)
             continue;
         if (nsoft == n)
-            printf("%-20s %6d %14s %11.3f%% mean absolute error of visibility\n", c->methods[m].label, n, "-",
+            printf("%-20s %6d %14s %11.3f%% mean absolute error of visibility", c->methods[m].label, n, "-",
                    mae / nsoft);
         else if (nfrac)
-            printf("%-20s %6d %14llu %11.3f%%   mean |v - truth| %.3f%% of PFL\n", c->methods[m].label, n,
+            printf("%-20s %6d %14llu %11.3f%%   mean |v - truth| %.3f%% of PFL", c->methods[m].label, n,
                    (unsigned long long)wrong, pixels ? 100.0 * (double)wrong / (double)pixels : 0.0, frac / nfrac);
         else
-            printf("%-20s %6d %14llu %11.3f%%\n", c->methods[m].label, n, (unsigned long long)wrong,
+            printf("%-20s %6d %14llu %11.3f%%", c->methods[m].label, n, (unsigned long long)wrong,
                    pixels ? 100.0 * (double)wrong / (double)pixels : 0.0);
+        /* a value not finite is a result of its own, left out of the figures above */
+        if (nbad)
+            printf("   NON-FINITE: %llu value(s) in %d cell(s)", (unsigned long long)nonfinite, nbad);
+        putchar('\n');
     }
 }
 

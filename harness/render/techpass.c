@@ -56,6 +56,26 @@ static const char fs_blur[] =
     "    sl_out = s / float(2 * sl_radius + 1);\n"
     "}\n";
 
+/* The maps' texels that are not finite (NaN, +-inf; read from the bits):
+ * every other fragment is discarded, and an occlusion query counts the rest. */
+static const char fs_finite[] =
+    "#version 450 core\n"
+    "uniform sampler2D sl_m[4];\n"
+    "uniform int sl_nmaps;\n"
+    "layout(location = 0) out vec4 sl_out;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    bool bad = false;\n"
+    "    for (int i = 0; i < sl_nmaps; i++) {\n"
+    "        uvec4 b = floatBitsToUint(texelFetch(sl_m[i], px, 0)) & uvec4(0x7f800000u);\n"
+    "        bad = bad || any(equal(b, uvec4(0x7f800000u)));\n"
+    "    }\n"
+    "    if (!bad)\n"
+    "        discard;\n"
+    "    sl_out = vec4(0.0);\n"
+    "}\n";
+
 /* ---- compiling, with the driver's log mapped to the package's file ---- */
 
 static GLuint compile(GLenum type, const char *src, char *log, size_t nlog)
@@ -134,6 +154,8 @@ enum sl_err sl_techpass_init(struct sl_techpass *p, const struct sl_technique *t
         e = build(vs_full, lfs, &p->prog_lookup, NULL, lookup_file, d);
     if (!e)
         e = build(vs_full, fs_blur, &p->prog_blur, NULL, NULL, d);
+    if (!e)
+        e = build(vs_full, fs_finite, &p->prog_finite, NULL, NULL, d);
     free(mfs);
     free(lfs);
     if (!e) {
@@ -183,8 +205,8 @@ void sl_techpass_free(struct sl_techpass *p)
         maps_free(p);
     if (p->lw)
         lookup_free(p);
-    GLuint progs[4] = {p->prog_map, p->prog_empty, p->prog_lookup, p->prog_blur};
-    for (int i = 0; i < 4; i++)
+    GLuint progs[5] = {p->prog_map, p->prog_empty, p->prog_lookup, p->prog_blur, p->prog_finite};
+    for (int i = 0; i < 5; i++)
         if (progs[i])
             glDeleteProgram(progs[i]);
     if (p->vao_empty)
@@ -359,6 +381,47 @@ static enum sl_err post_passes(struct sl_techpass *p, const struct sl_params *v,
     return sl_gl_check("technique post passes", d);
 }
 
+/* Count the maps' texels (level 0, guard band included) that are not
+ * finite into costs.map_nonfinite: drawn into the scratch ping texture of
+ * map 0, which no later pass reads before the blur writes it. Not timed: a
+ * check of the harness, not the technique's work. */
+static enum sl_err maps_finite(struct sl_techpass *p, struct sl_diag *d)
+{
+    const struct sl_technique *t = p->t;
+    const int N = p->size;
+    GLuint q = 0;
+    glGenQueries(1, &q);
+    glBindFramebuffer(GL_FRAMEBUFFER, p->blur_fbo);
+    glNamedFramebufferTexture(p->blur_fbo, GL_COLOR_ATTACHMENT0, p->ping_tex[0], 0);
+    glNamedFramebufferDrawBuffer(p->blur_fbo, GL_COLOR_ATTACHMENT0);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glViewport(0, 0, N, N);
+    glUseProgram(p->prog_finite);
+    char name[16];
+    for (int i = 0; i < t->nmaps; i++) {
+        glBindTextureUnit((GLuint)i, p->map_tex[i]);
+        snprintf(name, sizeof name, "sl_m[%d]", i);
+        glUniform1i(glGetUniformLocation(p->prog_finite, name), i);
+    }
+    glUniform1i(glGetUniformLocation(p->prog_finite, "sl_nmaps"), t->nmaps);
+    glBindVertexArray(p->vao_empty);
+    glBeginQuery(GL_SAMPLES_PASSED, q);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 n = 0;
+    glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
+    glDeleteQueries(1, &q);
+    for (int i = 0; i < t->nmaps; i++)
+        glBindTextureUnit((GLuint)i, 0);
+    glNamedFramebufferTexture(p->blur_fbo, GL_COLOR_ATTACHMENT0, 0, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    p->costs.map_nonfinite = (uint64_t)n;
+    return sl_gl_check("technique maps' finite check", d);
+}
+
 static enum sl_err maps_ready(struct sl_techpass *p, const struct sl_light_frame *f, const struct sl_params *v,
                               struct sl_diag *d)
 {
@@ -437,7 +500,9 @@ enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m
     p->costs.ms_map = ms;
     p->costs.gpu_map = sl_gl_timer_ms(&gt, ms);
     e = sl_gl_check("technique map pass", d);
-    return e ? e : post_passes(p, v, d);
+    if (!e)
+        e = post_passes(p, v, d);
+    return e ? e : maps_finite(p, d);
 }
 
 enum sl_err sl_techpass_upload(struct sl_techpass *p, const struct sl_light_frame *f,
@@ -453,7 +518,9 @@ enum sl_err sl_techpass_upload(struct sl_techpass *p, const struct sl_light_fram
     }
     p->costs.ms_map = p->costs.gpu_map = 0.0;
     e = sl_gl_check("technique map upload", d);
-    return e ? e : post_passes(p, v, d);
+    if (!e)
+        e = post_passes(p, v, d);
+    return e ? e : maps_finite(p, d);
 }
 
 /* ---- lookup ---- */
@@ -561,6 +628,12 @@ enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_fram
     double t1 = sl_now();
     glGetTextureImage(p->out_tex, 0, GL_RED, GL_FLOAT, (GLsizei)(n * sizeof(float)), vis);
     double t2 = sl_now();
+    uint64_t bad = 0;
+    for (size_t i = 0; i < n; i++)
+        if (vis[i] < 0.0f && (!mask || mask[i])) {   /* the main's mark of a value not finite */
+            vis[i] = NAN;
+            bad++;
+        }
     for (int i = 0; i < 7; i++)
         glBindTextureUnit((GLuint)i, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -570,6 +643,7 @@ enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_fram
     p->costs.gpu_lookup = sl_gl_timer_ms(&gt, p->costs.ms_lookup);
     p->costs.ms_readback = 1e3 * (t2 - t1);
     p->costs.pixels = pixels;
+    p->costs.nonfinite = bad;
     p->costs.lookups = (uint64_t)llround(sl_tech_taps(t, v) * (double)pixels);
     return sl_gl_check("technique lookup pass", d);
 }

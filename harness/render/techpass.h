@@ -21,7 +21,12 @@
  * sl_frame_project computes it on the CPU (the same float operations in the
  * same order, with the frame's own matrix and size, division correctly
  * rounded), so a package that compares depths with texels picks the texel
- * and the depth a C method would; then sl_lookup, clamped to [0, 1].
+ * and the depth a C method would; then sl_lookup, clamped to [0, 1]. A
+ * value sl_lookup returns that is not finite (NaN, +-inf) is not clamped
+ * into a shadow: it comes back as NaN and is counted (costs.nonfinite).
+ * After the map and post passes the maps' texels that are not finite are
+ * counted on the GL (costs.map_nonfinite: an rgba16f map overflows to inf
+ * where a float32 one would not).
  *
  * Prelude additions to the contract (set by the harness before sl_lookup):
  *   ivec2 sl_home_texel;  the texel the point lands in, in the guarded map:
@@ -56,13 +61,15 @@ struct sl_techpass_costs {
     double ms_readback;             /* the visibility read back */
     uint64_t lookups;               /* taps x pixels looked up */
     uint64_t pixels;                /* pixels looked up */
+    uint64_t nonfinite;             /* of those, looked up as NaN or +-inf (vis NaN there) */
+    uint64_t map_nonfinite;         /* texels of the maps (level 0, guard band too) not finite */
     int guard;                      /* g, texels */
     int map_size;                   /* S + 2g */
 };
 
 struct sl_techpass {
     const struct sl_technique *t;
-    GLuint prog_map, prog_empty, prog_lookup, prog_blur;
+    GLuint prog_map, prog_empty, prog_lookup, prog_blur, prog_finite;
     GLuint vao_empty;               /* for the fullscreen triangles */
     /* the maps of the last frame, size N = S + 2g */
     int size, guard, levels;

@@ -76,7 +76,10 @@ static const char lookup_main[] =
     "    sl_map_pos = mp;\n"
     "    vec2 uv = mp / sl_map_size;\n"
     "    vec3 toward = sl_persp != 0 ? normalize(sl_light_pos - p) : -sl_light_dir;\n"
-    "    sl_visibility = clamp(sl_lookup(p, n, uv, c.z, dot(n, toward)), 0.0, 1.0);\n"
+    "    float sl_v = sl_lookup(p, n, uv, c.z, dot(n, toward));\n"
+    "    // not finite (NaN, +-inf: read from the bits, which no folding of\n"
+    "    // isnan removes): -1, a value no clamped visibility takes\n"
+    "    sl_visibility = (floatBitsToUint(sl_v) & 0x7f800000u) == 0x7f800000u ? -1.0 : clamp(sl_v, 0.0, 1.0);\n"
     "}\n";
 
 /* A growing string; oom sticks. */

@@ -57,6 +57,12 @@
  * study's thesis sections (it keeps no list of methods). display: the
  * label's name for people (config.h: `display:`, else the method's own,
  * else the label), which LaTeX tables print.
+ * nonfinite: values of the cell not finite (cell.h: the G-buffer's, the
+ * layers' depths outside [0, 1], the method's visibility, a package's map
+ * texels); a result, not a shadow: the pixels are left out of the figures
+ * (a package's verdict there is uncertain), the cell is flagged NON-FINITE
+ * in the run's summary, the tables and the report, and check compares it
+ * exactly (a baseline without the key holds 0).
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -141,7 +147,8 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(frac,                runs,     0,    0,   "",                   none,      _,              cl->has_frac) \
     X(family,              text,     40,   0,   "",                   none,      _,              sl_method_family(cm->method)) \
     X(beside,              text,     64,   0,   "",                   none,      _,              sl_method_beside(cm->method)) \
-    X(display,             text,     64,   0,   "",                   none,      _,              cm->display)
+    X(display,             text,     64,   0,   "",                   none,      _,              cm->display) \
+    X(nonfinite,           count,    0,    45,  "nonfinite",          invariant, nonfinite,      cl->nonfinite)
 /* clang-format on */
 
 /* One enumerator per column: SL_COL_<name>. */

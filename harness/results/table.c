@@ -262,6 +262,13 @@ static int md_model(struct sl_tab *t, const struct sl_cell_record *cells, const 
               "(means in % of full visibility).", fi);
     else if (fi)
         view_counts(fi, c0, 0);
+    for (int k = 0; fn && k < g->n; k++) {
+        const struct sl_cell_record *c = &cells[g->idx[k]];
+        if (c->nonfinite)
+            fprintf(fn, "NON-FINITE: %d\xC2\xB2: %llu value(s) not finite (NaN, \xC2\xB1inf) or out of range; "
+                        "their pixels are left out of the figures (a package's verdict there: uncertain).\n\n",
+                    c->map_size, (unsigned long long)c->nonfinite);
+    }
     if (fn && shown < cell_rows(c0))
         fprintf(fn, "(%d of %d figures shown: %s; table.md and `shadowlab table --figures all` have every row.)\n\n",
                 shown, cell_rows(c0),

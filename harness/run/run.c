@@ -604,6 +604,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             x->vd.has_base = x->nvd.has_base;
             x->vd.has_detail = x->nvd.has_detail, x->vd.nframes = 0;   /* NSM's: the cell's frame */
             x->vd.has_vis = 0;
+            x->vd.nonfinite = 0;
             res->passes.contour_runs--;
             cost = x->nsm_cost;
             e = sl_cube_mark(&x->cube, &x->vd, d);   /* a point light's faces (cuberun.h) */
@@ -611,6 +612,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             x->vd.has_base = x->vd.nframes = 0;   /* nframes: the cell's frame unless the method says */
             x->vd.has_detail = 0;
             x->vd.has_vis = 0;
+            x->vd.nonfinite = 0;
             memset(x->vd.tests, 0, npx);
             e = sl_cube_method_run(&x->cube, cm->method, &a, &x->vd, &cost, d);
         }

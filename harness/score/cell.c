@@ -360,6 +360,7 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
     const struct sl_view *v = in->view;
     int W = v->w, H = v->h;
     size_t npx = (size_t)W * (size_t)H;
+    cell->nonfinite += vd->nonfinite;
     if (in->method->lights & SL_LIGHTS_AREA) {
         memset(&cell->fig, 0, sizeof cell->fig);
         cell->fig.background = v->n_background;

@@ -84,7 +84,10 @@ struct sl_cell {
     uint64_t violations;               /* of the method's declared exactness; must be 0 */
     uint64_t flicker, flicker_compared;/* against the previous frame of its path (temporal.h); 0, 0 none */
     uint64_t nonfinite;                /* G-buffer values not finite, depths of the layers it reads
-                                        * outside [0, 1]; must be 0 */
+                                        * outside [0, 1], the method's visibility not finite or
+                                        * outside [0, 1], its own maps' texels not finite
+                                        * (vd->nonfinite); must be 0: stored, flagged, and a
+                                        * failure of check unless the baseline holds it */
     /* texel coherence (Moderno 2011 Tables 20/22): per region, PFL pixels by
      * how many of the tested texels say shadow, and of those how many are
      * shadowed in truth; has_patterns when the method reports it */

@@ -44,17 +44,19 @@ void sl_soft_figures_compute(int w, int h, const uint32_t *tri, const float *v, 
                              struct sl_soft_figures *out)
 {
     memset(out, 0, sizeof *out);
-    double sum_abs = 0, sum_sq = 0, sum_signed = 0, sum_se = 0;
+    double sum_abs = 0, sum_sq = 0, sum_signed = 0, sum_se = 0, sum_leak = 0, sum_dark = 0;
     uint64_t *n = out->n;
     size_t np = (size_t)w * (size_t)h;
     for (size_t i = 0; i < np; i++) {
-        if (!tri[i])
-            continue;
+        if (!tri[i] || !isfinite(v[i]))
+            continue;   /* not finite: no error to take (the cell counts it, nonfinite) */
         n[SL_SFIG_soft_pixels]++;
         double e = (double)v[i] - (double)t[i];
         sum_abs += fabs(e);
         sum_sq += e * e;
         sum_signed += e;
+        sum_leak += e > 0 ? e : 0;
+        sum_dark += e < 0 ? -e : 0;
         if (se)
             sum_se += se[i];
         n[SL_SFIG_soft_within_005] += fabs(e) <= 0.05;
@@ -66,6 +68,7 @@ void sl_soft_figures_compute(int w, int h, const uint32_t *tri, const float *v, 
     }
     uint64_t px = n[SL_SFIG_soft_pixels];
     n[SL_SFIG_soft_mae] = n[SL_SFIG_soft_rmse] = n[SL_SFIG_soft_bias] = px;
+    n[SL_SFIG_leaking] = n[SL_SFIG_over_dark] = px;
     n[SL_SFIG_soft_truth_stderr] = se ? px : 0;
     for (int k = 0; k < SL_SFIG_COUNT; k++) {
         out->pct[k] = NAN;
@@ -82,6 +85,8 @@ void sl_soft_figures_compute(int w, int h, const uint32_t *tri, const float *v, 
         out->pct[SL_SFIG_soft_mae] = 100.0 * sum_abs / (double)px;
         out->pct[SL_SFIG_soft_rmse] = 100.0 * sqrt(sum_sq / (double)px);
         out->pct[SL_SFIG_soft_bias] = 100.0 * sum_signed / (double)px;
+        out->pct[SL_SFIG_leaking] = 100.0 * sum_leak / (double)px;
+        out->pct[SL_SFIG_over_dark] = 100.0 * sum_dark / (double)px;
         if (se)
             out->pct[SL_SFIG_soft_truth_stderr] = 100.0 * sum_se / (double)px;
     }

@@ -3,7 +3,9 @@
  * 2009): a method's visible fraction of the light per pixel against the
  * area truth's.
  *
- * Every non-background pixel counts; a pixel is lit when its visible fraction
+ * Every non-background pixel counts but one whose method visibility is
+ * not finite (NaN, +-inf: no error can be taken of it; the cell counts it
+ * apart, nonfinite); a pixel is lit when its visible fraction
  * is 1, in umbra when it is 0, in penumbra otherwise (the truth's estimate,
  * from its samples: a pixel with every sample visible is lit). The errors are
  * in units of visibility (0..1) and reported as percentages of full
@@ -16,7 +18,8 @@
 
 /* name, what it is, what its value is ("count" figures: the value is a share
  * of `of`, in percent; "mean" figures: a mean in percent of full visibility) */
-#define SL_SOFT_FIGURES(X)                                                                      \
+#define SL_SOFT_FIGURES(X) SL_SOFT_BASE_FIGURES(X) SL_SOFT_SPLIT_FIGURES(X)
+#define SL_SOFT_BASE_FIGURES(X)                                                                 \
     X(soft_pixels,        "pixels (not background)",                                  "")           \
     X(soft_mae,           "mean absolute error of the visible fraction",               "visibility") \
     X(soft_rmse,          "root mean square error of the visible fraction",            "visibility") \
@@ -31,6 +34,13 @@
     X(soft_penumbra_right,"penumbra in truth and penumbra by the method",               "soft_truth_penumbra") \
     X(soft_class_right,   "pixels the method classes as the truth does (lit/umbra/penumbra)", "soft_pixels") \
     X(soft_truth_stderr,  "mean standard error of the truth's estimate",               "visibility")
+
+/* The mean error split by its sign (leaking + over_dark = soft_mae; with a
+ * 0/1 truth, (mae + bias) / 2 and (mae - bias) / 2): figures of the store,
+ * figures.csv and the pivot; a baseline may lack them (check.c) */
+#define SL_SOFT_SPLIT_FIGURES(X)                                                                \
+    X(leaking,            "light leaking: mean of max(v - truth, 0) (too light)",         "visibility") \
+    X(over_dark,          "over-darkening: mean of max(truth - v, 0) (too dark)",         "visibility")
 
 enum sl_soft_figure {
 #define SL_SOFT_ENUM(name, text, of) SL_SFIG_##name,
