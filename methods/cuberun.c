@@ -1,9 +1,10 @@
 /*
  * cuberun.c — see cuberun.h.
  *
- * Invariants: a pixel's verdict, how, base, detail and tests are those of
- * the run on its own face (tests/test_cube.c: per-face counts, seams
- * against one wide frustum, exactness on the point scenes).
+ * Invariants: a pixel's verdict, how, base, detail, tests and visibility
+ * (a package's) are those of the run on its own face (tests/test_cube.c:
+ * per-face counts, seams against one wide frustum, exactness on the point
+ * scenes; packages beside them, nsm_glsl against nsm).
  */
 #include "cuberun.h"
 #include <math.h>
@@ -42,7 +43,7 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
                                struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d)
 {
     cb->ran = 0;
-    if (!cb->map1 || !(m->needs(a->params) & ((1u << SL_LAYER_COUNT) - 1u)))
+    if (!cb->map1 || !(m->needs(a->params) & (((1u << SL_LAYER_COUNT) - 1u) | SL_NEED_OWN_MAPS)))
         return m->run(a, out, c, d);
     const struct sl_view *v = a->view;
     const size_t n = (size_t)v->w * (size_t)v->h;
@@ -50,9 +51,13 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "cube: %zu pixels, the view %zu", cb->npx, n);
     double t0 = sl_now();
     uint8_t *cls = malloc(n), *buf = malloc(5 * n);
-    if (!cls || !buf) {
+    /* a face's visibility (a package's) apart: its run writes every pixel,
+     * the other faces' as background */
+    float *vis = out->vis ? malloc(n * sizeof *vis) : NULL;
+    if (!cls || !buf || (out->vis && !vis)) {
         free(cls);
         free(buf);
+        free(vis);
         return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "cube: per-face copies of %zu pixels", n);
     }
     /* fixed verdicts first; a face without a PFL pixel runs nothing, its
@@ -66,6 +71,8 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
         out->base[i] = out->v[i];
         out->detail[i] = 0;
         out->tests[i] = 0;
+        if (out->vis)
+            out->vis[i] = 0.0f;
     }
     struct sl_verdicts tmp = *out;
     tmp.v = buf;
@@ -73,12 +80,13 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
     tmp.base = buf + 2 * n;
     tmp.detail = buf + 3 * n;
     tmp.tests = buf + 4 * n;
+    tmp.vis = vis;
     tmp.frames = NULL;
     tmp.slice = NULL;
     tmp.nframes = tmp.nown = 0;
     struct sl_view mv = *v;
     mv.cls = cls;
-    int has_base = 0, has_detail = 0;
+    int has_base = 0, has_detail = 0, has_vis = 0;
     enum sl_err e = SL_OK;
     for (int f = 0; f < 6 && !e; f++) {
         cb->cost[f].ms_method = 0.0;
@@ -100,7 +108,7 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
         na.view = &mv;
         na.frame = &cb->f[f];
         struct sl_cost nc = {0};
-        tmp.has_base = tmp.has_detail = 0;
+        tmp.has_base = tmp.has_detail = tmp.has_vis = 0;
         memset(tmp.tests, 0, n);
         if ((e = m->run(&na, &tmp, &nc, d)))
             break;
@@ -114,9 +122,12 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
                     out->base[i] = tmp.base[i];
                 if (tmp.has_detail)
                     out->detail[i] = tmp.detail[i];
+                if (tmp.has_vis)
+                    out->vis[i] = tmp.vis[i];
             }
         has_base |= tmp.has_base;
         has_detail |= tmp.has_detail;
+        has_vis |= tmp.has_vis;
         cb->cost[f].ms_method = nc.ms_method;
         cb->cost[f].lookups = nc.lookups;
         cb->cost[f].rays = nc.rays;
@@ -130,10 +141,13 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
     }
     free(cls);
     free(buf);
+    free(vis);
     if (e)
         return e;
     out->has_base = has_base;
     out->has_detail = has_detail;
+    out->has_vis = has_vis;
+    out->nonfinite = tmp.nonfinite;   /* the faces' counts, added to the run's (tmp began as out) */
     /* the method's time is the whole per-face loop: the faces' own runs and
      * the copies and merges the cube adds */
     c->ms_method += 1e3 * (sl_now() - t0);

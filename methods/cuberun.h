@@ -4,7 +4,10 @@
  *
  * Each method runs once per face with receivers, on a copy of the view in
  * which the other faces' pixels are background (as methods/zpart.c runs
- * NSM per slice), and the verdicts are merged by face. Costs: the cell's
+ * NSM per slice), and the verdicts are merged by face. A technique package
+ * (SL_NEED_OWN_MAPS) runs the same way: its map, post and lookup passes
+ * per face, over the face's perspective frame; its visibility and its
+ * count of texels not finite are merged too. Costs: the cell's
  * are summed over the faces (its ms_map_render is the six faces' renders
  * of each layer, its texels the six maps'); each face's own are kept in
  * the cube (struct sl_cube_face_cost) for the run's per-face report.
@@ -23,8 +26,9 @@
 /* Method m over a point light's cube (per face, merged; out gets the six
  * frames and the face per pixel for scoring), or m->run itself when the
  * cube holds nothing (not a point light: cb->map1 = 0) or m reads no layer
- * (raytrace: its rays go to the light's position whatever the frame, so
- * one run is the answer; it costs no face). */
+ * and renders no maps of its own (raytrace: its rays go to the light's
+ * position whatever the frame, so one run is the answer; it costs no
+ * face). */
 enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, const struct sl_method_args *a,
                                struct sl_verdicts *out, struct sl_cost *c, struct sl_diag *d);
 

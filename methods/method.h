@@ -70,6 +70,11 @@ struct sl_gl_mesh;
 /* The near and far depth layers of an area light and their N-buffer
  * (softmap.h; Curtis 2009). */
 #define SL_NEED_SOFT      (1u << 17)
+/* Maps of its own, rendered over the cell's light frame (a technique
+ * package: render/techpass.h): no layer of the driver's, yet a point
+ * light's cube runs it per face (cuberun.h) as it runs a method reading
+ * layers. */
+#define SL_NEED_OWN_MAPS  (1u << 18)
 
 enum sl_verdict {
     SL_V_NONE      = 0,   /* background */
@@ -170,7 +175,9 @@ static inline int sl_exact_violated(unsigned exact, uint8_t v, uint8_t how, uint
 }
 
 /* The lights a method handles. A hard-shadow method (lights = 0) runs under
- * a directional light, and under an area light taken as a point at its
+ * a directional light, a spot light, a point light (per face of its cube
+ * of six frames, methods/cuberun.h: a technique package's maps as a C
+ * method's layers), and under an area light taken as a point at its
  * centre: its frame is then the point's perspective frustum (frame.h), its
  * rays go to the point (sl_frame_toward), its figures and exactness answer
  * to the point's truth, and its verdicts, as a visible fraction 0 or 1,
@@ -182,11 +189,6 @@ static inline int sl_exact_violated(unsigned exact, uint8_t v, uint8_t how, uint
  * fits are orthographic in light space); a scene with an area light does
  * not run it unless its list names it, which is then an error. */
 #define SL_LIGHTS_DIRECTIONAL (1u << 2)
-/* A hard-shadow method that cannot run over a point light's cube faces
- * (a technique package renders one map per frame: the cube's six are not
- * yet its frames); a scene with a point light runs it only if named, then
- * an error. */
-#define SL_LIGHTS_NO_POINT (1u << 3)
 
 /* Optional figure families (struct sl_method.figures). The aliasing error m
  * of every PFL pixel (seed 004, score/aliasing.h): a tenth of the Morais

@@ -39,7 +39,7 @@ static struct pkg *pkg_of_tech(const struct sl_technique *t)
 static unsigned pkg_needs(const struct sl_method_params *p)
 {
     (void)p;
-    return 0;   /* the maps are its own (techpass.h), rendered in run */
+    return SL_NEED_OWN_MAPS;   /* rendered in run (techpass.h), per face of a point light's cube */
 }
 
 /* The parameters a package entry may give beside its own: cascades
@@ -241,7 +241,7 @@ enum sl_err sl_packages_load(struct sl_packages *set, const char *const *config_
             .family = k->t.family,
             .display = k->t.display[0] ? k->t.display : NULL,
             .exact = 0,
-            .lights = SL_LIGHTS_NO_POINT,
+            .lights = 0,
             .params = k->decl,
             .nparams = k->t.nparams + 2,
             .needs = pkg_needs,

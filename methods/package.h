@@ -6,9 +6,9 @@
  * for the cell's light frame and runs its lookup over the G-buffer on the
  * GL (render/techpass.h), the visibility read back and scored on the CPU.
  *
- * A package method is a hard-shadow method (lights 0: any light but a
- * point light's cube, an area light as a point at its centre), exact in
- * nothing; its verdict is lit iff the visibility >= the package's
+ * A package method is a hard-shadow method (lights 0: any light, a point
+ * light per face of its cube as the C methods run there, methods/cuberun.h;
+ * an area light as a point at its centre), exact in nothing; its verdict is lit iff the visibility >= the package's
  * threshold (uncertain where the lookup was not finite: NaN in vis, and the
  * maps' texels not finite counted in vd->nonfinite), and it hands the visibility itself to scoring (vd->vis,
  * has_vis) for the fractional figures. Its parameters are the package's,

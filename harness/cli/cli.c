@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
+#include "config.h"
 
 /* 2: bad input or usage (a config, a scene, a model, an option, a store or
  * file that cannot be read as what it should be); 3: a system failure (an
@@ -30,6 +31,25 @@ int cli_fail(enum sl_err e, const struct sl_diag *d)
     sl_diag_format(d, e, line, sizeof line);
     fprintf(stderr, "shadowlab: %s\n", line);
     return exit_code(e);
+}
+
+void cli_note_left_out(const struct sl_config *c)
+{
+    for (int si = 0; si < c->nscenes; si++) {
+        if (!c->scenes[si].left_out)
+            continue;
+        fprintf(stderr, "shadowlab: note: scene '%s' has %s light and names no methods list: it leaves out",
+                c->scenes[si].name, sl_config_light_name(c->scenes[si].light_type));
+        const char *sep = " ";
+        for (int k = 0; k < c->nmethods; k++) {
+            const char *why = sl_config_left_out_why(c, si, k);
+            if (why) {
+                fprintf(stderr, "%s%s (%s)", sep, c->methods[k].label, why);
+                sep = ", ";
+            }
+        }
+        fputc('\n', stderr);
+    }
 }
 
 int cli_usage_error(const char *msg, const char *text)

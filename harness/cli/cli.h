@@ -73,6 +73,11 @@ extern const char cli_usage_preview[];
  * the verb's help text and returns 2. */
 int cli_fail(enum sl_err e, const struct sl_diag *d);
 int cli_usage_error(const char *msg, const char *text);
+/* One note on stderr per scene of c that leaves labels out (a scene naming
+ * no list runs only the labels that handle its light): the scene, its
+ * light and each label with why, so no label is dropped unsaid. */
+struct sl_config;
+void cli_note_left_out(const struct sl_config *c);
 
 /* ---- options: getopt_long per verb ----
  * Each verb has a table of long options and a short-option string;

@@ -376,6 +376,8 @@ int cli_run(int argc, char **argv)
     }
     if (e)
         return cli_fail(e, &d);
+    if (!es.quiet)
+        cli_note_left_out(&c);
     int rc = 0;
     if (cells && (o.first >= sl_plan_count(&c) || o.last > sl_plan_count(&c))) {
         /* checked here, where the text is at hand: --cells 0:99999999999 names itself */

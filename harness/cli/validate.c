@@ -63,6 +63,7 @@ int cli_validate(int argc, char **argv)
     enum sl_err e = sl_config_load_with(file, ov.v, ov.n, &c, &d);
     if (e)
         return cli_fail(e, &d);
+    cli_note_left_out(&c);
     printf("%s: ok: %d scene(s), %d cell(s)\n", file, c.nscenes, sl_plan_count(&c));
     sl_config_write(&c, stdout);
     sl_config_free(&c);

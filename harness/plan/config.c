@@ -1096,33 +1096,59 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
     return SL_OK;
 }
 
+/* The lights label k handles (SL_LIGHTS_*): its method's, and a package's
+ * cascades (partitions > 1: package.h) need a directional light as zpart's
+ * do. */
+unsigned sl_config_label_lights(const struct sl_config *c, int k)
+{
+    const struct sl_config_method *cm = &c->methods[k];
+    unsigned lights = cm->method->lights;
+    if (cm->params.tech && sl_method_param(&cm->params, "partitions") > 1)
+        lights |= SL_LIGHTS_DIRECTIONAL;
+    return lights;
+}
+
+/* Why label k cannot run under a light of type `type`, NULL when it can. */
+static const char *label_cannot(const struct sl_config *c, int k, int type)
+{
+    const unsigned lights = sl_config_label_lights(c, k);
+    if ((lights & SL_LIGHTS_AREA) && type != SL_LIGHT_AREA)
+        return "handles area lights only";
+    if ((lights & SL_LIGHTS_DIRECTIONAL) && type != SL_LIGHT_DIRECTIONAL)
+        return c->methods[k].params.tech ? "runs cascades (partitions > 1), which need a directional light"
+                                         : "handles directional lights only";
+    return NULL;
+}
+
 /* Scene entry si's labels: those its list names, each of which must handle
  * its light, or without a list every label that handles its light, so one
- * config can mix scenes of every light: the hard-shadow methods handle all
- * (a spot or point light at its position, an area light as a point at its
- * centre), the soft ones area lights only, zpart and lispsm directional
- * lights only. */
+ * config can mix scenes of every light: the hard-shadow methods and the
+ * technique packages handle all (a spot light at its position, a point
+ * light per face of its cube, an area light as a point at its centre), the
+ * soft ones area lights only, zpart, lispsm and a package's cascades
+ * directional lights only. The labels a scene without a list leaves out
+ * are kept (left_out) and named by validate and run: none is dropped
+ * silently. */
 static enum sl_err scene_methods(const struct raw_scene_ref *rs, unsigned si, const char *file,
                                  const struct sl_yaml_pos *ix, struct sl_config *c, struct sl_diag *d)
 {
     char key[96];
     struct sl_config_scene *cs = &c->scenes[si];
-    const int area = cs->light_type == SL_LIGHT_AREA, dirl = cs->light_type == SL_LIGHT_DIRECTIONAL;
-    static const char *const light_names[] = {"a directional", "a spot", "a point", "an area"};
-    const char *lname = light_names[cs->light_type & 3];
-    cs->method_mask = 0u;
+    const int dirl = cs->light_type == SL_LIGHT_DIRECTIONAL;
+    const char *lname = sl_config_light_name(cs->light_type);
+    cs->method_mask = cs->left_out = 0u;
     for (int k = 0; k < c->nmethods && !rs->methods_count; k++) {
-        unsigned lights = c->methods[k].method->lights;
-        if (!((lights & SL_LIGHTS_AREA) && !area) && !((lights & SL_LIGHTS_DIRECTIONAL) && !dirl) &&
-            !((lights & SL_LIGHTS_NO_POINT) && cs->light_type == SL_LIGHT_POINT))
+        if (!label_cannot(c, k, cs->light_type))
             cs->method_mask |= 1u << k;
+        else
+            cs->left_out |= 1u << k;
     }
     if (!rs->methods_count && !cs->method_mask) {
         snprintf(key, sizeof key, "scenes[%u]", si);
         return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
                            "scene '%s' has %s light and no method of this config handles it (hard-shadow "
-                           "methods handle every light; hard_point, point_map, soft_mc need an area light; "
-                           "zpart, lispsm a directional one)", cs->name, lname);
+                           "methods and technique packages handle every light; hard_point, point_map, soft_mc "
+                           "need an area light; zpart, lispsm and cascades a directional one)", cs->name, lname);
     }
     for (unsigned i = 0; i < rs->methods_count; i++) {
         snprintf(key, sizeof key, "scenes[%u].methods[%u]", si, i);
@@ -1154,27 +1180,29 @@ static enum sl_err scene_methods(const struct raw_scene_ref *rs, unsigned si, co
                                "fits a directional light's frame only (label %s)", cs->name, lname,
                                c->methods[k].label);
         }
-        if (!area && (c->methods[k].method->lights & SL_LIGHTS_AREA)) {
+        const char *why = label_cannot(c, k, cs->light_type);
+        if (why) {
             snprintf(key, sizeof key, "scenes[%u].methods", si);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has %s light but method '%s' (label %s) handles area "
-                               "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
-        }
-        if (cs->light_type == SL_LIGHT_POINT && (c->methods[k].method->lights & SL_LIGHTS_NO_POINT)) {
-            snprintf(key, sizeof key, "scenes[%u].methods", si);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has a point light but method '%s' (label %s) does not run over a "
-                               "point light's cube faces (technique packages: directional, spot and area "
-                               "lights)", cs->name, c->methods[k].method->name, c->methods[k].label);
-        }
-        if (!dirl && (c->methods[k].method->lights & SL_LIGHTS_DIRECTIONAL)) {
-            snprintf(key, sizeof key, "scenes[%u].methods", si);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key,
-                               "scene '%s' has %s light but method '%s' (label %s) handles directional "
-                               "lights only", cs->name, lname, c->methods[k].method->name, c->methods[k].label);
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has %s light but method '%s' (label %s) %s",
+                               cs->name, lname, c->methods[k].method->name, c->methods[k].label, why);
         }
     }
     return SL_OK;
+}
+
+const char *sl_config_light_name(int type)
+{
+    static const char *const names[] = {"a directional", "a spot", "a point", "an area"};
+    return type >= 0 && type < 4 ? names[type] : "an unknown";
+}
+
+const char *sl_config_left_out_why(const struct sl_config *c, int si, int k)
+{
+    const char *why = si >= 0 && si < c->nscenes && k >= 0 && k < c->nmethods &&
+                              (c->scenes[si].left_out & (1u << k))
+                          ? label_cannot(c, k, c->scenes[si].light_type)
+                          : NULL;
+    return why;
 }
 
 /* A scene may run a subset of the method labels (e.g. only the cheap ones

@@ -78,6 +78,8 @@ struct sl_config_scene {
     char paths[SL_MAX_PATHS][24];
     unsigned map_mask;                /* bit i: swept at map size maps[i] */
     unsigned method_mask;             /* bit i: runs methods[i] */
+    unsigned left_out;                /* bit i: methods[i] left out, the scene naming no list and the
+                                       * label handling no light of its kind (sl_config_left_out_why) */
     int      light_type;              /* enum sl_light_type of the scene's light */
 };
 
@@ -141,6 +143,15 @@ enum sl_err sl_config_reference(FILE *f, int roff, struct sl_diag *d);
  * front faces culled: the configured parameters are then exactly those),
  * -1 none (run.c: contour_from nsm). */
 int sl_config_contour_label(const struct sl_config *c);
+
+/* The lights label k handles (SL_LIGHTS_* of method.h): its method's, with
+ * SL_LIGHTS_DIRECTIONAL for a package label running cascades. */
+unsigned sl_config_label_lights(const struct sl_config *c, int k);
+/* "a point" for SL_LIGHT_POINT (a light type as a scene's messages name it). */
+const char *sl_config_light_name(int type);
+/* Why scene si left out label k (its bit in left_out: "handles area lights
+ * only"), NULL when it did not. */
+const char *sl_config_left_out_why(const struct sl_config *c, int si, int k);
 
 
 #endif
