@@ -16,6 +16,14 @@
 #              none: the same plain test of the same layer) agree on every
 #              figure of every region of the default scene's three views and
 #              Moderno 2011's four scenes; pcf with kernel 1 agrees with both
+#   point      packages under a point light (the room, the grazing light):
+#              each label runs on every view (the cell count holds them), per
+#              face of the light's cube: nsm_glsl and pcf with kernel 1 agree
+#              with the C nsm on every figure of every region, the faces
+#              counted as the C methods' are; pcf, vsm and evsm run beside
+#              them; the exact C methods keep 0 violations; a label that
+#              cannot run there is named (a note without a list, exit 2 with
+#              one)
 #   nonfinite  a lookup returning NaN or -inf (tests/techniques/nonfinite) and
 #              an rgba16f map holding +inf (inf_map): the cells store their
 #              counts, the run's summary, stderr and table.md flag them, the
@@ -177,6 +185,71 @@ YAML
     [ "$a" = "$b" ] || { diff <(echo "$a") <(echo "$b") | head -20; fail "$l differs from the C nsm"; }
   done
   echo "ok nsm_cross: $(echo "$a" | wc -l) figure rows equal over $(cut -d, -f1,2 <<<"$a" | sort -u | wc -l) views"
+  ;;
+point)
+  cat >"$tmp/c.yaml" <<'YAML'
+name: point
+scenes:
+  - {scene: room}
+  - {scene: grazing}
+viewports: [{width: 256, height: 256}]
+map_sizes: [512]
+methods:
+  - {label: c, method: nsm, self_shadow: none}
+  - {label: glsl, method: nsm_glsl}
+  - {label: pcf1, method: pcf, kernel: 1, bias: 0}
+  - {label: pcf, method: pcf}
+  - {label: vsm, method: vsm}
+  - {label: evsm, method: evsm}
+  - {label: bgsm, method: bgsm}
+  - {label: sgsm, method: sgsm}
+  - {label: csm, method: csm}
+  - {label: hertel_exact, method: hertel_exact}
+  - {label: raytrace, method: raytrace}
+outputs: {overlays: false}
+YAML
+  views=$("$bin" validate "$tmp/c.yaml" -D 'methods=[{label: c, method: nsm}]' | sed -n '1s/.* \([0-9]*\) cell(s)$/\1/p')
+  [ "${views:-0}" -gt 0 ] || fail "validate with the C nsm alone"
+  out=$("$bin" validate "$tmp/c.yaml" 2>"$tmp/note") || fail "validate"
+  echo "$out" | head -1 | grep -q ": ok: 2 scene(s), $((views * 11)) cell(s)$" ||
+    fail "the cell count leaves packages out: $(echo "$out" | head -1), $views views x 11 labels"
+  [ ! -s "$tmp/note" ] || fail "a note for a config that leaves nothing out: $(cat "$tmp/note")"
+  "$bin" run "$tmp/c.yaml" --no-cache -q -o "$tmp/out" 2>"$tmp/err" || { cat "$tmp/err"; fail "run"; }
+  a=$(hard_rows "$tmp/out/point/figures.csv" c)
+  [ "$(cut -d, -f1,2 <<<"$a" | sort -u | wc -l)" -eq "$views" ] || fail "the C nsm's figures cover $views views"
+  for l in glsl pcf1; do
+    b=$(hard_rows "$tmp/out/point/figures.csv" $l)
+    [ "$a" = "$b" ] || { diff <(echo "$a") <(echo "$b") | head -20; fail "$l differs from the C nsm under a point light"; }
+  done
+  q() { sqlite3 "$tmp/out/shadowlab.db" "$1"; }
+  [ "$(q "SELECT count(*) FROM cells")" -eq $((views * 11)) ] || fail "cells stored: $(q "SELECT count(*) FROM cells")"
+  bad=$(q "SELECT label || ' ' || scene || '/' || viewpoint || ': ' || violations FROM cells WHERE violations > 0")
+  [ -z "$bad" ] || fail "violations beside the packages: $bad"
+  [ "$(q "SELECT count(*) FROM cells WHERE nonfinite > 0")" -eq 0 ] || fail "values not finite"
+  # the packages run per face as the C methods do: the same faces per view
+  f=$(q "SELECT group_concat(faces) FROM (SELECT faces FROM cells WHERE label = 'c' ORDER BY scene, viewpoint)")
+  for l in glsl pcf vsm evsm; do
+    g=$(q "SELECT group_concat(faces) FROM (SELECT faces FROM cells WHERE label = '$l' ORDER BY scene, viewpoint)")
+    [ "$f" = "$g" ] || fail "$l ran on faces $g, the C nsm on $f"
+  done
+  [ "$(q "SELECT min(faces) FROM cells WHERE label = 'vsm'")" -gt 0 ] || fail "vsm ran on no face"
+  # the faces' visibility merged: each view's mean |v - t| small and not 0
+  # (a face's visibility lost reads as 0: most of the lit pixels' share)
+  for l in pcf vsm evsm; do
+    w=$(awk -F, -v l=$l '$6 == l && $7 == "image" && $8 == "soft_mae" { print $10 }' "$tmp/out/point/figures.csv")
+    [ "$(echo "$w" | wc -l)" -eq "$views" ] || fail "$l: soft_mae of $views views: $w"
+    echo "$w" | awk '!($1 > 0 && $1 < 30) { exit 1 }' || fail "$l: soft_mae under the point light: $w"
+  done
+  # a label that cannot run under a point light: named, never dropped unsaid
+  "$bin" validate "$tmp/c.yaml" -D 'methods[1]={label: glsl, method: nsm_glsl, partitions: 2}' >/dev/null 2>"$tmp/note" ||
+    fail "validate with cascades and no list"
+  grep -q "scene 'room' has a point light .*leaves out glsl (runs cascades" "$tmp/note" ||
+    fail "no note naming the cascades label left out: $(cat "$tmp/note")"
+  out=$("$bin" validate "$tmp/c.yaml" -D 'methods[1]={label: glsl, method: nsm_glsl, partitions: 2}' \
+        -D 'scenes[0].methods=[c, glsl]' 2>&1); rc=$?
+  [ $rc -eq 2 ] && echo "$out" | grep -q "scenes\[0\]\.methods.*scene 'room' has a point light but method 'nsm_glsl' (label glsl) runs cascades" ||
+    fail "a listed cascades label under a point light: rc $rc: $out"
+  echo "ok point: $views views x 11 labels; $(echo "$a" | wc -l) figure rows equal"
   ;;
 nonfinite)
   # tests/techniques: a lookup returning NaN, -inf or +inf on the map's left
