@@ -57,7 +57,8 @@ const char cli_usage_validate[] =
     "  Parses and checks an experiment config or a scene file (scene files have 'meshes',\n"
     "  'light' or 'base'); loads the scenes and model files it names, compiles the shaders of\n"
     "  the technique packages its labels run (glslang) and checks their maps' size against every\n"
-    "  map size; touches no GL or Embree.\n";
+    "  map size; touches no GL or Embree. Names on stderr the labels a scene without a\n"
+    "  'methods' list leaves out (those that cannot run under its light).\n";
 
 const char cli_usage_table[] =
     "usage: shadowlab table DB [--format md|csv|latex] [--scene S] [--viewpoint V]\n"

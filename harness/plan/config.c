@@ -242,7 +242,7 @@ static const struct { const char *path, *doc; } key_docs[] = {
     {"scenes[].viewpoints", "the scene's viewpoints to run (default: all of them)"},
     {"scenes[].paths", "the scene's paths of frames to run (errors over motion; default: none)"},
     {"scenes[].map_sizes", "this scene's own map sizes (default: the top-level map_sizes)"},
-    {"scenes[].methods", "the labels this scene runs (default: every label that handles its light)"},
+    {"scenes[].methods", "the labels this scene runs (default: every label that handles its light; validate and run name those left out; a label listed that cannot run under its light is an error)"},
     {"viewports[].width", "pixels, 16..8192"},
     {"viewports[].height", "pixels, 16..8192"},
     {"methods[].display", "the name LaTeX tables print for the label (default: the method's own display name when the label is the method's name, else the label); a sweep adds its [key=value]"},
