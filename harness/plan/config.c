@@ -1099,7 +1099,7 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
 /* The lights label k handles (SL_LIGHTS_*): its method's, and a package's
  * cascades (partitions > 1: package.h) need a directional light as zpart's
  * do. */
-unsigned sl_config_label_lights(const struct sl_config *c, int k)
+static unsigned label_lights(const struct sl_config *c, int k)
 {
     const struct sl_config_method *cm = &c->methods[k];
     unsigned lights = cm->method->lights;
@@ -1111,7 +1111,7 @@ unsigned sl_config_label_lights(const struct sl_config *c, int k)
 /* Why label k cannot run under a light of type `type`, NULL when it can. */
 static const char *label_cannot(const struct sl_config *c, int k, int type)
 {
-    const unsigned lights = sl_config_label_lights(c, k);
+    const unsigned lights = label_lights(c, k);
     if ((lights & SL_LIGHTS_AREA) && type != SL_LIGHT_AREA)
         return "handles area lights only";
     if ((lights & SL_LIGHTS_DIRECTIONAL) && type != SL_LIGHT_DIRECTIONAL)

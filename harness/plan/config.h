@@ -144,9 +144,6 @@ enum sl_err sl_config_reference(FILE *f, int roff, struct sl_diag *d);
  * -1 none (run.c: contour_from nsm). */
 int sl_config_contour_label(const struct sl_config *c);
 
-/* The lights label k handles (SL_LIGHTS_* of method.h): its method's, with
- * SL_LIGHTS_DIRECTIONAL for a package label running cascades. */
-unsigned sl_config_label_lights(const struct sl_config *c, int k);
 /* "a point" for SL_LIGHT_POINT (a light type as a scene's messages name it). */
 const char *sl_config_light_name(int type);
 /* Why scene si left out label k (its bit in left_out: "handles area lights
