@@ -867,7 +867,7 @@ static void technique_tiles(void **st)
         vdiff = memcmp(vis[0], vis[1], n * sizeof(float)) != 0;
         fprintf(stderr, "  %s: %d tiles against %d, maps differ: %zu, visibility differs: %zu\n", t.name, tiles[1],
                 tiles[0], mdiff, vdiff);
-        assert_int_equal(tiles[0], 2 + (blur ? 2 * t.nmaps : 0));
+        assert_int_equal(tiles[0], 3 + (blur ? 2 * t.nmaps : 0));
         assert_true(tiles[1] > 100);
         assert_int_equal(mdiff, 0);
         assert_int_equal(vdiff, 0);

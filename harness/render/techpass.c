@@ -216,7 +216,7 @@ void sl_techpass_free(struct sl_techpass *p)
 
 /* ---- bounded tiles (techpass.h) ---- */
 
-static const char *const kind_name[SL_TECHPASS_KINDS] = {"map", "post (blur)", "lookup"};
+static const char *const kind_name[SL_TECHPASS_KINDS] = {"map", "map", "post (blur)", "lookup"};
 
 struct tiles {
     int kind, w, h;
@@ -226,19 +226,19 @@ struct tiles {
     const char *file;          /* the package file the pass runs, for a message */
 };
 
-/* The map pass draws the scene again in every tile: its tiles are at
- * least 1/64 of the map, so a scene whose triangles alone take longer than
- * a tile's aim is drawn at most 64 times, not once per 8 x 8 texels. */
-static void tiles_begin(struct sl_techpass *p, struct tiles *tl, int kind, int w, int h, const char *file)
+/* The map's scene is drawn again in every tile: its tiles are at least
+ * 1/64 of the map, so a scene whose triangles alone take longer than a
+ * tile's aim is drawn at most 64 times, not once per 8 x 8 texels. t_pass:
+ * when the pass began (0: now; the scene's, the empty texels' start). */
+static void tiles_begin(struct tiles *tl, int kind, int w, int h, const char *file, double t_pass)
 {
-    (void)p;
     memset(tl, 0, sizeof *tl);
     tl->kind = kind;
     tl->w = w;
     tl->h = h;
     tl->file = file;
-    tl->min_px = kind == SL_TECHPASS_MAP ? fmax(64.0, (double)w * (double)h / 64.0) : 64.0;
-    tl->t_pass = sl_now();
+    tl->min_px = kind == SL_TECHPASS_SCENE ? fmax(64.0, (double)w * (double)h / 64.0) : 64.0;
+    tl->t_pass = t_pass > 0 ? t_pass : sl_now();
     glEnable(GL_SCISSOR_TEST);
 }
 
@@ -460,7 +460,7 @@ static enum sl_err post_passes(struct sl_techpass *p, const struct sl_params *v,
                 glBindTextureUnit(0, src);
                 glUniform2i(dir, pass ? 0 : 1, pass ? 1 : 0);
                 struct tiles tl;
-                for (tiles_begin(p, &tl, SL_TECHPASS_BLUR, N, N, file); tiles_next(p, &tl, &e, d);)
+                for (tiles_begin(&tl, SL_TECHPASS_BLUR, N, N, file, 0); tiles_next(p, &tl, &e, d);)
                     glDrawArrays(GL_TRIANGLES, 0, 3);
             }
             glNamedFramebufferTexture(p->blur_fbo, GL_COLOR_ATTACHMENT0, 0, 0);
@@ -568,18 +568,22 @@ enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m
     if (t->cull != SL_TECH_CULL_NONE)
         glCullFace(t->cull == SL_TECH_CULL_FRONT ? GL_FRONT : GL_BACK);
     const uint32_t chunk = SL_SHADOWMAP_CHUNK;
+    /* empty texels: sl_map(1.0) everywhere */
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(p->prog_empty);
+    glBindVertexArray(p->vao_empty);
     struct tiles tl;
-    for (tiles_begin(p, &tl, SL_TECHPASS_MAP, N, N, file); tiles_next(p, &tl, &e, d);) {
-        /* empty texels: sl_map(1.0) everywhere */
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_CULL_FACE);
-        glUseProgram(p->prog_empty);
-        glBindVertexArray(p->vao_empty);
+    for (tiles_begin(&tl, SL_TECHPASS_EMPTY, N, N, file, 0); tiles_next(p, &tl, &e, d);)
         glDrawArrays(GL_TRIANGLES, 0, 3);
-        /* the scene, nearest fragment wins */
-        glEnable(GL_DEPTH_TEST);
-        glUseProgram(p->prog_map);
-        glBindVertexArray(m->vao);
+    /* the scene, nearest fragment wins */
+    glEnable(GL_DEPTH_TEST);
+    glUseProgram(p->prog_map);
+    glBindVertexArray(m->vao);
+    const double t_pass = tl.t_pass;
+    if (!e)
+        tiles_begin(&tl, SL_TECHPASS_SCENE, N, N, file, t_pass);
+    while (!e && tiles_next(p, &tl, &e, d)) {
         for (int r = 0; r < m->nruns; r++) {
             /* two-sided meshes (leaves) are never culled, as in shadowmap.c */
             if (t->cull != SL_TECH_CULL_NONE && !m->runs[r].two_sided)
@@ -737,7 +741,7 @@ enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_fram
     char file[1400];
     snprintf(file, sizeof file, "%s/%s", t->dir, t->lookup_shader);
     struct tiles tl;
-    for (tiles_begin(p, &tl, SL_TECHPASS_LOOKUP, w, h, file); tiles_next(p, &tl, &e, d);)
+    for (tiles_begin(&tl, SL_TECHPASS_LOOKUP, w, h, file, 0); tiles_next(p, &tl, &e, d);)
         glDrawArrays(GL_TRIANGLES, 0, 3);
     sl_gl_timer_end(&gt);
     glFinish();

@@ -40,7 +40,11 @@
  * caller's limits (struct sl_techpass_limits) are checked and the driver's
  * reset status read. A tile's area follows the pass's measured speed, from
  * 8 x 8 pixels up, aiming at SL_TECHPASS_TILE_SECONDS a tile, so a stop
- * waits for about that long, not for the pass. The scissor test is on for
+ * waits for about that long, not for the pass. The map pass's scene is
+ * drawn again in each of its tiles, which are therefore at least 1/64 of
+ * the map; its empty texels (every texel, the package's map shader) come
+ * first in tiles of their own, from 8 x 8 up, where a map shader that
+ * runs away is caught. The scissor test is on for
  * the whole pass (GL's invariance rules exempt the rectangle, not the
  * enable) and only discards fragments outside the tile, which are drawn by
  * another: the tiles change no texel and no visibility. A pass the limits
@@ -89,8 +93,11 @@ struct sl_techpass_limits {
 /* A tile's aim, seconds: a stop waits for one tile. */
 #define SL_TECHPASS_TILE_SECONDS 0.25
 
-/* The passes drawn in tiles, each with its own measured speed. */
-enum sl_techpass_kind { SL_TECHPASS_MAP, SL_TECHPASS_BLUR, SL_TECHPASS_LOOKUP, SL_TECHPASS_KINDS };
+/* The passes drawn in tiles, each with its own measured speed: the map
+ * pass as its empty texels (a fullscreen pass) and then its scene. */
+enum sl_techpass_kind {
+    SL_TECHPASS_EMPTY, SL_TECHPASS_SCENE, SL_TECHPASS_BLUR, SL_TECHPASS_LOOKUP, SL_TECHPASS_KINDS
+};
 
 struct sl_techpass {
     const struct sl_technique *t;
