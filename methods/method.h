@@ -154,6 +154,11 @@ struct sl_method_args {
     struct sl_shadowmap_pass *spass;   /* not const: the pass keeps its targets (shadowmap.h) */
     const struct sl_gl_mesh        *mesh;
     int                            threads;
+    /* what ends a method's GL pass that may run long (a package's, drawn in
+     * tiles: techpass.h): the run's stop flag (set by a signal: SL_E_STOPPED)
+     * and limits.pass_seconds (0: none); NULL and 0 where nothing may */
+    const volatile int            *stop;
+    double                         pass_seconds;
 };
 
 /* What a method guarantees by construction; the driver checks it on every

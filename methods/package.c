@@ -83,6 +83,7 @@ static enum sl_err pkg_frame(struct pkg *k, const struct sl_method_args *a, cons
     const struct sl_params *tv = &a->params->values;   /* the package's come first */
     const struct sl_light *L = &a->scene->light;
     k->pass.light_width = L->type == SL_LIGHT_AREA ? fmaxf(L->size[0], L->size[1]) : 0.0f;
+    k->pass.limits = (struct sl_techpass_limits){.stop = a->stop, .pass_seconds = a->pass_seconds};
     enum sl_err e = sl_techpass_render(&k->pass, a->mesh, f, tv, d);
     if (!e)
         e = sl_techpass_lookup(&k->pass, f, tv, v->pos, v->nrm, mask, v->w, v->h, vis, d);

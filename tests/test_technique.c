@@ -796,6 +796,94 @@ static void technique_rendered_pcf(void **st)
     rendered_case("primitives", 512, "techniques/pcf", SL_LAYER_DEPTH_ID, k1, one, 0);
 }
 
+/* The package's maps (level 0 of each, guard band included) and its
+ * visibility over the view: tiles of at most max_px pixels, or one tile a
+ * pass (max_px 0: every pass's area set past its target's). */
+static void tiled_run(struct fixture *fx, const struct sl_view *v, const struct sl_light_frame *fr,
+                      const struct sl_technique *t, const struct sl_params *vals, double max_px, float **maps,
+                      float *vis, int *tiles)
+{
+    struct sl_diag d;
+    struct sl_techpass p;
+    assert_int_equal(sl_techpass_init(&p, t, &d), SL_OK);
+    p.tile_max_px = max_px;
+    for (int k = 0; k < SL_TECHPASS_KINDS && !max_px; k++)
+        p.tile_px[k] = 1e18;
+    assert_int_equal(sl_techpass_render(&p, &fx->mesh, fr, vals, &d), SL_OK);
+    const int N = p.size;
+    for (int i = 0; i < t->nmaps; i++) {
+        maps[i] = malloc((size_t)N * (size_t)N * 4 * sizeof(float));
+        glGetTextureImage(p.map_tex[i], 0, GL_RGBA, GL_FLOAT, (GLsizei)((size_t)N * N * 4 * sizeof(float)), maps[i]);
+    }
+    assert_int_equal(sl_techpass_lookup(&p, fr, vals, v->pos, v->nrm, NULL, v->w, v->h, vis, &d), SL_OK);
+    *tiles = p.tiles;
+    sl_techpass_free(&p);
+}
+
+/* Tiles change nothing: msm (four channels, blur, mipmaps) and pcss (a
+ * blocker search over many texels) drawn in tiles of 64 pixels (the map
+ * pass's scene drawn again in each) and in one tile a pass give the same
+ * bits in every map texel and every visibility. */
+static void technique_tiles(void **st)
+{
+    (void)st;
+    gl_close();
+    struct fixture fx;
+    struct sl_diag d;
+    memset(&fx, 0, sizeof fx);
+    assert_int_equal(sl_scene_build("primitives", &fx.scene, &d), SL_OK);
+    assert_int_equal(sl_gl_init(&fx.gl, &d), SL_OK);
+    assert_int_equal(sl_gl_mesh_upload(&fx.mesh, &fx.scene, &d), SL_OK);
+    assert_int_equal(sl_gbuffer_init(&fx.gp, &fx.scene, &d), SL_OK);
+    struct sl_view v;
+    assert_int_equal(sl_gbuffer_render(&fx.gp, &fx.mesh, &fx.scene, 0, 96, 80, &v, NULL, NULL, NULL, &d), SL_OK);
+    struct sl_light_frame fr;
+    memset(&fr, 0, sizeof fr);
+    fr.size = 128;
+    memcpy(fr.dir, fx.scene.light_dir, sizeof fr.dir);
+    sl_light_fit(&fx.scene, &v, &fr.box);
+    fr.texel_world = fmaxf(fr.box.hi[0] - fr.box.lo[0], fr.box.hi[1] - fr.box.lo[1]) / (float)fr.size;
+    fr.depth_range = fr.box.hi[2] - fr.box.lo[2];
+    const char *pkgs[] = {"techniques/msm", "techniques/pcss"};
+    const size_t n = (size_t)v.w * (size_t)v.h;
+    for (int k = 0; k < 2; k++) {
+        struct sl_technique t;
+        assert_int_equal(sl_tech_load(pkgs[k], &t, &d), SL_OK);
+        struct sl_params vals;
+        sl_tech_defaults(&t, &vals);
+        const int blur = !isnan(sl_params_get(&vals, "blur"));
+        if (blur)
+            assert_int_equal(sl_params_put(&vals, "blur", 2, &d), SL_OK);
+        float *maps[2][SL_TECH_MAX_MAPS] = {{0}}, *vis[2];
+        int tiles[2];
+        for (int r = 0; r < 2; r++) {
+            vis[r] = malloc(n * sizeof(float));
+            tiled_run(&fx, &v, &fr, &t, &vals, r ? 64.0 : 0.0, maps[r], vis[r], &tiles[r]);
+        }
+        const int N = fr.size + 2 * sl_tech_guard(&t, &vals);
+        size_t mdiff = 0, vdiff = 0;
+        for (int i = 0; i < t.nmaps; i++)
+            mdiff += memcmp(maps[0][i], maps[1][i], (size_t)N * N * 4 * sizeof(float)) != 0;
+        vdiff = memcmp(vis[0], vis[1], n * sizeof(float)) != 0;
+        fprintf(stderr, "  %s: %d tiles against %d, maps differ: %zu, visibility differs: %zu\n", t.name, tiles[1],
+                tiles[0], mdiff, vdiff);
+        assert_int_equal(tiles[0], 3 + (blur ? 2 * t.nmaps : 0));
+        assert_true(tiles[1] > 100);
+        assert_int_equal(mdiff, 0);
+        assert_int_equal(vdiff, 0);
+        for (int r = 0; r < 2; r++) {
+            for (int i = 0; i < t.nmaps; i++)
+                free(maps[r][i]);
+            free(vis[r]);
+        }
+        sl_tech_free(&t);
+    }
+    sl_light_box_free(&fr.box);
+    sl_frame_free(&fr);
+    sl_view_free(&v);
+    fixture_close(&fx);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -810,6 +898,7 @@ int main(int argc, char **argv)
         SL_CASE(technique, map_too_big),
         SL_CASE(technique, rendered_nsm),
         SL_CASE(technique, rendered_pcf),
+        SL_CASE(technique, tiles),
     };
     int r = sl_run_group(argc, argv, "technique", tests, sl_test_setup, sl_test_teardown);
     gl_close();

@@ -28,7 +28,8 @@ extern "C" {
     X(SL_E_NOMEM,       "out of memory")                                    \
     X(SL_E_IMAGE,       "image write failure")                              \
     X(SL_E_INTERNAL,    "internal error")                                   \
-    X(SL_E_DATA,        "invalid data file")
+    X(SL_E_DATA,        "invalid data file")                                \
+    X(SL_E_STOPPED,     "stopped by a signal")
 
 enum sl_err {
 #define SL_ERR_ENUM(id, text) id,

@@ -128,7 +128,10 @@ static const cyaml_schema_value_t scene_ref_schema = {
         "area lights: truth samples per side of the light (default 32: 1,024 a pixel)"))                   \
     X(threads, SL_PARAM_INT_DECL("threads", 0, 0, 256, "", "CPU threads (default 0: every core)"))          \
     X(gl, SL_PARAM_CHOICE_DECL("gl", SL_GL_DEFAULT, "the GL backend: osmesa or egl; default (the "  \
-        "default): SHADOWLAB_GL, else osmesa", "default", "osmesa", "egl"))
+        "default): SHADOWLAB_GL, else osmesa", "default", "osmesa", "egl"))                                   \
+    X(pass_seconds, SL_PARAM_FLOAT_DECL("limits.pass_seconds", 300, 0.1, 86400, "s",                       \
+        "the longest a technique package's GL pass (map, post, lookup) may run: one running longer ends " \
+        "the run, exit 2, naming the package and the pass (default 300)"))
 
 static const struct sl_param config_settings[] = {
 #define SETTING_DECL(field, decl) decl,
@@ -190,7 +193,8 @@ _Static_assert(sizeof config_settings / sizeof config_settings[0] <= SL_PARAM_MA
     X(store,        STRING, OPTIONAL, "the results store, relative to the output root (default "           \
       "shadowlab.db); no \"..\", not absolute", char, 511)                                         \
     X(threads,      SETTINGS, OPTIONAL, "", -)                                                        \
-    X(gl,           SETTINGS, OPTIONAL, "", -)
+    X(gl,           SETTINGS, OPTIONAL, "", -)                                                        \
+    X(limits,       SETTINGS, OPTIONAL, "how long a technique package's pass may run", -)
 
 #define CFG_RAW_UINT(key, type)                type *key;
 #define CFG_RAW_STRING(key, type, max)         type *key;

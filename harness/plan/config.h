@@ -31,6 +31,7 @@
  *   seed: 1                    # for anything random
  *   store: results/shadowlab.db   # default: <output root>/shadowlab.db
  *   threads: 0                 # 0 = every core
+ *   limits: {pass_seconds: 300}   # a technique package's GL pass ends the run past it
  */
 #ifndef SL_CONFIG_H
 #define SL_CONFIG_H
@@ -111,6 +112,7 @@ struct sl_config {
     int  threads;                     /* resolved: >= 1 */
     enum sl_gl_backend gl;            /* 'gl: osmesa|egl'; resolved (never SL_GL_DEFAULT); the
                                        * command line's --gl replaces it */
+    double pass_seconds;              /* limits.pass_seconds: a package's GL pass ends past it */
     struct sl_params settings;        /* the settings as the config gave them (config.c: CONFIG_SETTINGS;
                                        * given: which); the fields above hold them resolved */
     struct sl_session *session;       /* the scenes read and the technique packages the labels run

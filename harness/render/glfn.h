@@ -60,6 +60,7 @@
     X(glGenQueries) \
     X(glGenerateTextureMipmap) \
     X(glGetError) \
+    X(glGetGraphicsResetStatus) \
     X(glGetIntegerv) \
     X(glGetProgramInfoLog) \
     X(glGetProgramiv) \
@@ -77,6 +78,7 @@
     X(glNamedFramebufferTexture) \
     X(glNamedRenderbufferStorage) \
     X(glPixelStorei) \
+    X(glScissor) \
     X(glShaderSource) \
     X(glTextureParameteri) \
     X(glTextureStorage2D) \
@@ -140,6 +142,7 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glGenQueries sl_glGenQueries
 #define glGenerateTextureMipmap sl_glGenerateTextureMipmap
 #define glGetError sl_glGetError
+#define glGetGraphicsResetStatus sl_glGetGraphicsResetStatus
 #define glGetIntegerv sl_glGetIntegerv
 #define glGetProgramInfoLog sl_glGetProgramInfoLog
 #define glGetProgramiv sl_glGetProgramiv
@@ -157,6 +160,7 @@ SL_GL_FUNCS(SL_GL_DECL)
 #define glNamedFramebufferTexture sl_glNamedFramebufferTexture
 #define glNamedRenderbufferStorage sl_glNamedRenderbufferStorage
 #define glPixelStorei sl_glPixelStorei
+#define glScissor sl_glScissor
 #define glShaderSource sl_glShaderSource
 #define glTextureParameteri sl_glTextureParameteri
 #define glTextureStorage2D sl_glTextureStorage2D

@@ -214,6 +214,100 @@ void sl_techpass_free(struct sl_techpass *p)
     memset(p, 0, sizeof *p);
 }
 
+/* ---- bounded tiles (techpass.h) ---- */
+
+static const char *const kind_name[SL_TECHPASS_KINDS] = {"map", "map", "post (blur)", "lookup"};
+
+struct tiles {
+    int kind, w, h;
+    int x, y, tw, th;          /* the tile under way (tw 0: none yet) */
+    double min_px;             /* the smallest tile */
+    double t_pass, t_tile;     /* when the pass and the tile began */
+    const char *file;          /* the package file the pass runs, for a message */
+};
+
+/* The map's scene is drawn again in every tile: its tiles are at least
+ * 1/64 of the map, so a scene whose triangles alone take longer than a
+ * tile's aim is drawn at most 64 times, not once per 8 x 8 texels. t_pass:
+ * when the pass began (0: now; the scene's, the empty texels' start). */
+static void tiles_begin(struct tiles *tl, int kind, int w, int h, const char *file, double t_pass)
+{
+    memset(tl, 0, sizeof *tl);
+    tl->kind = kind;
+    tl->w = w;
+    tl->h = h;
+    tl->file = file;
+    tl->min_px = kind == SL_TECHPASS_SCENE ? fmax(64.0, (double)w * (double)h / 64.0) : 64.0;
+    tl->t_pass = t_pass > 0 ? t_pass : sl_now();
+    glEnable(GL_SCISSOR_TEST);
+}
+
+static const char *reset_name(GLenum r)
+{
+    return r == GL_GUILTY_CONTEXT_RESET ? "caused by this context"
+           : r == GL_INNOCENT_CONTEXT_RESET ? "caused elsewhere" : "cause unknown";
+}
+
+/* After the tile under way (if any): its glFinish, the next area from its
+ * time, then the checks: the driver's reset status, the stop flag, the
+ * pass's time. Then the next tile's scissor rectangle: 1, or 0 when the
+ * pass is done (*e SL_OK) or ended (*e the error; the scissor test off). */
+static int tiles_next(struct sl_techpass *p, struct tiles *tl, enum sl_err *e, struct sl_diag *d)
+{
+    *e = SL_OK;
+    double *area = &p->tile_px[tl->kind];
+    if (tl->tw) {
+        glFinish();
+        const double now = sl_now(), t = now - tl->t_tile, px = (double)tl->tw * (double)tl->th;
+        double f = t > 1e-6 ? SL_TECHPASS_TILE_SECONDS / t : 4.0;
+        f = f < 0.25 ? 0.25 : f > 4.0 ? 4.0 : f;
+        if (t <= SL_TECHPASS_TILE_SECONDS && f < 2.0)
+            f = 2.0;   /* under the aim: grow, so a pass of fixed cost a tile ends in few */
+        *area = fmax(px * f, tl->min_px);
+        p->tiles++;
+        const char *name = p->t->name, *pass = kind_name[tl->kind];
+        const GLenum r = glGetGraphicsResetStatus();
+        if (r != GL_NO_ERROR)
+            *e = sl_fail(d, SL_E_GL, tl->file, 0, NULL, "technique %s: the GL context was reset during the %s "
+                         "pass (%s): its results are lost", name, pass, reset_name(r));
+        else if (p->limits.stop && *p->limits.stop)
+            *e = sl_fail(d, SL_E_STOPPED, NULL, 0, NULL, "technique %s: stopped during the %s pass", name, pass);
+        else if (p->limits.pass_seconds > 0 && now - tl->t_pass > p->limits.pass_seconds)
+            *e = sl_fail(d, SL_E_PACKAGE, tl->file, 0, NULL, "technique %s: the %s pass ran %.1f s, over "
+                         "limits.pass_seconds (%g s), and was ended: a loop that does not end? (nothing stored "
+                         "for the cell)", name, pass, now - tl->t_pass, p->limits.pass_seconds);
+        tl->x += tl->tw;
+        if (tl->x >= tl->w) {
+            tl->x = 0;
+            tl->y += tl->th;
+        }
+        if (*e || tl->y >= tl->h) {
+            glDisable(GL_SCISSOR_TEST);
+            return 0;
+        }
+    }
+    double a = fmin(fmax(*area, tl->min_px), (double)tl->w * (double)tl->h);
+    if (p->tile_max_px > 0)
+        a = fmin(a, fmax(p->tile_max_px, 64.0));
+    if (tl->x == 0) {   /* a band's height: whole rows, or a square tile's; a multiple of 8 */
+        int th = 8;
+        if (a >= (double)tl->w * (double)(tl->h - tl->y))
+            th = tl->h - tl->y;
+        else if (a >= 8.0 * tl->w)
+            th = (int)(a / tl->w) & ~7;
+        else
+            while (4.0 * th * th <= a)
+                th *= 2;
+        tl->th = th < tl->h - tl->y ? th : tl->h - tl->y;
+    }
+    int tw = a >= (double)tl->th * (double)(tl->w - tl->x) ? tl->w - tl->x : (int)(a / tl->th) & ~7;
+    tw = tw < 8 ? 8 : tw;
+    tl->tw = tw < tl->w - tl->x ? tw : tl->w - tl->x;
+    glScissor(tl->x, tl->y, tl->tw, tl->th);
+    tl->t_tile = sl_now();
+    return 1;
+}
+
 /* ---- maps ---- */
 
 static const GLenum fmt_internal[4] = {GL_R32F, GL_RG32F, GL_RGBA32F, GL_RGBA16F};
@@ -340,6 +434,9 @@ static enum sl_err post_passes(struct sl_techpass *p, const struct sl_params *v,
     p->costs.gpu_post = 0.0;
     if (!any)
         return SL_OK;
+    char file[1400];
+    snprintf(file, sizeof file, "%s/%s", t->dir, t->map_shader);
+    enum sl_err e = SL_OK;
     double t0 = sl_now();
     struct sl_gl_timer gt;
     sl_gl_timer_begin(&gt);
@@ -356,17 +453,21 @@ static enum sl_err post_passes(struct sl_techpass *p, const struct sl_params *v,
             glUniform1i(glGetUniformLocation(p->prog_blur, "sl_radius"), r);
             GLint dir = glGetUniformLocation(p->prog_blur, "sl_dir");
             glBindFramebuffer(GL_FRAMEBUFFER, p->blur_fbo);
-            for (int pass = 0; pass < 2; pass++) {
+            for (int pass = 0; pass < 2 && !e; pass++) {
                 GLuint src = pass ? p->ping_tex[i] : p->map_tex[i], dst = pass ? p->map_tex[i] : p->ping_tex[i];
                 glNamedFramebufferTexture(p->blur_fbo, GL_COLOR_ATTACHMENT0, dst, 0);
                 glNamedFramebufferDrawBuffer(p->blur_fbo, GL_COLOR_ATTACHMENT0);
                 glBindTextureUnit(0, src);
                 glUniform2i(dir, pass ? 0 : 1, pass ? 1 : 0);
-                glDrawArrays(GL_TRIANGLES, 0, 3);
+                struct tiles tl;
+                for (tiles_begin(&tl, SL_TECHPASS_BLUR, N, N, file, 0); tiles_next(p, &tl, &e, d);)
+                    glDrawArrays(GL_TRIANGLES, 0, 3);
             }
             glNamedFramebufferTexture(p->blur_fbo, GL_COLOR_ATTACHMENT0, 0, 0);
             glBindTextureUnit(0, 0);
         }
+        if (e)
+            break;
         if (has_mips(m))
             glGenerateTextureMipmap(p->map_tex[i]);
     }
@@ -378,7 +479,7 @@ static enum sl_err post_passes(struct sl_techpass *p, const struct sl_params *v,
     glUseProgram(0);
     p->costs.ms_post = ms;
     p->costs.gpu_post = sl_gl_timer_ms(&gt, ms);
-    return sl_gl_check("technique post passes", d);
+    return e ? e : sl_gl_check("technique post passes", d);
 }
 
 /* Count the maps' texels (level 0, guard band included) that are not
@@ -447,46 +548,57 @@ enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m
     if (e)
         return e;
     const int N = p->size;
+    char file[1400];
+    snprintf(file, sizeof file, "%s/%s", t->dir, t->map_shader);
     struct sl_gl_timer gt;
     sl_gl_timer_begin(&gt);
     glBindFramebuffer(GL_FRAMEBUFFER, p->map_fbo);
     glViewport(0, 0, N, N);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-    /* empty texels: sl_map(1.0) everywhere */
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
+    const float one = 1.0f;
+    glClearNamedFramebufferfv(p->map_fbo, GL_DEPTH, 0, &one);   /* before the tiles: a clear obeys the scissor */
     glUseProgram(p->prog_empty);
     set_light(p->prog_empty, p, f);
     set_params(p->prog_empty, t, v);
-    glBindVertexArray(p->vao_empty);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    /* the scene, nearest fragment wins */
-    const float one = 1.0f;
-    glClearNamedFramebufferfv(p->map_fbo, GL_DEPTH, 0, &one);
-    glEnable(GL_DEPTH_TEST);
+    glUseProgram(p->prog_map);
+    set_light(p->prog_map, p, f);
+    set_params(p->prog_map, t, v);
     glDepthFunc(GL_LESS);
     glFrontFace(GL_CCW);
     if (t->cull != SL_TECH_CULL_NONE)
         glCullFace(t->cull == SL_TECH_CULL_FRONT ? GL_FRONT : GL_BACK);
-    glUseProgram(p->prog_map);
-    set_light(p->prog_map, p, f);
-    set_params(p->prog_map, t, v);
-    glBindVertexArray(m->vao);
     const uint32_t chunk = SL_SHADOWMAP_CHUNK;
-    for (int r = 0; r < m->nruns; r++) {
-        /* two-sided meshes (leaves) are never culled, as in shadowmap.c */
-        if (t->cull != SL_TECH_CULL_NONE && !m->runs[r].two_sided)
-            glEnable(GL_CULL_FACE);
-        else
-            glDisable(GL_CULL_FACE);
-        /* in flushed chunks, as shadowmap.c draws (llvmpipe's bins) */
-        for (uint32_t c0 = 0; c0 < m->runs[r].count; c0 += chunk) {
-            const uint32_t t0i = m->runs[r].first + c0;
-            const uint32_t nt = m->runs[r].count - c0 < chunk ? m->runs[r].count - c0 : chunk;
-            if (c0)
-                glFlush();
-            glDrawElements(GL_TRIANGLES, (GLsizei)(3 * nt), GL_UNSIGNED_INT,
-                           (const void *)((size_t)t0i * 3 * sizeof(uint32_t)));
+    /* empty texels: sl_map(1.0) everywhere */
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(p->prog_empty);
+    glBindVertexArray(p->vao_empty);
+    struct tiles tl;
+    for (tiles_begin(&tl, SL_TECHPASS_EMPTY, N, N, file, 0); tiles_next(p, &tl, &e, d);)
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    /* the scene, nearest fragment wins */
+    glEnable(GL_DEPTH_TEST);
+    glUseProgram(p->prog_map);
+    glBindVertexArray(m->vao);
+    const double t_pass = tl.t_pass;
+    if (!e)
+        tiles_begin(&tl, SL_TECHPASS_SCENE, N, N, file, t_pass);
+    while (!e && tiles_next(p, &tl, &e, d)) {
+        for (int r = 0; r < m->nruns; r++) {
+            /* two-sided meshes (leaves) are never culled, as in shadowmap.c */
+            if (t->cull != SL_TECH_CULL_NONE && !m->runs[r].two_sided)
+                glEnable(GL_CULL_FACE);
+            else
+                glDisable(GL_CULL_FACE);
+            /* in flushed chunks, as shadowmap.c draws (llvmpipe's bins) */
+            for (uint32_t c0 = 0; c0 < m->runs[r].count; c0 += chunk) {
+                const uint32_t t0i = m->runs[r].first + c0;
+                const uint32_t nt = m->runs[r].count - c0 < chunk ? m->runs[r].count - c0 : chunk;
+                if (c0)
+                    glFlush();
+                glDrawElements(GL_TRIANGLES, (GLsizei)(3 * nt), GL_UNSIGNED_INT,
+                               (const void *)((size_t)t0i * 3 * sizeof(uint32_t)));
+            }
         }
     }
     sl_gl_timer_end(&gt);
@@ -499,6 +611,10 @@ enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m
     glUseProgram(0);
     p->costs.ms_map = ms;
     p->costs.gpu_map = sl_gl_timer_ms(&gt, ms);
+    if (e) {
+        glDisable(GL_DEPTH_TEST);
+        return e;
+    }
     e = sl_gl_check("technique map pass", d);
     if (!e)
         e = post_passes(p, v, d);
@@ -622,10 +738,22 @@ enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_fram
     glUniform1f(glGetUniformLocation(prog, "sl_depth_range"), f->depth_range);
     glUniform1f(glGetUniformLocation(prog, "sl_light_width"), p->light_width);
     glBindVertexArray(p->vao_empty);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    char file[1400];
+    snprintf(file, sizeof file, "%s/%s", t->dir, t->lookup_shader);
+    struct tiles tl;
+    for (tiles_begin(&tl, SL_TECHPASS_LOOKUP, w, h, file, 0); tiles_next(p, &tl, &e, d);)
+        glDrawArrays(GL_TRIANGLES, 0, 3);
     sl_gl_timer_end(&gt);
     glFinish();
     double t1 = sl_now();
+    if (e) {
+        for (int i = 0; i < 7; i++)
+            glBindTextureUnit((GLuint)i, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBindVertexArray(0);
+        glUseProgram(0);
+        return e;
+    }
     glGetTextureImage(p->out_tex, 0, GL_RED, GL_FLOAT, (GLsizei)(n * sizeof(float)), vis);
     double t2 = sl_now();
     uint64_t bad = 0;

@@ -34,6 +34,22 @@
  *   vec2  sl_map_pos;     (u + g, v + g): the point in texels of the guarded
  *                         map (uv * sl_map_size up to rounding)
  *
+ * Bounded tiles: a package's shader may run for minutes (a loop), and the
+ * GL cannot cancel a draw. So the map pass, the blur and the lookup are
+ * drawn in scissor rectangles, each followed by glFinish; between two the
+ * caller's limits (struct sl_techpass_limits) are checked and the driver's
+ * reset status read. A tile's area follows the pass's measured speed, from
+ * 8 x 8 pixels up, aiming at SL_TECHPASS_TILE_SECONDS a tile, so a stop
+ * waits for about that long, not for the pass. The map pass's scene is
+ * drawn again in each of its tiles, which are therefore at least 1/64 of
+ * the map; its empty texels (every texel, the package's map shader) come
+ * first in tiles of their own, from 8 x 8 up, where a map shader that
+ * runs away is caught. The scissor test is on for
+ * the whole pass (GL's invariance rules exempt the rectangle, not the
+ * enable) and only discards fragments outside the tile, which are drawn by
+ * another: the tiles change no texel and no visibility. A pass the limits
+ * end leaves no result: the caller gets an error, never a partial map.
+ *
  * GLSL errors of a package name its file and line: `DIR/lookup.glsl:LINE:
  * GLSL: message`, SL_E_PACKAGE, the driver's log read by
  * sl_techsrc_log_error (its errors first, then its warnings). The shaders'
@@ -67,6 +83,22 @@ struct sl_techpass_costs {
     int map_size;                   /* S + 2g */
 };
 
+/* What ends a pass between two tiles; zero: nothing. */
+struct sl_techpass_limits {
+    const volatile int *stop;   /* non-zero (a signal): SL_E_STOPPED */
+    double pass_seconds;        /* > 0: a pass running longer fails, SL_E_PACKAGE naming the
+                                 * package's file and the pass */
+};
+
+/* A tile's aim, seconds: a stop waits for one tile. */
+#define SL_TECHPASS_TILE_SECONDS 0.25
+
+/* The passes drawn in tiles, each with its own measured speed: the map
+ * pass as its empty texels (a fullscreen pass) and then its scene. */
+enum sl_techpass_kind {
+    SL_TECHPASS_EMPTY, SL_TECHPASS_SCENE, SL_TECHPASS_BLUR, SL_TECHPASS_LOOKUP, SL_TECHPASS_KINDS
+};
+
 struct sl_techpass {
     const struct sl_technique *t;
     GLuint prog_map, prog_empty, prog_lookup, prog_blur, prog_finite;
@@ -85,6 +117,10 @@ struct sl_techpass {
      * (the larger side), 0 for a light without one; the caller sets it */
     float light_width;
     int max_tex;                    /* GL_MAX_TEXTURE_SIZE */
+    struct sl_techpass_limits limits;   /* the caller sets it */
+    double tile_px[SL_TECHPASS_KINDS];  /* the next tile's area, pixels (0: the smallest) */
+    int tiles;                      /* tiles drawn since init */
+    double tile_max_px;             /* tests: tiles of at most this area (0: no bound) */
 };
 
 /* Compile the package's programs (map, empty-texel and lookup) and the

@@ -101,6 +101,7 @@ struct run_ctx {
     void (*on_event)(const struct sl_run_event *ev, void *user);
     void *user;
     const struct sl_cell_sink *sink;     /* where finished cells go; their sheets (cellsink.h) */
+    const volatile int *stop;            /* o->stop, for the methods' passes that may run long */
 };
 
 static void emit(const struct run_ctx *x, const struct sl_run_event *ev)
@@ -585,6 +586,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .rt = &x->rt, .adj = x->have_adj ? &x->adj : NULL, .threads = c->threads,
         .softmap = x->soft_map >= 0 ? &x->softmap : NULL,
         .seed = c->seed, .spass = &x->spass, .mesh = &x->mesh,
+        .stop = x->stop, .pass_seconds = c->pass_seconds,
     };
     int reps = c->warmup + c->runs;
     double times[SL_MAX_REPS];
@@ -801,6 +803,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     struct run_ctx x;
     memset(&x, 0, sizeof x);
     x.session = c->session;
+    x.stop = o->stop;
     x.scene_i = x.view_scene = x.view_vp = x.view_viewport = x.frame_map = x.soft_map = x.nsm_map = x.nsm_label = -1;
     x.on_event = o->on_event;
     x.user = o->user;
@@ -927,6 +930,10 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
                                   .done = res->ncells + res->skipped, .total = last - first,
                                   .elapsed_s = sl_now() - t_start};
         emit(&x, &ev);
+    }
+    if (e == SL_E_STOPPED) {   /* a signal during a method's long pass: that cell is dropped whole */
+        e = SL_OK;
+        res->interrupted = 1;
     }
     if (!e)   /* every sheet in the staging folder before it is renamed (a write error fails the run) */
         e = sl_sink_drain(&sink, d);
