@@ -22,7 +22,7 @@ static void softfig_worked_example(void **st)
     const float v[8] = {1, 0.92f, 0, 0.46f, 0.5f, 0.02f, 0.1f, 1};
     const float se[8] = {0, 0, 0, 0.1f, 0.2f, 0, 9, 0};
     struct sl_soft_figures f;
-    sl_soft_figures_compute(4, 2, tri, v, t, se, &f);
+    sl_soft_figures_compute(4, 2, tri, v, t, se, 0.0, &f);
     assert_int_equal(f.n[SL_SFIG_soft_pixels], 7);
     /* errors 0, -0.08, 0, -0.04, +0.25, +0.02, 0 */
     assert_true(fabs(f.pct[SL_SFIG_soft_mae] - 100.0 * 0.39 / 7) < 1e-4);
@@ -50,10 +50,39 @@ static void softfig_empty(void **st)
     const uint32_t tri[2] = {0, 0};
     const float z[2] = {0, 0};
     struct sl_soft_figures f;
-    sl_soft_figures_compute(2, 1, tri, z, z, NULL, &f);
+    sl_soft_figures_compute(2, 1, tri, z, z, NULL, 0.0, &f);
     assert_int_equal(f.n[SL_SFIG_soft_pixels], 0);
     for (int k = 0; k < SL_SFIG_COUNT; k++)
         assert_true(isnan(f.pct[k]));
+}
+
+/* A hard light's 0/1 truth and a filtered visibility that is never exactly
+ * 0 or 1: exact classes call every pixel penumbra (0 right of 6); within
+ * SL_SOFT_HARD_TOL a class is right exactly when |v - t| <= 0.05, so class
+ * right equals within 0.05 and the lit and umbra shares say what is
+ * over-darkened and what leaks by more than the tolerance.
+ * truth   1     1     1    0     0     0
+ * method  0.97  0.96  0.6  0.01  0.04  0.3  */
+static void softfig_hard_tolerance(void **st)
+{
+    (void)st;
+    const uint32_t tri[6] = {1, 1, 1, 1, 1, 1};
+    const float t[6] = {1, 1, 1, 0, 0, 0};
+    const float v[6] = {0.97f, 0.96f, 0.6f, 0.01f, 0.04f, 0.3f};
+    struct sl_soft_figures f;
+    sl_soft_figures_compute(3, 2, tri, v, t, NULL, 0.0, &f);
+    assert_int_equal(f.n[SL_SFIG_soft_class_right], 0);
+    sl_soft_figures_compute(3, 2, tri, v, t, NULL, SL_SOFT_HARD_TOL, &f);
+    assert_int_equal(f.n[SL_SFIG_soft_truth_lit], 3);
+    assert_int_equal(f.n[SL_SFIG_soft_truth_umbra], 3);
+    assert_int_equal(f.n[SL_SFIG_soft_truth_penumbra], 0);
+    assert_int_equal(f.n[SL_SFIG_soft_lit_right], 2);     /* 0.6: over-darkened by 0.4 */
+    assert_int_equal(f.n[SL_SFIG_soft_umbra_right], 2);   /* 0.3: leaks 0.3 */
+    assert_int_equal(f.n[SL_SFIG_soft_penumbra_right], 0);
+    assert_true(isnan(f.pct[SL_SFIG_soft_penumbra_right]));
+    assert_int_equal(f.n[SL_SFIG_soft_class_right], 4);
+    assert_int_equal(f.n[SL_SFIG_soft_class_right], f.n[SL_SFIG_soft_within_005]);
+    assert_true(fabs(f.pct[SL_SFIG_soft_class_right] - 100.0 * 4 / 6) < 1e-9);
 }
 
 int main(int argc, char **argv)
@@ -61,6 +90,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         SL_CASE(softfig, worked_example),
         SL_CASE(softfig, empty),
+        SL_CASE(softfig, hard_tolerance),
     };
     return sl_run_group(argc, argv, "softfig", tests, NULL, NULL);
 }

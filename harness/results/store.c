@@ -34,7 +34,8 @@
 #include "storefile.h"
 #include "util.h"
 
-#define SL_STORE_VERSION 21   /* 21: figures leaking, over_dark (softfig.h); 20: cells.nonfinite (cellcols.h);
+#define SL_STORE_VERSION 22   /* 22: a hard light's class figures within SL_SOFT_HARD_TOL (softfig.h;
+                               * the same tables, other values); 21: figures leaking, over_dark (softfig.h); 20: cells.nonfinite (cellcols.h);
                                * 19: cells.family, beside (the method's origin, method.h), display;
                                * 18: cells.frac (a hard light's fractional errors, cellcols.h);
                                * 17: cells.digest, one cell per config hash and key (UNIQUE);

@@ -277,7 +277,7 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
     int W = v->w, H = v->h;
     size_t npx = (size_t)W * (size_t)H;
     double t0 = sl_now();
-    sl_soft_figures_compute(W, H, v->tri, vd->vis, in->soft_truth, in->soft_se, &cell->soft);
+    sl_soft_figures_compute(W, H, v->tri, vd->vis, in->soft_truth, in->soft_se, 0.0, &cell->soft);
     cell->has_soft = 1;
     for (size_t i = 0; i < npx; i++)
         cell->nonfinite += v->tri[i] && !(vd->vis[i] >= 0.0f && vd->vis[i] <= 1.0f);
@@ -294,7 +294,9 @@ static enum sl_err soft_score(const struct sl_cell_inputs *in, const struct sl_v
 
 /* A hard light's cell whose method wrote a fractional visibility: its soft
  * figures against the 0/1 truth over the PFL pixels (has_soft beside the
- * hard figures, as a hard method under an area light has both). */
+ * hard figures, as a hard method under an area light has both), its classes
+ * within SL_SOFT_HARD_TOL (softfig.h: exact classes call a filtered
+ * visibility penumbra wherever it is). */
 static enum sl_err fractional_score(const struct sl_cell_inputs *in, const struct sl_verdicts *vd,
                                     struct sl_cell *cell, struct sl_diag *d)
 {
@@ -313,7 +315,7 @@ static enum sl_err fractional_score(const struct sl_cell_inputs *in, const struc
         t[i] = v->truth[i] == SL_T_LIT ? 1.0f : 0.0f;
         cell->nonfinite += pfl[i] && !(vd->vis[i] >= 0.0f && vd->vis[i] <= 1.0f);
     }
-    sl_soft_figures_compute(v->w, v->h, pfl, vd->vis, t, NULL, &cell->soft);
+    sl_soft_figures_compute(v->w, v->h, pfl, vd->vis, t, NULL, SL_SOFT_HARD_TOL, &cell->soft);
     cell->has_soft = 1;
     cell->has_frac = 1;
     cell->ms.figures += 1e3 * (sl_now() - t0);

@@ -34,14 +34,17 @@ _Static_assert(SL_SFIG_soft_truth_umbra == SL_SFIG_soft_truth_lit + 1 &&
                    SL_SFIG_soft_penumbra_right == SL_SFIG_soft_lit_right + 2,
                "soft figures: lit, umbra, penumbra in order");
 
-/* 0 lit, 1 umbra, 2 penumbra */
-static int soft_class(float v)
+/* 0 lit, 1 umbra, 2 penumbra, within tol of 1 and 0; in double and as
+ * |v - t| below, so that with a 0/1 truth a class is right exactly when
+ * the pixel is within tol (no float rounding apart at the boundary) */
+static int soft_class(float v, double tol)
 {
-    return v >= 1.0f ? 0 : v <= 0.0f ? 1 : 2;
+    double x = v;
+    return x >= 1.0 || 1.0 - x <= tol ? 0 : x <= tol ? 1 : 2;
 }
 
 void sl_soft_figures_compute(int w, int h, const uint32_t *tri, const float *v, const float *t, const float *se,
-                             struct sl_soft_figures *out)
+                             double tol, struct sl_soft_figures *out)
 {
     memset(out, 0, sizeof *out);
     double sum_abs = 0, sum_sq = 0, sum_signed = 0, sum_se = 0, sum_leak = 0, sum_dark = 0;
@@ -61,7 +64,7 @@ void sl_soft_figures_compute(int w, int h, const uint32_t *tri, const float *v, 
             sum_se += se[i];
         n[SL_SFIG_soft_within_005] += fabs(e) <= 0.05;
         n[SL_SFIG_soft_within_010] += fabs(e) <= 0.1;
-        int ct = soft_class(t[i]), cm = soft_class(v[i]);
+        int ct = soft_class(t[i], tol), cm = soft_class(v[i], tol);
         n[SL_SFIG_soft_truth_lit + ct]++;
         n[SL_SFIG_soft_lit_right + ct] += ct == cm;
         n[SL_SFIG_soft_class_right] += ct == cm;

@@ -7,7 +7,9 @@
  * not finite (NaN, +-inf: no error can be taken of it; the cell counts it
  * apart, nonfinite); a pixel is lit when its visible fraction
  * is 1, in umbra when it is 0, in penumbra otherwise (the truth's estimate,
- * from its samples: a pixel with every sample visible is lit). The errors are
+ * from its samples: a pixel with every sample visible is lit), each within
+ * the caller's tolerance: 0 under an area light, SL_SOFT_HARD_TOL under a
+ * hard light (below). The errors are
  * in units of visibility (0..1) and reported as percentages of full
  * visibility (an MAE of 2.5 means the method is off by 0.025 on average).
  * Does not: compute visibility, format or store.
@@ -42,6 +44,20 @@
     X(leaking,            "light leaking: mean of max(v - truth, 0) (too light)",         "visibility") \
     X(over_dark,          "over-darkening: mean of max(truth - v, 0) (too dark)",         "visibility")
 
+/* The class tolerance under a hard light (directional, spot, point), whose
+ * truth is exactly 0 or 1: a method's visibility v is lit when v >= 1 - tol,
+ * umbra when v <= tol. A filtered method (pcf, vsm, evsm, msm) almost never
+ * writes exactly 0 or 1, so exact classes call nearly every pixel penumbra
+ * whatever its error (EVSM 2.66% classed right at a mean error of 0.37%);
+ * with the tolerance a class is right exactly when |v - t| <= tol, so
+ * soft_class_right = soft_within_005, soft_lit_right is the share of the
+ * truth-lit pixels not over-darkened by more than tol and soft_umbra_right
+ * of the truth-shadowed ones not leaking more than tol. 0.05 as the
+ * within_005 figure and the fractional overlay's key (score/cell.c). An area
+ * truth's classes stay exact (lit: every sample visible), so its figures
+ * and baselines are unchanged. */
+#define SL_SOFT_HARD_TOL 0.05
+
 enum sl_soft_figure {
 #define SL_SOFT_ENUM(name, text, of) SL_SFIG_##name,
     SL_SOFT_FIGURES(SL_SOFT_ENUM)
@@ -60,8 +76,10 @@ struct sl_soft_figures {
 };
 
 /* Over every non-background pixel (tri != 0) of a w*h view: method `v` and
- * truth `t` visible fractions, truth standard errors `se` (may be NULL). */
+ * truth `t` visible fractions, truth standard errors `se` (may be NULL);
+ * the classes lit/umbra/penumbra within `tol` of 1 and 0 (0: exact, an area
+ * light; SL_SOFT_HARD_TOL: a hard light's 0/1 truth). */
 void sl_soft_figures_compute(int w, int h, const uint32_t *tri, const float *v, const float *t, const float *se,
-                             struct sl_soft_figures *out);
+                             double tol, struct sl_soft_figures *out);
 
 #endif
