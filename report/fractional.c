@@ -66,11 +66,27 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
                        "their difference, so leaking = (|v − truth| + bias) / 2 and over-darkening = "
                        "(|v − truth| − bias) / 2. Wrong %%: the same cells' hard figures (their "
                        "lit/shadowed verdicts), whole image.");
+    /* the lights the truths were computed for, each once ("directional
+     * light", "spot light, 70°": the cells' own words) */
+    char lights[256] = "";
+    size_t lo = 0;
+    for (int i = 0; i < s->n; i++) {
+        const struct sl_cell_record *c = &s->cells[i];
+        if (!c->has_soft || !c->frac)
+            continue;
+        const char *w = c->light[0] ? c->light : "hard light";
+        int seen = 0;
+        for (int j = 0; j < i && !seen; j++)
+            seen = s->cells[j].has_soft && s->cells[j].frac &&
+                   !strcmp(s->cells[j].light[0] ? s->cells[j].light : "hard light", w);
+        if (!seen && lo < sizeof lights)
+            lo += (size_t)snprintf(lights + lo, sizeof lights - lo, "%s%s", lo ? "; " : "", w);
+    }
     char id[160];
     snprintf(id, sizeof id, "%s-fractional", s->slug);
     struct sl_tab t;
-    sl_tab_init(&t, id, 12, 2, "%s: fractional errors against the 0/1 truth, per label and map size",
-                       s->name);
+    sl_tab_init(&t, id, 12, 2, "%s: fractional errors against the 0/1 truth of the %s, per label and map size",
+                s->name, lights[0] ? lights : "hard light");
     static const char *const head[] = {"label",   "map",     "cells",          "PFL pixels",
                                        "wrong % (hard)", "|v − t|", "bias",           "leaking",
                                        "over-darkening", "within 0.05", "leaking", "over-darkening"};

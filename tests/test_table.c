@@ -475,6 +475,59 @@ static __attribute__((noinline)) char *pivot(enum sl_table_format fmt, const str
     return buf;
 }
 
+/* A package's cells under a hard light (frac): the soft table names the
+ * light its truth was computed for and the class tolerance, never "area
+ * light"; the hard twin's truth is the light's own, not an area light's
+ * centre; a cell with values not finite carries the NON-FINITE note in
+ * LaTeX as in Markdown, and so do the pivot (md, LaTeX) and the run's
+ * detail longtable names the light. */
+static void table_hard_light_fractional(void **st)
+{
+    (void)st;
+    struct sl_cell_record c[2] = {make("side", 1024, 1000, "h/c/i"), make("side", 512, 100, "h/c/i")};
+    for (int i = 0; i < 2; i++) {
+        c[i].has_soft = 1;
+        c[i].frac = 1;
+        snprintf(c[i].light, sizeof c[i].light, "directional light");
+        snprintf(c[i].study, sizeof c[i].study, "prim_study");
+        for (int k = 0; k < SL_SFIG_COUNT; k++) {
+            c[i].soft.n[k] = 300u + (uint64_t)k;
+            c[i].soft.pct[k] = 1.5 + k;
+        }
+    }
+    c[0].nonfinite = 7;
+    char *md = render(SL_TABLE_MD, NULL, c, 2, SL_OK);
+    assert_null(strstr(md, "rea light"));
+    assert_non_null(strstr(md, "Directional light: the visibility against the light's 0/1 truth over the PFL pixels"));
+    assert_non_null(strstr(md, "within \xCE\xB5 = 0.05 of 1"));
+    assert_non_null(strstr(md, "|v \xE2\x88\x92 truth| \xE2\x89\xA4 0.05"));
+    assert_non_null(strstr(md, "; truth: 44 PFL lit"));
+    assert_int_equal(count_of(md, "NON-FINITE: 1024\xC2\xB2: 7 value(s)"), 2);   /* soft and hard table */
+    free(md);
+    char *tex = render(SL_TABLE_LATEX, NULL, c, 2, SL_OK);
+    assert_null(strstr(tex, "rea light"));
+    assert_non_null(strstr(tex, "Directional light: the visibility against the light's 0/\\allowbreak{}1 truth"));
+    assert_non_null(strstr(tex, "0.05 of 1"));
+    /* the soft and the hard float of the 1024, not the 512 */
+    assert_int_equal(count_of(tex, "NON-FINITE: 7 value(s) not finite (NaN, $\\pm$inf)"), 2);
+    free(tex);
+    struct sl_pivot_desc p = {.figure = "leaking"};
+    md = pivot(SL_TABLE_MD, c, 2, &p, NULL, SL_OK);
+    assert_non_null(strstr(md, "NON-FINITE: 1 cell(s) of the table hold 7 value(s) not finite"));
+    free(md);
+    tex = pivot(SL_TABLE_LATEX, c, 2, &p, NULL, SL_OK);
+    assert_non_null(strstr(tex, "NON-FINITE: 1 cell(s) of the table hold 7 value(s) not finite"));
+    free(tex);
+    c[0].nonfinite = 0;
+    tex = pivot(SL_TABLE_LATEX, c, 2, &p, NULL, SL_OK);
+    assert_null(strstr(tex, "NON-FINITE"));
+    free(tex);
+    char *det = render(SL_TABLE_LATEX_DETAIL, "shadowlab: prim", c, 2, SL_OK);
+    assert_null(strstr(det, "rea light"));
+    assert_non_null(strstr(det, "64$\\times$32: under the directional light, the visibility against its 0/\\allowbreak{}1 truth"));
+    free(det);
+}
+
 /* wrong (figure 10) is 10.25 % in the 2 px region and 20.25 % in the image of
  * every cell; its count base + 10 r + 10 */
 static void table_pivot_values(void **st)
@@ -761,6 +814,7 @@ int main(int argc, char **argv)
         SL_CASE(table, empty_and_formats),
         SL_CASE(table, soft_and_hard),
         SL_CASE(table, spot_light),
+        SL_CASE(table, hard_light_fractional),
         SL_CASE(table, pivot_values),
         SL_CASE(table, pivot_latex_fits),
         SL_CASE(table, run_latex),

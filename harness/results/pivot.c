@@ -156,8 +156,8 @@ static enum sl_err fig_resolve(const struct sl_pivot_desc *p, struct fig *g, str
             g->src = SRC_COL, g->k = (int)k;
     if (g->k < 0)
         return sl_fail(d, SL_E_USAGE, NULL, 0, "--figure",
-                       "unknown figure '%s' (a name of figures.h or softfig.h, e.g. wrong, uncertain, soft_mae; "
-                       "or a counter or time: ms_method, rays, lookups, ...)", name);
+                       "unknown figure '%s' (a name of figures.h or softfig.h, e.g. wrong, uncertain, soft_mae, "
+                       "leaking, over_dark; or a counter or time: ms_method, rays, lookups, nonfinite, ...)", name);
     const char *of = p->of;
     if (g->src == SRC_COL) {
         if (of && strcmp(of, "count"))
@@ -309,6 +309,8 @@ struct pivot {
     int           nr, nc, maxn, region_default;
     int           varies[SL_PK_COUNT];  /* the key has two values inside one entry */
     char        (*ldisp)[KEYLEN];       /* per label key: its display name (cells.display) */
+    int           nf_cells;            /* cells of the table with values not finite (cells.nonfinite) */
+    uint64_t      nonfinite;           /* and their sum */
 };
 
 static void pivot_free(struct pivot *pv)
@@ -397,7 +399,7 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
     }
     for (int i = 0; i < ncells && !e; i++) {
         const struct sl_cell_record *c = &cells[i];
-        int nreg = fig_regions(&pv->g, c);
+        int nreg = fig_regions(&pv->g, c), kept = 0;
         for (int r = 0; r < nreg && !e; r++) {
             int reg = pv->g.src == SRC_HARD ? r : -1;
             char ks[SL_PK_COUNT][KEYLEN];
@@ -425,6 +427,11 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
             pval[np] = fig_value(&pv->g, c, reg);
             ponce[np] = pv->g.src == SRC_COL && cols[pv->g.k].is_ms && c->runs == 1;
             np++;
+            kept = 1;
+        }
+        if (kept && c->nonfinite) {
+            pv->nf_cells++;
+            pv->nonfinite += c->nonfinite;
         }
     }
     if (!e) {
@@ -537,6 +544,17 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
         snprintf(out + o, o < n ? n - o : 0, " \xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.");
 }
 
+/* The NON-FINITE note of table.md under a pivot whose cells hold values
+ * not finite: their pixels are out of every figure the entries aggregate. */
+static void nonfinite_note(struct sl_tab *t, const struct pivot *pv)
+{
+    if (pv->nf_cells)
+        sl_tab_notef(t, "NON-FINITE: %d cell(s) of the table hold %llu value(s) not finite (NaN, \xC2\xB1inf) or "
+                        "out of range; their pixels are left out of the figures (a package's verdict there: "
+                        "uncertain).",
+                     pv->nf_cells, (unsigned long long)pv->nonfinite);
+}
+
 /* a key's value for people: map sizes squared */
 static void key_plain(enum sl_pivot_key k, const char *v, char *out, size_t n)
 {
@@ -590,6 +608,7 @@ static void read_table(struct sl_tab *t, const struct pivot *pv, const struct sl
             sl_tab_cell(t, 1 + c, "%s%s", v, pv->once[pv->rperm[r] * pv->nc + pv->cperm[c]] ? "\xE2\x80\xA0" : "");
         }
     }
+    nonfinite_note(t, pv);
 }
 
 /* The data table (CSV): the keys as they are stored, the entries with 10
@@ -811,6 +830,8 @@ static int tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p
             sl_tab_cell(&t, 1 + c - c0, "%s%s", s, view_once(v, r, c) ? "\xE2\x80\xA0" : "");
         }
     }
+    if (part == parts - 1)
+        nonfinite_note(&t, pv);
     const struct sl_emit_opts o = {.blank = 1};
     int e = sl_emit_tex(f, &t, &o) < 0 ? -1 : 0;
     sl_tab_free(&t);
@@ -1176,10 +1197,23 @@ static int detail_view(FILE *f, const struct sl_cell_record *cells, const int *i
         err = detail_tables(f, cells, h, nh, dc, k, 1, words, "hard");
     }
     if (ns && !err) {
-        static const char *const words[] = {
+        /* the light the truth was computed for (a view has one); under a
+         * hard light the classes take softfig.h's tolerance */
+        const struct sl_cell_record *c0 = &cells[s[0]];
+        char light[400];
+        if (c0->frac)
+            snprintf(light, sizeof light,
+                     "under the %s, the visibility against its 0/1 truth over the PFL pixels (MAE, RMSE, bias in %% of "
+                     "full visibility; pixels within 0.05 and classed right, lit or umbra within "
+                     "\xCE\xB5 = %.2f of 1 or 0, in %% of the pixels)",
+                     c0->light[0] ? c0->light : "hard light", (double)SL_SOFT_HARD_TOL);
+        else
+            snprintf(light, sizeof light, "%s",
+                     "an area light: the visible fraction against the area truth (MAE, RMSE, bias in % of full "
+                     "visibility; pixels within 0.05 and classed right in % of the pixels)");
+        const char *const words[] = {
             "",   /* the map size: in every part */
-            "an area light: the visible fraction against the area truth (MAE, RMSE, bias in % of full visibility; "
-            "pixels within 0.05 and classed right in % of the pixels)",
+            light,
             "step ms: the method's per-pixel step, the median over its timed runs (\xE2\x80\xA0: timed once, no median)",
             NULL,
         };

@@ -12,6 +12,7 @@
 #define _POSIX_C_SOURCE 200809L   /* open_memstream */
 #include "table.h"
 #include "emit.h"
+#include <ctype.h>
 #include <math.h>
 #include "pivot.h"
 #include <stdlib.h>
@@ -215,7 +216,7 @@ static void view_counts(FILE *f, const struct sl_cell_record *c0, int tex)
                    "counted as PnFL in the figures, never as errors)",
                 (unsigned long long)out, img ? 100.0 * (double)out / (double)img : 0.0, tex ? "\\%" : "%");
     fprintf(f, ", background %llu; truth%s: %llu PFL lit, %llu PFL shadowed.", (unsigned long long)c0->n_background,
-            point_twin(c0) ? " of the area light's centre" : "", (unsigned long long)c0->n_truth_lit,
+            point_twin(c0) && !c0->frac ? " of the area light's centre" : "", (unsigned long long)c0->n_truth_lit,
             (unsigned long long)c0->n_truth_shadow);
 }
 
@@ -230,6 +231,33 @@ static void light_words(FILE *f, const struct sl_cell_record *c0, int tex)
     else
         fputs(c0->light, f);
     fputc(')', f);
+}
+
+/* The intro of a soft table: the light the truth was computed for, and
+ * under a hard light (frac: a fractional visibility against its 0/1 truth)
+ * the tolerance its classes take (softfig.h, SL_SOFT_HARD_TOL); tex: "%"
+ * escaped by the caller's text writer, so the same words either way. */
+static void soft_intro(FILE *f, const struct sl_cell_record *c0)
+{
+    if (!c0->frac) {
+        fputs("Area light: the visible fraction of the light against the area truth "
+              "(means in % of full visibility).", f);
+        return;
+    }
+    const char *l = c0->light[0] ? c0->light : "hard light";
+    fprintf(f, "%c%s: the visibility against the light's 0/1 truth over the PFL pixels (means in %% of full "
+               "visibility); a pixel is lit within \xCE\xB5 = %.2f of 1 and umbra within \xCE\xB5 of 0, so a class "
+               "is right when |v \xE2\x88\x92 truth| \xE2\x89\xA4 %.2f and no truth pixel is penumbra.",
+            toupper((unsigned char)l[0]), l + 1, (double)SL_SOFT_HARD_TOL, (double)SL_SOFT_HARD_TOL);
+}
+
+/* Under every table that has one: its cells' values not finite */
+static void nonfinite_note(FILE *fn, const struct sl_cell_record *c)
+{
+    if (c->nonfinite)
+        fprintf(fn, "NON-FINITE: %d\xC2\xB2: %llu value(s) not finite (NaN, \xC2\xB1inf) or out of range; "
+                    "their pixels are left out of the figures (a package's verdict there: uncertain).\n\n",
+                c->map_size, (unsigned long long)c->nonfinite);
 }
 
 static void md_provenance(FILE *f, const struct sl_cell_record *c)
@@ -258,17 +286,11 @@ static int md_model(struct sl_tab *t, const struct sl_cell_record *cells, const 
     if (fl)
         light_words(fl, c0, 0);
     if (fi && c0->has_soft)
-        fputs("Area light: the visible fraction of the light against the area truth "
-              "(means in % of full visibility).", fi);
+        soft_intro(fi, c0);
     else if (fi)
         view_counts(fi, c0, 0);
-    for (int k = 0; fn && k < g->n; k++) {
-        const struct sl_cell_record *c = &cells[g->idx[k]];
-        if (c->nonfinite)
-            fprintf(fn, "NON-FINITE: %d\xC2\xB2: %llu value(s) not finite (NaN, \xC2\xB1inf) or out of range; "
-                        "their pixels are left out of the figures (a package's verdict there: uncertain).\n\n",
-                    c->map_size, (unsigned long long)c->nonfinite);
-    }
+    for (int k = 0; fn && k < g->n; k++)
+        nonfinite_note(fn, &cells[g->idx[k]]);
     if (fn && shown < cell_rows(c0))
         fprintf(fn, "(%d of %d figures shown: %s; table.md and `shadowlab table --figures all` have every row.)\n\n",
                 shown, cell_rows(c0),
@@ -528,7 +550,7 @@ static void latex_model(struct sl_tab *t, const struct sl_cell_record *cells, co
         FILE *m = open_memstream(&intro, &len);
         if (m) {
             if (c0->has_soft)
-                fputs("Area light: the visible fraction against the area truth (means in % of full visibility).", m);
+                soft_intro(m, c0);
             else
                 view_counts(m, c0, 0);
             /* "-\u200C-": two hyphens LaTeX does not join into a dash */
@@ -563,9 +585,15 @@ static void latex_model(struct sl_tab *t, const struct sl_cell_record *cells, co
             sl_tab_cell(t, 1 + r - r0, "%s", v);
         }
     }
-    if (p == parts - 1)
-        sl_tab_notef(t, "method `%s`; contours from `%s` (contour_from); git `%s`, config `%s`, machine %s",
-                     c->method, c->contour_from, c->git_sha, c->config_hash, c->machine);
+    if (p == parts - 1) {
+        /* the NON-FINITE words of table.md, as a sentence before the provenance */
+        if (c->nonfinite)
+            sl_tab_notef(t, "NON-FINITE: %llu value(s) not finite (NaN, \xC2\xB1inf) or out of range; their pixels "
+                            "are left out of the figures (a package's verdict there: uncertain). ",
+                         (unsigned long long)c->nonfinite);
+        sl_tab_note_cat(t, "method `%s`; contours from `%s` (contour_from); git `%s`, config `%s`, machine %s",
+                        c->method, c->contour_from, c->git_sha, c->config_hash, c->machine);
+    }
 }
 
 /* Writes the floats of one table; returns how many. */
@@ -624,7 +652,7 @@ enum sl_err sl_table_figures_parse(const char *list, struct sl_table_rows *rows,
         if (!found)
             return sl_fail(d, SL_E_USAGE, NULL, 0, "--figures",
                            "unknown figure '%.*s' (the names of figures.h and softfig.h, e.g. wrong, "
-                           "light_incorrect, uncertain, soft_mae; or all)", (int)len, p);
+                           "light_incorrect, uncertain, soft_mae, leaking, over_dark; or all)", (int)len, p);
         p += len;
         if (*p == ',')
             p++;
