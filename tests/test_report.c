@@ -449,6 +449,7 @@ static void report_any_study(void **st)
         *f = cell("own", "primitives", vps[v], "pkg", "pcf", 512, 20, 3.0, 0);
         f->has_soft = 1;
         f->frac = 1;
+        snprintf(f->light, sizeof f->light, "%s", v ? "spot light, 70\xC2\xB0" : "directional light");
         /* view 1: mae 10, bias -4 over 1000 px; view 2: mae 2, bias +2 over 3000 px:
          * pooled mae 4, bias 0.5, leaking 2.25, over-darkening 1.75 */
         uint64_t px = v ? 3000 : 1000;
@@ -487,7 +488,9 @@ static void report_any_study(void **st)
     assert_null(strstr(md, "chain"));
     assert_null(strstr(md, "soft shadows (area lights)"));
     assert_non_null(strstr(md, "No method of Moderno 2011, Morais 2015 or Curtis 2009 ran"));
-    assert_non_null(strstr(md, "### own: fractional errors"));
+    assert_non_null(strstr(md, "**own: fractional errors against the 0/1 truth of the directional light; "
+                               "spot light, 70\xC2\xB0, per label and map size"));
+    assert_non_null(strstr(md, "### own: fractional errors\n"));
     assert_non_null(strstr(md, "### own: cost"));
     /* label, map, cells, PFL, wrong % (20 of 2000 px, whole image), mae, bias, leaking, over-darkening, within,
      * per px: 2.25 * 4000 / 400, 1.75 * 4000 / 3600 */
