@@ -97,6 +97,11 @@ man)
               '^\.SH CONFIGURATION' 'doc/guide\.md' '^\.SH ENVIRONMENT' '^\.SH EXIT STATUS'; do
     grep -q -- "$want" "$tmp/shadowlab.1" && ok || fail "the man page lacks $want"
   done
+  # the figures a table and a pivot take, the fractional ones and the count of values not finite among them
+  for f in leaking over_dark nonfinite soft_mae; do
+    "$bin" help table | grep -qw -- "$f" && ok || fail "'shadowlab help table' does not name the figure $f"
+    grep -qw -- "$f" "$tmp/shadowlab.1" && ok || fail "the man page does not name the figure $f"
+  done
   ;;
 config)
   # doc/config.md is what the binary writes from the parser's schema, and it
@@ -174,6 +179,10 @@ completion)
   has wrong shadowlab table x.db --summary wro
   has wrong_caught shadowlab table x.db --summary wrong_c
   has pfl,wrong shadowlab table x.db --figures pfl,wro
+  has leaking shadowlab table x.db --figures leak
+  has over_dark shadowlab table x.db --figure over
+  has nonfinite shadowlab table x.db --figure nonf
+  has ms_method shadowlab table x.db --figure ms_m
   has map_sizes= shadowlab run configs/default.yaml -D map_s
   has methods= shadowlab validate configs/default.yaml --define meth
   has pcf shadowlab show technique pc

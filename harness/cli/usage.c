@@ -15,6 +15,7 @@
 #include "config.h"
 #include "cli.h"
 #include "figrec.h"
+#include "pivot.h"
 #include "softfig.h"
 
 const char cli_usage_run[] =
@@ -72,13 +73,16 @@ const char cli_usage_table[] =
     "  the average, best and worst per map size of the figure's percentage over the label's\n"
     "  cells (as the theses' summary tables): md, csv or latex (a booktabs float each).\n"
     "  md and latex leave out the figures a method does not produce (0 in every column past\n"
-    "  wrong_caught); --figures picks the rows to show (figures.h names), 'all' shows every one.\n"
+    "  wrong_caught); --figures picks the rows to show (names of figures.h and softfig.h: wrong,\n"
+    "  uncertain, ..., soft_mae, leaking, over_dark, ...), 'all' shows every one.\n"
     "  A pivot (any of --rows, --cols, --figure, --of, --agg, --where): one table a paper takes.\n"
     "  --rows R          the rows: label, method, scene, viewpoint, viewport, map_size or region\n"
     "  --cols C          the columns: one of the same keys\n"
     "                    (default label x map_size)\n"
-    "  --figure F      a figure of figures.h or softfig.h (default wrong), or a counter or time\n"
-    "                  of the cell (ms_method, rays, lookups, ...)\n"
+    "  --figure F      a figure of figures.h (default wrong; uncertain, light_incorrect, ...) or\n"
+    "                  of softfig.h (soft_mae, soft_bias, leaking, over_dark, soft_class_right,\n"
+    "                  ...), or a counter or time of the cell (ms_method, rays, lookups,\n"
+    "                  nonfinite, ...)\n"
     "  --of BASE       the figure's percentage of its own base (the default: figures.csv's\n"
     "                  percent_of), 'count', or of another figure of the region (--of pfl)\n"
     "  --agg A         mean (default), median, sum, min or max over what is left\n"
@@ -745,6 +749,14 @@ void cli_completion(FILE *f)
         fprintf(f, " %s", sl_figure_name((enum sl_figure)k));
     for (int k = 0; k < SL_SFIG_COUNT; k++)
         fprintf(f, " %s", sl_soft_figure_name((enum sl_soft_figure)k));
+    /* a pivot's one figure: any of those, or a counter or time of the cell */
+    fputs("\"; return ;;\n        --figure) _shadowlab_list \"", f);
+    for (int k = 0; k < SL_FIG_COUNT; k++)
+        fprintf(f, "%s%s", k ? " " : "", sl_figure_name((enum sl_figure)k));
+    for (int k = 0; k < SL_SFIG_COUNT; k++)
+        fprintf(f, " %s", sl_soft_figure_name((enum sl_soft_figure)k));
+    for (int k = 0; sl_pivot_counter_name(k); k++)
+        fprintf(f, " %s", sl_pivot_counter_name(k));
     fputs("\"; return ;;\n", f);
     /* every other option that takes a value: nothing to offer */
     fputs("        ", f);
@@ -752,7 +764,7 @@ void cli_completion(FILE *f)
     char seen[2048] = " ";
     static const char *const listed[] = {"-o", "--out", "--cache", "--db", "--stored-in", "--baseline", "--json",
                                          "--junit", "--csv", "--markdown", "--scene", "--label", "-D", "--define",
-                                         "--only", "--summary", "--figures", "--gl", "--format"};
+                                         "--only", "--summary", "--figures", "--figure", "--gl", "--format"};
     for (const struct cli_verb *v = cli_verbs; v->name; v++) {
         struct comp_opt o[48];
         int n = comp_options(v->usage, o, 48);

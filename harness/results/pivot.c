@@ -129,6 +129,11 @@ static const struct colref cols[] = {
 #undef PV_COL
 };
 
+const char *sl_pivot_counter_name(int i)
+{
+    return i >= 0 && (size_t)i < sizeof cols / sizeof cols[0] ? cols[i].name : NULL;
+}
+
 struct fig {
     enum src src;
     int      k;              /* figure or column */

@@ -50,6 +50,9 @@ int         sl_pivot_key_parse(const char *name);   /* -1 if unknown */
 
 enum sl_pivot_agg { SL_AGG_MEAN = 0, SL_AGG_MEDIAN, SL_AGG_SUM, SL_AGG_MIN, SL_AGG_MAX };
 int sl_pivot_agg_parse(const char *name);            /* -1 if unknown */
+/* The i-th counter or time of cellcols.h a pivot's --figure takes (besides
+ * the figures of figures.h and softfig.h); NULL past the last. */
+const char *sl_pivot_counter_name(int i);
 
 #define SL_PIVOT_MAX_WHERE 16
 
