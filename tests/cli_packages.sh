@@ -30,6 +30,12 @@
 #              pixels are uncertain (not wrong); check fails against a
 #              baseline without the counts and passes against one holding them;
 #              `table --figure leaking` pivots, leaking + over_dark = soft_mae
+#   hard_classes vsm and evsm under the directional light (filtered: their
+#              visibility is almost never exactly 0 or 1): the soft classes
+#              take the tolerance 0.05 (class right = within 0.05, no truth
+#              pixel penumbra, EVSM's class right near VSM's, not 2.75 %),
+#              and table.md and the table's LaTeX name the directional light
+#              and the tolerance, never an area light
 set -u
 bin=${1:?usage: cli_packages.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -310,6 +316,41 @@ YAML
                        WHERE abs(l.percent + o.percent - m.percent) > 1e-9 OR m.percent IS NULL")
   [ -z "$bad" ] || fail "leaking + over_dark != soft_mae: $bad"
   echo "ok nonfinite: NaN $(nf nan), -inf $(nf ninf) pixels; $(nf map) map texels"
+  ;;
+hard_classes)
+  cat >"$tmp/c.yaml" <<'YAML'
+name: hardfrac
+scenes: [{scene: primitives, viewpoints: [side]}]
+viewports: [{width: 256, height: 256}]
+map_sizes: [1024]
+methods:
+  - {label: vsm, method: vsm}
+  - {label: evsm, method: evsm}
+outputs: {overlays: false}
+YAML
+  "$bin" run "$tmp/c.yaml" --no-cache -q -o "$tmp/out" || fail "run"
+  db="$tmp/out/shadowlab.db"
+  fig() { sqlite3 "$db" "SELECT f.$3 FROM figures f JOIN cells c USING (cell_id) WHERE c.label = '$1' AND f.figure = '$2'"; }
+  for l in vsm evsm; do
+    [ "$(sqlite3 "$db" "SELECT frac FROM cells WHERE label = '$l'")" = 1 ] || fail "$l: not a frac cell"
+    [ "$(fig $l soft_truth_penumbra count)" = 0 ] || fail "$l: truth pixels in penumbra under a directional light"
+    [ "$(fig $l soft_class_right count)" = "$(fig $l soft_within_005 count)" ] ||
+      fail "$l: class right $(fig $l soft_class_right count) != within 0.05 $(fig $l soft_within_005 count)"
+    awk -v p="$(fig $l soft_class_right percent)" 'BEGIN { exit !(p > 90) }' ||
+      fail "$l: class right $(fig $l soft_class_right percent) %"
+  done
+  md="$tmp/out/hardfrac/table.md"
+  grep -q "rea light" "$md" && fail "table.md says area light under a directional light"
+  [ "$(grep -c "^Directional light: the visibility against the light's 0/1 truth over the PFL pixels" "$md")" = 2 ] ||
+    fail "table.md's soft tables do not name the directional light"
+  grep -q "within ε = 0.05 of 1" "$md" || fail "table.md does not state the classes' tolerance"
+  "$bin" table "$db" --format latex >"$tmp/t.tex" || fail "table --format latex"
+  grep -q "rea light" "$tmp/t.tex" && fail "the LaTeX says area light under a directional light"
+  grep -q "Directional light: the visibility against the light's 0/" "$tmp/t.tex" ||
+    fail "the LaTeX's soft captions do not name the directional light"
+  grep -q "under the directional light, the visibility" "$tmp/out/hardfrac/table-detail.tex" ||
+    fail "table-detail.tex does not name the directional light"
+  echo "ok hard_classes: class right vsm $(fig vsm soft_class_right percent) %, evsm $(fig evsm soft_class_right percent) %"
   ;;
 *) fail "unknown case $case_" ;;
 esac
