@@ -517,7 +517,13 @@ static void table_hard_light_fractional(void **st)
     free(md);
     tex = pivot(SL_TABLE_LATEX, c, 2, &p, NULL, SL_OK);
     assert_non_null(strstr(tex, "NON-FINITE: 1 cell(s) of the table hold 7 value(s) not finite"));
+    /* a class figure's pivot states the tolerance; leaking's has none to state */
+    assert_null(strstr(tex, "\xCE\xB5"));
     free(tex);
+    struct sl_pivot_desc cls = {.figure = "soft_class_right"};
+    md = pivot(SL_TABLE_MD, c, 2, &cls, NULL, SL_OK);
+    assert_non_null(strstr(md, "; under a hard light lit within \xCE\xB5 = 0.05 of 1 and umbra within \xCE\xB5 of 0"));
+    free(md);
     c[0].nonfinite = 0;
     tex = pivot(SL_TABLE_LATEX, c, 2, &p, NULL, SL_OK);
     assert_null(strstr(tex, "NON-FINITE"));

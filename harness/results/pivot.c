@@ -315,6 +315,7 @@ struct pivot {
     int           varies[SL_PK_COUNT];  /* the key has two values inside one entry */
     char        (*ldisp)[KEYLEN];       /* per label key: its display name (cells.display) */
     int           nf_cells;            /* cells of the table with values not finite (cells.nonfinite) */
+    int           any_frac, any_area;  /* soft cells of the table: a hard light's (frac), an area light's */
     uint64_t      nonfinite;           /* and their sum */
 };
 
@@ -434,6 +435,10 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
             np++;
             kept = 1;
         }
+        if (kept && pv->g.src == SRC_SOFT) {
+            pv->any_frac |= c->frac;
+            pv->any_area |= !c->frac;
+        }
         if (kept && c->nonfinite) {
             pv->nf_cells++;
             pv->nonfinite += c->nonfinite;
@@ -541,6 +546,14 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, ", at most %d values an entry", pv->maxn);
     if (pv->region_default && pv->g.src == SRC_HARD)
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, "; the whole image");
+    /* a class figure of a hard light's cells: its tolerance (softfig.h) */
+    int cls = pv->g.src == SRC_SOFT && (pv->g.k == SL_SFIG_soft_lit_right || pv->g.k == SL_SFIG_soft_umbra_right ||
+                                        pv->g.k == SL_SFIG_soft_penumbra_right || pv->g.k == SL_SFIG_soft_class_right);
+    if (cls && pv->any_frac)
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0,
+                              "; %sunder a hard light lit within \xCE\xB5 = %.2f of 1 and umbra within \xCE\xB5 of 0 "
+                              "(a class right when |v \xE2\x88\x92 truth| \xE2\x89\xA4 \xCE\xB5)",
+                              pv->any_area ? "exact under an area light, " : "", (double)SL_SOFT_HARD_TOL);
     for (int w = 0; w < p->nwhere; w++)
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s = %s", w ? ", " : "; ",
                               sl_pivot_key_name(p->where[w].key), p->where[w].value);
