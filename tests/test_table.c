@@ -522,8 +522,17 @@ static void table_hard_light_fractional(void **st)
     free(tex);
     struct sl_pivot_desc cls = {.figure = "soft_class_right"};
     md = pivot(SL_TABLE_MD, c, 2, &cls, NULL, SL_OK);
-    assert_non_null(strstr(md, "; under a hard light lit within \xCE\xB5 = 0.05 of 1 and umbra within \xCE\xB5 of 0"));
+    assert_non_null(strstr(md, "; against the truth of the directional light; under a hard light lit within "
+                               "\xCE\xB5 = 0.05 of 1 and umbra within \xCE\xB5 of 0"));
     free(md);
+    /* two lights, each named once */
+    snprintf(c[1].light, sizeof c[1].light, "spot light, 70\xC2\xB0");
+    struct sl_cell_record three[3] = {c[0], c[1], c[0]};
+    three[2].map_size = 2048;
+    md = pivot(SL_TABLE_MD, three, 3, &cls, NULL, SL_OK);
+    assert_non_null(strstr(md, "; against the truth of the directional light and spot light, 70\xC2\xB0;"));
+    free(md);
+    snprintf(c[1].light, sizeof c[1].light, "directional light");
     c[0].nonfinite = 0;
     tex = pivot(SL_TABLE_LATEX, c, 2, &p, NULL, SL_OK);
     assert_null(strstr(tex, "NON-FINITE"));

@@ -316,6 +316,7 @@ struct pivot {
     char        (*ldisp)[KEYLEN];       /* per label key: its display name (cells.display) */
     int           nf_cells;            /* cells of the table with values not finite (cells.nonfinite) */
     int           any_frac, any_area;  /* soft cells of the table: a hard light's (frac), an area light's */
+    char          lights[256];         /* and the lights their truths were computed for, each once */
     uint64_t      nonfinite;           /* and their sum */
 };
 
@@ -374,6 +375,22 @@ static double aggregate(enum sl_pivot_agg a, double *v, int n)
         return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
     default: return s / n;
     }
+}
+
+/* w appended to the list "a and b" unless there: light words
+ * (sl_light_heading) never hold " and " */
+static void add_light(char *list, size_t n, const char *w)
+{
+    for (const char *p = list; *p;) {
+        const char *e = strstr(p, " and ");
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == strlen(w) && !strncmp(p, w, len))
+            return;
+        p += len + (e ? 5 : 0);
+    }
+    size_t o = strlen(list);
+    if (o + strlen(w) + 6 < n)
+        snprintf(list + o, n - o, "%s%s", o ? " and " : "", w);
 }
 
 static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, const struct sl_pivot_desc *p,
@@ -438,6 +455,7 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
         if (kept && pv->g.src == SRC_SOFT) {
             pv->any_frac |= c->frac;
             pv->any_area |= !c->frac;
+            add_light(pv->lights, sizeof pv->lights, c->light[0] ? c->light : c->frac ? "hard light" : "area light");
         }
         if (kept && c->nonfinite) {
             pv->nf_cells++;
@@ -546,6 +564,9 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, ", at most %d values an entry", pv->maxn);
     if (pv->region_default && pv->g.src == SRC_HARD)
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, "; the whole image");
+    /* a soft figure: the lights its cells' truths were computed for */
+    if (pv->lights[0])
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "; against the truth of the %s", pv->lights);
     /* a class figure of a hard light's cells: its tolerance (softfig.h) */
     int cls = pv->g.src == SRC_SOFT && (pv->g.k == SL_SFIG_soft_lit_right || pv->g.k == SL_SFIG_soft_umbra_right ||
                                         pv->g.k == SL_SFIG_soft_penumbra_right || pv->g.k == SL_SFIG_soft_class_right);
