@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # techtest::* (shell) — `shadowlab test technique NAME`, the packages' linter.
 #   shipped    every package under techniques/ passes on the default scene
-#              (exit 0, every check ok), and on the spot-lit scene
+#              (exit 0, every check ok); pcf and vsm on the spot-lit scene
+#              and on the room's point light (per face of its cube)
 #   reach      tests/techniques/overreach (a 3 x 3 PCF declaring reach 1 and
 #              reading 4 texels beyond it) fails the reach check, exit 1,
 #              naming how many pixels change; the same package with its far
@@ -10,8 +11,8 @@
 #              non-finite check naming the count; a pcf copy declaring 4 taps
 #              where it reads 9 fails the taps check; each exit 1
 #   bad_input  exit 2: an unknown package (the message names those found), a
-#              GLSL error (the package file and line), an unknown scene, a
-#              point light, a missing NAME
+#              GLSL error (the package file and line), an unknown scene or
+#              viewpoint, a missing NAME
 set -u
 bin=${1:?usage: cli_techtest.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -38,6 +39,10 @@ shipped)
   for name in pcf vsm; do
     "$bin" test technique "$name" --scene primitives_spot >"$tmp/out" 2>&1 ||
       { cat "$tmp/out"; fail "$name: exit $? on primitives_spot"; }
+    # a point light: per face of its cube
+    "$bin" test technique "$name" --scene room >"$tmp/out" 2>&1 || { cat "$tmp/out"; fail "$name: exit $? on room"; }
+    cat "$tmp/out"
+    grep -Eq 'map x [2-6] cube faces' "$tmp/out" || fail "$name: room not drawn per cube face"
   done
   ;;
 reach)
@@ -90,10 +95,10 @@ bad_input)
   "$bin" test technique pcf --scene no_such_scene >"$tmp/out" 2>&1
   rc=$?
   [ "$rc" -eq 2 ] || { cat "$tmp/out"; fail "unknown scene: exit $rc"; }
-  "$bin" test technique pcf --scene room >"$tmp/out" 2>&1
+  "$bin" test technique pcf --viewpoint no_such_view >"$tmp/out" 2>&1
   rc=$?
-  [ "$rc" -eq 2 ] || { cat "$tmp/out"; fail "point light: exit $rc"; }
-  grep -q "point light" "$tmp/out" || { cat "$tmp/out"; fail "point light: message"; }
+  [ "$rc" -eq 2 ] || { cat "$tmp/out"; fail "unknown viewpoint: exit $rc"; }
+  grep -q "no such viewpoint (the scene has: side" "$tmp/out" || { cat "$tmp/out"; fail "unknown viewpoint: message"; }
   "$bin" test technique >"$tmp/out" 2>&1
   [ $? -eq 2 ] || fail "no NAME: exit not 2"
   ;;

@@ -15,8 +15,12 @@ static const char *verdict(int bad) { return bad ? "FAIL" : "ok  "; }
 static void print_result(const struct sl_techtest_result *r)
 {
     const double px = r->pixels ? (double)r->pixels : 1.0;
-    printf("technique %s: %s/%s, %dx%d view, %d² map (guard band %d, reach %d), %" PRIu64 " pixels looked up (%s)\n",
-           r->file, r->scene, r->viewpoint, r->w, r->h, r->map_size, r->guard, r->reach, r->pixels, r->renderer);
+    char frames[48] = "";
+    if (r->frames > 1)
+        snprintf(frames, sizeof frames, " x %d cube faces", r->frames);
+    printf("technique %s: %s/%s, %dx%d view, %d² map%s (guard band %d, reach %d), %" PRIu64 " pixels looked up "
+           "(%s)\n", r->file, r->scene, r->viewpoint, r->w, r->h, r->map_size, frames, r->guard, r->reach, r->pixels,
+           r->renderer);
     printf("  %s compile      glslang and the GL\n", verdict(0));
     printf("  %s determinism  %" PRIu64 " pixel(s) differ between two runs\n", verdict(r->unstable > 0), r->unstable);
     printf("  %s reach        %" PRIu64 " pixel(s) change (%" PRIu64 " verdicts) with what lies beyond the "

@@ -14,6 +14,7 @@
 #include <string.h>
 #include "gbuffer.h"
 #include "lightfit.h"
+#include "lightframe.h"
 #include "method.h"
 #include "preview.h"
 #include "scenefile.h"
@@ -85,10 +86,11 @@ static enum sl_err draw(struct sl_techpass *p, const struct sl_gl_mesh *m, const
     return e ? e : sl_techpass_lookup(p, f, v, view->pos, view->nrm, mask, view->w, view->h, vis, d);
 }
 
-/* The checks of techtest.h on one view and frame, the pass made. */
+/* The checks of techtest.h on one view and frame, the pass made, added to
+ * r (counts summed, the first reach pixel kept, the taps' sum in *taps_sum). */
 static enum sl_err checks(struct sl_techpass *p, const struct sl_technique *t, const struct sl_gl_mesh *m,
                           const struct sl_light_frame *f, const struct sl_view *view, const uint8_t *mask,
-                          struct sl_techtest_result *r, struct sl_diag *d)
+                          struct sl_techtest_result *r, double *taps_sum, struct sl_diag *d)
 {
     struct sl_params v;
     sl_tech_defaults(t, &v);
@@ -105,18 +107,18 @@ static enum sl_err checks(struct sl_techpass *p, const struct sl_technique *t, c
         e = draw(p, m, f, &v, view, mask, run[1], d);
     if (!e) {   /* the second run's costs: the first's hold the driver's first use of the programs */
         const struct sl_techpass_costs *c = &p->costs;
-        r->ms_map = c->ms_map;
-        r->ms_post = c->ms_post;
-        r->ms_lookup = c->ms_lookup;
-        r->pixels = c->pixels;
-        r->nonfinite = c->nonfinite;
-        r->map_nonfinite = c->map_nonfinite;
+        r->ms_map += c->ms_map;
+        r->ms_post += c->ms_post;
+        r->ms_lookup += c->ms_lookup;
+        r->pixels += c->pixels;
+        r->nonfinite += c->nonfinite;
+        r->map_nonfinite += c->map_nonfinite;
         r->guard = c->guard;
         r->reach = sl_tech_reach(t, &v);
     }
     int x, y;
     if (!e)
-        r->unstable = differ(run[0], run[1], mask, view->w, view->h, t->threshold, NULL, &x, &y);
+        r->unstable += differ(run[0], run[1], mask, view->w, view->h, t->threshold, NULL, &x, &y);
     /* reach: the band beyond the declared guard, near and empty */
     for (int k = 0; k < 2 && !e; k++) {
         p->extra = SL_TECHTEST_EXTRA;
@@ -124,34 +126,29 @@ static enum sl_err checks(struct sl_techpass *p, const struct sl_technique *t, c
         e = draw(p, m, f, &v, view, mask, run[2 + k], d);
     }
     p->extra = 0;
-    if (!e)
-        r->reach_changed = differ(run[2], run[3], mask, view->w, view->h, t->threshold, &r->reach_verdicts,
-                                  &r->reach_x, &r->reach_y);
+    if (!e) {
+        uint64_t nv = 0;
+        const uint64_t nc = differ(run[2], run[3], mask, view->w, view->h, t->threshold, &nv, &x, &y);
+        if (nc && !r->reach_changed) {
+            r->reach_x = x;
+            r->reach_y = y;
+        }
+        r->reach_changed += nc;
+        r->reach_verdicts += nv;
+    }
     /* taps: the reads counted per pixel */
     if (!e) {
         p->count_taps = 1;
         e = draw(p, m, f, &v, view, mask, run[2], d);
         p->count_taps = 0;
     }
-    if (!e) {
-        double sum = 0;
-        uint64_t k = 0;
-        r->taps_min = UINT32_MAX;
-        r->taps_max = 0;
-        for (size_t i = 0; i < n; i++) {
-            if (!mask[i])
-                continue;
-            const uint32_t c = (uint32_t)run[2][i];
-            sum += c;
-            k++;
-            r->taps_min = c < r->taps_min ? c : r->taps_min;
-            r->taps_max = c > r->taps_max ? c : r->taps_max;
-        }
-        r->taps_mean = k ? sum / (double)k : 0.0;
-        if (!k)
-            r->taps_min = 0;
-        r->taps_declared = sl_tech_taps(t, &v);
-        r->taps_given = t->taps.given;
+    for (size_t i = 0; !e && i < n; i++) {
+        if (!mask[i])
+            continue;
+        const uint32_t c = (uint32_t)run[2][i];
+        *taps_sum += c;
+        r->taps_min = c < r->taps_min ? c : r->taps_min;
+        r->taps_max = c > r->taps_max ? c : r->taps_max;
     }
     for (int i = 0; i < 4; i++)
         free(run[i]);
@@ -167,6 +164,66 @@ static int taps_finding(const struct sl_techtest_result *r)
     if (!r->taps_given || r->pixels == 0)
         return 0;
     return r->taps_declared > (double)r->taps_max + 1e-9 || r->taps_declared < (double)r->taps_min - 1e-9;
+}
+
+/* The view's light frames as a run fits them (a point light: the faces of
+ * its cube with receivers, each over its own pixels), the checks over each. */
+static enum sl_err frames_run(struct sl_techpass *p, const struct sl_technique *t, const struct sl_scene *s,
+                              const struct sl_gl_mesh *m, const struct sl_view *view, struct sl_techtest_result *r,
+                              struct sl_diag *d)
+{
+    const size_t n = (size_t)view->w * (size_t)view->h;
+    const int size = r->map_size, cube = s->light.type == SL_LIGHT_POINT;
+    uint8_t *mask = malloc(n), *face = cube ? malloc(n) : NULL;
+    if (!mask || (cube && !face)) {
+        free(mask);
+        free(face);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "lookup mask %dx%d", view->w, view->h);
+    }
+    struct sl_light_box box[6];
+    memset(box, 0, sizeof box);
+    if (cube) {
+        sl_cube_faces(s->light.pos, view, face, 0);
+        /* the cube's own band, as lightframe.c fits it */
+        sl_light_fit_cube_mt(s, view, s->light.pos, face, size, size > 4 * SL_CUBE_GUARD ? SL_CUBE_GUARD : 0, box,
+                             0);
+    } else {
+        sl_light_fit(s, view, &box[0]);
+    }
+    p->light_width = s->light.type == SL_LIGHT_AREA ? fmaxf(s->light.size[0], s->light.size[1]) : 0.0f;
+    r->taps_min = UINT32_MAX;
+    double taps_sum = 0;
+    enum sl_err e = SL_OK;
+    for (int k = 0; k < (cube ? 6 : 1); k++) {
+        if (e || box[k].n_receivers == 0)
+            continue;
+        struct sl_light_frame f;
+        memset(&f, 0, sizeof f);
+        f.size = size;
+        if (cube)
+            sl_cube_axis(k, f.dir);
+        else
+            memcpy(f.dir, s->light_dir, sizeof f.dir);
+        f.box = box[k];
+        f.texel_world = fmaxf(box[k].hi[0] - box[k].lo[0], box[k].hi[1] - box[k].lo[1]) / (float)size;
+        f.depth_range = box[k].hi[2] - box[k].lo[2];
+        for (size_t i = 0; i < n; i++)
+            mask[i] = view->cls[i] == SL_C_PFL && (!cube || face[i] == k);
+        e = checks(p, t, m, &f, view, mask, r, &taps_sum, d);
+        r->frames++;
+    }
+    for (int k = 0; k < 6; k++)
+        sl_light_box_free(&box[k]);
+    r->taps_mean = r->pixels ? taps_sum / (double)r->pixels : 0.0;
+    if (!r->pixels)
+        r->taps_min = 0;
+    struct sl_params v;
+    sl_tech_defaults(t, &v);
+    r->taps_declared = sl_tech_taps(t, &v);
+    r->taps_given = t->taps.given;
+    free(mask);
+    free(face);
+    return e;
 }
 
 enum sl_err sl_techtest(const struct sl_techtest_opts *o, struct sl_techtest_result *r, struct sl_diag *d)
@@ -204,9 +261,6 @@ enum sl_err sl_techtest(const struct sl_techtest_opts *o, struct sl_techtest_res
             sl_known_add(known, sizeof known, s.vp[i].name);
         e = sl_fail(d, SL_E_USAGE, NULL, 0, o->viewpoint ? o->viewpoint : s.name,
                     "no such viewpoint (the scene has: %s)", s.nvp ? known : "none");
-    } else if (s.light.type == SL_LIGHT_POINT) {
-        e = sl_fail(d, SL_E_USAGE, NULL, 0, s.name, "a point light: the test runs a package over one light "
-                    "frame, not a cube's six (choose a scene with a directional, spot or area light)");
     }
     if (!e)
         snprintf(r->viewpoint, sizeof r->viewpoint, "%s", s.vp[vp].name);
@@ -220,34 +274,13 @@ enum sl_err sl_techtest(const struct sl_techtest_opts *o, struct sl_techtest_res
     memset(&gp, 0, sizeof gp);
     memset(&pass, 0, sizeof pass);
     memset(&view, 0, sizeof view);
-    uint8_t *mask = NULL;
     const struct sl_gl_desc gd = {.backend = o->gl};
     if (!e && !(e = sl_gl_open(&gl, &gd, d)) && !(e = sl_gl_mesh_upload(&mesh, &s, d)) &&
         !(e = sl_gbuffer_init(&gp, &s, d)) && !(e = sl_techpass_init(&pass, t, d)) &&
         !(e = sl_gbuffer_render(&gp, &mesh, &s, vp, r->w, r->h, &view, NULL, NULL, NULL, d))) {
         snprintf(r->renderer, sizeof r->renderer, "%s", gl.renderer);
-        struct sl_light_box box;
-        memset(&box, 0, sizeof box);
-        sl_light_fit(&s, &view, &box);
-        struct sl_light_frame f;
-        memset(&f, 0, sizeof f);
-        f.size = r->map_size;
-        memcpy(f.dir, s.light_dir, sizeof f.dir);
-        f.box = box;
-        f.texel_world = fmaxf(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1]) / (float)f.size;
-        f.depth_range = box.hi[2] - box.lo[2];
-        pass.light_width = s.light.type == SL_LIGHT_AREA ? fmaxf(s.light.size[0], s.light.size[1]) : 0.0f;
-        const size_t n = (size_t)r->w * (size_t)r->h;
-        mask = malloc(n);
-        if (!mask)
-            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "lookup mask %dx%d", r->w, r->h);
-        for (size_t i = 0; mask && i < n; i++)
-            mask[i] = view.cls[i] == SL_C_PFL;
-        if (!e)
-            e = checks(&pass, t, &mesh, &f, &view, mask, r, d);
-        sl_light_box_free(&box);
+        e = frames_run(&pass, t, &s, &mesh, &view, r, d);
     }
-    free(mask);
     if (view.pos)
         sl_view_free(&view);
     if (pass.t)

@@ -26,9 +26,12 @@
  *     (techsrc.h, SL_TECHSRC_LOOKUP_TAPS), against the declared `taps`;
  *   - time: the map, post and lookup passes' ms, and the lookup's per pixel.
  *
+ * Under a point light each face of its cube that holds receivers is a
+ * frame of its own, fitted as lightframe.c fits it, over the face's pixels;
+ * the counts are the faces' sums, the times too.
+ *
  * Does not: print (the verb does), trace any truth (it compares the
- * package with itself, not with the scene's shadows), write files, run a
- * point light's cube (SL_E_USAGE names the scene).
+ * package with itself, not with the scene's shadows), write files.
  */
 #ifndef SL_TECHTEST_H
 #define SL_TECHTEST_H
@@ -53,6 +56,7 @@ struct sl_techtest_result {
     char scene[64], viewpoint[64];
     char renderer[128];
     int w, h, map_size, guard, reach;
+    int frames;              /* light frames drawn: 1, or a point light's cube faces with receivers */
     uint64_t pixels;         /* PFL pixels looked up */
     /* determinism: pixels whose visibility differs between two runs */
     uint64_t unstable;
@@ -66,13 +70,14 @@ struct sl_techtest_result {
     uint32_t taps_min, taps_max;
     int taps_given;          /* the package declares `taps` (else the default, 1) */
     int taps_off;            /* declared, and outside taps_min .. taps_max: a finding */
-    /* time, ms, the second ordinary run's (the first's holds the driver's first use of the programs) */
+    /* time, ms, the second ordinary run's (the first's holds the driver's first use of the
+     * programs), summed over the frames */
     double ms_map, ms_post, ms_lookup;
     int findings;            /* the checks above that failed */
 };
 
 /* A finding is no error: SL_OK with r->findings counting them. Errors: an
- * unknown package, scene or viewpoint, a point light (SL_E_USAGE), a
+ * unknown package, scene or viewpoint (SL_E_USAGE), a
  * package that fails to load or compile (SL_E_PACKAGE naming its file and
  * line), the GL's. */
 enum sl_err sl_techtest(const struct sl_techtest_opts *o, struct sl_techtest_result *r, struct sl_diag *d);
