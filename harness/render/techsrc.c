@@ -196,10 +196,10 @@ static char *lookup_source(const struct sl_technique *t, int taps)
                   "uniform float sl_depth_range;\n"
                   "uniform float sl_light_width;\n");
     params_decl(&b, t);
-    /* initialised here: a compiler that sees sl_lookup read them before
-     * main writes them would warn (Mesa: "used uninitialized") */
     if (taps)
         sb_printf(&b, "%s", taps_prelude);
+    /* initialised here: a compiler that sees sl_lookup read them before
+     * main writes them would warn (Mesa: "used uninitialized") */
     sb_printf(&b, "ivec2 sl_home_texel = ivec2(0);\n"
                   "vec2 sl_map_pos = vec2(0.0);\n"
                   "float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl);\n"
