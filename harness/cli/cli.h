@@ -3,7 +3,7 @@
 /*
  * cli: the command line, one file per verb (run.c, validate.c, table.c,
  * report.c, check.c, store.c for merge and verify, submit.c, bench.c,
- * preview.c, list.c for list and show) and the table of verbs with their help texts
+ * preview.c, list.c for list and show, test.c) and the table of verbs with their help texts
  * (usage.c). This header is what the verbs share: the option parser, the
  * error printing and the exit codes. The CLI is the only code that prints
  * errors and chooses exit codes (the library stages return sl_err ids and
@@ -52,6 +52,7 @@ int cli_verify(int argc, char **argv);
 int cli_preview(int argc, char **argv);
 int cli_list(int argc, char **argv);
 int cli_show(int argc, char **argv);
+int cli_test(int argc, char **argv);
 
 /* the help text of each verb (usage.c) */
 extern const char cli_usage_run[];
@@ -66,6 +67,7 @@ extern const char cli_usage_submit[];
 extern const char cli_usage_merge[];
 extern const char cli_usage_verify[];
 extern const char cli_usage_preview[];
+extern const char cli_usage_test[];
 
 /* ---- errors ----
  * cli_fail prints the diagnostic as one line and returns the exit code of

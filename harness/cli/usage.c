@@ -227,6 +227,30 @@ const char cli_usage_preview[] =
     "  -o, --out DIR  output folder (default: the current one)\n"
     "  --size WxH     image size (default 512x512)\n";
 
+const char cli_usage_test[] =
+    "usage: shadowlab test technique NAME [--scene S] [--viewpoint V] [--viewport WxH] [--map N]\n"
+    "                      [--gl osmesa|egl]\n"
+    "  Tries a technique package (found as `show technique` finds it) on one view before a study\n"
+    "  runs it: its shaders compiled (glslang, then the GL), then, at its defaults:\n"
+    "    determinism  the maps and the lookup drawn twice: every visibility the same, bit for bit\n"
+    "    reach        the maps grown by 16 texels a side beyond the declared guard band, those\n"
+    "                 texels filled once with a surface at the near plane (sl_map(0)) and once with\n"
+    "                 none (sl_map(1)): a pixel whose visibility or verdict differs reads beyond the\n"
+    "                 declared reach (the count and the first pixel are named)\n"
+    "    non-finite   lookups returning NaN or +-inf, map texels not finite\n"
+    "    taps         texel reads per pixel (texture, texelFetch, textureLod, textureGrad calls,\n"
+    "                 counted in the shader): least, mean, most, against the declared `taps`; a\n"
+    "                 declared count outside least..most is a finding\n"
+    "    time         the map, post and lookup passes, and the lookup per pixel\n"
+    "  Under a point light, each face of its cube with receivers, over its own pixels. Nothing is\n"
+    "  traced or written. Exit 0 when every check passes, 1 on a finding, 2 when the package cannot\n"
+    "  be tested (not found, a technique.yaml or GLSL error: its file and line; an unknown scene).\n"
+    "  --scene S       a scene file or a built-in scene's name (default primitives)\n"
+    "  --viewpoint V   its viewpoint (default: its first)\n"
+    "  --viewport WxH  the view (default 256x256)\n"
+    "  --map N         the light frame's map size, texels a side (default 512)\n"
+    "  --gl B          the GL context: osmesa (default where built) or egl\n";
+
 /* In the order `shadowlab --help` lists them. run and bench render with
  * OpenMP on the CPU passes: they wait passively (main.c). */
 const struct cli_verb cli_verbs[] = {
@@ -251,6 +275,8 @@ const struct cli_verb cli_verbs[] = {
     {"list", cli_list, cli_usage_list, "methods|scenes|techniques", "what can be named in a config", 0},
     {"show", cli_show, cli_usage_show, "method|technique NAME", "a method's or a technique package's parameters",
      0},
+    {"test", cli_test, cli_usage_test, "technique NAME [options]",
+     "a technique package's determinism, reach, finite values, taps and time; exit 1 on a finding", 0},
     {NULL, NULL, NULL, NULL, NULL, 0},
 };
 

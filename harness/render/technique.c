@@ -443,6 +443,7 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
         s->scale = 1.0;
         s->power = 1.0;
         s->param = -1;
+        s->given = rs[k] != NULL;
         if (!rs[k])
             continue;
         if (rs[k]->texels)

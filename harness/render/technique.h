@@ -76,6 +76,7 @@ struct sl_tech_map {
 struct sl_tech_scaled {
     double texels, scale, power;
     int param;
+    int given;                  /* technique.yaml has the key (else the default) */
 };
 
 struct sl_technique {

@@ -164,9 +164,9 @@ enum sl_err sl_techpass_init(struct sl_techpass *p, const struct sl_technique *t
         glGetIntegerv(GL_MAX_TEXTURE_SIZE, &mx);
         p->max_tex = mx;
         glUseProgram(p->prog_empty);
-        glUniform1i(glGetUniformLocation(p->prog_empty, "sl_empty"), 1);
+        glUniform1f(glGetUniformLocation(p->prog_empty, "sl_empty"), 1.0f);
         glUseProgram(p->prog_map);
-        glUniform1i(glGetUniformLocation(p->prog_map, "sl_empty"), 0);
+        glUniform1f(glGetUniformLocation(p->prog_map, "sl_empty"), -1.0f);
         glUseProgram(0);
         e = sl_gl_check("technique programs", d);
     }
@@ -205,8 +205,8 @@ void sl_techpass_free(struct sl_techpass *p)
         maps_free(p);
     if (p->lw)
         lookup_free(p);
-    GLuint progs[5] = {p->prog_map, p->prog_empty, p->prog_lookup, p->prog_blur, p->prog_finite};
-    for (int i = 0; i < 5; i++)
+    GLuint progs[6] = {p->prog_map, p->prog_empty, p->prog_lookup, p->prog_blur, p->prog_finite, p->prog_taps};
+    for (int i = 0; i < 6; i++)
         if (progs[i])
             glDeleteProgram(progs[i]);
     if (p->vao_empty)
@@ -528,6 +528,10 @@ static enum sl_err maps_ready(struct sl_techpass *p, const struct sl_light_frame
 {
     int g = 0, N = 0;
     enum sl_err e = sl_techpass_size(p, f, v, &g, &N, d);
+    if (!e && p->extra > 0) {
+        g += p->extra;
+        N += 2 * p->extra;
+    }
     if (!e)
         e = maps_make(p, N, d);
     if (e)
@@ -537,6 +541,36 @@ static enum sl_err maps_ready(struct sl_techpass *p, const struct sl_light_frame
     p->costs.map_size = N;
     guarded_vp(p, f, N);
     return SL_OK;
+}
+
+/* The texels beyond the declared guard band (techpass.h, extra): four
+ * strips drawn with sl_map(p->fill), each in its scissor rectangle. */
+static enum sl_err fill_extra(struct sl_techpass *p, const struct sl_light_frame *f, const struct sl_params *v,
+                              struct sl_diag *d)
+{
+    const int N = p->size, E = p->extra;
+    const int rect[4][4] = {{0, 0, N, E}, {0, N - E, N, E}, {0, E, E, N - 2 * E}, {N - E, E, E, N - 2 * E}};
+    glBindFramebuffer(GL_FRAMEBUFFER, p->map_fbo);
+    glViewport(0, 0, N, N);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(p->prog_empty);
+    set_light(p->prog_empty, p, f);
+    set_params(p->prog_empty, p->t, v);
+    glUniform1f(glGetUniformLocation(p->prog_empty, "sl_empty"), p->fill);
+    glBindVertexArray(p->vao_empty);
+    glEnable(GL_SCISSOR_TEST);
+    for (int i = 0; i < 4; i++) {
+        glScissor(rect[i][0], rect[i][1], rect[i][2], rect[i][3]);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glUniform1f(glGetUniformLocation(p->prog_empty, "sl_empty"), 1.0f);
+    glFinish();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    return sl_gl_check("technique maps' extra guard band", d);
 }
 
 enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m, const struct sl_light_frame *f,
@@ -616,6 +650,8 @@ enum sl_err sl_techpass_render(struct sl_techpass *p, const struct sl_gl_mesh *m
         return e;
     }
     e = sl_gl_check("technique map pass", d);
+    if (!e && p->extra > 0)
+        e = fill_extra(p, f, v, d);
     if (!e)
         e = post_passes(p, v, d);
     return e ? e : maps_finite(p, d);
@@ -713,7 +749,17 @@ enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_fram
     glDisable(GL_CULL_FACE);
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(p->out_fbo, GL_COLOR, 0, zero);
-    const GLuint prog = p->prog_lookup;
+    char file[1400];
+    snprintf(file, sizeof file, "%s/%s", t->dir, t->lookup_shader);
+    if (p->count_taps && !p->prog_taps) {
+        char *src = sl_techsrc(t, SL_TECHSRC_LOOKUP_TAPS);
+        e = src ? build(vs_full, src, &p->prog_taps, NULL, file, d)
+                : sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "shader source");
+        free(src);
+        if (e)
+            return e;
+    }
+    const GLuint prog = p->count_taps ? p->prog_taps : p->prog_lookup;
     glUseProgram(prog);
     set_light(prog, p, f);
     set_params(prog, t, v);
@@ -738,8 +784,6 @@ enum sl_err sl_techpass_lookup(struct sl_techpass *p, const struct sl_light_fram
     glUniform1f(glGetUniformLocation(prog, "sl_depth_range"), f->depth_range);
     glUniform1f(glGetUniformLocation(prog, "sl_light_width"), p->light_width);
     glBindVertexArray(p->vao_empty);
-    char file[1400];
-    snprintf(file, sizeof file, "%s/%s", t->dir, t->lookup_shader);
     struct tiles tl;
     for (tiles_begin(&tl, SL_TECHPASS_LOOKUP, w, h, file, 0); tiles_next(p, &tl, &e, d);)
         glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -121,6 +121,19 @@ struct sl_techpass {
     double tile_px[SL_TECHPASS_KINDS];  /* the next tile's area, pixels (0: the smallest) */
     int tiles;                      /* tiles drawn since init */
     double tile_max_px;             /* tests: tiles of at most this area (0: no bound) */
+    /* The package's test (`shadowlab test technique`), zero in a run:
+     * extra > 0 grows the maps by `extra` texels a side beyond the guard
+     * band the package declares (sl_home_texel and sl_map_pos move with
+     * it) and, after the map pass and before the post passes, fills those
+     * texels with sl_map(fill) (0: a surface at the near plane, 1: none),
+     * so a lookup that reads beyond its reach reads what the fill chose;
+     * count_taps makes the lookup return, for each pixel, the texel reads
+     * it made (techsrc.h, SL_TECHSRC_LOOKUP_TAPS) instead of its
+     * visibility. */
+    int extra;
+    float fill;
+    int count_taps;
+    GLuint prog_taps;               /* compiled at the first lookup with count_taps */
 };
 
 /* Compile the package's programs (map, empty-texel and lookup) and the

@@ -24,6 +24,12 @@
 
 /* The lookup's main, after the package (source string 2). */
 static const char lookup_main[] =
+    "#ifdef SL_COUNT_TAPS\n"
+    "#undef texture\n"
+    "#undef texelFetch\n"
+    "#undef textureLod\n"
+    "#undef textureGrad\n"
+    "#endif\n"
     "uniform sampler2D sl_gpos;\n"
     "uniform sampler2D sl_gnrm;\n"
     "uniform usampler2D sl_gmask;\n"
@@ -79,7 +85,11 @@ static const char lookup_main[] =
     "    float sl_v = sl_lookup(p, n, uv, c.z, dot(n, toward));\n"
     "    // not finite (NaN, +-inf: read from the bits, which no folding of\n"
     "    // isnan removes): -1, a value no clamped visibility takes\n"
+    "#ifdef SL_COUNT_TAPS\n"
+    "    sl_visibility = float(sl_taps);\n"
+    "#else\n"
     "    sl_visibility = (floatBitsToUint(sl_v) & 0x7f800000u) == 0x7f800000u ? -1.0 : clamp(sl_v, 0.0, 1.0);\n"
+    "#endif\n"
     "}\n";
 
 /* A growing string; oom sticks. */
@@ -138,10 +148,10 @@ static char *map_source(const struct sl_technique *t)
         sb_printf(&b, "layout(location = %d) out vec4 out_%s;\n", i, t->map[i].name);
     params_decl(&b, t);
     sb_printf(&b, "void sl_map(float depth);\n#line 1 1\n%s\n#line %d 2\n"
-                  "uniform int sl_empty;\n"
+                  "uniform float sl_empty;\n"
                   "void main()\n"
                   "{\n"
-                  "    sl_map(sl_empty != 0 ? 1.0 : gl_FragCoord.z);\n"
+                  "    sl_map(sl_empty >= 0.0 ? sl_empty : gl_FragCoord.z);\n"
                   "}\n", t->map_src, SL_TECHSRC_LINE_MAIN);
     if (b.oom) {
         free(b.s);
@@ -150,7 +160,27 @@ static char *map_source(const struct sl_technique *t)
     return b.s;
 }
 
-static char *lookup_source(const struct sl_technique *t)
+/* The texel reads of the lookup, counted (SL_TECHSRC_LOOKUP_TAPS): each
+ * sampling call the package makes goes through a function that counts it
+ * and calls the built-in. An object-like macro renames the call, so every
+ * overload the wrappers declare keeps its arity; the calls whose offset or
+ * component must be a constant expression (textureOffset, texelFetchOffset,
+ * textureGather, ...) cannot pass through a function and are not counted. */
+static const char taps_prelude[] =
+    "#define SL_COUNT_TAPS 1\n"
+    "int sl_taps = 0;\n"
+    "vec4 sl_tap_texture(sampler2D s, vec2 p) { sl_taps++; return texture(s, p); }\n"
+    "vec4 sl_tap_texture(sampler2D s, vec2 p, float b) { sl_taps++; return texture(s, p, b); }\n"
+    "vec4 sl_tap_texelFetch(sampler2D s, ivec2 p, int l) { sl_taps++; return texelFetch(s, p, l); }\n"
+    "vec4 sl_tap_textureLod(sampler2D s, vec2 p, float l) { sl_taps++; return textureLod(s, p, l); }\n"
+    "vec4 sl_tap_textureGrad(sampler2D s, vec2 p, vec2 dx, vec2 dy)"
+    " { sl_taps++; return textureGrad(s, p, dx, dy); }\n"
+    "#define texture sl_tap_texture\n"
+    "#define texelFetch sl_tap_texelFetch\n"
+    "#define textureLod sl_tap_textureLod\n"
+    "#define textureGrad sl_tap_textureGrad\n";
+
+static char *lookup_source(const struct sl_technique *t, int taps)
 {
     struct sbuf b = {0};
     sb_printf(&b, "#version 450 core\n#line %d 0\n#define SL_CPU_FMA %d\n", SL_TECHSRC_LINE_PRELUDE, SL_CPU_FMA);
@@ -166,6 +196,8 @@ static char *lookup_source(const struct sl_technique *t)
                   "uniform float sl_depth_range;\n"
                   "uniform float sl_light_width;\n");
     params_decl(&b, t);
+    if (taps)
+        sb_printf(&b, "%s", taps_prelude);
     /* initialised here: a compiler that sees sl_lookup read them before
      * main writes them would warn (Mesa: "used uninitialized") */
     sb_printf(&b, "ivec2 sl_home_texel = ivec2(0);\n"
@@ -223,7 +255,7 @@ static int log_line(const char *s, int *str, int *line, const char **msg)
 
 char *sl_techsrc(const struct sl_technique *t, enum sl_techsrc_stage stage)
 {
-    return stage == SL_TECHSRC_MAP ? map_source(t) : lookup_source(t);
+    return stage == SL_TECHSRC_MAP ? map_source(t) : lookup_source(t, stage == SL_TECHSRC_LOOKUP_TAPS);
 }
 
 /* One message of a log: its line in the package file (0: the harness's),

@@ -26,7 +26,10 @@
 #define SL_TECHSRC_LINE_PRELUDE 1000000   /* the prelude's first line (source string 0) */
 #define SL_TECHSRC_LINE_MAIN 2000000      /* the harness main's (source string 2) */
 
-enum sl_techsrc_stage { SL_TECHSRC_MAP, SL_TECHSRC_LOOKUP };
+/* SL_TECHSRC_LOOKUP_TAPS: the lookup whose output is the number of texel
+ * reads (texture, texelFetch, textureLod, textureGrad calls) sl_lookup made
+ * for the pixel, not its visibility (techpass.h, count_taps). */
+enum sl_techsrc_stage { SL_TECHSRC_MAP, SL_TECHSRC_LOOKUP, SL_TECHSRC_LOOKUP_TAPS };
 
 /* The fragment shader of t's map pass or lookup pass (malloc'd, NUL-
  * terminated); NULL when out of memory. */
