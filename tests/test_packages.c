@@ -40,6 +40,7 @@
 #include "lightfit.h"
 #include "shadowmap.h"
 #include "glctx.h"
+#include "techcheck.h"
 #include "technique.h"
 #include "techpass.h"
 
@@ -825,6 +826,43 @@ static void packages_doc_example(void **st)
     pkg_close(&k);
 }
 
+/* sl_pixel, the view pixel the lookup shades: tests/techniques/pixel
+ * returns 0.75 (x & 1) + 0.25 (y & 1) of it, so each of its four values
+ * over an 8 x 4 grid names the pixel's column and row parity; glslang
+ * compiles it as validate does. */
+static void packages_pixel(void **st)
+{
+    (void)st;
+    struct pkg k;
+    pkg_open_dir(&k, "tests/techniques/pixel");
+    struct sl_diag d;
+    enum sl_err e = sl_techcheck(&k.t, &d);
+    diag_print(e, &d);
+    assert_int_equal(e, SL_OK);
+    static const double a[2] = {0.3, 0.7};
+    pkg_upload(&k, halves, a);
+    enum { W = 8, H = 4 };
+    float pos[W * H * 3], nrm[W * H * 3], vis[W * H];
+    for (int i = 0; i < W * H; i++) {
+        pos[3 * i + 0] = pos[3 * i + 1] = 0.0f;
+        pos[3 * i + 2] = 0.5f;
+        nrm[3 * i + 0] = nrm[3 * i + 1] = 0.0f;
+        nrm[3 * i + 2] = -1.0f;
+    }
+    e = sl_techpass_lookup(&k.p, &k.f, &k.v, pos, nrm, NULL, W, H, vis, &d);
+    diag_print(e, &d);
+    assert_int_equal(e, SL_OK);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const float want = 0.75f * (float)(x & 1) + 0.25f * (float)(y & 1);
+            if (vis[y * W + x] != want)
+                fprintf(stderr, "pixel (%d, %d): %.9g, not %.9g\n", x, y, vis[y * W + x], want);
+            assert_true(vis[y * W + x] == want);
+        }
+    printf("    sl_pixel: 0.75 (x & 1) + 0.25 (y & 1) at each of %d x %d pixels\n", W, H);
+    pkg_close(&k);
+}
+
 /* The packages on real scenes against the ray-traced truth: Primitives
  * under its directional light and under a spot light (the perspective
  * path), a 1024 map, every PFL pixel's hard verdict (visibility >= 0.5)
@@ -932,6 +970,7 @@ int main(int argc, char **argv)
         SL_CASE(packages, reach),
         SL_CASE(packages, rendered),
         SL_CASE(packages, doc_example),
+        SL_CASE(packages, pixel),
     };
     return sl_run_group(argc, argv, "packages", tests, sl_test_setup, group_teardown);
 }

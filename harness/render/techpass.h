@@ -33,6 +33,8 @@
  *                         (floor(u) + g, floor(v) + g), not clamped
  *   vec2  sl_map_pos;     (u + g, v + g): the point in texels of the guarded
  *                         map (uv * sl_map_size up to rounding)
+ *   ivec2 sl_pixel;       the view pixel looked up (gl_FragCoord.xy of the
+ *                         lookup pass; x + y * w its index in the arrays)
  *
  * Bounded tiles: a package's shader may run for minutes (a loop), and the
  * GL cannot cancel a draw. So the map pass, the blur and the lookup are

@@ -58,6 +58,7 @@ static const char lookup_main[] =
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
     "    if (texelFetch(sl_gmask, px, 0).r == 0u)\n"
     "        discard;\n"
+    "    sl_pixel = px;\n"
     "    vec3 p = texelFetch(sl_gpos, px, 0).xyz;\n"
     "    vec3 n = texelFetch(sl_gnrm, px, 0).xyz;\n"
     "    precise vec4 c = sl_frame_vp[3];\n"
@@ -202,6 +203,7 @@ static char *lookup_source(const struct sl_technique *t, int taps)
      * main writes them would warn (Mesa: "used uninitialized") */
     sb_printf(&b, "ivec2 sl_home_texel = ivec2(0);\n"
                   "vec2 sl_map_pos = vec2(0.0);\n"
+                  "ivec2 sl_pixel = ivec2(0);\n"
                   "float sl_lookup(vec3 world, vec3 normal, vec2 uv, float depth, float ndotl);\n"
                   "#line 1 1\n%s\n#line %d 2\n%s", t->lookup_src, SL_TECHSRC_LINE_MAIN, lookup_main);
     if (b.oom) {

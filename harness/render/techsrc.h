@@ -11,8 +11,8 @@
  * the package's file, `#line SL_TECHSRC_LINE_MAIN 2`, the harness's main.
  * Lines 1 to SL_TECHSRC_LINE_PRELUDE - 1 of a log are therefore the
  * package file's own, whatever the prelude's length. The prelude reads and
- * writes nothing a compiler warns about (sl_home_texel and sl_map_pos are
- * initialised where they are declared), so every warning of a log is the
+ * writes nothing a compiler warns about (sl_home_texel, sl_map_pos and
+ * sl_pixel are initialised where they are declared), so every warning of a log is the
  * package's.
  *
  * Does not: compile (techpass.h on the GL, techcheck.h with glslang), own
