@@ -16,15 +16,25 @@ const vec2 pcf_disc[16] = vec2[16](
 
 // Depth bias (Reeves et al.'s "bias", slope-scaled as in pcss): a tap at
 // offset o texels from the point is lit iff stored >= z - slope (bias + |o|),
-// slope the receiver's change of window depth across one texel (tan of the
-// light's angle to the normal, clamped at 10). bias 0 at kernel 1 is the
-// plain test: the nsm package.
-float pcf_slope(float z, float ndotl)
+// slope the receiver's change of window depth across one texel of the map.
+// The point lies within half a texel's diagonal (0.71 texel) of its texel's
+// centre, where the map sampled the depth, so bias 1 covers it; |o| covers
+// the tap's own distance. bias 0 at kernel 1 is the plain test: the nsm
+// package.
+//
+// The slope is the receiver plane's own: a plane of the world is a plane of
+// the map's clip space under either projection, so its window depth is
+// affine in ndc.xy and its gradient is exact, on the light's axis and off it.
+// (tan of the light's angle to the normal times a texel's width, what pcss
+// uses, misses under a perspective light what the axis adds: a surface
+// facing the light off the axis by an angle a changes window depth across a
+// texel as one at angle a would on the axis, and got no bias.) Capped where
+// the receiver is nearly edge-on to the light: at 10 times the slope of a
+// receiver at 45 degrees on the axis (tan 10, as pcss clamps it).
+float pcf_slope45(float z)
 {
-    float cosl = max(ndotl, 0.0995);   // tan clamped at 10
-    float tanl = sqrt(1.0 - cosl * cosl) / cosl;
     if (sl_persp == 0)
-        return tanl * sl_texel_world / sl_depth_range;
+        return sl_texel_world / sl_depth_range;
     // perspective: window depth d = A + B / distance; d' = -B / distance^2
     vec3 axis = normalize(sl_light_dir);
     vec4 p1 = sl_light_vp * vec4(sl_light_pos + axis, 1.0);
@@ -32,7 +42,16 @@ float pcf_slope(float z, float ndotl)
     float d1 = p1.z / p1.w, d2 = p2.z / p2.w;
     float b = 2.0 * (d1 - d2), a = d1 - b;
     float dist = b / (z - a);
-    return tanl * sl_texel_world * abs(b) / dist;
+    return sl_texel_world * abs(b) / dist;
+}
+
+float pcf_slope(vec3 world, vec3 normal, float z)
+{
+    // the plane (n, -n.p) into clip space: the inverse transpose of the matrix
+    vec4 pc = transpose(inverse(sl_light_vp)) * vec4(normal, -dot(normal, world));
+    // there pc.x X + pc.y Y + pc.z Z + pc.w = 0 in ndc; a texel is 2 / N of ndc
+    float g = 2.0 / sl_map_size * length(pc.xy) / max(abs(pc.z), 1e-30);
+    return min(g, 10.0 * pcf_slope45(z));
 }
 
 float pcf_tap(ivec2 t, ivec2 hi, float z, float eps)
@@ -43,7 +62,7 @@ float pcf_tap(ivec2 t, ivec2 hi, float z, float eps)
 float sl_lookup(vec3 world, vec3 normal, vec2 uv, float z, float ndotl)
 {
     ivec2 hi = textureSize(depth, 0) - 1;
-    float slope = bias > 0.0 ? pcf_slope(z, ndotl) : 0.0;
+    float slope = bias > 0.0 ? pcf_slope(world, normal, z) : 0.0;
     float lit = 0.0;
     if (poisson) {
         float r = 0.5 * float(kernel - 1) / 1.25;
