@@ -22,15 +22,23 @@ const vec2 pcf_disc[16] = vec2[16](
 // the tap's own distance. bias 0 at kernel 1 is the plain test: the nsm
 // package.
 //
-// The slope is the receiver plane's own: a plane of the world is a plane of
-// the map's clip space under either projection, so its window depth is
-// affine in ndc.xy and its gradient is exact, on the light's axis and off it.
-// (tan of the light's angle to the normal times a texel's width, what pcss
-// uses, misses under a perspective light what the axis adds: a surface
-// facing the light off the axis by an angle a changes window depth across a
-// texel as one at angle a would on the axis, and got no bias.) Capped where
-// the receiver is nearly edge-on to the light: at 10 times the slope of a
-// receiver at 45 degrees on the axis (tan 10, as pcss clamps it).
+// The slope is the larger of two, capped where the receiver is nearly
+// edge-on to the light at 10 times the slope of a receiver at 45 degrees on
+// the light's axis (tan 10, as pcss clamps it):
+// - the receiver plane's own gradient: a plane of the world is a plane of
+//   the map's clip space under either projection, so its window depth is
+//   affine in ndc.xy there, its gradient exact on the light's axis and off
+//   it. Under a perspective light a surface facing the light at an angle a
+//   off the axis changes window depth across a texel as one tilted by a on
+//   the axis would; the second term alone gives it no bias (acne under
+//   spot lights);
+// - tan of the light's angle to the normal times the 45-degree slope (what
+//   pcss uses; under a directional light never less than the first): the
+//   change of distance along the ray across a texel. A plane square to a
+//   perspective light's axis has constant window depth, so the first term
+//   alone gives it none, and there the map's rasterised depth and the
+//   projected point's still differ by rounding (a point light's room: 3.7 %
+//   of its pixels wrong with the first term alone, 0.04 % with both).
 float pcf_slope45(float z)
 {
     if (sl_persp == 0)
@@ -45,13 +53,16 @@ float pcf_slope45(float z)
     return sl_texel_world * abs(b) / dist;
 }
 
-float pcf_slope(vec3 world, vec3 normal, float z)
+float pcf_slope(vec3 world, vec3 normal, float z, float ndotl)
 {
     // the plane (n, -n.p) into clip space: the inverse transpose of the matrix
     vec4 pc = transpose(inverse(sl_light_vp)) * vec4(normal, -dot(normal, world));
     // there pc.x X + pc.y Y + pc.z Z + pc.w = 0 in ndc; a texel is 2 / N of ndc
     float g = 2.0 / sl_map_size * length(pc.xy) / max(abs(pc.z), 1e-30);
-    return min(g, 10.0 * pcf_slope45(z));
+    // tan of the light's angle to the normal, clamped at 10
+    float cosl = max(ndotl, 0.0995);
+    float t = sqrt(1.0 - cosl * cosl) / cosl;
+    return min(max(g, t * pcf_slope45(z)), 10.0 * pcf_slope45(z));
 }
 
 float pcf_tap(ivec2 t, ivec2 hi, float z, float eps)
@@ -62,7 +73,7 @@ float pcf_tap(ivec2 t, ivec2 hi, float z, float eps)
 float sl_lookup(vec3 world, vec3 normal, vec2 uv, float z, float ndotl)
 {
     ivec2 hi = textureSize(depth, 0) - 1;
-    float slope = bias > 0.0 ? pcf_slope(world, normal, z) : 0.0;
+    float slope = bias > 0.0 ? pcf_slope(world, normal, z, ndotl) : 0.0;
     float lit = 0.0;
     if (poisson) {
         float r = 0.5 * float(kernel - 1) / 1.25;
