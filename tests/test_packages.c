@@ -702,6 +702,71 @@ static void packages_perspective_depth(void **st)
     pkg_close(&k);
 }
 
+/* pcf's depth bias off a perspective light's axis: a plane facing the light
+ * (its normal toward the light) through the point at distance 5 on the ray
+ * of frame texel (56, 32), 21 degrees off the axis. Along it the distance
+ * along the axis falls with u, so a receiver on it at u = 56.05 lies behind
+ * the depth its texel's centre stored, by 0.45 texel of the plane's slope:
+ * the plain test (bias 0) shadows it, bias 1 must light it. tan of the
+ * light's angle to the normal alone is about 0 there and gave it no bias
+ * (acne under spot lights); the plane's own gradient does. A receiver at
+ * u = 56.95 lies in front and is lit either way. */
+static const double off_r0[3] = {(56.5 / S * 2 - 1) * PT, (32.5 / S * 2 - 1) * PT, 1};
+
+/* the axis distance where the ray through frame texel coordinates (u, v)
+ * meets the plane */
+static double off_axis_t(double u, double v, double r[3])
+{
+    r[0] = (u / S * 2 - 1) * PT, r[1] = (v / S * 2 - 1) * PT, r[2] = 1;
+    /* the plane: n . p = n . P0 with n along -P0, P0 = 5 r0: n . P0 = -5 |r0|^2 / |r0| */
+    double l = sqrt(off_r0[0] * off_r0[0] + off_r0[1] * off_r0[1] + 1), np0 = -5 * l;
+    double nr = -(off_r0[0] * r[0] + off_r0[1] * r[1] + r[2]) / l;
+    return np0 / nr;
+}
+
+static double off_axis_plane(int i, int j, const void *arg)
+{
+    (void)arg;
+    double r[3];
+    return PA + PB / off_axis_t(i + 0.5, j + 0.5, r);
+}
+
+static double off_axis_lookup(struct pkg *k, double u)
+{
+    double r[3], t = off_axis_t(u, 32.5, r);
+    const double l = sqrt(off_r0[0] * off_r0[0] + off_r0[1] * off_r0[1] + 1);
+    float pos[QW * QH * 3], nrm[QW * QH * 3], vis[QW * QH];
+    for (int q = 0; q < QW * QH; q++)
+        for (int c = 0; c < 3; c++) {
+            pos[3 * q + c] = (float)(t * r[c]);
+            nrm[3 * q + c] = (float)(-off_r0[c] / l);
+        }
+    struct sl_diag d;
+    enum sl_err e = sl_techpass_lookup(&k->p, &k->f, &k->v, pos, nrm, NULL, QW, QH, vis, &d);
+    diag_print(e, &d);
+    assert_int_equal(e, SL_OK);
+    for (int q = 1; q < QW * QH; q++)
+        assert_true(vis[q] == vis[0]);
+    return vis[0];
+}
+
+static void packages_pcf_off_axis(void **st)
+{
+    (void)st;
+    struct pkg k;
+    pkg_open(&k, "pcf");
+    persp_frame(&k);
+    pkg_set(&k, "kernel", 1);
+    pkg_upload(&k, off_axis_plane, NULL);
+    pkg_set(&k, "bias", 0);
+    expect_near("bias 0, behind its texel's centre", off_axis_lookup(&k, 56.05), 0, 0);
+    expect_near("bias 0, in front of it", off_axis_lookup(&k, 56.95), 1, 0);
+    pkg_set(&k, "bias", 1);
+    expect_near("bias 1 (default), behind its texel's centre", off_axis_lookup(&k, 56.05), 1, 0);
+    expect_near("bias 1, in front of it", off_axis_lookup(&k, 56.95), 1, 0);
+    pkg_close(&k);
+}
+
 /* Each package reads nothing beyond its guard band (reach + blur) around
  * the point's texel: the same lookup on a map whose texels farther than the
  * guard are replaced by depth 0.05 (a near occluder everywhere else) must
@@ -971,6 +1036,7 @@ int main(int argc, char **argv)
         SL_CASE(packages, rendered),
         SL_CASE(packages, doc_example),
         SL_CASE(packages, pixel),
+        SL_CASE(packages, pcf_off_axis),
     };
     return sl_run_group(argc, argv, "packages", tests, sl_test_setup, group_teardown);
 }
