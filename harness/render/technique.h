@@ -100,6 +100,11 @@ struct sl_technique {
     struct sl_param param[SL_TECH_MAX_PARAMS];
     struct sl_tech_scaled reach;   /* default 0 texels */
     struct sl_tech_scaled taps;    /* default 1 texel */
+    /* `trace: {between: [lo, hi]}`: a PFL pixel whose visibility v has
+     * lo <= v <= hi is traced with the truth's rays and takes their 0 or 1
+     * (a hybrid: methods/package.c); 0 <= lo < hi <= 1 */
+    int trace;
+    double trace_lo, trace_hi;
     char map_shader[256], lookup_shader[256];   /* as written, relative to dir */
     char *map_src, *lookup_src;    /* their text, NUL-terminated (owned) */
 };
