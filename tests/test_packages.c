@@ -23,6 +23,10 @@
  * not depend on the post passes. Each point fills a 2 x 2 quad of the lookup
  * grid, so its screen-space derivatives are 0 and the mip level 0, except in
  * the reach test, which wants the coarsest level the lookup allows.
+ *
+ * The rendered cases run the packages over a scene against the truth; the
+ * traced case runs vsm_rt (vsm with a traced band) as the run does, through
+ * its method, beside vsm: the band's pixels the truth's, the rest vsm's.
  */
 #include <math.h>
 #include <setjmp.h>
