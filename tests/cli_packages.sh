@@ -40,8 +40,9 @@
 #              and msm on the primitives and on the room (a point light: per
 #              face): each view's wrong pixels at most the plain package's,
 #              rays > 0 and below the PFL pixels (the plain packages' 0), 0
-#              violations (every traced pixel equals the truth), and the
-#              rays in costs.csv
+#              violations (every traced pixel equals the truth), the rays in
+#              costs.csv, and `table --figure rays --of pfl` (rays per PFL
+#              pixel: the share of raytrace's) as the cells give it
 set -u
 bin=${1:?usage: cli_packages.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -359,6 +360,12 @@ YAML
                  FROM cells a JOIN cells b USING (scene, viewpoint, map_size)
                  WHERE a.label = '$p' AND b.label = '${p}_rt'")"
   done
+  # the pivot's rays per PFL pixel (% of raytrace's): each view's share, averaged
+  want=$(q "SELECT printf('%.4f', avg(100.0 * rays / n_pfl)) FROM cells WHERE label = 'vsm_rt' AND scene = 'primitives'")
+  got=$("$bin" table "$tmp/out/shadowlab.db" --figure rays --of pfl --rows label --cols scene --where label=vsm_rt \
+        --where scene=primitives --format csv | awk -F, 'NR == 2 { printf "%.4f", $2 }')
+  [ -n "$got" ] && [ "$got" = "$want" ] || fail "table --figure rays --of pfl gives '$got', the cells $want"
+  "$bin" table "$tmp/out/shadowlab.db" --figure ms_method --of pfl >/dev/null 2>&1 && fail "a time per PFL pixel"
   col=$(head -1 "$tmp/out/trace/costs.csv" | tr , '\n' | grep -nx rays | cut -d: -f1)
   [ -n "$col" ] || fail "costs.csv has no rays column"
   awk -F, -v c="$col" 'NR > 1 && $0 ~ /vsm_rt/ && $c > 0 { ok = 1 } END { exit !ok }' "$tmp/out/trace/costs.csv" ||
