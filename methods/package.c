@@ -24,6 +24,7 @@ struct pkg {
 
 static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
                            struct sl_diag *d);
+
 /* The package a package method or its technique belongs to: the method and
  * the technique are members of one struct pkg (no table to search). */
 static struct pkg *pkg_of_method(const struct sl_method *m)

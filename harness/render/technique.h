@@ -5,7 +5,8 @@
  * What it does: reads and checks technique.yaml against its schema (a libcyaml
  * schema bound by sl_yaml_load: unknown keys, missing keys, types, ranges, a default
  * outside [min, max], names that are no GLSL identifiers, a `blur:` or
- * `reach.param` naming no parameter), checks the shader paths (relative, no
+ * `reach.param` naming no parameter, a `trace:` band that is not
+ * 0 <= lo < hi <= 1), checks the shader paths (relative, no
  * `..`, no symbolic link on the way, a regular file inside the package
  * folder, at most SL_TECH_MAX_SHADER bytes) and reads both sources. Packages
  * are untrusted input: every error is `FILE:LINE: 'KEY': message` with the id
