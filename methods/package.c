@@ -164,6 +164,35 @@ static enum sl_err pkg_cascades(struct pkg *k, const struct sl_method_args *a, u
     return SL_OK;
 }
 
+/* A hybrid (technique.yaml's `trace:`): the PFL pixels whose visibility
+ * lies in [lo, hi] are traced with the truth's own rays (sl_method_trace_left,
+ * as csm and hertel trace theirs: rays and time counted), and their
+ * visibility becomes the ray's answer, 0 or 1. A visibility that is not
+ * finite is in no band: it stays uncertain and counted. */
+static enum sl_err pkg_trace(const struct sl_technique *t, const struct sl_method_args *a, struct sl_verdicts *out,
+                             struct sl_cost *c, struct sl_diag *d)
+{
+    const struct sl_view *v = a->view;
+    if (!a->rt)
+        return sl_fail(d, SL_E_METHOD, NULL, 0, NULL, "%s: `trace:` needs the truth's rays, which this caller "
+                       "has not built", t->name);
+    size_t npx = (size_t)v->w * (size_t)v->h, any = 0;
+    uint8_t *left = malloc(npx);
+    if (!left)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "traced band %dx%d", v->w, v->h);
+    const float lo = (float)t->trace_lo, hi = (float)t->trace_hi;
+    for (size_t i = 0; i < npx; i++) {
+        left[i] = v->cls[i] == SL_C_PFL && out->vis[i] >= lo && out->vis[i] <= hi;
+        any += left[i];
+    }
+    enum sl_err e = any ? sl_method_trace_left(a, left, NULL, out, c, d) : SL_OK;
+    for (size_t i = 0; !e && i < npx; i++)
+        if (left[i])
+            out->vis[i] = out->v[i] == SL_V_LIT ? 1.0f : 0.0f;
+    free(left);
+    return e;
+}
+
 static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *out, struct sl_cost *c,
                            struct sl_diag *d)
 {
@@ -204,7 +233,7 @@ static enum sl_err pkg_run(const struct sl_method_args *a, struct sl_verdicts *o
         out->how[i] = SL_HOW_MAP;
     }
     out->has_vis = 1;
-    return SL_OK;
+    return k->t.trace ? pkg_trace(&k->t, a, out, c, d) : SL_OK;
 }
 
 enum sl_err sl_packages_load(struct sl_packages *set, const char *const *config_dirs, int n, const char *rel_dir,
@@ -241,7 +270,8 @@ enum sl_err sl_packages_load(struct sl_packages *set, const char *const *config_
             .summary = k->t.summary,
             .family = k->t.family,
             .display = k->t.display[0] ? k->t.display : NULL,
-            .exact = 0,
+            /* a hybrid's traced pixels are the truth's: checked on every cell */
+            .exact = k->t.trace ? SL_EXACT_PROVED : 0,
             .lights = 0,
             .params = k->decl,
             .nparams = k->t.nparams + 2,

@@ -18,6 +18,12 @@
  * the map pass, the post passes, the lookup pass and the readback, each
  * also apart in ms_step[0..3].
  *
+ * A package whose technique.yaml declares `trace: {between: [lo, hi]}` is a
+ * hybrid: the PFL pixels whose visibility lies in [lo, hi] are traced with
+ * the truth's own rays (sl_method_trace_left: `rays`, ms_trace) and take
+ * the ray's verdict and a visibility of exactly 0 or 1; its method promises
+ * SL_EXACT_PROVED, so every traced pixel is checked against the truth.
+ *
  * Owns: nothing of its own: a set (struct sl_packages) owns the packages
  * loaded into it and their GL passes (sl_packages_release_gl before the GL
  * context goes, sl_packages_free after); a config's set lives in its

@@ -26,6 +26,7 @@
 struct frac_row {
     int      ncells;
     uint64_t px, umbra, lit, within, img_px, img_wrong;
+    uint64_t rays, pfl;   /* a hybrid's traced pixels (technique.yaml's trace:) and the cells' PFL pixels */
     double   mae, bias;   /* sums of pct * px */
 };
 
@@ -39,6 +40,8 @@ static int frac_row(const struct sl_report_study *s, const char *label, int map,
         const struct sl_soft_figures *f = &c->soft;
         uint64_t px = f->n[SL_SFIG_soft_pixels];
         r->ncells++;
+        r->rays += c->rays;
+        r->pfl += c->n_pfl;
         if (px > 0 && !isnan(f->pct[SL_SFIG_soft_mae]) && !isnan(f->pct[SL_SFIG_soft_bias])) {
             r->px += px;
             r->mae += f->pct[SL_SFIG_soft_mae] * (double)px;
@@ -85,16 +88,18 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
     char id[160];
     snprintf(id, sizeof id, "%s-fractional", s->slug);
     struct sl_tab t;
-    sl_tab_init(&t, id, 12, 2, "%s: fractional errors against the 0/1 truth of the %s, per label and map size",
+    sl_tab_init(&t, id, 13, 2, "%s: fractional errors against the 0/1 truth of the %s, per label and map size",
                 s->name, lights[0] ? lights : "hard light");
     static const char *const head[] = {"label",   "map",     "cells",          "PFL pixels",
                                        "wrong % (hard)", "|v − t|", "bias",           "leaking",
-                                       "over-darkening", "within 0.05", "leaking", "over-darkening"};
-    for (int k = 0; k < 12; k++)
+                                       "over-darkening", "within 0.05", "leaking", "over-darkening",
+                                       "% of PFL pixels"};
+    for (int k = 0; k < 13; k++)
         sl_tab_head(&t, k, "%s", head[k]);
     sl_tab_group(&t, 5, "%s", "");
     sl_tab_group(&t, 5, "%% of visibility per PFL pixel");
     sl_tab_group(&t, 2, "per truth-shadowed / truth-lit pixel");
+    sl_tab_group(&t, 1, "rays traced");
     int any = 0;
     for (int l = 0; l < s->nlabels; l++) {
         int first = 1;
@@ -110,6 +115,10 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
             sl_tab_cell(&t, 1, "%d²", s->maps[m]);
             sl_tab_cell(&t, 2, "%d", r.ncells);
             sl_tab_cell(&t, 3, "%llu", (unsigned long long)r.px);
+            if (r.pfl)
+                sl_tab_cell(&t, 12, "%.2f", 100.0 * (double)r.rays / (double)r.pfl);
+            else
+                sl_tab_cell(&t, 12, "–");
             if (r.img_px)
                 sl_tab_cell(&t, 4, "%.3f", 100.0 * (double)r.img_wrong / (double)r.img_px);
             else
@@ -141,7 +150,9 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
              "full visibility per PFL pixel (leaking + over-darkening = |v − t|); within 0.05: share of the PFL "
              "pixels. The last two columns say the same per pixel where it can happen: the visibility a "
              "truth-shadowed pixel gets on average, and what a truth-lit pixel loses (%% of full visibility; the "
-             "pixel counts after \"of\"). Pooled over the study's views, weighted by their PFL pixels.");
+             "pixel counts after \"of\"). Rays traced: a hybrid's (technique.yaml's trace: band), in %% of the PFL "
+             "pixels, which is their share of raytrace's rays (one a PFL pixel); 0 for a package that traces "
+             "nothing. Pooled over the study's views, weighted by their PFL pixels.");
     enum sl_err e = SL_OK;
     if (any)
         e = sl_report_doc_table(doc, &t, d);

@@ -36,6 +36,13 @@
 #              pixel penumbra, EVSM's class right near VSM's, not 2.75 %),
 #              and table.md and the table's LaTeX name the directional light
 #              and the tolerance, never an area light
+#   trace      vsm_rt and msm_rt (vsm and msm with a traced band) beside vsm
+#              and msm on the primitives and on the room (a point light: per
+#              face): each view's wrong pixels at most the plain package's,
+#              rays > 0 and below the PFL pixels (the plain packages' 0), 0
+#              violations (every traced pixel equals the truth), the rays in
+#              costs.csv, and `table --figure rays --of pfl` (rays per PFL
+#              pixel: the share of raytrace's) as the cells give it
 set -u
 bin=${1:?usage: cli_packages.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -316,6 +323,54 @@ YAML
                        WHERE abs(l.percent + o.percent - m.percent) > 1e-9 OR m.percent IS NULL")
   [ -z "$bad" ] || fail "leaking + over_dark != soft_mae: $bad"
   echo "ok nonfinite: NaN $(nf nan), -inf $(nf ninf) pixels; $(nf map) map texels"
+  ;;
+trace)
+  cat >"$tmp/c.yaml" <<'YAML'
+name: trace
+scenes:
+  - {scene: primitives, viewpoints: [side, against]}
+  - {scene: room}
+viewports: [{width: 256, height: 256}]
+map_sizes: [512]
+methods:
+  - {label: vsm, method: vsm}
+  - {label: vsm_rt, method: vsm_rt}
+  - {label: msm, method: msm}
+  - {label: msm_rt, method: msm_rt}
+outputs: {overlays: false}
+YAML
+  "$bin" run "$tmp/c.yaml" --no-cache -q -o "$tmp/out" 2>"$tmp/err" || { cat "$tmp/err"; fail "run"; }
+  q() { sqlite3 "$tmp/out/shadowlab.db" "$1"; }
+  bad=$(q "SELECT label || ' ' || scene || '/' || viewpoint || ': ' || violations FROM cells WHERE violations > 0")
+  [ -z "$bad" ] || fail "traced pixels against the truth: $bad"
+  for p in vsm msm; do
+    n=$(q "SELECT count(*) FROM cells a JOIN cells b USING (scene, viewpoint, map_size)
+           WHERE a.label = '$p' AND b.label = '${p}_rt'")
+    [ "$n" -ge 3 ] || fail "$p and ${p}_rt side by side in $n views"
+    worse=$(q "SELECT scene || '/' || viewpoint || ': ' || b.n_wrong_image || ' > ' || a.n_wrong_image
+               FROM cells a JOIN cells b USING (scene, viewpoint, map_size)
+               WHERE a.label = '$p' AND b.label = '${p}_rt' AND b.n_wrong_image > a.n_wrong_image")
+    [ -z "$worse" ] || fail "${p}_rt has more wrong pixels than $p: $worse"
+    off=$(q "SELECT scene || '/' || viewpoint || ': ' || rays || ' rays, ' || n_pfl || ' PFL' FROM cells
+             WHERE label = '${p}_rt' AND NOT (rays > 0 AND rays < n_pfl)")
+    [ -z "$off" ] || fail "${p}_rt traced none or all: $off"
+    [ "$(q "SELECT count(*) FROM cells WHERE label = '$p' AND rays > 0")" -eq 0 ] || fail "$p traced"
+    echo "  $(q "SELECT '${p}: ' || sum(a.n_wrong_image) || ' wrong, ${p}_rt: ' || sum(b.n_wrong_image) ||
+                 ' wrong, ' || sum(b.rays) || ' rays of ' || sum(b.n_pfl) || ' PFL pixels'
+                 FROM cells a JOIN cells b USING (scene, viewpoint, map_size)
+                 WHERE a.label = '$p' AND b.label = '${p}_rt'")"
+  done
+  # the pivot's rays per PFL pixel (% of raytrace's): each view's share, averaged
+  want=$(q "SELECT printf('%.4f', avg(100.0 * rays / n_pfl)) FROM cells WHERE label = 'vsm_rt' AND scene = 'primitives'")
+  got=$("$bin" table "$tmp/out/shadowlab.db" --figure rays --of pfl --rows label --cols scene --where label=vsm_rt \
+        --where scene=primitives --format csv | awk -F, 'NR == 2 { printf "%.4f", $2 }')
+  [ -n "$got" ] && [ "$got" = "$want" ] || fail "table --figure rays --of pfl gives '$got', the cells $want"
+  "$bin" table "$tmp/out/shadowlab.db" --figure ms_method --of pfl >/dev/null 2>&1 && fail "a time per PFL pixel"
+  col=$(head -1 "$tmp/out/trace/costs.csv" | tr , '\n' | grep -nx rays | cut -d: -f1)
+  [ -n "$col" ] || fail "costs.csv has no rays column"
+  awk -F, -v c="$col" 'NR > 1 && $0 ~ /vsm_rt/ && $c > 0 { ok = 1 } END { exit !ok }' "$tmp/out/trace/costs.csv" ||
+    fail "costs.csv holds no rays of vsm_rt"
+  echo "ok trace"
   ;;
 hard_classes)
   cat >"$tmp/c.yaml" <<'YAML'

@@ -23,6 +23,10 @@
  * not depend on the post passes. Each point fills a 2 x 2 quad of the lookup
  * grid, so its screen-space derivatives are 0 and the mip level 0, except in
  * the reach test, which wants the coarsest level the lookup allows.
+ *
+ * The rendered cases run the packages over a scene against the truth; the
+ * traced case runs vsm_rt (vsm with a traced band) as the run does, through
+ * its method, beside vsm: the band's pixels the truth's, the rest vsm's.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -38,6 +42,7 @@
 #include "fixture.h"
 #include "frame.h"
 #include "lightfit.h"
+#include "package.h"
 #include "shadowmap.h"
 #include "glctx.h"
 #include "techcheck.h"
@@ -1021,6 +1026,122 @@ static void packages_rendered(void **st)
     }
 }
 
+/* One package method run as the driver runs it (methods/package.c: maps,
+ * lookup, verdicts, and a hybrid's traced band), the truth hidden from it. */
+static void method_run(struct fixture *fx, const struct sl_view *v, const struct sl_light_frame *fr,
+                       const struct sl_method *m, struct sl_verdicts *vd, struct sl_cost *c)
+{
+    struct sl_method_params p;
+    struct sl_diag d;
+    sl_method_params_init(m, &p);
+    p.tech = sl_package_of(m);
+    assert_non_null(p.tech);
+    assert_int_equal(sl_method_configure(m, &p, &d), SL_OK);
+    struct sl_view mv = *v;
+    mv.truth = NULL;
+    struct sl_method_args a = {.scene = &fx->scene, .view = &mv, .frame = fr, .params = &p, .rt = &fx->rt,
+                               .mesh = &fx->mesh, .threads = 2};
+    const size_t n = (size_t)v->w * (size_t)v->h;
+    memset(vd, 0, sizeof *vd);
+    vd->w = v->w;
+    vd->h = v->h;
+    vd->v = calloc(n, 1);
+    vd->how = calloc(n, 1);
+    vd->base = calloc(n, 1);
+    vd->detail = calloc(n, 1);
+    vd->tests = calloc(n, 1);
+    vd->vis = calloc(n, sizeof *vd->vis);
+    assert_true(vd->v && vd->how && vd->base && vd->detail && vd->tests && vd->vis);
+    memset(c, 0, sizeof *c);
+    enum sl_err e = m->run(&a, vd, c, &d);
+    diag_print(e, &d);
+    assert_int_equal(e, SL_OK);
+    assert_int_equal(vd->has_vis, 1);
+}
+
+static void verdicts_free(struct sl_verdicts *vd)
+{
+    free(vd->v);
+    free(vd->how);
+    free(vd->base);
+    free(vd->detail);
+    free(vd->tests);
+    free(vd->vis);
+}
+
+/* vsm_rt (vsm with `trace: {between: [lo, hi]}`) beside vsm on the
+ * primitives: each PFL pixel whose vsm visibility lies in the band is
+ * traced, one ray each, and equals the truth (verdict, and visibility 0 or
+ * 1); every other pixel is vsm's; so its wrong pixels are at most vsm's,
+ * and it traces some pixels but not all. */
+static void packages_traced(void **st)
+{
+    (void)st;
+    gl_close();
+    struct fixture fx;
+    assert_true(fixture_open(&fx, "scenes/primitives.yaml", 2));
+    struct sl_view v;
+    assert_true(fixture_view(&fx, 0, 256, 192, &v));
+    struct sl_light_frame fr;
+    memset(&fr, 0, sizeof fr);
+    fr.size = 1024;
+    memcpy(fr.dir, fx.scene.light_dir, sizeof fr.dir);
+    sl_light_fit(&fx.scene, &v, &fr.box);
+    fr.texel_world = fmaxf(fr.box.hi[0] - fr.box.lo[0], fr.box.hi[1] - fr.box.lo[1]) / (float)fr.size;
+    fr.depth_range = fr.box.hi[2] - fr.box.lo[2];
+    struct sl_packages set = {0};
+    struct sl_diag d;
+    enum sl_err e = sl_packages_load(&set, NULL, 0, NULL, NULL, &d);
+    diag_print(e, &d);
+    assert_int_equal(e, SL_OK);
+    const struct sl_method *plain = sl_packages_find(&set, "vsm"), *hybrid = sl_packages_find(&set, "vsm_rt");
+    assert_true(plain && hybrid);
+    const struct sl_technique *t = sl_package_of(hybrid);
+    assert_int_equal(t->trace, 1);
+    assert_int_equal(sl_package_of(plain)->trace, 0);
+    assert_int_equal(plain->exact, 0);
+    assert_int_equal(hybrid->exact, SL_EXACT_PROVED);
+    struct sl_verdicts a, b;
+    struct sl_cost ca, cb;
+    method_run(&fx, &v, &fr, plain, &a, &ca);
+    method_run(&fx, &v, &fr, hybrid, &b, &cb);
+    const size_t n = (size_t)v.w * (size_t)v.h;
+    size_t pfl = 0, band = 0, wrong_a = 0, wrong_b = 0, off = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (v.cls[i] != SL_C_PFL)
+            continue;
+        pfl++;
+        const int t_lit = v.truth[i] == SL_T_LIT;
+        wrong_a += (a.v[i] == SL_V_LIT) != t_lit;
+        wrong_b += (b.v[i] == SL_V_LIT) != t_lit;
+        if (a.vis[i] >= (float)t->trace_lo && a.vis[i] <= (float)t->trace_hi) {
+            band++;
+            off += b.how[i] != SL_HOW_TRACED || (b.v[i] == SL_V_LIT) != t_lit || b.vis[i] != (t_lit ? 1.0f : 0.0f);
+        } else {
+            off += b.how[i] != a.how[i] || b.v[i] != a.v[i] || b.vis[i] != a.vis[i];
+        }
+    }
+    printf("  %zu PFL pixels: vsm wrong %zu (%.2f %%), vsm_rt wrong %zu (%.2f %%), band [%g, %g] %zu pixels, "
+           "%llu rays (%.1f %% of the PFL pixels), trace %.1f ms\n",
+           pfl, wrong_a, 100.0 * wrong_a / pfl, wrong_b, 100.0 * wrong_b / pfl, t->trace_lo, t->trace_hi, band,
+           (unsigned long long)cb.rays, 100.0 * cb.rays / pfl, cb.ms_trace);
+    assert_int_equal(off, 0);
+    assert_int_equal(ca.rays, 0);
+    assert_true(cb.rays > 0 && cb.rays < pfl);
+    assert_int_equal(cb.rays, band);
+    assert_true(cb.ms_trace > 0.0 && cb.ms_method >= cb.ms_trace);
+    assert_true(wrong_b <= wrong_a);
+    assert_true(wrong_a > 0 && wrong_b < wrong_a);   /* the band holds some of vsm's wrong pixels */
+    verdicts_free(&a);
+    verdicts_free(&b);
+    sl_packages_release_gl(&set);
+    sl_packages_free(&set);
+    sl_light_box_free(&fr.box);
+    sl_frame_free(&fr);
+    sl_view_free(&v);
+    fixture_close(&fx);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -1034,6 +1155,7 @@ int main(int argc, char **argv)
         SL_CASE(packages, perspective_depth),
         SL_CASE(packages, reach),
         SL_CASE(packages, rendered),
+        SL_CASE(packages, traced),
         SL_CASE(packages, doc_example),
         SL_CASE(packages, pixel),
         SL_CASE(packages, pcf_off_axis),

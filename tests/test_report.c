@@ -436,7 +436,8 @@ static void report_self_contained(void **st)
 /* A study of no thesis's method (nsm and a technique package with a hard
  * light's fractional errors): no thesis section, no area-light table, and
  * the fractional errors computed from mae and bias (leaking = (mae + bias)
- * / 2, over-darkening = (mae - bias) / 2), pooled over views by PFL pixels. */
+ * / 2, over-darkening = (mae - bias) / 2), pooled over views by PFL pixels,
+ * and a hybrid's rays traced as a share of the PFL pixels. */
 static void report_any_study(void **st)
 {
     (void)st;
@@ -459,6 +460,9 @@ static void report_any_study(void **st)
         f->soft.n[SL_SFIG_soft_truth_umbra] = px / 10;   /* 400 pooled */
         f->soft.n[SL_SFIG_soft_truth_lit] = px - px / 10;   /* 3600 */
         f->soft.n[SL_SFIG_soft_within_005] = px / 2;
+        /* a hybrid's rays: 100 of 1000 and 200 of 3000 PFL pixels, 7.50 % pooled */
+        f->n_pfl = px;
+        f->rays = v ? 200 : 100;
     }
     /* a study's thesis sections come from the methods' own metadata */
     assert_int_equal(sl_report_family_of("moderno-2011", "", SL_REPORT_MODERNO), 2);
@@ -495,7 +499,7 @@ static void report_any_study(void **st)
     /* label, map, cells, PFL, wrong % (20 of 2000 px, whole image), mae, bias, leaking, over-darkening, within,
      * per px: 2.25 * 4000 / 400, 1.75 * 4000 / 3600 */
     assert_non_null(strstr(md, "| pkg | 512² | 2 | 4000 | 1.000 | 4.000 | +0.500 | 2.250 | 1.750 | 50.00% | "
-                               "22.50 (of 400) | 1.94 (of 3600) |"));
+                               "22.50 (of 400) | 1.94 (of 3600) | 7.50 |"));
     free(md);
 }
 

@@ -166,6 +166,43 @@ static void technique_shipped(void **st)
     sl_tech_free(&t);
 }
 
+/* `trace: {between: [lo, hi]}`: a band 0 <= lo < hi <= 1 is read; any other
+ * is refused naming technique.yaml, the line of `between` and the key. */
+static void technique_trace_band(void **st)
+{
+    (void)st;
+    char dir[600];
+    package(dir, sizeof dir, "band_ok", HEAD("band_ok") MAPS SHADERS "trace:\n  between: [0.05, 0.95]\n", NULL);
+    struct sl_technique t;
+    struct sl_diag d;
+    assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
+    assert_int_equal(t.trace, 1);
+    assert_true(t.trace_lo == 0.05 && t.trace_hi == 0.95);
+    sl_tech_free(&t);
+    package(dir, sizeof dir, "band_none", HEAD("band_none") MAPS SHADERS, NULL);
+    assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
+    assert_int_equal(t.trace, 0);
+    sl_tech_free(&t);
+    expect_bad("band_reversed", HEAD("band_reversed") MAPS SHADERS "trace:\n  between: [0.9, 0.1]\n", 8,
+               "trace.between", "0 <= lo < hi <= 1");
+    expect_bad("band_empty", HEAD("band_empty") MAPS SHADERS "trace:\n  between: [0.5, 0.5]\n", 8,
+               "trace.between", "0 <= lo < hi <= 1");
+    expect_bad("band_above", HEAD("band_above") MAPS SHADERS "trace:\n  between: [0.2, 1.5]\n", 8,
+               "trace.between", "[0.2, 1.5]");
+    expect_bad("band_below", HEAD("band_below") MAPS SHADERS "trace:\n  between: [-0.1, 0.5]\n", 8,
+               "trace.between", "0 <= lo");
+    expect_bad("band_nan", HEAD("band_nan") MAPS SHADERS "trace:\n  between: [.nan, 0.5]\n", 8,
+               "trace.between[0]", "FLOAT");
+    expect_bad("band_three", HEAD("band_three") MAPS SHADERS "trace:\n  between: [0.1, 0.5, 0.9]\n", 8,
+               "trace.between", "at most 2");
+    expect_bad("band_one", HEAD("band_one") MAPS SHADERS "trace:\n  between: [0.1]\n", 8,
+               "trace.between", "Insufficient entries");
+    expect_bad("band_word", HEAD("band_word") MAPS SHADERS "trace:\n  between: [low, 0.5]\n", 8,
+               "trace.between[0]", "");
+    expect_bad("band_key", HEAD("band_key") MAPS SHADERS "trace:\n  within: [0.1, 0.5]\n", 8,
+               "trace.within", "unknown key");
+}
+
 /* The search path and the set: one package a name (the same package found
  * twice is kept once, two different ones are an error naming both), a C
  * method's name refused. */
@@ -325,7 +362,7 @@ static void technique_glsl_error(void **st)
     sl_tech_free(&t);
     /* the prelude and the harness main draw no word from the driver: a
      * shipped package's log names no line of theirs */
-    static const char *const shipped[] = {"nsm", "pcf", "vsm", "esm", "evsm", "msm", "pcss", NULL};
+    static const char *const shipped[] = {"nsm", "pcf", "vsm", "esm", "evsm", "msm", "pcss", "vsm_rt", "msm_rt", NULL};
     for (int i = 0; shipped[i]; i++) {
         char pdir[64];
         snprintf(pdir, sizeof pdir, "techniques/%s", shipped[i]);
@@ -423,7 +460,7 @@ static void technique_glslang(void **st)
     assert_string_equal(d.file, file);
     fprintf(stderr, "  no sl_lookup: %s\n", d.msg);
     sl_tech_free(&t);
-    static const char *const shipped[] = {"nsm", "pcf", "vsm", "esm", "evsm", "msm", "pcss", NULL};
+    static const char *const shipped[] = {"nsm", "pcf", "vsm", "esm", "evsm", "msm", "pcss", "vsm_rt", "msm_rt", NULL};
     for (int i = 0; shipped[i]; i++) {
         snprintf(dir, sizeof dir, "techniques/%s", shipped[i]);
         assert_int_equal(sl_tech_load(dir, &t, &d), SL_OK);
@@ -889,6 +926,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         SL_CASE(technique, loader_errors),
         SL_CASE(technique, shipped),
+        SL_CASE(technique, trace_band),
         SL_CASE(technique, set_scan),
         SL_CASE(technique, glsl_error),
         SL_CASE(technique, log_order),

@@ -87,6 +87,9 @@ static void show_technique(const struct sl_technique *t)
     printf("  cite       %s\n", t->cite[0] ? t->cite : "(none given)");
     printf("  family     %s\n", t->family);
     printf("  threshold  %g (lit iff visibility >= it)\n", t->threshold);
+    if (t->trace)
+        printf("  trace      visibility in [%g, %g]: traced with the truth's rays (a hybrid)\n", t->trace_lo,
+               t->trace_hi);
     printf("  cull       %s\n", sl_tech_cull_names[t->cull]);
     printf("  maps\n");
     for (int i = 0; i < t->nmaps; i++) {

@@ -41,6 +41,7 @@ const char *const sl_tech_cull_names[3] = {SL_TECH_CULLS(NAME_)};
 struct raw_param { char *name, *type, *def, *min, *max, *doc; };
 struct raw_map { char *name, *format, *filter, *post, *blur; };
 struct raw_scaled { double *texels; char *param; double *scale, *power; };
+struct raw_trace { double *between; unsigned between_count; };
 struct raw_tech {
     char *name, *summary, *cite, *family, *display, *cull, *map_shader, *lookup_shader;
     double *threshold;
@@ -49,6 +50,7 @@ struct raw_tech {
     struct raw_param *params;
     unsigned params_count;
     struct raw_scaled *reach, *taps;
+    struct raw_trace *trace;
 };
 
 #define STR(key, type, member, max) CYAML_FIELD_STRING_PTR(key, CYAML_FLAG_POINTER, type, member, 1, max)
@@ -92,6 +94,13 @@ static const cyaml_schema_field_t taps_fields[] = {
     OPT_DOUBLE("power", struct raw_scaled, power),
     CYAML_FIELD_END,
 };
+static const cyaml_schema_value_t band_entry = {
+    CYAML_VALUE_FLOAT(CYAML_FLAG_DEFAULT, double),
+};
+static const cyaml_schema_field_t trace_fields[] = {
+    CYAML_FIELD_SEQUENCE("between", CYAML_FLAG_POINTER, struct raw_trace, between, &band_entry, 2, 2),
+    CYAML_FIELD_END,
+};
 static const cyaml_schema_field_t tech_fields[] = {
     STR("name", struct raw_tech, name, 64),
     STR("summary", struct raw_tech, summary, 199),
@@ -105,6 +114,7 @@ static const cyaml_schema_field_t tech_fields[] = {
     STR("lookup_shader", struct raw_tech, lookup_shader, 255),
     CYAML_FIELD_MAPPING_PTR("reach", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_tech, reach, reach_fields),
     CYAML_FIELD_MAPPING_PTR("taps", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_tech, taps, taps_fields),
+    CYAML_FIELD_MAPPING_PTR("trace", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_tech, trace, trace_fields),
     CYAML_FIELD_SEQUENCE("params", CYAML_FLAG_POINTER | CYAML_FLAG_OPTIONAL, struct raw_tech, params, &param_schema,
                          0, SL_TECH_MAX_PARAMS),
     CYAML_FIELD_END,
@@ -480,6 +490,17 @@ static enum sl_err fill(struct sl_technique *t, const struct raw_tech *r, const 
                 return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "reach at '%s' = %g is %g texels: at most "
                                    "1024", rs[k]->param, p->max, s->texels + s->scale * pow(p->max, s->power));
         }
+    }
+
+    /* the traced band: a visibility at or between its ends is replaced by
+     * the truth's ray (methods/package.c) */
+    t->trace = r->trace != NULL;
+    if (t->trace) {
+        t->trace_lo = r->trace->between[0];
+        t->trace_hi = r->trace->between[1];
+        if (!(t->trace_lo >= 0.0 && t->trace_lo < t->trace_hi && t->trace_hi <= 1.0))
+            return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, "trace.between", "[%g, %g]: a band is [lo, hi] with "
+                               "0 <= lo < hi <= 1", t->trace_lo, t->trace_hi);
     }
 
     snprintf(t->map_shader, sizeof t->map_shader, "%s", r->map_shader);

@@ -5,7 +5,8 @@
  * What it does: reads and checks technique.yaml against its schema (a libcyaml
  * schema bound by sl_yaml_load: unknown keys, missing keys, types, ranges, a default
  * outside [min, max], names that are no GLSL identifiers, a `blur:` or
- * `reach.param` naming no parameter), checks the shader paths (relative, no
+ * `reach.param` naming no parameter, a `trace:` band that is not
+ * 0 <= lo < hi <= 1), checks the shader paths (relative, no
  * `..`, no symbolic link on the way, a regular file inside the package
  * folder, at most SL_TECH_MAX_SHADER bytes) and reads both sources. Packages
  * are untrusted input: every error is `FILE:LINE: 'KEY': message` with the id
@@ -100,6 +101,11 @@ struct sl_technique {
     struct sl_param param[SL_TECH_MAX_PARAMS];
     struct sl_tech_scaled reach;   /* default 0 texels */
     struct sl_tech_scaled taps;    /* default 1 texel */
+    /* `trace: {between: [lo, hi]}`: a PFL pixel whose visibility v has
+     * lo <= v <= hi is traced with the truth's rays and takes their 0 or 1
+     * (a hybrid: methods/package.c); 0 <= lo < hi <= 1 */
+    int trace;
+    double trace_lo, trace_hi;
     char map_shader[256], lookup_shader[256];   /* as written, relative to dir */
     char *map_src, *lookup_src;    /* their text, NUL-terminated (owned) */
 };

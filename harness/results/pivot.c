@@ -139,6 +139,7 @@ struct fig {
     int      k;              /* figure or column */
     int      base;           /* SRC_HARD with --of FIGURE: that figure, else -1 */
     int      count;          /* a count, not a percentage */
+    int      per_pfl;        /* SRC_COL with --of pfl: a counter as a share of the cell's PFL pixels */
     char     unit[64];       /* plain: "% of pixels", "count", "ms" */
     int      is_int;         /* values are whole numbers (a count, not averaged) */
 };
@@ -165,9 +166,16 @@ static enum sl_err fig_resolve(const struct sl_pivot_desc *p, struct fig *g, str
                        "leaking, over_dark; or a counter or time: ms_method, rays, lookups, nonfinite, ...)", name);
     const char *of = p->of;
     if (g->src == SRC_COL) {
+        /* a counter per PFL pixel: rays as a share of raytrace's, which
+         * traces one ray a PFL pixel */
+        if (of && !strcmp(of, "pfl") && !cols[g->k].is_ms) {
+            g->per_pfl = 1;
+            snprintf(g->unit, sizeof g->unit, "%% of PFL pixels");
+            return SL_OK;
+        }
         if (of && strcmp(of, "count"))
-            return sl_fail(d, SL_E_USAGE, NULL, 0, "--of", "%s is a %s: only --of count", name,
-                           cols[g->k].is_ms ? "time" : "counter");
+            return sl_fail(d, SL_E_USAGE, NULL, 0, "--of", "%s is a %s: only --of count%s", name,
+                           cols[g->k].is_ms ? "time" : "counter", cols[g->k].is_ms ? "" : " or --of pfl");
         g->count = 1;
         snprintf(g->unit, sizeof g->unit, "%s", cols[g->k].is_ms ? "ms" : "count");
         g->is_int = !cols[g->k].is_ms;
@@ -200,10 +208,14 @@ static enum sl_err fig_resolve(const struct sl_pivot_desc *p, struct fig *g, str
 static double fig_value(const struct fig *g, const struct sl_cell_record *c, int r)
 {
     switch (g->src) {
-    case SRC_COL:
+    case SRC_COL: {
         if (cols[g->k].is_ms)
             return *(const double *)(const void *)((const char *)c + cols[g->k].off);
-        return (double)*(const uint64_t *)(const void *)((const char *)c + cols[g->k].off);
+        double x = (double)*(const uint64_t *)(const void *)((const char *)c + cols[g->k].off);
+        if (g->per_pfl)
+            return c->n_pfl ? 100.0 * x / (double)c->n_pfl : NAN;
+        return x;
+    }
     case SRC_SOFT:
         return g->count ? (double)c->soft.n[g->k] : c->soft.pct[g->k];
     case SRC_HARD:
