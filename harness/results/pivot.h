@@ -63,7 +63,6 @@ struct sl_pivot_desc {
     enum sl_pivot_agg agg;
     int               nwhere;
     struct { enum sl_pivot_key key; const char *value; } where[SL_PIVOT_MAX_WHERE];
-    const char       *caption;          /* LaTeX/Markdown caption's start ("moderno-2011: "), NULL none */
     const char       *tex_label;        /* \label{tab:...} key, NULL: from the figure and keys */
 };
 
@@ -72,6 +71,7 @@ struct sl_pivot_info {
     int nrows, ncols;                   /* the table's, before any split */
     int parts;                          /* tables written (0: no cell had the figure) */
     int transposed;
+    int zero;                           /* LaTeX: every entry 0, a sentence written instead of the table */
 };
 
 /* "label=nsm" -> p->where[p->nwhere++]; SL_E_USAGE (key "--where") if the
