@@ -53,7 +53,18 @@ static const char css[] =
     "details.sec>summary>h5,details.sec>summary>h4{display:inline;margin:0}"
     ".filters{background:#f3f4f6;border:1px solid #ddd;padding:.4em .8em;margin:.6em 0}"
     ".filters label{margin-right:1em}.filters .count{color:#555}"
-    ".gallery figure:target{grid-column:1/-1}.gallery figure:target img{width:auto;max-width:100%}";
+    ".gallery figure:target{grid-column:1/-1}.gallery figure:target img{width:auto;max-width:100%}"
+    /* printed (issue 47): a wide table is never clipped by the scroll box a
+     * screen gives it; it wraps its heads and names, never below 8 pt, and
+     * keeps its heads on every page; a plot keeps its size up to the line */
+    "@page{size:A4;margin:12mm}"
+    "@media print{body{max-width:none;padding:0;font-size:10pt}"
+    ".tab{overflow:visible}table{font-size:8pt;max-width:100%}"
+    "th,td.k{white-space:normal;overflow-wrap:anywhere}th,td{padding:.1em .3em}table.wrap td{min-width:0}"
+    "thead{display:table-header-group}tr{break-inside:avoid}"
+    "figure{break-inside:avoid}figure img{max-width:100%}figcaption,.note,footer{font-size:8pt}"
+    "nav.toc>ul{columns:1}a.anc,.filters{display:none}tbody tr:hover td{background:none}"
+    "pre{white-space:pre-wrap;font-size:8pt}}";
 
 /* The gallery's filters: the only script, inline, no network. */
 static const char filter_js[] =
