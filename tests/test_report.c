@@ -21,6 +21,22 @@
 
 /* ---- Pareto ---- */
 
+/* An SVG plot's font prints at 8.5 pt or more on A4 (a canvas wider than
+ * the 703 px line is shrunk to it) and is at least 11 px on screen. */
+static void report_svg_font(void **st)
+{
+    (void)st;
+    assert_int_equal(sl_report_svg_font_px(900), 15);
+    assert_int_equal(sl_report_svg_font_px(703), 12);
+    assert_int_equal(sl_report_svg_font_px(400), 12);
+    for (int w = 300; w <= 2400; w += 50) {
+        int f = sl_report_svg_font_px(w);
+        double printed = f * 0.75 * (w > 703 ? 703.0 / w : 1.0);
+        assert_true(printed >= 8.5 && f >= 11);
+        assert_true((f - 1) * 0.75 * (w > 703 ? 703.0 / w : 1.0) < 8.5 || f == 11);
+    }
+}
+
 static void report_pareto(void **st)
 {
     (void)st;
@@ -538,6 +554,7 @@ int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(report, pareto),
+        SL_CASE(report, svg_font),
         SL_CASE(report, points),
         SL_CASE(report, build),
         SL_CASE(report, self_contained),
