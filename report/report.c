@@ -473,7 +473,7 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
     }
     if (!e && s->frac) {
         sl_report_doc_heading(doc, 3, NULL, "%s: fractional errors", s->name);
-        e = sl_report_fractional(doc, s, d);
+        e = sl_report_fractional(doc, s, gnuplot, d);
     }
     if (!e)   /* a heading of its own when the study has paths */
         e = sl_report_motion(doc, s, gnuplot, d);

@@ -207,7 +207,8 @@ int sl_morais_counts(const struct sl_cell_record *c, struct sl_morais_counts *ou
 enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 
 /* fractional.c: a hard light's fractional errors (frac cells) per label and map size */
-enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                                 struct sl_diag *d);
 
 /* fidelity.c: Moderno 2011's Primitives numbers and claims beside the study's */
 enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
