@@ -63,15 +63,6 @@ static int frac_row(const struct sl_report_study *s, const char *label, int map,
     return r->ncells;
 }
 
-/* a label's name for people: its cells' display name, else the label */
-static const char *display_of(const struct sl_report_study *s, const char *label)
-{
-    for (int i = 0; i < s->n; i++)
-        if (!strcmp(s->cells[i].label, label) && s->cells[i].display[0])
-            return s->cells[i].display;
-    return label;
-}
-
 /* Leaking against over-darkening, a marker per label (its display name in
  * the legend, beside the data), its map sizes joined smallest to largest:
  * which way each technique errs. */
@@ -125,7 +116,7 @@ static enum sl_err leak_plot(struct sl_report_doc *doc, const struct sl_report_s
         sl_report_style(nb, &col, &pt);
         fprintf(pm, "%sDATA index %d using (XZERO_OF(1)):(YZERO_OF(2)) with linespoints pt %d ps 1.2 lw 1.2 "
                     "lc rgb '%s' title ", nb ? ", \\\n  " : "", nb, pt, col);
-        sl_report_gp_quote(pm, display_of(s, s->labels[l]));
+        sl_report_gp_quote(pm, sl_report_display(s, s->labels[l]));
         nb++;
     }
     if (pm)
@@ -204,7 +195,7 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
                 continue;
             sl_tab_row(&t, first);
             if (first)
-                sl_tab_cell(&t, 0, "%s", display_of(s, s->labels[l]));
+                sl_tab_cell(&t, 0, "%s", sl_report_display(s, s->labels[l]));
             first = 0;
             any = 1;
             sl_tab_cell(&t, 1, "%d²", s->maps[m]);

@@ -60,7 +60,7 @@ static const char css[] =
     "@page{size:A4;margin:12mm}"
     "@media print{body{max-width:none;padding:0;font-size:10pt}"
     ".tab{overflow:visible}table{font-size:8pt;max-width:100%}"
-    "th,td.k{white-space:normal;overflow-wrap:anywhere}th,td{padding:.1em .3em}table.wrap td{min-width:0}"
+    "th,td.k{white-space:normal}th,td{padding:.1em .3em}table.wrap td{min-width:0}"
     "thead{display:table-header-group}tr{break-inside:avoid}"
     "figure{break-inside:avoid}figure img{max-width:100%}figcaption,.note,footer{font-size:8pt}"
     "nav.toc>ul{columns:1}a.anc,.filters{display:none}tbody tr:hover td{background:none}"
@@ -273,7 +273,7 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
                     const uint64_t *n = c->fig.r[r].n;
                     double px = n[SL_FIG_pixels] ? (double)n[SL_FIG_pixels] : NAN;
                     sl_tab_row(&t, m == 0);
-                    sl_tab_cell(&t, 0, "%s", c->label);
+                    sl_tab_cell(&t, 0, "%s", sl_report_display(s, c->label));
                     sl_tab_cell(&t, 1, "%d²", c->map_size);
                     sl_tab_cell(&t, 2, "%.3f", 100.0 * (double)n[SL_FIG_wrong] / px);
                     sl_tab_cell(&t, 3, "%.3f", 100.0 * (double)n[SL_FIG_light_incorrect] / px);
