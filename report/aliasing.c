@@ -85,7 +85,7 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
             }
             pfl += n[SL_AFIG_m_none];
             sl_tab_row(&t, m == 0);
-            sl_tab_cell(&t, 0, "%s", s->labels[l]);
+            sl_tab_cell(&t, 0, "%s", sl_report_display(s, s->labels[l]));
             sl_tab_cell(&t, 1, "%d²", s->maps[m]);
             sl_tab_cell(&t, 2, "%.2fM", (double)c->texels / 1048576.0);
             sl_tab_cell(&t, 3, "%llu", (unsigned long long)wrong);
@@ -151,7 +151,7 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
             continue;
         fprintf(dm, "%s# %s: band wrong/PFL %%\n", nblocks ? "\n\n" : "", s->labels[l]);
         sl_tab_row(&t, 0);
-        sl_tab_cell(&t, 0, "%s", s->labels[l]);
+        sl_tab_cell(&t, 0, "%s", sl_report_display(s, s->labels[l]));
         for (int b = 0; b < SL_ALIAS_BANDS; b++) {
             if (p[b] == 0) {
                 fprintf(dm, "%d NaN\n", b);
@@ -187,7 +187,7 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
         sl_report_style(b, &col, &pt);
         fprintf(m, "%sDATA index %d using 1:(YZERO_OF(2)) with linespoints lw 1.5 pt %d lc rgb '%s' title ", b ? ", \\\n  " : "",
                 b, pt, col);
-        sl_report_gp_quote(m, s->labels[l]);
+        sl_report_gp_quote(m, sl_report_display(s, s->labels[l]));
         b++;
     }
     fputc('\n', m);

@@ -42,12 +42,26 @@ static const char *label_method(const char *label)
     return "";
 }
 
+/* The section shows something only where a datum is measured: a study
+ * with no Primitives cell at the thesis's 1024 x 1024 views (the techniques
+ * study's 768 x 768, a small test run) would print 1,434 "not measured"
+ * rows and nothing else (issue 47). An unreadable thesis file applies: the
+ * section then stops the report naming the file. */
 int sl_report_fidelity_applies(const struct sl_cell_record *c, int n)
 {
-    for (int i = 0; i < n; i++)
-        if (!strcmp(c[i].scene, "primitives") && c[i].fig.nregions > 0)
-            return 1;
-    return 0;
+    int prim = 0;
+    for (int i = 0; i < n && !prim; i++)
+        prim = !strcmp(c[i].scene, "primitives") && c[i].fig.nregions > 0;
+    if (!prim)
+        return 0;
+    struct sl_report_fidelity_row *rows = malloc(SL_REPORT_FIDELITY_MAXROWS * sizeof *rows);
+    if (!rows)
+        return 1;
+    int nr = sl_report_fidelity_rows(c, n, rows, SL_REPORT_FIDELITY_MAXROWS), any = nr < 0;
+    for (int i = 0; i < nr && !any; i++)
+        any = rows[i].measured;
+    free(rows);
+    return any;
 }
 
 /* Counted under the thesis's contour (NSM's, shared): an NSM cell always is. */
@@ -453,10 +467,22 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
         return e;
     static struct sl_report_fidelity_row rows[SL_REPORT_FIDELITY_MAXROWS];
     int nr = sl_report_fidelity_rows(s->cells, s->n, rows, SL_REPORT_FIDELITY_MAXROWS);
+    /* a table of the thesis none of whose data this study measures is left
+     * out, named in one line under the rest */
+    char skipped[1024] = "";
+    size_t sk = 0;
     for (int a = 0; a < nr && !e;) {
-        int b = a;
+        int b = a, measured = 0;
         while (b < nr && rows[b].table == rows[a].table)
-            b++;
+            measured |= rows[b++].measured;
+        if (!measured) {
+            char cite[40];
+            sk += (size_t)snprintf(skipped + sk, sk < sizeof skipped ? sizeof skipped - sk : 0, "%s%s (%s)",
+                                   sk ? ", " : "", sl_thesis_cite(SL_THESIS_MODERNO, rows[a].table, cite, sizeof cite),
+                                   rows[a].viewpoint);
+            a = b;
+            continue;
+        }
         char id[160];
         snprintf(id, sizeof id, "%s-fidelity-table%d", s->slug, rows[a].table);
         struct sl_tab t;
@@ -500,6 +526,12 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
     }
     if (e)
         return e;
+    if (skipped[0]) {
+        char line[1200];
+        snprintf(line, sizeof line, "Not shown, no cell of this study at their view, map size and contours: %s.",
+                 skipped);
+        sl_report_doc_para(doc, line);
+    }
 
     struct sl_report_fidelity_claim cl[SL_REPORT_FIDELITY_NCLAIMS];
     int nc = sl_report_fidelity_claims(s->cells, s->n, cl, SL_REPORT_FIDELITY_NCLAIMS);

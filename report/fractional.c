@@ -19,13 +19,17 @@
  * without frac (area lights: layouts.c's soft table) are never read here.
  * Reads the cells' records only; nothing here prints.
  */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "report_int.h"
 
 struct frac_row {
-    int      ncells;
-    uint64_t px, umbra, lit, within, img_px, img_wrong;
+    int      ncells, nwrong;
+    double   wrong;       /* the sum of the views' own wrong % (their mean: the report's one "wrong %") */
+    uint64_t px, umbra, lit, within;
     uint64_t rays, pfl;   /* a hybrid's traced pixels (technique.yaml's trace:) and the cells' PFL pixels */
     double   mae, bias;   /* sums of pct * px */
 };
@@ -51,15 +55,96 @@ static int frac_row(const struct sl_report_study *s, const char *label, int map,
             r->within += f->n[SL_SFIG_soft_within_005];
         }
         int g = sl_report_region(c, 0);
-        if (g >= 0) {
-            r->img_px += c->fig.r[g].n[SL_FIG_pixels];
-            r->img_wrong += c->fig.r[g].n[SL_FIG_wrong];
+        if (g >= 0 && c->fig.r[g].n[SL_FIG_pixels]) {
+            r->wrong += 100.0 * (double)c->fig.r[g].n[SL_FIG_wrong] / (double)c->fig.r[g].n[SL_FIG_pixels];
+            r->nwrong++;
         }
     }
     return r->ncells;
 }
 
-enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d)
+/* Leaking against over-darkening, a marker per label (its display name in
+ * the legend, beside the data), its map sizes joined smallest to largest:
+ * which way each technique errs. */
+static enum sl_err leak_plot(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                             struct sl_diag *d)
+{
+    char *body = NULL, *data = NULL;
+    size_t blen = 0, dlen = 0;
+    FILE *m = open_memstream(&body, &blen), *dm = open_memstream(&data, &dlen);
+    if (!m || !dm) {
+        if (m)
+            fclose(m);
+        if (dm)
+            fclose(dm);
+        free(body), free(data);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
+    }
+    int nb = 0, npts = 0;
+    double xs[SL_REPORT_MAXKEYS * 16], ys[SL_REPORT_MAXKEYS * 16];
+    char title[200];
+    snprintf(title, sizeof title, "%s: light leaking against over-darkening", s->name);
+    fputs("set title ", m);
+    sl_report_gp_quote(m, title);
+    fputs("\nset lmargin at screen 0.13\nset rmargin at screen 0.56\nset tmargin at screen 0.90\n"
+          "set bmargin at screen 0.14\nset grid\nset border 3\nset tics nomirror\n"
+          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 2 spacing 1.1 box\n"
+          "set xlabel 'light leaking, % of visibility per PFL pixel'\n"
+          "set ylabel 'over-darkening, % of visibility per PFL pixel'\n", m);
+    char *plot = NULL;
+    size_t plen = 0;
+    FILE *pm = open_memstream(&plot, &plen);
+    for (int l = 0; pm && l < s->nlabels; l++) {
+        int any = 0;
+        for (int mi = 0; mi < s->nmaps && npts < SL_REPORT_MAXKEYS * 16; mi++) {
+            struct frac_row r;
+            if (!frac_row(s, s->labels[l], s->maps[mi], &r) || !r.px)
+                continue;
+            double mae = r.mae / (double)r.px, bias = r.bias / (double)r.px;
+            if (!any)
+                fprintf(dm, "%s# %s: leaking over-darkening map\n", nb ? "\n\n" : "", s->labels[l]);
+            any = 1;
+            xs[npts] = (mae + bias) / 2.0;
+            ys[npts] = (mae - bias) / 2.0;
+            fprintf(dm, "%.6g %.6g %d\n", xs[npts], ys[npts], s->maps[mi]);
+            npts++;
+        }
+        if (!any)
+            continue;
+        const char *col;
+        int pt;
+        sl_report_style(nb, &col, &pt);
+        fprintf(pm, "%sDATA index %d using (XZERO_OF(1)):(YZERO_OF(2)) with linespoints pt %d ps 1.2 lw 1.2 "
+                    "lc rgb '%s' title ", nb ? ", \\\n  " : "", nb, pt, col);
+        sl_report_gp_quote(pm, sl_report_display(s, s->labels[l]));
+        nb++;
+    }
+    if (pm)
+        fclose(pm);
+    int lx = sl_report_axis(m, "x", xs, npts, 1), ly = sl_report_axis(m, "y", ys, npts, 1);
+    fprintf(m, "plot %s\n", plot ? plot : "");
+    free(plot);
+    int bad = ferror(m) | ferror(dm) | !pm;
+    bad |= fclose(m) != 0;
+    bad |= fclose(dm) != 0;
+    enum sl_err e = SL_OK;
+    if (bad || !body || !data)
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
+    else if (nb > 0 && (lx >= 0 || ly >= 0)) {
+        char name[160], cap[600];
+        snprintf(name, sizeof name, "%s-leaking", s->slug);
+        snprintf(cap, sizeof cap, "%s. Per method (its map sizes joined smallest to largest), the two kinds of "
+                 "error of the table above: right, more light where the truth is shadowed; up, less where it is "
+                 "lit.%s", title, lx == 1 || ly == 1 ? " Log scale where the values span more than two decades; "
+                                                      "a zero at the tick labelled 0." : "");
+        e = sl_report_plot_draw(doc, gnuplot, name, 900, 600, data, body, cap, d);
+    }
+    free(body), free(data);
+    return e;
+}
+
+enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                                 struct sl_diag *d)
 {
     sl_report_doc_para(doc,
                        "Methods that write a visibility between 0 and 1 (technique packages) under a hard light, "
@@ -68,7 +153,8 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
                        "truth is lit); the mean |v − truth| is their sum and the signed bias (method − truth) "
                        "their difference, so leaking = (|v − truth| + bias) / 2 and over-darkening = "
                        "(|v − truth| − bias) / 2. Wrong %%: the same cells' hard figures (their "
-                       "lit/shadowed verdicts), whole image.");
+                       "lit/shadowed verdicts), whole image, the mean of the views' own percentages: the one "
+                       "definition of wrong %% in the report, its plots and table.tex.");
     /* the lights the truths were computed for, each once ("directional
      * light", "spot light, 70°": the cells' own words) */
     char lights[256] = "";
@@ -109,7 +195,7 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
                 continue;
             sl_tab_row(&t, first);
             if (first)
-                sl_tab_cell(&t, 0, "%s", s->labels[l]);
+                sl_tab_cell(&t, 0, "%s", sl_report_display(s, s->labels[l]));
             first = 0;
             any = 1;
             sl_tab_cell(&t, 1, "%d²", s->maps[m]);
@@ -119,8 +205,8 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
                 sl_tab_cell(&t, 12, "%.2f", 100.0 * (double)r.rays / (double)r.pfl);
             else
                 sl_tab_cell(&t, 12, "–");
-            if (r.img_px)
-                sl_tab_cell(&t, 4, "%.3f", 100.0 * (double)r.img_wrong / (double)r.img_px);
+            if (r.nwrong)
+                sl_tab_cell(&t, 4, "%.3f", r.wrong / r.nwrong);
             else
                 sl_tab_cell(&t, 4, "–");
             if (!r.px) {
@@ -152,12 +238,27 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
              "truth-shadowed pixel gets on average, and what a truth-lit pixel loses (%% of full visibility; the "
              "pixel counts after \"of\"). Rays traced: a hybrid's (technique.yaml's trace: band), in %% of the PFL "
              "pixels, which is their share of raytrace's rays (one a PFL pixel); 0 for a package that traces "
-             "nothing. Pooled over the study's views, weighted by their PFL pixels.");
+             "nothing. Pooled over the study's views, weighted by their PFL pixels; wrong %% (hard) the mean of "
+             "the views' own percentages.");
     enum sl_err e = SL_OK;
     if (any)
         e = sl_report_doc_table(doc, &t, d);
     else
         sl_report_doc_para(doc, "No frac cell of this study has PFL pixels.");
     sl_tab_free(&t);
+    if (!e && any) {
+        /* a hard light's truth has no penumbra: a technique that draws one
+         * on purpose is charged for all of it (issue 47) */
+        sl_report_doc_para(doc, "Caveat: under a hard light the truth has no penumbra, so a technique that draws "
+                                "one on purpose (PCSS widens its filter by the blockers' distance to a light of "
+                                "light_size texels, 8 by default under a directional or point light; PCF and the "
+                                "prefiltered maps blur the edge by their kernel) is charged for all of it: outside "
+                                "the hard shadow as leaking, inside the lit side as over-darkening, and in the hard "
+                                "wrong %% wherever its visibility crosses the threshold. A high rank here measures "
+                                "how far such a technique is from a hard shadow, not how good a soft shadow it "
+                                "draws; configs/techniques-area.yaml scores the same techniques against an area "
+                                "light's truth.");
+        e = leak_plot(doc, s, gnuplot, d);
+    }
     return e;
 }

@@ -194,6 +194,17 @@ const struct sl_cell_record *sl_report_study_cell(const struct sl_report_study *
     return NULL;
 }
 
+/* A label's name for people: its cells' display name (`display:`, else
+ * its method's own), else the label itself (issue 47: a table names a
+ * method one way, the way the run's LaTeX does). */
+const char *sl_report_display(const struct sl_report_study *s, const char *label)
+{
+    for (int i = 0; i < s->n; i++)
+        if (!strcmp(s->cells[i].label, label) && s->cells[i].display[0])
+            return s->cells[i].display;
+    return label;
+}
+
 /* ---- value formats ---- */
 
 static void fmt_of(char *buf, size_t n, uint64_t v, uint64_t base)
@@ -381,7 +392,7 @@ static enum sl_err moderno_summary(struct sl_report_doc *doc, const struct sl_re
         }
         char buf[160];
         sl_tab_row(&t, 0);
-        sl_tab_cell(&t, 0, "%s", s->labels[l]);
+        sl_tab_cell(&t, 0, "%s", sl_report_display(s, s->labels[l]));
         if (count)
             sl_tab_cell(&t, 1, "%.2f", sum / (double)count);
         else
@@ -428,7 +439,7 @@ static int view_rows(struct sl_tab *t, const struct sl_report_study *s, const st
                 sl_report_region_name(c->fig.r[r].thickness, rn, sizeof rn);
                 sl_tab_row(t, first_of_label);
                 if (first_of_label)
-                    sl_tab_cell(t, 0, "%s", s->labels[l]);
+                    sl_tab_cell(t, 0, "%s", sl_report_display(s, s->labels[l]));
                 if (r == 0)
                     sl_tab_cell(t, 1, "%d²", c->map_size);
                 sl_tab_cell(t, 2, "%s", rn);
@@ -686,7 +697,7 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
             char buf[96];
             sl_tab_row(&t, m == 0);
             if (m == 0)
-                sl_tab_cell(&t, 0, "%s", s->labels[l]);
+                sl_tab_cell(&t, 0, "%s", sl_report_display(s, s->labels[l]));
             sl_tab_cell(&t, 1, "%d²", s->maps[m]);
             sl_tab_cell(&t, 2, "%d", cells);
             /* a cell timed once makes its row's times one measurement each */
@@ -762,7 +773,7 @@ enum sl_err sl_report_curtis(struct sl_report_doc *doc, const struct sl_report_s
                 const struct sl_soft_figures *f = &c->soft;
                 sl_tab_row(&t, m == 0);
                 if (m == 0 || !any)
-                    sl_tab_cell(&t, 0, "%s", s->labels[l]);
+                    sl_tab_cell(&t, 0, "%s", sl_report_display(s, s->labels[l]));
                 any = 1;
                 sl_tab_cell(&t, 1, "%d²", c->map_size);
                 sl_tab_cell(&t, 2, "%.2f", f->pct[SL_SFIG_soft_mae]);

@@ -575,7 +575,7 @@ static enum sl_err other_view(struct sl_report_doc *doc, const struct sl_report_
                 continue;
             sl_tab_row(&t, first);
             if (first)
-                sl_tab_cell(&t, 0, "%s", s->labels[l]);
+                sl_tab_cell(&t, 0, "%s", sl_report_display(s, s->labels[l]));
             first = 0;
             sl_tab_cell(&t, 1, "%s", row_names[rows[q]]);
             for (int k = 0; k < nmaps; k++) {

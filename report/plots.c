@@ -92,6 +92,7 @@ enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, str
             nw[at] = 0;
             snprintf(p[at].label, sizeof p[at].label, "%s", c->label);
             snprintf(p[at].method, sizeof p[at].method, "%s", c->method);
+            snprintf(p[at].display, sizeof p[at].display, "%s", c->display[0] ? c->display : c->label);
             p[at].map_size = c->map_size;
             np++;
             k = at;
@@ -278,6 +279,16 @@ static enum sl_err write_text(struct sl_report_doc *doc, const char *rel, const 
  * LaTeX: `cd plots && gnuplot NAME.gp` (SVG) or `gnuplot -e "out='pdf'"
  * NAME.gp` redraws it, so a plot can be restyled without shadowlab. `body`
  * refers to the data as DATA. */
+/* an SVG plot's font (px) for a canvas w px wide: 8.5 pt when printed
+ * (gp_run) */
+int sl_report_svg_font_px(int w)
+{
+    double px = 8.5 / 0.75 * (w > 703 ? w / 703.0 : 1.0);
+    int f = (int)ceil(px);
+    return f < 11 ? 11 : f;
+}
+static int svg_font_px(int w) { return sl_report_svg_font_px(w); }
+
 static enum sl_err gp_run(struct sl_report_doc *doc, const char *gnuplot, const char *name, int w, int h,
                           const char *data, const char *body, struct sl_diag *d)
 {
@@ -300,15 +311,20 @@ static enum sl_err gp_run(struct sl_report_doc *doc, const char *gnuplot, const 
                "# `gnuplot -e \"out='pdf'\" %s.gp` (PDF, needs the pdfcairo terminal); numbers in %s.dat\n"
                "if (!exists(\"out\")) out = 'svg'\n"
                "if (out eq 'pdf') {\n"
-               "  set terminal pdfcairo size %.2fcm,%.2fcm noenhanced font 'sans,7'\n"
+               "  set terminal pdfcairo size %.2fcm,%.2fcm noenhanced font 'sans,9'\n"
                "  set output '%s.pdf'\n"
                "} else {\n"
-               "  set terminal svg size %d,%d dynamic noenhanced font 'sans,11' background '#ffffff'\n"
+               "  set terminal svg size %d,%d dynamic noenhanced font 'sans,%d' background '#ffffff'\n"
                "  set output '%s.svg'\n"
                "}\n"
                "set encoding utf8\nDATA = '%s.dat'\n",
-            /* 12 cm, about the line width: 7 pt stays 7 pt */
-            name, name, name, 12.0, 12.0 * h / w, name, w, h, name, name);
+            /* text at least 8 pt printed (issue 47). PDF: 12 cm, about the
+             * line width of report.tex's article (12.2 cm), so 9 pt stays
+             * about 9 pt. SVG: the page prints on A4 within 12 mm margins,
+             * 186 mm = 703 px at 96 px an inch, so a plot wider than that is
+             * shrunk by 703 / w; its font (px, 0.75 pt each) is as large as
+             * keeps 8.5 pt after that, and never under 11 px on screen */
+            name, name, name, 12.0, 12.0 * h / w, name, w, h, svg_font_px(w), name, name);
     fputs(body, m);
     fputs("\nunset output\n", m);
     int bad = ferror(m);
@@ -692,11 +708,11 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
              which ? "shadow rays per pixel" : "method time");
     fputs("set multiplot title ", m);
     gp_quote(m, title);
-    fputs("\nset lmargin at screen 0.10\nset rmargin at screen 0.66\n"
+    fputs("\nset lmargin at screen 0.13\nset rmargin at screen 0.56\n"
           "set grid\nset border 3\nset tics nomirror\n"
-          "set key at screen 0.68, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box\n", m);
+          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box\n", m);
     int logx = sl_report_axis(m, "x", xs, nx, 0) == 1;
-    static const char *const ylab[2] = {"wrong pixels, % of non-background", "undecided pixels, % of non-background"};
+    static const char *const ylab[2] = {"wrong, % of pixels", "undecided, % of pixels"};
     int drawn = 0;
     for (int panel = 0; panel < 2; panel++) {
         if (!show[panel])
@@ -711,8 +727,8 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
             fputs("unset key\n", m);
         if (last)
             fprintf(m, "set xlabel '%s'\n",
-                    which ? "shadow rays per non-background pixel (mean over views)"
-                          : "method time per cell, ms: its shadow-map layers + its per-pixel step (mean over views)");
+                    which ? "shadow rays per pixel (mean over views)"
+                          : "ms per cell: map layers + per-pixel step");
         else
             fputs("set xlabel ''\n", m);
         fprintf(m, "set ylabel '%s'\n", ylab[panel]);
@@ -742,7 +758,7 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
             else
                 fprintf(m, "DATA index %d using (XZERO_OF(1)):(YZERO_OF(%d)) with points pt %d ps 1.1 lc rgb '%s' "
                            "title ", b, 2 + panel, pt, col);
-            gp_quote(m, p[k].label);
+            gp_quote(m, p[k].display);
             b++;
         }
         fputc('\n', m);
@@ -795,6 +811,233 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
     return e;
 }
 
+/* ---- error against map size, and its spread across views (issue 47) ---- */
+
+/* The wrong pixels (% of the image's non-background pixels, a view's own
+ * percentage, the same figure as the accuracy plots and table.tex) against
+ * the shadow-map size on a log2 axis, one line per method label (its
+ * display name in the legend, the legend beside the data). Drawn when the
+ * study has two map sizes or more. */
+static enum sl_err maps_plot(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                             const struct sl_report_point *p, int np, struct sl_diag *d)
+{
+    int maps[64], nmaps = 0, npts = 0;
+    for (int k = 0; k < np; k++) {
+        if (isnan(p[k].wrong_pct))
+            continue;
+        npts++;
+        int seen = 0;
+        for (int j = 0; j < nmaps && !seen; j++)
+            seen = maps[j] == p[k].map_size;
+        if (!seen && nmaps < 64)
+            maps[nmaps++] = p[k].map_size;
+    }
+    if (nmaps < 2)
+        return SL_OK;   /* one map size: nothing to plot against */
+    char *body = NULL, *data = NULL;
+    size_t blen = 0, dlen = 0;
+    FILE *m, *dm;
+    enum sl_err e = open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
+    if (e)
+        return e;
+    double *ys = sl_calloc((size_t)npts + 1, sizeof *ys);
+    if (!ys) {
+        fclose(m), fclose(dm), free(body), free(data);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot points");
+    }
+    int ny = 0, nblocks = 0;
+    const char *plabel = NULL;
+    for (int k = 0; k < np; k++) {
+        if (isnan(p[k].wrong_pct))
+            continue;
+        if (!plabel || strcmp(plabel, p[k].label) != 0) {
+            fputs(plabel ? "\n\n# " : "# ", dm);
+            gp_datum(dm, p[k].display);
+            fputs(": map_size wrong%\n", dm);
+            plabel = p[k].label;
+            nblocks++;
+        }
+        fprintf(dm, "%d %.6g\n", p[k].map_size, p[k].wrong_pct);
+        ys[ny++] = p[k].wrong_pct;
+    }
+    char title[200];
+    snprintf(title, sizeof title, "%s: wrong pixels against the shadow-map size", s->name);
+    fputs("set title ", m);
+    gp_quote(m, title);
+    fputs("\nset lmargin at screen 0.13\nset rmargin at screen 0.56\nset tmargin at screen 0.90\n"
+          "set bmargin at screen 0.14\nset grid\nset border 3\nset tics nomirror\n"
+          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 2 spacing 1.1 box\n"
+          "set logscale x 2\nset xtics (", m);
+    for (int j = 0; j < nmaps; j++)
+        fprintf(m, "%s'%d\xC2\xB2' %d", j ? ", " : "", maps[j], maps[j]);
+    int lo = maps[0], hi = maps[0];
+    for (int j = 0; j < nmaps; j++) {
+        lo = maps[j] < lo ? maps[j] : lo;
+        hi = maps[j] > hi ? maps[j] : hi;
+    }
+    fprintf(m, ")\nset xrange [%.6g:%.6g]\nset xlabel 'shadow-map size (texels, log\xE2\x82\x82 scale)'\n"
+               "set ylabel 'wrong pixels, %% of non-background (mean of the views)'\n", lo / 1.25, hi * 1.25);
+    int logy = sl_report_axis(m, "y", ys, ny, 1) == 1;
+    fputs("plot ", m);
+    plabel = NULL;
+    for (int k = 0, b = 0; k < np; k++) {
+        if (isnan(p[k].wrong_pct) || (plabel && !strcmp(plabel, p[k].label)))
+            continue;
+        plabel = p[k].label;
+        const char *col;
+        int pt;
+        sl_report_style(b, &col, &pt);
+        fprintf(m, "%sDATA index %d using 1:(YZERO_OF(2)) with linespoints pt %d ps 1.1 lw 1.5 lc rgb '%s' title ",
+                b ? ", \\\n  " : "", b, pt, col);
+        gp_quote(m, p[k].display);
+        b++;
+    }
+    fputc('\n', m);
+    free(ys);
+    int bad = ferror(m) | ferror(dm);
+    bad |= fclose(m) != 0;
+    bad |= fclose(dm) != 0;
+    if (bad || !body || !data) {
+        free(body), free(data);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
+    }
+    if (ny == 0 || !(logy >= 0)) {
+        free(body), free(data);
+        return SL_OK;
+    }
+    char name[160], cap[600];
+    snprintf(name, sizeof name, "%s-maps", s->slug);
+    e = gp_run(doc, gnuplot, name, 900, 600, data, body, d);
+    if (!e) {
+        snprintf(cap, sizeof cap, "%s. Each point the mean over the study's views of a view's wrong pixels in %% of "
+                 "its non-background pixels (the accuracy plots' and table.tex's figure), one line per method over "
+                 "its map sizes; the map size on a log\xE2\x82\x82 axis.%s", title,
+                 logy == 1 ? " Log scale on the wrong pixels: they span more than two decades; a zero is drawn at "
+                             "the tick labelled 0." : "");
+        plot_show(doc, name, cap);
+    }
+    free(body), free(data);
+    return e;
+}
+
+/* The spread of the wrong pixels across the views: per method label, at its
+ * largest map size, a box plot of its views' percentages (median, quartiles,
+ * whiskers to the furthest value within 1.5 IQR, points beyond), n under
+ * each box. Drawn when a label has two views or more. */
+static enum sl_err spread_plot(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                               const struct sl_report_point *p, int np, struct sl_diag *d)
+{
+    char *body = NULL, *data = NULL;
+    size_t blen = 0, dlen = 0;
+    FILE *m, *dm;
+    enum sl_err e = open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
+    if (e)
+        return e;
+    double *ys = sl_calloc((size_t)s->n + 1, sizeof *ys);
+    if (!ys) {
+        fclose(m), fclose(dm), free(body), free(data);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot points");
+    }
+    int ny = 0, nb = 0, maxn = 0, one_map = 1, map = 0;
+    /* every label's largest map the same: named in the title, not under each box */
+    for (int k = 0; k < np; k++)
+        if (!isnan(p[k].wrong_pct) && (k + 1 == np || strcmp(p[k + 1].label, p[k].label))) {
+            one_map &= map == 0 || map == p[k].map_size;
+            map = p[k].map_size;
+        }
+    char tics[8192] = "";
+    size_t tl = 0;
+    for (int k = 0; k < np; k++) {
+        /* a label once, at its largest map size (the last of its points) */
+        if (isnan(p[k].wrong_pct) || (k + 1 < np && !strcmp(p[k + 1].label, p[k].label)))
+            continue;
+        int n = 0;
+        for (int i = 0; i < s->n; i++) {
+            const struct sl_cell_record *c = &s->cells[i];
+            int r = sl_report_region(c, 0);
+            if (strcmp(c->label, p[k].label) || c->map_size != p[k].map_size || r < 0 ||
+                !c->fig.r[r].n[SL_FIG_pixels])
+                continue;
+            double v = 100.0 * (double)c->fig.r[r].n[SL_FIG_wrong] / (double)c->fig.r[r].n[SL_FIG_pixels];
+            if (n == 0) {
+                fputs(nb ? "\n\n# " : "# ", dm);
+                gp_datum(dm, p[k].display);
+                fprintf(dm, " at %d\xC2\xB2: wrong%% of each view\n", p[k].map_size);
+            }
+            fprintf(dm, "%.6g\n", v);
+            ys[ny++] = v;
+            n++;
+        }
+        if (n == 0)
+            continue;
+        maxn = n > maxn ? n : maxn;
+        char lab[160];
+        if (one_map)
+            snprintf(lab, sizeof lab, "%s (n = %d)", p[k].display, n);
+        else
+            snprintf(lab, sizeof lab, "%s, %d\xC2\xB2 (n = %d)", p[k].display, p[k].map_size, n);
+        if (tl + strlen(lab) + 40 < sizeof tics) {
+            tl += (size_t)snprintf(tics + tl, sizeof tics - tl, "%s", nb ? ", " : "");
+            FILE *tf = fmemopen(tics + tl, sizeof tics - tl, "w");
+            if (tf) {
+                gp_quote(tf, lab);
+                fprintf(tf, " %d", nb + 1);
+                fclose(tf);
+                tl = strlen(tics);
+            }
+        }
+        nb++;
+    }
+    char title[200];
+    if (one_map)
+        snprintf(title, sizeof title, "%s: wrong pixels across the views, %d\xC2\xB2 maps", s->name, map);
+    else
+        snprintf(title, sizeof title, "%s: wrong pixels across the views", s->name);
+    fputs("set title ", m);
+    gp_quote(m, title);
+    fprintf(m, "\nset lmargin at screen 0.16\nset rmargin at screen 0.97\nset tmargin at screen 0.90\n"
+               "set bmargin at screen 0.36\nset grid ytics\nset border 3\nset tics nomirror\nunset key\n"
+               "set style fill solid 0.3 border -1\nset style boxplot outliers pointtype 7\n"
+               "set boxwidth 0.5\nset xrange [0.3:%.1f]\nset xtics rotate by 30 right (%s)\n"
+               "set ylabel 'wrong pixels, %% (one value a view)'\n", nb + 0.7, tics);
+    int logy = sl_report_axis(m, "y", ys, ny, 1);
+    fputs("plot ", m);
+    for (int b = 0; b < nb; b++) {
+        const char *col;
+        int pt;
+        sl_report_style(b, &col, &pt);
+        fprintf(m, "%sDATA index %d using (%d):(YZERO_OF(1)) with boxplot lc rgb '%s'", b ? ", \\\n  " : "", b,
+                b + 1, col);
+    }
+    fputc('\n', m);
+    free(ys);
+    int bad = ferror(m) | ferror(dm);
+    bad |= fclose(m) != 0;
+    bad |= fclose(dm) != 0;
+    if (bad || !body || !data) {
+        free(body), free(data);
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
+    }
+    if (nb == 0 || maxn < 2 || logy < 0) {   /* one view, or nothing but zeros: no spread to show */
+        free(body), free(data);
+        return SL_OK;
+    }
+    char name[160], cap[700];
+    snprintf(name, sizeof name, "%s-spread", s->slug);
+
+    e = gp_run(doc, gnuplot, name, 900, 620, data, body, d);
+    if (!e) {
+        snprintf(cap, sizeof cap, "%s. Per method at its largest shadow map, a box over its views' wrong pixels (%% "
+                 "of each view's non-background pixels): the median, the quartiles, whiskers to the furthest value "
+                 "within 1.5 times the interquartile range, a dot for each value beyond; n views under each box.%s",
+                 title, logy == 1 ? " Log scale: the values span more than two decades; a zero is drawn at the tick "
+                                    "labelled 0." : "");
+        plot_show(doc, name, cap);
+    }
+    free(body), free(data);
+    return e;
+}
+
 enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_report_study *s,
                                     const char *gnuplot, struct sl_diag *d)
 {
@@ -828,7 +1071,7 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
         int once = 0;
         for (int k = 0; k < np; k++) {
             sl_tab_row(&t, k == 0 || strcmp(p[k].label, p[k - 1].label) != 0);
-            sl_tab_cell(&t, 0, "%s", p[k].label);
+            sl_tab_cell(&t, 0, "%s", p[k].display);
             sl_tab_cell(&t, 1, "%d²", p[k].map_size);
             sl_tab_cell(&t, 2, "%d", p[k].ncells);
             if (isnan(p[k].wrong_pct)) {   /* a soft method: no hard verdicts (the soft table has its errors) */
@@ -862,6 +1105,10 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
         e = sl_report_doc_table(doc, &t, d);
         sl_tab_free(&t);
     }
+    if (!e)
+        e = maps_plot(doc, s, gnuplot, p, np, d);
+    if (!e)
+        e = spread_plot(doc, s, gnuplot, p, np, d);
     free(p);
     return e;
 }

@@ -53,7 +53,18 @@ static const char css[] =
     "details.sec>summary>h5,details.sec>summary>h4{display:inline;margin:0}"
     ".filters{background:#f3f4f6;border:1px solid #ddd;padding:.4em .8em;margin:.6em 0}"
     ".filters label{margin-right:1em}.filters .count{color:#555}"
-    ".gallery figure:target{grid-column:1/-1}.gallery figure:target img{width:auto;max-width:100%}";
+    ".gallery figure:target{grid-column:1/-1}.gallery figure:target img{width:auto;max-width:100%}"
+    /* printed (issue 47): a wide table is never clipped by the scroll box a
+     * screen gives it; it wraps its heads and names, never below 8 pt, and
+     * keeps its heads on every page; a plot keeps its size up to the line */
+    "@page{size:A4;margin:12mm}"
+    "@media print{body{max-width:none;padding:0;font-size:10pt}"
+    ".tab{overflow:visible}table{font-size:8pt;max-width:100%}"
+    "th,td.k{white-space:normal}th,td{padding:.1em .3em}table.wrap td{min-width:0}"
+    "thead{display:table-header-group}tr{break-inside:avoid}"
+    "figure{break-inside:avoid}figure img{max-width:100%}figcaption,.note,footer{font-size:8pt}"
+    "nav.toc>ul{columns:1}a.anc,.filters{display:none}tbody tr:hover td{background:none}"
+    "pre{white-space:pre-wrap;font-size:8pt}}";
 
 /* The gallery's filters: the only script, inline, no network. */
 static const char filter_js[] =
@@ -262,7 +273,7 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
                     const uint64_t *n = c->fig.r[r].n;
                     double px = n[SL_FIG_pixels] ? (double)n[SL_FIG_pixels] : NAN;
                     sl_tab_row(&t, m == 0);
-                    sl_tab_cell(&t, 0, "%s", c->label);
+                    sl_tab_cell(&t, 0, "%s", sl_report_display(s, c->label));
                     sl_tab_cell(&t, 1, "%d²", c->map_size);
                     sl_tab_cell(&t, 2, "%.3f", 100.0 * (double)n[SL_FIG_wrong] / px);
                     sl_tab_cell(&t, 3, "%.3f", 100.0 * (double)n[SL_FIG_light_incorrect] / px);
@@ -462,7 +473,7 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
     }
     if (!e && s->frac) {
         sl_report_doc_heading(doc, 3, NULL, "%s: fractional errors", s->name);
-        e = sl_report_fractional(doc, s, d);
+        e = sl_report_fractional(doc, s, gnuplot, d);
     }
     if (!e)   /* a heading of its own when the study has paths */
         e = sl_report_motion(doc, s, gnuplot, d);

@@ -71,6 +71,7 @@ enum sl_err sl_report_build_with(const struct sl_report_input *in, const char *o
  * that map size (scenes, viewpoints, viewports). */
 struct sl_report_point {
     char   label[48], method[32];
+    char   display[64];    /* the label's name for people (`display:`, else its method's); legends use it */
     int    map_size;
     int    ncells;
     double wrong_pct;      /* wrong pixels, % of the non-background pixels (whole image) */
@@ -98,6 +99,11 @@ enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, str
  * the front; NaN points never are and dominate nothing. Returns the number
  * on the front. */
 int sl_report_pareto(const double *x, const double *y, int n, unsigned char *front);
+
+/* The font (px) of an SVG plot w px wide: 8.5 pt once the page prints on
+ * A4 (a plot wider than the 703 px of its 186 mm line is shrunk to it), at
+ * least 11 px on screen. The PDF plots use 9 pt at 12 cm. */
+int sl_report_svg_font_px(int w);
 
 
 /* ---- the fidelity section (fidelity.c), exposed for its unit test ---- */

@@ -155,6 +155,9 @@ struct sl_report_study {
 /* Fill the keys of s from its cells; SL_E_USAGE when they exceed the limits. */
 enum sl_err sl_report_study_keys(struct sl_report_study *s, struct sl_diag *d);
 /* The study's cell of a key, NULL if none. */
+/* A label's display name (its cells'), else the label: every row and legend
+ * names a method so. */
+const char *sl_report_display(const struct sl_report_study *s, const char *label);
 const struct sl_cell_record *sl_report_study_cell(const struct sl_report_study *s, const struct sl_report_view *v,
                                                  const char *label, int map_size);
 /* Index of a region of thickness t in the cell, -1 if it has none. */
@@ -207,7 +210,8 @@ int sl_morais_counts(const struct sl_cell_record *c, struct sl_morais_counts *ou
 enum sl_err sl_report_morais(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
 
 /* fractional.c: a hard light's fractional errors (frac cells) per label and map size */
-enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_report_study *s, const char *gnuplot,
+                                 struct sl_diag *d);
 
 /* fidelity.c: Moderno 2011's Primitives numbers and claims beside the study's */
 enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);

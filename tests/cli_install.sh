@@ -81,8 +81,8 @@ hide "$b" validate own.yaml >"$tmp/v.out" 2>&1 && { echo "FAIL 'extra' found wit
 grep -q "unknown scene 'extra'" "$tmp/v.out" || { echo "FAIL: $(cat "$tmp/v.out")"; exit 1; }
 # the report of a study of both theses' methods reads the theses' numbers
 # from <prefix>/share/shadowlab/theses (report/theses.h): the Morais section
-# reads its two files whatever the views, the fidelity section prints
-# Moderno's Table 16
+# reads its two files whatever the views; the fidelity section, which reads
+# Moderno's file first, is left out (nothing at the thesis's 1024 x 1024)
 for f in moderno-2011.csv morais-2015.csv morais-2015-times.csv; do
   [ -s "$share/theses/$f" ] || { echo "FAIL not installed: $share/theses/$f"; exit 1; }
 done
@@ -93,8 +93,8 @@ if command -v gnuplot >/dev/null; then
   hide "$b" report "$tmp/elsewhere/th/shadowlab.db" -o "$tmp/elsewhere/threp" >"$tmp/th.out" 2>&1 ||
     { echo "FAIL installed report:"; cat "$tmp/th.out"; exit 1; }
   grep -q "^### theses: tables in Morais 2015's layout" "$tmp/elsewhere/threp/report.md" &&
-    grep -q "^| 1024 | 2 px | nsm | pixels | 11000 | not measured |" "$tmp/elsewhere/threp/report.md" ||
-    { echo "FAIL the installed report lacks the theses' sections or Moderno's Table 16"; exit 1; }
+    ! grep -q "not measured |" "$tmp/elsewhere/threp/report.md" ||
+    { echo "FAIL the installed report lacks the theses' sections or has a fidelity table of nothing measured"; exit 1; }
   # SHADOWLAB_THESES in front of the installed folder: an empty one stops the report (exit 2, the file named)
   SHADOWLAB_THESES=$tmp/empty hide "$b" report "$tmp/elsewhere/th/shadowlab.db" -o "$tmp/elsewhere/threp2" \
     >"$tmp/th.out" 2>&1; rc=$?

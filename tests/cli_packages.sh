@@ -403,7 +403,8 @@ YAML
   grep -q "rea light" "$tmp/t.tex" && fail "the LaTeX says area light under a directional light"
   grep -q "Directional light: the visibility against the light's 0/" "$tmp/t.tex" ||
     fail "the LaTeX's soft captions do not name the directional light"
-  grep -q "under the directional light, the visibility" "$tmp/out/hardfrac/table-detail.tex" ||
+  grep -q "directional light, per method and shadow-map size: the visibility against its 0/" \
+    "$tmp/out/hardfrac/table-detail.tex" ||
     fail "table-detail.tex does not name the directional light"
   echo "ok hard_classes: class right vsm $(fig vsm soft_class_right percent) %, evsm $(fig evsm soft_class_right percent) %"
   ;;

@@ -76,7 +76,9 @@ nbias=0
 for label in pcf5 vsm esm; do
   # the page's row: | label | map | cells | PFL | wrong | mae | bias | leaking | over-darkening | within |
   #                  per shadowed px | per lit px |
-  row=$(sed -n '/^### tech: fractional errors/,/^### /p' "$md" | grep -F "| $label | 256² |" | head -1)
+  # the row names the label by its display name (its method's own: VSM, ESM; pcf5 has none)
+  disp=$(sqlite3 "$db" "select case when display != '' then display else label end from cells where label='$label' limit 1")
+  row=$(sed -n '/^### tech: fractional errors/,/^### /p' "$md" | grep -F "| $disp | 256² |" | head -1)
   [ -n "$row" ] || { fail "no fractional row for $label"; continue; }
   IFS='|' read -r _ _ _ _ px _ mae bias leak dark within pshadow plit _ <<<"$row"
   q() { sqlite3 "$db" "select $1 from figures where label='$label' and region='image' and figure='$2'"; }

@@ -8,11 +8,23 @@
 #           '_' escaped in LaTeX, thin-space thousands separators;
 #           json parses; bad keys/aggregates exit 2
 #   latex   the run's table.tex and table-detail.tex, a motion run's
-#           motion.tex, two pivots' LaTeX (one transposed into a longtable) and
-#           the plain `table --format latex` (also --figures all) and --summary
-#           compile in a plain article with booktabs and longtable: 0 errors,
-#           no overfull box, no float taller than the page, no
+#           motion.tex, two pivots' LaTeX (one transposed, 120 rows paged
+#           into floats of a page each) and the plain `table --format latex`
+#           (also --figures all) and --summary compile in a one-column and a
+#           two-column article with booktabs alone: 0 errors, no overfull
+#           box, no float taller than the page, no longtable, no
 #           \resizebox/\scalebox (exit 77 without pdflatex)
+#   paper   issue 47: the Moderno study (configs/moderno-2011.yaml, two
+#           scenes at 64x64 and maps of 64 and 128) as a paper takes it:
+#           table.tex, table-detail.tex and two pivots compile in a
+#           one-column and a two-column article, 0 errors, 0 overfull boxes;
+#           every \label unique (two pivots that differ only in --of, --agg
+#           or --where too); no caption holds an internal id (a figure's or
+#           a counter's name, "at most N values") or a label that has a
+#           display name; every table's first column holds display names
+#           only; an exact 0 is "0", a value under 0.01 keeps two
+#           significant digits; a pivot whose entries are all 0 is a
+#           sentence (exit 77 without pdflatex)
 set -u
 bin=${1:?usage: cli_tables.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -135,7 +147,7 @@ PY
     grep -q '^light_incorrect,nsm_front,average,' "$tmp/s.csv" || fail "summary of 2 figures x 2 labels: $(cat "$tmp/s.csv")"
   "$bin" table "$db" --summary wrong --summary light_incorrect --label nsm,nsm_front --format latex >"$tmp/s.tex" ||
     fail "summary latex"
-  [ "$(grep -c '\\begin{table}' "$tmp/s.tex")" -eq 4 ] && grep -q 'label nsm\\_front' "$tmp/s.tex" &&
+  [ "$(grep -c '\\begin{table\*}' "$tmp/s.tex")" -eq 4 ] && grep -q 'label nsm\\_front' "$tmp/s.tex" &&
     grep -q '\\toprule' "$tmp/s.tex" && ! grep -qE 'resizebox|scalebox' "$tmp/s.tex" || fail "summary latex: $(cat "$tmp/s.tex")"
   "$bin" table "$db" --summary wrong,pixels >/dev/null 2>&1; [ $? -eq 2 ] || fail "--summary of a count"
   "$bin" table "$db" --summary wrong,nope >/dev/null 2>&1; [ $? -eq 2 ] || fail "--summary of an unknown figure"
@@ -161,10 +173,12 @@ YAML
   "$bin" run "$tmp/motion.yaml" -q -o "$tmp/m" >"$tmp/m.out" 2>&1 || { cat "$tmp/m.out"; fail "motion run"; }
   [ -s "$tmp/m/motion_tex/motion.tex" ] || fail "no motion.tex"
   # pivots: the motion run's 120 frames as columns do not fit: transposed, and
-  # 120 rows are a longtable, not a float taller than the page
+  # 120 rows are floats of a page each (34 rows), not one taller than the page
   "$bin" table "$tmp/m/shadowlab.db" --rows label --cols viewpoint --figure wrong --of count --agg sum \
     --format latex >"$tmp/p1.tex" 2>"$tmp/p1.err" || fail "p1"
-  grep -q 'transposed' "$tmp/p1.err" && grep -q 'begin{longtable}' "$tmp/p1.tex" || fail "p1 not a transposed longtable"
+  grep -q 'transposed' "$tmp/p1.err" && [ "$(grep -c 'begin{table\*}' "$tmp/p1.tex")" -eq 4 ] &&
+    [ "$(grep -c '(continued)}' "$tmp/p1.tex")" -eq 3 ] && [ "$(grep -c '\\label{' "$tmp/p1.tex")" -eq 1 ] ||
+    fail "p1 not transposed into 4 floats of one label: $(grep -c 'begin{table' "$tmp/p1.tex")"
   "$bin" table "$db" --rows viewpoint --cols region --figure wrong_caught --of count --agg sum --format latex \
     >"$tmp/p2.tex" 2>"$tmp/p2.err" || fail "p2"
   # the plain tables (one float per cell; every figure: wider than the line, split by regions)
@@ -172,35 +186,135 @@ YAML
   "$bin" table "$db" --format latex --figures all >"$tmp/t2.tex" 2>&1 || fail "t2"
   "$bin" table "$db" --summary wrong,light_incorrect --format latex >"$tmp/t3.tex" 2>&1 || fail "t3"
   cp "$dir/table.tex" "$dir/table-detail.tex" "$tmp/m/motion_tex/motion.tex" "$tmp/"
-  cat >"$tmp/doc.tex" <<'TEX'
-\documentclass{article}
-\usepackage{booktabs,longtable}
-\begin{document}
-\input{table.tex}
-\input{table-detail.tex}
-\input{motion.tex}
-\input{p1.tex}
-\input{p2.tex}
-\clearpage
-\input{t1.tex}
-\clearpage
-\input{t2.tex}
-\clearpage
-\input{t3.tex}
-\end{document}
+  for cls in article twocolumn; do
+    opt=; [ "$cls" = twocolumn ] && opt='[twocolumn]'
+    cat >"$tmp/doc-$cls.tex" <<TEX
+\\documentclass$opt{article}
+\\usepackage{booktabs}
+\\begin{document}
+\\input{table.tex}
+\\input{table-detail.tex}
+\\input{motion.tex}
+\\input{p1.tex}
+\\input{p2.tex}
+\\clearpage
+\\input{t1.tex}
+\\clearpage
+\\input{t2.tex}
+\\clearpage
+\\input{t3.tex}
+\\end{document}
 TEX
-  (cd "$tmp" && pdflatex -interaction=nonstopmode doc.tex >/dev/null 2>&1 && pdflatex -interaction=nonstopmode doc.tex >/dev/null 2>&1)
-  [ -s "$tmp/doc.pdf" ] || { grep -A3 '^!' "$tmp/doc.log" | head -20; fail "pdflatex"; }
-  errs=$(grep -c '^!' "$tmp/doc.log"); over=$(grep -c 'Overfull' "$tmp/doc.log")
-  [ "$errs" -eq 0 ] || { grep -A3 '^!' "$tmp/doc.log" | head; fail "$errs LaTeX errors"; }
-  [ "$over" -eq 0 ] || { grep -A2 'Overfull' "$tmp/doc.log" | head; fail "$over overfull boxes"; }
-  ! grep -q 'Float too large' "$tmp/doc.log" || fail "a float taller than the page"
+    (cd "$tmp" && pdflatex -interaction=nonstopmode "doc-$cls.tex" >/dev/null 2>&1 &&
+      pdflatex -interaction=nonstopmode "doc-$cls.tex" >/dev/null 2>&1)
+    log=$tmp/doc-$cls.log
+    [ -s "$tmp/doc-$cls.pdf" ] || { grep -A3 '^!' "$log" | head -20; fail "pdflatex ($cls)"; }
+    errs=$(grep -c '^!' "$log"); over=$(grep -c 'Overfull' "$log")
+    [ "$errs" -eq 0 ] || { grep -A3 '^!' "$log" | head; fail "$errs LaTeX errors ($cls)"; }
+    [ "$over" -eq 0 ] || { grep -A2 'Overfull' "$log" | head; fail "$over overfull boxes ($cls)"; }
+    ! grep -q 'Float too large' "$log" || fail "a float taller than the page ($cls)"
+  done
   ! grep -qE 'resizebox|scalebox' "$tmp"/table.tex "$tmp"/table-detail.tex "$tmp"/motion.tex "$tmp"/p?.tex "$tmp"/t?.tex ||
     fail "a table is scaled"
-  grep -q 'longtable' "$tmp/table-detail.tex" && grep -q 'longtable' "$tmp/motion.tex" || fail "no longtable"
-  [ "$(grep -c '\\begin{table}' "$tmp/table.tex")" -le 6 ] || fail "table.tex has more than a handful of floats"
+  ! grep -q 'longtable' "$tmp"/table.tex "$tmp"/table-detail.tex "$tmp"/motion.tex "$tmp"/p?.tex "$tmp"/t?.tex ||
+    fail "a longtable (a two-column class refuses it)"
+  [ "$(grep -c '\\begin{table\*}' "$tmp/table.tex")" -le 6 ] || fail "table.tex has more than a handful of floats"
   grep -q 'nsm\\_front' "$tmp/table.tex" && grep -q 'nsm\\_snap' "$tmp/motion.tex" || fail "labels not escaped"
   echo "PASS tables::latex"
+  ;;
+paper)
+  command -v pdflatex >/dev/null || { echo "SKIP: no pdflatex (apt-get install texlive-latex-recommended)"; exit 77; }
+  # the shipped study, small: 2 scenes x 3 viewpoints x 2 maps x 10 labels
+  src=$(cd "$(dirname "$0")/.." && pwd)
+  "$bin" run "$src/configs/moderno-2011.yaml" -q -o "$tmp/mo" -D 'viewports=[{width: 64, height: 64}]' \
+    -D 'map_sizes=[64,128]' -D 'scenes=[{scene: primitives}, {scene: bench}]' -D outputs.overlays=false \
+    >"$tmp/mo.out" 2>&1 || { cat "$tmp/mo.out"; fail "moderno run"; }
+  mdb=$tmp/mo/shadowlab.db
+  cp "$tmp/mo/moderno-2011/table.tex" "$tmp/mo/moderno-2011/table-detail.tex" "$tmp/"
+  # two pivots that differ only in --agg, one in --where: three labels
+  "$bin" table "$mdb" --rows label --cols viewpoint --figure wrong --format latex >"$tmp/q1.tex" 2>/dev/null || fail "q1"
+  "$bin" table "$mdb" --rows label --cols viewpoint --figure wrong --agg max --format latex >"$tmp/q2.tex" 2>/dev/null ||
+    fail "q2"
+  "$bin" table "$mdb" --rows label --cols viewpoint --figure wrong --where scene=bench --format latex >"$tmp/q3.tex" \
+    2>/dev/null || fail "q3"
+  # a pivot of zeros: the undecided pixels of the methods that decide every pixel
+  "$bin" table "$mdb" --figure uncertain --where label=nsm --where label=chain --format latex >"$tmp/q4.tex" ||
+    fail "q4"
+  grep -q 'every entry is 0, a sentence instead of a table' "$tmp/q4.tex" && ! grep -q 'begin{table' "$tmp/q4.tex" &&
+    grep -q 'is 0 for every method and shadow-map size' "$tmp/q4.tex" || fail "a table of zeros: $(cat "$tmp/q4.tex")"
+  all="$tmp/table.tex $tmp/table-detail.tex $tmp/q1.tex $tmp/q2.tex $tmp/q3.tex $tmp/q4.tex"
+  # every \label once
+  # shellcheck disable=SC2086
+  dup=$(grep -ho '\\label{[^}]*}' $all | sort | uniq -d)
+  [ -z "$dup" ] || fail "labels used twice: $dup"
+  # shellcheck disable=SC2086
+  [ "$(grep -ho '\\label{[^}]*}' $all | wc -l)" -ge 20 ] || fail "too few labels"
+  # captions and sentences: no internal id, no label that has a display
+  # name (each of the study's 10 labels has one: its own `display:` or its
+  # method's) once the display names are taken out; every row named by a
+  # display name
+  # shellcheck disable=SC2086
+  python3 - "$mdb" $all <<'PY' || fail "captions or row names"
+import re, sqlite3, sys
+db, files = sys.argv[1], sys.argv[2:]
+names = sqlite3.connect(db).execute(
+    "select distinct label, display from cells where display != '' and display != label").fetchall()
+assert len(names) == 10, names
+tex = lambda s: s.replace("_", "\\_").replace("&", "\\&").replace("%", "\\%")
+caps, rows = [], []
+for f in files:
+    t = open(f).read()
+    caps += re.findall(r"\\caption\{(.*)\}\n", t)
+    caps += re.findall(r"\\par\\noindent (.*)\\par\n", t)
+    rows += [l.split(" & ")[0] for l in t.splitlines() if " & " in l and l.endswith("\\\\")
+             and not l.startswith(("method &", " &", "\\"))]
+assert len(caps) >= 20, len(caps)
+for c in caps:
+    bare = c
+    for _, d in sorted(names, key=lambda n: -len(n[1])):
+        bare = bare.replace(tex(d), "")
+    for l, d in names:
+        assert not re.search(r"(^|[^A-Za-z\\])" + re.escape(tex(l)) + r"([^A-Za-z_]|$)", bare), (l, c)
+    # an internal id: a name with '_' (figures.h, softfig.h, cellcols.h), "at most N values"
+    assert not re.search(r"[a-z]\\_[a-z]", c), c
+    assert "at most" not in c and "ms\\_" not in c, c
+displays = {tex(d) for _, d in names}
+assert rows and all(r in displays or r.startswith("Scene") for r in rows if not r[0].isdigit() and
+                    not r.startswith("$")), sorted(set(rows) - displays)[:5]
+assert len([r for r in rows if r in displays]) >= 100, len(rows)
+PY
+  grep -q 'the mean over 2 scenes (primitives and bench) and 3 viewpoints (side, with and against), 6 values an entry; viewport 64\$\\times\$64; directional light; the whole image (study moderno-2011)' \
+    "$tmp/table.tex" || fail "the summary's caption: $(grep -m1 caption "$tmp/table.tex")"
+  # numbers: an exact 0 as 0 (the undecided pixels of NSM), never 0.00
+  # shellcheck disable=SC2086
+  ! grep -qE '(^| )0\.0+( |$)' $all || fail "a 0.00 in a table: $(grep -hE '(^| )0\.0+( |$)' $all | head -2)"
+  grep -qE '^NSM & 0 & 0 \\\\$' "$tmp/table.tex" || fail "NSM's undecided pixels not 0: $(grep '^NSM' "$tmp/table.tex")"
+  for cls in article twocolumn; do
+    opt=; [ "$cls" = twocolumn ] && opt='[twocolumn]'
+    cat >"$tmp/paper-$cls.tex" <<TEX
+\\documentclass$opt{article}
+\\usepackage{booktabs}
+\\begin{document}
+A paper's text.
+\\input{table.tex}
+\\input{q1.tex}
+\\input{q2.tex}
+\\input{q3.tex}
+\\input{q4.tex}
+\\clearpage
+\\input{table-detail.tex}
+\\end{document}
+TEX
+    (cd "$tmp" && pdflatex -interaction=nonstopmode "paper-$cls.tex" >/dev/null 2>&1 &&
+      pdflatex -interaction=nonstopmode "paper-$cls.tex" >/dev/null 2>&1)
+    log=$tmp/paper-$cls.log
+    [ -s "$tmp/paper-$cls.pdf" ] || { grep -A3 '^!' "$log" | head -20; fail "pdflatex ($cls)"; }
+    errs=$(grep -c '^!' "$log"); over=$(grep -c 'Overfull' "$log")
+    [ "$errs" -eq 0 ] || { grep -A3 '^!' "$log" | head; fail "$errs LaTeX errors ($cls)"; }
+    [ "$over" -eq 0 ] || { grep -A2 'Overfull' "$log" | head; fail "$over overfull boxes ($cls)"; }
+    ! grep -qE 'Float too large|multiply defined' "$log" || fail "a float too large or a label twice ($cls)"
+  done
+  echo "PASS tables::paper"
   ;;
 *) fail "unknown case $case_" ;;
 esac

@@ -190,7 +190,7 @@ static void emit_latex(void **state)
     small(&t);
     char *s = render(sl_emit_tex, &t, NULL);
     assert_string_equal(s, "% shadowlab report table; needs \\usepackage{booktabs}; a wide one is split, never scaled\n"
-                           "\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n"
+                           "\\begin{table*}[tbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n"
                            "\\caption{Wrong pixels \\textless{}all\\textgreater{} \\& 512\\textsuperscript{2}}\n\\label{tab:errors-of-a-b}\n"
                            "\\begin{tabular}{llr}\n\\toprule\nlabel & map & wrong \\% \\\\\n\\midrule\n"
                            "a\\_b & 512\\textsuperscript{2} & 1.25 \\\\\n"
@@ -198,7 +198,7 @@ static void emit_latex(void **state)
                            "\\addlinespace\n"
                            "x, \"y\" & 2048\\textsuperscript{2} & -0.5e1 \\\\\n"
                            "\\bottomrule\n\\end{tabular}\n\n\\smallskip\n"
-                           "\\parbox{\\linewidth}{\\scriptsize\\raggedright Means over 3 cells.\\par}\n\\end{table}\n");
+                           "\\parbox{\\linewidth}{\\scriptsize\\raggedright Means over 3 cells.\\par}\n\\end{table*}\n");
     free(s);
     sl_tab_free(&t);
 }
@@ -318,10 +318,22 @@ static void emit_csv_quote(void **state)
     sl_tab_free(&t);
 }
 
+/* occurrences of needle in s */
+static int count_of(const char *s, const char *needle)
+{
+    int n = 0;
+    for (const char *p = strstr(s, needle); p; p = strstr(p + strlen(needle), needle))
+        n++;
+    return n;
+}
+
 /* LaTeX laid out by its writer at \small (a pivot): the column key's group
  * over the values with a rule trimmed where a column is beside it, a long
  * row name folded into a \parbox with breaks after '_' and '-' (whole
- * characters: an accent stays a letter); a longtable the same */
+ * characters: an accent stays a letter); table* floats, which a one- and
+ * a two-column class both take. Paged (rows more than a page holds): a
+ * float per 34 rows, each with the heads, the later ones "(continued)"
+ * under the first's number, one \label. */
 static void emit_latex_layout(void **state)
 {
     (void)state;
@@ -343,22 +355,36 @@ static void emit_latex_layout(void **state)
     sl_tab_cell(&t, 0, "\xC3\xBC" "ber_lang-name/x");
     const struct sl_emit_opts blank = {.blank = 1};
     char *s = render(sl_emit_tex, &t, &blank);
-    assert_string_equal(s, "\\begin{table}[htbp]\n\\centering\n\\small\n\\caption{wrong: 50\\%}\n"
+    assert_string_equal(s, "\\begin{table*}[tbp]\n\\centering\n\\small\n\\caption{wrong: 50\\%}\n"
                            "\\label{tab:pivot-wrong-label-map-size}\n\\begin{tabular}{lrr}\n\\toprule\n"
                            " & \\multicolumn{2}{c}{map size} \\\\\n\\cmidrule(l){2-3}\n"
                            "label & 512\\textsuperscript{2} & 1\\,024\\textsuperscript{2} \\\\\n\\midrule\n"
                            "nsm & $-$1.50$^\\dagger$ & -- \\\\\n"
                            "\\parbox[t]{40pt}{\\raggedright \\\"{u}ber\\_\\allowbreak{}lang-\\allowbreak{}name/"
                            "\\allowbreak{}x} &  &  \\\\\n"
-                           "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n");
+                           "\\bottomrule\n\\end{tabular}\n\\end{table*}\n\n");
     free(s);
+    /* 2 + 78 rows of one line each: floats of 34, 34 and 12 rows */
     t.fixed = 0;
-    t.longtable = 1;
+    t.paged = 1;
+    t.fold[0] = 0;
+    for (int r = 0; r < 78; r++) {
+        sl_tab_row(&t, 0);
+        sl_tab_cell(&t, 0, "row%d", r);
+    }
     const struct sl_emit_opts alone = {0};
     s = render(sl_emit_tex, &t, &alone);
-    assert_true(strncmp(s, "{\\small\n\\begin{longtable}{lrr}\n\\caption{wrong: 50\\%}"
-                           "\\label{tab:pivot-wrong-label-map-size}\\\\\n\\toprule\n & \\multicolumn{2}", 120) == 0);
-    assert_non_null(strstr(s, "\\midrule\n\\endhead\n\\bottomrule\n\\endfoot\n"));
+    assert_int_equal(count_of(s, "\\begin{table*}[tbp]"), 3);
+    assert_int_equal(count_of(s, "\\end{table*}"), 3);
+    assert_int_equal(count_of(s, "\\label{"), 1);
+    assert_int_equal(count_of(s, "\\addtocounter{table}{-1}\n\\caption{wrong: 50\\% (continued)}"), 2);
+    assert_int_equal(count_of(s, "\\multicolumn{2}{c}{map size}"), 3);
+    assert_int_equal(count_of(s, "row"), 78);
+    assert_null(strstr(s, "longtable"));
+    /* the third float: rows 66 to 77 (the model's 68th to 80th) */
+    const char *third = strstr(strstr(strstr(s, "(continued)") + 1, "(continued)"), "\\midrule\n");
+    assert_non_null(third);
+    assert_true(strncmp(third, "\\midrule\nrow66 &", strlen("\\midrule\nrow66 &")) == 0);
     free(s);
     sl_tab_free(&t);
 }

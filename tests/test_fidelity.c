@@ -2,7 +2,8 @@
  * built here with known values: a transcribed datum's ratio, "not measured"
  * for a cell or region the cells lack (and for a cell counted on its own
  * contour), each claim's verdict and measured value, and the section in the
- * written page only when Primitives cells are there. */
+ * written page only when a Primitives cell at the thesis's views measures a
+ * datum (a table of the thesis with none left out, named). */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -343,7 +344,10 @@ static void fidelity_section(void **st)
     assert_non_null(strstr(md, "not reproduced"));
     /* each table cited with its printed page where the thesis's index gives one */
     assert_non_null(strstr(md, "Primitives, with: Moderno 2011 Table 30, p. 111 (pixels in the contour"));
-    assert_non_null(strstr(md, "Primitives, against: Moderno 2011 Table 53, p. 131 (single texel"));
+    /* no "against" cell: its tables are not shown, named in one line */
+    assert_null(strstr(md, "Primitives, against: Moderno 2011 Table 53"));
+    assert_non_null(strstr(md, "Not shown, no cell of this study at their view, map size and contours: "));
+    assert_non_null(strstr(md, "Table 53, p. 131 (against)"));
     assert_non_null(strstr(md, "Primitives, side: Moderno 2011 Table 16 (pixels in the contour"));
     free(md);
     static struct sl_report_fidelity_row rows[SL_REPORT_FIDELITY_MAXROWS];
@@ -359,6 +363,23 @@ static void fidelity_section(void **st)
     assert_int_equal(on100, in26);
     assert_int_equal(rows[0].table, 16);
     assert_int_equal(rows[0].page, 0);
+
+    /* Primitives cells, none at the thesis's 1024 x 1024 views (a small
+     * run's 64 x 64): every datum "not measured", no section */
+    for (int i = 0; i < n; i++)
+        c[i].vw = c[i].vh = 64;
+    assert_false(sl_report_fidelity_applies(c, n));
+    snprintf(out, sizeof out, "%s/rep3", sl_test_dir);
+    sl_test_report(&in, out);
+    snprintf(path, sizeof path, "%s/report.md", out);
+    md = sl_test_slurp(path);
+    assert_non_null(md);
+    assert_null(strstr(md, "fidelity to Moderno"));
+    assert_null(strstr(md, "not measured |"));
+    free(md);
+    for (int i = 0; i < n; i++)
+        c[i].vw = c[i].vh = 1024;
+    assert_true(sl_report_fidelity_applies(c, n));
 
     /* no Primitives cell: no section */
     for (int i = 0; i < n; i++)

@@ -21,6 +21,22 @@
 
 /* ---- Pareto ---- */
 
+/* An SVG plot's font prints at 8.5 pt or more on A4 (a canvas wider than
+ * the 703 px line is shrunk to it) and is at least 11 px on screen. */
+static void report_svg_font(void **st)
+{
+    (void)st;
+    assert_int_equal(sl_report_svg_font_px(900), 15);
+    assert_int_equal(sl_report_svg_font_px(703), 12);
+    assert_int_equal(sl_report_svg_font_px(400), 12);
+    for (int w = 300; w <= 2400; w += 50) {
+        int f = sl_report_svg_font_px(w);
+        double printed = f * 0.75 * (w > 703 ? 703.0 / w : 1.0);
+        assert_true(printed >= 8.5 && f >= 11);
+        assert_true((f - 1) * 0.75 * (w > 703 ? 703.0 / w : 1.0) < 8.5 || f == 11);
+    }
+}
+
 static void report_pareto(void **st)
 {
     (void)st;
@@ -500,7 +516,19 @@ static void report_any_study(void **st)
      * per px: 2.25 * 4000 / 400, 1.75 * 4000 / 3600 */
     assert_non_null(strstr(md, "| pkg | 512² | 2 | 4000 | 1.000 | 4.000 | +0.500 | 2.250 | 1.750 | 50.00% | "
                                "22.50 (of 400) | 1.94 (of 3600) | 7.50 |"));
+    /* one definition of wrong %, said; the penumbra a hard truth lacks, said
+     * under the table; leaking against over-darkening drawn (issue 47) */
+    assert_non_null(strstr(md, "whole image, the mean of the views' own percentages: the one definition of wrong %"));
+    assert_non_null(strstr(md, "Caveat: under a hard light the truth has no penumbra, so a technique that draws one "
+                               "on purpose (PCSS"));
+    assert_non_null(strstr(md, "plots/own-leaking.svg"));
     free(md);
+    snprintf(path, sizeof path, "%s/plots/own-leaking.dat", out);
+    char *dat = sl_test_slurp(path);
+    assert_non_null(dat);
+    /* pkg: leaking 2.25, over-darkening 1.75 at 512 */
+    assert_non_null(strstr(dat, "# pkg: leaking over-darkening map\n2.25 1.75 512\n"));
+    free(dat);
 }
 
 /* A study's thesis sections follow the methods' own metadata, not their
@@ -538,6 +566,7 @@ int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         SL_CASE(report, pareto),
+        SL_CASE(report, svg_font),
         SL_CASE(report, points),
         SL_CASE(report, build),
         SL_CASE(report, self_contained),

@@ -206,9 +206,9 @@ static void table_latex_booktabs(void **st)
                                 "(contour\\_from); git \\texttt{abc1234}, config "
                                 "\\texttt{0123456789abcdef}, machine "
                                 "a\\&b\\#c\\$d\\{e\\}f\\%g\\_h\\textasciitilde{}\\textasciicircum{}"
-                                "\\textbackslash{}\\par}\n\\end{table}\n"));
-    assert_int_equal(count_of(tex, "\\begin{table}"), 3);
-    assert_int_equal(count_of(tex, "\\end{table}"), 3);
+                                "\\textbackslash{}\\par}\n\\end{table*}\n"));
+    assert_int_equal(count_of(tex, "\\begin{table*}"), 3);
+    assert_int_equal(count_of(tex, "\\end{table*}"), 3);
     assert_int_equal(count_of(tex, "\\toprule"), 3);
     assert_int_equal(count_of(tex, "\\bottomrule"), 3);
     assert_before(tex, "{prim\\_s / side /", "{prim\\_s / with /");
@@ -382,7 +382,7 @@ static void table_summary_rows(void **st)
     f = open_memstream(&buf, &len);
     assert_int_equal(sl_summary_write(f, SL_TABLE_LATEX, c, 4, &o, &d), SL_OK);
     fclose(f);
-    assert_int_equal(count_of(buf, "\\begin{table}"), 2);
+    assert_int_equal(count_of(buf, "\\begin{table*}"), 2);
     assert_int_equal(count_of(buf, "\\toprule"), 2);
     assert_non_null(strstr(buf, "\\caption{Summary of wrong\\_caught (\\% of wrong\\_image), label other\\_x: "));
     assert_non_null(strstr(buf, "\naverage &  &  &  &  & 87.33 \\\\\n"));
@@ -539,7 +539,8 @@ static void table_hard_light_fractional(void **st)
     free(tex);
     char *det = render(SL_TABLE_LATEX_DETAIL, "shadowlab: prim", c, 2, SL_OK);
     assert_null(strstr(det, "rea light"));
-    assert_non_null(strstr(det, "64$\\times$32: under the directional light, the visibility against its 0/\\allowbreak{}1 truth"));
+    assert_non_null(strstr(det, "viewport 64$\\times$32, directional light, per method and shadow-map size: the "
+                                "visibility against its 0/\\allowbreak{}1 truth"));
     free(det);
 }
 
@@ -727,7 +728,7 @@ static void table_pivot_latex_fits(void **st)
     tex = pivot(SL_TABLE_LATEX, c, n, &p, &info, SL_OK);
     assert_int_equal(info.transposed, 0);
     assert_true(info.parts >= 2);
-    assert_int_equal(count_of(tex, "\\begin{table}"), info.parts);
+    assert_int_equal(count_of(tex, "\\begin{table*}"), info.parts);
     assert_int_equal(count_of(tex, "\\toprule"), info.parts);
     assert_int_equal(count_of(tex, "\nlabel\\_05 & "), info.parts);
     assert_null(strstr(tex, "{lrrrrrrrrr"));   /* never more than 8 numeric columns */
@@ -761,7 +762,7 @@ static void table_latex_wide(void **st)
         }
     }
     char *tex = render(SL_TABLE_LATEX, NULL, &c, 1, SL_OK);
-    int floats = count_of(tex, "\\begin{table}");
+    int floats = count_of(tex, "\\begin{table*}");
     assert_true(floats >= 2);
     assert_int_equal(count_of(tex, "\nfigure & "), floats);
     assert_int_equal(count_of(tex, "\nwrong & "), floats);
@@ -777,15 +778,16 @@ static void table_latex_wide(void **st)
     FILE *f = open_memstream(&buf, &len);
     assert_int_equal(sl_table_write_rows(f, SL_TABLE_LATEX, NULL, &c, 1, &rows, &d), SL_OK);
     fclose(f);
-    assert_int_equal(count_of(buf, "\\begin{table}"), 1);
+    assert_int_equal(count_of(buf, "\\begin{table*}"), 1);
     assert_non_null(strstr(buf, "\nfigure & 2px & 4px & 6px & 8px & image \\\\\n"));
     assert_non_null(strstr(buf, "\\begin{tabular}[t]{@{}r@{}}100000010\\\\ (10.25\\%)\\end{tabular}"));
     assert_null(strstr(buf, "resizebox"));
     free(buf);
 }
 
-/* The run's LaTeX: a few summary floats of the study, and a longtable per
- * view with every label and map size; no scaling anywhere. */
+/* The run's LaTeX: a few summary floats of the study (a sentence for one
+ * whose entries are all 0), and floats per view with every label and map
+ * size; no longtable, no scaling anywhere. */
 static void table_run_latex(void **st)
 {
     (void)st;
@@ -793,23 +795,44 @@ static void table_run_latex(void **st)
     int n = three_cells(c);
     for (int i = 0; i < n; i++)
         snprintf(c[i].study, sizeof c[i].study, "prim_study");
+    /* the time 0 in every cell (these cells were never timed): a sentence,
+     * not a table of zeros */
     char *sum = render(SL_TABLE_LATEX_SUMMARY, "shadowlab: prim", c, n, SL_OK);
-    /* wrong, uncertain and ms_method by label x map size; one scene: no label x scene */
-    assert_int_equal(count_of(sum, "\\begin{table}"), 3);
+    assert_int_equal(count_of(sum, "\\begin{table*}"), 2);
+    assert_non_null(strstr(sum, "% prim-study-ms-method-map-size: every entry is 0, a sentence instead of a table\n"
+                                "\\par\\noindent Time of the method's per-pixel step (median over the timed runs), "
+                                "ms, is 0 for every method and shadow-map size: "));
+    free(sum);
+    /* one entry not 0 (a small one: 0.0034 ms, not 0.00): a table of wrong,
+     * uncertain and ms_method by label x map size; one scene: no label x scene */
+    c[1].ms_method = 0.0034;
+    sum = render(SL_TABLE_LATEX_SUMMARY, "shadowlab: prim", c, n, SL_OK);
+    assert_int_equal(count_of(sum, "\\begin{table*}"), 3);
+    assert_null(strstr(sum, "a sentence instead"));
+    assert_non_null(strstr(sum, "\nnsm\\_a & 0.0017 & 0 \\\\\n"));
     assert_non_null(strstr(sum, "\\label{tab:prim-study-wrong-map-size}\n"));
     assert_non_null(strstr(sum, "\nnsm\\_a & 20.25 & 20.25 \\\\\n"));
-    assert_non_null(strstr(sum, "mean over viewpoint (2), at most 2 values an entry"));
+    /* the caption in words: the figure, its base, the keys, what an entry
+     * aggregates, what every entry shares, the study; no internal id */
+    assert_non_null(strstr(sum, "\\caption{Wrong pixels (both kinds), \\% of the image's pixels (background "
+                                "excluded), for every method and shadow-map size: the mean over 2 viewpoints (side "
+                                "and with), 1 to 2 values an entry; scene prim\\_s; viewport 64$\\times$32; the whole "
+                                "image (study prim\\_study).}"));
+    assert_null(strstr(sum, "ms\\_method"));
+    assert_null(strstr(sum, "at most"));
     assert_non_null(strstr(sum, "% git abc1234, config 0123456789abcdef, machine h/c/i\n"));
     assert_null(strstr(sum, "resizebox"));
     free(sum);
     char *det = render(SL_TABLE_LATEX_DETAIL, "shadowlab: prim", c, n, SL_OK);
-    assert_int_equal(count_of(det, "\\begin{longtable}"), count_of(det, "\\end{longtable}"));
-    assert_true(count_of(det, "\\begin{longtable}") >= 2);   /* a view each: side, with */
-    assert_before(det, "prim\\_s / side / 64$\\times$32", "prim\\_s / with / 64$\\times$32");
+    /* floats a two-column class takes: no longtable */
+    assert_int_equal(count_of(det, "\\begin{table*}"), count_of(det, "\\end{table*}"));
+    assert_true(count_of(det, "\\begin{table*}") >= 2);   /* a view each: side, with */
+    assert_null(strstr(det, "longtable"));
+    assert_before(det, "Scene prim\\_s, viewpoint side, viewport 64$\\times$32",
+                  "Scene prim\\_s, viewpoint with, viewport 64$\\times$32");
     /* side: the 1024 before the 2048 whatever the cells' order; wrong 1020 (20.25 %) */
-    assert_before(det, "\nnsm\\_a & 1\\,024 & ", "\nnsm\\_a & 2\\,048 & ");
+    assert_before(det, "\nnsm\\_a & $1024^2$ & ", "\nnsm\\_a & $2048^2$ & ");
     assert_non_null(strstr(det, " & 1\\,020 & 20.25"));
-    assert_null(strstr(det, "\\begin{table}"));
     assert_null(strstr(det, "resizebox"));
     free(det);
 }

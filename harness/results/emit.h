@@ -1,8 +1,8 @@
 /*
  * emit.h — one emitter per table format, each in its own file, each owning
  * its format's escaping and number formatting: emit_md.c (Markdown),
- * emit_csv.c (CSV, RFC 4180), emit_tex.c (LaTeX booktabs, fitted to the
- * line and never scaled; also tex.h's text and numbers), emit_html.c (an
+ * emit_csv.c (CSV, RFC 4180), emit_tex.c (LaTeX booktabs floats, table* so that
+ * a two-column class takes them, fitted to the line and never scaled; also tex.h's text and numbers), emit_html.c (an
  * HTML table) and emit_json.c (an object per table). Each writes one table
  * of the model (tabmodel.h) to a stream.
  *
@@ -27,9 +27,7 @@ struct sl_emit_opts {
     int         gap;         /* Markdown: a blank line before it (after text that ends without one) */
     int         tight;       /* Markdown: the stream ends after its note: no blank line after it */
     const char *comment;     /* LaTeX: the first table's comment line, without "% " (NULL: the report's);
-                              * before a longtable, a blank line follows it */
-    int         cont, more;  /* LaTeX longtable: it continues the previous table's {\small ...} group
-                              * (cont), the next one continues its own (more); neither: a group of its own */
+                              * before a paged table, a blank line follows it */
     int         clear;       /* LaTeX, fixed: a \clearpage and a blank line before it (the writer counts
                               * its floats: LaTeX holds at most 18 it has not placed) */
     int         blank;       /* LaTeX, fixed: a blank line after it */
@@ -58,7 +56,7 @@ extern const struct sl_emitter sl_emitters[];
 sl_emit_fn sl_emit_find(const char *name);
 
 /* A comment line of a stream of LaTeX tables (sl_emit_tex writes one before
- * the first table: o->comment, NULL: the report's; before longtables a
+ * the first table: o->comment, NULL: the report's; before a paged table a
  * blank line follows it); blank: a blank line after it. A writer calls it
  * for a stream with no table, or for a second line (what it is from). */
 void sl_emit_tex_comment(FILE *f, const char *comment, int blank);

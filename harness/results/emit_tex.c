@@ -257,6 +257,11 @@ double sl_tex_number_pt(const char *plain)
  * a longer one is split into parts, each a float of its own that fits a
  * page. */
 #define TEX_LINES 44
+/* Lines of a paged table's float at \small (the pivots', the detail
+ * tables'): a page of a 10 pt A4 or letter article (\textheight 592 or
+ * 550 pt) holds about 45 rows of 11.5 pt; less the caption, the heads and
+ * the rules, and a margin where a folded name takes more than estimated. */
+#define TEX_PAGE_LINES 34
 
 /* Nothing is scaled: a table is fitted to the line (an A4 article's 345 pt,
  * \footnotesize, widths estimated by tex.h). A table wider than the line
@@ -421,7 +426,7 @@ static void tex_part(FILE *f, const struct sl_tab *t, const struct tex_layout *l
 {
     double box[SL_TAB_MAXCOLS];
     part_boxes(lo, t, cp, box);
-    fputs("\\begin{table}[htbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
+    fputs("\\begin{table*}[tbp]\n\\centering\n\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
     sl_tex_text(f, t->title);
     if (t->intro && t->intro[0] && part == 0) {
         fputs(". ", f);
@@ -488,7 +493,7 @@ static void tex_part(FILE *f, const struct sl_tab *t, const struct tex_layout *l
         sl_tex_text(f, t->note);
         fputs("\\par}\n", f);
     }
-    fputs("\\end{table}\n", f);
+    fputs("\\end{table*}\n", f);
 }
 
 static void tex_fit(const struct sl_tab *t, struct tex_layout *lo)
@@ -716,21 +721,47 @@ static void group_row(FILE *f, const struct sl_tab *t)
     fprintf(f, " \\\\\n%s\n", rules);
 }
 
-/* One float as its writer laid it out (t->fixed): the fitted floats' frame,
- * nothing stacked, wrapped (but in a column's parbox) or split. */
-static int tex_fixed(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
+/* The lines row r of a fixed or paged table takes: a folded or parboxed
+ * cell as many as its text needs at its width (a third more: words do not
+ * fill a line), a stacked one two; the space before a block half a line. */
+static double fixed_row_lines(const struct sl_tab *t, int r)
 {
-    if (o && o->clear)
-        fputs("\\clearpage\n\n", f);
-    fputs("\\begin{table}[htbp]\n\\centering\n", f);
-    fputs(t->small ? "\\small\n\\caption{" : "\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n\\caption{", f);
+    double lines = 1;
+    for (int c = 0; c < t->ncols; c++) {
+        const char *v = sl_tab_at(t, r, c);
+        double w = t->fold[c] > 0 && sl_tex_text_pt(v) > t->fold[c] ? t->fold[c]
+                   : t->fixed && t->parbox[c] > 0 && v[0]               ? t->parbox[c]
+                                                                        : 0;
+        double n = w > 0 ? (double)(int)(sl_tex_text_pt(v) * 1.33 / w) + 1
+                   : t->fixed && t->stack && !sl_tab_left(t, c) && strstr(v, " (") ? 2
+                                                                                    : 1;
+        lines = n > lines ? n : lines;
+    }
+    return lines + ((t->rule[r] & SL_TAB_BLOCK) && r > 0 ? 0.5 : 0);
+}
+
+/* One float of rows [from, to) as its writer laid it out (t->fixed, or a
+ * part of a paged table): nothing stacked, wrapped (but in a column's
+ * parbox) or split by columns. A table* (two-column safe: in a one-column
+ * document it is a table, in a two-column one it spans the page); a part
+ * after the first repeats the heads and its table's number, its caption
+ * ending "(continued)", and carries no label. */
+static void fixed_float(FILE *f, const struct sl_tab *t, int from, int to, int part, int parts)
+{
+    fputs("\\begin{table*}[tbp]\n\\centering\n", f);
+    fputs(t->small ? "\\small\n" : "\\footnotesize\n\\setlength{\\tabcolsep}{4pt}\n", f);
+    if (part > 0)
+        fputs("\\addtocounter{table}{-1}\n", f);
+    fputs("\\caption{", f);
     tab_text(f, t->title, t->squares);
-    if (t->intro && t->intro[0]) {
+    if (t->intro && t->intro[0] && part == 0) {
         fputs(". ", f);
         tab_text(f, t->intro, t->squares);
     }
+    if (part > 0)
+        fputs(" (continued)", f);
     fputc('}', f);
-    if (!t->nolabel)
+    if (!t->nolabel && part == 0)
         fprintf(f, "\n\\label{tab:%s}", t->id);
     fputs("\n\\begin{tabular}{", f);
     for (int c = 0; c < t->ncols; c++)
@@ -739,62 +770,54 @@ static int tex_fixed(FILE *f, const struct sl_tab *t, const struct sl_emit_opts 
     group_row(f, t);
     long_row(f, t, -1);
     fputs("\\midrule\n", f);
-    for (int r = 0; r < t->nrows; r++) {
-        if ((t->rule[r] & SL_TAB_BLOCK) && r > 0)
+    for (int r = from; r < to; r++) {
+        if ((t->rule[r] & SL_TAB_BLOCK) && r > from)
             fputs("\\addlinespace\n", f);
         long_row(f, t, r);
     }
     fputs("\\bottomrule\n\\end{tabular}\n", f);
-    if (sl_tab_has_note(t)) {
+    if (sl_tab_has_note(t) && part == parts - 1) {
         fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
         note_text(f, t);
         fputs("\\par}\n", f);
     }
-    fputs("\\end{table}\n", f);
-    if (o && o->blank)
-        fputc('\n', f);
-    return 1;
+    fputs("\\end{table*}\n", f);
 }
 
-/* A longtable at \small: the caption (and label) in the table, the heads on
- * every page, a rule under the last; no float, so nothing to clear. */
-static int tex_long(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
+/* A fixed table: one float. A paged one (t->paged): floats of at most
+ * TEX_PAGE_LINES lines each, the heads on every one, a \clearpage before
+ * every eighth (LaTeX holds at most 18 floats it has not placed). */
+static int tex_fixed(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
 {
-    if (!o || !o->cont)
-        fputs(t->small ? "{\\small\n" : "{\\small\\setlength{\\tabcolsep}{4pt}\n", f);
-    fputs("\\begin{longtable}{", f);
-    for (int c = 0; c < t->ncols; c++)
-        fputc(sl_tab_left(t, c) ? 'l' : 'r', f);
-    fputs("}\n\\caption{", f);
-    tab_text(f, t->title, t->squares);
-    if (t->intro && t->intro[0]) {
-        fputs(". ", f);
-        tab_text(f, t->intro, t->squares);
+    if (o && o->clear)
+        fputs("\\clearpage\n\n", f);
+    int parts = 1, *cut = malloc(((size_t)t->nrows + 2) * sizeof *cut);
+    if (!cut)
+        return -1;
+    cut[0] = 0;
+    if (t->paged) {
+        double lines = 0;
+        parts = 0;
+        for (int r = 0; r < t->nrows; r++) {
+            double k = fixed_row_lines(t, r);
+            if (r > cut[parts] && lines + k > TEX_PAGE_LINES) {
+                cut[++parts] = r;
+                lines = 0;
+            }
+            lines += k;
+        }
+        parts++;
     }
-    fputc('}', f);
-    if (!t->nolabel)
-        fprintf(f, "\\label{tab:%s}", t->id);
-    fputs("\\\\\n", f);
-    for (int pass = 0; pass < 2; pass++) {
-        fputs("\\toprule\n", f);
-        group_row(f, t);
-        long_row(f, t, -1);
-        fprintf(f, "\\midrule\n%s\n", pass ? "\\endhead" : "\\endfirsthead");
+    cut[parts] = t->nrows;
+    for (int p = 0; p < parts; p++) {
+        if (p > 0 && p % 8 == 0)
+            fputs("\\clearpage\n", f);
+        fixed_float(f, t, cut[p], cut[p + 1], p, parts);
+        if (o && o->blank)
+            fputc('\n', f);
     }
-    fputs("\\bottomrule\n\\endfoot\n", f);
-    for (int r = 0; r < t->nrows; r++) {
-        if ((t->rule[r] & SL_TAB_BLOCK) && r > 0)
-            fputs("\\addlinespace\n", f);
-        long_row(f, t, r);
-    }
-    fputs("\\end{longtable}", f);
-    if (sl_tab_has_note(t)) {
-        fputs("\n\\smallskip\n\\parbox{\\linewidth}{\\scriptsize\\raggedright ", f);
-        tab_text(f, t->note, t->squares);
-        fputs("\\par}\n", f);
-    }
-    fputs(o && o->more ? "\n" : "}\n\n", f);
-    return 0;
+    free(cut);
+    return parts % 8 ? parts % 8 : 8;
 }
 
 int sl_emit_tex(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
@@ -802,10 +825,8 @@ int sl_emit_tex(FILE *f, const struct sl_tab *t, const struct sl_emit_opts *o)
     if (t->oom || t->ncols > SL_TAB_MAXCOLS || t->ngroups > SL_TAB_MAXCOLS)
         return -1;
     if (!o || o->first)
-        sl_emit_tex_comment(f, o ? o->comment : NULL, t->longtable);
-    if (t->longtable)
-        return tex_long(f, t, o);
-    if (t->fixed)
+        sl_emit_tex_comment(f, o ? o->comment : NULL, t->paged);
+    if (t->fixed || t->paged)
         return tex_fixed(f, t, o);
     struct tex_layout lo;
     tex_fit(t, &lo);

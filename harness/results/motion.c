@@ -114,10 +114,11 @@ enum sl_err sl_motion_rows(const struct sl_cell_record *cells, int ncells, struc
 }
 
 /* The LaTeX tables of one group (scene, path, viewport, map size), rows
- * [i, e): two longtables that each fit a plain article's \\columnwidth at
- * \\small (the eight columns side by side ran 222 pt too wide): the wrong
- * pixels per frame (wrong, what = 0), then the flicker (what = 1). Numbers
- * as sl_tab_number writes them; a frame or a count as it is. */
+ * [i, e): two paged tables (floats of a page of rows each) that each fit a
+ * plain article's \\columnwidth at \\small (the eight columns side by side
+ * ran 222 pt too wide): the wrong pixels per frame (wrong, what = 0), then
+ * the flicker (what = 1). Numbers as sl_tab_number writes them; a frame or
+ * a count as it is. */
 static void tex_table(struct sl_tab *t, const struct sl_motion_row *rows, int i, int e, int what)
 {
     static const char *const heads[2][7] = {{"label", "frames", "mean", "worst", "frame"},
@@ -132,7 +133,7 @@ static void tex_table(struct sl_tab *t, const struct sl_motion_row *rows, int i,
     int ncols = what ? 7 : 5;
     sl_tab_init(t, "motion", ncols, 1, "%s, path %s, %d\xC3\x97%d, map %d\xC2\xB2: %s", g->scene, g->path, g->vw,
                 g->vh, g->map_size, whats[what]);
-    t->longtable = 1;
+    t->paged = 1;
     t->nolabel = 1;
     for (int k = 0; k < ncols; k++)
         sl_tab_head(t, k, "%s", heads[what][k]);
@@ -253,9 +254,11 @@ enum sl_err sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_m
 {
     struct sl_tab t;
     int bad = 0;
-    /* LaTeX: two longtables per group in one {\small ...} group */
+    /* LaTeX: two paged tables per group; a \clearpage after every eighth
+     * float (LaTeX holds at most 18 it has not placed) */
+    int floats = 0;
     if (fmt == SL_TABLE_LATEX && n == 0)
-        sl_emit_tex_comment(f, "shadowlab motion tables; needs \\usepackage{booktabs,longtable}", 1);
+        sl_emit_tex_comment(f, "shadowlab motion tables; needs \\usepackage{booktabs}", 1);
     for (int i = 0, e; fmt == SL_TABLE_LATEX && i < n && !bad; i = e) {
         e = i + 1;
         while (e < n && row_cmp(&rows[i], &rows[e]) == 0)
@@ -263,10 +266,11 @@ enum sl_err sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_m
         for (int what = 0; what < 2 && !bad; what++) {
             tex_table(&t, rows, i, e, what);
             const struct sl_emit_opts o = {.first = i == 0 && what == 0,
-                                           .comment = "shadowlab motion tables; needs \\usepackage{booktabs,longtable}",
-                                           .cont = what == 1,
-                                           .more = what == 0};
-            bad = sl_emit_tex(f, &t, &o) < 0;
+                                           .comment = "shadowlab motion tables; needs \\usepackage{booktabs}",
+                                           .clear = floats >= 6, .blank = 1};
+            int k = sl_emit_tex(f, &t, &o);
+            bad = k < 0;
+            floats = o.clear ? k : floats + k;
             sl_tab_free(&t);
         }
     }

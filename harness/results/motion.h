@@ -47,9 +47,10 @@ enum sl_err sl_motion_rows(const struct sl_cell_record *cells, int ncells, struc
 
 /* The tables, built as the table model (tabmodel.h) and written by its
  * emitter: Markdown, a table per (scene, path, viewport, map size); CSV, one
- * data table of every row; LaTeX, per group two booktabs longtables (the
- * model's longtable mode), the wrong pixels and the flicker, each fitting
- * \columnwidth. SL_E_NOMEM when the model cannot be built. */
+ * data table of every row; LaTeX, per group two booktabs tables paged by
+ * rows (the model's paged mode: floats, so a two-column class takes them),
+ * the wrong pixels and the flicker, each fitting \columnwidth. SL_E_NOMEM
+ * when the model cannot be built. */
 enum sl_err sl_motion_write(FILE *f, enum sl_table_format fmt, const struct sl_motion_row *rows, int n,
                             struct sl_diag *d);
 

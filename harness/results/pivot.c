@@ -86,7 +86,6 @@ static void plain_number(char *out, size_t n, double v, int dec)
 #define TEX_COLSEP      12.0
 #define TEX_MAXNUM      8
 #define TEX_LABELMAX    130.0      /* a wider row name is wrapped in a \parbox of this width */
-#define TEX_MAXROWS     40         /* more rows: a longtable, not a float */
 
 static double text_pt(const char *s) { return sl_tex_text_pt(s); }
 static double number_pt(const char *plain) { return sl_tex_number_pt(plain); }
@@ -304,9 +303,15 @@ static void point_key(const struct sl_cell_record *c, int r, enum sl_pivot_key k
     }
 }
 
+/* a key's name for people: a column's or row's head, a caption's word */
 static const char *key_head(enum sl_pivot_key k)
 {
-    return k == SL_PK_map_size ? "map size" : sl_pivot_key_name(k);
+    switch (k) {
+    case SL_PK_label: return "method";
+    case SL_PK_method: return "algorithm";
+    case SL_PK_map_size: return "shadow-map size";
+    default: return sl_pivot_key_name(k);
+    }
 }
 
 /* keys ordered by first appearance unless they have a numeric order */
@@ -323,12 +328,14 @@ struct pivot {
     int          *cnt;                 /* values aggregated */
     unsigned char *once;               /* a time: a cell of the entry was timed once (runs 1) */
     int           any_once;
-    int           nr, nc, maxn, region_default;
+    int           nr, nc, maxn, minn, region_default;
     int           varies[SL_PK_COUNT];  /* the key has two values inside one entry */
     char        (*ldisp)[KEYLEN];       /* per label key: its display name (cells.display) */
     int           nf_cells;            /* cells of the table with values not finite (cells.nonfinite) */
     int           any_frac, any_area;  /* soft cells of the table: a hard light's (frac), an area light's */
     char          lights[256];         /* and the lights their truths were computed for, each once */
+    char          all_lights[256];     /* every kept cell's light in words, each once ("directional light") */
+    char          studies[256];        /* the studies of the kept cells, each once */
     uint64_t      nonfinite;           /* and their sum */
 };
 
@@ -464,6 +471,12 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
             np++;
             kept = 1;
         }
+        if (kept) {
+            if (c->light[0])
+                add_light(pv->all_lights, sizeof pv->all_lights, c->light);
+            if (c->study[0])
+                add_light(pv->studies, sizeof pv->studies, c->study);
+        }
         if (kept && pv->g.src == SRC_SOFT) {
             pv->any_frac |= c->frac;
             pv->any_area |= !c->frac;
@@ -498,6 +511,8 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
                 pv->val[r * pv->nc + c] = aggregate(p->agg, tmp, n);
                 pv->cnt[r * pv->nc + c] = n;
                 pv->maxn = n > pv->maxn ? n : pv->maxn;
+                if (n > 0 && (pv->minn == 0 || n < pv->minn))
+                    pv->minn = n;
             }
         free(tmp);
         /* what the entries aggregate over: keys with two values in one entry */
@@ -540,40 +555,176 @@ static int decimals(const struct pivot *pv, enum sl_pivot_agg a)
     return a == SL_AGG_MEAN || a == SL_AGG_MEDIAN ? 1 : 0;
 }
 
-/* what the entries aggregate over: the keys with several values that are neither rows nor columns */
-static void over_words(const struct pivot *pv, const struct sl_pivot_desc *p, char *out, size_t n)
+/* ---- captions: in words, no internal ids (issue 47) ---- */
+
+/* A key in words, singular and plural (a caption's "per method and
+ * shadow-map size", "over 2 scenes"). */
+static const char *key_word(enum sl_pivot_key k, int plural)
 {
-    size_t o = 0;
-    out[0] = '\0';
-    for (int k = 1; k < SL_PK_COUNT; k++) {
-        if (k == (int)pv->rk || k == (int)pv->ck || !pv->varies[k])
-            continue;
-        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s (%d)", o ? ", " : "", key_head((enum sl_pivot_key)k),
-                              pv->key[k].n);
+    if (!plural)
+        return key_head(k);
+    switch (k) {
+    case SL_PK_label: return "methods";
+    case SL_PK_method: return "algorithms";
+    case SL_PK_scene: return "scenes";
+    case SL_PK_viewpoint: return "viewpoints";
+    case SL_PK_viewport: return "viewports";
+    case SL_PK_map_size: return "shadow-map sizes";
+    case SL_PK_region: return "regions";
+    default: return "";
     }
-    if (!o)
-        snprintf(out, n, "nothing: one cell an entry");
-    (void)p;
 }
 
-/* the caption's plain words (escaped by the caller for LaTeX) */
-static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p, char *out, size_t n)
+/* The counters and times of cellcols.h a pivot takes, in words; a name not
+ * here is written with its underscores as spaces (no table of them all:
+ * the cost columns are the cost model's, and change with it). */
+static const struct {
+    const char *name, *words;
+} col_words[] = {
+    {"ms_method", "time of the method's per-pixel step (median over the timed runs)"},
+    {"ms_map_render", "time of the shadow-map render of the layers the method reads (median over the timed runs)"},
+    {"ms_gbuffer_render", "time of the G-buffer render (median over the timed runs)"},
+    {"ms_truth", "time of the ray-traced truth (median over the timed runs)"},
+    {"ms_ray_step", "time of the method's shadow rays"},
+    {"rays", "shadow rays traced"},
+    {"lookups", "shadow-map lookups"},
+    {"tri_tests", "ray-triangle tests"},
+    {"fragments", "fragments shaded"},
+    {"truth_rays", "rays of the truth"},
+    {"texels", "texels read"},
+    {"nonfinite", "values not finite"},
+    {NULL, NULL},
+};
+
+/* the figure in words, its first letter a capital */
+static void figure_words(const struct pivot *pv, const struct sl_pivot_desc *p, char *out, size_t n)
 {
     const char *name = p->figure ? p->figure : "wrong";
     const char *text = pv->g.src == SRC_HARD   ? sl_figure_text((enum sl_figure)pv->g.k)
                        : pv->g.src == SRC_SOFT ? sl_soft_figure_text((enum sl_soft_figure)pv->g.k)
-                                               : (cols[pv->g.k].is_ms ? "time (median over the repetitions)" : "counter");
-    /* the names the tables and the report give these times (guide.md) */
-    if (pv->g.src == SRC_COL && !strcmp(name, "ms_method"))
-        text = "step ms, the method's per-pixel step (median over the repetitions)";
-    else if (pv->g.src == SRC_COL && !strcmp(name, "ms_map_render"))
-        text = "layers ms, the shadow-map render of the layers the method reads (median over the repetitions)";
-    char over[256];
-    over_words(pv, p, over, sizeof over);
-    size_t o = (size_t)snprintf(out, n, "%s%s: %s, %s; %s over %s", p->caption ? p->caption : "", name, text,
-                                pv->g.unit, agg_names[p->agg], over);
-    if (pv->maxn > 1)
-        o += (size_t)snprintf(out + o, o < n ? n - o : 0, ", at most %d values an entry", pv->maxn);
+                                               : NULL;
+    for (int k = 0; !text && col_words[k].name; k++)
+        if (!strcmp(col_words[k].name, name))
+            text = col_words[k].words;
+    if (text)
+        snprintf(out, n, "%s", text);
+    else {
+        snprintf(out, n, "%s", name);
+        for (char *q = out; *q; q++)
+            *q = *q == '_' ? ' ' : *q;
+    }
+    if (out[0] >= 'a' && out[0] <= 'z')
+        out[0] = (char)(out[0] - 'a' + 'A');
+}
+
+/* the unit in words: "% of the image's pixels", "% of the pixels the
+ * method puts in light", "ms", "count" */
+static void unit_words(const struct pivot *pv, const struct sl_pivot_desc *p, char *out, size_t n)
+{
+    if (pv->g.src == SRC_HARD && !pv->g.count) {
+        int base = pv->g.base;
+        if (base < 0)
+            for (int k = 0; k < SL_FIG_COUNT && base < 0; k++)
+                if (!strcmp(sl_figure_of((enum sl_figure)pv->g.k), sl_figure_name((enum sl_figure)k)))
+                    base = k;
+        if (base >= 0 && !strcmp(sl_figure_name((enum sl_figure)base), "pixels"))
+            snprintf(out, n, "%% of the %s pixels (background excluded)",
+                     pv->region_default ? "image's" : "region's");
+        else if (base >= 0)
+            snprintf(out, n, "%% of the %s", sl_figure_text((enum sl_figure)base));
+        else
+            snprintf(out, n, "%s", pv->g.unit);
+        return;
+    }
+    (void)p;
+    snprintf(out, n, "%s", !strcmp(pv->g.unit, "count") ? "a count" : pv->g.unit);
+}
+
+/* value i of key k for people: a label's display name, a map size squared,
+ * a viewport's "x" a times sign */
+static void key_words(const struct pivot *pv, enum sl_pivot_key k, int i, char *out, size_t n)
+{
+    const char *v = pv->key[k].v[i];
+    if (k == SL_PK_label && pv->ldisp && pv->ldisp[i][0])
+        snprintf(out, n, "%s", pv->ldisp[i]);
+    else if (k == SL_PK_map_size)
+        snprintf(out, n, "%s\xC2\xB2", v);
+    else if (k == SL_PK_viewport) {
+        int w = 0, h = 0;
+        sscanf(v, "%dx%d", &w, &h);
+        snprintf(out, n, "%d\xC3\x97%d", w, h);
+    } else
+        snprintf(out, n, "%s", v);
+}
+
+/* "a", "a and b", "a, b and c" of the values of key k in display order;
+ * more than five: their count only */
+static size_t key_list(const struct pivot *pv, enum sl_pivot_key k, char *out, size_t n)
+{
+    const struct keyset *ks = &pv->key[k];
+    size_t o = 0;
+    out[0] = '\0';
+    if (ks->n > 5)
+        return (size_t)snprintf(out, n, "%d %s", ks->n, key_word(k, 1));
+    int *perm = perm_of(ks, k);
+    for (int i = 0; perm && i < ks->n; i++) {
+        char w[KEYLEN + 8];
+        key_words(pv, k, perm[i], w, sizeof w);
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s", i == 0 ? "" : i == ks->n - 1 ? " and " : ", ", w);
+    }
+    free(perm);
+    return o;
+}
+
+/* The caption's words (escaped by the emitter): what the entries are, per
+ * which keys, what each aggregates (over which keys, how many values), what
+ * every entry shares (the scene, viewport, map size, light when there is
+ * one of it), the --where, the study. zero: the sentence that stands for a
+ * table whose every entry is 0 ("... is 0 for every method and ..."). */
+static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p, char *out, size_t n, int zero)
+{
+    char fig[256], unit[128], list[512];
+    figure_words(pv, p, fig, sizeof fig);
+    unit_words(pv, p, unit, sizeof unit);
+    size_t o = (size_t)snprintf(out, n, "%s, %s, %s every %s and %s", fig, unit, zero ? "is 0 for" : "for",
+                                key_word(pv->rk, 0), key_word(pv->ck, 0));
+    /* what an entry aggregates over: the keys with two values in one entry */
+    char over[1024];
+    size_t ov = 0;
+    int said = 0;
+    over[0] = '\0';
+    for (int k = 1; k < SL_PK_COUNT; k++) {
+        if (k == (int)pv->rk || k == (int)pv->ck || !pv->varies[k])
+            continue;
+        key_list(pv, (enum sl_pivot_key)k, list, sizeof list);
+        if (pv->key[k].n > 5)
+            ov += (size_t)snprintf(over + ov, ov < sizeof over ? sizeof over - ov : 0, "%s%s", said ? " and " : "",
+                                   list);
+        else
+            ov += (size_t)snprintf(over + ov, ov < sizeof over ? sizeof over - ov : 0, "%s%d %s (%s)",
+                                   said ? " and " : "", pv->key[k].n, key_word((enum sl_pivot_key)k, pv->key[k].n > 1),
+                                   list);
+        said++;
+    }
+    if (said && pv->minn == pv->maxn)
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, ": the %s over %s, %d values an entry", agg_names[p->agg],
+                              over, pv->maxn);
+    else if (said)
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, ": the %s over %s, %d to %d values an entry",
+                              agg_names[p->agg], over, pv->minn, pv->maxn);
+    /* what every entry shares: a key of one value that is no row or column */
+    static const enum sl_pivot_key shared[] = {SL_PK_label,    SL_PK_scene,    SL_PK_viewpoint,
+                                               SL_PK_viewport, SL_PK_map_size, SL_PK_region};
+    for (size_t s = 0; s < sizeof shared / sizeof shared[0]; s++) {
+        enum sl_pivot_key k = shared[s];
+        if (k == pv->rk || k == pv->ck || pv->varies[k] || pv->key[k].n != 1 ||
+            (k == SL_PK_region && pv->region_default))
+            continue;
+        key_list(pv, k, list, sizeof list);
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "; %s %s", key_word(k, 0), list);
+    }
+    if (pv->all_lights[0])
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "; %s", pv->all_lights);
     if (pv->region_default && pv->g.src == SRC_HARD)
         o += (size_t)snprintf(out + o, o < n ? n - o : 0, "; the whole image");
     /* a soft figure: the lights its cells' truths were computed for */
@@ -587,9 +738,33 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
                               "; %sunder a hard light lit within \xCE\xB5 = %.2f of 1 and umbra within \xCE\xB5 of 0 "
                               "(a class right when |v \xE2\x88\x92 truth| \xE2\x89\xA4 \xCE\xB5)",
                               pv->any_area ? "exact under an area light, " : "", (double)SL_SOFT_HARD_TOL);
-    for (int w = 0; w < p->nwhere; w++)
-        o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s = %s", w ? ", " : "; ",
-                              sl_pivot_key_name(p->where[w].key), p->where[w].value);
+    /* --where: the kept values, a label by its display name */
+    for (int k = 1; k < SL_PK_COUNT; k++) {
+        int first = 1;
+        /* a key of one value is said above as what every entry shares */
+        if (k != (int)pv->rk && k != (int)pv->ck && !pv->varies[k] && pv->key[k].n == 1)
+            continue;
+        for (int w = 0; w < p->nwhere; w++) {
+            if ((int)p->where[w].key != k)
+                continue;
+            char v[KEYLEN + 8];
+            int i = -1;
+            for (int j = 0; j < pv->key[k].n && i < 0; j++)
+                if (!strcmp(pv->key[k].v[j], p->where[w].value))
+                    i = j;
+            if (i >= 0)
+                key_words(pv, (enum sl_pivot_key)k, i, v, sizeof v);
+            else
+                snprintf(v, sizeof v, "%s", p->where[w].value);
+            o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s%s", first ? "; only " : " or ",
+                                  first ? key_word((enum sl_pivot_key)k, 0) : "", first ? " " : "");
+            o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s", v);
+            first = 0;
+        }
+    }
+    if (pv->studies[0])
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0, " (%s %s)", strstr(pv->studies, " and ") ? "studies" : "study",
+                              pv->studies);
     o += (size_t)snprintf(out + o, o < n ? n - o : 0, ".");
     if (pv->any_once)
         snprintf(out + o, o < n ? n - o : 0, " \xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.");
@@ -635,8 +810,8 @@ static void key_cell(enum sl_pivot_key k, const char *v, char *out, size_t n)
  * column, a dagger on an entry timed once. */
 static void read_table(struct sl_tab *t, const struct pivot *pv, const struct sl_pivot_desc *p)
 {
-    char cap[1024];
-    caption_words(pv, p, cap, sizeof cap);
+    char cap[2048];
+    caption_words(pv, p, cap, sizeof cap, 0);
     sl_tab_init(t, "pivot", 1 + pv->nc, 1, "%s", "");
     t->level = 1;   /* no heading: the caption is the intro */
     t->plain = 1;
@@ -808,8 +983,9 @@ static double col_pt(const struct view *v, int c, int dec)
     double w = text_pt(k);
     for (int r = 0; r < v->nr; r++) {
         char s[64];
-        plain_number(s, sizeof s, view_val(v, r, c), dec);
-        double x = number_pt(s) + (view_once(v, r, c) ? 4.0 : 0.0);   /* the dagger */
+        double x = view_val(v, r, c);
+        plain_number(s, sizeof s, x, sl_tab_sig_decimals(x, dec));
+        x = number_pt(s) + (view_once(v, r, c) ? 4.0 : 0.0);   /* the dagger */
         w = x > w ? x : w;
     }
     return w;
@@ -833,9 +1009,55 @@ static int fits(const struct view *v, int c0, int c1, int dec)
     return w <= TEX_BUDGET;
 }
 
-/* One table of columns [c0, c1) in the model: a float, or a longtable (no
- * float, breaks across pages) when it has more rows than a page holds; the
- * column key's name spans the columns, a long row name is wrapped. */
+/* The \label of a pivot: its study (when it has one), figure, base, aggregate,
+ * rows, columns and every --where, so two pivots of one document never share
+ * one; the parts that are the defaults (the figure's own base, the mean)
+ * are left out. */
+static void pivot_id(const struct pivot *pv, const struct sl_pivot_desc *p, char *id, size_t n)
+{
+    snprintf(id, n, "pivot-");
+    if (pv->studies[0] && !strstr(pv->studies, " and ")) {
+        label_key(id, n, pv->studies);
+        label_key(id, n, "-");
+    }
+    label_key(id, n, p->figure ? p->figure : "wrong");
+    if (p->of) {
+        label_key(id, n, "-of-");
+        label_key(id, n, p->of);
+    }
+    if (p->agg != SL_AGG_MEAN) {
+        label_key(id, n, "-");
+        label_key(id, n, agg_names[p->agg]);
+    }
+    label_key(id, n, "-");
+    label_key(id, n, sl_pivot_key_name(pv->rk));
+    label_key(id, n, "-by-");
+    label_key(id, n, sl_pivot_key_name(pv->ck));
+    for (int w = 0; w < p->nwhere; w++) {
+        label_key(id, n, "-");
+        label_key(id, n, sl_pivot_key_name(p->where[w].key));
+        label_key(id, n, "-");
+        label_key(id, n, p->where[w].value);
+    }
+}
+
+/* every entry that has a value is 0 (and one has) */
+static int all_zero(const struct pivot *pv)
+{
+    int any = 0;
+    for (int i = 0; i < pv->nr * pv->nc; i++) {
+        if (isnan(pv->val[i]))
+            continue;
+        if (pv->val[i] != 0.0)
+            return 0;
+        any = 1;
+    }
+    return any;
+}
+
+/* One table of columns [c0, c1) in the model: a float, or (rows more than
+ * a page holds) a float per page, the heads on each; the column key's name
+ * spans the columns, a long row name is wrapped. */
 static int tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p, const char *cap, int c0,
                     int c1, int part, int parts, int dec)
 {
@@ -843,14 +1065,8 @@ static int tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p
     char id[256] = "";
     if (p->tex_label)
         label_key(id, sizeof id, p->tex_label);
-    else {
-        snprintf(id, sizeof id, "pivot-");
-        label_key(id, sizeof id, p->figure ? p->figure : "wrong");
-        label_key(id, sizeof id, "-");
-        label_key(id, sizeof id, sl_pivot_key_name(pv->rk));
-        label_key(id, sizeof id, "-");
-        label_key(id, sizeof id, sl_pivot_key_name(pv->ck));
-    }
+    else
+        pivot_id(pv, p, id, sizeof id);
     if (parts > 1)
         snprintf(id + strlen(id), sizeof id - strlen(id), "-%d", part + 1);
     struct sl_tab t;
@@ -859,8 +1075,7 @@ static int tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p
     else
         sl_tab_init(&t, id, 1 + c1 - c0, 1, "%s", cap);
     t.small = 1;
-    t.longtable = v->nr > TEX_MAXROWS;
-    t.fixed = !t.longtable;
+    t.paged = 1;   /* rows more than a page holds: a float per page (emit_tex.c) */
     if (v->rk != SL_PK_map_size && v->rk != SL_PK_viewport)
         t.fold[0] = TEX_LABELMAX;
     sl_tab_group(&t, 1, "%s", "");
@@ -877,7 +1092,7 @@ static int tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p
         sl_tab_cell(&t, 0, "%s", k);
         for (int c = c0; c < c1; c++) {
             char s[96];
-            sl_tab_number(s, sizeof s, view_val(v, r, c), dec);
+            sl_tab_sig(s, sizeof s, view_val(v, r, c), dec);
             sl_tab_cell(&t, 1 + c - c0, "%s%s", s, view_once(v, r, c) ? "\xE2\x80\xA0" : "");
         }
     }
@@ -892,8 +1107,22 @@ static int tex_part(FILE *f, const struct view *v, const struct sl_pivot_desc *p
 static int write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_desc *p, struct sl_pivot_info *info)
 {
     int dec = decimals(pv, p->agg);
-    char cap[1024];
-    caption_words(pv, p, cap, sizeof cap);
+    char cap[2048];
+    /* a table of zeros says one thing: a sentence says it (issue 47) */
+    if (all_zero(pv)) {
+        char id[256] = "";
+        if (p->tex_label)
+            label_key(id, sizeof id, p->tex_label);
+        else
+            pivot_id(pv, p, id, sizeof id);
+        caption_words(pv, p, cap, sizeof cap, 1);
+        fprintf(f, "%% %s: every entry is 0, a sentence instead of a table\n\\par\\noindent ", id);
+        sl_tex_text(f, cap);
+        fputs("\\par\n\n", f);
+        info->zero = 1;
+        return 0;
+    }
+    caption_words(pv, p, cap, sizeof cap, 0);
     struct view v = view_of(pv, 0);
     if (!fits(&v, 0, v.nc, dec)) {
         struct view t = view_of(pv, 1);
@@ -915,10 +1144,6 @@ static int write_tex(FILE *f, const struct pivot *pv, const struct sl_pivot_desc
     }
     starts[parts] = v.nc;
     char line[256];
-    if (v.nr > TEX_MAXROWS) {
-        snprintf(line, sizeof line, "%d rows: a longtable, needs \\usepackage{longtable}", v.nr);
-        sl_emit_tex_comment(f, line, 0);
-    }
     if (parts > 1)
         snprintf(line, sizeof line, "%d columns do not fit \\columnwidth: split into %d tables", v.nc, parts);
     else if (info->transposed)
@@ -986,8 +1211,8 @@ static void one_line(char *out, size_t n, const char *s)
 static void tex_head(FILE *f, const char *what, const char *title, const struct sl_cell_record *cells, int n)
 {
     char line[1200];
-    snprintf(line, sizeof line, "shadowlab %s; needs \\usepackage{booktabs%s}", what,
-             strstr(what, "detail") ? ",longtable" : "");
+    snprintf(line, sizeof line, "shadowlab %s; needs \\usepackage{booktabs}; table* floats: a one- or two-column "
+             "class takes them", what);
     sl_emit_tex_comment(f, line, 0);
     if (title) {
         snprintf(line, sizeof line, "from: ");
@@ -1042,14 +1267,13 @@ enum sl_err sl_pivot_tex_summary(FILE *out, const char *title, const struct sl_c
             {"ms_method", SL_PK_map_size, 0, 0}, {"soft_mae", SL_PK_map_size, 1, 0},
             {"wrong", SL_PK_scene, 0, 1},
         };
-        char cap[128], key[160];
-        snprintf(cap, sizeof cap, "%s: ", study[0] ? study : "shadowlab");
+        char key[160];
         for (size_t t = 0; t < sizeof tabs / sizeof tabs[0] && !e; t++) {
             if ((tabs[t].soft && !soft) || (tabs[t].scenes && nscenes < 2))
                 continue;
             snprintf(key, sizeof key, "%s-%s-%s", study, tabs[t].figure, sl_pivot_key_name(tabs[t].cols));
             struct sl_pivot_desc p = {.rows = SL_PK_label, .cols = tabs[t].cols, .figure = tabs[t].figure,
-                                      .caption = cap, .tex_label = key};
+                                      .tex_label = key};
             /* the study's cells only: a where on a field that is not a key */
             struct sl_cell_record *sub = malloc((size_t)ncells * sizeof *sub);
             if (!sub)
@@ -1075,13 +1299,16 @@ static int same_view(const struct sl_cell_record *a, const struct sl_cell_record
            !strcmp(a->study, b->study);
 }
 
-/* one column of a detail table: heading and the value of a cell */
+/* one column of a detail table: heading, the value of a cell and the
+ * caption's words for it */
 struct dcol {
     char   head[48];           /* plain; escaped when written */
     int    dec;
     double (*get)(const struct sl_cell_record *c, int arg);
     int    arg;
-    int    what;               /* the caption's words that name it (index into the caller's list) */
+    int    what;               /* its caption group: 0 none (the map size), 1 the pixels' classes in %, 2 a
+                                * count, 3 the time, 4 a contour's share, 5 an area light's figures */
+    char   word[48];           /* its words in the group's phrase ("in light", "2") */
 };
 
 static int image_region(const struct sl_cell_record *c)
@@ -1109,33 +1336,83 @@ static double dcol_pt(const struct dcol *col, const struct sl_cell_record *cells
     double w = text_pt(col->head);
     for (int i = 0; i < n; i++) {
         char s[64];
-        plain_number(s, sizeof s, col->get(&cells[idx[i]], col->arg), col->dec);
+        double v = col->get(&cells[idx[i]], col->arg);
+        plain_number(s, sizeof s, v, sl_tab_sig_decimals(v, col->dec));
         double x = number_pt(s) + (col->get == get_ms && cells[idx[i]].runs == 1 ? 4.0 : 0.0);
         w = x > w ? x : w;
     }
     return w;
 }
 
-/* A longtable of the view's cells idx[0..n) over columns dc[0..nc) (label
- * first, implicit); its caption names what its columns hold. A long label
- * is wrapped. */
-static int detail_longtable(FILE *f, const struct sl_cell_record *cells, const int *idx, int n,
-                            const struct dcol *dc, int nc, const char *const *words, const char *kind, int part)
+/* "a", "a and b", "a, b and c" of the words of group g's columns, appended */
+static size_t dcol_words(const struct dcol *dc, int nc, int g, char *out, size_t n)
+{
+    int k = 0, m = 0;
+    for (int c = 0; c < nc; c++)
+        m += dc[c].what == g;
+    size_t o = strlen(out);
+    for (int c = 0; c < nc; c++)
+        if (dc[c].what == g) {
+            o += (size_t)snprintf(out + o, o < n ? n - o : 0, "%s%s", k == 0 ? "" : k == m - 1 ? " and " : ", ",
+                                  dc[c].word);
+            k++;
+        }
+    return o;
+}
+
+/* The caption of a detail table: the view in words, then what each of its
+ * columns holds (only the columns of this part), the light, the study. */
+static void detail_caption(const struct sl_cell_record *v, const struct dcol *dc, int nc, const char *soft,
+                           char *cap, size_t n)
+{
+    size_t o = (size_t)snprintf(cap, n, "Scene %s, viewpoint %s, viewport %d\xC3\x97%d", v->scene, v->viewpoint,
+                                v->vw, v->vh);
+    if (v->light[0])
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0, ", %s", v->light);
+    o += (size_t)snprintf(cap + o, o < n ? n - o : 0, ", per method and shadow-map size");
+    int has[6] = {0};
+    for (int c = 0; c < nc; c++)
+        has[dc[c].what] = 1;
+    const char *sep = ": ";
+    if (has[2]) {
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0, "%sthe wrong pixels as a count", sep);
+        sep = "; ";
+    }
+    if (has[1]) {
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0, "%sthe pixels ", sep);
+        o = dcol_words(dc, nc, 1, cap, n);
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0, " (%% of the image's pixels, background excluded)");
+        sep = "; ";
+    }
+    if (has[4]) {
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0, "%sthe share of the image's wrong pixels inside the ", sep);
+        o = dcol_words(dc, nc, 4, cap, n);
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0, " px contours (%%)");
+        sep = "; ";
+    }
+    if (has[5]) {
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0, "%s%s", sep, soft);
+        sep = "; ";
+    }
+    if (has[3])
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0,
+                              "%sthe time of the method's per-pixel step (ms, the median over its timed runs; "
+                              "\xE2\x80\xA0: timed once, no median)", sep);
+    if (v->study[0])
+        o += (size_t)snprintf(cap + o, o < n ? n - o : 0, " (study %s)", v->study);
+    snprintf(cap + o, o < n ? n - o : 0, ".");
+}
+
+/* A table of the view's cells idx[0..n) over columns dc[0..nc) (the
+ * method's name first, implicit); its caption names what its columns hold.
+ * A long name is wrapped; rows more than a page holds, a float per page.
+ * Returns the floats it took since its last \clearpage, -1 out of memory. */
+static int detail_table(FILE *f, const struct sl_cell_record *cells, const int *idx, int n, const struct dcol *dc,
+                        int nc, const char *soft, const char *kind, int part, int clear)
 {
     const struct sl_cell_record *v = &cells[idx[0]];
-    /* the scene, viewpoint and viewport apart by a slash that is no break (U+2215) */
-    char cap[1024];
-    size_t o = (size_t)snprintf(cap, sizeof cap, "%s \xE2\x88\x95 %s \xE2\x88\x95 %d\xC3\x97%d: ", v->scene,
-                                v->viewpoint, v->vw, v->vh);
-    int said = 0;
-    for (int w = 0; words[w]; w++) {
-        int has = 0;
-        for (int c = 0; c < nc; c++)
-            has |= dc[c].what == w;
-        if (!has || !words[w][0])
-            continue;
-        o += (size_t)snprintf(cap + o, o < sizeof cap ? sizeof cap - o : 0, "%s%s", said++ ? "; " : "", words[w]);
-    }
+    char cap[1536];
+    detail_caption(v, dc, nc, soft, cap, sizeof cap);
     char id[256] = "detail-";
     label_key(id, sizeof id, v->study);
     label_key(id, sizeof id, "-");
@@ -1144,11 +1421,11 @@ static int detail_longtable(FILE *f, const struct sl_cell_record *cells, const i
     label_key(id, sizeof id, v->viewpoint);
     snprintf(id + strlen(id), sizeof id - strlen(id), "-%dx%d-%s-%d", v->vw, v->vh, kind, part + 1);
     struct sl_tab t;
-    sl_tab_init(&t, id, 1 + nc, 1, "%s.", cap);
+    sl_tab_init(&t, id, 1 + nc, 1, "%s", cap);
     t.small = 1;
-    t.longtable = 1;
+    t.paged = 1;
     t.fold[0] = TEX_LABELMAX;
-    sl_tab_head(&t, 0, "label");
+    sl_tab_head(&t, 0, "method");
     for (int c = 0; c < nc; c++)
         sl_tab_head(&t, 1 + c, "%s", dc[c].head);
     for (int i = 0; i < n; i++) {
@@ -1157,55 +1434,85 @@ static int detail_longtable(FILE *f, const struct sl_cell_record *cells, const i
         sl_tab_cell(&t, 0, "%s", c->display[0] ? c->display : c->label);
         for (int k = 0; k < nc; k++) {
             char s[96];
-            sl_tab_number(s, sizeof s, dc[k].get(c, dc[k].arg), dc[k].dec);
+            if (dc[k].get == get_map)
+                snprintf(s, sizeof s, "%d\xC2\xB2", c->map_size);
+            else
+                sl_tab_sig(s, sizeof s, dc[k].get(c, dc[k].arg), dc[k].dec);
             sl_tab_cell(&t, 1 + k, "%s%s", s, dc[k].get == get_ms && c->runs == 1 ? "\xE2\x80\xA0" : "");
         }
     }
-    const struct sl_emit_opts eo = {0};
-    int e = sl_emit_tex(f, &t, &eo) < 0 ? -1 : 0;
+    t.squares = 1;
+    const struct sl_emit_opts eo = {.clear = clear, .blank = 1};
+    int e = sl_emit_tex(f, &t, &eo);
     sl_tab_free(&t);
     return e;
 }
 
-/* the columns in groups that each fit beside the label; the first nkeep
- * (the map size) repeat in every group */
+/* The columns in parts that each fit beside the name, as even as the
+ * widest part allows (greedy cuts left a part of one column: 4 + 4 + 1
+ * became 3 + 3 + 3); the first nkeep (the map size) repeat in every part.
+ * *floats: floats since the last \clearpage (one is written before a table
+ * when 6 or more are pending: LaTeX holds at most 18). */
 static int detail_tables(FILE *f, const struct sl_cell_record *cells, const int *idx, int n, const struct dcol *dc,
-                          int ndc, int nkeep, const char *const *words, const char *kind)
+                         int ndc, int nkeep, const char *soft, const char *kind, int *floats)
 {
-    double lw = text_pt("label");
+    double lw = text_pt("method");
     for (int i = 0; i < n; i++) {
         double x = text_pt(cells[idx[i]].display[0] ? cells[idx[i]].display : cells[idx[i]].label);
         lw = x > lw ? x : lw;
     }
-    int wrap = lw > TEX_LABELMAX;
-    if (wrap)
+    if (lw > TEX_LABELMAX)
         lw = TEX_LABELMAX;
-    double keep = lw + TEX_COLSEP;
+    double keep = lw + TEX_COLSEP, w[SL_MAX_REGIONS + 16];
     for (int c = 0; c < nkeep; c++)
         keep += dcol_pt(&dc[c], cells, idx, n) + TEX_COLSEP;
-    int c = nkeep, part = 0, err = 0;
-    while (c < ndc && !err) {
-        double w = keep;
+    for (int c = nkeep; c < ndc; c++)
+        w[c] = dcol_pt(&dc[c], cells, idx, n) + TEX_COLSEP;
+    /* the fewest parts greedy cuts take, then the fewest columns a part
+     * with which every part still fits */
+    int parts = 0;
+    for (int c = nkeep; c < ndc; parts++) {
+        double x = keep;
         int e = c;
-        while (e < ndc && (e == c || w + dcol_pt(&dc[e], cells, idx, n) + TEX_COLSEP <= TEX_BUDGET)) {
-            w += dcol_pt(&dc[e], cells, idx, n) + TEX_COLSEP;
-            e++;
+        while (e < ndc && (e == c || x + w[e] <= TEX_BUDGET))
+            x += w[e++];
+        c = e;
+    }
+    int per = parts ? (ndc - nkeep + parts - 1) / parts : 1, cut[SL_MAX_REGIONS + 17], ncut;
+    for (;; per++) {
+        ncut = 0;
+        int ok = 1;
+        for (int c = nkeep; c < ndc;) {
+            int e = c + per < ndc ? c + per : ndc;
+            double x = keep;
+            for (int k = c; k < e; k++)
+                x += w[k];
+            ok &= x <= TEX_BUDGET || e - c == 1;
+            cut[ncut++] = c;
+            c = e;
         }
+        cut[ncut] = ndc;
+        if (ok || per >= ndc - nkeep)
+            break;
+    }
+    int err = 0;
+    for (int p = 0; p < ncut && !err; p++) {
         struct dcol sel[SL_MAX_REGIONS + 16];
         int ns = 0;
         for (int k = 0; k < nkeep; k++)
             sel[ns++] = dc[k];
-        for (int k = c; k < e; k++)
+        for (int k = cut[p]; k < cut[p + 1]; k++)
             sel[ns++] = dc[k];
-        err = detail_longtable(f, cells, idx, n, sel, ns, words, kind, part);
-        part++;
-        c = e;
+        int clear = *floats >= 6;
+        int k = detail_table(f, cells, idx, n, sel, ns, soft, kind, p, clear);
+        err = k < 0;
+        *floats = clear ? k : *floats + k;
     }
-    return err;
+    return err ? -1 : 0;
 }
 
 /* -1: out of memory */
-static int detail_view(FILE *f, const struct sl_cell_record *cells, const int *idx, int n)
+static int detail_view(FILE *f, const struct sl_cell_record *cells, const int *idx, int n, int *floats)
 {
     /* the hard cells, then the area light's */
     int *h = malloc((size_t)n * sizeof *h), *s = malloc((size_t)n * sizeof *s), err = 0;
@@ -1221,31 +1528,27 @@ static int detail_view(FILE *f, const struct sl_cell_record *cells, const int *i
             s[ns++] = idx[i];
     }
     if (nh) {
-        static const char *const words[] = {
-            "",   /* the map size: in every part */
-            "pixels in light, in shadow, undecided and wrong (% of the image's pixels; wrong also as a count)",
-            "step ms: the method's per-pixel step, the median over its timed runs (\xE2\x80\xA0: timed once, no median)",
-            "the share of the wrong pixels inside each contour (% of the image's wrong pixels)",
-            NULL,
-        };
         struct dcol dc[SL_MAX_REGIONS + 16];
         int k = 0;
-        dc[k++] = (struct dcol){"map", 0, get_map, 0, 0};
-        dc[k++] = (struct dcol){"light %", 2, get_pct, SL_FIG_light, 1};
-        dc[k++] = (struct dcol){"shadow %", 2, get_pct, SL_FIG_shadow, 1};
-        dc[k++] = (struct dcol){"undecided %", 2, get_pct, SL_FIG_uncertain, 1};
-        dc[k++] = (struct dcol){"wrong", 0, get_n, SL_FIG_wrong, 1};
-        dc[k++] = (struct dcol){"wrong %", 2, get_pct, SL_FIG_wrong, 1};
-        dc[k++] = (struct dcol){"step ms", 2, get_ms, 0, 2};
+        dc[k++] = (struct dcol){"map", 0, get_map, 0, 0, ""};
+        /* the wrong pixels first, the count beside its percentage: a split
+         * by columns keeps them in one table */
+        dc[k++] = (struct dcol){"wrong", 0, get_n, SL_FIG_wrong, 2, ""};
+        dc[k++] = (struct dcol){"wrong %", 2, get_pct, SL_FIG_wrong, 1, "wrong"};
+        dc[k++] = (struct dcol){"light %", 2, get_pct, SL_FIG_light, 1, "in light"};
+        dc[k++] = (struct dcol){"shadow %", 2, get_pct, SL_FIG_shadow, 1, "in shadow"};
+        dc[k++] = (struct dcol){"undecided %", 2, get_pct, SL_FIG_uncertain, 1, "left undecided"};
+        dc[k++] = (struct dcol){"step ms", 2, get_ms, 0, 3, ""};
         const struct sl_cell_record *c0 = &cells[h[0]];
         for (int r = 0; r < c0->fig.nregions; r++) {
             if (!c0->fig.r[r].thickness)
                 continue;
-            dc[k] = (struct dcol){"", 2, get_caught, c0->fig.r[r].thickness, 3};
+            dc[k] = (struct dcol){"", 2, get_caught, c0->fig.r[r].thickness, 4, ""};
             snprintf(dc[k].head, sizeof dc[k].head, "in %dpx %%", c0->fig.r[r].thickness);
+            snprintf(dc[k].word, sizeof dc[k].word, "%d", c0->fig.r[r].thickness);
             k++;
         }
-        err = detail_tables(f, cells, h, nh, dc, k, 1, words, "hard");
+        err = detail_tables(f, cells, h, nh, dc, k, 1, "", "hard", floats);
     }
     if (ns && !err) {
         /* the light the truth was computed for (a view has one); under a
@@ -1254,30 +1557,23 @@ static int detail_view(FILE *f, const struct sl_cell_record *cells, const int *i
         char light[400];
         if (c0->frac)
             snprintf(light, sizeof light,
-                     "under the %s, the visibility against its 0/1 truth over the PFL pixels (MAE, RMSE, bias in %% of "
+                     "the visibility against its 0/1 truth over the PFL pixels (MAE, RMSE, bias in %% of "
                      "full visibility; pixels within 0.05 and classed right, lit or umbra within "
-                     "\xCE\xB5 = %.2f of 1 or 0, in %% of the pixels)",
-                     c0->light[0] ? c0->light : "hard light", (double)SL_SOFT_HARD_TOL);
+                     "\xCE\xB5 = %.2f of 1 or 0, in %% of the pixels)", (double)SL_SOFT_HARD_TOL);
         else
             snprintf(light, sizeof light, "%s",
-                     "an area light: the visible fraction against the area truth (MAE, RMSE, bias in % of full "
+                     "the visible fraction against the area truth (MAE, RMSE, bias in % of full "
                      "visibility; pixels within 0.05 and classed right in % of the pixels)");
-        const char *const words[] = {
-            "",   /* the map size: in every part */
-            light,
-            "step ms: the method's per-pixel step, the median over its timed runs (\xE2\x80\xA0: timed once, no median)",
-            NULL,
-        };
         struct dcol dc[8];
         int k = 0;
-        dc[k++] = (struct dcol){"map", 0, get_map, 0, 0};
-        dc[k++] = (struct dcol){"MAE %", 3, get_soft, SL_SFIG_soft_mae, 1};
-        dc[k++] = (struct dcol){"RMSE %", 3, get_soft, SL_SFIG_soft_rmse, 1};
-        dc[k++] = (struct dcol){"bias %", 3, get_soft, SL_SFIG_soft_bias, 1};
-        dc[k++] = (struct dcol){"within 0.05 %", 2, get_soft, SL_SFIG_soft_within_005, 1};
-        dc[k++] = (struct dcol){"class right %", 2, get_soft, SL_SFIG_soft_class_right, 1};
-        dc[k++] = (struct dcol){"step ms", 2, get_ms, 0, 2};
-        err = detail_tables(f, cells, s, ns, dc, k, 1, words, "soft");
+        dc[k++] = (struct dcol){"map", 0, get_map, 0, 0, ""};
+        dc[k++] = (struct dcol){"MAE %", 3, get_soft, SL_SFIG_soft_mae, 5, ""};
+        dc[k++] = (struct dcol){"RMSE %", 3, get_soft, SL_SFIG_soft_rmse, 5, ""};
+        dc[k++] = (struct dcol){"bias %", 3, get_soft, SL_SFIG_soft_bias, 5, ""};
+        dc[k++] = (struct dcol){"within 0.05 %", 2, get_soft, SL_SFIG_soft_within_005, 5, ""};
+        dc[k++] = (struct dcol){"class right %", 2, get_soft, SL_SFIG_soft_class_right, 5, ""};
+        dc[k++] = (struct dcol){"step ms", 2, get_ms, 0, 3, ""};
+        err = detail_tables(f, cells, s, ns, dc, k, 1, light, "soft", floats);
     }
     free(h), free(s);
     return err;
@@ -1286,7 +1582,8 @@ static int detail_view(FILE *f, const struct sl_cell_record *cells, const int *i
 enum sl_err sl_pivot_tex_detail(FILE *out, const char *title, const struct sl_cell_record *cells, int ncells,
                                 struct sl_diag *d)
 {
-    tex_head(out, "detail tables, one longtable per view", title, cells, ncells);
+    tex_head(out, "detail tables, a float (or one a page) per view and group of columns", title, cells, ncells);
+    int floats = 0;
     int *idx = malloc((size_t)(ncells ? ncells : 1) * sizeof *idx);
     char *done = calloc((size_t)(ncells ? ncells : 1), 1);
     if (!idx || !done) {
@@ -1316,7 +1613,7 @@ enum sl_err sl_pivot_tex_detail(FILE *out, const char *title, const struct sl_ce
                 n++;
                 done[j] = 1;
             }
-        if (detail_view(out, cells, idx, n) < 0) {
+        if (detail_view(out, cells, idx, n, &floats) < 0) {
             free(idx), free(done);
             return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "detail tables");
         }

@@ -18,15 +18,25 @@
  * thousands separators, never scaled. A table estimated wider than a plain
  * article's \columnwidth (or of more than 8 numeric columns) is transposed
  * when that fits, else split into several tables by columns; the info says
- * so and the caller tells the user. A table of more than 40 rows is a
- * longtable (it breaks across pages; \usepackage{longtable}), not a float.
+ * so and the caller tells the user. A table of more rows than a page holds is a
+ * float per page (34 rows), the heads on each.
  * Markdown, CSV and JSON are never split. Markdown, CSV and each LaTeX
  * table are the table model (tabmodel.h) written by its emitters (emit.h);
  * JSON is not a table but the aggregation's record (per row the values at
  * full precision, their counts and timed_once), which scripts read.
  *
  * Also the run's LaTeX (sl_pivot_tex_summary, sl_pivot_tex_detail): a few
- * summary tables per study and a per-view appendix of longtables.
+ * summary tables per study and a per-view appendix.
+ *
+ * A paper takes the LaTeX as it is (issue 47): table* floats (a one- and a
+ * two-column class both take them; a longtable fails in a two-column one);
+ * captions in words (the figure and its base, per which keys, what an entry
+ * aggregates over and how many values, what every entry shares, the light,
+ * the study), never a figure's or a counter's name; rows and captions name
+ * a label by its display name; numbers by sl_tab_sig (an exact 0 as 0, a
+ * small value with two significant digits, never 0.00); a \label that holds
+ * the study, --of, --agg and every --where; a pivot whose entries are all
+ * 0 a sentence, not a table (info->zero).
  * Owns: nothing it returns. Does not: read the store, print to a terminal.
  */
 #ifndef SL_PIVOT_H
@@ -63,7 +73,6 @@ struct sl_pivot_desc {
     enum sl_pivot_agg agg;
     int               nwhere;
     struct { enum sl_pivot_key key; const char *value; } where[SL_PIVOT_MAX_WHERE];
-    const char       *caption;          /* LaTeX/Markdown caption's start ("moderno-2011: "), NULL none */
     const char       *tex_label;        /* \label{tab:...} key, NULL: from the figure and keys */
 };
 
@@ -72,6 +81,7 @@ struct sl_pivot_info {
     int nrows, ncols;                   /* the table's, before any split */
     int parts;                          /* tables written (0: no cell had the figure) */
     int transposed;
+    int zero;                           /* LaTeX: every entry 0, a sentence written instead of the table */
 };
 
 /* "label=nsm" -> p->where[p->nwhere++]; SL_E_USAGE (key "--where") if the
@@ -89,7 +99,7 @@ enum sl_err sl_pivot_write(FILE *out, enum sl_table_format fmt, const struct sl_
  * light's error, and label x scene when there are several scenes. */
 enum sl_err sl_pivot_tex_summary(FILE *out, const char *title, const struct sl_cell_record *cells, int ncells,
                                  struct sl_diag *d);
-/* The run's table-detail.tex: per view a longtable of every label and map
+/* The run's table-detail.tex: per view floats of every label and map
  * size (light, shadow, undecided, wrong, the share caught by each contour,
  * the time), for an appendix. */
 enum sl_err sl_pivot_tex_detail(FILE *out, const char *title, const struct sl_cell_record *cells, int ncells,

@@ -238,3 +238,17 @@ void sl_tab_number(char *out, size_t n, double v, int dec)
     if (dot && o < n)
         snprintf(out + o, n - o, "%s", dot);
 }
+
+int sl_tab_sig_decimals(double v, int dec)
+{
+    if (!isfinite(v) || v == 0.0 || dec <= 0)
+        return dec > 0 && v == 0.0 ? 0 : dec;
+    int d = 1 - (int)floor(log10(fabs(v)));
+    d = d > dec ? d : dec;
+    return d < SL_TAB_SIG_MAXDEC ? d : SL_TAB_SIG_MAXDEC;
+}
+
+void sl_tab_sig(char *out, size_t n, double v, int dec)
+{
+    sl_tab_number(out, n, v, sl_tab_sig_decimals(v, dec));
+}

@@ -57,17 +57,18 @@ struct sl_tab {
                              * fails (its verdict) */
     int   termw[SL_TAB_MAXCOLS];   /* terminal: a column's width in characters (a longer cell runs over);
                              * 0: its widest cell; the last column is never padded */
-    int   longtable;        /* LaTeX: a longtable at \small (its heads repeated on every page), not a
-                             * float fitted to the line: nothing stacked, wrapped or split */
+    int   paged;            /* LaTeX: a table longer than a page, laid out by its writer (as fixed): floats
+                             * of a page of rows each, its heads on every one, the later ones numbered as
+                             * the first with "(continued)" (a longtable fails in a two-column class) */
     int   nolabel;          /* LaTeX: no \label (a table nothing refers to) */
     int   fixed;            /* LaTeX: one float laid out by its writer, not fitted to the line: nothing
                              * stacked or split; a cell (not a head) wrapped only in its column's parbox */
     double parbox[SL_TAB_MAXCOLS];  /* LaTeX, fixed: the width (pt) of a ragged \parbox around the column's
                              * cells that are not empty; 0: none */
-    double fold[SL_TAB_MAXCOLS];    /* LaTeX, fixed or longtable: a cell estimated wider than this (pt, tex.h)
+    double fold[SL_TAB_MAXCOLS];    /* LaTeX, fixed or paged: a cell estimated wider than this (pt, tex.h)
                              * set in a ragged \parbox[t] of this width, a break allowed after '_', '-'
                              * and '/' (the pivots' long row names); 0: none */
-    int   small;            /* LaTeX, fixed or longtable: at \small with LaTeX's own \tabcolsep (the pivots,
+    int   small;            /* LaTeX, fixed or paged: at \small with LaTeX's own \tabcolsep (the pivots,
                              * whose writer estimates their widths so), not \footnotesize with 4 pt */
     int   squares;          /* LaTeX: a number squared ("512²") in math, $512^2$, not 512\textsuperscript{2} */
     int   stack;            /* LaTeX, fixed: a value cell "v (where)" as two lines, v above "(where)" */
@@ -108,6 +109,17 @@ void sl_tab_free(struct sl_tab *t);
  * unless it rounds to zero, an en dash (U+2013) for NaN. LaTeX writes them
  * as \, and $-$ and --, sl_tex_number's forms. */
 void sl_tab_number(char *out, size_t n, double v, int dec);
+
+/* v for a paper's table (sl_tab_number's signs): an exact zero as "0"; a
+ * value that dec decimals would show with fewer than two significant
+ * digits with as many more as give it two (dec 2: 0.0034 stays 0.0034, not
+ * 0.00; 0.05 is 0.050), at most SL_TAB_SIG_MAXDEC; counts (dec 0) as they
+ * are. A column of such numbers mixes decimals; that is the choice: a small
+ * error that 0.00 hides is a claim the table would get wrong, a ragged
+ * column is not. sl_tab_sig_decimals: the decimals it writes v with. */
+#define SL_TAB_SIG_MAXDEC 8
+void sl_tab_sig(char *out, size_t n, double v, int dec);
+int  sl_tab_sig_decimals(double v, int dec);
 
 /* Cell r, c ("" when empty). */
 const char *sl_tab_at(const struct sl_tab *t, int r, int c);
