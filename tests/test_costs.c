@@ -144,7 +144,7 @@ static void costs_gl_note(void **st)
  * uploaded as textures, reading back one visibility a pixel. On llvmpipe
  * (a shared 2-core VM, primitives/side, 384x384, map 1024) nsm_glsl's map
  * pass measured 4x-5x nsm's, its lookup 2.5x-3.5x, its readback 1/5-1/16:
- * totals 2.6x-4.3x over 7 runs at load average 10-14 (doc/performance.md,
+ * totals 2.6x-4.3x over 7 runs at load average 10-14 (doc/guide.md,
  * "Cost stages"). A factor of 6 holds that with room for a loaded machine;
  * the stage assertions above, not the factor, are what catch a stage left
  * out of one method's total. */
