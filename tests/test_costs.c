@@ -104,8 +104,20 @@ static void costs_reps_adaptive(void **st)
     assert_int_equal(first, 0);
     assert_int_equal(timed, 1);
     assert_true(o[0] == 500.0);
-    /* the run's share: nothing else has taken time yet, so no repetition fits */
+    /* unless it is the run's first of its kind: its real run is cold, so it
+     * is repeated once whatever the budget, and the repetition is its time */
+    const double cold[3] = {500, 5, 5};
+    sl_reps_init(&r, SL_REP_ADAPTIVE, 1, 5, 0.0, 1, 1e9);
+    assert_int_equal(stage(&r, cold, 3, &timed, &first, o, &stop), 2);
+    assert_int_equal(stop, SL_REP_STOP_BUDGET);
+    assert_int_equal(timed, 1);
+    assert_true(o[0] == 5.0);
+    assert_int_equal(stage(&r, cold, 3, &timed, &first, o, &stop), 1);   /* the second: not cold */
+    /* the run's share: nothing else has taken time yet, so no repetition
+     * fits past the first stage's forced one */
     sl_reps_init(&r, SL_REP_ADAPTIVE, 1, 5, 0.0, 1e9, 0.3);
+    assert_int_equal(stage(&r, slow, 8, &timed, &first, o, &stop), 2);
+    assert_int_equal(stop, SL_REP_STOP_SHARE);
     assert_int_equal(stage(&r, slow, 8, &timed, &first, o, &stop), 1);
     assert_int_equal(stop, SL_REP_STOP_SHARE);
     /* warmup 0 with runs 1: the real run is the one timed, as {warmup: 0, runs: 1} always was */
@@ -118,6 +130,7 @@ static void costs_reps_adaptive(void **st)
     sl_reps_describe(&r, 1000.0, line, sizeof line);
     assert_non_null(strstr(line, "repetitions: adaptive"));
     assert_non_null(strstr(line, "method 1 x, 1 runs (runs 1)"));
+    assert_non_null(strstr(line, "repetitions 0.0 s, 0% on top of the run's other 1.0 s"));
 }
 
 static void costs_gl_note(void **st)

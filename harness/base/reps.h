@@ -16,7 +16,9 @@
  *             long as the last); every stage's repetitions together stay
  *             within `share` of the run's wall time outside them. A stage
  *             whose own run already exceeds the budget (a truth trace, a
- *             large map) is timed once: its real computation.
+ *             large map) is timed once: its real computation; but the
+ *             run's first stage of each kind is repeated at least once
+ *             (with a warm-up asked), as its real run is cold.
  * Why a budget and a share rather than a count alone: a fixed {warmup 1,
  * runs 3} ran every stage 4 times and made a study 2.4x as costly as
  * computing it once; the share bounds that factor by 1 + share for any

@@ -16,6 +16,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include "provenance.h"
 #include "tex.h"   /* the width estimates: the writer lays out its floats */
 #include "util.h"
 
@@ -330,6 +331,7 @@ struct pivot {
     int           any_frac, any_area;  /* soft cells of the table: a hard light's (frac), an area light's */
     char          lights[256];         /* and the lights their truths were computed for, each once */
     uint64_t      nonfinite;           /* and their sum */
+    char          renderer[128];       /* a time: the GL renderer of its cells ("" unknown; "several") */
 };
 
 static void pivot_free(struct pivot *pv)
@@ -469,6 +471,12 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
             pv->any_area |= !c->frac;
             add_light(pv->lights, sizeof pv->lights, c->light[0] ? c->light : c->frac ? "hard light" : "area light");
         }
+        if (kept && pv->g.src == SRC_COL && cols[pv->g.k].is_ms) {
+            if (!pv->renderer[0])
+                snprintf(pv->renderer, sizeof pv->renderer, "%s", c->gl_renderer);
+            else if (strcmp(pv->renderer, c->gl_renderer))
+                snprintf(pv->renderer, sizeof pv->renderer, "several GL renderers (see the store's runs)");
+        }
         if (kept && c->nonfinite) {
             pv->nf_cells++;
             pv->nonfinite += c->nonfinite;
@@ -565,7 +573,10 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
                                                : (cols[pv->g.k].is_ms ? "time (median over the repetitions)" : "counter");
     /* the names the tables and the report give these times (guide.md) */
     if (pv->g.src == SRC_COL && !strcmp(name, "ms_method"))
-        text = "step ms, the method's per-pixel step (median over the repetitions)";
+        text = "step ms, the method's per-pixel step: lookup and rays (median over the repetitions)";
+    else if (pv->g.src == SRC_COL && !strcmp(name, "ms_cost"))
+        text = "total ms, the cell's stages summed: map pass, post, lookup, readback, rays (medians over the "
+               "repetitions)";
     else if (pv->g.src == SRC_COL && !strcmp(name, "ms_map_render"))
         text = "layers ms, the shadow-map render of the layers the method reads (median over the repetitions)";
     char over[256];
@@ -592,7 +603,14 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
                               sl_pivot_key_name(p->where[w].key), p->where[w].value);
     o += (size_t)snprintf(out + o, o < n ? n - o : 0, ".");
     if (pv->any_once)
-        snprintf(out + o, o < n ? n - o : 0, " \xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.");
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0,
+                              " \xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.");
+    /* a time: what it was measured on (provenance.h) */
+    if (pv->g.src == SRC_COL && cols[pv->g.k].is_ms) {
+        char gl[400];
+        sl_gl_times_note(pv->renderer, gl, sizeof gl);
+        snprintf(out + o, o < n ? n - o : 0, " %s", gl);
+    }
 }
 
 /* The NON-FINITE note of table.md under a pivot whose cells hold values
@@ -1039,7 +1057,7 @@ enum sl_err sl_pivot_tex_summary(FILE *out, const char *title, const struct sl_c
             int soft, scenes;
         } tabs[] = {
             {"wrong", SL_PK_map_size, 0, 0},   {"uncertain", SL_PK_map_size, 0, 0},
-            {"ms_method", SL_PK_map_size, 0, 0}, {"soft_mae", SL_PK_map_size, 1, 0},
+            {"ms_cost", SL_PK_map_size, 0, 0}, {"soft_mae", SL_PK_map_size, 1, 0},
             {"wrong", SL_PK_scene, 0, 1},
         };
         char cap[128], key[160];
