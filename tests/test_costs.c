@@ -243,6 +243,17 @@ static void costs_nsm_glsl(void **st)
     assert_non_null(strstr(buf, r.prov.gl_renderer));
     if (strstr(r.prov.gl_renderer, "llvmpipe"))
         assert_non_null(strstr(buf, "CPU-emulated GL times"));
+    /* costs.csv: the stage columns in its header, the renderer closing each row */
+    snprintf(path, sizeof path, "%s/costs/costs.csv", sl_test_dir);
+    assert_non_null(f = fopen(path, "r"));
+    n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    assert_non_null(strstr(buf, ",ms_map,ms_post,ms_lookup,ms_readback,ms_cost,ms_cost_min,ms_cost_max,"));
+    assert_non_null(strstr(buf, ",machine,gl_renderer\n"));
+    char quoted[200];
+    snprintf(quoted, sizeof quoted, ",\"%s\"\n", r.prov.gl_renderer);
+    assert_non_null(strstr(buf, quoted));
     sl_run_result_free(&r);
     sl_config_free(&c);
 }

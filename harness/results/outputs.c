@@ -189,20 +189,24 @@ static void csv_cell(struct sl_tab *t, int j, const struct sl_cell_record *r, en
 
 /* costs.csv in the model: a row per cell, the columns of cellcols.h with a
  * csv position, then the provenance (the machine always quoted: the file
- * has always quoted it, and scripts that split on commas expect it so) */
+ * has always quoted it, and scripts that split on commas expect it so),
+ * then the GL renderer the times were measured on, quoted too (CSV has no
+ * caption: what a time is travels with each row) */
 static void costs_csv_model(struct sl_tab *t, const struct sl_config *c, const struct sl_run_result *res)
 {
     char machine[300];
     machine_of(&res->prov, machine, sizeof machine);
     enum sl_cell_col order[SL_COL_COUNT];
     int ncols = csv_order(order);
-    sl_tab_init(t, "costs", ncols + 3, 0, "costs");
+    sl_tab_init(t, "costs", ncols + 4, 0, "costs");
     for (int j = 0; j < ncols; j++)
         sl_tab_head(t, j, "%s", csv_head[order[j]]);
     sl_tab_head(t, ncols, "git_sha");
     sl_tab_head(t, ncols + 1, "config_hash");
     sl_tab_head(t, ncols + 2, "machine");
+    sl_tab_head(t, ncols + 3, "gl_renderer");
     sl_tab_quote(t, ncols + 2);
+    sl_tab_quote(t, ncols + 3);
     for (int i = 0; i < res->ncells; i++) {
         struct sl_cell_record r;
         sl_out_record(c, &res->cells[i], &r);
@@ -212,6 +216,7 @@ static void costs_csv_model(struct sl_tab *t, const struct sl_config *c, const s
         sl_tab_cell(t, ncols, "%s", res->prov.git_sha);
         sl_tab_cell(t, ncols + 1, "%016llx", c->hash);
         sl_tab_cell(t, ncols + 2, "%s", machine);
+        sl_tab_cell(t, ncols + 3, "%s", res->prov.gl_renderer);
     }
 }
 
