@@ -222,6 +222,8 @@ static void costs_nsm_glsl(void **st)
     /* the package's lookup is a GL pass with its GPU time; the C lookup has none */
     assert_true(cell[1]->ms.gpu_lookup > 0.0);
     assert_true(isnan(cell[0]->ms.gpu_lookup));
+    /* and neither ran a post pass: no GPU time of one */
+    assert_true(isnan(cell[0]->ms.gpu_post) && isnan(cell[1]->ms.gpu_post));
     /* one texel read per PFL pixel, counted alike */
     assert_int_equal(cell[0]->cost.lookups, cell[0]->n_pfl);
     assert_int_equal(cell[1]->cost.lookups, cell[0]->cost.lookups);

@@ -698,7 +698,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         st[MS_RAYS][r] = cost.ms_trace;
         st[MS_STEP][r] = cost.ms_method - cost.ms_map - cost.ms_post - cost.ms_readback;
         st[MS_GPU_MAP][r] = cost.gpu_map;
-        st[MS_GPU_POST][r] = cost.gl_passes ? cost.gpu_post : NAN;
+        st[MS_GPU_POST][r] = cost.gl_passes && cost.ms_post > 0.0 ? cost.gpu_post : NAN;   /* NAN: no post pass */
         st[MS_GPU_LOOKUP][r] = cost.gl_passes ? cost.gpu_lookup : NAN;
         r++;
     } while (sl_rep_more(rs));
