@@ -133,6 +133,13 @@ enum sl_err sl_cube_method_run(struct sl_cube *cb, const struct sl_method *m, co
         cb->cost[f].rays = nc.rays;
         cb->cost[f].tri_tests = nc.tri_tests;
         c->ms_trace += nc.ms_trace;
+        c->ms_map += nc.ms_map;
+        c->ms_post += nc.ms_post;
+        c->ms_readback += nc.ms_readback;
+        c->gpu_map += nc.gpu_map;
+        c->gpu_post += nc.gpu_post;
+        c->gpu_lookup += nc.gpu_lookup;
+        c->gl_passes |= nc.gl_passes;
         for (int k = 0; k < 4; k++)
             c->ms_step[k] += nc.ms_step[k];
         c->lookups += nc.lookups;

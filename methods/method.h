@@ -45,7 +45,8 @@
  *   `lookups` one per shadow-map texel read (a 3x3 PCF is 9 a pixel),
  *   `rays` one per ray given to Embree (sl_method_trace_left counts its
  *   own), `tri_tests` one per ray-triangle test outside Embree; ms_method
- *   the method's own per-pixel work, its ray step included. Add to them:
+ *   all its run took, its ray step (ms_trace) and any GL pass of its own
+ *   (ms_map, ms_post, ms_readback) included. Add to them:
  *   the driver zeroes them and sums a cube's faces.
  */
 #ifndef SL_METHOD_H
@@ -131,8 +132,18 @@ void sl_verdicts_drop_frames(struct sl_verdicts *vd);
 
 /* Machine-independent counts beside wall time. */
 struct sl_cost {
-    double   ms_method;     /* the method's own per-pixel work (its ray step included) */
+    double   ms_method;     /* all the method's run took (its own GL passes and its ray step included) */
     double   ms_trace;      /* of which: the ray step */
+    /* of which: the GL passes of a method rendering maps of its own (a
+     * technique package, render/techpass.h; 0 for a method reading the
+     * driver's layers): the map pass, the post passes (blur, mipmaps), the
+     * readback of its visibility, and gl_passes set; their GPU times
+     * (GL_TIME_ELAPSED) beside, with its lookup pass's. The cell's stages
+     * (cellcols.h) are made from these: lookup = ms_method - ms_map - ms_post
+     * - ms_readback - ms_trace. */
+    double   ms_map, ms_post, ms_readback;
+    double   gpu_map, gpu_post, gpu_lookup;
+    int      gl_passes;
     double   ms_step[4];    /* a chain's steps (coherence, neighbours, adjacency, the rest) */
     uint64_t lookups;       /* shadow-map texel reads */
     uint64_t rays;          /* shadow rays handed to Embree */

@@ -90,10 +90,13 @@ static enum sl_err pkg_frame(struct pkg *k, const struct sl_method_args *a, cons
     if (e)
         return e;
     const struct sl_techpass_costs *pc = &k->pass.costs;
-    c->ms_step[0] += pc->ms_map;
-    c->ms_step[1] += pc->ms_post;
-    c->ms_step[2] += pc->ms_lookup;
-    c->ms_step[3] += pc->ms_readback;
+    c->ms_map += pc->ms_map;
+    c->ms_post += pc->ms_post;
+    c->ms_readback += pc->ms_readback;
+    c->gpu_map += pc->gpu_map;
+    c->gpu_post += pc->gpu_post;
+    c->gpu_lookup += pc->gpu_lookup;
+    c->gl_passes = 1;
     c->ms_method += pc->ms_map + pc->ms_post + pc->ms_lookup + pc->ms_readback;
     c->lookups += pc->lookups;
     out->nonfinite += pc->map_nonfinite;

@@ -15,8 +15,9 @@
  * in the package's order, then the cascades' (partitions, lambda), given
  * in the config entry like a C method's (struct sl_method_params: tech,
  * values); costs: `lookups` the package's taps per pixel looked up, ms_method
- * the map pass, the post passes, the lookup pass and the readback, each
- * also apart in ms_step[0..3].
+ * the map pass, the post passes, the lookup pass and the readback, the
+ * map, post and readback also apart (ms_map, ms_post, ms_readback) with
+ * the GPU times of its passes, so a cell's stages read as a C method's.
  *
  * A package whose technique.yaml declares `trace: {between: [lo, hi]}` is a
  * hybrid: the PFL pixels whose visibility lies in [lo, hi] are traced with

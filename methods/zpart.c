@@ -147,6 +147,14 @@ enum sl_err sl_zpart_run_k(const struct sl_method_args *a, int k, double lambda,
         frame_for(a->scene, &box, a->frame->size, &out->frames[s]);
         if ((e = sl_shadowmap_render(a->spass, a->mesh, &out->frames[s], needs, d)))
             break;
+        /* the slice's map pass and readback are the cell's map and readback
+         * stages (method.h), as the driver's layers are a C method's */
+        for (int l = 0; l < SL_LAYER_COUNT; l++)
+            if (out->frames[s].have & SL_NEED(l)) {
+                c->ms_map += out->frames[s].layer[l].ms_render;
+                c->ms_readback += out->frames[s].layer[l].ms_readback;
+                c->gpu_map += out->frames[s].layer[l].ms_gpu;
+            }
         for (size_t i = 0; i < n; i++)
             cls[i] = out->slice[i] == s ? v->cls[i] : (uint8_t)SL_C_BACKGROUND;
         struct sl_method_args na = *a;

@@ -38,12 +38,11 @@ static int image_region(const struct sl_cell_record *c)
 
 static double milli(uint64_t v) { return (double)v / 1000.0; }
 
-/* Time of a cell's method: its layers' render plus its own step (zpart and
- * lispsm render their maps inside their step: ms_map_render is 0 there). */
+/* Time of a cell's method: its stages summed (zpart's and lispsm's slices'
+ * maps in its map pass, as the driver's layers are NSM's). */
 static double cell_ms(const struct sl_cell_record *c)
 {
-    double a = isnan(c->ms_map_render) ? 0.0 : c->ms_map_render, b = isnan(c->ms_method) ? 0.0 : c->ms_method;
-    return a + b;
+    return sl_report_cell_ms(c, 0);
 }
 
 static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report_study *s,
@@ -66,8 +65,8 @@ static enum sl_err view_tables(struct sl_report_doc *doc, const struct sl_report
     sl_tab_notef(&t,
              "Whole image, PFL pixels. texels: the shadow-map texels the method looks up (k maps for k slices); "
              "wrong %%: of the PFL pixels; m median: over the PFL pixels, and over the wrong ones; "
-             "layers + step ms: its layers' render plus its per-pixel step, medians (zpart and lispsm render their own maps "
-             "inside their step). The band columns (m <= 1, 1-2, 2-4, 4-8, > 8): the wrong pixels whose m falls in "
+             "layers + step ms: the cell's stages summed (ms_cost: map pass, zpart's and lispsm's slices' maps included, "
+             "post, lookup, readback, rays), medians. The band columns (m <= 1, 1-2, 2-4, 4-8, > 8): the wrong pixels whose m falls in "
              "the band, and in brackets the band's share of all PFL pixels of the view.");
     int rows = 0, once = 0;
     for (int l = 0; l < s->nlabels; l++)

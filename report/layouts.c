@@ -29,6 +29,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "provenance.h"
 #include "report_int.h"
 #include "util.h"
 
@@ -720,20 +721,29 @@ enum sl_err sl_report_costs(struct sl_report_doc *doc, const struct sl_report_st
         }
     free(meth);
     free(map);
+    /* the renderer the times are of: the cells' (the store's runs), once */
+    char gl[400];
+    const char *ren = s->n > 0 ? s->cells[0].gl_renderer : "";
+    for (int i = 1; i < s->n; i++)
+        if (strcmp(s->cells[i].gl_renderer, ren))
+            ren = "several GL renderers (see the runs table)";
+    sl_gl_times_note(ren, gl, sizeof gl);
     sl_tab_notef(&t,
              "Times: the median over the cells (scenes, viewpoints, viewports) of each cell's median over %d "
              "timed repetition(s), in brackets the lowest and highest single repetition. Counters: mean per cell "
              "(rays / pixel: over all non-background pixels). GS prims and fragments are GL query counts of the "
-             "layers the method reads. step ms: the method's per-pixel step (ray step included); layers "
-             "ms: the shadow-map render of the layers it reads.", runs);
+             "layers the method reads. step ms: the method's per-pixel step (lookup and rays); layers "
+             "ms: the shadow-map render of the driver's layers it reads (a package's own map pass, zpart's "
+             "slices: in its stages, ms_cost). %s", runs, gl);
     if (once)
         sl_report_tab_once(&t);
     enum sl_err e = sl_report_doc_table(doc, &t, d);
     sl_tab_free(&t);
     if (!e)
         sl_report_doc_para(doc,
-                           "These times come from one CPU-only machine: OpenGL runs on llvmpipe and the rays on "
-                           "Embree, so rasterisation is slow and rays are cheap compared with a GPU. The "
+                           "Where the renderer above is llvmpipe these times come from a CPU-only machine: "
+                           "OpenGL runs on CPU threads and the rays on Embree, so rasterisation is slow and rays "
+                           "are cheap compared with a GPU. The "
                            "machine-independent counters (shadow rays, ray-triangle tests, map lookups, "
                            "geometry-shader primitives, fragments) let a reader carry the comparison to a GPU, "
                            "where the balance between raster and ray cost differs: weigh each counter with that "

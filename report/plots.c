@@ -99,13 +99,13 @@ enum sl_err sl_report_points(const struct sl_cell_record *cells, int ncells, str
         }
         struct sl_report_point *q = &p[k];
         q->ncells++;
-        q->ms_layers += c->ms_map_render;
+        /* the step, and every other stage (map pass, post, readback: cellcols.h) as
+         * "layers", so a package's own map pass counts as NSM's layer does */
         q->ms_step += c->ms_method;
-        /* with one run min = max = median; an old store without them keeps the median */
-        q->ms_min += (c->ms_map_render_min > 0 ? c->ms_map_render_min : c->ms_map_render) +
-                     (c->ms_method_min > 0 ? c->ms_method_min : c->ms_method);
-        q->ms_max += (c->ms_map_render_max > 0 ? c->ms_map_render_max : c->ms_map_render) +
-                     (c->ms_method_max > 0 ? c->ms_method_max : c->ms_method);
+        q->ms_layers += sl_report_cell_ms(c, 0) - c->ms_method;
+        /* with one run min = max = median */
+        q->ms_min += sl_report_cell_ms(c, 1);
+        q->ms_max += sl_report_cell_ms(c, 2);
         q->reps = q->ncells == 1 || c->runs < q->reps ? c->runs : q->reps;
         int r = sl_report_region(c, 0);
         double px = r >= 0 ? (double)c->fig.r[r].n[SL_FIG_pixels] : 0.0;

@@ -280,8 +280,7 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
                     sl_tab_cell(&t, 4, "%.3f", 100.0 * (double)n[SL_FIG_shadow_incorrect] / px);
                     sl_tab_cell(&t, 5, "%.3f", 100.0 * (double)n[SL_FIG_uncertain] / px);
                     sl_tab_cell(&t, 6, "%.3f", 100.0 * (double)n[SL_FIG_traced] / px);
-                    sl_tab_cell(&t, 7, "%.3f%s", c->ms_map_render + c->ms_method,
-                                       c->runs == 1 ? SL_REPORT_ONCE : "");
+                    sl_tab_cell(&t, 7, "%.3f%s", sl_report_cell_ms(c, 0), c->runs == 1 ? SL_REPORT_ONCE : "");
                     once |= c->runs == 1;
                     char ov[200], file[300], sc2[64], lb[48];
                     sl_tab_slug(c->label, lb, sizeof lb);
@@ -299,8 +298,8 @@ static enum sl_err section_views(struct sl_report_doc *doc, const struct sl_repo
                     }
                 }
             /* layers + step ms: the same sum as the accuracy table's, so one name */
-            sl_tab_notef(&t, "layers + step ms: the shadow-map render of the layers the method "
-                     "reads plus its per-pixel step, medians over the timed repetitions.");
+            sl_tab_notef(&t, "layers + step ms: the cell's stages summed (ms_cost: the shadow maps it reads or "
+                             "renders, post passes, lookup, readback, rays), medians over the timed repetitions.");
             if (once)
                 sl_report_tab_once(&t);
             e = sl_report_doc_table(doc, &t, d);

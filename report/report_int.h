@@ -13,6 +13,7 @@
  */
 #ifndef SL_REPORT_INT_H
 #define SL_REPORT_INT_H
+#include <math.h>
 #include <stdio.h>
 #include "emit.h"
 #include "report.h"
@@ -237,6 +238,23 @@ int  sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_
 /* For sections outside plots.c: a string quoted for gnuplot (the plot
  * itself: sl_report_plot_draw above). */
 void        sl_report_gp_quote(FILE *f, const char *s);
+
+/* A cell's whole cost, ms, with its min and max (which: 0 median, 1 min, 2
+ * max): ms_cost, its stages summed (cellcols.h: map pass, post, lookup,
+ * readback, rays), the one total every report table and plot shows; a
+ * record without it (NAN: tests' hand-made cells) adds the layers' render
+ * and the step. */
+static inline double sl_report_cell_ms(const struct sl_cell_record *c, int which)
+{
+    const double tot[3] = {c->ms_cost, c->ms_cost_min, c->ms_cost_max};
+    const double lay[3] = {c->ms_map_render, c->ms_map_render_min, c->ms_map_render_max};
+    const double st[3] = {c->ms_method, c->ms_method_min, c->ms_method_max};
+    if (!isnan(tot[which]) && tot[which] > 0.0)
+        return tot[which];
+    double a = isnan(lay[which]) || lay[which] <= 0.0 ? (isnan(lay[0]) ? 0.0 : lay[0]) : lay[which];
+    double b = isnan(st[which]) || st[which] <= 0.0 ? (isnan(st[0]) ? 0.0 : st[0]) : st[which];
+    return a + b;
+}
 
 /* aliasing.c: the aliasing error m (seed 004) per label: tables and the error rate against m */
 int         sl_report_aliasing_applies(const struct sl_report_study *s);

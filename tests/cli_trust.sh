@@ -33,11 +33,13 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL $*"; exit 1; }
 # the store's cells with every column but timings and ids, one line per
-# cell (the digest covers those: left out too), sorted; their figures the same; the overlays' names and bytes
+# cell (the digest covers those: left out too), sorted; their figures the same; the overlays' names and bytes.
+# runs and runs_map are timings too: how many runs the repetitions policy timed (reps.h), which the
+# time each run took decides
 cells_of() {
   local cols
   cols=$(sqlite3 "$1" "SELECT group_concat(name, ' || ''|'' || ') FROM pragma_table_info('cells')
-                       WHERE name NOT LIKE 'ms%' AND name NOT IN ('cell_id', 'run_id', 'digest')")
+                       WHERE name NOT LIKE 'ms%' AND name NOT IN ('cell_id', 'run_id', 'digest', 'runs', 'runs_map')")
   sqlite3 "$1" "SELECT $cols FROM cells" | sort
 }
 figs_of() {

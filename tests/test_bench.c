@@ -30,8 +30,10 @@ static void bench_parse_stages(void **st)
     assert_int_equal(bits, SL_BENCH_STAGE(TRUTH) | SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(LAYERS) |
                                SL_BENCH_STAGE(MORAIS));
     assert_int_equal(sl_bench_parse_stages("truth,moderno,layers,backends,morais,jobs,churn,techniques,startup,scoring,"
-                                           "lightfit,bigmap", &bits, &d), SL_OK);
+                                           "lightfit,bigmap,timing", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_ALL);
+    assert_int_equal(sl_bench_parse_stages("timing", &bits, &d), SL_OK);
+    assert_int_equal(bits, SL_BENCH_STAGE(TIMING));
     assert_int_equal(sl_bench_parse_stages("bigmap", &bits, &d), SL_OK);
     assert_int_equal(bits, SL_BENCH_STAGE(BIGMAP));
     assert_int_equal(sl_bench_parse_stages("scoring", &bits, &d), SL_OK);
@@ -50,7 +52,7 @@ static void bench_parse_stages(void **st)
     assert_non_null(strstr(d.msg, "'layer'"));
     /* every stage named in the message, in the order of SL_BENCH_STAGES */
     assert_non_null(strstr(d.msg, "(known: truth, layers, backends, moderno, morais, jobs, churn, techniques, "
-                                  "startup, scoring, lightfit, bigmap)"));
+                                  "startup, scoring, lightfit, bigmap, timing)"));
     assert_int_equal(sl_bench_parse_stages("", &bits, &d), SL_E_USAGE);
 }
 

@@ -11,6 +11,7 @@
 #include "sl_test.h"
 
 #include "config.h"
+#include "reps.h"
 #include "method.h"
 #include "package.h"
 #include "session.h"
@@ -28,7 +29,9 @@ static void config_default_loads(void **st)
     assert_string_equal(c.scenes[0].name, "primitives");
     assert_int_equal(c.scenes[0].nviewpoints, 3);
     assert_string_equal(c.scenes[0].viewpoints[2], "against");
-    assert_int_equal(c.runs, 3);   /* the default repetitions {1, 3}: default.yaml gives none */
+    /* the default repetitions (reps.h): default.yaml gives none */
+    assert_int_equal(c.rep_mode, SL_REP_ADAPTIVE);
+    assert_int_equal(c.runs, 5);
     assert_int_equal(c.warmup, 1);
     assert_int_equal(c.nmaps, 2);
     assert_int_equal(c.maps[0], 1024);
@@ -206,8 +209,8 @@ static void write_tmp(char *path, const char *text)
     fclose(f);
 }
 
-/* Repetitions left out: {warmup: 1, runs: 3} (a time from one run has no
- * median), written out as such; given, as given. */
+/* Repetitions left out: adaptive, at most 5 timed runs after the real one
+ * (reps.h), written out in full; given, as given. */
 static void config_repetitions_default(void **st)
 {
     (void)st;
@@ -220,22 +223,26 @@ static void config_repetitions_default(void **st)
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    assert_int_equal(c.rep_mode, SL_REP_ADAPTIVE);
     assert_int_equal(c.warmup, 1);
-    assert_int_equal(c.runs, 3);
+    assert_int_equal(c.runs, 5);
+    assert_true(c.rep_spread == 0.1 && c.rep_budget_ms == 100.0 && c.rep_share == 0.3);
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     sl_config_write(&c, f);
     fclose(f);
-    assert_non_null(strstr(buf, "\nrepetitions: {warmup: 1, runs: 3}\n"));
+    assert_non_null(strstr(buf, "\nrepetitions: {mode: adaptive, warmup: 1, runs: 5, spread: 0.1, budget_ms: 100, "
+                                "share: 0.3}\n"));
     free(buf);
     write_tmp(path, "name: reps\n"
                     "scenes: [{scene: primitives, viewpoints: [side]}]\n"
                     "map_sizes: [512]\n"
                     "methods: [{label: nsm, method: nsm}]\n"
-                    "repetitions: {runs: 1}\n");
+                    "repetitions: {mode: fixed, runs: 1}\n");
     sl_config_free(&c);
     assert_int_equal(sl_config_load(path, &c, &d), SL_OK);
+    assert_int_equal(c.rep_mode, SL_REP_FIXED);
     assert_int_equal(c.warmup, 1);
     assert_int_equal(c.runs, 1);
     unlink(path);

@@ -72,7 +72,7 @@ static void cube_six_faces(void **st)
     memset(&cb, 0, sizeof cb);
     const unsigned needs = SL_NEED(SL_LAYER_DEPTH_ID);
     int layers[SL_LAYER_COUNT] = {0};
-    struct sl_layer_timing t = {.warmup = 0, .runs = 1, .layers = layers};
+    struct sl_layer_timing t = {.layers = layers};
     assert_int_equal(sl_cube_ensure(&cb, &sp, &fx.mesh, &fx.scene, &v, 0, 256, needs, needs, &t, NULL, &d), SL_OK);
     uint32_t shadowed[6] = {0}, pfl[6] = {0};
     for (size_t i = 0; i < (size_t)v.w * (size_t)v.h; i++) {
@@ -198,7 +198,7 @@ static void cube_seams(void **st)
             params_of(methods[k], texels[k], &p[k]);
             needs |= sl_method_find(methods[k])->needs(&p[k]);
         }
-        struct sl_layer_timing t = {.warmup = 0, .runs = 1};
+        struct sl_layer_timing t = {0};
         assert_int_equal(sl_cube_ensure(&cb, &sp, &fx.mesh, &fx.scene, &v, 0, size, needs, needs, &t, NULL, &d),
                          SL_OK);
         /* the seam exercised: edge pixels (texel within 2 of the band) lit and shadowed, per face */

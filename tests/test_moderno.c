@@ -477,9 +477,12 @@ static void moderno_shared_contour_primitives(void **st)
     /* NSM once per (view, map): the nsm label's run draws the contour and is
      * that label's cell; own draws no NSM contour at all */
     assert_int_equal(r.passes.contour_runs, 0);
-    assert_int_equal(r.passes.method_runs, r.ncells * (c.warmup + c.runs));   /* timed, computed once */
+    /* computed once per cell, timed as often as the repetitions decided (reps.h) */
+    assert_int_equal(r.reps.kind[SL_REP_METHOD].stages, r.ncells);
+    assert_int_equal(r.passes.method_runs, (int)r.reps.kind[SL_REP_METHOD].runs);
     assert_int_equal(ro.passes.contour_runs, 0);
-    assert_int_equal(ro.passes.method_runs, ro.ncells * (co.warmup + co.runs));
+    assert_int_equal(ro.reps.kind[SL_REP_METHOD].stages, ro.ncells);
+    assert_int_equal(ro.passes.method_runs, (int)ro.reps.kind[SL_REP_METHOD].runs);
     /* without an nsm label the contour's NSM runs apart, once per (view,
      * map), and every other approach's figures are the same */
     static const char *const nolabel =
@@ -493,7 +496,8 @@ static void moderno_shared_contour_primitives(void **st)
     assert_int_equal(sl_run(&cn, &o, &rn, &d), SL_OK);
     assert_int_equal(rn.ncells, 2 * 2 * 3);
     assert_int_equal(rn.passes.contour_runs, 2 * 2);
-    assert_int_equal(rn.passes.method_runs, rn.ncells * (cn.warmup + cn.runs));
+    assert_int_equal(rn.reps.kind[SL_REP_METHOD].stages, rn.ncells);
+    assert_int_equal(rn.passes.method_runs, (int)rn.reps.kind[SL_REP_METHOD].runs);
     for (int i = 0, j = 0; i < r.ncells; i += 4, j += 3)
         for (int k = 1; k < 4; k++)
             for (int rg = 0; rg < r.cells[i].fig.nregions; rg++)

@@ -136,6 +136,7 @@ static struct sl_cell_record cell(const char *study, const char *scene, const ch
     snprintf(c.git_sha, sizeof c.git_sha, "abc1234");
     snprintf(c.config_hash, sizeof c.config_hash, "0123456789abcdef");
     snprintf(c.machine, sizeof c.machine, "host/cpu/isa");
+    snprintf(c.gl_renderer, sizeof c.gl_renderer, "llvmpipe (LLVM 15.0.6, 256 bits)");
     return c;
 }
 
@@ -326,6 +327,8 @@ static void report_build(void **st)
     assert_non_null(strstr(html, "Morais 2015 Table 7"));
     assert_non_null(strstr(html, "Moderno 2011 Table 23"));
     assert_non_null(strstr(html, "carry the comparison to a GPU"));
+    /* the cost table names the renderer its times are of, and what they are on llvmpipe */
+    assert_non_null(strstr(html, "Times in ms on llvmpipe (LLVM 15.0.6, 256 bits), which runs GL on the CPU"));
     /* one name per time: step ms, layers ms, layers + step ms; never "method ms" */
     assert_non_null(strstr(html, "timed once (repetitions runs: 1)"));
     assert_non_null(strstr(html, "\xE2\x80\xA0"));

@@ -574,11 +574,27 @@ static void table_pivot_values(void **st)
     free(csv);
     /* a time: an entry with a cell timed once (runs 1) carries a dagger, its
      * table a footnote; md and LaTeX (CSV keeps plain numbers) */
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
         c[i].runs = 3, c[i].ms_method = 1.5 + i;
+        snprintf(c[i].gl_renderer, sizeof c[i].gl_renderer, "llvmpipe (LLVM 15.0.6, 256 bits)");
+    }
     struct sl_pivot_desc tm = {.figure = "ms_method"};
     char *md = pivot(SL_TABLE_MD, c, n, &tm, NULL, SL_OK);
     assert_null(strstr(md, "\xE2\x80\xA0"));
+    /* a time names its renderer, and on llvmpipe says what its GL times are */
+    assert_non_null(strstr(md, "llvmpipe (LLVM 15.0.6, 256 bits)"));
+    assert_non_null(strstr(md, "CPU-emulated GL times"));
+    free(md);
+    /* another renderer: named, no such words; two: said so */
+    snprintf(c[0].gl_renderer, sizeof c[0].gl_renderer, "NVIDIA H200/PCIe/SSE2");
+    md = pivot(SL_TABLE_MD, c, n, &tm, NULL, SL_OK);
+    assert_non_null(strstr(md, "several GL renderers"));
+    free(md);
+    for (int i = 0; i < n; i++)
+        snprintf(c[i].gl_renderer, sizeof c[i].gl_renderer, "NVIDIA H200/PCIe/SSE2");
+    md = pivot(SL_TABLE_MD, c, n, &tm, NULL, SL_OK);
+    assert_non_null(strstr(md, "NVIDIA H200/PCIe/SSE2"));
+    assert_null(strstr(md, "CPU-emulated"));
     free(md);
     c[1].runs = 1;   /* the 1024 of "with" */
     md = pivot(SL_TABLE_MD, c, n, &tm, NULL, SL_OK);

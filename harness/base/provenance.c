@@ -99,3 +99,17 @@ void sl_provenance_write(const struct sl_provenance *p, FILE *f, const char *pre
     fprintf(f, "%slp_num_threads: %s\n", prefix, p->lp_threads[0] ? p->lp_threads : "(unset)");
     fprintf(f, "%somp_wait_policy: %s\n", prefix, p->omp_wait[0] ? p->omp_wait : "(unset)");
 }
+
+void sl_gl_times_note(const char *renderer, char *out, size_t n)
+{
+    if (!renderer || !renderer[0]) {
+        snprintf(out, n, "Times in ms on a GL renderer not recorded.");
+        return;
+    }
+    /* Mesa's software rasterisers: GL executed by CPU threads */
+    const int cpu = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") || strstr(renderer, "swrast");
+    snprintf(out, n, "Times in ms on %s%s", renderer,
+             cpu ? ", which runs GL on the CPU: its GL times (wall and GL_TIME_ELAPSED) are CPU-emulated GL times, "
+                   "not a GPU's."
+                 : " (GL stages: wall time, GPU time from GL_TIME_ELAPSED beside).");
+}

@@ -36,6 +36,13 @@ struct sl_provenance {
 const char *sl_git_sha(void);
 
 void sl_provenance_fill(struct sl_provenance *p);
+
+/* What a time measured on GL renderer `renderer` is, one sentence for the
+ * caption or note of every cost table: the renderer named, and, on a
+ * renderer that runs GL on the CPU (llvmpipe, softpipe, swrast), that its
+ * GL times are CPU-emulated GL times, not a GPU's. "" or NULL: renderer
+ * unknown (a store written before it was kept), said so. */
+void sl_gl_times_note(const char *renderer, char *out, size_t n);
 /* "key: value" lines, each prefixed by `prefix` (e.g. "# "). */
 void sl_provenance_write(const struct sl_provenance *p, FILE *f, const char *prefix);
 

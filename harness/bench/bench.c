@@ -120,8 +120,9 @@ static enum sl_err setup(const struct sl_bench_opts *o, struct sl_bench_ctx *x, 
 
 enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_out, struct sl_diag *d)
 {
-    /* bigmap only when named: 16384^2 layers take GBs and minutes */
-    unsigned stages = o->stages ? o->stages : SL_BENCH_ALL & ~SL_BENCH_STAGE(BIGMAP);
+    /* bigmap only when named: 16384^2 layers take GBs and minutes; timing too: it runs
+     * the Moderno study six times */
+    unsigned stages = o->stages ? o->stages : SL_BENCH_ALL & ~SL_BENCH_STAGE(BIGMAP) & ~SL_BENCH_STAGE(TIMING);
     FILE *out = o->out ? o->out : stdout;
     struct sl_bench_result *res = sl_calloc(1, sizeof *res);
     if (!res)
@@ -183,14 +184,19 @@ enum sl_err sl_bench(const struct sl_bench_opts *o, struct sl_bench_result *res_
 
     /* the studies next, each in a child forked while this process is still
      * a single thread with nothing made (bench_study.c) */
-    if (stages & (SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(MORAIS))) {
+    if (stages & (SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(MORAIS) | SL_BENCH_STAGE(TIMING))) {
         FILE *mem = open_memstream(&studies_md, &studies_len);
         if (!mem) {
             e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "bench studies' table");
             goto done;
         }
         fflush(out);
-        e = sl_bench_studies(o, stages, mem, &study_rows, d);
+        if (stages & (SL_BENCH_STAGE(MODERNO) | SL_BENCH_STAGE(MORAIS)))
+            e = sl_bench_studies(o, stages, mem, &study_rows, d);
+        /* the timing stage: 3 pairs unless --reps says (each pair is two whole studies) */
+        if (!e && (stages & SL_BENCH_STAGE(TIMING)))
+            e = sl_bench_timing(o->moderno ? o->moderno : "configs/moderno-2011.yaml", o->gl, o->reps > 0 ? o->reps : 3,
+                                mem, &study_rows, d);
         fclose(mem);
         if (e)
             goto done;

@@ -80,7 +80,8 @@
     X(STARTUP, "startup")    \
     X(SCORING, "scoring")    \
     X(LIGHTFIT, "lightfit")  \
-    X(BIGMAP,  "bigmap")
+    X(BIGMAP,  "bigmap")     \
+    X(TIMING,  "timing")
 
 enum sl_bench_stage_bit {
 #define SL_BENCH_BIT(id, name) SL_BENCH_BIT_##id,

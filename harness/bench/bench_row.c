@@ -202,7 +202,9 @@ enum sl_err sl_bench_write_markdown(const char *path, const struct sl_provenance
     fprintf(f, "Written by `shadowlab bench --markdown`; regenerate it, on a quiet machine, with the command "
                "below rather than editing it. What each stage measures and its target: `shadowlab help bench` "
                "and the man page; a missed target is a MISS, not an error. Figures measured on a lent GPU "
-               "machine (not by this bench): [performance-gpu.md](performance-gpu.md).\n\n");
+               "machine (not by this bench): [performance-gpu.md](performance-gpu.md). What the default "
+               "timing costs a study (`--only timing`, run apart: it runs the Moderno study six times): "
+               "[performance-timing.md](performance-timing.md).\n\n");
     fprintf(f, "| | |\n|---|---|\n");
     fprintf(f, "| command | `%s` |\n", cmd);
     fprintf(f, "| stages | %s |\n", stages);

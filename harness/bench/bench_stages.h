@@ -44,6 +44,17 @@ enum sl_err sl_bench_backends(struct sl_bench_ctx *x, struct sl_bench_result *re
 enum sl_err sl_bench_studies(const struct sl_bench_opts *o, unsigned stages, FILE *out,
                              struct sl_bench_result *res, struct sl_diag *d);
 
+/* issue 47: a study with the default repetitions at most 1.5x the CPU
+ * (user+sys) of computing it once */
+#define SL_BENCH_TARGET_TIMING_RATIO 1.5
+
+/* The study at path with the default repetitions against `repetitions:
+ * {mode: off}`, `pairs` runs of each alternating, each in a child process
+ * (bench_study.c): CPU and wall min, median and max, the ratio of the CPU
+ * medians against its target. */
+enum sl_err sl_bench_timing(const char *path, enum sl_gl_backend gl, int pairs, FILE *out,
+                            struct sl_bench_result *res, struct sl_diag *d);
+
 /* One study as one process against `run --jobs 2` (bench_jobs.c). */
 enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, struct sl_bench_result *res,
                           struct sl_diag *d);

@@ -84,7 +84,7 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
     static const char *const what[3][2] = {{"CPU (user+sys)", "s"}, {"minor page faults", "faults"},
                                            {"peak RSS of the process so far", "MiB"}};
     uint64_t viol = 0, rays = 0;
-    double ms_method = 0;
+    double ms_method = 0, ms_cost = 0;
     for (int i = 0; i < rr.ncells; i++) {
         const struct sl_cell_key *k = &rr.cells[i].key, *p = i ? &rr.cells[i - 1].key : NULL;
         viol += rr.cells[i].violations;
@@ -92,6 +92,7 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
         if (!p || p->scene != k->scene || p->viewport != k->viewport || p->vp != k->vp)
             rays += rr.cells[i].truth_rays;
         ms_method += rr.cells[i].ms.method[SL_MED];
+        ms_cost += rr.cells[i].ms.total[SL_MED];
     }
     int layers = 0;
     for (int l = 0; l < SL_LAYER_COUNT; l++)
@@ -113,8 +114,9 @@ static enum sl_err bench_study(const char *path, const char *label, double targe
             fprintf(out, "%s%s %d", first ? " (" : ", ", sl_layer_names[l], rr.passes.layers[l]);
             first = 0;
         }
-    fprintf(out, "%s, method runs %d (their median times summed: %.0f ms); exactness violations: %llu.\n\n",
-            layers ? ")" : "", rr.passes.method_runs, ms_method, (unsigned long long)viol);
+    fprintf(out, "%s, method runs %d (their per-pixel steps' medians summed: %.0f ms; the cells' stages, "
+                 "map pass to rays: %.0f ms); exactness violations: %llu.\n\n",
+            layers ? ")" : "", rr.passes.method_runs, ms_method, ms_cost, (unsigned long long)viol);
     struct sl_bench_row *row = sl_bench_add_row(res, "study", "s", wall, 0, target_s, SL_BENCH_AT_MOST);
     if (row)
         snprintf(row->name, sizeof row->name, "%s, %d cells, wall", label, rr.ncells);
@@ -238,4 +240,141 @@ enum sl_err sl_bench_studies(const struct sl_bench_opts *o, unsigned stages, FIL
         if (stages & (i < 2 ? SL_BENCH_STAGE(MODERNO) : SL_BENCH_STAGE(MORAIS)))
             e = study_in_child(&all[i], o->gl, out, res, d);
     return e;
+}
+
+/* ---- timing: what the default repetitions cost -------------------------- */
+
+/* One run of the study in a child process: wall and CPU (user+sys) seconds,
+ * the cells, and the run's timing line (reps.h, sl_reps_describe). */
+struct timing_out {
+    enum sl_err e;
+    struct sl_diag d;
+    double wall, cpu;
+    int ncells;
+    char line[1024];
+};
+
+static void timing_run(const char *path, const char *override, enum sl_gl_backend gl, struct timing_out *t)
+{
+    struct sl_config c;
+    const char *const ov[1] = {override};
+    memset(t, 0, sizeof *t);
+    if ((t->e = sl_config_load_with(path, ov, override ? 1 : 0, &c, &t->d)))
+        return;
+    if (gl)
+        c.gl = gl;
+    struct sl_run_opts ro = {.write_files = 0, .store = "", .cache_dir = ""};
+    struct sl_run_result rr;
+    double t0 = sl_now(), c0 = sl_bench_cpu_s();
+    t->e = sl_run(&c, &ro, &rr, &t->d);
+    t->wall = sl_now() - t0;
+    t->cpu = sl_bench_cpu_s() - c0;
+    if (!t->e) {
+        t->ncells = rr.ncells;
+        sl_reps_describe(&rr.reps, rr.ms_total, t->line, sizeof t->line);
+    }
+    sl_config_free(&c);
+    sl_run_result_free(&rr);
+}
+
+/* timing_run in a child forked now (a study after another in one process
+ * measures what the first left behind: see the top of this file). */
+static void timing_in_child(const char *path, const char *override, enum sl_gl_backend gl, struct timing_out *t)
+{
+    FILE *tmp = threads_now() == 1 ? tmpfile() : NULL;
+    pid_t pid = tmp ? fork() : -1;
+    if (pid < 0) {
+        if (tmp)
+            fclose(tmp);
+        timing_run(path, override, gl, t);
+        return;
+    }
+    if (pid == 0) {
+        struct timing_out *c = calloc(1, sizeof *c);
+        if (!c)
+            _exit(3);
+        timing_run(path, override, gl, c);
+        _exit(fwrite(c, sizeof *c, 1, tmp) == 1 && fflush(tmp) == 0 ? 0 : 3);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        ;
+    rewind(tmp);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || fread(t, sizeof *t, 1, tmp) != 1) {
+        memset(t, 0, sizeof *t);
+        t->e = sl_fail(&t->d, SL_E_IO, path, 0, NULL, "the study's process gave back no result");
+    }
+    fclose(tmp);
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* {min, median, max} of v[0..n) (sorted in place). */
+static void min_med_max(double *v, int n, double out[3])
+{
+    qsort(v, (size_t)n, sizeof v[0], cmp_d);
+    out[0] = v[0];
+    out[1] = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    out[2] = v[n - 1];
+}
+
+enum sl_err sl_bench_timing(const char *path, enum sl_gl_backend gl, int pairs, FILE *out,
+                            struct sl_bench_result *res, struct sl_diag *d)
+{
+    /* the study computed once (every stage timed by its one real run)
+     * against the study as its config runs it (the default repetitions:
+     * reps.h), alternating, the once-run first in odd pairs, so drift of a
+     * shared machine hits both sides alike */
+    static const char *const off = "repetitions={mode: off}";
+    if (pairs < 1)
+        pairs = 3;
+    if (pairs > 16)
+        pairs = 16;
+    double cpu[2][16], wall[2][16];
+    char line[1024] = "", load0[64], load1[64];
+    int ncells = 0;
+    sl_bench_loadavg(load0, sizeof load0);
+    for (int p = 0; p < pairs; p++)
+        for (int k = 0; k < 2; k++) {
+            const int side = (p % 2) ? 1 - k : k;   /* 0: once, 1: default */
+            struct timing_out t;
+            timing_in_child(path, side == 0 ? off : NULL, gl, &t);
+            if (t.e) {
+                *d = t.d;
+                return t.e;
+            }
+            cpu[side][p] = t.cpu;
+            wall[side][p] = t.wall;
+            ncells = t.ncells;
+            if (side == 1)
+                snprintf(line, sizeof line, "%s", t.line);
+        }
+    sl_bench_loadavg(load1, sizeof load1);
+    double c0[3], c1[3], w0[3], w1[3];
+    min_med_max(cpu[0], pairs, c0);
+    min_med_max(cpu[1], pairs, c1);
+    min_med_max(wall[0], pairs, w0);
+    min_med_max(wall[1], pairs, w1);
+    fprintf(out, "## Timing: what the default repetitions cost (%s, %d cells)\n\n", path, ncells);
+    fprintf(out, "The study computed once (`-D 'repetitions={mode: off}'`) against the study as its config "
+                 "runs it (the default repetitions, reps.h), %d pairs alternating, each run a process of its "
+                 "own, no files, no store, no truth cache; load average %s before, %s after.\n\n",
+            pairs, load0, load1);
+    fprintf(out, "| run | CPU (user+sys) min | median | max | wall min | median | max |\n");
+    fprintf(out, "|---|---:|---:|---:|---:|---:|---:|\n");
+    fprintf(out, "| once (mode: off) | %.1f s | %.1f s | %.1f s | %.1f s | %.1f s | %.1f s |\n", c0[0], c0[1], c0[2],
+            w0[0], w0[1], w0[2]);
+    fprintf(out, "| default | %.1f s | %.1f s | %.1f s | %.1f s | %.1f s | %.1f s |\n\n", c1[0], c1[1], c1[2], w1[0],
+            w1[1], w1[2]);
+    fprintf(out, "Default over once, CPU: %.2fx of the medians, %.2fx of the minima. The default run's %s.\n\n",
+            c1[1] / c0[1], c1[0] / c0[0], line);
+    struct sl_bench_row *row =
+        sl_bench_add_row(res, "timing", "s", c1[1], c0[1], SL_BENCH_TARGET_TIMING_RATIO, SL_BENCH_AT_MOST);
+    if (row)
+        snprintf(row->name, sizeof row->name, "study with default timing / once, CPU median (n %d)", pairs);
+    return SL_OK;
 }

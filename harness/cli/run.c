@@ -174,6 +174,14 @@ static void print_summary(const struct sl_config *c, const struct sl_run_result 
            r->ms_total / 1e3, r->prov.gl_renderer);
     if (!r->ncells)
         return;
+    int timed = 0;   /* none in a --jobs parent: its workers timed the stages */
+    for (int k = 0; k < SL_REP_KINDS; k++)
+        timed += r->reps.kind[k].stages;
+    if (timed) {
+        char timing[1024];
+        sl_reps_describe(&r->reps, r->ms_total, timing, sizeof timing);
+        printf("%s\n", timing);
+    }
     printf("%-20s %6s %14s %12s\n", "label", "cells", "wrong pixels", "of pixels");
     for (int m = 0; m < c->nmethods; m++) {
         uint64_t wrong = 0, pixels = 0, nonfinite = 0;

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "method.h"
+#include "reps.h"
 #include "package.h"
 #include "session.h"
 #include "techcheck.h"
@@ -120,9 +121,22 @@ static const cyaml_schema_value_t scene_ref_schema = {
     X(exr, SL_PARAM_BOOL_DECL("outputs.exr", 0, "the truth, verdicts and error as OpenEXR layers per cell (default false)")) \
     X(aliasing, SL_PARAM_CHOICE_DECL("outputs.aliasing", 2, "the aliasing error m per pixel: auto (default: where " \
         "a method that reads it runs: zpart, lispsm), true or false", "false", "true", "auto"))             \
-    X(warmup, SL_PARAM_INT_DECL("repetitions.warmup", 1, 0, 100, "", "untimed runs first (default 1)"))     \
-    X(runs, SL_PARAM_INT_DECL("repetitions.runs", 3, 1, 1000, "",                                           \
-        "timed runs: median, min and max kept (default 3; 1 is marked \"timed once\")"))                    \
+    X(rep_mode, SL_PARAM_CHOICE_DECL("repetitions.mode", SL_REP_ADAPTIVE, "how often a timed stage runs: "  \
+        "adaptive (default: until spread, runs, budget_ms or share stops it; a study costs at most 1 + share " \
+        "times once), fixed (warmup + runs) or off (once)", "adaptive", "fixed", "off"))                        \
+    X(warmup, SL_PARAM_INT_DECL("repetitions.warmup", 1, 0, 100, "", "mode fixed: untimed runs first (default 1)")) \
+    X(runs, SL_PARAM_INT_DECL("repetitions.runs", 5, 1, 1000, "",                                           \
+        "timed runs (median, min, max kept): fixed exactly, adaptive at most (default 5; one is marked "  \
+        "\"timed once\")"))                                                             \
+    X(rep_spread, SL_PARAM_FLOAT_DECL("repetitions.spread", 0.1, 0, 10, "",                                 \
+        "adaptive: a stage stops once (max - min) / median of 3 or more timed runs is at most this " \
+        "(default 0.1)"))                                                                                   \
+    X(rep_budget_ms, SL_PARAM_FLOAT_DECL("repetitions.budget_ms", 100, 0, 1e6, "ms",                         \
+        "adaptive: the most one stage's repetitions may take; a stage longer than this is timed once "  \
+        "(default 100)"))                                                                                   \
+    X(rep_share, SL_PARAM_FLOAT_DECL("repetitions.share", 0.3, 0, 100, "",                                  \
+        "adaptive: all repetitions together at most this times the run's other wall time (default 0.3: " \
+        "a study costs at most 1.3 times once)"))                                \
     X(seed, SL_PARAM_INT_DECL("seed", 1, 0, 4294967295.0, "", "for anything random (default 1)"))           \
     X(area_samples, SL_PARAM_INT_DECL("area_samples", 32, 2, 1024, "",                                      \
         "area lights: truth samples per side of the light (default 32: 1,024 a pixel)"))                   \

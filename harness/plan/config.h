@@ -27,7 +27,7 @@
  *     - {label: nsm_snap, method: nsm, light_frame: {fit: sphere, snap: true}}   # a stabilised
  *                              # frame of its own (lightfit.h); default fit tight, snap false
  *   outputs: {tables: true, overlays: true, overlay_contour: 2, exr: false}
- *   repetitions: {warmup: 1, runs: 3}   # timed runs of each cell's method; median kept
+ *   repetitions: {mode: adaptive}   # how often timed stages run (reps.h); fixed: {warmup: 1, runs: 5}
  *   seed: 1                    # for anything random
  *   store: results/shadowlab.db   # default: <output root>/shadowlab.db
  *   threads: 0                 # 0 = every core
@@ -104,7 +104,9 @@ struct sl_config {
     int  aliasing;                    /* resolved: the aliasing error m's figures (outputs.aliasing) */
     int  overlay_contour;
     int  contour_from;                /* enum sl_contour_from */
-    int  warmup, runs;                /* repetitions for timing */
+    int  rep_mode;                    /* repetitions.mode: enum sl_rep_mode (reps.h) */
+    int  warmup, runs;                /* repetitions for timing (reps.h) */
+    double rep_spread, rep_budget_ms, rep_share;   /* mode adaptive's stops (reps.h) */
     unsigned seed;
     int  area_samples;                /* area-light truth: samples per side of the light (0 = 32) */
     char store[512];                  /* "" = <output root>/shadowlab.db; relative, no '..' (validate) */

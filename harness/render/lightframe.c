@@ -24,36 +24,72 @@ uint64_t sl_layer_bad(const struct sl_depth_layer *l, int size)
     return n;
 }
 
+/* A stage without a policy (t->reps NULL: s.of NULL) is computed once and
+ * repeats nothing. */
+static int rep_more(struct sl_rep *s)
+{
+    return s->of ? sl_rep_more(s) : 0;
+}
+
+static void rep_end(const struct sl_layer_timing *t, struct sl_rep *s, int l)
+{
+    double ms[3], gpu[3];
+    int n = 1;
+    if (s->of) {
+        n = sl_rep_end(s, ms, gpu);
+    } else {
+        ms[0] = ms[1] = ms[2] = s->ms[0];
+        gpu[0] = gpu[1] = gpu[2] = s->gpu[0];
+    }
+    if (t->layer_ms)
+        memcpy(t->layer_ms[l], ms, sizeof ms);
+    if (t->layer_gpu)
+        memcpy(t->layer_gpu[l], gpu, sizeof gpu);
+    if (t->layer_runs)
+        t->layer_runs[l] = n;
+}
+
 enum sl_err sl_frame_render_timed(struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m, struct sl_light_frame *f,
                                   unsigned set, unsigned gather, const struct sl_view *v,
                                   const struct sl_layer_timing *t, struct sl_diag *d)
 {
     unsigned before = f->have;
     enum sl_err e = sl_shadowmap_render(sp, m, f, set, d);
-    int reps = t->warmup + t->runs;
     for (int l = 0; l < SL_LAYER_COUNT && !e; l++) {
         if (!((f->have & ~before) & SL_NEED(l)))
             continue;
-        t->layers[l]++;
-        t->layer_bad[l] = sl_layer_bad(&f->layer[l], f->size);
-        double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
-        times[0] = f->layer[l].ms_render;
-        gpu[0] = f->layer[l].ms_gpu;
-        for (int r = 1; r < reps && !e; r++) {
+        if (t->layers)
+            t->layers[l]++;
+        if (t->layer_bad)
+            t->layer_bad[l] = sl_layer_bad(&f->layer[l], f->size);
+        struct sl_rep s;
+        s.of = NULL;
+        if (t->reps)
+            sl_rep_begin(&s, t->reps, SL_REP_LAYER, f->layer[l].ms_render, f->layer[l].ms_gpu);
+        else
+            s.ms[0] = f->layer[l].ms_render, s.gpu[0] = f->layer[l].ms_gpu;
+        /* each run's readback too: the layer's is the median of the timed runs' */
+        double rb[SL_MAX_REPS];
+        rb[0] = f->layer[l].ms_readback;
+        while (!e && rep_more(&s)) {
             /* the same layer again into a scratch copy of the frame (which
              * shares the other layers, e.g. BGSM for BGSM2), timed only */
             struct sl_light_frame again = *f;
             again.have &= ~SL_NEED(l);
             memset(&again.layer[l], 0, sizeof again.layer[l]);
             e = sl_shadowmap_render(sp, m, &again, SL_NEED(l), d);
-            times[r] = again.layer[l].ms_render;
-            gpu[r] = again.layer[l].ms_gpu;
+            rb[s.n] = again.layer[l].ms_readback;
+            sl_rep_add(&s, again.layer[l].ms_render, again.layer[l].ms_gpu);
             sl_frame_drop_layer(&again, l);   /* back to the pool for the next repetition */
         }
-        if (!e) {
-            sl_med_min_max(times + t->warmup, t->runs, t->layer_ms[l]);
-            sl_med_min_max(gpu + t->warmup, t->runs, t->layer_gpu[l]);
+        if (!e && s.of) {
+            int first, n = sl_rep_timed(&s, &first);
+            double med[3];
+            sl_rep_stats(rb, first, n, med);
+            f->layer[l].ms_readback = med[0];
         }
+        if (!e)
+            rep_end(t, &s, l);
         /* timed as the readback: the layer's values reach the readers per pixel */
         double t0 = sl_now();
         if (!e && (gather & SL_NEED(l)) && !(e = sl_frame_gather(f, l, v, t->threads, d)))
@@ -133,42 +169,51 @@ enum sl_err sl_cube_ensure(struct sl_cube *cb, struct sl_shadowmap_pass *sp, con
             continue;
         /* the layer with what it reads (BGSM2 reads BGSM, already rendered: now holds it) */
         int fresh = 0;
-        double times[1100], gpu[1100];
-        for (int r = 0; r < t->warmup + t->runs && r < 1100; r++)
-            times[r] = gpu[r] = 0.0;
+        double ms = 0.0, gpu = 0.0;
         for (int f = 0; f < 6 && !e; f++) {
             struct sl_light_frame *fr = &cb->f[f];
             if (fr->size == 0 || (fr->have & SL_NEED(l)))
                 continue;
             if ((e = sl_shadowmap_render(sp, m, fr, SL_NEED(l), d)))
                 break;
-            fresh = 1;
+            fresh |= 1 << f;
             if (t->layers)
                 t->layers[l]++;
-            times[0] += fr->layer[l].ms_render;
-            gpu[0] += fr->layer[l].ms_gpu;
-            for (int r = 1; r < t->warmup + t->runs && r < 1100 && !e; r++) {
-                /* the same layer again into a scratch copy of the face, timed only (as run.c's frame) */
-                struct sl_light_frame again = *fr;
+            ms += fr->layer[l].ms_render;
+            gpu += fr->layer[l].ms_gpu;
+        }
+        if (e || !fresh)
+            continue;
+        struct sl_rep s;
+        s.of = NULL;
+        if (t->reps)
+            sl_rep_begin(&s, t->reps, SL_REP_LAYER, ms, gpu);
+        else
+            s.ms[0] = ms, s.gpu[0] = gpu;
+        while (!e && rep_more(&s)) {
+            /* the faces rendered now, again, each into a scratch copy of the face, timed only */
+            double again_ms = 0.0, again_gpu = 0.0;
+            for (int f = 0; f < 6 && !e; f++) {
+                if (!(fresh & (1 << f)))
+                    continue;
+                struct sl_light_frame again = cb->f[f];
                 again.have &= ~SL_NEED(l);
                 memset(&again.layer[l], 0, sizeof again.layer[l]);
                 e = sl_shadowmap_render(sp, m, &again, SL_NEED(l), d);
-                times[r] += again.layer[l].ms_render;
-                gpu[r] += again.layer[l].ms_gpu;
+                again_ms += again.layer[l].ms_render;
+                again_gpu += again.layer[l].ms_gpu;
                 sl_frame_drop_layer(&again, l);
             }
+            sl_rep_add(&s, again_ms, again_gpu);
         }
-        if (!e && fresh) {
+        if (!e) {
             uint64_t bad = 0;
             for (int f = 0; f < 6; f++)
                 if (cb->f[f].have & SL_NEED(l))
                     bad += sl_layer_bad(&cb->f[f].layer[l], cb->f[f].size);
             if (t->layer_bad)
                 t->layer_bad[l] = bad;
-            if (t->layer_ms)
-                sl_med_min_max(times + t->warmup, t->runs, t->layer_ms[l]);
-            if (t->layer_gpu)
-                sl_med_min_max(gpu + t->warmup, t->runs, t->layer_gpu[l]);
+            rep_end(t, &s, l);
         }
     }
     /* the cell's frame carries the faces' sums (run.c reads its layers' counters) */

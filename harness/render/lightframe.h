@@ -39,23 +39,21 @@
 #include "lightfit.h"
 #include "scene.h"
 #include "shadowmap.h"
+#include "reps.h"
 #include "view.h"
 
-/* Repetitions of a timed stage: the config's warm-up runs, then its timed
- * runs; the stage's real computation is repetition 0, so a config with one
- * run and no warm-up times each stage once and repeats nothing. */
-#define SL_MAX_REPS 1100   /* config: warm-up <= 100, runs <= 1000 */
-
-/* How the layers rendered are timed and counted: `reps` = warmup + runs
- * repetitions time each new layer (the real render is repetition 0);
- * layer_ms, layer_gpu get {median, min, max} of the timed ones (util.h,
- * sl_med_min_max), layer_bad the bad depths (sl_layer_bad), layers[l] one
- * count per layer (per face for a cube) rendered. */
+/* How the layers rendered are timed and counted: each new layer's render
+ * is its real computation, then repeated (timed only) as reps says
+ * (reps.h; NULL: not repeated); layer_ms, layer_gpu get {median, min, max}
+ * of the timed runs (reps.h), layer_runs how many were timed, layer_bad the
+ * bad depths (sl_layer_bad), layers[l] one count per layer (per face for a
+ * cube) rendered. Any pointer may be NULL: not wanted. */
 struct sl_layer_timing {
-    int warmup, runs;
+    struct sl_reps *reps;
     double (*layer_ms)[3], (*layer_gpu)[3];
     uint64_t *layer_bad;
     int *layers;
+    int *layer_runs;
     int threads;   /* of the per-pixel gather and the faces' fit (lightfit.h, _mt; <= 0: every core) */
 };
 
@@ -63,8 +61,8 @@ struct sl_layer_timing {
 uint64_t sl_layer_bad(const struct sl_depth_layer *l, int size);
 
 /* The layers in `set` that f lacks rendered into it (one render each, then
- * t->warmup + t->runs - 1 timed repetitions into a scratch copy of the
- * frame, timings and bad values into t), then those in `gather` gathered
+ * t->reps's timed repetitions into a scratch copy of the frame, timings
+ * and bad values into t), then those in `gather` gathered
  * per pixel of v (sl_frame_gather) once their repetitions are done. */
 enum sl_err sl_frame_render_timed(struct sl_shadowmap_pass *sp, const struct sl_gl_mesh *m, struct sl_light_frame *f,
                                   unsigned set, unsigned gather, const struct sl_view *v,
@@ -96,9 +94,9 @@ struct sl_cube {
 /* The cube of view v at map index `map` of size `size`: the faces fitted on
  * a new (view, map) (the cube is dropped with the frame), then the layers in
  * `now` rendered into each face with receivers, and those not in `keep`
- * given back. `reps` = warmup + runs repetitions time each new layer as the
- * run times the cell's frame (the six faces' renders summed per
- * repetition); layer_ms, layer_gpu get {median, min, max} of those,
+ * given back. Each new layer is repeated as t->reps says, as the run times
+ * the cell's frame (a repetition renders the six faces again: their times
+ * summed); layer_ms, layer_gpu get {median, min, max} of those,
  * layer_bad the faces' bad depths, layers[l] one count per face rendered.
  * `stats`, the cell's own frame, gets the six faces' readback times,
  * primitives and fragments per layer (no arrays). */

@@ -63,6 +63,20 @@
  * (a package's verdict there is uncertain), the cell is flagged NON-FINITE
  * in the run's summary, the tables and the report, and check compares it
  * exactly (a baseline without the key holds 0).
+ * The cost model (one definition for every method, C or package; cell.h
+ * sl_stage_ms): a cell's cost is its stages, ms_map (the shadow-map
+ * passes: the driver's layers the method reads, ms_map_render, plus any
+ * map pass of its own: a package's, zpart's slices), ms_post (its post
+ * passes: blur, mipmaps), ms_lookup (its per-pixel lookup), ms_readback
+ * (the maps' or its visibility's way back to the CPU: ms_map_readback
+ * plus its own) and ms_ray_step (its rays), each the median of its timed
+ * runs, and ms_cost their whole with ms_cost_min, ms_cost_max (the layers'
+ * and the method's runs' extremes summed). ms_method is the per-pixel
+ * step, lookup and rays, for every method. ms_gpu_map, ms_gpu_post and
+ * ms_gpu_lookup are the GL stages' GL_TIME_ELAPSED beside (NULL where no
+ * GL pass ran). runs, runs_map: how many runs of the method and of the
+ * layers it reads were timed (the repetitions policy, reps.h; 1 is "timed
+ * once"; runs_map 0: it reads no layer of the driver's).
  * The list is in the order of the store's columns.
  *
  * The record is what the store returns and takes, what the tables, the
@@ -102,7 +116,7 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(n_truth_shadow,      count,    0,    0,   "",                   view,      n_truth_shadow, cl->n_truth_shadow) \
     X(n_wrong_image,       wrong,    0,    0,   "",                   error,     wrong_image,    _) \
     X(truth_rays,          count,    0,    16,  "truth_rays",         cost,      truth_rays,     cl->truth_rays) \
-    X(runs,                runs,     0,    7,   "runs",               none,      _,              c->runs) \
+    X(runs,                runs,     0,    7,   "runs",               none,      _,              s->runs_method) \
     X(lookups,             count,    0,    30,  "lookups",            cost,      lookups,        cl->cost.lookups) \
     X(rays,                count,    0,    31,  "rays",               cost,      rays,           cl->cost.rays) \
     X(tri_tests,           count,    0,    32,  "tri_tests",          cost,      tri_tests,      cl->cost.tri_tests) \
@@ -148,7 +162,17 @@ enum { SL_MED = 0, SL_MIN = 1, SL_MAX = 2 };
     X(family,              text,     40,   0,   "",                   none,      _,              sl_method_family(cm->method)) \
     X(beside,              text,     64,   0,   "",                   none,      _,              sl_method_beside(cm->method)) \
     X(display,             text,     64,   0,   "",                   none,      _,              cm->display) \
-    X(nonfinite,           count,    0,    45,  "nonfinite",          invariant, nonfinite,      cl->nonfinite)
+    X(nonfinite,           count,    0,    45,  "nonfinite",          invariant, nonfinite,      cl->nonfinite) \
+    X(ms_map,              ms,       0,    46,  "ms_map",             none,      _,              s->st_map) \
+    X(ms_post,             ms,       0,    47,  "ms_post",            none,      _,              s->st_post) \
+    X(ms_lookup,           ms,       0,    48,  "ms_lookup",          none,      _,              s->st_lookup) \
+    X(ms_readback,         ms,       0,    49,  "ms_readback",        none,      _,              s->st_readback) \
+    X(ms_cost,             ms,       0,    50,  "ms_cost",            none,      _,              s->total[SL_MED]) \
+    X(ms_cost_min,         ms,       0,    51,  "ms_cost_min",        none,      _,              s->total[SL_MIN]) \
+    X(ms_cost_max,         ms,       0,    52,  "ms_cost_max",        none,      _,              s->total[SL_MAX]) \
+    X(ms_gpu_post,         ms,       0,    53,  "ms_gpu_post",        none,      _,              s->gpu_post) \
+    X(ms_gpu_lookup,       ms,       0,    54,  "ms_gpu_lookup",      none,      _,              s->gpu_lookup) \
+    X(runs_map,            runs,     0,    55,  "runs_map",           none,      _,              s->runs_map)
 /* clang-format on */
 
 /* One enumerator per column: SL_COL_<name>. */
@@ -191,6 +215,7 @@ struct sl_cell_record {
     int64_t  run_id;                   /* 0 when not from the store */
     /* provenance of the numbers, printed under each table and in CSV rows */
     char     git_sha[48], config_hash[24], machine[256];
+    char     gl_renderer[128];         /* GL_RENDERER of the run: what its GL times were measured on */
 };
 
 /* *r with nothing known: zero keys and counts, every stage time NAN (not

@@ -21,6 +21,7 @@
 #include <fcntl.h>
 #include <ftw.h>
 #include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -98,6 +99,7 @@ static void table_cells_of(const struct sl_config *c, const struct sl_run_result
         }
         snprintf(t->git_sha, sizeof t->git_sha, "%s", res->prov.git_sha);
         machine_of(&res->prov, t->machine, sizeof t->machine);
+        snprintf(t->gl_renderer, sizeof t->gl_renderer, "%s", res->prov.gl_renderer);
     }
 }
 
@@ -187,20 +189,24 @@ static void csv_cell(struct sl_tab *t, int j, const struct sl_cell_record *r, en
 
 /* costs.csv in the model: a row per cell, the columns of cellcols.h with a
  * csv position, then the provenance (the machine always quoted: the file
- * has always quoted it, and scripts that split on commas expect it so) */
+ * has always quoted it, and scripts that split on commas expect it so),
+ * then the GL renderer the times were measured on, quoted too (CSV has no
+ * caption: what a time is travels with each row) */
 static void costs_csv_model(struct sl_tab *t, const struct sl_config *c, const struct sl_run_result *res)
 {
     char machine[300];
     machine_of(&res->prov, machine, sizeof machine);
     enum sl_cell_col order[SL_COL_COUNT];
     int ncols = csv_order(order);
-    sl_tab_init(t, "costs", ncols + 3, 0, "costs");
+    sl_tab_init(t, "costs", ncols + 4, 0, "costs");
     for (int j = 0; j < ncols; j++)
         sl_tab_head(t, j, "%s", csv_head[order[j]]);
     sl_tab_head(t, ncols, "git_sha");
     sl_tab_head(t, ncols + 1, "config_hash");
     sl_tab_head(t, ncols + 2, "machine");
+    sl_tab_head(t, ncols + 3, "gl_renderer");
     sl_tab_quote(t, ncols + 2);
+    sl_tab_quote(t, ncols + 3);
     for (int i = 0; i < res->ncells; i++) {
         struct sl_cell_record r;
         sl_out_record(c, &res->cells[i], &r);
@@ -210,6 +216,7 @@ static void costs_csv_model(struct sl_tab *t, const struct sl_config *c, const s
         sl_tab_cell(t, ncols, "%s", res->prov.git_sha);
         sl_tab_cell(t, ncols + 1, "%016llx", c->hash);
         sl_tab_cell(t, ncols + 2, "%s", machine);
+        sl_tab_cell(t, ncols + 3, "%s", res->prov.gl_renderer);
     }
 }
 
@@ -222,28 +229,38 @@ void sl_out_write_costs_csv(FILE *f, const struct sl_config *c, const struct sl_
     sl_tab_free(&t);
 }
 
-/* The cost table in the model: a row per cell computed, its times (ms) and
- * counters; under it what the dagger means and the run's total. */
+/* A time in the cost table: "-" where not measured (NAN), else 0.1 ms. */
+static void ms_cell(struct sl_tab *t, int col, double ms)
+{
+    if (isnan(ms))
+        sl_tab_cell(t, col, "-");
+    else
+        sl_tab_cell(t, col, "%.1f", ms);
+}
+
+/* The cost table in the model: a row per cell computed, its stages (one
+ * definition for every method, C or package: cellcols.h's cost model),
+ * their whole with its spread and the runs timed, the GPU times of the GL
+ * stages, the counters; under it the renderer the times were measured on
+ * and the run's total. */
 static void costs_model(struct sl_tab *t, const struct sl_config *c, const struct sl_run_result *res)
 {
-    /* the names of the report's cost tables: layers (the shadow-map render of
-     * the layers a method reads), step (its per-pixel step); † a time
-     * measured once (repetitions runs: 1) */
-    const char *once = c->runs == 1 ? "\xE2\x80\xA0" : "";
-    static const char lr[] = "rllrlrrrrrrrrrrrrrr";
-    sl_tab_init(t, "costs", 19, 5, "Cost per cell (ms; G-buffer and truth are shared by the cells of a view)");
+    enum { NCOL = 25 };
+    static const char lr[] = "rllrlrrrrrrrrrrrrrrrrrrrr";
+    sl_tab_init(t, "costs", NCOL, 5,
+                "Cost per cell by stages (ms, medians of the timed runs; G-buffer and truth are shared by the "
+                "cells of a view)");
     t->level = 2;
     t->plain = 1;
-    static const char *const heads[19] = {"cell", "scene", "viewpoint", "map", "label", "G-buffer", "truth", "fit",
-                                          "layers", "readback", "", "of which rays", "rays", "lookups",
-                                          "ray-tri tests", "GS prims", "contours", "figures", "overlay"};
-    for (int k = 0; k < 19; k++) {
-        if (k == 10)
-            sl_tab_head(t, k, "step (median of %d)%s", c->runs, once);
-        else
-            sl_tab_head(t, k, "%s%s", heads[k], k == 5 || k == 6 || k == 8 ? once : "");
+    static const char *const heads[NCOL] = {
+        "cell", "scene", "viewpoint", "map", "label", "G-buffer", "truth", "fit", "map pass", "post",
+        "lookup", "readback", "rays ms", "total", "total min-max", "n", "GPU map", "GPU post", "GPU lookup",
+        "rays", "lookups", "ray-tri tests", "fragments", "figures", "overlay"};
+    for (int k = 0; k < NCOL; k++) {
+        sl_tab_head(t, k, "%s", heads[k]);
         sl_tab_align(t, k, lr[k]);
     }
+    int once = 0;
     for (int i = 0; i < res->ncells; i++) {
         const struct sl_cell *cl = &res->cells[i];
         const struct sl_stage_ms *s = &cl->ms;
@@ -256,20 +273,34 @@ static void costs_model(struct sl_tab *t, const struct sl_config *c, const struc
         sl_tab_cell(t, 5, "%.1f", s->gbuffer_render[SL_MED] + s->gbuffer_readback);
         sl_tab_cell(t, 6, "%.1f%s", s->truth[SL_MED], cl->truth_cached ? " (cached)" : "");
         sl_tab_cell(t, 7, "%.1f", s->fit);
-        sl_tab_cell(t, 8, "%.1f", s->map_render[SL_MED]);
-        sl_tab_cell(t, 9, "%.1f", s->map_readback);
-        sl_tab_cell(t, 10, "%.1f", s->method[SL_MED]);
-        sl_tab_cell(t, 11, "%.1f", cl->cost.ms_trace);
-        sl_tab_cell(t, 12, "%llu", (unsigned long long)cl->cost.rays);
-        sl_tab_cell(t, 13, "%llu", (unsigned long long)cl->cost.lookups);
-        sl_tab_cell(t, 14, "%llu", (unsigned long long)cl->cost.tri_tests);
-        sl_tab_cell(t, 15, "%llu", (unsigned long long)cl->gs_prims);
-        sl_tab_cell(t, 16, "%.1f", s->contours);
-        sl_tab_cell(t, 17, "%.1f", s->figures);
-        sl_tab_cell(t, 18, "%.1f", s->overlay);
+        ms_cell(t, 8, s->st_map);
+        ms_cell(t, 9, s->st_post);
+        ms_cell(t, 10, s->st_lookup);
+        ms_cell(t, 11, s->st_readback);
+        ms_cell(t, 12, s->st_rays);
+        sl_tab_cell(t, 13, "%.1f%s", s->total[SL_MED], s->runs_method == 1 ? "\xE2\x80\xA0" : "");
+        sl_tab_cell(t, 14, "%.1f-%.1f", s->total[SL_MIN], s->total[SL_MAX]);
+        sl_tab_cell(t, 15, "%d", s->runs_method);
+        ms_cell(t, 16, s->gpu_map[SL_MED]);
+        ms_cell(t, 17, s->gpu_post);
+        ms_cell(t, 18, s->gpu_lookup);
+        sl_tab_cell(t, 19, "%llu", (unsigned long long)cl->cost.rays);
+        sl_tab_cell(t, 20, "%llu", (unsigned long long)cl->cost.lookups);
+        sl_tab_cell(t, 21, "%llu", (unsigned long long)cl->cost.tri_tests);
+        sl_tab_cell(t, 22, "%llu", (unsigned long long)cl->fragments);
+        sl_tab_cell(t, 23, "%.1f", s->contours + s->figures);
+        sl_tab_cell(t, 24, "%.1f", s->overlay);
+        once |= s->runs_method == 1;
     }
-    if (c->runs == 1)
-        sl_tab_notef(t, "\xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.\n\n");
+    char gl[400];
+    sl_gl_times_note(res->prov.gl_renderer, gl, sizeof gl);
+    sl_tab_notef(t, "%s Stages, one definition for every method: map pass (the shadow maps it reads, the "
+                    "driver's layers or its own), post (blur, mipmaps), lookup (its per-pixel step without "
+                    "rays), readback (maps or visibility back to the CPU), rays; total = their sum, with the "
+                    "min-max of n timed runs of the method (repetitions: %s). GPU: GL_TIME_ELAPSED of the GL "
+                    "stages, - where none ran.%s\n\n",
+                 gl, c->rep_mode == SL_REP_OFF ? "off" : c->rep_mode == SL_REP_FIXED ? "fixed" : "adaptive",
+                 once ? " \xE2\x80\xA0 timed once: one measurement, no median." : "");
     sl_tab_note_cat(t, "Total %.0f ms (scenes %.1f ms, BVH %.1f ms); %d cell(s) computed, %d already stored.",
                     res->ms_total, res->ms_scene, res->ms_bvh, res->ncells, res->skipped);
 }

@@ -16,6 +16,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include "provenance.h"
 #include "tex.h"   /* the width estimates: the writer lays out its floats */
 #include "util.h"
 
@@ -337,6 +338,7 @@ struct pivot {
     char          all_lights[256];     /* every kept cell's light in words, each once ("directional light") */
     char          studies[256];        /* the studies of the kept cells, each once */
     uint64_t      nonfinite;           /* and their sum */
+    char          renderer[128];       /* a time: the GL renderer of its cells ("" unknown; "several") */
 };
 
 static void pivot_free(struct pivot *pv)
@@ -482,6 +484,12 @@ static enum sl_err pivot_build(const struct sl_cell_record *cells, int ncells, c
             pv->any_area |= !c->frac;
             add_light(pv->lights, sizeof pv->lights, c->light[0] ? c->light : c->frac ? "hard light" : "area light");
         }
+        if (kept && pv->g.src == SRC_COL && cols[pv->g.k].is_ms) {
+            if (!pv->renderer[0])
+                snprintf(pv->renderer, sizeof pv->renderer, "%s", c->gl_renderer);
+            else if (strcmp(pv->renderer, c->gl_renderer))
+                snprintf(pv->renderer, sizeof pv->renderer, "several GL renderers (see the store's runs)");
+        }
         if (kept && c->nonfinite) {
             pv->nf_cells++;
             pv->nonfinite += c->nonfinite;
@@ -581,7 +589,13 @@ static const char *key_word(enum sl_pivot_key k, int plural)
 static const struct {
     const char *name, *words;
 } col_words[] = {
-    {"ms_method", "time of the method's per-pixel step (median over the timed runs)"},
+    {"ms_method", "time of the method's per-pixel step: lookup and rays (median over the timed runs)"},
+    {"ms_cost", "total time of the cell's stages summed: map pass, post, lookup, readback, rays "
+                "(medians over the timed runs)"},
+    {"ms_map", "time of the shadow-map pass (median over the timed runs)"},
+    {"ms_post", "time of the post passes: blur, mipmaps (median over the timed runs)"},
+    {"ms_lookup", "time of the per-pixel lookup (median over the timed runs)"},
+    {"ms_readback", "time of the readback (median over the timed runs)"},
     {"ms_map_render", "time of the shadow-map render of the layers the method reads (median over the timed runs)"},
     {"ms_gbuffer_render", "time of the G-buffer render (median over the timed runs)"},
     {"ms_truth", "time of the ray-traced truth (median over the timed runs)"},
@@ -767,7 +781,14 @@ static void caption_words(const struct pivot *pv, const struct sl_pivot_desc *p,
                               pv->studies);
     o += (size_t)snprintf(out + o, o < n ? n - o : 0, ".");
     if (pv->any_once)
-        snprintf(out + o, o < n ? n - o : 0, " \xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.");
+        o += (size_t)snprintf(out + o, o < n ? n - o : 0,
+                              " \xE2\x80\xA0 timed once (repetitions runs: 1): one measurement, no median.");
+    /* a time: what it was measured on (provenance.h) */
+    if (pv->g.src == SRC_COL && cols[pv->g.k].is_ms) {
+        char gl[400];
+        sl_gl_times_note(pv->renderer, gl, sizeof gl);
+        snprintf(out + o, o < n ? n - o : 0, " %s", gl);
+    }
 }
 
 /* The NON-FINITE note of table.md under a pivot whose cells hold values
@@ -1264,7 +1285,7 @@ enum sl_err sl_pivot_tex_summary(FILE *out, const char *title, const struct sl_c
             int soft, scenes;
         } tabs[] = {
             {"wrong", SL_PK_map_size, 0, 0},   {"uncertain", SL_PK_map_size, 0, 0},
-            {"ms_method", SL_PK_map_size, 0, 0}, {"soft_mae", SL_PK_map_size, 1, 0},
+            {"ms_cost", SL_PK_map_size, 0, 0}, {"soft_mae", SL_PK_map_size, 1, 0},
             {"wrong", SL_PK_scene, 0, 1},
         };
         char key[160];

@@ -13,6 +13,7 @@
 #include "cell.h"
 #include "frame.h"
 #include "provenance.h"
+#include "reps.h"
 
 struct sl_pass_counts {
     int scenes;                        /* scenes loaded (GL upload + BVH) */
@@ -41,6 +42,7 @@ struct sl_run_result {
     int    stored_total;               /* cells of this config in the store after the run, -1 unknown */
     char   store_path[1100];           /* the database written, "" none */
     struct sl_pass_counts passes;
+    struct sl_reps reps;               /* the repetitions policy and what each timed stage ran, and why */
     double ms_total, ms_scene, ms_bvh;
     int    overlays_written;           /* sheets the writer thread wrote, and its time on them, wall */
     double ms_overlay_writer, ms_overlay_writer_cpu;   /* and CPU, ms (off the cells' path; 0 inline) */

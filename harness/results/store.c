@@ -34,7 +34,8 @@
 #include "storefile.h"
 #include "util.h"
 
-#define SL_STORE_VERSION 22   /* 22: a hard light's class figures within SL_SOFT_HARD_TOL (softfig.h;
+#define SL_STORE_VERSION 23   /* 23: cells' cost stages ms_map .. ms_gpu_lookup, runs_map, runs per cell
+                               * (cellcols.h; ms_method the per-pixel step for every method); 22: a hard light's class figures within SL_SOFT_HARD_TOL (softfig.h;
                                * the same tables, other values); 21: figures leaking, over_dark (softfig.h); 20: cells.nonfinite (cellcols.h);
                                * 19: cells.family, beside (the method's origin, method.h), display;
                                * 18: cells.frac (a hard light's fractional errors, cellcols.h);
@@ -193,7 +194,7 @@ static const char sql_query_cells[] =
     "    AND (?3 IS NULL OR instr(',' || ?3 || ',', ',' || label || ',') > 0)\n"
     "    AND (?4 = 0 OR map_size = ?4) AND (?5 = 0 OR run_id = ?5)\n"
     "    AND (?6 IS NULL OR run_id IN (SELECT run_id FROM runs WHERE study = ?6)))\n"
-    "SELECT l.cell_id, l.config_hash, r.git_sha, r.host, r.cpu, r.isa, r.study, l.run_id, l.digest\n"
+    "SELECT l.cell_id, l.config_hash, r.git_sha, r.host, r.cpu, r.isa, r.gl_renderer, r.study, l.run_id, l.digest\n"
     "       " SL_CELL_COLUMNS(SL_SQL_L_NAME) "\n"
     "FROM latest l JOIN runs r ON r.run_id = l.run_id\n"
     "WHERE l.rn = 1\n"
@@ -855,6 +856,7 @@ enum sl_err sl_store_query(struct sl_store *s, const struct sl_store_filter *f,
         const char *isa = (const char *)sqlite3_column_text(st, i++);
         snprintf(c->machine, sizeof c->machine, "%s/%s/%s", host ? host : "", cpu ? cpu : "",
                  isa ? isa : "");
+        col_text(st, i++, c->gl_renderer, sizeof c->gl_renderer);
         col_text(st, i++, c->study, sizeof c->study);
         c->run_id = sqlite3_column_int64(st, i++);
         uint32_t want = (uint32_t)sqlite3_column_int64(st, i++), got = 0;

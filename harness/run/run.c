@@ -43,6 +43,15 @@
 
 /* ---- the run ---- */
 
+/* A timed stage's runs (reps.h) and, for a cell's method, each run's
+ * stages apart (enum mstage), in the same order: one allocation for the
+ * run, as a stage's runs may number SL_MAX_REPS. */
+enum mstage { MS_MAP, MS_POST, MS_READBACK, MS_RAYS, MS_STEP, MS_GPU_MAP, MS_GPU_POST, MS_GPU_LOOKUP, MS_COUNT };
+struct run_timing {
+    struct sl_rep rep;
+    double stage[MS_COUNT][SL_MAX_REPS];
+};
+
 struct run_ctx {
     struct sl_session *session;   /* the config's scenes (each taken once) and packages (their GL
                                    * objects are released with the context) */
@@ -71,6 +80,9 @@ struct run_ctx {
     struct sl_cube cube;                 /* a point light's six frames, per (view, map size) */
     double layer_ms[SL_LAYER_COUNT][3];   /* render time of each layer: median, min, max */
     double layer_gpu[SL_LAYER_COUNT][3];  /* its GPU time (GL_TIME_ELAPSED), the same */
+    int layer_runs[SL_LAYER_COUNT];       /* its timed runs (reps.h) */
+    struct sl_reps *reps;                 /* how often each timed stage runs; the run's account (res->reps) */
+    struct run_timing *tm;                /* the stage under way's runs */
     uint64_t view_bad, layer_bad[SL_LAYER_COUNT];   /* values that are not finite or out of range */
     /* per-pixel scratch */
     int W, H;
@@ -162,6 +174,7 @@ static void ctx_free(struct run_ctx *x)
     free(x->vd.detail); free(x->vd.tests); free(x->vd.vis); free(x->soft_truth); free(x->soft_se);
     sl_verdicts_drop_frames(&x->vd);
     free(x->receivers);
+    free(x->tm);
     sl_temporal_free(&x->temporal);
     sl_softmap_nbuf_free(&x->nbuf);
     if (x->gl.backend) {
@@ -296,9 +309,10 @@ static enum sl_err view_ready(struct run_ctx *x, const struct sl_config *c, cons
  * ray per pixel to the area's area_samples^2. Both come from the cache
  * (area_key) when it holds them, timed as the read, as a hard truth is. */
 static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
-                             unsigned long long view_key, const char *cache_dir, int reps, double *times,
-                             struct sl_run_result *res, struct sl_diag *d)
+                             unsigned long long view_key, const char *cache_dir, struct sl_run_result *res,
+                             struct sl_diag *d)
 {
+    struct sl_rep *rs = &x->tm->rep;
     const int cache = cache_dir && cache_dir[0];
     const unsigned long long key = sl_cache_area_key(view_key, sl_soft_truth_side(c->area_samples), c->seed);
     double t0 = sl_now();
@@ -317,16 +331,24 @@ static enum sl_err area_view(struct run_ctx *x, const struct sl_config *c, const
     } else {
         struct sl_soft_truth_stats st;
         struct sl_truth_stats ts;
-        for (int r = 0; r < reps; r++) {
-            enum sl_err e = sl_soft_truth(&x->rt, &x->scene, &x->view, c->area_samples, c->seed, x->soft_truth,
-                                          x->soft_se, &st, d);
+        enum sl_err e = sl_soft_truth(&x->rt, &x->scene, &x->view, c->area_samples, c->seed, x->soft_truth,
+                                      x->soft_se, &st, d);
+        if (!e)
+            e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d);
+        if (e)
+            return e;
+        sl_rep_begin(rs, x->reps, SL_REP_TRUTH, st.ms_trace + ts.ms_trace, NAN);
+        while (!e && sl_rep_more(rs)) {
+            /* repetitions trace the same rays into the same answer */
+            e = sl_soft_truth(&x->rt, &x->scene, &x->view, c->area_samples, c->seed, x->soft_truth, x->soft_se,
+                              &st, d);
             if (!e)
                 e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d);
-            if (e)
-                return e;
-            times[r] = st.ms_trace + ts.ms_trace;
+            sl_rep_add(rs, st.ms_trace + ts.ms_trace, NAN);
         }
-        sl_med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        if (e)
+            return e;
+        sl_rep_end(rs, x->vms.truth, NULL);
         res->passes.truths_traced++;
         res->passes.soft_truths++;
         x->truth_rays = st.rays + ts.rays;
@@ -348,24 +370,25 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "viewpoint vanished from the scene");
     sl_scene_use_view_light(&x->scene, vp);   /* a light path's frame moves the light */
     memset(&x->vms, 0, sizeof x->vms);
-    int reps = c->warmup + c->runs;
-    double times[SL_MAX_REPS], gpu[SL_MAX_REPS];
-    enum sl_err e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &x->view, &times[0],
-                                      &x->vms.gbuffer_readback, &gpu[0], d);
+    struct sl_rep *rs = &x->tm->rep;
+    double ms0, gpu0;
+    enum sl_err e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, &x->view, &ms0,
+                                      &x->vms.gbuffer_readback, &gpu0, d);
     if (e)
         return e;
     res->passes.gbuffers++;
-    for (int r = 1; r < reps; r++) {
+    sl_rep_begin(rs, x->reps, SL_REP_GBUFFER, ms0, gpu0);
+    while (!e && sl_rep_more(rs)) {
         /* the same pass again, timed only: no view made */
-        e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, NULL, &times[r], NULL, &gpu[r], d);
-        if (e)
-            return e;
+        e = sl_gbuffer_render(&x->gpass, &x->mesh, &x->scene, vp, W, H, NULL, &ms0, NULL, &gpu0, d);
+        sl_rep_add(rs, ms0, gpu0);
     }
-    sl_med_min_max(times + c->warmup, c->runs, x->vms.gbuffer_render);
-    sl_med_min_max(gpu + c->warmup, c->runs, x->vms.gpu_gbuffer);
+    if (e)
+        return e;
+    sl_rep_end(rs, x->vms.gbuffer_render, x->vms.gpu_gbuffer);
     unsigned long long key = sl_cache_view_key(x->scene_key, &x->scene.vp[vp], W, H);
     if (x->area)
-        return area_view(x, c, k, key, cache_dir, reps, times, res, d);
+        return area_view(x, c, k, key, cache_dir, res, d);
     double t0 = sl_now();
     enum sl_cache_read got =
         cache_dir && cache_dir[0] ? sl_cache_truth_read(cache_dir, key, &x->view) : SL_CACHE_MISS;
@@ -378,13 +401,17 @@ static enum sl_err ensure_view(struct run_ctx *x, const struct sl_config *c, con
         x->vms.truth[SL_MED] = x->vms.truth[SL_MIN] = x->vms.truth[SL_MAX] = 1e3 * (sl_now() - t0);
     } else {
         struct sl_truth_stats ts;
-        for (int r = 0; r < reps; r++) {
+        if ((e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d)))
+            return e;
+        sl_rep_begin(rs, x->reps, SL_REP_TRUTH, ts.ms_trace, NAN);
+        while (!e && sl_rep_more(rs)) {
             /* repetitions trace the same rays into the same answer */
-            if ((e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d)))
-                return e;
-            times[r] = ts.ms_trace;
+            e = sl_truth_trace(&x->rt, &x->scene, &x->view, &ts, d);
+            sl_rep_add(rs, ts.ms_trace, NAN);
         }
-        sl_med_min_max(times + c->warmup, c->runs, x->vms.truth);
+        if (e)
+            return e;
+        sl_rep_end(rs, x->vms.truth, NULL);
         res->passes.truths_traced++;
         x->truth_rays = ts.rays;
         if (cache_dir && cache_dir[0])
@@ -421,8 +448,8 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
     }
     if (x->scene.light.type == SL_LIGHT_POINT)
         return sl_cube_ensure(&x->cube, &x->spass, &x->mesh, &x->scene, &x->view, k->map, c->maps[k->map], now, needs,
-                              &(struct sl_layer_timing){c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
-                                                       res->passes.layers, c->threads}, &x->frame, d);
+                              &(struct sl_layer_timing){x->reps, x->layer_ms, x->layer_gpu, x->layer_bad,
+                                                       res->passes.layers, x->layer_runs, c->threads}, &x->frame, d);
     /* layers every remaining reader reads per pixel (sl_plan_group_at_pixel)
      * are gathered per pixel once drawn, and drawn with the first cell that
      * reads any of them, before the dense ones: their map-sized arrays are
@@ -430,8 +457,8 @@ static enum sl_err ensure_frame(struct run_ctx *x, const struct sl_config *c, co
      * layers of one method, not of every method of the group. BGSM stays
      * dense: BGSM2 reads its ids, and BGSM2's readback is the peak anyway. */
     const unsigned gather = gath & ~SL_NEED(SL_LAYER_BGSM) & ~x->frame.have;
-    const struct sl_layer_timing t = {c->warmup, c->runs, x->layer_ms, x->layer_gpu, x->layer_bad,
-                                     res->passes.layers, c->threads};
+    const struct sl_layer_timing t = {x->reps, x->layer_ms, x->layer_gpu, x->layer_bad,
+                                     res->passes.layers, x->layer_runs, c->threads};
     enum sl_err e = SL_OK;
     if (now & gather)
         e = sl_frame_render_timed(&x->spass, &x->mesh, &x->frame, gather & ~SL_NEED(SL_LAYER_BGSM2), gather,
@@ -532,6 +559,40 @@ static enum sl_err ensure_contour(struct run_ctx *x, const struct sl_config *c, 
     return SL_OK;
 }
 
+/* The cell's cost by stages (cell.h, one definition for every method):
+ * from its method's runs (rs, each run's stages in st) and the layers it
+ * read (already in cell->ms: map_render, gpu_map, map_readback). Each
+ * stage is the median of its timed runs; the total's min and max sum the
+ * stages' (the method's runs as wholes). ms.method and cost.ms_method
+ * become the per-pixel step (lookup and rays) for every method, a
+ * package's too. */
+static void cell_stages(struct sl_rep *rs, double (*st)[SL_MAX_REPS], struct sl_cell *cell)
+{
+    struct sl_stage_ms *s = &cell->ms;
+    int first, n = sl_rep_timed(rs, &first);
+    double whole[3], v[MS_COUNT][3], lookup[SL_MAX_REPS], lk[3];
+    for (int k = 0; k < MS_COUNT; k++)
+        sl_rep_stats(st[k], first, n, v[k]);
+    for (int i = first; i < first + n; i++)
+        lookup[i] = st[MS_STEP][i] - st[MS_RAYS][i];
+    sl_rep_stats(lookup, first, n, lk);
+    s->runs_method = sl_rep_end(rs, whole, NULL);
+    memcpy(s->method, v[MS_STEP], sizeof s->method);
+    cell->cost.ms_method = v[MS_STEP][SL_MED];
+    cell->cost.ms_trace = v[MS_RAYS][SL_MED];
+    s->st_map = s->map_render[SL_MED] + v[MS_MAP][SL_MED];
+    s->st_post = v[MS_POST][SL_MED];
+    s->st_lookup = lk[SL_MED];
+    s->st_readback = s->map_readback + v[MS_READBACK][SL_MED];
+    s->st_rays = v[MS_RAYS][SL_MED];
+    for (int j = 0; j < 3; j++) {
+        s->total[j] = s->map_render[j] + s->map_readback + whole[j];
+        s->gpu_map[j] += v[MS_GPU_MAP][j];
+    }
+    s->gpu_post = v[MS_GPU_POST][SL_MED];
+    s->gpu_lookup = v[MS_GPU_LOOKUP][SL_MED];
+}
+
 static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
                             struct sl_cell *cell, const char *ovdir, const char *exrdir,
                             struct sl_run_result *res, struct sl_diag *d)
@@ -560,8 +621,11 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
                                    &cm->frame_fit, mneeds, &fr, res->passes.layers, d);
     if (e)
         return e;
+    cell->ms.runs_map = 0;   /* the fewest timed runs of a layer it reads (0: none read) */
     for (int l = 0; l < SL_LAYER_COUNT; l++)
         if (mneeds & SL_NEED(l)) {
+            if (fr == &x->frame && (!cell->ms.runs_map || x->layer_runs[l] < cell->ms.runs_map))
+                cell->ms.runs_map = x->layer_runs[l];
             for (int j = 0; j < 3; j++) {
                 cell->ms.map_render[j] += x->layer_ms[l][j];
                 cell->ms.gpu_map[j] += x->layer_gpu[l][j];
@@ -588,13 +652,14 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .seed = c->seed, .spass = &x->spass, .mesh = &x->mesh,
         .stop = x->stop, .pass_seconds = c->pass_seconds,
     };
-    int reps = c->warmup + c->runs;
-    double times[SL_MAX_REPS];
+    struct sl_rep *rs = &x->tm->rep;
+    double (*st)[SL_MAX_REPS] = x->tm->stage;
     /* contour_from nsm with this label's run already made for the contour:
      * its verdicts are this cell's first run (further repetitions only time) */
     const int reuse = c->contour_from == SL_CONTOUR_NSM && x->nsm_map == k->map && x->nsm_label == (int)k->method &&
                       fr == &x->frame;
-    for (int r = 0; r < reps && !e; r++) {
+    int r = 0;
+    do {   /* the real run, then its repetitions (reps.h), timed only */
         struct sl_cost cost = {0};
         res->passes.method_runs++;
         if (reuse && r == 0) {
@@ -618,15 +683,29 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
             memset(x->vd.tests, 0, npx);
             e = sl_cube_method_run(&x->cube, cm->method, &a, &x->vd, &cost, d);
         }
-        if (r >= c->warmup)
-            times[r - c->warmup] = cost.ms_method;
-        cell->cost = cost;   /* counters are the same every run */
-    }
+        if (e)
+            break;
+        if (r == 0) {
+            cell->cost = cost;   /* counters are the same every run */
+            sl_rep_begin(rs, x->reps, SL_REP_METHOD, cost.ms_method, NAN);
+        } else {
+            sl_rep_add(rs, cost.ms_method, NAN);
+        }
+        /* this run's stages (method.h): its own GL passes, its rays, the rest its lookup */
+        st[MS_MAP][r] = cost.ms_map;
+        st[MS_POST][r] = cost.ms_post;
+        st[MS_READBACK][r] = cost.ms_readback;
+        st[MS_RAYS][r] = cost.ms_trace;
+        st[MS_STEP][r] = cost.ms_method - cost.ms_map - cost.ms_post - cost.ms_readback;
+        st[MS_GPU_MAP][r] = cost.gpu_map;
+        st[MS_GPU_POST][r] = cost.gl_passes && cost.ms_post > 0.0 ? cost.gpu_post : NAN;   /* NAN: no post pass */
+        st[MS_GPU_LOOKUP][r] = cost.gl_passes ? cost.gpu_lookup : NAN;
+        r++;
+    } while (sl_rep_more(rs));
     if (e)
         return e;
-    sl_med_min_max(times, c->runs, cell->ms.method);
+    cell_stages(rs, st, cell);
     sl_cube_cell_costs(&x->cube, &cell->faces, &cell->ms_face_max);   /* a point light's (cuberun.h) */
-    cell->cost.ms_method = cell->ms.method[SL_MED];
     int measured;   /* flicker against the path's previous frame, if any */
     if ((e = sl_temporal_cell(&x->temporal, k->map, k->method, x->vd.v, &measured, &cell->flicker,
                               &cell->flicker_compared, &cell->ms.flicker, d)))
@@ -808,9 +887,16 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
     x.on_event = o->on_event;
     x.user = o->user;
     x.sink = &sink;
+    sl_reps_init(&res->reps, c->rep_mode, c->warmup, c->runs, c->rep_spread, c->rep_budget_ms, c->rep_share);
+    res->reps.t0 = t_start;
+    x.reps = &res->reps;
     struct sl_store *also = NULL;
     uint8_t *skip = NULL, *warm = NULL, *off = NULL;
     struct sl_cell *wcell = NULL;   /* a warm-up cell's (warm_up_cells) */
+    if (!(x.tm = malloc(sizeof *x.tm))) {
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "stage timings");
+        goto out;
+    }
     if (o->write_files && c->overlays && !o->overlay_inline && (e = sl_sink_open_overlays(&sink, d)))
         goto out;
     if ((e = sl_gl_open(&x.gl, &(struct sl_gl_desc){.backend = c->gl}, d)) || (e = sl_shadowmap_init(&x.spass, d)))

@@ -49,6 +49,19 @@ struct sl_stage_ms {
      * wall and GPU times go to map_render and gpu_map as they are. */
     double gpu_gbuffer[3], gpu_map[3];
     double flicker;   /* keeping the verdicts for the next frame and comparing them with the last (temporal.h) */
+    /* The cell's cost by stages, one definition for every method, C or
+     * package (cellcols.h: ms_map ... ms_cost): st_map the shadow-map
+     * passes (the driver's layers it reads plus its own map passes),
+     * st_post its post passes (blur, mipmaps), st_lookup its per-pixel
+     * lookup, st_readback the maps' (or its visibility's) way back to the
+     * CPU, st_rays its ray step; medians of their timed runs. total the
+     * whole: {median, min, max}. gpu_post, gpu_lookup: a package's GPU
+     * times of those passes (NAN where no GL pass ran). runs_method,
+     * runs_map: how many runs of the method and of its layers were timed
+     * (reps.h). method[] is the per-pixel step, lookup and rays. */
+    double st_map, st_post, st_lookup, st_readback, st_rays, total[3];
+    double gpu_post, gpu_lookup;
+    int    runs_method, runs_map;
 };
 
 /* A pixel where a method broke the guarantee it declares (method.h
