@@ -815,13 +815,15 @@ static void table_run_latex(void **st)
      * not a table of zeros */
     char *sum = render(SL_TABLE_LATEX_SUMMARY, "shadowlab: prim", c, n, SL_OK);
     assert_int_equal(count_of(sum, "\\begin{table*}"), 2);
-    assert_non_null(strstr(sum, "% prim-study-ms-method-map-size: every entry is 0, a sentence instead of a table\n"
-                                "\\par\\noindent Time of the method's per-pixel step (median over the timed runs), "
-                                "ms, is 0 for every method and shadow-map size: "));
+    assert_non_null(strstr(sum, "% prim-study-ms-cost-map-size: every entry is 0, a sentence instead of a table\n"
+                                "\\par\\noindent Total time of the cell's stages summed: map pass, post, lookup, "
+                                "readback, rays (medians over the timed runs), ms, is 0 for every method and "
+                                "shadow-map size: "));
     free(sum);
     /* one entry not 0 (a small one: 0.0034 ms, not 0.00): a table of wrong,
-     * uncertain and ms_method by label x map size; one scene: no label x scene */
-    c[1].ms_method = 0.0034;
+     * uncertain and ms_cost (the stages summed) by label x map size; one
+     * scene: no label x scene */
+    c[1].ms_cost = 0.0034;
     sum = render(SL_TABLE_LATEX_SUMMARY, "shadowlab: prim", c, n, SL_OK);
     assert_int_equal(count_of(sum, "\\begin{table*}"), 3);
     assert_null(strstr(sum, "a sentence instead"));
