@@ -19,6 +19,16 @@
 
 /* The packages of the search path (no config: SHADOWLAB_TECHNIQUES, the
  * source tree, the installed ones); exit code on failure, else 0. */
+static int tech_scan(struct sl_tech_set *s, char (*dirs)[1024], const char **origin, int *nd);
+
+int cli_tech_scan(struct sl_tech_set *s)
+{
+    char dirs[SL_TECH_MAX_DIRS][1024];
+    const char *origin[SL_TECH_MAX_DIRS];
+    int nd;
+    return tech_scan(s, dirs, origin, &nd);
+}
+
 static int tech_scan(struct sl_tech_set *s, char (*dirs)[1024], const char **origin, int *nd)
 {
     static const char *c_names[64];
