@@ -12,10 +12,13 @@
 #            file and line (exit 77 without bibtex)
 #   label    `table --label nsm,nope` exits 2 naming 'nope'; `--label nsn`
 #            suggests nsm; `--summary wrnog` suggests wrong; `--label nsm`
-#            still works
+#            still works; `show method nsn` suggests nsm, `show technique
+#            pfc` pcf
 #   version  --version: the version line, the build type, Embree's headers,
 #            no library loaded; --version --verbose: the GL renderer and
 #            version and Embree's version and packet width
+#   nocmocka CMake configures with SL_TESTS=OFF where pkg-config finds no
+#            cmocka, and stops naming it with SL_TESTS=ON
 #   gitsha   cmake/git_sha.cmake in a scratch repository: clean -> SHA,
 #            a mode-only change -> clean, content changed -> -dirty, a copy
 #            of the tree inside that repository -> unknown (not the outer SHA)
@@ -116,6 +119,12 @@ label)
   [ $rc -eq 2 ] && echo "$out" | grep -q "unknown figure 'wrnog' (did you mean 'wrong'?)" && ok ||
     fail "--summary wrnog: rc $rc, '$out'"
   "$bin" table "$db" --label nsm,chain >"$tmp/t.md" 2>&1 && grep -q chain "$tmp/t.md" && ok || fail "--label nsm,chain: $(head -3 "$tmp/t.md")"
+  out=$("$bin" show method nsn 2>&1); rc=$?
+  [ $rc -eq 2 ] && echo "$out" | grep -q "no built-in method of that name (did you mean 'nsm'?)" && ok ||
+    fail "show method nsn: rc $rc, '$out'"
+  out=$("$bin" show technique pfc 2>&1); rc=$?
+  [ $rc -eq 2 ] && echo "$out" | grep -q "no technique package of that name (did you mean 'pcf'?)" && ok ||
+    fail "show technique pfc: rc $rc, '$out'"
   ;;
 version)
   out=$("$bin" --version); rc=$?
@@ -159,6 +168,23 @@ gitsha)
   # an untracked file is no change
   git -C "$r" checkout -q a.txt && printf 'x\n' >"$r/new.txt"
   [ "$(sha_of "$r")" = "$head" ] && ok || fail "an untracked file: '$(sha_of "$r")', not $head"
+  ;;
+nocmocka)
+  # configure (no build) with pkg-config's search path holding every module
+  # but cmocka: SL_TESTS=OFF configures, SL_TESTS=ON stops naming cmocka
+  command -v pkg-config >/dev/null || { echo "SKIP: no pkg-config"; exit 77; }
+  mkdir -p "$tmp/pc"
+  for d in $(pkg-config --variable pc_path pkg-config | tr ':' ' '); do
+    [ -d "$d" ] || continue
+    for f in "$d"/*.pc; do
+      [ -e "$f" ] && [ "$(basename "$f")" != cmocka.pc ] && ln -sf "$f" "$tmp/pc/"
+    done
+  done
+  [ ! -e "$tmp/pc/cmocka.pc" ] && ok || fail "cmocka.pc still on the path"
+  PKG_CONFIG_LIBDIR=$tmp/pc cmake -S "$src" -B "$tmp/off" -DSL_TESTS=OFF >"$tmp/off.log" 2>&1; rc=$?
+  [ $rc -eq 0 ] && ok || fail "SL_TESTS=OFF without cmocka: configure exits $rc: $(grep -i -m3 'error\|not found' "$tmp/off.log")"
+  PKG_CONFIG_LIBDIR=$tmp/pc cmake -S "$src" -B "$tmp/on" -DSL_TESTS=ON >"$tmp/on.log" 2>&1; rc=$?
+  [ $rc -ne 0 ] && grep -q "cmocka" "$tmp/on.log" && ok || fail "SL_TESTS=ON without cmocka: configure exits $rc"
   ;;
 *) echo "cli_cite.sh: unknown case $case_" >&2; exit 2 ;;
 esac
