@@ -476,11 +476,15 @@ static enum sl_err scene_viewpoints(const struct raw_scene_ref *rs, unsigned si,
     for (unsigned i = 0; i < rs->viewpoints_count; i++) {
         snprintf(key, sizeof key, "scenes[%u].viewpoints[%u]", si, i);
         if (sl_scene_find_viewpoint(s, rs->viewpoints[i]) < 0) {
-            char known[256] = "";
-            for (int k = 0; k < s->nvp; k++)
+            char known[256] = "", hint[96];
+            struct sl_suggest sg;
+            sl_suggest_init(&sg, rs->viewpoints[i]);
+            for (int k = 0; k < s->nvp; k++) {
                 sl_known_add(known, sizeof known, s->vp[k].name);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has no viewpoint '%s' (it has: %s)",
-                               rs->scene, rs->viewpoints[i], known);
+                sl_suggest_add(&sg, s->vp[k].name);
+            }
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has no viewpoint '%s'%s (it has: %s)",
+                               rs->scene, rs->viewpoints[i], sl_suggest_text(&sg, hint, sizeof hint), known);
         }
         snprintf(cs->viewpoints[i], sizeof cs->viewpoints[i], "%s", rs->viewpoints[i]);
     }
