@@ -17,6 +17,8 @@
 #   version  --version: the version line, the build type, Embree's headers,
 #            no library loaded; --version --verbose: the GL renderer and
 #            version and Embree's version and packet width
+#   synopsis the man page's SYNOPSIS has a line for every form of every
+#            verb that the verb's help text gives (table's pivot form too)
 #   nocmocka CMake configures with SL_TESTS=OFF where pkg-config finds no
 #            cmocka, and stops naming it with SL_TESTS=ON
 #   gitsha   cmake/git_sha.cmake in a scratch repository: clean -> SHA,
@@ -93,7 +95,7 @@ $(diff "$tmp/doc.bib" "$tmp/all.bib" | head -20)"
   cp -r techniques/pcf "$tmp/pk/pcf"
   printf '@misc{ok, title = {fine}}\n\n@misc{broken,\n  title = {never closed\n' >"$tmp/pk/pcf/references.bib"
   out=$(SHADOWLAB_TECHNIQUES=$tmp/pk "$bin" cite "$db" 2>&1 >/dev/null); rc=$?
-  [ $rc -eq 2 ] && echo "$out" | grep -q "$tmp/pk/pcf/references.bib:3: the entry's braces do not close" && ok ||
+  [ $rc -eq 2 ] && echo "$out" | grep -q "$tmp/pk/pcf/references.bib:3: 'broken': the entry's braces do not close" && ok ||
     fail "a broken references.bib: rc $rc, '$out'"
   # a package without one: a note naming it and its one-line cite
   rm "$tmp/pk/pcf/references.bib"
@@ -168,6 +170,24 @@ gitsha)
   # an untracked file is no change
   git -C "$r" checkout -q a.txt && printf 'x\n' >"$r/new.txt"
   [ "$(sha_of "$r")" = "$head" ] && ok || fail "an untracked file: '$(sha_of "$r")', not $head"
+  ;;
+synopsis)
+  # every form of a verb its help text gives ("usage: shadowlab V ..." and
+  # "       shadowlab V ...") is a line of the man page's SYNOPSIS, in full
+  syn=$(sed -n '/^\.SH SYNOPSIS/,/^\.SH DESCRIPTION/p' doc/shadowlab.1 | sed 's/\\-/-/g')
+  for v in $("$bin" --help | sed -n 's/^  \([a-z]*\) .*/\1/p' | sort -u); do
+    [ "$v" = help ] && continue
+    forms=$("$bin" help "$v" | grep -cE "^(usage:|      ) shadowlab $v( |$)")
+    lines=$(echo "$syn" | grep -cx "\.B shadowlab $v")
+    [ "$forms" -ge 1 ] && [ "$forms" = "$lines" ] && ok ||
+      fail "$v: its help gives $forms forms, the man page's synopsis $lines"
+    # each form's arguments, as the help text's first line of that form starts them
+    "$bin" help "$v" | grep -E "^(usage:|      ) shadowlab $v " | sed "s/^.*shadowlab $v //" | while read -r args; do
+      first=$(echo "$args" | awk '{ print $1 }')
+      echo "$syn" | grep -A1 -x "\.B shadowlab $v" | grep -qF -- "$first" || echo "missing $v $first"
+    done >"$tmp/miss"
+    [ ! -s "$tmp/miss" ] && ok || fail "$(cat "$tmp/miss")"
+  done
   ;;
 nocmocka)
   # configure (no build) with pkg-config's search path holding every module

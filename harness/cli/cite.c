@@ -216,9 +216,12 @@ static int print_bibfile(const char *path, struct printed *p, int *found)
                 break;
         }
         if (e >= len || !kn) {
-            fprintf(stderr, "shadowlab: cite: %s:%d: %s\n", path, at,
-                    !kn ? "an entry without a key (expected @type{key, ...})"
-                        : "the entry's braces do not close before the end of the file");
+            if (!kn)
+                fprintf(stderr, "shadowlab: cite: %s:%d: an entry without a key (expected @type{key, ...})\n", path,
+                        at);
+            else
+                fprintf(stderr, "shadowlab: cite: %s:%d: '%.*s': the entry's braces do not close before the end of "
+                                "the file\n", path, at, (int)(kn < 64 ? kn : 64), text + kb);
             rc = 2;
             break;
         }

@@ -552,8 +552,8 @@ void cli_man(FILE *f)
         man_synopsis(f, v->name, v->usage);
         fputs(".br\n", f);
     }
-    fputs(".B shadowlab \\-V\\fR|\\fB\\-\\-version\n.br\n"
-          ".B shadowlab help\n.RI [ COMMAND \\fR|\\fB\\-\\-man\\fR|\\fB\\-\\-bash\\-completion ]\n",
+    fputs(".B shadowlab \\-V\\fR|\\fB\\-\\-version\n[\\-\\-verbose]\n.br\n"
+          ".B shadowlab help\n.RI [ COMMAND \\fR|\\fB\\-\\-man\\fR|\\fB\\-\\-config\\fR|\\fB\\-\\-bash\\-completion ]\n",
           f);
     fputs(".SH DESCRIPTION\n", f);
     man_text(f, man_description);
@@ -565,7 +565,8 @@ void cli_man(FILE *f)
         man_verbatim(f, v->usage);
     }
     fputs(".SS help\nhelp prints the list of commands; help COMMAND the command's help (as COMMAND \\-\\-help); "
-          "help \\-\\-man this page; help \\-\\-bash\\-completion the bash completion script.\n",
+          "help \\-\\-man this page; help \\-\\-config the config reference (doc/config.md); "
+          "help \\-\\-bash\\-completion the bash completion script.\n",
           f);
     fputs(".SH CONFIGURATION\n", f);
     man_text(f, man_config);
