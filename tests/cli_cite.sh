@@ -135,9 +135,12 @@ version)
     fail "--version's first line: $(echo "$out" | head -n 1)"
   echo "$out" | grep -Eq '^build: (Release|RelWithDebInfo|Debug|MinSizeRel)' && ok || fail "--version names no build type: $out"
   echo "$out" | grep -Eq '^embree headers: 3\.[0-9]+\.[0-9]+$' && ok || fail "--version names no Embree: $out"
-  # the light form loads neither Mesa nor Embree
-  LD_DEBUG=libs "$bin" --version 2>&1 >/dev/null | grep -Eq 'calling init: .*(libembree|libOSMesa|libEGL|libGL)' &&
-    fail "--version loads a GL or Embree library" || ok
+  # the light form loads neither Mesa nor Embree (a sanitized build links
+  # them at start on purpose, CMakeLists.txt: not checked there, as cli::startup)
+  if ! readelf -d "$bin" 2>/dev/null | grep -q 'libasan'; then
+    LD_DEBUG=libs "$bin" --version 2>&1 >/dev/null | grep -Eq 'calling init: .*(libembree|libOSMesa|libEGL|libGL)' &&
+      fail "--version loads a GL or Embree library" || ok
+  fi
   out=$("$bin" --version --verbose); rc=$?
   [ $rc -eq 0 ] && ok || fail "--version --verbose exits $rc"
   echo "$out" | grep -Eq '^gl renderer: .+' && ok || fail "--verbose names no GL renderer: $out"
