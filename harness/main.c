@@ -11,7 +11,6 @@
 #include <string.h>
 #include <unistd.h>
 #include "cli/cli.h"
-#include "provenance.h"
 
 /* OpenMP's idle threads spin between parallel regions by default (libgomp:
  * for up to GOMP_SPINCOUNT turns), burning a core while the main thread
@@ -40,10 +39,8 @@ int main(int argc, char **argv)
     if (argc < 2)
         return cli_usage_error("missing command", cli_usage());
     const char *cmd = argv[1];
-    if (!strcmp(cmd, "version") || !strcmp(cmd, "-V") || !strcmp(cmd, "--version")) {
-        printf("shadowlab %s (git %s)\n", SL_VERSION, sl_git_sha());
-        return 0;
-    }
+    if (!strcmp(cmd, "-V") || !strcmp(cmd, "--version"))
+        return cli_version(argc - 1, argv + 1);   /* the verb `version` (cli/version.c) */
     int help = !strcmp(cmd, "-h") || !strcmp(cmd, "--help") || !strcmp(cmd, "help");
     if (help && argc == 2) {
         fputs(cli_usage(), stdout);

@@ -184,26 +184,31 @@ static enum sl_err run_csm(const struct sl_method_args *a, struct sl_verdicts *o
 static enum sl_err run_csm_adj(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_mode(a, o, c, M_CSM, SL_LAYER_SGSM_ADJ, d); }
 
 const struct sl_method sl_method_bgsm = {
+    .cite = "morais2015",
     .name = "bgsm", .display = "BGSM", .family = "morais-2015", .summary = "big-triangle (conservative) shadow map: its lit pixels are lit in truth",
     .exact = SL_EXACT_LIT, .needs = needs_bgsm, .run = run_bgsm,
     .fast = {.at_pixel = CONS_AT_PIXEL},
 };
 const struct sl_method sl_method_sgsm = {
+    .cite = "morais2015",
     .name = "sgsm", .display = "SGSM", .family = "morais-2015", .summary = "small-triangle shadow map: its shadowed pixels are shadowed in truth",
     .exact = SL_EXACT_SHADOW, .needs = needs_sgsm, .run = run_sgsm,
     .fast = {.at_pixel = CONS_AT_PIXEL},
 };
 const struct sl_method sl_method_sgsm_adj = {
+    .cite = "morais2015",
     .name = "sgsm_adj", .display = "SGSM + adjacency", .family = "morais-2015", .summary = "SGSM keeping edges between away-facing neighbours (Morais 2015 ch. 4)",
     .exact = SL_EXACT_SHADOW, .needs = needs_sgsm_adj, .run = run_sgsm_adj,
     .fast = {.at_pixel = CONS_AT_PIXEL},
 };
 const struct sl_method sl_method_csm = {
+    .cite = "morais2015",
     .name = "csm", .display = "CSMa", .family = "morais-2015", .summary = "CSMa: lit by BGSM, shadowed by SGSM, the rest traced (Morais 2015)",
     .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm, .run = run_csm,
     .fast = {.at_pixel = CONS_AT_PIXEL},
 };
 const struct sl_method sl_method_csm_adj = {
+    .cite = "morais2015",
     .name = "csm_adj", .display = "CSMA", .family = "morais-2015", .summary = "CSMA: lit by BGSM, shadowed by SGSM with adjacency, the rest traced",
     .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = needs_csm_adj, .run = run_csm_adj,
     .fast = {.at_pixel = CONS_AT_PIXEL},

@@ -172,6 +172,7 @@ static enum sl_err h_run_exact(const struct sl_method_args *a, struct sl_verdict
 }
 
 const struct sl_method sl_method_hertel = {
+    .cite = "hertel2009",
     .name = "hertel", .display = "Hertel 2009", .family = "hertel-2009", .beside = "morais-2015", .summary = "Hertel 2009 as published: fully covered texels decided by the stored depth "
                                  "(own triangle: lit), the rest by the stored-triangle test and rays cut at the "
                                  "stored depth",
@@ -179,6 +180,7 @@ const struct sl_method sl_method_hertel = {
 };
 
 const struct sl_method sl_method_hertel_exact = {
+    .cite = "hertel2009",
     .name = "hertel_exact", .display = "Hertel 2009, exact", .family = "hertel-2009", .beside = "morais-2015", .summary = "Hertel 2009 made exact: every pixel the map does not light gets the "
                                        "stored-triangle test, then a ray cut at the stored depth",
     .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = h_needs, .run = h_run_exact,

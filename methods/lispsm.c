@@ -43,6 +43,7 @@ static enum sl_err lispsm_run(const struct sl_method_args *a, struct sl_verdicts
 }
 
 const struct sl_method sl_method_lispsm = {
+    .cite = "wimmer2004",
     .name = "lispsm", .display = "LiSPSM", .family = "seed-004",
     .summary = "light space perspective shadow maps (Wimmer et al. 2004), NSM's lookup",
     .lights = SL_LIGHTS_DIRECTIONAL,

@@ -247,6 +247,11 @@ struct sl_method {
     /* The method's name for people (LaTeX tables: "Texel coherence"); NULL:
      * its name. A config's `display:` overrides it per label. */
     const char *display;
+    /* What to cite for it: space-separated keys of shadowlab's bibliography
+     * (harness/cli/cite.c, doc/references.md), printed as BibTeX by
+     * `shadowlab cite`; NULL: none (a baseline, or a source with no author
+     * to name: cite says so). */
+    const char *cite;
     unsigned    exact;         /* SL_EXACT_* */
     unsigned    lights;        /* 0: hard shadows, any light; SL_LIGHTS_AREA: soft shadows, area lights only;
                                 * SL_LIGHTS_DIRECTIONAL: hard shadows, directional lights only */

@@ -407,26 +407,31 @@ static enum sl_err run_adjacency(const struct sl_method_args *a, struct sl_verdi
 static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_chain_steps(a, o, c, d); }
 
 const struct sl_method sl_method_coherence = {
+    .cite = "moderno2011",
     .name = "coherence", .display = "Texel coherence", .family = "moderno-2011", .summary = "texel coherence, 4 or 9 texels (Moderno 2011): hints, may be wrong",
     SL_METHOD_PARAMS(texels_params), .needs = needs_map, .configure = conf_texels, .run = run_coherence,
     .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF},
 };
 const struct sl_method sl_method_texel = {
+    .cite = "moderno2011",
     .name = "texel", .display = "Single texel", .family = "moderno-2011", .summary = "a ray against the texel's stored triangle (Moderno 2011)",
     .exact = SL_EXACT_PROVED, .needs = needs_map, .run = run_texel,
     .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };
 const struct sl_method sl_method_neighbours = {
+    .cite = "moderno2011",
     .name = "neighbours", .display = "Neighbour texels", .family = "moderno-2011", .summary = "rays against the triangles of 4 or 9 texels (Moderno 2011)",
     .exact = SL_EXACT_PROVED, SL_METHOD_PARAMS(texels_params), .needs = needs_map, .configure = conf_texels,
     .run = run_neighbours, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };
 const struct sl_method sl_method_adjacency = {
+    .cite = "moderno2011",
     .name = "adjacency", .display = "Adjacent geometry", .family = "moderno-2011", .summary = "rays against the stored triangle and its edge (1) or vertex (2) neighbours",
     .exact = SL_EXACT_PROVED, SL_METHOD_PARAMS(level_params), .needs = needs_adj,
     .run = run_adjacency, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };
 const struct sl_method sl_method_chain = {
+    .cite = "moderno2011",
     .name = "chain", .display = "Moderno chain", .family = "moderno-2011", .summary = "coherence(4) -> neighbours(9) -> adjacency(2) -> traced or lit (Moderno 2011)",
     .exact = SL_EXACT_PROVED, SL_METHOD_PARAMS(chain_params), .needs = needs_adj,
     .run = run_chain, .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF},

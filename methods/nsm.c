@@ -146,6 +146,7 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
 }
 
 const struct sl_method sl_method_nsm = {
+    .cite = "williams1978",
     .name = "nsm", .display = "NSM", .beside = "moderno-2011 morais-2015",
     .summary = "normal shadow mapping (self_shadow: front_faces|none|constant|slope|triangle_id)",
     SL_METHOD_PARAMS(nsm_params),

@@ -21,6 +21,7 @@ static enum sl_err rt_run(const struct sl_method_args *a, struct sl_verdicts *ou
 }
 
 const struct sl_method sl_method_raytrace = {
+    .cite = "wald2014embree",
     .name = "raytrace", .display = "Ray tracing", .beside = "morais-2015", .summary = "every PFL pixel traced with Embree (the reference, for costs)",
     .exact = SL_EXACT_LIT | SL_EXACT_SHADOW, .needs = rt_needs, .run = rt_run,
 };

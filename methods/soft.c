@@ -75,6 +75,7 @@ static enum sl_err point_run(const struct sl_method_args *a, struct sl_verdicts 
 }
 
 const struct sl_method sl_method_hard_point = {
+    .cite = "curtis2009",
     .name = "hard_point", .display = "Hard shadows (point)", .family = "curtis-2009",
     .summary = "area light as a point at its centre, one exact ray per pixel: the hard-shadow approximation",
     .lights = SL_LIGHTS_AREA,
@@ -176,6 +177,7 @@ static enum sl_err mc_desc_run(const struct sl_method_args *a, const struct sl_s
 }
 
 const struct sl_method sl_method_soft_mc = {
+    .cite = "curtis2009",
     .name = "soft_mc", .display = "Monte Carlo soft shadows", .family = "curtis-2009",
     .summary = "Curtis 2009: rays to jittered points on an area light through near/far layers, or near/far + "
                "the camera's depth with layers 3 and linear search (grid, search, layers, blur)",
@@ -187,6 +189,7 @@ const struct sl_method sl_method_soft_mc = {
 };
 
 const struct sl_method sl_method_point_map = {
+    .cite = "curtis2009",
     .name = "point_map", .display = "Point-light map", .family = "curtis-2009",
     .summary = "area light as a point at its centre through a shadow map (soft_mc's near layer): the hard map approximation",
     .lights = SL_LIGHTS_AREA,

@@ -8,7 +8,8 @@
 # Installs only the Debian packages that are missing (as root, or through
 # sudo): `run` and `build` what building and running shadowlab needs (every
 # verb, report's plots included), `test` that and the tools only the tests
-# and CI use (the sqlite3 shell, Chromium, TeX Live, Slurm and munge, clang).
+# and CI use (cmocka, the sqlite3 shell, Chromium, TeX Live, Slurm and munge,
+# clang). `run` and `build` configure with -DSL_TESTS=OFF.
 # Other distributions: the same packages by name and the plain cmake
 # commands, doc/guide.md#installing.
 set -euo pipefail
@@ -35,11 +36,11 @@ RUN_PACKAGES=(
   libassimp-dev         # model files
   assimp-testmodels     # third-party models the model scenes (configs/models.yaml) and tests load
   libsqlite3-dev        # results store
-  libcmocka-dev         # unit tests: CMakeLists.txt asks for it even to build the binary alone
   gnuplot-nox           # the report's plots (shadowlab report)
 )
 # What only the tests and CI add.
 TEST_PACKAGES=(
+  libcmocka-dev         # the unit tests (CMake asks for it only when SL_TESTS is on)
   sqlite3               # the store from the shell (tests: cli::hostile, cli::report)
   chromium              # the report's rendering test (cli::report)
   texlive-latex-recommended lmodern  # pdflatex, booktabs, fonts: report --latex compiles (cli::report)
@@ -69,8 +70,11 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
+# the tests are built for `test` only: `run` and `build` need no cmocka
+tests=OFF
+[ "$mode" = test ] && tests=ON
 # SL_CMAKE_ARGS: extra configure flags (CI passes -DSL_WERROR=ON)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo ${SL_CMAKE_ARGS:-} >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSL_TESTS=$tests ${SL_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j "$jobs"
 
 case $mode in

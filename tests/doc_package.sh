@@ -30,7 +30,7 @@ cmake_version() { sed -n 's/^project(shadowlab VERSION \([0-9][0-9.]*\) .*/\1/p'
 
 case $case_ in
 version)
-  v=$("$bin" --version)
+  v=$("$bin" --version | head -n 1)
   echo "$v" | grep -Eq '^shadowlab [0-9]+\.[0-9]+\.[0-9]+ \(git ([0-9a-f]{7,40}(-dirty)?|unknown)\)$' && ok ||
     fail "--version prints '$v', not 'shadowlab X.Y.Z (git SHA)'"
   bv=$(echo "$v" | awk '{ print $2 }')
@@ -200,11 +200,11 @@ setup)
   bash -n scripts/setup.sh && ok || fail "scripts/setup.sh is not valid bash"
   eval "$(sed -n '/^RUN_PACKAGES=(/,/^)/p; /^TEST_PACKAGES=(/,/^)/p' scripts/setup.sh)"
   [ ${#RUN_PACKAGES[@]} -gt 10 ] && ok || fail "no RUN_PACKAGES list in scripts/setup.sh"
-  for p in slurm-wlm munge chromium clang libclang-rt-14-dev texlive-latex-recommended lmodern sqlite3; do
+  for p in slurm-wlm munge chromium clang libclang-rt-14-dev texlive-latex-recommended lmodern sqlite3 libcmocka-dev; do
     printf '%s\n' "${RUN_PACKAGES[@]}" | grep -qx -- "$p" && fail "setup.sh run installs $p (tests only)" || ok
     printf '%s\n' "${TEST_PACKAGES[@]}" | grep -qx -- "$p" && ok || fail "setup.sh test does not install $p"
   done
-  for p in libembree-dev libosmesa6-dev libegl-dev libopenimageio-dev libcyaml-dev libsqlite3-dev libcmocka-dev gnuplot-nox \
+  for p in libembree-dev libosmesa6-dev libegl-dev libopenimageio-dev libcyaml-dev libsqlite3-dev gnuplot-nox \
            libunistring-dev glslang-dev; do
     printf '%s\n' "${RUN_PACKAGES[@]}" | grep -qx -- "$p" && ok || fail "setup.sh run does not install $p"
   done

@@ -398,7 +398,7 @@ static void config_packages(void **st)
     sl_config_free(&c);
     assert_null(c.session);
     static const struct { const char *entry; const char *key; const char *msg; } bad[] = {
-        {"  - {method: pcf, kernal: 3}\n", "methods[0].kernal", "no parameter 'kernal'"},
+        {"  - {method: pcf, kernal: 3}\n", "methods[0].kernal", "no parameter 'kernal' (did you mean 'kernel'?)"},
         {"  - {method: pcf, kernel: 11}\n", "methods[0].kernel", "outside [1, 9]"},
         {"  - {method: pcf, kernel: 2.5}\n", "methods[0].kernel", "2.5"},
         {"  - {method: pcf, kernel: [3, x]}\n", "methods[0].kernel", "'x'"},

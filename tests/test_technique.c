@@ -192,13 +192,13 @@ static void technique_trace_band(void **st)
     expect_bad("band_below", HEAD("band_below") MAPS SHADERS "trace:\n  between: [-0.1, 0.5]\n", 8,
                "trace.between", "0 <= lo");
     expect_bad("band_nan", HEAD("band_nan") MAPS SHADERS "trace:\n  between: [.nan, 0.5]\n", 8,
-               "trace.between[0]", "FLOAT");
+               "trace.between[0]", "expected a number, got '.nan'");
     expect_bad("band_three", HEAD("band_three") MAPS SHADERS "trace:\n  between: [0.1, 0.5, 0.9]\n", 8,
                "trace.between", "at most 2");
     expect_bad("band_one", HEAD("band_one") MAPS SHADERS "trace:\n  between: [0.1]\n", 8,
-               "trace.between", "Insufficient entries");
+               "trace.between", "expected a list of at least 2 entries, got 1");
     expect_bad("band_word", HEAD("band_word") MAPS SHADERS "trace:\n  between: [low, 0.5]\n", 8,
-               "trace.between[0]", "");
+               "trace.between[0]", "expected a number, got 'low'");
     expect_bad("band_key", HEAD("band_key") MAPS SHADERS "trace:\n  within: [0.1, 0.5]\n", 8,
                "trace.within", "unknown key");
 }

@@ -12,6 +12,7 @@
 #include <unistd.h>
 #include <cmocka.h>
 #include "sl_test.h"
+#include "suggest.h"
 #include "util.h"
 #include "yamlfile.h"
 #include "ytree.h"
@@ -278,19 +279,22 @@ static void ytree_bind(void **st)
     sl_yaml_free(&b_schema, f, NULL);
     static const struct { const char *text; int line; const char *key, *msg; } bad[] = {
         {"name: x\nitems: [{size: 1}]\nextra: 1\n", 3, "extra", "unknown key 'extra'"},
+        {"name: x\nitems: [{size: 1}]\nscael: 1\n", 3, "scael", "unknown key 'scael' (did you mean 'scale'?)"},
+        {"name: x\nitems: [{sise: 1}]\n", 2, "items[0].sise", "unknown key 'sise' (did you mean 'size'?)"},
+        {"name: x\nitems: big\n", 2, "items", "expected a list ([a, b] or '- a' lines), got 'big'"},
         {"name: x\nitems:\n  - {size: 1}\n  - {label: a}\n", 4, "items[1].size", "missing required key"},
         {"items: [{size: 1}]\n", 0, "name", "missing required key"},
         {"name: x\nitems: [{size: 1}, {size: 2}, {size: 3},\n  {size: 4}]\n", 3, "items",
          "more than 3 entries: at most 3 are allowed"},
-        {"name: x\nitems: []\n", 2, "items", "Insufficient entries (0 of 1 min)"},
+        {"name: x\nitems: []\n", 2, "items", "expected a list of at least 1 entry, got 0"},
         {"name: x\nitems: [{size: 7.9}]\n", 2, "items[0].size", "'7.9' is not a whole number"},
         {"name: x\nitems: [{size: 1e3}]\nscale: 1\n", 2, "items[0].size", "'1e3' is not a whole number"},
-        {"name: x\nitems: [{size: -1}]\n", 2, "items[0].size", "Invalid UINT value: '-1'"},
-        {"name: x\nitems: [{size: big}]\n", 2, "items[0].size", "Invalid uint64_t value: 'big'"},
-        {"name: x\nitems: [{size: 1, label: toolongtext}]\n", 2, "items[0].label", "STRING length > 7: toolongtext"},
-        {"name: x\nscale: wide\nitems: [{size: 1}]\n", 2, "scale", "Invalid FLOAT value: wide"},
-        {"name: [x]\nitems: [{size: 1}]\n", 1, "name", "Expecting STRING, got event: SEQUENCE_START"},
-        {"name: x\nname: y\nitems: [{size: 1}]\n", 2, "name", "Mapping field already seen: name"},
+        {"name: x\nitems: [{size: -1}]\n", 2, "items[0].size", "expected a whole number, 0 or more, got '-1'"},
+        {"name: x\nitems: [{size: big}]\n", 2, "items[0].size", "expected a whole number, 0 or more, got 'big'"},
+        {"name: x\nitems: [{size: 1, label: toolongtext}]\n", 2, "items[0].label", "expected a text of at most 7 characters, got 'toolongtext' (11)"},
+        {"name: x\nscale: wide\nitems: [{size: 1}]\n", 2, "scale", "expected a number, got 'wide'"},
+        {"name: [x]\nitems: [{size: 1}]\n", 1, "name", "expected a word or a quoted text, got a list"},
+        {"name: x\nname: y\nitems: [{size: 1}]\n", 2, "name", "the key 'name' is given twice"},
         {"- name: x\n", 1, NULL, "the file is a sequence"},
         {"name: x\nitems:\n  - ? [a]\n    : 1\n", 3, "items[0]", "a key is a plain word"},
         {"", 0, NULL, "empty file"},
@@ -333,6 +337,48 @@ static void ytree_bind(void **st)
     sl_yaml_free(&b_schema, f, t);
 }
 
+/* "did you mean" (base/suggest.h): the distance, the threshold and ties */
+static void ytree_suggest(void **state)
+{
+    (void)state;
+    assert_int_equal(sl_edit_distance("", ""), 0);
+    assert_int_equal(sl_edit_distance("nsm", "nsm"), 0);
+    assert_int_equal(sl_edit_distance("NSM", "nsm"), 0);        /* case ignored */
+    assert_int_equal(sl_edit_distance("map_size", "map_sizes"), 1);
+    assert_int_equal(sl_edit_distance("scael", "scale"), 1);    /* a swap is one edit */
+    assert_int_equal(sl_edit_distance("kitten", "sitting"), 3);
+    assert_int_equal(sl_edit_distance("", "abc"), 3);
+    char hint[96];
+    struct sl_suggest sg;
+    const char *labels[] = {"nsm", "csm", "chain", "texel", NULL};
+    sl_suggest_init(&sg, "chian");
+    for (int i = 0; labels[i]; i++)
+        sl_suggest_add(&sg, labels[i]);
+    assert_string_equal(sl_suggest_best(&sg), "chain");
+    assert_string_equal(sl_suggest_text(&sg, hint, sizeof hint), " (did you mean 'chain'?)");
+    /* "bsm" is one edit from nsm and from csm: a tie names neither */
+    sl_suggest_init(&sg, "bsm");
+    for (int i = 0; labels[i]; i++)
+        sl_suggest_add(&sg, labels[i]);
+    assert_null(sl_suggest_best(&sg));
+    assert_string_equal(sl_suggest_text(&sg, hint, sizeof hint), "");
+    /* too far: "nope" (4 letters allow 1 edit) is 3 edits from nsm, the nearest */
+    sl_suggest_init(&sg, "nope");
+    for (int i = 0; labels[i]; i++)
+        sl_suggest_add(&sg, labels[i]);
+    assert_null(sl_suggest_best(&sg));
+    /* a member is no typo */
+    sl_suggest_init(&sg, "texel");
+    for (int i = 0; labels[i]; i++)
+        sl_suggest_add(&sg, labels[i]);
+    assert_null(sl_suggest_best(&sg));
+    /* longer words allow len/3 edits: "neighbors" (9) -> "neighbours" (1 edit), "adjcncy" (7: 2) */
+    sl_suggest_init(&sg, "adjcncy");
+    sl_suggest_add(&sg, "adjacency");
+    sl_suggest_add(&sg, "neighbours");
+    assert_string_equal(sl_suggest_best(&sg), "adjacency");
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -340,6 +386,7 @@ int main(int argc, char **argv)
         SL_CASE(ytree, refusals),
         SL_CASE(ytree, overrides),
         SL_CASE(ytree, bind),
+        SL_CASE(ytree, suggest),
     };
     return sl_run_group(argc, argv, "ytree", tests, NULL, NULL);
 }

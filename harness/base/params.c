@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "suggest.h"
 #include "util.h"
 
 #define NAME_(id, text) text,
@@ -122,9 +123,14 @@ enum sl_err sl_params_put(struct sl_params *s, const char *name, double x, struc
 {
     int i = sl_param_index(s->decl, s->n, name);
     if (i < 0) {
-        char known[512];
+        char known[512], hint[96];
+        struct sl_suggest sg;
         known_names(s, known, sizeof known);
-        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "no parameter '%s' (it has: %s)", name, known);
+        sl_suggest_init(&sg, name);
+        for (int k = 0; k < s->n; k++)
+            sl_suggest_add(&sg, s->decl[k].name);
+        return sl_fail(d, SL_E_METHOD, NULL, 0, name, "no parameter '%s'%s (it has: %s)", name,
+                       sl_suggest_text(&sg, hint, sizeof hint), known);
     }
     const struct sl_param *p = &s->decl[i];
     if (!isfinite(x))

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include "suggest.h"
 #include "util.h"
 
 struct bind {
@@ -101,10 +102,33 @@ static const char *type_name(cyaml_type_e t)
     }
 }
 
-/* libyaml's name of the event that starts node n, as libcyaml named it */
-static const char *event_name(const struct sl_ynode *n)
+/* What a value of schema type t is, in the words a config's author uses
+ * (the messages say "expected <this>, got <what the file has>"; libcyaml's
+ * own "Expecting SEQUENCE, got event: SCALAR" named libyaml's events). */
+static const char *type_words(cyaml_type_e t)
 {
-    return n->kind == SL_YSCALAR ? "SCALAR" : n->kind == SL_YSEQ ? "SEQUENCE_START" : "MAPPING_START";
+    switch (t) {
+    case CYAML_INT: return "a whole number";
+    case CYAML_UINT: return "a whole number, 0 or more";
+    case CYAML_BOOL: return "true or false";
+    case CYAML_FLOAT: return "a number";
+    case CYAML_STRING: return "a word or a quoted text";
+    case CYAML_MAPPING: return "a mapping (key: value lines)";
+    case CYAML_SEQUENCE:
+    case CYAML_SEQUENCE_FIXED: return "a list ([a, b] or '- a' lines)";
+    default: return "a single value";
+    }
+}
+
+/* What node n is, for "got ...": a scalar quoted with its text (cut at
+ * 60 bytes), else the kind of node. */
+static const char *node_words(const struct sl_ynode *n, char *buf, size_t size)
+{
+    if (n->kind == SL_YSCALAR)
+        snprintf(buf, size, "'%.60s'%s", n->text, strlen(n->text) > 60 ? "..." : "");
+    else
+        snprintf(buf, size, "%s", n->kind == SL_YSEQ ? "a list" : "a mapping (key: value lines)");
+    return buf;
 }
 
 /* A scalar into data, as libcyaml read each type (its texts too). */
@@ -120,7 +144,7 @@ static enum sl_err read_scalar(struct bind *b, const cyaml_schema_value_t *s, co
         errno = 0;
         long long x = strtoll(v, &end, 0);
         if (end == v || errno == ERANGE || x < min || x > max)
-            return fail_at(b, n, n->line, NULL, "Invalid INT value: '%s'", v);
+            return fail_at(b, n, n->line, NULL, "expected %s, got '%s'", type_words(s->type), v);
         if (!b->whole && !is_decimal(v))
             b->whole = n;
         return put_int(data, (uint64_t)x, s->data_size) ? SL_OK : fail_at(b, n, n->line, NULL, "%s", "bad schema");
@@ -130,10 +154,12 @@ static enum sl_err read_scalar(struct bind *b, const cyaml_schema_value_t *s, co
             break;
         errno = 0;
         unsigned long long x = strtoull(v, &end, 0);
-        if (end == v || errno == ERANGE)
-            return fail_at(b, n, n->line, NULL, "Invalid uint64_t value: '%s'", v);
+        /* strtoull takes "-1" as 2^64 - 1: a sign is refused first */
+        if (end == v || errno == ERANGE || v[strspn(v, " \t")] == '-')
+            return fail_at(b, n, n->line, NULL, "expected %s, got '%s'", type_words(s->type), v);
         if (x > (~(uint64_t)0) >> ((8 - s->data_size) * 8))
-            return fail_at(b, n, n->line, NULL, "Invalid UINT value: '%s'", v);
+            return fail_at(b, n, n->line, NULL, "expected %s of at most %llu, got '%s'", type_words(s->type),
+                           (unsigned long long)((~(uint64_t)0) >> ((8 - s->data_size) * 8)), v);
         if (!b->whole && !is_decimal(v))
             b->whole = n;
         return put_int(data, (uint64_t)x, s->data_size) ? SL_OK : fail_at(b, n, n->line, NULL, "%s", "bad schema");
@@ -154,19 +180,20 @@ static enum sl_err read_scalar(struct bind *b, const cyaml_schema_value_t *s, co
         if (s->data_size == sizeof(float)) {
             float x = strtof(v, &end);
             if (end == v)
-                return fail_at(b, n, n->line, NULL, "Invalid FLOAT value: %s", v);
+                return fail_at(b, n, n->line, NULL, "expected %s, got '%s'", type_words(s->type), v);
             if (errno == ERANGE && (s->flags & CYAML_FLAG_STRICT))
-                return fail_at(b, n, n->line, NULL, "FLOAT %s: %s",
-                               x == HUGE_VALF || x == -HUGE_VALF ? "overflow" : "underflow", v);
+                return fail_at(b, n, n->line, NULL, "expected %s, got '%s': too %s for a float", type_words(s->type),
+                               v, x == HUGE_VALF || x == -HUGE_VALF ? "large" : "small");
             memcpy(data, &x, sizeof x);
             return SL_OK;
         }
         if (s->data_size == sizeof(double)) {
             double x = strtod(v, &end);
             if (end == v)
-                return fail_at(b, n, n->line, NULL, "Invalid FLOAT value: %s", v);
+                return fail_at(b, n, n->line, NULL, "expected %s, got '%s'", type_words(s->type), v);
             if (errno == ERANGE && (s->flags & CYAML_FLAG_STRICT))
-                return fail_at(b, n, n->line, NULL, "FLOAT overflow/overflow: %s", v);
+                return fail_at(b, n, n->line, NULL, "expected %s, got '%s': out of a double's range",
+                               type_words(s->type), v);
             memcpy(data, &x, sizeof x);
             return SL_OK;
         }
@@ -174,9 +201,11 @@ static enum sl_err read_scalar(struct bind *b, const cyaml_schema_value_t *s, co
     case CYAML_STRING: {
         size_t len = strlen(v);
         if (len < s->string.min)
-            return fail_at(b, n, n->line, NULL, "STRING length < %u: %s", (unsigned)s->string.min, v);
+            return fail_at(b, n, n->line, NULL, "expected a text of at least %u characters, got '%s'",
+                           (unsigned)s->string.min, v);
         if (len > s->string.max)
-            return fail_at(b, n, n->line, NULL, "STRING length > %u: %s", (unsigned)s->string.max, v);
+            return fail_at(b, n, n->line, NULL, "expected a text of at most %u characters, got '%.60s%s' (%zu)",
+                           (unsigned)s->string.max, v, len > 60 ? "..." : "", len);
         memcpy(data, v, len + 1);
         return SL_OK;
     }
@@ -214,10 +243,16 @@ static enum sl_err bind_map(struct bind *b, const cyaml_schema_value_t *s, const
         unsigned j = 0;
         while (j < nf && strcmp(f[j].key, k->text) != 0)
             j++;
-        if (j == nf)
-            return fail_at(b, k, k->line, key, "unknown key '%s'", k->text);
+        if (j == nf) {
+            struct sl_suggest sg;
+            char hint[96];
+            sl_suggest_init(&sg, k->text);
+            for (unsigned q = 0; q < nf; q++)
+                sl_suggest_add(&sg, f[q].key);
+            return fail_at(b, k, k->line, key, "unknown key '%s'%s", k->text, sl_suggest_text(&sg, hint, sizeof hint));
+        }
         if (seen[j])
-            return fail_at(b, k, k->line, key, "Mapping field already seen: %s", k->text);
+            return fail_at(b, k, k->line, key, "the key '%s' is given twice", k->text);
         seen[j] = 1;
         enum sl_err e = bind_value(b, &f[j].value, v, data + f[j].data_offset, data + f[j].count_offset,
                                    f[j].count_size);
@@ -264,8 +299,8 @@ static enum sl_err bind_seq(struct bind *b, const cyaml_schema_value_t *s, const
             return e;
     }
     if (n->n < s->sequence.min)
-        return fail_at(b, n, n->line, NULL, "Insufficient entries (%u of %u min) in sequence.", n->n,
-                       (unsigned)s->sequence.min);
+        return fail_at(b, n, n->line, NULL, "expected a list of at least %u entr%s, got %u", (unsigned)s->sequence.min,
+                       s->sequence.min == 1 ? "y" : "ies", n->n);
     return SL_OK;
 }
 
@@ -273,8 +308,10 @@ static enum sl_err bind_value(struct bind *b, const cyaml_schema_value_t *s, con
                               uint8_t *data, uint8_t *count, size_t count_size)
 {
     int want = s->type == CYAML_MAPPING ? SL_YMAP : s->type == CYAML_SEQUENCE ? SL_YSEQ : SL_YSCALAR;
-    if (n->kind != want)
-        return fail_at(b, n, n->line, NULL, "Expecting %s, got event: %s", type_name(s->type), event_name(n));
+    if (n->kind != want) {
+        char got[80];
+        return fail_at(b, n, n->line, NULL, "expected %s, got %s", type_words(s->type), node_words(n, got, sizeof got));
+    }
     if (s->type == CYAML_SEQUENCE)
         return bind_seq(b, s, n, data, count, count_size);
     if (s->flags & CYAML_FLAG_POINTER) {

@@ -3,7 +3,7 @@
 /*
  * cli: the command line, one file per verb (run.c, validate.c, table.c,
  * report.c, check.c, store.c for merge and verify, submit.c, bench.c,
- * preview.c, list.c for list and show, test.c) and the table of verbs with their help texts
+ * preview.c, list.c for list and show, test.c, cite.c, version.c) and the table of verbs with their help texts
  * (usage.c). This header is what the verbs share: the option parser, the
  * error printing and the exit codes. The CLI is the only code that prints
  * errors and chooses exit codes (the library stages return sl_err ids and
@@ -53,6 +53,8 @@ int cli_preview(int argc, char **argv);
 int cli_list(int argc, char **argv);
 int cli_show(int argc, char **argv);
 int cli_test(int argc, char **argv);
+int cli_cite(int argc, char **argv);
+int cli_version(int argc, char **argv);   /* also -V and --version (main.c) */
 
 /* the help text of each verb (usage.c) */
 extern const char cli_usage_run[];
@@ -68,6 +70,8 @@ extern const char cli_usage_merge[];
 extern const char cli_usage_verify[];
 extern const char cli_usage_preview[];
 extern const char cli_usage_test[];
+extern const char cli_usage_cite[];
+extern const char cli_usage_version[];
 
 /* ---- errors ----
  * cli_fail prints the diagnostic as one line and returns the exit code of
@@ -80,6 +84,10 @@ int cli_usage_error(const char *msg, const char *text);
  * light and each label with why, so no label is dropped unsaid. */
 struct sl_config;
 void cli_note_left_out(const struct sl_config *c);
+/* The technique packages of the search path, as `list techniques` reads
+ * them (no config, no GL); the exit code on failure (printed), else 0. */
+struct sl_tech_set;
+int cli_tech_scan(struct sl_tech_set *s);
 
 /* ---- options: getopt_long per verb ----
  * Each verb has a table of long options and a short-option string;
@@ -93,6 +101,7 @@ enum {
     OPT_LABEL, OPT_MAP, OPT_RUN, OPT_SUMMARY, OPT_FIGURES, OPT_REGION, OPT_LOWER, OPT_AVG, OPT_BASELINE, OPT_STUDY,
     OPT_ROWS, OPT_UPDATE, OPT_EXACT, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX, OPT_CACHE, OPT_JOBS, OPT_SIZE,
     OPT_ALLOW_MIXED, OPT_STORED_IN, OPT_MARKDOWN, OPT_COLS, OPT_FIGURE, OPT_OF, OPT_AGG, OPT_WHERE,
+    OPT_ALL,
 };
 #define OPT_HELP {"help", no_argument, NULL, 'h'}
 enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };

@@ -14,11 +14,22 @@
 #include "cli.h"
 #include "method.h"
 #include "scenefile.h"
+#include "suggest.h"
 #include "technique.h"
 #include "util.h"
 
 /* The packages of the search path (no config: SHADOWLAB_TECHNIQUES, the
  * source tree, the installed ones); exit code on failure, else 0. */
+static int tech_scan(struct sl_tech_set *s, char (*dirs)[1024], const char **origin, int *nd);
+
+int cli_tech_scan(struct sl_tech_set *s)
+{
+    char dirs[SL_TECH_MAX_DIRS][1024];
+    const char *origin[SL_TECH_MAX_DIRS];
+    int nd;
+    return tech_scan(s, dirs, origin, &nd);
+}
+
 static int tech_scan(struct sl_tech_set *s, char (*dirs)[1024], const char **origin, int *nd)
 {
     static const char *c_names[64];
@@ -131,16 +142,20 @@ int cli_show(int argc, char **argv)
         return cli_usage_error("show: method NAME or technique NAME", cli_usage_show);
     if (!strcmp(argv[1], "method")) {
         const struct sl_method *m = NULL;
-        char names[600] = "";
+        char names[600] = "", hint[96];
+        struct sl_suggest sg;
+        sl_suggest_init(&sg, argv[2]);
         for (int i = 0; i < sl_method_count(); i++) {
             if (!strcmp(sl_method_at(i)->name, argv[2]))
                 m = sl_method_at(i);
             sl_known_add(names, sizeof names, sl_method_at(i)->name);
+            sl_suggest_add(&sg, sl_method_at(i)->name);
         }
         if (!m) {
             struct sl_diag d;
-            sl_fail(&d, SL_E_METHOD, NULL, 0, argv[2], "no built-in method of that name (there are: %s; a "
-                    "technique package: `shadowlab show technique NAME`)", names);
+            sl_fail(&d, SL_E_METHOD, NULL, 0, argv[2], "no built-in method of that name%s (there are: %s; a "
+                    "technique package: `shadowlab show technique NAME`)", sl_suggest_text(&sg, hint, sizeof hint),
+                    names);
             return cli_fail(SL_E_METHOD, &d);
         }
         show_method(m);
@@ -155,11 +170,16 @@ int cli_show(int argc, char **argv)
     const struct sl_technique *t = sl_tech_find(&s, argv[2]);
     if (!t) {
         struct sl_diag d;
-        char names[600] = "";
-        for (int i = 0; i < s.n; i++)
+        char names[600] = "", hint[96];
+        struct sl_suggest sg;
+        sl_suggest_init(&sg, argv[2]);
+        for (int i = 0; i < s.n; i++) {
             snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "", s.t[i].name);
-        sl_fail(&d, SL_E_METHOD, NULL, 0, argv[2], "no technique package of that name (found: %s; "
-                "`shadowlab list techniques` says where)", s.n ? names : "none");
+            sl_suggest_add(&sg, s.t[i].name);
+        }
+        sl_fail(&d, SL_E_METHOD, NULL, 0, argv[2], "no technique package of that name%s (found: %s; "
+                "`shadowlab list techniques` says where)", sl_suggest_text(&sg, hint, sizeof hint),
+                s.n ? names : "none");
         sl_tech_set_free(&s);
         return cli_fail(SL_E_METHOD, &d);
     }

@@ -11,10 +11,66 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
+#include "util.h"
 #include "store.h"
 #include "pivot.h"
+#include "suggest.h"
 #include "summary.h"
 #include "table.h"
+
+/* Every label --label names is one the store holds (under the other
+ * filters): a typo is an error with the nearest stored label, never a
+ * label silently dropped from the table. The store is asked again, without
+ * the label filter, only when a label found no cell. */
+static enum sl_err check_labels(struct sl_store *st, const struct sl_store_filter *f, const char *labels,
+                                const struct sl_cell_record *cells, int n, struct sl_diag *d)
+{
+    struct sl_cell_record *all = NULL;
+    int nall = 0, asked = 0;
+    enum sl_err e = SL_OK;
+    for (const char *q = labels; *q && !e;) {
+        size_t len = strcspn(q, ",");
+        char want[64];
+        snprintf(want, sizeof want, "%.*s", (int)(len < sizeof want ? len : sizeof want - 1), q);
+        q += len;
+        q += *q == ',';
+        int found = 0;
+        for (int i = 0; i < n && !found; i++)
+            found = !strcmp(cells[i].label, want);
+        if (found)
+            continue;
+        if (!asked) {
+            struct sl_store_filter g = *f;
+            g.label = NULL;
+            asked = 1;
+            e = sl_store_query(st, &g, &all, &nall, d);
+            if (e)
+                break;
+        }
+        struct sl_suggest sg;
+        char known[512] = "", hint[96];
+        sl_suggest_init(&sg, want);
+        for (int i = 0; i < nall; i++) {
+            int seen = 0;
+            for (int j = 0; j < i && !seen; j++)
+                seen = !strcmp(all[j].label, all[i].label);
+            if (seen)
+                continue;
+            sl_known_add(known, sizeof known, all[i].label);
+            sl_suggest_add(&sg, all[i].label);
+        }
+        int stored = 0;
+        for (int i = 0; i < nall && !stored; i++)
+            stored = !strcmp(all[i].label, want);
+        if (stored)
+            continue;   /* stored, only not under the other filters: "no stored cell matches" says so */
+        e = sl_fail(d, SL_E_USAGE, NULL, 0, "--label", "no label '%s' in the store%s (stored%s: %s)", want,
+                    sl_suggest_text(&sg, hint, sizeof hint), f->scene || f->viewpoint || f->map_size || f->run_id
+                    ? " under the other filters" : "", known[0] ? known : "none");
+    }
+    free(all);
+    return e;
+}
 
 int cli_table(int argc, char **argv)
 {
@@ -163,6 +219,8 @@ int cli_table(int argc, char **argv)
     enum sl_err e = sl_store_open_existing(db, &st, &d);
     if (!e)
         e = sl_store_query(st, &f, &cells, &n, &d);
+    if (!e && labels[0])
+        e = check_labels(st, &f, labels, cells, n, &d);
     if (!e && n == 0)
         e = sl_fail(&d, SL_E_USAGE, db, 0, NULL, "no stored cell matches");
     if (!e && pivot) {
@@ -185,8 +243,16 @@ int cli_table(int argc, char **argv)
             while (k < SL_FIG_COUNT && !(strlen(sl_figure_name((enum sl_figure)k)) == len &&
                                          !strncmp(sl_figure_name((enum sl_figure)k), q, len)))
                 k++;
-            if (k == SL_FIG_COUNT)
-                e = sl_fail(&d, SL_E_USAGE, NULL, 0, "--summary", "unknown figure '%.*s'", (int)len, q);
+            if (k == SL_FIG_COUNT) {
+                char word[64], hint[96];
+                struct sl_suggest sg;
+                snprintf(word, sizeof word, "%.*s", (int)(len < sizeof word ? len : sizeof word - 1), q);
+                sl_suggest_init(&sg, word);
+                for (int j = 0; j < SL_FIG_COUNT; j++)
+                    sl_suggest_add(&sg, sl_figure_name((enum sl_figure)j));
+                e = sl_fail(&d, SL_E_USAGE, NULL, 0, "--summary", "unknown figure '%s'%s", word,
+                            sl_suggest_text(&sg, hint, sizeof hint));
+            }
             else if (!sl_figure_of((enum sl_figure)k)[0])
                 e = sl_fail(&d, SL_E_USAGE, NULL, 0, "--summary", "'%s' is a count, not a percentage",
                             sl_figure_name((enum sl_figure)k));

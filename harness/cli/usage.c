@@ -264,6 +264,27 @@ const char cli_usage_test[] =
 
 /* In the order `shadowlab --help` lists them. run and bench render with
  * OpenMP on the CPU passes: they wait passively (main.c). */
+const char cli_usage_cite[] =
+    "usage: shadowlab cite [STORE] [--all]\n"
+    "  BibTeX on stdout for what the numbers came from: shadowlab's entry and Embree's (the\n"
+    "  truth), then, with STORE, the references of every method its cells ran (a built-in\n"
+    "  method's declared ones; a technique package's references.bib, from its folder on the\n"
+    "  search path). A method or package that gives none gets a note on stderr, naming it.\n"
+    "  --all   every built-in method's and every package's on the search path\n"
+    "  Exit 2 for a package's references.bib that does not parse (its file and line named),\n"
+    "  a STORE that cannot be read or one with no cell.\n";
+
+const char cli_usage_version[] =
+    "usage: shadowlab version [--verbose]\n"
+    "  (also: shadowlab -V [--verbose], shadowlab --version [--verbose])\n"
+    "  The release and the git commit this binary was built from (\"-dirty\" when tracked files\n"
+    "  differed from that commit), the build type and the Embree headers it was compiled with;\n"
+    "  this form loads no library.\n"
+    "  --verbose, -v   also opens a GL context and an Embree device as a run would (SHADOWLAB_GL,\n"
+    "                  SHADOWLAB_EGL_DEVICE, SHADOWLAB_EMBREE_CONFIG obeyed) and prints the CPU, the\n"
+    "                  GL renderer, version and backend, and Embree's version and native packet\n"
+    "                  width (the ISA of its kernels); a part that cannot open says why\n";
+
 const struct cli_verb cli_verbs[] = {
     {"run", cli_run, cli_usage_run, "CONFIG|SCENE [options]", "run an experiment (shadowlab run --help)", 1},
     {"validate", cli_validate, cli_usage_validate, "FILE [-D K=V]",
@@ -288,6 +309,9 @@ const struct cli_verb cli_verbs[] = {
      0},
     {"test", cli_test, cli_usage_test, "technique NAME [options]",
      "a technique package's determinism, reach, finite values, taps and time; exit 1 on a finding", 0},
+    {"cite", cli_cite, cli_usage_cite, "[STORE] [--all]", "BibTeX for shadowlab and every method a store ran", 0},
+    {"version", cli_version, cli_usage_version, "[--verbose]",
+     "the version, git SHA and build; --verbose: GL renderer and Embree too (also -V, --version)", 0},
     {NULL, NULL, NULL, NULL, NULL, 0},
 };
 
@@ -299,8 +323,7 @@ const struct cli_verb *cli_verb_find(const char *name)
     return NULL;
 }
 
-/* "  NAME SYNOPSIS" in 26 columns, then the summary; version is not a verb
- * of the table (main.c answers it, and its -V / --version forms) */
+/* "  NAME SYNOPSIS" in 26 columns, then the summary */
 static void usage_line(char *buf, size_t size, size_t *len, const char *left, const char *summary)
 {
     int k = snprintf(buf + *len, size - *len, "  %-26s %s\n", left, summary);
@@ -320,7 +343,6 @@ const char *cli_usage(void)
         snprintf(left, sizeof left, "%s %s", v->name, v->synopsis);
         usage_line(text, sizeof text, &len, left, v->summary);
     }
-    usage_line(text, sizeof text, &len, "version, -V, --version", "the version and the git SHA this binary was built from");
     usage_line(text, sizeof text, &len, "help --man", "this reference as a man page (roff: doc/shadowlab.1)");
     usage_line(text, sizeof text, &len, "help --bash-completion", "the bash completion script for these verbs");
     usage_line(text, sizeof text, &len, "help --config", "every config key, from the parser's schema (doc/config.md)");
@@ -480,7 +502,7 @@ static void man_text(FILE *f, const char *s)
 
 /* the arguments of a verb's "usage: shadowlab VERB ..." lines (the first and
  * the indented ones that go on with '[' or '-'), spaces collapsed */
-static void man_synopsis(FILE *f, const char *usage)
+static void man_synopsis(FILE *f, const char *verb, const char *usage)
 {
     const char *s = strchr(usage, ' ');   /* past "usage:" */
     s = s ? strchr(s + 1, ' ') : NULL;    /* past "shadowlab" */
@@ -489,7 +511,17 @@ static void man_synopsis(FILE *f, const char *usage)
     size_t len = 0;
     for (int first = 1; s && *s; first = 0) {
         size_t n = strcspn(s, "\n"), k = strspn(s, " ");
-        if (!first && (k < 8 || (s[k] != '[' && s[k] != '-')))
+        /* a second form of the verb ("       shadowlab table DB --rows ..."): a synopsis line of its own */
+        if (!first && k >= 7 && !strncmp(s + k, "shadowlab ", 10) && !strncmp(s + k + 10, verb, strlen(verb)) &&
+            s[k + 10 + strlen(verb)] == ' ') {
+            while (len && buf[len - 1] == ' ')
+                len--;
+            man_line(f, buf, len);
+            fprintf(f, ".br\n.B shadowlab %s\n", verb);
+            len = 0;
+            k += 10 + strlen(verb);
+            k += strspn(s + k, " ");
+        } else if (!first && (k < 8 || (s[k] != '[' && s[k] != '-')))
             break;
         for (size_t i = k; i < n && len + 2 < sizeof buf; i++)
             if (s[i] != ' ' || (len && buf[len - 1] != ' '))
@@ -526,11 +558,11 @@ void cli_man(FILE *f)
           f);
     for (const struct cli_verb *v = cli_verbs; v->name; v++) {
         fprintf(f, ".B shadowlab %s\n", v->name);
-        man_synopsis(f, v->usage);
+        man_synopsis(f, v->name, v->usage);
         fputs(".br\n", f);
     }
-    fputs(".B shadowlab version\\fR|\\fB\\-V\\fR|\\fB\\-\\-version\n.br\n"
-          ".B shadowlab help\n.RI [ COMMAND \\fR|\\fB\\-\\-man\\fR|\\fB\\-\\-bash\\-completion ]\n",
+    fputs(".B shadowlab \\-V\\fR|\\fB\\-\\-version\n[\\-\\-verbose]\n.br\n"
+          ".B shadowlab help\n.RI [ COMMAND \\fR|\\fB\\-\\-man\\fR|\\fB\\-\\-config\\fR|\\fB\\-\\-bash\\-completion ]\n",
           f);
     fputs(".SH DESCRIPTION\n", f);
     man_text(f, man_description);
@@ -541,10 +573,9 @@ void cli_man(FILE *f)
         fputs(".PP\n", f);
         man_verbatim(f, v->usage);
     }
-    fputs(".SS version, \\-V, \\-\\-version\nPrints \"shadowlab VERSION (git SHA)\": the release and the "
-          "commit this binary was built from (\"\\-dirty\" when tracked files had uncommitted changes).\n"
-          ".SS help\nhelp prints the list of commands; help COMMAND the command's help (as COMMAND \\-\\-help); "
-          "help \\-\\-man this page; help \\-\\-bash\\-completion the bash completion script.\n",
+    fputs(".SS help\nhelp prints the list of commands; help COMMAND the command's help (as COMMAND \\-\\-help); "
+          "help \\-\\-man this page; help \\-\\-config the config reference (doc/config.md); "
+          "help \\-\\-bash\\-completion the bash completion script.\n",
           f);
     fputs(".SH CONFIGURATION\n", f);
     man_text(f, man_config);
@@ -732,7 +763,7 @@ void cli_completion(FILE *f)
     fputs("    if [ \"$COMP_CWORD\" -eq 1 ]; then\n        COMPREPLY=($(compgen -W \"", f);
     for (const struct cli_verb *v = cli_verbs; v->name; v++)
         fprintf(f, "%s ", v->name);
-    fputs("version help -V --version --help\" -- \"$cur\"))\n        return\n    fi\n", f);
+    fputs("help -V --version --help\" -- \"$cur\"))\n        return\n    fi\n", f);
     fputs("    # the store and the config named on the line\n"
           "    for ((i = 2; i < COMP_CWORD; i++)); do\n"
           "        case ${COMP_WORDS[i]} in *.db) db=${COMP_WORDS[i]} ;; *.yaml|*.yml) cfg=${COMP_WORDS[i]} ;; esac\n"

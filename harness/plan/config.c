@@ -26,6 +26,7 @@
 #include "techcheck.h"
 #include "scene.h"
 #include "scenefile.h"
+#include "suggest.h"
 #include "util.h"
 #include "yamlfile.h"
 
@@ -489,11 +490,15 @@ static enum sl_err scene_viewpoints(const struct raw_scene_ref *rs, unsigned si,
     for (unsigned i = 0; i < rs->viewpoints_count; i++) {
         snprintf(key, sizeof key, "scenes[%u].viewpoints[%u]", si, i);
         if (sl_scene_find_viewpoint(s, rs->viewpoints[i]) < 0) {
-            char known[256] = "";
-            for (int k = 0; k < s->nvp; k++)
+            char known[256] = "", hint[96];
+            struct sl_suggest sg;
+            sl_suggest_init(&sg, rs->viewpoints[i]);
+            for (int k = 0; k < s->nvp; k++) {
                 sl_known_add(known, sizeof known, s->vp[k].name);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has no viewpoint '%s' (it has: %s)",
-                               rs->scene, rs->viewpoints[i], known);
+                sl_suggest_add(&sg, s->vp[k].name);
+            }
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "scene '%s' has no viewpoint '%s'%s (it has: %s)",
+                               rs->scene, rs->viewpoints[i], sl_suggest_text(&sg, hint, sizeof hint), known);
         }
         snprintf(cs->viewpoints[i], sizeof cs->viewpoints[i], "%s", rs->viewpoints[i]);
     }
@@ -547,11 +552,17 @@ static enum sl_err check_scene(const struct raw_config *r, unsigned si, const ch
     struct sl_diag sd;
     /* a name resolves in the scenes folder; a path relative to this file */
     if (sl_scene_resolve(rs->scene, cfg_dir, cs->path, sizeof cs->path, &sd) != SL_OK) {
-        char names[64][64], descr[64][160], known[512] = "";
+        char names[64][64], descr[64][160], known[512] = "", hint[96];
+        struct sl_suggest sg;
+        sl_suggest_init(&sg, rs->scene);
         int n = sl_scene_list(names, descr, 64);
-        for (int i = 0; i < n; i++)
+        for (int i = 0; i < n; i++) {
             sl_known_add(known, sizeof known, names[i]);
-        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown scene '%s' (known: %s)", rs->scene, known);
+            sl_suggest_add(&sg, names[i]);
+        }
+        /* sd says which paths were tried (scenefile.h) */
+        return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown scene '%s'%s (known: %s; %s)", rs->scene,
+                           sl_suggest_text(&sg, hint, sizeof hint), known, sd.msg);
     }
     enum sl_err re = sl_yaml_ref_check(d, SL_E_CONFIG, file, ix, key, cs->path);
     if (re)
@@ -1097,12 +1108,19 @@ static enum sl_err check_methods(const struct raw_config *r, const char *file, c
         const struct raw_method *rm = &r->methods[i];
         snprintf(key, sizeof key, "methods[%u].method", i);
         if (!sl_session_method(c->session, rm->method)) {
-            char known[1024] = "";
-            for (int k = 0; k < sl_method_count(); k++)
+            char known[1024] = "", hint[96];
+            struct sl_suggest sg;
+            sl_suggest_init(&sg, rm->method);
+            for (int k = 0; k < sl_method_count(); k++) {
                 sl_known_add(known, sizeof known, sl_method_at(k)->name);
-            for (int k = 0; k < sl_packages_count(c->session ? &c->session->packages : NULL); k++)
+                sl_suggest_add(&sg, sl_method_at(k)->name);
+            }
+            for (int k = 0; k < sl_packages_count(c->session ? &c->session->packages : NULL); k++) {
                 sl_known_add(known, sizeof known, sl_packages_at(&c->session->packages, k)->name);
-            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown method '%s' (known: %s)", rm->method, known);
+                sl_suggest_add(&sg, sl_packages_at(&c->session->packages, k)->name);
+            }
+            return sl_yaml_bad(d, SL_E_CONFIG, file, ix, key, "unknown method '%s'%s (known: %s)", rm->method,
+                               sl_suggest_text(&sg, hint, sizeof hint), known);
         }
         struct sl_method_extras x;
         entry_extras(ix, i, &x);
@@ -1403,9 +1421,17 @@ static enum sl_err take_settings(struct sl_yaml_pos *t, struct sl_config *c, str
                 const char *sub = kn->text ? kn->text : "";
                 char path[96];
                 snprintf(path, sizeof path, "%s.%s", key, sub);
-                if (sl_param_index(config_settings, CONFIG_NSETTINGS, path) < 0)
+                if (sl_param_index(config_settings, CONFIG_NSETTINGS, path) < 0) {
+                    struct sl_suggest sg;
+                    char hint[96];
+                    sl_suggest_init(&sg, sub);
+                    for (int k = 0; k < CONFIG_NSETTINGS; k++)
+                        if (!strncmp(config_settings[k].name, key, n) && config_settings[k].name[n] == '.')
+                            sl_suggest_add(&sg, config_settings[k].name + n + 1);
                     e = sl_fail(d, SL_E_CONFIG, sl_ynode_source(t, kn), sl_ynode_line(kn), path,
-                                "unknown key '%s' (%s has: %s)", sub, key, known);
+                                "unknown key '%s'%s (%s has: %s)", sub, sl_suggest_text(&sg, hint, sizeof hint), key,
+                                known);
+                }
                 else
                     e = setting_value(t, s, path, v->kid[2 * q + 1], d);
             }
