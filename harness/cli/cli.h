@@ -53,6 +53,8 @@ int cli_preview(int argc, char **argv);
 int cli_list(int argc, char **argv);
 int cli_show(int argc, char **argv);
 int cli_test(int argc, char **argv);
+int cli_grade(int argc, char **argv);   /* grade.c, with its help text */
+extern const char cli_usage_grade[];
 
 /* the help text of each verb (usage.c) */
 extern const char cli_usage_run[];

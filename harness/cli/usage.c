@@ -279,6 +279,8 @@ const struct cli_verb cli_verbs[] = {
      0},
     {"test", cli_test, cli_usage_test, "technique NAME [options]",
      "a technique package's determinism, reach, finite values, taps and time; exit 1 on a finding", 0},
+    {"grade", cli_grade, cli_usage_grade, "--scene S --viewpoint V --viewport WxH --image FILE --label L",
+     "score another program's visibility image against the truth (doc/grade.md)", 1},
     {NULL, NULL, NULL, NULL, NULL, 0},
 };
 
