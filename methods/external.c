@@ -38,16 +38,16 @@ struct xform {
 };
 static const struct xform xforms[] = {
     {0, 0, 0, 0, NULL},
-    {0, 1, 0, 0, "y flipped: its rows run top-down (Vulkan, D3D, most image files) where shadowlab's view "
-                 "would read them bottom-up; flip the rows"},
+    {0, 1, 0, 0, "y flipped: its rows are upside down (a GL read-back saved bottom row first, or a "
+                 "Vulkan / D3D viewport with y up); flip the rows"},
     {1, 0, 0, 0, "x flipped: its columns run right to left; mirror it"},
-    {0, 0, 1, 0, "off by one pixel: the image is shifted one pixel left of the view (pixel centres at "
+    {0, 0, 1, 0, "off by one pixel: the image is shifted one pixel right of the view (pixel centres at "
                  "integer coordinates, or a viewport offset)"},
-    {0, 0, -1, 0, "off by one pixel: the image is shifted one pixel right of the view (pixel centres at "
+    {0, 0, -1, 0, "off by one pixel: the image is shifted one pixel left of the view (pixel centres at "
                   "integer coordinates, or a viewport offset)"},
-    {0, 0, 0, 1, "off by one pixel: the image is shifted one pixel down from the view (pixel centres at "
+    {0, 0, 0, 1, "off by one pixel: the image is shifted one pixel up from the view (pixel centres at "
                  "integer coordinates, or a viewport offset)"},
-    {0, 0, 0, -1, "off by one pixel: the image is shifted one pixel up from the view (pixel centres at "
+    {0, 0, 0, -1, "off by one pixel: the image is shifted one pixel down from the view (pixel centres at "
                   "integer coordinates, or a viewport offset)"},
 };
 #define NXFORMS ((int)(sizeof xforms / sizeof xforms[0]))
@@ -118,8 +118,15 @@ enum sl_err sl_external_register(const struct sl_external *e, const struct sl_vi
         return sl_fail(d, SL_E_USAGE, what, 0, NULL, "%d x %d pixels where the viewport is %d x %d", e->w, e->h,
                        v->w, v->h);
     r->pixels = (uint64_t)v->w * (uint64_t)v->h;
-    if (!e->depth && !e->has_bg)
-        return SL_OK;   /* nothing to compare: the caller warns */
+    if (!e->depth) {
+        /* backgrounds compared where neither has one prove nothing: a
+         * flipped image would agree as well as the right one */
+        uint64_t any = 0;
+        for (size_t i = 0; i < r->pixels && !any && e->has_bg; i++)
+            any = e->bg[i] || v->tri[i] == 0;
+        if (!any)
+            return SL_OK;   /* unchecked: the caller warns */
+    }
     r->checked = 1;
     r->by_depth = e->depth != NULL;
     double score[NXFORMS];

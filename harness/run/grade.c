@@ -223,6 +223,12 @@ enum sl_err sl_grade(const struct sl_grade_desc *gin, FILE *table_out, struct sl
         g.tolerance = 0.01;
     if (g.depth_tolerance == 0.0)
         g.depth_tolerance = 0.01;
+    /* the label names the config, its folder and its files: a plain word */
+    size_t ll = g.label ? strlen(g.label) : 0;
+    if (ll < 1 || ll > 40 || strspn(g.label, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") != ll ||
+        g.label[0] == '.')
+        return sl_fail(d, SL_E_USAGE, NULL, 0, "--label", "'%s': 1 to 40 letters, digits, -, _ or . (not first)",
+                       g.label ? g.label : "");
     if (g.depth && g.depth_kind != SL_DEPTH_LINEAR && !(g.near_z > 0.0 && g.far_z > g.near_z))
         return sl_fail(d, SL_E_USAGE, g.depth, 0, "--near", "window depth needs the engine's --near and --far "
                                                             "(0 < near < far)");
@@ -242,6 +248,15 @@ enum sl_err sl_grade(const struct sl_grade_desc *gin, FILE *table_out, struct sl
     ext.vis = vis;
     ext.bg = bg;
     ext.depth = depth;
+    /* a store this grade creates is removed again when it is refused: a
+     * refused grade leaves nothing of itself (a store that was there keeps
+     * the run's row, as after any failed run) */
+    char store[1200];
+    if (g.store)
+        snprintf(store, sizeof store, "%s", g.store);
+    else
+        snprintf(store, sizeof store, "%s/shadowlab.db", g.out_root);
+    const int store_new = access(store, F_OK) != 0;
     if (!e)
         e = sl_mkdirs(g.out_root, d);
     if (!e) {
@@ -267,7 +282,15 @@ enum sl_err sl_grade(const struct sl_grade_desc *gin, FILE *table_out, struct sl
     if (loaded)
         sl_config_free(&c);
     if (e && r->config[0])
-        unlink(r->config);   /* a refused grade leaves nothing of itself */
+        unlink(r->config);
+    if (e && store_new) {
+        static const char *const side[] = {"", "-wal", "-shm", "-journal"};
+        for (size_t k = 0; k < sizeof side / sizeof side[0]; k++) {
+            char p[1300];
+            snprintf(p, sizeof p, "%s%s", store, side[k]);
+            unlink(p);
+        }
+    }
     free(vis);
     free(bg);
     free(depth);
