@@ -133,15 +133,17 @@ enum sl_err sl_external_register(const struct sl_external *e, const struct sl_vi
     uint64_t bad[NXFORMS], on_edge = 0, img_fg = 0, view_fg = 0;
     for (int t = 0; t < NXFORMS; t++) {
         double sc = 0.0;
-        uint64_t nb = 0;
+        uint64_t nb = 0, compared = 0;
         for (int y = 0; y < v->h; y++)
             for (int x = 0; x < v->w; x++) {
                 size_t i = (size_t)y * (size_t)v->w + (size_t)x;
                 long s = source_of(&xforms[t], v->w, v->h, x, y);
+                if (s < 0)
+                    continue;   /* a shift compares the pixels both cover */
                 int b = 1;
-                double dz = s < 0 ? 1.0 : disagree(e, v, i, s, &b);
-                sc += dz;
+                sc += disagree(e, v, i, s, &b);
                 nb += (uint64_t)b;
+                compared++;
                 if (t == 0 && b)
                     on_edge += (uint64_t)on_silhouette(v, x, y);
                 if (t == 0) {
@@ -149,7 +151,7 @@ enum sl_err sl_external_register(const struct sl_external *e, const struct sl_vi
                     img_fg += e->depth ? isfinite(e->depth[s]) && e->depth[s] > 0.0f : !e->bg[s];
                 }
             }
-        score[t] = sc / (double)r->pixels;
+        score[t] = compared ? sc / (double)compared : 1.0;
         bad[t] = nb;
     }
     r->misregistered = bad[0];

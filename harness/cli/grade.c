@@ -15,7 +15,7 @@
 
 const char cli_usage_grade[] =
     "usage: shadowlab grade --scene S --viewpoint V --viewport WxH --image FILE --label NAME\n"
-    "                       [--depth FILE [--depth-kind linear|window|window01] [--reversed-z]\n"
+    "                       [--depth FILE [--depth-kind linear|window] [--reversed-z]\n"
     "                       [--near N --far F]] [-o OUT] [--db FILE] [--map N] [--contour nsm|own]\n"
     "                       [--threshold T] [--tolerance P] [--depth-tolerance R] [--gl osmesa|egl]\n"
     "                       [-j THREADS]\n"
@@ -40,8 +40,8 @@ const char cli_usage_grade[] =
     "  --image FILE       the visibility\n"
     "  --label NAME       the cell's label (letters, digits, -, _)\n"
     "  --depth FILE       the engine's depth buffer (channel Z or depth, else its first)\n"
-    "  --depth-kind K     linear: eye-space distance along the view axis (default); window: an\n"
-    "                     OpenGL depth buffer (NDC z -1..1 to 0..1); window01: Vulkan, D3D, Metal\n"
+    "  --depth-kind K     linear: eye-space distance along the view axis (default); window: a\n"
+    "                     depth buffer as it is, 0 near .. 1 far (the same in OpenGL, Vulkan, D3D)\n"
     "  --reversed-z       the depth buffer holds 1 - depth (reversed-Z)\n"
     "  --near N, --far F  the engine's near and far planes (window depths)\n"
     "  -o, --out OUT      output folder (default results)\n"
@@ -121,10 +121,8 @@ int cli_grade(int argc, char **argv)
                 g.depth_kind = SL_DEPTH_LINEAR;
             else if (!strcmp(optarg, "window"))
                 g.depth_kind = SL_DEPTH_WINDOW;
-            else if (!strcmp(optarg, "window01"))
-                g.depth_kind = SL_DEPTH_WINDOW01;
             else
-                return cli_usage_error("grade: --depth-kind wants linear, window or window01", cli_usage_grade);
+                return cli_usage_error("grade: --depth-kind wants linear or window", cli_usage_grade);
             break;
         case GOPT_REVERSED: g.reversed_z = 1; break;
         case GOPT_NEAR:

@@ -115,6 +115,20 @@ static enum sl_err read_visibility(const char *path, struct sl_external *e, floa
     return err;
 }
 
+double sl_grade_linear_depth(enum sl_depth_kind kind, int reversed, double nz, double fz, double z)
+{
+    if (!isfinite(z))
+        return NAN;
+    if (kind == SL_DEPTH_LINEAR)
+        return z > 0.0 ? z : NAN;
+    /* window depth: reversed-Z stores 1 - d; the far plane (or beyond) is
+     * where nothing was drawn */
+    double w01 = reversed ? 1.0 - z : z;
+    if (w01 >= 1.0 || w01 < 0.0)
+        return NAN;
+    return nz * fz / (fz - w01 * (fz - nz));   /* w = f (z - n) / ((f - n) z), solved for z */
+}
+
 /* The engine's depth at path as linear depth (NaN where it drew nothing). */
 static enum sl_err read_depth(const struct sl_grade_desc *g, int w, int h, float **out, struct sl_diag *d)
 {
@@ -140,22 +154,7 @@ static enum sl_err read_depth(const struct sl_grade_desc *g, int w, int h, float
     }
     const double nz = g->near_z, fz = g->far_z;
     for (size_t i = 0; i < n; i++) {
-        double z = im.px[i * (size_t)im.nch + (size_t)zc], lin = NAN;
-        if (!isfinite(z)) {
-            lin = NAN;
-        } else if (g->depth_kind == SL_DEPTH_LINEAR) {
-            lin = z > 0.0 ? z : NAN;
-        } else {
-            /* window depth: reversed-Z stores 1 - d; the far plane (or
-             * beyond) is where nothing was drawn */
-            double w01 = g->reversed_z ? 1.0 - z : z;
-            if (w01 >= 1.0 || w01 < 0.0)
-                lin = NAN;
-            else if (g->depth_kind == SL_DEPTH_WINDOW)
-                lin = 2.0 * nz * fz / (fz + nz - (2.0 * w01 - 1.0) * (fz - nz));
-            else
-                lin = nz * fz / (fz - w01 * (fz - nz));
-        }
+        double lin = sl_grade_linear_depth(g->depth_kind, g->reversed_z, nz, fz, im.px[i * (size_t)im.nch + (size_t)zc]);
         (*out)[i] = (float)lin;
     }
     sl_image_floats_free(&im);
@@ -191,7 +190,7 @@ static enum sl_err write_config(const struct sl_grade_desc *g, const char *path,
     fprintf(f, "#   image: %s\n", g->image);
     if (g->depth)
         fprintf(f, "#   depth: %s (%s%s, near %g, far %g)\n", g->depth,
-                g->depth_kind == SL_DEPTH_LINEAR ? "linear" : g->depth_kind == SL_DEPTH_WINDOW ? "window" : "window01",
+                g->depth_kind == SL_DEPTH_LINEAR ? "linear" : "window",
                 g->reversed_z ? ", reversed-Z" : "", g->near_z, g->far_z);
     fprintf(f, "#   threshold %g, registration tolerance %g %% of the pixels\n", g->threshold, 100.0 * g->tolerance);
     fprintf(f, "# `shadowlab run` cannot run it: only `shadowlab grade` hands the label its image.\n");

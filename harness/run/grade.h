@@ -22,12 +22,20 @@
 #include "glbackend.h"
 #include "sl_error.h"
 
-/* How the engine's depth buffer holds depth (doc/grade.md). */
+/* How the engine's depth buffer holds depth (doc/grade.md). A window
+ * depth is the same number under every API's perspective projection: an
+ * OpenGL one's NDC z (-1..1) mapped to 0..1 by the default depth range
+ * equals a Vulkan / D3D / Metal one's NDC z (0..1), f (z - n) / ((f - n) z)
+ * for eye depth z (tests/test_grade.c checks it on cglm's matrices). */
 enum sl_depth_kind {
     SL_DEPTH_LINEAR = 0,   /* eye-space distance along the view axis, world units */
-    SL_DEPTH_WINDOW,       /* window depth of an OpenGL projection: NDC z in -1..1 mapped to 0..1 */
-    SL_DEPTH_WINDOW01,     /* window depth of a Vulkan / D3D / Metal projection: NDC z in 0..1 */
+    SL_DEPTH_WINDOW,       /* the depth buffer's value: 0 at the near plane, 1 at the far one */
 };
+
+/* A depth buffer's value z as linear depth (eye-space distance along the
+ * view axis) under the convention given; NaN where nothing was drawn (not
+ * finite, at or beyond the far plane, a linear depth <= 0). */
+double sl_grade_linear_depth(enum sl_depth_kind kind, int reversed, double near_z, double far_z, double z);
 
 /* Zero means default where it says. */
 struct sl_grade_desc {
