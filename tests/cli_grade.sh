@@ -194,7 +194,8 @@ bad_input)
   expect "label with a slash" "'--label': 'a/b'" --image "$tmp/sixteen.png" --label a/b
   "$bin" grade --scene spider --viewpoint nowhere --viewport 64x48 --label b --image "$tmp/sixteen.png" \
     -o "$tmp/g" >/dev/null 2>"$tmp/err"
-  [ $? = 2 ] && grep -q 'nowhere' "$tmp/err" || { cat "$tmp/err"; fail "unknown viewpoint"; }
+  [ $? = 2 ] && grep -q "'--viewpoint': .*nowhere" "$tmp/err" || { cat "$tmp/err"; fail "unknown viewpoint"; }
+  expect "no scene file" "nope.yaml: '--scene': no such scene file" --scene "$tmp/nope.yaml" --image "$tmp/sixteen.png"
   [ ! -e "$tmp/g/grade-b.yaml" ] || fail "unknown viewpoint: the config was left"
   # a config cannot run method external: nothing hands it an image
   cat >"$tmp/ext.yaml" <<'YAML'

@@ -178,10 +178,12 @@ static enum sl_err write_config(const struct sl_grade_desc *g, const char *path,
 {
     char scene[PATH_MAX];
     const size_t sl = strlen(g->scene);
-    if ((strchr(g->scene, '/') || (sl > 5 && !strcmp(g->scene + sl - 5, ".yaml"))) && realpath(g->scene, scene))
-        ;
-    else
+    if (strchr(g->scene, '/') || (sl > 5 && !strcmp(g->scene + sl - 5, ".yaml"))) {
+        if (!realpath(g->scene, scene))
+            return sl_fail(d, SL_E_USAGE, g->scene, 0, "--scene", "no such scene file");
+    } else {
         snprintf(scene, sizeof scene, "%s", g->scene);
+    }
     FILE *f = fopen(path, "w");
     if (!f)
         return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot write the grade's config");
@@ -262,8 +264,25 @@ enum sl_err sl_grade(const struct sl_grade_desc *gin, FILE *table_out, struct sl
         snprintf(r->config, sizeof r->config, "%s/grade-%s.yaml", g.out_root, g.label);
         e = write_config(&g, r->config, d);
     }
-    if (!e && !(e = sl_config_load(r->config, &c, d)))
-        loaded = 1;
+    if (!e) {
+        if (!(e = sl_config_load(r->config, &c, d)))
+            loaded = 1;
+        /* the grade's own config is removed below: the message names the
+         * option the refused key came from instead of its line */
+        else if (d && !strcmp(d->file, r->config)) {
+            const char *opt = strstr(d->key, "viewpoint") ? "--viewpoint"
+                              : strstr(d->key, "scene")    ? "--scene"
+                              : strstr(d->key, "label")    ? "--label"
+                              : strstr(d->key, "viewport") ? "--viewport"
+                              : strstr(d->key, "map")      ? "--map"
+                                                           : d->key;
+            char key[sizeof d->key];
+            snprintf(key, sizeof key, "%s", opt);
+            snprintf(d->key, sizeof d->key, "%s", key);
+            d->file[0] = '\0';
+            d->line = 0;
+        }
+    }
     if (!e) {
         c.methods[0].params.external = &ext;
         struct sl_run_opts o = {.out_root = g.out_root, .write_files = 1, .table_out = table_out,
