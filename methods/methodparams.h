@@ -15,9 +15,11 @@
  * first in the declarations, in the package's order, so values.v[k] is
  * the package's parameter k; NULL for a C method. */
 struct sl_technique;
+struct sl_external;   /* methods/external.h */
 struct sl_method_params {
     struct sl_params           values;
     const struct sl_technique *tech;
+    const struct sl_external  *external;   /* method external: the image `shadowlab grade` hands it; else NULL */
 };
 
 #endif

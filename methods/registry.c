@@ -26,6 +26,7 @@ extern const struct sl_method sl_method_soft_mc;
 extern const struct sl_method sl_method_point_map;
 extern const struct sl_method sl_method_zpart;
 extern const struct sl_method sl_method_lispsm;
+extern const struct sl_method sl_method_external;
 
 static const struct sl_method *const sl_methods[] = {
     &sl_method_nsm,
@@ -47,6 +48,7 @@ static const struct sl_method *const sl_methods[] = {
     &sl_method_point_map,
     &sl_method_zpart,
     &sl_method_lispsm,
+    &sl_method_external,
     NULL,
 };
 

@@ -154,6 +154,29 @@ enum sl_err sl_image_read_rgb8(const char *path, int *w, int *h, unsigned char *
     return t ? t->read_rgb8(path, w, h, rgb, d) : SL_E_IMAGE;
 }
 
+enum sl_err sl_image_write_floats(const char *path, int w, int h, int nch, const char *const *names,
+                                  const float *const *chans, int nattrs, const struct sl_image_attr *attrs,
+                                  struct sl_diag *d)
+{
+    const struct sl_image_ops *t = image_ops(path, d);
+    return t ? t->write_floats(path, w, h, nch, names, chans, nattrs, attrs, d) : SL_E_IMAGE;
+}
+
+enum sl_err sl_image_read_floats(const char *path, struct sl_image_floats *out, struct sl_diag *d)
+{
+    memset(out, 0, sizeof *out);
+    const struct sl_image_ops *t = image_ops(path, d);
+    return t ? t->read_floats(path, out, d) : SL_E_IMAGE;
+}
+
+void sl_image_floats_free(struct sl_image_floats *im)
+{
+    if (im) {
+        free(im->px);
+        im->px = NULL;
+    }
+}
+
 enum sl_err sl_image_read_attr(const char *path, const char *name, char *out, int n, struct sl_diag *d)
 {
     const struct sl_image_ops *t = image_ops(path, d);

@@ -53,6 +53,33 @@ enum sl_err sl_image_read_rgb8(const char *path, int *w, int *h, unsigned char *
  * SL_E_IO when the file or the attribute is missing. */
 enum sl_err sl_image_read_attr(const char *path, const char *name, char *out, int n, struct sl_diag *d);
 
+/* Float channels as one OpenEXR file (FLOAT, zip), rows bottom-up: chans[c]
+ * holds w * h values of the channel names[c]; attrs (may be 0) go in the
+ * header. What `outputs.visibility: exr` writes (a cell's visibility, V, and
+ * its coverage, A) and what `shadowlab grade` reads back. */
+enum sl_err sl_image_write_floats(const char *path, int w, int h, int nch, const char *const *names,
+                                  const float *const *chans, int nattrs, const struct sl_image_attr *attrs,
+                                  struct sl_diag *d);
+
+/* An image read as floats, every channel, rows bottom-up: px holds nch
+ * values a pixel; names[c] the file's channel names ("R", "Y", "A", ...);
+ * bits the file's bits per value (8, 16, 32; half: 16, float: 32) and
+ * is_float whether they are floating point. Values as stored: integers
+ * scaled to 0..1, alpha not multiplied in or out (a PNG's alpha is read as
+ * it is stored, unassociated), no colour-space conversion. */
+#define SL_IMAGE_MAX_CH 8
+struct sl_image_floats {
+    int    w, h, nch, bits, is_float;
+    char   names[SL_IMAGE_MAX_CH][32];
+    char   format[16];   /* the reader's name: "openexr", "png", ... */
+    float *px;
+};
+/* SL_E_IO when the file cannot be read (named), SL_E_USAGE when it has more
+ * than SL_IMAGE_MAX_CH channels or more than 2^28 pixels. *out zeroed on
+ * failure; free with sl_image_floats_free (NULL-safe). */
+enum sl_err sl_image_read_floats(const char *path, struct sl_image_floats *out, struct sl_diag *d);
+void        sl_image_floats_free(struct sl_image_floats *im);
+
 #define SL_SHEET_MAX_INSETS 4
 #define SL_SHEET_MAX_LEGEND 8
 

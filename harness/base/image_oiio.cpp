@@ -197,6 +197,98 @@ static enum sl_err oiio_read_attr(const char *path, const char *name, char *out,
     return SL_OK;
 }
 
+static enum sl_err oiio_write_floats(const char *path, int w, int h, int nch, const char *const *names,
+                                     const float *const *chans, int nattrs, const struct sl_image_attr *attrs,
+                                     struct sl_diag *d)
+{
+    std::string tmp = sl_image_tmp_name(path);
+    auto out = ImageOutput::create(path);
+    if (!out)
+        return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "no image writer: %s", OIIO::geterror().c_str());
+    ImageSpec spec(w, h, nch, TypeDesc::FLOAT);
+    spec.channelnames.clear();
+    for (int c = 0; c < nch; c++)
+        spec.channelnames.push_back(names[c]);
+    spec.alpha_channel = -1;
+    for (int c = 0; c < nch; c++)
+        if (std::strcmp(names[c], "A") == 0)
+            spec.alpha_channel = c;
+    spec.attribute("Software", std::string("shadowlab ") + module_sha);
+    spec.attribute("compression", "zip");
+    for (int a = 0; a < nattrs; a++)
+        spec.attribute(attrs[a].name, attrs[a].value);
+    const size_t n = (size_t)w * (size_t)h;
+    std::vector<float> buf;
+    try {
+        buf.resize(n * (size_t)nch);
+    } catch (...) {
+        return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "EXR buffer");
+    }
+    for (size_t i = 0; i < n; i++) {   // interleaved, top-down
+        size_t x = i % (size_t)w, y = i / (size_t)w;
+        float *p = buf.data() + (((size_t)h - 1 - y) * (size_t)w + x) * (size_t)nch;
+        for (int c = 0; c < nch; c++)
+            p[c] = chans[c][i];
+    }
+    if (!out->open(tmp, spec))
+        return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "cannot write: %s", out->geterror().c_str());
+    bool ok = out->write_image(TypeDesc::FLOAT, buf.data());
+    ok = out->close() && ok;
+    if (!ok || std::rename(tmp.c_str(), path) != 0) {
+        std::remove(tmp.c_str());
+        return sl_fail(d, SL_E_IMAGE, path, 0, NULL, "write failed");
+    }
+    return SL_OK;
+}
+
+static enum sl_err oiio_read_floats(const char *path, struct sl_image_floats *im, struct sl_diag *d)
+{
+    // a PNG's alpha as stored: OpenImageIO would otherwise multiply it in
+    ImageSpec cfg;
+    cfg.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = ImageInput::open(path, &cfg);
+    if (!in)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read image: %s", OIIO::geterror().c_str());
+    const ImageSpec &spec = in->spec();
+    if (spec.nchannels < 1 || spec.nchannels > SL_IMAGE_MAX_CH || spec.width < 1 || spec.height < 1 ||
+        (double)spec.width * (double)spec.height > (double)(1u << 28)) {
+        in->close();
+        return sl_fail(d, SL_E_USAGE, path, 0, NULL, "%d x %d pixels of %d channels: at most %d channels and 2^28 pixels",
+                       spec.width, spec.height, spec.nchannels, SL_IMAGE_MAX_CH);
+    }
+    im->w = spec.width;
+    im->h = spec.height;
+    im->nch = spec.nchannels;
+    TypeDesc f = spec.format;
+    for (int c = 0; c < spec.nchannels; c++) {   // the widest channel says it
+        TypeDesc cf = spec.channelformat(c);
+        if (cf.size() > f.size())
+            f = cf;
+    }
+    im->bits = (int)f.size() * 8;
+    im->is_float = f.basetype == TypeDesc::HALF || f.basetype == TypeDesc::FLOAT || f.basetype == TypeDesc::DOUBLE;
+    for (int c = 0; c < spec.nchannels; c++)
+        std::snprintf(im->names[c], sizeof im->names[c], "%s", spec.channelnames[(size_t)c].c_str());
+    std::snprintf(im->format, sizeof im->format, "%s", in->format_name());
+    const size_t n = (size_t)im->w * (size_t)im->h, nch = (size_t)im->nch;
+    im->px = (float *)std::malloc(n * nch * sizeof(float));
+    if (!im->px) {
+        in->close();
+        return sl_fail(d, SL_E_NOMEM, path, 0, NULL, "image buffer");
+    }
+    // file rows are top-down; bottom-up here like the rest of shadowlab
+    const stride_t ys = -(stride_t)im->w * (stride_t)nch * (stride_t)sizeof(float);
+    float *last = im->px + (size_t)(im->h - 1) * (size_t)im->w * nch;
+    bool ok = in->read_image(0, 0, 0, im->nch, TypeDesc::FLOAT, last, AutoStride, ys);
+    in->close();
+    if (!ok) {
+        std::free(im->px);
+        im->px = nullptr;
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot decode image");
+    }
+    return SL_OK;
+}
+
 // The sheets' font here (where the sheet module's own FreeType could not
 // open DejaVu Sans's file): DejaVu Sans by its full path, else by name
 // anywhere OpenImageIO looks, else OpenImageIO's default; NULL when none
@@ -304,7 +396,8 @@ extern "C" __attribute__((visibility("default"))) const struct sl_image_ops *sl_
                                                                                         const char *git_sha)
 {
     static const struct sl_image_ops ops = {
-        oiio_write_rgb8, oiio_write_layers, oiio_read_layer, oiio_read_rgb8, oiio_read_attr, oiio_glyph,
+        oiio_write_rgb8, oiio_write_layers, oiio_read_layer, oiio_read_rgb8, oiio_read_attr,
+        oiio_write_floats, oiio_read_floats, oiio_glyph,
     };
     if (abi != SL_IMAGE_ABI)
         return NULL;

@@ -14,7 +14,7 @@
 extern "C" {
 #endif
 
-#define SL_IMAGE_ABI 2
+#define SL_IMAGE_ABI 3
 
 struct sl_image_ops {
     enum sl_err (*write_rgb8)(const char *, int, int, const unsigned char *, struct sl_diag *);
@@ -23,6 +23,9 @@ struct sl_image_ops {
     enum sl_err (*read_layer)(const char *, const char *, int *, int *, unsigned **, struct sl_diag *);
     enum sl_err (*read_rgb8)(const char *, int *, int *, unsigned char **, struct sl_diag *);
     enum sl_err (*read_attr)(const char *, const char *, char *, int, struct sl_diag *);
+    enum sl_err (*write_floats)(const char *, int, int, int, const char *const *, const float *const *, int,
+                                const struct sl_image_attr *, struct sl_diag *);
+    enum sl_err (*read_floats)(const char *, struct sl_image_floats *, struct sl_diag *);
     /* a glyph through render_text and OpenImageIO's font search: the
      * sheet module's source when its font file is missing, and the tests'
      * reference (1 drawn, 0 none, -1 no font) */

@@ -55,6 +55,8 @@ int cli_show(int argc, char **argv);
 int cli_test(int argc, char **argv);
 int cli_cite(int argc, char **argv);
 int cli_version(int argc, char **argv);   /* also -V and --version (main.c) */
+int cli_grade(int argc, char **argv);   /* grade.c, with its help text */
+extern const char cli_usage_grade[];
 
 /* the help text of each verb (usage.c) */
 extern const char cli_usage_run[];

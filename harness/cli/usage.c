@@ -294,6 +294,8 @@ const struct cli_verb cli_verbs[] = {
      "HTML and Markdown report of a results store (needs gnuplot)", 0},
     {"check", cli_check, cli_usage_check, "DB --baseline FILE",
      "compare a results store with a committed baseline (exit 1 if outside)", 0},
+    {"grade", cli_grade, cli_usage_grade, "--scene S --viewpoint V --viewport WxH --image FILE --label L",
+     "score another program's visibility image against the truth (doc/grade.md)", 1},
     {"bench", cli_bench, cli_usage_bench, "[CONFIG] [options]",
      "every stage against its plain counterpart, the studies, their targets", 1},
     {"submit", cli_submit, cli_usage_submit, "CONFIG --slurm ...",

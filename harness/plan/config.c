@@ -120,6 +120,9 @@ static const cyaml_schema_value_t scene_ref_schema = {
         "the contour thickness the overlays draw, one of contours or 0 for the whole image (default: the "  \
         "thinnest)"))                                                                                       \
     X(exr, SL_PARAM_BOOL_DECL("outputs.exr", 0, "the truth, verdicts and error as OpenEXR layers per cell (default false)")) \
+    X(visibility, SL_PARAM_CHOICE_DECL("outputs.visibility", 0, "none (default) or exr: each cell's visibility as " \
+        "scored, visibility/<cell>.exr (V; A 0, V NaN on background; Z linear depth), as `shadowlab grade` " \
+        "reads it", "none", "exr"))                          \
     X(aliasing, SL_PARAM_CHOICE_DECL("outputs.aliasing", 2, "the aliasing error m per pixel: auto (default: where " \
         "a method that reads it runs: zpart, lispsm), true or false", "false", "true", "auto"))             \
     X(rep_mode, SL_PARAM_CHOICE_DECL("repetitions.mode", SL_REP_ADAPTIVE, "how often a timed stage runs: "  \

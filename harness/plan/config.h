@@ -26,7 +26,7 @@
  *     - {label: nsm, method: nsm, self_shadow: front_faces}
  *     - {label: nsm_snap, method: nsm, light_frame: {fit: sphere, snap: true}}   # a stabilised
  *                              # frame of its own (lightfit.h); default fit tight, snap false
- *   outputs: {tables: true, overlays: true, overlay_contour: 2, exr: false}
+ *   outputs: {tables: true, overlays: true, overlay_contour: 2, exr: false, visibility: none}
  *   repetitions: {mode: adaptive}   # how often timed stages run (reps.h); fixed: {warmup: 1, runs: 5}
  *   seed: 1                    # for anything random
  *   store: results/shadowlab.db   # default: <output root>/shadowlab.db
@@ -101,6 +101,7 @@ struct sl_config {
     int  ntechniques;                 /* 'techniques:' folders of packages, resolved (absolute) */
     char techniques[8][512];
     int  tables, overlays, exr;
+    int  visibility;                  /* outputs.visibility: 0 none, 1 exr (visibility/<cell>.exr) */
     int  aliasing;                    /* resolved: the aliasing error m's figures (outputs.aliasing) */
     int  overlay_contour;
     int  contour_from;                /* enum sl_contour_from */

@@ -584,7 +584,8 @@ int sl_out_kept_whole(const struct sl_config *c, const struct sl_cell_key *key, 
     char png[400], exr[400];
     key_file_name(c, key, "png", png, sizeof png);
     key_file_name(c, key, "exr", exr, sizeof exr);
-    return (!c->overlays || kept_has(k, "overlays", png)) && (!c->exr || kept_has(k, "exr", exr));
+    return (!c->overlays || kept_has(k, "overlays", png)) && (!c->exr || kept_has(k, "exr", exr)) &&
+           (!c->visibility || kept_has(k, "visibility", exr));
 }
 
 void sl_out_kept_free(struct sl_out_kept *k)
@@ -597,6 +598,7 @@ static void carry_previous(const char *root, const char *name, const char *final
 {
     carry_files(final, stage, "overlays");
     carry_files(final, stage, "exr");
+    carry_files(final, stage, "visibility");
     DIR *dir = opendir(root);
     if (!dir)
         return;
@@ -616,6 +618,7 @@ static void carry_previous(const char *root, const char *name, const char *final
             continue;
         carry_files(own, stage, "overlays");
         carry_files(own, stage, "exr");
+        carry_files(own, stage, "visibility");
         rm_tree(own);   /* a killed run's leftovers: its cells are in the store */
         close(fd);
     }
@@ -707,7 +710,9 @@ enum sl_err sl_out_stage_begin(const struct sl_config *c, const char *root, stru
         return e;
     snprintf(o->overlays, sizeof o->overlays, "%s/overlays", o->stage);
     snprintf(o->exr, sizeof o->exr, "%s/exr", o->stage);
-    if ((c->overlays && (e = sl_mkdirs(o->overlays, d))) || (c->exr && (e = sl_mkdirs(o->exr, d)))) {
+    snprintf(o->visibility, sizeof o->visibility, "%s/visibility", o->stage);
+    if ((c->overlays && (e = sl_mkdirs(o->overlays, d))) || (c->exr && (e = sl_mkdirs(o->exr, d))) ||
+        (c->visibility && (e = sl_mkdirs(o->visibility, d)))) {
         sl_out_stage_drop(o);
         return e;
     }
@@ -733,7 +738,7 @@ static int has_entries(const char *dir)
  * carries them over from this (then dead) run's folder (carry_previous). */
 void sl_out_stage_drop(struct sl_out_dirs *o)
 {
-    if (o->stage[0] && !has_entries(o->overlays) && !has_entries(o->exr))
+    if (o->stage[0] && !has_entries(o->overlays) && !has_entries(o->exr) && !has_entries(o->visibility))
         rm_tree(o->stage);
     o->stage[0] = '\0';
     claim_release(o);   /* kept or not, it is a dead run's folder from now on */

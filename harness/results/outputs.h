@@ -30,6 +30,9 @@
  * file's inside exr/. */
 void sl_out_overlay_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n);
 void sl_out_exr_name(const struct sl_config *c, const struct sl_cell *cl, char *out, size_t n);
+/* The cell's visibility file (outputs.visibility: exr), named as its EXR
+ * layers' file, inside visibility/. */
+#define sl_out_visibility_name sl_out_exr_name
 
 /* cl as a record: key, counts, costs and figures; study and config_hash from
  * c. No overlay, run_id, git SHA or machine (the caller's). */
@@ -59,6 +62,7 @@ struct sl_out_dirs {
     char stage[1100];      /* the staging folder, "" none */
     char overlays[1200];   /* <stage>/overlays */
     char exr[1200];        /* <stage>/exr */
+    char visibility[1200]; /* <stage>/visibility (outputs.visibility: exr) */
 };
 /* SL_E_USAGE naming path when it is a symbolic link: a run never writes
  * through one (a pre-existing link under --out could point anywhere). */

@@ -594,7 +594,7 @@ static void cell_stages(struct sl_rep *rs, double (*st)[SL_MAX_REPS], struct sl_
 }
 
 static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const struct sl_cell_key *k,
-                            struct sl_cell *cell, const char *ovdir, const char *exrdir,
+                            struct sl_cell *cell, const char *ovdir, const char *exrdir, const char *visdir,
                             struct sl_run_result *res, struct sl_diag *d)
 {
     const struct sl_config_method *cm = &c->methods[k->method];
@@ -711,7 +711,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
                               &cell->flicker_compared, &cell->ms.flicker, d)))
         return e;
 
-    char ovpath[1600] = "", exrpath[1400] = "";
+    char ovpath[1600] = "", exrpath[1400] = "", vispath[1400] = "";
     if (ovdir) {
         char name[400];
         sl_out_overlay_name(c, cell, name, sizeof name);
@@ -722,6 +722,11 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         sl_out_exr_name(c, cell, name, sizeof name);
         snprintf(exrpath, sizeof exrpath, "%s/%s", exrdir, name);
     }
+    if (visdir) {
+        char name[400];
+        sl_out_visibility_name(c, cell, name, sizeof name);
+        snprintf(vispath, sizeof vispath, "%s/%s", visdir, name);
+    }
     struct sl_cell_inputs in = {
         .method = cm->method, .view = &x->view, .frame = fr, .light_dir = x->scene.light_dir, .threads = c->threads,
         .light_pos = x->scene.light.type != SL_LIGHT_DIRECTIONAL ? x->scene.light.pos : NULL,
@@ -731,6 +736,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
+        .visibility_path = visdir ? vispath : NULL,
         .alias_cache = &x->alias, .aliasing = c->aliasing,
         .overlay_shade = &x->shade,
     };
@@ -746,7 +752,7 @@ static enum sl_err resume_skips(const struct sl_config *c, const struct sl_run_o
                                 struct sl_store *st, struct sl_store *also, int first, int last, uint8_t *skip,
                                 struct sl_diag *d)
 {
-    const int files = o->write_files && (c->overlays || c->exr);
+    const int files = o->write_files && (c->overlays || c->exr || c->visibility);
     struct sl_out_kept own = {0}, gath = {0};
     enum sl_err e = SL_OK;
     if (files && !(e = sl_out_kept_find(c, dirs->root, dirs->final, dirs->stage, &own, d)) && also) {
@@ -989,7 +995,7 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         if (warm[idx]) {   /* its verdicts for the next frame's flicker, nothing else */
             memset(wcell, 0, sizeof *wcell);
             wcell->index = idx;
-            e = run_cell(&x, c, &k, wcell, NULL, NULL, res, d);
+            e = run_cell(&x, c, &k, wcell, NULL, NULL, NULL, res, d);
             res->warmed += !e;
             res->skipped += idx >= first;   /* in the slice: a stored cell (--resume) */
             continue;
@@ -997,7 +1003,8 @@ enum sl_err sl_run(const struct sl_config *c, const struct sl_run_opts *o, struc
         struct sl_cell *cell = &res->cells[res->ncells];
         cell->index = idx;
         if ((e = run_cell(&x, c, &k, cell, o->write_files && c->overlays ? dirs->overlays : NULL,
-                          o->write_files && c->exr ? dirs->exr : NULL, res, d)))
+                          o->write_files && c->exr ? dirs->exr : NULL,
+                          o->write_files && c->visibility ? dirs->visibility : NULL, res, d)))
             break;
         if (cell->violations) {
             struct sl_run_event ev = {.kind = SL_EVENT_VIOLATIONS, .config = c, .cell = cell};

@@ -237,6 +237,55 @@ static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_ve
                                  (int)(sizeof attrs / sizeof attrs[0]), attrs, d);
 }
 
+/* The visibility the cell was scored on, as `shadowlab grade` reads it
+ * back (doc/grade.md): V the visibility (a method's own, has_vis; else its
+ * verdict: 1 lit, 0 shadowed, NaN uncertain), 0 on PnFL pixels as every
+ * method's is; on background V NaN and A 0 (A 1 elsewhere); Z the linear
+ * depth of the view (eye-space distance along the view axis, NaN on
+ * background), so the same file registers itself (grade --depth). */
+static enum sl_err write_visibility(const struct sl_cell_inputs *in, const struct sl_verdicts *vd,
+                                    const struct sl_cell *cell, struct sl_diag *d)
+{
+    const struct sl_view *v = in->view;
+    size_t npx = (size_t)v->w * (size_t)v->h;
+    float *buf = malloc(3 * npx * sizeof *buf);
+    if (!buf)
+        return sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "visibility %dx%d", v->w, v->h);
+    float *vis = buf, *alpha = buf + npx, *z = buf + 2 * npx;
+    const mat4 *V = &v->view;
+    for (size_t i = 0; i < npx; i++) {
+        if (v->tri[i] == 0) {
+            vis[i] = z[i] = NAN;
+            alpha[i] = 0.0f;
+            continue;
+        }
+        alpha[i] = 1.0f;
+        const float *p = v->pos + 3 * i;
+        z[i] = -((*V)[0][2] * p[0] + (*V)[1][2] * p[1] + (*V)[2][2] * p[2] + (*V)[3][2]);
+        if (vd->has_vis || in->soft_truth)
+            vis[i] = vd->vis[i];
+        else
+            vis[i] = vd->v[i] == SL_V_LIT ? 1.0f : vd->v[i] == SL_V_SHADOW ? 0.0f : NAN;
+    }
+    char title[200];
+    snprintf(title, sizeof title, "%s/%s %s map %d %dx%d", cell->scene, cell->viewpoint,
+             in->label ? in->label : in->method->name, in->frame ? in->frame->size : 0, v->w, v->h);
+    const struct sl_image_attr attrs[] = {
+        {"shadowlab:V", "visibility as scored: 1 lit, 0 shadowed, fractions as the method gave them; "
+                        "0 facing away; NaN background or uncertain"},
+        {"shadowlab:A", "1 a surface, 0 background"},
+        {"shadowlab:Z", "linear depth: eye-space distance along the view axis, world units; NaN background"},
+        {"shadowlab:rows", "bottom-up in the view (OpenGL); written top-down as every image file"},
+        {"shadowlab:cell", title},
+    };
+    static const char *const names[] = {"V", "A", "Z"};
+    const float *chans[] = {vis, alpha, z};
+    enum sl_err e = sl_image_write_floats(in->visibility_path, v->w, v->h, 3, names, chans,
+                                          (int)(sizeof attrs / sizeof attrs[0]), attrs, d);
+    free(buf);
+    return e;
+}
+
 /* The soft overlay of a visibility against a truth over the pixels tri
  * marks: the error heat map (sl_overlay_soft), framed and keyed. */
 static enum sl_err soft_overlay(const struct sl_cell_inputs *in, const uint32_t *tri, const float *vis,
@@ -458,6 +507,8 @@ enum sl_err sl_cell_score(const struct sl_cell_inputs *in, struct sl_verdicts *v
          * how (enum sl_how), each code named in the header */
         e = write_exr(in, vd, band, cell, in->state, m, in->rgb, d);
     }
+    if (in->visibility_path && !e)
+        e = write_visibility(in, vd, cell, d);
     free(am);
     return e;
 }

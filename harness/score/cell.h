@@ -139,6 +139,8 @@ struct sl_cell_inputs {
                                                * writer): drawn into one of its slots and written by
                                                * it; NULL: written here, in the rgb scratch */
     const char *exr_path;                     /* NULL: no EXR layers */
+    const char *visibility_path;              /* the visibility as scored, an EXR of V, A and Z (config
+                                               * outputs.visibility: exr; doc/grade.md); NULL: none */
     int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
     int aliasing;                             /* the aliasing error m's figures wanted (config) */
     struct sl_alias_cache *alias_cache;       /* m of the view under the cell's frame, kept for the next
