@@ -22,7 +22,8 @@
 #include "sl_error.h"
 
 #define SL_PARAM_NAME_MAX 40   /* names: at most 32 characters (a package's identifiers) */
-#define SL_PARAM_MAX      18   /* parameters of one method: a package's 16 and its 2 cascades' */
+#define SL_PARAM_MAX      24   /* parameters of one set: a package's 16 and its 2 cascades', or the
+                                  config's settings (config.c: 18, room for a few more) */
 #define SL_PARAM_CHOICES  8    /* words of a choice */
 
 /* The types, each one line: the enum and the spelling a package's
