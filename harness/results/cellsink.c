@@ -48,7 +48,7 @@ enum sl_err sl_sink_finish(struct sl_cell_sink *s, struct sl_run_result *res, in
     const struct sl_config *c = s->config;
     enum sl_err e;
     if (!s->write_files)
-        return SL_OK;
+        return s->st ? sl_store_seal(s->st, d) : SL_OK;
     if ((e = sl_out_stage_finish(c, res, &s->dirs, resume, d)))
         return e;
     res->stored_total = -1;
@@ -61,6 +61,9 @@ enum sl_err sl_sink_finish(struct sl_cell_sink *s, struct sl_run_result *res, in
         sl_out_write_costs_md(table_out, c, res);
         sl_out_write_patterns_md(table_out, c, res);
     }
+    /* last: the .db alone holds the whole store before "written to" */
+    if (!e && s->st)
+        e = sl_store_seal(s->st, d);
     return e;
 }
 

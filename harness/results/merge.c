@@ -98,6 +98,18 @@ enum sl_err sl_merge_open_held(struct sl_store *held, const char *out_path, int 
     return SL_OK;
 }
 
+enum sl_err sl_merge_seal(struct sl_merge *m, struct sl_diag *d)
+{
+    /* the merge's own connection first: the journal switch of the seal
+     * wants the store's connection alone on the file */
+    sl_integ_close(m->integ);
+    m->integ = NULL;
+    if (sqlite3_close(m->db) != SQLITE_OK)
+        return db_fail(m, d, "cannot close");
+    m->db = NULL;
+    return m->store ? sl_store_seal(m->store, d) : SL_OK;
+}
+
 void sl_merge_close(struct sl_merge *m)
 {
     if (!m)
@@ -506,6 +518,7 @@ enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_
             e = db_fail(m, d, "cannot begin");
         if (!e)
             e = copy_cells(m, shard_dir, info, d);
+        sl_storefile_fault_point("merge");   /* the tests: killed inside the shard's transaction */
         if (!e && exec(m->db, "COMMIT") != SQLITE_OK)
             e = db_fail(m, d, "cannot commit");
         if (e)

@@ -230,6 +230,7 @@ struct sl_store {
     int           lockfd;   /* <real path>.lock, flock()ed while open for writing; -1 if none */
     char          lockpath[4200];   /* its name, removed on close (storefile.h) */
     struct sl_integ *integ; /* cell digests: written by put, checked by query */
+    struct sl_storefile_ro ro;   /* a reader's URI, and its private copy when one was needed */
 };
 
 /* ---- helpers ---- */
@@ -494,11 +495,10 @@ static enum sl_err store_open(const char *path, int readonly, struct sl_store **
     /* One writer per file (storefile.h); readers through a read-only URI,
      * so a store on read-only media can be read. */
     enum sl_err e = readonly ? SL_OK : sl_storefile_lock(path, &s->lockfd, s->lockpath, sizeof s->lockpath, d);
-    char uri[4200];
-    if (!e && readonly && sl_storefile_ro_uri(path, uri, sizeof uri) != 0)
-        e = sl_fail(d, SL_E_IO, path, 0, NULL, "path too long");
+    if (!e && readonly)
+        e = sl_storefile_ro_open(path, &s->ro, d);
     if (!e) {
-        int rc = readonly ? sqlite3_open_v2(uri, &s->db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL)
+        int rc = readonly ? sqlite3_open_v2(s->ro.uri, &s->db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL)
                           : sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL);
         e = rc == SQLITE_OK ? SL_OK : db_fail(s, d, NULL, "cannot open");
     }
@@ -534,11 +534,84 @@ void sl_store_close(struct sl_store *s)
     sl_integ_close(s->integ);
     sqlite3_close(s->db);
     sl_storefile_unlock(s->lockfd, s->lockpath);   /* after SQLite let go of the file; -1: none */
+    sl_storefile_ro_release(&s->ro);   /* after SQLite let go of the copy */
     free(s->path);
     free(s);
 }
 
+enum sl_err sl_store_copy(const char *from, const char *to, struct sl_diag *d)
+{
+    struct sl_store *src = NULL;
+    enum sl_err e = sl_store_open_existing(from, &src, d);
+    if (e)
+        return e;
+    sqlite3 *dst = NULL;
+    int rc = sqlite3_open_v2(to, &dst, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL);
+    sqlite3_backup *b = rc == SQLITE_OK ? sqlite3_backup_init(dst, "main", src->db, "main") : NULL;
+    if (b) {
+        rc = sqlite3_backup_step(b, -1);   /* every page, in one step */
+        rc = rc == SQLITE_DONE ? sqlite3_backup_finish(b) : (sqlite3_backup_finish(b), rc);
+    } else if (rc == SQLITE_OK) {
+        rc = sqlite3_errcode(dst);
+    }
+    if (rc != SQLITE_OK)
+        e = sl_fail(d, SL_E_OUTPUT, to, 0, NULL, "cannot copy the store %s here: %s", from,
+                    dst ? sqlite3_errmsg(dst) : sqlite3_errstr(rc));
+    if (sqlite3_close(dst) != SQLITE_OK && !e)
+        e = sl_fail(d, SL_E_OUTPUT, to, 0, NULL, "cannot close the copy of %s", from);
+    sl_store_close(src);
+    return e;
+}
+
 /* ---- writing ---- */
+
+/* The checkpoint's own words (PRAGMA wal_checkpoint: busy, frames in the
+ * -wal, frames copied) decide, not the pragma's return code alone: a
+ * checkpoint that could not copy every frame (a reader holding an old
+ * snapshot, a disk that filled as the .db grew) still "succeeds". */
+enum sl_err sl_store_seal(struct sl_store *s, struct sl_diag *d)
+{
+    if (!s || s->lockfd < 0)
+        return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_seal: not a writer's store");
+    char wal[4200];
+    snprintf(wal, sizeof wal, "%s-wal", s->path);
+    struct stat ws;
+    long long wal_bytes = stat(wal, &ws) == 0 ? (long long)ws.st_size : 0;
+    sqlite3_stmt *st = NULL;
+    /* the tests' disk that fills at the last step: no checkpoint, none on
+     * close either, the -wal left as a full disk leaves it */
+    int fault = sl_storefile_fault("checkpoint");
+    if (fault)
+        sqlite3_db_config(s->db, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, NULL);
+    int rc = fault ? SQLITE_FULL : sqlite3_prepare_v2(s->db, "PRAGMA main.wal_checkpoint(TRUNCATE)", -1, &st, NULL);
+    int busy = -1, frames = -1, copied = -1;
+    if (rc == SQLITE_OK && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        busy = sqlite3_column_int(st, 0);
+        frames = sqlite3_column_int(st, 1);
+        copied = sqlite3_column_int(st, 2);
+        rc = SQLITE_OK;
+    }
+    char why[300];
+    snprintf(why, sizeof why, "%s", fault ? sqlite3_errstr(rc) : rc != SQLITE_OK ? sqlite3_errmsg(s->db) : "");
+    sqlite3_finalize(st);
+    if (rc == SQLITE_OK && busy != 0)
+        snprintf(why, sizeof why, "%d of %d frames copied, a reader held the rest", copied, frames);
+    if (rc != SQLITE_OK || busy != 0) {
+        char dir[4200];
+        sl_path_dir(s->path, dir, sizeof dir);
+        return sl_fail(d, SL_E_OUTPUT, s->path, 0, NULL,
+                       "the final checkpoint failed (%s): %lld bytes of results are still only in %s, so the .db "
+                       "alone is not the whole store; free at least %lld bytes on the filesystem of %s (or end "
+                       "the readers of the store), then `shadowlab run CONFIG --resume` completes it",
+                       why, wal_bytes, wal, wal_bytes, dir);
+    }
+    /* Rollback journal from here: closing leaves no -wal at all (the next
+     * writer switches back to WAL). Refused only while a reader holds the
+     * store; everything is in the .db already, so that is not a failure. */
+    sqlite3_int64 ignore = 0;
+    (void)query_int(s->db, "PRAGMA main.journal_mode = DELETE", &ignore);
+    return sl_storefile_sync(s->path, d);
+}
 
 enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p, const char *study,
                                const char *config_path, unsigned long long config_hash,

@@ -33,6 +33,18 @@ enum sl_err sl_store_open(const char *path, struct sl_store **out, struct sl_dia
  * naming it, never a new empty store. */
 enum sl_err sl_store_open_existing(const char *path, struct sl_store **out, struct sl_diag *d);
 void        sl_store_close(struct sl_store *s);   /* NULL-safe */
+/* A writer's last step (a run, a merge): every frame of the -wal into the
+ * .db (wal_checkpoint(TRUNCATE), checked), the journal switched to DELETE so
+ * closing leaves no -wal, the .db and its folder fsync()ed: afterwards the
+ * .db alone holds the whole store. SL_E_OUTPUT naming the store, the bytes
+ * still only in its -wal and what to free, when any step fails (the -wal is
+ * kept: the next writer, `run --resume`, checkpoints it). */
+enum sl_err sl_store_seal(struct sl_store *s, struct sl_diag *d);
+/* A copy of the store at from (read as a reader does, its -wal included)
+ * into the new file to, page by page (SQLite's backup API): the start of a
+ * merge that must leave the store at from untouched until it renames the
+ * finished copy over it. SL_E_OUTPUT naming to when it cannot be written. */
+enum sl_err sl_store_copy(const char *from, const char *to, struct sl_diag *d);
 
 /* study: the config's name; config_text: the filled-in config (may be NULL). */
 enum sl_err sl_store_begin_run(struct sl_store *s, const struct sl_provenance *p, const char *study,

@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# store::* (shell) — issue 49, the store as an archive: what a .db alone
+# holds when a run, a merge or a failure ends, and what the readers say.
+#   seal           a run leaves no -wal and its .db alone holds every cell;
+#                  the final checkpoint failing (SHADOWLAB_FAULT=checkpoint, a
+#                  disk that fills at the last step) exits 3 naming the store,
+#                  its -wal and what to free, with no "written to"; `run
+#                  --resume` then leaves a .db that holds every cell alone
+#   wal_readonly   a store and the -wal a failed checkpoint left, on a
+#                  read-only mount: verify, table and check read all 8 cells
+#                  (through a private copy, removed afterwards); with no
+#                  writable TMPDIR, exit 2 saying why
+#   merge_killed   a merge into an existing target killed (SIGKILL) at each
+#                  of its moments (SHADOWLAB_FAULT=merge:N, 13 of them) and at
+#                  the same 13 into a new target: the target is the old store,
+#                  intact, or the complete new one (or, new, none), and a
+#                  merge afterwards completes it
+set -u
+bin=${1:?usage: cli_archive.sh path/to/shadowlab CASE}
+case_=${2:?case}
+tmp=$(mktemp -d)
+cleanup() { mountpoint -q "$tmp/ro" 2>/dev/null && umount "$tmp/ro"; rm -rf "$tmp"; }
+trap cleanup EXIT
+fail() { echo "FAIL $*"; exit 1; }
+cells() { sqlite3 "$1" 'SELECT count(*) FROM cells'; }
+# the .db alone, as a copy without its -wal would read it
+alone_cells() { cp "$1" "$tmp/alone.db" && sqlite3 "$tmp/alone.db" 'SELECT count(*) FROM cells' 2>&1; rm -f "$tmp/alone.db"*; }
+
+# 2 views x 2 map sizes x 2 labels = 8 cells, seconds to run
+cat >"$tmp/tiny.yaml" <<'YAML'
+name: tiny
+scenes: [{scene: primitives, viewpoints: [side, with]}]
+viewports: [{width: 64, height: 64}]
+map_sizes: [64, 128]
+methods:
+  - {label: nsm, method: nsm}
+  - {label: csm, method: csm}
+YAML
+run() { "$bin" run "$tmp/tiny.yaml" -q "$@" >"$tmp/run.out" 2>&1 || { cat "$tmp/run.out"; fail "run $*"; }; }
+
+case "$case_" in
+seal)
+  run --out "$tmp/r"
+  [ -e "$tmp/r/shadowlab.db-wal" ] && fail "a run left a -wal of $(stat -c %s "$tmp/r/shadowlab.db-wal") bytes"
+  [ "$(alone_cells "$tmp/r/shadowlab.db")" = 8 ] || fail "the .db alone: $(alone_cells "$tmp/r/shadowlab.db")"
+  SHADOWLAB_FAULT=checkpoint "$bin" run "$tmp/tiny.yaml" -q --out "$tmp/f" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 3 ] || fail "checkpoint failing: exit $rc, want 3: $(cat "$tmp/e")"
+  grep -q "written to" "$tmp/o" && fail "checkpoint failing: says 'written to': $(cat "$tmp/o")"
+  grep -q "$tmp/f/shadowlab.db: the final checkpoint failed" "$tmp/e" || fail "the store is not named: $(cat "$tmp/e")"
+  grep -q "only in $tmp/f/shadowlab.db-wal" "$tmp/e" || fail "the -wal is not named: $(cat "$tmp/e")"
+  grep -q "free at least [0-9]* bytes on the filesystem of $tmp/f" "$tmp/e" || fail "what to free: $(cat "$tmp/e")"
+  grep -q -- "--resume" "$tmp/e" || fail "no --resume: $(cat "$tmp/e")"
+  # what the issue found: the .db alone lacks the cells
+  [ -s "$tmp/f/shadowlab.db-wal" ] || fail "the injected failure left no -wal"
+  [ "$(alone_cells "$tmp/f/shadowlab.db")" = 8 ] && fail "the injected failure left a whole .db"
+  "$bin" run "$tmp/tiny.yaml" -q --out "$tmp/f" --resume >"$tmp/o" 2>"$tmp/e" || fail "--resume: $(cat "$tmp/e")"
+  grep -q "written to" "$tmp/o" || fail "--resume: no 'written to'"
+  [ -e "$tmp/f/shadowlab.db-wal" ] && fail "--resume left a -wal"
+  [ "$(alone_cells "$tmp/f/shadowlab.db")" = 8 ] || fail "after --resume, the .db alone: $(alone_cells "$tmp/f/shadowlab.db")"
+  "$bin" verify "$tmp/f/shadowlab.db" >/dev/null 2>"$tmp/e" || fail "verify after --resume: $(cat "$tmp/e")"
+  ;;
+wal_readonly)
+  SHADOWLAB_FAULT=checkpoint "$bin" run "$tmp/tiny.yaml" -q --out "$tmp/f" >/dev/null 2>&1
+  [ -s "$tmp/f/shadowlab.db-wal" ] || fail "the injected failure left no -wal"
+  "$bin" check "$tmp/f/shadowlab.db" --baseline "$tmp/b.yaml" --update >/dev/null 2>"$tmp/e" || fail "baseline: $(cat "$tmp/e")"
+  mkdir -p "$tmp/ro" "$tmp/t"
+  mount -t tmpfs -o size=16m none "$tmp/ro" 2>/dev/null || { echo "SKIP: no tmpfs mount here"; exit 77; }
+  cp "$tmp/f/shadowlab.db" "$tmp/f/shadowlab.db-wal" "$tmp/ro/" && mount -o remount,ro "$tmp/ro" || fail "remount ro"
+  touch "$tmp/ro/probe" 2>/dev/null && fail "the mount is still writable"
+  ro=$tmp/ro/shadowlab.db
+  TMPDIR=$tmp/t "$bin" verify "$ro" >"$tmp/o" 2>"$tmp/e" || fail "verify: $(cat "$tmp/e")"
+  grep -q "8 cell(s)" "$tmp/o" || fail "verify read: $(cat "$tmp/o")"
+  TMPDIR=$tmp/t "$bin" table "$ro" --format csv >"$tmp/o" 2>"$tmp/e" || fail "table: $(cat "$tmp/e")"
+  [ "$(grep -c '^primitives,' "$tmp/o")" -ge 8 ] || fail "table read $(grep -c '^primitives,' "$tmp/o") cell rows"
+  TMPDIR=$tmp/t "$bin" check "$ro" --baseline "$tmp/b.yaml" >"$tmp/o" 2>"$tmp/e" || fail "check: $(cat "$tmp/e")"
+  [ -z "$(ls -A "$tmp/t")" ] || fail "the private copy was left: $(ls -A "$tmp/t")"
+  TMPDIR=$tmp/none "$bin" verify "$ro" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] || fail "no TMPDIR: exit $rc, want 2"
+  grep -q "a -wal of [0-9]* bytes lies beside this store on read-only media" "$tmp/e" || fail "why not: $(cat "$tmp/e")"
+  ;;
+merge_killed)
+  run --out "$tmp/a" --cells 0:3
+  run --out "$tmp/b" --cells 3:6
+  run --out "$tmp/c" --cells 6:
+  shards=("$tmp/a/shadowlab.db" "$tmp/b/shadowlab.db" "$tmp/c/shadowlab.db")
+  # an existing target holding shard a's cells, killed at each moment
+  "$bin" merge "${shards[0]}" -o "$tmp/old.db" >/dev/null 2>&1
+  [ "$(cells "$tmp/old.db")" = 3 ] || fail "the old target: $(cells "$tmp/old.db") cells"
+  for n in $(seq 1 13); do
+    rm -rf "$tmp/m" && mkdir "$tmp/m" && cp "$tmp/old.db" "$tmp/m/shadowlab.db"
+    SHADOWLAB_FAULT=merge:$n "$bin" merge "${shards[@]}" -o "$tmp/m/shadowlab.db" >"$tmp/o" 2>"$tmp/e"; rc=$?
+    [ $rc -eq 137 ] || fail "moment $n: exit $rc, not killed: $(cat "$tmp/e")"
+    got=$(alone_cells "$tmp/m/shadowlab.db")
+    { [ "$got" = 3 ] || [ "$got" = 8 ]; } || fail "moment $n: the target holds $got cells (old 3, new 8)"
+    "$bin" verify "$tmp/m/shadowlab.db" >/dev/null 2>"$tmp/e" || fail "moment $n: verify: $(cat "$tmp/e")"
+    "$bin" merge "${shards[@]}" -o "$tmp/m/shadowlab.db" >/dev/null 2>"$tmp/e" || fail "moment $n: merge again: $(cat "$tmp/e")"
+    [ "$(cells "$tmp/m/shadowlab.db")" = 8 ] || fail "moment $n: merged again: $(cells "$tmp/m/shadowlab.db") cells"
+    [ -z "$(ls "$tmp/m" | grep -v '^shadowlab.db$\|^tiny$')" ] || fail "moment $n: left $(ls "$tmp/m")"
+    echo "moment $n: target held $got cells"
+  done
+  # a new target: none, or the whole merge
+  for n in $(seq 1 13); do
+    rm -rf "$tmp/n"
+    SHADOWLAB_FAULT=merge:$n "$bin" merge "${shards[@]}" -o "$tmp/n/shadowlab.db" >"$tmp/o" 2>"$tmp/e"; rc=$?
+    [ $rc -eq 137 ] || fail "new, moment $n: exit $rc, not killed: $(cat "$tmp/e")"
+    if [ -e "$tmp/n/shadowlab.db" ]; then
+      got=$(alone_cells "$tmp/n/shadowlab.db")
+      [ "$got" = 8 ] || fail "new, moment $n: a target of $got cells"
+    else
+      got=none
+    fi
+    echo "new, moment $n: $got"
+  done
+  ;;
+*)
+  fail "unknown case $case_"
+  ;;
+esac
+echo "ok $case_"
