@@ -21,6 +21,8 @@
  */
 #define _XOPEN_SOURCE 700
 #include "store.h"
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <sqlite3.h>
 #include <stdarg.h>
@@ -29,12 +31,14 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <zlib.h>
 #include "integrity.h"
 #include "store_int.h"
 #include "storefile.h"
 #include "util.h"
 
-#define SL_STORE_VERSION 22   /* 22: a hard light's class figures within SL_SOFT_HARD_TOL (softfig.h;
+#define SL_STORE_VERSION 23   /* 23: tables plan (the sweep's cell keys per config hash) and files
+                               * (each file a run writes: path, size, CRC-32), added to 22's; 22: a hard light's class figures within SL_SOFT_HARD_TOL (softfig.h;
                                * the same tables, other values); 21: figures leaking, over_dark (softfig.h); 20: cells.nonfinite (cellcols.h);
                                * 19: cells.family, beside (the method's origin, method.h), display;
                                * 18: cells.frac (a hard light's fractional errors, cellcols.h);
@@ -136,10 +140,43 @@ static const char sql_figures[] =
     "  UNIQUE (cell_id, region, figure)\n"
     ")";
 
+/* The sweep a config hash names: every cell key of its plan, whichever
+ * run (or slice, --cells) stored it first. A config hash fixes the sweep, so
+ * every run of one hash records the same rows (INSERT OR IGNORE). */
+static const char sql_plan[] =
+    "CREATE TABLE plan (\n"
+    "  config_hash    TEXT NOT NULL " SL_HEX16_CHECK("config_hash") ",\n"
+    "  cell_index     INTEGER NOT NULL CHECK (cell_index >= 0),\n"
+    "  scene          TEXT NOT NULL,\n"
+    "  viewpoint      TEXT NOT NULL,\n"
+    "  vw             INTEGER NOT NULL CHECK (vw > 0),\n"
+    "  vh             INTEGER NOT NULL CHECK (vh > 0),\n"
+    "  map_size       INTEGER NOT NULL CHECK (map_size > 0),\n"
+    "  label          TEXT NOT NULL,\n"
+    "  UNIQUE (config_hash, scene, viewpoint, vw, vh, map_size, label),\n"
+    "  UNIQUE (config_hash, cell_index)\n"
+    ")";
+
+/* Each file a run writes beside the store (a cell's overlay and EXR files),
+ * its path as the cell's overlay column keeps it (relative to the store's
+ * folder, or absolute), its size and CRC-32 (zlib), written in the cell's
+ * transaction. One row per path: a later cell that writes the same file
+ * (the same key under another config hash) takes the row over. */
+static const char sql_files[] =
+    "CREATE TABLE files (\n"
+    "  path           TEXT NOT NULL PRIMARY KEY,\n"
+    "  run_id         INTEGER NOT NULL REFERENCES runs (run_id),\n"
+    "  cell_id        INTEGER REFERENCES cells (cell_id),\n"
+    "  size           INTEGER NOT NULL CHECK (size >= 0),\n"
+    "  crc32          INTEGER NOT NULL CHECK (crc32 BETWEEN 0 AND 4294967295)\n"
+    ")";
+
 static const struct { const char *name, *sql; } sl_tables[] = {
     {"runs", sql_runs},
     {"cells", sql_cells},
     {"figures", sql_figures},
+    {"plan", sql_plan},
+    {"files", sql_files},
 };
 
 /* latest-per-key query; per-run filter; ad-hoc figure queries (the resume
@@ -148,6 +185,14 @@ static const char *const sl_indexes[] = {
     "CREATE INDEX cells_key ON cells (scene, viewpoint, vw, vh, map_size, label, run_id)",
     "CREATE INDEX cells_run ON cells (run_id)",
     "CREATE INDEX figures_key ON figures (scene, viewpoint, viewport, map_size, label, figure, region)",
+    "CREATE INDEX files_cell ON files (cell_id)",
+};
+
+/* Schema 22 -> 23: two tables and an index added, nothing else changed, so
+ * a version-22 store is one of 23 once they are made (a writer does it in
+ * place, in one transaction; a reader in a private copy, storefile.h). */
+static const char *const sl_migrate_22[] = {
+    sql_plan, sql_files, "CREATE INDEX files_cell ON files (cell_id)", "PRAGMA user_version = 23", NULL,
 };
 
 /* ---- statements kept for the life of the store ---- */
@@ -166,6 +211,11 @@ static const char sql_set_digest[] = "UPDATE cells SET digest = ?2 WHERE cell_id
 
 /* A cell computed again (a run without --resume) replaces the stored one of
  * its config hash and key: its figures first (they reference it). */
+static const char sql_del_files[] =
+    "DELETE FROM files WHERE cell_id IN (SELECT cell_id FROM cells WHERE config_hash = ?1 AND scene = ?2 "
+    "AND viewpoint = ?3 AND vw = ?4 AND vh = ?5 AND map_size = ?6 AND label = ?7)";
+static const char sql_ins_file[] =
+    "INSERT OR REPLACE INTO files (path, run_id, cell_id, size, crc32) VALUES (?,?,?,?,?)";
 static const char sql_del_figs[] =
     "DELETE FROM figures WHERE cell_id IN (SELECT cell_id FROM cells WHERE config_hash = ?1 AND scene = ?2 "
     "AND viewpoint = ?3 AND vw = ?4 AND vh = ?5 AND map_size = ?6 AND label = ?7)";
@@ -206,7 +256,7 @@ static const char sql_query_figs[] =
 
 enum {
     ST_BEGIN, ST_COMMIT, ST_ROLLBACK, ST_INS_RUN, ST_INS_CELL, ST_INS_FIG, ST_HAS_CELL,
-    ST_QUERY_CELLS, ST_QUERY_FIGS, ST_SET_DIGEST, ST_DEL_FIGS, ST_DEL_CELL, ST_COUNT
+    ST_QUERY_CELLS, ST_QUERY_FIGS, ST_SET_DIGEST, ST_DEL_FILES, ST_DEL_FIGS, ST_DEL_CELL, ST_INS_FILE, ST_COUNT
 };
 static const char *const sl_stmt_sql[ST_COUNT] = {
     [ST_BEGIN] = "BEGIN IMMEDIATE",
@@ -219,6 +269,8 @@ static const char *const sl_stmt_sql[ST_COUNT] = {
     [ST_QUERY_CELLS] = sql_query_cells,
     [ST_QUERY_FIGS] = sql_query_figs,
     [ST_SET_DIGEST] = sql_set_digest,
+    [ST_DEL_FILES] = sql_del_files,
+    [ST_INS_FILE] = sql_ins_file,
     [ST_DEL_FIGS] = sql_del_figs,
     [ST_DEL_CELL] = sql_del_cell,
 };
@@ -427,6 +479,62 @@ static enum sl_err check_schema(struct sl_store *s, struct sl_diag *d)
     return e;
 }
 
+/* Statements that take a store of an older schema to this one, in one
+ * transaction. */
+static enum sl_err migrate(struct sl_store *s, const char *const *sql, struct sl_diag *d)
+{
+    if (sqlite3_exec(s->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot start upgrading the schema");
+    for (int i = 0; sql[i]; i++)
+        if (sqlite3_exec(s->db, sql[i], NULL, NULL, NULL) != SQLITE_OK) {
+            enum sl_err e = db_fail(s, d, NULL, "cannot upgrade the schema to version %d", SL_STORE_VERSION);
+            sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+            return e;
+        }
+    if (sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK) {
+        enum sl_err e = db_fail(s, d, NULL, "cannot commit the schema's upgrade");
+        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+        return e;
+    }
+    return SL_OK;
+}
+
+/* A reader never writes the store it reads: one of an older schema is
+ * copied (SQLite's backup API, its -wal included) into a private folder
+ * (storefile.h) and the copy, opened for writing there, is what gets
+ * migrated and read. */
+static enum sl_err reader_copy(struct sl_store *s, struct sl_diag *d)
+{
+    int had_copy = s->ro.tmpdir[0] != 0;
+    enum sl_err e = sl_storefile_private(&s->ro, s->path, d);
+    if (e)
+        return e;
+    sqlite3 *dst = NULL;
+    int rc = SQLITE_OK;
+    if (!had_copy) {
+        rc = sqlite3_open_v2(s->ro.copy, &dst, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL);
+        sqlite3_backup *b = rc == SQLITE_OK ? sqlite3_backup_init(dst, "main", s->db, "main") : NULL;
+        if (b) {
+            rc = sqlite3_backup_step(b, -1);
+            rc = rc == SQLITE_DONE ? sqlite3_backup_finish(b) : (sqlite3_backup_finish(b), rc);
+        } else if (rc == SQLITE_OK) {
+            rc = sqlite3_errcode(dst);
+        }
+        if (rc != SQLITE_OK)
+            e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "cannot copy the store into %s to read it: %s", s->ro.copy,
+                        dst ? sqlite3_errmsg(dst) : sqlite3_errstr(rc));
+        sqlite3_close(dst);
+        if (e)
+            return e;
+    }
+    sqlite3_close(s->db);
+    s->db = NULL;
+    if (sqlite3_open_v2(s->ro.copy, &s->db, SQLITE_OPEN_READWRITE, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot open its private copy %s", s->ro.copy);
+    sqlite3_busy_timeout(s->db, SL_STORE_BUSY_MS);
+    return SL_OK;
+}
+
 static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
 {
     sqlite3_busy_timeout(s->db, SL_STORE_BUSY_MS);
@@ -446,6 +554,16 @@ static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
                            "%lld schema objects); refusing to touch it", (long long)nobj);
         if (s->lockfd < 0)   /* a reader makes no schema */
             return sl_fail(d, SL_E_IO, s->path, 0, NULL, "an empty file, not a results store");
+    } else if (ver == 22 && s->lockfd >= 0) {
+        enum sl_err e = sl_integ_quick_check(s->db, "main", s->path, "refusing to upgrade it", d);
+        if (e || (e = migrate(s, sl_migrate_22, d)))
+            return e;
+        ver = SL_STORE_VERSION;
+    } else if (ver == 22) {
+        enum sl_err e = reader_copy(s, d);
+        if (e || (e = migrate(s, sl_migrate_22, d)))
+            return e;
+        ver = SL_STORE_VERSION;
     } else if (ver != SL_STORE_VERSION) {
         return sl_fail(d, SL_E_IO, s->path, 0, NULL,
                        "results store of schema version %lld; this build reads version %d%s",
@@ -705,6 +823,13 @@ static enum sl_err put_cell_row(struct sl_store *s, int64_t run_id, const char *
 enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long long config_hash,
                               const struct sl_cell_record *c, struct sl_diag *d)
 {
+    return sl_store_put_cell_files(s, run_id, config_hash, c, NULL, 0, d);
+}
+
+enum sl_err sl_store_put_cell_files(struct sl_store *s, int64_t run_id, unsigned long long config_hash,
+                                    const struct sl_cell_record *c, const struct sl_store_file *files, int nfiles,
+                                    struct sl_diag *d)
+{
     if (!s || !c)
         return sl_fail(d, SL_E_USAGE, s ? s->path : NULL, 0, NULL, "sl_store_put_cell: missing argument");
     const struct sl_figures *fig = &c->fig;
@@ -725,7 +850,7 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
 
     sqlite3_int64 cell_id = 0;
     enum sl_err e = SL_OK;
-    for (int k = ST_DEL_FIGS; k <= ST_DEL_CELL && !e; k++) {   /* the key once: a new computation replaces it */
+    for (int k = ST_DEL_FILES; k <= ST_DEL_CELL && !e; k++) {   /* the key once: a new computation replaces it */
         sqlite3_stmt *del = s->st[k];
         struct binder b = {del, 1, SQLITE_OK};
         key_bind(&b, hash, c->scene, c->viewpoint, c->vw, c->vh, c->map_size, c->label);
@@ -751,6 +876,18 @@ enum sl_err sl_store_put_cell(struct sl_store *s, int64_t run_id, unsigned long 
                        c->soft.pct[k], sl_soft_figure_of((enum sl_soft_figure)k), key, d);
     if (!e)
         e = put_figure(s, cell_id, c, viewport, "image", "background", fig->background, NAN, NULL, key, d);
+    for (int i = 0; i < nfiles && !e; i++) {
+        sqlite3_stmt *st = s->st[ST_INS_FILE];
+        struct binder b = {st, 1, SQLITE_OK};
+        b_text(&b, files[i].path);
+        b_int(&b, run_id);
+        b_int(&b, cell_id);
+        b_int(&b, files[i].size);
+        b_int(&b, files[i].crc32);
+        if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
+            e = db_fail(s, d, key, "cannot record the file %s", files[i].path);
+        st_clear(st);
+    }
     uint32_t digest = 0;   /* of the rows as stored, in their transaction */
     if (!e && sl_integ_digest(s->integ, cell_id, &digest) != SQLITE_OK)
         e = db_fail(s, d, key, "cannot digest the cell");
@@ -1005,4 +1142,311 @@ struct sqlite3 *sl_store_handle(struct sl_store *s, const char **path)
 int sl_store_version(void)
 {
     return SL_STORE_VERSION;
+}
+
+/* ---- the plan: completeness ---- */
+
+enum sl_err sl_store_put_plan(struct sl_store *s, unsigned long long config_hash, const struct sl_store_key *k,
+                              int n, struct sl_diag *d)
+{
+    char hash[24];
+    snprintf(hash, sizeof hash, "%016llx", config_hash);
+    sqlite3_stmt *st = NULL;
+    if (sqlite3_exec(s->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot start recording the plan");
+    enum sl_err e = SL_OK;
+    if (sqlite3_prepare_v2(s->db, "INSERT OR IGNORE INTO plan (config_hash, cell_index, scene, viewpoint, vw, vh, "
+                           "map_size, label) VALUES (?,?,?,?,?,?,?,?)", -1, &st, NULL) != SQLITE_OK)
+        e = db_fail(s, d, NULL, "cannot record the plan");
+    for (int i = 0; i < n && !e; i++) {
+        struct binder b = {st, 1, SQLITE_OK};
+        b_text(&b, hash);
+        b_int(&b, k[i].index);
+        b_text(&b, k[i].scene);
+        b_text(&b, k[i].viewpoint);
+        b_int(&b, k[i].vw);
+        b_int(&b, k[i].vh);
+        b_int(&b, k[i].map_size);
+        b_text(&b, k[i].label);
+        if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
+            e = db_fail(s, d, NULL, "cannot record cell %d of the plan", k[i].index);
+        st_clear(st);
+    }
+    sqlite3_finalize(st);
+    if (!e && sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
+        e = db_fail(s, d, NULL, "cannot commit the plan");
+    if (e && !sqlite3_get_autocommit(s->db))
+        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+    return e;
+}
+
+/* A planned key with a stored cell of its config hash. */
+#define SL_PLAN_STORED                                                                                  \
+    "EXISTS (SELECT 1 FROM cells c WHERE c.config_hash = p.config_hash AND c.scene = p.scene AND "        \
+    "c.viewpoint = p.viewpoint AND c.vw = p.vw AND c.vh = p.vh AND c.map_size = p.map_size AND "           \
+    "c.label = p.label)"
+
+enum sl_err sl_store_sweeps(struct sl_store *s, struct sl_store_sweep **out, int *n, struct sl_diag *d)
+{
+    *out = NULL;
+    *n = 0;
+    /* every hash with a plan, then those with cells but no plan (older stores) */
+    static const char sql[] =
+        "WITH h AS (SELECT config_hash FROM plan UNION SELECT config_hash FROM cells)\n"
+        "SELECT h.config_hash,\n"
+        "  (SELECT study FROM runs r WHERE r.config_hash = h.config_hash ORDER BY run_id LIMIT 1),\n"
+        "  (SELECT group_concat(run_id, ', ') FROM (SELECT run_id FROM runs r WHERE r.config_hash = h.config_hash\n"
+        "     ORDER BY run_id)),\n"
+        "  (SELECT count(*) FROM plan p WHERE p.config_hash = h.config_hash),\n"
+        "  (SELECT count(*) FROM plan p WHERE p.config_hash = h.config_hash AND " SL_PLAN_STORED "),\n"
+        "  (SELECT count(*) FROM cells c WHERE c.config_hash = h.config_hash)\n"
+        "FROM h ORDER BY h.config_hash";
+    sqlite3_stmt *st = NULL;
+    if (sqlite3_prepare_v2(s->db, sql, -1, &st, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot read the plan");
+    struct sl_store_sweep *v = NULL;
+    int cnt = 0, rc;
+    enum sl_err e = SL_OK;
+    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+        struct sl_store_sweep *nv = realloc(v, (size_t)(cnt + 1) * sizeof *v);
+        if (!nv) {
+            e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "sweeps");
+            break;
+        }
+        v = nv;
+        struct sl_store_sweep *w = &v[cnt++];
+        memset(w, 0, sizeof *w);
+        col_text(st, 0, w->config_hash, sizeof w->config_hash);
+        col_text(st, 1, w->study, sizeof w->study);
+        const char *runs = (const char *)sqlite3_column_text(st, 2);
+        size_t rl = runs ? strlen(runs) : 0;
+        if (rl >= sizeof w->runs)
+            snprintf(w->runs, sizeof w->runs, "%.*s...", (int)sizeof w->runs - 4, runs);
+        else
+            snprintf(w->runs, sizeof w->runs, "%s", runs ? runs : "");
+        int planned = sqlite3_column_int(st, 3);
+        w->planned = planned ? planned : -1;
+        w->stored = planned ? sqlite3_column_int(st, 4) : sqlite3_column_int(st, 5);
+    }
+    if (!e && rc != SQLITE_DONE)
+        e = db_fail(s, d, NULL, "cannot read the plan");
+    sqlite3_finalize(st);
+    if (e) {
+        free(v);
+        return e;
+    }
+    *out = v;
+    *n = cnt;
+    return SL_OK;
+}
+
+enum sl_err sl_store_missing(struct sl_store *s, const char *config_hash, struct sl_store_key **out, int *n,
+                             struct sl_diag *d)
+{
+    *out = NULL;
+    *n = 0;
+    sqlite3_stmt *st = NULL;
+    if (sqlite3_prepare_v2(s->db, "SELECT cell_index, scene, viewpoint, vw, vh, map_size, label FROM plan p "
+                           "WHERE p.config_hash = ?1 AND NOT " SL_PLAN_STORED " ORDER BY cell_index", -1, &st,
+                           NULL) != SQLITE_OK ||
+        sqlite3_bind_text(st, 1, config_hash, -1, SQLITE_TRANSIENT) != SQLITE_OK) {
+        sqlite3_finalize(st);
+        return db_fail(s, d, NULL, "cannot read the plan");
+    }
+    /* keys, then their strings, in one block: 3 strings of at most 200 bytes each */
+    enum { KEYTEXT = 600 };
+    int cap = 0, cnt = 0, rc;
+    char *block = NULL;
+    enum sl_err e = SL_OK;
+    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+        if (cnt == cap) {
+            int ncap = cap ? 2 * cap : 16;
+            char *nb = realloc(block, (size_t)ncap * (sizeof(struct sl_store_key) + KEYTEXT));
+            if (!nb) {
+                e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "missing cells");
+                break;
+            }
+            /* the strings move behind the larger key array */
+            memmove(nb + (size_t)ncap * sizeof(struct sl_store_key), nb + (size_t)cap * sizeof(struct sl_store_key),
+                    (size_t)cap * KEYTEXT);
+            block = nb;
+            cap = ncap;
+        }
+        char *text = block + (size_t)cap * sizeof(struct sl_store_key) + (size_t)cnt * KEYTEXT;
+        const char *sc = (const char *)sqlite3_column_text(st, 1), *vp = (const char *)sqlite3_column_text(st, 2),
+                   *lb = (const char *)sqlite3_column_text(st, 6);
+        snprintf(text, 200, "%s", sc ? sc : "");
+        snprintf(text + 200, 200, "%s", vp ? vp : "");
+        snprintf(text + 400, 200, "%s", lb ? lb : "");
+        struct sl_store_key *k = (struct sl_store_key *)block + cnt++;
+        k->index = sqlite3_column_int(st, 0);
+        k->vw = sqlite3_column_int(st, 3);
+        k->vh = sqlite3_column_int(st, 4);
+        k->map_size = sqlite3_column_int(st, 5);
+    }
+    if (!e && rc != SQLITE_DONE)
+        e = db_fail(s, d, NULL, "cannot read the plan");
+    sqlite3_finalize(st);
+    if (e) {
+        free(block);
+        return e;
+    }
+    /* pointers last: the block no longer moves */
+    for (int i = 0; i < cnt; i++) {
+        struct sl_store_key *k = (struct sl_store_key *)block + i;
+        char *text = block + (size_t)cap * sizeof(struct sl_store_key) + (size_t)i * KEYTEXT;
+        k->scene = text;
+        k->viewpoint = text + 200;
+        k->label = text + 400;
+    }
+    *out = (struct sl_store_key *)block;
+    *n = cnt;
+    return SL_OK;
+}
+
+/* ---- files ---- */
+
+enum sl_err sl_store_file_digest(const char *path, long long *size, uint32_t *crc, struct sl_diag *d)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(errno));
+    uLong c = crc32(0L, Z_NULL, 0);
+    long long total = 0;
+    unsigned char buf[65536];
+    int en = 0;
+    for (;;) {
+        ssize_t r = read(fd, buf, sizeof buf);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0)
+            en = errno;
+        if (r <= 0)
+            break;
+        c = crc32(c, buf, (uInt)r);
+        total += r;
+    }
+    close(fd);
+    if (en)
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "cannot read: %s", strerror(en));
+    *size = total;
+    *crc = (uint32_t)c;
+    return SL_OK;
+}
+
+const char *sl_store_path(const struct sl_store *s)
+{
+    return s ? s->path : NULL;
+}
+
+/* A recorded path as a path from here: relative ones from the store's folder. */
+static void file_at(const struct sl_store *s, const char *rec, char *out, size_t n)
+{
+    if (rec[0] == '/') {
+        snprintf(out, n, "%s", rec);
+        return;
+    }
+    char dir[4200];
+    sl_path_dir(s->path, dir, sizeof dir);
+    snprintf(out, n, "%s/%s", dir, rec);
+}
+
+int sl_store_file_recorded(struct sl_store *s, const char *path, long long *size, uint32_t *crc)
+{
+    sqlite3_stmt *st = NULL;
+    int r = -1;
+    if (sqlite3_prepare_v2(s->db, "SELECT size, crc32 FROM files WHERE path = ?1", -1, &st, NULL) == SQLITE_OK &&
+        sqlite3_bind_text(st, 1, path, -1, SQLITE_TRANSIENT) == SQLITE_OK) {
+        int rc = sqlite3_step(st);
+        if (rc == SQLITE_ROW) {
+            *size = sqlite3_column_int64(st, 0);
+            *crc = (uint32_t)sqlite3_column_int64(st, 1);
+            r = 1;
+        } else if (rc == SQLITE_DONE) {
+            r = 0;
+        }
+    }
+    sqlite3_finalize(st);
+    return r;
+}
+
+enum sl_err sl_store_check_files(struct sl_store *s, int only_present, struct sl_store_files_check *r,
+                                 struct sl_diag *d)
+{
+    memset(r, 0, sizeof *r);
+    sqlite3_stmt *st = NULL;
+    if (sqlite3_prepare_v2(s->db, "SELECT path, size, crc32 FROM files ORDER BY path", -1, &st, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot read the recorded files");
+    enum sl_err e = SL_OK;
+    int rc;
+    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+        const char *rec = (const char *)sqlite3_column_text(st, 0);
+        long long want_size = sqlite3_column_int64(st, 1), size = 0;
+        uint32_t want_crc = (uint32_t)sqlite3_column_int64(st, 2), crc = 0;
+        char at[4400], why[160] = "";
+        file_at(s, rec ? rec : "", at, sizeof at);
+        r->recorded++;
+        struct stat sb;
+        if (stat(at, &sb) != 0)
+            snprintf(why, sizeof why, "missing");
+        else if (r->present++, !S_ISREG(sb.st_mode))
+            snprintf(why, sizeof why, "not a regular file");
+        else if (sl_store_file_digest(at, &size, &crc, NULL) != SL_OK)
+            snprintf(why, sizeof why, "cannot be read");
+        else if (size != want_size)
+            snprintf(why, sizeof why, "%lld bytes, %lld recorded", size, want_size);
+        else if (crc != want_crc)
+            snprintf(why, sizeof why, "its CRC-32 %08x differs from the recorded %08x", crc, want_crc);
+        if (!why[0])
+            continue;
+        struct sl_store_file_bad *nb = realloc(r->bad, (size_t)(r->nbad + 1) * sizeof *nb);
+        if (!nb) {
+            e = sl_fail(d, SL_E_NOMEM, s->path, 0, NULL, "damaged files");
+            break;
+        }
+        r->bad = nb;
+        snprintf(nb[r->nbad].path, sizeof nb[r->nbad].path, "%s", rec ? rec : "");
+        snprintf(nb[r->nbad].why, sizeof nb[r->nbad].why, "%s", why);
+        r->nbad++;
+    }
+    if (!e && rc != SQLITE_DONE)
+        e = db_fail(s, d, NULL, "cannot read the recorded files");
+    sqlite3_finalize(st);
+    if (!e && only_present && r->present == 0) {   /* the .db alone: nothing beside it to check */
+        free(r->bad);
+        r->bad = NULL;
+        r->nbad = 0;
+    }
+    if (e) {
+        free(r->bad);
+        memset(r, 0, sizeof *r);
+    }
+    return e;
+}
+
+enum sl_err sl_store_put_run_files(struct sl_store *s, int64_t run_id, const struct sl_store_file *files, int n,
+                                   struct sl_diag *d)
+{
+    sqlite3_stmt *st = s->st[ST_INS_FILE];
+    if (sqlite3_exec(s->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot start recording the run's files");
+    enum sl_err e = SL_OK;
+    for (int i = 0; i < n && !e; i++) {
+        struct binder b = {st, 1, SQLITE_OK};
+        b_text(&b, files[i].path);
+        b_int(&b, run_id);
+        if (b.rc == SQLITE_OK)
+            b.rc = sqlite3_bind_null(st, b.i);
+        b.i++;
+        b_int(&b, files[i].size);
+        b_int(&b, files[i].crc32);
+        if (b_done(&b) != SQLITE_OK || st_exec(st) != SQLITE_DONE)
+            e = db_fail(s, d, NULL, "cannot record the file %s", files[i].path);
+        st_clear(st);
+    }
+    if (!e && sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
+        e = db_fail(s, d, NULL, "cannot commit the run's files");
+    if (e && !sqlite3_get_autocommit(s->db))
+        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+    return e;
 }

@@ -263,6 +263,24 @@ enum sl_err sl_storefile_ro_open(const char *path, struct sl_storefile_ro *r, st
     return SL_OK;
 }
 
+enum sl_err sl_storefile_private(struct sl_storefile_ro *r, const char *path, struct sl_diag *d)
+{
+    if (r->tmpdir[0])
+        return SL_OK;
+    const char *tmp = getenv("TMPDIR");
+    snprintf(r->tmpdir, sizeof r->tmpdir, "%s/shadowlab-store.XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+    if (!mkdtemp(r->tmpdir)) {
+        int en = errno;
+        char where[sizeof r->tmpdir];
+        snprintf(where, sizeof where, "%s", r->tmpdir);
+        r->tmpdir[0] = 0;
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "reading this store needs a private copy, but %s cannot be made: "
+                       "%s (set TMPDIR to a writable folder)", where, strerror(en));
+    }
+    snprintf(r->copy, sizeof r->copy, "%s/store.db", r->tmpdir);
+    return SL_OK;
+}
+
 void sl_storefile_ro_release(struct sl_storefile_ro *r)
 {
     if (!r || !r->tmpdir[0])

@@ -58,6 +58,10 @@ struct sl_storefile_ro {
 };
 enum sl_err sl_storefile_ro_open(const char *path, struct sl_storefile_ro *r, struct sl_diag *d);
 void        sl_storefile_ro_release(struct sl_storefile_ro *r);   /* NULL-safe; idempotent */
+/* A private folder for a reader's copy of the store at path (a store of an
+ * older schema migrated for reading): r->tmpdir and r->copy set as above,
+ * unless r already holds a copy (kept: it is private already). */
+enum sl_err sl_storefile_private(struct sl_storefile_ro *r, const char *path, struct sl_diag *d);
 
 /* fsync the file at path, then its folder (so its name is durable too).
  * SL_E_OUTPUT naming what could not be synced. */
