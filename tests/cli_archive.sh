@@ -15,6 +15,17 @@
 #                  the same 13 into a new target: the target is the old store,
 #                  intact, or the complete new one (or, new, none), and a
 #                  merge afterwards completes it
+#   files          each overlay and table a run writes is recorded (path,
+#                  size, CRC-32 equal to zlib's over the file); one flipped
+#                  byte in an overlay: verify exit 2 naming it, report exit 2
+#                  refusing to copy it; the .db alone: not checked unless
+#                  --files (then each is missing); --resume recomputes the
+#                  damaged and a deleted overlay's cells, after which verify
+#                  and report pass; a merge keeps the records
+#   complete       half a sweep stored (--cells 0:4): verify (exit 1), table,
+#                  check and report each say "4 of 8 cells", verify and the
+#                  report name the 4 missing cells; merged with the other
+#                  half: 8 of 8, exit 0
 set -u
 bin=${1:?usage: cli_archive.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -111,6 +122,76 @@ merge_killed)
     fi
     echo "new, moment $n: $got"
   done
+  ;;
+files)
+  run --out "$tmp/r"
+  db=$tmp/r/shadowlab.db
+  [ "$(sqlite3 "$db" "SELECT count(*) FROM files WHERE cell_id IS NOT NULL AND path LIKE 'tiny/overlays/%.png'")" = 8 ] ||
+    fail "overlays recorded: $(sqlite3 "$db" 'SELECT path FROM files')"
+  [ "$(sqlite3 "$db" "SELECT count(*) FROM files WHERE cell_id IS NULL AND path = 'tiny/table.md'")" = 1 ] ||
+    fail "table.md is not recorded"
+  # the recorded CRC-32 and size are the file's (python's zlib: another reader of the same bytes)
+  ov=tiny/overlays/primitives-side-64x64-64-csm.png
+  want=$(python3 -c "import zlib,sys; b=open(sys.argv[1],'rb').read(); print(len(b), zlib.crc32(b))" "$tmp/r/$ov")
+  [ "$(sqlite3 -separator ' ' "$db" "SELECT size, crc32 FROM files WHERE path = '$ov'")" = "$want" ] ||
+    fail "recorded $(sqlite3 "$db" "SELECT size, crc32 FROM files WHERE path = '$ov'"), the file is $want"
+  "$bin" verify "$db" >"$tmp/o" 2>"$tmp/e" || fail "an untouched store: $(cat "$tmp/e")"
+  grep -q "16 recorded file(s) checked: 0 missing or damaged" "$tmp/o" || fail "verify's files: $(cat "$tmp/o")"
+  # one flipped byte in the overlay's image data
+  python3 -c "import sys; p=sys.argv[1]; b=bytearray(open(p,'rb').read()); b[len(b)//2]^=1; open(p,'wb').write(b)" "$tmp/r/$ov"
+  "$bin" verify "$db" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] || fail "a flipped overlay byte: verify exit $rc, want 2"
+  grep -q "damaged file $ov: its CRC-32" "$tmp/e" || fail "verify does not name $ov: $(cat "$tmp/e")"
+  "$bin" verify "$db" --no-files >/dev/null 2>&1 || fail "--no-files still checks the files"
+  # the .db alone: no file beside it, not checked unless --files
+  mkdir "$tmp/alone" && cp "$db" "$tmp/alone/"
+  "$bin" verify "$tmp/alone/shadowlab.db" >"$tmp/o" 2>"$tmp/e" || fail "the .db alone: $(cat "$tmp/e")"
+  grep -q "16 recorded file(s) not checked" "$tmp/o" || fail "the .db alone: $(cat "$tmp/o")"
+  "$bin" verify "$tmp/alone/shadowlab.db" --files >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] && grep -q "missing file $ov" "$tmp/e" || fail "--files on the .db alone: exit $rc: $(cat "$tmp/e")"
+  # report refuses to copy it, naming it
+  "$bin" report "$db" -o "$tmp/rep" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] || fail "report of a damaged overlay: exit $rc, want 2"
+  grep -q "$ov: damaged overlay of cell primitives/side/64x64/64/csm" "$tmp/e" || fail "report: $(cat "$tmp/e")"
+  # a missing one beside it; --resume computes both cells again and writes their files anew
+  rm "$tmp/r/tiny/overlays/primitives-with-64x64-128-nsm.png"
+  "$bin" run "$tmp/tiny.yaml" --out "$tmp/r" --resume >"$tmp/o" 2>"$tmp/e" || fail "--resume: $(cat "$tmp/e")"
+  grep -q "2 cell(s) computed, 6 already stored" "$tmp/o" || fail "--resume recomputed: $(cat "$tmp/o")"
+  "$bin" verify "$db" >"$tmp/o" 2>"$tmp/e" || fail "after --resume: $(cat "$tmp/e")"
+  "$bin" report "$db" -o "$tmp/rep" >"$tmp/o" 2>"$tmp/e" || fail "report after --resume: $(cat "$tmp/e")"
+  # a merge keeps the records, at the gathered paths
+  "$bin" merge "$db" -o "$tmp/m/shadowlab.db" >/dev/null 2>"$tmp/e" || fail "merge: $(cat "$tmp/e")"
+  "$bin" verify "$tmp/m/shadowlab.db" --files >"$tmp/o" 2>"$tmp/e" || fail "the merged store's files: $(cat "$tmp/e")"
+  grep -q "8 recorded file(s) checked: 0 missing" "$tmp/o" || fail "merged: $(cat "$tmp/o")"
+  ;;
+complete)
+  # a sweep split in two, one half stored: all four readers say 4 of 8
+  run --out "$tmp/h" --cells 0:4
+  db=$tmp/h/shadowlab.db
+  [ "$(sqlite3 "$db" 'SELECT count(*) FROM plan')" = 8 ] || fail "the plan: $(sqlite3 "$db" 'SELECT count(*) FROM plan') keys"
+  "$bin" check "$db" --baseline "$tmp/b.yaml" --update >/dev/null 2>"$tmp/e" || fail "baseline: $(cat "$tmp/e")"
+  line="sweep 'tiny' (config [0-9a-f]*, run 1): 4 of 8 cells, incomplete"
+  "$bin" verify "$db" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 1 ] || fail "verify of an incomplete sweep: exit $rc, want 1: $(cat "$tmp/e")"
+  grep -q "verify: $db: $line" "$tmp/e" || fail "verify: $(cat "$tmp/e")"
+  [ "$(grep -c 'verify: .*missing cell' "$tmp/e")" = 4 ] || fail "verify names not 4 missing cells: $(cat "$tmp/e")"
+  grep -q "missing cell 7: primitives/with/64x64/128/csm" "$tmp/e" || fail "verify: cell 7 not named"
+  "$bin" table "$db" --format csv >"$tmp/o" 2>"$tmp/e" || fail "table: $(cat "$tmp/e")"
+  grep -q "table: $db: $line" "$tmp/e" || fail "table: $(cat "$tmp/e")"
+  grep -q "incomplete" "$tmp/o" && fail "table put the note into its CSV"
+  "$bin" check "$db" --baseline "$tmp/b.yaml" >"$tmp/o" 2>"$tmp/e" || fail "check: $(cat "$tmp/e")"
+  grep -q "check: $db: $line" "$tmp/e" || fail "check: $(cat "$tmp/e")"
+  "$bin" report "$db" -o "$tmp/rep" >"$tmp/o" 2>"$tmp/e" || fail "report: $(cat "$tmp/e")"
+  grep -q "Sweep tiny (config hash [0-9a-f]*, run(s) 1): 4 of 8 cells: INCOMPLETE" "$tmp/rep/report.md" ||
+    fail "the report does not say incomplete"
+  for k in "primitives | with | 64x64 | 64 | nsm" "primitives | with | 64x64 | 128 | csm"; do
+    grep -q "| $k |" "$tmp/rep/report.md" || fail "the report does not list $k"
+  done
+  # the other half merged in: complete, exit 0
+  run --out "$tmp/h2" --cells 4:
+  "$bin" merge "$db" "$tmp/h2/shadowlab.db" -o "$tmp/m/shadowlab.db" >/dev/null 2>"$tmp/e" || fail "merge: $(cat "$tmp/e")"
+  "$bin" verify "$tmp/m/shadowlab.db" >"$tmp/o" 2>"$tmp/e" || fail "verify of the whole: $(cat "$tmp/e")"
+  grep -q "8 of 8 cells$" "$tmp/e" || fail "the merged sweep: $(cat "$tmp/e")"
   ;;
 *)
   fail "unknown case $case_"

@@ -677,7 +677,7 @@ static enum sl_err files_lost(struct sl_store *st, const struct sl_config *c, co
         struct sl_cell_key k;
         sl_plan_cell(c, i, &k);
         int64_t id = sl_out_stored_id(c, &k, st);
-        if (id && !sl_out_kept_whole(c, &k, &kept))
+        if (id && !sl_out_kept_whole(c, &k, &kept, st))
             (*ids)[(*n)++] = id;
     }
     sl_out_kept_free(&kept);
