@@ -82,7 +82,7 @@ int cli_check(int argc, char **argv)
         return cli_fail(e, &d);
     /* how whole each sweep is, beside the verdict (an incomplete sweep's
      * missing cells are the baseline's missing rows when it names them) */
-    if (cli_say_sweeps("check", db, 0) < 0)
+    if (cli_say_sweeps("check", db, 0, 1) < 0)
         return 2;
     return r.failed || r.missing ? 1 : 0;
 }

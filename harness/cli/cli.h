@@ -129,7 +129,10 @@ struct sl_shards_result;
 int cli_print_merge(const char *const *shards, const struct sl_shards_result *r, const char *out);
 /* "N of M cells" for every sweep (config hash) of the store at db, on
  * stderr, each line "shadowlab: VERB: DB: ..."; missing > 0 lists up to that
- * many missing cells of each incomplete sweep. Returns the number of
- * incomplete sweeps, -1 when the store cannot be read (said). */
-int cli_say_sweeps(const char *verb, const char *db, int missing);
+ * many missing cells of each incomplete sweep; quiet_whole: only the
+ * incomplete sweeps (table and check, whose stderr scripts often merge into
+ * their output: a whole sweep is the usual case and says nothing there).
+ * Returns the number of incomplete sweeps, -1 when the store cannot be
+ * read (said). */
+int cli_say_sweeps(const char *verb, const char *db, int missing, int quiet_whole);
 #endif

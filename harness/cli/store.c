@@ -69,7 +69,7 @@ int cli_merge(int argc, char **argv)
     return rc;
 }
 
-int cli_say_sweeps(const char *verb, const char *db, int missing)
+int cli_say_sweeps(const char *verb, const char *db, int missing, int quiet_whole)
 {
     struct sl_diag d = {0};
     struct sl_store *st = NULL;
@@ -80,6 +80,8 @@ int cli_say_sweeps(const char *verb, const char *db, int missing)
         e = sl_store_sweeps(st, &w, &n, &d);
     for (int i = 0; !e && i < n; i++) {
         const struct sl_store_sweep *s = &w[i];
+        if (quiet_whole && (s->planned < 0 || s->stored >= s->planned))
+            continue;
         if (s->planned < 0) {   /* a store written before plans were recorded */
             fprintf(stderr, "shadowlab: %s: %s: sweep '%s' (config %s, run %s): %d cells; its plan is not recorded "
                     "(a store of schema 22 or older), so whether it is complete is unknown\n", verb, db, s->study,
@@ -139,6 +141,7 @@ int cli_verify(int argc, char **argv)
     e = e ? e : sl_store_verify(st, &v, &d);
     if (!e && files)
         e = sl_store_check_files(st, files < 0, &fc, &d);
+    int read_version = e ? 0 : sl_store_read_version(st);
     sl_store_close(st);
     for (int i = 0; !e && i < v.ndamaged; i++)
         fprintf(stderr, "shadowlab: verify: %s: damaged cell %s (cell %lld, run %lld): its rows no longer match "
@@ -151,13 +154,17 @@ int cli_verify(int argc, char **argv)
     if (!e) {
         printf("%s: %ld cell(s), %ld figure row(s) checked in %.3f s (%.1f us per cell): %d damaged\n", db, v.cells,
                v.figures, v.seconds, v.cells ? 1e6 * v.seconds / (double)v.cells : 0.0, v.ndamaged);
+        if (read_version < sl_store_version())
+            printf("%s: a store of schema %d, read through a private copy upgraded to schema %d%s\n", db, read_version,
+                   sl_store_version(), read_version < 17 ? "; its cells carry no digest of their own (digests came "
+                   "with schema 17), so only SQLite's quick_check vouched for their values" : "");
         if (files && fc.recorded && (files > 0 || fc.present))
             printf("%s: %d recorded file(s) checked: %d missing or damaged\n", db, fc.recorded, fc.nbad);
         else if (files && fc.recorded)
             printf("%s: %d recorded file(s) not checked: none is beside the store (--files checks them anyway)\n", db,
                    fc.recorded);
     }
-    int incomplete = e ? 0 : cli_say_sweeps("verify", db, 50);
+    int incomplete = e ? 0 : cli_say_sweeps("verify", db, 50, 0);
     int rc = e ? cli_fail(e, &d) : v.ndamaged || fc.nbad || incomplete < 0 ? 2 : incomplete ? 1 : 0;
     sl_store_verify_free(&v);
     free(fc.bad);

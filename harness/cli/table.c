@@ -214,5 +214,5 @@ int cli_table(int argc, char **argv)
     if (e)
         return cli_fail(e, &d);
     /* on stderr: stdout is the table, in whatever format was asked */
-    return cli_say_sweeps("table", db, 0) < 0 ? 2 : 0;
+    return cli_say_sweeps("table", db, 0, 1) < 0 ? 2 : 0;
 }

@@ -373,7 +373,8 @@ static enum sl_err merged_run(struct sl_merge *m, sqlite3_stmt *cp, sqlite3_int6
  * their size and CRC-32 as the shard recorded them (a file gathered is the
  * same bytes). */
 static enum sl_err copy_files(struct sl_merge *m, sqlite3_stmt *sel, sqlite3_stmt *ins, sqlite3_int64 cell,
-                              sqlite3_int64 to, sqlite3_int64 run, const char *study, struct sl_diag *d)
+                              sqlite3_int64 to, sqlite3_int64 run, const char *study, const char *shard_dir,
+                              struct sl_diag *d)
 {
     enum sl_err e = SL_OK;
     sqlite3_bind_int64(sel, 1, cell);
@@ -391,6 +392,18 @@ static enum sl_err copy_files(struct sl_merge *m, sqlite3_stmt *sel, sqlite3_stm
             snprintf(rel, sizeof rel, "%s/%s/%s", study, folder, name);
         else
             snprintf(rel, sizeof rel, "%s/%s", study, name);
+        /* the copied cell's EXR file goes with it, over one of an earlier
+         * computation of its key (its record is this file's: an EXR's header
+         * holds the time it was written, so two computations differ);
+         * gather_exr then brings the shard's files no record names */
+        if (slash && strcmp(folder, "exr") == 0 && p && p[0] != '/') {
+            char src[2600], dst[2600], dir[1400];
+            snprintf(src, sizeof src, "%s/%s", shard_dir, p);
+            snprintf(dir, sizeof dir, "%s/%s/exr", m->dir, study);
+            snprintf(dst, sizeof dst, "%s/%s", m->dir, rel);
+            if (sl_mkdirs(dir, NULL) == SL_OK)
+                (void)gather(src, dst, 1);   /* a file not there: verify names it missing */
+        }
         sqlite3_bind_text(ins, 1, rel, -1, SQLITE_TRANSIENT);
         sqlite3_bind_int64(ins, 2, run);
         sqlite3_bind_int64(ins, 3, to);
@@ -492,7 +505,7 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
         if (ov && ov[0])
             e = gather_overlay(m, shard_dir, info->study, ov, to, info, d);
         if (!e && files)
-            e = copy_files(m, sfl, ifl, cell, to, to_run, info->study, d);
+            e = copy_files(m, sfl, ifl, cell, to, to_run, info->study, shard_dir, d);
         /* the copy's own digest: its cell id, run id and overlay path are the merged store's */
         uint32_t digest = 0;
         if (!e && sl_integ_digest(m->integ, to, &digest) != SQLITE_OK)

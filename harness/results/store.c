@@ -48,6 +48,9 @@
                                * 12: cells.flicker, flicker_compared, ms_flicker; 11: ms_gpu_gbuffer, ms_gpu_map;
                                * 10: runs.gl_backend; 9: contour_from, PnFL-inclusive figures; 8: soft figures;
                                * 7: study, config text, costs, overlay path; 2-6: traced, hints, confirmed, ... */
+#define SL_STORE_OLDEST 16   /* the oldest schema readers read (through an upgraded copy) */
+#define SL_STR_(x) #x
+#define SL_STR(x) SL_STR_(x)
 #define SL_STORE_BUSY_MS 10000
 
 /* ---- schema ---- */
@@ -283,6 +286,7 @@ struct sl_store {
     char          lockpath[4200];   /* its name, removed on close (storefile.h) */
     struct sl_integ *integ; /* cell digests: written by put, checked by query */
     struct sl_storefile_ro ro;   /* a reader's URI, and its private copy when one was needed */
+    int           read_version;  /* the schema of the file read, when an older one (upgraded copy); else 0 */
 };
 
 /* ---- helpers ---- */
@@ -499,40 +503,146 @@ static enum sl_err migrate(struct sl_store *s, const char *const *sql, struct sl
     return SL_OK;
 }
 
-/* A reader never writes the store it reads: one of an older schema is
- * copied (SQLite's backup API, its -wal included) into a private folder
- * (storefile.h) and the copy, opened for writing there, is what gets
- * migrated and read. */
-static enum sl_err reader_copy(struct sl_store *s, struct sl_diag *d)
+/* The SQL expression a column of this schema takes in an upgraded copy when
+ * the older store lacks it: what a build of that time did not store. NOT
+ * NULL columns: 0 for a number (frac: no fractional errors, nonfinite: none
+ * counted, digest: recomputed below), '' for a text (family, beside,
+ * display: unknown; readers then fall back to the label); else NULL. */
+static const char *absent_value(const char *type, int notnull)
 {
-    int had_copy = s->ro.tmpdir[0] != 0;
+    if (!notnull)
+        return "NULL";
+    return strstr(type, "TEXT") ? "''" : "0";
+}
+
+/* "a, b, c" and the matching SELECT list for table t of main from old: each
+ * of main's columns, taken from old when it has it, else absent_value. */
+static int copy_lists(sqlite3 *db, const char *t, char **cols, char **sel)
+{
+    *cols = *sel = NULL;
+    char *q = sqlite3_mprintf("SELECT m.name, m.type, m.\"notnull\", o.name IS NOT NULL FROM pragma_table_info(%Q, "
+                              "'main') m LEFT JOIN pragma_table_info(%Q, 'old') o ON o.name = m.name ORDER BY m.cid",
+                              t, t);
+    sqlite3_stmt *st = NULL;
+    int rc = q ? sqlite3_prepare_v2(db, q, -1, &st, NULL) : SQLITE_NOMEM;
+    sqlite3_free(q);
+    sqlite3_str *c = sqlite3_str_new(db), *v = sqlite3_str_new(db);
+    int n = 0;
+    while (rc == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW) {
+        const char *name = (const char *)sqlite3_column_text(st, 0), *type = (const char *)sqlite3_column_text(st, 1);
+        sqlite3_str_appendf(c, "%s\"%w\"", n ? ", " : "", name);
+        if (sqlite3_column_int(st, 3))
+            sqlite3_str_appendf(v, "%s\"%w\"", n ? ", " : "", name);
+        else
+            sqlite3_str_appendf(v, "%s%s", n ? ", " : "", absent_value(type ? type : "", sqlite3_column_int(st, 2)));
+        n++;
+    }
+    sqlite3_finalize(st);
+    *cols = sqlite3_str_finish(c);
+    *sel = sqlite3_str_finish(v);
+    return rc == SQLITE_OK && n > 0 && *cols && *sel ? SQLITE_OK : SQLITE_ERROR;
+}
+
+/* A reader never writes the store it reads: one of an older schema (16 to
+ * 22, every version a release has written since the store took its present
+ * tables) is read through a private upgraded copy. A fresh store of this
+ * schema is made in a private folder (storefile.h), the old one attached
+ * read-only (after its quick_check), and its runs, cells and figures copied
+ * column by column: a column the old schema lacks takes absent_value; where
+ * an old store (before 17's UNIQUE) holds one key of one config hash twice,
+ * the later cell wins, as every reader of that time took it; each cell's
+ * digest is computed in the copy (a store before 17 carries none of its
+ * own, so it vouches for the copy only: sl_store_read_version says so). */
+static enum sl_err reader_upgrade(struct sl_store *s, struct sl_diag *d)
+{
     enum sl_err e = sl_storefile_private(&s->ro, s->path, d);
     if (e)
         return e;
-    sqlite3 *dst = NULL;
-    int rc = SQLITE_OK;
-    if (!had_copy) {
-        rc = sqlite3_open_v2(s->ro.copy, &dst, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL);
-        sqlite3_backup *b = rc == SQLITE_OK ? sqlite3_backup_init(dst, "main", s->db, "main") : NULL;
-        if (b) {
-            rc = sqlite3_backup_step(b, -1);
-            rc = rc == SQLITE_DONE ? sqlite3_backup_finish(b) : (sqlite3_backup_finish(b), rc);
-        } else if (rc == SQLITE_OK) {
-            rc = sqlite3_errcode(dst);
-        }
-        if (rc != SQLITE_OK)
-            e = sl_fail(d, SL_E_IO, s->path, 0, NULL, "cannot copy the store into %s to read it: %s", s->ro.copy,
-                        dst ? sqlite3_errmsg(dst) : sqlite3_errstr(rc));
-        sqlite3_close(dst);
-        if (e)
-            return e;
-    }
-    sqlite3_close(s->db);
+    char up[sizeof s->ro.tmpdir + 16];
+    snprintf(up, sizeof up, "%s/upgraded.db", s->ro.tmpdir);
+    snprintf(s->ro.upgraded, sizeof s->ro.upgraded, "%s", up);
+    sqlite3 *old = s->db;
     s->db = NULL;
-    if (sqlite3_open_v2(s->ro.copy, &s->db, SQLITE_OPEN_READWRITE, NULL) != SQLITE_OK)
-        return db_fail(s, d, NULL, "cannot open its private copy %s", s->ro.copy);
+    sqlite3_close(old);   /* attached below by its URI instead */
+    if (sqlite3_open_v2(up, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot make its upgraded private copy %s", up);
     sqlite3_busy_timeout(s->db, SL_STORE_BUSY_MS);
-    return SL_OK;
+    /* the copy is private and rebuilt at each open: no journal needed */
+    (void)sqlite3_exec(s->db, "PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF", NULL, NULL, NULL);
+    char *att = sqlite3_mprintf("ATTACH DATABASE %Q AS old", s->ro.uri);
+    int rc = att ? sqlite3_exec(s->db, att, NULL, NULL, NULL) : SQLITE_NOMEM;
+    sqlite3_free(att);
+    if (rc != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot attach it to its upgraded copy");
+    if ((e = sl_integ_quick_check(s->db, "old", s->path, "refusing to read it", d)))
+        return e;
+    if (sqlite3_exec(s->db, "BEGIN", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(s, d, NULL, "cannot upgrade it");
+    e = create_schema(s, d);
+    static const char *const order[] = {"runs", "cells", "figures"};
+    for (int t = 0; t < 3 && !e; t++) {
+        char *cols = NULL, *sel = NULL;
+        rc = copy_lists(s->db, order[t], &cols, &sel);
+        /* cells: later rows replace earlier ones of their key; figures:
+         * those of the cells kept */
+        char *q = rc != SQLITE_OK ? NULL
+                  : t == 0 ? sqlite3_mprintf("INSERT INTO main.runs (%s) SELECT %s FROM old.runs", cols, sel)
+                  : t == 1 ? sqlite3_mprintf("INSERT OR REPLACE INTO main.cells (%s) SELECT %s FROM old.cells "
+                                             "ORDER BY run_id, cell_id", cols, sel)
+                           : sqlite3_mprintf("INSERT OR IGNORE INTO main.figures (%s) SELECT %s FROM old.figures "
+                                             "WHERE cell_id IN (SELECT cell_id FROM main.cells)", cols, sel);
+        if (!q || sqlite3_exec(s->db, q, NULL, NULL, NULL) != SQLITE_OK)
+            e = db_fail(s, d, order[t], "cannot copy its %s into the upgraded copy", order[t]);
+        sqlite3_free(q);
+        sqlite3_free(cols);
+        sqlite3_free(sel);
+    }
+    /* From 17 on, each old cell carries its digest over its old row: it is
+     * checked there, and a cell that fails it is carried into the copy with
+     * a digest that fails too, so every reader refuses it as it would
+     * have refused the original (and verify names it); before 17 there is
+     * nothing to check. */
+    sqlite3_int64 has_digest = 0;
+    if (!e && query_int(s->db, "SELECT count(*) FROM pragma_table_info('cells', 'old') WHERE name = 'digest'",
+                        &has_digest) != SQLITE_OK)
+        e = db_fail(s, d, NULL, "cannot read its schema");
+    struct sl_integ *g = NULL, *go = NULL;
+    if (!e)
+        e = sl_integ_open(s->db, "main", s->path, &g, d);
+    if (!e && has_digest)
+        e = sl_integ_open(s->db, "old", s->path, &go, d);
+    sqlite3_stmt *ids = NULL, *set = NULL;
+    if (!e && (sqlite3_prepare_v2(s->db, has_digest ? "SELECT c.cell_id, o.digest FROM main.cells c JOIN old.cells o "
+                                  "ON o.cell_id = c.cell_id" : "SELECT cell_id, 0 FROM main.cells", -1, &ids,
+                                  NULL) != SQLITE_OK ||
+               sqlite3_prepare_v2(s->db, sql_set_digest, -1, &set, NULL) != SQLITE_OK))
+        e = db_fail(s, d, NULL, "cannot digest the upgraded copy");
+    while (!e && sqlite3_step(ids) == SQLITE_ROW) {
+        uint32_t dg = 0, was = 0;
+        sqlite3_int64 id = sqlite3_column_int64(ids, 0);
+        if (sl_integ_digest(g, id, &dg) != SQLITE_OK || (go && sl_integ_digest(go, id, &was) != SQLITE_OK)) {
+            e = db_fail(s, d, NULL, "cannot digest cell %lld of the upgraded copy", (long long)id);
+            break;
+        }
+        if (go && was != (uint32_t)sqlite3_column_int64(ids, 1))
+            dg = ~dg;   /* damaged in the original: damaged in the copy */
+        sqlite3_bind_int64(set, 1, id);
+        sqlite3_bind_int64(set, 2, dg);
+        if (sqlite3_step(set) != SQLITE_DONE)
+            e = db_fail(s, d, NULL, "cannot digest the upgraded copy");
+        sqlite3_reset(set);
+    }
+    sqlite3_finalize(ids);
+    sqlite3_finalize(set);
+    sl_integ_close(g);
+    sl_integ_close(go);
+    if (!e && sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
+        e = db_fail(s, d, NULL, "cannot commit the upgraded copy");
+    if (e && !sqlite3_get_autocommit(s->db))
+        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+    if (!e && sqlite3_exec(s->db, "DETACH DATABASE old", NULL, NULL, NULL) != SQLITE_OK)
+        e = db_fail(s, d, NULL, "cannot let go of it");
+    return e;
 }
 
 static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
@@ -559,17 +669,20 @@ static enum sl_err store_setup(struct sl_store *s, struct sl_diag *d)
         if (e || (e = migrate(s, sl_migrate_22, d)))
             return e;
         ver = SL_STORE_VERSION;
-    } else if (ver == 22) {
-        enum sl_err e = reader_copy(s, d);
-        if (e || (e = migrate(s, sl_migrate_22, d)))
+    } else if (ver >= SL_STORE_OLDEST && ver < SL_STORE_VERSION && s->lockfd < 0) {
+        enum sl_err e = reader_upgrade(s, d);
+        if (e)
             return e;
+        s->read_version = (int)ver;
         ver = SL_STORE_VERSION;
     } else if (ver != SL_STORE_VERSION) {
         return sl_fail(d, SL_E_IO, s->path, 0, NULL,
-                       "results store of schema version %lld; this build reads version %d%s",
-                       (long long)ver, SL_STORE_VERSION, ver < SL_STORE_VERSION ?
-                       " (an older store: read it with the build that wrote it, or run its config "
-                       "again into a new store)" : " (a newer build wrote it)");
+                       "results store of schema version %lld; this build %s version %d%s",
+                       (long long)ver, s->lockfd < 0 ? "reads versions " SL_STR(SL_STORE_OLDEST) " to" : "writes",
+                       SL_STORE_VERSION, ver > SL_STORE_VERSION ? " (a newer build wrote it)"
+                       : ver >= SL_STORE_OLDEST ? " (an older store: verify, table, report and check read it; "
+                         "write into a new store, or read it with the build that wrote it)"
+                       : " (read it with the build that wrote it, or run its config again into a new store)");
     }
     enum sl_err e;
     /* Damage inside SQLite's pages goes unnoticed until a query trips on it;
@@ -1449,4 +1562,9 @@ enum sl_err sl_store_put_run_files(struct sl_store *s, int64_t run_id, const str
     if (e && !sqlite3_get_autocommit(s->db))
         sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
     return e;
+}
+
+int sl_store_read_version(const struct sl_store *s)
+{
+    return s && s->read_version ? s->read_version : SL_STORE_VERSION;
 }

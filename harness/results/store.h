@@ -186,6 +186,11 @@ struct sl_store_verify {
 enum sl_err sl_store_verify(struct sl_store *s, struct sl_store_verify *r, struct sl_diag *d);
 void        sl_store_verify_free(struct sl_store_verify *r);   /* NULL-safe */
 
+/* The schema version of the file s was opened on: an older one (16 and on)
+ * is read through a private upgraded copy (store.c); before 17 its cells
+ * carried no digest, so the copy's digests vouch for the copy only. */
+int sl_store_read_version(const struct sl_store *s);
+
 /* The schema version this build reads and writes (PRAGMA user_version). */
 int sl_store_version(void);
 

@@ -266,7 +266,7 @@ enum sl_err sl_storefile_ro_open(const char *path, struct sl_storefile_ro *r, st
 enum sl_err sl_storefile_private(struct sl_storefile_ro *r, const char *path, struct sl_diag *d)
 {
     if (r->tmpdir[0])
-        return SL_OK;
+        return SL_OK;   /* a -wal copy's folder: private already */
     const char *tmp = getenv("TMPDIR");
     snprintf(r->tmpdir, sizeof r->tmpdir, "%s/shadowlab-store.XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
     if (!mkdtemp(r->tmpdir)) {
@@ -292,8 +292,11 @@ void sl_storefile_ro_release(struct sl_storefile_ro *r)
         snprintf(f, sizeof f, "%s/store.db%s", r->tmpdir, tails[i]);
         unlink(f);
     }
+    if (r->upgraded[0])
+        unlink(r->upgraded);
     rmdir(r->tmpdir);
     r->tmpdir[0] = 0;
+    r->upgraded[0] = 0;
     r->copy[0] = 0;
 }
 

@@ -55,6 +55,7 @@ struct sl_storefile_ro {
     char uri[4200];
     char tmpdir[512];
     char copy[600];   /* the copy's path ("" when none) */
+    char upgraded[600];   /* an older schema's store upgraded for reading, in tmpdir ("" when none) */
 };
 enum sl_err sl_storefile_ro_open(const char *path, struct sl_storefile_ro *r, struct sl_diag *d);
 void        sl_storefile_ro_release(struct sl_storefile_ro *r);   /* NULL-safe; idempotent */
