@@ -32,6 +32,8 @@
 #                  through an upgraded private copy, the counts as stored,
 #                  the file untouched, the copy removed; from 17 on, a count
 #                  changed by hand is still a damaged cell
+#   doc            verify --help and doc/store.md state the same checks and
+#                  exit codes
 set -u
 bin=${1:?usage: cli_archive.sh path/to/shadowlab CASE}
 case_=${2:?case}
@@ -244,6 +246,20 @@ old_schemas)
     echo "v$v read"
   done
   [ $n -ge 1 ] && [ -e "$dir/v16.db" ] || fail "no stores in $dir"
+  ;;
+doc)
+  # verify --help and doc/store.md state the same promise: what is checked
+  # and the exit codes
+  doc=$(dirname "$0")/../doc/store.md
+  "$bin" verify --help >"$tmp/h" 2>&1 || fail "verify --help"
+  h=$(tr -s ' \n' '  ' <"$tmp/h"); m=$(tr -s ' \n' '  ' <"$doc")
+  for w in "Exit 0 when all is whole, 1 when a sweep is incomplete, 2 when" "quick_check" "CRC-32" "--files" "--no-files"; do
+    grep -qF -- "$w" <<<"$h" || fail "verify --help lacks '$w'"
+  done
+  for w in "Exit 0 when all is whole, 1 for an incomplete sweep (and no damage), 2" "the \`.db\` alone holds everything" \
+           "\`--files\` checks them anyway" "\`--no-files\` skips them" "Old stores stay readable"; do
+    grep -qF -- "$w" <<<"$m" || fail "doc/store.md lacks '$w'"
+  done
   ;;
 *)
   fail "unknown case $case_"
