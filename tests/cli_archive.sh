@@ -31,7 +31,9 @@
 #                  (tests/stores/): verify, table, check and report read it
 #                  through an upgraded private copy, the counts as stored,
 #                  the file untouched, the copy removed; from 17 on, a count
-#                  changed by hand is still a damaged cell
+#                  changed by hand is still a damaged cell; a writer (run
+#                  --resume) upgrades 22 in place and refuses older ones,
+#                  the file untouched
 #   doc            verify --help and doc/store.md state the same checks and
 #                  exit codes
 set -u
@@ -234,6 +236,29 @@ old_schemas)
     # (the whole output to a file: a reader killed by SIGPIPE leaves its copy)
     "$bin" table "$tmp/s.db" --format csv >"$tmp/o" 2>/dev/null
     grep -q "^primitives,side,32x32,64,nsm,nsm,image,wrong,$want," "$tmp/o" || fail "v$v: nsm's wrong count is not the stored $want"
+    # a writer: upgrades 22 in place (the sweep then has its plan), refuses older ones untouched
+    cat >"$tmp/tiny2.yaml" <<'YAML'
+name: tiny
+scenes: [{scene: primitives, viewpoints: [side]}]
+viewports: [{width: 32, height: 32}]
+map_sizes: [64]
+methods:
+  - {label: nsm, method: nsm}
+  - {label: csm, method: csm}
+outputs: {overlays: false}
+YAML
+    rm -rf "$tmp/w" && mkdir "$tmp/w" && cp "$src" "$tmp/w/shadowlab.db"
+    "$bin" run "$tmp/tiny2.yaml" -q --out "$tmp/w" --resume >"$tmp/o" 2>"$tmp/e"; rc=$?
+    if [ "$v" = 22 ]; then
+      [ $rc -eq 0 ] || fail "v22: run --resume into it: exit $rc: $(cat "$tmp/e")"
+      [ "$(sqlite3 "$tmp/w/shadowlab.db" 'PRAGMA user_version')" = 23 ] || fail "v22: not upgraded in place"
+      [ "$(sqlite3 "$tmp/w/shadowlab.db" 'SELECT count(*) FROM cells')" = 2 ] || fail "v22: cells after the upgrade"
+      "$bin" verify "$tmp/w/shadowlab.db" >/dev/null 2>"$tmp/e" || fail "v22 upgraded: verify: $(cat "$tmp/e")"
+    else
+      [ $rc -eq 2 ] && grep -q "results store of schema version $v; this build writes version 23" "$tmp/e" ||
+        fail "v$v: a writer: exit $rc: $(cat "$tmp/e")"
+      cmp -s "$src" "$tmp/w/shadowlab.db" || fail "v$v: the refused writer changed the store"
+    fi
     # from 17 on, a cell whose rows fail their own digest stays damaged through the upgrade
     if [ "$v" -ge 17 ]; then
       sqlite3 "$tmp/s.db" "UPDATE figures SET count = count + 1 WHERE figure = 'wrong' AND region = 'image' AND
