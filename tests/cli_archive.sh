@@ -219,7 +219,10 @@ old_schemas)
     cp "$src" "$tmp/s.db" && sum=$(sha256sum <"$tmp/s.db")
     [ "$(sqlite3 "$tmp/s.db" 'PRAGMA user_version')" = "$v" ] || fail "$src is not of schema $v"
     "$bin" verify "$tmp/s.db" >"$tmp/o" 2>"$tmp/e" || fail "v$v: verify: $(cat "$tmp/e")"
-    grep -q "2 cell(s), 466 figure row(s) checked .*: 0 damaged" "$tmp/o" || fail "v$v: verify read: $(cat "$tmp/o")"
+    # the figure rows of the later cell of each key, as the old file holds them
+    figs=$(sqlite3 "$tmp/s.db" "SELECT count(*) FROM figures WHERE cell_id IN (SELECT max(cell_id) FROM cells
+                                GROUP BY config_hash, scene, viewpoint, vw, vh, map_size, label)")
+    grep -q "2 cell(s), $figs figure row(s) checked .*: 0 damaged" "$tmp/o" || fail "v$v: verify read ($figs rows): $(cat "$tmp/o")"
     grep -q "a store of schema $v, read through a private copy upgraded" "$tmp/o" || fail "v$v: $(cat "$tmp/o")"
     "$bin" table "$tmp/s.db" --format csv >"$tmp/o" 2>"$tmp/e" || fail "v$v: table: $(cat "$tmp/e")"
     [ "$(cut -d, -f6 "$tmp/o" | sort -u | tr '\n' ' ')" = "csm label nsm " ] || fail "v$v: table's labels: $(cut -d, -f6 "$tmp/o" | sort -u)"
