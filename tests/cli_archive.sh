@@ -33,7 +33,8 @@
 #                  the file untouched, the copy removed; from 17 on, a count
 #                  changed by hand is still a damaged cell; a writer (run
 #                  --resume) upgrades 22 in place and refuses older ones,
-#                  the file untouched
+#                  the file untouched; merge takes a shard of 22, and
+#                  refuses older ones naming the schema
 #   doc            verify --help and doc/store.md state the same checks and
 #                  exit codes
 set -u
@@ -261,6 +262,17 @@ YAML
       [ $rc -eq 2 ] && grep -q "results store of schema version $v; this build writes version 23" "$tmp/e" ||
         fail "v$v: a writer: exit $rc: $(cat "$tmp/e")"
       cmp -s "$src" "$tmp/w/shadowlab.db" || fail "v$v: the refused writer changed the store"
+    fi
+    # merge takes shards of 22 (and 23) only, saying so of older ones
+    rm -rf "$tmp/mg"
+    "$bin" merge "$src" -o "$tmp/mg/shadowlab.db" >"$tmp/o" 2>"$tmp/e"; rc=$?
+    if [ "$v" = 22 ]; then
+      [ $rc -eq 0 ] && [ "$(sqlite3 "$tmp/mg/shadowlab.db" 'SELECT count(*) FROM cells')" = 2 ] ||
+        fail "v22 as a shard: exit $rc: $(cat "$tmp/e")"
+    else
+      [ $rc -eq 2 ] && grep -q "$src: a results store of schema $v: merge takes shards of schema 22 and 23" "$tmp/e" ||
+        fail "v$v as a shard: exit $rc: $(cat "$tmp/e")"
+      [ -e "$tmp/mg/shadowlab.db" ] && fail "v$v as a shard: a store was written"
     fi
     # from 17 on, a cell whose rows fail their own digest stays damaged through the upgrade
     if [ "$v" -ge 17 ]; then

@@ -315,6 +315,14 @@ enum sl_err sl_merge_probe(const char *shard, struct sl_merge_shard *info, struc
                        S_ISDIR(sb.st_mode) ? "a folder" : "a device or special file");
     struct sl_store *probe = NULL;
     enum sl_err e = sl_store_open_existing(shard, &probe, d);   /* a results store of this version */
+    /* a shard is attached as it is: its cells must have today's columns,
+     * which schema 22's have (23 only added tables); older ones are read
+     * through an upgraded copy by the readers, not merged */
+    int ver = e ? 0 : sl_store_read_version(probe);
+    if (!e && ver < 22)
+        e = sl_fail(d, SL_E_IO, shard, 0, NULL, "a results store of schema %d: merge takes shards of schema 22 and "
+                    "%d (verify, table, report and check read it; run its config again to merge it)", ver,
+                    sl_store_version());
     /* SQLite's page check and every cell's digest, before anything is written */
     struct sl_store_verify v = {0};
     if (!e && !(e = sl_store_verify(probe, &v, d)) && v.ndamaged)
