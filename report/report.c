@@ -121,7 +121,7 @@ static void overlay_id(const struct sl_report_study *s, const struct sl_cell_rec
 }
 
 static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_report_study *s,
-                                    const char *source_dir, struct sl_diag *d)
+                                    const char *source_dir, struct sl_store *store, struct sl_diag *d)
 {
     int n = 0, none = 0;
     for (int i = 0; i < s->n; i++)
@@ -181,7 +181,19 @@ static enum sl_err section_overlays(struct sl_report_doc *doc, const struct sl_r
             snprintf(why, sizeof why, "not a file");
         else
             missing = 0;
-        if (!missing && !(e = sl_report_out_path(doc->out, v[0], 1, path, sizeof path, d)))
+        /* a file the store recorded is copied only as it was written: one
+         * that no longer matches its size and CRC-32 is damaged, and the
+         * report refuses it rather than show it */
+        long long want_size = 0, size = 0;
+        uint32_t want_crc = 0, crc = 0;
+        if (!missing && store && sl_store_file_recorded(store, c->overlay, &want_size, &want_crc) == 1 &&
+            sl_store_file_digest(src, &size, &crc, NULL) == SL_OK && (size != want_size || crc != want_crc))
+            e = sl_fail(d, SL_E_IO, src, 0, NULL, "damaged overlay of cell %s/%s/%dx%d/%d/%s: %lld bytes, CRC-32 %08x, "
+                        "but the store recorded %lld bytes, CRC-32 %08x; refusing to copy it into the report "
+                        "(`shadowlab run CONFIG --resume` writes it again; `shadowlab verify` names every damaged "
+                        "file)", c->scene, c->viewpoint, c->vw, c->vh, c->map_size, c->label, size, crc, want_size,
+                        want_crc);
+        if (!e && !missing && !(e = sl_report_out_path(doc->out, v[0], 1, path, sizeof path, d)))
             e = copy_file(src, path, &missing, why, sizeof why, d);
         if (e)
             break;
@@ -447,7 +459,7 @@ static int has_chain(const struct sl_report_study *s)
 /* The study's detail: the thesis tables (only where the thesis's methods
  * ran, layouts.c), costs, overlays, views, figures. */
 static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_study *s, const char *gnuplot,
-                                 const char *source_dir, struct sl_diag *d)
+                                 const char *source_dir, struct sl_store *store, struct sl_diag *d)
 {
     char anchor[96];
     snprintf(anchor, sizeof anchor, "study-%s", s->slug);
@@ -492,7 +504,7 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
     }
     if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: error overlays", s->name);
-        e = section_overlays(doc, s, source_dir, d);
+        e = section_overlays(doc, s, source_dir, store, d);
     }
     if (!e) {
         sl_report_doc_heading(doc, 3, NULL, "%s: scenes and views", s->name);
@@ -502,6 +514,66 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
         sl_report_doc_heading(doc, 3, NULL, "%s: all figures", s->name);
         e = section_all_figures(doc, s, d);
     }
+    return e;
+}
+
+/* ---- completeness ---- */
+
+/* "N of M cells" of every sweep the store holds, from the plan its runs
+ * recorded, and the cells an incomplete one lacks. */
+static enum sl_err section_completeness(struct sl_report_doc *doc, const struct sl_report_input *in,
+                                        struct sl_diag *d)
+{
+    if (!in->store)
+        return SL_OK;
+    struct sl_store_sweep *w = NULL;
+    int n = 0;
+    enum sl_err e = sl_store_sweeps(in->store, &w, &n, d);
+    if (e)
+        return e;
+    sl_report_doc_heading(doc, 2, "completeness", "Completeness");
+    for (int i = 0; i < n && !e; i++) {
+        const struct sl_store_sweep *s = &w[i];
+        if (s->planned < 0) {
+            sl_report_doc_para(doc, "Sweep %s (config hash %s, run(s) %s): %d cell(s); its plan is not recorded "
+                               "(a store written before schema 23), so whether it is complete is unknown.",
+                               s->study, s->config_hash, s->runs, s->stored);
+            continue;
+        }
+        if (s->stored >= s->planned) {
+            sl_report_doc_para(doc, "Sweep %s (config hash %s, run(s) %s): %d of %d cells: complete.", s->study,
+                               s->config_hash, s->runs, s->stored, s->planned);
+            continue;
+        }
+        sl_report_doc_para(doc, "Sweep %s (config hash %s, run(s) %s): %d of %d cells: INCOMPLETE; "
+                           "every table and plot of this report lacks the %d cell(s) below (`shadowlab run CONFIG "
+                           "--resume`, or a merge of the missing shards, completes it).", s->study, s->config_hash,
+                           s->runs, s->stored, s->planned, s->planned - s->stored);
+        struct sl_store_key *k = NULL;
+        int nk = 0;
+        if ((e = sl_store_missing(in->store, s->config_hash, &k, &nk, d)))
+            break;
+        char anchor[64];
+        snprintf(anchor, sizeof anchor, "missing-%s", s->config_hash);
+        struct sl_tab t;
+        sl_tab_init(&t, anchor, 6, 6, "Cells of the sweep the store lacks");
+        static const char *const heads[] = {"cell", "scene", "viewpoint", "viewport", "map size", "label"};
+        for (int c = 0; c < 6; c++)
+            sl_tab_head(&t, c, "%s", heads[c]);
+        for (int j = 0; j < nk; j++) {
+            sl_tab_row(&t, 0);
+            sl_tab_cell(&t, 0, "%d", k[j].index);
+            sl_tab_cell(&t, 1, "%s", k[j].scene);
+            sl_tab_cell(&t, 2, "%s", k[j].viewpoint);
+            sl_tab_cell(&t, 3, "%dx%d", k[j].vw, k[j].vh);
+            sl_tab_cell(&t, 4, "%d", k[j].map_size);
+            sl_tab_cell(&t, 5, "%s", k[j].label);
+        }
+        e = sl_report_doc_table(doc, &t, d);
+        sl_tab_free(&t);
+        free(k);
+    }
+    free(w);
     return e;
 }
 
@@ -673,12 +745,14 @@ enum sl_err sl_report_build_with(const struct sl_report_input *in, const char *o
         e = sl_report_doc_open(&doc, latex, d);
     if (!e) {
         page_begin(&doc, in, nstudies);
-        sl_report_doc_heading(&doc, 2, "summary", "Summary");
+        e = section_completeness(&doc, in, d);   /* first: what the numbers below lack */
     }
+    if (!e)
+        sl_report_doc_heading(&doc, 2, "summary", "Summary");
     for (int k = 0; k < nstudies && !e; k++)
         e = section_summary(&doc, &studies[k], gp, d);
     for (int k = 0; k < nstudies && !e; k++)
-        e = section_study(&doc, &studies[k], gp, in->source_dir, d);
+        e = section_study(&doc, &studies[k], gp, in->source_dir, in->store, d);
     if (!e)
         e = section_provenance(&doc, in, d);
     if (!e)

@@ -50,6 +50,7 @@ struct sl_report_input {
     int                         nruns;
     const char                 *source;       /* shown as the report's source ("" allowed) */
     const char                 *source_dir;   /* folder overlay paths are relative to */
+    struct sl_store            *store;        /* the store read (its plan and recorded files), or NULL */
 };
 
 /* Read the store and write the report; the folder written goes to dir (n

@@ -81,7 +81,7 @@ enum sl_err sl_report_write(const struct sl_report_opts *o, char *dir_out, size_
         e = sl_fail(d, SL_E_USAGE, o->db, 0, NULL, "the results store holds no cells (%d run(s)): nothing to report",
                     nruns);
     if (!e) {
-        struct sl_report_input in = {all, nall, runs, nruns, o->db, dir};
+        struct sl_report_input in = {all, nall, runs, nruns, o->db, dir, s};
         e = sl_report_build_with(&in, outdir, gp, o->self_contained, o->latex, d);
     }
     if (!e && dir_out)

@@ -36,6 +36,9 @@
 #              pixel penumbra, EVSM's class right near VSM's, not 2.75 %),
 #              and table.md and the table's LaTeX name the directional light
 #              and the tolerance, never an area light
+#   rules      a technique.yaml over 64 KiB: "at most 64 KiB"; a package
+#              folder, a technique.yaml, a shader that is a symbolic link:
+#              each exit 2 naming it; a linked folder of packages loads
 #   trace      vsm_rt and msm_rt (vsm and msm with a traced band) beside vsm
 #              and msm on the primitives and on the room (a point light: per
 #              face): each view's wrong pixels at most the plain package's,
@@ -407,6 +410,52 @@ YAML
     "$tmp/out/hardfrac/table-detail.tex" ||
     fail "table-detail.tex does not name the directional light"
   echo "ok hard_classes: class right vsm $(fig vsm soft_class_right percent) %, evsm $(fig evsm soft_class_right percent) %"
+  ;;
+rules)
+  # issue 49: a technique.yaml over its limit says the limit in its unit
+  # (64 KiB, not "0 MiB"); one symlink rule: the package folder, its
+  # technique.yaml and a shader that are links are each refused (exit 2,
+  # named), while a folder holding packages may be a link
+  cat >"$tmp/c.yaml" <<'YAML'
+name: rules
+techniques: [pk]
+scenes: [{scene: primitives, viewpoints: [side]}]
+viewports: [{width: 64, height: 64}]
+map_sizes: [64]
+methods:
+  - {label: copied, method: my_pcf}
+YAML
+  "$bin" validate "$tmp/c.yaml" >"$tmp/o" 2>"$tmp/e" || { cat "$tmp/e"; fail "the plain copy does not validate"; }
+  cp -r "$tmp/pk/my_pcf" "$tmp/orig"
+  yes '# padding to push technique.yaml over 64 KiB' | head -c 70000 >>"$tmp/pk/my_pcf/technique.yaml"
+  "$bin" validate "$tmp/c.yaml" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] || { cat "$tmp/e"; fail "technique.yaml over 64 KiB: exit $rc, not 2"; }
+  grep -q "pk/my_pcf/technique.yaml: file of [0-9]* bytes: at most 64 KiB are read" "$tmp/e" ||
+    { cat "$tmp/e"; fail "the size message"; }
+  echo "ok size: $(head -1 "$tmp/e")"
+  rm -rf "$tmp/pk/my_pcf"
+  # the package folder a link to a package kept elsewhere
+  ln -s "$tmp/orig" "$tmp/pk/my_pcf"
+  "$bin" validate "$tmp/c.yaml" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] || { cat "$tmp/e"; fail "a linked package folder: exit $rc, not 2"; }
+  grep -q "pk/my_pcf: the package folder is a symbolic link: refused" "$tmp/e" || { cat "$tmp/e"; fail "folder link not named"; }
+  echo "ok folder link: $(head -1 "$tmp/e")"
+  rm "$tmp/pk/my_pcf" && mkdir "$tmp/pk/my_pcf" && cp -r "$tmp/orig/." "$tmp/pk/my_pcf/"
+  # technique.yaml a link
+  mv "$tmp/pk/my_pcf/technique.yaml" "$tmp/t.yaml" && ln -s "$tmp/t.yaml" "$tmp/pk/my_pcf/technique.yaml"
+  "$bin" validate "$tmp/c.yaml" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] && grep -q "pk/my_pcf/technique.yaml: a symbolic link: refused" "$tmp/e" ||
+    { cat "$tmp/e"; fail "a linked technique.yaml: exit $rc"; }
+  rm "$tmp/pk/my_pcf/technique.yaml" && mv "$tmp/t.yaml" "$tmp/pk/my_pcf/technique.yaml"
+  # a shader a link
+  mv "$tmp/pk/my_pcf/lookup.glsl" "$tmp/l.glsl" && ln -s "$tmp/l.glsl" "$tmp/pk/my_pcf/lookup.glsl"
+  "$bin" validate "$tmp/c.yaml" >"$tmp/o" 2>"$tmp/e"; rc=$?
+  [ $rc -eq 2 ] && grep -q "lookup.glsl is a symbolic link (refused" "$tmp/e" || { cat "$tmp/e"; fail "a linked shader: exit $rc"; }
+  rm "$tmp/pk/my_pcf/lookup.glsl" && mv "$tmp/l.glsl" "$tmp/pk/my_pcf/lookup.glsl"
+  # the folder holding packages may be a link
+  mv "$tmp/pk" "$tmp/pk_real" && ln -s "$tmp/pk_real" "$tmp/pk"
+  "$bin" validate "$tmp/c.yaml" >"$tmp/o" 2>"$tmp/e" || { cat "$tmp/e"; fail "a linked folder of packages is refused"; }
+  echo "ok links"
   ;;
 *) fail "unknown case $case_" ;;
 esac

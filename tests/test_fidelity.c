@@ -333,7 +333,7 @@ static void fidelity_section(void **st)
     snprintf(run.study, sizeof run.study, "fid");
     snprintf(run.config_path, sizeof run.config_path, "configs/x.yaml");
     run.ncells = n;
-    struct sl_report_input in = {c, n, &run, 1, "test cells", sl_test_dir};
+    struct sl_report_input in = {c, n, &run, 1, "test cells", sl_test_dir, NULL};
     sl_test_report(&in, out);
     snprintf(path, sizeof path, "%s/report.md", out);
     char *md = sl_test_slurp(path);

@@ -252,7 +252,7 @@ static void morais_section(void **st)
     snprintf(run.study, sizeof run.study, "mor");
     snprintf(run.config_hash, sizeof run.config_hash, "0123456789abcdef");
     run.ncells = n;
-    struct sl_report_input in = {c, n, &run, 1, "test cells", sl_test_dir};
+    struct sl_report_input in = {c, n, &run, 1, "test cells", sl_test_dir, NULL};
     char out[300];
     snprintf(out, sizeof out, "%s/out", sl_test_dir);
     sl_test_report(&in, out);

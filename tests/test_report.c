@@ -299,7 +299,7 @@ static void report_build(void **st)
     runs[1] = runs[0];
     runs[1].run_id = 2;
     runs[1].config_text = NULL;
-    struct sl_report_input in = {c, n, runs, 2, "test cells", src};
+    struct sl_report_input in = {c, n, runs, 2, "test cells", src, NULL};
     sl_test_report(&in, out);
     assert_true(exists(out, "report.html"));
     assert_true(exists(out, "report.md"));
@@ -409,7 +409,7 @@ static void report_self_contained(void **st)
         }
     char out[400];
     snprintf(out, sizeof out, "%s/one", sl_test_dir);
-    struct sl_report_input in = {c, n, NULL, 0, "test cells", sl_test_dir};
+    struct sl_report_input in = {c, n, NULL, 0, "test cells", sl_test_dir, NULL};
     struct sl_diag d;
     memset(&d, 0, sizeof d);
     enum sl_err e = sl_report_build_with(&in, out, NULL, 1, 1, &d);
@@ -499,7 +499,7 @@ static void report_any_study(void **st)
     assert_int_equal(sl_report_family_of(sl_method_family(smc), sl_method_beside(smc), SL_REPORT_CURTIS), 2);
     char out[400];
     snprintf(out, sizeof out, "%s/any", sl_test_dir);
-    struct sl_report_input in = {c, n, NULL, 0, "test cells", sl_test_dir};
+    struct sl_report_input in = {c, n, NULL, 0, "test cells", sl_test_dir, NULL};
     sl_test_report(&in, out);
     char path[600];
     snprintf(path, sizeof path, "%s/report.md", out);
@@ -549,7 +549,7 @@ static void report_family_from_metadata(void **st)
         if (said)
             snprintf(c[1].family, sizeof c[1].family, "morais-2015");
         snprintf(out, sizeof out, "%s/fam%d", sl_test_dir, said);
-        struct sl_report_input in = {c, 2, NULL, 0, "test cells", sl_test_dir};
+        struct sl_report_input in = {c, 2, NULL, 0, "test cells", sl_test_dir, NULL};
         sl_test_report(&in, out);
         snprintf(path, sizeof path, "%s/report.md", out);
         char *md = sl_test_slurp(path);

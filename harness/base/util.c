@@ -220,6 +220,20 @@ void sl_path_dir(const char *path, char *out, size_t n)
         snprintf(out, n, ".");
 }
 
+const char *sl_size_text(unsigned long long bytes, char *out, size_t n)
+{
+    static const char *const unit[] = {"bytes", "KiB", "MiB", "GiB"};
+    int u = 0;
+    while (u < 3 && bytes >= 1ull << (10 * (u + 1)))
+        u++;
+    unsigned long long whole = bytes >> (10 * u), rest = bytes & ((1ull << (10 * u)) - 1);
+    if (u == 0 || rest == 0)
+        snprintf(out, n, "%llu %s", whole, unit[u]);
+    else
+        snprintf(out, n, "%.1f %s", (double)bytes / (double)(1ull << (10 * u)), unit[u]);
+    return out;
+}
+
 void sl_known_add(char *buf, size_t n, const char *name)
 {
     size_t len = strlen(buf);

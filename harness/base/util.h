@@ -22,6 +22,12 @@ void  *sl_calloc(size_t n, size_t size);  /* NULL on failure or overflow */
  * into out; a path longer than out is cut. */
 void sl_path_dir(const char *path, char *out, size_t n);
 
+/* A size as a message says it: in the largest unit of bytes, KiB, MiB, GiB
+ * that it is at least one of, with one decimal where that unit does not
+ * divide it ("512 bytes", "64 KiB", "1.5 MiB"): a limit of 64 KiB never
+ * reads "0 MiB". Returns out. */
+const char *sl_size_text(unsigned long long bytes, char *out, size_t n);
+
 /* The "a, b, c" of a message's "(known: a, b, c)": appends name to the list
  * in buf (n bytes, "" to start), after ", " unless buf is empty; a list
  * longer than buf is cut. One helper, so every such list reads alike. */

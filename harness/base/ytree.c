@@ -132,8 +132,9 @@ static enum sl_err read_text(const char *path, size_t max_bytes, unsigned char *
         return e;
     if ((unsigned long long)size > (unsigned long long)max_bytes) {
         close(fd);
-        return sl_fail(d, kind, path, 0, NULL, "file of %lld bytes: at most %zu MiB are read for this kind of file",
-                       size, max_bytes >> 20);
+        char limit[32];
+        return sl_fail(d, kind, path, 0, NULL, "file of %lld bytes: at most %s are read for this kind of file",
+                       size, sl_size_text(max_bytes, limit, sizeof limit));
     }
     /* +1 so a file that grew since fstat is seen as over the limit; the
      * reads stop there whatever the file does */

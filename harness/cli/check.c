@@ -80,5 +80,9 @@ int cli_check(int argc, char **argv)
             e = sl_fail(&d, SL_E_OUTPUT, outs[i].path, 0, NULL, "cannot write");
     if (e)
         return cli_fail(e, &d);
+    /* how whole each sweep is, beside the verdict (an incomplete sweep's
+     * missing cells are the baseline's missing rows when it names them) */
+    if (cli_say_sweeps("check", db, 0, 1) < 0)
+        return 2;
     return r.failed || r.missing ? 1 : 0;
 }

@@ -104,6 +104,7 @@ enum {
     OPT_ROWS, OPT_UPDATE, OPT_EXACT, OPT_JSON, OPT_JUNIT, OPT_ONLY, OPT_REPS, OPT_VIEWPORT, OPT_CSV, OPT_SELF_CONTAINED, OPT_LATEX, OPT_CACHE, OPT_JOBS, OPT_SIZE,
     OPT_ALLOW_MIXED, OPT_STORED_IN, OPT_MARKDOWN, OPT_COLS, OPT_FIGURE, OPT_OF, OPT_AGG, OPT_WHERE,
     OPT_ALL,
+    OPT_FILES, OPT_NO_FILES,
 };
 #define OPT_HELP {"help", no_argument, NULL, 'h'}
 enum { OPT_DONE = -1, OPT_EXIT_OK = -2, OPT_EXIT_USAGE = -3 };
@@ -137,4 +138,12 @@ int cli_parse_wxh(const char *s, long long lo, long long hi, int *w, int *h);
  * missing, else 0. */
 struct sl_shards_result;
 int cli_print_merge(const char *const *shards, const struct sl_shards_result *r, const char *out);
+/* "N of M cells" for every sweep (config hash) of the store at db, on
+ * stderr, each line "shadowlab: VERB: DB: ..."; missing > 0 lists up to that
+ * many missing cells of each incomplete sweep; quiet_whole: only the
+ * incomplete sweeps (table and check, whose stderr scripts often merge into
+ * their output: a whole sweep is the usual case and says nothing there).
+ * Returns the number of incomplete sweeps, -1 when the store cannot be
+ * read (said). */
+int cli_say_sweeps(const char *verb, const char *db, int missing, int quiet_whole);
 #endif

@@ -6,6 +6,7 @@
  */
 #define _GNU_SOURCE   /* getopt_long */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "cli.h"
 #include "config.h"
@@ -68,29 +69,104 @@ int cli_merge(int argc, char **argv)
     return rc;
 }
 
-/* Every cell against its digest: exit 0 intact, 2 naming each damaged cell. */
+int cli_say_sweeps(const char *verb, const char *db, int missing, int quiet_whole)
+{
+    struct sl_diag d = {0};
+    struct sl_store *st = NULL;
+    struct sl_store_sweep *w = NULL;
+    int n = 0, incomplete = 0;
+    enum sl_err e = sl_store_open_existing(db, &st, &d);
+    if (!e)
+        e = sl_store_sweeps(st, &w, &n, &d);
+    for (int i = 0; !e && i < n; i++) {
+        const struct sl_store_sweep *s = &w[i];
+        if (quiet_whole && (s->planned < 0 || s->stored >= s->planned))
+            continue;
+        if (s->planned < 0) {   /* a store written before plans were recorded */
+            fprintf(stderr, "shadowlab: %s: %s: sweep '%s' (config %s, run %s): %d cells; its plan is not recorded "
+                    "(a store of schema 22 or older), so whether it is complete is unknown\n", verb, db, s->study,
+                    s->config_hash, s->runs, s->stored);
+            continue;
+        }
+        fprintf(stderr, "shadowlab: %s: %s: sweep '%s' (config %s, run %s): %d of %d cells%s\n", verb, db, s->study,
+                s->config_hash, s->runs, s->stored, s->planned, s->stored < s->planned ? ", incomplete" : "");
+        if (s->stored >= s->planned)
+            continue;
+        incomplete++;
+        struct sl_store_key *k = NULL;
+        int nk = 0;
+        if (missing > 0 && !(e = sl_store_missing(st, s->config_hash, &k, &nk, &d))) {
+            for (int j = 0; j < nk && j < missing; j++)
+                fprintf(stderr, "shadowlab: %s: %s: missing cell %d: %s/%s/%dx%d/%d/%s\n", verb, db, k[j].index,
+                        k[j].scene, k[j].viewpoint, k[j].vw, k[j].vh, k[j].map_size, k[j].label);
+            if (nk > missing)
+                fprintf(stderr, "shadowlab: %s: %s: ... and %d more missing\n", verb, db, nk - missing);
+        }
+        free(k);
+    }
+    free(w);
+    sl_store_close(st);
+    if (e) {
+        cli_fail(e, &d);
+        return -1;
+    }
+    return incomplete;
+}
+
+/* Every cell against its digest, every recorded file against its size and
+ * CRC-32, every sweep against its plan: exit 0 whole, 1 an incomplete sweep,
+ * 2 damage (named). */
 int cli_verify(int argc, char **argv)
 {
-    static const struct option lo[] = {OPT_HELP, {0, 0, 0, 0}};
+    static const struct option lo[] = {OPT_HELP, {"files", no_argument, NULL, OPT_FILES},
+                                       {"no-files", no_argument, NULL, OPT_NO_FILES}, {0, 0, 0, 0}};
     const struct cli_parser p = {"verify", "", cli_usage_verify, lo};
-    for (int c; (c = cli_opt_next(&p, argc, argv)) != OPT_DONE;)
-        return cli_opt_exit(c);
+    int files = -1;   /* -1: when the files sit beside the store */
+    for (int c; (c = cli_opt_next(&p, argc, argv)) != OPT_DONE;) {
+        if (c == OPT_FILES)
+            files = 1;
+        else if (c == OPT_NO_FILES)
+            files = 0;
+        else
+            return cli_opt_exit(c);
+    }
     if (argc - optind != 1)
         return cli_usage_error("verify: wants one STORE.db", cli_usage_verify);
     const char *db = argv[optind];
     struct sl_diag d = {0};
     struct sl_store *st = NULL;
     struct sl_store_verify v = {0};
+    struct sl_store_files_check fc = {0};
     enum sl_err e = sl_store_open_existing(db, &st, &d);
     e = e ? e : sl_store_verify(st, &v, &d);
+    if (!e && files)
+        e = sl_store_check_files(st, files < 0, &fc, &d);
+    int read_version = e ? 0 : sl_store_read_version(st);
     sl_store_close(st);
     for (int i = 0; !e && i < v.ndamaged; i++)
         fprintf(stderr, "shadowlab: verify: %s: damaged cell %s (cell %lld, run %lld): its rows no longer match "
                 "their digest\n", db, v.damaged[i].key, (long long)v.damaged[i].cell_id, (long long)v.damaged[i].run_id);
-    if (!e)
+    for (int i = 0; !e && i < fc.nbad; i++)
+        if (strcmp(fc.bad[i].why, "missing") == 0)
+            fprintf(stderr, "shadowlab: verify: %s: missing file %s\n", db, fc.bad[i].path);
+        else
+            fprintf(stderr, "shadowlab: verify: %s: damaged file %s: %s\n", db, fc.bad[i].path, fc.bad[i].why);
+    if (!e) {
         printf("%s: %ld cell(s), %ld figure row(s) checked in %.3f s (%.1f us per cell): %d damaged\n", db, v.cells,
                v.figures, v.seconds, v.cells ? 1e6 * v.seconds / (double)v.cells : 0.0, v.ndamaged);
-    int rc = e ? cli_fail(e, &d) : v.ndamaged ? 2 : 0;
+        if (read_version < sl_store_version())
+            printf("%s: a store of schema %d, read through a private copy upgraded to schema %d%s\n", db, read_version,
+                   sl_store_version(), read_version < 17 ? "; its cells carry no digest of their own (digests came "
+                   "with schema 17), so only SQLite's quick_check vouched for their values" : "");
+        if (files && fc.recorded && (files > 0 || fc.present))
+            printf("%s: %d recorded file(s) checked: %d missing or damaged\n", db, fc.recorded, fc.nbad);
+        else if (files && fc.recorded)
+            printf("%s: %d recorded file(s) not checked: none is beside the store (--files checks them anyway)\n", db,
+                   fc.recorded);
+    }
+    int incomplete = e ? 0 : cli_say_sweeps("verify", db, 50, 0);
+    int rc = e ? cli_fail(e, &d) : v.ndamaged || fc.nbad || incomplete < 0 ? 2 : incomplete ? 1 : 0;
     sl_store_verify_free(&v);
+    free(fc.bad);
     return rc;
 }

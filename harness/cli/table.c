@@ -277,5 +277,8 @@ int cli_table(int argc, char **argv)
     }
     free(cells);
     sl_store_close(st);
-    return e ? cli_fail(e, &d) : 0;
+    if (e)
+        return cli_fail(e, &d);
+    /* on stderr: stdout is the table, in whatever format was asked */
+    return cli_say_sweeps("table", db, 0, 1) < 0 ? 2 : 0;
 }

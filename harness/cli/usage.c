@@ -221,13 +221,20 @@ const char cli_usage_merge[] =
     "                      (refused by default; each merged run keeps its own provenance)\n";
 
 const char cli_usage_verify[] =
-    "usage: shadowlab verify STORE.db\n"
-    "  Checks a results store: SQLite's quick_check, then each cell's digest (a CRC-32 over every\n"
-    "  column of the cell row and of each of its figure rows, written with the cell) recomputed\n"
-    "  from what is stored. Names each damaged cell (scene/viewpoint/viewport/map/label) on stderr;\n"
-    "  exit 0 when every cell is intact, 2 when one is not or the file is not a sound store.\n"
-    "  table, report, check and merge check the digest of every cell they read the same way.\n"
-    "  Opens the store read-only (a store on read-only media can be verified).\n";
+    "usage: shadowlab verify STORE.db [--files | --no-files]\n"
+    "  Checks a results store as an archive: SQLite's quick_check; each cell's digest (a CRC-32\n"
+    "  over every column of the cell row and of each of its figure rows, written with the cell)\n"
+    "  recomputed from what is stored; each file the runs wrote (overlays, EXR files, tables: path,\n"
+    "  size and CRC-32 recorded in the store) against the file at its path; each sweep against the\n"
+    "  plan its runs recorded (\"N of M cells\", the missing ones named). Names each damaged cell\n"
+    "  (scene/viewpoint/viewport/map/label) and each missing or damaged file on stderr.\n"
+    "  Exit 0 when all is whole, 1 when a sweep is incomplete, 2 when a cell or file is damaged or\n"
+    "  missing or the file is not a sound store. table, report, check and merge check the digest\n"
+    "  of every cell they read the same way. Opens the store read-only (a store on read-only media\n"
+    "  can be verified, a -wal beside it read through a private copy; an older schema's store\n"
+    "  is read through a private upgraded copy).\n"
+    "  --files     check the recorded files even when none lies beside the store (each is missing)\n"
+    "  --no-files  do not check them (by default they are checked when any lies at its path)\n";
 
 const char cli_usage_preview[] =
     "usage: shadowlab preview SCENE [--viewpoint V] [-o DIR] [--size WxH] [--gl osmesa|egl]\n"
@@ -302,8 +309,8 @@ const struct cli_verb cli_verbs[] = {
      "the sweep as a Slurm job array plus a merge job (shadowlab submit --help)", 0},
     {"merge", cli_merge, cli_usage_merge, "SHARD.db... -o DB",
      "the stores of a split sweep into one; exit 1 if a cell is missing", 0},
-    {"verify", cli_verify, cli_usage_verify, "DB", "every stored cell against its digest; exit 2 naming damaged ones",
-     0},
+    {"verify", cli_verify, cli_usage_verify, "DB [--files]",
+     "cells, files and sweeps of a store; exit 1 incomplete, 2 naming damage", 0},
     {"preview", cli_preview, cli_usage_preview, "SCENE [options]",
      "a quick shaded PNG per viewpoint, for framing cameras", 0},
     {"list", cli_list, cli_usage_list, "methods|scenes|techniques", "what can be named in a config", 0},

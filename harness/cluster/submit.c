@@ -21,6 +21,7 @@
 #include <unistd.h>
 #include "outputs.h"
 #include "plan.h"
+#include "storefile.h"
 #include "util.h"
 
 /* ---- merge with the sweep ---- */
@@ -65,6 +66,18 @@ static enum sl_err sweep_config(const struct sl_merge *m, const char *out_dir, s
     unlink(tmp);
     c->hash = want;   /* the cells are keyed by the hash of the file the runs read */
     return e;
+}
+
+/* A store file no one else writes (its writer's lock held) and its
+ * SQLite companions, removed. */
+static void drop_store_file(const char *p)
+{
+    static const char *const tails[] = {"", "-wal", "-shm", "-journal", ".lock"};
+    for (size_t i = 0; i < sizeof tails / sizeof tails[0]; i++) {
+        char f[1400];
+        snprintf(f, sizeof f, "%s%s", p, tails[i]);
+        unlink(f);
+    }
 }
 
 /* Not there at all (its cells are then reported missing); anything else
@@ -136,25 +149,62 @@ static enum sl_err shards_merge(const char *const *shards, int n, const char *ou
     enum sl_err e = sl_mkdirs(dir, d);
     if (e)
         return e;
-    struct sl_merge *m = NULL;
-    if ((e = sl_merge_open_held(held, out, (flags & SL_MERGE_APPEND) != 0, &m, d)))
-        return e;
-    if ((e = sl_merge_replace(m, replace, nreplace, d))) {
-        sl_merge_close(m);
-        return e;
+    /* Atomic: `merge` (no held store) builds the merged store as a new file
+     * beside the target, "<target>.merging" (the target copied in first,
+     * when there is one), and renames it over the target only once it is
+     * whole and sealed; a merge killed at any moment leaves the old target
+     * (or none) and a stale .merging file the next merge replaces. The
+     * target's writer lock is held throughout, so no run writes the target
+     * meanwhile (and no second merge uses the same .merging file). A run's
+     * --jobs merge (held) writes into its own locked store, each shard in
+     * one transaction: the run itself is what --resume completes. */
+    int tfd = -1;
+    char tlock[4200] = "", work[1300] = "";
+    const char *into = out;
+    if (!held) {
+        struct stat sb;
+        if ((e = sl_storefile_lock(out, &tfd, tlock, sizeof tlock, d)))
+            return e;
+        snprintf(work, sizeof work, "%s.merging", out);
+        drop_store_file(work);   /* a killed merge's, never renamed */
+        sl_storefile_fault_point("merge");
+        if (stat(out, &sb) == 0 && sb.st_size > 0)
+            e = sl_store_copy(out, work, d);
+        into = work;
+        sl_storefile_fault_point("merge");
     }
+    struct sl_merge *m = NULL;
+    if (!e && (e = sl_merge_open_held(held, into, (flags & SL_MERGE_APPEND) != 0, &m, d)))
+        goto done;
+    if (!e && (e = sl_merge_replace(m, replace, nreplace, d)))
+        goto done;
     double t0 = sl_now();
     for (int i = 0; i < n && !e; i++) {
         if (absent(shards[i])) {
             r->absent[i] = 1;
             continue;
         }
+        sl_storefile_fault_point("merge");
         e = sl_merge_add(m, shards[i], &r->shard[i], d);
+        sl_storefile_fault_point("merge");
         r->copied += r->shard[i].cells;
         r->duplicates += r->shard[i].duplicates;
     }
     r->seconds = sl_now() - t0;
-    if (!e && sl_merge_config_hash(m)) {
+    if (!e && !sl_merge_config_hash(m))
+        e = sl_fail(d, SL_E_USAGE, n ? shards[0] : out, 0, NULL, "no shard holds a run: nothing to merge");
+    if (!e)
+        e = sl_merge_seal(m, d);   /* the merged .db alone holds it, synced */
+    sl_storefile_fault_point("merge");
+    if (!e && !held) {
+        if (rename(work, out) != 0)
+            e = sl_fail(d, SL_E_OUTPUT, out, 0, NULL, "cannot rename the merged store %s into place: %s", work,
+                        strerror(errno));
+        else
+            e = sl_storefile_sync(out, d);   /* the new name, durable */
+        sl_storefile_fault_point("merge");
+    }
+    if (!e) {
         e = sweep_config(m, dir, &r->config, d);
         struct sl_store *st = NULL;
         if (!e)
@@ -172,10 +222,13 @@ static enum sl_err shards_merge(const char *const *shards, int n, const char *ou
             }
         }
         sl_store_close(st);
-    } else if (!e) {
-        e = sl_fail(d, SL_E_USAGE, n ? shards[0] : out, 0, NULL, "no shard holds a run: nothing to merge");
     }
+done:
     sl_merge_close(m);
+    if (!held) {
+        drop_store_file(work);   /* gone after the rename; a failed merge's copy otherwise */
+        sl_storefile_unlock(tfd, tlock);
+    }
     return e;
 }
 
@@ -624,7 +677,7 @@ static enum sl_err files_lost(struct sl_store *st, const struct sl_config *c, co
         struct sl_cell_key k;
         sl_plan_cell(c, i, &k);
         int64_t id = sl_out_stored_id(c, &k, st);
-        if (id && !sl_out_kept_whole(c, &k, &kept))
+        if (id && !sl_out_kept_whole(c, &k, &kept, st))
             (*ids)[(*n)++] = id;
     }
     sl_out_kept_free(&kept);
@@ -764,6 +817,8 @@ enum sl_err sl_jobs_run(const struct sl_config *c, const struct sl_jobs_opts *o,
         if (!e && r->merge.nmissing == 0 && r->overlays_missing == 0 && !r->interrupted)
             nftw(r->workdir, rm_cb, 16, FTW_DEPTH | FTW_PHYS);
     }
+    if (!e)   /* the main store's .db alone holds everything before "written to" */
+        e = sl_store_seal(main_st, d);
     free(lost);
     close(lock);
     sl_store_close(main_st);

@@ -229,16 +229,17 @@ static enum sl_err read_shader(const struct sl_technique *t, const struct sl_yam
             return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' is not in the package folder %s: %s", rel,
                                t->dir, strerror(errno));
         if (S_ISLNK(st.st_mode))
-            return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s': %s is a symbolic link (refused: a package "
-                               "reads only its own files)", rel, path);
+            return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s': %s is a symbolic link (refused: nothing "
+                               "from a package's folder down may be a link)", rel, path);
         int last = p[n] == '\0';
         if (!last && !S_ISDIR(st.st_mode))
             return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s': %s is not a folder", rel, path);
         if (last && !S_ISREG(st.st_mode))
             return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' is not a regular file", rel);
+        char limit[32];
         if (last && (size_t)st.st_size > SL_TECH_MAX_SHADER)
-            return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' is %lld bytes: a shader is at most %zu KiB",
-                               rel, (long long)st.st_size, SL_TECH_MAX_SHADER >> 10);
+            return sl_yaml_bad(d, SL_E_PACKAGE, file, pos, key, "'%s' is %lld bytes: a shader is at most %s",
+                               rel, (long long)st.st_size, sl_size_text(SL_TECH_MAX_SHADER, limit, sizeof limit));
         p += n + (p[n] == '/');
         if (last)
             break;
@@ -521,11 +522,23 @@ enum sl_err sl_tech_load(const char *dir, struct sl_technique *t, struct sl_diag
         return sl_fail(d, SL_E_PACKAGE, dir, 0, NULL, "package folder path too long");
     snprintf(t->dir, sizeof t->dir, "%.*s", (int)n, dir);
     snprintf(t->file, sizeof t->file, "%s/technique.yaml", t->dir);
+    /* One rule for a package, folders and files alike: nothing from its
+     * folder down is a symbolic link (the folder itself, technique.yaml,
+     * every folder and file on a shader's path; read_shader). A package is
+     * copied, archived and hashed as its own folder, and a link would make
+     * part of it something outside that folder, which a copy carries
+     * differently or not at all. The folders that hold packages (a search
+     * path entry, `techniques:`) may be reached through links: they are
+     * where packages are kept, not part of one. */
     struct stat st;
+    if (lstat(t->dir, &st) == 0 && S_ISLNK(st.st_mode))
+        return sl_fail(d, SL_E_PACKAGE, t->dir, 0, NULL, "the package folder is a symbolic link: refused (nothing "
+                       "from a package's folder down may be a link; name the folder it points to)");
     if (lstat(t->file, &st) != 0)
         return sl_fail(d, SL_E_PACKAGE, t->file, 0, NULL, "no technique.yaml in %s: %s", t->dir, strerror(errno));
     if (S_ISLNK(st.st_mode))
-        return sl_fail(d, SL_E_PACKAGE, t->file, 0, NULL, "a symbolic link: refused (a package is its own files)");
+        return sl_fail(d, SL_E_PACKAGE, t->file, 0, NULL, "a symbolic link: refused (nothing from a package's folder "
+                       "down may be a link)");
     struct raw_tech *r = NULL;
     struct sl_yaml_pos *pos = NULL;
     enum sl_err e = sl_yaml_load(t->file, &tech_schema, (void **)&r, &pos, SL_TECH_MAX_YAML, SL_E_PACKAGE, d);

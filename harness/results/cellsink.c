@@ -32,8 +32,7 @@ enum sl_err sl_sink_put(struct sl_cell_sink *s, const struct sl_cell *cell, stru
 {
     enum sl_err e = SL_OK;
     if (s->st && !(e = sl_ovw_wait(s->ovw, d)))
-        e = sl_out_store_cell(s->st, s->run_id, s->config, cell, s->store_path,
-                              s->write_files ? s->dirs.final : NULL, d);
+        e = sl_out_store_cell(s->st, s->run_id, s->config, cell, s->store_path, s->write_files ? &s->dirs : NULL, d);
     return e;
 }
 
@@ -48,7 +47,7 @@ enum sl_err sl_sink_finish(struct sl_cell_sink *s, struct sl_run_result *res, in
     const struct sl_config *c = s->config;
     enum sl_err e;
     if (!s->write_files)
-        return SL_OK;
+        return s->st ? sl_store_seal(s->st, d) : SL_OK;
     if ((e = sl_out_stage_finish(c, res, &s->dirs, resume, d)))
         return e;
     res->stored_total = -1;
@@ -61,6 +60,11 @@ enum sl_err sl_sink_finish(struct sl_cell_sink *s, struct sl_run_result *res, in
         sl_out_write_costs_md(table_out, c, res);
         sl_out_write_patterns_md(table_out, c, res);
     }
+    if (!e && s->st)
+        e = sl_out_record_run_files(s->st, s->run_id, s->store_path, &s->dirs, d);
+    /* last: the .db alone holds the whole store before "written to" */
+    if (!e && s->st)
+        e = sl_store_seal(s->st, d);
     return e;
 }
 

@@ -49,7 +49,8 @@ enum sl_err sl_sink_drain(struct sl_cell_sink *s, struct sl_diag *d);
 /* The run's files into the staging folder, renamed to the final one (after
  * a resumed run, carrying the files of the cells it skipped), the store's
  * figures and tables rebuilt, the motion outputs, and the tables echoed to
- * table_out (NULL: none). Only when write_files. */
+ * table_out (NULL: none), only when write_files; then, files or not, the
+ * store sealed (sl_store_seal: its .db alone holds it, synced to disk). */
 enum sl_err sl_sink_finish(struct sl_cell_sink *s, struct sl_run_result *res, int resume, FILE *table_out,
                            struct sl_diag *d);
 /* The writer's counts into res, everything closed; failed: the staging

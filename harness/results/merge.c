@@ -33,6 +33,7 @@ struct sl_merge {
     struct sl_integ *integ;                  /* digests of the merged cells */
     int64_t *replace;                        /* stored cells a shard's copy replaces (sorted) */
     int nreplace;
+    int shard_files;                         /* the shard attached has tables plan and files (schema 23) */
 };
 
 static enum sl_err db_fail(struct sl_merge *m, struct sl_diag *d, const char *what)
@@ -96,6 +97,18 @@ enum sl_err sl_merge_open_held(struct sl_store *held, const char *out_path, int 
     }
     *out = m;
     return SL_OK;
+}
+
+enum sl_err sl_merge_seal(struct sl_merge *m, struct sl_diag *d)
+{
+    /* the merge's own connection first: the journal switch of the seal
+     * wants the store's connection alone on the file */
+    sl_integ_close(m->integ);
+    m->integ = NULL;
+    if (sqlite3_close(m->db) != SQLITE_OK)
+        return db_fail(m, d, "cannot close");
+    m->db = NULL;
+    return m->store ? sl_store_seal(m->store, d) : SL_OK;
 }
 
 void sl_merge_close(struct sl_merge *m)
@@ -302,6 +315,15 @@ enum sl_err sl_merge_probe(const char *shard, struct sl_merge_shard *info, struc
                        S_ISDIR(sb.st_mode) ? "a folder" : "a device or special file");
     struct sl_store *probe = NULL;
     enum sl_err e = sl_store_open_existing(shard, &probe, d);   /* a results store of this version */
+    /* a shard is attached as it is: its cells must have today's columns
+     * (23 added the cost stages to 22's cells, and a cell's digest covers
+     * every column); older ones are read through an upgraded copy by the
+     * readers, not merged */
+    int ver = e ? 0 : sl_store_read_version(probe);
+    if (!e && ver < sl_store_version())
+        e = sl_fail(d, SL_E_IO, shard, 0, NULL, "a results store of schema %d: merge takes shards of schema "
+                    "%d (verify, table, report and check read it; run its config again to merge it)", ver,
+                    sl_store_version());
     /* SQLite's page check and every cell's digest, before anything is written */
     struct sl_store_verify v = {0};
     if (!e && !(e = sl_store_verify(probe, &v, d)) && v.ndamaged)
@@ -355,12 +377,65 @@ static enum sl_err merged_run(struct sl_merge *m, sqlite3_stmt *cp, sqlite3_int6
     return SL_OK;
 }
 
+/* The file rows of a copied cell, at the paths its files are gathered to:
+ * <study>/<folder>/<name> (overlays/, exr/: gather_overlay, gather_exr),
+ * their size and CRC-32 as the shard recorded them (a file gathered is the
+ * same bytes). */
+static enum sl_err copy_files(struct sl_merge *m, sqlite3_stmt *sel, sqlite3_stmt *ins, sqlite3_int64 cell,
+                              sqlite3_int64 to, sqlite3_int64 run, const char *study, const char *shard_dir,
+                              struct sl_diag *d)
+{
+    enum sl_err e = SL_OK;
+    sqlite3_bind_int64(sel, 1, cell);
+    int rc;
+    while (!e && (rc = sqlite3_step(sel)) == SQLITE_ROW) {
+        const char *p = (const char *)sqlite3_column_text(sel, 0);
+        char dir[1300], rel[1500];
+        snprintf(dir, sizeof dir, "%s", p ? p : "");
+        char *slash = strrchr(dir, '/');
+        const char *name = slash ? slash + 1 : dir;
+        if (slash)
+            *slash = '\0';
+        const char *folder = slash ? base_name(dir) : "";
+        if (slash)
+            snprintf(rel, sizeof rel, "%s/%s/%s", study, folder, name);
+        else
+            snprintf(rel, sizeof rel, "%s/%s", study, name);
+        /* the copied cell's EXR file goes with it, over one of an earlier
+         * computation of its key (its record is this file's: an EXR's header
+         * holds the time it was written, so two computations differ);
+         * gather_exr then brings the shard's files no record names */
+        if (slash && strcmp(folder, "exr") == 0 && p && p[0] != '/') {
+            char src[2600], dst[2600], dir[1400];
+            snprintf(src, sizeof src, "%s/%s", shard_dir, p);
+            snprintf(dir, sizeof dir, "%s/%s/exr", m->dir, study);
+            snprintf(dst, sizeof dst, "%s/%s", m->dir, rel);
+            if (sl_mkdirs(dir, NULL) == SL_OK)
+                (void)gather(src, dst, 1);   /* a file not there: verify names it missing */
+        }
+        sqlite3_bind_text(ins, 1, rel, -1, SQLITE_TRANSIENT);
+        sqlite3_bind_int64(ins, 2, run);
+        sqlite3_bind_int64(ins, 3, to);
+        sqlite3_bind_int64(ins, 4, sqlite3_column_int64(sel, 1));
+        sqlite3_bind_int64(ins, 5, sqlite3_column_int64(sel, 2));
+        if (sqlite3_step(ins) != SQLITE_DONE)
+            e = db_fail(m, d, "cannot record a merged cell's file");
+        sqlite3_reset(ins);
+    }
+    if (!e && rc != SQLITE_DONE)
+        e = db_fail(m, d, "cannot read a shard's files");
+    sqlite3_reset(sel);
+    return e;
+}
+
 static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct sl_merge_shard *info,
                               struct sl_diag *d)
 {
     sqlite3_int64 *map = NULL;
     int nmap = 0;
     sqlite3_stmt *st = NULL, *dup = NULL, *cc = NULL, *cf = NULL, *cr = NULL, *df = NULL, *dc = NULL, *dg = NULL;
+    sqlite3_stmt *dfl = NULL, *sfl = NULL, *ifl = NULL;
+    const int files = m->shard_files;
     char *ins_r = sqlite3_mprintf("INSERT INTO main.runs (%s) SELECT %s FROM shard.runs WHERE run_id = ?",
                                   m->run_cols, m->run_cols);
     char *ins_c = sqlite3_mprintf("INSERT INTO main.cells (run_id, %s) SELECT ?1, %s FROM shard.cells WHERE cell_id = ?2",
@@ -380,7 +455,12 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
                            -1, &dup, NULL) != SQLITE_OK ||
         sqlite3_prepare_v2(m->db, "DELETE FROM main.figures WHERE cell_id = ?1", -1, &df, NULL) != SQLITE_OK ||
         sqlite3_prepare_v2(m->db, "DELETE FROM main.cells WHERE cell_id = ?1", -1, &dc, NULL) != SQLITE_OK ||
-        sqlite3_prepare_v2(m->db, "UPDATE main.cells SET digest = ?2 WHERE cell_id = ?1", -1, &dg, NULL) != SQLITE_OK)
+        sqlite3_prepare_v2(m->db, "UPDATE main.cells SET digest = ?2 WHERE cell_id = ?1", -1, &dg, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(m->db, "DELETE FROM main.files WHERE cell_id = ?1", -1, &dfl, NULL) != SQLITE_OK ||
+        (files && sqlite3_prepare_v2(m->db, "SELECT path, size, crc32 FROM shard.files WHERE cell_id = ?1", -1, &sfl,
+                                     NULL) != SQLITE_OK) ||
+        sqlite3_prepare_v2(m->db, "INSERT OR REPLACE INTO main.files (path, run_id, cell_id, size, crc32) "
+                           "VALUES (?1, ?2, ?3, ?4, ?5)", -1, &ifl, NULL) != SQLITE_OK)
         e = db_fail(m, d, "cannot read the shard's cells");
     while (!e && sqlite3_step(st) == SQLITE_ROW) {
         sqlite3_int64 cell = sqlite3_column_int64(st, 0), run = sqlite3_column_int64(st, 1);
@@ -398,9 +478,12 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
             continue;
         }
         if (old) {
+            sqlite3_bind_int64(dfl, 1, old);
             sqlite3_bind_int64(df, 1, old);
             sqlite3_bind_int64(dc, 1, old);
-            int ok = sqlite3_step(df) == SQLITE_DONE && sqlite3_step(dc) == SQLITE_DONE;
+            int ok = sqlite3_step(dfl) == SQLITE_DONE && sqlite3_step(df) == SQLITE_DONE &&
+                     sqlite3_step(dc) == SQLITE_DONE;
+            sqlite3_reset(dfl);
             sqlite3_reset(df);
             sqlite3_reset(dc);
             if (!ok) {
@@ -430,6 +513,8 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
         const char *ov = (const char *)sqlite3_column_text(st, 9);
         if (ov && ov[0])
             e = gather_overlay(m, shard_dir, info->study, ov, to, info, d);
+        if (!e && files)
+            e = copy_files(m, sfl, ifl, cell, to, to_run, info->study, shard_dir, d);
         /* the copy's own digest: its cell id, run id and overlay path are the merged store's */
         uint32_t digest = 0;
         if (!e && sl_integ_digest(m->integ, to, &digest) != SQLITE_OK)
@@ -450,6 +535,9 @@ static enum sl_err copy_cells(struct sl_merge *m, const char *shard_dir, struct 
     sqlite3_finalize(df);
     sqlite3_finalize(dc);
     sqlite3_finalize(dg);
+    sqlite3_finalize(dfl);
+    sqlite3_finalize(sfl);
+    sqlite3_finalize(ifl);
     sqlite3_free(ins_r);
     free(map);
     sqlite3_free(ins_c);
@@ -483,12 +571,17 @@ enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_
     char shard_dir[1100];
     sl_path_dir(shard, shard_dir, sizeof shard_dir);
 
-    char uri[4200];
-    char *att = sl_storefile_ro_uri(shard, uri, sizeof uri) == 0 ? sqlite3_mprintf("ATTACH DATABASE %Q AS shard", uri)
-                                                                   : NULL;
+    /* read as a reader reads it: a -wal beside a shard on read-only media
+     * through a private copy (storefile.h) */
+    struct sl_storefile_ro ro;
+    if ((e = sl_storefile_ro_open(shard, &ro, d)))
+        return e;
+    char *att = sqlite3_mprintf("ATTACH DATABASE %Q AS shard", ro.uri);
     if (!att || exec(m->db, att) != SQLITE_OK) {
         sqlite3_free(att);
-        return db_fail(m, d, "cannot attach the shard");
+        e = db_fail(m, d, "cannot attach the shard");
+        sl_storefile_ro_release(&ro);
+        return e;
     }
     sqlite3_free(att);
     e = shard_hash(m->db, "shard", shard, info, d);
@@ -504,8 +597,23 @@ enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_
     if (!e && info->config_hash[0]) {
         if (exec(m->db, "BEGIN IMMEDIATE") != SQLITE_OK)
             e = db_fail(m, d, "cannot begin");
+        /* a shard has its plan and files (only shards of this schema are taken,
+         * above); checked again rather than assumed */
+        sqlite3_int64 v23 = 0;
+        sqlite3_stmt *q = NULL;
+        if (sqlite3_prepare_v2(m->db, "SELECT count(*) FROM shard.sqlite_master WHERE type = 'table' AND name IN "
+                               "('plan', 'files')", -1, &q, NULL) == SQLITE_OK && sqlite3_step(q) == SQLITE_ROW)
+            v23 = sqlite3_column_int64(q, 0);
+        sqlite3_finalize(q);
+        m->shard_files = v23 == 2;
         if (!e)
             e = copy_cells(m, shard_dir, info, d);
+        if (!e && m->shard_files &&
+            exec(m->db, "INSERT OR IGNORE INTO main.plan (config_hash, cell_index, scene, viewpoint, vw, vh, map_size, "
+                 "label) SELECT config_hash, cell_index, scene, viewpoint, vw, vh, map_size, label FROM shard.plan") !=
+                SQLITE_OK)
+            e = db_fail(m, d, "cannot copy the shard's plan");
+        sl_storefile_fault_point("merge");   /* the tests: killed inside the shard's transaction */
         if (!e && exec(m->db, "COMMIT") != SQLITE_OK)
             e = db_fail(m, d, "cannot commit");
         if (e)
@@ -518,6 +626,7 @@ enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_
     }
     if (exec(m->db, "DETACH DATABASE shard") != SQLITE_OK && !e)
         e = db_fail(m, d, "cannot detach the shard");
+    sl_storefile_ro_release(&ro);
     if (!e && info->study[0])
         gather_exr(m, shard_dir, info->study, info);
     return e;

@@ -83,6 +83,11 @@ enum sl_err sl_merge_add(struct sl_merge *m, const char *shard, struct sl_merge_
 const char *sl_merge_config_hash(const struct sl_merge *m);
 const char *sl_merge_config_text(const struct sl_merge *m);
 const char *sl_merge_config_path(const struct sl_merge *m);   /* as that run was given it */
+/* The merge's last step when it opened the store itself (sl_merge_open):
+ * its connection closed, the store sealed (sl_store_seal); with a held
+ * store only the connection is closed (the holder seals). Nothing may be
+ * added after it; sl_merge_close still frees m. */
+enum sl_err sl_merge_seal(struct sl_merge *m, struct sl_diag *d);
 void        sl_merge_close(struct sl_merge *m);   /* NULL-safe */
 
 #endif

@@ -440,8 +440,8 @@ static void rm_tree(const char *path)
  * folder when the results folder lies under it (the usual layout,
  * results/shadowlab.db beside results/<name>/), else absolute. The file is in
  * place once the run ends (the staging folder is renamed then). */
-static void overlay_store_path(const char *store_path, const char *final, const char *name, char *out,
-                               size_t n)
+static void overlay_store_path(const char *store_path, const char *final, const char *sub, const char *name,
+                               char *out, size_t n)
 {
     char dbdir[PATH_MAX], fin[PATH_MAX], tmp[1200];
     sl_path_dir(store_path, tmp, sizeof tmp);
@@ -457,30 +457,96 @@ static void overlay_store_path(const char *store_path, const char *final, const 
             snprintf(parent, sizeof parent, ".");
         char rp[PATH_MAX];
         if (!realpath(tmp, dbdir) || !realpath(parent, rp)) {
-            snprintf(out, n, "%s/overlays/%s", final, name);
+            snprintf(out, n, "%s/%s/%s", final, sub, name);
             return;
         }
         snprintf(fin, sizeof fin, "%.*s/%s", (int)(sizeof fin - 300), rp, base);
     }
     size_t k = strlen(dbdir);
     if (strncmp(fin, dbdir, k) == 0 && fin[k] == '/')
-        snprintf(out, n, "%s/overlays/%s", fin + k + 1, name);
+        snprintf(out, n, "%s/%s/%s", fin + k + 1, sub, name);
     else
-        snprintf(out, n, "%s/overlays/%s", fin, name);
+        snprintf(out, n, "%s/%s/%s", fin, sub, name);
+}
+
+/* One file of the cell, in the staging folder now: its path as the store
+ * will find it (in the results folder, once the staging folder is renamed),
+ * its size and CRC-32. 0 when it is not there (nothing to record). */
+static int cell_file(const char *store_path, const struct sl_out_dirs *dirs, const char *sub, const char *staged,
+                     const char *name, struct sl_store_file *f, struct sl_diag *d, enum sl_err *e)
+{
+    char at[1700];
+    snprintf(at, sizeof at, "%s/%s", staged, name);
+    if (access(at, F_OK) != 0)
+        return 0;
+    overlay_store_path(store_path, dirs->final, sub, name, f->path, sizeof f->path);
+    *e = sl_store_file_digest(at, &f->size, &f->crc32, d);
+    if (*e == SL_E_IO)
+        *e = SL_E_OUTPUT;
+    return 1;
+}
+
+enum sl_err sl_out_record_run_files(struct sl_store *st, int64_t run_id, const char *store_path,
+                                    const struct sl_out_dirs *dirs, struct sl_diag *d)
+{
+    DIR *dp = opendir(dirs->final);
+    if (!dp)
+        return SL_OK;   /* a run that wrote no folder (--no-files) */
+    struct sl_store_file *f = NULL;
+    int n = 0;
+    enum sl_err e = SL_OK;
+    for (struct dirent *de; !e && (de = readdir(dp));) {
+        char at[1400];
+        struct stat sb;
+        snprintf(at, sizeof at, "%s/%s", dirs->final, de->d_name);
+        /* the run's own files: regular files at the folder's top (the
+         * overlays and EXR files are the cells', recorded with them) */
+        if (de->d_name[0] == '.' || lstat(at, &sb) != 0 || !S_ISREG(sb.st_mode))
+            continue;
+        struct sl_store_file *nf = realloc(f, (size_t)(n + 1) * sizeof *f);
+        if (!nf) {
+            e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "the run's files");
+            break;
+        }
+        f = nf;
+        overlay_store_path(store_path, dirs->final, "", de->d_name, f[n].path, sizeof f[n].path);
+        /* "<final>//<name>" from an empty sub: one slash */
+        char *dbl = strstr(f[n].path, "//");
+        if (dbl)
+            memmove(dbl, dbl + 1, strlen(dbl));
+        if ((e = sl_store_file_digest(at, &f[n].size, &f[n].crc32, d)))
+            e = SL_E_OUTPUT;
+        n++;
+    }
+    closedir(dp);
+    if (!e && n)
+        e = sl_store_put_run_files(st, run_id, f, n, d);
+    free(f);
+    return e;
 }
 
 enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct sl_config *c,
-                              const struct sl_cell *cl, const char *store_path, const char *final,
+                              const struct sl_cell *cl, const char *store_path, const struct sl_out_dirs *dirs,
                               struct sl_diag *d)
 {
     struct sl_cell_record sc;
     sl_out_record(c, cl, &sc);
-    if (final && final[0] && c->overlays) {
+    struct sl_store_file files[2];
+    int nfiles = 0;
+    enum sl_err e = SL_OK;
+    if (dirs && dirs->final[0] && c->overlays) {
         char name[400];
         sl_out_overlay_name(c, cl, name, sizeof name);
-        overlay_store_path(store_path, final, name, sc.overlay, sizeof sc.overlay);
+        overlay_store_path(store_path, dirs->final, "overlays", name, sc.overlay, sizeof sc.overlay);
+        /* the sheet is on disk (the sink waited for it): recorded with the cell */
+        nfiles += cell_file(store_path, dirs, "overlays", dirs->overlays, name, &files[nfiles], d, &e);
     }
-    return sl_store_put_cell(st, run_id, c->hash, &sc, d);
+    if (!e && dirs && dirs->final[0] && c->exr) {
+        char name[400];
+        sl_out_exr_name(c, cl, name, sizeof name);
+        nfiles += cell_file(store_path, dirs, "exr", dirs->exr, name, &files[nfiles], d, &e);
+    }
+    return e ? e : sl_store_put_cell_files(st, run_id, c->hash, &sc, files, nfiles, d);
 }
 
 /* Move the files of <from>/<sub> into <to>/<sub> where <to> has no file of that name. */
@@ -568,24 +634,41 @@ enum sl_err sl_out_kept_find(const struct sl_config *c, const char *root, const 
     return e;
 }
 
-static int kept_has(const struct sl_out_kept *k, const char *sub, const char *name)
+/* 1 when one of k's folders holds sub/name whole: there, and, when st
+ * records the file (at its path in the results folder, k->dir[0]), of the
+ * recorded size and CRC-32 (a damaged file is as good as a lost one: the
+ * cell is computed again and writes it anew). */
+static int kept_has(const struct sl_out_kept *k, const char *sub, const char *name, struct sl_store *st)
 {
+    long long want_size = 0;
+    uint32_t want_crc = 0;
+    int recorded = 0;
+    if (st && k->n > 0) {
+        char rec[1200];
+        overlay_store_path(sl_store_path(st), k->dir[0], sub, name, rec, sizeof rec);
+        recorded = sl_store_file_recorded(st, rec, &want_size, &want_crc) == 1;
+    }
     for (int i = 0; i < k->n; i++) {
         char p[1700];
         snprintf(p, sizeof p, "%s/%s/%s", k->dir[i], sub, name);
-        if (access(p, F_OK) == 0)
+        if (access(p, F_OK) != 0)
+            continue;
+        long long size = 0;
+        uint32_t crc = 0;
+        if (!recorded || (sl_store_file_digest(p, &size, &crc, NULL) == SL_OK && size == want_size && crc == want_crc))
             return 1;
     }
     return 0;
 }
 
-int sl_out_kept_whole(const struct sl_config *c, const struct sl_cell_key *key, const struct sl_out_kept *k)
+int sl_out_kept_whole(const struct sl_config *c, const struct sl_cell_key *key, const struct sl_out_kept *k,
+                      struct sl_store *st)
 {
     char png[400], exr[400];
     key_file_name(c, key, "png", png, sizeof png);
     key_file_name(c, key, "exr", exr, sizeof exr);
-    return (!c->overlays || kept_has(k, "overlays", png)) && (!c->exr || kept_has(k, "exr", exr)) &&
-           (!c->visibility || kept_has(k, "visibility", exr));
+    return (!c->overlays || kept_has(k, "overlays", png, st)) && (!c->exr || kept_has(k, "exr", exr, st)) &&
+           (!c->visibility || kept_has(k, "visibility", exr, st));
 }
 
 void sl_out_kept_free(struct sl_out_kept *k)
@@ -639,6 +722,23 @@ enum sl_err sl_out_begin_run(struct sl_store *st, const struct sl_config *c, con
     fclose(f);
     enum sl_err e = sl_store_begin_run(st, p, c->name, c->path, c->hash, text, run_id, d);
     free(text);
+    /* the whole sweep's keys, whatever slice this run computes: a store
+     * then says how many of its cells it holds, and which it lacks */
+    int n = sl_plan_count(c);
+    struct sl_store_key *keys = e ? NULL : sl_calloc((size_t)n + 1, sizeof *keys);
+    if (!e && !keys)
+        e = sl_fail(d, SL_E_NOMEM, NULL, 0, NULL, "the plan's %d cells", n);
+    for (int i = 0; !e && i < n; i++) {
+        struct sl_cell_key k;
+        sl_plan_cell(c, i, &k);
+        const struct sl_config_scene *cs = &c->scenes[k.scene];
+        keys[i] = (struct sl_store_key){.scene = cs->name, .viewpoint = cs->viewpoints[k.vp],
+                                        .label = c->methods[k.method].label, .vw = c->viewport_w[k.viewport],
+                                        .vh = c->viewport_h[k.viewport], .map_size = c->maps[k.map], .index = i};
+    }
+    if (!e)
+        e = sl_store_put_plan(st, c->hash, keys, n, d);
+    free(keys);
     return e;
 }
 

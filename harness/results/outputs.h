@@ -90,11 +90,19 @@ enum sl_err sl_out_begin_run(struct sl_store *st, const struct sl_config *c, con
                              int64_t *run_id, struct sl_diag *d);
 /* Put one computed cell into the store, with its overlay's path as the store
  * keeps it (relative to the database's folder when the results folder lies
- * under it, else absolute); final: the results folder, NULL when no files
- * are written. */
+ * under it, else absolute) and, in the same transaction, the path, size and
+ * CRC-32 of each file it wrote (overlay, EXR; read from the staging folder,
+ * recorded at the path they will have in the results folder); dirs: the
+ * run's folders, NULL when no files are written. */
 enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct sl_config *c,
-                              const struct sl_cell *cl, const char *store_path, const char *final,
+                              const struct sl_cell *cl, const char *store_path, const struct sl_out_dirs *dirs,
                               struct sl_diag *d);
+
+/* The run's own files (the regular files at the top of the results folder:
+ * tables, CSV, run.yaml, config.yaml) recorded in the store with their size
+ * and CRC-32, once they are in place. */
+enum sl_err sl_out_record_run_files(struct sl_store *st, int64_t run_id, const char *store_path,
+                                    const struct sl_out_dirs *dirs, struct sl_diag *d);
 
 /* The store's cells of this config (its study name and hash), in store
  * order; *cells malloc'ed (free it), *n their number. */
@@ -123,8 +131,11 @@ struct sl_out_kept {
 enum sl_err sl_out_kept_find(const struct sl_config *c, const char *root, const char *final, const char *own,
                              struct sl_out_kept *k, struct sl_diag *d);
 /* 1 when every file the config asks for of the cell of key `key` is in one
- * of k's folders (always 1 when it asks for none). */
-int  sl_out_kept_whole(const struct sl_config *c, const struct sl_cell_key *key, const struct sl_out_kept *k);
+ * of k's folders (always 1 when it asks for none), and, when st (the store
+ * whose results folder is k's first) records the file, of its recorded size
+ * and CRC-32: a damaged file is computed again like a lost one. */
+int  sl_out_kept_whole(const struct sl_config *c, const struct sl_cell_key *key, const struct sl_out_kept *k,
+                       struct sl_store *st);
 void sl_out_kept_free(struct sl_out_kept *k);   /* NULL-safe on a zeroed k */
 
 /* One table written in several formats, a file each: dir/files[i].name by

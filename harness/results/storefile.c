@@ -15,6 +15,7 @@
 #define _XOPEN_SOURCE 700
 #include "storefile.h"
 #include <errno.h>
+#include <signal.h>
 #include <fcntl.h>
 #include <limits.h>
 #include <stdio.h>
@@ -174,3 +175,190 @@ int sl_storefile_ro_uri(const char *path, char *uri, size_t n)
     w = snprintf(uri + k, n - k, "%s", read_only_media(path) ? "?mode=ro&immutable=1" : "?mode=ro");
     return w < 0 || (size_t)w >= n - k ? -1 : 0;
 }
+
+/* ---- a -wal beside a store on read-only media ---- */
+
+/* Copy the file src to dst (created, never an existing file). 0 on success,
+ * else errno. */
+static int copy_file(const char *src, const char *dst)
+{
+    int in = open(src, O_RDONLY | O_CLOEXEC);
+    if (in < 0)
+        return errno;
+    int out = open(dst, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (out < 0) {
+        int en = errno;
+        close(in);
+        return en;
+    }
+    char buf[65536];
+    int en = 0;
+    for (;;) {
+        ssize_t r = read(in, buf, sizeof buf);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0)
+            en = errno;
+        if (r <= 0)
+            break;
+        for (ssize_t w = 0; w < r && !en;) {
+            ssize_t k = write(out, buf + w, (size_t)(r - w));
+            if (k < 0 && errno != EINTR)
+                en = errno;
+            else if (k > 0)
+                w += k;
+        }
+        if (en)
+            break;
+    }
+    close(in);
+    if (close(out) != 0 && !en)
+        en = errno;
+    return en;
+}
+
+enum sl_err sl_storefile_ro_open(const char *path, struct sl_storefile_ro *r, struct sl_diag *d)
+{
+    memset(r, 0, sizeof *r);
+    char wal[PATH_MAX + 8];
+    snprintf(wal, sizeof wal, "%s-wal", path);
+    struct stat ws;
+    /* immutable=1 only on read-only media (read_only_media): there, a -wal
+     * holding frames is data the .db alone lacks */
+    int copy = stat(wal, &ws) == 0 && ws.st_size > 0 && read_only_media(path);
+    if (!copy)
+        return sl_storefile_ro_uri(path, r->uri, sizeof r->uri) == 0
+                   ? SL_OK : sl_fail(d, SL_E_IO, path, 0, NULL, "path too long");
+    const char *tmp = getenv("TMPDIR");
+    snprintf(r->tmpdir, sizeof r->tmpdir, "%s/shadowlab-store.XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+    if (!mkdtemp(r->tmpdir)) {
+        int en = errno;
+        char where[sizeof r->tmpdir];
+        snprintf(where, sizeof where, "%s", r->tmpdir);
+        r->tmpdir[0] = 0;
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "a -wal of %lld bytes lies beside this store on read-only media "
+                       "(its last checkpoint never happened); reading it needs a private copy, but %s cannot be "
+                       "made: %s (set TMPDIR to a writable folder)", (long long)ws.st_size, where, strerror(en));
+    }
+    char cwal[sizeof r->copy + 8];
+    snprintf(r->copy, sizeof r->copy, "%s/store.db", r->tmpdir);
+    snprintf(cwal, sizeof cwal, "%s-wal", r->copy);
+    int en = copy_file(path, r->copy);
+    if (!en)
+        en = copy_file(wal, cwal);
+    if (en) {
+        char where[sizeof r->tmpdir];
+        snprintf(where, sizeof where, "%s", r->tmpdir);
+        sl_storefile_ro_release(r);
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "a -wal of %lld bytes lies beside this store on read-only media "
+                       "(its last checkpoint never happened); copying store and -wal into %s to read them failed: %s "
+                       "(free space there, or set TMPDIR to a folder with room)", (long long)ws.st_size, where,
+                       strerror(en));
+    }
+    /* the copy is on writable storage: mode=ro, SQLite reads its -wal */
+    if (sl_storefile_ro_uri(r->copy, r->uri, sizeof r->uri) != 0) {
+        sl_storefile_ro_release(r);
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "path too long");
+    }
+    return SL_OK;
+}
+
+enum sl_err sl_storefile_private(struct sl_storefile_ro *r, const char *path, struct sl_diag *d)
+{
+    if (r->tmpdir[0])
+        return SL_OK;   /* a -wal copy's folder: private already */
+    const char *tmp = getenv("TMPDIR");
+    snprintf(r->tmpdir, sizeof r->tmpdir, "%s/shadowlab-store.XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+    if (!mkdtemp(r->tmpdir)) {
+        int en = errno;
+        char where[sizeof r->tmpdir];
+        snprintf(where, sizeof where, "%s", r->tmpdir);
+        r->tmpdir[0] = 0;
+        return sl_fail(d, SL_E_IO, path, 0, NULL, "reading this store needs a private copy, but %s cannot be made: "
+                       "%s (set TMPDIR to a writable folder)", where, strerror(en));
+    }
+    snprintf(r->copy, sizeof r->copy, "%s/store.db", r->tmpdir);
+    return SL_OK;
+}
+
+void sl_storefile_ro_release(struct sl_storefile_ro *r)
+{
+    if (!r || !r->tmpdir[0])
+        return;
+    /* only the files this module and SQLite make there: the copy, its -wal, -shm */
+    static const char *const tails[] = {"", "-wal", "-shm", "-journal"};
+    for (size_t i = 0; i < sizeof tails / sizeof tails[0]; i++) {
+        char f[sizeof r->copy + 16];
+        snprintf(f, sizeof f, "%s/store.db%s", r->tmpdir, tails[i]);
+        unlink(f);
+    }
+    if (r->upgraded[0])
+        unlink(r->upgraded);
+    rmdir(r->tmpdir);
+    r->tmpdir[0] = 0;
+    r->upgraded[0] = 0;
+    r->copy[0] = 0;
+}
+
+/* ---- durability ---- */
+
+static int fsync_path(const char *path, int dir)
+{
+    int fd = open(path, (dir ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC);
+    if (fd < 0)
+        return errno;
+    int en = fsync(fd) == 0 ? 0 : errno;
+    close(fd);
+    return en;
+}
+
+enum sl_err sl_storefile_sync(const char *path, struct sl_diag *d)
+{
+    char dir[PATH_MAX];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (slash == dir)
+        dir[1] = '\0';
+    else if (slash)
+        *slash = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
+    int en = sl_storefile_fault("sync") ? EIO : fsync_path(path, 0);
+    if (en)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot sync the store to disk: %s", strerror(en));
+    if ((en = fsync_path(dir, 1)) != 0)
+        return sl_fail(d, SL_E_OUTPUT, path, 0, NULL, "cannot sync its folder %s to disk: %s", dir, strerror(en));
+    return SL_OK;
+}
+
+/* ---- fault injection (tests) ---- */
+
+#ifdef SL_FAULTS
+int sl_storefile_fault(const char *name)
+{
+    const char *f = getenv("SHADOWLAB_FAULT");
+    return f && strcmp(f, name) == 0;
+}
+
+void sl_storefile_fault_point(const char *name)
+{
+    static int calls;   /* one process, one fault: the count of the named point */
+    const char *f = getenv("SHADOWLAB_FAULT");
+    size_t n = strlen(name);
+    if (!f || strncmp(f, name, n) != 0 || f[n] != ':')
+        return;
+    if (++calls == atoi(f + n + 1))
+        raise(SIGKILL);
+}
+#else
+int sl_storefile_fault(const char *name)
+{
+    (void)name;
+    return 0;
+}
+
+void sl_storefile_fault_point(const char *name)
+{
+    (void)name;
+}
+#endif

@@ -41,4 +41,39 @@ int sl_storefile_lock_current(int fd, const char *lockpath);
  * 0 on success, -1 when it does not fit in n. */
 int sl_storefile_ro_uri(const char *path, char *uri, size_t n);
 
+/* A reader's way into the store at path. On read-only media a store is
+ * opened with immutable=1, which reads the .db alone: a -wal beside it
+ * holding data (a writer whose last checkpoint never happened, a copy made
+ * with its -wal) would be ignored, and the results in it lost without a
+ * word. So when such a -wal lies beside a store on read-only media, the
+ * store and its -wal are copied into a private folder made with mkdtemp
+ * under $TMPDIR (or /tmp) and uri names the copy, where SQLite reads the
+ * -wal as usual; tmpdir is that folder ("" when none), removed with
+ * everything in it by sl_storefile_ro_release. SL_E_IO naming the store,
+ * the folder and the reason when the copy cannot be made. */
+struct sl_storefile_ro {
+    char uri[4200];
+    char tmpdir[512];
+    char copy[600];   /* the copy's path ("" when none) */
+    char upgraded[600];   /* an older schema's store upgraded for reading, in tmpdir ("" when none) */
+};
+enum sl_err sl_storefile_ro_open(const char *path, struct sl_storefile_ro *r, struct sl_diag *d);
+void        sl_storefile_ro_release(struct sl_storefile_ro *r);   /* NULL-safe; idempotent */
+/* A private folder for a reader's copy of the store at path (a store of an
+ * older schema migrated for reading): r->tmpdir and r->copy set as above,
+ * unless r already holds a copy (kept: it is private already). */
+enum sl_err sl_storefile_private(struct sl_storefile_ro *r, const char *path, struct sl_diag *d);
+
+/* fsync the file at path, then its folder (so its name is durable too).
+ * SL_E_OUTPUT naming what could not be synced. */
+enum sl_err sl_storefile_sync(const char *path, struct sl_diag *d);
+
+/* Fault injection for the tests (built only with SL_FAULTS, which the
+ * build sets with SL_TESTS; 0 otherwise): 1 when $SHADOWLAB_FAULT names
+ * this fault ("checkpoint", "sync"). sl_storefile_fault_point counts the
+ * calls made with name and kills the process with SIGKILL at the N-th one
+ * when $SHADOWLAB_FAULT is "name:N" (a writer killed at a chosen moment). */
+int  sl_storefile_fault(const char *name);
+void sl_storefile_fault_point(const char *name);
+
 #endif

@@ -767,8 +767,8 @@ static enum sl_err resume_skips(const struct sl_config *c, const struct sl_run_o
     for (int idx = first; idx < last && !e; idx++) {
         struct sl_cell_key k;
         sl_plan_cell(c, idx, &k);
-        skip[idx] = (uint8_t)((sl_out_stored(c, &k, st) && (!files || sl_out_kept_whole(c, &k, &own))) ||
-                              (also && sl_out_stored(c, &k, also) && (!files || sl_out_kept_whole(c, &k, &gath))));
+        skip[idx] = (uint8_t)((sl_out_stored(c, &k, st) && (!files || sl_out_kept_whole(c, &k, &own, st))) ||
+                              (also && sl_out_stored(c, &k, also) && (!files || sl_out_kept_whole(c, &k, &gath, also))));
     }
     sl_out_kept_free(&own);
     sl_out_kept_free(&gath);
