@@ -531,7 +531,7 @@ enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct 
 {
     struct sl_cell_record sc;
     sl_out_record(c, cl, &sc);
-    struct sl_store_file files[2];
+    struct sl_store_file files[3];
     int nfiles = 0;
     enum sl_err e = SL_OK;
     if (dirs && dirs->final[0] && c->overlays) {
@@ -545,6 +545,11 @@ enum sl_err sl_out_store_cell(struct sl_store *st, int64_t run_id, const struct 
         char name[400];
         sl_out_exr_name(c, cl, name, sizeof name);
         nfiles += cell_file(store_path, dirs, "exr", dirs->exr, name, &files[nfiles], d, &e);
+    }
+    if (!e && dirs && dirs->final[0] && c->visibility) {
+        char name[400];
+        sl_out_visibility_name(c, cl, name, sizeof name);
+        nfiles += cell_file(store_path, dirs, "visibility", dirs->visibility, name, &files[nfiles], d, &e);
     }
     return e ? e : sl_store_put_cell_files(st, run_id, c->hash, &sc, files, nfiles, d);
 }
