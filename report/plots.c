@@ -611,7 +611,10 @@ int sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_z
             /* points at (or next to) 0: the axis a little below, so they do not
              * sit on its line, and tics from 0 up, so no negative value is labelled */
             a = -0.03 * b;
-            double raw = b / 6.0, mag = pow(10.0, floor(log10(raw))), r = raw / mag;
+            /* about six tics up a y axis, four along an x axis: the plots'
+             * panels are narrow (the key beside them), and labels such as
+             * 0.012 at 8.5 pt printed run into each other at six */
+            double raw = b / (axis[0] == 'x' ? 4.0 : 6.0), mag = pow(10.0, floor(log10(raw))), r = raw / mag;
             double step = (r < 1.5 ? 1.0 : r < 3.5 ? 2.0 : r < 7.5 ? 5.0 : 10.0) * mag;
             fprintf(m, "set %stics 0, %.6g\n", axis, step);
         }
@@ -708,9 +711,11 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
              which ? "shadow rays per pixel" : "method time");
     fputs("set multiplot title ", m);
     gp_quote(m, title);
+    /* the key in one column (maxrows): gnuplot wraps a key taller than its
+     * panel into columns, and those run off the canvas on the right */
     fputs("\nset lmargin at screen 0.13\nset rmargin at screen 0.56\n"
           "set grid\nset border 3\nset tics nomirror\n"
-          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box\n", m);
+          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box maxrows 40\n", m);
     int logx = sl_report_axis(m, "x", xs, nx, 0) == 1;
     static const char *const ylab[2] = {"wrong, % of pixels", "undecided, % of pixels"};
     int drawn = 0;
@@ -866,7 +871,7 @@ static enum sl_err maps_plot(struct sl_report_doc *doc, const struct sl_report_s
     gp_quote(m, title);
     fputs("\nset lmargin at screen 0.13\nset rmargin at screen 0.56\nset tmargin at screen 0.90\n"
           "set bmargin at screen 0.14\nset grid\nset border 3\nset tics nomirror\n"
-          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 2 spacing 1.1 box\n"
+          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 2 spacing 1.1 box maxrows 40\n"
           "set logscale x 2\nset xtics (", m);
     for (int j = 0; j < nmaps; j++)
         fprintf(m, "%s'%d\xC2\xB2' %d", j ? ", " : "", maps[j], maps[j]);

@@ -47,6 +47,7 @@ TEST_PACKAGES=(
   slurm-wlm munge       # the Slurm job-array test (slurm::array); `shadowlab submit` needs only sbatch
   clang                 # the libFuzzer entries (-DSL_FUZZ=ON, fuzz/; CI's fuzz step) ...
   libclang-rt-14-dev    # ... whose libFuzzer and sanitizer runtimes clang only recommends
+  python3-numpy         # grade::example: the independent renderer of examples/ (doc/grade.md)
 )
 
 mode=${1:-run}
