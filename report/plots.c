@@ -711,11 +711,9 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
              which ? "shadow rays per pixel" : "method time");
     fputs("set multiplot title ", m);
     gp_quote(m, title);
-    /* the key in one column (maxrows): gnuplot wraps a key taller than its
-     * panel into columns, and those run off the canvas on the right */
+    /* no key on the panels: it is a plot of its own beside them (below) */
     fputs("\nset lmargin at screen 0.13\nset rmargin at screen 0.56\n"
-          "set grid\nset border 3\nset tics nomirror\n"
-          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box maxrows 40\n", m);
+          "set grid\nset border 3\nset tics nomirror\nunset key\n", m);
     int logx = sl_report_axis(m, "x", xs, nx, 0) == 1;
     static const char *const ylab[2] = {"wrong, % of pixels", "undecided, % of pixels"};
     int drawn = 0;
@@ -768,6 +766,35 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
         }
         fputc('\n', m);
         drawn++;
+    }
+    if (drawn) {
+        /* The key alone, a plot of its own beside both panels from the top
+         * to the bottom: a key drawn by a panel holds only as many rows as
+         * that panel is tall, and gnuplot drops the methods past them (6 of
+         * Moderno's 10 in the upper of two panels). */
+        fputs("set lmargin at screen 0.57\nset rmargin at screen 0.99\nset tmargin at screen 0.90\n"
+              "set bmargin at screen 0.10\nunset border\nunset tics\nunset grid\nunset logscale\n"
+              "set xlabel ''\nset ylabel ''\nset xrange [0:1]\nset yrange [0:1]\n"
+              "set key at screen 0.58, screen 0.90 left top Left reverse samplen 1.5 spacing 1.1 box\n"
+              "plot NaN with points pt 6 ps 2.3 lw 2 lc rgb '#b0b0b0' title 'Pareto front (wrong + undecided)'",
+              m);
+        int b = 0;
+        plabel = NULL;
+        for (int k = 0; k < np; k++) {
+            double x = which ? p[k].rays_per_px : p[k].ms;
+            if (isnan(x) || isnan(p[k].wrong_pct) || (which == 0 && !(x > 0.0)))
+                continue;
+            if (plabel && strcmp(plabel, p[k].label) == 0)
+                continue;
+            plabel = p[k].label;
+            const char *col;
+            int pt;
+            sl_report_style(b, &col, &pt);
+            fprintf(m, ", \\\n  NaN with points pt %d ps 1.1 lc rgb '%s' title ", pt, col);
+            gp_quote(m, p[k].display);
+            b++;
+        }
+        fputc('\n', m);
     }
     free(xs);
     free(ys[0]);
@@ -871,7 +898,7 @@ static enum sl_err maps_plot(struct sl_report_doc *doc, const struct sl_report_s
     gp_quote(m, title);
     fputs("\nset lmargin at screen 0.13\nset rmargin at screen 0.56\nset tmargin at screen 0.90\n"
           "set bmargin at screen 0.14\nset grid\nset border 3\nset tics nomirror\n"
-          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 2 spacing 1.1 box maxrows 40\n"
+          "set key at screen 0.58, screen 0.90 left top Left reverse samplen 2 spacing 1.1 box\n"
           "set logscale x 2\nset xtics (", m);
     for (int j = 0; j < nmaps; j++)
         fprintf(m, "%s'%d\xC2\xB2' %d", j ? ", " : "", maps[j], maps[j]);
