@@ -85,10 +85,12 @@ BOUNDARY = [(s, v, fig, vals[i]) for (s, v), vals in sorted(moderno_appendix(102
 # The props' numbers, PARAMS those of scenes/bench.yaml: each tree built
 # h tall at the origin, scaled [sx, sy, sz] (h times sy is its height),
 # turned r degrees about y and moved to (x, z); the lamp at (x, z), h tall;
-# the bench 4 long, scaled s, turned r, at (x, z). LIMITS bound the search.
-PARAMS = dict(ax=-20.4, az=-35.5, ah=57.2, asx=1.5, asy=1.0, asz=1.04, ar=24.0,
-              bx=-60.8, bz=-15.5, bh=18.1, bsx=2.33, bsy=1.0, bsz=1.49, br=37.5,
-              lx=25.7, lz=-49.8, lh=42.7, nx=-12.2, nz=11.8, ns=7.25, nr=-21.5, fs=16.3)
+# the bench 4 long, scaled s, turned r, at (x, z); the flowers scaled fs on
+# the box's whole bed. LIMITS bound the search (fs within [1, 3]: T6 of
+# CALIBRATION.md, petals at most 2.6 pixels at 512x512).
+PARAMS = dict(ax=-16.44, az=-35.5, ah=59.95, asx=2.421, asy=0.9479, asz=2.218, ar=9.098,
+              bx=-57.94, bz=-17.94, bh=21.19, bsx=4.194, bsy=1.199, bsz=2.384, br=28.97,
+              lx=-40.0, lz=30.0, lh=42.7, nx=-14.97, nz=13.03, ns=7.523, nr=-39.96, fs=2.13)
 LIMITS = dict(ax=(-60, 80), az=(-80, 40), ah=(20, 70), asx=(0.4, 3), asy=(0.2, 1.5), asz=(0.4, 3),
               ar=(-90, 90), bx=(-90, 40), bz=(-90, 40), bh=(10, 70), bsx=(0.4, 3), bsy=(0.2, 1.5),
               bsz=(0.4, 3), br=(-90, 90), lx=(-60, 60), lz=(-60, 30), lh=(6, 45),
