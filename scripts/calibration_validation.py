@@ -17,8 +17,8 @@ The validation set (CALIBRATION.md, "the split"):
   Light/Shadow - Uncertain count the thesis prints as at least 100 pixels,
   ours / thesis; counted as report/morais.c counts them (the whole image;
   uncertain = the pixels a label traced, split by the truth). 1024x1024 and
-  1920x1080 are left out of this run for its time (the 512x512 column alone
-  is 216 of the thesis's counts).
+  1920x1080 are left out of this run for its time (the 512x512 column holds
+  113 counts of at least 100 pixels).
 - Moderno 2011's appendix with the 2048^2 map (scenes/calibration/
   moderno-appendix.csv), nine views at 1024x1024: NSM's 2 px contour and
   wrong pixels, ours / thesis, and its dominant error kind (said lit but
