@@ -476,6 +476,8 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
     if (!e && s->morais) {
         sl_report_doc_heading(doc, 3, NULL, "%s: tables in Morais 2015's layout", s->name);
         e = sl_report_morais(doc, s, d);
+        if (!e)
+            e = sl_report_fidelity_morais(doc, s, d);
     }
     if (!e && s->area) {   /* the only table of an area light's soft figures: any study that has them */
         sl_report_doc_heading(doc, 3, NULL, "%s: soft shadows (area lights)%s", s->name,

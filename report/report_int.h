@@ -216,6 +216,10 @@ enum sl_err sl_report_fractional(struct sl_report_doc *doc, const struct sl_repo
 
 /* fidelity.c: Moderno 2011's Primitives numbers and claims beside the study's */
 enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report_study *s, struct sl_diag *d);
+/* The Bench scenes' validation against Morais's Tables 7-24 (scenes/CALIBRATION.md):
+ * per viewport, the median of ours / thesis and the share within 2x. */
+enum sl_err sl_report_fidelity_morais(struct sl_report_doc *doc, const struct sl_report_study *s,
+                                      struct sl_diag *d);
 
 /* plots.c */
 enum sl_err sl_report_gnuplot_find(const char *want, char *path, size_t n, struct sl_diag *d);

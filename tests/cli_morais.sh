@@ -117,6 +117,36 @@ check('**Hertel 2009 Table 2: ' in md, 'no Hertel 2009 Table 2')
 print('%d passed, %d failed' % (passes, fails))
 sys.exit(1 if fails else 0)
 PY
+# the Bench scenes' validation paragraph (report/fidelity.c, issue 48): its
+# count, median and share within 2x recomputed here from the store and the
+# thesis's file, Tables 7-24's Incorrect and Uncertain counts of >= 100 px
+python3 - "$tmp/rep/report.md" "$db" report/theses/morais-2015.csv <<'PY' || exit 1
+import csv, re, sqlite3, statistics, sys
+md = open(sys.argv[1], encoding='utf-8').read()
+f = {}
+for s, v, m, lab, fig, n in sqlite3.connect(sys.argv[2]).execute(
+        "SELECT scene, viewpoint, map_size, label, figure, count FROM figures WHERE region = 'image'"):
+    f.setdefault((s, v, m, lab), {})[fig] = n
+rs = []
+for r in csv.DictReader(ln for ln in open(sys.argv[3], encoding='utf-8') if not ln.startswith('#')):
+    row = r['row']
+    if not (7 <= int(r['table']) <= 24 and r['width'] == '512' and r['height'] == '512' and int(r['count']) >= 100
+            and row in ('light_incorrect', 'shadow_incorrect', 'light_uncertain', 'shadow_uncertain')):
+        continue
+    g = f.get((r['scene'], r['viewpoint'], int(r['map_size']), r['method']))
+    if g is None:
+        continue
+    o = g.get(row, 0) if row.endswith('incorrect') else g.get('traced_shadow', 0) if row == 'shadow_uncertain' \
+        else g.get('traced', 0) - g.get('traced_shadow', 0)
+    rs.append(o / int(r['count']))
+m = re.search(r'at 512×512, (\d+) of Morais 2015.s Tables 7-24 .*?median ([\d.]+), (\d+)% within 2×', md, re.S)
+if not m or not rs:
+    sys.exit('FAIL the validation paragraph is missing (%d counts expected)' % len(rs))
+want = (len(rs), '%.2f' % statistics.median(rs), '%.0f' % (100.0 * sum(0.5 <= x <= 2 for x in rs) / len(rs)))
+got = (int(m.group(1)), m.group(2), m.group(3))
+print('validation paragraph: %s, recomputed %s' % (got, want))
+sys.exit(0 if got == want else 1)
+PY
 # in the HTML every thesis row is set back (grey), no row of ours is
 python3 - "$tmp/rep/report.html" <<'PY' || { echo "FAIL thesis rows not set back in the HTML"; exit 1; }
 import re, sys

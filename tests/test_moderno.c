@@ -724,24 +724,28 @@ static void moderno_wrong_hints_where(void **st)
             assert_int_equal(shadow, 0);
             assert_true(10 * all.lit_culled >= 9 * lit);
         } else if (sc == 2) {
-            /* Trees: the wrong hints are the two-sided, sub-texel leaves':
+            /* Trees: the wrong hints are the two-sided leaves':
              * occluders the map misses, or stores over the whole footprint
-             * while the ray passes between them (58: 40 lit, 18 shadow, all
-             * of them) */
+             * while the ray passes between them (issue 48's leaf cards:
+             * 84, 42 lit and 42 shadow, 83 of them) */
             assert_true(10 * (all.lit_two_sided_occluder + all.shadow_two_sided) >= 8 * (lit + shadow));
         } else {
             /* Flowers and Bench, whose flowers are closed thin solids drawn
-             * one-sided (gen.c): under a tenth of the wrong hints involve
-             * two-sided geometry (flowers 6 of 1,576, bench 71 of 1,527);
-             * the wrong lit ones are mostly front-face culling's blind spot,
-             * as on Primitives (228 of 258, 164 of 220), and the wrong
-             * shadow ones mostly lie within two texels of the pixel along
-             * the light (791 of 1,318, 675 of 1,307): a thin solid's own
-             * face behind, where the part is thinner than the map's depth
-             * spread (the tetrahedra thin out to nothing at their rims) */
+             * one-sided (gen.c), scaled 2.13 since issue 48 (petals a pixel
+             * or two across, below a texel): under a tenth of the wrong
+             * hints involve two-sided geometry (flowers 430 of 12,295,
+             * bench 341 of 4,722); at least half the wrong lit ones are
+             * front-face culling's blind spot, as on Primitives (4,786 of
+             * 8,456, 2,079 of 3,640; the rest mostly occluders the map
+             * does not store: 3,312, 1,439); and the wrong shadow ones
+             * mostly lie more than two texels from the pixel along the
+             * light (3,577 of 3,839, 959 of 1,082): a small part stored
+             * over a footprint that the pixel's ray passes beside, where
+             * with the flowers scaled 16.3 they were mostly a thin solid's
+             * own face behind, within two texels */
             assert_true(10 * (all.lit_two_sided_occluder + all.shadow_two_sided) < lit + shadow);
-            assert_true(3 * all.lit_culled >= 2 * lit);
-            assert_true(5 * all.shadow_near >= 2 * shadow);
+            assert_true(2 * all.lit_culled >= lit);
+            assert_true(5 * all.shadow_far >= 4 * shadow);
         }
         fig_close(&g);
     }

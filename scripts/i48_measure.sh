@@ -1,0 +1,68 @@
+#!/bin/sh
+# i48_measure.sh — the measurements behind doc/methods.md's "Primitives'
+# contours" and "Hertel's rays and wrong pixels" paragraphs (issue 48,
+# items 4 and 5). Each study is an ordinary config run by build/shadowlab;
+# nothing here changes a scene or a method, only the labels, contours and
+# set-up the run is given. Usage:
+#   scripts/i48_measure.sh OUT_DIR [contours|hertel] [-D KEY=VALUE]...
+# the -D overrides go to `shadowlab run` as they are (e.g. -D name=hertel-sphere
+# -D 'methods[1].light_frame={fit: sphere}').
+set -eu
+out=${1:?usage: i48_measure.sh OUT_DIR [contours|hertel]}
+what=${2:-contours}
+shift; [ $# -gt 0 ] && shift
+bin=${SHADOWLAB:-build/shadowlab}
+mkdir -p "$out"
+case $what in
+contours)
+    # Primitives as configs/default.yaml, every self-shadow policy NSM has,
+    # contours drawn from each label's own image (raytrace: the truth's).
+    for from in own nsm; do
+        cat > "$out/prim-$from.yaml" <<YAML
+name: prim-$from
+scenes:
+  - {scene: primitives, viewpoints: [side, with, against]}
+viewports:
+  - {width: 1024, height: 1024}
+map_sizes: [1024, 2048]
+contours: [2, 4, 6]
+contour_from: $from
+methods:
+  - {label: raytrace, method: raytrace}
+  - {label: nsm, method: nsm, self_shadow: front_faces}
+  - {label: nsm_none, method: nsm, self_shadow: none}
+  - {label: nsm_const1, method: nsm, self_shadow: constant, bias: 1}
+  - {label: nsm_const2, method: nsm, self_shadow: constant, bias: 2}
+  - {label: nsm_slope, method: nsm, self_shadow: slope, bias: 0, slope: 1}
+  - {label: nsm_tid, method: nsm, self_shadow: triangle_id}
+  - {label: coherence4, method: coherence, texels: 4}
+outputs: {tables: true, overlays: false}
+repetitions: {warmup: 0, runs: 1}
+YAML
+        nice -n 10 "$bin" run "$out/prim-$from.yaml" -o "$out" -q "$@"
+    done ;;
+hertel)
+    # Hertel's own set-up: a 1280 x 1024 view port, a 1K map, the Morais
+    # scenes; hertel beside hertel_exact and the full trace.
+    cat > "$out/hertel.yaml" <<YAML
+name: hertel-setup
+scenes:
+  - {scene: bench, viewpoints: [side, with, against]}
+  - {scene: trees, viewpoints: [side, with, against]}
+  - {scene: flowers, viewpoints: [side, with, against]}
+  - {scene: primitives, viewpoints: [side, with, against]}
+viewports:
+  - {width: 1280, height: 1024}
+map_sizes: [1024]
+contours: [2]
+methods:
+  - {label: raytrace, method: raytrace}
+  - {label: hertel, method: hertel}
+  - {label: hertel_exact, method: hertel_exact}
+  - {label: bgsm, method: bgsm}
+outputs: {tables: true, overlays: false, exr: true, aliasing: true}
+repetitions: {warmup: 0, runs: 1}
+YAML
+    nice -n 10 "$bin" run "$out/hertel.yaml" -o "$out" -q "$@" ;;
+*) echo "i48_measure.sh: unknown study '$what' (contours or hertel)" >&2; exit 2 ;;
+esac
