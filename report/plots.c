@@ -629,6 +629,21 @@ int sl_report_axis(FILE *m, const char *axis, const double *v, int n, int from_z
     return 0;
 }
 
+/* Whether point k of an accuracy plot opens its method's block: its cost
+ * (rays, or a time above 0) and wrong % known, and a label other than the
+ * block before it's (*prev, updated). The data, the panels and the key walk
+ * the points alike, so a method's block, style and key entry agree. */
+static int accuracy_opens(const struct sl_report_point *p, int k, int which, const char **prev)
+{
+    double x = which ? p[k].rays_per_px : p[k].ms;
+    if (isnan(x) || isnan(p[k].wrong_pct) || (which == 0 && !(x > 0.0)))
+        return 0;
+    if (*prev && strcmp(*prev, p[k].label) == 0)
+        return 0;
+    *prev = p[k].label;
+    return 1;
+}
+
 /* Two panels over one cost axis (which: 0 method time, 1 rays per pixel):
  * wrong pixels above, undecided pixels below, one colour and marker per
  * method label with its map sizes joined smallest to largest, min-max bars
@@ -744,12 +759,8 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
         int b = 0;
         plabel = NULL;
         for (int k = 0; k < np; k++) {
-            double x = which ? p[k].rays_per_px : p[k].ms;
-            if (isnan(x) || isnan(p[k].wrong_pct) || (which == 0 && !(x > 0.0)))
+            if (!accuracy_opens(p, k, which, &plabel))
                 continue;
-            if (plabel && strcmp(plabel, p[k].label) == 0)
-                continue;
-            plabel = p[k].label;
             const char *col;
             int pt;
             sl_report_style(b, &col, &pt);
@@ -781,12 +792,8 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
         int b = 0;
         plabel = NULL;
         for (int k = 0; k < np; k++) {
-            double x = which ? p[k].rays_per_px : p[k].ms;
-            if (isnan(x) || isnan(p[k].wrong_pct) || (which == 0 && !(x > 0.0)))
+            if (!accuracy_opens(p, k, which, &plabel))
                 continue;
-            if (plabel && strcmp(plabel, p[k].label) == 0)
-                continue;
-            plabel = p[k].label;
             const char *col;
             int pt;
             sl_report_style(b, &col, &pt);
