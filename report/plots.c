@@ -781,7 +781,7 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
     if (drawn) {
         /* The key alone, a plot of its own beside both panels from the top
          * to the bottom: a key drawn by a panel holds only as many rows as
-         * that panel is tall, and gnuplot drops the methods past them (6 of
+         * that panel is tall, and gnuplot drops the methods past them (5 of
          * Moderno's 10 in the upper of two panels). */
         fputs("set lmargin at screen 0.57\nset rmargin at screen 0.99\nset tmargin at screen 0.90\n"
               "set bmargin at screen 0.10\nunset border\nunset tics\nunset grid\nunset logscale\n"
