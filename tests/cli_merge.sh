@@ -102,14 +102,17 @@ jobs)
   [ -e "$tmp/two/.jobs-small" ] && fail "the workers' folder is left behind"
   ;;
 bench)
-  "$bin" bench "$tmp/small.yaml" --only jobs >"$tmp/bench.md" 2>"$tmp/bench.err" || { cat "$tmp/bench.err"; fail "bench exit $?"; }
+  # its temporary folder under a TMPDIR of its own: a folder another bench
+  # left in /tmp is not this one's
+  mkdir "$tmp/t"
+  TMPDIR="$tmp/t" "$bin" bench "$tmp/small.yaml" --only jobs >"$tmp/bench.md" 2>"$tmp/bench.err" || { cat "$tmp/bench.err"; fail "bench exit $?"; }
   grep -q '^## One process against `run --jobs 2` (.*small.yaml): 12 cells$' "$tmp/bench.md" || { cat "$tmp/bench.md"; fail "heading"; }
   grep -qE '^\| one process \| [0-9.]+ \| [0-9.]+ \|$' "$tmp/bench.md" || fail "one-process row"
   grep -qE '^\| --jobs 2 \| [0-9.]+ \| [0-9.]+ \|$' "$tmp/bench.md" || fail "--jobs row"
   # two views, cut between them: none computed twice; 12 cells merged
   grep -q '^--jobs 2: 0 of 2 view(s) started in both workers.*merge of 12 cells' "$tmp/bench.md" || { cat "$tmp/bench.md"; fail "split/merge line"; }
   grep -qE '\| small, --jobs 2 over one process, wall \|' "$tmp/bench.md" || { cat "$tmp/bench.md"; fail "summary row"; }
-  ls /tmp | grep -q "^shadowlab-bench-jobs\." && fail "temporary folder left" || true
+  ls "$tmp/t" | grep -q "^shadowlab-bench-jobs\." && fail "temporary folder left" || true
   ;;
 *) echo "unknown case $case_"; exit 2 ;;
 esac

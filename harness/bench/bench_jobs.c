@@ -13,6 +13,7 @@
  * little: read it with the load average the bench prints at start and end.
  */
 #define _GNU_SOURCE
+#include <errno.h>
 #include <ftw.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -68,10 +69,13 @@ enum sl_err sl_bench_jobs(const char *path, enum sl_gl_backend gl, FILE *out, st
     if (e)
         return e;
     sl_config_free(&c);   /* its values only from here on: the runs are child processes */
-    char tmp[] = "/tmp/shadowlab-bench-jobs.XXXXXX";
+    /* under $TMPDIR as the store's private copies are (storefile.c), else /tmp */
+    const char *tdir = getenv("TMPDIR");
+    char tmp[512];
+    snprintf(tmp, sizeof tmp, "%s/shadowlab-bench-jobs.XXXXXX", tdir && tdir[0] ? tdir : "/tmp");
     if (!mkdtemp(tmp))
-        return sl_fail(d, SL_E_OUTPUT, tmp, 0, NULL, "cannot make a temporary folder");
-    char one[64], par[64];
+        return sl_fail(d, SL_E_OUTPUT, tmp, 0, NULL, "cannot make a temporary folder: %s", strerror(errno));
+    char one[600], par[600];
     snprintf(one, sizeof one, "%s/one", tmp);
     snprintf(par, sizeof par, "%s/jobs", tmp);
     const char *glname = gl ? sl_gl_backend_name(gl) : NULL;
