@@ -178,6 +178,23 @@ int sl_storefile_ro_uri(const char *path, char *uri, size_t n)
 
 /* ---- a -wal beside a store on read-only media ---- */
 
+/* A private folder for a copy of the store, under $TMPDIR (else /tmp):
+ * r->tmpdir, and r->copy the copy's path in it. Returns 0, or errno with the
+ * folder tried in where and r->tmpdir emptied. */
+static int private_dir(struct sl_storefile_ro *r, char *where, size_t n)
+{
+    const char *tmp = getenv("TMPDIR");
+    snprintf(r->tmpdir, sizeof r->tmpdir, "%s/shadowlab-store.XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+    if (!mkdtemp(r->tmpdir)) {
+        int en = errno;
+        snprintf(where, n, "%s", r->tmpdir);
+        r->tmpdir[0] = 0;
+        return en;
+    }
+    snprintf(r->copy, sizeof r->copy, "%s/store.db", r->tmpdir);
+    return 0;
+}
+
 /* Copy the file src to dst (created, never an existing file). 0 on success,
  * else errno. */
 static int copy_file(const char *src, const char *dst)
@@ -229,25 +246,18 @@ enum sl_err sl_storefile_ro_open(const char *path, struct sl_storefile_ro *r, st
     if (!copy)
         return sl_storefile_ro_uri(path, r->uri, sizeof r->uri) == 0
                    ? SL_OK : sl_fail(d, SL_E_IO, path, 0, NULL, "path too long");
-    const char *tmp = getenv("TMPDIR");
-    snprintf(r->tmpdir, sizeof r->tmpdir, "%s/shadowlab-store.XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
-    if (!mkdtemp(r->tmpdir)) {
-        int en = errno;
-        char where[sizeof r->tmpdir];
-        snprintf(where, sizeof where, "%s", r->tmpdir);
-        r->tmpdir[0] = 0;
+    char where[sizeof r->tmpdir];
+    int en = private_dir(r, where, sizeof where);
+    if (en)
         return sl_fail(d, SL_E_IO, path, 0, NULL, "a -wal of %lld bytes lies beside this store on read-only media "
                        "(its last checkpoint never happened); reading it needs a private copy, but %s cannot be "
                        "made: %s (set TMPDIR to a writable folder)", (long long)ws.st_size, where, strerror(en));
-    }
     char cwal[sizeof r->copy + 8];
-    snprintf(r->copy, sizeof r->copy, "%s/store.db", r->tmpdir);
     snprintf(cwal, sizeof cwal, "%s-wal", r->copy);
-    int en = copy_file(path, r->copy);
+    en = copy_file(path, r->copy);
     if (!en)
         en = copy_file(wal, cwal);
     if (en) {
-        char where[sizeof r->tmpdir];
         snprintf(where, sizeof where, "%s", r->tmpdir);
         sl_storefile_ro_release(r);
         return sl_fail(d, SL_E_IO, path, 0, NULL, "a -wal of %lld bytes lies beside this store on read-only media "
@@ -267,17 +277,11 @@ enum sl_err sl_storefile_private(struct sl_storefile_ro *r, const char *path, st
 {
     if (r->tmpdir[0])
         return SL_OK;   /* a -wal copy's folder: private already */
-    const char *tmp = getenv("TMPDIR");
-    snprintf(r->tmpdir, sizeof r->tmpdir, "%s/shadowlab-store.XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
-    if (!mkdtemp(r->tmpdir)) {
-        int en = errno;
-        char where[sizeof r->tmpdir];
-        snprintf(where, sizeof where, "%s", r->tmpdir);
-        r->tmpdir[0] = 0;
+    char where[sizeof r->tmpdir];
+    int en = private_dir(r, where, sizeof where);
+    if (en)
         return sl_fail(d, SL_E_IO, path, 0, NULL, "reading this store needs a private copy, but %s cannot be made: "
                        "%s (set TMPDIR to a writable folder)", where, strerror(en));
-    }
-    snprintf(r->copy, sizeof r->copy, "%s/store.db", r->tmpdir);
     return SL_OK;
 }
 
