@@ -112,16 +112,10 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
 {
     char *body = NULL, *data = NULL;
     size_t blen = 0, dlen = 0;
-    FILE *m = open_memstream(&body, &blen), *dm = open_memstream(&data, &dlen);
-    if (!m || !dm) {
-        if (m)
-            fclose(m);
-        if (dm)
-            fclose(dm);
-        free(body);
-        free(data);
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
-    }
+    FILE *m, *dm;
+    enum sl_err oe = sl_report_open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
+    if (oe)
+        return oe;
     char id[160];
     snprintf(id, sizeof id, "%s-aliasing-rate", s->slug);
     struct sl_tab t;

@@ -239,10 +239,8 @@ static int run_sh(const char *cmd)
     return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-/* A plot's gnuplot script and its data, each built in memory; on failure
- * neither is left open. */
-static enum sl_err open_script(FILE **m, char **body, size_t *blen, FILE **dm, char **data, size_t *dlen,
-                               const char *what, struct sl_diag *d)
+enum sl_err sl_report_open_script(FILE **m, char **body, size_t *blen, FILE **dm, char **data, size_t *dlen,
+                                  const char *what, struct sl_diag *d)
 {
     *m = open_memstream(body, blen);
     *dm = open_memstream(data, dlen);
@@ -470,7 +468,7 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
         char *body = NULL, *data = NULL;
         size_t blen = 0, dlen = 0;
         FILE *m, *dm;
-        if ((e = open_script(&m, &body, &blen, &dm, &data, &dlen, scene, d)))
+        if ((e = sl_report_open_script(&m, &body, &blen, &dm, &data, &dlen, scene, d)))
             return e;
         char id[160], slug[64];
         sl_tab_slug(scene, slug, sizeof slug);
@@ -656,7 +654,7 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
     char *body = NULL, *data = NULL;
     size_t blen = 0, dlen = 0;
     FILE *m, *dm;
-    enum sl_err oe = open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
+    enum sl_err oe = sl_report_open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
     if (oe)
         return oe;
     int npts = 0, nblocks = 0, bars = 0, any_rays = 0;
@@ -876,7 +874,7 @@ static enum sl_err maps_plot(struct sl_report_doc *doc, const struct sl_report_s
     char *body = NULL, *data = NULL;
     size_t blen = 0, dlen = 0;
     FILE *m, *dm;
-    enum sl_err e = open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
+    enum sl_err e = sl_report_open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
     if (e)
         return e;
     double *ys = sl_calloc((size_t)npts + 1, sizeof *ys);
@@ -969,7 +967,7 @@ static enum sl_err spread_plot(struct sl_report_doc *doc, const struct sl_report
     char *body = NULL, *data = NULL;
     size_t blen = 0, dlen = 0;
     FILE *m, *dm;
-    enum sl_err e = open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
+    enum sl_err e = sl_report_open_script(&m, &body, &blen, &dm, &data, &dlen, s->name, d);
     if (e)
         return e;
     double *ys = sl_calloc((size_t)s->n + 1, sizeof *ys);

@@ -228,6 +228,11 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
 enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_report_study *s,
                                     const char *gnuplot, struct sl_diag *d);
 
+/* A plot's gnuplot script (*m into *body) and its data (*dm into *data),
+ * each built in memory; on failure neither is left open (what names the
+ * plot's study in the message). */
+enum sl_err sl_report_open_script(FILE **m, char **body, size_t *blen, FILE **dm, char **data, size_t *dlen,
+                                  const char *what, struct sl_diag *d);
 /* The colour and gnuplot marker of the k-th label of a plot (Okabe-Ito, twelve
  * markers), the same in every plot. */
 void sl_report_style(int k, const char **colour, int *pt);
