@@ -184,16 +184,11 @@ static enum sl_err rate_plot(struct sl_report_doc *doc, const struct sl_report_s
         b++;
     }
     fputc('\n', m);
-    int bad = ferror(m) | ferror(dm);
-    bad |= fclose(m) != 0;
-    bad |= fclose(dm) != 0;
-    enum sl_err e = SL_OK;
-    if (bad || !body || !data)
-        e = sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
-    else if (nblocks > 0 && logy < 0)
+    enum sl_err e = sl_report_close_script(m, dm, &body, &data, 0, s->name, d);
+    if (!e && nblocks > 0 && logy < 0)
         sl_report_doc_para(doc, "No method of this study gets a pixel wrong in any band of m: the error-rate plot "
                                 "is not drawn.");
-    else if (nblocks > 0) {
+    else if (!e && nblocks > 0) {
         char name[160], cap[400];
         snprintf(name, sizeof name, "%s-aliasing-rate", s->slug);
         snprintf(cap, sizeof cap, "%s: per method, its wrong pixels over its PFL pixels in each band of m, pooled "

@@ -119,13 +119,8 @@ static enum sl_err leak_plot(struct sl_report_doc *doc, const struct sl_report_s
     int lx = sl_report_axis(m, "x", xs, npts, 1), ly = sl_report_axis(m, "y", ys, npts, 1);
     fprintf(m, "plot %s\n", plot ? plot : "");
     free(plot);
-    int bad = ferror(m) | ferror(dm) | !pm;
-    bad |= fclose(m) != 0;
-    bad |= fclose(dm) != 0;
-    enum sl_err e = SL_OK;
-    if (bad || !body || !data)
-        e = sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
-    else if (nb > 0 && (lx >= 0 || ly >= 0)) {
+    enum sl_err e = sl_report_close_script(m, dm, &body, &data, !pm, s->name, d);
+    if (!e && nb > 0 && (lx >= 0 || ly >= 0)) {
         char name[160], cap[600];
         snprintf(name, sizeof name, "%s-leaking", s->slug);
         snprintf(cap, sizeof cap, "%s. Per method (its map sizes joined smallest to largest), the two kinds of "

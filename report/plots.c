@@ -255,6 +255,20 @@ enum sl_err sl_report_open_script(FILE **m, char **body, size_t *blen, FILE **dm
     return sl_fail(d, SL_E_NOMEM, NULL, 0, what, "plot script");
 }
 
+enum sl_err sl_report_close_script(FILE *m, FILE *dm, char **body, char **data, int bad, const char *what,
+                                   struct sl_diag *d)
+{
+    bad |= ferror(m) | ferror(dm);
+    bad |= fclose(m) != 0;
+    bad |= fclose(dm) != 0;
+    if (!bad && *body && *data)
+        return SL_OK;
+    free(*body);
+    free(*data);
+    *body = *data = NULL;
+    return sl_fail(d, SL_E_NOMEM, NULL, 0, what, "plot script");
+}
+
 static enum sl_err write_text(struct sl_report_doc *doc, const char *rel, const char *text, struct sl_diag *d)
 {
     char path[1400];
@@ -523,14 +537,9 @@ enum sl_err sl_report_plot_chain(struct sl_report_doc *doc, const struct sl_repo
             fprintf(m, " lc rgb '%s'", steps[j].color);
         }
         fputc('\n', m);
-        int bad = ferror(m) | ferror(dm);
-        bad |= fclose(m) != 0;
-        bad |= fclose(dm) != 0;
-        if (bad || !body || !data) {
-            free(body);
-            free(data);
+        if ((e = sl_report_close_script(m, dm, &body, &data, 0, scene, d))) {
             sl_tab_free(&t);
-            return sl_fail(d, SL_E_NOMEM, NULL, 0, scene, "plot script");
+            return e;
         }
         if (bars > 0) {
             int w = 420 + 34 * bars;
@@ -805,15 +814,9 @@ static enum sl_err accuracy_plot(struct sl_report_doc *doc, const struct sl_repo
     free(ys[0]);
     free(ys[1]);
     fputs("unset multiplot\n", m);
-    int bad = ferror(m) | ferror(dm);
-    bad |= fclose(m) != 0;
-    bad |= fclose(dm) != 0;
-    if (bad || !body || !data) {
-        free(body);
-        free(data);
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
-    }
-    enum sl_err e = SL_OK;
+    enum sl_err e = sl_report_close_script(m, dm, &body, &data, 0, s->name, d);
+    if (e)
+        return e;
     if (which && !any_rays) {
         /* a study without rays gets no rays plot: every point would sit at 0 */
         sl_report_doc_para(doc, "No method of this study casts shadow rays: the rays-per-pixel plot is not drawn.");
@@ -931,13 +934,8 @@ static enum sl_err maps_plot(struct sl_report_doc *doc, const struct sl_report_s
     }
     fputc('\n', m);
     free(ys);
-    int bad = ferror(m) | ferror(dm);
-    bad |= fclose(m) != 0;
-    bad |= fclose(dm) != 0;
-    if (bad || !body || !data) {
-        free(body), free(data);
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
-    }
+    if ((e = sl_report_close_script(m, dm, &body, &data, 0, s->name, d)))
+        return e;
     if (ny == 0 || !(logy >= 0)) {
         free(body), free(data);
         return SL_OK;
@@ -1048,13 +1046,8 @@ static enum sl_err spread_plot(struct sl_report_doc *doc, const struct sl_report
     }
     fputc('\n', m);
     free(ys);
-    int bad = ferror(m) | ferror(dm);
-    bad |= fclose(m) != 0;
-    bad |= fclose(dm) != 0;
-    if (bad || !body || !data) {
-        free(body), free(data);
-        return sl_fail(d, SL_E_NOMEM, NULL, 0, s->name, "plot script");
-    }
+    if ((e = sl_report_close_script(m, dm, &body, &data, 0, s->name, d)))
+        return e;
     if (nb == 0 || maxn < 2 || logy < 0) {   /* one view, or nothing but zeros: no spread to show */
         free(body), free(data);
         return SL_OK;

@@ -233,6 +233,11 @@ enum sl_err sl_report_plot_accuracy(struct sl_report_doc *doc, const struct sl_r
  * plot's study in the message). */
 enum sl_err sl_report_open_script(FILE **m, char **body, size_t *blen, FILE **dm, char **data, size_t *dlen,
                                   const char *what, struct sl_diag *d);
+/* Close what sl_report_open_script opened: SL_OK with *body and *data the
+ * script and its data, or (bad set by the caller, a write or close failed)
+ * both freed, NULL, and an error naming what. */
+enum sl_err sl_report_close_script(FILE *m, FILE *dm, char **body, char **data, int bad, const char *what,
+                                   struct sl_diag *d);
 /* The colour and gnuplot marker of the k-th label of a plot (Okabe-Ito, twelve
  * markers), the same in every plot. */
 void sl_report_style(int k, const char **colour, int *pt);
