@@ -113,6 +113,10 @@ bench)
   grep -q '^--jobs 2: 0 of 2 view(s) started in both workers.*merge of 12 cells' "$tmp/bench.md" || { cat "$tmp/bench.md"; fail "split/merge line"; }
   grep -qE '\| small, --jobs 2 over one process, wall \|' "$tmp/bench.md" || { cat "$tmp/bench.md"; fail "summary row"; }
   ls "$tmp/t" | grep -q "^shadowlab-bench-jobs\." && fail "temporary folder left" || true
+  # the folder is made under TMPDIR: one that does not exist fails the stage, naming it
+  TMPDIR="$tmp/none" "$bin" bench "$tmp/small.yaml" --only jobs >/dev/null 2>"$tmp/bench.err" &&
+    fail "bench ran with TMPDIR a missing folder"
+  grep -q "$tmp/none/shadowlab-bench-jobs" "$tmp/bench.err" || { cat "$tmp/bench.err"; fail "the missing TMPDIR not named"; }
   ;;
 *) echo "unknown case $case_"; exit 2 ;;
 esac
