@@ -3,12 +3,14 @@
  * shadow map's own information (depths and the ids of the triangles it
  * stores) confirms or corrects a pixel with a handful of ray-triangle tests.
  *
- * All read the front-face-culled depth + id layer of normal shadow mapping
+ * All read (coherence by default) the front-face-culled depth + id layer of normal shadow mapping
  * (the thesis's map) and start from its verdict (kept in verdicts.base, so
  * the figures count corrected / turned bad / maintained against NSM):
  * - coherence (texels 4 or 9): the pixel's depth test against the 2x2 texels
  *   of its bilinear footprint or the 3x3 around its texel; all agree: a hint
- *   (may be wrong); otherwise undecided.
+ *   (may be wrong); otherwise undecided. Its self_shadow (default
+ *   front_faces, the thesis's) may name any of nsm's policies, read from
+ *   the map of the nearest surfaces as nsm reads it.
  * - texel: a ray against the triangle stored in the texel: a hit shadows the
  *   pixel (confirms NSM's shadow, or corrects its light: Figure 19).
  * - neighbours (texels 4 or 9): the same against the triangles of the texel
@@ -47,6 +49,13 @@ static unsigned needs_adj(const struct sl_method_params *p) { (void)p; return SL
 static const struct sl_param texels_params[] = {
     SL_PARAM_INT_DECL("texels", 4, 4, 9, "texels", "texels tested: 4 (2x2) or 9 (3x3)"),
 };
+/* coherence alone takes the self-shadow policy too (issue 48: which policy
+ * reproduces the thesis's wrong hints); the chain keeps the thesis's map */
+static const struct sl_param coherence_params[] = {
+    SL_PARAM_INT_DECL("texels", 4, 4, 9, "texels", "texels tested: 4 (2x2) or 9 (3x3)"),
+    SL_SELF_SHADOW_DECL,
+    SL_DEPTH_BIAS_DECLS,
+};
 static const struct sl_param level_params[] = {
     SL_PARAM_INT_DECL("level", 2, 1, 2, "", "1: the stored triangle's edge neighbours; 2: and its vertex neighbours"),
 };
@@ -61,6 +70,25 @@ static enum sl_err conf_texels(struct sl_method_params *p, struct sl_diag *d)
     if (texels != 4 && texels != 9)
         return sl_fail(d, SL_E_METHOD, NULL, 0, "texels", "texels must be 4 or 9");
     return SL_OK;
+}
+
+static enum sl_err conf_coherence(struct sl_method_params *p, struct sl_diag *d)
+{
+    enum sl_err e = conf_texels(p, d);
+    return e ? e : sl_self_shadow_configure(p, d);
+}
+
+static int coherence_policy(const struct sl_method_params *p)
+{
+    return (int)sl_method_param(p, "self_shadow");
+}
+
+/* front_faces reads the thesis's culled map; the other policies the map
+ * of the nearest surfaces, as nsm does under them */
+static unsigned needs_coherence(const struct sl_method_params *p)
+{
+    return coherence_policy(p) == SL_SELF_FRONT_FACES ? SL_NEED(SL_LAYER_DEPTH_ID_BACK)
+                                                      : SL_NEED(SL_LAYER_DEPTH_ID);
 }
 
 struct ctx {
@@ -400,7 +428,72 @@ static enum sl_err run_chain_steps(const struct sl_method_args *a, struct sl_ver
     return e;
 }
 
-static enum sl_err run_coherence(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_COHERENCE, d); }
+/* Coherence under a self-shadow policy other than the thesis's culled map
+ * (none, constant, slope, triangle_id): the map of the nearest surfaces,
+ * NSM's verdict and each footprint texel's test made as nsm makes them
+ * under that policy (the same offset; under triangle_id a texel storing
+ * the pixel's own triangle says lit), over the texels sl_frame_pcf_lit
+ * reads. Under front_faces run_kind's path is taken (the driver's shared
+ * lookups). */
+static enum sl_err run_coherence_policy(const struct sl_method_args *a, struct sl_verdicts *out,
+                                        struct sl_cost *cost, struct sl_diag *d)
+{
+    const struct sl_view *v = a->view;
+    const struct sl_light_frame *f = a->frame;
+    if (!(f->have & SL_NEED(SL_LAYER_DEPTH_ID)))
+        return sl_fail(d, SL_E_INTERNAL, NULL, 0, NULL, "coherence: the nearest-surface map was not rendered");
+    const float *depth = f->layer[SL_LAYER_DEPTH_ID].depth;
+    const uint32_t *id = f->layer[SL_LAYER_DEPTH_ID].id;
+    const int S = f->size;
+    const int texels = (int)sl_method_param(a->params, "texels");
+    const int n1 = texels == 4 ? 2 : 3;
+    struct sl_self_test t;
+    sl_self_test_of(a, &t);
+    const int tid = t.policy == SL_SELF_TRIANGLE_ID;
+    const long n = (long)v->w * v->h;
+    out->has_base = 1;
+    out->has_detail = 1;
+    uint64_t lookups = 0;
+    double t0 = sl_now();
+#pragma omp parallel for num_threads(a->threads) schedule(dynamic, 4096) reduction(+ : lookups)
+    for (long i = 0; i < n; i++) {
+        if (sl_verdict_fixed(v, (size_t)i, out)) {
+            out->base[i] = out->v[i];
+            continue;
+        }
+        const float *p = v->pos + 3 * i;
+        float u, w, z;
+        sl_frame_project(f, p, &u, &w, &z);
+        const uint32_t k = sl_frame_texel(f, u, w), own = v->tri[i];
+        const float zo = z - sl_self_offset(&t, f, p, v->nrm + 3 * i, z);
+        out->base[i] = (tid && id[k] == own) || zo <= depth[k] ? SL_V_LIT : SL_V_SHADOW;
+        const int x0 = texels == 4 ? (int)floorf(u - 0.5f) : (int)floorf(u) - 1;
+        const int y0 = texels == 4 ? (int)floorf(w - 0.5f) : (int)floorf(w) - 1;
+        int lit = 0;
+        for (int jj = 0; jj < n1; jj++)
+            for (int ii = 0; ii < n1; ii++) {
+                int tx = x0 + ii, ty = y0 + jj;
+                tx = tx < 0 ? 0 : tx >= S ? S - 1 : tx;
+                ty = ty < 0 ? 0 : ty >= S ? S - 1 : ty;
+                const size_t kk = (size_t)ty * (size_t)S + (size_t)tx;
+                lit += (tid && id[kk] == own) || zo <= depth[kk];
+            }
+        lookups += 1 + (uint64_t)(n1 * n1);
+        const int coh = lit == n1 * n1 ? 1 : lit == 0 ? 2 : 0;
+        out->v[i] = coh == 1 ? SL_V_LIT : coh == 2 ? SL_V_SHADOW : SL_V_UNCERTAIN;
+        out->how[i] = coh ? SL_HOW_HINT : SL_HOW_NONE;
+        out->detail[i] = (uint8_t)(n1 * n1 - lit);
+    }
+    cost->ms_method += 1e3 * (sl_now() - t0);
+    cost->lookups += lookups;
+    return SL_OK;
+}
+
+static enum sl_err run_coherence(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d)
+{
+    return coherence_policy(a->params) == SL_SELF_FRONT_FACES ? run_kind(a, o, c, K_COHERENCE, d)
+                                                               : run_coherence_policy(a, o, c, d);
+}
 static enum sl_err run_texel(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_TEXEL, d); }
 static enum sl_err run_neighbours(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_NEIGHBOURS, d); }
 static enum sl_err run_adjacency(const struct sl_method_args *a, struct sl_verdicts *o, struct sl_cost *c, struct sl_diag *d) { return run_kind(a, o, c, K_ADJACENCY, d); }
@@ -409,7 +502,7 @@ static enum sl_err run_chain(const struct sl_method_args *a, struct sl_verdicts 
 const struct sl_method sl_method_coherence = {
     .cite = "moderno2011",
     .name = "coherence", .display = "Texel coherence", .family = "moderno-2011", .summary = "texel coherence, 4 or 9 texels (Moderno 2011): hints, may be wrong",
-    SL_METHOD_PARAMS(texels_params), .needs = needs_map, .configure = conf_texels, .run = run_coherence,
+    SL_METHOD_PARAMS(coherence_params), .needs = needs_coherence, .configure = conf_coherence, .run = run_coherence,
     .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK), .look_parts = SL_LOOK_PCF},
 };
 const struct sl_method sl_method_texel = {

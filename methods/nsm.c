@@ -44,7 +44,7 @@ static const struct sl_param nsm_params[] = {SL_SELF_SHADOW_DECL, SL_DEPTH_BIAS_
 /* bias applies to the constant and slope policies, slope to slope alone;
  * bias defaults to 1 texel under constant and to 0 under slope (the slope
  * term carries it). */
-static enum sl_err nsm_configure(struct sl_method_params *p, struct sl_diag *d)
+enum sl_err sl_self_shadow_configure(struct sl_method_params *p, struct sl_diag *d)
 {
     struct sl_params *s = &p->values;
     int policy = policy_of(p);
@@ -67,6 +67,39 @@ static enum sl_err nsm_configure(struct sl_method_params *p, struct sl_diag *d)
     return SL_OK;
 }
 
+void sl_self_test_of(const struct sl_method_args *a, struct sl_self_test *t)
+{
+    const struct sl_light_frame *f = a->frame;
+    const int policy = policy_of(a->params);
+    const float texel_z = f->texel_world / f->depth_range;
+    const float *Ld = a->scene->light_dir;
+    t->policy = policy;
+    t->persp = f->box.persp;
+    t->bias_texels = (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE) ? (float)sl_method_param(a->params, "bias") : 0.0f;
+    t->slope_texels = policy == SL_SELF_SLOPE ? (float)sl_method_param(a->params, "slope") : 0.0f;
+    t->bias = t->bias_texels * texel_z;
+    t->slope = t->slope_texels * texel_z;
+    t->toward[0] = -Ld[0], t->toward[1] = -Ld[1], t->toward[2] = -Ld[2];
+}
+
+float sl_self_offset(const struct sl_self_test *t, const struct sl_light_frame *f, const float pos[3],
+                     const float nrm[3], float z)
+{
+    float off = t->bias, sl = t->slope, toward[3] = {t->toward[0], t->toward[1], t->toward[2]};
+    if (t->persp && (t->bias_texels > 0.0f || t->slope_texels > 0.0f)) {
+        float tz = (float)(sl_frame_texel_world_at(f, z) / sl_frame_world_per_depth(f, z)), tmax;
+        off = t->bias_texels * tz;
+        sl = t->slope_texels * tz;
+        sl_frame_toward(f, pos, toward, &tmax);
+    }
+    if (sl > 0.0f) {
+        float cosa = nrm[0] * toward[0] + nrm[1] * toward[1] + nrm[2] * toward[2];
+        float tana = sqrtf(fmaxf(0.0f, 1.0f - cosa * cosa)) / cosa;
+        off += sl * fminf(tana, 10.0f);
+    }
+    return off;
+}
+
 static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *out,
                            struct sl_cost *c, struct sl_diag *d)
 {
@@ -82,19 +115,14 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
     /* offsets in window depth units: world units / depth range (a point
      * light's frustum: per pixel, with the texel's size and the depth's
      * scale at the pixel's depth, and the slope toward the light point) */
-    const int persp = f->box.persp;
-    const float texel_z = f->texel_world / f->depth_range;
-    const float bias_texels = (policy == SL_SELF_CONSTANT || policy == SL_SELF_SLOPE) ? (float)sl_method_param(a->params, "bias") : 0.0f;
-    const float slope_texels = policy == SL_SELF_SLOPE ? (float)sl_method_param(a->params, "slope") : 0.0f;
-    const float bias = bias_texels * texel_z;
-    const float slope = slope_texels * texel_z;
-    const float *Ld = a->scene->light_dir;
+    struct sl_self_test t;
+    sl_self_test_of(a, &t);
     const long n = (long)v->w * v->h;
     /* no offset to compute (front_faces, none, or a zero bias): the one
      * comparison, without the per-pixel tests of the general path below;
      * bias == 0.0f is false for a NaN bias, which keeps the general path's
      * answer then too */
-    const int plain = (policy == SL_SELF_FRONT_FACES || policy == SL_SELF_NONE) && bias == 0.0f && slope == 0.0f;
+    const int plain = (policy == SL_SELF_FRONT_FACES || policy == SL_SELF_NONE) && t.bias == 0.0f && t.slope == 0.0f;
     uint64_t lookups = 0;
     /* the plain test made by the driver already, with every pixel's
      * lookup (frame.h: sl_frame_look; its time charged here below) */
@@ -120,19 +148,7 @@ static enum sl_err nsm_run(const struct sl_method_args *a, struct sl_verdicts *o
             out->v[i] = z <= depth[k] ? SL_V_LIT : SL_V_SHADOW;
             continue;
         }
-        float off = bias, sl = slope, toward[3] = {-Ld[0], -Ld[1], -Ld[2]};
-        if (persp && (bias_texels > 0.0f || slope_texels > 0.0f)) {
-            float tz = (float)(sl_frame_texel_world_at(f, z) / sl_frame_world_per_depth(f, z)), tmax;
-            off = bias_texels * tz;
-            sl = slope_texels * tz;
-            sl_frame_toward(f, v->pos + 3 * i, toward, &tmax);
-        }
-        if (sl > 0.0f) {
-            const float *nn = v->nrm + 3 * i;
-            float cosa = nn[0] * toward[0] + nn[1] * toward[1] + nn[2] * toward[2];
-            float tana = sqrtf(fmaxf(0.0f, 1.0f - cosa * cosa)) / cosa;
-            off += sl * fminf(tana, 10.0f);
-        }
+        const float off = sl_self_offset(&t, f, v->pos + 3 * i, v->nrm + 3 * i, z);
         int lit;
         if (policy == SL_SELF_TRIANGLE_ID && id[k] == v->tri[i])
             lit = 1;
@@ -151,7 +167,7 @@ const struct sl_method sl_method_nsm = {
     .summary = "normal shadow mapping (self_shadow: front_faces|none|constant|slope|triangle_id)",
     SL_METHOD_PARAMS(nsm_params),
     .needs = nsm_needs,
-    .configure = nsm_configure,
+    .configure = sl_self_shadow_configure,
     .run = nsm_run,
     .fast = {.looks = SL_NEED(SL_LAYER_DEPTH_ID_BACK)},
 };

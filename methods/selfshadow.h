@@ -9,6 +9,11 @@
 #ifndef SL_SELFSHADOW_H
 #define SL_SELFSHADOW_H
 #include "params.h"
+#include "sl_error.h"
+
+struct sl_method_params;
+struct sl_method_args;
+struct sl_light_frame;
 
 /* Self-shadow policies of the depth comparison (nsm), in the order of the
  * choice `self_shadow` (its value is the index). */
@@ -40,5 +45,30 @@ const char *sl_self_shadow_name(enum sl_self_shadow s);
                         "under slope)"),                                                                \
     SL_PARAM_FLOAT_DECL("slope", 1, 0, 1000, "texels",                                                 \
                         "self_shadow slope: texels of depth per unit of tan(angle)")
+
+
+/* nsm's checks of the comparison's parameters (bias under constant or
+ * slope only, slope under slope only) and their derived defaults (bias 1
+ * texel under constant, 0 under slope): every method that declares them
+ * configures them so. */
+enum sl_err sl_self_shadow_configure(struct sl_method_params *p, struct sl_diag *d);
+
+/* One run's depth comparison: the policy and its offsets, in window depth
+ * units for a directional frame (persp: recomputed per pixel). */
+struct sl_self_test {
+    int policy;
+    int persp;
+    float bias_texels, slope_texels;   /* as configured */
+    float bias, slope;                 /* directional: in window depth units */
+    float toward[3];                   /* toward the light (directional) */
+};
+void sl_self_test_of(const struct sl_method_args *a, struct sl_self_test *t);
+
+/* The offset subtracted from a pixel's window depth z before it is
+ * compared with a stored depth: 0 under front_faces, none and triangle_id;
+ * the bias, plus the slope term scaled by tan of the normal's angle to the
+ * light (clamped at 10), under constant and slope. */
+float sl_self_offset(const struct sl_self_test *t, const struct sl_light_frame *f, const float pos[3],
+                     const float nrm[3], float z);
 
 #endif

@@ -16,7 +16,10 @@ mkdir -p "$out"
 case $what in
 contours)
     # Primitives as configs/default.yaml, every self-shadow policy NSM has,
-    # contours drawn from each label's own image (raytrace: the truth's).
+    # for NSM and coherence-4, contours drawn from each label's own image
+    # (raytrace: the truth's). Wrong hints: shadowlab table DB --rows label
+    # --cols viewpoint --figure hinted_light_wrong (hinted_shadow_wrong)
+    # --of count --agg sum --where region=image --where map_size=1024.
     for from in own nsm; do
         cat > "$out/prim-$from.yaml" <<YAML
 name: prim-$from
@@ -36,6 +39,11 @@ methods:
   - {label: nsm_slope, method: nsm, self_shadow: slope, bias: 0, slope: 1}
   - {label: nsm_tid, method: nsm, self_shadow: triangle_id}
   - {label: coherence4, method: coherence, texels: 4}
+  - {label: coh4_none, method: coherence, texels: 4, self_shadow: none}
+  - {label: coh4_const1, method: coherence, texels: 4, self_shadow: constant, bias: 1}
+  - {label: coh4_const2, method: coherence, texels: 4, self_shadow: constant, bias: 2}
+  - {label: coh4_slope, method: coherence, texels: 4, self_shadow: slope, bias: 0, slope: 1}
+  - {label: coh4_tid, method: coherence, texels: 4, self_shadow: triangle_id}
 outputs: {tables: true, overlays: false}
 repetitions: {warmup: 0, runs: 1}
 YAML

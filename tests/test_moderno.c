@@ -906,6 +906,75 @@ static void moderno_wrong_hints_gap(void **st)
     fig_close(&g);
 }
 
+/* Coherence under each of nsm's self-shadow policies other than the
+ * thesis's (issue 48: which policy gives the thesis's wrong hints), on
+ * Primitives/side at 1024 x 1024 with a 1024² map: its base is nsm's
+ * verdict under the same policy pixel for pixel; a hint says what nsm
+ * says (the pixel's own texel is one of the footprint's); under none the
+ * footprint's count is sl_frame_pcf_lit's on the nearest-surface map;
+ * under triangle_id no pixel whose whole footprint stores its own
+ * triangle is shadowed; the policies differ from one another. */
+static void moderno_coherence_policies(void **st)
+{
+    (void)st;
+    struct fig g;
+    fig_open(&g, "primitives");
+    fig_view_study(&g, 0);
+    fig_frame_study(&g, 1024);
+    struct sl_diag d;
+    assert_int_equal(sl_shadowmap_render(&g.sp, &g.f.mesh, &g.fr, SL_NEED(SL_LAYER_DEPTH_ID) | SL_NEED(SL_LAYER_DEPTH_ID_BACK), &d),
+                     SL_OK);
+    const size_t n = (size_t)g.v.w * g.v.h;
+    static const char *const specs[][2] = {
+        {"self_shadow=none", "texels=4 self_shadow=none"},
+        {"self_shadow=constant bias=1", "texels=4 self_shadow=constant bias=1"},
+        {"self_shadow=constant bias=2", "texels=9 self_shadow=constant bias=2"},
+        {"self_shadow=slope", "texels=4 self_shadow=slope"},
+        {"self_shadow=triangle_id", "texels=4 self_shadow=triangle_id"},
+    };
+    uint8_t *nsm = malloc(n);
+    uint64_t hints[5];
+    for (int k = 0; k < 5; k++) {
+        fig_run(&g, "nsm", specs[k][0]);
+        memcpy(nsm, g.vd.v, n);
+        fig_run(&g, "coherence", specs[k][1]);
+        assert_true(g.vd.has_base);
+        const int texels = strstr(specs[k][1], "texels=9") ? 9 : 4;
+        uint64_t h = 0, uncertain = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (g.v.cls[i] != SL_C_PFL)
+                continue;
+            assert_int_equal(g.vd.base[i], nsm[i]);
+            if (g.vd.how[i] == SL_HOW_HINT) {
+                assert_int_equal(g.vd.v[i], nsm[i]);
+                assert_true(g.vd.detail[i] == 0 || g.vd.detail[i] == texels);
+                h++;
+            } else {
+                assert_int_equal(g.vd.v[i], SL_V_UNCERTAIN);
+                assert_true(g.vd.detail[i] > 0 && g.vd.detail[i] < texels);
+                uncertain++;
+            }
+            if (k == 0) {
+                float u, w, z;
+                sl_frame_project(&g.fr, g.v.pos + 3 * i, &u, &w, &z);
+                assert_int_equal(texels - g.vd.detail[i],
+                                 sl_frame_pcf_lit(g.fr.layer[SL_LAYER_DEPTH_ID].depth, 1024, u, w, z, 4));
+            }
+        }
+        hints[k] = h;
+        printf("coherence_policies primitives/side map 1024: %s: %llu hints, %llu uncertain\n", specs[k][1],
+               (unsigned long long)h, (unsigned long long)uncertain);
+        assert_true(uncertain > 0);
+    }
+    /* none shadows its own surfaces in stripes (acne), which a bias or
+     * the triangle test takes away: fewer uncertain pixels, more hints */
+    assert_true(hints[1] > hints[0]);
+    assert_true(hints[4] > hints[0]);
+    assert_true(hints[1] != hints[3]);
+    free(nsm);
+    fig_close(&g);
+}
+
 /* Contour pixels with 8-connectivity: a pixel whose 3 x 3 neighbourhood
  * holds the other state (the change), then dilations by the 3 x 3 square.
  * Returns the counts for 2, 4, 6 px in n[0..2]. */
@@ -1191,6 +1260,7 @@ int main(int argc, char **argv)
         SL_CASE(moderno, wrong_hints_where),
         SL_CASE(moderno, contour_connectivity),
         SL_CASE(moderno, wrong_hints_gap),
+        SL_CASE(moderno, coherence_policies),
         SL_CASE(moderno, lookups_as_computed),
         SL_CASE(moderno, lookups_shared_only),
         SL_CASE(moderno, lookups_made_by_rule),
