@@ -265,6 +265,22 @@ static void e2e_exr_layers(void **st)
     assert_int_equal(wrong, f->wrong_image);
     assert_int_equal(in2, f->r[0].n[SL_FIG_pixels]);
     assert_true(lit > 0 && bg > 0);
+    /* the mesh layer: 0 on background alone, else the pixel's mesh in the
+     * scene file's order, named in the header; the blocks' four meshes
+     * all seen from above, the ground most */
+    unsigned *mesh;
+    assert_int_equal(sl_image_read_layer(path, "mesh", &w, &h, &mesh, &d), SL_OK);
+    char legend[256];
+    assert_int_equal(sl_image_read_attr(path, "shadowlab:mesh", legend, sizeof legend, &d), SL_OK);
+    assert_string_equal(legend, "0 background, 1 ground, 2 block, 3 slab, 4 pyramid");
+    uint64_t on[5] = {0, 0, 0, 0, 0};
+    for (int i = 0; i < w * h; i++) {
+        assert_true(mesh[i] <= 4);
+        assert_int_equal(mesh[i] == 0, truth[i] == SL_T_BACKGROUND);
+        on[mesh[i]]++;
+    }
+    assert_true(on[1] > on[2] && on[2] > 0 && on[3] > 0 && on[4] > 0);
+    free(mesh);
     free(truth);
     free(verdict);
     free(contour);

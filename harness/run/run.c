@@ -736,6 +736,7 @@ static enum sl_err run_cell(struct run_ctx *x, const struct sl_config *c, const 
         .state = x->state, .band = x->band, .rgb = x->rgb, .params = &cm->params,
         .shared_band = c->contour_from == SL_CONTOUR_NSM ? x->nsm_band : NULL, .shared_band_ms = x->nsm_band_ms,
         .overlay_path = ovdir ? ovpath : NULL, .exr_path = exrdir ? exrpath : NULL, .label = cm->label,
+        .scene = &x->scene,
         .visibility_path = visdir ? vispath : NULL,
         .alias_cache = &x->alias, .aliasing = c->aliasing,
         .overlay_shade = &x->shade,

@@ -187,8 +187,42 @@ static enum sl_err write_overlay(const struct sl_cell_inputs *in, const struct s
     return sheet_write(in, slot, &sh, d);
 }
 
+/* The EXR's mesh layer: code k + 1 for a pixel on the scene's k-th named
+ * mesh (scene.h: its triangle ranges, in the scene file's order), 255 for
+ * the 255th and later, 0 on background. Returns the header's legend
+ * ("0 background, 1 ground, 2 box, ...", malloc'ed), NULL out of memory. */
+static char *mesh_codes(const struct sl_scene *s, const struct sl_view *v, uint8_t *code)
+{
+    const size_t npx = (size_t)v->w * (size_t)v->h;
+    const int nr = s ? s->nranges : 0;
+    int r = 0;
+    for (size_t i = 0; i < npx; i++) {
+        uint32_t t = v->tri ? v->tri[i] : 0;
+        code[i] = 0;
+        if (!t || !nr)
+            continue;
+        t--;
+        /* neighbours lie mostly on one mesh: start at the last one found */
+        if (t < s->ranges[r].first || t >= s->ranges[r].first + s->ranges[r].count)
+            for (r = 0; r < nr - 1 && !(t >= s->ranges[r].first && t < s->ranges[r].first + s->ranges[r].count); r++)
+                ;
+        if (t >= s->ranges[r].first && t < s->ranges[r].first + s->ranges[r].count)
+            code[i] = (uint8_t)(r < 254 ? r + 1 : 255);
+    }
+    size_t cap = 64 + (size_t)nr * (SL_MESH_NAME + 8), k = 0;
+    char *legend = malloc(cap);
+    if (!legend)
+        return NULL;
+    k += (size_t)snprintf(legend, cap, "0 background");
+    for (int j = 0; j < nr && j < 254; j++)
+        k += (size_t)snprintf(legend + k, cap - k, ", %d %s", j + 1, s->ranges[j].name);
+    if (nr > 254)
+        snprintf(legend + k, cap - k, ", 255 the 255th mesh and later");
+    return legend;
+}
+
 /* The EXR layers, each code named in the header (shadowlab:<layer>).
- * errcls: w * h scratch. */
+ * errcls: w * h scratch; acode: 2 * w * h. */
 static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_verdicts *vd, const uint8_t *band,
                              const struct sl_cell *cell, uint8_t *errcls, const float *am, uint8_t *acode,
                              struct sl_diag *d)
@@ -231,10 +265,22 @@ static enum sl_err write_exr(const struct sl_cell_inputs *in, const struct sl_ve
     };
     for (size_t i = 0; i < npx; i++)
         acode[i] = am ? sl_alias_code(am[i]) : 0;
-    static const char *const names[] = {"truth", "verdict", "error", "contour", "how", "aliasing"};
-    const unsigned char *layers[] = {v->truth, vd->v, errcls, band, vd->how, acode};
-    return sl_image_write_layers(in->exr_path, v->w, v->h, 6, names, layers,
-                                 (int)(sizeof attrs / sizeof attrs[0]), attrs, d);
+    /* the mesh each pixel lies on: which object holds the errors */
+    uint8_t *mcode = acode + npx;
+    char *meshes = mesh_codes(in->scene, v, mcode);
+    if (!meshes)
+        return sl_fail(d, SL_E_NOMEM, in->exr_path, 0, NULL, "EXR mesh names");
+    const struct sl_image_attr all[] = {
+        attrs[0], attrs[1], attrs[2], attrs[3], attrs[4], attrs[5],
+        {"shadowlab:mesh", meshes},
+        attrs[6], attrs[7],
+    };
+    static const char *const names[] = {"truth", "verdict", "error", "contour", "how", "aliasing", "mesh"};
+    const unsigned char *layers[] = {v->truth, vd->v, errcls, band, vd->how, acode, mcode};
+    enum sl_err e = sl_image_write_layers(in->exr_path, v->w, v->h, 7, names, layers,
+                                          (int)(sizeof all / sizeof all[0]), all, d);
+    free(meshes);
+    return e;
 }
 
 /* The visibility the cell was scored on, as `shadowlab grade` reads it

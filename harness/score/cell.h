@@ -139,6 +139,8 @@ struct sl_cell_inputs {
                                                * writer): drawn into one of its slots and written by
                                                * it; NULL: written here, in the rgb scratch */
     const char *exr_path;                     /* NULL: no EXR layers */
+    const struct sl_scene *scene;             /* its named meshes: the EXR's mesh layer (NULL: that
+                                               * layer all 0) */
     const char *visibility_path;              /* the visibility as scored, an EXR of V, A and Z (config
                                                * outputs.visibility: exr; doc/grade.md); NULL: none */
     int threads;                              /* the scoring pass's (the config's threads; 0: every core) */
