@@ -4,14 +4,14 @@
 # items 4 and 5). Each study is an ordinary config run by build/shadowlab;
 # nothing here changes a scene or a method, only the labels, contours and
 # set-up the run is given. Usage:
-#   scripts/i48_measure.sh OUT_DIR [contours|hertel] [-D KEY=VALUE]...
+#   scripts/i48_measure.sh OUT_DIR [contours|hertel|kinds] [-D KEY=VALUE]...
 # the -D overrides go to `shadowlab run` as they are (e.g. -D name=hertel-sphere
 # -D 'methods[1].light_frame={fit: sphere}').
 set -eu
-out=${1:?usage: i48_measure.sh OUT_DIR [contours|hertel]}
+out=${1:?usage: i48_measure.sh OUT_DIR [contours|hertel|kinds]}
 what=${2:-contours}
 shift; [ $# -gt 0 ] && shift
-bin=${SHADOWLAB:-build/shadowlab}
+bin=$(realpath "${SHADOWLAB:-build/shadowlab}")
 mkdir -p "$out"
 case $what in
 contours)
@@ -72,5 +72,27 @@ outputs: {tables: true, overlays: false, exr: true, aliasing: true}
 repetitions: {warmup: 0, runs: 1}
 YAML
     nice -n 10 "$bin" run "$out/hertel.yaml" -o "$out" -q "$@" ;;
-*) echo "i48_measure.sh: unknown study '$what' (contours or hertel)" >&2; exit 2 ;;
+kinds)
+    # NSM's error kinds per mesh (scripts/i48_kinds.py OUT/nsm-kinds/exr):
+    # the validation set's nine views at 1024 x 1024 with the 2048² map,
+    # then the same with the trees' leaf cards one-sided (a copy of the
+    # scenes under OUT/sc, tree_a and tree_b two_sided: false).
+    rm -rf "$out/sc" && cp -r scenes "$out/sc"
+    sed -i 's/two_sided: true/two_sided: false/' "$out/sc/bench.yaml"
+    for v in "nsm-kinds bench trees flowers" "nsm-kinds-one-sided sc/bench.yaml sc/trees.yaml sc/flowers.yaml"; do
+        set -- $v
+        cat > "$out/$1.yaml" <<YAML
+name: $1
+scenes: [{scene: $2}, {scene: $3}, {scene: $4}]
+viewports: [{width: 1024, height: 1024}]
+map_sizes: [2048]
+contours: [2]
+methods:
+  - {label: nsm, method: nsm, self_shadow: front_faces}
+outputs: {tables: false, overlays: false, exr: true}
+repetitions: {warmup: 0, runs: 1}
+YAML
+        (cd "$out" && nice -n 10 "$bin" run "$1.yaml" -o . -q)
+    done ;;
+*) echo "i48_measure.sh: unknown study '$what' (contours, hertel or kinds)" >&2; exit 2 ;;
 esac

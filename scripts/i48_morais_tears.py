@@ -1,0 +1,49 @@
+#!/usr/bin/env python3
+"""i48_morais_tears.py -- Morais 2015's SGSM wrongly lit pixels (Tables 7-24,
+512x512) with and without adjacency, ours beside the thesis's, per case and
+map (issue 48, item 3: why the conservative maps' uncertain counts sit at
+0.17-0.34x the thesis's). SGSM shrinks each triangle on its own and tears a
+mesh along its shared edges; SGSM with adjacency keeps the shared edges
+(Morais, chapter 4), so what adjacency removes is the tears' share.
+
+  scripts/i48_morais_tears.py [--build build] OUT_DIR
+
+Runs scripts/calibration_validation.py's Morais study into OUT_DIR.
+"""
+import argparse
+import importlib.util
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", default="build")
+    ap.add_argument("out")
+    a = ap.parse_args()
+    spec = importlib.util.spec_from_file_location("cv", os.path.join(HERE, "calibration_validation.py"))
+    cv = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(cv)
+    os.makedirs(a.out, exist_ok=True)
+    db = cv.run(os.path.abspath(os.path.join(a.build, "shadowlab")), cv.CONFIG_MORAIS, a.out, "m")
+    fm = cv.figs(db)
+    db.close()
+    th = {}
+    for t, s, v, m, meth, row, n in cv.thesis_rows():
+        if row == "light_incorrect" and meth in ("sgsm", "sgsm_adj"):
+            th[(s, v, m, meth)] = n
+    print("| case | map | SGSM ours | thesis | ratio | with adjacency ours | thesis | ratio "
+          "| adjacency keeps, ours | thesis |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for (s, v, m, meth) in sorted(k for k in th if k[3] == "sgsm"):
+        o, t = fm[(s, v, m, "sgsm")]["light_incorrect"], th[(s, v, m, "sgsm")]
+        oa, ta = fm[(s, v, m, "sgsm_adj")]["light_incorrect"], th.get((s, v, m, "sgsm_adj"))
+        if ta is None:
+            continue
+        print(f"| {s} / {v} | {m}² | {o} | {t} | {o / t:.2f} | {oa} | {ta} | {oa / ta:.2f} | "
+              f"{oa / o:.2f} | {ta / t:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
