@@ -473,6 +473,10 @@ static enum sl_err section_study(struct sl_report_doc *doc, struct sl_report_stu
         sl_report_doc_heading(doc, 3, NULL, "%s: fidelity to Moderno 2011 (Primitives)", s->name);
         e = sl_report_fidelity(doc, s, d);
     }
+    if (!e && sl_report_fidelity_scenes_applies(s)) {
+        sl_report_doc_heading(doc, 3, NULL, "%s: validation against Moderno 2011 (Bench, Trees, Flowers)", s->name);
+        e = sl_report_fidelity_scenes(doc, s, d);
+    }
     if (!e && s->morais) {
         sl_report_doc_heading(doc, 3, NULL, "%s: tables in Morais 2015's layout", s->name);
         e = sl_report_morais(doc, s, d);

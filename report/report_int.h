@@ -220,6 +220,13 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
  * per viewport, the median of ours / thesis and the share within 2x. */
 enum sl_err sl_report_fidelity_morais(struct sl_report_doc *doc, const struct sl_report_study *s,
                                       struct sl_diag *d);
+/* The Bench scenes' validation against Moderno 2011 (scenes/CALIBRATION.md):
+ * its appendix with the 2048² map (NSM's contour and wrong pixels, the
+ * dominant error kind) and Table 15 (the chain, the rest lit); applies
+ * only where the study has a cell of either (an unreadable file applies). */
+int         sl_report_fidelity_scenes_applies(const struct sl_report_study *s);
+enum sl_err sl_report_fidelity_scenes(struct sl_report_doc *doc, const struct sl_report_study *s,
+                                      struct sl_diag *d);
 
 /* plots.c */
 enum sl_err sl_report_gnuplot_find(const char *want, char *path, size_t n, struct sl_diag *d);

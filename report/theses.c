@@ -42,7 +42,7 @@
 
 /* The largest file read: the three are 60-140 kB. */
 #define MAX_BYTES (8u << 20)
-#define MAX_COLS 12
+#define MAX_COLS 16
 #define MAX_NAME 47     /* the cells' label is 48 bytes */
 #define MAX_NOTE 1000
 
@@ -121,6 +121,35 @@ static const struct col hertel_cols[] = {
     COL("note", C_NOTE, 0, 0, 0, sl_hertel_row, note, 0),
 };
 
+static const struct col scenes_cols[] = {
+    COL("table", C_INT, 1, 999, 0, sl_thesis_scene_view, table, 1),
+    COL("page", C_PAGE, 1, 9999, 0, sl_thesis_scene_view, page, 0),
+    COL("scene", C_NAME, 0, 0, 0, sl_thesis_scene_view, scene, 1),
+    COL("viewpoint", C_NAME, 0, 0, 0, sl_thesis_scene_view, viewpoint, 1),
+    COL("map_size", C_INT, 16, 16384, 1, sl_thesis_scene_view, map_size, 1),
+    COL("c2_lit_wrong", C_U64, 0, 0, 0, sl_thesis_scene_view, c2_lit_wrong, 0),
+    COL("c2_lit", C_U64, 0, 0, 0, sl_thesis_scene_view, c2_lit, 0),
+    COL("c2_shadow_wrong", C_U64, 0, 0, 0, sl_thesis_scene_view, c2_shadow_wrong, 0),
+    COL("c2_shadow", C_U64, 0, 0, 0, sl_thesis_scene_view, c2_shadow, 0),
+    COL("img_lit_wrong", C_U64, 0, 0, 0, sl_thesis_scene_view, img_lit_wrong, 0),
+    COL("img_lit", C_U64, 0, 0, 0, sl_thesis_scene_view, img_lit, 0),
+    COL("img_shadow_wrong", C_U64, 0, 0, 0, sl_thesis_scene_view, img_shadow_wrong, 0),
+    COL("img_shadow", C_U64, 0, 0, 0, sl_thesis_scene_view, img_shadow, 0),
+    COL("note", C_NOTE, 0, 0, 0, sl_thesis_scene_view, note, 0),
+};
+static const struct col table15_cols[] = {
+    COL("table", C_INT, 15, 15, 0, sl_thesis_table15, table, 1),
+    COL("page", C_PAGE, 1, 9999, 0, sl_thesis_table15, page, 0),
+    COL("case", C_NAME, 0, 0, 0, sl_thesis_table15, kase, 1),
+    COL("scene", C_NAME, 0, 0, 0, sl_thesis_table15, scene, 0),
+    COL("viewpoint", C_NAME, 0, 0, 0, sl_thesis_table15, viewpoint, 0),
+    COL("map_size", C_INT, 16, 16384, 1, sl_thesis_table15, map_size, 1),
+    COL("contour", C_INT, 0, 64, 0, sl_thesis_table15, contour, 0),
+    COL("label", C_NAME, 0, 0, 0, sl_thesis_table15, label, 1),
+    COL("percent", C_DEC, 0, 100, 0, sl_thesis_table15, pct, 0),
+    COL("note", C_NOTE, 0, 0, 0, sl_thesis_table15, note, 0),
+};
+
 static const struct schema {
     const char       *file;
     const struct col *cols;
@@ -135,6 +164,12 @@ static const struct schema {
                                 sizeof(struct sl_morais_time)},
     [SL_THESIS_HERTEL] = {"hertel-2009.csv", hertel_cols, (int)(sizeof hertel_cols / sizeof hertel_cols[0]),
                           sizeof(struct sl_hertel_row)},
+    [SL_THESIS_MODERNO_SCENES] = {"moderno-2011-scenes.csv", scenes_cols,
+                                  (int)(sizeof scenes_cols / sizeof scenes_cols[0]),
+                                  sizeof(struct sl_thesis_scene_view)},
+    [SL_THESIS_MODERNO_TABLE15] = {"moderno-2011-table15.csv", table15_cols,
+                                   (int)(sizeof table15_cols / sizeof table15_cols[0]),
+                                   sizeof(struct sl_thesis_table15)},
 };
 
 const char *sl_thesis_file_name(enum sl_thesis_kind k)
@@ -551,7 +586,10 @@ enum sl_err sl_thesis_file_load(enum sl_thesis_kind k, const char *path, struct 
         for (int j = 0; j < n && !e; j++)
             if (same_key(s, rows + (size_t)j * s->size, row))
                 e = sl_fail(d, SL_E_DATA, path, ln, "", "the same table, place and %s as line %d",
-                            k == SL_THESIS_MODERNO ? "figure" : k == SL_THESIS_MORAIS ? "row" : "method", lines[j]);
+                            k == SL_THESIS_MODERNO ? "figure" : k == SL_THESIS_MORAIS ? "row"
+                            : k == SL_THESIS_MODERNO_SCENES || k == SL_THESIS_MODERNO_TABLE15 ? "map size"
+                                                                                                : "method",
+                            lines[j]);
         if (!e)
             e = check_page(s, rows, n, lines, row, path, ln, d);
         lines[n++] = ln;
@@ -634,6 +672,22 @@ enum sl_err sl_theses_hertel(const struct sl_hertel_row **rows, int *n, struct s
 {
     const void *r;
     enum sl_err e = get(SL_THESIS_HERTEL, &r, n, d);
+    *rows = r;
+    return e;
+}
+
+enum sl_err sl_theses_moderno_scenes(const struct sl_thesis_scene_view **rows, int *n, struct sl_diag *d)
+{
+    const void *r;
+    enum sl_err e = get(SL_THESIS_MODERNO_SCENES, &r, n, d);
+    *rows = r;
+    return e;
+}
+
+enum sl_err sl_theses_moderno_table15(const struct sl_thesis_table15 **rows, int *n, struct sl_diag *d)
+{
+    const void *r;
+    enum sl_err e = get(SL_THESIS_MODERNO_TABLE15, &r, n, d);
     *rows = r;
     return e;
 }

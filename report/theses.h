@@ -2,7 +2,8 @@
  * theses.h — the theses' printed numbers, read at run time from the data
  * files of report/theses/ (one CSV per thesis, README.md there gives the
  * columns) into the arrays the report's sections compare with the study's
- * cells: Moderno 2011's Primitives appendix (fidelity.c) and Morais 2015's
+ * cells: Moderno 2011's Primitives appendix, its appendix on the Bench,
+ * Trees and Flowers scenes and its Table 15 (fidelity.c) and Morais 2015's
  * Tables 4-24 and their times, Tables 25-30 (morais.c).
  *
  * Where the files are: SHADOWLAB_THESES when set, else the installed share
@@ -42,6 +43,36 @@ struct sl_thesis_datum {
     enum sl_figure fig;
     uint64_t    value;
     const char *note;           /* a typo or an OCR garble and how it was resolved; NULL = none */
+};
+
+/* One view of the appendix on the Bench, Trees and Flowers scenes at
+ * 1024 x 1024 (moderno-2011-scenes.csv): NSM's wrongly lit of its lit and
+ * wrongly shadowed of its shadowed, in the 2 px contour (c2_) and the whole
+ * image (img_), with one map size. The loaded array ends in a row whose
+ * scene is NULL. */
+struct sl_thesis_scene_view {
+    int         table;
+    int         page;                /* 0 = not known */
+    const char *scene, *viewpoint;   /* as scenes/ names them */
+    int         map_size;
+    uint64_t    c2_lit_wrong, c2_lit, c2_shadow_wrong, c2_shadow;
+    uint64_t    img_lit_wrong, img_lit, img_shadow_wrong, img_shadow;
+    const char *note;
+};
+
+/* One case of Table 15 (moderno-2011-table15.csv): the cell's label (the
+ * chain with the uncertain pixels left lit), its wrong pixels as a % of the
+ * contour's, in the thesis's best, average or worst case. The loaded array
+ * ends in a row whose scene is NULL. */
+struct sl_thesis_table15 {
+    int         table;
+    int         page;                /* 0 = not known */
+    const char *kase;                /* "best", "average", "worst" */
+    const char *scene, *viewpoint;
+    int         map_size, contour;
+    const char *label;
+    double      pct;                 /* as printed */
+    const char *note;
 };
 
 /* ---- Morais 2015 (morais-2015.csv, morais-2015-times.csv; morais.c) ---- */
@@ -113,10 +144,12 @@ struct sl_hertel_row {
 
 /* ---- loading ---- */
 
-enum sl_thesis_kind { SL_THESIS_MODERNO, SL_THESIS_MORAIS, SL_THESIS_MORAIS_TIMES, SL_THESIS_HERTEL, SL_THESIS_NKINDS };
+enum sl_thesis_kind { SL_THESIS_MODERNO, SL_THESIS_MORAIS, SL_THESIS_MORAIS_TIMES, SL_THESIS_HERTEL,
+                      SL_THESIS_MODERNO_SCENES, SL_THESIS_MODERNO_TABLE15, SL_THESIS_NKINDS };
 
-/* One data file read: rows (struct sl_thesis_datum, sl_morais_datum or
- * sl_morais_time by kind) n of them and a zeroed row after them; their
+/* One data file read: rows (struct sl_thesis_datum, sl_morais_datum,
+ * sl_morais_time, sl_hertel_row, sl_thesis_scene_view or sl_thesis_table15
+ * by kind) n of them and a zeroed row after them; their
  * strings point into buf. */
 struct sl_thesis_file {
     enum sl_thesis_kind kind;
@@ -142,6 +175,8 @@ enum sl_err sl_theses_moderno(const struct sl_thesis_datum **rows, int *n, struc
 enum sl_err sl_theses_morais(const struct sl_morais_datum **rows, int *n, struct sl_diag *d);
 enum sl_err sl_theses_morais_times(const struct sl_morais_time **rows, int *n, struct sl_diag *d);
 enum sl_err sl_theses_hertel(const struct sl_hertel_row **rows, int *n, struct sl_diag *d);
+enum sl_err sl_theses_moderno_scenes(const struct sl_thesis_scene_view **rows, int *n, struct sl_diag *d);
+enum sl_err sl_theses_moderno_table15(const struct sl_thesis_table15 **rows, int *n, struct sl_diag *d);
 /* The page the thesis prints table `table` on, from the process's copy of
  * kind k's file (read on first use); 0 when its text does not say, the
  * file has no such table or cannot be read. */

@@ -60,12 +60,12 @@ VP = {0: "256x256", 1: "480x270"}
 
 
 def moderno_appendix(map_size):
-    """scenes/calibration/moderno-appendix.csv's rows for one map size:
+    """report/theses/moderno-2011-scenes.csv's rows for one map size:
     {(scene, view): (2 px contour pixels, NSM's wrong pixels, wrongly lit,
     wrongly shadowed)}, the whole image's for the last three"""
     import csv
     out = {}
-    with open(os.path.join(SCENES, "calibration", "moderno-appendix.csv")) as f:
+    with open(os.path.join(SCENES, "..", "report", "theses", "moderno-2011-scenes.csv")) as f:
         for r in csv.DictReader(ln for ln in f if not ln.startswith("#")):
             if int(r["map_size"]) == map_size:
                 v = {k: int(x) for k, x in r.items() if k.startswith(("c2", "img"))}

@@ -19,14 +19,17 @@ The validation set (CALIBRATION.md, "the split"):
   uncertain = the pixels a label traced, split by the truth). 1024x1024 and
   1920x1080 are left out of this run for its time (the 512x512 column holds
   113 counts of at least 100 pixels).
-- Moderno 2011's appendix with the 2048^2 map (scenes/calibration/
-  moderno-appendix.csv), nine views at 1024x1024: NSM's 2 px contour and
+- Moderno 2011's appendix with the 2048^2 map (report/theses/
+  moderno-2011-scenes.csv), nine views at 1024x1024: NSM's 2 px contour and
   wrong pixels, ours / thesis, and its dominant error kind (said lit but
   shadowed in truth, or said shadowed but lit).
-- Moderno 2011's Table 15 (2048^2): the chain with the rest left lit, wrong %
-  of the contour's pixels, in the thesis's best case (Trees/side, 6 px),
-  average (Bench/with, 2 px) and worst (Flowers/with, 2 px); the thesis's
-  order best < average < worst.
+- Moderno 2011's Table 15 (2048^2; report/theses/moderno-2011-table15.csv):
+  the chain with the rest left lit, wrong % of the contour's pixels, in the
+  thesis's best case (Trees/side, 6 px), average (Bench/with, 2 px) and
+  worst (Flowers/with, 2 px); the thesis's order best < average < worst.
+The report's fidelity section prints the same figures for any study that
+has their cells (report/fidelity.c); moderno_views and table15_cases below
+are the counting that cli::moderno_validation checks it against.
 The runs are deterministic (counts do not depend on threads or machine), so
 the table is the scenes' and can be checked.
 """
@@ -44,9 +47,7 @@ ROOT = os.path.join(HERE, "..")
 BEGIN, END = "<!-- validation:begin -->", "<!-- validation:end -->"
 CASES = [("trees", "side"), ("flowers", "against"), ("bench", "against")]
 ROWS = ("light_incorrect", "shadow_incorrect", "light_uncertain", "shadow_uncertain")
-# Table 15 at 2048^2 (seed 003, 4.9): wrong % in the contour, chain, rest lit
-TABLE15 = [("best", "trees", "side", 6, 0.02), ("average", "bench", "with", 2, 2.80),
-           ("worst", "flowers", "with", 2, 7.15)]
+THESES = os.path.join(ROOT, "report", "theses")
 
 CONFIG_MORAIS = """name: validation-morais
 scenes: [{scene: trees, viewpoints: [side]}, {scene: flowers, viewpoints: [against]},
@@ -78,7 +79,7 @@ repetitions: {warmup: 0, runs: 1}
 
 def thesis_rows():
     out = []
-    with open(os.path.join(ROOT, "report", "theses", "morais-2015.csv")) as f:
+    with open(os.path.join(THESES, "morais-2015.csv")) as f:
         for r in csv.DictReader(ln for ln in f if not ln.startswith("#")):
             if 7 <= int(r["table"]) <= 24 and r["width"] == "512" and r["row"] in ROWS \
                     and int(r["count"]) >= 100:
@@ -89,12 +90,19 @@ def thesis_rows():
 
 def appendix(map_size):
     out = {}
-    with open(os.path.join(ROOT, "scenes", "calibration", "moderno-appendix.csv")) as f:
+    with open(os.path.join(THESES, "moderno-2011-scenes.csv")) as f:
         for r in csv.DictReader(ln for ln in f if not ln.startswith("#")):
             if int(r["map_size"]) == map_size:
                 out[(r["scene"], r["viewpoint"])] = {k: int(v) for k, v in r.items()
                                                      if k.startswith(("c2", "img"))}
     return out
+
+
+def table15(map_size):
+    """Table 15's cases at one map size: [(case, scene, view, contour, label, thesis %)], as in the file"""
+    with open(os.path.join(THESES, "moderno-2011-table15.csv")) as f:
+        return [(r["case"], r["scene"], r["viewpoint"], int(r["contour"]), r["label"], float(r["percent"]))
+                for r in csv.DictReader(ln for ln in f if not ln.startswith("#")) if int(r["map_size"]) == map_size]
 
 
 def run(binary, text, d, name):
@@ -130,13 +138,50 @@ def fmt_ratio(x):
     return f"{x:.2f}"
 
 
+def moderno_views(fo, map_size=2048):
+    """The appendix's views at map_size that the study's NSM cell (label nsm,
+    1024x1024) measures, sorted: (scene, view, ours c2, thesis c2, ours wrong,
+    thesis wrong, ours kind, ours lit / shadow wrong, thesis kind, its lit /
+    shadow wrong); fo = {region: figs(db, region)}"""
+    out = []
+    for (s, v), t in sorted(appendix(map_size).items()):
+        im, c2 = fo["image"].get((s, v, map_size, "nsm")), fo["2px"].get((s, v, map_size, "nsm"))
+        if im is None or c2 is None:
+            continue
+        li, si = im.get("light_incorrect", 0), im.get("shadow_incorrect", 0)
+        ko = "lit" if li >= si else "shadow"
+        kt = "lit" if t["img_lit_wrong"] >= t["img_shadow_wrong"] else "shadow"
+        out.append((s, v, c2["pixels"], t["c2_lit"] + t["c2_shadow"], li + si,
+                    t["img_lit_wrong"] + t["img_shadow_wrong"], ko, (li, si), kt,
+                    (t["img_lit_wrong"], t["img_shadow_wrong"])))
+    return out
+
+
+def moderno_summary(views):
+    """(median of the ratios, within 2x, ratios, kind as the thesis, views)"""
+    rs = [x for w in views for x in (w[2] / w[3], w[4] / w[5])]
+    return (statistics.median(rs), sum(0.5 <= x <= 2 for x in rs), len(rs),
+            sum(w[6] == w[8] for w in views), len(views))
+
+
+def table15_cases(fo, map_size=2048):
+    """Table 15's cases: (case, scene, view, contour, ours % or None, thesis %)"""
+    out = []
+    for case, s, v, px, label, tv in table15(map_size):
+        f = fo.get(f"{px}px", {}).get((s, v, map_size, label))
+        pct = None if not f or not f.get("pixels") else \
+            100.0 * (f.get("light_incorrect", 0) + f.get("shadow_incorrect", 0)) / f["pixels"]
+        out.append((case, s, v, px, pct, tv))
+    return out
+
+
 def table(binary):
     with tempfile.TemporaryDirectory() as d:
         dbm = run(binary, CONFIG_MORAIS, d, "m")
         fm = figs(dbm)
         dbm.close()
         dbo = run(binary, CONFIG_MODERNO, d, "o")
-        fo = {r: figs(dbo, r) for r in ("image", "2px", "6px")}
+        fo = {r: figs(dbo, r) for r in ("image", "2px", "4px", "6px")}
         dbo.close()
     L = []
     # ---- Morais Tables 7-24
@@ -157,27 +202,19 @@ def table(binary):
                  f"{sum(0.5 <= x <= 2 for x in xs)} | {min(xs):.2f} | {max(xs):.2f} |")
     L.append("")
     # ---- Moderno's appendix, 2048^2
-    th = appendix(2048)
     L.append("Moderno 2011's appendix, 1024x1024, 2048² map, NSM (front faces culled): ours / thesis, and the "
              "dominant error kind (lit: said lit, shadowed in truth; shadow: said shadowed, lit in truth).")
     L.append("")
     L.append("| view | 2 px contour ours | thesis | ratio | NSM wrong ours | thesis | ratio | kind ours | thesis |")
     L.append("|---|---:|---:|---:|---:|---:|---:|---|---|")
-    match, rs = 0, []
-    for (s, v), t in sorted(th.items()):
-        im, c2 = fo["image"][(s, v, 2048, "nsm")], fo["2px"][(s, v, 2048, "nsm")]
-        tc2, tnw = t["c2_lit"] + t["c2_shadow"], t["img_lit_wrong"] + t["img_shadow_wrong"]
-        oc2, onw = c2["pixels"], im["light_incorrect"] + im["shadow_incorrect"]
-        ko = "lit" if im["light_incorrect"] >= im["shadow_incorrect"] else "shadow"
-        kt = "lit" if t["img_lit_wrong"] >= t["img_shadow_wrong"] else "shadow"
-        match += ko == kt
-        rs += [oc2 / tc2, onw / tnw]
+    views = moderno_views(fo)
+    for s, v, oc2, tc2, onw, tnw, ko, (oli, osi), kt, (tli, tsi) in views:
         L.append(f"| {s} / {v} | {oc2} | {tc2} | {oc2 / tc2:.2f} | {onw} | {tnw} | {onw / tnw:.2f} | {ko} "
-                 f"({im['light_incorrect']} / {im['shadow_incorrect']}) | {kt} "
-                 f"({t['img_lit_wrong']} / {t['img_shadow_wrong']}) |")
+                 f"({oli} / {osi}) | {kt} ({tli} / {tsi}) |")
+    med, within, nr, match, nv = moderno_summary(views)
     L.append("")
-    L.append(f"Ratios: median {statistics.median(rs):.2f}, {sum(0.5 <= x <= 2 for x in rs)} of {len(rs)} "
-             f"within 2x; dominant kind as the thesis in **{match} of {len(th)}** views.")
+    L.append(f"Ratios: median {med:.2f}, {within} of {nr} within 2x; dominant kind as the thesis in "
+             f"**{match} of {nv}** views.")
     L.append("")
     # ---- Table 15
     L.append("Moderno 2011, Table 15 (2048² map): the chain with the uncertain pixels left lit, wrong % of the "
@@ -186,9 +223,7 @@ def table(binary):
     L.append("| case | view | contour | ours % | thesis % |")
     L.append("|---|---|---|---:|---:|")
     got = []
-    for case, s, v, px, tv in TABLE15:
-        f = fo[f"{px}px"][(s, v, 2048, "chain_lit")]
-        pct = 100.0 * (f.get("light_incorrect", 0) + f.get("shadow_incorrect", 0)) / f["pixels"]
+    for case, s, v, px, pct, tv in table15_cases(fo):
         got.append(pct)
         L.append(f"| {case} | {s} / {v} | {px} px | {pct:.2f} | {tv:.2f} |")
     order = got[0] < got[1] < got[2]

@@ -1,6 +1,6 @@
 /* theses::* — the theses' data files (the CSV files of report/theses/) and
  * their reader (report/theses.c):
- * - shipped: the four files load from the source tree with their row
+ * - shipped: the six files load from the source tree with their row
  *   counts, the arrays end in a zeroed row, every SL_MORAIS_ROWS name is
  *   its enum's, the pages the seeds print are the rows' (Morais Table 7 on
  *   p. 50, Moderno 16 without one) and cited so, and SHADOWLAB_THESES moves
@@ -85,6 +85,22 @@ static void theses_shipped(void **st)
     assert_string_equal(he[1].scene, "Village");
     assert_int_equal(he[1].tris, 247432);
     assert_true(he[2].rt_insec == 2670 && he[3].rays == 198576 && he[3].insec == 967655);
+    /* Moderno's appendix on the Bench scenes: nine views, two maps each */
+    const struct sl_thesis_scene_view *sv;
+    assert_int_equal(sl_theses_moderno_scenes(&sv, &n, &d), SL_OK);
+    assert_int_equal(n, 18);
+    assert_null(sv[n].scene);
+    assert_true(sv[0].table == 64 && !strcmp(sv[0].scene, "bench") && !strcmp(sv[0].viewpoint, "side") &&
+                sv[0].map_size == 1024 && sv[0].c2_lit_wrong == 3536 && sv[0].img_shadow == 321387 && !sv[0].note);
+    assert_true(sv[8].table == 124 && sv[8].map_size == 1024 && sv[8].img_lit_wrong == 2884 && sv[8].note);
+    assert_true(sv[17].table == 186 && sv[17].map_size == 2048 && sv[17].img_shadow_wrong == 3834);
+    const struct sl_thesis_table15 *t15;
+    assert_int_equal(sl_theses_moderno_table15(&t15, &n, &d), SL_OK);
+    assert_int_equal(n, 3);
+    assert_null(t15[n].scene);
+    assert_true(!strcmp(t15[0].kase, "best") && !strcmp(t15[0].scene, "trees") && t15[0].contour == 6 &&
+                t15[0].map_size == 2048 && !strcmp(t15[0].label, "chain_lit") && t15[0].pct == 0.02);
+    assert_true(!strcmp(t15[2].kase, "worst") && t15[2].pct == 7.15);
     /* the pages the seeds print (the files' "# page:" lines say where) */
     assert_int_equal(sl_theses_morais(&ma, &n, &d), SL_OK);
     int seen7 = 0;
@@ -99,7 +115,8 @@ static void theses_shipped(void **st)
         {SL_THESIS_MORAIS, 24, 82},       {SL_THESIS_MORAIS_TIMES, 25, 84},  {SL_THESIS_MORAIS_TIMES, 30, 95},
         {SL_THESIS_MODERNO, 16, 0},       {SL_THESIS_MODERNO, 26, 100},      {SL_THESIS_MODERNO, 30, 111},
         {SL_THESIS_MODERNO, 47, 127},     {SL_THESIS_MODERNO, 53, 131},      {SL_THESIS_MODERNO, 58, 0},
-        {SL_THESIS_HERTEL, 2, 0},         {SL_THESIS_MORAIS, 3, 0},          /* no such table in the file */
+        {SL_THESIS_HERTEL, 2, 0},         {SL_THESIS_MODERNO_SCENES, 124, 0}, {SL_THESIS_MODERNO_TABLE15, 15, 0},
+        {SL_THESIS_MORAIS, 3, 0},          /* no such table in the file */
     };
     for (size_t i = 0; i < sizeof pages / sizeof pages[0]; i++)
         if (sl_thesis_page(pages[i].k, pages[i].table) != pages[i].page)

@@ -389,7 +389,8 @@ static const struct {
                              "share/shadowlab/techniques; two different packages of one name along them are an error "
                              "naming both."},
     {"SHADOWLAB_THESES", "The folder report reads the theses' data files from (moderno-2011.csv, "
-                         "morais-2015.csv, morais-2015-times.csv, hertel-2009.csv) instead of the installed "
+                         "moderno-2011-scenes.csv, moderno-2011-table15.csv, morais-2015.csv, "
+                         "morais-2015-times.csv, hertel-2009.csv) instead of the installed "
                          "share/shadowlab/theses (or, not installed, the source tree's report/theses/); a "
                          "damaged file stops the report with its file, line and column (exit 2)."},
     {"SHADOWLAB_MODULE_DIR", "A folder searched first for the modules loaded on first use "
