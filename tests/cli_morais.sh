@@ -127,7 +127,9 @@ f = {}
 for s, v, m, lab, fig, n in sqlite3.connect(sys.argv[2]).execute(
         "SELECT scene, viewpoint, map_size, label, figure, count FROM figures WHERE region = 'image'"):
     f.setdefault((s, v, m, lab), {})[fig] = n
-rs = []
+rs, rb = [], []
+BOUNDARY = {('nsm', 'light_incorrect'), ('nsm', 'shadow_incorrect'), ('bgsm', 'shadow_incorrect'),
+            ('csm', 'light_uncertain'), ('csm_adj', 'light_uncertain')}
 for r in csv.DictReader(ln for ln in open(sys.argv[3], encoding='utf-8') if not ln.startswith('#')):
     row = r['row']
     if not (7 <= int(r['table']) <= 24 and r['width'] == '512' and r['height'] == '512' and int(r['count']) >= 100
@@ -139,13 +141,20 @@ for r in csv.DictReader(ln for ln in open(sys.argv[3], encoding='utf-8') if not 
     o = g.get(row, 0) if row.endswith('incorrect') else g.get('traced_shadow', 0) if row == 'shadow_uncertain' \
         else g.get('traced', 0) - g.get('traced_shadow', 0)
     rs.append(o / int(r['count']))
+    if (r['method'], row) in BOUNDARY:
+        rb.append(rs[-1])
 m = re.search(r'at 512×512, (\d+) of Morais 2015.s Tables 7-24 .*?median ([\d.]+), (\d+)% within 2×', md, re.S)
 if not m or not rs:
     sys.exit('FAIL the validation paragraph is missing (%d counts expected)' % len(rs))
 want = (len(rs), '%.2f' % statistics.median(rs), '%.0f' % (100.0 * sum(0.5 <= x <= 2 for x in rs) / len(rs)))
 got = (int(m.group(1)), m.group(2), m.group(3))
 print('validation paragraph: %s, recomputed %s' % (got, want))
-sys.exit(0 if got == want else 1)
+mb = re.search(r'Of them, the (\d+) counts set by the shadow boundary .*?median ([\d.]+), (\d+)% within 2×', md, re.S)
+wantb = (len(rb), '%.2f' % statistics.median(rb), '%.0f' % (100.0 * sum(0.5 <= x <= 2 for x in rb) / len(rb))) \
+    if rb else None
+gotb = (int(mb.group(1)), mb.group(2), mb.group(3)) if mb else None
+print('boundary counts: %s, recomputed %s' % (gotb, wantb))
+sys.exit(0 if got == want and gotb == wantb and rb else 1)
 PY
 # in the HTML every thesis row is set back (grey), no row of ours is
 python3 - "$tmp/rep/report.html" <<'PY' || { echo "FAIL thesis rows not set back in the HTML"; exit 1; }
