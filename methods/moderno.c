@@ -3,8 +3,8 @@
  * shadow map's own information (depths and the ids of the triangles it
  * stores) confirms or corrects a pixel with a handful of ray-triangle tests.
  *
- * All read (coherence by default) the front-face-culled depth + id layer of normal shadow mapping
- * (the thesis's map) and start from its verdict (kept in verdicts.base, so
+ * All read the front-face-culled depth + id layer of normal shadow mapping
+ * (the thesis's map; coherence by default) and start from its verdict (kept in verdicts.base, so
  * the figures count corrected / turned bad / maintained against NSM):
  * - coherence (texels 4 or 9): the pixel's depth test against the 2x2 texels
  *   of its bilinear footprint or the 3x3 around its texel; all agree: a hint
