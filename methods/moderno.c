@@ -4,8 +4,9 @@
  * stores) confirms or corrects a pixel with a handful of ray-triangle tests.
  *
  * All read the front-face-culled depth + id layer of normal shadow mapping
- * (the thesis's map; coherence by default) and start from its verdict (kept in verdicts.base, so
- * the figures count corrected / turned bad / maintained against NSM):
+ * (the thesis's map; coherence by default) and start from its verdict
+ * (kept in verdicts.base, so the figures count corrected / turned bad /
+ * maintained against NSM):
  * - coherence (texels 4 or 9): the pixel's depth test against the 2x2 texels
  *   of its bilinear footprint or the 3x3 around its texel; all agree: a hint
  *   (may be wrong); otherwise undecided. Its self_shadow (default
