@@ -530,7 +530,7 @@ enum sl_err sl_report_fidelity(struct sl_report_doc *doc, const struct sl_report
         char line[1200];
         snprintf(line, sizeof line, "Not shown, no cell of this study at their view, map size and contours: %s.",
                  skipped);
-        sl_report_doc_para(doc, line);
+        sl_report_doc_para(doc, "%s", line);
     }
 
     struct sl_report_fidelity_claim cl[SL_REPORT_FIDELITY_NCLAIMS];
