@@ -26,6 +26,29 @@ struct check { long pfl, agree, explained, unexplained; double worst; };
 
 static void ld(const float *p, double *o) { o[0] = p[0]; o[1] = p[1]; o[2] = p[2]; }
 
+/* Triangle t's corners (a, b, c) and where the ray o + th L crosses its
+ * plane; 0 when the ray runs parallel to it. */
+static int crossing(const struct sl_scene *s, uint32_t t, const double o[3], const double L[3], double a[3],
+                    double b[3], double c[3], double *th)
+{
+    double nrm[3], e1[3], e2[3];
+    ld(s->pos + 3 * s->idx[3 * t], a);
+    ld(s->pos + 3 * s->idx[3 * t + 1], b);
+    ld(s->pos + 3 * s->idx[3 * t + 2], c);
+    for (int k = 0; k < 3; k++) {
+        e1[k] = b[k] - a[k];
+        e2[k] = c[k] - a[k];
+    }
+    nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double den = nrm[0] * L[0] + nrm[1] * L[1] + nrm[2] * L[2];
+    if (den == 0.0)
+        return 0;
+    *th = (nrm[0] * (a[0] - o[0]) + nrm[1] * (a[1] - o[1]) + nrm[2] * (a[2] - o[2])) / den;
+    return 1;
+}
+
 static void brute_force(const struct sl_scene *s, const struct sl_view *v, struct check *c)
 {
     double ext = 0;
@@ -66,21 +89,8 @@ static void brute_force(const struct sl_scene *s, const struct sl_view *v, struc
             /* Embree found an occluder the reference missed: how near did the
              * ray pass to any triangle in front of the point? */
             for (uint32_t t = 0; t < s->nt; t++) {
-                if (t + 1 == v->tri[i])
-                    continue;
-                double a[3], b[3], cc[3], nrm[3], e1[3], e2[3];
-                ld(s->pos + 3 * s->idx[3 * t], a);
-                ld(s->pos + 3 * s->idx[3 * t + 1], b);
-                ld(s->pos + 3 * s->idx[3 * t + 2], cc);
-                for (int k = 0; k < 3; k++) { e1[k] = b[k] - a[k]; e2[k] = cc[k] - a[k]; }
-                nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
-                nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
-                nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
-                double den = nrm[0] * L[0] + nrm[1] * L[1] + nrm[2] * L[2];
-                if (den == 0.0)
-                    continue;
-                double th = (nrm[0] * (a[0] - o[0]) + nrm[1] * (a[1] - o[1]) + nrm[2] * (a[2] - o[2])) / den;
-                if (th <= 0.0)
+                double a[3], b[3], cc[3], th;
+                if (t + 1 == v->tri[i] || !crossing(s, t, o, L, a, b, cc, &th) || th <= 0.0)
                     continue;
                 double q[3] = {o[0] + th * L[0], o[1] + th * L[1], o[2] + th * L[2]};
                 margin = fmin(margin, sl_point_tri_dist_d(q, a, b, cc));
@@ -134,21 +144,8 @@ static double tie_margin(const struct sl_scene *s, const struct sl_view *v, size
     double margin = INFINITY;
     *tcross = 0.0;
     for (uint32_t t = 0; t < s->nt; t++) {
-        if (t + 1 == v->tri[i])
-            continue;
-        double a[3], b[3], cc[3], nrm[3], e1[3], e2[3];
-        ld(s->pos + 3 * s->idx[3 * t], a);
-        ld(s->pos + 3 * s->idx[3 * t + 1], b);
-        ld(s->pos + 3 * s->idx[3 * t + 2], cc);
-        for (int k = 0; k < 3; k++) { e1[k] = b[k] - a[k]; e2[k] = cc[k] - a[k]; }
-        nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        double den = nrm[0] * L[0] + nrm[1] * L[1] + nrm[2] * L[2];
-        if (den == 0.0)
-            continue;
-        double th = (nrm[0] * (a[0] - o[0]) + nrm[1] * (a[1] - o[1]) + nrm[2] * (a[2] - o[2])) / den;
-        if (th <= tmin)
+        double a[3], b[3], cc[3], th;
+        if (t + 1 == v->tri[i] || !crossing(s, t, o, L, a, b, cc, &th) || th <= tmin)
             continue;
         double q[3] = {o[0] + th * L[0], o[1] + th * L[1], o[2] + th * L[2]}, hit_t;
         double m = sl_ray_tri_d(o, L, a, b, cc, tmin, &hit_t) ? sl_point_tri_edge_dist_d(q, a, b, cc)
