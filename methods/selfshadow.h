@@ -1,10 +1,12 @@
 /*
  * selfshadow.h — the self-shadow policies of the depth comparison (nsm and
- * the methods that reuse its lookup: zpart, lispsm) and the declarations of
- * that comparison's parameters, shared by those methods' parameter lists.
+ * the methods that reuse its lookup: zpart, lispsm, coherence) and the
+ * declarations of that comparison's parameters, shared by those methods'
+ * parameter lists; the comparison's configure and offset, defined in nsm.c
+ * and called by nsm and coherence alike.
  *
- * Owns: nothing. Does not: check a value (base/params.c checks each against
- * its declaration; nsm's configure checks one against another).
+ * Owns: nothing. Does not: check a value against its declaration
+ * (base/params.c does; sl_self_shadow_configure checks one against another).
  */
 #ifndef SL_SELFSHADOW_H
 #define SL_SELFSHADOW_H
