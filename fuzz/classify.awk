@@ -9,7 +9,9 @@
 # others say where the memory came from), each of a leak report.
 function skip(l) {
   if (l ~ / in (__asan|__lsan|__ubsan|__sanitizer|__interceptor_|__cxa_|__gxx_|_Unwind_|__libc_|__GI_|__restore_rt|fuzzer::|std::terminate|abort|raise|gsignal)/) return 1
-  if (l ~ / in (malloc|calloc|realloc|free|posix_memalign|memalign|aligned_alloc|valloc|operator new|operator delete)([ (<]|$)/) return 1
+  # the allocator's entry points ("operator new[](unsigned long)" too): the
+  # caller asked for the memory, the caller decides
+  if (l ~ / in (malloc|calloc|realloc|free|posix_memalign|memalign|aligned_alloc|valloc|operator new(\[\])?|operator delete(\[\])?)([ (<]|$)/) return 1
   # ASan's interceptors of the libc string and memory functions show as the
   # bare libc name in the fuzz binary ("in strncmp (build-fuzz/...+0x...)",
   # no source line): the sanitizer's frame, the caller decides

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # fuzz::classify — fuzz/classify.awk on sanitizer reports: ASan's libc
-# interceptors (a bare "strncmp" in the fuzz binary) are skipped like the
-# sanitizers' own frames, so the caller decides: assimp's code is assimp's,
+# interceptors (a bare "strncmp" in the fuzz binary) and the allocator's
+# entry points (operator new[]) are skipped like the sanitizers' own
+# frames, so the caller decides: assimp's code is assimp's,
 # shadowlab's code (or a frame it cannot place) is ours and fails the run.
 set -u
 awkf=${1:?usage: fuzz_classify.sh path/to/fuzz/classify.awk}
@@ -29,4 +30,13 @@ v=$(printf '    #0 0x1 in strtok_r_own /tmp/x/harness/base/util.c:7:3\n' | awk -
 case $v in ours*util.c:7*) ;; *) fail "a frame of ours: '$v'" ;; esac
 v=$(printf '    #0 0x1 in strncmp /tmp/x/harness/base/util.c:9:3\n    #1 0x2 (/lib/x86_64-linux-gnu/libassimp.so.5+0x1)\n' | awk -f "$awkf")
 case $v in ours*util.c:9*) ;; *) fail "a strncmp with a source line of ours: '$v'" ;; esac
-echo "ok: 4 reports classified"
+# an allocation assimp asks for and ASan cannot give (a length read from
+# the file): operator new[] is the allocator's frame, libassimp decides
+v=$(printf '%s\n' '==1==ERROR: AddressSanitizer: allocator is out of memory trying to allocate 0xfffffffe8 bytes' \
+    '    #0 0x560c1f941bcd in operator new[](unsigned long) (/tmp/x/build-fuzz/fuzz/fuzz_mesh_gltf+0x147bcd) (BuildId: 8689)' \
+    '    #1 0x7f727921b43f  (/lib/x86_64-linux-gnu/libassimp.so.5+0x61b43f) (BuildId: e482)' | awk -f "$awkf")
+[ "$v" = assimp ] || fail "operator new[] called by libassimp: '$v', want assimp"
+v=$(printf '%s\n' '    #0 0x1 in operator new[](unsigned long) (/tmp/x/build-fuzz/fuzz/fuzz_mesh_gltf+0x1)' \
+    '    #1 0x2 in sl_mesh_load /tmp/x/harness/scene/meshio.c:300:9' | awk -f "$awkf")
+case $v in ours*meshio.c:300*) ;; *) fail "operator new[] called by shadowlab: '$v', want ours (meshio.c:300)" ;; esac
+echo "ok: 6 reports classified"
