@@ -468,17 +468,24 @@ static enum sl_err run_coherence_policy(const struct sl_method_args *a, struct s
         const uint32_t k = sl_frame_texel(f, u, w), own = v->tri[i];
         const float zo = z - sl_self_offset(&t, f, p, v->nrm + 3 * i, z);
         out->base[i] = (tid && id[k] == own) || zo <= depth[k] ? SL_V_LIT : SL_V_SHADOW;
-        const int x0 = texels == 4 ? (int)floorf(u - 0.5f) : (int)floorf(u) - 1;
-        const int y0 = texels == 4 ? (int)floorf(w - 0.5f) : (int)floorf(w) - 1;
-        int lit = 0;
-        for (int jj = 0; jj < n1; jj++)
-            for (int ii = 0; ii < n1; ii++) {
-                int tx = x0 + ii, ty = y0 + jj;
-                tx = tx < 0 ? 0 : tx >= S ? S - 1 : tx;
-                ty = ty < 0 ? 0 : ty >= S ? S - 1 : ty;
-                const size_t kk = (size_t)ty * (size_t)S + (size_t)tx;
-                lit += (tid && id[kk] == own) || zo <= depth[kk];
-            }
+        /* the footprint's depth tests at the offset depth are
+         * sl_frame_pcf_lit's; triangle_id also lights a texel that stores
+         * the pixel's own triangle, so it walks the same texels itself */
+        int lit;
+        if (!tid)
+            lit = sl_frame_pcf_lit(depth, S, u, w, zo, texels);
+        else {
+            const int x0 = texels == 4 ? (int)floorf(u - 0.5f) : (int)floorf(u) - 1;
+            const int y0 = texels == 4 ? (int)floorf(w - 0.5f) : (int)floorf(w) - 1;
+            lit = 0;
+            for (int jj = 0; jj < n1; jj++)
+                for (int ii = 0; ii < n1; ii++) {
+                    const int tx = x0 + ii < 0 ? 0 : x0 + ii >= S ? S - 1 : x0 + ii;
+                    const int ty = y0 + jj < 0 ? 0 : y0 + jj >= S ? S - 1 : y0 + jj;
+                    const size_t kk = (size_t)ty * (size_t)S + (size_t)tx;
+                    lit += id[kk] == own || zo <= depth[kk];
+                }
+        }
         lookups += 1 + (uint64_t)(n1 * n1);
         const int coh = lit == n1 * n1 ? 1 : lit == 0 ? 2 : 0;
         out->v[i] = coh == 1 ? SL_V_LIT : coh == 2 ? SL_V_SHADOW : SL_V_UNCERTAIN;

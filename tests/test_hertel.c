@@ -253,12 +253,7 @@ static void hertel_wrong_by_rule(void **st)
                 const float *fn = f.scene.fn + 3 * (size_t)(id - 1);
                 turned += fn[0] * f.scene.light_dir[0] + fn[1] * f.scene.light_dir[1] +
                           fn[2] * f.scene.light_dir[2] > 0.0f;
-                int rs = -1, rp = -1;
-                for (int r = 0; r < f.scene.nranges; r++) {
-                    const uint32_t a0 = f.scene.ranges[r].first, a1 = a0 + f.scene.ranges[r].count;
-                    rs = id - 1 >= a0 && id - 1 < a1 ? r : rs;
-                    rp = v.tri[i] - 1 >= a0 && v.tri[i] - 1 < a1 ? r : rp;
-                }
+                const int rs = sl_scene_mesh_of(&f.scene, id - 1), rp = sl_scene_mesh_of(&f.scene, v.tri[i] - 1);
                 same_mesh += rs == rp;
                 if (rs >= 0 && rp >= 0 && rs < 16 && rp < 16)
                     pair[rp][rs]++;

@@ -545,14 +545,6 @@ struct hint_classes {
     uint64_t wrong_nsm;                                  /* NSM's errors in the contour */
 };
 
-static int range_of(const struct sl_scene *s, uint32_t t)
-{
-    for (int r = 0; r < s->nranges; r++)
-        if (t >= s->ranges[r].first && t < s->ranges[r].first + s->ranges[r].count)
-            return r;
-    return -1;
-}
-
 static void wrong_hints_classify(struct fig *g, int thickness, struct hint_classes *hc, uint64_t per_mesh[][2])
 {
     const struct sl_scene *s = &g->f.scene;
@@ -578,7 +570,7 @@ static void wrong_hints_classify(struct fig *g, int thickness, struct hint_class
         const float *p = v->pos + 3 * i;
         float u, w, z;
         sl_frame_project(f, p, &u, &w, &z);
-        int own = range_of(s, v->tri[i] - 1);
+        int own = sl_scene_mesh_of(s, v->tri[i] - 1);
         per_mesh[own][g->vd.v[i] == SL_V_SHADOW]++;
         if (g->vd.v[i] == SL_V_SHADOW) {
             int x0 = (int)floorf(u - 0.5f), y0 = (int)floorf(w - 0.5f);
@@ -590,7 +582,7 @@ static void wrong_hints_classify(struct fig *g, int thickness, struct hint_class
                     int y = y0 + j < 0 ? 0 : y0 + j >= S ? S - 1 : y0 + j;
                     size_t t = (size_t)y * S + x;
                     nearest = fmaxf(nearest, L->depth[t]);   /* the stored depth nearest the pixel's */
-                    two_sided |= L->id[t] && s->ranges[range_of(s, L->id[t] - 1)].two_sided;
+                    two_sided |= L->id[t] && s->ranges[sl_scene_mesh_of(s, L->id[t] - 1)].two_sided;
                 }
             if (z - nearest < 2.0f * texel_z)
                 hc->shadow_near++;
@@ -613,7 +605,7 @@ static void wrong_hints_classify(struct fig *g, int thickness, struct hint_class
             hc->lit_none++;
             continue;
         }
-        const int occ_two = s->ranges[range_of(s, occ - 1)].two_sided != 0;
+        const int occ_two = s->ranges[sl_scene_mesh_of(s, occ - 1)].two_sided != 0;
         hc->lit_two_sided_occluder += occ_two;
         const float *fn = s->fn + 3 * (size_t)(occ - 1);
         if (!occ_two && fn[0] * s->light_dir[0] + fn[1] * s->light_dir[1] + fn[2] * s->light_dir[2] < 0.0f) {
@@ -861,7 +853,7 @@ static void moderno_wrong_hints_gap(void **st)
                     continue;                      /* a grazing ray the double test misses */
                 const float *fn = s->fn + 3 * (size_t)(occ - 1);
                 const int back = fn[0] * s->light_dir[0] + fn[1] * s->light_dir[1] + fn[2] * s->light_dir[2] > 0;
-                const int ro = range_of(s, occ - 1), rp = range_of(s, g.v.tri[i] - 1);
+                const int ro = sl_scene_mesh_of(s, occ - 1), rp = sl_scene_mesh_of(s, g.v.tri[i] - 1);
                 n_here++;
                 nearest_back += back;
                 own_here += ro == rp;
@@ -910,10 +902,10 @@ static void moderno_wrong_hints_gap(void **st)
  * thesis's (issue 48: which policy gives the thesis's wrong hints), on
  * Primitives/side at 1024 x 1024 with a 1024² map: its base is nsm's
  * verdict under the same policy pixel for pixel; a hint says what nsm
- * says (the pixel's own texel is one of the footprint's); under none the
- * footprint's count is sl_frame_pcf_lit's on the nearest-surface map;
- * under triangle_id no pixel whose whole footprint stores its own
- * triangle is shadowed; the policies differ from one another. */
+ * says (the pixel's own texel is one of the footprint's); under none and
+ * triangle_id the footprint's count is the one counted here texel by
+ * texel on the nearest-surface map (a texel storing the pixel's own
+ * triangle lit under triangle_id); the policies differ from one another. */
 static void moderno_coherence_policies(void **st)
 {
     (void)st;
@@ -954,11 +946,20 @@ static void moderno_coherence_policies(void **st)
                 assert_true(g.vd.detail[i] > 0 && g.vd.detail[i] < texels);
                 uncertain++;
             }
-            if (k == 0) {
+            if (k == 0 || k == 4) {   /* no offset: the footprint counted here, texel by texel */
                 float u, w, z;
                 sl_frame_project(&g.fr, g.v.pos + 3 * i, &u, &w, &z);
-                assert_int_equal(texels - g.vd.detail[i],
-                                 sl_frame_pcf_lit(g.fr.layer[SL_LAYER_DEPTH_ID].depth, 1024, u, w, z, 4));
+                const struct sl_depth_layer *L = &g.fr.layer[SL_LAYER_DEPTH_ID];
+                const int x0 = (int)floorf(u - 0.5f), y0 = (int)floorf(w - 0.5f);
+                int lit = 0;
+                for (int dy = 0; dy < 2; dy++)
+                    for (int dx = 0; dx < 2; dx++) {
+                        const int tx = x0 + dx < 0 ? 0 : x0 + dx > 1023 ? 1023 : x0 + dx;
+                        const int ty = y0 + dy < 0 ? 0 : y0 + dy > 1023 ? 1023 : y0 + dy;
+                        const size_t kk = (size_t)ty * 1024 + (size_t)tx;
+                        lit += (k == 4 && L->id[kk] == g.v.tri[i]) || z <= L->depth[kk];
+                    }
+                assert_int_equal(texels - g.vd.detail[i], lit);
             }
         }
         hints[k] = h;

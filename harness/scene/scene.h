@@ -116,4 +116,20 @@ void        sl_scene_use_view_light(struct sl_scene *s, int vp);
 
 void sl_scene_free(struct sl_scene *s);
 
+/* The mesh (index into ranges) holding triangle t (0-based), or -1: the
+ * ranges follow one another in the scene file's order, so a binary search
+ * over their first triangles. */
+static inline int sl_scene_mesh_of(const struct sl_scene *s, uint32_t t)
+{
+    int lo = 0, hi = s->nranges - 1;
+    while (lo < hi) {
+        int mid = (lo + hi + 1) / 2;
+        if (s->ranges[mid].first <= t)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return s->nranges > 0 && t >= s->ranges[lo].first && t - s->ranges[lo].first < s->ranges[lo].count ? lo : -1;
+}
+
 #endif

@@ -195,19 +195,10 @@ static char *mesh_codes(const struct sl_scene *s, const struct sl_view *v, uint8
 {
     const size_t npx = (size_t)v->w * (size_t)v->h;
     const int nr = s ? s->nranges : 0;
-    int r = 0;
     for (size_t i = 0; i < npx; i++) {
-        uint32_t t = v->tri ? v->tri[i] : 0;
-        code[i] = 0;
-        if (!t || !nr)
-            continue;
-        t--;
-        /* neighbours lie mostly on one mesh: start at the last one found */
-        if (t < s->ranges[r].first || t >= s->ranges[r].first + s->ranges[r].count)
-            for (r = 0; r < nr - 1 && !(t >= s->ranges[r].first && t < s->ranges[r].first + s->ranges[r].count); r++)
-                ;
-        if (t >= s->ranges[r].first && t < s->ranges[r].first + s->ranges[r].count)
-            code[i] = (uint8_t)(r < 254 ? r + 1 : 255);
+        const uint32_t t = v->tri ? v->tri[i] : 0;
+        const int r = t && nr ? sl_scene_mesh_of(s, t - 1) : -1;
+        code[i] = (uint8_t)(r < 0 ? 0 : r < 254 ? r + 1 : 255);
     }
     size_t cap = 64 + (size_t)nr * (SL_MESH_NAME + 8), k = 0;
     char *legend = malloc(cap);
